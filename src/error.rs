@@ -1,0 +1,59 @@
+//! The error type returned by the kernel.
+//!
+//! Owns: every way a call into the library can refuse its input. It may not depend on any other
+//! module; the others depend on it.
+
+use core::fmt;
+
+/// Why points could not be triangulated.
+///
+/// ```
+/// use condt::{triangulate, Error, Point};
+/// let err = triangulate(&[Point::new(0.0, 0.0), Point::new(f64::NAN, 1.0)]).unwrap_err();
+/// assert_eq!(err, Error::NonFinite { index: 1 });
+/// assert_eq!(err.to_string(), "point 1 has a NaN or infinite coordinate");
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error {
+    /// The point at input position `index` has a NaN or infinite coordinate.
+    NonFinite {
+        /// Input position of the offending point.
+        index: usize,
+    },
+    /// The point at input position `index` has a nonzero coordinate more than 2^200 times smaller
+    /// than the largest coordinate magnitude of the set. The exact predicates would underflow on
+    /// such a set; see `docs/predicates.md`.
+    RangeTooWide {
+        /// Input position of the offending point.
+        index: usize,
+    },
+    /// More points than the 32-bit mesh indices can address.
+    TooManyPoints {
+        /// Number of points given.
+        count: usize,
+        /// The largest number accepted.
+        limit: usize,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::NonFinite { index } => {
+                write!(f, "point {index} has a NaN or infinite coordinate")
+            }
+            Error::RangeTooWide { index } => write!(
+                f,
+                "point {index} has a coordinate over 2^200 times smaller than the largest one; \
+                 exact predicates cannot serve that dynamic range"
+            ),
+            Error::TooManyPoints { count, limit } => {
+                write!(f, "{count} points given, at most {limit} are supported")
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for Error {}

@@ -1,0 +1,61 @@
+//! # condt
+//!
+//! Curve reconstruction from unorganized planar points, standing on its own exact Delaunay kernel.
+//!
+//! This release contains the kernel: exact predicates ([`predicates`]), a compact half-edge mesh
+//! ([`mesh`]) and an incremental Delaunay triangulator ([`triangulate`]). It is usable on its own,
+//! without any curve reconstruction.
+//!
+//! ```
+//! use condt::{triangulate, Point};
+//!
+//! let points = [
+//!     Point::new(0.0, 0.0),
+//!     Point::new(1.0, 0.0),
+//!     Point::new(0.0, 1.0),
+//!     Point::new(1.0, 1.0),
+//!     Point::new(0.0, 0.0), // an exact duplicate of point 0
+//! ];
+//! let tri = triangulate(&points)?;
+//! assert_eq!(tri.num_vertices(), 4);
+//! assert_eq!(tri.triangles().count(), 2);
+//! assert_eq!(tri.vertex_of_input(4).index(), 0); // merged into point 0, never dropped silently
+//! tri.validate()?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! ## Features
+//! - `std` (default): file I/O helpers ([`io`]) and the `condt` command-line tool.
+//! - `parallel` (default, implies `std`): multi-threaded stages, on rayon.
+//!
+//! With `--no-default-features` the library is `#![no_std]` and needs only `alloc`.
+//!
+//! ## Layout
+//! Each module depends only on the ones listed before it; `docs/architecture.md` draws the graph.
+//! - [`error`]: the error type shared by every module.
+//! - [`geometry`]: the [`Point`] type and plain-arithmetic helpers that decide no signs.
+//! - [`predicates`]: the only place a geometric sign is decided (exact, via `robust`).
+//! - [`mesh`]: half-edge topology with typed ids; never sees a coordinate.
+//! - [`triangulate`]: builds a Delaunay [`Triangulation`] from points and checks one.
+//! - [`io`] (`std`): reading point files and writing results atomically.
+//! - [`cli`] (`std`): the command-line front end used by the `condt` binary.
+#![cfg_attr(not(feature = "std"), no_std)]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+extern crate alloc;
+
+#[cfg(feature = "std")]
+pub mod cli;
+pub mod error;
+pub mod geometry;
+#[cfg(feature = "std")]
+pub mod io;
+pub mod mesh;
+pub mod predicates;
+pub mod triangulate;
+
+pub use error::Error;
+pub use geometry::Point;
+pub use mesh::{HalfEdgeId, InvalidMesh, Mesh, TriangleId, VertexId};
+pub use triangulate::{triangulate, Triangulation};

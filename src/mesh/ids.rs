@@ -1,0 +1,123 @@
+//! Typed 32-bit handles for vertices, half-edges and triangles.
+
+/// A vertex. Its index is the input position of the point it stands for (for a group of exact
+/// duplicates, the smallest such position). [`VertexId::INFINITE`] is the vertex at infinity that
+/// closes the mesh into a sphere.
+///
+/// ```
+/// use condt::VertexId;
+/// assert_eq!(VertexId::new(7).index(), 7);
+/// assert!(VertexId::INFINITE.is_infinite());
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct VertexId(u32);
+
+impl VertexId {
+    /// The vertex at infinity, apex of every ghost triangle.
+    pub const INFINITE: VertexId = VertexId(u32::MAX);
+
+    /// The vertex with this index.
+    #[inline]
+    pub const fn new(index: u32) -> Self {
+        VertexId(index)
+    }
+
+    /// Index into the input points.
+    #[inline]
+    pub const fn index(self) -> usize {
+        self.0 as usize
+    }
+
+    /// `true` for [`VertexId::INFINITE`].
+    #[inline]
+    pub const fn is_infinite(self) -> bool {
+        self.0 == u32::MAX
+    }
+}
+
+/// A directed edge. Triangle `t` owns half-edges `3t`, `3t + 1`, `3t + 2` in counter-clockwise
+/// order, so [`next`](HalfEdgeId::next), [`prev`](HalfEdgeId::prev) and
+/// [`triangle`](HalfEdgeId::triangle) are arithmetic; the twin is stored in the [`Mesh`](crate::Mesh).
+///
+/// ```
+/// use condt::{HalfEdgeId, TriangleId};
+/// let e = HalfEdgeId::new(5);
+/// assert_eq!(e.next(), HalfEdgeId::new(3));
+/// assert_eq!(e.prev(), HalfEdgeId::new(4));
+/// assert_eq!(e.triangle(), TriangleId::new(1));
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct HalfEdgeId(u32);
+
+impl HalfEdgeId {
+    /// "No half-edge", used where a vertex has no incident edge.
+    pub const NONE: HalfEdgeId = HalfEdgeId(u32::MAX);
+
+    /// The half-edge with this index.
+    #[inline]
+    pub const fn new(index: u32) -> Self {
+        HalfEdgeId(index)
+    }
+
+    /// Position in the mesh arrays.
+    #[inline]
+    pub const fn index(self) -> usize {
+        self.0 as usize
+    }
+
+    /// The next half-edge counter-clockwise in the same triangle.
+    #[inline]
+    pub const fn next(self) -> Self {
+        HalfEdgeId(if self.0 % 3 == 2 { self.0 - 2 } else { self.0 + 1 })
+    }
+
+    /// The previous half-edge in the same triangle.
+    #[inline]
+    pub const fn prev(self) -> Self {
+        HalfEdgeId(if self.0 % 3 == 0 { self.0 + 2 } else { self.0 - 1 })
+    }
+
+    /// The triangle that owns this half-edge.
+    #[inline]
+    pub const fn triangle(self) -> TriangleId {
+        TriangleId(self.0 / 3)
+    }
+
+    /// `true` for [`HalfEdgeId::NONE`].
+    #[inline]
+    pub const fn is_none(self) -> bool {
+        self.0 == u32::MAX
+    }
+}
+
+/// A triangle, real or ghost.
+///
+/// ```
+/// use condt::{HalfEdgeId, TriangleId};
+/// assert_eq!(TriangleId::new(2).edge(1), HalfEdgeId::new(7));
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct TriangleId(u32);
+
+impl TriangleId {
+    /// The triangle with this index.
+    #[inline]
+    pub const fn new(index: u32) -> Self {
+        TriangleId(index)
+    }
+
+    /// Position among the mesh's triangles.
+    #[inline]
+    pub const fn index(self) -> usize {
+        self.0 as usize
+    }
+
+    /// Its `corner`-th half-edge (`corner` in `0..3`).
+    #[inline]
+    pub const fn edge(self, corner: u32) -> HalfEdgeId {
+        HalfEdgeId(self.0 * 3 + corner)
+    }
+}

@@ -1,0 +1,246 @@
+//! Half-edge topology of a triangulated sphere.
+//!
+//! Owns: connectivity only, in three flat arrays indexed by typed ids. It may not look at a
+//! coordinate, and it knows nothing of how the mesh was built.
+//!
+//! Layout (see `docs/half_edge.md` for pictures):
+//! - triangle `t` owns half-edges `3t, 3t+1, 3t+2`, counter-clockwise; `origins[e]` is where `e`
+//!   starts, so `e` runs from `origins[e]` to `origins[e.next()]`;
+//! - `twins[e]` is the opposite half-edge; every half-edge has one, because the convex hull is closed
+//!   off by *ghost triangles* that join each hull edge to [`VertexId::INFINITE`];
+//! - `vertex_edges[v]` is one half-edge leaving `v`; for a hull vertex it is the one that points to
+//!   infinity, so that the counter-clockwise walk of the ring starts and ends on the hull.
+//!
+//! Turning counter-clockwise around the origin of `e` is `twin(prev(e))`, so a vertex's 1-ring is
+//! walked in O(degree) for interior and hull vertices alike, with no allocation.
+//!
+//! When all points are collinear there is no real triangle: each segment of the chain is covered by
+//! two ghost triangles, one on each side, and the same walks still work.
+
+mod check;
+mod ids;
+
+pub use check::InvalidMesh;
+pub use ids::{HalfEdgeId, TriangleId, VertexId};
+
+use alloc::vec::Vec;
+
+/// The topology of a Delaunay triangulation, closed into a sphere by ghost triangles.
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let tri = triangulate(&[Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)])?;
+/// let mesh = tri.mesh();
+/// assert_eq!(mesh.triangles().count(), 1); // one real triangle...
+/// assert_eq!(mesh.num_triangles_with_ghosts(), 4); // ...and three ghosts, one per hull edge
+/// assert_eq!(mesh.edges().count(), 3);
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub(crate) origins: Vec<VertexId>,
+    pub(crate) twins: Vec<HalfEdgeId>,
+    pub(crate) vertex_edges: Vec<HalfEdgeId>,
+}
+
+impl Mesh {
+    /// Number of half-edges, ghosts included.
+    #[inline]
+    pub fn num_half_edges(&self) -> usize {
+        self.origins.len()
+    }
+
+    /// Number of triangles, ghosts included.
+    #[inline]
+    pub fn num_triangles_with_ghosts(&self) -> usize {
+        self.origins.len() / 3
+    }
+
+    /// Length of the vertex index space (the number of input points).
+    #[inline]
+    pub fn vertex_capacity(&self) -> usize {
+        self.vertex_edges.len()
+    }
+
+    /// Where `e` starts.
+    #[inline]
+    pub fn origin(&self, e: HalfEdgeId) -> VertexId {
+        self.origins[e.index()]
+    }
+
+    /// Where `e` ends.
+    #[inline]
+    pub fn dest(&self, e: HalfEdgeId) -> VertexId {
+        self.origins[e.next().index()]
+    }
+
+    /// The half-edge running the other way along the same edge.
+    #[inline]
+    pub fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
+        self.twins[e.index()]
+    }
+
+    /// One half-edge leaving `v` (on the hull: the one pointing to infinity), or `None` when `v`
+    /// has no edge: it is a merged duplicate, or the only distinct point.
+    #[inline]
+    pub fn vertex_edge(&self, v: VertexId) -> Option<HalfEdgeId> {
+        let e = *self.vertex_edges.get(v.index())?;
+        (!e.is_none()).then_some(e)
+    }
+
+    /// The three corners of `t`, counter-clockwise.
+    #[inline]
+    pub fn triangle_vertices(&self, t: TriangleId) -> [VertexId; 3] {
+        let i = t.index() * 3;
+        [self.origins[i], self.origins[i + 1], self.origins[i + 2]]
+    }
+
+    /// `true` when `t` is a ghost triangle (one corner is [`VertexId::INFINITE`]).
+    #[inline]
+    pub fn is_ghost(&self, t: TriangleId) -> bool {
+        self.triangle_vertices(t).iter().any(|v| v.is_infinite())
+    }
+
+    /// `true` when both ends of `e` are finite vertices.
+    #[inline]
+    pub fn is_finite_edge(&self, e: HalfEdgeId) -> bool {
+        !self.origin(e).is_infinite() && !self.dest(e).is_infinite()
+    }
+
+    /// `true` when `e` is finite and has a ghost triangle on one side: it lies on the convex hull
+    /// (or, for collinear input, on the chain).
+    #[inline]
+    pub fn is_hull_edge(&self, e: HalfEdgeId) -> bool {
+        self.is_finite_edge(e) && (self.is_ghost(e.triangle()) || self.is_ghost(self.twin(e).triangle()))
+    }
+
+    /// The real (non-ghost) triangles.
+    pub fn triangles(&self) -> impl Iterator<Item = TriangleId> + '_ {
+        (0..self.num_triangles_with_ghosts() as u32)
+            .map(TriangleId::new)
+            .filter(move |&t| !self.is_ghost(t))
+    }
+
+    /// Every finite undirected edge once, as the half-edge of the pair with the smaller id.
+    pub fn edges(&self) -> impl Iterator<Item = HalfEdgeId> + '_ {
+        (0..self.num_half_edges() as u32)
+            .map(HalfEdgeId::new)
+            .filter(move |&e| e < self.twin(e) && self.is_finite_edge(e))
+    }
+
+    /// The half-edges leaving `v` towards finite vertices, counter-clockwise. For a hull vertex
+    /// the walk starts at its hull neighbour that follows it clockwise and sweeps through the
+    /// interior to the other hull neighbour. O(degree), no allocation.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point, VertexId};
+    /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&square)?;
+    /// let centre = VertexId::new(4);
+    /// let around: Vec<usize> = tri.mesh().ring(centre).map(|e| tri.mesh().dest(e).index()).collect();
+    /// assert_eq!(around.len(), 4);
+    /// // Counter-clockwise: each neighbour is the next corner of the square after the previous one.
+    /// for w in around.windows(2) {
+    ///     assert_eq!(w[1], (w[0] + 1) % 4);
+    /// }
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn ring(&self, v: VertexId) -> Ring<'_> {
+        let start = self.vertex_edge(v).unwrap_or(HalfEdgeId::NONE);
+        Ring { mesh: self, start, current: start }
+    }
+
+    /// The finite neighbours of `v`, counter-clockwise (the destinations of [`Mesh::ring`]).
+    pub fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
+        self.ring(v).map(move |e| self.dest(e))
+    }
+
+    /// The vertices of the convex hull, counter-clockwise, each hull edge once. Points lying on a
+    /// hull edge are hull vertices too. For collinear input the walk goes out along the chain and
+    /// back, so inner chain vertices appear twice.
+    pub fn hull(&self) -> Hull<'_> {
+        let start = self.first_hull_edge();
+        Hull { mesh: self, start, current: start }
+    }
+
+    /// The finite half-edge of some ghost triangle, if there is one.
+    fn first_hull_edge(&self) -> HalfEdgeId {
+        (0..self.num_half_edges() as u32)
+            .map(HalfEdgeId::new)
+            .find(|&e| self.origin(e.prev()).is_infinite())
+            .unwrap_or(HalfEdgeId::NONE)
+    }
+
+    #[inline]
+    pub(crate) fn link(&mut self, a: HalfEdgeId, b: HalfEdgeId) {
+        self.twins[a.index()] = b;
+        self.twins[b.index()] = a;
+    }
+
+    /// Fills `vertex_edges` from the triangles: one pass, preferring the edge to infinity.
+    pub(crate) fn rebuild_vertex_edges(&mut self, vertex_count: usize) {
+        self.vertex_edges.clear();
+        self.vertex_edges.resize(vertex_count, HalfEdgeId::NONE);
+        for (i, &v) in self.origins.iter().enumerate() {
+            if v.is_infinite() {
+                continue;
+            }
+            let e = HalfEdgeId::new(i as u32);
+            let slot = &mut self.vertex_edges[v.index()];
+            if slot.is_none() || self.origins[e.next().index()].is_infinite() {
+                *slot = e;
+            }
+        }
+    }
+}
+
+/// Counter-clockwise walk around one vertex; see [`Mesh::ring`].
+#[derive(Clone, Debug)]
+pub struct Ring<'a> {
+    mesh: &'a Mesh,
+    start: HalfEdgeId,
+    current: HalfEdgeId,
+}
+
+impl Iterator for Ring<'_> {
+    type Item = HalfEdgeId;
+
+    #[inline]
+    fn next(&mut self) -> Option<HalfEdgeId> {
+        loop {
+            if self.current.is_none() {
+                return None;
+            }
+            let e = self.current;
+            let turned = self.mesh.twin(e.prev());
+            self.current = if turned == self.start { HalfEdgeId::NONE } else { turned };
+            if !self.mesh.dest(e).is_infinite() {
+                return Some(e);
+            }
+        }
+    }
+}
+
+/// Counter-clockwise walk along the convex hull; see [`Mesh::hull`].
+#[derive(Clone, Debug)]
+pub struct Hull<'a> {
+    mesh: &'a Mesh,
+    start: HalfEdgeId,
+    current: HalfEdgeId,
+}
+
+impl Iterator for Hull<'_> {
+    type Item = VertexId;
+
+    fn next(&mut self) -> Option<VertexId> {
+        if self.current.is_none() {
+            return None;
+        }
+        // `current` is the finite edge a → b of the ghost (a, b, ∞); ghosts run clockwise around
+        // the hull, so the next vertex counter-clockwise is the origin of the ghost before it.
+        let e = self.current;
+        let next = self.mesh.twin(e.prev()).prev();
+        self.current = if next == self.start { HalfEdgeId::NONE } else { next };
+        Some(self.mesh.origin(e))
+    }
+}

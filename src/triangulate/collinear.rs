@@ -1,0 +1,65 @@
+//! The mesh of a point set with no triangle: all points on one line (or fewer than three distinct).
+//!
+//! The distinct points are sorted along the line and chained. Each segment `q_s – q_{s+1}` is
+//! covered by two ghost triangles, `L_s = (q_s, q_{s+1}, ∞)` and `R_s = (q_{s+1}, q_s, ∞)`, so the
+//! mesh is still a closed sphere and the ring of every point holds its chain neighbours.
+//!
+//! ```text
+//!            ∞                 L_s occupies half-edges 6s .. 6s+2, R_s 6s+3 .. 6s+5
+//!    L_0    L_1    L_2
+//!  q0 --- q1 --- q2 --- q3
+//!    R_0    R_1    R_2
+//!            ∞
+//! ```
+
+use crate::geometry::Point;
+use crate::mesh::{HalfEdgeId, Mesh, VertexId};
+use alloc::vec::Vec;
+
+/// Builds the chain over `points` (input order, all collinear) and returns the mesh and the
+/// vertex of every input point. A group of exact duplicates is represented by its smallest index.
+pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<VertexId>) {
+    let mut sorted: Vec<u32> = (0..points.len() as u32).collect();
+    // On a line, lexicographic order is the order along it; ties (duplicates) by input index.
+    sorted.sort_unstable_by(|&i, &j| {
+        let (p, q) = (points[i as usize], points[j as usize]);
+        p.x.partial_cmp(&q.x)
+            .unwrap_or(core::cmp::Ordering::Equal)
+            .then(p.y.partial_cmp(&q.y).unwrap_or(core::cmp::Ordering::Equal))
+            .then(i.cmp(&j))
+    });
+    let mut vertex_of_input = alloc::vec![VertexId::INFINITE; points.len()];
+    let mut chain: Vec<VertexId> = Vec::new();
+    for &i in &sorted {
+        let p = points[i as usize];
+        match chain.last() {
+            Some(&last) if points[last.index()] == p => vertex_of_input[i as usize] = last,
+            _ => {
+                chain.push(VertexId::new(i));
+                vertex_of_input[i as usize] = VertexId::new(i);
+            }
+        }
+    }
+    let mut mesh = Mesh::default();
+    let segments = chain.len().saturating_sub(1);
+    let inf = VertexId::INFINITE;
+    let h = |i: usize| HalfEdgeId::new(i as u32);
+    mesh.origins.reserve(6 * segments);
+    mesh.twins.resize(6 * segments, HalfEdgeId::NONE);
+    for s in 0..segments {
+        let (a, b) = (chain[s], chain[s + 1]);
+        mesh.origins.extend_from_slice(&[a, b, inf, b, a, inf]);
+    }
+    for s in 0..segments {
+        let (l, r) = (6 * s, 6 * s + 3);
+        mesh.link(h(l), h(r));
+        // L_s's q_{s+1} → ∞ meets L_{s+1}'s ∞ → q_{s+1}, or turns round the last point into R_s.
+        let after = if s + 1 < segments { 6 * (s + 1) + 2 } else { r + 2 };
+        mesh.link(h(l + 1), h(after));
+        // R_s's q_s → ∞ meets R_{s-1}'s ∞ → q_s, or turns round the first point into L_0.
+        let before = if s > 0 { 6 * (s - 1) + 5 } else { l + 2 };
+        mesh.link(h(r + 1), h(before));
+    }
+    mesh.rebuild_vertex_edges(points.len());
+    (mesh, vertex_of_input)
+}

@@ -1,0 +1,343 @@
+//! Incremental Delaunay construction: walk to the new point, split, restore the empty-circle
+//! property by edge flips.
+//!
+//! Each point is located by a visibility walk from the triangle of the previous point (short,
+//! because the insertion order is spatial), then
+//! - strictly inside a triangle, or strictly outside a hull edge (inside its ghost triangle):
+//!   split that triangle in three;
+//! - on an edge: split the two triangles beside it in four;
+//! - on a vertex: record an exact duplicate and insert nothing.
+//!
+//! Then every edge opposite the new point is tested and, if illegal, flipped, with an explicit
+//! stack. On finite edges the test is the exact in-circle predicate; an edge to infinity is
+//! illegal when the new point sees the neighbouring hull edge, which is how the hull grows.
+//! Owns: the construction state. It may not decide a sign except through `predicates`.
+
+use crate::geometry::Point;
+use crate::mesh::{HalfEdgeId, Mesh, TriangleId, VertexId};
+use crate::predicates::{in_circle, orient2d, Orientation};
+use alloc::vec::Vec;
+
+/// Where a point falls in the current triangulation.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Location {
+    /// Strictly inside the triangle of this half-edge; for a ghost triangle, the half-edge is its
+    /// finite (hull) edge and the point is strictly outside it.
+    Face(HalfEdgeId),
+    /// In the relative interior of this finite edge.
+    Edge(HalfEdgeId),
+    /// Exactly on this vertex.
+    Vertex(VertexId),
+}
+
+/// The construction state. Vertex ids are positions in `points` (the insertion order).
+pub(crate) struct Builder<'a> {
+    points: &'a [Point],
+    mesh: Mesh,
+    flips: Vec<HalfEdgeId>,
+    hint: HalfEdgeId,
+    /// `(duplicate, vertex it was merged into)`, in insertion-order ids.
+    merged: Vec<(u32, u32)>,
+}
+
+impl<'a> Builder<'a> {
+    /// Starts from the counter-clockwise triangle `a, b, c` and its three ghosts.
+    pub(crate) fn new(points: &'a [Point], [a, b, c]: [u32; 3]) -> Self {
+        debug_assert_eq!(orient2d(points[a as usize], points[b as usize], points[c as usize]), Orientation::Ccw);
+        // A triangulated sphere with n + 1 vertices has 2n - 2 triangles: reserve them all at once.
+        let half_edges = 6 * points.len().max(3) - 6;
+        let mut mesh = Mesh {
+            origins: Vec::with_capacity(half_edges),
+            twins: Vec::with_capacity(half_edges),
+            vertex_edges: Vec::new(),
+        };
+        let inf = VertexId::INFINITE;
+        let [a, b, c] = [a, b, c].map(VertexId::new);
+        // Triangle 0 = (a, b, c); ghosts 1 = (b, a, ∞), 2 = (c, b, ∞), 3 = (a, c, ∞).
+        for corners in [[a, b, c], [b, a, inf], [c, b, inf], [a, c, inf]] {
+            mesh.origins.extend_from_slice(&corners);
+            mesh.twins.extend_from_slice(&[HalfEdgeId::NONE; 3]);
+        }
+        let h = HalfEdgeId::new;
+        for (x, y) in [(0, 3), (1, 6), (2, 9), (4, 11), (7, 5), (10, 8)] {
+            mesh.link(h(x), h(y));
+        }
+        Builder { points, mesh, flips: Vec::new(), hint: h(0), merged: Vec::new() }
+    }
+
+    /// The mesh, and the `(duplicate, kept vertex)` pairs merged on the way.
+    pub(crate) fn finish(self) -> (Mesh, Vec<(u32, u32)>) {
+        (self.mesh, self.merged)
+    }
+
+    #[inline]
+    fn point(&self, v: VertexId) -> Point {
+        self.points[v.index()]
+    }
+
+    #[inline]
+    fn origin(&self, e: HalfEdgeId) -> VertexId {
+        self.mesh.origins[e.index()]
+    }
+
+    #[inline]
+    fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
+        self.mesh.twins[e.index()]
+    }
+
+    fn new_triangle(&mut self) -> TriangleId {
+        let t = TriangleId::new((self.mesh.origins.len() / 3) as u32);
+        self.mesh.origins.extend_from_slice(&[VertexId::INFINITE; 3]);
+        self.mesh.twins.extend_from_slice(&[HalfEdgeId::NONE; 3]);
+        t
+    }
+
+    fn set_corners(&mut self, t: TriangleId, corners: [VertexId; 3]) {
+        let i = t.index() * 3;
+        self.mesh.origins[i..i + 3].copy_from_slice(&corners);
+    }
+
+    /// Inserts the point with id `v`.
+    pub(crate) fn insert(&mut self, v: u32) {
+        let p = self.points[v as usize];
+        let v = VertexId::new(v);
+        match self.locate(p) {
+            Location::Face(e) => self.split_triangle(e, v),
+            Location::Edge(e) => self.split_edge(e, v),
+            Location::Vertex(w) => {
+                self.merged.push((v.index() as u32, w.index() as u32));
+                return;
+            }
+        }
+        self.restore_delaunay(v);
+    }
+
+    /// Visibility walk from the hint. It terminates because the "lies in front of" relation among
+    /// the triangles of a Delaunay triangulation, seen from any point, has no cycle.
+    fn locate(&self, p: Point) -> Location {
+        let mut e = self.hint;
+        // Half-edge of the current triangle through which the walk entered it, if any: the point
+        // is known to lie strictly left of it.
+        let mut entered = false;
+        loop {
+            let t = e.triangle();
+            let first = t.edge(0);
+            let ghost_corner = (0..3).find(|&k| self.origin(t.edge(k)).is_infinite());
+            if let Some(k) = ghost_corner {
+                // The finite edge of the ghost starts right after the infinite corner.
+                let hull = t.edge(k).next();
+                let (a, b) = (self.origin(hull), self.origin(hull.next()));
+                match orient2d(self.point(a), self.point(b), p) {
+                    Orientation::Ccw => return Location::Face(hull),
+                    Orientation::Cw => {
+                        e = self.twin(hull);
+                        entered = true;
+                    }
+                    Orientation::Collinear => {
+                        let (pa, pb) = (self.point(a), self.point(b));
+                        match position_on_segment(pa, pb, p) {
+                            Segment::AtStart => return Location::Vertex(a),
+                            Segment::AtEnd => return Location::Vertex(b),
+                            Segment::Inside => return Location::Edge(hull),
+                            // Slide along the hull to the ghost on that side.
+                            Segment::BeyondEnd => e = self.twin(hull.next()),
+                            Segment::BeforeStart => e = self.twin(hull.prev()),
+                        }
+                        entered = false;
+                    }
+                }
+                continue;
+            }
+            // A real triangle: leave through any edge that has the point strictly on its right.
+            let start = if entered { e } else { first };
+            let mut collinear = [HalfEdgeId::NONE; 2];
+            let mut n_collinear = 0;
+            let mut crossed = None;
+            let mut side = start;
+            for k in 0..3 {
+                if k > 0 || !entered {
+                    let (a, b) = (self.origin(side), self.origin(side.next()));
+                    match orient2d(self.point(a), self.point(b), p) {
+                        Orientation::Cw => {
+                            crossed = Some(side);
+                            break;
+                        }
+                        Orientation::Collinear => {
+                            collinear[n_collinear.min(1)] = side;
+                            n_collinear += 1;
+                        }
+                        Orientation::Ccw => {}
+                    }
+                }
+                side = side.next();
+            }
+            if let Some(side) = crossed {
+                e = self.twin(side);
+                entered = true;
+                continue;
+            }
+            return match n_collinear {
+                0 => Location::Face(first),
+                1 => Location::Edge(collinear[0]),
+                _ => {
+                    // On two edge lines of a proper triangle: at their shared corner.
+                    let (x, y) = (collinear[0], collinear[1]);
+                    Location::Vertex(if x.next() == y { self.origin(y) } else { self.origin(x) })
+                }
+            };
+        }
+    }
+
+    /// Splits the triangle `(a, b, c)` of `e = a → b` into `(a, b, v)`, `(b, c, v)`, `(c, a, v)`.
+    ///
+    /// ```text
+    ///          c                    c
+    ///         / \                  /|\
+    ///        /   \                / | \
+    ///       /  v  \      =>      /  v  \
+    ///      /       \            / /   \ \
+    ///     a ------- b          a ------- b
+    /// ```
+    fn split_triangle(&mut self, e: HalfEdgeId, v: VertexId) {
+        let (a, b, c) = (self.origin(e), self.origin(e.next()), self.origin(e.prev()));
+        let (out_ab, out_bc, out_ca) = (self.twin(e), self.twin(e.next()), self.twin(e.prev()));
+        let t0 = e.triangle();
+        let t1 = self.new_triangle();
+        let t2 = self.new_triangle();
+        self.set_corners(t0, [a, b, v]);
+        self.set_corners(t1, [b, c, v]);
+        self.set_corners(t2, [c, a, v]);
+        let m = &mut self.mesh;
+        m.link(t0.edge(0), out_ab);
+        m.link(t1.edge(0), out_bc);
+        m.link(t2.edge(0), out_ca);
+        m.link(t0.edge(1), t1.edge(2));
+        m.link(t1.edge(1), t2.edge(2));
+        m.link(t2.edge(1), t0.edge(2));
+        self.flips.extend_from_slice(&[t0.edge(0), t1.edge(0), t2.edge(0)]);
+        self.hint = t0.edge(0);
+    }
+
+    /// Splits the finite edge `e = a → b`, between `(a, b, c)` and `(b, a, d)`, at `v` into the
+    /// four triangles `(v, b, c)`, `(v, c, a)`, `(v, a, d)`, `(v, d, b)`.
+    ///
+    /// ```text
+    ///          c                    c
+    ///        /   \                / | \
+    ///     a ---v--- b    =>    a ---v--- b
+    ///        \   /                \ | /
+    ///          d                    d
+    /// ```
+    fn split_edge(&mut self, e: HalfEdgeId, v: VertexId) {
+        let f = self.twin(e);
+        let (a, b) = (self.origin(e), self.origin(f));
+        let (c, d) = (self.origin(e.prev()), self.origin(f.prev()));
+        let (out_bc, out_ca) = (self.twin(e.next()), self.twin(e.prev()));
+        let (out_ad, out_db) = (self.twin(f.next()), self.twin(f.prev()));
+        let t_bc = e.triangle();
+        let t_ad = f.triangle();
+        let t_ca = self.new_triangle();
+        let t_db = self.new_triangle();
+        self.set_corners(t_bc, [v, b, c]);
+        self.set_corners(t_ca, [v, c, a]);
+        self.set_corners(t_ad, [v, a, d]);
+        self.set_corners(t_db, [v, d, b]);
+        let m = &mut self.mesh;
+        m.link(t_bc.edge(1), out_bc);
+        m.link(t_ca.edge(1), out_ca);
+        m.link(t_ad.edge(1), out_ad);
+        m.link(t_db.edge(1), out_db);
+        m.link(t_bc.edge(2), t_ca.edge(0));
+        m.link(t_ca.edge(2), t_ad.edge(0));
+        m.link(t_ad.edge(2), t_db.edge(0));
+        m.link(t_db.edge(2), t_bc.edge(0));
+        self.flips.extend_from_slice(&[t_bc.edge(1), t_ca.edge(1), t_ad.edge(1), t_db.edge(1)]);
+        self.hint = t_bc.edge(0);
+    }
+
+    /// Flips illegal edges opposite the new vertex `v` until none is left.
+    fn restore_delaunay(&mut self, v: VertexId) {
+        while let Some(e) = self.flips.pop() {
+            // `e = u → w` lies in the triangle (u, w, v); across it is (w, u, q).
+            let f = self.twin(e);
+            let (u, w, q) = (self.origin(e), self.origin(f), self.origin(f.prev()));
+            if self.is_illegal(u, w, v, q) {
+                self.flip(e, f, v);
+            }
+        }
+    }
+
+    /// Whether the edge `u – w`, with `v` on its left and `q` on its right, must be flipped.
+    #[inline]
+    fn is_illegal(&self, u: VertexId, w: VertexId, v: VertexId, q: VertexId) -> bool {
+        if q.is_infinite() {
+            // A hull edge seen from inside: always kept.
+            false
+        } else if u.is_infinite() {
+            // Edge ∞ – w between ghosts (∞, w, v) and (q, w, ∞): flip when v sees hull edge q → w.
+            orient2d(self.point(q), self.point(w), self.point(v)) == Orientation::Ccw
+        } else if w.is_infinite() {
+            // Edge u – ∞ between ghosts (u, ∞, v) and (u, q, ∞): flip when v sees hull edge u → q.
+            orient2d(self.point(u), self.point(q), self.point(v)) == Orientation::Ccw
+        } else {
+            in_circle(self.point(u), self.point(w), self.point(v), self.point(q))
+        }
+    }
+
+    /// Replaces the edge `u – w` (half-edges `e` in `(u, w, v)` and `f` in `(w, u, q)`) by `v – q`,
+    /// giving `(v, u, q)` and `(v, q, w)`, and queues their edges opposite `v`.
+    ///
+    /// ```text
+    ///          v                    v
+    ///        /   \                / | \
+    ///       u --- w      =>      u  |  w
+    ///        \   /                \ | /
+    ///          q                    q
+    /// ```
+    fn flip(&mut self, e: HalfEdgeId, f: HalfEdgeId, v: VertexId) {
+        let (u, w, q) = (self.origin(e), self.origin(f), self.origin(f.prev()));
+        let (out_vu, out_wv) = (self.twin(e.prev()), self.twin(e.next()));
+        let (out_uq, out_qw) = (self.twin(f.next()), self.twin(f.prev()));
+        let (t_uq, t_qw) = (e.triangle(), f.triangle());
+        self.set_corners(t_uq, [v, u, q]);
+        self.set_corners(t_qw, [v, q, w]);
+        let m = &mut self.mesh;
+        m.link(t_uq.edge(0), out_vu);
+        m.link(t_uq.edge(1), out_uq);
+        m.link(t_qw.edge(1), out_qw);
+        m.link(t_qw.edge(2), out_wv);
+        m.link(t_uq.edge(2), t_qw.edge(0));
+        self.flips.push(t_uq.edge(1));
+        self.flips.push(t_qw.edge(1));
+        self.hint = t_uq.edge(0);
+    }
+}
+
+/// Where a point collinear with a segment `a → b` lies relative to it.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Segment {
+    BeforeStart,
+    AtStart,
+    Inside,
+    AtEnd,
+    BeyondEnd,
+}
+
+/// Classifies `p`, known to be collinear with the distinct points `a` and `b`, along the segment.
+/// Compares coordinates only (exact); on a non-vertical line x orders the points, else y does.
+pub(crate) fn position_on_segment(a: Point, b: Point, p: Point) -> Segment {
+    let (ka, kb, kp) = if a.x != b.x { (a.x, b.x, p.x) } else { (a.y, b.y, p.y) };
+    let forward = ka < kb;
+    let (before, after) = if forward { (kp < ka, kp > kb) } else { (kp > ka, kp < kb) };
+    if kp == ka {
+        Segment::AtStart
+    } else if kp == kb {
+        Segment::AtEnd
+    } else if before {
+        Segment::BeforeStart
+    } else if after {
+        Segment::BeyondEnd
+    } else {
+        Segment::Inside
+    }
+}

@@ -1,0 +1,98 @@
+//! Input checks and the exact power-of-two rescaling that keeps the predicates out of underflow.
+//!
+//! Multiplying by a power of two changes no predicate sign and loses no bit as long as no result
+//! leaves the normal range, so the triangulator works on a copy scaled to make the largest
+//! coordinate magnitude fall in [1, 2). With every nonzero coordinate at least 2^-200 after
+//! scaling, every coordinate is a multiple of 2^-252, every degree-4 product inside `incircle`
+//! a multiple of 2^-1008, and all of them stay normal doubles: the predicates are exact.
+
+use crate::error::Error;
+use crate::geometry::Point;
+
+/// How many binary orders of magnitude below the largest coordinate a nonzero coordinate may lie.
+pub(crate) const MAX_DYNAMIC_RANGE_BITS: i32 = 200;
+
+/// The exponent `e` with `2^e <= x < 2^(e+1)`, for finite `x > 0` (subnormals included).
+fn binary_exponent(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        let mantissa = bits & ((1u64 << 52) - 1);
+        63 - mantissa.leading_zeros() as i32 - 1074
+    } else {
+        biased - 1023
+    }
+}
+
+/// `2^k` for `k` in the normal exponent range.
+fn pow2(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// A power-of-two scale, kept as two factors so that each stays a normal double.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub(crate) struct Scale {
+    first: f64,
+    second: f64,
+}
+
+impl Scale {
+    pub(crate) const IDENTITY: Scale = Scale { first: 1.0, second: 1.0 };
+
+    #[inline]
+    pub(crate) fn apply(self, p: Point) -> Point {
+        p.scaled(self.first).scaled(self.second)
+    }
+}
+
+/// Checks every point and picks the scale: the first non-finite point, or the first with a
+/// coordinate too small for the set's dynamic range, is an error naming its index.
+pub(crate) fn choose_scale(points: &[Point]) -> Result<Scale, Error> {
+    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+        return Err(Error::NonFinite { index });
+    }
+    let largest = points.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    if largest == 0.0 {
+        return Ok(Scale::IDENTITY);
+    }
+    let top = binary_exponent(largest);
+    let too_small = |c: f64| c != 0.0 && binary_exponent(c.abs()) < top - MAX_DYNAMIC_RANGE_BITS;
+    if let Some(index) = points.iter().position(|p| too_small(p.x) || too_small(p.y)) {
+        return Err(Error::RangeTooWide { index });
+    }
+    let half = -top / 2;
+    Ok(Scale { first: pow2(half), second: pow2(-top - half) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn binary_exponent_covers_normal_and_subnormal_numbers() {
+        assert_eq!(binary_exponent(1.0), 0);
+        assert_eq!(binary_exponent(1.5), 0);
+        assert_eq!(binary_exponent(0.75), -1);
+        assert_eq!(binary_exponent(1e15), 49);
+        assert_eq!(binary_exponent(f64::MIN_POSITIVE), -1022);
+        assert_eq!(binary_exponent(f64::from_bits(1)), -1074);
+        assert_eq!(binary_exponent(f64::MAX), 1023);
+    }
+
+    #[test]
+    fn scaling_brings_the_largest_magnitude_into_one_to_two() {
+        for largest in [f64::from_bits(3), 1e-200, 3.0e-5, 1.0, 1e15, f64::MAX] {
+            let pts = [Point::new(largest, 0.0), Point::new(0.0, -largest / 2.0)];
+            let s = choose_scale(&pts).unwrap();
+            let q = s.apply(pts[0]);
+            assert!((1.0..2.0).contains(&q.x), "{largest} scaled to {}", q.x);
+        }
+    }
+
+    #[test]
+    fn a_coordinate_beyond_the_dynamic_range_is_refused_by_index() {
+        let pts = [Point::new(1.0, 0.0), Point::new(0.5, 1e-70), Point::new(1e-300, 0.0)];
+        assert_eq!(choose_scale(&pts), Err(Error::RangeTooWide { index: 2 }));
+    }
+}
