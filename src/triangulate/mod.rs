@@ -20,7 +20,7 @@ mod scale;
 
 use crate::error::Error;
 use crate::geometry::Point;
-use crate::mesh::{Hull, Mesh, VertexId};
+use crate::mesh::{HalfEdgeId, Hull, Mesh, VertexId};
 use crate::predicates::{orient2d, Orientation};
 use alloc::vec::Vec;
 use insert::Builder;
@@ -118,6 +118,8 @@ fn first_triangle(points: &[Point]) -> Option<[u32; 3]> {
 /// Renames the builder's insertion-order vertices to input positions, merging duplicates into
 /// their smallest input position.
 fn into_input_indices(mut mesh: Mesh, merged: &[(u32, u32)], order: &[u32]) -> (Mesh, Vec<VertexId>) {
+    // Vertex edges first, while ids still follow the spatial order and the writes stay local.
+    mesh.rebuild_vertex_edges(order.len());
     let mut name: Vec<u32> = order.to_vec();
     for &(dup, kept) in merged {
         name[kept as usize] = name[kept as usize].min(order[dup as usize]);
@@ -127,17 +129,20 @@ fn into_input_indices(mut mesh: Mesh, merged: &[(u32, u32)], order: &[u32]) -> (
             *v = VertexId::new(name[v.index()]);
         }
     }
+    let mut vertex_edges = alloc::vec![HalfEdgeId::NONE; order.len()];
+    for (v, &e) in mesh.vertex_edges.iter().enumerate() {
+        if !e.is_none() {
+            vertex_edges[name[v] as usize] = e;
+        }
+    }
+    mesh.vertex_edges = vertex_edges;
     let mut vertex_of_input: Vec<VertexId> = (0..order.len() as u32).map(VertexId::new).collect();
     for &(dup, kept) in merged {
-        vertex_of_input[order[dup as usize] as usize] = VertexId::new(name[kept as usize]);
+        let kept_name = VertexId::new(name[kept as usize]);
+        vertex_of_input[order[dup as usize] as usize] = kept_name;
+        // The position that gave up its name to a smaller duplicate points to the winner too.
+        vertex_of_input[order[kept as usize] as usize] = kept_name;
     }
-    for &(_, kept) in merged {
-        // The input position that lost the name to a smaller duplicate points to the winner too.
-        let original = order[kept as usize] as usize;
-        vertex_of_input[original] = VertexId::new(name[kept as usize]);
-    }
-    drop(name);
-    mesh.rebuild_vertex_edges(order.len());
     (mesh, vertex_of_input)
 }
 

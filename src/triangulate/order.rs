@@ -9,32 +9,30 @@
 use crate::geometry::Point;
 use alloc::vec::Vec;
 
-/// Bits per axis of the quantized grid; two axes make a 58-bit Hilbert index.
-const GRID_BITS: u32 = 29;
+/// Most bits per axis of the quantized grid; two axes make at most a 48-bit Hilbert index.
+const GRID_BITS: u32 = 24;
 
-/// Position of `(x, y)` along the Hilbert curve filling the `2^GRID_BITS` square grid.
-fn hilbert_index(mut x: u32, mut y: u32) -> u64 {
+/// Each BRIO round holds about `2^ROUND_GROWTH_BITS` times as many points as the one before.
+const ROUND_GROWTH_BITS: u32 = 2;
+
+/// Position of `(x, y)` along the Hilbert curve filling the grid, using its top `levels` bits.
+///
+/// Branch-free on purpose: the bits of scattered points are random, and a branch per level
+/// mispredicted half the time costs more than all the arithmetic. The curve's orientation at the
+/// current level is kept as two flags, `swap` (exchange the axes) and `flip` (mirror both).
+fn hilbert_index(x: u32, y: u32, levels: u32) -> u64 {
     let mut index = 0u64;
-    let mut bit = 1u32 << (GRID_BITS - 1);
-    while bit != 0 {
-        let right = x & bit != 0;
-        let up = y & bit != 0;
-        let quadrant = match (right, up) {
-            (false, false) => 0u64,
-            (false, true) => 1,
-            (true, true) => 2,
-            (true, false) => 3,
-        };
-        index |= quadrant << (2 * bit.trailing_zeros());
-        // Bring the sub-square into the curve's base orientation for the lower bits.
-        if !up {
-            if right {
-                x = !x;
-                y = !y;
-            }
-            core::mem::swap(&mut x, &mut y);
-        }
-        bit >>= 1;
+    let (mut swap, mut flip) = (0u32, 0u32);
+    for level in (GRID_BITS - levels..GRID_BITS).rev() {
+        let (bx, by) = ((x >> level) & 1, (y >> level) & 1);
+        let exchanged = swap & (bx ^ by);
+        let right = bx ^ exchanged ^ flip;
+        let up = by ^ exchanged ^ flip;
+        // Quadrants in curve order: lower-left 0, upper-left 1, upper-right 2, lower-right 3.
+        index = (index << 2) | u64::from((3 * right) ^ up);
+        let low = up ^ 1;
+        swap ^= low;
+        flip ^= low & right;
     }
     index
 }
@@ -63,18 +61,22 @@ pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
     }
     let cells = ((1u64 << GRID_BITS) - 1) as f64;
     let to_grid = cells / span;
-    // Round r (0 = first) holds about n / 2^(rounds - r) points: a point lands in the last round
-    // with probability 1/2, the one before with 1/4, and so on.
-    let rounds = (usize::BITS - n.leading_zeros()).min(31);
+    let size_bits = usize::BITS - n.leading_zeros();
+    // Round r (0 = first) holds about n / g^(rounds - r) points, g = 2^ROUND_GROWTH_BITS: a point
+    // lands in the last round with probability 1 - 1/g, in the one before with (1 - 1/g) / g, ...
+    let rounds = size_bits / ROUND_GROWTH_BITS;
+    // About 2^8 cells per point on average: finer cells would not improve locality, and points
+    // sharing a cell are ordered by their coordinates anyway.
+    let levels = (size_bits / 2 + 4).min(GRID_BITS);
     let mut keyed: Vec<(u64, u32)> = points
         .iter()
         .enumerate()
         .map(|(i, p)| {
             let qx = (((p.x - min_x) * to_grid) as u32).min(cells as u32);
             let qy = (((p.y - min_y) * to_grid) as u32).min(cells as u32);
-            let level = mix(((qx as u64) << 32) | qy as u64).trailing_zeros().min(rounds);
+            let level = (mix(((qx as u64) << 32) | qy as u64).trailing_zeros() / ROUND_GROWTH_BITS).min(rounds);
             let round = (rounds - level) as u64;
-            ((round << (2 * GRID_BITS)) | hilbert_index(qx, qy), i as u32)
+            ((round << (2 * GRID_BITS)) | hilbert_index(qx, qy, levels), i as u32)
         })
         .collect();
     keyed.sort_unstable_by_key(|&(key, _)| key);
@@ -103,7 +105,7 @@ mod tests {
         let mut cells: Vec<(u64, u32, u32)> = Vec::new();
         for x in 0..8u32 {
             for y in 0..8u32 {
-                cells.push((hilbert_index(x, y), x, y));
+                cells.push((hilbert_index(x, y, GRID_BITS), x, y));
             }
         }
         cells.sort_unstable();
