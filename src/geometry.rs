@@ -46,11 +46,19 @@ impl Point {
         Point::new(self.x * factor, self.y * factor)
     }
 
-    /// The coordinates as bit patterns, with -0.0 folded onto 0.0, so that equal points compare
-    /// equal and the order is total.
+    /// Lexicographic order, x first, by value (so -0.0 equals 0.0). Any exact translation keeps
+    /// it; along a line it is the order of the points on that line.
+    ///
+    /// ```
+    /// use condt::Point;
+    /// use std::cmp::Ordering;
+    /// assert_eq!(Point::new(-1.0, 5.0).lexicographic_cmp(Point::new(0.0, 0.0)), Ordering::Less);
+    /// assert_eq!(Point::new(-0.0, 1.0).lexicographic_cmp(Point::new(0.0, 1.0)), Ordering::Equal);
+    /// ```
     #[inline]
-    pub(crate) fn key_bits(self) -> (u64, u64) {
-        ((self.x + 0.0).to_bits(), (self.y + 0.0).to_bits())
+    pub fn lexicographic_cmp(self, other: Point) -> core::cmp::Ordering {
+        let by = |a: f64, b: f64| a.partial_cmp(&b).unwrap_or(core::cmp::Ordering::Equal);
+        by(self.x, other.x).then(by(self.y, other.y))
     }
 }
 
@@ -80,7 +88,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn negative_zero_has_the_key_of_zero() {
-        assert_eq!(Point::new(-0.0, -0.0).key_bits(), Point::new(0.0, 0.0).key_bits());
+    fn lexicographic_order_is_numeric_for_negative_coordinates() {
+        use core::cmp::Ordering::Less;
+        assert_eq!(Point::new(-2.0, 0.0).lexicographic_cmp(Point::new(-1.0, 0.0)), Less);
+        assert_eq!(Point::new(1.0, -2.0).lexicographic_cmp(Point::new(1.0, -1.0)), Less);
     }
 }

@@ -21,13 +21,7 @@ use alloc::vec::Vec;
 pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<VertexId>) {
     let mut sorted: Vec<u32> = (0..points.len() as u32).collect();
     // On a line, lexicographic order is the order along it; ties (duplicates) by input index.
-    sorted.sort_unstable_by(|&i, &j| {
-        let (p, q) = (points[i as usize], points[j as usize]);
-        p.x.partial_cmp(&q.x)
-            .unwrap_or(core::cmp::Ordering::Equal)
-            .then(p.y.partial_cmp(&q.y).unwrap_or(core::cmp::Ordering::Equal))
-            .then(i.cmp(&j))
-    });
+    sorted.sort_unstable_by(|&i, &j| points[i as usize].lexicographic_cmp(points[j as usize]).then(i.cmp(&j)));
     let mut vertex_of_input = alloc::vec![VertexId::INFINITE; points.len()];
     let mut chain: Vec<VertexId> = Vec::new();
     for &i in &sorted {

@@ -88,7 +88,7 @@ pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
             end += 1;
         }
         if end - start > 1 {
-            keyed[start..end].sort_unstable_by_key(|&(_, i)| points[i as usize].key_bits());
+            keyed[start..end].sort_unstable_by(|&(_, i), &(_, j)| points[i as usize].lexicographic_cmp(points[j as usize]));
         }
         start = end;
     }

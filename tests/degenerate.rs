@@ -1,0 +1,227 @@
+//! Named regression tests, one per degenerate family the triangulator must handle.
+
+mod common;
+
+use common::*;
+use condt::{triangulate, Error, Point, VertexId};
+
+fn pts(coords: &[(f64, f64)]) -> Vec<Point> {
+    coords.iter().map(|&c| Point::from(c)).collect()
+}
+
+#[test]
+fn no_points() {
+    let tri = triangulate(&[]).unwrap();
+    tri.validate().unwrap();
+    assert_eq!((tri.num_vertices(), tri.edges().count(), tri.triangles().count()), (0, 0, 0));
+    assert_eq!(tri.hull().count(), 0);
+}
+
+#[test]
+fn one_point() {
+    let tri = triangulate(&pts(&[(3.0, 4.0)])).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.num_vertices(), 1);
+    assert_eq!(tri.edges().count(), 0);
+    assert_eq!(tri.neighbors(VertexId::new(0)).count(), 0);
+}
+
+#[test]
+fn two_points_make_one_edge() {
+    let tri = triangulate(&pts(&[(0.0, 0.0), (1.0, 1.0)])).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(edge_set(&tri).into_iter().collect::<Vec<_>>(), vec![(0, 1)]);
+    assert_eq!(tri.neighbors(VertexId::new(0)).collect::<Vec<_>>(), vec![VertexId::new(1)]);
+    assert_eq!(tri.neighbors(VertexId::new(1)).collect::<Vec<_>>(), vec![VertexId::new(0)]);
+}
+
+#[test]
+fn collinear_points_form_a_chain_in_line_order() {
+    // Shuffled points of the line y = -3x + 7, including negative coordinates and -0.0.
+    let xs = [4.0, -2.0, 0.0, 7.0, -4.0, -0.0, 1.0, 3.0, -5.0, 2.0, 6.0, -3.0, 5.0, -1.0];
+    let line: Vec<Point> = xs.iter().map(|&x| Point::new(x, -3.0 * x + 7.0)).collect();
+    let tri = triangulate(&line).unwrap();
+    tri.validate().unwrap();
+    assert!(tri.is_degenerate());
+    assert_eq!(tri.num_vertices(), 13, "0.0 and -0.0 are the same point");
+    // Every vertex is joined exactly to its nearest neighbours along the line.
+    for v in tri.vertices() {
+        let x = line[v.index()].x;
+        let mut around: Vec<f64> = tri.neighbors(v).map(|w| line[w.index()].x).collect();
+        around.sort_by(f64::total_cmp);
+        let expected: Vec<f64> = [x - 1.0, x + 1.0].into_iter().filter(|t| (-5.0..=7.0).contains(t)).collect();
+        assert_eq!(around, expected, "neighbours of x = {x}");
+    }
+}
+
+#[test]
+fn vertical_and_tiny_collinear_runs() {
+    let vertical: Vec<Point> = (0..50).rev().map(|i| Point::new(1e-3, i as f64 * 0.25)).collect();
+    let tri = triangulate(&vertical).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.edges().count(), 49);
+    for n in 3..6 {
+        let tri = triangulate(&vertical[..n]).unwrap();
+        tri.validate().unwrap();
+        assert_eq!(tri.edges().count(), n - 1);
+    }
+}
+
+#[test]
+fn collinear_run_then_one_point_off_the_line() {
+    let mut p: Vec<Point> = (0..100).map(|i| Point::new(i as f64, i as f64)).collect();
+    p.push(Point::new(0.0, 1.0));
+    let tri = triangulate(&p).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.triangles().count(), 99);
+    assert_hull_convex_and_enclosing(&tri);
+}
+
+#[test]
+fn exact_duplicates_merge_into_the_smallest_index() {
+    let p = pts(&[(1.0, 1.0), (0.0, 0.0), (2.0, 0.0), (0.0, 0.0), (1.0, 1.0), (0.0, 0.0), (1.0, 3.0)]);
+    let tri = triangulate(&p).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.num_vertices(), 4);
+    let map: Vec<usize> = tri.input_to_vertex().iter().map(|v| v.index()).collect();
+    assert_eq!(map, vec![0, 1, 2, 1, 0, 1, 6]);
+    // Every input point is accounted for: kept, or merged into a vertex at the same place.
+    for (i, v) in tri.input_to_vertex().iter().enumerate() {
+        assert_eq!(p[i], p[v.index()]);
+    }
+    assert_eq!(tri.vertices().map(|v| v.index()).collect::<Vec<_>>(), vec![0, 1, 2, 6]);
+}
+
+#[test]
+fn all_points_identical() {
+    let p = vec![Point::new(-7.5, 2.25); 1000];
+    let tri = triangulate(&p).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.num_vertices(), 1);
+    assert!(tri.input_to_vertex().iter().all(|&v| v == VertexId::new(0)));
+}
+
+#[test]
+fn duplicates_of_collinear_points() {
+    let p = pts(&[(2.0, 2.0), (0.0, 0.0), (2.0, 2.0), (1.0, 1.0), (0.0, 0.0), (1.0, 1.0)]);
+    let tri = triangulate(&p).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(edge_set(&tri).into_iter().collect::<Vec<_>>(), vec![(0, 3), (1, 3)]);
+}
+
+#[test]
+fn integer_grid_is_fully_cocircular_yet_valid() {
+    for side in [2usize, 3, 10, 101] {
+        let g = grid(side, side as u64);
+        let tri = triangulate(&g).unwrap();
+        tri.validate().unwrap();
+        // A k x k grid: every unit square cut by one diagonal.
+        assert_eq!(tri.triangles().count(), 2 * (side - 1) * (side - 1));
+        assert_eq!(tri.hull().count(), 4 * (side - 1));
+    }
+}
+
+#[test]
+fn grid_with_every_point_doubled() {
+    let mut g = grid(30, 1);
+    g.extend(grid(30, 2));
+    let tri = triangulate(&g).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.num_vertices(), 900);
+    assert_eq!(tri.triangles().count(), 2 * 29 * 29);
+}
+
+#[test]
+fn integer_points_on_one_circle() {
+    // The 20 lattice points with x^2 + y^2 = 625, plus the centre: 20 cocircular points.
+    let mut p = Vec::new();
+    for x in -25i32..=25 {
+        for y in -25i32..=25 {
+            if x * x + y * y == 625 {
+                p.push(Point::new(x as f64, y as f64));
+            }
+        }
+    }
+    assert_eq!(p.len(), 20);
+    let ring = triangulate(&p).unwrap();
+    ring.validate().unwrap();
+    assert_eq!(ring.triangles().count(), 18);
+    p.push(Point::new(0.0, 0.0));
+    let wheel = triangulate(&p).unwrap();
+    wheel.validate().unwrap();
+    assert_eq!(wheel.neighbors(VertexId::new(20)).count(), 20, "the centre sees every rim point");
+}
+
+#[test]
+fn coordinates_offset_by_a_million() {
+    let base = uniform(5000, 11);
+    let shifted: Vec<Point> = base.iter().map(|p| Point::new(p.x + 1e6, p.y + 1e6)).collect();
+    let tri = triangulate(&shifted).unwrap();
+    tri.validate().unwrap();
+    assert_hull_convex_and_enclosing(&tri);
+    let g: Vec<Point> = grid(50, 3).iter().map(|p| Point::new(p.x + 1e6, p.y - 1e6)).collect();
+    let tri = triangulate(&g).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.triangles().count(), 2 * 49 * 49);
+}
+
+#[test]
+fn huge_coordinates_near_1e15() {
+    let base = uniform(3000, 12);
+    let huge: Vec<Point> = base.iter().map(|p| Point::new(p.x * 1e15, p.y * 1e15)).collect();
+    triangulate(&huge).unwrap().validate().unwrap();
+    // Points 1 unit apart at 1e15: only a few bits of each coordinate differ.
+    let crowded: Vec<Point> = grid(20, 4).iter().map(|p| Point::new(1e15 + p.x, 1e15 + p.y)).collect();
+    let tri = triangulate(&crowded).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.triangles().count(), 2 * 19 * 19);
+}
+
+#[test]
+fn tiny_coordinates_near_1e_200_give_the_same_mesh() {
+    let base = uniform(3000, 13);
+    // Scaling by a power of two is exact, so the triangulation must be the same edge for edge.
+    let factor = 2f64.powi(-665); // about 1.2e-200
+    let tiny: Vec<Point> = base.iter().map(|p| Point::new(p.x * factor, p.y * factor)).collect();
+    let (a, b) = (triangulate(&base).unwrap(), triangulate(&tiny).unwrap());
+    b.validate().unwrap();
+    assert_eq!(edge_set(&a), edge_set(&b));
+    let subnormal: Vec<Point> = grid(10, 5).iter().map(|p| Point::new(p.x * 1e-310, p.y * 1e-310)).collect();
+    let tri = triangulate(&subnormal).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.triangles().count(), 2 * 9 * 9);
+}
+
+#[test]
+fn non_finite_coordinates_are_refused_by_index() {
+    for (bad, index) in [(f64::NAN, 2), (f64::INFINITY, 0), (f64::NEG_INFINITY, 3)] {
+        let mut p = uniform(4, 1);
+        p[index].y = bad;
+        assert_eq!(triangulate(&p).unwrap_err(), Error::NonFinite { index });
+    }
+}
+
+#[test]
+fn a_dynamic_range_beyond_2_pow_200_is_refused_by_index() {
+    let p = pts(&[(1.0, 1.0), (0.0, 1e-50), (1e-70, 0.5), (1e-80, 0.0)]);
+    let err = triangulate(&p).unwrap_err();
+    assert_eq!(err, Error::RangeTooWide { index: 2 });
+    assert!(err.to_string().contains("point 2"));
+}
+
+/// Found by quickcheck: a cocircular rectangle whose insertion order depended on the bit patterns
+/// of negative coordinates, so a translation across zero changed the triangulation.
+#[test]
+fn translation_across_zero_keeps_a_cocircular_triangulation() {
+    let p = pts(&[(2.0, 0.0), (2.0, 2.0), (1.0, 0.0), (1.0, 2.0), (0.0, 64.0)]);
+    let moved: Vec<Point> = p.iter().map(|q| Point::new(q.x + 1.0, q.y - 1.0)).collect();
+    assert_eq!(edge_set(&triangulate(&p).unwrap()), edge_set(&triangulate(&moved).unwrap()));
+}
+
+#[test]
+fn same_input_gives_the_same_mesh() {
+    let p = small_integers(2000, 30, 9);
+    let (a, b) = (triangulate(&p).unwrap(), triangulate(&p).unwrap());
+    let tris = |t: &condt::Triangulation| t.triangles().collect::<Vec<_>>();
+    assert_eq!(tris(&a), tris(&b));
+}
