@@ -78,7 +78,9 @@ fn parse_triangulate(args: &[String]) -> Result<TriangulateArgs, CliError> {
     while let Some(arg) = rest.next() {
         match arg.as_str() {
             "-o" | "--output" => {
-                let value = rest.next().ok_or_else(|| CliError::Usage(format!("{arg} needs a file name")))?;
+                let value = rest
+                    .next()
+                    .ok_or_else(|| CliError::Usage(format!("{arg} needs a file name")))?;
                 parsed.output = Some(value.clone());
             }
             "--edges" => parsed.edges = true,
@@ -92,7 +94,8 @@ fn parse_triangulate(args: &[String]) -> Result<TriangulateArgs, CliError> {
             }
         }
     }
-    parsed.input = input.ok_or_else(|| CliError::Usage("triangulate needs an INPUT file (or -)".into()))?;
+    parsed.input =
+        input.ok_or_else(|| CliError::Usage("triangulate needs an INPUT file (or -)".into()))?;
     Ok(parsed)
 }
 
@@ -123,7 +126,8 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
 
 fn triangulate_command(args: &TriangulateArgs) -> Result<(), CliError> {
     let points = read_points(&args.input)?;
-    let tri = triangulate(&points).map_err(|err| CliError::Input(format!("{}: {err}", args.input)))?;
+    let tri =
+        triangulate(&points).map_err(|err| CliError::Input(format!("{}: {err}", args.input)))?;
     let merged = points.len() - tri.num_vertices();
     if merged > 0 {
         eprintln!("condt: {merged} exact duplicate point(s) merged into the first point at the same position");
@@ -157,12 +161,24 @@ mod tests {
     #[test]
     fn options_are_parsed_in_any_order() {
         let a = parse_triangulate(&strings(&["--edges", "in.txt", "-o", "out.txt"])).unwrap();
-        assert_eq!(a, TriangulateArgs { input: "in.txt".into(), output: Some("out.txt".into()), edges: true });
+        assert_eq!(
+            a,
+            TriangulateArgs {
+                input: "in.txt".into(),
+                output: Some("out.txt".into()),
+                edges: true
+            }
+        );
     }
 
     #[test]
     fn usage_errors_exit_with_two() {
-        for bad in [&["in.txt", "-o"][..], &["--frobnicate", "in.txt"], &[], &["a", "b"]] {
+        for bad in [
+            &["in.txt", "-o"][..],
+            &["--frobnicate", "in.txt"],
+            &[],
+            &["a", "b"],
+        ] {
             let err = parse_triangulate(&strings(bad)).unwrap_err();
             assert_eq!(err.exit_code(), 2, "{bad:?}");
         }

@@ -90,7 +90,13 @@ mod tests {
     #[test]
     fn lexicographic_order_is_numeric_for_negative_coordinates() {
         use core::cmp::Ordering::Less;
-        assert_eq!(Point::new(-2.0, 0.0).lexicographic_cmp(Point::new(-1.0, 0.0)), Less);
-        assert_eq!(Point::new(1.0, -2.0).lexicographic_cmp(Point::new(1.0, -1.0)), Less);
+        assert_eq!(
+            Point::new(-2.0, 0.0).lexicographic_cmp(Point::new(-1.0, 0.0)),
+            Less
+        );
+        assert_eq!(
+            Point::new(1.0, -2.0).lexicographic_cmp(Point::new(1.0, -1.0)),
+            Less
+        );
     }
 }

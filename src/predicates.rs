@@ -48,9 +48,11 @@ fn coord(p: Point) -> Coord<f64> {
 /// ```
 /// use condt::predicates::{orient2d, Orientation};
 /// use condt::Point;
-/// // 0.1 + 0.2 != 0.3 in floating point, yet these points are decided exactly.
-/// let o = orient2d(Point::new(0.1, 0.1), Point::new(0.2, 0.2), Point::new(0.3, 0.3));
-/// assert_eq!(o, Orientation::Ccw); // the stored doubles are not exactly collinear
+/// let (a, b) = (Point::new(0.0, 0.0), Point::new(1.0, 1.0));
+/// // One unit in the last place above the diagonal, 10^15 away from the origin:
+/// let just_above = Point::new(1e15, f64::from_bits(1e15f64.to_bits() + 1));
+/// assert_eq!(orient2d(a, b, just_above), Orientation::Ccw);
+/// assert_eq!(orient2d(a, b, Point::new(1e15, 1e15)), Orientation::Collinear);
 /// ```
 #[inline]
 pub fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
@@ -99,7 +101,11 @@ mod tests {
 
     #[test]
     fn orientation_is_antisymmetric_under_swap() {
-        let (a, b, c) = (Point::new(0.0, 0.0), Point::new(2.0, 1.0), Point::new(-1.0, 3.0));
+        let (a, b, c) = (
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 1.0),
+            Point::new(-1.0, 3.0),
+        );
         assert_eq!(orient2d(a, b, c), Orientation::Ccw);
         assert_eq!(orient2d(b, a, c), Orientation::Cw);
         assert_eq!(orient2d(b, c, a), Orientation::Ccw);
@@ -118,7 +124,11 @@ mod tests {
 
     #[test]
     fn in_circle_detects_a_point_one_ulp_inside() {
-        let (a, b, c) = (Point::new(-1.0, 0.0), Point::new(0.0, -1.0), Point::new(1.0, 0.0));
+        let (a, b, c) = (
+            Point::new(-1.0, 0.0),
+            Point::new(0.0, -1.0),
+            Point::new(1.0, 0.0),
+        );
         let on = Point::new(0.0, 1.0);
         let inside = Point::new(0.0, f64::from_bits(1.0f64.to_bits() - 1));
         assert!(is_cocircular(a, b, c, on));

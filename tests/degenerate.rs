@@ -13,7 +13,14 @@ fn pts(coords: &[(f64, f64)]) -> Vec<Point> {
 fn no_points() {
     let tri = triangulate(&[]).unwrap();
     tri.validate().unwrap();
-    assert_eq!((tri.num_vertices(), tri.edges().count(), tri.triangles().count()), (0, 0, 0));
+    assert_eq!(
+        (
+            tri.num_vertices(),
+            tri.edges().count(),
+            tri.triangles().count()
+        ),
+        (0, 0, 0)
+    );
     assert_eq!(tri.hull().count(), 0);
 }
 
@@ -31,14 +38,22 @@ fn two_points_make_one_edge() {
     let tri = triangulate(&pts(&[(0.0, 0.0), (1.0, 1.0)])).unwrap();
     tri.validate().unwrap();
     assert_eq!(edge_set(&tri).into_iter().collect::<Vec<_>>(), vec![(0, 1)]);
-    assert_eq!(tri.neighbors(VertexId::new(0)).collect::<Vec<_>>(), vec![VertexId::new(1)]);
-    assert_eq!(tri.neighbors(VertexId::new(1)).collect::<Vec<_>>(), vec![VertexId::new(0)]);
+    assert_eq!(
+        tri.neighbors(VertexId::new(0)).collect::<Vec<_>>(),
+        vec![VertexId::new(1)]
+    );
+    assert_eq!(
+        tri.neighbors(VertexId::new(1)).collect::<Vec<_>>(),
+        vec![VertexId::new(0)]
+    );
 }
 
 #[test]
 fn collinear_points_form_a_chain_in_line_order() {
     // Shuffled points of the line y = -3x + 7, including negative coordinates and -0.0.
-    let xs = [4.0, -2.0, 0.0, 7.0, -4.0, -0.0, 1.0, 3.0, -5.0, 2.0, 6.0, -3.0, 5.0, -1.0];
+    let xs = [
+        4.0, -2.0, 0.0, 7.0, -4.0, -0.0, 1.0, 3.0, -5.0, 2.0, 6.0, -3.0, 5.0, -1.0,
+    ];
     let line: Vec<Point> = xs.iter().map(|&x| Point::new(x, -3.0 * x + 7.0)).collect();
     let tri = triangulate(&line).unwrap();
     tri.validate().unwrap();
@@ -49,14 +64,20 @@ fn collinear_points_form_a_chain_in_line_order() {
         let x = line[v.index()].x;
         let mut around: Vec<f64> = tri.neighbors(v).map(|w| line[w.index()].x).collect();
         around.sort_by(f64::total_cmp);
-        let expected: Vec<f64> = [x - 1.0, x + 1.0].into_iter().filter(|t| (-5.0..=7.0).contains(t)).collect();
+        let expected: Vec<f64> = [x - 1.0, x + 1.0]
+            .into_iter()
+            .filter(|t| (-5.0..=7.0).contains(t))
+            .collect();
         assert_eq!(around, expected, "neighbours of x = {x}");
     }
 }
 
 #[test]
 fn vertical_and_tiny_collinear_runs() {
-    let vertical: Vec<Point> = (0..50).rev().map(|i| Point::new(1e-3, i as f64 * 0.25)).collect();
+    let vertical: Vec<Point> = (0..50)
+        .rev()
+        .map(|i| Point::new(1e-3, i as f64 * 0.25))
+        .collect();
     let tri = triangulate(&vertical).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.edges().count(), 49);
@@ -79,7 +100,15 @@ fn collinear_run_then_one_point_off_the_line() {
 
 #[test]
 fn exact_duplicates_merge_into_the_smallest_index() {
-    let p = pts(&[(1.0, 1.0), (0.0, 0.0), (2.0, 0.0), (0.0, 0.0), (1.0, 1.0), (0.0, 0.0), (1.0, 3.0)]);
+    let p = pts(&[
+        (1.0, 1.0),
+        (0.0, 0.0),
+        (2.0, 0.0),
+        (0.0, 0.0),
+        (1.0, 1.0),
+        (0.0, 0.0),
+        (1.0, 3.0),
+    ]);
     let tri = triangulate(&p).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.num_vertices(), 4);
@@ -89,7 +118,10 @@ fn exact_duplicates_merge_into_the_smallest_index() {
     for (i, v) in tri.input_to_vertex().iter().enumerate() {
         assert_eq!(p[i], p[v.index()]);
     }
-    assert_eq!(tri.vertices().map(|v| v.index()).collect::<Vec<_>>(), vec![0, 1, 2, 6]);
+    assert_eq!(
+        tri.vertices().map(|v| v.index()).collect::<Vec<_>>(),
+        vec![0, 1, 2, 6]
+    );
 }
 
 #[test]
@@ -103,10 +135,20 @@ fn all_points_identical() {
 
 #[test]
 fn duplicates_of_collinear_points() {
-    let p = pts(&[(2.0, 2.0), (0.0, 0.0), (2.0, 2.0), (1.0, 1.0), (0.0, 0.0), (1.0, 1.0)]);
+    let p = pts(&[
+        (2.0, 2.0),
+        (0.0, 0.0),
+        (2.0, 2.0),
+        (1.0, 1.0),
+        (0.0, 0.0),
+        (1.0, 1.0),
+    ]);
     let tri = triangulate(&p).unwrap();
     tri.validate().unwrap();
-    assert_eq!(edge_set(&tri).into_iter().collect::<Vec<_>>(), vec![(0, 3), (1, 3)]);
+    assert_eq!(
+        edge_set(&tri).into_iter().collect::<Vec<_>>(),
+        vec![(0, 3), (1, 3)]
+    );
 }
 
 #[test]
@@ -149,17 +191,27 @@ fn integer_points_on_one_circle() {
     p.push(Point::new(0.0, 0.0));
     let wheel = triangulate(&p).unwrap();
     wheel.validate().unwrap();
-    assert_eq!(wheel.neighbors(VertexId::new(20)).count(), 20, "the centre sees every rim point");
+    assert_eq!(
+        wheel.neighbors(VertexId::new(20)).count(),
+        20,
+        "the centre sees every rim point"
+    );
 }
 
 #[test]
 fn coordinates_offset_by_a_million() {
     let base = uniform(5000, 11);
-    let shifted: Vec<Point> = base.iter().map(|p| Point::new(p.x + 1e6, p.y + 1e6)).collect();
+    let shifted: Vec<Point> = base
+        .iter()
+        .map(|p| Point::new(p.x + 1e6, p.y + 1e6))
+        .collect();
     let tri = triangulate(&shifted).unwrap();
     tri.validate().unwrap();
     assert_hull_convex_and_enclosing(&tri);
-    let g: Vec<Point> = grid(50, 3).iter().map(|p| Point::new(p.x + 1e6, p.y - 1e6)).collect();
+    let g: Vec<Point> = grid(50, 3)
+        .iter()
+        .map(|p| Point::new(p.x + 1e6, p.y - 1e6))
+        .collect();
     let tri = triangulate(&g).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.triangles().count(), 2 * 49 * 49);
@@ -168,10 +220,16 @@ fn coordinates_offset_by_a_million() {
 #[test]
 fn huge_coordinates_near_1e15() {
     let base = uniform(3000, 12);
-    let huge: Vec<Point> = base.iter().map(|p| Point::new(p.x * 1e15, p.y * 1e15)).collect();
+    let huge: Vec<Point> = base
+        .iter()
+        .map(|p| Point::new(p.x * 1e15, p.y * 1e15))
+        .collect();
     triangulate(&huge).unwrap().validate().unwrap();
     // Points 1 unit apart at 1e15: only a few bits of each coordinate differ.
-    let crowded: Vec<Point> = grid(20, 4).iter().map(|p| Point::new(1e15 + p.x, 1e15 + p.y)).collect();
+    let crowded: Vec<Point> = grid(20, 4)
+        .iter()
+        .map(|p| Point::new(1e15 + p.x, 1e15 + p.y))
+        .collect();
     let tri = triangulate(&crowded).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.triangles().count(), 2 * 19 * 19);
@@ -182,11 +240,17 @@ fn tiny_coordinates_near_1e_200_give_the_same_mesh() {
     let base = uniform(3000, 13);
     // Scaling by a power of two is exact, so the triangulation must be the same edge for edge.
     let factor = 2f64.powi(-665); // about 1.2e-200
-    let tiny: Vec<Point> = base.iter().map(|p| Point::new(p.x * factor, p.y * factor)).collect();
+    let tiny: Vec<Point> = base
+        .iter()
+        .map(|p| Point::new(p.x * factor, p.y * factor))
+        .collect();
     let (a, b) = (triangulate(&base).unwrap(), triangulate(&tiny).unwrap());
     b.validate().unwrap();
     assert_eq!(edge_set(&a), edge_set(&b));
-    let subnormal: Vec<Point> = grid(10, 5).iter().map(|p| Point::new(p.x * 1e-310, p.y * 1e-310)).collect();
+    let subnormal: Vec<Point> = grid(10, 5)
+        .iter()
+        .map(|p| Point::new(p.x * 1e-310, p.y * 1e-310))
+        .collect();
     let tri = triangulate(&subnormal).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.triangles().count(), 2 * 9 * 9);
@@ -215,7 +279,10 @@ fn a_dynamic_range_beyond_2_pow_200_is_refused_by_index() {
 fn translation_across_zero_keeps_a_cocircular_triangulation() {
     let p = pts(&[(2.0, 0.0), (2.0, 2.0), (1.0, 0.0), (1.0, 2.0), (0.0, 64.0)]);
     let moved: Vec<Point> = p.iter().map(|q| Point::new(q.x + 1.0, q.y - 1.0)).collect();
-    assert_eq!(edge_set(&triangulate(&p).unwrap()), edge_set(&triangulate(&moved).unwrap()));
+    assert_eq!(
+        edge_set(&triangulate(&p).unwrap()),
+        edge_set(&triangulate(&moved).unwrap())
+    );
 }
 
 #[test]

@@ -36,9 +36,13 @@ fn spade_triangulation(points: &[Point], condt: &Triangulation) -> SpadeResult {
     let vertices: Vec<Indexed> = points
         .iter()
         .enumerate()
-        .map(|(index, p)| Indexed { position: Point2::new(p.x, p.y), index })
+        .map(|(index, p)| Indexed {
+            position: Point2::new(p.x, p.y),
+            index,
+        })
         .collect();
-    let dt = DelaunayTriangulation::<Indexed>::bulk_load(vertices).expect("spade accepts finite input");
+    let dt =
+        DelaunayTriangulation::<Indexed>::bulk_load(vertices).expect("spade accepts finite input");
     let name = |v: &Indexed| condt.vertex_of_input(v.index).index();
     let edges = dt
         .undirected_edges()
@@ -59,7 +63,11 @@ fn spade_triangulation(points: &[Point], condt: &Triangulation) -> SpadeResult {
             _ => true,
         }
     });
-    SpadeResult { edges, triangles: dt.num_inner_faces(), delaunay }
+    SpadeResult {
+        edges,
+        triangles: dt.num_inner_faces(),
+        delaunay,
+    }
 }
 
 fn compare(points: &[Point], label: &str) -> bool {
@@ -69,11 +77,25 @@ fn compare(points: &[Point], label: &str) -> bool {
     let theirs = spade_triangulation(points, &tri);
     let ambiguous = has_ambiguous_edge(&tri);
     if ambiguous {
-        assert!(theirs.delaunay, "{label}: spade's triangulation is not Delaunay");
-        assert_eq!(ours.len(), theirs.edges.len(), "{label}: edge counts differ");
-        assert_eq!(tri.triangles().count(), theirs.triangles, "{label}: triangle counts differ");
+        assert!(
+            theirs.delaunay,
+            "{label}: spade's triangulation is not Delaunay"
+        );
+        assert_eq!(
+            ours.len(),
+            theirs.edges.len(),
+            "{label}: edge counts differ"
+        );
+        assert_eq!(
+            tri.triangles().count(),
+            theirs.triangles,
+            "{label}: triangle counts differ"
+        );
     } else {
-        assert_eq!(ours, theirs.edges, "{label}: edge sets differ on a unique Delaunay triangulation");
+        assert_eq!(
+            ours, theirs.edges,
+            "{label}: edge sets differ on a unique Delaunay triangulation"
+        );
     }
     ambiguous
 }
@@ -100,7 +122,10 @@ fn curve_samples_match_spade() {
         let n = 10 + (seed as usize * 613) % 500;
         let curves = 1 + seed as usize % 5;
         let jitter = [0.0, 1e-9, 1e-4][seed as usize % 3];
-        compare(&on_ellipses(n, curves, jitter, seed), &format!("ellipses n={n} seed={seed}"));
+        compare(
+            &on_ellipses(n, curves, jitter, seed),
+            &format!("ellipses n={n} seed={seed}"),
+        );
     }
 }
 
@@ -110,10 +135,16 @@ fn small_integer_sets_with_duplicates_match_spade() {
     for seed in 0..1500 {
         let n = 3 + (seed as usize * 31) % 120;
         let range = 2 + (seed as i32 % 12);
-        ambiguous += compare(&small_integers(n, range, seed), &format!("integers n={n} seed={seed}")) as usize;
+        ambiguous += compare(
+            &small_integers(n, range, seed),
+            &format!("integers n={n} seed={seed}"),
+        ) as usize;
     }
     // The family exists to exercise cocircular configurations; make sure it does.
-    assert!(ambiguous > 500, "only {ambiguous} sets had cocircular quadruples");
+    assert!(
+        ambiguous > 500,
+        "only {ambiguous} sets had cocircular quadruples"
+    );
 }
 
 #[test]

@@ -25,15 +25,22 @@ impl Arbitrary for PointSet {
             let count = usize::arbitrary(g) % (g.size() + 1);
             match u8::arbitrary(g) % 4 {
                 // Scattered points.
-                0 => pts.extend((0..count).map(|_| Point::new(small_coordinate(g), small_coordinate(g)))),
+                0 => pts.extend(
+                    (0..count).map(|_| Point::new(small_coordinate(g), small_coordinate(g))),
+                ),
                 // A collinear run with a small integer direction.
                 1 => {
                     let start = Point::new(small_coordinate(g), small_coordinate(g));
                     let (dx, dy) = ((i8::arbitrary(g) % 5) as f64, (i8::arbitrary(g) % 5) as f64);
-                    pts.extend((0..count).map(|k| Point::new(start.x + dx * k as f64, start.y + dy * k as f64)));
+                    pts.extend(
+                        (0..count)
+                            .map(|k| Point::new(start.x + dx * k as f64, start.y + dy * k as f64)),
+                    );
                 }
                 // Points of a tiny lattice: duplicates and cocircular squares.
-                2 => pts.extend((0..count).map(|_| Point::new((u8::arbitrary(g) % 4) as f64, (u8::arbitrary(g) % 4) as f64))),
+                2 => pts.extend((0..count).map(|_| {
+                    Point::new((u8::arbitrary(g) % 4) as f64, (u8::arbitrary(g) % 4) as f64)
+                })),
                 // Repeats of points already drawn.
                 _ => {
                     for _ in 0..count {
@@ -49,19 +56,28 @@ impl Arbitrary for PointSet {
 
     fn shrink(&self) -> Box<dyn Iterator<Item = Self>> {
         let pairs: Vec<(f64, f64)> = self.0.iter().map(|p| (p.x, p.y)).collect();
-        Box::new(pairs.shrink().map(|v| PointSet(v.into_iter().map(Point::from).collect())))
+        Box::new(
+            pairs
+                .shrink()
+                .map(|v| PointSet(v.into_iter().map(Point::from).collect())),
+        )
     }
 }
 
 fn quickcheck() -> QuickCheck {
-    QuickCheck::new().tests(400).max_tests(4000).rng(Gen::new(60))
+    QuickCheck::new()
+        .tests(400)
+        .max_tests(4000)
+        .rng(Gen::new(60))
 }
 
 #[test]
 fn every_triangulation_validates() {
     fn prop(set: PointSet) -> bool {
         let tri = triangulate(&set.0).expect("finite input");
-        tri.validate().map_err(|e| panic!("{e} on {:?}", set.0)).is_ok()
+        tri.validate()
+            .map_err(|e| panic!("{e} on {:?}", set.0))
+            .is_ok()
     }
     quickcheck().quickcheck(prop as fn(PointSet) -> bool);
 }
@@ -70,7 +86,11 @@ fn every_triangulation_validates() {
 fn counts_follow_euler_with_the_hull_size() {
     fn prop(set: PointSet) -> bool {
         let tri = triangulate(&set.0).expect("finite input");
-        let (v, e, t) = (tri.num_vertices(), tri.edges().count(), tri.triangles().count());
+        let (v, e, t) = (
+            tri.num_vertices(),
+            tri.edges().count(),
+            tri.triangles().count(),
+        );
         if tri.is_degenerate() {
             // A chain: no triangle, one edge between consecutive distinct points.
             return t == 0 && e == v.saturating_sub(1);
@@ -116,10 +136,18 @@ fn permuting_the_input_permutes_the_edges() {
 #[test]
 fn translating_by_a_power_of_two_keeps_the_edges() {
     fn prop(set: PointSet, shift: (u8, u8), signs: (bool, bool)) -> bool {
-        let power = |k: u8, negative: bool| if negative { -1.0 } else { 1.0 } * 2f64.powi((k % 40) as i32);
+        let power =
+            |k: u8, negative: bool| if negative { -1.0 } else { 1.0 } * 2f64.powi((k % 40) as i32);
         let (dx, dy) = (power(shift.0, signs.0), power(shift.1, signs.1));
-        let moved: Vec<Point> = set.0.iter().map(|p| Point::new(p.x + dx, p.y + dy)).collect();
-        let (a, b) = (triangulate(&set.0).expect("finite"), triangulate(&moved).expect("finite"));
+        let moved: Vec<Point> = set
+            .0
+            .iter()
+            .map(|p| Point::new(p.x + dx, p.y + dy))
+            .collect();
+        let (a, b) = (
+            triangulate(&set.0).expect("finite"),
+            triangulate(&moved).expect("finite"),
+        );
         edge_set(&a) == edge_set(&b)
     }
     quickcheck().quickcheck(prop as fn(PointSet, (u8, u8), (bool, bool)) -> bool);
@@ -138,12 +166,16 @@ fn arbitrary_doubles_are_triangulated_or_refused_for_a_stated_reason() {
             }
             Err(Error::NonFinite { index }) => TestResult::from_bool(!pts[index].is_finite()),
             Err(Error::RangeTooWide { index }) => {
-                let largest = pts.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+                let largest = pts
+                    .iter()
+                    .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
                 let tiny = |c: f64| c != 0.0 && c.abs() < largest * 2f64.powi(-199);
                 TestResult::from_bool(tiny(pts[index].x) || tiny(pts[index].y))
             }
             Err(other) => panic!("unexpected {other}"),
         }
     }
-    QuickCheck::new().tests(1000).quickcheck(prop as fn(Vec<(f64, f64)>) -> TestResult);
+    QuickCheck::new()
+        .tests(1000)
+        .quickcheck(prop as fn(Vec<(f64, f64)>) -> TestResult);
 }

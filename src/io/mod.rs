@@ -42,7 +42,11 @@ impl fmt::Display for IoError {
 impl std::error::Error for IoError {}
 
 fn io_error(file: &str, err: io::Error) -> IoError {
-    IoError { file: file.to_string(), line: None, message: err.to_string() }
+    IoError {
+        file: file.to_string(),
+        line: None,
+        message: err.to_string(),
+    }
 }
 
 /// Splits text into lines at LF, CRLF or a lone CR, numbering them from 1.
@@ -78,8 +82,14 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     let mut points = Vec::new();
     for (number, raw) in numbered_lines(text) {
         let content = raw.split('#').next().unwrap_or("");
-        let mut fields = content.split(|c: char| c == ',' || c.is_whitespace()).filter(|f| !f.is_empty());
-        let bad = |message: String| IoError { file: file.to_string(), line: Some(number), message };
+        let mut fields = content
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|f| !f.is_empty());
+        let bad = |message: String| IoError {
+            file: file.to_string(),
+            line: Some(number),
+            message,
+        };
         let Some(first) = fields.next() else { continue };
         let Some(second) = fields.next() else {
             return Err(bad("expected two coordinates, found one".to_string()));
@@ -89,7 +99,9 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
             return Err(bad("expected two or three columns, found more".to_string()));
         }
         let parse = |field: &str| -> Result<f64, IoError> {
-            let value: f64 = field.parse().map_err(|_| bad(format!("cannot read {field:?} as a number")))?;
+            let value: f64 = field
+                .parse()
+                .map_err(|_| bad(format!("cannot read {field:?} as a number")))?;
             if value.is_finite() {
                 Ok(value)
             } else {
@@ -110,14 +122,23 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 pub fn read_points(path: &str) -> Result<Vec<Point>, IoError> {
     let (name, bytes) = if path == "-" {
         let mut bytes = Vec::new();
-        io::stdin().read_to_end(&mut bytes).map_err(|e| io_error("<stdin>", e))?;
+        io::stdin()
+            .read_to_end(&mut bytes)
+            .map_err(|e| io_error("<stdin>", e))?;
         ("<stdin>", bytes)
     } else {
         (path, fs::read(path).map_err(|e| io_error(path, e))?)
     };
     let text = String::from_utf8(bytes).map_err(|e| {
-        let line = 1 + e.as_bytes()[..e.utf8_error().valid_up_to()].iter().filter(|&&b| b == b'\n').count();
-        IoError { file: name.to_string(), line: Some(line), message: "not UTF-8 text".to_string() }
+        let line = 1 + e.as_bytes()[..e.utf8_error().valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
+        IoError {
+            file: name.to_string(),
+            line: Some(line),
+            message: "not UTF-8 text".to_string(),
+        }
     })?;
     parse_points(&text, name)
 }
@@ -130,11 +151,16 @@ pub fn read_points(path: &str) -> Result<Vec<Point>, IoError> {
 /// condt::io::write_atomically("out.txt", |w| writeln!(w, "0 1 2"))?;
 /// # Ok::<(), condt::io::IoError>(())
 /// ```
-pub fn write_atomically(path: &str, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), IoError> {
+pub fn write_atomically(
+    path: &str,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), IoError> {
     if path == "-" {
         let stdout = io::stdout();
         let mut out = BufWriter::new(stdout.lock());
-        return write(&mut out).and_then(|()| out.flush()).map_err(|e| io_error("<stdout>", e));
+        return write(&mut out)
+            .and_then(|()| out.flush())
+            .map_err(|e| io_error("<stdout>", e));
     }
     let target = Path::new(path);
     let temp = temporary_path(target);
@@ -152,6 +178,9 @@ pub fn write_atomically(path: &str, write: impl FnOnce(&mut dyn Write) -> io::Re
 }
 
 fn temporary_path(target: &Path) -> PathBuf {
-    let name = target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = target
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     target.with_file_name(format!(".{name}.{}.partial", std::process::id()))
 }

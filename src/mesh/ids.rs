@@ -70,13 +70,21 @@ impl HalfEdgeId {
     /// The next half-edge counter-clockwise in the same triangle.
     #[inline]
     pub const fn next(self) -> Self {
-        HalfEdgeId(if self.0 % 3 == 2 { self.0 - 2 } else { self.0 + 1 })
+        HalfEdgeId(if self.0 % 3 == 2 {
+            self.0 - 2
+        } else {
+            self.0 + 1
+        })
     }
 
     /// The previous half-edge in the same triangle.
     #[inline]
     pub const fn prev(self) -> Self {
-        HalfEdgeId(if self.0 % 3 == 0 { self.0 + 2 } else { self.0 - 1 })
+        HalfEdgeId(if self.0 % 3 == 0 {
+            self.0 + 2
+        } else {
+            self.0 - 1
+        })
     }
 
     /// The triangle that owns this half-edge.

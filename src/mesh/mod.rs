@@ -111,7 +111,8 @@ impl Mesh {
     /// (or, for collinear input, on the chain).
     #[inline]
     pub fn is_hull_edge(&self, e: HalfEdgeId) -> bool {
-        self.is_finite_edge(e) && (self.is_ghost(e.triangle()) || self.is_ghost(self.twin(e).triangle()))
+        self.is_finite_edge(e)
+            && (self.is_ghost(e.triangle()) || self.is_ghost(self.twin(e).triangle()))
     }
 
     /// The real (non-ghost) triangles.
@@ -147,7 +148,11 @@ impl Mesh {
     /// ```
     pub fn ring(&self, v: VertexId) -> Ring<'_> {
         let start = self.vertex_edge(v).unwrap_or(HalfEdgeId::NONE);
-        Ring { mesh: self, start, current: start }
+        Ring {
+            mesh: self,
+            start,
+            current: start,
+        }
     }
 
     /// The finite neighbours of `v`, counter-clockwise (the destinations of [`Mesh::ring`]).
@@ -160,7 +165,11 @@ impl Mesh {
     /// back, so inner chain vertices appear twice.
     pub fn hull(&self) -> Hull<'_> {
         let start = self.first_hull_edge();
-        Hull { mesh: self, start, current: start }
+        Hull {
+            mesh: self,
+            start,
+            current: start,
+        }
     }
 
     /// The finite half-edge of some ghost triangle, if there is one.
@@ -213,7 +222,11 @@ impl Iterator for Ring<'_> {
             }
             let e = self.current;
             let turned = self.mesh.twin(e.prev());
-            self.current = if turned == self.start { HalfEdgeId::NONE } else { turned };
+            self.current = if turned == self.start {
+                HalfEdgeId::NONE
+            } else {
+                turned
+            };
             if !self.mesh.dest(e).is_infinite() {
                 return Some(e);
             }
@@ -240,7 +253,11 @@ impl Iterator for Hull<'_> {
         // the hull, so the next vertex counter-clockwise is the origin of the ghost before it.
         let e = self.current;
         let next = self.mesh.twin(e.prev()).prev();
-        self.current = if next == self.start { HalfEdgeId::NONE } else { next };
+        self.current = if next == self.start {
+            HalfEdgeId::NONE
+        } else {
+            next
+        };
         Some(self.mesh.origin(e))
     }
 }

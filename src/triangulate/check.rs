@@ -32,8 +32,13 @@ impl Triangulation {
     pub fn validate(&self) -> Result<(), InvalidMesh> {
         let mesh = &self.mesh;
         mesh.check_topology()?;
-        if mesh.vertex_capacity() != self.points.len() || self.vertex_of_input.len() != self.points.len() {
-            return fail("vertex arrays do not match the number of points", self.points.len());
+        if mesh.vertex_capacity() != self.points.len()
+            || self.vertex_of_input.len() != self.points.len()
+        {
+            return fail(
+                "vertex arrays do not match the number of points",
+                self.points.len(),
+            );
         }
         for (i, &v) in self.vertex_of_input.iter().enumerate() {
             if v.is_infinite() || v.index() > i || self.vertex_of_input[v.index()] != v {
@@ -62,7 +67,8 @@ impl Triangulation {
             if apex_e.is_infinite() || apex_f.is_infinite() {
                 continue;
             }
-            let [a, b, c, d] = [mesh.origin(e), mesh.dest(e), apex_e, apex_f].map(|v| self.scaled_point(v));
+            let [a, b, c, d] =
+                [mesh.origin(e), mesh.dest(e), apex_e, apex_f].map(|v| self.scaled_point(v));
             if in_circle(a, b, c, d) {
                 return fail("edge is not locally Delaunay", e.index());
             }
@@ -73,7 +79,8 @@ impl Triangulation {
             }
             // `e = a → b` is a hull edge, clockwise; the next one clockwise is `b → c`.
             let following = mesh.twin(e.next()).next();
-            let [a, b, c] = [mesh.origin(e), mesh.dest(e), mesh.dest(following)].map(|v| self.scaled_point(v));
+            let [a, b, c] =
+                [mesh.origin(e), mesh.dest(e), mesh.dest(following)].map(|v| self.scaled_point(v));
             if orient2d(a, b, c) == Orientation::Ccw {
                 return fail("hull is not convex", e.index());
             }
@@ -86,9 +93,16 @@ impl Triangulation {
     fn check_chain(&self) -> Result<(), InvalidMesh> {
         let mesh = &self.mesh;
         let Some(first) = mesh.edges().next() else {
-            return if self.num_vertices <= 1 { Ok(()) } else { fail("distinct points but no edge", 0) };
+            return if self.num_vertices <= 1 {
+                Ok(())
+            } else {
+                fail("distinct points but no edge", 0)
+            };
         };
-        let (a, b) = (self.scaled_point(mesh.origin(first)), self.scaled_point(mesh.dest(first)));
+        let (a, b) = (
+            self.scaled_point(mesh.origin(first)),
+            self.scaled_point(mesh.dest(first)),
+        );
         for v in self.vertices() {
             let p = self.scaled_point(v);
             if orient2d(a, b, p) != Orientation::Collinear {

@@ -21,7 +21,11 @@ use alloc::vec::Vec;
 pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<VertexId>) {
     let mut sorted: Vec<u32> = (0..points.len() as u32).collect();
     // On a line, lexicographic order is the order along it; ties (duplicates) by input index.
-    sorted.sort_unstable_by(|&i, &j| points[i as usize].lexicographic_cmp(points[j as usize]).then(i.cmp(&j)));
+    sorted.sort_unstable_by(|&i, &j| {
+        points[i as usize]
+            .lexicographic_cmp(points[j as usize])
+            .then(i.cmp(&j))
+    });
     let mut vertex_of_input = alloc::vec![VertexId::INFINITE; points.len()];
     let mut chain: Vec<VertexId> = Vec::new();
     for &i in &sorted {
@@ -48,7 +52,11 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<VertexId>) {
         let (l, r) = (6 * s, 6 * s + 3);
         mesh.link(h(l), h(r));
         // L_s's q_{s+1} → ∞ meets L_{s+1}'s ∞ → q_{s+1}, or turns round the last point into R_s.
-        let after = if s + 1 < segments { 6 * (s + 1) + 2 } else { r + 2 };
+        let after = if s + 1 < segments {
+            6 * (s + 1) + 2
+        } else {
+            r + 2
+        };
         mesh.link(h(l + 1), h(after));
         // R_s's q_s → ∞ meets R_{s-1}'s ∞ → q_s, or turns round the first point into L_0.
         let before = if s > 0 { 6 * (s - 1) + 5 } else { l + 2 };

@@ -43,7 +43,10 @@ pub(crate) struct Builder<'a> {
 impl<'a> Builder<'a> {
     /// Starts from the counter-clockwise triangle `a, b, c` and its three ghosts.
     pub(crate) fn new(points: &'a [Point], [a, b, c]: [u32; 3]) -> Self {
-        debug_assert_eq!(orient2d(points[a as usize], points[b as usize], points[c as usize]), Orientation::Ccw);
+        debug_assert_eq!(
+            orient2d(points[a as usize], points[b as usize], points[c as usize]),
+            Orientation::Ccw
+        );
         // A triangulated sphere with n + 1 vertices has 2n - 2 triangles: reserve them all at once.
         let half_edges = 6 * points.len().max(3) - 6;
         let mut mesh = Mesh {
@@ -62,7 +65,13 @@ impl<'a> Builder<'a> {
         for (x, y) in [(0, 3), (1, 6), (2, 9), (4, 11), (7, 5), (10, 8)] {
             mesh.link(h(x), h(y));
         }
-        Builder { points, mesh, flips: Vec::new(), hint: h(0), merged: Vec::new() }
+        Builder {
+            points,
+            mesh,
+            flips: Vec::new(),
+            hint: h(0),
+            merged: Vec::new(),
+        }
     }
 
     /// The mesh, and the `(duplicate, kept vertex)` pairs merged on the way.
@@ -87,7 +96,9 @@ impl<'a> Builder<'a> {
 
     fn new_triangle(&mut self) -> TriangleId {
         let t = TriangleId::new((self.mesh.origins.len() / 3) as u32);
-        self.mesh.origins.extend_from_slice(&[VertexId::INFINITE; 3]);
+        self.mesh
+            .origins
+            .extend_from_slice(&[VertexId::INFINITE; 3]);
         self.mesh.twins.extend_from_slice(&[HalfEdgeId::NONE; 3]);
         t
     }
@@ -182,7 +193,11 @@ impl<'a> Builder<'a> {
                 _ => {
                     // On two edge lines of a proper triangle: at their shared corner.
                     let (x, y) = (collinear[0], collinear[1]);
-                    Location::Vertex(if x.next() == y { self.origin(y) } else { self.origin(x) })
+                    Location::Vertex(if x.next() == y {
+                        self.origin(y)
+                    } else {
+                        self.origin(x)
+                    })
                 }
             };
         }
@@ -214,7 +229,8 @@ impl<'a> Builder<'a> {
         m.link(t0.edge(1), t1.edge(2));
         m.link(t1.edge(1), t2.edge(2));
         m.link(t2.edge(1), t0.edge(2));
-        self.flips.extend_from_slice(&[t0.edge(0), t1.edge(0), t2.edge(0)]);
+        self.flips
+            .extend_from_slice(&[t0.edge(0), t1.edge(0), t2.edge(0)]);
         self.hint = t0.edge(0);
     }
 
@@ -251,7 +267,8 @@ impl<'a> Builder<'a> {
         m.link(t_ca.edge(2), t_ad.edge(0));
         m.link(t_ad.edge(2), t_db.edge(0));
         m.link(t_db.edge(2), t_bc.edge(0));
-        self.flips.extend_from_slice(&[t_bc.edge(1), t_ca.edge(1), t_ad.edge(1), t_db.edge(1)]);
+        self.flips
+            .extend_from_slice(&[t_bc.edge(1), t_ca.edge(1), t_ad.edge(1), t_db.edge(1)]);
         self.hint = t_bc.edge(0);
     }
 
@@ -326,9 +343,17 @@ pub(crate) enum Segment {
 /// Classifies `p`, known to be collinear with the distinct points `a` and `b`, along the segment.
 /// Compares coordinates only (exact); on a non-vertical line x orders the points, else y does.
 pub(crate) fn position_on_segment(a: Point, b: Point, p: Point) -> Segment {
-    let (ka, kb, kp) = if a.x != b.x { (a.x, b.x, p.x) } else { (a.y, b.y, p.y) };
+    let (ka, kb, kp) = if a.x != b.x {
+        (a.x, b.x, p.x)
+    } else {
+        (a.y, b.y, p.y)
+    };
     let forward = ka < kb;
-    let (before, after) = if forward { (kp < ka, kp > kb) } else { (kp > ka, kp < kb) };
+    let (before, after) = if forward {
+        (kp < ka, kp > kb)
+    } else {
+        (kp > ka, kp < kb)
+    };
     if kp == ka {
         Segment::AtStart
     } else if kp == kb {

@@ -76,11 +76,17 @@ pub struct Triangulation {
 /// ```
 pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     if points.len() > MAX_POINTS {
-        return Err(Error::TooManyPoints { count: points.len(), limit: MAX_POINTS });
+        return Err(Error::TooManyPoints {
+            count: points.len(),
+            limit: MAX_POINTS,
+        });
     }
     let scale = scale::choose_scale(points)?;
     let order = order::insertion_order(points);
-    let sorted: Vec<Point> = order.iter().map(|&i| scale.apply(points[i as usize])).collect();
+    let sorted: Vec<Point> = order
+        .iter()
+        .map(|&i| scale.apply(points[i as usize]))
+        .collect();
 
     let (mesh, vertex_of_input) = match first_triangle(&sorted) {
         None => collinear::chain(points),
@@ -96,8 +102,18 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
             into_input_indices(mesh, &merged, &order)
         }
     };
-    let num_vertices = vertex_of_input.iter().enumerate().filter(|&(i, v)| v.index() == i).count();
-    Ok(Triangulation { points: points.to_vec(), scale, mesh, vertex_of_input, num_vertices })
+    let num_vertices = vertex_of_input
+        .iter()
+        .enumerate()
+        .filter(|&(i, v)| v.index() == i)
+        .count();
+    Ok(Triangulation {
+        points: points.to_vec(),
+        scale,
+        mesh,
+        vertex_of_input,
+        num_vertices,
+    })
 }
 
 /// The first three points, in insertion order, that make a proper triangle, counter-clockwise.
@@ -117,7 +133,11 @@ fn first_triangle(points: &[Point]) -> Option<[u32; 3]> {
 
 /// Renames the builder's insertion-order vertices to input positions, merging duplicates into
 /// their smallest input position.
-fn into_input_indices(mut mesh: Mesh, merged: &[(u32, u32)], order: &[u32]) -> (Mesh, Vec<VertexId>) {
+fn into_input_indices(
+    mut mesh: Mesh,
+    merged: &[(u32, u32)],
+    order: &[u32],
+) -> (Mesh, Vec<VertexId>) {
     // Vertex edges first, while ids still follow the spatial order and the writes stay local.
     mesh.rebuild_vertex_edges(order.len());
     let mut name: Vec<u32> = order.to_vec();
@@ -198,7 +218,9 @@ impl Triangulation {
 
     /// The real triangles as their corners, counter-clockwise.
     pub fn triangles(&self) -> impl Iterator<Item = [VertexId; 3]> + '_ {
-        self.mesh.triangles().map(|t| self.mesh.triangle_vertices(t))
+        self.mesh
+            .triangles()
+            .map(|t| self.mesh.triangle_vertices(t))
     }
 
     /// Every edge once, as `[a, b]` with `a < b`.

@@ -74,9 +74,13 @@ pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
         .map(|(i, p)| {
             let qx = (((p.x - min_x) * to_grid) as u32).min(cells as u32);
             let qy = (((p.y - min_y) * to_grid) as u32).min(cells as u32);
-            let level = (mix(((qx as u64) << 32) | qy as u64).trailing_zeros() / ROUND_GROWTH_BITS).min(rounds);
+            let level = (mix(((qx as u64) << 32) | qy as u64).trailing_zeros() / ROUND_GROWTH_BITS)
+                .min(rounds);
             let round = (rounds - level) as u64;
-            ((round << (2 * GRID_BITS)) | hilbert_index(qx, qy, levels), i as u32)
+            (
+                (round << (2 * GRID_BITS)) | hilbert_index(qx, qy, levels),
+                i as u32,
+            )
         })
         .collect();
     keyed.sort_unstable_by_key(|&(key, _)| key);
@@ -88,7 +92,9 @@ pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
             end += 1;
         }
         if end - start > 1 {
-            keyed[start..end].sort_unstable_by(|&(_, i), &(_, j)| points[i as usize].lexicographic_cmp(points[j as usize]));
+            keyed[start..end].sort_unstable_by(|&(_, i), &(_, j)| {
+                points[i as usize].lexicographic_cmp(points[j as usize])
+            });
         }
         start = end;
     }
@@ -118,8 +124,9 @@ mod tests {
 
     #[test]
     fn order_is_a_permutation_independent_of_input_order() {
-        let pts: Vec<Point> =
-            (0..200).map(|i| Point::new((i * 37 % 101) as f64, (i * 53 % 97) as f64)).collect();
+        let pts: Vec<Point> = (0..200)
+            .map(|i| Point::new((i * 37 % 101) as f64, (i * 53 % 97) as f64))
+            .collect();
         let order = insertion_order(&pts);
         let mut seen = order.clone();
         seen.sort_unstable();

@@ -38,7 +38,10 @@ pub(crate) struct Scale {
 }
 
 impl Scale {
-    pub(crate) const IDENTITY: Scale = Scale { first: 1.0, second: 1.0 };
+    pub(crate) const IDENTITY: Scale = Scale {
+        first: 1.0,
+        second: 1.0,
+    };
 
     #[inline]
     pub(crate) fn apply(self, p: Point) -> Point {
@@ -72,11 +75,17 @@ pub(crate) fn choose_scale(points: &[Point]) -> Result<Scale, Error> {
     let floor = top - MAX_DYNAMIC_RANGE_BITS;
     if binary_exponent(smallest) < floor {
         let too_small = |c: f64| c != 0.0 && binary_exponent(c.abs()) < floor;
-        let index = points.iter().position(|p| too_small(p.x) || too_small(p.y)).unwrap_or(0);
+        let index = points
+            .iter()
+            .position(|p| too_small(p.x) || too_small(p.y))
+            .unwrap_or(0);
         return Err(Error::RangeTooWide { index });
     }
     let half = -top / 2;
-    Ok(Scale { first: pow2(half), second: pow2(-top - half) })
+    Ok(Scale {
+        first: pow2(half),
+        second: pow2(-top - half),
+    })
 }
 
 #[cfg(test)]
@@ -106,7 +115,11 @@ mod tests {
 
     #[test]
     fn a_coordinate_beyond_the_dynamic_range_is_refused_by_index() {
-        let pts = [Point::new(1.0, 0.0), Point::new(0.5, 1e-50), Point::new(1e-300, 0.0)];
+        let pts = [
+            Point::new(1.0, 0.0),
+            Point::new(0.5, 1e-50),
+            Point::new(1e-300, 0.0),
+        ];
         assert_eq!(choose_scale(&pts), Err(Error::RangeTooWide { index: 2 }));
     }
 }

@@ -44,7 +44,9 @@ pub fn uniform(n: usize, seed: u64) -> Vec<Point> {
 /// Tight Gaussian-like clusters (sums of uniforms) around a few centres.
 pub fn clustered(n: usize, seed: u64) -> Vec<Point> {
     let mut r = Rng::new(seed);
-    let centres: Vec<Point> = (0..1 + r.below(6)).map(|_| Point::new(r.unit() * 100.0, r.unit() * 100.0)).collect();
+    let centres: Vec<Point> = (0..1 + r.below(6))
+        .map(|_| Point::new(r.unit() * 100.0, r.unit() * 100.0))
+        .collect();
     (0..n)
         .map(|_| {
             let c = centres[r.below(centres.len())];
@@ -64,12 +66,19 @@ pub fn on_ellipses(n: usize, curves: usize, jitter: f64, seed: u64) -> Vec<Point
     let mut pts = Vec::with_capacity(n);
     while pts.len() < n {
         let (cx, cy) = (r.unit() * 100.0, r.unit() * 100.0);
-        let (a, b, turn) = (1.0 + r.unit() * 10.0, 1.0 + r.unit() * 10.0, r.unit() * std::f64::consts::TAU);
+        let (a, b, turn) = (
+            1.0 + r.unit() * 10.0,
+            1.0 + r.unit() * 10.0,
+            r.unit() * std::f64::consts::TAU,
+        );
         for j in 0..per.min(n - pts.len()) {
             let t = j as f64 / per as f64 * std::f64::consts::TAU;
             let (x, y) = (a * t.cos(), b * t.sin());
             let (jx, jy) = ((r.unit() - 0.5) * jitter, (r.unit() - 0.5) * jitter);
-            pts.push(Point::new(cx + x * turn.cos() - y * turn.sin() + jx, cy + x * turn.sin() + y * turn.cos() + jy));
+            pts.push(Point::new(
+                cx + x * turn.cos() - y * turn.sin() + jx,
+                cy + x * turn.sin() + y * turn.cos() + jy,
+            ));
         }
     }
     r.shuffle(&mut pts);
@@ -90,7 +99,9 @@ pub fn small_integers(n: usize, range: i32, seed: u64) -> Vec<Point> {
 
 /// The `side` x `side` integer grid, shuffled.
 pub fn grid(side: usize, seed: u64) -> Vec<Point> {
-    let mut pts: Vec<Point> = (0..side * side).map(|i| Point::new((i % side) as f64, (i / side) as f64)).collect();
+    let mut pts: Vec<Point> = (0..side * side)
+        .map(|i| Point::new((i % side) as f64, (i / side) as f64))
+        .collect();
     Rng::new(seed).shuffle(&mut pts);
     pts
 }
@@ -109,7 +120,12 @@ pub fn has_ambiguous_edge(tri: &Triangulation) -> bool {
         let (c, d) = (mesh.origin(e.prev()), mesh.origin(f.prev()));
         !c.is_infinite()
             && !d.is_infinite()
-            && is_cocircular(tri.point(mesh.origin(e)), tri.point(mesh.dest(e)), tri.point(c), tri.point(d))
+            && is_cocircular(
+                tri.point(mesh.origin(e)),
+                tri.point(mesh.dest(e)),
+                tri.point(c),
+                tri.point(d),
+            )
     })
 }
 
@@ -121,10 +137,23 @@ pub fn assert_hull_convex_and_enclosing(tri: &Triangulation) {
     }
     let h = hull.len();
     for i in 0..h {
-        let (a, b, c) = (tri.point(hull[i]), tri.point(hull[(i + 1) % h]), tri.point(hull[(i + 2) % h]));
-        assert_ne!(orient2d(a, b, c), Orientation::Cw, "hull turns clockwise at {:?}", hull[(i + 1) % h]);
+        let (a, b, c) = (
+            tri.point(hull[i]),
+            tri.point(hull[(i + 1) % h]),
+            tri.point(hull[(i + 2) % h]),
+        );
+        assert_ne!(
+            orient2d(a, b, c),
+            Orientation::Cw,
+            "hull turns clockwise at {:?}",
+            hull[(i + 1) % h]
+        );
         for &p in tri.points() {
-            assert_ne!(orient2d(a, b, p), Orientation::Cw, "point {p:?} outside the hull");
+            assert_ne!(
+                orient2d(a, b, p),
+                Orientation::Cw,
+                "point {p:?} outside the hull"
+            );
         }
     }
 }

@@ -1,0 +1,31 @@
+//! Triangulates a point file and walks the mesh: counts, the hull, and one vertex's ring.
+//! Run: `cargo run --example triangulate_points -- examples/data/two_ellipses.txt`.
+
+use condt::io::read_points;
+use condt::{triangulate, VertexId};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let path = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "examples/data/two_ellipses.txt".into());
+    let points = read_points(&path)?;
+    let tri = triangulate(&points)?;
+    tri.validate()?;
+    println!(
+        "{} points, {} distinct, {} triangles, {} edges, {} on the hull",
+        points.len(),
+        tri.num_vertices(),
+        tri.triangles().count(),
+        tri.edges().count(),
+        tri.hull().count()
+    );
+    let v = VertexId::new(0);
+    let ring: Vec<usize> = tri.neighbors(v).map(|w| w.index()).collect();
+    println!("neighbours of point 0, counter-clockwise: {ring:?}");
+    let shortest = tri
+        .neighbors(v)
+        .map(|w| tri.point(v).dist2(tri.point(w)).sqrt())
+        .fold(f64::INFINITY, f64::min);
+    println!("its shortest Delaunay edge is {shortest:.4} long");
+    Ok(())
+}
