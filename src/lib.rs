@@ -59,3 +59,8 @@ pub use error::Error;
 pub use geometry::Point;
 pub use mesh::{HalfEdgeId, InvalidMesh, Mesh, TriangleId, VertexId};
 pub use triangulate::{triangulate, Triangulation};
+
+/// The README's code examples, compiled and run as doctests so they cannot go stale.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
