@@ -15,24 +15,55 @@ const GRID_BITS: u32 = 24;
 /// Each BRIO round holds about `2^ROUND_GROWTH_BITS` times as many points as the one before.
 const ROUND_GROWTH_BITS: u32 = 2;
 
-/// Position of `(x, y)` along the Hilbert curve filling the grid, using its top `levels` bits.
-///
-/// Branch-free on purpose: the bits of scattered points are random, and a branch per level
-/// mispredicted half the time costs more than all the arithmetic. The curve's orientation at the
-/// current level is kept as two flags, `swap` (exchange the axes) and `flip` (mirror both).
+/// One level of the Hilbert curve, branch-free: the bits `bx`, `by` of a cell at this level and
+/// the curve's orientation (`swap` exchanges the axes, `flip` mirrors both) give the quadrant's
+/// rank along the curve (lower-left 0, upper-left 1, upper-right 2, lower-right 3 in the base
+/// orientation) and the orientation for the next level.
+const fn hilbert_step(bx: u32, by: u32, swap: u32, flip: u32) -> (u32, u32, u32) {
+    let exchanged = swap & (bx ^ by);
+    let right = bx ^ exchanged ^ flip;
+    let up = by ^ exchanged ^ flip;
+    let low = up ^ 1;
+    ((3 * right) ^ up, swap ^ low, flip ^ (low & right))
+}
+
+/// Four levels at once: entry `state * 256 + (x_nibble << 4 | y_nibble)` holds the eight index
+/// bits in its low byte and the orientation after them (`swap | flip << 1`) above.
+const HILBERT_NIBBLES: [u16; 1024] = {
+    let mut table = [0u16; 1024];
+    let mut entry = 0;
+    while entry < 1024 {
+        let (x, y) = ((entry as u32 >> 4) & 15, entry as u32 & 15);
+        let (mut swap, mut flip) = ((entry as u32 >> 8) & 1, (entry as u32 >> 9) & 1);
+        let mut index = 0;
+        let mut level = 4;
+        while level > 0 {
+            level -= 1;
+            let (rank, next_swap, next_flip) =
+                hilbert_step((x >> level) & 1, (y >> level) & 1, swap, flip);
+            index = (index << 2) | rank;
+            swap = next_swap;
+            flip = next_flip;
+        }
+        table[entry] = (index | ((swap | (flip << 1)) << 8)) as u16;
+        entry += 1;
+    }
+    table
+};
+
+/// Position of `(x, y)` along the Hilbert curve filling the grid, using its top `levels` bits
+/// (a multiple of four).
 fn hilbert_index(x: u32, y: u32, levels: u32) -> u64 {
+    debug_assert!(levels % 4 == 0 && levels <= GRID_BITS);
     let mut index = 0u64;
-    let (mut swap, mut flip) = (0u32, 0u32);
-    for level in (GRID_BITS - levels..GRID_BITS).rev() {
-        let (bx, by) = ((x >> level) & 1, (y >> level) & 1);
-        let exchanged = swap & (bx ^ by);
-        let right = bx ^ exchanged ^ flip;
-        let up = by ^ exchanged ^ flip;
-        // Quadrants in curve order: lower-left 0, upper-left 1, upper-right 2, lower-right 3.
-        index = (index << 2) | u64::from((3 * right) ^ up);
-        let low = up ^ 1;
-        swap ^= low;
-        flip ^= low & right;
+    let mut state = 0usize;
+    let mut level = GRID_BITS;
+    while level > GRID_BITS - levels {
+        level -= 4;
+        let nibbles = (((x >> level) & 15) << 4 | ((y >> level) & 15)) as usize;
+        let entry = HILBERT_NIBBLES[state << 8 | nibbles];
+        index = (index << 8) | u64::from(entry & 0xff);
+        state = usize::from(entry >> 8);
     }
     index
 }
@@ -65,45 +96,130 @@ pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
     // Round r (0 = first) holds about n / g^(rounds - r) points, g = 2^ROUND_GROWTH_BITS: a point
     // lands in the last round with probability 1 - 1/g, in the one before with (1 - 1/g) / g, ...
     let rounds = size_bits / ROUND_GROWTH_BITS;
-    // About 2^8 cells per point on average: finer cells would not improve locality, and points
-    // sharing a cell are ordered by their coordinates anyway.
-    let levels = (size_bits / 2 + 4).min(GRID_BITS);
-    let mut keyed: Vec<(u64, u32)> = points
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let qx = (((p.x - min_x) * to_grid) as u32).min(cells as u32);
-            let qy = (((p.y - min_y) * to_grid) as u32).min(cells as u32);
-            let level = (mix(((qx as u64) << 32) | qy as u64).trailing_zeros() / ROUND_GROWTH_BITS)
-                .min(rounds);
-            let round = (rounds - level) as u64;
-            (
-                (round << (2 * GRID_BITS)) | hilbert_index(qx, qy, levels),
-                i as u32,
-            )
-        })
-        .collect();
-    keyed.sort_unstable_by_key(|&(key, _)| key);
-    // Points sharing a grid cell are ordered by their coordinates, never by input position.
+    // At least 2^8 cells per point on average (in whole table steps of four levels): finer cells
+    // would not improve locality, and points sharing a cell are ordered by their coordinates.
+    let levels = ((size_bits / 2 + 4).next_multiple_of(4)).min(GRID_BITS);
+    let key_of = |p: &Point| {
+        let qx = (((p.x - min_x) * to_grid) as u32).min(cells as u32);
+        let qy = (((p.y - min_y) * to_grid) as u32).min(cells as u32);
+        let level =
+            (mix(((qx as u64) << 32) | qy as u64).trailing_zeros() / ROUND_GROWTH_BITS).min(rounds);
+        let round = (rounds - level) as u64;
+        (round << (2 * levels)) | hilbert_index(qx, qy, levels)
+    };
+    let key_bits = 2 * levels + (u32::BITS - rounds.leading_zeros());
+    let index_bits = usize::BITS - (n - 1).leading_zeros();
+    let by_position = |&i: &u32, &j: &u32| points[i as usize].lexicographic_cmp(points[j as usize]);
+    if key_bits + index_bits <= u64::BITS {
+        // Key and input position packed in one word, radix-sorted on the key bits only.
+        let mut packed: Vec<u64> = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (key_of(p) << index_bits) | i as u64)
+            .collect();
+        radix_sort(&mut packed, index_bits, key_bits);
+        let index_mask = (1u64 << index_bits) - 1;
+        let mut order: Vec<u32> = packed.iter().map(|&w| (w & index_mask) as u32).collect();
+        for_each_run(
+            &packed,
+            |w| w >> index_bits,
+            |run| order[run].sort_unstable_by(by_position),
+        );
+        order
+    } else {
+        let mut keyed: Vec<(u64, u32)> = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (key_of(p), i as u32))
+            .collect();
+        keyed.sort_unstable_by_key(|&(key, _)| key);
+        let mut order: Vec<u32> = keyed.iter().map(|&(_, i)| i).collect();
+        for_each_run(
+            &keyed,
+            |&(key, _)| key,
+            |run| order[run].sort_unstable_by(by_position),
+        );
+        order
+    }
+}
+
+/// Calls `sort` on every range of two or more consecutive items with equal `key`: points sharing
+/// a grid cell are then ordered by their coordinates, never by their input position.
+fn for_each_run<T, K: PartialEq>(
+    items: &[T],
+    key: impl Fn(&T) -> K,
+    mut sort: impl FnMut(core::ops::Range<usize>),
+) {
     let mut start = 0;
-    while start < n {
+    while start < items.len() {
+        let first = key(&items[start]);
         let mut end = start + 1;
-        while end < n && keyed[end].0 == keyed[start].0 {
+        while end < items.len() && key(&items[end]) == first {
             end += 1;
         }
         if end - start > 1 {
-            keyed[start..end].sort_unstable_by(|&(_, i), &(_, j)| {
-                points[i as usize].lexicographic_cmp(points[j as usize])
-            });
+            sort(start..end);
         }
         start = end;
     }
-    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// Stable least-significant-digit radix sort of `values` by their bits `low .. low + bits`.
+fn radix_sort(values: &mut Vec<u64>, low: u32, bits: u32) {
+    const DIGIT_BITS: u32 = 11;
+    const DIGITS: usize = 1 << DIGIT_BITS;
+    let mut buffer = alloc::vec![0u64; values.len()];
+    let mut shift = low;
+    while shift < low + bits {
+        let digit = |v: u64| ((v >> shift) as usize) & (DIGITS - 1);
+        let mut offsets = [0usize; DIGITS];
+        for &v in values.iter() {
+            offsets[digit(v)] += 1;
+        }
+        // A digit shared by every value would not move anything.
+        if !offsets.contains(&values.len()) {
+            let mut total = 0;
+            for slot in offsets.iter_mut() {
+                let count = *slot;
+                *slot = total;
+                total += count;
+            }
+            for &v in values.iter() {
+                let d = digit(v);
+                buffer[offsets[d]] = v;
+                offsets[d] += 1;
+            }
+            core::mem::swap(values, &mut buffer);
+        }
+        shift += DIGIT_BITS;
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The same curve one level at a time, without the table.
+    fn hilbert_index_by_levels(x: u32, y: u32) -> u64 {
+        let (mut index, mut swap, mut flip) = (0u64, 0, 0);
+        for level in (0..GRID_BITS).rev() {
+            let (rank, s, f) = hilbert_step((x >> level) & 1, (y >> level) & 1, swap, flip);
+            index = (index << 2) | u64::from(rank);
+            (swap, flip) = (s, f);
+        }
+        index
+    }
+
+    #[test]
+    fn table_steps_agree_with_single_levels() {
+        for k in 0..20_000u64 {
+            let (x, y) = ((mix(k) as u32) >> 8, (mix(k + 1_000_003) as u32) >> 8);
+            assert_eq!(
+                hilbert_index(x, y, GRID_BITS),
+                hilbert_index_by_levels(x, y)
+            );
+        }
+    }
 
     #[test]
     fn hilbert_index_visits_neighbouring_cells_consecutively() {
@@ -120,6 +236,40 @@ mod tests {
             assert_eq!(dx + dy, 1, "{:?} -> {:?}", w[0], w[1]);
             assert_eq!(w[0].0 + 1, w[1].0);
         }
+        // The whole grid at the coarsest table step: a 16 x 16 curve through every cell.
+        let mut coarse: Vec<(u64, u32, u32)> = Vec::new();
+        for x in 0..16u32 {
+            for y in 0..16u32 {
+                coarse.push((
+                    hilbert_index(x << (GRID_BITS - 4), y << (GRID_BITS - 4), 4),
+                    x,
+                    y,
+                ));
+            }
+        }
+        coarse.sort_unstable();
+        assert_eq!(coarse[0].0, 0);
+        for w in coarse.windows(2) {
+            assert_eq!(
+                w[0].1.abs_diff(w[1].1) + w[0].2.abs_diff(w[1].2),
+                1,
+                "{:?} -> {:?}",
+                w[0],
+                w[1]
+            );
+            assert_eq!(w[0].0 + 1, w[1].0);
+        }
+    }
+
+    #[test]
+    fn radix_sort_orders_by_the_selected_bits_and_is_stable() {
+        let mut values: Vec<u64> = (0..5000u64)
+            .map(|i| (mix(i) & 0xffff_ff00) | (i & 0xff))
+            .collect();
+        let mut expected = values.clone();
+        expected.sort_by_key(|v| v >> 8);
+        radix_sort(&mut values, 8, 24);
+        assert_eq!(values, expected);
     }
 
     #[test]
