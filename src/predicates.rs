@@ -2,7 +2,9 @@
 //!
 //! Owns: every decision about a geometric sign. It wraps Shewchuk's adaptive-precision
 //! `orient2d` and `incircle` (the `robust` crate), which return the exact sign of their
-//! determinant for any finite inputs whose products neither overflow nor underflow. Nothing else in
+//! determinant for any finite inputs whose products neither overflow nor underflow. `in_circle`
+//! first tries Shewchuk's static error bound inline, which settles most calls without the
+//! function call, and hands every call it cannot settle to `robust`. Nothing else in
 //! the crate may compute a sign with plain floating point, and this module may not depend on the
 //! mesh or the triangulator.
 //!
@@ -79,8 +81,35 @@ pub fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
 /// ```
 #[inline]
 pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
-    robust::incircle(coord(a), coord(b), coord(c), coord(d)) > 0.0
+    // Most calls are far from cocircular: decide those inline with Shewchuk's first-stage bound
+    // (Shewchuk 1997, `incircle`, error bound A), and let `robust` settle the rest exactly.
+    let (adx, ady) = (a.x - d.x, a.y - d.y);
+    let (bdx, bdy) = (b.x - d.x, b.y - d.y);
+    let (cdx, cdy) = (c.x - d.x, c.y - d.y);
+    let (bc, cb) = (bdx * cdy, cdx * bdy);
+    let (ca, ac) = (cdx * ady, adx * cdy);
+    let (ab, ba) = (adx * bdy, bdx * ady);
+    let (alift, blift, clift) = (
+        adx * adx + ady * ady,
+        bdx * bdx + bdy * bdy,
+        cdx * cdx + cdy * cdy,
+    );
+    let det = alift * (bc - cb) + blift * (ca - ac) + clift * (ab - ba);
+    let permanent = (bc.abs() + cb.abs()) * alift
+        + (ca.abs() + ac.abs()) * blift
+        + (ab.abs() + ba.abs()) * clift;
+    let bound = IN_CIRCLE_FILTER * permanent;
+    if det > bound {
+        true
+    } else if -det > bound {
+        false
+    } else {
+        robust::incircle(coord(a), coord(b), coord(c), coord(d)) > 0.0
+    }
 }
+
+/// Relative error bound of the floating-point in-circle determinant: (10 + 96ε)ε, ε = 2^-53.
+const IN_CIRCLE_FILTER: f64 = (10.0 + 96.0 * f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
 
 /// `true` when `d` lies exactly on the circle through `a, b, c` (any orientation).
 ///
@@ -120,6 +149,42 @@ mod tests {
         let c = Point::new(y, f64::from_bits(y.to_bits() + 1));
         assert_eq!(orient2d(a, b, c), Orientation::Ccw);
         assert_eq!(orient2d(a, b, Point::new(y, y)), Orientation::Collinear);
+    }
+
+    #[test]
+    fn inline_filter_agrees_with_robust_everywhere() {
+        let mut state = 0x243f_6a88_85a3_08d3u64;
+        let mut unit = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let nudge = |v: f64, k: i64| f64::from_bits((v.to_bits() as i64 + k) as u64);
+        let mut near = 0;
+        for round in 0..200_000 {
+            let (a, b, c) = (
+                Point::new(unit(), unit()),
+                Point::new(unit(), unit()),
+                Point::new(unit(), unit()),
+            );
+            let d = if round % 2 == 0 {
+                Point::new(unit(), unit())
+            } else {
+                // Near-cocircular: the reflection of `a` through the bisector of `b c` lies on the
+                // circle in exact arithmetic; nudging it by a few ulps lands on either side.
+                let (mx, my) = ((b.x + c.x) / 2.0, (b.y + c.y) / 2.0);
+                let (ux, uy) = (c.x - b.x, c.y - b.y);
+                let t = ((a.x - mx) * ux + (a.y - my) * uy) / (ux * ux + uy * uy);
+                let k = (round % 7) as i64 - 3;
+                Point::new(nudge(a.x - 2.0 * t * ux, k), nudge(a.y - 2.0 * t * uy, -k))
+            };
+            let det = robust::incircle(coord(a), coord(b), coord(c), coord(d));
+            near += usize::from(det.abs() < 1e-15);
+            assert_eq!(in_circle(a, b, c, d), det > 0.0, "{a:?} {b:?} {c:?} {d:?}");
+        }
+        // The nudged half must really probe the zone the inline bound cannot settle.
+        assert!(near > 20_000, "only {near} near-cocircular cases");
     }
 
     #[test]
