@@ -37,6 +37,10 @@
 //! - [`predicates`]: the only place a geometric sign is decided (exact, via `robust`).
 //! - [`mesh`]: half-edge topology with typed ids; never sees a coordinate.
 //! - [`triangulate`]: builds a Delaunay [`Triangulation`] from points and checks one.
+//! - [`graph`]: sorted edge sets and their adjacency.
+//! - [`condt`]: the ConDT stages (proximity graph, non-manifold repair, outlier removal).
+//! - [`curve`]: ordered polylines from an edge set.
+//! - [`sample`]: curves sampled with known connectivity, for tests and examples.
 //! - [`io`] (`std`): reading point files and writing results atomically.
 //! - [`cli`] (`std`): the command-line front end used by the `condt` binary.
 #![cfg_attr(not(feature = "std"), no_std)]
@@ -47,12 +51,16 @@ extern crate alloc;
 
 #[cfg(feature = "std")]
 pub mod cli;
+pub mod condt;
+pub mod curve;
 pub mod error;
 pub mod geometry;
+pub mod graph;
 #[cfg(feature = "std")]
 pub mod io;
 pub mod mesh;
 pub mod predicates;
+pub mod sample;
 pub mod triangulate;
 
 pub use error::Error;

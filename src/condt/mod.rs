@@ -1,0 +1,206 @@
+//! ConDT curve reconstruction: the stages of Algorithms 1–3 on the Delaunay half-edge mesh.
+//!
+//! Reference: the ConDT paper ("ConDT: a proximity graph on the Delaunay triangulation for curve
+//! reconstruction", sections 3 and 4), read from `shared/seeds/condt-paper.txt`; `docs/condt.md`
+//! maps every line of its algorithms to this code and records each reading of an ambiguity.
+//!
+//! Owns: running the stages in order, their parameters and the inspectable result. Each stage has
+//! its own module and reads the finished [`Triangulation`]; none may modify it.
+//!
+//! ```
+//! use condt::condt::{reconstruct, Params};
+//! use condt::Point;
+//! // Twelve points on a circle: one closed curve through all of them.
+//! let circle: Vec<Point> = (0..12)
+//!     .map(|k| {
+//!         let t = k as f64 * std::f64::consts::TAU / 12.0;
+//!         Point::new(t.cos(), t.sin())
+//!     })
+//!     .collect();
+//! let result = reconstruct(&circle, &Params::default())?;
+//! assert_eq!(result.curves.len(), 1);
+//! assert!(result.curves[0].closed);
+//! assert_eq!(result.edges.len(), 12);
+//! assert!(result.unused.is_empty());
+//! # Ok::<(), condt::Error>(())
+//! ```
+
+mod nonmanifold;
+mod outliers;
+mod proximity;
+
+pub use crate::graph::Edge;
+pub use nonmanifold::Repair;
+
+use crate::curve::{assemble, Curve};
+use crate::error::Error;
+use crate::geometry::Point;
+use crate::triangulate::{triangulate, Triangulation};
+use alloc::vec::Vec;
+use core::time::Duration;
+
+/// The local uniformity test of Algorithm 1, line 6.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum Uniformity {
+    /// Keep the second shortest edge `e2` when `|e2| < u |e1|`; the paper uses `u = 2.75`.
+    Fixed(f64),
+    /// Section 4.1: `u` of each point is the mean length of its Delaunay edges over `|e1|`, so
+    /// `e2` is kept when it is shorter than that mean.
+    Adaptive,
+}
+
+impl Default for Uniformity {
+    fn default() -> Self {
+        Uniformity::Fixed(2.75)
+    }
+}
+
+/// Parameters of a reconstruction.
+///
+/// ```
+/// use condt::condt::{Params, Repair, Uniformity};
+/// let p = Params::default();
+/// assert_eq!(p.uniformity, Uniformity::Fixed(2.75));
+/// assert_eq!(p.outlier_factor, Some(1.7));
+/// assert_eq!(p.repair, Repair::Paper);
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Params {
+    /// Stage 1: the uniformity test.
+    pub uniformity: Uniformity,
+    /// Stage 2: the non-manifold repair.
+    pub repair: Repair,
+    /// Stage 3: the IQR factor, or `None` to skip outlier removal.
+    pub outlier_factor: Option<f64>,
+    /// Run the per-vertex stage on rayon (only with the `parallel` feature; same result).
+    pub parallel: bool,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            uniformity: Uniformity::default(),
+            repair: Repair::default(),
+            outlier_factor: Some(1.7),
+            parallel: cfg!(feature = "parallel"),
+        }
+    }
+}
+
+/// Wall-clock time of each stage (all zero without the `std` feature, which has no clock).
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// Delaunay triangulation.
+    pub triangulation: Duration,
+    /// Stage 1, the proximity graph.
+    pub proximity: Duration,
+    /// Stage 2, non-manifold repair.
+    pub repair: Duration,
+    /// Stage 3, outlier removal.
+    pub outliers: Duration,
+    /// Stage 4, curve assembly.
+    pub curves: Duration,
+}
+
+/// Everything a reconstruction computed, stage by stage, in vertex ids. A vertex id is the input
+/// position of its point; exact duplicates share the vertex of their smallest position (see
+/// [`Triangulation::vertex_of_input`]).
+#[derive(Clone, Debug)]
+pub struct Reconstruction {
+    /// The Delaunay triangulation the stages walked.
+    pub triangulation: Triangulation,
+    /// Stage 1: the ConDT proximity graph, sorted.
+    pub proximity: Vec<Edge>,
+    /// Stage 2: the graph after non-manifold repair, sorted.
+    pub repaired: Vec<Edge>,
+    /// Stage 3: the final edges, sorted.
+    pub edges: Vec<Edge>,
+    /// Whether stage 3 found an outlier and filtered.
+    pub outlier_filter_applied: bool,
+    /// Final degree of the vertex of every input point.
+    pub degrees: Vec<u32>,
+    /// Stage 4: the curves.
+    pub curves: Vec<Curve>,
+    /// Input positions whose point ended with no edge (outliers), ascending.
+    pub unused: Vec<usize>,
+    /// Time per stage.
+    pub times: StageTimes,
+}
+
+/// A clock that reads zero without `std`.
+struct Stopwatch {
+    #[cfg(feature = "std")]
+    start: std::time::Instant,
+}
+
+impl Stopwatch {
+    fn start() -> Self {
+        Stopwatch {
+            #[cfg(feature = "std")]
+            start: std::time::Instant::now(),
+        }
+    }
+
+    /// Time since the start or the previous lap.
+    fn lap(&mut self) -> Duration {
+        #[cfg(feature = "std")]
+        {
+            let now = std::time::Instant::now();
+            let elapsed = now - self.start;
+            self.start = now;
+            elapsed
+        }
+        #[cfg(not(feature = "std"))]
+        Duration::ZERO
+    }
+}
+
+/// Triangulates `points` and reconstructs the curves through them.
+///
+/// # Errors
+/// As [`triangulate`]: non-finite coordinates, an over-wide dynamic range, too many points.
+pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, Error> {
+    let mut clock = Stopwatch::start();
+    let tri = triangulate(points)?;
+    let triangulation_time = clock.lap();
+    let mut result = reconstruct_triangulation(tri, params);
+    result.times.triangulation = triangulation_time;
+    Ok(result)
+}
+
+/// Runs the ConDT stages on an existing triangulation.
+pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconstruction {
+    let mut clock = Stopwatch::start();
+    let mut times = StageTimes::default();
+    let proximity = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
+    times.proximity = clock.lap();
+    let repaired = nonmanifold::repair(&tri, &proximity, params.repair);
+    times.repair = clock.lap();
+    let (edges, outlier_filter_applied) = match params.outlier_factor {
+        Some(factor) => {
+            let filtered = outliers::remove_outliers(&tri, &repaired, factor);
+            (filtered.edges, filtered.applied)
+        }
+        None => (repaired.clone(), false),
+    };
+    times.outliers = clock.lap();
+    let n = tri.points().len();
+    let curves = assemble(n, &edges);
+    let vertex_degree = crate::graph::degrees(n, &edges);
+    let degrees: Vec<u32> = (0..n)
+        .map(|i| vertex_degree[tri.vertex_of_input(i).index()])
+        .collect();
+    let unused = (0..n).filter(|&i| degrees[i] == 0).collect();
+    times.curves = clock.lap();
+    Reconstruction {
+        triangulation: tri,
+        proximity,
+        repaired,
+        edges,
+        outlier_filter_applied,
+        degrees,
+        curves,
+        unused,
+        times,
+    }
+}

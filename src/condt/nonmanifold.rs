@@ -1,0 +1,155 @@
+//! Stage 2, non-manifold repair (Algorithm 2).
+//!
+//! Owns: what happens at vertices of the proximity graph with three or more edges. It reads point
+//! positions and the graph; it may not touch the triangulation.
+//!
+//! At a vertex `v` of degree >= 3 the paper keeps its shortest edge `e1` and the edge with the best
+//! score `(θ/π)(Lmin/Le)` among those making an angle `θ > 2π/3` with it; edges between two
+//! vertices of degree <= 2 are kept as they are. Readings of what the paper leaves open, with the
+//! evidence, are in `docs/condt.md` (notes 2 to 4).
+
+use crate::graph::{canonical, ordered, Adjacency, Edge};
+use crate::mesh::VertexId;
+use crate::triangulate::Triangulation;
+use alloc::vec::Vec;
+use core::f64::consts::PI;
+
+/// How vertices of degree three or more in the proximity graph are treated.
+///
+/// ```
+/// use condt::condt::Repair;
+/// assert_eq!(Repair::default(), Repair::Paper);
+/// ```
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Repair {
+    /// No repair: keep every proximity edge (needed for self-intersecting curves, whose crossings
+    /// have degree four).
+    Off,
+    /// Algorithm 2 as printed: every non-manifold vertex selects two edges and the selections are
+    /// united, so an edge selected by one end survives even if the other end did not select it.
+    #[default]
+    Paper,
+    /// Algorithm 2 with mutual consent: an edge between two non-manifold vertices survives only
+    /// if both select it, so no vertex keeps more than two edges.
+    Mutual,
+    /// Keeps up to two nearly straight pairs of edges through a vertex (a crossing), and falls
+    /// back to [`Repair::Paper`]'s choice elsewhere.
+    CrossingAware,
+}
+
+/// Smallest angle at `v` for an edge to pair with the shortest one (Algorithm 2's `θ > 2π/3`).
+const PAIR_ANGLE: f64 = 2.0 * PI / 3.0;
+/// Smallest angle for two edges through a vertex to count as one nearly straight passage.
+const STRAIGHT_ANGLE: f64 = 5.0 * PI / 6.0;
+
+/// The angle at `v` between the edges to `a` and to `b`, in `[0, π]`.
+fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
+    let (p, q, r) = (tri.point(v), tri.point(a), tri.point(b));
+    let (ux, uy, wx, wy) = (q.x - p.x, q.y - p.y, r.x - p.x, r.y - p.y);
+    libm::atan2((ux * wy - uy * wx).abs(), ux * wx + uy * wy)
+}
+
+/// Algorithm 2, lines 10–11: the shortest edge and the best-scoring partner (if any qualifies).
+fn paper_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> [VertexId; 2] {
+    let p = tri.point(v);
+    let length2 = |w: VertexId| p.dist2(tri.point(w));
+    let shortest = *around
+        .iter()
+        .min_by(|&&a, &&b| length2(a).total_cmp(&length2(b)).then(a.cmp(&b)))
+        .expect("degree >= 3");
+    // Lmin/Le: Lmin is the same for every candidate, so it scales all scores alike; it is kept to
+    // match the paper's formula.
+    let candidates = around
+        .iter()
+        .filter(|&&w| w != shortest)
+        .map(|&w| (w, angle_at(tri, v, shortest, w)));
+    let qualified: Vec<(VertexId, f64)> = candidates
+        .filter(|&(_, theta)| theta > PAIR_ANGLE)
+        .collect();
+    let l_min = qualified
+        .iter()
+        .map(|&(w, _)| libm::sqrt(length2(w)))
+        .fold(f64::INFINITY, f64::min);
+    let best = qualified
+        .iter()
+        .map(|&(w, theta)| (w, theta / PI * (l_min / libm::sqrt(length2(w)))))
+        .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
+    [shortest, best.map_or(VertexId::INFINITE, |(w, _)| w)]
+}
+
+/// Up to two disjoint nearly straight pairs through `v`; `None` when there are not two.
+fn crossing_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> Option<[VertexId; 4]> {
+    let mut pairs: Vec<(f64, VertexId, VertexId)> = Vec::new();
+    for (i, &a) in around.iter().enumerate() {
+        for &b in &around[i + 1..] {
+            let theta = angle_at(tri, v, a, b);
+            if theta > STRAIGHT_ANGLE {
+                pairs.push((theta, a, b));
+            }
+        }
+    }
+    pairs.sort_by(|x, y| y.0.total_cmp(&x.0).then((x.1, x.2).cmp(&(y.1, y.2))));
+    let &(_, a, b) = pairs.first()?;
+    let &(_, c, d) = pairs
+        .iter()
+        .find(|&&(_, c, d)| c != a && c != b && d != a && d != b)?;
+    Some([a, b, c, d])
+}
+
+/// Applies `repair` to the proximity graph `edges`.
+pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec<Edge> {
+    if repair == Repair::Off {
+        return edges.to_vec();
+    }
+    let graph = Adjacency::new(tri.points().len(), edges);
+    let manifold = |v: VertexId| graph.degree(v) <= 2;
+    // Algorithm 2, lines 3–5: edges between manifold vertices stay.
+    let mut kept: Vec<Edge> = edges
+        .iter()
+        .copied()
+        .filter(|&[a, b]| manifold(a) && manifold(b))
+        .collect();
+    // Lines 6–12: every non-manifold vertex selects its edges.
+    let mut selected: Vec<Edge> = Vec::new();
+    for i in 0..graph.vertex_count() {
+        let v = VertexId::new(i as u32);
+        if manifold(v) {
+            continue;
+        }
+        let around = graph.neighbors(v);
+        let crossing = if repair == Repair::CrossingAware {
+            crossing_choice(tri, v, around)
+        } else {
+            None
+        };
+        match crossing {
+            Some(four) => selected.extend(four.iter().map(|&w| ordered(v, w))),
+            None => selected.extend(
+                paper_choice(tri, v, around)
+                    .iter()
+                    .filter(|w| !w.is_infinite())
+                    .map(|&w| ordered(v, w)),
+            ),
+        }
+    }
+    if repair == Repair::Mutual {
+        // A selection counts once per selecting end: keep an edge when each non-manifold end chose it.
+        selected.sort_unstable();
+        let mut i = 0;
+        while i < selected.len() {
+            let edge = selected[i];
+            let mut votes = 0;
+            while i < selected.len() && selected[i] == edge {
+                votes += 1;
+                i += 1;
+            }
+            let needed = edge.iter().filter(|&&w| !manifold(w)).count();
+            if votes >= needed {
+                kept.push(edge);
+            }
+        }
+    } else {
+        kept.extend(selected);
+    }
+    canonical(kept)
+}

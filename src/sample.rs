@@ -1,0 +1,312 @@
+//! Sampling curves with known connectivity, for tests, examples and users.
+//!
+//! Owns: placing points along simple parametric shapes and reporting the ground-truth edges
+//! between consecutive samples. It may not triangulate or reconstruct.
+//!
+//! Spacing is set by `epsilon` against a local feature size (lfs) per shape, taken at its
+//! smallest: radius for circles and arcs, the smallest radius of curvature for ellipses, the gap
+//! between turns for spirals, the shortest side for polygons, a quarter of the size for the figure
+//! eight. Consecutive samples are at most `epsilon · lfs` apart along the curve, an
+//! `epsilon`-sampling in the sense of Amenta et al. as long as separate shapes are farther apart
+//! than their own lfs (the caller's responsibility).
+//!
+//! ```
+//! use condt::sample::{sample, Sampling, Shape};
+//! use condt::Point;
+//! let s = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.2));
+//! assert_eq!(s.points.len(), s.edges.len()); // closed: as many edges as points
+//! assert!(s.outliers.is_empty());
+//! ```
+
+use crate::geometry::Point;
+use alloc::vec::Vec;
+use core::f64::consts::{PI, TAU};
+
+/// A curve to sample.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A closed ellipse with semi-axes `radii`, turned by `rotation` radians.
+    Ellipse {
+        /// Centre.
+        center: Point,
+        /// Semi-axes along its own x and y.
+        radii: (f64, f64),
+        /// Rotation, radians counter-clockwise.
+        rotation: f64,
+    },
+    /// An open circular arc from angle `start` sweeping `sweep` radians (less than a full turn).
+    Arc {
+        /// Centre.
+        center: Point,
+        /// Radius.
+        radius: f64,
+        /// Start angle, radians.
+        start: f64,
+        /// Swept angle, radians, with sign.
+        sweep: f64,
+    },
+    /// An open Archimedean spiral `r = inner + gap · θ / 2π` over `turns` turns.
+    Spiral {
+        /// Centre.
+        center: Point,
+        /// Radius at the start.
+        inner: f64,
+        /// Distance between successive turns.
+        gap: f64,
+        /// Number of turns.
+        turns: f64,
+    },
+    /// A closed polygon with sharp corners, each corner a sample.
+    Polygon(Vec<Point>),
+    /// Gerono's lemniscate `(s sin t, s sin t cos t)`: a figure eight whose crossing at the
+    /// centre is a sample shared by both lobes (degree four in the ground truth).
+    FigureEight {
+        /// Centre (the crossing).
+        center: Point,
+        /// Half-width `s`.
+        size: f64,
+    },
+}
+
+impl Shape {
+    /// A circle.
+    pub fn circle(center: Point, radius: f64) -> Shape {
+        Shape::Ellipse {
+            center,
+            radii: (radius, radius),
+            rotation: 0.0,
+        }
+    }
+}
+
+/// How to sample.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Sampling {
+    /// Spacing against the local feature size (see the module documentation).
+    pub epsilon: f64,
+    /// Uniform outliers in the bounding box, as a fraction of the curve samples.
+    pub outlier_fraction: f64,
+    /// Each curve sample is moved uniformly within ±`noise` in x and y.
+    pub noise: f64,
+    /// Seed of the outliers and the noise.
+    pub seed: u64,
+}
+
+impl Sampling {
+    /// Clean sampling at `epsilon`: no outliers, no noise.
+    pub fn new(epsilon: f64) -> Sampling {
+        Sampling {
+            epsilon,
+            outlier_fraction: 0.0,
+            noise: 0.0,
+            seed: 1,
+        }
+    }
+}
+
+/// Sampled points with their ground truth.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Sample {
+    /// Curve samples first, then outliers.
+    pub points: Vec<Point>,
+    /// Ground-truth edges `[i, j]`, `i < j`, sorted.
+    pub edges: Vec<[usize; 2]>,
+    /// Positions of the outliers (no ground-truth edge), ascending.
+    pub outliers: Vec<usize>,
+}
+
+/// SplitMix64: small, seedable, good enough for test data.
+struct Random(u64);
+
+impl Random {
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Samples of `curve(t)`, `t` in `[0, 1]`, evenly spaced in arc length at most `spacing` apart.
+/// For a closed curve `curve(1) == curve(0)` and the last sample is not repeated.
+fn along(curve: impl Fn(f64) -> Point, closed: bool, spacing: f64) -> Vec<Point> {
+    const FINE: usize = 8192;
+    let dense: Vec<Point> = (0..=FINE).map(|k| curve(k as f64 / FINE as f64)).collect();
+    let mut cumulative = Vec::with_capacity(dense.len());
+    let mut total = 0.0;
+    cumulative.push(0.0);
+    for w in dense.windows(2) {
+        total += libm::sqrt(w[0].dist2(w[1]));
+        cumulative.push(total);
+    }
+    let pieces = libm::ceil(total / spacing).max(if closed { 3.0 } else { 1.0 }) as usize;
+    let count = if closed { pieces } else { pieces + 1 };
+    let mut samples = Vec::with_capacity(count);
+    let mut j = 0;
+    for k in 0..count {
+        let target = total * k as f64 / pieces as f64;
+        while j + 1 < cumulative.len() - 1 && cumulative[j + 1] < target {
+            j += 1;
+        }
+        let span = cumulative[j + 1] - cumulative[j];
+        let f = if span > 0.0 {
+            ((target - cumulative[j]) / span).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (a, b) = (dense[j], dense[j + 1]);
+        samples.push(Point::new(a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)));
+    }
+    samples
+}
+
+/// Appends a chain of samples to `out`, joining consecutive ones (and the ends, if closed).
+fn push_chain(out: &mut Sample, chain: &[Point], closed: bool) {
+    let base = out.points.len();
+    out.points.extend_from_slice(chain);
+    for k in 1..chain.len() {
+        out.edges.push([base + k - 1, base + k]);
+    }
+    if closed && chain.len() > 2 {
+        out.edges.push([base, base + chain.len() - 1]);
+    }
+}
+
+/// Samples `shapes` as `sampling` says.
+///
+/// ```
+/// use condt::sample::{sample, Sampling, Shape};
+/// use condt::Point;
+/// let eight = sample(&[Shape::FigureEight { center: Point::new(0.0, 0.0), size: 1.0 }], &Sampling::new(0.1));
+/// let crossing_degree = eight.edges.iter().filter(|e| e.contains(&0)).count();
+/// assert_eq!(crossing_degree, 4);
+/// ```
+pub fn sample(shapes: &[Shape], sampling: &Sampling) -> Sample {
+    let eps = sampling.epsilon;
+    let mut out = Sample::default();
+    for shape in shapes {
+        match shape {
+            &Shape::Ellipse {
+                center,
+                radii: (a, b),
+                rotation,
+            } => {
+                let (big, small) = (a.max(b), a.min(b));
+                let (c, s) = (libm::cos(rotation), libm::sin(rotation));
+                let at = |t: f64| {
+                    let (x, y) = (a * libm::cos(TAU * t), b * libm::sin(TAU * t));
+                    Point::new(center.x + c * x - s * y, center.y + s * x + c * y)
+                };
+                push_chain(&mut out, &along(at, true, eps * small * small / big), true);
+            }
+            &Shape::Arc {
+                center,
+                radius,
+                start,
+                sweep,
+            } => {
+                let at = |t: f64| {
+                    let angle = start + sweep * t;
+                    Point::new(
+                        center.x + radius * libm::cos(angle),
+                        center.y + radius * libm::sin(angle),
+                    )
+                };
+                push_chain(&mut out, &along(at, false, eps * radius), false);
+            }
+            &Shape::Spiral {
+                center,
+                inner,
+                gap,
+                turns,
+            } => {
+                let at = |t: f64| {
+                    let angle = TAU * turns * t;
+                    let r = inner + gap * angle / TAU;
+                    Point::new(
+                        center.x + r * libm::cos(angle),
+                        center.y + r * libm::sin(angle),
+                    )
+                };
+                push_chain(
+                    &mut out,
+                    &along(at, false, eps * inner.min(gap / 2.0)),
+                    false,
+                );
+            }
+            Shape::Polygon(corners) => {
+                let n = corners.len();
+                let side = |k: usize| libm::sqrt(corners[k].dist2(corners[(k + 1) % n]));
+                let shortest = (0..n).map(side).fold(f64::INFINITY, f64::min);
+                let mut chain = Vec::new();
+                for k in 0..n {
+                    let (p, q) = (corners[k], corners[(k + 1) % n]);
+                    let pieces = libm::ceil(side(k) / (eps * shortest)).max(1.0) as usize;
+                    for j in 0..pieces {
+                        let f = j as f64 / pieces as f64;
+                        chain.push(Point::new(p.x + f * (q.x - p.x), p.y + f * (q.y - p.y)));
+                    }
+                }
+                push_chain(&mut out, &chain, true);
+            }
+            &Shape::FigureEight { center, size } => {
+                // Lobe t in [0, π] and lobe t in [π, 2π]; both start and end at the crossing,
+                // which is sampled once and shared.
+                let crossing = out.points.len();
+                out.points.push(center);
+                for lobe in 0..2 {
+                    let offset = lobe as f64 * PI;
+                    let at = |t: f64| {
+                        let u = offset + PI * t;
+                        Point::new(
+                            center.x + size * libm::sin(u),
+                            center.y + size * libm::sin(u) * libm::cos(u),
+                        )
+                    };
+                    let chain = along(at, false, eps * size / 4.0);
+                    let inner = &chain[1..chain.len() - 1];
+                    let base = out.points.len();
+                    out.points.extend_from_slice(inner);
+                    out.edges.push([crossing, base]);
+                    for k in 1..inner.len() {
+                        out.edges.push([base + k - 1, base + k]);
+                    }
+                    out.edges.push([crossing, base + inner.len() - 1]);
+                }
+            }
+        }
+    }
+    let mut random = Random(sampling.seed);
+    if sampling.noise > 0.0 {
+        for p in out.points.iter_mut() {
+            p.x += (2.0 * random.unit() - 1.0) * sampling.noise;
+            p.y += (2.0 * random.unit() - 1.0) * sampling.noise;
+        }
+    }
+    let curve_points = out.points.len();
+    let extra = libm::round(sampling.outlier_fraction * curve_points as f64) as usize;
+    if extra > 0 {
+        let (mut lo, mut hi) = (
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for p in &out.points {
+            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+        }
+        for _ in 0..extra {
+            let p = Point::new(
+                lo.x + random.unit() * (hi.x - lo.x),
+                lo.y + random.unit() * (hi.y - lo.y),
+            );
+            out.outliers.push(out.points.len());
+            out.points.push(p);
+        }
+    }
+    for e in out.edges.iter_mut() {
+        e.sort_unstable();
+    }
+    out.edges.sort_unstable();
+    out
+}
