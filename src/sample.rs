@@ -86,6 +86,11 @@ pub struct Sampling {
     pub epsilon: f64,
     /// Uniform outliers in the bounding box, as a fraction of the curve samples.
     pub outlier_fraction: f64,
+    /// Outliers are redrawn while closer than this to any earlier point, curve sample or outlier:
+    /// an "outlier" within the sample spacing of the curve is indistinguishable from a noisy
+    /// sample, and two outliers close together are each other's nearest neighbours, a two-point
+    /// curve. 0 keeps every draw (plain uniform outliers).
+    pub outlier_clearance: f64,
     /// Each curve sample is moved uniformly within ±`noise` in x and y.
     pub noise: f64,
     /// Seed of the outliers and the noise.
@@ -98,6 +103,7 @@ impl Sampling {
         Sampling {
             epsilon,
             outlier_fraction: 0.0,
+            outlier_clearance: 0.0,
             noise: 0.0,
             seed: 1,
         }
@@ -295,11 +301,17 @@ pub fn sample(shapes: &[Shape], sampling: &Sampling) -> Sample {
             lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
             hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
         }
-        for _ in 0..extra {
+        let clearance2 = sampling.outlier_clearance * sampling.outlier_clearance;
+        let mut attempts = 0;
+        while out.outliers.len() < extra && attempts < 1000 * extra {
+            attempts += 1;
             let p = Point::new(
                 lo.x + random.unit() * (hi.x - lo.x),
                 lo.y + random.unit() * (hi.y - lo.y),
             );
+            if clearance2 > 0.0 && out.points.iter().any(|q| q.dist2(p) < clearance2) {
+                continue;
+            }
             out.outliers.push(out.points.len());
             out.points.push(p);
         }

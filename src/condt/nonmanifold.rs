@@ -153,3 +153,83 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec
     }
     canonical(kept)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{triangulate, Point};
+
+    fn v(i: u32) -> VertexId {
+        VertexId::new(i)
+    }
+
+    #[test]
+    fn a_vertex_keeps_its_shortest_edge_and_the_best_partner_beyond_120_degrees() {
+        // Centre 0 with neighbours 1 (shortest, east), 2 (west, 180 degrees) and 3 (north, 90).
+        let pts = [(0.0, 0.0), (1.0, 0.0), (-2.0, 0.0), (0.0, 1.5)].map(Point::from);
+        let tri = triangulate(&pts).unwrap();
+        let star = [[v(0), v(1)], [v(0), v(2)], [v(0), v(3)]];
+        assert_eq!(
+            repair(&tri, &star, Repair::Paper),
+            vec![[v(0), v(1)], [v(0), v(2)]]
+        );
+    }
+
+    #[test]
+    fn no_partner_beyond_120_degrees_keeps_only_the_shortest_edge() {
+        let pts = [(0.0, 0.0), (1.0, 0.0), (0.0, 2.0), (-0.5, 1.5)].map(Point::from);
+        let tri = triangulate(&pts).unwrap();
+        let star = [[v(0), v(1)], [v(0), v(2)], [v(0), v(3)]];
+        assert_eq!(repair(&tri, &star, Repair::Paper), vec![[v(0), v(1)]]);
+    }
+
+    /// Vertices 0 and 1 are both non-manifold; 0 selects the edge 0-1 (its shortest), 1 does not
+    /// (its shortest points north, its partner south, and 0 lies at 90 degrees).
+    fn one_sided_selection() -> (Triangulation, Vec<Edge>) {
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (-1.5, 0.0),
+            (0.0, -2.0),
+            (1.0, 0.8),
+            (1.0, -1.5),
+        ]
+        .map(Point::from);
+        let tri = triangulate(&pts).unwrap();
+        let edges = vec![
+            [v(0), v(1)],
+            [v(0), v(2)],
+            [v(0), v(3)],
+            [v(1), v(4)],
+            [v(1), v(5)],
+        ];
+        (tri, edges)
+    }
+
+    #[test]
+    fn paper_reading_unites_selections_so_one_end_can_keep_an_edge() {
+        let (tri, edges) = one_sided_selection();
+        let kept = repair(&tri, &edges, Repair::Paper);
+        assert_eq!(
+            kept,
+            vec![[v(0), v(1)], [v(0), v(2)], [v(1), v(4)], [v(1), v(5)]]
+        );
+    }
+
+    #[test]
+    fn mutual_reading_needs_both_ends_to_select_an_edge() {
+        let (tri, edges) = one_sided_selection();
+        let kept = repair(&tri, &edges, Repair::Mutual);
+        assert_eq!(kept, vec![[v(0), v(2)], [v(1), v(4)], [v(1), v(5)]]);
+    }
+
+    #[test]
+    fn crossing_aware_keeps_two_straight_pairs() {
+        // A plus sign: two straight passages through the centre.
+        let pts = [(0.0, 0.0), (1.0, 0.0), (-1.1, 0.0), (0.0, 1.2), (0.0, -1.3)].map(Point::from);
+        let tri = triangulate(&pts).unwrap();
+        let plus = vec![[v(0), v(1)], [v(0), v(2)], [v(0), v(3)], [v(0), v(4)]];
+        assert_eq!(repair(&tri, &plus, Repair::CrossingAware), plus);
+        assert_eq!(repair(&tri, &plus, Repair::Paper).len(), 2);
+    }
+}

@@ -5,8 +5,10 @@
 //!
 //! With the sorted squared lengths `s` of the `n` edges: `Q1 = s[n/4]`, `Q3 = s[3n/4]`,
 //! `T = Q3 + k (Q3 - Q1)` (`k = 1.7` by default). The filter applies only when some vertex has
-//! every one of its edges longer than the bound (squared length `> 2T`); it then keeps the edges
-//! whose squared length is below `T`. `docs/condt.md` (note 5) gives the reading and the evidence.
+//! every one of its edges longer than twice the threshold taken as a length, `|e| > 2 √T` (squared
+//! length `> 4T`); it then keeps the edges whose squared length is not above `T`. The paper compares
+//! plain lengths with `2 T`, mixing units; `docs/condt.md` (note 5) gives the readings tried and
+//! the evidence.
 
 use crate::graph::{degrees, Edge};
 use crate::triangulate::Triangulation;
@@ -32,12 +34,12 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
     let n = sorted.len();
     let (q1, q3) = (sorted[n / 4], sorted[(3 * n / 4).min(n - 1)]);
     let threshold = q3 + factor * (q3 - q1);
-    // A vertex all of whose edges exceed the bound: an isolated point tied in by long edges.
+    // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long edges.
     let vertex_count = tri.points().len();
     let degree = degrees(vertex_count, edges);
     let mut long = vec![0u32; vertex_count];
     for edge in edges {
-        if length2(edge) > 2.0 * threshold {
+        if length2(edge) > 4.0 * threshold {
             long[edge[0].index()] += 1;
             long[edge[1].index()] += 1;
         }
@@ -49,12 +51,52 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
             applied,
         };
     }
+    // Not above T: with a perfectly uniform sample IQR = 0 and every edge equals T exactly.
     Filtered {
         edges: edges
             .iter()
             .copied()
-            .filter(|e| length2(e) < threshold)
+            .filter(|e| length2(e) <= threshold)
             .collect(),
         applied,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{triangulate, Point, VertexId};
+
+    /// Ten unit edges along a line (so IQR = 0 and T = 1), plus a vertex at `(5, gap)` tied to
+    /// the line by two edges of length about `gap`.
+    fn line_and_lone_point(gap: f64) -> (Triangulation, Vec<Edge>) {
+        let mut pts: Vec<Point> = (0..11).map(|i| Point::new(i as f64, 0.0)).collect();
+        pts.push(Point::new(5.0, gap));
+        pts.push(Point::new(5.0 + 1e-9, 0.0)); // so the lone point has two nearest line points
+        let tri = triangulate(&pts).unwrap();
+        let v = |i: u32| VertexId::new(i);
+        let mut edges: Vec<Edge> = (0..10).map(|i| [v(i), v(i + 1)]).collect();
+        edges.push([v(5), v(11)]);
+        edges.push([v(11), v(12)]);
+        (tri, edges)
+    }
+
+    #[test]
+    fn triggers_only_when_every_edge_of_a_vertex_exceeds_twice_the_threshold_length() {
+        // T = 1 (IQR 0): the bound is |e| > 2.
+        let (tri, edges) = line_and_lone_point(1.9);
+        assert!(
+            !remove_outliers(&tri, &edges, 1.7).applied,
+            "|e| = 1.9 <= 2: no outlier"
+        );
+        let (tri, edges) = line_and_lone_point(2.1);
+        let filtered = remove_outliers(&tri, &edges, 1.7);
+        assert!(filtered.applied, "|e| = 2.1 > 2: an outlier");
+        // Every unit edge survives (it equals T), the two long ones go.
+        assert_eq!(filtered.edges.len(), 10);
+        assert!(filtered
+            .edges
+            .iter()
+            .all(|e| !e.contains(&VertexId::new(11))));
     }
 }
