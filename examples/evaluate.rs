@@ -149,6 +149,9 @@ fn main() {
     if let Some(k) = value("--iqr") {
         params.outlier_factor = Some(k.parse().expect("--iqr takes a number"));
     }
+    if args.iter().any(|a| a == "--outliers-first") {
+        params.outliers_first = true;
+    }
     if args.iter().any(|a| a == "--no-outlier-filter") {
         params.outlier_factor = None;
     }

@@ -1,25 +1,65 @@
-//! Writes `examples/data/two_ellipses.txt`, the point file the README's first command runs on:
-//! two interlocking ellipses sampled at uniform parameter steps, in a shuffled order, with one
-//! exact duplicate. Run: `cargo run --example make_example_data`.
+//! Writes `examples/data/shapes.txt`, the point file the README's first command runs on: an
+//! ellipse, a square with sharp corners, an open arc and an open spiral, sampled by
+//! `condt::sample`, plus a few isolated outliers and one exact duplicate, in shuffled order.
+//! Run: `cargo run --example make_example_data`.
 
+use condt::sample::{sample, Sampling, Shape};
+use condt::Point;
 use std::fmt::Write as _;
 
 fn main() -> std::io::Result<()> {
-    let mut points = Vec::new();
-    for (cx, cy, a, b, n) in [(0.0, 0.0, 3.0, 1.5, 90), (2.5, 0.5, 2.0, 2.0, 70)] {
-        for k in 0..n {
-            let t = k as f64 / n as f64 * std::f64::consts::TAU;
-            points.push((cx + a * t.cos(), cy + b * t.sin()));
-        }
-    }
-    points.push(points[7]);
-    // A fixed multiplicative shuffle, so the file order carries no curve order.
+    // Spacings between 0.4 and 0.5 everywhere: Algorithm 3's threshold is global, so components
+    // sampled far more sparsely than the rest would lose their edges with the outliers.
+    let shapes = [
+        Shape::Ellipse {
+            center: Point::new(0.0, 0.0),
+            radii: (3.0, 2.5),
+            rotation: 0.3,
+        },
+        Shape::Polygon(vec![
+            Point::new(5.0, -1.5),
+            Point::new(7.5, -1.5),
+            Point::new(7.5, 1.0),
+            Point::new(5.0, 1.0),
+        ]),
+        Shape::Arc {
+            center: Point::new(0.5, 6.5),
+            radius: 2.5,
+            start: 0.2,
+            sweep: 2.4,
+        },
+        Shape::Spiral {
+            center: Point::new(7.0, 6.5),
+            inner: 1.0,
+            gap: 1.0,
+            turns: 1.4,
+        },
+    ];
+    let sampling = Sampling {
+        epsilon: 0.2,
+        outlier_fraction: 0.03,
+        outlier_clearance: 2.0,
+        noise: 0.0,
+        seed: 7,
+    };
+    let mut points = sample(&shapes, &sampling).points;
+    points.push(points[10]);
+    // A fixed shuffle (multiplication by a number coprime with the count), so the file order
+    // carries no curve order.
     let n = points.len();
-    let shuffled: Vec<(f64, f64)> = (0..n).map(|i| points[(i * 97) % n]).collect();
-    let mut text =
-        String::from("# two ellipses, made by `cargo run --example make_example_data`\n");
-    for (x, y) in shuffled {
-        writeln!(text, "{x:.6} {y:.6}").unwrap();
+    let step = (n / 2..n).find(|s| gcd(*s, n) == 1).unwrap_or(1);
+    let mut text = String::from("# four curves, made by `cargo run --example make_example_data`\n");
+    for i in 0..n {
+        let p = points[(i * step) % n];
+        writeln!(text, "{:.6} {:.6}", p.x, p.y).unwrap();
     }
-    std::fs::write("examples/data/two_ellipses.txt", text)
+    std::fs::write("examples/data/shapes.txt", text)
+}
+
+fn gcd(a: usize, b: usize) -> usize {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
+    }
 }

@@ -1,5 +1,5 @@
 //! Triangulates a point file and walks the mesh: counts, the hull, and one vertex's ring.
-//! Run: `cargo run --example triangulate_points -- examples/data/two_ellipses.txt`.
+//! Run: `cargo run --example triangulate_points -- examples/data/shapes.txt`.
 
 use condt::io::read_points;
 use condt::{triangulate, VertexId};
@@ -7,7 +7,7 @@ use condt::{triangulate, VertexId};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()
         .nth(1)
-        .unwrap_or_else(|| "examples/data/two_ellipses.txt".into());
+        .unwrap_or_else(|| "examples/data/shapes.txt".into());
     let points = read_points(&path)?;
     let tri = triangulate(&points)?;
     tri.validate()?;

@@ -3,7 +3,10 @@
 //! Owns: argument parsing, messages and exit codes. It may not implement geometry: it calls the
 //! library and [`crate::io`] and reports what they say.
 
-use crate::io::{read_points, write_atomically, IoError};
+use crate::condt::{reconstruct, Params, Repair, Uniformity};
+use crate::io::{
+    read_points, write_atomically, write_edges, write_geojson, write_polylines, write_svg, IoError,
+};
 use crate::triangulate;
 use std::fmt;
 
@@ -11,6 +14,9 @@ const USAGE: &str = "\
 condt: Delaunay triangulation and curve reconstruction of planar points
 
 Usage:
+  condt reconstruct INPUT [-o OUTPUT] [--u X | --adaptive] [--iqr K] [--no-outlier-filter]
+                    [--no-manifold-fix | --repair MODE] [--outliers-first] [--format F]
+                    [--stages] [--sequential]
   condt triangulate INPUT [-o OUTPUT] [--edges]
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
@@ -19,9 +25,25 @@ OUTPUT (written whole or not at all) or standard output: one triangle `i j k` pe
 counter-clockwise, in input indices; with --edges one edge `i j` (i < j) per line instead.
 Exact duplicate points are merged into the first of them; a note on standard error says how many.
 
+reconstruct runs ConDT: the curves through the points. Output format by OUTPUT's extension or
+--format: `edges` (.edges: one edge `i j` per line, i < j, sorted), `txt` (.txt: one curve per
+line, `closed` or `open` then its indices; the default on standard output), `svg` (.svg: the
+points and curves; with --stages the Delaunay triangulation, the proximity graph, the graph after
+repair and the final curves side by side), `geojson` (.geojson: one LineString per curve).
+
 Options:
-  -o, --output FILE   write to FILE instead of standard output
-      --edges         write edges instead of triangles
+  -o, --output FILE       write to FILE instead of standard output
+      --edges             (triangulate) write edges instead of triangles
+      --u X               uniformity parameter u (default 2.75)
+      --adaptive          adaptive uniformity (section 4.1 of the paper)
+      --iqr K             outlier factor (default 1.7)
+      --no-outlier-filter skip outlier removal
+      --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
+      --no-manifold-fix   keep every proximity edge (self-intersecting curves)
+      --repair MODE       paper (default), mutual, crossing or off
+      --format F          edges, txt, svg or geojson
+      --stages            (svg) draw every stage
+      --sequential        do not use threads (the result is the same)
   -h, --help          show this help
   -V, --version       show the version
 ";
@@ -113,6 +135,13 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
     match command.as_str() {
         "-h" | "--help" | "help" => Ok(USAGE.to_string()),
         "-V" | "--version" => Ok(format!("condt {}\n", env!("CARGO_PKG_VERSION"))),
+        "reconstruct" => {
+            if rest.iter().any(|a| a == "-h" || a == "--help") {
+                return Ok(USAGE.to_string());
+            }
+            reconstruct_command(&parse_reconstruct(rest)?)?;
+            Ok(String::new())
+        }
         "triangulate" => {
             if rest.iter().any(|a| a == "-h" || a == "--help") {
                 return Ok(USAGE.to_string());
@@ -122,6 +151,167 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
         }
         other => Err(CliError::Usage(format!("unknown command {other}"))),
     }
+}
+
+/// Output formats of `condt reconstruct`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Format {
+    Edges,
+    Polylines,
+    Svg,
+    GeoJson,
+}
+
+impl Format {
+    fn named(name: &str) -> Option<Format> {
+        match name {
+            "edges" => Some(Format::Edges),
+            "txt" => Some(Format::Polylines),
+            "svg" => Some(Format::Svg),
+            "geojson" | "json" => Some(Format::GeoJson),
+            _ => None,
+        }
+    }
+}
+
+/// Options of `condt reconstruct`.
+#[derive(Debug, PartialEq)]
+struct ReconstructArgs {
+    input: String,
+    output: Option<String>,
+    params: Params,
+    format: Format,
+    stages: bool,
+}
+
+fn number(
+    flag: &str,
+    value: Option<&String>,
+    valid: impl Fn(f64) -> bool,
+) -> Result<f64, CliError> {
+    let text = value.ok_or_else(|| CliError::Usage(format!("{flag} needs a number")))?;
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() && valid(x) => Ok(x),
+        _ => Err(CliError::Usage(format!(
+            "{flag} {text}: not an accepted number"
+        ))),
+    }
+}
+
+fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
+    let mut params = Params::default();
+    let (mut input, mut output, mut format, mut stages) = (None, None, None, false);
+    let (mut fixed_u, mut adaptive) = (false, false);
+    let mut rest = args.iter();
+    while let Some(arg) = rest.next() {
+        match arg.as_str() {
+            "-o" | "--output" => {
+                output = Some(
+                    rest.next()
+                        .ok_or_else(|| CliError::Usage(format!("{arg} needs a file name")))?
+                        .clone(),
+                );
+            }
+            "--u" => {
+                params.uniformity = Uniformity::Fixed(number(arg, rest.next(), |u| u > 0.0)?);
+                fixed_u = true;
+            }
+            "--adaptive" => {
+                params.uniformity = Uniformity::Adaptive;
+                adaptive = true;
+            }
+            "--iqr" => params.outlier_factor = Some(number(arg, rest.next(), |k| k >= 0.0)?),
+            "--no-outlier-filter" => params.outlier_factor = None,
+            "--outliers-first" => params.outliers_first = true,
+            "--no-manifold-fix" => params.repair = Repair::Off,
+            "--repair" => {
+                params.repair = match rest.next().map(String::as_str) {
+                    Some("paper") => Repair::Paper,
+                    Some("mutual") => Repair::Mutual,
+                    Some("crossing") => Repair::CrossingAware,
+                    Some("off") => Repair::Off,
+                    other => {
+                        return Err(CliError::Usage(format!(
+                            "--repair takes paper, mutual, crossing or off, not {other:?}"
+                        )))
+                    }
+                }
+            }
+            "--format" => {
+                let name = rest
+                    .next()
+                    .ok_or_else(|| CliError::Usage("--format needs a name".into()))?;
+                format = Some(
+                    Format::named(name)
+                        .ok_or_else(|| CliError::Usage(format!("unknown format {name}")))?,
+                );
+            }
+            "--stages" => stages = true,
+            "--sequential" => params.parallel = false,
+            flag if flag.starts_with('-') && flag != "-" => {
+                return Err(CliError::Usage(format!("unknown option {flag}")));
+            }
+            path => {
+                if input.replace(path.to_string()).is_some() {
+                    return Err(CliError::Usage(format!("unexpected extra argument {path}")));
+                }
+            }
+        }
+    }
+    if fixed_u && adaptive {
+        return Err(CliError::Usage(
+            "--u and --adaptive exclude each other".into(),
+        ));
+    }
+    let input =
+        input.ok_or_else(|| CliError::Usage("reconstruct needs an INPUT file (or -)".into()))?;
+    let format = match (format, output.as_deref()) {
+        (Some(f), _) => f,
+        (None, None | Some("-")) => Format::Polylines,
+        (None, Some(path)) => {
+            let extension = std::path::Path::new(path)
+                .extension()
+                .and_then(|e| e.to_str())
+                .unwrap_or("");
+            Format::named(extension).ok_or_else(|| {
+                CliError::Usage(format!(
+                    "cannot tell the format of {path} from its extension; use --format"
+                ))
+            })?
+        }
+    };
+    Ok(ReconstructArgs {
+        input,
+        output,
+        params,
+        format,
+        stages,
+    })
+}
+
+fn reconstruct_command(args: &ReconstructArgs) -> Result<(), CliError> {
+    let points = read_points(&args.input)?;
+    let result = reconstruct(&points, &args.params)
+        .map_err(|err| CliError::Input(format!("{}: {err}", args.input)))?;
+    let output = args.output.as_deref().unwrap_or("-");
+    write_atomically(output, |out| match args.format {
+        Format::Edges => write_edges(out, &result),
+        Format::Polylines => write_polylines(out, &result),
+        Format::Svg => write_svg(out, &result, args.stages),
+        Format::GeoJson => write_geojson(out, &result),
+    })?;
+    let (closed, open) =
+        result.curves.iter().fold(
+            (0, 0),
+            |(c, o), k| if k.closed { (c + 1, o) } else { (c, o + 1) },
+        );
+    eprintln!(
+        "condt: {} points, {} curves ({closed} closed, {open} open), {} unused",
+        points.len(),
+        result.curves.len(),
+        result.unused.len()
+    );
+    Ok(())
 }
 
 fn triangulate_command(args: &TriangulateArgs) -> Result<(), CliError> {
@@ -169,6 +359,46 @@ mod tests {
                 edges: true
             }
         );
+    }
+
+    #[test]
+    fn reconstruct_options_and_format_by_extension() {
+        let a = parse_reconstruct(&strings(&[
+            "in.txt",
+            "-o",
+            "out.svg",
+            "--stages",
+            "--adaptive",
+            "--iqr",
+            "2",
+        ]))
+        .unwrap();
+        assert_eq!(a.format, Format::Svg);
+        assert!(a.stages);
+        assert_eq!(a.params.uniformity, Uniformity::Adaptive);
+        assert_eq!(a.params.outlier_factor, Some(2.0));
+        let b = parse_reconstruct(&strings(&[
+            "in.txt",
+            "--no-manifold-fix",
+            "--no-outlier-filter",
+        ]))
+        .unwrap();
+        assert_eq!(
+            (b.format, b.params.repair, b.params.outlier_factor),
+            (Format::Polylines, Repair::Off, None)
+        );
+        for bad in [
+            &["in.txt", "--u", "2", "--adaptive"][..],
+            &["in.txt", "-o", "out.png"],
+            &["in.txt", "--u", "nan"],
+            &["in.txt", "--repair", "x"],
+        ] {
+            assert_eq!(
+                parse_reconstruct(&strings(bad)).unwrap_err().exit_code(),
+                2,
+                "{bad:?}"
+            );
+        }
     }
 
     #[test]

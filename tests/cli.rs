@@ -170,3 +170,83 @@ fn help_and_version() {
     let out = condt(&["--version"], "");
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("condt "));
 }
+
+fn circle_input(n: usize) -> String {
+    (0..n)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / n as f64;
+            format!("{} {}\n", t.cos(), t.sin())
+        })
+        .collect()
+}
+
+#[test]
+fn reconstruct_writes_polylines_to_stdout_by_default() {
+    let out = condt(&["reconstruct", "-"], &circle_input(20));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 1);
+    assert!(lines[0].starts_with("closed "));
+    assert_eq!(lines[0].split(' ').count(), 21, "closed plus 20 indices");
+}
+
+#[test]
+fn reconstruct_formats_follow_the_extension() {
+    let dir = scratch_dir("formats");
+    let input = dir.join("circle.txt");
+    std::fs::write(&input, circle_input(16)).unwrap();
+    for (name, check) in [
+        ("out.edges", "0 1\n"),
+        ("out.txt", "closed 0"),
+        ("out.svg", "<svg"),
+        ("out.geojson", "\"FeatureCollection\""),
+    ] {
+        let target = dir.join(name);
+        let out = condt(
+            &[
+                "reconstruct",
+                input.to_str().unwrap(),
+                "-o",
+                target.to_str().unwrap(),
+            ],
+            "",
+        );
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let written = std::fs::read_to_string(&target).unwrap();
+        assert!(written.contains(check), "{name}: {written}");
+    }
+    let edges = std::fs::read_to_string(dir.join("out.edges")).unwrap();
+    assert_eq!(edges.lines().count(), 16);
+}
+
+#[test]
+fn reconstruct_rejects_bad_options_and_bad_files() {
+    let out = condt(&["reconstruct", "-", "--u", "2", "--adaptive"], "");
+    assert_eq!(out.status.code(), Some(2));
+    let out = condt(&["reconstruct", "-", "-o", "picture.png"], "0 0\n");
+    assert_eq!(out.status.code(), Some(2));
+    let out = condt(&["reconstruct", &data("malformed_line3.txt")], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("malformed_line3.txt:3:"));
+}
+
+#[test]
+fn readme_example_data_gives_four_curves() {
+    let input = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/data/shapes.txt");
+    let out = condt(&["reconstruct", input.to_str().unwrap()], "");
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let closed = text.lines().filter(|l| l.starts_with("closed")).count();
+    let open = text.lines().filter(|l| l.starts_with("open")).count();
+    // An ellipse and a square (closed), an arc and a spiral (open).
+    assert_eq!((closed, open), (2, 2), "{text}");
+}

@@ -72,6 +72,10 @@ pub struct Params {
     pub repair: Repair,
     /// Stage 3: the IQR factor, or `None` to skip outlier removal.
     pub outlier_factor: Option<f64>,
+    /// Remove outliers before the non-manifold repair instead of after it (the paper's order).
+    /// Outlier edges can make a curve vertex non-manifold, and the repair then cuts a sharp
+    /// corner there; `docs/condt.md` (note 6) measures both orders.
+    pub outliers_first: bool,
     /// Run the per-vertex stage on rayon (only with the `parallel` feature; same result).
     pub parallel: bool,
 }
@@ -82,6 +86,7 @@ impl Default for Params {
             uniformity: Uniformity::default(),
             repair: Repair::default(),
             outlier_factor: Some(1.7),
+            outliers_first: false,
             parallel: cfg!(feature = "parallel"),
         }
     }
@@ -107,13 +112,17 @@ pub struct StageTimes {
 /// [`Triangulation::vertex_of_input`]).
 #[derive(Clone, Debug)]
 pub struct Reconstruction {
+    /// The parameters it ran with.
+    pub params: Params,
     /// The Delaunay triangulation the stages walked.
     pub triangulation: Triangulation,
     /// Stage 1: the ConDT proximity graph, sorted.
     pub proximity: Vec<Edge>,
-    /// Stage 2: the graph after non-manifold repair, sorted.
+    /// The output of the non-manifold repair, sorted.
     pub repaired: Vec<Edge>,
-    /// Stage 3: the final edges, sorted.
+    /// The output of the outlier removal, sorted.
+    pub filtered: Vec<Edge>,
+    /// The final edges (the output of whichever of the two ran last), sorted.
     pub edges: Vec<Edge>,
     /// Whether stage 3 found an outlier and filtered.
     pub outlier_filter_applied: bool,
@@ -174,16 +183,40 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
     let mut times = StageTimes::default();
     let proximity = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
     times.proximity = clock.lap();
-    let repaired = nonmanifold::repair(&tri, &proximity, params.repair);
-    times.repair = clock.lap();
-    let (edges, outlier_filter_applied) = match params.outlier_factor {
-        Some(factor) => {
-            let filtered = outliers::remove_outliers(&tri, &repaired, factor);
-            (filtered.edges, filtered.applied)
-        }
-        None => (repaired.clone(), false),
+    let run_repair = |input: &[Edge], times: &mut StageTimes, clock: &mut Stopwatch| {
+        let out = nonmanifold::repair(&tri, input, params.repair);
+        times.repair = clock.lap();
+        out
     };
-    times.outliers = clock.lap();
+    let run_outliers = |input: &[Edge], times: &mut StageTimes, clock: &mut Stopwatch| {
+        let out = match params.outlier_factor {
+            Some(factor) => outliers::remove_outliers(&tri, input, factor),
+            None => outliers::Filtered {
+                edges: input.to_vec(),
+                applied: false,
+            },
+        };
+        times.outliers = clock.lap();
+        out
+    };
+    let (repaired, filtered) = if params.outliers_first {
+        let filtered = run_outliers(&proximity, &mut times, &mut clock);
+        (
+            run_repair(&filtered.edges, &mut times, &mut clock),
+            filtered,
+        )
+    } else {
+        let repaired = run_repair(&proximity, &mut times, &mut clock);
+        let filtered = run_outliers(&repaired, &mut times, &mut clock);
+        (repaired, filtered)
+    };
+    let outlier_filter_applied = filtered.applied;
+    let filtered = filtered.edges;
+    let edges = if params.outliers_first {
+        repaired.clone()
+    } else {
+        filtered.clone()
+    };
     let n = tri.points().len();
     let curves = assemble(n, &edges);
     let vertex_degree = crate::graph::degrees(n, &edges);
@@ -193,9 +226,11 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
     let unused = (0..n).filter(|&i| degrees[i] == 0).collect();
     times.curves = clock.lap();
     Reconstruction {
+        params: *params,
         triangulation: tri,
         proximity,
         repaired,
+        filtered,
         edges,
         outlier_filter_applied,
         degrees,

@@ -7,6 +7,14 @@
 //! column is ignored; `#` starts a comment; blank lines are skipped; LF, CRLF and CR-only line
 //! ends are all accepted.
 
+mod geojson;
+mod svg;
+mod text;
+
+pub use geojson::write_geojson;
+pub use svg::write_svg;
+pub use text::{write_edges, write_polylines};
+
 use crate::geometry::Point;
 use std::fmt;
 use std::fs;
@@ -116,7 +124,7 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// Reads a point file; `-` reads standard input.
 ///
 /// ```no_run
-/// let points = condt::io::read_points("examples/data/two_ellipses.txt")?;
+/// let points = condt::io::read_points("examples/data/shapes.txt")?;
 /// # Ok::<(), condt::io::IoError>(())
 /// ```
 pub fn read_points(path: &str) -> Result<Vec<Point>, IoError> {

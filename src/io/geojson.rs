@@ -1,0 +1,41 @@
+//! GeoJSON output, written by hand (no serializer dependency).
+
+use crate::condt::Reconstruction;
+use std::io::{self, Write};
+
+/// A `FeatureCollection` with one `LineString` per curve and a boolean `closed` property; a
+/// closed curve repeats its first position at the end, as GeoJSON rings do.
+///
+/// ```
+/// use condt::condt::{reconstruct, Params};
+/// use condt::Point;
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
+/// let mut out = Vec::new();
+/// condt::io::write_geojson(&mut out, &r)?;
+/// let text = String::from_utf8(out)?;
+/// assert!(text.contains(r#""coordinates":[[0,0],[1,0],[0.5,2],[0,0]]"#));
+/// assert!(text.contains(r#""closed":true"#));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_geojson(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
+    let points = result.triangulation.points();
+    write!(out, r#"{{"type":"FeatureCollection","features":["#)?;
+    for (k, curve) in result.curves.iter().enumerate() {
+        if k > 0 {
+            write!(out, ",")?;
+        }
+        write!(
+            out,
+            r#"{{"type":"Feature","properties":{{"closed":{}}},"#,
+            curve.closed
+        )?;
+        write!(out, r#""geometry":{{"type":"LineString","coordinates":["#)?;
+        let closing = curve.closed.then(|| curve.vertices[0]);
+        for (i, v) in curve.vertices.iter().chain(closing.iter()).enumerate() {
+            let p = points[v.index()];
+            write!(out, "{}[{},{}]", if i > 0 { "," } else { "" }, p.x, p.y)?;
+        }
+        write!(out, "]}}}}")?;
+    }
+    writeln!(out, "]}}")
+}

@@ -1,0 +1,147 @@
+//! SVG drawings of a reconstruction, for looking at results and at each stage.
+
+use crate::condt::{Edge, Reconstruction};
+use crate::geometry::Point;
+use std::io::{self, Write};
+
+/// Maps data coordinates to one panel of the picture (y up in the data, down in SVG).
+struct Frame {
+    min: Point,
+    scale: f64,
+    height: f64,
+    offset_x: f64,
+}
+
+impl Frame {
+    fn map(&self, p: Point) -> (f64, f64) {
+        (
+            self.offset_x + (p.x - self.min.x) * self.scale,
+            self.height - (p.y - self.min.y) * self.scale,
+        )
+    }
+}
+
+/// A panel: its title, its edges and their colour.
+type Layer<'a> = (&'a str, &'a [Edge], &'a str);
+
+const PANEL: f64 = 800.0;
+const MARGIN: f64 = 20.0;
+
+fn frame(points: &[Point], panel: usize) -> Frame {
+    let (mut lo, mut hi) = (
+        Point::new(f64::INFINITY, f64::INFINITY),
+        Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+    );
+    for p in points {
+        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let span = (hi.x - lo.x).max(hi.y - lo.y);
+    let scale = if span > 0.0 && span.is_finite() {
+        (PANEL - 2.0 * MARGIN) / span
+    } else {
+        1.0
+    };
+    let min = Point::new(lo.x - MARGIN / scale, lo.y - MARGIN / scale);
+    Frame {
+        min,
+        scale,
+        height: PANEL,
+        offset_x: panel as f64 * PANEL,
+    }
+}
+
+fn lines(
+    out: &mut dyn Write,
+    f: &Frame,
+    pts: &[Point],
+    edges: &[Edge],
+    color: &str,
+    width: f64,
+) -> io::Result<()> {
+    write!(
+        out,
+        r#"<path fill="none" stroke="{color}" stroke-width="{width}" d=""#
+    )?;
+    for [a, b] in edges {
+        let ((x1, y1), (x2, y2)) = (f.map(pts[a.index()]), f.map(pts[b.index()]));
+        write!(out, "M{x1:.2} {y1:.2}L{x2:.2} {y2:.2}")?;
+    }
+    writeln!(out, r#""/>"#)
+}
+
+fn dots(
+    out: &mut dyn Write,
+    f: &Frame,
+    pts: &[Point],
+    which: impl Iterator<Item = usize>,
+    color: &str,
+) -> io::Result<()> {
+    write!(out, r#"<g fill="{color}">"#)?;
+    for i in which {
+        let (x, y) = f.map(pts[i]);
+        write!(out, r#"<circle cx="{x:.2}" cy="{y:.2}" r="2"/>"#)?;
+    }
+    writeln!(out, "</g>")
+}
+
+/// Draws the points and the reconstructed curves; unused points (outliers) in red. With
+/// `stages`, four panels side by side: the Delaunay triangulation, the proximity graph, the graph
+/// after non-manifold repair, and the final curves.
+///
+/// ```
+/// use condt::condt::{reconstruct, Params};
+/// use condt::Point;
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
+/// let mut out = Vec::new();
+/// condt::io::write_svg(&mut out, &r, true)?;
+/// let svg = String::from_utf8(out)?;
+/// assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+/// assert_eq!(svg.matches("<text").count(), 4);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> io::Result<()> {
+    let pts = result.triangulation.points();
+    let panels = if stages { 4 } else { 1 };
+    writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#,
+        w = PANEL * panels as f64,
+        h = PANEL
+    )?;
+    writeln!(out, r#"<rect width="100%" height="100%" fill="white"/>"#)?;
+    let delaunay: Vec<Edge> = result.triangulation.edges().collect();
+    let used = |i: &usize| result.degrees[*i] > 0;
+    // The two middle stages in the order they ran.
+    let repair: Layer = ("after non-manifold repair", &result.repaired, "#1a8f3c");
+    let filter: Layer = ("after outlier removal", &result.filtered, "#1a8f3c");
+    let (second, third) = if result.params.outliers_first {
+        (filter, repair)
+    } else {
+        (repair, filter)
+    };
+    let layers: Vec<Layer> = if stages {
+        vec![
+            ("Delaunay triangulation", &delaunay, "#9aa5b1"),
+            ("ConDT proximity graph", &result.proximity, "#1f6fd1"),
+            second,
+            (third.0, third.1, "#111111"),
+        ]
+    } else {
+        vec![("", &result.edges, "#111111")]
+    };
+    for (panel, (title, edges, color)) in layers.into_iter().enumerate() {
+        let f = frame(pts, panel);
+        lines(out, &f, pts, edges, color, 1.5)?;
+        dots(out, &f, pts, (0..pts.len()).filter(used), "#333333")?;
+        dots(out, &f, pts, (0..pts.len()).filter(|i| !used(i)), "#d62728")?;
+        if !title.is_empty() {
+            writeln!(
+                out,
+                r#"<text x="{}" y="16" font-family="sans-serif" font-size="14">{title}</text>"#,
+                f.offset_x + 8.0
+            )?;
+        }
+    }
+    writeln!(out, "</svg>")
+}
