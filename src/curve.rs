@@ -8,7 +8,7 @@
 //! polyline that leaves a branch vertex and comes back to it (one lobe of a figure eight) is
 //! closed too.
 
-use crate::graph::{ordered, Adjacency, Edge};
+use crate::graph::{Adjacency, Edge};
 use crate::mesh::VertexId;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -40,53 +40,52 @@ pub struct Curve {
 pub fn assemble(vertex_count: usize, edges: &[Edge]) -> Vec<Curve> {
     let graph = Adjacency::new(vertex_count, edges);
     let mut used = vec![false; edges.len()];
-    let index_of = |a: VertexId, b: VertexId| {
-        edges
-            .binary_search(&ordered(a, b))
-            .expect("edge of the graph")
-    };
     let mut curves = Vec::new();
-    let walk = |start: VertexId, first: VertexId, used: &mut Vec<bool>| {
-        let mut path = vec![start];
-        let mut current = first;
-        used[index_of(start, first)] = true;
-        loop {
-            path.push(current);
-            if graph.degree(current) != 2 {
-                break;
-            }
-            let next = graph
-                .neighbors(current)
-                .iter()
-                .copied()
-                .find(|&w| !used[index_of(current, w)]);
-            let Some(next) = next else { break };
-            used[index_of(current, next)] = true;
-            current = next;
-        }
-        let closed = path.len() > 2 && path.first() == path.last();
-        if closed {
-            path.pop();
-        }
-        Curve {
-            vertices: path,
-            closed,
-        }
-    };
     // Polylines between ends and branch points first, then the remaining pure cycles.
-    for pass_wants_degree_two in [false, true] {
+    for cycles in [false, true] {
         for i in 0..vertex_count {
             let v = VertexId::new(i as u32);
             let degree = graph.degree(v);
-            if degree == 0 || (degree == 2) != pass_wants_degree_two {
+            if degree == 0 || (degree == 2) != cycles {
                 continue;
             }
-            for &w in graph.neighbors(v) {
-                if !used[index_of(v, w)] {
-                    curves.push(walk(v, w, &mut used));
+            for &(w, edge) in graph.incident(v) {
+                if !used[edge as usize] {
+                    used[edge as usize] = true;
+                    curves.push(walk(&graph, &mut used, v, w));
                 }
             }
         }
     }
     curves
+}
+
+/// Follows degree-two vertices from `start` through `first` until an end, a branch point, or
+/// back to `start`; marks the edges it crosses.
+fn walk(graph: &Adjacency, used: &mut [bool], start: VertexId, first: VertexId) -> Curve {
+    let mut path = vec![start];
+    let mut current = first;
+    loop {
+        path.push(current);
+        if graph.degree(current) != 2 {
+            break;
+        }
+        let Some(&(next, edge)) = graph
+            .incident(current)
+            .iter()
+            .find(|&&(_, e)| !used[e as usize])
+        else {
+            break;
+        };
+        used[edge as usize] = true;
+        current = next;
+    }
+    let closed = path.len() > 2 && path.first() == path.last();
+    if closed {
+        path.pop();
+    }
+    Curve {
+        vertices: path,
+        closed,
+    }
 }

@@ -27,15 +27,19 @@ pub(crate) fn canonical(mut edges: Vec<Edge>) -> Vec<Edge> {
     edges
 }
 
-/// Compressed adjacency of an edge list over `vertex_count` vertices: the neighbours of `v` are
-/// `neighbors[offsets[v]..offsets[v + 1]]`, in increasing id.
+/// Compressed adjacency of a canonical edge list over `vertex_count` vertices: the neighbours of
+/// `v` are `neighbors[offsets[v]..offsets[v + 1]]`, in increasing id, each with the position of
+/// its edge in the list.
 pub(crate) struct Adjacency {
     offsets: Vec<u32>,
-    neighbors: Vec<VertexId>,
+    neighbors: Vec<(VertexId, u32)>,
 }
 
 impl Adjacency {
+    /// `edges` must be canonical (sorted, `a < b`, no repeats). Then every list comes out sorted
+    /// without sorting: all edges `(a, v)` with `a < v` precede all edges `(v, b)` in the list.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
+        debug_assert!(edges.windows(2).all(|w| w[0] < w[1]) && edges.iter().all(|e| e[0] < e[1]));
         let mut offsets = vec![0u32; vertex_count + 1];
         for &[a, b] in edges {
             offsets[a.index() + 1] += 1;
@@ -45,24 +49,26 @@ impl Adjacency {
             offsets[i + 1] += offsets[i];
         }
         let mut fill = offsets.clone();
-        let mut neighbors = vec![VertexId::INFINITE; 2 * edges.len()];
-        for &[a, b] in edges {
-            neighbors[fill[a.index()] as usize] = b;
+        let mut neighbors = vec![(VertexId::INFINITE, 0); 2 * edges.len()];
+        for (k, &[a, b]) in edges.iter().enumerate() {
+            neighbors[fill[a.index()] as usize] = (b, k as u32);
             fill[a.index()] += 1;
-            neighbors[fill[b.index()] as usize] = a;
+            neighbors[fill[b.index()] as usize] = (a, k as u32);
             fill[b.index()] += 1;
-        }
-        // Edges arrive sorted, so each list is sorted except where a vertex appears as `b`
-        // before appearing as `a`; sort each short list to make the order independent of that.
-        for v in 0..vertex_count {
-            neighbors[offsets[v] as usize..offsets[v + 1] as usize].sort_unstable();
         }
         Adjacency { offsets, neighbors }
     }
 
+    /// The neighbours of `v` with the positions of the joining edges.
     #[inline]
-    pub(crate) fn neighbors(&self, v: VertexId) -> &[VertexId] {
+    pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {
         &self.neighbors[self.offsets[v.index()] as usize..self.offsets[v.index() + 1] as usize]
+    }
+
+    /// The neighbours of `v`, increasing.
+    #[inline]
+    pub(crate) fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
+        self.incident(v).iter().map(|&(w, _)| w)
     }
 
     #[inline]
@@ -73,6 +79,37 @@ impl Adjacency {
     pub(crate) fn vertex_count(&self) -> usize {
         self.offsets.len() - 1
     }
+}
+
+/// The canonical form of `edges` over `vertex_count` vertices, in O(n): a counting sort by the
+/// smaller end, then a sort of each (short) bucket by the larger end, dropping repeats.
+pub(crate) fn canonical_by_buckets(vertex_count: usize, edges: &[Edge]) -> Vec<Edge> {
+    let mut starts = vec![0u32; vertex_count + 1];
+    for &[a, _] in edges {
+        starts[a.index() + 1] += 1;
+    }
+    for i in 0..vertex_count {
+        starts[i + 1] += starts[i];
+    }
+    let mut fill = starts.clone();
+    let mut larger = vec![VertexId::INFINITE; edges.len()];
+    for &[a, b] in edges {
+        larger[fill[a.index()] as usize] = b;
+        fill[a.index()] += 1;
+    }
+    let mut out = Vec::with_capacity(edges.len());
+    for a in 0..vertex_count {
+        let bucket = &mut larger[starts[a] as usize..starts[a + 1] as usize];
+        bucket.sort_unstable();
+        let mut last = VertexId::INFINITE;
+        for &b in bucket.iter() {
+            if b != last {
+                out.push([VertexId::new(a as u32), b]);
+                last = b;
+            }
+        }
+    }
+    out
 }
 
 /// The degree of every vertex in `edges`, indexed by vertex id.

@@ -161,8 +161,9 @@ fn along(curve: impl Fn(f64) -> Point, closed: bool, spacing: f64) -> Vec<Point>
         } else {
             0.0
         };
-        let (a, b) = (dense[j], dense[j + 1]);
-        samples.push(Point::new(a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)));
+        // On the curve itself, not on the polyline used to measure it: samples on one straight
+        // piece would be collinear, which no curve is.
+        samples.push(curve((j as f64 + f) / FINE as f64));
     }
     samples
 }

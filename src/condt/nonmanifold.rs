@@ -116,7 +116,8 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec
         if manifold(v) {
             continue;
         }
-        let around = graph.neighbors(v);
+        let around: Vec<VertexId> = graph.neighbors(v).collect();
+        let around = &around[..];
         let crossing = if repair == Repair::CrossingAware {
             crossing_choice(tri, v, around)
         } else {

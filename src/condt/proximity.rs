@@ -13,7 +13,7 @@
 //! `parallel` feature with the very same function, and gives the same result.
 
 use super::Uniformity;
-use crate::graph::{canonical, ordered, Edge};
+use crate::graph::{canonical_by_buckets, ordered, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
@@ -80,7 +80,7 @@ pub(crate) fn proximity_graph(
             edges.push(ordered(VertexId::new(i as u32), w));
         }
     }
-    canonical(edges)
+    canonical_by_buckets(vertex_count, &edges)
 }
 
 #[cfg(feature = "parallel")]
