@@ -2,9 +2,10 @@
 //!
 //! Curve reconstruction from unorganized planar points, standing on its own exact Delaunay kernel.
 //!
-//! This release contains the kernel: exact predicates ([`predicates`]), a compact half-edge mesh
-//! ([`mesh`]) and an incremental Delaunay triangulator ([`triangulate`]). It is usable on its own,
-//! without any curve reconstruction.
+//! [`condt::reconstruct`] returns the curves through a point set, with
+//! every intermediate graph kept for inspection. Underneath is the kernel, usable on its own:
+//! exact predicates ([`predicates`]), a compact half-edge mesh ([`mesh`]) and an incremental
+//! Delaunay triangulator ([`triangulate()`], in the module [`mod@triangulate`]).
 //!
 //! ```
 //! use condt::{triangulate, Point};
@@ -36,7 +37,7 @@
 //! - [`geometry`]: the [`Point`] type and plain-arithmetic helpers that decide no signs.
 //! - [`predicates`]: the only place a geometric sign is decided (exact, via `robust`).
 //! - [`mesh`]: half-edge topology with typed ids; never sees a coordinate.
-//! - [`triangulate`]: builds a Delaunay [`Triangulation`] from points and checks one.
+//! - [`mod@triangulate`]: builds a Delaunay [`Triangulation`] from points and checks one.
 //! - [`graph`]: sorted edge sets and their adjacency.
 //! - [`condt`]: the ConDT stages (proximity graph, non-manifold repair, outlier removal).
 //! - [`curve`]: ordered polylines from an edge set.

@@ -1,0 +1,105 @@
+//! ConDT pipeline benchmarks: the triangulation, the stages after it, and the whole, on a
+//! 10,000-point closed curve and on about 1M points along 200 closed curves. Before the criterion
+//! groups, a per-stage breakdown (median of 11 runs of `StageTimes`) is printed for each input.
+//!
+//! `cargo bench --bench condt`
+
+use condt::condt::{reconstruct, reconstruct_triangulation, Params, StageTimes};
+use condt::sample::{sample, Sampling, Shape};
+use condt::{triangulate, Point};
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, SamplingMode};
+use std::time::Duration;
+
+fn one_ellipse_10k() -> Vec<Point> {
+    let ellipse = Shape::Ellipse {
+        center: Point::new(0.0, 0.0),
+        radii: (3.0, 2.0),
+        rotation: 0.3,
+    };
+    let points = sample(&[ellipse], &Sampling::new(0.00119)).points;
+    assert_eq!(points.len(), 10_000);
+    points
+}
+
+fn ellipses_1m() -> Vec<Point> {
+    let shapes: Vec<Shape> = (0..200)
+        .map(|k| Shape::Ellipse {
+            center: Point::new((k % 20) as f64 * 40.0, (k / 20) as f64 * 40.0),
+            radii: (10.0 + (k % 7) as f64, 6.0 + (k % 5) as f64),
+            rotation: k as f64 * 0.1,
+        })
+        .collect();
+    sample(&shapes, &Sampling::new(0.00295)).points
+}
+
+fn median(mut values: Vec<Duration>) -> Duration {
+    values.sort();
+    values[values.len() / 2]
+}
+
+fn breakdown(name: &str, points: &[Point], params: &Params) {
+    let runs: Vec<StageTimes> = (0..11)
+        .map(|_| reconstruct(points, params).unwrap().times)
+        .collect();
+    let pick = |f: fn(&StageTimes) -> Duration| median(runs.iter().map(f).collect());
+    let tri = pick(|t| t.triangulation);
+    let after = pick(|t| t.proximity + t.repair + t.outliers + t.curves);
+    println!(
+        "{name} ({} points, parallel = {}): triangulation {:?}, proximity {:?}, repair {:?}, outliers {:?}, curves {:?}; after/triangulation = {:.2}",
+        points.len(),
+        params.parallel,
+        tri,
+        pick(|t| t.proximity),
+        pick(|t| t.repair),
+        pick(|t| t.outliers),
+        pick(|t| t.curves),
+        after.as_secs_f64() / tri.as_secs_f64()
+    );
+}
+
+fn pipeline(c: &mut Criterion) {
+    for (name, points) in [
+        ("closed_curve_10k", one_ellipse_10k()),
+        ("curves_1M", ellipses_1m()),
+    ] {
+        for parallel in [false, true] {
+            breakdown(
+                name,
+                &points,
+                &Params {
+                    parallel,
+                    ..Params::default()
+                },
+            );
+        }
+        let mut group = c.benchmark_group(format!("condt_{name}"));
+        group
+            .sample_size(10)
+            .warm_up_time(Duration::from_millis(500))
+            .sampling_mode(SamplingMode::Flat);
+        group.bench_function("triangulation", |b| {
+            b.iter(|| triangulate(&points).unwrap())
+        });
+        for parallel in [false, true] {
+            let params = Params {
+                parallel,
+                ..Params::default()
+            };
+            let label = if parallel { "parallel" } else { "sequential" };
+            group.bench_function(format!("stages_after_triangulation_{label}"), |b| {
+                b.iter_batched(
+                    || triangulate(&points).unwrap(),
+                    |tri| reconstruct_triangulation(tri, &params),
+                    BatchSize::LargeInput,
+                )
+            });
+            group.bench_function(format!("full_{label}"), |b| {
+                b.iter(|| reconstruct(&points, &params).unwrap())
+            });
+        }
+        group.finish();
+    }
+}
+
+criterion_group!(benches, pipeline);
+criterion_main!(benches);
