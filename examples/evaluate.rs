@@ -54,7 +54,7 @@ fn evaluate_set(
     let ours: BTreeSet<(usize, usize)> = result
         .edges
         .iter()
-        .map(|[a, b]| (a.index(), b.index()))
+        .map(|&[a, b]| (a as usize, b as usize))
         .collect();
     let hits = ours.intersection(&truth).count() as f64;
     let (precision, recall) = (

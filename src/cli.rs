@@ -325,14 +325,14 @@ fn triangulate_command(args: &TriangulateArgs) -> Result<(), CliError> {
     let output = args.output.as_deref().unwrap_or("-");
     write_atomically(output, |out| {
         if args.edges {
-            let mut edges: Vec<_> = tri.edges().map(|[a, b]| (a.index(), b.index())).collect();
+            let mut edges: Vec<_> = tri.edges().map(|[a, b]| (a, b)).collect();
             edges.sort_unstable();
             for (a, b) in edges {
                 writeln!(out, "{a} {b}")?;
             }
         } else {
             for [a, b, c] in tri.triangles() {
-                writeln!(out, "{} {} {}", a.index(), b.index(), c.index())?;
+                writeln!(out, "{a} {b} {c}")?;
             }
         }
         Ok(())

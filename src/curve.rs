@@ -13,12 +13,13 @@ use crate::mesh::VertexId;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// One reconstructed curve: its vertices in order along it. A closed curve does not repeat its
-/// first vertex at the end.
+/// One curve: its points in order along it, as indices (vertex ids from [`assemble`]; input
+/// positions in a [`Reconstruction`](crate::condt::Reconstruction)). A closed curve does not
+/// repeat its first point at the end.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Curve {
-    /// The vertices in order.
-    pub vertices: Vec<VertexId>,
+    /// The points in order.
+    pub vertices: Vec<u32>,
     /// `true` when the last vertex joins back to the first.
     pub closed: bool,
 }
@@ -63,10 +64,10 @@ pub fn assemble(vertex_count: usize, edges: &[Edge]) -> Vec<Curve> {
 /// Follows degree-two vertices from `start` through `first` until an end, a branch point, or
 /// back to `start`; marks the edges it crosses.
 fn walk(graph: &Adjacency, used: &mut [bool], start: VertexId, first: VertexId) -> Curve {
-    let mut path = vec![start];
+    let mut path = vec![start.index() as u32];
     let mut current = first;
     loop {
-        path.push(current);
+        path.push(current.index() as u32);
         if graph.degree(current) != 2 {
             break;
         }

@@ -13,7 +13,7 @@ use std::f64::consts::PI;
 fn edges(r: &Reconstruction) -> BTreeSet<[usize; 2]> {
     r.edges
         .iter()
-        .map(|[a, b]| [a.index(), b.index()])
+        .map(|&[a, b]| [a as usize, b as usize])
         .collect()
 }
 
@@ -39,7 +39,8 @@ fn run(points: &[Point], params: Params) -> Reconstruction {
         },
     )
     .unwrap();
-    assert_eq!(sequential.proximity, parallel.proximity);
+    assert_eq!(sequential.proximity(), parallel.proximity());
+    assert_eq!(sequential.repaired(), parallel.repaired());
     assert_eq!(sequential.edges, parallel.edges);
     assert_eq!(sequential.curves, parallel.curves);
     sequential
@@ -315,7 +316,13 @@ fn duplicates_map_back_to_their_vertex() {
     s.points.push(copy);
     let r = run(&s.points, Params::default());
     let last = s.points.len() - 1;
-    assert_eq!(r.triangulation.vertex_of_input(last).index(), 3);
+    let tri = &r.triangulation;
+    assert_eq!(tri.vertex_of_input(last), tri.vertex_of_input(3));
+    assert_eq!(
+        tri.input_index(tri.vertex_of_input(last)),
+        3,
+        "reported under the smaller position"
+    );
     assert_eq!(r.degrees[last], r.degrees[3]);
     assert!(
         !r.unused.contains(&last),

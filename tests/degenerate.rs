@@ -3,7 +3,7 @@
 mod common;
 
 use common::*;
-use condt::{triangulate, Error, Point, VertexId};
+use condt::{triangulate, Error, Point};
 
 fn pts(coords: &[(f64, f64)]) -> Vec<Point> {
     coords.iter().map(|&c| Point::from(c)).collect()
@@ -30,7 +30,7 @@ fn one_point() {
     tri.validate().unwrap();
     assert_eq!(tri.num_vertices(), 1);
     assert_eq!(tri.edges().count(), 0);
-    assert_eq!(tri.neighbors(VertexId::new(0)).count(), 0);
+    assert_eq!(tri.neighbors(tri.vertex_of_input(0)).count(), 0);
 }
 
 #[test]
@@ -39,12 +39,12 @@ fn two_points_make_one_edge() {
     tri.validate().unwrap();
     assert_eq!(edge_set(&tri).into_iter().collect::<Vec<_>>(), vec![(0, 1)]);
     assert_eq!(
-        tri.neighbors(VertexId::new(0)).collect::<Vec<_>>(),
-        vec![VertexId::new(1)]
+        tri.neighbors(tri.vertex_of_input(0)).collect::<Vec<_>>(),
+        vec![tri.vertex_of_input(1)]
     );
     assert_eq!(
-        tri.neighbors(VertexId::new(1)).collect::<Vec<_>>(),
-        vec![VertexId::new(0)]
+        tri.neighbors(tri.vertex_of_input(1)).collect::<Vec<_>>(),
+        vec![tri.vertex_of_input(0)]
     );
 }
 
@@ -61,8 +61,8 @@ fn collinear_points_form_a_chain_in_line_order() {
     assert_eq!(tri.num_vertices(), 13, "0.0 and -0.0 are the same point");
     // Every vertex is joined exactly to its nearest neighbours along the line.
     for v in tri.vertices() {
-        let x = line[v.index()].x;
-        let mut around: Vec<f64> = tri.neighbors(v).map(|w| line[w.index()].x).collect();
+        let x = tri.point(v).x;
+        let mut around: Vec<f64> = tri.neighbors(v).map(|w| tri.point(w).x).collect();
         around.sort_by(f64::total_cmp);
         let expected: Vec<f64> = [x - 1.0, x + 1.0]
             .into_iter()
@@ -112,16 +112,19 @@ fn exact_duplicates_merge_into_the_smallest_index() {
     let tri = triangulate(&p).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.num_vertices(), 4);
-    let map: Vec<usize> = tri.input_to_vertex().iter().map(|v| v.index()).collect();
+    let map: Vec<usize> = tri
+        .input_to_vertex()
+        .iter()
+        .map(|&v| tri.input_index(v))
+        .collect();
     assert_eq!(map, vec![0, 1, 2, 1, 0, 1, 6]);
     // Every input point is accounted for: kept, or merged into a vertex at the same place.
     for (i, v) in tri.input_to_vertex().iter().enumerate() {
-        assert_eq!(p[i], p[v.index()]);
+        assert_eq!(p[i], tri.point(*v));
     }
-    assert_eq!(
-        tri.vertices().map(|v| v.index()).collect::<Vec<_>>(),
-        vec![0, 1, 2, 6]
-    );
+    let mut kept: Vec<usize> = tri.vertices().map(|v| tri.input_index(v)).collect();
+    kept.sort_unstable();
+    assert_eq!(kept, vec![0, 1, 2, 6]);
 }
 
 #[test]
@@ -130,7 +133,9 @@ fn all_points_identical() {
     let tri = triangulate(&p).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.num_vertices(), 1);
-    assert!(tri.input_to_vertex().iter().all(|&v| v == VertexId::new(0)));
+    let kept = tri.vertex_of_input(0);
+    assert!(tri.input_to_vertex().iter().all(|&v| v == kept));
+    assert_eq!(tri.input_index(kept), 0);
 }
 
 #[test]
@@ -192,7 +197,7 @@ fn integer_points_on_one_circle() {
     let wheel = triangulate(&p).unwrap();
     wheel.validate().unwrap();
     assert_eq!(
-        wheel.neighbors(VertexId::new(20)).count(),
+        wheel.neighbors(wheel.vertex_of_input(20)).count(),
         20,
         "the centre sees every rim point"
     );

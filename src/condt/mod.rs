@@ -35,6 +35,7 @@ pub use nonmanifold::Repair;
 use crate::curve::{assemble, Curve};
 use crate::error::Error;
 use crate::geometry::Point;
+use crate::mesh::VertexId;
 use crate::triangulate::{triangulate, Triangulation};
 use alloc::vec::Vec;
 use core::time::Duration;
@@ -107,8 +108,11 @@ pub struct StageTimes {
     pub curves: Duration,
 }
 
-/// Everything a reconstruction computed, stage by stage, in vertex ids. A vertex id is the input
-/// position of its point; exact duplicates share the vertex of their smallest position (see
+/// An edge between two input positions, `[a, b]` with `a < b`.
+pub type InputEdge = [u32; 2];
+
+/// Everything a reconstruction computed, stage by stage, in input positions. Exact duplicates
+/// are one point, reported under the smallest input position holding it (see
 /// [`Triangulation::vertex_of_input`]).
 #[derive(Clone, Debug)]
 pub struct Reconstruction {
@@ -116,24 +120,94 @@ pub struct Reconstruction {
     pub params: Params,
     /// The Delaunay triangulation the stages walked.
     pub triangulation: Triangulation,
-    /// Stage 1: the ConDT proximity graph, sorted.
-    pub proximity: Vec<Edge>,
-    /// The output of the non-manifold repair, sorted.
-    pub repaired: Vec<Edge>,
-    /// The output of the outlier removal, sorted.
-    pub filtered: Vec<Edge>,
+    /// The intermediate graphs in vertex ids; [`Reconstruction::proximity`] and its siblings
+    /// translate them to input positions on demand.
+    proximity: Vec<Edge>,
+    repaired: Vec<Edge>,
+    filtered: Vec<Edge>,
     /// The final edges (the output of whichever of the two ran last), sorted.
-    pub edges: Vec<Edge>,
+    pub edges: Vec<InputEdge>,
     /// Whether stage 3 found an outlier and filtered.
     pub outlier_filter_applied: bool,
-    /// Final degree of the vertex of every input point.
+    /// Final degree of every input point (duplicates share their point's degree).
     pub degrees: Vec<u32>,
-    /// Stage 4: the curves.
+    /// Stage 4: the curves, as input positions.
     pub curves: Vec<Curve>,
     /// Input positions whose point ended with no edge (outliers), ascending.
     pub unused: Vec<usize>,
     /// Time per stage.
     pub times: StageTimes,
+}
+
+impl Reconstruction {
+    /// Stage 1: the ConDT proximity graph, sorted, in input positions.
+    pub fn proximity(&self) -> Vec<InputEdge> {
+        to_input_edges(&self.triangulation, &self.proximity)
+    }
+
+    /// The output of the non-manifold repair, sorted, in input positions.
+    pub fn repaired(&self) -> Vec<InputEdge> {
+        to_input_edges(&self.triangulation, &self.repaired)
+    }
+
+    /// The output of the outlier removal, sorted, in input positions.
+    pub fn filtered(&self) -> Vec<InputEdge> {
+        to_input_edges(&self.triangulation, &self.filtered)
+    }
+
+    /// The coordinates of input position `index` (as triangulated; duplicates coincide anyway).
+    pub fn point(&self, index: usize) -> Point {
+        self.triangulation
+            .point(self.triangulation.vertex_of_input(index))
+    }
+}
+
+/// Starts a closed curve at its smallest index, heading to the smaller of its two neighbours, and
+/// an open one at its smaller end, so the output never depends on the internal numbering.
+fn canonical_direction(curve: &mut Curve) {
+    let v = &mut curve.vertices;
+    if v.len() < 2 {
+        return;
+    }
+    if curve.closed {
+        let first = (0..v.len()).min_by_key(|&i| v[i]).unwrap_or(0);
+        v.rotate_left(first);
+        if v[v.len() - 1] < v[1] {
+            v[1..].reverse();
+        }
+    } else if v[v.len() - 1] < v[0] {
+        v.reverse();
+    }
+}
+
+/// Vertex-id edges to sorted input-position edges, in O(n): a counting sort by the smaller end,
+/// then each (short) bucket by the larger.
+fn to_input_edges(tri: &Triangulation, edges: &[Edge]) -> Vec<InputEdge> {
+    let n = tri.num_input_points();
+    let pairs = edges.iter().map(|&[a, b]| {
+        let (a, b) = (tri.input_index(a) as u32, tri.input_index(b) as u32);
+        [a.min(b), a.max(b)]
+    });
+    let mut starts = alloc::vec![0u32; n + 1];
+    for [a, _] in pairs.clone() {
+        starts[a as usize + 1] += 1;
+    }
+    for i in 0..n {
+        starts[i + 1] += starts[i];
+    }
+    let mut out = alloc::vec![[0u32; 2]; edges.len()];
+    for pair in pairs {
+        let slot = &mut starts[pair[0] as usize];
+        out[*slot as usize] = pair;
+        *slot += 1;
+    }
+    // `starts[a]` now ends bucket `a`; each bucket holds one smaller end.
+    let mut begin = 0;
+    for &end in &starts[..n] {
+        out[begin..end as usize].sort_unstable();
+        begin = end as usize;
+    }
+    out
 }
 
 /// A clock that reads zero without `std`.
@@ -217,13 +291,21 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
     } else {
         filtered.clone()
     };
-    let n = tri.points().len();
-    let curves = assemble(n, &edges);
+    let n = tri.num_input_points();
+    let mut curves = assemble(n, &edges);
+    for curve in curves.iter_mut() {
+        for v in curve.vertices.iter_mut() {
+            *v = tri.input_index(VertexId::new(*v)) as u32;
+        }
+        canonical_direction(curve);
+    }
+    curves.sort_by(|a, b| a.vertices.cmp(&b.vertices));
     let vertex_degree = crate::graph::degrees(n, &edges);
     let degrees: Vec<u32> = (0..n)
         .map(|i| vertex_degree[tri.vertex_of_input(i).index()])
         .collect();
     let unused = (0..n).filter(|&i| degrees[i] == 0).collect();
+    let edges = to_input_edges(&tri, &edges);
     times.curves = clock.lap();
     Reconstruction {
         params: *params,

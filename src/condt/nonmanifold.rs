@@ -101,7 +101,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec
     if repair == Repair::Off {
         return edges.to_vec();
     }
-    let graph = Adjacency::new(tri.points().len(), edges);
+    let graph = Adjacency::new(tri.num_input_points(), edges);
     let manifold = |v: VertexId| graph.degree(v) <= 2;
     // Algorithm 2, lines 3–5: edges between manifold vertices stay.
     let mut kept: Vec<Edge> = edges
@@ -160,8 +160,14 @@ mod tests {
     use super::*;
     use crate::{triangulate, Point};
 
-    fn v(i: u32) -> VertexId {
-        VertexId::new(i)
+    /// Edges given as input positions, in the triangulation's vertex ids, canonical.
+    fn edges(tri: &Triangulation, pairs: &[(usize, usize)]) -> Vec<Edge> {
+        canonical(
+            pairs
+                .iter()
+                .map(|&(a, b)| ordered(tri.vertex_of_input(a), tri.vertex_of_input(b)))
+                .collect(),
+        )
     }
 
     #[test]
@@ -169,10 +175,10 @@ mod tests {
         // Centre 0 with neighbours 1 (shortest, east), 2 (west, 180 degrees) and 3 (north, 90).
         let pts = [(0.0, 0.0), (1.0, 0.0), (-2.0, 0.0), (0.0, 1.5)].map(Point::from);
         let tri = triangulate(&pts).unwrap();
-        let star = [[v(0), v(1)], [v(0), v(2)], [v(0), v(3)]];
+        let star = edges(&tri, &[(0, 1), (0, 2), (0, 3)]);
         assert_eq!(
             repair(&tri, &star, Repair::Paper),
-            vec![[v(0), v(1)], [v(0), v(2)]]
+            edges(&tri, &[(0, 1), (0, 2)])
         );
     }
 
@@ -180,11 +186,11 @@ mod tests {
     fn no_partner_beyond_120_degrees_keeps_only_the_shortest_edge() {
         let pts = [(0.0, 0.0), (1.0, 0.0), (0.0, 2.0), (-0.5, 1.5)].map(Point::from);
         let tri = triangulate(&pts).unwrap();
-        let star = [[v(0), v(1)], [v(0), v(2)], [v(0), v(3)]];
-        assert_eq!(repair(&tri, &star, Repair::Paper), vec![[v(0), v(1)]]);
+        let star = edges(&tri, &[(0, 1), (0, 2), (0, 3)]);
+        assert_eq!(repair(&tri, &star, Repair::Paper), edges(&tri, &[(0, 1)]));
     }
 
-    /// Vertices 0 and 1 are both non-manifold; 0 selects the edge 0-1 (its shortest), 1 does not
+    /// Points 0 and 1 are both non-manifold; 0 selects the edge 0-1 (its shortest), 1 does not
     /// (its shortest points north, its partner south, and 0 lies at 90 degrees).
     fn one_sided_selection() -> (Triangulation, Vec<Edge>) {
         let pts = [
@@ -197,31 +203,22 @@ mod tests {
         ]
         .map(Point::from);
         let tri = triangulate(&pts).unwrap();
-        let edges = vec![
-            [v(0), v(1)],
-            [v(0), v(2)],
-            [v(0), v(3)],
-            [v(1), v(4)],
-            [v(1), v(5)],
-        ];
-        (tri, edges)
+        let all = edges(&tri, &[(0, 1), (0, 2), (0, 3), (1, 4), (1, 5)]);
+        (tri, all)
     }
 
     #[test]
     fn paper_reading_unites_selections_so_one_end_can_keep_an_edge() {
-        let (tri, edges) = one_sided_selection();
-        let kept = repair(&tri, &edges, Repair::Paper);
-        assert_eq!(
-            kept,
-            vec![[v(0), v(1)], [v(0), v(2)], [v(1), v(4)], [v(1), v(5)]]
-        );
+        let (tri, all) = one_sided_selection();
+        let expected = edges(&tri, &[(0, 1), (0, 2), (1, 4), (1, 5)]);
+        assert_eq!(repair(&tri, &all, Repair::Paper), expected);
     }
 
     #[test]
     fn mutual_reading_needs_both_ends_to_select_an_edge() {
-        let (tri, edges) = one_sided_selection();
-        let kept = repair(&tri, &edges, Repair::Mutual);
-        assert_eq!(kept, vec![[v(0), v(2)], [v(1), v(4)], [v(1), v(5)]]);
+        let (tri, all) = one_sided_selection();
+        let expected = edges(&tri, &[(0, 2), (1, 4), (1, 5)]);
+        assert_eq!(repair(&tri, &all, Repair::Mutual), expected);
     }
 
     #[test]
@@ -229,7 +226,7 @@ mod tests {
         // A plus sign: two straight passages through the centre.
         let pts = [(0.0, 0.0), (1.0, 0.0), (-1.1, 0.0), (0.0, 1.2), (0.0, -1.3)].map(Point::from);
         let tri = triangulate(&pts).unwrap();
-        let plus = vec![[v(0), v(1)], [v(0), v(2)], [v(0), v(3)], [v(0), v(4)]];
+        let plus = edges(&tri, &[(0, 1), (0, 2), (0, 3), (0, 4)]);
         assert_eq!(repair(&tri, &plus, Repair::CrossingAware), plus);
         assert_eq!(repair(&tri, &plus, Repair::Paper).len(), 2);
     }

@@ -18,7 +18,6 @@ use std::io::{self, Write};
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_geojson(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
-    let points = result.triangulation.points();
     write!(out, r#"{{"type":"FeatureCollection","features":["#)?;
     for (k, curve) in result.curves.iter().enumerate() {
         if k > 0 {
@@ -32,7 +31,7 @@ pub fn write_geojson(out: &mut dyn Write, result: &Reconstruction) -> io::Result
         write!(out, r#""geometry":{{"type":"LineString","coordinates":["#)?;
         let closing = curve.closed.then(|| curve.vertices[0]);
         for (i, v) in curve.vertices.iter().chain(closing.iter()).enumerate() {
-            let p = points[v.index()];
+            let p = result.point(*v as usize);
             write!(out, "{}[{},{}]", if i > 0 { "," } else { "" }, p.x, p.y)?;
         }
         write!(out, "]}}}}")?;

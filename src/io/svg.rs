@@ -1,6 +1,6 @@
 //! SVG drawings of a reconstruction, for looking at results and at each stage.
 
-use crate::condt::{Edge, Reconstruction};
+use crate::condt::{InputEdge, Reconstruction};
 use crate::geometry::Point;
 use std::io::{self, Write};
 
@@ -22,7 +22,7 @@ impl Frame {
 }
 
 /// A panel: its title, its edges and their colour.
-type Layer<'a> = (&'a str, &'a [Edge], &'a str);
+type Layer<'a> = (&'a str, &'a [InputEdge], &'a str);
 
 const PANEL: f64 = 800.0;
 const MARGIN: f64 = 20.0;
@@ -55,7 +55,7 @@ fn lines(
     out: &mut dyn Write,
     f: &Frame,
     pts: &[Point],
-    edges: &[Edge],
+    edges: &[InputEdge],
     color: &str,
     width: f64,
 ) -> io::Result<()> {
@@ -64,7 +64,7 @@ fn lines(
         r#"<path fill="none" stroke="{color}" stroke-width="{width}" d=""#
     )?;
     for [a, b] in edges {
-        let ((x1, y1), (x2, y2)) = (f.map(pts[a.index()]), f.map(pts[b.index()]));
+        let ((x1, y1), (x2, y2)) = (f.map(pts[*a as usize]), f.map(pts[*b as usize]));
         write!(out, "M{x1:.2} {y1:.2}L{x2:.2} {y2:.2}")?;
     }
     writeln!(out, r#""/>"#)
@@ -101,7 +101,8 @@ fn dots(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> io::Result<()> {
-    let pts = result.triangulation.points();
+    let pts: Vec<Point> = (0..result.degrees.len()).map(|i| result.point(i)).collect();
+    let pts = &pts[..];
     let panels = if stages { 4 } else { 1 };
     writeln!(
         out,
@@ -110,11 +111,17 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
         h = PANEL
     )?;
     writeln!(out, r#"<rect width="100%" height="100%" fill="white"/>"#)?;
-    let delaunay: Vec<Edge> = result.triangulation.edges().collect();
+    let delaunay: Vec<InputEdge> = result
+        .triangulation
+        .edges()
+        .map(|[a, b]| [a as u32, b as u32])
+        .collect();
     let used = |i: &usize| result.degrees[*i] > 0;
     // The two middle stages in the order they ran.
-    let repair: Layer = ("after non-manifold repair", &result.repaired, "#1a8f3c");
-    let filter: Layer = ("after outlier removal", &result.filtered, "#1a8f3c");
+    let (proximity, repaired, filtered) =
+        (result.proximity(), result.repaired(), result.filtered());
+    let repair: Layer = ("after non-manifold repair", &repaired, "#1a8f3c");
+    let filter: Layer = ("after outlier removal", &filtered, "#1a8f3c");
     let (second, third) = if result.params.outliers_first {
         (filter, repair)
     } else {
@@ -123,7 +130,7 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
     let layers: Vec<Layer> = if stages {
         vec![
             ("Delaunay triangulation", &delaunay, "#9aa5b1"),
-            ("ConDT proximity graph", &result.proximity, "#1f6fd1"),
+            ("ConDT proximity graph", &proximity, "#1f6fd1"),
             second,
             (third.0, third.1, "#111111"),
         ]

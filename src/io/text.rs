@@ -16,7 +16,7 @@ use std::io::{self, Write};
 /// ```
 pub fn write_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
     for [a, b] in &result.edges {
-        writeln!(out, "{} {}", a.index(), b.index())?;
+        writeln!(out, "{a} {b}")?;
     }
     Ok(())
 }
@@ -36,7 +36,7 @@ pub fn write_polylines(out: &mut dyn Write, result: &Reconstruction) -> io::Resu
     for curve in &result.curves {
         write!(out, "{}", if curve.closed { "closed" } else { "open" })?;
         for v in &curve.vertices {
-            write!(out, " {}", v.index())?;
+            write!(out, " {v}")?;
         }
         writeln!(out)?;
     }

@@ -134,11 +134,12 @@ impl Mesh {
     /// interior to the other hull neighbour. O(degree), no allocation.
     ///
     /// ```
-    /// use condt::{triangulate, Point, VertexId};
+    /// use condt::{triangulate, Point};
     /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
     /// let tri = triangulate(&square)?;
-    /// let centre = VertexId::new(4);
-    /// let around: Vec<usize> = tri.mesh().ring(centre).map(|e| tri.mesh().dest(e).index()).collect();
+    /// let centre = tri.vertex_of_input(4);
+    /// let around: Vec<usize> =
+    ///     tri.mesh().ring(centre).map(|e| tri.input_index(tri.mesh().dest(e))).collect();
     /// assert_eq!(around.len(), 4);
     /// // Counter-clockwise: each neighbour is the next corner of the square after the previous one.
     /// for w in around.windows(2) {

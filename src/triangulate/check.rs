@@ -32,25 +32,40 @@ impl Triangulation {
     pub fn validate(&self) -> Result<(), InvalidMesh> {
         let mesh = &self.mesh;
         mesh.check_topology()?;
-        if mesh.vertex_capacity() != self.points.len()
-            || self.vertex_of_input.len() != self.points.len()
+        let n = self.points.len();
+        if mesh.vertex_capacity() != n
+            || self.vertex_of_input.len() != n
+            || self.input_of_vertex.len() != n
         {
-            return fail(
-                "vertex arrays do not match the number of points",
-                self.points.len(),
-            );
+            return fail("vertex arrays do not match the number of points", n);
         }
         for (i, &v) in self.vertex_of_input.iter().enumerate() {
-            if v.is_infinite() || v.index() > i || self.vertex_of_input[v.index()] != v {
-                return fail("input point maps to no representative vertex", i);
+            if v.index() >= n || !self.is_vertex(v) || self.input_of_vertex[v.index()] as usize > i
+            {
+                return fail(
+                    "input point maps to no vertex, or not to its smallest duplicate",
+                    i,
+                );
             }
-            if self.points[v.index()] != self.points[i] {
-                return fail("input point merged into a vertex elsewhere", i);
+        }
+        let mut vertices = 0;
+        for u in (0..n as u32).map(VertexId::new) {
+            // Every id holds an input point; a merged duplicate's point equals its vertex's.
+            let kept = self.vertex_of_input[self.input_of_vertex[u.index()] as usize];
+            if self.points[u.index()] != self.points[kept.index()] {
+                return fail("duplicate merged into a vertex elsewhere", u.index());
             }
-            let has_edge = mesh.vertex_edge(VertexId::new(i as u32)).is_some();
-            if has_edge != (v.index() == i && self.num_vertices >= 2) {
-                return fail("vertex edge present where no vertex is, or missing", i);
+            vertices += usize::from(kept == u);
+            let has_edge = mesh.vertex_edge(u).is_some();
+            if has_edge != (kept == u && self.num_vertices >= 2) {
+                return fail(
+                    "vertex edge present where no vertex is, or missing",
+                    u.index(),
+                );
             }
+        }
+        if vertices != self.num_vertices {
+            return fail("vertex count disagrees with the maps", vertices);
         }
         if self.is_degenerate() {
             return self.check_chain();

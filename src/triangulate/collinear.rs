@@ -16,9 +16,10 @@ use crate::geometry::Point;
 use crate::mesh::{HalfEdgeId, Mesh, VertexId};
 use alloc::vec::Vec;
 
-/// Builds the chain over `points` (input order, all collinear) and returns the mesh and the
-/// vertex of every input point. A group of exact duplicates is represented by its smallest index.
-pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<VertexId>) {
+/// Builds the chain over `points` (input order, all collinear). Vertex ids are positions in the
+/// returned order (sorted along the line; duplicates next to each other, smallest input position
+/// first); returns the mesh, the `(duplicate, kept)` pairs merged, and that order.
+pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<(u32, u32)>, Vec<u32>) {
     let mut sorted: Vec<u32> = (0..points.len() as u32).collect();
     // On a line, lexicographic order is the order along it; ties (duplicates) by input index.
     sorted.sort_unstable_by(|&i, &j| {
@@ -26,16 +27,15 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<VertexId>) {
             .lexicographic_cmp(points[j as usize])
             .then(i.cmp(&j))
     });
-    let mut vertex_of_input = alloc::vec![VertexId::INFINITE; points.len()];
+    let mut merged = Vec::new();
     let mut chain: Vec<VertexId> = Vec::new();
-    for &i in &sorted {
-        let p = points[i as usize];
+    for (position, &i) in sorted.iter().enumerate() {
+        let v = VertexId::new(position as u32);
         match chain.last() {
-            Some(&last) if points[last.index()] == p => vertex_of_input[i as usize] = last,
-            _ => {
-                chain.push(VertexId::new(i));
-                vertex_of_input[i as usize] = VertexId::new(i);
+            Some(&last) if points[sorted[last.index()] as usize] == points[i as usize] => {
+                merged.push((position as u32, last.index() as u32));
             }
+            _ => chain.push(v),
         }
     }
     let mut mesh = Mesh::default();
@@ -63,5 +63,5 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<VertexId>) {
         mesh.link(h(r + 1), h(before));
     }
     mesh.rebuild_vertex_edges(points.len());
-    (mesh, vertex_of_input)
+    (mesh, merged, sorted)
 }

@@ -1,7 +1,7 @@
 //! Delaunay triangulation of a planar point set.
 //!
-//! Owns: turning points into a [`Triangulation`] (a [`Mesh`] plus the points and the map from
-//! input positions to vertices) and checking one. It decides signs only through
+//! Owns: turning points into a [`Triangulation`] (a [`Mesh`] plus the points and the maps between
+//! input positions and vertices) and checking one. It decides signs only through
 //! [`crate::predicates`] and edits topology only through the mesh arrays.
 //!
 //! The method is incremental insertion (Lawson's flips after each split, which yields the same
@@ -20,7 +20,7 @@ mod scale;
 
 use crate::error::Error;
 use crate::geometry::Point;
-use crate::mesh::{HalfEdgeId, Hull, Mesh, VertexId};
+use crate::mesh::{Hull, Mesh, VertexId};
 use crate::predicates::{orient2d, Orientation};
 use alloc::vec::Vec;
 use insert::Builder;
@@ -29,11 +29,14 @@ use scale::Scale;
 /// The largest number of input points: 6(2n - 2) half-edges must fit a `u32` index.
 pub const MAX_POINTS: usize = 350_000_000;
 
-/// A Delaunay triangulation of a point set, in the caller's indices.
+/// A Delaunay triangulation of a point set.
 ///
-/// Vertex ids are input positions: the vertex of input point `i` is `VertexId::new(i)`, except
-/// for exact duplicates, which are merged into the smallest input position holding the same
-/// point ([`Triangulation::vertex_of_input`]).
+/// Vertices are numbered in the order they were inserted, which is spatial (see
+/// `docs/triangulation.md`): walking vertices by id walks the plane coherently, and the mesh,
+/// created in the same order, stays in cache. [`Triangulation::input_index`] and
+/// [`Triangulation::vertex_of_input`] translate between vertices and input positions; exact
+/// duplicates share one vertex, reported under the smallest input position holding that point.
+/// [`Triangulation::triangles`] and [`Triangulation::edges`] speak in input positions directly.
 ///
 /// ```
 /// use condt::{triangulate, Point};
@@ -42,14 +45,21 @@ pub const MAX_POINTS: usize = 350_000_000;
 /// assert_eq!(tri.triangles().count(), 4);
 /// assert_eq!(tri.edges().count(), 8);
 /// assert_eq!(tri.hull().count(), 4);
+/// let centre = tri.vertex_of_input(4);
+/// assert_eq!(tri.input_index(centre), 4);
+/// assert_eq!(tri.point(centre), Point::new(1.0, 1.0));
 /// tri.validate().expect("a valid Delaunay triangulation");
 /// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct Triangulation {
+    /// Coordinates by vertex id (duplicates too: each input point has an id).
     points: Vec<Point>,
     scale: Scale,
     mesh: Mesh,
+    /// Vertex id -> input position; for a kept vertex, the smallest position of its duplicates.
+    input_of_vertex: Vec<u32>,
+    /// Input position -> the vertex that stands for it.
     vertex_of_input: Vec<VertexId>,
     num_vertices: usize,
 }
@@ -71,7 +81,7 @@ pub struct Triangulation {
 /// let line: Vec<Point> = (0..5).map(|i| Point::new(i as f64, 2.0 * i as f64)).collect();
 /// let tri = triangulate(&line)?;
 /// assert_eq!(tri.triangles().count(), 0);
-/// assert_eq!(tri.edges().count(), 4); // the chain 0 - 1 - 2 - 3 - 4
+/// assert_eq!(tri.edges().collect::<Vec<_>>(), vec![[0, 1], [1, 2], [2, 3], [3, 4]]);
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
@@ -83,13 +93,20 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     }
     let scale = scale::choose_scale(points)?;
     let order = order::insertion_order(points);
-    let sorted: Vec<Point> = order
+    let mut sorted: Vec<Point> = order
         .iter()
         .map(|&i| scale.apply(points[i as usize]))
         .collect();
 
-    let (mesh, vertex_of_input) = match first_triangle(&sorted) {
-        None => collinear::chain(points),
+    let (mesh, merged, order) = match first_triangle(&sorted) {
+        None => {
+            // No triangle: the chain in line order is the vertex order instead.
+            let (mesh, merged, line_order) = collinear::chain(points);
+            for (slot, &i) in sorted.iter_mut().zip(&line_order) {
+                *slot = scale.apply(points[i as usize]);
+            }
+            (mesh, merged, line_order)
+        }
         Some(start) => {
             let mut builder = Builder::new(&sorted, start);
             for v in 0..sorted.len() as u32 {
@@ -97,20 +114,23 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
                     builder.insert(v);
                 }
             }
-            let (mesh, merged) = builder.finish();
-            drop(sorted);
-            into_input_indices(mesh, &merged, &order)
+            let (mut mesh, merged) = builder.finish();
+            mesh.rebuild_vertex_edges(order.len());
+            (mesh, merged, order)
         }
     };
-    let num_vertices = vertex_of_input
-        .iter()
-        .enumerate()
-        .filter(|&(i, v)| v.index() == i)
-        .count();
+    // The scaled copy becomes the stored coordinates: undoing a power of two is exact.
+    let unscale = scale.inverse();
+    for p in sorted.iter_mut() {
+        *p = unscale.apply(*p);
+    }
+    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged);
+    let num_vertices = vertex_of_input.len() - merged.len();
     Ok(Triangulation {
-        points: points.to_vec(),
+        points: sorted,
         scale,
         mesh,
+        input_of_vertex,
         vertex_of_input,
         num_vertices,
     })
@@ -131,39 +151,21 @@ fn first_triangle(points: &[Point]) -> Option<[u32; 3]> {
     })
 }
 
-/// Renames the builder's insertion-order vertices to input positions, merging duplicates into
-/// their smallest input position.
-fn into_input_indices(
-    mut mesh: Mesh,
-    merged: &[(u32, u32)],
-    order: &[u32],
-) -> (Mesh, Vec<VertexId>) {
-    // Vertex edges first, while ids still follow the spatial order and the writes stay local.
-    mesh.rebuild_vertex_edges(order.len());
-    let mut name: Vec<u32> = order.to_vec();
-    for &(dup, kept) in merged {
-        name[kept as usize] = name[kept as usize].min(order[dup as usize]);
+/// The two maps between vertex ids (positions in `order`) and input positions. A vertex that
+/// absorbed duplicates reports the smallest of their input positions.
+fn vertex_maps(mut input_of_vertex: Vec<u32>, merged: &[(u32, u32)]) -> (Vec<u32>, Vec<VertexId>) {
+    let mut vertex_of_input = alloc::vec![VertexId::INFINITE; input_of_vertex.len()];
+    for (v, &i) in input_of_vertex.iter().enumerate() {
+        vertex_of_input[i as usize] = VertexId::new(v as u32);
     }
-    for v in mesh.origins.iter_mut() {
-        if !v.is_infinite() {
-            *v = VertexId::new(name[v.index()]);
-        }
+    for &(duplicate, kept) in merged {
+        vertex_of_input[input_of_vertex[duplicate as usize] as usize] = VertexId::new(kept);
     }
-    let mut vertex_edges = alloc::vec![HalfEdgeId::NONE; order.len()];
-    for (v, &e) in mesh.vertex_edges.iter().enumerate() {
-        if !e.is_none() {
-            vertex_edges[name[v] as usize] = e;
-        }
+    for &(duplicate, kept) in merged {
+        let smallest = input_of_vertex[kept as usize].min(input_of_vertex[duplicate as usize]);
+        input_of_vertex[kept as usize] = smallest;
     }
-    mesh.vertex_edges = vertex_edges;
-    let mut vertex_of_input: Vec<VertexId> = (0..order.len() as u32).map(VertexId::new).collect();
-    for &(dup, kept) in merged {
-        let kept_name = VertexId::new(name[kept as usize]);
-        vertex_of_input[order[dup as usize] as usize] = kept_name;
-        // The position that gave up its name to a smaller duplicate points to the winner too.
-        vertex_of_input[order[kept as usize] as usize] = kept_name;
-    }
-    (mesh, vertex_of_input)
+    (input_of_vertex, vertex_of_input)
 }
 
 impl Triangulation {
@@ -173,35 +175,19 @@ impl Triangulation {
         &self.mesh
     }
 
-    /// The input points, in input order (duplicates included).
-    #[inline]
-    pub fn points(&self) -> &[Point] {
-        &self.points
-    }
-
     /// The position of vertex `v`.
     #[inline]
     pub fn point(&self, v: VertexId) -> Point {
         self.points[v.index()]
     }
 
-    /// Number of distinct points, that is of vertices.
+    /// The input position vertex `v` stands for (for merged duplicates, the smallest one).
     #[inline]
-    pub fn num_vertices(&self) -> usize {
-        self.num_vertices
+    pub fn input_index(&self, v: VertexId) -> usize {
+        self.input_of_vertex[v.index()] as usize
     }
 
-    /// The vertices, in increasing input position.
-    pub fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
-        self.vertex_of_input
-            .iter()
-            .enumerate()
-            .filter(|&(i, v)| v.index() == i)
-            .map(|(_, &v)| v)
-    }
-
-    /// The vertex that input point `index` became: itself, or for an exact duplicate the smallest
-    /// input position with the same coordinates.
+    /// The vertex that input point `index` became (exact duplicates share one).
     ///
     /// # Panics
     /// If `index` is not an input position.
@@ -216,22 +202,46 @@ impl Triangulation {
         &self.vertex_of_input
     }
 
-    /// The real triangles as their corners, counter-clockwise.
-    pub fn triangles(&self) -> impl Iterator<Item = [VertexId; 3]> + '_ {
-        self.mesh
-            .triangles()
-            .map(|t| self.mesh.triangle_vertices(t))
+    /// Number of input points (the length of the vertex id space, duplicates included).
+    #[inline]
+    pub fn num_input_points(&self) -> usize {
+        self.vertex_of_input.len()
     }
 
-    /// Every edge once, as `[a, b]` with `a < b`.
-    pub fn edges(&self) -> impl Iterator<Item = [VertexId; 2]> + '_ {
+    /// Number of distinct points, that is of vertices.
+    #[inline]
+    pub fn num_vertices(&self) -> usize {
+        self.num_vertices
+    }
+
+    /// `true` when `v` is a vertex of the mesh (not an id left over by a merged duplicate).
+    #[inline]
+    pub fn is_vertex(&self, v: VertexId) -> bool {
+        self.vertex_of_input[self.input_of_vertex[v.index()] as usize] == v
+    }
+
+    /// The vertices, in id (spatial) order.
+    pub fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
+        (0..self.points.len() as u32)
+            .map(VertexId::new)
+            .filter(move |&v| self.is_vertex(v))
+    }
+
+    /// The real triangles as the input positions of their corners, counter-clockwise.
+    pub fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
+        self.mesh
+            .triangles()
+            .map(|t| self.mesh.triangle_vertices(t).map(|v| self.input_index(v)))
+    }
+
+    /// Every edge once, as input positions `[a, b]` with `a < b`.
+    pub fn edges(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
         self.mesh.edges().map(|e| {
-            let (a, b) = (self.mesh.origin(e), self.mesh.dest(e));
-            if a < b {
-                [a, b]
-            } else {
-                [b, a]
-            }
+            let (a, b) = (
+                self.input_index(self.mesh.origin(e)),
+                self.input_index(self.mesh.dest(e)),
+            );
+            [a.min(b), a.max(b)]
         })
     }
 

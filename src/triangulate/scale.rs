@@ -47,6 +47,14 @@ impl Scale {
     pub(crate) fn apply(self, p: Point) -> Point {
         p.scaled(self.first).scaled(self.second)
     }
+
+    /// The scale that undoes this one, exactly (its factors are powers of two).
+    pub(crate) fn inverse(self) -> Scale {
+        Scale {
+            first: 1.0 / self.second,
+            second: 1.0 / self.first,
+        }
+    }
 }
 
 /// Checks every point and picks the scale: the first non-finite point, or the first with a

@@ -108,7 +108,7 @@ pub fn grid(side: usize, seed: u64) -> Vec<Point> {
 
 /// The undirected edges, in input indices, as a sorted set.
 pub fn edge_set(tri: &Triangulation) -> BTreeSet<(usize, usize)> {
-    tri.edges().map(|[a, b]| (a.index(), b.index())).collect()
+    tri.edges().map(|[a, b]| (a, b)).collect()
 }
 
 /// `true` when some edge between two real triangles has its four points exactly cocircular: then
@@ -148,7 +148,7 @@ pub fn assert_hull_convex_and_enclosing(tri: &Triangulation) {
             "hull turns clockwise at {:?}",
             hull[(i + 1) % h]
         );
-        for &p in tri.points() {
+        for p in tri.vertices().map(|v| tri.point(v)) {
             assert_ne!(
                 orient2d(a, b, p),
                 Orientation::Cw,
