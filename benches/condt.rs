@@ -1,5 +1,6 @@
 //! ConDT pipeline benchmarks: the triangulation, the stages after it, and the whole, on a
-//! 10,000-point closed curve and on about 1M points along 200 closed curves. Before the criterion
+//! 10,000-point closed curve and on about 1M points along 200 closed curves (in curve order and
+//! shuffled). Before the criterion
 //! groups, a per-stage breakdown (median of 11 runs of `StageTimes`) is printed for each input.
 //!
 //! The curves carry noise of 1e-9 (measurement precision). Without it, a centred ellipse sampled
@@ -48,6 +49,18 @@ fn ellipses_1m() -> Vec<Point> {
     .points
 }
 
+/// The same points in a fixed pseudo-random order: unorganized input, as files usually are.
+fn shuffled(mut points: Vec<Point>) -> Vec<Point> {
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    for i in (1..points.len()).rev() {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        points.swap(i, (state % (i as u64 + 1)) as usize);
+    }
+    points
+}
+
 fn median(mut values: Vec<Duration>) -> Duration {
     values.sort();
     values[values.len() / 2]
@@ -78,6 +91,7 @@ fn pipeline(c: &mut Criterion) {
         ("closed_curve_10k", one_ellipse_10k(1e-9)),
         ("symmetric_ellipse_10k", one_ellipse_10k(0.0)),
         ("curves_1M", ellipses_1m()),
+        ("curves_1M_shuffled", shuffled(ellipses_1m())),
     ];
     for (name, points) in inputs {
         for parallel in [false, true] {
