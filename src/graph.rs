@@ -7,7 +7,7 @@ use crate::mesh::VertexId;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// An undirected edge `[a, b]` with `a < b`, in vertex ids (input positions).
+/// An undirected edge `[a, b]` with `a < b`, in vertex ids.
 pub type Edge = [VertexId; 2];
 
 /// `[a, b]` ordered so that `a < b`.
@@ -81,33 +81,53 @@ impl Adjacency {
     }
 }
 
-/// The canonical form of `edges` over `vertex_count` vertices, in O(n): a counting sort by the
-/// smaller end, then a sort of each (short) bucket by the larger end, dropping repeats.
+/// The canonical form of `edges` over `vertex_count` vertices, in O(n).
 pub(crate) fn canonical_by_buckets(vertex_count: usize, edges: &[Edge]) -> Vec<Edge> {
-    let mut starts = vec![0u32; vertex_count + 1];
-    for &[a, _] in edges {
-        starts[a.index() + 1] += 1;
+    sort_pairs(
+        vertex_count,
+        edges.iter().copied(),
+        edges.len(),
+        VertexId::index,
+    )
+}
+
+/// Sorts pairs `[a, b]` with `index(a) < bound` by `(a, b)` and drops repeats, in O(n): a
+/// counting sort by the first element, then a sort of each (short) bucket by the second.
+pub(crate) fn sort_pairs<T: Copy + Ord>(
+    bound: usize,
+    pairs: impl Iterator<Item = [T; 2]> + Clone,
+    count: usize,
+    index: impl Fn(T) -> usize,
+) -> Vec<[T; 2]> {
+    let mut ends = vec![0u32; bound + 1];
+    for [a, _] in pairs.clone() {
+        ends[index(a) + 1] += 1;
     }
-    for i in 0..vertex_count {
-        starts[i + 1] += starts[i];
+    for i in 0..bound {
+        ends[i + 1] += ends[i];
     }
-    let mut fill = starts.clone();
-    let mut larger = vec![VertexId::INFINITE; edges.len()];
-    for &[a, b] in edges {
-        larger[fill[a.index()] as usize] = b;
-        fill[a.index()] += 1;
+    let Some(filler) = pairs.clone().next() else {
+        return Vec::new();
+    };
+    let mut sorted = vec![filler; count];
+    for pair in pairs {
+        let slot = &mut ends[index(pair[0])];
+        sorted[*slot as usize] = pair;
+        *slot += 1;
     }
-    let mut out = Vec::with_capacity(edges.len());
-    for a in 0..vertex_count {
-        let bucket = &mut larger[starts[a] as usize..starts[a + 1] as usize];
+    // Each `ends[a]` has moved to the end of bucket `a`.
+    let mut out = Vec::with_capacity(count);
+    let mut begin = 0;
+    for &end in &ends[..bound] {
+        let bucket = &mut sorted[begin..end as usize];
         bucket.sort_unstable();
-        let mut last = VertexId::INFINITE;
-        for &b in bucket.iter() {
-            if b != last {
-                out.push([VertexId::new(a as u32), b]);
-                last = b;
+        let before = out.len();
+        for pair in bucket.iter() {
+            if out.len() == before || out.last() != Some(pair) {
+                out.push(*pair);
             }
         }
+        begin = end as usize;
     }
     out
 }

@@ -20,7 +20,9 @@
 //! let tri = triangulate(&points)?;
 //! assert_eq!(tri.num_vertices(), 4);
 //! assert_eq!(tri.triangles().count(), 2);
-//! assert_eq!(tri.vertex_of_input(4).index(), 0); // merged into point 0, never dropped silently
+//! // Point 4 is merged into point 0, never dropped silently:
+//! assert_eq!(tri.vertex_of_input(4), tri.vertex_of_input(0));
+//! assert_eq!(tri.input_index(tri.vertex_of_input(4)), 0);
 //! tri.validate()?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

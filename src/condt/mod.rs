@@ -180,34 +180,13 @@ fn canonical_direction(curve: &mut Curve) {
     }
 }
 
-/// Vertex-id edges to sorted input-position edges, in O(n): a counting sort by the smaller end,
-/// then each (short) bucket by the larger.
+/// Vertex-id edges to sorted input-position edges, in O(n).
 fn to_input_edges(tri: &Triangulation, edges: &[Edge]) -> Vec<InputEdge> {
-    let n = tri.num_input_points();
     let pairs = edges.iter().map(|&[a, b]| {
         let (a, b) = (tri.input_index(a) as u32, tri.input_index(b) as u32);
         [a.min(b), a.max(b)]
     });
-    let mut starts = alloc::vec![0u32; n + 1];
-    for [a, _] in pairs.clone() {
-        starts[a as usize + 1] += 1;
-    }
-    for i in 0..n {
-        starts[i + 1] += starts[i];
-    }
-    let mut out = alloc::vec![[0u32; 2]; edges.len()];
-    for pair in pairs {
-        let slot = &mut starts[pair[0] as usize];
-        out[*slot as usize] = pair;
-        *slot += 1;
-    }
-    // `starts[a]` now ends bucket `a`; each bucket holds one smaller end.
-    let mut begin = 0;
-    for &end in &starts[..n] {
-        out[begin..end as usize].sort_unstable();
-        begin = end as usize;
-    }
-    out
+    crate::graph::sort_pairs(tri.num_input_points(), pairs, edges.len(), |a| a as usize)
 }
 
 /// A clock that reads zero without `std`.

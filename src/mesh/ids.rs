@@ -1,7 +1,8 @@
 //! Typed 32-bit handles for vertices, half-edges and triangles.
 
-/// A vertex. Its index is the input position of the point it stands for (for a group of exact
-/// duplicates, the smallest such position). [`VertexId::INFINITE`] is the vertex at infinity that
+/// A vertex. A [`Triangulation`](crate::Triangulation) numbers vertices in its insertion order,
+/// which is spatial; [`Triangulation::input_index`](crate::Triangulation::input_index) gives the
+/// input position a vertex stands for. [`VertexId::INFINITE`] is the vertex at infinity that
 /// closes the mesh into a sphere.
 ///
 /// ```
@@ -23,7 +24,7 @@ impl VertexId {
         VertexId(index)
     }
 
-    /// Index into the input points.
+    /// Position in the arrays indexed by vertex (not an input position in general).
     #[inline]
     pub const fn index(self) -> usize {
         self.0 as usize
