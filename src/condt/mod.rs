@@ -265,13 +265,14 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
     };
     let outlier_filter_applied = filtered.applied;
     let filtered = filtered.edges;
-    let edges = if params.outliers_first {
-        repaired.clone()
+    // The final graph is whichever of the two stages ran last.
+    let last: &[Edge] = if params.outliers_first {
+        &repaired
     } else {
-        filtered.clone()
+        &filtered
     };
     let n = tri.num_input_points();
-    let mut curves = assemble(n, &edges);
+    let mut curves = assemble(n, last);
     for curve in curves.iter_mut() {
         for v in curve.vertices.iter_mut() {
             *v = tri.input_index(VertexId::new(*v)) as u32;
@@ -279,12 +280,12 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
         canonical_direction(curve);
     }
     curves.sort_by(|a, b| a.vertices.cmp(&b.vertices));
-    let vertex_degree = crate::graph::degrees(n, &edges);
+    let vertex_degree = crate::graph::degrees(n, last);
     let degrees: Vec<u32> = (0..n)
         .map(|i| vertex_degree[tri.vertex_of_input(i).index()])
         .collect();
     let unused = (0..n).filter(|&i| degrees[i] == 0).collect();
-    let edges = to_input_edges(&tri, &edges);
+    let edges = to_input_edges(&tri, last);
     times.curves = clock.lap();
     Reconstruction {
         params: *params,
