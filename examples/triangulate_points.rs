@@ -2,7 +2,7 @@
 //! Run: `cargo run --example triangulate_points -- examples/data/shapes.txt`.
 
 use condt::io::read_points;
-use condt::{triangulate, VertexId};
+use condt::triangulate;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()
@@ -19,8 +19,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         tri.edges().count(),
         tri.hull().count()
     );
-    let v = VertexId::new(0);
-    let ring: Vec<usize> = tri.neighbors(v).map(|w| w.index()).collect();
+    // Vertex ids follow the triangulator's spatial order; translate from and to input positions.
+    let v = tri.vertex_of_input(0);
+    let ring: Vec<usize> = tri.neighbors(v).map(|w| tri.input_index(w)).collect();
     println!("neighbours of point 0, counter-clockwise: {ring:?}");
     let shortest = tri
         .neighbors(v)

@@ -93,27 +93,41 @@ struct TriangulateArgs {
     edges: bool,
 }
 
+/// The arguments every command takes: `-o FILE`, the one INPUT; anything else starting with `-`
+/// is an unknown option.
+fn shared_argument<'a>(
+    arg: &str,
+    rest: &mut impl Iterator<Item = &'a String>,
+    output: &mut Option<String>,
+    input: &mut Option<String>,
+) -> Result<(), CliError> {
+    match arg {
+        "-o" | "--output" => {
+            let value = rest
+                .next()
+                .ok_or_else(|| CliError::Usage(format!("{arg} needs a file name")))?;
+            *output = Some(value.clone());
+        }
+        flag if flag.starts_with('-') && flag != "-" => {
+            return Err(CliError::Usage(format!("unknown option {flag}")));
+        }
+        path => {
+            if input.replace(path.to_string()).is_some() {
+                return Err(CliError::Usage(format!("unexpected extra argument {path}")));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn parse_triangulate(args: &[String]) -> Result<TriangulateArgs, CliError> {
     let mut parsed = TriangulateArgs::default();
     let mut input = None;
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
         match arg.as_str() {
-            "-o" | "--output" => {
-                let value = rest
-                    .next()
-                    .ok_or_else(|| CliError::Usage(format!("{arg} needs a file name")))?;
-                parsed.output = Some(value.clone());
-            }
             "--edges" => parsed.edges = true,
-            flag if flag.starts_with('-') && flag != "-" => {
-                return Err(CliError::Usage(format!("unknown option {flag}")));
-            }
-            path => {
-                if input.replace(path.to_string()).is_some() {
-                    return Err(CliError::Usage(format!("unexpected extra argument {path}")));
-                }
-            }
+            _ => shared_argument(arg, &mut rest, &mut parsed.output, &mut input)?,
         }
     }
     parsed.input =
@@ -205,13 +219,6 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
         match arg.as_str() {
-            "-o" | "--output" => {
-                output = Some(
-                    rest.next()
-                        .ok_or_else(|| CliError::Usage(format!("{arg} needs a file name")))?
-                        .clone(),
-                );
-            }
             "--u" => {
                 params.uniformity = Uniformity::Fixed(number(arg, rest.next(), |u| u > 0.0)?);
                 fixed_u = true;
@@ -248,14 +255,7 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
             }
             "--stages" => stages = true,
             "--sequential" => params.parallel = false,
-            flag if flag.starts_with('-') && flag != "-" => {
-                return Err(CliError::Usage(format!("unknown option {flag}")));
-            }
-            path => {
-                if input.replace(path.to_string()).is_some() {
-                    return Err(CliError::Usage(format!("unexpected extra argument {path}")));
-                }
-            }
+            _ => shared_argument(arg, &mut rest, &mut output, &mut input)?,
         }
     }
     if fixed_u && adaptive {

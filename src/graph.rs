@@ -20,13 +20,6 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
     }
 }
 
-/// Sorts and removes repeats, the canonical form of every edge list the stages return.
-pub(crate) fn canonical(mut edges: Vec<Edge>) -> Vec<Edge> {
-    edges.sort_unstable();
-    edges.dedup();
-    edges
-}
-
 /// Compressed adjacency of a canonical edge list over `vertex_count` vertices: the neighbours of
 /// `v` are `neighbors[offsets[v]..offsets[v + 1]]`, in increasing id, each with the position of
 /// its edge in the list.
@@ -65,12 +58,6 @@ impl Adjacency {
         &self.neighbors[self.offsets[v.index()] as usize..self.offsets[v.index() + 1] as usize]
     }
 
-    /// The neighbours of `v`, increasing.
-    #[inline]
-    pub(crate) fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
-        self.incident(v).iter().map(|&(w, _)| w)
-    }
-
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
         (self.offsets[v.index() + 1] - self.offsets[v.index()]) as usize
@@ -81,7 +68,8 @@ impl Adjacency {
     }
 }
 
-/// The canonical form of `edges` over `vertex_count` vertices, in O(n).
+/// The canonical form of `edges` over `vertex_count` vertices (sorted, no repeats), in O(n): the
+/// form of every edge list the stages return.
 pub(crate) fn canonical_by_buckets(vertex_count: usize, edges: &[Edge]) -> Vec<Edge> {
     sort_pairs(
         vertex_count,

@@ -8,7 +8,7 @@
 //! vertices of degree <= 2 are kept as they are. Readings of what the paper leaves open, with the
 //! evidence, are in `docs/condt.md` (notes 2 to 4).
 
-use crate::graph::{canonical, ordered, Adjacency, Edge};
+use crate::graph::{canonical_by_buckets, ordered, Adjacency, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
@@ -50,38 +50,40 @@ fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
 }
 
 /// Algorithm 2, lines 10–11: the shortest edge and the best-scoring partner (if any qualifies).
-fn paper_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> [VertexId; 2] {
+/// `around` is the vertex's adjacency (neighbour, edge position); no allocation.
+fn paper_choice(tri: &Triangulation, v: VertexId, around: &[(VertexId, u32)]) -> [VertexId; 2] {
     let p = tri.point(v);
     let length2 = |w: VertexId| p.dist2(tri.point(w));
-    let shortest = *around
-        .iter()
-        .min_by(|&&a, &&b| length2(a).total_cmp(&length2(b)).then(a.cmp(&b)))
+    let neighbours = || around.iter().map(|&(w, _)| w);
+    let shortest = neighbours()
+        .min_by(|&a, &b| length2(a).total_cmp(&length2(b)).then(a.cmp(&b)))
         .expect("degree >= 3");
+    let qualified = || {
+        neighbours()
+            .filter(move |&w| w != shortest)
+            .map(move |w| (w, angle_at(tri, v, shortest, w)))
+            .filter(|&(_, theta)| theta > PAIR_ANGLE)
+    };
     // Lmin/Le: Lmin is the same for every candidate, so it scales all scores alike; it is kept to
     // match the paper's formula.
-    let candidates = around
-        .iter()
-        .filter(|&&w| w != shortest)
-        .map(|&w| (w, angle_at(tri, v, shortest, w)));
-    let qualified: Vec<(VertexId, f64)> = candidates
-        .filter(|&(_, theta)| theta > PAIR_ANGLE)
-        .collect();
-    let l_min = qualified
-        .iter()
-        .map(|&(w, _)| libm::sqrt(length2(w)))
+    let l_min = qualified()
+        .map(|(w, _)| libm::sqrt(length2(w)))
         .fold(f64::INFINITY, f64::min);
-    let best = qualified
-        .iter()
-        .map(|&(w, theta)| (w, theta / PI * (l_min / libm::sqrt(length2(w)))))
+    let best = qualified()
+        .map(|(w, theta)| (w, theta / PI * (l_min / libm::sqrt(length2(w)))))
         .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
     [shortest, best.map_or(VertexId::INFINITE, |(w, _)| w)]
 }
 
 /// Up to two disjoint nearly straight pairs through `v`; `None` when there are not two.
-fn crossing_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> Option<[VertexId; 4]> {
+fn crossing_choice(
+    tri: &Triangulation,
+    v: VertexId,
+    around: &[(VertexId, u32)],
+) -> Option<[VertexId; 4]> {
     let mut pairs: Vec<(f64, VertexId, VertexId)> = Vec::new();
-    for (i, &a) in around.iter().enumerate() {
-        for &b in &around[i + 1..] {
+    for (i, &(a, _)) in around.iter().enumerate() {
+        for &(b, _) in &around[i + 1..] {
             let theta = angle_at(tri, v, a, b);
             if theta > STRAIGHT_ANGLE {
                 pairs.push((theta, a, b));
@@ -116,8 +118,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec
         if manifold(v) {
             continue;
         }
-        let around: Vec<VertexId> = graph.neighbors(v).collect();
-        let around = &around[..];
+        let around = graph.incident(v);
         let crossing = if repair == Repair::CrossingAware {
             crossing_choice(tri, v, around)
         } else {
@@ -152,7 +153,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec
     } else {
         kept.extend(selected);
     }
-    canonical(kept)
+    canonical_by_buckets(graph.vertex_count(), &kept)
 }
 
 #[cfg(test)]
@@ -162,12 +163,11 @@ mod tests {
 
     /// Edges given as input positions, in the triangulation's vertex ids, canonical.
     fn edges(tri: &Triangulation, pairs: &[(usize, usize)]) -> Vec<Edge> {
-        canonical(
-            pairs
-                .iter()
-                .map(|&(a, b)| ordered(tri.vertex_of_input(a), tri.vertex_of_input(b)))
-                .collect(),
-        )
+        let listed: Vec<Edge> = pairs
+            .iter()
+            .map(|&(a, b)| ordered(tri.vertex_of_input(a), tri.vertex_of_input(b)))
+            .collect();
+        canonical_by_buckets(tri.num_input_points(), &listed)
     }
 
     #[test]

@@ -68,7 +68,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::graph::{canonical, ordered};
+    use crate::graph::{canonical_by_buckets, ordered};
     use crate::{triangulate, Point};
 
     /// Ten unit edges along a line (so IQR = 0 and T = 1), plus a vertex at `(5, gap)` tied to
@@ -82,7 +82,7 @@ mod tests {
         let mut edges: Vec<Edge> = (0..10).map(|i| ordered(v(i), v(i + 1))).collect();
         edges.push(ordered(v(5), v(11)));
         edges.push(ordered(v(11), v(12)));
-        let edges = canonical(edges);
+        let edges = canonical_by_buckets(tri.num_input_points(), &edges);
         (tri, edges)
     }
 
