@@ -20,19 +20,19 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
     }
 }
 
-/// Compressed adjacency of a canonical edge list over `vertex_count` vertices: the neighbours of
-/// `v` are `neighbors[offsets[v]..offsets[v + 1]]`, in increasing id, each with the position of
-/// its edge in the list.
+/// Compressed adjacency of an edge list over `vertex_count` vertices: the neighbours of `v` are
+/// `neighbors[offsets[v]..offsets[v + 1]]`, in the order the edges are listed, each with the
+/// position of its edge in the list.
 pub(crate) struct Adjacency {
     offsets: Vec<u32>,
     neighbors: Vec<(VertexId, u32)>,
 }
 
 impl Adjacency {
-    /// `edges` must be canonical (sorted, `a < b`, no repeats). Then every list comes out sorted
-    /// without sorting: all edges `(a, v)` with `a < v` precede all edges `(v, b)` in the list.
+    /// `edges` must list every edge once (`[a, b]` with `a < b`, in any order). Built by counting,
+    /// in O(n), without sorting.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
-        debug_assert!(edges.windows(2).all(|w| w[0] < w[1]) && edges.iter().all(|e| e[0] < e[1]));
+        debug_assert!(edges.iter().all(|e| e[0] < e[1]));
         let mut offsets = vec![0u32; vertex_count + 1];
         for &[a, b] in edges {
             offsets[a.index() + 1] += 1;
@@ -62,21 +62,6 @@ impl Adjacency {
     pub(crate) fn degree(&self, v: VertexId) -> usize {
         (self.offsets[v.index() + 1] - self.offsets[v.index()]) as usize
     }
-
-    pub(crate) fn vertex_count(&self) -> usize {
-        self.offsets.len() - 1
-    }
-}
-
-/// The canonical form of `edges` over `vertex_count` vertices (sorted, no repeats), in O(n): the
-/// form of every edge list the stages return.
-pub(crate) fn canonical_by_buckets(vertex_count: usize, edges: &[Edge]) -> Vec<Edge> {
-    sort_pairs(
-        vertex_count,
-        edges.iter().copied(),
-        edges.len(),
-        VertexId::index,
-    )
 }
 
 /// Sorts pairs `[a, b]` with `index(a) < bound` by `(a, b)` and drops repeats, in O(n): a

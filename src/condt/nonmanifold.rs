@@ -8,7 +8,7 @@
 //! vertices of degree <= 2 are kept as they are. Readings of what the paper leaves open, with the
 //! evidence, are in `docs/condt.md` (notes 2 to 4).
 
-use crate::graph::{canonical_by_buckets, ordered, Adjacency, Edge};
+use crate::graph::{degrees, ordered, Adjacency, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
@@ -98,22 +98,20 @@ fn crossing_choice(
     Some([a, b, c, d])
 }
 
-/// Applies `repair` to the proximity graph `edges`.
+/// Applies `repair` to the proximity graph `edges` (each edge once, any order). The result lists
+/// each edge once: first the edges between manifold vertices in their input order, then the
+/// selections of the non-manifold vertices in increasing vertex id.
 pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec<Edge> {
-    if repair == Repair::Off {
+    let vertex_count = tri.num_input_points();
+    let degree = degrees(vertex_count, edges);
+    let manifold = |v: VertexId| degree[v.index()] <= 2;
+    if repair == Repair::Off || degree.iter().all(|&d| d <= 2) {
         return edges.to_vec();
     }
-    let graph = Adjacency::new(tri.num_input_points(), edges);
-    let manifold = |v: VertexId| graph.degree(v) <= 2;
-    // Algorithm 2, lines 3–5: edges between manifold vertices stay.
-    let mut kept: Vec<Edge> = edges
-        .iter()
-        .copied()
-        .filter(|&[a, b]| manifold(a) && manifold(b))
-        .collect();
-    // Lines 6–12: every non-manifold vertex selects its edges.
-    let mut selected: Vec<Edge> = Vec::new();
-    for i in 0..graph.vertex_count() {
+    let graph = Adjacency::new(vertex_count, edges);
+    // Lines 6–12: every non-manifold vertex selects its edges (up to four for a crossing).
+    let mut selections: Vec<(VertexId, [VertexId; 4])> = Vec::new();
+    for i in 0..vertex_count {
         let v = VertexId::new(i as u32);
         if manifold(v) {
             continue;
@@ -124,36 +122,41 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec
         } else {
             None
         };
-        match crossing {
-            Some(four) => selected.extend(four.iter().map(|&w| ordered(v, w))),
-            None => selected.extend(
-                paper_choice(tri, v, around)
-                    .iter()
-                    .filter(|w| !w.is_infinite())
-                    .map(|&w| ordered(v, w)),
-            ),
+        let chosen = crossing.unwrap_or_else(|| {
+            let [a, b] = paper_choice(tri, v, around);
+            [a, b, VertexId::INFINITE, VertexId::INFINITE]
+        });
+        selections.push((v, chosen));
+    }
+    // `selections` is in increasing vertex id, so a binary search finds a vertex's choice.
+    let selected_by = |w: VertexId, v: VertexId| {
+        selections
+            .binary_search_by_key(&w, |&(u, _)| u)
+            .is_ok_and(|k| selections[k].1.contains(&v))
+    };
+    // Algorithm 2, lines 3–5: edges between manifold vertices stay.
+    let mut kept: Vec<Edge> = edges
+        .iter()
+        .copied()
+        .filter(|&[a, b]| manifold(a) && manifold(b))
+        .collect();
+    for &(v, chosen) in &selections {
+        for &w in chosen.iter().filter(|w| !w.is_infinite()) {
+            let keep = if manifold(w) {
+                true
+            } else if repair == Repair::Mutual {
+                // Both ends are non-manifold: both must select it; the smaller end lists it.
+                v < w && selected_by(w, v)
+            } else {
+                // A union: listed by the smaller end when both selected it.
+                !(w < v && selected_by(w, v))
+            };
+            if keep {
+                kept.push(ordered(v, w));
+            }
         }
     }
-    if repair == Repair::Mutual {
-        // A selection counts once per selecting end: keep an edge when each non-manifold end chose it.
-        selected.sort_unstable();
-        let mut i = 0;
-        while i < selected.len() {
-            let edge = selected[i];
-            let mut votes = 0;
-            while i < selected.len() && selected[i] == edge {
-                votes += 1;
-                i += 1;
-            }
-            let needed = edge.iter().filter(|&&w| !manifold(w)).count();
-            if votes >= needed {
-                kept.push(edge);
-            }
-        }
-    } else {
-        kept.extend(selected);
-    }
-    canonical_by_buckets(graph.vertex_count(), &kept)
+    kept
 }
 
 #[cfg(test)]
@@ -161,13 +164,21 @@ mod tests {
     use super::*;
     use crate::{triangulate, Point};
 
-    /// Edges given as input positions, in the triangulation's vertex ids, canonical.
+    /// Edges given as input positions, in the triangulation's vertex ids, sorted.
     fn edges(tri: &Triangulation, pairs: &[(usize, usize)]) -> Vec<Edge> {
-        let listed: Vec<Edge> = pairs
+        let mut listed: Vec<Edge> = pairs
             .iter()
             .map(|&(a, b)| ordered(tri.vertex_of_input(a), tri.vertex_of_input(b)))
             .collect();
-        canonical_by_buckets(tri.num_input_points(), &listed)
+        listed.sort_unstable();
+        listed
+    }
+
+    /// `repair`, sorted for comparison.
+    fn repair(tri: &Triangulation, edges: &[Edge], mode: Repair) -> Vec<Edge> {
+        let mut out = super::repair(tri, edges, mode);
+        out.sort_unstable();
+        out
     }
 
     #[test]

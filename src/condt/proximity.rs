@@ -15,7 +15,7 @@
 //! order, so they agree exactly; the tests compare them on every input.
 
 use super::Uniformity;
-use crate::graph::{canonical_by_buckets, ordered, Edge};
+use crate::graph::{ordered, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
@@ -56,22 +56,42 @@ fn shorter(a: (f64, VertexId), b: (f64, VertexId)) -> bool {
     a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
 }
 
-/// The proximity graph: the union over all vertices of their kept edges, sorted.
+/// The proximity graph: the union over all vertices of their kept edges, each edge once, in a
+/// deterministic order (by the vertex that kept it; not sorted).
 pub(crate) fn proximity_graph(
     tri: &Triangulation,
     uniformity: Uniformity,
     parallel: bool,
 ) -> Vec<Edge> {
-    if parallel {
+    let kept = if parallel {
         ring_walks_in_parallel(tri, uniformity)
     } else {
         sweep_half_edges(tri, uniformity)
+    };
+    union_of_kept(&kept)
+}
+
+/// Every kept edge once. An edge both ends kept is listed by its smaller end only, so no sort is
+/// needed to drop repeats.
+fn union_of_kept(kept: &[[VertexId; 2]]) -> Vec<Edge> {
+    let mut edges = Vec::with_capacity(kept.len() + kept.len() / 2);
+    for (i, pair) in kept.iter().enumerate() {
+        let v = VertexId::new(i as u32);
+        for &w in pair {
+            if w.is_infinite() {
+                continue;
+            }
+            let listed_by_w = w < v && kept[w.index()].contains(&v);
+            if !listed_by_w {
+                edges.push(ordered(v, w));
+            }
+        }
     }
+    edges
 }
 
 /// The parallel pass: every vertex walks its own ring on rayon.
-fn ring_walks_in_parallel(tri: &Triangulation, uniformity: Uniformity) -> Vec<Edge> {
-    let n = tri.num_input_points();
+fn ring_walks_in_parallel(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexId; 2]> {
     let choose = |i: usize| {
         let v = VertexId::new(i as u32);
         if tri.is_vertex(v) {
@@ -80,14 +100,7 @@ fn ring_walks_in_parallel(tri: &Triangulation, uniformity: Uniformity) -> Vec<Ed
             [VertexId::INFINITE; 2]
         }
     };
-    let kept = per_vertex_parallel(n, &choose);
-    let mut edges = Vec::with_capacity(2 * n);
-    for (i, pair) in kept.iter().enumerate() {
-        for &w in pair.iter().filter(|w| !w.is_infinite()) {
-            edges.push(ordered(VertexId::new(i as u32), w));
-        }
-    }
-    canonical_by_buckets(n, &edges)
+    per_vertex_parallel(tri.num_input_points(), &choose)
 }
 
 #[cfg(feature = "parallel")]
@@ -112,53 +125,94 @@ fn per_vertex_parallel(
     (0..count).map(choose).collect()
 }
 
-/// The sequential pass: one sweep over the half-edges in memory order, keeping the two best
-/// candidates of each origin. The same minima as walking every ring, without the chain of
-/// dependent loads a ring walk is; vertex ids follow insertion order, so the sweep stays local.
-fn sweep_half_edges(tri: &Triangulation, uniformity: Uniformity) -> Vec<Edge> {
-    let n = tri.num_input_points();
-    let mesh = tri.mesh();
-    let none = (f64::INFINITY, VertexId::INFINITE);
-    let mut first = alloc::vec![none; n];
-    let mut second = alloc::vec![none; n];
-    let mut sum = alloc::vec![0.0f64; n];
-    let mut count = alloc::vec![0u32; n];
-    for i in 0..mesh.num_half_edges() {
-        let e = crate::mesh::HalfEdgeId::new(i as u32);
-        let (u, w) = (mesh.origin(e), mesh.dest(e));
-        if u.is_infinite() || w.is_infinite() {
-            continue;
+/// The sequential pass: one sweep over the triangles in memory order; every finite half-edge
+/// offers its destination to its origin, which keeps the two best offers. The same minima as
+/// walking every ring, without the chain of dependent loads a ring walk is; vertex ids follow
+/// insertion order, so the sweep stays local.
+fn sweep_half_edges(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexId; 2]> {
+    match uniformity {
+        Uniformity::Fixed(u) => {
+            let best = two_best_offers(tri, |_, _| {});
+            best.iter()
+                .map(|&[first, second]| {
+                    let (l1, w1) = unpack(first);
+                    let (l2, w2) = unpack(second);
+                    let keep = !w2.is_infinite() && libm::sqrt(l2) < u * libm::sqrt(l1);
+                    [w1, if keep { w2 } else { VertexId::INFINITE }]
+                })
+                .collect()
         }
-        let candidate = (tri.point(u).dist2(tri.point(w)), w);
-        let k = u.index();
-        if matches!(uniformity, Uniformity::Adaptive) {
-            sum[k] += libm::sqrt(candidate.0);
-            count[k] += 1;
-        }
-        if shorter(candidate, first[k]) {
-            second[k] = first[k];
-            first[k] = candidate;
-        } else if shorter(candidate, second[k]) {
-            second[k] = candidate;
-        }
-    }
-    let mut edges = Vec::with_capacity(2 * n);
-    for k in 0..n {
-        let v = VertexId::new(k as u32);
-        if first[k].1.is_infinite() {
-            continue;
-        }
-        edges.push(ordered(v, first[k].1));
-        if second[k].1.is_infinite() {
-            continue;
-        }
-        let keep = match uniformity {
-            Uniformity::Fixed(u) => libm::sqrt(second[k].0) < u * libm::sqrt(first[k].0),
-            Uniformity::Adaptive => libm::sqrt(second[k].0) < sum[k] / count[k] as f64,
-        };
-        if keep {
-            edges.push(ordered(v, second[k].1));
+        Uniformity::Adaptive => {
+            // Sum of ring edge lengths and ring size per vertex.
+            let mut totals = alloc::vec![(0.0f64, 0u32); tri.num_input_points()];
+            let best = two_best_offers(tri, |u, length2| {
+                let t = &mut totals[u.index()];
+                t.0 += libm::sqrt(length2);
+                t.1 += 1;
+            });
+            best.iter()
+                .zip(&totals)
+                .map(|(&[first, second], &(sum, count))| {
+                    let (_, w1) = unpack(first);
+                    let (l2, w2) = unpack(second);
+                    let keep = !w2.is_infinite() && libm::sqrt(l2) < sum / count as f64;
+                    [w1, if keep { w2 } else { VertexId::INFINITE }]
+                })
+                .collect()
         }
     }
-    canonical_by_buckets(n, &edges)
+}
+
+/// An offer `(squared length, neighbour)` as one integer with the same order as [`shorter`]:
+/// a non-negative `f64` orders like its bits, and the id breaks ties in the low word. Comparing
+/// integers lets the update below run without branches, whose outcome no predictor can guess.
+#[inline]
+fn pack(length2: f64, w: VertexId) -> u128 {
+    (u128::from(length2.to_bits()) << 32) | w.index() as u128
+}
+
+#[inline]
+fn unpack(key: u128) -> (f64, VertexId) {
+    if key == NO_OFFER {
+        return (f64::INFINITY, VertexId::INFINITE);
+    }
+    (
+        f64::from_bits((key >> 32) as u64),
+        VertexId::new(key as u32),
+    )
+}
+
+const NO_OFFER: u128 = u128::MAX;
+
+/// For every vertex, its two best offers (packed), best first. `each` sees every offer.
+fn two_best_offers(tri: &Triangulation, mut each: impl FnMut(VertexId, f64)) -> Vec<[u128; 2]> {
+    let mut best = alloc::vec![[NO_OFFER; 2]; tri.num_input_points()];
+    let mut offer = |u: VertexId, w: VertexId| {
+        let length2 = tri.point(u).dist2(tri.point(w));
+        each(u, length2);
+        let key = pack(length2, w);
+        let pair = &mut best[u.index()];
+        // The two smallest of {pair[0] <= pair[1], key}.
+        let low = key.min(pair[0]);
+        let high = key.max(pair[0]);
+        pair[0] = low;
+        pair[1] = high.min(pair[1]);
+    };
+    for corners in tri.mesh().origins.chunks_exact(3) {
+        let [a, b, c] = [corners[0], corners[1], corners[2]];
+        if a.is_infinite() || b.is_infinite() || c.is_infinite() {
+            // A ghost: only its finite half-edge offers.
+            for k in 0..3 {
+                let (u, w) = (corners[k], corners[(k + 1) % 3]);
+                if !u.is_infinite() && !w.is_infinite() {
+                    offer(u, w);
+                }
+            }
+        } else {
+            offer(a, b);
+            offer(b, c);
+            offer(c, a);
+        }
+    }
+    best
 }
