@@ -297,3 +297,32 @@ fn same_input_gives_the_same_mesh() {
     let tris = |t: &condt::Triangulation| t.triangles().collect::<Vec<_>>();
     assert_eq!(tris(&a), tris(&b));
 }
+
+#[test]
+fn points_on_hull_edge_extensions_past_sharp_corners() {
+    // A hull corner turning by more than 90 degrees, and points on the backward extension of
+    // the edge after it: collinear with one hull edge, past the far end of the one before (the
+    // walk slides along ghosts there and must not go back and forth between the two).
+    let mut coords = vec![(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)];
+    for t in 1..40 {
+        let t = t as f64 * 0.25;
+        coords.push((1.0 + 0.5 * t, -t));
+        coords.push((-0.5 * t, t * 2.0));
+    }
+    // Many orders: the insertion order is the triangulator's, but point sets of several sizes
+    // give it different rounds.
+    for n in 4..coords.len() {
+        let tri = triangulate(&pts(&coords[..n])).unwrap();
+        tri.validate().unwrap();
+    }
+    // The same on a dense convex curve, where every point is a hull point when inserted.
+    let curve: Vec<(f64, f64)> = (0..3000)
+        .map(|k| {
+            let t = k as f64 * 0.002;
+            (3.0 * t.cos(), 2.0 * t.sin())
+        })
+        .collect();
+    let tri = triangulate(&pts(&curve)).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.hull().count(), curve.len());
+}

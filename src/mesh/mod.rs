@@ -187,18 +187,32 @@ impl Mesh {
         self.twins[b.index()] = a;
     }
 
-    /// Fills `vertex_edges` from the triangles: one pass, preferring the edge to infinity.
+    /// Fills `vertex_edges` from the triangles: one branch-free pass that records some edge
+    /// leaving each vertex, then a walk along the ghosts that gives every hull vertex its edge to
+    /// infinity.
     pub(crate) fn rebuild_vertex_edges(&mut self, vertex_count: usize) {
-        self.vertex_edges.clear();
-        self.vertex_edges.resize(vertex_count, HalfEdgeId::NONE);
+        // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
+        let sink = vertex_count;
+        let mut edges = alloc::vec![HalfEdgeId::NONE; vertex_count + 1];
         for (i, &v) in self.origins.iter().enumerate() {
-            if v.is_infinite() {
-                continue;
-            }
-            let e = HalfEdgeId::new(i as u32);
-            let slot = &mut self.vertex_edges[v.index()];
-            if slot.is_none() || self.origins[e.next().index()].is_infinite() {
-                *slot = e;
+            edges[v.index().min(sink)] = HalfEdgeId::new(i as u32);
+        }
+        let from_infinity = edges[sink];
+        edges.truncate(vertex_count);
+        self.vertex_edges = edges;
+        if from_infinity.is_none() {
+            return;
+        }
+        // `∞ → a` is followed in its ghost by the hull edge `a → b`, then by `b → ∞`.
+        let start = from_infinity.next();
+        let mut hull_edge = start;
+        loop {
+            let to_infinity = hull_edge.next();
+            let b = self.origin(to_infinity);
+            self.vertex_edges[b.index()] = to_infinity;
+            hull_edge = self.twin(hull_edge.prev()).prev();
+            if hull_edge == start {
+                break;
             }
         }
     }

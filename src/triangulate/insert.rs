@@ -30,13 +30,14 @@ enum Location {
     Vertex(VertexId),
 }
 
-/// The construction state. Vertex ids are positions in `points` (the insertion order).
+/// The construction state. Vertex ids are positions in `points` (the spatial order); the caller
+/// inserts them in its insertion order.
 pub(crate) struct Builder<'a> {
     points: &'a [Point],
     mesh: Mesh,
     flips: Vec<HalfEdgeId>,
     hint: HalfEdgeId,
-    /// `(duplicate, vertex it was merged into)`, in insertion-order ids.
+    /// `(duplicate, vertex it was merged into)`, in vertex ids.
     merged: Vec<(u32, u32)>,
 }
 
@@ -112,8 +113,12 @@ impl<'a> Builder<'a> {
     pub(crate) fn insert(&mut self, v: u32) {
         let p = self.points[v as usize];
         let v = VertexId::new(v);
+        let mut outside_hull = false;
         match self.locate(p) {
-            Location::Face(e) => self.split_triangle(e, v),
+            Location::Face(e) => {
+                outside_hull = self.origin(e.prev()).is_infinite();
+                self.split_triangle(e, v)
+            }
             Location::Edge(e) => self.split_edge(e, v),
             Location::Vertex(w) => {
                 self.merged.push((v.index() as u32, w.index() as u32));
@@ -121,6 +126,30 @@ impl<'a> Builder<'a> {
             }
         }
         self.restore_delaunay(v);
+        if outside_hull {
+            self.hint = self.ghost_at(v);
+        }
+    }
+
+    /// A half-edge of a ghost triangle at the hull vertex `v`, found by turning around `v` from
+    /// the last hint (which lies in a triangle at `v`). Points that follow a hull point in the
+    /// insertion order usually lie outside the hull next to it: a walk from here reaches them
+    /// along the hull instead of across the fan of triangles at `v`.
+    fn ghost_at(&self, v: VertexId) -> HalfEdgeId {
+        let t = self.hint.triangle();
+        let Some(mut e) = (0..3).map(|k| t.edge(k)).find(|&e| self.origin(e) == v) else {
+            return self.hint;
+        };
+        let start = e;
+        loop {
+            if self.origin(e.next()).is_infinite() {
+                return e;
+            }
+            e = self.twin(e.prev());
+            if e == start {
+                return self.hint;
+            }
+        }
     }
 
     /// Visibility walk from the hint. It terminates because the "lies in front of" relation among
@@ -130,6 +159,8 @@ impl<'a> Builder<'a> {
         // Half-edge of the current triangle through which the walk entered it, if any: the point
         // is known to lie strictly left of it.
         let mut entered = false;
+        // Hull slides still allowed: 2 = either way (not started), 1 / -1 = only that way, 0 = none.
+        let mut slide = 2i8;
         loop {
             let t = e.triangle();
             let first = t.edge(0);
@@ -141,10 +172,40 @@ impl<'a> Builder<'a> {
                 match orient2d(self.point(a), self.point(b), p) {
                     Orientation::Ccw => return Location::Face(hull),
                     Orientation::Cw => {
-                        e = self.twin(hull);
-                        entered = true;
+                        // `p` is on the inner side of this hull edge's line. If it lies past one
+                        // end, it is likely outside the hull further along: slide to the next
+                        // ghost that way. Slides go one way only, and only before the walk first
+                        // enters a real triangle: past the far end of `a → b`, `p` is nearer `b`
+                        // than `a`, so the distance to the slide's vertex shrinks and cannot
+                        // cycle. After them the walk is the plain visibility walk.
+                        let (pa, pb) = (self.point(a), self.point(b));
+                        let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
+                        let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
+                        let direction = if along > dx * dx + dy * dy {
+                            1
+                        } else if along < 0.0 {
+                            -1
+                        } else {
+                            0
+                        };
+                        if slide != 0 && direction == slide || slide == 2 && direction != 0 {
+                            slide = direction;
+                            e = if direction > 0 {
+                                self.twin(hull.next())
+                            } else {
+                                self.twin(hull.prev())
+                            };
+                            entered = false;
+                        } else {
+                            slide = 0;
+                            e = self.twin(hull);
+                            entered = true;
+                        }
                     }
                     Orientation::Collinear => {
+                        // Sliding back and forth between this and a Cw slide could cycle at a
+                        // sharp hull corner: no more Cw slides after a collinear one.
+                        slide = 0;
                         let (pa, pb) = (self.point(a), self.point(b));
                         match position_on_segment(pa, pb, p) {
                             Segment::AtStart => return Location::Vertex(a),
@@ -159,6 +220,7 @@ impl<'a> Builder<'a> {
                 }
                 continue;
             }
+            slide = 0;
             // A real triangle: leave through any edge that has the point strictly on its right.
             let start = if entered { e } else { first };
             let mut collinear = [HalfEdgeId::NONE; 2];
