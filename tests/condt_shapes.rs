@@ -343,3 +343,17 @@ fn tiny_inputs_do_not_panic() {
     let r = run(&line, Params::default());
     assert_eq!(r.edges.len(), 9, "a dense line is one open curve");
 }
+
+#[test]
+fn parallel_equals_sequential_above_the_parallel_threshold() {
+    // Four circles, over 65,536 points in all: the size from which the rayon pass runs.
+    let circles: Vec<Shape> = (0..4)
+        .map(|k| Shape::circle(Point::new(3.0 * k as f64, 0.0), 1.0))
+        .collect();
+    let s = sample(&circles, &Sampling::new(3e-4));
+    assert!(s.points.len() >= 1 << 16, "{}", s.points.len());
+    // `run` compares every stage of the two passes.
+    let r = run(&s.points, Params::default());
+    assert_eq!(r.curves.iter().filter(|c| c.closed).count(), 4);
+    assert_eq!(edges(&r), truth(&s));
+}

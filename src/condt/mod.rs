@@ -77,7 +77,8 @@ pub struct Params {
     /// Outlier edges can make a curve vertex non-manifold, and the repair then cuts a sharp
     /// corner there; `docs/condt.md` (note 6) measures both orders.
     pub outliers_first: bool,
-    /// Run the per-vertex stage on rayon (only with the `parallel` feature; same result).
+    /// Run the per-vertex stage on rayon (only with the `parallel` feature, and only from
+    /// 65,536 points, below which waking the workers costs more than they save; same result).
     pub parallel: bool,
 }
 

@@ -56,6 +56,10 @@ fn shorter(a: (f64, VertexId), b: (f64, VertexId)) -> bool {
     a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
 }
 
+/// Fewest points for which the parallel pass runs: below it, waking rayon's workers costs more
+/// than they save (10k points on a curve: 1.07 ms on two cores against 0.76 ms for the sweep).
+const PARALLEL_FROM: usize = 1 << 16;
+
 /// The proximity graph: the union over all vertices of their kept edges, each edge once, in a
 /// deterministic order (by the vertex that kept it; not sorted).
 pub(crate) fn proximity_graph(
@@ -63,7 +67,7 @@ pub(crate) fn proximity_graph(
     uniformity: Uniformity,
     parallel: bool,
 ) -> Vec<Edge> {
-    let kept = if parallel {
+    let kept = if parallel && tri.num_input_points() >= PARALLEL_FROM {
         ring_walks_in_parallel(tri, uniformity)
     } else {
         sweep_half_edges(tri, uniformity)
@@ -134,9 +138,8 @@ fn sweep_half_edges(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexI
         Uniformity::Fixed(u) => {
             let best = two_best_offers(tri, |_, _| {});
             best.iter()
-                .map(|&[first, second]| {
-                    let (l1, w1) = unpack(first);
-                    let (l2, w2) = unpack(second);
+                .map(|two| {
+                    let ((l1, w1), (l2, w2)) = (two.get(0), two.get(1));
                     let keep = !w2.is_infinite() && libm::sqrt(l2) < u * libm::sqrt(l1);
                     [w1, if keep { w2 } else { VertexId::INFINITE }]
                 })
@@ -152,9 +155,8 @@ fn sweep_half_edges(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexI
             });
             best.iter()
                 .zip(&totals)
-                .map(|(&[first, second], &(sum, count))| {
-                    let (_, w1) = unpack(first);
-                    let (l2, w2) = unpack(second);
+                .map(|(two, &(sum, count))| {
+                    let ((_, w1), (l2, w2)) = (two.get(0), two.get(1));
                     let keep = !w2.is_infinite() && libm::sqrt(l2) < sum / count as f64;
                     [w1, if keep { w2 } else { VertexId::INFINITE }]
                 })
@@ -163,40 +165,59 @@ fn sweep_half_edges(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexI
     }
 }
 
-/// An offer `(squared length, neighbour)` as one integer with the same order as [`shorter`]:
-/// a non-negative `f64` orders like its bits, and the id breaks ties in the low word. Comparing
-/// integers lets the update below run without branches, whose outcome no predictor can guess.
-#[inline]
-fn pack(length2: f64, w: VertexId) -> u128 {
-    (u128::from(length2.to_bits()) << 32) | w.index() as u128
+/// The two best offers a vertex has had: `(squared length as bits, neighbour)`, best first.
+/// A non-negative `f64` orders like its bits, so offers compare as integer pairs, which lets
+/// the update below run without branches (whose outcome no predictor could guess).
+#[derive(Copy, Clone)]
+struct TwoBest {
+    lengths: [u64; 2],
+    ids: [u32; 2],
 }
 
-#[inline]
-fn unpack(key: u128) -> (f64, VertexId) {
-    if key == NO_OFFER {
-        return (f64::INFINITY, VertexId::INFINITE);
+impl TwoBest {
+    const EMPTY: TwoBest = TwoBest {
+        lengths: [u64::MAX; 2],
+        ids: [u32::MAX; 2],
+    };
+
+    /// Keeps the two smallest of the two held and `(length, id)` in the order of [`shorter`].
+    #[inline]
+    fn offer(&mut self, length2: f64, w: VertexId) {
+        let (l, w) = (length2.to_bits(), w.index() as u32);
+        let [l0, l1] = self.lengths;
+        let [i0, i1] = self.ids;
+        let before_first = (l < l0) | ((l == l0) & (w < i0));
+        let before_second = (l < l1) | ((l == l1) & (w < i1));
+        // All ones when the condition holds: selections by mask compile to no branch.
+        let m0 = u64::from(before_first).wrapping_neg();
+        let m1 = u64::from(before_second).wrapping_neg();
+        let pick = |mask: u64, yes: u64, no: u64| (yes & mask) | (no & !mask);
+        let second_l = pick(m1, l, l1);
+        let second_i = pick(m1, w.into(), i1.into());
+        self.lengths = [pick(m0, l, l0), pick(m0, l0, second_l)];
+        self.ids = [
+            pick(m0, w.into(), i0.into()) as u32,
+            pick(m0, i0.into(), second_i) as u32,
+        ];
     }
-    (
-        f64::from_bits((key >> 32) as u64),
-        VertexId::new(key as u32),
-    )
+
+    /// `(squared length, neighbour)` of the best (`k = 0`) or second best offer.
+    #[inline]
+    fn get(&self, k: usize) -> (f64, VertexId) {
+        if self.ids[k] == u32::MAX {
+            return (f64::INFINITY, VertexId::INFINITE);
+        }
+        (f64::from_bits(self.lengths[k]), VertexId::new(self.ids[k]))
+    }
 }
 
-const NO_OFFER: u128 = u128::MAX;
-
-/// For every vertex, its two best offers (packed), best first. `each` sees every offer.
-fn two_best_offers(tri: &Triangulation, mut each: impl FnMut(VertexId, f64)) -> Vec<[u128; 2]> {
-    let mut best = alloc::vec![[NO_OFFER; 2]; tri.num_input_points()];
+/// For every vertex, its two best offers. `each` sees every offer.
+fn two_best_offers(tri: &Triangulation, mut each: impl FnMut(VertexId, f64)) -> Vec<TwoBest> {
+    let mut best = alloc::vec![TwoBest::EMPTY; tri.num_input_points()];
     let mut offer = |u: VertexId, w: VertexId| {
         let length2 = tri.point(u).dist2(tri.point(w));
         each(u, length2);
-        let key = pack(length2, w);
-        let pair = &mut best[u.index()];
-        // The two smallest of {pair[0] <= pair[1], key}.
-        let low = key.min(pair[0]);
-        let high = key.max(pair[0]);
-        pair[0] = low;
-        pair[1] = high.min(pair[1]);
+        best[u.index()].offer(length2, w);
     };
     for corners in tri.mesh().origins.chunks_exact(3) {
         let [a, b, c] = [corners[0], corners[1], corners[2]];
@@ -215,4 +236,64 @@ fn two_best_offers(tri: &Triangulation, mut each: impl FnMut(VertexId, f64)) -> 
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Point;
+    use crate::sample::{sample, Sampling, Shape};
+    use crate::triangulate;
+
+    /// The sweep and the ring walks (rayon's pass, run here at any size) choose the same
+    /// neighbours for every vertex, with both uniformity tests.
+    #[test]
+    fn sweep_and_ring_walks_agree_on_every_vertex() {
+        let centre = Point::new(0.0, 0.0);
+        let inputs = [
+            ("circle", vec![Shape::circle(centre, 1.0)], 0.05, 0.0),
+            (
+                "square with outliers",
+                vec![Shape::Polygon(vec![
+                    Point::new(0.0, 0.0),
+                    Point::new(4.0, 0.0),
+                    Point::new(4.0, 4.0),
+                    Point::new(0.0, 4.0),
+                ])],
+                0.1,
+                0.1,
+            ),
+            (
+                "figure eight, noisy",
+                vec![Shape::FigureEight {
+                    center: centre,
+                    size: 2.0,
+                }],
+                0.05,
+                0.0,
+            ),
+        ];
+        let mut dropped = 0;
+        for (label, shapes, epsilon, outliers) in inputs {
+            let s = sample(
+                &shapes,
+                &Sampling {
+                    outlier_fraction: outliers,
+                    noise: 0.01,
+                    ..Sampling::new(epsilon)
+                },
+            );
+            let tri = triangulate(&s.points).unwrap();
+            for uniformity in [Uniformity::Fixed(2.75), Uniformity::Adaptive] {
+                let swept = sweep_half_edges(&tri, uniformity);
+                let walked = ring_walks_in_parallel(&tri, uniformity);
+                assert_eq!(swept, walked, "{label}, {uniformity:?}");
+                let seconds = swept.iter().filter(|k| !k[1].is_infinite()).count();
+                assert!(seconds > 0, "{label}");
+                dropped += swept.len() - seconds;
+            }
+        }
+        // Not vacuous: the uniformity test dropped some second edges, kept others.
+        assert!(dropped > 0);
+    }
 }
