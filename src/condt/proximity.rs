@@ -132,7 +132,7 @@ fn per_vertex_parallel(
 /// The sequential pass: one sweep over the triangles in memory order; every finite half-edge
 /// offers its destination to its origin, which keeps the two best offers. The same minima as
 /// walking every ring, without the chain of dependent loads a ring walk is; vertex ids follow
-/// the spatial order, so the sweep stays local.
+/// the insertion order, which is spatial, so the sweep stays local.
 fn sweep_half_edges(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexId; 2]> {
     match uniformity {
         Uniformity::Fixed(u) => {

@@ -1,7 +1,7 @@
 //! Typed 32-bit handles for vertices, half-edges and triangles.
 
-/// A vertex. A [`Triangulation`](crate::Triangulation) numbers vertices in the Hilbert order of
-/// their points, so neighbours in the plane get nearby ids; [`Triangulation::input_index`](crate::Triangulation::input_index) gives the
+/// A vertex. A [`Triangulation`](crate::Triangulation) numbers vertices in its insertion order,
+/// which is spatial; [`Triangulation::input_index`](crate::Triangulation::input_index) gives the
 /// input position a vertex stands for. [`VertexId::INFINITE`] is the vertex at infinity that
 /// closes the mesh into a sphere.
 ///

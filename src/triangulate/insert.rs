@@ -30,14 +30,13 @@ enum Location {
     Vertex(VertexId),
 }
 
-/// The construction state. Vertex ids are positions in `points` (the spatial order); the caller
-/// inserts them in its insertion order.
+/// The construction state. Vertex ids are positions in `points` (the insertion order).
 pub(crate) struct Builder<'a> {
     points: &'a [Point],
     mesh: Mesh,
     flips: Vec<HalfEdgeId>,
     hint: HalfEdgeId,
-    /// `(duplicate, vertex it was merged into)`, in vertex ids.
+    /// `(duplicate, vertex it was merged into)`, in insertion-order ids.
     merged: Vec<(u32, u32)>,
 }
 
@@ -135,6 +134,7 @@ impl<'a> Builder<'a> {
     /// the last hint (which lies in a triangle at `v`). Points that follow a hull point in the
     /// insertion order usually lie outside the hull next to it: a walk from here reaches them
     /// along the hull instead of across the fan of triangles at `v`.
+    #[inline(never)]
     fn ghost_at(&self, v: VertexId) -> HalfEdgeId {
         let t = self.hint.triangle();
         let Some(mut e) = (0..3).map(|k| t.edge(k)).find(|&e| self.origin(e) == v) else {
@@ -335,6 +335,7 @@ impl<'a> Builder<'a> {
     }
 
     /// Flips illegal edges opposite the new vertex `v` until none is left.
+    #[inline(always)]
     fn restore_delaunay(&mut self, v: VertexId) {
         while let Some(e) = self.flips.pop() {
             // `e = u → w` lies in the triangle (u, w, v); across it is (w, u, q).

@@ -92,14 +92,13 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
         });
     }
     let scale = scale::choose_scale(points)?;
-    let orders = order::orders(points);
-    let mut sorted: Vec<Point> = orders
-        .spatial
+    let order = order::insertion_order(points);
+    let mut sorted: Vec<Point> = order
         .iter()
         .map(|&i| scale.apply(points[i as usize]))
         .collect();
 
-    let (mesh, merged, order) = match first_triangle(&sorted, &orders.insertion) {
+    let (mesh, merged, order) = match first_triangle(&sorted) {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
             let (mesh, merged, line_order) = collinear::chain(points);
@@ -110,14 +109,14 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
         }
         Some(start) => {
             let mut builder = Builder::new(&sorted, start);
-            for &v in &orders.insertion {
+            for v in 0..sorted.len() as u32 {
                 if !start.contains(&v) {
                     builder.insert(v);
                 }
             }
             let (mut mesh, merged) = builder.finish();
-            mesh.rebuild_vertex_edges(sorted.len());
-            (mesh, merged, orders.spatial)
+            mesh.rebuild_vertex_edges(order.len());
+            (mesh, merged, order)
         }
     };
     // The scaled copy becomes the stored coordinates: undoing a power of two is exact.
@@ -137,20 +136,19 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     })
 }
 
-/// The first three vertices, in insertion order, that make a proper triangle, counter-clockwise.
-fn first_triangle(points: &[Point], insertion: &[u32]) -> Option<[u32; 3]> {
-    let a = *insertion.first()?;
-    let pa = points[a as usize];
-    let b_at = insertion.iter().position(|&v| points[v as usize] != pa)?;
-    let b = insertion[b_at];
-    let pb = points[b as usize];
-    insertion[b_at + 1..]
-        .iter()
-        .find_map(|&c| match orient2d(pa, pb, points[c as usize]) {
-            Orientation::Ccw => Some([a, b, c]),
-            Orientation::Cw => Some([b, a, c]),
+/// The first three points, in insertion order, that make a proper triangle, counter-clockwise.
+fn first_triangle(points: &[Point]) -> Option<[u32; 3]> {
+    let a = 0;
+    let b = points.iter().position(|&p| p != points[a])?;
+    let (pa, pb) = (points[a], points[b]);
+    points[b + 1..].iter().enumerate().find_map(|(k, &pc)| {
+        let c = (b + 1 + k) as u32;
+        match orient2d(pa, pb, pc) {
+            Orientation::Ccw => Some([a as u32, b as u32, c]),
+            Orientation::Cw => Some([b as u32, a as u32, c]),
             Orientation::Collinear => None,
-        })
+        }
+    })
 }
 
 /// The two maps between vertex ids (positions in `order`) and input positions. A vertex that

@@ -75,18 +75,8 @@ fn mix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// The two orders a triangulation needs.
-pub(crate) struct Orders {
-    /// Input positions in Hilbert order, points sharing a grid cell by their coordinates: the
-    /// vertex ids. Neighbours in the plane get nearby ids, so every later pass over the mesh
-    /// reads memory locally.
-    pub(crate) spatial: Vec<u32>,
-    /// Vertex ids in insertion order: BRIO rounds, ascending (that is, Hilbert order) in each.
-    pub(crate) insertion: Vec<u32>,
-}
-
-/// The spatial order of `points` and the insertion order of its positions.
-pub(crate) fn orders(points: &[Point]) -> Orders {
+/// The order in which to insert `points`, as indices into it.
+pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
     let n = points.len();
     let (mut min_x, mut min_y) = (f64::INFINITY, f64::INFINITY);
     let (mut max_x, mut max_y) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
@@ -98,10 +88,7 @@ pub(crate) fn orders(points: &[Point]) -> Orders {
     }
     let span = (max_x - min_x).max(max_y - min_y);
     if n < 2 || span <= 0.0 {
-        return Orders {
-            spatial: (0..n as u32).collect(),
-            insertion: (0..n as u32).collect(),
-        };
+        return (0..n as u32).collect();
     }
     let cells = ((1u64 << GRID_BITS) - 1) as f64;
     let to_grid = cells / span;
@@ -112,24 +99,18 @@ pub(crate) fn orders(points: &[Point]) -> Orders {
     // At least 2^8 cells per point on average (in whole table steps of four levels): finer cells
     // would not improve locality, and points sharing a cell are ordered by their coordinates.
     let levels = ((size_bits / 2 + 4).next_multiple_of(4)).min(GRID_BITS);
-    let cell_of = |p: &Point| {
+    let key_of = |p: &Point| {
         let qx = (((p.x - min_x) * to_grid) as u32).min(cells as u32);
         let qy = (((p.y - min_y) * to_grid) as u32).min(cells as u32);
-        (qx, qy)
-    };
-    let round_of = |(qx, qy): (u32, u32)| {
         let level =
             (mix(((qx as u64) << 32) | qy as u64).trailing_zeros() / ROUND_GROWTH_BITS).min(rounds);
-        (rounds - level) as usize
+        let round = (rounds - level) as u64;
+        (round << (2 * levels)) | hilbert_index(qx, qy, levels)
     };
-    let key_of = |p: &Point| {
-        let (qx, qy) = cell_of(p);
-        hilbert_index(qx, qy, levels)
-    };
-    let key_bits = 2 * levels;
+    let key_bits = 2 * levels + (u32::BITS - rounds.leading_zeros());
     let index_bits = usize::BITS - (n - 1).leading_zeros();
     let by_position = |&i: &u32, &j: &u32| points[i as usize].lexicographic_cmp(points[j as usize]);
-    let spatial = if key_bits + index_bits <= u64::BITS {
+    if key_bits + index_bits <= u64::BITS {
         // Key and input position packed in one word, radix-sorted on the key bits only.
         let mut packed: Vec<u64> = points
             .iter()
@@ -159,25 +140,7 @@ pub(crate) fn orders(points: &[Point]) -> Orders {
             |run| order[run].sort_unstable_by(by_position),
         );
         order
-    };
-    // A stable counting sort of the ids by round keeps the Hilbert order inside every round.
-    let round_of_id: Vec<u8> = spatial
-        .iter()
-        .map(|&i| round_of(cell_of(&points[i as usize])) as u8)
-        .collect();
-    let mut starts = alloc::vec![0usize; rounds as usize + 2];
-    for &r in &round_of_id {
-        starts[r as usize + 1] += 1;
     }
-    for r in 0..=rounds as usize {
-        starts[r + 1] += starts[r];
-    }
-    let mut insertion = alloc::vec![0u32; n];
-    for (id, &r) in round_of_id.iter().enumerate() {
-        insertion[starts[r as usize]] = id as u32;
-        starts[r as usize] += 1;
-    }
-    Orders { spatial, insertion }
 }
 
 /// Calls `sort` on every range of two or more consecutive items with equal `key`: points sharing
@@ -310,44 +273,18 @@ mod tests {
     }
 
     #[test]
-    fn orders_are_permutations_independent_of_input_order() {
+    fn order_is_a_permutation_independent_of_input_order() {
         let pts: Vec<Point> = (0..200)
             .map(|i| Point::new((i * 37 % 101) as f64, (i * 53 % 97) as f64))
             .collect();
-        let orders = orders(&pts);
-        for order in [&orders.spatial, &orders.insertion] {
-            let mut seen = order.clone();
-            seen.sort_unstable();
-            assert!(seen.iter().enumerate().all(|(i, &j)| i as u32 == j));
-        }
+        let order = insertion_order(&pts);
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert!(seen.iter().enumerate().all(|(i, &j)| i as u32 == j));
         let reversed: Vec<Point> = pts.iter().rev().copied().collect();
-        let orders_rev = super::orders(&reversed);
-        let a: Vec<Point> = orders.spatial.iter().map(|&i| pts[i as usize]).collect();
-        let b: Vec<Point> = orders_rev
-            .spatial
-            .iter()
-            .map(|&i| reversed[i as usize])
-            .collect();
+        let order_rev = insertion_order(&reversed);
+        let a: Vec<Point> = order.iter().map(|&i| pts[i as usize]).collect();
+        let b: Vec<Point> = order_rev.iter().map(|&i| reversed[i as usize]).collect();
         assert_eq!(a, b);
-        assert_eq!(orders.insertion, orders_rev.insertion);
-    }
-
-    #[test]
-    fn insertion_runs_in_growing_rounds_each_in_spatial_order() {
-        let pts: Vec<Point> = (0..5000)
-            .map(|i| Point::new((mix(i) >> 11) as f64, (mix(i + 7) >> 11) as f64))
-            .collect();
-        let orders = orders(&pts);
-        // Ascending runs are the rounds: few of them, each about four times the one before.
-        let mut runs = vec![1usize];
-        for w in orders.insertion.windows(2) {
-            if w[1] > w[0] {
-                *runs.last_mut().unwrap() += 1;
-            } else {
-                runs.push(1);
-            }
-        }
-        assert!(runs.len() <= 8, "{runs:?}");
-        assert!(*runs.last().unwrap() > pts.len() / 2, "{runs:?}");
     }
 }
