@@ -134,7 +134,6 @@ impl<'a> Builder<'a> {
     /// the last hint (which lies in a triangle at `v`). Points that follow a hull point in the
     /// insertion order usually lie outside the hull next to it: a walk from here reaches them
     /// along the hull instead of across the fan of triangles at `v`.
-    #[inline(never)]
     fn ghost_at(&self, v: VertexId) -> HalfEdgeId {
         let t = self.hint.triangle();
         let Some(mut e) = (0..3).map(|k| t.edge(k)).find(|&e| self.origin(e) == v) else {
@@ -335,7 +334,6 @@ impl<'a> Builder<'a> {
     }
 
     /// Flips illegal edges opposite the new vertex `v` until none is left.
-    #[inline(always)]
     fn restore_delaunay(&mut self, v: VertexId) {
         while let Some(e) = self.flips.pop() {
             // `e = u → w` lies in the triangle (u, w, v); across it is (w, u, q).
