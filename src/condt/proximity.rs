@@ -11,8 +11,9 @@
 //!
 //! Two passes compute the same function: the sequential one sweeps the half-edges once, keeping
 //! the two best candidates of each origin (no chain of dependent loads); the parallel one walks
-//! each vertex's ring on rayon. Both order candidates by (squared length, neighbour id), a total
-//! order, so they agree exactly; the tests compare them on every input.
+//! each vertex's ring on rayon. Both keep candidates with the same update (`TwoBest`, ordered by
+//! squared length, then neighbour id: a total order) and decide with the same test (`keep`), so
+//! they agree exactly; the tests compare them.
 
 use super::Uniformity;
 use crate::graph::{ordered, Edge};
@@ -20,40 +21,32 @@ use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
-/// The (at most two) neighbours vertex `v` keeps. No allocation.
+/// The (at most two) neighbours vertex `v` keeps, from a walk of its ring. No allocation.
 fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [VertexId; 2] {
-    let none = VertexId::INFINITE;
     let p = tri.point(v);
-    // (squared length, neighbour): the shortest and the second shortest.
-    let (mut first, mut second) = ((f64::INFINITY, none), (f64::INFINITY, none));
-    let (mut length_sum, mut count) = (0.0, 0usize);
+    let mut best = TwoBest::EMPTY;
+    let mut ring = (0.0, 0u32);
     for w in tri.neighbors(v) {
-        let candidate = (p.dist2(tri.point(w)), w);
+        let length2 = p.dist2(tri.point(w));
         if matches!(uniformity, Uniformity::Adaptive) {
-            length_sum += libm::sqrt(candidate.0);
-            count += 1;
+            ring.0 += libm::sqrt(length2);
+            ring.1 += 1;
         }
-        if shorter(candidate, first) {
-            second = first;
-            first = candidate;
-        } else if shorter(candidate, second) {
-            second = candidate;
-        }
+        best.offer(length2, w);
     }
-    if second.1 == none {
-        return [first.1, none];
-    }
-    let keep_second = match uniformity {
-        Uniformity::Fixed(u) => libm::sqrt(second.0) < u * libm::sqrt(first.0),
-        Uniformity::Adaptive => libm::sqrt(second.0) < length_sum / count as f64,
-    };
-    [first.1, if keep_second { second.1 } else { none }]
+    keep(uniformity, &best, ring)
 }
 
-/// Lexicographic (length, id): a total order, so ties never depend on the ring's start.
-#[inline]
-fn shorter(a: (f64, VertexId), b: (f64, VertexId)) -> bool {
-    a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
+/// Algorithm 1, line 6: the shortest edge always, the second when the uniformity test passes.
+/// `ring` is the sum of the ring's edge lengths and their count (read by the adaptive test only).
+fn keep(uniformity: Uniformity, best: &TwoBest, (sum, count): (f64, u32)) -> [VertexId; 2] {
+    let ((l1, w1), (l2, w2)) = (best.get(0), best.get(1));
+    let keep_second = !w2.is_infinite()
+        && match uniformity {
+            Uniformity::Fixed(u) => libm::sqrt(l2) < u * libm::sqrt(l1),
+            Uniformity::Adaptive => libm::sqrt(l2) < sum / count as f64,
+        };
+    [w1, if keep_second { w2 } else { VertexId::INFINITE }]
 }
 
 /// Fewest points for which the parallel pass runs: below it, waking rayon's workers costs more
@@ -134,35 +127,20 @@ fn per_vertex_parallel(
 /// walking every ring, without the chain of dependent loads a ring walk is; vertex ids follow
 /// the insertion order, which is spatial, so the sweep stays local.
 fn sweep_half_edges(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexId; 2]> {
-    match uniformity {
-        Uniformity::Fixed(u) => {
-            let best = two_best_offers(tri, |_, _| {});
-            best.iter()
-                .map(|two| {
-                    let ((l1, w1), (l2, w2)) = (two.get(0), two.get(1));
-                    let keep = !w2.is_infinite() && libm::sqrt(l2) < u * libm::sqrt(l1);
-                    [w1, if keep { w2 } else { VertexId::INFINITE }]
-                })
-                .collect()
+    let adaptive = matches!(uniformity, Uniformity::Adaptive);
+    // Sum of ring edge lengths and ring size per vertex, for the adaptive test only.
+    let mut rings = alloc::vec![(0.0f64, 0u32); if adaptive { tri.num_input_points() } else { 0 }];
+    let best = two_best_offers(tri, |u, length2| {
+        if adaptive {
+            let ring = &mut rings[u.index()];
+            ring.0 += libm::sqrt(length2);
+            ring.1 += 1;
         }
-        Uniformity::Adaptive => {
-            // Sum of ring edge lengths and ring size per vertex.
-            let mut totals = alloc::vec![(0.0f64, 0u32); tri.num_input_points()];
-            let best = two_best_offers(tri, |u, length2| {
-                let t = &mut totals[u.index()];
-                t.0 += libm::sqrt(length2);
-                t.1 += 1;
-            });
-            best.iter()
-                .zip(&totals)
-                .map(|(two, &(sum, count))| {
-                    let ((_, w1), (l2, w2)) = (two.get(0), two.get(1));
-                    let keep = !w2.is_infinite() && libm::sqrt(l2) < sum / count as f64;
-                    [w1, if keep { w2 } else { VertexId::INFINITE }]
-                })
-                .collect()
-        }
-    }
+    });
+    best.iter()
+        .enumerate()
+        .map(|(k, two)| keep(uniformity, two, rings.get(k).copied().unwrap_or_default()))
+        .collect()
 }
 
 /// The two best offers a vertex has had: `(squared length as bits, neighbour)`, best first.
@@ -180,7 +158,8 @@ impl TwoBest {
         ids: [u32::MAX; 2],
     };
 
-    /// Keeps the two smallest of the two held and `(length, id)` in the order of [`shorter`].
+    /// Keeps the two smallest of the two held and `(length, id)`, ordered by length, then id
+    /// (a total order, so ties never depend on where a ring walk starts).
     #[inline]
     fn offer(&mut self, length2: f64, w: VertexId) {
         let (l, w) = (length2.to_bits(), w.index() as u32);
