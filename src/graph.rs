@@ -57,10 +57,77 @@ impl Adjacency {
     pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {
         &self.neighbors[self.offsets[v.index()] as usize..self.offsets[v.index() + 1] as usize]
     }
+}
+
+/// The neighbours of every vertex of a graph that is a union of curves: almost every vertex has
+/// at most two. Those two are stored inline, so following a curve costs one read per step (a
+/// compressed adjacency costs two dependent ones); a full [`Adjacency`] is built only when some
+/// vertex has three or more.
+pub(crate) struct CurveGraph {
+    degree: Vec<u32>,
+    first_two: Vec<[VertexId; 2]>,
+    branching: Option<Adjacency>,
+}
+
+impl CurveGraph {
+    /// `edges` as for [`Adjacency::new`]. Neighbours come in the order the edges are listed.
+    pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
+        let mut degree = vec![0u32; vertex_count];
+        let mut first_two = vec![[VertexId::INFINITE; 2]; vertex_count];
+        let mut branches = false;
+        for &[a, b] in edges {
+            for (v, w) in [(a, b), (b, a)] {
+                let d = degree[v.index()];
+                degree[v.index()] = d + 1;
+                // Whether the slot fills is a coin toss per edge: selected, not branched on.
+                let slots = &mut first_two[v.index()];
+                let k = d.min(1) as usize;
+                slots[k] = if d < 2 { w } else { slots[k] };
+                branches |= d >= 2;
+            }
+        }
+        let branching = branches.then(|| Adjacency::new(vertex_count, edges));
+        CurveGraph {
+            degree,
+            first_two,
+            branching,
+        }
+    }
+
+    pub(crate) fn vertex_count(&self) -> usize {
+        self.degree.len()
+    }
 
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
-        (self.offsets[v.index() + 1] - self.offsets[v.index()]) as usize
+        self.degree[v.index()] as usize
+    }
+
+    /// The `k`-th neighbour of `v`, `k < degree(v)`.
+    #[inline]
+    pub(crate) fn neighbor(&self, v: VertexId, k: usize) -> VertexId {
+        match &self.branching {
+            Some(all) if self.degree(v) > 2 => all.incident(v)[k].0,
+            _ => self.first_two[v.index()][k],
+        }
+    }
+
+    /// The first two neighbours of `v` ([`VertexId::INFINITE`] where it has fewer); all of
+    /// them when `degree(v) <= 2`.
+    #[inline]
+    pub(crate) fn first_two(&self, v: VertexId) -> [VertexId; 2] {
+        self.first_two[v.index()]
+    }
+
+    /// For `v` of degree two, the neighbour that is not `from`: the next step along a curve.
+    #[inline]
+    pub(crate) fn onward(&self, v: VertexId, from: VertexId) -> VertexId {
+        let [x, y] = self.first_two[v.index()];
+        if x == from {
+            y
+        } else {
+            x
+        }
     }
 }
 

@@ -32,9 +32,10 @@ mod proximity;
 pub use crate::graph::Edge;
 pub use nonmanifold::Repair;
 
-use crate::curve::{assemble, Curve};
+use crate::curve::{curves_of, Curve};
 use crate::error::Error;
 use crate::geometry::Point;
+use crate::graph::CurveGraph;
 use crate::mesh::VertexId;
 use crate::triangulate::{triangulate, Triangulation};
 use alloc::vec::Vec;
@@ -273,7 +274,8 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
         &filtered
     };
     let n = tri.num_input_points();
-    let mut curves = assemble(n, last);
+    let graph = CurveGraph::new(n, last);
+    let mut curves = curves_of(&graph);
     for curve in curves.iter_mut() {
         for v in curve.vertices.iter_mut() {
             *v = tri.input_index(VertexId::new(*v)) as u32;
@@ -281,12 +283,49 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
         canonical_direction(curve);
     }
     curves.sort_by(|a, b| a.vertices.cmp(&b.vertices));
-    let vertex_degree = crate::graph::degrees(n, last);
-    let degrees: Vec<u32> = (0..n)
-        .map(|i| vertex_degree[tri.vertex_of_input(i).index()])
-        .collect();
-    let unused = (0..n).filter(|&i| degrees[i] == 0).collect();
-    let edges = to_input_edges(&tri, last);
+    // One pass over the input positions gives the degrees, the unused points and the final
+    // edges already sorted: an edge is listed by its smaller input position. For the common
+    // vertex of degree <= 2 both candidates are written and the count advances only past those
+    // that belong (whether they do is a coin toss, so it is not branched on).
+    let mut degrees = Vec::with_capacity(n);
+    let mut unused = Vec::new();
+    let mut edges: Vec<InputEdge> = alloc::vec![[0, 0]; last.len() + 2];
+    let mut count = 0;
+    let input_of = |w: VertexId| {
+        if w.is_infinite() {
+            0
+        } else {
+            tri.input_index(w) as u32
+        }
+    };
+    for i in 0..n {
+        let v = tri.vertex_of_input(i);
+        let degree = graph.degree(v);
+        degrees.push(degree as u32);
+        let i = i as u32;
+        if degree == 0 {
+            unused.push(i as usize);
+        } else if degree <= 2 {
+            let [x, y] = graph.first_two(v).map(input_of);
+            // A duplicate input point lists nothing: its edges are under the first copy.
+            let listing = input_of(v) == i;
+            for j in [x.min(y), x.max(y)] {
+                edges[count] = [i, j];
+                count += usize::from(listing & (j > i));
+            }
+        } else if input_of(v) == i {
+            let first = count;
+            for k in 0..degree {
+                let j = input_of(graph.neighbor(v, k));
+                if j > i {
+                    edges[count] = [i, j];
+                    count += 1;
+                }
+            }
+            edges[first..count].sort_unstable();
+        }
+    }
+    edges.truncate(count);
     times.curves = clock.lap();
     Reconstruction {
         params: *params,

@@ -69,21 +69,22 @@ pub(crate) fn proximity_graph(
 }
 
 /// Every kept edge once. An edge both ends kept is listed by its smaller end only, so no sort is
-/// needed to drop repeats.
+/// needed to drop repeats. Every candidate is written and the count advances only past those that
+/// belong: whether one does is unpredictable, so it is not branched on.
 fn union_of_kept(kept: &[[VertexId; 2]]) -> Vec<Edge> {
-    let mut edges = Vec::with_capacity(kept.len() + kept.len() / 2);
+    let none = [VertexId::INFINITE; 2];
+    let mut edges = alloc::vec![none; 2 * kept.len() + 1];
+    let mut count = 0;
     for (i, pair) in kept.iter().enumerate() {
         let v = VertexId::new(i as u32);
         for &w in pair {
-            if w.is_infinite() {
-                continue;
-            }
-            let listed_by_w = w < v && kept[w.index()].contains(&v);
-            if !listed_by_w {
-                edges.push(ordered(v, w));
-            }
+            let partner = kept.get(w.index()).unwrap_or(&none);
+            let listed_by_w = (w < v) & ((partner[0] == v) | (partner[1] == v));
+            edges[count] = ordered(v, w);
+            count += usize::from(!w.is_infinite() & !listed_by_w);
         }
     }
+    edges.truncate(count);
     edges
 }
 
