@@ -357,3 +357,57 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
     assert_eq!(r.curves.iter().filter(|c| c.closed).count(), 4);
     assert_eq!(edges(&r), truth(&s));
 }
+
+/// Noisy circles with outliers, repaired by the paper's rule, in both stage orders: each stage's
+/// graph is a subset of its input's, the final edges are the last stage's, and a stage that
+/// changes nothing reports its input unchanged.
+#[test]
+fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
+    let shapes = [
+        Shape::circle(origin(), 3.0),
+        Shape::circle(Point::new(8.0, 1.0), 2.0),
+    ];
+    let sampling = Sampling {
+        outlier_fraction: 0.1,
+        outlier_clearance: 1.0,
+        noise: 0.02,
+        seed: 1,
+        ..Sampling::new(0.15)
+    };
+    let s = sample(&shapes, &sampling);
+    let subset = |small: &[[u32; 2]], big: &[[u32; 2]]| small.iter().all(|e| big.contains(e));
+    for outliers_first in [false, true] {
+        let r = run(
+            &s.points,
+            Params {
+                outliers_first,
+                ..Params::default()
+            },
+        );
+        let (proximity, repaired, filtered) = (r.proximity(), r.repaired(), r.filtered());
+        assert!(
+            r.outlier_filter_applied,
+            "outliers_first = {outliers_first}"
+        );
+        if outliers_first {
+            assert!(subset(&filtered, &proximity) && filtered.len() < proximity.len());
+            assert!(subset(&repaired, &filtered));
+            assert_eq!(r.edges, repaired);
+        } else {
+            assert!(subset(&repaired, &proximity) && repaired.len() < proximity.len());
+            assert!(subset(&filtered, &repaired) && filtered.len() < repaired.len());
+            assert_eq!(r.edges, filtered);
+        }
+    }
+    let unrepaired = run(
+        &s.points,
+        Params {
+            repair: Repair::Off,
+            outlier_factor: None,
+            ..Params::default()
+        },
+    );
+    assert_eq!(unrepaired.repaired(), unrepaired.proximity());
+    assert_eq!(unrepaired.filtered(), unrepaired.proximity());
+    assert_eq!(unrepaired.edges, unrepaired.proximity());
+}

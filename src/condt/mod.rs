@@ -124,9 +124,7 @@ pub struct Reconstruction {
     pub triangulation: Triangulation,
     /// The intermediate graphs in vertex ids; [`Reconstruction::proximity`] and its siblings
     /// translate them to input positions on demand.
-    proximity: Vec<Edge>,
-    repaired: Vec<Edge>,
-    filtered: Vec<Edge>,
+    stages: Stages,
     /// The final edges (the output of whichever of the two ran last), sorted.
     pub edges: Vec<InputEdge>,
     /// Whether stage 3 found an outlier and filtered.
@@ -144,23 +142,66 @@ pub struct Reconstruction {
 impl Reconstruction {
     /// Stage 1: the ConDT proximity graph, sorted, in input positions.
     pub fn proximity(&self) -> Vec<InputEdge> {
-        to_input_edges(&self.triangulation, &self.proximity)
+        to_input_edges(&self.triangulation, self.stages.proximity())
     }
 
     /// The output of the non-manifold repair, sorted, in input positions.
     pub fn repaired(&self) -> Vec<InputEdge> {
-        to_input_edges(&self.triangulation, &self.repaired)
+        to_input_edges(&self.triangulation, self.stages.repaired())
     }
 
     /// The output of the outlier removal, sorted, in input positions.
     pub fn filtered(&self) -> Vec<InputEdge> {
-        to_input_edges(&self.triangulation, &self.filtered)
+        to_input_edges(&self.triangulation, self.stages.filtered())
     }
 
     /// The coordinates of input position `index` (as triangulated; duplicates coincide anyway).
     pub fn point(&self, index: usize) -> Point {
         self.triangulation
             .point(self.triangulation.vertex_of_input(index))
+    }
+}
+
+/// The edge lists of stages 1 to 3, in vertex ids. A stage that changed nothing (no vertex to
+/// repair, no outlier) stores no copy of its input.
+#[derive(Clone, Debug)]
+struct Stages {
+    outliers_first: bool,
+    proximity: Vec<Edge>,
+    repaired: Option<Vec<Edge>>,
+    filtered: Option<Vec<Edge>>,
+}
+
+impl Stages {
+    fn proximity(&self) -> &[Edge] {
+        &self.proximity
+    }
+
+    fn repaired(&self) -> &[Edge] {
+        let input = if self.outliers_first {
+            self.filtered()
+        } else {
+            self.proximity()
+        };
+        self.repaired.as_deref().unwrap_or(input)
+    }
+
+    fn filtered(&self) -> &[Edge] {
+        let input = if self.outliers_first {
+            self.proximity()
+        } else {
+            self.repaired()
+        };
+        self.filtered.as_deref().unwrap_or(input)
+    }
+
+    /// The final graph: the output of whichever of stages 2 and 3 ran last.
+    fn last(&self) -> &[Edge] {
+        if self.outliers_first {
+            self.repaired()
+        } else {
+            self.filtered()
+        }
     }
 }
 
@@ -247,7 +288,7 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
         let out = match params.outlier_factor {
             Some(factor) => outliers::remove_outliers(&tri, input, factor),
             None => outliers::Filtered {
-                edges: input.to_vec(),
+                edges: None,
                 applied: false,
             },
         };
@@ -256,23 +297,22 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
     };
     let (repaired, filtered) = if params.outliers_first {
         let filtered = run_outliers(&proximity, &mut times, &mut clock);
-        (
-            run_repair(&filtered.edges, &mut times, &mut clock),
-            filtered,
-        )
+        let input = filtered.edges.as_deref().unwrap_or(&proximity);
+        (run_repair(input, &mut times, &mut clock), filtered)
     } else {
         let repaired = run_repair(&proximity, &mut times, &mut clock);
-        let filtered = run_outliers(&repaired, &mut times, &mut clock);
+        let input = repaired.as_deref().unwrap_or(&proximity);
+        let filtered = run_outliers(input, &mut times, &mut clock);
         (repaired, filtered)
     };
     let outlier_filter_applied = filtered.applied;
-    let filtered = filtered.edges;
-    // The final graph is whichever of the two stages ran last.
-    let last: &[Edge] = if params.outliers_first {
-        &repaired
-    } else {
-        &filtered
+    let stages = Stages {
+        outliers_first: params.outliers_first,
+        proximity,
+        repaired,
+        filtered: filtered.edges,
     };
+    let last = stages.last();
     let n = tri.num_input_points();
     let graph = CurveGraph::new(n, last);
     let mut curves = curves_of(&graph);
@@ -330,9 +370,7 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
     Reconstruction {
         params: *params,
         triangulation: tri,
-        proximity,
-        repaired,
-        filtered,
+        stages,
         edges,
         outlier_filter_applied,
         degrees,

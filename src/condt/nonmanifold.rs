@@ -101,12 +101,16 @@ fn crossing_choice(
 /// Applies `repair` to the proximity graph `edges` (each edge once, any order). The result lists
 /// each edge once: first the edges between manifold vertices in their input order, then the
 /// selections of the non-manifold vertices in increasing vertex id.
-pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec<Edge> {
+/// The repaired edge list, or `None` when there is nothing to repair (the input stands).
+pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Option<Vec<Edge>> {
+    if repair == Repair::Off {
+        return None;
+    }
     let vertex_count = tri.num_input_points();
     let degree = degrees(vertex_count, edges);
     let manifold = |v: VertexId| degree[v.index()] <= 2;
-    if repair == Repair::Off || degree.iter().all(|&d| d <= 2) {
-        return edges.to_vec();
+    if degree.iter().all(|&d| d <= 2) {
+        return None;
     }
     let graph = Adjacency::new(vertex_count, edges);
     // Lines 6–12: every non-manifold vertex selects its edges (up to four for a crossing).
@@ -156,7 +160,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Vec
             }
         }
     }
-    kept
+    Some(kept)
 }
 
 #[cfg(test)]
@@ -176,7 +180,7 @@ mod tests {
 
     /// `repair`, sorted for comparison.
     fn repair(tri: &Triangulation, edges: &[Edge], mode: Repair) -> Vec<Edge> {
-        let mut out = super::repair(tri, edges, mode);
+        let mut out = super::repair(tri, edges, mode).unwrap_or_else(|| edges.to_vec());
         out.sort_unstable();
         out
     }

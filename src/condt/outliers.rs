@@ -10,63 +10,66 @@
 //! plain lengths with `2 T`, mixing units; `docs/condt.md` (note 5) gives the readings tried and
 //! the evidence.
 
-use crate::graph::{degrees, Edge};
+use crate::graph::Edge;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
 /// The result of the outlier stage.
 pub(crate) struct Filtered {
-    pub(crate) edges: Vec<Edge>,
+    /// The edges kept, or `None` when the filter did not apply (the input stands).
+    pub(crate) edges: Option<Vec<Edge>>,
     pub(crate) applied: bool,
 }
 
 pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) -> Filtered {
+    let unchanged = Filtered {
+        edges: None,
+        applied: false,
+    };
     let lengths: Vec<f64> = edges
         .iter()
         .map(|&[a, b]| tri.point(a).dist2(tri.point(b)))
         .collect();
     if lengths.is_empty() {
-        return Filtered {
-            edges: Vec::new(),
-            applied: false,
-        };
+        return unchanged;
     }
-    // The quartiles of the sorted list, without sorting it: two selections on a scratch copy.
+    // The quartiles of the sorted list, without sorting it: two selections on a scratch copy,
+    // the second only among the values the first put below Q3.
     let mut scratch = lengths.clone();
     let n = scratch.len();
-    let q3 = *scratch
-        .select_nth_unstable_by((3 * n / 4).min(n - 1), f64::total_cmp)
-        .1;
-    let q1 = *scratch.select_nth_unstable_by(n / 4, f64::total_cmp).1;
+    let upper = (3 * n / 4).min(n - 1);
+    let q3 = *scratch.select_nth_unstable_by(upper, f64::total_cmp).1;
+    let q1 = if n / 4 < upper {
+        *scratch[..upper]
+            .select_nth_unstable_by(n / 4, f64::total_cmp)
+            .1
+    } else {
+        q3 // a single edge
+    };
     let threshold = q3 + factor * (q3 - q1);
-    // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long edges.
-    // Counted as "edges within the bound" per vertex: an outlier has edges but none within.
-    let vertex_count = tri.num_input_points();
-    let degree = degrees(vertex_count, edges);
-    let mut within = vec![0u32; vertex_count];
+    // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long
+    // edges. Per vertex, bit 0 records an edge and bit 1 an edge within the bound.
+    let mut seen = vec![0u8; tri.num_input_points()];
     for (&[a, b], &length2) in edges.iter().zip(&lengths) {
-        if length2 <= 4.0 * threshold {
-            within[a.index()] += 1;
-            within[b.index()] += 1;
-        }
+        let mark = 1 | (u8::from(length2 <= 4.0 * threshold) << 1);
+        seen[a.index()] |= mark;
+        seen[b.index()] |= mark;
     }
-    let applied = (0..vertex_count).any(|v| degree[v] > 0 && within[v] == 0);
-    if !applied {
-        return Filtered {
-            edges: edges.to_vec(),
-            applied,
-        };
+    if !seen.contains(&1) {
+        return unchanged;
     }
     // Not above T: with a perfectly uniform sample IQR = 0 and every edge equals T exactly.
     Filtered {
-        edges: edges
-            .iter()
-            .zip(&lengths)
-            .filter(|&(_, &length2)| length2 <= threshold)
-            .map(|(&edge, _)| edge)
-            .collect(),
-        applied,
+        edges: Some(
+            edges
+                .iter()
+                .zip(&lengths)
+                .filter(|&(_, &length2)| length2 <= threshold)
+                .map(|(&edge, _)| edge)
+                .collect(),
+        ),
+        applied: true,
     }
 }
 
@@ -102,10 +105,8 @@ mod tests {
         let filtered = remove_outliers(&tri, &edges, 1.7);
         assert!(filtered.applied, "|e| = 2.1 > 2: an outlier");
         // Every unit edge survives (it equals T), the two long ones go.
-        assert_eq!(filtered.edges.len(), 10);
-        assert!(filtered
-            .edges
-            .iter()
-            .all(|e| !e.contains(&tri.vertex_of_input(11))));
+        let kept = filtered.edges.expect("applied");
+        assert_eq!(kept.len(), 10);
+        assert!(kept.iter().all(|e| !e.contains(&tri.vertex_of_input(11))));
     }
 }
