@@ -344,6 +344,7 @@ fn tiny_inputs_do_not_panic() {
     assert_eq!(r.edges.len(), 9, "a dense line is one open curve");
 }
 
+#[cfg(feature = "parallel")]
 #[test]
 fn parallel_equals_sequential_above_the_parallel_threshold() {
     // Four circles, over 65,536 points in all: the size from which the rayon pass runs.
@@ -356,6 +357,33 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
     let r = run(&s.points, Params::default());
     assert_eq!(r.curves.iter().filter(|c| c.closed).count(), 4);
     assert_eq!(edges(&r), truth(&s));
+    // Noise and outliers give branch points and unused points; both uniformity tests; the
+    // sweep cut into as many triangle ranges as there are workers (two to four).
+    let noisy = sample(
+        &circles,
+        &Sampling {
+            noise: 1e-4,
+            outlier_fraction: 0.02,
+            ..Sampling::new(3e-4)
+        },
+    );
+    let mut branch_points = 0;
+    for uniformity in [Uniformity::Fixed(2.75), Uniformity::Adaptive] {
+        for workers in 2..=4 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(workers)
+                .build()
+                .unwrap();
+            let params = Params {
+                uniformity,
+                ..Params::default()
+            };
+            let r = pool.install(|| run(&noisy.points, params));
+            branch_points += r.degrees.iter().filter(|&&d| d > 2).count();
+            assert!(!r.unused.is_empty());
+        }
+    }
+    assert!(branch_points > 0);
 }
 
 /// Noisy circles with outliers, repaired by the paper's rule, in both stage orders: each stage's

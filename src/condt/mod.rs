@@ -315,7 +315,53 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
     let last = stages.last();
     let n = tri.num_input_points();
     let graph = CurveGraph::new(n, last);
-    let mut curves = curves_of(&graph);
+    let in_parallel = params.parallel && n >= PARALLEL_FROM;
+    let (curves, tally) = both(
+        in_parallel,
+        || curves_in_input_positions(&tri, &graph),
+        || tally(&tri, &graph, last.len()),
+    );
+    times.curves = clock.lap();
+    Reconstruction {
+        params: *params,
+        triangulation: tri,
+        stages,
+        edges: tally.edges,
+        outlier_filter_applied,
+        degrees: tally.degrees,
+        curves,
+        unused: tally.unused,
+        times,
+    }
+}
+
+/// Fewest points for which stages split their work over rayon's workers: below it, waking them
+/// costs more than they save (10k points on a curve: proximity took 1.07 ms on two cores
+/// against 0.76 ms in one sweep).
+pub(crate) const PARALLEL_FROM: usize = 1 << 16;
+
+/// `(a(), b())`, run at once on rayon when `parallel`.
+#[cfg(feature = "parallel")]
+fn both<A: Send, B: Send>(
+    parallel: bool,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    if parallel {
+        rayon::join(a, b)
+    } else {
+        (a(), b())
+    }
+}
+
+#[cfg(not(feature = "parallel"))]
+fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
+    (a(), b())
+}
+
+/// Stage 4's curves, in input positions, each in its canonical direction, sorted.
+fn curves_in_input_positions(tri: &Triangulation, graph: &CurveGraph) -> Vec<Curve> {
+    let mut curves = curves_of(graph);
     for curve in curves.iter_mut() {
         for v in curve.vertices.iter_mut() {
             *v = tri.input_index(VertexId::new(*v)) as u32;
@@ -323,13 +369,25 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
         canonical_direction(curve);
     }
     curves.sort_by(|a, b| a.vertices.cmp(&b.vertices));
-    // One pass over the input positions gives the degrees, the unused points and the final
-    // edges already sorted: an edge is listed by its smaller input position. For the common
-    // vertex of degree <= 2 both candidates are written and the count advances only past those
-    // that belong (whether they do is a coin toss, so it is not branched on).
+    curves
+}
+
+/// The final graph seen from the input positions.
+struct Tally {
+    degrees: Vec<u32>,
+    unused: Vec<usize>,
+    edges: Vec<InputEdge>,
+}
+
+/// One pass over the input positions gives the degrees, the unused points and the final edges
+/// already sorted: an edge is listed by its smaller input position. For the common vertex of
+/// degree <= 2 both candidates are written and the count advances only past those that belong
+/// (whether they do is a coin toss, so it is not branched on).
+fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
+    let n = tri.num_input_points();
     let mut degrees = Vec::with_capacity(n);
     let mut unused = Vec::new();
-    let mut edges: Vec<InputEdge> = alloc::vec![[0, 0]; last.len() + 2];
+    let mut edges: Vec<InputEdge> = alloc::vec![[0, 0]; edge_count + 2];
     let mut count = 0;
     let input_of = |w: VertexId| {
         if w.is_infinite() {
@@ -338,8 +396,7 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
             tri.input_index(w) as u32
         }
     };
-    for i in 0..n {
-        let v = tri.vertex_of_input(i);
+    for (i, &v) in tri.input_to_vertex().iter().enumerate() {
         let degree = graph.degree(v);
         degrees.push(degree as u32);
         let i = i as u32;
@@ -366,16 +423,9 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
         }
     }
     edges.truncate(count);
-    times.curves = clock.lap();
-    Reconstruction {
-        params: *params,
-        triangulation: tri,
-        stages,
-        edges,
-        outlier_filter_applied,
+    Tally {
         degrees,
-        curves,
         unused,
-        times,
+        edges,
     }
 }

@@ -9,13 +9,17 @@
 //! - adaptive (section 4.1): `|e2| < u_p |e1|` with `u_p = mean |e| / |e1|` over the ring, that is
 //!   `|e2| < mean |e|`.
 //!
-//! Two passes compute the same function: the sequential one sweeps the half-edges once, keeping
-//! the two best candidates of each origin (no chain of dependent loads); the parallel one walks
-//! each vertex's ring on rayon. Both keep candidates with the same update (`TwoBest`, ordered by
-//! squared length, then neighbour id: a total order) and decide with the same test (`keep`), so
-//! they agree exactly; the tests compare them.
+//! Two passes compute this. With a fixed `u` the triangles are swept in memory order and every
+//! half-edge offers its destination to its origin, which keeps the two best offers (no chain of
+//! dependent loads). In parallel the triangles are cut into a few ranges swept at once, and each
+//! vertex merges its best offers from all ranges. The adaptive test needs the sum of the ring's
+//! lengths, and a floating-point sum depends on its order; so that mode walks each vertex's ring
+//! from its first half-edge, the same order whether the walks run one after the other or on
+//! rayon. Both passes keep candidates with the same update (`TwoBest`, ordered by squared length,
+//! then neighbour id: a total order, so the two best of a set do not depend on the order of the
+//! offers) and decide with the same test (`keep`); the tests compare them.
 
-use super::Uniformity;
+use super::{Uniformity, PARALLEL_FROM};
 use crate::graph::{ordered, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
@@ -49,21 +53,33 @@ fn keep(uniformity: Uniformity, best: &TwoBest, (sum, count): (f64, u32)) -> [Ve
     [w1, if keep_second { w2 } else { VertexId::INFINITE }]
 }
 
-/// Fewest points for which the parallel pass runs: below it, waking rayon's workers costs more
-/// than they save (10k points on a curve: 1.07 ms on two cores against 0.76 ms for the sweep).
-const PARALLEL_FROM: usize = 1 << 16;
+/// Most triangle ranges swept at once. Each range fills its own array of offers (24 bytes per
+/// vertex) that the merge reads back, so more ranges cost memory traffic that more threads do not
+/// repay.
+const MAX_SWEEP_RANGES: usize = 4;
 
 /// The proximity graph: the union over all vertices of their kept edges, each edge once, in a
-/// deterministic order (by the vertex that kept it; not sorted).
+/// deterministic order (by the vertex that kept it; not sorted). The same with or without
+/// `parallel`.
 pub(crate) fn proximity_graph(
     tri: &Triangulation,
     uniformity: Uniformity,
     parallel: bool,
 ) -> Vec<Edge> {
-    let kept = if parallel && tri.num_input_points() >= PARALLEL_FROM {
-        ring_walks_in_parallel(tri, uniformity)
-    } else {
-        sweep_half_edges(tri, uniformity)
+    let parallel = parallel && tri.num_input_points() >= PARALLEL_FROM;
+    let kept = match uniformity {
+        Uniformity::Fixed(_) => {
+            let ranges = if parallel {
+                worker_count().min(MAX_SWEEP_RANGES)
+            } else {
+                1
+            };
+            let best = two_best_offers(tri, ranges);
+            per_vertex(parallel, best.len(), &|v| {
+                keep(uniformity, &best[v], (0.0, 0))
+            })
+        }
+        Uniformity::Adaptive => ring_walks(tri, uniformity, parallel),
     };
     union_of_kept(&kept)
 }
@@ -88,8 +104,8 @@ fn union_of_kept(kept: &[[VertexId; 2]]) -> Vec<Edge> {
     edges
 }
 
-/// The parallel pass: every vertex walks its own ring on rayon.
-fn ring_walks_in_parallel(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexId; 2]> {
+/// Every vertex walks its own ring, on rayon when `parallel`.
+fn ring_walks(tri: &Triangulation, uniformity: Uniformity, parallel: bool) -> Vec<[VertexId; 2]> {
     let choose = |i: usize| {
         let v = VertexId::new(i as u32);
         if tri.is_vertex(v) {
@@ -98,15 +114,20 @@ fn ring_walks_in_parallel(tri: &Triangulation, uniformity: Uniformity) -> Vec<[V
             [VertexId::INFINITE; 2]
         }
     };
-    per_vertex_parallel(tri.num_input_points(), &choose)
+    per_vertex(parallel, tri.num_input_points(), &choose)
 }
 
+/// `choose` for every vertex in `0..count`, on rayon when `parallel`.
 #[cfg(feature = "parallel")]
-fn per_vertex_parallel(
+fn per_vertex(
+    parallel: bool,
     count: usize,
     choose: &(dyn Fn(usize) -> [VertexId; 2] + Sync),
 ) -> Vec<[VertexId; 2]> {
     use rayon::prelude::*;
+    if !parallel {
+        return (0..count).map(choose).collect();
+    }
     (0..count)
         .into_par_iter()
         .with_min_len(1024)
@@ -114,34 +135,24 @@ fn per_vertex_parallel(
         .collect()
 }
 
-/// Without the `parallel` feature, the same walks one after the other.
+/// Without the `parallel` feature, one vertex after the other.
 #[cfg(not(feature = "parallel"))]
-fn per_vertex_parallel(
+fn per_vertex(
+    _parallel: bool,
     count: usize,
     choose: &dyn Fn(usize) -> [VertexId; 2],
 ) -> Vec<[VertexId; 2]> {
     (0..count).map(choose).collect()
 }
 
-/// The sequential pass: one sweep over the triangles in memory order; every finite half-edge
-/// offers its destination to its origin, which keeps the two best offers. The same minima as
-/// walking every ring, without the chain of dependent loads a ring walk is; vertex ids follow
-/// the insertion order, which is spatial, so the sweep stays local.
-fn sweep_half_edges(tri: &Triangulation, uniformity: Uniformity) -> Vec<[VertexId; 2]> {
-    let adaptive = matches!(uniformity, Uniformity::Adaptive);
-    // Sum of ring edge lengths and ring size per vertex, for the adaptive test only.
-    let mut rings = alloc::vec![(0.0f64, 0u32); if adaptive { tri.num_input_points() } else { 0 }];
-    let best = two_best_offers(tri, |u, length2| {
-        if adaptive {
-            let ring = &mut rings[u.index()];
-            ring.0 += libm::sqrt(length2);
-            ring.1 += 1;
-        }
-    });
-    best.iter()
-        .enumerate()
-        .map(|(k, two)| keep(uniformity, two, rings.get(k).copied().unwrap_or_default()))
-        .collect()
+#[cfg(feature = "parallel")]
+fn worker_count() -> usize {
+    rayon::current_num_threads()
+}
+
+#[cfg(not(feature = "parallel"))]
+fn worker_count() -> usize {
+    1
 }
 
 /// The two best offers a vertex has had: `(squared length as bits, neighbour)`, best first.
@@ -181,6 +192,20 @@ impl TwoBest {
         ];
     }
 
+    /// Takes in the offers `other` kept (the two best of a union are the two best of the two
+    /// best of each part).
+    #[inline]
+    fn merge(&mut self, other: &TwoBest) {
+        for k in 0..2 {
+            if other.ids[k] != u32::MAX {
+                self.offer(
+                    f64::from_bits(other.lengths[k]),
+                    VertexId::new(other.ids[k]),
+                );
+            }
+        }
+    }
+
     /// `(squared length, neighbour)` of the best (`k = 0`) or second best offer.
     #[inline]
     fn get(&self, k: usize) -> (f64, VertexId) {
@@ -191,15 +216,44 @@ impl TwoBest {
     }
 }
 
-/// For every vertex, its two best offers. `each` sees every offer.
-fn two_best_offers(tri: &Triangulation, mut each: impl FnMut(VertexId, f64)) -> Vec<TwoBest> {
+/// For every vertex, its two best offers, from `ranges` ranges of triangles swept at once.
+fn two_best_offers(tri: &Triangulation, ranges: usize) -> Vec<TwoBest> {
+    let triangles = tri.mesh().origins.len() / 3;
+    if ranges <= 1 {
+        return sweep(tri, 0..triangles);
+    }
+    merge_ranges(tri, ranges, triangles)
+}
+
+#[cfg(feature = "parallel")]
+fn merge_ranges(tri: &Triangulation, ranges: usize, triangles: usize) -> Vec<TwoBest> {
+    use rayon::prelude::*;
+    let mut parts: Vec<Vec<TwoBest>> = (0..ranges)
+        .into_par_iter()
+        .map(|k| sweep(tri, k * triangles / ranges..(k + 1) * triangles / ranges))
+        .collect();
+    let mut best = parts.swap_remove(0);
+    best.par_iter_mut()
+        .enumerate()
+        .with_min_len(4096)
+        .for_each(|(v, two)| parts.iter().for_each(|part| two.merge(&part[v])));
+    best
+}
+
+#[cfg(not(feature = "parallel"))]
+fn merge_ranges(tri: &Triangulation, _ranges: usize, triangles: usize) -> Vec<TwoBest> {
+    sweep(tri, 0..triangles)
+}
+
+/// The two best offers every vertex gets from the half-edges of `triangles`: each finite
+/// half-edge offers its destination to its origin.
+fn sweep(tri: &Triangulation, triangles: core::ops::Range<usize>) -> Vec<TwoBest> {
     let mut best = alloc::vec![TwoBest::EMPTY; tri.num_input_points()];
     let mut offer = |u: VertexId, w: VertexId| {
-        let length2 = tri.point(u).dist2(tri.point(w));
-        each(u, length2);
-        best[u.index()].offer(length2, w);
+        best[u.index()].offer(tri.point(u).dist2(tri.point(w)), w);
     };
-    for corners in tri.mesh().origins.chunks_exact(3) {
+    let corners = &tri.mesh().origins[3 * triangles.start..3 * triangles.end];
+    for corners in corners.chunks_exact(3) {
         let [a, b, c] = [corners[0], corners[1], corners[2]];
         if a.is_infinite() || b.is_infinite() || c.is_infinite() {
             // A ghost: only its finite half-edge offers.
@@ -225,8 +279,8 @@ mod tests {
     use crate::sample::{sample, Sampling, Shape};
     use crate::triangulate;
 
-    /// The sweep and the ring walks (rayon's pass, run here at any size) choose the same
-    /// neighbours for every vertex, with both uniformity tests.
+    /// The sweep (in one to four triangle ranges, merged) and the ring walks (sequential and on
+    /// rayon, run here at any size) choose the same neighbours for every vertex.
     #[test]
     fn sweep_and_ring_walks_agree_on_every_vertex() {
         let centre = Point::new(0.0, 0.0);
@@ -264,13 +318,24 @@ mod tests {
                 },
             );
             let tri = triangulate(&s.points).unwrap();
-            for uniformity in [Uniformity::Fixed(2.75), Uniformity::Adaptive] {
-                let swept = sweep_half_edges(&tri, uniformity);
-                let walked = ring_walks_in_parallel(&tri, uniformity);
-                assert_eq!(swept, walked, "{label}, {uniformity:?}");
-                let seconds = swept.iter().filter(|k| !k[1].is_infinite()).count();
+            let fixed = Uniformity::Fixed(2.75);
+            let walked = ring_walks(&tri, fixed, false);
+            for ranges in 1..=4 {
+                let best = two_best_offers(&tri, ranges);
+                let swept: Vec<_> = best.iter().map(|b| keep(fixed, b, (0.0, 0))).collect();
+                assert_eq!(swept, walked, "{label}, {ranges} ranges");
+            }
+            let adaptive = Uniformity::Adaptive;
+            assert_eq!(
+                ring_walks(&tri, adaptive, true),
+                ring_walks(&tri, adaptive, false),
+                "{label}"
+            );
+            for uniformity in [fixed, adaptive] {
+                let kept = ring_walks(&tri, uniformity, false);
+                let seconds = kept.iter().filter(|k| !k[1].is_infinite()).count();
                 assert!(seconds > 0, "{label}");
-                dropped += swept.len() - seconds;
+                dropped += kept.len() - seconds;
             }
         }
         // Not vacuous: the uniformity test dropped some second edges, kept others.
