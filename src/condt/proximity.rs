@@ -194,6 +194,7 @@ impl TwoBest {
 
     /// Takes in the offers `other` kept (the two best of a union are the two best of the two
     /// best of each part).
+    #[cfg(feature = "parallel")]
     #[inline]
     fn merge(&mut self, other: &TwoBest) {
         for k in 0..2 {
@@ -278,6 +279,7 @@ mod tests {
     use crate::geometry::Point;
     use crate::sample::{sample, Sampling, Shape};
     use crate::triangulate;
+    use alloc::vec;
 
     /// The sweep (in one to four triangle ranges, merged) and the ring walks (sequential and on
     /// rayon, run here at any size) choose the same neighbours for every vertex.
