@@ -8,7 +8,7 @@
 //! polyline that leaves a branch vertex and comes back to it (one lobe of a figure eight) is
 //! closed too.
 
-use crate::graph::{CurveGraph, Edge};
+use crate::graph::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -24,8 +24,10 @@ pub struct Curve {
     pub closed: bool,
 }
 
-/// Splits `edges` (sorted, `a < b`) over `vertex_count` vertices into curves. Every edge lies on
-/// exactly one curve. Deterministic: curves come in order of their smallest starting vertex.
+/// Splits `edges` over `vertex_count` vertices into curves. Every edge lies on exactly one
+/// curve. An edge may be listed either way round and more than once; loops and edges reaching
+/// past `vertex_count` are ignored. Deterministic: curves come in order of their smallest
+/// starting vertex.
 ///
 /// ```
 /// use condt::curve::assemble;
@@ -39,7 +41,15 @@ pub struct Curve {
 /// assert_eq!((curves[1].vertices.len(), curves[1].closed), (3, true));
 /// ```
 pub fn assemble(vertex_count: usize, edges: &[Edge]) -> Vec<Curve> {
-    curves_of(&CurveGraph::new(vertex_count, edges))
+    let valid = |&&[a, b]: &&Edge| a != b && a.index() < vertex_count && b.index() < vertex_count;
+    let mut once: Vec<Edge> = edges
+        .iter()
+        .filter(valid)
+        .map(|&[a, b]| ordered(a, b))
+        .collect();
+    once.sort_unstable();
+    once.dedup();
+    curves_of(&CurveGraph::new(vertex_count, &once))
 }
 
 /// [`assemble`] on a graph already built.
@@ -106,9 +116,9 @@ mod tests {
     use super::*;
     use crate::graph::ordered;
 
-    /// On random simple graphs (branch points, lobes, isolated edges, cycles): every edge lies on
-    /// exactly one curve, curves pass only through degree-two vertices, and an open curve ends
-    /// where the degree is not two.
+    /// On random graphs (branch points, lobes, isolated edges, cycles), given with repeats,
+    /// loops, reversed and out-of-range edges: every edge lies on exactly one curve, curves pass
+    /// only through degree-two vertices, and an open curve ends where the degree is not two.
     #[test]
     fn every_edge_lies_on_exactly_one_curve_through_degree_two_vertices() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
@@ -122,18 +132,21 @@ mod tests {
         for _ in 0..2000 {
             let n = 2 + random(9) as usize;
             let wanted = random(2 * n as u64);
-            let mut edges: Vec<Edge> = Vec::new();
+            // As given: either way round, repeated, loops, out of range; and the graph meant.
+            let (mut given, mut edges): (Vec<Edge>, Vec<Edge>) = (Vec::new(), Vec::new());
             for _ in 0..wanted {
-                let (a, b) = (random(n as u64) as u32, random(n as u64) as u32);
-                let edge = ordered(VertexId::new(a), VertexId::new(b));
-                if a != b && !edges.contains(&edge) {
+                let (a, b) = (random(n as u64 + 1) as u32, random(n as u64) as u32);
+                let (a, b) = (VertexId::new(a), VertexId::new(b));
+                given.push([a, b]);
+                let edge = ordered(a, b);
+                if a != b && a.index() < n && !edges.contains(&edge) {
                     edges.push(edge);
                 }
             }
             let degree = crate::graph::degrees(n, &edges);
             branch_points += degree.iter().filter(|&&d| d > 2).count();
             let mut walked: Vec<Edge> = Vec::new();
-            for curve in assemble(n, &edges) {
+            for curve in assemble(n, &given) {
                 let v = &curve.vertices;
                 let d = |k: usize| degree[v[k] as usize];
                 assert!(v.len() >= 2, "{edges:?}");
