@@ -1,7 +1,8 @@
 //! Edge sets and adjacency: the graphs the ConDT stages pass to each other and curves are read from.
 //!
-//! Owns: the canonical edge list (sorted `[a, b]`, `a < b`) and its compressed adjacency. It may not
-//! look at coordinates.
+//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), its compressed adjacency, and the
+//! curve graph that keeps each vertex's first two neighbours inline for walking curves. It may
+//! not look at coordinates.
 
 use crate::mesh::VertexId;
 use alloc::vec;

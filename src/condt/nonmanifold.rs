@@ -98,10 +98,10 @@ fn crossing_choice(
     Some([a, b, c, d])
 }
 
-/// Applies `repair` to the proximity graph `edges` (each edge once, any order). The result lists
-/// each edge once: first the edges between manifold vertices in their input order, then the
-/// selections of the non-manifold vertices in increasing vertex id.
-/// The repaired edge list, or `None` when there is nothing to repair (the input stands).
+/// Applies `repair` to the proximity graph `edges` (each edge once, any order): `None` when there
+/// is nothing to repair (off, or no vertex of degree three or more), so the input stands.
+/// Otherwise the result lists each edge once: first the edges between manifold vertices in their
+/// input order, then the selections of the non-manifold vertices in increasing vertex id.
 pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Option<Vec<Edge>> {
     if repair == Repair::Off {
         return None;
