@@ -101,6 +101,8 @@ fn union_of_kept(kept: &[[VertexId; 2]]) -> Vec<Edge> {
         }
     }
     edges.truncate(count);
+    // Kept in the result: give back the slack (about a third of the buffer).
+    edges.shrink_to_fit();
     edges
 }
 
