@@ -161,13 +161,17 @@ impl<'a> Builder<'a> {
         // Hull slides still allowed: 2 = either way (not started), 1 / -1 = only that way, 0 = none.
         let mut slide = 2i8;
         loop {
-            let t = e.triangle();
-            let first = t.edge(0);
-            let ghost_corner = (0..3).find(|&k| self.origin(t.edge(k)).is_infinite());
-            if let Some(k) = ghost_corner {
+            // The triangle's corners, read once: its half-edges are `base + k`, `k` in `0..3`,
+            // half-edge `k` running from corner `k` to corner `k + 1` (mod 3).
+            let base = e.index() - e.index() % 3;
+            let c = &self.mesh.origins[base..base + 3];
+            let corners = [c[0], c[1], c[2]];
+            let half_edge = |k: usize| HalfEdgeId::new((base + k) as u32);
+            if let Some(k) = corners.iter().position(|v| v.is_infinite()) {
                 // The finite edge of the ghost starts right after the infinite corner.
-                let hull = t.edge(k).next();
-                let (a, b) = (self.origin(hull), self.origin(hull.next()));
+                let (h, after) = (wrap3(k + 1), wrap3(k + 2));
+                let hull = half_edge(h);
+                let (a, b) = (corners[h], corners[after]);
                 match orient2d(self.point(a), self.point(b), p) {
                     Orientation::Ccw => return Location::Face(hull),
                     Orientation::Cw => {
@@ -190,9 +194,9 @@ impl<'a> Builder<'a> {
                         if slide != 0 && direction == slide || slide == 2 && direction != 0 {
                             slide = direction;
                             e = if direction > 0 {
-                                self.twin(hull.next())
+                                self.twin(half_edge(after))
                             } else {
-                                self.twin(hull.prev())
+                                self.twin(half_edge(k))
                             };
                             entered = false;
                         } else {
@@ -211,8 +215,8 @@ impl<'a> Builder<'a> {
                             Segment::AtEnd => return Location::Vertex(b),
                             Segment::Inside => return Location::Edge(hull),
                             // Slide along the hull to the ghost on that side.
-                            Segment::BeyondEnd => e = self.twin(hull.next()),
-                            Segment::BeforeStart => e = self.twin(hull.prev()),
+                            Segment::BeyondEnd => e = self.twin(half_edge(after)),
+                            Segment::BeforeStart => e = self.twin(half_edge(k)),
                         }
                         entered = false;
                     }
@@ -220,44 +224,43 @@ impl<'a> Builder<'a> {
                 continue;
             }
             slide = 0;
-            // A real triangle: leave through any edge that has the point strictly on its right.
-            let start = if entered { e } else { first };
-            let mut collinear = [HalfEdgeId::NONE; 2];
+            // A real triangle: leave through any edge that has the point strictly on its right,
+            // testing the edges in order from the one the walk entered through (known: skipped).
+            let points = corners.map(|v| self.point(v));
+            let entry = if entered { e.index() - base } else { 0 };
+            let mut collinear = [0usize; 2];
             let mut n_collinear = 0;
             let mut crossed = None;
-            let mut side = start;
-            for k in 0..3 {
-                if k > 0 || !entered {
-                    let (a, b) = (self.origin(side), self.origin(side.next()));
-                    match orient2d(self.point(a), self.point(b), p) {
-                        Orientation::Cw => {
-                            crossed = Some(side);
-                            break;
-                        }
-                        Orientation::Collinear => {
-                            collinear[n_collinear.min(1)] = side;
-                            n_collinear += 1;
-                        }
-                        Orientation::Ccw => {}
+            for step in usize::from(entered)..3 {
+                let k = wrap3(entry + step);
+                match orient2d(points[k], points[wrap3(k + 1)], p) {
+                    Orientation::Cw => {
+                        crossed = Some(k);
+                        break;
                     }
+                    Orientation::Collinear => {
+                        collinear[n_collinear.min(1)] = k;
+                        n_collinear += 1;
+                    }
+                    Orientation::Ccw => {}
                 }
-                side = side.next();
             }
-            if let Some(side) = crossed {
-                e = self.twin(side);
+            if let Some(k) = crossed {
+                e = self.twin(half_edge(k));
                 entered = true;
                 continue;
             }
             return match n_collinear {
-                0 => Location::Face(first),
-                1 => Location::Edge(collinear[0]),
+                0 => Location::Face(half_edge(0)),
+                1 => Location::Edge(half_edge(collinear[0])),
                 _ => {
-                    // On two edge lines of a proper triangle: at their shared corner.
+                    // On two edge lines of a proper triangle: at their shared corner, where the
+                    // first of the two edges (in triangle order) ends.
                     let (x, y) = (collinear[0], collinear[1]);
-                    Location::Vertex(if x.next() == y {
-                        self.origin(y)
+                    Location::Vertex(if wrap3(x + 1) == y {
+                        corners[y]
                     } else {
-                        self.origin(x)
+                        corners[x]
                     })
                 }
             };
@@ -388,6 +391,16 @@ impl<'a> Builder<'a> {
         self.flips.push(t_uq.edge(1));
         self.flips.push(t_qw.edge(1));
         self.hint = t_uq.edge(0);
+    }
+}
+
+/// `k mod 3` for `k < 6`: a corner index stepped forward, without a division.
+#[inline]
+fn wrap3(k: usize) -> usize {
+    if k >= 3 {
+        k - 3
+    } else {
+        k
     }
 }
 
