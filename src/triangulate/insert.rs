@@ -341,9 +341,11 @@ impl<'a> Builder<'a> {
         while let Some(e) = self.flips.pop() {
             // `e = u → w` lies in the triangle (u, w, v); across it is (w, u, q).
             let f = self.twin(e);
-            let (u, w, q) = (self.origin(e), self.origin(f), self.origin(f.prev()));
+            let (f_base, f_corner) = base_and_corner(f);
+            let (u, w) = (self.origin(e), self.origin(f));
+            let q = self.mesh.origins[f_base + wrap3(f_corner + 2)];
             if self.is_illegal(u, w, v, q) {
-                self.flip(e, f, v);
+                self.flip(e, (f_base, f_corner), [u, w, q], v);
             }
         }
     }
@@ -375,23 +377,37 @@ impl<'a> Builder<'a> {
     ///        \   /                \ | /
     ///          q                    q
     /// ```
-    fn flip(&mut self, e: HalfEdgeId, f: HalfEdgeId, v: VertexId) {
-        let (u, w, q) = (self.origin(e), self.origin(f), self.origin(f.prev()));
-        let (out_vu, out_wv) = (self.twin(e.prev()), self.twin(e.next()));
-        let (out_uq, out_qw) = (self.twin(f.next()), self.twin(f.prev()));
-        let (t_uq, t_qw) = (e.triangle(), f.triangle());
-        self.set_corners(t_uq, [v, u, q]);
-        self.set_corners(t_qw, [v, q, w]);
+    ///
+    /// `f` comes as its triangle's first half-edge and its corner, `[u, w, q]` as read by the
+    /// caller: the flip reuses them instead of dividing and loading again.
+    fn flip(&mut self, e: HalfEdgeId, f: (usize, usize), [u, w, q]: [VertexId; 3], v: VertexId) {
+        let (e_base, e_corner) = base_and_corner(e);
+        let (f_base, f_corner) = f;
+        let at = |base: usize, corner: usize| HalfEdgeId::new((base + corner) as u32);
+        let out_vu = self.twin(at(e_base, wrap3(e_corner + 2)));
+        let out_wv = self.twin(at(e_base, wrap3(e_corner + 1)));
+        let out_uq = self.twin(at(f_base, wrap3(f_corner + 1)));
+        let out_qw = self.twin(at(f_base, wrap3(f_corner + 2)));
         let m = &mut self.mesh;
-        m.link(t_uq.edge(0), out_vu);
-        m.link(t_uq.edge(1), out_uq);
-        m.link(t_qw.edge(1), out_qw);
-        m.link(t_qw.edge(2), out_wv);
-        m.link(t_uq.edge(2), t_qw.edge(0));
-        self.flips.push(t_uq.edge(1));
-        self.flips.push(t_qw.edge(1));
-        self.hint = t_uq.edge(0);
+        m.origins[e_base..e_base + 3].copy_from_slice(&[v, u, q]);
+        m.origins[f_base..f_base + 3].copy_from_slice(&[v, q, w]);
+        m.link(at(e_base, 0), out_vu);
+        m.link(at(e_base, 1), out_uq);
+        m.link(at(f_base, 1), out_qw);
+        m.link(at(f_base, 2), out_wv);
+        m.link(at(e_base, 2), at(f_base, 0));
+        self.flips.push(at(e_base, 1));
+        self.flips.push(at(f_base, 1));
+        self.hint = at(e_base, 0);
     }
+}
+
+/// The first half-edge of `e`'s triangle (as an index) and `e`'s corner in it: one division,
+/// after which neighbours in the triangle are corner steps.
+#[inline]
+fn base_and_corner(e: HalfEdgeId) -> (usize, usize) {
+    let corner = e.index() % 3;
+    (e.index() - corner, corner)
 }
 
 /// `k mod 3` for `k < 6`: a corner index stepped forward, without a division.
