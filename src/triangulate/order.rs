@@ -165,33 +165,40 @@ fn for_each_run<T, K: PartialEq>(
 }
 
 /// Stable least-significant-digit radix sort of `values` by their bits `low .. low + bits`.
+/// Nine-bit digits keep each pass's counters (2 KiB) and scatter targets few; one read of the
+/// values counts the digits of every pass.
 fn radix_sort(values: &mut Vec<u64>, low: u32, bits: u32) {
-    const DIGIT_BITS: u32 = 11;
+    const DIGIT_BITS: u32 = 9;
     const DIGITS: usize = 1 << DIGIT_BITS;
+    // Keys have at most 64 bits.
+    const MAX_PASSES: usize = 64usize.div_ceil(DIGIT_BITS as usize);
+    let passes = (bits.div_ceil(DIGIT_BITS) as usize).min(MAX_PASSES);
+    let digit =
+        |v: u64, pass: usize| ((v >> (low + pass as u32 * DIGIT_BITS)) as usize) & (DIGITS - 1);
+    let mut counts = [[0u32; DIGITS]; MAX_PASSES];
+    for &v in values.iter() {
+        for (pass, count) in counts.iter_mut().enumerate().take(passes) {
+            count[digit(v, pass)] += 1;
+        }
+    }
     let mut buffer = alloc::vec![0u64; values.len()];
-    let mut shift = low;
-    while shift < low + bits {
-        let digit = |v: u64| ((v >> shift) as usize) & (DIGITS - 1);
-        let mut offsets = [0usize; DIGITS];
-        for &v in values.iter() {
-            offsets[digit(v)] += 1;
-        }
+    for (pass, offsets) in counts.iter_mut().enumerate().take(passes) {
         // A digit shared by every value would not move anything.
-        if !offsets.contains(&values.len()) {
-            let mut total = 0;
-            for slot in offsets.iter_mut() {
-                let count = *slot;
-                *slot = total;
-                total += count;
-            }
-            for &v in values.iter() {
-                let d = digit(v);
-                buffer[offsets[d]] = v;
-                offsets[d] += 1;
-            }
-            core::mem::swap(values, &mut buffer);
+        if offsets.contains(&(values.len() as u32)) {
+            continue;
         }
-        shift += DIGIT_BITS;
+        let mut total = 0;
+        for slot in offsets.iter_mut() {
+            let count = *slot;
+            *slot = total;
+            total += count;
+        }
+        for &v in values.iter() {
+            let d = digit(v, pass);
+            buffer[offsets[d] as usize] = v;
+            offsets[d] += 1;
+        }
+        core::mem::swap(values, &mut buffer);
     }
 }
 
