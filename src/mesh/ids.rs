@@ -94,6 +94,14 @@ impl HalfEdgeId {
         TriangleId(self.0 / 3)
     }
 
+    /// The position of its triangle's first half-edge and its own corner (`0..3`) in it: one
+    /// division, after which the triangle's other half-edges are corner steps ([`wrap3`]).
+    #[inline]
+    pub(crate) const fn base_and_corner(self) -> (usize, usize) {
+        let corner = self.0 as usize % 3;
+        (self.0 as usize - corner, corner)
+    }
+
     /// `true` for [`HalfEdgeId::NONE`].
     #[inline]
     pub const fn is_none(self) -> bool {
@@ -128,5 +136,15 @@ impl TriangleId {
     #[inline]
     pub const fn edge(self, corner: u32) -> HalfEdgeId {
         HalfEdgeId(self.0 * 3 + corner)
+    }
+}
+
+/// `k mod 3` for `k < 6`: a corner index stepped forward, without a division.
+#[inline]
+pub(crate) const fn wrap3(k: usize) -> usize {
+    if k >= 3 {
+        k - 3
+    } else {
+        k
     }
 }

@@ -21,6 +21,7 @@ mod check;
 mod ids;
 
 pub use check::InvalidMesh;
+pub(crate) use ids::wrap3;
 pub use ids::{HalfEdgeId, TriangleId, VertexId};
 
 use alloc::vec::Vec;
@@ -203,15 +204,20 @@ impl Mesh {
         if from_infinity.is_none() {
             return;
         }
-        // `∞ → a` is followed in its ghost by the hull edge `a → b`, then by `b → ∞`.
-        let start = from_infinity.next();
-        let mut hull_edge = start;
+        // `∞ → a` is followed in its ghost by the hull edge `a → b`, then by `b → ∞`; across
+        // `∞ → a` lies the previous ghost's `a → ∞`, followed there by `∞ → c`. Walked back
+        // along the hull, one division per ghost.
+        let start = from_infinity;
+        let mut entry = start;
         loop {
-            let to_infinity = hull_edge.next();
-            let b = self.origin(to_infinity);
-            self.vertex_edges[b.index()] = to_infinity;
-            hull_edge = self.twin(hull_edge.prev()).prev();
-            if hull_edge == start {
+            let (base, corner) = entry.base_and_corner();
+            let to_infinity = base + wrap3(corner + 2);
+            let b = self.origins[to_infinity];
+            self.vertex_edges[b.index()] = HalfEdgeId::new(to_infinity as u32);
+            let across = self.twins[entry.index()];
+            let (base, corner) = across.base_and_corner();
+            entry = HalfEdgeId::new((base + wrap3(corner + 1)) as u32);
+            if entry == start {
                 break;
             }
         }

@@ -14,7 +14,7 @@
 //! Owns: the construction state. It may not decide a sign except through `predicates`.
 
 use crate::geometry::Point;
-use crate::mesh::{HalfEdgeId, Mesh, TriangleId, VertexId};
+use crate::mesh::{wrap3, HalfEdgeId, Mesh, TriangleId, VertexId};
 use crate::predicates::{in_circle, orient2d, Orientation};
 use alloc::vec::Vec;
 
@@ -135,16 +135,22 @@ impl<'a> Builder<'a> {
     /// insertion order usually lie outside the hull next to it: a walk from here reaches them
     /// along the hull instead of across the fan of triangles at `v`.
     fn ghost_at(&self, v: VertexId) -> HalfEdgeId {
-        let t = self.hint.triangle();
-        let Some(mut e) = (0..3).map(|k| t.edge(k)).find(|&e| self.origin(e) == v) else {
+        let (base, _) = self.hint.base_and_corner();
+        let Some(k) = self.mesh.origins[base..base + 3]
+            .iter()
+            .position(|&c| c == v)
+        else {
             return self.hint;
         };
-        let start = e;
+        let start = HalfEdgeId::new((base + k) as u32);
+        let mut e = start;
         loop {
-            if self.origin(e.next()).is_infinite() {
+            // `e` leaves `v`; the triangle's next corner is its destination.
+            let (base, corner) = e.base_and_corner();
+            if self.mesh.origins[base + wrap3(corner + 1)].is_infinite() {
                 return e;
             }
-            e = self.twin(e.prev());
+            e = self.twin(HalfEdgeId::new((base + wrap3(corner + 2)) as u32));
             if e == start {
                 return self.hint;
             }
@@ -341,7 +347,7 @@ impl<'a> Builder<'a> {
         while let Some(e) = self.flips.pop() {
             // `e = u → w` lies in the triangle (u, w, v); across it is (w, u, q).
             let f = self.twin(e);
-            let (f_base, f_corner) = base_and_corner(f);
+            let (f_base, f_corner) = f.base_and_corner();
             let (u, w) = (self.origin(e), self.origin(f));
             let q = self.mesh.origins[f_base + wrap3(f_corner + 2)];
             if self.is_illegal(u, w, v, q) {
@@ -381,7 +387,7 @@ impl<'a> Builder<'a> {
     /// `f` comes as its triangle's first half-edge and its corner, `[u, w, q]` as read by the
     /// caller: the flip reuses them instead of dividing and loading again.
     fn flip(&mut self, e: HalfEdgeId, f: (usize, usize), [u, w, q]: [VertexId; 3], v: VertexId) {
-        let (e_base, e_corner) = base_and_corner(e);
+        let (e_base, e_corner) = e.base_and_corner();
         let (f_base, f_corner) = f;
         let at = |base: usize, corner: usize| HalfEdgeId::new((base + corner) as u32);
         let out_vu = self.twin(at(e_base, wrap3(e_corner + 2)));
@@ -399,24 +405,6 @@ impl<'a> Builder<'a> {
         self.flips.push(at(e_base, 1));
         self.flips.push(at(f_base, 1));
         self.hint = at(e_base, 0);
-    }
-}
-
-/// The first half-edge of `e`'s triangle (as an index) and `e`'s corner in it: one division,
-/// after which neighbours in the triangle are corner steps.
-#[inline]
-fn base_and_corner(e: HalfEdgeId) -> (usize, usize) {
-    let corner = e.index() % 3;
-    (e.index() - corner, corner)
-}
-
-/// `k mod 3` for `k < 6`: a corner index stepped forward, without a division.
-#[inline]
-fn wrap3(k: usize) -> usize {
-    if k >= 3 {
-        k - 3
-    } else {
-        k
     }
 }
 
