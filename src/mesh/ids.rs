@@ -102,6 +102,13 @@ impl HalfEdgeId {
         (self.0 as usize - corner, corner)
     }
 
+    /// The half-edge at `corner` of the triangle whose first half-edge is at `base` (the
+    /// inverse of [`HalfEdgeId::base_and_corner`]).
+    #[inline]
+    pub(crate) const fn at(base: usize, corner: usize) -> Self {
+        HalfEdgeId((base + corner) as u32)
+    }
+
     /// `true` for [`HalfEdgeId::NONE`].
     #[inline]
     pub const fn is_none(self) -> bool {

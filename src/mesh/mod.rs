@@ -211,12 +211,12 @@ impl Mesh {
         let mut entry = start;
         loop {
             let (base, corner) = entry.base_and_corner();
-            let to_infinity = base + wrap3(corner + 2);
-            let b = self.origins[to_infinity];
-            self.vertex_edges[b.index()] = HalfEdgeId::new(to_infinity as u32);
+            let to_infinity = HalfEdgeId::at(base, wrap3(corner + 2));
+            let b = self.origin(to_infinity);
+            self.vertex_edges[b.index()] = to_infinity;
             let across = self.twins[entry.index()];
             let (base, corner) = across.base_and_corner();
-            entry = HalfEdgeId::new((base + wrap3(corner + 1)) as u32);
+            entry = HalfEdgeId::at(base, wrap3(corner + 1));
             if entry == start {
                 break;
             }

@@ -142,7 +142,7 @@ impl<'a> Builder<'a> {
         else {
             return self.hint;
         };
-        let start = HalfEdgeId::new((base + k) as u32);
+        let start = HalfEdgeId::at(base, k);
         let mut e = start;
         loop {
             // `e` leaves `v`; the triangle's next corner is its destination.
@@ -150,7 +150,7 @@ impl<'a> Builder<'a> {
             if self.mesh.origins[base + wrap3(corner + 1)].is_infinite() {
                 return e;
             }
-            e = self.twin(HalfEdgeId::new((base + wrap3(corner + 2)) as u32));
+            e = self.twin(HalfEdgeId::at(base, wrap3(corner + 2)));
             if e == start {
                 return self.hint;
             }
@@ -169,10 +169,10 @@ impl<'a> Builder<'a> {
         loop {
             // The triangle's corners, read once: its half-edges are `base + k`, `k` in `0..3`,
             // half-edge `k` running from corner `k` to corner `k + 1` (mod 3).
-            let base = e.index() - e.index() % 3;
+            let (base, corner) = e.base_and_corner();
             let c = &self.mesh.origins[base..base + 3];
             let corners = [c[0], c[1], c[2]];
-            let half_edge = |k: usize| HalfEdgeId::new((base + k) as u32);
+            let half_edge = |k: usize| HalfEdgeId::at(base, k);
             if let Some(k) = corners.iter().position(|v| v.is_infinite()) {
                 // The finite edge of the ghost starts right after the infinite corner.
                 let (h, after) = (wrap3(k + 1), wrap3(k + 2));
@@ -233,7 +233,7 @@ impl<'a> Builder<'a> {
             // A real triangle: leave through any edge that has the point strictly on its right,
             // testing the edges in order from the one the walk entered through (known: skipped).
             let points = corners.map(|v| self.point(v));
-            let entry = if entered { e.index() - base } else { 0 };
+            let entry = if entered { corner } else { 0 };
             let mut collinear = [0usize; 2];
             let mut n_collinear = 0;
             let mut crossed = None;
@@ -389,7 +389,7 @@ impl<'a> Builder<'a> {
     fn flip(&mut self, e: HalfEdgeId, f: (usize, usize), [u, w, q]: [VertexId; 3], v: VertexId) {
         let (e_base, e_corner) = e.base_and_corner();
         let (f_base, f_corner) = f;
-        let at = |base: usize, corner: usize| HalfEdgeId::new((base + corner) as u32);
+        let at = HalfEdgeId::at;
         let out_vu = self.twin(at(e_base, wrap3(e_corner + 2)));
         let out_wv = self.twin(at(e_base, wrap3(e_corner + 1)));
         let out_uq = self.twin(at(f_base, wrap3(f_corner + 1)));
