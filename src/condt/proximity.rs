@@ -75,7 +75,7 @@ pub(crate) fn proximity_graph(
                 1
             };
             let best = two_best_offers(tri, ranges);
-            per_vertex(parallel, best.len(), &|v| {
+            per_vertex(parallel, best.len(), |v| {
                 keep(uniformity, &best[v], (0.0, 0))
             })
         }
@@ -116,7 +116,7 @@ fn ring_walks(tri: &Triangulation, uniformity: Uniformity, parallel: bool) -> Ve
             [VertexId::INFINITE; 2]
         }
     };
-    per_vertex(parallel, tri.num_input_points(), &choose)
+    per_vertex(parallel, tri.num_input_points(), choose)
 }
 
 /// `choose` for every vertex in `0..count`, on rayon when `parallel`.
@@ -124,16 +124,16 @@ fn ring_walks(tri: &Triangulation, uniformity: Uniformity, parallel: bool) -> Ve
 fn per_vertex(
     parallel: bool,
     count: usize,
-    choose: &(dyn Fn(usize) -> [VertexId; 2] + Sync),
+    choose: impl Fn(usize) -> [VertexId; 2] + Sync,
 ) -> Vec<[VertexId; 2]> {
     use rayon::prelude::*;
     if !parallel {
-        return (0..count).map(choose).collect();
+        return (0..count).map(&choose).collect();
     }
     (0..count)
         .into_par_iter()
         .with_min_len(1024)
-        .map(choose)
+        .map(&choose)
         .collect()
 }
 
@@ -142,7 +142,7 @@ fn per_vertex(
 fn per_vertex(
     _parallel: bool,
     count: usize,
-    choose: &dyn Fn(usize) -> [VertexId; 2],
+    choose: impl Fn(usize) -> [VertexId; 2],
 ) -> Vec<[VertexId; 2]> {
     (0..count).map(choose).collect()
 }
