@@ -162,14 +162,16 @@ impl Reconstruction {
     }
 }
 
-/// The edge lists of stages 1 to 3, in vertex ids. A stage that changed nothing (no vertex to
-/// repair, no outlier) stores no copy of its input.
+/// The edge lists of stages 1 to 3, in vertex ids, in the order stages 2 and 3 ran. A stage
+/// that changed nothing (no vertex to repair, no outlier) stores no copy of its input.
 #[derive(Clone, Debug)]
 struct Stages {
     outliers_first: bool,
     proximity: Vec<Edge>,
-    repaired: Option<Vec<Edge>>,
-    filtered: Option<Vec<Edge>>,
+    /// The output of the stage that ran second (repair, unless `outliers_first`).
+    first: Option<Vec<Edge>>,
+    /// The output of the stage that ran third.
+    second: Option<Vec<Edge>>,
 }
 
 impl Stages {
@@ -177,30 +179,28 @@ impl Stages {
         &self.proximity
     }
 
+    fn after_first(&self) -> &[Edge] {
+        self.first.as_deref().unwrap_or(&self.proximity)
+    }
+
+    /// The final graph.
+    fn last(&self) -> &[Edge] {
+        self.second.as_deref().unwrap_or(self.after_first())
+    }
+
     fn repaired(&self) -> &[Edge] {
-        let input = if self.outliers_first {
-            self.filtered()
+        if self.outliers_first {
+            self.last()
         } else {
-            self.proximity()
-        };
-        self.repaired.as_deref().unwrap_or(input)
+            self.after_first()
+        }
     }
 
     fn filtered(&self) -> &[Edge] {
-        let input = if self.outliers_first {
-            self.proximity()
-        } else {
-            self.repaired()
-        };
-        self.filtered.as_deref().unwrap_or(input)
-    }
-
-    /// The final graph: the output of whichever of stages 2 and 3 ran last.
-    fn last(&self) -> &[Edge] {
         if self.outliers_first {
-            self.repaired()
+            self.after_first()
         } else {
-            self.filtered()
+            self.last()
         }
     }
 }
@@ -306,11 +306,16 @@ pub fn reconstruct_triangulation(tri: Triangulation, params: &Params) -> Reconst
         (repaired, filtered)
     };
     let outlier_filter_applied = filtered.applied;
+    let (first, second) = if params.outliers_first {
+        (filtered.edges, repaired)
+    } else {
+        (repaired, filtered.edges)
+    };
     let stages = Stages {
         outliers_first: params.outliers_first,
         proximity,
-        repaired,
-        filtered: filtered.edges,
+        first,
+        second,
     };
     let last = stages.last();
     let n = tri.num_input_points();
