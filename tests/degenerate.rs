@@ -5,6 +5,18 @@ mod common;
 use common::*;
 use condt::{triangulate, Error, Point};
 
+/// `points` moved by `f`, point by point.
+fn moved(points: &[Point], f: impl Fn(Point) -> Point) -> Vec<Point> {
+    points.iter().map(|&p| f(p)).collect()
+}
+
+/// `points`, an `n` x `n` grid however moved, triangulates validly into its `2 (n - 1)^2` cells.
+fn assert_whole_grid(points: &[Point], n: usize) {
+    let tri = triangulate(points).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.triangles().count(), 2 * (n - 1) * (n - 1));
+}
+
 fn pts(coords: &[(f64, f64)]) -> Vec<Point> {
     coords.iter().map(|&c| Point::from(c)).collect()
 }
@@ -206,38 +218,26 @@ fn integer_points_on_one_circle() {
 #[test]
 fn coordinates_offset_by_a_million() {
     let base = uniform(5000, 11);
-    let shifted: Vec<Point> = base
-        .iter()
-        .map(|p| Point::new(p.x + 1e6, p.y + 1e6))
-        .collect();
+    let shifted = moved(&base, |p| Point::new(p.x + 1e6, p.y + 1e6));
     let tri = triangulate(&shifted).unwrap();
     tri.validate().unwrap();
     assert_hull_convex_and_enclosing(&tri);
-    let g: Vec<Point> = grid(50, 3)
-        .iter()
-        .map(|p| Point::new(p.x + 1e6, p.y - 1e6))
-        .collect();
-    let tri = triangulate(&g).unwrap();
-    tri.validate().unwrap();
-    assert_eq!(tri.triangles().count(), 2 * 49 * 49);
+    assert_whole_grid(
+        &moved(&grid(50, 3), |p| Point::new(p.x + 1e6, p.y - 1e6)),
+        50,
+    );
 }
 
 #[test]
 fn huge_coordinates_near_1e15() {
     let base = uniform(3000, 12);
-    let huge: Vec<Point> = base
-        .iter()
-        .map(|p| Point::new(p.x * 1e15, p.y * 1e15))
-        .collect();
+    let huge = moved(&base, |p| Point::new(p.x * 1e15, p.y * 1e15));
     triangulate(&huge).unwrap().validate().unwrap();
     // Points 1 unit apart at 1e15: only a few bits of each coordinate differ.
-    let crowded: Vec<Point> = grid(20, 4)
-        .iter()
-        .map(|p| Point::new(1e15 + p.x, 1e15 + p.y))
-        .collect();
-    let tri = triangulate(&crowded).unwrap();
-    tri.validate().unwrap();
-    assert_eq!(tri.triangles().count(), 2 * 19 * 19);
+    assert_whole_grid(
+        &moved(&grid(20, 4), |p| Point::new(1e15 + p.x, 1e15 + p.y)),
+        20,
+    );
 }
 
 #[test]
@@ -245,20 +245,14 @@ fn tiny_coordinates_near_1e_200_give_the_same_mesh() {
     let base = uniform(3000, 13);
     // Scaling by a power of two is exact, so the triangulation must be the same edge for edge.
     let factor = 2f64.powi(-665); // about 1.2e-200
-    let tiny: Vec<Point> = base
-        .iter()
-        .map(|p| Point::new(p.x * factor, p.y * factor))
-        .collect();
+    let tiny = moved(&base, |p| Point::new(p.x * factor, p.y * factor));
     let (a, b) = (triangulate(&base).unwrap(), triangulate(&tiny).unwrap());
     b.validate().unwrap();
     assert_eq!(edge_set(&a), edge_set(&b));
-    let subnormal: Vec<Point> = grid(10, 5)
-        .iter()
-        .map(|p| Point::new(p.x * 1e-310, p.y * 1e-310))
-        .collect();
-    let tri = triangulate(&subnormal).unwrap();
-    tri.validate().unwrap();
-    assert_eq!(tri.triangles().count(), 2 * 9 * 9);
+    assert_whole_grid(
+        &moved(&grid(10, 5), |p| Point::new(p.x * 1e-310, p.y * 1e-310)),
+        10,
+    );
 }
 
 #[test]
