@@ -392,6 +392,7 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
     let n = tri.num_input_points();
     let mut degrees = Vec::with_capacity(n);
     let mut unused = Vec::new();
+    // Room for the two candidates a vertex writes past the last edge it lists.
     let mut edges: Vec<InputEdge> = alloc::vec![[0, 0]; edge_count + 2];
     let mut count = 0;
     let input_of = |w: VertexId| {
