@@ -328,6 +328,10 @@ fn duplicates_map_back_to_their_vertex() {
         !r.unused.contains(&last),
         "a duplicate of a used point is not an outlier"
     );
+    // The edges and curves are those of the set without the copy, under the first position.
+    let without = run(&s.points[..last], Params::default());
+    assert_eq!(r.edges, without.edges);
+    assert_eq!(r.curves, without.curves);
 }
 
 #[test]

@@ -34,11 +34,22 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
     if lengths.is_empty() {
         return unchanged;
     }
+    let n = lengths.len();
+    let upper = (3 * n / 4).min(n - 1);
+    if factor >= 0.0 {
+        // T >= Q3, so no edge exceeds the bound 4T when the longest is within 4 Q3, that is when
+        // at most `upper` lengths lie below a quarter of the longest: a count, not a selection.
+        let longest = lengths
+            .iter()
+            .fold(0.0f64, |m, &l| if l > m { l } else { m });
+        let below = lengths.iter().filter(|&&l| 4.0 * l < longest).count();
+        if below <= upper {
+            return unchanged;
+        }
+    }
     // The quartiles of the sorted list, without sorting it: two selections on a scratch copy,
     // the second only among the values the first put below Q3.
     let mut scratch = lengths.clone();
-    let n = scratch.len();
-    let upper = (3 * n / 4).min(n - 1);
     let q3 = *scratch.select_nth_unstable_by(upper, f64::total_cmp).1;
     let q1 = if n / 4 < upper {
         *scratch[..upper]
@@ -91,6 +102,67 @@ mod tests {
         edges.push(ordered(v(5), v(11)));
         edges.push(ordered(v(11), v(12)));
         (tri, edges)
+    }
+
+    /// The rule as the module comment states it, by sorting: the reference for the selections
+    /// and the counting shortcut.
+    fn by_sorting(tri: &Triangulation, edges: &[Edge], factor: f64) -> (bool, Vec<Edge>) {
+        let length2 = |&[a, b]: &Edge| tri.point(a).dist2(tri.point(b));
+        let mut sorted: Vec<f64> = edges.iter().map(length2).collect();
+        sorted.sort_by(f64::total_cmp);
+        let n = sorted.len();
+        let (q1, q3) = (sorted[n / 4], sorted[(3 * n / 4).min(n - 1)]);
+        let threshold = q3 + factor * (q3 - q1);
+        let lone = tri.vertices().any(|v| {
+            let mut incident = edges.iter().filter(|e| e.contains(&v)).peekable();
+            incident.peek().is_some() && incident.all(|e| length2(e) > 4.0 * threshold)
+        });
+        let kept = edges
+            .iter()
+            .filter(|e| !lone || length2(e) <= threshold)
+            .copied()
+            .collect();
+        (lone, kept)
+    }
+
+    #[test]
+    fn agrees_with_sorting_on_random_graphs() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut random = |bound: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % bound
+        };
+        let (mut applied, mut not_applied) = (0, 0);
+        for round in 0..400 {
+            // A unit-spaced cluster and, in some rounds, a few points far out.
+            let far = if round % 2 == 0 { random(4) } else { 0 };
+            let mut pts: Vec<Point> = (0..30)
+                .map(|_| Point::new(random(40) as f64 / 8.0, random(40) as f64 / 8.0))
+                .collect();
+            pts.extend((0..far).map(|k| Point::new(20.0 + 7.0 * k as f64, -9.0)));
+            let tri = triangulate(&pts).unwrap();
+            let v = |i: u64| tri.vertex_of_input(i as usize);
+            let mut edges: Vec<Edge> = Vec::new();
+            for _ in 0..1 + random(40) {
+                let (a, b) = (v(random(pts.len() as u64)), v(random(pts.len() as u64)));
+                if a != b && !edges.contains(&ordered(a, b)) {
+                    edges.push(ordered(a, b));
+                }
+            }
+            if edges.is_empty() {
+                continue;
+            }
+            let factor = [0.0, 0.5, 1.7, 3.0][round % 4];
+            let (lone, kept) = by_sorting(&tri, &edges, factor);
+            let filtered = remove_outliers(&tri, &edges, factor);
+            assert_eq!(filtered.applied, lone, "{edges:?}, k = {factor}");
+            assert_eq!(filtered.edges.unwrap_or(edges), kept);
+            applied += usize::from(lone);
+            not_applied += usize::from(!lone);
+        }
+        assert!(applied > 40 && not_applied > 40, "{applied} {not_applied}");
     }
 
     #[test]
