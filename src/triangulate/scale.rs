@@ -133,4 +133,26 @@ mod tests {
         ];
         assert_eq!(choose_scale(&pts), Err(Error::RangeTooWide { index: 2 }));
     }
+
+    /// The bit-pattern extremes: signed zeros count as zero, subnormals as tiny magnitudes, and
+    /// the sign never makes a magnitude large.
+    #[test]
+    fn zeros_signs_and_subnormals_are_read_as_magnitudes() {
+        let zeros = [Point::new(-0.0, 0.0), Point::new(0.0, -0.0)];
+        assert_eq!(choose_scale(&zeros), Ok(Scale::IDENTITY));
+        let negative = [Point::new(-0.0, -3.0), Point::new(0.0, 1.0)];
+        let q = choose_scale(&negative).unwrap().apply(negative[0]);
+        assert_eq!(q.y, -1.5, "largest magnitude 3, negative");
+        assert_eq!(
+            choose_scale(&[Point::new(1.0, -5e-324)]),
+            Err(Error::RangeTooWide { index: 0 })
+        );
+        let subnormal = [Point::new(1e-310, -2e-310)];
+        let q = choose_scale(&subnormal).unwrap().apply(subnormal[0]);
+        assert!((0.5..1.0).contains(&q.x), "{}", q.x);
+        for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
+            let pts = [Point::new(1.0, 2.0), Point::new(-0.0, bad)];
+            assert_eq!(choose_scale(&pts), Err(Error::NonFinite { index: 1 }));
+        }
+    }
 }
