@@ -67,7 +67,8 @@ pub(crate) fn proximity_graph(
     parallel: bool,
 ) -> Vec<Edge> {
     let parallel = parallel && tri.num_input_points() >= PARALLEL_FROM;
-    let kept = match uniformity {
+    let n = tri.num_input_points();
+    match uniformity {
         Uniformity::Fixed(_) => {
             let ranges = if parallel {
                 worker_count().min(MAX_SWEEP_RANGES)
@@ -75,25 +76,36 @@ pub(crate) fn proximity_graph(
                 1
             };
             let best = two_best_offers(tri, ranges);
-            per_vertex(parallel, best.len(), |v| {
-                keep(uniformity, &best[v], (0.0, 0))
-            })
+            union_of_kept(parallel, n, |v| keep(uniformity, &best[v], (0.0, 0)))
         }
-        Uniformity::Adaptive => ring_walks(tri, uniformity, parallel),
-    };
-    union_of_kept(&kept)
+        Uniformity::Adaptive => union_of_kept(parallel, n, ring_choice(tri, uniformity)),
+    }
 }
 
-/// Every kept edge once. An edge both ends kept is listed by its smaller end only, so no sort is
-/// needed to drop repeats. Every candidate is written and the count advances only past those that
-/// belong: whether one does is unpredictable, so it is not branched on.
-fn union_of_kept(kept: &[[VertexId; 2]]) -> Vec<Edge> {
+/// Every kept edge once: `choose(v)` gives what vertex `v` keeps. An edge both ends kept is
+/// listed by its smaller end only, so no sort is needed to drop repeats. In parallel every
+/// vertex chooses first, on rayon; otherwise each chooses just before listing, in the same pass.
+/// Every candidate is written and the count advances only past those that belong: whether one
+/// does is unpredictable, so it is not branched on.
+fn union_of_kept(
+    parallel: bool,
+    n: usize,
+    choose: impl Fn(usize) -> [VertexId; 2] + Sync,
+) -> Vec<Edge> {
     let none = [VertexId::INFINITE; 2];
-    let mut edges = alloc::vec![none; 2 * kept.len() + 1];
+    let mut kept = if parallel {
+        per_vertex(true, n, &choose)
+    } else {
+        alloc::vec![none; n]
+    };
+    let mut edges = alloc::vec![none; 2 * n + 1];
     let mut count = 0;
-    for (i, pair) in kept.iter().enumerate() {
+    for i in 0..n {
+        let pair = if parallel { kept[i] } else { choose(i) };
+        kept[i] = pair;
         let v = VertexId::new(i as u32);
-        for &w in pair {
+        for w in pair {
+            // Only a smaller `w` can have listed the edge already.
             let partner = kept.get(w.index()).unwrap_or(&none);
             let listed_by_w = (w < v) & ((partner[0] == v) | (partner[1] == v));
             edges[count] = ordered(v, w);
@@ -106,17 +118,19 @@ fn union_of_kept(kept: &[[VertexId; 2]]) -> Vec<Edge> {
     edges
 }
 
-/// Every vertex walks its own ring, on rayon when `parallel`.
-fn ring_walks(tri: &Triangulation, uniformity: Uniformity, parallel: bool) -> Vec<[VertexId; 2]> {
-    let choose = |i: usize| {
+/// What vertex `i` keeps, from a walk of its ring (none for an id left by a merged duplicate).
+fn ring_choice(
+    tri: &Triangulation,
+    uniformity: Uniformity,
+) -> impl Fn(usize) -> [VertexId; 2] + Sync + '_ {
+    move |i: usize| {
         let v = VertexId::new(i as u32);
         if tri.is_vertex(v) {
             kept_neighbors(tri, v, uniformity)
         } else {
             [VertexId::INFINITE; 2]
         }
-    };
-    per_vertex(parallel, tri.num_input_points(), choose)
+    }
 }
 
 /// `choose` for every vertex in `0..count`, on rayon when `parallel`.
@@ -323,7 +337,10 @@ mod tests {
             );
             let tri = triangulate(&s.points).unwrap();
             let fixed = Uniformity::Fixed(2.75);
-            let walked = ring_walks(&tri, fixed, false);
+            let n = tri.num_input_points();
+            let ring_walks =
+                |uniformity, parallel| per_vertex(parallel, n, ring_choice(&tri, uniformity));
+            let walked = ring_walks(fixed, false);
             for ranges in 1..=4 {
                 let best = two_best_offers(&tri, ranges);
                 let swept: Vec<_> = best.iter().map(|b| keep(fixed, b, (0.0, 0))).collect();
@@ -331,12 +348,12 @@ mod tests {
             }
             let adaptive = Uniformity::Adaptive;
             assert_eq!(
-                ring_walks(&tri, adaptive, true),
-                ring_walks(&tri, adaptive, false),
+                ring_walks(adaptive, true),
+                ring_walks(adaptive, false),
                 "{label}"
             );
             for uniformity in [fixed, adaptive] {
-                let kept = ring_walks(&tri, uniformity, false);
+                let kept = ring_walks(uniformity, false);
                 let seconds = kept.iter().filter(|k| !k[1].is_infinite()).count();
                 assert!(seconds > 0, "{label}");
                 dropped += kept.len() - seconds;
