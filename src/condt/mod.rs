@@ -390,6 +390,8 @@ struct Tally {
 /// (whether they do is a coin toss, so it is not branched on).
 fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
     let n = tri.num_input_points();
+    // Without duplicates every input position stands for its own vertex: no need to look.
+    let has_duplicates = tri.num_vertices() < n;
     let mut degrees = Vec::with_capacity(n);
     let mut unused = Vec::new();
     // Room for the two candidates a vertex writes past the last edge it lists.
@@ -411,12 +413,12 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
         } else if degree <= 2 {
             let [x, y] = graph.first_two(v).map(input_of);
             // A duplicate input point lists nothing: its edges are under the first copy.
-            let listing = input_of(v) == i;
+            let listing = !has_duplicates || input_of(v) == i;
             for j in [x.min(y), x.max(y)] {
                 edges[count] = [i, j];
                 count += usize::from(listing & (j > i));
             }
-        } else if input_of(v) == i {
+        } else if !has_duplicates || input_of(v) == i {
             let first = count;
             for k in 0..degree {
                 let j = input_of(graph.neighbor(v, k));
