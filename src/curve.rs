@@ -121,13 +121,8 @@ mod tests {
     /// only through degree-two vertices, and an open curve ends where the degree is not two.
     #[test]
     fn every_edge_lies_on_exactly_one_curve_through_degree_two_vertices() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut random = |bound: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % bound
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let mut random = |bound: u64| rng.below(bound);
         let mut branch_points = 0;
         for _ in 0..2000 {
             let n = 2 + random(9) as usize;

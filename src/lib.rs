@@ -46,6 +46,7 @@
 //! - [`sample`]: curves sampled with known connectivity, for tests and examples.
 //! - [`io`] (`std`): reading point files and writing results atomically.
 //! - [`cli`] (`std`): the command-line front end used by the `condt` binary.
+//! - `test_rng` (unit tests only): the reproducible generator the unit tests draw inputs from.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -64,6 +65,8 @@ pub mod io;
 pub mod mesh;
 pub mod predicates;
 pub mod sample;
+#[cfg(test)]
+mod test_rng;
 pub mod triangulate;
 
 pub use error::Error;

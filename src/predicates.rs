@@ -153,13 +153,8 @@ mod tests {
 
     #[test]
     fn inline_filter_agrees_with_robust_everywhere() {
-        let mut state = 0x243f_6a88_85a3_08d3u64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x243f_6a88_85a3_08d3);
+        let mut unit = move || rng.unit();
         let nudge = |v: f64, k: i64| f64::from_bits((v.to_bits() as i64 + k) as u64);
         let mut near = 0;
         for round in 0..200_000 {

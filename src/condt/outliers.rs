@@ -127,13 +127,8 @@ mod tests {
 
     #[test]
     fn agrees_with_sorting_on_random_graphs() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut random = |bound: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % bound
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut random = |bound: u64| rng.below(bound);
         let (mut applied, mut not_applied) = (0, 0);
         for round in 0..400 {
             // A unit-spaced cluster and, in some rounds, a few points far out.

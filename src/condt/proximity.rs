@@ -306,13 +306,8 @@ mod tests {
     /// two edges their neighbours do not keep back: more edges than vertices, so the buffer grows.
     #[test]
     fn union_lists_every_kept_edge_once_as_its_buffer_grows() {
-        let mut state = 0x5851_f42d_4c95_7f2du64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x5851_f42d_4c95_7f2d);
+        let mut unit = move || rng.unit();
         let points: Vec<Point> = (0..3000).map(|_| Point::new(unit(), unit())).collect();
         let tri = triangulate(&points).unwrap();
         let n = tri.num_input_points();
