@@ -10,9 +10,8 @@
 //!
 //! `cargo bench --bench condt`
 
-use condt::condt::{reconstruct, reconstruct_triangulation, Params, StageTimes};
 use condt::sample::{sample, Sampling, Shape};
-use condt::{triangulate, Point};
+use condt::{reconstruct, reconstruct_triangulation, triangulate, Params, Point, Stage};
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, SamplingMode};
 use std::time::Duration;
 
@@ -66,22 +65,44 @@ fn median(mut values: Vec<Duration>) -> Duration {
     values[values.len() / 2]
 }
 
+/// Per-step wall-clock times of one run: triangulation, each stage in run order, curves.
+fn step_times(points: &[Point], params: &Params) -> Vec<(String, Duration)> {
+    let result = reconstruct(points, params).unwrap();
+    let mut times = vec![("triangulation".to_string(), result.triangulation_time())];
+    times.extend(
+        result
+            .stages()
+            .map(|r| (stage_name(r.stage).to_string(), r.time)),
+    );
+    times.push(("curves".to_string(), result.curves_time()));
+    times
+}
+
+fn stage_name(stage: Stage) -> &'static str {
+    match stage {
+        Stage::Proximity => "proximity",
+        Stage::Repair => "repair",
+        Stage::Outliers => "outliers",
+        _ => "other stage",
+    }
+}
+
 fn breakdown(name: &str, points: &[Point], params: &Params) {
-    let runs: Vec<StageTimes> = (0..11)
-        .map(|_| reconstruct(points, params).unwrap().times)
+    let runs: Vec<Vec<(String, Duration)>> = (0..11).map(|_| step_times(points, params)).collect();
+    let medians: Vec<(String, Duration)> = (0..runs[0].len())
+        .map(|k| {
+            let label = runs[0][k].0.clone();
+            (label, median(runs.iter().map(|run| run[k].1).collect()))
+        })
         .collect();
-    let pick = |f: fn(&StageTimes) -> Duration| median(runs.iter().map(f).collect());
-    let tri = pick(|t| t.triangulation);
-    let after = pick(|t| t.proximity + t.repair + t.outliers + t.curves);
+    let tri = medians[0].1;
+    let after: Duration = medians[1..].iter().map(|(_, t)| *t).sum();
+    let listed: Vec<String> = medians.iter().map(|(l, t)| format!("{l} {t:?}")).collect();
     println!(
-        "{name} ({} points, parallel = {}): triangulation {:?}, proximity {:?}, repair {:?}, outliers {:?}, curves {:?}; after/triangulation = {:.2}",
+        "{name} ({} points, parallel = {}): {}; after/triangulation = {:.2}",
         points.len(),
         params.parallel,
-        tri,
-        pick(|t| t.proximity),
-        pick(|t| t.repair),
-        pick(|t| t.outliers),
-        pick(|t| t.curves),
+        listed.join(", "),
         after.as_secs_f64() / tri.as_secs_f64()
     );
 }
@@ -121,7 +142,7 @@ fn pipeline(c: &mut Criterion) {
             group.bench_function(format!("stages_after_triangulation_{label}"), |b| {
                 b.iter_batched(
                     || triangulate(&points).unwrap(),
-                    |tri| reconstruct_triangulation(tri, &params),
+                    |tri| reconstruct_triangulation(tri, &params).unwrap(),
                     BatchSize::LargeInput,
                 )
             });

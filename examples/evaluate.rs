@@ -6,8 +6,8 @@
 //!  [--adaptive] [--u X] [--iqr K] [--no-outlier-filter] [--sets]`
 //! With `--compare`, runs every repair variant and uniformity mode and prints one table each.
 
-use condt::condt::{reconstruct, Params, Repair, Uniformity};
 use condt::io::read_points;
+use condt::{reconstruct, Params, Repair, Uniformity};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
@@ -51,11 +51,7 @@ fn evaluate_set(
         })
         .collect();
     let result = reconstruct(&points, params)?;
-    let ours: BTreeSet<(usize, usize)> = result
-        .edges
-        .iter()
-        .map(|&[a, b]| (a as usize, b as usize))
-        .collect();
+    let ours: BTreeSet<(usize, usize)> = result.edges().map(|[a, b]| (a, b)).collect();
     let hits = ours.intersection(&truth).count() as f64;
     let (precision, recall) = (
         hits / ours.len().max(1) as f64,

@@ -1,58 +1,138 @@
 //! Curves from an edge set: ordered polylines, closed or open.
 //!
-//! Owns: turning a graph whose vertices mostly have degree two into polylines. It may not look at
-//! coordinates: the order along a curve is the graph's.
+//! Owns: the [`Curve`] type and turning a graph whose vertices mostly have degree two into
+//! polylines, in a canonical order. It may not look at coordinates: the order along a curve is the
+//! graph's.
 //!
 //! A polyline runs between vertices whose degree is not two (ends and branch points); what is
 //! left once those are walked are cycles of degree-two vertices, reported as closed curves. A
 //! polyline that leaves a branch vertex and comes back to it (one lobe of a figure eight) is
 //! closed too.
 
-use crate::graph::{ordered, CurveGraph, Edge};
+use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
+use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// One curve: its points in order along it, as indices (vertex ids from [`assemble`]; input
-/// positions in a [`Reconstruction`](crate::condt::Reconstruction)). A closed curve does not
-/// repeat its first point at the end.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Curve {
-    /// The points in order.
-    pub vertices: Vec<u32>,
-    /// `true` when the last vertex joins back to the first.
-    pub closed: bool,
-}
-
-/// Splits `edges` over `vertex_count` vertices into curves. Every edge lies on exactly one
-/// curve. An edge may be listed either way round and more than once; loops and edges reaching
-/// past `vertex_count` are ignored. Deterministic: curves come in order of their smallest
-/// starting vertex.
+/// One curve: its points in order along it, as input positions. A closed curve does not repeat
+/// its first point at the end.
 ///
 /// ```
-/// use condt::curve::assemble;
-/// use condt::VertexId;
-/// let v = VertexId::new;
+/// use condt::curves_from_edges;
 /// // A triangle 0-1-2 and a separate segment 3-4.
-/// let edges = [[v(0), v(1)], [v(0), v(2)], [v(1), v(2)], [v(3), v(4)]];
-/// let curves = assemble(5, &edges);
+/// let curves = curves_from_edges(5, &[[0, 1], [2, 0], [1, 2], [3, 4]]);
 /// assert_eq!(curves.len(), 2);
-/// assert_eq!((curves[0].vertices.len(), curves[0].closed), (2, false));
-/// assert_eq!((curves[1].vertices.len(), curves[1].closed), (3, true));
+/// let (triangle, segment) = (&curves[0], &curves[1]);
+/// assert!(triangle.is_closed());
+/// assert_eq!(triangle.points().collect::<Vec<_>>(), vec![0, 1, 2]);
+/// assert_eq!(triangle.edges().collect::<Vec<_>>(), vec![[0, 1], [1, 2], [2, 0]]);
+/// assert!(!segment.is_closed());
+/// assert_eq!(segment.points().collect::<Vec<_>>(), vec![3, 4]);
 /// ```
-pub fn assemble(vertex_count: usize, edges: &[Edge]) -> Vec<Curve> {
-    let valid = |&&[a, b]: &&Edge| a != b && a.index() < vertex_count && b.index() < vertex_count;
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Curve {
+    /// Input positions in order; 32 bits, as the kernel stores every index.
+    points: Vec<u32>,
+    closed: bool,
+}
+
+impl Curve {
+    /// The input positions of its points, in order along the curve.
+    pub fn points(
+        &self,
+    ) -> impl ExactSizeIterator<Item = usize> + DoubleEndedIterator + Clone + '_ {
+        self.points.iter().map(|&i| i as usize)
+    }
+
+    /// `true` when the last point joins back to the first.
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+
+    /// Number of points (a closed curve has as many edges, an open one one fewer).
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// `true` for a curve without points (never produced by this crate).
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// Its edges as input positions in the order of the curve, the closing edge last.
+    pub fn edges(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
+        let n = self.points.len();
+        let steps = if self.closed { n } else { n.saturating_sub(1) };
+        (0..steps).map(move |k| [self.points[k] as usize, self.points[(k + 1) % n] as usize])
+    }
+
+    /// Starts a closed curve at its smallest index, heading to the smaller of its two neighbours,
+    /// and an open one at its smaller end, so the output never depends on the internal numbering.
+    fn make_canonical(&mut self) {
+        let v = &mut self.points;
+        if v.len() < 2 {
+            return;
+        }
+        if self.closed {
+            let first = (0..v.len()).min_by_key(|&i| v[i]).unwrap_or(0);
+            v.rotate_left(first);
+            if v[v.len() - 1] < v[1] {
+                v[1..].reverse();
+            }
+        } else if v[v.len() - 1] < v[0] {
+            v.reverse();
+        }
+    }
+}
+
+/// Splits the edges between `num_points` points into curves: every edge lies on exactly one
+/// curve. Edges are input positions; an edge may be listed either way round and more than once;
+/// loops and edges reaching past `num_points` are ignored. Deterministic: each curve starts at
+/// its smallest position (an open one at its smaller end), and curves are sorted.
+///
+/// ```
+/// use condt::curves_from_edges;
+/// // A figure eight: two loops through point 0, which has degree four.
+/// let curves = curves_from_edges(5, &[[0, 1], [1, 2], [2, 0], [0, 3], [3, 4], [4, 0]]);
+/// assert_eq!(curves.len(), 2);
+/// assert!(curves.iter().all(|c| c.is_closed() && c.len() == 3));
+/// ```
+pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> {
+    // Positions are 32-bit inside, as in the kernel; larger ones cannot name a point here.
+    let count = num_points.min(u32::MAX as usize);
     let mut once: Vec<Edge> = edges
         .iter()
-        .filter(valid)
-        .map(|&[a, b]| ordered(a, b))
+        .filter(|&&[a, b]| a != b && a < count && b < count)
+        .map(|&[a, b]| ordered(VertexId::new(a as u32), VertexId::new(b as u32)))
         .collect();
     once.sort_unstable();
     once.dedup();
-    curves_of(&CurveGraph::new(vertex_count, &once))
+    let mut curves = curves_of(&CurveGraph::new(count, &once));
+    canonical(&mut curves, |v| v);
+    curves
 }
 
-/// [`assemble`] on a graph already built.
+/// The curves of `graph` (over vertex ids of `tri`), in input positions, canonical and sorted.
+pub(crate) fn curves_in_input_positions(tri: &Triangulation, graph: &CurveGraph) -> Vec<Curve> {
+    let mut curves = curves_of(graph);
+    canonical(&mut curves, |v| tri.input_of(VertexId::new(v)) as u32);
+    curves
+}
+
+/// Renames every point by `rename`, then gives each curve its canonical start and direction and
+/// sorts them.
+fn canonical(curves: &mut [Curve], rename: impl Fn(u32) -> u32) {
+    for curve in curves.iter_mut() {
+        for v in curve.points.iter_mut() {
+            *v = rename(*v);
+        }
+        curve.make_canonical();
+    }
+    curves.sort_by(|a, b| a.points.cmp(&b.points));
+}
+
+/// The curves of a graph already built, in its vertex ids, as walked.
 pub(crate) fn curves_of(graph: &CurveGraph) -> Vec<Curve> {
     let vertex_count = graph.vertex_count();
     // Degree-two vertices already on a curve. A path between two ends or branch points is met
@@ -106,7 +186,7 @@ fn walk(graph: &CurveGraph, visited: &mut [bool], start: VertexId, first: Vertex
         path.pop();
     }
     Curve {
-        vertices: path,
+        points: path,
         closed,
     }
 }
@@ -114,49 +194,54 @@ fn walk(graph: &CurveGraph, visited: &mut [bool], start: VertexId, first: Vertex
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::graph::ordered;
 
     /// On random graphs (branch points, lobes, isolated edges, cycles), given with repeats,
-    /// loops, reversed and out-of-range edges: every edge lies on exactly one curve, curves pass
-    /// only through degree-two vertices, and an open curve ends where the degree is not two.
+    /// loops, reversed and out-of-range edges: every edge lies on exactly one curve, an open curve
+    /// passes only through degree-two points and ends where the degree is not two, a closed one
+    /// holds at most one point of another degree (the branch point of a lobe), and each
+    /// curve starts canonically (closed: at its smallest point, towards the smaller neighbour;
+    /// open: at its smaller end).
     #[test]
     fn every_edge_lies_on_exactly_one_curve_through_degree_two_vertices() {
         let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
-        let mut random = |bound: u64| rng.below(bound);
+        let mut random = |bound: u64| rng.below(bound) as usize;
         let mut branch_points = 0;
         for _ in 0..2000 {
-            let n = 2 + random(9) as usize;
+            let n = 2 + random(9);
             let wanted = random(2 * n as u64);
             // As given: either way round, repeated, loops, out of range; and the graph meant.
-            let (mut given, mut edges): (Vec<Edge>, Vec<Edge>) = (Vec::new(), Vec::new());
+            let (mut given, mut edges) = (Vec::new(), Vec::new());
             for _ in 0..wanted {
-                let (a, b) = (random(n as u64 + 1) as u32, random(n as u64) as u32);
-                let (a, b) = (VertexId::new(a), VertexId::new(b));
+                let (a, b) = (random(n as u64 + 1), random(n as u64));
                 given.push([a, b]);
-                let edge = ordered(a, b);
-                if a != b && a.index() < n && !edges.contains(&edge) {
+                let edge = [a.min(b), a.max(b)];
+                if a != b && a < n && !edges.contains(&edge) {
                     edges.push(edge);
                 }
             }
-            let degree = crate::graph::degrees(n, &edges);
+            let mut degree = vec![0; n];
+            for &[a, b] in &edges {
+                degree[a] += 1;
+                degree[b] += 1;
+            }
             branch_points += degree.iter().filter(|&&d| d > 2).count();
-            let mut walked: Vec<Edge> = Vec::new();
-            for curve in assemble(n, &given) {
-                let v = &curve.vertices;
-                let d = |k: usize| degree[v[k] as usize];
+            let mut walked = Vec::new();
+            for curve in curves_from_edges(n, &given) {
+                let v: Vec<usize> = curve.points().collect();
+                let d = |k: usize| degree[v[k]];
                 assert!(v.len() >= 2, "{edges:?}");
-                let inner = if curve.closed {
-                    1..v.len()
+                if curve.is_closed() {
+                    // A cycle, or a lobe through one branch point (which need not come first).
+                    let branching = (0..v.len()).filter(|&k| d(k) != 2).count();
+                    assert!(branching <= 1, "{edges:?}: {curve:?}");
+                    assert!(v.iter().all(|&p| p >= v[0]), "{curve:?}");
+                    assert!(v.len() < 3 || v[1] < v[v.len() - 1], "{curve:?}");
                 } else {
-                    1..v.len() - 1
-                };
-                assert!(inner.clone().all(|k| d(k) == 2), "{edges:?}: {curve:?}");
-                if !curve.closed {
+                    assert!((1..v.len() - 1).all(|k| d(k) == 2), "{edges:?}: {curve:?}");
                     assert!(d(0) != 2 && d(v.len() - 1) != 2, "{edges:?}: {curve:?}");
+                    assert!(v[0] <= v[v.len() - 1], "{curve:?}");
                 }
-                let id = |k: usize| VertexId::new(v[k % v.len()]);
-                let steps = if curve.closed { v.len() } else { v.len() - 1 };
-                walked.extend((0..steps).map(|k| ordered(id(k), id(k + 1))));
+                walked.extend(curve.edges().map(|[a, b]| [a.min(b), a.max(b)]));
             }
             walked.sort();
             edges.sort();

@@ -1,19 +1,23 @@
-//! The error type returned by the kernel.
+//! The error type returned by the library.
 //!
 //! Owns: every way a call into the library can refuse its input. It may not depend on any other
 //! module; the others depend on it.
 
 use core::fmt;
 
-/// Why points could not be triangulated.
+/// Why a call into the library refused its input.
 ///
 /// ```
-/// use condt::{triangulate, Error, Point};
+/// use condt::{reconstruct, triangulate, Error, Params, Point, Uniformity};
 /// let err = triangulate(&[Point::new(0.0, 0.0), Point::new(f64::NAN, 1.0)]).unwrap_err();
 /// assert_eq!(err, Error::NonFinite { index: 1 });
 /// assert_eq!(err.to_string(), "point 1 has a NaN or infinite coordinate");
+///
+/// let params = Params { uniformity: Uniformity::Fixed(-1.0), ..Params::default() };
+/// let err = reconstruct(&[Point::new(0.0, 0.0)], &params).unwrap_err();
+/// assert_eq!(err, Error::InvalidParameter { name: "u", value: -1.0 });
 /// ```
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[derive(Copy, Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Error {
     /// The point at input position `index` has a NaN or infinite coordinate.
@@ -35,6 +39,14 @@ pub enum Error {
         /// The largest number accepted.
         limit: usize,
     },
+    /// A parameter is NaN, infinite or out of its range; [`Params`](crate::Params) says which
+    /// values each parameter accepts.
+    InvalidParameter {
+        /// The parameter's name as the documentation and the command line spell it (`u`, `k`).
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
 }
 
 impl fmt::Display for Error {
@@ -50,6 +62,9 @@ impl fmt::Display for Error {
             ),
             Error::TooManyPoints { count, limit } => {
                 write!(f, "{count} points given, at most {limit} are supported")
+            }
+            Error::InvalidParameter { name, value } => {
+                write!(f, "parameter {name} = {value} is not accepted")
             }
         }
     }

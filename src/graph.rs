@@ -1,183 +1,176 @@
-//! Edge sets and adjacency: the graphs the ConDT stages pass to each other and curves are read from.
+//! [`Graph`]: an edge set on a triangulation, as each stage leaves it, and the stage methods a
+//! user chains to run the pipeline one step at a time.
 //!
-//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), its compressed adjacency, and the
-//! curve graph that keeps each vertex's first two neighbours inline for walking curves. It may
-//! not look at coordinates.
+//! Owns: the public view of a stage's edges in input positions and the step methods
+//! ([`Triangulation::proximity_graph`], [`Graph::repair`], [`Graph::remove_outliers`],
+//! [`Graph::curves`]). It may not implement a stage's rule (that is [`crate::stages`], reached
+//! through `Step::run`) nor decide the order of the stages (that is
+//! [`Params::stages`](crate::Params::stages)).
 
-use crate::mesh::VertexId;
-use alloc::vec;
+use crate::adjacency::{ordered, sort_pairs, CurveGraph, Edge};
+use crate::curve::{curves_in_input_positions, Curve};
+use crate::error::Error;
+use crate::stages::{proximity, Repair, Step, Uniformity};
+use crate::triangulate::Triangulation;
+use alloc::borrow::Cow;
 use alloc::vec::Vec;
 
-/// An undirected edge `[a, b]` with `a < b`, in vertex ids.
-pub type Edge = [VertexId; 2];
+/// The edges a stage left, on the triangulation they were chosen from.
+///
+/// Every method speaks in input positions. A graph borrows its triangulation; the stage methods
+/// return new graphs and leave this one as it is, so each stage can be looked at.
+///
+/// ```
+/// use condt::{triangulate, Point, Repair, Uniformity};
+/// // A plus sign: four arms through a centre point 0.
+/// let pts = [(0.0, 0.0), (1.0, 0.0), (-1.1, 0.0), (0.0, 1.2), (0.0, -1.3)].map(Point::from);
+/// let tri = triangulate(&pts)?;
+/// let all_four = tri.graph_from_edges([[0, 1], [0, 2], [0, 3], [0, 4]]);
+/// assert_eq!(all_four.degrees()[0], 4);
+/// // The paper's repair keeps the shortest edge and one partner beyond 120 degrees.
+/// let repaired = all_four.repair(Repair::Paper);
+/// assert_eq!(repaired.edges(), vec![[0, 1], [0, 2]]);
+/// // The proximity graph of the same points, chosen by the triangulation's rings:
+/// let proximity = tri.proximity_graph(Uniformity::default())?;
+/// assert!(proximity.num_edges() >= 4);
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Graph<'t> {
+    tri: &'t Triangulation,
+    /// Each edge once, `[a, b]` with `a < b`, in vertex ids, in the order the stage listed them.
+    edges: Cow<'t, [Edge]>,
+}
 
-/// `[a, b]` ordered so that `a < b`.
-#[inline]
-pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
-    if a < b {
-        [a, b]
-    } else {
-        [b, a]
+/// What [`Graph::remove_outliers`] did.
+#[derive(Clone, Debug)]
+pub struct OutlierRemoval<'t> {
+    /// The graph after the stage (the input itself when the rule did not fire).
+    pub graph: Graph<'t>,
+    /// Whether Algorithm 3's rule fired: some point had every edge longer than `2 √T`.
+    pub fired: bool,
+}
+
+impl<'t> Graph<'t> {
+    pub(crate) fn new(tri: &'t Triangulation, edges: Cow<'t, [Edge]>) -> Self {
+        Graph { tri, edges }
+    }
+
+    /// The triangulation the graph lives on.
+    pub fn triangulation(&self) -> &'t Triangulation {
+        self.tri
+    }
+
+    /// Number of edges.
+    pub fn num_edges(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// The edges as input positions `[a, b]`, `a < b`, sorted. O(n) with a counting sort.
+    pub fn edges(&self) -> Vec<[usize; 2]> {
+        let tri = self.tri;
+        let pairs = self.edges.iter().map(|&[a, b]| {
+            let (a, b) = (tri.input_of(a) as u32, tri.input_of(b) as u32);
+            [a.min(b), a.max(b)]
+        });
+        sort_pairs(tri.num_points(), pairs, self.edges.len(), |a| a as usize)
+            .into_iter()
+            .map(|[a, b]| [a as usize, b as usize])
+            .collect()
+    }
+
+    /// The degree of every input point (exact duplicates share their point's degree).
+    pub fn degrees(&self) -> Vec<usize> {
+        let mut by_vertex = alloc::vec![0usize; self.tri.num_points()];
+        for &[a, b] in self.edges.iter() {
+            by_vertex[a.index()] += 1;
+            by_vertex[b.index()] += 1;
+        }
+        (0..self.tri.num_points())
+            .map(|i| by_vertex[self.tri.vertex(i).index()])
+            .collect()
+    }
+
+    /// Algorithm 2: the non-manifold repair, in the reading `repair` names.
+    pub fn repair(&self, repair: Repair) -> Graph<'t> {
+        self.step(Step::Repair(repair)).0
+    }
+
+    /// Algorithm 3: the IQR outlier removal with factor `k` (the paper uses 1.7).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] named `k` when `k` is NaN, infinite or negative.
+    pub fn remove_outliers(&self, k: f64) -> Result<OutlierRemoval<'t>, Error> {
+        let step = Step::Outliers { factor: k };
+        step.check()?;
+        let (graph, fired) = self.step(step);
+        Ok(OutlierRemoval { graph, fired })
+    }
+
+    /// The curves through the graph, in input positions: each curve starts at its smallest
+    /// position (an open one at its smaller end) and the list is sorted.
+    pub fn curves(&self) -> Vec<Curve> {
+        let graph = CurveGraph::new(self.tri.num_points(), &self.edges);
+        curves_in_input_positions(self.tri, &graph)
+    }
+
+    /// Runs `step` (its parameter checked) and reports whether its rule applied.
+    fn step(&self, step: Step) -> (Graph<'t>, bool) {
+        let outcome = step.run(self.tri, &self.edges);
+        let edges = match outcome.edges {
+            Some(edges) => Cow::Owned(edges),
+            None => self.edges.clone(),
+        };
+        (Graph::new(self.tri, edges), outcome.applied)
     }
 }
 
-/// Compressed adjacency of an edge list over `vertex_count` vertices: the neighbours of `v` are
-/// `neighbors[offsets[v]..offsets[v + 1]]`, in the order the edges are listed, each with the
-/// position of its edge in the list.
-pub(crate) struct Adjacency {
-    offsets: Vec<u32>,
-    neighbors: Vec<(VertexId, u32)>,
-}
-
-impl Adjacency {
-    /// `edges` must list every edge once (`[a, b]` with `a < b`, in any order). Built by counting,
-    /// in O(n), without sorting.
-    pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
-        debug_assert!(edges.iter().all(|e| e[0] < e[1]));
-        let mut offsets = vec![0u32; vertex_count + 1];
-        for &[a, b] in edges {
-            offsets[a.index() + 1] += 1;
-            offsets[b.index() + 1] += 1;
-        }
-        for i in 0..vertex_count {
-            offsets[i + 1] += offsets[i];
-        }
-        let mut fill = offsets.clone();
-        let mut neighbors = vec![(VertexId::INFINITE, 0); 2 * edges.len()];
-        for (k, &[a, b]) in edges.iter().enumerate() {
-            neighbors[fill[a.index()] as usize] = (b, k as u32);
-            fill[a.index()] += 1;
-            neighbors[fill[b.index()] as usize] = (a, k as u32);
-            fill[b.index()] += 1;
-        }
-        Adjacency { offsets, neighbors }
+/// The graph-level entry points, kept here so the kernel does not depend on the stages.
+impl Triangulation {
+    /// Stage 1, Algorithm 1: every point keeps its shortest Delaunay edge and, when the
+    /// uniformity test passes, its second shortest.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] named `u` for a fixed `u` that is NaN, infinite or not positive.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point, Uniformity};
+    /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+    /// let tri = triangulate(&square)?;
+    /// let graph = tri.proximity_graph(Uniformity::Fixed(2.75))?;
+    /// // The sides are the two shortest edges of every corner; the diagonal is nobody's.
+    /// assert_eq!(graph.edges(), vec![[0, 1], [0, 3], [1, 2], [2, 3]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn proximity_graph(&self, uniformity: Uniformity) -> Result<Graph<'_>, Error> {
+        uniformity.check()?;
+        let parallel = cfg!(feature = "parallel");
+        let edges = proximity::proximity_graph(self, uniformity, parallel);
+        Ok(Graph::new(self, Cow::Owned(edges)))
     }
 
-    /// The neighbours of `v` with the positions of the joining edges.
-    #[inline]
-    pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {
-        &self.neighbors[self.offsets[v.index()] as usize..self.offsets[v.index() + 1] as usize]
+    /// A graph of your own on this triangulation, to run a stage on it: `edges` are input
+    /// positions, either way round; repeats, loops and positions past the last point are ignored.
+    /// An edge need not be a Delaunay edge.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// let graph = tri.graph_from_edges([[1, 0], [0, 1], [2, 2], [2, 7], [1, 2]]);
+    /// assert_eq!(graph.edges(), vec![[0, 1], [1, 2]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn graph_from_edges(&self, edges: impl IntoIterator<Item = [usize; 2]>) -> Graph<'_> {
+        let n = self.num_points();
+        let mut listed: Vec<Edge> = edges
+            .into_iter()
+            .filter(|&[a, b]| a < n && b < n)
+            .map(|[a, b]| ordered(self.vertex(a), self.vertex(b)))
+            .filter(|&[a, b]| a != b)
+            .collect();
+        listed.sort_unstable();
+        listed.dedup();
+        Graph::new(self, Cow::Owned(listed))
     }
-}
-
-/// The neighbours of every vertex of a graph that is a union of curves: almost every vertex has
-/// at most two. Those two are stored inline, so following a curve costs one read per step (a
-/// compressed adjacency costs two dependent ones); a full [`Adjacency`] is built only when some
-/// vertex has three or more.
-pub(crate) struct CurveGraph {
-    degree: Vec<u32>,
-    first_two: Vec<[VertexId; 2]>,
-    branching: Option<Adjacency>,
-}
-
-impl CurveGraph {
-    /// `edges` as for [`Adjacency::new`]. Neighbours come in the order the edges are listed.
-    pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
-        let mut degree = vec![0u32; vertex_count];
-        let mut first_two = vec![[VertexId::INFINITE; 2]; vertex_count];
-        let mut branches = false;
-        for &[a, b] in edges {
-            for (v, w) in [(a, b), (b, a)] {
-                let d = degree[v.index()];
-                degree[v.index()] = d + 1;
-                // Whether the slot fills is a coin toss per edge: selected, not branched on.
-                let slots = &mut first_two[v.index()];
-                let k = d.min(1) as usize;
-                slots[k] = if d < 2 { w } else { slots[k] };
-                branches |= d >= 2;
-            }
-        }
-        let branching = branches.then(|| Adjacency::new(vertex_count, edges));
-        CurveGraph {
-            degree,
-            first_two,
-            branching,
-        }
-    }
-
-    pub(crate) fn vertex_count(&self) -> usize {
-        self.degree.len()
-    }
-
-    #[inline]
-    pub(crate) fn degree(&self, v: VertexId) -> usize {
-        self.degree[v.index()] as usize
-    }
-
-    /// The `k`-th neighbour of `v`, `k < degree(v)`.
-    #[inline]
-    pub(crate) fn neighbor(&self, v: VertexId, k: usize) -> VertexId {
-        match &self.branching {
-            Some(all) if self.degree(v) > 2 => all.incident(v)[k].0,
-            _ => self.first_two[v.index()][k],
-        }
-    }
-
-    /// The first two neighbours of `v` ([`VertexId::INFINITE`] where it has fewer); all of
-    /// them when `degree(v) <= 2`.
-    #[inline]
-    pub(crate) fn first_two(&self, v: VertexId) -> [VertexId; 2] {
-        self.first_two[v.index()]
-    }
-
-    /// For `v` of degree two and `from` one of its neighbours, the other one: the next step along
-    /// a curve. Which slot holds `from` is a coin toss, so the other is taken by exclusive or
-    /// (`x ^ y ^ x = y`) rather than by a branch the predictor would miss half the time.
-    #[inline]
-    pub(crate) fn onward(&self, v: VertexId, from: VertexId) -> VertexId {
-        let [x, y] = self.first_two[v.index()];
-        debug_assert!(from == x || from == y);
-        VertexId::new(x.index() as u32 ^ y.index() as u32 ^ from.index() as u32)
-    }
-}
-
-/// Sorts pairs `[a, b]` with `index(a) < bound` by `(a, b)` and drops repeats, in O(n): a
-/// counting sort by the first element, then a sort of each (short) bucket by the second.
-pub(crate) fn sort_pairs<T: Copy + Ord>(
-    bound: usize,
-    pairs: impl Iterator<Item = [T; 2]> + Clone,
-    count: usize,
-    index: impl Fn(T) -> usize,
-) -> Vec<[T; 2]> {
-    let mut ends = vec![0u32; bound + 1];
-    for [a, _] in pairs.clone() {
-        ends[index(a) + 1] += 1;
-    }
-    for i in 0..bound {
-        ends[i + 1] += ends[i];
-    }
-    let Some(filler) = pairs.clone().next() else {
-        return Vec::new();
-    };
-    let mut sorted = vec![filler; count];
-    for pair in pairs {
-        let slot = &mut ends[index(pair[0])];
-        sorted[*slot as usize] = pair;
-        *slot += 1;
-    }
-    // Each `ends[a]` has moved to the end of bucket `a`.
-    let mut out = Vec::with_capacity(count);
-    let mut begin = 0;
-    for &end in &ends[..bound] {
-        let bucket = &mut sorted[begin..end as usize];
-        bucket.sort_unstable();
-        let before = out.len();
-        for pair in bucket.iter() {
-            if out.len() == before || out.last() != Some(pair) {
-                out.push(*pair);
-            }
-        }
-        begin = end as usize;
-    }
-    out
-}
-
-/// The degree of every vertex in `edges`, indexed by vertex id.
-pub(crate) fn degrees(vertex_count: usize, edges: &[Edge]) -> Vec<u32> {
-    let mut degree = vec![0u32; vertex_count];
-    for &[a, b] in edges {
-        degree[a.index()] += 1;
-        degree[b.index()] += 1;
-    }
-    degree
 }

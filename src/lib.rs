@@ -1,78 +1,106 @@
 //! # condt
 //!
-//! Curve reconstruction from unorganized planar points, standing on its own exact Delaunay kernel.
+//! Curve reconstruction from unorganized planar points with ConDT (J. Antony, M. Reghunath,
+//! S. B. Thayyil, R. Muthuganapathy, "ConDT: A 2D curve reconstruction algorithm based on a
+//! constrained-neighbor proximity graph"), on its own exact Delaunay kernel.
 //!
-//! [`condt::reconstruct`] returns the curves through a point set, with
-//! every intermediate graph kept for inspection. Underneath is the kernel, usable on its own:
-//! exact predicates ([`predicates`]), a compact half-edge mesh ([`mesh`]) and an incremental
-//! Delaunay triangulator ([`triangulate()`], in the module [`mod@triangulate`]).
+//! [`reconstruct`] gives the curves through a point set and keeps every stage for inspection:
+//!
+//! ```
+//! use condt::{reconstruct, Params, Point};
+//!
+//! let points: Vec<Point> = (0..16)
+//!     .map(|k| {
+//!         let t = k as f64 * std::f64::consts::TAU / 16.0;
+//!         Point::new(2.0 * t.cos(), t.sin())
+//!     })
+//!     .collect();
+//! let result = reconstruct(&points, &Params::default())?;
+//! let curve = &result.curves()[0];
+//! assert!(curve.is_closed());
+//! for i in curve.points() {
+//!     let p = points[i]; // every index is a position in `points`
+//!     # let _ = p;
+//! }
+//! for report in result.stages() {
+//!     println!("{}: {} edges", report.stage, report.graph.num_edges());
+//! }
+//! # Ok::<(), condt::Error>(())
+//! ```
+//!
+//! The stages can also be run one by one, each a method on the graph the previous one left:
+//!
+//! ```
+//! use condt::{triangulate, Point, Repair, Uniformity};
+//! let points = [(0.0, 0.0), (1.0, 0.1), (2.0, 0.0), (3.0, 0.2)].map(Point::from);
+//! let tri = triangulate(&points)?;
+//! let proximity = tri.proximity_graph(Uniformity::default())?;
+//! let repaired = proximity.repair(Repair::Paper);
+//! let filtered = repaired.remove_outliers(1.7)?;
+//! assert!(!filtered.fired);
+//! assert_eq!(filtered.graph.edges(), vec![[0, 1], [1, 2], [2, 3]]);
+//! # Ok::<(), condt::Error>(())
+//! ```
+//!
+//! Underneath is the kernel, usable on its own: [`triangulate`] builds a [`Triangulation`],
+//! read in input positions, with the half-edge level in [`mesh`] and the exact predicates in
+//! [`predicates`].
 //!
 //! ```
 //! use condt::{triangulate, Point};
 //!
-//! let points = [
-//!     Point::new(0.0, 0.0),
-//!     Point::new(1.0, 0.0),
-//!     Point::new(0.0, 1.0),
-//!     Point::new(1.0, 1.0),
-//!     Point::new(0.0, 0.0), // an exact duplicate of point 0
-//! ];
+//! let points = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.0, 0.0)].map(Point::from);
 //! let tri = triangulate(&points)?;
-//! assert_eq!(tri.num_vertices(), 4);
+//! assert_eq!(tri.num_vertices(), 4); // point 4 repeats point 0 and is merged into it
 //! assert_eq!(tri.triangles().count(), 2);
-//! // Point 4 is merged into point 0, never dropped silently:
-//! assert_eq!(tri.vertex_of_input(4), tri.vertex_of_input(0));
-//! assert_eq!(tri.input_index(tri.vertex_of_input(4)), 0);
+//! assert_eq!(tri.hull().count(), 4);
 //! tri.validate()?;
-//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! # Ok::<(), condt::Error>(())
 //! ```
 //!
 //! ## Features
-//! - `std` (default): file I/O helpers ([`io`]) and the `condt` command-line tool.
-//! - `parallel` (default, implies `std`): multi-threaded stages, on rayon.
+//! - `std` (default): file I/O ([`io`]) and the `condt` command-line tool.
+//! - `parallel` (default, implies `std`): multi-threaded stages, on rayon (same results).
 //!
 //! With `--no-default-features` the library is `#![no_std]` and needs only `alloc`.
 //!
 //! ## Layout
-//! Each module depends only on the ones listed before it; `docs/architecture.md` draws the graph.
-//! - [`error`]: the error type shared by every module.
-//! - [`geometry`]: the [`Point`] type and plain-arithmetic helpers that decide no signs.
-//! - [`predicates`]: the only place a geometric sign is decided (exact, via `robust`).
-//! - [`mesh`]: half-edge topology with typed ids; never sees a coordinate.
-//! - [`mod@triangulate`]: builds a Delaunay [`Triangulation`] from points and checks one.
-//! - [`graph`]: sorted edge sets and their adjacency.
-//! - [`condt`]: the ConDT stages (proximity graph, non-manifold repair, outlier removal).
-//! - [`curve`]: ordered polylines from an edge set.
-//! - [`sample`]: curves sampled with known connectivity, for tests and examples.
-//! - [`io`] (`std`): reading point files and writing results atomically.
-//! - [`cli`] (`std`): the command-line front end used by the `condt` binary.
-//! - `test_rng` (unit tests only): the reproducible generator the unit tests draw inputs from.
+//! `docs/architecture.md` draws the module graph; each module depends only on those before it.
+//! Public: this page's re-exports, [`mesh`] (the half-edge level), [`predicates`], [`sample`]
+//! and [`io`] (`std`). Private: `error`, `geometry`, `triangulate`, `adjacency` (edge lists in
+//! vertex ids), `stages` (one module per ConDT stage), `graph` ([`Graph`]), `curve` ([`Curve`]),
+//! `reconstruct` (the pipeline and the order of its stages), and `test_rng` (unit tests only).
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 extern crate alloc;
 
-#[cfg(feature = "std")]
-pub mod cli;
-pub mod condt;
-pub mod curve;
-pub mod error;
-pub mod geometry;
-pub mod graph;
+mod adjacency;
+mod curve;
+mod error;
+mod geometry;
+mod graph;
 #[cfg(feature = "std")]
 pub mod io;
 pub mod mesh;
 pub mod predicates;
+mod reconstruct;
 pub mod sample;
+mod stages;
 #[cfg(test)]
 mod test_rng;
-pub mod triangulate;
+mod triangulate;
 
+pub use curve::{curves_from_edges, Curve};
 pub use error::Error;
 pub use geometry::Point;
-pub use mesh::{HalfEdgeId, InvalidMesh, Mesh, TriangleId, VertexId};
-pub use triangulate::{triangulate, Triangulation};
+pub use graph::{Graph, OutlierRemoval};
+pub use reconstruct::{
+    reconstruct, reconstruct_triangulation, Params, Reconstruction, StageReport,
+};
+pub use stages::{Repair, Stage, Uniformity};
+pub use triangulate::{triangulate, Triangulation, MAX_POINTS};
 
 /// The README's code examples, compiled and run as doctests so they cannot go stale.
 #[cfg(doctest)]

@@ -4,17 +4,24 @@
 mod common;
 
 use common::Rng;
-use condt::condt::{reconstruct, Params, Reconstruction, Repair, Uniformity};
 use condt::sample::{sample, Sample, Sampling, Shape};
 use condt::Point;
+use condt::{reconstruct, Params, Reconstruction, Repair, Stage, Uniformity};
 use std::collections::BTreeSet;
 use std::f64::consts::PI;
 
 fn edges(r: &Reconstruction) -> BTreeSet<[usize; 2]> {
-    r.edges
-        .iter()
-        .map(|&[a, b]| [a as usize, b as usize])
-        .collect()
+    r.edges().collect()
+}
+
+/// The final edges in the order the result lists them (sorted).
+fn final_edges(r: &Reconstruction) -> Vec<[usize; 2]> {
+    r.edges().collect()
+}
+
+/// The edges `stage` left, sorted; `None` when it did not run.
+fn stage_edges(r: &Reconstruction, stage: Stage) -> Option<Vec<[usize; 2]>> {
+    r.stage(stage).map(|report| report.graph.edges())
 }
 
 fn truth(s: &Sample) -> BTreeSet<[usize; 2]> {
@@ -39,10 +46,15 @@ fn run(points: &[Point], params: Params) -> Reconstruction {
         },
     )
     .unwrap();
-    assert_eq!(sequential.proximity(), parallel.proximity());
-    assert_eq!(sequential.repaired(), parallel.repaired());
-    assert_eq!(sequential.edges, parallel.edges);
-    assert_eq!(sequential.curves, parallel.curves);
+    for (ours, theirs) in sequential.stages().zip(parallel.stages()) {
+        assert_eq!(ours.stage, theirs.stage);
+        assert_eq!(ours.applied, theirs.applied);
+        assert_eq!(ours.graph.edges(), theirs.graph.edges(), "{}", ours.stage);
+    }
+    assert_eq!(sequential.stages().len(), parallel.stages().len());
+    assert_eq!(final_edges(&sequential), final_edges(&parallel));
+    assert_eq!(sequential.curves(), parallel.curves());
+    assert_eq!(sequential.unused(), parallel.unused());
     sequential
 }
 
@@ -72,9 +84,9 @@ fn circle_is_one_closed_curve() {
             Params::default(),
             "circle",
         );
-        assert_eq!(r.curves.len(), 1);
-        assert!(r.curves[0].closed);
-        assert!(r.unused.is_empty());
+        assert_eq!(r.curves().len(), 1);
+        assert!(r.curves()[0].is_closed());
+        assert!(r.unused().is_empty());
     }
 }
 
@@ -100,8 +112,8 @@ fn three_separate_closed_components() {
         },
     ];
     let r = assert_exact(&shapes, 0.2, Params::default(), "three components");
-    assert_eq!(r.curves.len(), 3);
-    assert!(r.curves.iter().all(|c| c.closed));
+    assert_eq!(r.curves().len(), 3);
+    assert!(r.curves().iter().all(|c| c.is_closed()));
 }
 
 #[test]
@@ -113,9 +125,13 @@ fn dense_open_arc_is_one_open_curve() {
         sweep: 1.2 * PI,
     };
     let r = assert_exact(&[arc], 0.05, Params::default(), "open arc");
-    assert_eq!(r.curves.len(), 1);
-    assert!(!r.curves[0].closed);
-    assert_eq!(r.degrees.iter().filter(|&&d| d == 1).count(), 2, "two ends");
+    assert_eq!(r.curves().len(), 1);
+    assert!(!r.curves()[0].is_closed());
+    assert_eq!(
+        (0..r.num_points()).filter(|&i| r.degree(i) == 1).count(),
+        2,
+        "two ends"
+    );
 }
 
 #[test]
@@ -138,7 +154,7 @@ fn square_with_sharp_corners() {
         Point::new(0.0, 4.0),
     ]);
     let r = assert_exact(&[square], 0.1, Params::default(), "square");
-    assert_eq!(r.curves.len(), 1);
+    assert_eq!(r.curves().len(), 1);
 }
 
 #[test]
@@ -152,7 +168,7 @@ fn figure_eight_keeps_its_crossing_with_repair_off() {
         ..Params::default()
     };
     let r = assert_exact(&[eight], 0.1, params, "figure eight");
-    assert_eq!(r.degrees[0], 4, "the crossing sample has degree four");
+    assert_eq!(r.degree(0), 4, "the crossing sample has degree four");
 }
 
 #[test]
@@ -198,7 +214,8 @@ fn five_percent_outliers_get_no_edge() {
         assert!(!s.outliers.is_empty());
         for &o in &s.outliers {
             assert_eq!(
-                r.degrees[o], 0,
+                r.degree(o),
+                0,
                 "two circles, 5 % outliers, seed {seed}: outlier {o} has an edge"
             );
         }
@@ -211,13 +228,14 @@ fn ten_percent_outliers_get_no_edge() {
         let (s, r) = with_outliers(0.10, seed);
         for &o in &s.outliers {
             assert_eq!(
-                r.degrees[o], 0,
+                r.degree(o),
+                0,
                 "two circles, 10 % outliers, seed {seed}: outlier {o} has an edge"
             );
         }
         assert_eq!(s.outliers.len(), 8, "all outliers placed");
-        assert!(r.outlier_filter_applied);
-        assert_eq!(r.unused.len(), s.outliers.len());
+        assert!(r.stage(Stage::Outliers).unwrap().applied);
+        assert_eq!(r.unused().len(), s.outliers.len());
     }
 }
 
@@ -316,22 +334,22 @@ fn duplicates_map_back_to_their_vertex() {
     s.points.push(copy);
     let r = run(&s.points, Params::default());
     let last = s.points.len() - 1;
-    let tri = &r.triangulation;
-    assert_eq!(tri.vertex_of_input(last), tri.vertex_of_input(3));
+    let tri = r.triangulation();
+    assert_eq!(tri.vertex(last), tri.vertex(3));
     assert_eq!(
-        tri.input_index(tri.vertex_of_input(last)),
+        tri.input_of(tri.vertex(last)),
         3,
         "reported under the smaller position"
     );
-    assert_eq!(r.degrees[last], r.degrees[3]);
+    assert_eq!(r.degree(last), r.degree(3));
     assert!(
-        !r.unused.contains(&last),
+        !r.unused().contains(&last),
         "a duplicate of a used point is not an outlier"
     );
     // The edges and curves are those of the set without the copy, under the first position.
     let without = run(&s.points[..last], Params::default());
-    assert_eq!(r.edges, without.edges);
-    assert_eq!(r.curves, without.curves);
+    assert_eq!(final_edges(&r), final_edges(&without));
+    assert_eq!(r.curves(), without.curves());
 }
 
 #[test]
@@ -341,11 +359,11 @@ fn tiny_inputs_do_not_panic() {
             .map(|i| Point::new(i as f64, (i * i) as f64))
             .collect();
         let r = run(&pts, Params::default());
-        assert_eq!(r.degrees.len(), n);
+        assert_eq!(r.num_points(), n);
     }
     let line: Vec<Point> = (0..10).map(|i| Point::new(i as f64, 0.0)).collect();
     let r = run(&line, Params::default());
-    assert_eq!(r.edges.len(), 9, "a dense line is one open curve");
+    assert_eq!(r.edges().len(), 9, "a dense line is one open curve");
 }
 
 #[cfg(feature = "parallel")]
@@ -359,7 +377,7 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
     assert!(s.points.len() >= 1 << 16, "{}", s.points.len());
     // `run` compares every stage of the two passes.
     let r = run(&s.points, Params::default());
-    assert_eq!(r.curves.iter().filter(|c| c.closed).count(), 4);
+    assert_eq!(r.curves().iter().filter(|c| c.is_closed()).count(), 4);
     assert_eq!(edges(&r), truth(&s));
     // Noise and outliers give branch points and unused points; both uniformity tests; the
     // sweep cut into as many triangle ranges as there are workers (two to four).
@@ -383,8 +401,8 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
                 ..Params::default()
             };
             let r = pool.install(|| run(&noisy.points, params));
-            branch_points += r.degrees.iter().filter(|&&d| d > 2).count();
-            assert!(!r.unused.is_empty());
+            branch_points += (0..r.num_points()).filter(|&i| r.degree(i) > 2).count();
+            assert!(!r.unused().is_empty());
         }
     }
     assert!(branch_points > 0);
@@ -407,7 +425,7 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
         ..Sampling::new(0.15)
     };
     let s = sample(&shapes, &sampling);
-    let subset = |small: &[[u32; 2]], big: &[[u32; 2]]| small.iter().all(|e| big.contains(e));
+    let subset = |small: &[[usize; 2]], big: &[[usize; 2]]| small.iter().all(|e| big.contains(e));
     for outliers_first in [false, true] {
         let r = run(
             &s.points,
@@ -416,21 +434,31 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
                 ..Params::default()
             },
         );
-        let (proximity, repaired, filtered) = (r.proximity(), r.repaired(), r.filtered());
+        let order: Vec<Stage> = r.stages().map(|report| report.stage).collect();
+        let expected = if outliers_first {
+            [Stage::Proximity, Stage::Outliers, Stage::Repair]
+        } else {
+            [Stage::Proximity, Stage::Repair, Stage::Outliers]
+        };
+        assert_eq!(order, expected);
+        let of = |stage| stage_edges(&r, stage).expect("the stage ran");
+        let (proximity, repaired, filtered) =
+            (of(Stage::Proximity), of(Stage::Repair), of(Stage::Outliers));
         assert!(
-            r.outlier_filter_applied,
+            r.stage(Stage::Outliers).unwrap().applied,
             "outliers_first = {outliers_first}"
         );
         if outliers_first {
             assert!(subset(&filtered, &proximity) && filtered.len() < proximity.len());
             assert!(subset(&repaired, &filtered));
-            assert_eq!(r.edges, repaired);
+            assert_eq!(final_edges(&r), repaired);
         } else {
             assert!(subset(&repaired, &proximity) && repaired.len() < proximity.len());
             assert!(subset(&filtered, &repaired) && filtered.len() < repaired.len());
-            assert_eq!(r.edges, filtered);
+            assert_eq!(final_edges(&r), filtered);
         }
     }
+    // Stages that are off do not run, and the final graph is the proximity graph.
     let unrepaired = run(
         &s.points,
         Params {
@@ -439,7 +467,10 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
             ..Params::default()
         },
     );
-    assert_eq!(unrepaired.repaired(), unrepaired.proximity());
-    assert_eq!(unrepaired.filtered(), unrepaired.proximity());
-    assert_eq!(unrepaired.edges, unrepaired.proximity());
+    assert_eq!(unrepaired.stages().count(), 1);
+    assert!(stage_edges(&unrepaired, Stage::Repair).is_none());
+    assert_eq!(
+        Some(final_edges(&unrepaired)),
+        stage_edges(&unrepaired, Stage::Proximity)
+    );
 }

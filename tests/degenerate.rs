@@ -42,7 +42,7 @@ fn one_point() {
     tri.validate().unwrap();
     assert_eq!(tri.num_vertices(), 1);
     assert_eq!(tri.edges().count(), 0);
-    assert_eq!(tri.neighbors(tri.vertex_of_input(0)).count(), 0);
+    assert_eq!(tri.neighbors(0).count(), 0);
 }
 
 #[test]
@@ -50,14 +50,8 @@ fn two_points_make_one_edge() {
     let tri = triangulate(&pts(&[(0.0, 0.0), (1.0, 1.0)])).unwrap();
     tri.validate().unwrap();
     assert_eq!(edge_set(&tri).into_iter().collect::<Vec<_>>(), vec![(0, 1)]);
-    assert_eq!(
-        tri.neighbors(tri.vertex_of_input(0)).collect::<Vec<_>>(),
-        vec![tri.vertex_of_input(1)]
-    );
-    assert_eq!(
-        tri.neighbors(tri.vertex_of_input(1)).collect::<Vec<_>>(),
-        vec![tri.vertex_of_input(0)]
-    );
+    assert_eq!(tri.neighbors(0).collect::<Vec<_>>(), vec![1]);
+    assert_eq!(tri.neighbors(1).collect::<Vec<_>>(), vec![0]);
 }
 
 #[test]
@@ -72,9 +66,9 @@ fn collinear_points_form_a_chain_in_line_order() {
     assert!(tri.is_degenerate());
     assert_eq!(tri.num_vertices(), 13, "0.0 and -0.0 are the same point");
     // Every vertex is joined exactly to its nearest neighbours along the line.
-    for v in tri.vertices() {
-        let x = tri.point(v).x;
-        let mut around: Vec<f64> = tri.neighbors(v).map(|w| tri.point(w).x).collect();
+    for i in tri.distinct_points() {
+        let x = tri.point(i).x;
+        let mut around: Vec<f64> = tri.neighbors(i).map(|j| tri.point(j).x).collect();
         around.sort_by(f64::total_cmp);
         let expected: Vec<f64> = [x - 1.0, x + 1.0]
             .into_iter()
@@ -124,18 +118,14 @@ fn exact_duplicates_merge_into_the_smallest_index() {
     let tri = triangulate(&p).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.num_vertices(), 4);
-    let map: Vec<usize> = tri
-        .input_to_vertex()
-        .iter()
-        .map(|&v| tri.input_index(v))
-        .collect();
+    let map: Vec<usize> = (0..p.len()).map(|i| tri.input_of(tri.vertex(i))).collect();
     assert_eq!(map, vec![0, 1, 2, 1, 0, 1, 6]);
     // Every input point is accounted for: kept, or merged into a vertex at the same place.
-    for (i, v) in tri.input_to_vertex().iter().enumerate() {
-        assert_eq!(p[i], tri.point(*v));
+    for (i, &expected) in p.iter().enumerate() {
+        assert_eq!(tri.point(i), expected);
+        assert_eq!(tri.point(tri.input_of(tri.vertex(i))), expected);
     }
-    let mut kept: Vec<usize> = tri.vertices().map(|v| tri.input_index(v)).collect();
-    kept.sort_unstable();
+    let kept: Vec<usize> = tri.distinct_points().collect();
     assert_eq!(kept, vec![0, 1, 2, 6]);
 }
 
@@ -145,9 +135,10 @@ fn all_points_identical() {
     let tri = triangulate(&p).unwrap();
     tri.validate().unwrap();
     assert_eq!(tri.num_vertices(), 1);
-    let kept = tri.vertex_of_input(0);
-    assert!(tri.input_to_vertex().iter().all(|&v| v == kept));
-    assert_eq!(tri.input_index(kept), 0);
+    let kept = tri.vertex(0);
+    assert!((0..p.len()).all(|i| tri.vertex(i) == kept));
+    assert_eq!(tri.input_of(kept), 0);
+    assert_eq!(tri.distinct_points().collect::<Vec<_>>(), vec![0]);
 }
 
 #[test]
@@ -209,7 +200,7 @@ fn integer_points_on_one_circle() {
     let wheel = triangulate(&p).unwrap();
     wheel.validate().unwrap();
     assert_eq!(
-        wheel.neighbors(wheel.vertex_of_input(20)).count(),
+        wheel.neighbors(20).count(),
         20,
         "the centre sees every rim point"
     );

@@ -43,7 +43,7 @@ fn spade_triangulation(points: &[Point], condt: &Triangulation) -> SpadeResult {
         .collect();
     let dt =
         DelaunayTriangulation::<Indexed>::bulk_load(vertices).expect("spade accepts finite input");
-    let name = |v: &Indexed| condt.input_index(condt.vertex_of_input(v.index));
+    let name = |v: &Indexed| condt.input_of(condt.vertex(v.index));
     let edges = dt
         .undirected_edges()
         .map(|e| {

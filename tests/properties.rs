@@ -120,7 +120,7 @@ fn permuting_the_input_permutes_the_edges() {
         let shuffled: Vec<Point> = order.iter().map(|&i| set.0[i]).collect();
         let other = triangulate(&shuffled).expect("finite input");
         // Name each vertex of the shuffled run by the original representative of its point.
-        let rename = |j: usize| tri.input_index(tri.vertex_of_input(order[j]));
+        let rename = |j: usize| tri.input_of(tri.vertex(order[j]));
         let mapped: BTreeSet<(usize, usize)> = other
             .edges()
             .map(|[a, b]| {

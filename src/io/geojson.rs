@@ -1,13 +1,13 @@
 //! GeoJSON output, written by hand (no serializer dependency).
 
-use crate::condt::Reconstruction;
+use crate::reconstruct::Reconstruction;
 use std::io::{self, Write};
 
 /// A `FeatureCollection` with one `LineString` per curve and a boolean `closed` property; a
 /// closed curve repeats its first position at the end, as GeoJSON rings do.
 ///
 /// ```
-/// use condt::condt::{reconstruct, Params};
+/// use condt::{reconstruct, Params};
 /// use condt::Point;
 /// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
 /// let mut out = Vec::new();
@@ -19,20 +19,20 @@ use std::io::{self, Write};
 /// ```
 pub fn write_geojson(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
     write!(out, r#"{{"type":"FeatureCollection","features":["#)?;
-    for (k, curve) in result.curves.iter().enumerate() {
+    for (k, curve) in result.curves().iter().enumerate() {
         if k > 0 {
             write!(out, ",")?;
         }
         write!(
             out,
             r#"{{"type":"Feature","properties":{{"closed":{}}},"#,
-            curve.closed
+            curve.is_closed()
         )?;
         write!(out, r#""geometry":{{"type":"LineString","coordinates":["#)?;
-        let closing = curve.closed.then(|| curve.vertices[0]);
-        for (i, v) in curve.vertices.iter().chain(closing.iter()).enumerate() {
-            let p = result.point(*v as usize);
-            write!(out, "{}[{},{}]", if i > 0 { "," } else { "" }, p.x, p.y)?;
+        let closing = curve.points().next().filter(|_| curve.is_closed());
+        for (k, i) in curve.points().chain(closing).enumerate() {
+            let p = result.point(i);
+            write!(out, "{}[{},{}]", if k > 0 { "," } else { "" }, p.x, p.y)?;
         }
         write!(out, "]}}}}")?;
     }

@@ -24,36 +24,65 @@ use std::path::{Path, PathBuf};
 /// A problem reading or writing a file, with the file's name and, for bad content, the line.
 ///
 /// ```
-/// use condt::io::parse_points;
+/// use condt::io::{parse_points, IoErrorKind};
 /// let err = parse_points("1 2\n3 x\n", "pts.txt").unwrap_err();
 /// assert_eq!(err.to_string(), "pts.txt:2: cannot read \"x\" as a number");
+/// assert_eq!(err.line, Some(2));
+/// assert!(matches!(err.kind, IoErrorKind::Content(_)));
+///
+/// let err = condt::io::read_points("no/such/file.txt").unwrap_err();
+/// let IoErrorKind::Io(cause) = &err.kind else { panic!("an I/O error") };
+/// assert_eq!(cause.kind(), std::io::ErrorKind::NotFound);
+/// assert!(std::error::Error::source(&err).is_some());
 /// ```
 #[derive(Debug)]
 pub struct IoError {
-    /// The file (or `<stdin>`).
+    /// The file (`<stdin>`, `<stdout>` for the standard streams).
     pub file: String,
     /// The 1-based line of the problem, when it is about the content.
     pub line: Option<usize>,
     /// What went wrong.
-    pub message: String,
+    pub kind: IoErrorKind,
+}
+
+/// What went wrong in an [`IoError`].
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum IoErrorKind {
+    /// The operating system refused a read or write; kept whole, and the error's
+    /// [`source`](std::error::Error::source).
+    Io(io::Error),
+    /// The content is not a valid point file; the message says why.
+    Content(String),
 }
 
 impl fmt::Display for IoError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.line {
-            Some(line) => write!(f, "{}:{}: {}", self.file, line, self.message),
-            None => write!(f, "{}: {}", self.file, self.message),
+        write!(f, "{}", self.file)?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+        }
+        match &self.kind {
+            IoErrorKind::Io(err) => write!(f, ": {err}"),
+            IoErrorKind::Content(message) => write!(f, ": {message}"),
         }
     }
 }
 
-impl std::error::Error for IoError {}
+impl std::error::Error for IoError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match &self.kind {
+            IoErrorKind::Io(err) => Some(err),
+            IoErrorKind::Content(_) => None,
+        }
+    }
+}
 
 fn io_error(file: &str, err: io::Error) -> IoError {
     IoError {
         file: file.to_string(),
         line: None,
-        message: err.to_string(),
+        kind: IoErrorKind::Io(err),
     }
 }
 
@@ -96,7 +125,7 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
         let bad = |message: String| IoError {
             file: file.to_string(),
             line: Some(number),
-            message,
+            kind: IoErrorKind::Content(message),
         };
         let Some(first) = fields.next() else { continue };
         let Some(second) = fields.next() else {
@@ -145,7 +174,7 @@ pub fn read_points(path: &str) -> Result<Vec<Point>, IoError> {
         IoError {
             file: name.to_string(),
             line: Some(line),
-            message: "not UTF-8 text".to_string(),
+            kind: IoErrorKind::Content("not UTF-8 text".to_string()),
         }
     })?;
     parse_points(&text, name)

@@ -1,7 +1,7 @@
 //! SVG drawings of a reconstruction, for looking at results and at each stage.
 
-use crate::condt::{InputEdge, Reconstruction};
 use crate::geometry::Point;
+use crate::reconstruct::Reconstruction;
 use std::io::{self, Write};
 
 /// Maps data coordinates to one panel of the picture (y up in the data, down in SVG).
@@ -22,7 +22,7 @@ impl Frame {
 }
 
 /// A panel: its title, its edges and their colour.
-type Layer<'a> = (&'a str, &'a [InputEdge], &'a str);
+type Layer<'a> = (&'a str, &'a [[usize; 2]], &'a str);
 
 const PANEL: f64 = 800.0;
 const MARGIN: f64 = 20.0;
@@ -55,7 +55,7 @@ fn lines(
     out: &mut dyn Write,
     f: &Frame,
     pts: &[Point],
-    edges: &[InputEdge],
+    edges: &[[usize; 2]],
     color: &str,
     width: f64,
 ) -> io::Result<()> {
@@ -64,7 +64,7 @@ fn lines(
         r#"<path fill="none" stroke="{color}" stroke-width="{width}" d=""#
     )?;
     for [a, b] in edges {
-        let ((x1, y1), (x2, y2)) = (f.map(pts[*a as usize]), f.map(pts[*b as usize]));
+        let ((x1, y1), (x2, y2)) = (f.map(pts[*a]), f.map(pts[*b]));
         write!(out, "M{x1:.2} {y1:.2}L{x2:.2} {y2:.2}")?;
     }
     writeln!(out, r#""/>"#)
@@ -86,57 +86,50 @@ fn dots(
 }
 
 /// Draws the points and the reconstructed curves; unused points (outliers) in red. With
-/// `stages`, four panels side by side: the Delaunay triangulation, the proximity graph, the graph
-/// after non-manifold repair, and the final curves.
+/// `stages`, one panel per step side by side: the Delaunay triangulation, then the graph after
+/// every stage in the order the stages ran (the last one in black).
 ///
 /// ```
-/// use condt::condt::{reconstruct, Params};
-/// use condt::Point;
+/// use condt::{reconstruct, Params, Point};
 /// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
 /// let mut out = Vec::new();
 /// condt::io::write_svg(&mut out, &r, true)?;
 /// let svg = String::from_utf8(out)?;
 /// assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-/// assert_eq!(svg.matches("<text").count(), 4);
+/// assert_eq!(svg.matches("<text").count(), 1 + r.stages().count());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> io::Result<()> {
-    let pts: Vec<Point> = (0..result.degrees.len()).map(|i| result.point(i)).collect();
+    let pts: Vec<Point> = (0..result.num_points()).map(|i| result.point(i)).collect();
     let pts = &pts[..];
-    let panels = if stages { 4 } else { 1 };
+    let delaunay: Vec<[usize; 2]> = result.triangulation().edges().collect();
+    let graphs: Vec<(&str, Vec<[usize; 2]>)> = result
+        .stages()
+        .map(|report| (report.stage.title(), report.graph.edges()))
+        .collect();
+    let last = graphs.len().saturating_sub(1);
+    let mut layers: Vec<Layer> = Vec::new();
+    if stages {
+        layers.push(("Delaunay triangulation", &delaunay, "#9aa5b1"));
+        for (k, (title, edges)) in graphs.iter().enumerate() {
+            let color = match k {
+                0 => "#1f6fd1",
+                k if k == last => "#111111",
+                _ => "#1a8f3c",
+            };
+            layers.push((title, edges, color));
+        }
+    } else {
+        layers.push(("", &graphs[last].1, "#111111"));
+    }
     writeln!(
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#,
-        w = PANEL * panels as f64,
+        w = PANEL * layers.len() as f64,
         h = PANEL
     )?;
     writeln!(out, r#"<rect width="100%" height="100%" fill="white"/>"#)?;
-    let delaunay: Vec<InputEdge> = result
-        .triangulation
-        .edges()
-        .map(|[a, b]| [a as u32, b as u32])
-        .collect();
-    let used = |i: &usize| result.degrees[*i] > 0;
-    // The two middle stages in the order they ran.
-    let (proximity, repaired, filtered) =
-        (result.proximity(), result.repaired(), result.filtered());
-    let repair: Layer = ("after non-manifold repair", &repaired, "#1a8f3c");
-    let filter: Layer = ("after outlier removal", &filtered, "#1a8f3c");
-    let (second, third) = if result.params.outliers_first {
-        (filter, repair)
-    } else {
-        (repair, filter)
-    };
-    let layers: Vec<Layer> = if stages {
-        vec![
-            ("Delaunay triangulation", &delaunay, "#9aa5b1"),
-            ("ConDT proximity graph", &proximity, "#1f6fd1"),
-            second,
-            (third.0, third.1, "#111111"),
-        ]
-    } else {
-        vec![("", &result.edges, "#111111")]
-    };
+    let used = |i: &usize| result.degree(*i) > 0;
     for (panel, (title, edges, color)) in layers.into_iter().enumerate() {
         let f = frame(pts, panel);
         lines(out, &f, pts, edges, color, 1.5)?;

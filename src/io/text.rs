@@ -1,12 +1,12 @@
 //! Plain-text results: edge lists and polylines.
 
-use crate::condt::Reconstruction;
+use crate::reconstruct::Reconstruction;
 use std::io::{self, Write};
 
 /// One edge `i j` per line, `i < j`, sorted, in input indices.
 ///
 /// ```
-/// use condt::condt::{reconstruct, Params};
+/// use condt::{reconstruct, Params};
 /// use condt::Point;
 /// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
 /// let mut out = Vec::new();
@@ -15,7 +15,7 @@ use std::io::{self, Write};
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
-    for [a, b] in &result.edges {
+    for [a, b] in result.edges() {
         writeln!(out, "{a} {b}")?;
     }
     Ok(())
@@ -24,7 +24,7 @@ pub fn write_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<(
 /// One curve per line: `closed` or `open`, then its input indices in order.
 ///
 /// ```
-/// use condt::condt::{reconstruct, Params};
+/// use condt::{reconstruct, Params};
 /// use condt::Point;
 /// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
 /// let mut out = Vec::new();
@@ -33,10 +33,10 @@ pub fn write_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_polylines(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
-    for curve in &result.curves {
-        write!(out, "{}", if curve.closed { "closed" } else { "open" })?;
-        for v in &curve.vertices {
-            write!(out, " {v}")?;
+    for curve in result.curves() {
+        write!(out, "{}", if curve.is_closed() { "closed" } else { "open" })?;
+        for i in curve.points() {
+            write!(out, " {i}")?;
         }
         writeln!(out)?;
     }

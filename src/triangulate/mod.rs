@@ -2,7 +2,8 @@
 //!
 //! Owns: turning points into a [`Triangulation`] (a [`Mesh`] plus the points and the maps between
 //! input positions and vertices) and checking one. It decides signs only through
-//! [`crate::predicates`] and edits topology only through the mesh arrays.
+//! [`crate::predicates`] and writes topology only through the mesh's builder; it knows nothing of
+//! the ConDT stages.
 //!
 //! The method is incremental insertion (Lawson's flips after each split, which yields the same
 //! triangulation as Bowyer–Watson's cavity retriangulation) in a biased randomized insertion order
@@ -20,23 +21,26 @@ mod scale;
 
 use crate::error::Error;
 use crate::geometry::Point;
-use crate::mesh::{Hull, Mesh, VertexId};
+use crate::mesh::{Mesh, VertexId};
 use crate::predicates::{orient2d, Orientation};
 use alloc::vec::Vec;
 use insert::Builder;
 use scale::Scale;
 
-/// The largest number of input points: 6(2n - 2) half-edges must fit a `u32` index.
+/// The largest number of input points.
+///
+/// The mesh of `n` points has `3(2n - 2)` half-edges (ghosts included), indexed by `u32` with
+/// `u32::MAX` reserved, which would allow about 715 million points. The limit keeps a factor-two
+/// margin below that bound: nothing larger has been run (at about 100 bytes per point it needs
+/// more memory than the machines we test on).
 pub const MAX_POINTS: usize = 350_000_000;
 
 /// A Delaunay triangulation of a point set.
 ///
-/// Vertices are numbered in the order they were inserted, which is spatial (see
-/// `docs/triangulation.md`): walking vertices by id walks the plane coherently, and the mesh,
-/// created in the same order, stays in cache. [`Triangulation::input_index`] and
-/// [`Triangulation::vertex_of_input`] translate between vertices and input positions; exact
-/// duplicates share one vertex, reported under the smallest input position holding that point.
-/// [`Triangulation::triangles`] and [`Triangulation::edges`] speak in input positions directly.
+/// Everything here speaks in input positions: the index of a point in the slice given to
+/// [`triangulate`]. Exact duplicates are one point, reported under the smallest input position
+/// holding it. The half-edge level is [`Triangulation::mesh`], in [`VertexId`]s, numbered in the
+/// (spatial) insertion order; [`Triangulation::vertex`] and [`Triangulation::input_of`] convert.
 ///
 /// ```
 /// use condt::{triangulate, Point};
@@ -44,11 +48,10 @@ pub const MAX_POINTS: usize = 350_000_000;
 /// let tri = triangulate(&pts)?;
 /// assert_eq!(tri.triangles().count(), 4);
 /// assert_eq!(tri.edges().count(), 8);
-/// assert_eq!(tri.hull().count(), 4);
-/// let centre = tri.vertex_of_input(4);
-/// assert_eq!(tri.input_index(centre), 4);
-/// assert_eq!(tri.point(centre), Point::new(1.0, 1.0));
-/// tri.validate().expect("a valid Delaunay triangulation");
+/// assert_eq!(tri.hull().collect::<Vec<_>>(), vec![0, 1, 2, 3]);
+/// assert_eq!(tri.neighbors(4).count(), 4);
+/// assert_eq!(tri.point(4), Point::new(1.0, 1.0));
+/// tri.validate()?;
 /// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Clone, Debug)]
@@ -68,7 +71,7 @@ pub struct Triangulation {
 ///
 /// Every finite input is accepted: fewer than three points, collinear points (the mesh then holds
 /// the chain of segments between consecutive points, and no triangle), exact duplicates (merged,
-/// see [`Triangulation::vertex_of_input`]) and cocircular sets. The result is deterministic and
+/// see [`Triangulation::vertex`]) and cocircular sets. The result is deterministic and
 /// depends only on the set of points, not on their order.
 ///
 /// # Errors
@@ -169,95 +172,131 @@ fn vertex_maps(mut input_of_vertex: Vec<u32>, merged: &[(u32, u32)]) -> (Vec<u32
 }
 
 impl Triangulation {
-    /// The topology.
+    /// The half-edge topology, in vertex ids.
     #[inline]
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
     }
 
-    /// The position of vertex `v`.
+    /// The coordinates of input point `index`.
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
     #[inline]
-    pub fn point(&self, v: VertexId) -> Point {
-        self.points[v.index()]
-    }
-
-    /// The input position vertex `v` stands for (for merged duplicates, the smallest one).
-    #[inline]
-    pub fn input_index(&self, v: VertexId) -> usize {
-        self.input_of_vertex[v.index()] as usize
+    pub fn point(&self, index: usize) -> Point {
+        self.points[self.vertex(index).index()]
     }
 
     /// The vertex that input point `index` became (exact duplicates share one).
     ///
     /// # Panics
     /// If `index` is not an input position.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.0, 0.0)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// assert_eq!(tri.vertex(3), tri.vertex(0)); // a duplicate is merged...
+    /// assert_eq!(tri.input_of(tri.vertex(3)), 0); // ...into its first position
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
-    pub fn vertex_of_input(&self, index: usize) -> VertexId {
+    pub fn vertex(&self, index: usize) -> VertexId {
         self.vertex_of_input[index]
     }
 
-    /// [`Triangulation::vertex_of_input`] for every input position at once.
+    /// The input position vertex `v` stands for (for merged duplicates, the smallest one).
+    ///
+    /// # Panics
+    /// If `v` is not a vertex id of this triangulation (for example [`VertexId::INFINITE`]).
     #[inline]
-    pub fn input_to_vertex(&self) -> &[VertexId] {
-        &self.vertex_of_input
+    pub fn input_of(&self, v: VertexId) -> usize {
+        self.input_of_vertex[v.index()] as usize
     }
 
-    /// Number of input points (the length of the vertex id space, duplicates included).
+    /// Number of input points, duplicates included.
     #[inline]
-    pub fn num_input_points(&self) -> usize {
+    pub fn num_points(&self) -> usize {
         self.vertex_of_input.len()
     }
 
-    /// Number of distinct points, that is of vertices.
+    /// Number of distinct points, that is of mesh vertices.
     #[inline]
     pub fn num_vertices(&self) -> usize {
         self.num_vertices
     }
 
-    /// `true` when `v` is a vertex of the mesh (not an id left over by a merged duplicate).
-    #[inline]
-    pub fn is_vertex(&self, v: VertexId) -> bool {
-        self.vertex_of_input[self.input_of_vertex[v.index()] as usize] == v
-    }
-
-    /// The vertices, in id (spatial) order.
-    pub fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
-        (0..self.points.len() as u32)
-            .map(VertexId::new)
-            .filter(move |&v| self.is_vertex(v))
+    /// The input position of every distinct point (the smallest of a group of duplicates),
+    /// ascending.
+    pub fn distinct_points(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.num_points()).filter(move |&i| self.input_of(self.vertex(i)) == i)
     }
 
     /// The real triangles as the input positions of their corners, counter-clockwise.
     pub fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
         self.mesh
             .triangles()
-            .map(|t| self.mesh.triangle_vertices(t).map(|v| self.input_index(v)))
+            .map(|t| self.mesh.triangle_vertices(t).map(|v| self.input_of(v)))
     }
 
     /// Every edge once, as input positions `[a, b]` with `a < b`.
     pub fn edges(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
         self.mesh.edges().map(|e| {
             let (a, b) = (
-                self.input_index(self.mesh.origin(e)),
-                self.input_index(self.mesh.dest(e)),
+                self.input_of(self.mesh.origin(e)),
+                self.input_of(self.mesh.dest(e)),
             );
             [a.min(b), a.max(b)]
         })
     }
 
-    /// The neighbours of `v`, counter-clockwise; see [`Mesh::ring`].
-    pub fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
-        self.mesh.neighbors(v)
+    /// The Delaunay neighbours of input point `index`, counter-clockwise (for a hull point, from
+    /// one hull neighbour through the interior to the other); see [`Mesh::ring`].
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    pub fn neighbors(&self, index: usize) -> impl Iterator<Item = usize> + '_ {
+        self.mesh
+            .neighbors(self.vertex(index))
+            .map(|w| self.input_of(w))
     }
 
-    /// The convex hull, counter-clockwise; see [`Mesh::hull`].
-    pub fn hull(&self) -> Hull<'_> {
-        self.mesh.hull()
+    /// The convex hull as input positions, counter-clockwise; see [`Mesh::hull`].
+    pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
+        self.mesh.hull().map(|v| self.input_of(v))
     }
 
     /// `true` when there is no triangle: all points are collinear or fewer than three are distinct.
     pub fn is_degenerate(&self) -> bool {
         self.mesh.triangles().next().is_none()
+    }
+
+    /// The position of vertex `v`.
+    #[inline]
+    pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
+        self.points[v.index()]
+    }
+
+    /// `true` when `v` is a vertex of the mesh: not an id left over by a merged duplicate, not
+    /// [`VertexId::INFINITE`], not out of range.
+    #[inline]
+    pub(crate) fn is_vertex(&self, v: VertexId) -> bool {
+        self.input_of_vertex
+            .get(v.index())
+            .is_some_and(|&i| self.vertex_of_input[i as usize] == v)
+    }
+
+    /// The vertices, in id (spatial) order.
+    pub(crate) fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
+        (0..self.points.len() as u32)
+            .map(VertexId::new)
+            .filter(move |&v| self.is_vertex(v))
+    }
+
+    /// [`Triangulation::vertex`] for every input position at once.
+    #[inline]
+    pub(crate) fn input_to_vertex(&self) -> &[VertexId] {
+        &self.vertex_of_input
     }
 
     /// Vertex position in the exactly rescaled frame the predicates work in.

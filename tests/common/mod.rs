@@ -1,8 +1,9 @@
 //! Point generators and checks shared by the tests and the benches.
 #![allow(dead_code)]
 
+use condt::mesh::VertexId;
 use condt::predicates::{is_cocircular, orient2d, Orientation};
-use condt::{Point, Triangulation, VertexId};
+use condt::{Point, Triangulation};
 use std::collections::BTreeSet;
 
 /// A small deterministic generator (xorshift64*), so every test input is reproducible by seed.
@@ -115,23 +116,19 @@ pub fn edge_set(tri: &Triangulation) -> BTreeSet<(usize, usize)> {
 /// the Delaunay triangulation is not unique.
 pub fn has_ambiguous_edge(tri: &Triangulation) -> bool {
     let mesh = tri.mesh();
+    let at = |v: VertexId| tri.point(tri.input_of(v));
     mesh.edges().any(|e| {
         let f = mesh.twin(e);
         let (c, d) = (mesh.origin(e.prev()), mesh.origin(f.prev()));
         !c.is_infinite()
             && !d.is_infinite()
-            && is_cocircular(
-                tri.point(mesh.origin(e)),
-                tri.point(mesh.dest(e)),
-                tri.point(c),
-                tri.point(d),
-            )
+            && is_cocircular(at(mesh.origin(e)), at(mesh.dest(e)), at(c), at(d))
     })
 }
 
 /// Hull vertices (counter-clockwise) turn left or go straight, and no point lies strictly outside.
 pub fn assert_hull_convex_and_enclosing(tri: &Triangulation) {
-    let hull: Vec<VertexId> = tri.hull().collect();
+    let hull: Vec<usize> = tri.hull().collect();
     if tri.is_degenerate() {
         return;
     }
@@ -148,7 +145,7 @@ pub fn assert_hull_convex_and_enclosing(tri: &Triangulation) {
             "hull turns clockwise at {:?}",
             hull[(i + 1) % h]
         );
-        for p in tri.vertices().map(|v| tri.point(v)) {
+        for p in tri.distinct_points().map(|i| tri.point(i)) {
             assert_ne!(
                 orient2d(a, b, p),
                 Orientation::Cw,

@@ -8,7 +8,7 @@
 //! vertices of degree <= 2 are kept as they are. Readings of what the paper leaves open, with the
 //! evidence, are in `docs/condt.md` (notes 2 to 4).
 
-use crate::graph::{degrees, ordered, Adjacency, Edge};
+use crate::adjacency::{degrees, ordered, Adjacency, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
@@ -17,7 +17,7 @@ use core::f64::consts::PI;
 /// How vertices of degree three or more in the proximity graph are treated.
 ///
 /// ```
-/// use condt::condt::Repair;
+/// use condt::Repair;
 /// assert_eq!(Repair::default(), Repair::Paper);
 /// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
@@ -44,7 +44,11 @@ const STRAIGHT_ANGLE: f64 = 5.0 * PI / 6.0;
 
 /// The angle at `v` between the edges to `a` and to `b`, in `[0, π]`.
 fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
-    let (p, q, r) = (tri.point(v), tri.point(a), tri.point(b));
+    let (p, q, r) = (
+        tri.vertex_point(v),
+        tri.vertex_point(a),
+        tri.vertex_point(b),
+    );
     let (ux, uy, wx, wy) = (q.x - p.x, q.y - p.y, r.x - p.x, r.y - p.y);
     libm::atan2((ux * wy - uy * wx).abs(), ux * wx + uy * wy)
 }
@@ -52,8 +56,8 @@ fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
 /// Algorithm 2, lines 10–11: the shortest edge and the best-scoring partner (if any qualifies).
 /// `around` is the vertex's adjacency (neighbour, edge position); no allocation.
 fn paper_choice(tri: &Triangulation, v: VertexId, around: &[(VertexId, u32)]) -> [VertexId; 2] {
-    let p = tri.point(v);
-    let length2 = |w: VertexId| p.dist2(tri.point(w));
+    let p = tri.vertex_point(v);
+    let length2 = |w: VertexId| p.dist2(tri.vertex_point(w));
     let neighbours = || around.iter().map(|&(w, _)| w);
     let shortest = neighbours()
         .min_by(|&a, &b| length2(a).total_cmp(&length2(b)).then(a.cmp(&b)))
@@ -106,7 +110,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     if repair == Repair::Off {
         return None;
     }
-    let vertex_count = tri.num_input_points();
+    let vertex_count = tri.num_points();
     let degree = degrees(vertex_count, edges);
     let manifold = |v: VertexId| degree[v.index()] <= 2;
     if degree.iter().all(|&d| d <= 2) {
@@ -172,7 +176,7 @@ mod tests {
     fn edges(tri: &Triangulation, pairs: &[(usize, usize)]) -> Vec<Edge> {
         let mut listed: Vec<Edge> = pairs
             .iter()
-            .map(|&(a, b)| ordered(tri.vertex_of_input(a), tri.vertex_of_input(b)))
+            .map(|&(a, b)| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
         listed.sort_unstable();
         listed

@@ -1,13 +1,12 @@
-//! The command-line front end of the `condt` binary (needs `std`).
+//! The command-line front end of the `condt` binary.
 //!
-//! Owns: argument parsing, messages and exit codes. It may not implement geometry: it calls the
-//! library and [`crate::io`] and reports what they say.
+//! Owns: argument parsing, messages and exit codes. It may not implement geometry nor check a
+//! parameter's range: it calls the library and `condt::io` and reports what they say.
 
-use crate::condt::{reconstruct, Params, Repair, Uniformity};
-use crate::io::{
+use condt::io::{
     read_points, write_atomically, write_edges, write_geojson, write_polylines, write_svg, IoError,
 };
-use crate::triangulate;
+use condt::{reconstruct, triangulate, Error, Params, Repair, Uniformity};
 use std::fmt;
 
 const USAGE: &str = "\
@@ -50,7 +49,7 @@ Options:
 
 /// Why a command failed, and with which exit code.
 #[derive(Debug)]
-pub enum CliError {
+pub(crate) enum CliError {
     /// The command line is wrong (exit code 2).
     Usage(String),
     /// The input or output failed (exit code 1).
@@ -61,7 +60,7 @@ pub enum CliError {
 
 impl CliError {
     /// The process exit code for this error.
-    pub fn exit_code(&self) -> i32 {
+    pub(crate) fn exit_code(&self) -> i32 {
         match self {
             CliError::Usage(_) => 2,
             CliError::Io(_) | CliError::Input(_) => 1,
@@ -137,12 +136,7 @@ fn parse_triangulate(args: &[String]) -> Result<TriangulateArgs, CliError> {
 
 /// Runs the tool on `args` (without the program name); `Ok` holds what to print to stdout for
 /// informational commands such as `--help`.
-///
-/// ```
-/// let help = condt::cli::run(&["--help".to_string()]).unwrap();
-/// assert!(help.contains("condt triangulate"));
-/// ```
-pub fn run(args: &[String]) -> Result<String, CliError> {
+pub(crate) fn run(args: &[String]) -> Result<String, CliError> {
     let Some((command, rest)) = args.split_first() else {
         return Err(CliError::Usage("no command given".into()));
     };
@@ -198,18 +192,21 @@ struct ReconstructArgs {
     stages: bool,
 }
 
-fn number(
-    flag: &str,
-    value: Option<&String>,
-    valid: impl Fn(f64) -> bool,
-) -> Result<f64, CliError> {
+/// The number after `flag`; whether its value is accepted is for the library to say.
+fn number(flag: &str, value: Option<&String>) -> Result<f64, CliError> {
     let text = value.ok_or_else(|| CliError::Usage(format!("{flag} needs a number")))?;
-    match text.parse::<f64>() {
-        Ok(x) if x.is_finite() && valid(x) => Ok(x),
-        _ => Err(CliError::Usage(format!(
-            "{flag} {text}: not an accepted number"
-        ))),
-    }
+    text.parse::<f64>()
+        .map_err(|_| CliError::Usage(format!("{flag} {text}: not a number")))
+}
+
+/// A parameter the library refused, told with the option that set it.
+fn refused(err: Error) -> CliError {
+    let flag = match err {
+        Error::InvalidParameter { name: "u", .. } => "--u",
+        Error::InvalidParameter { name: "k", .. } => "--iqr",
+        _ => "",
+    };
+    CliError::Usage(format!("{flag}: {err}"))
 }
 
 fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
@@ -220,14 +217,14 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
     while let Some(arg) = rest.next() {
         match arg.as_str() {
             "--u" => {
-                params.uniformity = Uniformity::Fixed(number(arg, rest.next(), |u| u > 0.0)?);
+                params.uniformity = Uniformity::Fixed(number(arg, rest.next())?);
                 fixed_u = true;
             }
             "--adaptive" => {
                 params.uniformity = Uniformity::Adaptive;
                 adaptive = true;
             }
-            "--iqr" => params.outlier_factor = Some(number(arg, rest.next(), |k| k >= 0.0)?),
+            "--iqr" => params.outlier_factor = Some(number(arg, rest.next())?),
             "--no-outlier-filter" => params.outlier_factor = None,
             "--outliers-first" => params.outliers_first = true,
             "--no-manifold-fix" => params.repair = Repair::Off,
@@ -263,6 +260,7 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
             "--u and --adaptive exclude each other".into(),
         ));
     }
+    params.check().map_err(refused)?;
     let input =
         input.ok_or_else(|| CliError::Usage("reconstruct needs an INPUT file (or -)".into()))?;
     let format = match (format, output.as_deref()) {
@@ -300,16 +298,14 @@ fn reconstruct_command(args: &ReconstructArgs) -> Result<(), CliError> {
         Format::Svg => write_svg(out, &result, args.stages),
         Format::GeoJson => write_geojson(out, &result),
     })?;
-    let (closed, open) =
-        result.curves.iter().fold(
-            (0, 0),
-            |(c, o), k| if k.closed { (c + 1, o) } else { (c, o + 1) },
-        );
+    let curves = result.curves();
+    let closed = curves.iter().filter(|c| c.is_closed()).count();
     eprintln!(
-        "condt: {} points, {} curves ({closed} closed, {open} open), {} unused",
+        "condt: {} points, {} curves ({closed} closed, {} open), {} unused",
         points.len(),
-        result.curves.len(),
-        result.unused.len()
+        curves.len(),
+        curves.len() - closed,
+        result.unused().len()
     );
     Ok(())
 }
@@ -391,6 +387,8 @@ mod tests {
             &["in.txt", "--u", "2", "--adaptive"][..],
             &["in.txt", "-o", "out.png"],
             &["in.txt", "--u", "nan"],
+            &["in.txt", "--u", "-1"],
+            &["in.txt", "--iqr", "inf"],
             &["in.txt", "--repair", "x"],
         ] {
             assert_eq!(

@@ -10,42 +10,34 @@
 //! plain lengths with `2 T`, mixing units; `docs/condt.md` (note 5) gives the readings tried and
 //! the evidence.
 
-use crate::graph::Edge;
+use super::Outcome;
+use crate::adjacency::Edge;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// The result of the outlier stage.
-pub(crate) struct Filtered {
-    /// The edges kept, or `None` when the filter did not apply (the input stands).
-    pub(crate) edges: Option<Vec<Edge>>,
-    pub(crate) applied: bool,
-}
-
-pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) -> Filtered {
-    let unchanged = Filtered {
-        edges: None,
-        applied: false,
-    };
+/// Algorithm 3 on `edges` with the IQR factor `factor` (checked by the caller: finite, `>= 0`).
+/// The outcome is unchanged when the rule does not fire.
+pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) -> Outcome {
+    let unchanged = Outcome::UNCHANGED;
     let lengths: Vec<f64> = edges
         .iter()
-        .map(|&[a, b]| tri.point(a).dist2(tri.point(b)))
+        .map(|&[a, b]| tri.vertex_point(a).dist2(tri.vertex_point(b)))
         .collect();
     if lengths.is_empty() {
         return unchanged;
     }
     let n = lengths.len();
     let upper = (3 * n / 4).min(n - 1);
-    if factor >= 0.0 {
-        // T >= Q3, so no edge exceeds the bound 4T when the longest is within 4 Q3, that is when
-        // at most `upper` lengths lie below a quarter of the longest: a count, not a selection.
-        let longest = lengths
-            .iter()
-            .fold(0.0f64, |m, &l| if l > m { l } else { m });
-        let below = lengths.iter().filter(|&&l| 4.0 * l < longest).count();
-        if below <= upper {
-            return unchanged;
-        }
+    // With `factor >= 0`, T >= Q3, so no edge exceeds the bound 4T when the longest is within
+    // 4 Q3, that is when at most `upper` lengths lie below a quarter of the longest: a count, not
+    // a selection.
+    let longest = lengths
+        .iter()
+        .fold(0.0f64, |m, &l| if l > m { l } else { m });
+    let below = lengths.iter().filter(|&&l| 4.0 * l < longest).count();
+    if below <= upper {
+        return unchanged;
     }
     // The quartiles of the sorted list, without sorting it: two selections on a scratch copy,
     // the second only among the values the first put below Q3.
@@ -61,7 +53,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
     let threshold = q3 + factor * (q3 - q1);
     // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long
     // edges. Per vertex, bit 0 records an edge and bit 1 an edge within the bound.
-    let mut seen = vec![0u8; tri.num_input_points()];
+    let mut seen = vec![0u8; tri.num_points()];
     for (&[a, b], &length2) in edges.iter().zip(&lengths) {
         let mark = 1 | (u8::from(length2 <= 4.0 * threshold) << 1);
         seen[a.index()] |= mark;
@@ -71,7 +63,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
         return unchanged;
     }
     // Not above T: with a perfectly uniform sample IQR = 0 and every edge equals T exactly.
-    Filtered {
+    Outcome {
         edges: Some(
             edges
                 .iter()
@@ -87,7 +79,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::graph::ordered;
+    use crate::adjacency::ordered;
     use crate::{triangulate, Point};
 
     /// Ten unit edges along a line (so IQR = 0 and T = 1), plus a vertex at `(5, gap)` tied to
@@ -97,7 +89,7 @@ mod tests {
         pts.push(Point::new(5.0, gap));
         pts.push(Point::new(5.0 + 1e-9, 0.0)); // so the lone point has two nearest line points
         let tri = triangulate(&pts).unwrap();
-        let v = |i: u32| tri.vertex_of_input(i as usize);
+        let v = |i: u32| tri.vertex(i as usize);
         let mut edges: Vec<Edge> = (0..10).map(|i| ordered(v(i), v(i + 1))).collect();
         edges.push(ordered(v(5), v(11)));
         edges.push(ordered(v(11), v(12)));
@@ -107,7 +99,7 @@ mod tests {
     /// The rule as the module comment states it, by sorting: the reference for the selections
     /// and the counting shortcut.
     fn by_sorting(tri: &Triangulation, edges: &[Edge], factor: f64) -> (bool, Vec<Edge>) {
-        let length2 = |&[a, b]: &Edge| tri.point(a).dist2(tri.point(b));
+        let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
         let mut sorted: Vec<f64> = edges.iter().map(length2).collect();
         sorted.sort_by(f64::total_cmp);
         let n = sorted.len();
@@ -138,7 +130,7 @@ mod tests {
                 .collect();
             pts.extend((0..far).map(|k| Point::new(20.0 + 7.0 * k as f64, -9.0)));
             let tri = triangulate(&pts).unwrap();
-            let v = |i: u64| tri.vertex_of_input(i as usize);
+            let v = |i: u64| tri.vertex(i as usize);
             let mut edges: Vec<Edge> = Vec::new();
             for _ in 0..1 + random(40) {
                 let (a, b) = (v(random(pts.len() as u64)), v(random(pts.len() as u64)));
@@ -174,6 +166,6 @@ mod tests {
         // Every unit edge survives (it equals T), the two long ones go.
         let kept = filtered.edges.expect("applied");
         assert_eq!(kept.len(), 10);
-        assert!(kept.iter().all(|e| !e.contains(&tri.vertex_of_input(11))));
+        assert!(kept.iter().all(|e| !e.contains(&tri.vertex(11))));
     }
 }

@@ -19,19 +19,64 @@
 //! then neighbour id: a total order, so the two best of a set do not depend on the order of the
 //! offers) and decide with the same test (`keep`); the tests compare them.
 
-use super::{Uniformity, PARALLEL_FROM};
-use crate::graph::{ordered, Edge};
+use super::PARALLEL_FROM;
+use crate::adjacency::{ordered, Edge};
+use crate::error::Error;
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
+/// The local uniformity test of Algorithm 1, line 6: when a point keeps its second shortest edge.
+///
+/// ```
+/// use condt::{Error, Uniformity};
+/// assert_eq!(Uniformity::default(), Uniformity::Fixed(2.75));
+/// assert!(Uniformity::Fixed(2.0).check().is_ok());
+/// assert_eq!(
+///     Uniformity::Fixed(f64::NAN).check().unwrap_err().to_string(),
+///     "parameter u = NaN is not accepted"
+/// );
+/// # let _: Result<(), Error> = Uniformity::Adaptive.check();
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum Uniformity {
+    /// Keep the second shortest edge `e2` when `|e2| < u |e1|`; the paper uses `u = 2.75`.
+    /// `u` must be finite and positive.
+    Fixed(f64),
+    /// Section 4.1: `u` of each point is the mean length of its Delaunay edges over `|e1|`, so
+    /// `e2` is kept when it is shorter than that mean.
+    Adaptive,
+}
+
+impl Default for Uniformity {
+    fn default() -> Self {
+        Uniformity::Fixed(2.75)
+    }
+}
+
+impl Uniformity {
+    /// `Ok` when the test is well defined: a fixed `u` must be finite and positive.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] named `u` otherwise.
+    pub fn check(self) -> Result<(), Error> {
+        match self {
+            Uniformity::Fixed(u) if !(u.is_finite() && u > 0.0) => Err(Error::InvalidParameter {
+                name: "u",
+                value: u,
+            }),
+            _ => Ok(()),
+        }
+    }
+}
+
 /// The (at most two) neighbours vertex `v` keeps, from a walk of its ring. No allocation.
 fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [VertexId; 2] {
-    let p = tri.point(v);
+    let p = tri.vertex_point(v);
     let mut best = TwoBest::EMPTY;
     let mut ring = (0.0, 0u32);
-    for w in tri.neighbors(v) {
-        let length2 = p.dist2(tri.point(w));
+    for w in tri.mesh().neighbors(v) {
+        let length2 = p.dist2(tri.vertex_point(w));
         if matches!(uniformity, Uniformity::Adaptive) {
             ring.0 += libm::sqrt(length2);
             ring.1 += 1;
@@ -66,8 +111,8 @@ pub(crate) fn proximity_graph(
     uniformity: Uniformity,
     parallel: bool,
 ) -> Vec<Edge> {
-    let parallel = parallel && tri.num_input_points() >= PARALLEL_FROM;
-    let n = tri.num_input_points();
+    let parallel = parallel && tri.num_points() >= PARALLEL_FROM;
+    let n = tri.num_points();
     match uniformity {
         Uniformity::Fixed(_) => {
             let ranges = if parallel {
@@ -270,9 +315,9 @@ fn merge_ranges(tri: &Triangulation, _ranges: usize, triangles: usize) -> Vec<Tw
 /// The two best offers every vertex gets from the half-edges of `triangles`: each finite
 /// half-edge offers its destination to its origin.
 fn sweep(tri: &Triangulation, triangles: core::ops::Range<usize>) -> Vec<TwoBest> {
-    let mut best = alloc::vec![TwoBest::EMPTY; tri.num_input_points()];
+    let mut best = alloc::vec![TwoBest::EMPTY; tri.num_points()];
     let mut offer = |u: VertexId, w: VertexId| {
-        best[u.index()].offer(tri.point(u).dist2(tri.point(w)), w);
+        best[u.index()].offer(tri.vertex_point(u).dist2(tri.vertex_point(w)), w);
     };
     let corners = &tri.mesh().origins[3 * triangles.start..3 * triangles.end];
     for corners in corners.chunks_exact(3) {
@@ -310,7 +355,7 @@ mod tests {
         let mut unit = move || rng.unit();
         let points: Vec<Point> = (0..3000).map(|_| Point::new(unit(), unit())).collect();
         let tri = triangulate(&points).unwrap();
-        let n = tri.num_input_points();
+        let n = tri.num_points();
         for uniformity in [
             Uniformity::Fixed(2.75),
             Uniformity::Fixed(100.0),
@@ -381,7 +426,7 @@ mod tests {
             );
             let tri = triangulate(&s.points).unwrap();
             let fixed = Uniformity::Fixed(2.75);
-            let n = tri.num_input_points();
+            let n = tri.num_points();
             let ring_walks =
                 |uniformity, parallel| per_vertex(parallel, n, ring_choice(&tri, uniformity));
             let walked = ring_walks(fixed, false);

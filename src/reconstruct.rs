@@ -1,0 +1,455 @@
+//! The whole ConDT pipeline: [`reconstruct`], its [`Params`] and the [`Reconstruction`] that keeps
+//! every stage.
+//!
+//! Reference: J. Antony, M. Reghunath, S. B. Thayyil, R. Muthuganapathy, "ConDT: A 2D curve
+//! reconstruction algorithm based on a constrained-neighbor proximity graph" (sections 3 to 5);
+//! `docs/condt.md` maps every line of its algorithms to this code and records each reading of an
+//! ambiguity.
+//!
+//! Owns: the order in which the stages run ([`Params::stages`], the one place it is decided), the
+//! parameter check, timing, and the final tally in input positions. It may not implement a stage
+//! (that is [`crate::stages`]) nor modify the triangulation.
+//!
+//! ```
+//! use condt::{reconstruct, Params, Point};
+//! // Twelve points on a circle: one closed curve through all of them.
+//! let circle: Vec<Point> = (0..12)
+//!     .map(|k| {
+//!         let t = k as f64 * std::f64::consts::TAU / 12.0;
+//!         Point::new(t.cos(), t.sin())
+//!     })
+//!     .collect();
+//! let result = reconstruct(&circle, &Params::default())?;
+//! assert_eq!(result.curves().len(), 1);
+//! assert!(result.curves()[0].is_closed());
+//! assert_eq!(result.edges().len(), 12);
+//! assert!(result.unused().is_empty());
+//! # Ok::<(), condt::Error>(())
+//! ```
+
+use crate::adjacency::{CurveGraph, Edge};
+use crate::curve::{curves_in_input_positions, Curve};
+use crate::error::Error;
+use crate::geometry::Point;
+use crate::graph::Graph;
+use crate::mesh::VertexId;
+use crate::stages::{proximity, Repair, Stage, Step, Uniformity, PARALLEL_FROM};
+use crate::triangulate::{triangulate, Triangulation};
+use alloc::borrow::Cow;
+use alloc::vec::Vec;
+use core::time::Duration;
+
+/// Parameters of a reconstruction.
+///
+/// ```
+/// use condt::{Params, Repair, Uniformity};
+/// let p = Params::default();
+/// assert_eq!(p.uniformity, Uniformity::Fixed(2.75));
+/// assert_eq!(p.outlier_factor, Some(1.7));
+/// assert_eq!(p.repair, Repair::Paper);
+/// assert!(p.check().is_ok());
+/// let bad = Params { outlier_factor: Some(f64::NAN), ..p };
+/// assert!(bad.check().is_err());
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Params {
+    /// Stage 1: the uniformity test (a fixed `u` must be finite and positive).
+    pub uniformity: Uniformity,
+    /// The non-manifold repair; [`Repair::Off`] skips the stage.
+    pub repair: Repair,
+    /// The IQR factor `k` of the outlier removal (finite, `>= 0`), or `None` to skip the stage.
+    pub outlier_factor: Option<f64>,
+    /// Remove outliers before the non-manifold repair instead of after it (the paper's order).
+    /// Outlier edges can make a curve vertex non-manifold, and the repair then cuts a sharp
+    /// corner there; `docs/condt.md` (note 6) measures both orders.
+    pub outliers_first: bool,
+    /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
+    /// 65,536 points, below which waking the workers costs more than they save; same result).
+    pub parallel: bool,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            uniformity: Uniformity::default(),
+            repair: Repair::default(),
+            outlier_factor: Some(1.7),
+            outliers_first: false,
+            parallel: cfg!(feature = "parallel"),
+        }
+    }
+}
+
+impl Params {
+    /// `Ok` when every parameter is one its stage accepts.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the first parameter that is NaN, infinite or out of
+    /// range.
+    pub fn check(&self) -> Result<(), Error> {
+        self.uniformity.check()?;
+        self.steps().try_for_each(|step| step.check())
+    }
+
+    /// The stages these parameters run, in the order they run: the proximity graph, then the
+    /// repair and the outlier removal in the order [`Params::outliers_first`] chooses, each only
+    /// when it is on.
+    ///
+    /// ```
+    /// use condt::{Params, Repair, Stage};
+    /// let p = Params { outliers_first: true, repair: Repair::Off, ..Params::default() };
+    /// assert_eq!(p.stages(), vec![Stage::Proximity, Stage::Outliers]);
+    /// ```
+    pub fn stages(&self) -> Vec<Stage> {
+        core::iter::once(Stage::Proximity)
+            .chain(self.steps().map(Step::stage))
+            .collect()
+    }
+
+    /// The steps after the proximity graph, in order: the one place the order is decided.
+    fn steps(&self) -> impl Iterator<Item = Step> {
+        let repair = (self.repair != Repair::Off).then_some(Step::Repair(self.repair));
+        let outliers = self.outlier_factor.map(|factor| Step::Outliers { factor });
+        let (first, second) = if self.outliers_first {
+            (outliers, repair)
+        } else {
+            (repair, outliers)
+        };
+        first.into_iter().chain(second)
+    }
+}
+
+/// One stage as it ran.
+#[derive(Clone, Debug)]
+struct StageRecord {
+    stage: Stage,
+    /// Its output, or `None` when it left its input as it was (no copy is stored).
+    edges: Option<Vec<Edge>>,
+    applied: bool,
+    time: Duration,
+}
+
+/// Everything a reconstruction computed, stage by stage, in input positions. Exact duplicates
+/// are one point, reported under the smallest input position holding it (see
+/// [`Triangulation::vertex`]).
+///
+/// ```
+/// use condt::{reconstruct, Params, Point, Stage};
+/// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.1)].map(Point::from);
+/// let result = reconstruct(&pts, &Params::default())?;
+/// for report in result.stages() {
+///     println!("{}: {} edges, rule applied: {}", report.stage, report.graph.num_edges(), report.applied);
+/// }
+/// assert_eq!(result.stages().next().unwrap().stage, Stage::Proximity);
+/// assert_eq!(result.stages().count(), 3);
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Reconstruction {
+    params: Params,
+    triangulation: Triangulation,
+    /// The stages in the order they ran, the proximity graph first.
+    records: Vec<StageRecord>,
+    /// The final edges, sorted, in input positions (32-bit, as the kernel stores indices).
+    edges: Vec<[u32; 2]>,
+    /// Final degree of every input point.
+    degrees: Vec<u32>,
+    curves: Vec<Curve>,
+    unused: Vec<usize>,
+    triangulation_time: Duration,
+    curves_time: Duration,
+}
+
+/// One stage of a [`Reconstruction`], as [`Reconstruction::stages`] reports it.
+#[derive(Clone, Debug)]
+pub struct StageReport<'r> {
+    /// Which stage.
+    pub stage: Stage,
+    /// The graph it left.
+    pub graph: Graph<'r>,
+    /// Whether its rule applied (a vertex needed repair; the outlier rule fired). The proximity
+    /// graph always applies.
+    pub applied: bool,
+    /// Its wall-clock time (zero without the `std` feature, which has no clock).
+    pub time: Duration,
+}
+
+impl Reconstruction {
+    /// The parameters it ran with.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The Delaunay triangulation the stages walked.
+    pub fn triangulation(&self) -> &Triangulation {
+        &self.triangulation
+    }
+
+    /// The stages in the order they ran, the proximity graph first; see [`Params::stages`].
+    pub fn stages(&self) -> impl ExactSizeIterator<Item = StageReport<'_>> + '_ {
+        (0..self.records.len()).map(move |k| {
+            let record = &self.records[k];
+            StageReport {
+                stage: record.stage,
+                graph: Graph::new(&self.triangulation, Cow::Borrowed(self.output_of(k))),
+                applied: record.applied,
+                time: record.time,
+            }
+        })
+    }
+
+    /// The report of `stage`, or `None` when it did not run.
+    pub fn stage(&self, stage: Stage) -> Option<StageReport<'_>> {
+        self.stages().find(|report| report.stage == stage)
+    }
+
+    /// The final graph, as the last stage left it.
+    pub fn graph(&self) -> Graph<'_> {
+        Graph::new(
+            &self.triangulation,
+            Cow::Borrowed(self.output_of(self.records.len() - 1)),
+        )
+    }
+
+    /// The final edges as input positions `[a, b]`, `a < b`, sorted.
+    pub fn edges(&self) -> impl ExactSizeIterator<Item = [usize; 2]> + Clone + '_ {
+        self.edges.iter().map(|&[a, b]| [a as usize, b as usize])
+    }
+
+    /// The curves, in input positions, sorted; see [`Graph::curves`].
+    pub fn curves(&self) -> &[Curve] {
+        &self.curves
+    }
+
+    /// Input positions whose point ended with no edge (outliers), ascending.
+    pub fn unused(&self) -> &[usize] {
+        &self.unused
+    }
+
+    /// The final degree of input point `index` (duplicates share their point's degree).
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    pub fn degree(&self, index: usize) -> usize {
+        self.degrees[index] as usize
+    }
+
+    /// The coordinates of input point `index`.
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    pub fn point(&self, index: usize) -> Point {
+        self.triangulation.point(index)
+    }
+
+    /// Number of input points.
+    pub fn num_points(&self) -> usize {
+        self.degrees.len()
+    }
+
+    /// Wall-clock time of the triangulation (zero without `std`).
+    pub fn triangulation_time(&self) -> Duration {
+        self.triangulation_time
+    }
+
+    /// Wall-clock time of the curve assembly and final tally (zero without `std`).
+    pub fn curves_time(&self) -> Duration {
+        self.curves_time
+    }
+
+    /// The edges after stage `k`: its own, or those of the latest earlier stage that changed them.
+    fn output_of(&self, k: usize) -> &[Edge] {
+        latest_edges(&self.records[..=k])
+    }
+}
+
+/// The edges the last stage of `records` that changed them left (the proximity graph always has
+/// its own).
+fn latest_edges(records: &[StageRecord]) -> &[Edge] {
+    records
+        .iter()
+        .rev()
+        .find_map(|record| record.edges.as_deref())
+        .unwrap_or(&[])
+}
+
+/// A clock that reads zero without `std`.
+struct Stopwatch {
+    #[cfg(feature = "std")]
+    start: std::time::Instant,
+}
+
+impl Stopwatch {
+    fn start() -> Self {
+        Stopwatch {
+            #[cfg(feature = "std")]
+            start: std::time::Instant::now(),
+        }
+    }
+
+    /// Time since the start or the previous lap.
+    fn lap(&mut self) -> Duration {
+        #[cfg(feature = "std")]
+        {
+            let now = std::time::Instant::now();
+            let elapsed = now - self.start;
+            self.start = now;
+            elapsed
+        }
+        #[cfg(not(feature = "std"))]
+        Duration::ZERO
+    }
+}
+
+/// Triangulates `points` and reconstructs the curves through them.
+///
+/// # Errors
+/// As [`triangulate`]: non-finite coordinates, an over-wide dynamic range, too many points; and
+/// [`Error::InvalidParameter`] when [`Params::check`] refuses `params` (checked first).
+pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, Error> {
+    params.check()?;
+    let mut clock = Stopwatch::start();
+    let tri = triangulate(points)?;
+    let triangulation_time = clock.lap();
+    let mut result = reconstruct_triangulation(tri, params)?;
+    result.triangulation_time = triangulation_time;
+    Ok(result)
+}
+
+/// Runs the ConDT stages on a triangulation already built, which the result keeps.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] when [`Params::check`] refuses `params`.
+///
+/// ```
+/// use condt::{reconstruct_triangulation, triangulate, Params, Point};
+/// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from))?;
+/// let result = reconstruct_triangulation(tri, &Params::default())?;
+/// assert_eq!(result.edges().collect::<Vec<_>>(), vec![[0, 1], [0, 2], [1, 2]]);
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn reconstruct_triangulation(
+    tri: Triangulation,
+    params: &Params,
+) -> Result<Reconstruction, Error> {
+    params.check()?;
+    let mut clock = Stopwatch::start();
+    let proximity = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
+    let mut records = Vec::with_capacity(4);
+    records.push(StageRecord {
+        stage: Stage::Proximity,
+        edges: Some(proximity),
+        applied: true,
+        time: clock.lap(),
+    });
+    for step in params.steps() {
+        let outcome = step.run(&tri, latest_edges(&records));
+        records.push(StageRecord {
+            stage: step.stage(),
+            edges: outcome.edges,
+            applied: outcome.applied,
+            time: clock.lap(),
+        });
+    }
+    let last = latest_edges(&records);
+    let n = tri.num_points();
+    let graph = CurveGraph::new(n, last);
+    let in_parallel = params.parallel && n >= PARALLEL_FROM;
+    let (curves, tally) = both(
+        in_parallel,
+        || curves_in_input_positions(&tri, &graph),
+        || tally(&tri, &graph, last.len()),
+    );
+    let curves_time = clock.lap();
+    Ok(Reconstruction {
+        params: *params,
+        triangulation: tri,
+        records,
+        edges: tally.edges,
+        degrees: tally.degrees,
+        curves,
+        unused: tally.unused,
+        triangulation_time: Duration::ZERO,
+        curves_time,
+    })
+}
+
+/// `(a(), b())`, run at once on rayon when `parallel`.
+#[cfg(feature = "parallel")]
+fn both<A: Send, B: Send>(
+    parallel: bool,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    if parallel {
+        rayon::join(a, b)
+    } else {
+        (a(), b())
+    }
+}
+
+#[cfg(not(feature = "parallel"))]
+fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
+    (a(), b())
+}
+
+/// The final graph seen from the input positions.
+struct Tally {
+    degrees: Vec<u32>,
+    unused: Vec<usize>,
+    edges: Vec<[u32; 2]>,
+}
+
+/// One pass over the input positions gives the degrees, the unused points and the final edges
+/// already sorted: an edge is listed by its smaller input position. For the common vertex of
+/// degree <= 2 both candidates are written and the count advances only past those that belong
+/// (whether they do is a coin toss, so it is not branched on).
+fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
+    let n = tri.num_points();
+    // Without duplicates every input position stands for its own vertex: no need to look.
+    let has_duplicates = tri.num_vertices() < n;
+    let mut degrees = Vec::with_capacity(n);
+    let mut unused = Vec::new();
+    // Room for the two candidates a vertex writes past the last edge it lists.
+    let mut edges: Vec<[u32; 2]> = alloc::vec![[0, 0]; edge_count + 2];
+    let mut count = 0;
+    let input_of = |w: VertexId| {
+        if w.is_infinite() {
+            0
+        } else {
+            tri.input_of(w) as u32
+        }
+    };
+    for (i, &v) in tri.input_to_vertex().iter().enumerate() {
+        let degree = graph.degree(v);
+        degrees.push(degree as u32);
+        let i = i as u32;
+        if degree == 0 {
+            unused.push(i as usize);
+        } else if degree <= 2 {
+            let [x, y] = graph.first_two(v).map(input_of);
+            // A duplicate input point lists nothing: its edges are under the first copy.
+            let listing = !has_duplicates || input_of(v) == i;
+            for j in [x.min(y), x.max(y)] {
+                edges[count] = [i, j];
+                count += usize::from(listing & (j > i));
+            }
+        } else if !has_duplicates || input_of(v) == i {
+            let first = count;
+            for k in 0..degree {
+                let j = input_of(graph.neighbor(v, k));
+                if j > i {
+                    edges[count] = [i, j];
+                    count += 1;
+                }
+            }
+            edges[first..count].sort_unstable();
+        }
+    }
+    edges.truncate(count);
+    Tally {
+        degrees,
+        unused,
+        edges,
+    }
+}
