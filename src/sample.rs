@@ -190,136 +190,172 @@ fn push_chain(out: &mut Sample, chain: &[Point], closed: bool) {
 /// assert_eq!(crossing_degree, 4);
 /// ```
 pub fn sample(shapes: &[Shape], sampling: &Sampling) -> Sample {
-    let eps = sampling.epsilon;
     let mut out = Sample::default();
     for shape in shapes {
-        match shape {
-            &Shape::Ellipse {
-                center,
-                radii: (a, b),
-                rotation,
-            } => {
-                let (big, small) = (a.max(b), a.min(b));
-                let (c, s) = (libm::cos(rotation), libm::sin(rotation));
-                let at = |t: f64| {
-                    let (x, y) = (a * libm::cos(TAU * t), b * libm::sin(TAU * t));
-                    Point::new(center.x + c * x - s * y, center.y + s * x + c * y)
-                };
-                push_chain(&mut out, &along(at, true, eps * small * small / big), true);
-            }
-            &Shape::Arc {
-                center,
-                radius,
-                start,
-                sweep,
-            } => {
-                let at = |t: f64| {
-                    let angle = start + sweep * t;
-                    Point::new(
-                        center.x + radius * libm::cos(angle),
-                        center.y + radius * libm::sin(angle),
-                    )
-                };
-                push_chain(&mut out, &along(at, false, eps * radius), false);
-            }
-            &Shape::Spiral {
-                center,
-                inner,
-                gap,
-                turns,
-            } => {
-                let at = |t: f64| {
-                    let angle = TAU * turns * t;
-                    let r = inner + gap * angle / TAU;
-                    Point::new(
-                        center.x + r * libm::cos(angle),
-                        center.y + r * libm::sin(angle),
-                    )
-                };
-                push_chain(
-                    &mut out,
-                    &along(at, false, eps * inner.min(gap / 2.0)),
-                    false,
-                );
-            }
-            Shape::Polygon(corners) => {
-                let n = corners.len();
-                let side = |k: usize| libm::sqrt(corners[k].dist2(corners[(k + 1) % n]));
-                let shortest = (0..n).map(side).fold(f64::INFINITY, f64::min);
-                let mut chain = Vec::new();
-                for k in 0..n {
-                    let (p, q) = (corners[k], corners[(k + 1) % n]);
-                    let pieces = libm::ceil(side(k) / (eps * shortest)).max(1.0) as usize;
-                    for j in 0..pieces {
-                        let f = j as f64 / pieces as f64;
-                        chain.push(Point::new(p.x + f * (q.x - p.x), p.y + f * (q.y - p.y)));
-                    }
-                }
-                push_chain(&mut out, &chain, true);
-            }
-            &Shape::FigureEight { center, size } => {
-                // Lobe t in [0, π] and lobe t in [π, 2π]; both start and end at the crossing,
-                // which is sampled once and shared.
-                let crossing = out.points.len();
-                out.points.push(center);
-                for lobe in 0..2 {
-                    let offset = lobe as f64 * PI;
-                    let at = |t: f64| {
-                        let u = offset + PI * t;
-                        Point::new(
-                            center.x + size * libm::sin(u),
-                            center.y + size * libm::sin(u) * libm::cos(u),
-                        )
-                    };
-                    let chain = along(at, false, eps * size / 4.0);
-                    let inner = &chain[1..chain.len() - 1];
-                    let base = out.points.len();
-                    out.points.extend_from_slice(inner);
-                    out.edges.push([crossing, base]);
-                    for k in 1..inner.len() {
-                        out.edges.push([base + k - 1, base + k]);
-                    }
-                    out.edges.push([crossing, base + inner.len() - 1]);
-                }
-            }
-        }
+        push_shape(&mut out, shape, sampling.epsilon);
     }
+    // One stream for both steps: the outliers draw where the noise stopped.
     let mut random = Random(sampling.seed);
-    if sampling.noise > 0.0 {
-        for p in out.points.iter_mut() {
-            p.x += (2.0 * random.unit() - 1.0) * sampling.noise;
-            p.y += (2.0 * random.unit() - 1.0) * sampling.noise;
+    add_noise(&mut out.points, sampling.noise, &mut random);
+    add_outliers(&mut out, sampling, &mut random);
+    sort_edges(&mut out.edges);
+    out
+}
+
+/// Appends the samples and ground-truth edges of one shape to `out`.
+fn push_shape(out: &mut Sample, shape: &Shape, eps: f64) {
+    match *shape {
+        Shape::Ellipse {
+            center,
+            radii,
+            rotation,
+        } => push_ellipse(out, center, radii, rotation, eps),
+        Shape::Arc {
+            center,
+            radius,
+            start,
+            sweep,
+        } => push_arc(out, center, radius, start, sweep, eps),
+        Shape::Spiral {
+            center,
+            inner,
+            gap,
+            turns,
+        } => push_spiral(out, center, inner, gap, turns, eps),
+        Shape::Polygon(ref corners) => push_polygon(out, corners, eps),
+        Shape::FigureEight { center, size } => push_figure_eight(out, center, size, eps),
+    }
+}
+
+/// A closed ellipse; its lfs is the smallest radius of curvature, `small² / big`.
+fn push_ellipse(out: &mut Sample, center: Point, (a, b): (f64, f64), rotation: f64, eps: f64) {
+    let (big, small) = (a.max(b), a.min(b));
+    let (c, s) = (libm::cos(rotation), libm::sin(rotation));
+    let at = |t: f64| {
+        let (x, y) = (a * libm::cos(TAU * t), b * libm::sin(TAU * t));
+        Point::new(center.x + c * x - s * y, center.y + s * x + c * y)
+    };
+    push_chain(out, &along(at, true, eps * small * small / big), true);
+}
+
+/// An open circular arc; its lfs is the radius.
+fn push_arc(out: &mut Sample, center: Point, radius: f64, start: f64, sweep: f64, eps: f64) {
+    let at = |t: f64| {
+        let angle = start + sweep * t;
+        Point::new(
+            center.x + radius * libm::cos(angle),
+            center.y + radius * libm::sin(angle),
+        )
+    };
+    push_chain(out, &along(at, false, eps * radius), false);
+}
+
+/// An open Archimedean spiral; its lfs is the smaller of the start radius and half the gap.
+fn push_spiral(out: &mut Sample, center: Point, inner: f64, gap: f64, turns: f64, eps: f64) {
+    let at = |t: f64| {
+        let angle = TAU * turns * t;
+        let r = inner + gap * angle / TAU;
+        Point::new(
+            center.x + r * libm::cos(angle),
+            center.y + r * libm::sin(angle),
+        )
+    };
+    push_chain(out, &along(at, false, eps * inner.min(gap / 2.0)), false);
+}
+
+/// A closed polygon: every corner is a sample, and each side is cut evenly into pieces at most
+/// `eps` times the shortest side long.
+fn push_polygon(out: &mut Sample, corners: &[Point], eps: f64) {
+    let n = corners.len();
+    let side = |k: usize| libm::sqrt(corners[k].dist2(corners[(k + 1) % n]));
+    let shortest = (0..n).map(side).fold(f64::INFINITY, f64::min);
+    let mut chain = Vec::new();
+    for k in 0..n {
+        let (p, q) = (corners[k], corners[(k + 1) % n]);
+        let pieces = libm::ceil(side(k) / (eps * shortest)).max(1.0) as usize;
+        for j in 0..pieces {
+            let f = j as f64 / pieces as f64;
+            chain.push(Point::new(p.x + f * (q.x - p.x), p.y + f * (q.y - p.y)));
         }
     }
+    push_chain(out, &chain, true);
+}
+
+/// Gerono's lemniscate as two lobes, `t` in `[0, π]` and `t` in `[π, 2π]`. Both start and end
+/// at the crossing, which is sampled once and shared, so it gets four edges.
+fn push_figure_eight(out: &mut Sample, center: Point, size: f64, eps: f64) {
+    let crossing = out.points.len();
+    out.points.push(center);
+    for lobe in 0..2 {
+        let offset = lobe as f64 * PI;
+        let at = |t: f64| {
+            let u = offset + PI * t;
+            Point::new(
+                center.x + size * libm::sin(u),
+                center.y + size * libm::sin(u) * libm::cos(u),
+            )
+        };
+        let chain = along(at, false, eps * size / 4.0);
+        let inner = &chain[1..chain.len() - 1];
+        let base = out.points.len();
+        out.points.extend_from_slice(inner);
+        out.edges.push([crossing, base]);
+        for k in 1..inner.len() {
+            out.edges.push([base + k - 1, base + k]);
+        }
+        out.edges.push([crossing, base + inner.len() - 1]);
+    }
+}
+
+/// Moves each point uniformly within `±noise` in x and y (x drawn before y); draws nothing when
+/// `noise` is not positive.
+fn add_noise(points: &mut [Point], noise: f64, random: &mut Random) {
+    if noise > 0.0 {
+        for p in points.iter_mut() {
+            p.x += (2.0 * random.unit() - 1.0) * noise;
+            p.y += (2.0 * random.unit() - 1.0) * noise;
+        }
+    }
+}
+
+/// Appends `outlier_fraction` times as many uniform points in the bounding box as there are
+/// curve samples, redrawing any closer than `outlier_clearance` to an earlier point. Gives up
+/// after a thousand draws per wanted outlier, so a clearance too large for the box ends with
+/// fewer outliers rather than never.
+fn add_outliers(out: &mut Sample, sampling: &Sampling, random: &mut Random) {
     let curve_points = out.points.len();
     let extra = libm::round(sampling.outlier_fraction * curve_points as f64) as usize;
-    if extra > 0 {
-        let (mut lo, mut hi) = (
-            Point::new(f64::INFINITY, f64::INFINITY),
-            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
-        );
-        for p in &out.points {
-            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-        }
-        let clearance2 = sampling.outlier_clearance * sampling.outlier_clearance;
-        let mut attempts = 0;
-        while out.outliers.len() < extra && attempts < 1000 * extra {
-            attempts += 1;
-            let p = Point::new(
-                lo.x + random.unit() * (hi.x - lo.x),
-                lo.y + random.unit() * (hi.y - lo.y),
-            );
-            if clearance2 > 0.0 && out.points.iter().any(|q| q.dist2(p) < clearance2) {
-                continue;
-            }
-            out.outliers.push(out.points.len());
-            out.points.push(p);
-        }
+    if extra == 0 {
+        return;
     }
-    for e in out.edges.iter_mut() {
+    let (mut lo, mut hi) = (
+        Point::new(f64::INFINITY, f64::INFINITY),
+        Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+    );
+    for p in &out.points {
+        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let clearance2 = sampling.outlier_clearance * sampling.outlier_clearance;
+    let mut attempts = 0;
+    while out.outliers.len() < extra && attempts < 1000 * extra {
+        attempts += 1;
+        let p = Point::new(
+            lo.x + random.unit() * (hi.x - lo.x),
+            lo.y + random.unit() * (hi.y - lo.y),
+        );
+        if clearance2 > 0.0 && out.points.iter().any(|q| q.dist2(p) < clearance2) {
+            continue;
+        }
+        out.outliers.push(out.points.len());
+        out.points.push(p);
+    }
+}
+
+/// Puts every edge as `[low, high]` and the list in ascending order.
+fn sort_edges(edges: &mut [[usize; 2]]) {
+    for e in edges.iter_mut() {
         e.sort_unstable();
     }
-    out.edges.sort_unstable();
-    out
+    edges.sort_unstable();
 }
