@@ -59,17 +59,18 @@
 //! ```
 //!
 //! ## Features
-//! - `std` (default): file I/O ([`io`]) and the `condt` command-line tool.
+//! - `std` (default): file I/O (the `io` module) and the `condt` command-line tool.
 //! - `parallel` (default, implies `std`): multi-threaded stages, on rayon (same results).
 //!
 //! With `--no-default-features` the library is `#![no_std]` and needs only `alloc`.
 //!
 //! ## Layout
-//! `docs/architecture.md` draws the module graph; each module depends only on those before it.
 //! Public: this page's re-exports, [`mesh`] (the half-edge level), [`predicates`], [`sample`]
-//! and [`io`] (`std`). Private: `error`, `geometry`, `triangulate`, `adjacency` (edge lists in
-//! vertex ids), `stages` (one module per ConDT stage), `graph` ([`Graph`]), `curve` ([`Curve`]),
-//! `reconstruct` (the pipeline and the order of its stages), and `test_rng` (unit tests only).
+//! and `io` (`std`). Private, from the bottom up (each uses only modules listed before it):
+//! `error`, `geometry`, `triangulate` (the kernel), `adjacency` (edge lists in vertex ids),
+//! `stages` (one module per ConDT stage), `curve` ([`Curve`]), `graph` ([`Graph`]),
+//! `reconstruct` (the pipeline and the order of its stages); `test_rng` serves unit tests only.
+//! `docs/architecture.md` draws the graph and says what each module may not touch.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

@@ -61,7 +61,7 @@ pub struct Params {
     pub outlier_factor: Option<f64>,
     /// Remove outliers before the non-manifold repair instead of after it (the paper's order).
     /// Outlier edges can make a curve vertex non-manifold, and the repair then cuts a sharp
-    /// corner there; `docs/condt.md` (note 6) measures both orders.
+    /// corner there; `docs/condt.md` (note 8) measures both orders.
     pub outliers_first: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
