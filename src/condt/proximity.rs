@@ -240,7 +240,7 @@ impl TwoBest {
 
 /// For every vertex, its two best offers, from `ranges` ranges of triangles swept at once.
 fn two_best_offers(tri: &Triangulation, ranges: usize) -> Vec<TwoBest> {
-    let triangles = tri.mesh().origins.len() / 3;
+    let triangles = tri.mesh().num_triangles_with_ghosts();
     if ranges <= 1 {
         return sweep(tri, 0..triangles);
     }
@@ -274,9 +274,8 @@ fn sweep(tri: &Triangulation, triangles: core::ops::Range<usize>) -> Vec<TwoBest
     let mut offer = |u: VertexId, w: VertexId| {
         best[u.index()].offer(tri.point(u).dist2(tri.point(w)), w);
     };
-    let corners = &tri.mesh().origins[3 * triangles.start..3 * triangles.end];
-    for corners in corners.chunks_exact(3) {
-        let [a, b, c] = [corners[0], corners[1], corners[2]];
+    for corners in tri.mesh().triangle_corners(triangles) {
+        let [a, b, c] = corners;
         if a.is_infinite() || b.is_infinite() || c.is_infinite() {
             // A ghost: only its finite half-edge offers.
             for k in 0..3 {

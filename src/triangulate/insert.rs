@@ -11,10 +11,11 @@
 //! Then every edge opposite the new point is tested and, if illegal, flipped, with an explicit
 //! stack. On finite edges the test is the exact in-circle predicate; an edge to infinity is
 //! illegal when the new point sees the neighbouring hull edge, which is how the hull grows.
-//! Owns: the construction state. It may not decide a sign except through `predicates`.
+//! Owns: the construction state. It may not decide a sign except through `predicates`, and it
+//! edits the mesh only through [`MeshBuilder`].
 
 use crate::geometry::Point;
-use crate::mesh::{wrap3, HalfEdgeId, Mesh, TriangleId, VertexId};
+use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshBuilder, VertexId};
 use crate::predicates::{in_circle, orient2d, Orientation};
 use alloc::vec::Vec;
 
@@ -33,7 +34,7 @@ enum Location {
 /// The construction state. Vertex ids are positions in `points` (the insertion order).
 pub(crate) struct Builder<'a> {
     points: &'a [Point],
-    mesh: Mesh,
+    mesh: MeshBuilder,
     flips: Vec<HalfEdgeId>,
     hint: HalfEdgeId,
     /// `(duplicate, vertex it was merged into)`, in insertion-order ids.
@@ -49,17 +50,12 @@ impl<'a> Builder<'a> {
         );
         // A triangulated sphere with n + 1 vertices has 2n - 2 triangles: reserve them all at once.
         let half_edges = 6 * points.len().max(3) - 6;
-        let mut mesh = Mesh {
-            origins: Vec::with_capacity(half_edges),
-            twins: Vec::with_capacity(half_edges),
-            vertex_edges: Vec::new(),
-        };
+        let mut mesh = MeshBuilder::with_capacity(half_edges);
         let inf = VertexId::INFINITE;
         let [a, b, c] = [a, b, c].map(VertexId::new);
         // Triangle 0 = (a, b, c); ghosts 1 = (b, a, ∞), 2 = (c, b, ∞), 3 = (a, c, ∞).
         for corners in [[a, b, c], [b, a, inf], [c, b, inf], [a, c, inf]] {
-            mesh.origins.extend_from_slice(&corners);
-            mesh.twins.extend_from_slice(&[HalfEdgeId::NONE; 3]);
+            mesh.push_triangle(corners);
         }
         let h = HalfEdgeId::new;
         for (x, y) in [(0, 3), (1, 6), (2, 9), (4, 11), (7, 5), (10, 8)] {
@@ -74,9 +70,10 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// The mesh, and the `(duplicate, kept vertex)` pairs merged on the way.
+    /// The mesh, sealed over the vertex ids `0..points.len()`, and the `(duplicate, kept
+    /// vertex)` pairs merged on the way.
     pub(crate) fn finish(self) -> (Mesh, Vec<(u32, u32)>) {
-        (self.mesh, self.merged)
+        (self.mesh.finish(self.points.len()), self.merged)
     }
 
     #[inline]
@@ -86,26 +83,12 @@ impl<'a> Builder<'a> {
 
     #[inline]
     fn origin(&self, e: HalfEdgeId) -> VertexId {
-        self.mesh.origins[e.index()]
+        self.mesh.origin(e)
     }
 
     #[inline]
     fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
-        self.mesh.twins[e.index()]
-    }
-
-    fn new_triangle(&mut self) -> TriangleId {
-        let t = TriangleId::new((self.mesh.origins.len() / 3) as u32);
-        self.mesh
-            .origins
-            .extend_from_slice(&[VertexId::INFINITE; 3]);
-        self.mesh.twins.extend_from_slice(&[HalfEdgeId::NONE; 3]);
-        t
-    }
-
-    fn set_corners(&mut self, t: TriangleId, corners: [VertexId; 3]) {
-        let i = t.index() * 3;
-        self.mesh.origins[i..i + 3].copy_from_slice(&corners);
+        self.mesh.twin(e)
     }
 
     /// Inserts the point with id `v`.
@@ -136,10 +119,7 @@ impl<'a> Builder<'a> {
     /// along the hull instead of across the fan of triangles at `v`.
     fn ghost_at(&self, v: VertexId) -> HalfEdgeId {
         let (base, _) = self.hint.base_and_corner();
-        let Some(k) = self.mesh.origins[base..base + 3]
-            .iter()
-            .position(|&c| c == v)
-        else {
+        let Some(k) = self.mesh.corners_at(base).iter().position(|&c| c == v) else {
             return self.hint;
         };
         let start = HalfEdgeId::at(base, k);
@@ -147,7 +127,10 @@ impl<'a> Builder<'a> {
         loop {
             // `e` leaves `v`; the triangle's next corner is its destination.
             let (base, corner) = e.base_and_corner();
-            if self.mesh.origins[base + wrap3(corner + 1)].is_infinite() {
+            if self
+                .origin(HalfEdgeId::at(base, wrap3(corner + 1)))
+                .is_infinite()
+            {
                 return e;
             }
             e = self.twin(HalfEdgeId::at(base, wrap3(corner + 2)));
@@ -170,8 +153,7 @@ impl<'a> Builder<'a> {
             // The triangle's corners, read once: its half-edges are `base + k`, `k` in `0..3`,
             // half-edge `k` running from corner `k` to corner `k + 1` (mod 3).
             let (base, corner) = e.base_and_corner();
-            let c = &self.mesh.origins[base..base + 3];
-            let corners = [c[0], c[1], c[2]];
+            let corners = self.mesh.corners_at(base);
             let half_edge = |k: usize| HalfEdgeId::at(base, k);
             if let Some(k) = corners.iter().position(|v| v.is_infinite()) {
                 // The finite edge of the ghost starts right after the infinite corner.
@@ -286,13 +268,11 @@ impl<'a> Builder<'a> {
     fn split_triangle(&mut self, e: HalfEdgeId, v: VertexId) {
         let (a, b, c) = (self.origin(e), self.origin(e.next()), self.origin(e.prev()));
         let (out_ab, out_bc, out_ca) = (self.twin(e), self.twin(e.next()), self.twin(e.prev()));
-        let t0 = e.triangle();
-        let t1 = self.new_triangle();
-        let t2 = self.new_triangle();
-        self.set_corners(t0, [a, b, v]);
-        self.set_corners(t1, [b, c, v]);
-        self.set_corners(t2, [c, a, v]);
         let m = &mut self.mesh;
+        let t0 = e.triangle();
+        let t1 = m.push_triangle([b, c, v]);
+        let t2 = m.push_triangle([c, a, v]);
+        m.set_corners(t0, [a, b, v]);
         m.link(t0.edge(0), out_ab);
         m.link(t1.edge(0), out_bc);
         m.link(t2.edge(0), out_ca);
@@ -320,15 +300,13 @@ impl<'a> Builder<'a> {
         let (c, d) = (self.origin(e.prev()), self.origin(f.prev()));
         let (out_bc, out_ca) = (self.twin(e.next()), self.twin(e.prev()));
         let (out_ad, out_db) = (self.twin(f.next()), self.twin(f.prev()));
+        let m = &mut self.mesh;
         let t_bc = e.triangle();
         let t_ad = f.triangle();
-        let t_ca = self.new_triangle();
-        let t_db = self.new_triangle();
-        self.set_corners(t_bc, [v, b, c]);
-        self.set_corners(t_ca, [v, c, a]);
-        self.set_corners(t_ad, [v, a, d]);
-        self.set_corners(t_db, [v, d, b]);
-        let m = &mut self.mesh;
+        let t_ca = m.push_triangle([v, c, a]);
+        let t_db = m.push_triangle([v, d, b]);
+        m.set_corners(t_bc, [v, b, c]);
+        m.set_corners(t_ad, [v, a, d]);
         m.link(t_bc.edge(1), out_bc);
         m.link(t_ca.edge(1), out_ca);
         m.link(t_ad.edge(1), out_ad);
@@ -349,7 +327,7 @@ impl<'a> Builder<'a> {
             let f = self.twin(e);
             let (f_base, f_corner) = f.base_and_corner();
             let (u, w) = (self.origin(e), self.origin(f));
-            let q = self.mesh.origins[f_base + wrap3(f_corner + 2)];
+            let q = self.origin(HalfEdgeId::at(f_base, wrap3(f_corner + 2)));
             if self.is_illegal(u, w, v, q) {
                 self.flip(e, (f_base, f_corner), [u, w, q], v);
             }
@@ -395,8 +373,8 @@ impl<'a> Builder<'a> {
         let out_uq = self.twin(at(f_base, wrap3(f_corner + 1)));
         let out_qw = self.twin(at(f_base, wrap3(f_corner + 2)));
         let m = &mut self.mesh;
-        m.origins[e_base..e_base + 3].copy_from_slice(&[v, u, q]);
-        m.origins[f_base..f_base + 3].copy_from_slice(&[v, q, w]);
+        m.set_corners_at(e_base, [v, u, q]);
+        m.set_corners_at(f_base, [v, q, w]);
         m.link(at(e_base, 0), out_vu);
         m.link(at(e_base, 1), out_uq);
         m.link(at(f_base, 1), out_qw);

@@ -114,8 +114,7 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
                     builder.insert(v);
                 }
             }
-            let (mut mesh, merged) = builder.finish();
-            mesh.rebuild_vertex_edges(order.len());
+            let (mesh, merged) = builder.finish();
             (mesh, merged, order)
         }
     };
