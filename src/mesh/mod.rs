@@ -67,9 +67,11 @@ impl Mesh {
         self.origins.len() / 3
     }
 
-    /// Length of the vertex index space (the number of input points).
+    /// Size of the vertex id space: ids `0..num_vertex_ids()` may appear as corners (for a
+    /// [`Triangulation`](crate::Triangulation), the number of input points, merged duplicates
+    /// included). Not a count of vertices with edges, and not an allocation's capacity.
     #[inline]
-    pub fn vertex_capacity(&self) -> usize {
+    pub fn num_vertex_ids(&self) -> usize {
         self.vertex_edges.len()
     }
 

@@ -33,7 +33,7 @@ impl Triangulation {
         let mesh = &self.mesh;
         mesh.check_topology()?;
         let n = self.points.len();
-        if mesh.vertex_capacity() != n
+        if mesh.num_vertex_ids() != n
             || self.vertex_of_input.len() != n
             || self.input_of_vertex.len() != n
         {
