@@ -71,7 +71,7 @@ pub mod triangulate;
 
 pub use error::Error;
 pub use geometry::Point;
-pub use mesh::{HalfEdgeId, InvalidMesh, Mesh, TriangleId, VertexId};
+pub use mesh::{Element, HalfEdgeId, Mesh, Rule, TriangleId, VertexId, Violation};
 pub use triangulate::{triangulate, Triangulation};
 
 /// The README's code examples, compiled and run as doctests so they cannot go stale.

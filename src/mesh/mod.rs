@@ -26,7 +26,7 @@ mod check;
 mod ids;
 
 pub(crate) use build::MeshBuilder;
-pub use check::InvalidMesh;
+pub use check::{Element, Rule, Violation};
 pub(crate) use ids::wrap3;
 pub use ids::{HalfEdgeId, TriangleId, VertexId};
 
