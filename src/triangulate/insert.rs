@@ -31,6 +31,50 @@ enum Location {
     Vertex(VertexId),
 }
 
+/// Where a walk stands between two steps (see `Builder::locate`).
+#[derive(Copy, Clone, Debug)]
+struct Walk {
+    /// A half-edge of the current triangle.
+    at: HalfEdgeId,
+    /// Whether the walk entered the current triangle across `at`: then the point is known to lie
+    /// strictly left of `at`, and that edge is not tested again.
+    entered: bool,
+    /// The hull slides still allowed.
+    slide: Slide,
+}
+
+impl Walk {
+    /// Crosses into the triangle of `e`, the point being strictly left of it.
+    #[inline(always)]
+    fn enter(&mut self, e: HalfEdgeId) -> Option<Location> {
+        self.at = e;
+        self.entered = true;
+        None
+    }
+
+    /// Moves along the hull to the ghost triangle of `e`, knowing nothing new.
+    #[inline(always)]
+    fn slide_to(&mut self, e: HalfEdgeId) -> Option<Location> {
+        self.at = e;
+        self.entered = false;
+        None
+    }
+}
+
+/// The hull slides the walk may still take (see `Builder::ghost_step`): at most one way, and
+/// only before the walk first enters a real triangle.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Slide {
+    /// No slide yet: either way.
+    Either,
+    /// Only forward, to the ghost after the current hull edge.
+    Forward,
+    /// Only backward, to the ghost before the current hull edge.
+    Backward,
+    /// No more slides: the walk is the plain visibility walk.
+    Done,
+}
+
 /// The construction state. Vertex ids are positions in `points` (the insertion order).
 pub(crate) struct Builder<'a> {
     points: &'a [Point],
@@ -142,117 +186,146 @@ impl<'a> Builder<'a> {
 
     /// Visibility walk from the hint. It terminates because the "lies in front of" relation among
     /// the triangles of a Delaunay triangulation, seen from any point, has no cycle.
+    ///
+    /// Each step reads the current triangle's corners once and hands them to
+    /// [`Builder::ghost_step`] or [`Builder::triangle_step`], which either locate the point or
+    /// move the walk on.
     fn locate(&self, p: Point) -> Location {
-        let mut e = self.hint;
-        // Half-edge of the current triangle through which the walk entered it, if any: the point
-        // is known to lie strictly left of it.
-        let mut entered = false;
-        // Hull slides still allowed: 2 = either way (not started), 1 / -1 = only that way, 0 = none.
-        let mut slide = 2i8;
+        let mut walk = Walk {
+            at: self.hint,
+            entered: false,
+            slide: Slide::Either,
+        };
         loop {
-            // The triangle's corners, read once: its half-edges are `base + k`, `k` in `0..3`,
-            // half-edge `k` running from corner `k` to corner `k + 1` (mod 3).
-            let (base, corner) = e.base_and_corner();
+            // The triangle's half-edges are `base + k`, `k` in `0..3`, half-edge `k` running from
+            // corner `k` to corner `k + 1` (mod 3).
+            let (base, corner) = walk.at.base_and_corner();
             let corners = self.mesh.corners_at(base);
-            let half_edge = |k: usize| HalfEdgeId::at(base, k);
-            if let Some(k) = corners.iter().position(|v| v.is_infinite()) {
-                // The finite edge of the ghost starts right after the infinite corner.
-                let (h, after) = (wrap3(k + 1), wrap3(k + 2));
-                let hull = half_edge(h);
-                let (a, b) = (corners[h], corners[after]);
-                match orient2d(self.point(a), self.point(b), p) {
-                    Orientation::Ccw => return Location::Face(hull),
-                    Orientation::Cw => {
-                        // `p` is on the inner side of this hull edge's line. If it lies past one
-                        // end, it is likely outside the hull further along: slide to the next
-                        // ghost that way. Slides go one way only, and only before the walk first
-                        // enters a real triangle: past the far end of `a → b`, `p` is nearer `b`
-                        // than `a`, so the distance to the slide's vertex shrinks and cannot
-                        // cycle. After them the walk is the plain visibility walk.
-                        let (pa, pb) = (self.point(a), self.point(b));
-                        let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
-                        let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
-                        let direction = if along > dx * dx + dy * dy {
-                            1
-                        } else if along < 0.0 {
-                            -1
-                        } else {
-                            0
-                        };
-                        if slide != 0 && direction == slide || slide == 2 && direction != 0 {
-                            slide = direction;
-                            e = if direction > 0 {
-                                self.twin(half_edge(after))
-                            } else {
-                                self.twin(half_edge(k))
-                            };
-                            entered = false;
-                        } else {
-                            slide = 0;
-                            e = self.twin(hull);
-                            entered = true;
-                        }
-                    }
-                    Orientation::Collinear => {
-                        // Sliding back and forth between this and a Cw slide could cycle at a
-                        // sharp hull corner: no more Cw slides after a collinear one.
-                        slide = 0;
-                        let (pa, pb) = (self.point(a), self.point(b));
-                        match position_on_segment(pa, pb, p) {
-                            Segment::AtStart => return Location::Vertex(a),
-                            Segment::AtEnd => return Location::Vertex(b),
-                            Segment::Inside => return Location::Edge(hull),
-                            // Slide along the hull to the ghost on that side.
-                            Segment::BeyondEnd => e = self.twin(half_edge(after)),
-                            Segment::BeforeStart => e = self.twin(half_edge(k)),
-                        }
-                        entered = false;
-                    }
-                }
-                continue;
-            }
-            slide = 0;
-            // A real triangle: leave through any edge that has the point strictly on its right,
-            // testing the edges in order from the one the walk entered through (known: skipped).
-            let points = corners.map(|v| self.point(v));
-            let entry = if entered { corner } else { 0 };
-            let mut collinear = [0usize; 2];
-            let mut n_collinear = 0;
-            let mut crossed = None;
-            for step in usize::from(entered)..3 {
-                let k = wrap3(entry + step);
-                match orient2d(points[k], points[wrap3(k + 1)], p) {
-                    Orientation::Cw => {
-                        crossed = Some(k);
-                        break;
-                    }
-                    Orientation::Collinear => {
-                        collinear[n_collinear.min(1)] = k;
-                        n_collinear += 1;
-                    }
-                    Orientation::Ccw => {}
-                }
-            }
-            if let Some(k) = crossed {
-                e = self.twin(half_edge(k));
-                entered = true;
-                continue;
-            }
-            return match n_collinear {
-                0 => Location::Face(half_edge(0)),
-                1 => Location::Edge(half_edge(collinear[0])),
-                _ => {
-                    // On two edge lines of a proper triangle: at their shared corner, where the
-                    // first of the two edges (in triangle order) ends.
-                    let (x, y) = (collinear[0], collinear[1]);
-                    Location::Vertex(if wrap3(x + 1) == y {
-                        corners[y]
-                    } else {
-                        corners[x]
-                    })
+            let found = match corners.iter().position(|v| v.is_infinite()) {
+                Some(infinite) => self.ghost_step(p, base, corners, infinite, &mut walk),
+                None => {
+                    walk.slide = Slide::Done;
+                    self.triangle_step(p, base, corner, corners, &mut walk)
                 }
             };
+            if let Some(location) = found {
+                return location;
+            }
         }
+    }
+
+    /// One step in the ghost triangle at `base`, whose corner `infinite` is the vertex at
+    /// infinity: `p` is outside its hull edge (found), on the edge's line (found, or a slide along
+    /// it), or inside the hull, where the walk either slides to a neighbouring ghost or enters
+    /// the real triangle across the hull edge.
+    #[inline(always)]
+    fn ghost_step(
+        &self,
+        p: Point,
+        base: usize,
+        corners: [VertexId; 3],
+        infinite: usize,
+        walk: &mut Walk,
+    ) -> Option<Location> {
+        let half_edge = |k: usize| HalfEdgeId::at(base, k);
+        // The finite edge of the ghost starts right after the infinite corner; the ghost before it
+        // along the hull lies across the edge into the infinite corner, the one after it across
+        // the edge out of the finite edge's end.
+        let (h, after) = (wrap3(infinite + 1), wrap3(infinite + 2));
+        let hull = half_edge(h);
+        let (a, b) = (corners[h], corners[after]);
+        let (pa, pb) = (self.point(a), self.point(b));
+        let to_ghost_after = || self.twin(half_edge(after));
+        let to_ghost_before = || self.twin(half_edge(infinite));
+        match orient2d(pa, pb, p) {
+            Orientation::Ccw => Some(Location::Face(hull)),
+            Orientation::Cw => {
+                // `p` is on the inner side of this hull edge's line. If it lies past one end, it is
+                // likely outside the hull further along: slide to the next ghost that way. Slides
+                // go one way only, and only before the walk first enters a real triangle: past the
+                // far end of `a → b`, `p` is nearer `b` than `a`, so the distance to the slide's
+                // vertex shrinks and cannot cycle. After them the walk is the plain visibility walk.
+                let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
+                let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
+                let way = if along > dx * dx + dy * dy {
+                    Slide::Forward
+                } else if along < 0.0 {
+                    Slide::Backward
+                } else {
+                    Slide::Done
+                };
+                // A slide needs a way out (`p` past an end) that the walk still allows.
+                if way != Slide::Done && (walk.slide == Slide::Either || walk.slide == way) {
+                    walk.slide = way;
+                    walk.slide_to(if way == Slide::Forward {
+                        to_ghost_after()
+                    } else {
+                        to_ghost_before()
+                    })
+                } else {
+                    walk.slide = Slide::Done;
+                    walk.enter(self.twin(hull))
+                }
+            }
+            Orientation::Collinear => {
+                // Sliding back and forth between this and a Cw slide could cycle at a sharp hull
+                // corner: no more Cw slides after a collinear one.
+                walk.slide = Slide::Done;
+                match position_on_segment(pa, pb, p) {
+                    Segment::AtStart => Some(Location::Vertex(a)),
+                    Segment::AtEnd => Some(Location::Vertex(b)),
+                    Segment::Inside => Some(Location::Edge(hull)),
+                    // Slide along the hull to the ghost on that side.
+                    Segment::BeyondEnd => walk.slide_to(to_ghost_after()),
+                    Segment::BeforeStart => walk.slide_to(to_ghost_before()),
+                }
+            }
+        }
+    }
+
+    /// One step in the real triangle at `base`, the walk standing at its `corner`: leave through
+    /// any edge that has `p` strictly on its right, testing the edges in order from the one the
+    /// walk entered through (if it did: known, skipped); if there is none, `p` is inside, on one
+    /// edge, or on a corner.
+    #[inline(always)]
+    fn triangle_step(
+        &self,
+        p: Point,
+        base: usize,
+        corner: usize,
+        corners: [VertexId; 3],
+        walk: &mut Walk,
+    ) -> Option<Location> {
+        let half_edge = |k: usize| HalfEdgeId::at(base, k);
+        let points = corners.map(|v| self.point(v));
+        let first = if walk.entered { corner } else { 0 };
+        let mut collinear = [0usize; 2];
+        let mut n_collinear = 0;
+        for step in usize::from(walk.entered)..3 {
+            let k = wrap3(first + step);
+            match orient2d(points[k], points[wrap3(k + 1)], p) {
+                Orientation::Cw => return walk.enter(self.twin(half_edge(k))),
+                Orientation::Collinear => {
+                    collinear[n_collinear.min(1)] = k;
+                    n_collinear += 1;
+                }
+                Orientation::Ccw => {}
+            }
+        }
+        Some(match n_collinear {
+            0 => Location::Face(half_edge(0)),
+            1 => Location::Edge(half_edge(collinear[0])),
+            _ => {
+                // On two edge lines of a proper triangle: at their shared corner, where the first
+                // of the two edges (in triangle order) ends.
+                let (x, y) = (collinear[0], collinear[1]);
+                Location::Vertex(if wrap3(x + 1) == y {
+                    corners[y]
+                } else {
+                    corners[x]
+                })
+            }
+        })
     }
 
     /// Splits the triangle `(a, b, c)` of `e = a → b` into `(a, b, v)`, `(b, c, v)`, `(c, a, v)`.
