@@ -1,8 +1,9 @@
 //! The error type returned by the library.
 //!
 //! Owns: every way a call into the library can refuse its input. It may not depend on any other
-//! module; the others depend on it.
+//! module but for the mesh's [`Violation`], which it carries; the others depend on it.
 
+use crate::mesh::Violation;
 use core::fmt;
 
 /// Why a call into the library refused its input.
@@ -47,6 +48,16 @@ pub enum Error {
         /// The value given.
         value: f64,
     },
+    /// [`Triangulation::validate`](crate::Triangulation::validate) or
+    /// [`Mesh::check_topology`](crate::mesh::Mesh::check_topology) found a broken invariant; the
+    /// conversion lets `?` carry it in a function returning this error.
+    InvalidTriangulation(Violation),
+}
+
+impl From<Violation> for Error {
+    fn from(violation: Violation) -> Self {
+        Error::InvalidTriangulation(violation)
+    }
 }
 
 impl fmt::Display for Error {
@@ -66,9 +77,17 @@ impl fmt::Display for Error {
             Error::InvalidParameter { name, value } => {
                 write!(f, "parameter {name} = {value} is not accepted")
             }
+            Error::InvalidTriangulation(violation) => write!(f, "{violation}"),
         }
     }
 }
 
 #[cfg(feature = "std")]
-impl std::error::Error for Error {}
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Error::InvalidTriangulation(violation) => Some(violation),
+            _ => None,
+        }
+    }
+}

@@ -5,34 +5,188 @@ use alloc::vec;
 use core::fmt;
 
 /// A broken invariant found by [`Mesh::check_topology`] or
-/// [`Triangulation::validate`](crate::Triangulation::validate): what is wrong and the index of
-/// the element (half-edge, triangle or vertex, as the reason says) where it was seen.
+/// [`Triangulation::validate`](crate::Triangulation::validate): which rule fails, and the element
+/// where it was seen.
 ///
 /// ```
 /// use condt::{triangulate, Point};
 /// let tri = triangulate(&[Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)])?;
 /// assert!(tri.validate().is_ok());
+///
+/// use condt::mesh::{Element, Rule, TriangleId, Violation};
+/// let broken = Violation { rule: Rule::TriangleNotCcw, element: Element::Triangle(TriangleId::new(3)) };
+/// assert_eq!(broken.to_string(), "invalid mesh: triangle is not counter-clockwise (at triangle 3)");
 /// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub struct InvalidMesh {
+pub struct Violation {
     /// The invariant that does not hold.
-    pub reason: &'static str,
-    /// Index of the element where it fails.
-    pub element: usize,
+    pub rule: Rule,
+    /// Where it fails.
+    pub element: Element,
 }
 
-impl fmt::Display for InvalidMesh {
+impl fmt::Display for Violation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "invalid mesh: {} (at {})", self.reason, self.element)
+        write!(f, "invalid mesh: {} (at {})", self.rule, self.element)
     }
 }
 
 #[cfg(feature = "std")]
-impl std::error::Error for InvalidMesh {}
+impl std::error::Error for Violation {}
 
-pub(crate) fn fail(reason: &'static str, element: usize) -> Result<(), InvalidMesh> {
-    Err(InvalidMesh { reason, element })
+/// One invariant of a mesh or a triangulation. The topological rules are checked by
+/// [`Mesh::check_topology`], the others (maps between input points and vertices, and exact
+/// geometry) by [`Triangulation::validate`](crate::Triangulation::validate). Each rule names the
+/// kind of [`Element`] it reports.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Rule {
+    // Topology: `Mesh::check_topology`.
+    /// The half-edge arrays have different lengths, or not a multiple of three. [`Element::Whole`].
+    ArrayLengths,
+    /// A triangle has the same vertex at two corners. [`Element::Triangle`].
+    RepeatedCorner,
+    /// A triangle corner is a finite vertex outside the vertex id space. [`Element::Triangle`].
+    CornerOutOfRange,
+    /// A half-edge's twin is out of range, or is the half-edge itself. [`Element::HalfEdge`].
+    TwinOutOfRange,
+    /// The twin of a half-edge's twin is not the half-edge. [`Element::HalfEdge`].
+    TwinNotMutual,
+    /// A half-edge's twin does not join the same two vertices the other way.
+    /// [`Element::HalfEdge`].
+    TwinNotReversed,
+    /// A vertex that no half-edge leaves has a vertex edge. [`Element::Vertex`].
+    StrayVertexEdge,
+    /// A vertex that half-edges leave has no (or an out-of-range) vertex edge.
+    /// [`Element::Vertex`].
+    MissingVertexEdge,
+    /// A vertex edge does not leave its vertex. [`Element::Vertex`].
+    VertexEdgeNotLeaving,
+    /// The vertex edge of a hull vertex does not point to infinity. [`Element::Vertex`].
+    HullVertexEdgeNotToInfinity,
+    /// Turning around a vertex does not come back to its vertex edge within its degree.
+    /// [`Element::Vertex`].
+    RingNotClosed,
+    /// The ring of a vertex closes before it has met every half-edge leaving the vertex.
+    /// [`Element::Vertex`].
+    RingIncomplete,
+    /// `V - E + F` is not 2: the triangles do not form a sphere. [`Element::Whole`].
+    EulerCharacteristic,
+
+    // Maps: `Triangulation::validate`.
+    /// The mesh's vertex id space, the coordinates and the two maps have different lengths.
+    /// [`Element::Whole`].
+    VertexArrayLengths,
+    /// An input point maps to no vertex, or its vertex reports another input point than the
+    /// smallest of its duplicates. [`Element::InputPoint`].
+    InputNotMapped,
+    /// A vertex id left by a merged duplicate holds a point other than its vertex's.
+    /// [`Element::Vertex`].
+    DuplicateMisplaced,
+    /// A vertex edge is present on an id that is no vertex, or missing on a vertex (when there
+    /// are at least two vertices). [`Element::Vertex`].
+    VertexEdgePresence,
+    /// The stored number of vertices disagrees with the maps. [`Element::Whole`].
+    VertexCount,
+
+    // Geometry: `Triangulation::validate`, exact predicates.
+    /// A real triangle is not strictly counter-clockwise. [`Element::Triangle`].
+    TriangleNotCcw,
+    /// An edge between two real triangles fails the strict in-circle test: it is not locally
+    /// Delaunay. [`Element::HalfEdge`] (the one of the pair with the smaller id).
+    NotLocallyDelaunay,
+    /// Two consecutive hull edges turn counter-clockwise seen from the ghosts: the hull is not
+    /// convex. [`Element::HalfEdge`] (the first hull edge, clockwise).
+    HullNotConvex,
+
+    // Collinear input (no real triangle): `Triangulation::validate`.
+    /// At least two distinct points, but no edge. [`Element::Whole`].
+    ChainMissing,
+    /// There is no real triangle, yet a vertex is off the line of the chain. [`Element::Vertex`].
+    ChainNotCollinear,
+    /// A chain vertex has more than two neighbours. [`Element::Vertex`].
+    ChainBranches,
+    /// A chain vertex does not lie between its two neighbours. [`Element::Vertex`].
+    ChainDoublesBack,
+    /// The chain's edges do not join every vertex. [`Element::Whole`].
+    ChainDisconnected,
+}
+
+impl Rule {
+    /// The invariant, in words.
+    pub fn description(&self) -> &'static str {
+        match self {
+            Rule::ArrayLengths => "array lengths disagree",
+            Rule::RepeatedCorner => "triangle repeats a corner",
+            Rule::CornerOutOfRange => "triangle corner out of range",
+            Rule::TwinOutOfRange => "twin out of range or itself",
+            Rule::TwinNotMutual => "twin of twin is not the half-edge",
+            Rule::TwinNotReversed => "twin does not run the other way",
+            Rule::StrayVertexEdge => "vertex without edges has a vertex edge",
+            Rule::MissingVertexEdge => "vertex with edges has no vertex edge",
+            Rule::VertexEdgeNotLeaving => "vertex edge does not leave its vertex",
+            Rule::HullVertexEdgeNotToInfinity => {
+                "vertex edge of a hull vertex does not point to infinity"
+            }
+            Rule::RingNotClosed => "ring does not close within the vertex's degree",
+            Rule::RingIncomplete => "ring misses some edges of its vertex",
+            Rule::EulerCharacteristic => "Euler's formula fails: not a sphere",
+            Rule::VertexArrayLengths => "vertex arrays do not match the number of points",
+            Rule::InputNotMapped => {
+                "input point maps to no vertex, or not to its smallest duplicate"
+            }
+            Rule::DuplicateMisplaced => "duplicate merged into a vertex elsewhere",
+            Rule::VertexEdgePresence => "vertex edge present where no vertex is, or missing",
+            Rule::VertexCount => "vertex count disagrees with the maps",
+            Rule::TriangleNotCcw => "triangle is not counter-clockwise",
+            Rule::NotLocallyDelaunay => "edge is not locally Delaunay",
+            Rule::HullNotConvex => "hull is not convex",
+            Rule::ChainMissing => "distinct points but no edge",
+            Rule::ChainNotCollinear => "no triangle, yet the points are not collinear",
+            Rule::ChainBranches => "chain vertex with more than two neighbours",
+            Rule::ChainDoublesBack => "chain vertex is not between its neighbours",
+            Rule::ChainDisconnected => "chain does not join every vertex",
+        }
+    }
+}
+
+impl fmt::Display for Rule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.description())
+    }
+}
+
+/// The element at which a [`Rule`] fails.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Element {
+    /// A half-edge.
+    HalfEdge(HalfEdgeId),
+    /// A triangle (real or ghost).
+    Triangle(TriangleId),
+    /// A vertex id.
+    Vertex(VertexId),
+    /// An input position.
+    InputPoint(usize),
+    /// No one element: an array length or a global count.
+    Whole,
+}
+
+impl fmt::Display for Element {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Element::HalfEdge(e) => write!(f, "half-edge {}", e.index()),
+            Element::Triangle(t) => write!(f, "triangle {}", t.index()),
+            Element::Vertex(v) => write!(f, "vertex {}", v.index()),
+            Element::InputPoint(i) => write!(f, "input point {i}"),
+            Element::Whole => f.write_str("the whole mesh"),
+        }
+    }
+}
+
+/// `Err` of a [`Violation`] of `rule` at `element`.
+fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
+    Err(Violation { rule, element })
 }
 
 impl Mesh {
@@ -47,19 +201,19 @@ impl Mesh {
     /// assert!(tri.mesh().check_topology().is_ok());
     /// # Ok::<(), condt::Error>(())
     /// ```
-    pub fn check_topology(&self) -> Result<(), InvalidMesh> {
+    pub fn check_topology(&self) -> Result<(), Violation> {
         let n_half = self.origins.len();
         if self.twins.len() != n_half || n_half % 3 != 0 {
-            return fail("array lengths disagree", n_half);
+            return fail(Rule::ArrayLengths, Element::Whole);
         }
-        for t in 0..n_half / 3 {
-            let [a, b, c] = self.triangle_vertices(TriangleId::new(t as u32));
+        for t in (0..(n_half / 3) as u32).map(TriangleId::new) {
+            let [a, b, c] = self.triangle_vertices(t);
             if a == b || b == c || c == a {
-                return fail("triangle repeats a corner", t);
+                return fail(Rule::RepeatedCorner, Element::Triangle(t));
             }
             for v in [a, b, c] {
                 if !v.is_infinite() && v.index() >= self.vertex_edges.len() {
-                    return fail("triangle corner out of range", t);
+                    return fail(Rule::CornerOutOfRange, Element::Triangle(t));
                 }
             }
         }
@@ -67,13 +221,13 @@ impl Mesh {
             let e = HalfEdgeId::new(i as u32);
             let t = self.twin(e);
             if t.index() >= n_half || t == e {
-                return fail("twin out of range or itself", i);
+                return fail(Rule::TwinOutOfRange, Element::HalfEdge(e));
             }
             if self.twin(t) != e {
-                return fail("twin of twin is not the half-edge", i);
+                return fail(Rule::TwinNotMutual, Element::HalfEdge(e));
             }
             if self.origin(t) != self.dest(e) || self.dest(t) != self.origin(e) {
-                return fail("twin does not run the other way", i);
+                return fail(Rule::TwinNotReversed, Element::HalfEdge(e));
             }
         }
 
@@ -92,29 +246,30 @@ impl Mesh {
         }
         let mut vertices = usize::from(infinite_used);
         for (v, &degree) in out_degree.iter().enumerate() {
+            let vertex = VertexId::new(v as u32);
             let start = self.vertex_edges[v];
             if degree == 0 {
                 if !start.is_none() {
-                    return fail("vertex without edges has a vertex edge", v);
+                    return fail(Rule::StrayVertexEdge, Element::Vertex(vertex));
                 }
                 continue;
             }
             vertices += 1;
             if start.is_none() || start.index() >= n_half {
-                return fail("vertex with edges has no vertex edge", v);
+                return fail(Rule::MissingVertexEdge, Element::Vertex(vertex));
             }
-            if self.origin(start) != VertexId::new(v as u32) {
-                return fail("vertex edge does not leave its vertex", v);
+            if self.origin(start) != vertex {
+                return fail(Rule::VertexEdgeNotLeaving, Element::Vertex(vertex));
             }
             if to_infinity[v] && !self.dest(start).is_infinite() {
-                return fail("vertex edge of a hull vertex does not point to infinity", v);
+                return fail(Rule::HullVertexEdgeNotToInfinity, Element::Vertex(vertex));
             }
             let mut e = start;
             let mut steps = 0u32;
             loop {
                 steps += 1;
                 if steps > degree {
-                    return fail("ring does not close within the vertex's degree", v);
+                    return fail(Rule::RingNotClosed, Element::Vertex(vertex));
                 }
                 e = self.twin(e.prev());
                 if e == start {
@@ -122,16 +277,110 @@ impl Mesh {
                 }
             }
             if steps != degree {
-                return fail("ring misses some edges of its vertex", v);
+                return fail(Rule::RingIncomplete, Element::Vertex(vertex));
             }
         }
         if n_half > 0 {
             // A triangulated sphere: V - E + F = 2.
             let (edges, faces) = (n_half / 2, n_half / 3);
             if vertices + faces != edges + 2 {
-                return fail("Euler's formula fails: not a sphere", vertices);
+                return fail(Rule::EulerCharacteristic, Element::Whole);
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Point;
+    use crate::triangulate;
+
+    /// A square with its centre: four hull vertices and one inner vertex of degree four.
+    fn mesh() -> Mesh {
+        let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+        let mesh = triangulate(&square).unwrap().mesh().clone();
+        assert_eq!(mesh.check_topology(), Ok(()));
+        mesh
+    }
+
+    fn violation(mesh: &Mesh) -> (Rule, Element) {
+        let v = mesh.check_topology().unwrap_err();
+        (v.rule, v.element)
+    }
+
+    #[test]
+    fn a_shortened_array_is_reported_for_the_whole_mesh() {
+        let mut m = mesh();
+        m.twins.pop();
+        assert_eq!(violation(&m), (Rule::ArrayLengths, Element::Whole));
+    }
+
+    #[test]
+    fn a_repeated_corner_is_reported_at_its_triangle() {
+        let mut m = mesh();
+        m.origins[3 * 2 + 1] = m.origins[3 * 2];
+        let t = Element::Triangle(TriangleId::new(2));
+        assert_eq!(violation(&m), (Rule::RepeatedCorner, t));
+    }
+
+    #[test]
+    fn broken_twins_are_reported_at_the_first_half_edge_involved() {
+        let mut m = mesh();
+        m.twins[4] = HalfEdgeId::new(4);
+        let at = Element::HalfEdge(HalfEdgeId::new(4));
+        assert_eq!(violation(&m), (Rule::TwinOutOfRange, at));
+
+        // Half-edge 0 now points at a half-edge that does not point back; its old twin still
+        // points at 0, but 0 comes first.
+        let mut m = mesh();
+        let other = (1..m.num_half_edges() as u32)
+            .map(HalfEdgeId::new)
+            .find(|&e| e != m.twin(HalfEdgeId::new(0)) && m.twin(e) != HalfEdgeId::new(0))
+            .unwrap();
+        m.twins[0] = other;
+        let at = Element::HalfEdge(HalfEdgeId::new(0));
+        assert_eq!(violation(&m), (Rule::TwinNotMutual, at));
+    }
+
+    #[test]
+    fn wrong_vertex_edges_are_reported_at_their_vertex() {
+        let m = mesh();
+        // The centre is the one vertex whose ring has no ghost.
+        let centre = (0..m.num_vertex_ids() as u32)
+            .map(VertexId::new)
+            .find(|&v| m.ring(v).count() == 4)
+            .unwrap();
+        let corner = (0..m.num_vertex_ids() as u32)
+            .map(VertexId::new)
+            .find(|&v| v != centre)
+            .unwrap();
+
+        let mut broken = m.clone();
+        broken.vertex_edges[centre.index()] = m.vertex_edges[centre.index()].next();
+        let at = Element::Vertex(centre);
+        assert_eq!(violation(&broken), (Rule::VertexEdgeNotLeaving, at));
+
+        // A hull vertex whose edge leaves it, but towards a finite neighbour.
+        let mut broken = m.clone();
+        broken.vertex_edges[corner.index()] = m.ring(corner).next().unwrap();
+        let at = Element::Vertex(corner);
+        assert_eq!(violation(&broken), (Rule::HullVertexEdgeNotToInfinity, at));
+
+        let mut broken = m.clone();
+        broken.vertex_edges[corner.index()] = HalfEdgeId::NONE;
+        assert_eq!(violation(&broken), (Rule::MissingVertexEdge, at));
+    }
+
+    #[test]
+    fn a_violation_prints_its_rule_and_element() {
+        let mut m = mesh();
+        m.twins.pop();
+        let text = m.check_topology().unwrap_err().to_string();
+        assert_eq!(
+            text,
+            "invalid mesh: array lengths disagree (at the whole mesh)"
+        );
     }
 }

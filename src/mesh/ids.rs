@@ -1,12 +1,12 @@
 //! Typed 32-bit handles for vertices, half-edges and triangles.
 
 /// A vertex. A [`Triangulation`](crate::Triangulation) numbers vertices in its insertion order,
-/// which is spatial; [`Triangulation::input_index`](crate::Triangulation::input_index) gives the
+/// which is spatial; [`Triangulation::input_of`](crate::Triangulation::input_of) gives the
 /// input position a vertex stands for. [`VertexId::INFINITE`] is the vertex at infinity that
 /// closes the mesh into a sphere.
 ///
 /// ```
-/// use condt::VertexId;
+/// use condt::mesh::VertexId;
 /// assert_eq!(VertexId::new(7).index(), 7);
 /// assert!(VertexId::INFINITE.is_infinite());
 /// ```
@@ -39,10 +39,10 @@ impl VertexId {
 
 /// A directed edge. Triangle `t` owns half-edges `3t`, `3t + 1`, `3t + 2` in counter-clockwise
 /// order, so [`next`](HalfEdgeId::next), [`prev`](HalfEdgeId::prev) and
-/// [`triangle`](HalfEdgeId::triangle) are arithmetic; the twin is stored in the [`Mesh`](crate::Mesh).
+/// [`triangle`](HalfEdgeId::triangle) are arithmetic; the twin is stored in the [`Mesh`](crate::mesh::Mesh).
 ///
 /// ```
-/// use condt::{HalfEdgeId, TriangleId};
+/// use condt::mesh::{HalfEdgeId, TriangleId};
 /// let e = HalfEdgeId::new(5);
 /// assert_eq!(e.next(), HalfEdgeId::new(3));
 /// assert_eq!(e.prev(), HalfEdgeId::new(4));
@@ -119,7 +119,7 @@ impl HalfEdgeId {
 /// A triangle, real or ghost.
 ///
 /// ```
-/// use condt::{HalfEdgeId, TriangleId};
+/// use condt::mesh::{HalfEdgeId, TriangleId};
 /// assert_eq!(TriangleId::new(2).edge(1), HalfEdgeId::new(7));
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -1,7 +1,11 @@
 //! Half-edge topology of a triangulated sphere.
 //!
-//! Owns: connectivity only, in three flat arrays indexed by typed ids. It may not look at a
-//! coordinate, and it knows nothing of how the mesh was built.
+//! Owns: connectivity only, in three flat arrays indexed by typed ids. The arrays are private to
+//! this module: only `mesh` writes them, while a mesh is built through `MeshBuilder` (in
+//! `build.rs`, which turns the triangulator's edits into array writes and seals the result), and
+//! every other module reads a finished [`Mesh`] through its typed accessors. It may not look at a
+//! coordinate, and it knows nothing of where a vertex is or why a triangle was made: the caller
+//! of the builder decides that, `check.rs` verifies the result.
 //!
 //! Layout (see `docs/half_edge.md` for pictures):
 //! - triangle `t` owns half-edges `3t, 3t+1, 3t+2`, counter-clockwise; `origins[e]` is where `e`
@@ -17,10 +21,12 @@
 //! When all points are collinear there is no real triangle: each segment of the chain is covered by
 //! two ghost triangles, one on each side, and the same walks still work.
 
+mod build;
 mod check;
 mod ids;
 
-pub use check::InvalidMesh;
+pub(crate) use build::MeshBuilder;
+pub use check::{Element, Rule, Violation};
 pub(crate) use ids::wrap3;
 pub use ids::{HalfEdgeId, TriangleId, VertexId};
 
@@ -39,9 +45,13 @@ use alloc::vec::Vec;
 /// ```
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
-    pub(crate) origins: Vec<VertexId>,
-    pub(crate) twins: Vec<HalfEdgeId>,
-    pub(crate) vertex_edges: Vec<HalfEdgeId>,
+    /// `origins[e]`: where half-edge `e` starts; triangle `t` holds `3t .. 3t + 3`.
+    origins: Vec<VertexId>,
+    /// `twins[e]`: the half-edge across from `e`.
+    twins: Vec<HalfEdgeId>,
+    /// `vertex_edges[v]`: one half-edge leaving `v` (to infinity for a hull vertex), or
+    /// [`HalfEdgeId::NONE`].
+    vertex_edges: Vec<HalfEdgeId>,
 }
 
 impl Mesh {
@@ -57,9 +67,11 @@ impl Mesh {
         self.origins.len() / 3
     }
 
-    /// Length of the vertex index space (the number of input points).
+    /// Size of the vertex id space: ids `0..num_vertex_ids()` may appear as corners (for a
+    /// [`Triangulation`](crate::Triangulation), the number of input points, merged duplicates
+    /// included). Not a count of vertices with edges, and not an allocation's capacity.
     #[inline]
-    pub fn vertex_capacity(&self) -> usize {
+    pub fn num_vertex_ids(&self) -> usize {
         self.vertex_edges.len()
     }
 
@@ -94,6 +106,21 @@ impl Mesh {
     pub fn triangle_vertices(&self, t: TriangleId) -> [VertexId; 3] {
         let i = t.index() * 3;
         [self.origins[i], self.origins[i + 1], self.origins[i + 2]]
+    }
+
+    /// The corners of every triangle in `triangles` (indices, ghosts included), in index order:
+    /// what [`Mesh::triangle_vertices`] gives for each, read as one sequential pass.
+    ///
+    /// # Panics
+    /// If the range goes past [`Mesh::num_triangles_with_ghosts`].
+    #[inline]
+    pub(crate) fn triangle_corners(
+        &self,
+        triangles: core::ops::Range<usize>,
+    ) -> impl Iterator<Item = [VertexId; 3]> + '_ {
+        self.origins[3 * triangles.start..3 * triangles.end]
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
     }
 
     /// `true` when `t` is a ghost triangle (one corner is [`VertexId::INFINITE`]).
@@ -138,9 +165,9 @@ impl Mesh {
     /// use condt::{triangulate, Point};
     /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
     /// let tri = triangulate(&square)?;
-    /// let centre = tri.vertex_of_input(4);
+    /// let centre = tri.vertex(4);
     /// let around: Vec<usize> =
-    ///     tri.mesh().ring(centre).map(|e| tri.input_index(tri.mesh().dest(e))).collect();
+    ///     tri.mesh().ring(centre).map(|e| tri.input_of(tri.mesh().dest(e))).collect();
     /// assert_eq!(around.len(), 4);
     /// // Counter-clockwise: each neighbour is the next corner of the square after the previous one.
     /// for w in around.windows(2) {
@@ -182,8 +209,9 @@ impl Mesh {
             .unwrap_or(HalfEdgeId::NONE)
     }
 
+    /// Makes `a` and `b` each other's twin (for [`MeshBuilder`]).
     #[inline]
-    pub(crate) fn link(&mut self, a: HalfEdgeId, b: HalfEdgeId) {
+    fn link(&mut self, a: HalfEdgeId, b: HalfEdgeId) {
         self.twins[a.index()] = b;
         self.twins[b.index()] = a;
     }
@@ -191,7 +219,7 @@ impl Mesh {
     /// Fills `vertex_edges` from the triangles: one branch-free pass that records some edge
     /// leaving each vertex, then a walk along the ghosts that gives every hull vertex its edge to
     /// infinity.
-    pub(crate) fn rebuild_vertex_edges(&mut self, vertex_count: usize) {
+    fn rebuild_vertex_edges(&mut self, vertex_count: usize) {
         // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
         let sink = vertex_count;
         let mut edges = alloc::vec![HalfEdgeId::NONE; vertex_count + 1];

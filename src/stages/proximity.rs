@@ -285,7 +285,7 @@ impl TwoBest {
 
 /// For every vertex, its two best offers, from `ranges` ranges of triangles swept at once.
 fn two_best_offers(tri: &Triangulation, ranges: usize) -> Vec<TwoBest> {
-    let triangles = tri.mesh().origins.len() / 3;
+    let triangles = tri.mesh().num_triangles_with_ghosts();
     if ranges <= 1 {
         return sweep(tri, 0..triangles);
     }
@@ -319,9 +319,8 @@ fn sweep(tri: &Triangulation, triangles: core::ops::Range<usize>) -> Vec<TwoBest
     let mut offer = |u: VertexId, w: VertexId| {
         best[u.index()].offer(tri.vertex_point(u).dist2(tri.vertex_point(w)), w);
     };
-    let corners = &tri.mesh().origins[3 * triangles.start..3 * triangles.end];
-    for corners in corners.chunks_exact(3) {
-        let [a, b, c] = [corners[0], corners[1], corners[2]];
+    for corners in tri.mesh().triangle_corners(triangles) {
+        let [a, b, c] = corners;
         if a.is_infinite() || b.is_infinite() || c.is_infinite() {
             // A ghost: only its finite half-edge offers.
             for k in 0..3 {

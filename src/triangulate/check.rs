@@ -2,16 +2,16 @@
 
 use super::insert::{position_on_segment, Segment};
 use super::Triangulation;
-use crate::mesh::{HalfEdgeId, InvalidMesh, VertexId};
+use crate::mesh::{Element, HalfEdgeId, Rule, VertexId, Violation};
 use crate::predicates::{in_circle, orient2d, Orientation};
 
-fn fail(reason: &'static str, element: usize) -> Result<(), InvalidMesh> {
-    Err(InvalidMesh { reason, element })
+fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
+    Err(Violation { rule, element })
 }
 
 impl Triangulation {
     /// Checks everything a Delaunay triangulation promises, with exact predicates:
-    /// - the topology ([`Mesh::check_topology`](crate::Mesh::check_topology));
+    /// - the topology ([`Mesh::check_topology`](crate::mesh::Mesh::check_topology));
     /// - every input point maps to a vertex at the same position, every vertex to itself, and
     ///   exactly the vertices have edges (when there are at least two);
     /// - every real triangle is counter-clockwise;
@@ -26,26 +26,25 @@ impl Triangulation {
     /// ```
     /// use condt::{triangulate, Point};
     /// let grid: Vec<Point> = (0..100).map(|i| Point::new((i % 10) as f64, (i / 10) as f64)).collect();
-    /// triangulate(&grid)?.validate().expect("valid even though every square is cocircular");
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// // Valid even though every square of the grid is cocircular; a violation would convert
+    /// // into `condt::Error` through `?`.
+    /// triangulate(&grid)?.validate()?;
+    /// # Ok::<(), condt::Error>(())
     /// ```
-    pub fn validate(&self) -> Result<(), InvalidMesh> {
+    pub fn validate(&self) -> Result<(), Violation> {
         let mesh = &self.mesh;
         mesh.check_topology()?;
         let n = self.points.len();
-        if mesh.vertex_capacity() != n
+        if mesh.num_vertex_ids() != n
             || self.vertex_of_input.len() != n
             || self.input_of_vertex.len() != n
         {
-            return fail("vertex arrays do not match the number of points", n);
+            return fail(Rule::VertexArrayLengths, Element::Whole);
         }
         for (i, &v) in self.vertex_of_input.iter().enumerate() {
             if v.index() >= n || !self.is_vertex(v) || self.input_of_vertex[v.index()] as usize > i
             {
-                return fail(
-                    "input point maps to no vertex, or not to its smallest duplicate",
-                    i,
-                );
+                return fail(Rule::InputNotMapped, Element::InputPoint(i));
             }
         }
         let mut vertices = 0;
@@ -53,19 +52,16 @@ impl Triangulation {
             // Every id holds an input point; a merged duplicate's point equals its vertex's.
             let kept = self.vertex_of_input[self.input_of_vertex[u.index()] as usize];
             if self.points[u.index()] != self.points[kept.index()] {
-                return fail("duplicate merged into a vertex elsewhere", u.index());
+                return fail(Rule::DuplicateMisplaced, Element::Vertex(u));
             }
             vertices += usize::from(kept == u);
             let has_edge = mesh.vertex_edge(u).is_some();
             if has_edge != (kept == u && self.num_vertices >= 2) {
-                return fail(
-                    "vertex edge present where no vertex is, or missing",
-                    u.index(),
-                );
+                return fail(Rule::VertexEdgePresence, Element::Vertex(u));
             }
         }
         if vertices != self.num_vertices {
-            return fail("vertex count disagrees with the maps", vertices);
+            return fail(Rule::VertexCount, Element::Whole);
         }
         if self.is_degenerate() {
             return self.check_chain();
@@ -73,7 +69,7 @@ impl Triangulation {
         for t in mesh.triangles() {
             let [a, b, c] = mesh.triangle_vertices(t).map(|v| self.scaled_point(v));
             if orient2d(a, b, c) != Orientation::Ccw {
-                return fail("triangle is not counter-clockwise", t.index());
+                return fail(Rule::TriangleNotCcw, Element::Triangle(t));
             }
         }
         for e in mesh.edges() {
@@ -85,7 +81,7 @@ impl Triangulation {
             let [a, b, c, d] =
                 [mesh.origin(e), mesh.dest(e), apex_e, apex_f].map(|v| self.scaled_point(v));
             if in_circle(a, b, c, d) {
-                return fail("edge is not locally Delaunay", e.index());
+                return fail(Rule::NotLocallyDelaunay, Element::HalfEdge(e));
             }
         }
         for e in (0..mesh.num_half_edges() as u32).map(HalfEdgeId::new) {
@@ -97,7 +93,7 @@ impl Triangulation {
             let [a, b, c] =
                 [mesh.origin(e), mesh.dest(e), mesh.dest(following)].map(|v| self.scaled_point(v));
             if orient2d(a, b, c) == Orientation::Ccw {
-                return fail("hull is not convex", e.index());
+                return fail(Rule::HullNotConvex, Element::HalfEdge(e));
             }
         }
         Ok(())
@@ -105,13 +101,13 @@ impl Triangulation {
 
     /// With no real triangle: every vertex is on the line of the first edge, and the chain
     /// never doubles back.
-    fn check_chain(&self) -> Result<(), InvalidMesh> {
+    fn check_chain(&self) -> Result<(), Violation> {
         let mesh = &self.mesh;
         let Some(first) = mesh.edges().next() else {
             return if self.num_vertices <= 1 {
                 Ok(())
             } else {
-                fail("distinct points but no edge", 0)
+                fail(Rule::ChainMissing, Element::Whole)
             };
         };
         let (a, b) = (
@@ -121,23 +117,100 @@ impl Triangulation {
         for v in self.vertices() {
             let p = self.scaled_point(v);
             if orient2d(a, b, p) != Orientation::Collinear {
-                return fail("no triangle, yet the points are not collinear", v.index());
+                return fail(Rule::ChainNotCollinear, Element::Vertex(v));
             }
             let mut around = mesh.neighbors(v);
             let (left, right) = (around.next(), around.next());
             if around.next().is_some() {
-                return fail("chain vertex with more than two neighbours", v.index());
+                return fail(Rule::ChainBranches, Element::Vertex(v));
             }
             if let (Some(l), Some(r)) = (left, right) {
                 let (pl, pr) = (self.scaled_point(l), self.scaled_point(r));
                 if position_on_segment(pl, pr, p) != Segment::Inside {
-                    return fail("chain vertex is not between its neighbours", v.index());
+                    return fail(Rule::ChainDoublesBack, Element::Vertex(v));
                 }
             }
         }
         if mesh.edges().count() + 1 != self.num_vertices {
-            return fail("chain does not join every vertex", self.num_vertices);
+            return fail(Rule::ChainDisconnected, Element::Whole);
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Point;
+    use crate::triangulate;
+
+    fn violation(tri: &Triangulation) -> (Rule, Element) {
+        let v = tri.validate().unwrap_err();
+        (v.rule, v.element)
+    }
+
+    /// A kite whose short diagonal `a – c` is the Delaunay edge.
+    fn kite() -> Triangulation {
+        let points = [(-1.0, 0.0), (0.0, -3.0), (1.0, 0.0), (0.0, 3.0)].map(Point::from);
+        let tri = triangulate(&points).unwrap();
+        assert_eq!(tri.validate(), Ok(()));
+        tri
+    }
+
+    #[test]
+    fn a_mirrored_triangulation_has_a_clockwise_triangle() {
+        let mut tri = kite();
+        for p in tri.points.iter_mut() {
+            p.x = -p.x;
+        }
+        let first = tri.mesh.triangles().next().unwrap();
+        assert_eq!(
+            violation(&tri),
+            (Rule::TriangleNotCcw, Element::Triangle(first))
+        );
+    }
+
+    #[test]
+    fn a_stretched_diagonal_is_not_locally_delaunay() {
+        let mut tri = kite();
+        let (a, c) = (tri.vertex(0), tri.vertex(2));
+        let diagonal = tri
+            .mesh
+            .edges()
+            .find(|&e| {
+                let ends = [tri.mesh.origin(e), tri.mesh.dest(e)];
+                ends == [a, c] || ends == [c, a]
+            })
+            .unwrap();
+        // Still convex and counter-clockwise, but now `b – d` is the shorter diagonal.
+        tri.points[a.index()] = Point::new(-10.0, 0.0);
+        tri.points[c.index()] = Point::new(10.0, 0.0);
+        assert_eq!(
+            violation(&tri),
+            (Rule::NotLocallyDelaunay, Element::HalfEdge(diagonal))
+        );
+    }
+
+    #[test]
+    fn an_unmapped_input_point_is_reported_by_position() {
+        let mut tri = kite();
+        tri.vertex_of_input[2] = VertexId::INFINITE;
+        assert_eq!(
+            violation(&tri),
+            (Rule::InputNotMapped, Element::InputPoint(2))
+        );
+    }
+
+    #[test]
+    fn a_chain_vertex_moved_off_the_line_is_reported() {
+        let line: alloc::vec::Vec<Point> = (0..4).map(|i| Point::new(i as f64, 0.0)).collect();
+        let mut tri = triangulate(&line).unwrap();
+        assert_eq!(tri.validate(), Ok(()));
+        let v = tri.vertex(3);
+        tri.points[v.index()] = Point::new(3.0, 1.0);
+        assert_eq!(
+            violation(&tri),
+            (Rule::ChainNotCollinear, Element::Vertex(v))
+        );
     }
 }

@@ -13,7 +13,7 @@
 //! ```
 
 use crate::geometry::Point;
-use crate::mesh::{HalfEdgeId, Mesh, VertexId};
+use crate::mesh::{HalfEdgeId, Mesh, MeshBuilder, VertexId};
 use alloc::vec::Vec;
 
 /// Builds the chain over `points` (input order, all collinear). Vertex ids are positions in the
@@ -38,15 +38,14 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<(u32, u32)>, Vec<u32>) {
             _ => chain.push(v),
         }
     }
-    let mut mesh = Mesh::default();
     let segments = chain.len().saturating_sub(1);
+    let mut mesh = MeshBuilder::with_capacity(6 * segments);
     let inf = VertexId::INFINITE;
     let h = |i: usize| HalfEdgeId::new(i as u32);
-    mesh.origins.reserve(6 * segments);
-    mesh.twins.resize(6 * segments, HalfEdgeId::NONE);
     for s in 0..segments {
         let (a, b) = (chain[s], chain[s + 1]);
-        mesh.origins.extend_from_slice(&[a, b, inf, b, a, inf]);
+        mesh.push_triangle([a, b, inf]);
+        mesh.push_triangle([b, a, inf]);
     }
     for s in 0..segments {
         let (l, r) = (6 * s, 6 * s + 3);
@@ -62,6 +61,5 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<(u32, u32)>, Vec<u32>) {
         let before = if s > 0 { 6 * (s - 1) + 5 } else { l + 2 };
         mesh.link(h(r + 1), h(before));
     }
-    mesh.rebuild_vertex_edges(points.len());
-    (mesh, merged, sorted)
+    (mesh.finish(points.len()), merged, sorted)
 }

@@ -11,10 +11,11 @@
 //! Then every edge opposite the new point is tested and, if illegal, flipped, with an explicit
 //! stack. On finite edges the test is the exact in-circle predicate; an edge to infinity is
 //! illegal when the new point sees the neighbouring hull edge, which is how the hull grows.
-//! Owns: the construction state. It may not decide a sign except through `predicates`.
+//! Owns: the construction state. It may not decide a sign except through `predicates`, and it
+//! edits the mesh only through [`MeshBuilder`].
 
 use crate::geometry::Point;
-use crate::mesh::{wrap3, HalfEdgeId, Mesh, TriangleId, VertexId};
+use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshBuilder, VertexId};
 use crate::predicates::{in_circle, orient2d, Orientation};
 use alloc::vec::Vec;
 
@@ -30,10 +31,54 @@ enum Location {
     Vertex(VertexId),
 }
 
+/// Where a walk stands between two steps (see `Builder::locate`).
+#[derive(Copy, Clone, Debug)]
+struct Walk {
+    /// A half-edge of the current triangle.
+    at: HalfEdgeId,
+    /// Whether the walk entered the current triangle across `at`: then the point is known to lie
+    /// strictly left of `at`, and that edge is not tested again.
+    entered: bool,
+    /// The hull slides still allowed.
+    slide: Slide,
+}
+
+impl Walk {
+    /// Crosses into the triangle of `e`, the point being strictly left of it.
+    #[inline(always)]
+    fn enter(&mut self, e: HalfEdgeId) -> Option<Location> {
+        self.at = e;
+        self.entered = true;
+        None
+    }
+
+    /// Moves along the hull to the ghost triangle of `e`, knowing nothing new.
+    #[inline(always)]
+    fn slide_to(&mut self, e: HalfEdgeId) -> Option<Location> {
+        self.at = e;
+        self.entered = false;
+        None
+    }
+}
+
+/// The hull slides the walk may still take (see `Builder::ghost_step`): at most one way, and
+/// only before the walk first enters a real triangle.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Slide {
+    /// No slide yet: either way.
+    Either,
+    /// Only forward, to the ghost after the current hull edge.
+    Forward,
+    /// Only backward, to the ghost before the current hull edge.
+    Backward,
+    /// No more slides: the walk is the plain visibility walk.
+    Done,
+}
+
 /// The construction state. Vertex ids are positions in `points` (the insertion order).
 pub(crate) struct Builder<'a> {
     points: &'a [Point],
-    mesh: Mesh,
+    mesh: MeshBuilder,
     flips: Vec<HalfEdgeId>,
     hint: HalfEdgeId,
     /// `(duplicate, vertex it was merged into)`, in insertion-order ids.
@@ -49,17 +94,12 @@ impl<'a> Builder<'a> {
         );
         // A triangulated sphere with n + 1 vertices has 2n - 2 triangles: reserve them all at once.
         let half_edges = 6 * points.len().max(3) - 6;
-        let mut mesh = Mesh {
-            origins: Vec::with_capacity(half_edges),
-            twins: Vec::with_capacity(half_edges),
-            vertex_edges: Vec::new(),
-        };
+        let mut mesh = MeshBuilder::with_capacity(half_edges);
         let inf = VertexId::INFINITE;
         let [a, b, c] = [a, b, c].map(VertexId::new);
         // Triangle 0 = (a, b, c); ghosts 1 = (b, a, ∞), 2 = (c, b, ∞), 3 = (a, c, ∞).
         for corners in [[a, b, c], [b, a, inf], [c, b, inf], [a, c, inf]] {
-            mesh.origins.extend_from_slice(&corners);
-            mesh.twins.extend_from_slice(&[HalfEdgeId::NONE; 3]);
+            mesh.push_triangle(corners);
         }
         let h = HalfEdgeId::new;
         for (x, y) in [(0, 3), (1, 6), (2, 9), (4, 11), (7, 5), (10, 8)] {
@@ -74,9 +114,10 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// The mesh, and the `(duplicate, kept vertex)` pairs merged on the way.
+    /// The mesh, sealed over the vertex ids `0..points.len()`, and the `(duplicate, kept
+    /// vertex)` pairs merged on the way.
     pub(crate) fn finish(self) -> (Mesh, Vec<(u32, u32)>) {
-        (self.mesh, self.merged)
+        (self.mesh.finish(self.points.len()), self.merged)
     }
 
     #[inline]
@@ -86,26 +127,12 @@ impl<'a> Builder<'a> {
 
     #[inline]
     fn origin(&self, e: HalfEdgeId) -> VertexId {
-        self.mesh.origins[e.index()]
+        self.mesh.origin(e)
     }
 
     #[inline]
     fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
-        self.mesh.twins[e.index()]
-    }
-
-    fn new_triangle(&mut self) -> TriangleId {
-        let t = TriangleId::new((self.mesh.origins.len() / 3) as u32);
-        self.mesh
-            .origins
-            .extend_from_slice(&[VertexId::INFINITE; 3]);
-        self.mesh.twins.extend_from_slice(&[HalfEdgeId::NONE; 3]);
-        t
-    }
-
-    fn set_corners(&mut self, t: TriangleId, corners: [VertexId; 3]) {
-        let i = t.index() * 3;
-        self.mesh.origins[i..i + 3].copy_from_slice(&corners);
+        self.mesh.twin(e)
     }
 
     /// Inserts the point with id `v`.
@@ -136,10 +163,7 @@ impl<'a> Builder<'a> {
     /// along the hull instead of across the fan of triangles at `v`.
     fn ghost_at(&self, v: VertexId) -> HalfEdgeId {
         let (base, _) = self.hint.base_and_corner();
-        let Some(k) = self.mesh.origins[base..base + 3]
-            .iter()
-            .position(|&c| c == v)
-        else {
+        let Some(k) = self.mesh.corners_at(base).iter().position(|&c| c == v) else {
             return self.hint;
         };
         let start = HalfEdgeId::at(base, k);
@@ -147,7 +171,10 @@ impl<'a> Builder<'a> {
         loop {
             // `e` leaves `v`; the triangle's next corner is its destination.
             let (base, corner) = e.base_and_corner();
-            if self.mesh.origins[base + wrap3(corner + 1)].is_infinite() {
+            if self
+                .origin(HalfEdgeId::at(base, wrap3(corner + 1)))
+                .is_infinite()
+            {
                 return e;
             }
             e = self.twin(HalfEdgeId::at(base, wrap3(corner + 2)));
@@ -159,118 +186,146 @@ impl<'a> Builder<'a> {
 
     /// Visibility walk from the hint. It terminates because the "lies in front of" relation among
     /// the triangles of a Delaunay triangulation, seen from any point, has no cycle.
+    ///
+    /// Each step reads the current triangle's corners once and hands them to
+    /// [`Builder::ghost_step`] or [`Builder::triangle_step`], which either locate the point or
+    /// move the walk on.
     fn locate(&self, p: Point) -> Location {
-        let mut e = self.hint;
-        // Half-edge of the current triangle through which the walk entered it, if any: the point
-        // is known to lie strictly left of it.
-        let mut entered = false;
-        // Hull slides still allowed: 2 = either way (not started), 1 / -1 = only that way, 0 = none.
-        let mut slide = 2i8;
+        let mut walk = Walk {
+            at: self.hint,
+            entered: false,
+            slide: Slide::Either,
+        };
         loop {
-            // The triangle's corners, read once: its half-edges are `base + k`, `k` in `0..3`,
-            // half-edge `k` running from corner `k` to corner `k + 1` (mod 3).
-            let (base, corner) = e.base_and_corner();
-            let c = &self.mesh.origins[base..base + 3];
-            let corners = [c[0], c[1], c[2]];
-            let half_edge = |k: usize| HalfEdgeId::at(base, k);
-            if let Some(k) = corners.iter().position(|v| v.is_infinite()) {
-                // The finite edge of the ghost starts right after the infinite corner.
-                let (h, after) = (wrap3(k + 1), wrap3(k + 2));
-                let hull = half_edge(h);
-                let (a, b) = (corners[h], corners[after]);
-                match orient2d(self.point(a), self.point(b), p) {
-                    Orientation::Ccw => return Location::Face(hull),
-                    Orientation::Cw => {
-                        // `p` is on the inner side of this hull edge's line. If it lies past one
-                        // end, it is likely outside the hull further along: slide to the next
-                        // ghost that way. Slides go one way only, and only before the walk first
-                        // enters a real triangle: past the far end of `a → b`, `p` is nearer `b`
-                        // than `a`, so the distance to the slide's vertex shrinks and cannot
-                        // cycle. After them the walk is the plain visibility walk.
-                        let (pa, pb) = (self.point(a), self.point(b));
-                        let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
-                        let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
-                        let direction = if along > dx * dx + dy * dy {
-                            1
-                        } else if along < 0.0 {
-                            -1
-                        } else {
-                            0
-                        };
-                        if slide != 0 && direction == slide || slide == 2 && direction != 0 {
-                            slide = direction;
-                            e = if direction > 0 {
-                                self.twin(half_edge(after))
-                            } else {
-                                self.twin(half_edge(k))
-                            };
-                            entered = false;
-                        } else {
-                            slide = 0;
-                            e = self.twin(hull);
-                            entered = true;
-                        }
-                    }
-                    Orientation::Collinear => {
-                        // Sliding back and forth between this and a Cw slide could cycle at a
-                        // sharp hull corner: no more Cw slides after a collinear one.
-                        slide = 0;
-                        let (pa, pb) = (self.point(a), self.point(b));
-                        match position_on_segment(pa, pb, p) {
-                            Segment::AtStart => return Location::Vertex(a),
-                            Segment::AtEnd => return Location::Vertex(b),
-                            Segment::Inside => return Location::Edge(hull),
-                            // Slide along the hull to the ghost on that side.
-                            Segment::BeyondEnd => e = self.twin(half_edge(after)),
-                            Segment::BeforeStart => e = self.twin(half_edge(k)),
-                        }
-                        entered = false;
-                    }
-                }
-                continue;
-            }
-            slide = 0;
-            // A real triangle: leave through any edge that has the point strictly on its right,
-            // testing the edges in order from the one the walk entered through (known: skipped).
-            let points = corners.map(|v| self.point(v));
-            let entry = if entered { corner } else { 0 };
-            let mut collinear = [0usize; 2];
-            let mut n_collinear = 0;
-            let mut crossed = None;
-            for step in usize::from(entered)..3 {
-                let k = wrap3(entry + step);
-                match orient2d(points[k], points[wrap3(k + 1)], p) {
-                    Orientation::Cw => {
-                        crossed = Some(k);
-                        break;
-                    }
-                    Orientation::Collinear => {
-                        collinear[n_collinear.min(1)] = k;
-                        n_collinear += 1;
-                    }
-                    Orientation::Ccw => {}
-                }
-            }
-            if let Some(k) = crossed {
-                e = self.twin(half_edge(k));
-                entered = true;
-                continue;
-            }
-            return match n_collinear {
-                0 => Location::Face(half_edge(0)),
-                1 => Location::Edge(half_edge(collinear[0])),
-                _ => {
-                    // On two edge lines of a proper triangle: at their shared corner, where the
-                    // first of the two edges (in triangle order) ends.
-                    let (x, y) = (collinear[0], collinear[1]);
-                    Location::Vertex(if wrap3(x + 1) == y {
-                        corners[y]
-                    } else {
-                        corners[x]
-                    })
+            // The triangle's half-edges are `base + k`, `k` in `0..3`, half-edge `k` running from
+            // corner `k` to corner `k + 1` (mod 3).
+            let (base, corner) = walk.at.base_and_corner();
+            let corners = self.mesh.corners_at(base);
+            let found = match corners.iter().position(|v| v.is_infinite()) {
+                Some(infinite) => self.ghost_step(p, base, corners, infinite, &mut walk),
+                None => {
+                    walk.slide = Slide::Done;
+                    self.triangle_step(p, base, corner, corners, &mut walk)
                 }
             };
+            if let Some(location) = found {
+                return location;
+            }
         }
+    }
+
+    /// One step in the ghost triangle at `base`, whose corner `infinite` is the vertex at
+    /// infinity: `p` is outside its hull edge (found), on the edge's line (found, or a slide along
+    /// it), or inside the hull, where the walk either slides to a neighbouring ghost or enters
+    /// the real triangle across the hull edge.
+    #[inline(always)]
+    fn ghost_step(
+        &self,
+        p: Point,
+        base: usize,
+        corners: [VertexId; 3],
+        infinite: usize,
+        walk: &mut Walk,
+    ) -> Option<Location> {
+        let half_edge = |k: usize| HalfEdgeId::at(base, k);
+        // The finite edge of the ghost starts right after the infinite corner; the ghost before it
+        // along the hull lies across the edge into the infinite corner, the one after it across
+        // the edge out of the finite edge's end.
+        let (h, after) = (wrap3(infinite + 1), wrap3(infinite + 2));
+        let hull = half_edge(h);
+        let (a, b) = (corners[h], corners[after]);
+        let (pa, pb) = (self.point(a), self.point(b));
+        let to_ghost_after = || self.twin(half_edge(after));
+        let to_ghost_before = || self.twin(half_edge(infinite));
+        match orient2d(pa, pb, p) {
+            Orientation::Ccw => Some(Location::Face(hull)),
+            Orientation::Cw => {
+                // `p` is on the inner side of this hull edge's line. If it lies past one end, it is
+                // likely outside the hull further along: slide to the next ghost that way. Slides
+                // go one way only, and only before the walk first enters a real triangle: past the
+                // far end of `a → b`, `p` is nearer `b` than `a`, so the distance to the slide's
+                // vertex shrinks and cannot cycle. After them the walk is the plain visibility walk.
+                let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
+                let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
+                let way = if along > dx * dx + dy * dy {
+                    Slide::Forward
+                } else if along < 0.0 {
+                    Slide::Backward
+                } else {
+                    Slide::Done
+                };
+                // A slide needs a way out (`p` past an end) that the walk still allows.
+                if way != Slide::Done && (walk.slide == Slide::Either || walk.slide == way) {
+                    walk.slide = way;
+                    walk.slide_to(if way == Slide::Forward {
+                        to_ghost_after()
+                    } else {
+                        to_ghost_before()
+                    })
+                } else {
+                    walk.slide = Slide::Done;
+                    walk.enter(self.twin(hull))
+                }
+            }
+            Orientation::Collinear => {
+                // Sliding back and forth between this and a Cw slide could cycle at a sharp hull
+                // corner: no more Cw slides after a collinear one.
+                walk.slide = Slide::Done;
+                match position_on_segment(pa, pb, p) {
+                    Segment::AtStart => Some(Location::Vertex(a)),
+                    Segment::AtEnd => Some(Location::Vertex(b)),
+                    Segment::Inside => Some(Location::Edge(hull)),
+                    // Slide along the hull to the ghost on that side.
+                    Segment::BeyondEnd => walk.slide_to(to_ghost_after()),
+                    Segment::BeforeStart => walk.slide_to(to_ghost_before()),
+                }
+            }
+        }
+    }
+
+    /// One step in the real triangle at `base`, the walk standing at its `corner`: leave through
+    /// any edge that has `p` strictly on its right, testing the edges in order from the one the
+    /// walk entered through (if it did: known, skipped); if there is none, `p` is inside, on one
+    /// edge, or on a corner.
+    #[inline(always)]
+    fn triangle_step(
+        &self,
+        p: Point,
+        base: usize,
+        corner: usize,
+        corners: [VertexId; 3],
+        walk: &mut Walk,
+    ) -> Option<Location> {
+        let half_edge = |k: usize| HalfEdgeId::at(base, k);
+        let points = corners.map(|v| self.point(v));
+        let first = if walk.entered { corner } else { 0 };
+        let mut collinear = [0usize; 2];
+        let mut n_collinear = 0;
+        for step in usize::from(walk.entered)..3 {
+            let k = wrap3(first + step);
+            match orient2d(points[k], points[wrap3(k + 1)], p) {
+                Orientation::Cw => return walk.enter(self.twin(half_edge(k))),
+                Orientation::Collinear => {
+                    collinear[n_collinear.min(1)] = k;
+                    n_collinear += 1;
+                }
+                Orientation::Ccw => {}
+            }
+        }
+        Some(match n_collinear {
+            0 => Location::Face(half_edge(0)),
+            1 => Location::Edge(half_edge(collinear[0])),
+            _ => {
+                // On two edge lines of a proper triangle: at their shared corner, where the first
+                // of the two edges (in triangle order) ends.
+                let (x, y) = (collinear[0], collinear[1]);
+                Location::Vertex(if wrap3(x + 1) == y {
+                    corners[y]
+                } else {
+                    corners[x]
+                })
+            }
+        })
     }
 
     /// Splits the triangle `(a, b, c)` of `e = a → b` into `(a, b, v)`, `(b, c, v)`, `(c, a, v)`.
@@ -286,13 +341,11 @@ impl<'a> Builder<'a> {
     fn split_triangle(&mut self, e: HalfEdgeId, v: VertexId) {
         let (a, b, c) = (self.origin(e), self.origin(e.next()), self.origin(e.prev()));
         let (out_ab, out_bc, out_ca) = (self.twin(e), self.twin(e.next()), self.twin(e.prev()));
-        let t0 = e.triangle();
-        let t1 = self.new_triangle();
-        let t2 = self.new_triangle();
-        self.set_corners(t0, [a, b, v]);
-        self.set_corners(t1, [b, c, v]);
-        self.set_corners(t2, [c, a, v]);
         let m = &mut self.mesh;
+        let t0 = e.triangle();
+        let t1 = m.push_triangle([b, c, v]);
+        let t2 = m.push_triangle([c, a, v]);
+        m.set_corners(t0, [a, b, v]);
         m.link(t0.edge(0), out_ab);
         m.link(t1.edge(0), out_bc);
         m.link(t2.edge(0), out_ca);
@@ -320,15 +373,13 @@ impl<'a> Builder<'a> {
         let (c, d) = (self.origin(e.prev()), self.origin(f.prev()));
         let (out_bc, out_ca) = (self.twin(e.next()), self.twin(e.prev()));
         let (out_ad, out_db) = (self.twin(f.next()), self.twin(f.prev()));
+        let m = &mut self.mesh;
         let t_bc = e.triangle();
         let t_ad = f.triangle();
-        let t_ca = self.new_triangle();
-        let t_db = self.new_triangle();
-        self.set_corners(t_bc, [v, b, c]);
-        self.set_corners(t_ca, [v, c, a]);
-        self.set_corners(t_ad, [v, a, d]);
-        self.set_corners(t_db, [v, d, b]);
-        let m = &mut self.mesh;
+        let t_ca = m.push_triangle([v, c, a]);
+        let t_db = m.push_triangle([v, d, b]);
+        m.set_corners(t_bc, [v, b, c]);
+        m.set_corners(t_ad, [v, a, d]);
         m.link(t_bc.edge(1), out_bc);
         m.link(t_ca.edge(1), out_ca);
         m.link(t_ad.edge(1), out_ad);
@@ -349,7 +400,7 @@ impl<'a> Builder<'a> {
             let f = self.twin(e);
             let (f_base, f_corner) = f.base_and_corner();
             let (u, w) = (self.origin(e), self.origin(f));
-            let q = self.mesh.origins[f_base + wrap3(f_corner + 2)];
+            let q = self.origin(HalfEdgeId::at(f_base, wrap3(f_corner + 2)));
             if self.is_illegal(u, w, v, q) {
                 self.flip(e, (f_base, f_corner), [u, w, q], v);
             }
@@ -395,8 +446,8 @@ impl<'a> Builder<'a> {
         let out_uq = self.twin(at(f_base, wrap3(f_corner + 1)));
         let out_qw = self.twin(at(f_base, wrap3(f_corner + 2)));
         let m = &mut self.mesh;
-        m.origins[e_base..e_base + 3].copy_from_slice(&[v, u, q]);
-        m.origins[f_base..f_base + 3].copy_from_slice(&[v, q, w]);
+        m.set_corners_at(e_base, [v, u, q]);
+        m.set_corners_at(f_base, [v, q, w]);
         m.link(at(e_base, 0), out_vu);
         m.link(at(e_base, 1), out_uq);
         m.link(at(f_base, 1), out_qw);

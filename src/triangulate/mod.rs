@@ -48,7 +48,9 @@ pub const MAX_POINTS: usize = 350_000_000;
 /// let tri = triangulate(&pts)?;
 /// assert_eq!(tri.triangles().count(), 4);
 /// assert_eq!(tri.edges().count(), 8);
-/// assert_eq!(tri.hull().collect::<Vec<_>>(), vec![0, 1, 2, 3]);
+/// let mut hull: Vec<usize> = tri.hull().collect(); // counter-clockwise, from some hull point
+/// hull.sort_unstable();
+/// assert_eq!(hull, vec![0, 1, 2, 3]);
 /// assert_eq!(tri.neighbors(4).count(), 4);
 /// assert_eq!(tri.point(4), Point::new(1.0, 1.0));
 /// tri.validate()?;
@@ -117,8 +119,7 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
                     builder.insert(v);
                 }
             }
-            let (mut mesh, merged) = builder.finish();
-            mesh.rebuild_vertex_edges(order.len());
+            let (mesh, merged) = builder.finish();
             (mesh, merged, order)
         }
     };
@@ -261,7 +262,8 @@ impl Triangulation {
             .map(|w| self.input_of(w))
     }
 
-    /// The convex hull as input positions, counter-clockwise; see [`Mesh::hull`].
+    /// The convex hull as input positions, counter-clockwise, starting at some hull point; see
+    /// [`Mesh::hull`].
     pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
         self.mesh.hull().map(|v| self.input_of(v))
     }
