@@ -474,3 +474,107 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
         stage_edges(&unrepaired, Stage::Proximity)
     );
 }
+
+/// The library refuses parameters that would silently delete every edge or keep every one:
+/// NaN, infinite or non-positive `u`; NaN, infinite or negative `k`; through `reconstruct`, the
+/// step methods and `Params::check` alike, naming the parameter.
+#[test]
+fn invalid_parameters_are_refused_with_their_name() {
+    use condt::{triangulate, Error};
+    let s = sample(&[Shape::circle(origin(), 1.0)], &Sampling::new(0.3));
+    for u in [f64::NAN, f64::INFINITY, -1.0, 0.0] {
+        let params = Params {
+            uniformity: Uniformity::Fixed(u),
+            ..Params::default()
+        };
+        let err = reconstruct(&s.points, &params).unwrap_err();
+        assert!(
+            matches!(err, Error::InvalidParameter { name: "u", value } if value.to_bits() == u.to_bits()),
+            "u = {u}: {err:?}"
+        );
+        assert!(matches!(
+            params.check(),
+            Err(Error::InvalidParameter { name: "u", .. })
+        ));
+    }
+    for k in [f64::NAN, f64::NEG_INFINITY, f64::INFINITY, -0.5] {
+        let params = Params {
+            outlier_factor: Some(k),
+            ..Params::default()
+        };
+        let err = reconstruct(&s.points, &params).unwrap_err();
+        assert!(
+            matches!(err, Error::InvalidParameter { name: "k", .. }),
+            "k = {k}: {err:?}"
+        );
+    }
+    // Accepted at the edges of the ranges: the smallest positive u, k = 0.
+    let edge_values = Params {
+        uniformity: Uniformity::Fixed(f64::MIN_POSITIVE),
+        outlier_factor: Some(0.0),
+        ..Params::default()
+    };
+    assert!(reconstruct(&s.points, &edge_values).is_ok());
+    let tri = triangulate(&s.points).unwrap();
+    assert!(tri.proximity_graph(Uniformity::Fixed(f64::NAN)).is_err());
+    let graph = tri.proximity_graph(Uniformity::default()).unwrap();
+    assert!(graph.remove_outliers(f64::NAN).is_err());
+    assert!(graph.remove_outliers(-1.0).is_err());
+}
+
+/// Running the stages one by one with the public step methods gives exactly what
+/// `reconstruct` keeps, stage for stage, in both orders.
+#[test]
+fn step_methods_compose_into_the_pipeline() {
+    use condt::triangulate;
+    // Noisy circles with outliers: every stage changes the graph, in both orders.
+    let shapes = [
+        Shape::circle(origin(), 3.0),
+        Shape::circle(Point::new(8.0, 1.0), 2.0),
+    ];
+    let sampling = Sampling {
+        outlier_fraction: 0.1,
+        outlier_clearance: 1.0,
+        noise: 0.02,
+        seed: 1,
+        ..Sampling::new(0.15)
+    };
+    let s = sample(&shapes, &sampling);
+    let tri = triangulate(&s.points).unwrap();
+    for outliers_first in [false, true] {
+        let params = Params {
+            outliers_first,
+            ..Params::default()
+        };
+        let r = reconstruct(&s.points, &params).unwrap();
+        let proximity = tri.proximity_graph(params.uniformity).unwrap();
+        let (repaired, filtered) = if outliers_first {
+            let filtered = proximity.remove_outliers(1.7).unwrap();
+            (filtered.graph.repair(params.repair), filtered)
+        } else {
+            let repaired = proximity.repair(params.repair);
+            let filtered = repaired.remove_outliers(1.7).unwrap();
+            (repaired, filtered)
+        };
+        assert!(filtered.fired, "outliers_first = {outliers_first}");
+        assert_eq!(
+            stage_edges(&r, Stage::Proximity).unwrap(),
+            proximity.edges()
+        );
+        assert_eq!(stage_edges(&r, Stage::Repair).unwrap(), repaired.edges());
+        assert_eq!(
+            stage_edges(&r, Stage::Outliers).unwrap(),
+            filtered.graph.edges()
+        );
+        let last = if outliers_first {
+            &repaired
+        } else {
+            &filtered.graph
+        };
+        assert_eq!(final_edges(&r), last.edges());
+        assert_eq!(r.curves(), &last.curves()[..]);
+        // Degrees agree with the final edges, per input position.
+        let degrees = last.degrees();
+        assert!((0..r.num_points()).all(|i| r.degree(i) == degrees[i]));
+    }
+}
