@@ -69,18 +69,34 @@ pub struct Params {
 }
 
 impl Default for Params {
+    /// The best pipeline measured (`docs/condt.md`, "Beyond the paper").
     fn default() -> Self {
+        Params::paper()
+    }
+}
+
+impl Params {
+    /// The paper's pipeline as we read it, for studying and reproducing it: Algorithm 1 with
+    /// `u = 2.75`, Algorithm 2 as printed ([`Repair::Paper`]), then Algorithm 3 with `k = 1.7`,
+    /// and no stage beyond the paper. `docs/condt.md` lists every reading of an ambiguity.
+    ///
+    /// ```
+    /// use condt::{Params, Repair, Stage, Uniformity};
+    /// let paper = Params::paper();
+    /// assert_eq!(paper.uniformity, Uniformity::Fixed(2.75));
+    /// assert_eq!(paper.repair, Repair::Paper);
+    /// assert_eq!(paper.stages(), vec![Stage::Proximity, Stage::Repair, Stage::Outliers]);
+    /// ```
+    pub fn paper() -> Params {
         Params {
-            uniformity: Uniformity::default(),
-            repair: Repair::default(),
+            uniformity: Uniformity::Fixed(2.75),
+            repair: Repair::Paper,
             outlier_factor: Some(1.7),
             outliers_first: false,
             parallel: cfg!(feature = "parallel"),
         }
     }
-}
 
-impl Params {
     /// `Ok` when every parameter is one its stage accepts.
     ///
     /// # Errors

@@ -13,9 +13,9 @@ const USAGE: &str = "\
 condt: Delaunay triangulation and curve reconstruction of planar points
 
 Usage:
-  condt reconstruct INPUT [-o OUTPUT] [--u X | --adaptive] [--iqr K] [--no-outlier-filter]
-                    [--no-manifold-fix | --repair MODE] [--outliers-first] [--format F]
-                    [--stages] [--sequential]
+  condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive] [--iqr K]
+                    [--no-outlier-filter] [--no-manifold-fix | --repair MODE]
+                    [--outliers-first] [--format F] [--stages] [--sequential]
   condt triangulate INPUT [-o OUTPUT] [--edges]
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
@@ -33,6 +33,8 @@ repair and the final curves side by side), `geojson` (.geojson: one LineString p
 Options:
   -o, --output FILE       write to FILE instead of standard output
       --edges             (triangulate) write edges instead of triangles
+      --paper             the paper's pipeline (Algorithms 1-3 as docs/condt.md reads them)
+                          instead of the default; the options below still adjust it
       --u X               uniformity parameter u (default 2.75)
       --adaptive          adaptive uniformity (section 4.1 of the paper)
       --iqr K             outlier factor (default 1.7)
@@ -210,7 +212,12 @@ fn refused(err: Error) -> CliError {
 }
 
 fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
-    let mut params = Params::default();
+    // `--paper` chooses the starting point wherever it stands; the other options adjust it.
+    let mut params = if args.iter().any(|a| a == "--paper") {
+        Params::paper()
+    } else {
+        Params::default()
+    };
     let (mut input, mut output, mut format, mut stages) = (None, None, None, false);
     let (mut fixed_u, mut adaptive) = (false, false);
     let mut rest = args.iter();
@@ -251,6 +258,7 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
                 );
             }
             "--stages" => stages = true,
+            "--paper" => {}
             "--sequential" => params.parallel = false,
             _ => shared_argument(arg, &mut rest, &mut output, &mut input)?,
         }
