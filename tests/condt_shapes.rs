@@ -196,11 +196,10 @@ fn with_outliers(fraction: f64, seed: u64) -> (Sample, Reconstruction) {
         Shape::circle(Point::new(8.0, 1.0), 2.0),
     ];
     let sampling = Sampling {
-        epsilon: 0.15,
         outlier_fraction: fraction,
         outlier_clearance: 1.0,
-        noise: 0.0,
         seed,
+        ..Sampling::new(0.15)
     };
     let s = sample(&shapes, &sampling);
     let r = run(&s.points, Params::default());
@@ -577,4 +576,107 @@ fn step_methods_compose_into_the_pipeline() {
         let degrees = last.degrees();
         assert!((0..r.num_points()).all(|i| r.degree(i) == degrees[i]));
     }
+}
+
+/// FNV-1a over the edges, as the pins below were taken.
+fn edge_hash(edges: impl Iterator<Item = [usize; 2]>) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for [a, b] in edges {
+        for x in [a as u64, b as u64] {
+            for byte in x.to_le_bytes() {
+                h ^= u64::from(byte);
+                h = h.wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        }
+    }
+    h
+}
+
+/// `Params::paper()` reproduces, edge for edge, the default pipeline of commit 029f6cd (the
+/// paper's reading before any stage beyond it existed) on five pinned inputs. The pins were
+/// taken by running that commit's `reconstruct` on the same inputs (a throwaway program against
+/// a checkout of it); the same identity was checked on every file of `../shared/data` in five
+/// modes (`docs/condt.md`, "Presets").
+#[test]
+fn paper_preset_reproduces_the_pinned_outputs() {
+    let o = origin();
+    let star: Vec<Point> = (0..10)
+        .map(|k| {
+            let r = if k % 2 == 0 { 1.0 } else { 0.4 };
+            let a = std::f64::consts::TAU * k as f64 / 10.0 + 0.1;
+            Point::new(r * a.cos(), r * a.sin())
+        })
+        .collect();
+    let cases: Vec<(&str, Vec<Shape>, Sampling, usize, u64)> = vec![
+        (
+            "noisy circles with outliers",
+            vec![
+                Shape::circle(o, 3.0),
+                Shape::circle(Point::new(8.0, 1.0), 2.0),
+            ],
+            Sampling {
+                outlier_fraction: 0.1,
+                outlier_clearance: 1.0,
+                noise: 0.02,
+                seed: 1,
+                ..Sampling::new(0.15)
+            },
+            84,
+            0xe974_997f_9c62_9425,
+        ),
+        (
+            "figure eight, noisy",
+            vec![Shape::FigureEight {
+                center: o,
+                size: 2.0,
+            }],
+            Sampling {
+                noise: 0.01,
+                ..Sampling::new(0.05)
+            },
+            471,
+            0x5c8c_4a96_b87c_1053,
+        ),
+        (
+            "five-point star",
+            vec![Shape::Polygon(star)],
+            Sampling::new(0.3),
+            25,
+            0x5419_5838_b949_d547,
+        ),
+        (
+            "spiral and arc with outliers",
+            vec![
+                Shape::Spiral {
+                    center: o,
+                    inner: 0.5,
+                    gap: 0.4,
+                    turns: 3.0,
+                },
+                Shape::Arc {
+                    center: Point::new(5.0, 0.0),
+                    radius: 1.5,
+                    start: 0.0,
+                    sweep: 4.0,
+                },
+            ],
+            Sampling {
+                outlier_fraction: 0.05,
+                seed: 7,
+                ..Sampling::new(0.2)
+            },
+            521,
+            0xee8e_2ca2_5346_7aff,
+        ),
+    ];
+    for (label, shapes, sampling, count, hash) in cases {
+        let s = sample(&shapes, &sampling);
+        let r = run(&s.points, Params::paper());
+        assert_eq!(r.edges().len(), count, "{label}");
+        assert_eq!(edge_hash(r.edges()), hash, "{label}");
+    }
+    let shipped = condt::io::read_points("examples/data/shapes.txt").unwrap();
+    let r = run(&shipped, Params::paper());
+    assert_eq!(r.edges().len(), 225);
+    assert_eq!(edge_hash(r.edges()), 0x4a4f_d6f9_473b_811a);
 }
