@@ -37,11 +37,10 @@ fn main() -> std::io::Result<()> {
         },
     ];
     let sampling = Sampling {
-        epsilon: 0.2,
         outlier_fraction: 0.03,
         outlier_clearance: 2.0,
-        noise: 0.0,
         seed: 7,
+        ..Sampling::new(0.2)
     };
     let mut points = sample(&shapes, &sampling).points;
     points.push(points[10]);
