@@ -407,11 +407,9 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
     assert!(branch_points > 0);
 }
 
-/// Noisy circles with outliers, repaired by the paper's rule, in both stage orders: each stage's
-/// graph is a subset of its input's, the final edges are the last stage's, and a stage that
-/// changes nothing reports its input unchanged.
-#[test]
-fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
+/// Two noisy circles with 10 % outliers kept clear of them: the repair changes the proximity
+/// graph and the outlier rule fires, in either stage order.
+fn noisy_circles_with_outliers() -> Sample {
     let shapes = [
         Shape::circle(origin(), 3.0),
         Shape::circle(Point::new(8.0, 1.0), 2.0),
@@ -423,7 +421,15 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
         seed: 1,
         ..Sampling::new(0.15)
     };
-    let s = sample(&shapes, &sampling);
+    sample(&shapes, &sampling)
+}
+
+/// Noisy circles with outliers, repaired by the paper's rule, in both stage orders: each stage's
+/// graph is a subset of its input's, the final edges are the last stage's, and a stage that
+/// changes nothing reports its input unchanged.
+#[test]
+fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
+    let s = noisy_circles_with_outliers();
     let subset = |small: &[[usize; 2]], big: &[[usize; 2]]| small.iter().all(|e| big.contains(e));
     for outliers_first in [false, true] {
         let r = run(
@@ -526,19 +532,8 @@ fn invalid_parameters_are_refused_with_their_name() {
 #[test]
 fn step_methods_compose_into_the_pipeline() {
     use condt::triangulate;
-    // Noisy circles with outliers: every stage changes the graph, in both orders.
-    let shapes = [
-        Shape::circle(origin(), 3.0),
-        Shape::circle(Point::new(8.0, 1.0), 2.0),
-    ];
-    let sampling = Sampling {
-        outlier_fraction: 0.1,
-        outlier_clearance: 1.0,
-        noise: 0.02,
-        seed: 1,
-        ..Sampling::new(0.15)
-    };
-    let s = sample(&shapes, &sampling);
+    // Every stage changes the graph on this input, in both orders.
+    let s = noisy_circles_with_outliers();
     let tri = triangulate(&s.points).unwrap();
     for outliers_first in [false, true] {
         let params = Params {
