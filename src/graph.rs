@@ -3,7 +3,7 @@
 //!
 //! Owns: the public view of a stage's edges in input positions and the step methods
 //! ([`Triangulation::proximity_graph`], [`Graph::repair`], [`Graph::remove_outliers`],
-//! [`Graph::curves`]). It may not implement a stage's rule (that is [`crate::stages`], reached
+//! [`Graph::remove_local_outliers`], [`Graph::curves`]). It may not implement a stage's rule (that is [`crate::stages`], reached
 //! through `Step::run`) nor decide the order of the stages (that is
 //! [`Params::stages`](crate::Params::stages)).
 
@@ -107,6 +107,46 @@ impl<'t> Graph<'t> {
         Ok(OutlierRemoval { graph, fired })
     }
 
+    /// The local outlier removal (not in the paper; see
+    /// [`Params::local_outliers`](crate::Params::local_outliers)), on this graph as the IQR stage
+    /// (and the repair, if it ran after) left it. `before_outliers` is the graph the IQR stage
+    /// started from, so that edges its global threshold cut along smooth, regularly spaced
+    /// passages can be given back; pass this graph itself when the IQR stage did not run.
+    ///
+    /// # Panics
+    /// If `before_outliers` lives on another triangulation.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point, Repair, Uniformity};
+    /// // Twelve points on a circle, and two stray points near each other far away.
+    /// let mut pts: Vec<Point> = (0..12)
+    ///     .map(|k| {
+    ///         let t = k as f64 * std::f64::consts::TAU / 12.0;
+    ///         Point::new(t.cos(), t.sin())
+    ///     })
+    ///     .collect();
+    /// pts.extend([Point::new(6.0, 6.0), Point::new(6.3, 6.1)]);
+    /// let tri = triangulate(&pts)?;
+    /// let repaired = tri.proximity_graph(Uniformity::default())?.repair(Repair::Paper);
+    /// let filtered = repaired.remove_outliers(1.7)?;
+    /// assert!(filtered.graph.edges().contains(&[12, 13])); // a two-point "curve"
+    /// let local = filtered.graph.remove_local_outliers(&repaired);
+    /// assert_eq!(local.num_edges(), 12); // the circle only
+    /// assert!(!local.edges().contains(&[12, 13]));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn remove_local_outliers(&self, before_outliers: &Graph<'t>) -> Graph<'t> {
+        assert!(
+            core::ptr::eq(self.tri, before_outliers.tri),
+            "remove_local_outliers: the two graphs live on different triangulations"
+        );
+        let outcome = Step::LocalOutliers.run(self.tri, &self.edges, &before_outliers.edges);
+        match outcome.edges {
+            Some(edges) => Graph::new(self.tri, Cow::Owned(edges)),
+            None => self.clone(),
+        }
+    }
+
     /// The curves through the graph, in input positions: each curve starts at its smallest
     /// position (an open one at its smaller end) and the list is sorted.
     pub fn curves(&self) -> Vec<Curve> {
@@ -116,7 +156,7 @@ impl<'t> Graph<'t> {
 
     /// Runs `step` (its parameter checked) and reports whether its rule applied.
     fn step(&self, step: Step) -> (Graph<'t>, bool) {
-        let outcome = step.run(self.tri, &self.edges);
+        let outcome = step.run(self.tri, &self.edges, &self.edges);
         let edges = match outcome.edges {
             Some(edges) => Cow::Owned(edges),
             None => self.edges.clone(),

@@ -63,6 +63,14 @@ pub struct Params {
     /// Outlier edges can make a curve vertex non-manifold, and the repair then cuts a sharp
     /// corner there; `docs/condt.md` (note 8) measures both orders.
     pub outliers_first: bool,
+    /// Run the local outlier removal after the IQR stage and the repair, whichever order they ran
+    /// in (not in the paper; off by default): give back the edges the global rule cut along
+    /// smooth, regularly spaced passages; drop edges far longer than the others at a branch or
+    /// at both ends, branches of fewer than five points, and components with fewer than five
+    /// points clearly apart from everything else. A genuine curve or branch of three or four
+    /// points is lost with it on; the rules and the reason for each constant are in
+    /// `src/stages/local_outliers.rs`.
+    pub local_outliers: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
     pub parallel: bool,
@@ -93,6 +101,7 @@ impl Params {
             repair: Repair::Paper,
             outlier_factor: Some(1.7),
             outliers_first: false,
+            local_outliers: false,
             parallel: cfg!(feature = "parallel"),
         }
     }
@@ -109,12 +118,17 @@ impl Params {
 
     /// The stages these parameters run, in the order they run: the proximity graph, then the
     /// repair and the outlier removal in the order [`Params::outliers_first`] chooses, each only
-    /// when it is on.
+    /// when it is on; then the local outlier removal, when on.
     ///
     /// ```
     /// use condt::{Params, Repair, Stage};
     /// let p = Params { outliers_first: true, repair: Repair::Off, ..Params::default() };
     /// assert_eq!(p.stages(), vec![Stage::Proximity, Stage::Outliers]);
+    /// let local = Params { outliers_first: true, local_outliers: true, ..Params::default() };
+    /// assert_eq!(
+    ///     local.stages(),
+    ///     vec![Stage::Proximity, Stage::Outliers, Stage::Repair, Stage::LocalOutliers]
+    /// );
     /// ```
     pub fn stages(&self) -> Vec<Stage> {
         core::iter::once(Stage::Proximity)
@@ -131,7 +145,10 @@ impl Params {
         } else {
             (repair, outliers)
         };
-        first.into_iter().chain(second)
+        // Last in either order: its rules read vertices with three or more edges as branches,
+        // which only a repaired graph makes true.
+        let local = self.local_outliers.then_some(Step::LocalOutliers);
+        first.into_iter().chain(second).chain(local)
     }
 }
 
@@ -359,7 +376,11 @@ pub fn reconstruct_triangulation(
         time: clock.lap(),
     });
     for step in params.steps() {
-        let outcome = step.run(&tri, latest_edges(&records));
+        let before_outliers = records
+            .iter()
+            .position(|record| record.stage == Stage::Outliers)
+            .map_or(latest_edges(&records), |k| latest_edges(&records[..k]));
+        let outcome = step.run(&tri, latest_edges(&records), before_outliers);
         records.push(StageRecord {
             stage: step.stage(),
             edges: outcome.edges,

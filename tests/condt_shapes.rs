@@ -405,6 +405,14 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
         }
     }
     assert!(branch_points > 0);
+    // The local outlier removal (sequential by construction) after stages that ran on rayon:
+    // `run` compares it too.
+    let params = Params {
+        local_outliers: true,
+        ..Params::default()
+    };
+    let r = run(&noisy.points, params);
+    assert!(r.stage(Stage::LocalOutliers).is_some());
 }
 
 /// Two noisy circles with 10 % outliers kept clear of them: the repair changes the proximity

@@ -1,5 +1,6 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each:
-//! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3).
+//! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3), and
+//! [`local_outliers`] (not in the paper; off by default).
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which
 //! both the pipeline ([`reconstruct`](crate::reconstruct)) and the public
@@ -10,6 +11,7 @@
 //! A new stage is a new submodule, a [`Stage`] variant, a [`Step`] variant with its parameter,
 //! and a line in `Params::stages`; the other stages do not change.
 
+pub(crate) mod local_outliers;
 pub(crate) mod outliers;
 pub(crate) mod proximity;
 pub(crate) mod repair;
@@ -42,6 +44,9 @@ pub enum Stage {
     Repair,
     /// The IQR outlier removal (Algorithm 3).
     Outliers,
+    /// The local outlier removal, after the IQR stage and the repair (not in the paper; off by
+    /// default, see [`Params::local_outliers`](crate::Params::local_outliers)).
+    LocalOutliers,
 }
 
 impl Stage {
@@ -51,6 +56,7 @@ impl Stage {
             Stage::Proximity => "ConDT proximity graph",
             Stage::Repair => "after non-manifold repair",
             Stage::Outliers => "after outlier removal",
+            Stage::LocalOutliers => "after local outlier removal",
         }
     }
 }
@@ -66,6 +72,7 @@ impl core::fmt::Display for Stage {
 pub(crate) enum Step {
     Repair(Repair),
     Outliers { factor: f64 },
+    LocalOutliers,
 }
 
 impl Step {
@@ -74,6 +81,7 @@ impl Step {
         match self {
             Step::Repair(_) => Stage::Repair,
             Step::Outliers { .. } => Stage::Outliers,
+            Step::LocalOutliers => Stage::LocalOutliers,
         }
     }
 
@@ -92,7 +100,16 @@ impl Step {
 
     /// Runs the stage on `edges` (each edge once, any order); the parameter must have passed
     /// [`Step::check`].
-    pub(crate) fn run(self, tri: &Triangulation, edges: &[Edge]) -> Outcome {
+    ///
+    /// `before_outliers` is the graph the IQR stage ([`Step::Outliers`]) started from, or `edges`
+    /// itself when that stage has not run. Only [`Step::LocalOutliers`] reads it, to give back
+    /// edges the global rule cut; it is the one way a stage sees an earlier stage's graph.
+    pub(crate) fn run(
+        self,
+        tri: &Triangulation,
+        edges: &[Edge],
+        before_outliers: &[Edge],
+    ) -> Outcome {
         match self {
             Step::Repair(mode) => {
                 let edges = repair::repair(tri, edges, mode);
@@ -102,6 +119,12 @@ impl Step {
                 }
             }
             Step::Outliers { factor } => outliers::remove_outliers(tri, edges, factor),
+            Step::LocalOutliers => local_outliers::remove_local_outliers(
+                tri,
+                edges,
+                before_outliers,
+                &local_outliers::Rules::ALL,
+            ),
         }
     }
 }
@@ -110,7 +133,8 @@ impl Step {
 pub(crate) struct Outcome {
     /// The new edge list, or `None` when the stage left its input as it was (stored once).
     pub(crate) edges: Option<Vec<Edge>>,
-    /// Whether the stage's rule applied: a vertex needed repair, or the outlier rule fired.
+    /// Whether the stage's rule applied: a vertex needed repair, the outlier rule fired, or the
+    /// local outlier rules changed an edge.
     pub(crate) applied: bool,
 }
 

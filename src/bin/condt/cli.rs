@@ -15,7 +15,8 @@ condt: Delaunay triangulation and curve reconstruction of planar points
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive] [--iqr K]
                     [--no-outlier-filter] [--no-manifold-fix | --repair MODE]
-                    [--outliers-first] [--format F] [--stages] [--sequential]
+                    [--outliers-first] [--local-outliers] [--format F] [--stages]
+                    [--sequential]
   condt triangulate INPUT [-o OUTPUT] [--edges]
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
@@ -40,6 +41,11 @@ Options:
       --iqr K             outlier factor (default 1.7)
       --no-outlier-filter skip outlier removal
       --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
+      --local-outliers    after the outlier filter and the repair, remove outliers locally:
+                          give back edges the filter cut along regular passages; drop edges
+                          far longer than their neighbours, branches of fewer than 5 points
+                          and components of fewer than 5 points clearly apart from the rest
+                          (a genuine 3- or 4-point curve is lost)
       --no-manifold-fix   keep every proximity edge (self-intersecting curves)
       --repair MODE       paper (default), mutual, crossing or off
       --format F          edges, txt, svg or geojson
@@ -234,6 +240,7 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
             "--iqr" => params.outlier_factor = Some(number(arg, rest.next())?),
             "--no-outlier-filter" => params.outlier_factor = None,
             "--outliers-first" => params.outliers_first = true,
+            "--local-outliers" => params.local_outliers = true,
             "--no-manifold-fix" => params.repair = Repair::Off,
             "--repair" => {
                 params.repair = match rest.next().map(String::as_str) {
@@ -391,6 +398,9 @@ mod tests {
             (b.format, b.params.repair, b.params.outlier_factor),
             (Format::Polylines, Repair::Off, None)
         );
+        assert!(!b.params.local_outliers, "off by default");
+        let c = parse_reconstruct(&strings(&["--local-outliers", "in.txt"])).unwrap();
+        assert!(c.params.local_outliers);
         for bad in [
             &["in.txt", "--u", "2", "--adaptive"][..],
             &["in.txt", "-o", "out.png"],
