@@ -3,7 +3,7 @@
 //!
 //! Owns: the public view of a stage's edges in input positions and the step methods
 //! ([`Triangulation::proximity_graph`], [`Graph::repair`], [`Graph::remove_outliers`],
-//! [`Graph::curves`]). It may not implement a stage's rule (that is [`crate::stages`], reached
+//! [`Graph::close_gaps`], [`Graph::curves`]). It may not implement a stage's rule (that is [`crate::stages`], reached
 //! through `Step::run`) nor decide the order of the stages (that is
 //! [`Params::stages`](crate::Params::stages)).
 
@@ -105,6 +105,24 @@ impl<'t> Graph<'t> {
         step.check()?;
         let (graph, fired) = self.step(step);
         Ok(OutlierRemoval { graph, fired })
+    }
+
+    /// Closes gaps at loose ends (not in the paper; the rules are those of
+    /// [`Params::close_gaps`](crate::Params::close_gaps)): joins two points of degree one that
+    /// face each other across a short gap, and a point of degree one to the crossing it points
+    /// straight through. Never removes an edge.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // A polyline with one edge missing in the middle: 0-1-2  3-4-5.
+    /// let pts: Vec<Point> = (0..6).map(|i| Point::new(i as f64, 0.1 * (i % 2) as f64)).collect();
+    /// let tri = triangulate(&pts)?;
+    /// let broken = tri.graph_from_edges([[0, 1], [1, 2], [3, 4], [4, 5]]);
+    /// assert_eq!(broken.close_gaps().edges(), vec![[0, 1], [1, 2], [2, 3], [3, 4], [4, 5]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn close_gaps(&self) -> Graph<'t> {
+        self.step(Step::CloseGaps).0
     }
 
     /// The curves through the graph, in input positions: each curve starts at its smallest

@@ -63,6 +63,10 @@ pub struct Params {
     /// Outlier edges can make a curve vertex non-manifold, and the repair then cuts a sharp
     /// corner there; `docs/condt.md` (note 8) measures both orders.
     pub outliers_first: bool,
+    /// Close gaps at loose ends after the other stages (not in the paper): join two loose ends
+    /// that face each other, and a loose end to the crossing it points straight through. Off by
+    /// default; the rules and the reason for each constant are in `src/stages/gaps.rs`.
+    pub close_gaps: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
     pub parallel: bool,
@@ -75,6 +79,7 @@ impl Default for Params {
             repair: Repair::default(),
             outlier_factor: Some(1.7),
             outliers_first: false,
+            close_gaps: false,
             parallel: cfg!(feature = "parallel"),
         }
     }
@@ -92,13 +97,15 @@ impl Params {
     }
 
     /// The stages these parameters run, in the order they run: the proximity graph, then the
-    /// repair and the outlier removal in the order [`Params::outliers_first`] chooses, each only
-    /// when it is on.
+    /// repair and the outlier removal in the order [`Params::outliers_first`] chooses, then
+    /// closing gaps, each only when it is on.
     ///
     /// ```
     /// use condt::{Params, Repair, Stage};
     /// let p = Params { outliers_first: true, repair: Repair::Off, ..Params::default() };
     /// assert_eq!(p.stages(), vec![Stage::Proximity, Stage::Outliers]);
+    /// let q = Params { close_gaps: true, ..Params::default() };
+    /// assert_eq!(q.stages().last(), Some(&Stage::Gaps));
     /// ```
     pub fn stages(&self) -> Vec<Stage> {
         core::iter::once(Stage::Proximity)
@@ -115,7 +122,9 @@ impl Params {
         } else {
             (repair, outliers)
         };
-        first.into_iter().chain(second)
+        // Closing gaps runs last: it joins loose ends, which only the earlier stages create.
+        let gaps = self.close_gaps.then_some(Step::CloseGaps);
+        first.into_iter().chain(second).chain(gaps)
     }
 }
 
@@ -335,7 +344,7 @@ pub fn reconstruct_triangulation(
     params.check()?;
     let mut clock = Stopwatch::start();
     let proximity = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
-    let mut records = Vec::with_capacity(4);
+    let mut records = Vec::with_capacity(5);
     records.push(StageRecord {
         stage: Stage::Proximity,
         edges: Some(proximity),

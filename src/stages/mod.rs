@@ -1,5 +1,6 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each:
-//! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3).
+//! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3), and
+//! [`gaps`] (closing gaps at loose ends; not in the paper, off by default).
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which
 //! both the pipeline ([`reconstruct`](crate::reconstruct)) and the public
@@ -10,6 +11,7 @@
 //! A new stage is a new submodule, a [`Stage`] variant, a [`Step`] variant with its parameter,
 //! and a line in `Params::stages`; the other stages do not change.
 
+pub(crate) mod gaps;
 pub(crate) mod outliers;
 pub(crate) mod proximity;
 pub(crate) mod repair;
@@ -42,6 +44,8 @@ pub enum Stage {
     Repair,
     /// The IQR outlier removal (Algorithm 3).
     Outliers,
+    /// Closing gaps at loose ends (not in the paper; see [`Params::close_gaps`](crate::Params::close_gaps)).
+    Gaps,
 }
 
 impl Stage {
@@ -51,6 +55,7 @@ impl Stage {
             Stage::Proximity => "ConDT proximity graph",
             Stage::Repair => "after non-manifold repair",
             Stage::Outliers => "after outlier removal",
+            Stage::Gaps => "after closing gaps",
         }
     }
 }
@@ -66,6 +71,7 @@ impl core::fmt::Display for Stage {
 pub(crate) enum Step {
     Repair(Repair),
     Outliers { factor: f64 },
+    CloseGaps,
 }
 
 impl Step {
@@ -74,6 +80,7 @@ impl Step {
         match self {
             Step::Repair(_) => Stage::Repair,
             Step::Outliers { .. } => Stage::Outliers,
+            Step::CloseGaps => Stage::Gaps,
         }
     }
 
@@ -102,6 +109,7 @@ impl Step {
                 }
             }
             Step::Outliers { factor } => outliers::remove_outliers(tri, edges, factor),
+            Step::CloseGaps => gaps::close_gaps(tri, edges),
         }
     }
 }
@@ -110,7 +118,8 @@ impl Step {
 pub(crate) struct Outcome {
     /// The new edge list, or `None` when the stage left its input as it was (stored once).
     pub(crate) edges: Option<Vec<Edge>>,
-    /// Whether the stage's rule applied: a vertex needed repair, or the outlier rule fired.
+    /// Whether the stage's rule applied: a vertex needed repair, the outlier rule fired, a gap was
+    /// closed.
     pub(crate) applied: bool,
 }
 

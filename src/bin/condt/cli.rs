@@ -14,8 +14,8 @@ condt: Delaunay triangulation and curve reconstruction of planar points
 
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [--u X | --adaptive] [--iqr K] [--no-outlier-filter]
-                    [--no-manifold-fix | --repair MODE] [--outliers-first] [--format F]
-                    [--stages] [--sequential]
+                    [--no-manifold-fix | --repair MODE] [--outliers-first] [--close-gaps]
+                    [--format F] [--stages] [--sequential]
   condt triangulate INPUT [-o OUTPUT] [--edges]
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
@@ -38,6 +38,8 @@ Options:
       --iqr K             outlier factor (default 1.7)
       --no-outlier-filter skip outlier removal
       --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
+      --close-gaps        last, join loose ends that face each other across a short gap,
+                          and loose ends to the crossing they point straight through
       --no-manifold-fix   keep every proximity edge (self-intersecting curves)
       --repair MODE       paper (default), mutual, crossing or off
       --format F          edges, txt, svg or geojson
@@ -227,6 +229,7 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
             "--iqr" => params.outlier_factor = Some(number(arg, rest.next())?),
             "--no-outlier-filter" => params.outlier_factor = None,
             "--outliers-first" => params.outliers_first = true,
+            "--close-gaps" => params.close_gaps = true,
             "--no-manifold-fix" => params.repair = Repair::Off,
             "--repair" => {
                 params.repair = match rest.next().map(String::as_str) {
@@ -367,12 +370,14 @@ mod tests {
             "--adaptive",
             "--iqr",
             "2",
+            "--close-gaps",
         ]))
         .unwrap();
         assert_eq!(a.format, Format::Svg);
         assert!(a.stages);
         assert_eq!(a.params.uniformity, Uniformity::Adaptive);
         assert_eq!(a.params.outlier_factor, Some(2.0));
+        assert!(a.params.close_gaps);
         let b = parse_reconstruct(&strings(&[
             "in.txt",
             "--no-manifold-fix",
@@ -383,6 +388,7 @@ mod tests {
             (b.format, b.params.repair, b.params.outlier_factor),
             (Format::Polylines, Repair::Off, None)
         );
+        assert!(!b.params.close_gaps);
         for bad in [
             &["in.txt", "--u", "2", "--adaptive"][..],
             &["in.txt", "-o", "out.png"],
