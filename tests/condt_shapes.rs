@@ -212,7 +212,12 @@ fn closing_gaps_leaves_open_arcs_and_clean_shapes_alone() {
         sweep: 1.5 * PI,
     };
     for eps in [0.1, 0.3, 0.5] {
-        let r = assert_exact(&[arc.clone()], eps, params, "open arc, gaps closed");
+        let r = assert_exact(
+            std::slice::from_ref(&arc),
+            eps,
+            params,
+            "open arc, gaps closed",
+        );
         assert!(!r.stage(Stage::Gaps).unwrap().applied, "eps {eps}");
         assert_exact(
             &[Shape::circle(origin(), 1.0)],
