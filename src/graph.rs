@@ -109,8 +109,8 @@ impl<'t> Graph<'t> {
 
     /// Closes gaps at loose ends (not in the paper; the rules are those of
     /// [`Params::close_gaps`](crate::Params::close_gaps)): joins two points of degree one that
-    /// face each other across a short gap, and a point of degree one to the crossing it points
-    /// straight through. Never removes an edge.
+    /// face each other across a short gap, two of them to the stranded point they line up
+    /// through, and the two dropped arms of a crossing to the crossing. Never removes an edge.
     ///
     /// ```
     /// use condt::{triangulate, Point};

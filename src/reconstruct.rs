@@ -64,7 +64,8 @@ pub struct Params {
     /// corner there; `docs/condt.md` (note 8) measures both orders.
     pub outliers_first: bool,
     /// Close gaps at loose ends after the other stages (not in the paper): join two loose ends
-    /// that face each other, and a loose end to the crossing it points straight through. Off by
+    /// that face each other across a short gap, two loose ends to the stranded sample they line
+    /// up through, and the two dropped arms of a crossing to the crossing. Off by
     /// default; the rules and the reason for each constant are in `src/stages/gaps.rs`.
     pub close_gaps: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from

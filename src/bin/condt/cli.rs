@@ -38,8 +38,8 @@ Options:
       --iqr K             outlier factor (default 1.7)
       --no-outlier-filter skip outlier removal
       --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
-      --close-gaps        last, join loose ends that face each other across a short gap,
-                          and loose ends to the crossing they point straight through
+      --close-gaps        last, join loose ends that face each other across a short gap or
+                          line up through a stranded point, and a crossing's dropped arms
       --no-manifold-fix   keep every proximity edge (self-intersecting curves)
       --repair MODE       paper (default), mutual, crossing or off
       --format F          edges, txt, svg or geojson
