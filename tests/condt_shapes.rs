@@ -200,6 +200,39 @@ fn figure_eight_gets_its_crossing_back_when_gaps_are_closed() {
 }
 
 #[test]
+fn a_gap_in_a_noisy_circle_is_closed() {
+    // Noise of a third of the spacing: one pair of consecutive samples is nobody's choice and the
+    // circle falls open there; the two ends face each other across one spacing.
+    let s = sample(
+        &[Shape::circle(origin(), 1.0)],
+        &Sampling {
+            noise: 0.03,
+            seed: 14,
+            ..Sampling::new(0.1)
+        },
+    );
+    let gt = truth(&s);
+    let plain = run(&s.points, Params::default());
+    let found = edges(&plain);
+    assert_eq!(
+        gt.difference(&found).count(),
+        1,
+        "the pipeline leaves one gap"
+    );
+    assert!(found.is_subset(&gt));
+    let closed = run(
+        &s.points,
+        Params {
+            close_gaps: true,
+            ..Params::default()
+        },
+    );
+    assert_eq!(edges(&closed), gt);
+    assert_eq!(closed.curves().len(), 1);
+    assert!(closed.curves()[0].is_closed());
+}
+
+#[test]
 fn closing_gaps_leaves_open_arcs_and_clean_shapes_alone() {
     let params = Params {
         close_gaps: true,
