@@ -3,7 +3,8 @@
 //!
 //! Owns: the public view of a stage's edges in input positions and the step methods
 //! ([`Triangulation::proximity_graph`], [`Graph::repair`], [`Graph::remove_outliers`],
-//! [`Graph::remove_local_outliers`], [`Graph::curves`]). It may not implement a stage's rule (that is [`crate::stages`], reached
+//! [`Graph::remove_local_outliers`], [`Graph::close_gaps`], [`Graph::curves`]). It may not
+//! implement a stage's rule (that is [`crate::stages`], reached
 //! through `Step::run`) nor decide the order of the stages (that is
 //! [`Params::stages`](crate::Params::stages)).
 
@@ -145,6 +146,24 @@ impl<'t> Graph<'t> {
             Some(edges) => Graph::new(self.tri, Cow::Owned(edges)),
             None => self.clone(),
         }
+    }
+
+    /// Closes gaps at loose ends (not in the paper; the rules are those of
+    /// [`Params::close_gaps`](crate::Params::close_gaps)): joins two points of degree one that
+    /// face each other across a short gap, two of them to the stranded point they line up
+    /// through, and the two dropped arms of a crossing to the crossing. Never removes an edge.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // A polyline with one edge missing in the middle: 0-1-2  3-4-5.
+    /// let pts: Vec<Point> = (0..6).map(|i| Point::new(i as f64, 0.1 * (i % 2) as f64)).collect();
+    /// let tri = triangulate(&pts)?;
+    /// let broken = tri.graph_from_edges([[0, 1], [1, 2], [3, 4], [4, 5]]);
+    /// assert_eq!(broken.close_gaps().edges(), vec![[0, 1], [1, 2], [2, 3], [3, 4], [4, 5]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn close_gaps(&self) -> Graph<'t> {
+        self.step(Step::CloseGaps).0
     }
 
     /// The curves through the graph, in input positions: each curve starts at its smallest

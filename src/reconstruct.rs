@@ -71,6 +71,11 @@ pub struct Params {
     /// points is lost with it on; the rules and the reason for each constant are in
     /// `src/stages/local_outliers.rs`.
     pub local_outliers: bool,
+    /// Close gaps at loose ends after the other stages (not in the paper): join two loose ends
+    /// that face each other across a short gap, two loose ends to the stranded sample they line
+    /// up through, and the two dropped arms of a crossing to the crossing. Off by
+    /// default; the rules and the reason for each constant are in `src/stages/gaps.rs`.
+    pub close_gaps: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
     pub parallel: bool,
@@ -102,6 +107,7 @@ impl Params {
             outlier_factor: Some(1.7),
             outliers_first: false,
             local_outliers: false,
+            close_gaps: false,
             parallel: cfg!(feature = "parallel"),
         }
     }
@@ -117,8 +123,8 @@ impl Params {
     }
 
     /// The stages these parameters run, in the order they run: the proximity graph, then the
-    /// repair and the outlier removal in the order [`Params::outliers_first`] chooses, each only
-    /// when it is on; then the local outlier removal, when on.
+    /// repair and the outlier removal in the order [`Params::outliers_first`] chooses, then the
+    /// local outlier removal, then closing gaps, each only when it is on.
     ///
     /// ```
     /// use condt::{Params, Repair, Stage};
@@ -129,6 +135,8 @@ impl Params {
     ///     local.stages(),
     ///     vec![Stage::Proximity, Stage::Outliers, Stage::Repair, Stage::LocalOutliers]
     /// );
+    /// let q = Params { close_gaps: true, ..Params::default() };
+    /// assert_eq!(q.stages().last(), Some(&Stage::Gaps));
     /// ```
     pub fn stages(&self) -> Vec<Stage> {
         core::iter::once(Stage::Proximity)
@@ -145,10 +153,12 @@ impl Params {
         } else {
             (repair, outliers)
         };
-        // Last in either order: its rules read vertices with three or more edges as branches,
-        // which only a repaired graph makes true.
+        // The local outlier removal comes after both: its rules read vertices with three or more
+        // edges as branches, which only a repaired graph makes true. Closing gaps runs last: it
+        // joins loose ends, which the earlier stages create.
         let local = self.local_outliers.then_some(Step::LocalOutliers);
-        first.into_iter().chain(second).chain(local)
+        let gaps = self.close_gaps.then_some(Step::CloseGaps);
+        first.into_iter().chain(second).chain(local).chain(gaps)
     }
 }
 
@@ -368,7 +378,7 @@ pub fn reconstruct_triangulation(
     params.check()?;
     let mut clock = Stopwatch::start();
     let proximity = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
-    let mut records = Vec::with_capacity(4);
+    let mut records = Vec::with_capacity(5);
     records.push(StageRecord {
         stage: Stage::Proximity,
         edges: Some(proximity),

@@ -172,6 +172,96 @@ fn figure_eight_keeps_its_crossing_with_repair_off() {
 }
 
 #[test]
+fn figure_eight_gets_its_crossing_back_when_gaps_are_closed() {
+    // The paper's repair keeps two of the crossing's four edges; closing gaps restores the other
+    // two, the arms that point straight through the crossing.
+    let eight = Shape::FigureEight {
+        center: origin(),
+        size: 2.0,
+    };
+    let s = sample(&[eight], &Sampling::new(0.1));
+    let repaired = run(&s.points, Params::default());
+    assert_eq!(repaired.degree(0), 2, "the repair cut the crossing");
+    let params = Params {
+        close_gaps: true,
+        ..Params::default()
+    };
+    let r = assert_exact(
+        &[Shape::FigureEight {
+            center: origin(),
+            size: 2.0,
+        }],
+        0.1,
+        params,
+        "figure eight, gaps closed",
+    );
+    assert_eq!(r.degree(0), 4);
+    assert!(r.stage(Stage::Gaps).unwrap().applied);
+}
+
+#[test]
+fn a_gap_in_a_noisy_circle_is_closed() {
+    // Noise of a third of the spacing: one pair of consecutive samples is nobody's choice and the
+    // circle falls open there; the two ends face each other across one spacing.
+    let s = sample(
+        &[Shape::circle(origin(), 1.0)],
+        &Sampling {
+            noise: 0.03,
+            seed: 14,
+            ..Sampling::new(0.1)
+        },
+    );
+    let gt = truth(&s);
+    let plain = run(&s.points, Params::default());
+    let found = edges(&plain);
+    assert_eq!(
+        gt.difference(&found).count(),
+        1,
+        "the pipeline leaves one gap"
+    );
+    assert!(found.is_subset(&gt));
+    let closed = run(
+        &s.points,
+        Params {
+            close_gaps: true,
+            ..Params::default()
+        },
+    );
+    assert_eq!(edges(&closed), gt);
+    assert_eq!(closed.curves().len(), 1);
+    assert!(closed.curves()[0].is_closed());
+}
+
+#[test]
+fn closing_gaps_leaves_open_arcs_and_clean_shapes_alone() {
+    let params = Params {
+        close_gaps: true,
+        ..Params::default()
+    };
+    let arc = Shape::Arc {
+        center: origin(),
+        radius: 1.0,
+        start: 0.0,
+        sweep: 1.5 * PI,
+    };
+    for eps in [0.1, 0.3, 0.5] {
+        let r = assert_exact(
+            std::slice::from_ref(&arc),
+            eps,
+            params,
+            "open arc, gaps closed",
+        );
+        assert!(!r.stage(Stage::Gaps).unwrap().applied, "eps {eps}");
+        assert_exact(
+            &[Shape::circle(origin(), 1.0)],
+            eps,
+            params,
+            "circle, gaps closed",
+        );
+    }
+}
+
+#[test]
 fn adaptive_uniformity_on_a_circle_and_an_arc() {
     let params = Params {
         uniformity: Uniformity::Adaptive,

@@ -1,6 +1,6 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each:
 //! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3), and
-//! [`local_outliers`] (not in the paper; off by default).
+//! [`local_outliers`] and [`gaps`] (closing gaps at loose ends), the last two not in the paper.
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which
 //! both the pipeline ([`reconstruct`](crate::reconstruct)) and the public
@@ -11,6 +11,7 @@
 //! A new stage is a new submodule, a [`Stage`] variant, a [`Step`] variant with its parameter,
 //! and a line in `Params::stages`; the other stages do not change.
 
+pub(crate) mod gaps;
 pub(crate) mod local_outliers;
 pub(crate) mod outliers;
 pub(crate) mod proximity;
@@ -47,6 +48,8 @@ pub enum Stage {
     /// The local outlier removal, after the IQR stage and the repair (not in the paper; off by
     /// default, see [`Params::local_outliers`](crate::Params::local_outliers)).
     LocalOutliers,
+    /// Closing gaps at loose ends (not in the paper; see [`Params::close_gaps`](crate::Params::close_gaps)).
+    Gaps,
 }
 
 impl Stage {
@@ -57,6 +60,7 @@ impl Stage {
             Stage::Repair => "after non-manifold repair",
             Stage::Outliers => "after outlier removal",
             Stage::LocalOutliers => "after local outlier removal",
+            Stage::Gaps => "after closing gaps",
         }
     }
 }
@@ -73,6 +77,7 @@ pub(crate) enum Step {
     Repair(Repair),
     Outliers { factor: f64 },
     LocalOutliers,
+    CloseGaps,
 }
 
 impl Step {
@@ -82,6 +87,7 @@ impl Step {
             Step::Repair(_) => Stage::Repair,
             Step::Outliers { .. } => Stage::Outliers,
             Step::LocalOutliers => Stage::LocalOutliers,
+            Step::CloseGaps => Stage::Gaps,
         }
     }
 
@@ -125,6 +131,7 @@ impl Step {
                 before_outliers,
                 &local_outliers::Rules::ALL,
             ),
+            Step::CloseGaps => gaps::close_gaps(tri, edges),
         }
     }
 }
@@ -133,8 +140,8 @@ impl Step {
 pub(crate) struct Outcome {
     /// The new edge list, or `None` when the stage left its input as it was (stored once).
     pub(crate) edges: Option<Vec<Edge>>,
-    /// Whether the stage's rule applied: a vertex needed repair, the outlier rule fired, or the
-    /// local outlier rules changed an edge.
+    /// Whether the stage's rule applied: a vertex needed repair, the outlier rule fired, the
+    /// local outlier rules changed an edge, or a gap was closed.
     pub(crate) applied: bool,
 }
 

@@ -15,8 +15,8 @@ condt: Delaunay triangulation and curve reconstruction of planar points
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive] [--iqr K]
                     [--no-outlier-filter] [--no-manifold-fix | --repair MODE]
-                    [--outliers-first] [--local-outliers] [--format F] [--stages]
-                    [--sequential]
+                    [--outliers-first] [--local-outliers] [--close-gaps] [--format F]
+                    [--stages] [--sequential]
   condt triangulate INPUT [-o OUTPUT] [--edges]
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
@@ -46,6 +46,8 @@ Options:
                           far longer than their neighbours, branches of fewer than 5 points
                           and components of fewer than 5 points clearly apart from the rest
                           (a genuine 3- or 4-point curve is lost)
+      --close-gaps        last, join loose ends that face each other across a short gap or
+                          line up through a stranded point, and a crossing's dropped arms
       --no-manifold-fix   keep every proximity edge (self-intersecting curves)
       --repair MODE       paper (default), mutual, crossing or off
       --format F          edges, txt, svg or geojson
@@ -241,6 +243,7 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
             "--no-outlier-filter" => params.outlier_factor = None,
             "--outliers-first" => params.outliers_first = true,
             "--local-outliers" => params.local_outliers = true,
+            "--close-gaps" => params.close_gaps = true,
             "--no-manifold-fix" => params.repair = Repair::Off,
             "--repair" => {
                 params.repair = match rest.next().map(String::as_str) {
@@ -382,12 +385,14 @@ mod tests {
             "--adaptive",
             "--iqr",
             "2",
+            "--close-gaps",
         ]))
         .unwrap();
         assert_eq!(a.format, Format::Svg);
         assert!(a.stages);
         assert_eq!(a.params.uniformity, Uniformity::Adaptive);
         assert_eq!(a.params.outlier_factor, Some(2.0));
+        assert!(a.params.close_gaps);
         let b = parse_reconstruct(&strings(&[
             "in.txt",
             "--no-manifold-fix",
@@ -401,6 +406,7 @@ mod tests {
         assert!(!b.params.local_outliers, "off by default");
         let c = parse_reconstruct(&strings(&["--local-outliers", "in.txt"])).unwrap();
         assert!(c.params.local_outliers);
+        assert!(!b.params.close_gaps);
         for bad in [
             &["in.txt", "--u", "2", "--adaptive"][..],
             &["in.txt", "-o", "out.png"],
