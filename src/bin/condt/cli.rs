@@ -39,7 +39,7 @@ Options:
       --no-outlier-filter skip outlier removal
       --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
       --no-manifold-fix   keep every proximity edge (self-intersecting curves)
-      --repair MODE       paper (default), mutual, crossing or off
+      --repair MODE       paper (default), mutual, crossing, needs or off
       --format F          edges, txt, svg or geojson
       --stages            (svg) draw every stage
       --sequential        do not use threads (the result is the same)
@@ -233,10 +233,11 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
                     Some("paper") => Repair::Paper,
                     Some("mutual") => Repair::Mutual,
                     Some("crossing") => Repair::CrossingAware,
+                    Some("needs") => Repair::Needs,
                     Some("off") => Repair::Off,
                     other => {
                         return Err(CliError::Usage(format!(
-                            "--repair takes paper, mutual, crossing or off, not {other:?}"
+                            "--repair takes paper, mutual, crossing, needs or off, not {other:?}"
                         )))
                     }
                 }
@@ -383,6 +384,8 @@ mod tests {
             (b.format, b.params.repair, b.params.outlier_factor),
             (Format::Polylines, Repair::Off, None)
         );
+        let c = parse_reconstruct(&strings(&["in.txt", "--repair", "needs"])).unwrap();
+        assert_eq!(c.params.repair, Repair::Needs);
         for bad in [
             &["in.txt", "--u", "2", "--adaptive"][..],
             &["in.txt", "-o", "out.png"],
