@@ -233,6 +233,20 @@ mod tests {
     }
 
     #[test]
+    fn the_choice_does_not_depend_on_the_input_order() -> Result<(), Error> {
+        let (s, _) = star(0.5);
+        let reversed: Vec<Point> = s.points.iter().rev().copied().collect();
+        let last = s.points.len() - 1;
+        let mut back: Vec<[usize; 2]> = repaired(&reversed, Repair::Needs)?
+            .into_iter()
+            .map(|[a, b]| [(last - b).min(last - a), (last - b).max(last - a)])
+            .collect();
+        back.sort_unstable();
+        assert_eq!(back, repaired(&s.points, Repair::Needs)?);
+        Ok(())
+    }
+
+    #[test]
     fn a_plus_sign_keeps_its_four_arms() -> Result<(), Error> {
         let pts = [(0.0, 0.0), (1.0, 0.0), (-1.1, 0.0), (0.0, 1.2), (0.0, -1.3)].map(Point::from);
         let tri = triangulate(&pts)?;
