@@ -43,8 +43,8 @@ pub(super) fn choice(
 
 /// The best pair of edges at `v` holding at least one needed edge, among pairs that are straight
 /// enough for Algorithm 2 (`θ > 2π/3`) or whose edges are both needed; ranked by: straight
-/// enough, then more needed edges, then `θ` over the longer edge's length (Algorithm 2's score
-/// `(θ/π)(Lmin/Le)` for a pair), then smaller ids. `None` when no pair qualifies.
+/// enough, then more needed edges, then `θ` over the length of the path through `v` (the sum of
+/// the two lengths), then smaller ids. `None` when no pair qualifies.
 fn needed_pair(
     tri: &Triangulation,
     v: VertexId,
@@ -81,7 +81,7 @@ fn needed_pair(
             let key = (
                 straight,
                 count,
-                theta / libm::sqrt(length2(a).max(length2(b))),
+                theta / (libm::sqrt(length2(a)) + libm::sqrt(length2(b))),
             );
             let pair = [a.min(b), a.max(b)];
             let better = best.is_none_or(|(k, q)| {
