@@ -2,7 +2,7 @@
 //! crate: its terms forbid copying). Prints, per shape family, how many sets were reconstructed
 //! exactly (edge set equal to the ground truth) and the mean edge F1.
 //!
-//! `cargo run --release --example evaluate -- [DATA_DIR] [--repair off|paper|mutual|crossing]
+//! `cargo run --release --example evaluate -- [DATA_DIR] [--repair off|paper|mutual|crossing|needs]
 //!  [--adaptive] [--u X] [--iqr K] [--no-outlier-filter] [--sets]`
 //! With `--compare`, runs every repair variant and uniformity mode and prints one table each.
 
@@ -133,6 +133,7 @@ fn main() {
             "off" => Repair::Off,
             "mutual" => Repair::Mutual,
             "crossing" => Repair::CrossingAware,
+            "needs" => Repair::Needs,
             _ => Repair::Paper,
         };
     }
@@ -158,6 +159,7 @@ fn main() {
             Repair::Paper,
             Repair::Mutual,
             Repair::CrossingAware,
+            Repair::Needs,
         ] {
             for uniformity in [Uniformity::Fixed(2.75), Uniformity::Adaptive] {
                 let p = Params {

@@ -49,7 +49,7 @@ Options:
       --close-gaps        last, join loose ends that face each other across a short gap or
                           line up through a stranded point, and a crossing's dropped arms
       --no-manifold-fix   keep every proximity edge (self-intersecting curves)
-      --repair MODE       paper (default), mutual, crossing or off
+      --repair MODE       paper (default), mutual, crossing, needs or off
       --format F          edges, txt, svg or geojson
       --stages            (svg) draw every stage
       --sequential        do not use threads (the result is the same)
@@ -250,10 +250,11 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
                     Some("paper") => Repair::Paper,
                     Some("mutual") => Repair::Mutual,
                     Some("crossing") => Repair::CrossingAware,
+                    Some("needs") => Repair::Needs,
                     Some("off") => Repair::Off,
                     other => {
                         return Err(CliError::Usage(format!(
-                            "--repair takes paper, mutual, crossing or off, not {other:?}"
+                            "--repair takes paper, mutual, crossing, needs or off, not {other:?}"
                         )))
                     }
                 }
@@ -407,6 +408,8 @@ mod tests {
         let c = parse_reconstruct(&strings(&["--local-outliers", "in.txt"])).unwrap();
         assert!(c.params.local_outliers);
         assert!(!b.params.close_gaps);
+        let d = parse_reconstruct(&strings(&["in.txt", "--repair", "needs"])).unwrap();
+        assert_eq!(d.params.repair, Repair::Needs);
         for bad in [
             &["in.txt", "--u", "2", "--adaptive"][..],
             &["in.txt", "-o", "out.png"],

@@ -1,0 +1,273 @@
+//! [`Repair::Needs`](super::Repair::Needs): a non-manifold vertex keeps a crossing whole, or
+//! else the straightest pair of edges its neighbours need, or else Algorithm 2's choice. The rule
+//! and the reason for every constant are in the documentation of [`super`].
+
+use super::{angle_at, paper_choice, PAIR_ANGLE, STRAIGHT_ANGLE};
+use crate::mesh::VertexId;
+use crate::triangulate::Triangulation;
+use alloc::vec::Vec;
+use core::cmp::Ordering;
+
+/// A neighbour's need counts only for an edge at most this many times as long as the second
+/// shortest edge of the vertex (compared squared). A curve's own edges at a sample are among its
+/// shortest (Algorithm 1 keeps each point's two shortest); at a sharp tip the chord between the
+/// two samples beside the apex takes the first place and the sides come second, so the bound is
+/// taken from the second. The slack covers sides cut into pieces of different lengths; a
+/// neighbour of degree <= 2 farther than that is the end of another curve or an outlier.
+const NEED_RATIO: f64 = 1.3;
+
+/// Pairs of neighbours `(angle, a, b)` with `a < b`: scratch space for [`choice`], reused from
+/// vertex to vertex so that the loop over vertices does not allocate.
+pub(super) type Pairs = Vec<(f64, VertexId, VertexId)>;
+
+/// What the non-manifold vertex `v` keeps ([`VertexId::INFINITE`] in unused slots). `around` is
+/// its adjacency, `degree` every vertex's degree in the graph being repaired.
+pub(super) fn choice(
+    tri: &Triangulation,
+    v: VertexId,
+    around: &[(VertexId, u32)],
+    degree: &[u32],
+    pairs: &mut Pairs,
+) -> [VertexId; 4] {
+    if let Some(crossing) = crossing(tri, v, around, pairs) {
+        return crossing;
+    }
+    match needed_pair(tri, v, around, degree) {
+        Some([a, b]) => [a, b, VertexId::INFINITE, VertexId::INFINITE],
+        None => {
+            let [a, b] = paper_choice(tri, v, around);
+            [a, b, VertexId::INFINITE, VertexId::INFINITE]
+        }
+    }
+}
+
+/// The best pair of edges at `v` holding at least one needed edge, among pairs that are straight
+/// enough for Algorithm 2 (`θ > 2π/3`) or whose edges are both needed; ranked by: straight
+/// enough, then more needed edges, then `θ` over the length of the path through `v` (the sum of
+/// the two lengths), then smaller ids. `None` when no pair qualifies.
+fn needed_pair(
+    tri: &Triangulation,
+    v: VertexId,
+    around: &[(VertexId, u32)],
+    degree: &[u32],
+) -> Option<[VertexId; 2]> {
+    let p = tri.vertex_point(v);
+    let length2 = |w: VertexId| p.dist2(tri.vertex_point(w));
+    // The two shortest squared lengths at `v` (ties count twice).
+    let (mut first, mut second) = (f64::INFINITY, f64::INFINITY);
+    for &(w, _) in around {
+        let l = length2(w);
+        if l < first {
+            second = first;
+            first = l;
+        } else if l < second {
+            second = l;
+        }
+    }
+    let bound = NEED_RATIO * NEED_RATIO * second;
+    let needed = |w: VertexId| degree[w.index()] <= 2 && length2(w) <= bound;
+    let mut best: Option<((bool, u32, f64), [VertexId; 2])> = None;
+    for (i, &(a, _)) in around.iter().enumerate() {
+        for &(b, _) in &around[i + 1..] {
+            let count = u32::from(needed(a)) + u32::from(needed(b));
+            if count == 0 {
+                continue;
+            }
+            let theta = angle_at(tri, v, a, b);
+            let straight = theta > PAIR_ANGLE;
+            if !straight && count < 2 {
+                continue;
+            }
+            let key = (
+                straight,
+                count,
+                theta / (libm::sqrt(length2(a)) + libm::sqrt(length2(b))),
+            );
+            let pair = [a.min(b), a.max(b)];
+            let better = best.is_none_or(|(k, q)| {
+                (key.0, key.1)
+                    .cmp(&(k.0, k.1))
+                    .then(key.2.total_cmp(&k.2))
+                    .then(q.cmp(&pair))
+                    == Ordering::Greater
+            });
+            if better {
+                best = Some((key, pair));
+            }
+        }
+    }
+    best.map(|(_, pair)| pair)
+}
+
+/// Two disjoint nearly straight pairs of edges through `v` (angle above [`STRAIGHT_ANGLE`]): of
+/// all such pairings, the one whose less straight pair is straightest (ties: the straighter
+/// other pair, then smaller ids). `None` when there are not two such pairs.
+fn crossing(
+    tri: &Triangulation,
+    v: VertexId,
+    around: &[(VertexId, u32)],
+    pairs: &mut Pairs,
+) -> Option<[VertexId; 4]> {
+    if around.len() < 4 {
+        return None;
+    }
+    pairs.clear();
+    for (i, &(a, _)) in around.iter().enumerate() {
+        for &(b, _) in &around[i + 1..] {
+            let theta = angle_at(tri, v, a, b);
+            if theta > STRAIGHT_ANGLE {
+                pairs.push((theta, a.min(b), a.max(b)));
+            }
+        }
+    }
+    pairs.sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then((x.1, x.2).cmp(&(y.1, y.2))));
+    let disjoint = |x: &(f64, VertexId, VertexId), y: &(f64, VertexId, VertexId)| {
+        x.1 != y.1 && x.1 != y.2 && x.2 != y.1 && x.2 != y.2
+    };
+    // In descending order, the first pair with a disjoint straighter pair before it is the
+    // weaker pair of the best pairing; its partner is the straightest such.
+    (1..pairs.len()).find_map(|q| {
+        pairs[..q]
+            .iter()
+            .find(|p| disjoint(p, &pairs[q]))
+            .map(|p| [p.1, p.2, pairs[q].1, pairs[q].2])
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::sample::{sample, Sample, Sampling, Shape};
+    use crate::{triangulate, Error, Point, Repair, Uniformity};
+    use alloc::vec::Vec;
+    use core::f64::consts::PI;
+
+    /// The proximity graph of `points` after `repair`, in input positions, sorted.
+    fn repaired(points: &[Point], repair: Repair) -> Result<Vec<[usize; 2]>, Error> {
+        let tri = triangulate(points)?;
+        let proximity = tri.proximity_graph(Uniformity::default())?;
+        Ok(proximity.repair(repair).edges())
+    }
+
+    /// Degree of every point in `edges`.
+    fn degrees(count: usize, edges: &[[usize; 2]]) -> Vec<usize> {
+        let mut degree = alloc::vec![0; count];
+        for &[a, b] in edges {
+            degree[a] += 1;
+            degree[b] += 1;
+        }
+        degree
+    }
+
+    /// A five-pointed star with 36-degree tips (corners 0, 2, 4, 6, 8 are the tips).
+    fn star(epsilon: f64) -> (Sample, Vec<usize>) {
+        let inner = libm::cos(0.4 * PI) / libm::cos(0.2 * PI);
+        let corners: Vec<Point> = (0..10)
+            .map(|k| {
+                let angle = 0.5 * PI + k as f64 * PI / 5.0;
+                let r = if k % 2 == 0 { 1.0 } else { inner };
+                Point::new(r * libm::cos(angle), r * libm::sin(angle))
+            })
+            .collect();
+        let s = sample(&[Shape::Polygon(corners.clone())], &Sampling::new(epsilon));
+        let tips = (0..5)
+            .map(|k| {
+                let tip = corners[2 * k];
+                s.points.iter().position(|&p| p == tip).unwrap()
+            })
+            .collect();
+        (s, tips)
+    }
+
+    #[test]
+    fn a_star_keeps_its_tips() -> Result<(), Error> {
+        let (s, tips) = star(0.5);
+        let paper = repaired(&s.points, Repair::Paper)?;
+        let paper_degree = degrees(s.points.len(), &paper);
+        // Algorithm 2: beside each tip the chord between the two nearest samples is their
+        // shortest edge, no side lies beyond 120 degrees from it, and the tip is cut off.
+        assert!(
+            tips.iter().all(|&t| paper_degree[t] < 2),
+            "Paper keeps a tip: {paper_degree:?}"
+        );
+        assert_eq!(repaired(&s.points, Repair::Needs)?, s.edges);
+        Ok(())
+    }
+
+    #[test]
+    fn a_vertex_keeps_the_straight_passage_its_neighbours_need() -> Result<(), Error> {
+        // Centre 0 with three neighbours of degree one: 3 is the nearest but lies 110 degrees
+        // from 2, the others' straight passage 1-0-2 is what they need.
+        let c = 0.9 * libm::cos(70f64.to_radians());
+        let s = 0.9 * libm::sin(70f64.to_radians());
+        let pts = [(0.0, 0.0), (1.0, 0.0), (-1.0, 0.0), (c, s)].map(Point::from);
+        let tri = triangulate(&pts)?;
+        let star = tri.graph_from_edges([[0, 1], [0, 2], [0, 3]]);
+        // Algorithm 2 keeps the shortest edge 0-3 and finds no partner beyond 120 degrees.
+        assert_eq!(star.repair(Repair::Paper).edges(), [[0, 3]]);
+        assert_eq!(star.repair(Repair::Needs).edges(), [[0, 1], [0, 2]]);
+        Ok(())
+    }
+
+    #[test]
+    fn a_far_neighbour_of_degree_one_needs_nothing() -> Result<(), Error> {
+        // A curve 3-1-0-2-5 whose inner points 0, 1, 2 all have a third edge; 6 hangs off 0,
+        // 160 degrees from 1 but 2.5 times as far as 0's curve edges.
+        let far = 2.5 * libm::cos(160f64.to_radians());
+        let far_y = 2.5 * libm::sin(160f64.to_radians());
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (-1.0, 0.0),
+            (2.0, 0.2),
+            (1.0, 1.0),
+            (-2.0, -0.2),
+            (far, far_y),
+            (-1.0, -1.0),
+        ]
+        .map(Point::from);
+        let tri = triangulate(&pts)?;
+        let graph = tri.graph_from_edges([[0, 1], [0, 2], [0, 6], [1, 3], [1, 4], [2, 5], [2, 7]]);
+        let kept = graph.repair(Repair::Needs).edges();
+        assert_eq!(kept, [[0, 1], [0, 2], [1, 3], [2, 5]]);
+        Ok(())
+    }
+
+    #[test]
+    fn the_choice_does_not_depend_on_the_input_order() -> Result<(), Error> {
+        let (s, _) = star(0.5);
+        let reversed: Vec<Point> = s.points.iter().rev().copied().collect();
+        let last = s.points.len() - 1;
+        let mut back: Vec<[usize; 2]> = repaired(&reversed, Repair::Needs)?
+            .into_iter()
+            .map(|[a, b]| [(last - b).min(last - a), (last - b).max(last - a)])
+            .collect();
+        back.sort_unstable();
+        assert_eq!(back, repaired(&s.points, Repair::Needs)?);
+        Ok(())
+    }
+
+    #[test]
+    fn a_plus_sign_keeps_its_four_arms() -> Result<(), Error> {
+        let pts = [(0.0, 0.0), (1.0, 0.0), (-1.1, 0.0), (0.0, 1.2), (0.0, -1.3)].map(Point::from);
+        let tri = triangulate(&pts)?;
+        let plus = tri.graph_from_edges([[0, 1], [0, 2], [0, 3], [0, 4]]);
+        assert_eq!(plus.repair(Repair::Needs).edges(), plus.edges());
+        assert_eq!(plus.repair(Repair::Paper).num_edges(), 2);
+        Ok(())
+    }
+
+    #[test]
+    fn a_figure_eight_keeps_its_crossing() -> Result<(), Error> {
+        let eight = sample(
+            &[Shape::FigureEight {
+                center: Point::new(0.0, 0.0),
+                size: 2.0,
+            }],
+            &Sampling::new(0.1),
+        );
+        let paper = repaired(&eight.points, Repair::Paper)?;
+        assert_eq!(degrees(eight.points.len(), &paper)[0], 2);
+        assert_eq!(repaired(&eight.points, Repair::Needs)?, eight.edges);
+        Ok(())
+    }
+}
