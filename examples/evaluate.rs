@@ -127,7 +127,21 @@ fn main() {
             .and_then(|i| args.get(i + 1))
             .cloned()
     };
-    let mut params = Params::default();
+    let mut params = if args.iter().any(|a| a == "--paper") {
+        Params::paper()
+    } else {
+        Params::default()
+    };
+    for (flag, on) in [("--local-outliers", true), ("--no-local-outliers", false)] {
+        if args.iter().any(|a| a == flag) {
+            params.local_outliers = on;
+        }
+    }
+    for (flag, on) in [("--close-gaps", true), ("--no-close-gaps", false)] {
+        if args.iter().any(|a| a == flag) {
+            params.close_gaps = on;
+        }
+    }
     if let Some(r) = value("--repair") {
         params.repair = match r.as_str() {
             "off" => Repair::Off,

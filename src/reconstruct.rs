@@ -46,7 +46,7 @@ use core::time::Duration;
 /// let p = Params::default();
 /// assert_eq!(p.uniformity, Uniformity::Fixed(2.75));
 /// assert_eq!(p.outlier_factor, Some(1.7));
-/// assert_eq!(p.repair, Repair::Paper);
+/// assert_eq!(p.repair, Repair::Needs);
 /// assert!(p.check().is_ok());
 /// let bad = Params { outlier_factor: Some(f64::NAN), ..p };
 /// assert!(bad.check().is_err());
@@ -64,7 +64,7 @@ pub struct Params {
     /// corner there; `docs/condt.md` (note 8) measures both orders.
     pub outliers_first: bool,
     /// Run the local outlier removal after the IQR stage and the repair, whichever order they ran
-    /// in (not in the paper; off by default): give back the edges the global rule cut along
+    /// in (not in the paper; on by default, off in [`Params::paper`]): give back the edges the global rule cut along
     /// smooth, regularly spaced passages; drop edges far longer than the others at a branch or
     /// at both ends, branches of fewer than five points, and components with fewer than five
     /// points clearly apart from everything else. A genuine curve or branch of three or four
@@ -73,8 +73,9 @@ pub struct Params {
     pub local_outliers: bool,
     /// Close gaps at loose ends after the other stages (not in the paper): join two loose ends
     /// that face each other across a short gap, two loose ends to the stranded sample they line
-    /// up through, and the two dropped arms of a crossing to the crossing. Off by
-    /// default; the rules and the reason for each constant are in `src/stages/gaps.rs`.
+    /// up through, and the two dropped arms of a crossing to the crossing. On by default, off
+    /// in [`Params::paper`]; the rules and the reason for each constant are in
+    /// `src/stages/gaps.rs`.
     pub close_gaps: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
@@ -82,9 +83,28 @@ pub struct Params {
 }
 
 impl Default for Params {
-    /// The best pipeline measured (`docs/condt.md`, "Beyond the paper").
+    /// The best pipeline measured (`docs/condt.md`, "Beyond the paper"): the paper's proximity
+    /// graph and outlier rule, with [`Repair::Needs`], then the local outlier removal and gap
+    /// closing. Every step beyond the paper has its own switch; [`Params::paper`] turns them
+    /// all off.
+    ///
+    /// ```
+    /// use condt::{Params, Repair, Stage};
+    /// let p = Params::default();
+    /// assert_eq!(p.repair, Repair::Needs);
+    /// assert!(p.local_outliers && p.close_gaps);
+    /// assert_eq!(
+    ///     p.stages(),
+    ///     vec![Stage::Proximity, Stage::Repair, Stage::Outliers, Stage::LocalOutliers, Stage::Gaps]
+    /// );
+    /// ```
     fn default() -> Self {
-        Params::paper()
+        Params {
+            repair: Repair::Needs,
+            local_outliers: true,
+            close_gaps: true,
+            ..Params::paper()
+        }
     }
 }
 
@@ -128,14 +148,14 @@ impl Params {
     ///
     /// ```
     /// use condt::{Params, Repair, Stage};
-    /// let p = Params { outliers_first: true, repair: Repair::Off, ..Params::default() };
+    /// let p = Params { outliers_first: true, repair: Repair::Off, ..Params::paper() };
     /// assert_eq!(p.stages(), vec![Stage::Proximity, Stage::Outliers]);
-    /// let local = Params { outliers_first: true, local_outliers: true, ..Params::default() };
+    /// let local = Params { outliers_first: true, local_outliers: true, ..Params::paper() };
     /// assert_eq!(
     ///     local.stages(),
     ///     vec![Stage::Proximity, Stage::Outliers, Stage::Repair, Stage::LocalOutliers]
     /// );
-    /// let q = Params { close_gaps: true, ..Params::default() };
+    /// let q = Params { close_gaps: true, ..Params::paper() };
     /// assert_eq!(q.stages().last(), Some(&Stage::Gaps));
     /// ```
     pub fn stages(&self) -> Vec<Stage> {
@@ -184,7 +204,7 @@ struct StageRecord {
 ///     println!("{}: {} edges, rule applied: {}", report.stage, report.graph.num_edges(), report.applied);
 /// }
 /// assert_eq!(result.stages().next().unwrap().stage, Stage::Proximity);
-/// assert_eq!(result.stages().count(), 3);
+/// assert_eq!(result.stages().count(), Params::default().stages().len());
 /// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Clone, Debug)]
@@ -367,7 +387,8 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
 /// ```
 /// use condt::{reconstruct_triangulation, triangulate, Params, Point};
 /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from))?;
-/// let result = reconstruct_triangulation(tri, &Params::default())?;
+/// // The paper's pipeline: the default's local outlier removal drops curves under five points.
+/// let result = reconstruct_triangulation(tri, &Params::paper())?;
 /// assert_eq!(result.edges().collect::<Vec<_>>(), vec![[0, 1], [0, 2], [1, 2]]);
 /// # Ok::<(), condt::Error>(())
 /// ```

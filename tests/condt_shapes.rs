@@ -180,11 +180,11 @@ fn figure_eight_gets_its_crossing_back_when_gaps_are_closed() {
         size: 2.0,
     };
     let s = sample(&[eight], &Sampling::new(0.1));
-    let repaired = run(&s.points, Params::default());
+    let repaired = run(&s.points, Params::paper());
     assert_eq!(repaired.degree(0), 2, "the repair cut the crossing");
     let params = Params {
         close_gaps: true,
-        ..Params::default()
+        ..Params::paper()
     };
     let r = assert_exact(
         &[Shape::FigureEight {
@@ -212,7 +212,7 @@ fn a_gap_in_a_noisy_circle_is_closed() {
         },
     );
     let gt = truth(&s);
-    let plain = run(&s.points, Params::default());
+    let plain = run(&s.points, Params::paper());
     let found = edges(&plain);
     assert_eq!(
         gt.difference(&found).count(),
@@ -224,7 +224,7 @@ fn a_gap_in_a_noisy_circle_is_closed() {
         &s.points,
         Params {
             close_gaps: true,
-            ..Params::default()
+            ..Params::paper()
         },
     );
     assert_eq!(edges(&closed), gt);
@@ -280,6 +280,7 @@ fn adaptive_uniformity_on_a_circle_and_an_arc() {
 /// indistinguishable from a noisy sample (the paper's Fig. 4b shows the same); two outliers near
 /// each other are mutual nearest neighbours, a two-point curve by ConDT's own definition. Neither
 /// can be removed by a rule on edge lengths; `docs/condt.md` measures plain uniform outliers.
+/// Reconstructed with the paper's pipeline, whose global rule these tests are about.
 fn with_outliers(fraction: f64, seed: u64) -> (Sample, Reconstruction) {
     let shapes = [
         Shape::circle(origin(), 3.0),
@@ -292,7 +293,7 @@ fn with_outliers(fraction: f64, seed: u64) -> (Sample, Reconstruction) {
         ..Sampling::new(0.15)
     };
     let s = sample(&shapes, &sampling);
-    let r = run(&s.points, Params::default());
+    let r = run(&s.points, Params::paper());
     (s, r)
 }
 
@@ -485,9 +486,10 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
                 .num_threads(workers)
                 .build()
                 .unwrap();
+            // The paper's pipeline leaves branch points, which the parallel passes must see.
             let params = Params {
                 uniformity,
-                ..Params::default()
+                ..Params::paper()
             };
             let r = pool.install(|| run(&noisy.points, params));
             branch_points += (0..r.num_points()).filter(|&i| r.degree(i) > 2).count();
@@ -495,14 +497,10 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
         }
     }
     assert!(branch_points > 0);
-    // The local outlier removal (sequential by construction) after stages that ran on rayon:
-    // `run` compares it too.
-    let params = Params {
-        local_outliers: true,
-        ..Params::default()
-    };
-    let r = run(&noisy.points, params);
-    assert!(r.stage(Stage::LocalOutliers).is_some());
+    // The default pipeline, whose later stages are sequential by construction, after stages
+    // that ran on rayon: `run` compares every stage of the two.
+    let r = run(&noisy.points, Params::default());
+    assert!(r.stage(Stage::LocalOutliers).is_some() && r.stage(Stage::Gaps).is_some());
 }
 
 /// Two noisy circles with 10 % outliers kept clear of them: the repair changes the proximity
@@ -534,7 +532,7 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
             &s.points,
             Params {
                 outliers_first,
-                ..Params::default()
+                ..Params::paper()
             },
         );
         let order: Vec<Stage> = r.stages().map(|report| report.stage).collect();
@@ -567,7 +565,7 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
         Params {
             repair: Repair::Off,
             outlier_factor: None,
-            ..Params::default()
+            ..Params::paper()
         },
     );
     assert_eq!(unrepaired.stages().count(), 1);

@@ -9,7 +9,7 @@ use std::io::{self, Write};
 /// ```
 /// use condt::{reconstruct, Params};
 /// use condt::Point;
-/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::paper())?;
 /// let mut out = Vec::new();
 /// condt::io::write_geojson(&mut out, &r)?;
 /// let text = String::from_utf8(out)?;

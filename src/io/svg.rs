@@ -91,7 +91,7 @@ fn dots(
 ///
 /// ```
 /// use condt::{reconstruct, Params, Point};
-/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::paper())?;
 /// let mut out = Vec::new();
 /// condt::io::write_svg(&mut out, &r, true)?;
 /// let svg = String::from_utf8(out)?;

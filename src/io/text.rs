@@ -8,7 +8,7 @@ use std::io::{self, Write};
 /// ```
 /// use condt::{reconstruct, Params};
 /// use condt::Point;
-/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::paper())?;
 /// let mut out = Vec::new();
 /// condt::io::write_edges(&mut out, &r)?;
 /// assert_eq!(String::from_utf8(out)?, "0 1\n0 2\n1 2\n");
@@ -26,7 +26,7 @@ pub fn write_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<(
 /// ```
 /// use condt::{reconstruct, Params};
 /// use condt::Point;
-/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::default())?;
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::paper())?;
 /// let mut out = Vec::new();
 /// condt::io::write_polylines(&mut out, &r)?;
 /// assert_eq!(String::from_utf8(out)?, "closed 0 1 2\n");

@@ -1,4 +1,4 @@
-//! Stage 4, closing gaps (not in the paper; off by default).
+//! Closing gaps at loose ends (not in the paper; on by default, off in `Params::paper`).
 //!
 //! Owns: adding edges at loose ends, the points of degree one in the graph the earlier stages
 //! left. It reads point positions, the graph and the Delaunay rings; it may not touch the

@@ -31,7 +31,7 @@ use alloc::vec::Vec;
 /// ```
 /// use condt::{Params, Stage};
 /// assert_eq!(
-///     Params::default().stages(),
+///     Params::paper().stages(),
 ///     vec![Stage::Proximity, Stage::Repair, Stage::Outliers]
 /// );
 /// assert_eq!(Stage::Repair.to_string(), "after non-manifold repair");
@@ -45,8 +45,8 @@ pub enum Stage {
     Repair,
     /// The IQR outlier removal (Algorithm 3).
     Outliers,
-    /// The local outlier removal, after the IQR stage and the repair (not in the paper; off by
-    /// default, see [`Params::local_outliers`](crate::Params::local_outliers)).
+    /// The local outlier removal, after the IQR stage and the repair (not in the paper; see
+    /// [`Params::local_outliers`](crate::Params::local_outliers)).
     LocalOutliers,
     /// Closing gaps at loose ends (not in the paper; see [`Params::close_gaps`](crate::Params::close_gaps)).
     Gaps,

@@ -15,8 +15,8 @@ condt: Delaunay triangulation and curve reconstruction of planar points
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive] [--iqr K]
                     [--no-outlier-filter] [--no-manifold-fix | --repair MODE]
-                    [--outliers-first] [--local-outliers] [--close-gaps] [--format F]
-                    [--stages] [--sequential]
+                    [--outliers-first] [--[no-]local-outliers] [--[no-]close-gaps]
+                    [--format F] [--stages] [--sequential]
   condt triangulate INPUT [-o OUTPUT] [--edges]
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
@@ -28,8 +28,11 @@ Exact duplicate points are merged into the first of them; a note on standard err
 reconstruct runs ConDT: the curves through the points. Output format by OUTPUT's extension or
 --format: `edges` (.edges: one edge `i j` per line, i < j, sorted), `txt` (.txt: one curve per
 line, `closed` or `open` then its indices; the default on standard output), `svg` (.svg: the
-points and curves; with --stages the Delaunay triangulation, the proximity graph, the graph after
-repair and the final curves side by side), `geojson` (.geojson: one LineString per curve).
+points and curves; with --stages the Delaunay triangulation and the graph after every stage that
+ran, side by side), `geojson` (.geojson: one LineString per curve).
+
+The default pipeline is the paper's (Algorithms 1-3) with the repair `needs` and two stages beyond
+the paper, local outlier removal and gap closing; --paper runs the paper's pipeline alone.
 
 Options:
   -o, --output FILE       write to FILE instead of standard output
@@ -41,15 +44,18 @@ Options:
       --iqr K             outlier factor (default 1.7)
       --no-outlier-filter skip outlier removal
       --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
-      --local-outliers    after the outlier filter and the repair, remove outliers locally:
+      --[no-]local-outliers
+                          (default on; off with --paper) after the outlier filter and the
+                          repair, remove outliers locally:
                           give back edges the filter cut along regular passages; drop edges
                           far longer than their neighbours, branches of fewer than 5 points
                           and components of fewer than 5 points clearly apart from the rest
                           (a genuine 3- or 4-point curve is lost)
-      --close-gaps        last, join loose ends that face each other across a short gap or
-                          line up through a stranded point, and a crossing's dropped arms
+      --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
+                          other across a short gap or line up through a stranded point, and a
+                          crossing's dropped arms
       --no-manifold-fix   keep every proximity edge (self-intersecting curves)
-      --repair MODE       paper (default), mutual, crossing, needs or off
+      --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
       --format F          edges, txt, svg or geojson
       --stages            (svg) draw every stage
       --sequential        do not use threads (the result is the same)
@@ -243,7 +249,9 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
             "--no-outlier-filter" => params.outlier_factor = None,
             "--outliers-first" => params.outliers_first = true,
             "--local-outliers" => params.local_outliers = true,
+            "--no-local-outliers" => params.local_outliers = false,
             "--close-gaps" => params.close_gaps = true,
+            "--no-close-gaps" => params.close_gaps = false,
             "--no-manifold-fix" => params.repair = Repair::Off,
             "--repair" => {
                 params.repair = match rest.next().map(String::as_str) {
@@ -404,10 +412,22 @@ mod tests {
             (b.format, b.params.repair, b.params.outlier_factor),
             (Format::Polylines, Repair::Off, None)
         );
-        assert!(!b.params.local_outliers, "off by default");
-        let c = parse_reconstruct(&strings(&["--local-outliers", "in.txt"])).unwrap();
-        assert!(c.params.local_outliers);
-        assert!(!b.params.close_gaps);
+        assert!(
+            b.params.local_outliers && b.params.close_gaps,
+            "on by default"
+        );
+        let c = parse_reconstruct(&strings(&[
+            "--no-local-outliers",
+            "in.txt",
+            "--no-close-gaps",
+        ]))
+        .unwrap();
+        assert!(!c.params.local_outliers && !c.params.close_gaps);
+        let paper = parse_reconstruct(&strings(&["in.txt", "--paper"])).unwrap();
+        assert_eq!(paper.params, condt::Params::paper());
+        let paper_plus =
+            parse_reconstruct(&strings(&["--close-gaps", "--paper", "in.txt"])).unwrap();
+        assert!(paper_plus.params.close_gaps && !paper_plus.params.local_outliers);
         let d = parse_reconstruct(&strings(&["in.txt", "--repair", "needs"])).unwrap();
         assert_eq!(d.params.repair, Repair::Needs);
         for bad in [
