@@ -83,6 +83,8 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::Proximity => "proximity",
         Stage::Repair => "repair",
         Stage::Outliers => "outliers",
+        Stage::LocalOutliers => "local outliers",
+        Stage::Gaps => "gaps",
         _ => "other stage",
     }
 }

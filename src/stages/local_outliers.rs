@@ -193,36 +193,36 @@ fn passage(
     regular && smooth
 }
 
-/// The two longest edges at every vertex, as (squared length, edge position); `NONE` where
+/// The squared lengths of the two longest edges at every vertex, longest first; `NONE` where
 /// there are fewer. O(edges), whatever the degrees.
 #[derive(Copy, Clone)]
-struct TwoLongest([(f64, u32); 2]);
+struct TwoLongest([f64; 2]);
 
 impl TwoLongest {
-    const NONE: (f64, u32) = (-1.0, u32::MAX);
+    const NONE: f64 = -1.0;
 
     fn of(n: usize, lengths: &[f64], edges: &[Edge]) -> Vec<TwoLongest> {
         let mut top = vec![TwoLongest([Self::NONE; 2]); n];
-        for (k, (&[a, b], &l)) in edges.iter().zip(lengths).enumerate() {
+        for (&[a, b], &l) in edges.iter().zip(lengths) {
             for v in [a, b] {
                 let t = &mut top[v.index()].0;
-                if l > t[0].0 {
-                    t[1] = t[0];
-                    t[0] = (l, k as u32);
-                } else if l > t[1].0 {
-                    t[1] = (l, k as u32);
+                if l > t[0] {
+                    *t = [l, t[0]];
+                } else if l > t[1] {
+                    t[1] = l;
                 }
             }
         }
         top
     }
 
-    /// The squared length of the longest edge other than edge `k`, if there is one (with ties,
-    /// the same length whichever edge holds the first place).
-    fn other_than(self, k: u32) -> Option<f64> {
+    /// The squared length of the longest edge other than one of squared length `l` held here,
+    /// if there is one. With ties the answer is the same whichever of the tied edges is meant:
+    /// when `l` is the longest, the other is the second (equal to `l` if another edge ties).
+    fn other_than(self, l: f64) -> Option<f64> {
         let [first, second] = self.0;
-        let other = if first.1 == k { second } else { first };
-        (other.1 != u32::MAX).then_some(other.0)
+        let other = if l == first { second } else { first };
+        (other != Self::NONE).then_some(other)
     }
 }
 
@@ -236,7 +236,7 @@ fn without_long_edges(tri: &Triangulation, edges: &[Edge], rules: &Rules) -> Vec
     // `Some(true)` when edge `k` is long at `v`; `None` when `v` has no other edge.
     let long_at = |v: VertexId, k: usize| {
         top[v.index()]
-            .other_than(k as u32)
+            .other_than(lengths[k])
             .map(|other| lengths[k] > LONG * LONG * other)
     };
     edges
@@ -261,6 +261,11 @@ fn without_long_edges(tri: &Triangulation, edges: &[Edge], rules: &Rules) -> Vec
 /// walk stops after [`MIN_SAMPLES`] steps; all are read from the same graph.
 fn without_short_spurs(tri: &Triangulation, edges: &[Edge]) -> Vec<Edge> {
     let n = tri.num_points();
+    // A spur ends at a vertex with three or more edges: without one there is none, and the
+    // adjacency need not be built (the common case once the repair has run).
+    if degrees(n, edges).iter().all(|&d| d <= 2) {
+        return edges.to_vec();
+    }
     let adjacency = Adjacency::new(n, edges);
     let degree = |v: VertexId| adjacency.incident(v).len();
     let mut dropped = vec![false; edges.len()];
@@ -330,8 +335,10 @@ fn separated_components(tri: &Triangulation, edges: &[Edge]) -> Vec<Edge> {
     let mut separated = vec![0usize; n];
     for v in tri.vertices() {
         let i = v.index();
-        if longest[i] == 0.0 {
-            continue; // no edge
+        if longest[i] == 0.0 || separated[root[i] as usize] >= MIN_SAMPLES {
+            // No edge, or the component is kept already: only whether the count reaches the
+            // bound matters, so a long curve stops walking rings after its first few samples.
+            continue;
         }
         let p = tri.vertex_point(v);
         // An unused point is its own root, so it counts as outside every component.
