@@ -51,7 +51,7 @@
 //! Delaunay ring of every vertex that has an edge.
 
 use super::Outcome;
-use crate::adjacency::{degrees, Adjacency, Edge};
+use crate::adjacency::{Adjacency, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -123,14 +123,23 @@ pub(crate) fn remove_local_outliers(
     if rules.give_back && before.len() > edges.len() {
         graph.extend(given_back(tri, edges, before));
     }
+    // Lengths, degrees and the two longest edges per vertex, shared by rules 2 to 4 and
+    // recomputed only after a rule changed the graph (on a clean curve none does).
+    let mut profile = Profile::of(tri, &graph);
     if rules.long_at_branches || rules.long_at_both_ends {
-        graph = without_long_edges(tri, &graph, rules);
+        if let Some(kept) = without_long_edges(&graph, &profile, rules) {
+            graph = kept;
+            profile = Profile::of(tri, &graph);
+        }
     }
-    if rules.short_spurs {
-        graph = without_short_spurs(tri, &graph);
+    if rules.short_spurs && profile.has_branch() {
+        if let Some(kept) = without_short_spurs(tri, &graph) {
+            graph = kept;
+            profile = Profile::of(tri, &graph);
+        }
     }
     if rules.separated_components {
-        graph = separated_components(tri, &graph);
+        graph = separated_components(tri, &graph, &profile);
     }
     if graph.as_slice() == edges {
         Outcome::UNCHANGED
@@ -193,19 +202,35 @@ fn passage(
     regular && smooth
 }
 
-/// The squared lengths of the two longest edges at every vertex, longest first; `NONE` where
-/// there are fewer. O(edges), whatever the degrees.
-#[derive(Copy, Clone)]
-struct TwoLongest([f64; 2]);
+/// What rules 2 to 4 read of a graph: every edge's squared length, and per vertex its degree and
+/// the squared lengths of its two longest edges (longest first; `NONE` where there are fewer).
+/// One pass over the edges, O(edges) whatever the degrees.
+struct Profile {
+    lengths: Vec<f64>,
+    vertices: Vec<VertexProfile>,
+}
 
-impl TwoLongest {
+#[derive(Copy, Clone)]
+struct VertexProfile {
+    top: [f64; 2],
+    degree: u32,
+}
+
+impl Profile {
     const NONE: f64 = -1.0;
 
-    fn of(n: usize, lengths: &[f64], edges: &[Edge]) -> Vec<TwoLongest> {
-        let mut top = vec![TwoLongest([Self::NONE; 2]); n];
-        for (&[a, b], &l) in edges.iter().zip(lengths) {
+    fn of(tri: &Triangulation, edges: &[Edge]) -> Profile {
+        let lengths: Vec<f64> = edges.iter().map(|&e| length2(tri, e)).collect();
+        let empty = VertexProfile {
+            top: [Self::NONE; 2],
+            degree: 0,
+        };
+        let mut vertices = vec![empty; tri.num_points()];
+        for (&[a, b], &l) in edges.iter().zip(&lengths) {
             for v in [a, b] {
-                let t = &mut top[v.index()].0;
+                let at = &mut vertices[v.index()];
+                at.degree += 1;
+                let t = &mut at.top;
                 if l > t[0] {
                     *t = [l, t[0]];
                 } else if l > t[1] {
@@ -213,59 +238,68 @@ impl TwoLongest {
                 }
             }
         }
-        top
+        Profile { lengths, vertices }
     }
 
-    /// The squared length of the longest edge other than one of squared length `l` held here,
-    /// if there is one. With ties the answer is the same whichever of the tied edges is meant:
-    /// when `l` is the longest, the other is the second (equal to `l` if another edge ties).
-    fn other_than(self, l: f64) -> Option<f64> {
-        let [first, second] = self.0;
+    /// Whether some vertex has three or more edges.
+    fn has_branch(&self) -> bool {
+        self.vertices.iter().any(|v| v.degree >= 3)
+    }
+
+    /// The squared length of the longest edge at `v` (`NONE` when it has none).
+    fn longest(&self, v: VertexId) -> f64 {
+        self.vertices[v.index()].top[0]
+    }
+
+    /// The squared length of the longest edge at `v` other than one of squared length `l` held
+    /// there, if there is one. With ties the answer is the same whichever of the tied edges is
+    /// meant: when `l` is the longest, the other is the second (equal to `l` if another ties).
+    fn other_than(&self, v: VertexId, l: f64) -> Option<f64> {
+        let [first, second] = self.vertices[v.index()].top;
         let other = if l == first { second } else { first };
         (other != Self::NONE).then_some(other)
     }
 }
 
 /// Rule 2: drops every edge long at an end with three or more edges, and every edge long at each
-/// of its ends that has other edges.
-fn without_long_edges(tri: &Triangulation, edges: &[Edge], rules: &Rules) -> Vec<Edge> {
-    let n = tri.num_points();
-    let lengths: Vec<f64> = edges.iter().map(|&e| length2(tri, e)).collect();
-    let top = TwoLongest::of(n, &lengths, edges);
-    let degree = degrees(n, edges);
+/// of its ends that has other edges; `None` when it drops none.
+fn without_long_edges(edges: &[Edge], profile: &Profile, rules: &Rules) -> Option<Vec<Edge>> {
+    let lengths = &profile.lengths;
     // `Some(true)` when edge `k` is long at `v`; `None` when `v` has no other edge.
     let long_at = |v: VertexId, k: usize| {
-        top[v.index()]
-            .other_than(lengths[k])
+        profile
+            .other_than(v, lengths[k])
             .map(|other| lengths[k] > LONG * LONG * other)
     };
-    edges
-        .iter()
-        .enumerate()
-        .filter(|&(k, &[a, b])| {
-            let (at_a, at_b) = (long_at(a, k), long_at(b, k));
-            let at_branch = (degree[a.index()] >= 3 && at_a == Some(true))
-                || (degree[b.index()] >= 3 && at_b == Some(true));
-            let at_both =
-                (at_a.is_some() || at_b.is_some()) && at_a != Some(false) && at_b != Some(false);
-            let dropped =
-                (rules.long_at_branches && at_branch) || (rules.long_at_both_ends && at_both);
-            !dropped
-        })
-        .map(|(_, &e)| e)
-        .collect()
+    let degree = |v: VertexId| profile.vertices[v.index()].degree;
+    let dropped = |k: usize, [a, b]: Edge| {
+        let (at_a, at_b) = (long_at(a, k), long_at(b, k));
+        let at_branch =
+            (degree(a) >= 3 && at_a == Some(true)) || (degree(b) >= 3 && at_b == Some(true));
+        let at_both =
+            (at_a.is_some() || at_b.is_some()) && at_a != Some(false) && at_b != Some(false);
+        (rules.long_at_branches && at_branch) || (rules.long_at_both_ends && at_both)
+    };
+    if !edges.iter().enumerate().any(|(k, &e)| dropped(k, e)) {
+        return None;
+    }
+    Some(
+        edges
+            .iter()
+            .enumerate()
+            .filter(|&(k, &e)| !dropped(k, e))
+            .map(|(_, &e)| e)
+            .collect(),
+    )
 }
 
 /// Rule 3: drops every spur of fewer than [`MIN_SAMPLES`] vertices: a chain from a vertex with
 /// one edge through vertices with two up to a vertex with three or more (not counted). Each
 /// walk stops after [`MIN_SAMPLES`] steps; all are read from the same graph.
-fn without_short_spurs(tri: &Triangulation, edges: &[Edge]) -> Vec<Edge> {
+/// `None` when it drops none. The caller skips it when no vertex has three edges: a spur ends
+/// at one, so without one there is none (the common case once the repair has run).
+fn without_short_spurs(tri: &Triangulation, edges: &[Edge]) -> Option<Vec<Edge>> {
     let n = tri.num_points();
-    // A spur ends at a vertex with three or more edges: without one there is none, and the
-    // adjacency need not be built (the common case once the repair has run).
-    if degrees(n, edges).iter().all(|&d| d <= 2) {
-        return edges.to_vec();
-    }
     let adjacency = Adjacency::new(n, edges);
     let degree = |v: VertexId| adjacency.incident(v).len();
     let mut dropped = vec![false; edges.len()];
@@ -296,12 +330,17 @@ fn without_short_spurs(tri: &Triangulation, edges: &[Edge]) -> Vec<Edge> {
             }
         }
     }
-    edges
-        .iter()
-        .zip(&dropped)
-        .filter(|&(_, &gone)| !gone)
-        .map(|(&e, _)| e)
-        .collect()
+    if !dropped.contains(&true) {
+        return None;
+    }
+    Some(
+        edges
+            .iter()
+            .zip(&dropped)
+            .filter(|&(_, &gone)| !gone)
+            .map(|(&e, _)| e)
+            .collect(),
+    )
 }
 
 /// The representative of `v`'s set, halving the path on the way.
@@ -315,15 +354,10 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
 }
 
 /// Rule 4: keeps the edges of the components with at least [`MIN_SAMPLES`] separated vertices.
-fn separated_components(tri: &Triangulation, edges: &[Edge]) -> Vec<Edge> {
+fn separated_components(tri: &Triangulation, edges: &[Edge], profile: &Profile) -> Vec<Edge> {
     let n = tri.num_points();
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    let mut longest = vec![0.0f64; n];
     for &[a, b] in edges {
-        let l = length2(tri, [a, b]);
-        for v in [a, b] {
-            longest[v.index()] = longest[v.index()].max(l);
-        }
         // The smaller root becomes the parent: the sets depend only on the edges.
         let (ra, rb) = (
             find(&mut parent, a.index() as u32),
@@ -335,7 +369,8 @@ fn separated_components(tri: &Triangulation, edges: &[Edge]) -> Vec<Edge> {
     let mut separated = vec![0usize; n];
     for v in tri.vertices() {
         let i = v.index();
-        if longest[i] == 0.0 || separated[root[i] as usize] >= MIN_SAMPLES {
+        let longest = profile.longest(v);
+        if longest < 0.0 || separated[root[i] as usize] >= MIN_SAMPLES {
             // No edge, or the component is kept already: only whether the count reaches the
             // bound matters, so a long curve stops walking rings after its first few samples.
             continue;
@@ -344,7 +379,7 @@ fn separated_components(tri: &Triangulation, edges: &[Edge]) -> Vec<Edge> {
         // An unused point is its own root, so it counts as outside every component.
         let apart = tri.mesh().neighbors(v).all(|w| {
             root[w.index()] == root[i]
-                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest[i]
+                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
         });
         separated[root[i] as usize] += usize::from(apart);
     }
