@@ -26,7 +26,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("  {i}: {around:?}");
     }
 
-    let repaired = proximity.repair(Repair::Paper);
+    // The default pipeline, one step at a time (`Repair::Paper` would be Algorithm 2).
+    let repaired = proximity.repair(Repair::Needs);
     println!("after the repair: {} edges", repaired.num_edges());
 
     let outliers = repaired.remove_outliers(1.7)?;
@@ -35,8 +36,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         outliers.graph.num_edges(),
         outliers.fired
     );
+    let local = outliers.graph.remove_local_outliers(&repaired);
+    let closed = local.close_gaps();
+    println!(
+        "after local outlier removal: {} edges; after closing gaps: {}",
+        local.num_edges(),
+        closed.num_edges()
+    );
 
-    for curve in outliers.graph.curves() {
+    for curve in closed.curves() {
         let kind = if curve.is_closed() { "closed" } else { "open" };
         println!("{kind} curve through {} points", curve.len());
     }
