@@ -471,17 +471,20 @@ fn concentric_circles_two_and_a_half_spacings_apart_are_exact() {
 }
 
 /// At two inner spacings (1.8 to 1.9 times the outer spacing) ConDT itself is exact: every
-/// sample's two nearest neighbours are on its own circle. The default loses a whole circle here
-/// (210 of 420 edges at eps 0.03, 126 of 252 at eps 0.05, every seed), so this pins the paper's
-/// result that the default should match.
+/// sample's two nearest neighbours are on its own circle. The default's local outlier removal
+/// used to delete a whole circle here (no sample of it is twice its edge length from the other
+/// circle); it now keeps any smooth, evenly spaced cycle of five or more points, so both
+/// pipelines are exact.
 #[test]
-fn paper_keeps_concentric_circles_two_spacings_apart() {
+fn both_pipelines_keep_concentric_circles_two_spacings_apart() {
     for eps in [0.03, 0.05] {
         for seed in SEEDS {
             let s = concentric(eps, 2.0, seed);
-            let label = format!("paper, concentric eps {eps} gap 2 seed {seed}");
-            let r = assert_exact(&s, Params::paper(), &label);
-            assert_eq!(r.curves().len(), 2, "{label}");
+            for (name, params) in [("paper", Params::paper()), ("default", Params::default())] {
+                let label = format!("{name}, concentric eps {eps} gap 2 seed {seed}");
+                let r = assert_exact(&s, params, &label);
+                assert_eq!(r.curves().len(), 2, "{label}");
+            }
         }
     }
 }

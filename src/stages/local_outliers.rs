@@ -36,7 +36,11 @@
 //!    [`SEPARATION`] times its own longest edge. A component keeps its edges only when at least
 //!    [`MIN_SAMPLES`] of its vertices are separated. A clump of outliers looks like a tiny curve,
 //!    but its points are about as far from the rest as from each other; a curve's samples are
-//!    much closer to each other than to anything else.
+//!    much closer to each other than to anything else. A component that fails this test is
+//!    still kept when it is a smooth, regularly spaced cycle of at least [`MIN_SAMPLES`] points
+//!    (every point with two edges at an angle above `2π/3`, within a factor [`LONG`]): a closed
+//!    curve two spacings from another one has no separated sample, and outliers almost never
+//!    close into such a cycle.
 //!
 //! What a user loses: a genuine curve of fewer than [`MIN_SAMPLES`] points (a 3-point open curve,
 //! a 4-point closed one) is always removed by rule 4, however isolated it is; so is a branch of
@@ -190,6 +194,13 @@ fn passage(
     if now_around.len() > 1 || now_around.iter().any(|&(w, _)| w != z) {
         return false;
     }
+    smooth_and_regular(tri, x, y, z)
+}
+
+/// Whether the edges from `x` to `y` and to `z` continue each other (an angle above `2π/3`,
+/// [`SMOOTH_COS`]) and are regularly spaced (the longer under [`LONG`] times the shorter): how a
+/// curve passes through one of its samples.
+fn smooth_and_regular(tri: &Triangulation, x: VertexId, y: VertexId, z: VertexId) -> bool {
     let (p, q, r) = (
         tri.vertex_point(x),
         tri.vertex_point(y),
@@ -383,11 +394,64 @@ fn separated_components(tri: &Triangulation, edges: &[Edge], profile: &Profile) 
         });
         separated[root[i] as usize] += usize::from(apart);
     }
+    let mut kept: Vec<bool> = separated.iter().map(|&c| c >= MIN_SAMPLES).collect();
+    if edges.iter().any(|&[a, _]| !kept[root[a.index()] as usize]) {
+        keep_regular_cycles(tri, edges, profile, &root, &mut kept);
+    }
     edges
         .iter()
-        .filter(|&&[a, _]| separated[root[a.index()] as usize] >= MIN_SAMPLES)
+        .filter(|&&[a, _]| kept[root[a.index()] as usize])
         .copied()
         .collect()
+}
+
+/// Marks as kept every component not kept yet that is a closed curve sampled as a curve: at
+/// least [`MIN_SAMPLES`] points, each with exactly two edges that continue each other (an angle
+/// above `2π/3`) and are regularly spaced (within a factor [`LONG`]). Reason: such a cycle is
+/// what a sampled closed curve looks like, whatever lies near it: a second curve only two or
+/// three spacings away (concentric circles) would otherwise make none of its samples separated.
+/// A clump of outliers almost never closes into a smooth, even cycle of five or more points.
+fn keep_regular_cycles(
+    tri: &Triangulation,
+    edges: &[Edge],
+    profile: &Profile,
+    root: &[u32],
+    kept: &mut [bool],
+) {
+    let n = tri.num_points();
+    // The two neighbours of every vertex of a component not kept yet (degree two is checked
+    // below, so a slot past the second is never read as valid).
+    let mut two = vec![[VertexId::INFINITE; 2]; n];
+    for &[a, b] in edges {
+        if kept[root[a.index()] as usize] {
+            continue;
+        }
+        for (v, w) in [(a, b), (b, a)] {
+            let slot = &mut two[v.index()];
+            if slot[0].is_infinite() {
+                slot[0] = w;
+            } else {
+                slot[1] = w;
+            }
+        }
+    }
+    let mut regular = vec![true; n];
+    let mut size = vec![0usize; n];
+    for v in tri.vertices() {
+        let i = v.index();
+        let r = root[i] as usize;
+        if kept[r] || profile.longest(v) < 0.0 {
+            continue;
+        }
+        size[r] += 1;
+        let [y, z] = two[i];
+        regular[r] &= profile.vertices[i].degree == 2 && smooth_and_regular(tri, v, y, z);
+    }
+    for r in 0..n {
+        if !kept[r] && size[r] >= MIN_SAMPLES && regular[r] {
+            kept[r] = true;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -526,9 +590,11 @@ mod tests {
     }
 
     /// A circle (spacing 0.063 +- 5 %), a far pair that fires the IQR rule (its threshold is
-    /// then about 0.08), and a clump of `k` outliers: a regular `k`-gon of side 0.05, each corner
-    /// with a stray outlier 0.09 farther out. The strays' edges are longer than the threshold
-    /// and are cut; the clump's are not, and it is as near to the strays as to itself.
+    /// then about 0.08), and a clump of `k` outliers: a `k`-gon of side about 0.05 whose corners
+    /// alternate between two radii (a clump, not a sampled circle: a regular heptagon would be a
+    /// smooth, even cycle, which the stage keeps as a closed curve), each corner with a stray
+    /// outlier 0.09 farther out. The strays' edges are longer than the threshold and are cut; the
+    /// clump's are not, and it is as near to the strays as to itself.
     fn circle_and_clump(k: usize) -> (Vec<Point>, core::ops::Range<usize>) {
         let mut pts = circle(Point::new(0.0, 0.0), 1.0, 100, 0.05);
         pts.extend(far_pair());
@@ -538,7 +604,8 @@ mod tests {
         for j in 0..k {
             let t = 0.3 + TAU * j as f64 / k as f64;
             let (c, s) = (libm::cos(t), libm::sin(t));
-            pts.push(Point::new(3.0 + radius * c, radius * s));
+            let r = if j % 2 == 0 { radius } else { 0.7 * radius };
+            pts.push(Point::new(3.0 + r * c, r * s));
         }
         for j in 0..k {
             let t = 0.3 + TAU * j as f64 / k as f64;
