@@ -26,7 +26,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("  {i}: {around:?}");
     }
 
-    // The default pipeline, one step at a time (`Repair::Paper` would be Algorithm 2).
+    // Every step, one at a time: the default pipeline plus the local outlier removal, which
+    // `Params::default()` leaves off (`Repair::Paper` would be Algorithm 2).
     let repaired = proximity.repair(Repair::Needs);
     println!("after the repair: {} edges", repaired.num_edges());
 

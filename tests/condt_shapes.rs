@@ -499,7 +499,11 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
     assert!(branch_points > 0);
     // The default pipeline, whose later stages are sequential by construction, after stages
     // that ran on rayon: `run` compares every stage of the two.
-    let r = run(&noisy.points, Params::default());
+    let every_step = Params {
+        local_outliers: true,
+        ..Params::default()
+    };
+    let r = run(&noisy.points, every_step);
     assert!(r.stage(Stage::LocalOutliers).is_some() && r.stage(Stage::Gaps).is_some());
 }
 

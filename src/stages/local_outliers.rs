@@ -1,5 +1,5 @@
 //! Local outlier removal, run after the global IQR rule (Algorithm 3) and the repair, whichever
-//! order they ran in. Not in the paper; on by default, off in `Params::paper`
+//! order they ran in. Not in the paper; off by default
 //! ([`Params::local_outliers`](crate::Params::local_outliers)).
 //!
 //! Owns: four local rules on the graph those stages left. It is the one stage that reads the
@@ -47,7 +47,7 @@
 //! fewer than [`MIN_SAMPLES`] points at a junction (rule 3), and a curve, or a piece of one left
 //! by an earlier stage, whose samples are not clearly closer to each other than to other points
 //! (pieces of noisy curves, the sides of a polygon the repair cut at its sharp corners). Turn the
-//! stage off (`--no-local-outliers` in the binary, or `--paper`) to keep them.
+//! stage off (the default; `--local-outliers` turns it on in the binary) to keep them.
 //!
 //! The stage is sequential and deterministic (every loop goes by vertex id or edge position), so
 //! the result is the same with `parallel` on or off. It is O(n): compressed adjacencies, a

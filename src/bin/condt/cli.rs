@@ -31,8 +31,10 @@ line, `closed` or `open` then its indices; the default on standard output), `svg
 points and curves; with --stages the Delaunay triangulation and the graph after every stage that
 ran, side by side), `geojson` (.geojson: one LineString per curve).
 
-The default pipeline is the paper's (Algorithms 1-3) with the repair `needs` and two stages beyond
-the paper, local outlier removal and gap closing; --paper runs the paper's pipeline alone.
+The default pipeline is the paper's (Algorithms 1-3) with the repair `needs` and gap closing;
+--local-outliers adds local outlier removal (for point sets with scattered outliers; it also
+removes curves under 5 points and strokes close to other curves); --paper runs the paper's
+pipeline alone.
 
 Options:
   -o, --output FILE       write to FILE instead of standard output
@@ -45,8 +47,8 @@ Options:
       --no-outlier-filter skip outlier removal
       --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
       --[no-]local-outliers
-                          (default on; off with --paper) after the outlier filter and the
-                          repair, remove outliers locally:
+                          (default off) after the outlier filter and the repair, remove
+                          outliers locally:
                           give back edges the filter cut along regular passages; drop edges
                           far longer than their neighbours, branches of fewer than 5 points
                           and components of fewer than 5 points clearly apart from the rest
@@ -413,16 +415,12 @@ mod tests {
             (Format::Polylines, Repair::Off, None)
         );
         assert!(
-            b.params.local_outliers && b.params.close_gaps,
-            "on by default"
+            !b.params.local_outliers && b.params.close_gaps,
+            "the defaults"
         );
-        let c = parse_reconstruct(&strings(&[
-            "--no-local-outliers",
-            "in.txt",
-            "--no-close-gaps",
-        ]))
-        .unwrap();
-        assert!(!c.params.local_outliers && !c.params.close_gaps);
+        let c = parse_reconstruct(&strings(&["--local-outliers", "in.txt", "--no-close-gaps"]))
+            .unwrap();
+        assert!(c.params.local_outliers && !c.params.close_gaps);
         let paper = parse_reconstruct(&strings(&["in.txt", "--paper"])).unwrap();
         assert_eq!(paper.params, condt::Params::paper());
         let paper_plus =
