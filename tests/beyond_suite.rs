@@ -6,47 +6,21 @@
 //!
 //! Where the default is exact the test says so; where it is not, the test asserts the weaker
 //! property it does keep, and the comment says what fails and by how much. Conditions where the
-//! default does something wrong (a whole circle deleted beside another two spacings away, two
-//! parallel arcs joined at their ends) have no test pinning the wrong output; the tests there are
-//! on the neighbouring cases that work and on `Params::paper()` where it is right.
+//! default does something wrong (two parallel arcs 2 to 2.5 spacings apart joined at their ends)
+//! have no test pinning the wrong output; the tests there are on the neighbouring cases that
+//! work. Tests of outlier clumps turn the local outlier removal on (`--local-outliers`), which
+//! the default leaves off.
 
+mod common;
+
+use common::{edges, run, truth};
 use condt::sample::{sample, Clumps, Sample, Sampling, Shape};
 use condt::Point;
-use condt::{reconstruct, Params, Reconstruction};
+use condt::{Params, Reconstruction};
 use std::collections::BTreeSet;
 use std::f64::consts::PI;
 
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=5;
-
-fn edges(r: &Reconstruction) -> BTreeSet<[usize; 2]> {
-    r.edges().collect()
-}
-
-fn truth(s: &Sample) -> BTreeSet<[usize; 2]> {
-    s.edges.iter().copied().collect()
-}
-
-/// Reconstructs sequentially and in parallel, checks both agree, and returns the result.
-fn run(points: &[Point], params: Params) -> Reconstruction {
-    let sequential = reconstruct(
-        points,
-        &Params {
-            parallel: false,
-            ..params
-        },
-    )
-    .unwrap();
-    let parallel = reconstruct(
-        points,
-        &Params {
-            parallel: true,
-            ..params
-        },
-    )
-    .unwrap();
-    assert_eq!(edges(&sequential), edges(&parallel));
-    sequential
-}
 
 /// The true edges the result lacks and the edges it has that are not true.
 fn diff(s: &Sample, r: &Reconstruction) -> (Vec<[usize; 2]>, Vec<[usize; 2]>) {
@@ -462,9 +436,7 @@ fn concentric(eps: f64, gap_in_spacings: f64, seed: u64) -> Sample {
 }
 
 /// A gap of 2.5 or 3 inner spacings (2.2 to 2.8 times the outer circle's spacing): exact, two
-/// closed curves. Not tested for the default: at 2 spacings the local outlier stage's component
-/// rule deletes every edge of one circle (at 1.5 to 1.8 spacings, of both), since no sample is
-/// twice its edge length from the other circle; see the next test.
+/// closed curves; the next test goes down to 2 spacings.
 #[test]
 fn concentric_circles_two_and_a_half_spacings_apart_are_exact() {
     for eps in [0.03, 0.05] {

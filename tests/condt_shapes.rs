@@ -3,60 +3,12 @@
 
 mod common;
 
-use common::Rng;
+use common::{edges, final_edges, run, stage_edges, truth, Rng};
 use condt::sample::{sample, Sample, Sampling, Shape};
 use condt::Point;
 use condt::{reconstruct, Params, Reconstruction, Repair, Stage, Uniformity};
 use std::collections::BTreeSet;
 use std::f64::consts::PI;
-
-fn edges(r: &Reconstruction) -> BTreeSet<[usize; 2]> {
-    r.edges().collect()
-}
-
-/// The final edges in the order the result lists them (sorted).
-fn final_edges(r: &Reconstruction) -> Vec<[usize; 2]> {
-    r.edges().collect()
-}
-
-/// The edges `stage` left, sorted; `None` when it did not run.
-fn stage_edges(r: &Reconstruction, stage: Stage) -> Option<Vec<[usize; 2]>> {
-    r.stage(stage).map(|report| report.graph.edges())
-}
-
-fn truth(s: &Sample) -> BTreeSet<[usize; 2]> {
-    s.edges.iter().copied().collect()
-}
-
-/// Reconstructs, checks sequential == parallel, and returns the result.
-fn run(points: &[Point], params: Params) -> Reconstruction {
-    let sequential = reconstruct(
-        points,
-        &Params {
-            parallel: false,
-            ..params
-        },
-    )
-    .unwrap();
-    let parallel = reconstruct(
-        points,
-        &Params {
-            parallel: true,
-            ..params
-        },
-    )
-    .unwrap();
-    for (ours, theirs) in sequential.stages().zip(parallel.stages()) {
-        assert_eq!(ours.stage, theirs.stage);
-        assert_eq!(ours.applied, theirs.applied);
-        assert_eq!(ours.graph.edges(), theirs.graph.edges(), "{}", ours.stage);
-    }
-    assert_eq!(sequential.stages().len(), parallel.stages().len());
-    assert_eq!(final_edges(&sequential), final_edges(&parallel));
-    assert_eq!(sequential.curves(), parallel.curves());
-    assert_eq!(sequential.unused(), parallel.unused());
-    sequential
-}
 
 fn assert_exact(shapes: &[Shape], epsilon: f64, params: Params, label: &str) -> Reconstruction {
     let s = sample(shapes, &Sampling::new(epsilon));

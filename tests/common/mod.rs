@@ -3,6 +3,8 @@
 
 use condt::mesh::VertexId;
 use condt::predicates::{is_cocircular, orient2d, Orientation};
+use condt::sample::Sample;
+use condt::{reconstruct, Params, Reconstruction, Stage};
 use condt::{Point, Triangulation};
 use std::collections::BTreeSet;
 
@@ -153,4 +155,55 @@ pub fn assert_hull_convex_and_enclosing(tri: &Triangulation) {
             );
         }
     }
+}
+
+// Reconstruction helpers shared by the pipeline tests.
+
+/// The final edges as a set.
+pub fn edges(r: &Reconstruction) -> BTreeSet<[usize; 2]> {
+    r.edges().collect()
+}
+
+/// The final edges in the order the result lists them (sorted).
+pub fn final_edges(r: &Reconstruction) -> Vec<[usize; 2]> {
+    r.edges().collect()
+}
+
+/// The edges `stage` left, sorted; `None` when it did not run.
+pub fn stage_edges(r: &Reconstruction, stage: Stage) -> Option<Vec<[usize; 2]>> {
+    r.stage(stage).map(|report| report.graph.edges())
+}
+
+pub fn truth(s: &Sample) -> BTreeSet<[usize; 2]> {
+    s.edges.iter().copied().collect()
+}
+
+/// Reconstructs, checks sequential == parallel, and returns the result.
+pub fn run(points: &[Point], params: Params) -> Reconstruction {
+    let sequential = reconstruct(
+        points,
+        &Params {
+            parallel: false,
+            ..params
+        },
+    )
+    .unwrap();
+    let parallel = reconstruct(
+        points,
+        &Params {
+            parallel: true,
+            ..params
+        },
+    )
+    .unwrap();
+    for (ours, theirs) in sequential.stages().zip(parallel.stages()) {
+        assert_eq!(ours.stage, theirs.stage);
+        assert_eq!(ours.applied, theirs.applied);
+        assert_eq!(ours.graph.edges(), theirs.graph.edges(), "{}", ours.stage);
+    }
+    assert_eq!(sequential.stages().len(), parallel.stages().len());
+    assert_eq!(final_edges(&sequential), final_edges(&parallel));
+    assert_eq!(sequential.curves(), parallel.curves());
+    assert_eq!(sequential.unused(), parallel.unused());
+    sequential
 }
