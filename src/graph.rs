@@ -36,7 +36,7 @@ use alloc::vec::Vec;
 /// assert!(proximity.num_edges() >= 4);
 /// # Ok::<(), condt::Error>(())
 /// ```
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Graph<'t> {
     tri: &'t Triangulation,
     /// Each edge once, `[a, b]` with `a < b`, in vertex ids, in the order the stage listed them.
@@ -50,6 +50,24 @@ pub struct OutlierRemoval<'t> {
     pub graph: Graph<'t>,
     /// Whether Algorithm 3's rule fired: some point had every edge longer than `2 √T`.
     pub fired: bool,
+}
+
+/// Shows the size and the edges in input positions, not the whole triangulation it borrows.
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+/// let graph = tri.graph_from_edges([[0, 1]]);
+/// assert_eq!(format!("{graph:?}"), "Graph { num_edges: 1, edges: [[0, 1]] }");
+/// # Ok::<(), condt::Error>(())
+/// ```
+impl core::fmt::Debug for Graph<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Graph")
+            .field("num_edges", &self.num_edges())
+            .field("edges", &self.edges())
+            .finish()
+    }
 }
 
 impl<'t> Graph<'t> {
