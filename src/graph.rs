@@ -8,7 +8,7 @@
 //! through `Step::run`) nor decide the order of the stages (that is
 //! [`Params::stages`](crate::Params::stages)).
 
-use crate::adjacency::{ordered, sort_pairs, CurveGraph, Edge};
+use crate::adjacency::{degrees, ordered, sort_pairs, CurveGraph, Edge};
 use crate::curve::{curves_in_input_positions, Curve};
 use crate::error::Error;
 use crate::stages::{proximity, Repair, Step, Uniformity};
@@ -100,13 +100,9 @@ impl<'t> Graph<'t> {
 
     /// The degree of every input point (exact duplicates share their point's degree).
     pub fn degrees(&self) -> Vec<usize> {
-        let mut by_vertex = alloc::vec![0usize; self.tri.num_points()];
-        for &[a, b] in self.edges.iter() {
-            by_vertex[a.index()] += 1;
-            by_vertex[b.index()] += 1;
-        }
+        let by_vertex = degrees(self.tri.num_points(), &self.edges);
         (0..self.tri.num_points())
-            .map(|i| by_vertex[self.tri.vertex(i).index()])
+            .map(|i| by_vertex[self.tri.vertex(i).index()] as usize)
             .collect()
     }
 
@@ -159,11 +155,8 @@ impl<'t> Graph<'t> {
             core::ptr::eq(self.tri, before_outliers.tri),
             "remove_local_outliers: the two graphs live on different triangulations"
         );
-        let outcome = Step::LocalOutliers.run(self.tri, &self.edges, &before_outliers.edges);
-        match outcome.edges {
-            Some(edges) => Graph::new(self.tri, Cow::Owned(edges)),
-            None => self.clone(),
-        }
+        self.step_after(Step::LocalOutliers, &before_outliers.edges)
+            .0
     }
 
     /// Closes gaps at loose ends (not in the paper; the rules are those of
@@ -193,12 +186,16 @@ impl<'t> Graph<'t> {
 
     /// Runs `step` (its parameter checked) and reports whether its rule applied.
     fn step(&self, step: Step) -> (Graph<'t>, bool) {
-        let outcome = step.run(self.tri, &self.edges, &self.edges);
-        let edges = match outcome.edges {
-            Some(edges) => Cow::Owned(edges),
-            None => self.edges.clone(),
-        };
-        (Graph::new(self.tri, edges), outcome.applied)
+        self.step_after(step, &self.edges)
+    }
+
+    /// [`Graph::step`] for a step that also reads `before_outliers`, the graph the IQR stage
+    /// started from (see `Step::run`).
+    fn step_after(&self, step: Step, before_outliers: &[Edge]) -> (Graph<'t>, bool) {
+        match step.run(self.tri, &self.edges, before_outliers).edges {
+            Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
+            None => (self.clone(), false),
+        }
     }
 }
 

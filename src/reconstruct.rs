@@ -187,9 +187,9 @@ impl Params {
 #[derive(Clone, Debug)]
 struct StageRecord {
     stage: Stage,
-    /// Its output, or `None` when it left its input as it was (no copy is stored).
+    /// Its output, or `None` when its rule did not apply and it left its input as it was (no
+    /// copy is stored).
     edges: Option<Vec<Edge>>,
-    applied: bool,
     time: Duration,
 }
 
@@ -256,7 +256,7 @@ impl Reconstruction {
             StageReport {
                 stage: record.stage,
                 graph: Graph::new(&self.triangulation, Cow::Borrowed(self.output_of(k))),
-                applied: record.applied,
+                applied: record.edges.is_some(),
                 time: record.time,
             }
         })
@@ -404,7 +404,6 @@ pub fn reconstruct_triangulation(
     records.push(StageRecord {
         stage: Stage::Proximity,
         edges: Some(proximity),
-        applied: true,
         time: clock.lap(),
     });
     for step in params.steps() {
@@ -416,7 +415,6 @@ pub fn reconstruct_triangulation(
         records.push(StageRecord {
             stage: step.stage(),
             edges: outcome.edges,
-            applied: outcome.applied,
             time: clock.lap(),
         });
     }

@@ -102,25 +102,29 @@ fn dots(
 pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> io::Result<()> {
     let pts: Vec<Point> = (0..result.num_points()).map(|i| result.point(i)).collect();
     let pts = &pts[..];
-    let delaunay: Vec<[usize; 2]> = result.triangulation().edges().collect();
-    let graphs: Vec<(&str, Vec<[usize; 2]>)> = result
-        .stages()
-        .map(|report| (report.stage.title(), report.graph.edges()))
-        .collect();
-    let last = graphs.len().saturating_sub(1);
+    // Only what is drawn: the final edges alone, or the triangulation and every stage.
+    type Titled<'a> = (&'a str, Vec<[usize; 2]>);
+    let (delaunay, graphs): (Vec<[usize; 2]>, Vec<Titled>) = if stages {
+        let graphs = result
+            .stages()
+            .map(|report| (report.stage.title(), report.graph.edges()))
+            .collect();
+        (result.triangulation().edges().collect(), graphs)
+    } else {
+        (Vec::new(), vec![("", result.edges().collect())])
+    };
+    let last = graphs.len() - 1;
     let mut layers: Vec<Layer> = Vec::new();
     if stages {
         layers.push(("Delaunay triangulation", &delaunay, "#9aa5b1"));
-        for (k, (title, edges)) in graphs.iter().enumerate() {
-            let color = match k {
-                0 => "#1f6fd1",
-                k if k == last => "#111111",
-                _ => "#1a8f3c",
-            };
-            layers.push((title, edges, color));
-        }
-    } else {
-        layers.push(("", &graphs[last].1, "#111111"));
+    }
+    for (k, (title, edges)) in graphs.iter().enumerate() {
+        let color = match k {
+            0 if stages => "#1f6fd1",
+            k if k == last => "#111111",
+            _ => "#1a8f3c",
+        };
+        layers.push((title, edges, color));
     }
     writeln!(
         out,

@@ -55,7 +55,7 @@
 //! Delaunay ring of every vertex that has an edge.
 
 use super::Outcome;
-use crate::adjacency::{Adjacency, Edge};
+use crate::adjacency::{Adjacency, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -148,10 +148,7 @@ pub(crate) fn remove_local_outliers(
     if graph.as_slice() == edges {
         Outcome::UNCHANGED
     } else {
-        Outcome {
-            edges: Some(graph),
-            applied: true,
-        }
+        Outcome { edges: Some(graph) }
     }
 }
 
@@ -396,7 +393,7 @@ fn separated_components(tri: &Triangulation, edges: &[Edge], profile: &Profile) 
     }
     let mut kept: Vec<bool> = separated.iter().map(|&c| c >= MIN_SAMPLES).collect();
     if edges.iter().any(|&[a, _]| !kept[root[a.index()] as usize]) {
-        keep_regular_cycles(tri, edges, profile, &root, &mut kept);
+        keep_regular_cycles(tri, edges, &root, &mut kept);
     }
     edges
         .iter()
@@ -411,41 +408,21 @@ fn separated_components(tri: &Triangulation, edges: &[Edge], profile: &Profile) 
 /// what a sampled closed curve looks like, whatever lies near it: a second curve only two or
 /// three spacings away (concentric circles) would otherwise make none of its samples separated.
 /// A clump of outliers almost never closes into a smooth, even cycle of five or more points.
-fn keep_regular_cycles(
-    tri: &Triangulation,
-    edges: &[Edge],
-    profile: &Profile,
-    root: &[u32],
-    kept: &mut [bool],
-) {
+fn keep_regular_cycles(tri: &Triangulation, edges: &[Edge], root: &[u32], kept: &mut [bool]) {
     let n = tri.num_points();
-    // The two neighbours of every vertex of a component not kept yet (degree two is checked
-    // below, so a slot past the second is never read as valid).
-    let mut two = vec![[VertexId::INFINITE; 2]; n];
-    for &[a, b] in edges {
-        if kept[root[a.index()] as usize] {
-            continue;
-        }
-        for (v, w) in [(a, b), (b, a)] {
-            let slot = &mut two[v.index()];
-            if slot[0].is_infinite() {
-                slot[0] = w;
-            } else {
-                slot[1] = w;
-            }
-        }
-    }
+    // Each vertex's degree and first two neighbours: all of them where the degree is two.
+    let graph = CurveGraph::new(n, edges);
     let mut regular = vec![true; n];
     let mut size = vec![0usize; n];
     for v in tri.vertices() {
         let i = v.index();
         let r = root[i] as usize;
-        if kept[r] || profile.longest(v) < 0.0 {
+        if kept[r] || graph.degree(v) == 0 {
             continue;
         }
         size[r] += 1;
-        let [y, z] = two[i];
-        regular[r] &= profile.vertices[i].degree == 2 && smooth_and_regular(tri, v, y, z);
+        let [y, z] = graph.first_two(v);
+        regular[r] &= graph.degree(v) == 2 && smooth_and_regular(tri, v, y, z);
     }
     for r in 0..n {
         if !kept[r] && size[r] >= MIN_SAMPLES && regular[r] {

@@ -117,13 +117,9 @@ impl Step {
         before_outliers: &[Edge],
     ) -> Outcome {
         match self {
-            Step::Repair(mode) => {
-                let edges = repair::repair(tri, edges, mode);
-                Outcome {
-                    applied: edges.is_some(),
-                    edges,
-                }
-            }
+            Step::Repair(mode) => Outcome {
+                edges: repair::repair(tri, edges, mode),
+            },
             Step::Outliers { factor } => outliers::remove_outliers(tri, edges, factor),
             Step::LocalOutliers => local_outliers::remove_local_outliers(
                 tri,
@@ -138,18 +134,14 @@ impl Step {
 
 /// What a stage made of its input.
 pub(crate) struct Outcome {
-    /// The new edge list, or `None` when the stage left its input as it was (stored once).
+    /// The new edge list, or `None` when the stage's rule did not apply and it left its input as
+    /// it was (stored once): no vertex needed repair, the outlier rule did not fire, no local
+    /// rule changed an edge, no gap was closed.
     pub(crate) edges: Option<Vec<Edge>>,
-    /// Whether the stage's rule applied: a vertex needed repair, the outlier rule fired, the
-    /// local outlier rules changed an edge, or a gap was closed.
-    pub(crate) applied: bool,
 }
 
 impl Outcome {
-    pub(crate) const UNCHANGED: Outcome = Outcome {
-        edges: None,
-        applied: false,
-    };
+    pub(crate) const UNCHANGED: Outcome = Outcome { edges: None };
 }
 
 /// Fewest points for which stages split their work over rayon's workers: below it, waking them

@@ -72,7 +72,6 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
                 .map(|(&edge, _)| edge)
                 .collect(),
         ),
-        applied: true,
     }
 }
 
@@ -144,7 +143,7 @@ mod tests {
             let factor = [0.0, 0.5, 1.7, 3.0][round % 4];
             let (lone, kept) = by_sorting(&tri, &edges, factor);
             let filtered = remove_outliers(&tri, &edges, factor);
-            assert_eq!(filtered.applied, lone, "{edges:?}, k = {factor}");
+            assert_eq!(filtered.edges.is_some(), lone, "{edges:?}, k = {factor}");
             assert_eq!(filtered.edges.unwrap_or(edges), kept);
             applied += usize::from(lone);
             not_applied += usize::from(!lone);
@@ -157,12 +156,12 @@ mod tests {
         // T = 1 (IQR 0): the bound is |e| > 2.
         let (tri, edges) = line_and_lone_point(1.9);
         assert!(
-            !remove_outliers(&tri, &edges, 1.7).applied,
+            remove_outliers(&tri, &edges, 1.7).edges.is_none(),
             "|e| = 1.9 <= 2: no outlier"
         );
         let (tri, edges) = line_and_lone_point(2.1);
         let filtered = remove_outliers(&tri, &edges, 1.7);
-        assert!(filtered.applied, "|e| = 2.1 > 2: an outlier");
+        assert!(filtered.edges.is_some(), "|e| = 2.1 > 2: an outlier");
         // Every unit edge survives (it equals T), the two long ones go.
         let kept = filtered.edges.expect("applied");
         assert_eq!(kept.len(), 10);
