@@ -1,7 +1,7 @@
 //! Reading point files and writing results (needs `std`).
 //!
-//! Owns: the text formats and the rule that an output file is either complete or absent. It may
-//! not compute geometry; it only moves numbers in and out.
+//! Owns: the text formats (where the bytes go is the caller's choice: the binary writes files
+//! all or nothing). It may not compute geometry; it only moves numbers in and out.
 //!
 //! Point files hold one point per line, `x y`, separated by spaces, tabs or a comma; a third
 //! column is ignored; `#` starts a comment; blank lines are skipped; LF, CRLF and CR-only line
@@ -18,8 +18,7 @@ pub use text::{write_edges, write_polylines};
 use crate::geometry::Point;
 use std::fmt;
 use std::fs;
-use std::io::{self, BufWriter, Read, Write};
-use std::path::{Path, PathBuf};
+use std::io::{self, Read};
 
 /// A problem reading or writing a file, with the file's name and, for bad content, the line.
 ///
@@ -178,46 +177,4 @@ pub fn read_points(path: &str) -> Result<Vec<Point>, IoError> {
         }
     })?;
     parse_points(&text, name)
-}
-
-/// Writes through `write` to `path` all or nothing: the bytes go to a temporary file beside it,
-/// which is renamed over `path` only once complete. `-` writes to standard output.
-///
-/// ```no_run
-/// use std::io::Write;
-/// condt::io::write_atomically("out.txt", |w| writeln!(w, "0 1 2"))?;
-/// # Ok::<(), condt::io::IoError>(())
-/// ```
-pub fn write_atomically(
-    path: &str,
-    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
-) -> Result<(), IoError> {
-    if path == "-" {
-        let stdout = io::stdout();
-        let mut out = BufWriter::new(stdout.lock());
-        return write(&mut out)
-            .and_then(|()| out.flush())
-            .map_err(|e| io_error("<stdout>", e));
-    }
-    let target = Path::new(path);
-    let temp = temporary_path(target);
-    let result = (|| {
-        let mut out = BufWriter::new(fs::File::create(&temp)?);
-        write(&mut out)?;
-        out.into_inner().map_err(|e| e.into_error())?.sync_all()?;
-        fs::rename(&temp, target)
-    })();
-    if let Err(err) = result {
-        let _ = fs::remove_file(&temp);
-        return Err(io_error(path, err));
-    }
-    Ok(())
-}
-
-fn temporary_path(target: &Path) -> PathBuf {
-    let name = target
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    target.with_file_name(format!(".{name}.{}.partial", std::process::id()))
 }

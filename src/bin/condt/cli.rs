@@ -1,44 +1,71 @@
 //! The command-line front end of the `condt` binary.
 //!
 //! Owns: argument parsing, messages and exit codes. It may not implement geometry nor check a
-//! parameter's range: it calls the library and `condt::io` and reports what they say.
+//! parameter's range: it calls the library and `condt::io` and reports what they say; where the
+//! output goes is [`crate::output`]'s business.
 
+use crate::output::{refuse_same_file, Destination};
 use condt::io::{
-    read_points, write_atomically, write_edges, write_geojson, write_polylines, write_svg, IoError,
+    parse_points, read_points, write_edges, write_geojson, write_polylines, write_svg, IoError,
 };
-use condt::{reconstruct, triangulate, Error, Params, Repair, Uniformity};
+use condt::{reconstruct, triangulate, Error, Params, Point, Repair, Uniformity};
+use std::ffi::{OsStr, OsString};
 use std::fmt;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
 
 const USAGE: &str = "\
 condt: Delaunay triangulation and curve reconstruction of planar points
 
 Usage:
-  condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive] [--iqr K]
-                    [--no-outlier-filter] [--no-manifold-fix | --repair MODE]
-                    [--outliers-first] [--[no-]local-outliers] [--[no-]close-gaps]
-                    [--format F] [--stages] [--sequential]
-  condt triangulate INPUT [-o OUTPUT] [--edges]
+  condt reconstruct INPUT [-o OUTPUT] [options]   the curves through the points (ConDT)
+  condt triangulate INPUT [-o OUTPUT] [--edges]   their Delaunay triangulation
+  condt help COMMAND                              a command's options, with an example
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
-ignored; `#` comments and blank lines are skipped); `-` reads standard input. Output goes to
-OUTPUT (written whole or not at all) or standard output: one triangle `i j k` per line,
-counter-clockwise, in input indices; with --edges one edge `i j` (i < j) per line instead.
-Exact duplicate points are merged into the first of them; a note on standard error says how many.
+ignored; `#` comments and blank lines are skipped); `-` reads standard input. Points are
+numbered from 0 in the order of their lines; every output speaks of points by that number.
+Exact duplicate points are merged into the first of them (a note on standard error says how
+many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
 
-reconstruct runs ConDT: the curves through the points. Output format by OUTPUT's extension or
---format: `edges` (.edges: one edge `i j` per line, i < j, sorted), `txt` (.txt: one curve per
-line, `closed` or `open` then its indices; the default on standard output), `svg` (.svg: the
-points and curves; with --stages the Delaunay triangulation and the graph after every stage that
-ran, side by side), `geojson` (.geojson: one LineString per curve).
+OUTPUT (`-o`) is written whole or not at all; without it, or with `-`, the result goes to
+standard output. An existing file keeps its permissions, owner, hard links and symbolic links;
+a terminal, named pipe or device is written to, never replaced. OUTPUT may not be INPUT.
+
+Exit codes: 0 success; 1 the input or output failed (the message names the file and line);
+2 a wrong command line. A reader that stops early (`| head`) ends the run silently, by SIGPIPE.
+
+Options:
+  -h, --help          show this help (`condt COMMAND --help`: that command's)
+  -V, --version       show the version
+";
+
+const RECONSTRUCT_HELP: &str = "\
+condt reconstruct: the curves through unorganized planar points (ConDT)
+
+Usage:
+  condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive]
+                    [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
+                    [--outliers-first] [--[no-]local-outliers] [--[no-]close-gaps]
+                    [--format F] [--stages] [--sequential]
+
+Example:
+  condt reconstruct examples/data/shapes.txt -o shapes.svg --stages
+
+Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j` per line,
+i < j, sorted), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
+default on standard output), `svg` (.svg: the points and curves; with --stages the Delaunay
+triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
+LineString per curve). A summary goes to standard error: points, curves, and the unused points
+(those with no edge in the result: outliers).
 
 The default pipeline is the paper's (Algorithms 1-3) with the repair `needs` and gap closing;
 --local-outliers adds local outlier removal (for point sets with scattered outliers; it also
 removes curves under 5 points and strokes close to other curves); --paper runs the paper's
-pipeline alone.
+pipeline alone. Options that contradict each other are an error.
 
 Options:
   -o, --output FILE       write to FILE instead of standard output
-      --edges             (triangulate) write edges instead of triangles
       --paper             the paper's pipeline (Algorithms 1-3 as docs/condt.md reads them)
                           instead of the default; the options below still adjust it
       --u X               uniformity parameter u (default 2.75)
@@ -56,13 +83,32 @@ Options:
       --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
                           other across a short gap or line up through a stranded point, and a
                           crossing's dropped arms
-      --no-manifold-fix   keep every proximity edge (self-intersecting curves)
+      --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
+                          --repair off
       --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
       --format F          edges, txt, svg or geojson
-      --stages            (svg) draw every stage
+      --stages            draw every stage (SVG output only)
       --sequential        do not use threads (the result is the same)
+  -h, --help              show this help
+";
+
+const TRIANGULATE_HELP: &str = "\
+condt triangulate: the Delaunay triangulation of planar points
+
+Usage:
+  condt triangulate INPUT [-o OUTPUT] [--edges]
+
+Example:
+  condt triangulate examples/data/shapes.txt --edges -o shapes.edges
+
+Writes one triangle `i j k` per line, counter-clockwise, in point numbers; with --edges one
+edge `i j` (i < j) per line instead, sorted. Points all on one line have no triangles: their
+chain of edges is written only with --edges, and a note on standard error says so.
+
+Options:
+  -o, --output FILE   write to FILE instead of standard output
+      --edges         write edges instead of triangles
   -h, --help          show this help
-  -V, --version       show the version
 ";
 
 /// Why a command failed, and with which exit code.
@@ -70,10 +116,15 @@ Options:
 pub(crate) enum CliError {
     /// The command line is wrong (exit code 2).
     Usage(String),
-    /// The input or output failed (exit code 1).
+    /// The input could not be read (exit code 1).
     Io(IoError),
     /// The points cannot be triangulated (exit code 1).
     Input(String),
+    /// The output could not be written (exit code 1).
+    File { file: String, error: io::Error },
+    /// The reader of standard output or of a pipe went away: not reported (see
+    /// [`crate::output::end_by_broken_pipe`]).
+    BrokenPipe,
 }
 
 impl CliError {
@@ -81,7 +132,8 @@ impl CliError {
     pub(crate) fn exit_code(&self) -> i32 {
         match self {
             CliError::Usage(_) => 2,
-            CliError::Io(_) | CliError::Input(_) => 1,
+            CliError::Io(_) | CliError::Input(_) | CliError::File { .. } => 1,
+            CliError::BrokenPipe => 141,
         }
     }
 }
@@ -92,6 +144,8 @@ impl fmt::Display for CliError {
             CliError::Usage(message) => write!(f, "{message}\n\nRun `condt --help` for usage."),
             CliError::Io(err) => write!(f, "{err}"),
             CliError::Input(message) => write!(f, "{message}"),
+            CliError::File { file, error } => write!(f, "{file}: {error}"),
+            CliError::BrokenPipe => write!(f, "the reader of the output went away"),
         }
     }
 }
@@ -102,80 +156,138 @@ impl From<IoError> for CliError {
     }
 }
 
+/// A line on standard error. A failing standard error (`2>/dev/full`) cannot be told about, and
+/// must not stop the run: the error is dropped.
+pub(crate) fn note(message: fmt::Arguments<'_>) {
+    let _ = writeln!(io::stderr().lock(), "condt: {message}");
+}
+
+fn usage(message: impl Into<String>) -> CliError {
+    CliError::Usage(message.into())
+}
+
+/// An argument as text, for options and their values; file names need not be text.
+fn text<'a>(arg: &'a OsStr, what: &str) -> Result<&'a str, CliError> {
+    arg.to_str()
+        .ok_or_else(|| usage(format!("{what} {}: not valid UTF-8", arg.to_string_lossy())))
+}
+
 /// Options of `condt triangulate`.
 #[derive(Debug, Default, PartialEq)]
 struct TriangulateArgs {
-    input: String,
-    output: Option<String>,
+    /// `None`: standard input.
+    input: Option<PathBuf>,
+    /// `None`: standard output.
+    output: Option<PathBuf>,
     edges: bool,
 }
 
-/// The arguments every command takes: `-o FILE`, the one INPUT; anything else starting with `-`
-/// is an unknown option.
-fn shared_argument<'a>(
-    arg: &str,
-    rest: &mut impl Iterator<Item = &'a String>,
-    output: &mut Option<String>,
-    input: &mut Option<String>,
-) -> Result<(), CliError> {
-    match arg {
-        "-o" | "--output" => {
-            let value = rest
-                .next()
-                .ok_or_else(|| CliError::Usage(format!("{arg} needs a file name")))?;
-            *output = Some(value.clone());
-        }
-        flag if flag.starts_with('-') && flag != "-" => {
-            return Err(CliError::Usage(format!("unknown option {flag}")));
-        }
-        path => {
-            if input.replace(path.to_string()).is_some() {
-                return Err(CliError::Usage(format!("unexpected extra argument {path}")));
-            }
-        }
-    }
-    Ok(())
+/// Where `-o` and INPUT go while the arguments are read.
+#[derive(Default)]
+struct Paths {
+    input: Option<OsString>,
+    output: Option<OsString>,
 }
 
-fn parse_triangulate(args: &[String]) -> Result<TriangulateArgs, CliError> {
-    let mut parsed = TriangulateArgs::default();
-    let mut input = None;
+impl Paths {
+    /// The arguments every command takes: `-o FILE`, the one INPUT; anything else starting with
+    /// `-` is an unknown option.
+    fn take<'a>(
+        &mut self,
+        arg: &'a OsStr,
+        rest: &mut impl Iterator<Item = &'a OsString>,
+    ) -> Result<(), CliError> {
+        match arg.to_str() {
+            Some(flag @ ("-o" | "--output")) => {
+                let value = rest
+                    .next()
+                    .ok_or_else(|| usage(format!("{flag} needs a file name")))?;
+                if value.is_empty() {
+                    return Err(usage(format!(
+                        "{flag} needs a file name, and was given an empty one (use - for standard output)"
+                    )));
+                }
+                if self.output.replace(value.clone()).is_some() {
+                    return Err(usage(format!("{flag} is given twice")));
+                }
+            }
+            Some(flag) if flag.starts_with('-') && flag != "-" => {
+                return Err(usage(format!("unknown option {flag}")));
+            }
+            _ => {
+                if arg.is_empty() {
+                    return Err(usage(
+                        "INPUT is an empty file name (use - for standard input)",
+                    ));
+                }
+                if self.input.replace(arg.to_os_string()).is_some() {
+                    return Err(usage(format!(
+                        "unexpected extra argument {}",
+                        arg.to_string_lossy()
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// INPUT and OUTPUT, `-` standing for the standard streams.
+    fn finish(self, command: &str) -> Result<(Option<PathBuf>, Option<PathBuf>), CliError> {
+        let input = self
+            .input
+            .ok_or_else(|| usage(format!("{command} needs an INPUT file (or -)")))?;
+        let stream = |p: OsString| (p != "-").then(|| PathBuf::from(p));
+        Ok((stream(input), self.output.and_then(stream)))
+    }
+}
+
+fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
+    let mut edges = false;
+    let mut paths = Paths::default();
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
-        match arg.as_str() {
-            "--edges" => parsed.edges = true,
-            _ => shared_argument(arg, &mut rest, &mut parsed.output, &mut input)?,
+        match arg.to_str() {
+            Some("--edges") => edges = true,
+            _ => paths.take(arg, &mut rest)?,
         }
     }
-    parsed.input =
-        input.ok_or_else(|| CliError::Usage("triangulate needs an INPUT file (or -)".into()))?;
-    Ok(parsed)
+    let (input, output) = paths.finish("triangulate")?;
+    Ok(TriangulateArgs {
+        input,
+        output,
+        edges,
+    })
 }
+
+/// What to print on standard output when the run succeeds (help, version).
+pub(crate) type Printed = String;
 
 /// Runs the tool on `args` (without the program name); `Ok` holds what to print to stdout for
 /// informational commands such as `--help`.
-pub(crate) fn run(args: &[String]) -> Result<String, CliError> {
+pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
     let Some((command, rest)) = args.split_first() else {
-        return Err(CliError::Usage("no command given".into()));
+        return Err(usage("no command given"));
     };
-    match command.as_str() {
-        "-h" | "--help" | "help" => Ok(USAGE.to_string()),
+    let asks_help = rest.iter().any(|a| a == "-h" || a == "--help");
+    match text(command, "command")? {
+        "-h" | "--help" => Ok(USAGE.to_string()),
+        "help" => match rest.first().map(|c| c.to_str()) {
+            None => Ok(USAGE.to_string()),
+            Some(Some("reconstruct")) => Ok(RECONSTRUCT_HELP.to_string()),
+            Some(Some("triangulate")) => Ok(TRIANGULATE_HELP.to_string()),
+            Some(_) => Err(usage(format!(
+                "help: unknown command {}; the commands are reconstruct and triangulate",
+                rest[0].to_string_lossy()
+            ))),
+        },
         "-V" | "--version" => Ok(format!("condt {}\n", env!("CARGO_PKG_VERSION"))),
-        "reconstruct" => {
-            if rest.iter().any(|a| a == "-h" || a == "--help") {
-                return Ok(USAGE.to_string());
-            }
-            reconstruct_command(&parse_reconstruct(rest)?)?;
-            Ok(String::new())
-        }
-        "triangulate" => {
-            if rest.iter().any(|a| a == "-h" || a == "--help") {
-                return Ok(USAGE.to_string());
-            }
-            triangulate_command(&parse_triangulate(rest)?)?;
-            Ok(String::new())
-        }
-        other => Err(CliError::Usage(format!("unknown command {other}"))),
+        "reconstruct" if asks_help => Ok(RECONSTRUCT_HELP.to_string()),
+        "triangulate" if asks_help => Ok(TRIANGULATE_HELP.to_string()),
+        "reconstruct" => reconstruct_command(parse_reconstruct(rest)?).map(|()| String::new()),
+        "triangulate" => triangulate_command(parse_triangulate(rest)?).map(|()| String::new()),
+        other => Err(usage(format!(
+            "unknown command {other}; the commands are reconstruct and triangulate"
+        ))),
     }
 }
 
@@ -198,23 +310,35 @@ impl Format {
             _ => None,
         }
     }
+
+    fn name(self) -> &'static str {
+        match self {
+            Format::Edges => "edges",
+            Format::Polylines => "txt",
+            Format::Svg => "svg",
+            Format::GeoJson => "geojson",
+        }
+    }
 }
 
 /// Options of `condt reconstruct`.
 #[derive(Debug, PartialEq)]
 struct ReconstructArgs {
-    input: String,
-    output: Option<String>,
+    /// `None`: standard input.
+    input: Option<PathBuf>,
+    /// `None`: standard output.
+    output: Option<PathBuf>,
     params: Params,
     format: Format,
     stages: bool,
 }
 
 /// The number after `flag`; whether its value is accepted is for the library to say.
-fn number(flag: &str, value: Option<&String>) -> Result<f64, CliError> {
-    let text = value.ok_or_else(|| CliError::Usage(format!("{flag} needs a number")))?;
+fn number(flag: &str, value: Option<&OsString>) -> Result<f64, CliError> {
+    let value = value.ok_or_else(|| usage(format!("{flag} needs a number")))?;
+    let text = text(value, flag)?;
     text.parse::<f64>()
-        .map_err(|_| CliError::Usage(format!("{flag} {text}: not a number")))
+        .map_err(|_| usage(format!("{flag} {text}: not a number")))
 }
 
 /// A parameter the library refused, told with the option that set it.
@@ -224,89 +348,156 @@ fn refused(err: Error) -> CliError {
         Error::InvalidParameter { name: "k", .. } => "--iqr",
         _ => "",
     };
-    CliError::Usage(format!("{flag}: {err}"))
+    usage(format!("{flag}: {err}"))
 }
 
-fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
+/// One setting that several options can make: the first option that set it is kept, so that a
+/// second one saying otherwise is reported instead of silently winning.
+struct Setting<T> {
+    value: Option<(T, String)>,
+}
+
+impl<T: PartialEq> Setting<T> {
+    fn new() -> Self {
+        Setting { value: None }
+    }
+
+    fn set(&mut self, value: T, said: impl Into<String>) -> Result<(), CliError> {
+        let said = said.into();
+        match &self.value {
+            Some((old, old_said)) if *old != value => Err(usage(format!(
+                "{old_said} and {said} contradict each other: give one of them"
+            ))),
+            Some(_) => Ok(()),
+            None => {
+                self.value = Some((value, said));
+                Ok(())
+            }
+        }
+    }
+
+    fn get(self) -> Option<T> {
+        self.value.map(|(value, _)| value)
+    }
+}
+
+const REPAIR_MODES: &str = "needs, paper, mutual, crossing or off";
+
+fn repair_mode(value: Option<&OsString>) -> Result<Repair, CliError> {
+    let value = value.ok_or_else(|| usage(format!("--repair needs a mode: {REPAIR_MODES}")))?;
+    match value.to_str() {
+        Some("paper") => Ok(Repair::Paper),
+        Some("mutual") => Ok(Repair::Mutual),
+        Some("crossing") => Ok(Repair::CrossingAware),
+        Some("needs") => Ok(Repair::Needs),
+        Some("off") => Ok(Repair::Off),
+        _ => Err(usage(format!(
+            "--repair {}: unknown mode; the modes are {REPAIR_MODES}",
+            value.to_string_lossy()
+        ))),
+    }
+}
+
+fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     // `--paper` chooses the starting point wherever it stands; the other options adjust it.
     let mut params = if args.iter().any(|a| a == "--paper") {
         Params::paper()
     } else {
         Params::default()
     };
-    let (mut input, mut output, mut format, mut stages) = (None, None, None, false);
-    let (mut fixed_u, mut adaptive) = (false, false);
+    let mut paths = Paths::default();
+    let mut uniformity = Setting::new();
+    let mut outliers = Setting::new();
+    let mut repair = Setting::new();
+    let mut local = Setting::new();
+    let mut gaps = Setting::new();
+    let mut format = Setting::new();
+    let mut stages = false;
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
-        match arg.as_str() {
-            "--u" => {
-                params.uniformity = Uniformity::Fixed(number(arg, rest.next())?);
-                fixed_u = true;
+        match arg.to_str() {
+            Some(flag @ "--u") => {
+                let u = number(flag, rest.next())?;
+                uniformity.set(Uniformity::Fixed(u), format!("--u {u}"))?;
             }
-            "--adaptive" => {
-                params.uniformity = Uniformity::Adaptive;
-                adaptive = true;
+            Some(flag @ "--adaptive") => uniformity.set(Uniformity::Adaptive, flag)?,
+            Some(flag @ "--iqr") => {
+                let k = number(flag, rest.next())?;
+                outliers.set(Some(k), format!("--iqr {k}"))?;
             }
-            "--iqr" => params.outlier_factor = Some(number(arg, rest.next())?),
-            "--no-outlier-filter" => params.outlier_factor = None,
-            "--outliers-first" => params.outliers_first = true,
-            "--local-outliers" => params.local_outliers = true,
-            "--no-local-outliers" => params.local_outliers = false,
-            "--close-gaps" => params.close_gaps = true,
-            "--no-close-gaps" => params.close_gaps = false,
-            "--no-manifold-fix" => params.repair = Repair::Off,
-            "--repair" => {
-                params.repair = match rest.next().map(String::as_str) {
-                    Some("paper") => Repair::Paper,
-                    Some("mutual") => Repair::Mutual,
-                    Some("crossing") => Repair::CrossingAware,
-                    Some("needs") => Repair::Needs,
-                    Some("off") => Repair::Off,
-                    other => {
-                        return Err(CliError::Usage(format!(
-                            "--repair takes paper, mutual, crossing, needs or off, not {other:?}"
-                        )))
-                    }
-                }
+            Some(flag @ "--no-outlier-filter") => outliers.set(None, flag)?,
+            Some("--outliers-first") => params.outliers_first = true,
+            Some(flag @ "--local-outliers") => local.set(true, flag)?,
+            Some(flag @ "--no-local-outliers") => local.set(false, flag)?,
+            Some(flag @ "--close-gaps") => gaps.set(true, flag)?,
+            Some(flag @ "--no-close-gaps") => gaps.set(false, flag)?,
+            Some(flag @ "--no-manifold-fix") => repair.set(Repair::Off, flag)?,
+            Some(flag @ "--repair") => {
+                let value = rest.next();
+                let mode = repair_mode(value)?;
+                repair.set(
+                    mode,
+                    format!(
+                        "{flag} {}",
+                        value.map_or("".into(), |v| v.to_string_lossy())
+                    ),
+                )?;
             }
-            "--format" => {
-                let name = rest
+            Some(flag @ "--format") => {
+                let value = rest
                     .next()
-                    .ok_or_else(|| CliError::Usage("--format needs a name".into()))?;
-                format = Some(
-                    Format::named(name)
-                        .ok_or_else(|| CliError::Usage(format!("unknown format {name}")))?,
-                );
+                    .ok_or_else(|| usage("--format needs a name: edges, txt, svg or geojson"))?;
+                let name = text(value, flag)?;
+                let chosen = Format::named(name).ok_or_else(|| {
+                    usage(format!(
+                        "--format {name}: unknown format; the formats are edges, txt, svg and geojson"
+                    ))
+                })?;
+                format.set(chosen, format!("--format {name}"))?;
             }
-            "--stages" => stages = true,
-            "--paper" => {}
-            "--sequential" => params.parallel = false,
-            _ => shared_argument(arg, &mut rest, &mut output, &mut input)?,
+            Some("--stages") => stages = true,
+            Some("--paper") => {}
+            Some("--sequential") => params.parallel = false,
+            _ => paths.take(arg, &mut rest)?,
         }
     }
-    if fixed_u && adaptive {
-        return Err(CliError::Usage(
-            "--u and --adaptive exclude each other".into(),
-        ));
+    if let Some(u) = uniformity.get() {
+        params.uniformity = u;
+    }
+    if let Some(k) = outliers.get() {
+        params.outlier_factor = k;
+    }
+    if let Some(mode) = repair.get() {
+        params.repair = mode;
+    }
+    if let Some(on) = local.get() {
+        params.local_outliers = on;
+    }
+    if let Some(on) = gaps.get() {
+        params.close_gaps = on;
     }
     params.check().map_err(refused)?;
-    let input =
-        input.ok_or_else(|| CliError::Usage("reconstruct needs an INPUT file (or -)".into()))?;
-    let format = match (format, output.as_deref()) {
+    let (input, output) = paths.finish("reconstruct")?;
+    let format = match (format.get(), output.as_deref()) {
         (Some(f), _) => f,
-        (None, None | Some("-")) => Format::Polylines,
+        (None, None) => Format::Polylines,
         (None, Some(path)) => {
-            let extension = std::path::Path::new(path)
-                .extension()
-                .and_then(|e| e.to_str())
-                .unwrap_or("");
+            let extension = path.extension().and_then(OsStr::to_str).unwrap_or("");
             Format::named(extension).ok_or_else(|| {
-                CliError::Usage(format!(
-                    "cannot tell the format of {path} from its extension; use --format"
+                usage(format!(
+                    "cannot tell the format of {} from its extension; use --format",
+                    path.display()
                 ))
             })?
         }
     };
+    if stages && format != Format::Svg {
+        return Err(usage(format!(
+            "--stages draws the stages in an SVG picture, but the output format is {}; \
+             use an .svg file or --format svg",
+            format.name()
+        )));
+    }
     Ok(ReconstructArgs {
         input,
         output,
@@ -316,42 +507,92 @@ fn parse_reconstruct(args: &[String]) -> Result<ReconstructArgs, CliError> {
     })
 }
 
-fn reconstruct_command(args: &ReconstructArgs) -> Result<(), CliError> {
-    let points = read_points(&args.input)?;
+/// Reads the points of INPUT (`None`: standard input).
+fn read_input(input: Option<&Path>) -> Result<Vec<Point>, CliError> {
+    let Some(path) = input else {
+        return Ok(read_points("-")?);
+    };
+    if let Some(name) = path.to_str() {
+        return Ok(read_points(name)?);
+    }
+    // The library names files by text; a name that is not UTF-8 is read here and shown lossily.
+    let shown = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|error| CliError::File {
+        file: shown.clone(),
+        error,
+    })?;
+    let text = String::from_utf8(bytes).map_err(|_| CliError::File {
+        file: shown.clone(),
+        error: io::Error::new(io::ErrorKind::InvalidData, "not UTF-8 text"),
+    })?;
+    Ok(parse_points(&text, &shown)?)
+}
+
+fn shown_input(input: Option<&Path>) -> String {
+    input.map_or("<stdin>".into(), |p| p.display().to_string())
+}
+
+/// The one rule for merged duplicates, told the same way by both commands.
+fn note_duplicates(points: usize, distinct: usize) {
+    let merged = points - distinct;
+    if merged > 0 {
+        note(format_args!(
+            "{merged} exact duplicate point(s) merged into the first point at the same position \
+             ({distinct} distinct of {points})"
+        ));
+    }
+}
+
+fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
+    refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
+    let destination = Destination::prepare(args.output.as_deref())?;
+    let points = read_input(args.input.as_deref())?;
     let result = reconstruct(&points, &args.params)
-        .map_err(|err| CliError::Input(format!("{}: {err}", args.input)))?;
-    let output = args.output.as_deref().unwrap_or("-");
-    write_atomically(output, |out| match args.format {
+        .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
+    destination.write(|out| match args.format {
         Format::Edges => write_edges(out, &result),
         Format::Polylines => write_polylines(out, &result),
         Format::Svg => write_svg(out, &result, args.stages),
         Format::GeoJson => write_geojson(out, &result),
     })?;
+    note_duplicates(points.len(), result.triangulation().num_vertices());
     let curves = result.curves();
     let closed = curves.iter().filter(|c| c.is_closed()).count();
-    eprintln!(
-        "condt: {} points, {} curves ({closed} closed, {} open), {} unused",
+    note(format_args!(
+        "{} points, {} curves ({closed} closed, {} open), {} unused",
         points.len(),
         curves.len(),
         curves.len() - closed,
         result.unused().len()
-    );
+    ));
     Ok(())
 }
 
-fn triangulate_command(args: &TriangulateArgs) -> Result<(), CliError> {
-    let points = read_points(&args.input)?;
-    let tri =
-        triangulate(&points).map_err(|err| CliError::Input(format!("{}: {err}", args.input)))?;
-    let merged = points.len() - tri.num_vertices();
-    if merged > 0 {
-        eprintln!("condt: {merged} exact duplicate point(s) merged into the first point at the same position");
+fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
+    refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
+    let destination = Destination::prepare(args.output.as_deref())?;
+    let points = read_input(args.input.as_deref())?;
+    let tri = triangulate(&points)
+        .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
+    note_duplicates(points.len(), tri.num_vertices());
+    let mut edges: Vec<_> = tri.edges().map(|[a, b]| (a, b)).collect();
+    edges.sort_unstable();
+    if !args.edges && tri.triangles().next().is_none() {
+        let distinct = tri.num_vertices();
+        if edges.is_empty() {
+            note(format_args!(
+                "no triangles and no edges: {distinct} distinct point(s)"
+            ));
+        } else {
+            note(format_args!(
+                "no triangles: the {distinct} distinct points lie on one line; \
+                 their chain of {} edge(s) is written with --edges",
+                edges.len()
+            ));
+        }
     }
-    let output = args.output.as_deref().unwrap_or("-");
-    write_atomically(output, |out| {
+    destination.write(|out| {
         if args.edges {
-            let mut edges: Vec<_> = tri.edges().map(|[a, b]| (a, b)).collect();
-            edges.sort_unstable();
             for (a, b) in edges {
                 writeln!(out, "{a} {b}")?;
             }
@@ -361,16 +602,15 @@ fn triangulate_command(args: &TriangulateArgs) -> Result<(), CliError> {
             }
         }
         Ok(())
-    })?;
-    Ok(())
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn strings(args: &[&str]) -> Vec<String> {
-        args.iter().map(|s| s.to_string()).collect()
+    fn strings(args: &[&str]) -> Vec<OsString> {
+        args.iter().map(OsString::from).collect()
     }
 
     #[test]
@@ -379,7 +619,7 @@ mod tests {
         assert_eq!(
             a,
             TriangulateArgs {
-                input: "in.txt".into(),
+                input: Some("in.txt".into()),
                 output: Some("out.txt".into()),
                 edges: true
             }

@@ -1,15 +1,36 @@
-//! The `condt` command-line tool: argument parsing and messages live in [`cli`]; everything it
-//! computes comes from the library.
+//! The `condt` command-line tool: argument parsing and messages live in [`cli`], where the
+//! output goes in [`output`]; everything it computes comes from the library.
 
 mod cli;
+mod output;
+
+use std::io::Write;
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    match cli::run(&args) {
-        Ok(text) => print!("{text}"),
-        Err(err) => {
-            eprintln!("condt: {err}");
-            std::process::exit(err.exit_code());
+    // File names need not be UTF-8: the arguments are taken as the OS gives them.
+    let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
+    let code = match cli::run(&args) {
+        Ok(text) => {
+            let mut stdout = std::io::stdout().lock();
+            match stdout
+                .write_all(text.as_bytes())
+                .and_then(|()| stdout.flush())
+            {
+                Ok(()) => 0,
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+                    output::end_by_broken_pipe()
+                }
+                Err(e) => {
+                    cli::note(format_args!("<stdout>: {e}"));
+                    1
+                }
+            }
         }
-    }
+        Err(cli::CliError::BrokenPipe) => output::end_by_broken_pipe(),
+        Err(err) => {
+            cli::note(format_args!("{err}"));
+            err.exit_code()
+        }
+    };
+    std::process::exit(code);
 }

@@ -1,0 +1,449 @@
+//! Where the result goes, and how it gets there without harming what is already at `-o`.
+//!
+//! Owns: the rule for each kind of output path, the temporary file, and its removal on errors
+//! and signals. It may not format results: the commands hand it a writer closure.
+//!
+//! The rule, by what `-o PATH` names (following symbolic links):
+//!
+//! - nothing yet, or a regular file with a single name: the result goes to a temporary file
+//!   created beside it (random name, exclusive create, so nobody can plant a file or a link
+//!   there), with the original's permissions and owner, and is renamed over it only once
+//!   complete: the path holds the old content or the whole new one, never a part;
+//! - a symbolic link: the file it finally points to is the one replaced, as above; the link
+//!   itself stays (a dangling link gets its file created);
+//! - a regular file with several hard links, or one whose owner a new file could not keep, or in
+//!   a directory where no file can be created: rewritten in place, so every name and the owner
+//!   stay; the result is fully formatted first, so only a failing disk can leave it incomplete,
+//!   and then the error says so;
+//! - anything else (a terminal, a named pipe, a character device), or a link through `/proc`
+//!   such as `/dev/stdout`: opened and written as it is (appended to, for a regular file behind
+//!   such a link), never created, truncated or replaced;
+//! - a directory: an error.
+//!
+//! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
+//! (the process then ends by that signal, as it would have); SIGKILL cannot be caught, so
+//! `kill -9` may leave a `.NAME.XXXXXX.partial` file beside the output.
+
+use std::fs::{self, File};
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use crate::cli::CliError;
+
+/// Where the output goes, found and prepared before any work is done, so that an output that
+/// cannot be written is reported at once instead of after the computation.
+pub(crate) enum Destination {
+    /// Standard output.
+    Stdout,
+    /// A new or single-named regular file: written to `temp`, then renamed to `target`.
+    Replace {
+        temp: signals::Temp,
+        target: PathBuf,
+        shown: String,
+    },
+    /// A regular file rewritten where it is (hard links, or an owner a new file cannot keep).
+    InPlace { path: PathBuf, shown: String },
+    /// A terminal, pipe or device: written as it is.
+    Direct { path: PathBuf, shown: String },
+}
+
+fn file_error(shown: &str, error: io::Error) -> CliError {
+    CliError::File {
+        file: shown.to_string(),
+        error,
+    }
+}
+
+/// Follows `path` through symbolic links to the name of the file they finally lead to, which
+/// need not exist. A relative link is read from the directory holding it. `None` when a link
+/// leads through `/proc` (`/dev/stdout`, `/dev/fd/N`): those name an open stream, not a place
+/// to put a file.
+fn resolve_links(path: &Path) -> io::Result<Option<PathBuf>> {
+    let mut current = path.to_path_buf();
+    // The kernel gives up after 40 links; so do we.
+    for _ in 0..40 {
+        match fs::symlink_metadata(&current) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let link = fs::read_link(&current)?;
+                current = match current.parent() {
+                    Some(dir) if link.is_relative() => dir.join(link),
+                    _ => link,
+                };
+                if current.starts_with("/proc") {
+                    return Ok(None);
+                }
+            }
+            _ => return Ok(Some(current)),
+        }
+    }
+    Err(io::Error::other("too many levels of symbolic links"))
+}
+
+/// The directory a file named `path` lives in (`.` for a bare name).
+fn directory_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir,
+        _ => Path::new("."),
+    }
+}
+
+/// A temporary file beside `target`, hidden and named after it, registered for removal on a
+/// signal before anyone can see it.
+fn temporary_beside(target: &Path, mode: Option<&fs::Metadata>) -> io::Result<signals::Temp> {
+    let name = target
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".partial");
+    #[cfg(unix)]
+    if mode.is_none() {
+        // A new file gets what any new file would: 0666 less the umask, applied by the kernel.
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(fs::Permissions::from_mode(0o666));
+    }
+    let _ = mode;
+    signals::Temp::create(|| builder.tempfile_in(directory_of(target)))
+}
+
+/// Gives the temporary file the original's owner and permissions; `false` when the owner cannot
+/// be kept (a user writing another user's file), in which case the caller writes in place.
+fn take_over_attributes(temp: &File, original: &fs::Metadata) -> io::Result<bool> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let ours = temp.metadata()?;
+        if (ours.uid(), ours.gid()) != (original.uid(), original.gid())
+            && std::os::unix::fs::fchown(temp, Some(original.uid()), Some(original.gid())).is_err()
+        {
+            return Ok(false);
+        }
+    }
+    temp.set_permissions(original.permissions())?;
+    Ok(true)
+}
+
+#[cfg(unix)]
+fn has_other_names(meta: &fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    meta.nlink() > 1
+}
+
+#[cfg(not(unix))]
+fn has_other_names(_meta: &fs::Metadata) -> bool {
+    false
+}
+
+#[cfg(unix)]
+fn same_file(a: &fs::Metadata, b: &fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    (a.dev(), a.ino()) == (b.dev(), b.ino())
+}
+
+#[cfg(not(unix))]
+fn same_file(_a: &fs::Metadata, _b: &fs::Metadata) -> bool {
+    false
+}
+
+/// The metadata of the file standard input reads, when it is one.
+fn stdin_metadata() -> Option<fs::Metadata> {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        let fd = io::stdin().as_fd().try_clone_to_owned().ok()?;
+        File::from(fd).metadata().ok()
+    }
+    #[cfg(not(unix))]
+    None
+}
+
+/// Refuses an output that is the input file itself (by device and inode, so another path, a
+/// symbolic or a hard link to it count too): it would be replaced before it could be compared.
+/// `input` of `None` is standard input.
+pub(crate) fn refuse_same_file(
+    input: Option<&Path>,
+    output: Option<&Path>,
+) -> Result<(), CliError> {
+    let Some(output) = output else { return Ok(()) };
+    let Ok(out_meta) = fs::metadata(output) else {
+        return Ok(());
+    };
+    if !out_meta.is_file() {
+        return Ok(());
+    }
+    let in_meta = match input {
+        Some(path) => fs::metadata(path).ok(),
+        None => stdin_metadata(),
+    };
+    match in_meta {
+        Some(in_meta) if in_meta.is_file() && same_file(&in_meta, &out_meta) => {
+            let input_name = input.map_or("<stdin>".into(), |p| p.display().to_string());
+            Err(CliError::Usage(format!(
+                "the output {} is the input file {input_name}; write to another file",
+                output.display()
+            )))
+        }
+        _ => Ok(()),
+    }
+}
+
+impl Destination {
+    /// Finds out what `path` names (`None`: standard output) and, for a file to be replaced,
+    /// creates the temporary file now.
+    pub(crate) fn prepare(path: Option<&Path>) -> Result<Destination, CliError> {
+        let Some(path) = path else {
+            return Ok(Destination::Stdout);
+        };
+        let shown = path.display().to_string();
+        match fs::metadata(path) {
+            Ok(meta) if meta.is_dir() => Err(file_error(
+                &shown,
+                io::Error::other("is a directory; -o needs a file name"),
+            )),
+            Ok(meta) if meta.is_file() => {
+                let Some(target) = resolve_links(path).map_err(|e| file_error(&shown, e))? else {
+                    return Ok(Destination::Direct {
+                        path: path.to_path_buf(),
+                        shown,
+                    });
+                };
+                if has_other_names(&meta) {
+                    // Renaming would part this name from the others: write into the file.
+                    return Ok(Destination::InPlace {
+                        path: path.to_path_buf(),
+                        shown,
+                    });
+                }
+                let temp = match temporary_beside(&target, Some(&meta)) {
+                    Ok(temp) => temp,
+                    // A writable file in a directory we may not add to: write it as `>` would.
+                    Err(e) if e.kind() == io::ErrorKind::PermissionDenied => {
+                        return Ok(Destination::InPlace {
+                            path: path.to_path_buf(),
+                            shown,
+                        })
+                    }
+                    Err(e) => return Err(file_error(&shown, e)),
+                };
+                match take_over_attributes(temp.as_file(), &meta) {
+                    Ok(true) => Ok(Destination::Replace {
+                        temp,
+                        target,
+                        shown,
+                    }),
+                    Ok(false) => Ok(Destination::InPlace {
+                        path: path.to_path_buf(),
+                        shown,
+                    }),
+                    Err(e) => Err(file_error(&shown, e)),
+                }
+            }
+            Ok(_) => Ok(Destination::Direct {
+                path: path.to_path_buf(),
+                shown,
+            }),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {
+                let Some(target) = resolve_links(path).map_err(|e| file_error(&shown, e))? else {
+                    return Err(file_error(&shown, e));
+                };
+                let temp = temporary_beside(&target, None).map_err(|e| file_error(&shown, e))?;
+                Ok(Destination::Replace {
+                    temp,
+                    target,
+                    shown,
+                })
+            }
+            Err(e) => Err(file_error(&shown, e)),
+        }
+    }
+
+    /// Writes the output through `write` and puts it in place. On an error nothing is left of
+    /// the temporary file and a replaced file keeps its old content.
+    pub(crate) fn write(
+        self,
+        write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+    ) -> Result<(), CliError> {
+        match self {
+            Destination::Stdout => {
+                let stdout = io::stdout();
+                let mut out = BufWriter::new(stdout.lock());
+                write(&mut out)
+                    .and_then(|()| out.flush())
+                    .map_err(|e| stream_error("<stdout>", e))
+            }
+            Destination::Direct { path, shown } => {
+                // No create, no truncate: a device or a pipe is written, never made or cut; a
+                // regular file reached as a stream (`-o /dev/stdout >> log`) is appended to, as
+                // the stream would be.
+                let file = fs::OpenOptions::new()
+                    .append(true)
+                    .open(&path)
+                    .map_err(|e| file_error(&shown, e))?;
+                let mut out = BufWriter::new(file);
+                write(&mut out)
+                    .and_then(|()| out.flush())
+                    .map_err(|e| stream_error(&shown, e))
+            }
+            Destination::InPlace { path, shown } => {
+                let mut bytes = Vec::new();
+                write(&mut bytes).map_err(|e| file_error(&shown, e))?;
+                let mut file = fs::OpenOptions::new()
+                    .write(true)
+                    .open(&path)
+                    .map_err(|e| file_error(&shown, e))?;
+                // Overwrite first and cut the tail after, so a failure before the first byte
+                // leaves the old content whole.
+                file.write_all(&bytes)
+                    .and_then(|()| file.set_len(bytes.len() as u64))
+                    .and_then(|()| file.sync_all())
+                    .map_err(|e| {
+                        file_error(
+                            &shown,
+                            io::Error::new(
+                                e.kind(),
+                                format!(
+                                    "{e} (it was being rewritten in place and may be incomplete)"
+                                ),
+                            ),
+                        )
+                    })
+            }
+            Destination::Replace {
+                temp,
+                target,
+                shown,
+            } => {
+                let result = (|| {
+                    let mut out = BufWriter::new(temp.as_file());
+                    write(&mut out)?;
+                    out.flush()?;
+                    drop(out);
+                    temp.as_file().sync_all()
+                })();
+                match result {
+                    Ok(()) => temp.persist(&target).map_err(|e| file_error(&shown, e)),
+                    Err(e) => Err(file_error(&shown, e)),
+                }
+            }
+        }
+    }
+}
+
+/// A write error on a stream: a reader that went away (`| head`) is not an error to report.
+fn stream_error(shown: &str, error: io::Error) -> CliError {
+    if error.kind() == io::ErrorKind::BrokenPipe {
+        CliError::BrokenPipe
+    } else {
+        file_error(shown, error)
+    }
+}
+
+/// Removal of the temporary file when a signal ends the run.
+mod signals {
+    use std::io;
+    use std::path::{Path, PathBuf};
+    use std::sync::{Mutex, Once};
+
+    /// The temporary file alive now, if any. Holding the lock while a file is created or renamed
+    /// keeps the signal thread from acting halfway.
+    static PENDING: Mutex<Option<PathBuf>> = Mutex::new(None);
+
+    fn pending() -> std::sync::MutexGuard<'static, Option<PathBuf>> {
+        PENDING
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+    }
+
+    /// A temporary file known to the signal thread; dropping it removes the file and the record.
+    pub(crate) struct Temp {
+        file: Option<tempfile::NamedTempFile>,
+    }
+
+    impl Temp {
+        /// Creates a temporary file through `create` and records it for removal on a signal.
+        pub(super) fn create(
+            create: impl FnOnce() -> io::Result<tempfile::NamedTempFile>,
+        ) -> io::Result<Temp> {
+            install();
+            let mut slot = pending();
+            let file = create()?;
+            *slot = Some(file.path().to_path_buf());
+            Ok(Temp { file: Some(file) })
+        }
+
+        pub(super) fn as_file(&self) -> &std::fs::File {
+            self.file
+                .as_ref()
+                .expect("present until persisted or dropped")
+                .as_file()
+        }
+
+        /// Renames the temporary file to `target`; afterwards a signal has nothing to remove.
+        pub(super) fn persist(mut self, target: &Path) -> io::Result<()> {
+            let mut slot = pending();
+            let file = self
+                .file
+                .take()
+                .expect("present until persisted or dropped");
+            // On failure `persist` hands the file back inside the error, dropped here: removed.
+            let result = file.persist(target).map(drop).map_err(|e| e.error);
+            *slot = None;
+            result
+        }
+    }
+
+    impl Drop for Temp {
+        fn drop(&mut self) {
+            if let Some(file) = self.file.take() {
+                let mut slot = pending();
+                drop(file);
+                *slot = None;
+            }
+        }
+    }
+
+    /// Starts, once, the thread that waits for SIGINT, SIGTERM and SIGHUP, removes the pending
+    /// temporary file and then ends the process by the same signal, as if it had not been
+    /// caught (so a shell sees an interrupted run).
+    #[cfg(unix)]
+    fn install() {
+        use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+        static ONCE: Once = Once::new();
+        ONCE.call_once(|| {
+            let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])
+            else {
+                return;
+            };
+            let _ = std::thread::Builder::new()
+                .name("condt-signals".into())
+                .spawn(move || {
+                    if let Some(signal) = signals.forever().next() {
+                        let slot = pending();
+                        if let Some(path) = slot.as_ref() {
+                            let _ = std::fs::remove_file(path);
+                        }
+                        let _ = signal_hook::low_level::emulate_default_handler(signal);
+                        // Not reached unless the default action could not be restored.
+                        std::process::exit(128 + signal);
+                    }
+                });
+        });
+    }
+
+    #[cfg(not(unix))]
+    fn install() {
+        static ONCE: Once = Once::new();
+        ONCE.call_once(|| {});
+    }
+}
+
+/// Ends the process as a Unix tool does when its reader has gone (`condt … | head`): silently,
+/// by SIGPIPE, so a shell sees status 141.
+pub(crate) fn end_by_broken_pipe() -> ! {
+    #[cfg(unix)]
+    {
+        let _ = signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGPIPE);
+    }
+    std::process::exit(141)
+}
