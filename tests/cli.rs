@@ -1,11 +1,17 @@
-//! The `condt` binary: input formats, outputs, errors and exit codes.
+//! The `condt` binary: input formats, outputs, messages, errors and exit codes (where `-o`
+//! writes is in cli_output.rs).
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
+/// The binary under test: this build's, or `CONDT_TEST_BIN` (to show a test fails on another).
+fn binary() -> std::ffi::OsString {
+    std::env::var_os("CONDT_TEST_BIN").unwrap_or_else(|| env!("CARGO_BIN_EXE_condt").into())
+}
+
 fn condt(args: &[&str], stdin: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_condt"))
+    let mut child = Command::new(binary())
         .args(args)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
@@ -28,10 +34,13 @@ fn data(name: &str) -> String {
         .into_owned()
 }
 
-fn scratch_dir(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("condt-cli-{}-{test}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh directory, removed with everything in it when the guard is dropped (also when the
+/// test fails).
+fn scratch_dir() -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix("condt-cli-")
+        .tempdir()
+        .unwrap()
 }
 
 fn lines(out: &[u8]) -> Vec<Vec<usize>> {
@@ -89,7 +98,8 @@ fn crlf_commas_comments_and_a_duplicate() {
 
 #[test]
 fn a_malformed_line_is_reported_by_file_and_line_and_nothing_is_written() {
-    let dir = scratch_dir("malformed");
+    let scratch = scratch_dir();
+    let dir = scratch.path();
     let target = dir.join("out.txt");
     std::fs::write(&target, "previous content\n").unwrap();
     let input = data("malformed_line3.txt");
@@ -103,7 +113,7 @@ fn a_malformed_line_is_reported_by_file_and_line_and_nothing_is_written() {
         "previous content\n"
     );
     assert_eq!(
-        std::fs::read_dir(&dir).unwrap().count(),
+        std::fs::read_dir(dir).unwrap().count(),
         1,
         "no temporary file is left behind"
     );
@@ -111,7 +121,8 @@ fn a_malformed_line_is_reported_by_file_and_line_and_nothing_is_written() {
 
 #[test]
 fn output_file_is_complete_and_temporary_files_are_gone() {
-    let dir = scratch_dir("output");
+    let scratch = scratch_dir();
+    let dir = scratch.path();
     let target = dir.join("edges.txt");
     let out = condt(
         &[
@@ -125,7 +136,7 @@ fn output_file_is_complete_and_temporary_files_are_gone() {
     );
     assert!(out.status.success());
     assert_eq!(std::fs::read_to_string(&target).unwrap(), "0 1\n0 2\n1 2\n");
-    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+    assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
 }
 
 #[test]
@@ -157,17 +168,188 @@ fn collinear_input_has_edges_but_no_triangles() {
     let out = condt(&["triangulate", "-"], "0 0\n2 2\n1 1\n");
     assert!(out.status.success());
     assert!(out.stdout.is_empty());
+    // An empty output is explained: where the chain is.
+    let note = String::from_utf8_lossy(&out.stderr);
+    assert!(note.contains("no triangles"), "{note}");
+    assert!(note.contains("2 edge(s) is written with --edges"), "{note}");
     let out = condt(&["triangulate", "-", "--edges"], "0 0\n2 2\n1 1\n");
     assert_eq!(lines(&out.stdout), vec![vec![0, 2], vec![1, 2]]);
+    assert!(
+        out.stderr.is_empty(),
+        "the chain is there: nothing to explain"
+    );
+    // Triangles, and no note.
+    let out = condt(&["triangulate", "-"], "0 0\n2 2\n1 0\n");
+    assert_eq!(lines(&out.stdout).len(), 1);
+    assert!(out.stderr.is_empty());
+    // One distinct point has neither.
+    let out = condt(&["triangulate", "-"], "1 1\n1 1\n");
+    let note = String::from_utf8_lossy(&out.stderr);
+    assert!(note.contains("no triangles and no edges"), "{note}");
 }
 
 #[test]
 fn help_and_version() {
     let out = condt(&["--help"], "");
     assert!(out.status.success());
-    assert!(String::from_utf8_lossy(&out.stdout).contains("triangulate INPUT"));
+    let global = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(global.contains("triangulate INPUT"));
     let out = condt(&["--version"], "");
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("condt "));
+    // Each command has its own help, with an example, however it is asked for.
+    for (command, own) in [("reconstruct", "--repair MODE"), ("triangulate", "--edges")] {
+        let mut seen = Vec::new();
+        for args in [
+            &[command, "--help"][..],
+            &[command, "-h"],
+            &[command, "in.txt", "--help"],
+            &["help", command],
+        ] {
+            let out = condt(args, "");
+            assert!(out.status.success(), "{args:?}");
+            let text = String::from_utf8_lossy(&out.stdout).into_owned();
+            assert!(
+                text.starts_with(&format!("condt {command}:")),
+                "{args:?}: {text}"
+            );
+            assert!(text.contains(own), "{args:?}");
+            assert!(
+                text.contains(&format!("Example:\n  condt {command} ")),
+                "{args:?}"
+            );
+            assert_ne!(text, global);
+            seen.push(text);
+        }
+        assert!(seen.windows(2).all(|w| w[0] == w[1]));
+    }
+    let out = condt(&["help", "frobnicate"], "");
+    assert_eq!(out.status.code(), Some(2));
+}
+
+/// Runs a command line expected to be refused, and returns what it said.
+fn refused(args: &[&str]) -> String {
+    let out = condt(args, "0 0\n1 0\n0 1\n");
+    let said = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {said}");
+    assert!(out.stdout.is_empty(), "{args:?}");
+    said
+}
+
+#[test]
+fn a_wrong_value_is_answered_with_the_choices() {
+    let said = refused(&["reconstruct", "-", "--repair", "bogus"]);
+    assert!(said.contains("--repair bogus"), "{said}");
+    assert!(!said.contains("Some("), "{said}");
+    for mode in ["needs", "paper", "mutual", "crossing", "off"] {
+        assert!(said.contains(mode), "{said}");
+    }
+    let said = refused(&["reconstruct", "-", "--repair"]);
+    assert!(
+        said.contains("needs, paper, mutual, crossing or off"),
+        "{said}"
+    );
+    let said = refused(&["reconstruct", "-", "--format", "png"]);
+    assert!(said.contains("edges, txt, svg and geojson"), "{said}");
+}
+
+#[test]
+fn options_that_contradict_each_other_are_refused() {
+    for (a, b) in [
+        (&["--no-manifold-fix"][..], &["--repair", "mutual"][..]),
+        (&["--repair", "paper"], &["--repair", "crossing"]),
+        (&["--u", "2"], &["--adaptive"]),
+        (&["--iqr", "2"], &["--no-outlier-filter"]),
+        (&["--close-gaps"], &["--no-close-gaps"]),
+        (&["--local-outliers"], &["--no-local-outliers"]),
+        (&["--format", "svg"], &["--format", "edges"]),
+    ] {
+        for args in [[a, b].concat(), [b, a].concat()] {
+            let mut line = vec!["reconstruct", "-"];
+            line.extend(&args);
+            let said = refused(&line);
+            assert!(
+                said.contains("contradict") || said.contains("exclude"),
+                "{line:?}: {said}"
+            );
+        }
+    }
+    // Saying the same thing twice, or what --paper already says, is no contradiction.
+    for args in [
+        &["--no-manifold-fix", "--repair", "off"][..],
+        &["--paper", "--repair", "paper"],
+        &["--close-gaps", "--close-gaps"],
+    ] {
+        let mut line = vec!["reconstruct", "-"];
+        line.extend(args);
+        let out = condt(&line, &circle_input(12));
+        assert!(
+            out.status.success(),
+            "{line:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
+#[test]
+fn stages_need_an_svg_and_an_empty_output_name_is_explained() {
+    for args in [
+        &["reconstruct", "-", "--stages"][..],
+        &["reconstruct", "-", "--stages", "-o", "out.txt"],
+        &["reconstruct", "-", "--stages", "--format", "geojson"],
+    ] {
+        let said = refused(args);
+        assert!(said.contains("--stages"), "{args:?}: {said}");
+        assert!(said.contains("svg"), "{args:?}: {said}");
+    }
+    let out = condt(
+        &["reconstruct", "-", "--stages", "--format", "svg"],
+        &circle_input(12),
+    );
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("<svg"));
+    for command in ["reconstruct", "triangulate"] {
+        let said = refused(&[command, "-", "-o", ""]);
+        assert!(said.contains("empty"), "{said}");
+        assert!(!said.contains("No such file"), "{said}");
+    }
+    let said = refused(&["triangulate", "-", "-o", "a.txt", "-o", "b.txt"]);
+    assert!(said.contains("twice"), "{said}");
+}
+
+#[test]
+fn merged_duplicates_are_told_the_same_way_by_both_commands() {
+    // All ten points the same: one distinct point, no edge, so all ten input points are unused.
+    let same = "1 1\n".repeat(10);
+    // Two duplicates among others: a duplicate of a point on the curve is used with it; the lone
+    // point far away is the one unused point.
+    // (The outlier filter drops the long edge to 2 2: one open curve 1 0 2.)
+    let some = "0 0\n1 0\n0 1\n0 0\n1 0\n2 2\n";
+    for (input, merged, distinct, total, unused) in [(&same[..], 9, 1, 10, 10), (some, 2, 4, 6, 1)]
+    {
+        let note = format!(
+            "{merged} exact duplicate point(s) merged into the first point at the same position \
+             ({distinct} distinct of {total})"
+        );
+        for command in ["triangulate", "reconstruct"] {
+            let out = condt(&[command, "-"], input);
+            assert!(out.status.success());
+            let said = String::from_utf8_lossy(&out.stderr);
+            assert!(said.contains(&note), "{command}: {said}");
+            if command == "reconstruct" {
+                let summary = format!("{total} points, ");
+                assert!(said.contains(&summary), "{said}");
+                assert!(said.contains(&format!("), {unused} unused")), "{said}");
+                // A curve lists each point once, under the first of its duplicates.
+                for curve in String::from_utf8_lossy(&out.stdout).lines() {
+                    let indices: Vec<&str> = curve.split(' ').skip(1).collect();
+                    assert!(
+                        indices.iter().all(|i| ["0", "1", "2"].contains(i)),
+                        "{curve}"
+                    );
+                }
+            }
+        }
+    }
 }
 
 fn circle_input(n: usize) -> String {
@@ -196,7 +378,8 @@ fn reconstruct_writes_polylines_to_stdout_by_default() {
 
 #[test]
 fn reconstruct_formats_follow_the_extension() {
-    let dir = scratch_dir("formats");
+    let scratch = scratch_dir();
+    let dir = scratch.path();
     let input = dir.join("circle.txt");
     std::fs::write(&input, circle_input(16)).unwrap();
     for (name, check) in [

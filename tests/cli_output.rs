@@ -1,0 +1,633 @@
+//! Where `condt -o` writes: regular files, symbolic and hard links, named pipes, character
+//! devices, the input itself, file names that are not UTF-8, and what is left behind after an
+//! error or a signal. Everything happens in a fresh temporary directory; a device is made there
+//! with `mknod` when the tests run as root (and skipped with a note otherwise), never taken from
+//! the system's own `/dev`.
+//!
+//! `CONDT_TEST_BIN=/path/to/condt` runs these tests against another build of the binary, which
+//! is how they were shown to fail on the tool before these rules.
+#![cfg(unix)]
+
+use std::ffi::OsStr;
+use std::fs;
+use std::io::{Read, Write};
+use std::os::unix::ffi::OsStrExt;
+use std::os::unix::fs::{FileTypeExt, MetadataExt, PermissionsExt};
+use std::os::unix::process::ExitStatusExt;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+/// Four points, two triangles: `0 1 2` and `0 2 3` in some rotation.
+const SQUARE: &str = "0 0\n1 0\n1 1\n0 1\n";
+
+fn binary() -> PathBuf {
+    std::env::var_os("CONDT_TEST_BIN")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_condt")))
+}
+
+fn spawn<S: AsRef<OsStr>>(args: &[S], stdout: Stdio) -> Child {
+    Command::new(binary())
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(stdout)
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs")
+}
+
+fn condt<S: AsRef<OsStr>>(args: &[S], stdin: &str) -> Output {
+    let mut child = spawn(args, Stdio::piped());
+    let written = child.stdin.take().unwrap().write_all(stdin.as_bytes());
+    if let Err(e) = written {
+        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "{e}");
+    }
+    child.wait_with_output().unwrap()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// The triangles of SQUARE as the tool writes them, from a run to standard output.
+fn square_triangles() -> String {
+    let out = condt(&["triangulate", "-"], SQUARE);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.lines().count(), 2, "{text}");
+    text
+}
+
+/// The names in `dir`, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+fn is_root() -> bool {
+    fs::metadata("/proc/self")
+        .map(|m| m.uid() == 0)
+        .unwrap_or(false)
+}
+
+/// A character device `major:minor` (both under 256) named `name` in `dir`, or `None` (with a
+/// note) when this process may not make one.
+fn device(dir: &Path, name: &str, major: u32, minor: u32) -> Option<PathBuf> {
+    if !is_root() {
+        eprintln!("note: not root, the character-device case is skipped");
+        return None;
+    }
+    let path = dir.join(name);
+    let made = Command::new("mknod")
+        .arg(&path)
+        .args(["c", &major.to_string(), &minor.to_string()])
+        .status();
+    match made {
+        Ok(status) if status.success() => Some(path),
+        _ => {
+            eprintln!("note: mknod failed (a container without the capability?), skipped");
+            None
+        }
+    }
+}
+
+fn mkfifo(path: &Path) {
+    let status = Command::new("mkfifo")
+        .arg(path)
+        .status()
+        .expect("mkfifo runs");
+    assert!(status.success());
+}
+
+/// The temporary file in `dir` (condt names it `.NAME.XXXXXX.partial`) other than `except`,
+/// waited for up to `patience`: a run blocked on its standard input is past preparing its
+/// output once it exists.
+fn find_temporary(dir: &Path, except: &Path, patience: Duration) -> Option<PathBuf> {
+    let start = Instant::now();
+    loop {
+        let found = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .find(|p| p != except && p.file_name().unwrap().as_bytes().ends_with(b".partial"));
+        if found.is_some() || start.elapsed() > patience {
+            return found;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn a_regular_file_is_replaced_whole_and_keeps_its_permissions() {
+    let dir = tempfile::tempdir().unwrap();
+    let expected = square_triangles();
+    // 0600 from the issue; 0750 has an execute bit no new file gets, whatever the umask.
+    for mode in [0o600, 0o750] {
+        let target = dir.path().join("out.txt");
+        fs::write(&target, "previous content\n").unwrap();
+        fs::set_permissions(&target, fs::Permissions::from_mode(mode)).unwrap();
+        let out = condt(
+            &[
+                "triangulate".as_ref(),
+                "-".as_ref(),
+                "-o".as_ref(),
+                target.as_os_str(),
+            ],
+            SQUARE,
+        );
+        assert!(out.status.success(), "{}", stderr(&out));
+        assert_eq!(fs::read_to_string(&target).unwrap(), expected);
+        let meta = fs::symlink_metadata(&target).unwrap();
+        assert!(meta.is_file());
+        assert_eq!(meta.permissions().mode() & 0o7777, mode, "mode {mode:o}");
+        assert_eq!(names(dir.path()), ["out.txt"], "no temporary file is left");
+    }
+}
+
+#[test]
+fn a_symbolic_link_stays_and_the_file_it_points_to_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let expected = square_triangles();
+    let real = dir.path().join("real.txt");
+    fs::write(&real, "previous content\n").unwrap();
+    fs::set_permissions(&real, fs::Permissions::from_mode(0o640)).unwrap();
+    let link = dir.path().join("link.txt");
+    std::os::unix::fs::symlink("real.txt", &link).unwrap();
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            link.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(fs::read_link(&link).unwrap(), Path::new("real.txt"));
+    assert_eq!(fs::read_to_string(&real).unwrap(), expected);
+    assert_eq!(
+        fs::metadata(&real).unwrap().permissions().mode() & 0o7777,
+        0o640
+    );
+
+    // A dangling link gets the file it names.
+    let dangling = dir.path().join("dangling.txt");
+    std::os::unix::fs::symlink("made.txt", &dangling).unwrap();
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            dangling.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(fs::symlink_metadata(&dangling)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(
+        fs::read_to_string(dir.path().join("made.txt")).unwrap(),
+        expected
+    );
+    assert_eq!(
+        names(dir.path()),
+        ["dangling.txt", "link.txt", "made.txt", "real.txt"]
+    );
+}
+
+#[test]
+fn a_hard_link_is_not_broken() {
+    let dir = tempfile::tempdir().unwrap();
+    let expected = square_triangles();
+    let first = dir.path().join("first.txt");
+    let second = dir.path().join("second.txt");
+    fs::write(&first, "previous content, longer than the triangles are\n").unwrap();
+    fs::hard_link(&first, &second).unwrap();
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            first.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(
+        fs::read_to_string(&second).unwrap(),
+        expected,
+        "both names see it"
+    );
+    assert_eq!(fs::metadata(&first).unwrap().nlink(), 2);
+    assert_eq!(names(dir.path()), ["first.txt", "second.txt"]);
+}
+
+#[test]
+fn a_named_pipe_is_written_to_not_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    let expected = square_triangles();
+    let fifo = dir.path().join("pipe");
+    mkfifo(&fifo);
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || {
+            let mut text = String::new();
+            fs::File::open(fifo)
+                .unwrap()
+                .read_to_string(&mut text)
+                .unwrap();
+            text
+        })
+    };
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            fifo.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    // Checked before waiting for the reader: had the pipe been replaced, it would wait forever.
+    assert!(fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+    assert_eq!(reader.join().unwrap(), expected);
+    assert_eq!(names(dir.path()), ["pipe"]);
+}
+
+#[test]
+fn a_character_device_is_written_to_not_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    // 1:3 is the null device, 1:7 the full one: made here, not the system's.
+    let (Some(null), Some(full)) = (
+        device(dir.path(), "null", 1, 3),
+        device(dir.path(), "full", 1, 7),
+    ) else {
+        return;
+    };
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            null.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            full.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert_eq!(out.status.code(), Some(1), "a full device is an error");
+    assert!(stderr(&out).contains("full: "), "{}", stderr(&out));
+    for (device, minor) in [(&null, 3), (&full, 7)] {
+        let meta = fs::symlink_metadata(device).unwrap();
+        assert!(
+            meta.file_type().is_char_device(),
+            "{} is still a device",
+            device.display()
+        );
+        // Linux numbers a small device major:minor as major * 256 + minor.
+        #[cfg(target_os = "linux")]
+        assert_eq!(
+            meta.rdev(),
+            256 + minor,
+            "{} is still the same device",
+            device.display()
+        );
+        let _ = minor;
+    }
+    assert_eq!(names(dir.path()), ["full", "null"]);
+}
+
+#[test]
+fn failing_standard_streams_are_errors_or_ignored_never_panics() {
+    let dir = tempfile::tempdir().unwrap();
+    let Some(full) = device(dir.path(), "full", 1, 7) else {
+        return;
+    };
+    let open = || fs::OpenOptions::new().write(true).open(&full).unwrap();
+    // Standard output full: the help cannot be shown, which is an error (1), not a panic (101).
+    let out = Command::new(binary())
+        .arg("--help")
+        .stdout(open())
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("<stdout>"), "{}", stderr(&out));
+    // Standard error full: the notes are lost, the work is done. The input has a duplicate, so
+    // there is a note to write.
+    let target = dir.path().join("out.txt");
+    let mut child = Command::new(binary())
+        .args([
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ])
+        .stdin(Stdio::piped())
+        .stderr(open())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(format!("{SQUARE}0 0\n").as_bytes())
+        .unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(0));
+    assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_link_to_an_open_stream_writes_to_the_stream() {
+    // What /dev/stdout is, made in the temporary directory: a link through /proc.
+    let dir = tempfile::tempdir().unwrap();
+    let link = dir.path().join("stdout");
+    std::os::unix::fs::symlink("/proc/self/fd/1", &link).unwrap();
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            link.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), square_triangles());
+    assert!(fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(names(dir.path()), ["stdout"]);
+}
+
+#[test]
+fn the_temporary_file_is_random_exclusive_and_cannot_be_hijacked() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("out.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    fs::set_permissions(&target, fs::Permissions::from_mode(0o600)).unwrap();
+    let victim = dir.path().join("victim.txt");
+    fs::write(&victim, "precious\n").unwrap();
+    let mut child = spawn(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ],
+        Stdio::piped(),
+    );
+    // The name the tool once used, planted while it waits for its input.
+    let planted = dir.path().join(format!(".out.txt.{}.partial", child.id()));
+    std::os::unix::fs::symlink(&victim, &planted).unwrap();
+    // This tool prepares its output before it reads its input, so it has its own temporary
+    // file by now (a tool that reads first has none yet: the wait then ends empty-handed).
+    let temporary = find_temporary(dir.path(), &planted, Duration::from_secs(10));
+    if let Some(temporary) = &temporary {
+        let meta = fs::symlink_metadata(temporary).unwrap();
+        assert!(meta.is_file(), "a file of its own, not a link");
+        assert_eq!(
+            meta.permissions().mode() & 0o777,
+            0o600,
+            "the original's mode from the start"
+        );
+        let name = temporary
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        assert!(
+            !name.contains(&child.id().to_string()),
+            "{name} is not named by the process id"
+        );
+    }
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(SQUARE.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(
+        fs::read_to_string(&victim).unwrap(),
+        "precious\n",
+        "the victim is untouched"
+    );
+    let meta = fs::symlink_metadata(&target).unwrap();
+    assert!(
+        meta.is_file(),
+        "the output is a file, not a link to the victim"
+    );
+    assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
+    assert!(
+        temporary.is_some(),
+        "the temporary file exists while the run waits for input"
+    );
+}
+
+/// A run that has prepared its output and waits for its input, then gets `signal`.
+fn interrupted(signal: &str, number: i32) {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("out.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    let mut child = spawn(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ],
+        Stdio::piped(),
+    );
+    // Half an input: the run is still reading.
+    let mut stdin = child.stdin.take().unwrap();
+    stdin.write_all(b"0 0\n1 0\n").unwrap();
+    stdin.flush().unwrap();
+    let temporary = find_temporary(dir.path(), &target, Duration::from_secs(60))
+        .expect("a temporary file while the run reads its input");
+    let status = Command::new("kill")
+        .args([format!("-{signal}"), child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    drop(stdin);
+    assert_eq!(
+        out.status.signal(),
+        Some(number),
+        "ended by SIG{signal}: {:?}",
+        out.status
+    );
+    assert!(!temporary.exists(), "{} is removed", temporary.display());
+    assert_eq!(names(dir.path()), ["out.txt"]);
+    assert_eq!(fs::read_to_string(&target).unwrap(), "previous content\n");
+}
+
+#[test]
+fn sigterm_removes_the_temporary_file() {
+    interrupted("TERM", 15);
+}
+
+#[test]
+fn sigint_removes_the_temporary_file() {
+    interrupted("INT", 2);
+}
+
+#[test]
+fn an_error_removes_the_temporary_file_and_keeps_the_old_content() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("out.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ],
+        "0 0\n1 oops\n",
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("<stdin>:2:"), "{}", stderr(&out));
+    assert_eq!(fs::read_to_string(&target).unwrap(), "previous content\n");
+    assert_eq!(names(dir.path()), ["out.txt"]);
+}
+
+#[test]
+fn the_input_cannot_be_the_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("points.txt");
+    fs::write(&input, SQUARE).unwrap();
+    let hard = dir.path().join("hard.txt");
+    fs::hard_link(&input, &hard).unwrap();
+    let soft = dir.path().join("soft.txt");
+    std::os::unix::fs::symlink("points.txt", &soft).unwrap();
+    let dotted = dir.path().join(".").join("points.txt");
+    for output in [&input, &hard, &soft, &dotted] {
+        for command in ["triangulate", "reconstruct"] {
+            let out = condt(
+                &[
+                    command.as_ref(),
+                    input.as_os_str(),
+                    "-o".as_ref(),
+                    output.as_os_str(),
+                ],
+                "",
+            );
+            assert_eq!(
+                out.status.code(),
+                Some(2),
+                "{command} -o {}: {}",
+                output.display(),
+                stderr(&out)
+            );
+            assert!(stderr(&out).contains("is the input"), "{}", stderr(&out));
+        }
+    }
+    // Standard input read from the file named by -o.
+    let out = Command::new(binary())
+        .args([
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            hard.as_os_str(),
+        ])
+        .stdin(fs::File::open(&input).unwrap())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert_eq!(
+        fs::read_to_string(&input).unwrap(),
+        SQUARE,
+        "the input is untouched"
+    );
+    assert_eq!(names(dir.path()), ["hard.txt", "points.txt", "soft.txt"]);
+}
+
+#[test]
+fn file_names_need_not_be_utf8() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join(OsStr::from_bytes(b"\xffpoints.txt"));
+    fs::write(&input, SQUARE).unwrap();
+    let output = dir.path().join(OsStr::from_bytes(b"\xfeout.txt"));
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            input.as_os_str(),
+            "-o".as_ref(),
+            output.as_os_str(),
+        ],
+        "",
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(fs::read_to_string(&output).unwrap(), square_triangles());
+    // A missing one is an error naming it as well as it can, not a panic.
+    let missing = dir.path().join(OsStr::from_bytes(b"\xffmissing.txt"));
+    let out = condt(&["triangulate".as_ref(), missing.as_os_str()], "");
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("missing.txt"), "{}", stderr(&out));
+}
+
+#[test]
+fn a_reader_that_goes_away_ends_the_run_silently() {
+    // Enough triangles to fill any pipe buffer.
+    let points: String = (0..3000)
+        .map(|i| format!("{} {}\n", i % 60, (i / 60) as f64 + 0.01 * (i % 7) as f64))
+        .collect();
+    let mut child = spawn(&["triangulate", "-"], Stdio::piped());
+    drop(child.stdout.take());
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(points.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(stderr(&out), "", "nothing is said");
+    assert_eq!(
+        out.status.signal(),
+        Some(13),
+        "ended by SIGPIPE: {:?}",
+        out.status
+    );
+}
+
+#[test]
+fn a_directory_is_not_an_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            dir.path().as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("is a directory"), "{}", stderr(&out));
+    assert!(names(dir.path()).is_empty());
+}
