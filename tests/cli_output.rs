@@ -149,6 +149,32 @@ fn a_regular_file_is_replaced_whole_and_keeps_its_permissions() {
 }
 
 #[test]
+fn another_users_file_keeps_its_owner() {
+    if !is_root() {
+        eprintln!("note: not root, cannot give a file to another user: skipped");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("theirs.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    std::os::unix::fs::chown(&target, Some(65534), Some(65534)).unwrap();
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let meta = fs::metadata(&target).unwrap();
+    assert_eq!((meta.uid(), meta.gid()), (65534, 65534));
+    assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
+    assert_eq!(names(dir.path()), ["theirs.txt"]);
+}
+
+#[test]
 fn a_symbolic_link_stays_and_the_file_it_points_to_is_written() {
     let dir = tempfile::tempdir().unwrap();
     let expected = square_triangles();

@@ -88,8 +88,9 @@ fn directory_of(path: &Path) -> &Path {
 }
 
 /// A temporary file beside `target`, hidden and named after it, registered for removal on a
-/// signal before anyone can see it.
-fn temporary_beside(target: &Path, mode: Option<&fs::Metadata>) -> io::Result<signals::Temp> {
+/// signal before anyone can see it. It is private (0600) unless it is to become a `new_file`,
+/// which gets what any new file would: 0666 less the umask, applied by the kernel.
+fn temporary_beside(target: &Path, new_file: bool) -> io::Result<signals::Temp> {
     let name = target
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -98,12 +99,12 @@ fn temporary_beside(target: &Path, mode: Option<&fs::Metadata>) -> io::Result<si
     let mut builder = tempfile::Builder::new();
     builder.prefix(&prefix).suffix(".partial");
     #[cfg(unix)]
-    if mode.is_none() {
-        // A new file gets what any new file would: 0666 less the umask, applied by the kernel.
+    if new_file {
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(fs::Permissions::from_mode(0o666));
     }
-    let _ = mode;
+    #[cfg(not(unix))]
+    let _ = new_file;
     signals::Temp::create(|| builder.tempfile_in(directory_of(target)))
 }
 
@@ -215,7 +216,7 @@ impl Destination {
                         shown,
                     });
                 }
-                let temp = match temporary_beside(&target, Some(&meta)) {
+                let temp = match temporary_beside(&target, false) {
                     Ok(temp) => temp,
                     // A writable file in a directory we may not add to: write it as `>` would.
                     Err(e) if e.kind() == io::ErrorKind::PermissionDenied => {
@@ -247,7 +248,7 @@ impl Destination {
                 let Some(target) = resolve_links(path).map_err(|e| file_error(&shown, e))? else {
                     return Err(file_error(&shown, e));
                 };
-                let temp = temporary_beside(&target, None).map_err(|e| file_error(&shown, e))?;
+                let temp = temporary_beside(&target, true).map_err(|e| file_error(&shown, e))?;
                 Ok(Destination::Replace {
                     temp,
                     target,
