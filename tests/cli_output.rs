@@ -656,4 +656,23 @@ fn a_directory_is_not_an_output() {
     assert_eq!(out.status.code(), Some(1));
     assert!(stderr(&out).contains("is a directory"), "{}", stderr(&out));
     assert!(names(dir.path()).is_empty());
+    // A file in a directory that does not exist: the error names the file the user gave, not
+    // the temporary one.
+    let lost = dir.path().join("no-such-directory").join("out.txt");
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            lost.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert_eq!(out.status.code(), Some(1));
+    let said = stderr(&out);
+    assert!(
+        said.starts_with(&format!("condt: {}: ", lost.display())),
+        "{said}"
+    );
+    assert!(!said.contains("partial"), "{said}");
 }

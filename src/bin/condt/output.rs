@@ -105,7 +105,17 @@ fn temporary_beside(target: &Path, new_file: bool) -> io::Result<signals::Temp> 
     }
     #[cfg(not(unix))]
     let _ = new_file;
-    signals::Temp::create(|| builder.tempfile_in(directory_of(target)))
+    signals::Temp::create(|| {
+        builder.tempfile_in(directory_of(target)).map_err(|e| {
+            // tempfile appends ` at path "…"` with the temporary file's name, no business of
+            // the user, who named only `target`: the operating system's words are enough.
+            let text = e.to_string();
+            match text.split_once(" at path ") {
+                Some((os_words, _)) => io::Error::new(e.kind(), os_words.to_string()),
+                None => e,
+            }
+        })
+    })
 }
 
 /// Gives the temporary file the original's owner and permissions; `false` when the owner cannot
