@@ -676,3 +676,74 @@ fn a_directory_is_not_an_output() {
     );
     assert!(!said.contains("partial"), "{said}");
 }
+
+/// A command for the binary, run as an unprivileged user: `nobody` when the tests run as root
+/// (permissions mean nothing to root), else the current user.
+fn unprivileged(args: &[&OsStr]) -> Command {
+    let mut command = Command::new(binary());
+    command.args(args);
+    if is_root() {
+        use std::os::unix::process::CommandExt;
+        command.uid(65534).gid(65534);
+    }
+    command
+}
+
+/// A directory the unprivileged user may enter, removed on drop.
+fn shared_dir() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    fs::set_permissions(dir.path(), fs::Permissions::from_mode(0o777)).unwrap();
+    dir
+}
+
+#[test]
+fn a_file_the_user_may_not_write_is_not_replaced() {
+    let dir = shared_dir();
+    let input = dir.path().join("points.txt");
+    fs::write(&input, SQUARE).unwrap();
+    let target = dir.path().join("read-only.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    fs::set_permissions(&target, fs::Permissions::from_mode(0o444)).unwrap();
+    if is_root() {
+        std::os::unix::fs::chown(&target, Some(65534), Some(65534)).unwrap();
+    }
+    let out = unprivileged(&[
+        "triangulate".as_ref(),
+        input.as_os_str(),
+        "-o".as_ref(),
+        target.as_os_str(),
+    ])
+    .output()
+    .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("read-only.txt: "), "{}", stderr(&out));
+    assert_eq!(fs::read_to_string(&target).unwrap(), "previous content\n");
+    assert_eq!(names(dir.path()), ["points.txt", "read-only.txt"]);
+}
+
+#[test]
+fn a_writable_file_in_a_closed_directory_is_written_in_place() {
+    let outer = shared_dir();
+    let input = outer.path().join("points.txt");
+    fs::write(&input, SQUARE).unwrap();
+    let closed = outer.path().join("closed");
+    fs::create_dir(&closed).unwrap();
+    let target = closed.join("open.txt");
+    fs::write(&target, "previous content, longer than the triangles are\n").unwrap();
+    fs::set_permissions(&target, fs::Permissions::from_mode(0o666)).unwrap();
+    // No file can be added here, so no temporary file either.
+    fs::set_permissions(&closed, fs::Permissions::from_mode(0o555)).unwrap();
+    let out = unprivileged(&[
+        "triangulate".as_ref(),
+        input.as_os_str(),
+        "-o".as_ref(),
+        target.as_os_str(),
+    ])
+    .output()
+    .unwrap();
+    // Reopened so the guard can remove it, whatever happened.
+    fs::set_permissions(&closed, fs::Permissions::from_mode(0o755)).unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
+    assert_eq!(names(&closed), ["open.txt"]);
+}

@@ -18,7 +18,7 @@
 //! - anything else (a terminal, a named pipe, a character device), or a link through `/proc`
 //!   such as `/dev/stdout`: opened and written as it is (appended to, for a regular file behind
 //!   such a link), never created, truncated or replaced;
-//! - a directory: an error.
+//! - a directory, or a file this user may not write: an error.
 //!
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
 //! (the process then ends by that signal, as it would have); SIGKILL cannot be caught, so
@@ -219,6 +219,12 @@ impl Destination {
                         shown,
                     });
                 };
+                // A file its owner made read-only is not ours to replace: what `>` refuses,
+                // renaming over it must refuse too. Opening without truncating changes nothing.
+                fs::OpenOptions::new()
+                    .write(true)
+                    .open(path)
+                    .map_err(|e| file_error(&shown, e))?;
                 if has_other_names(&meta) {
                     // Renaming would part this name from the others: write into the file.
                     return Ok(Destination::InPlace {
