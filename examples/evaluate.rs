@@ -1,6 +1,8 @@
 //! Evaluates ConDT on the ground-truth point sets of `../shared/data` (not shipped with the
 //! crate: its terms forbid copying). Prints, per shape family, how many sets were reconstructed
-//! exactly (edge set equal to the ground truth) and the mean edge F1.
+//! exactly (edge set equal to the ground truth) and the mean edge F1; then, for the real sets
+//! (no ground truth), how many of their points end in no curve, which is where a rule that
+//! removes too much shows (look at the pictures of the sets it names).
 //!
 //! `cargo run --release --example evaluate -- [DATA_DIR] [--repair off|paper|mutual|crossing|needs]
 //!  [--adaptive] [--u X] [--iqr K] [--no-outlier-filter] [--sets]`
@@ -98,6 +100,35 @@ fn run(dir: &Path, sets: &[String], params: &Params, label: &str, per_set: bool)
     );
 }
 
+/// Points left unused on every real set, summed, and the sets that lose the most.
+fn unused_on_real_sets(dir: &Path, real: &[String], params: &Params) {
+    let mut per_set: Vec<(usize, &str, usize)> = Vec::new();
+    for name in real {
+        let path = dir.join(format!("{name}.pts"));
+        let Some(points) = path.to_str().and_then(|p| read_points(p).ok()) else {
+            println!("  {name}: unreadable");
+            continue;
+        };
+        match reconstruct(&points, params) {
+            Ok(result) => per_set.push((result.unused().len(), name, points.len())),
+            Err(e) => println!("  {name}: {e}"),
+        }
+    }
+    let unused: usize = per_set.iter().map(|s| s.0).sum();
+    let points: usize = per_set.iter().map(|s| s.2).sum();
+    per_set.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(b.1)));
+    let most: Vec<String> = per_set
+        .iter()
+        .take(5)
+        .map(|(u, name, n)| format!("{name} {u}/{n}"))
+        .collect();
+    println!(
+        "\nreal sets (no ground truth): {} sets, {points} points, {unused} unused; most: {}",
+        per_set.len(),
+        most.join(", ")
+    );
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let dir = args
@@ -113,14 +144,18 @@ fn main() {
         );
         return;
     };
-    let sets: Vec<String> = index
-        .lines()
-        .skip(1)
-        .filter_map(|l| {
-            let cols: Vec<&str> = l.split('\t').collect();
-            (cols.get(3) == Some(&"True")).then(|| cols[0].to_string())
-        })
-        .collect();
+    let column = |at: usize, value: &str| -> Vec<String> {
+        index
+            .lines()
+            .skip(1)
+            .filter_map(|l| {
+                let cols: Vec<&str> = l.split('\t').collect();
+                (cols.get(at) == Some(&value)).then(|| cols[0].to_string())
+            })
+            .collect()
+    };
+    let sets = column(3, "True");
+    let real = column(1, "real");
     let value = |flag: &str| {
         args.iter()
             .position(|a| a == flag)
@@ -192,5 +227,6 @@ fn main() {
         }
     } else {
         run(dir, &sets, &params, &format!("{params:?}"), per_set);
+        unused_on_real_sets(dir, &real, &params);
     }
 }
