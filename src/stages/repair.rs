@@ -75,9 +75,14 @@ mod needs;
 
 /// How vertices of degree three or more in the proximity graph are treated.
 ///
+/// The default is the default pipeline's choice, [`Repair::Needs`]; the paper's preset uses
+/// [`Repair::Paper`].
+///
 /// ```
-/// use condt::Repair;
-/// assert_eq!(Repair::default(), Repair::Paper);
+/// use condt::{Params, Repair};
+/// assert_eq!(Repair::default(), Repair::Needs);
+/// assert_eq!(Params::default().repair, Repair::default());
+/// assert_eq!(Params::paper().repair, Repair::Paper);
 /// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Repair {
@@ -86,7 +91,6 @@ pub enum Repair {
     Off,
     /// Algorithm 2 as printed: every non-manifold vertex selects two edges and the selections are
     /// united, so an edge selected by one end survives even if the other end did not select it.
-    #[default]
     Paper,
     /// Algorithm 2 with mutual consent: an edge between two non-manifold vertices survives only
     /// if both select it, so no vertex keeps more than two edges.
@@ -101,6 +105,7 @@ pub enum Repair {
     /// non-manifold vertices survives only if both keep it. Keeps the tips of sharp corners and
     /// sampled crossings, which [`Repair::Paper`] cuts; the module documentation gives the rule,
     /// the reason for each constant and the measurements.
+    #[default]
     Needs,
 }
 
