@@ -64,11 +64,14 @@ pub struct Params {
     /// corner there; `docs/condt.md` (note 8) measures both orders.
     pub outliers_first: bool,
     /// Run the local outlier removal after the IQR stage and the repair, whichever order they ran
-    /// in (not in the paper; off by default and in [`Params::paper`]): give back the edges the global rule cut along
-    /// smooth, regularly spaced passages; drop edges far longer than the others at a branch or
-    /// at both ends, branches of fewer than five points, and components with fewer than five
-    /// points clearly apart from everything else. A genuine curve or branch of three or four
-    /// points is lost with it on; the rules and the reason for each constant are in
+    /// in (not in the paper; on by default, off in [`Params::paper`]): give back the edges the
+    /// global rule cut along smooth, regularly spaced passages; drop edges far longer than the
+    /// others at a branch or at both ends, branches of fewer than five points, and components
+    /// that look like outliers: fewer than five points clearly apart from everything else,
+    /// unless they close a regular cycle or are densely sampled (three or more points, every
+    /// edge at most the median edge); nothing is dropped as a component when that would drop a
+    /// quarter of the points. A sparsely sampled curve or branch of three or four points is lost
+    /// with it on; the rules and the reason for each constant are in
     /// `src/stages/local_outliers.rs`.
     pub local_outliers: bool,
     /// Close gaps at loose ends after the other stages (not in the paper): join two loose ends
@@ -83,26 +86,26 @@ pub struct Params {
 }
 
 impl Default for Params {
-    /// The best pipeline measured that never loses curves the paper keeps (`docs/condt.md`,
-    /// "Beyond the paper"): the paper's proximity graph and outlier rule with [`Repair::Needs`],
-    /// then gap closing. The local outlier removal is off: it removes scattered outliers far
-    /// better, but it also deletes short curves, strokes near other curves and noisy bands, so
-    /// it is for point sets known to carry outliers. [`Params::paper`] turns every step beyond
+    /// The best pipeline measured (`docs/condt.md`, "Beyond the paper"): the paper's proximity
+    /// graph and outlier rule with [`Repair::Needs`], then the local outlier removal and gap
+    /// closing. Its cost: a sparsely sampled curve of three or four points, isolated, counts as
+    /// outliers (`local_outliers: false` keeps it). [`Params::paper`] turns every step beyond
     /// the paper off.
     ///
     /// ```
     /// use condt::{Params, Repair, Stage};
     /// let p = Params::default();
     /// assert_eq!(p.repair, Repair::Needs);
-    /// assert!(p.close_gaps && !p.local_outliers);
+    /// assert!(p.close_gaps && p.local_outliers);
     /// assert_eq!(
     ///     p.stages(),
-    ///     vec![Stage::Proximity, Stage::Repair, Stage::Outliers, Stage::Gaps]
+    ///     vec![Stage::Proximity, Stage::Repair, Stage::Outliers, Stage::LocalOutliers, Stage::Gaps]
     /// );
     /// ```
     fn default() -> Self {
         Params {
             repair: Repair::Needs,
+            local_outliers: true,
             close_gaps: true,
             ..Params::paper()
         }

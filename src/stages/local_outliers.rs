@@ -1,5 +1,5 @@
 //! Local outlier removal, run after the global IQR rule (Algorithm 3) and the repair, whichever
-//! order they ran in. Not in the paper; off by default
+//! order they ran in. Not in the paper; on by default, off in `Params::paper`
 //! ([`Params::local_outliers`](crate::Params::local_outliers)).
 //!
 //! Owns: four local rules on the graph those stages left. It is the one stage that reads the
@@ -41,13 +41,19 @@
 //!    (every point with two edges at an angle above `2π/3`, within a factor [`LONG`]): a closed
 //!    curve two spacings from another one has no separated sample, and outliers almost never
 //!    close into such a cycle.
+//!    Finally, rule 4 removes **nothing when it would remove a quarter or more** of the points
+//!    that have edges ([`OUTLIER_SHARE`]): outliers are a minority, and the quartiles that
+//!    Algorithm 3 stands on break down at a quarter of contamination. A graph that would lose
+//!    that much is not curves plus a few outliers but a noisy band or a fragmented scan, whose
+//!    pieces the rule cannot tell from outliers (it would empty a thick noisy band).
 //!
 //! What a user loses: a genuine curve of fewer than [`MIN_SAMPLES`] points (a 3-point open curve,
 //! a 4-point closed one) is always removed by rule 4, however isolated it is; so is a branch of
 //! fewer than [`MIN_SAMPLES`] points at a junction (rule 3), and a curve, or a piece of one left
 //! by an earlier stage, whose samples are not clearly closer to each other than to other points
-//! (pieces of noisy curves, the sides of a polygon the repair cut at its sharp corners). Turn the
-//! stage off (the default; `--local-outliers` turns it on in the binary) to keep them.
+//! (pieces of noisy curves, the sides of a polygon the repair cut at its sharp corners), unless
+//! that would take a quarter of the points. Turn the stage off (`--no-local-outliers` in the
+//! binary) to keep them.
 //!
 //! The stage is sequential and deterministic (every loop goes by vertex id or edge position), so
 //! the result is the same with `parallel` on or off. It is O(n): compressed adjacencies, a
@@ -87,6 +93,12 @@ pub(crate) const SEPARATION: f64 = 2.0;
 /// common (in a uniform scatter nearest neighbours pair up); five is where a chance alignment of
 /// outliers becomes rare, and it is below what any closed curve needs.
 pub(crate) const MIN_SAMPLES: usize = 5;
+
+/// Rule 4 removes nothing when the components it would remove hold at least this share of the
+/// points that have edges. Reason: the breakdown point of the quartiles, which Algorithm 3 uses
+/// to tell outliers from samples: beyond a quarter, "outlier" no longer means the tail of the
+/// sampling.
+pub(crate) const OUTLIER_SHARE: f64 = 0.25;
 
 /// Which rules run; [`Rules::ALL`] is the stage. The switches exist so that the tests can show
 /// what each rule does on its own.
@@ -392,8 +404,13 @@ fn separated_components(tri: &Triangulation, edges: &[Edge], profile: &Profile) 
         separated[root[i] as usize] += usize::from(apart);
     }
     let mut kept: Vec<bool> = separated.iter().map(|&c| c >= MIN_SAMPLES).collect();
-    if edges.iter().any(|&[a, _]| !kept[root[a.index()] as usize]) {
-        keep_regular_cycles(tri, edges, &root, &mut kept);
+    let all_kept = |kept: &[bool]| edges.iter().all(|&[a, _]| kept[root[a.index()] as usize]);
+    if all_kept(&kept) {
+        return edges.to_vec();
+    }
+    keep_regular_cycles(tri, edges, &root, &mut kept);
+    if too_many_dropped(tri, &root, profile, &kept) {
+        return edges.to_vec();
     }
     edges
         .iter()
@@ -429,6 +446,18 @@ fn keep_regular_cycles(tri: &Triangulation, edges: &[Edge], root: &[u32], kept: 
             kept[r] = true;
         }
     }
+}
+
+/// Whether the components not kept hold at least [`OUTLIER_SHARE`] of the points with edges.
+fn too_many_dropped(tri: &Triangulation, root: &[u32], profile: &Profile, kept: &[bool]) -> bool {
+    let (mut with_edges, mut dropped) = (0usize, 0usize);
+    for v in tri.vertices() {
+        if profile.longest(v) >= 0.0 {
+            with_edges += 1;
+            dropped += usize::from(!kept[root[v.index()] as usize]);
+        }
+    }
+    dropped as f64 >= OUTLIER_SHARE * with_edges as f64
 }
 
 #[cfg(test)]
@@ -645,6 +674,53 @@ mod tests {
         short_spurs: false,
         separated_components: false,
     };
+
+    /// A thick noisy band, as a noisy scan gives: three rows of points 0.1 apart, 0.1 between the
+    /// rows, joined as short pieces of three along each row. No piece is separated from the next
+    /// (the next row is as near as its own edges) and none has five points, so rule 4 alone would
+    /// drop every edge; it drops none, since that would be every point. Beside a circle that
+    /// holds most of the points, the same pieces (then under a quarter) go.
+    #[test]
+    fn rule_4_drops_nothing_when_it_would_drop_a_quarter_of_the_points() {
+        let rule_4 = Rules {
+            separated_components: true,
+            ..NONE
+        };
+        let band = |x0: f64| -> (Vec<Point>, Vec<[usize; 2]>) {
+            let mut pts = Vec::new();
+            let mut pairs = Vec::new();
+            for row in 0..3 {
+                for k in 0..30 {
+                    if k % 3 != 2 {
+                        pairs.push([pts.len(), pts.len() + 1]);
+                    }
+                    // A small wobble keeps the points in general position.
+                    let wobble = 0.01 * libm::sin(7.0 * k as f64 + row as f64);
+                    pts.push(Point::new(x0 + 0.1 * k as f64, 0.1 * row as f64 + wobble));
+                }
+            }
+            (pts, pairs)
+        };
+        let (pts, pairs) = band(0.0);
+        let tri = triangulate(&pts).unwrap();
+        let edges = vertex_edges(&tri, &pairs);
+        assert_eq!(apply(&tri, &edges, rule_4), None, "the band keeps every piece");
+
+        // 90 band points beside a circle of 400 (spacing 0.016, far away): under a quarter.
+        let (band_pts, band_pairs) = band(10.0);
+        let mut pts = circle(Point::new(0.0, 0.0), 1.0, 400, 0.0);
+        let offset = pts.len();
+        pts.extend(band_pts);
+        let mut pairs = loop_edges(0, 400);
+        pairs.extend(band_pairs.iter().map(|&[a, b]| [a + offset, b + offset]));
+        let tri = triangulate(&pts).unwrap();
+        let edges = vertex_edges(&tri, &pairs);
+        assert_eq!(
+            apply(&tri, &edges, rule_4),
+            Some(loop_edges(0, 400)),
+            "a minority of pieces goes"
+        );
+    }
 
     #[test]
     fn an_edge_far_longer_than_the_curve_edges_at_a_branch_goes() {

@@ -59,10 +59,9 @@ triangulation and the graph after every stage that ran, side by side), `geojson`
 LineString per curve). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 
-The default pipeline is the paper's (Algorithms 1-3) with the repair `needs` and gap closing;
---local-outliers adds local outlier removal (for point sets with scattered outliers; it also
-removes curves under 5 points and strokes close to other curves); --paper runs the paper's
-pipeline alone. Options that contradict each other are an error.
+The default pipeline is the paper's (Algorithms 1-3) with the repair `needs`, local outlier
+removal and gap closing; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points,
+which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error.
 
 Options:
   -o, --output FILE       write to FILE instead of standard output
@@ -74,12 +73,12 @@ Options:
       --no-outlier-filter skip outlier removal
       --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
       --[no-]local-outliers
-                          (default off) after the outlier filter and the repair, remove
-                          outliers locally:
-                          give back edges the filter cut along regular passages; drop edges
-                          far longer than their neighbours, branches of fewer than 5 points
-                          and components of fewer than 5 points clearly apart from the rest
-                          (a genuine 3- or 4-point curve is lost)
+                          (default on; off with --paper) after the outlier filter and the
+                          repair, remove outliers locally: give back edges the filter cut
+                          along regular passages; drop edges far longer than their
+                          neighbours, branches of fewer than 5 points and components of
+                          fewer than 5 points clearly apart from the rest, unless dense
+                          (a sparsely sampled 3- or 4-point curve is lost)
       --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
                           other across a short gap or line up through a stranded point, and a
                           crossing's dropped arms
@@ -655,7 +654,7 @@ mod tests {
             (Format::Polylines, Repair::Off, None)
         );
         assert!(
-            !b.params.local_outliers && b.params.close_gaps,
+            b.params.local_outliers && b.params.close_gaps,
             "the defaults"
         );
         let c = parse_reconstruct(&strings(&["--local-outliers", "in.txt", "--no-close-gaps"]))
