@@ -142,7 +142,7 @@ pub(crate) fn remove_local_outliers(
     // Lengths, degrees and the two longest edges per vertex, shared by rules 2 to 4 and
     // recomputed only after a rule changed the graph (on a clean curve none does).
     let mut profile = Profile::of(tri, &graph);
-    if rules.long_at_branches || rules.long_at_both_ends {
+    if (rules.long_at_branches || rules.long_at_both_ends) && profile.has_long_edge() {
         if let Some(kept) = without_long_edges(&graph, &profile, rules) {
             graph = kept;
             profile = Profile::of(tri, &graph);
@@ -264,6 +264,15 @@ impl Profile {
     /// Whether some vertex has three or more edges.
     fn has_branch(&self) -> bool {
         self.vertices.iter().any(|v| v.degree >= 3)
+    }
+
+    /// Whether some vertex's longest edge is more than [`LONG`] times its second longest: rule 2
+    /// drops an edge only where it is long at one of its ends, so without such a vertex it has
+    /// nothing to do (the common case, checked in one sequential pass instead of per edge).
+    fn has_long_edge(&self) -> bool {
+        self.vertices
+            .iter()
+            .any(|v| v.top[1] != Self::NONE && v.top[0] > LONG * LONG * v.top[1])
     }
 
     /// The squared length of the longest edge at `v` (`NONE` when it has none).
@@ -704,7 +713,11 @@ mod tests {
         let (pts, pairs) = band(0.0);
         let tri = triangulate(&pts).unwrap();
         let edges = vertex_edges(&tri, &pairs);
-        assert_eq!(apply(&tri, &edges, rule_4), None, "the band keeps every piece");
+        assert_eq!(
+            apply(&tri, &edges, rule_4),
+            None,
+            "the band keeps every piece"
+        );
 
         // 90 band points beside a circle of 400 (spacing 0.016, far away): under a quarter.
         let (band_pts, band_pairs) = band(10.0);
