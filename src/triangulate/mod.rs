@@ -21,11 +21,11 @@ mod scale;
 
 use crate::error::Error;
 use crate::geometry::Point;
+use crate::geometry::Scale;
 use crate::mesh::{Mesh, VertexId};
-use crate::predicates::{orient2d, Orientation};
+use crate::predicates::Orientation;
 use alloc::vec::Vec;
-use insert::Builder;
-use scale::Scale;
+use insert::{Builder, Exact, Fast, Kernel};
 
 /// The largest number of input points.
 ///
@@ -60,7 +60,10 @@ pub const MAX_POINTS: usize = 350_000_000;
 pub struct Triangulation {
     /// Coordinates by vertex id (duplicates too: each input point has an id).
     points: Vec<Point>,
+    /// Input coordinates to the exactly rescaled frame the predicates decide in.
     scale: Scale,
+    /// Input coordinates to the positions the stages measure (see [`scale`]).
+    stage_scale: Scale,
     mesh: Mesh,
     /// Vertex id -> input position; for a kept vertex, the smallest position of its duplicates.
     input_of_vertex: Vec<u32>,
@@ -76,10 +79,14 @@ pub struct Triangulation {
 /// see [`Triangulation::vertex`]) and cocircular sets. The result is deterministic and
 /// depends only on the set of points, not on their order.
 ///
+/// Any finite coordinates are accepted, at any scale and with any spread of magnitudes: a set
+/// whose coordinates span more than 2^200 in magnitude (`1` and `1e-61` together) is decided by
+/// exact integer arithmetic instead of Shewchuk's predicates, slower but just as exact
+/// (`docs/predicates.md`).
+///
 /// # Errors
-/// [`Error::NonFinite`] for a NaN or infinite coordinate, [`Error::RangeTooWide`] when the set
-/// spans more than 2^200 in magnitude, [`Error::TooManyPoints`] beyond [`MAX_POINTS`]; each names
-/// the first offending input index.
+/// [`Error::NonFinite`] for a NaN or infinite coordinate, naming the first such input index;
+/// [`Error::TooManyPoints`] beyond [`MAX_POINTS`].
 ///
 /// ```
 /// use condt::{triangulate, Point};
@@ -96,14 +103,20 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
             limit: MAX_POINTS,
         });
     }
-    let scale = scale::choose_scale(points)?;
+    let frames = scale::choose_frames(points)?;
+    let scale = frames.predicates;
     let order = order::insertion_order(points);
     let mut sorted: Vec<Point> = order
         .iter()
         .map(|&i| scale.apply(points[i as usize]))
         .collect();
 
-    let (mesh, merged, order) = match first_triangle(&sorted) {
+    let built = if frames.wide {
+        build::<Exact>(&sorted)
+    } else {
+        build::<Fast>(&sorted)
+    };
+    let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
             let (mesh, merged, line_order) = collinear::chain(points);
@@ -112,16 +125,7 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
             }
             (mesh, merged, line_order)
         }
-        Some(start) => {
-            let mut builder = Builder::new(&sorted, start);
-            for v in 0..sorted.len() as u32 {
-                if !start.contains(&v) {
-                    builder.insert(v);
-                }
-            }
-            let (mesh, merged) = builder.finish();
-            (mesh, merged, order)
-        }
+        Some((mesh, merged)) => (mesh, merged, order),
     };
     // The scaled copy becomes the stored coordinates: undoing a power of two is exact.
     let unscale = scale.inverse();
@@ -133,6 +137,7 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     Ok(Triangulation {
         points: sorted,
         scale,
+        stage_scale: frames.stages,
         mesh,
         input_of_vertex,
         vertex_of_input,
@@ -140,14 +145,27 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     })
 }
 
+/// The mesh of `points` (in insertion order) and the `(duplicate, kept)` pairs merged on the way,
+/// or `None` when they make no triangle.
+fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
+    let start = first_triangle::<K>(points)?;
+    let mut builder = Builder::<K>::new(points, start);
+    for v in 0..points.len() as u32 {
+        if !start.contains(&v) {
+            builder.insert(v);
+        }
+    }
+    Some(builder.finish())
+}
+
 /// The first three points, in insertion order, that make a proper triangle, counter-clockwise.
-fn first_triangle(points: &[Point]) -> Option<[u32; 3]> {
+fn first_triangle<K: Kernel>(points: &[Point]) -> Option<[u32; 3]> {
     let a = 0;
     let b = points.iter().position(|&p| p != points[a])?;
     let (pa, pb) = (points[a], points[b]);
     points[b + 1..].iter().enumerate().find_map(|(k, &pc)| {
         let c = (b + 1 + k) as u32;
-        match orient2d(pa, pb, pc) {
+        match K::orient2d(pa, pb, pc) {
             Orientation::Ccw => Some([a as u32, b as u32, c]),
             Orientation::Cw => Some([b as u32, a as u32, c]),
             Orientation::Collinear => None,
@@ -273,10 +291,14 @@ impl Triangulation {
         self.mesh.triangles().next().is_none()
     }
 
-    /// The position of vertex `v`.
+    /// The position of vertex `v` as the stages measure it: the input coordinates times the one
+    /// power of two that brings the set's largest coordinate magnitude into [2^200, 2^201).
+    /// Lengths, their ratios and comparisons are those of the input, but squared lengths (and
+    /// their products) neither overflow nor underflow at any input scale, and a set and its
+    /// power-of-two multiples give the stages the same numbers, bit for bit.
     #[inline]
     pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
-        self.points[v.index()]
+        self.stage_scale.apply(self.points[v.index()])
     }
 
     /// `true` when `v` is a vertex of the mesh: not an id left over by a merged duplicate, not
@@ -305,5 +327,65 @@ impl Triangulation {
     #[inline]
     pub(crate) fn scaled_point(&self, v: VertexId) -> Point {
         self.scale.apply(self.points[v.index()])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::Xorshift;
+
+    /// The triangles of the mesh `build` makes, as vertex ids from the smallest, sorted; and the
+    /// merged duplicates.
+    fn triangles<K: Kernel>(points: &[Point]) -> (Vec<[u32; 3]>, Vec<(u32, u32)>) {
+        let (mesh, merged) = build::<K>(points).expect("a triangle");
+        let mut triangles: Vec<[u32; 3]> = mesh
+            .triangles()
+            .map(|t| {
+                let [a, b, c] = mesh.triangle_vertices(t).map(|v| v.index() as u32);
+                let first = a.min(b).min(c);
+                if first == a {
+                    [a, b, c]
+                } else if first == b {
+                    [b, c, a]
+                } else {
+                    [c, a, b]
+                }
+            })
+            .collect();
+        triangles.sort_unstable();
+        (triangles, merged)
+    }
+
+    /// The three kernels build the same triangulation on sets in the fast range: random points,
+    /// a grid (cocircular everywhere) and duplicates. The same insertion order gives the same
+    /// splits and flips whatever path the walk takes (only the slots triangles land in may
+    /// differ, when a point on an edge is reached from the other side), so any difference is a
+    /// sign the kernels disagree on.
+    #[test]
+    fn fast_exact_and_integer_kernels_build_the_same_mesh() {
+        let mut rng = Xorshift::new(0x082e_fa98_ec4e_6c89);
+        let mut sets: Vec<Vec<Point>> = Vec::new();
+        sets.push(
+            (0..400)
+                .map(|_| Point::new(rng.unit(), rng.unit()))
+                .collect(),
+        );
+        sets.push(
+            (0..225)
+                .map(|i| Point::new((i % 15) as f64 / 8.0, (i / 15) as f64 / 8.0))
+                .collect(),
+        );
+        let mut repeated: Vec<Point> = (0..150)
+            .map(|_| Point::new((rng.below(20) as f64) / 16.0, (rng.below(20) as f64) / 16.0))
+            .collect();
+        repeated.extend_from_slice(&repeated.clone()[..50]);
+        sets.push(repeated);
+        for points in &sets {
+            let fast = triangles::<Fast>(points);
+            assert!(fast.0.len() > 100);
+            assert_eq!(fast, triangles::<Exact>(points));
+            assert_eq!(fast, triangles::<insert::Integers>(points));
+        }
     }
 }
