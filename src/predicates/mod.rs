@@ -9,8 +9,8 @@
 //!   tries Shewchuk's static error bound inline, which settles most calls without the function
 //!   call. This is the fast path, and the triangulator calls it directly on coordinates it has
 //!   rescaled into the range where it is exact (`docs/predicates.md` derives that range).
-//! - Integer arithmetic on the coordinates brought to a common binary exponent ([`exact`]): exact
-//!   for every finite input, and far slower.
+//! - Integer arithmetic on the coordinates brought to a common binary exponent
+//!   (`src/predicates/exact.rs`): exact for every finite input, and far slower.
 //!
 //! The public functions take any finite coordinates: a call whose coordinates lie in the fast
 //! range goes the fast way, one whose coordinates can be brought there by a power of two (exact,
@@ -94,7 +94,7 @@ pub fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
 /// assert!(!in_circle(a, b, c, Point::new(3.0, 3.0)));
 /// // The same square scaled by 2^-1000, with a point 2^-1060 inside its corner:
 /// let tiny = |x: f64, y: f64| Point::new(x * 2f64.powi(-1000), y * 2f64.powi(-1000));
-/// let just_inside = Point::new(2f64.powi(-1060), 2f64.powi(-1000));
+/// let just_inside = Point::new(f64::from_bits(1 << 14), 2f64.powi(-1000)); // x = 2^-1060
 /// assert!(in_circle(tiny(0.0, 0.0), tiny(1.0, 0.0), tiny(1.0, 1.0), just_inside));
 /// ```
 #[inline]

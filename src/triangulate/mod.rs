@@ -33,6 +33,11 @@ use insert::{Builder, Exact, Fast, Kernel};
 /// `u32::MAX` reserved, which would allow about 715 million points. The limit keeps a factor-two
 /// margin below that bound: nothing larger has been run (at about 100 bytes per point it needs
 /// more memory than the machines we test on).
+///
+/// Beyond it, [`triangulate`] returns [`Error::TooManyPoints`] before allocating anything, and
+/// `io::read_points` (feature `std`) stops at the offending line. Below it, the triangulation
+/// allocates like any Rust code: if the system refuses memory the process aborts, while the
+/// readers of `condt::io` (which size their buffers by the input) return an error instead.
 pub const MAX_POINTS: usize = 350_000_000;
 
 /// A Delaunay triangulation of a point set.
