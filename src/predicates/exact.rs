@@ -222,6 +222,16 @@ pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2])
         .signum()
 }
 
+/// The sign of the dot product `(a - b) · (c - d)`. Exact for every finite input.
+pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
+    let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]]);
+    let int = |x: f64| Int::from_f64(x, e0);
+    let difference =
+        |p: [f64; 2], q: [f64; 2]| (int(p[0]).sub(&int(q[0])), int(p[1]).sub(&int(q[1])));
+    let ((ux, uy), (vx, vy)) = (difference(a, b), difference(c, d));
+    ux.mul(&vx).add(&uy.mul(&vy)).signum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -249,6 +259,32 @@ mod tests {
             assert_eq!(value(&a.mul(&b)), xi * yi);
             assert_eq!(a.sub(&b).signum(), xi.cmp(&yi));
         }
+    }
+
+    #[test]
+    fn dot_products_have_the_sign_of_their_integer_value() {
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        for _ in 0..5_000 {
+            let mut draw = || ((rng.next_u64() >> 40) as i64 - (1i64 << 23)) as f64;
+            let [a, b, c, d] = [
+                [draw(), draw()],
+                [draw(), draw()],
+                [draw(), draw()],
+                [draw(), draw()],
+            ];
+            let exact = (a[0] - b[0]) * (c[0] - d[0]) + (a[1] - b[1]) * (c[1] - d[1]);
+            assert_eq!(dot_sign(a, b, c, d), exact.partial_cmp(&0.0).unwrap());
+        }
+        // Perpendicular, with magnitudes 2^2000 apart.
+        let (big, tiny) = (2f64.powi(1000), 2f64.powi(-1000));
+        assert_eq!(
+            dot_sign([big, 0.0], [0.0, 0.0], [0.0, tiny], [0.0, 0.0]),
+            Ordering::Equal
+        );
+        assert_eq!(
+            dot_sign([big, tiny], [0.0, 0.0], [tiny, tiny], [0.0, 0.0]),
+            Ordering::Greater
+        );
     }
 
     #[test]

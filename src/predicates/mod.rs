@@ -149,6 +149,12 @@ pub(crate) mod integers {
     }
 }
 
+/// The sign of the dot product `(a - b) · (c - d)`, exactly, for any finite coordinates. Only
+/// the triangulator's walk along the hull asks it, for sets beyond the fast range.
+pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
+    exact::dot_sign(a.into(), b.into(), c.into(), d.into())
+}
+
 /// How a call's coordinates can be decided.
 enum Reach {
     /// Already in the fast range: every nonzero magnitude in `[2^-200, 2)`.

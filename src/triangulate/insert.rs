@@ -22,18 +22,18 @@ use core::marker::PhantomData;
 
 /// The predicates a construction decides with, chosen once per point set.
 pub(crate) trait Kernel {
-    /// Whether the walk may slide along the hull, a shortcut guided by floating-point distances
-    /// (see [`Builder::ghost_step`]), which only the fast range keeps free of overflow.
-    const SLIDES: bool;
     fn orient2d(a: Point, b: Point, c: Point) -> Orientation;
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool;
+    /// For `p` on the inner side of the hull edge `a → b`: whether it lies past `b` (`Forward`)
+    /// or before `a` (`Backward`) along the edge, or between (`Done`). It only guides the walk
+    /// along the hull (see [`Builder::ghost_step`]), which needs it exact only to be sure to end.
+    fn slide(a: Point, b: Point, p: Point) -> Slide;
 }
 
 /// Shewchuk's predicates alone, for coordinates in their exact range (`scale` checks it).
 pub(crate) struct Fast;
 
 impl Kernel for Fast {
-    const SLIDES: bool = true;
     #[inline(always)]
     fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
         predicates::fast_orient2d(a, b, c)
@@ -42,14 +42,27 @@ impl Kernel for Fast {
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
         predicates::fast_in_circle(a, b, c, d)
     }
+    /// In floating point: coordinates below 2 cannot overflow, and a rounding error can only
+    /// make one slide more or less, which the one-way rule keeps finite.
+    #[inline(always)]
+    fn slide(pa: Point, pb: Point, p: Point) -> Slide {
+        let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
+        let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
+        if along > dx * dx + dy * dy {
+            Slide::Forward
+        } else if along < 0.0 {
+            Slide::Backward
+        } else {
+            Slide::Done
+        }
+    }
 }
 
 /// The public predicates, exact for every finite input, for sets spanning more than the fast
-/// range; their walk is the plain visibility walk, whose termination rests on exact signs alone.
+/// range; the slide test is exact too.
 pub(crate) struct Exact;
 
 impl Kernel for Exact {
-    const SLIDES: bool = false;
     #[inline(always)]
     fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
         predicates::orient2d(a, b, c)
@@ -57,6 +70,33 @@ impl Kernel for Exact {
     #[inline(always)]
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
         predicates::in_circle(a, b, c, d)
+    }
+    fn slide(a: Point, b: Point, p: Point) -> Slide {
+        use core::cmp::Ordering::{Greater, Less};
+        if predicates::dot_sign(p, b, b, a) == Greater {
+            Slide::Forward
+        } else if predicates::dot_sign(p, a, b, a) == Less {
+            Slide::Backward
+        } else {
+            Slide::Done
+        }
+    }
+}
+
+/// The integer predicates alone, to check constructions against.
+#[cfg(test)]
+pub(crate) struct Integers;
+
+#[cfg(test)]
+impl Kernel for Integers {
+    fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
+        predicates::integers::orient2d(a, b, c)
+    }
+    fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+        predicates::integers::in_circle(a, b, c, d)
+    }
+    fn slide(a: Point, b: Point, p: Point) -> Slide {
+        Exact::slide(a, b, p)
     }
 }
 
@@ -105,7 +145,7 @@ impl Walk {
 /// The hull slides the walk may still take (see `Builder::ghost_step`): at most one way, and
 /// only before the walk first enters a real triangle.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-enum Slide {
+pub(crate) enum Slide {
     /// No slide yet: either way.
     Either,
     /// Only forward, to the ghost after the current hull edge.
@@ -114,21 +154,6 @@ enum Slide {
     Backward,
     /// No more slides: the walk is the plain visibility walk.
     Done,
-}
-
-/// The integer predicates alone, to check constructions against.
-#[cfg(test)]
-pub(crate) struct Integers;
-
-#[cfg(test)]
-impl Kernel for Integers {
-    const SLIDES: bool = false;
-    fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
-        predicates::integers::orient2d(a, b, c)
-    }
-    fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
-        predicates::integers::in_circle(a, b, c, d)
-    }
 }
 
 /// The construction state. Vertex ids are positions in `points` (the insertion order).
@@ -303,17 +328,7 @@ impl<'a, K: Kernel> Builder<'a, K> {
                 // go one way only, and only before the walk first enters a real triangle: past the
                 // far end of `a → b`, `p` is nearer `b` than `a`, so the distance to the slide's
                 // vertex shrinks and cannot cycle. After them the walk is the plain visibility walk.
-                let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
-                let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
-                let way = if !K::SLIDES {
-                    Slide::Done
-                } else if along > dx * dx + dy * dy {
-                    Slide::Forward
-                } else if along < 0.0 {
-                    Slide::Backward
-                } else {
-                    Slide::Done
-                };
+                let way = K::slide(pa, pb, p);
                 // A slide needs a way out (`p` past an end) that the walk still allows.
                 if way != Slide::Done && (walk.slide == Slide::Either || walk.slide == way) {
                     walk.slide = way;

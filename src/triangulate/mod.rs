@@ -110,7 +110,17 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     }
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
-    let order = order::insertion_order(points);
+    let order = if frames.wide {
+        // Sets spanning many orders of magnitude, ordered on a logarithmic grid: on a linear
+        // one, all but the largest points share a cell and the walks grow long.
+        let warped: Vec<Point> = points
+            .iter()
+            .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
+            .collect();
+        order::insertion_order(&warped)
+    } else {
+        order::insertion_order(points)
+    };
     let mut sorted: Vec<Point> = order
         .iter()
         .map(|&i| scale.apply(points[i as usize]))
