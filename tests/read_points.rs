@@ -139,7 +139,13 @@ fn a_byte_order_mark_and_a_header_line_are_accepted() {
         );
     }
     // Only the first line may be a header, and only when every column is a name.
-    for (text, line) in [("1 2\nx y\n", 2), ("x 1\n1 2\n", 1), ("1.2.3 4\n1 2\n", 1)] {
+    for (text, line) in [
+        ("1 2\nx y\n", 2),
+        ("x 1\n1 2\n", 1),
+        ("1.2.3 4\n1 2\n", 1),
+        ("\"1\",\"2\"\n1 2\n", 1),
+        ("\"inf\" x\n1 2\n", 1),
+    ] {
         let err = parse_points(text, "h.txt").unwrap_err();
         assert_eq!(err.line, Some(line), "{text:?}: {err}");
     }

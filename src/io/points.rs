@@ -97,13 +97,16 @@ impl Source<'_> {
     }
 }
 
-/// `true` for a token that names a column (`x`, `lat`, `"y"`) rather than holds a number.
+/// `true` for a token that names a column (`x`, `lat`, `"y"`) rather than holds a number: it
+/// starts with a letter or `_`, quotes aside, and is not a number (`inf`, `NaN`).
 fn is_name(token: &str) -> bool {
+    let bare = token.trim_matches(|c| c == '"' || c == '\'');
     token.parse::<f64>().is_err()
-        && token
+        && bare.parse::<f64>().is_err()
+        && bare
             .chars()
             .next()
-            .is_some_and(|c| c.is_alphabetic() || c == '_' || c == '"' || c == '\'')
+            .is_some_and(|c| c.is_alphabetic() || c == '_')
 }
 
 /// The columns of a plain line (comment already removed): separated by whitespace, or by commas
