@@ -181,3 +181,27 @@ fn a_tiny_coordinate_changes_nothing_it_should_not() {
         assert_eq!(edge_set(&exact), edge_set(&reference), "{tiny:e}");
     }
 }
+
+/// The stages' positions of a set spanning the whole range lose the smallest coordinates' bits;
+/// the triangulation still answers every input point exactly as given, and validates.
+#[test]
+fn input_points_come_back_exactly_from_the_widest_sets() {
+    let points = [
+        (f64::MAX, 0.0),
+        (5e-324, 1e-300),
+        (0.0, -f64::MAX),
+        (-1e-310, 3.0),
+        (-f64::MAX, f64::MAX),
+        (1.0, 1e-320),
+    ]
+    .map(Point::from);
+    let tri = triangulate(&points).unwrap();
+    tri.validate().unwrap();
+    for (i, &p) in points.iter().enumerate() {
+        assert_eq!(tri.point(i), p, "point {i}");
+    }
+    let r = reconstruct(&points, &Params::default()).unwrap();
+    for (i, &p) in points.iter().enumerate() {
+        assert_eq!(r.point(i), p, "point {i}");
+    }
+}

@@ -63,12 +63,19 @@ pub const MAX_POINTS: usize = 350_000_000;
 /// ```
 #[derive(Clone, Debug)]
 pub struct Triangulation {
-    /// Coordinates by vertex id (duplicates too: each input point has an id).
+    /// Positions as the stages measure them (see [`Triangulation::vertex_point`]), by vertex id
+    /// (duplicates too: each input point has an id).
     points: Vec<Point>,
+    /// The input coordinates by vertex id, kept only when `points` could not hold them exactly
+    /// (a set spanning so many orders of magnitude that its smallest coordinates lose bits in
+    /// the stages' frame).
+    inputs: Option<Vec<Point>>,
     /// Input coordinates to the exactly rescaled frame the predicates decide in.
     scale: Scale,
-    /// Input coordinates to the positions the stages measure (see [`scale`]).
-    stage_scale: Scale,
+    /// `points` to the predicates' frame (exact when `inputs` is `None`).
+    stage_to_predicates: Scale,
+    /// `points` to the input coordinates (exact when `inputs` is `None`).
+    stage_to_input: Scale,
     mesh: Mesh,
     /// Vertex id -> input position; for a kept vertex, the smallest position of its duplicates.
     input_of_vertex: Vec<u32>,
@@ -142,17 +149,37 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
         }
         Some((mesh, merged)) => (mesh, merged, order),
     };
-    // The scaled copy becomes the stored coordinates: undoing a power of two is exact.
-    let unscale = scale.inverse();
-    for p in sorted.iter_mut() {
-        *p = unscale.apply(*p);
+    // The stored coordinates are the stages' positions: the predicates' copy times a power of
+    // two, exact for a set in the fast range (every nonzero coordinate ends at least 1). A wider
+    // set may lose bits of its smallest coordinates there: it keeps its inputs as well.
+    let (predicates_exponent, stages_exponent) = frames.exponents;
+    let stage_to_input = frames.stages.inverse();
+    let mut inputs = None;
+    if frames.wide {
+        let stage = frames.stages;
+        let exact = points
+            .iter()
+            .all(|&p| stage_to_input.apply(stage.apply(p)) == p);
+        if !exact {
+            inputs = Some(order.iter().map(|&i| points[i as usize]).collect());
+        }
+        for (slot, &i) in sorted.iter_mut().zip(&order) {
+            *slot = stage.apply(points[i as usize]);
+        }
+    } else {
+        let to_stages = Scale::power_of_two(stages_exponent - predicates_exponent);
+        for p in sorted.iter_mut() {
+            *p = to_stages.apply(*p);
+        }
     }
     let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged);
     let num_vertices = vertex_of_input.len() - merged.len();
     Ok(Triangulation {
         points: sorted,
+        inputs,
         scale,
-        stage_scale: frames.stages,
+        stage_to_predicates: Scale::power_of_two(predicates_exponent - stages_exponent),
+        stage_to_input,
         mesh,
         input_of_vertex,
         vertex_of_input,
@@ -218,7 +245,16 @@ impl Triangulation {
     /// If `index` is not an input position.
     #[inline]
     pub fn point(&self, index: usize) -> Point {
-        self.points[self.vertex(index).index()]
+        self.input_point(self.vertex(index))
+    }
+
+    /// The input coordinates of vertex `v`.
+    #[inline]
+    pub(crate) fn input_point(&self, v: VertexId) -> Point {
+        match &self.inputs {
+            Some(inputs) => inputs[v.index()],
+            None => self.stage_to_input.apply(self.points[v.index()]),
+        }
     }
 
     /// The vertex that input point `index` became (exact duplicates share one).
@@ -313,7 +349,7 @@ impl Triangulation {
     /// power-of-two multiples give the stages the same numbers, bit for bit.
     #[inline]
     pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
-        self.stage_scale.apply(self.points[v.index()])
+        self.points[v.index()]
     }
 
     /// `true` when `v` is a vertex of the mesh: not an id left over by a merged duplicate, not
@@ -341,7 +377,10 @@ impl Triangulation {
     /// Vertex position in the exactly rescaled frame the predicates work in.
     #[inline]
     pub(crate) fn scaled_point(&self, v: VertexId) -> Point {
-        self.scale.apply(self.points[v.index()])
+        match &self.inputs {
+            Some(inputs) => self.scale.apply(inputs[v.index()]),
+            None => self.stage_to_predicates.apply(self.points[v.index()]),
+        }
     }
 }
 

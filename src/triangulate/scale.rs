@@ -33,6 +33,8 @@ pub(crate) struct Frames {
     pub(crate) wide: bool,
     /// Input to the positions the stages measure.
     pub(crate) stages: Scale,
+    /// The binary exponents of the two scales, `predicates` and `stages`.
+    pub(crate) exponents: (i32, i32),
 }
 
 /// Checks every point and picks the frames; the first non-finite point is an error naming its
@@ -62,6 +64,7 @@ pub(crate) fn choose_frames(points: &[Point]) -> Result<Frames, Error> {
             predicates: Scale::IDENTITY,
             wide: false,
             stages: Scale::IDENTITY,
+            exponents: (0, 0),
         });
     }
     let top = binary_exponent(largest);
@@ -70,14 +73,16 @@ pub(crate) fn choose_frames(points: &[Point]) -> Result<Frames, Error> {
     // A wide set is still brought to [1, 2) when that is exact (no coordinate becomes
     // subnormal): most of its predicate calls then stay in the fast range.
     let predicates = if !wide || bottom - top >= -1022 {
-        Scale::power_of_two(-top)
+        -top
     } else {
-        Scale::IDENTITY
+        0
     };
+    let stages = STAGE_EXPONENT - top;
     Ok(Frames {
-        predicates,
+        predicates: Scale::power_of_two(predicates),
         wide,
-        stages: Scale::power_of_two(STAGE_EXPONENT - top),
+        stages: Scale::power_of_two(stages),
+        exponents: (predicates, stages),
     })
 }
 
