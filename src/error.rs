@@ -26,13 +26,6 @@ pub enum Error {
         /// Input position of the offending point.
         index: usize,
     },
-    /// The point at input position `index` has a nonzero coordinate more than 2^200 times smaller
-    /// than the largest coordinate magnitude of the set. The exact predicates would underflow on
-    /// such a set; see `docs/predicates.md`.
-    RangeTooWide {
-        /// Input position of the offending point.
-        index: usize,
-    },
     /// More points than the 32-bit mesh indices can address.
     TooManyPoints {
         /// Number of points given.
@@ -66,11 +59,6 @@ impl fmt::Display for Error {
             Error::NonFinite { index } => {
                 write!(f, "point {index} has a NaN or infinite coordinate")
             }
-            Error::RangeTooWide { index } => write!(
-                f,
-                "point {index} has a coordinate over 2^200 times smaller than the largest one; \
-                 exact predicates cannot serve that dynamic range"
-            ),
             Error::TooManyPoints { count, limit } => {
                 write!(f, "{count} points given, at most {limit} are supported")
             }

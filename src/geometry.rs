@@ -83,6 +83,62 @@ impl From<Point> for [f64; 2] {
     }
 }
 
+/// The exponent `e` with `2^e <= x < 2^(e+1)`, for finite `x > 0` (subnormals included).
+pub(crate) fn binary_exponent(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        let mantissa = bits & ((1u64 << 52) - 1);
+        63 - mantissa.leading_zeros() as i32 - 1074
+    } else {
+        biased - 1023
+    }
+}
+
+/// `2^k` for `k` in the normal exponent range.
+fn pow2(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// Multiplication by a power of two, kept as two factors so that each stays a normal double
+/// (`2^k` for `k` from -2044 to 2046). It is exact, and changes no sign and no ratio, as long as
+/// no coordinate leaves the normal range.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub(crate) struct Scale {
+    first: f64,
+    second: f64,
+}
+
+impl Scale {
+    pub(crate) const IDENTITY: Scale = Scale {
+        first: 1.0,
+        second: 1.0,
+    };
+
+    /// Multiplication by `2^k`.
+    pub(crate) fn power_of_two(k: i32) -> Scale {
+        let half = k / 2;
+        Scale {
+            first: pow2(half),
+            second: pow2(k - half),
+        }
+    }
+
+    #[inline]
+    pub(crate) fn apply(self, p: Point) -> Point {
+        p.scaled(self.first).scaled(self.second)
+    }
+
+    /// The scale that undoes this one, exactly (its factors are powers of two).
+    pub(crate) fn inverse(self) -> Scale {
+        Scale {
+            first: 1.0 / self.second,
+            second: 1.0 / self.first,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -97,6 +153,39 @@ mod tests {
         assert_eq!(
             Point::new(1.0, -2.0).lexicographic_cmp(Point::new(1.0, -1.0)),
             Less
+        );
+    }
+
+    #[test]
+    fn binary_exponent_covers_normal_and_subnormal_numbers() {
+        assert_eq!(binary_exponent(1.0), 0);
+        assert_eq!(binary_exponent(1.5), 0);
+        assert_eq!(binary_exponent(0.75), -1);
+        assert_eq!(binary_exponent(1e15), 49);
+        assert_eq!(binary_exponent(f64::MIN_POSITIVE), -1022);
+        assert_eq!(binary_exponent(f64::from_bits(1)), -1074);
+        assert_eq!(binary_exponent(f64::MAX), 1023);
+    }
+
+    #[test]
+    fn power_of_two_scales_reach_both_ends_of_the_range() {
+        let s = Scale::power_of_two(2046);
+        assert_eq!(
+            s.apply(Point::new(f64::from_bits(1 << 51), 0.0)).x, // 2^-1023, subnormal
+            2f64.powi(1023)
+        );
+        let s = Scale::power_of_two(-2044);
+        // 2^-1044 is subnormal: bit 30 of the pattern.
+        assert_eq!(
+            s.apply(Point::new(2f64.powi(1000), 0.0)).x,
+            f64::from_bits(1 << 30)
+        );
+        assert_eq!(
+            Scale::power_of_two(-10)
+                .inverse()
+                .apply(Point::new(3.0, 0.0))
+                .x,
+            3072.0
         );
     }
 }

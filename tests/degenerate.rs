@@ -255,12 +255,16 @@ fn non_finite_coordinates_are_refused_by_index() {
     }
 }
 
+/// Magnitudes 2^260 apart: beyond the fast predicates' range, decided by the exact integers.
 #[test]
-fn a_dynamic_range_beyond_2_pow_200_is_refused_by_index() {
+fn a_dynamic_range_beyond_2_pow_200_is_triangulated() {
     let p = pts(&[(1.0, 1.0), (0.0, 1e-50), (1e-70, 0.5), (1e-80, 0.0)]);
-    let err = triangulate(&p).unwrap_err();
-    assert_eq!(err, Error::RangeTooWide { index: 2 });
-    assert!(err.to_string().contains("point 2"));
+    let tri = triangulate(&p).unwrap();
+    tri.validate().unwrap();
+    // The four points are in convex position: (0, 1e-50) lies left of the line from (1e-80, 0)
+    // to (1e-70, 0.5), which lies above the line from (0, 1e-50) to (1, 1).
+    assert_eq!(tri.triangles().count(), 2);
+    assert_eq!(tri.hull().count(), 4);
 }
 
 /// Found by quickcheck: a cocircular rectangle whose insertion order depended on the bit patterns

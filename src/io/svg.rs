@@ -1,6 +1,6 @@
 //! SVG drawings of a reconstruction, for looking at results and at each stage.
 
-use crate::geometry::Point;
+use crate::geometry::{binary_exponent, Point, Scale};
 use crate::reconstruct::Reconstruction;
 use std::io::{self, Write};
 
@@ -100,7 +100,21 @@ fn dots(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> io::Result<()> {
-    let pts: Vec<Point> = (0..result.num_points()).map(|i| result.point(i)).collect();
+    // The frame is computed on the points times the power of two that brings the largest
+    // magnitude into [1, 2): spans and offsets of coordinates near 1e308 then neither overflow
+    // to infinity nor turn into NaN, and for every other set the picture is the same number for
+    // number, since every step scales exactly.
+    let largest = (0..result.num_points())
+        .map(|i| result.point(i))
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let unit = if largest > 0.0 && largest.is_finite() {
+        Scale::power_of_two(-binary_exponent(largest))
+    } else {
+        Scale::IDENTITY
+    };
+    let pts: Vec<Point> = (0..result.num_points())
+        .map(|i| unit.apply(result.point(i)))
+        .collect();
     let pts = &pts[..];
     // Only what is drawn: the final edges alone, or the triangulation and every stage.
     type Titled<'a> = (&'a str, Vec<[usize; 2]>);

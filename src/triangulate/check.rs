@@ -51,7 +51,7 @@ impl Triangulation {
         for u in (0..n as u32).map(VertexId::new) {
             // Every id holds an input point; a merged duplicate's point equals its vertex's.
             let kept = self.vertex_of_input[self.input_of_vertex[u.index()] as usize];
-            if self.points[u.index()] != self.points[kept.index()] {
+            if self.input_point(u) != self.input_point(kept) {
                 return fail(Rule::DuplicateMisplaced, Element::Vertex(u));
             }
             vertices += usize::from(kept == u);
@@ -183,8 +183,11 @@ mod tests {
             })
             .unwrap();
         // Still convex and counter-clockwise, but now `b – d` is the shorter diagonal.
-        tri.points[a.index()] = Point::new(-10.0, 0.0);
-        tri.points[c.index()] = Point::new(10.0, 0.0);
+        // (The stored positions are the stages' ones: the input times 2^199 here.)
+        let stage = |x: f64, y: f64| Point::new(x * 2f64.powi(199), y * 2f64.powi(199));
+        assert_eq!(tri.points[a.index()], stage(-1.0, 0.0));
+        tri.points[a.index()] = stage(-10.0, 0.0);
+        tri.points[c.index()] = stage(10.0, 0.0);
         assert_eq!(
             violation(&tri),
             (Rule::NotLocallyDelaunay, Element::HalfEdge(diagonal))
@@ -207,7 +210,7 @@ mod tests {
         let mut tri = triangulate(&line).unwrap();
         assert_eq!(tri.validate(), Ok(()));
         let v = tri.vertex(3);
-        tri.points[v.index()] = Point::new(3.0, 1.0);
+        tri.points[v.index()].y = tri.points[v.index()].x / 3.0;
         assert_eq!(
             violation(&tri),
             (Rule::ChainNotCollinear, Element::Vertex(v))

@@ -16,8 +16,89 @@
 
 use crate::geometry::Point;
 use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshBuilder, VertexId};
-use crate::predicates::{in_circle, orient2d, Orientation};
+use crate::predicates::{self, Orientation};
 use alloc::vec::Vec;
+use core::marker::PhantomData;
+
+/// The predicates a construction decides with, chosen once per point set.
+pub(crate) trait Kernel {
+    fn orient2d(a: Point, b: Point, c: Point) -> Orientation;
+    fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool;
+    /// For `p` on the inner side of the hull edge `a → b`: whether it lies past `b` (`Forward`)
+    /// or before `a` (`Backward`) along the edge, or between (`Done`). It only guides the walk
+    /// along the hull (see [`Builder::ghost_step`]), which needs it exact only to be sure to end.
+    fn slide(a: Point, b: Point, p: Point) -> Slide;
+}
+
+/// Shewchuk's predicates alone, for coordinates in their exact range (`scale` checks it).
+pub(crate) struct Fast;
+
+impl Kernel for Fast {
+    #[inline(always)]
+    fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
+        predicates::fast_orient2d(a, b, c)
+    }
+    #[inline(always)]
+    fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+        predicates::fast_in_circle(a, b, c, d)
+    }
+    /// In floating point: coordinates below 2 cannot overflow, and a rounding error can only
+    /// make one slide more or less, which the one-way rule keeps finite.
+    #[inline(always)]
+    fn slide(pa: Point, pb: Point, p: Point) -> Slide {
+        let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
+        let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
+        if along > dx * dx + dy * dy {
+            Slide::Forward
+        } else if along < 0.0 {
+            Slide::Backward
+        } else {
+            Slide::Done
+        }
+    }
+}
+
+/// The public predicates, exact for every finite input, for sets spanning more than the fast
+/// range; the slide test is exact too.
+pub(crate) struct Exact;
+
+impl Kernel for Exact {
+    #[inline(always)]
+    fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
+        predicates::orient2d(a, b, c)
+    }
+    #[inline(always)]
+    fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+        predicates::in_circle(a, b, c, d)
+    }
+    fn slide(a: Point, b: Point, p: Point) -> Slide {
+        use core::cmp::Ordering::{Greater, Less};
+        if predicates::dot_sign(p, b, b, a) == Greater {
+            Slide::Forward
+        } else if predicates::dot_sign(p, a, b, a) == Less {
+            Slide::Backward
+        } else {
+            Slide::Done
+        }
+    }
+}
+
+/// The integer predicates alone, to check constructions against.
+#[cfg(test)]
+pub(crate) struct Integers;
+
+#[cfg(test)]
+impl Kernel for Integers {
+    fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
+        predicates::integers::orient2d(a, b, c)
+    }
+    fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+        predicates::integers::in_circle(a, b, c, d)
+    }
+    fn slide(a: Point, b: Point, p: Point) -> Slide {
+        Exact::slide(a, b, p)
+    }
+}
 
 /// Where a point falls in the current triangulation.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -64,7 +145,7 @@ impl Walk {
 /// The hull slides the walk may still take (see `Builder::ghost_step`): at most one way, and
 /// only before the walk first enters a real triangle.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-enum Slide {
+pub(crate) enum Slide {
     /// No slide yet: either way.
     Either,
     /// Only forward, to the ghost after the current hull edge.
@@ -76,7 +157,8 @@ enum Slide {
 }
 
 /// The construction state. Vertex ids are positions in `points` (the insertion order).
-pub(crate) struct Builder<'a> {
+pub(crate) struct Builder<'a, K: Kernel> {
+    kernel: PhantomData<K>,
     points: &'a [Point],
     mesh: MeshBuilder,
     flips: Vec<HalfEdgeId>,
@@ -85,11 +167,11 @@ pub(crate) struct Builder<'a> {
     merged: Vec<(u32, u32)>,
 }
 
-impl<'a> Builder<'a> {
+impl<'a, K: Kernel> Builder<'a, K> {
     /// Starts from the counter-clockwise triangle `a, b, c` and its three ghosts.
     pub(crate) fn new(points: &'a [Point], [a, b, c]: [u32; 3]) -> Self {
         debug_assert_eq!(
-            orient2d(points[a as usize], points[b as usize], points[c as usize]),
+            K::orient2d(points[a as usize], points[b as usize], points[c as usize]),
             Orientation::Ccw
         );
         // A triangulated sphere with n + 1 vertices has 2n - 2 triangles: reserve them all at once.
@@ -106,6 +188,7 @@ impl<'a> Builder<'a> {
             mesh.link(h(x), h(y));
         }
         Builder {
+            kernel: PhantomData,
             points,
             mesh,
             flips: Vec::new(),
@@ -237,7 +320,7 @@ impl<'a> Builder<'a> {
         let (pa, pb) = (self.point(a), self.point(b));
         let to_ghost_after = || self.twin(half_edge(after));
         let to_ghost_before = || self.twin(half_edge(infinite));
-        match orient2d(pa, pb, p) {
+        match K::orient2d(pa, pb, p) {
             Orientation::Ccw => Some(Location::Face(hull)),
             Orientation::Cw => {
                 // `p` is on the inner side of this hull edge's line. If it lies past one end, it is
@@ -245,15 +328,7 @@ impl<'a> Builder<'a> {
                 // go one way only, and only before the walk first enters a real triangle: past the
                 // far end of `a → b`, `p` is nearer `b` than `a`, so the distance to the slide's
                 // vertex shrinks and cannot cycle. After them the walk is the plain visibility walk.
-                let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
-                let along = (p.x - pa.x) * dx + (p.y - pa.y) * dy;
-                let way = if along > dx * dx + dy * dy {
-                    Slide::Forward
-                } else if along < 0.0 {
-                    Slide::Backward
-                } else {
-                    Slide::Done
-                };
+                let way = K::slide(pa, pb, p);
                 // A slide needs a way out (`p` past an end) that the walk still allows.
                 if way != Slide::Done && (walk.slide == Slide::Either || walk.slide == way) {
                     walk.slide = way;
@@ -303,7 +378,7 @@ impl<'a> Builder<'a> {
         let mut n_collinear = 0;
         for step in usize::from(walk.entered)..3 {
             let k = wrap3(first + step);
-            match orient2d(points[k], points[wrap3(k + 1)], p) {
+            match K::orient2d(points[k], points[wrap3(k + 1)], p) {
                 Orientation::Cw => return walk.enter(self.twin(half_edge(k))),
                 Orientation::Collinear => {
                     collinear[n_collinear.min(1)] = k;
@@ -415,12 +490,12 @@ impl<'a> Builder<'a> {
             false
         } else if u.is_infinite() {
             // Edge ∞ – w between ghosts (∞, w, v) and (q, w, ∞): flip when v sees hull edge q → w.
-            orient2d(self.point(q), self.point(w), self.point(v)) == Orientation::Ccw
+            K::orient2d(self.point(q), self.point(w), self.point(v)) == Orientation::Ccw
         } else if w.is_infinite() {
             // Edge u – ∞ between ghosts (u, ∞, v) and (u, q, ∞): flip when v sees hull edge u → q.
-            orient2d(self.point(u), self.point(q), self.point(v)) == Orientation::Ccw
+            K::orient2d(self.point(u), self.point(q), self.point(v)) == Orientation::Ccw
         } else {
-            in_circle(self.point(u), self.point(w), self.point(v), self.point(q))
+            K::in_circle(self.point(u), self.point(w), self.point(v), self.point(q))
         }
     }
 

@@ -21,11 +21,11 @@ mod scale;
 
 use crate::error::Error;
 use crate::geometry::Point;
+use crate::geometry::Scale;
 use crate::mesh::{Mesh, VertexId};
-use crate::predicates::{orient2d, Orientation};
+use crate::predicates::Orientation;
 use alloc::vec::Vec;
-use insert::Builder;
-use scale::Scale;
+use insert::{Builder, Exact, Fast, Kernel};
 
 /// The largest number of input points.
 ///
@@ -33,6 +33,11 @@ use scale::Scale;
 /// `u32::MAX` reserved, which would allow about 715 million points. The limit keeps a factor-two
 /// margin below that bound: nothing larger has been run (at about 100 bytes per point it needs
 /// more memory than the machines we test on).
+///
+/// Beyond it, [`triangulate`] returns [`Error::TooManyPoints`] before allocating anything, and
+/// `io::read_points` (feature `std`) stops at the offending line. Below it, the triangulation
+/// allocates like any Rust code: if the system refuses memory the process aborts, while the
+/// readers of `condt::io` (which size their buffers by the input) return an error instead.
 pub const MAX_POINTS: usize = 350_000_000;
 
 /// A Delaunay triangulation of a point set.
@@ -58,9 +63,19 @@ pub const MAX_POINTS: usize = 350_000_000;
 /// ```
 #[derive(Clone, Debug)]
 pub struct Triangulation {
-    /// Coordinates by vertex id (duplicates too: each input point has an id).
+    /// Positions as the stages measure them (see [`Triangulation::vertex_point`]), by vertex id
+    /// (duplicates too: each input point has an id).
     points: Vec<Point>,
+    /// The input coordinates by vertex id, kept only when `points` could not hold them exactly
+    /// (a set spanning so many orders of magnitude that its smallest coordinates lose bits in
+    /// the stages' frame).
+    inputs: Option<Vec<Point>>,
+    /// Input coordinates to the exactly rescaled frame the predicates decide in.
     scale: Scale,
+    /// `points` to the predicates' frame (exact when `inputs` is `None`).
+    stage_to_predicates: Scale,
+    /// `points` to the input coordinates (exact when `inputs` is `None`).
+    stage_to_input: Scale,
     mesh: Mesh,
     /// Vertex id -> input position; for a kept vertex, the smallest position of its duplicates.
     input_of_vertex: Vec<u32>,
@@ -76,10 +91,14 @@ pub struct Triangulation {
 /// see [`Triangulation::vertex`]) and cocircular sets. The result is deterministic and
 /// depends only on the set of points, not on their order.
 ///
+/// Any finite coordinates are accepted, at any scale and with any spread of magnitudes: a set
+/// whose coordinates span more than 2^200 in magnitude (`1` and `1e-61` together) is decided by
+/// exact integer arithmetic instead of Shewchuk's predicates, slower but just as exact
+/// (`docs/predicates.md`).
+///
 /// # Errors
-/// [`Error::NonFinite`] for a NaN or infinite coordinate, [`Error::RangeTooWide`] when the set
-/// spans more than 2^200 in magnitude, [`Error::TooManyPoints`] beyond [`MAX_POINTS`]; each names
-/// the first offending input index.
+/// [`Error::NonFinite`] for a NaN or infinite coordinate, naming the first such input index;
+/// [`Error::TooManyPoints`] beyond [`MAX_POINTS`].
 ///
 /// ```
 /// use condt::{triangulate, Point};
@@ -96,14 +115,30 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
             limit: MAX_POINTS,
         });
     }
-    let scale = scale::choose_scale(points)?;
-    let order = order::insertion_order(points);
+    let frames = scale::choose_frames(points)?;
+    let scale = frames.predicates;
+    let order = if frames.wide {
+        // Sets spanning many orders of magnitude, ordered on a logarithmic grid: on a linear
+        // one, all but the largest points share a cell and the walks grow long.
+        let warped: Vec<Point> = points
+            .iter()
+            .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
+            .collect();
+        order::insertion_order(&warped)
+    } else {
+        order::insertion_order(points)
+    };
     let mut sorted: Vec<Point> = order
         .iter()
         .map(|&i| scale.apply(points[i as usize]))
         .collect();
 
-    let (mesh, merged, order) = match first_triangle(&sorted) {
+    let built = if frames.wide {
+        build::<Exact>(&sorted)
+    } else {
+        build::<Fast>(&sorted)
+    };
+    let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
             let (mesh, merged, line_order) = collinear::chain(points);
@@ -112,27 +147,39 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
             }
             (mesh, merged, line_order)
         }
-        Some(start) => {
-            let mut builder = Builder::new(&sorted, start);
-            for v in 0..sorted.len() as u32 {
-                if !start.contains(&v) {
-                    builder.insert(v);
-                }
-            }
-            let (mesh, merged) = builder.finish();
-            (mesh, merged, order)
-        }
+        Some((mesh, merged)) => (mesh, merged, order),
     };
-    // The scaled copy becomes the stored coordinates: undoing a power of two is exact.
-    let unscale = scale.inverse();
-    for p in sorted.iter_mut() {
-        *p = unscale.apply(*p);
+    // The stored coordinates are the stages' positions: the predicates' copy times a power of
+    // two, exact for a set in the fast range (every nonzero coordinate ends at least 1). A wider
+    // set may lose bits of its smallest coordinates there: it keeps its inputs as well.
+    let (predicates_exponent, stages_exponent) = frames.exponents;
+    let stage_to_input = frames.stages.inverse();
+    let mut inputs = None;
+    if frames.wide {
+        let stage = frames.stages;
+        let exact = points
+            .iter()
+            .all(|&p| stage_to_input.apply(stage.apply(p)) == p);
+        if !exact {
+            inputs = Some(order.iter().map(|&i| points[i as usize]).collect());
+        }
+        for (slot, &i) in sorted.iter_mut().zip(&order) {
+            *slot = stage.apply(points[i as usize]);
+        }
+    } else {
+        let to_stages = Scale::power_of_two(stages_exponent - predicates_exponent);
+        for p in sorted.iter_mut() {
+            *p = to_stages.apply(*p);
+        }
     }
     let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged);
     let num_vertices = vertex_of_input.len() - merged.len();
     Ok(Triangulation {
         points: sorted,
+        inputs,
         scale,
+        stage_to_predicates: Scale::power_of_two(predicates_exponent - stages_exponent),
+        stage_to_input,
         mesh,
         input_of_vertex,
         vertex_of_input,
@@ -140,14 +187,27 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     })
 }
 
+/// The mesh of `points` (in insertion order) and the `(duplicate, kept)` pairs merged on the way,
+/// or `None` when they make no triangle.
+fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
+    let start = first_triangle::<K>(points)?;
+    let mut builder = Builder::<K>::new(points, start);
+    for v in 0..points.len() as u32 {
+        if !start.contains(&v) {
+            builder.insert(v);
+        }
+    }
+    Some(builder.finish())
+}
+
 /// The first three points, in insertion order, that make a proper triangle, counter-clockwise.
-fn first_triangle(points: &[Point]) -> Option<[u32; 3]> {
+fn first_triangle<K: Kernel>(points: &[Point]) -> Option<[u32; 3]> {
     let a = 0;
     let b = points.iter().position(|&p| p != points[a])?;
     let (pa, pb) = (points[a], points[b]);
     points[b + 1..].iter().enumerate().find_map(|(k, &pc)| {
         let c = (b + 1 + k) as u32;
-        match orient2d(pa, pb, pc) {
+        match K::orient2d(pa, pb, pc) {
             Orientation::Ccw => Some([a as u32, b as u32, c]),
             Orientation::Cw => Some([b as u32, a as u32, c]),
             Orientation::Collinear => None,
@@ -185,7 +245,16 @@ impl Triangulation {
     /// If `index` is not an input position.
     #[inline]
     pub fn point(&self, index: usize) -> Point {
-        self.points[self.vertex(index).index()]
+        self.input_point(self.vertex(index))
+    }
+
+    /// The input coordinates of vertex `v`.
+    #[inline]
+    pub(crate) fn input_point(&self, v: VertexId) -> Point {
+        match &self.inputs {
+            Some(inputs) => inputs[v.index()],
+            None => self.stage_to_input.apply(self.points[v.index()]),
+        }
     }
 
     /// The vertex that input point `index` became (exact duplicates share one).
@@ -273,7 +342,11 @@ impl Triangulation {
         self.mesh.triangles().next().is_none()
     }
 
-    /// The position of vertex `v`.
+    /// The position of vertex `v` as the stages measure it: the input coordinates times the one
+    /// power of two that brings the set's largest coordinate magnitude into [2^200, 2^201).
+    /// Lengths, their ratios and comparisons are those of the input, but squared lengths (and
+    /// their products) neither overflow nor underflow at any input scale, and a set and its
+    /// power-of-two multiples give the stages the same numbers, bit for bit.
     #[inline]
     pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
         self.points[v.index()]
@@ -304,6 +377,69 @@ impl Triangulation {
     /// Vertex position in the exactly rescaled frame the predicates work in.
     #[inline]
     pub(crate) fn scaled_point(&self, v: VertexId) -> Point {
-        self.scale.apply(self.points[v.index()])
+        match &self.inputs {
+            Some(inputs) => self.scale.apply(inputs[v.index()]),
+            None => self.stage_to_predicates.apply(self.points[v.index()]),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::Xorshift;
+
+    /// The triangles of the mesh `build` makes, as vertex ids from the smallest, sorted; and the
+    /// merged duplicates.
+    fn triangles<K: Kernel>(points: &[Point]) -> (Vec<[u32; 3]>, Vec<(u32, u32)>) {
+        let (mesh, merged) = build::<K>(points).expect("a triangle");
+        let mut triangles: Vec<[u32; 3]> = mesh
+            .triangles()
+            .map(|t| {
+                let [a, b, c] = mesh.triangle_vertices(t).map(|v| v.index() as u32);
+                let first = a.min(b).min(c);
+                if first == a {
+                    [a, b, c]
+                } else if first == b {
+                    [b, c, a]
+                } else {
+                    [c, a, b]
+                }
+            })
+            .collect();
+        triangles.sort_unstable();
+        (triangles, merged)
+    }
+
+    /// The three kernels build the same triangulation on sets in the fast range: random points,
+    /// a grid (cocircular everywhere) and duplicates. The same insertion order gives the same
+    /// splits and flips whatever path the walk takes (only the slots triangles land in may
+    /// differ, when a point on an edge is reached from the other side), so any difference is a
+    /// sign the kernels disagree on.
+    #[test]
+    fn fast_exact_and_integer_kernels_build_the_same_mesh() {
+        let mut rng = Xorshift::new(0x082e_fa98_ec4e_6c89);
+        let mut sets: Vec<Vec<Point>> = Vec::new();
+        sets.push(
+            (0..400)
+                .map(|_| Point::new(rng.unit(), rng.unit()))
+                .collect(),
+        );
+        sets.push(
+            (0..225)
+                .map(|i| Point::new((i % 15) as f64 / 8.0, (i / 15) as f64 / 8.0))
+                .collect(),
+        );
+        let mut repeated: Vec<Point> = (0..150)
+            .map(|_| Point::new((rng.below(20) as f64) / 16.0, (rng.below(20) as f64) / 16.0))
+            .collect();
+        repeated.extend_from_slice(&repeated.clone()[..50]);
+        sets.push(repeated);
+        for points in &sets {
+            let fast = triangles::<Fast>(points);
+            assert!(fast.0.len() > 100);
+            assert_eq!(fast, triangles::<Exact>(points));
+            assert_eq!(fast, triangles::<insert::Integers>(points));
+        }
     }
 }

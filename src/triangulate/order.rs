@@ -82,6 +82,18 @@ fn hilbert_steps<const STEPS: u32>(x: u32, y: u32) -> u64 {
     index
 }
 
+/// A strictly increasing map of the finite doubles onto numbers below 2^63 in magnitude that
+/// grows like the logarithm of the magnitude (the ordered bit pattern), so that a grid on it has
+/// as many cells between 1e-300 and 1e-299 as between 1 and 10.
+pub(crate) fn logarithmic(x: f64) -> f64 {
+    let magnitude = (x.to_bits() & !(1 << 63)) as f64;
+    if x < 0.0 {
+        -magnitude
+    } else {
+        magnitude
+    }
+}
+
 /// SplitMix64 finalizer: a cheap, well-mixed hash of a 64-bit word.
 fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);

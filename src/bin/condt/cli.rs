@@ -6,7 +6,8 @@
 
 use crate::output::{refuse_same_file, Destination};
 use condt::io::{
-    parse_points, read_points, write_edges, write_geojson, write_polylines, write_svg, IoError,
+    parse_node, parse_points, read_points, write_edges, write_geojson, write_polylines, write_svg,
+    IoError,
 };
 use condt::{reconstruct, triangulate, Error, Params, Point, Repair, Uniformity};
 use std::ffi::{OsStr, OsString};
@@ -524,7 +525,12 @@ fn read_input(input: Option<&Path>) -> Result<Vec<Point>, CliError> {
         file: shown.clone(),
         error: io::Error::new(io::ErrorKind::InvalidData, "not UTF-8 text"),
     })?;
-    Ok(parse_points(&text, &shown)?)
+    // The same choice of format as `read_points` makes by the name.
+    if path.extension().is_some_and(|e| e == "node") {
+        Ok(parse_node(&text, &shown)?)
+    } else {
+        Ok(parse_points(&text, &shown)?)
+    }
 }
 
 fn shown_input(input: Option<&Path>) -> String {

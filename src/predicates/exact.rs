@@ -1,0 +1,331 @@
+//! Exact signs by integer arithmetic, for coordinates whose spread of magnitudes Shewchuk's
+//! floating-point expansions cannot take without underflow.
+//!
+//! Every finite double is an integer times a power of two, `m · 2^e` with `|m| < 2^53` and
+//! `-1074 <= e <= 971`. Bringing the coordinates of one call to their smallest exponent `e0` makes
+//! them integers below `2^53 · 2^(971 + 1074) = 2^2098`. The orientation determinant is of degree
+//! 2 in their differences and the in-circle determinant of degree 4, so every intermediate value
+//! stays below `2^8400`: the integers live on the stack in fixed arrays of 64-bit limbs sized for
+//! that worst case, and no call allocates. The arithmetic is schoolbook and visits only the limbs
+//! in use, so a call costs what its own spread needs: a few microseconds at worst, which is why
+//! [`super`] runs it only where the fast predicates could be wrong.
+
+use core::cmp::Ordering;
+
+/// Limbs for the largest intermediate value, `2^8400` (132 limbs), plus a spare so that an
+/// addition's carry never needs a check against the end.
+const LIMBS: usize = 134;
+
+/// A signed integer of at most `64 · LIMBS` bits, as sign and magnitude.
+#[derive(Clone, Copy)]
+struct Int {
+    negative: bool,
+    /// Limbs in use, least significant first; `limbs[len - 1] != 0` unless `len == 0` (zero).
+    len: usize,
+    limbs: [u64; LIMBS],
+}
+
+impl Int {
+    const ZERO: Int = Int {
+        negative: false,
+        len: 0,
+        limbs: [0; LIMBS],
+    };
+
+    /// `x / 2^e0` as an integer; `e0` must be at most the exponent of `x`'s last set bit.
+    fn from_f64(x: f64, e0: i32) -> Int {
+        let Some((negative, mantissa, exponent)) = decompose(x) else {
+            return Int::ZERO;
+        };
+        let shift = (exponent - e0) as usize;
+        debug_assert!(exponent >= e0 && shift + 53 <= 64 * (LIMBS - 1));
+        let mut out = Int::ZERO;
+        let (word, bit) = (shift / 64, shift % 64);
+        out.limbs[word] = mantissa << bit;
+        if bit != 0 {
+            out.limbs[word + 1] = mantissa >> (64 - bit);
+        }
+        out.negative = negative;
+        out.len = word + 2;
+        out.trim();
+        out
+    }
+
+    fn trim(&mut self) {
+        while self.len > 0 && self.limbs[self.len - 1] == 0 {
+            self.len -= 1;
+        }
+        if self.len == 0 {
+            self.negative = false;
+        }
+    }
+
+    fn magnitude(&self) -> &[u64] {
+        &self.limbs[..self.len]
+    }
+
+    fn signum(&self) -> Ordering {
+        match (self.len, self.negative) {
+            (0, _) => Ordering::Equal,
+            (_, true) => Ordering::Less,
+            (_, false) => Ordering::Greater,
+        }
+    }
+
+    fn negated(mut self) -> Int {
+        self.negative = !self.negative && self.len > 0;
+        self
+    }
+
+    fn add(&self, other: &Int) -> Int {
+        if self.negative == other.negative {
+            let mut sum = add_magnitudes(self.magnitude(), other.magnitude());
+            sum.negative = self.negative && sum.len > 0;
+            return sum;
+        }
+        // Opposite signs: the larger magnitude decides the sign of the difference.
+        let (large, small) = match compare_magnitudes(self.magnitude(), other.magnitude()) {
+            Ordering::Equal => return Int::ZERO,
+            Ordering::Greater => (self, other),
+            Ordering::Less => (other, self),
+        };
+        let mut difference = subtract_magnitudes(large.magnitude(), small.magnitude());
+        difference.negative = large.negative;
+        difference
+    }
+
+    fn sub(&self, other: &Int) -> Int {
+        self.add(&other.negated())
+    }
+
+    fn mul(&self, other: &Int) -> Int {
+        let (a, b) = (self.magnitude(), other.magnitude());
+        if a.is_empty() || b.is_empty() {
+            return Int::ZERO;
+        }
+        debug_assert!(a.len() + b.len() <= LIMBS);
+        let mut out = Int::ZERO;
+        for (i, &x) in a.iter().enumerate() {
+            let mut carry = 0u64;
+            for (j, &y) in b.iter().enumerate() {
+                let t = u128::from(x) * u128::from(y)
+                    + u128::from(out.limbs[i + j])
+                    + u128::from(carry);
+                out.limbs[i + j] = t as u64;
+                carry = (t >> 64) as u64;
+            }
+            out.limbs[i + b.len()] = carry;
+        }
+        out.len = a.len() + b.len();
+        out.negative = self.negative != other.negative;
+        out.trim();
+        out
+    }
+}
+
+/// `x = ±m · 2^e` with `m` odd, or `None` for zero.
+fn decompose(x: f64) -> Option<(bool, u64, i32)> {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    let fraction = bits & ((1u64 << 52) - 1);
+    let (mantissa, exponent) = if biased == 0 {
+        (fraction, -1074)
+    } else {
+        (fraction | (1u64 << 52), biased - 1075)
+    };
+    if mantissa == 0 {
+        return None;
+    }
+    let zeros = mantissa.trailing_zeros();
+    Some((bits >> 63 == 1, mantissa >> zeros, exponent + zeros as i32))
+}
+
+/// The exponent of the last set bit of the least precise coordinate: every coordinate is an
+/// integer multiple of `2^e0`. Zero when all coordinates are zero.
+fn common_exponent(coordinates: &[f64]) -> i32 {
+    coordinates
+        .iter()
+        .filter_map(|&c| decompose(c).map(|(_, _, e)| e))
+        .min()
+        .unwrap_or(0)
+}
+
+fn compare_magnitudes(a: &[u64], b: &[u64]) -> Ordering {
+    a.len()
+        .cmp(&b.len())
+        .then_with(|| a.iter().rev().cmp(b.iter().rev()))
+}
+
+fn add_magnitudes(a: &[u64], b: &[u64]) -> Int {
+    let (long, short) = if a.len() >= b.len() { (a, b) } else { (b, a) };
+    let mut out = Int::ZERO;
+    let mut carry = false;
+    for (i, &x) in long.iter().enumerate() {
+        let y = short.get(i).copied().unwrap_or(0);
+        let (s, c1) = x.overflowing_add(y);
+        let (s, c2) = s.overflowing_add(u64::from(carry));
+        out.limbs[i] = s;
+        carry = c1 || c2;
+    }
+    out.limbs[long.len()] = u64::from(carry);
+    out.len = long.len() + 1;
+    out.trim();
+    out
+}
+
+/// `a - b` for `a >= b`.
+fn subtract_magnitudes(a: &[u64], b: &[u64]) -> Int {
+    let mut out = Int::ZERO;
+    let mut borrow = false;
+    for (i, &x) in a.iter().enumerate() {
+        let y = b.get(i).copied().unwrap_or(0);
+        let (d, b1) = x.overflowing_sub(y);
+        let (d, b2) = d.overflowing_sub(u64::from(borrow));
+        out.limbs[i] = d;
+        borrow = b1 || b2;
+    }
+    debug_assert!(!borrow, "subtracting a larger magnitude");
+    out.len = a.len();
+    out.trim();
+    out
+}
+
+/// The sign of `(ax - cx)(by - cy) - (ay - cy)(bx - cx)`: `Greater` when `a, b, c` turn
+/// counter-clockwise. Exact for every finite input.
+pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
+    let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1]]);
+    let int = |x: f64| Int::from_f64(x, e0);
+    let (cx, cy) = (int(c[0]), int(c[1]));
+    let (acx, acy) = (int(a[0]).sub(&cx), int(a[1]).sub(&cy));
+    let (bcx, bcy) = (int(b[0]).sub(&cx), int(b[1]).sub(&cy));
+    acx.mul(&bcy).sub(&acy.mul(&bcx)).signum()
+}
+
+/// The sign of the in-circle determinant: `Greater` when `d` lies strictly inside the circle
+/// through the counter-clockwise `a, b, c` (the opposite for a clockwise triangle), `Equal` when
+/// the four points are cocircular. Exact for every finite input.
+pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
+    let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]]);
+    let int = |x: f64| Int::from_f64(x, e0);
+    let (dx, dy) = (int(d[0]), int(d[1]));
+    let relative = |p: [f64; 2]| (int(p[0]).sub(&dx), int(p[1]).sub(&dy));
+    let ((adx, ady), (bdx, bdy), (cdx, cdy)) = (relative(a), relative(b), relative(c));
+    let lift = |x: &Int, y: &Int| x.mul(x).add(&y.mul(y));
+    let (alift, blift, clift) = (lift(&adx, &ady), lift(&bdx, &bdy), lift(&cdx, &cdy));
+    let bc = bdx.mul(&cdy).sub(&bdy.mul(&cdx));
+    let ca = cdx.mul(&ady).sub(&cdy.mul(&adx));
+    let ab = adx.mul(&bdy).sub(&ady.mul(&bdx));
+    alift
+        .mul(&bc)
+        .add(&blift.mul(&ca))
+        .add(&clift.mul(&ab))
+        .signum()
+}
+
+/// The sign of the dot product `(a - b) · (c - d)`. Exact for every finite input.
+pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
+    let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]]);
+    let int = |x: f64| Int::from_f64(x, e0);
+    let difference =
+        |p: [f64; 2], q: [f64; 2]| (int(p[0]).sub(&int(q[0])), int(p[1]).sub(&int(q[1])));
+    let ((ux, uy), (vx, vy)) = (difference(a, b), difference(c, d));
+    ux.mul(&vx).add(&uy.mul(&vy)).signum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn value(i: &Int) -> i128 {
+        assert!(i.len <= 2);
+        let m = i128::from(i.limbs[0]) | (i128::from(i.limbs[1]) << 64);
+        if i.negative {
+            -m
+        } else {
+            m
+        }
+    }
+
+    #[test]
+    fn small_integers_add_subtract_and_multiply_like_i128() {
+        let mut rng = crate::test_rng::Xorshift::new(0x5851_f42d_4c95_7f2d);
+        for _ in 0..10_000 {
+            let mut draw = || (rng.next_u64() >> 12) as i64 - (1i64 << 51);
+            let (x, y) = (draw() as f64, draw() as f64);
+            let (a, b) = (Int::from_f64(x, 0), Int::from_f64(y, 0));
+            let (xi, yi) = (x as i128, y as i128);
+            assert_eq!(value(&a.add(&b)), xi + yi);
+            assert_eq!(value(&a.sub(&b)), xi - yi);
+            assert_eq!(value(&a.mul(&b)), xi * yi);
+            assert_eq!(a.sub(&b).signum(), xi.cmp(&yi));
+        }
+    }
+
+    #[test]
+    fn dot_products_have_the_sign_of_their_integer_value() {
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        for _ in 0..5_000 {
+            let mut draw = || ((rng.next_u64() >> 40) as i64 - (1i64 << 23)) as f64;
+            let [a, b, c, d] = [
+                [draw(), draw()],
+                [draw(), draw()],
+                [draw(), draw()],
+                [draw(), draw()],
+            ];
+            let exact = (a[0] - b[0]) * (c[0] - d[0]) + (a[1] - b[1]) * (c[1] - d[1]);
+            assert_eq!(dot_sign(a, b, c, d), exact.partial_cmp(&0.0).unwrap());
+        }
+        // Perpendicular, with magnitudes 2^2000 apart.
+        let (big, tiny) = (2f64.powi(1000), 2f64.powi(-1000));
+        assert_eq!(
+            dot_sign([big, 0.0], [0.0, 0.0], [0.0, tiny], [0.0, 0.0]),
+            Ordering::Equal
+        );
+        assert_eq!(
+            dot_sign([big, tiny], [0.0, 0.0], [tiny, tiny], [0.0, 0.0]),
+            Ordering::Greater
+        );
+    }
+
+    #[test]
+    fn doubles_decompose_into_odd_mantissas() {
+        assert_eq!(decompose(0.0), None);
+        assert_eq!(decompose(-0.0), None);
+        assert_eq!(decompose(1.0), Some((false, 1, 0)));
+        assert_eq!(decompose(-6.0), Some((true, 3, 1)));
+        assert_eq!(decompose(f64::from_bits(1)), Some((false, 1, -1074)));
+        assert_eq!(
+            decompose(f64::MAX),
+            Some((false, (1u64 << 53) - 1, 1023 - 52))
+        );
+    }
+
+    #[test]
+    fn carries_cross_limbs() {
+        // 2^64 - 1 plus 1 is 2^64, then squared 2^128: three limbs, the lowest two zero.
+        let all_ones = Int::from_f64(2f64.powi(64), 0).sub(&Int::from_f64(1.0, 0));
+        assert_eq!(all_ones.len, 1);
+        assert_eq!(all_ones.limbs[0], u64::MAX);
+        let power = all_ones.add(&Int::from_f64(1.0, 0));
+        assert_eq!((power.len, power.limbs[1]), (2, 1));
+        let square = power.mul(&power);
+        assert_eq!((square.len, square.limbs[2]), (3, 1));
+        assert_eq!(square.sub(&square).signum(), Ordering::Equal);
+    }
+
+    #[test]
+    fn the_widest_spread_fits() {
+        let (tiny, huge) = (f64::from_bits(1), f64::MAX);
+        let a = [huge, -huge];
+        let b = [-huge, tiny];
+        let c = [tiny, huge];
+        // Three corners of a triangle spanning the whole double range, counter-clockwise.
+        assert_eq!(
+            orient2d_sign([-huge, -huge], [huge, -huge], c),
+            Ordering::Greater
+        );
+        assert_eq!(orient2d_sign(a, b, c), Ordering::Less);
+        assert_eq!(in_circle_sign(a, c, b, [tiny, -tiny]), Ordering::Greater);
+        assert_eq!(in_circle_sign(a, c, b, [huge, huge]), Ordering::Less);
+    }
+}

@@ -1,0 +1,433 @@
+//! Exact geometric predicates.
+//!
+//! Owns: every decision about a geometric sign. Nothing else in the crate may compute a sign with
+//! plain floating point, and this module may not depend on the mesh or the triangulator.
+//!
+//! Two ways to the same exact sign:
+//! - Shewchuk's adaptive-precision `orient2d` and `incircle` (the `robust` crate), exact for
+//!   every input whose intermediate products neither overflow nor underflow. `in_circle` first
+//!   tries Shewchuk's static error bound inline, which settles most calls without the function
+//!   call. This is the fast path, and the triangulator calls it directly on coordinates it has
+//!   rescaled into the range where it is exact (`docs/predicates.md` derives that range).
+//! - Integer arithmetic on the coordinates brought to a common binary exponent
+//!   (`src/predicates/exact.rs`): exact for every finite input, and far slower.
+//!
+//! The public functions take any finite coordinates: a call whose coordinates lie in the fast
+//! range goes the fast way, one whose coordinates can be brought there by a power of two (exact,
+//! sign-preserving) is rescaled first, and only a call spanning more than 2^200 in magnitude on
+//! its own goes to the integers.
+//!
+//! Sign conventions (y axis pointing up):
+//! - [`orient2d`]`(a, b, c)` is [`Orientation::Ccw`] when `c` lies strictly left of the directed
+//!   line `a → b`, that is when `a, b, c` turn counter-clockwise.
+//! - [`in_circle`]`(a, b, c, d)` is `true` when `d` lies strictly inside the circle through the
+//!   counter-clockwise triangle `a, b, c`.
+
+mod exact;
+
+use crate::geometry::{binary_exponent, Point, Scale};
+use core::cmp::Ordering;
+use robust::Coord;
+
+/// The turn made by three points.
+///
+/// ```
+/// use condt::predicates::{orient2d, Orientation};
+/// use condt::Point;
+/// let (a, b) = (Point::new(0.0, 0.0), Point::new(1.0, 0.0));
+/// assert_eq!(orient2d(a, b, Point::new(0.5, 1.0)), Orientation::Ccw);
+/// assert_eq!(orient2d(a, b, Point::new(0.5, -1.0)), Orientation::Cw);
+/// assert_eq!(orient2d(a, b, Point::new(7.0, 0.0)), Orientation::Collinear);
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Orientation {
+    /// Counter-clockwise: the third point is strictly left of the line through the first two.
+    Ccw,
+    /// Clockwise: the third point is strictly right of the line through the first two.
+    Cw,
+    /// The three points lie on one line (or two of them coincide).
+    Collinear,
+}
+
+#[inline(always)]
+fn coord(p: Point) -> Coord<f64> {
+    Coord { x: p.x, y: p.y }
+}
+
+/// Exact orientation of the triangle `a, b, c`, for any finite coordinates.
+///
+/// ```
+/// use condt::predicates::{orient2d, Orientation};
+/// use condt::Point;
+/// let (a, b) = (Point::new(0.0, 0.0), Point::new(1.0, 1.0));
+/// // One unit in the last place above the diagonal, 10^15 away from the origin:
+/// let just_above = Point::new(1e15, f64::from_bits(1e15f64.to_bits() + 1));
+/// assert_eq!(orient2d(a, b, just_above), Orientation::Ccw);
+/// assert_eq!(orient2d(a, b, Point::new(1e15, 1e15)), Orientation::Collinear);
+/// // Magnitudes 10^600 apart, where the products of floating-point arithmetic underflow:
+/// let (p, q) = (Point::new(1e300, 0.0), Point::new(0.0, 1e300));
+/// assert_eq!(orient2d(p, q, Point::new(1e-300, 1e-300)), Orientation::Ccw);
+/// ```
+#[inline]
+pub fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
+    match reach(&[a, b, c]) {
+        Reach::Fast => fast_orient2d(a, b, c),
+        Reach::Rescaled(s) => fast_orient2d(s.apply(a), s.apply(b), s.apply(c)),
+        Reach::Integers => match exact::orient2d_sign(a.into(), b.into(), c.into()) {
+            Ordering::Greater => Orientation::Ccw,
+            Ordering::Less => Orientation::Cw,
+            Ordering::Equal => Orientation::Collinear,
+        },
+    }
+}
+
+/// `true` when `d` lies strictly inside the circle through `a, b, c`, which must be
+/// counter-clockwise (the sign flips for a clockwise triangle). Cocircular points give `false`.
+/// Exact for any finite coordinates.
+///
+/// ```
+/// use condt::predicates::in_circle;
+/// use condt::Point;
+/// let (a, b, c) = (Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0));
+/// assert!(in_circle(a, b, c, Point::new(0.5, 0.5)));
+/// assert!(!in_circle(a, b, c, Point::new(0.0, 1.0))); // cocircular
+/// assert!(!in_circle(a, b, c, Point::new(3.0, 3.0)));
+/// // The same square scaled by 2^-1000, with a point 2^-1060 inside its corner:
+/// let tiny = |x: f64, y: f64| Point::new(x * 2f64.powi(-1000), y * 2f64.powi(-1000));
+/// let just_inside = Point::new(f64::from_bits(1 << 14), 2f64.powi(-1000)); // x = 2^-1060
+/// assert!(in_circle(tiny(0.0, 0.0), tiny(1.0, 0.0), tiny(1.0, 1.0), just_inside));
+/// ```
+#[inline]
+pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+    match reach(&[a, b, c, d]) {
+        Reach::Fast => fast_in_circle(a, b, c, d),
+        Reach::Rescaled(s) => fast_in_circle(s.apply(a), s.apply(b), s.apply(c), s.apply(d)),
+        Reach::Integers => {
+            exact::in_circle_sign(a.into(), b.into(), c.into(), d.into()) == Ordering::Greater
+        }
+    }
+}
+
+/// `true` when `d` lies exactly on the circle through `a, b, c` (any orientation). Exact for any
+/// finite coordinates.
+///
+/// ```
+/// use condt::predicates::is_cocircular;
+/// use condt::Point;
+/// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+/// assert!(is_cocircular(square[0], square[1], square[2], square[3]));
+/// ```
+#[inline]
+pub fn is_cocircular(a: Point, b: Point, c: Point, d: Point) -> bool {
+    let fast =
+        |[a, b, c, d]: [Point; 4]| robust::incircle(coord(a), coord(b), coord(c), coord(d)) == 0.0;
+    match reach(&[a, b, c, d]) {
+        Reach::Fast => fast([a, b, c, d]),
+        Reach::Rescaled(s) => fast([a, b, c, d].map(|p| s.apply(p))),
+        Reach::Integers => {
+            exact::in_circle_sign(a.into(), b.into(), c.into(), d.into()) == Ordering::Equal
+        }
+    }
+}
+
+/// The integer predicates alone, for tests that check whole constructions against them.
+#[cfg(test)]
+pub(crate) mod integers {
+    use super::{exact, Orientation, Point};
+    use core::cmp::Ordering;
+
+    pub(crate) fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
+        match exact::orient2d_sign(a.into(), b.into(), c.into()) {
+            Ordering::Greater => Orientation::Ccw,
+            Ordering::Less => Orientation::Cw,
+            Ordering::Equal => Orientation::Collinear,
+        }
+    }
+
+    pub(crate) fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+        exact::in_circle_sign(a.into(), b.into(), c.into(), d.into()) == Ordering::Greater
+    }
+}
+
+/// The sign of the dot product `(a - b) · (c - d)`, exactly, for any finite coordinates. Only
+/// the triangulator's walk along the hull asks it, for sets beyond the fast range.
+pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
+    exact::dot_sign(a.into(), b.into(), c.into(), d.into())
+}
+
+/// How a call's coordinates can be decided.
+enum Reach {
+    /// Already in the fast range: every nonzero magnitude in `[2^-200, 2)`.
+    Fast,
+    /// In the fast range once multiplied by this power of two.
+    Rescaled(Scale),
+    /// Spanning more than the fast range holds, or not finite.
+    Integers,
+}
+
+/// The magnitudes, as bit patterns, that bound the fast range: `[2^-200, 2)`.
+const FAST_LOW: u64 = (1023 - MAX_SPREAD_BITS as u64) << 52;
+const FAST_HIGH: u64 = 1024 << 52;
+
+/// The widest ratio, in binary orders of magnitude, between the largest coordinate magnitude and
+/// a nonzero one that the fast predicates decide exactly once the largest is in `[1, 2)`.
+pub(crate) const MAX_SPREAD_BITS: i32 = 200;
+
+#[inline(always)]
+fn reach(points: &[Point]) -> Reach {
+    const MAGNITUDE: u64 = !(1 << 63);
+    let in_range = |c: f64| {
+        let bits = c.to_bits() & MAGNITUDE;
+        bits == 0 || (FAST_LOW..FAST_HIGH).contains(&bits)
+    };
+    if points.iter().all(|p| in_range(p.x) && in_range(p.y)) {
+        return Reach::Fast;
+    }
+    rescale_or_integers(points)
+}
+
+#[cold]
+fn rescale_or_integers(points: &[Point]) -> Reach {
+    if !points.iter().all(|p| p.is_finite()) {
+        // Not a question with an answer; robust gives some sign without panicking.
+        return Reach::Fast;
+    }
+    let magnitudes = points.iter().flat_map(|p| [p.x.abs(), p.y.abs()]);
+    let nonzero = magnitudes.filter(|&m| m != 0.0);
+    let (top, bottom) = nonzero.fold((i32::MIN, i32::MAX), |(top, bottom), m| {
+        let e = binary_exponent(m);
+        (top.max(e), bottom.min(e))
+    });
+    if top == i32::MIN {
+        return Reach::Fast; // all zero
+    }
+    if top - bottom <= MAX_SPREAD_BITS {
+        Reach::Rescaled(Scale::power_of_two(-top))
+    } else {
+        Reach::Integers
+    }
+}
+
+/// [`orient2d`] for coordinates in the fast range (every nonzero magnitude in `[2^-200, 2)`, or
+/// more loosely any call whose products neither overflow nor underflow): Shewchuk's predicate.
+#[inline(always)]
+pub(crate) fn fast_orient2d(a: Point, b: Point, c: Point) -> Orientation {
+    let det = robust::orient2d(coord(a), coord(b), coord(c));
+    if det > 0.0 {
+        Orientation::Ccw
+    } else if det < 0.0 {
+        Orientation::Cw
+    } else {
+        Orientation::Collinear
+    }
+}
+
+/// [`in_circle`] for coordinates in the fast range (see [`fast_orient2d`]).
+#[inline]
+pub(crate) fn fast_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+    // Most calls are far from cocircular: decide those inline with Shewchuk's first-stage bound
+    // (Shewchuk 1997, `incircle`, error bound A), and let `robust` settle the rest exactly.
+    let (adx, ady) = (a.x - d.x, a.y - d.y);
+    let (bdx, bdy) = (b.x - d.x, b.y - d.y);
+    let (cdx, cdy) = (c.x - d.x, c.y - d.y);
+    let (bc, cb) = (bdx * cdy, cdx * bdy);
+    let (ca, ac) = (cdx * ady, adx * cdy);
+    let (ab, ba) = (adx * bdy, bdx * ady);
+    let (alift, blift, clift) = (
+        adx * adx + ady * ady,
+        bdx * bdx + bdy * bdy,
+        cdx * cdx + cdy * cdy,
+    );
+    let det = alift * (bc - cb) + blift * (ca - ac) + clift * (ab - ba);
+    let permanent = (bc.abs() + cb.abs()) * alift
+        + (ca.abs() + ac.abs()) * blift
+        + (ab.abs() + ba.abs()) * clift;
+    let bound = IN_CIRCLE_FILTER * permanent;
+    if det > bound {
+        true
+    } else if -det > bound {
+        false
+    } else {
+        robust::incircle(coord(a), coord(b), coord(c), coord(d)) > 0.0
+    }
+}
+
+/// Relative error bound of the floating-point in-circle determinant: (10 + 96ε)ε, ε = 2^-53.
+const IN_CIRCLE_FILTER: f64 = (10.0 + 96.0 * f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn orientation_is_antisymmetric_under_swap() {
+        let (a, b, c) = (
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 1.0),
+            Point::new(-1.0, 3.0),
+        );
+        assert_eq!(orient2d(a, b, c), Orientation::Ccw);
+        assert_eq!(orient2d(b, a, c), Orientation::Cw);
+        assert_eq!(orient2d(b, c, a), Orientation::Ccw);
+    }
+
+    #[test]
+    fn nearly_collinear_points_are_decided_exactly() {
+        // c is one ulp above the line y = x at x = 1e15: naive arithmetic says collinear.
+        let a = Point::new(0.0, 0.0);
+        let b = Point::new(1.0, 1.0);
+        let y = 1e15f64;
+        let c = Point::new(y, f64::from_bits(y.to_bits() + 1));
+        assert_eq!(orient2d(a, b, c), Orientation::Ccw);
+        assert_eq!(orient2d(a, b, Point::new(y, y)), Orientation::Collinear);
+    }
+
+    #[test]
+    fn inline_filter_agrees_with_robust_everywhere() {
+        let mut rng = crate::test_rng::Xorshift::new(0x243f_6a88_85a3_08d3);
+        let mut unit = move || rng.unit();
+        let nudge = |v: f64, k: i64| f64::from_bits((v.to_bits() as i64 + k) as u64);
+        let mut near = 0;
+        for round in 0..200_000 {
+            let (a, b, c) = (
+                Point::new(unit(), unit()),
+                Point::new(unit(), unit()),
+                Point::new(unit(), unit()),
+            );
+            let d = if round % 2 == 0 {
+                Point::new(unit(), unit())
+            } else {
+                // Near-cocircular: the reflection of `a` through the bisector of `b c` lies on the
+                // circle in exact arithmetic; nudging it by a few ulps lands on either side.
+                let (mx, my) = ((b.x + c.x) / 2.0, (b.y + c.y) / 2.0);
+                let (ux, uy) = (c.x - b.x, c.y - b.y);
+                let t = ((a.x - mx) * ux + (a.y - my) * uy) / (ux * ux + uy * uy);
+                let k = (round % 7) as i64 - 3;
+                Point::new(nudge(a.x - 2.0 * t * ux, k), nudge(a.y - 2.0 * t * uy, -k))
+            };
+            let det = robust::incircle(coord(a), coord(b), coord(c), coord(d));
+            near += usize::from(det.abs() < 1e-15);
+            assert_eq!(in_circle(a, b, c, d), det > 0.0, "{a:?} {b:?} {c:?} {d:?}");
+        }
+        // The nudged half must really probe the zone the inline bound cannot settle.
+        assert!(near > 20_000, "only {near} near-cocircular cases");
+    }
+
+    #[test]
+    fn in_circle_detects_a_point_one_ulp_inside() {
+        let (a, b, c) = (
+            Point::new(-1.0, 0.0),
+            Point::new(0.0, -1.0),
+            Point::new(1.0, 0.0),
+        );
+        let on = Point::new(0.0, 1.0);
+        let inside = Point::new(0.0, f64::from_bits(1.0f64.to_bits() - 1));
+        assert!(is_cocircular(a, b, c, on));
+        assert!(!in_circle(a, b, c, on));
+        assert!(in_circle(a, b, c, inside));
+    }
+
+    /// Random calls, half of them near-degenerate, each also multiplied by a random power of two
+    /// (exact): the integers, the public predicates and Shewchuk's (on the unscaled call, in its
+    /// exact range) must all agree.
+    #[test]
+    fn integers_agree_with_shewchuk_where_both_are_exact() {
+        let mut rng = crate::test_rng::Xorshift::new(0x1319_8a2e_0370_7344);
+        let nudge = |v: f64, k: i64| f64::from_bits((v.to_bits() as i64 + k) as u64);
+        let (mut collinear, mut cocircular) = (0, 0);
+        for round in 0..20_000 {
+            let mut unit = || rng.unit() * 2.0 - 1.0;
+            let (a, b) = (Point::new(unit(), unit()), Point::new(unit(), unit()));
+            let mut c = Point::new(unit(), unit());
+            let mut d = Point::new(unit(), unit());
+            if round % 2 == 1 {
+                // c near the line a b, d near the circle (a reflected through b c's bisector).
+                let t = unit();
+                let k = (round % 5) as i64 - 2;
+                c = Point::new(nudge(a.x + t * (b.x - a.x), k), a.y + t * (b.y - a.y));
+                let (mx, my) = ((b.x + c.x) / 2.0, (b.y + c.y) / 2.0);
+                let (ux, uy) = (c.x - b.x, c.y - b.y);
+                let s = ((a.x - mx) * ux + (a.y - my) * uy) / (ux * ux + uy * uy);
+                d = Point::new(nudge(a.x - 2.0 * s * ux, k), nudge(a.y - 2.0 * s * uy, -k));
+            }
+            if round % 97 == 0 {
+                // Exactly degenerate: a repeated point.
+                c = a;
+                d = b;
+            }
+            let orientation = fast_orient2d(a, b, c);
+            let inside = fast_in_circle(a, b, c, d);
+            let on = robust::incircle(coord(a), coord(b), coord(c), coord(d)) == 0.0;
+            collinear += usize::from(orientation == Orientation::Collinear);
+            cocircular += usize::from(on);
+            assert_eq!(
+                integers::orient2d(a, b, c),
+                orientation,
+                "{a:?} {b:?} {c:?}"
+            );
+            assert_eq!(
+                integers::in_circle(a, b, c, d),
+                inside,
+                "{a:?} {b:?} {c:?} {d:?}"
+            );
+            let k = (rng.next_u64() % 1800) as i32 - 900;
+            let s = Scale::power_of_two(k);
+            let [a, b, c, d] = [a, b, c, d].map(|p| s.apply(p));
+            assert_eq!(orient2d(a, b, c), orientation, "scaled by 2^{k}");
+            assert_eq!(in_circle(a, b, c, d), inside, "scaled by 2^{k}");
+            assert_eq!(is_cocircular(a, b, c, d), on, "scaled by 2^{k}");
+            assert_eq!(integers::orient2d(a, b, c), orientation, "scaled by 2^{k}");
+            assert_eq!(integers::in_circle(a, b, c, d), inside, "scaled by 2^{k}");
+        }
+        assert!(
+            collinear > 100 && cocircular > 100,
+            "{collinear} {cocircular}"
+        );
+    }
+
+    /// Calls spanning the whole double range, where only the integers can decide: each answer
+    /// must be consistent with the determinant's symmetries (a swap flips the orientation,
+    /// a cyclic shift keeps it) and with known configurations.
+    #[test]
+    fn calls_spanning_the_whole_range_are_consistent() {
+        let mut rng = crate::test_rng::Xorshift::new(0xa409_3822_299f_31d0);
+        let mut coordinate = move || {
+            let exponent = (rng.next_u64() % 2097) as i32 - 1074;
+            let mantissa = 1.0 + rng.unit();
+            let sign = if rng.next_u64() % 2 == 0 { 1.0 } else { -1.0 };
+            let magnitude = Scale::power_of_two(exponent)
+                .apply(Point::new(mantissa, 0.0))
+                .x;
+            sign * magnitude.min(f64::MAX)
+        };
+        let mut point = || Point::new(coordinate(), coordinate());
+        for _ in 0..2000 {
+            let (a, b, c, d) = (point(), point(), point(), point());
+            let o = orient2d(a, b, c);
+            assert_eq!(orient2d(b, c, a), o);
+            let flipped = match o {
+                Orientation::Ccw => Orientation::Cw,
+                Orientation::Cw => Orientation::Ccw,
+                Orientation::Collinear => Orientation::Collinear,
+            };
+            assert_eq!(orient2d(b, a, c), flipped);
+            if o == Orientation::Ccw {
+                assert_eq!(in_circle(a, b, c, d), in_circle(b, c, a, d));
+                // With a clockwise triangle the determinant changes sign.
+                let (inside, on) = (in_circle(a, b, c, d), is_cocircular(a, b, c, d));
+                assert_eq!(in_circle(b, a, c, d), !inside && !on);
+                // Each corner lies on its own circle.
+                assert!(is_cocircular(a, b, c, a) && !in_circle(a, b, c, c));
+            }
+        }
+        // A point 2^-1074 off a line through points 2^1023 apart.
+        let (far, tiny) = (f64::MAX, f64::from_bits(1));
+        let (a, b) = (Point::new(-far, 0.0), Point::new(far, 0.0));
+        assert_eq!(orient2d(a, b, Point::new(0.0, tiny)), Orientation::Ccw);
+        assert_eq!(
+            orient2d(a, b, Point::new(tiny, 0.0)),
+            Orientation::Collinear
+        );
+        assert_eq!(orient2d(a, b, Point::new(far, -tiny)), Orientation::Cw);
+    }
+}
