@@ -161,12 +161,9 @@ fn check_input_error(points: &[Point], err: Error, context: &str) {
         Error::InvalidParameter { .. } | Error::InvalidTriangulation(_) => {
             fail("an error that is not about the points")
         }
-        // A refusal of a dynamic range the predicates cannot serve: allowed only on finite sets.
-        _ => {
-            if !points.iter().all(|&p| finite(p)) {
-                fail("a set with a non-finite point refused for another reason");
-            }
-        }
+        // Every finite set triangulates (exact integer predicates beyond the fast range), so
+        // no other refusal is true of any input.
+        _ => fail("a refusal other than a non-finite point or too many points"),
     }
 }
 
