@@ -492,6 +492,7 @@ fn sort_edges(edges: &mut [[usize; 2]]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use alloc::vec;
 
     fn spacings(s: &Sample) -> Vec<f64> {
         s.edges

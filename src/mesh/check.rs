@@ -296,6 +296,7 @@ mod tests {
     use super::*;
     use crate::geometry::Point;
     use crate::triangulate;
+    use alloc::string::ToString;
 
     /// A square with its centre: four hull vertices and one inner vertex of degree four.
     fn mesh() -> Mesh {
