@@ -42,7 +42,7 @@ fn evaluate_set(
     name: &str,
     params: &Params,
 ) -> Result<Outcome, Box<dyn std::error::Error>> {
-    let points = read_points(dir.join(format!("{name}.pts")).to_str().unwrap())?;
+    let points = read_points(dir.join(format!("{name}.pts")))?;
     let truth_text = std::fs::read_to_string(dir.join(format!("{name}.gt")))?;
     let truth: BTreeSet<(usize, usize)> = truth_text
         .lines()
@@ -105,9 +105,12 @@ fn unused_on_real_sets(dir: &Path, real: &[String], params: &Params) {
     let mut per_set: Vec<(usize, &str, usize)> = Vec::new();
     for name in real {
         let path = dir.join(format!("{name}.pts"));
-        let Some(points) = path.to_str().and_then(|p| read_points(p).ok()) else {
-            println!("  {name}: unreadable");
-            continue;
+        let points = match read_points(&path) {
+            Ok(points) => points,
+            Err(e) => {
+                println!("  {name}: {e}");
+                continue;
+            }
         };
         match reconstruct(&points, params) {
             Ok(result) => per_set.push((result.unused().len(), name, points.len())),

@@ -65,7 +65,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for row in listing.lines().skip(1).filter(|l| !l.is_empty()) {
         let fields: Vec<&str> = row.split('\t').collect();
         let (name, category) = (fields[0], fields[1].to_string());
-        let points = read_points(suite.join(format!("{name}.pts")).to_str().ok_or("path")?)?;
+        let points = read_points(suite.join(format!("{name}.pts")))?;
         let truth = read_edges(&suite.join(format!("{name}.gt")))?;
         let ours: Edges = match &outputs {
             Some(dir) => read_edges(&dir.join(name).join("output.edges"))?,

@@ -41,6 +41,12 @@ fn assert_exact(s: &Sample, params: Params, label: &str) -> Reconstruction {
     r
 }
 
+/// `r` is one curve, closed or open as `closed` says.
+fn assert_one_curve(r: &Reconstruction, closed: bool, label: &str) {
+    assert_eq!(r.curves().len(), 1, "{label}");
+    assert_eq!(r.curves()[0].is_closed(), closed, "{label}");
+}
+
 /// Shortest and longest ground-truth edge.
 fn spacings(s: &Sample) -> (f64, f64) {
     s.edges
@@ -106,8 +112,7 @@ fn closed_curves_with_density_varying_4x_are_exact() {
                 assert!(hi / lo > 3.0, "the density does vary: {}", hi / lo);
                 let label = format!("{shape:?} eps {eps} seed {seed}");
                 let r = assert_exact(&s, Params::default(), &label);
-                assert_eq!(r.curves().len(), 1, "{label}");
-                assert!(r.curves()[0].is_closed(), "{label}");
+                assert_one_curve(&r, true, &label);
             }
         }
     }
@@ -133,8 +138,7 @@ fn open_arc_with_density_varying_4x_is_exact() {
                 let s = jittered(std::slice::from_ref(&arc), sampling, 0.03);
                 let label = format!("arc sweep {sweep} eps {eps} seed {seed}");
                 let r = assert_exact(&s, Params::default(), &label);
-                assert_eq!(r.curves().len(), 1, "{label}");
-                assert!(!r.curves()[0].is_closed(), "{label}");
+                assert_one_curve(&r, false, &label);
                 assert_eq!(ends(&r), 2, "{label}");
             }
         }
@@ -203,8 +207,7 @@ fn polygons_with_sides_at_different_spacings_are_exact() {
                     let s = jittered(&[Shape::Polygon(corners.clone())], sampling, 0.03);
                     let label = format!("{name} eps {eps} variation {variation} seed {seed}");
                     let r = assert_exact(&s, Params::default(), &label);
-                    assert_eq!(r.curves().len(), 1, "{label}");
-                    assert!(r.curves()[0].is_closed(), "{label}");
+                    assert_one_curve(&r, true, &label);
                 }
             }
         }
@@ -592,8 +595,7 @@ fn ends_under_one_spacing_apart_close_into_one_circle() {
                 for params in [Params::default(), Params::paper()] {
                     let r = run(&s.points, params);
                     assert_eq!(edges(&r), expected, "{label}");
-                    assert_eq!(r.curves().len(), 1, "{label}");
-                    assert!(r.curves()[0].is_closed(), "{label}");
+                    assert_one_curve(&r, true, &label);
                 }
             }
         }

@@ -121,6 +121,23 @@ fn find_temporary(dir: &Path, except: &Path, patience: Duration) -> Option<PathB
     }
 }
 
+/// `condt triangulate - -o OUT` with `stdin` as the input.
+fn triangulate_to(out: &Path, stdin: &str) -> Output {
+    condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ],
+        stdin,
+    )
+}
+
+fn is_symlink(path: &Path) -> bool {
+    fs::symlink_metadata(path).unwrap().file_type().is_symlink()
+}
+
 #[test]
 fn a_regular_file_is_replaced_whole_and_keeps_its_permissions() {
     let dir = tempfile::tempdir().unwrap();
@@ -130,15 +147,7 @@ fn a_regular_file_is_replaced_whole_and_keeps_its_permissions() {
         let target = dir.path().join("out.txt");
         fs::write(&target, "previous content\n").unwrap();
         fs::set_permissions(&target, fs::Permissions::from_mode(mode)).unwrap();
-        let out = condt(
-            &[
-                "triangulate".as_ref(),
-                "-".as_ref(),
-                "-o".as_ref(),
-                target.as_os_str(),
-            ],
-            SQUARE,
-        );
+        let out = triangulate_to(&target, SQUARE);
         assert!(out.status.success(), "{}", stderr(&out));
         assert_eq!(fs::read_to_string(&target).unwrap(), expected);
         let meta = fs::symlink_metadata(&target).unwrap();
@@ -158,15 +167,7 @@ fn another_users_file_keeps_its_owner() {
     let target = dir.path().join("theirs.txt");
     fs::write(&target, "previous content\n").unwrap();
     std::os::unix::fs::chown(&target, Some(65534), Some(65534)).unwrap();
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            target.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&target, SQUARE);
     assert!(out.status.success(), "{}", stderr(&out));
     let meta = fs::metadata(&target).unwrap();
     assert_eq!((meta.uid(), meta.gid()), (65534, 65534));
@@ -183,20 +184,9 @@ fn a_symbolic_link_stays_and_the_file_it_points_to_is_written() {
     fs::set_permissions(&real, fs::Permissions::from_mode(0o640)).unwrap();
     let link = dir.path().join("link.txt");
     std::os::unix::fs::symlink("real.txt", &link).unwrap();
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            link.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&link, SQUARE);
     assert!(out.status.success(), "{}", stderr(&out));
-    assert!(fs::symlink_metadata(&link)
-        .unwrap()
-        .file_type()
-        .is_symlink());
+    assert!(is_symlink(&link));
     assert_eq!(fs::read_link(&link).unwrap(), Path::new("real.txt"));
     assert_eq!(fs::read_to_string(&real).unwrap(), expected);
     assert_eq!(
@@ -207,20 +197,10 @@ fn a_symbolic_link_stays_and_the_file_it_points_to_is_written() {
     // A dangling link gets the file it names.
     let dangling = dir.path().join("dangling.txt");
     std::os::unix::fs::symlink("made.txt", &dangling).unwrap();
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            dangling.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&dangling, SQUARE);
     assert!(out.status.success(), "{}", stderr(&out));
-    assert!(fs::symlink_metadata(&dangling)
-        .unwrap()
-        .file_type()
-        .is_symlink());
+    assert!(is_symlink(&dangling));
+    assert_eq!(fs::read_link(&dangling).unwrap(), Path::new("made.txt"));
     assert_eq!(
         fs::read_to_string(dir.path().join("made.txt")).unwrap(),
         expected
@@ -239,15 +219,7 @@ fn a_hard_link_is_not_broken() {
     let second = dir.path().join("second.txt");
     fs::write(&first, "previous content, longer than the triangles are\n").unwrap();
     fs::hard_link(&first, &second).unwrap();
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            first.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&first, SQUARE);
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(
         fs::read_to_string(&second).unwrap(),
@@ -275,15 +247,7 @@ fn a_named_pipe_is_written_to_not_replaced() {
             text
         })
     };
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            fifo.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&fifo, SQUARE);
     assert!(out.status.success(), "{}", stderr(&out));
     // Checked before waiting for the reader: had the pipe been replaced, it would wait forever.
     assert!(fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
@@ -301,25 +265,9 @@ fn a_character_device_is_written_to_not_replaced() {
     ) else {
         return;
     };
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            null.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&null, SQUARE);
     assert!(out.status.success(), "{}", stderr(&out));
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            full.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&full, SQUARE);
     assert_eq!(out.status.code(), Some(1), "a full device is an error");
     assert!(stderr(&out).contains("full: "), "{}", stderr(&out));
     for (device, minor) in [(&null, 3), (&full, 7)] {
@@ -390,21 +338,10 @@ fn a_link_to_an_open_stream_writes_to_the_stream() {
     let dir = tempfile::tempdir().unwrap();
     let link = dir.path().join("stdout");
     std::os::unix::fs::symlink("/proc/self/fd/1", &link).unwrap();
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            link.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&link, SQUARE);
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(String::from_utf8(out.stdout).unwrap(), square_triangles());
-    assert!(fs::symlink_metadata(&link)
-        .unwrap()
-        .file_type()
-        .is_symlink());
+    assert!(is_symlink(&link));
     assert_eq!(names(dir.path()), ["stdout"]);
 }
 
@@ -659,15 +596,7 @@ fn a_directory_is_not_an_output() {
     // A file in a directory that does not exist: the error names the file the user gave, not
     // the temporary one.
     let lost = dir.path().join("no-such-directory").join("out.txt");
-    let out = condt(
-        &[
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            lost.as_os_str(),
-        ],
-        SQUARE,
-    );
+    let out = triangulate_to(&lost, SQUARE);
     assert_eq!(out.status.code(), Some(1));
     let said = stderr(&out);
     assert!(

@@ -365,14 +365,18 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// let points = condt::io::read_points("examples/data/shapes.txt")?;
 /// # Ok::<(), condt::io::IoError>(())
 /// ```
-pub fn read_points(path: &str) -> Result<Vec<Point>, IoError> {
-    let name = if path == "-" { "<stdin>" } else { path };
+pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoError> {
+    let path = path.as_ref();
+    let stdin = path.as_os_str() == "-";
+    // A name that is not UTF-8 is shown lossily; the file is still opened by its own bytes.
+    let shown = path.to_string_lossy();
+    let name: &str = if stdin { "<stdin>" } else { &shown };
     let io_error = |err: io::Error| IoError {
         file: name.to_string(),
         line: None,
         kind: IoErrorKind::Io(err),
     };
-    let bytes = if path == "-" {
+    let bytes = if stdin {
         read_all(io::stdin().lock(), 0)
     } else {
         let file = File::open(path).map_err(io_error)?;
@@ -385,8 +389,8 @@ pub fn read_points(path: &str) -> Result<Vec<Point>, IoError> {
         line: Some(line_at(e.as_bytes(), e.utf8_error().valid_up_to())),
         kind: IoErrorKind::Content("not UTF-8 text".to_string()),
     })?;
-    let is_node = path != "-"
-        && std::path::Path::new(path)
+    let is_node = !stdin
+        && path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("node"));
     if is_node {

@@ -288,15 +288,7 @@ mod tests {
         let outcome = close_gaps(&tri, &edges);
         let out = outcome.edges.unwrap_or_else(|| edges.clone());
         assert_eq!(&out[..edges.len()], &edges[..], "never removes an edge");
-        let mut added: Vec<[usize; 2]> = out[edges.len()..]
-            .iter()
-            .map(|&[a, b]| {
-                let (a, b) = (tri.input_of(a), tri.input_of(b));
-                [a.min(b), a.max(b)]
-            })
-            .collect();
-        added.sort_unstable();
-        added
+        crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&out[edges.len()..])).edges()
     }
 
     /// A chain through `0, 1, ..., n - 1`, without the edges listed in `missing` (by their

@@ -650,18 +650,6 @@ mod tests {
         }
     }
 
-    fn in_input_positions(tri: &Triangulation, edges: &[Edge]) -> Vec<[usize; 2]> {
-        let mut out: Vec<[usize; 2]> = edges
-            .iter()
-            .map(|&[a, b]| {
-                let (a, b) = (tri.input_of(a), tri.input_of(b));
-                [a.min(b), a.max(b)]
-            })
-            .collect();
-        out.sort_unstable();
-        out
-    }
-
     /// `pairs` (input positions) as the stage's edge list on `tri`.
     fn vertex_edges(tri: &Triangulation, pairs: &[[usize; 2]]) -> Vec<Edge> {
         pairs
@@ -673,7 +661,9 @@ mod tests {
     /// The stage with `rules` on `edges` (nothing cut before), in sorted input positions.
     fn apply(tri: &Triangulation, edges: &[Edge], rules: Rules) -> Option<Vec<[usize; 2]>> {
         let outcome = remove_local_outliers(tri, edges, edges, &rules);
-        outcome.edges.map(|e| in_input_positions(tri, &e))
+        outcome
+            .edges
+            .map(|e| crate::Graph::new(tri, alloc::borrow::Cow::Owned(e)).edges())
     }
 
     const NONE: Rules = Rules {

@@ -5,10 +5,7 @@
 //! output goes is [`crate::output`]'s business.
 
 use crate::output::{refuse_same_file, Destination};
-use condt::io::{
-    parse_node, parse_points, read_points, write_edges, write_geojson, write_polylines, write_svg,
-    IoError,
-};
+use condt::io::{read_points, write_edges, write_geojson, write_polylines, write_svg, IoError};
 use condt::{reconstruct, triangulate, Error, Params, Point, Repair, Uniformity};
 use std::ffi::{OsStr, OsString};
 use std::fmt;
@@ -509,28 +506,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
 
 /// Reads the points of INPUT (`None`: standard input).
 fn read_input(input: Option<&Path>) -> Result<Vec<Point>, CliError> {
-    let Some(path) = input else {
-        return Ok(read_points("-")?);
-    };
-    if let Some(name) = path.to_str() {
-        return Ok(read_points(name)?);
-    }
-    // The library names files by text; a name that is not UTF-8 is read here and shown lossily.
-    let shown = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|error| CliError::File {
-        file: shown.clone(),
-        error,
-    })?;
-    let text = String::from_utf8(bytes).map_err(|_| CliError::File {
-        file: shown.clone(),
-        error: io::Error::new(io::ErrorKind::InvalidData, "not UTF-8 text"),
-    })?;
-    // The same choice of format as `read_points` makes by the name.
-    if path.extension().is_some_and(|e| e == "node") {
-        Ok(parse_node(&text, &shown)?)
-    } else {
-        Ok(parse_points(&text, &shown)?)
-    }
+    Ok(read_points(input.unwrap_or(Path::new("-")))?)
 }
 
 fn shown_input(input: Option<&Path>) -> String {
@@ -580,25 +556,25 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     let tri = triangulate(&points)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     note_duplicates(points.len(), tri.num_vertices());
-    let mut edges: Vec<_> = tri.edges().map(|[a, b]| (a, b)).collect();
-    edges.sort_unstable();
     if !args.edges && tri.triangles().next().is_none() {
         let distinct = tri.num_vertices();
-        if edges.is_empty() {
+        let chain = tri.edges().count();
+        if chain == 0 {
             note(format_args!(
                 "no triangles and no edges: {distinct} distinct point(s)"
             ));
         } else {
             note(format_args!(
                 "no triangles: the {distinct} distinct points lie on one line; \
-                 their chain of {} edge(s) is written with --edges",
-                edges.len()
+                 their chain of {chain} edge(s) is written with --edges"
             ));
         }
     }
     destination.write(|out| {
         if args.edges {
-            for (a, b) in edges {
+            let mut edges: Vec<[usize; 2]> = tri.edges().collect();
+            edges.sort_unstable();
+            for [a, b] in edges {
                 writeln!(out, "{a} {b}")?;
             }
         } else {
