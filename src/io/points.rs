@@ -87,7 +87,7 @@ impl Source<'_> {
             ));
         }
         if points.len() == points.capacity() {
-            let more = points.len().clamp(1024, MAX_POINTS - points.len());
+            let more = points.len().max(1024).min(MAX_POINTS - points.len());
             points.try_reserve_exact(more).map_err(|_| {
                 self.error(line, format!("out of memory after {} points", points.len()))
             })?;

@@ -161,7 +161,7 @@ enum Reach {
     Fast,
     /// In the fast range once multiplied by this power of two.
     Rescaled(Scale),
-    /// Spanning more than the fast range holds, or not finite.
+    /// Spanning more than the fast range holds.
     Integers,
 }
 
@@ -212,7 +212,7 @@ fn rescale_or_integers(points: &[Point]) -> Reach {
 /// more loosely any call whose products neither overflow nor underflow): Shewchuk's predicate.
 #[inline(always)]
 pub(crate) fn fast_orient2d(a: Point, b: Point, c: Point) -> Orientation {
-    let det = robust::orient2d(coord(a), coord(b), coord(c));
+    let det = fast_orient2d_det(a, b, c);
     if det > 0.0 {
         Orientation::Ccw
     } else if det < 0.0 {
@@ -220,6 +220,13 @@ pub(crate) fn fast_orient2d(a: Point, b: Point, c: Point) -> Orientation {
     } else {
         Orientation::Collinear
     }
+}
+
+/// The exact sign of [`fast_orient2d`]'s determinant, as a number whose sign is exact: a hot loop
+/// can branch on it directly rather than on an [`Orientation`] built from it.
+#[inline(always)]
+pub(crate) fn fast_orient2d_det(a: Point, b: Point, c: Point) -> f64 {
+    robust::orient2d(coord(a), coord(b), coord(c))
 }
 
 /// [`in_circle`] for coordinates in the fast range (see [`fast_orient2d`]).
