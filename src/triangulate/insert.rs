@@ -402,12 +402,15 @@ impl<'a, K: Kernel> Builder<'a, K> {
         for step in usize::from(walk.entered)..3 {
             let k = wrap3(first + step);
             let sign = K::orient2d_sign(points[k], points[wrap3(k + 1)], p);
+            // Counter-clockwise, the common case, is tested first: one comparison per step.
+            if sign > 0.0 {
+                continue;
+            }
             if sign < 0.0 {
                 return walk.enter(self.twin(half_edge(k)));
-            } else if sign == 0.0 {
-                collinear[n_collinear.min(1)] = k;
-                n_collinear += 1;
             }
+            collinear[n_collinear.min(1)] = k;
+            n_collinear += 1;
         }
         Some(match n_collinear {
             0 => Location::Face(half_edge(0)),
