@@ -73,11 +73,7 @@ pub fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
     match reach(&[a, b, c]) {
         Reach::Fast => fast_orient2d(a, b, c),
         Reach::Rescaled(s) => fast_orient2d(s.apply(a), s.apply(b), s.apply(c)),
-        Reach::Integers => match exact::orient2d_sign(a.into(), b.into(), c.into()) {
-            Ordering::Greater => Orientation::Ccw,
-            Ordering::Less => Orientation::Cw,
-            Ordering::Equal => Orientation::Collinear,
-        },
+        Reach::Integers => integers::orient2d(a, b, c),
     }
 }
 
@@ -102,9 +98,7 @@ pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
     match reach(&[a, b, c, d]) {
         Reach::Fast => fast_in_circle(a, b, c, d),
         Reach::Rescaled(s) => fast_in_circle(s.apply(a), s.apply(b), s.apply(c), s.apply(d)),
-        Reach::Integers => {
-            exact::in_circle_sign(a.into(), b.into(), c.into(), d.into()) == Ordering::Greater
-        }
+        Reach::Integers => integers::in_circle(a, b, c, d),
     }
 }
 
@@ -130,8 +124,8 @@ pub fn is_cocircular(a: Point, b: Point, c: Point, d: Point) -> bool {
     }
 }
 
-/// The integer predicates alone, for tests that check whole constructions against them.
-#[cfg(test)]
+/// The integer predicates alone: the public predicates' answer beyond the fast range, and what
+/// tests check whole constructions against.
 pub(crate) mod integers {
     use super::{exact, Orientation, Point};
     use core::cmp::Ordering;
