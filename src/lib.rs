@@ -65,11 +65,12 @@
 //! With `--no-default-features` the library is `#![no_std]` and needs only `alloc`.
 //!
 //! ## Layout
-//! Public: this page's re-exports, [`mesh`] (the half-edge level), [`predicates`], [`sample`]
-//! and `io` (`std`). Private, from the bottom up (each uses only modules listed before it):
+//! Public: this page's re-exports, [`mesh`] (the half-edge level), [`predicates`], [`sample`],
+//! [`score`] (metrics against a ground truth) and `io` (`std`). Private, from the bottom up (each uses only modules listed before it):
 //! `error`, `geometry`, `triangulate` (the kernel), `adjacency` (edge lists in vertex ids),
 //! `stages` (one module per ConDT stage), `curve` ([`Curve`]), `graph` ([`Graph`]),
-//! `reconstruct` (the pipeline and the order of its stages); `test_rng` serves unit tests only.
+//! `reconstruct` (the pipeline and the order of its stages), `baselines` (NN-Crust and Crust as
+//! methods of [`Triangulation`]); `test_rng` serves unit tests only.
 //! `docs/architecture.md` draws the graph and says what each module may not touch.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
@@ -78,6 +79,7 @@
 extern crate alloc;
 
 mod adjacency;
+mod baselines;
 mod curve;
 mod error;
 mod geometry;
@@ -88,6 +90,7 @@ pub mod mesh;
 pub mod predicates;
 mod reconstruct;
 pub mod sample;
+pub mod score;
 mod stages;
 #[cfg(test)]
 mod test_rng;

@@ -1,0 +1,234 @@
+//! Two classical curve reconstructions on the same triangulation as ConDT, so that methods can be
+//! compared on identical Delaunay edges: NN-Crust and the Crust.
+//!
+//! Owns: [`Triangulation::nn_crust`] and [`Triangulation::crust`]. It reads the finished
+//! triangulation (rings and the stages' positions) and, for the Crust, triangulates a second
+//! point set through the kernel's public entry; it may not change a triangulation, and it shares
+//! no rule with the ConDT stages (a baseline that borrowed them would not be a baseline).
+//!
+//! - **NN-Crust** (T. K. Dey and P. Kumar, "A simple provable algorithm for curve
+//!   reconstruction", SODA 1999): every sample keeps the edge to its nearest neighbour and the
+//!   shortest edge to a *half neighbour*, a neighbour at an angle of at least 90 degrees from
+//!   the nearest one. Both are Delaunay edges, so each sample's Delaunay ring is all it reads.
+//!   Exact for a smooth closed curve sampled at spacing below a third of the local feature size.
+//! - **Crust** (N. Amenta, M. Bern and D. Eppstein, "The crust and the beta-skeleton:
+//!   combinatorial curve reconstruction", Graphical Models and Image Processing 60(2), 1998):
+//!   the Delaunay edges between two samples in the triangulation of the samples together with
+//!   their Voronoi vertices (the circumcentres of the Delaunay triangles). Exact below 0.252 of
+//!   the local feature size.
+//!
+//! Ties between equally long edges go to the neighbour with the smaller vertex id, so both are
+//! deterministic. Duplicate points are merged as in every other graph of a [`Triangulation`].
+
+use crate::adjacency::{ordered, Edge};
+use crate::error::Error;
+use crate::geometry::Point;
+use crate::graph::Graph;
+use crate::mesh::VertexId;
+use crate::triangulate::{triangulate, Triangulation};
+use alloc::borrow::Cow;
+use alloc::vec::Vec;
+
+impl Triangulation {
+    /// The NN-Crust of the points (T. K. Dey and P. Kumar, "A simple provable algorithm for
+    /// curve reconstruction", SODA 1999): each point's edge to its nearest neighbour and to its
+    /// nearest *half neighbour*, one at least 90 degrees away from the nearest. A baseline to
+    /// compare ConDT with on the same triangulation; exact for smooth curves sampled at spacing
+    /// below a third of the local feature size. Ties go to the smaller vertex id.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // Eight points on a circle, and the edges between consecutive ones.
+    /// let points: Vec<Point> = (0..8)
+    ///     .map(|k| {
+    ///         let t = k as f64 * std::f64::consts::TAU / 8.0;
+    ///         Point::new(t.cos(), t.sin())
+    ///     })
+    ///     .collect();
+    /// let tri = triangulate(&points)?;
+    /// let edges = tri.nn_crust().edges();
+    /// assert_eq!(edges.len(), 8);
+    /// assert!(edges.iter().all(|&[a, b]| b == a + 1 || (a, b) == (0, 7)));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn nn_crust(&self) -> Graph<'_> {
+        let mut edges: Vec<Edge> = Vec::new();
+        for v in self.vertices() {
+            let p = self.vertex_point(v);
+            let neighbours = || {
+                self.mesh()
+                    .neighbors(v)
+                    .filter(|&w| self.is_vertex(w))
+                    .map(|w| (squared_distance(p, self.vertex_point(w)), w))
+            };
+            let Some((_, nearest)) = neighbours().min_by(closer) else {
+                continue;
+            };
+            edges.push(ordered(v, nearest));
+            let towards = difference(self.vertex_point(nearest), p);
+            let half = neighbours()
+                .filter(|&(_, w)| dot(difference(self.vertex_point(w), p), towards) <= 0.0)
+                .min_by(closer);
+            if let Some((_, w)) = half {
+                edges.push(ordered(v, w));
+            }
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        Graph::new(self, Cow::Owned(edges))
+    }
+
+    /// The Crust of the points (N. Amenta, M. Bern and D. Eppstein, "The crust and the
+    /// beta-skeleton: combinatorial curve reconstruction", 1998): the Delaunay edges between
+    /// points once the circumcentres of the Delaunay triangles (the Voronoi vertices) are added
+    /// to the set. A baseline to compare ConDT with; exact for smooth curves sampled below 0.252
+    /// of the local feature size.
+    ///
+    /// # Errors
+    /// [`Error::TooManyPoints`] when the points and the circumcentres together exceed
+    /// [`MAX_POINTS`](crate::MAX_POINTS).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let points: Vec<Point> = (0..12)
+    ///     .map(|k| {
+    ///         let t = k as f64 * std::f64::consts::TAU / 12.0;
+    ///         Point::new(2.0 * t.cos(), t.sin())
+    ///     })
+    ///     .collect();
+    /// let tri = triangulate(&points)?;
+    /// let crust = tri.crust()?;
+    /// assert_eq!(crust.num_edges(), 12);
+    /// assert!(crust.degrees().iter().all(|&d| d == 2));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn crust(&self) -> Result<Graph<'_>, Error> {
+        // The second triangulation is built in the stages' frame, where every sample is exact
+        // and circumcentres of ordinary triangles cannot overflow.
+        let samples: Vec<VertexId> = self.vertices().collect();
+        let mut points: Vec<Point> = samples.iter().map(|&v| self.vertex_point(v)).collect();
+        let mesh = self.mesh();
+        points.extend(
+            mesh.triangles()
+                .filter(|&t| !mesh.is_ghost(t))
+                .filter_map(|t| {
+                    let [a, b, c] = mesh.triangle_vertices(t).map(|v| self.vertex_point(v));
+                    circumcentre(a, b, c)
+                }),
+        );
+        let with_centres = triangulate(&points)?;
+        let num_samples = samples.len();
+        let mut edges: Vec<Edge> = with_centres
+            .edges()
+            .filter(|&[a, b]| a < num_samples && b < num_samples)
+            .map(|[a, b]| ordered(samples[a], samples[b]))
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        Ok(Graph::new(self, Cow::Owned(edges)))
+    }
+}
+
+/// Orders candidate neighbours by squared distance, then by vertex id.
+fn closer(a: &(f64, VertexId), b: &(f64, VertexId)) -> core::cmp::Ordering {
+    a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
+}
+
+fn difference(a: Point, b: Point) -> Point {
+    Point::new(a.x - b.x, a.y - b.y)
+}
+
+fn dot(a: Point, b: Point) -> f64 {
+    a.x * b.x + a.y * b.y
+}
+
+fn squared_distance(a: Point, b: Point) -> f64 {
+    let d = difference(a, b);
+    dot(d, d)
+}
+
+/// The circumcentre of a triangle, computed relative to its first corner; `None` when it is not
+/// a finite point (a sliver so flat that its centre lies beyond the range of doubles, where it
+/// would change no edge between samples).
+fn circumcentre(a: Point, b: Point, c: Point) -> Option<Point> {
+    let (ab, ac) = (difference(b, a), difference(c, a));
+    let denominator = 2.0 * (ab.x * ac.y - ab.y * ac.x);
+    let (lb, lc) = (dot(ab, ab), dot(ac, ac));
+    let x = a.x + (ac.y * lb - ab.y * lc) / denominator;
+    let y = a.y + (ab.x * lc - ac.x * lb) / denominator;
+    (x.is_finite() && y.is_finite()).then_some(Point::new(x, y))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::sample::{sample, Sampling, Shape};
+    use crate::{triangulate, Point};
+    use alloc::vec;
+    use alloc::vec::Vec;
+
+    /// A smooth closed curve sampled at spacing 0.2 of its local feature size, well within both
+    /// methods' sampling bounds (1/3 for NN-Crust, 0.252 for the Crust).
+    fn ellipse_and_circle() -> crate::sample::Sample {
+        sample(
+            &[
+                Shape::Ellipse {
+                    center: Point::new(0.0, 0.0),
+                    radii: (3.0, 1.0),
+                    rotation: 0.3,
+                },
+                Shape::circle(Point::new(10.0, 0.0), 2.0),
+            ],
+            &Sampling::new(0.2),
+        )
+    }
+
+    #[test]
+    fn nn_crust_reconstructs_well_sampled_closed_curves() {
+        let truth = ellipse_and_circle();
+        let tri = triangulate(&truth.points).unwrap();
+        assert_eq!(tri.nn_crust().edges(), truth.edges);
+    }
+
+    #[test]
+    fn crust_reconstructs_well_sampled_closed_curves() {
+        let truth = ellipse_and_circle();
+        let tri = triangulate(&truth.points).unwrap();
+        assert_eq!(tri.crust().unwrap().edges(), truth.edges);
+    }
+
+    #[test]
+    fn nn_crust_keeps_the_half_neighbour_across_a_gap_in_density() {
+        // Three points close together and a fourth far to the right of the last: the last one's
+        // nearest neighbour is its left neighbour, its half neighbour the far point.
+        let points = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (10.0, 0.5)].map(Point::from);
+        let tri = triangulate(&points).unwrap();
+        assert_eq!(tri.nn_crust().edges(), vec![[0, 1], [1, 2], [2, 3]]);
+    }
+
+    #[test]
+    fn crust_of_collinear_points_is_their_chain_and_duplicates_are_merged() {
+        let points = [(0.0, 0.0), (2.0, 0.0), (1.0, 0.0), (2.0, 0.0)].map(Point::from);
+        let tri = triangulate(&points).unwrap();
+        assert_eq!(tri.crust().unwrap().edges(), vec![[0, 2], [1, 2]]);
+        assert_eq!(tri.nn_crust().edges(), vec![[0, 2], [1, 2]]);
+    }
+
+    #[test]
+    fn both_are_the_same_at_every_power_of_two_scale_and_offset_free() {
+        let truth = ellipse_and_circle();
+        let base = triangulate(&truth.points).unwrap();
+        let expected = (base.nn_crust().edges(), base.crust().unwrap().edges());
+        for factor in [2f64.powi(-600), 2f64.powi(600)] {
+            let scaled: Vec<Point> = truth
+                .points
+                .iter()
+                .map(|p| Point::new(p.x * factor, p.y * factor))
+                .collect();
+            let tri = triangulate(&scaled).unwrap();
+            assert_eq!(
+                (tri.nn_crust().edges(), tri.crust().unwrap().edges()),
+                expected
+            );
+        }
+    }
+}
