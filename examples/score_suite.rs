@@ -14,11 +14,13 @@
 //! `run.py --keep-outputs` writes).
 
 use condt::io::read_points;
+use condt::score::score;
 use condt::{reconstruct, Params};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-type Edges = BTreeSet<[usize; 2]>;
+/// An edge list as written, repeats and all, so that the scorer can refuse a malformed one.
+type Edges = Vec<[usize; 2]>;
 
 fn read_edges(path: &Path) -> Result<Edges, Box<dyn std::error::Error>> {
     let text = std::fs::read_to_string(path)?;
@@ -31,7 +33,7 @@ fn read_edges(path: &Path) -> Result<Edges, Box<dyn std::error::Error>> {
         let (Some(Ok(a)), Some(Ok(b))) = (ends.next(), ends.next()) else {
             return Err(format!("{}: malformed line {line:?}", path.display()).into());
         };
-        edges.insert([a.min(b), a.max(b)]);
+        edges.push([a, b]);
     }
     Ok(edges)
 }
@@ -71,35 +73,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Some(dir) => read_edges(&dir.join(name).join("output.edges"))?,
             None => reconstruct(&points, &params)?.edges().collect(),
         };
-        let mut degree = vec![0usize; points.len()];
-        for &[a, b] in &truth {
-            degree[a] += 1;
-            degree[b] += 1;
-        }
-        let hits = ours.intersection(&truth).count() as f64;
-        let precision = if ours.is_empty() {
-            f64::from(u8::from(truth.is_empty()))
-        } else {
-            hits / ours.len() as f64
-        };
-        let recall = if truth.is_empty() {
-            1.0
-        } else {
-            hits / truth.len() as f64
-        };
-        let f1 = if precision + recall > 0.0 {
-            2.0 * precision * recall / (precision + recall)
-        } else {
-            0.0
-        };
+        let s = score(&points, &ours, &truth)?;
         let tally = by_category.entry(category).or_default();
         tally.cases += 1;
-        tally.exact += usize::from(ours == truth);
-        tally.f1_sum += f1;
-        tally.outlier_edges += ours
-            .iter()
-            .filter(|&&[a, b]| degree.get(a) == Some(&0) || degree.get(b) == Some(&0))
-            .count();
+        tally.exact += usize::from(s.exact);
+        tally.f1_sum += s.f1;
+        tally.outlier_edges += s.outlier_edges;
     }
     let mut all = Tally::default();
     println!("| category | cases | exact % | mean F1 | outlier edges |");
