@@ -88,6 +88,7 @@ mod graph;
 pub mod io;
 pub mod mesh;
 pub mod predicates;
+mod provenance;
 mod reconstruct;
 pub mod sample;
 pub mod score;
@@ -100,6 +101,7 @@ pub use curve::{curves_from_edges, Curve};
 pub use error::Error;
 pub use geometry::Point;
 pub use graph::{Graph, OutlierRemoval};
+pub use provenance::{Change, EdgeStory, EndChoice, Reason};
 pub use reconstruct::{
     reconstruct, reconstruct_triangulation, Params, Reconstruction, StageReport,
 };

@@ -1,0 +1,603 @@
+//! Why each edge was kept or dropped: the story of every Delaunay edge (and every edge a stage
+//! added) through the stages of a [`Reconstruction`], with the numbers that decided it.
+//!
+//! Owns: [`Reconstruction::provenance`] and the values it returns ([`EdgeStory`], [`EndChoice`],
+//! [`Change`], [`Reason`]). It is computed only when asked, from what the reconstruction already
+//! keeps (the triangulation, the parameters and every stage's graph), so the pipeline pays nothing
+//! for it. It may not change a reconstruction, and it decides nothing: it explains. Where it
+//! re-derives a stage's numbers (the two shortest edges and the uniformity test of Algorithm 1,
+//! the IQR threshold of Algorithm 3), its tests check that the explanation agrees with what the
+//! stage did on every edge.
+//!
+//! What it can tell per stage:
+//! - **proximity** (Algorithm 1): at each end, whether the edge is that point's shortest, its
+//!   second shortest (with the ratio `|e2| / |e1|` and the bound it was held to), or neither
+//!   (with its rank in the ring);
+//! - **repair** (Algorithm 2): the end that had three or more edges, and how many;
+//! - **IQR outliers** (Algorithm 3): the edge's length and the threshold `√T` it exceeded;
+//! - **local outliers**: given back (rule 1), long at an end (rule 2, with the ratio), a whole
+//!   component removed (rule 4), or otherwise a short spur (rule 3); the rule is inferred from the
+//!   graphs before and after the stage;
+//! - **gaps**: closed.
+
+use crate::graph::Graph;
+use crate::reconstruct::Reconstruction;
+use crate::stages::{Stage, Uniformity};
+use crate::triangulate::Triangulation;
+use alloc::vec;
+use alloc::vec::Vec;
+use core::fmt;
+
+/// How one end of an edge saw it in Algorithm 1.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum EndChoice {
+    /// The end's shortest Delaunay edge: always kept.
+    Shortest,
+    /// The end's second shortest edge, kept when `ratio < bound`.
+    Second {
+        /// `|e2| / |e1|` at this end.
+        ratio: f64,
+        /// The uniformity bound: `u`, or with the adaptive test the ring's mean length over
+        /// `|e1|`.
+        bound: f64,
+        /// Whether the test passed.
+        kept: bool,
+    },
+    /// Neither: the edge is the end's `rank`-th shortest (3 or more).
+    Later {
+        /// Rank in the ring, 1 for the shortest.
+        rank: usize,
+    },
+    /// The edge is not a Delaunay edge at this end (a stage added it).
+    NotDelaunay,
+}
+
+impl EndChoice {
+    /// Whether this end keeps the edge in the proximity graph.
+    ///
+    /// ```
+    /// use condt::EndChoice;
+    /// assert!(EndChoice::Shortest.keeps());
+    /// assert!(!EndChoice::Second { ratio: 3.0, bound: 2.75, kept: false }.keeps());
+    /// ```
+    pub fn keeps(&self) -> bool {
+        matches!(
+            self,
+            EndChoice::Shortest | EndChoice::Second { kept: true, .. }
+        )
+    }
+}
+
+/// Why a stage removed or added an edge.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum Reason {
+    /// Algorithm 2 at a vertex with `degree` edges (3 or more) chose other edges.
+    Repair {
+        /// The non-manifold end (input position).
+        vertex: usize,
+        /// Its number of edges before the repair.
+        degree: usize,
+    },
+    /// Algorithm 3: the edge is longer than the threshold `√T`.
+    LongerThanThreshold {
+        /// The edge's length, in input units.
+        length: f64,
+        /// `√T` in input units.
+        threshold: f64,
+    },
+    /// Local outlier rule 1: an edge the IQR stage cut between two smooth, regular passages.
+    GivenBack,
+    /// Local outlier rule 2: more than `ratio` times longer than the longest other edge at
+    /// `vertex`.
+    LongAt {
+        /// The end where it is long (input position).
+        vertex: usize,
+        /// Its length over the longest other edge there.
+        ratio: f64,
+    },
+    /// Local outlier rule 4: its whole component was removed.
+    Component,
+    /// Local outlier rule 3: part of a short chain hanging off a junction.
+    Spur,
+    /// Gap closing joined two loose ends.
+    GapClosed,
+}
+
+/// One change a stage made to an edge.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Change {
+    /// The stage.
+    pub stage: Stage,
+    /// `true` when the stage added the edge, `false` when it removed it.
+    pub added: bool,
+    /// Why.
+    pub reason: Reason,
+}
+
+/// The story of one edge: how its ends chose it in Algorithm 1, what each later stage did to it,
+/// and whether it is in the result. `Display` tells it in a sentence or two.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// // Three points in a row and one far above the last.
+/// let points = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 9.0)].map(Point::from);
+/// let result = reconstruct(&points, &Params::default())?;
+/// let stories = result.provenance();
+/// let long = stories.iter().find(|s| s.edge == [0, 3]).unwrap();
+/// assert_eq!(
+///     long.to_string(),
+///     "0-3: second shortest at 0, dropped by the uniformity test: \
+///      |e2| = 9.220 |e1| >= 2.750 |e1|; rank 3 at 3; dropped"
+/// );
+/// assert!(stories.iter().find(|s| s.edge == [0, 1]).unwrap().kept);
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct EdgeStory {
+    /// The edge, in input positions, smaller first.
+    pub edge: [usize; 2],
+    /// How each end saw it in Algorithm 1, in the order of `edge`.
+    pub ends: [EndChoice; 2],
+    /// The changes of the later stages, in the order they ran.
+    pub changes: Vec<Change>,
+    /// Whether it is in the final result.
+    pub kept: bool,
+}
+
+impl Reconstruction {
+    /// The story of every Delaunay edge and of every edge a stage added, sorted by edge; see
+    /// [`EdgeStory`]. Computed on demand: O(n log n) time and memory for the list.
+    pub fn provenance(&self) -> Vec<EdgeStory> {
+        let tri = self.triangulation();
+        let reports: Vec<_> = self.stages().collect();
+        let mut all: Vec<[usize; 2]> = tri.edges().map(|[a, b]| [a.min(b), a.max(b)]).collect();
+        for report in &reports {
+            all.extend(report.graph.edges());
+        }
+        all.sort_unstable();
+        all.dedup();
+        let graphs: Vec<Vec<[usize; 2]>> = reports.iter().map(|r| r.graph.edges()).collect();
+        let rings = Rings::new(tri, self.params().uniformity);
+        let mut stories: Vec<EdgeStory> = all
+            .iter()
+            .map(|&edge| EdgeStory {
+                edge,
+                ends: [
+                    rings.choice(edge[0], edge[1]),
+                    rings.choice(edge[1], edge[0]),
+                ],
+                changes: Vec::new(),
+                kept: false,
+            })
+            .collect();
+        for k in 1..reports.len() {
+            let (before, after) = (&graphs[k - 1], &graphs[k]);
+            let explain = Explainer::new(
+                tri,
+                reports[k].stage,
+                &reports[k - 1].graph,
+                before,
+                after,
+                self,
+            );
+            for (story, &edge) in stories.iter_mut().zip(&all) {
+                let was = before.binary_search(&edge).is_ok();
+                let is = after.binary_search(&edge).is_ok();
+                if was != is {
+                    story.changes.push(Change {
+                        stage: reports[k].stage,
+                        added: is,
+                        reason: explain.reason(edge, is),
+                    });
+                }
+            }
+        }
+        let last = graphs.last().map(Vec::as_slice).unwrap_or(&[]);
+        for story in &mut stories {
+            story.kept = last.binary_search(&story.edge).is_ok();
+        }
+        stories
+    }
+}
+
+/// Algorithm 1's view of every ring, re-derived: the two shortest neighbours (by squared length
+/// in the stages' frame, then vertex id, as the stage orders them) and the test's numbers.
+struct Rings<'t> {
+    tri: &'t Triangulation,
+    uniformity: Uniformity,
+}
+
+impl<'t> Rings<'t> {
+    fn new(tri: &'t Triangulation, uniformity: Uniformity) -> Self {
+        Rings { tri, uniformity }
+    }
+
+    /// How input position `at` saw its edge to input position `other`.
+    fn choice(&self, at: usize, other: usize) -> EndChoice {
+        let tri = self.tri;
+        let (v, w) = (tri.vertex(at), tri.vertex(other));
+        let p = tri.vertex_point(v);
+        let key = |u: crate::mesh::VertexId| (p.dist2(tri.vertex_point(u)), u);
+        let ring: Vec<(f64, crate::mesh::VertexId)> = tri.mesh().neighbors(v).map(key).collect();
+        if !ring.iter().any(|&(_, u)| u == w) {
+            return EndChoice::NotDelaunay;
+        }
+        let target = key(w);
+        let before = |a: &(f64, crate::mesh::VertexId), b: &(f64, crate::mesh::VertexId)| {
+            a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
+        };
+        let rank = 1 + ring.iter().filter(|e| before(e, &target)).count();
+        match rank {
+            1 => EndChoice::Shortest,
+            2 => {
+                let first = ring
+                    .iter()
+                    .copied()
+                    .reduce(|a, b| if before(&b, &a) { b } else { a })
+                    .expect("the ring holds the edge");
+                let (l1, l2) = (libm::sqrt(first.0), libm::sqrt(target.0));
+                let (kept, bound) = match self.uniformity {
+                    Uniformity::Fixed(u) => (l2 < u * l1, u),
+                    Uniformity::Adaptive => {
+                        let sum: f64 = ring.iter().map(|e| libm::sqrt(e.0)).sum();
+                        let mean = sum / ring.len() as f64;
+                        (l2 < mean, mean / l1)
+                    }
+                };
+                EndChoice::Second {
+                    ratio: l2 / l1,
+                    bound,
+                    kept,
+                }
+            }
+            rank => EndChoice::Later { rank },
+        }
+    }
+}
+
+/// The numbers one stage's reasons need, computed once per stage.
+struct Explainer<'a> {
+    tri: &'a Triangulation,
+    stage: Stage,
+    /// Degrees of the stage's input graph, by input position.
+    degrees_before: Vec<usize>,
+    before: &'a [[usize; 2]],
+    /// Algorithm 3's `√T` in input units, when the stage is the IQR rule.
+    threshold: f64,
+    /// For local outliers: per input position, whether its component in the stage's input lost
+    /// every edge.
+    component_gone: Vec<bool>,
+}
+
+impl<'a> Explainer<'a> {
+    fn new(
+        tri: &'a Triangulation,
+        stage: Stage,
+        input: &Graph<'_>,
+        before: &'a [[usize; 2]],
+        after: &'a [[usize; 2]],
+        result: &Reconstruction,
+    ) -> Self {
+        let degrees_before = input.degrees();
+        let threshold = if stage == Stage::Outliers {
+            iqr_threshold(tri, before, result.params().outlier_factor.unwrap_or(0.0))
+        } else {
+            0.0
+        };
+        let component_gone = if stage == Stage::LocalOutliers {
+            components_gone(tri.num_points(), before, after)
+        } else {
+            Vec::new()
+        };
+        Explainer {
+            tri,
+            stage,
+            degrees_before,
+            before,
+            threshold,
+            component_gone,
+        }
+    }
+
+    fn reason(&self, [a, b]: [usize; 2], added: bool) -> Reason {
+        match (self.stage, added) {
+            (Stage::Gaps, _) => Reason::GapClosed,
+            (Stage::LocalOutliers, true) => Reason::GivenBack,
+            (Stage::Outliers, _) => Reason::LongerThanThreshold {
+                length: input_length(self.tri, a, b),
+                threshold: self.threshold,
+            },
+            (Stage::LocalOutliers, false) => {
+                if self.component_gone[a] {
+                    return Reason::Component;
+                }
+                let long = [a, b]
+                    .into_iter()
+                    .filter_map(|end| {
+                        let other = if end == a { b } else { a };
+                        self.longest_other(end, other)
+                            .map(|l| (end, input_length(self.tri, a, b) / l))
+                    })
+                    .filter(|&(_, ratio)| ratio > crate::stages::local_outliers::LONG)
+                    .max_by(|x, y| x.1.total_cmp(&y.1));
+                match long {
+                    Some((vertex, ratio)) => Reason::LongAt { vertex, ratio },
+                    None => Reason::Spur,
+                }
+            }
+            _ => {
+                let vertex = if self.degrees_before[a] >= self.degrees_before[b] {
+                    a
+                } else {
+                    b
+                };
+                Reason::Repair {
+                    vertex,
+                    degree: self.degrees_before[vertex],
+                }
+            }
+        }
+    }
+
+    /// The longest edge at `end` in the stage's input other than the one to `other`.
+    fn longest_other(&self, end: usize, other: usize) -> Option<f64> {
+        self.before
+            .iter()
+            .filter(|&&[x, y]| (x == end || y == end) && x != other && y != other)
+            .map(|&[x, y]| input_length(self.tri, x, y))
+            .reduce(f64::max)
+    }
+}
+
+fn input_length(tri: &Triangulation, a: usize, b: usize) -> f64 {
+    libm::sqrt(tri.point(a).dist2(tri.point(b)))
+}
+
+/// Algorithm 3's `√T` for the graph `edges`, in input units: squared lengths sorted,
+/// `T = Q3 + k (Q3 - Q1)` with `Q1 = s[n/4]`, `Q3 = s[min(3n/4, n-1)]`.
+fn iqr_threshold(tri: &Triangulation, edges: &[[usize; 2]], factor: f64) -> f64 {
+    let mut lengths: Vec<f64> = edges
+        .iter()
+        .map(|&[a, b]| tri.point(a).dist2(tri.point(b)))
+        .collect();
+    if lengths.is_empty() {
+        return 0.0;
+    }
+    lengths.sort_unstable_by(f64::total_cmp);
+    let n = lengths.len();
+    let (q1, q3) = (lengths[n / 4], lengths[(3 * n / 4).min(n - 1)]);
+    libm::sqrt(q3 + factor * (q3 - q1))
+}
+
+/// Per point: whether its component in `before` has no edge left in `after`.
+fn components_gone(n: usize, before: &[[usize; 2]], after: &[[usize; 2]]) -> Vec<bool> {
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    for &[a, b] in before {
+        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+        parent[ra.max(rb)] = ra.min(rb);
+    }
+    let mut survives = vec![false; n];
+    for &[a, _] in after {
+        let root = find(&mut parent, a);
+        survives[root] = true;
+    }
+    (0..n).map(|x| !survives[find(&mut parent, x)]).collect()
+}
+
+impl fmt::Display for EdgeStory {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let [a, b] = self.edge;
+        write!(f, "{a}-{b}: ")?;
+        match self.ends {
+            [EndChoice::Later { rank: ra }, EndChoice::Later { rank: rb }] => write!(
+                f,
+                "not among the two shortest at either end (ranks {ra} and {rb})"
+            )?,
+            [EndChoice::NotDelaunay, _] | [_, EndChoice::NotDelaunay] => {
+                write!(f, "not a Delaunay edge")?
+            }
+            ends => {
+                let mut first = true;
+                for (end, choice) in [a, b].into_iter().zip(ends) {
+                    if !first {
+                        write!(f, "; ")?;
+                    }
+                    first = false;
+                    match choice {
+                        EndChoice::Shortest => write!(f, "shortest at {end}")?,
+                        EndChoice::Second { ratio, bound, kept } => write!(
+                            f,
+                            "second shortest at {end}, {} by the uniformity test: |e2| = {ratio:.3} |e1| {} {bound:.3} |e1|",
+                            if kept { "kept" } else { "dropped" },
+                            if kept { "<" } else { ">=" }
+                        )?,
+                        EndChoice::Later { rank } => write!(f, "rank {rank} at {end}")?,
+                        EndChoice::NotDelaunay => {}
+                    }
+                }
+            }
+        }
+        for change in &self.changes {
+            let stage = match change.stage {
+                Stage::Proximity => "proximity",
+                Stage::Repair => "repair",
+                Stage::Outliers => "IQR outliers",
+                Stage::LocalOutliers => "local outliers",
+                Stage::Gaps => "gaps",
+            };
+            write!(
+                f,
+                "; {stage}: {} ",
+                if change.added { "added" } else { "removed" }
+            )?;
+            match change.reason {
+                Reason::Repair { vertex, degree } => write!(
+                    f,
+                    "at vertex {vertex} (degree {degree}), which kept other edges"
+                )?,
+                Reason::LongerThanThreshold { length, threshold } => {
+                    write!(f, "length {length:.6} above √T = {threshold:.6}")?
+                }
+                Reason::GivenBack => write!(f, "given back between two regular passages")?,
+                Reason::LongAt { vertex, ratio } => write!(
+                    f,
+                    "{ratio:.2} times as long as the longest other edge at vertex {vertex}"
+                )?,
+                Reason::Component => write!(f, "isolated component")?,
+                Reason::Spur => write!(f, "short spur")?,
+                Reason::GapClosed => write!(f, "gap closed")?,
+            }
+        }
+        write!(f, "; {}", if self.kept { "kept" } else { "dropped" })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reconstruct::{reconstruct, Params};
+    use crate::sample::{sample, Clumps, Sampling, Shape};
+    use crate::Point;
+
+    fn noisy_scene() -> Vec<Point> {
+        let mut sampling = Sampling::new(0.3);
+        sampling.outlier_fraction = 0.1;
+        sampling.noise = 0.002;
+        sampling.outlier_clumps = Some(Clumps {
+            min: 3,
+            max: 5,
+            radius: 0.2,
+        });
+        sample(
+            &[
+                Shape::Ellipse {
+                    center: Point::new(0.0, 0.0),
+                    radii: (3.0, 1.0),
+                    rotation: 0.2,
+                },
+                Shape::Polygon(vec![
+                    Point::new(5.0, -1.0),
+                    Point::new(8.0, -1.0),
+                    Point::new(6.5, 2.0),
+                ]),
+                Shape::FigureEight {
+                    center: Point::new(0.0, 5.0),
+                    size: 2.0,
+                },
+            ],
+            &sampling,
+        )
+        .points
+    }
+
+    #[test]
+    fn the_end_choices_agree_with_the_proximity_graph_and_the_changes_with_every_stage() {
+        let points = noisy_scene();
+        for params in [
+            Params::default(),
+            Params::paper(),
+            Params {
+                uniformity: Uniformity::Adaptive,
+                ..Params::default()
+            },
+        ] {
+            let result = reconstruct(&points, &params).unwrap();
+            let stories = result.provenance();
+            let graphs: Vec<Vec<[usize; 2]>> = result.stages().map(|r| r.graph.edges()).collect();
+            // Replaying the changes from the proximity graph gives every stage's graph.
+            let mut replay: Vec<[usize; 2]> = stories
+                .iter()
+                .filter(|s| s.ends.iter().any(EndChoice::keeps))
+                .map(|s| s.edge)
+                .collect();
+            assert_eq!(replay, graphs[0]);
+            for (k, report) in result.stages().enumerate().skip(1) {
+                for story in &stories {
+                    for change in story.changes.iter().filter(|c| c.stage == report.stage) {
+                        if change.added {
+                            replay.push(story.edge);
+                        } else {
+                            replay.retain(|&e| e != story.edge);
+                        }
+                    }
+                }
+                replay.sort_unstable();
+                assert_eq!(replay, graphs[k], "{:?}", report.stage);
+            }
+            let kept: Vec<[usize; 2]> = stories.iter().filter(|s| s.kept).map(|s| s.edge).collect();
+            let mut result_edges: Vec<[usize; 2]> = result.edges().collect();
+            result_edges.sort_unstable();
+            assert_eq!(kept, result_edges);
+            if params == Params::default() {
+                let mut reasons: Vec<String> = stories
+                    .iter()
+                    .flat_map(|s| &s.changes)
+                    .map(|c| {
+                        format!("{:?}", c.reason)
+                            .split([' ', '{'])
+                            .next()
+                            .unwrap()
+                            .to_string()
+                    })
+                    .collect();
+                reasons.sort();
+                reasons.dedup();
+                // The scene exercises the repair, the IQR rule and the local component rule.
+                for reason in ["Component", "LongerThanThreshold", "Repair"] {
+                    assert!(reasons.iter().any(|r| r == reason), "{reasons:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_edge_the_outlier_rule_removed_is_longer_than_its_threshold() {
+        let points = noisy_scene();
+        let result = reconstruct(&points, &Params::paper()).unwrap();
+        let removed: Vec<Reason> = result
+            .provenance()
+            .iter()
+            .flat_map(|s| s.changes.iter())
+            .filter(|c| c.stage == Stage::Outliers)
+            .map(|c| c.reason)
+            .collect();
+        assert!(
+            !removed.is_empty(),
+            "the scene has outliers the IQR rule removes"
+        );
+        for reason in removed {
+            let Reason::LongerThanThreshold { length, threshold } = reason else {
+                panic!("{reason:?}");
+            };
+            assert!(length > threshold, "{length} <= {threshold}");
+        }
+    }
+
+    #[test]
+    fn a_chord_at_a_tip_is_explained_by_the_uniformity_numbers() {
+        // Three points in a row, the last one far: the middle one keeps both edges, the far one
+        // only its shortest, and the long edge is the far point's shortest.
+        let points = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 9.0)].map(Point::from);
+        let result = reconstruct(&points, &Params::paper()).unwrap();
+        let stories = result.provenance();
+        let story = |e: [usize; 2]| stories.iter().find(|s| s.edge == e).unwrap();
+        assert_eq!(story([0, 1]).ends[0], EndChoice::Shortest);
+        match story([0, 3]).ends[0] {
+            EndChoice::Second { ratio, bound, kept } => {
+                assert!((ratio - libm::hypot(2.0, 9.0)).abs() < 1e-12);
+                assert_eq!((bound, kept), (2.75, false));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(story([0, 3])
+            .to_string()
+            .contains("dropped by the uniformity test"));
+    }
+}
