@@ -7,11 +7,13 @@
 //! `.node` files ([`parse_node`]); [`read_points`] tells them apart by the file name.
 
 mod geojson;
+mod html;
 mod points;
 mod svg;
 mod text;
 
 pub use geojson::write_geojson;
+pub use html::write_html;
 pub use points::{parse_node, parse_points, read_points};
 pub use svg::write_svg;
 pub use text::{write_edges, write_polylines};

@@ -5,7 +5,9 @@
 //! output goes is [`crate::output`]'s business.
 
 use crate::output::{refuse_same_file, Destination};
-use condt::io::{read_points, write_edges, write_geojson, write_polylines, write_svg, IoError};
+use condt::io::{
+    read_points, write_edges, write_geojson, write_html, write_polylines, write_svg, IoError,
+};
 use condt::{reconstruct, triangulate, Error, Params, Point, Repair, Uniformity};
 use std::ffi::{OsStr, OsString};
 use std::fmt;
@@ -54,7 +56,8 @@ Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j`
 i < j, sorted), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
 default on standard output), `svg` (.svg: the points and curves; with --stages the Delaunay
 triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
-LineString per curve). A summary goes to standard error: points, curves, and the unused points
+LineString per curve), `html` (.html: a self-contained page to explore every stage: layers, pan
+and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 
 The default pipeline is the paper's (Algorithms 1-3) with the repair `needs`, local outlier
@@ -83,7 +86,7 @@ Options:
       --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
                           --repair off
       --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
-      --format F          edges, txt, svg or geojson
+      --format F          edges, txt, svg, geojson or html
       --stages            draw every stage (SVG output only)
       --sequential        do not use threads (the result is the same)
   -h, --help              show this help
@@ -295,6 +298,7 @@ enum Format {
     Polylines,
     Svg,
     GeoJson,
+    Html,
 }
 
 impl Format {
@@ -304,6 +308,7 @@ impl Format {
             "txt" => Some(Format::Polylines),
             "svg" => Some(Format::Svg),
             "geojson" | "json" => Some(Format::GeoJson),
+            "html" | "htm" => Some(Format::Html),
             _ => None,
         }
     }
@@ -314,6 +319,7 @@ impl Format {
             Format::Polylines => "txt",
             Format::Svg => "svg",
             Format::GeoJson => "geojson",
+            Format::Html => "html",
         }
     }
 }
@@ -441,13 +447,13 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 )?;
             }
             Some(flag @ "--format") => {
-                let value = rest
-                    .next()
-                    .ok_or_else(|| usage("--format needs a name: edges, txt, svg or geojson"))?;
+                let value = rest.next().ok_or_else(|| {
+                    usage("--format needs a name: edges, txt, svg, geojson or html")
+                })?;
                 let name = text(value, flag)?;
                 let chosen = Format::named(name).ok_or_else(|| {
                     usage(format!(
-                        "--format {name}: unknown format; the formats are edges, txt, svg and geojson"
+                        "--format {name}: unknown format; the formats are edges, txt, svg, geojson and html"
                     ))
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
@@ -535,6 +541,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         Format::Polylines => write_polylines(out, &result),
         Format::Svg => write_svg(out, &result, args.stages),
         Format::GeoJson => write_geojson(out, &result),
+        Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
     })?;
     note_duplicates(points.len(), result.triangulation().num_vertices());
     let curves = result.curves();

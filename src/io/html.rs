@@ -1,0 +1,290 @@
+//! The interactive stage viewer: one self-contained HTML file (inline script and style, no
+//! network, opens from `file://`).
+//!
+//! Owns: the page's layout, its data block and its script. The data are the points (relative to
+//! their bounding box, so offsets of 1e6 cost no precision on screen), every edge of
+//! [`Reconstruction::provenance`] with its story in compact numeric form, and per layer (the
+//! Delaunay triangulation, each stage that ran, the result) the list of its edges. The script
+//! draws on one canvas (no element per edge, so 100,000 points stay responsive), switches the
+//! layers, pans and zooms, and on a click shows a point's ring (its two shortest edges, the
+//! uniformity test with its numbers, its final degree) or an edge's story. It may not decide
+//! anything: every verdict and ratio comes from the library; the script computes only lengths
+//! and positions for display.
+
+use crate::provenance::{EdgeStory, EndChoice, Reason};
+use crate::{Reconstruction, Stage};
+use std::io::{self, Write};
+
+/// Writes the viewer page for `result`, titled `title` (HTML-escaped here).
+///
+/// ```
+/// use condt::io::write_html;
+/// use condt::{reconstruct, Params, Point};
+/// let points = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 1.2)].map(Point::from);
+/// let result = reconstruct(&points, &Params::default())?;
+/// let mut page = Vec::new();
+/// write_html(&mut page, &result, "five points")?;
+/// let page = String::from_utf8(page)?;
+/// assert!(page.starts_with("<!DOCTYPE html>"));
+/// assert!(page.contains("<title>condt: five points</title>"));
+/// assert!(!page.contains("http://") && !page.contains("https://")); // nothing to fetch
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> io::Result<()> {
+    let stories = result.provenance();
+    let mut out = io::BufWriter::with_capacity(1 << 16, out);
+    let title = escape(title);
+    write!(
+        out,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width\">\
+         <title>condt: {title}</title><style>{STYLE}</style></head><body>\
+         <header><h1>condt: {title}</h1><span id=\"status\"></span></header>\
+         <main><div id=\"view\"><canvas id=\"canvas\"></canvas></div>\
+         <aside><section id=\"layers\"><h2>Layers</h2></section>\
+         <section><h2>Legend</h2><div id=\"legend\"></div></section>\
+         <section id=\"info\"><h2>Details</h2><p id=\"details\">Click a point or an edge.</p>\
+         </section><p class=\"hint\">Drag to pan, wheel to zoom, double-click to reset.</p>\
+         </aside></main>\n<script id=\"data\" type=\"application/json\">"
+    )?;
+    write_data(&mut out, result, &stories)?;
+    write!(out, "</script>\n<script>{SCRIPT}</script></body></html>\n")?;
+    out.flush()
+}
+
+/// The data block: one JSON object, numbers only (no text the script would have to trust).
+fn write_data(
+    out: &mut impl Write,
+    result: &Reconstruction,
+    stories: &[EdgeStory],
+) -> io::Result<()> {
+    let n = result.num_points();
+    let points: Vec<crate::Point> = (0..n).map(|i| result.point(i)).collect();
+    let (mut min_x, mut min_y) = (f64::INFINITY, f64::INFINITY);
+    for p in &points {
+        min_x = min_x.min(p.x);
+        min_y = min_y.min(p.y);
+    }
+    let (mut span_x, mut span_y) = (0.0f64, 0.0f64);
+    for p in &points {
+        span_x = span_x.max(p.x - min_x);
+        span_y = span_y.max(p.y - min_y);
+    }
+    // One scale for both axes, so that the page keeps the set's shape; a power of two, so that
+    // dividing is exact and the set's own spacing survives the 9 significant digits written.
+    let span = span_x.max(span_y);
+    let scale = if span > 0.0 && span.is_finite() {
+        libm::exp2(libm::ceil(libm::log2(span)))
+    } else {
+        1.0
+    };
+    write!(
+        out,
+        "{{\"origin\":[{min_x:e},{min_y:e}],\"scale\":{scale:e},\"points\":["
+    )?;
+    for (k, p) in points.iter().enumerate() {
+        let sep = if k == 0 { "" } else { "," };
+        write!(
+            out,
+            "{sep}{},{}",
+            Short((p.x - min_x) / scale, POSITION_DIGITS),
+            Short((p.y - min_y) / scale, POSITION_DIGITS)
+        )?;
+    }
+    write!(out, "],\"unused\":")?;
+    write_list(out, result.unused().iter().copied())?;
+    write!(out, ",\"degree\":")?;
+    write_list(out, (0..n).map(|i| result.degree(i)))?;
+    write!(out, ",\"edges\":")?;
+    write_list(out, stories.iter().flat_map(|s| s.edge))?;
+    // Per edge and end: 0 not Delaunay, 1 shortest, 2 second, k >= 3 the rank.
+    write!(out, ",\"ends\":")?;
+    write_list(
+        out,
+        stories
+            .iter()
+            .flat_map(|s| s.ends)
+            .map(|choice| match choice {
+                EndChoice::NotDelaunay => 0,
+                EndChoice::Shortest => 1,
+                EndChoice::Second { .. } => 2,
+                EndChoice::Later { rank } => rank,
+            }),
+    )?;
+    // Per second-shortest end: edge index, end (0 or 1), ratio, bound, kept (0 or 1).
+    write!(out, ",\"seconds\":[")?;
+    let mut first = true;
+    for (k, story) in stories.iter().enumerate() {
+        for (side, choice) in story.ends.iter().enumerate() {
+            if let EndChoice::Second { ratio, bound, kept } = *choice {
+                let sep = if first { "" } else { "," };
+                first = false;
+                write!(
+                    out,
+                    "{sep}{k},{side},{},{},{}",
+                    Short(ratio, RATIO_DIGITS),
+                    Short(bound, RATIO_DIGITS),
+                    u8::from(kept)
+                )?;
+            }
+        }
+    }
+    // Per change: edge index, stage index, added (0 or 1), reason code, two numbers.
+    let stages: Vec<Stage> = result.stages().map(|r| r.stage).collect();
+    write!(out, "],\"changes\":[")?;
+    let mut first = true;
+    for (k, story) in stories.iter().enumerate() {
+        for change in &story.changes {
+            let stage = stages.iter().position(|&s| s == change.stage).unwrap_or(0);
+            let (code, x, y) = match change.reason {
+                Reason::Repair { vertex, degree } => (0, vertex as f64, degree as f64),
+                Reason::LongerThanThreshold { length, threshold } => (1, length, threshold),
+                Reason::GivenBack => (2, 0.0, 0.0),
+                Reason::LongAt { vertex, ratio } => (3, vertex as f64, ratio),
+                Reason::Component => (4, 0.0, 0.0),
+                Reason::Spur => (5, 0.0, 0.0),
+                Reason::GapClosed => (6, 0.0, 0.0),
+            };
+            let sep = if first { "" } else { "," };
+            first = false;
+            write!(
+                out,
+                "{sep}{k},{stage},{},{code},{},{}",
+                u8::from(change.added),
+                Short(x, LENGTH_DIGITS),
+                Short(y, LENGTH_DIGITS)
+            )?;
+        }
+    }
+    // Layers: their names, and per edge one number whose bit 0 says it is a Delaunay edge and
+    // bit k + 1 that stage k's graph has it (a list of edges per layer would be 3 times larger).
+    write!(out, "],\"layers\":[\"Delaunay triangulation\"")?;
+    for report in result.stages() {
+        write!(out, ",\"{}\"", report.stage.title())?;
+    }
+    let graphs: Vec<Vec<[usize; 2]>> = result.stages().map(|r| r.graph.edges()).collect();
+    let membership = stories.iter().map(|story| {
+        let delaunay = u64::from(!story.ends.contains(&EndChoice::NotDelaunay));
+        graphs
+            .iter()
+            .enumerate()
+            .fold(delaunay, |bits, (k, edges)| {
+                bits | u64::from(edges.binary_search(&story.edge).is_ok()) << (k + 1)
+            })
+    });
+    write!(out, "],\"member\":")?;
+    write_list(out, membership)?;
+    write!(out, ",\"stageNames\":[")?;
+    for (k, stage) in stages.iter().enumerate() {
+        let sep = if k == 0 { "" } else { "," };
+        write!(out, "{sep}\"{}\"", stage_key(*stage))?;
+    }
+    write!(out, "]}}")
+}
+
+/// Significant digits of positions (relative to the box, over its longer side): a ten-millionth
+/// of the view, below a pixel at any zoom a page needs to tell samples apart.
+const POSITION_DIGITS: usize = 7;
+/// Of the uniformity ratios and bounds, shown with three decimals.
+const RATIO_DIGITS: usize = 5;
+/// Of lengths and thresholds, shown with six significant digits.
+const LENGTH_DIGITS: usize = 6;
+
+fn stage_key(stage: Stage) -> &'static str {
+    match stage {
+        Stage::Proximity => "proximity",
+        Stage::Repair => "repair",
+        Stage::Outliers => "IQR outliers",
+        Stage::LocalOutliers => "local outliers",
+        Stage::Gaps => "gaps",
+    }
+}
+
+fn write_list<T: core::fmt::Display>(
+    out: &mut impl Write,
+    items: impl IntoIterator<Item = T>,
+) -> io::Result<()> {
+    out.write_all(b"[")?;
+    for (k, item) in items.into_iter().enumerate() {
+        if k > 0 {
+            out.write_all(b",")?;
+        }
+        write!(out, "{item}")?;
+    }
+    out.write_all(b"]")
+}
+
+/// A number with the given number of significant digits, as JSON (which has no NaN or infinity: those become 0,
+/// and cannot occur for finite input).
+struct Short(f64, usize);
+
+impl core::fmt::Display for Short {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let (x, digits) = (self.0, self.1);
+        if !x.is_finite() {
+            return f.write_str("0");
+        }
+        if x == x.trunc() && x.abs() < 1e15 {
+            return write!(f, "{}", x as i64);
+        }
+        // Shortest of the two spellings that keep `digits` significant digits.
+        let plain = format!("{:.*}", digits_after_point(x, digits), x);
+        let plain = plain.trim_end_matches('0').trim_end_matches('.');
+        let exp = format!("{:.*e}", digits - 1, x);
+        if plain.len() <= exp.len() {
+            f.write_str(plain)
+        } else {
+            f.write_str(&exp)
+        }
+    }
+}
+
+fn digits_after_point(x: f64, digits: usize) -> usize {
+    let magnitude = libm::floor(libm::log10(x.abs())) as i32;
+    (digits as i32 - 1 - magnitude).clamp(0, 40) as usize
+}
+
+fn escape(text: &str) -> String {
+    let mut escaped = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => escaped.push_str("&amp;"),
+            '<' => escaped.push_str("&lt;"),
+            '>' => escaped.push_str("&gt;"),
+            '"' => escaped.push_str("&quot;"),
+            c => escaped.push(c),
+        }
+    }
+    escaped
+}
+
+const STYLE: &str = include_str!("html/viewer.css");
+const SCRIPT: &str = include_str!("html/viewer.js");
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_keep_their_significant_digits_in_the_shorter_spelling() {
+        for (x, text) in [
+            (0.5, "0.5"),
+            (3.0, "3"),
+            (0.123456789123, "0.1234568"),
+            (1.5e-7, "0.00000015"),
+            (1.25e-12, "1.250000e-12"),
+            (f64::NAN, "0"),
+            (2.75, "2.75"),
+        ] {
+            assert_eq!(Short(x, 7).to_string(), text);
+        }
+        let x = 1.0 / 3.0;
+        let back: f64 = Short(x, 9).to_string().parse().unwrap();
+        assert!((back - x).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_title_cannot_break_out_of_its_element() {
+        assert_eq!(escape("<script>&\""), "&lt;script&gt;&amp;&quot;");
+    }
+}

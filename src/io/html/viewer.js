@@ -1,0 +1,321 @@
+"use strict";
+// The condt stage viewer. Reads the JSON block written by src/io/html.rs; draws on one canvas.
+(function () {
+  const started = performance.now();
+  const data = JSON.parse(document.getElementById("data").textContent);
+  const P = data.points, E = data.edges, n = P.length / 2, m = E.length / 2;
+  const COLORS = {
+    delaunay: "#c4c4c4", proximity: "#3b6fd8", repair: "#9b4dca", "IQR outliers": "#e08a00",
+    "local outliers": "#1a9e8f", gaps: "#5fae2e", result: "#111111",
+  };
+  const WIDTH = { delaunay: 1, result: 2.5 };
+  const layers = data.layers.map((name, k) => ({
+    name, kind: k === 0 ? "delaunay" : data.stageNames[k - 1], edges: [],
+    isResult: k === data.layers.length - 1 && k > 0,
+  }));
+  for (let e = 0; e < m; e++) {
+    for (let bits = data.member[e], k = 0; bits > 0; bits >>= 1, k++) if (bits & 1) layers[k].edges.push(e);
+  }
+  for (const layer of layers) {
+    layer.color = layer.isResult ? COLORS.result : COLORS[layer.kind];
+    layer.width = layer.isResult ? WIDTH.result : (WIDTH[layer.kind] || 1.5);
+    layer.on = layer.kind === "delaunay" || layer.isResult;
+    if (layer.isResult) layer.name += " (the result)";
+  }
+  const pointLayers = [
+    { name: "points", color: "#222222", on: true, kind: "points" },
+    { name: "unused points (in the result)", color: "#d62728", on: true, kind: "unused" },
+  ];
+  const unused = new Uint8Array(n);
+  for (const i of data.unused) unused[i] = 1;
+  const stageNames = data.stageNames;
+
+  // Per edge: its second-shortest numbers and its changes, looked up on click.
+  const seconds = new Map();
+  for (let k = 0; k < data.seconds.length; k += 5) {
+    const s = data.seconds;
+    seconds.set(s[k] * 2 + s[k + 1], { ratio: s[k + 2], bound: s[k + 3], kept: s[k + 4] === 1 });
+  }
+  const changes = new Map();
+  for (let k = 0; k < data.changes.length; k += 6) {
+    const c = data.changes, e = c[k];
+    if (!changes.has(e)) changes.set(e, []);
+    changes.get(e).push({ stage: stageNames[c[k + 1]], added: c[k + 2] === 1, code: c[k + 3], x: c[k + 4], y: c[k + 5] });
+  }
+  const resultEdges = new Uint8Array(m);
+  for (const k of layers[layers.length - 1].edges) resultEdges[k] = 1;
+  // Edges at each point (compressed adjacency).
+  const start = new Uint32Array(n + 1);
+  for (let k = 0; k < 2 * m; k++) start[E[k] + 1]++;
+  for (let i = 0; i < n; i++) start[i + 1] += start[i];
+  const fill = start.slice(0, n), incident = new Uint32Array(2 * m);
+  for (let k = 0; k < m; k++) { incident[fill[E[2 * k]]++] = k; incident[fill[E[2 * k + 1]]++] = k; }
+
+  const canvas = document.getElementById("canvas");
+  const ctx = canvas.getContext("2d");
+  const view = { k: 1, ox: 0, oy: 0 };
+  let selected = null, pending = false;
+  const status = document.getElementById("status");
+
+  function length(k) {
+    const a = E[2 * k], b = E[2 * k + 1];
+    return Math.hypot(P[2 * a] - P[2 * b], P[2 * a + 1] - P[2 * b + 1]) * data.scale;
+  }
+  const fmt = (x) => (Math.abs(x) >= 1e5 || (Math.abs(x) < 1e-3 && x !== 0)) ? x.toExponential(4) : +x.toPrecision(6) + "";
+  const sx = (i) => view.ox + P[2 * i] * view.k;
+  const sy = (i) => view.oy - P[2 * i + 1] * view.k;
+
+  function fit() {
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    let maxX = 0, maxY = 0;
+    for (let i = 0; i < n; i++) { maxX = Math.max(maxX, P[2 * i]); maxY = Math.max(maxY, P[2 * i + 1]); }
+    const spanX = maxX || 1, spanY = maxY || 1;
+    view.k = 0.92 * Math.min(w / spanX, h / spanY);
+    view.ox = (w - spanX * view.k) / 2;
+    view.oy = h - (h - spanY * view.k) / 2;
+  }
+
+  function resize() {
+    const ratio = window.devicePixelRatio || 1;
+    canvas.width = Math.round(canvas.clientWidth * ratio);
+    canvas.height = Math.round(canvas.clientHeight * ratio);
+    ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+  }
+
+  function request() {
+    if (!pending) { pending = true; requestAnimationFrame(() => { pending = false; draw(); }); }
+  }
+
+  function draw() {
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    ctx.clearRect(0, 0, w, h);
+    const notes = [];
+    for (const layer of layers) {
+      if (!layer.on) continue;
+      ctx.strokeStyle = layer.color;
+      ctx.lineWidth = layer.width;
+      ctx.beginPath();
+      // Thinning: with many edges, those shorter than half a pixel on screen are not drawn.
+      const thin = layer.edges.length > 150000;
+      let skipped = 0;
+      for (const k of layer.edges) {
+        const a = E[2 * k], b = E[2 * k + 1];
+        const ax = sx(a), ay = sy(a), bx = sx(b), by = sy(b);
+        if ((ax < 0 && bx < 0) || (ax > w && bx > w) || (ay < 0 && by < 0) || (ay > h && by > h)) continue;
+        if (thin && Math.abs(ax - bx) + Math.abs(ay - by) < 0.5) { skipped++; continue; }
+        ctx.moveTo(ax, ay);
+        ctx.lineTo(bx, by);
+      }
+      ctx.stroke();
+      if (skipped > 0) notes.push(`${layer.name}: ${skipped.toLocaleString("en")} of ${layer.edges.length.toLocaleString("en")} edges shorter than half a pixel not drawn; zoom in to see them`);
+    }
+    const dots = n > 50000;
+    if (pointLayers[0].on) {
+      ctx.fillStyle = pointLayers[0].color;
+      ctx.beginPath();
+      for (let i = 0; i < n; i++) {
+        const x = sx(i), y = sy(i);
+        if (x < -3 || x > w + 3 || y < -3 || y > h + 3) continue;
+        if (dots) ctx.rect(x - 0.5, y - 0.5, 1, 1);
+        else { ctx.moveTo(x + 2.2, y); ctx.arc(x, y, 2.2, 0, 2 * Math.PI); }
+      }
+      ctx.fill();
+      if (dots) notes.push(`${n.toLocaleString("en")} points drawn as 1-pixel dots`);
+    }
+    if (pointLayers[1].on) {
+      ctx.strokeStyle = pointLayers[1].color;
+      ctx.lineWidth = 1.5;
+      ctx.beginPath();
+      for (const i of data.unused) { const x = sx(i), y = sy(i); ctx.moveTo(x + 4, y); ctx.arc(x, y, 4, 0, 2 * Math.PI); }
+      ctx.stroke();
+    }
+    if (selected) drawSelection();
+    status.textContent = notes.join("; ");
+  }
+
+  function drawSelection() {
+    ctx.lineWidth = 4;
+    if (selected.point !== undefined) {
+      const i = selected.point;
+      for (let s = start[i]; s < start[i + 1]; s++) {
+        const k = incident[s], end = E[2 * k] === i ? 0 : 1, code = data.ends[2 * k + end];
+        if (code === 0) continue;
+        ctx.strokeStyle = code <= 2 ? "#ff7f0e" : "rgba(255,127,14,0.35)";
+        ctx.beginPath(); ctx.moveTo(sx(E[2 * k]), sy(E[2 * k])); ctx.lineTo(sx(E[2 * k + 1]), sy(E[2 * k + 1])); ctx.stroke();
+      }
+      ctx.strokeStyle = "#ff7f0e"; ctx.lineWidth = 2;
+      ctx.beginPath(); ctx.arc(sx(i), sy(i), 7, 0, 2 * Math.PI); ctx.stroke();
+    } else {
+      const k = selected.edge;
+      ctx.strokeStyle = "#e0218a";
+      ctx.beginPath(); ctx.moveTo(sx(E[2 * k]), sy(E[2 * k])); ctx.lineTo(sx(E[2 * k + 1]), sy(E[2 * k + 1])); ctx.stroke();
+    }
+  }
+
+  // A grid over the points for picking.
+  const cells = Math.max(1, Math.floor(Math.sqrt(n)));
+  const grid = new Map();
+  for (let i = 0; i < n; i++) {
+    const key = Math.min(cells - 1, Math.floor(P[2 * i] * cells)) * cells + Math.min(cells - 1, Math.floor(P[2 * i + 1] * cells));
+    if (!grid.has(key)) grid.set(key, []);
+    grid.get(key).push(i);
+  }
+  function pickPoint(mx, my, radius) {
+    const wx = (mx - view.ox) / view.k, wy = (view.oy - my) / view.k, r = radius / view.k;
+    let best = -1, bestD = radius * radius;
+    const cx0 = Math.max(0, Math.floor((wx - r) * cells)), cx1 = Math.min(cells - 1, Math.floor((wx + r) * cells));
+    const cy0 = Math.max(0, Math.floor((wy - r) * cells)), cy1 = Math.min(cells - 1, Math.floor((wy + r) * cells));
+    for (let cx = cx0; cx <= cx1; cx++) for (let cy = cy0; cy <= cy1; cy++) {
+      for (const i of grid.get(cx * cells + cy) || []) {
+        const d = (sx(i) - mx) ** 2 + (sy(i) - my) ** 2;
+        if (d <= bestD) { bestD = d; best = i; }
+      }
+    }
+    return best;
+  }
+  function pickEdge(mx, my, radius) {
+    let best = -1, bestD = radius * radius;
+    for (const layer of layers) {
+      if (!layer.on) continue;
+      for (const k of layer.edges) {
+        const ax = sx(E[2 * k]), ay = sy(E[2 * k]), bx = sx(E[2 * k + 1]), by = sy(E[2 * k + 1]);
+        const dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+        const t = l2 > 0 ? Math.max(0, Math.min(1, ((mx - ax) * dx + (my - ay) * dy) / l2)) : 0;
+        const d = (ax + t * dx - mx) ** 2 + (ay + t * dy - my) ** 2;
+        if (d < bestD) { bestD = d; best = k; }
+      }
+    }
+    return best;
+  }
+
+  const details = document.getElementById("details");
+  function point(i) {
+    const x = data.origin[0] + P[2 * i] * data.scale, y = data.origin[1] + P[2 * i + 1] * data.scale;
+    return `${i} (${fmt(x)}, ${fmt(y)})`;
+  }
+  function endWords(k, end) {
+    const code = data.ends[2 * k + end], at = E[2 * k + end];
+    if (code === 1) return `shortest at ${at}`;
+    if (code === 2) {
+      const s = seconds.get(2 * k + end);
+      return `second shortest at ${at}, ${s.kept ? "kept" : "dropped"} by the uniformity test: |e2| = ${s.ratio.toFixed(3)} |e1| ${s.kept ? "<" : "≥"} ${s.bound.toFixed(3)} |e1|`;
+    }
+    return `rank ${code} at ${at}`;
+  }
+  function changeWords(c) {
+    const verb = c.added ? "added" : "removed";
+    const why = [
+      () => `at vertex ${c.x} (degree ${c.y}), which kept other edges`,
+      () => `length ${fmt(c.x)} above √T = ${fmt(c.y)}`,
+      () => "given back between two regular passages",
+      () => `${c.y.toFixed(2)} times as long as the longest other edge at vertex ${c.x}`,
+      () => "isolated component",
+      () => "short spur",
+      () => "gap closed",
+    ][c.code]();
+    return `${c.stage}: ${verb} ${why}`;
+  }
+  function story(k) {
+    const a = data.ends[2 * k], b = data.ends[2 * k + 1];
+    const parts = [];
+    if (a === 0 || b === 0) parts.push("not a Delaunay edge");
+    else if (a >= 3 && b >= 3) parts.push(`not among the two shortest at either end (ranks ${a} and ${b})`);
+    else parts.push(endWords(k, 0), endWords(k, 1));
+    for (const c of changes.get(k) || []) parts.push(changeWords(c));
+    parts.push(resultEdges[k] ? "kept" : "dropped");
+    return parts;
+  }
+  function showPoint(i) {
+    const ring = [];
+    for (let s = start[i]; s < start[i + 1]; s++) {
+      const k = incident[s], end = E[2 * k] === i ? 0 : 1;
+      if (data.ends[2 * k + end] === 0) continue;
+      ring.push({ k, other: E[2 * k + 1 - end], rank: data.ends[2 * k + end], end });
+    }
+    ring.sort((p, q) => p.rank - q.rank);
+    let html = `<b>Point ${point(i)}</b><br>final degree ${data.degree[i]}${unused[i] ? " (unused)" : ""}`;
+    html += `<table><tr><th>rank</th><th>neighbour</th><th>length</th><th>in result</th></tr>`;
+    for (const r of ring) {
+      html += `<tr class="${r.rank <= 2 ? "chosen" : ""}"><td>${r.rank}</td><td>${r.other}</td><td>${fmt(length(r.k))}</td><td>${resultEdges[r.k] ? "yes" : "no"}</td></tr>`;
+    }
+    html += "</table>";
+    const second = ring.find((r) => r.rank === 2);
+    if (second) {
+      const s = seconds.get(2 * second.k + second.end);
+      html += `<p>Two shortest: to ${ring[0].other} (e1) and ${second.other} (e2). Uniformity test: |e2| = ${s.ratio.toFixed(3)} |e1| ${s.kept ? "<" : "≥"} u |e1| with u = ${s.bound.toFixed(3)}: e2 ${s.kept ? "kept" : "dropped"}.</p>`;
+    } else if (ring.length) {
+      html += `<p>One Delaunay neighbour: ${ring[0].other}.</p>`;
+    }
+    details.innerHTML = html;
+  }
+  function showEdge(k) {
+    details.innerHTML = `<b>Edge ${E[2 * k]}–${E[2 * k + 1]}</b>, length ${fmt(length(k))}` +
+      story(k).map((s) => `<div class="story">${s}</div>`).join("");
+  }
+
+  canvas.addEventListener("click", (ev) => {
+    const r = canvas.getBoundingClientRect(), mx = ev.clientX - r.left, my = ev.clientY - r.top;
+    const i = pointLayers[0].on ? pickPoint(mx, my, 6) : -1;
+    if (i >= 0) { selected = { point: i }; showPoint(i); request(); return; }
+    const k = pickEdge(mx, my, 5);
+    if (k >= 0) { selected = { edge: k }; showEdge(k); request(); return; }
+    selected = null; details.textContent = "Click a point or an edge."; request();
+  });
+  let drag = null;
+  canvas.addEventListener("mousedown", (ev) => { drag = { x: ev.clientX, y: ev.clientY, ox: view.ox, oy: view.oy }; });
+  window.addEventListener("mouseup", () => { drag = null; });
+  window.addEventListener("mousemove", (ev) => {
+    if (!drag) return;
+    view.ox = drag.ox + ev.clientX - drag.x; view.oy = drag.oy + ev.clientY - drag.y; request();
+  });
+  canvas.addEventListener("wheel", (ev) => {
+    ev.preventDefault();
+    const r = canvas.getBoundingClientRect(), mx = ev.clientX - r.left, my = ev.clientY - r.top;
+    const f = Math.exp(-ev.deltaY * 0.0015);
+    view.ox = mx - (mx - view.ox) * f; view.oy = my - (my - view.oy) * f; view.k *= f; request();
+  }, { passive: false });
+  canvas.addEventListener("dblclick", () => { fit(); request(); });
+  window.addEventListener("resize", () => { resize(); request(); });
+
+  const layerBox = document.getElementById("layers"), legend = document.getElementById("legend");
+  for (const layer of [...layers, ...pointLayers]) {
+    const label = document.createElement("label");
+    const box = document.createElement("input");
+    box.type = "checkbox"; box.checked = layer.on; box.dataset.layer = layer.name;
+    box.addEventListener("change", () => { layer.on = box.checked; request(); });
+    label.append(box, " " + layer.name);
+    layerBox.append(label);
+    const item = document.createElement("div");
+    const mark = document.createElement("span");
+    const isPoint = layer.kind === "points" || layer.kind === "unused";
+    mark.className = isPoint ? "dot" : "swatch";
+    if (layer.kind === "unused") mark.style.border = `2px solid ${layer.color}`;
+    else mark.style.background = layer.color;
+    if (!isPoint) mark.style.height = `${Math.max(2, layer.width * 2)}px`;
+    item.append(mark, layer.name);
+    legend.append(item);
+  }
+
+  for (const layer of [...layers, ...pointLayers]) layer.initially = layer.on;
+  resize();
+  fit();
+  draw();
+  // For tests and scripts: where things are on screen, and how long the page took.
+  window.condtViewer = {
+    points: n, edges: m,
+    screenOf: (i) => { const r = canvas.getBoundingClientRect(); return [r.left + sx(i), r.top + sy(i)]; },
+    edgeIndex: (a, b) => { for (let k = 0; k < m; k++) if (E[2 * k] === Math.min(a, b) && E[2 * k + 1] === Math.max(a, b)) return k; return -1; },
+    edgeMidpoint: (k) => { const r = canvas.getBoundingClientRect(); return [r.left + (sx(E[2 * k]) + sx(E[2 * k + 1])) / 2, r.top + (sy(E[2 * k]) + sy(E[2 * k + 1])) / 2]; },
+    edgeEnds: (k) => [E[2 * k], E[2 * k + 1]],
+    inResult: (k) => resultEdges[k] === 1,
+    isDelaunay: (k) => (data.member[k] & 1) === 1,
+    // Shows only the edge layer called `name` (no points), or with null the first view's layers.
+    only: (name) => {
+      for (const layer of [...layers, ...pointLayers]) layer.on = name === null ? layer.initially : layer.name === name;
+      for (const box of layerBox.querySelectorAll("input")) box.checked = [...layers, ...pointLayers].find((l) => l.name === box.dataset.layer).on;
+      draw();
+    },
+    loadMs: performance.now() - started,
+  };
+  document.body.dataset.ready = "true";
+})();
