@@ -20,6 +20,7 @@ condt: Delaunay triangulation and curve reconstruction of planar points
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [options]   the curves through the points (ConDT)
   condt triangulate INPUT [-o OUTPUT] [--edges]   their Delaunay triangulation
+  condt score POINTS OUTPUT TRUTH [--json]        an edge list against a ground truth
   condt help COMMAND                              a command's options, with an example
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
@@ -162,7 +163,7 @@ pub(crate) fn note(message: fmt::Arguments<'_>) {
     let _ = writeln!(io::stderr().lock(), "condt: {message}");
 }
 
-fn usage(message: impl Into<String>) -> CliError {
+pub(crate) fn usage(message: impl Into<String>) -> CliError {
     CliError::Usage(message.into())
 }
 
@@ -275,18 +276,21 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
             None => Ok(USAGE.to_string()),
             Some(Some("reconstruct")) => Ok(RECONSTRUCT_HELP.to_string()),
             Some(Some("triangulate")) => Ok(TRIANGULATE_HELP.to_string()),
+            Some(Some("score")) => Ok(crate::score::HELP.to_string()),
             Some(_) => Err(usage(format!(
-                "help: unknown command {}; the commands are reconstruct and triangulate",
+                "help: unknown command {}; the commands are reconstruct, triangulate and score",
                 rest[0].to_string_lossy()
             ))),
         },
         "-V" | "--version" => Ok(format!("condt {}\n", env!("CARGO_PKG_VERSION"))),
         "reconstruct" if asks_help => Ok(RECONSTRUCT_HELP.to_string()),
         "triangulate" if asks_help => Ok(TRIANGULATE_HELP.to_string()),
+        "score" if asks_help => Ok(crate::score::HELP.to_string()),
+        "score" => crate::score::command(rest),
         "reconstruct" => reconstruct_command(parse_reconstruct(rest)?).map(|()| String::new()),
         "triangulate" => triangulate_command(parse_triangulate(rest)?).map(|()| String::new()),
         other => Err(usage(format!(
-            "unknown command {other}; the commands are reconstruct and triangulate"
+            "unknown command {other}; the commands are reconstruct, triangulate and score"
         ))),
     }
 }

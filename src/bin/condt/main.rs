@@ -3,6 +3,7 @@
 
 mod cli;
 mod output;
+mod score;
 
 fn main() {
     // File names need not be UTF-8: the arguments are taken as the OS gives them.
