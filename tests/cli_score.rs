@@ -41,19 +41,18 @@ fn edges_text(edges: &[[usize; 2]]) -> String {
 fn json_value(json: &str, key: &str) -> String {
     let start = json.find(&format!("\"{key}\": ")).expect(key) + key.len() + 4;
     let rest = &json[start..];
-    let end = if rest.starts_with('"') {
+    let end = if let Some(quoted) = rest.strip_prefix('"') {
         // The closing quote is the first one not escaped by a backslash.
         let mut escaped = false;
-        1 + rest[1..]
+        let (close, _) = quoted
             .char_indices()
             .find(|&(_, c)| {
                 let closes = c == '"' && !escaped;
                 escaped = c == '\\' && !escaped;
                 closes
             })
-            .unwrap()
-            .0
-            + 1
+            .unwrap();
+        close + 2
     } else {
         rest.find([',', '}']).unwrap()
     };
