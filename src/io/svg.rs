@@ -8,15 +8,16 @@ use std::io::{self, Write};
 struct Frame {
     min: Point,
     scale: f64,
-    height: f64,
-    offset_x: f64,
+    /// The panel's top left corner in the picture.
+    left: f64,
+    top: f64,
 }
 
 impl Frame {
     fn map(&self, p: Point) -> (f64, f64) {
         (
-            self.offset_x + (p.x - self.min.x) * self.scale,
-            self.height - (p.y - self.min.y) * self.scale,
+            self.left + (p.x - self.min.x) * self.scale,
+            self.top + PANEL - (p.y - self.min.y) * self.scale,
         )
     }
 }
@@ -24,8 +25,20 @@ impl Frame {
 /// A panel: its title, its edges and their colour.
 type Layer<'a> = (&'a str, &'a [[usize; 2]], &'a str);
 
-const PANEL: f64 = 800.0;
-const MARGIN: f64 = 20.0;
+/// Side of a panel's drawing area, in SVG units.
+const PANEL: f64 = 600.0;
+const MARGIN: f64 = 16.0;
+/// Height of the band above each panel that holds its title.
+const TITLE_BAND: f64 = 44.0;
+/// Height of the legend band at the bottom.
+const LEGEND_BAND: f64 = 48.0;
+/// Panels per row: a picture of the six stages is then 1,800 units wide, so that shown at the
+/// width of a screen (about 1,200 pixels) its 26-unit titles are still 17 pixels high.
+const COLUMNS: usize = 3;
+const FONT: &str = r#"font-family="sans-serif" font-size="26""#;
+const EDGE_COLOURS: [&str; 3] = ["#9aa5b1", "#1f6fd1", "#111111"];
+const POINT_COLOUR: &str = "#333333";
+const UNUSED_COLOUR: &str = "#d62728";
 
 fn frame(points: &[Point], panel: usize) -> Frame {
     let (mut lo, mut hi) = (
@@ -46,8 +59,8 @@ fn frame(points: &[Point], panel: usize) -> Frame {
     Frame {
         min,
         scale,
-        height: PANEL,
-        offset_x: panel as f64 * PANEL,
+        left: (panel % COLUMNS) as f64 * PANEL,
+        top: (panel / COLUMNS) as f64 * (PANEL + TITLE_BAND) + TITLE_BAND,
     }
 }
 
@@ -76,18 +89,21 @@ fn dots(
     pts: &[Point],
     which: impl Iterator<Item = usize>,
     color: &str,
+    radius: f64,
 ) -> io::Result<()> {
     write!(out, r#"<g fill="{color}">"#)?;
     for i in which {
         let (x, y) = f.map(pts[i]);
-        write!(out, r#"<circle cx="{x:.2}" cy="{y:.2}" r="2"/>"#)?;
+        write!(out, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{radius}"/>"#)?;
     }
     writeln!(out, "</g>")
 }
 
-/// Draws the points and the reconstructed curves; unused points (outliers) in red. With
-/// `stages`, one panel per step side by side: the Delaunay triangulation, then the graph after
-/// every stage in the order the stages ran (the last one in black).
+/// Draws the points and the reconstructed curves, with a legend; points without an edge in the
+/// result (outliers) in red. With `stages`, one panel per step, three to a row: the Delaunay
+/// triangulation, then the graph after every stage in the order the stages ran (the result in
+/// black), each titled; in each stage's panel the points that graph leaves without an edge are
+/// red, so a point turns red in the panel of the stage that removed its last edge.
 ///
 /// ```
 /// use condt::{reconstruct, Params, Point};
@@ -96,7 +112,8 @@ fn dots(
 /// condt::io::write_svg(&mut out, &r, true)?;
 /// let svg = String::from_utf8(out)?;
 /// assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-/// assert_eq!(svg.matches("<text").count(), 1 + r.stages().count());
+/// // A title per panel: the triangulation and each stage.
+/// assert_eq!(svg.matches("class=\"title\"").count(), 1 + r.stages().count());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> io::Result<()> {
@@ -125,41 +142,144 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
             .collect();
         (result.triangulation().edges().collect(), graphs)
     } else {
-        (Vec::new(), vec![("", result.edges().collect())])
+        (Vec::new(), vec![("the result", result.edges().collect())])
     };
     let last = graphs.len() - 1;
     let mut layers: Vec<Layer> = Vec::new();
     if stages {
-        layers.push(("Delaunay triangulation", &delaunay, "#9aa5b1"));
+        layers.push(("Delaunay triangulation", &delaunay, EDGE_COLOURS[0]));
     }
     for (k, (title, edges)) in graphs.iter().enumerate() {
-        let color = match k {
-            0 if stages => "#1f6fd1",
-            k if k == last => "#111111",
-            _ => "#1a8f3c",
+        let colour = if k == last {
+            EDGE_COLOURS[2]
+        } else {
+            EDGE_COLOURS[1]
         };
-        layers.push((title, edges, color));
+        layers.push((title, edges, colour));
     }
+    let columns = layers.len().min(COLUMNS);
+    let rows = layers.len().div_ceil(COLUMNS);
+    let (width, height) = (
+        PANEL * columns as f64,
+        (PANEL + TITLE_BAND) * rows as f64 + LEGEND_BAND,
+    );
     writeln!(
         out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#,
-        w = PANEL * layers.len() as f64,
-        h = PANEL
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}">"#,
     )?;
     writeln!(out, r#"<rect width="100%" height="100%" fill="white"/>"#)?;
-    let used = |i: &usize| result.degree(*i) > 0;
-    for (panel, (title, edges, color)) in layers.into_iter().enumerate() {
+    let mut degree = vec![0u32; pts.len()];
+    let tri = result.triangulation();
+    let representative: Vec<usize> = (0..pts.len())
+        .map(|i| tri.input_of(tri.vertex(i)))
+        .collect();
+    for (panel, (title, edges, colour)) in layers.iter().enumerate() {
         let f = frame(pts, panel);
-        lines(out, &f, pts, edges, color, 1.5)?;
-        dots(out, &f, pts, (0..pts.len()).filter(used), "#333333")?;
-        dots(out, &f, pts, (0..pts.len()).filter(|i| !used(i)), "#d62728")?;
-        if !title.is_empty() {
+        lines(
+            out,
+            &f,
+            pts,
+            edges,
+            colour,
+            if *colour == EDGE_COLOURS[2] { 2.0 } else { 1.2 },
+        )?;
+        // Red where this panel's graph leaves a point without an edge; the triangulation leaves
+        // none.
+        let is_delaunay = stages && panel == 0;
+        degree.iter_mut().for_each(|d| *d = 0);
+        for &[a, b] in edges.iter() {
+            degree[a] += 1;
+            degree[b] += 1;
+        }
+        // A merged duplicate shares its point's edges.
+        let unused = |i: &usize| !is_delaunay && degree[representative[*i]] == 0;
+        dots(
+            out,
+            &f,
+            pts,
+            (0..pts.len()).filter(|i| !unused(i)),
+            POINT_COLOUR,
+            2.5,
+        )?;
+        dots(
+            out,
+            &f,
+            pts,
+            (0..pts.len()).filter(unused),
+            UNUSED_COLOUR,
+            4.0,
+        )?;
+        let number = if stages {
+            format!("{}. ", panel + 1)
+        } else {
+            String::new()
+        };
+        writeln!(
+            out,
+            r#"<text class="title" x="{}" y="{}" {FONT} font-weight="bold">{number}{title}</text>"#,
+            f.left + 12.0,
+            f.top - 12.0,
+        )?;
+    }
+    // Separators between panels and above the legend.
+    write!(
+        out,
+        r##"<path fill="none" stroke="#c8c8c8" stroke-width="2" d=""##
+    )?;
+    for column in 1..columns {
+        let x = column as f64 * PANEL;
+        write!(out, "M{x} 0V{}", height - LEGEND_BAND)?;
+    }
+    for row in 1..=rows {
+        let y = row as f64 * (PANEL + TITLE_BAND);
+        write!(out, "M0 {y}H{width}")?;
+    }
+    writeln!(out, r#""/>"#)?;
+    legend(out, stages, height - LEGEND_BAND / 2.0)?;
+    writeln!(out, "</svg>")
+}
+
+/// One line of swatches and labels, vertically centred on `y`.
+fn legend(out: &mut dyn Write, stages: bool, y: f64) -> io::Result<()> {
+    let mut items: Vec<(&str, &str, bool)> = Vec::new();
+    if stages {
+        items.push(("Delaunay edge", EDGE_COLOURS[0], false));
+        items.push(("stage edge", EDGE_COLOURS[1], false));
+    }
+    items.push(("result curve", EDGE_COLOURS[2], false));
+    items.push(("point", POINT_COLOUR, true));
+    items.push((
+        if stages {
+            "point without an edge there"
+        } else {
+            "unused point (outlier)"
+        },
+        UNUSED_COLOUR,
+        true,
+    ));
+    let mut x = 16.0;
+    for (label, colour, is_point) in items {
+        if is_point {
             writeln!(
                 out,
-                r#"<text x="{}" y="16" font-family="sans-serif" font-size="14">{title}</text>"#,
-                f.offset_x + 8.0
+                r#"<circle cx="{}" cy="{y}" r="6" fill="{colour}"/>"#,
+                x + 8.0
             )?;
+            x += 24.0;
+        } else {
+            writeln!(
+                out,
+                r#"<path d="M{x} {y}h36" stroke="{colour}" stroke-width="4"/>"#
+            )?;
+            x += 46.0;
         }
+        writeln!(
+            out,
+            r#"<text x="{x}" y="{}" font-family="sans-serif" font-size="20">{label}</text>"#,
+            y + 7.0
+        )?;
+        // About 10 units per character at size 20, and a gap.
+        x += 10.0 * label.len() as f64 + 20.0;
     }
-    writeln!(out, "</svg>")
+    Ok(())
 }
