@@ -4,15 +4,20 @@
 //! all or nothing). It may not compute geometry; it only moves numbers in and out.
 //!
 //! Point files hold one point per line, `x y` ([`parse_points`] has the rules), or are Triangle
-//! `.node` files ([`parse_node`]); [`read_points`] tells them apart by the file name.
+//! `.node` files ([`parse_node`]), CSV with a header ([`parse_csv`]) or GeoJSON points
+//! ([`parse_geojson`]); [`read_points`] tells them apart by the file name.
 
+mod csv;
 mod geojson;
+mod geojson_points;
 mod html;
 mod points;
 mod svg;
 mod text;
 
+pub use csv::parse_csv;
 pub use geojson::write_geojson;
+pub use geojson_points::parse_geojson;
 pub use html::write_html;
 pub use points::{parse_node, parse_points, read_points};
 pub use svg::write_svg;

@@ -353,9 +353,11 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     Ok(points)
 }
 
-/// Reads a point file: a Triangle `.node` file when the name ends in `.node`
-/// ([`parse_node`]), the plain format otherwise ([`parse_points`]); `-` reads the plain format
-/// from standard input.
+/// Reads a point file, its format chosen by the name's ending (any case): `.node` a Triangle
+/// node file ([`parse_node`]), `.csv` CSV with a header naming the columns
+/// ([`parse_csv`](super::parse_csv)), `.geojson` or `.json` the Point and MultiPoint geometries
+/// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), anything else the plain
+/// format ([`parse_points`]); `-` reads the plain format from standard input.
 ///
 /// A file that is not UTF-8 text is refused with the line of the first bad byte. A file too
 /// large for memory is an error rather than an abort, and so is one with more than
@@ -389,12 +391,18 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
         line: Some(line_at(e.as_bytes(), e.utf8_error().valid_up_to())),
         kind: IoErrorKind::Content("not UTF-8 text".to_string()),
     })?;
-    let is_node = !stdin
-        && path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("node"));
-    if is_node {
+    let extension = |wanted: &str| {
+        !stdin
+            && path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case(wanted))
+    };
+    if extension("node") {
         parse_node(&text, name)
+    } else if extension("csv") {
+        super::parse_csv(&text, name)
+    } else if extension("geojson") || extension("json") {
+        super::parse_geojson(&text, name)
     } else {
         parse_points(&text, name)
     }

@@ -24,7 +24,9 @@ Usage:
   condt help COMMAND                              a command's options, with an example
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
-ignored; `#` comments and blank lines are skipped); `-` reads standard input. Points are
+ignored; `#` comments and blank lines are skipped); `-` reads standard input. By the name's
+ending: `.node` a Triangle node file, `.csv` CSV whose header names the x and y columns (or
+lon, lat), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON document. Points are
 numbered from 0 in the order of their lines; every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
