@@ -11,7 +11,7 @@
 use crate::adjacency::{degrees, ordered, sort_pairs, CurveGraph, Edge};
 use crate::curve::{curves_in_input_positions, Curve};
 use crate::error::Error;
-use crate::stages::{proximity, Repair, Step, Uniformity};
+use crate::stages::{proximity, Earlier, Repair, Step, Uniformity};
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -192,7 +192,11 @@ impl<'t> Graph<'t> {
     /// [`Graph::step`] for a step that also reads `before_outliers`, the graph the IQR stage
     /// started from (see `Step::run`).
     fn step_after(&self, step: Step, before_outliers: &[Edge]) -> (Graph<'t>, bool) {
-        match step.run(self.tri, &self.edges, before_outliers).edges {
+        let earlier = Earlier {
+            before_outliers,
+            before_local: &self.edges,
+        };
+        match step.run(self.tri, &self.edges, earlier).edges {
             Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
             None => (self.clone(), false),
         }
