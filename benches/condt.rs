@@ -84,6 +84,7 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::Repair => "repair",
         Stage::Outliers => "outliers",
         Stage::LocalOutliers => "local outliers",
+        Stage::GivenBack => "given back",
         Stage::Gaps => "gaps",
         _ => "other stage",
     }

@@ -5,7 +5,8 @@
 //! removes too much shows (look at the pictures of the sets it names).
 //!
 //! `cargo run --release --example evaluate -- [DATA_DIR] [--repair off|paper|mutual|crossing|needs]
-//!  [--adaptive] [--u X] [--iqr K] [--no-outlier-filter] [--sets]`
+//!  [--adaptive] [--u X] [--iqr K] [--no-outlier-filter] [--[no-]local-outliers]
+//!  [--[no-]confirm-given-back] [--[no-]close-gaps] [--paper] [--sets]`
 //! With `--compare`, runs every repair variant and uniformity mode and prints one table each.
 
 use condt::io::read_points;
@@ -173,6 +174,14 @@ fn main() {
     for (flag, on) in [("--local-outliers", true), ("--no-local-outliers", false)] {
         if args.iter().any(|a| a == flag) {
             params.local_outliers = on;
+        }
+    }
+    for (flag, on) in [
+        ("--confirm-given-back", true),
+        ("--no-confirm-given-back", false),
+    ] {
+        if args.iter().any(|a| a == flag) {
+            params.confirm_given_back = on;
         }
     }
     for (flag, on) in [("--close-gaps", true), ("--no-close-gaps", false)] {

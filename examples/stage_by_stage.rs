@@ -38,10 +38,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         outliers.fired
     );
     let local = outliers.graph.remove_local_outliers(&repaired);
-    let closed = local.close_gaps();
+    let confirmed = local.confirm_given_back(&outliers.graph);
+    let closed = confirmed.close_gaps();
     println!(
-        "after local outlier removal: {} edges; after closing gaps: {}",
+        "after local outlier removal: {} edges; after confirming given-back components: {}; \
+         after closing gaps: {}",
         local.num_edges(),
+        confirmed.num_edges(),
         closed.num_edges()
     );
 

@@ -3,7 +3,8 @@
 //!
 //! Owns: the public view of a stage's edges in input positions and the step methods
 //! ([`Triangulation::proximity_graph`], [`Graph::repair`], [`Graph::remove_outliers`],
-//! [`Graph::remove_local_outliers`], [`Graph::close_gaps`], [`Graph::curves`]). It may not
+//! [`Graph::remove_local_outliers`], [`Graph::confirm_given_back`], [`Graph::close_gaps`],
+//! [`Graph::curves`]). It may not
 //! implement a stage's rule (that is [`crate::stages`], reached
 //! through `Step::run`) nor decide the order of the stages (that is
 //! [`Params::stages`](crate::Params::stages)).
@@ -11,7 +12,7 @@
 use crate::adjacency::{degrees, ordered, sort_pairs, CurveGraph, Edge};
 use crate::curve::{curves_in_input_positions, Curve};
 use crate::error::Error;
-use crate::stages::{proximity, Repair, Step, Uniformity};
+use crate::stages::{proximity, Earlier, Repair, Step, Uniformity};
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -159,6 +160,42 @@ impl<'t> Graph<'t> {
             .0
     }
 
+    /// Confirms given-back components (not in the paper; see
+    /// [`Params::confirm_given_back`](crate::Params::confirm_given_back)), on this graph as the
+    /// local outlier removal left it. `before_local` is the graph that stage started from: a
+    /// component made only of edges missing there (edges it gave back) keeps them only when
+    /// every point of it with two edges is apart from everything else by more than twice its
+    /// longest edge.
+    ///
+    /// # Panics
+    /// If `before_local` lives on another triangulation.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // A chain of 14 points 0.3 apart, and two stray points 0.45 beside its middle.
+    /// let mut pts: Vec<Point> = (0..14)
+    ///     .map(|k| Point::new(0.3 * k as f64, 0.01 * (1.7 * k as f64).sin()))
+    ///     .collect();
+    /// pts.extend([Point::new(1.75, 0.45), Point::new(1.85, 0.46)]);
+    /// let tri = triangulate(&pts)?;
+    /// let before = tri.graph_from_edges([[14, 15]]);
+    /// // Every chain edge given back: the chain lies inside the scatter, and goes.
+    /// let given = tri.graph_from_edges((0..13).map(|k| [k, k + 1]).chain([[14, 15]]));
+    /// assert_eq!(given.confirm_given_back(&before).edges(), vec![[14, 15]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn confirm_given_back(&self, before_local: &Graph<'t>) -> Graph<'t> {
+        assert!(
+            core::ptr::eq(self.tri, before_local.tri),
+            "confirm_given_back: the two graphs live on different triangulations"
+        );
+        let earlier = Earlier {
+            before_outliers: &self.edges,
+            before_local: &before_local.edges,
+        };
+        self.step_with(Step::ConfirmGivenBack, earlier).0
+    }
+
     /// Closes gaps at loose ends (not in the paper; the rules are those of
     /// [`Params::close_gaps`](crate::Params::close_gaps)): joins two points of degree one that
     /// face each other across a short gap, two of them to the stranded point they line up
@@ -192,7 +229,16 @@ impl<'t> Graph<'t> {
     /// [`Graph::step`] for a step that also reads `before_outliers`, the graph the IQR stage
     /// started from (see `Step::run`).
     fn step_after(&self, step: Step, before_outliers: &[Edge]) -> (Graph<'t>, bool) {
-        match step.run(self.tri, &self.edges, before_outliers).edges {
+        let earlier = Earlier {
+            before_outliers,
+            before_local: &self.edges,
+        };
+        self.step_with(step, earlier)
+    }
+
+    /// [`Graph::step`] with the earlier graphs a step may read (see `Step::run`).
+    fn step_with(&self, step: Step, earlier: Earlier<'_>) -> (Graph<'t>, bool) {
+        match step.run(self.tri, &self.edges, earlier).edges {
             Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
             None => (self.clone(), false),
         }

@@ -18,6 +18,7 @@
 //! - **local outliers**: given back (rule 1), long at an end (rule 2, with the ratio), a whole
 //!   component removed (rule 4), or otherwise a short spur (rule 3); the rule is inferred from the
 //!   graphs before and after the stage;
+//! - **given-back check**: a component of given-back edges not clearly apart from the rest;
 //! - **gaps**: closed.
 
 use crate::graph::Graph;
@@ -101,6 +102,10 @@ pub enum Reason {
     Spur,
     /// Gap closing joined two loose ends.
     GapClosed,
+    /// The confirmation of given-back components removed it: its component was made only of
+    /// edges local outlier rule 1 gave back, and not every point of it is clearly apart from
+    /// everything else.
+    NotConfirmed,
 }
 
 /// One change a stage made to an edge.
@@ -302,6 +307,7 @@ impl<'a> Explainer<'a> {
     fn reason(&self, [a, b]: [usize; 2], added: bool) -> Reason {
         match (self.stage, added) {
             (Stage::Gaps, _) => Reason::GapClosed,
+            (Stage::GivenBack, _) => Reason::NotConfirmed,
             (Stage::LocalOutliers, true) => Reason::GivenBack,
             (Stage::Outliers, _) => Reason::LongerThanThreshold {
                 length: input_length(self.tri, a, b),
@@ -325,7 +331,7 @@ impl<'a> Explainer<'a> {
                     None => Reason::Spur,
                 }
             }
-            _ => {
+            (Stage::Repair | Stage::Proximity, _) => {
                 let vertex = if self.degrees_before[a] >= self.degrees_before[b] {
                     a
                 } else {
@@ -431,6 +437,7 @@ impl fmt::Display for EdgeStory {
                 Stage::Outliers => "IQR outliers",
                 Stage::LocalOutliers => "local outliers",
                 Stage::Gaps => "gaps",
+                Stage::GivenBack => "given-back check",
             };
             write!(
                 f,
@@ -453,6 +460,7 @@ impl fmt::Display for EdgeStory {
                 Reason::Component => write!(f, "isolated component")?,
                 Reason::Spur => write!(f, "short spur")?,
                 Reason::GapClosed => write!(f, "gap closed")?,
+                Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
             }
         }
         write!(f, "; {}", if self.kept { "kept" } else { "dropped" })

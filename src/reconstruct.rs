@@ -33,7 +33,7 @@ use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::stages::{proximity, Repair, Stage, Step, Uniformity, PARALLEL_FROM};
+use crate::stages::{proximity, Earlier, Repair, Stage, Step, Uniformity, PARALLEL_FROM};
 use crate::triangulate::{triangulate, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -74,6 +74,13 @@ pub struct Params {
     /// with it on; the rules and the reason for each constant are in
     /// `src/stages/local_outliers.rs`.
     pub local_outliers: bool,
+    /// Right after the local outlier removal (and only when it runs), drop every component
+    /// made only of edges its first rule gave back unless every vertex of it is apart from
+    /// everything else by more than twice its longest edge (not in the paper; on by default,
+    /// off in [`Params::paper`]): a chance chain of smooth passages in a large scatter of
+    /// outliers is given back whole, a sparse curve beside a dense one is apart everywhere.
+    /// The rule and its reason are in `src/stages/given_back.rs`.
+    pub confirm_given_back: bool,
     /// Close gaps at loose ends after the other stages (not in the paper): join two loose ends
     /// that face each other across a short gap, two loose ends to the stranded sample they line
     /// up through, and the two dropped arms of a crossing to the crossing. On by default, off
@@ -99,13 +106,21 @@ impl Default for Params {
     /// assert!(p.close_gaps && p.local_outliers);
     /// assert_eq!(
     ///     p.stages(),
-    ///     vec![Stage::Proximity, Stage::Repair, Stage::Outliers, Stage::LocalOutliers, Stage::Gaps]
+    ///     vec![
+    ///         Stage::Proximity,
+    ///         Stage::Repair,
+    ///         Stage::Outliers,
+    ///         Stage::LocalOutliers,
+    ///         Stage::GivenBack,
+    ///         Stage::Gaps
+    ///     ]
     /// );
     /// ```
     fn default() -> Self {
         Params {
             repair: Repair::Needs,
             local_outliers: true,
+            confirm_given_back: true,
             close_gaps: true,
             ..Params::paper()
         }
@@ -131,6 +146,7 @@ impl Params {
             outlier_factor: Some(1.7),
             outliers_first: false,
             local_outliers: false,
+            confirm_given_back: false,
             close_gaps: false,
             parallel: cfg!(feature = "parallel"),
         }
@@ -180,9 +196,18 @@ impl Params {
         // The local outlier removal comes after both: its rules read vertices with three or more
         // edges as branches, which only a repaired graph makes true. Closing gaps runs last: it
         // joins loose ends, which the earlier stages create.
+        // Confirming given-back components reads what the local outlier removal added, so it
+        // comes right after it, and only with it.
         let local = self.local_outliers.then_some(Step::LocalOutliers);
+        let confirm =
+            (self.local_outliers && self.confirm_given_back).then_some(Step::ConfirmGivenBack);
         let gaps = self.close_gaps.then_some(Step::CloseGaps);
-        first.into_iter().chain(second).chain(local).chain(gaps)
+        first
+            .into_iter()
+            .chain(second)
+            .chain(local)
+            .chain(confirm)
+            .chain(gaps)
     }
 }
 
@@ -409,18 +434,24 @@ pub fn reconstruct_triangulation(
 fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     let mut clock = Stopwatch::start();
     let proximity = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
-    let mut records = Vec::with_capacity(5);
+    let mut records = Vec::with_capacity(6);
     records.push(StageRecord {
         stage: Stage::Proximity,
         edges: Some(proximity),
         time: clock.lap(),
     });
     for step in params.steps() {
-        let before_outliers = records
-            .iter()
-            .position(|record| record.stage == Stage::Outliers)
-            .map_or(latest_edges(&records), |k| latest_edges(&records[..k]));
-        let outcome = step.run(&tri, latest_edges(&records), before_outliers);
+        let before = |stage: Stage| {
+            records
+                .iter()
+                .position(|record| record.stage == stage)
+                .map_or(latest_edges(&records), |k| latest_edges(&records[..k]))
+        };
+        let earlier = Earlier {
+            before_outliers: before(Stage::Outliers),
+            before_local: before(Stage::LocalOutliers),
+        };
+        let outcome = step.run(&tri, latest_edges(&records), earlier);
         records.push(StageRecord {
             stage: step.stage(),
             edges: outcome.edges,

@@ -249,7 +249,7 @@ fn a_wrong_value_is_answered_with_the_choices() {
         "{said}"
     );
     let said = refused(&["reconstruct", "-", "--format", "png"]);
-    assert!(said.contains("edges, txt, svg and geojson"), "{said}");
+    assert!(said.contains("edges, txt, svg, geojson and html"), "{said}");
 }
 
 #[test]

@@ -144,6 +144,7 @@ fn write_data(
                 Reason::Component => (4, 0.0, 0.0),
                 Reason::Spur => (5, 0.0, 0.0),
                 Reason::GapClosed => (6, 0.0, 0.0),
+                Reason::NotConfirmed => (7, 0.0, 0.0),
             };
             let sep = if first { "" } else { "," };
             first = false;
@@ -197,6 +198,7 @@ fn stage_key(stage: Stage) -> &'static str {
         Stage::Outliers => "IQR outliers",
         Stage::LocalOutliers => "local outliers",
         Stage::Gaps => "gaps",
+        Stage::GivenBack => "given-back check",
     }
 }
 

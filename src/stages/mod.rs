@@ -1,6 +1,7 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each:
 //! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3), and
-//! [`local_outliers`] and [`gaps`] (closing gaps at loose ends), the last two not in the paper.
+//! [`local_outliers`], [`given_back`] (confirming the components the local outlier removal
+//! rebuilt) and [`gaps`] (closing gaps at loose ends), the last three not in the paper.
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which
 //! both the pipeline ([`reconstruct`](crate::reconstruct)) and the public
@@ -12,6 +13,7 @@
 //! and a line in `Params::stages`; the other stages do not change.
 
 pub(crate) mod gaps;
+pub(crate) mod given_back;
 pub(crate) mod local_outliers;
 pub(crate) mod outliers;
 pub(crate) mod proximity;
@@ -48,6 +50,9 @@ pub enum Stage {
     /// The local outlier removal, after the IQR stage and the repair (not in the paper; see
     /// [`Params::local_outliers`](crate::Params::local_outliers)).
     LocalOutliers,
+    /// Confirming the components the local outlier removal rebuilt from edges the IQR stage cut
+    /// (not in the paper; see [`Params::confirm_given_back`](crate::Params::confirm_given_back)).
+    GivenBack,
     /// Closing gaps at loose ends (not in the paper; see [`Params::close_gaps`](crate::Params::close_gaps)).
     Gaps,
 }
@@ -60,6 +65,7 @@ impl Stage {
             Stage::Repair => "after non-manifold repair",
             Stage::Outliers => "after outlier removal",
             Stage::LocalOutliers => "after local outlier removal",
+            Stage::GivenBack => "after confirming given-back components",
             Stage::Gaps => "after closing gaps",
         }
     }
@@ -77,7 +83,19 @@ pub(crate) enum Step {
     Repair(Repair),
     Outliers { factor: f64 },
     LocalOutliers,
+    ConfirmGivenBack,
     CloseGaps,
+}
+
+/// The graphs of earlier stages that a step may read besides its input (see [`Step::run`]).
+#[derive(Copy, Clone)]
+pub(crate) struct Earlier<'a> {
+    /// The graph the IQR stage ([`Step::Outliers`]) started from, or the step's input when that
+    /// stage has not run.
+    pub(crate) before_outliers: &'a [Edge],
+    /// The graph the local outlier removal ([`Step::LocalOutliers`]) started from, or the step's
+    /// input when that stage has not run.
+    pub(crate) before_local: &'a [Edge],
 }
 
 impl Step {
@@ -87,6 +105,7 @@ impl Step {
             Step::Repair(_) => Stage::Repair,
             Step::Outliers { .. } => Stage::Outliers,
             Step::LocalOutliers => Stage::LocalOutliers,
+            Step::ConfirmGivenBack => Stage::GivenBack,
             Step::CloseGaps => Stage::Gaps,
         }
     }
@@ -107,15 +126,11 @@ impl Step {
     /// Runs the stage on `edges` (each edge once, any order); the parameter must have passed
     /// [`Step::check`].
     ///
-    /// `before_outliers` is the graph the IQR stage ([`Step::Outliers`]) started from, or `edges`
-    /// itself when that stage has not run. Only [`Step::LocalOutliers`] reads it, to give back
-    /// edges the global rule cut; it is the one way a stage sees an earlier stage's graph.
-    pub(crate) fn run(
-        self,
-        tri: &Triangulation,
-        edges: &[Edge],
-        before_outliers: &[Edge],
-    ) -> Outcome {
+    /// `earlier` holds the graphs of earlier stages, the one way a stage sees them: only
+    /// [`Step::LocalOutliers`] reads the graph before the IQR stage, to give back edges the
+    /// global rule cut, and only [`Step::ConfirmGivenBack`] the graph before the local outlier
+    /// removal, to tell which edges were given back.
+    pub(crate) fn run(self, tri: &Triangulation, edges: &[Edge], earlier: Earlier<'_>) -> Outcome {
         match self {
             Step::Repair(mode) => Outcome {
                 edges: repair::repair(tri, edges, mode),
@@ -124,9 +139,12 @@ impl Step {
             Step::LocalOutliers => local_outliers::remove_local_outliers(
                 tri,
                 edges,
-                before_outliers,
+                earlier.before_outliers,
                 &local_outliers::Rules::ALL,
             ),
+            Step::ConfirmGivenBack => {
+                given_back::confirm_given_back(tri, edges, earlier.before_local)
+            }
             Step::CloseGaps => gaps::close_gaps(tri, edges),
         }
     }

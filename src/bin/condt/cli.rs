@@ -49,8 +49,8 @@ condt reconstruct: the curves through unorganized planar points (ConDT)
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive]
                     [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
-                    [--outliers-first] [--[no-]local-outliers] [--[no-]close-gaps]
-                    [--format F] [--stages] [--sequential]
+                    [--outliers-first] [--[no-]local-outliers] [--[no-]confirm-given-back]
+                    [--[no-]close-gaps] [--format F] [--stages] [--sequential]
 
 Example:
   condt reconstruct examples/data/shapes.txt -o shapes.svg --stages
@@ -83,6 +83,13 @@ Options:
                           neighbours, branches of fewer than 5 points and components of
                           fewer than 5 points clearly apart from the rest, unless dense
                           (a sparsely sampled 3- or 4-point curve is lost)
+      --[no-]confirm-given-back
+                          (default on; off with --paper; needs the local outlier removal)
+                          right after it, drop a component rebuilt only from edges the
+                          outlier filter cut unless every point of it is apart from all
+                          else by twice its longest edge (a chance chain of outliers in a
+                          large scatter; a sparse curve the filter cut that passes near
+                          another point stays cut)
       --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
                           other across a short gap or line up through a stranded point, and a
                           crossing's dropped arms
@@ -419,6 +426,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut outliers = Setting::new();
     let mut repair = Setting::new();
     let mut local = Setting::new();
+    let mut confirm = Setting::new();
     let mut gaps = Setting::new();
     let mut format = Setting::new();
     let mut stages = false;
@@ -438,6 +446,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             Some("--outliers-first") => params.outliers_first = true,
             Some(flag @ "--local-outliers") => local.set(true, flag)?,
             Some(flag @ "--no-local-outliers") => local.set(false, flag)?,
+            Some(flag @ "--confirm-given-back") => confirm.set(true, flag)?,
+            Some(flag @ "--no-confirm-given-back") => confirm.set(false, flag)?,
             Some(flag @ "--close-gaps") => gaps.set(true, flag)?,
             Some(flag @ "--no-close-gaps") => gaps.set(false, flag)?,
             Some(flag @ "--no-manifold-fix") => repair.set(Repair::Off, flag)?,
@@ -481,6 +491,9 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     }
     if let Some(on) = local.get() {
         params.local_outliers = on;
+    }
+    if let Some(on) = confirm.get() {
+        params.confirm_given_back = on;
     }
     if let Some(on) = gaps.get() {
         params.close_gaps = on;
@@ -655,6 +668,9 @@ mod tests {
         let c = parse_reconstruct(&strings(&["--local-outliers", "in.txt", "--no-close-gaps"]))
             .unwrap();
         assert!(c.params.local_outliers && !c.params.close_gaps);
+        assert!(c.params.confirm_given_back, "the default");
+        let e = parse_reconstruct(&strings(&["in.txt", "--no-confirm-given-back"])).unwrap();
+        assert!(e.params.local_outliers && !e.params.confirm_given_back);
         let paper = parse_reconstruct(&strings(&["in.txt", "--paper"])).unwrap();
         assert_eq!(paper.params, condt::Params::paper());
         let paper_plus =
