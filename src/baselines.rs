@@ -52,30 +52,7 @@ impl Triangulation {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn nn_crust(&self) -> Graph<'_> {
-        let mut edges: Vec<Edge> = Vec::new();
-        for v in self.vertices() {
-            let p = self.vertex_point(v);
-            let neighbours = || {
-                self.mesh()
-                    .neighbors(v)
-                    .filter(|&w| self.is_vertex(w))
-                    .map(|w| (squared_distance(p, self.vertex_point(w)), w))
-            };
-            let Some((_, nearest)) = neighbours().min_by(closer) else {
-                continue;
-            };
-            edges.push(ordered(v, nearest));
-            let towards = difference(self.vertex_point(nearest), p);
-            let half = neighbours()
-                .filter(|&(_, w)| dot(difference(self.vertex_point(w), p), towards) <= 0.0)
-                .min_by(closer);
-            if let Some((_, w)) = half {
-                edges.push(ordered(v, w));
-            }
-        }
-        edges.sort_unstable();
-        edges.dedup();
-        Graph::new(self, Cow::Owned(edges))
+        Graph::new(self, Cow::Owned(nn_crust_edges(self)))
     }
 
     /// The Crust of the points (N. Amenta, M. Bern and D. Eppstein, "The crust and the
@@ -103,30 +80,85 @@ impl Triangulation {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn crust(&self) -> Result<Graph<'_>, Error> {
-        // The second triangulation is built in the stages' frame, where every sample is exact
-        // and circumcentres of ordinary triangles cannot overflow.
-        let samples: Vec<VertexId> = self.vertices().collect();
-        let mut points: Vec<Point> = samples.iter().map(|&v| self.vertex_point(v)).collect();
-        let mesh = self.mesh();
-        points.extend(
-            mesh.triangles()
-                .filter(|&t| !mesh.is_ghost(t))
-                .filter_map(|t| {
-                    let [a, b, c] = mesh.triangle_vertices(t).map(|v| self.vertex_point(v));
-                    circumcentre(a, b, c)
-                }),
-        );
-        let with_centres = triangulate(&points)?;
-        let num_samples = samples.len();
-        let mut edges: Vec<Edge> = with_centres
-            .edges()
-            .filter(|&[a, b]| a < num_samples && b < num_samples)
-            .map(|[a, b]| ordered(samples[a], samples[b]))
-            .collect();
-        edges.sort_unstable();
-        edges.dedup();
-        Ok(Graph::new(self, Cow::Owned(edges)))
+        Ok(Graph::new(self, Cow::Owned(crust_edges(self)?)))
     }
+}
+
+/// [`Triangulation::nn_crust`]'s edges in vertex ids, sorted.
+pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
+    let mut edges: Vec<Edge> = Vec::new();
+    for v in tri.vertices() {
+        let p = tri.vertex_point(v);
+        let neighbours = || {
+            tri.mesh()
+                .neighbors(v)
+                .filter(|&w| tri.is_vertex(w))
+                .map(|w| (squared_distance(p, tri.vertex_point(w)), w))
+        };
+        let Some((_, nearest)) = neighbours().min_by(closer) else {
+            continue;
+        };
+        edges.push(ordered(v, nearest));
+        let towards = difference(tri.vertex_point(nearest), p);
+        let half = neighbours()
+            .filter(|&(_, w)| dot(difference(tri.vertex_point(w), p), towards) <= 0.0)
+            .min_by(closer);
+        if let Some((_, w)) = half {
+            edges.push(ordered(v, w));
+        }
+    }
+    edges.sort_unstable();
+    edges.dedup();
+    edges
+}
+
+/// [`Triangulation::crust`]'s edges in vertex ids, sorted.
+///
+/// # Errors
+/// [`Error::TooManyPoints`] when the points and the circumcentres exceed the kernel's limit
+/// ([`crust_fits`] tells beforehand).
+pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
+    // The second triangulation is built in the stages' frame, where every sample is exact
+    // and circumcentres of ordinary triangles cannot overflow.
+    let samples: Vec<VertexId> = tri.vertices().collect();
+    let mut points: Vec<Point> = samples.iter().map(|&v| tri.vertex_point(v)).collect();
+    let mesh = tri.mesh();
+    points.extend(
+        mesh.triangles()
+            .filter(|&t| !mesh.is_ghost(t))
+            .filter_map(|t| {
+                let [a, b, c] = mesh.triangle_vertices(t).map(|v| tri.vertex_point(v));
+                circumcentre(a, b, c)
+            }),
+    );
+    let with_centres = triangulate(&points)?;
+    let num_samples = samples.len();
+    let mut edges: Vec<Edge> = with_centres
+        .edges()
+        .filter(|&[a, b]| a < num_samples && b < num_samples)
+        .map(|[a, b]| ordered(samples[a], samples[b]))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    Ok(edges)
+}
+
+/// Whether [`crust_edges`] can triangulate the points with the circumcentres of their
+/// triangles: `Ok`, or the error it would return.
+pub(crate) fn crust_fits(tri: &Triangulation) -> Result<(), Error> {
+    let count = tri.num_vertices()
+        + tri
+            .mesh()
+            .triangles()
+            .filter(|&t| !tri.mesh().is_ghost(t))
+            .count();
+    if count > crate::MAX_POINTS {
+        return Err(Error::TooManyPoints {
+            count,
+            limit: crate::MAX_POINTS,
+        });
+    }
+    Ok(())
 }
 
 /// Orders candidate neighbours by squared distance, then by vertex id.
@@ -211,6 +243,38 @@ mod tests {
         let tri = triangulate(&points).unwrap();
         assert_eq!(tri.crust().unwrap().edges(), vec![[0, 2], [1, 2]]);
         assert_eq!(tri.nn_crust().edges(), vec![[0, 2], [1, 2]]);
+    }
+
+    #[test]
+    fn as_a_method_each_baseline_is_the_whole_reconstruction() {
+        use crate::{reconstruct, Method, Params, Stage};
+        let truth = ellipse_and_circle();
+        let tri = triangulate(&truth.points).unwrap();
+        for (method, stage, edges) in [
+            (Method::NnCrust, Stage::NnCrust, tri.nn_crust().edges()),
+            (Method::Crust, Stage::Crust, tri.crust().unwrap().edges()),
+        ] {
+            let params = Params {
+                method,
+                ..Params::default()
+            };
+            let result = reconstruct(&truth.points, &params).unwrap();
+            let stages: Vec<Stage> = result.stages().map(|r| r.stage).collect();
+            assert_eq!(stages, vec![stage]);
+            assert_eq!(result.edges().collect::<Vec<_>>(), edges);
+            assert_eq!(result.curves().len(), 2);
+            let stories = result.provenance();
+            let chosen: Vec<[usize; 2]> = stories
+                .iter()
+                .filter(|s| {
+                    s.changes
+                        .iter()
+                        .any(|c| c.reason == crate::Reason::Baseline)
+                })
+                .map(|s| s.edge)
+                .collect();
+            assert_eq!(chosen, edges);
+        }
     }
 
     #[test]

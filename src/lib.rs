@@ -103,7 +103,7 @@ pub use geometry::Point;
 pub use graph::{Graph, OutlierRemoval};
 pub use provenance::{Change, EdgeStory, EndChoice, Reason};
 pub use reconstruct::{
-    reconstruct, reconstruct_triangulation, Params, Reconstruction, StageReport,
+    reconstruct, reconstruct_triangulation, Method, Params, Reconstruction, StageReport,
 };
 pub use stages::{Repair, Stage, Uniformity};
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};

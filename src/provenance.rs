@@ -102,6 +102,9 @@ pub enum Reason {
     Spur,
     /// Gap closing joined two loose ends.
     GapClosed,
+    /// A baseline method (NN-Crust or Crust) chose it; the ends then say how ConDT's
+    /// Algorithm 1 would have seen the edge, for comparison.
+    Baseline,
     /// The confirmation of given-back components removed it: its component was made only of
     /// edges local outlier rule 1 gave back, and not every point of it is clearly apart from
     /// everything else.
@@ -175,6 +178,17 @@ impl Reconstruction {
                 kept: false,
             })
             .collect();
+        if let Some(first) = reports.first().filter(|r| r.stage != Stage::Proximity) {
+            for (story, edge) in stories.iter_mut().zip(&all) {
+                if graphs[0].binary_search(edge).is_ok() {
+                    story.changes.push(Change {
+                        stage: first.stage,
+                        added: true,
+                        reason: Reason::Baseline,
+                    });
+                }
+            }
+        }
         for k in 1..reports.len() {
             let (before, after) = (&graphs[k - 1], &graphs[k]);
             let explain = Explainer::new(
@@ -308,6 +322,7 @@ impl<'a> Explainer<'a> {
         match (self.stage, added) {
             (Stage::Gaps, _) => Reason::GapClosed,
             (Stage::GivenBack, _) => Reason::NotConfirmed,
+            (Stage::NnCrust | Stage::Crust, _) => Reason::Baseline,
             (Stage::LocalOutliers, true) => Reason::GivenBack,
             (Stage::Outliers, _) => Reason::LongerThanThreshold {
                 length: input_length(self.tri, a, b),
@@ -438,6 +453,8 @@ impl fmt::Display for EdgeStory {
                 Stage::LocalOutliers => "local outliers",
                 Stage::Gaps => "gaps",
                 Stage::GivenBack => "given-back check",
+                Stage::NnCrust => "NN-Crust",
+                Stage::Crust => "Crust",
             };
             write!(
                 f,
@@ -461,6 +478,7 @@ impl fmt::Display for EdgeStory {
                 Reason::Spur => write!(f, "short spur")?,
                 Reason::GapClosed => write!(f, "gap closed")?,
                 Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
+                Reason::Baseline => write!(f, "chosen by the baseline")?,
             }
         }
         write!(f, "; {}", if self.kept { "kept" } else { "dropped" })

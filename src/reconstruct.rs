@@ -39,6 +39,36 @@ use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::time::Duration;
 
+/// Which reconstruction runs on the Delaunay triangulation: ConDT (the stages [`Params`]
+/// chooses), or one of two classical baselines, for comparing methods on the identical
+/// triangulation.
+///
+/// ```
+/// use condt::{reconstruct, Method, Params, Point, Stage};
+/// let points: Vec<Point> = (0..10)
+///     .map(|k| {
+///         let t = k as f64 * std::f64::consts::TAU / 10.0;
+///         Point::new(t.cos(), t.sin())
+///     })
+///     .collect();
+/// let params = Params { method: Method::NnCrust, ..Params::default() };
+/// let result = reconstruct(&points, &params)?;
+/// assert_eq!(params.stages(), vec![Stage::NnCrust]);
+/// assert_eq!(result.edges().len(), 10);
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Method {
+    /// ConDT: the proximity graph and the stages after it.
+    #[default]
+    ConDT,
+    /// NN-Crust (Dey and Kumar), [`Triangulation::nn_crust`]; the ConDT parameters are unused.
+    NnCrust,
+    /// The Crust (Amenta, Bern and Eppstein), [`Triangulation::crust`]; the ConDT parameters are
+    /// unused.
+    Crust,
+}
+
 /// Parameters of a reconstruction.
 ///
 /// ```
@@ -53,6 +83,8 @@ use core::time::Duration;
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Params {
+    /// ConDT (the default) or a baseline; with a baseline, the fields below are not used.
+    pub method: Method,
     /// Stage 1: the uniformity test (a fixed `u` must be finite and positive).
     pub uniformity: Uniformity,
     /// The non-manifold repair; [`Repair::Off`] skips the stage.
@@ -141,6 +173,7 @@ impl Params {
     /// ```
     pub fn paper() -> Params {
         Params {
+            method: Method::ConDT,
             uniformity: Uniformity::Fixed(2.75),
             repair: Repair::Paper,
             outlier_factor: Some(1.7),
@@ -158,6 +191,9 @@ impl Params {
     /// [`Error::InvalidParameter`] naming the first parameter that is NaN, infinite or out of
     /// range.
     pub fn check(&self) -> Result<(), Error> {
+        if self.method != Method::ConDT {
+            return Ok(());
+        }
         self.uniformity.check()?;
         self.steps().try_for_each(|step| step.check())
     }
@@ -179,9 +215,18 @@ impl Params {
     /// assert_eq!(q.stages().last(), Some(&Stage::Gaps));
     /// ```
     pub fn stages(&self) -> Vec<Stage> {
-        core::iter::once(Stage::Proximity)
+        core::iter::once(self.first_stage())
             .chain(self.steps().map(Step::stage))
             .collect()
+    }
+
+    /// The graph built on the triangulation: ConDT's proximity graph or a baseline.
+    fn first_stage(&self) -> Stage {
+        match self.method {
+            Method::ConDT => Stage::Proximity,
+            Method::NnCrust => Stage::NnCrust,
+            Method::Crust => Stage::Crust,
+        }
     }
 
     /// The steps after the proximity graph, in order: the one place the order is decided.
@@ -202,12 +247,15 @@ impl Params {
         let confirm =
             (self.local_outliers && self.confirm_given_back).then_some(Step::ConfirmGivenBack);
         let gaps = self.close_gaps.then_some(Step::CloseGaps);
+        // A baseline is the whole method: no ConDT stage follows it.
+        let condt = self.method == Method::ConDT;
         first
             .into_iter()
             .chain(second)
             .chain(local)
             .chain(confirm)
             .chain(gaps)
+            .filter(move |_| condt)
     }
 }
 
@@ -426,6 +474,9 @@ pub fn reconstruct_triangulation(
     params: &Params,
 ) -> Result<Reconstruction, Error> {
     params.check()?;
+    if params.method == Method::Crust {
+        crate::baselines::crust_fits(&tri)?;
+    }
     let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
     Ok(on_worker(in_parallel, move || run_stages(tri, params)))
 }
@@ -433,11 +484,16 @@ pub fn reconstruct_triangulation(
 /// The stages of [`reconstruct_triangulation`], its parameters checked.
 fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     let mut clock = Stopwatch::start();
-    let proximity = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
+    let first = match params.method {
+        Method::ConDT => proximity::proximity_graph(&tri, params.uniformity, params.parallel),
+        Method::NnCrust => crate::baselines::nn_crust_edges(&tri),
+        // `reconstruct_triangulation` checked that it fits (`crust_fits`), the one way it fails.
+        Method::Crust => crate::baselines::crust_edges(&tri).unwrap_or_default(),
+    };
     let mut records = Vec::with_capacity(6);
     records.push(StageRecord {
-        stage: Stage::Proximity,
-        edges: Some(proximity),
+        stage: params.first_stage(),
+        edges: Some(first),
         time: clock.lap(),
     });
     for step in params.steps() {

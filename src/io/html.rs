@@ -145,6 +145,7 @@ fn write_data(
                 Reason::Spur => (5, 0.0, 0.0),
                 Reason::GapClosed => (6, 0.0, 0.0),
                 Reason::NotConfirmed => (7, 0.0, 0.0),
+                Reason::Baseline => (8, 0.0, 0.0),
             };
             let sep = if first { "" } else { "," };
             first = false;
@@ -199,6 +200,8 @@ fn stage_key(stage: Stage) -> &'static str {
         Stage::LocalOutliers => "local outliers",
         Stage::Gaps => "gaps",
         Stage::GivenBack => "given-back check",
+        Stage::NnCrust => "NN-Crust",
+        Stage::Crust => "Crust",
     }
 }
 

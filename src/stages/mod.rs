@@ -55,6 +55,11 @@ pub enum Stage {
     GivenBack,
     /// Closing gaps at loose ends (not in the paper; see [`Params::close_gaps`](crate::Params::close_gaps)).
     Gaps,
+    /// The NN-Crust baseline, the whole method when chosen (see
+    /// [`Method::NnCrust`](crate::Method::NnCrust)).
+    NnCrust,
+    /// The Crust baseline, the whole method when chosen (see [`Method::Crust`](crate::Method::Crust)).
+    Crust,
 }
 
 impl Stage {
@@ -67,6 +72,8 @@ impl Stage {
             Stage::LocalOutliers => "after local outlier removal",
             Stage::GivenBack => "after confirming given-back components",
             Stage::Gaps => "after closing gaps",
+            Stage::NnCrust => "NN-Crust (baseline)",
+            Stage::Crust => "Crust (baseline)",
         }
     }
 }

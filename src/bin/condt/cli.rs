@@ -8,7 +8,7 @@ use crate::output::{refuse_same_file, Destination};
 use condt::io::{
     read_points, write_edges, write_geojson, write_html, write_polylines, write_svg, IoError,
 };
-use condt::{reconstruct, triangulate, Error, Params, Point, Repair, Uniformity};
+use condt::{reconstruct, triangulate, Error, Method, Params, Point, Repair, Uniformity};
 use std::ffi::{OsStr, OsString};
 use std::fmt;
 use std::io::{self, Write};
@@ -96,6 +96,9 @@ Options:
       --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
                           --repair off
       --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
+      --method M          condt (default), or a classical baseline on the same Delaunay
+                          triangulation: nn-crust (Dey and Kumar) or crust (Amenta, Bern
+                          and Eppstein); a baseline takes none of the ConDT options
       --format F          edges, txt, svg, geojson or html
       --stages            draw every stage (SVG output only)
       --sequential        do not use threads (the result is the same)
@@ -429,10 +432,36 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut confirm = Setting::new();
     let mut gaps = Setting::new();
     let mut format = Setting::new();
+    let mut method = Setting::new();
+    // ConDT's own options, to refuse them beside a baseline method.
+    let mut condt_options: Vec<String> = Vec::new();
     let mut stages = false;
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
+        let flag = arg.to_string_lossy();
+        let is_condt_option = flag != "--method"
+            && flag.starts_with("--")
+            && !matches!(
+                &*flag,
+                "--format" | "--stages" | "--sequential" | "--output"
+            );
+        if is_condt_option {
+            condt_options.push(flag.into_owned());
+        }
         match arg.to_str() {
+            Some(flag @ "--method") => {
+                let value = rest.next();
+                let name = value.map(|v| v.to_string_lossy()).unwrap_or_default();
+                let chosen = match &*name {
+                    "condt" => Method::ConDT,
+                    "nn-crust" => Method::NnCrust,
+                    "crust" => Method::Crust,
+                    _ => return Err(usage(format!(
+                        "{flag} {name}: unknown method; the methods are condt, nn-crust and crust"
+                    ))),
+                };
+                method.set(chosen, format!("{flag} {name}"))?;
+            }
             Some(flag @ "--u") => {
                 let u = number(flag, rest.next())?;
                 uniformity.set(Uniformity::Fixed(u), format!("--u {u}"))?;
@@ -497,6 +526,16 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     }
     if let Some(on) = gaps.get() {
         params.close_gaps = on;
+    }
+    if let Some(chosen) = method.get() {
+        if chosen != Method::ConDT {
+            if let Some(option) = condt_options.first() {
+                return Err(usage(format!(
+                    "{option} sets a ConDT stage, but --method chooses a baseline, which has none"
+                )));
+            }
+        }
+        params.method = chosen;
     }
     params.check().map_err(refused)?;
     let (input, output) = paths.finish("reconstruct")?;

@@ -6,7 +6,7 @@
   const P = data.points, E = data.edges, n = P.length / 2, m = E.length / 2;
   const COLORS = {
     delaunay: "#c4c4c4", proximity: "#3b6fd8", repair: "#9b4dca", "IQR outliers": "#e08a00",
-    "local outliers": "#1a9e8f", "given-back check": "#8c564b", gaps: "#5fae2e", result: "#111111",
+    "local outliers": "#1a9e8f", "given-back check": "#8c564b", gaps: "#5fae2e", "NN-Crust": "#d62728", Crust: "#d62728", result: "#111111",
   };
   const WIDTH = { delaunay: 1, result: 2.5 };
   const layers = data.layers.map((name, k) => ({
@@ -213,6 +213,7 @@
       () => "short spur",
       () => "gap closed",
       () => "a given-back component not clearly apart",
+      () => "chosen by the baseline",
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }
