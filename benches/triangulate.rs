@@ -1,5 +1,7 @@
 //! Triangulation benchmarks: condt against spade's `bulk_load` and delaunator on the same inputs,
-//! so that ratios come from one run. Single-threaded throughout.
+//! so that ratios come from one run, and against condt's own spatial sort of the same points
+//! (`hilbert_sort`), the cost floor any insertion-order triangulator pays. Single-threaded
+//! throughout.
 //!
 //! Run all: `cargo bench --bench triangulate`; one group: `cargo bench --bench triangulate -- uniform_1M`.
 
@@ -62,6 +64,13 @@ fn triangulators(c: &mut Criterion) {
             .collect();
         group.bench_function("delaunator", |b| {
             b.iter_with_large_drop(|| delaunator::triangulate(black_box(&delaunator_points)))
+        });
+
+        // The yardstick: condt's spatial sort alone (input check, BRIO rounds, Hilbert order).
+        group.bench_function("hilbert_sort", |b| {
+            b.iter_with_large_drop(|| {
+                condt::Triangulation::insertion_order(black_box(&points)).unwrap()
+            })
         });
         group.finish();
     }
