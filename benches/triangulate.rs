@@ -22,6 +22,7 @@ fn inputs() -> Vec<(&'static str, Vec<Point>)> {
         ("uniform_1M", common::uniform(1_000_000, 3)),
         // The input of curve reconstruction: 200 random ellipses, 5,000 points each, jitter 1e-6.
         ("ellipses_1M", common::on_ellipses(1_000_000, 200, 1e-6, 4)),
+        ("clustered_1M", common::clustered(1_000_000, 7)),
         ("grid_1M", common::grid(1000, 5)),
         (
             "uniform_offset_1e6_1M",
@@ -35,6 +36,12 @@ fn inputs() -> Vec<(&'static str, Vec<Point>)> {
 
 fn triangulators(c: &mut Criterion) {
     for (name, points) in inputs() {
+        // Every input is checked once before it is timed: a fast wrong mesh is no result.
+        let tri = condt::triangulate(&points).unwrap();
+        if let Err(violation) = tri.validate() {
+            panic!("{name}: the triangulation is not valid: {violation:?}");
+        }
+        drop(tri);
         let mut group = c.benchmark_group(name);
         group
             .sample_size(10)

@@ -3,12 +3,17 @@
 //! Owns: every decision about a geometric sign. Nothing else in the crate may compute a sign with
 //! plain floating point, and this module may not depend on the mesh or the triangulator.
 //!
-//! Two ways to the same exact sign:
+//! Three ways to the same exact sign:
 //! - Shewchuk's adaptive-precision `orient2d` and `incircle` (the `robust` crate), exact for
-//!   every input whose intermediate products neither overflow nor underflow. `in_circle` first
-//!   tries Shewchuk's static error bound inline, which settles most calls without the function
-//!   call. This is the fast path, and the triangulator calls it directly on coordinates it has
+//!   every input whose intermediate products neither overflow nor underflow. Both first try
+//!   Shewchuk's static error bound inline, which settles most calls without a function call.
+//!   This is the fast path, and the triangulator calls it directly on coordinates it has
 //!   rescaled into the range where it is exact (`docs/predicates.md` derives that range).
+//! - When the static bound cannot settle a call (cocircular or collinear, or nearly so), machine
+//!   integers first (`src/predicates/small.rs`): exact when the call's coordinates are small
+//!   integers on a common binary grid (integer grids, pixel and fixed-point data, where nearly
+//!   every in-circle call is exactly cocircular), and far cheaper than `robust`'s adaptive
+//!   stages, which take what it refuses.
 //! - Integer arithmetic on the coordinates brought to a common binary exponent
 //!   (`src/predicates/exact.rs`): exact for every finite input, and far slower.
 //!

@@ -76,7 +76,8 @@ fn small_differences<const N: usize>(
 /// The sign of the in-circle determinant of `a, b, c, d` (positive: `d` strictly inside the
 /// circle of the counter-clockwise `a, b, c`), or `None` when the coordinates are not small
 /// integers on a common grid.
-#[inline(never)]
+// Inlined into its one caller, itself out of line (the filter's slow branch).
+#[inline(always)]
 pub(super) fn in_circle_sign(
     a: [f64; 2],
     b: [f64; 2],
@@ -96,7 +97,8 @@ pub(super) fn in_circle_sign(
 
 /// The sign of the orientation determinant of `a, b, c` (positive: counter-clockwise), or `None`
 /// when the coordinates are not small integers on a common grid.
-#[inline(never)]
+// Inlined into its one caller, itself out of line (the filter's slow branch).
+#[inline(always)]
 pub(super) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Ordering> {
     let [[acx, acy], [bcx, bcy]] = small_differences([a, b], c)?;
     // Differences below 2^30: each product below 2^60, their difference below 2^61.
