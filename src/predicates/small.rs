@@ -29,10 +29,12 @@ const ANCHOR: f64 = 12.0;
 #[inline(always)]
 fn fixed(x: f64, exact: &mut bool) -> i64 {
     let shifted = x + ANCHOR;
-    let integer = shifted.to_bits() as i64 - ANCHOR.to_bits() as i64;
+    // Wrapping: a negative `shifted` can take the difference below i64::MIN, and it stays
+    // outside [-2^51, 2^51) when it wraps.
+    let integer = (shifted.to_bits() as i64).wrapping_sub(ANCHOR.to_bits() as i64);
     // Outside [8, 16) (or negative: the sign bit makes the pattern negative) the integer leaves
     // [-2^51, 2^51); inside, `shifted - 12` is exact and equals `x` only if nothing was rounded.
-    let in_range = ((integer + (1 << 51)) as u64) < 1 << 52;
+    let in_range = (integer.wrapping_add(1 << 51) as u64) < 1 << 52;
     *exact &= in_range & (shifted - ANCHOR == x);
     integer
 }
@@ -54,7 +56,12 @@ fn small_differences<const N: usize>(
     let mut out = [[0i64; 2]; N];
     let mut bits = 0i64;
     for (slot, p) in out.iter_mut().zip(points) {
-        *slot = [fixed(p[0], &mut exact) - ox, fixed(p[1], &mut exact) - oy];
+        // Only exact (in-range) readings are kept, and their differences are below 2^52; the
+        // others may wrap, and are thrown away below.
+        *slot = [
+            fixed(p[0], &mut exact).wrapping_sub(ox),
+            fixed(p[1], &mut exact).wrapping_sub(oy),
+        ];
         bits |= slot[0] | slot[1];
     }
     if !exact {
@@ -190,9 +197,30 @@ mod tests {
         assert_eq!(orient2d_sign([0.0, 0.0], fine, [1.0, 1.0]), None);
         assert_eq!(orient2d_sign([0.0, 0.0], [4.0, 0.0], [1.0, 1.0]), None);
         assert_eq!(orient2d_sign([0.0, 0.0], [-4.5, 0.0], [1.0, 1.0]), None);
+        // Nothing out of range is read, and nothing overflows (tests run with overflow checks):
+        // negative sums whose bit patterns fall below i64::MIN, infinities, NaN, extremes.
+        for bad in [
+            -12.0 - 2f64.powi(-40),
+            -12.5,
+            -1e300,
+            -f64::MAX,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ] {
+            for p in [[bad, 0.0], [0.5, bad]] {
+                assert_eq!(orient2d_sign([0.0, 0.0], p, [1.0, 1.0]), None, "{bad}");
+                assert_eq!(orient2d_sign(p, [0.0, 0.0], [1.0, 1.0]), None, "{bad}");
+                assert_eq!(orient2d_sign([0.0, 0.0], [1.0, 1.0], p), None, "{bad}");
+                assert_eq!(in_circle_sign(p, [0.0, 0.0], [1.0, 1.0], [3.5, -3.5]), None);
+                assert_eq!(in_circle_sign([3.5, -3.5], [0.0, 0.0], [1.0, 1.0], p), None);
+            }
+        }
         assert_eq!(
-            orient2d_sign([0.0, 0.0], [f64::INFINITY, 0.0], [1.0, 1.0]),
-            None
+            orient2d_sign([-0.0, 0.0], [1.0, -0.0], [0.0, 1.0]),
+            Some(Ordering::Greater)
         );
         assert_eq!(
             orient2d_sign([-4.0, 0.0], [3.5, 0.0], [1.0, 1.0]),
