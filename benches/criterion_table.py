@@ -5,16 +5,16 @@ Run after `cargo bench --bench triangulate`: `python3 benches/criterion_table.py
 """
 import json, os, sys
 root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "target", "criterion")
-groups = ["uniform_10k", "uniform_100k", "uniform_1M", "ellipses_1M", "grid_1M", "uniform_offset_1e6_1M"]
+groups = ["uniform_10k", "uniform_100k", "uniform_1M", "ellipses_1M", "clustered_1M", "grid_1M", "uniform_offset_1e6_1M"]
 def med(g, b):
     p = os.path.join(root, g, b, "new", "estimates.json")
     if not os.path.exists(p): return None
     return json.load(open(p))["median"]["point_estimate"] / 1e6  # ms
 def fmt(ms):
     return "—" if ms is None else (f"{ms/1000:.2f} s" if ms >= 1000 else f"{ms:.1f} ms" if ms >= 10 else f"{ms:.2f} ms")
-print("| input | condt | spade `bulk_load` | delaunator | condt / spade | condt / delaunator |")
-print("|---|---|---|---|---|---|")
+print("| input | condt | spade `bulk_load` | delaunator | Hilbert sort | condt / spade | condt / delaunator | condt / sort |")
+print("|---|---|---|---|---|---|---|---|")
 for g in groups:
-    c, s, d = med(g, "condt"), med(g, "spade_bulk_load"), med(g, "delaunator")
+    c, s, d, h = med(g, "condt"), med(g, "spade_bulk_load"), med(g, "delaunator"), med(g, "hilbert_sort")
     r = lambda a, b: "—" if a is None or b is None else f"{a/b:.3f}"
-    print(f"| {g} | {fmt(c)} | {fmt(s)} | {fmt(d)} | {r(c,s)} | {r(c,d)} |")
+    print(f"| {g} | {fmt(c)} | {fmt(s)} | {fmt(d)} | {fmt(h)} | {r(c,s)} | {r(c,d)} | {r(c,h)} |")

@@ -1,5 +1,7 @@
 //! Triangulation benchmarks: condt against spade's `bulk_load` and delaunator on the same inputs,
-//! so that ratios come from one run. Single-threaded throughout.
+//! so that ratios come from one run, and against condt's own spatial sort of the same points
+//! (`hilbert_sort`), the cost floor any insertion-order triangulator pays. Single-threaded
+//! throughout.
 //!
 //! Run all: `cargo bench --bench triangulate`; one group: `cargo bench --bench triangulate -- uniform_1M`.
 
@@ -20,6 +22,7 @@ fn inputs() -> Vec<(&'static str, Vec<Point>)> {
         ("uniform_1M", common::uniform(1_000_000, 3)),
         // The input of curve reconstruction: 200 random ellipses, 5,000 points each, jitter 1e-6.
         ("ellipses_1M", common::on_ellipses(1_000_000, 200, 1e-6, 4)),
+        ("clustered_1M", common::clustered(1_000_000, 7)),
         ("grid_1M", common::grid(1000, 5)),
         (
             "uniform_offset_1e6_1M",
@@ -33,6 +36,12 @@ fn inputs() -> Vec<(&'static str, Vec<Point>)> {
 
 fn triangulators(c: &mut Criterion) {
     for (name, points) in inputs() {
+        // Every input is checked once before it is timed: a fast wrong mesh is no result.
+        let tri = condt::triangulate(&points).unwrap();
+        if let Err(violation) = tri.validate() {
+            panic!("{name}: the triangulation is not valid: {violation:?}");
+        }
+        drop(tri);
         let mut group = c.benchmark_group(name);
         group
             .sample_size(10)
@@ -62,6 +71,13 @@ fn triangulators(c: &mut Criterion) {
             .collect();
         group.bench_function("delaunator", |b| {
             b.iter_with_large_drop(|| delaunator::triangulate(black_box(&delaunator_points)))
+        });
+
+        // The yardstick: condt's spatial sort alone (input check, BRIO rounds, Hilbert order).
+        group.bench_function("hilbert_sort", |b| {
+            b.iter_with_large_drop(|| {
+                condt::Triangulation::insertion_order(black_box(&points)).unwrap()
+            })
         });
         group.finish();
     }

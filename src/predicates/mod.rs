@@ -3,12 +3,17 @@
 //! Owns: every decision about a geometric sign. Nothing else in the crate may compute a sign with
 //! plain floating point, and this module may not depend on the mesh or the triangulator.
 //!
-//! Two ways to the same exact sign:
+//! Three ways to the same exact sign:
 //! - Shewchuk's adaptive-precision `orient2d` and `incircle` (the `robust` crate), exact for
-//!   every input whose intermediate products neither overflow nor underflow. `in_circle` first
-//!   tries Shewchuk's static error bound inline, which settles most calls without the function
-//!   call. This is the fast path, and the triangulator calls it directly on coordinates it has
+//!   every input whose intermediate products neither overflow nor underflow. Both first try
+//!   Shewchuk's static error bound inline, which settles most calls without a function call.
+//!   This is the fast path, and the triangulator calls it directly on coordinates it has
 //!   rescaled into the range where it is exact (`docs/predicates.md` derives that range).
+//! - When the static bound cannot settle a call (cocircular or collinear, or nearly so), machine
+//!   integers first (`src/predicates/small.rs`): exact when the call's coordinates are small
+//!   integers on a common binary grid (integer grids, pixel and fixed-point data, where nearly
+//!   every in-circle call is exactly cocircular), and far cheaper than `robust`'s adaptive
+//!   stages, which take what it refuses.
 //! - Integer arithmetic on the coordinates brought to a common binary exponent
 //!   (`src/predicates/exact.rs`): exact for every finite input, and far slower.
 //!
@@ -24,6 +29,7 @@
 //!   counter-clockwise triangle `a, b, c`.
 
 mod exact;
+mod small;
 
 use crate::geometry::{binary_exponent, Point, Scale};
 use core::cmp::Ordering;
@@ -220,8 +226,32 @@ pub(crate) fn fast_orient2d(a: Point, b: Point, c: Point) -> Orientation {
 /// can branch on it directly rather than on an [`Orientation`] built from it.
 #[inline(always)]
 pub(crate) fn fast_orient2d_det(a: Point, b: Point, c: Point) -> f64 {
-    robust::orient2d(coord(a), coord(b), coord(c))
+    // Shewchuk's first-stage bound, as `robust::orient2d` has it inline (Ozaki et al.'s one-branch
+    // form), so that a call it cannot settle tries the small integers before the adaptive stages.
+    let left = (a.x - c.x) * (b.y - c.y);
+    let right = (a.y - c.y) * (b.x - c.x);
+    let det = left - right;
+    let bound = ORIENT2D_FILTER * (left + right).abs();
+    if det >= bound || -det >= bound {
+        det
+    } else {
+        undecided_orient2d(a, b, c)
+    }
 }
+
+/// [`fast_orient2d_det`] past its filter: collinear or nearly so.
+#[inline(never)]
+fn undecided_orient2d(a: Point, b: Point, c: Point) -> f64 {
+    match small::orient2d_sign(a.into(), b.into(), c.into()) {
+        Some(sign) => sign as i8 as f64,
+        None => robust::orient2d(coord(a), coord(b), coord(c)),
+    }
+}
+
+/// The first-stage error bound of the orientation determinant relative to `|left + right|`
+/// (`robust`'s constant: Ozaki, Ogita, Rump, Oishi, "Accurate and efficient floating-point
+/// expansions for geometric predicates", BIT 2016).
+const ORIENT2D_FILTER: f64 = 3.3306690621773722e-16;
 
 /// [`in_circle`] for coordinates in the fast range (see [`fast_orient2d`]).
 #[inline]
@@ -249,7 +279,18 @@ pub(crate) fn fast_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
     } else if -det > bound {
         false
     } else {
-        robust::incircle(coord(a), coord(b), coord(c), coord(d)) > 0.0
+        undecided_in_circle(a, b, c, d)
+    }
+}
+
+/// [`fast_in_circle`] past its filter: cocircular or nearly so. Small integers on a common grid
+/// (integer grids, pixel and fixed-point data, where nearly every call lands here) are decided
+/// exactly in machine integers; the rest by `robust`'s adaptive stages.
+#[inline(never)]
+fn undecided_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+    match small::in_circle_sign(a.into(), b.into(), c.into(), d.into()) {
+        Some(sign) => sign == Ordering::Greater,
+        None => robust::incircle(coord(a), coord(b), coord(c), coord(d)) > 0.0,
     }
 }
 

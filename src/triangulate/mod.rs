@@ -117,17 +117,7 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     }
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
-    let order = if frames.wide {
-        // Sets spanning many orders of magnitude, ordered on a logarithmic grid: on a linear
-        // one, all but the largest points share a cell and the walks grow long.
-        let warped: Vec<Point> = points
-            .iter()
-            .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
-            .collect();
-        order::insertion_order(&warped)
-    } else {
-        order::insertion_order(points)
-    };
+    let order = insertion_order(points, &frames);
     let mut sorted: Vec<Point> = order
         .iter()
         .map(|&i| scale.apply(points[i as usize]))
@@ -187,6 +177,21 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     })
 }
 
+/// The order to insert `points` in, as input positions.
+fn insertion_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
+    if frames.wide {
+        // Sets spanning many orders of magnitude, ordered on a logarithmic grid: on a linear
+        // one, all but the largest points share a cell and the walks grow long.
+        let warped: Vec<Point> = points
+            .iter()
+            .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
+            .collect();
+        order::insertion_order(&warped)
+    } else {
+        order::insertion_order(points)
+    }
+}
+
 /// The mesh of `points` (in insertion order) and the `(duplicate, kept)` pairs merged on the way,
 /// or `None` when they make no triangle.
 fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
@@ -233,6 +238,37 @@ fn vertex_maps(mut input_of_vertex: Vec<u32>, merged: &[(u32, u32)]) -> (Vec<u32
 }
 
 impl Triangulation {
+    /// The order in which [`triangulate`] inserts `points`, as input positions: biased
+    /// randomized rounds, Hilbert order inside each (`docs/triangulation.md`). It is the spatial
+    /// sort alone, with the input check before it, and the yardstick the triangulation
+    /// benchmarks measure the whole construction against. Unless every point is on one line,
+    /// vertex ids number the points in this order (exact duplicates included).
+    ///
+    /// # Errors
+    /// Those of [`triangulate`]: [`Error::NonFinite`] and [`Error::TooManyPoints`].
+    ///
+    /// ```
+    /// use condt::mesh::VertexId;
+    /// use condt::{triangulate, Point, Triangulation};
+    /// let pts: Vec<Point> = (0..100).map(|i| Point::new((i % 10) as f64, (i / 10) as f64)).collect();
+    /// let order = Triangulation::insertion_order(&pts)?;
+    /// let tri = triangulate(&pts)?;
+    /// for (v, &i) in order.iter().enumerate() {
+    ///     assert_eq!(tri.input_of(VertexId::new(v as u32)), i as usize);
+    /// }
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
+        if points.len() > MAX_POINTS {
+            return Err(Error::TooManyPoints {
+                count: points.len(),
+                limit: MAX_POINTS,
+            });
+        }
+        let frames = scale::choose_frames(points)?;
+        Ok(insertion_order(points, &frames))
+    }
+
     /// The half-edge topology, in vertex ids.
     #[inline]
     pub fn mesh(&self) -> &Mesh {
@@ -435,11 +471,90 @@ mod tests {
             .collect();
         repeated.extend_from_slice(&repeated.clone()[..50]);
         sets.push(repeated);
+        // Grids the small-integer path takes (integers, an offset of 10^6, binary fixed point)
+        // and ones it refuses (decimal steps), in the predicates' frame, with holes.
+        let power = |k: i32| Scale::power_of_two(k).apply(Point::new(1.0, 0.0)).x;
+        let frame = |p: Point, scale: f64| Point::new(p.x * scale, p.y * scale);
+        let holey: Vec<Point> = shuffled_grid(24, &mut rng)
+            .into_iter()
+            .filter(|p| (p.x as i32 * 7 + p.y as i32 * 3) % 5 != 0)
+            .collect();
+        for (points, scale) in [
+            (holey.clone(), power(-5)),
+            (moved(&holey, |p| frame(p, 0.001)), power(5)),
+            (moved(&holey, |p| frame(p, 1.0 / 1024.0)), power(5)),
+        ] {
+            sets.push(moved(&points, |p| frame(p, scale)));
+        }
+        sets.push(moved(&holey, |p| {
+            frame(Point::new(p.x + 1e6, p.y - 1e6), power(-20))
+        }));
         for points in &sets {
             let fast = triangles::<Fast>(points);
             assert!(fast.0.len() > 100);
             assert_eq!(fast, triangles::<Exact>(points));
             assert_eq!(fast, triangles::<insert::Integers>(points));
+        }
+    }
+
+    /// The `side` x `side` integer grid, shuffled.
+    fn shuffled_grid(side: usize, rng: &mut Xorshift) -> Vec<Point> {
+        let mut points: Vec<Point> = (0..side * side)
+            .map(|i| Point::new((i % side) as f64, (i / side) as f64))
+            .collect();
+        for i in (1..points.len()).rev() {
+            points.swap(i, rng.below(i as u64 + 1) as usize);
+        }
+        points
+    }
+
+    fn moved(points: &[Point], f: impl Fn(Point) -> Point) -> Vec<Point> {
+        points.iter().map(|&p| f(p)).collect()
+    }
+
+    /// Grids in every form the small-integer path takes or refuses: integers, binary fixed point,
+    /// decimal steps (0.001, 0.01) that are not exact binary fractions, offsets of 10^6 exact and
+    /// not, steps of 2^-30 next to 1, huge integers; whole, with holes, and with a block cut out.
+    /// Each triangulates validly; a whole grid into its `2 (side - 1)^2` unit cells, any set into
+    /// `2n - h - 2` triangles (h hull vertices).
+    #[test]
+    fn grids_triangulate_validly_in_every_form() {
+        let mut rng = Xorshift::new(0x3f84_d5b5_b547_0917);
+        let side = 40;
+        let whole = shuffled_grid(side, &mut rng);
+        let holey: Vec<Point> = whole
+            .iter()
+            .copied()
+            .filter(|_| rng.below(10) != 0)
+            .collect();
+        let cut: Vec<Point> = whole
+            .iter()
+            .copied()
+            .filter(|p| !(10.0..25.0).contains(&p.x) || !(5.0..30.0).contains(&p.y))
+            .collect();
+        let forms: [fn(Point) -> Point; 9] = [
+            |p| p,
+            |p| Point::new(p.x - 20.0, p.y - 20.0),
+            |p| Point::new(p.x / 1024.0, p.y / 1024.0),
+            |p| Point::new(p.x * 0.001, p.y * 0.001),
+            |p| Point::new(p.x * 0.01 - 0.3, p.y * 0.01 + 7.0),
+            |p| Point::new(p.x + 1e6, p.y - 1e6),
+            |p| Point::new(p.x * 0.001 + 1e6, p.y * 0.001 + 1e6),
+            |p| Point::new(1.0 + p.x * 2f64.powi(-30), 1.0 + p.y * 2f64.powi(-30)),
+            |p| Point::new(p.x * 2f64.powi(40), p.y * -2f64.powi(40)),
+        ];
+        for (k, form) in forms.iter().enumerate() {
+            for (set, points) in [("whole", &whole), ("holes", &holey), ("cut", &cut)] {
+                let points = moved(points, form);
+                let tri = triangulate(&points).unwrap();
+                tri.validate()
+                    .unwrap_or_else(|v| panic!("form {k}, {set}: {v:?}"));
+                let (n, h) = (tri.num_vertices(), tri.hull().count());
+                assert_eq!(tri.triangles().count(), 2 * n - h - 2, "form {k}, {set}");
+                if set == "whole" {
+                    assert_eq!(tri.triangles().count(), 2 * (side - 1) * (side - 1));
+                }
+            }
         }
     }
 }
