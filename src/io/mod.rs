@@ -14,7 +14,7 @@ mod text;
 pub use geojson::write_geojson;
 pub use points::{parse_node, parse_points, read_points};
 pub use svg::write_svg;
-pub use text::{write_edges, write_polylines};
+pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};
 
 use std::fmt;
 use std::io;

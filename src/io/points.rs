@@ -67,9 +67,12 @@ impl Source<'_> {
     }
 
     fn number(&self, line: usize, field: &str) -> Result<f64, IoError> {
-        let value: f64 = field
-            .parse()
-            .map_err(|_| self.error(line, format!("cannot read {} as a number", quoted(field))))?;
+        let value = match decimal::parse(field.as_bytes()) {
+            Some(value) => value,
+            None => field.parse().map_err(|_| {
+                self.error(line, format!("cannot read {} as a number", quoted(field)))
+            })?,
+        };
         if value.is_finite() {
             Ok(value)
         } else {
@@ -79,21 +82,27 @@ impl Source<'_> {
 
     /// Appends `p`, refusing more than [`MAX_POINTS`] points or memory the system will not give,
     /// so that a huge file is an error and not an abort.
+    #[inline]
     fn push(&self, points: &mut Vec<Point>, line: usize, p: Point) -> Result<(), IoError> {
+        if points.len() == points.capacity() {
+            self.grow(points, line)?;
+        }
+        points.push(p);
+        Ok(())
+    }
+
+    #[cold]
+    fn grow(&self, points: &mut Vec<Point>, line: usize) -> Result<(), IoError> {
         if points.len() == MAX_POINTS {
             return Err(self.error(
                 line,
                 format!("more than {MAX_POINTS} points, the most condt accepts"),
             ));
         }
-        if points.len() == points.capacity() {
-            let more = points.len().max(1024).min(MAX_POINTS - points.len());
-            points.try_reserve_exact(more).map_err(|_| {
-                self.error(line, format!("out of memory after {} points", points.len()))
-            })?;
-        }
-        points.push(p);
-        Ok(())
+        let more = points.len().max(1024).min(MAX_POINTS - points.len());
+        points
+            .try_reserve_exact(more)
+            .map_err(|_| self.error(line, format!("out of memory after {} points", points.len())))
     }
 }
 
@@ -130,57 +139,158 @@ fn columns(content: &str) -> Result<Vec<&str>, String> {
     Ok(fields)
 }
 
-/// Parses the plain point format; `file` names the source in error messages.
-///
-/// One point `x y` per line, the two numbers separated by spaces, tabs or one comma; `#` starts
-/// a comment; blank lines are skipped; LF, CRLF and CR-only line ends all work; a UTF-8
-/// byte-order mark is skipped. Refused, with the line:
-/// - a single number, or four or more columns (a Triangle `.node` header `n 2 a m` among them);
-/// - a line where both commas and spaces separate numbers (`1,5 2`: a decimal comma?);
-/// - a word where a number should be, NaN and infinities;
-/// - more than [`MAX_POINTS`](crate::MAX_POINTS) points.
-///
-/// A third column is ignored (files with a constant third column `1` or a depth are common),
-/// except when the first column of every line counts 0, 1, 2, … or 1, 2, 3, …: that is the index
-/// column of a Triangle `.node` file without its header, and reading it as x would be wrong, so
-/// the file is refused (name it `*.node` for [`read_points`] to read it as one).
-///
-/// The first line that is neither blank nor a comment may be a header: when every column is a
-/// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
-/// it is skipped.
-///
-/// ```
-/// use condt::{io::parse_points, Point};
-/// let pts = parse_points("\u{feff}x y\n# comment\n1 2\r\n3,4,9\r\t5\t6 \r", "example")?;
-/// assert_eq!(pts, vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0), Point::new(5.0, 6.0)]);
-///
-/// let err = parse_points("0 0\n1,5 2\n", "euro.txt").unwrap_err();
-/// assert_eq!(err.line, Some(2));
-/// assert!(err.to_string().starts_with("euro.txt:2: both commas and spaces"));
-///
-/// let err = parse_points("1 0.0 0.0\n2 1.0 0.0\n3 0.0 1.0\n", "nodes.txt").unwrap_err();
-/// assert_eq!(err.line, Some(1));
-/// assert!(err.to_string().contains(".node"));
-/// # Ok::<(), condt::io::IoError>(())
-/// ```
-pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
-    let source = Source { file };
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut points: Vec<Point> = Vec::new();
-    let (mut seen_content, mut first_data_line) = (false, None);
-    // Whether every line so far has three columns, the first counting up by one from 0 or 1.
-    let mut counts_like_node_indices = true;
-    for (number, raw) in numbered_lines(text) {
-        let content = raw.split('#').next().unwrap_or("");
-        let fields = columns(content).map_err(|message| source.error(number, message))?;
-        let Some(&first) = fields.first() else {
-            continue;
-        };
-        if !core::mem::replace(&mut seen_content, true) && fields.iter().all(|f| is_name(f)) {
-            continue; // a header
+/// The first three columns of a line and how many there are, kept without allocating.
+#[derive(Clone, Copy)]
+struct Row<'a> {
+    fields: [&'a str; 3],
+    count: usize,
+}
+
+impl<'a> Row<'a> {
+    fn from_columns(all: &[&'a str]) -> Row<'a> {
+        let mut fields = [""; 3];
+        for (slot, field) in fields.iter_mut().zip(all) {
+            *slot = field;
         }
-        first_data_line.get_or_insert(number);
-        match fields.len() {
+        Row {
+            fields,
+            count: all.len(),
+        }
+    }
+}
+
+/// What a byte is to [`scan_line`].
+const TOKEN: u8 = 0;
+/// ASCII whitespace inside a line (space, tab, vertical tab, form feed: the ASCII characters
+/// `char::is_whitespace` accepts, line ends aside).
+const BLANK: u8 = 1;
+/// `\n`, `\r` or `#`: the end of the columns.
+const STOP: u8 = 2;
+/// A comma or a non-ASCII byte: the line needs [`columns`].
+const OTHER: u8 = 3;
+
+/// The class of every byte, looked up once per byte instead of comparing it with each kind.
+const CLASS: [u8; 256] = {
+    let mut class = [TOKEN; 256];
+    let mut b = 0x80;
+    while b < 256 {
+        class[b] = OTHER;
+        b += 1;
+    }
+    class[b' ' as usize] = BLANK;
+    class[b'\t' as usize] = BLANK;
+    class[0x0b] = BLANK;
+    class[0x0c] = BLANK;
+    class[b'\n' as usize] = STOP;
+    class[b'\r' as usize] = STOP;
+    class[b'#' as usize] = STOP;
+    class[b',' as usize] = OTHER;
+    class
+};
+
+/// One line of `text` starting at byte `start`: where it ends, where the next one starts, and
+/// its columns when the line is plain ASCII without a comma, split here in one pass without
+/// allocating; `None` for any other line, which [`columns`] splits instead (the same rules: a
+/// comma or non-ASCII whitespace needs them).
+#[inline]
+fn scan_line(text: &str, start: usize) -> (usize, usize, Option<Row<'_>>) {
+    let bytes = text.as_bytes();
+    let class = |i: usize| bytes.get(i).map_or(STOP, |&b| CLASS[usize::from(b)]);
+    let mut i = start;
+    let mut row = Row {
+        fields: [""; 3],
+        count: 0,
+    };
+    let mut simple = true;
+    loop {
+        while class(i) == BLANK {
+            i += 1;
+        }
+        if class(i) == STOP {
+            break;
+        }
+        let token = i;
+        loop {
+            match class(i) {
+                TOKEN => i += 1,
+                OTHER => {
+                    simple = false;
+                    i += 1;
+                }
+                _ => break,
+            }
+        }
+        if row.count < 3 {
+            row.fields[row.count] = &text[token..i];
+        }
+        row.count += 1;
+    }
+    // A comment runs to the line end, whatever it holds.
+    let mut end = i;
+    while end < bytes.len() && !matches!(bytes[end], b'\n' | b'\r') {
+        end += 1;
+    }
+    let next = match bytes.get(end) {
+        Some(b'\r') if bytes.get(end + 1) == Some(&b'\n') => end + 2,
+        Some(_) => end + 1,
+        None => end,
+    };
+    (end, next, simple.then_some(row))
+}
+
+/// What one stretch of lines of a plain point file holds.
+struct Parsed {
+    points: Vec<Point>,
+    /// Whether every data line has exactly three columns (see [`node_index_column`]).
+    all_three_columns: bool,
+    /// The first line that holds a point, numbered within the stretch.
+    first_data_line: Option<usize>,
+    /// Whether any line holds a column (a header or a point).
+    seen_content: bool,
+}
+
+/// Parses the lines of `text` (a whole file, or whole lines of one; numbered from 1) into
+/// points with the rules of [`parse_points`] but the last (the index-column check, which needs
+/// every point). `may_hold_header`: the first line with columns may be a header (it is the
+/// file's first). `expected_points` sizes the first allocation.
+fn parse_lines(
+    text: &str,
+    source: &Source<'_>,
+    may_hold_header: bool,
+    expected_points: usize,
+) -> Result<Parsed, IoError> {
+    let mut points: Vec<Point> = Vec::new();
+    if expected_points > 0 {
+        // Only a hint: a refusal here leaves `push` to grow and report.
+        let _ = points.try_reserve_exact(expected_points.min(MAX_POINTS));
+    }
+    let mut seen_content = !may_hold_header;
+    let mut first_data_line = None;
+    let mut all_three_columns = true;
+    let (mut start, mut number) = (0, 0);
+    while start < text.len() {
+        number += 1;
+        let (end, next, simple) = scan_line(text, start);
+        let line = &text[start..end];
+        start = next;
+        let row = match simple {
+            // The first line with columns may be a header, which needs all of them.
+            Some(row) if seen_content || row.count == 0 => row,
+            _ => {
+                let content = line.split('#').next().unwrap_or("");
+                let fields = columns(content).map_err(|message| source.error(number, message))?;
+                if fields.is_empty() {
+                    continue;
+                }
+                if !core::mem::replace(&mut seen_content, true) && fields.iter().all(|f| is_name(f))
+                {
+                    continue; // a header
+                }
+                Row::from_columns(&fields)
+            }
+        };
+        match row.count {
+            0 => continue,
             1 => {
                 return Err(source.error(
                     number,
@@ -201,33 +311,410 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
                 ));
             }
         }
+        first_data_line.get_or_insert(number);
+        let [first, second, third] = row.fields;
         let (x, y) = (
             source.number(number, first)?,
-            source.number(number, fields[1])?,
+            source.number(number, second)?,
         );
-        if fields.len() == 3 {
-            source.number(number, fields[2])?;
+        if row.count == 3 {
+            source.number(number, third)?;
         }
-        counts_like_node_indices = counts_like_node_indices && fields.len() == 3 && {
-            let start = if points.is_empty() { x } else { points[0].x };
-            (start == 0.0 || start == 1.0) && x == start + points.len() as f64
-        };
+        all_three_columns &= row.count == 3;
         source.push(&mut points, number, Point::new(x, y))?;
     }
-    if counts_like_node_indices && points.len() >= 2 {
-        let start = points[0].x;
-        return Err(source.error(
-            first_data_line.unwrap_or(1),
-            format!(
-                "the first of three columns counts {start}, {}, {}, … like the index column of \
-                 a Triangle .node file: name the file *.node to read it as one, or remove the \
-                 column",
-                start + 1.0,
-                start + 2.0
-            ),
-        ));
+    Ok(Parsed {
+        points,
+        all_three_columns,
+        first_data_line,
+        seen_content,
+    })
+}
+
+/// The start of an index column, when the first of three columns counts 0, 1, 2, … or
+/// 1, 2, 3, … on every line (at least two): that is a Triangle `.node` file without its header.
+fn node_index_column(parsed: &Parsed) -> Option<f64> {
+    let points = &parsed.points;
+    let start = points.first()?.x;
+    let counts = parsed.all_three_columns
+        && points.len() >= 2
+        && (start == 0.0 || start == 1.0)
+        && points
+            .iter()
+            .enumerate()
+            .all(|(i, p)| p.x == start + i as f64);
+    counts.then_some(start)
+}
+
+/// The error for a file whose first column is an index column counting from `start`.
+fn index_column_error(source: &Source<'_>, line: usize, start: f64) -> IoError {
+    source.error(
+        line,
+        format!(
+            "the first of three columns counts {start}, {}, {}, … like the index column of \
+             a Triangle .node file: name the file *.node to read it as one, or remove the \
+             column",
+            start + 1.0,
+            start + 2.0
+        ),
+    )
+}
+
+/// A guess at the number of points in `text` from the length of its first lines, so that the
+/// points are allocated once instead of grown by copying (a guess 5 % high, as line lengths
+/// vary; at worst the vector grows or has some room left).
+fn expected_points(text: &str) -> usize {
+    const SAMPLE: usize = 4096;
+    if text.len() <= SAMPLE {
+        return 0;
     }
-    Ok(points)
+    let mut cut = SAMPLE;
+    while !text.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    let lines = text.as_bytes()[..cut]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count();
+    if lines < 16 {
+        return 0;
+    }
+    let per_line = cut / lines;
+    (text.len() / per_line).saturating_add(text.len() / per_line / 20)
+}
+
+/// Parses the plain point format; `file` names the source in error messages.
+///
+/// One point `x y` per line, the two numbers separated by spaces, tabs or one comma; `#` starts
+/// a comment; blank lines are skipped; LF, CRLF and CR-only line ends all work; a UTF-8
+/// byte-order mark is skipped. Refused, with the line:
+/// - a single number, or four or more columns (a Triangle `.node` header `n 2 a m` among them);
+/// - a line where both commas and spaces separate numbers (`1,5 2`: a decimal comma?);
+/// - a word where a number should be, NaN and infinities;
+/// - more than [`MAX_POINTS`](crate::MAX_POINTS) points.
+///
+/// A third column is ignored (files with a constant third column `1` or a depth are common),
+/// except when the first column of every line counts 0, 1, 2, … or 1, 2, 3, …: that is the index
+/// column of a Triangle `.node` file without its header, and reading it as x would be wrong, so
+/// the file is refused (name it `*.node` for [`read_points`] to read it as one).
+///
+/// The first line that is neither blank nor a comment may be a header: when every column is a
+/// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
+/// it is skipped.
+///
+/// With the `parallel` feature a large text is parsed in pieces on rayon's threads; the points,
+/// and the error for a bad file, are the same as without it.
+///
+/// ```
+/// use condt::{io::parse_points, Point};
+/// let pts = parse_points("\u{feff}x y\n# comment\n1 2\r\n3,4,9\r\t5\t6 \r", "example")?;
+/// assert_eq!(pts, vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0), Point::new(5.0, 6.0)]);
+///
+/// let err = parse_points("0 0\n1,5 2\n", "euro.txt").unwrap_err();
+/// assert_eq!(err.line, Some(2));
+/// assert!(err.to_string().starts_with("euro.txt:2: both commas and spaces"));
+///
+/// let err = parse_points("1 0.0 0.0\n2 1.0 0.0\n3 0.0 1.0\n", "nodes.txt").unwrap_err();
+/// assert_eq!(err.line, Some(1));
+/// assert!(err.to_string().contains(".node"));
+/// # Ok::<(), condt::io::IoError>(())
+/// ```
+pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    #[cfg(feature = "parallel")]
+    if let Some(points) = parallel::parse_points(text, file) {
+        return Ok(points);
+    }
+    parse_points_sequentially(text, file)
+}
+
+/// [`parse_points`] on one thread (the byte-order mark already removed): the reference the
+/// parallel parse falls back on for every error.
+fn parse_points_sequentially(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    let source = Source { file };
+    let parsed = parse_lines(text, &source, true, expected_points(text))?;
+    if let Some(start) = node_index_column(&parsed) {
+        let line = parsed.first_data_line.unwrap_or(1);
+        return Err(index_column_error(&source, line, start));
+    }
+    Ok(parsed.points)
+}
+
+/// The plain format parsed in pieces on rayon's threads.
+#[cfg(feature = "parallel")]
+mod parallel {
+    use super::{expected_points, node_index_column, parse_lines, Parsed, Source};
+    use crate::geometry::Point;
+    use crate::triangulate::MAX_POINTS;
+    use rayon::prelude::*;
+
+    /// Below this many bytes a text is parsed on one thread: splitting would cost more.
+    const MIN_PIECE: usize = 1 << 20;
+
+    /// The text cut into about `pieces` stretches of whole lines, each cut just after a `\n`
+    /// (so a CRLF pair is never split; a CR-only file stays in one piece).
+    fn pieces(text: &str, pieces: usize) -> Vec<&str> {
+        let size = (text.len() / pieces).max(MIN_PIECE);
+        let mut out = Vec::with_capacity(pieces + 1);
+        let mut rest = text;
+        while rest.len() > size {
+            let Some(newline) = rest.as_bytes()[size..].iter().position(|&b| b == b'\n') else {
+                break;
+            };
+            let (piece, tail) = rest.split_at(size + newline + 1);
+            out.push(piece);
+            rest = tail;
+        }
+        out.push(rest);
+        out
+    }
+
+    /// The points of `text` when it is large and valid; `None` when it is small, or when any
+    /// piece finds something to refuse: then the sequential parse reads it again and reports
+    /// the first problem exactly as it always does (the line count of each piece would
+    /// otherwise be needed, and the refusals that depend on earlier lines would differ).
+    pub(super) fn parse_points(text: &str, file: &str) -> Option<Vec<Point>> {
+        let threads = rayon::current_num_threads();
+        if threads < 2 || text.len() < 2 * MIN_PIECE {
+            return None;
+        }
+        let pieces = pieces(text, 4 * threads);
+        if pieces.len() < 2 {
+            return None;
+        }
+        let source = Source { file };
+        let parsed: Vec<Parsed> = pieces
+            .par_iter()
+            .enumerate()
+            .map(|(k, piece)| parse_lines(piece, &source, k == 0, expected_points(piece)).ok())
+            .collect::<Option<_>>()?;
+        // A header can only be the file's first line with columns: the first piece must have one.
+        if !parsed[0].seen_content {
+            return None;
+        }
+        let total = parsed
+            .iter()
+            .try_fold(0usize, |sum, p| sum.checked_add(p.points.len()))?;
+        if total > MAX_POINTS {
+            return None;
+        }
+        let mut points = Vec::new();
+        points.try_reserve_exact(total).ok()?;
+        let mut all_three_columns = true;
+        let mut first_data_line = None;
+        for piece in parsed {
+            all_three_columns &= piece.all_three_columns;
+            first_data_line = first_data_line.or(piece.first_data_line);
+            points.extend_from_slice(&piece.points);
+        }
+        let whole = Parsed {
+            points,
+            all_three_columns,
+            first_data_line,
+            seen_content: true,
+        };
+        match node_index_column(&whole) {
+            Some(_) => None,
+            None => Some(whole.points),
+        }
+    }
+}
+
+/// Decimal numbers read without the standard library's general algorithm when that is exact.
+mod decimal {
+    /// Powers of ten that `f64` holds exactly.
+    const POWERS: [f64; 23] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+    ];
+
+    /// The value of `[+-]digits[.digits][(e|E)[+-]digits]` when its digits, read as an integer,
+    /// are at most 2^53 and its decimal exponent at most 22 in size: then the integer and the
+    /// power of ten are both exact in `f64`, and one correctly rounded multiplication or
+    /// division gives the correctly rounded value (Clinger's fast path), the same `f64` as
+    /// `str::parse`. `None` for anything else (more digits, other syntax), which the caller
+    /// hands to `str::parse`.
+    #[inline]
+    pub(super) fn parse(bytes: &[u8]) -> Option<f64> {
+        let (negative, mut i) = match bytes.first() {
+            Some(b'-') => (true, 1),
+            Some(b'+') => (false, 1),
+            _ => (false, 0),
+        };
+        // Past 2^53 the fast path cannot be exact: give up at once rather than read on.
+        const LIMIT: u64 = 1 << 53;
+        let mut mantissa: u64 = 0;
+        let mut digits = 0usize;
+        let mut exponent: i64 = 0;
+        while let Some(&b) = bytes.get(i) {
+            let d = b.wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            mantissa = mantissa * 10 + u64::from(d);
+            if mantissa > LIMIT {
+                return None;
+            }
+            digits += 1;
+            i += 1;
+        }
+        if bytes.get(i) == Some(&b'.') {
+            i += 1;
+            let first = i;
+            while let Some(&b) = bytes.get(i) {
+                let d = b.wrapping_sub(b'0');
+                if d > 9 {
+                    break;
+                }
+                mantissa = mantissa * 10 + u64::from(d);
+                if mantissa > LIMIT {
+                    return None;
+                }
+                i += 1;
+            }
+            digits += i - first;
+            exponent -= (i - first) as i64;
+        }
+        if digits == 0 {
+            return None;
+        }
+        if let Some(b'e' | b'E') = bytes.get(i) {
+            i += 1;
+            let negative_exponent = match bytes.get(i) {
+                Some(b'-') => {
+                    i += 1;
+                    true
+                }
+                Some(b'+') => {
+                    i += 1;
+                    false
+                }
+                _ => false,
+            };
+            let first = i;
+            let mut written: i64 = 0;
+            while let Some(&b) = bytes.get(i) {
+                let d = b.wrapping_sub(b'0');
+                if d > 9 || i - first >= 6 {
+                    break;
+                }
+                written = written * 10 + i64::from(d);
+                i += 1;
+            }
+            if i == first {
+                return None;
+            }
+            exponent += if negative_exponent { -written } else { written };
+        }
+        if i != bytes.len() {
+            return None;
+        }
+        let power = *POWERS.get(exponent.unsigned_abs() as usize)?;
+        let magnitude = if exponent >= 0 {
+            mantissa as f64 * power
+        } else {
+            mantissa as f64 / power
+        };
+        Some(if negative { -magnitude } else { magnitude })
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::parse;
+
+        #[test]
+        fn the_fast_path_gives_what_str_parse_gives_or_declines() {
+            let cases = [
+                "0",
+                "-0",
+                "+0",
+                "1",
+                "-1.5",
+                "0.1",
+                "3.14159",
+                "1e22",
+                "1e-22",
+                "1e23",
+                "9007199254740992",
+                "9007199254740993",
+                "0.9371698010707118",
+                "123456.789e-3",
+                ".5",
+                "5.",
+                "-.5e+2",
+                "1e",
+                "e5",
+                "1.2.3",
+                "--1",
+                "+-1",
+                "1e+",
+                "inf",
+                "NaN",
+                "0x10",
+                "",
+                "-",
+                ".",
+                "00000000000000000000000000001",
+                "1e0000001",
+                "4.35",
+                "0.30000000000000004",
+            ];
+            for case in cases {
+                let standard = case.parse::<f64>().ok();
+                if let Some(fast) = parse(case.as_bytes()) {
+                    let standard = standard.unwrap_or_else(|| panic!("{case} is not a number"));
+                    assert_eq!(fast.to_bits(), standard.to_bits(), "{case}");
+                }
+            }
+            // The fast path does take the common forms.
+            for case in [
+                "0",
+                "-1.5",
+                "0.1",
+                "1e22",
+                "123456.789e-3",
+                ".5",
+                "5.",
+                "-.5e+2",
+            ] {
+                assert!(parse(case.as_bytes()).is_some(), "{case}");
+            }
+        }
+
+        #[test]
+        fn the_fast_path_agrees_with_str_parse_on_many_decimals() {
+            let mut state = 0x2545_f491_4f6c_dd1du64;
+            for _ in 0..200_000 {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                let digits = (state % 17) as u32;
+                let mantissa = (state >> 8) % 10u64.pow(digits.max(1));
+                let exponent = (state >> 3) % 60;
+                let text = format!("{mantissa}e-{exponent}");
+                if let Some(fast) = parse(text.as_bytes()) {
+                    assert_eq!(
+                        fast.to_bits(),
+                        text.parse::<f64>().unwrap().to_bits(),
+                        "{text}"
+                    );
+                }
+                let point = format!(
+                    "{}.{:0>width$}",
+                    mantissa / 1000,
+                    mantissa % 1000,
+                    width = 3
+                );
+                if let Some(fast) = parse(point.as_bytes()) {
+                    assert_eq!(
+                        fast.to_bits(),
+                        point.parse::<f64>().unwrap().to_bits(),
+                        "{point}"
+                    );
+                }
+            }
+        }
+    }
 }
 
 /// Parses a Triangle `.node` file; `file` names the source in error messages.

@@ -5,7 +5,10 @@
 //! output goes is [`crate::output`]'s business.
 
 use crate::output::{refuse_same_file, Destination};
-use condt::io::{read_points, write_edges, write_geojson, write_polylines, write_svg, IoError};
+use condt::io::{
+    read_points, write_edges, write_geojson, write_polylines, write_svg, write_triangles,
+    write_triangulation_edges, IoError,
+};
 use condt::{reconstruct, triangulate, Error, Params, Point, Repair, Uniformity};
 use std::ffi::{OsStr, OsString};
 use std::fmt;
@@ -572,17 +575,10 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     }
     destination.write(|out| {
         if args.edges {
-            let mut edges: Vec<[usize; 2]> = tri.edges().collect();
-            edges.sort_unstable();
-            for [a, b] in edges {
-                writeln!(out, "{a} {b}")?;
-            }
+            write_triangulation_edges(out, &tri)
         } else {
-            for [a, b, c] in tri.triangles() {
-                writeln!(out, "{a} {b} {c}")?;
-            }
+            write_triangles(out, &tri)
         }
-        Ok(())
     })
 }
 
