@@ -3,15 +3,22 @@
 //! Owns: the text formats (where the bytes go is the caller's choice: the binary writes files
 //! all or nothing). It may not compute geometry; it only moves numbers in and out.
 //!
-//! Point files hold one point per line, `x y` ([`parse_points`] has the rules), or are Triangle
-//! `.node` files ([`parse_node`]); [`read_points`] tells them apart by the file name.
+//! Point files hold one point per line, `x y` ([`parse_points`] has the rules), are Triangle
+//! `.node` files ([`parse_node`]) or NumPy `.npy` arrays of shape `(n, 2)` ([`parse_npy`]);
+//! [`read_points`] tells them apart by the file name. Results are written as text, one item per
+//! line, or as `.npy` arrays of indices ([`write_npy_edges`], [`write_npy_triangles`]).
 
 mod geojson;
+mod npy;
 mod points;
 mod svg;
 mod text;
 
 pub use geojson::write_geojson;
+pub use npy::{
+    parse_npy, write_npy_edges, write_npy_points, write_npy_triangles,
+    write_npy_triangulation_edges,
+};
 pub use points::{parse_node, parse_points, read_points};
 pub use svg::write_svg;
 pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};

@@ -841,10 +841,11 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 }
 
 /// Reads a point file: a Triangle `.node` file when the name ends in `.node`
-/// ([`parse_node`]), the plain format otherwise ([`parse_points`]); `-` reads the plain format
-/// from standard input.
+/// ([`parse_node`]), a NumPy array when it ends in `.npy` ([`parse_npy`](super::parse_npy),
+/// read in blocks straight into the points), the plain format otherwise ([`parse_points`]);
+/// `-` reads the plain format from standard input. Endings are compared without case.
 ///
-/// A file that is not UTF-8 text is refused with the line of the first bad byte. A file too
+/// A text file that is not UTF-8 is refused with the line of the first bad byte. A file too
 /// large for memory is an error rather than an abort, and so is one with more than
 /// [`MAX_POINTS`](crate::MAX_POINTS) points.
 ///
@@ -863,6 +864,15 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
         line: None,
         kind: IoErrorKind::Io(err),
     };
+    let extension = |ending: &str| {
+        !stdin
+            && path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case(ending))
+    };
+    if extension("npy") {
+        return super::npy::read_npy_file(path, name);
+    }
     let bytes = if stdin {
         read_all(io::stdin().lock(), 0)
     } else {
@@ -876,11 +886,7 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
         line: Some(line_at(e.as_bytes(), e.utf8_error().valid_up_to())),
         kind: IoErrorKind::Content("not UTF-8 text".to_string()),
     })?;
-    let is_node = !stdin
-        && path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("node"));
-    if is_node {
+    if extension("node") {
         parse_node(&text, name)
     } else {
         parse_points(&text, name)

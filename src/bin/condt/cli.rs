@@ -6,7 +6,8 @@
 
 use crate::output::{refuse_same_file, Destination};
 use condt::io::{
-    read_points, write_edges, write_geojson, write_polylines, write_svg, write_triangles,
+    read_points, write_edges, write_geojson, write_npy_edges, write_npy_triangles,
+    write_npy_triangulation_edges, write_polylines, write_svg, write_triangles,
     write_triangulation_edges, IoError,
 };
 use condt::{reconstruct, triangulate, Error, Params, Point, Repair, Uniformity};
@@ -24,8 +25,10 @@ Usage:
   condt help COMMAND                              a command's options, with an example
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
-ignored; `#` comments and blank lines are skipped); `-` reads standard input. Points are
-numbered from 0 in the order of their lines; every output speaks of points by that number.
+ignored; `#` comments and blank lines are skipped), a Triangle .node file (name ending in
+.node), or a NumPy .npy array of shape (n, 2), float64 or float32, either byte order, C or
+Fortran order (name ending in .npy); `-` reads text from standard input. Points are numbered
+from 0 in the order of their lines (rows); every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
 
@@ -54,7 +57,8 @@ Example:
   condt reconstruct examples/data/shapes.txt -o shapes.svg --stages
 
 Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j` per line,
-i < j, sorted), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
+i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), uint32 when every
+point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
 default on standard output), `svg` (.svg: the points and curves; with --stages the Delaunay
 triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
 LineString per curve). A summary goes to standard error: points, curves, and the unused points
@@ -86,7 +90,7 @@ Options:
       --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
                           --repair off
       --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
-      --format F          edges, txt, svg or geojson
+      --format F          edges, npy, txt, svg or geojson
       --stages            draw every stage (SVG output only)
       --sequential        do not use threads (the result is the same)
   -h, --help              show this help
@@ -102,8 +106,10 @@ Example:
   condt triangulate examples/data/shapes.txt --edges -o shapes.edges
 
 Writes one triangle `i j k` per line, counter-clockwise, in point numbers; with --edges one
-edge `i j` (i < j) per line instead, sorted. Points all on one line have no triangles: their
-chain of edges is written only with --edges, and a note on standard error says so.
+edge `i j` (i < j) per line instead, sorted. An OUTPUT ending in .npy gets the same as a NumPy
+array instead, of shape (t, 3) or with --edges (m, 2), uint32 when every point number fits,
+int64 otherwise. Points all on one line have no triangles: their chain of edges is written only
+with --edges, and a note on standard error says so.
 
 Options:
   -o, --output FILE   write to FILE instead of standard output
@@ -295,6 +301,7 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum Format {
     Edges,
+    Npy,
     Polylines,
     Svg,
     GeoJson,
@@ -304,6 +311,7 @@ impl Format {
     fn named(name: &str) -> Option<Format> {
         match name {
             "edges" => Some(Format::Edges),
+            "npy" => Some(Format::Npy),
             "txt" => Some(Format::Polylines),
             "svg" => Some(Format::Svg),
             "geojson" | "json" => Some(Format::GeoJson),
@@ -314,6 +322,7 @@ impl Format {
     fn name(self) -> &'static str {
         match self {
             Format::Edges => "edges",
+            Format::Npy => "npy",
             Format::Polylines => "txt",
             Format::Svg => "svg",
             Format::GeoJson => "geojson",
@@ -444,13 +453,13 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 )?;
             }
             Some(flag @ "--format") => {
-                let value = rest
-                    .next()
-                    .ok_or_else(|| usage("--format needs a name: edges, txt, svg or geojson"))?;
+                let value = rest.next().ok_or_else(|| {
+                    usage("--format needs a name: edges, npy, txt, svg or geojson")
+                })?;
                 let name = text(value, flag)?;
                 let chosen = Format::named(name).ok_or_else(|| {
                     usage(format!(
-                        "--format {name}: unknown format; the formats are edges, txt, svg and geojson"
+                        "--format {name}: unknown format; the formats are edges, npy, txt, svg and geojson"
                     ))
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
@@ -535,6 +544,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     destination.write(|out| match args.format {
         Format::Edges => write_edges(out, &result),
+        Format::Npy => write_npy_edges(out, &result),
         Format::Polylines => write_polylines(out, &result),
         Format::Svg => write_svg(out, &result, args.stages),
         Format::GeoJson => write_geojson(out, &result),
@@ -573,12 +583,16 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
             ));
         }
     }
-    destination.write(|out| {
-        if args.edges {
-            write_triangulation_edges(out, &tri)
-        } else {
-            write_triangles(out, &tri)
-        }
+    let npy = args
+        .output
+        .as_deref()
+        .and_then(Path::extension)
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+    destination.write(|out| match (args.edges, npy) {
+        (true, false) => write_triangulation_edges(out, &tri),
+        (false, false) => write_triangles(out, &tri),
+        (true, true) => write_npy_triangulation_edges(out, &tri),
+        (false, true) => write_npy_triangles(out, &tri),
     })
 }
 
