@@ -270,17 +270,18 @@ fn read_header(reader: &mut dyn Read, file: &str) -> Result<Header, IoError> {
         ));
     }
     let (major, minor) = (start[6], start[7]);
-    let length_bytes =
-        match (major, minor) {
-            (1, 0) => 2,
-            (2 | 3, 0) => 4,
-            _ => return Err(content(
+    let length_bytes = match (major, minor) {
+        (1, 0) => 2,
+        (2 | 3, 0) => 4,
+        _ => {
+            return Err(content(
                 file,
                 format!(
                     "NPY format version {major}.{minor} is not supported (1.0, 2.0 and 3.0 are)"
                 ),
-            )),
-        };
+            ))
+        }
+    };
     let mut length = [0u8; 4];
     if read_up_to(reader, &mut length[..length_bytes]).map_err(io_error)? < length_bytes {
         return Err(content(file, "the file ends inside its header".to_string()));

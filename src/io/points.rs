@@ -333,14 +333,16 @@ fn parse_lines(
 
 /// The start of an index column, when the first of three columns counts 0, 1, 2, … or
 /// 1, 2, 3, … on every line (at least two): that is a Triangle `.node` file without its header.
-fn node_index_column(parsed: &Parsed) -> Option<f64> {
-    let points = &parsed.points;
-    let start = points.first()?.x;
-    let counts = parsed.all_three_columns
-        && points.len() >= 2
+/// `pieces` are the parsed stretches of one file, in order.
+fn node_index_column(pieces: &[Parsed]) -> Option<f64> {
+    let start = pieces.iter().find_map(|p| p.points.first())?.x;
+    let total: usize = pieces.iter().map(|p| p.points.len()).sum();
+    let counts = pieces.iter().all(|p| p.all_three_columns)
+        && total >= 2
         && (start == 0.0 || start == 1.0)
-        && points
+        && pieces
             .iter()
+            .flat_map(|p| &p.points)
             .enumerate()
             .all(|(i, p)| p.x == start + i as f64);
     counts.then_some(start)
@@ -422,7 +424,7 @@ fn expected_points(text: &str) -> usize {
 pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     #[cfg(feature = "parallel")]
-    if let Some(points) = parallel::parse_points(text, file) {
+    if let Some(points) = parallel::parse_pieces(text, file).and_then(parallel::join) {
         return Ok(points);
     }
     parse_points_sequentially(text, file)
@@ -433,7 +435,7 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 fn parse_points_sequentially(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     let source = Source { file };
     let parsed = parse_lines(text, &source, true, expected_points(text))?;
-    if let Some(start) = node_index_column(&parsed) {
+    if let Some(start) = node_index_column(core::slice::from_ref(&parsed)) {
         let line = parsed.first_data_line.unwrap_or(1);
         return Err(index_column_error(&source, line, start));
     }
@@ -469,11 +471,12 @@ mod parallel {
         out
     }
 
-    /// The points of `text` when it is large and valid; `None` when it is small, or when any
-    /// piece finds something to refuse: then the sequential parse reads it again and reports
-    /// the first problem exactly as it always does (the line count of each piece would
-    /// otherwise be needed, and the refusals that depend on earlier lines would differ).
-    pub(super) fn parse_points(text: &str, file: &str) -> Option<Vec<Point>> {
+    /// The points of `text` when it is large and valid, in pieces to be joined by [`join`];
+    /// `None` when it is small, or when any piece finds something to refuse: then the
+    /// sequential parse reads it again and reports the first problem exactly as it always does
+    /// (the line count of each piece would otherwise be needed, and the refusals that depend
+    /// on earlier lines would differ).
+    pub(super) fn parse_pieces(text: &str, file: &str) -> Option<Vec<Parsed>> {
         let threads = rayon::current_num_threads();
         if threads < 2 || text.len() < 2 * MIN_PIECE {
             return None;
@@ -495,28 +498,22 @@ mod parallel {
         let total = parsed
             .iter()
             .try_fold(0usize, |sum, p| sum.checked_add(p.points.len()))?;
-        if total > MAX_POINTS {
+        if total > MAX_POINTS || node_index_column(&parsed).is_some() {
             return None;
         }
+        Some(parsed)
+    }
+
+    /// The points of the pieces, in order, each piece freed once copied; `None` when the
+    /// memory for them all is refused.
+    pub(super) fn join(parsed: Vec<Parsed>) -> Option<Vec<Point>> {
+        let total = parsed.iter().map(|p| p.points.len()).sum();
         let mut points = Vec::new();
         points.try_reserve_exact(total).ok()?;
-        let mut all_three_columns = true;
-        let mut first_data_line = None;
         for piece in parsed {
-            all_three_columns &= piece.all_three_columns;
-            first_data_line = first_data_line.or(piece.first_data_line);
             points.extend_from_slice(&piece.points);
         }
-        let whole = Parsed {
-            points,
-            all_three_columns,
-            first_data_line,
-            seen_content: true,
-        };
-        match node_index_column(&whole) {
-            Some(_) => None,
-            None => Some(whole.points),
-        }
+        Some(points)
     }
 }
 
@@ -889,8 +886,27 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
     if extension("node") {
         parse_node(&text, name)
     } else {
-        parse_points(&text, name)
+        parse_owned_points(text, name)
     }
+}
+
+/// [`parse_points`] on a text it may free before joining the pieces of a parallel parse, so
+/// that the text and two copies of the points are never held at once.
+fn parse_owned_points(text: String, file: &str) -> Result<Vec<Point>, IoError> {
+    #[cfg(feature = "parallel")]
+    {
+        let body = text.strip_prefix('\u{feff}').unwrap_or(&text);
+        if let Some(pieces) = parallel::parse_pieces(body, file) {
+            drop(text);
+            let total: usize = pieces.iter().map(|p| p.points.len()).sum();
+            return parallel::join(pieces).ok_or_else(|| IoError {
+                file: file.to_string(),
+                line: None,
+                kind: IoErrorKind::Content(format!("out of memory for {total} points")),
+            });
+        }
+    }
+    parse_points(&text, file)
 }
 
 /// Everything `reader` holds, growing the buffer with `try_reserve` so that a file larger than
@@ -910,10 +926,23 @@ fn read_all(mut reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
         .map_err(|_| too_large(hint))?;
     loop {
         if bytes.capacity() - bytes.len() < CHUNK / 16 {
+            // The size hint is usually exact: look for more before reserving room for it, or
+            // the buffer would double just to learn that the file has ended.
+            let mut probe = [0u8; 64];
+            let got = loop {
+                match reader.read(&mut probe) {
+                    Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                    other => break other?,
+                }
+            };
+            if got == 0 {
+                return Ok(bytes);
+            }
             let more = bytes.len().max(CHUNK);
             bytes
                 .try_reserve_exact(more)
                 .map_err(|_| too_large(bytes.len() + more))?;
+            bytes.extend_from_slice(&probe[..got]);
         }
         let room = (bytes.capacity() - bytes.len()) as u64;
         // Reads at most what was reserved, so `read_to_end` never grows the buffer itself.
@@ -955,7 +984,9 @@ mod tests {
     fn reading_stops_at_the_end_without_growing_past_what_it_reserved() {
         let data: Vec<u8> = (0..3 * (1 << 20) + 17).map(|i| (i % 251) as u8).collect();
         assert_eq!(read_all(&data[..], 0).unwrap(), data);
-        assert_eq!(read_all(&data[..], data.len() as u64).unwrap(), data);
+        let exact = read_all(&data[..], data.len() as u64).unwrap();
+        assert_eq!(exact, data);
+        assert!(exact.capacity() < data.len() + 64, "{}", exact.capacity());
         assert_eq!(read_all(&data[..], 5).unwrap(), data);
         assert!(read_all(&b""[..], 0).unwrap().is_empty());
     }
