@@ -521,15 +521,22 @@ mod parallel {
 mod decimal {
     /// Powers of ten that `f64` holds exactly.
     const POWERS: [f64; 23] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
     ];
 
-    /// The value of `[+-]digits[.digits][(e|E)[+-]digits]` when its digits, read as an integer,
-    /// are at most 2^53 and its decimal exponent at most 22 in size: then the integer and the
-    /// power of ten are both exact in `f64`, and one correctly rounded multiplication or
-    /// division gives the correctly rounded value (Clinger's fast path), the same `f64` as
-    /// `str::parse`. `None` for anything else (more digits, other syntax), which the caller
+    /// Most digits read into a `u64` (10^19 - 1 < 2^64).
+    const MAX_DIGITS: usize = 19;
+
+    /// The value of `[+-]digits[.digits][(e|E)[+-]digits]` with at most 19 digits, rounded to
+    /// nearest, ties to even: the same `f64` as `str::parse`. Two exact ways:
+    /// - digits `m` at most 2^53 and a decimal exponent at most 22 in size: `m` and the power
+    ///   of ten are exact in `f64`, and one correctly rounded multiplication or division gives
+    ///   the result (Clinger's fast path);
+    /// - otherwise, a decimal exponent `e` with |e| <= 19: `m * 10^e` or `m / 10^-e` in exact
+    ///   128-bit integer arithmetic, rounded by hand from the quotient and the remainder.
+    ///
+    /// `None` for anything else (more digits, larger exponents, other syntax), which the caller
     /// hands to `str::parse`.
     #[inline]
     pub(super) fn parse(bytes: &[u8]) -> Option<f64> {
@@ -538,8 +545,6 @@ mod decimal {
             Some(b'+') => (false, 1),
             _ => (false, 0),
         };
-        // Past 2^53 the fast path cannot be exact: give up at once rather than read on.
-        const LIMIT: u64 = 1 << 53;
         let mut mantissa: u64 = 0;
         let mut digits = 0usize;
         let mut exponent: i64 = 0;
@@ -548,10 +553,10 @@ mod decimal {
             if d > 9 {
                 break;
             }
-            mantissa = mantissa * 10 + u64::from(d);
-            if mantissa > LIMIT {
+            if digits == MAX_DIGITS {
                 return None;
             }
+            mantissa = mantissa * 10 + u64::from(d);
             digits += 1;
             i += 1;
         }
@@ -563,13 +568,13 @@ mod decimal {
                 if d > 9 {
                     break;
                 }
-                mantissa = mantissa * 10 + u64::from(d);
-                if mantissa > LIMIT {
+                if digits == MAX_DIGITS {
                     return None;
                 }
+                mantissa = mantissa * 10 + u64::from(d);
+                digits += 1;
                 i += 1;
             }
-            digits += i - first;
             exponent -= (i - first) as i64;
         }
         if digits == 0 {
@@ -606,13 +611,54 @@ mod decimal {
         if i != bytes.len() {
             return None;
         }
-        let power = *POWERS.get(exponent.unsigned_abs() as usize)?;
-        let magnitude = if exponent >= 0 {
-            mantissa as f64 * power
+        let magnitude = if mantissa <= 1 << 53 && exponent.unsigned_abs() <= 22 {
+            let power = POWERS[exponent.unsigned_abs() as usize];
+            if exponent >= 0 {
+                mantissa as f64 * power
+            } else {
+                mantissa as f64 / power
+            }
+        } else if mantissa == 0 {
+            0.0
+        } else if exponent.unsigned_abs() <= MAX_DIGITS as u64 {
+            let power = 10u128.pow(exponent.unsigned_abs() as u32);
+            if exponent >= 0 {
+                // At most 64 + 64 bits: exact.
+                rounded(u128::from(mantissa) * power, false, 0)
+            } else {
+                // Shifted so that the quotient has at least 55 bits; the shifted mantissa has
+                // at most 64 + 56 bits.
+                let bits = |v: u128| 128 - v.leading_zeros() as i32;
+                let shift = (56 + bits(power) - bits(u128::from(mantissa))).max(0);
+                let scaled = u128::from(mantissa) << shift;
+                rounded(scaled / power, scaled % power != 0, -shift)
+            }
         } else {
-            mantissa as f64 / power
+            return None;
         };
         Some(if negative { -magnitude } else { magnitude })
+    }
+
+    /// The `f64` nearest to `(q + t) * 2^scale`, ties to even, where `0 <= t < 1` is nonzero
+    /// exactly when `inexact`; `q` has at least 54 bits or is exact (`inexact` false), and the
+    /// result lies in the normal range (the callers' values are between 1e-19 and 1e38).
+    fn rounded(q: u128, inexact: bool, scale: i32) -> f64 {
+        let bits = 128 - q.leading_zeros() as i32;
+        let drop = (bits - 53).max(0);
+        let (mut kept, mut scale) = (q >> drop, scale + drop);
+        if drop > 0 {
+            let rest = q & ((1u128 << drop) - 1);
+            let half = 1u128 << (drop - 1);
+            if rest > half || (rest == half && (inexact || kept & 1 == 1)) {
+                kept += 1;
+                if kept == 1 << 53 {
+                    kept >>= 1;
+                    scale += 1;
+                }
+            }
+        }
+        // `kept` < 2^53 is exact in f64, and so is the power of two: one exact product.
+        kept as f64 * f64::from_bits(((1023 + scale) as u64) << 52)
     }
 
     #[cfg(test)]
@@ -675,6 +721,40 @@ mod decimal {
                 "-.5e+2",
             ] {
                 assert!(parse(case.as_bytes()).is_some(), "{case}");
+            }
+        }
+
+        #[test]
+        fn seventeen_to_nineteen_digits_round_as_str_parse_does() {
+            let mut state = 0x9e37_79b9_7f4a_7c15u64;
+            let mut taken = 0;
+            for k in 0..300_000 {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
+                let value = unit * [1.0, 1e-3, 1e3, 1e8, 7e15, 1e-12][k % 6];
+                let decimals = [17, 18, 19, 16, 12][k % 5];
+                for text in [
+                    format!("{value}"),
+                    format!("{value:.decimals$}"),
+                    format!("{value:e}"),
+                    format!("{}", (state >> 1) % 10u64.pow(1 + (k % 19) as u32)),
+                    format!("{}e{}", (state >> 1) % 10u64.pow(1 + (k % 19) as u32), k % 40),
+                    format!("{}e-{}", (state >> 1) % 10u64.pow(1 + (k % 19) as u32), k % 40),
+                ] {
+                    if let Some(fast) = parse(text.as_bytes()) {
+                        taken += 1;
+                        let standard: f64 = text.parse().unwrap();
+                        assert_eq!(fast.to_bits(), standard.to_bits(), "{text}");
+                    }
+                }
+            }
+            assert!(taken > 1_000_000, "{taken}");
+            // Ties and carries: 2^53 + 1 and + 3 are halfway between doubles.
+            for text in ["9007199254740993", "9007199254740995", "18014398509481989"] {
+                let fast = parse(text.as_bytes()).unwrap();
+                assert_eq!(fast.to_bits(), text.parse::<f64>().unwrap().to_bits(), "{text}");
             }
         }
 

@@ -38,30 +38,30 @@ impl<'a> Lines<'a> {
         }
     }
 
-    /// Appends the decimal digits of `value`, two at a time.
+    /// Appends the decimal digits of `value`, two at a time, into a fixed 20-byte slot cut to
+    /// the digit count afterwards (a fixed-size copy instead of a call per number).
     #[inline]
     fn number(&mut self, value: usize) {
-        let mut digits = [0u8; 20];
-        let mut at = digits.len();
+        let count = value.checked_ilog10().map_or(1, |l| l as usize + 1);
+        let start = self.block.len();
+        self.block.extend_from_slice(&[0u8; 20]);
+        let slot = &mut self.block[start..start + count];
+        let mut at = count;
         let mut rest = value;
         while rest >= 100 {
             let pair = 2 * (rest % 100);
             rest /= 100;
             at -= 2;
-            digits[at] = PAIRS[pair];
-            digits[at + 1] = PAIRS[pair + 1];
+            slot[at] = PAIRS[pair];
+            slot[at + 1] = PAIRS[pair + 1];
         }
         if rest >= 10 {
-            at -= 2;
-            digits[at] = PAIRS[2 * rest];
-            digits[at + 1] = PAIRS[2 * rest + 1];
+            slot[at - 2] = PAIRS[2 * rest];
+            slot[at - 1] = PAIRS[2 * rest + 1];
         } else {
-            at -= 1;
-            digits[at] = b'0' + rest as u8;
+            slot[at - 1] = b'0' + rest as u8;
         }
-        for &digit in &digits[at..] {
-            self.block.push(digit);
-        }
+        self.block.truncate(start + count);
     }
 
     #[inline]
