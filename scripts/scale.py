@@ -4,7 +4,8 @@
 Generates point sets (uniform in the unit square, and along closed curves) of the sizes asked
 for, as NumPy `.npy` (float64, shape (n, 2)) and as text, runs `condt triangulate` and
 `condt reconstruct` on them under `/usr/bin/time -v`, and prints a markdown table of wall time,
-peak resident memory and bytes per point.
+processor time (user + system: the figure to compare on a busy machine), peak resident memory
+and bytes per point (peak RSS over the number of points).
 
     python3 scripts/scale.py                       # 1M, 10M, 30M, 100M, both inputs, .npy
     python3 scripts/scale.py --sizes 1M 10M --formats npy txt
@@ -117,16 +118,22 @@ def generate(kind, n, fmt, path):
 
 
 def measure(command):
-    """Runs `command` under /usr/bin/time -v: (exit code, wall seconds, peak RSS in bytes)."""
+    """Runs `command` under /usr/bin/time -v: (exit code, wall seconds, user + system seconds,
+    peak RSS in bytes). The processor time is the figure to compare on a busy machine."""
     start = time.monotonic()
     done = subprocess.run(["/usr/bin/time", "-v"] + command, stdout=subprocess.DEVNULL,
                           stderr=subprocess.PIPE, text=True)
     wall = time.monotonic() - start
-    peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", done.stderr)
-    rss = int(peak.group(1)) * 1024 if peak else 0
+
+    def field(name):
+        found = re.search(name + r": ([0-9.]+)", done.stderr)
+        return float(found.group(1)) if found else 0.0
+
+    rss = int(field(r"Maximum resident set size \(kbytes\)")) * 1024
+    cpu = field(r"User time \(seconds\)") + field(r"System time \(seconds\)")
     if done.returncode != 0:
         sys.stderr.write(done.stderr)
-    return done.returncode, wall, rss
+    return done.returncode, wall, cpu, rss
 
 
 def main():
@@ -162,18 +169,19 @@ def main():
                     # Output as .npy (binary, what a user at scale wants) to a file that is
                     # removed afterwards; text output is measured with --formats txt input.
                     out = os.path.join(args.dir, f"out-{command}-{kind}-{size_name(n)}.{fmt}")
-                    code, wall, rss = measure([args.condt, command, path, "-o", out])
+                    code, wall, cpu, rss = measure([args.condt, command, path, "-o", out])
                     if os.path.exists(out):
                         os.remove(out)
                     per_point = rss / n
                     row = (f"| {command} | {kind} | .{fmt} | {size_name(n)} | {wall:.2f} s | "
-                           f"{rss / 2**20:,.0f} MiB | {per_point:.0f} |"
+                           f"{cpu:.2f} s | {rss / 2**20:,.0f} MiB | {per_point:.0f} |"
                            + ("" if code == 0 else f" exit {code}"))
                     print(row, file=sys.stderr)
                     rows.append(row)
     if rows:
-        print("| command | input | format (in and out) | points | wall | peak RSS | bytes/point |")
-        print("|---|---|---|---|---|---|---|")
+        print("| command | input | format (in and out) | points | wall | user + system | "
+              "peak RSS | bytes/point |")
+        print("|---|---|---|---|---|---|---|---|")
         for row in rows:
             print(row)
 

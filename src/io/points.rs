@@ -521,8 +521,8 @@ mod parallel {
 mod decimal {
     /// Powers of ten that `f64` holds exactly.
     const POWERS: [f64; 23] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
     ];
 
     /// Most digits read into a `u64` (10^19 - 1 < 2^64).
@@ -740,8 +740,16 @@ mod decimal {
                     format!("{value:.decimals$}"),
                     format!("{value:e}"),
                     format!("{}", (state >> 1) % 10u64.pow(1 + (k % 19) as u32)),
-                    format!("{}e{}", (state >> 1) % 10u64.pow(1 + (k % 19) as u32), k % 40),
-                    format!("{}e-{}", (state >> 1) % 10u64.pow(1 + (k % 19) as u32), k % 40),
+                    format!(
+                        "{}e{}",
+                        (state >> 1) % 10u64.pow(1 + (k % 19) as u32),
+                        k % 40
+                    ),
+                    format!(
+                        "{}e-{}",
+                        (state >> 1) % 10u64.pow(1 + (k % 19) as u32),
+                        k % 40
+                    ),
                 ] {
                     if let Some(fast) = parse(text.as_bytes()) {
                         taken += 1;
@@ -754,7 +762,11 @@ mod decimal {
             // Ties and carries: 2^53 + 1 and + 3 are halfway between doubles.
             for text in ["9007199254740993", "9007199254740995", "18014398509481989"] {
                 let fast = parse(text.as_bytes()).unwrap();
-                assert_eq!(fast.to_bits(), text.parse::<f64>().unwrap().to_bits(), "{text}");
+                assert_eq!(
+                    fast.to_bits(),
+                    text.parse::<f64>().unwrap().to_bits(),
+                    "{text}"
+                );
             }
         }
 
