@@ -245,7 +245,9 @@ struct Parsed {
     all_three_columns: bool,
     /// The first line that holds a point, numbered within the stretch.
     first_data_line: Option<usize>,
-    /// Whether any line holds a column (a header or a point).
+    /// Whether any line holds a column (a header or a point); only the parallel parse, which
+    /// must know whether its first piece held the file's first line with columns, asks.
+    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
     seen_content: bool,
 }
 

@@ -517,8 +517,19 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
 }
 
 /// Reads the points of INPUT (`None`: standard input).
-fn read_input(input: Option<&Path>) -> Result<Vec<Point>, CliError> {
-    Ok(read_points(input.unwrap_or(Path::new("-")))?)
+/// With `parallel` false (`--sequential`) the reading, which otherwise splits a large text over
+/// rayon's threads, runs on this thread alone (a one-thread pool; same points either way).
+fn read_input(input: Option<&Path>, parallel: bool) -> Result<Vec<Point>, CliError> {
+    let path = input.unwrap_or(Path::new("-"));
+    #[cfg(feature = "parallel")]
+    if !parallel {
+        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+            return Ok(pool.install(|| read_points(path))?);
+        }
+    }
+    #[cfg(not(feature = "parallel"))]
+    let _ = parallel;
+    Ok(read_points(path)?)
 }
 
 fn shown_input(input: Option<&Path>) -> String {
@@ -539,7 +550,7 @@ fn note_duplicates(points: usize, distinct: usize) {
 fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
-    let points = read_input(args.input.as_deref())?;
+    let points = read_input(args.input.as_deref(), args.params.parallel)?;
     let result = reconstruct(&points, &args.params)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     destination.write(|out| match args.format {
@@ -565,7 +576,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
 fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
-    let points = read_input(args.input.as_deref())?;
+    let points = read_input(args.input.as_deref(), true)?;
     let tri = triangulate(&points)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     note_duplicates(points.len(), tri.num_vertices());
