@@ -249,7 +249,10 @@ fn a_wrong_value_is_answered_with_the_choices() {
         "{said}"
     );
     let said = refused(&["reconstruct", "-", "--format", "png"]);
-    assert!(said.contains("edges, txt, svg, geojson and html"), "{said}");
+    assert!(
+        said.contains("edges, npy, txt, svg, geojson and html"),
+        "{said}"
+    );
 }
 
 #[test]
@@ -428,4 +431,76 @@ fn readme_example_data_gives_four_curves() {
     let open = text.lines().filter(|l| l.starts_with("open")).count();
     // An ellipse and a square (closed), an arc and a spiral (open).
     assert_eq!((closed, open), (2, 2), "{text}");
+}
+
+/// Issue 12, item 3: `.npy` in and out, chosen by the file names; the same results as text.
+#[test]
+fn npy_points_in_and_npy_indices_out_match_the_text_results() {
+    let dir = scratch_dir();
+    let text: String = (0..300)
+        .map(|i| {
+            let t = f64::from(i) * 0.021;
+            format!(
+                "{} {}\n",
+                t.cos() * (1.0 + f64::from(i % 7) * 0.01),
+                t.sin()
+            )
+        })
+        .collect();
+    let txt = dir.path().join("p.txt");
+    std::fs::write(&txt, &text).unwrap();
+    let points = condt::io::read_points(&txt).unwrap();
+    let npy = dir.path().join("p.npy");
+    let mut bytes = Vec::new();
+    condt::io::write_npy_points(&mut bytes, &points).unwrap();
+    std::fs::write(&npy, &bytes).unwrap();
+    let (txt, npy) = (txt.to_str().unwrap(), npy.to_str().unwrap());
+    /// The rows of a uint32 `.npy` file of `columns` columns.
+    fn npy_rows(path: &Path, columns: usize) -> Vec<Vec<usize>> {
+        let bytes = std::fs::read(path).unwrap();
+        let header = usize::from(u16::from_le_bytes([bytes[8], bytes[9]])) + 10;
+        assert!(bytes[10..header].starts_with(b"{'descr': '<u4', 'fortran_order': False"));
+        let values: Vec<usize> = bytes[header..]
+            .chunks_exact(4)
+            .map(|b| u32::from_le_bytes(b.try_into().unwrap()) as usize)
+            .collect();
+        values.chunks(columns).map(<[usize]>::to_vec).collect()
+    }
+    for (command, extra, columns) in [
+        ("triangulate", None, 3),
+        ("triangulate", Some("--edges"), 2),
+        ("reconstruct", None, 2),
+    ] {
+        let text_out = dir.path().join(format!("{command}.edges"));
+        let npy_out = dir.path().join(format!("{command}.npy"));
+        let mut args = vec![command, txt, "-o", text_out.to_str().unwrap()];
+        args.extend(extra);
+        let out = condt(&args, "");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let mut args = vec![command, npy, "-o", npy_out.to_str().unwrap()];
+        args.extend(extra);
+        let out = condt(&args, "");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let expected = lines(&std::fs::read(&text_out).unwrap());
+        assert!(!expected.is_empty());
+        assert_eq!(npy_rows(&npy_out, columns), expected, "{command} {extra:?}");
+    }
+    // A bad .npy file: exit 1 and a message naming it.
+    let bad = dir.path().join("bad.npy");
+    std::fs::write(&bad, b"\x93NUMPY\x01\x00").unwrap();
+    let out = condt(&["triangulate", bad.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        message.contains("bad.npy: the file ends inside its header"),
+        "{message}"
+    );
 }

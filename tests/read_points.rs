@@ -183,3 +183,150 @@ fn a_10_mb_token_gives_a_short_message() {
     let file = TempFile::new("comment.txt", &content);
     assert_eq!(file.read().unwrap(), points(&[(1.0, 2.0)]));
 }
+
+/// A deterministic xorshift generator for the large texts below.
+struct Xorshift(u64);
+
+impl Xorshift {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    /// A coordinate written in one of several common ways, with the value it stands for.
+    fn coordinate(&mut self) -> (String, f64) {
+        let r = self.next();
+        let unit = (r >> 11) as f64 / (1u64 << 53) as f64;
+        match r % 6 {
+            // Shortest round-trip form: up to 17 significant digits.
+            0 | 1 => (format!("{unit}"), unit),
+            2 => {
+                let v = -(unit * 1000.0);
+                (format!("{v}"), v)
+            }
+            3 => {
+                let text = format!("{:.3}", unit * 50.0);
+                let v = text.parse().unwrap();
+                (text, v)
+            }
+            4 => {
+                let text = format!("{:e}", unit * 1e-7);
+                let v = text.parse().unwrap();
+                (text, v)
+            }
+            _ => {
+                let v = (r % 1000) as f64;
+                (format!("{}", r % 1000), v)
+            }
+        }
+    }
+}
+
+/// A text of about `lines` lines (several megabytes: large enough to be parsed in pieces with
+/// the `parallel` feature) in every layout the plain format allows, with its points.
+fn large_text(lines: usize, seed: u64) -> (String, Vec<Point>) {
+    let mut rng = Xorshift(seed);
+    let mut text = String::from("# generated\nx y\n");
+    let mut expected = Vec::new();
+    for k in 0..lines {
+        let (x, xv) = rng.coordinate();
+        let (y, yv) = rng.coordinate();
+        let line = match rng.next() % 12 {
+            0 => format!("{x}\t{y}\r\n"),
+            1 => format!("{x},{y}\n"),
+            2 => format!("  {x} {y} 7 # a comment, with a comma\n"),
+            3 => format!("{x} {y}\r"),
+            4 => format!("{x}\u{a0}{y}\n"),
+            5 => format!("\n# {k}\n{x} {y}\n"),
+            6 => format!("{x} , {y} , 1\n"),
+            _ => format!("{x} {y}\n"),
+        };
+        text.push_str(&line);
+        expected.push(Point::new(xv, yv));
+    }
+    (text, expected)
+}
+
+/// Issue 12, item 3: the fast reader (and, with `parallel`, its pieces on several threads)
+/// reads every layout as the rules say, to the last bit of every coordinate.
+#[test]
+fn a_large_text_in_every_layout_is_read_exactly() {
+    let (text, expected) = large_text(150_000, 0x9e37_79b9_7f4a_7c15);
+    assert!(
+        text.len() > 4 << 20,
+        "{} bytes: too small to be split",
+        text.len()
+    );
+    let read = parse_points(&text, "large.txt").unwrap();
+    assert_eq!(read.len(), expected.len());
+    for (k, (got, want)) in read.iter().zip(&expected).enumerate() {
+        assert_eq!(
+            (got.x.to_bits(), got.y.to_bits()),
+            (want.x.to_bits(), want.y.to_bits()),
+            "point {k}"
+        );
+    }
+    // A first megabytes of comments only: the header rule still applies to the first real line.
+    let mut commented = "# nothing yet\n".repeat(200_000);
+    commented.push_str(&text);
+    assert_eq!(parse_points(&commented, "late.txt").unwrap(), read);
+}
+
+/// Issue 12, item 3: a bad line anywhere in a large text is reported with its own line and the
+/// message it gets alone, however the text was split.
+#[test]
+fn a_bad_line_late_in_a_large_text_is_reported_on_its_line() {
+    let (text, _) = large_text(150_000, 7);
+    let lines: Vec<&str> = text.split_inclusive('\n').collect();
+    let base_line = |k: usize| {
+        lines[..k]
+            .iter()
+            .map(|l| l.matches('\n').count() + l.matches('\r').count() - l.matches("\r\n").count())
+            .sum::<usize>()
+            + 1
+    };
+    for (bad, at) in [
+        ("3 x\n", 140_000),
+        ("1 2 3 4\n", 100_001),
+        ("5\n", 149_999),
+        ("1,5 2\n", 75_000),
+        ("x y\n", 120_000),
+        ("inf 2\n", 3),
+        ("1e999 0\n", 149_000),
+    ] {
+        let mut broken: String = lines[..at].concat();
+        let line = base_line(at);
+        broken.push_str(bad);
+        broken.push_str(&lines[at..].concat());
+        let err = parse_points(&broken, "big.txt").unwrap_err();
+        // The same line alone, after a first point (so no header and no first-line hint).
+        let alone = parse_points(&format!("0 0\n{bad}"), "big.txt").unwrap_err();
+        let message = alone
+            .to_string()
+            .replacen("big.txt:2:", &format!("big.txt:{line}:"), 1);
+        assert_eq!(err.line, Some(line), "{bad:?}: {err}");
+        assert_eq!(err.to_string(), message, "{bad:?}");
+    }
+}
+
+/// Issue 12, item 3: the index-column rule looks at every line of a large file, split or not.
+#[test]
+fn an_index_column_in_a_large_text_is_refused_and_a_break_in_it_is_not() {
+    let mut text = String::from("# nodes\n\n");
+    for i in 0..200_000 {
+        text.push_str(&format!("{} {}.25 {}.5\n", i + 1, i % 977, i % 13));
+    }
+    let err = parse_points(&text, "nodes.txt").unwrap_err();
+    assert_eq!(err.line, Some(3), "{err}");
+    assert!(err.to_string().contains("counts 1, 2, 3"), "{err}");
+    // One index out of step near the end: an ordinary third column, read as x y.
+    let text = text.replacen("199990 ", "5 ", 1);
+    let points = parse_points(&text, "nodes.txt").unwrap();
+    assert_eq!(points.len(), 200_000);
+    assert_eq!(
+        points[199_989],
+        Point::new(5.0, (199_989 % 977) as f64 + 0.25)
+    );
+}

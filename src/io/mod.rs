@@ -4,13 +4,16 @@
 //! all or nothing). It may not compute geometry; it only moves numbers in and out.
 //!
 //! Point files hold one point per line, `x y` ([`parse_points`] has the rules), or are Triangle
-//! `.node` files ([`parse_node`]), CSV with a header ([`parse_csv`]) or GeoJSON points
-//! ([`parse_geojson`]); [`read_points`] tells them apart by the file name.
+//! `.node` files ([`parse_node`]), NumPy `.npy` arrays of shape `(n, 2)` ([`parse_npy`]), CSV
+//! with a header ([`parse_csv`]) or GeoJSON points ([`parse_geojson`]); [`read_points`] tells
+//! them apart by the file name. Results are written as text, one item per line, as `.npy` arrays
+//! of indices ([`write_npy_edges`], [`write_npy_triangles`]), or drawn (SVG, the HTML viewer).
 
 mod csv;
 mod geojson;
 mod geojson_points;
 mod html;
+mod npy;
 mod points;
 mod svg;
 mod text;
@@ -19,9 +22,13 @@ pub use csv::parse_csv;
 pub use geojson::write_geojson;
 pub use geojson_points::parse_geojson;
 pub use html::write_html;
+pub use npy::{
+    parse_npy, write_npy_edges, write_npy_points, write_npy_triangles,
+    write_npy_triangulation_edges,
+};
 pub use points::{parse_node, parse_points, read_points};
 pub use svg::write_svg;
-pub use text::{write_edges, write_polylines};
+pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};
 
 use std::fmt;
 use std::io;

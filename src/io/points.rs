@@ -67,9 +67,12 @@ impl Source<'_> {
     }
 
     fn number(&self, line: usize, field: &str) -> Result<f64, IoError> {
-        let value: f64 = field
-            .parse()
-            .map_err(|_| self.error(line, format!("cannot read {} as a number", quoted(field))))?;
+        let value = match decimal::parse(field.as_bytes()) {
+            Some(value) => value,
+            None => field.parse().map_err(|_| {
+                self.error(line, format!("cannot read {} as a number", quoted(field)))
+            })?,
+        };
         if value.is_finite() {
             Ok(value)
         } else {
@@ -79,21 +82,27 @@ impl Source<'_> {
 
     /// Appends `p`, refusing more than [`MAX_POINTS`] points or memory the system will not give,
     /// so that a huge file is an error and not an abort.
+    #[inline]
     fn push(&self, points: &mut Vec<Point>, line: usize, p: Point) -> Result<(), IoError> {
+        if points.len() == points.capacity() {
+            self.grow(points, line)?;
+        }
+        points.push(p);
+        Ok(())
+    }
+
+    #[cold]
+    fn grow(&self, points: &mut Vec<Point>, line: usize) -> Result<(), IoError> {
         if points.len() == MAX_POINTS {
             return Err(self.error(
                 line,
                 format!("more than {MAX_POINTS} points, the most condt accepts"),
             ));
         }
-        if points.len() == points.capacity() {
-            let more = points.len().max(1024).min(MAX_POINTS - points.len());
-            points.try_reserve_exact(more).map_err(|_| {
-                self.error(line, format!("out of memory after {} points", points.len()))
-            })?;
-        }
-        points.push(p);
-        Ok(())
+        let more = points.len().max(1024).min(MAX_POINTS - points.len());
+        points
+            .try_reserve_exact(more)
+            .map_err(|_| self.error(line, format!("out of memory after {} points", points.len())))
     }
 }
 
@@ -130,57 +139,160 @@ fn columns(content: &str) -> Result<Vec<&str>, String> {
     Ok(fields)
 }
 
-/// Parses the plain point format; `file` names the source in error messages.
-///
-/// One point `x y` per line, the two numbers separated by spaces, tabs or one comma; `#` starts
-/// a comment; blank lines are skipped; LF, CRLF and CR-only line ends all work; a UTF-8
-/// byte-order mark is skipped. Refused, with the line:
-/// - a single number, or four or more columns (a Triangle `.node` header `n 2 a m` among them);
-/// - a line where both commas and spaces separate numbers (`1,5 2`: a decimal comma?);
-/// - a word where a number should be, NaN and infinities;
-/// - more than [`MAX_POINTS`](crate::MAX_POINTS) points.
-///
-/// A third column is ignored (files with a constant third column `1` or a depth are common),
-/// except when the first column of every line counts 0, 1, 2, … or 1, 2, 3, …: that is the index
-/// column of a Triangle `.node` file without its header, and reading it as x would be wrong, so
-/// the file is refused (name it `*.node` for [`read_points`] to read it as one).
-///
-/// The first line that is neither blank nor a comment may be a header: when every column is a
-/// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
-/// it is skipped.
-///
-/// ```
-/// use condt::{io::parse_points, Point};
-/// let pts = parse_points("\u{feff}x y\n# comment\n1 2\r\n3,4,9\r\t5\t6 \r", "example")?;
-/// assert_eq!(pts, vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0), Point::new(5.0, 6.0)]);
-///
-/// let err = parse_points("0 0\n1,5 2\n", "euro.txt").unwrap_err();
-/// assert_eq!(err.line, Some(2));
-/// assert!(err.to_string().starts_with("euro.txt:2: both commas and spaces"));
-///
-/// let err = parse_points("1 0.0 0.0\n2 1.0 0.0\n3 0.0 1.0\n", "nodes.txt").unwrap_err();
-/// assert_eq!(err.line, Some(1));
-/// assert!(err.to_string().contains(".node"));
-/// # Ok::<(), condt::io::IoError>(())
-/// ```
-pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
-    let source = Source { file };
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut points: Vec<Point> = Vec::new();
-    let (mut seen_content, mut first_data_line) = (false, None);
-    // Whether every line so far has three columns, the first counting up by one from 0 or 1.
-    let mut counts_like_node_indices = true;
-    for (number, raw) in numbered_lines(text) {
-        let content = raw.split('#').next().unwrap_or("");
-        let fields = columns(content).map_err(|message| source.error(number, message))?;
-        let Some(&first) = fields.first() else {
-            continue;
-        };
-        if !core::mem::replace(&mut seen_content, true) && fields.iter().all(|f| is_name(f)) {
-            continue; // a header
+/// The first three columns of a line and how many there are, kept without allocating.
+#[derive(Clone, Copy)]
+struct Row<'a> {
+    fields: [&'a str; 3],
+    count: usize,
+}
+
+impl<'a> Row<'a> {
+    fn from_columns(all: &[&'a str]) -> Row<'a> {
+        let mut fields = [""; 3];
+        for (slot, field) in fields.iter_mut().zip(all) {
+            *slot = field;
         }
-        first_data_line.get_or_insert(number);
-        match fields.len() {
+        Row {
+            fields,
+            count: all.len(),
+        }
+    }
+}
+
+/// What a byte is to [`scan_line`].
+const TOKEN: u8 = 0;
+/// ASCII whitespace inside a line (space, tab, vertical tab, form feed: the ASCII characters
+/// `char::is_whitespace` accepts, line ends aside).
+const BLANK: u8 = 1;
+/// `\n`, `\r` or `#`: the end of the columns.
+const STOP: u8 = 2;
+/// A comma or a non-ASCII byte: the line needs [`columns`].
+const OTHER: u8 = 3;
+
+/// The class of every byte, looked up once per byte instead of comparing it with each kind.
+const CLASS: [u8; 256] = {
+    let mut class = [TOKEN; 256];
+    let mut b = 0x80;
+    while b < 256 {
+        class[b] = OTHER;
+        b += 1;
+    }
+    class[b' ' as usize] = BLANK;
+    class[b'\t' as usize] = BLANK;
+    class[0x0b] = BLANK;
+    class[0x0c] = BLANK;
+    class[b'\n' as usize] = STOP;
+    class[b'\r' as usize] = STOP;
+    class[b'#' as usize] = STOP;
+    class[b',' as usize] = OTHER;
+    class
+};
+
+/// One line of `text` starting at byte `start`: where it ends, where the next one starts, and
+/// its columns when the line is plain ASCII without a comma, split here in one pass without
+/// allocating; `None` for any other line, which [`columns`] splits instead (the same rules: a
+/// comma or non-ASCII whitespace needs them).
+#[inline]
+fn scan_line(text: &str, start: usize) -> (usize, usize, Option<Row<'_>>) {
+    let bytes = text.as_bytes();
+    let class = |i: usize| bytes.get(i).map_or(STOP, |&b| CLASS[usize::from(b)]);
+    let mut i = start;
+    let mut row = Row {
+        fields: [""; 3],
+        count: 0,
+    };
+    let mut simple = true;
+    loop {
+        while class(i) == BLANK {
+            i += 1;
+        }
+        if class(i) == STOP {
+            break;
+        }
+        let token = i;
+        loop {
+            match class(i) {
+                TOKEN => i += 1,
+                OTHER => {
+                    simple = false;
+                    i += 1;
+                }
+                _ => break,
+            }
+        }
+        if row.count < 3 {
+            row.fields[row.count] = &text[token..i];
+        }
+        row.count += 1;
+    }
+    // A comment runs to the line end, whatever it holds.
+    let mut end = i;
+    while end < bytes.len() && !matches!(bytes[end], b'\n' | b'\r') {
+        end += 1;
+    }
+    let next = match bytes.get(end) {
+        Some(b'\r') if bytes.get(end + 1) == Some(&b'\n') => end + 2,
+        Some(_) => end + 1,
+        None => end,
+    };
+    (end, next, simple.then_some(row))
+}
+
+/// What one stretch of lines of a plain point file holds.
+struct Parsed {
+    points: Vec<Point>,
+    /// Whether every data line has exactly three columns (see [`node_index_column`]).
+    all_three_columns: bool,
+    /// The first line that holds a point, numbered within the stretch.
+    first_data_line: Option<usize>,
+    /// Whether any line holds a column (a header or a point); only the parallel parse, which
+    /// must know whether its first piece held the file's first line with columns, asks.
+    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
+    seen_content: bool,
+}
+
+/// Parses the lines of `text` (a whole file, or whole lines of one; numbered from 1) into
+/// points with the rules of [`parse_points`] but the last (the index-column check, which needs
+/// every point). `may_hold_header`: the first line with columns may be a header (it is the
+/// file's first). `expected_points` sizes the first allocation.
+fn parse_lines(
+    text: &str,
+    source: &Source<'_>,
+    may_hold_header: bool,
+    expected_points: usize,
+) -> Result<Parsed, IoError> {
+    let mut points: Vec<Point> = Vec::new();
+    if expected_points > 0 {
+        // Only a hint: a refusal here leaves `push` to grow and report.
+        let _ = points.try_reserve_exact(expected_points.min(MAX_POINTS));
+    }
+    let mut seen_content = !may_hold_header;
+    let mut first_data_line = None;
+    let mut all_three_columns = true;
+    let (mut start, mut number) = (0, 0);
+    while start < text.len() {
+        number += 1;
+        let (end, next, simple) = scan_line(text, start);
+        let line = &text[start..end];
+        start = next;
+        let row = match simple {
+            // The first line with columns may be a header, which needs all of them.
+            Some(row) if seen_content || row.count == 0 => row,
+            _ => {
+                let content = line.split('#').next().unwrap_or("");
+                let fields = columns(content).map_err(|message| source.error(number, message))?;
+                if fields.is_empty() {
+                    continue;
+                }
+                if !core::mem::replace(&mut seen_content, true) && fields.iter().all(|f| is_name(f))
+                {
+                    continue; // a header
+                }
+                Row::from_columns(&fields)
+            }
+        };
+        match row.count {
+            0 => continue,
             1 => {
                 return Err(source.error(
                     number,
@@ -201,33 +313,499 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
                 ));
             }
         }
+        first_data_line.get_or_insert(number);
+        let [first, second, third] = row.fields;
         let (x, y) = (
             source.number(number, first)?,
-            source.number(number, fields[1])?,
+            source.number(number, second)?,
         );
-        if fields.len() == 3 {
-            source.number(number, fields[2])?;
+        if row.count == 3 {
+            source.number(number, third)?;
         }
-        counts_like_node_indices = counts_like_node_indices && fields.len() == 3 && {
-            let start = if points.is_empty() { x } else { points[0].x };
-            (start == 0.0 || start == 1.0) && x == start + points.len() as f64
-        };
+        all_three_columns &= row.count == 3;
         source.push(&mut points, number, Point::new(x, y))?;
     }
-    if counts_like_node_indices && points.len() >= 2 {
-        let start = points[0].x;
-        return Err(source.error(
-            first_data_line.unwrap_or(1),
-            format!(
-                "the first of three columns counts {start}, {}, {}, … like the index column of \
-                 a Triangle .node file: name the file *.node to read it as one, or remove the \
-                 column",
-                start + 1.0,
-                start + 2.0
-            ),
-        ));
+    Ok(Parsed {
+        points,
+        all_three_columns,
+        first_data_line,
+        seen_content,
+    })
+}
+
+/// The start of an index column, when the first of three columns counts 0, 1, 2, … or
+/// 1, 2, 3, … on every line (at least two): that is a Triangle `.node` file without its header.
+/// `pieces` are the parsed stretches of one file, in order.
+fn node_index_column(pieces: &[Parsed]) -> Option<f64> {
+    let start = pieces.iter().find_map(|p| p.points.first())?.x;
+    let total: usize = pieces.iter().map(|p| p.points.len()).sum();
+    let counts = pieces.iter().all(|p| p.all_three_columns)
+        && total >= 2
+        && (start == 0.0 || start == 1.0)
+        && pieces
+            .iter()
+            .flat_map(|p| &p.points)
+            .enumerate()
+            .all(|(i, p)| p.x == start + i as f64);
+    counts.then_some(start)
+}
+
+/// The error for a file whose first column is an index column counting from `start`.
+fn index_column_error(source: &Source<'_>, line: usize, start: f64) -> IoError {
+    source.error(
+        line,
+        format!(
+            "the first of three columns counts {start}, {}, {}, … like the index column of \
+             a Triangle .node file: name the file *.node to read it as one, or remove the \
+             column",
+            start + 1.0,
+            start + 2.0
+        ),
+    )
+}
+
+/// A guess at the number of points in `text` from the length of its first lines, so that the
+/// points are allocated once instead of grown by copying (a guess 5 % high, as line lengths
+/// vary; at worst the vector grows or has some room left).
+fn expected_points(text: &str) -> usize {
+    const SAMPLE: usize = 4096;
+    if text.len() <= SAMPLE {
+        return 0;
     }
-    Ok(points)
+    let mut cut = SAMPLE;
+    while !text.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    let lines = text.as_bytes()[..cut]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count();
+    if lines < 16 {
+        return 0;
+    }
+    let per_line = cut / lines;
+    (text.len() / per_line).saturating_add(text.len() / per_line / 20)
+}
+
+/// Parses the plain point format; `file` names the source in error messages.
+///
+/// One point `x y` per line, the two numbers separated by spaces, tabs or one comma; `#` starts
+/// a comment; blank lines are skipped; LF, CRLF and CR-only line ends all work; a UTF-8
+/// byte-order mark is skipped. Refused, with the line:
+/// - a single number, or four or more columns (a Triangle `.node` header `n 2 a m` among them);
+/// - a line where both commas and spaces separate numbers (`1,5 2`: a decimal comma?);
+/// - a word where a number should be, NaN and infinities;
+/// - more than [`MAX_POINTS`](crate::MAX_POINTS) points.
+///
+/// A third column is ignored (files with a constant third column `1` or a depth are common),
+/// except when the first column of every line counts 0, 1, 2, … or 1, 2, 3, …: that is the index
+/// column of a Triangle `.node` file without its header, and reading it as x would be wrong, so
+/// the file is refused (name it `*.node` for [`read_points`] to read it as one).
+///
+/// The first line that is neither blank nor a comment may be a header: when every column is a
+/// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
+/// it is skipped.
+///
+/// With the `parallel` feature a large text is parsed in pieces on rayon's threads; the points,
+/// and the error for a bad file, are the same as without it.
+///
+/// ```
+/// use condt::{io::parse_points, Point};
+/// let pts = parse_points("\u{feff}x y\n# comment\n1 2\r\n3,4,9\r\t5\t6 \r", "example")?;
+/// assert_eq!(pts, vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0), Point::new(5.0, 6.0)]);
+///
+/// let err = parse_points("0 0\n1,5 2\n", "euro.txt").unwrap_err();
+/// assert_eq!(err.line, Some(2));
+/// assert!(err.to_string().starts_with("euro.txt:2: both commas and spaces"));
+///
+/// let err = parse_points("1 0.0 0.0\n2 1.0 0.0\n3 0.0 1.0\n", "nodes.txt").unwrap_err();
+/// assert_eq!(err.line, Some(1));
+/// assert!(err.to_string().contains(".node"));
+/// # Ok::<(), condt::io::IoError>(())
+/// ```
+pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    #[cfg(feature = "parallel")]
+    if let Some(points) = parallel::parse_pieces(text, file).and_then(parallel::join) {
+        return Ok(points);
+    }
+    parse_points_sequentially(text, file)
+}
+
+/// [`parse_points`] on one thread (the byte-order mark already removed): the reference the
+/// parallel parse falls back on for every error.
+fn parse_points_sequentially(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    let source = Source { file };
+    let parsed = parse_lines(text, &source, true, expected_points(text))?;
+    if let Some(start) = node_index_column(core::slice::from_ref(&parsed)) {
+        let line = parsed.first_data_line.unwrap_or(1);
+        return Err(index_column_error(&source, line, start));
+    }
+    Ok(parsed.points)
+}
+
+/// The plain format parsed in pieces on rayon's threads.
+#[cfg(feature = "parallel")]
+mod parallel {
+    use super::{expected_points, node_index_column, parse_lines, Parsed, Source};
+    use crate::geometry::Point;
+    use crate::triangulate::MAX_POINTS;
+    use rayon::prelude::*;
+
+    /// Below this many bytes a text is parsed on one thread: splitting would cost more.
+    const MIN_PIECE: usize = 1 << 20;
+
+    /// The text cut into about `pieces` stretches of whole lines, each cut just after a `\n`
+    /// (so a CRLF pair is never split; a CR-only file stays in one piece).
+    fn pieces(text: &str, pieces: usize) -> Vec<&str> {
+        let size = (text.len() / pieces).max(MIN_PIECE);
+        let mut out = Vec::with_capacity(pieces + 1);
+        let mut rest = text;
+        while rest.len() > size {
+            let Some(newline) = rest.as_bytes()[size..].iter().position(|&b| b == b'\n') else {
+                break;
+            };
+            let (piece, tail) = rest.split_at(size + newline + 1);
+            out.push(piece);
+            rest = tail;
+        }
+        out.push(rest);
+        out
+    }
+
+    /// The points of `text` when it is large and valid, in pieces to be joined by [`join`];
+    /// `None` when it is small, or when any piece finds something to refuse: then the
+    /// sequential parse reads it again and reports the first problem exactly as it always does
+    /// (the line count of each piece would otherwise be needed, and the refusals that depend
+    /// on earlier lines would differ).
+    pub(super) fn parse_pieces(text: &str, file: &str) -> Option<Vec<Parsed>> {
+        let threads = rayon::current_num_threads();
+        if threads < 2 || text.len() < 2 * MIN_PIECE {
+            return None;
+        }
+        let pieces = pieces(text, 4 * threads);
+        if pieces.len() < 2 {
+            return None;
+        }
+        let source = Source { file };
+        let parsed: Vec<Parsed> = pieces
+            .par_iter()
+            .enumerate()
+            .map(|(k, piece)| parse_lines(piece, &source, k == 0, expected_points(piece)).ok())
+            .collect::<Option<_>>()?;
+        // A header can only be the file's first line with columns: the first piece must have one.
+        if !parsed[0].seen_content {
+            return None;
+        }
+        let total = parsed
+            .iter()
+            .try_fold(0usize, |sum, p| sum.checked_add(p.points.len()))?;
+        if total > MAX_POINTS || node_index_column(&parsed).is_some() {
+            return None;
+        }
+        Some(parsed)
+    }
+
+    /// The points of the pieces, in order, each piece freed once copied; `None` when the
+    /// memory for them all is refused.
+    pub(super) fn join(parsed: Vec<Parsed>) -> Option<Vec<Point>> {
+        let total = parsed.iter().map(|p| p.points.len()).sum();
+        let mut points = Vec::new();
+        points.try_reserve_exact(total).ok()?;
+        for piece in parsed {
+            points.extend_from_slice(&piece.points);
+        }
+        Some(points)
+    }
+}
+
+/// Decimal numbers read without the standard library's general algorithm when that is exact.
+mod decimal {
+    /// Powers of ten that `f64` holds exactly.
+    const POWERS: [f64; 23] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+    ];
+
+    /// Most digits read into a `u64` (10^19 - 1 < 2^64).
+    const MAX_DIGITS: usize = 19;
+
+    /// The value of `[+-]digits[.digits][(e|E)[+-]digits]` with at most 19 digits, rounded to
+    /// nearest, ties to even: the same `f64` as `str::parse`. Two exact ways:
+    /// - digits `m` at most 2^53 and a decimal exponent at most 22 in size: `m` and the power
+    ///   of ten are exact in `f64`, and one correctly rounded multiplication or division gives
+    ///   the result (Clinger's fast path);
+    /// - otherwise, a decimal exponent `e` with |e| <= 19: `m * 10^e` or `m / 10^-e` in exact
+    ///   128-bit integer arithmetic, rounded by hand from the quotient and the remainder.
+    ///
+    /// `None` for anything else (more digits, larger exponents, other syntax), which the caller
+    /// hands to `str::parse`.
+    #[inline]
+    pub(super) fn parse(bytes: &[u8]) -> Option<f64> {
+        let (negative, mut i) = match bytes.first() {
+            Some(b'-') => (true, 1),
+            Some(b'+') => (false, 1),
+            _ => (false, 0),
+        };
+        let mut mantissa: u64 = 0;
+        let mut digits = 0usize;
+        let mut exponent: i64 = 0;
+        while let Some(&b) = bytes.get(i) {
+            let d = b.wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            if digits == MAX_DIGITS {
+                return None;
+            }
+            mantissa = mantissa * 10 + u64::from(d);
+            digits += 1;
+            i += 1;
+        }
+        if bytes.get(i) == Some(&b'.') {
+            i += 1;
+            let first = i;
+            while let Some(&b) = bytes.get(i) {
+                let d = b.wrapping_sub(b'0');
+                if d > 9 {
+                    break;
+                }
+                if digits == MAX_DIGITS {
+                    return None;
+                }
+                mantissa = mantissa * 10 + u64::from(d);
+                digits += 1;
+                i += 1;
+            }
+            exponent -= (i - first) as i64;
+        }
+        if digits == 0 {
+            return None;
+        }
+        if let Some(b'e' | b'E') = bytes.get(i) {
+            i += 1;
+            let negative_exponent = match bytes.get(i) {
+                Some(b'-') => {
+                    i += 1;
+                    true
+                }
+                Some(b'+') => {
+                    i += 1;
+                    false
+                }
+                _ => false,
+            };
+            let first = i;
+            let mut written: i64 = 0;
+            while let Some(&b) = bytes.get(i) {
+                let d = b.wrapping_sub(b'0');
+                if d > 9 || i - first >= 6 {
+                    break;
+                }
+                written = written * 10 + i64::from(d);
+                i += 1;
+            }
+            if i == first {
+                return None;
+            }
+            exponent += if negative_exponent { -written } else { written };
+        }
+        if i != bytes.len() {
+            return None;
+        }
+        let magnitude = if mantissa <= 1 << 53 && exponent.unsigned_abs() <= 22 {
+            let power = POWERS[exponent.unsigned_abs() as usize];
+            if exponent >= 0 {
+                mantissa as f64 * power
+            } else {
+                mantissa as f64 / power
+            }
+        } else if mantissa == 0 {
+            0.0
+        } else if exponent.unsigned_abs() <= MAX_DIGITS as u64 {
+            let power = 10u128.pow(exponent.unsigned_abs() as u32);
+            if exponent >= 0 {
+                // At most 64 + 64 bits: exact.
+                rounded(u128::from(mantissa) * power, false, 0)
+            } else {
+                // Shifted so that the quotient has at least 55 bits; the shifted mantissa has
+                // at most 64 + 56 bits.
+                let bits = |v: u128| 128 - v.leading_zeros() as i32;
+                let shift = (56 + bits(power) - bits(u128::from(mantissa))).max(0);
+                let scaled = u128::from(mantissa) << shift;
+                rounded(scaled / power, scaled % power != 0, -shift)
+            }
+        } else {
+            return None;
+        };
+        Some(if negative { -magnitude } else { magnitude })
+    }
+
+    /// The `f64` nearest to `(q + t) * 2^scale`, ties to even, where `0 <= t < 1` is nonzero
+    /// exactly when `inexact`; `q` has at least 54 bits or is exact (`inexact` false), and the
+    /// result lies in the normal range (the callers' values are between 1e-19 and 1e38).
+    fn rounded(q: u128, inexact: bool, scale: i32) -> f64 {
+        let bits = 128 - q.leading_zeros() as i32;
+        let drop = (bits - 53).max(0);
+        let (mut kept, mut scale) = (q >> drop, scale + drop);
+        if drop > 0 {
+            let rest = q & ((1u128 << drop) - 1);
+            let half = 1u128 << (drop - 1);
+            if rest > half || (rest == half && (inexact || kept & 1 == 1)) {
+                kept += 1;
+                if kept == 1 << 53 {
+                    kept >>= 1;
+                    scale += 1;
+                }
+            }
+        }
+        // `kept` < 2^53 is exact in f64, and so is the power of two: one exact product.
+        kept as f64 * f64::from_bits(((1023 + scale) as u64) << 52)
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::parse;
+
+        #[test]
+        fn the_fast_path_gives_what_str_parse_gives_or_declines() {
+            let cases = [
+                "0",
+                "-0",
+                "+0",
+                "1",
+                "-1.5",
+                "0.1",
+                "3.14159",
+                "1e22",
+                "1e-22",
+                "1e23",
+                "9007199254740992",
+                "9007199254740993",
+                "0.9371698010707118",
+                "123456.789e-3",
+                ".5",
+                "5.",
+                "-.5e+2",
+                "1e",
+                "e5",
+                "1.2.3",
+                "--1",
+                "+-1",
+                "1e+",
+                "inf",
+                "NaN",
+                "0x10",
+                "",
+                "-",
+                ".",
+                "00000000000000000000000000001",
+                "1e0000001",
+                "4.35",
+                "0.30000000000000004",
+            ];
+            for case in cases {
+                let standard = case.parse::<f64>().ok();
+                if let Some(fast) = parse(case.as_bytes()) {
+                    let standard = standard.unwrap_or_else(|| panic!("{case} is not a number"));
+                    assert_eq!(fast.to_bits(), standard.to_bits(), "{case}");
+                }
+            }
+            // The fast path does take the common forms.
+            for case in [
+                "0",
+                "-1.5",
+                "0.1",
+                "1e22",
+                "123456.789e-3",
+                ".5",
+                "5.",
+                "-.5e+2",
+            ] {
+                assert!(parse(case.as_bytes()).is_some(), "{case}");
+            }
+        }
+
+        #[test]
+        fn seventeen_to_nineteen_digits_round_as_str_parse_does() {
+            let mut state = 0x9e37_79b9_7f4a_7c15u64;
+            let mut taken = 0;
+            for k in 0..300_000 {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
+                let value = unit * [1.0, 1e-3, 1e3, 1e8, 7e15, 1e-12][k % 6];
+                let decimals = [17, 18, 19, 16, 12][k % 5];
+                for text in [
+                    format!("{value}"),
+                    format!("{value:.decimals$}"),
+                    format!("{value:e}"),
+                    format!("{}", (state >> 1) % 10u64.pow(1 + (k % 19) as u32)),
+                    format!(
+                        "{}e{}",
+                        (state >> 1) % 10u64.pow(1 + (k % 19) as u32),
+                        k % 40
+                    ),
+                    format!(
+                        "{}e-{}",
+                        (state >> 1) % 10u64.pow(1 + (k % 19) as u32),
+                        k % 40
+                    ),
+                ] {
+                    if let Some(fast) = parse(text.as_bytes()) {
+                        taken += 1;
+                        let standard: f64 = text.parse().unwrap();
+                        assert_eq!(fast.to_bits(), standard.to_bits(), "{text}");
+                    }
+                }
+            }
+            assert!(taken > 1_000_000, "{taken}");
+            // Ties and carries: 2^53 + 1 and + 3 are halfway between doubles.
+            for text in ["9007199254740993", "9007199254740995", "18014398509481989"] {
+                let fast = parse(text.as_bytes()).unwrap();
+                assert_eq!(
+                    fast.to_bits(),
+                    text.parse::<f64>().unwrap().to_bits(),
+                    "{text}"
+                );
+            }
+        }
+
+        #[test]
+        fn the_fast_path_agrees_with_str_parse_on_many_decimals() {
+            let mut state = 0x2545_f491_4f6c_dd1du64;
+            for _ in 0..200_000 {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                let digits = (state % 17) as u32;
+                let mantissa = (state >> 8) % 10u64.pow(digits.max(1));
+                let exponent = (state >> 3) % 60;
+                let text = format!("{mantissa}e-{exponent}");
+                if let Some(fast) = parse(text.as_bytes()) {
+                    assert_eq!(
+                        fast.to_bits(),
+                        text.parse::<f64>().unwrap().to_bits(),
+                        "{text}"
+                    );
+                }
+                let point = format!(
+                    "{}.{:0>width$}",
+                    mantissa / 1000,
+                    mantissa % 1000,
+                    width = 3
+                );
+                if let Some(fast) = parse(point.as_bytes()) {
+                    assert_eq!(
+                        fast.to_bits(),
+                        point.parse::<f64>().unwrap().to_bits(),
+                        "{point}"
+                    );
+                }
+            }
+        }
+    }
 }
 
 /// Parses a Triangle `.node` file; `file` names the source in error messages.
@@ -354,12 +932,13 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 }
 
 /// Reads a point file, its format chosen by the name's ending (any case): `.node` a Triangle
-/// node file ([`parse_node`]), `.csv` CSV with a header naming the columns
+/// node file ([`parse_node`]), `.npy` a NumPy array ([`parse_npy`](super::parse_npy), read in
+/// blocks straight into the points), `.csv` CSV with a header naming the columns
 /// ([`parse_csv`](super::parse_csv)), `.geojson` or `.json` the Point and MultiPoint geometries
 /// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), anything else the plain
 /// format ([`parse_points`]); `-` reads the plain format from standard input.
 ///
-/// A file that is not UTF-8 text is refused with the line of the first bad byte. A file too
+/// A text file that is not UTF-8 is refused with the line of the first bad byte. A file too
 /// large for memory is an error rather than an abort, and so is one with more than
 /// [`MAX_POINTS`](crate::MAX_POINTS) points.
 ///
@@ -378,6 +957,15 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
         line: None,
         kind: IoErrorKind::Io(err),
     };
+    let extension = |ending: &str| {
+        !stdin
+            && path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case(ending))
+    };
+    if extension("npy") {
+        return super::npy::read_npy_file(path, name);
+    }
     let bytes = if stdin {
         read_all(io::stdin().lock(), 0)
     } else {
@@ -391,12 +979,6 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
         line: Some(line_at(e.as_bytes(), e.utf8_error().valid_up_to())),
         kind: IoErrorKind::Content("not UTF-8 text".to_string()),
     })?;
-    let extension = |wanted: &str| {
-        !stdin
-            && path
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case(wanted))
-    };
     if extension("node") {
         parse_node(&text, name)
     } else if extension("csv") {
@@ -404,8 +986,27 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
     } else if extension("geojson") || extension("json") {
         super::parse_geojson(&text, name)
     } else {
-        parse_points(&text, name)
+        parse_owned_points(text, name)
     }
+}
+
+/// [`parse_points`] on a text it may free before joining the pieces of a parallel parse, so
+/// that the text and two copies of the points are never held at once.
+fn parse_owned_points(text: String, file: &str) -> Result<Vec<Point>, IoError> {
+    #[cfg(feature = "parallel")]
+    {
+        let body = text.strip_prefix('\u{feff}').unwrap_or(&text);
+        if let Some(pieces) = parallel::parse_pieces(body, file) {
+            drop(text);
+            let total: usize = pieces.iter().map(|p| p.points.len()).sum();
+            return parallel::join(pieces).ok_or_else(|| IoError {
+                file: file.to_string(),
+                line: None,
+                kind: IoErrorKind::Content(format!("out of memory for {total} points")),
+            });
+        }
+    }
+    parse_points(&text, file)
 }
 
 /// Everything `reader` holds, growing the buffer with `try_reserve` so that a file larger than
@@ -425,10 +1026,23 @@ fn read_all(mut reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
         .map_err(|_| too_large(hint))?;
     loop {
         if bytes.capacity() - bytes.len() < CHUNK / 16 {
+            // The size hint is usually exact: look for more before reserving room for it, or
+            // the buffer would double just to learn that the file has ended.
+            let mut probe = [0u8; 64];
+            let got = loop {
+                match reader.read(&mut probe) {
+                    Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                    other => break other?,
+                }
+            };
+            if got == 0 {
+                return Ok(bytes);
+            }
             let more = bytes.len().max(CHUNK);
             bytes
                 .try_reserve_exact(more)
                 .map_err(|_| too_large(bytes.len() + more))?;
+            bytes.extend_from_slice(&probe[..got]);
         }
         let room = (bytes.capacity() - bytes.len()) as u64;
         // Reads at most what was reserved, so `read_to_end` never grows the buffer itself.
@@ -470,7 +1084,9 @@ mod tests {
     fn reading_stops_at_the_end_without_growing_past_what_it_reserved() {
         let data: Vec<u8> = (0..3 * (1 << 20) + 17).map(|i| (i % 251) as u8).collect();
         assert_eq!(read_all(&data[..], 0).unwrap(), data);
-        assert_eq!(read_all(&data[..], data.len() as u64).unwrap(), data);
+        let exact = read_all(&data[..], data.len() as u64).unwrap();
+        assert_eq!(exact, data);
+        assert!(exact.capacity() < data.len() + 64, "{}", exact.capacity());
         assert_eq!(read_all(&data[..], 5).unwrap(), data);
         assert!(read_all(&b""[..], 0).unwrap().is_empty());
     }

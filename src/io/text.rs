@@ -1,7 +1,103 @@
-//! Plain-text results: edge lists and polylines.
+//! Plain-text results: triangles, edge lists and polylines, one item per line.
+//!
+//! Owns the decimal formatting of indices: a line is built in a buffer by hand (no `fmt`
+//! machinery per number) and the buffer goes to the writer in large blocks, so the output is
+//! streamed in constant memory whatever its size.
 
 use crate::reconstruct::Reconstruction;
+use crate::triangulate::Triangulation;
 use std::io::{self, Write};
+use std::vec::Vec;
+
+/// Bytes gathered before they go to the writer.
+const BLOCK: usize = 1 << 16;
+
+/// "00", "01", … "99": the decimal digits of every number below 100.
+const PAIRS: [u8; 200] = {
+    let mut pairs = [0u8; 200];
+    let mut n = 0;
+    while n < 100 {
+        pairs[2 * n] = b'0' + (n / 10) as u8;
+        pairs[2 * n + 1] = b'0' + (n % 10) as u8;
+        n += 1;
+    }
+    pairs
+};
+
+/// Lines of indices built in a block and handed to `out` when the block is full.
+struct Lines<'a> {
+    out: &'a mut dyn Write,
+    block: Vec<u8>,
+}
+
+impl<'a> Lines<'a> {
+    fn new(out: &'a mut dyn Write) -> Lines<'a> {
+        Lines {
+            out,
+            block: Vec::with_capacity(BLOCK + 64),
+        }
+    }
+
+    /// Appends the decimal digits of `value`, two at a time, into a fixed 20-byte slot cut to
+    /// the digit count afterwards (a fixed-size copy instead of a call per number).
+    #[inline]
+    fn number(&mut self, value: usize) {
+        let count = value.checked_ilog10().map_or(1, |l| l as usize + 1);
+        let start = self.block.len();
+        self.block.extend_from_slice(&[0u8; 20]);
+        let slot = &mut self.block[start..start + count];
+        let mut at = count;
+        let mut rest = value;
+        while rest >= 100 {
+            let pair = 2 * (rest % 100);
+            rest /= 100;
+            at -= 2;
+            slot[at] = PAIRS[pair];
+            slot[at + 1] = PAIRS[pair + 1];
+        }
+        if rest >= 10 {
+            slot[at - 2] = PAIRS[2 * rest];
+            slot[at - 1] = PAIRS[2 * rest + 1];
+        } else {
+            slot[at - 1] = b'0' + rest as u8;
+        }
+        self.block.truncate(start + count);
+    }
+
+    #[inline]
+    fn text(&mut self, text: &[u8]) {
+        self.block.extend_from_slice(text);
+    }
+
+    /// Ends a line, handing the block on when it is full.
+    #[inline]
+    fn end(&mut self) -> io::Result<()> {
+        self.block.push(b'\n');
+        if self.block.len() >= BLOCK {
+            self.out.write_all(&self.block)?;
+            self.block.clear();
+        }
+        Ok(())
+    }
+
+    /// One line of indices separated by spaces.
+    #[inline]
+    fn line(&mut self, indices: &[usize]) -> io::Result<()> {
+        for (k, &i) in indices.iter().enumerate() {
+            if k > 0 {
+                self.block.push(b' ');
+            }
+            self.number(i);
+        }
+        self.end()
+    }
+
+    fn finish(mut self) -> io::Result<()> {
+        self.out.write_all(&self.block)?;
+        self.block.clear();
+        Ok(())
+    }
+}
 
 /// One edge `i j` per line, `i < j`, sorted, in input indices.
 ///
@@ -15,10 +111,11 @@ use std::io::{self, Write};
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
-    for [a, b] in result.edges() {
-        writeln!(out, "{a} {b}")?;
+    let mut lines = Lines::new(out);
+    for edge in result.edges() {
+        lines.line(&edge)?;
     }
-    Ok(())
+    lines.finish()
 }
 
 /// One curve per line: `closed` or `open`, then its input indices in order.
@@ -33,12 +130,149 @@ pub fn write_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_polylines(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
+    let mut lines = Lines::new(out);
     for curve in result.curves() {
-        write!(out, "{}", if curve.is_closed() { "closed" } else { "open" })?;
+        lines.text(if curve.is_closed() {
+            b"closed"
+        } else {
+            b"open"
+        });
         for i in curve.points() {
-            write!(out, " {i}")?;
+            lines.text(b" ");
+            lines.number(i);
         }
-        writeln!(out)?;
+        lines.end()?;
+    }
+    lines.finish()
+}
+
+/// One triangle `i j k` per line, counter-clockwise, in input indices, in the order of
+/// [`Triangulation::triangles`].
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].map(Point::from))?;
+/// let mut out = Vec::new();
+/// condt::io::write_triangles(&mut out, &tri)?;
+/// let text = String::from_utf8(out)?;
+/// assert_eq!(text.lines().count(), 1);
+/// let mut corners: Vec<&str> = text.split_whitespace().collect();
+/// corners.sort();
+/// assert_eq!(corners, ["0", "1", "2"]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_triangles(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
+    let mut lines = Lines::new(out);
+    for triangle in tri.triangles() {
+        lines.line(&triangle)?;
+    }
+    lines.finish()
+}
+
+/// The edges of a triangulation `[a, b]` (`a < b`, input indices) in sorted order, found point
+/// by point from each point's neighbours instead of collecting and sorting all of them, so that
+/// they take no memory beyond one point's neighbours. `visit` is called for each.
+pub(crate) fn sorted_triangulation_edges<E>(
+    tri: &Triangulation,
+    mut visit: impl FnMut([usize; 2]) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut larger: Vec<usize> = Vec::new();
+    for a in tri.distinct_points() {
+        larger.clear();
+        larger.extend(tri.neighbors(a).filter(|&b| b > a));
+        larger.sort_unstable();
+        for &b in &larger {
+            visit([a, b])?;
+        }
     }
     Ok(())
+}
+
+/// One edge `i j` per line of a triangulation, `i < j`, sorted, in input indices: the set of
+/// [`Triangulation::edges`]. Points all on one line have no triangle but do have these edges.
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 0.0)].map(Point::from))?;
+/// let mut out = Vec::new();
+/// condt::io::write_triangulation_edges(&mut out, &tri)?;
+/// assert_eq!(String::from_utf8(out)?, "0 1\n0 2\n1 2\n");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_triangulation_edges(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
+    let mut lines = Lines::new(out);
+    sorted_triangulation_edges(tri, |edge| lines.line(&edge))?;
+    lines.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Point;
+    use crate::test_rng::Xorshift;
+    use crate::triangulate::triangulate;
+
+    #[test]
+    fn numbers_are_written_in_decimal() {
+        let mut out = Vec::new();
+        let mut lines = Lines::new(&mut out);
+        for value in [0, 7, 10, 99, 100, 12345, usize::MAX] {
+            lines.number(value);
+            lines.end().unwrap();
+        }
+        lines.finish().unwrap();
+        let expected: String = [0, 7, 10, 99, 100, 12345, usize::MAX]
+            .iter()
+            .map(|v| format!("{v}\n"))
+            .collect();
+        assert_eq!(String::from_utf8(out).unwrap(), expected);
+    }
+
+    #[test]
+    fn output_larger_than_a_block_arrives_whole() {
+        let mut out = Vec::new();
+        let mut lines = Lines::new(&mut out);
+        let mut expected = String::new();
+        for i in 0..50_000 {
+            lines.line(&[i, i + 1, 3 * i]).unwrap();
+            expected.push_str(&format!("{i} {} {}\n", i + 1, 3 * i));
+        }
+        lines.finish().unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), expected);
+    }
+
+    /// The point-by-point walk gives the triangulation's edges, sorted, for random, duplicated,
+    /// collinear and tiny inputs.
+    #[test]
+    fn sorted_edges_are_the_triangulations_edges() {
+        let mut rng = Xorshift::new(12);
+        let mut inputs: Vec<Vec<Point>> = vec![
+            (0..20)
+                .map(|i| Point::new(f64::from(i), 2.0 * f64::from(i)))
+                .collect(),
+            vec![Point::new(1.0, 1.0); 4],
+            vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)],
+            (0..30)
+                .map(|i| Point::new(f64::from(i % 5), f64::from(i / 5)))
+                .collect(),
+        ];
+        for n in [3, 10, 500] {
+            let mut points: Vec<Point> =
+                (0..n).map(|_| Point::new(rng.unit(), rng.unit())).collect();
+            points.extend_from_slice(&points.clone()[..n / 3]);
+            inputs.push(points);
+        }
+        for points in inputs {
+            let tri = triangulate(&points).unwrap();
+            let mut expected: Vec<[usize; 2]> = tri.edges().collect();
+            expected.sort_unstable();
+            let mut walked = Vec::new();
+            sorted_triangulation_edges(&tri, |e| -> Result<(), ()> {
+                walked.push(e);
+                Ok(())
+            })
+            .unwrap();
+            assert_eq!(walked, expected, "{} points", points.len());
+        }
+    }
 }

@@ -6,7 +6,9 @@
 
 use crate::output::{refuse_same_file, Destination};
 use condt::io::{
-    read_points, write_edges, write_geojson, write_html, write_polylines, write_svg, IoError,
+    read_points, write_edges, write_geojson, write_html, write_npy_edges, write_npy_triangles,
+    write_npy_triangulation_edges, write_polylines, write_svg, write_triangles,
+    write_triangulation_edges, IoError,
 };
 use condt::{reconstruct, triangulate, Error, Method, Params, Point, Repair, Uniformity};
 use std::ffi::{OsStr, OsString};
@@ -24,10 +26,12 @@ Usage:
   condt help COMMAND                              a command's options, with an example
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
-ignored; `#` comments and blank lines are skipped); `-` reads standard input. By the name's
-ending: `.node` a Triangle node file, `.csv` CSV whose header names the x and y columns (or
-lon, lat), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON document. Points are
-numbered from 0 in the order of their lines; every output speaks of points by that number.
+ignored; `#` comments and blank lines are skipped); `-` reads text from standard input. By the
+name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
+float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
+and y columns (or lon, lat), `.geojson` or `.json` the Point and MultiPoint geometries of a
+GeoJSON document. Points are numbered from 0 in the order of their lines (rows, features);
+every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
 
@@ -56,7 +60,8 @@ Example:
   condt reconstruct examples/data/shapes.txt -o shapes.svg --stages
 
 Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j` per line,
-i < j, sorted), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
+i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), uint32 when every
+point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
 default on standard output), `svg` (.svg: the points and curves; with --stages the Delaunay
 triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
 LineString per curve), `html` (.html: a self-contained page to explore every stage: layers, pan
@@ -99,7 +104,7 @@ Options:
       --method M          condt (default), or a classical baseline on the same Delaunay
                           triangulation: nn-crust (Dey and Kumar) or crust (Amenta, Bern
                           and Eppstein); a baseline takes none of the ConDT options
-      --format F          edges, txt, svg, geojson or html
+      --format F          edges, npy, txt, svg, geojson or html
       --stages            draw every stage (SVG output only)
       --sequential        do not use threads (the result is the same)
   -h, --help              show this help
@@ -115,8 +120,10 @@ Example:
   condt triangulate examples/data/shapes.txt --edges -o shapes.edges
 
 Writes one triangle `i j k` per line, counter-clockwise, in point numbers; with --edges one
-edge `i j` (i < j) per line instead, sorted. Points all on one line have no triangles: their
-chain of edges is written only with --edges, and a note on standard error says so.
+edge `i j` (i < j) per line instead, sorted. An OUTPUT ending in .npy gets the same as a NumPy
+array instead, of shape (t, 3) or with --edges (m, 2), uint32 when every point number fits,
+int64 otherwise. Points all on one line have no triangles: their chain of edges is written only
+with --edges, and a note on standard error says so.
 
 Options:
   -o, --output FILE   write to FILE instead of standard output
@@ -311,6 +318,7 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum Format {
     Edges,
+    Npy,
     Polylines,
     Svg,
     GeoJson,
@@ -321,6 +329,7 @@ impl Format {
     fn named(name: &str) -> Option<Format> {
         match name {
             "edges" => Some(Format::Edges),
+            "npy" => Some(Format::Npy),
             "txt" => Some(Format::Polylines),
             "svg" => Some(Format::Svg),
             "geojson" | "json" => Some(Format::GeoJson),
@@ -332,6 +341,7 @@ impl Format {
     fn name(self) -> &'static str {
         match self {
             Format::Edges => "edges",
+            Format::Npy => "npy",
             Format::Polylines => "txt",
             Format::Svg => "svg",
             Format::GeoJson => "geojson",
@@ -456,9 +466,11 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                     "condt" => Method::ConDT,
                     "nn-crust" => Method::NnCrust,
                     "crust" => Method::Crust,
-                    _ => return Err(usage(format!(
+                    _ => {
+                        return Err(usage(format!(
                         "{flag} {name}: unknown method; the methods are condt, nn-crust and crust"
-                    ))),
+                    )))
+                    }
                 };
                 method.set(chosen, format!("{flag} {name}"))?;
             }
@@ -493,12 +505,12 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             }
             Some(flag @ "--format") => {
                 let value = rest.next().ok_or_else(|| {
-                    usage("--format needs a name: edges, txt, svg, geojson or html")
+                    usage("--format needs a name: edges, npy, txt, svg, geojson or html")
                 })?;
                 let name = text(value, flag)?;
                 let chosen = Format::named(name).ok_or_else(|| {
                     usage(format!(
-                        "--format {name}: unknown format; the formats are edges, txt, svg, geojson and html"
+                        "--format {name}: unknown format; the formats are edges, npy, txt, svg, geojson and html"
                     ))
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
@@ -569,8 +581,19 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
 }
 
 /// Reads the points of INPUT (`None`: standard input).
-fn read_input(input: Option<&Path>) -> Result<Vec<Point>, CliError> {
-    Ok(read_points(input.unwrap_or(Path::new("-")))?)
+/// With `parallel` false (`--sequential`) the reading, which otherwise splits a large text over
+/// rayon's threads, runs on this thread alone (a one-thread pool; same points either way).
+fn read_input(input: Option<&Path>, parallel: bool) -> Result<Vec<Point>, CliError> {
+    let path = input.unwrap_or(Path::new("-"));
+    #[cfg(feature = "parallel")]
+    if !parallel {
+        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+            return Ok(pool.install(|| read_points(path))?);
+        }
+    }
+    #[cfg(not(feature = "parallel"))]
+    let _ = parallel;
+    Ok(read_points(path)?)
 }
 
 fn shown_input(input: Option<&Path>) -> String {
@@ -591,11 +614,12 @@ fn note_duplicates(points: usize, distinct: usize) {
 fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
-    let points = read_input(args.input.as_deref())?;
+    let points = read_input(args.input.as_deref(), args.params.parallel)?;
     let result = reconstruct(&points, &args.params)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     destination.write(|out| match args.format {
         Format::Edges => write_edges(out, &result),
+        Format::Npy => write_npy_edges(out, &result),
         Format::Polylines => write_polylines(out, &result),
         Format::Svg => write_svg(out, &result, args.stages),
         Format::GeoJson => write_geojson(out, &result),
@@ -617,7 +641,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
 fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
-    let points = read_input(args.input.as_deref())?;
+    let points = read_input(args.input.as_deref(), true)?;
     let tri = triangulate(&points)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     note_duplicates(points.len(), tri.num_vertices());
@@ -635,19 +659,16 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
             ));
         }
     }
-    destination.write(|out| {
-        if args.edges {
-            let mut edges: Vec<[usize; 2]> = tri.edges().collect();
-            edges.sort_unstable();
-            for [a, b] in edges {
-                writeln!(out, "{a} {b}")?;
-            }
-        } else {
-            for [a, b, c] in tri.triangles() {
-                writeln!(out, "{a} {b} {c}")?;
-            }
-        }
-        Ok(())
+    let npy = args
+        .output
+        .as_deref()
+        .and_then(Path::extension)
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+    destination.write(|out| match (args.edges, npy) {
+        (true, false) => write_triangulation_edges(out, &tri),
+        (false, false) => write_triangles(out, &tri),
+        (true, true) => write_npy_triangulation_edges(out, &tri),
+        (false, true) => write_npy_triangles(out, &tri),
     })
 }
 
