@@ -488,6 +488,8 @@ impl fmt::Display for EdgeStory {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use alloc::format;
+    use alloc::string::{String, ToString};
     use crate::reconstruct::{reconstruct, Params};
     use crate::sample::{sample, Clumps, Sampling, Shape};
     use crate::Point;
