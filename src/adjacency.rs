@@ -63,63 +63,107 @@ impl Adjacency {
 }
 
 /// The neighbours of every vertex of a graph that is a union of curves: almost every vertex has
-/// at most two. Those two are stored inline, so following a curve costs one read per step (a
-/// compressed adjacency costs two dependent ones); a full [`Adjacency`] is built only when some
-/// vertex has three or more.
+/// at most two. Each vertex has one 16-byte record, its degree, its first two neighbours and a
+/// name (the input position it stands for), so following a curve, or reading a vertex's
+/// neighbours and name, costs one read per vertex where separate arrays would cost one per
+/// array. The few vertices with three or more neighbours list all of them in a small side table,
+/// in id order; nothing is built for the others.
 pub(crate) struct CurveGraph {
-    degree: Vec<u32>,
-    first_two: Vec<[VertexId; 2]>,
-    branching: Option<Adjacency>,
+    /// `[degree, first neighbour, second neighbour, name]` per vertex id; a missing neighbour is
+    /// [`VertexId::INFINITE`].
+    records: Vec<[u32; 4]>,
+    /// The vertices with three or more neighbours, ascending, and where their neighbours start
+    /// in `branch_neighbors`.
+    branch_vertices: Vec<(VertexId, u32)>,
+    /// The neighbours of the branch vertices, each vertex's in the order its edges are listed.
+    branch_neighbors: Vec<VertexId>,
 }
 
 impl CurveGraph {
-    /// `edges` as for [`Adjacency::new`]. Neighbours come in the order the edges are listed.
+    /// `edges` as for [`Adjacency::new`]; every vertex is named by its own id. Neighbours come in
+    /// the order the edges are listed.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
-        let mut degree = vec![0u32; vertex_count];
-        let mut first_two = vec![[VertexId::INFINITE; 2]; vertex_count];
+        Self::named(vertex_count, edges, |v| v)
+    }
+
+    /// [`CurveGraph::new`], each vertex `v` named `name(v)` (read back by [`CurveGraph::name`]).
+    pub(crate) fn named(vertex_count: usize, edges: &[Edge], name: impl Fn(u32) -> u32) -> Self {
+        let none = VertexId::INFINITE.index() as u32;
+        let mut records: Vec<[u32; 4]> = (0..vertex_count as u32)
+            .map(|v| [0, none, none, name(v)])
+            .collect();
         let mut branches = false;
         for &[a, b] in edges {
             for (v, w) in [(a, b), (b, a)] {
-                let d = degree[v.index()];
-                degree[v.index()] = d + 1;
+                let record = &mut records[v.index()];
+                let d = record[0];
+                record[0] = d + 1;
                 // Whether the slot fills is a coin toss per edge: selected, not branched on.
-                let slots = &mut first_two[v.index()];
-                let k = d.min(1) as usize;
-                slots[k] = if d < 2 { w } else { slots[k] };
+                let k = 1 + d.min(1) as usize;
+                record[k] = if d < 2 { w.index() as u32 } else { record[k] };
                 branches |= d >= 2;
             }
         }
-        let branching = branches.then(|| Adjacency::new(vertex_count, edges));
+        let (branch_vertices, branch_neighbors) = if branches {
+            branch_table(&records, edges)
+        } else {
+            (Vec::new(), Vec::new())
+        };
         CurveGraph {
-            degree,
-            first_two,
-            branching,
+            records,
+            branch_vertices,
+            branch_neighbors,
         }
     }
 
+    /// Whether some vertex has three or more neighbours.
+    pub(crate) fn has_branch(&self) -> bool {
+        !self.branch_vertices.is_empty()
+    }
+
     pub(crate) fn vertex_count(&self) -> usize {
-        self.degree.len()
+        self.records.len()
     }
 
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
-        self.degree[v.index()] as usize
+        self.records[v.index()][0] as usize
+    }
+
+    /// The name given to `v` when the graph was built ([`CurveGraph::named`]).
+    #[inline]
+    pub(crate) fn name(&self, v: VertexId) -> u32 {
+        self.records[v.index()][3]
     }
 
     /// The `k`-th neighbour of `v`, `k < degree(v)`.
     #[inline]
     pub(crate) fn neighbor(&self, v: VertexId, k: usize) -> VertexId {
-        match &self.branching {
-            Some(all) if self.degree(v) > 2 => all.incident(v)[k].0,
-            _ => self.first_two[v.index()][k],
+        let record = &self.records[v.index()];
+        if record[0] > 2 {
+            self.branch(v)[k]
+        } else {
+            VertexId::new(record[1 + k])
         }
+    }
+
+    /// All neighbours of a vertex with three or more (a binary search: such vertices are few).
+    #[cold]
+    fn branch(&self, v: VertexId) -> &[VertexId] {
+        let at = self
+            .branch_vertices
+            .binary_search_by_key(&v, |&(w, _)| w)
+            .unwrap_or(0);
+        let start = self.branch_vertices[at].1 as usize;
+        &self.branch_neighbors[start..start + self.degree(v)]
     }
 
     /// The first two neighbours of `v` ([`VertexId::INFINITE`] where it has fewer); all of
     /// them when `degree(v) <= 2`.
     #[inline]
     pub(crate) fn first_two(&self, v: VertexId) -> [VertexId; 2] {
-        self.first_two[v.index()]
+        let record = &self.records[v.index()];
+        [VertexId::new(record[1]), VertexId::new(record[2])]
     }
 
     /// For `v` of degree two and `from` one of its neighbours, the other one: the next step along
@@ -127,10 +171,37 @@ impl CurveGraph {
     /// (`x ^ y ^ x = y`) rather than by a branch the predictor would miss half the time.
     #[inline]
     pub(crate) fn onward(&self, v: VertexId, from: VertexId) -> VertexId {
-        let [x, y] = self.first_two[v.index()];
-        debug_assert!(from == x || from == y);
-        VertexId::new(x.index() as u32 ^ y.index() as u32 ^ from.index() as u32)
+        let record = &self.records[v.index()];
+        debug_assert!(from.index() as u32 == record[1] || from.index() as u32 == record[2]);
+        VertexId::new(record[1] ^ record[2] ^ from.index() as u32)
     }
+}
+
+/// The side table of [`CurveGraph`]: the vertices of degree three or more, ascending, with the
+/// start of their neighbours, listed in the order of `edges`.
+fn branch_table(records: &[[u32; 4]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, Vec<VertexId>) {
+    let mut vertices = Vec::new();
+    let mut total = 0u32;
+    for (v, record) in records.iter().enumerate() {
+        if record[0] > 2 {
+            vertices.push((VertexId::new(v as u32), total));
+            total += record[0];
+        }
+    }
+    let mut fill: Vec<u32> = vertices.iter().map(|&(_, start)| start).collect();
+    let mut neighbors = vec![VertexId::INFINITE; total as usize];
+    let slot = |v: VertexId| vertices.binary_search_by_key(&v, |&(w, _)| w).ok();
+    for &[a, b] in edges {
+        for (v, w) in [(a, b), (b, a)] {
+            if records[v.index()][0] > 2 {
+                if let Some(k) = slot(v) {
+                    neighbors[fill[k] as usize] = w;
+                    fill[k] += 1;
+                }
+            }
+        }
+    }
+    (vertices, neighbors)
 }
 
 /// Sorts pairs `[a, b]` with `index(a) < bound` by `(a, b)` and drops repeats, in O(n): a

@@ -429,11 +429,11 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     }
     let last = latest_edges(&records);
     let n = tri.num_points();
-    let graph = CurveGraph::new(n, last);
+    let graph = CurveGraph::named(n, last, |v| tri.input_of(VertexId::new(v)) as u32);
     let in_parallel = params.parallel && n >= PARALLEL_FROM;
     let (curves, tally) = both(
         in_parallel,
-        || curves_in_input_positions(&tri, &graph),
+        || curves_in_input_positions(&graph),
         || tally(&tri, &graph, last.len()),
     );
     let curves_time = clock.lap();
@@ -496,44 +496,53 @@ struct Tally {
     edges: Vec<[u32; 2]>,
 }
 
-/// One pass over the input positions gives the degrees, the unused points and the final edges
-/// already sorted: an edge is listed by its smaller input position. For the common vertex of
-/// degree <= 2 both candidates are written and the count advances only past those that belong
-/// (whether they do is a coin toss, so it is not branched on).
+/// The final graph in input positions: the degrees, the unused points and the final edges
+/// already sorted (an edge is listed by its smaller input position).
+///
+/// A first pass in vertex order gathers what each vertex contributes (its degree and its
+/// neighbours' input positions, read from nearby records: ids are spatial) into one record per
+/// vertex; a second pass over the input positions then reads one record per point. Reading the
+/// graph directly by input position costs four scattered reads per point on unorganized input
+/// (degree, neighbours, and each neighbour's input position); this costs one. For the common
+/// vertex of degree <= 2 both candidates are written and the count advances only past those
+/// that belong (whether they do is a coin toss, so it is not branched on).
 fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
     let n = tri.num_points();
     // Without duplicates every input position stands for its own vertex: no need to look.
     let has_duplicates = tri.num_vertices() < n;
+    let name = |w: VertexId| if w.is_infinite() { 0 } else { graph.name(w) };
+    // Per vertex id: its degree and, where that is at most two, its neighbours' input positions,
+    // smaller first (0 for none).
+    let contributions: Vec<[u32; 3]> = (0..n as u32)
+        .map(|v| {
+            let v = VertexId::new(v);
+            let degree = graph.degree(v) as u32;
+            let [x, y] = graph.first_two(v).map(name);
+            [degree, x.min(y), x.max(y)]
+        })
+        .collect();
     let mut degrees = Vec::with_capacity(n);
     let mut unused = Vec::new();
     // Room for the two candidates a vertex writes past the last edge it lists.
     let mut edges: Vec<[u32; 2]> = alloc::vec![[0, 0]; edge_count + 2];
     let mut count = 0;
-    let input_of = |w: VertexId| {
-        if w.is_infinite() {
-            0
-        } else {
-            tri.input_of(w) as u32
-        }
-    };
     for (i, &v) in tri.input_to_vertex().iter().enumerate() {
-        let degree = graph.degree(v);
-        degrees.push(degree as u32);
+        let [degree, smaller, larger] = contributions[v.index()];
+        degrees.push(degree);
         let i = i as u32;
+        // A duplicate input point lists nothing: its edges are under the first copy.
+        let listing = !has_duplicates || graph.name(v) == i;
         if degree == 0 {
             unused.push(i as usize);
         } else if degree <= 2 {
-            let [x, y] = graph.first_two(v).map(input_of);
-            // A duplicate input point lists nothing: its edges are under the first copy.
-            let listing = !has_duplicates || input_of(v) == i;
-            for j in [x.min(y), x.max(y)] {
+            for j in [smaller, larger] {
                 edges[count] = [i, j];
                 count += usize::from(listing & (j > i));
             }
-        } else if !has_duplicates || input_of(v) == i {
+        } else if listing {
             let first = count;
-            for k in 0..degree {
-                let j = input_of(graph.neighbor(v, k));
+            for k in 0..degree as usize {
+                let j = name(graph.neighbor(v, k));
                 if j > i {
                     edges[count] = [i, j];
                     count += 1;
