@@ -148,7 +148,7 @@ pub(crate) fn remove_local_outliers(
     // only after a rule changed the graph.
     let mut profile = Profile::of(tri, &graph);
     if (rules.long_at_branches || rules.long_at_both_ends) && profile.has_long_edge {
-        if let Some(kept) = without_long_edges(tri, &graph, rules) {
+        if let Some(kept) = without_long_edges(tri, &graph, &profile, rules) {
             graph = Cow::Owned(kept);
             profile = Profile::of(tri, &graph);
         }
@@ -237,8 +237,9 @@ fn smooth_and_regular(tri: &Triangulation, x: VertexId, y: VertexId, z: VertexId
 /// ends, the same number either way: `dist2` is symmetric).
 struct Profile {
     graph: CurveGraph,
-    /// Squared length of the longest edge at each vertex, `NONE` where it has none.
-    longest: Vec<f64>,
+    /// Squared lengths of the two longest edges at each vertex, longest first (`NONE` where it
+    /// has fewer).
+    tops: Vec<[f64; 2]>,
     /// Whether some vertex's longest edge is more than [`LONG`] times its second longest: rule 2
     /// drops an edge only where it is long at one of its ends, so without such a vertex it has
     /// nothing to do (the common case).
@@ -250,9 +251,9 @@ impl Profile {
 
     fn of(tri: &Triangulation, edges: &[Edge]) -> Profile {
         let graph = CurveGraph::new(tri.num_points(), edges);
-        let mut longest = vec![Self::NONE; graph.vertex_count()];
+        let mut tops = vec![[Self::NONE; 2]; graph.vertex_count()];
         let mut has_long_edge = false;
-        for (i, slot) in longest.iter_mut().enumerate() {
+        for (i, slot) in tops.iter_mut().enumerate() {
             let v = VertexId::new(i as u32);
             let degree = graph.degree(v);
             if degree == 0 {
@@ -264,19 +265,28 @@ impl Profile {
                 let l = p.dist2(tri.vertex_point(graph.neighbor(v, k)));
                 top = top_two(top, l);
             }
-            *slot = top[0];
+            *slot = top;
             has_long_edge |= top[1] != Self::NONE && top[0] > LONG * LONG * top[1];
         }
         Profile {
             graph,
-            longest,
+            tops,
             has_long_edge,
         }
     }
 
     /// The squared length of the longest edge at `v` (`NONE` when it has none).
     fn longest(&self, v: VertexId) -> f64 {
-        self.longest[v.index()]
+        self.tops[v.index()][0]
+    }
+
+    /// The squared length of the longest edge at `v` other than one of squared length `l` held
+    /// there, if there is one. With ties the answer is the same whichever of the tied edges is
+    /// meant: when `l` is the longest, the other is the second (equal to `l` if another ties).
+    fn other_than(&self, v: VertexId, l: f64) -> Option<f64> {
+        let [first, second] = self.tops[v.index()];
+        let other = if l == first { second } else { first };
+        (other != Self::NONE).then_some(other)
     }
 }
 
@@ -294,50 +304,34 @@ fn top_two(top: [f64; 2], l: f64) -> [f64; 2] {
 }
 
 /// Rule 2: drops every edge long at an end with three or more edges, and every edge long at each
-/// of its ends that has other edges; `None` when it drops none. It runs only where some vertex
-/// has a long edge, so it computes the lengths and the two longest edges per vertex itself.
-fn without_long_edges(tri: &Triangulation, edges: &[Edge], rules: &Rules) -> Option<Vec<Edge>> {
-    let lengths: Vec<f64> = edges.iter().map(|&e| length2(tri, e)).collect();
-    let mut degrees = vec![0u32; tri.num_points()];
-    let mut tops = vec![[Profile::NONE; 2]; tri.num_points()];
-    for (&[a, b], &l) in edges.iter().zip(&lengths) {
-        for v in [a, b] {
-            degrees[v.index()] += 1;
-            tops[v.index()] = top_two(tops[v.index()], l);
-        }
-    }
-    // The squared length of the longest edge at `v` other than one of squared length `l` held
-    // there, if there is one. With ties the answer is the same whichever of the tied edges is
-    // meant: when `l` is the longest, the other is the second (equal to `l` if another ties).
-    let other_than = |v: VertexId, l: f64| {
-        let [first, second] = tops[v.index()];
-        let other = if l == first { second } else { first };
-        (other != Profile::NONE).then_some(other)
+/// of its ends that has other edges; `None` when it drops none.
+fn without_long_edges(
+    tri: &Triangulation,
+    edges: &[Edge],
+    profile: &Profile,
+    rules: &Rules,
+) -> Option<Vec<Edge>> {
+    // `Some(true)` when an edge of squared length `l` is long at `v`; `None` when `v` has no
+    // other edge.
+    let long_at = |v: VertexId, l: f64| {
+        profile
+            .other_than(v, l)
+            .map(|other| l > LONG * LONG * other)
     };
-    // `Some(true)` when edge `k` is long at `v`; `None` when `v` has no other edge.
-    let long_at = |v: VertexId, k: usize| {
-        other_than(v, lengths[k]).map(|other| lengths[k] > LONG * LONG * other)
-    };
-    let degree = |v: VertexId| degrees[v.index()];
-    let dropped = |k: usize, [a, b]: Edge| {
-        let (at_a, at_b) = (long_at(a, k), long_at(b, k));
+    let degree = |v: VertexId| profile.graph.degree(v);
+    let dropped = |&[a, b]: &Edge| {
+        let l = length2(tri, [a, b]);
+        let (at_a, at_b) = (long_at(a, l), long_at(b, l));
         let at_branch =
             (degree(a) >= 3 && at_a == Some(true)) || (degree(b) >= 3 && at_b == Some(true));
         let at_both =
             (at_a.is_some() || at_b.is_some()) && at_a != Some(false) && at_b != Some(false);
         (rules.long_at_branches && at_branch) || (rules.long_at_both_ends && at_both)
     };
-    if !edges.iter().enumerate().any(|(k, &e)| dropped(k, e)) {
+    if !edges.iter().any(dropped) {
         return None;
     }
-    Some(
-        edges
-            .iter()
-            .enumerate()
-            .filter(|&(k, &e)| !dropped(k, e))
-            .map(|(_, &e)| e)
-            .collect(),
-    )
+    Some(edges.iter().filter(|e| !dropped(e)).copied().collect())
 }
 
 /// Rule 3: drops every spur of fewer than [`MIN_SAMPLES`] vertices: a chain from a vertex with
