@@ -2,7 +2,8 @@
 //! to each other and curves are read from.
 //!
 //! Owns: the edge list (`[a, b]`, `a < b`, each edge once), its compressed adjacency, the curve
-//! graph that keeps each vertex's first two neighbours inline for walking curves, and the O(n)
+//! graph that keeps each vertex's degree, first two neighbours and name in one record for walking
+//! curves, and the O(n)
 //! pair sort. It may not look at coordinates, and nothing here is public: users see edges in input
 //! positions through [`Graph`](crate::Graph).
 
@@ -253,4 +254,51 @@ pub(crate) fn degrees(vertex_count: usize, edges: &[Edge]) -> Vec<u32> {
         degree[b.index()] += 1;
     }
     degree
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On random graphs with branch points, the curve graph gives every vertex the neighbours
+    /// the full adjacency gives it, in the same order (that of the edge list), its name, and,
+    /// at degree two, the other neighbour from either one.
+    #[test]
+    fn the_curve_graph_lists_the_neighbours_of_the_full_adjacency() {
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut branch_vertices = 0;
+        for _ in 0..500 {
+            let n = 2 + rng.below(30) as usize;
+            let mut edges: Vec<Edge> = (0..rng.below(3 * n as u64))
+                .map(|_| {
+                    let (a, b) = (rng.below(n as u64) as u32, rng.below(n as u64) as u32);
+                    ordered(VertexId::new(a), VertexId::new(b))
+                })
+                .filter(|&[a, b]| a != b)
+                .collect();
+            edges.sort_unstable();
+            edges.dedup();
+            // Listed in a scrambled order: neighbours must follow the list, not the ids.
+            edges.reverse();
+            let full = Adjacency::new(n, &edges);
+            let graph = CurveGraph::named(n, &edges, |v| 1000 + v);
+            for v in (0..n as u32).map(VertexId::new) {
+                let expected: Vec<VertexId> = full.incident(v).iter().map(|&(w, _)| w).collect();
+                let listed: Vec<VertexId> =
+                    (0..graph.degree(v)).map(|k| graph.neighbor(v, k)).collect();
+                assert_eq!(listed, expected, "{edges:?}");
+                assert_eq!(graph.name(v), 1000 + v.index() as u32);
+                branch_vertices += usize::from(expected.len() > 2);
+                if let [x, y] = expected[..] {
+                    assert_eq!(graph.onward(v, x), y);
+                    assert_eq!(graph.onward(v, y), x);
+                }
+            }
+            assert_eq!(
+                graph.has_branch(),
+                (0..n).any(|v| full.incident(VertexId::new(v as u32)).len() > 2)
+            );
+        }
+        assert!(branch_vertices > 1000, "the graphs have branch points");
+    }
 }

@@ -56,9 +56,10 @@
 //! binary) to keep them.
 //!
 //! The stage is sequential and deterministic (every loop goes by vertex id or edge position), so
-//! the result is the same with `parallel` on or off. It is O(n): compressed adjacencies, a
-//! union-find over the edges, walks of at most [`MIN_SAMPLES`] steps and one walk of the
-//! Delaunay ring of every vertex that has an edge.
+//! the result is the same with `parallel` on or off. It is O(n): a curve graph (one record per
+//! vertex) read in vertex order, a compressed adjacency only for rule 3, a union-find over the
+//! edges, walks of at most [`MIN_SAMPLES`] steps and at most one walk of the Delaunay ring of
+//! every vertex that has an edge.
 
 use super::Outcome;
 use crate::adjacency::{Adjacency, CurveGraph, Edge};
