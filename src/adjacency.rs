@@ -64,15 +64,19 @@ impl Adjacency {
 }
 
 /// The neighbours of every vertex of a graph that is a union of curves: almost every vertex has
-/// at most two. Each vertex has one 16-byte record, its degree, its first two neighbours and a
-/// name (the input position it stands for), so following a curve, or reading a vertex's
-/// neighbours and name, costs one read per vertex where separate arrays would cost one per
-/// array. The few vertices with three or more neighbours list all of them in a small side table,
-/// in id order; nothing is built for the others.
+/// at most two. Each vertex has one 12-byte record, its degree and its first two neighbours, so
+/// following a curve, or reading a vertex's neighbours, costs one read per vertex where separate
+/// arrays would cost one per array. The few vertices with three or more neighbours list all of
+/// them in a small side table, in id order; nothing is built for the others. A graph built with
+/// [`CurveGraph::named`] also keeps a name per vertex (the input position it stands for); the
+/// stages' graphs, which need none, do not pay for it (a 16-byte record with the name measured
+/// slower in gap closing, which scans every vertex's degree).
 pub(crate) struct CurveGraph {
-    /// `[degree, first neighbour, second neighbour, name]` per vertex id; a missing neighbour is
+    /// `[degree, first neighbour, second neighbour]` per vertex id; a missing neighbour is
     /// [`VertexId::INFINITE`].
-    records: Vec<[u32; 4]>,
+    records: Vec<[u32; 3]>,
+    /// The name of every vertex id, or empty when every vertex is named by its id.
+    names: Vec<u32>,
     /// The vertices with three or more neighbours, ascending, and where their neighbours start
     /// in `branch_neighbors`.
     branch_vertices: Vec<(VertexId, u32)>,
@@ -81,18 +85,10 @@ pub(crate) struct CurveGraph {
 }
 
 impl CurveGraph {
-    /// `edges` as for [`Adjacency::new`]; every vertex is named by its own id. Neighbours come in
-    /// the order the edges are listed.
+    /// [`CurveGraph::named`], every vertex named by its own id.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
-        Self::named(vertex_count, edges, |v| v)
-    }
-
-    /// [`CurveGraph::new`], each vertex `v` named `name(v)` (read back by [`CurveGraph::name`]).
-    pub(crate) fn named(vertex_count: usize, edges: &[Edge], name: impl Fn(u32) -> u32) -> Self {
         let none = VertexId::INFINITE.index() as u32;
-        let mut records: Vec<[u32; 4]> = (0..vertex_count as u32)
-            .map(|v| [0, none, none, name(v)])
-            .collect();
+        let mut records = vec![[0, none, none]; vertex_count];
         let mut branches = false;
         for &[a, b] in edges {
             for (v, w) in [(a, b), (b, a)] {
@@ -112,9 +108,19 @@ impl CurveGraph {
         };
         CurveGraph {
             records,
+            names: Vec::new(),
             branch_vertices,
             branch_neighbors,
         }
+    }
+
+    /// The graph of `edges` (as for [`Adjacency::new`]) over `vertex_count` vertices, each vertex
+    /// `v` named `name(v)` (read back by [`CurveGraph::name`]). Neighbours come in the order the
+    /// edges are listed.
+    pub(crate) fn named(vertex_count: usize, edges: &[Edge], name: impl Fn(u32) -> u32) -> Self {
+        let mut graph = Self::new(vertex_count, edges);
+        graph.names = (0..vertex_count as u32).map(name).collect();
+        graph
     }
 
     /// Whether some vertex has three or more neighbours.
@@ -131,10 +137,13 @@ impl CurveGraph {
         self.records[v.index()][0] as usize
     }
 
-    /// The name given to `v` when the graph was built ([`CurveGraph::named`]).
+    /// The name given to `v` when the graph was built ([`CurveGraph::named`]; its id otherwise).
     #[inline]
     pub(crate) fn name(&self, v: VertexId) -> u32 {
-        self.records[v.index()][3]
+        self.names
+            .get(v.index())
+            .copied()
+            .unwrap_or(v.index() as u32)
     }
 
     /// The `k`-th neighbour of `v`, `k < degree(v)`.
@@ -180,7 +189,7 @@ impl CurveGraph {
 
 /// The side table of [`CurveGraph`]: the vertices of degree three or more, ascending, with the
 /// start of their neighbours, listed in the order of `edges`.
-fn branch_table(records: &[[u32; 4]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, Vec<VertexId>) {
+fn branch_table(records: &[[u32; 3]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, Vec<VertexId>) {
     let mut vertices = Vec::new();
     let mut total = 0u32;
     for (v, record) in records.iter().enumerate() {
