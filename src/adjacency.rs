@@ -2,7 +2,8 @@
 //! to each other and curves are read from.
 //!
 //! Owns: the edge list (`[a, b]`, `a < b`, each edge once), its compressed adjacency, the curve
-//! graph that keeps each vertex's first two neighbours inline for walking curves, and the O(n)
+//! graph that keeps each vertex's degree, first two neighbours and name in one record for walking
+//! curves, and the O(n)
 //! pair sort. It may not look at coordinates, and nothing here is public: users see edges in input
 //! positions through [`Graph`](crate::Graph).
 
@@ -63,63 +64,116 @@ impl Adjacency {
 }
 
 /// The neighbours of every vertex of a graph that is a union of curves: almost every vertex has
-/// at most two. Those two are stored inline, so following a curve costs one read per step (a
-/// compressed adjacency costs two dependent ones); a full [`Adjacency`] is built only when some
-/// vertex has three or more.
+/// at most two. Each vertex has one 12-byte record, its degree and its first two neighbours, so
+/// following a curve, or reading a vertex's neighbours, costs one read per vertex where separate
+/// arrays would cost one per array. The few vertices with three or more neighbours list all of
+/// them in a small side table, in id order; nothing is built for the others. A graph built with
+/// [`CurveGraph::named`] also keeps a name per vertex (the input position it stands for); the
+/// stages' graphs, which need none, do not pay for it (a 16-byte record with the name measured
+/// slower in gap closing, which scans every vertex's degree).
 pub(crate) struct CurveGraph {
-    degree: Vec<u32>,
-    first_two: Vec<[VertexId; 2]>,
-    branching: Option<Adjacency>,
+    /// `[degree, first neighbour, second neighbour]` per vertex id; a missing neighbour is
+    /// [`VertexId::INFINITE`].
+    records: Vec<[u32; 3]>,
+    /// The name of every vertex id, or empty when every vertex is named by its id.
+    names: Vec<u32>,
+    /// The vertices with three or more neighbours, ascending, and where their neighbours start
+    /// in `branch_neighbors`.
+    branch_vertices: Vec<(VertexId, u32)>,
+    /// The neighbours of the branch vertices, each vertex's in the order its edges are listed.
+    branch_neighbors: Vec<VertexId>,
 }
 
 impl CurveGraph {
-    /// `edges` as for [`Adjacency::new`]. Neighbours come in the order the edges are listed.
+    /// [`CurveGraph::named`], every vertex named by its own id.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
-        let mut degree = vec![0u32; vertex_count];
-        let mut first_two = vec![[VertexId::INFINITE; 2]; vertex_count];
+        let none = VertexId::INFINITE.index() as u32;
+        let mut records = vec![[0, none, none]; vertex_count];
         let mut branches = false;
         for &[a, b] in edges {
             for (v, w) in [(a, b), (b, a)] {
-                let d = degree[v.index()];
-                degree[v.index()] = d + 1;
+                let record = &mut records[v.index()];
+                let d = record[0];
+                record[0] = d + 1;
                 // Whether the slot fills is a coin toss per edge: selected, not branched on.
-                let slots = &mut first_two[v.index()];
-                let k = d.min(1) as usize;
-                slots[k] = if d < 2 { w } else { slots[k] };
+                let k = 1 + d.min(1) as usize;
+                record[k] = if d < 2 { w.index() as u32 } else { record[k] };
                 branches |= d >= 2;
             }
         }
-        let branching = branches.then(|| Adjacency::new(vertex_count, edges));
+        let (branch_vertices, branch_neighbors) = if branches {
+            branch_table(&records, edges)
+        } else {
+            (Vec::new(), Vec::new())
+        };
         CurveGraph {
-            degree,
-            first_two,
-            branching,
+            records,
+            names: Vec::new(),
+            branch_vertices,
+            branch_neighbors,
         }
     }
 
+    /// The graph of `edges` (as for [`Adjacency::new`]) over `vertex_count` vertices, each vertex
+    /// `v` named `name(v)` (read back by [`CurveGraph::name`]). Neighbours come in the order the
+    /// edges are listed.
+    pub(crate) fn named(vertex_count: usize, edges: &[Edge], name: impl Fn(u32) -> u32) -> Self {
+        let mut graph = Self::new(vertex_count, edges);
+        graph.names = (0..vertex_count as u32).map(name).collect();
+        graph
+    }
+
+    /// Whether some vertex has three or more neighbours.
+    pub(crate) fn has_branch(&self) -> bool {
+        !self.branch_vertices.is_empty()
+    }
+
     pub(crate) fn vertex_count(&self) -> usize {
-        self.degree.len()
+        self.records.len()
     }
 
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
-        self.degree[v.index()] as usize
+        self.records[v.index()][0] as usize
+    }
+
+    /// The name given to `v` when the graph was built ([`CurveGraph::named`]; its id otherwise).
+    #[inline]
+    pub(crate) fn name(&self, v: VertexId) -> u32 {
+        self.names
+            .get(v.index())
+            .copied()
+            .unwrap_or(v.index() as u32)
     }
 
     /// The `k`-th neighbour of `v`, `k < degree(v)`.
     #[inline]
     pub(crate) fn neighbor(&self, v: VertexId, k: usize) -> VertexId {
-        match &self.branching {
-            Some(all) if self.degree(v) > 2 => all.incident(v)[k].0,
-            _ => self.first_two[v.index()][k],
+        let record = &self.records[v.index()];
+        if record[0] > 2 {
+            self.branch(v)[k]
+        } else {
+            VertexId::new(record[1 + k])
         }
+    }
+
+    /// All neighbours of a vertex with three or more (a binary search: such vertices are few).
+    #[cold]
+    fn branch(&self, v: VertexId) -> &[VertexId] {
+        let at = self
+            .branch_vertices
+            .binary_search_by_key(&v, |&(w, _)| w)
+            .unwrap_or(0);
+        let start = self.branch_vertices[at].1 as usize;
+        &self.branch_neighbors[start..start + self.degree(v)]
     }
 
     /// The first two neighbours of `v` ([`VertexId::INFINITE`] where it has fewer); all of
     /// them when `degree(v) <= 2`.
     #[inline]
     pub(crate) fn first_two(&self, v: VertexId) -> [VertexId; 2] {
-        self.first_two[v.index()]
+        let record = &self.records[v.index()];
+        [VertexId::new(record[1]), VertexId::new(record[2])]
     }
 
     /// For `v` of degree two and `from` one of its neighbours, the other one: the next step along
@@ -127,10 +181,37 @@ impl CurveGraph {
     /// (`x ^ y ^ x = y`) rather than by a branch the predictor would miss half the time.
     #[inline]
     pub(crate) fn onward(&self, v: VertexId, from: VertexId) -> VertexId {
-        let [x, y] = self.first_two[v.index()];
-        debug_assert!(from == x || from == y);
-        VertexId::new(x.index() as u32 ^ y.index() as u32 ^ from.index() as u32)
+        let record = &self.records[v.index()];
+        debug_assert!(from.index() as u32 == record[1] || from.index() as u32 == record[2]);
+        VertexId::new(record[1] ^ record[2] ^ from.index() as u32)
     }
+}
+
+/// The side table of [`CurveGraph`]: the vertices of degree three or more, ascending, with the
+/// start of their neighbours, listed in the order of `edges`.
+fn branch_table(records: &[[u32; 3]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, Vec<VertexId>) {
+    let mut vertices = Vec::new();
+    let mut total = 0u32;
+    for (v, record) in records.iter().enumerate() {
+        if record[0] > 2 {
+            vertices.push((VertexId::new(v as u32), total));
+            total += record[0];
+        }
+    }
+    let mut fill: Vec<u32> = vertices.iter().map(|&(_, start)| start).collect();
+    let mut neighbors = vec![VertexId::INFINITE; total as usize];
+    let slot = |v: VertexId| vertices.binary_search_by_key(&v, |&(w, _)| w).ok();
+    for &[a, b] in edges {
+        for (v, w) in [(a, b), (b, a)] {
+            if records[v.index()][0] > 2 {
+                if let Some(k) = slot(v) {
+                    neighbors[fill[k] as usize] = w;
+                    fill[k] += 1;
+                }
+            }
+        }
+    }
+    (vertices, neighbors)
 }
 
 /// Sorts pairs `[a, b]` with `index(a) < bound` by `(a, b)` and drops repeats, in O(n): a
@@ -182,4 +263,51 @@ pub(crate) fn degrees(vertex_count: usize, edges: &[Edge]) -> Vec<u32> {
         degree[b.index()] += 1;
     }
     degree
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On random graphs with branch points, the curve graph gives every vertex the neighbours
+    /// the full adjacency gives it, in the same order (that of the edge list), its name, and,
+    /// at degree two, the other neighbour from either one.
+    #[test]
+    fn the_curve_graph_lists_the_neighbours_of_the_full_adjacency() {
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut branch_vertices = 0;
+        for _ in 0..500 {
+            let n = 2 + rng.below(30) as usize;
+            let mut edges: Vec<Edge> = (0..rng.below(3 * n as u64))
+                .map(|_| {
+                    let (a, b) = (rng.below(n as u64) as u32, rng.below(n as u64) as u32);
+                    ordered(VertexId::new(a), VertexId::new(b))
+                })
+                .filter(|&[a, b]| a != b)
+                .collect();
+            edges.sort_unstable();
+            edges.dedup();
+            // Listed in a scrambled order: neighbours must follow the list, not the ids.
+            edges.reverse();
+            let full = Adjacency::new(n, &edges);
+            let graph = CurveGraph::named(n, &edges, |v| 1000 + v);
+            for v in (0..n as u32).map(VertexId::new) {
+                let expected: Vec<VertexId> = full.incident(v).iter().map(|&(w, _)| w).collect();
+                let listed: Vec<VertexId> =
+                    (0..graph.degree(v)).map(|k| graph.neighbor(v, k)).collect();
+                assert_eq!(listed, expected, "{edges:?}");
+                assert_eq!(graph.name(v), 1000 + v.index() as u32);
+                branch_vertices += usize::from(expected.len() > 2);
+                if let [x, y] = expected[..] {
+                    assert_eq!(graph.onward(v, x), y);
+                    assert_eq!(graph.onward(v, y), x);
+                }
+            }
+            assert_eq!(
+                graph.has_branch(),
+                (0..n).any(|v| full.incident(VertexId::new(v as u32)).len() > 2)
+            );
+        }
+        assert!(branch_vertices > 1000, "the graphs have branch points");
+    }
 }

@@ -11,7 +11,6 @@
 
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
-use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -109,24 +108,21 @@ pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> 
     once.sort_unstable();
     once.dedup();
     let mut curves = curves_of(&CurveGraph::new(count, &once));
-    canonical(&mut curves, |v| v);
+    canonical(&mut curves);
     curves
 }
 
-/// The curves of `graph` (over vertex ids of `tri`), in input positions, canonical and sorted.
-pub(crate) fn curves_in_input_positions(tri: &Triangulation, graph: &CurveGraph) -> Vec<Curve> {
+/// The curves of `graph` (over vertex ids of `tri`, each vertex named by its input position:
+/// see [`CurveGraph::named`]), in input positions, canonical and sorted.
+pub(crate) fn curves_in_input_positions(graph: &CurveGraph) -> Vec<Curve> {
     let mut curves = curves_of(graph);
-    canonical(&mut curves, |v| tri.input_of(VertexId::new(v)) as u32);
+    canonical(&mut curves);
     curves
 }
 
-/// Renames every point by `rename`, then gives each curve its canonical start and direction and
-/// sorts them.
-fn canonical(curves: &mut [Curve], rename: impl Fn(u32) -> u32) {
+/// Gives each curve its canonical start and direction and sorts them.
+fn canonical(curves: &mut [Curve]) {
     for curve in curves.iter_mut() {
-        for v in curve.points.iter_mut() {
-            *v = rename(*v);
-        }
         curve.make_canonical();
     }
     // Sorted by their first two points, which is the order of the whole point lists: no two
@@ -141,13 +137,16 @@ fn canonical(curves: &mut [Curve], rename: impl Fn(u32) -> u32) {
     });
 }
 
-/// The curves of a graph already built, in its vertex ids, as walked.
+/// The curves of a graph already built, as walked, their points given by the names of the
+/// graph's vertices ([`CurveGraph::name`]).
 pub(crate) fn curves_of(graph: &CurveGraph) -> Vec<Curve> {
     let vertex_count = graph.vertex_count();
     // Degree-two vertices already on a curve. A path between two ends or branch points is met
     // from both of them; it is walked from the first and recognised as taken from the second.
     let mut visited = vec![false; vertex_count];
     let mut curves = Vec::new();
+    // One buffer for every walk: each curve then gets one allocation of its exact size.
+    let mut path = Vec::new();
     let vertices = (0..vertex_count as u32).map(VertexId::new);
     // Polylines between ends and branch points first, then the remaining pure cycles.
     for v in vertices.clone() {
@@ -164,40 +163,51 @@ pub(crate) fn curves_of(graph: &CurveGraph) -> Vec<Curve> {
                 v < w
             };
             if untaken {
-                curves.push(walk(graph, &mut visited, v, w));
+                curves.push(walk(graph, &mut visited, &mut path, v, w));
             }
         }
     }
     for v in vertices {
         if graph.degree(v) == 2 && !visited[v.index()] {
             visited[v.index()] = true;
-            curves.push(walk(graph, &mut visited, v, graph.neighbor(v, 0)));
+            curves.push(walk(
+                graph,
+                &mut visited,
+                &mut path,
+                v,
+                graph.neighbor(v, 0),
+            ));
         }
     }
     curves
 }
 
 /// Follows unvisited degree-two vertices from `start` through `first` until an end, a branch
-/// point, or a vertex already visited (`start` itself, on a cycle); marks what it passes.
-fn walk(graph: &CurveGraph, visited: &mut [bool], start: VertexId, first: VertexId) -> Curve {
-    let mut path = vec![start.index() as u32];
+/// point, or a vertex already visited (`start` itself, on a cycle); marks what it passes. `path`
+/// is scratch space.
+fn walk(
+    graph: &CurveGraph,
+    visited: &mut [bool],
+    path: &mut Vec<u32>,
+    start: VertexId,
+    first: VertexId,
+) -> Curve {
+    path.clear();
     let (mut previous, mut current) = (start, first);
     loop {
-        path.push(current.index() as u32);
+        path.push(graph.name(current));
         if graph.degree(current) != 2 || visited[current.index()] {
             break;
         }
         visited[current.index()] = true;
         (previous, current) = (current, graph.onward(current, previous));
     }
-    let closed = path.len() > 2 && path.first() == path.last();
-    if closed {
-        path.pop();
-    }
-    Curve {
-        points: path,
-        closed,
-    }
+    // A cycle ends where it started: its last step is not repeated.
+    let closed = path.len() > 1 && current == start;
+    let mut points = Vec::with_capacity(path.len() + usize::from(!closed));
+    points.push(graph.name(start));
+    points.extend_from_slice(&path[..path.len() - usize::from(closed)]);
+    Curve { points, closed }
 }
 
 #[cfg(test)]

@@ -488,11 +488,11 @@ impl fmt::Display for EdgeStory {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use alloc::format;
-    use alloc::string::{String, ToString};
     use crate::reconstruct::{reconstruct, Params};
     use crate::sample::{sample, Clumps, Sampling, Shape};
     use crate::Point;
+    use alloc::format;
+    use alloc::string::{String, ToString};
 
     fn noisy_scene() -> Vec<Point> {
         let mut sampling = Sampling::new(0.3);

@@ -56,14 +56,16 @@
 //! binary) to keep them.
 //!
 //! The stage is sequential and deterministic (every loop goes by vertex id or edge position), so
-//! the result is the same with `parallel` on or off. It is O(n): compressed adjacencies, a
-//! union-find over the edges, walks of at most [`MIN_SAMPLES`] steps and one walk of the
-//! Delaunay ring of every vertex that has an edge.
+//! the result is the same with `parallel` on or off. It is O(n): a curve graph (one record per
+//! vertex) read in vertex order, a compressed adjacency only for rule 3, a union-find over the
+//! edges, walks of at most [`MIN_SAMPLES`] steps and at most one walk of the Delaunay ring of
+//! every vertex that has an edge.
 
 use super::Outcome;
 use crate::adjacency::{Adjacency, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
+use alloc::borrow::Cow;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -135,32 +137,39 @@ pub(crate) fn remove_local_outliers(
     before: &[Edge],
     rules: &Rules,
 ) -> Outcome {
-    let mut graph = edges.to_vec();
+    // The input is copied only once a rule changes it (on a clean curve none does).
+    let mut graph = Cow::Borrowed(edges);
     if rules.give_back && before.len() > edges.len() {
-        graph.extend(given_back(tri, edges, before));
+        let given = given_back(tri, edges, before);
+        if !given.is_empty() {
+            graph.to_mut().extend(given);
+        }
     }
-    // Lengths, degrees and the two longest edges per vertex, shared by rules 2 to 4 and
-    // recomputed only after a rule changed the graph (on a clean curve none does).
+    // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and rebuilt
+    // only after a rule changed the graph.
     let mut profile = Profile::of(tri, &graph);
-    if (rules.long_at_branches || rules.long_at_both_ends) && profile.has_long_edge() {
-        if let Some(kept) = without_long_edges(&graph, &profile, rules) {
-            graph = kept;
+    if (rules.long_at_branches || rules.long_at_both_ends) && profile.has_long_edge {
+        if let Some(kept) = without_long_edges(tri, &graph, &profile, rules) {
+            graph = Cow::Owned(kept);
             profile = Profile::of(tri, &graph);
         }
     }
-    if rules.short_spurs && profile.has_branch() {
+    if rules.short_spurs && profile.graph.has_branch() {
         if let Some(kept) = without_short_spurs(tri, &graph) {
-            graph = kept;
+            graph = Cow::Owned(kept);
             profile = Profile::of(tri, &graph);
         }
     }
     if rules.separated_components {
-        graph = separated_components(tri, &graph, &profile);
+        if let Some(kept) = separated_components(tri, &graph, &profile) {
+            graph = Cow::Owned(kept);
+        }
     }
-    if graph.as_slice() == edges {
-        Outcome::UNCHANGED
-    } else {
-        Outcome { edges: Some(graph) }
+    match graph {
+        Cow::Owned(changed) if changed.as_slice() != edges => Outcome {
+            edges: Some(changed),
+        },
+        _ => Outcome::UNCHANGED,
     }
 }
 
@@ -172,8 +181,8 @@ fn length2(tri: &Triangulation, [a, b]: Edge) -> f64 {
 /// Rule 1: the edges of `before` missing from `now` whose two ends pass [`passage`].
 fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> Vec<Edge> {
     let n = tri.num_points();
-    let (now, was) = (Adjacency::new(n, now), Adjacency::new(n, before));
-    let present = |a: VertexId, b: VertexId| now.incident(a).iter().any(|&(w, _)| w == b);
+    let (now, was) = (CurveGraph::new(n, now), CurveGraph::new(n, before));
+    let present = |a: VertexId, b: VertexId| (0..now.degree(a)).any(|k| now.neighbor(a, k) == b);
     before
         .iter()
         .filter(|&&[a, b]| {
@@ -190,17 +199,17 @@ fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> Vec<Edge> {
 /// edges in `was`, so this costs O(1).
 fn passage(
     tri: &Triangulation,
-    now: &Adjacency,
-    was: &Adjacency,
+    now: &CurveGraph,
+    was: &CurveGraph,
     x: VertexId,
     y: VertexId,
 ) -> bool {
-    let &[(first, _), (second, _)] = was.incident(x) else {
+    if was.degree(x) != 2 {
         return false;
-    };
+    }
+    let [first, second] = was.first_two(x);
     let z = if first == y { second } else { first };
-    let now_around = now.incident(x);
-    if now_around.len() > 1 || now_around.iter().any(|&(w, _)| w != z) {
+    if now.degree(x) > 1 || (now.degree(x) == 1 && now.first_two(x)[0] != z) {
         return false;
     }
     smooth_and_regular(tri, x, y, z)
@@ -222,104 +231,108 @@ fn smooth_and_regular(tri: &Triangulation, x: VertexId, y: VertexId, z: VertexId
     regular && smooth
 }
 
-/// What rules 2 to 4 read of a graph: every edge's squared length, and per vertex its degree and
-/// the squared lengths of its two longest edges (longest first; `NONE` where there are fewer).
-/// One pass over the edges, O(edges) whatever the degrees.
+/// What rules 2 to 4 read of a graph: its degrees and neighbours, and the squared length of each
+/// vertex's longest edge. Built vertex by vertex in id order, reading each vertex's neighbours
+/// from the curve graph: the ids are spatial, so the reads stay near each other, where a pass
+/// over the edges would scatter its writes over both ends (each length is computed from both
+/// ends, the same number either way: `dist2` is symmetric).
 struct Profile {
-    lengths: Vec<f64>,
-    vertices: Vec<VertexProfile>,
-}
-
-#[derive(Copy, Clone)]
-struct VertexProfile {
-    top: [f64; 2],
-    degree: u32,
+    graph: CurveGraph,
+    /// Squared lengths of the two longest edges at each vertex, longest first (`NONE` where it
+    /// has fewer).
+    tops: Vec<[f64; 2]>,
+    /// Whether some vertex's longest edge is more than [`LONG`] times its second longest: rule 2
+    /// drops an edge only where it is long at one of its ends, so without such a vertex it has
+    /// nothing to do (the common case).
+    has_long_edge: bool,
 }
 
 impl Profile {
     const NONE: f64 = -1.0;
 
     fn of(tri: &Triangulation, edges: &[Edge]) -> Profile {
-        let lengths: Vec<f64> = edges.iter().map(|&e| length2(tri, e)).collect();
-        let empty = VertexProfile {
-            top: [Self::NONE; 2],
-            degree: 0,
-        };
-        let mut vertices = vec![empty; tri.num_points()];
-        for (&[a, b], &l) in edges.iter().zip(&lengths) {
-            for v in [a, b] {
-                let at = &mut vertices[v.index()];
-                at.degree += 1;
-                let t = &mut at.top;
-                if l > t[0] {
-                    *t = [l, t[0]];
-                } else if l > t[1] {
-                    t[1] = l;
-                }
+        let graph = CurveGraph::new(tri.num_points(), edges);
+        let mut tops = vec![[Self::NONE; 2]; graph.vertex_count()];
+        let mut has_long_edge = false;
+        for (i, slot) in tops.iter_mut().enumerate() {
+            let v = VertexId::new(i as u32);
+            let degree = graph.degree(v);
+            if degree == 0 {
+                continue;
             }
+            let p = tri.vertex_point(v);
+            let mut top = [Self::NONE; 2];
+            for k in 0..degree {
+                let l = p.dist2(tri.vertex_point(graph.neighbor(v, k)));
+                top = top_two(top, l);
+            }
+            *slot = top;
+            has_long_edge |= top[1] != Self::NONE && top[0] > LONG * LONG * top[1];
         }
-        Profile { lengths, vertices }
-    }
-
-    /// Whether some vertex has three or more edges.
-    fn has_branch(&self) -> bool {
-        self.vertices.iter().any(|v| v.degree >= 3)
-    }
-
-    /// Whether some vertex's longest edge is more than [`LONG`] times its second longest: rule 2
-    /// drops an edge only where it is long at one of its ends, so without such a vertex it has
-    /// nothing to do (the common case, checked in one sequential pass instead of per edge).
-    fn has_long_edge(&self) -> bool {
-        self.vertices
-            .iter()
-            .any(|v| v.top[1] != Self::NONE && v.top[0] > LONG * LONG * v.top[1])
+        Profile {
+            graph,
+            tops,
+            has_long_edge,
+        }
     }
 
     /// The squared length of the longest edge at `v` (`NONE` when it has none).
     fn longest(&self, v: VertexId) -> f64 {
-        self.vertices[v.index()].top[0]
+        self.tops[v.index()][0]
     }
 
     /// The squared length of the longest edge at `v` other than one of squared length `l` held
     /// there, if there is one. With ties the answer is the same whichever of the tied edges is
     /// meant: when `l` is the longest, the other is the second (equal to `l` if another ties).
     fn other_than(&self, v: VertexId, l: f64) -> Option<f64> {
-        let [first, second] = self.vertices[v.index()].top;
+        let [first, second] = self.tops[v.index()];
         let other = if l == first { second } else { first };
         (other != Self::NONE).then_some(other)
     }
 }
 
+/// The two largest of `top` (largest first) and `l`: the same values in whatever order the
+/// lengths come.
+#[inline]
+fn top_two(top: [f64; 2], l: f64) -> [f64; 2] {
+    if l > top[0] {
+        [l, top[0]]
+    } else if l > top[1] {
+        [top[0], l]
+    } else {
+        top
+    }
+}
+
 /// Rule 2: drops every edge long at an end with three or more edges, and every edge long at each
 /// of its ends that has other edges; `None` when it drops none.
-fn without_long_edges(edges: &[Edge], profile: &Profile, rules: &Rules) -> Option<Vec<Edge>> {
-    let lengths = &profile.lengths;
-    // `Some(true)` when edge `k` is long at `v`; `None` when `v` has no other edge.
-    let long_at = |v: VertexId, k: usize| {
+fn without_long_edges(
+    tri: &Triangulation,
+    edges: &[Edge],
+    profile: &Profile,
+    rules: &Rules,
+) -> Option<Vec<Edge>> {
+    // `Some(true)` when an edge of squared length `l` is long at `v`; `None` when `v` has no
+    // other edge.
+    let long_at = |v: VertexId, l: f64| {
         profile
-            .other_than(v, lengths[k])
-            .map(|other| lengths[k] > LONG * LONG * other)
+            .other_than(v, l)
+            .map(|other| l > LONG * LONG * other)
     };
-    let degree = |v: VertexId| profile.vertices[v.index()].degree;
-    let dropped = |k: usize, [a, b]: Edge| {
-        let (at_a, at_b) = (long_at(a, k), long_at(b, k));
+    let degree = |v: VertexId| profile.graph.degree(v);
+    let dropped = |&[a, b]: &Edge| {
+        let l = length2(tri, [a, b]);
+        let (at_a, at_b) = (long_at(a, l), long_at(b, l));
         let at_branch =
             (degree(a) >= 3 && at_a == Some(true)) || (degree(b) >= 3 && at_b == Some(true));
         let at_both =
             (at_a.is_some() || at_b.is_some()) && at_a != Some(false) && at_b != Some(false);
         (rules.long_at_branches && at_branch) || (rules.long_at_both_ends && at_both)
     };
-    if !edges.iter().enumerate().any(|(k, &e)| dropped(k, e)) {
+    if !edges.iter().any(dropped) {
         return None;
     }
-    Some(
-        edges
-            .iter()
-            .enumerate()
-            .filter(|&(k, &e)| !dropped(k, e))
-            .map(|(_, &e)| e)
-            .collect(),
-    )
+    Some(edges.iter().filter(|e| !dropped(e)).copied().collect())
 }
 
 /// Rule 3: drops every spur of fewer than [`MIN_SAMPLES`] vertices: a chain from a vertex with
@@ -333,7 +346,8 @@ fn without_short_spurs(tri: &Triangulation, edges: &[Edge]) -> Option<Vec<Edge>>
     let degree = |v: VertexId| adjacency.incident(v).len();
     let mut dropped = vec![false; edges.len()];
     let mut path: Vec<u32> = Vec::with_capacity(MIN_SAMPLES);
-    for v in tri.vertices() {
+    // Every id, not only vertices: an id left by a merged duplicate has no edge.
+    for v in (0..n as u32).map(VertexId::new) {
         if degree(v) != 1 {
             continue;
         }
@@ -382,24 +396,41 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
     v
 }
 
-/// Rule 4: keeps the edges of the components with at least [`MIN_SAMPLES`] separated vertices.
-fn separated_components(tri: &Triangulation, edges: &[Edge], profile: &Profile) -> Vec<Edge> {
-    let n = tri.num_points();
+/// The component of every vertex, named by its smallest vertex id: a union-find over the
+/// edges in which the smaller root becomes the parent, so the sets depend only on the edges and
+/// every vertex's parent is at most the vertex itself. Then one pass in increasing id order
+/// turns parents into roots: a vertex's parent is smaller, so its root is already known.
+fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..n as u32).collect();
     for &[a, b] in edges {
-        // The smaller root becomes the parent: the sets depend only on the edges.
         let (ra, rb) = (
             find(&mut parent, a.index() as u32),
             find(&mut parent, b.index() as u32),
         );
         parent[ra.max(rb) as usize] = ra.min(rb);
     }
-    let root: Vec<u32> = (0..n as u32).map(|v| find(&mut parent, v)).collect();
-    let mut separated = vec![0usize; n];
-    for v in tri.vertices() {
-        let i = v.index();
+    for v in 0..n {
+        parent[v] = parent[parent[v] as usize];
+    }
+    parent
+}
+
+/// Rule 4: keeps the edges of the components with at least [`MIN_SAMPLES`] separated vertices;
+/// `None` when it keeps them all. Ids that are not vertices (merged duplicates) have no edge, so
+/// every loop goes over all ids and skips those without one.
+fn separated_components(
+    tri: &Triangulation,
+    edges: &[Edge],
+    profile: &Profile,
+) -> Option<Vec<Edge>> {
+    let n = tri.num_points();
+    let root = components(n, edges);
+    // Separated vertices per component, counted up to the bound only (it fits a byte).
+    let mut separated = vec![0u8; n];
+    for (i, &r) in root.iter().enumerate() {
+        let v = VertexId::new(i as u32);
         let longest = profile.longest(v);
-        if longest < 0.0 || separated[root[i] as usize] >= MIN_SAMPLES {
+        if longest < 0.0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
             // No edge, or the component is kept already: only whether the count reaches the
             // bound matters, so a long curve stops walking rings after its first few samples.
             continue;
@@ -407,25 +438,28 @@ fn separated_components(tri: &Triangulation, edges: &[Edge], profile: &Profile) 
         let p = tri.vertex_point(v);
         // An unused point is its own root, so it counts as outside every component.
         let apart = tri.mesh().neighbors(v).all(|w| {
-            root[w.index()] == root[i]
-                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
+            root[w.index()] == r || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
         });
-        separated[root[i] as usize] += usize::from(apart);
+        separated[r as usize] += u8::from(apart);
     }
-    let mut kept: Vec<bool> = separated.iter().map(|&c| c >= MIN_SAMPLES).collect();
-    let all_kept = |kept: &[bool]| edges.iter().all(|&[a, _]| kept[root[a.index()] as usize]);
-    if all_kept(&kept) {
-        return edges.to_vec();
-    }
-    keep_regular_cycles(tri, edges, &root, &mut kept);
-    if too_many_dropped(tri, &root, profile, &kept) {
-        return edges.to_vec();
-    }
-    edges
+    let mut kept: Vec<bool> = separated
         .iter()
-        .filter(|&&[a, _]| kept[root[a.index()] as usize])
-        .copied()
-        .collect()
+        .map(|&c| usize::from(c) >= MIN_SAMPLES)
+        .collect();
+    if edges.iter().all(|&[a, _]| kept[root[a.index()] as usize]) {
+        return None;
+    }
+    keep_regular_cycles(tri, &profile.graph, &root, &mut kept);
+    if too_many_dropped(&root, profile, &kept) {
+        return None;
+    }
+    Some(
+        edges
+            .iter()
+            .filter(|&&[a, _]| kept[root[a.index()] as usize])
+            .copied()
+            .collect(),
+    )
 }
 
 /// Marks as kept every component not kept yet that is a closed curve sampled as a curve: at
@@ -434,15 +468,13 @@ fn separated_components(tri: &Triangulation, edges: &[Edge], profile: &Profile) 
 /// what a sampled closed curve looks like, whatever lies near it: a second curve only two or
 /// three spacings away (concentric circles) would otherwise make none of its samples separated.
 /// A clump of outliers almost never closes into a smooth, even cycle of five or more points.
-fn keep_regular_cycles(tri: &Triangulation, edges: &[Edge], root: &[u32], kept: &mut [bool]) {
-    let n = tri.num_points();
-    // Each vertex's degree and first two neighbours: all of them where the degree is two.
-    let graph = CurveGraph::new(n, edges);
+fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], kept: &mut [bool]) {
+    let n = root.len();
     let mut regular = vec![true; n];
     let mut size = vec![0usize; n];
-    for v in tri.vertices() {
-        let i = v.index();
-        let r = root[i] as usize;
+    for (i, &r) in root.iter().enumerate() {
+        let v = VertexId::new(i as u32);
+        let r = r as usize;
         if kept[r] || graph.degree(v) == 0 {
             continue;
         }
@@ -458,12 +490,12 @@ fn keep_regular_cycles(tri: &Triangulation, edges: &[Edge], root: &[u32], kept: 
 }
 
 /// Whether the components not kept hold at least [`OUTLIER_SHARE`] of the points with edges.
-fn too_many_dropped(tri: &Triangulation, root: &[u32], profile: &Profile, kept: &[bool]) -> bool {
+fn too_many_dropped(root: &[u32], profile: &Profile, kept: &[bool]) -> bool {
     let (mut with_edges, mut dropped) = (0usize, 0usize);
-    for v in tri.vertices() {
-        if profile.longest(v) >= 0.0 {
+    for (i, &r) in root.iter().enumerate() {
+        if profile.longest(VertexId::new(i as u32)) >= 0.0 {
             with_edges += 1;
-            dropped += usize::from(!kept[root[v.index()] as usize]);
+            dropped += usize::from(!kept[r as usize]);
         }
     }
     dropped as f64 >= OUTLIER_SHARE * with_edges as f64
