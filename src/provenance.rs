@@ -446,16 +446,7 @@ impl fmt::Display for EdgeStory {
             }
         }
         for change in &self.changes {
-            let stage = match change.stage {
-                Stage::Proximity => "proximity",
-                Stage::Repair => "repair",
-                Stage::Outliers => "IQR outliers",
-                Stage::LocalOutliers => "local outliers",
-                Stage::Gaps => "gaps",
-                Stage::GivenBack => "given-back check",
-                Stage::NnCrust => "NN-Crust",
-                Stage::Crust => "Crust",
-            };
+            let stage = change.stage.name();
             write!(
                 f,
                 "; {stage}: {} ",

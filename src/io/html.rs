@@ -179,7 +179,7 @@ fn write_data(
     write!(out, ",\"stageNames\":[")?;
     for (k, stage) in stages.iter().enumerate() {
         let sep = if k == 0 { "" } else { "," };
-        write!(out, "{sep}\"{}\"", stage_key(*stage))?;
+        write!(out, "{sep}\"{}\"", stage.name())?;
     }
     write!(out, "]}}")
 }
@@ -191,19 +191,6 @@ const POSITION_DIGITS: usize = 7;
 const RATIO_DIGITS: usize = 5;
 /// Of lengths and thresholds, shown with six significant digits.
 const LENGTH_DIGITS: usize = 6;
-
-fn stage_key(stage: Stage) -> &'static str {
-    match stage {
-        Stage::Proximity => "proximity",
-        Stage::Repair => "repair",
-        Stage::Outliers => "IQR outliers",
-        Stage::LocalOutliers => "local outliers",
-        Stage::Gaps => "gaps",
-        Stage::GivenBack => "given-back check",
-        Stage::NnCrust => "NN-Crust",
-        Stage::Crust => "Crust",
-    }
-}
 
 fn write_list<T: core::fmt::Display>(
     out: &mut impl Write,

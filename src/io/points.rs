@@ -550,33 +550,27 @@ mod decimal {
         let mut mantissa: u64 = 0;
         let mut digits = 0usize;
         let mut exponent: i64 = 0;
-        while let Some(&b) = bytes.get(i) {
-            let d = b.wrapping_sub(b'0');
-            if d > 9 {
-                break;
-            }
-            if digits == MAX_DIGITS {
-                return None;
-            }
-            mantissa = mantissa * 10 + u64::from(d);
-            digits += 1;
-            i += 1;
-        }
-        if bytes.get(i) == Some(&b'.') {
-            i += 1;
-            let first = i;
-            while let Some(&b) = bytes.get(i) {
-                let d = b.wrapping_sub(b'0');
-                if d > 9 {
-                    break;
-                }
+        // Appends the run of digits at `i` to the mantissa; `None` past MAX_DIGITS.
+        let mut read_digits = |i: &mut usize| -> Option<()> {
+            while let Some(d) = bytes
+                .get(*i)
+                .map(|b| b.wrapping_sub(b'0'))
+                .filter(|&d| d <= 9)
+            {
                 if digits == MAX_DIGITS {
                     return None;
                 }
                 mantissa = mantissa * 10 + u64::from(d);
                 digits += 1;
-                i += 1;
+                *i += 1;
             }
+            Some(())
+        };
+        read_digits(&mut i)?;
+        if bytes.get(i) == Some(&b'.') {
+            i += 1;
+            let first = i;
+            read_digits(&mut i)?;
             exponent -= (i - first) as i64;
         }
         if digits == 0 {

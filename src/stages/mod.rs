@@ -63,6 +63,25 @@ pub enum Stage {
 }
 
 impl Stage {
+    /// A short name for the stage itself, as explanations and the viewer's panel use it.
+    ///
+    /// ```
+    /// use condt::Stage;
+    /// assert_eq!(Stage::Outliers.name(), "IQR outliers");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Proximity => "proximity",
+            Stage::Repair => "repair",
+            Stage::Outliers => "IQR outliers",
+            Stage::LocalOutliers => "local outliers",
+            Stage::GivenBack => "given-back check",
+            Stage::Gaps => "gaps",
+            Stage::NnCrust => "NN-Crust",
+            Stage::Crust => "Crust",
+        }
+    }
+
     /// A title for the graph this stage leaves, as drawings label it.
     pub fn title(self) -> &'static str {
         match self {
