@@ -90,6 +90,7 @@ pub mod mesh;
 pub mod predicates;
 mod provenance;
 mod reconstruct;
+mod smooth;
 pub mod sample;
 pub mod score;
 mod stages;
@@ -103,7 +104,7 @@ pub use geometry::Point;
 pub use graph::{Graph, OutlierRemoval};
 pub use provenance::{Change, EdgeStory, EndChoice, Reason};
 pub use reconstruct::{
-    reconstruct, reconstruct_triangulation, Params, Reconstruction, StageReport,
+    reconstruct, reconstruct_triangulation, Params, Reconstruction, Smoothing, StageReport,
 };
 pub use stages::{Repair, Stage, Uniformity};
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};

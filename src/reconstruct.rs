@@ -87,6 +87,15 @@ pub struct Params {
     /// in [`Params::paper`]; the rules and the reason for each constant are in
     /// `src/stages/gaps.rs`.
     pub close_gaps: bool,
+    /// Reconstruct twice (not in the paper; off by default and in [`Params::paper`]): a first
+    /// pass with these parameters gives each point its curve neighbours; a point with two edges
+    /// meeting at a wide angle moves halfway to its neighbours' midpoint, and the stages run
+    /// again on the Delaunay triangulation of the moved points. The result's edges are between
+    /// input positions as always; its [`triangulation`](Reconstruction::triangulation) and
+    /// drawings show the moved points. Noise can push a sample into the empty circle of two
+    /// true neighbours, so that their edge is not a Delaunay edge of the noisy points; the
+    /// moved points can have it again. The rule and its reasons are in `src/smooth.rs`.
+    pub smooth: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
     pub parallel: bool,
@@ -148,6 +157,7 @@ impl Params {
             local_outliers: false,
             confirm_given_back: false,
             close_gaps: false,
+            smooth: false,
             parallel: cfg!(feature = "parallel"),
         }
     }
@@ -250,6 +260,16 @@ pub struct Reconstruction {
     unused: Vec<usize>,
     triangulation_time: Duration,
     curves_time: Duration,
+    smoothing: Option<Smoothing>,
+}
+
+/// What the smoothing pass ([`Params::smooth`]) did, as [`Reconstruction::smoothing`] reports it.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Smoothing {
+    /// How many points moved.
+    pub moved: usize,
+    /// The wall-clock time of the first pass and the smoothing (zero without `std`).
+    pub time: Duration,
 }
 
 /// One stage of a [`Reconstruction`], as [`Reconstruction::stages`] reports it.
@@ -272,7 +292,13 @@ impl Reconstruction {
         &self.params
     }
 
-    /// The Delaunay triangulation the stages walked.
+    /// What the smoothing pass did, or `None` when it did not run ([`Params::smooth`]).
+    pub fn smoothing(&self) -> Option<Smoothing> {
+        self.smoothing
+    }
+
+    /// The Delaunay triangulation the stages walked (of the smoothed positions when
+    /// [`Params::smooth`] is on).
     pub fn triangulation(&self) -> &Triangulation {
         &self.triangulation
     }
@@ -405,6 +431,24 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
     let triangulation_time = clock.lap();
     let mut result = reconstruct_triangulation(tri, params)?;
     result.triangulation_time = triangulation_time;
+    let passes = {
+        #[cfg(feature = "std")]
+        {
+            std::env::var("CONDT_SMOOTH_PASSES").ok().and_then(|v| v.parse().ok()).unwrap_or(1usize)
+        }
+        #[cfg(not(feature = "std"))]
+        1usize
+    };
+    for _ in 0..if params.smooth { passes } else { 0 } {
+        let (moved_points, moved) =
+            crate::smooth::smoothed_positions(&result.triangulation, latest_edges(&result.records));
+        let first_pass_time = clock.lap();
+        let tri = triangulate(&moved_points)?;
+        let triangulation_time = clock.lap();
+        result = reconstruct_triangulation(tri, params)?;
+        result.triangulation_time = triangulation_time;
+        result.smoothing = Some(Smoothing { moved, time: first_pass_time });
+    }
     Ok(result)
 }
 
@@ -478,6 +522,7 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
         unused: tally.unused,
         triangulation_time: Duration::ZERO,
         curves_time,
+        smoothing: None,
     }
 }
 

@@ -50,7 +50,7 @@ Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive]
                     [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
                     [--outliers-first] [--[no-]local-outliers] [--[no-]confirm-given-back]
-                    [--[no-]close-gaps] [--format F] [--stages] [--sequential]
+                    [--[no-]close-gaps] [--[no-]smooth] [--format F] [--stages] [--sequential]
 
 Example:
   condt reconstruct examples/data/shapes.txt -o shapes.svg --stages
@@ -93,6 +93,10 @@ Options:
       --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
                           other across a short gap or line up through a stranded point, and a
                           crossing's dropped arms
+      --[no-]smooth       (default off) reconstruct twice: move each point with two edges
+                          meeting at a wide angle halfway to its neighbours' midpoint, then
+                          run the stages on the moved points (edges stay between the input
+                          points; drawings show the moved ones); for noisy samples
       --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
                           --repair off
       --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
@@ -428,6 +432,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut local = Setting::new();
     let mut confirm = Setting::new();
     let mut gaps = Setting::new();
+    let mut smooth = Setting::new();
     let mut format = Setting::new();
     let mut stages = false;
     let mut rest = args.iter();
@@ -450,6 +455,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             Some(flag @ "--no-confirm-given-back") => confirm.set(false, flag)?,
             Some(flag @ "--close-gaps") => gaps.set(true, flag)?,
             Some(flag @ "--no-close-gaps") => gaps.set(false, flag)?,
+            Some(flag @ "--smooth") => smooth.set(true, flag)?,
+            Some(flag @ "--no-smooth") => smooth.set(false, flag)?,
             Some(flag @ "--no-manifold-fix") => repair.set(Repair::Off, flag)?,
             Some(flag @ "--repair") => {
                 let value = rest.next();
@@ -497,6 +504,9 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     }
     if let Some(on) = gaps.get() {
         params.close_gaps = on;
+    }
+    if let Some(on) = smooth.get() {
+        params.smooth = on;
     }
     params.check().map_err(refused)?;
     let (input, output) = paths.finish("reconstruct")?;
