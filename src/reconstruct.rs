@@ -33,6 +33,7 @@ use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
+use crate::smooth::{smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Repair, Stage, Step, Uniformity, PARALLEL_FROM};
 use crate::triangulate::{triangulate, Triangulation};
 use alloc::borrow::Cow;
@@ -263,13 +264,40 @@ pub struct Reconstruction {
     smoothing: Option<Smoothing>,
 }
 
-/// What the smoothing pass ([`Params::smooth`]) did, as [`Reconstruction::smoothing`] reports it.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+/// What the smoothing passes ([`Params::smooth`]) did, as [`Reconstruction::smoothing`]
+/// reports them.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// // A noisy circle: 40 samples, every other one pushed out by 4 % of the radius.
+/// let pts: Vec<Point> = (0..40)
+///     .map(|k| {
+///         let t = k as f64 * std::f64::consts::TAU / 40.0;
+///         let r = if k % 2 == 0 { 1.04 } else { 1.0 };
+///         Point::new(r * t.cos(), r * t.sin())
+///     })
+///     .collect();
+/// let result = reconstruct(&pts, &Params { smooth: true, ..Params::default() })?;
+/// let smoothing = result.smoothing().expect("it ran");
+/// assert!(smoothing.passes >= 1 && smoothing.moved > 0);
+/// // The stages saw the moved points; the edges are between input positions.
+/// assert_ne!(result.point(0), pts[0]);
+/// assert_eq!(result.curves().len(), 1);
+/// assert!(reconstruct(&pts, &Params::default())?.smoothing().is_none());
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct Smoothing {
-    /// How many points moved.
+    /// How many smoothing passes ran, each a reconstruction of moved points (at least one):
+    /// the result is the last one's.
+    pub passes: usize,
+    /// How many points the last pass moved (from the positions the pass before it saw).
     pub moved: usize,
-    /// The wall-clock time of the first pass and the smoothing (zero without `std`).
-    pub time: Duration,
+    /// The wall-clock time of the first reconstruction, every pass but the last, and every
+    /// smoothing (zero without `std`); the result's stage and triangulation times are the last
+    /// pass's.
+    pub earlier_passes: Duration,
 }
 
 /// One stage of a [`Reconstruction`], as [`Reconstruction::stages`] reports it.
@@ -431,23 +459,30 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
     let triangulation_time = clock.lap();
     let mut result = reconstruct_triangulation(tri, params)?;
     result.triangulation_time = triangulation_time;
-    let passes = {
-        #[cfg(feature = "std")]
-        {
-            std::env::var("CONDT_SMOOTH_PASSES").ok().and_then(|v| v.parse().ok()).unwrap_or(1usize)
+    if params.smooth {
+        // Each pass smooths along the previous pass's final graph and reconstructs the moved
+        // points; the passes stop at a fixed point (the same final edges) or after
+        // `MAX_PASSES` (src/smooth.rs gives the reasons).
+        let mut earlier_passes = Duration::ZERO;
+        let mut smoothing = Smoothing::default();
+        while smoothing.passes < MAX_PASSES {
+            let (positions, moved) =
+                smoothed_positions(&result.triangulation, latest_edges(&result.records));
+            earlier_passes += clock.lap();
+            let tri = triangulate(&positions)?;
+            let triangulation_time = clock.lap();
+            let mut next = reconstruct_triangulation(tri, params)?;
+            next.triangulation_time = triangulation_time;
+            smoothing.passes += 1;
+            smoothing.moved = moved;
+            let fixed_point = next.edges == result.edges;
+            result = next;
+            if fixed_point {
+                break;
+            }
         }
-        #[cfg(not(feature = "std"))]
-        1usize
-    };
-    for _ in 0..if params.smooth { passes } else { 0 } {
-        let (moved_points, moved) =
-            crate::smooth::smoothed_positions(&result.triangulation, latest_edges(&result.records));
-        let first_pass_time = clock.lap();
-        let tri = triangulate(&moved_points)?;
-        let triangulation_time = clock.lap();
-        result = reconstruct_triangulation(tri, params)?;
-        result.triangulation_time = triangulation_time;
-        result.smoothing = Some(Smoothing { moved, time: first_pass_time });
+        smoothing.earlier_passes = earlier_passes;
+        result.smoothing = Some(smoothing);
     }
     Ok(result)
 }
