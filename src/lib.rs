@@ -90,9 +90,9 @@ pub mod mesh;
 pub mod predicates;
 mod provenance;
 mod reconstruct;
-mod smooth;
 pub mod sample;
 pub mod score;
+mod smooth;
 mod stages;
 #[cfg(test)]
 mod test_rng;

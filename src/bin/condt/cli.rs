@@ -681,6 +681,9 @@ mod tests {
         assert!(c.params.confirm_given_back, "the default");
         let e = parse_reconstruct(&strings(&["in.txt", "--no-confirm-given-back"])).unwrap();
         assert!(e.params.local_outliers && !e.params.confirm_given_back);
+        assert!(!e.params.smooth, "off by default");
+        let smooth = parse_reconstruct(&strings(&["--smooth", "in.txt", "--paper"])).unwrap();
+        assert!(smooth.params.smooth && smooth.params.repair == Repair::Paper);
         let paper = parse_reconstruct(&strings(&["in.txt", "--paper"])).unwrap();
         assert_eq!(paper.params, condt::Params::paper());
         let paper_plus =
@@ -695,6 +698,7 @@ mod tests {
             &["in.txt", "--u", "-1"],
             &["in.txt", "--iqr", "inf"],
             &["in.txt", "--repair", "x"],
+            &["in.txt", "--smooth", "--no-smooth"],
         ] {
             assert_eq!(
                 parse_reconstruct(&strings(bad)).unwrap_err().exit_code(),
