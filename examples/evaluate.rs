@@ -6,7 +6,7 @@
 //!
 //! `cargo run --release --example evaluate -- [DATA_DIR] [--repair off|paper|mutual|crossing|needs]
 //!  [--adaptive] [--u X] [--iqr K] [--no-outlier-filter] [--[no-]local-outliers]
-//!  [--[no-]confirm-given-back] [--[no-]close-gaps] [--paper] [--sets]`
+//!  [--[no-]confirm-given-back] [--[no-]close-gaps] [--[no-]smooth] [--paper] [--sets]`
 //! With `--compare`, runs every repair variant and uniformity mode and prints one table each.
 
 use condt::io::read_points;
@@ -182,6 +182,11 @@ fn main() {
     ] {
         if args.iter().any(|a| a == flag) {
             params.confirm_given_back = on;
+        }
+    }
+    for (flag, on) in [("--smooth", true), ("--no-smooth", false)] {
+        if args.iter().any(|a| a == flag) {
+            params.smooth = on;
         }
     }
     for (flag, on) in [("--close-gaps", true), ("--no-close-gaps", false)] {

@@ -69,7 +69,8 @@
 //! [`score`] (metrics against a ground truth) and `io` (`std`). Private, from the bottom up (each uses only modules listed before it):
 //! `error`, `geometry`, `triangulate` (the kernel), `adjacency` (edge lists in vertex ids),
 //! `stages` (one module per ConDT stage), `curve` ([`Curve`]), `graph` ([`Graph`]),
-//! `reconstruct` (the pipeline and the order of its stages), `baselines` (NN-Crust and Crust as
+//! `smooth` (moving noisy points along a first reconstruction's curves), `reconstruct` (the
+//! pipeline, the order of its stages and the smoothing passes), `baselines` (NN-Crust and Crust as
 //! methods of [`Triangulation`]); `test_rng` serves unit tests only.
 //! `docs/architecture.md` draws the graph and says what each module may not touch.
 #![cfg_attr(not(feature = "std"), no_std)]
@@ -92,6 +93,7 @@ mod provenance;
 mod reconstruct;
 pub mod sample;
 pub mod score;
+mod smooth;
 mod stages;
 #[cfg(test)]
 mod test_rng;
@@ -103,7 +105,7 @@ pub use geometry::Point;
 pub use graph::{Graph, OutlierRemoval};
 pub use provenance::{Change, EdgeStory, EndChoice, Reason};
 pub use reconstruct::{
-    reconstruct, reconstruct_triangulation, Method, Params, Reconstruction, StageReport,
+    reconstruct, reconstruct_triangulation, Method, Params, Reconstruction, Smoothing, StageReport,
 };
 pub use stages::{Repair, Stage, Uniformity};
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};

@@ -54,7 +54,7 @@ Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive]
                     [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
                     [--outliers-first] [--[no-]local-outliers] [--[no-]confirm-given-back]
-                    [--[no-]close-gaps] [--format F] [--stages] [--sequential]
+                    [--[no-]close-gaps] [--[no-]smooth] [--format F] [--stages] [--sequential]
 
 Example:
   condt reconstruct examples/data/shapes.txt -o shapes.svg --stages
@@ -98,6 +98,10 @@ Options:
       --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
                           other across a short gap or line up through a stranded point, and a
                           crossing's dropped arms
+      --[no-]smooth       (default off) reconstruct twice: move each point with two edges
+                          meeting at a wide angle halfway to its neighbours' midpoint, then
+                          run the stages on the moved points (edges stay between the input
+                          points; drawings show the moved ones); for noisy samples
       --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
                           --repair off
       --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
@@ -441,6 +445,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut local = Setting::new();
     let mut confirm = Setting::new();
     let mut gaps = Setting::new();
+    let mut smooth = Setting::new();
     let mut format = Setting::new();
     let mut method = Setting::new();
     // ConDT's own options, to refuse them beside a baseline method.
@@ -491,6 +496,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             Some(flag @ "--no-confirm-given-back") => confirm.set(false, flag)?,
             Some(flag @ "--close-gaps") => gaps.set(true, flag)?,
             Some(flag @ "--no-close-gaps") => gaps.set(false, flag)?,
+            Some(flag @ "--smooth") => smooth.set(true, flag)?,
+            Some(flag @ "--no-smooth") => smooth.set(false, flag)?,
             Some(flag @ "--no-manifold-fix") => repair.set(Repair::Off, flag)?,
             Some(flag @ "--repair") => {
                 let value = rest.next();
@@ -538,6 +545,9 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     }
     if let Some(on) = gaps.get() {
         params.close_gaps = on;
+    }
+    if let Some(on) = smooth.get() {
+        params.smooth = on;
     }
     if let Some(chosen) = method.get() {
         if chosen != Method::ConDT {
@@ -731,6 +741,9 @@ mod tests {
         assert!(c.params.confirm_given_back, "the default");
         let e = parse_reconstruct(&strings(&["in.txt", "--no-confirm-given-back"])).unwrap();
         assert!(e.params.local_outliers && !e.params.confirm_given_back);
+        assert!(!e.params.smooth, "off by default");
+        let smooth = parse_reconstruct(&strings(&["--smooth", "in.txt", "--paper"])).unwrap();
+        assert!(smooth.params.smooth && smooth.params.repair == Repair::Paper);
         let paper = parse_reconstruct(&strings(&["in.txt", "--paper"])).unwrap();
         assert_eq!(paper.params, condt::Params::paper());
         let paper_plus =
@@ -745,6 +758,7 @@ mod tests {
             &["in.txt", "--u", "-1"],
             &["in.txt", "--iqr", "inf"],
             &["in.txt", "--repair", "x"],
+            &["in.txt", "--smooth", "--no-smooth"],
         ] {
             assert_eq!(
                 parse_reconstruct(&strings(bad)).unwrap_err().exit_code(),
