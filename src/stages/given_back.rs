@@ -40,16 +40,6 @@ use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// The representative of `v`'s set, halving the path on the way.
-fn find(parent: &mut [u32], mut v: u32) -> u32 {
-    while parent[v as usize] != v {
-        let up = parent[parent[v as usize] as usize];
-        parent[v as usize] = up;
-        v = up;
-    }
-    v
-}
-
 /// The rule of the module comment on `edges`, the graph the local outlier removal left;
 /// `before_local` is the graph it started from. Unchanged when no component goes.
 pub(crate) fn confirm_given_back(
@@ -69,16 +59,8 @@ pub(crate) fn confirm_given_back(
     if !given.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    for &[a, b] in edges {
-        // The smaller root becomes the parent: the sets depend only on the edges.
-        let (ra, rb) = (
-            find(&mut parent, a.index() as u32),
-            find(&mut parent, b.index() as u32),
-        );
-        parent[ra.max(rb) as usize] = ra.min(rb);
-    }
-    let root: Vec<u32> = (0..n as u32).map(|v| find(&mut parent, v)).collect();
+    // Each vertex's component, named by its smallest id (the local outlier removal's union-find).
+    let root = super::local_outliers::components(n, edges);
     // Components made only of given-back edges, and each vertex's longest edge (squared).
     let mut only_given = vec![false; n];
     for &[a, _] in edges {

@@ -400,7 +400,7 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
 /// edges in which the smaller root becomes the parent, so the sets depend only on the edges and
 /// every vertex's parent is at most the vertex itself. Then one pass in increasing id order
 /// turns parents into roots: a vertex's parent is smaller, so its root is already known.
-fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
+pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..n as u32).collect();
     for &[a, b] in edges {
         let (ra, rb) = (
