@@ -78,6 +78,8 @@ pub enum Reason {
         vertex: usize,
         /// Its number of edges before the repair.
         degree: usize,
+        /// The neighbours it kept (input positions), at most two shown.
+        kept: [Option<usize>; 2],
     },
     /// Algorithm 3: the edge is longer than the threshold `√T`.
     LongerThanThreshold {
@@ -280,7 +282,10 @@ struct Explainer<'a> {
     stage: Stage,
     /// Degrees of the stage's input graph, by input position.
     degrees_before: Vec<usize>,
-    before: &'a [[usize; 2]],
+    /// Neighbours in the stage's input and output graphs, built only for the stages whose
+    /// reasons read them (local outliers and the repair), so an explanation costs O(degree).
+    before: Neighbours,
+    after: Neighbours,
     /// Algorithm 3's `√T` in input units, when the stage is the IQR rule.
     threshold: f64,
     /// For local outliers: per input position, whether its component in the stage's input lost
@@ -308,11 +313,18 @@ impl<'a> Explainer<'a> {
         } else {
             Vec::new()
         };
+        let n = tri.num_points();
+        let (before_neighbours, after_neighbours) = match stage {
+            Stage::LocalOutliers => (Neighbours::new(n, before), Neighbours::empty()),
+            Stage::Repair => (Neighbours::empty(), Neighbours::new(n, after)),
+            _ => (Neighbours::empty(), Neighbours::empty()),
+        };
         Explainer {
             tri,
             stage,
             degrees_before,
-            before,
+            before: before_neighbours,
+            after: after_neighbours,
             threshold,
             component_gone,
         }
@@ -352,9 +364,11 @@ impl<'a> Explainer<'a> {
                 } else {
                     b
                 };
+                let mut kept = self.after.of(vertex).iter().map(|&w| Some(w));
                 Reason::Repair {
                     vertex,
                     degree: self.degrees_before[vertex],
+                    kept: [kept.next().flatten(), kept.next().flatten()],
                 }
             }
         }
@@ -363,10 +377,53 @@ impl<'a> Explainer<'a> {
     /// The longest edge at `end` in the stage's input other than the one to `other`.
     fn longest_other(&self, end: usize, other: usize) -> Option<f64> {
         self.before
+            .of(end)
             .iter()
-            .filter(|&&[x, y]| (x == end || y == end) && x != other && y != other)
-            .map(|&[x, y]| input_length(self.tri, x, y))
+            .filter(|&&w| w != other)
+            .map(|&w| input_length(self.tri, end, w))
             .reduce(f64::max)
+    }
+}
+
+/// The neighbours of every point in an edge list, compressed (offsets into one array).
+struct Neighbours {
+    start: Vec<usize>,
+    list: Vec<usize>,
+}
+
+impl Neighbours {
+    fn new(n: usize, edges: &[[usize; 2]]) -> Self {
+        let mut start = vec![0usize; n + 1];
+        for &[a, b] in edges {
+            start[a + 1] += 1;
+            start[b + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut list = vec![0usize; 2 * edges.len()];
+        for &[a, b] in edges {
+            list[fill[a]] = b;
+            fill[a] += 1;
+            list[fill[b]] = a;
+            fill[b] += 1;
+        }
+        Neighbours { start, list }
+    }
+
+    fn empty() -> Self {
+        Neighbours {
+            start: Vec::new(),
+            list: Vec::new(),
+        }
+    }
+
+    fn of(&self, i: usize) -> &[usize] {
+        match (self.start.get(i), self.start.get(i + 1)) {
+            (Some(&from), Some(&to)) => &self.list[from..to],
+            _ => &[],
+        }
     }
 }
 
@@ -453,10 +510,18 @@ impl fmt::Display for EdgeStory {
                 if change.added { "added" } else { "removed" }
             )?;
             match change.reason {
-                Reason::Repair { vertex, degree } => write!(
-                    f,
-                    "at vertex {vertex} (degree {degree}), which kept other edges"
-                )?,
+                Reason::Repair {
+                    vertex,
+                    degree,
+                    kept,
+                } => {
+                    write!(f, "at vertex {vertex} (degree {degree}), which kept ")?;
+                    match kept {
+                        [Some(x), Some(y)] => write!(f, "its edges to {x} and {y}")?,
+                        [Some(x), None] | [None, Some(x)] => write!(f, "its edge to {x} only")?,
+                        [None, None] => write!(f, "none")?,
+                    }
+                }
                 Reason::LongerThanThreshold { length, threshold } => {
                     write!(f, "length {length:.6} above √T = {threshold:.6}")?
                 }
@@ -549,6 +614,21 @@ mod tests {
                 }
                 replay.sort_unstable();
                 assert_eq!(replay, graphs[k], "{:?}", report.stage);
+                // A repair names the neighbours its vertex kept: its edges in the stage's graph.
+                for change in stories.iter().flat_map(|s| &s.changes) {
+                    if let (true, Reason::Repair { vertex, kept, .. }) =
+                        (change.stage == report.stage, change.reason)
+                    {
+                        let neighbours: Vec<usize> = graphs[k]
+                            .iter()
+                            .filter(|e| e.contains(&vertex))
+                            .map(|&[x, y]| if x == vertex { y } else { x })
+                            .collect();
+                        let named: Vec<usize> = kept.iter().flatten().copied().collect();
+                        assert_eq!(named.len(), neighbours.len().min(2));
+                        assert!(named.iter().all(|w| neighbours.contains(w)));
+                    }
+                }
             }
             let kept: Vec<[usize; 2]> = stories.iter().filter(|s| s.kept).map(|s| s.edge).collect();
             let mut result_edges: Vec<[usize; 2]> = result.edges().collect();

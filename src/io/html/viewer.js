@@ -40,7 +40,7 @@
   for (let k = 0; k < data.changes.length; k += 6) {
     const c = data.changes, e = c[k];
     if (!changes.has(e)) changes.set(e, []);
-    changes.get(e).push({ stage: stageNames[c[k + 1]], added: c[k + 2] === 1, code: c[k + 3], x: c[k + 4], y: c[k + 5] });
+    changes.get(e).push({ stage: stageNames[c[k + 1]], stageIndex: c[k + 1], added: c[k + 2] === 1, code: c[k + 3], x: c[k + 4], y: c[k + 5] });
   }
   const resultEdges = new Uint8Array(m);
   for (const k of layers[layers.length - 1].edges) resultEdges[k] = 1;
@@ -205,7 +205,16 @@
   function changeWords(c) {
     const verb = c.added ? "added" : "removed";
     const why = [
-      () => `at vertex ${c.x} (degree ${c.y}), which kept other edges`,
+      () => {
+        // The repair's kept edges at the vertex: its edges in that stage's layer.
+        const kept = [];
+        for (let s = start[c.x]; s < start[c.x + 1]; s++) {
+          const k = incident[s];
+          if ((data.member[k] >> (c.stageIndex + 1)) & 1) kept.push(E[2 * k] === c.x ? E[2 * k + 1] : E[2 * k]);
+        }
+        const which = kept.length === 0 ? "none" : kept.length === 1 ? `its edge to ${kept[0]} only` : `its edges to ${kept.slice(0, 2).join(" and ")}`;
+        return `at vertex ${c.x} (degree ${c.y}), which kept ${which}`;
+      },
       () => `length ${fmt(c.x)} above √T = ${fmt(c.y)}`,
       () => "given back between two regular passages",
       () => `${c.y.toFixed(2)} times as long as the longest other edge at vertex ${c.x}`,
