@@ -22,6 +22,7 @@
 //! - **gaps**: closed.
 
 use crate::graph::Graph;
+use crate::mesh::VertexId;
 use crate::reconstruct::Reconstruction;
 use crate::stages::{Stage, Uniformity};
 use crate::triangulate::Triangulation;
@@ -238,30 +239,30 @@ impl<'t> Rings<'t> {
         let tri = self.tri;
         let (v, w) = (tri.vertex(at), tri.vertex(other));
         let p = tri.vertex_point(v);
-        let key = |u: crate::mesh::VertexId| (p.dist2(tri.vertex_point(u)), u);
-        let ring: Vec<(f64, crate::mesh::VertexId)> = tri.mesh().neighbors(v).map(key).collect();
-        if !ring.iter().any(|&(_, u)| u == w) {
+        let key = |u: VertexId| (p.dist2(tri.vertex_point(u)), u);
+        // The ring is walked again for each number instead of being collected: no allocation.
+        let ring = || tri.mesh().neighbors(v).map(key);
+        if !ring().any(|(_, u)| u == w) {
             return EndChoice::NotDelaunay;
         }
         let target = key(w);
-        let before = |a: &(f64, crate::mesh::VertexId), b: &(f64, crate::mesh::VertexId)| {
-            a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
-        };
-        let rank = 1 + ring.iter().filter(|e| before(e, &target)).count();
+        // The stage's order: squared length, then vertex id (a tuple's order).
+        let before =
+            |a: &(f64, VertexId), b: &(f64, VertexId)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
+        let rank = 1 + ring().filter(|e| before(e, &target)).count();
         match rank {
             1 => EndChoice::Shortest,
             2 => {
-                let first = ring
-                    .iter()
-                    .copied()
+                let first = ring()
                     .reduce(|a, b| if before(&b, &a) { b } else { a })
-                    .expect("the ring holds the edge");
+                    .unwrap_or(target);
                 let (l1, l2) = (libm::sqrt(first.0), libm::sqrt(target.0));
                 let (kept, bound) = match self.uniformity {
                     Uniformity::Fixed(u) => (l2 < u * l1, u),
                     Uniformity::Adaptive => {
-                        let sum: f64 = ring.iter().map(|e| libm::sqrt(e.0)).sum();
-                        let mean = sum / ring.len() as f64;
+                        let (sum, count) =
+                            ring().fold((0.0, 0u32), |(s, c), e| (s + libm::sqrt(e.0), c + 1));
+                        let mean = sum / f64::from(count);
                         (l2 < mean, mean / l1)
                     }
                 };

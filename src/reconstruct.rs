@@ -108,8 +108,8 @@ pub struct Params {
     /// `src/stages/local_outliers.rs`.
     pub local_outliers: bool,
     /// Right after the local outlier removal (and only when it runs), drop every component
-    /// made only of edges its first rule gave back unless every vertex of it is apart from
-    /// everything else by more than twice its longest edge (not in the paper; on by default,
+    /// made only of edges its first rule gave back unless every vertex of it with two edges is
+    /// apart from everything else by more than twice its longest edge (not in the paper; on by default,
     /// off in [`Params::paper`]): a chance chain of smooth passages in a large scatter of
     /// outliers is given back whole, a sparse curve beside a dense one is apart everywhere.
     /// The rule and its reason are in `src/stages/given_back.rs`.

@@ -404,6 +404,10 @@ impl Bounds {
 /// Segments per leaf of the hierarchy.
 const LEAF: usize = 4;
 
+/// Levels of the hierarchy at most: each level halves the segments, and there are fewer than
+/// 2^64 of them.
+const STACK_LEVELS: usize = 65;
+
 /// A bounding-volume hierarchy over segments, built by median splits along the wider side;
 /// a nearest query visits boxes closest first and stops at the first box farther than the best
 /// segment found, so it is exact and takes logarithmic time near the segments and far from them.
@@ -443,9 +447,14 @@ impl SegmentTree {
         if self.nodes.is_empty() {
             return best;
         }
-        // Depth-first, nearer child first; the stack never exceeds the tree's depth by much.
-        let mut stack: Vec<(f64, usize)> = vec![(0.0, 0)];
-        while let Some((bound, k)) = stack.pop() {
+        // Depth-first, nearer child first. A median split halves every node, so the tree is at
+        // most 64 levels deep and the stack, one deferred child per level and the node being
+        // looked at, fits a fixed array: no allocation per query.
+        let mut stack = [(0.0f64, 0usize); 2 * STACK_LEVELS];
+        let mut depth = 1;
+        while depth > 0 {
+            depth -= 1;
+            let (bound, k) = stack[depth];
             if bound >= best {
                 continue;
             }
@@ -464,8 +473,9 @@ impl SegmentTree {
             } else {
                 ((dr, right), (dl, left))
             };
-            stack.push(far);
-            stack.push(near);
+            stack[depth] = far;
+            stack[depth + 1] = near;
+            depth += 2;
         }
         best
     }

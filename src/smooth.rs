@@ -67,16 +67,24 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> (Vec<Po
                 return p;
             }
             let [x, y] = graph.first_two(v);
-            let (a, b) = (tri.input_point(x), tri.input_point(y));
-            let (ux, uy) = (a.x - p.x, a.y - p.y);
-            let (wx, wy) = (b.x - p.x, b.y - p.y);
-            // The angle at p is wider than a right angle exactly when u·w < 0.
+            // In the stages' frame, where the sums and products below neither overflow nor
+            // underflow at any input scale; a power of two from the input, so for every set in
+            // the fast range the moved position is the one the input frame would give, bit for
+            // bit.
+            let q = tri.vertex_point(v);
+            let (a, b) = (tri.vertex_point(x), tri.vertex_point(y));
+            let (ux, uy) = (a.x - q.x, a.y - q.y);
+            let (wx, wy) = (b.x - q.x, b.y - q.y);
+            // The angle at the point is wider than a right angle exactly when u·w < 0.
             if ux * wx + uy * wy >= 0.0 {
                 return p;
             }
             moved += 1;
             let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
-            Point::new(p.x + WEIGHT * (mid.x - p.x), p.y + WEIGHT * (mid.y - p.y))
+            tri.stage_to_input(Point::new(
+                q.x + WEIGHT * (mid.x - q.x),
+                q.y + WEIGHT * (mid.y - q.y),
+            ))
         })
         .collect();
     (positions, moved)
@@ -86,6 +94,41 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> (Vec<Po
 mod tests {
     use crate::sample::{sample, Sampling, Shape};
     use crate::{reconstruct, triangulate, Params, Point};
+
+    #[test]
+    fn smoothing_gives_the_same_edges_at_the_ends_of_the_double_range() {
+        let noisy = sample(
+            &[Shape::Ellipse {
+                center: Point::new(0.0, 0.0),
+                radii: (1.0, 0.6),
+                rotation: 0.0,
+            }],
+            &Sampling {
+                noise: 0.02,
+                seed: 675,
+                ..Sampling::new(0.1)
+            },
+        );
+        let params = Params {
+            smooth: true,
+            ..Params::default()
+        };
+        let expected: Vec<[usize; 2]> = reconstruct(&noisy.points, &params)
+            .unwrap()
+            .edges()
+            .collect();
+        for exponent in [1020, -1060] {
+            let factor = libm::ldexp(1.0, exponent);
+            let scaled: Vec<Point> = noisy
+                .points
+                .iter()
+                .map(|p| Point::new(p.x * factor, p.y * factor))
+                .collect();
+            let result = reconstruct(&scaled, &params).unwrap();
+            assert!(result.smoothing().unwrap().moved > 0);
+            assert_eq!(result.edges().collect::<Vec<_>>(), expected, "2^{exponent}");
+        }
+    }
 
     /// A noisy ellipse the crate samples itself (142 samples, uniform noise of 2 % of the long
     /// radius), chosen because one true edge, 114-115, is not a Delaunay edge of the noisy

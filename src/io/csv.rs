@@ -4,7 +4,8 @@
 //! the reader follows the header instead of taking the first two columns as the plain reader
 //! does (an `id,x,y` file would otherwise be read as points `(id, x)`).
 
-use super::{IoError, IoErrorKind};
+use super::points::{numbered_lines, quoted, Source};
+use super::IoError;
 use crate::geometry::Point;
 use std::vec::Vec;
 
@@ -33,17 +34,11 @@ const Y_LONG_NAME: &str = "latitude";
 /// # Ok::<(), condt::io::IoError>(())
 /// ```
 pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
-    let error = |line: usize, message: String| IoError {
-        file: file.to_string(),
-        line: Some(line),
-        kind: IoErrorKind::Content(message),
-    };
+    let source = Source { file };
+    let error = |line: usize, message: String| source.error(line, message);
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(k, line)| (k + 1, line))
-        .filter(|(_, line)| !line.trim().is_empty());
+    // Lines end at LF, CRLF or a lone CR, as in every other point format.
+    let mut lines = numbered_lines(text).filter(|(_, line)| !line.trim().is_empty());
     let Some((header_line, header)) = lines.next() else {
         return Ok(Vec::new());
     };
@@ -58,7 +53,7 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
                     format!(
                         "the header has no {axis} column (x, lon, lng, longitude and y, lat, \
                          latitude are read): {}",
-                        shown(header)
+                        quoted(header)
                     ),
                 )
             })
@@ -79,14 +74,7 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
                     ),
                 )
             })?;
-            let field = field.trim();
-            match field.parse::<f64>() {
-                Ok(value) if value.is_finite() => Ok(value),
-                _ => Err(error(
-                    line,
-                    format!("cannot read {} as a finite number", shown(field)),
-                )),
-            }
+            source.number(line, field.trim())
         };
         let point = Point::new(coordinate(x_column, "x")?, coordinate(y_column, "y")?);
         points
@@ -125,19 +113,17 @@ fn fields(line: &str) -> Result<Vec<String>, String> {
     Ok(fields)
 }
 
-/// A token for a message: quoted, at most 40 characters.
-fn shown(text: &str) -> String {
-    let cut: String = text.chars().take(40).collect();
-    if cut.len() < text.len() {
-        format!("{cut:?}…")
-    } else {
-        format!("{cut:?}")
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lone_carriage_returns_end_lines() {
+        let pts = parse_csv("x,y\r1,2\r3,4\r", "mac.csv").unwrap();
+        assert_eq!(pts, vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0)]);
+        let err = parse_csv("x,y\r1,2\r3,z\r", "mac.csv").unwrap_err();
+        assert_eq!(err.line, Some(3));
+    }
 
     #[test]
     fn the_header_chooses_the_columns_in_any_order_and_case() {
@@ -156,7 +142,7 @@ mod tests {
         for (text, line, words) in [
             ("x,y\n1,2\n3\n", 3, "1 fields, but the y column is field 2"),
             ("x,y\n1,2\n3,abc\n", 3, "cannot read \"abc\""),
-            ("x,y\n1,nan\n", 2, "cannot read \"nan\""),
+            ("x,y\n1,nan\n", 2, "\"nan\" is not finite"),
             ("x,y\n1,\"2\n", 2, "not closed"),
             ("\n\nid,y\n", 3, "no x column"),
         ] {

@@ -4,8 +4,10 @@
 //! dependency). It reads coordinates as they are written (GeoJSON's longitude, latitude order
 //! becomes x, y); it may not project them.
 
+use super::points::{line_at, quoted};
 use super::{IoError, IoErrorKind};
 use crate::geometry::Point;
+use crate::MAX_POINTS;
 use std::string::String;
 use std::vec::Vec;
 
@@ -130,18 +132,18 @@ fn collect(value: &Value, points: &mut Vec<Point>) -> Result<(), Failure> {
             let coordinates = value
                 .field("coordinates")
                 .ok_or((value.at, "a Point needs \"coordinates\"".to_string()))?;
-            points.push(position(coordinates)?);
+            push(points, position(coordinates)?, value.at)?;
             Ok(())
         }
         "MultiPoint" => list("coordinates")?.iter().try_for_each(|p| {
-            points.push(position(p)?);
+            push(points, position(p)?, p.at)?;
             Ok(())
         }),
         other => Err((
             value.at,
             format!(
                 "a {}: only Point and MultiPoint geometries are read as points",
-                shown(other)
+                quoted(other)
             ),
         )),
     }
@@ -175,10 +177,7 @@ struct Reader<'a> {
 
 impl Reader<'_> {
     fn line_of(&self, at: usize) -> usize {
-        1 + self.bytes[..at.min(self.bytes.len())]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
+        line_at(self.bytes, at.min(self.bytes.len()))
     }
 
     fn skip_space(&mut self) {
@@ -290,7 +289,7 @@ impl Reader<'_> {
             _ => {
                 let end = (start + 40).min(self.bytes.len());
                 let near = String::from_utf8_lossy(&self.bytes[start..end]);
-                Err((start, format!("not a JSON value: {}", shown(&near))))
+                Err((start, format!("not a JSON value: {}", quoted(&near))))
             }
         }
     }
@@ -329,10 +328,22 @@ impl Reader<'_> {
     }
 }
 
-/// A token for a message: quoted, at most 40 characters.
-fn shown(text: &str) -> String {
-    let cut: String = text.chars().take(40).collect();
-    format!("{cut:?}")
+/// Appends `p`, refusing more than [`MAX_POINTS`] points as every point reader does.
+fn push(points: &mut Vec<Point>, p: Point, at: usize) -> Result<(), Failure> {
+    if points.len() == MAX_POINTS {
+        return Err((
+            at,
+            format!("more than {MAX_POINTS} points, the most condt accepts"),
+        ));
+    }
+    points.try_reserve(1).map_err(|_| {
+        (
+            at,
+            format!("cannot hold {} points in memory", points.len() + 1),
+        )
+    })?;
+    points.push(p);
+    Ok(())
 }
 
 #[cfg(test)]

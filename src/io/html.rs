@@ -11,6 +11,7 @@
 //! anything: every verdict and ratio comes from the library; the script computes only lengths
 //! and positions for display.
 
+use crate::geometry::{binary_exponent, Point, Scale};
 use crate::provenance::{EdgeStory, EndChoice, Reason};
 use crate::{Reconstruction, Stage};
 use std::io::{self, Write};
@@ -59,36 +60,48 @@ fn write_data(
     stories: &[EdgeStory],
 ) -> io::Result<()> {
     let n = result.num_points();
-    let points: Vec<crate::Point> = (0..n).map(|i| result.point(i)).collect();
-    let (mut min_x, mut min_y) = (f64::INFINITY, f64::INFINITY);
+    // The positions are written relative to the box's corner over one power of two that spans
+    // the box (so that the page keeps the set's shape and the set's own spacing survives the
+    // digits written). They are first brought near 1 by another power of two, as the SVG does,
+    // so that spans of coordinates near 1e308 do not overflow; both steps are exact.
+    let largest = (0..n)
+        .map(|i| result.point(i))
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let exponent = if largest > 0.0 && largest.is_finite() {
+        binary_exponent(largest)
+    } else {
+        0
+    };
+    let unit = Scale::power_of_two(-exponent);
+    let points: Vec<Point> = (0..n).map(|i| unit.apply(result.point(i))).collect();
+    let (mut min, mut span) = (Point::new(f64::INFINITY, f64::INFINITY), 0.0f64);
     for p in &points {
-        min_x = min_x.min(p.x);
-        min_y = min_y.min(p.y);
+        min = Point::new(min.x.min(p.x), min.y.min(p.y));
     }
-    let (mut span_x, mut span_y) = (0.0f64, 0.0f64);
     for p in &points {
-        span_x = span_x.max(p.x - min_x);
-        span_y = span_y.max(p.y - min_y);
+        span = span.max(p.x - min.x).max(p.y - min.y);
     }
-    // One scale for both axes, so that the page keeps the set's shape; a power of two, so that
-    // dividing is exact and the set's own spacing survives the 9 significant digits written.
-    let span = span_x.max(span_y);
-    let scale = if span > 0.0 && span.is_finite() {
+    let scale = if span > 0.0 {
         libm::exp2(libm::ceil(libm::log2(span)))
     } else {
         1.0
     };
+    // Back in input units for the page's readouts (saturating at the largest double).
+    let input = |x: f64| libm::ldexp(x, exponent).clamp(-f64::MAX, f64::MAX);
     write!(
         out,
-        "{{\"origin\":[{min_x:e},{min_y:e}],\"scale\":{scale:e},\"points\":["
+        "{{\"origin\":[{:e},{:e}],\"scale\":{:e},\"points\":[",
+        input(min.x),
+        input(min.y),
+        input(scale)
     )?;
     for (k, p) in points.iter().enumerate() {
         let sep = if k == 0 { "" } else { "," };
         write!(
             out,
             "{sep}{},{}",
-            Short((p.x - min_x) / scale, POSITION_DIGITS),
-            Short((p.y - min_y) / scale, POSITION_DIGITS)
+            Short((p.x - min.x) / scale, POSITION_DIGITS),
+            Short((p.y - min.y) / scale, POSITION_DIGITS)
         )?;
     }
     write!(out, "],\"unused\":")?;
@@ -273,6 +286,33 @@ mod tests {
         let x = 1.0 / 3.0;
         let back: f64 = Short(x, 9).to_string().parse().unwrap();
         assert!((back - x).abs() < 1e-9);
+    }
+
+    #[test]
+    fn coordinates_near_the_largest_double_give_finite_json() {
+        use crate::{reconstruct, Params};
+        let points = [
+            (-1e308, -1e308),
+            (1e308, -1e308),
+            (0.0, 1e308),
+            (1e307, 0.0),
+        ]
+        .map(|(x, y)| Point::new(x, y));
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        let mut page = Vec::new();
+        write_html(&mut page, &result, "huge").unwrap();
+        let page = String::from_utf8(page).unwrap();
+        let data = &page[page.find("{\"origin\"").unwrap()..page.find("</script>").unwrap()];
+        assert!(!data.contains("inf") && !data.contains("NaN"), "{data}");
+        // The four points keep distinct positions.
+        let start = data.find("\"points\":[").unwrap() + 10;
+        let end = start + data[start..].find(']').unwrap();
+        let numbers: Vec<&str> = data[start..end].split(',').collect();
+        let pairs: Vec<(&str, &str)> = numbers.chunks(2).map(|c| (c[0], c[1])).collect();
+        assert_eq!(pairs.len(), 4);
+        for (i, a) in pairs.iter().enumerate() {
+            assert!(pairs[i + 1..].iter().all(|b| b != a), "{pairs:?}");
+        }
     }
 
     #[test]

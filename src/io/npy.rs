@@ -503,7 +503,7 @@ fn write_indices<const K: usize>(
     rows: usize,
     items: impl FnOnce(&mut dyn FnMut([usize; K]) -> io::Result<()>) -> io::Result<()>,
 ) -> io::Result<()> {
-    let narrow = points <= 1 << 32;
+    let narrow = points as u64 <= 1 << 32;
     out.write_all(&header(if narrow { "<u4" } else { "<i8" }, &[rows, K]))?;
     let mut block: Vec<u8> = Vec::with_capacity(BLOCK + 64);
     let mut written = 0usize;

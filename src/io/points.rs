@@ -22,7 +22,7 @@ pub(super) fn quoted(token: &str) -> String {
 }
 
 /// Splits text into lines at LF, CRLF or a lone CR, numbering them from 1.
-fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+pub(super) fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
     let mut rest = text;
     let mut number = 0;
     core::iter::from_fn(move || {
@@ -43,7 +43,7 @@ fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
 }
 
 /// The 1-based line holding byte `offset`, with the line ends of [`numbered_lines`].
-fn line_at(bytes: &[u8], offset: usize) -> usize {
+pub(super) fn line_at(bytes: &[u8], offset: usize) -> usize {
     let ends = bytes[..offset]
         .iter()
         .enumerate()
@@ -53,12 +53,12 @@ fn line_at(bytes: &[u8], offset: usize) -> usize {
 }
 
 /// Builds content errors for one file.
-struct Source<'a> {
-    file: &'a str,
+pub(super) struct Source<'a> {
+    pub(super) file: &'a str,
 }
 
 impl Source<'_> {
-    fn error(&self, line: usize, message: String) -> IoError {
+    pub(super) fn error(&self, line: usize, message: String) -> IoError {
         IoError {
             file: self.file.to_string(),
             line: Some(line),
@@ -66,7 +66,7 @@ impl Source<'_> {
         }
     }
 
-    fn number(&self, line: usize, field: &str) -> Result<f64, IoError> {
+    pub(super) fn number(&self, line: usize, field: &str) -> Result<f64, IoError> {
         let value = match decimal::parse(field.as_bytes()) {
             Some(value) => value,
             None => field.parse().map_err(|_| {
@@ -83,7 +83,12 @@ impl Source<'_> {
     /// Appends `p`, refusing more than [`MAX_POINTS`] points or memory the system will not give,
     /// so that a huge file is an error and not an abort.
     #[inline]
-    fn push(&self, points: &mut Vec<Point>, line: usize, p: Point) -> Result<(), IoError> {
+    pub(super) fn push(
+        &self,
+        points: &mut Vec<Point>,
+        line: usize,
+        p: Point,
+    ) -> Result<(), IoError> {
         if points.len() == points.capacity() {
             self.grow(points, line)?;
         }
@@ -1000,7 +1005,8 @@ fn parse_owned_points(text: String, file: &str) -> Result<Vec<Point>, IoError> {
             });
         }
     }
-    parse_points(&text, file)
+    // Sequentially (the parallel parse, if it ran, found an error: this pass names its line).
+    parse_points_sequentially(text.strip_prefix('\u{feff}').unwrap_or(&text), file)
 }
 
 /// Everything `reader` holds, growing the buffer with `try_reserve` so that a file larger than

@@ -6,7 +6,7 @@
 //! only a shortcut: a call it cannot take (`None`) goes on to Shewchuk's adaptive stages, so a
 //! wrong refusal costs time, never a sign.
 //!
-//! Every coordinate that is a multiple of `2^-49` and below 4 in magnitude (in the fast frame
+//! Every coordinate that is a multiple of `2^-49` in `[-4, 4)` (in the fast frame
 //! every coordinate is below 2) is read exactly as the integer `x · 2^49`. Their differences are
 //! exact; their common factor of two (the grid's unit) is divided out, and when every difference
 //! is then below `2^30` the in-circle determinant, of degree 4, is below `3 · 2^122` and is

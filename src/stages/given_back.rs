@@ -16,8 +16,8 @@
 //! superellipse left a smooth chain of eleven outliers (ten outlier edges in one case).
 //!
 //! Rule. A component every edge of which was given back (missing from the graph the local
-//! outlier removal started from) keeps its edges only when **every** one of its vertices is
-//! separated: every Delaunay neighbour outside the component (another component or an unused
+//! outlier removal started from) keeps its edges only when **every** one of its vertices with two
+//! edges is separated (its loose ends are not tested: an end is near the rest of its curve): every Delaunay neighbour outside the component (another component or an unused
 //! point) is farther than [`SEPARATION`] times the vertex's own longest edge. Reason: the global
 //! rule judged every edge of such a component an outlier, and rule 1 overturned that on evidence
 //! at each vertex; a sparse curve beside a dense one is apart from everything at every sample
@@ -86,8 +86,7 @@ pub(crate) fn confirm_given_back(
         let p = tri.vertex_point(v);
         // An unused point is its own root, so it counts as outside every component.
         let apart = tri.mesh().neighbors(v).all(|w| {
-            w.is_infinite()
-                || root[w.index()] == root[i]
+            root[w.index()] == root[i]
                 || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest[i]
         });
         dropped[r] = !apart;

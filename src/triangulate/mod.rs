@@ -293,6 +293,12 @@ impl Triangulation {
         }
     }
 
+    /// A position in the stages' frame ([`Triangulation::vertex_point`]) in input coordinates.
+    #[inline]
+    pub(crate) fn stage_to_input(&self, p: Point) -> Point {
+        self.stage_to_input.apply(p)
+    }
+
     /// The vertex that input point `index` became (exact duplicates share one).
     ///
     /// # Panics

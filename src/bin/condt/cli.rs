@@ -453,15 +453,27 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut stages = false;
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
-        let flag = arg.to_string_lossy();
-        let is_condt_option = flag != "--method"
-            && flag.starts_with("--")
-            && !matches!(
-                &*flag,
-                "--format" | "--stages" | "--sequential" | "--output"
-            );
-        if is_condt_option {
-            condt_options.push(flag.into_owned());
+        // The options that set a ConDT stage, which a baseline method refuses.
+        if let Some(
+            flag @ ("--u"
+            | "--adaptive"
+            | "--iqr"
+            | "--no-outlier-filter"
+            | "--outliers-first"
+            | "--local-outliers"
+            | "--no-local-outliers"
+            | "--confirm-given-back"
+            | "--no-confirm-given-back"
+            | "--close-gaps"
+            | "--no-close-gaps"
+            | "--no-manifold-fix"
+            | "--repair"
+            | "--paper"
+            | "--smooth"
+            | "--no-smooth"),
+        ) = arg.to_str()
+        {
+            condt_options.push(flag.to_string());
         }
         match arg.to_str() {
             Some(flag @ "--method") => {
@@ -566,7 +578,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         (None, None) => Format::Polylines,
         (None, Some(path)) => {
             let extension = path.extension().and_then(OsStr::to_str).unwrap_or("");
-            Format::named(extension).ok_or_else(|| {
+            Format::named(&extension.to_ascii_lowercase()).ok_or_else(|| {
                 usage(format!(
                     "cannot tell the format of {} from its extension; use --format",
                     path.display()
