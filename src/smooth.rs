@@ -94,6 +94,7 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> (Vec<Po
 mod tests {
     use crate::sample::{sample, Sampling, Shape};
     use crate::{reconstruct, triangulate, Params, Point};
+    use alloc::vec::Vec;
 
     #[test]
     fn smoothing_gives_the_same_edges_at_the_ends_of_the_double_range() {
