@@ -75,6 +75,12 @@ fn step_times(points: &[Point], params: &Params) -> Vec<(String, Duration)> {
             .map(|r| (stage_name(r.stage).to_string(), r.time)),
     );
     times.push(("curves".to_string(), result.curves_time()));
+    // With smoothing passes, everything before the last pass (the first reconstruction
+    // included) is cost after the result's triangulation too.
+    let (passes, earlier) = result
+        .smoothing()
+        .map_or((0, Duration::ZERO), |s| (s.passes, s.earlier_passes));
+    times.push((format!("smoothing passes ({passes})"), earlier));
     times
 }
 

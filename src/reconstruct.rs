@@ -33,7 +33,7 @@ use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::smooth::{smoothed_positions, MAX_PASSES};
+use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Repair, Stage, Step, Uniformity, PARALLEL_FROM};
 use crate::triangulate::{triangulate, Triangulation};
 use alloc::borrow::Cow;
@@ -120,18 +120,20 @@ pub struct Params {
     /// in [`Params::paper`]; the rules and the reason for each constant are in
     /// `src/stages/gaps.rs`.
     pub close_gaps: bool,
-    /// Reconstruct twice (not in the paper; off by default and in [`Params::paper`]): a first
-    /// pass with these parameters gives each point its curve neighbours; a point with two edges
-    /// meeting at a wide angle moves halfway to its neighbours' midpoint, and the stages run
-    /// again on the Delaunay triangulation of the moved points. The result's edges are between
-    /// input positions as always; its [`triangulation`](Reconstruction::triangulation) and
-    /// drawings show the moved points. Noise can push a sample into the empty circle of two
-    /// true neighbours, so that their edge is not a Delaunay edge of the noisy points; the
-    /// moved points can have it again. The rule and its reasons are in `src/smooth.rs`. Only
-    /// [`reconstruct`] runs the passes: [`reconstruct_triangulation`] takes its triangulation
-    /// as given. Off by default: it lowers the evaluation suite's outlier cases (92.0 % to
-    /// 89.3 % exact) while it lifts its noise cases (40.3 % to 50.0 %); `docs/condt.md`,
-    /// "Smoothing passes".
+    /// Smoothing passes (not in the paper; on by default, off in [`Params::paper`]): when the
+    /// first reconstruction leaves a loose end or a branch (a vertex with one edge, or with three
+    /// or more), a point with two edges meeting at a wide angle moves halfway to its
+    /// neighbours' midpoint, and the stages run again on the Delaunay triangulation of the
+    /// moved points, up to three times. A reconstruction made only of cycles is final at once,
+    /// so clean closed curves pay nothing; a clean open curve pays one pass. The result's
+    /// edges are between input positions as always; its
+    /// [`triangulation`](Reconstruction::triangulation) and drawings show the moved points.
+    /// Noise can push a sample into the empty circle of two true neighbours, so that their edge
+    /// is not a Delaunay edge of the noisy points; the moved points can have it again. The rule
+    /// and its reasons are in `src/smooth.rs`. Only [`reconstruct`] runs the passes:
+    /// [`reconstruct_triangulation`] takes its triangulation as given. It lifts the evaluation
+    /// suite's noise cases from 40.3 % to 50.0 % exact and lowers its outlier cases from 92.0 %
+    /// to 89.3 %; `docs/condt.md`, "Smoothing passes".
     pub smooth: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
@@ -141,7 +143,7 @@ pub struct Params {
 impl Default for Params {
     /// The best pipeline measured (`docs/condt.md`, "Beyond the paper"): the paper's proximity
     /// graph and outlier rule with [`Repair::Needs`], then the local outlier removal and gap
-    /// closing. Its cost: a sparsely sampled curve of three or four points, isolated, counts as
+    /// closing, and smoothing passes where the result shows noise. Its cost: a sparsely sampled curve of three or four points, isolated, counts as
     /// outliers (`local_outliers: false` keeps it). [`Params::paper`] turns every step beyond
     /// the paper off.
     ///
@@ -149,7 +151,7 @@ impl Default for Params {
     /// use condt::{Params, Repair, Stage};
     /// let p = Params::default();
     /// assert_eq!(p.repair, Repair::Needs);
-    /// assert!(p.close_gaps && p.local_outliers);
+    /// assert!(p.close_gaps && p.local_outliers && p.smooth);
     /// assert_eq!(
     ///     p.stages(),
     ///     vec![
@@ -168,6 +170,7 @@ impl Default for Params {
             local_outliers: true,
             confirm_given_back: true,
             close_gaps: true,
+            smooth: true,
             ..Params::paper()
         }
     }
@@ -314,6 +317,9 @@ pub struct Reconstruction {
     triangulation_time: Duration,
     curves_time: Duration,
     smoothing: Option<Smoothing>,
+    /// The input positions, kept only when smoothing passes moved points (the triangulation
+    /// then holds the moved ones).
+    input_points: Option<Vec<Point>>,
 }
 
 /// What the smoothing passes ([`Params::smooth`]) did, as [`Reconstruction::smoothing`]
@@ -321,21 +327,23 @@ pub struct Reconstruction {
 ///
 /// ```
 /// use condt::{reconstruct, Params, Point};
-/// // A noisy circle: 40 samples, every other one pushed out by 4 % of the radius.
-/// let pts: Vec<Point> = (0..40)
+/// // A noisy open arc: 30 samples over three quarters of a circle, every other one pushed out
+/// // by 4 % of the radius. Its two ends are loose ends, so the passes run.
+/// let pts: Vec<Point> = (0..30)
 ///     .map(|k| {
-///         let t = k as f64 * std::f64::consts::TAU / 40.0;
+///         let t = k as f64 * 1.5 * std::f64::consts::PI / 29.0;
 ///         let r = if k % 2 == 0 { 1.04 } else { 1.0 };
 ///         Point::new(r * t.cos(), r * t.sin())
 ///     })
 ///     .collect();
-/// let result = reconstruct(&pts, &Params { smooth: true, ..Params::default() })?;
+/// let result = reconstruct(&pts, &Params::default())?;
 /// let smoothing = result.smoothing().expect("it ran");
 /// assert!(smoothing.passes >= 1 && smoothing.moved > 0);
 /// // The stages saw the moved points; the edges are between input positions.
-/// assert_ne!(result.point(0), pts[0]);
+/// assert_ne!(result.stage_point(2), pts[2]);
+/// assert_eq!(result.point(2), pts[2]);
 /// assert_eq!(result.curves().len(), 1);
-/// assert!(reconstruct(&pts, &Params::default())?.smoothing().is_none());
+/// assert!(reconstruct(&pts, &Params::paper())?.smoothing().is_none());
 /// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -432,12 +440,24 @@ impl Reconstruction {
         self.degrees[index] as usize
     }
 
-    /// The coordinates of input point `index` as the stages saw them: the input's, or the
-    /// smoothed position when [`Params::smooth`] moved it.
+    /// The coordinates of input point `index`, exactly as given.
     ///
     /// # Panics
     /// If `index` is not an input position.
     pub fn point(&self, index: usize) -> Point {
+        match &self.input_points {
+            Some(points) => points[index],
+            None => self.triangulation.point(index),
+        }
+    }
+
+    /// The coordinates of input point `index` as the stages saw them: [`point`](Self::point),
+    /// or the smoothed position when the smoothing passes ([`Params::smooth`]) moved it. The
+    /// drawings show these, because the rings and lengths the stages tested are theirs.
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    pub fn stage_point(&self, index: usize) -> Point {
         self.triangulation.point(index)
     }
 
@@ -512,7 +532,13 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
     let triangulation_time = clock.lap();
     let mut result = reconstruct_triangulation(tri, params)?;
     result.triangulation_time = triangulation_time;
-    if params.smooth && params.method == Method::ConDT {
+    if params.smooth
+        && params.method == Method::ConDT
+        && shows_noise(
+            result.triangulation.num_points(),
+            latest_edges(&result.records),
+        )
+    {
         // Each pass smooths along the previous pass's final graph and reconstructs the moved
         // points; the passes stop at a fixed point (the same final edges) or after
         // `MAX_PASSES` (src/smooth.rs gives the reasons).
@@ -536,6 +562,7 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
         }
         smoothing.earlier_passes = earlier_passes;
         result.smoothing = Some(smoothing);
+        result.input_points = Some(points.to_vec());
     }
     Ok(result)
 }
@@ -619,6 +646,7 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
         triangulation_time: Duration::ZERO,
         curves_time,
         smoothing: None,
+        input_points: None,
     }
 }
 

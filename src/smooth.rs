@@ -45,6 +45,20 @@ pub(crate) const WEIGHT: f64 = 0.5;
 /// and four, 52.8 % after six. Three is where the gain flattens.
 pub(crate) const MAX_PASSES: usize = 3;
 
+/// Whether a final graph `edges` on `vertex_count` vertices shows a sign that the smoothing
+/// passes could fix: a vertex with one edge (a loose end) or with three or more (a branch).
+///
+/// Reason: what noise does to the stages shows at such vertices. A true edge that is not a
+/// Delaunay edge of the noisy points, or that the stages missed on a zig-zag, leaves its two
+/// ends with one edge each (or a detour and a branch); a reconstruction made only of cycles
+/// (and unused points, which the smoothing does not move) has nothing a pass can mend, so it
+/// costs nothing there. An open curve's two ends look the same, so a clean open curve pays for
+/// one pass, which leaves its edges as they were and stops.
+pub(crate) fn shows_noise(vertex_count: usize, edges: &[Edge]) -> bool {
+    let degree = crate::adjacency::degrees(vertex_count, edges);
+    degree.iter().any(|&d| d == 1 || d >= 3)
+}
+
 /// The smoothed position of every input position for a reconstruction on `tri` whose final
 /// graph is `edges` (see the module comment), and how many points moved.
 ///
@@ -158,7 +172,11 @@ mod tests {
             !tri.edges().any(|[a, b]| [a.min(b), a.max(b)] == hidden),
             "not a Delaunay edge of the noisy points"
         );
-        let plain = reconstruct(&noisy.points, &Params::default()).unwrap();
+        let unsmoothed = Params {
+            smooth: false,
+            ..Params::default()
+        };
+        let plain = reconstruct(&noisy.points, &unsmoothed).unwrap();
         assert!(
             !plain.edges().any(|e| e == hidden),
             "so no stage can keep it"
@@ -182,11 +200,9 @@ mod tests {
         assert!(missed(&smoothed_edges) < missed(&plain_edges));
     }
 
-    /// Clean samples: the smoothed reconstruction has the same edges as the plain one (points
-    /// move, but along a smooth curve the Delaunay graph keeps its curve edges), and a sharp
-    /// corner's sample does not move.
+    /// Clean closed curves: the first reconstruction is only cycles, so no pass runs.
     #[test]
-    fn clean_samples_keep_their_edges_and_corners_stay() {
+    fn clean_closed_curves_run_no_pass() {
         let square = Shape::Polygon(alloc::vec![
             Point::new(0.0, 0.0),
             Point::new(1.0, 0.0),
@@ -195,28 +211,54 @@ mod tests {
         ]);
         let circle = Shape::circle(Point::new(3.0, 0.0), 1.0);
         let clean = sample(&[square, circle], &Sampling::new(0.2));
-        let plain = reconstruct(&clean.points, &Params::default()).unwrap();
-        let smoothed = reconstruct(
+        let result = reconstruct(&clean.points, &Params::default()).unwrap();
+        assert!(result.edges().eq(clean.edges.iter().copied()));
+        assert_eq!(result.smoothing(), None);
+    }
+
+    /// A clean open curve has two loose ends, so one pass runs (over every curve): points move,
+    /// but along smooth curves the Delaunay graph keeps its curve edges, the pass changes
+    /// nothing and the passes stop; a sharp corner's sample does not move.
+    #[test]
+    fn clean_open_curve_runs_one_pass_that_keeps_its_edges_and_corners() {
+        let square = Shape::Polygon(alloc::vec![
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+        ]);
+        let arc = Shape::Arc {
+            center: Point::new(3.0, 0.0),
+            radius: 1.0,
+            start: 0.0,
+            sweep: 4.0,
+        };
+        let clean = sample(&[square, arc], &Sampling::new(0.2));
+        let plain = reconstruct(
             &clean.points,
             &Params {
-                smooth: true,
+                smooth: false,
                 ..Params::default()
             },
         )
         .unwrap();
+        let smoothed = reconstruct(&clean.points, &Params::default()).unwrap();
         assert!(plain.edges().eq(clean.edges.iter().copied()));
         assert!(smoothed.edges().eq(plain.edges()));
+        let smoothing = smoothed.smoothing().unwrap();
+        assert_eq!(smoothing.passes, 1);
+        assert!(smoothing.moved > 0);
         // The square's corners (right angles) stay where they were.
-        for corner in [
+        for fixed in [
+            Point::new(0.0, 0.0),
             Point::new(1.0, 0.0),
             Point::new(1.0, 1.0),
             Point::new(0.0, 1.0),
         ] {
             let i = (0..clean.points.len())
-                .find(|&i| clean.points[i] == corner)
+                .find(|&i| clean.points[i] == fixed)
                 .unwrap();
-            assert_eq!(smoothed.point(i), corner);
+            assert_eq!(smoothed.point(i), fixed);
         }
-        assert!(smoothed.smoothing().unwrap().moved > 0);
     }
 }

@@ -65,7 +65,7 @@ fn write_data(
     // digits written). They are first brought near 1 by another power of two, as the SVG does,
     // so that spans of coordinates near 1e308 do not overflow; both steps are exact.
     let largest = (0..n)
-        .map(|i| result.point(i))
+        .map(|i| result.stage_point(i))
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
     let exponent = if largest > 0.0 && largest.is_finite() {
         binary_exponent(largest)
@@ -73,7 +73,7 @@ fn write_data(
         0
     };
     let unit = Scale::power_of_two(-exponent);
-    let points: Vec<Point> = (0..n).map(|i| unit.apply(result.point(i))).collect();
+    let points: Vec<Point> = (0..n).map(|i| unit.apply(result.stage_point(i))).collect();
     let (mut min, mut span) = (Point::new(f64::INFINITY, f64::INFINITY), 0.0f64);
     for p in &points {
         min = Point::new(min.x.min(p.x), min.y.min(p.y));

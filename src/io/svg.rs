@@ -122,7 +122,7 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
     // to infinity nor turn into NaN, and for every other set the picture is the same number for
     // number, since every step scales exactly.
     let largest = (0..result.num_points())
-        .map(|i| result.point(i))
+        .map(|i| result.stage_point(i))
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
     let unit = if largest > 0.0 && largest.is_finite() {
         Scale::power_of_two(-binary_exponent(largest))
@@ -130,7 +130,7 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
         Scale::IDENTITY
     };
     let pts: Vec<Point> = (0..result.num_points())
-        .map(|i| unit.apply(result.point(i)))
+        .map(|i| unit.apply(result.stage_point(i)))
         .collect();
     let pts = &pts[..];
     // Only what is drawn: the final edges alone, or the triangulation and every stage.

@@ -98,9 +98,10 @@ Options:
       --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
                           other across a short gap or line up through a stranded point, and a
                           crossing's dropped arms
-      --[no-]smooth       (default off) reconstruct twice: move each point with two edges
-                          meeting at a wide angle halfway to its neighbours' midpoint, then
-                          run the stages on the moved points (edges stay between the input
+      --[no-]smooth       (default on; off with --paper) when the result has a loose end or a
+                          branch, move each point with two edges meeting at a wide angle
+                          halfway to its neighbours' midpoint and run the stages again on
+                          the moved points, up to three times (edges stay between the input
                           points; drawings show the moved ones); for noisy samples
       --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
                           --repair off
@@ -753,7 +754,9 @@ mod tests {
         assert!(c.params.confirm_given_back, "the default");
         let e = parse_reconstruct(&strings(&["in.txt", "--no-confirm-given-back"])).unwrap();
         assert!(e.params.local_outliers && !e.params.confirm_given_back);
-        assert!(!e.params.smooth, "off by default");
+        assert!(e.params.smooth, "on by default");
+        let no_smooth = parse_reconstruct(&strings(&["--no-smooth", "in.txt"])).unwrap();
+        assert!(!no_smooth.params.smooth && no_smooth.params.local_outliers);
         let smooth = parse_reconstruct(&strings(&["--smooth", "in.txt", "--paper"])).unwrap();
         assert!(smooth.params.smooth && smooth.params.repair == Repair::Paper);
         let paper = parse_reconstruct(&strings(&["in.txt", "--paper"])).unwrap();
