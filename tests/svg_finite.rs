@@ -84,3 +84,48 @@ fn a_set_and_its_power_of_two_multiples_draw_the_same_svg() {
         assert_eq!(svg_of(&scaled, true), reference, "2^{k}");
     }
 }
+
+/// A noisy open arc runs smoothing passes: the stage drawing says its points are where the stages
+/// saw them, and the result-only drawing places the points at their input positions (its
+/// circles' centres are the input coordinates mapped by one frame, so the drawing of the input
+/// and of the smoothed result alone are identical, and the stage drawing differs).
+#[test]
+fn drawings_say_when_points_are_at_smoothed_positions() {
+    let arc: Vec<Point> = (0..30)
+        .map(|k| {
+            let t = k as f64 * 1.5 * std::f64::consts::PI / 29.0;
+            let r = if k % 2 == 0 { 1.04 } else { 1.0 };
+            Point::new(r * t.cos(), r * t.sin())
+        })
+        .collect();
+    let smoothed = reconstruct(&arc, &Params::default()).unwrap();
+    assert!(smoothed.smoothing().is_some());
+    let plain = reconstruct(
+        &arc,
+        &Params {
+            smooth: false,
+            ..Params::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        plain.edges().collect::<Vec<_>>(),
+        smoothed.edges().collect::<Vec<_>>()
+    );
+    let draw = |r: &condt::Reconstruction, stages: bool| {
+        let mut out = Vec::new();
+        write_svg(&mut out, r, stages).unwrap();
+        String::from_utf8(out).unwrap()
+    };
+    let stage_drawing = draw(&smoothed, true);
+    assert!(stage_drawing.contains("smoothing pass"));
+    assert!(!draw(&plain, true).contains("smoothing pass"));
+    assert_eq!(draw(&smoothed, false), draw(&plain, false));
+    // Without the legend's note, the stage drawings still differ: the points moved.
+    let without_note: String = stage_drawing
+        .lines()
+        .filter(|line| !line.contains("smoothing pass"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_ne!(numbers(&without_note), numbers(&draw(&plain, true)));
+}

@@ -104,7 +104,9 @@ fn write_data(
             Short((p.y - min.y) / scale, POSITION_DIGITS)
         )?;
     }
-    write!(out, "],\"unused\":")?;
+    // The smoothing passes that ran (0 when none): the positions above are the moved ones.
+    let (passes, moved) = result.smoothing().map_or((0, 0), |s| (s.passes, s.moved));
+    write!(out, "],\"smoothing\":[{passes},{moved}],\"unused\":")?;
     write_list(out, result.unused().iter().copied())?;
     write!(out, ",\"degree\":")?;
     write_list(out, (0..n).map(|i| result.degree(i)))?;

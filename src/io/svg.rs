@@ -121,8 +121,18 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
     // magnitude into [1, 2): spans and offsets of coordinates near 1e308 then neither overflow
     // to infinity nor turn into NaN, and for every other set the picture is the same number for
     // number, since every step scales exactly.
+    // The stage panels show the points where the stages saw them (moved by the smoothing
+    // passes, if any ran: their rings and lengths are those); the result alone is drawn on the
+    // input points.
+    let position = |i: usize| {
+        if stages {
+            result.stage_point(i)
+        } else {
+            result.point(i)
+        }
+    };
     let largest = (0..result.num_points())
-        .map(|i| result.stage_point(i))
+        .map(position)
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
     let unit = if largest > 0.0 && largest.is_finite() {
         Scale::power_of_two(-binary_exponent(largest))
@@ -130,7 +140,7 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
         Scale::IDENTITY
     };
     let pts: Vec<Point> = (0..result.num_points())
-        .map(|i| unit.apply(result.stage_point(i)))
+        .map(|i| unit.apply(position(i)))
         .collect();
     let pts = &pts[..];
     // Only what is drawn: the final edges alone, or the triangulation and every stage.
@@ -235,12 +245,18 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
         write!(out, "M0 {y}H{width}")?;
     }
     writeln!(out, r#""/>"#)?;
-    legend(out, stages, height - LEGEND_BAND / 2.0)?;
+    let smoothing = result.smoothing().filter(|_| stages);
+    legend(out, stages, smoothing, height - LEGEND_BAND / 2.0)?;
     writeln!(out, "</svg>")
 }
 
 /// One line of swatches and labels, vertically centred on `y`.
-fn legend(out: &mut dyn Write, stages: bool, y: f64) -> io::Result<()> {
+fn legend(
+    out: &mut dyn Write,
+    stages: bool,
+    smoothing: Option<crate::Smoothing>,
+    y: f64,
+) -> io::Result<()> {
     let mut items: Vec<(&str, &str, bool)> = Vec::new();
     if stages {
         items.push(("Delaunay edge", EDGE_COLOURS[0], false));
@@ -280,6 +296,15 @@ fn legend(out: &mut dyn Write, stages: bool, y: f64) -> io::Result<()> {
         )?;
         // About 10 units per character at size 20, and a gap.
         x += 10.0 * label.len() as f64 + 20.0;
+    }
+    if let Some(s) = smoothing {
+        writeln!(
+            out,
+            r#"<text x="{x}" y="{}" font-family="sans-serif" font-size="20">points as the stages saw them, after {} smoothing pass{}</text>"#,
+            y + 7.0,
+            s.passes,
+            if s.passes > 1 { "es" } else { "" }
+        )?;
     }
     Ok(())
 }
