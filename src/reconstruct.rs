@@ -120,12 +120,13 @@ pub struct Params {
     /// in [`Params::paper`]; the rules and the reason for each constant are in
     /// `src/stages/gaps.rs`.
     pub close_gaps: bool,
-    /// Smoothing passes (not in the paper; on by default, off in [`Params::paper`]): when the
-    /// first reconstruction leaves a loose end or a branch (a vertex with one edge, or with three
-    /// or more), a point with two edges meeting at a wide angle moves halfway to its
-    /// neighbours' midpoint, and the stages run again on the Delaunay triangulation of the
-    /// moved points, up to three times. A reconstruction made only of cycles is final at once,
-    /// so clean closed curves pay nothing; a clean open curve pays one pass. The result's
+    /// Smoothing passes (not in the paper; on by default, off in [`Params::paper`]): when at
+    /// least one point in a hundred ends the first reconstruction's curves or branches them (a
+    /// vertex with one edge, or with three or more), a point with two edges meeting at a wide
+    /// angle moves halfway to its neighbours' midpoint, and the stages run again on the
+    /// Delaunay triangulation of the moved points, up to three times. A reconstruction made
+    /// only of cycles, or a large one with few ends and branches, is final at once and pays
+    /// nothing; a small clean open curve pays one pass. The result's
     /// edges are between input positions as always; its
     /// [`triangulation`](Reconstruction::triangulation) and drawings show the moved points.
     /// Noise can push a sample into the empty circle of two true neighbours, so that their edge
@@ -534,10 +535,7 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
     result.triangulation_time = triangulation_time;
     if params.smooth
         && params.method == Method::ConDT
-        && shows_noise(
-            result.triangulation.num_points(),
-            latest_edges(&result.records),
-        )
+        && shows_noise(&result.triangulation, latest_edges(&result.records))
     {
         // Each pass smooths along the previous pass's final graph and reconstructs the moved
         // points; the passes stop at a fixed point (the same final edges) or after

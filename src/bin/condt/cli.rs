@@ -98,11 +98,12 @@ Options:
       --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
                           other across a short gap or line up through a stranded point, and a
                           crossing's dropped arms
-      --[no-]smooth       (default on; off with --paper) when the result has a loose end or a
-                          branch, move each point with two edges meeting at a wide angle
-                          halfway to its neighbours' midpoint and run the stages again on
-                          the moved points, up to three times (edges stay between the input
-                          points; drawings show the moved ones); for noisy samples
+      --[no-]smooth       (default on; off with --paper) when one point in a hundred or more
+                          ends or branches the result, move each point with two edges
+                          meeting at a wide angle halfway to its neighbours' midpoint and
+                          run the stages again on the moved points, up to three times
+                          (edges stay between the input points; drawings show the moved
+                          ones); for noisy samples
       --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
                           --repair off
       --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
