@@ -241,7 +241,7 @@ mod tests {
             sweep: 4.0,
         };
         let passes = |spacing: f64| {
-            let s = sample(&[arc.clone()], &Sampling::new(spacing));
+            let s = sample(core::slice::from_ref(&arc), &Sampling::new(spacing));
             let r = reconstruct(&s.points, &Params::default()).unwrap();
             assert!(r.edges().eq(s.edges.iter().copied()));
             (s.points.len(), r.smoothing().map_or(0, |m| m.passes))
