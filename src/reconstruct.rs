@@ -544,19 +544,24 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
         // `MAX_PASSES` (src/smooth.rs gives the reasons).
         let mut earlier_passes = Duration::ZERO;
         let mut smoothing = Smoothing::default();
-        while smoothing.passes < MAX_PASSES {
+        loop {
             let (positions, moved) =
                 smoothed_positions(&result.triangulation, latest_edges(&result.records));
+            // Of the previous pass only its final edges are read again (the fixed-point test):
+            // the rest (its triangulation, stage graphs and curves, about as much memory as the
+            // next pass needs) is freed before the next triangulation, and the moved positions
+            // once it is built.
+            let previous_edges = core::mem::take(&mut result.edges);
+            drop(result);
             earlier_passes += clock.lap();
             let tri = triangulate(&positions)?;
+            drop(positions);
             let triangulation_time = clock.lap();
-            let mut next = reconstruct_triangulation(tri, params)?;
-            next.triangulation_time = triangulation_time;
+            result = reconstruct_triangulation(tri, params)?;
+            result.triangulation_time = triangulation_time;
             smoothing.passes += 1;
             smoothing.moved = moved;
-            let fixed_point = next.edges == result.edges;
-            result = next;
-            if fixed_point {
+            if result.edges == previous_edges || smoothing.passes >= MAX_PASSES {
                 break;
             }
         }
