@@ -57,12 +57,14 @@
 //!
 //! The stage is sequential and deterministic (every loop goes by vertex id or edge position), so
 //! the result is the same with `parallel` on or off. It is O(n): a curve graph (one record per
-//! vertex) read in vertex order, a compressed adjacency only for rule 3, a union-find over the
-//! edges, walks of at most [`MIN_SAMPLES`] steps and at most one walk of the Delaunay ring of
-//! every vertex that has an edge.
+//! vertex) read in vertex order and shared by rules 2 to 4, a union-find over the edges, walks
+//! of at most [`MIN_SAMPLES`] steps and at most one walk of the Delaunay ring of every vertex
+//! that has an edge. Its memory beyond its input and output is the curve graph (12 bytes per
+//! point) and a few bytes per point of flags and component names: edge lengths are recomputed
+//! where a rule reads them rather than stored.
 
 use super::Outcome;
-use crate::adjacency::{Adjacency, CurveGraph, Edge};
+use crate::adjacency::{CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
@@ -142,7 +144,12 @@ pub(crate) fn remove_local_outliers(
     if rules.give_back && before.len() > edges.len() {
         let given = given_back(tri, edges, before);
         if !given.is_empty() {
-            graph.to_mut().extend(given);
+            // One allocation of the final size: `to_mut` and `extend` would copy the input and
+            // then grow the copy to twice its size.
+            let mut with_given = Vec::with_capacity(edges.len() + given.len());
+            with_given.extend_from_slice(edges);
+            with_given.extend(given);
+            graph = Cow::Owned(with_given);
         }
     }
     // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and rebuilt
@@ -155,7 +162,7 @@ pub(crate) fn remove_local_outliers(
         }
     }
     if rules.short_spurs && profile.graph.has_branch() {
-        if let Some(kept) = without_short_spurs(tri, &graph) {
+        if let Some(kept) = without_short_spurs(&profile.graph, &graph) {
             graph = Cow::Owned(kept);
             profile.rebuild(tri, &graph);
         }
@@ -353,51 +360,61 @@ fn without_long_edges(
 
 /// Rule 3: drops every spur of fewer than [`MIN_SAMPLES`] vertices: a chain from a vertex with
 /// one edge through vertices with two up to a vertex with three or more (not counted). Each
-/// walk stops after [`MIN_SAMPLES`] steps; all are read from the same graph.
-/// `None` when it drops none. The caller skips it when no vertex has three edges: a spur ends
-/// at one, so without one there is none (the common case once the repair has run).
-fn without_short_spurs(tri: &Triangulation, edges: &[Edge]) -> Option<Vec<Edge>> {
-    let n = tri.num_points();
-    let adjacency = Adjacency::new(n, edges);
-    let degree = |v: VertexId| adjacency.incident(v).len();
-    let mut dropped = vec![false; edges.len()];
-    let mut path: Vec<u32> = Vec::with_capacity(MIN_SAMPLES);
+/// walk stops after [`MIN_SAMPLES`] steps; all are read from the same graph, `graph`, the curve
+/// graph of `edges`. `None` when it drops none. The caller skips it when no vertex has three
+/// edges: a spur ends at one, so without one there is none (the common case once the repair has
+/// run).
+///
+/// A spur's vertices other than its branch have no edge off the spur (one edge at its loose
+/// end, two on the way), so its edges are those with an end among them: the walk marks
+/// vertices (a byte per point) and reads the curve graph the other rules share, where edge
+/// positions would need a full adjacency (17 bytes per point at the stage's peak).
+fn without_short_spurs(graph: &CurveGraph, edges: &[Edge]) -> Option<Vec<Edge>> {
+    let n = graph.vertex_count();
+    let mut dropped = vec![false; n];
+    let mut path: Vec<VertexId> = Vec::with_capacity(MIN_SAMPLES);
+    let mut any = false;
     // Every id, not only vertices: an id left by a merged duplicate has no edge.
     for v in (0..n as u32).map(VertexId::new) {
-        if degree(v) != 1 {
+        if graph.degree(v) != 1 {
             continue;
         }
         path.clear();
         let (mut at, mut from, mut count) = (v, VertexId::INFINITE, 1);
         let short_spur = loop {
-            let Some(&(w, k)) = adjacency.incident(at).iter().find(|&&(w, _)| w != from) else {
+            path.push(at);
+            // `at` has one edge or two: its neighbour other than the one the walk came from.
+            let Some(w) = graph.first_two(at)[..graph.degree(at)]
+                .iter()
+                .copied()
+                .find(|&w| w != from)
+            else {
                 break false;
             };
-            path.push(k);
-            if degree(w) >= 3 {
+            if graph.degree(w) >= 3 {
                 break count < MIN_SAMPLES;
             }
-            if degree(w) != 2 || count + 1 >= MIN_SAMPLES {
+            if graph.degree(w) != 2 || count + 1 >= MIN_SAMPLES {
                 break false; // the other end of a path, or long enough
             }
             count += 1;
             (from, at) = (at, w);
         };
         if short_spur {
-            for &k in &path {
-                dropped[k as usize] = true;
+            any = true;
+            for &u in &path {
+                dropped[u.index()] = true;
             }
         }
     }
-    if !dropped.contains(&true) {
+    if !any {
         return None;
     }
     Some(
         edges
             .iter()
-            .zip(&dropped)
-            .filter(|&(_, &gone)| !gone)
-            .map(|(&e, _)| e)
+            .filter(|&&[a, b]| !dropped[a.index()] && !dropped[b.index()])
+            .copied()
             .collect(),
     )
 }
