@@ -841,3 +841,83 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
         edges,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::Xorshift;
+
+    fn edge(a: u32, b: u32) -> Edge {
+        [VertexId::new(a), VertexId::new(b)]
+    }
+
+    /// Whatever a stage makes of its input (edges removed, edges appended, the order changed),
+    /// the record gives the input back exactly, in its order; the input is stored whole only
+    /// when the change is not of the usual form.
+    #[test]
+    fn an_undo_gives_the_stage_input_back_exactly() {
+        let mut rng = Xorshift::new(12);
+        for round in 0..200 {
+            let len = rng.below(40) as u32;
+            let input: Vec<Edge> = (0..len).map(|k| edge(k, k + 1 + round)).collect();
+            let mut output: Vec<Edge> = input
+                .iter()
+                .copied()
+                .filter(|_| rng.below(4) != 0)
+                .collect();
+            let removals = input.len() - output.len();
+            output.extend((0..rng.below(5) as u32).map(|k| edge(1000 + k, 2000 + k)));
+            let reordered = round % 5 == 0 && output.len() > 2;
+            if reordered {
+                output.swap(0, 1);
+            }
+            let undo = Undo::of(input.clone(), &output);
+            // The delta (12 bytes a removal) is kept while it is smaller than the input.
+            if !reordered && removals < 2 * input.len() / 3 {
+                assert!(matches!(undo, Undo::Delta { .. }), "{undo:?}");
+            }
+            assert_eq!(&*undo.input(Cow::Borrowed(&output)), input.as_slice());
+        }
+    }
+
+    /// Every stage's graph as `stages()` rebuilds it is the graph the stage left: running the
+    /// steps one by one through the public `Graph` methods gives the same edges in the same
+    /// order.
+    #[test]
+    fn the_stage_graphs_are_rebuilt_as_the_stages_left_them() {
+        let mut rng = Xorshift::new(7);
+        let mut points: Vec<Point> = (0..400)
+            .map(|k| {
+                let t = k as f64 * core::f64::consts::TAU / 400.0;
+                let r = 1.0 + 0.02 * (rng.unit() - 0.5);
+                Point::new(r * libm::cos(t), r * libm::sin(t))
+            })
+            .collect();
+        points.extend((0..60).map(|_| Point::new(3.0 * rng.unit() - 1.5, 3.0 * rng.unit() - 1.5)));
+        let params = Params {
+            smooth: false,
+            ..Params::default()
+        };
+        let result = reconstruct(&points, &params).unwrap();
+        let tri = result.triangulation();
+        let reports: Vec<StageReport<'_>> = result.stages().collect();
+        let proximity = tri.proximity_graph(params.uniformity).unwrap();
+        assert_eq!(reports[0].graph.listed(), proximity.listed());
+        let repaired = proximity.repair(params.repair);
+        assert_eq!(reports[1].graph.listed(), repaired.listed());
+        let filtered = repaired.remove_outliers(1.7).unwrap();
+        assert_eq!(reports[2].graph.listed(), filtered.graph.listed());
+        assert_eq!(reports[2].applied, filtered.fired);
+        let local = filtered.graph.remove_local_outliers(&repaired);
+        assert_eq!(reports[3].graph.listed(), local.listed());
+        let confirmed = local.confirm_given_back(&filtered.graph);
+        assert_eq!(reports[4].graph.listed(), confirmed.listed());
+        let closed = confirmed.close_gaps();
+        assert_eq!(reports[5].graph.listed(), closed.listed());
+        assert_eq!(result.graph().listed(), closed.listed());
+        assert!(
+            reports.iter().skip(1).any(|r| r.applied),
+            "some stage changed the graph"
+        );
+    }
+}
