@@ -77,6 +77,13 @@ impl<'t> Graph<'t> {
         Graph { tri, edges }
     }
 
+    /// The edges in vertex ids, in the order the stage listed them (for tests that check the
+    /// order too).
+    #[cfg(test)]
+    pub(crate) fn listed(&self) -> &[Edge] {
+        &self.edges
+    }
+
     /// The triangulation the graph lives on.
     pub fn triangulation(&self) -> &'t Triangulation {
         self.tri

@@ -212,46 +212,54 @@ pub(crate) fn close_gaps(tri: &Triangulation, edges: &[Edge]) -> Outcome {
         tri,
         graph: CurveGraph::new(n, edges),
     };
-    let mut targets = vec![Target::None; n];
-    let mut any = false;
-    for (i, target) in targets.iter_mut().enumerate() {
-        let a = VertexId::new(i as u32);
-        if ends.is_loose(a) {
-            *target = ends.target(a);
-            any |= *target != Target::None;
-        }
-    }
-    if !any {
+    // Only loose ends choose, and most points are not loose: the choices are kept as a list
+    // in increasing vertex id, searched by id (a slot per point took 24 bytes per point, the
+    // reconstruction's peak on curves).
+    let targets: Vec<(VertexId, Target)> = (0..n as u32)
+        .map(VertexId::new)
+        .filter(|&a| ends.is_loose(a))
+        .map(|a| (a, ends.target(a)))
+        .filter(|&(_, target)| target != Target::None)
+        .collect();
+    if targets.is_empty() {
         return Outcome::UNCHANGED;
     }
+    let target_of = |a: VertexId| {
+        targets
+            .binary_search_by_key(&a, |&(v, _)| v)
+            .map_or(Target::None, |k| targets[k].1)
+    };
     // Which of its two neighbours each crossing has been lined up with, one bit per slot.
     let mut lined_up = vec![0u8; n];
-    for target in &targets {
-        if let Target::Through(c, Partner::Neighbor(slot)) = *target {
+    for &(_, target) in &targets {
+        if let Target::Through(c, Partner::Neighbor(slot)) = target {
             lined_up[c.index()] |= 1 << slot;
         }
     }
     // Whether the loose end `a` gets the join it chose: the other side agrees.
-    let agreed = |a: VertexId| match targets[a.index()] {
-        Target::End(b) => targets[b.index()] == Target::End(a),
+    let agreed = |a: VertexId| match target_of(a) {
+        Target::End(b) => target_of(b) == Target::End(a),
         // Both dropped arms come back, each in line with one of the two kept ones.
         Target::Through(c, Partner::Neighbor(_)) => lined_up[c.index()] == 0b11,
         // Both come back, in line with each other, through a crossing or a stranded point.
-        Target::Through(c, Partner::End(d)) => {
-            targets[d.index()] == Target::Through(c, Partner::End(a))
-        }
+        Target::Through(c, Partner::End(d)) => target_of(d) == Target::Through(c, Partner::End(a)),
         Target::None => false,
     };
-    let joined: Vec<bool> = (0..n).map(|i| agreed(VertexId::new(i as u32))).collect();
+    // Whether each chosen join is agreed, by position in `targets`.
+    let joined: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
+    let is_joined = |a: VertexId| {
+        targets
+            .binary_search_by_key(&a, |&(v, _)| v)
+            .is_ok_and(|k| joined[k])
+    };
     // A lone edge (both its points loose) is joined only when both its ends are.
     let supported = |a: VertexId| {
         let next = ends.along(a);
-        ends.graph.degree(next) != 1 || joined[next.index()]
+        ends.graph.degree(next) != 1 || is_joined(next)
     };
     let mut joins: Vec<Edge> = Vec::new();
-    for (i, &target) in targets.iter().enumerate() {
-        let a = VertexId::new(i as u32);
-        if !joined[i] || !supported(a) {
+    for (&(a, target), &joined) in targets.iter().zip(&joined) {
+        if !joined || !supported(a) {
             continue;
         }
         match target {

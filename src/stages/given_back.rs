@@ -56,6 +56,9 @@ pub(crate) fn confirm_given_back(
         .iter()
         .map(|&[a, b]| !was.incident(a).iter().any(|&(w, _)| w == b))
         .collect();
+    // The adjacency (20 bytes per point) is not read again: freed before the per-point arrays
+    // below are allocated.
+    drop(was);
     if !given.contains(&true) {
         return Outcome::UNCHANGED;
     }

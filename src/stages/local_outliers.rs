@@ -57,12 +57,14 @@
 //!
 //! The stage is sequential and deterministic (every loop goes by vertex id or edge position), so
 //! the result is the same with `parallel` on or off. It is O(n): a curve graph (one record per
-//! vertex) read in vertex order, a compressed adjacency only for rule 3, a union-find over the
-//! edges, walks of at most [`MIN_SAMPLES`] steps and at most one walk of the Delaunay ring of
-//! every vertex that has an edge.
+//! vertex) read in vertex order and shared by rules 2 to 4, a union-find over the edges, walks
+//! of at most [`MIN_SAMPLES`] steps and at most one walk of the Delaunay ring of every vertex
+//! that has an edge. Its memory beyond its input and output is the curve graph (12 bytes per
+//! point) and a few bytes per point of flags and component names: edge lengths are recomputed
+//! where a rule reads them rather than stored.
 
 use super::Outcome;
-use crate::adjacency::{Adjacency, CurveGraph, Edge};
+use crate::adjacency::{CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
@@ -142,7 +144,12 @@ pub(crate) fn remove_local_outliers(
     if rules.give_back && before.len() > edges.len() {
         let given = given_back(tri, edges, before);
         if !given.is_empty() {
-            graph.to_mut().extend(given);
+            // One allocation of the final size: `to_mut` and `extend` would copy the input and
+            // then grow the copy to twice its size.
+            let mut with_given = Vec::with_capacity(edges.len() + given.len());
+            with_given.extend_from_slice(edges);
+            with_given.extend(given);
+            graph = Cow::Owned(with_given);
         }
     }
     // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and rebuilt
@@ -151,13 +158,13 @@ pub(crate) fn remove_local_outliers(
     if (rules.long_at_branches || rules.long_at_both_ends) && profile.has_long_edge {
         if let Some(kept) = without_long_edges(tri, &graph, &profile, rules) {
             graph = Cow::Owned(kept);
-            profile = Profile::of(tri, &graph);
+            profile.rebuild(tri, &graph);
         }
     }
     if rules.short_spurs && profile.graph.has_branch() {
-        if let Some(kept) = without_short_spurs(tri, &graph) {
+        if let Some(kept) = without_short_spurs(&profile.graph, &graph) {
             graph = Cow::Owned(kept);
-            profile = Profile::of(tri, &graph);
+            profile.rebuild(tri, &graph);
         }
     }
     if rules.separated_components {
@@ -231,16 +238,14 @@ fn smooth_and_regular(tri: &Triangulation, x: VertexId, y: VertexId, z: VertexId
     regular && smooth
 }
 
-/// What rules 2 to 4 read of a graph: its degrees and neighbours, and the squared length of each
-/// vertex's longest edge. Built vertex by vertex in id order, reading each vertex's neighbours
-/// from the curve graph: the ids are spatial, so the reads stay near each other, where a pass
-/// over the edges would scatter its writes over both ends (each length is computed from both
-/// ends, the same number either way: `dist2` is symmetric).
+/// What rules 2 to 4 read of a graph: its degrees and neighbours, from which the squared length
+/// of each vertex's two longest edges is recomputed where a rule asks (two distances at the
+/// common vertex with two edges; a stored array of them took 16 bytes per point at the stage's
+/// peak, more than the curve graph itself). The lengths are the same numbers whichever end
+/// they are computed from (`dist2` is symmetric), and in whatever order the neighbours come
+/// ([`top_two`]).
 struct Profile {
     graph: CurveGraph,
-    /// Squared lengths of the two longest edges at each vertex, longest first (`NONE` where it
-    /// has fewer).
-    tops: Vec<[f64; 2]>,
     /// Whether some vertex's longest edge is more than [`LONG`] times its second longest: rule 2
     /// drops an edge only where it is long at one of its ends, so without such a vertex it has
     /// nothing to do (the common case).
@@ -252,43 +257,61 @@ impl Profile {
 
     fn of(tri: &Triangulation, edges: &[Edge]) -> Profile {
         let graph = CurveGraph::new(tri.num_points(), edges);
-        let mut tops = vec![[Self::NONE; 2]; graph.vertex_count()];
         let mut has_long_edge = false;
-        for (i, slot) in tops.iter_mut().enumerate() {
-            let v = VertexId::new(i as u32);
-            let degree = graph.degree(v);
-            if degree == 0 {
-                continue;
-            }
-            let p = tri.vertex_point(v);
-            let mut top = [Self::NONE; 2];
-            for k in 0..degree {
-                let l = p.dist2(tri.vertex_point(graph.neighbor(v, k)));
-                top = top_two(top, l);
-            }
-            *slot = top;
+        // By vertex id: the ids are spatial, so the reads of the neighbours' points stay near
+        // each other.
+        for i in 0..graph.vertex_count() {
+            let top = tops(tri, &graph, VertexId::new(i as u32));
             has_long_edge |= top[1] != Self::NONE && top[0] > LONG * LONG * top[1];
         }
         Profile {
             graph,
-            tops,
             has_long_edge,
         }
     }
 
+    /// Replaces this profile by that of `edges`, freeing the old one first: the two together
+    /// were the stage's peak.
+    fn rebuild(&mut self, tri: &Triangulation, edges: &[Edge]) {
+        self.graph = CurveGraph::new(0, &[]);
+        *self = Profile::of(tri, edges);
+    }
+
     /// The squared length of the longest edge at `v` (`NONE` when it has none).
-    fn longest(&self, v: VertexId) -> f64 {
-        self.tops[v.index()][0]
+    fn longest(&self, tri: &Triangulation, v: VertexId) -> f64 {
+        tops(tri, &self.graph, v)[0]
     }
 
     /// The squared length of the longest edge at `v` other than one of squared length `l` held
     /// there, if there is one. With ties the answer is the same whichever of the tied edges is
     /// meant: when `l` is the longest, the other is the second (equal to `l` if another ties).
-    fn other_than(&self, v: VertexId, l: f64) -> Option<f64> {
-        let [first, second] = self.tops[v.index()];
+    fn other_than(&self, tri: &Triangulation, v: VertexId, l: f64) -> Option<f64> {
+        let [first, second] = tops(tri, &self.graph, v);
         let other = if l == first { second } else { first };
         (other != Self::NONE).then_some(other)
     }
+}
+
+/// Squared lengths of the two longest edges of `graph` at `v`, longest first (`Profile::NONE`
+/// where it has fewer).
+#[inline]
+fn tops(tri: &Triangulation, graph: &CurveGraph, v: VertexId) -> [f64; 2] {
+    let degree = graph.degree(v);
+    let mut top = [Profile::NONE; 2];
+    if degree == 0 {
+        return top;
+    }
+    let p = tri.vertex_point(v);
+    if degree <= 2 {
+        for w in &graph.first_two(v)[..degree] {
+            top = top_two(top, p.dist2(tri.vertex_point(*w)));
+        }
+    } else {
+        for k in 0..degree {
+            top = top_two(top, p.dist2(tri.vertex_point(graph.neighbor(v, k))));
+        }
+    }
+    top
 }
 
 /// The two largest of `top` (largest first) and `l`: the same values in whatever order the
@@ -316,7 +339,7 @@ fn without_long_edges(
     // other edge.
     let long_at = |v: VertexId, l: f64| {
         profile
-            .other_than(v, l)
+            .other_than(tri, v, l)
             .map(|other| l > LONG * LONG * other)
     };
     let degree = |v: VertexId| profile.graph.degree(v);
@@ -337,51 +360,61 @@ fn without_long_edges(
 
 /// Rule 3: drops every spur of fewer than [`MIN_SAMPLES`] vertices: a chain from a vertex with
 /// one edge through vertices with two up to a vertex with three or more (not counted). Each
-/// walk stops after [`MIN_SAMPLES`] steps; all are read from the same graph.
-/// `None` when it drops none. The caller skips it when no vertex has three edges: a spur ends
-/// at one, so without one there is none (the common case once the repair has run).
-fn without_short_spurs(tri: &Triangulation, edges: &[Edge]) -> Option<Vec<Edge>> {
-    let n = tri.num_points();
-    let adjacency = Adjacency::new(n, edges);
-    let degree = |v: VertexId| adjacency.incident(v).len();
-    let mut dropped = vec![false; edges.len()];
-    let mut path: Vec<u32> = Vec::with_capacity(MIN_SAMPLES);
+/// walk stops after [`MIN_SAMPLES`] steps; all are read from the same graph, `graph`, the curve
+/// graph of `edges`. `None` when it drops none. The caller skips it when no vertex has three
+/// edges: a spur ends at one, so without one there is none (the common case once the repair has
+/// run).
+///
+/// A spur's vertices other than its branch have no edge off the spur (one edge at its loose
+/// end, two on the way), so its edges are those with an end among them: the walk marks
+/// vertices (a byte per point) and reads the curve graph the other rules share, where edge
+/// positions would need a full adjacency (17 bytes per point at the stage's peak).
+fn without_short_spurs(graph: &CurveGraph, edges: &[Edge]) -> Option<Vec<Edge>> {
+    let n = graph.vertex_count();
+    let mut dropped = vec![false; n];
+    let mut path: Vec<VertexId> = Vec::with_capacity(MIN_SAMPLES);
+    let mut any = false;
     // Every id, not only vertices: an id left by a merged duplicate has no edge.
     for v in (0..n as u32).map(VertexId::new) {
-        if degree(v) != 1 {
+        if graph.degree(v) != 1 {
             continue;
         }
         path.clear();
         let (mut at, mut from, mut count) = (v, VertexId::INFINITE, 1);
         let short_spur = loop {
-            let Some(&(w, k)) = adjacency.incident(at).iter().find(|&&(w, _)| w != from) else {
+            path.push(at);
+            // `at` has one edge or two: its neighbour other than the one the walk came from.
+            let Some(w) = graph.first_two(at)[..graph.degree(at)]
+                .iter()
+                .copied()
+                .find(|&w| w != from)
+            else {
                 break false;
             };
-            path.push(k);
-            if degree(w) >= 3 {
+            if graph.degree(w) >= 3 {
                 break count < MIN_SAMPLES;
             }
-            if degree(w) != 2 || count + 1 >= MIN_SAMPLES {
+            if graph.degree(w) != 2 || count + 1 >= MIN_SAMPLES {
                 break false; // the other end of a path, or long enough
             }
             count += 1;
             (from, at) = (at, w);
         };
         if short_spur {
-            for &k in &path {
-                dropped[k as usize] = true;
+            any = true;
+            for &u in &path {
+                dropped[u.index()] = true;
             }
         }
     }
-    if !dropped.contains(&true) {
+    if !any {
         return None;
     }
     Some(
         edges
             .iter()
-            .zip(&dropped)
-            .filter(|&(_, &gone)| !gone)
-            .map(|(&e, _)| e)
+            .filter(|&&[a, b]| !dropped[a.index()] && !dropped[b.index()])
+            .copied()
             .collect(),
     )
 }
@@ -429,7 +462,7 @@ fn separated_components(
     let mut separated = vec![0u8; n];
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
-        let longest = profile.longest(v);
+        let longest = profile.longest(tri, v);
         if longest < 0.0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
             // No edge, or the component is kept already: only whether the count reaches the
             // bound matters, so a long curve stops walking rings after its first few samples.
@@ -471,7 +504,7 @@ fn separated_components(
 fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], kept: &mut [bool]) {
     let n = root.len();
     let mut regular = vec![true; n];
-    let mut size = vec![0usize; n];
+    let mut size = vec![0u32; n];
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
         let r = r as usize;
@@ -483,7 +516,7 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], ke
         regular[r] &= graph.degree(v) == 2 && smooth_and_regular(tri, v, y, z);
     }
     for r in 0..n {
-        if !kept[r] && size[r] >= MIN_SAMPLES && regular[r] {
+        if !kept[r] && size[r] as usize >= MIN_SAMPLES && regular[r] {
             kept[r] = true;
         }
     }
@@ -493,7 +526,7 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], ke
 fn too_many_dropped(root: &[u32], profile: &Profile, kept: &[bool]) -> bool {
     let (mut with_edges, mut dropped) = (0usize, 0usize);
     for (i, &r) in root.iter().enumerate() {
-        if profile.longest(VertexId::new(i as u32)) >= 0.0 {
+        if profile.graph.degree(VertexId::new(i as u32)) > 0 {
             with_edges += 1;
             dropped += usize::from(!kept[r as usize]);
         }

@@ -215,6 +215,8 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
         });
         selections.push((v, chosen));
     }
+    // The adjacency (20 bytes per point) is not read again: freed before the output is built.
+    drop(graph);
     // `selections` is in increasing vertex id, so a binary search finds a vertex's choice.
     let selected_by = |w: VertexId, v: VertexId| {
         selections
