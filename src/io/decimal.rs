@@ -25,54 +25,47 @@ const MAX_EXPONENT_DIGITS: usize = 5;
 /// for anything after the number.
 #[inline]
 pub(super) fn parse(bytes: &[u8]) -> Option<f64> {
-    match parse_prefix(bytes, 0)? {
-        (value, end) if end == bytes.len() => Some(value),
+    match parse_prefix(bytes)? {
+        (value, []) => Some(value),
         _ => None,
     }
 }
 
-/// The number starting at `bytes[start]` and the index just after it: the longest run that
-/// has the syntax of [`parse`], rounded to nearest, ties to even, exactly as `str::parse` would
-/// round it, and always finite. `None` when no number starts there (no digit), and for what
-/// this reader leaves to `str::parse`: more than 19 significant digits, an exponent of more
-/// than five digits or without digits (`1e`, `1e+`), an ambiguous Eisel-Lemire product (about
-/// one number in 10^19 of uniformly random digits) and results that are not finite.
+/// The number at the start of `text` and the bytes after it: the longest run that has the
+/// syntax of [`parse`], rounded to nearest, ties to even, exactly as `str::parse` would round
+/// it, and always finite. `None` when no number starts there (no digit), and for what this
+/// reader leaves to `str::parse`: more than 19 significant digits, an exponent of more than
+/// five digits or without digits (`1e`, `1e+`), an ambiguous Eisel-Lemire product (about one
+/// number in 10^19 of uniformly random digits) and results that are not finite.
 ///
 /// The caller decides what may follow the number: the point reader wants a blank or a line end.
-#[inline]
-pub(super) fn parse_prefix(bytes: &[u8], start: usize) -> Option<(f64, usize)> {
-    let mut i = start;
-    let negative = match bytes.get(i) {
-        Some(b'-') => {
-            i += 1;
-            true
-        }
-        Some(b'+') => {
-            i += 1;
-            false
-        }
-        _ => false,
+/// The text is walked as a shrinking slice, which needs one length check per step.
+#[inline(always)]
+pub(super) fn parse_prefix(text: &[u8]) -> Option<(f64, &[u8])> {
+    let (negative, unsigned) = match text {
+        [b'-', rest @ ..] => (true, rest),
+        [b'+', rest @ ..] => (false, rest),
+        _ => (false, text),
     };
-    let digits_start = i;
     // Wraps past 19 digits; such a mantissa is used only when the extra digits were leading
     // zeros, which add nothing, so the wrapped values are never used.
     let mut mantissa: u64 = 0;
-    i = read_digits(bytes, i, &mut mantissa);
-    let mut digits = i - digits_start;
+    let after_integer = read_digits(unsigned, &mut mantissa);
+    let mut digits = unsigned.len() - after_integer.len();
     let mut exponent: i64 = 0;
-    if bytes.get(i) == Some(&b'.') {
-        i += 1;
-        let fraction = i;
-        i = read_digits(bytes, i, &mut mantissa);
-        digits += i - fraction;
-        exponent = -((i - fraction) as i64);
+    let mut rest = after_integer;
+    if let [b'.', fraction @ ..] = after_integer {
+        rest = read_digits(fraction, &mut mantissa);
+        let fraction_digits = fraction.len() - rest.len();
+        digits += fraction_digits;
+        exponent = -(fraction_digits as i64);
     }
     if digits == 0 {
         return None;
     }
     if digits > MAX_DIGITS {
         // Leading zeros (`0.000123`, `007`) are not significant.
-        let zeros = bytes[digits_start..i]
+        let zeros = unsigned
             .iter()
             .take_while(|&&b| b == b'0' || b == b'.')
             .filter(|&&b| b == b'0')
@@ -81,36 +74,26 @@ pub(super) fn parse_prefix(bytes: &[u8], start: usize) -> Option<(f64, usize)> {
             return None;
         }
     }
-    if let Some(b'e' | b'E') = bytes.get(i) {
-        i += 1;
-        let negative_exponent = match bytes.get(i) {
-            Some(b'-') => {
-                i += 1;
-                true
-            }
-            Some(b'+') => {
-                i += 1;
-                false
-            }
-            _ => false,
+    if let [b'e' | b'E', after_e @ ..] = rest {
+        let (negative_exponent, written_digits) = match after_e {
+            [b'-', more @ ..] => (true, more),
+            [b'+', more @ ..] => (false, more),
+            _ => (false, after_e),
         };
-        let first = i;
-        let mut written: i64 = 0;
-        while let Some(d) = bytes
-            .get(i)
-            .map(|b| b.wrapping_sub(b'0'))
-            .filter(|&d| d <= 9)
-        {
-            if i - first == MAX_EXPONENT_DIGITS {
-                return None;
-            }
-            written = written * 10 + i64::from(d);
-            i += 1;
-        }
-        if i == first {
+        let count = written_digits
+            .iter()
+            .take(MAX_EXPONENT_DIGITS + 1)
+            .take_while(|b| b.is_ascii_digit())
+            .count();
+        if count == 0 || count > MAX_EXPONENT_DIGITS {
             return None;
         }
+        let (written, after) = written_digits.split_at_checked(count)?;
+        let written = written
+            .iter()
+            .fold(0i64, |v, &b| v * 10 + i64::from(b - b'0'));
         exponent += if negative_exponent { -written } else { written };
+        rest = after;
     }
     let magnitude = if mantissa == 0 {
         0.0
@@ -128,54 +111,65 @@ pub(super) fn parse_prefix(bytes: &[u8], start: usize) -> Option<(f64, usize)> {
     } else {
         return None;
     };
-    Some((if negative { -magnitude } else { magnitude }, i))
+    Some((if negative { -magnitude } else { magnitude }, rest))
 }
 
-/// Appends the run of ASCII digits at `bytes[i]` to `mantissa` (wrapping) and returns the index
-/// after it: eight digits at a time while eight are there, then one at a time.
+/// Appends the run of ASCII digits at the start of `text` to `mantissa` (wrapping) and returns
+/// the bytes after it, reading eight bytes at a time: a word of eight digits is added whole, and
+/// the first word that is not gives the length of its leading run of digits and their value
+/// at once. Only the last seven bytes of a text are read one by one.
 #[inline(always)]
-fn read_digits(bytes: &[u8], mut i: usize, mantissa: &mut u64) -> usize {
-    while let Some(chunk) = bytes.get(i..).and_then(<[u8]>::first_chunk::<8>) {
-        let word = u64::from_le_bytes(*chunk);
-        if !eight_digits(word) {
-            break;
+fn read_digits<'a>(mut text: &'a [u8], mantissa: &mut u64) -> &'a [u8] {
+    /// 10^n for a run of n digits.
+    const SCALE: [u64; 8] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000, 10_000_000];
+    while let Some((word, rest)) = text.split_first_chunk::<8>() {
+        let (digits, not_digits) = classify(u64::from_le_bytes(*word));
+        if not_digits != 0 {
+            // The bytes before the first that is not a digit; fewer than eight.
+            let run = not_digits.trailing_zeros() as usize / 8;
+            if run > 0 {
+                // The run moved to the top of the word, with zero digits below it.
+                let top = digits << (64 - 8 * run);
+                *mantissa = mantissa
+                    .wrapping_mul(SCALE[run])
+                    .wrapping_add(value_of_eight_digits(top));
+            }
+            return text.get(run..).unwrap_or_default();
         }
         *mantissa = mantissa
             .wrapping_mul(100_000_000)
-            .wrapping_add(value_of_eight_digits(word));
-        i += 8;
+            .wrapping_add(value_of_eight_digits(digits));
+        text = rest;
     }
-    while let Some(d) = bytes
-        .get(i)
-        .map(|b| b.wrapping_sub(b'0'))
-        .filter(|&d| d <= 9)
-    {
-        *mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
-        i += 1;
+    while let [b @ b'0'..=b'9', rest @ ..] = text {
+        *mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
+        text = rest;
     }
-    i
+    text
 }
 
-/// Whether all eight bytes of `word` (little-endian) are ASCII digits: a byte below `'0'`
-/// wraps when `'0'` is subtracted, one above `'9'` carries into its top bit when 0x46 is added,
-/// and no byte carries into its neighbour in either sum unless it is one of those.
+/// For eight bytes read little-endian (the first byte lowest): the bytes minus `'0'`, and the
+/// top bit of every byte that is not an ASCII digit. A byte below `'0'` wraps when `'0'` is
+/// subtracted, one above `'9'` carries into its top bit when 0x46 is added; a borrow or a carry
+/// only moves upward, so the bytes before the first non-digit are marked right and hold their
+/// digit's value.
 #[inline(always)]
-fn eight_digits(word: u64) -> bool {
-    let below = word.wrapping_sub(0x3030_3030_3030_3030);
+fn classify(word: u64) -> (u64, u64) {
+    let digits = word.wrapping_sub(0x3030_3030_3030_3030);
     let above = word.wrapping_add(0x4646_4646_4646_4646);
-    (below | above) & 0x8080_8080_8080_8080 == 0
+    (digits, (digits | above) & 0x8080_8080_8080_8080)
 }
 
-/// The value of eight ASCII digits read little-endian (the first digit in the lowest byte):
-/// pairs, then fours, then the eight combined by three multiplications instead of eight.
+/// The value of eight digit values 0-9, one a byte, the first (most significant) in the lowest
+/// byte: pairs, then fours, then the eight combined by three multiplications instead of eight.
 #[inline(always)]
-fn value_of_eight_digits(word: u64) -> u64 {
+fn value_of_eight_digits(digits: u64) -> u64 {
     const MASK: u64 = 0x0000_00ff_0000_00ff;
     // 10^6 and 10^2 in the two halves; 10^4 and 1.
     const MUL1: u64 = 0x000f_4240_0000_0064;
     const MUL2: u64 = 0x0000_2710_0000_0001;
-    let digits = word - 0x3030_3030_3030_3030;
-    // Each byte's value times ten plus the next byte's: pairs 0-99 in every other byte.
+    // Each byte's value times ten plus the next byte's: pairs 0-99 in every other byte. The
+    // top byte is at most 9, so the product does not overflow.
     let pairs = digits * 10 + (digits >> 8);
     let a = (pairs & MASK).wrapping_mul(MUL1);
     let b = ((pairs >> 16) & MASK).wrapping_mul(MUL2);
@@ -423,10 +417,10 @@ mod tests {
     }
 
     #[test]
-    fn eight_digits_at_a_time_read_what_one_at_a_time_reads() {
+    fn a_word_at_a_time_reads_what_one_byte_at_a_time_reads() {
         let mut stream = Stream(0x1234_5678_9abc_def1);
-        let mut words: Vec<[u8; 8]> = vec![*b"00000000", *b"99999999", *b"12345678"];
-        for _ in 0..100_000 {
+        let mut words: Vec<[u8; 8]> = vec![*b"00000000", *b"99999999", *b"12345678", [0; 8]];
+        for _ in 0..200_000 {
             let mut word = [0u8; 8];
             for b in &mut word {
                 // Mostly digits, sometimes the bytes just outside them, sometimes any byte.
@@ -439,14 +433,36 @@ mod tests {
             words.push(word);
         }
         for word in words {
-            let all = word.iter().all(u8::is_ascii_digit);
-            let value = u64::from_le_bytes(word);
-            assert_eq!(eight_digits(value), all, "{word:?}");
-            if all {
+            let run = word.iter().take_while(|b| b.is_ascii_digit()).count();
+            let (digits, not_digits) = classify(u64::from_le_bytes(word));
+            assert_eq!(not_digits == 0, run == 8, "{word:?}");
+            // The first byte marked is the first that is not a digit.
+            assert_eq!((not_digits.trailing_zeros() / 8) as usize, run, "{word:?}");
+            if run == 8 {
                 let one_by_one = word.iter().fold(0u64, |v, &b| v * 10 + u64::from(b - b'0'));
-                assert_eq!(value_of_eight_digits(value), one_by_one, "{word:?}");
+                assert_eq!(value_of_eight_digits(digits), one_by_one, "{word:?}");
+            }
+            // Through `read_digits`, with more digits after the word, and at the end of a text.
+            let mut longer = word.to_vec();
+            longer.extend_from_slice(b"12x");
+            for cut in (0..=8).chain([10, 11]) {
+                let mut mantissa = 7;
+                let end = cut - read_digits(&longer[..cut], &mut mantissa).len();
+                let expected = longer[..cut]
+                    .iter()
+                    .take_while(|b| b.is_ascii_digit())
+                    .fold(7u64, |v, &b| v.wrapping_mul(10) + u64::from(b - b'0'));
+                let expected_end = longer[..cut]
+                    .iter()
+                    .take_while(|b| b.is_ascii_digit())
+                    .count();
+                assert_eq!((end, mantissa), (expected_end, expected), "{word:?} {cut}");
             }
         }
+        let long = "1234567890".repeat(3);
+        let mut mantissa = 0;
+        assert!(read_digits(&long.as_bytes()[11..], &mut mantissa).is_empty());
+        assert_eq!(mantissa, 2345678901234567890);
     }
 
     #[test]
@@ -679,14 +695,16 @@ mod tests {
 
     #[test]
     fn a_prefix_ends_where_the_number_does() {
-        assert_eq!(parse_prefix(b"1.5 2", 0), Some((1.5, 3)));
-        assert_eq!(parse_prefix(b"x -2e1\n", 2), Some((-20.0, 6)));
+        assert_eq!(parse_prefix(b"1.5 2"), Some((1.5, &b" 2"[..])));
+        assert_eq!(parse_prefix(b"-2e1\n"), Some((-20.0, &b"\n"[..])));
+        assert_eq!(parse_prefix(b"-2e+1x"), Some((-20.0, &b"x"[..])));
         assert_eq!(
-            parse_prefix(b"12345678901234567x", 0).map(|p| p.1),
-            Some(17)
+            parse_prefix(b"12345678901234567x"),
+            Some((12345678901234567.0, &b"x"[..]))
         );
-        assert_eq!(parse_prefix(b"7e", 0), None);
-        assert_eq!(parse_prefix(b" 7", 0), None);
-        assert_eq!(parse_prefix(b"7", 1), None);
+        assert_eq!(parse_prefix(b"7e"), None);
+        assert_eq!(parse_prefix(b"7e123456"), None);
+        assert_eq!(parse_prefix(b" 7"), None);
+        assert_eq!(parse_prefix(b""), None);
     }
 }

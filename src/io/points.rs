@@ -250,34 +250,46 @@ fn scan_line(text: &str, start: usize) -> (usize, usize, Option<Row<'_>>) {
 /// which the general path reads from its start again. Every line taken here is one the general
 /// path reads as the same point: its columns are tokens by the same splitting, and the numbers
 /// are those `Source::number` returns.
-#[inline]
+///
+/// Not inlined: on its own, the number reader inlined in it keeps its values in registers.
+#[inline(never)]
 fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
-    let blank = |i: usize| matches!(bytes.get(i), Some(b' ' | b'\t'));
-    let skip_blanks = |mut i: usize| {
-        while blank(i) {
-            i += 1;
+    fn skip_blanks(mut text: &[u8]) -> &[u8] {
+        while let [b' ' | b'\t', rest @ ..] = text {
+            text = rest;
         }
-        i
-    };
-    let (x, i) = decimal::parse_prefix(bytes, skip_blanks(start))?;
-    if !blank(i) {
+        text
+    }
+    let line_end = |text: &[u8]| matches!(text, [] | [b'\n' | b'\r', ..]);
+    let mut values = [0.0; 2];
+    let mut columns = 0;
+    let mut rest = skip_blanks(bytes.get(start..)?);
+    // One call site for the number reader, so that it is inlined once.
+    while !line_end(rest) {
+        if columns == 3 {
+            return None;
+        }
+        let (value, after) = decimal::parse_prefix(rest)?;
+        if let Some(slot) = values.get_mut(columns) {
+            *slot = value;
+        }
+        columns += 1;
+        rest = skip_blanks(after);
+        // A number runs up to a blank or the line end: `1.5x` or `2,3` is for the general path.
+        if rest.len() == after.len() && !line_end(rest) {
+            return None;
+        }
+    }
+    if columns < 2 {
         return None;
     }
-    let (y, after_y) = decimal::parse_prefix(bytes, skip_blanks(i))?;
-    let mut i = skip_blanks(after_y);
-    let mut third = false;
-    if i > after_y && !matches!(bytes.get(i), None | Some(b'\n' | b'\r')) {
-        i = skip_blanks(decimal::parse_prefix(bytes, i)?.1);
-        third = true;
-    }
-    let next = match bytes.get(i) {
-        None => i,
-        Some(b'\n') => i + 1,
-        Some(b'\r') if bytes.get(i + 1) == Some(&b'\n') => i + 2,
-        Some(b'\r') => i + 1,
-        Some(_) => return None,
+    let end = bytes.len() - rest.len();
+    let next = match rest {
+        [b'\r', b'\n', ..] => end + 2,
+        [_, ..] => end + 1,
+        [] => end,
     };
-    Some((x, y, third, next))
+    Some((values[0], values[1], columns == 3, next))
 }
 
 /// What one stretch of lines of a plain point file holds.
@@ -303,6 +315,17 @@ fn parse_lines(
     may_hold_header: bool,
     expected_points: usize,
 ) -> Result<Parsed, IoError> {
+    lines_by::<true>(text, source, may_hold_header, expected_points)
+}
+
+/// [`parse_lines`], with [`number_line`] trying each line first (`ONE_PASS`) or not: the tests
+/// compare the two.
+fn lines_by<const ONE_PASS: bool>(
+    text: &str,
+    source: &Source<'_>,
+    may_hold_header: bool,
+    expected_points: usize,
+) -> Result<Parsed, IoError> {
     let mut points: Vec<Point> = Vec::new();
     if expected_points > 0 {
         // Only a hint: a refusal here leaves `push` to grow and report.
@@ -314,7 +337,12 @@ fn parse_lines(
     let (mut start, mut number) = (0, 0);
     while start < text.len() {
         number += 1;
-        if let Some((x, y, third, next)) = number_line(text.as_bytes(), start) {
+        let one_pass = if ONE_PASS {
+            number_line(text.as_bytes(), start)
+        } else {
+            None
+        };
+        if let Some((x, y, third, next)) = one_pass {
             // What the general path below does with such a line, in one pass over its bytes.
             seen_content = true;
             first_data_line.get_or_insert(number);
@@ -828,6 +856,111 @@ mod tests {
         assert!(message.ends_with("… (10000000 bytes)"));
         let err = parse_points(&format!("{long}x 1\n"), "big.txt").unwrap_err();
         assert!(err.to_string().len() < 120, "{err}");
+    }
+
+    #[test]
+    fn lines_read_in_one_pass_read_as_the_general_path_reads_them() {
+        // Random texts of lines that are mostly plain numbers, with every kind of deviation the
+        // one-pass reader must leave to the general path: all give the same points bit for bit,
+        // or the same error on the same line.
+        let tokens = [
+            "0",
+            "-1.5",
+            "+2",
+            "0.13436424411240122",
+            "1e3",
+            "-4.5E-7",
+            ".5",
+            "5.",
+            "00012",
+            "123456789012345678901234",
+            "1e400",
+            "1e-400",
+            "1e000001",
+            "inf",
+            "NaN",
+            "x",
+            "1,5",
+            "1.5x",
+            "--1",
+            "1e",
+            "2.2250738585072011e-308",
+            "9007199254740993",
+            "é",
+            "#",
+            "1#2",
+        ];
+        let blanks = [" ", "  ", "\t", " \t", "\x0b", "\u{a0}"];
+        let ends = ["\n", "\r\n", "\r", "", " \n", "\t\r\n", " # note\n"];
+        let mut state = 0x5851_f42d_4c95_7f2du64;
+        let mut next = |n: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % n as u64) as usize
+        };
+        let (mut same_points, mut same_errors) = (0, 0);
+        for _ in 0..3000 {
+            let mut text = String::new();
+            if next(4) == 0 {
+                text.push_str("x y\n");
+            }
+            for _ in 0..1 + next(12) {
+                if next(3) > 0 {
+                    text.push_str(blanks[0]);
+                }
+                // Mostly two or three columns of the common tokens.
+                let columns = [2, 2, 2, 3, 3, 1, 4, 0][next(8)];
+                for c in 0..columns {
+                    if c > 0 {
+                        text.push_str(if next(12) == 0 {
+                            blanks[next(blanks.len())]
+                        } else {
+                            " "
+                        });
+                    }
+                    let token = if next(10) < 8 {
+                        next(5)
+                    } else {
+                        next(tokens.len())
+                    };
+                    text.push_str(tokens[token]);
+                }
+                text.push_str(if next(6) > 0 {
+                    "\n"
+                } else {
+                    ends[next(ends.len())]
+                });
+            }
+            let source = Source { file: "t" };
+            let one = lines_by::<true>(&text, &source, true, 0);
+            let general = lines_by::<false>(&text, &source, true, 0);
+            match (one, general) {
+                (Ok(a), Ok(b)) => {
+                    let bits = |p: &Parsed| -> Vec<(u64, u64)> {
+                        p.points
+                            .iter()
+                            .map(|q| (q.x.to_bits(), q.y.to_bits()))
+                            .collect()
+                    };
+                    assert_eq!(bits(&a), bits(&b), "{text:?}");
+                    assert_eq!(a.all_three_columns, b.all_three_columns, "{text:?}");
+                    assert_eq!(a.first_data_line, b.first_data_line, "{text:?}");
+                    assert_eq!(a.seen_content, b.seen_content, "{text:?}");
+                    same_points += 1;
+                }
+                (Err(a), Err(b)) => {
+                    assert_eq!(a.to_string(), b.to_string(), "{text:?}");
+                    same_errors += 1;
+                }
+                (a, b) => panic!("{text:?}: {:?} against {:?}", a.is_ok(), b.is_ok()),
+            }
+        }
+        // Both outcomes were exercised.
+        assert!(
+            same_points > 300 && same_errors > 300,
+            "{same_points} {same_errors}"
+        );
     }
 
     #[test]
