@@ -50,8 +50,17 @@ pub(super) fn parse_prefix(text: &[u8]) -> Option<(f64, &[u8])> {
     // Wraps past 19 digits; such a mantissa is used only when the extra digits were leading
     // zeros, which add nothing, so the wrapped values are never used.
     let mut mantissa: u64 = 0;
-    let after_integer = read_digits(unsigned, &mut mantissa);
-    let mut digits = unsigned.len() - after_integer.len();
+    let (after_integer, mut digits) = match unsigned {
+        // One digit before the point, the most common shape (`0.25`, `1.5e3`): no word to read.
+        [d @ b'0'..=b'9', rest @ ..] if rest.first() == Some(&b'.') => {
+            mantissa = u64::from(d - b'0');
+            (rest, 1)
+        }
+        _ => {
+            let after = read_digits(unsigned, &mut mantissa);
+            (after, unsigned.len() - after.len())
+        }
+    };
     let mut exponent: i64 = 0;
     let mut rest = after_integer;
     if let [b'.', fraction @ ..] = after_integer {
