@@ -10,6 +10,7 @@
 //! of indices ([`write_npy_edges`], [`write_npy_triangles`]), or drawn (SVG, the HTML viewer).
 
 mod csv;
+mod decimal;
 mod geojson;
 mod geojson_points;
 mod html;

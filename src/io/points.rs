@@ -3,7 +3,7 @@
 //! Both refuse what they cannot read unambiguously, with the file and the line, rather than
 //! guess: a Triangle `.node` file under another name, a decimal comma, a fourth column.
 
-use super::{IoError, IoErrorKind};
+use super::{decimal, IoError, IoErrorKind};
 use crate::geometry::Point;
 use crate::triangulate::MAX_POINTS;
 use std::fs::File;
@@ -243,6 +243,55 @@ fn scan_line(text: &str, start: usize) -> (usize, usize, Option<Row<'_>>) {
     (end, next, simple.then_some(row))
 }
 
+/// The common line read in one pass: two or three numbers that [`decimal::parse_prefix`] takes,
+/// separated by spaces or tabs, blanks around them allowed, then a line end. Gives `x`, `y`,
+/// whether there is a third column, and where the next line starts; `None` for any other line
+/// (a comment, a comma, other whitespace, a header, anything `str::parse` must read, an error),
+/// which the general path reads from its start again. Every line taken here is one the general
+/// path reads as the same point: its columns are tokens by the same splitting, and the numbers
+/// are those `Source::number` returns.
+///
+/// Not inlined: on its own, the number reader inlined in it keeps its values in registers.
+#[inline(never)]
+fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
+    fn skip_blanks(mut text: &[u8]) -> &[u8] {
+        while let [b' ' | b'\t', rest @ ..] = text {
+            text = rest;
+        }
+        text
+    }
+    let line_end = |text: &[u8]| matches!(text, [] | [b'\n' | b'\r', ..]);
+    let mut values = [0.0; 2];
+    let mut columns = 0;
+    let mut rest = skip_blanks(bytes.get(start..)?);
+    // One call site for the number reader, so that it is inlined once.
+    while !line_end(rest) {
+        if columns == 3 {
+            return None;
+        }
+        let (value, after) = decimal::parse_prefix(rest)?;
+        if let Some(slot) = values.get_mut(columns) {
+            *slot = value;
+        }
+        columns += 1;
+        rest = skip_blanks(after);
+        // A number runs up to a blank or the line end: `1.5x` or `2,3` is for the general path.
+        if rest.len() == after.len() && !line_end(rest) {
+            return None;
+        }
+    }
+    if columns < 2 {
+        return None;
+    }
+    let end = bytes.len() - rest.len();
+    let next = match rest {
+        [b'\r', b'\n', ..] => end + 2,
+        [_, ..] => end + 1,
+        [] => end,
+    };
+    Some((values[0], values[1], columns == 3, next))
+}
+
 /// What one stretch of lines of a plain point file holds.
 struct Parsed {
     points: Vec<Point>,
@@ -266,6 +315,17 @@ fn parse_lines(
     may_hold_header: bool,
     expected_points: usize,
 ) -> Result<Parsed, IoError> {
+    lines_by::<true>(text, source, may_hold_header, expected_points)
+}
+
+/// [`parse_lines`], with [`number_line`] trying each line first (`ONE_PASS`) or not: the tests
+/// compare the two.
+fn lines_by<const ONE_PASS: bool>(
+    text: &str,
+    source: &Source<'_>,
+    may_hold_header: bool,
+    expected_points: usize,
+) -> Result<Parsed, IoError> {
     let mut points: Vec<Point> = Vec::new();
     if expected_points > 0 {
         // Only a hint: a refusal here leaves `push` to grow and report.
@@ -277,6 +337,20 @@ fn parse_lines(
     let (mut start, mut number) = (0, 0);
     while start < text.len() {
         number += 1;
+        let one_pass = if ONE_PASS {
+            number_line(text.as_bytes(), start)
+        } else {
+            None
+        };
+        if let Some((x, y, third, next)) = one_pass {
+            // What the general path below does with such a line, in one pass over its bytes.
+            seen_content = true;
+            first_data_line.get_or_insert(number);
+            all_three_columns &= third;
+            source.push(&mut points, number, Point::new(x, y))?;
+            start = next;
+            continue;
+        }
         let (end, next, simple) = scan_line(text, start);
         let line = &text[start..end];
         start = next;
@@ -521,289 +595,6 @@ mod parallel {
             points.extend_from_slice(&piece.points);
         }
         Some(points)
-    }
-}
-
-/// Decimal numbers read without the standard library's general algorithm when that is exact.
-mod decimal {
-    /// Powers of ten that `f64` holds exactly.
-    const POWERS: [f64; 23] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-    ];
-
-    /// Most digits read into a `u64` (10^19 - 1 < 2^64).
-    const MAX_DIGITS: usize = 19;
-
-    /// The value of `[+-]digits[.digits][(e|E)[+-]digits]` with at most 19 digits, rounded to
-    /// nearest, ties to even: the same `f64` as `str::parse`. Two exact ways:
-    /// - digits `m` at most 2^53 and a decimal exponent at most 22 in size: `m` and the power
-    ///   of ten are exact in `f64`, and one correctly rounded multiplication or division gives
-    ///   the result (Clinger's fast path);
-    /// - otherwise, a decimal exponent `e` with |e| <= 19: `m * 10^e` or `m / 10^-e` in exact
-    ///   128-bit integer arithmetic, rounded by hand from the quotient and the remainder.
-    ///
-    /// `None` for anything else (more digits, larger exponents, other syntax), which the caller
-    /// hands to `str::parse`.
-    #[inline]
-    pub(super) fn parse(bytes: &[u8]) -> Option<f64> {
-        let (negative, mut i) = match bytes.first() {
-            Some(b'-') => (true, 1),
-            Some(b'+') => (false, 1),
-            _ => (false, 0),
-        };
-        let mut mantissa: u64 = 0;
-        let mut digits = 0usize;
-        let mut exponent: i64 = 0;
-        // Appends the run of digits at `i` to the mantissa; `None` past MAX_DIGITS.
-        let mut read_digits = |i: &mut usize| -> Option<()> {
-            while let Some(d) = bytes
-                .get(*i)
-                .map(|b| b.wrapping_sub(b'0'))
-                .filter(|&d| d <= 9)
-            {
-                if digits == MAX_DIGITS {
-                    return None;
-                }
-                mantissa = mantissa * 10 + u64::from(d);
-                digits += 1;
-                *i += 1;
-            }
-            Some(())
-        };
-        read_digits(&mut i)?;
-        if bytes.get(i) == Some(&b'.') {
-            i += 1;
-            let first = i;
-            read_digits(&mut i)?;
-            exponent -= (i - first) as i64;
-        }
-        if digits == 0 {
-            return None;
-        }
-        if let Some(b'e' | b'E') = bytes.get(i) {
-            i += 1;
-            let negative_exponent = match bytes.get(i) {
-                Some(b'-') => {
-                    i += 1;
-                    true
-                }
-                Some(b'+') => {
-                    i += 1;
-                    false
-                }
-                _ => false,
-            };
-            let first = i;
-            let mut written: i64 = 0;
-            while let Some(&b) = bytes.get(i) {
-                let d = b.wrapping_sub(b'0');
-                if d > 9 || i - first >= 6 {
-                    break;
-                }
-                written = written * 10 + i64::from(d);
-                i += 1;
-            }
-            if i == first {
-                return None;
-            }
-            exponent += if negative_exponent { -written } else { written };
-        }
-        if i != bytes.len() {
-            return None;
-        }
-        let magnitude = if mantissa <= 1 << 53 && exponent.unsigned_abs() <= 22 {
-            let power = POWERS[exponent.unsigned_abs() as usize];
-            if exponent >= 0 {
-                mantissa as f64 * power
-            } else {
-                mantissa as f64 / power
-            }
-        } else if mantissa == 0 {
-            0.0
-        } else if exponent.unsigned_abs() <= MAX_DIGITS as u64 {
-            let power = 10u128.pow(exponent.unsigned_abs() as u32);
-            if exponent >= 0 {
-                // At most 64 + 64 bits: exact.
-                rounded(u128::from(mantissa) * power, false, 0)
-            } else {
-                // Shifted so that the quotient has at least 55 bits; the shifted mantissa has
-                // at most 64 + 56 bits.
-                let bits = |v: u128| 128 - v.leading_zeros() as i32;
-                let shift = (56 + bits(power) - bits(u128::from(mantissa))).max(0);
-                let scaled = u128::from(mantissa) << shift;
-                rounded(scaled / power, scaled % power != 0, -shift)
-            }
-        } else {
-            return None;
-        };
-        Some(if negative { -magnitude } else { magnitude })
-    }
-
-    /// The `f64` nearest to `(q + t) * 2^scale`, ties to even, where `0 <= t < 1` is nonzero
-    /// exactly when `inexact`; `q` has at least 54 bits or is exact (`inexact` false), and the
-    /// result lies in the normal range (the callers' values are between 1e-19 and 1e38).
-    fn rounded(q: u128, inexact: bool, scale: i32) -> f64 {
-        let bits = 128 - q.leading_zeros() as i32;
-        let drop = (bits - 53).max(0);
-        let (mut kept, mut scale) = (q >> drop, scale + drop);
-        if drop > 0 {
-            let rest = q & ((1u128 << drop) - 1);
-            let half = 1u128 << (drop - 1);
-            if rest > half || (rest == half && (inexact || kept & 1 == 1)) {
-                kept += 1;
-                if kept == 1 << 53 {
-                    kept >>= 1;
-                    scale += 1;
-                }
-            }
-        }
-        // `kept` < 2^53 is exact in f64, and so is the power of two: one exact product.
-        kept as f64 * f64::from_bits(((1023 + scale) as u64) << 52)
-    }
-
-    #[cfg(test)]
-    mod tests {
-        use super::parse;
-
-        #[test]
-        fn the_fast_path_gives_what_str_parse_gives_or_declines() {
-            let cases = [
-                "0",
-                "-0",
-                "+0",
-                "1",
-                "-1.5",
-                "0.1",
-                "3.14159",
-                "1e22",
-                "1e-22",
-                "1e23",
-                "9007199254740992",
-                "9007199254740993",
-                "0.9371698010707118",
-                "123456.789e-3",
-                ".5",
-                "5.",
-                "-.5e+2",
-                "1e",
-                "e5",
-                "1.2.3",
-                "--1",
-                "+-1",
-                "1e+",
-                "inf",
-                "NaN",
-                "0x10",
-                "",
-                "-",
-                ".",
-                "00000000000000000000000000001",
-                "1e0000001",
-                "4.35",
-                "0.30000000000000004",
-            ];
-            for case in cases {
-                let standard = case.parse::<f64>().ok();
-                if let Some(fast) = parse(case.as_bytes()) {
-                    let standard = standard.unwrap_or_else(|| panic!("{case} is not a number"));
-                    assert_eq!(fast.to_bits(), standard.to_bits(), "{case}");
-                }
-            }
-            // The fast path does take the common forms.
-            for case in [
-                "0",
-                "-1.5",
-                "0.1",
-                "1e22",
-                "123456.789e-3",
-                ".5",
-                "5.",
-                "-.5e+2",
-            ] {
-                assert!(parse(case.as_bytes()).is_some(), "{case}");
-            }
-        }
-
-        #[test]
-        fn seventeen_to_nineteen_digits_round_as_str_parse_does() {
-            let mut state = 0x9e37_79b9_7f4a_7c15u64;
-            let mut taken = 0;
-            for k in 0..300_000 {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
-                let value = unit * [1.0, 1e-3, 1e3, 1e8, 7e15, 1e-12][k % 6];
-                let decimals = [17, 18, 19, 16, 12][k % 5];
-                for text in [
-                    format!("{value}"),
-                    format!("{value:.decimals$}"),
-                    format!("{value:e}"),
-                    format!("{}", (state >> 1) % 10u64.pow(1 + (k % 19) as u32)),
-                    format!(
-                        "{}e{}",
-                        (state >> 1) % 10u64.pow(1 + (k % 19) as u32),
-                        k % 40
-                    ),
-                    format!(
-                        "{}e-{}",
-                        (state >> 1) % 10u64.pow(1 + (k % 19) as u32),
-                        k % 40
-                    ),
-                ] {
-                    if let Some(fast) = parse(text.as_bytes()) {
-                        taken += 1;
-                        let standard: f64 = text.parse().unwrap();
-                        assert_eq!(fast.to_bits(), standard.to_bits(), "{text}");
-                    }
-                }
-            }
-            assert!(taken > 1_000_000, "{taken}");
-            // Ties and carries: 2^53 + 1 and + 3 are halfway between doubles.
-            for text in ["9007199254740993", "9007199254740995", "18014398509481989"] {
-                let fast = parse(text.as_bytes()).unwrap();
-                assert_eq!(
-                    fast.to_bits(),
-                    text.parse::<f64>().unwrap().to_bits(),
-                    "{text}"
-                );
-            }
-        }
-
-        #[test]
-        fn the_fast_path_agrees_with_str_parse_on_many_decimals() {
-            let mut state = 0x2545_f491_4f6c_dd1du64;
-            for _ in 0..200_000 {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                let digits = (state % 17) as u32;
-                let mantissa = (state >> 8) % 10u64.pow(digits.max(1));
-                let exponent = (state >> 3) % 60;
-                let text = format!("{mantissa}e-{exponent}");
-                if let Some(fast) = parse(text.as_bytes()) {
-                    assert_eq!(
-                        fast.to_bits(),
-                        text.parse::<f64>().unwrap().to_bits(),
-                        "{text}"
-                    );
-                }
-                let point = format!(
-                    "{}.{:0>width$}",
-                    mantissa / 1000,
-                    mantissa % 1000,
-                    width = 3
-                );
-                if let Some(fast) = parse(point.as_bytes()) {
-                    assert_eq!(
-                        fast.to_bits(),
-                        point.parse::<f64>().unwrap().to_bits(),
-                        "{point}"
-                    );
-                }
-            }
-        }
     }
 }
 
@@ -1065,6 +856,111 @@ mod tests {
         assert!(message.ends_with("… (10000000 bytes)"));
         let err = parse_points(&format!("{long}x 1\n"), "big.txt").unwrap_err();
         assert!(err.to_string().len() < 120, "{err}");
+    }
+
+    #[test]
+    fn lines_read_in_one_pass_read_as_the_general_path_reads_them() {
+        // Random texts of lines that are mostly plain numbers, with every kind of deviation the
+        // one-pass reader must leave to the general path: all give the same points bit for bit,
+        // or the same error on the same line.
+        let tokens = [
+            "0",
+            "-1.5",
+            "+2",
+            "0.13436424411240122",
+            "1e3",
+            "-4.5E-7",
+            ".5",
+            "5.",
+            "00012",
+            "123456789012345678901234",
+            "1e400",
+            "1e-400",
+            "1e000001",
+            "inf",
+            "NaN",
+            "x",
+            "1,5",
+            "1.5x",
+            "--1",
+            "1e",
+            "2.2250738585072011e-308",
+            "9007199254740993",
+            "é",
+            "#",
+            "1#2",
+        ];
+        let blanks = [" ", "  ", "\t", " \t", "\x0b", "\u{a0}"];
+        let ends = ["\n", "\r\n", "\r", "", " \n", "\t\r\n", " # note\n"];
+        let mut state = 0x5851_f42d_4c95_7f2du64;
+        let mut next = |n: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % n as u64) as usize
+        };
+        let (mut same_points, mut same_errors) = (0, 0);
+        for _ in 0..3000 {
+            let mut text = String::new();
+            if next(4) == 0 {
+                text.push_str("x y\n");
+            }
+            for _ in 0..1 + next(12) {
+                if next(3) > 0 {
+                    text.push_str(blanks[0]);
+                }
+                // Mostly two or three columns of the common tokens.
+                let columns = [2, 2, 2, 3, 3, 1, 4, 0][next(8)];
+                for c in 0..columns {
+                    if c > 0 {
+                        text.push_str(if next(12) == 0 {
+                            blanks[next(blanks.len())]
+                        } else {
+                            " "
+                        });
+                    }
+                    let token = if next(10) < 8 {
+                        next(5)
+                    } else {
+                        next(tokens.len())
+                    };
+                    text.push_str(tokens[token]);
+                }
+                text.push_str(if next(6) > 0 {
+                    "\n"
+                } else {
+                    ends[next(ends.len())]
+                });
+            }
+            let source = Source { file: "t" };
+            let one = lines_by::<true>(&text, &source, true, 0);
+            let general = lines_by::<false>(&text, &source, true, 0);
+            match (one, general) {
+                (Ok(a), Ok(b)) => {
+                    let bits = |p: &Parsed| -> Vec<(u64, u64)> {
+                        p.points
+                            .iter()
+                            .map(|q| (q.x.to_bits(), q.y.to_bits()))
+                            .collect()
+                    };
+                    assert_eq!(bits(&a), bits(&b), "{text:?}");
+                    assert_eq!(a.all_three_columns, b.all_three_columns, "{text:?}");
+                    assert_eq!(a.first_data_line, b.first_data_line, "{text:?}");
+                    assert_eq!(a.seen_content, b.seen_content, "{text:?}");
+                    same_points += 1;
+                }
+                (Err(a), Err(b)) => {
+                    assert_eq!(a.to_string(), b.to_string(), "{text:?}");
+                    same_errors += 1;
+                }
+                (a, b) => panic!("{text:?}: {:?} against {:?}", a.is_ok(), b.is_ok()),
+            }
+        }
+        // Both outcomes were exercised.
+        assert!(
+            same_points > 300 && same_errors > 300,
+            "{same_points} {same_errors}"
+        );
     }
 
     #[test]
