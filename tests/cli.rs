@@ -586,7 +586,10 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
             "{}",
             String::from_utf8_lossy(&timed.stderr)
         );
-        assert_eq!(plain.stdout, timed.stdout, "{args:?}: the result is the same");
+        assert_eq!(
+            plain.stdout, timed.stdout,
+            "{args:?}: the result is the same"
+        );
         assert!(timing_lines(&plain.stderr).is_empty(), "{args:?}");
         let steps: Vec<String> = timing_lines(&timed.stderr)
             .into_iter()
