@@ -504,3 +504,106 @@ fn npy_points_in_and_npy_indices_out_match_the_text_results() {
         "{message}"
     );
 }
+
+/// The `--timings` lines of `stderr`: (step, seconds), each line checked to read
+/// `condt: time STEP SECONDS s` with an optional note in parentheses.
+fn timing_lines(stderr: &[u8]) -> Vec<(String, f64)> {
+    String::from_utf8_lossy(stderr)
+        .lines()
+        .filter_map(|line| line.strip_prefix("condt: time "))
+        .map(|rest| {
+            let mut words = rest.splitn(4, ' ');
+            let step = words.next().unwrap_or_default().to_string();
+            assert!(
+                !step.is_empty() && step.chars().all(|c| c.is_ascii_lowercase() || c == '-'),
+                "{rest}"
+            );
+            let seconds: f64 = words
+                .next()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or_else(|| panic!("no number in {rest}"));
+            assert!(seconds.is_finite() && seconds >= 0.0, "{rest}");
+            assert_eq!(words.next(), Some("s"), "{rest}");
+            if let Some(note) = words.next() {
+                assert!(note.starts_with('(') && note.ends_with(')'), "{rest}");
+            }
+            (step, seconds)
+        })
+        .collect()
+}
+
+#[test]
+fn timings_print_one_parsable_line_per_step_and_change_no_output() {
+    let input = data("../../examples/data/shapes.txt");
+    for (command, extra, expected) in [
+        (
+            "triangulate",
+            &[][..],
+            &["read", "triangulation", "write", "total"][..],
+        ),
+        (
+            "reconstruct",
+            &[],
+            &[
+                "read",
+                "earlier-passes",
+                "triangulation",
+                "proximity",
+                "repair",
+                "iqr-outliers",
+                "local-outliers",
+                "given-back",
+                "gaps",
+                "curves",
+                "other",
+                "write",
+                "total",
+            ],
+        ),
+        (
+            "reconstruct",
+            &["--paper"],
+            &[
+                "read",
+                "triangulation",
+                "proximity",
+                "repair",
+                "iqr-outliers",
+                "curves",
+                "other",
+                "write",
+                "total",
+            ],
+        ),
+    ] {
+        let mut args = vec![command, input.as_str()];
+        args.extend(extra);
+        let plain = condt(&args, "");
+        args.push("--timings");
+        let timed = condt(&args, "");
+        assert!(
+            plain.status.success() && timed.status.success(),
+            "{}",
+            String::from_utf8_lossy(&timed.stderr)
+        );
+        assert_eq!(
+            plain.stdout, timed.stdout,
+            "{args:?}: the result is the same"
+        );
+        assert!(timing_lines(&plain.stderr).is_empty(), "{args:?}");
+        let steps: Vec<String> = timing_lines(&timed.stderr)
+            .into_iter()
+            .map(|(step, _)| step)
+            .collect();
+        assert_eq!(steps, expected, "{args:?}");
+        // The other messages are still there, the same.
+        let other = |err: &[u8]| -> Vec<String> {
+            String::from_utf8_lossy(err)
+                .lines()
+                .filter(|l| !l.starts_with("condt: time "))
+                .map(String::from)
+                .collect()
+        };
+        assert_eq!(other(&plain.stderr), other(&timed.stderr), "{args:?}");
+    }
+}

@@ -5,6 +5,7 @@
 //! output goes is [`crate::output`]'s business.
 
 use crate::output::{refuse_same_file, Destination};
+use crate::timings::Timings;
 use condt::io::{
     read_points, write_edges, write_geojson, write_html, write_npy_edges, write_npy_triangles,
     write_npy_triangulation_edges, write_polylines, write_svg, write_triangles,
@@ -55,6 +56,7 @@ Usage:
                     [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
                     [--outliers-first] [--[no-]local-outliers] [--[no-]confirm-given-back]
                     [--[no-]close-gaps] [--[no-]smooth] [--format F] [--stages] [--sequential]
+                    [--timings]
 
 Example:
   condt reconstruct examples/data/shapes.txt -o shapes.svg --stages
@@ -113,6 +115,9 @@ Options:
       --format F          edges, npy, txt, svg, geojson or html
       --stages            draw every stage (SVG output only)
       --sequential        do not use threads (the result is the same)
+      --timings           on standard error, one line `condt: time STEP SECONDS s` per step:
+                          read, earlier-passes (when smoothing ran), triangulation, each
+                          stage of the last pass, curves, other, write, total
   -h, --help              show this help
 ";
 
@@ -120,7 +125,7 @@ const TRIANGULATE_HELP: &str = "\
 condt triangulate: the Delaunay triangulation of planar points
 
 Usage:
-  condt triangulate INPUT [-o OUTPUT] [--edges]
+  condt triangulate INPUT [-o OUTPUT] [--edges] [--timings]
 
 Example:
   condt triangulate examples/data/shapes.txt --edges -o shapes.edges
@@ -134,6 +139,8 @@ with --edges, and a note on standard error says so.
 Options:
   -o, --output FILE   write to FILE instead of standard output
       --edges         write edges instead of triangles
+      --timings       on standard error, one line `condt: time STEP SECONDS s` per step:
+                      read, triangulation, write, total
   -h, --help          show this help
 ";
 
@@ -206,6 +213,7 @@ struct TriangulateArgs {
     /// `None`: standard output.
     output: Option<PathBuf>,
     edges: bool,
+    timings: bool,
 }
 
 /// Where `-o` and INPUT go while the arguments are read.
@@ -269,11 +277,13 @@ impl Paths {
 
 fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
     let mut edges = false;
+    let mut timings = false;
     let mut paths = Paths::default();
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
         match arg.to_str() {
             Some("--edges") => edges = true,
+            Some("--timings") => timings = true,
             _ => paths.take(arg, &mut rest)?,
         }
     }
@@ -282,6 +292,7 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
         input,
         output,
         edges,
+        timings,
     })
 }
 
@@ -366,6 +377,7 @@ struct ReconstructArgs {
     params: Params,
     format: Format,
     stages: bool,
+    timings: bool,
 }
 
 /// The number after `flag`; whether its value is accepted is for the library to say.
@@ -453,6 +465,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     // ConDT's own options, to refuse them beside a baseline method.
     let mut condt_options: Vec<String> = Vec::new();
     let mut stages = false;
+    let mut timings = false;
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
         // The options that set a ConDT stage, which a baseline method refuses.
@@ -537,6 +550,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 format.set(chosen, format!("--format {name}"))?;
             }
             Some("--stages") => stages = true,
+            Some("--timings") => timings = true,
             Some("--paper") => {}
             Some("--sequential") => params.parallel = false,
             _ => paths.take(arg, &mut rest)?,
@@ -601,6 +615,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         params,
         format,
         stages,
+        timings,
     })
 }
 
@@ -636,11 +651,15 @@ fn note_duplicates(points: usize, distinct: usize) {
 }
 
 fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
+    let mut timings = Timings::new(args.timings);
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
     let points = read_input(args.input.as_deref(), args.params.parallel)?;
+    timings.lap("read");
     let result = reconstruct(&points, &args.params)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
+    let call = timings.quiet_lap();
+    timings.reconstruction(&result, call);
     destination.write(|out| match args.format {
         Format::Edges => write_edges(out, &result),
         Format::Npy => write_npy_edges(out, &result),
@@ -649,6 +668,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         Format::GeoJson => write_geojson(out, &result),
         Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
     })?;
+    timings.lap("write");
     note_duplicates(points.len(), result.triangulation().num_vertices());
     let curves = result.curves();
     let closed = curves.iter().filter(|c| c.is_closed()).count();
@@ -659,15 +679,19 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         curves.len() - closed,
         result.unused().len()
     ));
+    timings.total();
     Ok(())
 }
 
 fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
+    let mut timings = Timings::new(args.timings);
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
     let points = read_input(args.input.as_deref(), true)?;
+    timings.lap("read");
     let tri = triangulate(&points)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
+    timings.lap("triangulation");
     note_duplicates(points.len(), tri.num_vertices());
     if !args.edges && tri.triangles().next().is_none() {
         let distinct = tri.num_vertices();
@@ -693,7 +717,10 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         (false, false) => write_triangles(out, &tri),
         (true, true) => write_npy_triangulation_edges(out, &tri),
         (false, true) => write_npy_triangles(out, &tri),
-    })
+    })?;
+    timings.lap("write");
+    timings.total();
+    Ok(())
 }
 
 #[cfg(test)]
@@ -712,7 +739,8 @@ mod tests {
             TriangulateArgs {
                 input: Some("in.txt".into()),
                 output: Some("out.txt".into()),
-                edges: true
+                edges: true,
+                timings: false
             }
         );
     }

@@ -4,6 +4,7 @@
 mod cli;
 mod output;
 mod score;
+mod timings;
 
 fn main() {
     // File names need not be UTF-8: the arguments are taken as the OS gives them.

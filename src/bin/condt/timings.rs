@@ -1,0 +1,109 @@
+//! `--timings`: one line on standard error per step of a command, with its wall-clock time.
+//!
+//! Owns the clock of the binary's own steps (reading, writing) and the format of the lines; the
+//! library's steps (triangulation, stages, curve assembly, smoothing passes) are the times the
+//! library recorded in the [`Reconstruction`], printed as they are.
+//!
+//! Every line reads `condt: time STEP SECONDS s`, optionally followed by a note in parentheses:
+//! STEP is one word (letters and hyphens), SECONDS a decimal number. `scripts/scale.py` parses
+//! them; the format is tested in `tests/cli.rs`.
+
+use crate::cli::note;
+use condt::{Reconstruction, Stage};
+use std::time::{Duration, Instant};
+
+/// The clock of one command; prints nothing when `--timings` was not given.
+pub(crate) struct Timings {
+    on: bool,
+    /// The start of the command, for the total.
+    start: Instant,
+    /// The end of the previous step the binary timed itself.
+    lap: Instant,
+}
+
+impl Timings {
+    pub(crate) fn new(on: bool) -> Self {
+        let now = Instant::now();
+        Timings {
+            on,
+            start: now,
+            lap: now,
+        }
+    }
+
+    /// The time since the previous lap (or the start), printed as `step`.
+    pub(crate) fn lap(&mut self, step: &str) -> Duration {
+        let elapsed = self.quiet_lap();
+        self.line(step, elapsed, "");
+        elapsed
+    }
+
+    /// The time since the previous lap, not printed (the library's call, which
+    /// [`Timings::reconstruction`] splits).
+    pub(crate) fn quiet_lap(&mut self) -> Duration {
+        let now = Instant::now();
+        let elapsed = now - self.lap;
+        self.lap = now;
+        elapsed
+    }
+
+    /// Prints the library's own record of a reconstruction that took `call` in all: the
+    /// triangulation, the earlier passes when smoothing ran, each stage of the last pass, the
+    /// curve assembly and what is left of `call` besides them (`other`).
+    pub(crate) fn reconstruction(&self, result: &Reconstruction, call: Duration) {
+        let mut counted = Duration::ZERO;
+        let mut show = |step: &str, time: Duration, comment: &str| {
+            counted += time;
+            self.line(step, time, comment);
+        };
+        if let Some(smoothing) = result.smoothing() {
+            // The stages below are the last pass's; the first reconstruction and every pass but
+            // the last (each a triangulation and all the stages) are in this one figure.
+            let comment = format!(
+                "(the first reconstruction and {} of {} smoothing passes)",
+                smoothing.passes - 1,
+                smoothing.passes
+            );
+            show("earlier-passes", smoothing.earlier_passes, &comment);
+        }
+        show("triangulation", result.triangulation_time(), "");
+        for report in result.stages() {
+            show(stage_step(report.stage), report.time, "");
+        }
+        show("curves", result.curves_time(), "");
+        // What the library did outside the steps it timed: the parameter check, starting its
+        // worker thread, copying the input points when smoothing ran.
+        self.line("other", call.saturating_sub(counted), "");
+    }
+
+    /// The time since the command started, printed as `total`.
+    pub(crate) fn total(&self) {
+        self.line("total", self.start.elapsed(), "");
+    }
+
+    fn line(&self, step: &str, time: Duration, comment: &str) {
+        if self.on {
+            let space = if comment.is_empty() { "" } else { " " };
+            note(format_args!(
+                "time {step} {:.6} s{space}{comment}",
+                time.as_secs_f64()
+            ));
+        }
+    }
+}
+
+/// The one-word name of a stage on a `--timings` line.
+fn stage_step(stage: Stage) -> &'static str {
+    match stage {
+        Stage::Proximity => "proximity",
+        Stage::Repair => "repair",
+        Stage::Outliers => "iqr-outliers",
+        Stage::LocalOutliers => "local-outliers",
+        Stage::GivenBack => "given-back",
+        Stage::Gaps => "gaps",
+        Stage::NnCrust => "nn-crust",
+        Stage::Crust => "crust",
+        // A stage added to the library after this binary was written: still one word.
+        _ => "stage",
+    }
+}
