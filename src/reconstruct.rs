@@ -622,6 +622,8 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
             // next pass needs) is freed before the next triangulation, and the moved positions
             // once it is built.
             let previous_edges = core::mem::take(&mut result.edges);
+            // The replaced pass's triangulation is an earlier pass's cost too.
+            earlier_passes += result.triangulation_time;
             drop(result);
             earlier_passes += clock.lap();
             let tri = triangulate(&positions)?;

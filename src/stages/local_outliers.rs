@@ -462,12 +462,12 @@ fn separated_components(
     let mut separated = vec![0u8; n];
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
-        let longest = profile.longest(tri, v);
-        if longest < 0.0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
+        if profile.graph.degree(v) == 0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
             // No edge, or the component is kept already: only whether the count reaches the
-            // bound matters, so a long curve stops walking rings after its first few samples.
+            // bound matters, so a long curve stops measuring its samples after its first few.
             continue;
         }
+        let longest = profile.longest(tri, v);
         let p = tri.vertex_point(v);
         // An unused point is its own root, so it counts as outside every component.
         let apart = tri.mesh().neighbors(v).all(|w| {
