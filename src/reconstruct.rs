@@ -606,10 +606,7 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
     let triangulation_time = clock.lap();
     let mut result = reconstruct_triangulation(tri, params)?;
     result.triangulation_time = triangulation_time;
-    if params.smooth
-        && params.method == Method::ConDT
-        && shows_noise(&result.triangulation, &result.final_edges)
-    {
+    if params.smooth && params.method == Method::ConDT && shows_noise(&result.degrees) {
         // Each pass smooths along the previous pass's final graph and reconstructs the moved
         // points; the passes stop at a fixed point (the same final edges) or after
         // `MAX_PASSES` (src/smooth.rs gives the reasons).

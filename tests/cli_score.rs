@@ -38,6 +38,23 @@ fn edges_text(edges: &[[usize; 2]]) -> String {
 
 /// The value of `key` in the command's JSON object (a flat object of numbers, booleans, null
 /// and one string).
+/// `condt score POINTS OUTPUT TRUTH --json`, which must succeed: its standard output.
+fn score_json(points: &Path, output: &Path, truth: &Path) -> String {
+    let scored = condt(&[
+        Path::new("score"),
+        points,
+        output,
+        truth,
+        Path::new("--json"),
+    ]);
+    assert!(
+        scored.status.success(),
+        "{}",
+        String::from_utf8_lossy(&scored.stderr)
+    );
+    String::from_utf8(scored.stdout).unwrap()
+}
+
 fn json_value(json: &str, key: &str) -> String {
     let start = json.find(&format!("\"{key}\": ")).expect(key) + key.len() + 4;
     let rest = &json[start..];
@@ -74,19 +91,7 @@ fn a_reconstruction_of_a_sampled_circle_scores_exact_against_its_truth() {
         .output()
         .unwrap();
     assert!(run.status.success());
-    let scored = condt(&[
-        Path::new("score"),
-        &points,
-        &output,
-        &truth,
-        Path::new("--json"),
-    ]);
-    assert!(
-        scored.status.success(),
-        "{}",
-        String::from_utf8_lossy(&scored.stderr)
-    );
-    let json = String::from_utf8(scored.stdout).unwrap();
+    let json = score_json(&points, &output, &truth);
     assert_eq!(json_value(&json, "exact"), "true");
     assert_eq!(json_value(&json, "f1"), "1.0");
     assert_eq!(json_value(&json, "max_dist"), "0.0");
@@ -102,14 +107,7 @@ fn a_wrong_edge_is_counted_and_measured() {
     let points = write(dir.path(), "p.txt", "0 0\n1 0\n1 1\n0 1\n");
     let truth = write(dir.path(), "t.edges", "0 1\n1 2\n2 3\n3 0\n");
     let output = write(dir.path(), "o.edges", "# a comment\n\n1 0\n2 1\n3 2\n0 2\n");
-    let scored = condt(&[
-        Path::new("score"),
-        &points,
-        &output,
-        &truth,
-        Path::new("--json"),
-    ]);
-    let json = String::from_utf8(scored.stdout).unwrap();
+    let json = score_json(&points, &output, &truth);
     assert_eq!(json_value(&json, "exact"), "false");
     assert_eq!(json_value(&json, "f1"), "0.75");
     assert_eq!(
@@ -136,15 +134,7 @@ fn a_malformed_output_scores_nothing_and_names_its_line() {
         ("0 1\n1 7\n", "line 2: point 7 does not exist"),
     ] {
         let output = write(dir.path(), "o.edges", output);
-        let scored = condt(&[
-            Path::new("score"),
-            &points,
-            &output,
-            &truth,
-            Path::new("--json"),
-        ]);
-        assert!(scored.status.success());
-        let json = String::from_utf8(scored.stdout).unwrap();
+        let json = score_json(&points, &output, &truth);
         assert_eq!(json_value(&json, "malformed"), format!("\"{problem}\""));
         assert_eq!(json_value(&json, "f1"), "0.0");
         assert_eq!(json_value(&json, "exact"), "false");
