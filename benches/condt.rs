@@ -71,8 +71,8 @@ fn step_times(points: &[Point], params: &Params) -> Vec<(String, Duration)> {
     let mut times = vec![("triangulation".to_string(), result.triangulation_time())];
     times.extend(
         result
-            .stages()
-            .map(|r| (stage_name(r.stage).to_string(), r.time)),
+            .stage_times()
+            .map(|(stage, time)| (stage_name(stage).to_string(), time)),
     );
     times.push(("curves".to_string(), result.curves_time()));
     // With smoothing passes, everything before the last pass (the first reconstruction

@@ -481,24 +481,48 @@ impl Reconstruction {
     /// Each stage's graph is rebuilt from the final one when its report is made (the
     /// reconstruction keeps only what each stage changed), in O(edges) per stage after it.
     pub fn stages(&self) -> impl ExactSizeIterator<Item = StageReport<'_>> + '_ {
-        (0..self.records.len()).map(move |k| {
-            let record = &self.records[k];
-            StageReport {
-                stage: record.stage,
-                graph: Graph::new(
-                    &self.triangulation,
-                    output_of(&self.records, &self.final_edges, k),
-                ),
-                // The first graph has no input to leave as it was.
-                applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
-                time: record.time,
-            }
-        })
+        (0..self.records.len()).map(move |k| self.report(k))
     }
 
-    /// The report of `stage`, or `None` when it did not run.
+    /// The report of `stage`, or `None` when it did not run. Only its graph is rebuilt.
     pub fn stage(&self, stage: Stage) -> Option<StageReport<'_>> {
-        self.stages().find(|report| report.stage == stage)
+        let k = self
+            .records
+            .iter()
+            .position(|record| record.stage == stage)?;
+        Some(self.report(k))
+    }
+
+    /// Every stage that ran with its wall-clock time, in order: what [`stages`](Self::stages)
+    /// reports of them, without rebuilding their graphs (zero times without `std`).
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::default())?;
+    /// let names: Vec<_> = result.stage_times().map(|(stage, _)| stage).collect();
+    /// assert_eq!(names, Params::default().stages());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn stage_times(&self) -> impl ExactSizeIterator<Item = (Stage, Duration)> + '_ {
+        self.records
+            .iter()
+            .map(|record| (record.stage, record.time))
+    }
+
+    /// The report of the `k`-th stage that ran, its graph rebuilt from the final one.
+    fn report(&self, k: usize) -> StageReport<'_> {
+        let record = &self.records[k];
+        StageReport {
+            stage: record.stage,
+            graph: Graph::new(
+                &self.triangulation,
+                output_of(&self.records, &self.final_edges, k),
+            ),
+            // The first graph has no input to leave as it was.
+            applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
+            time: record.time,
+        }
     }
 
     /// The final graph, as the last stage left it.

@@ -356,21 +356,7 @@ fn eisel_lemire(w: u64, q: i32) -> Option<f64> {
 mod tests {
     use super::*;
 
-    /// A reproducible xorshift stream.
-    struct Stream(u64);
-
-    impl Stream {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
-
-        fn below(&mut self, n: u64) -> u64 {
-            self.next() % n
-        }
-    }
+    use crate::test_rng::Xorshift;
 
     /// `parse` either declines or gives the bits `str::parse` gives; returns whether it took it.
     fn agrees(text: &str) -> bool {
@@ -427,7 +413,7 @@ mod tests {
 
     #[test]
     fn a_word_at_a_time_reads_what_one_byte_at_a_time_reads() {
-        let mut stream = Stream(0x1234_5678_9abc_def1);
+        let mut stream = Xorshift::new(0x1234_5678_9abc_def1);
         let mut words: Vec<[u8; 8]> = vec![*b"00000000", *b"99999999", *b"12345678", [0; 8]];
         for _ in 0..200_000 {
             let mut word = [0u8; 8];
@@ -435,7 +421,7 @@ mod tests {
                 // Mostly digits, sometimes the bytes just outside them, sometimes any byte.
                 *b = match stream.below(10) {
                     0 => [b'/', b':', b'.', b' ', 0, 0xff, b'0' - 1][stream.below(7) as usize],
-                    1 => stream.next() as u8,
+                    1 => stream.next_u64() as u8,
                     _ => b'0' + stream.below(10) as u8,
                 };
             }
@@ -574,7 +560,7 @@ mod tests {
 
     #[test]
     fn random_decimals_of_1_to_20_digits_parse_as_str_parse_does() {
-        let mut stream = Stream(0x2545_f491_4f6c_dd1d);
+        let mut stream = Xorshift::new(0x2545_f491_4f6c_dd1d);
         let mut taken = 0;
         let mut text = String::new();
         let total = 2_000_000;
@@ -617,10 +603,11 @@ mod tests {
 
     #[test]
     fn shortest_and_long_forms_of_random_doubles_parse_as_str_parse_does() {
-        let mut stream = Stream(0x9e37_79b9_7f4a_7c15);
+        let mut stream = Xorshift::new(0x9e37_79b9_7f4a_7c15);
         for k in 0..300_000 {
             // Any finite double: random bits, normals and subnormals alike.
-            let value = f64::from_bits(stream.next() & !(0x7ff << 52) | (stream.below(2047) << 52));
+            let value =
+                f64::from_bits(stream.next_u64() & !(0x7ff << 52) | (stream.below(2047) << 52));
             let decimals = [16, 17, 18, 19][k % 4];
             for text in [
                 format!("{value}"),
@@ -650,9 +637,9 @@ mod tests {
         }
         // Exact halfway points between consecutive doubles, (2m + 1) * 2^(s - 1) for a 53-bit
         // m, written in full with at most 19 digits: s from -3 to 1 (digits after the point).
-        let mut stream = Stream(0x0123_4567_89ab_cdef);
+        let mut stream = Xorshift::new(0x0123_4567_89ab_cdef);
         for _ in 0..20_000 {
-            let twice = 2 * ((1u64 << 52) | stream.next() >> 12) + 1;
+            let twice = 2 * ((1u64 << 52) | stream.next_u64() >> 12) + 1;
             let shift = stream.below(4) as u32;
             let text = if shift == 0 {
                 format!("{twice}")
@@ -669,7 +656,7 @@ mod tests {
             let five = 5u128.pow(q);
             let (low, high) = ((1u128 << 53) / five + 1, (1u128 << 54) / five);
             for _ in 0..200 {
-                let t = (low + u128::from(stream.next()) % (high - low + 1)) | 1;
+                let t = (low + u128::from(stream.next_u64()) % (high - low + 1)) | 1;
                 if t * five < 1 << 54 {
                     cases.push(format!("{t}e{q}"));
                     cases.push(format!("{t}{}", "0".repeat(q as usize)));

@@ -145,7 +145,7 @@ fn write_data(
         }
     }
     // Per change: edge index, stage index, added (0 or 1), reason code, two numbers.
-    let stages: Vec<Stage> = result.stages().map(|r| r.stage).collect();
+    let stages: Vec<Stage> = result.stage_times().map(|(stage, _)| stage).collect();
     write!(out, "],\"changes\":[")?;
     let mut first = true;
     for (k, story) in stories.iter().enumerate() {
@@ -176,8 +176,8 @@ fn write_data(
     // Layers: their names, and per edge one number whose bit 0 says it is a Delaunay edge and
     // bit k + 1 that stage k's graph has it (a list of edges per layer would be 3 times larger).
     write!(out, "],\"layers\":[\"Delaunay triangulation\"")?;
-    for report in result.stages() {
-        write!(out, ",\"{}\"", report.stage.title())?;
+    for stage in &stages {
+        write!(out, ",\"{}\"", stage.title())?;
     }
     let graphs: Vec<Vec<[usize; 2]>> = result.stages().map(|r| r.graph.edges()).collect();
     let membership = stories.iter().map(|story| {

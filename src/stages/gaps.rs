@@ -224,11 +224,9 @@ pub(crate) fn close_gaps(tri: &Triangulation, edges: &[Edge]) -> Outcome {
     if targets.is_empty() {
         return Outcome::UNCHANGED;
     }
-    let target_of = |a: VertexId| {
-        targets
-            .binary_search_by_key(&a, |&(v, _)| v)
-            .map_or(Target::None, |k| targets[k].1)
-    };
+    // The position of the loose end `a` in `targets`, if it chose.
+    let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
+    let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
     // Which of its two neighbours each crossing has been lined up with, one bit per slot.
     let mut lined_up = vec![0u8; n];
     for &(_, target) in &targets {
@@ -247,11 +245,7 @@ pub(crate) fn close_gaps(tri: &Triangulation, edges: &[Edge]) -> Outcome {
     };
     // Whether each chosen join is agreed, by position in `targets`.
     let joined: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
-    let is_joined = |a: VertexId| {
-        targets
-            .binary_search_by_key(&a, |&(v, _)| v)
-            .is_ok_and(|k| joined[k])
-    };
+    let is_joined = |a: VertexId| slot(a).is_some_and(|k| joined[k]);
     // A lone edge (both its points loose) is joined only when both its ends are.
     let supported = |a: VertexId| {
         let next = ends.along(a);

@@ -146,16 +146,13 @@ pub(crate) fn remove_local_outliers(
         if !given.is_empty() {
             // One allocation of the final size: `to_mut` and `extend` would copy the input and
             // then grow the copy to twice its size.
-            let mut with_given = Vec::with_capacity(edges.len() + given.len());
-            with_given.extend_from_slice(edges);
-            with_given.extend(given);
-            graph = Cow::Owned(with_given);
+            graph = Cow::Owned([edges, &given[..]].concat());
         }
     }
     // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and rebuilt
     // only after a rule changed the graph.
     let mut profile = Profile::of(tri, &graph);
-    if (rules.long_at_branches || rules.long_at_both_ends) && profile.has_long_edge {
+    if (rules.long_at_branches || rules.long_at_both_ends) && has_long_edge(tri, &profile.graph) {
         if let Some(kept) = without_long_edges(tri, &graph, &profile, rules) {
             graph = Cow::Owned(kept);
             profile.rebuild(tri, &graph);
@@ -246,27 +243,14 @@ fn smooth_and_regular(tri: &Triangulation, x: VertexId, y: VertexId, z: VertexId
 /// ([`top_two`]).
 struct Profile {
     graph: CurveGraph,
-    /// Whether some vertex's longest edge is more than [`LONG`] times its second longest: rule 2
-    /// drops an edge only where it is long at one of its ends, so without such a vertex it has
-    /// nothing to do (the common case).
-    has_long_edge: bool,
 }
 
 impl Profile {
     const NONE: f64 = -1.0;
 
     fn of(tri: &Triangulation, edges: &[Edge]) -> Profile {
-        let graph = CurveGraph::new(tri.num_points(), edges);
-        let mut has_long_edge = false;
-        // By vertex id: the ids are spatial, so the reads of the neighbours' points stay near
-        // each other.
-        for i in 0..graph.vertex_count() {
-            let top = tops(tri, &graph, VertexId::new(i as u32));
-            has_long_edge |= top[1] != Self::NONE && top[0] > LONG * LONG * top[1];
-        }
         Profile {
-            graph,
-            has_long_edge,
+            graph: CurveGraph::new(tri.num_points(), edges),
         }
     }
 
@@ -290,6 +274,17 @@ impl Profile {
         let other = if l == first { second } else { first };
         (other != Self::NONE).then_some(other)
     }
+}
+
+/// Whether some vertex's longest edge in `graph` is more than [`LONG`] times its second longest:
+/// rule 2 drops an edge only where it is long at one of its ends, so without such a vertex it
+/// has nothing to do (the common case). By vertex id: the ids are spatial, so the reads of the
+/// neighbours' points stay near each other.
+fn has_long_edge(tri: &Triangulation, graph: &CurveGraph) -> bool {
+    (0..graph.vertex_count() as u32).any(|i| {
+        let top = tops(tri, graph, VertexId::new(i));
+        top[1] != Profile::NONE && top[0] > LONG * LONG * top[1]
+    })
 }
 
 /// Squared lengths of the two longest edges of `graph` at `v`, longest first (`Profile::NONE`
@@ -352,10 +347,11 @@ fn without_long_edges(
             (at_a.is_some() || at_b.is_some()) && at_a != Some(false) && at_b != Some(false);
         (rules.long_at_branches && at_branch) || (rules.long_at_both_ends && at_both)
     };
-    if !edges.iter().any(dropped) {
-        return None;
-    }
-    Some(edges.iter().filter(|e| !dropped(e)).copied().collect())
+    // Each edge is judged once: those before the first dropped one are kept as they are.
+    let first = edges.iter().position(dropped)?;
+    let mut kept = edges[..first].to_vec();
+    kept.extend(edges[first + 1..].iter().filter(|e| !dropped(e)));
+    Some(kept)
 }
 
 /// Rule 3: drops every spur of fewer than [`MIN_SAMPLES`] vertices: a chain from a vertex with
@@ -383,13 +379,11 @@ fn without_short_spurs(graph: &CurveGraph, edges: &[Edge]) -> Option<Vec<Edge>> 
         let (mut at, mut from, mut count) = (v, VertexId::INFINITE, 1);
         let short_spur = loop {
             path.push(at);
-            // `at` has one edge or two: its neighbour other than the one the walk came from.
-            let Some(w) = graph.first_two(at)[..graph.degree(at)]
-                .iter()
-                .copied()
-                .find(|&w| w != from)
-            else {
-                break false;
+            // `at` is the loose end (one edge) or a vertex with two on the way: the next step.
+            let w = if from.is_infinite() {
+                graph.first_two(at)[0]
+            } else {
+                graph.onward(at, from)
             };
             if graph.degree(w) >= 3 {
                 break count < MIN_SAMPLES;

@@ -31,11 +31,10 @@ impl Timings {
         }
     }
 
-    /// The time since the previous lap (or the start), printed as `step`.
-    pub(crate) fn lap(&mut self, step: &str) -> Duration {
+    /// Prints the time since the previous lap (or the start) as `step`.
+    pub(crate) fn lap(&mut self, step: &str) {
         let elapsed = self.quiet_lap();
         self.line(step, elapsed, "");
-        elapsed
     }
 
     /// The time since the previous lap, not printed (the library's call, which
@@ -67,8 +66,8 @@ impl Timings {
             show("earlier-passes", smoothing.earlier_passes, &comment);
         }
         show("triangulation", result.triangulation_time(), "");
-        for report in result.stages() {
-            show(stage_step(report.stage), report.time, "");
+        for (stage, time) in result.stage_times() {
+            show(stage_step(stage), time, "");
         }
         show("curves", result.curves_time(), "");
         // What the library did outside the steps it timed: the parameter check, starting its
