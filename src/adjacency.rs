@@ -71,6 +71,7 @@ impl Adjacency {
 /// [`CurveGraph::named`] also keeps a name per vertex (the input position it stands for); the
 /// stages' graphs, which need none, do not pay for it (a 16-byte record with the name measured
 /// slower in gap closing, which scans every vertex's degree).
+#[cfg_attr(test, derive(Debug, PartialEq))]
 pub(crate) struct CurveGraph {
     /// `[degree, first neighbour, second neighbour]` per vertex id; a missing neighbour is
     /// [`VertexId::INFINITE`].
@@ -118,9 +119,13 @@ impl CurveGraph {
     /// `v` named `name(v)` (read back by [`CurveGraph::name`]). Neighbours come in the order the
     /// edges are listed.
     pub(crate) fn named(vertex_count: usize, edges: &[Edge], name: impl Fn(u32) -> u32) -> Self {
-        let mut graph = Self::new(vertex_count, edges);
-        graph.names = (0..vertex_count as u32).map(name).collect();
-        graph
+        Self::new(vertex_count, edges).with_names(name)
+    }
+
+    /// This graph with each vertex `v` named `name(v)`.
+    pub(crate) fn with_names(mut self, name: impl Fn(u32) -> u32) -> Self {
+        self.names = (0..self.vertex_count() as u32).map(name).collect();
+        self
     }
 
     /// Whether some vertex has three or more neighbours.

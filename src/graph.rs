@@ -249,7 +249,7 @@ impl<'t> Graph<'t> {
 
     /// [`Graph::step`] with the earlier graphs a step may read (see `Step::run`).
     fn step_with(&self, step: Step, earlier: Earlier<'_>) -> (Graph<'t>, bool) {
-        match step.run(self.tri, &self.edges, earlier).edges {
+        match step.run(self.tri, &self.edges, earlier, None).edges {
             Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
             None => (self.clone(), false),
         }

@@ -249,7 +249,7 @@ impl Params {
     }
 
     /// The steps after the proximity graph, in order: the one place the order is decided.
-    fn steps(&self) -> impl Iterator<Item = Step> {
+    pub(crate) fn steps(&self) -> impl Iterator<Item = Step> {
         let repair = (self.repair != Repair::Off).then_some(Step::Repair(self.repair));
         let outliers = self.outlier_factor.map(|factor| Step::Outliers { factor });
         let (first, second) = if self.outliers_first {
@@ -707,6 +707,8 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     });
     // The latest stage's output; each stage's record keeps only how to get its input back.
     let mut current = first;
+    // The curve graph of `current` when the last stage handed one on (`Outcome::graph`).
+    let mut current_graph = None;
     for step in params.steps() {
         // The input of an earlier stage, rebuilt only for the step that reads it (`Step::run`
         // says which reads which), and only while it runs.
@@ -721,8 +723,9 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
             before_outliers: &before_outliers,
             before_local: &before_local,
         };
-        let outcome = step.run(&tri, &current, earlier);
+        let outcome = step.run(&tri, &current, earlier, current_graph.take());
         drop((before_outliers, before_local));
+        current_graph = outcome.graph;
         let undo = match outcome.edges {
             None => Undo::Unchanged,
             Some(output) => {
@@ -738,7 +741,9 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     }
     let last = current.as_slice();
     let n = tri.num_points();
-    let graph = CurveGraph::named(n, last, |v| tri.input_of(VertexId::new(v)) as u32);
+    let graph = current_graph
+        .unwrap_or_else(|| CurveGraph::new(n, last))
+        .with_names(|v| tri.input_of(VertexId::new(v)) as u32);
     let in_parallel = params.parallel && n >= PARALLEL_FROM;
     let (curves, tally) = both(
         in_parallel,

@@ -206,11 +206,17 @@ impl Ends<'_> {
 /// Closes gaps in `edges` (each edge once, any order) by the rules of the module comment. The
 /// outcome is unchanged when no gap qualifies; otherwise the input edges in their order, then the
 /// joins in increasing vertex id of their loose end.
-pub(crate) fn close_gaps(tri: &Triangulation, edges: &[Edge]) -> Outcome {
+/// `graph` is the curve graph of `edges` when the previous stage had it (built here otherwise);
+/// it goes on to the curves when no gap is closed.
+pub(crate) fn close_gaps(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+) -> Outcome {
     let n = tri.num_points();
     let ends = Ends {
         tri,
-        graph: CurveGraph::new(n, edges),
+        graph: graph.unwrap_or_else(|| CurveGraph::new(n, edges)),
     };
     // Only loose ends choose, and most points are not loose: the choices are kept as a list
     // in increasing vertex id, searched by id (a slot per point took 24 bytes per point, the
@@ -222,7 +228,7 @@ pub(crate) fn close_gaps(tri: &Triangulation, edges: &[Edge]) -> Outcome {
         .filter(|&(_, target)| target != Target::None)
         .collect();
     if targets.is_empty() {
-        return Outcome::UNCHANGED;
+        return Outcome::unchanged_with(Some(ends.graph));
     }
     // The position of the loose end `a` in `targets`, if it chose.
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
@@ -263,12 +269,12 @@ pub(crate) fn close_gaps(tri: &Triangulation, edges: &[Edge]) -> Outcome {
         }
     }
     if joins.is_empty() {
-        return Outcome::UNCHANGED;
+        return Outcome::unchanged_with(Some(ends.graph));
     }
     let mut out = Vec::with_capacity(edges.len() + joins.len());
     out.extend_from_slice(edges);
     out.extend_from_slice(&joins);
-    Outcome { edges: Some(out) }
+    Outcome::from(Some(out))
 }
 
 #[cfg(test)]
@@ -287,7 +293,7 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
-        let outcome = close_gaps(&tri, &edges);
+        let outcome = close_gaps(&tri, &edges, None);
         let out = outcome.edges.unwrap_or_else(|| edges.clone());
         assert_eq!(&out[..edges.len()], &edges[..], "never removes an edge");
         crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&out[edges.len()..])).edges()

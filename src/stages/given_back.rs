@@ -35,7 +35,7 @@
 
 use super::local_outliers::SEPARATION;
 use super::Outcome;
-use crate::adjacency::{Adjacency, Edge};
+use crate::adjacency::{Adjacency, CurveGraph, Edge};
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -46,10 +46,14 @@ pub(crate) fn confirm_given_back(
     tri: &Triangulation,
     edges: &[Edge],
     before_local: &[Edge],
+    graph: Option<CurveGraph>,
 ) -> Outcome {
     if core::ptr::eq(edges, before_local) || edges.is_empty() {
-        return Outcome::UNCHANGED; // the local outlier removal changed nothing
+        // The local outlier removal changed nothing: its curve graph goes on to the next stage.
+        return Outcome::unchanged_with(graph);
     }
+    // Not read here: freed before the adjacency is built.
+    drop(graph);
     let n = tri.num_points();
     let was = Adjacency::new(n, before_local);
     let given: Vec<bool> = edges
@@ -97,15 +101,13 @@ pub(crate) fn confirm_given_back(
     if !dropped.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    Outcome {
-        edges: Some(
-            edges
-                .iter()
-                .filter(|&&[a, _]| !dropped[root[a.index()] as usize])
-                .copied()
-                .collect(),
-        ),
-    }
+    Outcome::from(Some(
+        edges
+            .iter()
+            .filter(|&&[a, _]| !dropped[root[a.index()] as usize])
+            .copied()
+            .collect(),
+    ))
 }
 
 #[cfg(test)]
@@ -130,7 +132,7 @@ mod tests {
         before: &[[usize; 2]],
     ) -> Option<Vec<[usize; 2]>> {
         let (now, before) = (vertex_edges(tri, now), vertex_edges(tri, before));
-        confirm_given_back(tri, &now, &before)
+        confirm_given_back(tri, &now, &before, None)
             .edges
             .map(|e| crate::Graph::new(tri, Cow::Owned(e)).edges())
     }

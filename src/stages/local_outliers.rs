@@ -132,12 +132,15 @@ impl Rules {
 
 /// The stage on `edges`, the graph the IQR stage and the repair left; `before` is the graph the
 /// IQR stage started from (`edges` itself when it did not run); rule 1 gives an edge back only
-/// at vertices that gained no edge since. Unchanged when no rule changes anything.
+/// at vertices that gained no edge since. Unchanged when no rule changes anything. `graph` is
+/// the curve graph of `edges` when the caller has it; the outcome carries that of the output
+/// unless rule 4 changed it (the later stages rarely need it then).
 pub(crate) fn remove_local_outliers(
     tri: &Triangulation,
     edges: &[Edge],
     before: &[Edge],
     rules: &Rules,
+    graph_of_edges: Option<CurveGraph>,
 ) -> Outcome {
     // The input is copied only once a rule changes it (on a clean curve none does).
     let mut graph = Cow::Borrowed(edges);
@@ -151,7 +154,10 @@ pub(crate) fn remove_local_outliers(
     }
     // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and rebuilt
     // only after a rule changed the graph.
-    let mut profile = Profile::of(tri, &graph);
+    let mut profile = match graph_of_edges {
+        Some(built) if matches!(graph, Cow::Borrowed(_)) => Profile { graph: built },
+        _ => Profile::of(tri, &graph),
+    };
     if (rules.long_at_branches || rules.long_at_both_ends) && has_long_edge(tri, &profile.graph) {
         if let Some(kept) = without_long_edges(tri, &graph, &profile, rules) {
             graph = Cow::Owned(kept);
@@ -164,16 +170,22 @@ pub(crate) fn remove_local_outliers(
             profile.rebuild(tri, &graph);
         }
     }
+    // The profile's curve graph is that of `graph` until rule 4 removes a component.
+    let mut profile_current = true;
     if rules.separated_components {
         if let Some(kept) = separated_components(tri, &graph, &profile) {
             graph = Cow::Owned(kept);
+            profile_current = false;
         }
     }
+    let output_graph = profile_current.then_some(profile.graph);
     match graph {
         Cow::Owned(changed) if changed.as_slice() != edges => Outcome {
             edges: Some(changed),
+            graph: output_graph,
         },
-        _ => Outcome::UNCHANGED,
+        // The same edges in the same order: the same curve graph.
+        _ => Outcome::unchanged_with(output_graph),
     }
 }
 
@@ -282,8 +294,21 @@ impl Profile {
 /// neighbours' points stay near each other.
 fn has_long_edge(tri: &Triangulation, graph: &CurveGraph) -> bool {
     (0..graph.vertex_count() as u32).any(|i| {
-        let top = tops(tri, graph, VertexId::new(i));
-        top[1] != Profile::NONE && top[0] > LONG * LONG * top[1]
+        let v = VertexId::new(i);
+        match graph.degree(v) {
+            0 | 1 => false,
+            // Almost every vertex: its two lengths compared directly, without ranking them.
+            2 => {
+                let p = tri.vertex_point(v);
+                let [y, z] = graph.first_two(v);
+                let (to_y, to_z) = (p.dist2(tri.vertex_point(y)), p.dist2(tri.vertex_point(z)));
+                to_y.max(to_z) > LONG * LONG * to_y.min(to_z)
+            }
+            _ => {
+                let top = tops(tri, graph, v);
+                top[0] > LONG * LONG * top[1]
+            }
+        }
     })
 }
 
@@ -719,7 +744,7 @@ mod tests {
 
     /// The stage with `rules` on `edges` (nothing cut before), in sorted input positions.
     fn apply(tri: &Triangulation, edges: &[Edge], rules: Rules) -> Option<Vec<[usize; 2]>> {
-        let outcome = remove_local_outliers(tri, edges, edges, &rules);
+        let outcome = remove_local_outliers(tri, edges, edges, &rules, None);
         outcome
             .edges
             .map(|e| crate::Graph::new(tri, alloc::borrow::Cow::Owned(e)).edges())

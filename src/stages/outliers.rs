@@ -63,16 +63,14 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
         return unchanged;
     }
     // Not above T: with a perfectly uniform sample IQR = 0 and every edge equals T exactly.
-    Outcome {
-        edges: Some(
-            edges
-                .iter()
-                .zip(&lengths)
-                .filter(|&(_, &length2)| length2 <= threshold)
-                .map(|(&edge, _)| edge)
-                .collect(),
-        ),
-    }
+    Outcome::from(Some(
+        edges
+            .iter()
+            .zip(&lengths)
+            .filter(|&(_, &length2)| length2 <= threshold)
+            .map(|(&edge, _)| edge)
+            .collect(),
+    ))
 }
 
 #[cfg(test)]
