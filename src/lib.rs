@@ -74,7 +74,7 @@
 //! methods of [`Triangulation`]); `test_rng` serves unit tests only.
 //! `docs/architecture.md` draws the graph and says what each module may not touch.
 #![cfg_attr(not(feature = "std"), no_std)]
-#![forbid(unsafe_code)]
+#![deny(unsafe_code)]
 #![warn(missing_docs)]
 
 extern crate alloc;
@@ -89,6 +89,7 @@ mod graph;
 pub mod io;
 pub mod mesh;
 pub mod predicates;
+mod prefetch;
 mod provenance;
 mod reconstruct;
 pub mod sample;

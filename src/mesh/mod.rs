@@ -108,6 +108,16 @@ impl Mesh {
         [self.origins[i], self.origins[i + 1], self.origins[i + 2]]
     }
 
+    /// The corners of `triangles`, three per triangle in the order of
+    /// [`Mesh::triangle_corners`], as one slice.
+    ///
+    /// # Panics
+    /// If the range goes past [`Mesh::num_triangles_with_ghosts`].
+    #[inline]
+    pub(crate) fn corner_slice(&self, triangles: core::ops::Range<usize>) -> &[VertexId] {
+        &self.origins[3 * triangles.start..3 * triangles.end]
+    }
+
     /// The corners of every triangle in `triangles` (indices, ghosts included), in index order:
     /// what [`Mesh::triangle_vertices`] gives for each, read as one sequential pass.
     ///

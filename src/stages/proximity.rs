@@ -23,6 +23,7 @@ use super::PARALLEL_FROM;
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
 use crate::mesh::VertexId;
+use crate::prefetch::prefetch;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
@@ -312,27 +313,61 @@ fn merge_ranges(tri: &Triangulation, _ranges: usize, triangles: usize) -> Vec<Tw
     sweep(tri, 0..triangles)
 }
 
+/// How many triangles ahead the sweep asks for the points and records it will read: far
+/// enough that a miss resolves before they are needed, near enough that the lines are still in
+/// the first-level cache (32 triangles touch at most 96 points and 96 records, 12 KB).
+const PREFETCH_TRIANGLES: usize = 32;
+
+/// Fewest points for which the sweep prefetches: 2^16 points and their records take 2.6 MB,
+/// beyond the second-level caches of current processors (1 MB here). Below that the reads hit
+/// the caches anyway, and the prefetches only add work (a third more time for the sweep at
+/// 10k points).
+const PREFETCH_FROM: usize = 1 << 16;
+
 /// The two best offers every vertex gets from the half-edges of `triangles`: each finite
 /// half-edge offers its destination to its origin.
 fn sweep(tri: &Triangulation, triangles: core::ops::Range<usize>) -> Vec<TwoBest> {
+    if tri.num_points() >= PREFETCH_FROM {
+        sweep_with::<true>(tri, triangles)
+    } else {
+        sweep_with::<false>(tri, triangles)
+    }
+}
+
+/// [`sweep`], prefetching the corners' points and records [`PREFETCH_TRIANGLES`] triangles
+/// ahead when `PREFETCH` ([`crate::prefetch`]).
+fn sweep_with<const PREFETCH: bool>(
+    tri: &Triangulation,
+    triangles: core::ops::Range<usize>,
+) -> Vec<TwoBest> {
     let mut best = alloc::vec![TwoBest::EMPTY; tri.num_points()];
-    let mut offer = |u: VertexId, w: VertexId| {
+    let offer = |best: &mut [TwoBest], u: VertexId, w: VertexId| {
         best[u.index()].offer(tri.vertex_point(u).dist2(tri.vertex_point(w)), w);
     };
-    for corners in tri.mesh().triangle_corners(triangles) {
+    let ahead = tri.mesh().corner_slice(triangles.clone());
+    let points = tri.vertex_points();
+    for (k, corners) in tri.mesh().triangle_corners(triangles).enumerate() {
+        if PREFETCH {
+            // A ghost's infinite corner is out of range: `prefetch` skips it.
+            let next = 3 * (k + PREFETCH_TRIANGLES);
+            for &v in ahead.get(next..next + 3).unwrap_or(&[]) {
+                prefetch(points, v.index());
+                prefetch(&best, v.index());
+            }
+        }
         let [a, b, c] = corners;
         if a.is_infinite() || b.is_infinite() || c.is_infinite() {
             // A ghost: only its finite half-edge offers.
             for k in 0..3 {
                 let (u, w) = (corners[k], corners[(k + 1) % 3]);
                 if !u.is_infinite() && !w.is_infinite() {
-                    offer(u, w);
+                    offer(&mut best, u, w);
                 }
             }
         } else {
-            offer(a, b);
-            offer(b, c);
-            offer(c, a);
+            offer(&mut best, a, b);
+            offer(&mut best, b, c);
+            offer(&mut best, c, a);
         }
     }
     best

@@ -394,6 +394,12 @@ impl Triangulation {
         self.points[v.index()]
     }
 
+    /// Every [`Triangulation::vertex_point`], by vertex id (for a loop that prefetches them).
+    #[inline]
+    pub(crate) fn vertex_points(&self) -> &[Point] {
+        &self.points
+    }
+
     /// `true` when `v` is a vertex of the mesh: not an id left over by a merged duplicate, not
     /// [`VertexId::INFINITE`], not out of range.
     #[inline]
