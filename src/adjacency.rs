@@ -137,6 +137,12 @@ impl CurveGraph {
         self.records.len()
     }
 
+    /// Asks the cache for the record of `v`, which a loop will read soon ([`crate::prefetch`]).
+    #[inline]
+    pub(crate) fn prefetch(&self, v: VertexId) {
+        crate::prefetch::prefetch(&self.records, v.index());
+    }
+
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
         self.records[v.index()][0] as usize

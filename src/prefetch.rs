@@ -11,6 +11,13 @@
 //! retires at once, unlike a load, so the misses overlap; it cut the sweep's time by about a
 //! fifth at 1M points (`docs/performance.md`). It changes no result.
 
+/// Fewest points for which loops over them prefetch: 2^16 points take 1 MB in coordinates
+/// alone, and with what a loop reads beside them (the sweep's 24-byte records) more than the
+/// second-level caches of current processors (1 MB per core here). Below that the reads hit the
+/// caches anyway and the prefetches only add work (a third more time for the proximity sweep at
+/// 10k points).
+pub(crate) const PREFETCH_FROM: usize = 1 << 16;
+
 /// Asks for the cache line that holds `slice[index]`; does nothing when `index` is out of
 /// range or on targets other than x86-64.
 #[inline(always)]

@@ -33,6 +33,7 @@ use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
+use crate::prefetch::PREFETCH_FROM;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Repair, Stage, Step, Uniformity, PARALLEL_FROM};
 use crate::triangulate::{triangulate, Triangulation};
@@ -813,6 +814,10 @@ struct Tally {
     edges: Vec<[u32; 2]>,
 }
 
+/// How many input positions ahead [`tally`] asks for the neighbours' positions (and twice as
+/// many for the records).
+const TALLY_PREFETCH: usize = 16;
+
 /// One pass over the input positions gives the degrees, the unused points and the final edges
 /// already sorted: an edge is listed by its smaller input position. For the common vertex of
 /// degree <= 2 both candidates are written and the count advances only past those that belong
@@ -837,7 +842,22 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
             tri.input_of(w) as u32
         }
     };
-    for (i, &v) in tri.input_to_vertex().iter().enumerate() {
+    let order = tri.input_to_vertex();
+    let prefetching = n >= PREFETCH_FROM;
+    for (i, &v) in order.iter().enumerate() {
+        if prefetching {
+            // On shuffled input every record and neighbour position is a miss: the record is
+            // asked for two distances ahead, the positions of its neighbours one distance ahead,
+            // once the record has arrived.
+            if let Some(&later) = order.get(i + 2 * TALLY_PREFETCH) {
+                graph.prefetch(later);
+            }
+            if let Some(&soon) = order.get(i + TALLY_PREFETCH) {
+                for w in graph.first_two(soon) {
+                    tri.prefetch_input_of(w);
+                }
+            }
+        }
         let degree = graph.degree(v);
         degrees.push(degree as u32);
         let i = i as u32;

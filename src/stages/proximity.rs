@@ -23,7 +23,7 @@ use super::PARALLEL_FROM;
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
 use crate::mesh::VertexId;
-use crate::prefetch::prefetch;
+use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
@@ -317,12 +317,6 @@ fn merge_ranges(tri: &Triangulation, _ranges: usize, triangles: usize) -> Vec<Tw
 /// enough that a miss resolves before they are needed, near enough that the lines are still in
 /// the first-level cache (32 triangles touch at most 96 points and 96 records, 12 KB).
 const PREFETCH_TRIANGLES: usize = 32;
-
-/// Fewest points for which the sweep prefetches: 2^16 points and their records take 2.6 MB,
-/// beyond the second-level caches of current processors (1 MB here). Below that the reads hit
-/// the caches anyway, and the prefetches only add work (a third more time for the sweep at
-/// 10k points).
-const PREFETCH_FROM: usize = 1 << 16;
 
 /// The two best offers every vertex gets from the half-edges of `triangles`: each finite
 /// half-edge offers its destination to its origin.

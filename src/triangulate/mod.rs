@@ -326,6 +326,13 @@ impl Triangulation {
         self.input_of_vertex[v.index()] as usize
     }
 
+    /// Asks the cache for [`Triangulation::input_of`] of `v`, which a loop will read soon
+    /// ([`crate::prefetch`]); nothing when `v` is not an id.
+    #[inline]
+    pub(crate) fn prefetch_input_of(&self, v: VertexId) {
+        crate::prefetch::prefetch(&self.input_of_vertex, v.index());
+    }
+
     /// Number of input points, duplicates included.
     #[inline]
     pub fn num_points(&self) -> usize {
