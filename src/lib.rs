@@ -67,7 +67,8 @@
 //! ## Layout
 //! Public: this page's re-exports, [`mesh`] (the half-edge level), [`predicates`], [`sample`],
 //! [`score`] (metrics against a ground truth) and `io` (`std`). Private, from the bottom up (each uses only modules listed before it):
-//! `error`, `geometry`, `triangulate` (the kernel), `adjacency` (edge lists in vertex ids),
+//! `error`, `prefetch` (a cache hint, the crate's one `unsafe` call), `geometry`, `triangulate`
+//! (the kernel), `adjacency` (edge lists in vertex ids),
 //! `stages` (one module per ConDT stage), `curve` ([`Curve`]), `graph` ([`Graph`]),
 //! `smooth` (moving noisy points along a first reconstruction's curves), `reconstruct` (the
 //! pipeline, the order of its stages and the smoothing passes), `baselines` (NN-Crust and Crust as
