@@ -38,30 +38,46 @@ impl<'a> Lines<'a> {
         }
     }
 
-    /// Appends the decimal digits of `value`, two at a time, into a fixed 20-byte slot cut to
-    /// the digit count afterwards (a fixed-size copy instead of a call per number).
+    /// Appends the decimal digits of `value`. They are written two at a time from the right
+    /// into the first half of a 40-byte scratch array, and the 20 bytes from the first digit
+    /// on are appended as one fixed-size copy, then cut to the digit count: no digit count up
+    /// front, no call per number. Indices below 2^32 (all of them in practice) are divided in
+    /// 32-bit arithmetic, which multiplies instead of dividing in fewer instructions.
     #[inline]
     fn number(&mut self, value: usize) {
-        let count = value.checked_ilog10().map_or(1, |l| l as usize + 1);
-        let start = self.block.len();
-        self.block.extend_from_slice(&[0u8; 20]);
-        let slot = &mut self.block[start..start + count];
-        let mut at = count;
+        const END: usize = 20;
+        let mut scratch = [0u8; 2 * END];
+        let mut at = END;
+        let mut put_pair = |at: &mut usize, pair: usize| {
+            *at -= 2;
+            scratch[*at] = PAIRS[2 * pair];
+            scratch[*at + 1] = PAIRS[2 * pair + 1];
+        };
         let mut rest = value;
-        while rest >= 100 {
-            let pair = 2 * (rest % 100);
-            rest /= 100;
-            at -= 2;
-            slot[at] = PAIRS[pair];
-            slot[at + 1] = PAIRS[pair + 1];
+        if let Ok(mut small) = u32::try_from(value) {
+            while small >= 100 {
+                put_pair(&mut at, (small % 100) as usize);
+                small /= 100;
+            }
+            rest = small as usize;
+        } else {
+            while rest >= 100 {
+                put_pair(&mut at, rest % 100);
+                rest /= 100;
+            }
         }
         if rest >= 10 {
-            slot[at - 2] = PAIRS[2 * rest];
-            slot[at - 1] = PAIRS[2 * rest + 1];
+            put_pair(&mut at, rest);
         } else {
-            slot[at - 1] = b'0' + rest as u8;
+            at -= 1;
+            scratch[at] = b'0' + rest as u8;
         }
-        self.block.truncate(start + count);
+        let start = self.block.len();
+        let digits: &[u8; END] = scratch[at..at + END]
+            .try_into()
+            .expect("20 digits from a position below 20");
+        self.block.extend_from_slice(digits);
+        self.block.truncate(start + END - at);
     }
 
     #[inline]
@@ -216,15 +232,26 @@ mod tests {
     fn numbers_are_written_in_decimal() {
         let mut out = Vec::new();
         let mut lines = Lines::new(&mut out);
-        for value in [0, 7, 10, 99, 100, 12345, usize::MAX] {
+        let values = [
+            0,
+            7,
+            10,
+            99,
+            100,
+            12345,
+            999_999_999,
+            1_000_000_000,
+            u32::MAX as usize,
+            u32::MAX as usize + 1,
+            10_000_000_000,
+            usize::MAX,
+        ];
+        for value in values {
             lines.number(value);
             lines.end().unwrap();
         }
         lines.finish().unwrap();
-        let expected: String = [0, 7, 10, 99, 100, 12345, usize::MAX]
-            .iter()
-            .map(|v| format!("{v}\n"))
-            .collect();
+        let expected: String = values.iter().map(|v| format!("{v}\n")).collect();
         assert_eq!(String::from_utf8(out).unwrap(), expected);
     }
 
