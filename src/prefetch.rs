@@ -1,22 +1,30 @@
 //! A hint to the processor that an element of a slice will be read soon: the crate's one use of
 //! `unsafe`, confined here.
 //!
-//! Owns: [`prefetch`]. It may not read or write memory, and nothing else in the crate may use
-//! `unsafe` (`#![deny(unsafe_code)]` in `lib.rs`; this module alone allows it).
+//! Owns: [`prefetch`] and [`PREFETCH_FROM`]. It may not read or write memory, and nothing else
+//! in the crate may use `unsafe`: `lib.rs` denies unsafe code, this module alone allows it, and
+//! `tests/unsafe_code.rs` fails if any other source file does.
 //!
 //! Why: the proximity sweep reads the point and the candidate record of each triangle's three
 //! corners. Triangles are stored in the order the insertion made them and vertices in insertion
 //! order, so at a million points most of those reads miss the caches, and the sweep waited on
 //! them (about 40 % of its samples in a `perf` profile). A prefetch issued some triangles ahead
-//! retires at once, unlike a load, so the misses overlap; it cut the sweep's time by about a
-//! fifth at 1M points (`docs/performance.md`). It changes no result.
+//! retires at once, unlike a load, so the misses overlap: the sweep took 90 instead of 143 ms
+//! at 1M points (medians of alternated runs, `docs/performance.md`). The final tally, which
+//! reads the curve graph in input order, does the same for shuffled input. It changes no
+//! result.
 
-/// Fewest points for which loops over them prefetch: 2^16 points take 1 MB in coordinates
-/// alone, and with what a loop reads beside them (the sweep's 24-byte records) more than the
-/// second-level caches of current processors (1 MB per core here). Below that the reads hit the
-/// caches anyway and the prefetches only add work (a third more time for the proximity sweep at
-/// 10k points).
-pub(crate) const PREFETCH_FROM: usize = 1 << 16;
+/// Fewest points for which loops over them prefetch (the proximity sweep and the final tally):
+/// 2^16 points take 1 MB in coordinates alone, and with what a loop reads beside them (the
+/// sweep's 24-byte records) more than the second-level caches of current processors (1 MB per
+/// core here). Below that the reads hit the caches anyway and the prefetches only add work (a
+/// third more time for the proximity sweep at 10k points). On targets where [`prefetch`] does
+/// nothing, never: the loops then skip the work of asking.
+pub(crate) const PREFETCH_FROM: usize = if cfg!(target_arch = "x86_64") {
+    1 << 16
+} else {
+    usize::MAX
+};
 
 /// Asks for the cache line that holds `slice[index]`; does nothing when `index` is out of
 /// range or on targets other than x86-64.

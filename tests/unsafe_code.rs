@@ -1,0 +1,72 @@
+//! The crate's one `unsafe` block is the cache hint in `src/prefetch.rs`. `lib.rs` denies unsafe
+//! code, but a module could still allow it; this test reads every source file and fails on an
+//! `unsafe` keyword or an `allow(unsafe_code)` anywhere else.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in fs::read_dir(dir).expect("src/ is readable") {
+        let path = entry.expect("a directory entry").path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// Whether `line` uses `unsafe` as a word (an `unsafe` block, fn, impl or trait) or allows
+/// unsafe code, outside a `//` comment.
+fn uses_unsafe(line: &str) -> bool {
+    let code = line.split("//").next().unwrap_or("");
+    let as_word = code
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .any(|word| word == "unsafe");
+    as_word || code.contains("allow(unsafe_code)")
+}
+
+#[test]
+fn unsafe_code_appears_only_in_the_prefetch_module() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    assert!(
+        files.len() > 20,
+        "found the sources ({} files)",
+        files.len()
+    );
+    let mut found = Vec::new();
+    for file in &files {
+        if file.ends_with("prefetch.rs") {
+            continue;
+        }
+        let text = fs::read_to_string(file).expect("a source file is UTF-8");
+        for (k, line) in text.lines().enumerate() {
+            if uses_unsafe(line) {
+                found.push(format!("{}:{}: {}", file.display(), k + 1, line.trim()));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "unsafe code outside src/prefetch.rs:\n{}",
+        found.join("\n")
+    );
+    let prefetch = fs::read_to_string(src.join("prefetch.rs")).expect("src/prefetch.rs");
+    assert_eq!(
+        prefetch.lines().filter(|l| uses_unsafe(l)).count(),
+        2,
+        "src/prefetch.rs holds one allow and one unsafe block"
+    );
+}
+
+#[test]
+fn the_scan_sees_unsafe_blocks_and_allows_but_not_comments_or_names() {
+    assert!(uses_unsafe("    unsafe { f() }"));
+    assert!(uses_unsafe("#[allow(unsafe_code)]"));
+    assert!(uses_unsafe("pub unsafe fn g() {}"));
+    assert!(!uses_unsafe("// an unsafe word in a comment"));
+    assert!(!uses_unsafe("let unsafe_count = 0;"));
+    assert!(!uses_unsafe("#![deny(unsafe_code)]"));
+}
