@@ -2,7 +2,7 @@
 //! to each other and curves are read from.
 //!
 //! Owns: the edge list (`[a, b]`, `a < b`, each edge once), its compressed adjacency, the curve
-//! graph that keeps each vertex's degree, first two neighbours and name in one record for walking
+//! graph that keeps each vertex's degree and first two neighbours in one record for walking
 //! curves, and the O(n)
 //! pair sort. It may not look at coordinates, and nothing here is public: users see edges in input
 //! positions through [`Graph`](crate::Graph).
@@ -123,17 +123,16 @@ impl BranchAdjacency {
 /// at most two. Each vertex has one 12-byte record, its degree and its first two neighbours, so
 /// following a curve, or reading a vertex's neighbours, costs one read per vertex where separate
 /// arrays would cost one per array. The few vertices with three or more neighbours list all of
-/// them in a small side table, in id order; nothing is built for the others. A graph built with
-/// [`CurveGraph::named`] also keeps a name per vertex (the input position it stands for); the
-/// stages' graphs, which need none, do not pay for it (a 16-byte record with the name measured
-/// slower in gap closing, which scans every vertex's degree).
+/// them in a small side table, in id order; nothing is built for the others. It keeps no name
+/// per vertex: the curves and the final tally read the input position a vertex stands for from
+/// the triangulation's map (a 16-byte record with the name measured slower in gap closing, which
+/// scans every vertex's degree, and a separate array of names cost 4 bytes per point at the
+/// reconstruction's last step).
 #[cfg_attr(test, derive(Debug, PartialEq))]
 pub(crate) struct CurveGraph {
     /// `[degree, first neighbour, second neighbour]` per vertex id; a missing neighbour is
     /// [`VertexId::INFINITE`].
     records: Vec<[u32; 3]>,
-    /// The name of every vertex id, or empty when every vertex is named by its id.
-    names: Vec<u32>,
     /// The vertices with three or more neighbours, ascending, and where their neighbours start
     /// in `branch_neighbors`.
     branch_vertices: Vec<(VertexId, u32)>,
@@ -142,7 +141,8 @@ pub(crate) struct CurveGraph {
 }
 
 impl CurveGraph {
-    /// [`CurveGraph::named`], every vertex named by its own id.
+    /// The graph of `edges` (as for [`Adjacency::new`]) over `vertex_count` vertices.
+    /// Neighbours come in the order the edges are listed.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
         let none = VertexId::INFINITE.index() as u32;
         let mut records = vec![[0, none, none]; vertex_count];
@@ -165,23 +165,9 @@ impl CurveGraph {
         };
         CurveGraph {
             records,
-            names: Vec::new(),
             branch_vertices,
             branch_neighbors,
         }
-    }
-
-    /// The graph of `edges` (as for [`Adjacency::new`]) over `vertex_count` vertices, each vertex
-    /// `v` named `name(v)` (read back by [`CurveGraph::name`]). Neighbours come in the order the
-    /// edges are listed.
-    pub(crate) fn named(vertex_count: usize, edges: &[Edge], name: impl Fn(u32) -> u32) -> Self {
-        Self::new(vertex_count, edges).with_names(name)
-    }
-
-    /// This graph with each vertex `v` named `name(v)`.
-    pub(crate) fn with_names(mut self, name: impl Fn(u32) -> u32) -> Self {
-        self.names = (0..self.vertex_count() as u32).map(name).collect();
-        self
     }
 
     /// Whether some vertex has three or more neighbours.
@@ -202,15 +188,6 @@ impl CurveGraph {
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
         self.records[v.index()][0] as usize
-    }
-
-    /// The name given to `v` when the graph was built ([`CurveGraph::named`]; its id otherwise).
-    #[inline]
-    pub(crate) fn name(&self, v: VertexId) -> u32 {
-        self.names
-            .get(v.index())
-            .copied()
-            .unwrap_or(v.index() as u32)
     }
 
     /// The `k`-th neighbour of `v`, `k < degree(v)`.
@@ -337,7 +314,7 @@ mod tests {
     use super::*;
 
     /// On random graphs with branch points, the curve graph gives every vertex the neighbours
-    /// the full adjacency gives it, in the same order (that of the edge list), its name, and,
+    /// the full adjacency gives it, in the same order (that of the edge list), and,
     /// at degree two, the other neighbour from either one; the branch adjacency gives a vertex
     /// with three or more the full adjacency's list, edge positions included.
     #[test]
@@ -358,14 +335,13 @@ mod tests {
             // Listed in a scrambled order: neighbours must follow the list, not the ids.
             edges.reverse();
             let full = Adjacency::new(n, &edges);
-            let graph = CurveGraph::named(n, &edges, |v| 1000 + v);
+            let graph = CurveGraph::new(n, &edges);
             let branches = BranchAdjacency::new(&degrees(n, &edges), &edges);
             for v in (0..n as u32).map(VertexId::new) {
                 let expected: Vec<VertexId> = full.incident(v).iter().map(|&(w, _)| w).collect();
                 let listed: Vec<VertexId> =
                     (0..graph.degree(v)).map(|k| graph.neighbor(v, k)).collect();
                 assert_eq!(listed, expected, "{edges:?}");
-                assert_eq!(graph.name(v), 1000 + v.index() as u32);
                 branch_vertices += usize::from(expected.len() > 2);
                 let branch_list = branches.incident(v);
                 if expected.len() > 2 {

@@ -742,13 +742,11 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     }
     let last = current.as_slice();
     let n = tri.num_points();
-    let graph = current_graph
-        .unwrap_or_else(|| CurveGraph::new(n, last))
-        .with_names(|v| tri.input_of(VertexId::new(v)) as u32);
+    let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
     let in_parallel = params.parallel && n >= PARALLEL_FROM;
     let (curves, tally) = both(
         in_parallel,
-        || curves_in_input_positions(&graph),
+        || curves_in_input_positions(&tri, &graph),
         || tally(&tri, &graph, last.len()),
     );
     let curves_time = clock.lap();
@@ -866,12 +864,12 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
         } else if degree <= 2 {
             let [x, y] = graph.first_two(v).map(input_of);
             // A duplicate input point lists nothing: its edges are under the first copy.
-            let listing = !has_duplicates || graph.name(v) == i;
+            let listing = !has_duplicates || tri.input_of(v) as u32 == i;
             for j in [x.min(y), x.max(y)] {
                 edges[count] = [i, j];
                 count += usize::from(listing & (j > i));
             }
-        } else if !has_duplicates || graph.name(v) == i {
+        } else if !has_duplicates || tri.input_of(v) as u32 == i {
             let first = count;
             for k in 0..degree {
                 let j = input_of(graph.neighbor(v, k));

@@ -196,7 +196,11 @@ mod tests {
                 edges.swap(0, k);
             }
             let expected: Vec<bool> = edges.iter().map(|x| !before.contains(x)).collect();
-            assert_eq!(missing_from(&edges, &before), expected, "{edges:?} {before:?}");
+            assert_eq!(
+                missing_from(&edges, &before),
+                expected,
+                "{edges:?} {before:?}"
+            );
         }
     }
 
