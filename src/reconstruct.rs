@@ -689,15 +689,17 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         let points = points
             .unwrap_or_else(|| Cow::Owned((0..n).map(|i| result.triangulation.point(i)).collect()));
         loop {
-            let (positions, moved) = smoothed_positions(&result.triangulation, &result.final_edges);
-            // Of the previous pass only its final edges are read again (the fixed-point test):
-            // the rest (its triangulation, stage graphs and curves, about as much memory as the
-            // next pass needs) is freed before the next triangulation, and the moved positions
-            // once it is built.
+            // Of the previous pass only its final edges are read again (the fixed-point test),
+            // and its triangulation and final graph to smooth along: the rest (stage records,
+            // degrees, curves) is freed before the positions are computed (26 bytes per point
+            // of uniform points at the passes' peak), those two once they are, and the moved
+            // positions once they are triangulated.
             let previous_edges = core::mem::take(&mut result.edges);
+            let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
+            let (positions, moved) = smoothed_positions(&triangulation, &final_edges);
+            drop((triangulation, final_edges));
             // The replaced pass's triangulation is an earlier pass's cost too.
-            earlier_passes += result.triangulation_time;
-            drop(result);
+            earlier_passes += triangulation_time;
             earlier_passes += clock.lap();
             let tri = triangulate(&positions)?;
             drop(positions);
@@ -715,6 +717,19 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         result.input_points = Some(points.into_owned());
     }
     Ok(result)
+}
+
+impl Reconstruction {
+    /// The triangulation, the final edges and the triangulation's time; everything else is
+    /// freed here (a partial move out of a variable would keep the rest until it is assigned
+    /// again, after the next pass).
+    fn into_last_graph(self) -> (Triangulation, Vec<Edge>, Duration) {
+        (
+            self.triangulation,
+            self.final_edges,
+            self.triangulation_time,
+        )
+    }
 }
 
 /// Runs the ConDT stages on a triangulation already built, which the result keeps.
