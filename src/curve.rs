@@ -108,7 +108,20 @@ pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> 
         .collect();
     once.sort_unstable();
     once.dedup();
-    let mut curves = curves_of(&CurveGraph::new(count, &once), |v| v.index() as u32);
+    let mut curves = if count <= CurveGraph::MAX_VERTICES {
+        curves_of(&CurveGraph::new(count, &once), |v| v.index() as u32)
+    } else {
+        // Positions beyond what a curve graph holds: the points with edges, renumbered in
+        // increasing order (so the walks meet them in the same order) and named back.
+        let mut ends: Vec<VertexId> = once.iter().flatten().copied().collect();
+        ends.sort_unstable();
+        ends.dedup();
+        let dense = |v: VertexId| VertexId::new(ends.binary_search(&v).unwrap_or(0) as u32);
+        let renumbered: Vec<Edge> = once.iter().map(|&[a, b]| [dense(a), dense(b)]).collect();
+        curves_of(&CurveGraph::new(ends.len(), &renumbered), |v| {
+            ends[v.index()].index() as u32
+        })
+    };
     canonical(&mut curves);
     curves
 }
@@ -216,6 +229,34 @@ fn walk(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Positions beyond what a curve graph holds are renumbered and named back: the same curves
+    /// as the same edges between small positions, shifted.
+    #[test]
+    fn curves_between_huge_positions_are_those_of_small_ones_shifted() {
+        let small = [
+            [0, 1],
+            [1, 2],
+            [2, 0],
+            [0, 3],
+            [3, 4],
+            [5, 6],
+            [1, 7],
+            [7, 8],
+            [8, 9],
+        ];
+        let shift = 1usize << 30;
+        let huge: Vec<[usize; 2]> = small.iter().map(|&[a, b]| [a + shift, b + shift]).collect();
+        let expected: Vec<Vec<usize>> = curves_from_edges(10, &small)
+            .iter()
+            .map(|c| c.points().map(|p| p + shift).collect())
+            .collect();
+        let got: Vec<Vec<usize>> = curves_from_edges(u32::MAX as usize, &huge)
+            .iter()
+            .map(|c| c.points().collect())
+            .collect();
+        assert_eq!(got, expected);
+    }
 
     /// On random graphs (branch points, lobes, isolated edges, cycles), given with repeats,
     /// loops, reversed and out-of-range edges: every edge lies on exactly one curve, an open curve
