@@ -2,7 +2,7 @@
 //! to each other and curves are read from.
 //!
 //! Owns: the edge list (`[a, b]`, `a < b`, each edge once), its compressed adjacency, the curve
-//! graph that keeps each vertex's degree, first two neighbours and name in one record for walking
+//! graph that keeps each vertex's degree and first two neighbours in one record for walking
 //! curves, and the O(n)
 //! pair sort. It may not look at coordinates, and nothing here is public: users see edges in input
 //! positions through [`Graph`](crate::Graph).
@@ -26,12 +26,16 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
 
 /// Compressed adjacency of an edge list over `vertex_count` vertices: the neighbours of `v` are
 /// `neighbors[offsets[v]..offsets[v + 1]]`, in the order the edges are listed, each with the
-/// position of its edge in the list.
+/// position of its edge in the list. Only the tests build one now, as the reference the compact
+/// forms ([`CurveGraph`], [`BranchAdjacency`]) are checked against: at 20 bytes per point it
+/// was the peak of the stages that used it.
+#[cfg(test)]
 pub(crate) struct Adjacency {
     offsets: Vec<u32>,
     neighbors: Vec<(VertexId, u32)>,
 }
 
+#[cfg(test)]
 impl Adjacency {
     /// `edges` must list every edge once (`[a, b]` with `a < b`, in any order). Built by counting,
     /// in O(n), without sorting.
@@ -63,42 +67,118 @@ impl Adjacency {
     }
 }
 
+/// [`Adjacency`] of the vertices of degree three or more only (the non-manifold vertices, a
+/// few in a hundred on noisy curves): the same lists, the same order, without the 20 bytes per
+/// point a full adjacency costs (the repair's peak, beside its input and output).
+pub(crate) struct BranchAdjacency {
+    /// The vertices with three or more edges, ascending, and where their lists start.
+    vertices: Vec<(VertexId, u32)>,
+    neighbors: Vec<(VertexId, u32)>,
+}
+
+impl BranchAdjacency {
+    /// `degree` must be the degrees of `edges` ([`degrees`]).
+    pub(crate) fn new(degree: &[u32], edges: &[Edge]) -> Self {
+        let mut vertices = Vec::new();
+        let mut total = 0u32;
+        for (v, &d) in degree.iter().enumerate() {
+            if d > 2 {
+                vertices.push((VertexId::new(v as u32), total));
+                total += d;
+            }
+        }
+        let mut fill: Vec<u32> = vertices.iter().map(|&(_, start)| start).collect();
+        let mut neighbors = vec![(VertexId::INFINITE, 0); total as usize];
+        for (k, &[a, b]) in edges.iter().enumerate() {
+            for (v, w) in [(a, b), (b, a)] {
+                if degree[v.index()] > 2 {
+                    if let Ok(slot) = vertices.binary_search_by_key(&v, |&(u, _)| u) {
+                        neighbors[fill[slot] as usize] = (w, k as u32);
+                        fill[slot] += 1;
+                    }
+                }
+            }
+        }
+        BranchAdjacency {
+            vertices,
+            neighbors,
+        }
+    }
+
+    /// The neighbours of `v` (of degree three or more) with the positions of the joining edges;
+    /// empty for any other vertex.
+    pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {
+        let Ok(at) = self.vertices.binary_search_by_key(&v, |&(u, _)| u) else {
+            return &[];
+        };
+        let end = self
+            .vertices
+            .get(at + 1)
+            .map_or(self.neighbors.len(), |&(_, start)| start as usize);
+        &self.neighbors[self.vertices[at].1 as usize..end]
+    }
+}
+
 /// The neighbours of every vertex of a graph that is a union of curves: almost every vertex has
-/// at most two. Each vertex has one 12-byte record, its degree and its first two neighbours, so
-/// following a curve, or reading a vertex's neighbours, costs one read per vertex where separate
-/// arrays would cost one per array. The few vertices with three or more neighbours list all of
-/// them in a small side table, in id order; nothing is built for the others. A graph built with
-/// [`CurveGraph::named`] also keeps a name per vertex (the input position it stands for); the
-/// stages' graphs, which need none, do not pay for it (a 16-byte record with the name measured
-/// slower in gap closing, which scans every vertex's degree).
+/// at most two. Each vertex has one 8-byte record, its first two neighbours with its degree in
+/// the top bits of the first, so following a curve, or reading a vertex's neighbours, costs one
+/// read per vertex where separate arrays would cost one per array. The few vertices with three
+/// or more neighbours list all of them in a small side table, in id order; nothing is built for
+/// the others. It keeps no name per vertex: the curves and the final tally read the input
+/// position a vertex stands for from the triangulation's map (a 16-byte record with the name
+/// measured slower in gap closing, which scans every vertex's degree, and a separate array of
+/// names cost 4 bytes per point at the reconstruction's last step). Reason for the packing:
+/// memory. The graph is held at the reconstruction's highest phases (the local outlier stage
+/// and the last step), where a 12-byte record (the degree in a word of its own) was 12 bytes per
+/// point of the peak.
 #[cfg_attr(test, derive(Debug, PartialEq))]
 pub(crate) struct CurveGraph {
-    /// `[degree, first neighbour, second neighbour]` per vertex id; a missing neighbour is
-    /// [`VertexId::INFINITE`].
-    records: Vec<[u32; 3]>,
-    /// The name of every vertex id, or empty when every vertex is named by its id.
-    names: Vec<u32>,
+    /// Per vertex id: the first neighbour's id in the low [`ID_BITS`] bits of the first word and
+    /// the degree (up to [`DEGREE_SATURATED`]) above them, the second neighbour's id in the
+    /// second word; a missing neighbour is [`NO_ID`].
+    records: Vec<[u32; 2]>,
     /// The vertices with three or more neighbours, ascending, and where their neighbours start
-    /// in `branch_neighbors`.
+    /// in `branch_neighbors` (they end where the next one's start).
     branch_vertices: Vec<(VertexId, u32)>,
     /// The neighbours of the branch vertices, each vertex's in the order its edges are listed.
     branch_neighbors: Vec<VertexId>,
 }
 
+/// Bits of a vertex id in a record: ids are under [`crate::triangulate::MAX_POINTS`] (350
+/// million), below 2^29.
+const ID_BITS: u32 = 29;
+const ID_MASK: u32 = (1 << ID_BITS) - 1;
+/// A missing neighbour in a record (read back as [`VertexId::INFINITE`]).
+const NO_ID: u32 = ID_MASK;
+/// The stored degree saturates here; the side table gives the exact degree beyond.
+const DEGREE_SATURATED: u32 = 7;
+
+/// The vertex a record's id field names.
+#[inline]
+fn vertex_of(field: u32) -> VertexId {
+    let id = field & ID_MASK;
+    VertexId::new(if id == NO_ID { u32::MAX } else { id })
+}
+
 impl CurveGraph {
-    /// [`CurveGraph::named`], every vertex named by its own id.
+    /// The largest number of vertices a curve graph holds (ids must fit [`ID_BITS`]).
+    pub(crate) const MAX_VERTICES: usize = NO_ID as usize;
+
+    /// The graph of `edges` (as for [`Adjacency::new`]) over `vertex_count` vertices
+    /// (at most [`CurveGraph::MAX_VERTICES`]). Neighbours come in the order the edges are listed.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
-        let none = VertexId::INFINITE.index() as u32;
-        let mut records = vec![[0, none, none]; vertex_count];
+        assert!(vertex_count <= Self::MAX_VERTICES);
+        let mut records = vec![[NO_ID, NO_ID]; vertex_count];
         let mut branches = false;
         for &[a, b] in edges {
             for (v, w) in [(a, b), (b, a)] {
                 let record = &mut records[v.index()];
-                let d = record[0];
-                record[0] = d + 1;
-                // Whether the slot fills is a coin toss per edge: selected, not branched on.
-                let k = 1 + d.min(1) as usize;
-                record[k] = if d < 2 { w.index() as u32 } else { record[k] };
+                let d = record[0] >> ID_BITS;
+                let w = w.index() as u32;
+                // Whether a slot fills is a coin toss per edge: selected, not branched on.
+                let first = if d == 0 { w } else { record[0] & ID_MASK };
+                record[0] = first | ((d + 1).min(DEGREE_SATURATED) << ID_BITS);
+                record[1] = if d == 1 { w } else { record[1] };
                 branches |= d >= 2;
             }
         }
@@ -109,23 +189,9 @@ impl CurveGraph {
         };
         CurveGraph {
             records,
-            names: Vec::new(),
             branch_vertices,
             branch_neighbors,
         }
-    }
-
-    /// The graph of `edges` (as for [`Adjacency::new`]) over `vertex_count` vertices, each vertex
-    /// `v` named `name(v)` (read back by [`CurveGraph::name`]). Neighbours come in the order the
-    /// edges are listed.
-    pub(crate) fn named(vertex_count: usize, edges: &[Edge], name: impl Fn(u32) -> u32) -> Self {
-        Self::new(vertex_count, edges).with_names(name)
-    }
-
-    /// This graph with each vertex `v` named `name(v)`.
-    pub(crate) fn with_names(mut self, name: impl Fn(u32) -> u32) -> Self {
-        self.names = (0..self.vertex_count() as u32).map(name).collect();
-        self
     }
 
     /// Whether some vertex has three or more neighbours.
@@ -145,26 +211,22 @@ impl CurveGraph {
 
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
-        self.records[v.index()][0] as usize
-    }
-
-    /// The name given to `v` when the graph was built ([`CurveGraph::named`]; its id otherwise).
-    #[inline]
-    pub(crate) fn name(&self, v: VertexId) -> u32 {
-        self.names
-            .get(v.index())
-            .copied()
-            .unwrap_or(v.index() as u32)
+        let d = self.records[v.index()][0] >> ID_BITS;
+        if d < DEGREE_SATURATED {
+            d as usize
+        } else {
+            self.branch(v).len()
+        }
     }
 
     /// The `k`-th neighbour of `v`, `k < degree(v)`.
     #[inline]
     pub(crate) fn neighbor(&self, v: VertexId, k: usize) -> VertexId {
         let record = &self.records[v.index()];
-        if record[0] > 2 {
+        if record[0] >> ID_BITS > 2 {
             self.branch(v)[k]
         } else {
-            VertexId::new(record[1 + k])
+            vertex_of(record[k])
         }
     }
 
@@ -176,7 +238,11 @@ impl CurveGraph {
             .binary_search_by_key(&v, |&(w, _)| w)
             .unwrap_or(0);
         let start = self.branch_vertices[at].1 as usize;
-        &self.branch_neighbors[start..start + self.degree(v)]
+        let end = self
+            .branch_vertices
+            .get(at + 1)
+            .map_or(self.branch_neighbors.len(), |&(_, next)| next as usize);
+        &self.branch_neighbors[start..end]
     }
 
     /// The first two neighbours of `v` ([`VertexId::INFINITE`] where it has fewer); all of
@@ -184,7 +250,7 @@ impl CurveGraph {
     #[inline]
     pub(crate) fn first_two(&self, v: VertexId) -> [VertexId; 2] {
         let record = &self.records[v.index()];
-        [VertexId::new(record[1]), VertexId::new(record[2])]
+        [vertex_of(record[0]), vertex_of(record[1])]
     }
 
     /// For `v` of degree two and `from` one of its neighbours, the other one: the next step along
@@ -193,28 +259,49 @@ impl CurveGraph {
     #[inline]
     pub(crate) fn onward(&self, v: VertexId, from: VertexId) -> VertexId {
         let record = &self.records[v.index()];
-        debug_assert!(from.index() as u32 == record[1] || from.index() as u32 == record[2]);
-        VertexId::new(record[1] ^ record[2] ^ from.index() as u32)
+        let (x, y) = (record[0] & ID_MASK, record[1]);
+        debug_assert!(from.index() as u32 == x || from.index() as u32 == y);
+        VertexId::new(x ^ y ^ from.index() as u32)
     }
 }
 
 /// The side table of [`CurveGraph`]: the vertices of degree three or more, ascending, with the
-/// start of their neighbours, listed in the order of `edges`.
-fn branch_table(records: &[[u32; 3]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, Vec<VertexId>) {
-    let mut vertices = Vec::new();
-    let mut total = 0u32;
+/// start of their neighbours, listed in the order of `edges`. A stored degree below the
+/// saturation is exact; the rare vertex at it (seven or more neighbours) is counted here.
+fn branch_table(records: &[[u32; 2]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, Vec<VertexId>) {
+    let stored = |v: VertexId| records[v.index()][0] >> ID_BITS;
+    let mut vertices: Vec<(VertexId, u32)> = Vec::new();
     for (v, record) in records.iter().enumerate() {
-        if record[0] > 2 {
-            vertices.push((VertexId::new(v as u32), total));
-            total += record[0];
+        if record[0] >> ID_BITS > 2 {
+            vertices.push((VertexId::new(v as u32), 0));
         }
     }
+    let slot = |v: VertexId| vertices.binary_search_by_key(&v, |&(w, _)| w).ok();
+    // Each branch vertex's degree, exact.
+    let mut degree: Vec<u32> = vertices.iter().map(|&(v, _)| stored(v)).collect();
+    if degree.contains(&DEGREE_SATURATED) {
+        degree.iter_mut().for_each(|d| *d = 0);
+        for &[a, b] in edges {
+            for v in [a, b] {
+                if stored(v) > 2 {
+                    if let Some(k) = slot(v) {
+                        degree[k] += 1;
+                    }
+                }
+            }
+        }
+    }
+    let mut total = 0u32;
+    for (entry, &d) in vertices.iter_mut().zip(&degree) {
+        entry.1 = total;
+        total += d;
+    }
+    let slot = |v: VertexId| vertices.binary_search_by_key(&v, |&(w, _)| w).ok();
     let mut fill: Vec<u32> = vertices.iter().map(|&(_, start)| start).collect();
     let mut neighbors = vec![VertexId::INFINITE; total as usize];
-    let slot = |v: VertexId| vertices.binary_search_by_key(&v, |&(w, _)| w).ok();
     for &[a, b] in edges {
         for (v, w) in [(a, b), (b, a)] {
-            if records[v.index()][0] > 2 {
+            if stored(v) > 2 {
                 if let Some(k) = slot(v) {
                     neighbors[fill[k] as usize] = w;
                     fill[k] += 1;
@@ -281,8 +368,9 @@ mod tests {
     use super::*;
 
     /// On random graphs with branch points, the curve graph gives every vertex the neighbours
-    /// the full adjacency gives it, in the same order (that of the edge list), its name, and,
-    /// at degree two, the other neighbour from either one.
+    /// the full adjacency gives it, in the same order (that of the edge list), and,
+    /// at degree two, the other neighbour from either one; the branch adjacency gives a vertex
+    /// with three or more the full adjacency's list, edge positions included.
     #[test]
     fn the_curve_graph_lists_the_neighbours_of_the_full_adjacency() {
         let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
@@ -301,14 +389,20 @@ mod tests {
             // Listed in a scrambled order: neighbours must follow the list, not the ids.
             edges.reverse();
             let full = Adjacency::new(n, &edges);
-            let graph = CurveGraph::named(n, &edges, |v| 1000 + v);
+            let graph = CurveGraph::new(n, &edges);
+            let branches = BranchAdjacency::new(&degrees(n, &edges), &edges);
             for v in (0..n as u32).map(VertexId::new) {
                 let expected: Vec<VertexId> = full.incident(v).iter().map(|&(w, _)| w).collect();
                 let listed: Vec<VertexId> =
                     (0..graph.degree(v)).map(|k| graph.neighbor(v, k)).collect();
                 assert_eq!(listed, expected, "{edges:?}");
-                assert_eq!(graph.name(v), 1000 + v.index() as u32);
                 branch_vertices += usize::from(expected.len() > 2);
+                let branch_list = branches.incident(v);
+                if expected.len() > 2 {
+                    assert_eq!(branch_list, full.incident(v), "{edges:?}");
+                } else {
+                    assert!(branch_list.is_empty());
+                }
                 if let [x, y] = expected[..] {
                     assert_eq!(graph.onward(v, x), y);
                     assert_eq!(graph.onward(v, y), x);

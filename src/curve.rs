@@ -11,6 +11,7 @@
 
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
+use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -107,15 +108,29 @@ pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> 
         .collect();
     once.sort_unstable();
     once.dedup();
-    let mut curves = curves_of(&CurveGraph::new(count, &once));
+    let mut curves = if count <= CurveGraph::MAX_VERTICES {
+        curves_of(&CurveGraph::new(count, &once), |v| v.index() as u32)
+    } else {
+        // Positions beyond what a curve graph holds: the points with edges, renumbered in
+        // increasing order (so the walks meet them in the same order) and named back.
+        let mut ends: Vec<VertexId> = once.iter().flatten().copied().collect();
+        ends.sort_unstable();
+        ends.dedup();
+        let dense = |v: VertexId| VertexId::new(ends.binary_search(&v).unwrap_or(0) as u32);
+        let renumbered: Vec<Edge> = once.iter().map(|&[a, b]| [dense(a), dense(b)]).collect();
+        curves_of(&CurveGraph::new(ends.len(), &renumbered), |v| {
+            ends[v.index()].index() as u32
+        })
+    };
     canonical(&mut curves);
     curves
 }
 
-/// The curves of `graph` (over vertex ids of `tri`, each vertex named by its input position:
-/// see [`CurveGraph::named`]), in input positions, canonical and sorted.
-pub(crate) fn curves_in_input_positions(graph: &CurveGraph) -> Vec<Curve> {
-    let mut curves = curves_of(graph);
+/// The curves of `graph` (over the vertex ids of `tri`), in input positions, canonical and
+/// sorted. The positions are read from the triangulation's map, not copied into the graph: a
+/// name per vertex took 4 bytes per point at the reconstruction's last step.
+pub(crate) fn curves_in_input_positions(tri: &Triangulation, graph: &CurveGraph) -> Vec<Curve> {
+    let mut curves = curves_of(graph, |v| tri.input_of(v) as u32);
     canonical(&mut curves);
     curves
 }
@@ -137,9 +152,8 @@ fn canonical(curves: &mut [Curve]) {
     });
 }
 
-/// The curves of a graph already built, as walked, their points given by the names of the
-/// graph's vertices ([`CurveGraph::name`]).
-pub(crate) fn curves_of(graph: &CurveGraph) -> Vec<Curve> {
+/// The curves of a graph already built, as walked, each vertex given as the point `name(v)`.
+pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> Vec<Curve> {
     let vertex_count = graph.vertex_count();
     // Degree-two vertices already on a curve. A path between two ends or branch points is met
     // from both of them; it is walked from the first and recognised as taken from the second.
@@ -163,7 +177,7 @@ pub(crate) fn curves_of(graph: &CurveGraph) -> Vec<Curve> {
                 v < w
             };
             if untaken {
-                curves.push(walk(graph, &mut visited, &mut path, v, w));
+                curves.push(walk(graph, &name, &mut visited, &mut path, v, w));
             }
         }
     }
@@ -172,6 +186,7 @@ pub(crate) fn curves_of(graph: &CurveGraph) -> Vec<Curve> {
             visited[v.index()] = true;
             curves.push(walk(
                 graph,
+                &name,
                 &mut visited,
                 &mut path,
                 v,
@@ -187,6 +202,7 @@ pub(crate) fn curves_of(graph: &CurveGraph) -> Vec<Curve> {
 /// is scratch space.
 fn walk(
     graph: &CurveGraph,
+    name: &impl Fn(VertexId) -> u32,
     visited: &mut [bool],
     path: &mut Vec<u32>,
     start: VertexId,
@@ -195,7 +211,7 @@ fn walk(
     path.clear();
     let (mut previous, mut current) = (start, first);
     loop {
-        path.push(graph.name(current));
+        path.push(name(current));
         if graph.degree(current) != 2 || visited[current.index()] {
             break;
         }
@@ -205,7 +221,7 @@ fn walk(
     // A cycle ends where it started: its last step is not repeated.
     let closed = path.len() > 1 && current == start;
     let mut points = Vec::with_capacity(path.len() + usize::from(!closed));
-    points.push(graph.name(start));
+    points.push(name(start));
     points.extend_from_slice(&path[..path.len() - usize::from(closed)]);
     Curve { points, closed }
 }
@@ -213,6 +229,34 @@ fn walk(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Positions beyond what a curve graph holds are renumbered and named back: the same curves
+    /// as the same edges between small positions, shifted.
+    #[test]
+    fn curves_between_huge_positions_are_those_of_small_ones_shifted() {
+        let small = [
+            [0, 1],
+            [1, 2],
+            [2, 0],
+            [0, 3],
+            [3, 4],
+            [5, 6],
+            [1, 7],
+            [7, 8],
+            [8, 9],
+        ];
+        let shift = 1usize << 30;
+        let huge: Vec<[usize; 2]> = small.iter().map(|&[a, b]| [a + shift, b + shift]).collect();
+        let expected: Vec<Vec<usize>> = curves_from_edges(10, &small)
+            .iter()
+            .map(|c| c.points().map(|p| p + shift).collect())
+            .collect();
+        let got: Vec<Vec<usize>> = curves_from_edges(u32::MAX as usize, &huge)
+            .iter()
+            .map(|c| c.points().collect())
+            .collect();
+        assert_eq!(got, expected);
+    }
 
     /// On random graphs (branch points, lobes, isolated edges, cycles), given with repeats,
     /// loops, reversed and out-of-range edges: every edge lies on exactly one curve, an open curve

@@ -12,7 +12,6 @@
 use crate::adjacency::{degrees, ordered, sort_pairs, CurveGraph, Edge};
 use crate::curve::{curves_in_input_positions, Curve};
 use crate::error::Error;
-use crate::mesh::VertexId;
 use crate::stages::{proximity, Earlier, Repair, Step, Uniformity};
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
@@ -226,10 +225,8 @@ impl<'t> Graph<'t> {
     /// position (an open one at its smaller end) and the list is sorted.
     pub fn curves(&self) -> Vec<Curve> {
         let tri = self.tri;
-        let graph = CurveGraph::named(tri.num_points(), &self.edges, |v| {
-            tri.input_of(VertexId::new(v)) as u32
-        });
-        curves_in_input_positions(&graph)
+        let graph = CurveGraph::new(tri.num_points(), &self.edges);
+        curves_in_input_positions(tri, &graph)
     }
 
     /// Runs `step` (its parameter checked) and reports whether its rule applied.

@@ -625,10 +625,58 @@ impl Stopwatch {
 /// As [`triangulate`]: non-finite coordinates, an over-wide dynamic range, too many points; and
 /// [`Error::InvalidParameter`] when [`Params::check`] refuses `params` (checked first).
 pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, Error> {
+    reconstruct_input(Cow::Borrowed(points), params)
+}
+
+/// [`reconstruct`] of points the caller hands over: the same result, but the points are freed
+/// as soon as the triangulation gives every one of them back bit for bit (it keeps them in its
+/// own frame), so the stages run without them (16 bytes per point less at the peak; the
+/// command line reads its points into memory only to reconstruct them). When smoothing passes
+/// run, the result keeps the input again (as [`reconstruct`] copies it), read back from the
+/// first triangulation.
+///
+/// # Errors
+/// As [`reconstruct`].
+///
+/// ```
+/// use condt::{reconstruct, reconstruct_owned, Params, Point};
+/// let points: Vec<Point> = (0..40)
+///     .map(|k| {
+///         let t = k as f64 * std::f64::consts::TAU / 40.0;
+///         Point::new(t.cos(), (2.0 * t).sin())
+///     })
+///     .collect();
+/// let borrowed = reconstruct(&points, &Params::default())?;
+/// let owned = reconstruct_owned(points, &Params::default())?;
+/// assert_eq!(owned.edges().collect::<Vec<_>>(), borrowed.edges().collect::<Vec<_>>());
+/// assert_eq!(owned.curves(), borrowed.curves());
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn reconstruct_owned(points: Vec<Point>, params: &Params) -> Result<Reconstruction, Error> {
+    reconstruct_input(Cow::Owned(points), params)
+}
+
+/// Whether `tri` gives every point of `points` back bit for bit (signed zeros and merged
+/// duplicates may not be).
+fn gives_back(tri: &Triangulation, points: &[Point]) -> bool {
+    points.iter().enumerate().all(|(i, p)| {
+        let q = tri.point(i);
+        (q.x.to_bits(), q.y.to_bits()) == (p.x.to_bits(), p.y.to_bits())
+    })
+}
+
+/// [`reconstruct`] and [`reconstruct_owned`]: an owned input is freed after the triangulation
+/// when it can be read back from it.
+fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Reconstruction, Error> {
     params.check()?;
     let mut clock = Stopwatch::start();
-    let tri = triangulate(points)?;
+    let tri = triangulate(&points)?;
     let triangulation_time = clock.lap();
+    let n = points.len();
+    let points = match points {
+        Cow::Owned(owned) if gives_back(&tri, &owned) => None,
+        kept => Some(kept),
+    };
     let mut result = reconstruct_triangulation(tri, params)?;
     result.triangulation_time = triangulation_time;
     if params.smooth && params.method == Method::ConDT && shows_noise(&result.degrees) {
@@ -637,16 +685,21 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
         // `MAX_PASSES` (src/smooth.rs gives the reasons).
         let mut earlier_passes = Duration::ZERO;
         let mut smoothing = Smoothing::default();
+        // The input freed after the triangulation is read back before that is replaced.
+        let points = points
+            .unwrap_or_else(|| Cow::Owned((0..n).map(|i| result.triangulation.point(i)).collect()));
         loop {
-            let (positions, moved) = smoothed_positions(&result.triangulation, &result.final_edges);
-            // Of the previous pass only its final edges are read again (the fixed-point test):
-            // the rest (its triangulation, stage graphs and curves, about as much memory as the
-            // next pass needs) is freed before the next triangulation, and the moved positions
-            // once it is built.
+            // Of the previous pass only its final edges are read again (the fixed-point test),
+            // and its triangulation and final graph to smooth along: the rest (stage records,
+            // degrees, curves) is freed before the positions are computed (26 bytes per point
+            // of uniform points at the passes' peak), those two once they are, and the moved
+            // positions once they are triangulated.
             let previous_edges = core::mem::take(&mut result.edges);
+            let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
+            let (positions, moved) = smoothed_positions(&triangulation, &final_edges);
+            drop((triangulation, final_edges));
             // The replaced pass's triangulation is an earlier pass's cost too.
-            earlier_passes += result.triangulation_time;
-            drop(result);
+            earlier_passes += triangulation_time;
             earlier_passes += clock.lap();
             let tri = triangulate(&positions)?;
             drop(positions);
@@ -661,9 +714,22 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
         }
         smoothing.earlier_passes = earlier_passes;
         result.smoothing = Some(smoothing);
-        result.input_points = Some(points.to_vec());
+        result.input_points = Some(points.into_owned());
     }
     Ok(result)
+}
+
+impl Reconstruction {
+    /// The triangulation, the final edges and the triangulation's time; everything else is
+    /// freed here (a partial move out of a variable would keep the rest until it is assigned
+    /// again, after the next pass).
+    fn into_last_graph(self) -> (Triangulation, Vec<Edge>, Duration) {
+        (
+            self.triangulation,
+            self.final_edges,
+            self.triangulation_time,
+        )
+    }
 }
 
 /// Runs the ConDT stages on a triangulation already built, which the result keeps.
@@ -742,13 +808,11 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     }
     let last = current.as_slice();
     let n = tri.num_points();
-    let graph = current_graph
-        .unwrap_or_else(|| CurveGraph::new(n, last))
-        .with_names(|v| tri.input_of(VertexId::new(v)) as u32);
+    let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
     let in_parallel = params.parallel && n >= PARALLEL_FROM;
     let (curves, tally) = both(
         in_parallel,
-        || curves_in_input_positions(&graph),
+        || curves_in_input_positions(&tri, &graph),
         || tally(&tri, &graph, last.len()),
     );
     let curves_time = clock.lap();
@@ -866,12 +930,12 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
         } else if degree <= 2 {
             let [x, y] = graph.first_two(v).map(input_of);
             // A duplicate input point lists nothing: its edges are under the first copy.
-            let listing = !has_duplicates || graph.name(v) == i;
+            let listing = !has_duplicates || tri.input_of(v) as u32 == i;
             for j in [x.min(y), x.max(y)] {
                 edges[count] = [i, j];
                 count += usize::from(listing & (j > i));
             }
-        } else if !has_duplicates || graph.name(v) == i {
+        } else if !has_duplicates || tri.input_of(v) as u32 == i {
             let first = count;
             for k in 0..degree {
                 let j = input_of(graph.neighbor(v, k));
@@ -926,6 +990,48 @@ mod tests {
                 assert!(matches!(undo, Undo::Delta { .. }), "{undo:?}");
             }
             assert_eq!(&*undo.input(Cow::Borrowed(&output)), input.as_slice());
+        }
+    }
+
+    /// An input handed over gives the result a borrowed one gives, the points it reports
+    /// included bit for bit: with and without smoothing passes, and with signed zeros and duplicates,
+    /// which the triangulation does not give back (so the input is kept).
+    #[test]
+    fn an_owned_input_gives_the_same_result() {
+        let mut rng = Xorshift::new(3);
+        let noisy: Vec<Point> = (0..300)
+            .map(|k| {
+                let t = k as f64 * core::f64::consts::TAU / 300.0;
+                let r = 1.0 + 0.05 * (rng.unit() - 0.5);
+                Point::new(r * libm::cos(t), r * libm::sin(t))
+            })
+            .collect();
+        let mut zeros = noisy.clone();
+        zeros.extend([Point::new(-0.0, 0.0), Point::new(0.0, 0.0), noisy[7]]);
+        for points in [noisy, zeros] {
+            let tri = triangulate(&points).unwrap();
+            let exact = gives_back(&tri, &points);
+            assert_eq!(exact, tri.num_vertices() == points.len());
+            for smooth in [false, true] {
+                let params = Params {
+                    smooth,
+                    ..Params::default()
+                };
+                let borrowed = reconstruct(&points, &params).unwrap();
+                let owned = reconstruct_owned(points.clone(), &params).unwrap();
+                assert_eq!(owned.edges, borrowed.edges);
+                assert_eq!(owned.curves, borrowed.curves);
+                assert_eq!(owned.smoothing.is_some(), borrowed.smoothing.is_some());
+                for i in 0..points.len() {
+                    let (p, q) = (borrowed.point(i), owned.point(i));
+                    assert_eq!(
+                        (q.x.to_bits(), q.y.to_bits()),
+                        (p.x.to_bits(), p.y.to_bits())
+                    );
+                }
+            }
+            let smoothed = reconstruct(&points, &Params::default()).unwrap();
+            assert!(smoothed.smoothing.is_some(), "the passes ran");
         }
     }
 

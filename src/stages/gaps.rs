@@ -271,6 +271,9 @@ pub(crate) fn close_gaps(
     if joins.is_empty() {
         return Outcome::unchanged_with(Some(ends.graph));
     }
+    // The curve graph (12 bytes per point) is not the output's and not read again: freed
+    // before the output is built.
+    drop((ends, lined_up));
     let mut out = Vec::with_capacity(edges.len() + joins.len());
     out.extend_from_slice(edges);
     out.extend_from_slice(&joins);

@@ -35,7 +35,8 @@
 
 use super::local_outliers::SEPARATION;
 use super::Outcome;
-use crate::adjacency::{Adjacency, CurveGraph, Edge};
+use crate::adjacency::{CurveGraph, Edge};
+use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -55,32 +56,40 @@ pub(crate) fn confirm_given_back(
     // Not read here: freed before the adjacency is built.
     drop(graph);
     let n = tri.num_points();
-    let was = Adjacency::new(n, before_local);
-    let given: Vec<bool> = edges
-        .iter()
-        .map(|&[a, b]| !was.incident(a).iter().any(|&(w, _)| w == b))
-        .collect();
-    // The adjacency (20 bytes per point) is not read again: freed before the per-point arrays
-    // below are allocated.
-    drop(was);
+    let given = missing_from(edges, before_local);
     if !given.contains(&true) {
         return Outcome::UNCHANGED;
     }
     // Each vertex's component, named by its smallest id (the local outlier removal's union-find).
     let root = super::local_outliers::components(n, edges);
-    // Components made only of given-back edges, and each vertex's longest edge (squared).
+    // Components made only of given-back edges, and each vertex's degree (up to 255).
     let mut only_given = vec![false; n];
     for &[a, _] in edges {
         only_given[root[a.index()] as usize] = true;
     }
-    let mut longest = vec![-1.0f64; n];
     let mut degree = vec![0u8; n];
     for (&[a, b], &back) in edges.iter().zip(&given) {
         only_given[root[a.index()] as usize] &= back;
-        let l = tri.vertex_point(a).dist2(tri.vertex_point(b));
         for v in [a, b] {
-            longest[v.index()] = longest[v.index()].max(l);
             degree[v.index()] = degree[v.index()].saturating_add(1);
+        }
+    }
+    // The longest edge (squared) of the vertices of those components only, which are few: a
+    // list of them, ascending, beside their lengths, where a length per point took 8 bytes.
+    let in_given = |v: VertexId| only_given[root[v.index()] as usize];
+    let members: Vec<VertexId> = (0..n as u32)
+        .map(VertexId::new)
+        .filter(|&v| degree[v.index()] > 0 && in_given(v))
+        .collect();
+    let slot = |v: VertexId| members.binary_search(&v).unwrap_or(0);
+    let mut longest = vec![-1.0f64; members.len()];
+    for &[a, b] in edges {
+        if in_given(a) {
+            let l = tri.vertex_point(a).dist2(tri.vertex_point(b));
+            for v in [a, b] {
+                let k = slot(v);
+                longest[k] = longest[k].max(l);
+            }
         }
     }
     let mut dropped = vec![false; n];
@@ -91,23 +100,64 @@ pub(crate) fn confirm_given_back(
             continue;
         }
         let p = tri.vertex_point(v);
+        let longest = longest[slot(v)];
         // An unused point is its own root, so it counts as outside every component.
         let apart = tri.mesh().neighbors(v).all(|w| {
             root[w.index()] == root[i]
-                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest[i]
+                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
         });
         dropped[r] = !apart;
     }
     if !dropped.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    Outcome::from(Some(
+    let mut kept = Vec::with_capacity(edges.len());
+    kept.extend(
         edges
             .iter()
             .filter(|&&[a, _]| !dropped[root[a.index()] as usize])
-            .copied()
-            .collect(),
-    ))
+            .copied(),
+    );
+    kept.shrink_to_fit();
+    Outcome::from(Some(kept))
+}
+
+/// Whether each edge of `edges` is missing from `before` (each list with distinct edges). The
+/// local outlier removal keeps its input's edges in their order and appends those it gives
+/// back, so one merge-like pass matches all but a short tail, and only the tail is looked up
+/// (sorted, against one pass over `before`). Reason: memory. A full adjacency of `before` took
+/// 20 bytes per point beside both lists; this holds a byte per edge and the tail. Exact for any
+/// two lists: an edge the pass cannot match falls into the tail and is looked up.
+fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
+    let mut missing = vec![false; edges.len()];
+    let mut at = 0;
+    let mut tail = edges.len();
+    for (k, e) in edges.iter().enumerate() {
+        match before[at..].iter().position(|b| b == e) {
+            Some(skip) => at += skip + 1,
+            None => {
+                tail = k;
+                break;
+            }
+        }
+    }
+    if tail < edges.len() {
+        let mut unmatched: Vec<(Edge, usize)> =
+            (tail..edges.len()).map(|k| (edges[k], k)).collect();
+        unmatched.sort_unstable();
+        for (_, k) in &unmatched {
+            missing[*k] = true;
+        }
+        for b in before {
+            let first = unmatched.partition_point(|&(e, _)| e < *b);
+            if let Some(&(e, k)) = unmatched.get(first) {
+                if e == *b {
+                    missing[k] = false;
+                }
+            }
+        }
+    }
+    missing
 }
 
 #[cfg(test)]
@@ -123,6 +173,35 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect()
+    }
+
+    /// Which edges are missing from the earlier list, against a lookup of each: on the stage's
+    /// usual shape (the earlier list's edges with some removed, new ones appended) and on lists
+    /// in any order, where the matching pass gives up early and the tail decides.
+    #[test]
+    fn missing_edges_are_found_whatever_the_order() {
+        let mut rng = crate::test_rng::Xorshift::new(31);
+        let e = |a: u64, b: u64| [VertexId::new(a as u32), VertexId::new(1000 + b as u32)];
+        for round in 0..300 {
+            let len = rng.below(30);
+            let before: Vec<Edge> = (0..len).map(|k| e(k, rng.below(5))).collect();
+            let mut edges: Vec<Edge> = before
+                .iter()
+                .copied()
+                .filter(|_| rng.below(3) != 0)
+                .collect();
+            edges.extend((0..rng.below(4)).map(|k| e(100 + k, 0)));
+            if round % 3 == 0 && edges.len() > 1 {
+                let k = rng.below(edges.len() as u64) as usize;
+                edges.swap(0, k);
+            }
+            let expected: Vec<bool> = edges.iter().map(|x| !before.contains(x)).collect();
+            assert_eq!(
+                missing_from(&edges, &before),
+                expected,
+                "{edges:?} {before:?}"
+            );
+        }
     }
 
     /// The stage's output in sorted input positions, or `None` when it changed nothing.

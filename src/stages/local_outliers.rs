@@ -159,26 +159,33 @@ pub(crate) fn remove_local_outliers(
         _ => Profile::of(tri, &graph),
     };
     if (rules.long_at_branches || rules.long_at_both_ends) && has_long_edge(tri, &profile.graph) {
-        if let Some(kept) = without_long_edges(tri, &graph, &profile, rules) {
-            graph = Cow::Owned(kept);
+        let dropped = long_edges(tri, &profile, rules);
+        if drop_edges(&mut graph, dropped) {
             profile.rebuild(tri, &graph);
         }
     }
     if rules.short_spurs && profile.graph.has_branch() {
-        if let Some(kept) = without_short_spurs(&profile.graph, &graph) {
-            graph = Cow::Owned(kept);
-            profile.rebuild(tri, &graph);
+        if let Some(dropped) = short_spurs(&profile.graph) {
+            if drop_edges(&mut graph, |&[a, b]| {
+                dropped[a.index()] || dropped[b.index()]
+            }) {
+                profile.rebuild(tri, &graph);
+            }
         }
     }
     // The profile's curve graph is that of `graph` until rule 4 removes a component.
-    let mut profile_current = true;
+    let mut profile = Some(profile);
     if rules.separated_components {
-        if let Some(kept) = separated_components(tri, &graph, &profile) {
-            graph = Cow::Owned(kept);
-            profile_current = false;
+        let judged = profile
+            .as_ref()
+            .and_then(|p| separated_components(tri, &graph, p));
+        if let Some((root, kept)) = judged {
+            // Not read again and not the output's: freed before the output is built.
+            profile = None;
+            drop_edges(&mut graph, |&[a, _]| !kept[root[a.index()] as usize]);
         }
     }
-    let output_graph = profile_current.then_some(profile.graph);
+    let output_graph = profile.map(|p| p.graph);
     match graph {
         Cow::Owned(changed) if changed.as_slice() != edges => Outcome {
             edges: Some(changed),
@@ -347,23 +354,22 @@ fn top_two(top: [f64; 2], l: f64) -> [f64; 2] {
     }
 }
 
-/// Rule 2: drops every edge long at an end with three or more edges, and every edge long at each
-/// of its ends that has other edges; `None` when it drops none.
-fn without_long_edges(
-    tri: &Triangulation,
-    edges: &[Edge],
-    profile: &Profile,
-    rules: &Rules,
-) -> Option<Vec<Edge>> {
+/// Rule 2: whether an edge is long at an end with three or more edges, or long at each of its
+/// ends that has other edges (the edges it drops).
+fn long_edges<'a>(
+    tri: &'a Triangulation,
+    profile: &'a Profile,
+    rules: &'a Rules,
+) -> impl FnMut(&Edge) -> bool + 'a {
     // `Some(true)` when an edge of squared length `l` is long at `v`; `None` when `v` has no
     // other edge.
-    let long_at = |v: VertexId, l: f64| {
+    let long_at = move |v: VertexId, l: f64| {
         profile
             .other_than(tri, v, l)
             .map(|other| l > LONG * LONG * other)
     };
     let degree = |v: VertexId| profile.graph.degree(v);
-    let dropped = |&[a, b]: &Edge| {
+    move |&[a, b]: &Edge| {
         let l = length2(tri, [a, b]);
         let (at_a, at_b) = (long_at(a, l), long_at(b, l));
         let at_branch =
@@ -371,18 +377,47 @@ fn without_long_edges(
         let at_both =
             (at_a.is_some() || at_b.is_some()) && at_a != Some(false) && at_b != Some(false);
         (rules.long_at_branches && at_branch) || (rules.long_at_both_ends && at_both)
-    };
-    // Each edge is judged once: those before the first dropped one are kept as they are.
-    let first = edges.iter().position(dropped)?;
-    let mut kept = edges[..first].to_vec();
-    kept.extend(edges[first + 1..].iter().filter(|e| !dropped(e)));
-    Some(kept)
+    }
 }
 
-/// Rule 3: drops every spur of fewer than [`MIN_SAMPLES`] vertices: a chain from a vertex with
-/// one edge through vertices with two up to a vertex with three or more (not counted). Each
-/// walk stops after [`MIN_SAMPLES`] steps; all are read from the same graph, `graph`, the curve
-/// graph of `edges`. `None` when it drops none. The caller skips it when no vertex has three
+/// Takes the edges `dropped` selects out of `graph`, the others kept in their order, judging
+/// each edge once; whether it took any. Reason: memory. The stage's input is borrowed and
+/// stays alive (the pipeline records what the stage changed), so a first change copies it once
+/// at its exact size; a later one filters that copy in place. Collecting into a new list instead
+/// grew it by doubling, up to twice its length, while the input and the previous copy were held
+/// (55 bytes per point at the stage's peak along curves).
+fn drop_edges(graph: &mut Cow<'_, [Edge]>, mut dropped: impl FnMut(&Edge) -> bool) -> bool {
+    let Some(first) = graph.iter().position(&mut dropped) else {
+        return false;
+    };
+    match graph {
+        Cow::Owned(list) => {
+            let mut count = first;
+            for k in first + 1..list.len() {
+                let e = list[k];
+                if !dropped(&e) {
+                    list[count] = e;
+                    count += 1;
+                }
+            }
+            list.truncate(count);
+        }
+        Cow::Borrowed(list) => {
+            let mut kept = Vec::with_capacity(list.len() - 1);
+            kept.extend_from_slice(&list[..first]);
+            kept.extend(list[first + 1..].iter().filter(|e| !dropped(e)).copied());
+            kept.shrink_to_fit();
+            *graph = Cow::Owned(kept);
+        }
+    }
+    true
+}
+
+/// Rule 3: marks the vertices of every spur of fewer than [`MIN_SAMPLES`] vertices (the rule
+/// drops the edges with an end among them): a chain from a vertex with one edge through
+/// vertices with two up to a vertex with three or more (not counted). Each walk stops after
+/// [`MIN_SAMPLES`] steps; all are read from the same graph, `graph`, the curve graph of the
+/// stage's current edges. `None` when there is no short spur. The caller skips it when no vertex has three
 /// edges: a spur ends at one, so without one there is none (the common case once the repair has
 /// run).
 ///
@@ -390,7 +425,7 @@ fn without_long_edges(
 /// end, two on the way), so its edges are those with an end among them: the walk marks
 /// vertices (a byte per point) and reads the curve graph the other rules share, where edge
 /// positions would need a full adjacency (17 bytes per point at the stage's peak).
-fn without_short_spurs(graph: &CurveGraph, edges: &[Edge]) -> Option<Vec<Edge>> {
+fn short_spurs(graph: &CurveGraph) -> Option<Vec<bool>> {
     let n = graph.vertex_count();
     let mut dropped = vec![false; n];
     let mut path: Vec<VertexId> = Vec::with_capacity(MIN_SAMPLES);
@@ -426,16 +461,7 @@ fn without_short_spurs(graph: &CurveGraph, edges: &[Edge]) -> Option<Vec<Edge>> 
             }
         }
     }
-    if !any {
-        return None;
-    }
-    Some(
-        edges
-            .iter()
-            .filter(|&&[a, b]| !dropped[a.index()] && !dropped[b.index()])
-            .copied()
-            .collect(),
-    )
+    any.then_some(dropped)
 }
 
 /// The representative of `v`'s set, halving the path on the way.
@@ -467,14 +493,15 @@ pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
     parent
 }
 
-/// Rule 4: keeps the edges of the components with at least [`MIN_SAMPLES`] separated vertices;
-/// `None` when it keeps them all. Ids that are not vertices (merged duplicates) have no edge, so
+/// Rule 4: which components keep their edges (those with at least [`MIN_SAMPLES`] separated
+/// vertices), as each vertex's component and whether that component is kept; `None` when it
+/// keeps them all. Ids that are not vertices (merged duplicates) have no edge, so
 /// every loop goes over all ids and skips those without one.
 fn separated_components(
     tri: &Triangulation,
     edges: &[Edge],
     profile: &Profile,
-) -> Option<Vec<Edge>> {
+) -> Option<(Vec<u32>, Vec<bool>)> {
     let n = tri.num_points();
     let root = components(n, edges);
     // Separated vertices per component, counted up to the bound only (it fits a byte).
@@ -505,13 +532,7 @@ fn separated_components(
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
-    Some(
-        edges
-            .iter()
-            .filter(|&&[a, _]| kept[root[a.index()] as usize])
-            .copied()
-            .collect(),
-    )
+    Some((root, kept))
 }
 
 /// Marks as kept every component not kept yet that is a closed curve sampled as a curve: at
@@ -523,14 +544,15 @@ fn separated_components(
 fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], kept: &mut [bool]) {
     let n = root.len();
     let mut regular = vec![true; n];
-    let mut size = vec![0u32; n];
+    // Counted up to the bound only: a byte per point where a `u32` took four.
+    let mut size = vec![0u8; n];
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
         let r = r as usize;
         if kept[r] || graph.degree(v) == 0 {
             continue;
         }
-        size[r] += 1;
+        size[r] = size[r].saturating_add(1);
         let [y, z] = graph.first_two(v);
         regular[r] &= graph.degree(v) == 2 && smooth_and_regular(tri, v, y, z);
     }

@@ -51,6 +51,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
         q3 // a single edge
     };
     let threshold = q3 + factor * (q3 - q1);
+    drop(scratch);
     // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long
     // edges. Per vertex, bit 0 records an edge and bit 1 an edge within the bound.
     let mut seen = vec![0u8; tri.num_points()];
@@ -62,15 +63,20 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
     if !seen.contains(&1) {
         return unchanged;
     }
+    drop(seen);
     // Not above T: with a perfectly uniform sample IQR = 0 and every edge equals T exactly.
-    Outcome::from(Some(
+    // Allocated at the input's size and shrunk: collecting grew the list by doubling, up to
+    // twice what it holds, at a later stage's peak (the pipeline keeps it).
+    let mut kept = Vec::with_capacity(edges.len());
+    kept.extend(
         edges
             .iter()
             .zip(&lengths)
             .filter(|&(_, &length2)| length2 <= threshold)
-            .map(|(&edge, _)| edge)
-            .collect(),
-    ))
+            .map(|(&edge, _)| edge),
+    );
+    kept.shrink_to_fit();
+    Outcome::from(Some(kept))
 }
 
 #[cfg(test)]

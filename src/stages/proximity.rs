@@ -11,8 +11,9 @@
 //!
 //! Two passes compute this. With a fixed `u` the triangles are swept in memory order and every
 //! half-edge offers its destination to its origin, which keeps the two best offers (no chain of
-//! dependent loads). In parallel the triangles are cut into a few ranges swept at once, and each
-//! vertex merges its best offers from all ranges. The adaptive test needs the sum of the ring's
+//! dependent loads). In parallel the vertex ids are cut into a few ranges swept at once, each
+//! over all the triangles for the offers to its own vertices, into one shared array (each
+//! vertex then decides in place, where its offers were). The adaptive test needs the sum of the ring's
 //! lengths, and a floating-point sum depends on its order; so that mode walks each vertex's ring
 //! from its first half-edge, the same order whether the walks run one after the other or on
 //! rayon. Both passes keep candidates with the same update (`TwoBest`, ordered by squared length,
@@ -99,9 +100,8 @@ fn keep(uniformity: Uniformity, best: &TwoBest, (sum, count): (f64, u32)) -> [Ve
     [w1, if keep_second { w2 } else { VertexId::INFINITE }]
 }
 
-/// Most triangle ranges swept at once. Each range fills its own array of offers (24 bytes per
-/// vertex) that the merge reads back, so more ranges cost memory traffic that more threads do not
-/// repay.
+/// Most vertex ranges swept at once. Each sweep reads every triangle's corners to find its own
+/// vertices, so more ranges cost memory traffic that more threads do not repay.
 const MAX_SWEEP_RANGES: usize = 4;
 
 /// The proximity graph: the union over all vertices of their kept edges, each edge once, in a
@@ -121,44 +121,106 @@ pub(crate) fn proximity_graph(
             } else {
                 1
             };
-            let best = two_best_offers(tri, ranges);
-            union_of_kept(parallel, n, |v| keep(uniformity, &best[v], (0.0, 0)))
+            let mut best = two_best_offers(tri, ranges);
+            // Each vertex's choice replaces its offers in place (the ids of its record), so no
+            // second array of 8 bytes per point is held beside them.
+            let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
+            if parallel {
+                decide_all(&mut best, &decide, |b, pair| b.keep_only(pair));
+            }
+            list_kept(
+                &mut best,
+                (!parallel).then_some(&decide),
+                |b, pair| b.keep_only(pair),
+                TwoBest::kept,
+            )
         }
-        Uniformity::Adaptive => union_of_kept(parallel, n, ring_choice(tri, uniformity)),
+        Uniformity::Adaptive => {
+            let none = [VertexId::INFINITE; 2];
+            let choose = ring_choice(tri, uniformity);
+            let decide = |i: usize, _: &[VertexId; 2]| choose(i);
+            let mut kept = if parallel {
+                per_vertex(true, n, &choose)
+            } else {
+                alloc::vec![none; n]
+            };
+            list_kept(
+                &mut kept,
+                (!parallel).then_some(&decide),
+                |k, pair| *k = pair,
+                |k| *k,
+            )
+        }
     }
 }
 
-/// Every kept edge once: `choose(v)` gives what vertex `v` keeps. An edge both ends kept is
-/// listed by its smaller end only, so no sort is needed to drop repeats. In parallel every
-/// vertex chooses first, on rayon; otherwise each chooses just before listing, in the same pass.
-/// Every candidate is written and the count advances only past those that belong: whether one
-/// does is unpredictable, so it is not branched on.
-fn union_of_kept(
-    parallel: bool,
-    n: usize,
-    choose: impl Fn(usize) -> [VertexId; 2] + Sync,
+/// `decide` for every record, stored into it by `store`, on rayon.
+#[cfg(feature = "parallel")]
+fn decide_all<T: Send>(
+    records: &mut [T],
+    decide: &(impl Fn(usize, &T) -> [VertexId; 2] + Sync),
+    store: impl Fn(&mut T, [VertexId; 2]) + Sync,
+) {
+    use rayon::prelude::*;
+    records
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(4096)
+        .for_each(|(i, r)| {
+            let pair = decide(i, r);
+            store(r, pair);
+        });
+}
+
+#[cfg(not(feature = "parallel"))]
+fn decide_all<T>(
+    records: &mut [T],
+    decide: &impl Fn(usize, &T) -> [VertexId; 2],
+    store: impl Fn(&mut T, [VertexId; 2]),
+) {
+    for (i, r) in records.iter_mut().enumerate() {
+        let pair = decide(i, r);
+        store(r, pair);
+    }
+}
+
+/// Every kept edge once, from one record per vertex: `read` gives what a vertex keeps once it
+/// has decided. With `decide`, each vertex decides just before listing, in the same pass, and
+/// `store` writes its choice into its record; without, every record holds its choice already
+/// (decided on rayon). An edge both ends kept is listed by its smaller end only, so no sort is
+/// needed to drop repeats. Every candidate is written and the count advances only past those
+/// that belong: whether one does is unpredictable, so it is not branched on.
+fn list_kept<T>(
+    records: &mut [T],
+    decide: Option<&impl Fn(usize, &T) -> [VertexId; 2]>,
+    store: impl Fn(&mut T, [VertexId; 2]),
+    read: impl Fn(&T) -> [VertexId; 2],
 ) -> Vec<Edge> {
     let none = [VertexId::INFINITE; 2];
-    let mut kept = if parallel {
-        per_vertex(true, n, &choose)
-    } else {
-        alloc::vec![none; n]
-    };
-    // Curves keep about one edge per vertex, two at most: start at one and grow by half when a
-    // vertex might not find room for its two. A buffer sized for the worst case was 160 KB at
-    // 10k points, enough for glibc to hand it back and fault it in again on every run.
+    let n = records.len();
+    // Curves keep about one edge per vertex, two at most: start at one and grow by an eighth
+    // when a vertex might not find room for its two. A buffer sized for the worst case was 160
+    // KB at 10k points, enough for glibc to hand it back and fault it in again on every run; one
+    // grown by half held up to 4 bytes per point of filler beside the 24 of the offers, the
+    // stage's peak (large buffers grow in place, by `mremap`, so small steps cost no copy).
     let mut edges = alloc::vec![none; n + 2];
     let mut count = 0;
     for i in 0..n {
         if count + 2 > edges.len() {
-            edges.resize(edges.len() + edges.len() / 2, none);
+            edges.resize(edges.len() + (edges.len() / 8).max(2), none);
         }
-        let pair = if parallel { kept[i] } else { choose(i) };
-        kept[i] = pair;
+        let pair = match decide {
+            Some(decide) => {
+                let pair = decide(i, &records[i]);
+                store(&mut records[i], pair);
+                pair
+            }
+            None => read(&records[i]),
+        };
         let v = VertexId::new(i as u32);
         for w in pair {
-            // Only a smaller `w` can have listed the edge already.
-            let partner = kept.get(w.index()).unwrap_or(&none);
+            // Only a smaller `w` can have listed the edge already (and it has decided).
+            let partner = records.get(w.index()).map_or(none, &read);
             let listed_by_w = (w < v) & ((partner[0] == v) | (partner[1] == v));
             edges[count] = ordered(v, w);
             count += usize::from(!w.is_infinite() & !listed_by_w);
@@ -259,21 +321,6 @@ impl TwoBest {
         ];
     }
 
-    /// Takes in the offers `other` kept (the two best of a union are the two best of the two
-    /// best of each part).
-    #[cfg(feature = "parallel")]
-    #[inline]
-    fn merge(&mut self, other: &TwoBest) {
-        for k in 0..2 {
-            if other.ids[k] != u32::MAX {
-                self.offer(
-                    f64::from_bits(other.lengths[k]),
-                    VertexId::new(other.ids[k]),
-                );
-            }
-        }
-    }
-
     /// `(squared length, neighbour)` of the best (`k = 0`) or second best offer.
     #[inline]
     fn get(&self, k: usize) -> (f64, VertexId) {
@@ -282,35 +329,49 @@ impl TwoBest {
         }
         (f64::from_bits(self.lengths[k]), VertexId::new(self.ids[k]))
     }
-}
 
-/// For every vertex, its two best offers, from `ranges` ranges of triangles swept at once.
-fn two_best_offers(tri: &Triangulation, ranges: usize) -> Vec<TwoBest> {
-    let triangles = tri.mesh().num_triangles_with_ghosts();
-    if ranges <= 1 {
-        return sweep(tri, 0..triangles);
+    /// Replaces the offers by the neighbours the vertex keeps (read back by
+    /// [`TwoBest::kept`]); the lengths are not read again.
+    #[inline]
+    fn keep_only(&mut self, pair: [VertexId; 2]) {
+        self.ids = pair.map(|w| w.index() as u32);
     }
-    merge_ranges(tri, ranges, triangles)
+
+    /// The neighbours stored by [`TwoBest::keep_only`].
+    #[inline]
+    fn kept(&self) -> [VertexId; 2] {
+        self.ids.map(VertexId::new)
+    }
 }
 
-#[cfg(feature = "parallel")]
-fn merge_ranges(tri: &Triangulation, ranges: usize, triangles: usize) -> Vec<TwoBest> {
-    use rayon::prelude::*;
-    let mut parts: Vec<Vec<TwoBest>> = (0..ranges)
-        .into_par_iter()
-        .map(|k| sweep(tri, k * triangles / ranges..(k + 1) * triangles / ranges))
-        .collect();
-    let mut best = parts.swap_remove(0);
-    best.par_iter_mut()
-        .enumerate()
-        .with_min_len(4096)
-        .for_each(|(v, two)| parts.iter().for_each(|part| two.merge(&part[v])));
+/// For every vertex, its two best offers, from `parts` sweeps at once, each over every triangle
+/// for the vertices of its own range of ids.
+fn two_best_offers(tri: &Triangulation, parts: usize) -> Vec<TwoBest> {
+    let mut best = alloc::vec![TwoBest::EMPTY; tri.num_points()];
+    if parts <= 1 {
+        sweep(tri, &mut best, None);
+    } else {
+        sweep_parts(tri, &mut best, parts);
+    }
     best
 }
 
+/// The vertices cut into `parts` ranges of ids, each swept on its own worker into its own part
+/// of `best`. Reason: memory. Cutting the triangles instead gave each range a whole array of
+/// offers (24 bytes per point each) for a merge; here the ranges share one, and every worker
+/// reads all the corners (12 bytes a triangle, in order) to find its own.
+#[cfg(feature = "parallel")]
+fn sweep_parts(tri: &Triangulation, best: &mut [TwoBest], parts: usize) {
+    use rayon::prelude::*;
+    let size = best.len().div_ceil(parts);
+    best.par_chunks_mut(size)
+        .enumerate()
+        .for_each(|(k, part)| sweep(tri, part, Some(k * size)));
+}
+
 #[cfg(not(feature = "parallel"))]
-fn merge_ranges(tri: &Triangulation, _ranges: usize, triangles: usize) -> Vec<TwoBest> {
-    sweep(tri, 0..triangles)
+fn sweep_parts(tri: &Triangulation, best: &mut [TwoBest], _parts: usize) {
+    sweep(tri, best, None);
 }
 
 /// How many triangles ahead the sweep asks for the points and records it will read: far
@@ -318,26 +379,34 @@ fn merge_ranges(tri: &Triangulation, _ranges: usize, triangles: usize) -> Vec<Tw
 /// the first-level cache (32 triangles touch at most 96 points and 96 records, 12 KB).
 const PREFETCH_TRIANGLES: usize = 32;
 
-/// The two best offers every vertex gets from the half-edges of `triangles`: each finite
-/// half-edge offers its destination to its origin.
-fn sweep(tri: &Triangulation, triangles: core::ops::Range<usize>) -> Vec<TwoBest> {
-    if tri.num_points() >= PREFETCH_FROM {
-        sweep_with::<true>(tri, triangles)
-    } else {
-        sweep_with::<false>(tri, triangles)
+/// The two best offers the half-edges of every triangle make: each finite half-edge offers its
+/// destination to its origin. `best` holds the records of every vertex (`first` is `None`), or
+/// those of the ids from `first` on, and only their offers are taken.
+fn sweep(tri: &Triangulation, best: &mut [TwoBest], first: Option<usize>) {
+    match (tri.num_points() >= PREFETCH_FROM, first) {
+        (true, None) => sweep_with::<true, false>(tri, best, 0),
+        (false, None) => sweep_with::<false, false>(tri, best, 0),
+        (true, Some(first)) => sweep_with::<true, true>(tri, best, first),
+        (false, Some(first)) => sweep_with::<false, true>(tri, best, first),
     }
 }
 
 /// [`sweep`], prefetching the corners' points and records [`PREFETCH_TRIANGLES`] triangles
-/// ahead when `PREFETCH` ([`crate::prefetch`]).
-fn sweep_with<const PREFETCH: bool>(
+/// ahead when `PREFETCH` ([`crate::prefetch`]); `PART` when `best` holds the records of the ids
+/// from `first` on only.
+fn sweep_with<const PREFETCH: bool, const PART: bool>(
     tri: &Triangulation,
-    triangles: core::ops::Range<usize>,
-) -> Vec<TwoBest> {
-    let mut best = alloc::vec![TwoBest::EMPTY; tri.num_points()];
+    best: &mut [TwoBest],
+    first: usize,
+) {
+    // Where `u`'s record is, if `best` holds it: an infinite corner's (`u32::MAX`) never is.
+    let slot = |u: VertexId| u.index().wrapping_sub(first);
     let offer = |best: &mut [TwoBest], u: VertexId, w: VertexId| {
-        best[u.index()].offer(tri.vertex_point(u).dist2(tri.vertex_point(w)), w);
+        if !PART || slot(u) < best.len() {
+            best[slot(u)].offer(tri.vertex_point(u).dist2(tri.vertex_point(w)), w);
+        }
     };
+    let triangles = 0..tri.mesh().num_triangles_with_ghosts();
     let ahead = tri.mesh().corner_slice(triangles.clone());
     let points = tri.vertex_points();
     for (k, corners) in tri.mesh().triangle_corners(triangles).enumerate() {
@@ -345,8 +414,10 @@ fn sweep_with<const PREFETCH: bool>(
             // A ghost's infinite corner is out of range: `prefetch` skips it.
             let next = 3 * (k + PREFETCH_TRIANGLES);
             for &v in ahead.get(next..next + 3).unwrap_or(&[]) {
-                prefetch(points, v.index());
-                prefetch(&best, v.index());
+                if !PART || slot(v) < best.len() {
+                    prefetch(points, v.index());
+                    prefetch(best, slot(v));
+                }
             }
         }
         let [a, b, c] = corners;
@@ -355,16 +426,15 @@ fn sweep_with<const PREFETCH: bool>(
             for k in 0..3 {
                 let (u, w) = (corners[k], corners[(k + 1) % 3]);
                 if !u.is_infinite() && !w.is_infinite() {
-                    offer(&mut best, u, w);
+                    offer(best, u, w);
                 }
             }
         } else {
-            offer(&mut best, a, b);
-            offer(&mut best, b, c);
-            offer(&mut best, c, a);
+            offer(best, a, b);
+            offer(best, b, c);
+            offer(best, c, a);
         }
     }
-    best
 }
 
 #[cfg(test)]
@@ -404,6 +474,16 @@ mod tests {
                 "{uniformity:?}: an edge listed twice"
             );
             assert_eq!(listed, expected, "{uniformity:?}");
+            if let Uniformity::Fixed(_) = uniformity {
+                // As the parallel path lists them: swept in two ranges, decided first, in place.
+                let mut best = two_best_offers(&tri, 2);
+                let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
+                decide_all(&mut best, &decide, |b, pair| b.keep_only(pair));
+                let none: Option<&fn(usize, &TwoBest) -> [VertexId; 2]> = None;
+                let decided =
+                    list_kept(&mut best, none, |b, pair| b.keep_only(pair), TwoBest::kept);
+                assert_eq!(decided, union, "{uniformity:?}");
+            }
             if uniformity == Uniformity::Fixed(100.0) {
                 assert!(
                     union.len() > n + 2,
@@ -414,7 +494,7 @@ mod tests {
         }
     }
 
-    /// The sweep (in one to four triangle ranges, merged) and the ring walks (sequential and on
+    /// The sweep (in one to four vertex ranges) and the ring walks (sequential and on
     /// rayon, run here at any size) choose the same neighbours for every vertex.
     #[test]
     fn sweep_and_ring_walks_agree_on_every_vertex() {

@@ -65,7 +65,7 @@
 //! ground-truth sets of `shared/data` (`cargo run --release --example evaluate -- --compare`):
 //! 25 exact as `Paper`, mean F1 0.9248 against 0.9245.
 
-use crate::adjacency::{degrees, ordered, Adjacency, Edge};
+use crate::adjacency::{degrees, ordered, BranchAdjacency, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
@@ -188,7 +188,8 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     if degree.iter().all(|&d| d <= 2) {
         return None;
     }
-    let graph = Adjacency::new(vertex_count, edges);
+    // Only the non-manifold vertices' lists are read.
+    let graph = BranchAdjacency::new(&degree, edges);
     // Scratch space of `Repair::Needs`, reused by every vertex.
     let mut pairs = needs::Pairs::new();
     // Lines 6–12: every non-manifold vertex selects its edges (up to four for a crossing).
@@ -215,7 +216,6 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
         });
         selections.push((v, chosen));
     }
-    // The adjacency (20 bytes per point) is not read again: freed before the output is built.
     drop(graph);
     // `selections` is in increasing vertex id, so a binary search finds a vertex's choice.
     let selected_by = |w: VertexId, v: VertexId| {
@@ -224,11 +224,15 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
             .is_ok_and(|k| selections[k].1.contains(&v))
     };
     // Algorithm 2, lines 3–5: edges between manifold vertices stay.
-    let mut kept: Vec<Edge> = edges
-        .iter()
-        .copied()
-        .filter(|&[a, b]| manifold(a) && manifold(b))
-        .collect();
+    // Every edge of the output is an input edge, listed once: the input's length is room
+    // enough, where collecting grew the list by doubling (up to twice its length).
+    let mut kept: Vec<Edge> = Vec::with_capacity(edges.len());
+    kept.extend(
+        edges
+            .iter()
+            .copied()
+            .filter(|&[a, b]| manifold(a) && manifold(b)),
+    );
     for &(v, chosen) in &selections {
         for &w in chosen.iter().filter(|w| !w.is_infinite()) {
             let keep = if manifold(w) {
@@ -245,6 +249,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
             }
         }
     }
+    kept.shrink_to_fit();
     Some(kept)
 }
 

@@ -11,7 +11,7 @@ use condt::io::{
     write_npy_triangulation_edges, write_polylines, write_svg, write_triangles,
     write_triangulation_edges, IoError,
 };
-use condt::{reconstruct, triangulate, Error, Method, Params, Point, Repair, Uniformity};
+use condt::{reconstruct_owned, triangulate, Error, Method, Params, Point, Repair, Uniformity};
 use std::ffi::{OsStr, OsString};
 use std::fmt;
 use std::io::{self, Write};
@@ -656,7 +656,9 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     let destination = Destination::prepare(args.output.as_deref())?;
     let points = read_input(args.input.as_deref(), args.params.parallel)?;
     timings.lap("read");
-    let result = reconstruct(&points, &args.params)
+    let count = points.len();
+    // Handed over: freed once triangulated, so the stages' peak does not hold them.
+    let result = reconstruct_owned(points, &args.params)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     let call = timings.quiet_lap();
     timings.reconstruction(&result, call);
@@ -669,12 +671,12 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
     })?;
     timings.lap("write");
-    note_duplicates(points.len(), result.triangulation().num_vertices());
+    note_duplicates(count, result.triangulation().num_vertices());
     let curves = result.curves();
     let closed = curves.iter().filter(|c| c.is_closed()).count();
     note(format_args!(
         "{} points, {} curves ({closed} closed, {} open), {} unused",
-        points.len(),
+        count,
         curves.len(),
         curves.len() - closed,
         result.unused().len()
