@@ -131,7 +131,7 @@ impl BranchAdjacency {
 /// memory. The graph is held at the reconstruction's highest phases (the local outlier stage
 /// and the last step), where a 12-byte record (the degree in a word of its own) was 12 bytes per
 /// point of the peak.
-#[cfg_attr(test, derive(Debug, PartialEq))]
+#[derive(Debug, PartialEq)]
 pub(crate) struct CurveGraph {
     /// Per vertex id: the first neighbour's id in the low [`ID_BITS`] bits of the first word and
     /// the degree (up to [`DEGREE_SATURATED`]) above them, the second neighbour's id in the

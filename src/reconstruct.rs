@@ -250,7 +250,7 @@ impl Params {
     }
 
     /// The steps after the proximity graph, in order: the one place the order is decided.
-    pub(crate) fn steps(&self) -> impl Iterator<Item = Step> {
+    fn steps(&self) -> impl Iterator<Item = Step> {
         let repair = (self.repair != Repair::Off).then_some(Step::Repair(self.repair));
         let outliers = self.outlier_factor.map(|factor| Step::Outliers { factor });
         let (first, second) = if self.outliers_first {
@@ -800,6 +800,11 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
                 Undo::of(input, &current)
             }
         };
+        // A handed-on graph must be the curve graph of exactly the list the next stage reads
+        // (checked in debug builds, so every test of the pipeline checks it).
+        debug_assert!(current_graph
+            .as_ref()
+            .is_none_or(|graph| *graph == CurveGraph::new(tri.num_points(), &current)));
         records.push(StageRecord {
             stage: step.stage(),
             undo,
@@ -958,6 +963,7 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sample::{sample, Clumps, Sampling, Shape};
     use crate::test_rng::Xorshift;
 
     fn edge(a: u32, b: u32) -> Edge {
@@ -1074,5 +1080,82 @@ mod tests {
             reports.iter().skip(1).any(|r| r.applied),
             "some stage changed the graph"
         );
+    }
+
+    /// A stage given the curve graph of its input decides exactly as one that builds its own,
+    /// and the graph it hands on is the curve graph of its output: on noisy, crossing curves
+    /// with outliers and clumps, where every stage changes something, and on a clean circle,
+    /// where none does.
+    #[test]
+    fn a_handed_on_curve_graph_is_that_of_the_stage_output_and_changes_nothing() {
+        let shapes = [
+            Shape::FigureEight {
+                center: Point::new(0.0, 0.0),
+                size: 2.0,
+            },
+            Shape::circle(Point::new(5.0, 0.0), 1.0),
+            Shape::Arc {
+                center: Point::new(0.0, 5.0),
+                radius: 1.5,
+                start: 0.0,
+                sweep: 4.0,
+            },
+        ];
+        let (mut clean_seeds, mut clean_reaching_the_end) = (0, 0);
+        for seed in 0..12u64 {
+            let sampling = Sampling {
+                noise: if seed % 3 == 0 { 0.0 } else { 0.02 },
+                outlier_fraction: if seed % 2 == 0 { 0.0 } else { 0.05 },
+                outlier_clumps: (seed % 4 == 1).then_some(Clumps {
+                    min: 3,
+                    max: 7,
+                    radius: 0.1,
+                }),
+                seed,
+                ..Sampling::new(0.08)
+            };
+            let points = sample(&shapes, &sampling).points;
+            let tri = triangulate(&points).unwrap();
+            let n = tri.num_points();
+            let params = Params::default();
+            let mut current = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
+            let mut graph: Option<CurveGraph> = None;
+            let (mut before_outliers, mut before_local) = (current.clone(), current.clone());
+            for step in params.steps() {
+                if matches!(step, Step::Outliers { .. }) {
+                    before_outliers = current.clone();
+                }
+                if step == Step::LocalOutliers {
+                    before_local = current.clone();
+                }
+                let earlier = Earlier {
+                    before_outliers: &before_outliers,
+                    before_local: if step == Step::ConfirmGivenBack && before_local == current {
+                        &current
+                    } else {
+                        &before_local
+                    },
+                };
+                let given = graph.is_some();
+                let with = step.run(&tri, &current, earlier, graph.take());
+                let without = step.run(&tri, &current, earlier, None);
+                assert_eq!(
+                    with.edges, without.edges,
+                    "seed {seed}, {step:?}, given {given}"
+                );
+                let output = with.edges.unwrap_or_else(|| current.clone());
+                if let Some(g) = &with.graph {
+                    assert_eq!(*g, CurveGraph::new(n, &output), "seed {seed}, {step:?}");
+                }
+                graph = with.graph;
+                current = output;
+            }
+            // Where no stage changes anything (no noise, no outliers), the local outlier
+            // removal's graph reaches the curves.
+            let clean = sampling.noise == 0.0 && sampling.outlier_fraction == 0.0;
+            clean_reaching_the_end += usize::from(clean && graph.is_some());
+            clean_seeds += usize::from(clean);
+        }
+        assert_eq!(clean_reaching_the_end, clean_seeds);
     }
 }

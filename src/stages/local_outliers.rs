@@ -132,15 +132,15 @@ impl Rules {
 
 /// The stage on `edges`, the graph the IQR stage and the repair left; `before` is the graph the
 /// IQR stage started from (`edges` itself when it did not run); rule 1 gives an edge back only
-/// at vertices that gained no edge since. Unchanged when no rule changes anything. `graph` is
-/// the curve graph of `edges` when the caller has it; the outcome carries that of the output
-/// unless rule 4 changed it (the later stages rarely need it then).
+/// at vertices that gained no edge since. Unchanged when no rule changes anything. The outcome
+/// carries the curve graph of the output (`Outcome::graph`), which gap closing and the curves
+/// read, unless rule 4 changed the edges: its profile is then stale and freed before the output
+/// is built, and the next stage that reads a graph builds one.
 pub(crate) fn remove_local_outliers(
     tri: &Triangulation,
     edges: &[Edge],
     before: &[Edge],
     rules: &Rules,
-    graph_of_edges: Option<CurveGraph>,
 ) -> Outcome {
     // The input is copied only once a rule changes it (on a clean curve none does).
     let mut graph = Cow::Borrowed(edges);
@@ -154,10 +154,7 @@ pub(crate) fn remove_local_outliers(
     }
     // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and rebuilt
     // only after a rule changed the graph.
-    let mut profile = match graph_of_edges {
-        Some(built) if matches!(graph, Cow::Borrowed(_)) => Profile { graph: built },
-        _ => Profile::of(tri, &graph),
-    };
+    let mut profile = Profile::of(tri, &graph);
     if (rules.long_at_branches || rules.long_at_both_ends) && has_long_edge(tri, &profile.graph) {
         let dropped = long_edges(tri, &profile, rules);
         if drop_edges(&mut graph, dropped) {
@@ -766,7 +763,7 @@ mod tests {
 
     /// The stage with `rules` on `edges` (nothing cut before), in sorted input positions.
     fn apply(tri: &Triangulation, edges: &[Edge], rules: Rules) -> Option<Vec<[usize; 2]>> {
-        let outcome = remove_local_outliers(tri, edges, edges, &rules, None);
+        let outcome = remove_local_outliers(tri, edges, edges, &rules);
         outcome
             .edges
             .map(|e| crate::Graph::new(tri, alloc::borrow::Cow::Owned(e)).edges())
