@@ -1,11 +1,11 @@
 //! Edge lists in vertex ids and their adjacency: the internal form of the graphs the stages pass
 //! to each other and curves are read from.
 //!
-//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), its compressed adjacency, the curve
-//! graph that keeps each vertex's degree and first two neighbours in one record for walking
-//! curves, and the O(n)
-//! pair sort. It may not look at coordinates, and nothing here is public: users see edges in input
-//! positions through [`Graph`](crate::Graph).
+//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), the curve graph that keeps each
+//! vertex's degree and first two neighbours in one record for walking curves, the branch
+//! adjacency of the vertices with three or more edges, the exact-size collection of a filtered
+//! list, and the O(n) pair sort. It may not look at coordinates, and nothing here is public:
+//! users see edges in input positions through [`Graph`](crate::Graph).
 
 use crate::mesh::VertexId;
 use alloc::vec;
@@ -164,7 +164,7 @@ impl CurveGraph {
     /// The largest number of vertices a curve graph holds (ids must fit [`ID_BITS`]).
     pub(crate) const MAX_VERTICES: usize = NO_ID as usize;
 
-    /// The graph of `edges` (as for [`Adjacency::new`]) over `vertex_count` vertices
+    /// The graph of `edges` (each edge once, `[a, b]` with `a < b`, any order) over `vertex_count` vertices
     /// (at most [`CurveGraph::MAX_VERTICES`]). Neighbours come in the order the edges are listed.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
         assert!(vertex_count <= Self::MAX_VERTICES);
@@ -351,6 +351,17 @@ pub(crate) fn sort_pairs<T: Copy + Ord>(
         begin = end as usize;
     }
     out
+}
+
+/// The edges of `edges` (at most `room` of them) in one list of their exact length. Reason:
+/// memory. A stage's filtered output is held beside its input (the pipeline records what the
+/// stage changed) at the reconstruction's highest phases; collecting grew the list by
+/// doubling, up to twice what it holds, where this allocates `room` once and shrinks in place.
+pub(crate) fn collect_exact(room: usize, edges: impl Iterator<Item = Edge>) -> Vec<Edge> {
+    let mut list = Vec::with_capacity(room);
+    list.extend(edges);
+    list.shrink_to_fit();
+    list
 }
 
 /// The degree of every vertex in `edges`, indexed by vertex id.

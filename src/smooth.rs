@@ -123,6 +123,14 @@ mod tests {
     use crate::{reconstruct, triangulate, Params, Point};
     use alloc::vec::Vec;
 
+    /// The corners of the unit square, counter-clockwise from the origin.
+    const UNIT_SQUARE: [Point; 4] = [
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(1.0, 1.0),
+        Point::new(0.0, 1.0),
+    ];
+
     #[test]
     fn smoothing_gives_the_same_edges_at_the_ends_of_the_double_range() {
         let noisy = sample(
@@ -216,12 +224,7 @@ mod tests {
     /// Clean closed curves: the first reconstruction is only cycles, so no pass runs.
     #[test]
     fn clean_closed_curves_run_no_pass() {
-        let square = Shape::Polygon(alloc::vec![
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0, 1.0),
-            Point::new(0.0, 1.0),
-        ]);
+        let square = Shape::Polygon(UNIT_SQUARE.to_vec());
         let circle = Shape::circle(Point::new(3.0, 0.0), 1.0);
         let clean = sample(&[square, circle], &Sampling::new(0.2));
         let result = reconstruct(&clean.points, &Params::default()).unwrap();
@@ -262,12 +265,7 @@ mod tests {
     /// nothing and the passes stop; a sharp corner's sample does not move.
     #[test]
     fn clean_open_curve_runs_one_pass_that_keeps_its_edges_and_corners() {
-        let square = Shape::Polygon(alloc::vec![
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0, 1.0),
-            Point::new(0.0, 1.0),
-        ]);
+        let square = Shape::Polygon(UNIT_SQUARE.to_vec());
         let arc = Shape::Arc {
             center: Point::new(3.0, 0.0),
             radius: 1.0,
@@ -290,12 +288,7 @@ mod tests {
         assert_eq!(smoothing.passes, 1);
         assert!(smoothing.moved > 0);
         // The square's corners (right angles) stay where they were.
-        for fixed in [
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0, 1.0),
-            Point::new(0.0, 1.0),
-        ] {
+        for fixed in UNIT_SQUARE {
             let i = (0..clean.points.len())
                 .find(|&i| clean.points[i] == fixed)
                 .unwrap();

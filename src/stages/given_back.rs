@@ -35,7 +35,7 @@
 
 use super::local_outliers::SEPARATION;
 use super::Outcome;
-use crate::adjacency::{CurveGraph, Edge};
+use crate::adjacency::{collect_exact, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -111,15 +111,13 @@ pub(crate) fn confirm_given_back(
     if !dropped.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    let mut kept = Vec::with_capacity(edges.len());
-    kept.extend(
+    Outcome::from(Some(collect_exact(
+        edges.len(),
         edges
             .iter()
             .filter(|&&[a, _]| !dropped[root[a.index()] as usize])
             .copied(),
-    );
-    kept.shrink_to_fit();
-    Outcome::from(Some(kept))
+    )))
 }
 
 /// Whether each edge of `edges` is missing from `before` (each list with distinct edges). The

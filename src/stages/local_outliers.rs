@@ -64,7 +64,7 @@
 //! where a rule reads them rather than stored.
 
 use super::Outcome;
-use crate::adjacency::{CurveGraph, Edge};
+use crate::adjacency::{collect_exact, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
@@ -400,11 +400,9 @@ fn drop_edges(graph: &mut Cow<'_, [Edge]>, mut dropped: impl FnMut(&Edge) -> boo
             list.truncate(count);
         }
         Cow::Borrowed(list) => {
-            let mut kept = Vec::with_capacity(list.len() - 1);
-            kept.extend_from_slice(&list[..first]);
-            kept.extend(list[first + 1..].iter().filter(|e| !dropped(e)).copied());
-            kept.shrink_to_fit();
-            *graph = Cow::Owned(kept);
+            let rest = list[first + 1..].iter().filter(|e| !dropped(e));
+            let kept = list[..first].iter().chain(rest).copied();
+            *graph = Cow::Owned(collect_exact(list.len() - 1, kept));
         }
     }
     true

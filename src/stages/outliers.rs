@@ -11,7 +11,7 @@
 //! the evidence.
 
 use super::Outcome;
-use crate::adjacency::Edge;
+use crate::adjacency::{collect_exact, Edge};
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -65,18 +65,14 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
     }
     drop(seen);
     // Not above T: with a perfectly uniform sample IQR = 0 and every edge equals T exactly.
-    // Allocated at the input's size and shrunk: collecting grew the list by doubling, up to
-    // twice what it holds, at a later stage's peak (the pipeline keeps it).
-    let mut kept = Vec::with_capacity(edges.len());
-    kept.extend(
+    Outcome::from(Some(collect_exact(
+        edges.len(),
         edges
             .iter()
             .zip(&lengths)
             .filter(|&(_, &length2)| length2 <= threshold)
             .map(|(&edge, _)| edge),
-    );
-    kept.shrink_to_fit();
-    Outcome::from(Some(kept))
+    )))
 }
 
 #[cfg(test)]
