@@ -139,7 +139,16 @@ fn pipeline(c: &mut Criterion) {
             .sample_size(10)
             .warm_up_time(Duration::from_millis(500))
             .sampling_mode(SamplingMode::Flat);
+        // The stages are measured against the triangulation on one thread; with the `parallel`
+        // feature a set of 65,536 points or more is triangulated in two halves at once.
+        let one_thread = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
         group.bench_function("triangulation", |b| {
+            one_thread.install(|| b.iter(|| triangulate(&points).unwrap()))
+        });
+        group.bench_function("triangulation_parallel", |b| {
             b.iter(|| triangulate(&points).unwrap())
         });
         for parallel in [false, true] {

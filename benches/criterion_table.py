@@ -12,9 +12,9 @@ def med(g, b):
     return json.load(open(p))["median"]["point_estimate"] / 1e6  # ms
 def fmt(ms):
     return "—" if ms is None else (f"{ms/1000:.2f} s" if ms >= 1000 else f"{ms:.1f} ms" if ms >= 10 else f"{ms:.2f} ms")
-print("| input | condt | spade `bulk_load` | delaunator | Hilbert sort | condt / spade | condt / delaunator | condt / sort |")
-print("|---|---|---|---|---|---|---|---|")
+print("| input | condt | condt, 2 threads | spade `bulk_load` | delaunator | Hilbert sort | condt / spade | condt / delaunator | condt / sort |")
+print("|---|---|---|---|---|---|---|---|---|")
 for g in groups:
-    c, s, d, h = med(g, "condt"), med(g, "spade_bulk_load"), med(g, "delaunator"), med(g, "hilbert_sort")
+    c, p, s, d, h = (med(g, b) for b in ("condt", "condt_parallel", "spade_bulk_load", "delaunator", "hilbert_sort"))
     r = lambda a, b: "—" if a is None or b is None else f"{a/b:.3f}"
-    print(f"| {g} | {fmt(c)} | {fmt(s)} | {fmt(d)} | {fmt(h)} | {r(c,s)} | {r(c,d)} | {r(c,h)} |")
+    print(f"| {g} | {fmt(c)} | {fmt(p)} | {fmt(s)} | {fmt(d)} | {fmt(h)} | {r(c,s)} | {r(c,d)} | {r(c,h)} |")

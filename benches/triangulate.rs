@@ -1,7 +1,9 @@
 //! Triangulation benchmarks: condt against spade's `bulk_load` and delaunator on the same inputs,
 //! so that ratios come from one run, and against condt's own spatial sort of the same points
 //! (`hilbert_sort`), the cost floor any insertion-order triangulator pays. Single-threaded
-//! throughout.
+//! throughout (condt and its sort run inside a one-thread rayon pool), except `condt_parallel`:
+//! condt on rayon's global pool, which builds a set of 65,536 points or more in two halves at
+//! once (the same triangulation).
 //!
 //! Run all: `cargo bench --bench triangulate`; one group: `cargo bench --bench triangulate -- uniform_1M`.
 
@@ -35,6 +37,10 @@ fn inputs() -> Vec<(&'static str, Vec<Point>)> {
 }
 
 fn triangulators(c: &mut Criterion) {
+    let one_thread = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
     for (name, points) in inputs() {
         // Every input is checked once before it is timed: a fast wrong mesh is no result.
         let tri = condt::triangulate(&points).unwrap();
@@ -50,6 +56,11 @@ fn triangulators(c: &mut Criterion) {
         // Every routine is timed without freeing its result: iter_batched (spade) never times the
         // drop, so the others use iter_with_large_drop.
         group.bench_function("condt", |b| {
+            one_thread.install(|| {
+                b.iter_with_large_drop(|| condt::triangulate(black_box(&points)).unwrap())
+            })
+        });
+        group.bench_function("condt_parallel", |b| {
             b.iter_with_large_drop(|| condt::triangulate(black_box(&points)).unwrap())
         });
 
@@ -75,8 +86,10 @@ fn triangulators(c: &mut Criterion) {
 
         // The yardstick: condt's spatial sort alone (input check, BRIO rounds, Hilbert order).
         group.bench_function("hilbert_sort", |b| {
-            b.iter_with_large_drop(|| {
-                condt::Triangulation::insertion_order(black_box(&points)).unwrap()
+            one_thread.install(|| {
+                b.iter_with_large_drop(|| {
+                    condt::Triangulation::insertion_order(black_box(&points)).unwrap()
+                })
             })
         });
         group.finish();

@@ -36,7 +36,9 @@ use crate::mesh::VertexId;
 use crate::prefetch::PREFETCH_FROM;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Repair, Stage, Step, Uniformity, PARALLEL_FROM};
-use crate::triangulate::{triangulate, Triangulation};
+#[cfg(test)]
+use crate::triangulate::triangulate;
+use crate::triangulate::{triangulate_with, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::time::Duration;
@@ -622,7 +624,7 @@ impl Stopwatch {
 /// Triangulates `points` and reconstructs the curves through them.
 ///
 /// # Errors
-/// As [`triangulate`]: non-finite coordinates, an over-wide dynamic range, too many points; and
+/// As [`triangulate`](crate::triangulate()): non-finite coordinates, an over-wide dynamic range, too many points; and
 /// [`Error::InvalidParameter`] when [`Params::check`] refuses `params` (checked first).
 pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, Error> {
     reconstruct_input(Cow::Borrowed(points), params)
@@ -670,7 +672,7 @@ fn gives_back(tri: &Triangulation, points: &[Point]) -> bool {
 fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Reconstruction, Error> {
     params.check()?;
     let mut clock = Stopwatch::start();
-    let tri = triangulate(&points)?;
+    let tri = triangulate_with(&points, params.parallel)?;
     let triangulation_time = clock.lap();
     let n = points.len();
     let points = match points {
@@ -701,7 +703,7 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
             // The replaced pass's triangulation is an earlier pass's cost too.
             earlier_passes += triangulation_time;
             earlier_passes += clock.lap();
-            let tri = triangulate(&positions)?;
+            let tri = triangulate_with(&positions, params.parallel)?;
             drop(positions);
             let triangulation_time = clock.lap();
             result = reconstruct_triangulation(tri, params)?;

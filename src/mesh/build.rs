@@ -1,14 +1,17 @@
 //! Construction of a [`Mesh`]: the one place outside `mesh/mod.rs` that writes its arrays.
 //!
-//! Owns: the half-edge arrays (`origins`, `twins`) while a mesh is being built, and the step that
-//! seals them ([`MeshBuilder::finish`], which derives `vertex_edges`). It offers the triangulator
-//! exactly the edits it makes: append a triangle, overwrite a triangle's corners, link two twins,
-//! and the reads it needs between edits.
+//! Owns: the half-edge arrays (`origins`, `twins`) while a mesh is being built. [`MeshArrays`]
+//! holds them, sized once for the whole construction; a [`MeshBuilder`] is lent a range of them
+//! and offers the triangulator exactly the edits it makes (append a triangle, overwrite a
+//! triangle's corners, link two twins) and the reads it needs between edits. Two builders may
+//! fill two disjoint ranges at once (the two halves of [`crate::triangulate()`]), then one builder
+//! over the whole range stitches them. [`MeshArrays::seal`] ends the construction and derives
+//! `vertex_edges`.
 //!
 //! It may not look at a coordinate or decide a sign (that is the caller's business), and it does
 //! not check invariants while the mesh is under construction: between two edits the arrays may
 //! describe no sphere at all (unlinked twins, stale corners). [`Mesh::check_topology`] checks the
-//! finished mesh. Once [`MeshBuilder::finish`] has run, nothing outside `mesh` can change it.
+//! finished mesh. Once [`MeshArrays::seal`] has run, nothing outside `mesh` can change it.
 //!
 //! Triangles are addressed either by [`TriangleId`] or, in the hot loops, by `base`, the index of
 //! the triangle's first half-edge as [`HalfEdgeId::base_and_corner`] returns it, so that a caller
@@ -17,30 +20,102 @@
 use super::{HalfEdgeId, Mesh, TriangleId, VertexId};
 use alloc::vec::Vec;
 
-/// A mesh under construction; see the module documentation.
-pub(crate) struct MeshBuilder {
-    /// The arrays being filled; `vertex_edges` stays empty until [`MeshBuilder::finish`].
-    mesh: Mesh,
+/// The storage of a mesh under construction: `half_edges` slots, filled by [`MeshBuilder`]s.
+pub(crate) struct MeshArrays {
+    origins: Vec<VertexId>,
+    twins: Vec<HalfEdgeId>,
 }
 
-impl MeshBuilder {
-    /// An empty mesh with room for `half_edges` half-edges.
-    pub(crate) fn with_capacity(half_edges: usize) -> Self {
-        MeshBuilder {
-            mesh: Mesh {
-                origins: Vec::with_capacity(half_edges),
-                twins: Vec::with_capacity(half_edges),
-                vertex_edges: Vec::new(),
-            },
+impl MeshArrays {
+    /// Room for `half_edges` half-edges (a multiple of three).
+    pub(crate) fn new(half_edges: usize) -> Self {
+        MeshArrays {
+            origins: alloc::vec![VertexId::INFINITE; half_edges],
+            twins: alloc::vec![HalfEdgeId::NONE; half_edges],
         }
     }
 
+    /// A builder over the whole storage, its first `filled` half-edges already written.
+    pub(crate) fn builder(&mut self, filled: usize) -> MeshBuilder<'_> {
+        MeshBuilder {
+            origins: &mut self.origins,
+            twins: &mut self.twins,
+            len: filled,
+        }
+    }
+
+    /// Two empty builders, over the half-edges `0..split` and `split..` (each numbered from 0, as
+    /// its own mesh: see [`MeshBuilder::renumber`]).
+    pub(crate) fn halves(&mut self, split: usize) -> (MeshBuilder<'_>, MeshBuilder<'_>) {
+        let (origins_low, origins_high) = self.origins.split_at_mut(split);
+        let (twins_low, twins_high) = self.twins.split_at_mut(split);
+        let low = MeshBuilder {
+            origins: origins_low,
+            twins: twins_low,
+            len: 0,
+        };
+        let high = MeshBuilder {
+            origins: origins_high,
+            twins: twins_high,
+            len: 0,
+        };
+        (low, high)
+    }
+
+    /// Moves the `len` half-edges at `from` down to `to`, keeping their links: a twin inside the
+    /// moved range moves with it (the caller moves only ranges whose links stay inside).
+    pub(crate) fn close_gap(&mut self, from: usize, len: usize, to: usize) {
+        debug_assert!(to <= from);
+        self.origins.copy_within(from..from + len, to);
+        self.twins.copy_within(from..from + len, to);
+        let gap = (from - to) as u32;
+        for e in &mut self.twins[to..to + len] {
+            *e = HalfEdgeId::new(e.index() as u32 - gap);
+        }
+    }
+
+    /// Ends the construction: keeps the first `len` half-edges and seals the mesh over vertex
+    /// ids `0..vertex_count`, deriving each vertex's edge (for a hull vertex, the one pointing
+    /// to infinity). Read-only from now on.
+    pub(crate) fn seal(mut self, len: usize, vertex_count: usize) -> Mesh {
+        self.origins.truncate(len);
+        self.twins.truncate(len);
+        let mut mesh = Mesh {
+            origins: self.origins,
+            twins: self.twins,
+            vertex_edges: Vec::new(),
+        };
+        mesh.rebuild_vertex_edges(vertex_count);
+        mesh
+    }
+}
+
+/// A mesh under construction in a range of [`MeshArrays`]; see the module documentation.
+pub(crate) struct MeshBuilder<'m> {
+    origins: &'m mut [VertexId],
+    twins: &'m mut [HalfEdgeId],
+    /// Half-edges written so far, from the start of the range.
+    len: usize,
+}
+
+impl MeshBuilder<'_> {
+    /// The number of half-edges written so far.
+    #[inline]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
     /// Appends the triangle `corners` (counter-clockwise) with no twins yet, and returns it.
+    ///
+    /// # Panics
+    /// If the range is full: the caller sized it.
     #[inline]
     pub(crate) fn push_triangle(&mut self, corners: [VertexId; 3]) -> TriangleId {
-        let t = TriangleId::new((self.mesh.origins.len() / 3) as u32);
-        self.mesh.origins.extend_from_slice(&corners);
-        self.mesh.twins.extend_from_slice(&[HalfEdgeId::NONE; 3]);
+        let base = self.len;
+        let t = TriangleId::new((base / 3) as u32);
+        self.origins[base..base + 3].copy_from_slice(&corners);
+        self.twins[base..base + 3].copy_from_slice(&[HalfEdgeId::NONE; 3]);
+        self.len += 3;
         t
     }
 
@@ -53,39 +128,53 @@ impl MeshBuilder {
     /// Overwrites the corners of the triangle whose first half-edge is at `base`.
     #[inline]
     pub(crate) fn set_corners_at(&mut self, base: usize, corners: [VertexId; 3]) {
-        self.mesh.origins[base..base + 3].copy_from_slice(&corners);
+        self.origins[base..base + 3].copy_from_slice(&corners);
     }
 
     /// The corners of the triangle whose first half-edge is at `base`, corner `k` being the
     /// origin of half-edge `base + k`. One bounds check for the three.
     #[inline]
     pub(crate) fn corners_at(&self, base: usize) -> [VertexId; 3] {
-        let c = &self.mesh.origins[base..base + 3];
+        let c = &self.origins[base..base + 3];
         [c[0], c[1], c[2]]
     }
 
     /// Where `e` starts.
     #[inline]
     pub(crate) fn origin(&self, e: HalfEdgeId) -> VertexId {
-        self.mesh.origin(e)
+        self.origins[e.index()]
     }
 
     /// The half-edge across from `e` (or [`HalfEdgeId::NONE`] if not linked yet).
     #[inline]
     pub(crate) fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
-        self.mesh.twin(e)
+        self.twins[e.index()]
     }
 
     /// Makes `a` and `b` each other's twin.
     #[inline]
     pub(crate) fn link(&mut self, a: HalfEdgeId, b: HalfEdgeId) {
-        self.mesh.link(a, b);
+        self.twins[a.index()] = b;
+        self.twins[b.index()] = a;
     }
 
-    /// Seals the mesh over vertex ids `0..vertex_count`: derives each vertex's edge (for a hull
-    /// vertex, the one pointing to infinity) and hands the arrays over, read-only from now on.
-    pub(crate) fn finish(mut self, vertex_count: usize) -> Mesh {
-        self.mesh.rebuild_vertex_edges(vertex_count);
-        self.mesh
+    /// Leaves `e` with no twin (the caller links it again before the mesh is sealed).
+    #[inline]
+    pub(crate) fn unlink(&mut self, e: HalfEdgeId) {
+        self.twins[e.index()] = HalfEdgeId::NONE;
+    }
+
+    /// Renumbers what was written as if the range started `edge_offset` half-edges and
+    /// `vertex_offset` vertex ids further on (the vertex at infinity stays): a mesh built on its
+    /// own, placed after another.
+    pub(crate) fn renumber(&mut self, vertex_offset: u32, edge_offset: u32) {
+        for v in &mut self.origins[..self.len] {
+            if !v.is_infinite() {
+                *v = VertexId::new(v.index() as u32 + vertex_offset);
+            }
+        }
+        for e in &mut self.twins[..self.len] {
+            *e = HalfEdgeId::new(e.index() as u32 + edge_offset);
+        }
     }
 }

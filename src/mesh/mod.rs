@@ -25,7 +25,7 @@ mod build;
 mod check;
 mod ids;
 
-pub(crate) use build::MeshBuilder;
+pub(crate) use build::{MeshArrays, MeshBuilder};
 pub use check::{Element, Rule, Violation};
 pub(crate) use ids::wrap3;
 pub use ids::{HalfEdgeId, TriangleId, VertexId};
@@ -217,13 +217,6 @@ impl Mesh {
             .map(HalfEdgeId::new)
             .find(|&e| self.origin(e.prev()).is_infinite())
             .unwrap_or(HalfEdgeId::NONE)
-    }
-
-    /// Makes `a` and `b` each other's twin (for [`MeshBuilder`]).
-    #[inline]
-    fn link(&mut self, a: HalfEdgeId, b: HalfEdgeId) {
-        self.twins[a.index()] = b;
-        self.twins[b.index()] = a;
     }
 
     /// Fills `vertex_edges` from the triangles: one branch-free pass that records some edge

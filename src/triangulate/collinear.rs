@@ -13,7 +13,7 @@
 //! ```
 
 use crate::geometry::Point;
-use crate::mesh::{HalfEdgeId, Mesh, MeshBuilder, VertexId};
+use crate::mesh::{HalfEdgeId, Mesh, MeshArrays, VertexId};
 use alloc::vec::Vec;
 
 /// Builds the chain over `points` (input order, all collinear). Vertex ids are positions in the
@@ -39,7 +39,8 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<(u32, u32)>, Vec<u32>) {
         }
     }
     let segments = chain.len().saturating_sub(1);
-    let mut mesh = MeshBuilder::with_capacity(6 * segments);
+    let mut arrays = MeshArrays::new(6 * segments);
+    let mut mesh = arrays.builder(0);
     let inf = VertexId::INFINITE;
     let h = |i: usize| HalfEdgeId::new(i as u32);
     for s in 0..segments {
@@ -61,5 +62,6 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<(u32, u32)>, Vec<u32>) {
         let before = if s > 0 { 6 * (s - 1) + 5 } else { l + 2 };
         mesh.link(h(r + 1), h(before));
     }
-    (mesh.finish(points.len()), merged, sorted)
+    let len = mesh.len();
+    (arrays.seal(len, points.len()), merged, sorted)
 }

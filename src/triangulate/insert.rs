@@ -15,7 +15,7 @@
 //! edits the mesh only through [`MeshBuilder`].
 
 use crate::geometry::Point;
-use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshBuilder, VertexId};
+use crate::mesh::{wrap3, HalfEdgeId, MeshBuilder, VertexId};
 use crate::predicates::{self, Orientation};
 use alloc::vec::Vec;
 use core::marker::PhantomData;
@@ -180,26 +180,63 @@ pub(crate) enum Slide {
 }
 
 /// The construction state. Vertex ids are positions in `points` (the insertion order).
-pub(crate) struct Builder<'a, K: Kernel> {
+pub(crate) struct Builder<'a, 'm, K: Kernel> {
     kernel: PhantomData<K>,
     points: &'a [Point],
-    mesh: MeshBuilder,
+    mesh: MeshBuilder<'m>,
     flips: Vec<HalfEdgeId>,
     hint: HalfEdgeId,
     /// `(duplicate, vertex it was merged into)`, in insertion-order ids.
     merged: Vec<(u32, u32)>,
 }
 
-impl<'a, K: Kernel> Builder<'a, K> {
-    /// Starts from the counter-clockwise triangle `a, b, c` and its three ghosts.
-    pub(crate) fn new(points: &'a [Point], [a, b, c]: [u32; 3]) -> Self {
+/// The half-edges a construction over `n` points may write: a triangulated sphere with `n + 1`
+/// vertices has `2n - 2` triangles.
+pub(crate) fn half_edges(n: usize) -> usize {
+    6 * n.max(3) - 6
+}
+
+/// Builds the mesh of `points` (in insertion order) in `mesh`, which must be empty and hold
+/// [`half_edges`] of `points.len()`; returns it with the `(duplicate, kept)` pairs merged on the
+/// way, or `None` when the points make no triangle.
+pub(crate) fn build_into<'m, K: Kernel>(
+    points: &[Point],
+    mesh: MeshBuilder<'m>,
+) -> Option<(MeshBuilder<'m>, Vec<(u32, u32)>)> {
+    let start = first_triangle::<K>(points)?;
+    let mut builder = Builder::<K>::new(points, start, mesh);
+    for v in 0..points.len() as u32 {
+        if !start.contains(&v) {
+            builder.insert(v);
+        }
+    }
+    Some(builder.finish())
+}
+
+/// The first three points, in insertion order, that make a proper triangle, counter-clockwise.
+pub(crate) fn first_triangle<K: Kernel>(points: &[Point]) -> Option<[u32; 3]> {
+    let a = 0;
+    let b = points.iter().position(|&p| p != points[a])?;
+    let (pa, pb) = (points[a], points[b]);
+    points[b + 1..].iter().enumerate().find_map(|(k, &pc)| {
+        let c = (b + 1 + k) as u32;
+        match K::orient2d(pa, pb, pc) {
+            Orientation::Ccw => Some([a as u32, b as u32, c]),
+            Orientation::Cw => Some([b as u32, a as u32, c]),
+            Orientation::Collinear => None,
+        }
+    })
+}
+
+impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
+    /// Starts from the counter-clockwise triangle `a, b, c` and its three ghosts, in `mesh`,
+    /// which must be empty and hold [`half_edges`] of `points.len()`.
+    fn new(points: &'a [Point], [a, b, c]: [u32; 3], mut mesh: MeshBuilder<'m>) -> Self {
         debug_assert_eq!(
             K::orient2d(points[a as usize], points[b as usize], points[c as usize]),
             Orientation::Ccw
         );
-        // A triangulated sphere with n + 1 vertices has 2n - 2 triangles: reserve them all at once.
-        let half_edges = 6 * points.len().max(3) - 6;
-        let mut mesh = MeshBuilder::with_capacity(half_edges);
+        debug_assert_eq!(mesh.len(), 0);
         let inf = VertexId::INFINITE;
         let [a, b, c] = [a, b, c].map(VertexId::new);
         // Triangle 0 = (a, b, c); ghosts 1 = (b, a, ∞), 2 = (c, b, ∞), 3 = (a, c, ∞).
@@ -220,10 +257,10 @@ impl<'a, K: Kernel> Builder<'a, K> {
         }
     }
 
-    /// The mesh, sealed over the vertex ids `0..points.len()`, and the `(duplicate, kept
-    /// vertex)` pairs merged on the way.
-    pub(crate) fn finish(self) -> (Mesh, Vec<(u32, u32)>) {
-        (self.mesh.finish(self.points.len()), self.merged)
+    /// The mesh written (fewer than [`half_edges`] half-edges when duplicates were merged) and
+    /// the `(duplicate, kept vertex)` pairs merged on the way.
+    pub(crate) fn finish(self) -> (MeshBuilder<'m>, Vec<(u32, u32)>) {
+        (self.mesh, self.merged)
     }
 
     #[inline]

@@ -15,6 +15,7 @@
 
 mod check;
 mod collinear;
+mod halves;
 mod insert;
 mod order;
 mod scale;
@@ -22,10 +23,10 @@ mod scale;
 use crate::error::Error;
 use crate::geometry::Point;
 use crate::geometry::Scale;
+use crate::mesh::MeshArrays;
 use crate::mesh::{Mesh, VertexId};
-use crate::predicates::Orientation;
 use alloc::vec::Vec;
-use insert::{Builder, Exact, Fast, Kernel};
+use insert::{Exact, Fast, Kernel};
 
 /// The largest number of input points.
 ///
@@ -96,6 +97,11 @@ pub struct Triangulation {
 /// exact integer arithmetic instead of Shewchuk's predicates, slower but just as exact
 /// (`docs/predicates.md`).
 ///
+/// A set of 65,536 points or more is cut by a vertical line into two halves, built apart and
+/// stitched together (`docs/triangulation.md`); with the `parallel` feature the halves are built
+/// at once on rayon's threads. The result is the same on any number of threads: to keep the
+/// call on one, run it inside a one-thread pool (`rayon::ThreadPool::install`).
+///
 /// # Errors
 /// [`Error::NonFinite`] for a NaN or infinite coordinate, naming the first such input index;
 /// [`Error::TooManyPoints`] beyond [`MAX_POINTS`].
@@ -109,6 +115,20 @@ pub struct Triangulation {
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
+    triangulate_with(points, cfg!(feature = "parallel"))
+}
+
+/// [`triangulate`], on one thread unless `parallel`; the result is the same either way.
+pub(crate) fn triangulate_with(points: &[Point], parallel: bool) -> Result<Triangulation, Error> {
+    triangulate_split(points, parallel, halves::SPLIT_MIN)
+}
+
+/// [`triangulate_with`], cutting sets of `split_min` points and more in two.
+fn triangulate_split(
+    points: &[Point],
+    parallel: bool,
+    split_min: usize,
+) -> Result<Triangulation, Error> {
     if points.len() > MAX_POINTS {
         return Err(Error::TooManyPoints {
             count: points.len(),
@@ -117,17 +137,7 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     }
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
-    let order = insertion_order(points, &frames);
-    let mut sorted: Vec<Point> = order
-        .iter()
-        .map(|&i| scale.apply(points[i as usize]))
-        .collect();
-
-    let built = if frames.wide {
-        build::<Exact>(&sorted)
-    } else {
-        build::<Fast>(&sorted)
-    };
+    let (order, mut sorted, built) = construct(points, &frames, parallel, split_min);
     let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
@@ -177,8 +187,90 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     })
 }
 
-/// The order to insert `points` in, as input positions.
-fn insertion_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
+/// The mesh of `points`: the insertion order (input positions), the points in it in the
+/// predicates' frame, and their mesh with the `(duplicate, kept)` pairs merged, or `None` for
+/// the mesh when the points make no triangle.
+#[allow(clippy::type_complexity)]
+fn construct(
+    points: &[Point],
+    frames: &scale::Frames,
+    parallel: bool,
+    split_min: usize,
+) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
+    let (order, left) = insertion_order(points, frames, parallel, split_min);
+    let sorted: Vec<Point> = order
+        .iter()
+        .map(|&i| frames.predicates.apply(points[i as usize]))
+        .collect();
+    if let Some(left) = left {
+        let built = if frames.wide {
+            halves::build::<Exact>(&sorted, left, parallel)
+        } else {
+            halves::build::<Fast>(&sorted, left, parallel)
+        };
+        if built.is_some() {
+            return (order, sorted, built);
+        }
+        // A half without a triangle, or a failed stitch: the set in one piece.
+        return construct_whole(points, frames);
+    }
+    let built = if frames.wide {
+        build::<Exact>(&sorted)
+    } else {
+        build::<Fast>(&sorted)
+    };
+    (order, sorted, built)
+}
+
+/// [`construct`] without the cut.
+#[allow(clippy::type_complexity)]
+fn construct_whole(
+    points: &[Point],
+    frames: &scale::Frames,
+) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
+    let order = spatial_order(points, frames);
+    let sorted: Vec<Point> = order
+        .iter()
+        .map(|&i| frames.predicates.apply(points[i as usize]))
+        .collect();
+    let built = if frames.wide {
+        build::<Exact>(&sorted)
+    } else {
+        build::<Fast>(&sorted)
+    };
+    (order, sorted, built)
+}
+
+/// The order to insert `points` in, as input positions, and for a set cut in two
+/// ([`halves::split`]) the size of the left half, whose points come first.
+fn insertion_order(
+    points: &[Point],
+    frames: &scale::Frames,
+    parallel: bool,
+    split_min: usize,
+) -> (Vec<u32>, Option<usize>) {
+    let Some((left, right)) = halves::split(points, split_min) else {
+        return (spatial_order(points, frames), None);
+    };
+    let half_order = |members: Vec<u32>| {
+        let gathered: Vec<Point> = members.iter().map(|&i| points[i as usize]).collect();
+        let mut order = spatial_order(&gathered, frames);
+        drop(gathered);
+        for k in order.iter_mut() {
+            *k = members[*k as usize];
+        }
+        order
+    };
+    let left_len = left.len();
+    let (left_order, right_order) = both(parallel, || half_order(left), || half_order(right));
+    let mut order = Vec::with_capacity(points.len());
+    order.extend_from_slice(&left_order);
+    order.extend_from_slice(&right_order);
+    (order, Some(left_len))
+}
+
+/// The spatial insertion order of `points` in one piece.
+fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
     if frames.wide {
         // Sets spanning many orders of magnitude, ordered on a logarithmic grid: on a linear
         // one, all but the largest points share a cell and the walks grow long.
@@ -192,32 +284,33 @@ fn insertion_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
     }
 }
 
-/// The mesh of `points` (in insertion order) and the `(duplicate, kept)` pairs merged on the way,
-/// or `None` when they make no triangle.
-fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
-    let start = first_triangle::<K>(points)?;
-    let mut builder = Builder::<K>::new(points, start);
-    for v in 0..points.len() as u32 {
-        if !start.contains(&v) {
-            builder.insert(v);
-        }
+/// `(a(), b())`, at once on rayon's threads when `parallel`.
+#[cfg(feature = "parallel")]
+fn both<A: Send, B: Send>(
+    parallel: bool,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    if parallel {
+        rayon::join(a, b)
+    } else {
+        (a(), b())
     }
-    Some(builder.finish())
 }
 
-/// The first three points, in insertion order, that make a proper triangle, counter-clockwise.
-fn first_triangle<K: Kernel>(points: &[Point]) -> Option<[u32; 3]> {
-    let a = 0;
-    let b = points.iter().position(|&p| p != points[a])?;
-    let (pa, pb) = (points[a], points[b]);
-    points[b + 1..].iter().enumerate().find_map(|(k, &pc)| {
-        let c = (b + 1 + k) as u32;
-        match K::orient2d(pa, pb, pc) {
-            Orientation::Ccw => Some([a as u32, b as u32, c]),
-            Orientation::Cw => Some([b as u32, a as u32, c]),
-            Orientation::Collinear => None,
-        }
-    })
+#[cfg(not(feature = "parallel"))]
+fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
+    (a(), b())
+}
+
+/// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
+/// merged on the way, or `None` when they make no triangle.
+fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
+    insert::first_triangle::<K>(points)?;
+    let mut arrays = MeshArrays::new(insert::half_edges(points.len()));
+    let (mesh, merged) = insert::build_into::<K>(points, arrays.builder(0))?;
+    let len = mesh.len();
+    Some((arrays.seal(len, points.len()), merged))
 }
 
 /// The two maps between vertex ids (positions in `order`) and input positions. A vertex that
@@ -239,7 +332,8 @@ fn vertex_maps(mut input_of_vertex: Vec<u32>, merged: &[(u32, u32)]) -> (Vec<u32
 
 impl Triangulation {
     /// The order in which [`triangulate`] inserts `points`, as input positions: biased
-    /// randomized rounds, Hilbert order inside each (`docs/triangulation.md`). It is the spatial
+    /// randomized rounds, Hilbert order inside each (`docs/triangulation.md`); for a set cut in
+    /// two, the left half's order and then the right half's. It is the spatial
     /// sort alone, with the input check before it, and the yardstick the triangulation
     /// benchmarks measure the whole construction against. Unless every point is on one line,
     /// vertex ids number the points in this order (exact duplicates included).
@@ -266,7 +360,13 @@ impl Triangulation {
             });
         }
         let frames = scale::choose_frames(points)?;
-        Ok(insertion_order(points, &frames))
+        Ok(insertion_order(
+            points,
+            &frames,
+            cfg!(feature = "parallel"),
+            halves::SPLIT_MIN,
+        )
+        .0)
     }
 
     /// The half-edge topology, in vertex ids.
