@@ -27,8 +27,20 @@ pub(crate) struct MeshArrays {
 }
 
 impl MeshArrays {
-    /// Room for `half_edges` half-edges (a multiple of three).
-    pub(crate) fn new(half_edges: usize) -> Self {
+    /// Room for `half_edges` half-edges (a multiple of three), filled on rayon's threads when
+    /// `parallel` (with the `parallel` feature): the first touch of each page is most of the
+    /// cost, and each thread takes its share of it.
+    pub(crate) fn new(half_edges: usize, parallel: bool) -> Self {
+        #[cfg(feature = "parallel")]
+        if parallel {
+            use rayon::iter::{repeat_n, ParallelExtend};
+            let mut origins = Vec::with_capacity(half_edges);
+            origins.par_extend(repeat_n(VertexId::INFINITE, half_edges));
+            let mut twins = Vec::with_capacity(half_edges);
+            twins.par_extend(repeat_n(HalfEdgeId::NONE, half_edges));
+            return MeshArrays { origins, twins };
+        }
+        let _ = parallel;
         MeshArrays {
             origins: alloc::vec![VertexId::INFINITE; half_edges],
             twins: alloc::vec![HalfEdgeId::NONE; half_edges],

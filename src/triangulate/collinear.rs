@@ -39,7 +39,7 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<(u32, u32)>, Vec<u32>) {
         }
     }
     let segments = chain.len().saturating_sub(1);
-    let mut arrays = MeshArrays::new(6 * segments);
+    let mut arrays = MeshArrays::new(6 * segments, false);
     let mut mesh = arrays.builder(0);
     let inf = VertexId::INFINITE;
     let h = |i: usize| HalfEdgeId::new(i as u32);

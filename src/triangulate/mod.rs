@@ -198,10 +198,7 @@ fn construct(
     split_min: usize,
 ) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
     let (order, left) = insertion_order(points, frames, parallel, split_min);
-    let sorted: Vec<Point> = order
-        .iter()
-        .map(|&i| frames.predicates.apply(points[i as usize]))
-        .collect();
+    let sorted = in_order(points, &order, frames.predicates, parallel);
     if let Some(left) = left {
         let built = if frames.wide {
             halves::build::<Exact>(&sorted, left, parallel)
@@ -220,6 +217,23 @@ fn construct(
         build::<Fast>(&sorted)
     };
     (order, sorted, built)
+}
+
+/// `points` in `order`, in the frame `scale`.
+fn in_order(points: &[Point], order: &[u32], scale: Scale, parallel: bool) -> Vec<Point> {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::prelude::*;
+        return order
+            .par_iter()
+            .map(|&i| scale.apply(points[i as usize]))
+            .collect();
+    }
+    let _ = parallel;
+    order
+        .iter()
+        .map(|&i| scale.apply(points[i as usize]))
+        .collect()
 }
 
 /// [`construct`] without the cut.
@@ -307,7 +321,7 @@ fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> 
 /// merged on the way, or `None` when they make no triangle.
 fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
     insert::first_triangle::<K>(points)?;
-    let mut arrays = MeshArrays::new(insert::half_edges(points.len()));
+    let mut arrays = MeshArrays::new(insert::half_edges(points.len()), false);
     let (mesh, merged) = insert::build_into::<K>(points, arrays.builder(0))?;
     let len = mesh.len();
     Some((arrays.seal(len, points.len()), merged))
