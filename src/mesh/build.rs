@@ -170,12 +170,6 @@ impl MeshBuilder<'_> {
         self.twins[b.index()] = a;
     }
 
-    /// Leaves `e` with no twin (the caller links it again before the mesh is sealed).
-    #[inline]
-    pub(crate) fn unlink(&mut self, e: HalfEdgeId) {
-        self.twins[e.index()] = HalfEdgeId::NONE;
-    }
-
     /// Renumbers what was written as if the range started `edge_offset` half-edges and
     /// `vertex_offset` vertex ids further on (the vertex at infinity stays): a mesh built on its
     /// own, placed after another.

@@ -17,10 +17,12 @@
 //! triangles: the two hulls are strictly apart, so their lower common tangent exists; from it a
 //! base edge climbs, at each step joining the candidate of either half that the empty-circle
 //! test picks, after deleting that half's triangles the new triangle's circle would contain. It
-//! ends at the upper tangent. Deleted triangles and the ghosts of the hull edges facing the
-//! other half free exactly as many slots as the merge makes triangles; the two new ghosts on
-//! the tangents take two slots reserved for them. Only triangles near the seam change
-//! (`docs/triangulation.md`).
+//! ends at the upper tangent. As in Shewchuk's Triangle, every step is an edge flip, so the
+//! mesh stays a triangulated sphere throughout: two new ghosts (in two slots reserved for them)
+//! join the halves' ghosts, one under the lower tangent and one, `top`, over the climbing base;
+//! a candidate that fails the circle test is flipped with its ghost (its triangle goes outside),
+//! and a chosen one with `top` (its ghost becomes the new triangle). Only triangles near the
+//! seam change (`docs/triangulation.md`).
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -275,34 +277,24 @@ fn stitch<K: Kernel>(
         }
     }
 
-    // The ghosts beside the tangents stay: before `l0` and after `r0` below, before `r1` and
-    // after `l1` above. Read before anything changes.
+    // Two new ghosts join the two spheres into one: `below`, `(r0, l0, ∞)`, the ghost of the
+    // lower tangent, between the ghosts before `l0` and after `r0`; and `top`, `(l0, r0, ∞)`,
+    // above the base, between the ghosts of the hull edges facing the other half (left: from
+    // `i0` counter-clockwise to `i1`; right: from `j1` counter-clockwise to `j0`). Every step of
+    // the merge is then an edge flip of two triangles, so the mesh stays a triangulated sphere
+    // throughout (as in Shewchuk's Triangle): `top` stays `(l, r, ∞)` over the current base, and
+    // across its edges to infinity lie the ghosts of the two halves' current boundary edges
+    // facing the other half. The candidates of Guibas and Stolfi are those boundary edges. A
+    // candidate edge that fails the circle test is flipped with its ghost (its triangle becomes
+    // outside, the boundary takes its other two sides), and a chosen candidate is flipped with
+    // `top` (its ghost becomes the new triangle, `top` climbs). Edges of a half with outside on
+    // both sides (Guibas and Stolfi keep them) are then ordinary edges between two ghosts.
     let from_infinity = |ghost: usize| HalfEdgeId::at(ghost, infinite_corner(mesh, ghost));
     let to_infinity = |ghost: usize| HalfEdgeId::at(ghost, wrap3(infinite_corner(mesh, ghost) + 2));
-    let hull_edge = |ghost: usize| HalfEdgeId::at(ghost, wrap3(infinite_corner(mesh, ghost) + 1));
     let into_l0 = from_infinity(left.ghosts[left.cw(i0)]);
+    let out_of_l0 = to_infinity(left.ghosts[i0]);
     let out_of_r0 = to_infinity(right.ghosts[j0]);
-    let into_r1 = from_infinity(right.ghosts[right.cw(j1)]);
-    let out_of_l1 = to_infinity(left.ghosts[i1]);
-    let mut e_l = mesh.twin(hull_edge(left.ghosts[i0]));
-    let mut f_r = mesh.twin(hull_edge(right.ghosts[right.cw(j0)]));
-
-    // The ghosts of the hull edges facing the other half (left: from `i0` counter-clockwise to
-    // `i1`; right: from `j1` counter-clockwise to `j0`) go: their slots take the new triangles.
-    let mut free = Vec::new();
-    let mut i = i0;
-    while i != i1 {
-        free.push(left.ghosts[i]);
-        i = left.ccw(i);
-    }
-    let mut j = j1;
-    while j != j0 {
-        free.push(right.ghosts[j]);
-        j = right.ccw(j);
-    }
-    for &slot in &free {
-        detach(mesh, slot);
-    }
+    let into_r0 = from_infinity(right.ghosts[right.cw(j0)]);
     let inf = VertexId::INFINITE;
     let (l0, r0, l1, r1) = (
         left.vertices[i0],
@@ -311,147 +303,151 @@ fn stitch<K: Kernel>(
         right.vertices[j1],
     );
     let below = mesh.push_triangle([r0, l0, inf]);
+    let top = mesh.push_triangle([l0, r0, inf]);
+    mesh.link(below.edge(0), top.edge(0));
     mesh.link(below.edge(1), into_l0);
     mesh.link(below.edge(2), out_of_r0);
-
-    // Guibas and Stolfi's merge, from the lower tangent up, writing each new triangle at once.
-    // Across an edge whose twin is `NONE` lies the region still to fill. `e_l` is the left
-    // candidate edge `l → x`, in the left triangle (or ghost) on its counter-clockwise side;
-    // `f_r` the right one, `x → r`, in the right triangle (or ghost) `(x, r, y)`. A candidate whose triangle's
-    // third corner lies above the base and in the circle through the base and the candidate is
-    // deleted (its slot detached and freed); then the base climbs to the candidate the
-    // empty-circle test picks, until neither lies above it: the base is the upper tangent.
-    // A slot freed and not yet reused: all three corners at infinity.
-    let detached = |mesh: &MeshBuilder<'_>, e: HalfEdgeId| {
-        e.is_none() || mesh.corners_at(e.base_and_corner().0) == [VertexId::INFINITE; 3]
-    };
-    let (mut l, mut r) = (l0, r0);
-    let mut base_twin = below.edge(0);
-    let mut made = 0;
-    loop {
-        made += 1;
-        if made > mesh.len() {
-            return None;
+    mesh.link(top.edge(1), into_r0);
+    mesh.link(top.edge(2), out_of_l0);
+    let top = top.edge(0).base_and_corner().0;
+    // `top` is `[l, r, ∞]`: edge 0 the base `l → r`, edge 1 `r → ∞`, edge 2 `∞ → l`.
+    let (t_base, t_right, t_left) = (
+        HalfEdgeId::at(top, 0),
+        HalfEdgeId::at(top, 1),
+        HalfEdgeId::at(top, 2),
+    );
+    // Writes the triangle `corners` at `slot` and links its edges to `twins`.
+    let write = |mesh: &mut MeshBuilder<'_>,
+                 slot: usize,
+                 corners: [VertexId; 3],
+                 twins: [HalfEdgeId; 3]| {
+        mesh.set_corners_at(slot, corners);
+        for (k, twin) in twins.into_iter().enumerate() {
+            mesh.link(HalfEdgeId::at(slot, k), twin);
         }
+    };
+
+    let (mut l, mut r) = (l0, r0);
+    let mut steps = 0;
+    let limit = 4 * mesh.len();
+    loop {
         let above =
             |x: VertexId| !x.is_infinite() && orient(at(l), at(r), at(x)) == Orientation::Ccw;
-        let mut cand_l = mesh.origin(e_l.next());
-        if above(cand_l) {
-            loop {
-                let next = mesh.origin(e_l.prev());
-                if !(above(next) && K::in_circle(at(l), at(r), at(cand_l), at(next))) {
-                    break;
-                }
-                let (base, _) = e_l.base_and_corner();
-                e_l = mesh.twin(e_l.prev());
-                if e_l.is_none() {
-                    return None;
-                }
-                detach(mesh, base);
-                free.push(base);
-                cand_l = next;
+        // The left candidate `l → x`: across `∞ → l` of `top` lies the ghost `(x, l, ∞)`, and
+        // across its `x → l` the triangle `(l, x, n)` (`n` is `∞` if it is a ghost too).
+        let cand_l = loop {
+            steps += 1;
+            if steps > limit {
+                return None;
             }
-        }
-        let mut cand_r = mesh.origin(f_r);
-        if above(cand_r) {
-            loop {
-                let next = mesh.origin(f_r.prev());
-                if !(above(next) && K::in_circle(at(l), at(r), at(cand_r), at(next))) {
-                    break;
-                }
-                let (base, _) = f_r.base_and_corner();
-                f_r = mesh.twin(f_r.next());
-                if f_r.is_none() {
-                    return None;
-                }
-                detach(mesh, base);
-                free.push(base);
-                cand_r = next;
+            let ghost_in = mesh.twin(t_left); // l → ∞
+            let e_l = mesh.twin(ghost_in.prev()); // l → x
+            let x = mesh.origin(e_l.next());
+            let n = mesh.origin(e_l.prev());
+            if !(above(x) && above(n) && K::in_circle(at(l), at(r), at(x), at(n))) {
+                break x;
             }
-        }
+            // Flip `l – x`: `(l, x, n)` and its ghost `(x, l, ∞)` become the ghosts
+            // `(n, l, ∞)` and `(x, n, ∞)`.
+            let (ghost, _) = ghost_in.base_and_corner();
+            let (inner, _) = e_l.base_and_corner();
+            let (w_xn, w_nl, w_x) = (
+                mesh.twin(e_l.next()),
+                mesh.twin(e_l.prev()),
+                mesh.twin(ghost_in.next()),
+            );
+            write(
+                mesh,
+                ghost,
+                [n, l, inf],
+                [w_nl, t_left, HalfEdgeId::at(inner, 1)],
+            );
+            write(
+                mesh,
+                inner,
+                [x, n, inf],
+                [w_xn, HalfEdgeId::at(ghost, 2), w_x],
+            );
+        };
+        // The right candidate `r → y`: across `r → ∞` of `top` lies the ghost `(r, y, ∞)`,
+        // and across its `r → y` the triangle `(y, r, m)`.
+        let cand_r = loop {
+            steps += 1;
+            if steps > limit {
+                return None;
+            }
+            let ghost_in = mesh.twin(t_right); // ∞ → r
+            let f_r = mesh.twin(ghost_in.next()); // y → r
+            let y = mesh.origin(f_r);
+            let m = mesh.origin(f_r.prev());
+            if !(above(y) && above(m) && K::in_circle(at(l), at(r), at(y), at(m))) {
+                break y;
+            }
+            // Flip `r – y`: `(y, r, m)` and its ghost `(r, y, ∞)` become the ghosts
+            // `(r, m, ∞)` and `(m, y, ∞)`.
+            let (ghost, _) = ghost_in.base_and_corner();
+            let (inner, _) = f_r.base_and_corner();
+            let (w_rm, w_my, w_y) = (
+                mesh.twin(f_r.next()),
+                mesh.twin(f_r.prev()),
+                mesh.twin(ghost_in.prev()),
+            );
+            write(
+                mesh,
+                ghost,
+                [r, m, inf],
+                [w_rm, HalfEdgeId::at(inner, 2), t_right],
+            );
+            write(
+                mesh,
+                inner,
+                [m, y, inf],
+                [w_my, w_y, HalfEdgeId::at(ghost, 1)],
+            );
+        };
         let (left_ok, right_ok) = (above(cand_l), above(cand_r));
         if !left_ok && !right_ok {
             break;
         }
         let take_right =
             !left_ok || (right_ok && K::in_circle(at(cand_l), at(l), at(r), at(cand_r)));
-        let (apex, across) = if take_right {
-            (cand_r, f_r)
-        } else {
-            (cand_l, e_l)
-        };
-        if detached(mesh, across) {
-            return None;
-        }
-        let slot = free.pop()?;
-        mesh.set_corners_at(slot, [l, r, apex]);
-        let edge = |k: usize| HalfEdgeId::at(slot, k);
-        // Edge 0 is the base, `l → r`; an apex from the left half: edge 2 runs along the left
-        // candidate and edge 1 is the next base; from the right half, the other way round.
-        let (along, next_base) = if take_right { (1, 2) } else { (2, 1) };
-        mesh.link(edge(0), base_twin);
-        mesh.link(edge(along), across);
-        mesh.unlink(edge(next_base));
-        base_twin = edge(next_base);
+        let w_base = mesh.twin(t_base);
         if take_right {
-            // The next right candidate: round `apex` counter-clockwise, through the right
-            // half's triangles and ghosts, to the last edge before the region still to fill.
-            let mut h = f_r;
-            let mut turns = 0;
-            loop {
-                let turned = mesh.twin(h.prev());
-                if turned.is_none() {
-                    f_r = h.prev();
-                    break;
-                }
-                h = turned;
-                turns += 1;
-                if turns > mesh.len() {
-                    return None;
-                }
-            }
-            r = apex;
+            // Flip `r – ∞` of `top` and the ghost `(r, y, ∞)`: the triangle `(l, r, y)` in the
+            // ghost's slot, `top` becomes `(l, y, ∞)`.
+            let ghost_in = mesh.twin(t_right);
+            let (ghost, _) = ghost_in.base_and_corner();
+            let (w_ry, w_y, w_left) = (
+                mesh.twin(ghost_in.next()),
+                mesh.twin(ghost_in.prev()),
+                mesh.twin(t_left),
+            );
+            write(mesh, ghost, [l, r, cand_r], [w_base, w_ry, t_base]);
+            mesh.set_corners_at(top, [l, cand_r, inf]);
+            mesh.link(t_right, w_y);
+            mesh.link(t_left, w_left);
+            r = cand_r;
         } else {
-            // The next left candidate: round `apex` clockwise, through the left half's
-            // triangles and ghosts, to the last edge before the region still to fill.
-            let mut h = e_l.next();
-            let mut turns = 0;
-            loop {
-                let turned = mesh.twin(h);
-                if turned.is_none() {
-                    e_l = h;
-                    break;
-                }
-                h = turned.next();
-                turns += 1;
-                if turns > mesh.len() {
-                    return None;
-                }
-            }
-            l = apex;
+            // Flip `∞ – l` of `top` and the ghost `(x, l, ∞)`: the triangle `(l, r, x)` in the
+            // ghost's slot, `top` becomes `(x, r, ∞)`.
+            let ghost_in = mesh.twin(t_left);
+            let (ghost, _) = ghost_in.base_and_corner();
+            let (w_xl, w_x, w_right) = (
+                mesh.twin(ghost_in.prev()),
+                mesh.twin(ghost_in.next()),
+                mesh.twin(t_right),
+            );
+            write(mesh, ghost, [l, r, cand_l], [w_base, t_base, w_xl]);
+            mesh.set_corners_at(top, [cand_l, r, inf]);
+            mesh.link(t_right, w_right);
+            mesh.link(t_left, w_x);
+            l = cand_l;
         }
     }
-    if (l, r) != (l1, r1) || !free.is_empty() {
+    if (l, r) != (l1, r1) {
         return None;
     }
-    let above = mesh.push_triangle([l1, r1, inf]);
-    mesh.link(above.edge(0), base_twin);
-    mesh.link(above.edge(1), into_r1);
-    mesh.link(above.edge(2), out_of_l1);
     Some(())
-}
-
-/// Cuts the triangle at `base` out of the mesh: the half-edges across its sides no longer have
-/// a twin, and its corners read as outside.
-fn detach(mesh: &mut MeshBuilder<'_>, base: usize) {
-    for k in 0..3 {
-        let across = mesh.twin(HalfEdgeId::at(base, k));
-        if !across.is_none() {
-            mesh.unlink(across);
-        }
-        mesh.unlink(HalfEdgeId::at(base, k));
-    }
-    mesh.set_corners_at(base, [VertexId::INFINITE; 3]);
 }
 
 #[cfg(test)]
@@ -643,6 +639,537 @@ mod tests {
             assert!(built_in_halves(&points).is_some(), "{n}");
             let tri = triangulate_split(&points, false, 0).unwrap();
             tri.validate().unwrap();
+        }
+    }
+
+    // ---- Review: degenerate and adversarial inputs ----
+
+    /// Whether the points make a proper triangle (exact).
+    fn has_triangle(points: &[Point]) -> bool {
+        super::super::insert::first_triangle::<super::super::insert::Exact>(points).is_some()
+    }
+
+    /// [`built_in_halves`] with the kernel the construction would choose.
+    fn built_in_halves_any(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
+        let frames = scale::choose_frames(points).unwrap();
+        let (order, left) = super::super::insertion_order(points, &frames, false, 0);
+        let sorted: Vec<Point> = order
+            .iter()
+            .map(|&i| frames.predicates.apply(points[i as usize]))
+            .collect();
+        if frames.wide {
+            build::<super::super::insert::Exact>(&sorted, left?, false)
+        } else {
+            build::<super::super::insert::Fast>(&sorted, left?, false)
+        }
+    }
+
+    /// Whether `points` is cut in two halves that each have a triangle and yet the stitch
+    /// fails (the construction then builds the set in one piece: correct but slower).
+    fn falls_back(points: &[Point]) -> bool {
+        let Some((left, right)) = split(points, 0) else {
+            return false;
+        };
+        let gather = |ids: &[u32]| ids.iter().map(|&i| points[i as usize]).collect::<Vec<_>>();
+        has_triangle(&gather(&left))
+            && has_triangle(&gather(&right))
+            && built_in_halves_any(points).is_none()
+    }
+
+    /// Everything the review checks on one set: `validate()` on the cut, the same mesh on one
+    /// thread and two, and (in general position) the triangles of the one-piece construction.
+    /// Returns whether the set fell back to one piece though each half has a triangle.
+    fn check(name: &str, points: &[Point], general: bool) -> bool {
+        let one = triangulate_split(points, false, 0).unwrap();
+        one.validate()
+            .unwrap_or_else(|e| panic!("{name} ({} points): {e}", points.len()));
+        let two = triangulate_split(points, true, 0).unwrap();
+        assert_eq!(triangles(&one), triangles(&two), "{name}: threads");
+        for e in 0..one.mesh().num_half_edges() as u32 {
+            let e = HalfEdgeId::new(e);
+            assert_eq!(one.mesh().origin(e), two.mesh().origin(e), "{name}");
+            assert_eq!(one.mesh().twin(e), two.mesh().twin(e), "{name}");
+        }
+        if general {
+            let whole = triangulate_split(points, false, usize::MAX).unwrap();
+            assert_eq!(
+                triangles(&whole),
+                triangles(&one),
+                "{name}: against one piece"
+            );
+        }
+        let fell = falls_back(points);
+        if fell && std::env::var("REVIEW_SHRINK").is_ok() {
+            let mut pts = points.to_vec();
+            let mut k = 0;
+            while k < pts.len() {
+                let mut fewer = pts.clone();
+                fewer.remove(k);
+                if falls_back(&fewer) {
+                    pts = fewer;
+                } else {
+                    k += 1;
+                }
+            }
+            std::eprintln!(
+                "SHRUNK {name}: {:?}",
+                pts.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>()
+            );
+        }
+        fell
+    }
+
+    fn shuffle(rng: &mut Xorshift, points: &mut [Point]) {
+        for i in (1..points.len()).rev() {
+            let j = rng.below(i as u64 + 1) as usize;
+            points.swap(i, j);
+        }
+    }
+
+    /// Lattice points on the circle of radius `r` centred at `(cx, cy)`.
+    fn lattice_circle(r: i64, cx: f64, cy: f64) -> Vec<Point> {
+        let mut out = Vec::new();
+        for x in -r..=r {
+            let y2 = r * r - x * x;
+            let y = (y2 as f64).sqrt() as i64;
+            for y in [y - 1, y, y + 1] {
+                if y >= 0 && y * y == y2 {
+                    out.push(Point::new(cx + x as f64, cy + y as f64));
+                    if y != 0 {
+                        out.push(Point::new(cx + x as f64, cy - y as f64));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Sets the first version of the stitch could not join (it built them in one piece), each
+    /// with a triangle on both sides. It kept the region still to fill as triangles cut out of
+    /// the mesh, which cannot hold an edge Guibas and Stolfi keep with that region on both
+    /// sides, nor a region that touches a vertex twice.
+    #[test]
+    fn stitch_joins_what_a_cut_out_region_could_not() {
+        let sets: [&[(f64, f64)]; 7] = [
+            // The right hull's only corner on the merged hull is its rightmost point: both
+            // tangents end there and every right hull edge faces the left half.
+            &[
+                (3.0, 6.0),
+                (4.0, 3.0),
+                (0.0, 7.0),
+                (2.0, 0.0),
+                (6.0, 0.0),
+                (4.0, 2.0),
+            ],
+            // The left half's one triangle fails the circle test: its two facing hull edges
+            // stay, with the region to fill on both sides.
+            &[
+                (1.0, 2.0),
+                (2.0, 3.0),
+                (3.0, 5.0),
+                (2.0, 0.0),
+                (5.0, 0.0),
+                (3.0, 2.0),
+            ],
+            &[
+                (4.0, 4.0),
+                (1.0, 2.0),
+                (6.0, 4.0),
+                (5.0, 1.0),
+                (3.0, 4.0),
+                (6.0, 6.0),
+            ],
+            &[
+                (8.0, -2.0),
+                (10.0, 2.0),
+                (7.0, 2.0),
+                (9.0, -2.0),
+                (0.0, 1.0),
+                (3.0, 2.5),
+            ],
+            &[
+                (3.0, 0.8999046728845453),
+                (4.0, 0.32050799204832137),
+                (2.0, 0.924499420195516),
+                (6.0, 0.8963817388261929),
+                (1.0, 0.767425441880306),
+                (5.0, 0.8038272623815764),
+            ],
+            // Collinear runs on both tangents.
+            &[
+                (2.0, 0.0),
+                (2.0, 3.0),
+                (1.0, 0.0),
+                (1.0, 3.0),
+                (1.0, 4.0),
+                (1.0, 6.0),
+                (1.0, 0.0),
+                (3.0, 7.0),
+                (2.0, 7.0),
+                (3.0, -2.0),
+                (0.0, 6.0),
+                (1.0, 9.0),
+            ],
+            // General position: deletions on the right reach the upper tangent's right end,
+            // whose uncovered side then touches the region to fill twice.
+            &[
+                (0.9562619857374105, 0.3882328043931498),
+                (0.6957032236326658, 0.24352622521143175),
+                (0.6408025313235827, 0.28372443267246494),
+                (0.012449053719118086, 0.37587507343186255),
+                (0.2843238959621691, 0.7192283999303851),
+                (0.5211621814574898, 0.8442664460402897),
+                (0.13060461660859535, 0.26497211557375966),
+                (0.2771024889425152, 0.18178433545134542),
+                (0.6077626588306797, 0.7956436344761829),
+                (0.8663812949151619, 0.18401490289780176),
+                (0.5958966797714078, 0.11171079229191738),
+                (0.6000071891035085, 0.1607483001891319),
+                (0.5207561906462116, 0.8103598262020495),
+                (0.026597939553836936, 0.46682751685387625),
+                (0.2569153635894307, 0.7512601199539931),
+                (0.1664619743217245, 0.6519467920089129),
+                (0.9984257671487117, 0.08742068104347556),
+                (0.5162301402012168, 0.6292081185331877),
+                (0.5965778176167712, 0.5497231006839393),
+                (0.2127684723307146, 0.20364523584194194),
+                (0.22350374581004673, 0.9997473434668604),
+                (0.7604333254886454, 0.45295180107068833),
+                (0.4492010488257123, 0.9896286187509409),
+                (0.6734624958837111, 0.2775927226145576),
+                (0.4120707635206924, 0.8960974831930111),
+                (0.4410855999043356, 0.8513696484986122),
+                (0.745799134291924, 0.6535728245748861),
+                (0.07212801869908181, 0.06794866424416268),
+                (0.08743851173525485, 0.10886835429111485),
+                (0.5728754473128364, 0.16786415667969445),
+                (0.9853396175274628, 0.42077785022959313),
+                (0.6820595015499685, 0.7669083171530872),
+            ],
+        ];
+        for (k, set) in sets.iter().enumerate() {
+            let points: Vec<Point> = set.iter().map(|&(x, y)| Point::new(x, y)).collect();
+            assert!(built_in_halves_any(&points).is_some(), "set {k}");
+            assert!(!check(&format!("set {k}"), &points, k == 6), "set {k}");
+        }
+    }
+
+    #[test]
+    fn review_cocircular_across_the_seam() {
+        let mut fell = 0usize;
+        for r in [5, 25, 65, 85, 325, 1105] {
+            let mut pts = lattice_circle(r, 0.0, 0.0);
+            fell += usize::from(check(&format!("circle {r}"), &pts, false));
+            pts.push(Point::new(0.0, 0.0));
+            fell += usize::from(check(&format!("circle {r} + centre"), &pts, false));
+            // Two concentric cocircular rings.
+            let mut rings = lattice_circle(r, 0.0, 0.0);
+            rings.extend(lattice_circle(5 * r, 0.0, 0.0));
+            fell += usize::from(check(&format!("rings {r}"), &rings, false));
+        }
+        // Random subsets of a big lattice circle.
+        let all = lattice_circle(5525, 0.0, 0.0);
+        let mut rng = Xorshift::new(99);
+        for round in 0..200 {
+            let keep = 4 + rng.below(all.len() as u64 - 4) as usize;
+            let mut pts = all.clone();
+            shuffle(&mut rng, &mut pts);
+            pts.truncate(keep);
+            fell += usize::from(check(&format!("subset {round}"), &pts, false));
+        }
+        assert_eq!(fell, 0, "sets built in one piece");
+    }
+
+    #[test]
+    fn review_small_random_sets() {
+        let mut fell = 0usize;
+        let mut rng = Xorshift::new(0xfeed_beef);
+        for round in 0..4000 {
+            let n = 4 + rng.below(40) as usize;
+            let kind = round % 5;
+            let range = 2 + rng.below(8);
+            let points: Vec<Point> = (0..n)
+                .map(|_| match kind {
+                    0 => Point::new(rng.below(range) as f64, rng.below(range) as f64),
+                    1 => Point::new(rng.unit(), rng.unit()),
+                    2 => Point::new(rng.below(range) as f64, rng.unit()),
+                    3 => Point::new(rng.unit(), rng.below(range) as f64),
+                    _ => {
+                        let t = rng.below(range) as f64;
+                        Point::new(t, 2.0 * t + rng.below(2) as f64)
+                    }
+                })
+                .collect();
+            fell += usize::from(check(
+                &format!("round {round} kind {kind}"),
+                &points,
+                kind == 1,
+            ));
+        }
+        assert_eq!(fell, 0, "sets built in one piece");
+    }
+
+    #[test]
+    fn review_facing_arcs() {
+        let mut fell = 0usize;
+        // Two facing arcs of circles, deep merges: left arc bulging right, right arc bulging
+        // left, and the mirror (bulging away).
+        for n in [10usize, 50, 300, 2000] {
+            for (bulge, gap) in [(1.0, 0.01), (-1.0, 0.01), (1.0, 2.0), (1.0, 1e-9)] {
+                let mut pts = Vec::new();
+                for k in 0..n {
+                    let t = (k as f64 / (n - 1) as f64 - 0.5) * 2.0;
+                    let dx = bulge * (1.0 - t * t);
+                    pts.push(Point::new(-gap + dx, t));
+                    pts.push(Point::new(gap - dx + 3.0 * bulge.max(0.0), t + 1e-3));
+                }
+                fell += usize::from(check(&format!("arcs {n} {bulge} {gap}"), &pts, false));
+            }
+        }
+        // Two facing lattice half circles from the same circle: every point cocircular.
+        let pts: Vec<Point> = lattice_circle(1105, 0.0, 0.0);
+        fell += usize::from(check("one lattice circle", &pts, false));
+        assert_eq!(fell, 0, "sets built in one piece");
+    }
+
+    #[test]
+    fn review_collinear_tangents() {
+        let mut fell = 0usize;
+        let mut rng = Xorshift::new(3);
+        for round in 0..500 {
+            let n = 8 + rng.below(60) as usize;
+            let w = 4 + rng.below(20);
+            let mut pts = Vec::new();
+            // Bottom and top lines across both halves, and random lattice points between.
+            let slope = rng.below(3) as f64 - 1.0;
+            for x in 0..w {
+                if rng.below(3) > 0 {
+                    pts.push(Point::new(x as f64, slope * x as f64));
+                }
+                if rng.below(3) > 0 {
+                    pts.push(Point::new(x as f64, slope * x as f64 + 10.0));
+                }
+            }
+            for _ in 0..n {
+                let x = rng.below(w);
+                pts.push(Point::new(
+                    x as f64,
+                    slope * x as f64 + 1.0 + rng.below(9) as f64,
+                ));
+            }
+            shuffle(&mut rng, &mut pts);
+            fell += usize::from(check(&format!("tangent lines {round}"), &pts, false));
+        }
+        assert_eq!(fell, 0, "sets built in one piece");
+    }
+
+    #[test]
+    fn review_one_half_tiny_or_collinear() {
+        let mut fell = 0usize;
+        let mut rng = Xorshift::new(11);
+        for round in 0..2000 {
+            let n_left = 3 + rng.below(6) as usize;
+            let n_right = n_left + rng.below(3) as usize;
+            let mut pts = Vec::new();
+            let collinear_left = round % 3 == 0;
+            for _ in 0..n_left {
+                if collinear_left {
+                    let t = rng.below(5) as f64;
+                    pts.push(Point::new(t, t * 0.5 + 1.0));
+                } else {
+                    pts.push(Point::new(rng.below(5) as f64, rng.below(5) as f64));
+                }
+            }
+            for _ in 0..n_right {
+                pts.push(Point::new(
+                    6.0 + rng.below(5) as f64,
+                    rng.below(5) as f64 - 2.0,
+                ));
+            }
+            shuffle(&mut rng, &mut pts);
+            fell += usize::from(check(&format!("tiny {round}"), &pts, false));
+        }
+        assert_eq!(fell, 0, "sets built in one piece");
+    }
+
+    #[test]
+    fn review_wide_sets() {
+        let mut fell = 0usize;
+        let mut rng = Xorshift::new(17);
+        for round in 0..300 {
+            let n = 8 + rng.below(200) as usize;
+            let tiny = [1e-70, 1e-200, 1e-300, 5e-324][round % 4];
+            let pts: Vec<Point> = (0..n)
+                .map(|k| {
+                    if k % 2 == 0 {
+                        Point::new(rng.unit() * tiny, rng.unit() * tiny)
+                    } else {
+                        Point::new(0.5 + rng.unit(), rng.unit() - 0.5)
+                    }
+                })
+                .collect();
+            fell += usize::from(check(&format!("wide {round}"), &pts, false));
+            // Integers times a tiny and a huge factor: cocircular and collinear runs.
+            let pts: Vec<Point> = (0..n)
+                .map(|k| {
+                    let f = if k % 3 == 0 { tiny } else { 1.0 };
+                    Point::new(
+                        (rng.below(6) as f64 + if k % 3 == 0 { 0.0 } else { 7.0 }) * f,
+                        rng.below(6) as f64 * f,
+                    )
+                })
+                .collect();
+            fell += usize::from(check(&format!("wide lattice {round}"), &pts, false));
+        }
+        assert_eq!(fell, 0, "sets built in one piece");
+    }
+
+    #[test]
+    fn review_scales_and_slivers() {
+        let mut fell = 0usize;
+        let mut rng = Xorshift::new(23);
+        for round in 0..600 {
+            let n = 6 + rng.below(150) as usize;
+            let scale = [1e-300, 1e-160, 1.0, 1e160, 1e300, 4e-320][round % 6];
+            let thin = [1e-3, 1e-9, 1e-15, 0.0][(round / 6) % 4];
+            let pts: Vec<Point> = (0..n)
+                .map(|k| {
+                    let x = rng.unit();
+                    let y = if k % 7 == 0 {
+                        rng.unit() * 1e-3
+                    } else {
+                        (x - 0.5) * thin
+                    };
+                    Point::new(x * scale, y * scale)
+                })
+                .collect();
+            fell += usize::from(check(&format!("sliver {round}"), &pts, false));
+        }
+        assert_eq!(fell, 0, "sets built in one piece");
+    }
+
+    #[test]
+    fn review_grids_with_holes_and_duplicates() {
+        let mut fell = 0usize;
+        let mut rng = Xorshift::new(31);
+        for round in 0..300 {
+            let w = 3 + rng.below(25);
+            let h = 2 + rng.below(25);
+            let mut pts = Vec::new();
+            for i in 0..w * h {
+                let (x, y) = ((i % w) as f64, (i / w) as f64);
+                let hole = (x - w as f64 / 2.0).abs() < 2.0 && (y - h as f64 / 2.0).abs() < 2.0;
+                if !hole && rng.below(10) > 0 {
+                    pts.push(Point::new(x, y));
+                    if rng.below(5) == 0 {
+                        pts.push(Point::new(x, y));
+                    }
+                }
+            }
+            shuffle(&mut rng, &mut pts);
+            fell += usize::from(check(&format!("grid {round} {w}x{h}"), &pts, false));
+        }
+        assert_eq!(fell, 0, "sets built in one piece");
+    }
+
+    /// A longer sweep of the review's random sets (run by hand: `--ignored`).
+    #[test]
+    #[ignore]
+    fn review_long_fuzz() {
+        let mut fell = 0usize;
+        let mut rng = Xorshift::new(0xabad_1dea);
+        for round in 0..20000 {
+            let n = 4 + rng.below(if round % 10 == 0 { 3000 } else { 120 }) as usize;
+            let kind = round % 6;
+            let range = 2 + rng.below(30);
+            let points: Vec<Point> = (0..n)
+                .map(|_| match kind {
+                    0 => Point::new(rng.below(range) as f64, rng.below(range) as f64),
+                    1 => Point::new(rng.unit(), rng.unit()),
+                    2 => {
+                        let t = rng.unit() * core::f64::consts::TAU;
+                        let r = 1.0 + rng.below(3) as f64;
+                        Point::new(r * libm::cos(t), r * libm::sin(t) * 0.3)
+                    }
+                    3 => Point::new(rng.unit(), rng.unit() * 1e-6),
+                    4 => {
+                        let k = rng.below(range) as f64;
+                        let side = if rng.below(2) == 0 { -1.0 } else { 1.0 };
+                        Point::new(side * (1.0 + k * k * 0.01), k)
+                    }
+                    _ => {
+                        let f = if rng.below(2) == 0 { 1e-100 } else { 1.0 };
+                        Point::new(rng.below(range) as f64 * f, rng.below(range) as f64 * f)
+                    }
+                })
+                .collect();
+            fell += usize::from(check(
+                &format!("long {round} kind {kind}"),
+                &points,
+                kind == 1,
+            ));
+        }
+        assert_eq!(fell, 0, "sets built in one piece");
+        assert_eq!(fell, 0);
+    }
+
+    /// Timing and fallback check on large inputs (run by hand: `--ignored --nocapture`).
+    #[test]
+    #[ignore]
+    fn review_timing() {
+        let mut rng = Xorshift::new(5);
+        let uniform: Vec<Point> = (0..1_000_000)
+            .map(|_| Point::new(rng.unit(), rng.unit()))
+            .collect();
+        let ellipses: Vec<Point> = (0..1_000_000)
+            .map(|k| {
+                let e = (k % 200) as f64;
+                let (cx, cy) = ((e % 20.0) * 3.0, (e / 20.0).floor() * 2.0);
+                let t = rng.unit() * core::f64::consts::TAU;
+                Point::new(cx + 1.2 * libm::cos(t), cy + 0.7 * libm::sin(t))
+            })
+            .collect();
+        let grid: Vec<Point> = (0..1_000_000)
+            .map(|i| Point::new((i % 1000) as f64, (i / 1000) as f64))
+            .collect();
+        for (name, pts) in [
+            ("uniform", &uniform),
+            ("ellipses", &ellipses),
+            ("grid", &grid),
+        ] {
+            let stitched = built_in_halves_any(pts).is_some();
+            let mut best = f64::MAX;
+            for _ in 0..3 {
+                let t = std::time::Instant::now();
+                let tri = triangulate_split(pts, false, 0).unwrap();
+                best = best.min(t.elapsed().as_secs_f64());
+                core::hint::black_box(tri);
+            }
+            std::eprintln!("TIMING {name}: stitched {stitched}, best {:.3} s", best);
+        }
+    }
+
+    /// How many large sets are built in one piece (run by hand: `--ignored --nocapture`).
+    #[test]
+    #[ignore]
+    fn review_rate() {
+        let mut rng = Xorshift::new(77);
+        for n in [100usize, 1000, 10_000, 100_000] {
+            let sets = if n >= 100_000 { 20 } else { 200 };
+            let (mut fell_u, mut fell_c) = (0, 0);
+            for _ in 0..sets {
+                let u: Vec<Point> = (0..n).map(|_| Point::new(rng.unit(), rng.unit())).collect();
+                fell_u += usize::from(built_in_halves_any(&u).is_none());
+                let c: Vec<Point> = (0..n)
+                    .map(|k| {
+                        let e = (k % 10) as f64;
+                        let t = rng.unit() * core::f64::consts::TAU;
+                        Point::new(e * 0.7 + 1.2 * libm::cos(t), (e % 3.0) + 0.7 * libm::sin(t))
+                    })
+                    .collect();
+                fell_c += usize::from(built_in_halves_any(&c).is_none());
+            }
+            std::eprintln!("RATE n={n}: uniform {fell_u}/{sets}, ellipses {fell_c}/{sets}");
         }
     }
 }
