@@ -10,10 +10,14 @@
 //! header it cannot parse, a file shorter or longer than its header says, and NaN or infinite
 //! coordinates (with the row). Both byte orders and both memory orders (C and Fortran) are read.
 
+use super::pieces::{write_pieces, Cursor, ROOM};
 use super::{IoError, IoErrorKind};
 use crate::geometry::Point;
+use crate::mesh::VertexId;
 use crate::reconstruct::Reconstruction;
 use crate::triangulate::{Triangulation, MAX_POINTS};
+use core::ops::Range;
+use core::sync::atomic::{AtomicUsize, Ordering};
 use std::fs::File;
 use std::io::{self, Read, Write};
 use std::string::String;
@@ -495,34 +499,45 @@ pub fn write_npy_points(out: &mut dyn Write, points: &[Point]) -> io::Result<()>
 }
 
 /// Rows of `K` indices below `points`, written as uint32 when every index fits, int64
-/// otherwise, shape `(rows, K)`. `rows` must be what `items` yields; a mismatch is an error
-/// rather than a file whose header lies.
+/// otherwise, shape `(rows, K)`. `rows_of(range, row)` hands `row` the rows of units `range`
+/// (units are the caller's: triangles, points, edges), the rows of `0..units` in order being
+/// the array's; the units are cut into pieces of `piece` and converted on rayon's threads with
+/// the `parallel` feature ([`write_pieces`]). `rows` must be how many there are; a mismatch is
+/// an error rather than a file whose header lies.
 fn write_indices<const K: usize>(
     out: &mut dyn Write,
     points: usize,
     rows: usize,
-    items: impl FnOnce(&mut dyn FnMut([usize; K]) -> io::Result<()>) -> io::Result<()>,
+    units: usize,
+    piece: usize,
+    rows_of: &(dyn Fn(Range<usize>, &mut dyn FnMut([usize; K])) + Sync),
 ) -> io::Result<()> {
+    const { assert!(8 * K <= ROOM) };
     let narrow = points as u64 <= 1 << 32;
     out.write_all(&header(if narrow { "<u4" } else { "<i8" }, &[rows, K]))?;
-    let mut block: Vec<u8> = Vec::with_capacity(BLOCK + 64);
-    let mut written = 0usize;
-    items(&mut |row: [usize; K]| {
-        for i in row {
-            if narrow {
-                block.extend_from_slice(&(i as u32).to_le_bytes());
-            } else {
-                block.extend_from_slice(&(i as i64).to_le_bytes());
+    let written = AtomicUsize::new(0);
+    write_pieces(out, units, piece, &|range, buf| {
+        let mut cursor = Cursor::new(buf);
+        let mut count = 0;
+        rows_of(range, &mut |row| {
+            let room = cursor.room();
+            let mut at = 0;
+            for i in row {
+                if narrow {
+                    room[at..at + 4].copy_from_slice(&(i as u32).to_le_bytes());
+                    at += 4;
+                } else {
+                    room[at..at + 8].copy_from_slice(&(i as i64).to_le_bytes());
+                    at += 8;
+                }
             }
-        }
-        written += 1;
-        if block.len() >= BLOCK {
-            out.write_all(&block)?;
-            block.clear();
-        }
-        Ok(())
+            cursor.advance(at);
+            count += 1;
+        });
+        written.fetch_add(count, Ordering::Relaxed);
+        cursor.finish()
     })?;
-    out.write_all(&block)?;
+    let written = written.into_inner();
     if written != rows {
         return Err(io::Error::other(format!(
             "{written} rows written under a header announcing {rows}"
@@ -530,6 +545,12 @@ fn write_indices<const K: usize>(
     }
     Ok(())
 }
+
+/// Rows per piece of [`write_indices`]: 32,768 rows of three uint32 are 384 kB.
+const ROWS_PER_PIECE: usize = 1 << 15;
+
+/// Points per piece when writing a triangulation's edges (about three edges each).
+const POINTS_PER_PIECE: usize = 1 << 14;
 
 /// The final edges of a reconstruction as a `.npy` array of shape `(m, 2)`, `i < j`, sorted
 /// (those of [`write_edges`](super::write_edges)); uint32 when every point index fits, int64
@@ -546,10 +567,19 @@ fn write_indices<const K: usize>(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_npy_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
-    let edges = result.edges();
-    write_indices::<2>(out, result.num_points(), edges.len(), |row| {
-        edges.clone().try_for_each(row)
-    })
+    let edges = result.edge_list();
+    write_indices::<2>(
+        out,
+        result.num_points(),
+        edges.len(),
+        edges.len(),
+        ROWS_PER_PIECE,
+        &|range, row| {
+            for &[a, b] in &edges[range] {
+                row([a as usize, b as usize]);
+            }
+        },
+    )
 }
 
 /// The triangles of a triangulation as a `.npy` array of shape `(t, 3)`, counter-clockwise,
@@ -566,10 +596,23 @@ pub fn write_npy_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Resu
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_npy_triangles(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
-    let rows = tri.triangles().count();
-    write_indices::<3>(out, tri.num_points(), rows, |row| {
-        tri.triangles().try_for_each(row)
-    })
+    let mesh = tri.mesh();
+    // Pieces of triangle indices, ghosts included: the order of `Triangulation::triangles`.
+    let all = mesh.num_triangles_with_ghosts();
+    let finite = |corners: &[VertexId; 3]| !corners.iter().any(|v| v.is_infinite());
+    let rows = mesh.triangle_corners(0..all).filter(finite).count();
+    write_indices::<3>(
+        out,
+        tri.num_points(),
+        rows,
+        all,
+        ROWS_PER_PIECE,
+        &|range, row| {
+            for corners in mesh.triangle_corners(range).filter(finite) {
+                row(corners.map(|v| tri.input_of(v)));
+            }
+        },
+    )
 }
 
 /// The edges of a triangulation as a `.npy` array of shape `(m, 2)`, `i < j`, sorted (those of
@@ -587,14 +630,91 @@ pub fn write_npy_triangles(out: &mut dyn Write, tri: &Triangulation) -> io::Resu
 /// ```
 pub fn write_npy_triangulation_edges(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
     let rows = tri.edges().count();
-    write_indices::<2>(out, tri.num_points(), rows, |row| {
-        super::text::sorted_triangulation_edges(tri, row)
-    })
+    write_indices::<2>(
+        out,
+        tri.num_points(),
+        rows,
+        tri.num_points(),
+        POINTS_PER_PIECE,
+        &|range, row| {
+            let mut larger = Vec::new();
+            super::text::sorted_edges_from(tri, range, &mut larger, |edge| -> Result<(), ()> {
+                row(edge);
+                Ok(())
+            })
+            .unwrap_or(());
+        },
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Enough points for several pieces: the arrays hold the rows of the iterators, in order,
+    /// on rayon's threads and on one.
+    #[test]
+    fn pieces_give_the_rows_of_the_iterators() {
+        let mut rng = crate::test_rng::Xorshift::new(8);
+        let mut points: Vec<Point> = (0..2 * POINTS_PER_PIECE + 1000)
+            .map(|_| Point::new(rng.unit(), rng.unit()))
+            .collect();
+        points.extend_from_slice(&points.clone()[..300]);
+        let tri = crate::triangulate(&points).unwrap();
+        assert!(tri.triangles().count() > 2 * ROWS_PER_PIECE);
+        let u32s = |bytes: &[u8]| -> Vec<usize> {
+            bytes[128..]
+                .chunks_exact(4)
+                .map(|b| u32::from_le_bytes(b.try_into().unwrap()) as usize)
+                .collect()
+        };
+        let triangles: Vec<usize> = tri.triangles().flatten().collect();
+        let mut edges: Vec<[usize; 2]> = tri.edges().collect();
+        edges.sort_unstable();
+        let edges = edges.concat();
+        let run = || {
+            let (mut t, mut e) = (Vec::new(), Vec::new());
+            write_npy_triangles(&mut t, &tri).unwrap();
+            write_npy_triangulation_edges(&mut e, &tri).unwrap();
+            (u32s(&t), u32s(&e))
+        };
+        let (t, e) = run();
+        assert!(t == triangles && e == edges);
+        #[cfg(feature = "parallel")]
+        {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(1)
+                .build()
+                .unwrap();
+            let (t, e) = pool.install(run);
+            assert!(t == triangles && e == edges);
+        }
+    }
+
+    /// Indices of more than 2^32 points go out as int64, in pieces as well; a row count that
+    /// is not the header's is an error.
+    #[test]
+    fn wide_indices_and_a_wrong_row_count() {
+        let rows_of = |range: Range<usize>, row: &mut dyn FnMut([usize; 2])| {
+            for i in range {
+                row([i, (1 << 33) + i]);
+            }
+        };
+        let mut out = Vec::new();
+        write_indices::<2>(&mut out, (1 << 33) + 10, 10, 10, 3, &rows_of).unwrap();
+        assert!(out[10..128].starts_with(b"{'descr': '<i8'"));
+        let data: Vec<i64> = out[128..]
+            .chunks_exact(8)
+            .map(|b| i64::from_le_bytes(b.try_into().unwrap()))
+            .collect();
+        let expected: Vec<i64> = (0..10).flat_map(|i| [i, (1 << 33) + i]).collect();
+        assert_eq!(data, expected);
+        let err = write_indices::<2>(&mut Vec::new(), 100, 11, 10, 3, &rows_of).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "10 rows written under a header announcing 11"
+        );
+    }
 
     #[test]
     fn headers_are_padded_to_64_bytes_and_end_in_a_newline() {
