@@ -556,6 +556,9 @@ pub fn write_npy_points(out: &mut dyn Write, points: &[Point]) -> io::Result<()>
     Ok(())
 }
 
+/// Hands the rows of a range of units to a callback, for [`write_indices`].
+type RowsOf<'a, const K: usize> = dyn Fn(Range<usize>, &mut dyn FnMut([usize; K])) + Sync + 'a;
+
 /// Rows of `K` indices below `points`, written as uint32 when every index fits, int64
 /// otherwise, shape `(rows, K)`. `rows_of(range, row)` hands `row` the rows of units `range`
 /// (units are the caller's: triangles, points, edges), the rows of `0..units` in order being
@@ -568,7 +571,7 @@ fn write_indices<const K: usize>(
     rows: usize,
     units: usize,
     piece: usize,
-    rows_of: &(dyn Fn(Range<usize>, &mut dyn FnMut([usize; K])) + Sync),
+    rows_of: &RowsOf<'_, K>,
 ) -> io::Result<()> {
     const { assert!(8 * K <= ROOM) };
     let narrow = points as u64 <= 1 << 32;
