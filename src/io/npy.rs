@@ -13,7 +13,7 @@
 use super::pieces::{write_pieces, Cursor, ROOM};
 use super::{IoError, IoErrorKind};
 use crate::geometry::Point;
-use crate::mesh::VertexId;
+use crate::mesh::{HalfEdgeId, VertexId};
 use crate::reconstruct::Reconstruction;
 use crate::triangulate::{Triangulation, MAX_POINTS};
 use core::ops::Range;
@@ -613,6 +613,42 @@ const ROWS_PER_PIECE: usize = 1 << 15;
 /// Points per piece when writing a triangulation's edges (about three edges each).
 const POINTS_PER_PIECE: usize = 1 << 14;
 
+/// The number of triangles of `tri` (`Triangulation::triangles().count()`), for the header
+/// that comes before them; on rayon's threads with the `parallel` feature, as it is a pass
+/// over every corner of the mesh before the first row can be written.
+fn count_finite_triangles(tri: &Triangulation) -> usize {
+    let mesh = tri.mesh();
+    let corners = mesh.corner_slice(0..mesh.num_triangles_with_ghosts());
+    let finite = |corners: &[VertexId]| !corners.iter().any(|v| v.is_infinite());
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        corners.par_chunks_exact(3).filter(|c| finite(c)).count()
+    }
+    #[cfg(not(feature = "parallel"))]
+    corners.chunks_exact(3).filter(|c| finite(c)).count()
+}
+
+/// The number of edges of `tri` (`Triangulation::edges().count()`), for the header; on
+/// rayon's threads with the `parallel` feature.
+fn count_edges(tri: &Triangulation) -> usize {
+    let mesh = tri.mesh();
+    let counted = |e: usize| {
+        let e = HalfEdgeId::new(e as u32);
+        e < mesh.twin(e) && mesh.is_finite_edge(e)
+    };
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..mesh.num_half_edges())
+            .into_par_iter()
+            .filter(|&e| counted(e))
+            .count()
+    }
+    #[cfg(not(feature = "parallel"))]
+    (0..mesh.num_half_edges()).filter(|&e| counted(e)).count()
+}
+
 /// The final edges of a reconstruction as a `.npy` array of shape `(m, 2)`, `i < j`, sorted
 /// (those of [`write_edges`](super::write_edges)); uint32 when every point index fits, int64
 /// otherwise.
@@ -661,7 +697,7 @@ pub fn write_npy_triangles(out: &mut dyn Write, tri: &Triangulation) -> io::Resu
     // Pieces of triangle indices, ghosts included: the order of `Triangulation::triangles`.
     let all = mesh.num_triangles_with_ghosts();
     let finite = |corners: &[VertexId; 3]| !corners.iter().any(|v| v.is_infinite());
-    let rows = mesh.triangle_corners(0..all).filter(finite).count();
+    let rows = count_finite_triangles(tri);
     write_indices::<3>(
         out,
         tri.num_points(),
@@ -690,7 +726,7 @@ pub fn write_npy_triangles(out: &mut dyn Write, tri: &Triangulation) -> io::Resu
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_npy_triangulation_edges(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
-    let rows = tri.edges().count();
+    let rows = count_edges(tri);
     write_indices::<2>(
         out,
         tri.num_points(),
@@ -729,6 +765,8 @@ mod tests {
                 .map(|b| u32::from_le_bytes(b.try_into().unwrap()) as usize)
                 .collect()
         };
+        assert_eq!(count_finite_triangles(&tri), tri.triangles().count());
+        assert_eq!(count_edges(&tri), tri.edges().count());
         let triangles: Vec<usize> = tri.triangles().flatten().collect();
         let mut edges: Vec<[usize; 2]> = tri.edges().collect();
         edges.sort_unstable();
@@ -772,6 +810,25 @@ mod tests {
                 16 * n - 3
             )
         );
+    }
+
+    /// The header counts agree with the iterators on degenerate sets too.
+    #[test]
+    fn counts_of_degenerate_triangulations() {
+        let sets: Vec<Vec<Point>> = vec![
+            vec![Point::new(0.0, 0.0)],
+            vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)],
+            vec![Point::new(1.0, 1.0); 3],
+            (0..10).map(|i| Point::new(f64::from(i), 0.5)).collect(),
+            (0..25)
+                .map(|i| Point::new(f64::from(i % 5), f64::from(i / 5)))
+                .collect(),
+        ];
+        for points in sets {
+            let tri = crate::triangulate(&points).unwrap();
+            assert_eq!(count_finite_triangles(&tri), tri.triangles().count());
+            assert_eq!(count_edges(&tri), tri.edges().count());
+        }
     }
 
     /// Indices of more than 2^32 points go out as int64, in pieces as well; a row count that
