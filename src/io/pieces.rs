@@ -36,7 +36,7 @@ impl<'a> Cursor<'a> {
         Cursor { buf, at: 0 }
     }
 
-    /// The next [`Cursor::ROOM`] bytes, for an item that then moves the cursor by what it used.
+    /// The next [`ROOM`] bytes, for an item that then moves the cursor by what it used.
     #[inline]
     pub(super) fn room(&mut self) -> &mut [u8; ROOM] {
         if self.buf.len() < self.at + ROOM {

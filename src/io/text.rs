@@ -1,8 +1,10 @@
 //! Plain-text results: triangles, edge lists and polylines, one item per line.
 //!
 //! Owns the decimal formatting of indices: a line is built in a buffer by hand (no `fmt`
-//! machinery per number) and the buffer goes to the writer in large blocks, so the output is
-//! streamed in constant memory whatever its size.
+//! machinery per number) and the buffers go to the writer in large blocks, so the output is
+//! streamed in bounded memory whatever its size (a few batches of pieces, see
+//! [`write_pieces`]); a triangulation's sorted edge list also holds 8 bytes per edge while it
+//! is written ([`sorted_edge_keys`] says why).
 
 use super::pieces::{write_pieces, Cursor, ROOM};
 use crate::reconstruct::Reconstruction;
