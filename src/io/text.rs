@@ -154,18 +154,6 @@ impl<'a> Lines<'a> {
         Ok(())
     }
 
-    /// One line of indices separated by spaces.
-    #[inline]
-    fn line(&mut self, indices: &[usize]) -> io::Result<()> {
-        for (k, &i) in indices.iter().enumerate() {
-            if k > 0 {
-                self.block.push(b' ');
-            }
-            self.number(i);
-        }
-        self.end()
-    }
-
     fn finish(mut self) -> io::Result<()> {
         self.out.write_all(&self.block)?;
         self.block.clear();
@@ -184,12 +172,19 @@ impl<'a> Lines<'a> {
 /// assert_eq!(String::from_utf8(out)?, "0 1\n0 2\n1 2\n");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
+///
+/// With the `parallel` feature the lines are formatted in pieces on rayon's threads (the bytes
+/// are the same).
 pub fn write_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
-    let mut lines = Lines::new(out);
-    for edge in result.edges() {
-        lines.line(&edge)?;
-    }
-    lines.finish()
+    let edges = result.edge_list();
+    write_pieces(out, edges.len(), EDGES_PER_PIECE, &|range, buf| {
+        let mut cursor = Cursor::new(buf);
+        for &[a, b] in &edges[range] {
+            let used = put_line(cursor.room(), [a as usize, b as usize]);
+            cursor.advance(used);
+        }
+        cursor.finish()
+    })
 }
 
 /// One curve per line: `closed` or `open`, then its input indices in order.
@@ -384,7 +379,13 @@ mod tests {
         let mut lines = Lines::new(&mut out);
         let mut expected = String::new();
         for i in 0..50_000 {
-            lines.line(&[i, i + 1, 3 * i]).unwrap();
+            for (k, value) in [i, i + 1, 3 * i].into_iter().enumerate() {
+                if k > 0 {
+                    lines.text(b" ");
+                }
+                lines.number(value);
+            }
+            lines.end().unwrap();
             expected.push_str(&format!("{i} {} {}\n", i + 1, 3 * i));
         }
         lines.finish().unwrap();
@@ -426,6 +427,36 @@ mod tests {
                 .unwrap();
             let (t, e) = pool.install(run);
             assert!(t == triangles && e == edges);
+        }
+    }
+
+    /// A reconstruction with edges for several pieces: `write_edges` gives the lines of
+    /// `Reconstruction::edges`, in order, on rayon's threads and on one.
+    #[test]
+    fn reconstruction_edges_in_pieces_are_its_edges() {
+        let n = 3 * EDGES_PER_PIECE + 77;
+        let points: Vec<Point> = (0..n)
+            .map(|k| {
+                let t = k as f64 * core::f64::consts::TAU / n as f64;
+                Point::new(1000.0 * libm::cos(t), 700.0 * libm::sin(t))
+            })
+            .collect();
+        let result = crate::reconstruct(&points, &crate::Params::default()).unwrap();
+        assert!(result.edges().len() > 3 * EDGES_PER_PIECE);
+        let expected: String = result.edges().map(|[a, b]| format!("{a} {b}\n")).collect();
+        let run = || {
+            let mut out = Vec::new();
+            write_edges(&mut out, &result).unwrap();
+            String::from_utf8(out).unwrap()
+        };
+        assert!(run() == expected);
+        #[cfg(feature = "parallel")]
+        {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(1)
+                .build()
+                .unwrap();
+            assert!(pool.install(run) == expected);
         }
     }
 
