@@ -75,8 +75,11 @@ pub(super) fn write_pieces(
     format: &Format<'_>,
 ) -> io::Result<()> {
     let piece = piece.max(1);
+    // Not from inside a rayon job: the calling thread waits on a channel for the batches, and
+    // were every worker of the pool waiting so, no thread would be left to format them.
     #[cfg(feature = "parallel")]
-    if rayon::current_num_threads() >= 2 && units > piece {
+    if rayon::current_num_threads() >= 2 && rayon::current_thread_index().is_none() && units > piece
+    {
         return parallel::write_pieces(out, units, piece, format);
     }
     let mut buf = Vec::new();
@@ -196,6 +199,27 @@ mod tests {
                     assert_eq!(one, out);
                 }
             }
+        }
+    }
+
+    /// Called from inside rayon jobs of the global pool, on every worker at once: written on
+    /// each job's own thread, the same bytes, and no worker left waiting for batches that no
+    /// free worker could format (this hangs without the check in `write_pieces`).
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn writers_inside_rayon_jobs_finish() {
+        use rayon::prelude::*;
+        let jobs = 4 * rayon::current_num_threads();
+        let outputs: Vec<Vec<u8>> = (0..jobs)
+            .into_par_iter()
+            .map(|_| {
+                let mut out = Vec::new();
+                write_pieces(&mut out, 5003, 64, &numbers).unwrap();
+                out
+            })
+            .collect();
+        for out in outputs {
+            assert_eq!(out, expected(5003));
         }
     }
 
