@@ -9,7 +9,8 @@
 //! piece can be formatted without the others; only the order of the bytes is shared. The
 //! pieces are formatted on rayon's threads a batch at a time while the calling thread writes
 //! the batch before, so the output is the same bytes as one sequential pass and the memory
-//! stays bounded (a few batches) whatever the output's size.
+//! stays bounded (a few batches) whatever the output's size. Called on one thread (a one-thread
+//! pool) or from inside a rayon job, the pieces are formatted on the calling thread.
 
 use core::ops::Range;
 use std::io::{self, Write};
