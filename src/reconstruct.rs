@@ -538,6 +538,13 @@ impl Reconstruction {
         self.edges.iter().map(|&[a, b]| [a as usize, b as usize])
     }
 
+    /// The final edges as [`Reconstruction::edges`] gives them, as the slice they are kept in,
+    /// so that a writer can cut it into pieces.
+    #[cfg(feature = "std")]
+    pub(crate) fn edge_list(&self) -> &[[u32; 2]] {
+        &self.edges
+    }
+
     /// The curves, in input positions, sorted; see [`Graph::curves`].
     pub fn curves(&self) -> &[Curve] {
         &self.curves

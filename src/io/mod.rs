@@ -15,6 +15,7 @@ mod geojson;
 mod geojson_points;
 mod html;
 mod npy;
+mod pieces;
 mod points;
 mod svg;
 mod text;

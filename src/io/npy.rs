@@ -10,10 +10,14 @@
 //! header it cannot parse, a file shorter or longer than its header says, and NaN or infinite
 //! coordinates (with the row). Both byte orders and both memory orders (C and Fortran) are read.
 
+use super::pieces::{write_pieces, Cursor, ROOM};
 use super::{IoError, IoErrorKind};
 use crate::geometry::Point;
+use crate::mesh::VertexId;
 use crate::reconstruct::Reconstruction;
 use crate::triangulate::{Triangulation, MAX_POINTS};
+use core::ops::Range;
+use core::sync::atomic::{AtomicUsize, Ordering};
 use std::fs::File;
 use std::io::{self, Read, Write};
 use std::string::String;
@@ -321,45 +325,10 @@ fn read_npy_from(reader: &mut dyn Read, file: &str) -> Result<Vec<Point>, IoErro
             ),
         )
     })?;
-    points.resize(n, Point::new(0.0, 0.0));
-    let values = 2 * n;
-    let mut block = vec![0u8; BLOCK - BLOCK % size];
-    let mut done = 0usize;
-    while done < values {
-        let want = ((values - done) * size).min(block.len());
-        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError {
-            file: file.to_string(),
-            line: None,
-            kind: IoErrorKind::Io(err),
-        })?;
-        let whole = got / size;
-        for (k, bytes) in block[..whole * size].chunks_exact(size).enumerate() {
-            let value = decode(bytes, header.float, header.big_endian);
-            let index = done + k;
-            let (row, column) = if header.fortran_order {
-                (index % n, index / n)
-            } else {
-                (index / 2, index % 2)
-            };
-            let point = &mut points[row];
-            if column == 0 {
-                point.x = value;
-            } else {
-                point.y = value;
-            }
-        }
-        done += whole;
-        if got < want {
-            return Err(content(
-                file,
-                format!(
-                    "the header announces {n} points ({} bytes of data), the file ends after {} \
-                     bytes of them",
-                    values * size,
-                    done * size + got % size
-                ),
-            ));
-        }
+    if !header.fortran_order {
+        read_rows(reader, file, &header, size, &mut points)?;
+    } else {
+        read_columns(reader, file, &header, size, &mut points)?;
     }
     let mut extra = [0u8; 1];
     if read_up_to(reader, &mut extra).map_err(|err| IoError {
@@ -384,6 +353,99 @@ fn read_npy_from(reader: &mut dyn Read, file: &str) -> Result<Vec<Point>, IoErro
         ));
     }
     Ok(points)
+}
+
+/// The error for a file that ends `read` bytes into the `n` points its header announces.
+fn ends_early(file: &str, n: usize, size: usize, read: usize) -> IoError {
+    content(
+        file,
+        format!(
+            "the header announces {n} points ({} bytes of data), the file ends after {read} \
+             bytes of them",
+            2 * n * size
+        ),
+    )
+}
+
+/// The points of a C-order array (row after row, `x` then `y`), appended to `points` as their
+/// rows are read: each point is written once, with no zeroed array to fill first, and the
+/// common little-endian float64 file is decoded without a per-value choice.
+fn read_rows(
+    reader: &mut dyn Read,
+    file: &str,
+    header: &Header,
+    size: usize,
+    points: &mut Vec<Point>,
+) -> Result<(), IoError> {
+    let n = header.rows;
+    let row = 2 * size;
+    let mut block = vec![0u8; BLOCK - BLOCK % row];
+    while points.len() < n {
+        let want = ((n - points.len()) * row).min(block.len());
+        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError {
+            file: file.to_string(),
+            line: None,
+            kind: IoErrorKind::Io(err),
+        })?;
+        let rows = block[..got - got % row].chunks_exact(row);
+        match (header.float, header.big_endian) {
+            (Float::F64, false) => points.extend(rows.map(|b| {
+                let (x, y) = b.split_at(8);
+                Point::new(
+                    f64::from_le_bytes(x.try_into().unwrap_or([0; 8])),
+                    f64::from_le_bytes(y.try_into().unwrap_or([0; 8])),
+                )
+            })),
+            (float, big_endian) => points.extend(rows.map(|b| {
+                let (x, y) = b.split_at(size);
+                Point::new(decode(x, float, big_endian), decode(y, float, big_endian))
+            })),
+        }
+        if got < want {
+            return Err(ends_early(file, n, size, points.len() * row + got % row));
+        }
+    }
+    Ok(())
+}
+
+/// The points of a Fortran-order array (all `x`, then all `y`), into `points`, zeroed first.
+fn read_columns(
+    reader: &mut dyn Read,
+    file: &str,
+    header: &Header,
+    size: usize,
+    points: &mut Vec<Point>,
+) -> Result<(), IoError> {
+    let n = header.rows;
+    points.resize(n, Point::new(0.0, 0.0));
+    let values = 2 * n;
+    let mut block = vec![0u8; BLOCK - BLOCK % size];
+    let mut done = 0usize;
+    while done < values {
+        let want = ((values - done) * size).min(block.len());
+        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError {
+            file: file.to_string(),
+            line: None,
+            kind: IoErrorKind::Io(err),
+        })?;
+        let whole = got / size;
+        for (k, bytes) in block[..whole * size].chunks_exact(size).enumerate() {
+            let value = decode(bytes, header.float, header.big_endian);
+            let index = done + k;
+            let (row, column) = (index % n, index / n);
+            let point = &mut points[row];
+            if column == 0 {
+                point.x = value;
+            } else {
+                point.y = value;
+            }
+        }
+        done += whole;
+        if got < want {
+            return Err(ends_early(file, n, size, done * size + got % size));
+        }
+    }
+    Ok(())
 }
 
 #[inline]
@@ -494,41 +556,75 @@ pub fn write_npy_points(out: &mut dyn Write, points: &[Point]) -> io::Result<()>
     Ok(())
 }
 
+/// Hands the rows of a range of units to a callback, for [`write_indices`].
+type RowsOf<'a, const K: usize> = dyn Fn(Range<usize>, &mut dyn FnMut([usize; K])) + Sync + 'a;
+
 /// Rows of `K` indices below `points`, written as uint32 when every index fits, int64
-/// otherwise, shape `(rows, K)`. `rows` must be what `items` yields; a mismatch is an error
-/// rather than a file whose header lies.
+/// otherwise, shape `(rows, K)`. `rows_of(range, row)` hands `row` the rows of units `range`
+/// (units are the caller's: triangles, points, edges), the rows of `0..units` in order being
+/// the array's; the units are cut into pieces of `piece` and converted on rayon's threads with
+/// the `parallel` feature ([`write_pieces`]). `rows` must be how many there are; a mismatch is
+/// an error rather than a file whose header lies.
 fn write_indices<const K: usize>(
     out: &mut dyn Write,
     points: usize,
     rows: usize,
-    items: impl FnOnce(&mut dyn FnMut([usize; K]) -> io::Result<()>) -> io::Result<()>,
+    units: usize,
+    piece: usize,
+    rows_of: &RowsOf<'_, K>,
 ) -> io::Result<()> {
+    const { assert!(8 * K <= ROOM) };
     let narrow = points as u64 <= 1 << 32;
     out.write_all(&header(if narrow { "<u4" } else { "<i8" }, &[rows, K]))?;
-    let mut block: Vec<u8> = Vec::with_capacity(BLOCK + 64);
-    let mut written = 0usize;
-    items(&mut |row: [usize; K]| {
-        for i in row {
-            if narrow {
-                block.extend_from_slice(&(i as u32).to_le_bytes());
-            } else {
-                block.extend_from_slice(&(i as i64).to_le_bytes());
+    let written = AtomicUsize::new(0);
+    write_pieces(out, units, piece, &|range, buf| {
+        let mut cursor = Cursor::new(buf);
+        let mut count = 0;
+        rows_of(range, &mut |row| {
+            let room = cursor.room();
+            let mut at = 0;
+            for i in row {
+                if narrow {
+                    room[at..at + 4].copy_from_slice(&(i as u32).to_le_bytes());
+                    at += 4;
+                } else {
+                    room[at..at + 8].copy_from_slice(&(i as i64).to_le_bytes());
+                    at += 8;
+                }
             }
-        }
-        written += 1;
-        if block.len() >= BLOCK {
-            out.write_all(&block)?;
-            block.clear();
-        }
-        Ok(())
+            cursor.advance(at);
+            count += 1;
+        });
+        written.fetch_add(count, Ordering::Relaxed);
+        cursor.finish()
     })?;
-    out.write_all(&block)?;
+    let written = written.into_inner();
     if written != rows {
         return Err(io::Error::other(format!(
             "{written} rows written under a header announcing {rows}"
         )));
     }
     Ok(())
+}
+
+/// Rows per piece of [`write_indices`]: 8,192 rows of three uint32 are 96 kB (the batches in
+/// flight stay near 1 MB).
+const ROWS_PER_PIECE: usize = 1 << 13;
+
+/// The number of triangles of `tri` (`Triangulation::triangles().count()`), for the header
+/// that comes before them; on rayon's threads with the `parallel` feature, as it is a pass
+/// over every corner of the mesh before the first row can be written.
+fn count_finite_triangles(tri: &Triangulation) -> usize {
+    let mesh = tri.mesh();
+    let corners = mesh.corner_slice(0..mesh.num_triangles_with_ghosts());
+    let finite = |corners: &[VertexId]| !corners.iter().any(|v| v.is_infinite());
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        corners.par_chunks_exact(3).filter(|c| finite(c)).count()
+    }
+    #[cfg(not(feature = "parallel"))]
+    corners.chunks_exact(3).filter(|c| finite(c)).count()
 }
 
 /// The final edges of a reconstruction as a `.npy` array of shape `(m, 2)`, `i < j`, sorted
@@ -546,10 +642,19 @@ fn write_indices<const K: usize>(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_npy_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
-    let edges = result.edges();
-    write_indices::<2>(out, result.num_points(), edges.len(), |row| {
-        edges.clone().try_for_each(row)
-    })
+    let edges = result.edge_list();
+    write_indices::<2>(
+        out,
+        result.num_points(),
+        edges.len(),
+        edges.len(),
+        ROWS_PER_PIECE,
+        &|range, row| {
+            for &[a, b] in &edges[range] {
+                row([a as usize, b as usize]);
+            }
+        },
+    )
 }
 
 /// The triangles of a triangulation as a `.npy` array of shape `(t, 3)`, counter-clockwise,
@@ -566,10 +671,23 @@ pub fn write_npy_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Resu
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_npy_triangles(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
-    let rows = tri.triangles().count();
-    write_indices::<3>(out, tri.num_points(), rows, |row| {
-        tri.triangles().try_for_each(row)
-    })
+    let mesh = tri.mesh();
+    // Pieces of triangle indices, ghosts included: the order of `Triangulation::triangles`.
+    let all = mesh.num_triangles_with_ghosts();
+    let finite = |corners: &[VertexId; 3]| !corners.iter().any(|v| v.is_infinite());
+    let rows = count_finite_triangles(tri);
+    write_indices::<3>(
+        out,
+        tri.num_points(),
+        rows,
+        all,
+        ROWS_PER_PIECE,
+        &|range, row| {
+            for corners in mesh.triangle_corners(range).filter(finite) {
+                row(corners.map(|v| tri.input_of(v)));
+            }
+        },
+    )
 }
 
 /// The edges of a triangulation as a `.npy` array of shape `(m, 2)`, `i < j`, sorted (those of
@@ -586,15 +704,130 @@ pub fn write_npy_triangles(out: &mut dyn Write, tri: &Triangulation) -> io::Resu
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_npy_triangulation_edges(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
-    let rows = tri.edges().count();
-    write_indices::<2>(out, tri.num_points(), rows, |row| {
-        super::text::sorted_triangulation_edges(tri, row)
-    })
+    let keys = super::text::sorted_edge_keys(tri)?;
+    write_indices::<2>(
+        out,
+        tri.num_points(),
+        keys.len(),
+        keys.len(),
+        ROWS_PER_PIECE,
+        &|range, row| {
+            for &key in &keys[range] {
+                row(super::text::edge_of_key(key));
+            }
+        },
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Enough points for several pieces: the arrays hold the rows of the iterators, in order,
+    /// on rayon's threads and on one.
+    #[test]
+    fn pieces_give_the_rows_of_the_iterators() {
+        let mut rng = crate::test_rng::Xorshift::new(8);
+        let mut points: Vec<Point> = (0..2 * ROWS_PER_PIECE + 1000)
+            .map(|_| Point::new(rng.unit(), rng.unit()))
+            .collect();
+        points.extend_from_slice(&points.clone()[..300]);
+        let tri = crate::triangulate(&points).unwrap();
+        assert!(tri.triangles().count() > 2 * ROWS_PER_PIECE);
+        let u32s = |bytes: &[u8]| -> Vec<usize> {
+            bytes[128..]
+                .chunks_exact(4)
+                .map(|b| u32::from_le_bytes(b.try_into().unwrap()) as usize)
+                .collect()
+        };
+        assert_eq!(count_finite_triangles(&tri), tri.triangles().count());
+        let triangles: Vec<usize> = tri.triangles().flatten().collect();
+        let mut edges: Vec<[usize; 2]> = tri.edges().collect();
+        edges.sort_unstable();
+        let edges = edges.concat();
+        let run = || {
+            let (mut t, mut e) = (Vec::new(), Vec::new());
+            write_npy_triangles(&mut t, &tri).unwrap();
+            write_npy_triangulation_edges(&mut e, &tri).unwrap();
+            (u32s(&t), u32s(&e))
+        };
+        let (t, e) = run();
+        assert!(t == triangles && e == edges);
+        #[cfg(feature = "parallel")]
+        {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(1)
+                .build()
+                .unwrap();
+            let (t, e) = pool.install(run);
+            assert!(t == triangles && e == edges);
+        }
+    }
+
+    /// A C-order file longer than a block, cut short: the points before the cut are read in
+    /// blocks and the message counts every byte that arrived.
+    #[test]
+    fn a_file_cut_after_the_first_block_says_how_much_arrived() {
+        let n = 100_000;
+        let points: Vec<Point> = (0..n).map(|i| Point::new(i as f64, -(i as f64))).collect();
+        let mut bytes = Vec::new();
+        write_npy_points(&mut bytes, &points).unwrap();
+        assert!(bytes.len() - 128 > BLOCK);
+        assert_eq!(parse_npy(&bytes, "whole.npy").unwrap(), points);
+        let err = parse_npy(&bytes[..bytes.len() - 3], "cut.npy").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cut.npy: the header announces {n} points ({} bytes of data), the file ends \
+                 after {} bytes of them",
+                16 * n,
+                16 * n - 3
+            )
+        );
+    }
+
+    /// The header counts agree with the iterators on degenerate sets too.
+    #[test]
+    fn counts_of_degenerate_triangulations() {
+        let sets: Vec<Vec<Point>> = vec![
+            vec![Point::new(0.0, 0.0)],
+            vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)],
+            vec![Point::new(1.0, 1.0); 3],
+            (0..10).map(|i| Point::new(f64::from(i), 0.5)).collect(),
+            (0..25)
+                .map(|i| Point::new(f64::from(i % 5), f64::from(i / 5)))
+                .collect(),
+        ];
+        for points in sets {
+            let tri = crate::triangulate(&points).unwrap();
+            assert_eq!(count_finite_triangles(&tri), tri.triangles().count());
+        }
+    }
+
+    /// Indices of more than 2^32 points go out as int64, in pieces as well; a row count that
+    /// is not the header's is an error.
+    #[test]
+    fn wide_indices_and_a_wrong_row_count() {
+        let rows_of = |range: Range<usize>, row: &mut dyn FnMut([usize; 2])| {
+            for i in range {
+                row([i, (1 << 33) + i]);
+            }
+        };
+        let mut out = Vec::new();
+        write_indices::<2>(&mut out, (1 << 33) + 10, 10, 10, 3, &rows_of).unwrap();
+        assert!(out[10..128].starts_with(b"{'descr': '<i8'"));
+        let data: Vec<i64> = out[128..]
+            .chunks_exact(8)
+            .map(|b| i64::from_le_bytes(b.try_into().unwrap()))
+            .collect();
+        let expected: Vec<i64> = (0..10).flat_map(|i| [i, (1 << 33) + i]).collect();
+        assert_eq!(data, expected);
+        let err = write_indices::<2>(&mut Vec::new(), 100, 11, 10, 3, &rows_of).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "10 rows written under a header announcing 11"
+        );
+    }
 
     #[test]
     fn headers_are_padded_to_64_bytes_and_end_in_a_newline() {

@@ -20,6 +20,17 @@
 //!   such a link), never created, truncated or replaced;
 //! - a directory, or a file this user may not write: an error.
 //!
+//! The new content is sent to the disk (`sync_all`) before the rename, so that "the old content
+//! or the whole new one" holds across a power loss or a crash of the system too, not only of
+//! this process: without it the rename may reach the disk before the data, and the path then
+//! holds an empty or partial file. It was measured before being kept (1M uniform points, 41 MB
+//! of triangles, ext4 on a virtual disk): the `sync_all` takes 25 ms and the rename over the
+//! old file 15 ms (freeing its blocks); without the `sync_all` the rename takes 37 ms, as ext4
+//! flushes a file renamed over another itself, so dropping it would save about 5 ms when a file
+//! is replaced and 25 ms for a new one, for a guarantee that would then hold only on some file
+//! systems. Flushing from a second thread while the output is still being formatted (the final
+//! `sync_all` then has little left) showed no gain on two busy cores and was not kept.
+//!
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
 //! (the process then ends by that signal, as it would have); SIGKILL cannot be caught, so
 //! `kill -9` may leave a `.NAME.XXXXXX.partial` file beside the output.
