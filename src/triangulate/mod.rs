@@ -219,10 +219,11 @@ fn construct(
     (order, sorted, built)
 }
 
-/// `points` in `order`, in the frame `scale`.
+/// `points` in `order`, in the frame `scale` (on rayon's threads for a set large enough to be
+/// cut in two).
 fn in_order(points: &[Point], order: &[u32], scale: Scale, parallel: bool) -> Vec<Point> {
     #[cfg(feature = "parallel")]
-    if parallel {
+    if parallel && order.len() >= halves::SPLIT_MIN {
         use rayon::prelude::*;
         return order
             .par_iter()
