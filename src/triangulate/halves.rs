@@ -455,6 +455,7 @@ mod tests {
     use super::super::{scale, triangulate_split};
     use super::*;
     use crate::test_rng::Xorshift;
+    use alloc::format;
 
     /// Builds `points` cut in two, without falling back to one piece: `None` if a step failed.
     fn built_in_halves(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
@@ -699,6 +700,7 @@ mod tests {
             );
         }
         let fell = falls_back(points);
+        #[cfg(feature = "std")]
         if fell && std::env::var("REVIEW_SHRINK").is_ok() {
             let mut pts = points.to_vec();
             let mut k = 0;
@@ -731,7 +733,7 @@ mod tests {
         let mut out = Vec::new();
         for x in -r..=r {
             let y2 = r * r - x * x;
-            let y = (y2 as f64).sqrt() as i64;
+            let y = libm::sqrt(y2 as f64) as i64;
             for y in [y - 1, y, y + 1] {
                 if y >= 0 && y * y == y2 {
                     out.push(Point::new(cx + x as f64, cy + y as f64));
@@ -1075,6 +1077,7 @@ mod tests {
     /// A longer sweep of the review's random sets (run by hand: `--ignored`).
     #[test]
     #[ignore]
+    #[cfg(feature = "std")]
     fn review_long_fuzz() {
         let mut fell = 0usize;
         let mut rng = Xorshift::new(0xabad_1dea);
@@ -1116,6 +1119,7 @@ mod tests {
     /// Timing and fallback check on large inputs (run by hand: `--ignored --nocapture`).
     #[test]
     #[ignore]
+    #[cfg(feature = "std")]
     fn review_timing() {
         let mut rng = Xorshift::new(5);
         let uniform: Vec<Point> = (0..1_000_000)
@@ -1152,6 +1156,7 @@ mod tests {
     /// How many large sets are built in one piece (run by hand: `--ignored --nocapture`).
     #[test]
     #[ignore]
+    #[cfg(feature = "std")]
     fn review_rate() {
         let mut rng = Xorshift::new(77);
         for n in [100usize, 1000, 10_000, 100_000] {
