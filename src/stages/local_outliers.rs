@@ -158,26 +158,25 @@ pub(crate) fn remove_local_outliers(
     if rules.long_at_branches || rules.long_at_both_ends {
         if let Some(long) = long_vertices(tri, &profile.graph) {
             // Only an edge with an end where it is long can go: the full test runs on those.
-            let changed = {
+            let mut removed = Vec::new();
+            {
                 let candidate = |v: VertexId| long[v.index() / 64] >> (v.index() % 64) & 1 == 1;
                 let mut dropped = long_edges(tri, &profile, rules);
-                drop_edges(&mut graph, |e| {
+                drop_edges(&mut graph, &mut removed, |e| {
                     (candidate(e[0]) || candidate(e[1])) && dropped(e)
-                })
-            };
-            drop(long);
-            if changed {
-                profile.rebuild(tri, &graph);
+                });
             }
+            drop(long);
+            profile.update(tri, &graph, &removed);
         }
     }
     if rules.short_spurs && profile.graph.has_branch() {
         if let Some(dropped) = short_spurs(&profile.graph) {
-            if drop_edges(&mut graph, |&[a, b]| {
+            let mut removed = Vec::new();
+            drop_edges(&mut graph, &mut removed, |&[a, b]| {
                 dropped[a.index()] || dropped[b.index()]
-            }) {
-                profile.rebuild(tri, &graph);
-            }
+            });
+            profile.update(tri, &graph, &removed);
         }
     }
     // The profile's curve graph is that of `graph` until rule 4 removes a component.
@@ -189,7 +188,9 @@ pub(crate) fn remove_local_outliers(
         if let Some((root, kept)) = judged {
             // Not read again and not the output's: freed before the output is built.
             profile = None;
-            drop_edges(&mut graph, |&[a, _]| !kept[root[a.index()] as usize]);
+            drop_edges(&mut graph, &mut Vec::new(), |&[a, _]| {
+                !kept[root[a.index()] as usize]
+            });
         }
     }
     let output_graph = profile.map(|p| p.graph);
@@ -280,11 +281,20 @@ impl Profile {
         }
     }
 
-    /// Replaces this profile by that of `edges`, freeing the old one first: the two together
-    /// were the stage's peak.
-    fn rebuild(&mut self, tri: &Triangulation, edges: &[Edge]) {
-        self.graph = CurveGraph::new(0, &[]);
-        *self = Profile::of(tri, edges);
+    /// Makes this the profile of `edges`, which are its edges less `removed`: a few removed
+    /// edges are taken out of the graph in place ([`CurveGraph::remove_edges`]); beyond one
+    /// per 64 vertices the graph is built again, freeing the old one first (the two together
+    /// were the stage's peak).
+    fn update(&mut self, tri: &Triangulation, edges: &[Edge], removed: &[Edge]) {
+        if removed.is_empty() {
+            return;
+        }
+        if removed.len() <= self.graph.vertex_count() / 64 {
+            self.graph.remove_edges(removed);
+        } else {
+            self.graph = CurveGraph::new(0, &[]);
+            *self = Profile::of(tri, edges);
+        }
     }
 
     /// The squared length of the longest edge at `v` (`NONE` when it has none).
@@ -408,16 +418,28 @@ fn long_edges<'a>(
 /// at its exact size; a later one filters that copy in place. Collecting into a new list instead
 /// grew it by doubling, up to twice its length, while the input and the previous copy were held
 /// (55 bytes per point at the stage's peak along curves).
-fn drop_edges(graph: &mut Cow<'_, [Edge]>, mut dropped: impl FnMut(&Edge) -> bool) -> bool {
+fn drop_edges(
+    graph: &mut Cow<'_, [Edge]>,
+    removed: &mut Vec<Edge>,
+    mut dropped: impl FnMut(&Edge) -> bool,
+) -> bool {
     let Some(first) = graph.iter().position(&mut dropped) else {
         return false;
+    };
+    removed.push(graph[first]);
+    let mut keep = |e: &Edge| {
+        let gone = dropped(e);
+        if gone {
+            removed.push(*e);
+        }
+        !gone
     };
     match graph {
         Cow::Owned(list) => {
             let mut count = first;
             for k in first + 1..list.len() {
                 let e = list[k];
-                if !dropped(&e) {
+                if keep(&e) {
                     list[count] = e;
                     count += 1;
                 }
@@ -425,7 +447,7 @@ fn drop_edges(graph: &mut Cow<'_, [Edge]>, mut dropped: impl FnMut(&Edge) -> boo
             list.truncate(count);
         }
         Cow::Borrowed(list) => {
-            let rest = list[first + 1..].iter().filter(|e| !dropped(e));
+            let rest = list[first + 1..].iter().filter(|e| keep(e));
             let kept = list[..first].iter().chain(rest).copied();
             *graph = Cow::Owned(collect_exact(list.len() - 1, kept));
         }
