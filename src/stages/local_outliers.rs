@@ -152,8 +152,8 @@ pub(crate) fn remove_local_outliers(
             graph = Cow::Owned([edges, &given[..]].concat());
         }
     }
-    // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and rebuilt
-    // only after a rule changed the graph.
+    // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and updated
+    // only after a rule changed the graph (`Profile::update`).
     let mut profile = Profile::of(tri, &graph);
     if rules.long_at_branches || rules.long_at_both_ends {
         if let Some(long) = long_vertices(tri, &profile.graph) {
