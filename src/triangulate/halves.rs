@@ -38,53 +38,98 @@ pub(crate) const SPLIT_MIN: usize = 1 << 16;
 /// 1/1024 of the span of the median.
 const BUCKETS: usize = 1024;
 
-/// The input positions of the two halves, left and right of a vertical line, each in input
-/// order; `None` when the set has fewer than `min` points or no such line leaves at least a
-/// quarter of them on each side (most points sharing a few x).
+/// Where a set is cut: the left half is the points whose x falls in a bucket below `boundary`
+/// (see [`cut`]).
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Cut {
+    low: f64,
+    per_unit: f64,
+    boundary: usize,
+    left: usize,
+}
+
+impl Cut {
+    /// Whether `p` belongs to the left half.
+    #[inline]
+    pub(crate) fn is_left(&self, p: Point) -> bool {
+        bucket(p.x, self.low, self.per_unit) < self.boundary
+    }
+
+    /// The number of points in the left half.
+    pub(crate) fn left_len(&self) -> usize {
+        self.left
+    }
+}
+
+/// The bucket of `x` among [`BUCKETS`] equal ones from `low`: monotone in `x`.
+#[inline]
+fn bucket(x: f64, low: f64, per_unit: f64) -> usize {
+    (((x - low) * per_unit) as usize).min(BUCKETS - 1)
+}
+
+/// Where to cut `points` by a vertical line into a left and a right half; `None` when the set
+/// has fewer than `min` points or no such line leaves at least a quarter of them on each side
+/// (most points sharing a few x). The two passes (the x range, then a count per bucket) run on
+/// two threads when `parallel`, each over half the points; the result is the same.
 ///
 /// The line lies between two of [`BUCKETS`] equal buckets of the x span; a bucket's index is
 /// monotone in x, so every point of the left half lies strictly left of every point of the
 /// right one, and points with the same x (duplicates among them) fall on the same side.
-pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)> {
+pub(crate) fn cut(points: &[Point], min: usize, parallel: bool) -> Option<Cut> {
     let n = points.len();
     if n < min.max(4) {
         return None;
     }
-    let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
-    for p in points {
-        low = if p.x < low { p.x } else { low };
-        high = if p.x > high { p.x } else { high };
-    }
+    let (first, second) = points.split_at(n / 2);
+    let range = |part: &[Point]| {
+        let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+        for p in part {
+            low = if p.x < low { p.x } else { low };
+            high = if p.x > high { p.x } else { high };
+        }
+        (low, high)
+    };
+    let ((low_a, high_a), (low_b, high_b)) =
+        super::both(parallel, || range(first), || range(second));
+    let (low, high) = (low_a.min(low_b), high_a.max(high_b));
     let span = high - low;
     if span <= 0.0 || !span.is_finite() {
         return None;
     }
     let per_unit = BUCKETS as f64 / span;
-    let bucket = |x: f64| (((x - low) * per_unit) as usize).min(BUCKETS - 1);
-    let mut counts = [0usize; BUCKETS];
-    for p in points {
-        counts[bucket(p.x)] += 1;
-    }
+    let histogram = |part: &[Point]| {
+        let mut counts = alloc::vec![0u32; BUCKETS];
+        for p in part {
+            counts[bucket(p.x, low, per_unit)] += 1;
+        }
+        counts
+    };
+    let (counts, more) = super::both(parallel, || histogram(first), || histogram(second));
     // The boundary `k` (left half: buckets below `k`) whose left count is nearest n / 2.
     let (mut best, mut best_count, mut below) = (0usize, 0usize, 0usize);
-    for (k, &count) in counts.iter().enumerate() {
+    for (k, (&count, &more)) in counts.iter().zip(&more).enumerate() {
         if below.abs_diff(n / 2) < best_count.abs_diff(n / 2) {
             (best, best_count) = (k, below);
         }
-        below += count;
+        below += count as usize + more as usize;
     }
     if best_count < n / 4 || n - best_count < n / 4 {
         return None;
     }
-    let mut left = Vec::with_capacity(best_count);
-    let mut right = Vec::with_capacity(n - best_count);
-    for (i, p) in points.iter().enumerate() {
-        if bucket(p.x) < best {
-            left.push(i as u32);
-        } else {
-            right.push(i as u32);
-        }
-    }
+    Some(Cut {
+        low,
+        per_unit,
+        boundary: best,
+        left: best_count,
+    })
+}
+
+/// The input positions of the two halves of [`cut`], each in input order.
+#[cfg(test)]
+pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)> {
+    let cut = cut(points, min, false)?;
+    let (left, right): (Vec<u32>, Vec<u32>) =
+        (0..points.len() as u32).partition(|&i| cut.is_left(points[i as usize]));
     Some((left, right))
 }
 

@@ -197,44 +197,81 @@ fn construct(
     parallel: bool,
     split_min: usize,
 ) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
-    let (order, left) = insertion_order(points, frames, parallel, split_min);
-    let sorted = in_order(points, &order, frames.predicates, parallel);
-    if let Some(left) = left {
-        let built = if frames.wide {
-            halves::build::<Exact>(&sorted, left, parallel)
-        } else {
-            halves::build::<Fast>(&sorted, left, parallel)
-        };
-        if built.is_some() {
-            return (order, sorted, built);
-        }
-        // A half without a triangle, or a failed stitch: the set in one piece.
+    let Some(cut) = halves::cut(points, split_min, parallel) else {
         return construct_whole(points, frames);
-    }
-    let built = if frames.wide {
-        build::<Exact>(&sorted)
-    } else {
-        build::<Fast>(&sorted)
     };
-    (order, sorted, built)
+    let (order, sorted) = cut_order(points, frames, &cut, parallel, true);
+    let built = if frames.wide {
+        halves::build::<Exact>(&sorted, cut.left_len(), parallel)
+    } else {
+        halves::build::<Fast>(&sorted, cut.left_len(), parallel)
+    };
+    if built.is_some() {
+        return (order, sorted, built);
+    }
+    // A half without a triangle, or a failed stitch: the set in one piece.
+    drop((order, sorted));
+    construct_whole(points, frames)
 }
 
-/// `points` in `order`, in the frame `scale` (on rayon's threads for a set large enough to be
-/// cut in two).
-fn in_order(points: &[Point], order: &[u32], scale: Scale, parallel: bool) -> Vec<Point> {
+/// The insertion order of a set cut in two (the left half's order, then the right half's) and,
+/// with `with_points`, the points in it in the predicates' frame (else an empty list). Each half
+/// is picked out of the input, ordered and written into its part of the two lists by its own
+/// thread when `parallel`.
+fn cut_order(
+    points: &[Point],
+    frames: &scale::Frames,
+    cut: &halves::Cut,
+    parallel: bool,
+    with_points: bool,
+) -> (Vec<u32>, Vec<Point>) {
+    let n = points.len();
+    let mut order = filled(0u32, n, parallel);
+    let mut sorted = if with_points {
+        filled(Point::default(), n, parallel)
+    } else {
+        Vec::new()
+    };
+    let left = cut.left_len();
+    let (order_left, order_right) = order.split_at_mut(left);
+    let (sorted_left, sorted_right) = sorted.split_at_mut(if with_points { left } else { 0 });
+    let half = |is_left: bool, order: &mut [u32], sorted: &mut [Point]| {
+        let mut members: Vec<u32> = Vec::with_capacity(order.len());
+        let mut gathered: Vec<Point> = Vec::with_capacity(order.len());
+        for (i, &p) in points.iter().enumerate() {
+            if cut.is_left(p) == is_left {
+                members.push(i as u32);
+                gathered.push(p);
+            }
+        }
+        let local = spatial_order(&gathered, frames);
+        for (slot, &k) in order.iter_mut().zip(&local) {
+            *slot = members[k as usize];
+        }
+        for (slot, &k) in sorted.iter_mut().zip(&local) {
+            *slot = frames.predicates.apply(gathered[k as usize]);
+        }
+    };
+    both(
+        parallel,
+        || half(true, order_left, sorted_left),
+        || half(false, order_right, sorted_right),
+    );
+    (order, sorted)
+}
+
+/// `n` copies of `value`, written on rayon's threads when `parallel` (the first touch of each
+/// page is most of the cost).
+fn filled<T: Copy + Send + Sync>(value: T, n: usize, parallel: bool) -> Vec<T> {
     #[cfg(feature = "parallel")]
-    if parallel && order.len() >= halves::SPLIT_MIN {
-        use rayon::prelude::*;
-        return order
-            .par_iter()
-            .map(|&i| scale.apply(points[i as usize]))
-            .collect();
+    if parallel {
+        use rayon::iter::{repeat_n, ParallelExtend};
+        let mut list = Vec::with_capacity(n);
+        list.par_extend(repeat_n(value, n));
+        return list;
     }
     let _ = parallel;
-    order
-        .iter()
-        .map(|&i| scale.apply(points[i as usize]))
-        .collect()
+    alloc::vec![value; n]
 }
 
 /// [`construct`] without the cut.
@@ -257,31 +294,20 @@ fn construct_whole(
 }
 
 /// The order to insert `points` in, as input positions, and for a set cut in two
-/// ([`halves::split`]) the size of the left half, whose points come first.
+/// ([`halves::cut`]) the size of the left half, whose points come first.
 fn insertion_order(
     points: &[Point],
     frames: &scale::Frames,
     parallel: bool,
     split_min: usize,
 ) -> (Vec<u32>, Option<usize>) {
-    let Some((left, right)) = halves::split(points, split_min) else {
-        return (spatial_order(points, frames), None);
-    };
-    let half_order = |members: Vec<u32>| {
-        let gathered: Vec<Point> = members.iter().map(|&i| points[i as usize]).collect();
-        let mut order = spatial_order(&gathered, frames);
-        drop(gathered);
-        for k in order.iter_mut() {
-            *k = members[*k as usize];
-        }
-        order
-    };
-    let left_len = left.len();
-    let (left_order, right_order) = both(parallel, || half_order(left), || half_order(right));
-    let mut order = Vec::with_capacity(points.len());
-    order.extend_from_slice(&left_order);
-    order.extend_from_slice(&right_order);
-    (order, Some(left_len))
+    match halves::cut(points, split_min, parallel) {
+        Some(cut) => (
+            cut_order(points, frames, &cut, parallel, false).0,
+            Some(cut.left_len()),
+        ),
+        None => (spatial_order(points, frames), None),
+    }
 }
 
 /// The spatial insertion order of `points` in one piece.
