@@ -438,6 +438,27 @@ pub(crate) fn degrees(vertex_count: usize, edges: &[Edge]) -> Vec<u32> {
 mod tests {
     use super::*;
 
+    /// A random graph on 2 to `2 + most` vertices with up to `per_vertex` times as many edges,
+    /// each once, listed in a scrambled order: neighbours must follow the list, not the ids.
+    fn random_graph(
+        rng: &mut crate::test_rng::Xorshift,
+        most: u64,
+        per_vertex: u64,
+    ) -> (usize, Vec<Edge>) {
+        let n = 2 + rng.below(most) as usize;
+        let mut edges: Vec<Edge> = (0..rng.below(per_vertex * n as u64))
+            .map(|_| {
+                let (a, b) = (rng.below(n as u64) as u32, rng.below(n as u64) as u32);
+                ordered(VertexId::new(a), VertexId::new(b))
+            })
+            .filter(|&[a, b]| a != b)
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        edges.reverse();
+        (n, edges)
+    }
+
     /// On random graphs with branch points, the curve graph gives every vertex the neighbours
     /// the full adjacency gives it, in the same order (that of the edge list), and,
     /// at degree two, the other neighbour from either one; the branch adjacency gives a vertex
@@ -447,18 +468,7 @@ mod tests {
         let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
         let mut branch_vertices = 0;
         for _ in 0..500 {
-            let n = 2 + rng.below(30) as usize;
-            let mut edges: Vec<Edge> = (0..rng.below(3 * n as u64))
-                .map(|_| {
-                    let (a, b) = (rng.below(n as u64) as u32, rng.below(n as u64) as u32);
-                    ordered(VertexId::new(a), VertexId::new(b))
-                })
-                .filter(|&[a, b]| a != b)
-                .collect();
-            edges.sort_unstable();
-            edges.dedup();
-            // Listed in a scrambled order: neighbours must follow the list, not the ids.
-            edges.reverse();
+            let (n, edges) = random_graph(&mut rng, 30, 3);
             let full = Adjacency::new(n, &edges);
             let graph = CurveGraph::new(n, &edges);
             let branches = BranchAdjacency::new(&degrees(n, &edges), &edges);
@@ -494,17 +504,7 @@ mod tests {
         let mut rng = crate::test_rng::Xorshift::new(0x51_7cc1_b727_220a);
         let mut patched_branches = 0;
         for _ in 0..500 {
-            let n = 2 + rng.below(25) as usize;
-            let mut edges: Vec<Edge> = (0..rng.below(4 * n as u64))
-                .map(|_| {
-                    let (a, b) = (rng.below(n as u64) as u32, rng.below(n as u64) as u32);
-                    ordered(VertexId::new(a), VertexId::new(b))
-                })
-                .filter(|&[a, b]| a != b)
-                .collect();
-            edges.sort_unstable();
-            edges.dedup();
-            edges.reverse();
+            let (n, edges) = random_graph(&mut rng, 25, 4);
             let mut graph = CurveGraph::new(n, &edges);
             let mut removed = Vec::new();
             let mut rest = Vec::new();

@@ -99,6 +99,7 @@ mod smooth;
 mod stages;
 #[cfg(test)]
 mod test_rng;
+mod threads;
 mod triangulate;
 
 pub use curve::{curves_from_edges, Curve};

@@ -36,6 +36,7 @@ use crate::mesh::VertexId;
 use crate::prefetch::PREFETCH_FROM;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Repair, Stage, Step, Uniformity, PARALLEL_FROM};
+use crate::threads::both;
 #[cfg(test)]
 use crate::triangulate::triangulate;
 use crate::triangulate::{triangulate_with, Triangulation};
@@ -864,25 +865,6 @@ fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send) -> R {
 #[cfg(not(feature = "parallel"))]
 fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
     work()
-}
-
-/// `(a(), b())`, run at once on rayon when `parallel`.
-#[cfg(feature = "parallel")]
-fn both<A: Send, B: Send>(
-    parallel: bool,
-    a: impl FnOnce() -> A + Send,
-    b: impl FnOnce() -> B + Send,
-) -> (A, B) {
-    if parallel {
-        rayon::join(a, b)
-    } else {
-        (a(), b())
-    }
-}
-
-#[cfg(not(feature = "parallel"))]
-fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
-    (a(), b())
 }
 
 /// The final graph seen from the input positions.

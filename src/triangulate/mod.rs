@@ -25,6 +25,7 @@ use crate::geometry::Point;
 use crate::geometry::Scale;
 use crate::mesh::MeshArrays;
 use crate::mesh::{Mesh, VertexId};
+use crate::threads::both;
 use alloc::vec::Vec;
 use insert::{Exact, Fast, Kernel};
 
@@ -325,25 +326,6 @@ fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
     }
 }
 
-/// `(a(), b())`, at once on rayon's threads when `parallel`.
-#[cfg(feature = "parallel")]
-fn both<A: Send, B: Send>(
-    parallel: bool,
-    a: impl FnOnce() -> A + Send,
-    b: impl FnOnce() -> B + Send,
-) -> (A, B) {
-    if parallel {
-        rayon::join(a, b)
-    } else {
-        (a(), b())
-    }
-}
-
-#[cfg(not(feature = "parallel"))]
-fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
-    (a(), b())
-}
-
 /// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
 /// merged on the way, or `None` when they make no triangle.
 fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
@@ -585,23 +567,25 @@ mod tests {
     use super::*;
     use crate::test_rng::Xorshift;
 
+    /// A triangle's corners in the same cyclic order, starting from the smallest.
+    pub(super) fn smallest_first<T: Ord + Copy>([a, b, c]: [T; 3]) -> [T; 3] {
+        let first = a.min(b).min(c);
+        if first == a {
+            [a, b, c]
+        } else if first == b {
+            [b, c, a]
+        } else {
+            [c, a, b]
+        }
+    }
+
     /// The triangles of the mesh `build` makes, as vertex ids from the smallest, sorted; and the
     /// merged duplicates.
     fn triangles<K: Kernel>(points: &[Point]) -> (Vec<[u32; 3]>, Vec<(u32, u32)>) {
         let (mesh, merged) = build::<K>(points).expect("a triangle");
         let mut triangles: Vec<[u32; 3]> = mesh
             .triangles()
-            .map(|t| {
-                let [a, b, c] = mesh.triangle_vertices(t).map(|v| v.index() as u32);
-                let first = a.min(b).min(c);
-                if first == a {
-                    [a, b, c]
-                } else if first == b {
-                    [b, c, a]
-                } else {
-                    [c, a, b]
-                }
-            })
+            .map(|t| smallest_first(mesh.triangle_vertices(t).map(|v| v.index() as u32)))
             .collect();
         triangles.sort_unstable();
         (triangles, merged)
