@@ -88,8 +88,8 @@ impl MeshArrays {
 
     /// Ends the construction: keeps the first `len` half-edges and seals the mesh over vertex
     /// ids `0..vertex_count`, deriving each vertex's edge (for a hull vertex, the one pointing
-    /// to infinity). Read-only from now on.
-    pub(crate) fn seal(mut self, len: usize, vertex_count: usize) -> Mesh {
+    /// to infinity), on two threads when `parallel`. Read-only from now on.
+    pub(crate) fn seal(mut self, len: usize, vertex_count: usize, parallel: bool) -> Mesh {
         self.origins.truncate(len);
         self.twins.truncate(len);
         let mut mesh = Mesh {
@@ -97,7 +97,7 @@ impl MeshArrays {
             twins: self.twins,
             vertex_edges: Vec::new(),
         };
-        mesh.rebuild_vertex_edges(vertex_count);
+        mesh.rebuild_vertex_edges(vertex_count, parallel);
         mesh
     }
 }

@@ -30,6 +30,7 @@ pub use check::{Element, Rule, Violation};
 pub(crate) use ids::wrap3;
 pub use ids::{HalfEdgeId, TriangleId, VertexId};
 
+use crate::threads::both;
 use alloc::vec::Vec;
 
 /// The topology of a Delaunay triangulation, closed into a sphere by ghost triangles.
@@ -219,15 +220,35 @@ impl Mesh {
             .unwrap_or(HalfEdgeId::NONE)
     }
 
-    /// Fills `vertex_edges` from the triangles: one branch-free pass that records some edge
+    /// Fills `vertex_edges` from the triangles: one branch-free pass that records the last edge
     /// leaving each vertex, then a walk along the ghosts that gives every hull vertex its edge to
-    /// infinity.
-    fn rebuild_vertex_edges(&mut self, vertex_count: usize) {
+    /// infinity. With `parallel`, two threads each scan every origin and record the vertices of
+    /// their half of the ids: the same last edge per vertex, so the same mesh, and each thread's
+    /// scattered writes stay in its own half of the list.
+    fn rebuild_vertex_edges(&mut self, vertex_count: usize, parallel: bool) {
         // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
         let sink = vertex_count;
-        let mut edges = alloc::vec![HalfEdgeId::NONE; vertex_count + 1];
-        for (i, &v) in self.origins.iter().enumerate() {
-            edges[v.index().min(sink)] = HalfEdgeId::new(i as u32);
+        let origins = &self.origins;
+        let record = |edges: &mut [HalfEdgeId], first: usize| {
+            edges.fill(HalfEdgeId::NONE);
+            for (i, &v) in origins.iter().enumerate() {
+                // Below `first` the subtraction wraps to a huge slot: not this thread's.
+                let slot = v.index().min(sink).wrapping_sub(first);
+                if let Some(edge) = edges.get_mut(slot) {
+                    *edge = HalfEdgeId::new(i as u32);
+                }
+            }
+        };
+        let mut edges = Vec::with_capacity(vertex_count + 1);
+        edges.resize(vertex_count + 1, HalfEdgeId::NONE);
+        // Below this many vertices a second thread costs more than it saves.
+        const PARALLEL_MIN: usize = 1 << 16;
+        if parallel && vertex_count >= PARALLEL_MIN {
+            let middle = vertex_count / 2;
+            let (low, high) = edges.split_at_mut(middle);
+            both(true, || record(low, 0), || record(high, middle));
+        } else {
+            record(&mut edges, 0);
         }
         let from_infinity = edges[sink];
         edges.truncate(vertex_count);

@@ -63,5 +63,5 @@ pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<(u32, u32)>, Vec<u32>) {
         mesh.link(h(r + 1), h(before));
     }
     let len = mesh.len();
-    (arrays.seal(len, points.len()), merged, sorted)
+    (arrays.seal(len, points.len(), false), merged, sorted)
 }

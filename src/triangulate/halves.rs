@@ -171,7 +171,7 @@ pub(crate) fn build<K: Kernel>(
     let mut mesh = arrays.builder(left_len + right_len);
     stitch::<K>(&mut mesh, points, left_len, right_len)?;
     let len = mesh.len();
-    Some((arrays.seal(len, points.len()), merged))
+    Some((arrays.seal(len, points.len(), parallel), merged))
 }
 
 /// One half's hull, counter-clockwise: `vertices[i] → vertices[i + 1]` (cyclically) is a hull

@@ -169,11 +169,20 @@ fn triangulate_split(
         }
     } else {
         let to_stages = Scale::power_of_two(stages_exponent - predicates_exponent);
-        for p in sorted.iter_mut() {
-            *p = to_stages.apply(*p);
-        }
+        let rescale = |points: &mut [Point]| {
+            for p in points {
+                *p = to_stages.apply(*p);
+            }
+        };
+        let middle = sorted.len() / 2;
+        let (low, high) = sorted.split_at_mut(middle);
+        both(
+            parallel && low.len() >= PARALLEL_MIN / 2,
+            || rescale(low),
+            || rescale(high),
+        );
     }
-    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged);
+    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel);
     let num_vertices = vertex_of_input.len() - merged.len();
     Ok(Triangulation {
         points: sorted,
@@ -333,15 +342,48 @@ fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
     let mut arrays = MeshArrays::new(insert::half_edges(points.len()), false);
     let (mesh, merged) = insert::build_into::<K>(points, arrays.builder(0))?;
     let len = mesh.len();
-    Some((arrays.seal(len, points.len()), merged))
+    Some((arrays.seal(len, points.len(), false), merged))
 }
+
+/// Below this many points, the passes after the construction (rescaling, the vertex maps) run on
+/// one thread: a second costs more than it saves.
+const PARALLEL_MIN: usize = 1 << 16;
 
 /// The two maps between vertex ids (positions in `order`) and input positions. A vertex that
 /// absorbed duplicates reports the smallest of their input positions.
-fn vertex_maps(mut input_of_vertex: Vec<u32>, merged: &[(u32, u32)]) -> (Vec<u32>, Vec<VertexId>) {
-    let mut vertex_of_input = alloc::vec![VertexId::INFINITE; input_of_vertex.len()];
-    for (v, &i) in input_of_vertex.iter().enumerate() {
-        vertex_of_input[i as usize] = VertexId::new(v as u32);
+///
+/// With `parallel`, two threads each read the whole order and write the input positions of
+/// their half: the writes scatter (the input order is the caller's), so each thread keeps its
+/// own half of the list in cache, and a write outside it rewrites the half's first slot with
+/// its own value instead of branching on a coin toss.
+fn vertex_maps(
+    mut input_of_vertex: Vec<u32>,
+    merged: &[(u32, u32)],
+    parallel: bool,
+) -> (Vec<u32>, Vec<VertexId>) {
+    let n = input_of_vertex.len();
+    let mut vertex_of_input = filled(VertexId::INFINITE, n, parallel);
+    let order = &input_of_vertex;
+    let place = |slots: &mut [VertexId], first: usize| {
+        if slots.is_empty() {
+            return;
+        }
+        for (v, &i) in order.iter().enumerate() {
+            let slot = (i as usize).wrapping_sub(first);
+            let mine = slot < slots.len();
+            let slot = if mine { slot } else { 0 };
+            let kept = slots[slot];
+            slots[slot] = if mine { VertexId::new(v as u32) } else { kept };
+        }
+    };
+    if parallel && n >= PARALLEL_MIN {
+        let middle = n / 2;
+        let (low, high) = vertex_of_input.split_at_mut(middle);
+        both(true, || place(low, 0), || place(high, middle));
+    } else {
+        for (v, &i) in input_of_vertex.iter().enumerate() {
+            vertex_of_input[i as usize] = VertexId::new(v as u32);
+        }
     }
     for &(duplicate, kept) in merged {
         vertex_of_input[input_of_vertex[duplicate as usize] as usize] = VertexId::new(kept);
@@ -699,6 +741,45 @@ mod tests {
                     assert_eq!(tri.triangles().count(), 2 * (side - 1) * (side - 1));
                 }
             }
+        }
+    }
+
+    /// Above the size where sealing, rescaling and the vertex maps take two threads, they give
+    /// what one thread gives: the same vertex edges, stored points and maps both ways, on
+    /// points in a shuffled input order with duplicates (merged into their first copy).
+    #[test]
+    fn passes_after_the_construction_match_on_two_threads() {
+        let mut rng = Xorshift::new(0x5ea1);
+        let mut points: Vec<Point> = (0..PARALLEL_MIN + 4321)
+            .map(|_| Point::new(rng.unit(), rng.unit()))
+            .collect();
+        for k in 0..500 {
+            let copy = points[(k * 131) % points.len()];
+            points.push(copy);
+        }
+        let n = points.len();
+        for k in (1..n).rev() {
+            points.swap(k, rng.below(k as u64 + 1) as usize);
+        }
+        let one = triangulate_with(&points, false).unwrap();
+        let two = triangulate_with(&points, true).unwrap();
+        one.validate().unwrap();
+        let mesh = one.mesh();
+        assert_eq!(mesh.num_half_edges(), two.mesh().num_half_edges());
+        assert_eq!(mesh.num_vertex_ids(), n);
+        for v in 0..n as u32 {
+            let v = VertexId::new(v);
+            assert_eq!(mesh.vertex_edge(v), two.mesh().vertex_edge(v));
+            assert_eq!(one.input_of(v), two.input_of(v));
+        }
+        for i in 0..n {
+            assert_eq!(one.vertex(i), two.vertex(i));
+            assert_eq!(one.point(i).x.to_bits(), two.point(i).x.to_bits());
+            assert_eq!(one.point(i).y.to_bits(), two.point(i).y.to_bits());
+            assert_eq!(one.point(i), points[i]);
+            // Every input maps to a vertex that maps back to it or to the first copy of it.
+            let back = one.input_of(one.vertex(i));
+            assert!(back <= i && points[back] == points[i]);
         }
     }
 }
