@@ -547,7 +547,10 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     /// Whether the edge `u – w`, with `v` on its left and `q` on its right, must be flipped.
     #[inline]
     fn is_illegal(&self, u: VertexId, w: VertexId, v: VertexId, q: VertexId) -> bool {
-        if q.is_infinite() {
+        // The vertex at infinity has the largest id: one comparison settles the common case.
+        if !u.max(w).max(q).is_infinite() {
+            K::in_circle(self.point(u), self.point(w), self.point(v), self.point(q))
+        } else if q.is_infinite() {
             // A hull edge seen from inside: always kept.
             false
         } else if u.is_infinite() {
