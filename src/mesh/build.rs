@@ -151,6 +151,27 @@ impl MeshBuilder<'_> {
         [c[0], c[1], c[2]]
     }
 
+    /// The twins of the triangle whose first half-edge is at `base`. One bounds check for the
+    /// three.
+    #[inline]
+    pub(crate) fn twins_at(&self, base: usize) -> [HalfEdgeId; 3] {
+        let t = &self.twins[base..base + 3];
+        [t[0], t[1], t[2]]
+    }
+
+    /// Overwrites the twins of the triangle whose first half-edge is at `base` (the caller
+    /// links the other sides: see [`MeshBuilder::set_twin`]).
+    #[inline]
+    pub(crate) fn set_twins_at(&mut self, base: usize, twins: [HalfEdgeId; 3]) {
+        self.twins[base..base + 3].copy_from_slice(&twins);
+    }
+
+    /// Makes `b` the twin of `a`, one way only.
+    #[inline]
+    pub(crate) fn set_twin(&mut self, a: HalfEdgeId, b: HalfEdgeId) {
+        self.twins[a.index()] = b;
+    }
+
     /// Where `e` starts.
     #[inline]
     pub(crate) fn origin(&self, e: HalfEdgeId) -> VertexId {

@@ -531,16 +531,22 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     }
 
     /// Flips illegal edges opposite the new vertex `v` until none is left.
+    ///
+    /// The edges wait on a stack; after a flip, the edge the stack would give next is tested
+    /// at once instead of going through it (the same order of tests, one push and pop fewer).
     fn restore_delaunay(&mut self, v: VertexId) {
-        while let Some(e) = self.flips.pop() {
+        let mut next = self.flips.pop();
+        while let Some(e) = next {
             // `e = u → w` lies in the triangle (u, w, v); across it is (w, u, q).
             let f = self.twin(e);
             let (f_base, f_corner) = f.base_and_corner();
             let (u, w) = (self.origin(e), self.origin(f));
             let q = self.origin(HalfEdgeId::at(f_base, wrap3(f_corner + 2)));
-            if self.is_illegal(u, w, v, q) {
-                self.flip(e, (f_base, f_corner), [u, w, q], v);
-            }
+            next = if self.is_illegal(u, w, v, q) {
+                Some(self.flip(e, (f_base, f_corner), [u, w, q], v))
+            } else {
+                self.flips.pop()
+            };
         }
     }
 
@@ -565,7 +571,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     }
 
     /// Replaces the edge `u – w` (half-edges `e` in `(u, w, v)` and `f` in `(w, u, q)`) by `v – q`,
-    /// giving `(v, u, q)` and `(v, q, w)`, and queues their edges opposite `v`.
+    /// giving `(v, u, q)` and `(v, q, w)`; queues the edge of the first opposite `v` and returns
+    /// that of the second, to be tested next.
     ///
     /// ```text
     ///          v                    v
@@ -577,25 +584,35 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     ///
     /// `f` comes as its triangle's first half-edge and its corner, `[u, w, q]` as read by the
     /// caller: the flip reuses them instead of dividing and loading again.
-    fn flip(&mut self, e: HalfEdgeId, f: (usize, usize), [u, w, q]: [VertexId; 3], v: VertexId) {
+    fn flip(
+        &mut self,
+        e: HalfEdgeId,
+        f: (usize, usize),
+        [u, w, q]: [VertexId; 3],
+        v: VertexId,
+    ) -> HalfEdgeId {
         let (e_base, e_corner) = e.base_and_corner();
         let (f_base, f_corner) = f;
         let at = HalfEdgeId::at;
-        let out_vu = self.twin(at(e_base, wrap3(e_corner + 2)));
-        let out_wv = self.twin(at(e_base, wrap3(e_corner + 1)));
-        let out_uq = self.twin(at(f_base, wrap3(f_corner + 1)));
-        let out_qw = self.twin(at(f_base, wrap3(f_corner + 2)));
         let m = &mut self.mesh;
+        let e_twins = m.twins_at(e_base);
+        let f_twins = m.twins_at(f_base);
+        let out_vu = e_twins[wrap3(e_corner + 2)];
+        let out_wv = e_twins[wrap3(e_corner + 1)];
+        let out_uq = f_twins[wrap3(f_corner + 1)];
+        let out_qw = f_twins[wrap3(f_corner + 2)];
         m.set_corners_at(e_base, [v, u, q]);
         m.set_corners_at(f_base, [v, q, w]);
-        m.link(at(e_base, 0), out_vu);
-        m.link(at(e_base, 1), out_uq);
-        m.link(at(f_base, 1), out_qw);
-        m.link(at(f_base, 2), out_wv);
-        m.link(at(e_base, 2), at(f_base, 0));
+        // Both triangles' twins at once, then the four outer half-edges back.
+        m.set_twins_at(e_base, [out_vu, out_uq, at(f_base, 0)]);
+        m.set_twins_at(f_base, [at(e_base, 2), out_qw, out_wv]);
+        m.set_twin(out_vu, at(e_base, 0));
+        m.set_twin(out_uq, at(e_base, 1));
+        m.set_twin(out_qw, at(f_base, 1));
+        m.set_twin(out_wv, at(f_base, 2));
         self.flips.push(at(e_base, 1));
-        self.flips.push(at(f_base, 1));
         self.hint = at(e_base, 0);
+        at(f_base, 1)
     }
 }
 
