@@ -220,7 +220,7 @@ impl Mesh {
             .unwrap_or(HalfEdgeId::NONE)
     }
 
-    /// Fills `vertex_edges` from the triangles: one branch-free pass that records the last edge
+    /// Fills `vertex_edges` from the triangles: one pass that records the last edge
     /// leaving each vertex, then a walk along the ghosts that gives every hull vertex its edge to
     /// infinity. With `parallel`, two threads each scan every origin and record the vertices of
     /// their half of the ids: the same last edge per vertex, so the same mesh, and each thread's
@@ -230,7 +230,6 @@ impl Mesh {
         let sink = vertex_count;
         let origins = &self.origins;
         let record = |edges: &mut [HalfEdgeId], first: usize| {
-            edges.fill(HalfEdgeId::NONE);
             for (i, &v) in origins.iter().enumerate() {
                 // Below `first` the subtraction wraps to a huge slot: not this thread's.
                 let slot = v.index().min(sink).wrapping_sub(first);
@@ -239,8 +238,7 @@ impl Mesh {
                 }
             }
         };
-        let mut edges = Vec::with_capacity(vertex_count + 1);
-        edges.resize(vertex_count + 1, HalfEdgeId::NONE);
+        let mut edges = alloc::vec![HalfEdgeId::NONE; vertex_count + 1];
         // Below this many vertices a second thread costs more than it saves.
         const PARALLEL_MIN: usize = 1 << 16;
         if parallel && vertex_count >= PARALLEL_MIN {
