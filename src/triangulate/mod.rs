@@ -246,14 +246,21 @@ fn cut_order(
     let (order_left, order_right) = order.split_at_mut(left);
     let (sorted_left, sorted_right) = sorted.split_at_mut(if with_points { left } else { 0 });
     let half = |is_left: bool, order: &mut [u32], sorted: &mut [Point]| {
-        let mut members: Vec<u32> = Vec::with_capacity(order.len());
-        let mut gathered: Vec<Point> = Vec::with_capacity(order.len());
+        // Every point is written to the next free slot, which only a member then takes: no
+        // branch on the side, which the input order makes a coin toss for unorganized points.
+        // The one spare slot takes the writes after the last member.
+        let len = order.len();
+        let mut members = alloc::vec![0u32; len + 1];
+        let mut gathered = alloc::vec![Point::default(); len + 1];
+        let mut next = 0;
         for (i, &p) in points.iter().enumerate() {
-            if cut.is_left(p) == is_left {
-                members.push(i as u32);
-                gathered.push(p);
-            }
+            members[next] = i as u32;
+            gathered[next] = p;
+            next = (next + usize::from(cut.is_left(p) == is_left)).min(len);
         }
+        debug_assert_eq!(next, len);
+        members.truncate(len);
+        gathered.truncate(len);
         let local = spatial_order(&gathered, frames);
         for (slot, &k) in order.iter_mut().zip(&local) {
             *slot = members[k as usize];
