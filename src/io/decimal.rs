@@ -17,6 +17,9 @@ const POWERS_OF_TEN: [f64; 23] = [
 /// Most significant digits read into a `u64` (10^19 - 1 < 2^64).
 const MAX_DIGITS: usize = 19;
 
+/// Most digits written (leading zeros included) for Clinger's fast path: 10^15 - 1 < 2^53.
+const CLINGER_DIGITS: usize = 15;
+
 /// Most digits of a written exponent; longer ones (`1e0000001`) go to `str::parse`.
 const MAX_EXPONENT_DIGITS: usize = 5;
 
@@ -106,21 +109,34 @@ pub(super) fn parse_prefix(text: &[u8]) -> Option<(f64, &[u8])> {
     }
     let magnitude = if mantissa == 0 {
         0.0
-    } else if mantissa <= 1 << 53 && exponent.unsigned_abs() <= 22 {
-        // Clinger's fast path: the mantissa and the power of ten are exact in f64, and one
-        // correctly rounded multiplication or division gives the result.
+    } else if digits <= CLINGER_DIGITS && exponent.unsigned_abs() <= 22 {
+        // Clinger's fast path: the mantissa (below 10^15 < 2^53) and the power of ten are
+        // exact in f64, and one correctly rounded multiplication or division gives the result.
+        // Chosen by the number of digits written, not by the mantissa's value: in a file of
+        // 16- and 17-digit numbers a test of the value would send them this way or the other
+        // at random, and the processor would mispredict the branch about once in three.
         let power = POWERS_OF_TEN[exponent.unsigned_abs() as usize];
         if exponent >= 0 {
             mantissa as f64 * power
         } else {
             mantissa as f64 / power
         }
+    } else if (i64::from(*NEAR_POWERS.start())..=i64::from(*NEAR_POWERS.end())).contains(&exponent)
+    {
+        eisel_lemire_near(mantissa, exponent as i32)
     } else if (SMALLEST_POWER..=LARGEST_POWER).contains(&exponent) {
         eisel_lemire(mantissa, exponent as i32)?
     } else {
         return None;
     };
     Some((if negative { -magnitude } else { magnitude }, rest))
+}
+
+/// [`parse_prefix`] as a call rather than inlined: for the rarer columns, where a copy of its
+/// code would only make the caller larger.
+#[inline(never)]
+pub(super) fn parse_prefix_outlined(text: &[u8]) -> Option<(f64, &[u8])> {
+    parse_prefix(text)
 }
 
 /// Appends the run of ASCII digits at the start of `text` to `mantissa` (wrapping) and returns
@@ -136,13 +152,14 @@ fn read_digits<'a>(mut text: &'a [u8], mantissa: &mut u64) -> &'a [u8] {
         if not_digits != 0 {
             // The bytes before the first that is not a digit; fewer than eight.
             let run = not_digits.trailing_zeros() as usize / 8;
-            if run > 0 {
-                // The run moved to the top of the word, with zero digits below it.
-                let top = digits << (64 - 8 * run);
-                *mantissa = mantissa
-                    .wrapping_mul(SCALE[run])
-                    .wrapping_add(value_of_eight_digits(top));
-            }
+            // The run moved to the top of the word, with zero digits below it; no run at all
+            // shifts everything out (in two steps: one shift by 64 would be an overflow) and
+            // adds nothing. Without a branch on the run, whose length varies from number to
+            // number (16 or 17 digits) and would often be mispredicted.
+            let top = (digits << (63 - 8 * run)) << 1;
+            *mantissa = mantissa
+                .wrapping_mul(SCALE[run])
+                .wrapping_add(value_of_eight_digits(top));
             return text.get(run..).unwrap_or_default();
         }
         *mantissa = mantissa
@@ -275,6 +292,54 @@ const fn bits_at(n: &[u64; LIMBS], from: i64) -> u64 {
         k += 1;
     }
     word
+}
+
+/// The decimal exponents where [`eisel_lemire`] always decides and its result is a normal
+/// number: the table holds `5^q` exactly (`0 <= q <= 55`) or its reciprocal rounded up with
+/// room for the carry (`-27 <= q < 0`), and `w * 10^q` for a nonzero `w < 2^64` lies between
+/// 10^-27 and 2^64 * 10^55, far inside the normal range of `f64`.
+const NEAR_POWERS: core::ops::RangeInclusive<i32> = -27..=55;
+
+/// [`eisel_lemire`] for `q` in [`NEAR_POWERS`] (`w` nonzero), without the steps that cannot
+/// happen there (no ambiguous product, no subnormal, no overflow: always a result), and the
+/// carry of the rounding into the exponent taken by adding the fields instead of by a branch.
+/// Inlined into the number reader: the common numbers' conversion, about 25 instructions.
+#[inline(always)]
+fn eisel_lemire_near(w: u64, q: i32) -> f64 {
+    const MANTISSA_BITS: i32 = 52;
+    const ROUND_TO_EVEN: core::ops::RangeInclusive<i32> = -4..=23;
+    debug_assert!(w != 0 && NEAR_POWERS.contains(&q));
+    let zeros = w.leading_zeros();
+    let w = w << zeros;
+    let (high5, low5) = POWERS_OF_FIVE[(i64::from(q) - SMALLEST_POWER) as usize];
+    let first = u128::from(w) * u128::from(high5);
+    let (mut low, mut high) = (first as u64, (first >> 64) as u64);
+    let mask = u64::MAX >> (MANTISSA_BITS + 3);
+    if high & mask == mask {
+        let second = ((u128::from(w) * u128::from(low5)) >> 64) as u64;
+        low = low.wrapping_add(second);
+        if second > low {
+            high += 1;
+        }
+    }
+    // Both factors have their top bit set: `high` has bit 63 or 62, and `mantissa` 54 bits.
+    let upper_bit = (high >> 63) as i32;
+    let mut mantissa = high >> (upper_bit + 64 - MANTISSA_BITS - 3);
+    let power_of_ten_bits = ((q.wrapping_mul(152_170 + 65_536)) >> 16) + 63;
+    // At least 1023 - 90 here: a normal number.
+    let power2 = power_of_ten_bits + upper_bit - zeros as i32 + 1023;
+    if low <= 1
+        && ROUND_TO_EVEN.contains(&q)
+        && mantissa & 3 == 1
+        && (mantissa << (upper_bit + 64 - MANTISSA_BITS - 3)) == high
+    {
+        mantissa &= !1;
+    }
+    mantissa += mantissa & 1;
+    mantissa >>= 1;
+    // 2^52 <= mantissa <= 2^53: its implicit bit adds one to the exponent field below it, and
+    // a rounding that reached 2^53 adds two, with a zero fraction, as it should.
+    f64::from_bits((((power2 - 1) as u64) << MANTISSA_BITS) + mantissa)
 }
 
 /// `w * 10^q` rounded to nearest, ties to even (`w` nonzero, `q` in the table's range), by the
@@ -687,6 +752,43 @@ mod tests {
             .filter(|t| parse(t.as_bytes()).is_some())
             .count();
         assert!(taken * 10 > cases.len() * 7, "{taken} of {}", cases.len());
+    }
+
+    #[test]
+    fn the_near_conversion_is_the_general_one_and_str_parses() {
+        let mut stream = Xorshift::new(0x6c07_8965_9d2c_3a1b);
+        let mut checked = 0;
+        for q in NEAR_POWERS {
+            let mut ws: Vec<u64> = vec![1, 9, 10, u64::MAX, 1 << 53, (1 << 53) + 1, (1 << 54) - 1];
+            for _ in 0..3000 {
+                // Every length of mantissa, and ones with many trailing zero bits or ones.
+                let bits = 1 + stream.below(64) as u32;
+                let w = stream.next_u64() >> (64 - bits);
+                ws.push(w.max(1));
+                ws.push((w | 1) << stream.below(u64::from(64 - bits.min(63))));
+                ws.push(w | ((1u64 << stream.below(12)) - 1));
+            }
+            // Halfway between two doubles when q is small: (2m + 1) * 2^k / 10^q exactly.
+            if (0..=19).contains(&q) {
+                for _ in 0..200 {
+                    let twice = 2 * ((1u64 << 52) | stream.next_u64() >> 12) + 1;
+                    if let Some(w) = twice.checked_shl(stream.below(10) as u32) {
+                        if w >> stream.below(10) != 0 {
+                            ws.push(w);
+                        }
+                    }
+                }
+            }
+            for w in ws.into_iter().filter(|&w| w != 0) {
+                let near = eisel_lemire_near(w, q);
+                let general = eisel_lemire(w, q).expect("decides in the near range");
+                let standard: f64 = format!("{w}e{q}").parse().unwrap();
+                assert_eq!(near.to_bits(), general.to_bits(), "{w}e{q}");
+                assert_eq!(near.to_bits(), standard.to_bits(), "{w}e{q}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 83 * 9000, "{checked}");
     }
 
     #[test]

@@ -253,37 +253,45 @@ fn scan_line(text: &str, start: usize) -> (usize, usize, Option<Row<'_>>) {
 /// path reads as the same point: its columns are tokens by the same splitting, and the numbers
 /// are those `Source::number` returns.
 ///
-/// Not inlined: on its own, the number reader inlined in it keeps its values in registers.
+/// Straight-line code, one step per column rather than a loop over them: each number read and
+/// each blank skipped has its own branches, which the processor then predicts from what that
+/// column held on the lines before (one blank after `x`, a line end after `y`), where a loop's
+/// shared branches alternate. The two coordinates are read by the number reader inlined; the
+/// rarer third column by a call.
 #[inline(never)]
 fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
+    #[inline(always)]
     fn skip_blanks(mut text: &[u8]) -> &[u8] {
         while let [b' ' | b'\t', rest @ ..] = text {
             text = rest;
         }
         text
     }
-    let line_end = |text: &[u8]| matches!(text, [] | [b'\n' | b'\r', ..]);
-    let mut values = [0.0; 2];
-    let mut columns = 0;
-    let mut rest = skip_blanks(bytes.get(start..)?);
-    // One call site for the number reader, so that it is inlined once.
-    while !line_end(rest) {
-        if columns == 3 {
-            return None;
-        }
-        let (value, after) = decimal::parse_prefix(rest)?;
-        if let Some(slot) = values.get_mut(columns) {
-            *slot = value;
-        }
-        columns += 1;
-        rest = skip_blanks(after);
-        // A number runs up to a blank or the line end: `1.5x` or `2,3` is for the general path.
-        if rest.len() == after.len() && !line_end(rest) {
-            return None;
-        }
+    #[inline(always)]
+    fn line_end(text: &[u8]) -> bool {
+        matches!(text, [] | [b'\n' | b'\r', ..])
     }
-    if columns < 2 {
+    let line = skip_blanks(bytes.get(start..)?);
+    let (x, after_x) = decimal::parse_prefix(line)?;
+    // A number runs up to a blank (here another column must follow) or the line end: `1.5x`,
+    // `2,3` or a single column is for the general path.
+    let before_y = skip_blanks(after_x);
+    if before_y.len() == after_x.len() {
         return None;
+    }
+    let (y, after_y) = decimal::parse_prefix(before_y)?;
+    let mut rest = skip_blanks(after_y);
+    let third = !line_end(rest);
+    if third {
+        if rest.len() == after_y.len() {
+            return None;
+        }
+        let (_, after_third) = decimal::parse_prefix_outlined(rest)?;
+        rest = skip_blanks(after_third);
+        // A fourth column, or something glued to the third: the general path reports it.
+        if !line_end(rest) {
+            return None;
+        }
     }
     // `after_line_end` on the rest as a slice pattern: the same reading without its bounds
     // checks, 2 % of the instructions of a parse on this, the hot path.
@@ -293,7 +301,7 @@ fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
         [_, ..] => end + 1,
         [] => end,
     };
-    Some((values[0], values[1], columns == 3, next))
+    Some((x, y, third, next))
 }
 
 /// What one stretch of lines of a plain point file holds.
