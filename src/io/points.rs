@@ -258,7 +258,7 @@ fn scan_line(text: &str, start: usize) -> (usize, usize, Option<Row<'_>>) {
 /// column held on the lines before (one blank after `x`, a line end after `y`), where a loop's
 /// shared branches alternate. The two coordinates are read by the number reader inlined; the
 /// rarer third column by a call.
-#[inline(never)]
+#[inline(always)]
 fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
     #[inline(always)]
     fn skip_blanks(mut text: &[u8]) -> &[u8] {
@@ -272,14 +272,16 @@ fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
         matches!(text, [] | [b'\n' | b'\r', ..])
     }
     let line = skip_blanks(bytes.get(start..)?);
-    let (x, after_x) = decimal::parse_prefix(line)?;
+    let (x, after_x) =
+        decimal::parse_prefix_short(line).or_else(|| decimal::parse_prefix_outlined(line))?;
     // A number runs up to a blank (here another column must follow) or the line end: `1.5x`,
     // `2,3` or a single column is for the general path.
     let before_y = skip_blanks(after_x);
     if before_y.len() == after_x.len() {
         return None;
     }
-    let (y, after_y) = decimal::parse_prefix(before_y)?;
+    let (y, after_y) = decimal::parse_prefix_short(before_y)
+        .or_else(|| decimal::parse_prefix_outlined(before_y))?;
     let mut rest = skip_blanks(after_y);
     let third = !line_end(rest);
     if third {
@@ -302,6 +304,30 @@ fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
         [] => end,
     };
     Some((x, y, third, next))
+}
+
+/// The points of the lines from byte `start` that [`number_line`] reads, appended to `points`
+/// while it has room: where the first other line (or the end of the text) starts, and how many
+/// lines were read. Clears `all_three_columns` at a line of two columns. One call for a whole
+/// run of lines, so that the loop keeps its state in registers.
+#[inline(never)]
+fn number_lines(
+    bytes: &[u8],
+    mut start: usize,
+    points: &mut Vec<Point>,
+    all_three_columns: &mut bool,
+) -> (usize, usize) {
+    let mut read = 0;
+    while start < bytes.len() && points.len() < points.capacity() {
+        let Some((x, y, third, next)) = number_line(bytes, start) else {
+            break;
+        };
+        points.push(Point::new(x, y));
+        *all_three_columns &= third;
+        read += 1;
+        start = next;
+    }
+    (start, read)
 }
 
 /// What one stretch of lines of a plain point file holds.
@@ -348,21 +374,23 @@ fn lines_by<const ONE_PASS: bool>(
     let mut all_three_columns = true;
     let (mut start, mut number) = (0, 0);
     while start < text.len() {
-        number += 1;
-        let one_pass = if ONE_PASS {
-            number_line(text.as_bytes(), start)
-        } else {
-            None
-        };
-        if let Some((x, y, third, next)) = one_pass {
-            // What the general path below does with such a line, in one pass over its bytes.
-            seen_content = true;
-            first_data_line.get_or_insert(number);
-            all_three_columns &= third;
-            source.push(&mut points, number, Point::new(x, y))?;
-            start = next;
-            continue;
+        if ONE_PASS {
+            // What the general path below does with the common lines, in one pass over their
+            // bytes, up to the first line it leaves to the general path (or the end, or a full
+            // vector, which `Source::push` grows or refuses).
+            let (next, read) =
+                number_lines(text.as_bytes(), start, &mut points, &mut all_three_columns);
+            if read > 0 {
+                seen_content = true;
+                first_data_line.get_or_insert(number + 1);
+                number += read;
+                start = next;
+                if start >= text.len() {
+                    break;
+                }
+            }
         }
+        number += 1;
         let (end, next, simple) = scan_line(text, start);
         let line = &text[start..end];
         start = next;
@@ -1064,7 +1092,9 @@ mod tests {
                 });
             }
             let source = Source { file: "t" };
-            let one = lines_by::<true>(&text, &source, true, 0);
+            // A vector that starts with room for a few points, or for none: the one-pass loop
+            // stops where it is full and the general path grows it.
+            let one = lines_by::<true>(&text, &source, true, [0, 3][next(2)]);
             let general = lines_by::<false>(&text, &source, true, 0);
             match (one, general) {
                 (Ok(a), Ok(b)) => {
