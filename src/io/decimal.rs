@@ -895,7 +895,7 @@ mod tests {
     #[test]
     fn the_short_reader_gives_what_parse_prefix_gives_or_declines() {
         let mut stream = Xorshift::new(0x3c6e_f372_fe94_f82b);
-        let mut digit = |stream: &mut Xorshift| char::from(b'0' + stream.below(10) as u8);
+        let digit = |stream: &mut Xorshift| char::from(b'0' + stream.below(10) as u8);
         let (mut taken, total) = (0, 400_000);
         let mut text = String::new();
         for k in 0..total {
