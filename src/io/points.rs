@@ -317,17 +317,18 @@ fn number_lines(
     points: &mut Vec<Point>,
     all_three_columns: &mut bool,
 ) -> (usize, usize) {
-    let mut read = 0;
+    let before = points.len();
+    let mut all_three = *all_three_columns;
     while start < bytes.len() && points.len() < points.capacity() {
         let Some((x, y, third, next)) = number_line(bytes, start) else {
             break;
         };
         points.push(Point::new(x, y));
-        *all_three_columns &= third;
-        read += 1;
+        all_three &= third;
         start = next;
     }
-    (start, read)
+    *all_three_columns = all_three;
+    (start, points.len() - before)
 }
 
 /// What one stretch of lines of a plain point file holds.
