@@ -8,8 +8,9 @@
 //! machine word, then Clinger's fast path or the Eisel-Lemire product with a 128-bit power of
 //! five from a table computed at compile time.
 
-/// Powers of ten that `f64` holds exactly.
-const POWERS_OF_TEN: [f64; 23] = [
+/// Powers of ten that `f64` holds exactly. A `static`: a `const` array indexed at run time
+/// may be copied to the stack at each use.
+static POWERS_OF_TEN: [f64; 23] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
@@ -87,27 +88,44 @@ pub(super) fn parse_prefix(text: &[u8]) -> Option<(f64, &[u8])> {
         }
     }
     if let [b'e' | b'E', after_e @ ..] = rest {
-        let (negative_exponent, written_digits) = match after_e {
-            [b'-', more @ ..] => (true, more),
-            [b'+', more @ ..] => (false, more),
-            _ => (false, after_e),
-        };
-        let count = written_digits
-            .iter()
-            .take(MAX_EXPONENT_DIGITS + 1)
-            .take_while(|b| b.is_ascii_digit())
-            .count();
-        if count == 0 || count > MAX_EXPONENT_DIGITS {
-            return None;
-        }
-        let (written, after) = written_digits.split_at_checked(count)?;
-        let written = written
-            .iter()
-            .fold(0i64, |v, &b| v * 10 + i64::from(b - b'0'));
-        exponent += if negative_exponent { -written } else { written };
+        let (written, after) = written_exponent(after_e)?;
+        exponent += written;
         rest = after;
     }
-    let magnitude = if mantissa == 0 {
+    let magnitude = convert(mantissa, digits, exponent)?;
+    Some((if negative { -magnitude } else { magnitude }, rest))
+}
+
+/// The exponent written after an `e`: `[+-]digits`, one to five digits, and the bytes after
+/// it; `None` for no digit or more than five.
+#[inline(never)]
+fn written_exponent(after_e: &[u8]) -> Option<(i64, &[u8])> {
+    let (negative, written_digits) = match after_e {
+        [b'-', more @ ..] => (true, more),
+        [b'+', more @ ..] => (false, more),
+        _ => (false, after_e),
+    };
+    let count = written_digits
+        .iter()
+        .take(MAX_EXPONENT_DIGITS + 1)
+        .take_while(|b| b.is_ascii_digit())
+        .count();
+    if count == 0 || count > MAX_EXPONENT_DIGITS {
+        return None;
+    }
+    let (written, after) = written_digits.split_at_checked(count)?;
+    let written = written
+        .iter()
+        .fold(0i64, |v, &b| v * 10 + i64::from(b - b'0'));
+    Some((if negative { -written } else { written }, after))
+}
+
+/// `mantissa * 10^exponent` (`digits` written, leading zeros included, at most 19 significant)
+/// rounded as `str::parse` rounds it; `None` where that is left to `str::parse` (an ambiguous
+/// Eisel-Lemire product, a result that is not finite).
+#[inline(always)]
+fn convert(mantissa: u64, digits: usize, exponent: i64) -> Option<f64> {
+    Some(if mantissa == 0 {
         0.0
     } else if digits <= CLINGER_DIGITS && exponent.unsigned_abs() <= 22 {
         // Clinger's fast path: the mantissa (below 10^15 < 2^53) and the power of ten are
@@ -128,17 +146,16 @@ pub(super) fn parse_prefix(text: &[u8]) -> Option<(f64, &[u8])> {
         eisel_lemire(mantissa, exponent as i32)?
     } else {
         return None;
-    };
-    Some((if negative { -magnitude } else { magnitude }, rest))
+    })
 }
 
-/// [`parse_prefix`] for the common shape of coordinates, `[+-]D.F` with one to seven integer
-/// digits `D`, up to 23 fraction digits `F`, at most 19 digits in all and no exponent, at least
-/// 32 bytes from the end of the text; `None` for anything else, which the caller then hands to
-/// [`parse_prefix`]. Where it answers, it gives exactly what `parse_prefix` gives (the same
-/// mantissa, digit count and exponent, the same conversion), in fewer steps: the bytes are read
-/// as words at fixed offsets from one 32-byte window, so the only branches are on the shape,
-/// which the numbers of one file share (how many words the fraction fills).
+/// [`parse_prefix`] for the common shapes of coordinates, `[+-]D[.F][(e|E)exponent]` with one
+/// to seven integer digits `D`, up to 23 fraction digits `F` and at most 19 digits in all, at
+/// least 32 bytes from the end of the text; `None` for anything else, which the caller then
+/// hands to [`parse_prefix`]. Where it answers, it gives exactly what `parse_prefix` gives (the
+/// same mantissa, digit count and exponent, the same conversion), in fewer steps: the digits
+/// are read as words at fixed offsets from one 32-byte window, so the only branches are on the
+/// shape, which the numbers of one file share (how many words the fraction fills).
 #[inline(always)]
 pub(super) fn parse_prefix_short(text: &[u8]) -> Option<(f64, &[u8])> {
     /// The value of the first `run` (below 8) digits of a word from [`classify`].
@@ -175,62 +192,65 @@ pub(super) fn parse_prefix_short(text: &[u8]) -> Option<(f64, &[u8])> {
     let window: &[u8; 32] = unsigned.first_chunk::<32>()?;
     #[inline(always)]
     fn word(window: &[u8; 32], at: usize) -> (u64, u64) {
-        let mut word = [0u8; 8];
-        word.copy_from_slice(&window[at..at + 8]);
+        let word = window
+            .get(at..)
+            .and_then(<[u8]>::first_chunk::<8>)
+            .copied()
+            .unwrap_or_default();
         classify(u64::from_le_bytes(word))
     }
-    let (mut mantissa, point) = if window[0].is_ascii_digit() && window[1] == b'.' {
+    let (mut mantissa, integer) = if window[0].is_ascii_digit() && window[1] == b'.' {
         (u64::from(window[0] - b'0'), 1)
     } else {
         let (digits, not_digits) = word(window, 0);
         // 8 when all eight are digits.
         let run = (not_digits.trailing_zeros() / 8) as usize;
-        if run == 0 || run >= 8 || window[run] != b'.' {
+        if run == 0 || run >= 8 {
             return None;
         }
         (leading(digits, run), run)
     };
-    let start = point + 1;
-    let (first, first_not) = word(window, start);
-    let fraction = if first_not != 0 {
-        let run;
-        (mantissa, run) = last(mantissa, first, first_not);
-        run
-    } else {
-        let (second, second_not) = word(window, start + 8);
-        if second_not != 0 {
+    let mut fraction = 0;
+    let mut end = integer;
+    if window[integer & 7] == b'.' {
+        let start = integer + 1;
+        let (first, first_not) = word(window, start);
+        fraction = if first_not != 0 {
             let run;
-            (mantissa, run) = last(eight(mantissa, first), second, second_not);
-            8 + run
+            (mantissa, run) = last(mantissa, first, first_not);
+            run
         } else {
-            let (third, third_not) = word(window, start + 16);
-            if third_not == 0 {
-                return None;
+            let (second, second_not) = word(window, start + 8);
+            if second_not != 0 {
+                let run;
+                (mantissa, run) = last(eight(mantissa, first), second, second_not);
+                8 + run
+            } else {
+                let (third, third_not) = word(window, start + 16);
+                if third_not == 0 {
+                    return None;
+                }
+                let run;
+                (mantissa, run) = last(eight(eight(mantissa, first), second), third, third_not);
+                16 + run
             }
-            let run;
-            (mantissa, run) = last(eight(eight(mantissa, first), second), third, third_not);
-            16 + run
-        }
-    };
-    let digits = point + fraction;
-    let end = start + fraction;
-    // At most 8 + 23 = 31: inside the window.
-    if digits > MAX_DIGITS || matches!(window[end & 31], b'e' | b'E') {
+        };
+        end = start + fraction;
+    }
+    let digits = integer + fraction;
+    if digits > MAX_DIGITS {
         return None;
     }
-    let magnitude = if mantissa == 0 {
-        0.0
-    } else if digits <= CLINGER_DIGITS {
-        // `parse_prefix`'s choice: Clinger's path (a fraction of at most 14 digits).
-        mantissa as f64 / POWERS_OF_TEN[fraction]
-    } else {
-        // Exponents -23..=0: inside NEAR_POWERS.
-        eisel_lemire_near(mantissa, -(fraction as i32))
-    };
-    Some((
-        if negative { -magnitude } else { magnitude },
-        &unsigned[end..],
-    ))
+    let mut exponent = -(fraction as i64);
+    let mut rest = unsigned.get(end..)?;
+    // `end` is at most 8 + 23 = 31: inside the window.
+    if matches!(window[end & 31], b'e' | b'E') {
+        let (written, after) = written_exponent(rest.get(1..)?)?;
+        exponent += written;
+        rest = after;
+    }
+    let magnitude = convert(mantissa, digits, exponent)?;
+    Some((if negative { -magnitude } else { magnitude }, rest))
 }
 
 /// [`parse_prefix`] as a call rather than inlined: for the rarer columns, where a copy of its
@@ -947,15 +967,27 @@ mod tests {
             "123.456789",
             "5.",
             "1234567.0",
+            "1.5e3",
+            "-2.5E-300",
+            "42",
+            "7e+22",
+            "0.12345678901234567e2",
         ] {
             let text = format!("{case}{room}");
             let (value, rest) = parse_prefix_short(text.as_bytes()).expect(case);
             assert_eq!(value, case.parse::<f64>().unwrap(), "{case}");
             assert_eq!(rest.len(), room.len(), "{case}");
         }
-        // Declined, for `parse_prefix`: an exponent, no integer digit, 8 integer digits, more
-        // than 19 digits, too close to the end.
-        for case in ["1.5e3", ".5", "12345678.5", "0.1234567890123456789", "0.5"] {
+        // Declined, for `parse_prefix`: no integer digit, 8 integer digits, more than 19
+        // digits, too close to the end, a bad exponent.
+        for case in [
+            ".5",
+            "12345678.5",
+            "0.1234567890123456789",
+            "0.5",
+            "1.5e",
+            "2e123456",
+        ] {
             let text = if case == "0.5" {
                 format!("{case} 1")
             } else {
