@@ -4,7 +4,10 @@
 //! file).
 //!
 //! `cargo run --release --example parse_text -- uniform-1M.txt 10`, or under
-//! `valgrind --tool=callgrind target/release/examples/parse_text uniform-1M.txt 1`.
+//! `valgrind --tool=callgrind target/release/examples/parse_text uniform-1M.txt 1`. A third
+//! argument `keep` keeps every result until the end, so that each parse writes its points into
+//! fresh pages, as in `cargo bench --bench parse` (criterion drops the results after timing
+//! them); without it each result is freed before the next parse, whose points reuse its memory.
 
 use std::process::ExitCode;
 
@@ -12,7 +15,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (Some(path), Some(Ok(times))) = (args.first(), args.get(1).map(|t| t.parse::<usize>()))
     else {
-        eprintln!("usage: parse_text FILE TIMES");
+        eprintln!("usage: parse_text FILE TIMES [keep]");
         return ExitCode::from(2);
     };
     let text = match std::fs::read_to_string(path) {
@@ -30,10 +33,17 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
+    let keep = args.get(2).is_some_and(|a| a == "keep");
+    let mut kept = Vec::new();
     let mut count = 0;
     for _ in 0..times {
         match pool.install(|| condt::io::parse_points(&text, path)) {
-            Ok(points) => count = points.len(),
+            Ok(points) => {
+                count = points.len();
+                if keep {
+                    kept.push(points);
+                }
+            }
             Err(err) => {
                 eprintln!("{err}");
                 return ExitCode::FAILURE;

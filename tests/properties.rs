@@ -172,3 +172,121 @@ fn arbitrary_doubles_are_triangulated_or_refused_for_a_stated_reason() {
         .tests(1000)
         .quickcheck(prop as fn(Vec<(f64, f64)>) -> TestResult);
 }
+
+/// A token of the characters numbers are written with, in any order: most are not numbers.
+#[derive(Clone, Debug)]
+struct NumberishToken(String);
+
+impl Arbitrary for NumberishToken {
+    fn arbitrary(g: &mut Gen) -> Self {
+        const CHARS: &[u8] = b"0123456789012345678901234567890123456789..--+eE";
+        let len = 1 + usize::arbitrary(g) % 30;
+        let mut token: String = (0..len)
+            .map(|_| char::from(*g.choose(CHARS).unwrap()))
+            .collect();
+        // Often a well-formed number: a sign, digits, a point, digits, an exponent (or, with
+        // no digits, a malformed one).
+        if bool::arbitrary(g) {
+            let digits = |g: &mut Gen, n: usize| -> String {
+                (0..n)
+                    .map(|_| char::from(b'0' + u8::arbitrary(g) % 10))
+                    .collect()
+            };
+            let (a, b) = (usize::arbitrary(g) % 9, usize::arbitrary(g) % 24);
+            token = format!(
+                "{}{}.{}{}",
+                ["", "-", "+"][usize::arbitrary(g) % 3],
+                digits(g, a),
+                digits(g, b),
+                match u8::arbitrary(g) % 4 {
+                    0 => format!("e{}", i16::arbitrary(g) % 400),
+                    _ => String::new(),
+                }
+            );
+        }
+        NumberishToken(token)
+    }
+
+    fn shrink(&self) -> Box<dyn Iterator<Item = Self>> {
+        Box::new(
+            self.0
+                .shrink()
+                .filter(|s| !s.is_empty() && !s.contains(char::is_whitespace))
+                .map(NumberishToken),
+        )
+    }
+}
+
+#[test]
+fn parsed_coordinates_are_those_of_str_parse() {
+    // Lines `a b` after a first point: the text parses exactly when every token is a finite
+    // number by `str::parse::<f64>`, and then to those numbers bit for bit.
+    fn prop(lines: Vec<(NumberishToken, NumberishToken)>, crlf: bool) -> bool {
+        let end = if crlf { "\r\n" } else { "\n" };
+        let mut text = format!("0 0{end}");
+        let mut expected = vec![Point::new(0.0, 0.0)];
+        let mut all_finite = true;
+        for (a, b) in &lines {
+            text.push_str(&format!("{} {}{end}", a.0, b.0));
+            match (a.0.parse::<f64>(), b.0.parse::<f64>()) {
+                (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => expected.push(Point::new(x, y)),
+                _ => all_finite = false,
+            }
+        }
+        let bits = |p: &[Point]| -> Vec<(u64, u64)> {
+            p.iter().map(|q| (q.x.to_bits(), q.y.to_bits())).collect()
+        };
+        match condt::io::parse_points(&text, "t.txt") {
+            Ok(points) => all_finite && bits(&points) == bits(&expected),
+            Err(_) => !all_finite,
+        }
+    }
+    QuickCheck::new()
+        .tests(3000)
+        .quickcheck(prop as fn(Vec<(NumberishToken, NumberishToken)>, bool) -> bool);
+}
+
+#[test]
+fn written_doubles_parse_back_bit_for_bit() {
+    // Any finite doubles written in the shortest form, in exponent form, or with 15 to 20
+    // significant digits come back as `str::parse` reads them.
+    fn prop(raw: Vec<(f64, f64)>, style: u8) -> bool {
+        let write = |v: f64| match style % 4 {
+            0 => format!("{v}"),
+            1 => format!("{v:e}"),
+            2 => format!("{v:.*e}", 14 + usize::from(style / 4) % 6),
+            _ => format!("{:.*}", usize::from(style / 4) % 20, v),
+        };
+        // Rounded to fewer digits, the largest doubles are written as numbers beyond the
+        // range, which the reader refuses as it should: left out.
+        let finite = |v: f64| write(v).parse::<f64>().is_ok_and(f64::is_finite);
+        let points: Vec<(f64, f64)> = raw
+            .into_iter()
+            .filter(|&(x, y)| finite(x) && finite(y))
+            .collect();
+        let text: String = points
+            .iter()
+            .map(|&(x, y)| format!("{}\t{}\n", write(x), write(y)))
+            .collect();
+        let expected: Vec<(u64, u64)> = points
+            .iter()
+            .map(|&(x, y)| {
+                let back = |v: f64| write(v).parse::<f64>().unwrap().to_bits();
+                (back(x), back(y))
+            })
+            .collect();
+        match condt::io::parse_points(&text, "t.txt") {
+            Ok(read) => {
+                read.iter()
+                    .map(|p| (p.x.to_bits(), p.y.to_bits()))
+                    .collect::<Vec<_>>()
+                    == expected
+            }
+            // Nothing here is to refuse: two finite numbers a line.
+            Err(e) => panic!("{e}"),
+        }
+    }
+    QuickCheck::new()
+        .tests(2000)
+        .quickcheck(prop as fn(Vec<(f64, f64)>, u8) -> bool);
+}

@@ -6,16 +6,25 @@
 //! range, other syntax) the caller hands to `str::parse`. The work per number is a few
 //! instructions per digit and one or two 64-bit multiplications: digits eight at a time in one
 //! machine word, then Clinger's fast path or the Eisel-Lemire product with a 128-bit power of
-//! five from a table computed at compile time.
+//! five from a table computed at compile time. Two readers give the same values: the general
+//! [`parse_prefix`], and [`parse_prefix_short`] for the common shapes of coordinates, which
+//! reads its words at fixed offsets of a 32-byte window and declines the rest to the general
+//! one. Neither branches on what varies from number to number in a file of one format (the
+//! length of the last run of digits, the mantissa's value), so such branches are not
+//! mispredicted.
 
-/// Powers of ten that `f64` holds exactly.
-const POWERS_OF_TEN: [f64; 23] = [
+/// Powers of ten that `f64` holds exactly. A `static`: a `const` array indexed at run time
+/// may be copied to the stack at each use.
+static POWERS_OF_TEN: [f64; 23] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
 /// Most significant digits read into a `u64` (10^19 - 1 < 2^64).
 const MAX_DIGITS: usize = 19;
+
+/// Most digits written (leading zeros included) for Clinger's fast path: 10^15 - 1 < 2^53.
+const CLINGER_DIGITS: usize = 15;
 
 /// Most digits of a written exponent; longer ones (`1e0000001`) go to `str::parse`.
 const MAX_EXPONENT_DIGITS: usize = 5;
@@ -84,43 +93,176 @@ pub(super) fn parse_prefix(text: &[u8]) -> Option<(f64, &[u8])> {
         }
     }
     if let [b'e' | b'E', after_e @ ..] = rest {
-        let (negative_exponent, written_digits) = match after_e {
-            [b'-', more @ ..] => (true, more),
-            [b'+', more @ ..] => (false, more),
-            _ => (false, after_e),
-        };
-        let count = written_digits
-            .iter()
-            .take(MAX_EXPONENT_DIGITS + 1)
-            .take_while(|b| b.is_ascii_digit())
-            .count();
-        if count == 0 || count > MAX_EXPONENT_DIGITS {
-            return None;
-        }
-        let (written, after) = written_digits.split_at_checked(count)?;
-        let written = written
-            .iter()
-            .fold(0i64, |v, &b| v * 10 + i64::from(b - b'0'));
-        exponent += if negative_exponent { -written } else { written };
+        let (written, after) = written_exponent(after_e)?;
+        exponent += written;
         rest = after;
     }
-    let magnitude = if mantissa == 0 {
+    let magnitude = convert(mantissa, digits, exponent)?;
+    Some((if negative { -magnitude } else { magnitude }, rest))
+}
+
+/// The exponent written after an `e`: `[+-]digits`, one to five digits, and the bytes after
+/// it; `None` for no digit or more than five.
+#[inline(never)]
+fn written_exponent(after_e: &[u8]) -> Option<(i64, &[u8])> {
+    let (negative, written_digits) = match after_e {
+        [b'-', more @ ..] => (true, more),
+        [b'+', more @ ..] => (false, more),
+        _ => (false, after_e),
+    };
+    let count = written_digits
+        .iter()
+        .take(MAX_EXPONENT_DIGITS + 1)
+        .take_while(|b| b.is_ascii_digit())
+        .count();
+    if count == 0 || count > MAX_EXPONENT_DIGITS {
+        return None;
+    }
+    let (written, after) = written_digits.split_at_checked(count)?;
+    let written = written
+        .iter()
+        .fold(0i64, |v, &b| v * 10 + i64::from(b - b'0'));
+    Some((if negative { -written } else { written }, after))
+}
+
+/// `mantissa * 10^exponent` (`digits` written, leading zeros included, at most 19 significant)
+/// rounded as `str::parse` rounds it; `None` where that is left to `str::parse` (an ambiguous
+/// Eisel-Lemire product, a result that is not finite).
+#[inline(always)]
+fn convert(mantissa: u64, digits: usize, exponent: i64) -> Option<f64> {
+    Some(if mantissa == 0 {
         0.0
-    } else if mantissa <= 1 << 53 && exponent.unsigned_abs() <= 22 {
-        // Clinger's fast path: the mantissa and the power of ten are exact in f64, and one
-        // correctly rounded multiplication or division gives the result.
+    } else if digits <= CLINGER_DIGITS && exponent.unsigned_abs() <= 22 {
+        // Clinger's fast path: the mantissa (below 10^15 < 2^53) and the power of ten are
+        // exact in f64, and one correctly rounded multiplication or division gives the result.
+        // Chosen by the number of digits written, not by the mantissa's value: in a file of
+        // 16- and 17-digit numbers a test of the value would send them this way or the other
+        // at random, and the processor would mispredict the branch about once in three.
         let power = POWERS_OF_TEN[exponent.unsigned_abs() as usize];
         if exponent >= 0 {
             mantissa as f64 * power
         } else {
             mantissa as f64 / power
         }
+    } else if (i64::from(*NEAR_POWERS.start())..=i64::from(*NEAR_POWERS.end())).contains(&exponent)
+    {
+        eisel_lemire_near(mantissa, exponent as i32)
     } else if (SMALLEST_POWER..=LARGEST_POWER).contains(&exponent) {
         eisel_lemire(mantissa, exponent as i32)?
     } else {
         return None;
+    })
+}
+
+/// [`parse_prefix`] for the common shapes of coordinates, `[+-]D[.F][(e|E)exponent]` with one
+/// to seven integer digits `D`, up to 23 fraction digits `F` and at most 19 digits in all, at
+/// least 32 bytes from the end of the text; `None` for anything else, which the caller then
+/// hands to [`parse_prefix`]. Where it answers, it gives exactly what `parse_prefix` gives (the
+/// same mantissa, digit count and exponent, the same conversion), in fewer steps: the digits
+/// are read as words at fixed offsets from one 32-byte window, so the only branches are on the
+/// shape, which the numbers of one file share (how many words the fraction fills).
+#[inline(always)]
+pub(super) fn parse_prefix_short(text: &[u8]) -> Option<(f64, &[u8])> {
+    /// The value of the first `run` (below 8) digits of a word from [`classify`].
+    #[inline(always)]
+    fn leading(digits: u64, run: usize) -> u64 {
+        // As in `read_digits`: the run moved to the top, shifted in two steps.
+        value_of_eight_digits((digits << (63 - 8 * run)) << 1)
+    }
+    /// `mantissa` followed by the eight digits of a word (wrapping past 19 digits, which are
+    /// then declined).
+    #[inline(always)]
+    fn eight(mantissa: u64, digits: u64) -> u64 {
+        mantissa
+            .wrapping_mul(100_000_000)
+            .wrapping_add(value_of_eight_digits(digits))
+    }
+    /// `mantissa` followed by the leading digits of the word that holds the first byte that is
+    /// not a digit, and how many they are.
+    #[inline(always)]
+    fn last(mantissa: u64, digits: u64, not_digits: u64) -> (u64, usize) {
+        /// 10^n for a run of n digits.
+        const SCALE: [u64; 8] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000, 10_000_000];
+        let run = (not_digits.trailing_zeros() / 8) as usize & 7;
+        let mantissa = mantissa
+            .wrapping_mul(SCALE[run])
+            .wrapping_add(leading(digits, run));
+        (mantissa, run)
+    }
+    let (negative, unsigned) = match text {
+        [b'-', rest @ ..] => (true, rest),
+        [b'+', rest @ ..] => (false, rest),
+        _ => (false, text),
     };
+    let window: &[u8; 32] = unsigned.first_chunk::<32>()?;
+    #[inline(always)]
+    fn word(window: &[u8; 32], at: usize) -> (u64, u64) {
+        let word = window
+            .get(at..)
+            .and_then(<[u8]>::first_chunk::<8>)
+            .copied()
+            .unwrap_or_default();
+        classify(u64::from_le_bytes(word))
+    }
+    let (mut mantissa, integer) = if window[0].is_ascii_digit() && window[1] == b'.' {
+        (u64::from(window[0] - b'0'), 1)
+    } else {
+        let (digits, not_digits) = word(window, 0);
+        // 8 when all eight are digits.
+        let run = (not_digits.trailing_zeros() / 8) as usize;
+        if run == 0 || run >= 8 {
+            return None;
+        }
+        (leading(digits, run), run)
+    };
+    let mut fraction = 0;
+    let mut end = integer;
+    if window[integer & 7] == b'.' {
+        let start = integer + 1;
+        let (first, first_not) = word(window, start);
+        fraction = if first_not != 0 {
+            let run;
+            (mantissa, run) = last(mantissa, first, first_not);
+            run
+        } else {
+            let (second, second_not) = word(window, start + 8);
+            if second_not != 0 {
+                let run;
+                (mantissa, run) = last(eight(mantissa, first), second, second_not);
+                8 + run
+            } else {
+                let (third, third_not) = word(window, start + 16);
+                if third_not == 0 {
+                    return None;
+                }
+                let run;
+                (mantissa, run) = last(eight(eight(mantissa, first), second), third, third_not);
+                16 + run
+            }
+        };
+        end = start + fraction;
+    }
+    let digits = integer + fraction;
+    if digits > MAX_DIGITS {
+        return None;
+    }
+    let mut exponent = -(fraction as i64);
+    let mut rest = unsigned.get(end..)?;
+    // `end` is at most 8 + 23 = 31: inside the window.
+    if matches!(window[end & 31], b'e' | b'E') {
+        let (written, after) = written_exponent(rest.get(1..)?)?;
+        exponent += written;
+        rest = after;
+    }
+    let magnitude = convert(mantissa, digits, exponent)?;
     Some((if negative { -magnitude } else { magnitude }, rest))
+}
+
+/// [`parse_prefix`] as a call rather than inlined: for the rarer columns, where a copy of its
+/// code would only make the caller larger.
+#[inline(never)]
+pub(super) fn parse_prefix_outlined(text: &[u8]) -> Option<(f64, &[u8])> {
+    parse_prefix(text)
 }
 
 /// Appends the run of ASCII digits at the start of `text` to `mantissa` (wrapping) and returns
@@ -136,13 +278,14 @@ fn read_digits<'a>(mut text: &'a [u8], mantissa: &mut u64) -> &'a [u8] {
         if not_digits != 0 {
             // The bytes before the first that is not a digit; fewer than eight.
             let run = not_digits.trailing_zeros() as usize / 8;
-            if run > 0 {
-                // The run moved to the top of the word, with zero digits below it.
-                let top = digits << (64 - 8 * run);
-                *mantissa = mantissa
-                    .wrapping_mul(SCALE[run])
-                    .wrapping_add(value_of_eight_digits(top));
-            }
+            // The run moved to the top of the word, with zero digits below it; no run at all
+            // shifts everything out (in two steps: one shift by 64 would be an overflow) and
+            // adds nothing. Without a branch on the run, whose length varies from number to
+            // number (16 or 17 digits) and would often be mispredicted.
+            let top = (digits << (63 - 8 * run)) << 1;
+            *mantissa = mantissa
+                .wrapping_mul(SCALE[run])
+                .wrapping_add(value_of_eight_digits(top));
             return text.get(run..).unwrap_or_default();
         }
         *mantissa = mantissa
@@ -170,19 +313,18 @@ fn classify(word: u64) -> (u64, u64) {
 }
 
 /// The value of eight digit values 0-9, one a byte, the first (most significant) in the lowest
-/// byte: pairs, then fours, then the eight combined by three multiplications instead of eight.
+/// byte: pairs, then fours, then the eight, each step one multiplication of all the lanes at
+/// once instead of eight.
 #[inline(always)]
 fn value_of_eight_digits(digits: u64) -> u64 {
-    const MASK: u64 = 0x0000_00ff_0000_00ff;
-    // 10^6 and 10^2 in the two halves; 10^4 and 1.
-    const MUL1: u64 = 0x000f_4240_0000_0064;
-    const MUL2: u64 = 0x0000_2710_0000_0001;
     // Each byte's value times ten plus the next byte's: pairs 0-99 in every other byte. The
     // top byte is at most 9, so the product does not overflow.
-    let pairs = digits * 10 + (digits >> 8);
-    let a = (pairs & MASK).wrapping_mul(MUL1);
-    let b = ((pairs >> 16) & MASK).wrapping_mul(MUL2);
-    u64::from((a.wrapping_add(b) >> 32) as u32)
+    let pairs = (digits * 10 + (digits >> 8)) & 0x00ff_00ff_00ff_00ff;
+    // Each 16-bit lane plus 100 times the lane below it (the more significant pair): fours
+    // 0-9999 in lanes 1 and 3, moved down to 0 and 2.
+    let fours = (pairs.wrapping_mul(1 + (100 << 16)) >> 16) & 0x0000_ffff_0000_ffff;
+    // The upper 32-bit lane plus 10^4 times the lower one.
+    fours.wrapping_mul(1 + (10_000 << 32)) >> 32
 }
 
 /// Smallest decimal exponent of the table: below it, 19 digits round to zero.
@@ -275,6 +417,54 @@ const fn bits_at(n: &[u64; LIMBS], from: i64) -> u64 {
         k += 1;
     }
     word
+}
+
+/// The decimal exponents where [`eisel_lemire`] always decides and its result is a normal
+/// number: the table holds `5^q` exactly (`0 <= q <= 55`) or its reciprocal rounded up with
+/// room for the carry (`-27 <= q < 0`), and `w * 10^q` for a nonzero `w < 2^64` lies between
+/// 10^-27 and 2^64 * 10^55, far inside the normal range of `f64`.
+const NEAR_POWERS: core::ops::RangeInclusive<i32> = -27..=55;
+
+/// [`eisel_lemire`] for `q` in [`NEAR_POWERS`] (`w` nonzero), without the steps that cannot
+/// happen there (no ambiguous product, no subnormal, no overflow: always a result), and the
+/// carry of the rounding into the exponent taken by adding the fields instead of by a branch.
+/// Inlined into the number reader: the common numbers' conversion, about 25 instructions.
+#[inline(always)]
+fn eisel_lemire_near(w: u64, q: i32) -> f64 {
+    const MANTISSA_BITS: i32 = 52;
+    const ROUND_TO_EVEN: core::ops::RangeInclusive<i32> = -4..=23;
+    debug_assert!(w != 0 && NEAR_POWERS.contains(&q));
+    let zeros = w.leading_zeros();
+    let w = w << zeros;
+    let (high5, low5) = POWERS_OF_FIVE[(i64::from(q) - SMALLEST_POWER) as usize];
+    let first = u128::from(w) * u128::from(high5);
+    let (mut low, mut high) = (first as u64, (first >> 64) as u64);
+    let mask = u64::MAX >> (MANTISSA_BITS + 3);
+    if high & mask == mask {
+        let second = ((u128::from(w) * u128::from(low5)) >> 64) as u64;
+        low = low.wrapping_add(second);
+        if second > low {
+            high += 1;
+        }
+    }
+    // Both factors have their top bit set: `high` has bit 63 or 62, and `mantissa` 54 bits.
+    let upper_bit = (high >> 63) as i32;
+    let mut mantissa = high >> (upper_bit + 64 - MANTISSA_BITS - 3);
+    let power_of_ten_bits = ((q.wrapping_mul(152_170 + 65_536)) >> 16) + 63;
+    // At least 1023 - 90 here: a normal number.
+    let power2 = power_of_ten_bits + upper_bit - zeros as i32 + 1023;
+    if low <= 1
+        && ROUND_TO_EVEN.contains(&q)
+        && mantissa & 3 == 1
+        && (mantissa << (upper_bit + 64 - MANTISSA_BITS - 3)) == high
+    {
+        mantissa &= !1;
+    }
+    mantissa += mantissa & 1;
+    mantissa >>= 1;
+    // 2^52 <= mantissa <= 2^53: its implicit bit adds one to the exponent field below it, and
+    // a rounding that reached 2^53 adds two, with a zero fraction, as it should.
+    f64::from_bits((((power2 - 1) as u64) << MANTISSA_BITS) + mantissa)
 }
 
 /// `w * 10^q` rounded to nearest, ties to even (`w` nonzero, `q` in the table's range), by the
@@ -687,6 +877,129 @@ mod tests {
             .filter(|t| parse(t.as_bytes()).is_some())
             .count();
         assert!(taken * 10 > cases.len() * 7, "{taken} of {}", cases.len());
+    }
+
+    #[test]
+    fn the_near_conversion_is_the_general_one_and_str_parses() {
+        let mut stream = Xorshift::new(0x6c07_8965_9d2c_3a1b);
+        let mut checked = 0;
+        for q in NEAR_POWERS {
+            let mut ws: Vec<u64> = vec![1, 9, 10, u64::MAX, 1 << 53, (1 << 53) + 1, (1 << 54) - 1];
+            for _ in 0..3000 {
+                // Every length of mantissa, and ones with many trailing zero bits or ones.
+                let bits = 1 + stream.below(64) as u32;
+                let w = stream.next_u64() >> (64 - bits);
+                ws.push(w.max(1));
+                ws.push((w | 1) << stream.below(u64::from(64 - bits.min(63))));
+                ws.push(w | ((1u64 << stream.below(12)) - 1));
+            }
+            // Halfway between two doubles when q is small: (2m + 1) * 2^k / 10^q exactly.
+            if (0..=19).contains(&q) {
+                for _ in 0..200 {
+                    let twice = 2 * ((1u64 << 52) | stream.next_u64() >> 12) + 1;
+                    if let Some(w) = twice.checked_shl(stream.below(10) as u32) {
+                        if w >> stream.below(10) != 0 {
+                            ws.push(w);
+                        }
+                    }
+                }
+            }
+            for w in ws.into_iter().filter(|&w| w != 0) {
+                let near = eisel_lemire_near(w, q);
+                let general = eisel_lemire(w, q).expect("decides in the near range");
+                let standard: f64 = format!("{w}e{q}").parse().unwrap();
+                assert_eq!(near.to_bits(), general.to_bits(), "{w}e{q}");
+                assert_eq!(near.to_bits(), standard.to_bits(), "{w}e{q}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 83 * 9000, "{checked}");
+    }
+
+    #[test]
+    fn the_short_reader_gives_what_parse_prefix_gives_or_declines() {
+        let mut stream = Xorshift::new(0x3c6e_f372_fe94_f82b);
+        let digit = |stream: &mut Xorshift| char::from(b'0' + stream.below(10) as u8);
+        let (mut taken, total) = (0, 400_000);
+        let mut text = String::new();
+        for k in 0..total {
+            text.clear();
+            match stream.below(4) {
+                0 => text.push('-'),
+                1 => text.push('+'),
+                _ => {}
+            }
+            // Integer digits 0 to 9, fraction digits 0 to 25 or no point at all.
+            for _ in 0..[1, 1, 1, 0, 2, 3, 7, 8, 9][stream.below(9) as usize] {
+                text.push(digit(&mut stream));
+            }
+            if stream.below(12) > 0 {
+                text.push('.');
+                let fraction = match stream.below(3) {
+                    0 => stream.below(26),
+                    _ => 14 + stream.below(6),
+                };
+                for _ in 0..fraction {
+                    // Now and then all zeros, for the zero and the leading-zero cases.
+                    text.push(if k % 7 == 0 { '0' } else { digit(&mut stream) });
+                }
+            }
+            // What follows: a blank, a line end, an exponent, another point, a digit after a
+            // gap, a letter.
+            let after = [" 0.5", "\n", "e5", "E-3", ".5", "x", "\t1", ",2", "e"];
+            text.push_str(after[stream.below(after.len() as u64) as usize]);
+            // Padding to the window's 32 bytes (or not: too short is declined).
+            if stream.below(8) > 0 {
+                text.push_str(&" 1.5".repeat(10));
+            }
+            let bytes = text.as_bytes();
+            if let Some((value, rest)) = parse_prefix_short(bytes) {
+                let (expected, expected_rest) = parse_prefix(bytes)
+                    .unwrap_or_else(|| panic!("{text:?}: the short reader took it alone"));
+                assert_eq!(value.to_bits(), expected.to_bits(), "{text:?}");
+                assert_eq!(rest, expected_rest, "{text:?}");
+                taken += 1;
+            }
+        }
+        assert!(taken * 5 > total, "{taken} of {total}");
+        // The common coordinate forms are taken, with the window's room after them.
+        let room = " ".repeat(32);
+        for case in [
+            "0.13436424411240122",
+            "0.5118216247002567",
+            "0.012345678901234567",
+            "-0.25",
+            "123.456789",
+            "5.",
+            "1234567.0",
+            "1.5e3",
+            "-2.5E-300",
+            "42",
+            "7e+22",
+            "0.12345678901234567e2",
+        ] {
+            let text = format!("{case}{room}");
+            let (value, rest) = parse_prefix_short(text.as_bytes()).expect(case);
+            assert_eq!(value, case.parse::<f64>().unwrap(), "{case}");
+            assert_eq!(rest.len(), room.len(), "{case}");
+        }
+        // Declined, for `parse_prefix`: no integer digit, 8 integer digits, more than 19
+        // digits, too close to the end, a bad exponent.
+        for case in [
+            ".5",
+            "12345678.5",
+            "0.1234567890123456789",
+            "0.5",
+            "1.5e",
+            "2e123456",
+        ] {
+            let text = if case == "0.5" {
+                format!("{case} 1")
+            } else {
+                format!("{case}{room}")
+            };
+            assert!(parse_prefix_short(text.as_bytes()).is_none(), "{case}");
+        }
     }
 
     #[test]

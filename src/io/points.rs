@@ -253,37 +253,47 @@ fn scan_line(text: &str, start: usize) -> (usize, usize, Option<Row<'_>>) {
 /// path reads as the same point: its columns are tokens by the same splitting, and the numbers
 /// are those `Source::number` returns.
 ///
-/// Not inlined: on its own, the number reader inlined in it keeps its values in registers.
-#[inline(never)]
+/// Straight-line code, one step per column rather than a loop over them: each number read and
+/// each blank skipped has its own branches, which the processor then predicts from what that
+/// column held on the lines before (one blank after `x`, a line end after `y`), where a loop's
+/// shared branches alternate. The two coordinates are read by the number reader inlined; the
+/// rarer third column by a call.
+#[inline(always)]
 fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
+    #[inline(always)]
     fn skip_blanks(mut text: &[u8]) -> &[u8] {
         while let [b' ' | b'\t', rest @ ..] = text {
             text = rest;
         }
         text
     }
-    let line_end = |text: &[u8]| matches!(text, [] | [b'\n' | b'\r', ..]);
-    let mut values = [0.0; 2];
-    let mut columns = 0;
-    let mut rest = skip_blanks(bytes.get(start..)?);
-    // One call site for the number reader, so that it is inlined once.
-    while !line_end(rest) {
-        if columns == 3 {
-            return None;
-        }
-        let (value, after) = decimal::parse_prefix(rest)?;
-        if let Some(slot) = values.get_mut(columns) {
-            *slot = value;
-        }
-        columns += 1;
-        rest = skip_blanks(after);
-        // A number runs up to a blank or the line end: `1.5x` or `2,3` is for the general path.
-        if rest.len() == after.len() && !line_end(rest) {
-            return None;
-        }
+    #[inline(always)]
+    fn line_end(text: &[u8]) -> bool {
+        matches!(text, [] | [b'\n' | b'\r', ..])
     }
-    if columns < 2 {
+    let line = skip_blanks(bytes.get(start..)?);
+    let (x, after_x) =
+        decimal::parse_prefix_short(line).or_else(|| decimal::parse_prefix_outlined(line))?;
+    // A number runs up to a blank (here another column must follow) or the line end: `1.5x`,
+    // `2,3` or a single column is for the general path.
+    let before_y = skip_blanks(after_x);
+    if before_y.len() == after_x.len() {
         return None;
+    }
+    let (y, after_y) = decimal::parse_prefix_short(before_y)
+        .or_else(|| decimal::parse_prefix_outlined(before_y))?;
+    let mut rest = skip_blanks(after_y);
+    let third = !line_end(rest);
+    if third {
+        if rest.len() == after_y.len() {
+            return None;
+        }
+        let (_, after_third) = decimal::parse_prefix_outlined(rest)?;
+        rest = skip_blanks(after_third);
+        // A fourth column, or something glued to the third: the general path reports it.
+        if !line_end(rest) {
+            return None;
+        }
     }
     // `after_line_end` on the rest as a slice pattern: the same reading without its bounds
     // checks, 2 % of the instructions of a parse on this, the hot path.
@@ -293,7 +303,32 @@ fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
         [_, ..] => end + 1,
         [] => end,
     };
-    Some((values[0], values[1], columns == 3, next))
+    Some((x, y, third, next))
+}
+
+/// The points of the lines from byte `start` that [`number_line`] reads, appended to `points`
+/// while it has room: where the first other line (or the end of the text) starts, and how many
+/// lines were read. Clears `all_three_columns` at a line of two columns. One call for a whole
+/// run of lines, so that the loop keeps its state in registers.
+#[inline(never)]
+fn number_lines(
+    bytes: &[u8],
+    mut start: usize,
+    points: &mut Vec<Point>,
+    all_three_columns: &mut bool,
+) -> (usize, usize) {
+    let before = points.len();
+    let mut all_three = *all_three_columns;
+    while start < bytes.len() && points.len() < points.capacity() {
+        let Some((x, y, third, next)) = number_line(bytes, start) else {
+            break;
+        };
+        points.push(Point::new(x, y));
+        all_three &= third;
+        start = next;
+    }
+    *all_three_columns = all_three;
+    (start, points.len() - before)
 }
 
 /// What one stretch of lines of a plain point file holds.
@@ -340,21 +375,23 @@ fn lines_by<const ONE_PASS: bool>(
     let mut all_three_columns = true;
     let (mut start, mut number) = (0, 0);
     while start < text.len() {
-        number += 1;
-        let one_pass = if ONE_PASS {
-            number_line(text.as_bytes(), start)
-        } else {
-            None
-        };
-        if let Some((x, y, third, next)) = one_pass {
-            // What the general path below does with such a line, in one pass over its bytes.
-            seen_content = true;
-            first_data_line.get_or_insert(number);
-            all_three_columns &= third;
-            source.push(&mut points, number, Point::new(x, y))?;
-            start = next;
-            continue;
+        if ONE_PASS {
+            // What the general path below does with the common lines, in one pass over their
+            // bytes, up to the first line it leaves to the general path (or the end, or a full
+            // vector, which `Source::push` grows or refuses).
+            let (next, read) =
+                number_lines(text.as_bytes(), start, &mut points, &mut all_three_columns);
+            if read > 0 {
+                seen_content = true;
+                first_data_line.get_or_insert(number + 1);
+                number += read;
+                start = next;
+                if start >= text.len() {
+                    break;
+                }
+            }
         }
+        number += 1;
         let (end, next, simple) = scan_line(text, start);
         let line = &text[start..end];
         start = next;
@@ -1056,7 +1093,9 @@ mod tests {
                 });
             }
             let source = Source { file: "t" };
-            let one = lines_by::<true>(&text, &source, true, 0);
+            // A vector that starts with room for a few points, or for none: the one-pass loop
+            // stops where it is full and the general path grows it.
+            let one = lines_by::<true>(&text, &source, true, [0, 3][next(2)]);
             let general = lines_by::<false>(&text, &source, true, 0);
             match (one, general) {
                 (Ok(a), Ok(b)) => {
