@@ -310,7 +310,22 @@ enum Undo {
     },
     /// The input itself, when the output is not of that form or the delta would not be smaller.
     Input(Vec<Edge>),
+    /// The input is the first stage's graph, which is computed again from the triangulation
+    /// when a report asks for it (see [`FIRST_KEPT_UP_TO`]).
+    First,
 }
+
+/// The record of the step that reads the first stage's graph (the proximity graph) keeps a
+/// delta only while it holds at most one removal per this many edges of that graph, under a
+/// byte per edge (12 bytes a removal); past it, the graph is computed again when a report asks
+/// for it ([`Undo::First`]). Reason: memory against the time of a report. On uniform points the
+/// repair keeps the edges of few vertices as they were (200k points: 146,489 removals of
+/// 233,262 edges, or the whole graph, 9.3 bytes per point through every later stage and pass);
+/// along curves it changes a few edges in a hundred (1,299 of 201,159), and the reports there
+/// cost nothing more. Only the repair's record is replaced so: the local outlier removal reads
+/// the IQR stage's input, which with `outliers_first` is the proximity graph, and must not
+/// recompute it.
+const FIRST_KEPT_UP_TO: usize = 12;
 
 impl Undo {
     /// How to get `input` back from `output`. The input is moved into the record only when no
@@ -342,10 +357,24 @@ impl Undo {
         }
     }
 
-    /// The stage's input, given its `output`.
-    fn input<'e>(&'e self, output: Cow<'e, [Edge]>) -> Cow<'e, [Edge]> {
+    /// How many edges of `input` the delta of [`Undo::of`] would list as removed.
+    fn removals(input: &[Edge], output: &[Edge]) -> usize {
+        let mut kept = 0;
+        for &edge in input {
+            kept += usize::from(output.get(kept) == Some(&edge));
+        }
+        input.len() - kept
+    }
+
+    /// The stage's input, given its `output`; `first` computes the first stage's graph.
+    fn input<'e>(
+        &'e self,
+        output: Cow<'e, [Edge]>,
+        first: &dyn Fn() -> Vec<Edge>,
+    ) -> Cow<'e, [Edge]> {
         match self {
             Undo::Unchanged => output,
+            Undo::First => Cow::Owned(first()),
             Undo::Input(input) => Cow::Borrowed(input),
             Undo::Delta { appended, removed } => {
                 let kept = &output[..output.len() - appended];
@@ -364,14 +393,31 @@ impl Undo {
     }
 }
 
-/// The output of stage `k` of `records`, walking back from `last`, the last stage's output.
-fn output_of<'e>(records: &'e [StageRecord], last: &'e [Edge], k: usize) -> Cow<'e, [Edge]> {
+/// The output of stage `k` of `records`, walking back from `last`, the last stage's output;
+/// `first` computes the first stage's graph when a record says to ([`Undo::First`]).
+fn output_of<'e>(
+    records: &'e [StageRecord],
+    last: &'e [Edge],
+    k: usize,
+    first: &dyn Fn() -> Vec<Edge>,
+) -> Cow<'e, [Edge]> {
     records[k + 1..]
         .iter()
         .rev()
         .fold(Cow::Borrowed(last), |output, record| {
-            record.undo.input(output)
+            record.undo.input(output, first)
         })
+}
+
+/// The first stage's graph of a reconstruction on `tri` with `params`, as [`run_stages`]
+/// computed it.
+fn first_graph(tri: &Triangulation, params: &Params) -> Vec<Edge> {
+    match params.method {
+        Method::ConDT => proximity::proximity_graph(tri, params.uniformity, params.parallel),
+        Method::NnCrust => crate::baselines::nn_crust_edges(tri),
+        // `reconstruct_triangulation` checked that it fits (`crust_fits`), the one way it fails.
+        Method::Crust => crate::baselines::crust_edges(tri).unwrap_or_default(),
+    }
 }
 
 /// Everything a reconstruction computed, stage by stage, in input positions. Exact duplicates
@@ -521,7 +567,9 @@ impl Reconstruction {
             stage: record.stage,
             graph: Graph::new(
                 &self.triangulation,
-                output_of(&self.records, &self.final_edges, k),
+                output_of(&self.records, &self.final_edges, k, &|| {
+                    first_graph(&self.triangulation, &self.params)
+                }),
             ),
             // The first graph has no input to leave as it was.
             applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
@@ -770,12 +818,7 @@ pub fn reconstruct_triangulation(
 /// The stages of [`reconstruct_triangulation`], its parameters checked.
 fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     let mut clock = Stopwatch::start();
-    let first = match params.method {
-        Method::ConDT => proximity::proximity_graph(&tri, params.uniformity, params.parallel),
-        Method::NnCrust => crate::baselines::nn_crust_edges(&tri),
-        // `reconstruct_triangulation` checked that it fits (`crust_fits`), the one way it fails.
-        Method::Crust => crate::baselines::crust_edges(&tri).unwrap_or_default(),
-    };
+    let first = first_graph(&tri, params);
     let mut records = Vec::with_capacity(6);
     records.push(StageRecord {
         stage: params.first_stage(),
@@ -791,7 +834,9 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
         // says which reads which), and only while it runs.
         let input_of =
             |stage: Stage, read: bool| match records.iter().position(|r| r.stage == stage) {
-                Some(k) if read && k > 0 => output_of(&records, &current, k - 1),
+                Some(k) if read && k > 0 => {
+                    output_of(&records, &current, k - 1, &|| first_graph(&tri, params))
+                }
                 _ => Cow::Borrowed(current.as_slice()),
             };
         let before_outliers = input_of(Stage::Outliers, step == Step::LocalOutliers);
@@ -807,7 +852,14 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
             None => Undo::Unchanged,
             Some(output) => {
                 let input = core::mem::replace(&mut current, output);
-                Undo::of(input, &current)
+                // Only the repair's record may stand for the first graph (see FIRST_KEPT_UP_TO).
+                let reads_first = records.len() == 1 && matches!(step, Step::Repair(_));
+                if reads_first && Undo::removals(&input, &current) * FIRST_KEPT_UP_TO > input.len()
+                {
+                    Undo::First
+                } else {
+                    Undo::of(input, &current)
+                }
             }
         };
         // A handed-on graph must be the curve graph of exactly the list the next stage reads
@@ -986,7 +1038,10 @@ mod tests {
             if !reordered && removals < 2 * input.len() / 3 {
                 assert!(matches!(undo, Undo::Delta { .. }), "{undo:?}");
             }
-            assert_eq!(&*undo.input(Cow::Borrowed(&output)), input.as_slice());
+            assert_eq!(
+                &*undo.input(Cow::Borrowed(&output), &|| unreachable!()),
+                input.as_slice()
+            );
         }
     }
 
@@ -1071,6 +1126,45 @@ mod tests {
             reports.iter().skip(1).any(|r| r.applied),
             "some stage changed the graph"
         );
+    }
+
+    /// On uniform points the repair changes most of the proximity graph, so its record does not
+    /// keep it ([`Undo::First`]): the reports still give every stage's graph as it was, the
+    /// proximity graph computed again; along a curve the repair's record stays a delta.
+    #[test]
+    fn a_repair_record_that_would_hold_the_proximity_graph_recomputes_it() {
+        let mut rng = Xorshift::new(21);
+        let uniform: Vec<Point> = (0..3000)
+            .map(|_| Point::new(rng.unit(), rng.unit()))
+            .collect();
+        let curve: Vec<Point> = (0..3000)
+            .map(|k| {
+                let t = k as f64 * core::f64::consts::TAU / 3000.0;
+                Point::new(libm::cos(t), 0.5 * libm::sin(t))
+            })
+            .collect();
+        let params = Params {
+            smooth: false,
+            ..Params::default()
+        };
+        for (points, recomputed) in [(uniform, true), (curve, false)] {
+            let result = reconstruct(&points, &params).unwrap();
+            let repair = &result.records[1];
+            assert_eq!(repair.stage, Stage::Repair);
+            assert_eq!(matches!(repair.undo, Undo::First), recomputed);
+            let tri = result.triangulation();
+            let proximity = tri.proximity_graph(params.uniformity).unwrap();
+            let reports: Vec<StageReport<'_>> = result.stages().collect();
+            assert_eq!(reports[0].graph.listed(), proximity.listed());
+            let repaired = proximity.repair(params.repair);
+            assert_eq!(reports[1].graph.listed(), repaired.listed());
+            let filtered = repaired.remove_outliers(1.7).unwrap();
+            assert_eq!(reports[2].graph.listed(), filtered.graph.listed());
+            assert_eq!(
+                result.stage(Stage::Proximity).unwrap().graph.listed(),
+                proximity.listed()
+            );
+        }
     }
 
     /// A stage given the curve graph of its input decides exactly as one that builds its own,
