@@ -735,9 +735,15 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         Cow::Owned(owned) if gives_back(&tri, &owned) => None,
         kept => Some(kept),
     };
-    let mut result = reconstruct_triangulation(tri, params)?;
+    let may_smooth = params.smooth && params.method == Method::ConDT;
+    let first_run = if may_smooth {
+        Last::UnlessNoisy
+    } else {
+        Last::Yes
+    };
+    let (mut result, _) = stages_on(tri, params, first_run)?;
     result.triangulation_time = triangulation_time;
-    if params.smooth && params.method == Method::ConDT && shows_noise(&result.degrees) {
+    if may_smooth && shows_noise(result.degrees.iter().map(|&d| d as usize)) {
         // Each pass smooths along the previous pass's final graph and reconstructs the moved
         // points; the passes stop at a fixed point (the same final edges) or after
         // `MAX_PASSES` (src/smooth.rs gives the reasons).
@@ -753,6 +759,9 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
             // of uniform points at the passes' peak), those two once they are, and the moved
             // positions once they are triangulated.
             let previous_edges = core::mem::take(&mut result.edges);
+            // The last pass allowed stops whatever its edges: they are not compared.
+            let last_pass = smoothing.passes + 1 >= MAX_PASSES;
+            let previous_edges = (!last_pass).then_some(previous_edges);
             let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
             let (positions, moved) = smoothed_positions(&triangulation, &final_edges);
             drop((triangulation, final_edges));
@@ -762,11 +771,25 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
             let tri = triangulate_with(&positions, params.parallel)?;
             drop(positions);
             let triangulation_time = clock.lap();
-            result = reconstruct_triangulation(tri, params)?;
+            let run = if last_pass {
+                Last::Yes
+            } else {
+                Last::Undecided
+            };
+            let (pass, graph) = stages_on(tri, params, run)?;
+            result = pass;
             result.triangulation_time = triangulation_time;
             smoothing.passes += 1;
             smoothing.moved = moved;
-            if result.edges == previous_edges || smoothing.passes >= MAX_PASSES {
+            if let (Some(graph), Some(previous)) = (graph, previous_edges) {
+                // A fixed point is final: its curves are assembled once the previous edges are
+                // freed. Otherwise another pass replaces it, curves unassembled.
+                if result.edges == previous {
+                    drop(previous);
+                    result.assemble_curves(graph);
+                    break;
+                }
+            } else {
                 break;
             }
         }
@@ -778,6 +801,18 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
 }
 
 impl Reconstruction {
+    /// Assembles the curves of a reconstruction that ran without them ([`Last::Undecided`]),
+    /// `graph` the curve graph of its final edges; the time is added to the curves' time.
+    fn assemble_curves(&mut self, graph: CurveGraph) {
+        debug_assert!(graph == CurveGraph::new(self.triangulation.num_points(), &self.final_edges));
+        let mut clock = Stopwatch::start();
+        let tri = &self.triangulation;
+        let in_parallel = self.params.parallel && tri.num_points() >= PARALLEL_FROM;
+        self.curves = on_worker(in_parallel, || curves_in_input_positions(tri, &graph));
+        drop(graph);
+        self.curves_time += clock.lap();
+    }
+
     /// The triangulation, the final edges and the triangulation's time; everything else is
     /// freed here (a partial move out of a variable would keep the rest until it is assigned
     /// again, after the next pass).
@@ -811,12 +846,49 @@ pub fn reconstruct_triangulation(
     if params.method == Method::Crust {
         crate::baselines::crust_fits(&tri)?;
     }
-    let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
-    Ok(on_worker(in_parallel, move || run_stages(tri, params)))
+    stages_on(tri, params, Last::Yes).map(|(result, _)| result)
 }
 
-/// The stages of [`reconstruct_triangulation`], its parameters checked.
-fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
+/// Whether a reconstruction is the final one of [`reconstruct`], which decides when its curves
+/// are assembled: a reconstruction that a smoothing pass replaces is read only for its final
+/// edges, degrees and graph, so its curves would be dead (10.6 bytes per point of uniform points
+/// beside the final tally).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Last {
+    /// It is: the curves are assembled beside the final tally.
+    Yes,
+    /// The first reconstruction when smoothing passes may run: final unless its degrees show
+    /// noise ([`shows_noise`], read off the curve graph before the tally), and then no curves.
+    UnlessNoisy,
+    /// A pass that another may follow: the curves wait until the caller knows
+    /// ([`Reconstruction::assemble_curves`] with the curve graph returned).
+    Undecided,
+}
+
+/// [`reconstruct_triangulation`], returning the final curve graph when the curves wait
+/// ([`Last::Undecided`]).
+fn stages_on(
+    tri: Triangulation,
+    params: &Params,
+    last: Last,
+) -> Result<(Reconstruction, Option<CurveGraph>), Error> {
+    params.check()?;
+    if params.method == Method::Crust {
+        crate::baselines::crust_fits(&tri)?;
+    }
+    let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
+    Ok(on_worker(in_parallel, move || {
+        run_stages(tri, params, last)
+    }))
+}
+
+/// The stages of [`reconstruct_triangulation`], its parameters checked; the curve graph is
+/// returned when the curves wait ([`Last::Undecided`]).
+fn run_stages(
+    tri: Triangulation,
+    params: &Params,
+    last_run: Last,
+) -> (Reconstruction, Option<CurveGraph>) {
     let mut clock = Stopwatch::start();
     let first = first_graph(&tri, params);
     let mut records = Vec::with_capacity(6);
@@ -877,13 +949,31 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     let n = tri.num_points();
     let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
     let in_parallel = params.parallel && n >= PARALLEL_FROM;
-    let (curves, tally) = both(
-        in_parallel,
-        || curves_in_input_positions(&tri, &graph),
-        || tally(&tri, &graph, last.len()),
-    );
+    let curves_now = match last_run {
+        Last::Yes => true,
+        Last::UnlessNoisy => !shows_noise(
+            tri.input_to_vertex()
+                .iter()
+                .map(|&v| graph.degree(v) as usize),
+        ),
+        Last::Undecided => false,
+    };
+    let (curves, tally) = if curves_now {
+        both(
+            in_parallel,
+            || curves_in_input_positions(&tri, &graph),
+            || tally(&tri, &graph, last.len()),
+        )
+    } else {
+        (Vec::new(), tally(&tri, &graph, last.len()))
+    };
     let curves_time = clock.lap();
-    Reconstruction {
+    // The curve graph's degrees are the tally's.
+    debug_assert!(
+        last_run != Last::UnlessNoisy
+            || curves_now != shows_noise(tally.degrees.iter().map(|&d| d as usize))
+    );
+    let result = Reconstruction {
         params: *params,
         triangulation: tri,
         records,
@@ -896,7 +986,9 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
         curves_time,
         smoothing: None,
         input_points: None,
-    }
+    };
+    let waiting = (last_run == Last::Undecided).then_some(graph);
+    (result, waiting)
 }
 
 /// Runs `work` on one of rayon's worker threads when `parallel`. Called from outside the pool,
