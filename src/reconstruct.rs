@@ -1128,11 +1128,7 @@ fn run_stages(
     let in_parallel = params.parallel && n >= PARALLEL_FROM;
     let curves_now = match last_run {
         Last::Yes => true,
-        Last::UnlessNoisy => !shows_noise(
-            tri.input_to_vertex()
-                .iter()
-                .map(|&v| graph.degree(v) as usize),
-        ),
+        Last::UnlessNoisy => !shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v))),
         Last::Undecided => false,
     };
     let (curves, tally) = if curves_now {
