@@ -18,12 +18,12 @@
 //!
 //! What it costs, and the huge pages: a block the system takes back is zeroed and faulted in
 //! again, page by page, when the next one is mapped (at 1M points along curves 16,000 more page
-//! faults, 3-7 % more time; on uniform points 234,000, a tenth more processor time). A block of
-//! two huge pages or more is therefore advised `MADV_HUGEPAGE` (what glibc does for its mapped
-//! blocks with the tunable `glibc.malloc.hugetlb=1`, which a program cannot set for itself): where
-//! the system gives huge pages on advice (`/sys/kernel/mm/transparent_hugepage/enabled`), it
-//! faults in 2 MiB at once, and the time is back to what it was; elsewhere the advice does
-//! nothing.
+//! faults, 3-7 % more time; on uniform points 220,000, a tenth more processor time). A block of
+//! two huge pages up to 32 MiB, the sizes whose blocks the fixed threshold maps, is therefore
+//! advised `MADV_HUGEPAGE` (what glibc does for its mapped blocks with the tunable
+//! `glibc.malloc.hugetlb=1`, which a program cannot set for itself): where the system gives
+//! huge pages on advice (`/sys/kernel/mm/transparent_hugepage/enabled`), it faults in 2 MiB at
+//! once, and the time is back to what it was; elsewhere the advice does nothing.
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 mod glibc {
@@ -36,6 +36,13 @@ mod glibc {
     /// least two get the advice: a smaller one holds at most one whole huge page.
     const HUGE_PAGE: usize = 2 << 20;
 
+    /// Blocks from this size (glibc's highest dynamic threshold on 64-bit systems, 32 MiB) were
+    /// always mapped, the threshold fixed or not: they get no advice, so runs of 10M points and
+    /// more fault in their large blocks as before (with the advice, huge pages that the kernel
+    /// must first assemble cost more system time than they save there: 4.2 s against 2.1 s
+    /// for `reconstruct` along curves at 10M points, one run).
+    const ALWAYS_MAPPED: usize = 32 << 20;
+
     pub(super) fn release_large_blocks() {
         // SAFETY: `mallopt` sets a parameter of the allocator and returns 0 when it refuses the
         // value (then the default stands, which is harmless); it is called before any other
@@ -45,13 +52,14 @@ mod glibc {
         }
     }
 
-    /// The system allocator, advising huge pages on the blocks of [`HUGE_PAGE`] or more.
+    /// The system allocator, advising huge pages on the blocks from two [`HUGE_PAGE`]s up to
+    /// [`ALWAYS_MAPPED`].
     pub(super) struct Allocator;
 
     /// Advises huge pages for the block of `size` bytes at `ptr`, from the huge page it starts
     /// in (glibc maps a large block from a boundary the kernel aligns, its header before `ptr`).
     fn advise(ptr: *mut u8, size: usize) {
-        if ptr.is_null() || size < 2 * HUGE_PAGE {
+        if ptr.is_null() || !(2 * HUGE_PAGE..ALWAYS_MAPPED).contains(&size) {
             return;
         }
         let start = ptr as usize & !(HUGE_PAGE - 1);
