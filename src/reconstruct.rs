@@ -310,7 +310,22 @@ enum Undo {
     },
     /// The input itself, when the output is not of that form or the delta would not be smaller.
     Input(Vec<Edge>),
+    /// The input is the first stage's graph, which is computed again from the triangulation
+    /// when a report asks for it (see [`FIRST_KEPT_UP_TO`]).
+    First,
 }
+
+/// The record of the step that reads the first stage's graph (the proximity graph) keeps a
+/// delta only while it holds at most one removal per this many edges of that graph, under a
+/// byte per edge (12 bytes a removal); past it, the graph is computed again when a report asks
+/// for it ([`Undo::First`]). Reason: memory against the time of a report. On uniform points the
+/// repair keeps the edges of few vertices as they were (200k points: 146,489 removals of
+/// 233,262 edges, or the whole graph, 9.3 bytes per point through every later stage and pass);
+/// along curves it changes a few edges in a hundred (1,299 of 201,159), and the reports there
+/// cost nothing more. Only the repair's record is replaced so: the local outlier removal reads
+/// the IQR stage's input, which with `outliers_first` is the proximity graph, and must not
+/// recompute it.
+const FIRST_KEPT_UP_TO: usize = 12;
 
 impl Undo {
     /// How to get `input` back from `output`. The input is moved into the record only when no
@@ -342,10 +357,24 @@ impl Undo {
         }
     }
 
-    /// The stage's input, given its `output`.
-    fn input<'e>(&'e self, output: Cow<'e, [Edge]>) -> Cow<'e, [Edge]> {
+    /// How many edges of `input` the delta of [`Undo::of`] would list as removed.
+    fn removals(input: &[Edge], output: &[Edge]) -> usize {
+        let mut kept = 0;
+        for &edge in input {
+            kept += usize::from(output.get(kept) == Some(&edge));
+        }
+        input.len() - kept
+    }
+
+    /// The stage's input, given its `output`; `first` computes the first stage's graph.
+    fn input<'e>(
+        &'e self,
+        output: Cow<'e, [Edge]>,
+        first: &dyn Fn() -> Vec<Edge>,
+    ) -> Cow<'e, [Edge]> {
         match self {
             Undo::Unchanged => output,
+            Undo::First => Cow::Owned(first()),
             Undo::Input(input) => Cow::Borrowed(input),
             Undo::Delta { appended, removed } => {
                 let kept = &output[..output.len() - appended];
@@ -364,14 +393,31 @@ impl Undo {
     }
 }
 
-/// The output of stage `k` of `records`, walking back from `last`, the last stage's output.
-fn output_of<'e>(records: &'e [StageRecord], last: &'e [Edge], k: usize) -> Cow<'e, [Edge]> {
+/// The output of stage `k` of `records`, walking back from `last`, the last stage's output;
+/// `first` computes the first stage's graph when a record says to ([`Undo::First`]).
+fn output_of<'e>(
+    records: &'e [StageRecord],
+    last: &'e [Edge],
+    k: usize,
+    first: &dyn Fn() -> Vec<Edge>,
+) -> Cow<'e, [Edge]> {
     records[k + 1..]
         .iter()
         .rev()
         .fold(Cow::Borrowed(last), |output, record| {
-            record.undo.input(output)
+            record.undo.input(output, first)
         })
+}
+
+/// The first stage's graph of a reconstruction on `tri` with `params`, as [`run_stages`]
+/// computed it.
+fn first_graph(tri: &Triangulation, params: &Params) -> Vec<Edge> {
+    match params.method {
+        Method::ConDT => proximity::proximity_graph(tri, params.uniformity, params.parallel),
+        Method::NnCrust => crate::baselines::nn_crust_edges(tri),
+        // `reconstruct_triangulation` checked that it fits (`crust_fits`), the one way it fails.
+        Method::Crust => crate::baselines::crust_edges(tri).unwrap_or_default(),
+    }
 }
 
 /// Everything a reconstruction computed, stage by stage, in input positions. Exact duplicates
@@ -408,7 +454,96 @@ pub struct Reconstruction {
     smoothing: Option<Smoothing>,
     /// The input positions, kept only when smoothing passes moved points (the triangulation
     /// then holds the moved ones).
-    input_points: Option<Vec<Point>>,
+    input_points: Option<InputPoints>,
+}
+
+/// The input positions of a reconstruction whose smoothing passes moved points.
+#[derive(Clone, Debug)]
+enum InputPoints {
+    /// All of them (a borrowed input, or one that the triangulation does not give back).
+    All(Vec<Point>),
+    /// Those of the points some pass moved; every other point is where the triangulation has it.
+    Moved(MovedInputs),
+}
+
+/// The input positions of the points that smoothing passes moved, in input order, with a bit
+/// per point saying which; every other point is where the latest positions have it. Reason:
+/// the input is held through every pass, and the passes move about two points in three of
+/// uniform points (133,115 of 200,000 after three passes): 10.8 bytes a point instead of 16.
+/// Along noisy curves, where nearly all move, it costs a bit and a half per point more.
+#[derive(Clone, Debug, Default)]
+struct MovedInputs {
+    /// Bit `i % 64` of word `i / 64` is set when point `i` moved.
+    moved: Vec<u64>,
+    /// How many points moved before each word of `moved`.
+    before: Vec<u32>,
+    /// The input position of every point that moved, in input order.
+    points: Vec<Point>,
+}
+
+/// `a` and `b` are the same coordinates bit for bit.
+fn same_bits(a: Point, b: Point) -> bool {
+    (a.x.to_bits(), a.y.to_bits()) == (b.x.to_bits(), b.y.to_bits())
+}
+
+impl MovedInputs {
+    /// None moved yet: the input is where `n` positions have it.
+    fn new(n: usize) -> MovedInputs {
+        MovedInputs {
+            moved: alloc::vec![0; n.div_ceil(64)],
+            before: alloc::vec![0; n.div_ceil(64)],
+            points: Vec::new(),
+        }
+    }
+
+    fn has_moved(&self, i: usize) -> bool {
+        self.moved[i / 64] >> (i % 64) & 1 == 1
+    }
+
+    /// A pass moves the points from where `tri` has them to `positions`: the points moving for
+    /// the first time keep their input position, which is `tri`'s (it gives every position
+    /// back). The list grows in place, merged from its end.
+    fn add(&mut self, tri: &Triangulation, positions: &[Point]) {
+        let moves = |i: usize| !same_bits(positions[i], tri.point(i));
+        let added = (0..positions.len())
+            .filter(|&i| !self.has_moved(i) && moves(i))
+            .count();
+        if added == 0 {
+            return;
+        }
+        let mut read = self.points.len();
+        let mut write = read + added;
+        let mut points = core::mem::take(&mut self.points);
+        points.reserve_exact(added);
+        points.resize(write, Point::default());
+        for i in (0..positions.len()).rev() {
+            if self.has_moved(i) {
+                read -= 1;
+                write -= 1;
+                points[write] = points[read];
+            } else if moves(i) {
+                write -= 1;
+                points[write] = tri.point(i);
+                self.moved[i / 64] |= 1 << (i % 64);
+            }
+        }
+        debug_assert_eq!((read, write), (0, 0));
+        self.points = points;
+        let mut count = 0;
+        for (word, before) in self.moved.iter().zip(&mut self.before) {
+            *before = count;
+            count += word.count_ones();
+        }
+    }
+
+    /// The input position of point `i`, where it is now `now`.
+    fn point(&self, i: usize, now: Point) -> Point {
+        if !self.has_moved(i) {
+            return now;
+        }
+        let below = self.moved[i / 64] & ((1 << (i % 64)) - 1);
+        self.points[self.before[i / 64] as usize + below.count_ones() as usize]
+    }
 }
 
 /// What the smoothing passes ([`Params::smooth`]) did, as [`Reconstruction::smoothing`]
@@ -521,7 +656,9 @@ impl Reconstruction {
             stage: record.stage,
             graph: Graph::new(
                 &self.triangulation,
-                output_of(&self.records, &self.final_edges, k),
+                output_of(&self.records, &self.final_edges, k, &|| {
+                    first_graph(&self.triangulation, &self.params)
+                }),
             ),
             // The first graph has no input to leave as it was.
             applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
@@ -570,7 +707,8 @@ impl Reconstruction {
     /// If `index` is not an input position.
     pub fn point(&self, index: usize) -> Point {
         match &self.input_points {
-            Some(points) => points[index],
+            Some(InputPoints::All(points)) => points[index],
+            Some(InputPoints::Moved(moved)) => moved.point(index, self.triangulation.point(index)),
             None => self.triangulation.point(index),
         }
     }
@@ -669,10 +807,10 @@ pub fn reconstruct_owned(points: Vec<Point>, params: &Params) -> Result<Reconstr
 /// Whether `tri` gives every point of `points` back bit for bit (signed zeros and merged
 /// duplicates may not be).
 fn gives_back(tri: &Triangulation, points: &[Point]) -> bool {
-    points.iter().enumerate().all(|(i, p)| {
-        let q = tri.point(i);
-        (q.x.to_bits(), q.y.to_bits()) == (p.x.to_bits(), p.y.to_bits())
-    })
+    points
+        .iter()
+        .enumerate()
+        .all(|(i, &p)| same_bits(tri.point(i), p))
 }
 
 /// [`reconstruct`] and [`reconstruct_owned`]: an owned input is freed after the triangulation
@@ -687,49 +825,171 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         Cow::Owned(owned) if gives_back(&tri, &owned) => None,
         kept => Some(kept),
     };
-    let mut result = reconstruct_triangulation(tri, params)?;
+    let may_smooth = params.smooth && params.method == Method::ConDT;
+    let first_run = if may_smooth {
+        Last::UnlessNoisy
+    } else {
+        Last::Yes
+    };
+    let (mut result, _) = stages_on(tri, params, first_run)?;
     result.triangulation_time = triangulation_time;
-    if params.smooth && params.method == Method::ConDT && shows_noise(&result.degrees) {
+    if may_smooth && shows_noise(result.degrees.iter().map(|&d| d as usize)) {
         // Each pass smooths along the previous pass's final graph and reconstructs the moved
         // points; the passes stop at a fixed point (the same final edges) or after
         // `MAX_PASSES` (src/smooth.rs gives the reasons).
         let mut earlier_passes = Duration::ZERO;
         let mut smoothing = Smoothing::default();
-        // The input freed after the triangulation is read back before that is replaced.
-        let points = points
-            .unwrap_or_else(|| Cow::Owned((0..n).map(|i| result.triangulation.point(i)).collect()));
+        // The input freed after the triangulation is where the triangulations have it, but for
+        // the points that passes move, kept as they move.
+        let mut inputs = match points {
+            Some(points) => Ok(points),
+            None => Err(MovedInputs::new(n)),
+        };
         loop {
-            // Of the previous pass only its final edges are read again (the fixed-point test),
-            // and its triangulation and final graph to smooth along: the rest (stage records,
-            // degrees, curves) is freed before the positions are computed (26 bytes per point
+            // Of the previous pass only its final edges are read again (the fixed-point test,
+            // packed), and its triangulation and final graph to smooth along: the rest (stage
+            // records, degrees) is freed before the positions are computed (26 bytes per point
             // of uniform points at the passes' peak), those two once they are, and the moved
-            // positions once they are triangulated.
-            let previous_edges = core::mem::take(&mut result.edges);
+            // positions once they are triangulated. The last pass allowed stops whatever its
+            // edges, so they are not kept for it.
+            let last_pass = smoothing.passes + 1 >= MAX_PASSES;
+            let previous_edges = (!last_pass).then(|| PackedEdges::new(&result.edges));
+            drop(core::mem::take(&mut result.edges));
             let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
             let (positions, moved) = smoothed_positions(&triangulation, &final_edges);
+            if let Err(kept) = &mut inputs {
+                kept.add(&triangulation, &positions);
+            }
             drop((triangulation, final_edges));
             // The replaced pass's triangulation is an earlier pass's cost too.
             earlier_passes += triangulation_time;
             earlier_passes += clock.lap();
             let tri = triangulate_with(&positions, params.parallel)?;
+            if let Err(kept) = &inputs {
+                // The points that did not move are read from the triangulation from now on:
+                // when it does not give them back (merged duplicates, signed zeros), all the
+                // input is kept.
+                if !gives_back(&tri, &positions) {
+                    let all = (0..n).map(|i| kept.point(i, positions[i])).collect();
+                    inputs = Ok(Cow::Owned(all));
+                }
+            }
             drop(positions);
             let triangulation_time = clock.lap();
-            result = reconstruct_triangulation(tri, params)?;
+            let run = if last_pass {
+                Last::Yes
+            } else {
+                Last::Undecided
+            };
+            let (pass, graph) = stages_on(tri, params, run)?;
+            result = pass;
             result.triangulation_time = triangulation_time;
             smoothing.passes += 1;
             smoothing.moved = moved;
-            if result.edges == previous_edges || smoothing.passes >= MAX_PASSES {
+            if let (Some(graph), Some(previous)) = (graph, previous_edges) {
+                // A fixed point is final: its curves are assembled once the previous edges are
+                // freed. Otherwise another pass replaces it, curves unassembled.
+                if previous.holds(&result.edges) {
+                    drop(previous);
+                    result.assemble_curves(graph);
+                    break;
+                }
+            } else {
                 break;
             }
         }
         smoothing.earlier_passes = earlier_passes;
         result.smoothing = Some(smoothing);
-        result.input_points = Some(points.into_owned());
+        result.input_points = Some(match inputs {
+            Ok(points) => InputPoints::All(points.into_owned()),
+            Err(moved) => InputPoints::Moved(moved),
+        });
     }
     Ok(result)
 }
 
+/// A list of final edges (input positions `[i, j]`, `i < j`, sorted, as the tally makes them),
+/// kept for the fixed-point test of the smoothing passes in about half their 8 bytes: each edge
+/// as two LEB128 numbers, the step from the previous edge's `i` and `j - i - 1`. Reason: the
+/// list is held through a whole pass, every phase of which it raises (6.5 bytes per point of
+/// uniform points); on points in random order `j - i` takes three bytes below 2^21 points and
+/// four below 2^28, the step of `i` one; along curves in order both take one.
+struct PackedEdges {
+    bytes: Vec<u8>,
+    len: usize,
+}
+
+impl PackedEdges {
+    fn new(edges: &[[u32; 2]]) -> PackedEdges {
+        let numbers = || {
+            let mut last = 0;
+            edges.iter().flat_map(move |&[i, j]| {
+                debug_assert!(i >= last && j > i);
+                let step = i - last;
+                last = i;
+                [step, j - i - 1]
+            })
+        };
+        // Measured first, so that the list is allocated at its size.
+        let size = numbers().map(leb128_len).sum();
+        let mut bytes = Vec::with_capacity(size);
+        for mut x in numbers() {
+            while x >= 0x80 {
+                bytes.push((x as u8) | 0x80);
+                x >>= 7;
+            }
+            bytes.push(x as u8);
+        }
+        PackedEdges {
+            bytes,
+            len: edges.len(),
+        }
+    }
+
+    /// Whether `edges` is the list packed.
+    fn holds(&self, edges: &[[u32; 2]]) -> bool {
+        if edges.len() != self.len {
+            return false;
+        }
+        let mut bytes = self.bytes.iter();
+        let mut next = || {
+            let (mut x, mut shift) = (0u32, 0);
+            for &b in bytes.by_ref() {
+                x |= u32::from(b & 0x7f) << shift;
+                if b < 0x80 {
+                    break;
+                }
+                shift += 7;
+            }
+            x
+        };
+        let mut i = 0;
+        edges.iter().all(|&[a, b]| {
+            i += next();
+            let j = i + next() + 1;
+            [a, b] == [i, j]
+        })
+    }
+}
+
+/// How many bytes LEB128 takes for `x`.
+fn leb128_len(x: u32) -> usize {
+    (32 - (x | 1).leading_zeros() as usize).div_ceil(7)
+}
+
 impl Reconstruction {
+    /// Assembles the curves of a reconstruction that ran without them ([`Last::Undecided`]),
+    /// `graph` the curve graph of its final edges; the time is added to the curves' time.
+    fn assemble_curves(&mut self, graph: CurveGraph) {
+        debug_assert!(graph == CurveGraph::new(self.triangulation.num_points(), &self.final_edges));
+        let mut clock = Stopwatch::start();
+        let tri = &self.triangulation;
+        let in_parallel = self.params.parallel && tri.num_points() >= PARALLEL_FROM;
+        self.curves = on_worker(in_parallel, || curves_in_input_positions(tri, &graph));
+        drop(graph);
+        self.curves_time += clock.lap();
+    }
+
     /// The triangulation, the final edges and the triangulation's time; everything else is
     /// freed here (a partial move out of a variable would keep the rest until it is assigned
     /// again, after the next pass).
@@ -763,19 +1023,51 @@ pub fn reconstruct_triangulation(
     if params.method == Method::Crust {
         crate::baselines::crust_fits(&tri)?;
     }
-    let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
-    Ok(on_worker(in_parallel, move || run_stages(tri, params)))
+    stages_on(tri, params, Last::Yes).map(|(result, _)| result)
 }
 
-/// The stages of [`reconstruct_triangulation`], its parameters checked.
-fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
+/// Whether a reconstruction is the final one of [`reconstruct`], which decides when its curves
+/// are assembled: a reconstruction that a smoothing pass replaces is read only for its final
+/// edges, degrees and graph, so its curves would be dead (10.6 bytes per point of uniform points
+/// beside the final tally).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Last {
+    /// It is: the curves are assembled beside the final tally.
+    Yes,
+    /// The first reconstruction when smoothing passes may run: final unless its degrees show
+    /// noise ([`shows_noise`], read off the curve graph before the tally), and then no curves.
+    UnlessNoisy,
+    /// A pass that another may follow: the curves wait until the caller knows
+    /// ([`Reconstruction::assemble_curves`] with the curve graph returned).
+    Undecided,
+}
+
+/// [`reconstruct_triangulation`], returning the final curve graph when the curves wait
+/// ([`Last::Undecided`]).
+fn stages_on(
+    tri: Triangulation,
+    params: &Params,
+    last: Last,
+) -> Result<(Reconstruction, Option<CurveGraph>), Error> {
+    params.check()?;
+    if params.method == Method::Crust {
+        crate::baselines::crust_fits(&tri)?;
+    }
+    let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
+    Ok(on_worker(in_parallel, move || {
+        run_stages(tri, params, last)
+    }))
+}
+
+/// The stages of [`reconstruct_triangulation`], its parameters checked; the curve graph is
+/// returned when the curves wait ([`Last::Undecided`]).
+fn run_stages(
+    tri: Triangulation,
+    params: &Params,
+    last_run: Last,
+) -> (Reconstruction, Option<CurveGraph>) {
     let mut clock = Stopwatch::start();
-    let first = match params.method {
-        Method::ConDT => proximity::proximity_graph(&tri, params.uniformity, params.parallel),
-        Method::NnCrust => crate::baselines::nn_crust_edges(&tri),
-        // `reconstruct_triangulation` checked that it fits (`crust_fits`), the one way it fails.
-        Method::Crust => crate::baselines::crust_edges(&tri).unwrap_or_default(),
-    };
+    let first = first_graph(&tri, params);
     let mut records = Vec::with_capacity(6);
     records.push(StageRecord {
         stage: params.first_stage(),
@@ -791,7 +1083,9 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
         // says which reads which), and only while it runs.
         let input_of =
             |stage: Stage, read: bool| match records.iter().position(|r| r.stage == stage) {
-                Some(k) if read && k > 0 => output_of(&records, &current, k - 1),
+                Some(k) if read && k > 0 => {
+                    output_of(&records, &current, k - 1, &|| first_graph(&tri, params))
+                }
                 _ => Cow::Borrowed(current.as_slice()),
             };
         let before_outliers = input_of(Stage::Outliers, step == Step::LocalOutliers);
@@ -807,7 +1101,14 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
             None => Undo::Unchanged,
             Some(output) => {
                 let input = core::mem::replace(&mut current, output);
-                Undo::of(input, &current)
+                // Only the repair's record may stand for the first graph (see FIRST_KEPT_UP_TO).
+                let reads_first = records.len() == 1 && matches!(step, Step::Repair(_));
+                if reads_first && Undo::removals(&input, &current) * FIRST_KEPT_UP_TO > input.len()
+                {
+                    Undo::First
+                } else {
+                    Undo::of(input, &current)
+                }
             }
         };
         // A handed-on graph must be the curve graph of exactly the list the next stage reads
@@ -825,13 +1126,27 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
     let n = tri.num_points();
     let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
     let in_parallel = params.parallel && n >= PARALLEL_FROM;
-    let (curves, tally) = both(
-        in_parallel,
-        || curves_in_input_positions(&tri, &graph),
-        || tally(&tri, &graph, last.len()),
-    );
+    let curves_now = match last_run {
+        Last::Yes => true,
+        Last::UnlessNoisy => !shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v))),
+        Last::Undecided => false,
+    };
+    let (curves, tally) = if curves_now {
+        both(
+            in_parallel,
+            || curves_in_input_positions(&tri, &graph),
+            || tally(&tri, &graph, last.len()),
+        )
+    } else {
+        (Vec::new(), tally(&tri, &graph, last.len()))
+    };
     let curves_time = clock.lap();
-    Reconstruction {
+    // The curve graph's degrees are the tally's.
+    debug_assert!(
+        last_run != Last::UnlessNoisy
+            || curves_now != shows_noise(tally.degrees.iter().map(|&d| d as usize))
+    );
+    let result = Reconstruction {
         params: *params,
         triangulation: tri,
         records,
@@ -844,7 +1159,9 @@ fn run_stages(tri: Triangulation, params: &Params) -> Reconstruction {
         curves_time,
         smoothing: None,
         input_points: None,
-    }
+    };
+    let waiting = (last_run == Last::Undecided).then_some(graph);
+    (result, waiting)
 }
 
 /// Runs `work` on one of rayon's worker threads when `parallel`. Called from outside the pool,
@@ -986,7 +1303,10 @@ mod tests {
             if !reordered && removals < 2 * input.len() / 3 {
                 assert!(matches!(undo, Undo::Delta { .. }), "{undo:?}");
             }
-            assert_eq!(&*undo.input(Cow::Borrowed(&output)), input.as_slice());
+            assert_eq!(
+                &*undo.input(Cow::Borrowed(&output), &|| unreachable!()),
+                input.as_slice()
+            );
         }
     }
 
@@ -1029,7 +1349,48 @@ mod tests {
             }
             let smoothed = reconstruct(&points, &Params::default()).unwrap();
             assert!(smoothed.smoothing.is_some(), "the passes ran");
+            // Handed over and given back, only the moved points' input positions are kept.
+            let owned = reconstruct_owned(points.clone(), &Params::default()).unwrap();
+            match &owned.input_points {
+                Some(InputPoints::Moved(moved)) => {
+                    assert!(exact && moved.points.len() < points.len())
+                }
+                Some(InputPoints::All(_)) => assert!(!exact),
+                None => panic!("the passes moved points"),
+            }
         }
+    }
+
+    /// The moved points' input positions, kept over two passes that move different points
+    /// (some of them twice), give every input position back with the latest positions.
+    #[test]
+    fn moved_inputs_give_the_input_back() {
+        let mut rng = Xorshift::new(9);
+        let input: Vec<Point> = (0..500)
+            .map(|_| Point::new(rng.unit(), rng.unit()))
+            .collect();
+        let shifted = |points: &[Point], every: usize| -> Vec<Point> {
+            let mut moved = points.to_vec();
+            for p in moved.iter_mut().step_by(every) {
+                p.x += 1e-3;
+            }
+            moved
+        };
+        let mut kept = MovedInputs::new(input.len());
+        let mut now = input.clone();
+        for every in [3, 5, 7] {
+            let tri = triangulate(&now).unwrap();
+            assert!(gives_back(&tri, &now));
+            let next = shifted(&now, every);
+            kept.add(&tri, &next);
+            now = next;
+            for (i, &p) in input.iter().enumerate() {
+                assert!(same_bits(kept.point(i, now[i]), p), "point {i}");
+                assert_eq!(kept.has_moved(i), !same_bits(now[i], p));
+            }
+        }
+        let moved = input.iter().zip(&now).filter(|(p, q)| !same_bits(**p, **q));
+        assert_eq!(kept.points.len(), moved.count());
     }
 
     /// Every stage's graph as `stages()` rebuilds it is the graph the stage left: running the
@@ -1070,6 +1431,84 @@ mod tests {
         assert!(
             reports.iter().skip(1).any(|r| r.applied),
             "some stage changed the graph"
+        );
+    }
+
+    /// On uniform points the repair changes most of the proximity graph, so its record does not
+    /// keep it ([`Undo::First`]): the reports still give every stage's graph as it was, the
+    /// proximity graph computed again; along a curve the repair's record stays a delta.
+    #[test]
+    fn a_repair_record_that_would_hold_the_proximity_graph_recomputes_it() {
+        let mut rng = Xorshift::new(21);
+        let uniform: Vec<Point> = (0..3000)
+            .map(|_| Point::new(rng.unit(), rng.unit()))
+            .collect();
+        let curve: Vec<Point> = (0..3000)
+            .map(|k| {
+                let t = k as f64 * core::f64::consts::TAU / 3000.0;
+                Point::new(libm::cos(t), 0.5 * libm::sin(t))
+            })
+            .collect();
+        let params = Params {
+            smooth: false,
+            ..Params::default()
+        };
+        for (points, recomputed) in [(uniform, true), (curve, false)] {
+            let result = reconstruct(&points, &params).unwrap();
+            let repair = &result.records[1];
+            assert_eq!(repair.stage, Stage::Repair);
+            assert_eq!(matches!(repair.undo, Undo::First), recomputed);
+            let tri = result.triangulation();
+            let proximity = tri.proximity_graph(params.uniformity).unwrap();
+            let reports: Vec<StageReport<'_>> = result.stages().collect();
+            assert_eq!(reports[0].graph.listed(), proximity.listed());
+            let repaired = proximity.repair(params.repair);
+            assert_eq!(reports[1].graph.listed(), repaired.listed());
+            let filtered = repaired.remove_outliers(1.7).unwrap();
+            assert_eq!(reports[2].graph.listed(), filtered.graph.listed());
+            assert_eq!(
+                result.stage(Stage::Proximity).unwrap().graph.listed(),
+                proximity.listed()
+            );
+        }
+    }
+
+    /// The fixed-point test's packed list holds exactly the list it was made of: any other list
+    /// (one edge changed, added or dropped) is told apart.
+    #[test]
+    fn packed_edges_hold_exactly_their_list() {
+        let mut rng = Xorshift::new(5);
+        for round in 0..100 {
+            let n = 1 + rng.below(1 << (round % 30)) as u32;
+            let mut edges: Vec<[u32; 2]> = (0..rng.below(60))
+                .map(|_| {
+                    let (a, b) = (rng.below(n.into()) as u32, rng.below(n.into()) as u32);
+                    [a.min(b), a.max(b) + u32::from(a == b)]
+                })
+                .collect();
+            if round == 0 {
+                edges.push([u32::MAX - 1, u32::MAX]);
+            }
+            edges.sort_unstable();
+            edges.dedup();
+            let packed = PackedEdges::new(&edges);
+            assert!(packed.holds(&edges));
+            assert!(packed.bytes.len() <= 10 * edges.len());
+            if let Some(&[a, b]) = edges.last() {
+                let mut shorter = edges.clone();
+                shorter.pop();
+                assert!(!packed.holds(&shorter));
+                let mut last_changed = shorter.clone();
+                last_changed.push([a, b.wrapping_add(1)]);
+                assert!(!packed.holds(&last_changed));
+                let mut first_changed = edges.clone();
+                first_changed[0][1] ^= 1;
+                assert!(!packed.holds(&first_changed));
+            }
+        }
+        assert_eq!(
+            [0, 127, 128, 16383, 16384, u32::MAX].map(leb128_len),
+            [1, 1, 2, 2, 3, 5]
         );
     }
 

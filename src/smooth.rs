@@ -55,9 +55,10 @@ pub(crate) const MAX_PASSES: usize = 3;
 /// (and unused points, which the smoothing does not move) has nothing a pass can mend, so it
 /// costs nothing there. An open curve's two ends look the same, so a small clean open curve pays
 /// for one pass, which leaves its edges as they were and stops.
-pub(crate) fn shows_noise(degrees: &[u32]) -> bool {
-    let signs = degrees.iter().filter(|&&d| d == 1 || d >= 3).count();
-    signs > 0 && signs * NOISE_SHARE >= degrees.len()
+pub(crate) fn shows_noise(degrees: impl ExactSizeIterator<Item = usize>) -> bool {
+    let len = degrees.len();
+    let signs = degrees.filter(|&d| d == 1 || d >= 3).count();
+    signs > 0 && signs * NOISE_SHARE >= len
 }
 
 /// A pass runs only when at least one point in this many shows noise (see [`shows_noise`]).

@@ -1,4 +1,5 @@
-//! The crate's one `unsafe` block is the cache hint in `src/prefetch.rs`. `lib.rs` denies unsafe
+//! The library's one `unsafe` block is the cache hint in `src/prefetch.rs`; the binary's
+//! allocator settings (glibc only) are in `src/bin/condt/allocator.rs`. `lib.rs` denies unsafe
 //! code, but a module could still allow it; this test reads every source file and fails on an
 //! `unsafe` keyword or an `allow(unsafe_code)` anywhere else.
 
@@ -27,7 +28,7 @@ fn uses_unsafe(line: &str) -> bool {
 }
 
 #[test]
-fn unsafe_code_appears_only_in_the_prefetch_module() {
+fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator_setting() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
@@ -38,7 +39,7 @@ fn unsafe_code_appears_only_in_the_prefetch_module() {
     );
     let mut found = Vec::new();
     for file in &files {
-        if file.ends_with("prefetch.rs") {
+        if file.ends_with("prefetch.rs") || file.ends_with("bin/condt/allocator.rs") {
             continue;
         }
         let text = fs::read_to_string(file).expect("a source file is UTF-8");
@@ -50,7 +51,7 @@ fn unsafe_code_appears_only_in_the_prefetch_module() {
     }
     assert!(
         found.is_empty(),
-        "unsafe code outside src/prefetch.rs:\n{}",
+        "unsafe code outside src/prefetch.rs and src/bin/condt/allocator.rs:\n{}",
         found.join("\n")
     );
     let prefetch = fs::read_to_string(src.join("prefetch.rs")).expect("src/prefetch.rs");
@@ -58,6 +59,14 @@ fn unsafe_code_appears_only_in_the_prefetch_module() {
         prefetch.lines().filter(|l| uses_unsafe(l)).count(),
         2,
         "src/prefetch.rs holds one allow and one unsafe block"
+    );
+    let allocator =
+        fs::read_to_string(src.join("bin/condt/allocator.rs")).expect("src/bin/condt/allocator.rs");
+    assert_eq!(
+        allocator.lines().filter(|l| uses_unsafe(l)).count(),
+        11,
+        "src/bin/condt/allocator.rs: mallopt, madvise, the GlobalAlloc impl, its four functions \
+         and the four calls to System"
     );
 }
 

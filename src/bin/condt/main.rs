@@ -1,12 +1,14 @@
 //! The `condt` command-line tool: argument parsing and messages live in [`cli`], where the
 //! output goes in [`output`]; everything it computes comes from the library.
 
+mod allocator;
 mod cli;
 mod output;
 mod score;
 mod timings;
 
 fn main() {
+    allocator::release_large_blocks();
     // File names need not be UTF-8: the arguments are taken as the OS gives them.
     let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
     // What `run` returns (help, or results without -o) goes out as -o - would.
