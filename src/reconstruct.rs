@@ -618,7 +618,9 @@ impl Reconstruction {
     /// The stages in the order they ran, the proximity graph first; see [`Params::stages`].
     ///
     /// Each stage's graph is rebuilt from the final one when its report is made (the
-    /// reconstruction keeps only what each stage changed), in O(edges) per stage after it.
+    /// reconstruction keeps only what each stage changed), in O(edges) per stage after it; the
+    /// proximity graph may be computed again from the triangulation (when the repair changed
+    /// more than one of its edges in twelve, its record does not keep it).
     pub fn stages(&self) -> impl ExactSizeIterator<Item = StageReport<'_>> + '_ {
         (0..self.records.len()).map(move |k| self.report(k))
     }
@@ -780,8 +782,9 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
 /// as soon as the triangulation gives every one of them back bit for bit (it keeps them in its
 /// own frame), so the stages run without them (16 bytes per point less at the peak; the
 /// command line reads its points into memory only to reconstruct them). When smoothing passes
-/// run, the result keeps the input again (as [`reconstruct`] copies it), read back from the
-/// first triangulation.
+/// run, the result keeps the input positions of the points some pass moved (the others are read
+/// back from the triangulation, which gives them back bit for bit), or the whole input again
+/// when a pass's triangulation does not give its positions back.
 ///
 /// # Errors
 /// As [`reconstruct`].
@@ -886,6 +889,9 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
             result.triangulation_time = triangulation_time;
             smoothing.passes += 1;
             smoothing.moved = moved;
+            // A pass that may be followed (`Last::Undecided`) keeps its edges and returns its
+            // curve graph; the last allowed returns neither and has its curves.
+            debug_assert_eq!(graph.is_some(), previous_edges.is_some());
             if let (Some(graph), Some(previous)) = (graph, previous_edges) {
                 // A fixed point is final: its curves are assembled once the previous edges are
                 // freed. Otherwise another pass replaces it, curves unassembled.
@@ -1019,10 +1025,7 @@ pub fn reconstruct_triangulation(
     tri: Triangulation,
     params: &Params,
 ) -> Result<Reconstruction, Error> {
-    params.check()?;
-    if params.method == Method::Crust {
-        crate::baselines::crust_fits(&tri)?;
-    }
+    // `stages_on` checks the parameters and the Crust's fit.
     stages_on(tri, params, Last::Yes).map(|(result, _)| result)
 }
 
@@ -1103,7 +1106,8 @@ fn run_stages(
                 let input = core::mem::replace(&mut current, output);
                 // Only the repair's record may stand for the first graph (see FIRST_KEPT_UP_TO).
                 let reads_first = records.len() == 1 && matches!(step, Step::Repair(_));
-                if reads_first && Undo::removals(&input, &current) * FIRST_KEPT_UP_TO > input.len()
+                // `r * K > len` as `r > len / K` (the same for integers), which cannot overflow.
+                if reads_first && Undo::removals(&input, &current) > input.len() / FIRST_KEPT_UP_TO
                 {
                     Undo::First
                 } else {
@@ -1339,6 +1343,15 @@ mod tests {
                 assert_eq!(owned.edges, borrowed.edges);
                 assert_eq!(owned.curves, borrowed.curves);
                 assert_eq!(owned.smoothing.is_some(), borrowed.smoothing.is_some());
+                // The curves were assembled, whichever way the passes ended: every final edge
+                // lies on one of them.
+                let segments: usize = borrowed
+                    .curves()
+                    .iter()
+                    .map(|c| c.len() - usize::from(!c.is_closed()))
+                    .sum();
+                assert!(!borrowed.edges.is_empty());
+                assert_eq!(segments, borrowed.edges.len());
                 for i in 0..points.len() {
                     let (p, q) = (borrowed.point(i), owned.point(i));
                     assert_eq!(
@@ -1493,7 +1506,19 @@ mod tests {
             edges.dedup();
             let packed = PackedEdges::new(&edges);
             assert!(packed.holds(&edges));
-            assert!(packed.bytes.len() <= 10 * edges.len());
+            // Each edge as two LEB128 numbers, the step from the last edge's first end and the
+            // gap between its ends, in a list allocated at its size.
+            let mut last = 0;
+            let size: usize = edges
+                .iter()
+                .map(|&[a, b]| {
+                    let step = a - last;
+                    last = a;
+                    leb128_len(step) + leb128_len(b - a - 1)
+                })
+                .sum();
+            assert_eq!(packed.bytes.len(), size);
+            assert_eq!(packed.bytes.capacity(), size);
             if let Some(&[a, b]) = edges.last() {
                 let mut shorter = edges.clone();
                 shorter.pop();
