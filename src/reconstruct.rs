@@ -466,6 +466,12 @@ enum InputPoints {
     Moved(MovedInputs),
 }
 
+/// [`InputPoints`] while the passes run, before a borrowed input is copied into the result.
+enum KeptInputs<'p> {
+    All(Cow<'p, [Point]>),
+    Moved(MovedInputs),
+}
+
 /// The input positions of the points that smoothing passes moved, in input order, with a bit
 /// per point saying which; every other point is where the latest positions have it. Reason:
 /// the input is held through every pass, and the passes move about two points in three of
@@ -830,9 +836,9 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
     };
     let may_smooth = params.smooth && params.method == Method::ConDT;
     let first_run = if may_smooth {
-        Last::UnlessNoisy
+        CurveAssembly::UnlessNoisy
     } else {
-        Last::Yes
+        CurveAssembly::Now
     };
     let (mut result, _) = stages_on(tri, params, first_run)?;
     result.triangulation_time = triangulation_time;
@@ -845,8 +851,8 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         // The input freed after the triangulation is where the triangulations have it, but for
         // the points that passes move, kept as they move.
         let mut inputs = match points {
-            Some(points) => Ok(points),
-            None => Err(MovedInputs::new(n)),
+            Some(points) => KeptInputs::All(points),
+            None => KeptInputs::Moved(MovedInputs::new(n)),
         };
         loop {
             // Of the previous pass only its final edges are read again (the fixed-point test,
@@ -860,7 +866,7 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
             drop(core::mem::take(&mut result.edges));
             let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
             let (positions, moved) = smoothed_positions(&triangulation, &final_edges);
-            if let Err(kept) = &mut inputs {
+            if let KeptInputs::Moved(kept) = &mut inputs {
                 kept.add(&triangulation, &positions);
             }
             drop((triangulation, final_edges));
@@ -868,28 +874,28 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
             earlier_passes += triangulation_time;
             earlier_passes += clock.lap();
             let tri = triangulate_with(&positions, params.parallel)?;
-            if let Err(kept) = &inputs {
+            if let KeptInputs::Moved(kept) = &inputs {
                 // The points that did not move are read from the triangulation from now on:
                 // when it does not give them back (merged duplicates, signed zeros), all the
                 // input is kept.
                 if !gives_back(&tri, &positions) {
                     let all = (0..n).map(|i| kept.point(i, positions[i])).collect();
-                    inputs = Ok(Cow::Owned(all));
+                    inputs = KeptInputs::All(Cow::Owned(all));
                 }
             }
             drop(positions);
             let triangulation_time = clock.lap();
             let run = if last_pass {
-                Last::Yes
+                CurveAssembly::Now
             } else {
-                Last::Undecided
+                CurveAssembly::Later
             };
             let (pass, graph) = stages_on(tri, params, run)?;
             result = pass;
             result.triangulation_time = triangulation_time;
             smoothing.passes += 1;
             smoothing.moved = moved;
-            // A pass that may be followed (`Last::Undecided`) keeps its edges and returns its
+            // A pass that may be followed (`CurveAssembly::Later`) keeps its edges and returns its
             // curve graph; the last allowed returns neither and has its curves.
             debug_assert_eq!(graph.is_some(), previous_edges.is_some());
             if let (Some(graph), Some(previous)) = (graph, previous_edges) {
@@ -907,8 +913,8 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         smoothing.earlier_passes = earlier_passes;
         result.smoothing = Some(smoothing);
         result.input_points = Some(match inputs {
-            Ok(points) => InputPoints::All(points.into_owned()),
-            Err(moved) => InputPoints::Moved(moved),
+            KeptInputs::All(points) => InputPoints::All(points.into_owned()),
+            KeptInputs::Moved(moved) => InputPoints::Moved(moved),
         });
     }
     Ok(result)
@@ -984,7 +990,7 @@ fn leb128_len(x: u32) -> usize {
 }
 
 impl Reconstruction {
-    /// Assembles the curves of a reconstruction that ran without them ([`Last::Undecided`]),
+    /// Assembles the curves of a reconstruction that ran without them ([`CurveAssembly::Later`]),
     /// `graph` the curve graph of its final edges; the time is added to the curves' time.
     fn assemble_curves(&mut self, graph: CurveGraph) {
         debug_assert!(graph == CurveGraph::new(self.triangulation.num_points(), &self.final_edges));
@@ -1026,31 +1032,31 @@ pub fn reconstruct_triangulation(
     params: &Params,
 ) -> Result<Reconstruction, Error> {
     // `stages_on` checks the parameters and the Crust's fit.
-    stages_on(tri, params, Last::Yes).map(|(result, _)| result)
+    stages_on(tri, params, CurveAssembly::Now).map(|(result, _)| result)
 }
 
-/// Whether a reconstruction is the final one of [`reconstruct`], which decides when its curves
-/// are assembled: a reconstruction that a smoothing pass replaces is read only for its final
+/// When a reconstruction's curves are assembled, which depends on whether it is the final one of
+/// [`reconstruct`]: a reconstruction that a smoothing pass replaces is read only for its final
 /// edges, degrees and graph, so its curves would be dead (10.6 bytes per point of uniform points
 /// beside the final tally).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-enum Last {
-    /// It is: the curves are assembled beside the final tally.
-    Yes,
+enum CurveAssembly {
+    /// The final one: the curves are assembled beside the final tally.
+    Now,
     /// The first reconstruction when smoothing passes may run: final unless its degrees show
     /// noise ([`shows_noise`], read off the curve graph before the tally), and then no curves.
     UnlessNoisy,
     /// A pass that another may follow: the curves wait until the caller knows
     /// ([`Reconstruction::assemble_curves`] with the curve graph returned).
-    Undecided,
+    Later,
 }
 
 /// [`reconstruct_triangulation`], returning the final curve graph when the curves wait
-/// ([`Last::Undecided`]).
+/// ([`CurveAssembly::Later`]).
 fn stages_on(
     tri: Triangulation,
     params: &Params,
-    last: Last,
+    assembly: CurveAssembly,
 ) -> Result<(Reconstruction, Option<CurveGraph>), Error> {
     params.check()?;
     if params.method == Method::Crust {
@@ -1058,16 +1064,16 @@ fn stages_on(
     }
     let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
     Ok(on_worker(in_parallel, move || {
-        run_stages(tri, params, last)
+        run_stages(tri, params, assembly)
     }))
 }
 
 /// The stages of [`reconstruct_triangulation`], its parameters checked; the curve graph is
-/// returned when the curves wait ([`Last::Undecided`]).
+/// returned when the curves wait ([`CurveAssembly::Later`]).
 fn run_stages(
     tri: Triangulation,
     params: &Params,
-    last_run: Last,
+    assembly: CurveAssembly,
 ) -> (Reconstruction, Option<CurveGraph>) {
     let mut clock = Stopwatch::start();
     let first = first_graph(&tri, params);
@@ -1130,10 +1136,12 @@ fn run_stages(
     let n = tri.num_points();
     let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
     let in_parallel = params.parallel && n >= PARALLEL_FROM;
-    let curves_now = match last_run {
-        Last::Yes => true,
-        Last::UnlessNoisy => !shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v))),
-        Last::Undecided => false,
+    let curves_now = match assembly {
+        CurveAssembly::Now => true,
+        CurveAssembly::UnlessNoisy => {
+            !shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
+        }
+        CurveAssembly::Later => false,
     };
     let (curves, tally) = if curves_now {
         both(
@@ -1147,7 +1155,7 @@ fn run_stages(
     let curves_time = clock.lap();
     // The curve graph's degrees are the tally's.
     debug_assert!(
-        last_run != Last::UnlessNoisy
+        assembly != CurveAssembly::UnlessNoisy
             || curves_now != shows_noise(tally.degrees.iter().map(|&d| d as usize))
     );
     let result = Reconstruction {
@@ -1164,7 +1172,7 @@ fn run_stages(
         smoothing: None,
         input_points: None,
     };
-    let waiting = (last_run == Last::Undecided).then_some(graph);
+    let waiting = (assembly == CurveAssembly::Later).then_some(graph);
     (result, waiting)
 }
 
