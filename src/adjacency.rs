@@ -108,6 +108,11 @@ impl BranchAdjacency {
         }
     }
 
+    /// How many vertices have degree three or more (the ones with lists).
+    pub(crate) fn branch_count(&self) -> usize {
+        self.vertices.len()
+    }
+
     /// The neighbours of `v` (of degree three or more) with the positions of the joining edges;
     /// empty for any other vertex.
     pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {

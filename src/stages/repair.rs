@@ -195,8 +195,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     // Lines 6–12: every non-manifold vertex selects its edges (up to four for a crossing).
     // One per non-manifold vertex, counted first (a list grown by doubling held up to twice
     // that: 13.1 bytes per point of uniform points, the highest phase of their passes).
-    let mut selections: Vec<(VertexId, [VertexId; 4])> =
-        Vec::with_capacity(degree.iter().filter(|&&d| d > 2).count());
+    let mut selections: Vec<(VertexId, [VertexId; 4])> = Vec::with_capacity(graph.branch_count());
     for i in 0..vertex_count {
         let v = VertexId::new(i as u32);
         if manifold(v) {
