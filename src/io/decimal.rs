@@ -425,15 +425,18 @@ const fn bits_at(n: &[u64; LIMBS], from: i64) -> u64 {
 /// 10^-27 and 2^64 * 10^55, far inside the normal range of `f64`.
 const NEAR_POWERS: core::ops::RangeInclusive<i32> = -27..=55;
 
-/// [`eisel_lemire`] for `q` in [`NEAR_POWERS`] (`w` nonzero), without the steps that cannot
-/// happen there (no ambiguous product, no subnormal, no overflow: always a result), and the
-/// carry of the rounding into the exponent taken by adding the fields instead of by a branch.
-/// Inlined into the number reader: the common numbers' conversion, about 25 instructions.
+/// f64: 52 stored mantissa bits, biased exponent 1 for the smallest normal.
+const MANTISSA_BITS: i32 = 52;
+
+/// The exponents where a product can be exactly halfway between two doubles.
+const ROUND_TO_EVEN: core::ops::RangeInclusive<i32> = -4..=23;
+
+/// The first step of both Eisel-Lemire conversions: `w` shifted to its top bit, times the
+/// 128-bit approximation of `5^q`, as the shift and the product's low and high words. The
+/// mantissa and the rounding bit are in the top 55 bits; when the bits below them are all ones,
+/// the low half of the power of five may carry into them, and is added.
 #[inline(always)]
-fn eisel_lemire_near(w: u64, q: i32) -> f64 {
-    const MANTISSA_BITS: i32 = 52;
-    const ROUND_TO_EVEN: core::ops::RangeInclusive<i32> = -4..=23;
-    debug_assert!(w != 0 && NEAR_POWERS.contains(&q));
+fn product_with_power_of_five(w: u64, q: i32) -> (u32, u64, u64) {
     let zeros = w.leading_zeros();
     let w = w << zeros;
     let (high5, low5) = POWERS_OF_FIVE[(i64::from(q) - SMALLEST_POWER) as usize];
@@ -447,6 +450,17 @@ fn eisel_lemire_near(w: u64, q: i32) -> f64 {
             high += 1;
         }
     }
+    (zeros, low, high)
+}
+
+/// [`eisel_lemire`] for `q` in [`NEAR_POWERS`] (`w` nonzero), without the steps that cannot
+/// happen there (no ambiguous product, no subnormal, no overflow: always a result), and the
+/// carry of the rounding into the exponent taken by adding the fields instead of by a branch.
+/// Inlined into the number reader: the common numbers' conversion, about 25 instructions.
+#[inline(always)]
+fn eisel_lemire_near(w: u64, q: i32) -> f64 {
+    debug_assert!(w != 0 && NEAR_POWERS.contains(&q));
+    let (zeros, low, high) = product_with_power_of_five(w, q);
     // Both factors have their top bit set: `high` has bit 63 or 62, and `mantissa` 54 bits.
     let upper_bit = (high >> 63) as i32;
     let mut mantissa = high >> (upper_bit + 64 - MANTISSA_BITS - 3);
@@ -475,26 +489,8 @@ fn eisel_lemire_near(w: u64, q: i32) -> f64 {
 /// `None` too for a result too large for `f64`.
 #[inline]
 fn eisel_lemire(w: u64, q: i32) -> Option<f64> {
-    // f64: 52 stored mantissa bits, biased exponent 1 for the smallest normal.
-    const MANTISSA_BITS: i32 = 52;
-    // The exponents where a product can be exactly halfway between two doubles.
-    const ROUND_TO_EVEN: core::ops::RangeInclusive<i32> = -4..=23;
     const INFINITE_POWER: i32 = 0x7ff;
-    let zeros = w.leading_zeros();
-    let w = w << zeros;
-    let (high5, low5) = POWERS_OF_FIVE[(i64::from(q) - SMALLEST_POWER) as usize];
-    let first = u128::from(w) * u128::from(high5);
-    let (mut low, mut high) = (first as u64, (first >> 64) as u64);
-    // The mantissa and the rounding bit are in the top 55 bits; when the bits below them are
-    // all ones, the low half of the power of five may carry into them.
-    let mask = u64::MAX >> (MANTISSA_BITS + 3);
-    if high & mask == mask {
-        let second = ((u128::from(w) * u128::from(low5)) >> 64) as u64;
-        low = low.wrapping_add(second);
-        if second > low {
-            high += 1;
-        }
-    }
+    let (zeros, low, high) = product_with_power_of_five(w, q);
     // Still all ones: the truncated table value may have hidden a carry, except where 5^q is
     // exact in 128 bits (0 <= q <= 55) or its reciprocal leaves room (q >= -27).
     if low == u64::MAX && !(-27..=55).contains(&q) {

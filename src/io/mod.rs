@@ -70,6 +70,17 @@ pub enum IoErrorKind {
     Content(String),
 }
 
+impl IoError {
+    /// The operating system's `err` on `file`, at no particular line.
+    pub(crate) fn os(file: &str, err: io::Error) -> IoError {
+        IoError {
+            file: file.to_string(),
+            line: None,
+            kind: IoErrorKind::Io(err),
+        }
+    }
+}
+
 impl fmt::Display for IoError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}", self.file)?;

@@ -260,11 +260,7 @@ fn read_up_to(reader: &mut dyn Read, buffer: &mut [u8]) -> io::Result<usize> {
 
 /// The header of a `.npy` stream, read up to the first data byte.
 fn read_header(reader: &mut dyn Read, file: &str) -> Result<Header, IoError> {
-    let io_error = |err: io::Error| IoError {
-        file: file.to_string(),
-        line: None,
-        kind: IoErrorKind::Io(err),
-    };
+    let io_error = |err: io::Error| IoError::os(file, err);
     let mut start = [0u8; 8];
     let got = read_up_to(reader, &mut start).map_err(io_error)?;
     if got < 8 || &start[..6] != MAGIC {
@@ -331,12 +327,7 @@ fn read_npy_from(reader: &mut dyn Read, file: &str) -> Result<Vec<Point>, IoErro
         read_columns(reader, file, &header, size, &mut points)?;
     }
     let mut extra = [0u8; 1];
-    if read_up_to(reader, &mut extra).map_err(|err| IoError {
-        file: file.to_string(),
-        line: None,
-        kind: IoErrorKind::Io(err),
-    })? > 0
-    {
+    if read_up_to(reader, &mut extra).map_err(|err| IoError::os(file, err))? > 0 {
         return Err(content(
             file,
             format!("bytes after the {n} points the header announces"),
@@ -382,11 +373,7 @@ fn read_rows(
     let mut block = vec![0u8; BLOCK - BLOCK % row];
     while points.len() < n {
         let want = ((n - points.len()) * row).min(block.len());
-        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError {
-            file: file.to_string(),
-            line: None,
-            kind: IoErrorKind::Io(err),
-        })?;
+        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError::os(file, err))?;
         let rows = block[..got - got % row].chunks_exact(row);
         match (header.float, header.big_endian) {
             (Float::F64, false) => points.extend(rows.map(|b| {
@@ -423,11 +410,7 @@ fn read_columns(
     let mut done = 0usize;
     while done < values {
         let want = ((values - done) * size).min(block.len());
-        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError {
-            file: file.to_string(),
-            line: None,
-            kind: IoErrorKind::Io(err),
-        })?;
+        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError::os(file, err))?;
         let whole = got / size;
         for (k, bytes) in block[..whole * size].chunks_exact(size).enumerate() {
             let value = decode(bytes, header.float, header.big_endian);
@@ -492,11 +475,7 @@ pub fn parse_npy(bytes: &[u8], file: &str) -> Result<Vec<Point>, IoError> {
 
 /// Reads a `.npy` file of points (see [`parse_npy`]) in blocks, straight into the points.
 pub(super) fn read_npy_file(path: &std::path::Path, shown: &str) -> Result<Vec<Point>, IoError> {
-    let mut file = File::open(path).map_err(|err| IoError {
-        file: shown.to_string(),
-        line: None,
-        kind: IoErrorKind::Io(err),
-    })?;
+    let mut file = File::open(path).map_err(|err| IoError::os(shown, err))?;
     read_npy_from(&mut file, shown)
 }
 
@@ -722,6 +701,7 @@ pub fn write_npy_triangulation_edges(out: &mut dyn Write, tri: &Triangulation) -
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::pieces::on_rayon_and_one_thread;
 
     /// Enough points for several pieces: the arrays hold the rows of the iterators, in order,
     /// on rayon's threads and on one.
@@ -751,15 +731,7 @@ mod tests {
             write_npy_triangulation_edges(&mut e, &tri).unwrap();
             (u32s(&t), u32s(&e))
         };
-        let (t, e) = run();
-        assert!(t == triangles && e == edges);
-        #[cfg(feature = "parallel")]
-        {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(1)
-                .build()
-                .unwrap();
-            let (t, e) = pool.install(run);
+        for (t, e) in on_rayon_and_one_thread(run) {
             assert!(t == triangles && e == edges);
         }
     }

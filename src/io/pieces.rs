@@ -94,6 +94,22 @@ pub(super) fn write_pieces(
     Ok(())
 }
 
+/// The results of `run` on rayon's global pool and, with the `parallel` feature, inside a
+/// one-thread pool too (where the writers format sequentially): a test asserts the same of each.
+#[cfg(test)]
+pub(super) fn on_rayon_and_one_thread<T: Send>(run: impl Fn() -> T + Sync + Send) -> Vec<T> {
+    let mut results = std::vec![run()];
+    #[cfg(feature = "parallel")]
+    {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        results.push(pool.install(&run));
+    }
+    results
+}
+
 #[cfg(feature = "parallel")]
 mod parallel {
     use super::Format;
@@ -185,19 +201,13 @@ mod tests {
     fn pieces_arrive_whole_and_in_order() {
         for units in [0, 1, 2, 7, 100, 1000, 5003] {
             for piece in [0, 1, 2, 3, 64, 1000, 10_000] {
-                let mut out = Vec::new();
-                write_pieces(&mut out, units, piece, &numbers).unwrap();
-                assert_eq!(out, expected(units), "{units} units, pieces of {piece}");
-                #[cfg(feature = "parallel")]
-                {
-                    let pool = rayon::ThreadPoolBuilder::new()
-                        .num_threads(1)
-                        .build()
-                        .unwrap();
-                    let mut one = Vec::new();
-                    pool.install(|| write_pieces(&mut one, units, piece, &numbers))
-                        .unwrap();
-                    assert_eq!(one, out);
+                let outputs = on_rayon_and_one_thread(|| {
+                    let mut out = Vec::new();
+                    write_pieces(&mut out, units, piece, &numbers).unwrap();
+                    out
+                });
+                for out in outputs {
+                    assert_eq!(out, expected(units), "{units} units, pieces of {piece}");
                 }
             }
         }

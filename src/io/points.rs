@@ -897,11 +897,7 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
     // A name that is not UTF-8 is shown lossily; the file is still opened by its own bytes.
     let shown = path.to_string_lossy();
     let name: &str = if stdin { "<stdin>" } else { &shown };
-    let io_error = |err: io::Error| IoError {
-        file: name.to_string(),
-        line: None,
-        kind: IoErrorKind::Io(err),
-    };
+    let io_error = |err: io::Error| IoError::os(name, err);
     let extension = |ending: &str| {
         !stdin
             && path

@@ -314,6 +314,7 @@ pub fn write_triangulation_edges(out: &mut dyn Write, tri: &Triangulation) -> io
 mod tests {
     use super::*;
     use crate::geometry::Point;
+    use crate::io::pieces::on_rayon_and_one_thread;
     use crate::test_rng::Xorshift;
     use crate::triangulate::triangulate;
 
@@ -417,15 +418,7 @@ mod tests {
             write_triangulation_edges(&mut e, &tri).unwrap();
             (String::from_utf8(t).unwrap(), String::from_utf8(e).unwrap())
         };
-        let (t, e) = run();
-        assert!(t == triangles && e == edges);
-        #[cfg(feature = "parallel")]
-        {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(1)
-                .build()
-                .unwrap();
-            let (t, e) = pool.install(run);
+        for (t, e) in on_rayon_and_one_thread(run) {
             assert!(t == triangles && e == edges);
         }
     }
@@ -449,14 +442,8 @@ mod tests {
             write_edges(&mut out, &result).unwrap();
             String::from_utf8(out).unwrap()
         };
-        assert!(run() == expected);
-        #[cfg(feature = "parallel")]
-        {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(1)
-                .build()
-                .unwrap();
-            assert!(pool.install(run) == expected);
+        for out in on_rayon_and_one_thread(run) {
+            assert!(out == expected);
         }
     }
 
