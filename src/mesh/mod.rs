@@ -220,11 +220,11 @@ impl Mesh {
             .unwrap_or(HalfEdgeId::NONE)
     }
 
-    /// Fills `vertex_edges` from the triangles: one pass that records the last edge
-    /// leaving each vertex, then a walk along the ghosts that gives every hull vertex its edge to
-    /// infinity. With `parallel`, two threads each scan every origin and record the vertices of
-    /// their half of the ids: the same last edge per vertex, so the same mesh, and each thread's
-    /// scattered writes stay in its own half of the list.
+    /// Fills `vertex_edges` from the triangles: one pass that records the last edge leaving each
+    /// vertex, then a walk along the ghosts that gives every hull vertex its edge to infinity.
+    /// With `parallel` (the caller's choice: a set built in two halves), two threads each scan
+    /// every origin and record the vertices of their half of the ids: the same last edge per
+    /// vertex, so the same mesh, and each thread's scattered writes stay in its own half.
     fn rebuild_vertex_edges(&mut self, vertex_count: usize, parallel: bool) {
         // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
         let sink = vertex_count;
@@ -239,9 +239,7 @@ impl Mesh {
             }
         };
         let mut edges = alloc::vec![HalfEdgeId::NONE; vertex_count + 1];
-        // Below this many vertices a second thread costs more than it saves.
-        const PARALLEL_MIN: usize = 1 << 16;
-        if parallel && vertex_count >= PARALLEL_MIN {
+        if parallel {
             let middle = vertex_count / 2;
             let (low, high) = edges.split_at_mut(middle);
             both(true, || record(low, 0), || record(high, middle));
