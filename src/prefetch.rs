@@ -3,8 +3,8 @@
 //!
 //! Owns: [`prefetch`] and [`PREFETCH_FROM`]. It may not read or write memory, and nothing else
 //! in the crate may use `unsafe`: `lib.rs` denies unsafe code, this module alone allows it, and
-//! `tests/unsafe_code.rs` fails if any other source file does (but for the binary's allocator
-//! settings in `src/bin/condt/allocator.rs`).
+//! `tests/unsafe_code.rs` fails if any other source file does (but for the binary's allocator,
+//! `src/bin/condt/allocator.rs`).
 //!
 //! Why: the proximity sweep reads the point and the candidate record of each triangle's three
 //! corners. Triangles are stored in the order the insertion made them and vertices in insertion

@@ -207,7 +207,10 @@ fn list_kept<T>(
     let mut count = 0;
     for i in 0..n {
         if count + 2 > edges.len() {
-            edges.resize(edges.len() + (edges.len() / 8).max(2), none);
+            // `resize` alone would double the capacity.
+            let more = (edges.len() / 8).max(2);
+            edges.reserve_exact(more);
+            edges.resize(edges.len() + more, none);
         }
         let pair = match decide {
             Some(decide) => {

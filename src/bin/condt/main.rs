@@ -8,7 +8,6 @@ mod score;
 mod timings;
 
 fn main() {
-    allocator::release_large_blocks();
     // File names need not be UTF-8: the arguments are taken as the OS gives them.
     let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
     // What `run` returns (help, or results without -o) goes out as -o - would.
