@@ -19,12 +19,17 @@
 //! run it fits in (the rest of the run stays kept), or else a fresh mapping into which kept runs
 //! are moved with `mremap` (the kernel moves page-table entries: no copy, no fault), largest
 //! first, until it is covered. Growing a block (`realloc`) moves it the same way. The peak stays
-//! what the live blocks hold, as with glibc's unmapping, because kept pages are never resident
-//! beside fresh ones:
-//! - a block that needs fresh pages takes every kept run first, and its fresh pages are faulted
-//!   in at once (`MAP_POPULATE`), before any later free adds to the kept runs;
+//! about what the live blocks hold, as with glibc's unmapping, because kept pages are rarely
+//! resident beside fresh ones:
+//! - a block that needs fresh pages takes every kept run first;
 //! - when the small blocks grow past their highest total so far (glibc then takes fresh pages
 //!   for them), kept runs are unmapped by as many bytes.
+//!
+//! (A fresh page first touched after later frees filled the kept runs still adds to them.
+//! Faulting fresh pages in at once, with `MAP_POPULATE`, closed that gap but moved the faults of
+//! the triangulation's mesh, which both its threads touch, onto the one thread that allocates
+//! it: the 100M run's triangulation took 51.7 s instead of 34; at 1M and 10M the peak was the
+//! same without it.)
 //!
 //! A block asked for zeroed is cleared where its pages were reused (a `memset` of resident
 //! memory, far cheaper than a fault; fresh pages come zeroed).
@@ -276,13 +281,11 @@ mod linux {
 
     /// Moves kept runs, largest first, onto `start + from .. start + len` (a mapping of this
     /// allocator whose pages there are untouched), until it is covered or no run is left; the
-    /// unused rest of the last run stays kept. Zeroes what was moved if asked. What no run
-    /// covers is faulted in at once (see [`populate`]).
+    /// unused rest of the last run stays kept. Zeroes what was moved if asked.
     fn cover(kept: &mut Kept, start: usize, from: usize, len: usize, zeroed: bool) {
         let mut offset = from;
         while offset < len {
             let Some(run) = kept.take_largest() else {
-                populate(start + offset, len - offset);
                 return;
             };
             let piece = run.len.min(len - offset);
@@ -296,25 +299,6 @@ mod linux {
             }
             offset += piece;
         }
-    }
-
-    /// Faults in the fresh pages `start .. start + len` of a mapping of this allocator, now, while
-    /// no run is kept: a page first touched later, after blocks were freed into the kept runs,
-    /// would add to their pages and raise the peak. One call for all of them (a new mapping
-    /// with `MAP_POPULATE` over the untouched range) also costs less than a fault per page.
-    fn populate(start: usize, len: usize) {
-        // SAFETY: the range is whole, untouched pages of a mapping this allocator owns, which
-        // MAP_FIXED replaces; if the call fails they stay mapped and are faulted in on use.
-        unsafe {
-            libc::mmap(
-                start as *mut libc::c_void,
-                len,
-                libc::PROT_READ | libc::PROT_WRITE,
-                libc::MAP_PRIVATE | libc::MAP_ANONYMOUS | libc::MAP_FIXED | libc::MAP_POPULATE,
-                -1,
-                0,
-            )
-        };
     }
 
     /// Moves the pages of `from .. from + len` onto `to .. to + len` (whole pages of mappings
