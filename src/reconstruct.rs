@@ -401,6 +401,10 @@ fn output_of<'e>(
     k: usize,
     first: &dyn Fn() -> Vec<Edge>,
 ) -> Cow<'e, [Edge]> {
+    // The next stage's input is the first stage's graph itself: nothing to walk back through.
+    if matches!(records.get(k + 1).map(|r| &r.undo), Some(Undo::First)) {
+        return Cow::Owned(first());
+    }
     records[k + 1..]
         .iter()
         .rev()
