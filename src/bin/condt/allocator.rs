@@ -4,7 +4,7 @@
 //! system allocator serves everything). The binary's one use of `unsafe`, confined here; every
 //! block says why it is sound (`tests/unsafe_code.rs` checks that each has its `// SAFETY:`).
 //!
-//! Owns: the pages of every block of `LARGE` (128 KiB) or more. It knows nothing of what the
+//! Owns: the pages of every block of `LARGE` (128 KiB) or more aligned to at most a page. It knows nothing of what the
 //! blocks hold, and the library never sees it (a library caller keeps its own allocator).
 //!
 //! **Why.** The pipeline allocates and frees per-point arrays of 4 to 24 bytes a point, stage
@@ -16,30 +16,37 @@
 //! middle stays resident whether or not a later block fits in it.
 //!
 //! **How.** A freed large block's pages are kept as a run. A new block takes the smallest kept
-//! run it fits in (the rest of the run stays kept), or else a fresh mapping into which kept runs
-//! are moved with `mremap` (the kernel moves page-table entries: no copy, no fault), largest
-//! first, until it is covered. Growing a block (`realloc`) moves it the same way. The peak stays
-//! about what the live blocks hold, as with glibc's unmapping, because kept pages are rarely
-//! resident beside fresh ones:
-//! - a block that needs fresh pages takes every kept run first;
+//! run it fits in (the rest of the run stays kept); if none is large enough, the largest grows
+//! into it with `mremap` (the kernel moves the page-table entries: no copy, no fault) and only
+//! the rest is fresh; with no run kept, it is a fresh mapping. Growing a block (`realloc`)
+//! grows it the same way. The peak stays about what the live blocks hold, as with glibc's
+//! unmapping, because kept pages are rarely resident beside fresh ones:
+//! - a block that needs fresh pages (made or grown) unmaps as many bytes of kept runs, smallest
+//!   first;
 //! - when the small blocks grow past their highest total so far (glibc then takes fresh pages
 //!   for them), kept runs are unmapped by as many bytes.
 //!
-//! (A fresh page first touched after later frees filled the kept runs still adds to them.
-//! Faulting fresh pages in at once, with `MAP_POPULATE`, closed that gap but moved the faults of
-//! the triangulation's mesh, which both its threads touch, onto the one thread that allocates
-//! it: the 100M run's triangulation took 51.7 s, against 38.6 and 42.7 s without it; at 1M and
-//! 10M the peak was the same without it.)
+//! A fresh page first touched after later frees filled the kept runs still adds to them.
+//! (Faulting fresh pages in at once, with `MAP_POPULATE`, closed that gap but moved the faults
+//! of the triangulation's mesh, which both its threads touch, onto the one thread that
+//! allocates it: the 100M run's triangulation took 51.7 s, against 38.6 and 42.7 s without it;
+//! at 1M and 10M the peak was the same without it.)
 //!
-//! A block asked for zeroed is cleared where its pages were reused (a `memset` of resident
-//! memory, far cheaper than a fault; fresh pages come zeroed).
+//! **Soundness.** Every range the allocator holds (a live block or a kept run) lies in one
+//! mapping: only `mmap` makes ranges, a run is split only by address, and only `mremap` without
+//! `MREMAP_FIXED` moves one, whole, to where the kernel chooses. So a move never replaces a
+//! mapping and either happens whole or not at all. (An earlier version assembled a block from
+//! several runs with `MREMAP_FIXED`, a fourth fewer faults; but a failed move can leave the
+//! destination unmapped, which another thread's mapping may then take.)
+//!
+//! A block asked for zeroed is cleared where its pages were reused (fresh pages come zeroed).
 //!
 //! Measured against glibc with its mmap threshold fixed at 128 KiB, which this replaced (`perf
 //! stat -e page-faults`, `/usr/bin/time`; `docs/performance.md`, "The binary's allocator"):
-//! `reconstruct` along curves, 1M points, 64,723 page faults -> 27,825 and 0.21 -> 0.09 s of
-//! system time; 10M 663,281 -> 276,141 and 2.02 -> 0.89 s; uniform points, 1M, 323,258 ->
-//! 32,849. The peak resident set is 0.2 to 1.9 % higher (109,976 against 109,440 kB along curves
-//! at 1M, 128,912 against 126,516 on uniform points). Every output is byte-identical.
+//! `reconstruct` along curves, 1M points, 64,723 page faults -> 32,726; 10M 663,281 -> 325,248
+//! and 2.02 -> 1.13 s of system time; uniform points, 1M, 323,258 -> 73,445 and 1.06 -> 0.32 s.
+//! The peak resident set is within 1.7 % (109,968 against 109,440 kB along curves at 1M,
+//! 128,628 against 126,516 on uniform points). Every output is byte-identical.
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 #[global_allocator]
@@ -174,20 +181,44 @@ mod linux {
                 }
                 return run.start as *mut u8;
             }
-            let Some(start) = map(len) else {
-                return ptr::null_mut();
-            };
-            cover(&mut kept, start, 0, len, zeroed);
-            start as *mut u8
+            // No kept run holds the block: the largest grows into it, its pages moved rather
+            // than copied, and fresh pages make up the rest.
+            let largest = kept.take_largest();
+            drop(kept);
+            if let Some(run) = largest {
+                if let Some(start) = grow(run.start, run.len, len) {
+                    self.release(len - run.len);
+                    if zeroed {
+                        clear(start, run.len);
+                    }
+                    return start as *mut u8;
+                }
+                self.give_back(run);
+            }
+            match map(len) {
+                Some(start) => {
+                    self.release(len);
+                    start as *mut u8
+                }
+                None => ptr::null_mut(),
+            }
         }
 
-        /// Counts `size` more bytes of small blocks. Past their highest count so far the system
-        /// allocator takes fresh pages for them, so the kept runs give back as many bytes: kept
-        /// and fresh pages together then stay under an earlier peak. (Checked in steps of
-        /// [`LARGE`], so that the lock is rarely taken.)
+        /// Counts `size` more bytes of small blocks (allocated). Past their highest count so
+        /// far the system allocator takes fresh pages for them, so the kept runs give back as
+        /// many bytes (checked in steps of [`LARGE`], so that the lock is rarely taken).
         fn small_grown(&self, size: usize) {
-            let live = self.small_live.fetch_add(size, Ordering::Relaxed) + size;
-            if live > self.small_high.load(Ordering::Relaxed) + LARGE {
+            // Atomic additions wrap; the sums are bytes allocated, far from overflowing.
+            let live = self
+                .small_live
+                .fetch_add(size, Ordering::Relaxed)
+                .wrapping_add(size);
+            if live
+                > self
+                    .small_high
+                    .load(Ordering::Relaxed)
+                    .saturating_add(LARGE)
+            {
                 let high = self.small_high.fetch_max(live, Ordering::Relaxed);
                 if live > high {
                     self.release(live - high);
@@ -199,7 +230,8 @@ mod linux {
             self.small_live.fetch_sub(size, Ordering::Relaxed);
         }
 
-        /// Unmaps at least `len` bytes of kept runs (or all of them), smallest runs first.
+        /// Unmaps at least `len` bytes of kept runs (or all of them), smallest runs first, so
+        /// that pages about to be faulted in fresh are not resident beside kept ones.
         fn release(&self, len: usize) {
             let mut kept = self.kept();
             let mut released = 0;
@@ -208,10 +240,11 @@ mod linux {
                     return;
                 };
                 let piece = whole_pages(len - released).min(run.len);
-                unmap(Run {
-                    start: run.start,
-                    len: piece,
-                });
+                if !unmap(run.start, piece) {
+                    // Kept as it is (the system refused to split its mapping).
+                    let _ = kept.put(run);
+                    return;
+                }
                 if let Some(rest) = run.after(piece) {
                     let _ = kept.put(rest);
                 }
@@ -219,10 +252,11 @@ mod linux {
             }
         }
 
-        /// Keeps the pages of a freed block, or unmaps them when too many runs are kept.
+        /// Keeps the pages of a freed block, or unmaps the smallest run when too many are kept.
         fn give_back(&self, run: Run) {
             if let Some(dropped) = self.kept().put(run) {
-                unmap(dropped);
+                // If the system refuses, the pages stay mapped and unused: a leak, not an error.
+                unmap(dropped.start, dropped.len);
             }
         }
     }
@@ -271,9 +305,32 @@ mod linux {
         (start != libc::MAP_FAILED).then_some(start as usize)
     }
 
-    fn unmap(run: Run) {
-        // SAFETY: the run is a whole-page range mapped by this allocator that nothing uses.
-        unsafe { libc::munmap(run.start as *mut libc::c_void, run.len) };
+    /// The pages `start .. start + len` (a run or block of this allocator, lying in one mapping)
+    /// grown to `new_len` bytes: extended in place or moved whole, with fresh pages after its
+    /// own; `None`, and nothing changed, if the system refuses.
+    ///
+    /// Every range the allocator holds lies in one mapping, since only `mmap` makes ranges and
+    /// only this `mremap` (without `MREMAP_FIXED`, so that it never replaces a mapping) moves
+    /// one, whole: a range is never assembled from pieces of several.
+    fn grow(start: usize, len: usize, new_len: usize) -> Option<usize> {
+        // SAFETY: the range is whole pages of one mapping that only the caller uses; the kernel
+        // picks where it goes, and on failure leaves it where it was.
+        let grown = unsafe {
+            libc::mremap(
+                start as *mut libc::c_void,
+                len,
+                new_len,
+                libc::MREMAP_MAYMOVE,
+            )
+        };
+        (grown != libc::MAP_FAILED).then_some(grown as usize)
+    }
+
+    /// Unmaps the pages `start .. start + len` of a run nothing uses; false if the system
+    /// refuses (splitting a mapping needs room for one more in the process's table).
+    fn unmap(start: usize, len: usize) -> bool {
+        // SAFETY: the range is whole pages mapped by this allocator that nothing uses.
+        unsafe { libc::munmap(start as *mut libc::c_void, len) == 0 }
     }
 
     fn clear(start: usize, len: usize) {
@@ -281,85 +338,34 @@ mod linux {
         unsafe { ptr::write_bytes(start as *mut u8, 0, len) };
     }
 
-    /// Moves kept runs, largest first, onto `start + from .. start + len` (a mapping of this
-    /// allocator whose pages there are untouched), until it is covered or no run is left; the
-    /// unused rest of the last run stays kept. Zeroes what was moved if asked.
-    fn cover(kept: &mut Kept, start: usize, from: usize, len: usize, zeroed: bool) {
-        let mut offset = from;
-        while offset < len {
-            let Some(run) = kept.take_largest() else {
-                return;
-            };
-            let piece = run.len.min(len - offset);
-            move_pages(run.start, piece, start + offset);
-            if zeroed {
-                clear(start + offset, piece);
-            }
-            if let Some(rest) = run.after(piece) {
-                // One run was just taken out, so there is room for its rest.
-                let _ = kept.put(rest);
-            }
-            offset += piece;
-        }
-    }
-
-    /// Moves the pages of `from .. from + len` onto `to .. to + len` (whole pages of mappings
-    /// of this allocator; nothing uses either range). `mremap` moves only within one mapping,
-    /// and a block assembled from moved runs spans several, so a range it refuses as such is
-    /// split in two until each part lies in one; what cannot be moved otherwise is copied and
-    /// unmapped.
-    fn move_pages(from: usize, len: usize, to: usize) {
-        // SAFETY: both ranges are whole pages owned by the allocator and unused; MREMAP_FIXED
-        // unmaps the destination's pages first. On failure nothing changes.
-        let moved = unsafe {
-            libc::mremap(
-                from as *mut libc::c_void,
-                len,
-                len,
-                libc::MREMAP_MAYMOVE | libc::MREMAP_FIXED,
-                to as *mut libc::c_void,
-            )
-        };
-        if moved != libc::MAP_FAILED {
-            return;
-        }
-        let page = page_size();
-        // `errno`, read without allocating.
-        let spans_mappings = std::io::Error::last_os_error().raw_os_error() == Some(libc::EFAULT);
-        if spans_mappings && len > page {
-            let half = (len / 2) & !(page - 1);
-            move_pages(from, half, to);
-            move_pages(from + half, len - half, to + half);
-        } else {
-            // SAFETY: both ranges are mapped read-write, distinct and unused.
-            unsafe { ptr::copy_nonoverlapping(from as *const u8, to as *mut u8, len) };
-            unmap(Run { start: from, len });
-        }
-    }
-
     // SAFETY: every block handed out is either the system allocator's (small or over-aligned
-    // layouts, freed and grown there) or a run of whole pages of its own, aligned to the page,
-    // mapped read-write and used by nothing else until it is given back; the layout a block is
-    // freed or grown with tells which (its size decides, and a block keeps its kind).
+    // layouts, freed and grown there) or a run of whole pages of its own in one mapping, aligned
+    // to the page, mapped read-write and used by nothing else until it is given back; the layout
+    // a block is freed or grown with tells which (its size and alignment decide, and a block
+    // keeps its kind).
     unsafe impl GlobalAlloc for Recycling {
         unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
             if is_large(layout.size(), layout.align()) {
-                self.take(whole_pages(layout.size()), false)
-            } else {
-                self.small_grown(layout.size());
-                // SAFETY: the caller's contract, passed on.
-                unsafe { System.alloc(layout) }
+                return self.take(whole_pages(layout.size()), false);
             }
+            // SAFETY: the caller's contract, passed on.
+            let block = unsafe { System.alloc(layout) };
+            if !block.is_null() {
+                self.small_grown(layout.size());
+            }
+            block
         }
 
         unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
             if is_large(layout.size(), layout.align()) {
-                self.take(whole_pages(layout.size()), true)
-            } else {
-                self.small_grown(layout.size());
-                // SAFETY: the caller's contract, passed on.
-                unsafe { System.alloc_zeroed(layout) }
+                return self.take(whole_pages(layout.size()), true);
             }
+            // SAFETY: the caller's contract, passed on.
+            let block = unsafe { System.alloc_zeroed(layout) };
+            if !block.is_null() {
+                self.small_grown(layout.size());
+            }
+            block
         }
 
         unsafe fn dealloc(&self, block: *mut u8, layout: Layout) {
@@ -403,14 +409,13 @@ mod linux {
                     }
                     return block;
                 }
-                // A new run: the block's pages moved to its start, its tail covered by kept runs.
-                let mut kept = self.kept();
-                let Some(grown) = map(new_len) else {
-                    return ptr::null_mut();
+                return match grow(start, old_len, new_len) {
+                    Some(grown) => {
+                        self.release(new_len - old_len);
+                        grown as *mut u8
+                    }
+                    None => ptr::null_mut(),
                 };
-                move_pages(start, old_len, grown);
-                cover(&mut kept, grown, old_len, new_len, false);
-                return grown as *mut u8;
             }
             // One side small, the other large: a new block of the other kind, then a copy.
             // SAFETY: `new_size` with the old alignment is a valid layout (the caller's contract).
@@ -483,6 +488,39 @@ mod linux {
                 .all(|(k, &b)| b == seed.wrapping_add((k / 4093) as u8)));
         }
 
+        fn kept_bytes(heap: &Recycling) -> usize {
+            let kept = heap.kept();
+            kept.runs[..kept.count].iter().map(|r| r.len).sum()
+        }
+
+        fn layout(pages_count: usize) -> Layout {
+            Layout::from_size_align(pages(pages_count), 8).unwrap()
+        }
+
+        fn unmap_all(heap: &Recycling) {
+            let mut kept = heap.kept();
+            while let Some(run) = kept.take_largest() {
+                assert!(unmap(run.start, run.len));
+            }
+        }
+
+        /// Whether the block holds the pattern `fill_and_check` wrote with `seed`.
+        fn holds(block: *const u8, len: usize, seed: u8) -> bool {
+            // SAFETY: the callers pass a live block of at least `len` bytes.
+            let bytes = unsafe { std::slice::from_raw_parts(block, len) };
+            bytes
+                .iter()
+                .enumerate()
+                .all(|(k, &b)| b == seed.wrapping_add((k / 4093) as u8))
+        }
+
+        fn is_zero(block: *const u8, len: usize) -> bool {
+            // SAFETY: the callers pass a live block of at least `len` bytes.
+            unsafe { std::slice::from_raw_parts(block, len) }
+                .iter()
+                .all(|&b| b == 0)
+        }
+
         #[test]
         fn reused_runs_hold_their_blocks_and_zeroed_blocks_are_zero() {
             let heap = Recycling::new();
@@ -493,64 +531,43 @@ mod linux {
                 let a = heap.alloc(big);
                 fill_and_check(a, big.size(), 1);
                 heap.dealloc(a, big);
-                // Fits in the kept run: reused, the rest kept.
+                // Fits in the kept run: reused in place, the rest kept.
                 let b = heap.alloc_zeroed(small);
                 assert_eq!(b, a);
-                assert!(std::slice::from_raw_parts(b, small.size())
-                    .iter()
-                    .all(|&x| x == 0));
-                // Needs more than the kept rest: a fresh block covered by it.
+                assert!(is_zero(b, small.size()));
+                assert_eq!(kept_bytes(&heap), pages(3 * unit()));
+                // Larger than the kept rest: the rest grows into it.
                 let c = heap.alloc_zeroed(big);
-                assert!(std::slice::from_raw_parts(c, big.size())
-                    .iter()
-                    .all(|&x| x == 0));
                 assert_eq!(heap.kept().count, 0);
+                assert!(is_zero(c, big.size()));
                 fill_and_check(b, small.size(), 2);
                 fill_and_check(c, big.size(), 3);
-                // Grown: moved or grown in place, its contents kept, its tail usable.
                 heap.dealloc(b, small);
+                // Grown: its contents moved with it; its fresh pages release the kept run.
                 let grown = heap.realloc(c, big, pages(10 * unit()));
-                let bytes = std::slice::from_raw_parts(grown, big.size());
-                assert!(bytes
-                    .iter()
-                    .enumerate()
-                    .all(|(k, &x)| x == 3u8.wrapping_add((k / 4093) as u8)));
+                assert!(holds(grown, big.size(), 3));
+                assert_eq!(kept_bytes(&heap), 0);
                 fill_and_check(grown, pages(10 * unit()), 4);
-                let grown_layout = layout(10 * unit());
-                // Shrunk in place below the large size: copied to the system allocator.
-                let tiny = heap.realloc(grown, grown_layout, 100);
-                assert!(std::slice::from_raw_parts(tiny, 100)
-                    .iter()
-                    .all(|&x| x == 4));
+                // Shrunk below the large size: copied to the system allocator, its pages kept.
+                let tiny = heap.realloc(grown, layout(10 * unit()), 100);
+                assert!(holds(tiny, 100, 4));
+                assert_eq!(kept_bytes(&heap), pages(10 * unit()));
+                // And back up: a page run again, from the kept pages.
                 let tiny_layout = Layout::from_size_align(100, 8).unwrap();
-                // And back up: a page run again.
                 let again = heap.realloc(tiny, tiny_layout, pages(5 * unit()));
-                assert!(std::slice::from_raw_parts(again, 100)
-                    .iter()
-                    .all(|&x| x == 4));
+                assert_eq!(again, grown);
+                assert!(holds(again, 100, 4));
                 fill_and_check(again, pages(5 * unit()), 5);
                 heap.dealloc(again, layout(5 * unit()));
-                assert!(kept_bytes(&heap) >= pages(5 * unit()));
-                let mut kept = heap.kept();
-                while let Some(run) = kept.take_largest() {
-                    unmap(run);
-                }
+                assert_eq!(kept_bytes(&heap), pages(10 * unit()));
             }
+            unmap_all(&heap);
         }
 
-        fn kept_bytes(heap: &Recycling) -> usize {
-            let kept = heap.kept();
-            kept.runs[..kept.count].iter().map(|r| r.len).sum()
-        }
-
-        fn layout(pages_count: usize) -> Layout {
-            Layout::from_size_align(pages(pages_count), 8).unwrap()
-        }
-
-        /// A block made of several moved runs spans several mappings, which `mremap` cannot move
-        /// at once: it is moved again, into a larger block and by growing, piece by piece.
+        /// A block larger than every kept run takes the largest, grown, and unmaps as many kept
+        /// bytes as it needs fresh pages, smallest runs first; so does a block grown in place.
         #[test]
-        fn blocks_assembled_from_several_runs_move_again() {
+        fn a_block_larger_than_every_kept_run_grows_the_largest() {
             let heap = Recycling::new();
             // SAFETY: every block is used within its layout and freed with it, once.
             unsafe {
@@ -560,35 +577,20 @@ mod linux {
                     fill_and_check(part, pages(n), k as u8);
                     heap.dealloc(part, layout(n));
                 }
-                let whole = 9 * unit();
-                assert_eq!(kept_bytes(&heap), pages(whole));
-                // Covered exactly by the three runs, largest first.
-                let block = heap.alloc_zeroed(layout(whole));
-                assert_eq!(heap.kept().count, 0);
-                assert!(std::slice::from_raw_parts(block, pages(whole))
-                    .iter()
-                    .all(|&x| x == 0));
-                fill_and_check(block, pages(whole), 7);
-                heap.dealloc(block, layout(whole));
-                // The run of three mappings moved into a larger block, then grown.
-                let larger = heap.alloc_zeroed(layout(12 * unit()));
-                assert_eq!(heap.kept().count, 0);
-                assert!(std::slice::from_raw_parts(larger, pages(12 * unit()))
-                    .iter()
-                    .all(|&x| x == 0));
-                fill_and_check(larger, pages(12 * unit()), 9);
-                let grown = heap.realloc(larger, layout(12 * unit()), pages(18 * unit()));
-                assert!(std::slice::from_raw_parts(grown, pages(12 * unit()))
-                    .iter()
-                    .enumerate()
-                    .all(|(k, &x)| x == 9u8.wrapping_add((k / 4093) as u8)));
-                fill_and_check(grown, pages(18 * unit()), 11);
-                heap.dealloc(grown, layout(18 * unit()));
+                assert_eq!(kept_bytes(&heap), pages(9 * unit()));
+                // The 4-unit run grows to 6; the 2-unit run is unmapped for the 2 fresh units.
+                let block = heap.alloc_zeroed(layout(6 * unit()));
+                assert!(is_zero(block, pages(6 * unit())));
+                assert_eq!(kept_bytes(&heap), pages(3 * unit()));
+                fill_and_check(block, pages(6 * unit()), 7);
+                // Grown by 2 units: 2 of the last run's 3 are unmapped.
+                let grown = heap.realloc(block, layout(6 * unit()), pages(8 * unit()));
+                assert!(holds(grown, pages(6 * unit()), 7));
+                assert_eq!(kept_bytes(&heap), pages(unit()));
+                fill_and_check(grown, pages(8 * unit()), 9);
+                heap.dealloc(grown, layout(8 * unit()));
             }
-            let mut kept = heap.kept();
-            while let Some(run) = kept.take_largest() {
-                unmap(run);
-            }
+            unmap_all(&heap);
         }
 
         /// Small blocks growing past their highest count take kept pages away, as many bytes.
@@ -614,10 +616,7 @@ mod linux {
             heap.small_shrunk(LARGE + pages(3));
             heap.small_grown(LARGE + pages(3));
             assert_eq!(kept_bytes(&heap), before - released);
-            let mut kept = heap.kept();
-            while let Some(run) = kept.take_largest() {
-                unmap(run);
-            }
+            unmap_all(&heap);
         }
 
         #[test]
