@@ -399,12 +399,11 @@ mod linux {
                 let (old_len, new_len) = (whole_pages(layout.size()), whole_pages(new_size));
                 let start = block as usize;
                 if new_len <= old_len {
-                    if let Some(tail) = (Run {
+                    let whole = Run {
                         start,
                         len: old_len,
-                    })
-                    .after(new_len)
-                    {
+                    };
+                    if let Some(tail) = whole.after(new_len) {
                         self.give_back(tail);
                     }
                     return block;
@@ -565,7 +564,8 @@ mod linux {
         }
 
         /// A block larger than every kept run takes the largest, grown, and unmaps as many kept
-        /// bytes as it needs fresh pages, smallest runs first; so does a block grown in place.
+        /// bytes as it needs fresh pages, smallest runs first; so does a growing block. A
+        /// shrinking one keeps its place and gives its tail back.
         #[test]
         fn a_block_larger_than_every_kept_run_grows_the_largest() {
             let heap = Recycling::new();
@@ -588,7 +588,12 @@ mod linux {
                 assert!(holds(grown, pages(6 * unit()), 7));
                 assert_eq!(kept_bytes(&heap), pages(unit()));
                 fill_and_check(grown, pages(8 * unit()), 9);
-                heap.dealloc(grown, layout(8 * unit()));
+                // Shrunk, still large: in place, its tail kept.
+                let shrunk = heap.realloc(grown, layout(8 * unit()), pages(5 * unit()));
+                assert_eq!(shrunk, grown);
+                assert!(holds(shrunk, pages(5 * unit()), 9));
+                assert_eq!(kept_bytes(&heap), pages(4 * unit()));
+                heap.dealloc(shrunk, layout(5 * unit()));
             }
             unmap_all(&heap);
         }
