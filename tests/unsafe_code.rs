@@ -76,8 +76,8 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
 }
 
 /// The lines (1-based) of `text` that use `unsafe` without a `// SAFETY:` line in the comment
-/// block directly above them; the `unsafe fn` signatures that the `GlobalAlloc` trait imposes
-/// are exempt (their callers carry the contract).
+/// block directly above them; `unsafe fn` signatures are exempt (the `GlobalAlloc` trait or the
+/// function's `# Safety` section states the contract, which their callers carry).
 fn unsafe_without_safety_comment(text: &str) -> Vec<usize> {
     let lines: Vec<&str> = text.lines().collect();
     let mut found = Vec::new();

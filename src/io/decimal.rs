@@ -453,6 +453,22 @@ fn product_with_power_of_five(w: u64, q: i32) -> (u32, u64, u64) {
     (zeros, low, high)
 }
 
+/// The 55-bit `mantissa` (its last bit the rounding bit) of the product's `high` word rounded
+/// to 54 bits, to nearest; exactly halfway (the product is exact and the dropped bits are one
+/// then zeros) to even, by not rounding the odd mantissa up. Both conversions end so.
+#[inline(always)]
+fn round_half_to_even(mut mantissa: u64, low: u64, high: u64, q: i32, upper_bit: i32) -> u64 {
+    if low <= 1
+        && ROUND_TO_EVEN.contains(&q)
+        && mantissa & 3 == 1
+        && (mantissa << (upper_bit + 64 - MANTISSA_BITS - 3)) == high
+    {
+        mantissa &= !1;
+    }
+    mantissa += mantissa & 1;
+    mantissa >> 1
+}
+
 /// [`eisel_lemire`] for `q` in [`NEAR_POWERS`] (`w` nonzero), without the steps that cannot
 /// happen there (no ambiguous product, no subnormal, no overflow: always a result), and the
 /// carry of the rounding into the exponent taken by adding the fields instead of by a branch.
@@ -463,19 +479,11 @@ fn eisel_lemire_near(w: u64, q: i32) -> f64 {
     let (zeros, low, high) = product_with_power_of_five(w, q);
     // Both factors have their top bit set: `high` has bit 63 or 62, and `mantissa` 54 bits.
     let upper_bit = (high >> 63) as i32;
-    let mut mantissa = high >> (upper_bit + 64 - MANTISSA_BITS - 3);
+    let mantissa = high >> (upper_bit + 64 - MANTISSA_BITS - 3);
     let power_of_ten_bits = ((q.wrapping_mul(152_170 + 65_536)) >> 16) + 63;
     // At least 1023 - 90 here: a normal number.
     let power2 = power_of_ten_bits + upper_bit - zeros as i32 + 1023;
-    if low <= 1
-        && ROUND_TO_EVEN.contains(&q)
-        && mantissa & 3 == 1
-        && (mantissa << (upper_bit + 64 - MANTISSA_BITS - 3)) == high
-    {
-        mantissa &= !1;
-    }
-    mantissa += mantissa & 1;
-    mantissa >>= 1;
+    let mantissa = round_half_to_even(mantissa, low, high, q, upper_bit);
     // 2^52 <= mantissa <= 2^53: its implicit bit adds one to the exponent field below it, and
     // a rounding that reached 2^53 adds two, with a zero fraction, as it should.
     f64::from_bits((((power2 - 1) as u64) << MANTISSA_BITS) + mantissa)
@@ -513,17 +521,7 @@ fn eisel_lemire(w: u64, q: i32) -> Option<f64> {
         let biased = u64::from(mantissa >= 1 << MANTISSA_BITS);
         return Some(f64::from_bits(mantissa | (biased << MANTISSA_BITS)));
     }
-    // Exactly halfway (the product is exact and the dropped bits are one then zeros): round to
-    // even by not rounding the odd mantissa up.
-    if low <= 1
-        && ROUND_TO_EVEN.contains(&q)
-        && mantissa & 3 == 1
-        && (mantissa << (upper_bit + 64 - MANTISSA_BITS - 3)) == high
-    {
-        mantissa &= !1;
-    }
-    mantissa += mantissa & 1;
-    mantissa >>= 1;
+    mantissa = round_half_to_even(mantissa, low, high, q, upper_bit);
     if mantissa >= 2 << MANTISSA_BITS {
         // Rounding carried into a new bit.
         mantissa = 1 << MANTISSA_BITS;

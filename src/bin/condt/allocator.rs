@@ -110,9 +110,14 @@ mod linux {
             Some(self.remove(k))
         }
 
+        /// Where the smallest kept run is.
+        fn smallest(&self) -> Option<usize> {
+            (0..self.count).min_by_key(|&k| self.runs[k].len)
+        }
+
         /// The smallest kept run, removed.
         fn take_smallest(&mut self) -> Option<Run> {
-            let k = (0..self.count).min_by_key(|&k| self.runs[k].len)?;
+            let k = self.smallest()?;
             Some(self.remove(k))
         }
 
@@ -131,7 +136,7 @@ mod linux {
                 self.count += 1;
                 return None;
             }
-            let k = (0..self.count).min_by_key(|&k| self.runs[k].len)?;
+            let k = self.smallest()?;
             if self.runs[k].len >= run.len {
                 return Some(run);
             }
@@ -259,6 +264,27 @@ mod linux {
                 unmap(dropped.start, dropped.len);
             }
         }
+
+        /// [`GlobalAlloc::alloc`], or [`GlobalAlloc::alloc_zeroed`] when `zeroed`.
+        ///
+        /// # Safety
+        /// The contract of [`GlobalAlloc::alloc`]: `layout` has a non-zero size.
+        unsafe fn allocate(&self, layout: Layout, zeroed: bool) -> *mut u8 {
+            if is_large(layout.size(), layout.align()) {
+                return self.take(whole_pages(layout.size()), zeroed);
+            }
+            let block = if zeroed {
+                // SAFETY: the caller's contract, passed on.
+                unsafe { System.alloc_zeroed(layout) }
+            } else {
+                // SAFETY: the caller's contract, passed on.
+                unsafe { System.alloc(layout) }
+            };
+            if !block.is_null() {
+                self.small_grown(layout.size());
+            }
+            block
+        }
     }
 
     /// Whether a block of this layout is a page run of its own.
@@ -345,27 +371,13 @@ mod linux {
     // keeps its kind).
     unsafe impl GlobalAlloc for Recycling {
         unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-            if is_large(layout.size(), layout.align()) {
-                return self.take(whole_pages(layout.size()), false);
-            }
             // SAFETY: the caller's contract, passed on.
-            let block = unsafe { System.alloc(layout) };
-            if !block.is_null() {
-                self.small_grown(layout.size());
-            }
-            block
+            unsafe { self.allocate(layout, false) }
         }
 
         unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-            if is_large(layout.size(), layout.align()) {
-                return self.take(whole_pages(layout.size()), true);
-            }
             // SAFETY: the caller's contract, passed on.
-            let block = unsafe { System.alloc_zeroed(layout) };
-            if !block.is_null() {
-                self.small_grown(layout.size());
-            }
-            block
+            unsafe { self.allocate(layout, true) }
         }
 
         unsafe fn dealloc(&self, block: *mut u8, layout: Layout) {
