@@ -28,6 +28,12 @@ pub(crate) trait Kernel {
     /// compiler build the value and then test it again (3 % more instructions in `insert`).
     fn orient2d_sign(a: Point, b: Point, c: Point) -> f64;
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool;
+    /// [`Kernel::in_circle`]`(u, w, v, q)` for the new point `v` of an insertion, which every
+    /// test of the insertion shares (a kernel may compute around it).
+    #[inline(always)]
+    fn in_circle_around(v: Point, u: Point, w: Point, q: Point) -> bool {
+        Self::in_circle(u, w, v, q)
+    }
     /// For `p` on the inner side of the hull edge `a → b`: whether it lies past `b` (`Forward`)
     /// or before `a` (`Backward`) along the edge, or between (`Done`). It only guides the walk
     /// along the hull (see [`Builder::ghost_step`]), which needs it exact only to be sure to end.
@@ -58,6 +64,10 @@ impl Kernel for Fast {
     #[inline(always)]
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
         predicates::fast_in_circle(a, b, c, d)
+    }
+    #[inline(always)]
+    fn in_circle_around(v: Point, u: Point, w: Point, q: Point) -> bool {
+        predicates::fast_in_circle_around(v, u, w, q)
     }
     /// In floating point: coordinates below 2 cannot overflow, and a rounding error can only
     /// make one slide more or less, which the one-way rule keeps finite.
@@ -535,6 +545,7 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     /// The edges wait on a stack; after a flip, the edge the stack would give next is tested
     /// at once instead of going through it (the same order of tests, one push and pop fewer).
     fn restore_delaunay(&mut self, v: VertexId) {
+        let pv = self.point(v);
         let mut next = self.flips.pop();
         while let Some(e) = next {
             // `e = u → w` lies in the triangle (u, w, v); across it is (w, u, q).
@@ -542,7 +553,7 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
             let (f_base, f_corner) = f.base_and_corner();
             let (u, w) = (self.origin(e), self.origin(f));
             let q = self.origin(HalfEdgeId::at(f_base, wrap3(f_corner + 2)));
-            next = if self.is_illegal(u, w, v, q) {
+            next = if self.is_illegal(u, w, pv, q) {
                 Some(self.flip(e, (f_base, f_corner), [u, w, q], v))
             } else {
                 self.flips.pop()
@@ -550,23 +561,22 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// Whether the edge `u – w`, with `v` on its left and `q` on its right, must be flipped.
+    /// Whether the edge `u – w`, with the new vertex (at `pv`) on its left and `q` on its right,
+    /// must be flipped.
     #[inline]
-    fn is_illegal(&self, u: VertexId, w: VertexId, v: VertexId, q: VertexId) -> bool {
+    fn is_illegal(&self, u: VertexId, w: VertexId, pv: Point, q: VertexId) -> bool {
         // The vertex at infinity has the largest id: one comparison settles the common case.
         if !u.max(w).max(q).is_infinite() {
-            K::in_circle(self.point(u), self.point(w), self.point(v), self.point(q))
+            K::in_circle_around(pv, self.point(u), self.point(w), self.point(q))
         } else if q.is_infinite() {
             // A hull edge seen from inside: always kept.
             false
         } else if u.is_infinite() {
             // Edge ∞ – w between ghosts (∞, w, v) and (q, w, ∞): flip when v sees hull edge q → w.
-            K::orient2d(self.point(q), self.point(w), self.point(v)) == Orientation::Ccw
-        } else if w.is_infinite() {
-            // Edge u – ∞ between ghosts (u, ∞, v) and (u, q, ∞): flip when v sees hull edge u → q.
-            K::orient2d(self.point(u), self.point(q), self.point(v)) == Orientation::Ccw
+            K::orient2d(self.point(q), self.point(w), pv) == Orientation::Ccw
         } else {
-            K::in_circle(self.point(u), self.point(w), self.point(v), self.point(q))
+            // Edge u – ∞ between ghosts (u, ∞, v) and (u, q, ∞): flip when v sees hull edge u → q.
+            K::orient2d(self.point(u), self.point(q), pv) == Orientation::Ccw
         }
     }
 
