@@ -543,21 +543,32 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     /// Flips illegal edges opposite the new vertex `v` until none is left.
     ///
     /// The edges wait on a stack; after a flip, the edge the stack would give next is tested
-    /// at once instead of going through it (the same order of tests, one push and pop fewer).
+    /// at once instead of going through it (the same order of tests, one push and pop fewer),
+    /// with its twin and ends as the flip knew them.
     fn restore_delaunay(&mut self, v: VertexId) {
         let pv = self.point(v);
-        let mut next = self.flips.pop();
-        while let Some(e) = next {
-            // `e = u → w` lies in the triangle (u, w, v); across it is (w, u, q).
-            let f = self.twin(e);
+        let mut next = self.flips.pop().map(|e| self.to_test(e));
+        while let Some(Opposite { e, f, u, w }) = next {
+            // `e = u → w` lies in the triangle (u, w, v); across it, `f` in (w, u, q).
             let (f_base, f_corner) = f.base_and_corner();
-            let (u, w) = (self.origin(e), self.origin(f));
             let q = self.origin(HalfEdgeId::at(f_base, wrap3(f_corner + 2)));
             next = if self.is_illegal(u, w, pv, q) {
                 Some(self.flip(e, (f_base, f_corner), [u, w, q], v))
             } else {
-                self.flips.pop()
+                self.flips.pop().map(|e| self.to_test(e))
             };
+        }
+    }
+
+    /// The edge `e` opposite the new vertex, with its twin and ends, as [`Opposite`] holds them.
+    #[inline(always)]
+    fn to_test(&self, e: HalfEdgeId) -> Opposite {
+        let f = self.twin(e);
+        Opposite {
+            e,
+            f,
+            u: self.origin(e),
+            w: self.origin(f),
         }
     }
 
@@ -593,14 +604,15 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     /// ```
     ///
     /// `f` comes as its triangle's first half-edge and its corner, `[u, w, q]` as read by the
-    /// caller: the flip reuses them instead of dividing and loading again.
+    /// caller: the flip reuses them instead of dividing and loading again, and returns the
+    /// second edge with its twin and ends for the same reason.
     fn flip(
         &mut self,
         e: HalfEdgeId,
         f: (usize, usize),
         [u, w, q]: [VertexId; 3],
         v: VertexId,
-    ) -> HalfEdgeId {
+    ) -> Opposite {
         let (e_base, e_corner) = e.base_and_corner();
         let (f_base, f_corner) = f;
         let at = HalfEdgeId::at;
@@ -622,8 +634,23 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         m.set_twin(out_wv, at(f_base, 2));
         self.flips.push(at(e_base, 1));
         self.hint = at(e_base, 0);
-        at(f_base, 1)
+        Opposite {
+            e: at(f_base, 1),
+            f: out_qw,
+            u: q,
+            w,
+        }
     }
+}
+
+/// An edge `u → w` opposite the new vertex, about to be tested: the half-edge `e` in the new
+/// vertex's triangle and its twin `f`.
+#[derive(Copy, Clone)]
+struct Opposite {
+    e: HalfEdgeId,
+    f: HalfEdgeId,
+    u: VertexId,
+    w: VertexId,
 }
 
 /// Where a point collinear with a segment `a → b` lies relative to it.
