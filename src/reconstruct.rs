@@ -476,6 +476,32 @@ enum KeptInputs<'p> {
     Moved(MovedInputs),
 }
 
+impl<'p> KeptInputs<'p> {
+    /// The same input, once `tri` is the triangulation of the pass's `positions`: the points
+    /// that did not move are read from `tri` from now on, so when it does not give every
+    /// position back (merged duplicates, signed zeros) all of the input is kept instead.
+    fn read_from(self, tri: &Triangulation, positions: &[Point]) -> KeptInputs<'p> {
+        match self {
+            KeptInputs::Moved(kept) if !gives_back(tri, positions) => {
+                let all = (0..positions.len())
+                    .map(|i| kept.point(i, positions[i]))
+                    .collect();
+                KeptInputs::All(Cow::Owned(all))
+            }
+            kept => kept,
+        }
+    }
+
+    /// The input position of point `i`, where `tri` has it now.
+    #[cfg(test)]
+    fn point(&self, i: usize, tri: &Triangulation) -> Point {
+        match self {
+            KeptInputs::All(points) => points[i],
+            KeptInputs::Moved(moved) => moved.point(i, tri.point(i)),
+        }
+    }
+}
+
 /// The input positions of the points that smoothing passes moved, in input order, with a bit
 /// per point saying which; every other point is where the latest positions have it. Reason:
 /// the input is held through every pass, and the passes move about two points in three of
@@ -878,15 +904,7 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
             earlier_passes += triangulation_time;
             earlier_passes += clock.lap();
             let tri = triangulate_with(&positions, params.parallel)?;
-            if let KeptInputs::Moved(kept) = &inputs {
-                // The points that did not move are read from the triangulation from now on:
-                // when it does not give them back (merged duplicates, signed zeros), all the
-                // input is kept.
-                if !gives_back(&tri, &positions) {
-                    let all = (0..n).map(|i| kept.point(i, positions[i])).collect();
-                    inputs = KeptInputs::All(Cow::Owned(all));
-                }
-            }
+            inputs = inputs.read_from(&tri, &positions);
             drop(positions);
             let triangulation_time = clock.lap();
             let run = if last_pass {
@@ -1424,6 +1442,39 @@ mod tests {
         }
         let moved = input.iter().zip(&now).filter(|(p, q)| !same_bits(**p, **q));
         assert_eq!(kept.points.len(), moved.count());
+    }
+
+    /// A pass whose triangulation does not give its positions back (a point moved onto one that
+    /// stays, but for the sign of a zero: the triangulation merges the two and gives both back
+    /// with the bits of the smaller position, so the one that stays comes back changed) switches to keeping all of the input, and every input position is still given back
+    /// bit for bit, moved or not; a pass whose triangulation gives its positions back (here
+    /// with an exact duplicate, merged too, but the same bits) keeps only the moved ones.
+    #[test]
+    fn a_pass_that_merges_points_keeps_all_of_the_input() {
+        let mut rng = Xorshift::new(11);
+        let mut input: Vec<Point> = (0..300)
+            .map(|_| Point::new(rng.unit() + 0.5, rng.unit() + 0.5))
+            .collect();
+        input[10] = Point::new(0.0, 0.75);
+        let first = triangulate(&input).unwrap();
+        assert!(gives_back(&first, &input));
+        let mut ordinary = input.clone();
+        ordinary[4].y += 1e-3;
+        ordinary[7] = ordinary[8];
+        let mut merging = ordinary.clone();
+        // Point 9 moves onto point 10, which stays, but for the sign of its zero.
+        merging[9] = Point::new(-0.0, 0.75);
+        for (positions, keeps_all) in [(&ordinary, false), (&merging, true)] {
+            let mut moved = MovedInputs::new(input.len());
+            moved.add(&first, positions);
+            let tri = triangulate(positions).unwrap();
+            assert_eq!(gives_back(&tri, positions), !keeps_all);
+            let kept = KeptInputs::Moved(moved).read_from(&tri, positions);
+            assert_eq!(matches!(kept, KeptInputs::All(_)), keeps_all);
+            for (i, &p) in input.iter().enumerate() {
+                assert!(same_bits(kept.point(i, &tri), p), "point {i}");
+            }
+        }
     }
 
     /// Every stage's graph as `stages()` rebuilds it is the graph the stage left: running the
