@@ -1446,9 +1446,10 @@ mod tests {
 
     /// A pass whose triangulation does not give its positions back (a point moved onto one that
     /// stays, but for the sign of a zero: the triangulation merges the two and gives both back
-    /// with the bits of the smaller position, so the one that stays comes back changed) switches to keeping all of the input, and every input position is still given back
-    /// bit for bit, moved or not; a pass whose triangulation gives its positions back (here
-    /// with an exact duplicate, merged too, but the same bits) keeps only the moved ones.
+    /// with the bits of the smaller position, so the one that stays comes back changed)
+    /// switches to keeping all of the input, and every input position is still given back bit
+    /// for bit, moved or not; a pass whose triangulation gives its positions back (here with an
+    /// exact duplicate, merged too, but the same bits) keeps only the moved ones.
     #[test]
     fn a_pass_that_merges_points_keeps_all_of_the_input() {
         let mut rng = Xorshift::new(11);
