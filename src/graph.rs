@@ -197,8 +197,8 @@ impl<'t> Graph<'t> {
             "confirm_given_back: the two graphs live on different triangulations"
         );
         let earlier = Earlier {
-            before_outliers: &self.edges,
-            before_local: &before_local.edges,
+            before_outliers: Cow::Borrowed(&self.edges),
+            before_local: Cow::Borrowed(&before_local.edges),
         };
         self.step_with(Step::ConfirmGivenBack, earlier).0
     }
@@ -238,8 +238,8 @@ impl<'t> Graph<'t> {
     /// started from (see `Step::run`).
     fn step_after(&self, step: Step, before_outliers: &[Edge]) -> (Graph<'t>, bool) {
         let earlier = Earlier {
-            before_outliers,
-            before_local: &self.edges,
+            before_outliers: Cow::Borrowed(before_outliers),
+            before_local: Cow::Borrowed(&self.edges),
         };
         self.step_with(step, earlier)
     }

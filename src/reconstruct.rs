@@ -1122,11 +1122,10 @@ fn run_stages(
         let before_outliers = input_of(Stage::Outliers, step == Step::LocalOutliers);
         let before_local = input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack);
         let earlier = Earlier {
-            before_outliers: &before_outliers,
-            before_local: &before_local,
+            before_outliers,
+            before_local,
         };
         let outcome = step.run(&tri, &current, earlier, current_graph.take());
-        drop((before_outliers, before_local));
         current_graph = outcome.graph;
         let undo = match outcome.edges {
             None => Undo::Unchanged,
@@ -1656,15 +1655,17 @@ mod tests {
                     before_local = current.clone();
                 }
                 let earlier = Earlier {
-                    before_outliers: &before_outliers,
-                    before_local: if step == Step::ConfirmGivenBack && before_local == current {
-                        &current
-                    } else {
-                        &before_local
-                    },
+                    before_outliers: Cow::Borrowed(&before_outliers),
+                    before_local: Cow::Borrowed(
+                        if step == Step::ConfirmGivenBack && before_local == current {
+                            &current
+                        } else {
+                            &before_local
+                        },
+                    ),
                 };
                 let given = graph.is_some();
-                let with = step.run(&tri, &current, earlier, graph.take());
+                let with = step.run(&tri, &current, earlier.clone(), graph.take());
                 let without = step.run(&tri, &current, earlier, None);
                 assert_eq!(
                     with.edges, without.edges,

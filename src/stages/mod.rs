@@ -25,6 +25,7 @@ pub use repair::Repair;
 use crate::adjacency::{CurveGraph, Edge};
 use crate::error::Error;
 use crate::triangulate::Triangulation;
+use alloc::borrow::Cow;
 use alloc::vec::Vec;
 
 /// The stages of a reconstruction, as [`Reconstruction::stages`](crate::Reconstruction::stages)
@@ -113,15 +114,16 @@ pub(crate) enum Step {
     CloseGaps,
 }
 
-/// The graphs of earlier stages that a step may read besides its input (see [`Step::run`]).
-#[derive(Copy, Clone)]
+/// The graphs of earlier stages that a step may read besides its input (see [`Step::run`]),
+/// handed over so that the step frees one it has read once it is done with it.
+#[derive(Clone)]
 pub(crate) struct Earlier<'a> {
     /// The graph the IQR stage ([`Step::Outliers`]) started from, or the step's input when that
     /// stage has not run.
-    pub(crate) before_outliers: &'a [Edge],
+    pub(crate) before_outliers: Cow<'a, [Edge]>,
     /// The graph the local outlier removal ([`Step::LocalOutliers`]) started from, or the step's
     /// input when that stage has not run.
-    pub(crate) before_local: &'a [Edge],
+    pub(crate) before_local: Cow<'a, [Edge]>,
 }
 
 impl Step {
@@ -188,7 +190,7 @@ impl Step {
                 )
             }
             Step::ConfirmGivenBack => {
-                given_back::confirm_given_back(tri, edges, earlier.before_local, graph)
+                given_back::confirm_given_back(tri, edges, &earlier.before_local, graph)
             }
             Step::CloseGaps => gaps::close_gaps(tri, edges, graph),
         }
