@@ -12,6 +12,7 @@
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
+use alloc::boxed::Box;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -32,8 +33,10 @@ use alloc::vec::Vec;
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Curve {
-    /// Input positions in order; 32 bits, as the kernel stores every index.
-    points: Vec<u32>,
+    /// Input positions in order; 32 bits, as the kernel stores every index. Boxed at its
+    /// length: uniform points make a curve for every eight points, where a `Vec`'s capacity
+    /// took a byte per point.
+    points: Box<[u32]>,
     closed: bool,
 }
 
@@ -194,6 +197,8 @@ pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> V
             ));
         }
     }
+    // Grown by doubling: up to half of it was room (3 bytes per point of uniform points).
+    curves.shrink_to_fit();
     curves
 }
 
@@ -223,7 +228,10 @@ fn walk(
     let mut points = Vec::with_capacity(path.len() + usize::from(!closed));
     points.push(name(start));
     points.extend_from_slice(&path[..path.len() - usize::from(closed)]);
-    Curve { points, closed }
+    Curve {
+        points: points.into_boxed_slice(),
+        closed,
+    }
 }
 
 #[cfg(test)]

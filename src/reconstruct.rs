@@ -450,7 +450,7 @@ pub struct Reconstruction {
     /// The final edges, sorted, in input positions (32-bit, as the kernel stores indices).
     edges: Vec<[u32; 2]>,
     /// Final degree of every input point.
-    degrees: Vec<u32>,
+    degrees: Degrees,
     curves: Vec<Curve>,
     unused: Vec<usize>,
     triangulation_time: Duration,
@@ -736,7 +736,7 @@ impl Reconstruction {
     /// # Panics
     /// If `index` is not an input position.
     pub fn degree(&self, index: usize) -> usize {
-        self.degrees[index] as usize
+        self.degrees.get(index)
     }
 
     /// The coordinates of input point `index`, exactly as given.
@@ -872,7 +872,7 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
     };
     let (mut result, _) = stages_on(tri, params, first_run)?;
     result.triangulation_time = triangulation_time;
-    if may_smooth && shows_noise(result.degrees.iter().map(|&d| d as usize)) {
+    if may_smooth && shows_noise(result.degrees.iter()) {
         // Each pass smooths along the previous pass's final graph and reconstructs the moved
         // points; the passes stop at a fixed point (the same final edges) or after
         // `MAX_PASSES` (src/smooth.rs gives the reasons).
@@ -1176,8 +1176,7 @@ fn run_stages(
     let curves_time = clock.lap();
     // The curve graph's degrees are the tally's.
     debug_assert!(
-        assembly != CurveAssembly::UnlessNoisy
-            || curves_now != shows_noise(tally.degrees.iter().map(|&d| d as usize))
+        assembly != CurveAssembly::UnlessNoisy || curves_now != shows_noise(tally.degrees.iter())
     );
     let result = Reconstruction {
         params: *params,
@@ -1217,9 +1216,64 @@ fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
     work()
 }
 
+/// The degree of every input point in a byte, the rare degree above 254 in a sorted side list.
+/// Reason: the list is kept in the result and is alive at the last step's peak, where four
+/// bytes a point were 3 more than any graph of the stages needs.
+#[derive(Clone, Debug, Default)]
+struct Degrees {
+    /// The degree, or [`Degrees::LARGE`] when it is in `large`.
+    small: Vec<u8>,
+    /// `(input position, degree)` of every degree from [`Degrees::LARGE`] up, by position.
+    large: Vec<(u32, u32)>,
+}
+
+impl Degrees {
+    const LARGE: u8 = u8::MAX;
+
+    fn with_capacity(n: usize) -> Degrees {
+        Degrees {
+            small: Vec::with_capacity(n),
+            large: Vec::new(),
+        }
+    }
+
+    /// Appends the degree of the next input position.
+    fn push(&mut self, degree: usize) {
+        match u8::try_from(degree) {
+            Ok(small) if small < Self::LARGE => self.small.push(small),
+            _ => {
+                let position = self.small.len() as u32;
+                self.large.push((position, degree as u32));
+                self.small.push(Self::LARGE);
+            }
+        }
+    }
+
+    fn get(&self, index: usize) -> usize {
+        match self.small[index] {
+            Self::LARGE => {
+                let at = self
+                    .large
+                    .binary_search_by_key(&(index as u32), |&(position, _)| position);
+                // Every LARGE byte has its entry: `push` writes both.
+                at.map_or(usize::from(Self::LARGE), |k| self.large[k].1 as usize)
+            }
+            small => usize::from(small),
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.small.len()
+    }
+
+    fn iter(&self) -> impl ExactSizeIterator<Item = usize> + '_ {
+        (0..self.len()).map(|i| self.get(i))
+    }
+}
+
 /// The final graph seen from the input positions.
 struct Tally {
-    degrees: Vec<u32>,
+    degrees: Degrees,
     unused: Vec<usize>,
     edges: Vec<[u32; 2]>,
 }
@@ -1240,7 +1294,7 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
     let n = tri.num_points();
     // Without duplicates every input position stands for its own vertex: no need to look.
     let has_duplicates = tri.num_vertices() < n;
-    let mut degrees = Vec::with_capacity(n);
+    let mut degrees = Degrees::with_capacity(n);
     let mut unused = Vec::new();
     // Room for the two candidates a vertex writes past the last edge it lists.
     let mut edges: Vec<[u32; 2]> = alloc::vec![[0, 0]; edge_count + 2];
@@ -1269,7 +1323,7 @@ fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
             }
         }
         let degree = graph.degree(v);
-        degrees.push(degree as u32);
+        degrees.push(degree);
         let i = i as u32;
         if degree == 0 {
             unused.push(i as usize);
@@ -1441,6 +1495,23 @@ mod tests {
         }
         let moved = input.iter().zip(&now).filter(|(p, q)| !same_bits(**p, **q));
         assert_eq!(kept.points.len(), moved.count());
+    }
+
+    /// Degrees of 255 and more go to the side list and come back exactly, in order, beside
+    /// the small ones around them.
+    #[test]
+    fn degrees_keep_large_values_exactly() {
+        let values = [0, 2, 254, 255, 300, 1, 70_000, 254, u32::MAX as usize, 3];
+        let mut degrees = Degrees::with_capacity(values.len());
+        for &d in &values {
+            degrees.push(d);
+        }
+        assert_eq!(degrees.len(), values.len());
+        assert_eq!(degrees.large.len(), 4);
+        for (i, &d) in values.iter().enumerate() {
+            assert_eq!(degrees.get(i), d, "position {i}");
+        }
+        assert!(degrees.iter().eq(values.iter().copied()));
     }
 
     /// A pass whose triangulation does not give its positions back (a point moved onto one that
