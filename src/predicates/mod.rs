@@ -258,22 +258,7 @@ const ORIENT2D_FILTER: f64 = 3.3306690621773722e-16;
 pub(crate) fn fast_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
     // Most calls are far from cocircular: decide those inline with Shewchuk's first-stage bound
     // (Shewchuk 1997, `incircle`, error bound A), and let `robust` settle the rest exactly.
-    let (adx, ady) = (a.x - d.x, a.y - d.y);
-    let (bdx, bdy) = (b.x - d.x, b.y - d.y);
-    let (cdx, cdy) = (c.x - d.x, c.y - d.y);
-    let (bc, cb) = (bdx * cdy, cdx * bdy);
-    let (ca, ac) = (cdx * ady, adx * cdy);
-    let (ab, ba) = (adx * bdy, bdx * ady);
-    let (alift, blift, clift) = (
-        adx * adx + ady * ady,
-        bdx * bdx + bdy * bdy,
-        cdx * cdx + cdy * cdy,
-    );
-    let det = alift * (bc - cb) + blift * (ca - ac) + clift * (ab - ba);
-    let permanent = (bc.abs() + cb.abs()) * alift
-        + (ca.abs() + ac.abs()) * blift
-        + (ab.abs() + ba.abs()) * clift;
-    let bound = IN_CIRCLE_FILTER * permanent;
+    let (det, bound) = in_circle_det(a, b, c, d);
     if det > bound {
         true
     } else if -det > bound {
@@ -292,9 +277,24 @@ pub(crate) fn fast_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
 /// the same exact test, so every answer is the same as [`fast_in_circle`]'s.
 #[inline(always)]
 pub(crate) fn fast_in_circle_around(v: Point, u: Point, w: Point, q: Point) -> bool {
-    let (adx, ady) = (u.x - v.x, u.y - v.y);
-    let (bdx, bdy) = (w.x - v.x, w.y - v.y);
-    let (cdx, cdy) = (q.x - v.x, q.y - v.y);
+    let (det, bound) = in_circle_det(u, w, q, v);
+    if -det > bound {
+        true
+    } else if det > bound {
+        false
+    } else {
+        undecided_in_circle(u, w, v, q)
+    }
+}
+
+/// The in-circle determinant of `a, b, c, d` in floating point, with the differences taken from
+/// `d` (positive when `d` is inside the circle of the counter-clockwise `a, b, c`), and the
+/// bound on its rounding error: its sign is exact when its magnitude exceeds the bound.
+#[inline(always)]
+fn in_circle_det(a: Point, b: Point, c: Point, d: Point) -> (f64, f64) {
+    let (adx, ady) = (a.x - d.x, a.y - d.y);
+    let (bdx, bdy) = (b.x - d.x, b.y - d.y);
+    let (cdx, cdy) = (c.x - d.x, c.y - d.y);
     let (bc, cb) = (bdx * cdy, cdx * bdy);
     let (ca, ac) = (cdx * ady, adx * cdy);
     let (ab, ba) = (adx * bdy, bdx * ady);
@@ -307,14 +307,7 @@ pub(crate) fn fast_in_circle_around(v: Point, u: Point, w: Point, q: Point) -> b
     let permanent = (bc.abs() + cb.abs()) * alift
         + (ca.abs() + ac.abs()) * blift
         + (ab.abs() + ba.abs()) * clift;
-    let bound = IN_CIRCLE_FILTER * permanent;
-    if -det > bound {
-        true
-    } else if det > bound {
-        false
-    } else {
-        undecided_in_circle(u, w, v, q)
-    }
+    (det, IN_CIRCLE_FILTER * permanent)
 }
 
 /// [`fast_in_circle`] past its filter: cocircular or nearly so. Small integers on a common grid
