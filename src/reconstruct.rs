@@ -1219,7 +1219,7 @@ fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
 /// The degree of every input point in a byte, the rare degree above 254 in a sorted side list.
 /// Reason: the list is kept in the result and is alive at the last step's peak, where four
 /// bytes a point were 3 more than any graph of the stages needs.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Default)]
 struct Degrees {
     /// The degree, or [`Degrees::LARGE`] when it is in `large`.
     small: Vec<u8>,
@@ -1256,6 +1256,7 @@ impl Degrees {
                     .large
                     .binary_search_by_key(&(index as u32), |&(position, _)| position);
                 // Every LARGE byte has its entry: `push` writes both.
+                debug_assert!(at.is_ok(), "degree {index} missing from the side list");
                 at.map_or(usize::from(Self::LARGE), |k| self.large[k].1 as usize)
             }
             small => usize::from(small),
@@ -1268,6 +1269,13 @@ impl Degrees {
 
     fn iter(&self) -> impl ExactSizeIterator<Item = usize> + '_ {
         (0..self.len()).map(|i| self.get(i))
+    }
+}
+
+/// The degrees as a list, as `Reconstruction`'s `Debug` showed them before they were packed.
+impl core::fmt::Debug for Degrees {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
     }
 }
 
@@ -1512,6 +1520,11 @@ mod tests {
             assert_eq!(degrees.get(i), d, "position {i}");
         }
         assert!(degrees.iter().eq(values.iter().copied()));
+        assert_eq!(
+            alloc::format!("{degrees:?}"),
+            alloc::format!("{values:?}"),
+            "Debug shows the degrees as a list"
+        );
     }
 
     /// A pass whose triangulation does not give its positions back (a point moved onto one that
