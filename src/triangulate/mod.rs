@@ -649,11 +649,7 @@ mod tests {
     fn fast_exact_and_integer_kernels_build_the_same_mesh() {
         let mut rng = Xorshift::new(0x082e_fa98_ec4e_6c89);
         let mut sets: Vec<Vec<Point>> = Vec::new();
-        sets.push(
-            (0..400)
-                .map(|_| Point::new(rng.unit(), rng.unit()))
-                .collect(),
-        );
+        sets.push(rng.unit_points(400));
         sets.push(
             (0..225)
                 .map(|i| Point::new((i % 15) as f64 / 8.0, (i / 15) as f64 / 8.0))
@@ -757,9 +753,7 @@ mod tests {
     #[test]
     fn passes_after_the_construction_match_on_two_threads() {
         let mut rng = Xorshift::new(0x5ea1);
-        let mut points: Vec<Point> = (0..PARALLEL_MIN + 4321)
-            .map(|_| Point::new(rng.unit(), rng.unit()))
-            .collect();
+        let mut points: Vec<Point> = rng.unit_points(PARALLEL_MIN + 4321);
         for k in 0..500 {
             let copy = points[(k * 131) % points.len()];
             points.push(copy);
