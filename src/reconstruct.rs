@@ -458,21 +458,16 @@ pub struct Reconstruction {
     smoothing: Option<Smoothing>,
     /// The input positions, kept only when smoothing passes moved points (the triangulation
     /// then holds the moved ones).
-    input_points: Option<InputPoints>,
+    input_points: Option<KeptInputs<'static>>,
 }
 
-/// The input positions of a reconstruction whose smoothing passes moved points.
+/// The input positions of a reconstruction whose smoothing passes moved points; while the
+/// passes run, a borrowed input is kept borrowed, and the result holds its copy.
 #[derive(Clone, Debug)]
-enum InputPoints {
-    /// All of them (a borrowed input, or one that the triangulation does not give back).
-    All(Vec<Point>),
-    /// Those of the points some pass moved; every other point is where the triangulation has it.
-    Moved(MovedInputs),
-}
-
-/// [`InputPoints`] while the passes run, before a borrowed input is copied into the result.
 enum KeptInputs<'p> {
+    /// All of them (a borrowed input, or one that the triangulation does not give back).
     All(Cow<'p, [Point]>),
+    /// Those of the points some pass moved; every other point is where the triangulation has it.
     Moved(MovedInputs),
 }
 
@@ -493,7 +488,6 @@ impl<'p> KeptInputs<'p> {
     }
 
     /// The input position of point `i`, where `tri` has it now.
-    #[cfg(test)]
     fn point(&self, i: usize, tri: &Triangulation) -> Point {
         match self {
             KeptInputs::All(points) => points[i],
@@ -745,8 +739,7 @@ impl Reconstruction {
     /// If `index` is not an input position.
     pub fn point(&self, index: usize) -> Point {
         match &self.input_points {
-            Some(InputPoints::All(points)) => points[index],
-            Some(InputPoints::Moved(moved)) => moved.point(index, self.triangulation.point(index)),
+            Some(kept) => kept.point(index, &self.triangulation),
             None => self.triangulation.point(index),
         }
     }
@@ -935,8 +928,8 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         smoothing.earlier_passes = earlier_passes;
         result.smoothing = Some(smoothing);
         result.input_points = Some(match inputs {
-            KeptInputs::All(points) => InputPoints::All(points.into_owned()),
-            KeptInputs::Moved(moved) => InputPoints::Moved(moved),
+            KeptInputs::All(points) => KeptInputs::All(Cow::Owned(points.into_owned())),
+            KeptInputs::Moved(moved) => KeptInputs::Moved(moved),
         });
     }
     Ok(result)
@@ -1464,10 +1457,10 @@ mod tests {
             // Handed over and given back, only the moved points' input positions are kept.
             let owned = reconstruct_owned(points.clone(), &Params::default()).unwrap();
             match &owned.input_points {
-                Some(InputPoints::Moved(moved)) => {
+                Some(KeptInputs::Moved(moved)) => {
                     assert!(exact && moved.points.len() < points.len())
                 }
-                Some(InputPoints::All(_)) => assert!(!exact),
+                Some(KeptInputs::All(_)) => assert!(!exact),
                 None => panic!("the passes moved points"),
             }
         }
