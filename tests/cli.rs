@@ -171,7 +171,10 @@ fn collinear_input_has_edges_but_no_triangles() {
     // An empty output is explained: where the chain is.
     let note = String::from_utf8_lossy(&out.stderr);
     assert!(note.contains("no triangles"), "{note}");
-    assert!(note.contains("2 edge(s) is written with --edges"), "{note}");
+    assert!(
+        note.contains("chain of 2 edges is written with --edges"),
+        "{note}"
+    );
     let out = condt(&["triangulate", "-", "--edges"], "0 0\n2 2\n1 1\n");
     assert_eq!(lines(&out.stdout), vec![vec![0, 2], vec![1, 2]]);
     assert!(
@@ -317,6 +320,32 @@ fn stages_need_an_svg_and_an_empty_output_name_is_explained() {
 }
 
 #[test]
+fn counts_of_one_are_singular() {
+    let said = |input: &str| {
+        let out = condt(&["reconstruct", "-"], input);
+        assert!(out.status.success());
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let one = said("0 0\n");
+    assert!(
+        one.contains("1 point, 0 curves (0 closed, 0 open), 1 unused"),
+        "{one}"
+    );
+    let none = said("");
+    assert!(none.contains("0 points, 0 curves"), "{none}");
+    // Three distinct points: one closed curve; one duplicate merged.
+    let three = said("0 0\n1 0\n2 0.1\n2 0.1\n");
+    assert!(three.contains("1 exact duplicate point merged"), "{three}");
+    assert!(
+        three.contains("4 points, 1 curve (1 closed, 0 open)"),
+        "{three}"
+    );
+    let out = condt(&["triangulate", "-"], "0 0\n1 1\n");
+    let chain = String::from_utf8_lossy(&out.stderr);
+    assert!(chain.contains("chain of 1 edge is written"), "{chain}");
+}
+
+#[test]
 fn merged_duplicates_are_told_the_same_way_by_both_commands() {
     // All ten points the same: one distinct point, no edge, so all ten input points are unused.
     let same = "1 1\n".repeat(10);
@@ -327,7 +356,7 @@ fn merged_duplicates_are_told_the_same_way_by_both_commands() {
     for (input, merged, distinct, total, unused) in [(&same[..], 9, 1, 10, 10), (some, 2, 4, 6, 1)]
     {
         let note = format!(
-            "{merged} exact duplicate point(s) merged into the first point at the same position \
+            "{merged} exact duplicate points merged into the first point at the same position \
              ({distinct} distinct of {total})"
         );
         for command in ["triangulate", "reconstruct"] {

@@ -639,13 +639,23 @@ fn shown_input(input: Option<&Path>) -> String {
     input.map_or("<stdin>".into(), |p| p.display().to_string())
 }
 
+/// A count and its noun, plural unless the count is one: "1 point", "0 points", "2 points".
+struct Counted(usize, &'static str);
+
+impl fmt::Display for Counted {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Counted(n, noun) = *self;
+        write!(f, "{n} {noun}{}", if n == 1 { "" } else { "s" })
+    }
+}
+
 /// The one rule for merged duplicates, told the same way by both commands.
 fn note_duplicates(points: usize, distinct: usize) {
     let merged = points - distinct;
     if merged > 0 {
         note(format_args!(
-            "{merged} exact duplicate point(s) merged into the first point at the same position \
-             ({distinct} distinct of {points})"
+            "{} merged into the first point at the same position ({distinct} distinct of {points})",
+            Counted(merged, "exact duplicate point"),
         ));
     }
 }
@@ -675,9 +685,9 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     let curves = result.curves();
     let closed = curves.iter().filter(|c| c.is_closed()).count();
     note(format_args!(
-        "{} points, {} curves ({closed} closed, {} open), {} unused",
-        count,
-        curves.len(),
+        "{}, {} ({closed} closed, {} open), {} unused",
+        Counted(count, "point"),
+        Counted(curves.len(), "curve"),
         curves.len() - closed,
         result.unused().len()
     ));
@@ -703,12 +713,14 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         let chain = tri.edges().count();
         if chain == 0 {
             note(format_args!(
-                "no triangles and no edges: {distinct} distinct point(s)"
+                "no triangles and no edges: {}",
+                Counted(distinct, "distinct point")
             ));
         } else {
             note(format_args!(
                 "no triangles: the {distinct} distinct points lie on one line; \
-                 their chain of {chain} edge(s) is written with --edges"
+                 their chain of {} is written with --edges",
+                Counted(chain, "edge")
             ));
         }
     }
