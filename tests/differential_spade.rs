@@ -330,9 +330,16 @@ fn sets_built_in_two_halves_match_spade() {
     let mut doubled = grid(190, 3003);
     doubled.extend(grid(190, 3004));
     compare(&doubled, "grid 190 x 190, each point twice", &mut tally);
-    compare(&small_integers(n, 300, 3005), "integers below 300", &mut tally);
+    compare(
+        &small_integers(n, 300, 3005),
+        "integers below 300",
+        &mut tally,
+    );
     tally.assert_compared("two halves");
-    assert!(tally.ambiguous >= 2, "the grids must have cocircular quadruples");
+    assert!(
+        tally.ambiguous >= 2,
+        "the grids must have cocircular quadruples"
+    );
 }
 
 /// Issue 11, item 13: a spade answer that is not Delaunay must be refused, not compared. Here
