@@ -1471,7 +1471,7 @@ mod tests {
     #[test]
     fn moved_inputs_give_the_input_back() {
         let mut rng = Xorshift::new(9);
-        let input: Vec<Point> = rng.unit_points(500);
+        let input = rng.unit_points(500);
         let shifted = |points: &[Point], every: usize| -> Vec<Point> {
             let mut moved = points.to_vec();
             for p in moved.iter_mut().step_by(every) {
@@ -1599,7 +1599,7 @@ mod tests {
     #[test]
     fn a_repair_record_that_would_hold_the_proximity_graph_recomputes_it() {
         let mut rng = Xorshift::new(21);
-        let uniform: Vec<Point> = rng.unit_points(3000);
+        let uniform = rng.unit_points(3000);
         let curve: Vec<Point> = (0..3000)
             .map(|k| {
                 let t = k as f64 * core::f64::consts::TAU / 3000.0;

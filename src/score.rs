@@ -534,7 +534,7 @@ mod tests {
     #[test]
     fn the_tree_finds_the_nearest_segment_near_and_far() {
         let mut rng = Xorshift::new(7);
-        let points: Vec<Point> = rng.unit_points(500);
+        let points = rng.unit_points(500);
         let truth: Vec<[usize; 2]> = (0..499).step_by(2).map(|i| [i, i + 1]).collect();
         let tree = SegmentTree::new(&points, &truth);
         for _ in 0..300 {

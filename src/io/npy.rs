@@ -708,7 +708,7 @@ mod tests {
     #[test]
     fn pieces_give_the_rows_of_the_iterators() {
         let mut rng = crate::test_rng::Xorshift::new(8);
-        let mut points: Vec<Point> = rng.unit_points(2 * ROWS_PER_PIECE + 1000);
+        let mut points = rng.unit_points(2 * ROWS_PER_PIECE + 1000);
         points.extend_from_slice(&points.clone()[..300]);
         let tri = crate::triangulate(&points).unwrap();
         assert!(tri.triangles().count() > 2 * ROWS_PER_PIECE);

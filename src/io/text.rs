@@ -399,7 +399,7 @@ mod tests {
     #[test]
     fn pieces_give_the_lines_of_the_iterators() {
         let mut rng = Xorshift::new(31);
-        let mut points: Vec<Point> = rng.unit_points(4 * EDGES_PER_PIECE);
+        let mut points = rng.unit_points(4 * EDGES_PER_PIECE);
         points.extend_from_slice(&points.clone()[..500]);
         let tri = triangulate(&points).unwrap();
         assert!(tri.mesh().num_triangles_with_ghosts() > 2 * TRIANGLES_PER_PIECE);
@@ -461,7 +461,7 @@ mod tests {
                 .collect(),
         ];
         for n in [3, 10, 500] {
-            let mut points: Vec<Point> = rng.unit_points(n);
+            let mut points = rng.unit_points(n);
             points.extend_from_slice(&points.clone()[..n / 3]);
             inputs.push(points);
         }

@@ -643,7 +643,7 @@ mod tests {
     fn uniform_points_stitch() {
         let mut rng = Xorshift::new(7);
         for n in [10, 100, 1000, 5000, 300_000] {
-            let points: Vec<Point> = rng.unit_points(n);
+            let points = rng.unit_points(n);
             assert!(built_in_halves(&points).is_some(), "{n}");
             let tri = triangulate_split(&points, false, 0).unwrap();
             tri.validate().unwrap();
@@ -1128,7 +1128,7 @@ mod tests {
     #[cfg(feature = "std")]
     fn review_timing() {
         let mut rng = Xorshift::new(5);
-        let uniform: Vec<Point> = rng.unit_points(1_000_000);
+        let uniform = rng.unit_points(1_000_000);
         let ellipses: Vec<Point> = (0..1_000_000)
             .map(|k| {
                 let e = (k % 200) as f64;
@@ -1167,7 +1167,7 @@ mod tests {
             let sets = if n >= 100_000 { 20 } else { 200 };
             let (mut fell_u, mut fell_c) = (0, 0);
             for _ in 0..sets {
-                let u: Vec<Point> = rng.unit_points(n);
+                let u = rng.unit_points(n);
                 fell_u += usize::from(built_in_halves_any(&u).is_none());
                 let c: Vec<Point> = (0..n)
                     .map(|k| {

@@ -753,7 +753,7 @@ mod tests {
     #[test]
     fn passes_after_the_construction_match_on_two_threads() {
         let mut rng = Xorshift::new(0x5ea1);
-        let mut points: Vec<Point> = rng.unit_points(PARALLEL_MIN + 4321);
+        let mut points = rng.unit_points(PARALLEL_MIN + 4321);
         for k in 0..500 {
             let copy = points[(k * 131) % points.len()];
             points.push(copy);
