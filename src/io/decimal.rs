@@ -82,8 +82,10 @@ pub(super) fn parse_prefix(text: &[u8]) -> Option<(f64, &[u8])> {
         return None;
     }
     if digits > MAX_DIGITS {
-        // Leading zeros (`0.000123`, `007`) are not significant.
-        let zeros = unsigned
+        // Leading zeros (`0.000123`, `007`) are not significant. Counted in the number's own
+        // digits: a run of zeros and points may go on past it (`0.000…0.0`, which is no
+        // number), and counted there it would exceed `digits`.
+        let zeros = unsigned[..unsigned.len() - rest.len()]
             .iter()
             .take_while(|&&b| b == b'0' || b == b'.')
             .filter(|&&b| b == b'0')
@@ -705,6 +707,11 @@ mod tests {
             "1e-400",
             "0e999",
             "8.98846567431158e307",
+            // More than 19 digits, all zeros, then a second point (found by fuzzing: the
+            // zeros were counted past the number, more of them than its digits).
+            "0.0000000000000000000.0",
+            "0.00000000000000000000.5",
+            "000000000000000000000.0.0",
         ];
         for case in cases {
             agrees(case);
