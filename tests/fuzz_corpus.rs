@@ -64,3 +64,8 @@ fn reconstruct_corpus_replays_cleanly() {
 fn parse_points_corpus_replays_cleanly() {
     replay("parse_points", checks::parse_points);
 }
+
+#[test]
+fn parse_formats_corpus_replays_cleanly() {
+    replay("parse_formats", checks::parse_formats);
+}

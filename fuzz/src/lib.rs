@@ -6,6 +6,7 @@
 //! failing check prints its points as Rust source, ready to paste into a test.
 
 use condt::io::parse_points as parse;
+use condt::io::{parse_csv, parse_geojson, parse_node, parse_npy};
 use condt::io::{write_edges, write_geojson, write_polylines, write_svg};
 use condt::{Error, Params, Point, Repair, Uniformity, MAX_POINTS};
 use std::collections::BTreeSet;
@@ -393,6 +394,47 @@ pub fn parse_points(data: &[u8]) {
                 err.to_string().starts_with(FILE),
                 "message does not start with the file: {err}"
             );
+        }
+    }
+}
+
+/// The readers of the other input formats, chosen by the first byte (its value modulo four):
+/// `.npy` (the rest as bytes), CSV, GeoJSON and Triangle's `.node` (the rest as lossy UTF-8).
+/// Each must return finite points or an error that names the file and, where it gives a line,
+/// a line the text has; never panic.
+pub fn parse_formats(data: &[u8]) {
+    let Some((&choice, rest)) = data.split_first() else {
+        return;
+    };
+    let text = String::from_utf8_lossy(rest);
+    let (file, read) = match choice % 4 {
+        0 => ("fuzz.npy", parse_npy(rest, "fuzz.npy")),
+        1 => ("fuzz.csv", parse_csv(&text, "fuzz.csv")),
+        2 => ("fuzz.geojson", parse_geojson(&text, "fuzz.geojson")),
+        _ => ("fuzz.node", parse_node(&text, "fuzz.node")),
+    };
+    match read {
+        Ok(points) => assert!(
+            points.iter().all(|&p| finite(p)),
+            "non-finite point read from {file}: {rest:?}"
+        ),
+        Err(err) => {
+            assert_eq!(err.file, file, "error names another file: {err}");
+            assert!(
+                err.to_string().starts_with(file),
+                "message does not start with the file: {err}"
+            );
+            // A `.npy` error speaks of the header or of rows, not of lines of text.
+            // An error at the end of the text may name the line the end is on: the first of an
+            // empty text, the one after a final line break.
+            if let (Some(line), false) = (err.line, choice % 4 == 0) {
+                let ends_open = text.is_empty() || text.ends_with(['\n', '\r']);
+                let lines = count_lines(&text) + usize::from(ends_open);
+                assert!(
+                    (1..=lines).contains(&line),
+                    "error names line {line} of {lines}: {err}, for {text:?}"
+                );
+            }
         }
     }
 }
