@@ -341,8 +341,16 @@ fn counts_of_one_are_singular() {
         "{three}"
     );
     let out = condt(&["triangulate", "-"], "0 0\n1 1\n");
+    assert!(out.status.success());
     let chain = String::from_utf8_lossy(&out.stderr);
     assert!(chain.contains("chain of 1 edge is written"), "{chain}");
+    let out = condt(&["triangulate", "-"], "0 0\n");
+    assert!(out.status.success());
+    let lone = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        lone.contains("no triangles and no edges: 1 distinct point\n"),
+        "{lone}"
+    );
 }
 
 #[test]

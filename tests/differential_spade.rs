@@ -159,8 +159,8 @@ impl Tally {
 fn compare(points: &[Point], label: &str, tally: &mut Tally) {
     let tri = triangulate(points).unwrap_or_else(|e| panic!("{label}: {e}"));
     tri.validate().unwrap_or_else(|e| panic!("{label}: {e}"));
-    // The check takes every point against every hull edge; past 20k points (hulls of hundreds
-    // of points) the hull compared with spade's below stands in for it.
+    // The check takes every point against every hull edge (O(n h)); past 20k points the hull
+    // compared with spade's below stands in for it.
     if points.len() <= 20_000 {
         assert_hull_convex_and_enclosing(&tri);
     }
@@ -323,6 +323,22 @@ fn larger_sets_match_spade() {
 /// seconds a call on 70k of them.
 #[test]
 fn sets_built_in_two_halves_match_spade() {
+    // Whether the insertion order is two halves split by a vertical line (all of the first
+    // half's points left of all of the second's), as it is when the set is cut in two.
+    let cut_in_two = |points: &[Point]| {
+        let order = Triangulation::insertion_order(points).unwrap();
+        let x = |k: usize| points[order[k] as usize].x;
+        let n = order.len();
+        let mut before = vec![f64::NEG_INFINITY; n + 1];
+        for k in 0..n {
+            before[k + 1] = before[k].max(x(k));
+        }
+        let mut after = f64::INFINITY;
+        (1..n).rev().any(|k| {
+            after = after.min(x(k));
+            before[k] < after && k >= n / 4 && k <= 3 * n / 4
+        })
+    };
     let n = 70_000;
     let mut tally = Tally::default();
     compare(&uniform(n, 3000), "uniform 70k", &mut tally);
@@ -334,6 +350,13 @@ fn sets_built_in_two_halves_match_spade() {
         &small_integers(n, 300, 3005),
         "integers below 300",
         &mut tally,
+    );
+    for points in [uniform(n, 3000), doubled] {
+        assert!(cut_in_two(&points), "not built in two halves");
+    }
+    assert!(
+        !cut_in_two(&uniform(20_000, 3000)),
+        "20k points are built whole"
     );
     tally.assert_compared("two halves");
     assert!(

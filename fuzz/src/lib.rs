@@ -428,8 +428,8 @@ pub fn parse_formats(data: &[u8]) {
             // An error at the end of the text may name the line the end is on: the first of an
             // empty text, the one after a final line break.
             if let (Some(line), false) = (err.line, choice % 4 == 0) {
-                let ends_open = text.is_empty() || text.ends_with(['\n', '\r']);
-                let lines = count_lines(&text) + usize::from(ends_open);
+                let end_line_allowed = text.is_empty() || text.ends_with(['\n', '\r']);
+                let lines = count_lines(&text) + usize::from(end_line_allowed);
                 assert!(
                     (1..=lines).contains(&line),
                     "error names line {line} of {lines}: {err}, for {text:?}"

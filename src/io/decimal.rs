@@ -707,8 +707,9 @@ mod tests {
             "1e-400",
             "0e999",
             "8.98846567431158e307",
-            // More than 19 digits, all zeros, then a second point (found by fuzzing: the
-            // zeros were counted past the number, more of them than its digits).
+            // More than 19 digits, all zeros, then a second point and a zero (found by
+            // fuzzing: the zeros were counted past the number, more of them than its digits);
+            // the middle one, a point and a nonzero digit, never overflowed (a control).
             "0.0000000000000000000.0",
             "0.00000000000000000000.5",
             "000000000000000000000.0.0",
@@ -716,6 +717,9 @@ mod tests {
         for case in cases {
             agrees(case);
         }
+        // The number ends at the second point: zero, with the rest left to the caller.
+        let zero = parse_prefix(b"0.0000000000000000000.0 1").map(|(v, rest)| (v.to_bits(), rest));
+        assert_eq!(zero, Some((0u64, &b".0 1"[..])));
         // The common forms and the edges of the table do take the fast path.
         for case in [
             "0",
