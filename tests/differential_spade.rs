@@ -340,19 +340,18 @@ fn sets_built_in_two_halves_match_spade() {
         })
     };
     let n = 70_000;
-    let mut tally = Tally::default();
-    compare(&uniform(n, 3000), "uniform 70k", &mut tally);
-    compare(&clustered(n, 3002), "clustered 70k", &mut tally);
     let mut doubled = grid(190, 3003);
     doubled.extend(grid(190, 3004));
-    compare(&doubled, "grid 190 x 190, each point twice", &mut tally);
-    compare(
-        &small_integers(n, 300, 3005),
-        "integers below 300",
-        &mut tally,
-    );
-    for points in [uniform(n, 3000), doubled] {
-        assert!(cut_in_two(&points), "not built in two halves");
+    let sets = [
+        ("uniform 70k", uniform(n, 3000)),
+        ("clustered 70k", clustered(n, 3002)),
+        ("grid 190 x 190, each point twice", doubled),
+        ("integers below 300", small_integers(n, 300, 3005)),
+    ];
+    let mut tally = Tally::default();
+    for (label, points) in &sets {
+        assert!(cut_in_two(points), "{label}: not built in two halves");
+        compare(points, label, &mut tally);
     }
     assert!(
         !cut_in_two(&uniform(20_000, 3000)),
