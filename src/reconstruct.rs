@@ -456,124 +456,6 @@ pub struct Reconstruction {
     triangulation_time: Duration,
     curves_time: Duration,
     smoothing: Option<Smoothing>,
-    /// The input positions, kept only when smoothing passes moved points (the triangulation
-    /// then holds the moved ones).
-    input_points: Option<KeptInputs<'static>>,
-}
-
-/// The input positions of a reconstruction whose smoothing passes moved points; while the
-/// passes run, a borrowed input is kept borrowed, and the result holds its copy.
-#[derive(Clone, Debug)]
-enum KeptInputs<'p> {
-    /// All of them (a borrowed input, or one that the triangulation does not give back).
-    All(Cow<'p, [Point]>),
-    /// Those of the points some pass moved; every other point is where the triangulation has it.
-    Moved(MovedInputs),
-}
-
-impl<'p> KeptInputs<'p> {
-    /// The same input, once `tri` is the triangulation of the pass's `positions`: the points
-    /// that did not move are read from `tri` from now on, so when it does not give every
-    /// position back (merged duplicates, signed zeros) all of the input is kept instead.
-    fn read_from(self, tri: &Triangulation, positions: &[Point]) -> KeptInputs<'p> {
-        match self {
-            KeptInputs::Moved(kept) if !gives_back(tri, positions) => {
-                let all = (0..positions.len())
-                    .map(|i| kept.point(i, positions[i]))
-                    .collect();
-                KeptInputs::All(Cow::Owned(all))
-            }
-            kept => kept,
-        }
-    }
-
-    /// The input position of point `i`, where `tri` has it now.
-    fn point(&self, i: usize, tri: &Triangulation) -> Point {
-        match self {
-            KeptInputs::All(points) => points[i],
-            KeptInputs::Moved(moved) => moved.point(i, tri.point(i)),
-        }
-    }
-}
-
-/// The input positions of the points that smoothing passes moved, in input order, with a bit
-/// per point saying which; every other point is where the latest positions have it. Reason:
-/// the input is held through every pass, and the passes move about two points in three of
-/// uniform points (133,115 of 200,000 after three passes): 10.8 bytes a point instead of 16.
-/// Along noisy curves, where nearly all move, it costs a bit and a half per point more.
-#[derive(Clone, Debug, Default)]
-struct MovedInputs {
-    /// Bit `i % 64` of word `i / 64` is set when point `i` moved.
-    moved: Vec<u64>,
-    /// How many points moved before each word of `moved`.
-    before: Vec<u32>,
-    /// The input position of every point that moved, in input order.
-    points: Vec<Point>,
-}
-
-/// `a` and `b` are the same coordinates bit for bit.
-fn same_bits(a: Point, b: Point) -> bool {
-    (a.x.to_bits(), a.y.to_bits()) == (b.x.to_bits(), b.y.to_bits())
-}
-
-impl MovedInputs {
-    /// None moved yet: the input is where `n` positions have it.
-    fn new(n: usize) -> MovedInputs {
-        MovedInputs {
-            moved: alloc::vec![0; n.div_ceil(64)],
-            before: alloc::vec![0; n.div_ceil(64)],
-            points: Vec::new(),
-        }
-    }
-
-    fn has_moved(&self, i: usize) -> bool {
-        self.moved[i / 64] >> (i % 64) & 1 == 1
-    }
-
-    /// A pass moves the points from where `tri` has them to `positions`: the points moving for
-    /// the first time keep their input position, which is `tri`'s (it gives every position
-    /// back). The list grows in place, merged from its end.
-    fn add(&mut self, tri: &Triangulation, positions: &[Point]) {
-        let moves = |i: usize| !same_bits(positions[i], tri.point(i));
-        let added = (0..positions.len())
-            .filter(|&i| !self.has_moved(i) && moves(i))
-            .count();
-        if added == 0 {
-            return;
-        }
-        let mut read = self.points.len();
-        let mut write = read + added;
-        let mut points = core::mem::take(&mut self.points);
-        points.reserve_exact(added);
-        points.resize(write, Point::default());
-        for i in (0..positions.len()).rev() {
-            if self.has_moved(i) {
-                read -= 1;
-                write -= 1;
-                points[write] = points[read];
-            } else if moves(i) {
-                write -= 1;
-                points[write] = tri.point(i);
-                self.moved[i / 64] |= 1 << (i % 64);
-            }
-        }
-        debug_assert_eq!((read, write), (0, 0));
-        self.points = points;
-        let mut count = 0;
-        for (word, before) in self.moved.iter().zip(&mut self.before) {
-            *before = count;
-            count += word.count_ones();
-        }
-    }
-
-    /// The input position of point `i`, where it is now `now`.
-    fn point(&self, i: usize, now: Point) -> Point {
-        if !self.has_moved(i) {
-            return now;
-        }
-        let below = self.moved[i / 64] & ((1 << (i % 64)) - 1);
-        self.points[self.before[i / 64] as usize + below.count_ones() as usize]
-    }
 }
 
 /// What the smoothing passes ([`Params::smooth`]) did, as [`Reconstruction::smoothing`]
@@ -595,7 +477,6 @@ impl MovedInputs {
 /// assert!(smoothing.passes >= 1 && smoothing.moved > 0);
 /// // The stages saw the moved points; the edges are between input positions.
 /// assert_ne!(result.stage_point(2), pts[2]);
-/// assert_eq!(result.point(2), pts[2]);
 /// assert_eq!(result.curves().len(), 1);
 /// assert!(reconstruct(&pts, &Params::paper())?.smoothing().is_none());
 /// # Ok::<(), condt::Error>(())
@@ -733,20 +614,14 @@ impl Reconstruction {
         self.degrees.get(index)
     }
 
-    /// The coordinates of input point `index`, exactly as given.
-    ///
-    /// # Panics
-    /// If `index` is not an input position.
-    pub fn point(&self, index: usize) -> Point {
-        match &self.input_points {
-            Some(kept) => kept.point(index, &self.triangulation),
-            None => self.triangulation.point(index),
-        }
-    }
-
-    /// The coordinates of input point `index` as the stages saw them: [`point`](Self::point),
-    /// or the smoothed position when the smoothing passes ([`Params::smooth`]) moved it. The
+    /// The coordinates of input point `index` as the stages saw them: the input point, or the
+    /// smoothed position when the smoothing passes ([`Params::smooth`]) moved it. The stage
     /// drawings show these, because the rings and lengths the stages tested are theirs.
+    ///
+    /// The result keeps no copy of the input: the input coordinates are the caller's (the
+    /// slice given to [`reconstruct`]; [`reconstruct_owned`] hands them over for good).
+    /// Reason: a copy of the points the passes moved cost 10 to 16 bytes a point through every
+    /// pass and in the result, a tenth of the peak (`docs/performance.md`, "Memory").
     ///
     /// # Panics
     /// If `index` is not an input position.
@@ -808,12 +683,12 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
 }
 
 /// [`reconstruct`] of points the caller hands over: the same result, but the points are freed
-/// as soon as the triangulation gives every one of them back bit for bit (it keeps them in its
-/// own frame), so the stages run without them (16 bytes per point less at the peak; the
-/// command line reads its points into memory only to reconstruct them). When smoothing passes
-/// run, the result keeps the input positions of the points some pass moved (the others are read
-/// back from the triangulation, which gives them back bit for bit), or the whole input again
-/// when a pass's triangulation does not give its positions back.
+/// as soon as they are triangulated (the triangulation keeps them in its own frame), so the
+/// stages run without them (16 bytes per point less at the peak; the command line reads its
+/// points into memory only to reconstruct them). The result speaks in input positions; for
+/// the input coordinates afterwards (where the smoothing passes moved points, the result has
+/// only the moved positions, [`Reconstruction::stage_point`]), keep the points and call
+/// [`reconstruct`].
 ///
 /// # Errors
 /// As [`reconstruct`].
@@ -836,27 +711,13 @@ pub fn reconstruct_owned(points: Vec<Point>, params: &Params) -> Result<Reconstr
     reconstruct_input(Cow::Owned(points), params)
 }
 
-/// Whether `tri` gives every point of `points` back bit for bit (signed zeros and merged
-/// duplicates may not be).
-fn gives_back(tri: &Triangulation, points: &[Point]) -> bool {
-    points
-        .iter()
-        .enumerate()
-        .all(|(i, &p)| same_bits(tri.point(i), p))
-}
-
-/// [`reconstruct`] and [`reconstruct_owned`]: an owned input is freed after the triangulation
-/// when it can be read back from it.
+/// [`reconstruct`] and [`reconstruct_owned`]: an owned input is freed once triangulated.
 fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Reconstruction, Error> {
     params.check()?;
     let mut clock = Stopwatch::start();
     let tri = triangulate_with(&points, params.parallel)?;
     let triangulation_time = clock.lap();
-    let n = points.len();
-    let points = match points {
-        Cow::Owned(owned) if gives_back(&tri, &owned) => None,
-        kept => Some(kept),
-    };
+    drop(points);
     let may_smooth = params.smooth && params.method == Method::ConDT;
     let first_run = if may_smooth {
         CurveAssembly::UnlessNoisy
@@ -871,12 +732,6 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         // `MAX_PASSES` (src/smooth.rs gives the reasons).
         let mut earlier_passes = Duration::ZERO;
         let mut smoothing = Smoothing::default();
-        // The input freed after the triangulation is where the triangulations have it, but for
-        // the points that passes move, kept as they move.
-        let mut inputs = match points {
-            Some(points) => KeptInputs::All(points),
-            None => KeptInputs::Moved(MovedInputs::new(n)),
-        };
         loop {
             // Of the previous pass only its final edges are read again (the fixed-point test,
             // packed), and its triangulation and final graph to smooth along: the rest (stage
@@ -889,15 +744,11 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
             drop(core::mem::take(&mut result.edges));
             let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
             let (positions, moved) = smoothed_positions(&triangulation, &final_edges);
-            if let KeptInputs::Moved(kept) = &mut inputs {
-                kept.add(&triangulation, &positions);
-            }
             drop((triangulation, final_edges));
             // The replaced pass's triangulation is an earlier pass's cost too.
             earlier_passes += triangulation_time;
             earlier_passes += clock.lap();
             let tri = triangulate_with(&positions, params.parallel)?;
-            inputs = inputs.read_from(&tri, &positions);
             drop(positions);
             let triangulation_time = clock.lap();
             let run = if last_pass {
@@ -927,10 +778,6 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         }
         smoothing.earlier_passes = earlier_passes;
         result.smoothing = Some(smoothing);
-        result.input_points = Some(match inputs {
-            KeptInputs::All(points) => KeptInputs::All(Cow::Owned(points.into_owned())),
-            KeptInputs::Moved(moved) => KeptInputs::Moved(moved),
-        });
     }
     Ok(result)
 }
@@ -1183,7 +1030,6 @@ fn run_stages(
         triangulation_time: Duration::ZERO,
         curves_time,
         smoothing: None,
-        input_points: None,
     };
     let waiting = (assembly == CurveAssembly::Later).then_some(graph);
     (result, waiting)
@@ -1398,9 +1244,9 @@ mod tests {
         }
     }
 
-    /// An input handed over gives the result a borrowed one gives, the points it reports
-    /// included bit for bit: with and without smoothing passes, and with signed zeros and duplicates,
-    /// which the triangulation does not give back (so the input is kept).
+    /// An input handed over gives the result a borrowed one gives, the stage points it reports
+    /// included bit for bit: with and without smoothing passes, with signed zeros and
+    /// duplicates, and across a range of magnitudes the stages' frame does not hold exactly.
     #[test]
     fn an_owned_input_gives_the_same_result() {
         let mut rng = Xorshift::new(3);
@@ -1423,8 +1269,7 @@ mod tests {
         wide.extend([Point::new(1e-300, 3e-301), Point::new(-2e-290, 7e-295)]);
         for points in [noisy, zeros, wide] {
             let tri = triangulate(&points).unwrap();
-            let exact = gives_back(&tri, &points);
-            assert_eq!(exact, tri.num_vertices() == points.len());
+            tri.validate().unwrap();
             for smooth in [false, true] {
                 let params = Params {
                     smooth,
@@ -1445,7 +1290,7 @@ mod tests {
                 assert!(!borrowed.edges.is_empty());
                 assert_eq!(segments, borrowed.edges.len());
                 for i in 0..points.len() {
-                    let (p, q) = (borrowed.point(i), owned.point(i));
+                    let (p, q) = (borrowed.stage_point(i), owned.stage_point(i));
                     assert_eq!(
                         (q.x.to_bits(), q.y.to_bits()),
                         (p.x.to_bits(), p.y.to_bits())
@@ -1454,46 +1299,7 @@ mod tests {
             }
             let smoothed = reconstruct(&points, &Params::default()).unwrap();
             assert!(smoothed.smoothing.is_some(), "the passes ran");
-            // Handed over and given back, only the moved points' input positions are kept.
-            let owned = reconstruct_owned(points.clone(), &Params::default()).unwrap();
-            match &owned.input_points {
-                Some(KeptInputs::Moved(moved)) => {
-                    assert!(exact && moved.points.len() < points.len())
-                }
-                Some(KeptInputs::All(_)) => assert!(!exact),
-                None => panic!("the passes moved points"),
-            }
         }
-    }
-
-    /// The moved points' input positions, kept over two passes that move different points
-    /// (some of them twice), give every input position back with the latest positions.
-    #[test]
-    fn moved_inputs_give_the_input_back() {
-        let mut rng = Xorshift::new(9);
-        let input = rng.unit_points(500);
-        let shifted = |points: &[Point], every: usize| -> Vec<Point> {
-            let mut moved = points.to_vec();
-            for p in moved.iter_mut().step_by(every) {
-                p.x += 1e-3;
-            }
-            moved
-        };
-        let mut kept = MovedInputs::new(input.len());
-        let mut now = input.clone();
-        for every in [3, 5, 7] {
-            let tri = triangulate(&now).unwrap();
-            assert!(gives_back(&tri, &now));
-            let next = shifted(&now, every);
-            kept.add(&tri, &next);
-            now = next;
-            for (i, &p) in input.iter().enumerate() {
-                assert!(same_bits(kept.point(i, now[i]), p), "point {i}");
-                assert_eq!(kept.has_moved(i), !same_bits(now[i], p));
-            }
-        }
-        let moved = input.iter().zip(&now).filter(|(p, q)| !same_bits(**p, **q));
-        assert_eq!(kept.points.len(), moved.count());
     }
 
     /// Degrees of 255 and more go to the side list and come back exactly, in order, beside
@@ -1516,40 +1322,6 @@ mod tests {
             alloc::format!("{values:?}"),
             "Debug shows the degrees as a list"
         );
-    }
-
-    /// A pass whose triangulation does not give its positions back (a point moved onto one that
-    /// stays, but for the sign of a zero: the triangulation merges the two and gives both back
-    /// with the bits of the smaller position, so the one that stays comes back changed)
-    /// switches to keeping all of the input, and every input position is still given back bit
-    /// for bit, moved or not; a pass whose triangulation gives its positions back (here with an
-    /// exact duplicate, merged too, but the same bits) keeps only the moved ones.
-    #[test]
-    fn a_pass_that_merges_points_keeps_all_of_the_input() {
-        let mut rng = Xorshift::new(11);
-        let mut input: Vec<Point> = (0..300)
-            .map(|_| Point::new(rng.unit() + 0.5, rng.unit() + 0.5))
-            .collect();
-        input[10] = Point::new(0.0, 0.75);
-        let first = triangulate(&input).unwrap();
-        assert!(gives_back(&first, &input));
-        let mut ordinary = input.clone();
-        ordinary[4].y += 1e-3;
-        ordinary[7] = ordinary[8];
-        let mut merging = ordinary.clone();
-        // Point 9 moves onto point 10, which stays, but for the sign of its zero.
-        merging[9] = Point::new(-0.0, 0.75);
-        for (positions, keeps_all) in [(&ordinary, false), (&merging, true)] {
-            let mut moved = MovedInputs::new(input.len());
-            moved.add(&first, positions);
-            let tri = triangulate(positions).unwrap();
-            assert_eq!(gives_back(&tri, positions), !keeps_all);
-            let kept = KeptInputs::Moved(moved).read_from(&tri, positions);
-            assert_eq!(matches!(kept, KeptInputs::All(_)), keeps_all);
-            for (i, &p) in input.iter().enumerate() {
-                assert!(same_bits(kept.point(i, &tri), p), "point {i}");
-            }
-        }
     }
 
     /// Every stage's graph as `stages()` rebuilds it is the graph the stage left: running the

@@ -293,7 +293,7 @@ mod tests {
             let i = (0..clean.points.len())
                 .find(|&i| clean.points[i] == fixed)
                 .unwrap();
-            assert_eq!(smoothed.point(i), fixed);
+            assert_eq!(smoothed.stage_point(i), fixed);
         }
     }
 }

@@ -26,7 +26,7 @@ fn numbers(svg: &str) -> Vec<f64> {
 fn svg_of(points: &[Point], stages: bool) -> String {
     let r = reconstruct(points, &Params::default()).unwrap();
     let mut out = Vec::new();
-    write_svg(&mut out, &r, stages).unwrap();
+    write_svg(&mut out, &r, points, stages).unwrap();
     String::from_utf8(out).unwrap()
 }
 
@@ -114,7 +114,7 @@ fn drawings_say_when_points_are_at_smoothed_positions() {
     );
     let draw = |r: &condt::Reconstruction, stages: bool| {
         let mut out = Vec::new();
-        write_svg(&mut out, r, stages).unwrap();
+        write_svg(&mut out, r, &arc, stages).unwrap();
         String::from_utf8(out).unwrap()
     };
     let stage_drawing = draw(&smoothed, true);
@@ -128,4 +128,25 @@ fn drawings_say_when_points_are_at_smoothed_positions() {
         .collect::<Vec<_>>()
         .join("\n");
     assert_ne!(numbers(&without_note), numbers(&draw(&plain, true)));
+}
+
+/// The drawings that take the input coordinates from the caller refuse a list of another
+/// length with an `InvalidInput` error, and write nothing; the right list is accepted.
+#[test]
+fn writers_refuse_points_that_are_not_the_input() {
+    let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from);
+    let r = reconstruct(&points, &Params::default()).unwrap();
+    for wrong in [&points[..2], &[points[0]; 4][..], &[]] {
+        let mut out = Vec::new();
+        let err = write_svg(&mut out, &r, wrong, false).unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+        let err = condt::io::write_geojson(&mut out, &r, wrong).unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+        assert!(err.to_string().contains("of 3"), "{err}");
+        assert!(out.is_empty());
+    }
+    let mut out = Vec::new();
+    write_svg(&mut out, &r, &points, false).unwrap();
+    condt::io::write_geojson(&mut out, &r, &points).unwrap();
+    assert!(!out.is_empty());
 }

@@ -313,9 +313,9 @@ pub fn reconstruct(data: &[u8]) {
     let mut out = Vec::new();
     let written = write_edges(&mut out, &result)
         .and_then(|()| write_polylines(&mut out, &result))
-        .and_then(|()| write_geojson(&mut out, &result))
-        .and_then(|()| write_svg(&mut out, &result, false))
-        .and_then(|()| write_svg(&mut out, &result, true));
+        .and_then(|()| write_geojson(&mut out, &result, &points))
+        .and_then(|()| write_svg(&mut out, &result, &points, false))
+        .and_then(|()| write_svg(&mut out, &result, &points, true));
     if let Err(err) = written {
         panic!("writing to memory failed ({err}): {}", context());
     }

@@ -32,8 +32,26 @@ pub use points::{parse_node, parse_points, read_points};
 pub use svg::write_svg;
 pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};
 
+use crate::Reconstruction;
 use std::fmt;
 use std::io;
+
+/// Refuses `points` as the input of `result` when their count differs (an `InvalidInput`
+/// error): the writers that draw curves on the input coordinates take them from the caller,
+/// since the result keeps none ([`Reconstruction::stage_point`]).
+fn check_input(result: &Reconstruction, points: &[crate::Point]) -> io::Result<()> {
+    if points.len() == result.num_points() {
+        return Ok(());
+    }
+    Err(io::Error::new(
+        io::ErrorKind::InvalidInput,
+        format!(
+            "{} points given as the input of a reconstruction of {}",
+            points.len(),
+            result.num_points()
+        ),
+    ))
+}
 
 /// A problem reading or writing a file, with the file's name and, for bad content, the line.
 ///

@@ -105,18 +105,32 @@ fn dots(
 /// black), each titled; in each stage's panel the points that graph leaves without an edge are
 /// red, so a point turns red in the panel of the stage that removed its last edge.
 ///
+/// `points` is the reconstruction's input: the result alone is drawn on it; the stage panels
+/// show the points where the stages saw them ([`Reconstruction::stage_point`]).
+///
+/// # Errors
+/// `InvalidInput` when `points` has not as many points as the reconstruction's input; the
+/// errors of `out`.
+///
 /// ```
 /// use condt::{reconstruct, Params, Point};
-/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::paper())?;
+/// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from);
+/// let r = reconstruct(&points, &Params::paper())?;
 /// let mut out = Vec::new();
-/// condt::io::write_svg(&mut out, &r, true)?;
+/// condt::io::write_svg(&mut out, &r, &points, true)?;
 /// let svg = String::from_utf8(out)?;
 /// assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
 /// // A title per panel: the triangulation and each stage.
 /// assert_eq!(svg.matches("class=\"title\"").count(), 1 + r.stages().count());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> io::Result<()> {
+pub fn write_svg(
+    out: &mut dyn Write,
+    result: &Reconstruction,
+    points: &[Point],
+    stages: bool,
+) -> io::Result<()> {
+    super::check_input(result, points)?;
     // The frame is computed on the points times the power of two that brings the largest
     // magnitude into [1, 2): spans and offsets of coordinates near 1e308 then neither overflow
     // to infinity nor turn into NaN, and for every other set the picture is the same number for
@@ -128,7 +142,7 @@ pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, stages: bool) -> 
         if stages {
             result.stage_point(i)
         } else {
-            result.point(i)
+            points[i]
         }
     };
     let largest = (0..result.num_points())

@@ -11,7 +11,9 @@ use condt::io::{
     write_npy_triangulation_edges, write_polylines, write_svg, write_triangles,
     write_triangulation_edges, IoError,
 };
-use condt::{reconstruct_owned, triangulate, Error, Method, Params, Point, Repair, Uniformity};
+use condt::{
+    reconstruct, reconstruct_owned, triangulate, Error, Method, Params, Point, Repair, Uniformity,
+};
 use std::ffi::{OsStr, OsString};
 use std::fmt;
 use std::io::{self, Write};
@@ -667,8 +669,17 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     let points = read_input(args.input.as_deref(), args.params.parallel)?;
     timings.lap("read");
     let count = points.len();
-    // Handed over: freed once triangulated, so the stages' peak does not hold them.
-    let result = reconstruct_owned(points, &args.params)
+    // The SVG and GeoJSON writers draw the result on the input coordinates, which the result
+    // does not keep (`Reconstruction::stage_point`), so for them the points stay. Every other
+    // output reads the result alone: the points are handed over, freed once triangulated, and
+    // the stages' peak does not hold them.
+    let keeps_input = matches!(args.format, Format::Svg | Format::GeoJson);
+    let (result, input) = if keeps_input {
+        (reconstruct(&points, &args.params), points)
+    } else {
+        (reconstruct_owned(points, &args.params), Vec::new())
+    };
+    let result = result
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     let call = timings.quiet_lap();
     timings.reconstruction(&result, call);
@@ -676,8 +687,8 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         Format::Edges => write_edges(out, &result),
         Format::Npy => write_npy_edges(out, &result),
         Format::Polylines => write_polylines(out, &result),
-        Format::Svg => write_svg(out, &result, args.stages),
-        Format::GeoJson => write_geojson(out, &result),
+        Format::Svg => write_svg(out, &result, &input, args.stages),
+        Format::GeoJson => write_geojson(out, &result, &input),
         Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
     })?;
     timings.lap("write");
