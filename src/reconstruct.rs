@@ -1399,7 +1399,7 @@ mod tests {
             edges.dedup();
             let print = EdgesFingerprint::of(&edges);
             assert_eq!(print, EdgesFingerprint::of(&edges.clone()));
-            let mut others = vec![Vec::new()];
+            let mut others = alloc::vec![Vec::new()];
             for k in 0..edges.len() {
                 for end in 0..2 {
                     let mut changed = edges.clone();
