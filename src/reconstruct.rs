@@ -621,7 +621,8 @@ impl Reconstruction {
     /// The result keeps no copy of the input: the input coordinates are the caller's (the
     /// slice given to [`reconstruct`]; [`reconstruct_owned`] hands them over for good).
     /// Reason: a copy of the points the passes moved cost 10 to 16 bytes a point through every
-    /// pass and in the result, a tenth of the peak (`docs/performance.md`, "Memory").
+    /// pass and in the result, a tenth of the peak (`docs/performance.md`, "Where the bytes per point
+    /// go").
     ///
     /// # Panics
     /// If `index` is not an input position.
@@ -734,11 +735,11 @@ fn reconstruct_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Recons
         let mut smoothing = Smoothing::default();
         loop {
             // Of the previous pass only its final edges are read again (the fixed-point test,
-            // by their fingerprint), and its triangulation and final graph to smooth along: the rest (stage
-            // records, degrees) is freed before the positions are computed (26 bytes per point
-            // of uniform points at the passes' peak), those two once they are, and the moved
-            // positions once they are triangulated. The last pass allowed stops whatever its
-            // edges, so they are not kept for it.
+            // by their fingerprint), and its triangulation and final graph to smooth along: the
+            // rest (stage records, degrees) is freed before the positions are computed (26 bytes
+            // per point of uniform points at the passes' peak), those two once they are, and the
+            // moved positions once they are triangulated. The last pass allowed stops whatever
+            // its edges, so they are not kept for it.
             let last_pass = smoothing.passes + 1 >= MAX_PASSES;
             let previous_edges = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
             drop(core::mem::take(&mut result.edges));
@@ -1264,12 +1265,17 @@ mod tests {
                     .sum();
                 assert!(!borrowed.edges.is_empty());
                 assert_eq!(segments, borrowed.edges.len());
-                for i in 0..points.len() {
+                for (i, &input) in points.iter().enumerate() {
                     let (p, q) = (borrowed.stage_point(i), owned.stage_point(i));
                     assert_eq!(
                         (q.x.to_bits(), q.y.to_bits()),
                         (p.x.to_bits(), p.y.to_bits())
                     );
+                    // Without the passes, the stages saw the input points (a merged duplicate
+                    // keeps the bits of its first position: equal, perhaps not in a zero's sign).
+                    if !smooth {
+                        assert_eq!(p, input, "point {i}");
+                    }
                 }
             }
             let smoothed = reconstruct(&points, &Params::default()).unwrap();

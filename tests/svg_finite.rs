@@ -1,6 +1,6 @@
 //! SVG drawings hold finite numbers only, whatever the coordinates (issue 11, item 7).
 
-use condt::io::write_svg;
+use condt::io::{write_svg, write_svg_stages};
 use condt::{reconstruct, Params, Point};
 
 /// Every number in `svg` (colours `#rrggbb` aside): maximal runs of digits, signs, points and
@@ -26,7 +26,11 @@ fn numbers(svg: &str) -> Vec<f64> {
 fn svg_of(points: &[Point], stages: bool) -> String {
     let r = reconstruct(points, &Params::default()).unwrap();
     let mut out = Vec::new();
-    write_svg(&mut out, &r, points, stages).unwrap();
+    if stages {
+        write_svg_stages(&mut out, &r).unwrap();
+    } else {
+        write_svg(&mut out, &r, points).unwrap();
+    }
     String::from_utf8(out).unwrap()
 }
 
@@ -114,7 +118,11 @@ fn drawings_say_when_points_are_at_smoothed_positions() {
     );
     let draw = |r: &condt::Reconstruction, stages: bool| {
         let mut out = Vec::new();
-        write_svg(&mut out, r, &arc, stages).unwrap();
+        if stages {
+            write_svg_stages(&mut out, r).unwrap();
+        } else {
+            write_svg(&mut out, r, &arc).unwrap();
+        }
         String::from_utf8(out).unwrap()
     };
     let stage_drawing = draw(&smoothed, true);
@@ -133,12 +141,12 @@ fn drawings_say_when_points_are_at_smoothed_positions() {
 /// The drawings that take the input coordinates from the caller refuse a list of another
 /// length with an `InvalidInput` error, and write nothing; the right list is accepted.
 #[test]
-fn writers_refuse_points_that_are_not_the_input() {
+fn writers_refuse_a_point_list_of_another_length() {
     let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from);
     let r = reconstruct(&points, &Params::default()).unwrap();
     for wrong in [&points[..2], &[points[0]; 4][..], &[]] {
         let mut out = Vec::new();
-        let err = write_svg(&mut out, &r, wrong, false).unwrap_err();
+        let err = write_svg(&mut out, &r, wrong).unwrap_err();
         assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
         let err = condt::io::write_geojson(&mut out, &r, wrong).unwrap_err();
         assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
@@ -146,7 +154,7 @@ fn writers_refuse_points_that_are_not_the_input() {
         assert!(out.is_empty());
     }
     let mut out = Vec::new();
-    write_svg(&mut out, &r, &points, false).unwrap();
+    write_svg(&mut out, &r, &points).unwrap();
     condt::io::write_geojson(&mut out, &r, &points).unwrap();
     assert!(!out.is_empty());
 }

@@ -7,7 +7,7 @@
 
 use condt::io::parse_points as parse;
 use condt::io::{parse_csv, parse_geojson, parse_node, parse_npy};
-use condt::io::{write_edges, write_geojson, write_polylines, write_svg};
+use condt::io::{write_edges, write_geojson, write_polylines, write_svg, write_svg_stages};
 use condt::{Error, Params, Point, Repair, Uniformity, MAX_POINTS};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -314,8 +314,8 @@ pub fn reconstruct(data: &[u8]) {
     let written = write_edges(&mut out, &result)
         .and_then(|()| write_polylines(&mut out, &result))
         .and_then(|()| write_geojson(&mut out, &result, &points))
-        .and_then(|()| write_svg(&mut out, &result, &points, false))
-        .and_then(|()| write_svg(&mut out, &result, &points, true));
+        .and_then(|()| write_svg(&mut out, &result, &points))
+        .and_then(|()| write_svg_stages(&mut out, &result));
     if let Err(err) = written {
         panic!("writing to memory failed ({err}): {}", context());
     }

@@ -29,7 +29,7 @@ pub use npy::{
     write_npy_triangulation_edges,
 };
 pub use points::{parse_node, parse_points, read_points};
-pub use svg::write_svg;
+pub use svg::{write_svg, write_svg_stages};
 pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};
 
 use crate::Reconstruction;

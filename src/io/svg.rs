@@ -99,38 +99,58 @@ fn dots(
     writeln!(out, "</g>")
 }
 
-/// Draws the points and the reconstructed curves, with a legend; points without an edge in the
-/// result (outliers) in red. With `stages`, one panel per step, three to a row: the Delaunay
-/// triangulation, then the graph after every stage in the order the stages ran (the result in
-/// black), each titled; in each stage's panel the points that graph leaves without an edge are
-/// red, so a point turns red in the panel of the stage that removed its last edge.
-///
-/// `points` is the reconstruction's input: the result alone is drawn on it; the stage panels
-/// show the points where the stages saw them ([`Reconstruction::stage_point`]).
+/// Draws the points of `input`, the reconstruction's input, and the reconstructed curves, with
+/// a legend; points without an edge in the result (outliers) in red.
 ///
 /// # Errors
-/// `InvalidInput` when `points` has not as many points as the reconstruction's input; the
-/// errors of `out`.
+/// `InvalidInput` when `input` has not as many points as the reconstruction's input (the
+/// result keeps no copy of them: [`Reconstruction::stage_point`]); the errors of `out`.
 ///
 /// ```
 /// use condt::{reconstruct, Params, Point};
 /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from);
 /// let r = reconstruct(&points, &Params::paper())?;
 /// let mut out = Vec::new();
-/// condt::io::write_svg(&mut out, &r, &points, true)?;
+/// condt::io::write_svg(&mut out, &r, &points)?;
+/// let svg = String::from_utf8(out)?;
+/// assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+/// // One panel: the result alone.
+/// assert_eq!(svg.matches("class=\"title\"").count(), 1);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_svg(out: &mut dyn Write, result: &Reconstruction, input: &[Point]) -> io::Result<()> {
+    super::check_input(result, input)?;
+    draw(out, result, Some(input))
+}
+
+/// Draws every step, one panel each, three to a row: the Delaunay triangulation, then the graph
+/// after every stage in the order the stages ran (the result in black), each titled; in each
+/// stage's panel the points that graph leaves without an edge are red, so a point turns red in
+/// the panel of the stage that removed its last edge. The points are where the stages saw them
+/// ([`Reconstruction::stage_point`]: moved, when smoothing passes ran), since the rings and
+/// lengths the stages tested are theirs.
+///
+/// # Errors
+/// The errors of `out`.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::paper())?;
+/// let mut out = Vec::new();
+/// condt::io::write_svg_stages(&mut out, &r)?;
 /// let svg = String::from_utf8(out)?;
 /// assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
 /// // A title per panel: the triangulation and each stage.
 /// assert_eq!(svg.matches("class=\"title\"").count(), 1 + r.stages().count());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn write_svg(
-    out: &mut dyn Write,
-    result: &Reconstruction,
-    points: &[Point],
-    stages: bool,
-) -> io::Result<()> {
-    super::check_input(result, points)?;
+pub fn write_svg_stages(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
+    draw(out, result, None)
+}
+
+/// [`write_svg`] on `input`, or [`write_svg_stages`] without it.
+fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -> io::Result<()> {
+    let stages = input.is_none();
     // The frame is computed on the points times the power of two that brings the largest
     // magnitude into [1, 2): spans and offsets of coordinates near 1e308 then neither overflow
     // to infinity nor turn into NaN, and for every other set the picture is the same number for
@@ -138,12 +158,9 @@ pub fn write_svg(
     // The stage panels show the points where the stages saw them (moved by the smoothing
     // passes, if any ran: their rings and lengths are those); the result alone is drawn on the
     // input points.
-    let position = |i: usize| {
-        if stages {
-            result.stage_point(i)
-        } else {
-            points[i]
-        }
+    let position = |i: usize| match input {
+        Some(points) => points[i],
+        None => result.stage_point(i),
     };
     let largest = (0..result.num_points())
         .map(position)

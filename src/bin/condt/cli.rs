@@ -8,7 +8,7 @@ use crate::output::{refuse_same_file, Destination};
 use crate::timings::Timings;
 use condt::io::{
     read_points, write_edges, write_geojson, write_html, write_npy_edges, write_npy_triangles,
-    write_npy_triangulation_edges, write_polylines, write_svg, write_triangles,
+    write_npy_triangulation_edges, write_polylines, write_svg, write_svg_stages, write_triangles,
     write_triangulation_edges, IoError,
 };
 use condt::{
@@ -669,11 +669,15 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     let points = read_input(args.input.as_deref(), args.params.parallel)?;
     timings.lap("read");
     let count = points.len();
-    // The SVG and GeoJSON writers draw the result on the input coordinates, which the result
-    // does not keep (`Reconstruction::stage_point`), so for them the points stay. Every other
-    // output reads the result alone: the points are handed over, freed once triangulated, and
-    // the stages' peak does not hold them.
-    let keeps_input = matches!(args.format, Format::Svg | Format::GeoJson);
+    // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
+    // result does not keep (`Reconstruction::stage_point`), so for them the points stay (16
+    // bytes per point through the stages). Every other output reads the result alone: the
+    // points are handed over, freed once triangulated, and the stages' peak does not hold them.
+    let keeps_input = match args.format {
+        Format::Svg => !args.stages,
+        Format::GeoJson => true,
+        _ => false,
+    };
     let (result, input) = if keeps_input {
         (reconstruct(&points, &args.params), points)
     } else {
@@ -687,7 +691,8 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         Format::Edges => write_edges(out, &result),
         Format::Npy => write_npy_edges(out, &result),
         Format::Polylines => write_polylines(out, &result),
-        Format::Svg => write_svg(out, &result, &input, args.stages),
+        Format::Svg if args.stages => write_svg_stages(out, &result),
+        Format::Svg => write_svg(out, &result, &input),
         Format::GeoJson => write_geojson(out, &result, &input),
         Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
     })?;
