@@ -621,8 +621,8 @@ impl Reconstruction {
     /// The result keeps no copy of the input: the input coordinates are the caller's (the
     /// slice given to [`reconstruct`]; [`reconstruct_owned`] hands them over for good).
     /// Reason: a copy of the points the passes moved cost 10 to 16 bytes a point through every
-    /// pass and in the result, a tenth of the peak (`docs/performance.md`, "Where the bytes per point
-    /// go").
+    /// pass and in the result, a tenth of the peak (`docs/performance.md`, "Where the bytes per
+    /// point go").
     ///
     /// # Panics
     /// If `index` is not an input position.

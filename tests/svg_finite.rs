@@ -1,7 +1,7 @@
 //! SVG drawings hold finite numbers only, whatever the coordinates (issue 11, item 7).
 
 use condt::io::{write_svg, write_svg_stages};
-use condt::{reconstruct, Params, Point};
+use condt::{reconstruct, Params, Point, Reconstruction};
 
 /// Every number in `svg` (colours `#rrggbb` aside): maximal runs of digits, signs, points and
 /// exponents, parsed.
@@ -24,12 +24,20 @@ fn numbers(svg: &str) -> Vec<f64> {
 }
 
 fn svg_of(points: &[Point], stages: bool) -> String {
-    let r = reconstruct(points, &Params::default()).unwrap();
+    drawing(
+        &reconstruct(points, &Params::default()).unwrap(),
+        points,
+        stages,
+    )
+}
+
+/// The stage panels of `r` with `stages`, else its result drawn on `input`.
+fn drawing(r: &Reconstruction, input: &[Point], stages: bool) -> String {
     let mut out = Vec::new();
     if stages {
-        write_svg_stages(&mut out, &r).unwrap();
+        write_svg_stages(&mut out, r).unwrap();
     } else {
-        write_svg(&mut out, &r, points).unwrap();
+        write_svg(&mut out, r, input).unwrap();
     }
     String::from_utf8(out).unwrap()
 }
@@ -116,15 +124,7 @@ fn drawings_say_when_points_are_at_smoothed_positions() {
         plain.edges().collect::<Vec<_>>(),
         smoothed.edges().collect::<Vec<_>>()
     );
-    let draw = |r: &condt::Reconstruction, stages: bool| {
-        let mut out = Vec::new();
-        if stages {
-            write_svg_stages(&mut out, r).unwrap();
-        } else {
-            write_svg(&mut out, r, &arc).unwrap();
-        }
-        String::from_utf8(out).unwrap()
-    };
+    let draw = |r: &Reconstruction, stages: bool| drawing(r, &arc, stages);
     let stage_drawing = draw(&smoothed, true);
     assert!(stage_drawing.contains("smoothing pass"));
     assert!(!draw(&plain, true).contains("smoothing pass"));

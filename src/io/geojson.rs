@@ -6,10 +6,10 @@ use std::io::{self, Write};
 
 /// A `FeatureCollection` with one `LineString` per curve and a boolean `closed` property; a
 /// closed curve repeats its first position at the end, as GeoJSON rings do. The coordinates are
-/// those of `points`, the reconstruction's input, exactly as given.
+/// those of `input`, the reconstruction's input, exactly as given.
 ///
 /// # Errors
-/// `InvalidInput` when `points` has not as many points as the reconstruction's input; the
+/// `InvalidInput` when `input` has not as many points as the reconstruction's input; the
 /// errors of `out`.
 ///
 /// ```
@@ -27,9 +27,9 @@ use std::io::{self, Write};
 pub fn write_geojson(
     out: &mut dyn Write,
     result: &Reconstruction,
-    points: &[Point],
+    input: &[Point],
 ) -> io::Result<()> {
-    super::check_input(result, points)?;
+    super::check_input(result, input)?;
     write!(out, r#"{{"type":"FeatureCollection","features":["#)?;
     for (k, curve) in result.curves().iter().enumerate() {
         if k > 0 {
@@ -43,7 +43,7 @@ pub fn write_geojson(
         write!(out, r#""geometry":{{"type":"LineString","coordinates":["#)?;
         let closing = curve.points().next().filter(|_| curve.is_closed());
         for (k, i) in curve.points().chain(closing).enumerate() {
-            let p = points[i];
+            let p = input[i];
             write!(out, "{}[{},{}]", if k > 0 { "," } else { "" }, p.x, p.y)?;
         }
         write!(out, "]}}}}")?;

@@ -147,7 +147,8 @@ mod linux {
     /// The binary's global allocator (see the module comment).
     pub(crate) struct Recycling {
         kept: Mutex<Kept>,
-        /// Bytes of glibc's heap the small blocks live now take (their chunks, [`Recycling::chunk`]).
+        /// Bytes of glibc's heap the small blocks live now take (their chunks,
+        /// [`Recycling::chunk`]).
         small_live: AtomicUsize,
         /// The most such bytes live at once so far.
         small_high: AtomicUsize,
