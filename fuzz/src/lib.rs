@@ -5,10 +5,10 @@
 //! file and replay every saved corpus entry and crash on stable Rust, without libFuzzer. A
 //! failing check prints its points as Rust source, ready to paste into a test.
 
-use condt::io::parse_points as parse;
-use condt::io::{parse_csv, parse_geojson, parse_node, parse_npy};
-use condt::io::{write_edges, write_geojson, write_polylines, write_svg, write_svg_stages};
 use condt::{Error, Params, Point, Repair, Uniformity, MAX_POINTS};
+use condt_io::parse_points as parse;
+use condt_io::{parse_csv, parse_geojson, parse_node, parse_npy};
+use condt_io::{write_edges, write_geojson, write_polylines, write_svg, write_svg_stages};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 

@@ -1,0 +1,857 @@
+//! The command-line front end of the `condt` binary.
+//!
+//! Owns: argument parsing, messages and exit codes. It may not implement geometry nor check a
+//! parameter's range: it calls the library and `condt_io` and reports what they say; where the
+//! output goes is [`crate::output`]'s business.
+
+use crate::output::{refuse_same_file, Destination};
+use crate::timings::Timings;
+use condt::{
+    reconstruct, reconstruct_owned, triangulate, Error, Method, Params, Point, Repair, Uniformity,
+};
+use condt_io::{
+    read_points, write_edges, write_geojson, write_html, write_npy_edges, write_npy_triangles,
+    write_npy_triangulation_edges, write_polylines, write_svg, write_svg_stages, write_triangles,
+    write_triangulation_edges, IoError,
+};
+use std::ffi::{OsStr, OsString};
+use std::fmt;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+const USAGE: &str = "\
+condt: Delaunay triangulation and curve reconstruction of planar points
+
+Usage:
+  condt reconstruct INPUT [-o OUTPUT] [options]   the curves through the points (ConDT)
+  condt triangulate INPUT [-o OUTPUT] [--edges]   their Delaunay triangulation
+  condt score POINTS OUTPUT TRUTH [--json]        an edge list against a ground truth
+  condt help COMMAND                              a command's options, with an example
+
+INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
+ignored; `#` comments and blank lines are skipped); `-` reads text from standard input. By the
+name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
+float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
+and y columns (or lon, lat), `.geojson` or `.json` the Point and MultiPoint geometries of a
+GeoJSON document. Points are numbered from 0 in the order of their lines (rows, features);
+every output speaks of points by that number.
+Exact duplicate points are merged into the first of them (a note on standard error says how
+many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
+
+OUTPUT (`-o`) is written whole or not at all; without it, or with `-`, the result goes to
+standard output. An existing file keeps its permissions, owner, hard links and symbolic links;
+a terminal, named pipe or device is written to, never replaced. OUTPUT may not be INPUT.
+
+Exit codes: 0 success; 1 the input or output failed (the message names the file and line);
+2 a wrong command line. A reader that stops early (`| head`) ends the run silently, by SIGPIPE.
+
+Options:
+  -h, --help          show this help (`condt COMMAND --help`: that command's)
+  -V, --version       show the version
+";
+
+const RECONSTRUCT_HELP: &str = "\
+condt reconstruct: the curves through unorganized planar points (ConDT)
+
+Usage:
+  condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive]
+                    [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
+                    [--outliers-first] [--[no-]local-outliers] [--[no-]confirm-given-back]
+                    [--[no-]close-gaps] [--[no-]smooth] [--format F] [--stages] [--sequential]
+                    [--timings]
+
+Example:
+  condt reconstruct data/shapes.txt -o shapes.svg --stages
+
+Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j` per line,
+i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), uint32 when every
+point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
+default on standard output), `svg` (.svg: the points and curves; with --stages the Delaunay
+triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
+LineString per curve), `html` (.html: a self-contained page to explore every stage: layers, pan
+and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
+(those with no edge in the result: outliers).
+
+The default pipeline is the paper's (Algorithms 1-3) with the repair `needs`, local outlier
+removal and gap closing; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points,
+which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error.
+
+Options:
+  -o, --output FILE       write to FILE instead of standard output
+      --paper             the paper's pipeline (Algorithms 1-3 as docs/condt.md reads them)
+                          instead of the default; the options below still adjust it
+      --u X               uniformity parameter u (default 2.75)
+      --adaptive          adaptive uniformity (section 4.1 of the paper)
+      --iqr K             outlier factor (default 1.7)
+      --no-outlier-filter skip outlier removal
+      --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
+      --[no-]local-outliers
+                          (default on; off with --paper) after the outlier filter and the
+                          repair, remove outliers locally: give back edges the filter cut
+                          along regular passages; drop edges far longer than their
+                          neighbours, branches of fewer than 5 points and components of
+                          fewer than 5 points clearly apart from the rest, unless dense
+                          (a sparsely sampled 3- or 4-point curve is lost)
+      --[no-]confirm-given-back
+                          (default on; off with --paper; needs the local outlier removal)
+                          right after it, drop a component rebuilt only from edges the
+                          outlier filter cut unless every point of it is apart from all
+                          else by twice its longest edge (a chance chain of outliers in a
+                          large scatter; a sparse curve the filter cut that passes near
+                          another point stays cut)
+      --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
+                          other across a short gap or line up through a stranded point, and a
+                          crossing's dropped arms
+      --[no-]smooth       (default on; off with --paper) when one point in a hundred or more
+                          ends or branches the result, move each point with two edges
+                          meeting at a wide angle halfway to its neighbours' midpoint and
+                          run the stages again on the moved points, up to three times
+                          (edges stay between the input points; drawings show the moved
+                          ones); for noisy samples
+      --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
+                          --repair off
+      --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
+      --method M          condt (default), or a classical baseline on the same Delaunay
+                          triangulation: nn-crust (Dey and Kumar) or crust (Amenta, Bern
+                          and Eppstein); a baseline takes none of the ConDT options
+      --format F          edges, npy, txt, svg, geojson or html
+      --stages            draw every stage (SVG output only)
+      --sequential        do not use threads (the result is the same)
+      --timings           on standard error, one line `condt: time STEP SECONDS s` per step:
+                          read, earlier-passes (when smoothing ran), triangulation, each
+                          stage of the last pass, curves, other, write, total
+  -h, --help              show this help
+";
+
+const TRIANGULATE_HELP: &str = "\
+condt triangulate: the Delaunay triangulation of planar points
+
+Usage:
+  condt triangulate INPUT [-o OUTPUT] [--edges] [--timings]
+
+Example:
+  condt triangulate data/shapes.txt --edges -o shapes.edges
+
+Writes one triangle `i j k` per line, counter-clockwise, in point numbers; with --edges one
+edge `i j` (i < j) per line instead, sorted. An OUTPUT ending in .npy gets the same as a NumPy
+array instead, of shape (t, 3) or with --edges (m, 2), uint32 when every point number fits,
+int64 otherwise. Points all on one line have no triangles: their chain of edges is written only
+with --edges, and a note on standard error says so.
+
+Options:
+  -o, --output FILE   write to FILE instead of standard output
+      --edges         write edges instead of triangles
+      --timings       on standard error, one line `condt: time STEP SECONDS s` per step:
+                      read, triangulation, write, total
+  -h, --help          show this help
+";
+
+/// Why a command failed, and with which exit code.
+#[derive(Debug)]
+pub(crate) enum CliError {
+    /// The command line is wrong (exit code 2).
+    Usage(String),
+    /// The input could not be read (exit code 1).
+    Io(IoError),
+    /// The points cannot be triangulated (exit code 1).
+    Input(String),
+    /// The output could not be written (exit code 1).
+    File { file: String, error: io::Error },
+    /// The reader of standard output or of a pipe went away: not reported (see
+    /// [`crate::output::end_by_broken_pipe`]).
+    BrokenPipe,
+}
+
+impl CliError {
+    /// The process exit code for this error.
+    pub(crate) fn exit_code(&self) -> i32 {
+        match self {
+            CliError::Usage(_) => 2,
+            CliError::Io(_) | CliError::Input(_) | CliError::File { .. } => 1,
+            CliError::BrokenPipe => 141,
+        }
+    }
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CliError::Usage(message) => write!(f, "{message}\n\nRun `condt --help` for usage."),
+            CliError::Io(err) => write!(f, "{err}"),
+            CliError::Input(message) => write!(f, "{message}"),
+            CliError::File { file, error } => write!(f, "{file}: {error}"),
+            CliError::BrokenPipe => write!(f, "the reader of the output went away"),
+        }
+    }
+}
+
+impl From<IoError> for CliError {
+    fn from(err: IoError) -> Self {
+        CliError::Io(err)
+    }
+}
+
+/// A line on standard error. A failing standard error (`2>/dev/full`) cannot be told about, and
+/// must not stop the run: the error is dropped.
+pub(crate) fn note(message: fmt::Arguments<'_>) {
+    let _ = writeln!(io::stderr().lock(), "condt: {message}");
+}
+
+pub(crate) fn usage(message: impl Into<String>) -> CliError {
+    CliError::Usage(message.into())
+}
+
+/// An argument as text, for options and their values; file names need not be text.
+fn text<'a>(arg: &'a OsStr, what: &str) -> Result<&'a str, CliError> {
+    arg.to_str()
+        .ok_or_else(|| usage(format!("{what} {}: not valid UTF-8", arg.to_string_lossy())))
+}
+
+/// Options of `condt triangulate`.
+#[derive(Debug, Default, PartialEq)]
+struct TriangulateArgs {
+    /// `None`: standard input.
+    input: Option<PathBuf>,
+    /// `None`: standard output.
+    output: Option<PathBuf>,
+    edges: bool,
+    timings: bool,
+}
+
+/// Where `-o` and INPUT go while the arguments are read.
+#[derive(Default)]
+struct Paths {
+    input: Option<OsString>,
+    output: Option<OsString>,
+}
+
+impl Paths {
+    /// The arguments every command takes: `-o FILE`, the one INPUT; anything else starting with
+    /// `-` is an unknown option.
+    fn take<'a>(
+        &mut self,
+        arg: &'a OsStr,
+        rest: &mut impl Iterator<Item = &'a OsString>,
+    ) -> Result<(), CliError> {
+        match arg.to_str() {
+            Some(flag @ ("-o" | "--output")) => {
+                let value = rest
+                    .next()
+                    .ok_or_else(|| usage(format!("{flag} needs a file name")))?;
+                if value.is_empty() {
+                    return Err(usage(format!(
+                        "{flag} needs a file name, and was given an empty one (use - for standard output)"
+                    )));
+                }
+                if self.output.replace(value.clone()).is_some() {
+                    return Err(usage(format!("{flag} is given twice")));
+                }
+            }
+            Some(flag) if flag.starts_with('-') && flag != "-" => {
+                return Err(usage(format!("unknown option {flag}")));
+            }
+            _ => {
+                if arg.is_empty() {
+                    return Err(usage(
+                        "INPUT is an empty file name (use - for standard input)",
+                    ));
+                }
+                if self.input.replace(arg.to_os_string()).is_some() {
+                    return Err(usage(format!(
+                        "unexpected extra argument {}",
+                        arg.to_string_lossy()
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// INPUT and OUTPUT, `-` standing for the standard streams.
+    fn finish(self, command: &str) -> Result<(Option<PathBuf>, Option<PathBuf>), CliError> {
+        let input = self
+            .input
+            .ok_or_else(|| usage(format!("{command} needs an INPUT file (or -)")))?;
+        let stream = |p: OsString| (p != "-").then(|| PathBuf::from(p));
+        Ok((stream(input), self.output.and_then(stream)))
+    }
+}
+
+fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
+    let mut edges = false;
+    let mut timings = false;
+    let mut paths = Paths::default();
+    let mut rest = args.iter();
+    while let Some(arg) = rest.next() {
+        match arg.to_str() {
+            Some("--edges") => edges = true,
+            Some("--timings") => timings = true,
+            _ => paths.take(arg, &mut rest)?,
+        }
+    }
+    let (input, output) = paths.finish("triangulate")?;
+    Ok(TriangulateArgs {
+        input,
+        output,
+        edges,
+        timings,
+    })
+}
+
+/// What to print on standard output when the run succeeds (help, version).
+pub(crate) type Printed = String;
+
+/// Runs the tool on `args` (without the program name); `Ok` holds what to print to stdout for
+/// informational commands such as `--help`.
+pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
+    let Some((command, rest)) = args.split_first() else {
+        return Err(usage("no command given"));
+    };
+    let asks_help = rest.iter().any(|a| a == "-h" || a == "--help");
+    match text(command, "command")? {
+        "-h" | "--help" => Ok(USAGE.to_string()),
+        "help" => match rest.first().map(|c| c.to_str()) {
+            None => Ok(USAGE.to_string()),
+            Some(Some("reconstruct")) => Ok(RECONSTRUCT_HELP.to_string()),
+            Some(Some("triangulate")) => Ok(TRIANGULATE_HELP.to_string()),
+            Some(Some("score")) => Ok(crate::score::HELP.to_string()),
+            Some(_) => Err(usage(format!(
+                "help: unknown command {}; the commands are reconstruct, triangulate and score",
+                rest[0].to_string_lossy()
+            ))),
+        },
+        "-V" | "--version" => Ok(format!("condt {}\n", env!("CARGO_PKG_VERSION"))),
+        "reconstruct" if asks_help => Ok(RECONSTRUCT_HELP.to_string()),
+        "triangulate" if asks_help => Ok(TRIANGULATE_HELP.to_string()),
+        "score" if asks_help => Ok(crate::score::HELP.to_string()),
+        "score" => crate::score::command(rest),
+        "reconstruct" => reconstruct_command(parse_reconstruct(rest)?).map(|()| String::new()),
+        "triangulate" => triangulate_command(parse_triangulate(rest)?).map(|()| String::new()),
+        other => Err(usage(format!(
+            "unknown command {other}; the commands are reconstruct, triangulate and score"
+        ))),
+    }
+}
+
+/// Output formats of `condt reconstruct`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Format {
+    Edges,
+    Npy,
+    Polylines,
+    Svg,
+    GeoJson,
+    Html,
+}
+
+impl Format {
+    fn named(name: &str) -> Option<Format> {
+        match name {
+            "edges" => Some(Format::Edges),
+            "npy" => Some(Format::Npy),
+            "txt" => Some(Format::Polylines),
+            "svg" => Some(Format::Svg),
+            "geojson" | "json" => Some(Format::GeoJson),
+            "html" | "htm" => Some(Format::Html),
+            _ => None,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Format::Edges => "edges",
+            Format::Npy => "npy",
+            Format::Polylines => "txt",
+            Format::Svg => "svg",
+            Format::GeoJson => "geojson",
+            Format::Html => "html",
+        }
+    }
+}
+
+/// Options of `condt reconstruct`.
+#[derive(Debug, PartialEq)]
+struct ReconstructArgs {
+    /// `None`: standard input.
+    input: Option<PathBuf>,
+    /// `None`: standard output.
+    output: Option<PathBuf>,
+    params: Params,
+    format: Format,
+    stages: bool,
+    timings: bool,
+}
+
+/// The number after `flag`; whether its value is accepted is for the library to say.
+fn number(flag: &str, value: Option<&OsString>) -> Result<f64, CliError> {
+    let value = value.ok_or_else(|| usage(format!("{flag} needs a number")))?;
+    let text = text(value, flag)?;
+    text.parse::<f64>()
+        .map_err(|_| usage(format!("{flag} {text}: not a number")))
+}
+
+/// A parameter the library refused, told with the option that set it.
+fn refused(err: Error) -> CliError {
+    let flag = match err {
+        Error::InvalidParameter { name: "u", .. } => "--u",
+        Error::InvalidParameter { name: "k", .. } => "--iqr",
+        _ => "",
+    };
+    usage(format!("{flag}: {err}"))
+}
+
+/// One setting that several options can make: the first option that set it is kept, so that a
+/// second one saying otherwise is reported instead of silently winning.
+struct Setting<T> {
+    value: Option<(T, String)>,
+}
+
+impl<T: PartialEq> Setting<T> {
+    fn new() -> Self {
+        Setting { value: None }
+    }
+
+    fn set(&mut self, value: T, said: impl Into<String>) -> Result<(), CliError> {
+        let said = said.into();
+        match &self.value {
+            Some((old, old_said)) if *old != value => Err(usage(format!(
+                "{old_said} and {said} contradict each other: give one of them"
+            ))),
+            Some(_) => Ok(()),
+            None => {
+                self.value = Some((value, said));
+                Ok(())
+            }
+        }
+    }
+
+    fn get(self) -> Option<T> {
+        self.value.map(|(value, _)| value)
+    }
+}
+
+const REPAIR_MODES: &str = "needs, paper, mutual, crossing or off";
+
+fn repair_mode(value: Option<&OsString>) -> Result<Repair, CliError> {
+    let value = value.ok_or_else(|| usage(format!("--repair needs a mode: {REPAIR_MODES}")))?;
+    match value.to_str() {
+        Some("paper") => Ok(Repair::Paper),
+        Some("mutual") => Ok(Repair::Mutual),
+        Some("crossing") => Ok(Repair::CrossingAware),
+        Some("needs") => Ok(Repair::Needs),
+        Some("off") => Ok(Repair::Off),
+        _ => Err(usage(format!(
+            "--repair {}: unknown mode; the modes are {REPAIR_MODES}",
+            value.to_string_lossy()
+        ))),
+    }
+}
+
+fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
+    // `--paper` chooses the starting point wherever it stands; the other options adjust it.
+    let mut params = if args.iter().any(|a| a == "--paper") {
+        Params::paper()
+    } else {
+        Params::default()
+    };
+    let mut paths = Paths::default();
+    let mut uniformity = Setting::new();
+    let mut outliers = Setting::new();
+    let mut repair = Setting::new();
+    let mut local = Setting::new();
+    let mut confirm = Setting::new();
+    let mut gaps = Setting::new();
+    let mut smooth = Setting::new();
+    let mut format = Setting::new();
+    let mut method = Setting::new();
+    // ConDT's own options, to refuse them beside a baseline method.
+    let mut condt_options: Vec<String> = Vec::new();
+    let mut stages = false;
+    let mut timings = false;
+    let mut rest = args.iter();
+    while let Some(arg) = rest.next() {
+        // The options that set a ConDT stage, which a baseline method refuses.
+        if let Some(
+            flag @ ("--u"
+            | "--adaptive"
+            | "--iqr"
+            | "--no-outlier-filter"
+            | "--outliers-first"
+            | "--local-outliers"
+            | "--no-local-outliers"
+            | "--confirm-given-back"
+            | "--no-confirm-given-back"
+            | "--close-gaps"
+            | "--no-close-gaps"
+            | "--no-manifold-fix"
+            | "--repair"
+            | "--paper"
+            | "--smooth"
+            | "--no-smooth"),
+        ) = arg.to_str()
+        {
+            condt_options.push(flag.to_string());
+        }
+        match arg.to_str() {
+            Some(flag @ "--method") => {
+                let value = rest.next();
+                let name = value.map(|v| v.to_string_lossy()).unwrap_or_default();
+                let chosen = match &*name {
+                    "condt" => Method::ConDT,
+                    "nn-crust" => Method::NnCrust,
+                    "crust" => Method::Crust,
+                    _ => {
+                        return Err(usage(format!(
+                        "{flag} {name}: unknown method; the methods are condt, nn-crust and crust"
+                    )))
+                    }
+                };
+                method.set(chosen, format!("{flag} {name}"))?;
+            }
+            Some(flag @ "--u") => {
+                let u = number(flag, rest.next())?;
+                uniformity.set(Uniformity::Fixed(u), format!("--u {u}"))?;
+            }
+            Some(flag @ "--adaptive") => uniformity.set(Uniformity::Adaptive, flag)?,
+            Some(flag @ "--iqr") => {
+                let k = number(flag, rest.next())?;
+                outliers.set(Some(k), format!("--iqr {k}"))?;
+            }
+            Some(flag @ "--no-outlier-filter") => outliers.set(None, flag)?,
+            Some("--outliers-first") => params.outliers_first = true,
+            Some(flag @ "--local-outliers") => local.set(true, flag)?,
+            Some(flag @ "--no-local-outliers") => local.set(false, flag)?,
+            Some(flag @ "--confirm-given-back") => confirm.set(true, flag)?,
+            Some(flag @ "--no-confirm-given-back") => confirm.set(false, flag)?,
+            Some(flag @ "--close-gaps") => gaps.set(true, flag)?,
+            Some(flag @ "--no-close-gaps") => gaps.set(false, flag)?,
+            Some(flag @ "--smooth") => smooth.set(true, flag)?,
+            Some(flag @ "--no-smooth") => smooth.set(false, flag)?,
+            Some(flag @ "--no-manifold-fix") => repair.set(Repair::Off, flag)?,
+            Some(flag @ "--repair") => {
+                let value = rest.next();
+                let mode = repair_mode(value)?;
+                repair.set(
+                    mode,
+                    format!(
+                        "{flag} {}",
+                        value.map_or("".into(), |v| v.to_string_lossy())
+                    ),
+                )?;
+            }
+            Some(flag @ "--format") => {
+                let value = rest.next().ok_or_else(|| {
+                    usage("--format needs a name: edges, npy, txt, svg, geojson or html")
+                })?;
+                let name = text(value, flag)?;
+                let chosen = Format::named(name).ok_or_else(|| {
+                    usage(format!(
+                        "--format {name}: unknown format; the formats are edges, npy, txt, svg, geojson and html"
+                    ))
+                })?;
+                format.set(chosen, format!("--format {name}"))?;
+            }
+            Some("--stages") => stages = true,
+            Some("--timings") => timings = true,
+            Some("--paper") => {}
+            Some("--sequential") => params.parallel = false,
+            _ => paths.take(arg, &mut rest)?,
+        }
+    }
+    if let Some(u) = uniformity.get() {
+        params.uniformity = u;
+    }
+    if let Some(k) = outliers.get() {
+        params.outlier_factor = k;
+    }
+    if let Some(mode) = repair.get() {
+        params.repair = mode;
+    }
+    if let Some(on) = local.get() {
+        params.local_outliers = on;
+    }
+    if let Some(on) = confirm.get() {
+        params.confirm_given_back = on;
+    }
+    if let Some(on) = gaps.get() {
+        params.close_gaps = on;
+    }
+    if let Some(on) = smooth.get() {
+        params.smooth = on;
+    }
+    if let Some(chosen) = method.get() {
+        if chosen != Method::ConDT {
+            if let Some(option) = condt_options.first() {
+                return Err(usage(format!(
+                    "{option} sets a ConDT stage, but --method chooses a baseline, which has none"
+                )));
+            }
+        }
+        params.method = chosen;
+    }
+    params.check().map_err(refused)?;
+    let (input, output) = paths.finish("reconstruct")?;
+    let format = match (format.get(), output.as_deref()) {
+        (Some(f), _) => f,
+        (None, None) => Format::Polylines,
+        (None, Some(path)) => {
+            let extension = path.extension().and_then(OsStr::to_str).unwrap_or("");
+            Format::named(&extension.to_ascii_lowercase()).ok_or_else(|| {
+                usage(format!(
+                    "cannot tell the format of {} from its extension; use --format",
+                    path.display()
+                ))
+            })?
+        }
+    };
+    if stages && format != Format::Svg {
+        return Err(usage(format!(
+            "--stages draws the stages in an SVG picture, but the output format is {}; \
+             use an .svg file or --format svg",
+            format.name()
+        )));
+    }
+    Ok(ReconstructArgs {
+        input,
+        output,
+        params,
+        format,
+        stages,
+        timings,
+    })
+}
+
+/// Reads the points of INPUT (`None`: standard input).
+/// With `parallel` false (`--sequential`) the reading, which otherwise splits a large text over
+/// rayon's threads, runs on this thread alone (a one-thread pool; same points either way).
+fn read_input(input: Option<&Path>, parallel: bool) -> Result<Vec<Point>, CliError> {
+    let path = input.unwrap_or(Path::new("-"));
+    if !parallel {
+        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+            return Ok(pool.install(|| read_points(path))?);
+        }
+    }
+    Ok(read_points(path)?)
+}
+
+fn shown_input(input: Option<&Path>) -> String {
+    input.map_or("<stdin>".into(), |p| p.display().to_string())
+}
+
+/// A count and its noun, plural unless the count is one: "1 point", "0 points", "2 points".
+struct Counted(usize, &'static str);
+
+impl fmt::Display for Counted {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Counted(n, noun) = *self;
+        write!(f, "{n} {noun}{}", if n == 1 { "" } else { "s" })
+    }
+}
+
+/// The one rule for merged duplicates, told the same way by both commands.
+fn note_duplicates(points: usize, distinct: usize) {
+    let merged = points - distinct;
+    if merged > 0 {
+        note(format_args!(
+            "{} merged into the first point at the same position ({distinct} distinct of {points})",
+            Counted(merged, "exact duplicate point"),
+        ));
+    }
+}
+
+fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
+    let mut timings = Timings::new(args.timings);
+    refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
+    let destination = Destination::prepare(args.output.as_deref())?;
+    let points = read_input(args.input.as_deref(), args.params.parallel)?;
+    timings.lap("read");
+    let count = points.len();
+    // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
+    // result does not keep (`Reconstruction::stage_point`), so for them the points stay (16
+    // bytes per point through the stages). Every other output reads the result alone: the
+    // points are handed over, freed once triangulated, and the stages' peak does not hold them.
+    let keeps_input = match args.format {
+        Format::Svg => !args.stages,
+        Format::GeoJson => true,
+        _ => false,
+    };
+    let (result, input) = if keeps_input {
+        (reconstruct(&points, &args.params), points)
+    } else {
+        (reconstruct_owned(points, &args.params), Vec::new())
+    };
+    let result = result
+        .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
+    let call = timings.quiet_lap();
+    timings.reconstruction(&result, call);
+    destination.write(|out| match args.format {
+        Format::Edges => write_edges(out, &result),
+        Format::Npy => write_npy_edges(out, &result),
+        Format::Polylines => write_polylines(out, &result),
+        Format::Svg if args.stages => write_svg_stages(out, &result),
+        Format::Svg => write_svg(out, &result, &input),
+        Format::GeoJson => write_geojson(out, &result, &input),
+        Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
+    })?;
+    timings.lap("write");
+    note_duplicates(count, result.triangulation().num_vertices());
+    let curves = result.curves();
+    let closed = curves.iter().filter(|c| c.is_closed()).count();
+    note(format_args!(
+        "{}, {} ({closed} closed, {} open), {} unused",
+        Counted(count, "point"),
+        Counted(curves.len(), "curve"),
+        curves.len() - closed,
+        result.unused().len()
+    ));
+    timings.total();
+    Ok(())
+}
+
+fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
+    let mut timings = Timings::new(args.timings);
+    refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
+    let destination = Destination::prepare(args.output.as_deref())?;
+    let points = read_input(args.input.as_deref(), true)?;
+    timings.lap("read");
+    let tri = triangulate(&points)
+        .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
+    timings.lap("triangulation");
+    note_duplicates(points.len(), tri.num_vertices());
+    // The output reads only the triangulation: the points need not stay while it is written
+    // (16 bytes per point of the peak).
+    drop(points);
+    if !args.edges && tri.triangles().next().is_none() {
+        let distinct = tri.num_vertices();
+        let chain = tri.edges().count();
+        if chain == 0 {
+            note(format_args!(
+                "no triangles and no edges: {}",
+                Counted(distinct, "distinct point")
+            ));
+        } else {
+            note(format_args!(
+                "no triangles: the {distinct} distinct points lie on one line; \
+                 their chain of {} is written with --edges",
+                Counted(chain, "edge")
+            ));
+        }
+    }
+    let npy = args
+        .output
+        .as_deref()
+        .and_then(Path::extension)
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+    destination.write(|out| match (args.edges, npy) {
+        (true, false) => write_triangulation_edges(out, &tri),
+        (false, false) => write_triangles(out, &tri),
+        (true, true) => write_npy_triangulation_edges(out, &tri),
+        (false, true) => write_npy_triangles(out, &tri),
+    })?;
+    timings.lap("write");
+    timings.total();
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn strings(args: &[&str]) -> Vec<OsString> {
+        args.iter().map(OsString::from).collect()
+    }
+
+    #[test]
+    fn options_are_parsed_in_any_order() {
+        let a = parse_triangulate(&strings(&["--edges", "in.txt", "-o", "out.txt"])).unwrap();
+        assert_eq!(
+            a,
+            TriangulateArgs {
+                input: Some("in.txt".into()),
+                output: Some("out.txt".into()),
+                edges: true,
+                timings: false
+            }
+        );
+    }
+
+    #[test]
+    fn reconstruct_options_and_format_by_extension() {
+        let a = parse_reconstruct(&strings(&[
+            "in.txt",
+            "-o",
+            "out.svg",
+            "--stages",
+            "--adaptive",
+            "--iqr",
+            "2",
+            "--close-gaps",
+        ]))
+        .unwrap();
+        assert_eq!(a.format, Format::Svg);
+        assert!(a.stages);
+        assert_eq!(a.params.uniformity, Uniformity::Adaptive);
+        assert_eq!(a.params.outlier_factor, Some(2.0));
+        assert!(a.params.close_gaps);
+        let b = parse_reconstruct(&strings(&[
+            "in.txt",
+            "--no-manifold-fix",
+            "--no-outlier-filter",
+        ]))
+        .unwrap();
+        assert_eq!(
+            (b.format, b.params.repair, b.params.outlier_factor),
+            (Format::Polylines, Repair::Off, None)
+        );
+        assert!(
+            b.params.local_outliers && b.params.close_gaps,
+            "the defaults"
+        );
+        let c = parse_reconstruct(&strings(&["--local-outliers", "in.txt", "--no-close-gaps"]))
+            .unwrap();
+        assert!(c.params.local_outliers && !c.params.close_gaps);
+        assert!(c.params.confirm_given_back, "the default");
+        let e = parse_reconstruct(&strings(&["in.txt", "--no-confirm-given-back"])).unwrap();
+        assert!(e.params.local_outliers && !e.params.confirm_given_back);
+        assert!(e.params.smooth, "on by default");
+        let no_smooth = parse_reconstruct(&strings(&["--no-smooth", "in.txt"])).unwrap();
+        assert!(!no_smooth.params.smooth && no_smooth.params.local_outliers);
+        let smooth = parse_reconstruct(&strings(&["--smooth", "in.txt", "--paper"])).unwrap();
+        assert!(smooth.params.smooth && smooth.params.repair == Repair::Paper);
+        let paper = parse_reconstruct(&strings(&["in.txt", "--paper"])).unwrap();
+        assert_eq!(paper.params, condt::Params::paper());
+        let paper_plus =
+            parse_reconstruct(&strings(&["--close-gaps", "--paper", "in.txt"])).unwrap();
+        assert!(paper_plus.params.close_gaps && !paper_plus.params.local_outliers);
+        let d = parse_reconstruct(&strings(&["in.txt", "--repair", "needs"])).unwrap();
+        assert_eq!(d.params.repair, Repair::Needs);
+        for bad in [
+            &["in.txt", "--u", "2", "--adaptive"][..],
+            &["in.txt", "-o", "out.png"],
+            &["in.txt", "--u", "nan"],
+            &["in.txt", "--u", "-1"],
+            &["in.txt", "--iqr", "inf"],
+            &["in.txt", "--repair", "x"],
+            &["in.txt", "--smooth", "--no-smooth"],
+        ] {
+            assert_eq!(
+                parse_reconstruct(&strings(bad)).unwrap_err().exit_code(),
+                2,
+                "{bad:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn usage_errors_exit_with_two() {
+        for bad in [
+            &["in.txt", "-o"][..],
+            &["--frobnicate", "in.txt"],
+            &[],
+            &["a", "b"],
+        ] {
+            let err = parse_triangulate(&strings(bad)).unwrap_err();
+            assert_eq!(err.exit_code(), 2, "{bad:?}");
+        }
+    }
+}

@@ -1,0 +1,108 @@
+// End-to-end test of `condt reconstruct --format html` in a real browser (headless Chromium).
+//
+//   node viewer.test.mjs CONDT_BINARY [SCREENSHOT.png]
+//
+// It writes the page and the plain edge list for the shipped data, opens the page from file://,
+// clicks a point and two edges, and checks what the details panel says against the edge list
+// the same binary writes: the final degree of the point, and whether each edge is in the result.
+// Chromium comes from Debian (`/usr/bin/chromium`, or $CHROMIUM), driven by playwright-core.
+import { chromium } from "playwright-core";
+import { execFileSync } from "node:child_process";
+import { mkdtempSync, readFileSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, resolve } from "node:path";
+import assert from "node:assert/strict";
+
+const [binary, screenshot] = process.argv.slice(2);
+if (!binary) {
+  console.error("usage: node viewer.test.mjs CONDT_BINARY [SCREENSHOT.png]");
+  process.exit(2);
+}
+// Run from the repository's root, so that the page's title is the data's path in it.
+const root = resolve(new URL("../../../..", import.meta.url).pathname);
+const data = "data/shapes.txt";
+const dir = mkdtempSync(join(tmpdir(), "condt-viewer-"));
+const page_file = join(dir, "shapes.html");
+const edges_file = join(dir, "shapes.edges");
+const condt = resolve(binary);
+execFileSync(condt, ["reconstruct", data, "--format", "html", "-o", page_file], { cwd: root });
+execFileSync(condt, ["reconstruct", data, "-o", edges_file], { cwd: root });
+
+// The result, from the plain output: edges and degrees.
+const result = new Set();
+const degree = new Map();
+for (const line of readFileSync(edges_file, "utf8").split("\n")) {
+  if (!line.trim() || line.startsWith("#")) continue;
+  const [a, b] = line.trim().split(/\s+/).map(Number);
+  result.add(`${Math.min(a, b)}-${Math.max(a, b)}`);
+  degree.set(a, (degree.get(a) || 0) + 1);
+  degree.set(b, (degree.get(b) || 0) + 1);
+}
+assert.ok(result.size > 0, "the shipped data reconstructs to some edges");
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
+  args: ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+});
+let failed = false;
+try {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 850 } });
+  const problems = [];
+  page.on("pageerror", (e) => problems.push(String(e)));
+  page.on("console", (m) => { if (m.type() === "error") problems.push(m.text()); });
+  page.on("request", (r) => { if (!r.url().startsWith("file:")) problems.push(`fetched ${r.url()}`); });
+  await page.goto("file://" + page_file);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+  const details = () => page.innerText("#details");
+
+  // A point of the result: the panel shows its ring, the test and the degree the edge list has.
+  const chosen = [...degree.keys()].sort((a, b) => a - b)[0];
+  let [x, y] = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);
+  await page.mouse.click(x, y);
+  let text = await details();
+  assert.match(text, new RegExp(`Point ${chosen} \\(`));
+  assert.match(text, new RegExp(`final degree ${degree.get(chosen)}\\b`));
+  assert.match(text, /Two shortest: to \d+ \(e1\) and \d+ \(e2\)\. Uniformity test: \|e2\| = [\d.]+ \|e1\|/);
+  console.log(`point ${chosen}: ${text.slice(0, 120)}...`);
+
+  // An edge of the result and a Delaunay edge that is not: each panel ends with the verdict.
+  const edges = await page.evaluate(() => {
+    const found = { kept: null, dropped: null };
+    const v = window.condtViewer;
+    for (let k = 0; k < v.edges; k++) {
+      const [a, b] = v.edgeEnds(k);
+      const kept = v.inResult(k);
+      if (kept && !found.kept) found.kept = [a, b, k];
+      if (!kept && v.isDelaunay(k) && !found.dropped) found.dropped = [a, b, k];
+    }
+    return found;
+  });
+  for (const [name, [a, b, k]] of Object.entries(edges)) {
+    // Show only the Delaunay layer so that the click cannot land on a point instead.
+    await page.evaluate(() => window.condtViewer.only("Delaunay triangulation"));
+    [x, y] = await page.evaluate((k) => window.condtViewer.edgeMidpoint(k), k);
+    await page.mouse.click(x, y);
+    text = await details();
+    assert.match(text, new RegExp(`Edge ${a}–${b}`), `${name}: ${text}`);
+    const verdict = result.has(`${a}-${b}`) ? "kept" : "dropped";
+    assert.equal(verdict, name, `the edge list and the page agree on ${a}-${b}`);
+    assert.ok(text.trim().endsWith(verdict), `${name}: ${text}`);
+    console.log(`edge ${a}-${b}: ${text}`);
+  }
+  assert.deepEqual(problems, [], "no script errors and nothing fetched");
+  if (screenshot) {
+    await page.evaluate(() => window.condtViewer.only(null));
+    [x, y] = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);
+    await page.mouse.click(x, y);
+    await page.screenshot({ path: screenshot });
+  }
+  console.log("viewer test passed");
+} catch (e) {
+  failed = true;
+  console.error(e);
+} finally {
+  await browser.close();
+  rmSync(dir, { recursive: true, force: true });
+}
+process.exit(failed ? 1 : 0);

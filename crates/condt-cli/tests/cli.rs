@@ -1,0 +1,646 @@
+//! The `condt` binary: input formats, outputs, messages, errors and exit codes (where `-o`
+//! writes is in cli_output.rs).
+
+use std::io::Write;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+/// The binary under test: this build's, or `CONDT_TEST_BIN` (to show a test fails on another).
+fn binary() -> std::ffi::OsString {
+    std::env::var_os("CONDT_TEST_BIN").unwrap_or_else(|| env!("CARGO_BIN_EXE_condt").into())
+}
+
+fn condt(args: &[&str], stdin: &str) -> Output {
+    let mut child = Command::new(binary())
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let written = child.stdin.take().unwrap().write_all(stdin.as_bytes());
+    // A run refused on its options may exit before reading its input: a closed pipe is fine.
+    if let Err(e) = written {
+        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "{e}");
+    }
+    child.wait_with_output().unwrap()
+}
+
+fn data(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// A fresh directory, removed with everything in it when the guard is dropped (also when the
+/// test fails).
+fn scratch_dir() -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix("condt-cli-")
+        .tempdir()
+        .unwrap()
+}
+
+fn lines(out: &[u8]) -> Vec<Vec<usize>> {
+    String::from_utf8_lossy(out)
+        .lines()
+        .map(|l| l.split(' ').map(|t| t.parse().expect("an index")).collect())
+        .collect()
+}
+
+#[test]
+fn triangles_from_stdin_are_counter_clockwise_input_indices() {
+    let out = condt(&["triangulate", "-"], "0 0\n2 0\n1 2\n1 0.5\n");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let pts = [(0.0, 0.0), (2.0, 0.0), (1.0, 2.0), (1.0, 0.5)];
+    let tris = lines(&out.stdout);
+    assert_eq!(tris.len(), 3);
+    for t in tris {
+        let [a, b, c] = [t[0], t[1], t[2]].map(|i| pts[i]);
+        let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+        assert!(cross > 0.0, "triangle {t:?} is not counter-clockwise");
+    }
+}
+
+#[test]
+fn cr_only_line_ends_tabs_and_a_third_column_are_read() {
+    let out = condt(&["triangulate", &data("square_cr_tabs.txt"), "--edges"], "");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let edges = lines(&out.stdout);
+    // Four sides and four spokes to the centre (point 4).
+    assert_eq!(edges.len(), 8);
+    assert_eq!(edges.iter().filter(|e| e[1] == 4).count(), 4);
+    assert!(edges.windows(2).all(|w| w[0] < w[1]), "edges are sorted");
+    assert!(edges.iter().all(|e| e[0] < e[1]));
+}
+
+#[test]
+fn crlf_commas_comments_and_a_duplicate() {
+    let out = condt(
+        &["triangulate", &data("rectangle_crlf_commas.txt"), "--edges"],
+        "",
+    );
+    assert!(out.status.success());
+    // The last line repeats point 1: it is merged, and the tool says so.
+    assert!(String::from_utf8_lossy(&out.stderr).contains("1 exact duplicate"));
+    assert_eq!(lines(&out.stdout).len(), 5);
+}
+
+#[test]
+fn a_malformed_line_is_reported_by_file_and_line_and_nothing_is_written() {
+    let scratch = scratch_dir();
+    let dir = scratch.path();
+    let target = dir.join("out.txt");
+    std::fs::write(&target, "previous content\n").unwrap();
+    let input = data("malformed_line3.txt");
+    let out = condt(&["triangulate", &input, "-o", target.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert!(message.contains(&format!("{input}:3:")), "{message}");
+    assert!(message.contains("oops"), "{message}");
+    assert_eq!(
+        std::fs::read_to_string(&target).unwrap(),
+        "previous content\n"
+    );
+    assert_eq!(
+        std::fs::read_dir(dir).unwrap().count(),
+        1,
+        "no temporary file is left behind"
+    );
+}
+
+#[test]
+fn output_file_is_complete_and_temporary_files_are_gone() {
+    let scratch = scratch_dir();
+    let dir = scratch.path();
+    let target = dir.join("edges.txt");
+    let out = condt(
+        &[
+            "triangulate",
+            "-",
+            "--edges",
+            "-o",
+            target.to_str().unwrap(),
+        ],
+        "0 0\n1 0\n0 1\n",
+    );
+    assert!(out.status.success());
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "0 1\n0 2\n1 2\n");
+    assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
+}
+
+#[test]
+fn usage_errors_exit_with_two_and_explain() {
+    for args in [
+        &[][..],
+        &["triangulate"],
+        &["frobnicate"],
+        &["triangulate", "-", "--bogus"],
+    ] {
+        let out = condt(args, "");
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("condt --help"));
+    }
+}
+
+#[test]
+fn missing_input_file_and_non_finite_values_are_errors() {
+    let out = condt(&["triangulate", "/nonexistent/points.txt"], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/points.txt"));
+    let out = condt(&["triangulate", "-"], "0 0\n1 1\nnan 2\n");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("<stdin>:3:"));
+}
+
+#[test]
+fn collinear_input_has_edges_but_no_triangles() {
+    let out = condt(&["triangulate", "-"], "0 0\n2 2\n1 1\n");
+    assert!(out.status.success());
+    assert!(out.stdout.is_empty());
+    // An empty output is explained: where the chain is.
+    let note = String::from_utf8_lossy(&out.stderr);
+    assert!(note.contains("no triangles"), "{note}");
+    assert!(
+        note.contains("chain of 2 edges is written with --edges"),
+        "{note}"
+    );
+    let out = condt(&["triangulate", "-", "--edges"], "0 0\n2 2\n1 1\n");
+    assert_eq!(lines(&out.stdout), vec![vec![0, 2], vec![1, 2]]);
+    assert!(
+        out.stderr.is_empty(),
+        "the chain is there: nothing to explain"
+    );
+    // Triangles, and no note.
+    let out = condt(&["triangulate", "-"], "0 0\n2 2\n1 0\n");
+    assert_eq!(lines(&out.stdout).len(), 1);
+    assert!(out.stderr.is_empty());
+    // One distinct point has neither.
+    let out = condt(&["triangulate", "-"], "1 1\n1 1\n");
+    let note = String::from_utf8_lossy(&out.stderr);
+    assert!(note.contains("no triangles and no edges"), "{note}");
+}
+
+#[test]
+fn help_and_version() {
+    let out = condt(&["--help"], "");
+    assert!(out.status.success());
+    let global = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(global.contains("triangulate INPUT"));
+    let out = condt(&["--version"], "");
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("condt "));
+    // Each command has its own help, with an example, however it is asked for.
+    for (command, own) in [("reconstruct", "--repair MODE"), ("triangulate", "--edges")] {
+        let mut seen = Vec::new();
+        for args in [
+            &[command, "--help"][..],
+            &[command, "-h"],
+            &[command, "in.txt", "--help"],
+            &["help", command],
+        ] {
+            let out = condt(args, "");
+            assert!(out.status.success(), "{args:?}");
+            let text = String::from_utf8_lossy(&out.stdout).into_owned();
+            assert!(
+                text.starts_with(&format!("condt {command}:")),
+                "{args:?}: {text}"
+            );
+            assert!(text.contains(own), "{args:?}");
+            assert!(
+                text.contains(&format!("Example:\n  condt {command} ")),
+                "{args:?}"
+            );
+            assert_ne!(text, global);
+            seen.push(text);
+        }
+        assert!(seen.windows(2).all(|w| w[0] == w[1]));
+    }
+    let out = condt(&["help", "frobnicate"], "");
+    assert_eq!(out.status.code(), Some(2));
+}
+
+/// Runs a command line expected to be refused, and returns what it said.
+fn refused(args: &[&str]) -> String {
+    let out = condt(args, "0 0\n1 0\n0 1\n");
+    let said = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {said}");
+    assert!(out.stdout.is_empty(), "{args:?}");
+    said
+}
+
+#[test]
+fn a_wrong_value_is_answered_with_the_choices() {
+    let said = refused(&["reconstruct", "-", "--repair", "bogus"]);
+    assert!(said.contains("--repair bogus"), "{said}");
+    assert!(!said.contains("Some("), "{said}");
+    for mode in ["needs", "paper", "mutual", "crossing", "off"] {
+        assert!(said.contains(mode), "{said}");
+    }
+    let said = refused(&["reconstruct", "-", "--repair"]);
+    assert!(
+        said.contains("needs, paper, mutual, crossing or off"),
+        "{said}"
+    );
+    let said = refused(&["reconstruct", "-", "--format", "png"]);
+    assert!(
+        said.contains("edges, npy, txt, svg, geojson and html"),
+        "{said}"
+    );
+}
+
+#[test]
+fn options_that_contradict_each_other_are_refused() {
+    for (a, b) in [
+        (&["--no-manifold-fix"][..], &["--repair", "mutual"][..]),
+        (&["--repair", "paper"], &["--repair", "crossing"]),
+        (&["--u", "2"], &["--adaptive"]),
+        (&["--iqr", "2"], &["--no-outlier-filter"]),
+        (&["--close-gaps"], &["--no-close-gaps"]),
+        (&["--local-outliers"], &["--no-local-outliers"]),
+        (&["--format", "svg"], &["--format", "edges"]),
+    ] {
+        for args in [[a, b].concat(), [b, a].concat()] {
+            let mut line = vec!["reconstruct", "-"];
+            line.extend(&args);
+            let said = refused(&line);
+            assert!(said.contains("contradict each other"), "{line:?}: {said}");
+        }
+    }
+    // Saying the same thing twice, or what --paper already says, is no contradiction.
+    for args in [
+        &["--no-manifold-fix", "--repair", "off"][..],
+        &["--paper", "--repair", "paper"],
+        &["--close-gaps", "--close-gaps"],
+    ] {
+        let mut line = vec!["reconstruct", "-"];
+        line.extend(args);
+        let out = condt(&line, &circle_input(12));
+        assert!(
+            out.status.success(),
+            "{line:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
+#[test]
+fn stages_need_an_svg_and_an_empty_output_name_is_explained() {
+    for args in [
+        &["reconstruct", "-", "--stages"][..],
+        &["reconstruct", "-", "--stages", "-o", "out.txt"],
+        &["reconstruct", "-", "--stages", "--format", "geojson"],
+    ] {
+        let said = refused(args);
+        assert!(said.contains("--stages"), "{args:?}: {said}");
+        assert!(said.contains("svg"), "{args:?}: {said}");
+    }
+    let out = condt(
+        &["reconstruct", "-", "--stages", "--format", "svg"],
+        &circle_input(12),
+    );
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("<svg"));
+    for command in ["reconstruct", "triangulate"] {
+        let said = refused(&[command, "-", "-o", ""]);
+        assert!(said.contains("empty"), "{said}");
+        assert!(!said.contains("No such file"), "{said}");
+    }
+    let said = refused(&["triangulate", "-", "-o", "a.txt", "-o", "b.txt"]);
+    assert!(said.contains("twice"), "{said}");
+}
+
+#[test]
+fn counts_of_one_are_singular() {
+    let said = |input: &str| {
+        let out = condt(&["reconstruct", "-"], input);
+        assert!(out.status.success());
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let one = said("0 0\n");
+    assert!(
+        one.contains("1 point, 0 curves (0 closed, 0 open), 1 unused"),
+        "{one}"
+    );
+    let none = said("");
+    assert!(none.contains("0 points, 0 curves"), "{none}");
+    // Three distinct points: one closed curve; one duplicate merged.
+    let three = said("0 0\n1 0\n2 0.1\n2 0.1\n");
+    assert!(three.contains("1 exact duplicate point merged"), "{three}");
+    assert!(
+        three.contains("4 points, 1 curve (1 closed, 0 open)"),
+        "{three}"
+    );
+    let out = condt(&["triangulate", "-"], "0 0\n1 1\n");
+    assert!(out.status.success());
+    let chain = String::from_utf8_lossy(&out.stderr);
+    assert!(chain.contains("chain of 1 edge is written"), "{chain}");
+    let out = condt(&["triangulate", "-"], "0 0\n");
+    assert!(out.status.success());
+    let lone = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        lone.contains("no triangles and no edges: 1 distinct point\n"),
+        "{lone}"
+    );
+}
+
+#[test]
+fn merged_duplicates_are_told_the_same_way_by_both_commands() {
+    // All ten points the same: one distinct point, no edge, so all ten input points are unused.
+    let same = "1 1\n".repeat(10);
+    // Two duplicates among others: a duplicate of a point on the curve is used with it; the lone
+    // point far away is the one unused point.
+    // (The outlier filter drops the long edge to 2 2: one open curve 1 0 2.)
+    let some = "0 0\n1 0\n0 1\n0 0\n1 0\n2 2\n";
+    for (input, merged, distinct, total, unused) in [(&same[..], 9, 1, 10, 10), (some, 2, 4, 6, 1)]
+    {
+        let note = format!(
+            "{merged} exact duplicate points merged into the first point at the same position \
+             ({distinct} distinct of {total})"
+        );
+        for command in ["triangulate", "reconstruct"] {
+            let out = condt(&[command, "-"], input);
+            assert!(out.status.success());
+            let said = String::from_utf8_lossy(&out.stderr);
+            assert!(said.contains(&note), "{command}: {said}");
+            if command == "reconstruct" {
+                let summary = format!("{total} points, ");
+                assert!(said.contains(&summary), "{said}");
+                assert!(said.contains(&format!("), {unused} unused")), "{said}");
+                // A curve lists each point once, under the first of its duplicates.
+                for curve in String::from_utf8_lossy(&out.stdout).lines() {
+                    let indices: Vec<&str> = curve.split(' ').skip(1).collect();
+                    assert!(
+                        indices.iter().all(|i| ["0", "1", "2"].contains(i)),
+                        "{curve}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+fn circle_input(n: usize) -> String {
+    (0..n)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / n as f64;
+            format!("{} {}\n", t.cos(), t.sin())
+        })
+        .collect()
+}
+
+#[test]
+fn reconstruct_writes_polylines_to_stdout_by_default() {
+    let out = condt(&["reconstruct", "-"], &circle_input(20));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 1);
+    assert!(lines[0].starts_with("closed "));
+    assert_eq!(lines[0].split(' ').count(), 21, "closed plus 20 indices");
+}
+
+#[test]
+fn reconstruct_formats_follow_the_extension() {
+    let scratch = scratch_dir();
+    let dir = scratch.path();
+    let input = dir.join("circle.txt");
+    std::fs::write(&input, circle_input(16)).unwrap();
+    for (name, check) in [
+        ("out.edges", "0 1\n"),
+        ("out.txt", "closed 0"),
+        ("out.svg", "<svg"),
+        ("out.geojson", "\"FeatureCollection\""),
+    ] {
+        let target = dir.join(name);
+        let out = condt(
+            &[
+                "reconstruct",
+                input.to_str().unwrap(),
+                "-o",
+                target.to_str().unwrap(),
+            ],
+            "",
+        );
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let written = std::fs::read_to_string(&target).unwrap();
+        assert!(written.contains(check), "{name}: {written}");
+    }
+    let edges = std::fs::read_to_string(dir.join("out.edges")).unwrap();
+    assert_eq!(edges.lines().count(), 16);
+}
+
+#[test]
+fn reconstruct_rejects_bad_options_and_bad_files() {
+    let out = condt(&["reconstruct", "-", "--u", "2", "--adaptive"], "");
+    assert_eq!(out.status.code(), Some(2));
+    let out = condt(&["reconstruct", "-", "-o", "picture.png"], "0 0\n");
+    assert_eq!(out.status.code(), Some(2));
+    let out = condt(&["reconstruct", &data("malformed_line3.txt")], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("malformed_line3.txt:3:"));
+}
+
+#[test]
+fn readme_example_data_gives_four_curves() {
+    let input = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/shapes.txt");
+    let out = condt(&["reconstruct", input.to_str().unwrap()], "");
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let closed = text.lines().filter(|l| l.starts_with("closed")).count();
+    let open = text.lines().filter(|l| l.starts_with("open")).count();
+    // An ellipse and a square (closed), an arc and a spiral (open).
+    assert_eq!((closed, open), (2, 2), "{text}");
+}
+
+/// Issue 12, item 3: `.npy` in and out, chosen by the file names; the same results as text.
+#[test]
+fn npy_points_in_and_npy_indices_out_match_the_text_results() {
+    let dir = scratch_dir();
+    let text: String = (0..300)
+        .map(|i| {
+            let t = f64::from(i) * 0.021;
+            format!(
+                "{} {}\n",
+                t.cos() * (1.0 + f64::from(i % 7) * 0.01),
+                t.sin()
+            )
+        })
+        .collect();
+    let txt = dir.path().join("p.txt");
+    std::fs::write(&txt, &text).unwrap();
+    let points = condt_io::read_points(&txt).unwrap();
+    let npy = dir.path().join("p.npy");
+    let mut bytes = Vec::new();
+    condt_io::write_npy_points(&mut bytes, &points).unwrap();
+    std::fs::write(&npy, &bytes).unwrap();
+    let (txt, npy) = (txt.to_str().unwrap(), npy.to_str().unwrap());
+    /// The rows of a uint32 `.npy` file of `columns` columns.
+    fn npy_rows(path: &Path, columns: usize) -> Vec<Vec<usize>> {
+        let bytes = std::fs::read(path).unwrap();
+        let header = usize::from(u16::from_le_bytes([bytes[8], bytes[9]])) + 10;
+        assert!(bytes[10..header].starts_with(b"{'descr': '<u4', 'fortran_order': False"));
+        let values: Vec<usize> = bytes[header..]
+            .chunks_exact(4)
+            .map(|b| u32::from_le_bytes(b.try_into().unwrap()) as usize)
+            .collect();
+        values.chunks(columns).map(<[usize]>::to_vec).collect()
+    }
+    for (command, extra, columns) in [
+        ("triangulate", None, 3),
+        ("triangulate", Some("--edges"), 2),
+        ("reconstruct", None, 2),
+    ] {
+        let text_out = dir.path().join(format!("{command}.edges"));
+        let npy_out = dir.path().join(format!("{command}.npy"));
+        let mut args = vec![command, txt, "-o", text_out.to_str().unwrap()];
+        args.extend(extra);
+        let out = condt(&args, "");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let mut args = vec![command, npy, "-o", npy_out.to_str().unwrap()];
+        args.extend(extra);
+        let out = condt(&args, "");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let expected = lines(&std::fs::read(&text_out).unwrap());
+        assert!(!expected.is_empty());
+        assert_eq!(npy_rows(&npy_out, columns), expected, "{command} {extra:?}");
+    }
+    // A bad .npy file: exit 1 and a message naming it.
+    let bad = dir.path().join("bad.npy");
+    std::fs::write(&bad, b"\x93NUMPY\x01\x00").unwrap();
+    let out = condt(&["triangulate", bad.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        message.contains("bad.npy: the file ends inside its header"),
+        "{message}"
+    );
+}
+
+/// The `--timings` lines of `stderr`: (step, seconds), each line checked to read
+/// `condt: time STEP SECONDS s` with an optional note in parentheses.
+fn timing_lines(stderr: &[u8]) -> Vec<(String, f64)> {
+    String::from_utf8_lossy(stderr)
+        .lines()
+        .filter_map(|line| line.strip_prefix("condt: time "))
+        .map(|rest| {
+            let mut words = rest.splitn(4, ' ');
+            let step = words.next().unwrap_or_default().to_string();
+            assert!(
+                !step.is_empty() && step.chars().all(|c| c.is_ascii_lowercase() || c == '-'),
+                "{rest}"
+            );
+            let seconds: f64 = words
+                .next()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or_else(|| panic!("no number in {rest}"));
+            assert!(seconds.is_finite() && seconds >= 0.0, "{rest}");
+            assert_eq!(words.next(), Some("s"), "{rest}");
+            if let Some(note) = words.next() {
+                assert!(note.starts_with('(') && note.ends_with(')'), "{rest}");
+            }
+            (step, seconds)
+        })
+        .collect()
+}
+
+#[test]
+fn timings_print_one_parsable_line_per_step_and_change_no_output() {
+    let input = data("../../../../data/shapes.txt");
+    for (command, extra, expected) in [
+        (
+            "triangulate",
+            &[][..],
+            &["read", "triangulation", "write", "total"][..],
+        ),
+        (
+            "reconstruct",
+            &[],
+            &[
+                "read",
+                "earlier-passes",
+                "triangulation",
+                "proximity",
+                "repair",
+                "iqr-outliers",
+                "local-outliers",
+                "given-back",
+                "gaps",
+                "curves",
+                "other",
+                "write",
+                "total",
+            ],
+        ),
+        (
+            "reconstruct",
+            &["--paper"],
+            &[
+                "read",
+                "triangulation",
+                "proximity",
+                "repair",
+                "iqr-outliers",
+                "curves",
+                "other",
+                "write",
+                "total",
+            ],
+        ),
+    ] {
+        let mut args = vec![command, input.as_str()];
+        args.extend(extra);
+        let plain = condt(&args, "");
+        args.push("--timings");
+        let timed = condt(&args, "");
+        assert!(
+            plain.status.success() && timed.status.success(),
+            "{}",
+            String::from_utf8_lossy(&timed.stderr)
+        );
+        assert_eq!(
+            plain.stdout, timed.stdout,
+            "{args:?}: the result is the same"
+        );
+        assert!(timing_lines(&plain.stderr).is_empty(), "{args:?}");
+        let steps: Vec<String> = timing_lines(&timed.stderr)
+            .into_iter()
+            .map(|(step, _)| step)
+            .collect();
+        assert_eq!(steps, expected, "{args:?}");
+        // The other messages are still there, the same.
+        let other = |err: &[u8]| -> Vec<String> {
+            String::from_utf8_lossy(err)
+                .lines()
+                .filter(|l| !l.starts_with("condt: time "))
+                .map(String::from)
+                .collect()
+        };
+        assert_eq!(other(&plain.stderr), other(&timed.stderr), "{args:?}");
+    }
+}

@@ -1,0 +1,659 @@
+//! Reconstruction metrics: how an edge set compares with a ground truth.
+//!
+//! Owns: [`score`] and the values it returns ([`Score`], [`EdgeProblem`], [`ScoreError`]), and
+//! the nearest-segment search the distances need. It reads points and edge lists given in input
+//! positions; it may not triangulate or reconstruct (it judges any program's output, not only
+//! condt's), and it decides no geometric sign.
+//!
+//! The metrics are those of the evaluation suite the project measures itself with, so that a
+//! score computed here and one computed there can be compared number for number:
+//! - **exact**: the output edge set equals the truth's;
+//! - **precision, recall, F1** on the two edge sets (edges are undirected);
+//! - **outlier edges**: output edges with an end the truth leaves without an edge;
+//! - **maximum and RMS distance** of the output to the truth: each output edge is sampled at 0,
+//!   1/4, 1/2, 3/4 and 1 of its length, each sample's distance to the nearest truth segment is
+//!   divided by the diagonal of the points' bounding box. An output edge that is a truth edge
+//!   contributes five zeros; an end that has a truth edge is at distance zero.
+//!
+//! The distances are exact nearest-segment distances (a bounding-volume hierarchy over the truth
+//! segments), for every output edge however many are wrong; the suite's scorer samples at most
+//! 10,000 wrong edges and stops a query within 1 % of the answer, so on outputs with more wrong
+//! edges than that its RMS is an estimate of this one.
+
+use crate::geometry::Point;
+use alloc::vec;
+use alloc::vec::Vec;
+use core::fmt;
+
+/// The fractions of its length at which an output edge is sampled for the distances.
+const SAMPLES: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+
+/// What is wrong with an edge list, by the position of the first offending edge in it.
+///
+/// ```
+/// use condt_eval::score::{score, EdgeProblem};
+/// use condt::Point;
+/// let points = [(0.0, 0.0), (1.0, 0.0)].map(Point::from);
+/// let result = score(&points, &[[0, 1], [1, 0]], &[[0, 1]]).unwrap();
+/// assert_eq!(result.malformed, Some(EdgeProblem::Repeated { position: 1, edge: [0, 1] }));
+/// assert_eq!(result.f1, 0.0); // a malformed output scores nothing
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum EdgeProblem {
+    /// An end is not a position in the points.
+    OutOfRange {
+        /// Position of the edge in the list.
+        position: usize,
+        /// The end that is out of range.
+        index: usize,
+    },
+    /// Both ends are the same point.
+    SelfLoop {
+        /// Position of the edge in the list.
+        position: usize,
+        /// The point.
+        index: usize,
+    },
+    /// The edge (in either direction) came earlier in the list.
+    Repeated {
+        /// Position of the second occurrence in the list.
+        position: usize,
+        /// The edge, smaller end first.
+        edge: [usize; 2],
+    },
+}
+
+impl EdgeProblem {
+    /// Position in the list of the edge the problem is about.
+    ///
+    /// ```
+    /// use condt_eval::score::EdgeProblem;
+    /// assert_eq!(EdgeProblem::SelfLoop { position: 4, index: 2 }.position(), 4);
+    /// ```
+    pub fn position(&self) -> usize {
+        match *self {
+            EdgeProblem::OutOfRange { position, .. }
+            | EdgeProblem::SelfLoop { position, .. }
+            | EdgeProblem::Repeated { position, .. } => position,
+        }
+    }
+}
+
+impl fmt::Display for EdgeProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            EdgeProblem::OutOfRange { index, .. } => write!(f, "point {index} does not exist"),
+            EdgeProblem::SelfLoop { index, .. } => write!(f, "self-loop at point {index}"),
+            EdgeProblem::Repeated { edge: [a, b], .. } => write!(f, "edge {a} {b} repeated"),
+        }
+    }
+}
+
+/// Why [`score`] cannot compare at all.
+///
+/// ```
+/// use condt_eval::score::{score, EdgeProblem, ScoreError};
+/// use condt::Point;
+/// let points = [(0.0, 0.0), (1.0, 0.0)].map(Point::from);
+/// let err = score(&points, &[], &[[0, 2]]).unwrap_err();
+/// assert_eq!(err, ScoreError::Truth(EdgeProblem::OutOfRange { position: 0, index: 2 }));
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum ScoreError {
+    /// The point at this input position has a NaN or infinite coordinate.
+    NonFinite {
+        /// Input position of the point.
+        index: usize,
+    },
+    /// The ground truth is not a valid edge list; a malformed *output* is not an error but a
+    /// failed score ([`Score::malformed`]).
+    Truth(EdgeProblem),
+}
+
+impl fmt::Display for ScoreError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ScoreError::NonFinite { index } => {
+                write!(f, "point {index} has a NaN or infinite coordinate")
+            }
+            ScoreError::Truth(problem) => write!(f, "ground truth: {problem}"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for ScoreError {}
+
+/// How an output edge set compares with the ground truth; see the [module](self) for each
+/// metric.
+///
+/// ```
+/// use condt_eval::score::score;
+/// use condt::Point;
+/// // A unit square; the output has three of its sides and a diagonal.
+/// let points = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+/// let truth = [[0, 1], [1, 2], [2, 3], [3, 0]];
+/// let s = score(&points, &[[0, 1], [1, 2], [2, 3], [0, 2]], &truth).unwrap();
+/// assert!(!s.exact);
+/// assert_eq!((s.true_positives, s.false_positives, s.false_negatives), (3, 1, 1));
+/// assert_eq!(s.f1, 0.75);
+/// // The diagonal's midpoint is half a side from the nearest side; the diagonal of the box is √2.
+/// assert!((s.max_distance.unwrap() - 0.5 / 2f64.sqrt()).abs() < 1e-12);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Score {
+    /// The output edge set equals the truth's (never, when the output is malformed).
+    pub exact: bool,
+    /// Output edges that are truth edges, over output edges (1 when both are empty, 0 when
+    /// only the output is); 0 when the output is malformed.
+    pub precision: f64,
+    /// Truth edges found, over truth edges (1 when the truth has none); 0 when the output is
+    /// malformed.
+    pub recall: f64,
+    /// Harmonic mean of precision and recall (0 when both are 0).
+    pub f1: f64,
+    /// Output edges that are truth edges.
+    pub true_positives: usize,
+    /// Output edges that are not.
+    pub false_positives: usize,
+    /// Truth edges the output lacks.
+    pub false_negatives: usize,
+    /// Output edges with an end that has no truth edge.
+    pub outlier_edges: usize,
+    /// Largest sample distance to the truth over the bounding-box diagonal; `None` without
+    /// output edges; infinite when the output has edges and the truth none.
+    pub max_distance: Option<f64>,
+    /// Root mean square of the sample distances, likewise.
+    pub rms_distance: Option<f64>,
+    /// The output's first problem, if it is not a valid edge list. The counts and distances are
+    /// then those of its valid edges, each counted once; precision, recall and F1 are 0.
+    pub malformed: Option<EdgeProblem>,
+}
+
+/// Scores `output` against `truth`, both edge lists in positions of `points` (either direction,
+/// any order).
+///
+/// # Errors
+/// [`ScoreError::NonFinite`] for a point with a NaN or infinite coordinate;
+/// [`ScoreError::Truth`] when the truth has an end out of range, a self-loop or a repeated
+/// edge.
+///
+/// ```
+/// use condt_eval::sample::{sample, Sampling, Shape};
+/// use condt_eval::score::score;
+/// use condt::{reconstruct, Params, Point};
+/// let circle = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.3));
+/// let result = reconstruct(&circle.points, &Params::default())?;
+/// let edges: Vec<[usize; 2]> = result.edges().collect();
+/// let s = score(&circle.points, &edges, &circle.edges).unwrap();
+/// assert!(s.exact && s.f1 == 1.0 && s.max_distance == Some(0.0));
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn score(
+    points: &[Point],
+    output: &[[usize; 2]],
+    truth: &[[usize; 2]],
+) -> Result<Score, ScoreError> {
+    if let Some(index) = points
+        .iter()
+        .position(|p| !(p.x.is_finite() && p.y.is_finite()))
+    {
+        return Err(ScoreError::NonFinite { index });
+    }
+    let (truth, problem) = edge_set(truth, points.len());
+    if let Some(problem) = problem {
+        return Err(ScoreError::Truth(problem));
+    }
+    let (output, malformed) = edge_set(output, points.len());
+
+    let true_positives = count_common(&output, &truth);
+    let false_positives = output.len() - true_positives;
+    let false_negatives = truth.len() - true_positives;
+    let precision = match (output.is_empty(), truth.is_empty()) {
+        (true, true) => 1.0,
+        (true, false) => 0.0,
+        _ => true_positives as f64 / output.len() as f64,
+    };
+    let recall = if truth.is_empty() {
+        1.0
+    } else {
+        true_positives as f64 / truth.len() as f64
+    };
+    let f1 = if precision + recall > 0.0 {
+        2.0 * precision * recall / (precision + recall)
+    } else {
+        0.0
+    };
+
+    let mut has_truth_edge = vec![false; points.len()];
+    for &[a, b] in &truth {
+        has_truth_edge[a] = true;
+        has_truth_edge[b] = true;
+    }
+    let outlier_edges = output
+        .iter()
+        .filter(|&&[a, b]| !has_truth_edge[a] || !has_truth_edge[b])
+        .count();
+    let (max_distance, rms_distance) = distances(points, &output, &truth, &has_truth_edge);
+
+    let (precision, recall, f1) = if malformed.is_some() {
+        (0.0, 0.0, 0.0)
+    } else {
+        (precision, recall, f1)
+    };
+    Ok(Score {
+        exact: malformed.is_none() && output == truth,
+        precision,
+        recall,
+        f1,
+        true_positives,
+        false_positives,
+        false_negatives,
+        outlier_edges,
+        max_distance,
+        rms_distance,
+        malformed,
+    })
+}
+
+/// The valid edges of `list`, smaller end first, sorted and each once, and the first problem
+/// (by position) if there is one.
+fn edge_set(list: &[[usize; 2]], num_points: usize) -> (Vec<[usize; 2]>, Option<EdgeProblem>) {
+    let mut problem: Option<EdgeProblem> = None;
+    let mut note = |found: EdgeProblem| {
+        if problem.is_none_or(|p| found.position() < p.position()) {
+            problem = Some(found);
+        }
+    };
+    let mut keyed: Vec<([usize; 2], usize)> = Vec::with_capacity(list.len());
+    for (position, &[a, b]) in list.iter().enumerate() {
+        if let Some(&index) = [a, b].iter().find(|&&i| i >= num_points) {
+            note(EdgeProblem::OutOfRange { position, index });
+        } else if a == b {
+            note(EdgeProblem::SelfLoop { position, index: a });
+        } else {
+            keyed.push(([a.min(b), a.max(b)], position));
+        }
+    }
+    keyed.sort_unstable();
+    let mut edges: Vec<[usize; 2]> = Vec::with_capacity(keyed.len());
+    for (edge, position) in keyed {
+        if edges.last() == Some(&edge) {
+            note(EdgeProblem::Repeated { position, edge });
+        } else {
+            edges.push(edge);
+        }
+    }
+    (edges, problem)
+}
+
+/// Number of edges in both sorted lists.
+fn count_common(a: &[[usize; 2]], b: &[[usize; 2]]) -> usize {
+    let (mut i, mut j, mut common) = (0, 0, 0);
+    while i < a.len() && j < b.len() {
+        match a[i].cmp(&b[j]) {
+            core::cmp::Ordering::Less => i += 1,
+            core::cmp::Ordering::Greater => j += 1,
+            core::cmp::Ordering::Equal => {
+                common += 1;
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    common
+}
+
+/// Maximum and RMS sample distance of `output` to `truth` (both sorted edge sets), over the
+/// bounding-box diagonal of `points`.
+fn distances(
+    points: &[Point],
+    output: &[[usize; 2]],
+    truth: &[[usize; 2]],
+    has_truth_edge: &[bool],
+) -> (Option<f64>, Option<f64>) {
+    if output.is_empty() {
+        return (None, None);
+    }
+    // Coordinates relative to the box's corner, so that offsets of 1e6 cost no precision in the
+    // differences the distances are made of.
+    let (mut min, mut max) = (
+        Point::new(f64::INFINITY, f64::INFINITY),
+        Point::new(0.0, 0.0),
+    );
+    for p in points {
+        min = Point::new(min.x.min(p.x), min.y.min(p.y));
+    }
+    let local: Vec<Point> = points
+        .iter()
+        .map(|p| Point::new(p.x - min.x, p.y - min.y))
+        .collect();
+    for p in &local {
+        max = Point::new(max.x.max(p.x), max.y.max(p.y));
+    }
+    let diagonal = match libm::hypot(max.x, max.y) {
+        d if d > 0.0 => d,
+        _ => 1.0,
+    };
+    let segments = SegmentTree::new(&local, truth);
+    let (mut largest, mut sum_of_squares) = (0.0f64, 0.0f64);
+    for &[a, b] in output {
+        if truth.binary_search(&[a, b]).is_ok() {
+            continue; // five zeros
+        }
+        let (p, q) = (local[a], local[b]);
+        for t in SAMPLES {
+            let on_truth = (t == 0.0 && has_truth_edge[a]) || (t == 1.0 && has_truth_edge[b]);
+            let d = if on_truth {
+                0.0
+            } else {
+                let s = Point::new(p.x + t * (q.x - p.x), p.y + t * (q.y - p.y));
+                libm::sqrt(segments.nearest_squared(s)) / diagonal
+            };
+            largest = largest.max(d);
+            sum_of_squares += d * d;
+        }
+    }
+    let samples = (SAMPLES.len() * output.len()) as f64;
+    (Some(largest), Some(libm::sqrt(sum_of_squares / samples)))
+}
+
+/// Squared distance from `p` to the segment `a`–`b`.
+fn segment_distance_squared(p: Point, a: Point, b: Point) -> f64 {
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    let (wx, wy) = (p.x - a.x, p.y - a.y);
+    let length_squared = dx * dx + dy * dy;
+    let t = if length_squared > 0.0 {
+        ((wx * dx + wy * dy) / length_squared).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (ex, ey) = (wx - t * dx, wy - t * dy);
+    ex * ex + ey * ey
+}
+
+/// Axis-aligned box.
+#[derive(Copy, Clone)]
+struct Bounds {
+    min: Point,
+    max: Point,
+}
+
+impl Bounds {
+    fn of_segment(a: Point, b: Point) -> Bounds {
+        Bounds {
+            min: Point::new(a.x.min(b.x), a.y.min(b.y)),
+            max: Point::new(a.x.max(b.x), a.y.max(b.y)),
+        }
+    }
+
+    fn union(self, other: Bounds) -> Bounds {
+        Bounds {
+            min: Point::new(self.min.x.min(other.min.x), self.min.y.min(other.min.y)),
+            max: Point::new(self.max.x.max(other.max.x), self.max.y.max(other.max.y)),
+        }
+    }
+
+    fn distance_squared(&self, p: Point) -> f64 {
+        let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);
+        let dy = (self.min.y - p.y).max(p.y - self.max.y).max(0.0);
+        dx * dx + dy * dy
+    }
+}
+
+/// Segments per leaf of the hierarchy.
+const LEAF: usize = 4;
+
+/// Levels of the hierarchy at most: each level halves the segments, and there are fewer than
+/// 2^64 of them.
+const STACK_LEVELS: usize = 65;
+
+/// A bounding-volume hierarchy over segments, built by median splits along the wider side;
+/// a nearest query visits boxes closest first and stops at the first box farther than the best
+/// segment found, so it is exact and takes logarithmic time near the segments and far from them.
+struct SegmentTree {
+    /// Segment ends, in the order the tree's leaves hold them.
+    ends: Vec<[Point; 2]>,
+    /// Nodes in depth-first order; `nodes[0]` is the root.
+    nodes: Vec<Node>,
+}
+
+#[derive(Copy, Clone)]
+struct Node {
+    bounds: Bounds,
+    /// A leaf's segments are `ends[first..first + count]`; an inner node has `count == 0`, its
+    /// left child right after it and its right child at `first`.
+    first: usize,
+    count: usize,
+}
+
+impl SegmentTree {
+    fn new(points: &[Point], segments: &[[usize; 2]]) -> SegmentTree {
+        let mut ends: Vec<[Point; 2]> = segments
+            .iter()
+            .map(|&[a, b]| [points[a], points[b]])
+            .collect();
+        let mut nodes = Vec::with_capacity(2 * segments.len() / LEAF + 1);
+        if !ends.is_empty() {
+            let count = ends.len();
+            build(&mut ends, 0, count, &mut nodes);
+        }
+        SegmentTree { ends, nodes }
+    }
+
+    /// Squared distance from `p` to the nearest segment; infinite without segments.
+    fn nearest_squared(&self, p: Point) -> f64 {
+        let mut best = f64::INFINITY;
+        if self.nodes.is_empty() {
+            return best;
+        }
+        // Depth-first, nearer child first. A median split halves every node, so the tree is at
+        // most 64 levels deep and the stack, one deferred child per level and the node being
+        // looked at, fits a fixed array: no allocation per query.
+        let mut stack = [(0.0f64, 0usize); 2 * STACK_LEVELS];
+        let mut depth = 1;
+        while depth > 0 {
+            depth -= 1;
+            let (bound, k) = stack[depth];
+            if bound >= best {
+                continue;
+            }
+            let node = self.nodes[k];
+            if node.count > 0 {
+                for &[a, b] in &self.ends[node.first..node.first + node.count] {
+                    best = best.min(segment_distance_squared(p, a, b));
+                }
+                continue;
+            }
+            let (left, right) = (k + 1, node.first);
+            let dl = self.nodes[left].bounds.distance_squared(p);
+            let dr = self.nodes[right].bounds.distance_squared(p);
+            let (near, far) = if dl <= dr {
+                ((dl, left), (dr, right))
+            } else {
+                ((dr, right), (dl, left))
+            };
+            stack[depth] = far;
+            stack[depth + 1] = near;
+            depth += 2;
+        }
+        best
+    }
+}
+
+/// Appends the subtree over `ends[first..first + count]` to `nodes`, returning its index.
+fn build(ends: &mut [[Point; 2]], first: usize, count: usize, nodes: &mut Vec<Node>) -> usize {
+    let slice = &mut ends[first..first + count];
+    let bounds = slice
+        .iter()
+        .map(|&[a, b]| Bounds::of_segment(a, b))
+        .reduce(Bounds::union)
+        .expect("a node holds at least one segment");
+    let index = nodes.len();
+    if count <= LEAF {
+        nodes.push(Node {
+            bounds,
+            first,
+            count,
+        });
+        return index;
+    }
+    let along_x = bounds.max.x - bounds.min.x >= bounds.max.y - bounds.min.y;
+    let centre = |s: &[Point; 2]| {
+        if along_x {
+            s[0].x + s[1].x
+        } else {
+            s[0].y + s[1].y
+        }
+    };
+    let half = count / 2;
+    slice.select_nth_unstable_by(half, |s, t| centre(s).total_cmp(&centre(t)));
+    nodes.push(Node {
+        bounds,
+        first: 0,
+        count: 0,
+    });
+    build(ends, first, half, nodes);
+    let right = build(ends, first + half, count - half, nodes);
+    nodes[index].first = right;
+    index
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::Xorshift;
+
+    fn brute_nearest(points: &[Point], truth: &[[usize; 2]], p: Point) -> f64 {
+        truth
+            .iter()
+            .map(|&[a, b]| segment_distance_squared(p, points[a], points[b]))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn the_tree_finds_the_nearest_segment_near_and_far() {
+        let mut rng = Xorshift::new(7);
+        let points = rng.unit_points(500);
+        let truth: Vec<[usize; 2]> = (0..499).step_by(2).map(|i| [i, i + 1]).collect();
+        let tree = SegmentTree::new(&points, &truth);
+        for _ in 0..300 {
+            // Queries inside the box and up to 100 boxes away.
+            let p = Point::new((rng.unit() - 0.5) * 200.0, (rng.unit() - 0.5) * 200.0);
+            let q = Point::new(rng.unit(), rng.unit());
+            for s in [p, q] {
+                assert_eq!(tree.nearest_squared(s), brute_nearest(&points, &truth, s));
+            }
+        }
+    }
+
+    #[test]
+    fn an_output_identical_to_the_truth_in_any_order_and_direction_is_exact() {
+        let points = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)].map(Point::from);
+        let s = score(&points, &[[2, 1], [0, 1]], &[[0, 1], [1, 2]]).unwrap();
+        assert!(s.exact);
+        assert_eq!((s.precision, s.recall, s.f1), (1.0, 1.0, 1.0));
+        assert_eq!((s.max_distance, s.rms_distance), (Some(0.0), Some(0.0)));
+    }
+
+    #[test]
+    fn edges_to_points_without_truth_edges_are_outlier_edges() {
+        // Points 0-1-2 form the truth; 3 is an outlier two units above point 1.
+        let points = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (1.0, 2.0)].map(Point::from);
+        let truth = [[0, 1], [1, 2]];
+        let s = score(&points, &[[0, 1], [1, 2], [1, 3]], &truth).unwrap();
+        assert_eq!(s.outlier_edges, 1);
+        assert_eq!(
+            (s.true_positives, s.false_positives, s.false_negatives),
+            (2, 1, 0)
+        );
+        let diagonal = libm::hypot(2.0, 2.0);
+        // Samples of 1-3 at t = 0 (on the truth), 0.5, 1, 1.5 and 2 units above it.
+        assert_eq!(s.max_distance, Some(2.0 / diagonal));
+        let squares: f64 = [0.0, 0.5, 1.0, 1.5, 2.0].iter().map(|d| d * d).sum();
+        let rms = libm::sqrt(squares / 15.0) / diagonal;
+        assert!((s.rms_distance.unwrap() - rms).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_malformed_output_scores_nothing_and_names_its_first_problem() {
+        let points = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0)].map(Point::from);
+        let truth = [[0, 1], [1, 2]];
+        for (output, problem) in [
+            (
+                vec![[0, 1], [1, 2], [2, 1]],
+                EdgeProblem::Repeated {
+                    position: 2,
+                    edge: [1, 2],
+                },
+            ),
+            (
+                vec![[0, 1], [1, 1], [1, 9]],
+                EdgeProblem::SelfLoop {
+                    position: 1,
+                    index: 1,
+                },
+            ),
+            (
+                vec![[0, 5], [1, 1]],
+                EdgeProblem::OutOfRange {
+                    position: 0,
+                    index: 5,
+                },
+            ),
+        ] {
+            let s = score(&points, &output, &truth).unwrap();
+            assert_eq!(s.malformed, Some(problem));
+            assert!(!s.exact);
+            assert_eq!((s.precision, s.recall, s.f1), (0.0, 0.0, 0.0));
+        }
+    }
+
+    #[test]
+    fn empty_sets_follow_the_conventions() {
+        let points = [(0.0, 0.0), (1.0, 0.0)].map(Point::from);
+        let both_empty = score(&points, &[], &[]).unwrap();
+        assert!(both_empty.exact);
+        assert_eq!((both_empty.precision, both_empty.recall), (1.0, 1.0));
+        assert_eq!(both_empty.max_distance, None);
+        let nothing_found = score(&points, &[], &[[0, 1]]).unwrap();
+        assert_eq!((nothing_found.precision, nothing_found.f1), (0.0, 0.0));
+        let no_truth = score(&points, &[[0, 1]], &[]).unwrap();
+        assert_eq!(no_truth.recall, 1.0);
+        assert_eq!(no_truth.max_distance, Some(f64::INFINITY));
+        assert_eq!(no_truth.outlier_edges, 1);
+    }
+
+    #[test]
+    fn distances_do_not_depend_on_an_offset() {
+        let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+        let near: Vec<Point> = square.iter().map(|&p| Point::from(p)).collect();
+        let far: Vec<Point> = square
+            .iter()
+            .map(|&(x, y)| Point::new(x + 1e6, y + 1e6))
+            .collect();
+        let truth = [[0, 1], [1, 2], [2, 3], [0, 3]];
+        let output = [[0, 1], [1, 2], [0, 2]];
+        assert_eq!(
+            score(&near, &output, &truth).unwrap(),
+            score(&far, &output, &truth).unwrap()
+        );
+    }
+
+    #[test]
+    fn a_non_finite_point_or_a_bad_truth_is_an_error() {
+        let points = [Point::new(0.0, 0.0), Point::new(f64::NAN, 0.0)];
+        assert_eq!(
+            score(&points, &[], &[]),
+            Err(ScoreError::NonFinite { index: 1 })
+        );
+        let points = [(0.0, 0.0), (1.0, 0.0)].map(Point::from);
+        assert_eq!(
+            score(&points, &[], &[[0, 1], [1, 0]]),
+            Err(ScoreError::Truth(EdgeProblem::Repeated {
+                position: 1,
+                edge: [0, 1]
+            }))
+        );
+    }
+}

@@ -1,0 +1,324 @@
+//! The interactive stage viewer: one self-contained HTML file (inline script and style, no
+//! network, opens from `file://`).
+//!
+//! Owns: the page's layout, its data block and its script. The data are the points (relative to
+//! their bounding box, so offsets of 1e6 cost no precision on screen), every edge of
+//! [`Reconstruction::provenance`] with its story in compact numeric form, and per layer (the
+//! Delaunay triangulation, each stage that ran, the result) the list of its edges. The script
+//! draws on one canvas (no element per edge, so 100,000 points stay responsive), switches the
+//! layers, pans and zooms, and on a click shows a point's ring (its two shortest edges, the
+//! uniformity test with its numbers, its final degree) or an edge's story. It may not decide
+//! anything: every verdict and ratio comes from the library; the script computes only lengths
+//! and positions for display.
+
+use condt::geometry::{binary_exponent, Point, Scale};
+use condt::{EdgeStory, EndChoice, Reason};
+use condt::{Reconstruction, Stage};
+use std::io::{self, Write};
+
+/// Writes the viewer page for `result`, titled `title` (HTML-escaped here).
+///
+/// ```
+/// use condt_io::write_html;
+/// use condt::{reconstruct, Params, Point};
+/// let points = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 1.2)].map(Point::from);
+/// let result = reconstruct(&points, &Params::default())?;
+/// let mut page = Vec::new();
+/// write_html(&mut page, &result, "five points")?;
+/// let page = String::from_utf8(page)?;
+/// assert!(page.starts_with("<!DOCTYPE html>"));
+/// assert!(page.contains("<title>condt: five points</title>"));
+/// assert!(!page.contains("http://") && !page.contains("https://")); // nothing to fetch
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> io::Result<()> {
+    let stories = result.provenance();
+    let mut out = io::BufWriter::with_capacity(1 << 16, out);
+    let title = escape(title);
+    write!(
+        out,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width\">\
+         <title>condt: {title}</title><style>{STYLE}</style></head><body>\
+         <header><h1>condt: {title}</h1><span id=\"status\"></span></header>\
+         <main><div id=\"view\"><canvas id=\"canvas\"></canvas></div>\
+         <aside><section id=\"layers\"><h2>Layers</h2></section>\
+         <section><h2>Legend</h2><div id=\"legend\"></div></section>\
+         <section id=\"info\"><h2>Details</h2><p id=\"details\">Click a point or an edge.</p>\
+         </section><p class=\"hint\">Drag to pan, wheel to zoom, double-click to reset.</p>\
+         </aside></main>\n<script id=\"data\" type=\"application/json\">"
+    )?;
+    write_data(&mut out, result, &stories)?;
+    write!(out, "</script>\n<script>{SCRIPT}</script></body></html>\n")?;
+    out.flush()
+}
+
+/// The data block: one JSON object, numbers only (no text the script would have to trust).
+fn write_data(
+    out: &mut impl Write,
+    result: &Reconstruction,
+    stories: &[EdgeStory],
+) -> io::Result<()> {
+    let n = result.num_points();
+    // The positions are written relative to the box's corner over one power of two that spans
+    // the box (so that the page keeps the set's shape and the set's own spacing survives the
+    // digits written). They are first brought near 1 by another power of two, as the SVG does,
+    // so that spans of coordinates near 1e308 do not overflow; both steps are exact.
+    let largest = (0..n)
+        .map(|i| result.stage_point(i))
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let exponent = if largest > 0.0 && largest.is_finite() {
+        binary_exponent(largest)
+    } else {
+        0
+    };
+    let unit = Scale::power_of_two(-exponent);
+    let points: Vec<Point> = (0..n).map(|i| unit.apply(result.stage_point(i))).collect();
+    let (mut min, mut span) = (Point::new(f64::INFINITY, f64::INFINITY), 0.0f64);
+    for p in &points {
+        min = Point::new(min.x.min(p.x), min.y.min(p.y));
+    }
+    for p in &points {
+        span = span.max(p.x - min.x).max(p.y - min.y);
+    }
+    let scale = if span > 0.0 {
+        libm::exp2(libm::ceil(libm::log2(span)))
+    } else {
+        1.0
+    };
+    // Back in input units for the page's readouts (saturating at the largest double).
+    let input = |x: f64| libm::ldexp(x, exponent).clamp(-f64::MAX, f64::MAX);
+    write!(
+        out,
+        "{{\"origin\":[{:e},{:e}],\"scale\":{:e},\"points\":[",
+        input(min.x),
+        input(min.y),
+        input(scale)
+    )?;
+    for (k, p) in points.iter().enumerate() {
+        let sep = if k == 0 { "" } else { "," };
+        write!(
+            out,
+            "{sep}{},{}",
+            Short((p.x - min.x) / scale, POSITION_DIGITS),
+            Short((p.y - min.y) / scale, POSITION_DIGITS)
+        )?;
+    }
+    // The smoothing passes that ran (0 when none): the positions above are the moved ones.
+    let (passes, moved) = result.smoothing().map_or((0, 0), |s| (s.passes, s.moved));
+    write!(out, "],\"smoothing\":[{passes},{moved}],\"unused\":")?;
+    write_list(out, result.unused().iter().copied())?;
+    write!(out, ",\"degree\":")?;
+    write_list(out, (0..n).map(|i| result.degree(i)))?;
+    write!(out, ",\"edges\":")?;
+    write_list(out, stories.iter().flat_map(|s| s.edge))?;
+    // Per edge and end: 0 not Delaunay, 1 shortest, 2 second, k >= 3 the rank.
+    write!(out, ",\"ends\":")?;
+    write_list(
+        out,
+        stories
+            .iter()
+            .flat_map(|s| s.ends)
+            .map(|choice| match choice {
+                EndChoice::NotDelaunay => 0,
+                EndChoice::Shortest => 1,
+                EndChoice::Second { .. } => 2,
+                EndChoice::Later { rank } => rank,
+            }),
+    )?;
+    // Per second-shortest end: edge index, end (0 or 1), ratio, bound, kept (0 or 1).
+    write!(out, ",\"seconds\":[")?;
+    let mut first = true;
+    for (k, story) in stories.iter().enumerate() {
+        for (side, choice) in story.ends.iter().enumerate() {
+            if let EndChoice::Second { ratio, bound, kept } = *choice {
+                let sep = if first { "" } else { "," };
+                first = false;
+                write!(
+                    out,
+                    "{sep}{k},{side},{},{},{}",
+                    Short(ratio, RATIO_DIGITS),
+                    Short(bound, RATIO_DIGITS),
+                    u8::from(kept)
+                )?;
+            }
+        }
+    }
+    // Per change: edge index, stage index, added (0 or 1), reason code, two numbers.
+    let stages: Vec<Stage> = result.stage_times().map(|(stage, _)| stage).collect();
+    write!(out, "],\"changes\":[")?;
+    let mut first = true;
+    for (k, story) in stories.iter().enumerate() {
+        for change in &story.changes {
+            let stage = stages.iter().position(|&s| s == change.stage).unwrap_or(0);
+            let (code, x, y) = match change.reason {
+                Reason::Repair { vertex, degree, .. } => (0, vertex as f64, degree as f64),
+                Reason::LongerThanThreshold { length, threshold } => (1, length, threshold),
+                Reason::GivenBack => (2, 0.0, 0.0),
+                Reason::LongAt { vertex, ratio } => (3, vertex as f64, ratio),
+                Reason::Component => (4, 0.0, 0.0),
+                Reason::Spur => (5, 0.0, 0.0),
+                Reason::GapClosed => (6, 0.0, 0.0),
+                Reason::NotConfirmed => (7, 0.0, 0.0),
+                Reason::Baseline => (8, 0.0, 0.0),
+            };
+            let sep = if first { "" } else { "," };
+            first = false;
+            write!(
+                out,
+                "{sep}{k},{stage},{},{code},{},{}",
+                u8::from(change.added),
+                Short(x, LENGTH_DIGITS),
+                Short(y, LENGTH_DIGITS)
+            )?;
+        }
+    }
+    // Layers: their names, and per edge one number whose bit 0 says it is a Delaunay edge and
+    // bit k + 1 that stage k's graph has it (a list of edges per layer would be 3 times larger).
+    write!(out, "],\"layers\":[\"Delaunay triangulation\"")?;
+    for stage in &stages {
+        write!(out, ",\"{}\"", stage.title())?;
+    }
+    let graphs: Vec<Vec<[usize; 2]>> = result.stages().map(|r| r.graph.edges()).collect();
+    let membership = stories.iter().map(|story| {
+        let delaunay = u64::from(!story.ends.contains(&EndChoice::NotDelaunay));
+        graphs
+            .iter()
+            .enumerate()
+            .fold(delaunay, |bits, (k, edges)| {
+                bits | u64::from(edges.binary_search(&story.edge).is_ok()) << (k + 1)
+            })
+    });
+    write!(out, "],\"member\":")?;
+    write_list(out, membership)?;
+    write!(out, ",\"stageNames\":[")?;
+    for (k, stage) in stages.iter().enumerate() {
+        let sep = if k == 0 { "" } else { "," };
+        write!(out, "{sep}\"{}\"", stage.name())?;
+    }
+    write!(out, "]}}")
+}
+
+/// Significant digits of positions (relative to the box, over its longer side): a ten-millionth
+/// of the view, below a pixel at any zoom a page needs to tell samples apart.
+const POSITION_DIGITS: usize = 7;
+/// Of the uniformity ratios and bounds, shown with three decimals.
+const RATIO_DIGITS: usize = 5;
+/// Of lengths and thresholds, shown with six significant digits.
+const LENGTH_DIGITS: usize = 6;
+
+fn write_list<T: core::fmt::Display>(
+    out: &mut impl Write,
+    items: impl IntoIterator<Item = T>,
+) -> io::Result<()> {
+    out.write_all(b"[")?;
+    for (k, item) in items.into_iter().enumerate() {
+        if k > 0 {
+            out.write_all(b",")?;
+        }
+        write!(out, "{item}")?;
+    }
+    out.write_all(b"]")
+}
+
+/// A number with the given number of significant digits, as JSON (which has no NaN or infinity: those become 0,
+/// and cannot occur for finite input).
+struct Short(f64, usize);
+
+impl core::fmt::Display for Short {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let (x, digits) = (self.0, self.1);
+        if !x.is_finite() {
+            return f.write_str("0");
+        }
+        if x == x.trunc() && x.abs() < 1e15 {
+            return write!(f, "{}", x as i64);
+        }
+        // Shortest of the two spellings that keep `digits` significant digits.
+        let plain = format!("{:.*}", digits_after_point(x, digits), x);
+        let plain = plain.trim_end_matches('0').trim_end_matches('.');
+        let exp = format!("{:.*e}", digits - 1, x);
+        if plain.len() <= exp.len() {
+            f.write_str(plain)
+        } else {
+            f.write_str(&exp)
+        }
+    }
+}
+
+fn digits_after_point(x: f64, digits: usize) -> usize {
+    let magnitude = libm::floor(libm::log10(x.abs())) as i32;
+    (digits as i32 - 1 - magnitude).clamp(0, 40) as usize
+}
+
+fn escape(text: &str) -> String {
+    let mut escaped = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => escaped.push_str("&amp;"),
+            '<' => escaped.push_str("&lt;"),
+            '>' => escaped.push_str("&gt;"),
+            '"' => escaped.push_str("&quot;"),
+            c => escaped.push(c),
+        }
+    }
+    escaped
+}
+
+const STYLE: &str = include_str!("html/viewer.css");
+const SCRIPT: &str = include_str!("html/viewer.js");
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_keep_their_significant_digits_in_the_shorter_spelling() {
+        for (x, text) in [
+            (0.5, "0.5"),
+            (3.0, "3"),
+            (0.123456789123, "0.1234568"),
+            (1.5e-7, "0.00000015"),
+            (1.25e-12, "1.250000e-12"),
+            (f64::NAN, "0"),
+            (2.75, "2.75"),
+        ] {
+            assert_eq!(Short(x, 7).to_string(), text);
+        }
+        let x = 1.0 / 3.0;
+        let back: f64 = Short(x, 9).to_string().parse().unwrap();
+        assert!((back - x).abs() < 1e-9);
+    }
+
+    #[test]
+    fn coordinates_near_the_largest_double_give_finite_json() {
+        use condt::{reconstruct, Params};
+        let points = [
+            (-1e308, -1e308),
+            (1e308, -1e308),
+            (0.0, 1e308),
+            (1e307, 0.0),
+        ]
+        .map(|(x, y)| Point::new(x, y));
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        let mut page = Vec::new();
+        write_html(&mut page, &result, "huge").unwrap();
+        let page = String::from_utf8(page).unwrap();
+        let data = &page[page.find("{\"origin\"").unwrap()..page.find("</script>").unwrap()];
+        assert!(!data.contains("inf") && !data.contains("NaN"), "{data}");
+        // The four points keep distinct positions.
+        let start = data.find("\"points\":[").unwrap() + 10;
+        let end = start + data[start..].find(']').unwrap();
+        let numbers: Vec<&str> = data[start..end].split(',').collect();
+        let pairs: Vec<(&str, &str)> = numbers.chunks(2).map(|c| (c[0], c[1])).collect();
+        assert_eq!(pairs.len(), 4);
+        for (i, a) in pairs.iter().enumerate() {
+            assert!(pairs[i + 1..].iter().all(|b| b != a), "{pairs:?}");
+        }
+    }
+
+    #[test]
+    fn a_title_cannot_break_out_of_its_element() {
+        assert_eq!(escape("<script>&\""), "&lt;script&gt;&amp;&quot;");
+    }
+}

@@ -1,0 +1,890 @@
+//! NumPy `.npy` files: points in (float64 or float32, shape `(n, 2)`), indices out (edges
+//! `(m, 2)`, triangles `(t, 3)`, as uint32 when every index fits, int64 otherwise).
+//!
+//! Owns the NPY format (versions 1.0, 2.0 and 3.0 of NumPy's `format` module): the magic
+//! string, the version, the header length, the header (a Python dictionary literal with
+//! `descr`, `fortran_order` and `shape`) and the raw data after it. It reads and writes in
+//! blocks, so neither direction holds a second copy of the data.
+//!
+//! Reading refuses, naming the file, anything it cannot read exactly: another dtype or shape, a
+//! header it cannot parse, a file shorter or longer than its header says, and NaN or infinite
+//! coordinates (with the row). Both byte orders and both memory orders (C and Fortran) are read.
+
+use super::pieces::{write_pieces, Cursor, ROOM};
+use super::{IoError, IoErrorKind};
+use condt::mesh::VertexId;
+use condt::Point;
+use condt::Reconstruction;
+use condt::{Triangulation, MAX_POINTS};
+use core::ops::Range;
+use core::sync::atomic::{AtomicUsize, Ordering};
+use std::fs::File;
+use std::io::{self, Read, Write};
+use std::string::String;
+use std::vec::Vec;
+
+/// The first six bytes of every `.npy` file.
+const MAGIC: &[u8; 6] = b"\x93NUMPY";
+
+/// Longest header read: NumPy's own writer needs about 128 bytes; this bounds what a damaged
+/// length field can make us allocate.
+const MAX_HEADER: usize = 1 << 16;
+
+/// Bytes read or written at a time.
+const BLOCK: usize = 1 << 20;
+
+/// The element types a point file may hold.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Float {
+    F64,
+    F32,
+}
+
+/// What the header of a point file says.
+#[derive(Debug, PartialEq)]
+struct Header {
+    float: Float,
+    big_endian: bool,
+    fortran_order: bool,
+    rows: usize,
+}
+
+/// A value of the header dictionary.
+#[derive(Debug, PartialEq)]
+enum Value {
+    Text(String),
+    Bool(bool),
+    Tuple(Vec<u64>),
+}
+
+fn content(file: &str, message: String) -> IoError {
+    IoError {
+        file: file.to_string(),
+        line: None,
+        kind: IoErrorKind::Content(message),
+    }
+}
+
+/// Reads a Python dictionary literal of the kind NumPy writes: string keys, and string,
+/// `True`/`False` or tuple-of-integers values.
+struct Literal<'a> {
+    text: &'a [u8],
+    at: usize,
+}
+
+impl Literal<'_> {
+    fn skip_space(&mut self) {
+        while self.text.get(self.at).is_some_and(u8::is_ascii_whitespace) {
+            self.at += 1;
+        }
+    }
+
+    /// Skips spaces, then takes `byte` if it is next.
+    fn take(&mut self, byte: u8) -> bool {
+        self.skip_space();
+        let found = self.text.get(self.at) == Some(&byte);
+        if found {
+            self.at += 1;
+        }
+        found
+    }
+
+    fn expect(&mut self, byte: u8) -> Result<(), String> {
+        if self.take(byte) {
+            Ok(())
+        } else {
+            Err(format!(
+                "expected '{}' at byte {} of the header",
+                byte as char, self.at
+            ))
+        }
+    }
+
+    fn string(&mut self) -> Result<String, String> {
+        self.skip_space();
+        let quote = match self.text.get(self.at) {
+            Some(&q @ (b'\'' | b'"')) => q,
+            _ => {
+                return Err(format!(
+                    "expected a quoted name at byte {} of the header",
+                    self.at
+                ))
+            }
+        };
+        let start = self.at + 1;
+        let length = self.text[start..]
+            .iter()
+            .position(|&b| b == quote)
+            .ok_or_else(|| "a quoted name in the header does not end".to_string())?;
+        self.at = start + length + 1;
+        Ok(String::from_utf8_lossy(&self.text[start..start + length]).into_owned())
+    }
+
+    fn word(&mut self) -> &[u8] {
+        self.skip_space();
+        let start = self.at;
+        while self
+            .text
+            .get(self.at)
+            .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
+        {
+            self.at += 1;
+        }
+        &self.text[start..self.at]
+    }
+
+    fn value(&mut self) -> Result<Value, String> {
+        self.skip_space();
+        match self.text.get(self.at) {
+            Some(b'\'' | b'"') => self.string().map(Value::Text),
+            Some(b'(') => {
+                self.at += 1;
+                let mut items = Vec::new();
+                while !self.take(b')') {
+                    let word = self.word();
+                    let item = core::str::from_utf8(word)
+                        .ok()
+                        .and_then(|w| w.parse::<u64>().ok())
+                        .ok_or_else(|| {
+                            format!(
+                                "the shape holds {:?}, not a size",
+                                String::from_utf8_lossy(word)
+                            )
+                        })?;
+                    items.push(item);
+                    if !self.take(b',') {
+                        self.expect(b')')?;
+                        break;
+                    }
+                }
+                Ok(Value::Tuple(items))
+            }
+            _ => match self.word() {
+                b"True" => Ok(Value::Bool(true)),
+                b"False" => Ok(Value::Bool(false)),
+                other => Err(format!(
+                    "cannot read {:?} in the header",
+                    String::from_utf8_lossy(other)
+                )),
+            },
+        }
+    }
+
+    /// The dictionary's entries, in order.
+    fn dictionary(&mut self) -> Result<Vec<(String, Value)>, String> {
+        self.expect(b'{')?;
+        let mut entries = Vec::new();
+        while !self.take(b'}') {
+            let key = self.string()?;
+            self.expect(b':')?;
+            entries.push((key, self.value()?));
+            if !self.take(b',') {
+                self.expect(b'}')?;
+                break;
+            }
+        }
+        self.skip_space();
+        if self.at != self.text.len() {
+            return Err("the header goes on after its dictionary".to_string());
+        }
+        Ok(entries)
+    }
+}
+
+/// The meaning of a header dictionary for a point file.
+fn point_header(text: &[u8]) -> Result<Header, String> {
+    let entries = Literal { text, at: 0 }.dictionary()?;
+    let (mut descr, mut fortran_order, mut shape) = (None, None, None);
+    for (key, value) in entries {
+        match (key.as_str(), value) {
+            ("descr", Value::Text(d)) => descr = Some(d),
+            ("fortran_order", Value::Bool(f)) => fortran_order = Some(f),
+            ("shape", Value::Tuple(s)) => shape = Some(s),
+            (key @ ("descr" | "fortran_order" | "shape"), value) => {
+                return Err(format!("the header's '{key}' is {value:?}"))
+            }
+            (other, _) => return Err(format!("the header has an unknown key '{other}'")),
+        }
+    }
+    let descr = descr.ok_or("the header has no 'descr' (the element type)")?;
+    let fortran_order = fortran_order.ok_or("the header has no 'fortran_order'")?;
+    let shape = shape.ok_or("the header has no 'shape'")?;
+    let (float, big_endian) = match descr.as_str() {
+        "<f8" => (Float::F64, false),
+        ">f8" => (Float::F64, true),
+        "<f4" => (Float::F32, false),
+        ">f4" => (Float::F32, true),
+        other => {
+            return Err(format!(
+                "element type {other:?} is not supported: points are float64 ('<f8', '>f8') \
+                 or float32 ('<f4', '>f4')"
+            ))
+        }
+    };
+    let rows = match shape[..] {
+        [rows, 2] => usize::try_from(rows).unwrap_or(usize::MAX),
+        _ => {
+            let shown: Vec<String> = shape.iter().map(u64::to_string).collect();
+            return Err(format!(
+                "shape ({}) is not (n, 2): one row `x y` per point",
+                shown.join(", ")
+            ));
+        }
+    };
+    if rows > MAX_POINTS {
+        return Err(format!(
+            "{rows} points, more than {MAX_POINTS}, the most condt accepts"
+        ));
+    }
+    Ok(Header {
+        float,
+        big_endian,
+        fortran_order,
+        rows,
+    })
+}
+
+/// Reads exactly `buffer.len()` bytes unless the input ends first; returns how many it read.
+fn read_up_to(reader: &mut dyn Read, buffer: &mut [u8]) -> io::Result<usize> {
+    let mut filled = 0;
+    while filled < buffer.len() {
+        match reader.read(&mut buffer[filled..]) {
+            Ok(0) => break,
+            Ok(n) => filled += n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(filled)
+}
+
+/// The header of a `.npy` stream, read up to the first data byte.
+fn read_header(reader: &mut dyn Read, file: &str) -> Result<Header, IoError> {
+    let io_error = |err: io::Error| IoError::os(file, err);
+    let mut start = [0u8; 8];
+    let got = read_up_to(reader, &mut start).map_err(io_error)?;
+    if got < 8 || &start[..6] != MAGIC {
+        return Err(content(
+            file,
+            "not a NumPy .npy file (it does not start with \\x93NUMPY)".to_string(),
+        ));
+    }
+    let (major, minor) = (start[6], start[7]);
+    let length_bytes = match (major, minor) {
+        (1, 0) => 2,
+        (2 | 3, 0) => 4,
+        _ => {
+            return Err(content(
+                file,
+                format!(
+                    "NPY format version {major}.{minor} is not supported (1.0, 2.0 and 3.0 are)"
+                ),
+            ))
+        }
+    };
+    let mut length = [0u8; 4];
+    if read_up_to(reader, &mut length[..length_bytes]).map_err(io_error)? < length_bytes {
+        return Err(content(file, "the file ends inside its header".to_string()));
+    }
+    let length = u32::from_le_bytes(length) as usize;
+    if length > MAX_HEADER {
+        return Err(content(
+            file,
+            format!("a header of {length} bytes: damaged (NumPy writes about 128)"),
+        ));
+    }
+    let mut text = vec![0u8; length];
+    if read_up_to(reader, &mut text).map_err(io_error)? < length {
+        return Err(content(file, "the file ends inside its header".to_string()));
+    }
+    if major < 3 && !text.is_ascii() {
+        return Err(content(file, "the header is not ASCII text".to_string()));
+    }
+    point_header(&text).map_err(|message| content(file, message))
+}
+
+/// The points of a `.npy` stream, read in blocks straight into the point array.
+fn read_npy_from(reader: &mut dyn Read, file: &str) -> Result<Vec<Point>, IoError> {
+    let header = read_header(reader, file)?;
+    let size = match header.float {
+        Float::F64 => 8,
+        Float::F32 => 4,
+    };
+    let n = header.rows;
+    let mut points: Vec<Point> = Vec::new();
+    points.try_reserve_exact(n).map_err(|_| {
+        content(
+            file,
+            format!(
+                "out of memory: {n} points do not fit ({} bytes)",
+                n.saturating_mul(16)
+            ),
+        )
+    })?;
+    if !header.fortran_order {
+        read_rows(reader, file, &header, size, &mut points)?;
+    } else {
+        read_columns(reader, file, &header, size, &mut points)?;
+    }
+    let mut extra = [0u8; 1];
+    if read_up_to(reader, &mut extra).map_err(|err| IoError::os(file, err))? > 0 {
+        return Err(content(
+            file,
+            format!("bytes after the {n} points the header announces"),
+        ));
+    }
+    if let Some(row) = points
+        .iter()
+        .position(|p| !(p.x.is_finite() && p.y.is_finite()))
+    {
+        let p = points[row];
+        return Err(content(
+            file,
+            format!("row {row}: the point ({}, {}) is not finite", p.x, p.y),
+        ));
+    }
+    Ok(points)
+}
+
+/// The error for a file that ends `read` bytes into the `n` points its header announces.
+fn ends_early(file: &str, n: usize, size: usize, read: usize) -> IoError {
+    content(
+        file,
+        format!(
+            "the header announces {n} points ({} bytes of data), the file ends after {read} \
+             bytes of them",
+            2 * n * size
+        ),
+    )
+}
+
+/// The points of a C-order array (row after row, `x` then `y`), appended to `points` as their
+/// rows are read: each point is written once, with no zeroed array to fill first, and the
+/// common little-endian float64 file is decoded without a per-value choice.
+fn read_rows(
+    reader: &mut dyn Read,
+    file: &str,
+    header: &Header,
+    size: usize,
+    points: &mut Vec<Point>,
+) -> Result<(), IoError> {
+    let n = header.rows;
+    let row = 2 * size;
+    let mut block = vec![0u8; BLOCK - BLOCK % row];
+    while points.len() < n {
+        let want = ((n - points.len()) * row).min(block.len());
+        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError::os(file, err))?;
+        let rows = block[..got - got % row].chunks_exact(row);
+        match (header.float, header.big_endian) {
+            (Float::F64, false) => points.extend(rows.map(|b| {
+                let (x, y) = b.split_at(8);
+                Point::new(
+                    f64::from_le_bytes(x.try_into().unwrap_or([0; 8])),
+                    f64::from_le_bytes(y.try_into().unwrap_or([0; 8])),
+                )
+            })),
+            (float, big_endian) => points.extend(rows.map(|b| {
+                let (x, y) = b.split_at(size);
+                Point::new(decode(x, float, big_endian), decode(y, float, big_endian))
+            })),
+        }
+        if got < want {
+            return Err(ends_early(file, n, size, points.len() * row + got % row));
+        }
+    }
+    Ok(())
+}
+
+/// The points of a Fortran-order array (all `x`, then all `y`), into `points`, zeroed first.
+fn read_columns(
+    reader: &mut dyn Read,
+    file: &str,
+    header: &Header,
+    size: usize,
+    points: &mut Vec<Point>,
+) -> Result<(), IoError> {
+    let n = header.rows;
+    points.resize(n, Point::new(0.0, 0.0));
+    let values = 2 * n;
+    let mut block = vec![0u8; BLOCK - BLOCK % size];
+    let mut done = 0usize;
+    while done < values {
+        let want = ((values - done) * size).min(block.len());
+        let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError::os(file, err))?;
+        let whole = got / size;
+        for (k, bytes) in block[..whole * size].chunks_exact(size).enumerate() {
+            let value = decode(bytes, header.float, header.big_endian);
+            let index = done + k;
+            let (row, column) = (index % n, index / n);
+            let point = &mut points[row];
+            if column == 0 {
+                point.x = value;
+            } else {
+                point.y = value;
+            }
+        }
+        done += whole;
+        if got < want {
+            return Err(ends_early(file, n, size, done * size + got % size));
+        }
+    }
+    Ok(())
+}
+
+#[inline]
+fn decode(bytes: &[u8], float: Float, big_endian: bool) -> f64 {
+    match float {
+        Float::F64 => {
+            let raw: [u8; 8] = bytes.try_into().unwrap_or([0; 8]);
+            if big_endian {
+                f64::from_be_bytes(raw)
+            } else {
+                f64::from_le_bytes(raw)
+            }
+        }
+        Float::F32 => {
+            let raw: [u8; 4] = bytes.try_into().unwrap_or([0; 4]);
+            f64::from(if big_endian {
+                f32::from_be_bytes(raw)
+            } else {
+                f32::from_le_bytes(raw)
+            })
+        }
+    }
+}
+
+/// Parses the bytes of a NumPy `.npy` file of points: float64 or float32 (either byte order),
+/// shape `(n, 2)`, C or Fortran order, NPY version 1.0, 2.0 or 3.0. `file` names the source in
+/// error messages; float32 values are widened exactly.
+///
+/// ```
+/// use condt::Point;
+/// use condt_io::{parse_npy, write_npy_points};
+/// let points = vec![Point::new(0.5, -1.0), Point::new(3.0, 1e-300)];
+/// let mut bytes = Vec::new();
+/// write_npy_points(&mut bytes, &points)?;
+/// assert_eq!(parse_npy(&bytes, "pts.npy")?, points);
+///
+/// let err = parse_npy(&bytes[..bytes.len() - 3], "cut.npy").unwrap_err();
+/// assert!(err.to_string().starts_with("cut.npy: the header announces 2 points"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn parse_npy(bytes: &[u8], file: &str) -> Result<Vec<Point>, IoError> {
+    let mut reader = bytes;
+    read_npy_from(&mut reader, file)
+}
+
+/// Reads a `.npy` file of points (see [`parse_npy`]) in blocks, straight into the points.
+pub(super) fn read_npy_file(path: &std::path::Path, shown: &str) -> Result<Vec<Point>, IoError> {
+    let mut file = File::open(path).map_err(|err| IoError::os(shown, err))?;
+    read_npy_from(&mut file, shown)
+}
+
+/// A version 1.0 header (version 2.0 when the dictionary is over 65,535 bytes, which no shape
+/// here needs) for `descr` and `shape`, padded with spaces to a multiple of 64 bytes as NumPy
+/// pads it.
+fn header(descr: &str, shape: &[usize]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+    let dims = if dims.len() == 1 {
+        format!("{},", dims[0])
+    } else {
+        dims.join(", ")
+    };
+    let mut dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({dims}), }}");
+    let (version, prefix) = if dict.len() + 12 <= usize::from(u16::MAX) {
+        (1u8, 10)
+    } else {
+        (2u8, 12)
+    };
+    let unpadded = prefix + dict.len() + 1;
+    dict.extend(std::iter::repeat_n(' ', (64 - unpadded % 64) % 64));
+    dict.push('\n');
+    let mut out = Vec::with_capacity(prefix + dict.len());
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&[version, 0]);
+    if version == 1 {
+        out.extend_from_slice(&(dict.len() as u16).to_le_bytes());
+    } else {
+        out.extend_from_slice(&(dict.len() as u32).to_le_bytes());
+    }
+    out.extend_from_slice(dict.as_bytes());
+    out
+}
+
+/// Writes `points` as a `.npy` file: little-endian float64, shape `(n, 2)`, C order.
+///
+/// ```
+/// use condt::Point;
+/// use condt_io::write_npy_points;
+/// let mut bytes = Vec::new();
+/// write_npy_points(&mut bytes, &[Point::new(1.0, 2.0)])?;
+/// assert_eq!(&bytes[..10], b"\x93NUMPY\x01\x00\x76\x00");
+/// assert_eq!(bytes.len(), 128 + 16);
+/// assert_eq!(&bytes[128..136], &1.0f64.to_le_bytes());
+/// # Ok::<(), std::io::Error>(())
+/// ```
+pub fn write_npy_points(out: &mut dyn Write, points: &[Point]) -> io::Result<()> {
+    out.write_all(&header("<f8", &[points.len(), 2]))?;
+    let mut block = Vec::with_capacity(BLOCK);
+    for chunk in points.chunks(BLOCK / 16) {
+        block.clear();
+        for p in chunk {
+            block.extend_from_slice(&p.x.to_le_bytes());
+            block.extend_from_slice(&p.y.to_le_bytes());
+        }
+        out.write_all(&block)?;
+    }
+    Ok(())
+}
+
+/// Hands the rows of a range of units to a callback, for [`write_indices`].
+type RowsOf<'a, const K: usize> = dyn Fn(Range<usize>, &mut dyn FnMut([usize; K])) + Sync + 'a;
+
+/// Rows of `K` indices below `points`, written as uint32 when every index fits, int64
+/// otherwise, shape `(rows, K)`. `rows_of(range, row)` hands `row` the rows of units `range`
+/// (units are the caller's: triangles, points, edges), the rows of `0..units` in order being
+/// the array's; the units are cut into pieces of `piece` and converted on rayon's threads with
+/// the `parallel` feature ([`write_pieces`]). `rows` must be how many there are; a mismatch is
+/// an error rather than a file whose header lies.
+fn write_indices<const K: usize>(
+    out: &mut dyn Write,
+    points: usize,
+    rows: usize,
+    units: usize,
+    piece: usize,
+    rows_of: &RowsOf<'_, K>,
+) -> io::Result<()> {
+    const { assert!(8 * K <= ROOM) };
+    let narrow = points as u64 <= 1 << 32;
+    out.write_all(&header(if narrow { "<u4" } else { "<i8" }, &[rows, K]))?;
+    let written = AtomicUsize::new(0);
+    write_pieces(out, units, piece, &|range, buf| {
+        let mut cursor = Cursor::new(buf);
+        let mut count = 0;
+        rows_of(range, &mut |row| {
+            let room = cursor.room();
+            let mut at = 0;
+            for i in row {
+                if narrow {
+                    room[at..at + 4].copy_from_slice(&(i as u32).to_le_bytes());
+                    at += 4;
+                } else {
+                    room[at..at + 8].copy_from_slice(&(i as i64).to_le_bytes());
+                    at += 8;
+                }
+            }
+            cursor.advance(at);
+            count += 1;
+        });
+        written.fetch_add(count, Ordering::Relaxed);
+        cursor.finish()
+    })?;
+    let written = written.into_inner();
+    if written != rows {
+        return Err(io::Error::other(format!(
+            "{written} rows written under a header announcing {rows}"
+        )));
+    }
+    Ok(())
+}
+
+/// Rows per piece of [`write_indices`]: 8,192 rows of three uint32 are 96 kB (the batches in
+/// flight stay near 1 MB).
+const ROWS_PER_PIECE: usize = 1 << 13;
+
+/// The number of triangles of `tri` (`Triangulation::triangles().count()`), for the header
+/// that comes before them; on rayon's threads with the `parallel` feature, as it is a pass
+/// over every corner of the mesh before the first row can be written.
+fn count_finite_triangles(tri: &Triangulation) -> usize {
+    let mesh = tri.mesh();
+    let corners = mesh.corner_slice(0..mesh.num_triangles_with_ghosts());
+    let finite = |corners: &[VertexId]| !corners.iter().any(|v| v.is_infinite());
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        corners.par_chunks_exact(3).filter(|c| finite(c)).count()
+    }
+    #[cfg(not(feature = "parallel"))]
+    corners.chunks_exact(3).filter(|c| finite(c)).count()
+}
+
+/// The final edges of a reconstruction as a `.npy` array of shape `(m, 2)`, `i < j`, sorted
+/// (those of [`write_edges`](super::write_edges)); uint32 when every point index fits, int64
+/// otherwise.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::paper())?;
+/// let mut bytes = Vec::new();
+/// condt_io::write_npy_edges(&mut bytes, &r)?;
+/// assert!(bytes[10..128].starts_with(b"{'descr': '<u4', 'fortran_order': False, 'shape': (3, 2), }"));
+/// let data: Vec<u32> = bytes[128..].chunks(4).map(|b| u32::from_le_bytes(b.try_into().unwrap())).collect();
+/// assert_eq!(data, [0, 1, 0, 2, 1, 2]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_npy_edges(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
+    let edges = result.edge_list();
+    write_indices::<2>(
+        out,
+        result.num_points(),
+        edges.len(),
+        edges.len(),
+        ROWS_PER_PIECE,
+        &|range, row| {
+            for &[a, b] in &edges[range] {
+                row([a as usize, b as usize]);
+            }
+        },
+    )
+}
+
+/// The triangles of a triangulation as a `.npy` array of shape `(t, 3)`, counter-clockwise,
+/// in the order of [`write_triangles`](super::write_triangles); uint32 when every point index
+/// fits, int64 otherwise.
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].map(Point::from))?;
+/// let mut bytes = Vec::new();
+/// condt_io::write_npy_triangles(&mut bytes, &tri)?;
+/// assert_eq!(bytes.len(), 128 + 3 * 4);
+/// assert!(bytes[10..128].starts_with(b"{'descr': '<u4', 'fortran_order': False, 'shape': (1, 3), }"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_npy_triangles(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
+    let mesh = tri.mesh();
+    // Pieces of triangle indices, ghosts included: the order of `Triangulation::triangles`.
+    let all = mesh.num_triangles_with_ghosts();
+    let finite = |corners: &[VertexId; 3]| !corners.iter().any(|v| v.is_infinite());
+    let rows = count_finite_triangles(tri);
+    write_indices::<3>(
+        out,
+        tri.num_points(),
+        rows,
+        all,
+        ROWS_PER_PIECE,
+        &|range, row| {
+            for corners in mesh.triangle_corners(range).filter(finite) {
+                row(corners.map(|v| tri.input_of(v)));
+            }
+        },
+    )
+}
+
+/// The edges of a triangulation as a `.npy` array of shape `(m, 2)`, `i < j`, sorted (those of
+/// [`write_triangulation_edges`](super::write_triangulation_edges)); uint32 when every point
+/// index fits, int64 otherwise.
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0)].map(Point::from))?;
+/// let mut bytes = Vec::new();
+/// condt_io::write_npy_triangulation_edges(&mut bytes, &tri)?;
+/// let data: Vec<u32> = bytes[128..].chunks(4).map(|b| u32::from_le_bytes(b.try_into().unwrap())).collect();
+/// assert_eq!(data, [0, 1, 1, 2]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_npy_triangulation_edges(out: &mut dyn Write, tri: &Triangulation) -> io::Result<()> {
+    let keys = super::text::sorted_edge_keys(tri)?;
+    write_indices::<2>(
+        out,
+        tri.num_points(),
+        keys.len(),
+        keys.len(),
+        ROWS_PER_PIECE,
+        &|range, row| {
+            for &key in &keys[range] {
+                row(super::text::edge_of_key(key));
+            }
+        },
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pieces::on_rayon_and_one_thread;
+
+    /// Enough points for several pieces: the arrays hold the rows of the iterators, in order,
+    /// on rayon's threads and on one.
+    #[test]
+    fn pieces_give_the_rows_of_the_iterators() {
+        let mut rng = crate::test_rng::Xorshift::new(8);
+        let mut points = rng.unit_points(2 * ROWS_PER_PIECE + 1000);
+        points.extend_from_slice(&points.clone()[..300]);
+        let tri = condt::triangulate(&points).unwrap();
+        assert!(tri.triangles().count() > 2 * ROWS_PER_PIECE);
+        let u32s = |bytes: &[u8]| -> Vec<usize> {
+            bytes[128..]
+                .chunks_exact(4)
+                .map(|b| u32::from_le_bytes(b.try_into().unwrap()) as usize)
+                .collect()
+        };
+        assert_eq!(count_finite_triangles(&tri), tri.triangles().count());
+        let triangles: Vec<usize> = tri.triangles().flatten().collect();
+        let mut edges: Vec<[usize; 2]> = tri.edges().collect();
+        edges.sort_unstable();
+        let edges = edges.concat();
+        let run = || {
+            let (mut t, mut e) = (Vec::new(), Vec::new());
+            write_npy_triangles(&mut t, &tri).unwrap();
+            write_npy_triangulation_edges(&mut e, &tri).unwrap();
+            (u32s(&t), u32s(&e))
+        };
+        for (t, e) in on_rayon_and_one_thread(run) {
+            assert!(t == triangles && e == edges);
+        }
+    }
+
+    /// A C-order file longer than a block, cut short: the points before the cut are read in
+    /// blocks and the message counts every byte that arrived.
+    #[test]
+    fn a_file_cut_after_the_first_block_says_how_much_arrived() {
+        let n = 100_000;
+        let points: Vec<Point> = (0..n).map(|i| Point::new(i as f64, -(i as f64))).collect();
+        let mut bytes = Vec::new();
+        write_npy_points(&mut bytes, &points).unwrap();
+        assert!(bytes.len() - 128 > BLOCK);
+        assert_eq!(parse_npy(&bytes, "whole.npy").unwrap(), points);
+        let err = parse_npy(&bytes[..bytes.len() - 3], "cut.npy").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cut.npy: the header announces {n} points ({} bytes of data), the file ends \
+                 after {} bytes of them",
+                16 * n,
+                16 * n - 3
+            )
+        );
+    }
+
+    /// The header counts agree with the iterators on degenerate sets too.
+    #[test]
+    fn counts_of_degenerate_triangulations() {
+        let sets: Vec<Vec<Point>> = vec![
+            vec![Point::new(0.0, 0.0)],
+            vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)],
+            vec![Point::new(1.0, 1.0); 3],
+            (0..10).map(|i| Point::new(f64::from(i), 0.5)).collect(),
+            (0..25)
+                .map(|i| Point::new(f64::from(i % 5), f64::from(i / 5)))
+                .collect(),
+        ];
+        for points in sets {
+            let tri = condt::triangulate(&points).unwrap();
+            assert_eq!(count_finite_triangles(&tri), tri.triangles().count());
+        }
+    }
+
+    /// Indices of more than 2^32 points go out as int64, in pieces as well; a row count that
+    /// is not the header's is an error.
+    #[test]
+    fn wide_indices_and_a_wrong_row_count() {
+        let rows_of = |range: Range<usize>, row: &mut dyn FnMut([usize; 2])| {
+            for i in range {
+                row([i, (1 << 33) + i]);
+            }
+        };
+        let mut out = Vec::new();
+        write_indices::<2>(&mut out, (1 << 33) + 10, 10, 10, 3, &rows_of).unwrap();
+        assert!(out[10..128].starts_with(b"{'descr': '<i8'"));
+        let data: Vec<i64> = out[128..]
+            .chunks_exact(8)
+            .map(|b| i64::from_le_bytes(b.try_into().unwrap()))
+            .collect();
+        let expected: Vec<i64> = (0..10).flat_map(|i| [i, (1 << 33) + i]).collect();
+        assert_eq!(data, expected);
+        let err = write_indices::<2>(&mut Vec::new(), 100, 11, 10, 3, &rows_of).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "10 rows written under a header announcing 11"
+        );
+    }
+
+    #[test]
+    fn headers_are_padded_to_64_bytes_and_end_in_a_newline() {
+        for shape in [[0usize, 2], [7, 3], [123_456_789, 2], [usize::MAX, 3]] {
+            let h = header("<u4", &shape);
+            assert_eq!(h.len() % 64, 0, "{shape:?}");
+            assert_eq!(h.last(), Some(&b'\n'));
+            let length = usize::from(u16::from_le_bytes([h[8], h[9]]));
+            assert_eq!(length + 10, h.len());
+            let parsed = Literal {
+                text: &h[10..],
+                at: 0,
+            }
+            .dictionary()
+            .unwrap();
+            assert_eq!(
+                parsed[2],
+                (
+                    "shape".to_string(),
+                    Value::Tuple(shape.iter().map(|&d| d as u64).collect())
+                )
+            );
+        }
+    }
+
+    #[test]
+    fn dictionaries_in_both_quotes_and_with_or_without_trailing_commas_are_read() {
+        for text in [
+            "{'descr': '<f4', 'fortran_order': True, 'shape': (5, 2), }",
+            "{\"shape\":(5,2),\"fortran_order\":True,\"descr\":\"<f4\"}",
+            "  { 'descr' : '<f4' , 'fortran_order' : True , 'shape' : ( 5 , 2 , ) }  \n",
+        ] {
+            assert_eq!(
+                point_header(text.as_bytes()),
+                Ok(Header {
+                    float: Float::F32,
+                    big_endian: false,
+                    fortran_order: true,
+                    rows: 5
+                }),
+                "{text}"
+            );
+        }
+        for (text, says) in [
+            (
+                "{'descr': '<i4', 'fortran_order': False, 'shape': (5, 2), }",
+                "\"<i4\"",
+            ),
+            (
+                "{'descr': '<f8', 'fortran_order': False, 'shape': (5,), }",
+                "shape (5)",
+            ),
+            (
+                "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 3), }",
+                "shape (5, 3)",
+            ),
+            ("{'descr': '<f8', 'shape': (5, 2), }", "no 'fortran_order'"),
+            (
+                "{'descr': '<f8', 'fortran_order': 0, 'shape': (5, 2), }",
+                "cannot read \"0\"",
+            ),
+            (
+                "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 2), 'x': 1}",
+                "cannot read",
+            ),
+            (
+                "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 2), 'x': True}",
+                "unknown key",
+            ),
+            (
+                "{'descr': '<f8', 'fortran_order': False, 'shape': (-5, 2), }",
+                "not a size",
+            ),
+            (
+                "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 2) ",
+                "expected '}'",
+            ),
+            (
+                "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 2)} x",
+                "goes on",
+            ),
+            ("", "expected '{'"),
+        ] {
+            let err = point_header(text.as_bytes()).unwrap_err();
+            assert!(err.contains(says), "{text}: {err}");
+        }
+    }
+}

@@ -1,0 +1,1241 @@
+//! Reading point files: the plain `x y` format and Triangle's `.node` format.
+//!
+//! Both refuse what they cannot read unambiguously, with the file and the line, rather than
+//! guess: a Triangle `.node` file under another name, a decimal comma, a fourth column.
+
+use super::{decimal, IoError, IoErrorKind};
+use condt::Point;
+use condt::MAX_POINTS;
+use std::fs::File;
+use std::io::{self, Read};
+
+/// Longest part of a token quoted in an error message: a file whose first "number" is 100 MB
+/// long must not put 100 MB on the terminal.
+const QUOTED_CHARS: usize = 40;
+
+/// `token` quoted for an error message, cut after [`QUOTED_CHARS`] characters.
+pub(super) fn quoted(token: &str) -> String {
+    match token.char_indices().nth(QUOTED_CHARS) {
+        None => format!("{token:?}"),
+        Some((cut, _)) => format!("{:?}… ({} bytes)", &token[..cut], token.len()),
+    }
+}
+
+/// Where the text after the line end at `end` begins: past a `\r\n`, `\n` or `\r`, or `end`
+/// itself at the end of the text. The one reading of line ends every reader here shares.
+#[inline]
+fn after_line_end(bytes: &[u8], end: usize) -> usize {
+    match bytes.get(end) {
+        Some(b'\r') if bytes.get(end + 1) == Some(&b'\n') => end + 2,
+        Some(_) => end + 1,
+        None => end,
+    }
+}
+
+/// Splits text into lines at LF, CRLF or a lone CR, numbering them from 1.
+pub(super) fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    let mut rest = text;
+    let mut number = 0;
+    core::iter::from_fn(move || {
+        if rest.is_empty() {
+            return None;
+        }
+        number += 1;
+        let end = rest.find(['\n', '\r']).unwrap_or(rest.len());
+        let line = &rest[..end];
+        rest = &rest[after_line_end(rest.as_bytes(), end)..];
+        Some((number, line))
+    })
+}
+
+/// The 1-based line holding byte `offset`, with the line ends of [`numbered_lines`].
+pub(super) fn line_at(bytes: &[u8], offset: usize) -> usize {
+    let ends = bytes[..offset]
+        .iter()
+        .enumerate()
+        .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')))
+        .count();
+    1 + ends
+}
+
+/// Builds content errors for one file.
+pub(super) struct Source<'a> {
+    pub(super) file: &'a str,
+}
+
+impl Source<'_> {
+    pub(super) fn error(&self, line: usize, message: String) -> IoError {
+        IoError {
+            file: self.file.to_string(),
+            line: Some(line),
+            kind: IoErrorKind::Content(message),
+        }
+    }
+
+    pub(super) fn number(&self, line: usize, field: &str) -> Result<f64, IoError> {
+        let value = match decimal::parse(field.as_bytes()) {
+            Some(value) => value,
+            None => field.parse().map_err(|_| {
+                self.error(line, format!("cannot read {} as a number", quoted(field)))
+            })?,
+        };
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(self.error(line, format!("coordinate {} is not finite", quoted(field))))
+        }
+    }
+
+    /// Appends `p`, refusing more than [`MAX_POINTS`] points or memory the system will not give,
+    /// so that a huge file is an error and not an abort.
+    #[inline]
+    pub(super) fn push(
+        &self,
+        points: &mut Vec<Point>,
+        line: usize,
+        p: Point,
+    ) -> Result<(), IoError> {
+        if points.len() == points.capacity() {
+            self.grow(points, line)?;
+        }
+        points.push(p);
+        Ok(())
+    }
+
+    #[cold]
+    fn grow(&self, points: &mut Vec<Point>, line: usize) -> Result<(), IoError> {
+        if points.len() == MAX_POINTS {
+            return Err(self.error(
+                line,
+                format!("more than {MAX_POINTS} points, the most condt accepts"),
+            ));
+        }
+        let more = points.len().max(1024).min(MAX_POINTS - points.len());
+        points
+            .try_reserve_exact(more)
+            .map_err(|_| self.error(line, format!("out of memory after {} points", points.len())))
+    }
+}
+
+/// `true` for a token that names a column (`x`, `lat`, `"y"`) rather than holds a number: it
+/// starts with a letter or `_`, quotes aside, and is not a number (`inf`, `NaN`).
+fn is_name(token: &str) -> bool {
+    let bare = token.trim_matches(|c| c == '"' || c == '\'');
+    token.parse::<f64>().is_err()
+        && bare.parse::<f64>().is_err()
+        && bare
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_alphabetic() || c == '_')
+}
+
+/// The columns of a plain line (comment already removed): separated by whitespace, or by commas
+/// alone. A comma next to a field that also holds whitespace is refused: `1,5 2` is either a
+/// decimal comma or a typo, and reading it as three columns would be a guess.
+fn columns(content: &str) -> Result<Vec<&str>, String> {
+    if !content.contains(',') {
+        return Ok(content.split_whitespace().collect());
+    }
+    let fields: Vec<&str> = content.split(',').map(str::trim).collect();
+    if fields.iter().any(|f| f.contains(char::is_whitespace)) {
+        return Err(format!(
+            "both commas and spaces separate numbers in {}: a decimal comma? Write 1.5, not 1,5, \
+             and separate columns by spaces or by commas",
+            quoted(content.trim())
+        ));
+    }
+    if fields.iter().any(|f| f.is_empty()) {
+        return Err(format!("an empty column in {}", quoted(content.trim())));
+    }
+    Ok(fields)
+}
+
+/// The first three columns of a line and how many there are, kept without allocating.
+#[derive(Clone, Copy)]
+struct Row<'a> {
+    fields: [&'a str; 3],
+    count: usize,
+}
+
+impl<'a> Row<'a> {
+    fn from_columns(all: &[&'a str]) -> Row<'a> {
+        let mut fields = [""; 3];
+        for (slot, field) in fields.iter_mut().zip(all) {
+            *slot = field;
+        }
+        Row {
+            fields,
+            count: all.len(),
+        }
+    }
+}
+
+/// What a byte is to [`scan_line`].
+const TOKEN: u8 = 0;
+/// ASCII whitespace inside a line (space, tab, vertical tab, form feed: the ASCII characters
+/// `char::is_whitespace` accepts, line ends aside).
+const BLANK: u8 = 1;
+/// `\n`, `\r` or `#`: the end of the columns.
+const STOP: u8 = 2;
+/// A comma or a non-ASCII byte: the line needs [`columns`].
+const OTHER: u8 = 3;
+
+/// The class of every byte, looked up once per byte instead of comparing it with each kind.
+const CLASS: [u8; 256] = {
+    let mut class = [TOKEN; 256];
+    let mut b = 0x80;
+    while b < 256 {
+        class[b] = OTHER;
+        b += 1;
+    }
+    class[b' ' as usize] = BLANK;
+    class[b'\t' as usize] = BLANK;
+    class[0x0b] = BLANK;
+    class[0x0c] = BLANK;
+    class[b'\n' as usize] = STOP;
+    class[b'\r' as usize] = STOP;
+    class[b'#' as usize] = STOP;
+    class[b',' as usize] = OTHER;
+    class
+};
+
+/// One line of `text` starting at byte `start`: where it ends, where the next one starts, and
+/// its columns when the line is plain ASCII without a comma, split here in one pass without
+/// allocating; `None` for any other line, which [`columns`] splits instead (the same rules: a
+/// comma or non-ASCII whitespace needs them).
+#[inline]
+fn scan_line(text: &str, start: usize) -> (usize, usize, Option<Row<'_>>) {
+    let bytes = text.as_bytes();
+    let class = |i: usize| bytes.get(i).map_or(STOP, |&b| CLASS[usize::from(b)]);
+    let mut i = start;
+    let mut row = Row {
+        fields: [""; 3],
+        count: 0,
+    };
+    let mut simple = true;
+    loop {
+        while class(i) == BLANK {
+            i += 1;
+        }
+        if class(i) == STOP {
+            break;
+        }
+        let token = i;
+        loop {
+            match class(i) {
+                TOKEN => i += 1,
+                OTHER => {
+                    simple = false;
+                    i += 1;
+                }
+                _ => break,
+            }
+        }
+        if row.count < 3 {
+            row.fields[row.count] = &text[token..i];
+        }
+        row.count += 1;
+    }
+    // A comment runs to the line end, whatever it holds.
+    let mut end = i;
+    while end < bytes.len() && !matches!(bytes[end], b'\n' | b'\r') {
+        end += 1;
+    }
+    let next = after_line_end(bytes, end);
+    (end, next, simple.then_some(row))
+}
+
+/// The common line read in one pass: two or three numbers that [`decimal::parse_prefix`] takes,
+/// separated by spaces or tabs, blanks around them allowed, then a line end. Gives `x`, `y`,
+/// whether there is a third column, and where the next line starts; `None` for any other line
+/// (a comment, a comma, other whitespace, a header, anything `str::parse` must read, an error),
+/// which the general path reads from its start again. Every line taken here is one the general
+/// path reads as the same point: its columns are tokens by the same splitting, and the numbers
+/// are those `Source::number` returns.
+///
+/// Straight-line code, one step per column rather than a loop over them: each number read and
+/// each blank skipped has its own branches, which the processor then predicts from what that
+/// column held on the lines before (one blank after `x`, a line end after `y`), where a loop's
+/// shared branches alternate. The two coordinates are read by the number reader inlined; the
+/// rarer third column by a call.
+#[inline(always)]
+fn number_line(bytes: &[u8], start: usize) -> Option<(f64, f64, bool, usize)> {
+    #[inline(always)]
+    fn skip_blanks(mut text: &[u8]) -> &[u8] {
+        while let [b' ' | b'\t', rest @ ..] = text {
+            text = rest;
+        }
+        text
+    }
+    #[inline(always)]
+    fn line_end(text: &[u8]) -> bool {
+        matches!(text, [] | [b'\n' | b'\r', ..])
+    }
+    let line = skip_blanks(bytes.get(start..)?);
+    let (x, after_x) =
+        decimal::parse_prefix_short(line).or_else(|| decimal::parse_prefix_outlined(line))?;
+    // A number runs up to a blank (here another column must follow) or the line end: `1.5x`,
+    // `2,3` or a single column is for the general path.
+    let before_y = skip_blanks(after_x);
+    if before_y.len() == after_x.len() {
+        return None;
+    }
+    let (y, after_y) = decimal::parse_prefix_short(before_y)
+        .or_else(|| decimal::parse_prefix_outlined(before_y))?;
+    let mut rest = skip_blanks(after_y);
+    let third = !line_end(rest);
+    if third {
+        if rest.len() == after_y.len() {
+            return None;
+        }
+        let (_, after_third) = decimal::parse_prefix_outlined(rest)?;
+        rest = skip_blanks(after_third);
+        // A fourth column, or something glued to the third: the general path reports it.
+        if !line_end(rest) {
+            return None;
+        }
+    }
+    // `after_line_end` on the rest as a slice pattern: the same reading without its bounds
+    // checks, 2 % of the instructions of a parse on this, the hot path.
+    let end = bytes.len() - rest.len();
+    let next = match rest {
+        [b'\r', b'\n', ..] => end + 2,
+        [_, ..] => end + 1,
+        [] => end,
+    };
+    Some((x, y, third, next))
+}
+
+/// The points of the lines from byte `start` that [`number_line`] reads, appended to `points`
+/// while it has room: where the first other line (or the end of the text) starts, and how many
+/// lines were read. Clears `all_three_columns` at a line of two columns. One call for a whole
+/// run of lines, so that the loop keeps its state in registers.
+#[inline(never)]
+fn number_lines(
+    bytes: &[u8],
+    mut start: usize,
+    points: &mut Vec<Point>,
+    all_three_columns: &mut bool,
+) -> (usize, usize) {
+    let before = points.len();
+    let mut all_three = *all_three_columns;
+    while start < bytes.len() && points.len() < points.capacity() {
+        let Some((x, y, third, next)) = number_line(bytes, start) else {
+            break;
+        };
+        points.push(Point::new(x, y));
+        all_three &= third;
+        start = next;
+    }
+    *all_three_columns = all_three;
+    (start, points.len() - before)
+}
+
+/// What one stretch of lines of a plain point file holds.
+struct Parsed {
+    points: Vec<Point>,
+    /// Whether every data line has exactly three columns (see [`node_index_column`]).
+    all_three_columns: bool,
+    /// The first line that holds a point, numbered within the stretch.
+    first_data_line: Option<usize>,
+    /// Whether any line holds a column (a header or a point); only the parallel parse, which
+    /// must know whether its first piece held the file's first line with columns, asks.
+    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
+    seen_content: bool,
+}
+
+/// Parses the lines of `text` (a whole file, or whole lines of one; numbered from 1) into
+/// points with the rules of [`parse_points`] but the last (the index-column check, which needs
+/// every point). `may_hold_header`: the first line with columns may be a header (it is the
+/// file's first). `expected_points` sizes the first allocation.
+fn parse_lines(
+    text: &str,
+    source: &Source<'_>,
+    may_hold_header: bool,
+    expected_points: usize,
+) -> Result<Parsed, IoError> {
+    lines_by::<true>(text, source, may_hold_header, expected_points)
+}
+
+/// [`parse_lines`], with [`number_line`] trying each line first (`ONE_PASS`) or not: the tests
+/// compare the two.
+fn lines_by<const ONE_PASS: bool>(
+    text: &str,
+    source: &Source<'_>,
+    may_hold_header: bool,
+    expected_points: usize,
+) -> Result<Parsed, IoError> {
+    let mut points: Vec<Point> = Vec::new();
+    if expected_points > 0 {
+        // Only a hint: a refusal here leaves `push` to grow and report.
+        let _ = points.try_reserve_exact(expected_points.min(MAX_POINTS));
+    }
+    let mut seen_content = !may_hold_header;
+    let mut first_data_line = None;
+    let mut all_three_columns = true;
+    let (mut start, mut number) = (0, 0);
+    while start < text.len() {
+        if ONE_PASS {
+            // What the general path below does with the common lines, in one pass over their
+            // bytes, up to the first line it leaves to the general path (or the end, or a full
+            // vector, which `Source::push` grows or refuses).
+            let (next, read) =
+                number_lines(text.as_bytes(), start, &mut points, &mut all_three_columns);
+            if read > 0 {
+                seen_content = true;
+                first_data_line.get_or_insert(number + 1);
+                number += read;
+                start = next;
+                if start >= text.len() {
+                    break;
+                }
+            }
+        }
+        number += 1;
+        let (end, next, simple) = scan_line(text, start);
+        let line = &text[start..end];
+        start = next;
+        let row = match simple {
+            // The first line with columns may be a header, which needs all of them.
+            Some(row) if seen_content || row.count == 0 => row,
+            _ => {
+                let content = line.split('#').next().unwrap_or("");
+                let fields = columns(content).map_err(|message| source.error(number, message))?;
+                if fields.is_empty() {
+                    continue;
+                }
+                if !core::mem::replace(&mut seen_content, true) && fields.iter().all(|f| is_name(f))
+                {
+                    continue; // a header
+                }
+                Row::from_columns(&fields)
+            }
+        };
+        match row.count {
+            0 => continue,
+            1 => {
+                return Err(source.error(
+                    number,
+                    "expected two coordinates `x y`, found one".to_string(),
+                ))
+            }
+            2 | 3 => {}
+            n => {
+                let hint = if n == 4 && points.is_empty() {
+                    " (a Triangle .node header `count 2 attributes markers`? Name the file \
+                     *.node to read it as one)"
+                } else {
+                    ""
+                };
+                return Err(source.error(
+                    number,
+                    format!("expected `x y` and at most one more column, found {n}{hint}"),
+                ));
+            }
+        }
+        first_data_line.get_or_insert(number);
+        let [first, second, third] = row.fields;
+        let (x, y) = (
+            source.number(number, first)?,
+            source.number(number, second)?,
+        );
+        if row.count == 3 {
+            source.number(number, third)?;
+        }
+        all_three_columns &= row.count == 3;
+        source.push(&mut points, number, Point::new(x, y))?;
+    }
+    Ok(Parsed {
+        points,
+        all_three_columns,
+        first_data_line,
+        seen_content,
+    })
+}
+
+/// The start of an index column, when the first of three columns counts 0, 1, 2, … or
+/// 1, 2, 3, … on every line (at least two): that is a Triangle `.node` file without its header.
+/// `pieces` are the parsed stretches of one file, in order.
+fn node_index_column(pieces: &[Parsed]) -> Option<f64> {
+    let start = pieces.iter().find_map(|p| p.points.first())?.x;
+    let total: usize = pieces.iter().map(|p| p.points.len()).sum();
+    let counts = pieces.iter().all(|p| p.all_three_columns)
+        && total >= 2
+        && (start == 0.0 || start == 1.0)
+        && pieces
+            .iter()
+            .flat_map(|p| &p.points)
+            .enumerate()
+            .all(|(i, p)| p.x == start + i as f64);
+    counts.then_some(start)
+}
+
+/// The error for a file whose first column is an index column counting from `start`.
+fn index_column_error(source: &Source<'_>, line: usize, start: f64) -> IoError {
+    source.error(
+        line,
+        format!(
+            "the first of three columns counts {start}, {}, {}, … like the index column of \
+             a Triangle .node file: name the file *.node to read it as one, or remove the \
+             column",
+            start + 1.0,
+            start + 2.0
+        ),
+    )
+}
+
+/// A guess at the number of points in `text` from the length of its first lines, so that the
+/// points are allocated once instead of grown by copying (a guess 5 % high, as line lengths
+/// vary; at worst the vector grows or has some room left).
+fn expected_points(text: &str) -> usize {
+    const SAMPLE: usize = 4096;
+    if text.len() <= SAMPLE {
+        return 0;
+    }
+    let mut cut = SAMPLE;
+    while !text.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    let lines = text.as_bytes()[..cut]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count();
+    if lines < 16 {
+        return 0;
+    }
+    let per_line = cut / lines;
+    (text.len() / per_line).saturating_add(text.len() / per_line / 20)
+}
+
+/// Parses the plain point format; `file` names the source in error messages.
+///
+/// One point `x y` per line, the two numbers separated by spaces, tabs or one comma; `#` starts
+/// a comment; blank lines are skipped; LF, CRLF and CR-only line ends all work; a UTF-8
+/// byte-order mark is skipped. Refused, with the line:
+/// - a single number, or four or more columns (a Triangle `.node` header `n 2 a m` among them);
+/// - a line where both commas and spaces separate numbers (`1,5 2`: a decimal comma?);
+/// - a word where a number should be, NaN and infinities;
+/// - more than [`MAX_POINTS`](condt::MAX_POINTS) points.
+///
+/// A third column is ignored (files with a constant third column `1` or a depth are common),
+/// except when the first column of every line counts 0, 1, 2, … or 1, 2, 3, …: that is the index
+/// column of a Triangle `.node` file without its header, and reading it as x would be wrong, so
+/// the file is refused (name it `*.node` for [`read_points`] to read it as one).
+///
+/// The first line that is neither blank nor a comment may be a header: when every column is a
+/// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
+/// it is skipped.
+///
+/// With the `parallel` feature a large text is parsed in pieces on rayon's threads; the points,
+/// and the error for a bad file, are the same as without it.
+///
+/// ```
+/// use condt::Point;
+/// use condt_io::parse_points;
+/// let pts = parse_points("\u{feff}x y\n# comment\n1 2\r\n3,4,9\r\t5\t6 \r", "example")?;
+/// assert_eq!(pts, vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0), Point::new(5.0, 6.0)]);
+///
+/// let err = parse_points("0 0\n1,5 2\n", "euro.txt").unwrap_err();
+/// assert_eq!(err.line, Some(2));
+/// assert!(err.to_string().starts_with("euro.txt:2: both commas and spaces"));
+///
+/// let err = parse_points("1 0.0 0.0\n2 1.0 0.0\n3 0.0 1.0\n", "nodes.txt").unwrap_err();
+/// assert_eq!(err.line, Some(1));
+/// assert!(err.to_string().contains(".node"));
+/// # Ok::<(), condt_io::IoError>(())
+/// ```
+pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    #[cfg(feature = "parallel")]
+    if let Some(points) = parallel::parse_pieces(text, file).and_then(parallel::join) {
+        return Ok(points);
+    }
+    parse_points_sequentially(text, file)
+}
+
+/// [`parse_points`] on one thread (the byte-order mark already removed): the reference the
+/// parallel parse falls back on for every error.
+fn parse_points_sequentially(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    let source = Source { file };
+    let parsed = parse_lines(text, &source, true, expected_points(text))?;
+    if let Some(start) = node_index_column(core::slice::from_ref(&parsed)) {
+        let line = parsed.first_data_line.unwrap_or(1);
+        return Err(index_column_error(&source, line, start));
+    }
+    Ok(parsed.points)
+}
+
+/// The plain format parsed in pieces on rayon's threads.
+#[cfg(feature = "parallel")]
+mod parallel {
+    use super::{expected_points, node_index_column, parse_lines, Parsed, Source};
+    use condt::Point;
+    use condt::MAX_POINTS;
+    use rayon::prelude::*;
+
+    /// Below this many bytes a text is parsed on one thread: splitting would cost more.
+    const MIN_PIECE: usize = 1 << 20;
+
+    /// The text cut into about `pieces` stretches of whole lines, each cut just after a `\n`
+    /// (so a CRLF pair is never split; a CR-only file stays in one piece).
+    fn pieces(text: &str, pieces: usize) -> Vec<&str> {
+        let size = (text.len() / pieces).max(MIN_PIECE);
+        let mut out = Vec::with_capacity(pieces + 1);
+        let mut rest = text;
+        while rest.len() > size {
+            let Some(newline) = rest.as_bytes()[size..].iter().position(|&b| b == b'\n') else {
+                break;
+            };
+            let (piece, tail) = rest.split_at(size + newline + 1);
+            out.push(piece);
+            rest = tail;
+        }
+        out.push(rest);
+        out
+    }
+
+    /// The points of `text` when it is large and valid, in pieces to be joined by [`join`];
+    /// `None` when it is small, or when any piece finds something to refuse: then the
+    /// sequential parse reads it again and reports the first problem exactly as it always does
+    /// (the line count of each piece would otherwise be needed, and the refusals that depend
+    /// on earlier lines would differ).
+    pub(super) fn parse_pieces(text: &str, file: &str) -> Option<Vec<Parsed>> {
+        let threads = rayon::current_num_threads();
+        if threads < 2 || text.len() < 2 * MIN_PIECE {
+            return None;
+        }
+        let pieces = pieces(text, 4 * threads);
+        if pieces.len() < 2 {
+            return None;
+        }
+        let source = Source { file };
+        let parsed: Vec<Parsed> = pieces
+            .par_iter()
+            .enumerate()
+            .map(|(k, piece)| parse_piece(piece, &source, k))
+            .collect::<Option<_>>()?;
+        accept(parsed)
+    }
+
+    /// Piece `k` of a file parsed (its lines numbered from its start); `None` on anything to
+    /// refuse, which the sequential parse then reports.
+    fn parse_piece(piece: &str, source: &Source<'_>, k: usize) -> Option<Parsed> {
+        parse_lines(piece, source, k == 0, expected_points(piece)).ok()
+    }
+
+    /// The parsed pieces of a whole file when nothing in them depends on another piece: the
+    /// refusals that do are left to the sequential parse.
+    fn accept(parsed: Vec<Parsed>) -> Option<Vec<Parsed>> {
+        // A header can only be the file's first line with columns: the first piece must have one.
+        if !parsed.first()?.seen_content {
+            return None;
+        }
+        let total = parsed
+            .iter()
+            .try_fold(0usize, |sum, p| sum.checked_add(p.points.len()))?;
+        if total > MAX_POINTS || node_index_column(&parsed).is_some() {
+            return None;
+        }
+        Some(parsed)
+    }
+
+    /// How far past its share of the file a piece reads to find the end of its last line;
+    /// a longer line sends the file to the whole-file path.
+    #[cfg(unix)]
+    const LOOK_AHEAD: usize = 1 << 16;
+
+    /// Reads and parses a plain point file of `size` bytes in pieces on rayon's threads, each
+    /// piece read straight from the file (`pread`) into a buffer its thread reuses, checked as
+    /// UTF-8 and parsed there: no copy of the whole text is made, faulted in, checked on one
+    /// thread and freed. Reading the file into one buffer took as long as parsing it on two
+    /// threads (1M points, 38.5 MB: 55 ms of the 118 ms).
+    ///
+    /// The pieces are cut where the text in memory would be: piece `k` holds the lines that
+    /// start after the first `\n` at or past byte `k * share` and up to that of piece `k + 1`
+    /// (so a CRLF pair is never split). `None`, for the whole-file path to read and report on,
+    /// when the file is small, a piece finds no line end in its look-ahead (long lines, CR-only
+    /// line ends), a piece is not UTF-8 or has anything to refuse, or the file is not `size`
+    /// bytes long when read (it changed meanwhile).
+    #[cfg(unix)]
+    pub(super) fn read_pieces(file: &std::fs::File, size: u64, name: &str) -> Option<Vec<Point>> {
+        let size = usize::try_from(size).ok()?;
+        let threads = rayon::current_num_threads();
+        if threads < 2 || size < 2 * MIN_PIECE {
+            return None;
+        }
+        // Pieces of 1 to 2 MB whatever the file's size: each thread's buffer is faulted in
+        // once and reused (1M points: 9,965 page faults in a fresh process against 12,611
+        // with a quarter of the file per thread).
+        let share = (size / (4 * threads)).clamp(MIN_PIECE, 2 * MIN_PIECE);
+        let count = size.div_ceil(share);
+        let source = Source { file: name };
+        // The read buffers, shared by the jobs and freed only once every piece is parsed: a
+        // buffer freed earlier (one per job, as `map_init` would) raises the C allocator's
+        // threshold for giving large blocks their own mapping, after which the pieces' points
+        // come from its heaps and stay held by the process when freed (13 MB more resident
+        // for the rest of a 1M-point run).
+        let buffers: std::sync::Mutex<Vec<Vec<u8>>> = std::sync::Mutex::new(Vec::new());
+        let take = || {
+            buffers
+                .lock()
+                .map_or_else(|_| Vec::new(), |mut b| b.pop().unwrap_or_default())
+        };
+        let give_back = |buffer: Vec<u8>| {
+            if let Ok(mut b) = buffers.lock() {
+                b.push(buffer);
+            }
+        };
+        let parsed: Vec<Parsed> = (0..count)
+            .into_par_iter()
+            .map(|k| {
+                let mut buffer = take();
+                let parsed = read_piece(file, size, share, count, k, &mut buffer, &source);
+                give_back(buffer);
+                parsed
+            })
+            .collect::<Option<_>>()?;
+        drop(buffers);
+        join(accept(parsed)?)
+    }
+
+    /// Piece `k` of [`read_pieces`], read into `buffer` and parsed.
+    #[cfg(unix)]
+    fn read_piece(
+        file: &std::fs::File,
+        size: usize,
+        share: usize,
+        count: usize,
+        k: usize,
+        buffer: &mut Vec<u8>,
+        source: &Source<'_>,
+    ) -> Option<Parsed> {
+        use std::os::unix::fs::FileExt;
+        let newline = |bytes: &[u8]| bytes.iter().position(|&b| b == b'\n');
+        let start = k * share;
+        let last = k + 1 == count;
+        let end = if last {
+            size
+        } else {
+            size.min((k + 1) * share + LOOK_AHEAD)
+        };
+        if buffer.len() < end - start {
+            buffer.resize(end - start, 0);
+        }
+        let bytes = &mut buffer[..end - start];
+        file.read_exact_at(bytes, start as u64).ok()?;
+        if last && file.read_at(&mut [0u8; 1], size as u64).ok()? != 0 {
+            return None;
+        }
+        let first = if k == 0 {
+            0
+        } else {
+            1 + newline(&bytes[..share.min(bytes.len())])?
+        };
+        let after = if last {
+            bytes.len()
+        } else {
+            share + 1 + newline(&bytes[share..])?
+        };
+        let text = core::str::from_utf8(&bytes[first..after]).ok()?;
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        parse_piece(text, source, k)
+    }
+
+    /// The points of the pieces, in order, each piece freed once copied; `None` when the
+    /// memory for them all is refused.
+    pub(super) fn join(parsed: Vec<Parsed>) -> Option<Vec<Point>> {
+        let total = parsed.iter().map(|p| p.points.len()).sum();
+        let mut points = Vec::new();
+        points.try_reserve_exact(total).ok()?;
+        for piece in parsed {
+            points.extend_from_slice(&piece.points);
+        }
+        Some(points)
+    }
+}
+
+/// Parses a Triangle `.node` file; `file` names the source in error messages.
+///
+/// The first line that is neither blank nor a comment is the header `count 2 attributes
+/// markers` (`markers` 0 or 1); then `count` rows `index x y`, followed by that many attributes
+/// and markers, whose indices count up by one from the first (0 or 1, as Triangle allows).
+/// Attributes and markers are read and dropped. `#` starts a comment, columns are separated by
+/// whitespace. The points are returned in row order: point `i` is the `i`-th row, whatever
+/// number the file gives it. Anything else (a missing or extra row or column, a skipped index,
+/// a dimension other than 2) is an error naming the line.
+///
+/// ```
+/// use condt::Point;
+/// use condt_io::parse_node;
+/// let text = "# a triangle\n3 2 1 1\n1 0.0 0.0 7.5 1\n2 1.0 0.0 7.5 1\n3 0.0 1.0 7.5 0\n";
+/// let pts = parse_node(text, "tri.node")?;
+/// assert_eq!(pts, vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)]);
+///
+/// let err = parse_node("2 2 0 0\n0 0 0\n2 1 1\n", "gap.node").unwrap_err();
+/// assert_eq!(err.to_string(), "gap.node:3: vertex index 2, expected 1");
+/// # Ok::<(), condt_io::IoError>(())
+/// ```
+pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    let source = Source { file };
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut rows = numbered_lines(text).filter_map(|(number, raw)| {
+        let fields: Vec<&str> = raw.split('#').next()?.split_whitespace().collect();
+        (!fields.is_empty()).then_some((number, fields))
+    });
+    let Some((header_line, header)) = rows.next() else {
+        return Err(source.error(1, "no header line `count 2 attributes markers`".to_string()));
+    };
+    let count = |field: &str, what: &str| -> Result<usize, IoError> {
+        field.parse::<usize>().map_err(|_| {
+            source.error(
+                header_line,
+                format!("cannot read {} as the {what}", quoted(field)),
+            )
+        })
+    };
+    if header.len() != 4 {
+        return Err(source.error(
+            header_line,
+            format!(
+                "expected the header `count 2 attributes markers`, found {} columns",
+                header.len()
+            ),
+        ));
+    }
+    let n = count(header[0], "number of vertices")?;
+    let dimension = count(header[1], "dimension")?;
+    let attributes = count(header[2], "number of attributes")?;
+    let markers = count(header[3], "number of boundary markers")?;
+    if dimension != 2 {
+        return Err(source.error(
+            header_line,
+            format!("dimension {dimension}, only 2 is supported"),
+        ));
+    }
+    if markers > 1 {
+        return Err(source.error(
+            header_line,
+            format!("{markers} boundary markers per vertex, Triangle allows 0 or 1"),
+        ));
+    }
+    let columns = 3 + attributes + markers;
+    let mut points = Vec::new();
+    let mut first_index = None;
+    let mut last_line = header_line;
+    for (number, fields) in rows {
+        last_line = number;
+        if points.len() == n {
+            return Err(source.error(
+                number,
+                format!("more vertex rows than the {n} the header announces"),
+            ));
+        }
+        if fields.len() != columns {
+            return Err(source.error(
+                number,
+                format!(
+                    "expected {columns} columns (index, x, y, {attributes} attributes, {markers} \
+                     markers), found {}",
+                    fields.len()
+                ),
+            ));
+        }
+        let index: u64 = fields[0].parse().map_err(|_| {
+            source.error(
+                number,
+                format!("cannot read {} as a vertex index", quoted(fields[0])),
+            )
+        })?;
+        let expected = *first_index.get_or_insert(index) + points.len() as u64;
+        if index != expected || (points.is_empty() && index > 1) {
+            return Err(source.error(
+                number,
+                if points.is_empty() {
+                    format!("first vertex index {index}, expected 0 or 1")
+                } else {
+                    format!("vertex index {index}, expected {expected}")
+                },
+            ));
+        }
+        let (x, y) = (
+            source.number(number, fields[1])?,
+            source.number(number, fields[2])?,
+        );
+        for field in &fields[3..] {
+            source.number(number, field)?;
+        }
+        source.push(&mut points, number, Point::new(x, y))?;
+    }
+    if points.len() < n {
+        return Err(source.error(
+            last_line,
+            format!(
+                "the header announces {n} vertices, the file ends after {}",
+                points.len()
+            ),
+        ));
+    }
+    Ok(points)
+}
+
+/// Reads a point file, its format chosen by the name's ending (any case): `.node` a Triangle
+/// node file ([`parse_node`]), `.npy` a NumPy array ([`parse_npy`](super::parse_npy), read in
+/// blocks straight into the points), `.csv` CSV with a header naming the columns
+/// ([`parse_csv`](super::parse_csv)), `.geojson` or `.json` the Point and MultiPoint geometries
+/// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), anything else the plain
+/// format ([`parse_points`]); `-` reads the plain format from standard input.
+///
+/// A text file that is not UTF-8 is refused with the line of the first bad byte. A file too
+/// large for memory is an error rather than an abort, and so is one with more than
+/// [`MAX_POINTS`](condt::MAX_POINTS) points.
+///
+/// ```no_run
+/// let points = condt_io::read_points("data/shapes.txt")?;
+/// # Ok::<(), condt_io::IoError>(())
+/// ```
+pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoError> {
+    let path = path.as_ref();
+    let stdin = path.as_os_str() == "-";
+    // A name that is not UTF-8 is shown lossily; the file is still opened by its own bytes.
+    let shown = path.to_string_lossy();
+    let name: &str = if stdin { "<stdin>" } else { &shown };
+    let io_error = |err: io::Error| IoError::os(name, err);
+    let extension = |ending: &str| {
+        !stdin
+            && path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case(ending))
+    };
+    if extension("npy") {
+        return super::npy::read_npy_file(path, name);
+    }
+    let other_format =
+        extension("node") || extension("csv") || extension("geojson") || extension("json");
+    let bytes = if stdin {
+        read_all(io::stdin().lock(), 0)
+    } else {
+        let file = File::open(path).map_err(io_error)?;
+        let meta = file.metadata().ok();
+        let size = meta.as_ref().map_or(0, |m| m.len());
+        #[cfg(all(feature = "parallel", unix))]
+        if !other_format && meta.is_some_and(|m| m.is_file()) {
+            if let Some(points) = parallel::read_pieces(&file, size, name) {
+                return Ok(points);
+            }
+        }
+        // `read_pieces` reads at offsets: the file is still at its start.
+        read_all(file, size)
+    }
+    .map_err(io_error)?;
+    let text = String::from_utf8(bytes).map_err(|e| IoError {
+        file: name.to_string(),
+        line: Some(line_at(e.as_bytes(), e.utf8_error().valid_up_to())),
+        kind: IoErrorKind::Content("not UTF-8 text".to_string()),
+    })?;
+    if !other_format {
+        parse_owned_points(text, name)
+    } else if extension("node") {
+        parse_node(&text, name)
+    } else if extension("csv") {
+        super::parse_csv(&text, name)
+    } else {
+        super::parse_geojson(&text, name)
+    }
+}
+
+/// [`parse_points`] on a text it may free before joining the pieces of a parallel parse, so
+/// that the text and two copies of the points are never held at once.
+fn parse_owned_points(text: String, file: &str) -> Result<Vec<Point>, IoError> {
+    #[cfg(feature = "parallel")]
+    {
+        let body = text.strip_prefix('\u{feff}').unwrap_or(&text);
+        if let Some(pieces) = parallel::parse_pieces(body, file) {
+            drop(text);
+            let total: usize = pieces.iter().map(|p| p.points.len()).sum();
+            return parallel::join(pieces).ok_or_else(|| IoError {
+                file: file.to_string(),
+                line: None,
+                kind: IoErrorKind::Content(format!("out of memory for {total} points")),
+            });
+        }
+    }
+    // Sequentially (the parallel parse, if it ran, found an error: this pass names its line).
+    parse_points_sequentially(text.strip_prefix('\u{feff}').unwrap_or(&text), file)
+}
+
+/// Everything `reader` holds, growing the buffer with `try_reserve` so that a file larger than
+/// the memory the system gives is an `OutOfMemory` error instead of an abort. `size` is a hint.
+fn read_all(mut reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
+    const CHUNK: usize = 1 << 20;
+    let too_large = |len: usize| {
+        io::Error::new(
+            io::ErrorKind::OutOfMemory,
+            format!("cannot hold the file in memory (over {len} bytes)"),
+        )
+    };
+    let mut bytes: Vec<u8> = Vec::new();
+    let hint = usize::try_from(size).map_err(|_| too_large(usize::MAX))?;
+    bytes
+        .try_reserve_exact(hint.saturating_add(1))
+        .map_err(|_| too_large(hint))?;
+    loop {
+        if bytes.capacity() - bytes.len() < CHUNK / 16 {
+            // The size hint is usually exact: look for more before reserving room for it, or
+            // the buffer would double just to learn that the file has ended.
+            let mut probe = [0u8; 64];
+            let got = loop {
+                match reader.read(&mut probe) {
+                    Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                    other => break other?,
+                }
+            };
+            if got == 0 {
+                return Ok(bytes);
+            }
+            let more = bytes.len().max(CHUNK);
+            bytes
+                .try_reserve_exact(more)
+                .map_err(|_| too_large(bytes.len() + more))?;
+            bytes.extend_from_slice(&probe[..got]);
+        }
+        let room = (bytes.capacity() - bytes.len()) as u64;
+        // Reads at most what was reserved, so `read_to_end` never grows the buffer itself.
+        if (&mut reader).take(room).read_to_end(&mut bytes)? == 0 {
+            return Ok(bytes);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_tokens_are_cut_in_messages() {
+        assert_eq!(quoted("abc"), "\"abc\"");
+        let long = "9".repeat(10_000_000);
+        let message = quoted(&long);
+        assert!(message.len() < 80, "{message}");
+        assert!(message.ends_with("… (10000000 bytes)"));
+        let err = parse_points(&format!("{long}x 1\n"), "big.txt").unwrap_err();
+        assert!(err.to_string().len() < 120, "{err}");
+    }
+
+    #[test]
+    fn lines_read_in_one_pass_read_as_the_general_path_reads_them() {
+        // Random texts of lines that are mostly plain numbers, with every kind of deviation the
+        // one-pass reader must leave to the general path: all give the same points bit for bit,
+        // or the same error on the same line.
+        let tokens = [
+            "0",
+            "-1.5",
+            "+2",
+            "0.13436424411240122",
+            "1e3",
+            "-4.5E-7",
+            ".5",
+            "5.",
+            "00012",
+            "123456789012345678901234",
+            "1e400",
+            "1e-400",
+            "1e000001",
+            "inf",
+            "NaN",
+            "x",
+            "1,5",
+            "1.5x",
+            "--1",
+            "1e",
+            "2.2250738585072011e-308",
+            "9007199254740993",
+            "é",
+            "#",
+            "1#2",
+        ];
+        let blanks = [" ", "  ", "\t", " \t", "\x0b", "\u{a0}"];
+        let ends = ["\n", "\r\n", "\r", "", " \n", "\t\r\n", " # note\n"];
+        let mut rng = crate::test_rng::Xorshift::new(0x5851_f42d_4c95_7f2d);
+        let mut next = |n: usize| rng.below(n as u64) as usize;
+        let (mut same_points, mut same_errors) = (0, 0);
+        for _ in 0..3000 {
+            let mut text = String::new();
+            if next(4) == 0 {
+                text.push_str("x y\n");
+            }
+            for _ in 0..1 + next(12) {
+                if next(3) > 0 {
+                    text.push_str(blanks[0]);
+                }
+                // Mostly two or three columns of the common tokens.
+                let columns = [2, 2, 2, 3, 3, 1, 4, 0][next(8)];
+                for c in 0..columns {
+                    if c > 0 {
+                        text.push_str(if next(12) == 0 {
+                            blanks[next(blanks.len())]
+                        } else {
+                            " "
+                        });
+                    }
+                    let token = if next(10) < 8 {
+                        next(5)
+                    } else {
+                        next(tokens.len())
+                    };
+                    text.push_str(tokens[token]);
+                }
+                text.push_str(if next(6) > 0 {
+                    "\n"
+                } else {
+                    ends[next(ends.len())]
+                });
+            }
+            let source = Source { file: "t" };
+            // A vector that starts with room for a few points, or for none: the one-pass loop
+            // stops where it is full and the general path grows it.
+            let one = lines_by::<true>(&text, &source, true, [0, 3][next(2)]);
+            let general = lines_by::<false>(&text, &source, true, 0);
+            match (one, general) {
+                (Ok(a), Ok(b)) => {
+                    let bits = |p: &Parsed| -> Vec<(u64, u64)> {
+                        p.points
+                            .iter()
+                            .map(|q| (q.x.to_bits(), q.y.to_bits()))
+                            .collect()
+                    };
+                    assert_eq!(bits(&a), bits(&b), "{text:?}");
+                    assert_eq!(a.all_three_columns, b.all_three_columns, "{text:?}");
+                    assert_eq!(a.first_data_line, b.first_data_line, "{text:?}");
+                    assert_eq!(a.seen_content, b.seen_content, "{text:?}");
+                    same_points += 1;
+                }
+                (Err(a), Err(b)) => {
+                    assert_eq!(a.to_string(), b.to_string(), "{text:?}");
+                    same_errors += 1;
+                }
+                (a, b) => panic!("{text:?}: {:?} against {:?}", a.is_ok(), b.is_ok()),
+            }
+        }
+        // Both outcomes were exercised.
+        assert!(
+            same_points > 300 && same_errors > 300,
+            "{same_points} {same_errors}"
+        );
+    }
+
+    /// Files read in pieces straight from the disk give the points of the text parsed in
+    /// one piece, bit for bit, or the same error: lines ending exactly at a piece's share and
+    /// anywhere else, a header, comments, CRLF, a byte-order mark, and the cases that go to
+    /// the whole-file path (CR-only line ends, a line longer than the look-ahead, a bad
+    /// number or bad UTF-8 in a late piece, a node index column, a header in a later piece).
+    #[cfg(all(feature = "parallel", unix))]
+    #[test]
+    fn files_read_in_pieces_read_as_the_whole_text() {
+        let dir = tempfile::tempdir().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let mut rng = crate::test_rng::Xorshift::new(99);
+        // 16-byte lines: byte 2^20 - 1 is a line end, so a piece starts exactly at its share.
+        let fixed: String = (0..200_000)
+            .map(|i| format!("0.{:07} 0.{:03}\n", i, i % 1000))
+            .collect();
+        let mut random = String::from("\u{feff}x y\r\n# points\r\n");
+        for i in 0..150_000 {
+            random.push_str(&format!("{} {}\r\n", rng.unit(), -rng.unit()));
+            if i % 10_000 == 0 {
+                random.push_str("\r\n  # note\r\n");
+            }
+        }
+        let mut texts = vec![fixed.clone(), random.clone()];
+        texts.push(fixed.replace('\n', "\r"));
+        let mut long = fixed.clone();
+        long.insert_str(1_500_000, &format!("{}\n", " ".repeat(100_000)));
+        texts.push(long);
+        let mut bad = random.clone();
+        bad.insert_str(bad.len() - 1000, "1 x\n");
+        texts.push(bad);
+        let mut late_header = String::from("# only a comment\n");
+        late_header.push_str(&" ".repeat(3 << 20));
+        late_header.push_str("\nx y\n1 2\n");
+        texts.push(late_header);
+        let indexed: String = (0..150_000).map(|i| format!("{i} 0.5 0.25\n")).collect();
+        texts.push(indexed);
+        let mut bytes_texts: Vec<Vec<u8>> = texts.iter().map(|t| t.as_bytes().to_vec()).collect();
+        let mut not_utf8 = fixed.as_bytes().to_vec();
+        not_utf8[2_500_000] = 0xff;
+        bytes_texts.push(not_utf8);
+        for (k, bytes) in bytes_texts.iter().enumerate() {
+            assert!(bytes.len() > 2 * (1 << 20), "text {k} too small for pieces");
+            let path = dir.path().join(format!("t{k}.txt"));
+            std::fs::write(&path, bytes).unwrap();
+            let shown = path.to_string_lossy().into_owned();
+            let whole = match core::str::from_utf8(bytes) {
+                Ok(text) => {
+                    parse_points_sequentially(text.strip_prefix('\u{feff}').unwrap_or(text), &shown)
+                }
+                Err(_) => Err(IoError {
+                    file: shown.clone(),
+                    line: Some(1 + 2_500_000 / 16),
+                    kind: IoErrorKind::Content("not UTF-8 text".to_string()),
+                }),
+            };
+            let read = pool.install(|| read_points(&path));
+            match (read, whole) {
+                (Ok(a), Ok(b)) => {
+                    let bits = |p: &[Point]| -> Vec<(u64, u64)> {
+                        p.iter().map(|q| (q.x.to_bits(), q.y.to_bits())).collect()
+                    };
+                    assert!(bits(&a) == bits(&b), "text {k}");
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "text {k}"),
+                (a, b) => panic!("text {k}: {:?} against {:?}", a.is_ok(), b.is_ok()),
+            }
+        }
+        // The fixed-width file really is read in pieces (the whole-file path is not taken).
+        let file = File::open(dir.path().join("t0.txt")).unwrap();
+        let size = file.metadata().unwrap().len();
+        let points = pool
+            .install(|| parallel::read_pieces(&file, size, "t0"))
+            .unwrap();
+        assert_eq!(points.len(), 200_000);
+        // A size that is not the file's: refused, for the whole-file path.
+        assert!(pool
+            .install(|| parallel::read_pieces(&file, size - 1, "t0"))
+            .is_none());
+        assert!(pool
+            .install(|| parallel::read_pieces(&file, size + 1, "t0"))
+            .is_none());
+    }
+
+    #[test]
+    fn line_numbers_count_cr_lf_and_crlf_alike() {
+        let bytes = b"a\rb\r\nc\nd\r\re";
+        let lines: Vec<usize> = (0..bytes.len()).map(|i| line_at(bytes, i)).collect();
+        assert_eq!(lines, [1, 1, 2, 2, 2, 3, 3, 4, 4, 5, 6]);
+        let text = core::str::from_utf8(bytes).unwrap();
+        let numbered: Vec<(usize, &str)> = numbered_lines(text).collect();
+        assert_eq!(
+            numbered,
+            [(1, "a"), (2, "b"), (3, "c"), (4, "d"), (5, ""), (6, "e")]
+        );
+    }
+
+    #[test]
+    fn reading_stops_at_the_end_without_growing_past_what_it_reserved() {
+        let data: Vec<u8> = (0..3 * (1 << 20) + 17).map(|i| (i % 251) as u8).collect();
+        assert_eq!(read_all(&data[..], 0).unwrap(), data);
+        let exact = read_all(&data[..], data.len() as u64).unwrap();
+        assert_eq!(exact, data);
+        assert!(exact.capacity() < data.len() + 64, "{}", exact.capacity());
+        assert_eq!(read_all(&data[..], 5).unwrap(), data);
+        assert!(read_all(&b""[..], 0).unwrap().is_empty());
+    }
+
+    #[test]
+    fn an_impossible_size_is_an_out_of_memory_error() {
+        let err = read_all(&b"1 2\n"[..], u64::MAX / 2).unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::OutOfMemory);
+    }
+}

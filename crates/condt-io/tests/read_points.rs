@@ -1,0 +1,332 @@
+//! The point-file readers (issue 11, items 6 and 9): Triangle `.node` files read as such, no
+//! silent misreading of ambiguous lines, a byte-order mark and a header line accepted, the right
+//! line for bad bytes in CR-only files, and error messages of bounded length.
+
+use condt::Point;
+use condt_io::{parse_points, read_points, IoError};
+use std::path::PathBuf;
+
+/// A file in a fresh temporary directory, removed on drop.
+struct TempFile(PathBuf);
+
+impl TempFile {
+    fn new(name: &str, content: &[u8]) -> TempFile {
+        let dir = std::env::temp_dir().join(format!(
+            "condt-read-points-{}-{}",
+            std::process::id(),
+            name.replace('.', "_")
+        ));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, content).unwrap();
+        TempFile(path)
+    }
+
+    fn read(&self) -> Result<Vec<Point>, IoError> {
+        read_points(self.0.to_str().unwrap())
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(self.0.parent().unwrap());
+    }
+}
+
+fn points(coords: &[(f64, f64)]) -> Vec<Point> {
+    coords.iter().map(|&c| Point::from(c)).collect()
+}
+
+/// Line and message of a content error.
+fn content_error(result: Result<Vec<Point>, IoError>) -> (Option<usize>, String) {
+    let err = result.expect_err("an error");
+    (err.line, err.to_string())
+}
+
+#[test]
+fn node_files_are_read_with_header_indices_attributes_and_markers() {
+    let node = TempFile::new(
+        "square.node",
+        b"# A square and its centre, numbered from 1\n\
+          5  2  1  1\n\
+          1  0.0 0.0  10.5  1\n\
+          2  2.0 0.0  10.5  1   # a marker of 1: on the boundary\n\
+          3  2.0 2.0  10.5  1\n\
+          \n\
+          4  0.0 2.0  10.5  1\n\
+          5  1.0 1.0  -3    0\n",
+    );
+    let expected = points(&[(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0), (1.0, 1.0)]);
+    assert_eq!(node.read().unwrap(), expected);
+    // Numbered from 0, no attributes or markers, CR-only line ends.
+    let zero = TempFile::new("zero.node", b"3 2 0 0\r0 0 0\r1 1 0\r2 0 1\r");
+    assert_eq!(
+        zero.read().unwrap(),
+        points(&[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])
+    );
+}
+
+#[test]
+fn node_files_with_bad_rows_are_refused_by_line() {
+    let cases: [(&[u8], usize, &str); 6] = [
+        (b"3 2 0 0\n1 0 0\n2 1 0\n", 3, "the file ends after 2"),
+        (
+            b"2 2 0 0\n1 0 0\n2 1 0\n3 0 1\n",
+            4,
+            "more vertex rows than the 2",
+        ),
+        (b"2 2 0 1\n1 0 0 1\n2 1 0\n", 3, "expected 4 columns"),
+        (b"2 3 0 0\n1 0 0 0\n2 1 0 0\n", 1, "dimension 3"),
+        (b"2 2 0 0\n5 0 0\n6 1 0\n", 2, "first vertex index 5"),
+        (b"1 2 0 0\n1 x 0\n", 2, "cannot read \"x\" as a number"),
+    ];
+    for (content, line, message) in cases {
+        let file = TempFile::new("bad.node", content);
+        let (at, text) = content_error(file.read());
+        assert_eq!(at, Some(line), "{text}");
+        assert!(text.contains(message), "{text}");
+    }
+}
+
+/// Issue 11, item 9: `.node` rows without their header were read as the points (i, x).
+#[test]
+fn node_rows_under_another_name_are_refused() {
+    let rows = TempFile::new("rows.txt", b"1 0.5 0.25\n2 3.5 1.0\n3 2.0 4.0\n4 9.0 9.0\n");
+    let (line, text) = content_error(rows.read());
+    assert_eq!(line, Some(1), "{text}");
+    assert!(text.contains("Triangle .node"), "{text}");
+    // With its header, line 1 has four columns.
+    let whole = TempFile::new("whole.txt", b"2 2 0 0\n0 0.5 0.25\n1 3.5 1.0\n");
+    let (line, text) = content_error(whole.read());
+    assert_eq!(line, Some(1), "{text}");
+    assert!(text.contains(".node"), "{text}");
+    // A third column that is not an index is still ignored, as documented.
+    let xyz = TempFile::new("xyz.txt", b"0.5 0.25 1\n3.5 1.0 1\n2.0 4.0 1\n");
+    assert_eq!(
+        xyz.read().unwrap(),
+        points(&[(0.5, 0.25), (3.5, 1.0), (2.0, 4.0)])
+    );
+}
+
+/// Issue 11, item 9: `1,5 2` was read as the point (1, 5).
+#[test]
+fn a_decimal_comma_is_refused_by_line() {
+    for text in ["0 0\n1,5 2\n", "0 0\n1,5\t2,5\n", "0 0\n1.5, 2 3\n"] {
+        let err = parse_points(text, "euro.txt").unwrap_err();
+        assert_eq!(err.line, Some(2), "{err}");
+        assert!(err.to_string().contains("decimal comma"), "{err}");
+    }
+    // Commas alone, with or without spaces after them, separate columns.
+    assert_eq!(
+        parse_points("1,5\n2, 6\n3 ,7\n", "csv.txt").unwrap(),
+        points(&[(1.0, 5.0), (2.0, 6.0), (3.0, 7.0)])
+    );
+    let err = parse_points("1,,5\n", "csv.txt").unwrap_err();
+    assert_eq!(err.line, Some(1));
+}
+
+/// Issue 11, item 9: a byte-order mark and a header line `x y` were refused outright.
+#[test]
+fn a_byte_order_mark_and_a_header_line_are_accepted() {
+    let file = TempFile::new("bom.txt", b"\xef\xbb\xbfx y\n1 2\n3 4\n");
+    assert_eq!(file.read().unwrap(), points(&[(1.0, 2.0), (3.0, 4.0)]));
+    for header in ["x y", "X,Y", "\"lon\",\"lat\"", "x y z", "# note\n\nx\ty"] {
+        let text = format!("{header}\n1 2\n");
+        assert_eq!(
+            parse_points(&text, "h.txt").unwrap(),
+            points(&[(1.0, 2.0)]),
+            "{header}"
+        );
+    }
+    // Only the first line may be a header, and only when every column is a name.
+    for (text, line) in [
+        ("1 2\nx y\n", 2),
+        ("x 1\n1 2\n", 1),
+        ("1.2.3 4\n1 2\n", 1),
+        ("\"1\",\"2\"\n1 2\n", 1),
+        ("\"inf\" x\n1 2\n", 1),
+    ] {
+        let err = parse_points(text, "h.txt").unwrap_err();
+        assert_eq!(err.line, Some(line), "{text:?}: {err}");
+    }
+    // "nan" and "inf" are numbers, and not finite ones.
+    let err = parse_points("nan inf\n", "h.txt").unwrap_err();
+    assert!(err.to_string().contains("not finite"), "{err}");
+}
+
+/// Issue 11, item 9: in a CR-only file the "not UTF-8" error named line 1 whatever the line.
+#[test]
+fn bad_bytes_in_a_cr_only_file_are_reported_on_their_line() {
+    let file = TempFile::new("cr.txt", b"0 0\r1 0\r\r0 \xff1\r");
+    let (line, text) = content_error(file.read());
+    assert_eq!(line, Some(4), "{text}");
+    assert!(text.ends_with("cr.txt:4: not UTF-8 text"), "{text}");
+    let file = TempFile::new("crlf.txt", b"0 0\r\n1 0\r\n\xfe\r\n");
+    assert_eq!(content_error(file.read()).0, Some(3));
+}
+
+/// Issue 11, item 6: a file whose first number is 100 MB long put 100 MB on stderr. 10 MB here,
+/// which the old message would have copied whole just the same (100 MB takes 20 s in a debug
+/// build).
+#[test]
+fn a_10_mb_token_gives_a_short_message() {
+    let mut content = vec![b'7'; 10_000_000];
+    content.extend_from_slice(b"x 1\n2 3\n");
+    let file = TempFile::new("long.txt", &content);
+    let (line, text) = content_error(file.read());
+    assert_eq!(line, Some(1));
+    assert!(text.len() < 200, "{} bytes of message", text.len());
+    assert!(text.contains("(10000001 bytes)"), "{text}");
+    // A 10 MB comment is no error at all.
+    let mut content = b"1 2 # ".to_vec();
+    content.extend(std::iter::repeat_n(b'c', 10_000_000));
+    let file = TempFile::new("comment.txt", &content);
+    assert_eq!(file.read().unwrap(), points(&[(1.0, 2.0)]));
+}
+
+/// A deterministic xorshift generator for the large texts below.
+struct Xorshift(u64);
+
+impl Xorshift {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    /// A coordinate written in one of several common ways, with the value it stands for.
+    fn coordinate(&mut self) -> (String, f64) {
+        let r = self.next();
+        let unit = (r >> 11) as f64 / (1u64 << 53) as f64;
+        match r % 6 {
+            // Shortest round-trip form: up to 17 significant digits.
+            0 | 1 => (format!("{unit}"), unit),
+            2 => {
+                let v = -(unit * 1000.0);
+                (format!("{v}"), v)
+            }
+            3 => {
+                let text = format!("{:.3}", unit * 50.0);
+                let v = text.parse().unwrap();
+                (text, v)
+            }
+            4 => {
+                let text = format!("{:e}", unit * 1e-7);
+                let v = text.parse().unwrap();
+                (text, v)
+            }
+            _ => {
+                let v = (r % 1000) as f64;
+                (format!("{}", r % 1000), v)
+            }
+        }
+    }
+}
+
+/// A text of about `lines` lines (several megabytes: large enough to be parsed in pieces with
+/// the `parallel` feature) in every layout the plain format allows, with its points.
+fn large_text(lines: usize, seed: u64) -> (String, Vec<Point>) {
+    let mut rng = Xorshift(seed);
+    let mut text = String::from("# generated\nx y\n");
+    let mut expected = Vec::new();
+    for k in 0..lines {
+        let (x, xv) = rng.coordinate();
+        let (y, yv) = rng.coordinate();
+        let line = match rng.next() % 12 {
+            0 => format!("{x}\t{y}\r\n"),
+            1 => format!("{x},{y}\n"),
+            2 => format!("  {x} {y} 7 # a comment, with a comma\n"),
+            3 => format!("{x} {y}\r"),
+            4 => format!("{x}\u{a0}{y}\n"),
+            5 => format!("\n# {k}\n{x} {y}\n"),
+            6 => format!("{x} , {y} , 1\n"),
+            _ => format!("{x} {y}\n"),
+        };
+        text.push_str(&line);
+        expected.push(Point::new(xv, yv));
+    }
+    (text, expected)
+}
+
+/// Issue 12, item 3: the fast reader (and, with `parallel`, its pieces on several threads)
+/// reads every layout as the rules say, to the last bit of every coordinate.
+#[test]
+fn a_large_text_in_every_layout_is_read_exactly() {
+    let (text, expected) = large_text(150_000, 0x9e37_79b9_7f4a_7c15);
+    assert!(
+        text.len() > 4 << 20,
+        "{} bytes: too small to be split",
+        text.len()
+    );
+    let read = parse_points(&text, "large.txt").unwrap();
+    assert_eq!(read.len(), expected.len());
+    for (k, (got, want)) in read.iter().zip(&expected).enumerate() {
+        assert_eq!(
+            (got.x.to_bits(), got.y.to_bits()),
+            (want.x.to_bits(), want.y.to_bits()),
+            "point {k}"
+        );
+    }
+    // A first megabytes of comments only: the header rule still applies to the first real line.
+    let mut commented = "# nothing yet\n".repeat(200_000);
+    commented.push_str(&text);
+    assert_eq!(parse_points(&commented, "late.txt").unwrap(), read);
+}
+
+/// Issue 12, item 3: a bad line anywhere in a large text is reported with its own line and the
+/// message it gets alone, however the text was split.
+#[test]
+fn a_bad_line_late_in_a_large_text_is_reported_on_its_line() {
+    let (text, _) = large_text(150_000, 7);
+    let lines: Vec<&str> = text.split_inclusive('\n').collect();
+    let base_line = |k: usize| {
+        lines[..k]
+            .iter()
+            .map(|l| l.matches('\n').count() + l.matches('\r').count() - l.matches("\r\n").count())
+            .sum::<usize>()
+            + 1
+    };
+    for (bad, at) in [
+        ("3 x\n", 140_000),
+        ("1 2 3 4\n", 100_001),
+        ("5\n", 149_999),
+        ("1,5 2\n", 75_000),
+        ("x y\n", 120_000),
+        ("inf 2\n", 3),
+        ("1e999 0\n", 149_000),
+    ] {
+        let mut broken: String = lines[..at].concat();
+        let line = base_line(at);
+        broken.push_str(bad);
+        broken.push_str(&lines[at..].concat());
+        let err = parse_points(&broken, "big.txt").unwrap_err();
+        // The same line alone, after a first point (so no header and no first-line hint).
+        let alone = parse_points(&format!("0 0\n{bad}"), "big.txt").unwrap_err();
+        let message = alone
+            .to_string()
+            .replacen("big.txt:2:", &format!("big.txt:{line}:"), 1);
+        assert_eq!(err.line, Some(line), "{bad:?}: {err}");
+        assert_eq!(err.to_string(), message, "{bad:?}");
+    }
+}
+
+/// Issue 12, item 3: the index-column rule looks at every line of a large file, split or not.
+#[test]
+fn an_index_column_in_a_large_text_is_refused_and_a_break_in_it_is_not() {
+    let mut text = String::from("# nodes\n\n");
+    for i in 0..200_000 {
+        text.push_str(&format!("{} {}.25 {}.5\n", i + 1, i % 977, i % 13));
+    }
+    let err = parse_points(&text, "nodes.txt").unwrap_err();
+    assert_eq!(err.line, Some(3), "{err}");
+    assert!(err.to_string().contains("counts 1, 2, 3"), "{err}");
+    // One index out of step near the end: an ordinary third column, read as x y.
+    let text = text.replacen("199990 ", "5 ", 1);
+    let points = parse_points(&text, "nodes.txt").unwrap();
+    assert_eq!(points.len(), 200_000);
+    assert_eq!(
+        points[199_989],
+        Point::new(5.0, (199_989 % 977) as f64 + 0.25)
+    );
+}

@@ -1,0 +1,212 @@
+//! Points and plain floating-point helpers.
+//!
+//! Owns: the [`Point`] type, arithmetic that measures (distances, bounding boxes) and exact
+//! rescaling by powers of two ([`Scale`], [`binary_exponent`]), which the drawings of
+//! `condt-io` share with the stages. It may not
+//! decide an orientation or an in-circle sign: that belongs to [`crate::predicates`] alone.
+
+/// A point of the plane, in double precision.
+///
+/// ```
+/// use condt::Point;
+/// let p = Point::new(3.0, 4.0);
+/// assert_eq!(p.dist2(Point::new(0.0, 0.0)), 25.0);
+/// assert_eq!(Point::from([3.0, 4.0]), p);
+/// ```
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub struct Point {
+    /// Abscissa.
+    pub x: f64,
+    /// Ordinate.
+    pub y: f64,
+}
+
+impl Point {
+    /// A point from its coordinates.
+    #[inline]
+    pub const fn new(x: f64, y: f64) -> Self {
+        Point { x, y }
+    }
+
+    /// Squared Euclidean distance to `other`.
+    #[inline]
+    pub fn dist2(self, other: Point) -> f64 {
+        let dx = self.x - other.x;
+        let dy = self.y - other.y;
+        dx * dx + dy * dy
+    }
+
+    /// `true` when both coordinates are finite (neither NaN nor infinite).
+    #[inline]
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite()
+    }
+
+    /// The point with both coordinates multiplied by `factor`.
+    #[inline]
+    pub(crate) fn scaled(self, factor: f64) -> Point {
+        Point::new(self.x * factor, self.y * factor)
+    }
+
+    /// Lexicographic order, x first, by value (so -0.0 equals 0.0). Any exact translation keeps
+    /// it; along a line it is the order of the points on that line.
+    ///
+    /// ```
+    /// use condt::Point;
+    /// use std::cmp::Ordering;
+    /// assert_eq!(Point::new(-1.0, 5.0).lexicographic_cmp(Point::new(0.0, 0.0)), Ordering::Less);
+    /// assert_eq!(Point::new(-0.0, 1.0).lexicographic_cmp(Point::new(0.0, 1.0)), Ordering::Equal);
+    /// ```
+    #[inline]
+    pub fn lexicographic_cmp(self, other: Point) -> core::cmp::Ordering {
+        let by = |a: f64, b: f64| a.partial_cmp(&b).unwrap_or(core::cmp::Ordering::Equal);
+        by(self.x, other.x).then(by(self.y, other.y))
+    }
+}
+
+impl From<[f64; 2]> for Point {
+    #[inline]
+    fn from([x, y]: [f64; 2]) -> Self {
+        Point::new(x, y)
+    }
+}
+
+impl From<(f64, f64)> for Point {
+    #[inline]
+    fn from((x, y): (f64, f64)) -> Self {
+        Point::new(x, y)
+    }
+}
+
+impl From<Point> for [f64; 2] {
+    #[inline]
+    fn from(p: Point) -> Self {
+        [p.x, p.y]
+    }
+}
+
+/// The exponent `e` with `2^e <= x < 2^(e+1)`, for finite `x > 0` (subnormals included).
+///
+/// ```
+/// use condt::geometry::binary_exponent;
+/// assert_eq!(binary_exponent(1.0), 0);
+/// assert_eq!(binary_exponent(0.75), -1);
+/// assert_eq!(binary_exponent(f64::MIN_POSITIVE / 4.0), -1024);
+/// ```
+pub fn binary_exponent(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        let mantissa = bits & ((1u64 << 52) - 1);
+        63 - mantissa.leading_zeros() as i32 - 1074
+    } else {
+        biased - 1023
+    }
+}
+
+/// `2^k` for `k` in the normal exponent range.
+fn pow2(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// Multiplication by a power of two, kept as two factors so that each stays a normal double
+/// (`2^k` for `k` from -2044 to 2046). It is exact, and changes no sign and no ratio, as long as
+/// no coordinate leaves the normal range. The stages work on the input scaled this way, and
+/// the drawings use it to bring any coordinates into view without rounding them.
+///
+/// ```
+/// use condt::geometry::Scale;
+/// use condt::Point;
+/// let big = Point::new(3.0 * 2f64.powi(1000), -2f64.powi(1001));
+/// let scale = Scale::power_of_two(-1000);
+/// assert_eq!(scale.apply(big), Point::new(3.0, -2.0));
+/// assert_eq!(scale.inverse().apply(scale.apply(big)), big);
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Scale {
+    first: f64,
+    second: f64,
+}
+
+impl Scale {
+    /// Multiplication by one.
+    pub const IDENTITY: Scale = Scale {
+        first: 1.0,
+        second: 1.0,
+    };
+
+    /// Multiplication by `2^k`.
+    pub fn power_of_two(k: i32) -> Scale {
+        let half = k / 2;
+        Scale {
+            first: pow2(half),
+            second: pow2(k - half),
+        }
+    }
+
+    /// `p` multiplied by the scale (exact while `p` stays in the normal range).
+    #[inline]
+    pub fn apply(self, p: Point) -> Point {
+        p.scaled(self.first).scaled(self.second)
+    }
+
+    /// The scale that undoes this one, exactly (its factors are powers of two).
+    pub fn inverse(self) -> Scale {
+        Scale {
+            first: 1.0 / self.second,
+            second: 1.0 / self.first,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lexicographic_order_is_numeric_for_negative_coordinates() {
+        use core::cmp::Ordering::Less;
+        assert_eq!(
+            Point::new(-2.0, 0.0).lexicographic_cmp(Point::new(-1.0, 0.0)),
+            Less
+        );
+        assert_eq!(
+            Point::new(1.0, -2.0).lexicographic_cmp(Point::new(1.0, -1.0)),
+            Less
+        );
+    }
+
+    #[test]
+    fn binary_exponent_covers_normal_and_subnormal_numbers() {
+        assert_eq!(binary_exponent(1.0), 0);
+        assert_eq!(binary_exponent(1.5), 0);
+        assert_eq!(binary_exponent(0.75), -1);
+        assert_eq!(binary_exponent(1e15), 49);
+        assert_eq!(binary_exponent(f64::MIN_POSITIVE), -1022);
+        assert_eq!(binary_exponent(f64::from_bits(1)), -1074);
+        assert_eq!(binary_exponent(f64::MAX), 1023);
+    }
+
+    #[test]
+    fn power_of_two_scales_reach_both_ends_of_the_range() {
+        let s = Scale::power_of_two(2046);
+        assert_eq!(
+            s.apply(Point::new(f64::from_bits(1 << 51), 0.0)).x, // 2^-1023, subnormal
+            2f64.powi(1023)
+        );
+        let s = Scale::power_of_two(-2044);
+        // 2^-1044 is subnormal: bit 30 of the pattern.
+        assert_eq!(
+            s.apply(Point::new(2f64.powi(1000), 0.0)).x,
+            f64::from_bits(1 << 30)
+        );
+        assert_eq!(
+            Scale::power_of_two(-10)
+                .inverse()
+                .apply(Point::new(3.0, 0.0))
+                .x,
+            3072.0
+        );
+    }
+}

@@ -1,0 +1,128 @@
+//! # condt
+//!
+//! Curve reconstruction from unorganized planar points with ConDT (J. Antony, M. Reghunath,
+//! S. B. Thayyil, R. Muthuganapathy, "ConDT: A 2D curve reconstruction algorithm based on a
+//! constrained-neighbor proximity graph"), on its own exact Delaunay kernel.
+//!
+//! [`reconstruct`] gives the curves through a point set and keeps every stage for inspection:
+//!
+//! ```
+//! use condt::{reconstruct, Params, Point};
+//!
+//! let points: Vec<Point> = (0..16)
+//!     .map(|k| {
+//!         let t = k as f64 * std::f64::consts::TAU / 16.0;
+//!         Point::new(2.0 * t.cos(), t.sin())
+//!     })
+//!     .collect();
+//! let result = reconstruct(&points, &Params::default())?;
+//! let curve = &result.curves()[0];
+//! assert!(curve.is_closed());
+//! for i in curve.points() {
+//!     let p = points[i]; // every index is a position in `points`
+//!     # let _ = p;
+//! }
+//! for report in result.stages() {
+//!     println!("{}: {} edges", report.stage, report.graph.num_edges());
+//! }
+//! # Ok::<(), condt::Error>(())
+//! ```
+//!
+//! The stages can also be run one by one, each a method on the graph the previous one left:
+//!
+//! ```
+//! use condt::{triangulate, Point, Repair, Uniformity};
+//! let points = [(0.0, 0.0), (1.0, 0.1), (2.0, 0.0), (3.0, 0.2)].map(Point::from);
+//! let tri = triangulate(&points)?;
+//! let proximity = tri.proximity_graph(Uniformity::default())?;
+//! let repaired = proximity.repair(Repair::Paper);
+//! let filtered = repaired.remove_outliers(1.7)?;
+//! assert!(!filtered.fired);
+//! assert_eq!(filtered.graph.edges(), vec![[0, 1], [1, 2], [2, 3]]);
+//! # Ok::<(), condt::Error>(())
+//! ```
+//!
+//! Underneath is the kernel, usable on its own: [`triangulate`] builds a [`Triangulation`],
+//! read in input positions, with the half-edge level in [`mesh`] and the exact predicates in
+//! [`predicates`].
+//!
+//! ```
+//! use condt::{triangulate, Point};
+//!
+//! let points = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.0, 0.0)].map(Point::from);
+//! let tri = triangulate(&points)?;
+//! assert_eq!(tri.num_vertices(), 4); // point 4 repeats point 0 and is merged into it
+//! assert_eq!(tri.triangles().count(), 2);
+//! assert_eq!(tri.hull().count(), 4);
+//! tri.validate()?;
+//! # Ok::<(), condt::Error>(())
+//! ```
+//!
+//! ## Features
+//! - `std` (default): `std::error::Error` for [`Error`] and stage timings.
+//! - `parallel` (default, implies `std`): multi-threaded stages, on rayon (same results).
+//!
+//! With `--no-default-features` the crate is `#![no_std]`, needs only `alloc`, and depends on
+//! `robust` and `libm` alone.
+//!
+//! ## The workspace around it
+//! File formats, drawings and the HTML stage viewer are in `condt-io`; sampled curves with
+//! ground truth and the metrics against it in `condt-eval`; the `condt` command-line tool in
+//! `condt-cli`. This crate knows none of them.
+//!
+//! ## Layout
+//! Public: this page's re-exports, [`mesh`] (the half-edge level), [`predicates`] and
+//! [`geometry`] (points and exact power-of-two scaling). Private, from the bottom up (each uses
+//! only modules listed before it): `error`, `prefetch` (a cache hint, the crate's one `unsafe`
+//! call), `geometry`, `triangulate` (the kernel), `adjacency` (edge lists in vertex ids),
+//! `stages` (one module per ConDT stage), `curve` ([`Curve`]), `graph` ([`Graph`]), `smooth`
+//! (moving noisy points along a first reconstruction's curves), `reconstruct` (the pipeline, the
+//! order of its stages and the smoothing passes), `baselines` (NN-Crust and Crust as methods of
+//! [`Triangulation`]); `test_rng` serves unit tests only. `docs/architecture.md` draws the graph
+//! and says what each module may not touch.
+#![cfg_attr(not(feature = "std"), no_std)]
+#![deny(unsafe_code)]
+#![warn(missing_docs)]
+
+extern crate alloc;
+
+mod adjacency;
+mod baselines;
+mod curve;
+mod error;
+pub mod geometry;
+mod graph;
+pub mod mesh;
+pub mod predicates;
+mod prefetch;
+mod provenance;
+mod reconstruct;
+/// The unit tests sample curves with `condt_eval::sample`, compiled into this crate (a
+/// dev-dependency on condt-eval would bring a second, incompatible `Point`).
+#[cfg(test)]
+#[path = "../../condt-eval/src/sample.rs"]
+#[allow(dead_code)] // the tests use some of the shapes
+mod sample;
+mod smooth;
+mod stages;
+#[cfg(test)]
+mod test_rng;
+mod threads;
+mod triangulate;
+
+pub use curve::{curves_from_edges, Curve};
+pub use error::Error;
+pub use geometry::Point;
+pub use graph::{Graph, OutlierRemoval};
+pub use provenance::{Change, EdgeStory, EndChoice, Reason};
+pub use reconstruct::{
+    reconstruct, reconstruct_owned, reconstruct_triangulation, Method, Params, Reconstruction,
+    Smoothing, StageReport,
+};
+pub use stages::{Repair, Stage, Uniformity};
+pub use triangulate::{triangulate, Triangulation, MAX_POINTS};
+
+/// The README's code examples, compiled and run as doctests so they cannot go stale.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+struct ReadmeDoctests;

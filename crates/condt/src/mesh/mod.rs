@@ -1,0 +1,332 @@
+//! Half-edge topology of a triangulated sphere.
+//!
+//! Owns: connectivity only, in three flat arrays indexed by typed ids. The arrays are private to
+//! this module: only `mesh` writes them, while a mesh is built through `MeshBuilder` (in
+//! `build.rs`, which turns the triangulator's edits into array writes and seals the result), and
+//! every other module reads a finished [`Mesh`] through its typed accessors. It may not look at a
+//! coordinate, and it knows nothing of where a vertex is or why a triangle was made: the caller
+//! of the builder decides that, `check.rs` verifies the result.
+//!
+//! Layout (see `docs/half_edge.md` for pictures):
+//! - triangle `t` owns half-edges `3t, 3t+1, 3t+2`, counter-clockwise; `origins[e]` is where `e`
+//!   starts, so `e` runs from `origins[e]` to `origins[e.next()]`;
+//! - `twins[e]` is the opposite half-edge; every half-edge has one, because the convex hull is closed
+//!   off by *ghost triangles* that join each hull edge to [`VertexId::INFINITE`];
+//! - `vertex_edges[v]` is one half-edge leaving `v`; for a hull vertex it is the one that points to
+//!   infinity, so that the counter-clockwise walk of the ring starts and ends on the hull.
+//!
+//! Turning counter-clockwise around the origin of `e` is `twin(prev(e))`, so a vertex's 1-ring is
+//! walked in O(degree) for interior and hull vertices alike, with no allocation.
+//!
+//! When all points are collinear there is no real triangle: each segment of the chain is covered by
+//! two ghost triangles, one on each side, and the same walks still work.
+
+mod build;
+mod check;
+mod ids;
+
+pub(crate) use build::{MeshArrays, MeshBuilder};
+pub use check::{Element, Rule, Violation};
+pub(crate) use ids::wrap3;
+pub use ids::{HalfEdgeId, TriangleId, VertexId};
+
+use crate::threads::both;
+use alloc::vec::Vec;
+
+/// The topology of a Delaunay triangulation, closed into a sphere by ghost triangles.
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let tri = triangulate(&[Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)])?;
+/// let mesh = tri.mesh();
+/// assert_eq!(mesh.triangles().count(), 1); // one real triangle...
+/// assert_eq!(mesh.num_triangles_with_ghosts(), 4); // ...and three ghosts, one per hull edge
+/// assert_eq!(mesh.edges().count(), 3);
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    /// `origins[e]`: where half-edge `e` starts; triangle `t` holds `3t .. 3t + 3`.
+    origins: Vec<VertexId>,
+    /// `twins[e]`: the half-edge across from `e`.
+    twins: Vec<HalfEdgeId>,
+    /// `vertex_edges[v]`: one half-edge leaving `v` (to infinity for a hull vertex), or
+    /// [`HalfEdgeId::NONE`].
+    vertex_edges: Vec<HalfEdgeId>,
+}
+
+impl Mesh {
+    /// Number of half-edges, ghosts included.
+    #[inline]
+    pub fn num_half_edges(&self) -> usize {
+        self.origins.len()
+    }
+
+    /// Number of triangles, ghosts included.
+    #[inline]
+    pub fn num_triangles_with_ghosts(&self) -> usize {
+        self.origins.len() / 3
+    }
+
+    /// Size of the vertex id space: ids `0..num_vertex_ids()` may appear as corners (for a
+    /// [`Triangulation`](crate::Triangulation), the number of input points, merged duplicates
+    /// included). Not a count of vertices with edges, and not an allocation's capacity.
+    #[inline]
+    pub fn num_vertex_ids(&self) -> usize {
+        self.vertex_edges.len()
+    }
+
+    /// Where `e` starts.
+    #[inline]
+    pub fn origin(&self, e: HalfEdgeId) -> VertexId {
+        self.origins[e.index()]
+    }
+
+    /// Where `e` ends.
+    #[inline]
+    pub fn dest(&self, e: HalfEdgeId) -> VertexId {
+        self.origins[e.next().index()]
+    }
+
+    /// The half-edge running the other way along the same edge.
+    #[inline]
+    pub fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
+        self.twins[e.index()]
+    }
+
+    /// One half-edge leaving `v` (on the hull: the one pointing to infinity), or `None` when `v`
+    /// has no edge: it is a merged duplicate, or the only distinct point.
+    #[inline]
+    pub fn vertex_edge(&self, v: VertexId) -> Option<HalfEdgeId> {
+        let e = *self.vertex_edges.get(v.index())?;
+        (!e.is_none()).then_some(e)
+    }
+
+    /// The three corners of `t`, counter-clockwise.
+    #[inline]
+    pub fn triangle_vertices(&self, t: TriangleId) -> [VertexId; 3] {
+        let i = t.index() * 3;
+        [self.origins[i], self.origins[i + 1], self.origins[i + 2]]
+    }
+
+    /// The corners of `triangles`, three per triangle in the order of
+    /// [`Mesh::triangle_corners`], as one slice.
+    ///
+    /// # Panics
+    /// If the range goes past [`Mesh::num_triangles_with_ghosts`].
+    #[inline]
+    pub fn corner_slice(&self, triangles: core::ops::Range<usize>) -> &[VertexId] {
+        &self.origins[3 * triangles.start..3 * triangles.end]
+    }
+
+    /// The corners of every triangle in `triangles` (indices, ghosts included), in index order:
+    /// what [`Mesh::triangle_vertices`] gives for each, read as one sequential pass.
+    ///
+    /// # Panics
+    /// If the range goes past [`Mesh::num_triangles_with_ghosts`].
+    #[inline]
+    pub fn triangle_corners(
+        &self,
+        triangles: core::ops::Range<usize>,
+    ) -> impl Iterator<Item = [VertexId; 3]> + '_ {
+        self.origins[3 * triangles.start..3 * triangles.end]
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+    }
+
+    /// `true` when `t` is a ghost triangle (one corner is [`VertexId::INFINITE`]).
+    #[inline]
+    pub fn is_ghost(&self, t: TriangleId) -> bool {
+        self.triangle_vertices(t).iter().any(|v| v.is_infinite())
+    }
+
+    /// `true` when both ends of `e` are finite vertices.
+    #[inline]
+    pub fn is_finite_edge(&self, e: HalfEdgeId) -> bool {
+        !self.origin(e).is_infinite() && !self.dest(e).is_infinite()
+    }
+
+    /// `true` when `e` is finite and has a ghost triangle on one side: it lies on the convex hull
+    /// (or, for collinear input, on the chain).
+    #[inline]
+    pub fn is_hull_edge(&self, e: HalfEdgeId) -> bool {
+        self.is_finite_edge(e)
+            && (self.is_ghost(e.triangle()) || self.is_ghost(self.twin(e).triangle()))
+    }
+
+    /// The real (non-ghost) triangles.
+    pub fn triangles(&self) -> impl Iterator<Item = TriangleId> + '_ {
+        (0..self.num_triangles_with_ghosts() as u32)
+            .map(TriangleId::new)
+            .filter(move |&t| !self.is_ghost(t))
+    }
+
+    /// Every finite undirected edge once, as the half-edge of the pair with the smaller id.
+    pub fn edges(&self) -> impl Iterator<Item = HalfEdgeId> + '_ {
+        (0..self.num_half_edges() as u32)
+            .map(HalfEdgeId::new)
+            .filter(move |&e| e < self.twin(e) && self.is_finite_edge(e))
+    }
+
+    /// The half-edges leaving `v` towards finite vertices, counter-clockwise. For a hull vertex
+    /// the walk starts at its hull neighbour that follows it clockwise and sweeps through the
+    /// interior to the other hull neighbour. O(degree), no allocation.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&square)?;
+    /// let centre = tri.vertex(4);
+    /// let around: Vec<usize> =
+    ///     tri.mesh().ring(centre).map(|e| tri.input_of(tri.mesh().dest(e))).collect();
+    /// assert_eq!(around.len(), 4);
+    /// // Counter-clockwise: each neighbour is the next corner of the square after the previous one.
+    /// for w in around.windows(2) {
+    ///     assert_eq!(w[1], (w[0] + 1) % 4);
+    /// }
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn ring(&self, v: VertexId) -> Ring<'_> {
+        let start = self.vertex_edge(v).unwrap_or(HalfEdgeId::NONE);
+        Ring {
+            mesh: self,
+            start,
+            current: start,
+        }
+    }
+
+    /// The finite neighbours of `v`, counter-clockwise (the destinations of [`Mesh::ring`]).
+    pub fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
+        self.ring(v).map(move |e| self.dest(e))
+    }
+
+    /// The vertices of the convex hull, counter-clockwise, each hull edge once. Points lying on a
+    /// hull edge are hull vertices too. For collinear input the walk goes out along the chain and
+    /// back, so inner chain vertices appear twice.
+    pub fn hull(&self) -> Hull<'_> {
+        let start = self.first_hull_edge();
+        Hull {
+            mesh: self,
+            start,
+            current: start,
+        }
+    }
+
+    /// The finite half-edge of some ghost triangle, if there is one.
+    fn first_hull_edge(&self) -> HalfEdgeId {
+        (0..self.num_half_edges() as u32)
+            .map(HalfEdgeId::new)
+            .find(|&e| self.origin(e.prev()).is_infinite())
+            .unwrap_or(HalfEdgeId::NONE)
+    }
+
+    /// Fills `vertex_edges` from the triangles: one pass that records the last edge leaving each
+    /// vertex, then a walk along the ghosts that gives every hull vertex its edge to infinity.
+    /// With `parallel` (the caller's choice: a set built in two halves), two threads each scan
+    /// every origin and record the vertices of their half of the ids: the same last edge per
+    /// vertex, so the same mesh, and each thread's scattered writes stay in its own half.
+    fn rebuild_vertex_edges(&mut self, vertex_count: usize, parallel: bool) {
+        // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
+        let sink = vertex_count;
+        let origins = &self.origins;
+        let record = |edges: &mut [HalfEdgeId], first: usize| {
+            for (i, &v) in origins.iter().enumerate() {
+                // Below `first` the subtraction wraps to a huge slot: not this thread's.
+                let slot = v.index().min(sink).wrapping_sub(first);
+                if let Some(edge) = edges.get_mut(slot) {
+                    *edge = HalfEdgeId::new(i as u32);
+                }
+            }
+        };
+        let mut edges = alloc::vec![HalfEdgeId::NONE; vertex_count + 1];
+        if parallel {
+            let middle = vertex_count / 2;
+            let (low, high) = edges.split_at_mut(middle);
+            both(true, || record(low, 0), || record(high, middle));
+        } else {
+            record(&mut edges, 0);
+        }
+        let from_infinity = edges[sink];
+        edges.truncate(vertex_count);
+        self.vertex_edges = edges;
+        if from_infinity.is_none() {
+            return;
+        }
+        // `∞ → a` is followed in its ghost by the hull edge `a → b`, then by `b → ∞`; across
+        // `∞ → a` lies the previous ghost's `a → ∞`, followed there by `∞ → c`. Walked back
+        // along the hull, one division per ghost.
+        let start = from_infinity;
+        let mut entry = start;
+        loop {
+            let (base, corner) = entry.base_and_corner();
+            let to_infinity = HalfEdgeId::at(base, wrap3(corner + 2));
+            let b = self.origin(to_infinity);
+            self.vertex_edges[b.index()] = to_infinity;
+            let across = self.twins[entry.index()];
+            let (base, corner) = across.base_and_corner();
+            entry = HalfEdgeId::at(base, wrap3(corner + 1));
+            if entry == start {
+                break;
+            }
+        }
+    }
+}
+
+/// Counter-clockwise walk around one vertex; see [`Mesh::ring`].
+#[derive(Clone, Debug)]
+pub struct Ring<'a> {
+    mesh: &'a Mesh,
+    start: HalfEdgeId,
+    current: HalfEdgeId,
+}
+
+impl Iterator for Ring<'_> {
+    type Item = HalfEdgeId;
+
+    #[inline]
+    fn next(&mut self) -> Option<HalfEdgeId> {
+        loop {
+            if self.current.is_none() {
+                return None;
+            }
+            let e = self.current;
+            let turned = self.mesh.twin(e.prev());
+            self.current = if turned == self.start {
+                HalfEdgeId::NONE
+            } else {
+                turned
+            };
+            if !self.mesh.dest(e).is_infinite() {
+                return Some(e);
+            }
+        }
+    }
+}
+
+/// Counter-clockwise walk along the convex hull; see [`Mesh::hull`].
+#[derive(Clone, Debug)]
+pub struct Hull<'a> {
+    mesh: &'a Mesh,
+    start: HalfEdgeId,
+    current: HalfEdgeId,
+}
+
+impl Iterator for Hull<'_> {
+    type Item = VertexId;
+
+    fn next(&mut self) -> Option<VertexId> {
+        if self.current.is_none() {
+            return None;
+        }
+        // `current` is the finite edge a → b of the ghost (a, b, ∞); ghosts run clockwise around
+        // the hull, so the next vertex counter-clockwise is the origin of the ghost before it.
+        let e = self.current;
+        let next = self.mesh.twin(e.prev()).prev();
+        self.current = if next == self.start {
+            HalfEdgeId::NONE
+        } else {
+            next
+        };
+        Some(self.mesh.origin(e))
+    }
+}

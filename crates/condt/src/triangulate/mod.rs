@@ -1,0 +1,786 @@
+//! Delaunay triangulation of a planar point set.
+//!
+//! Owns: turning points into a [`Triangulation`] (a [`Mesh`] plus the points and the maps between
+//! input positions and vertices) and checking one. It decides signs only through
+//! [`crate::predicates`] and writes topology only through the mesh's builder; it knows nothing of
+//! the ConDT stages.
+//!
+//! The method is incremental insertion (Lawson's flips after each split, which yields the same
+//! triangulation as Bowyer–Watson's cavity retriangulation) in a biased randomized insertion order
+//! with Hilbert order inside each round, locating each point by a visibility walk from the
+//! previous one; `docs/triangulation.md` explains the choice and gives the measurements.
+//! See also: Amenta, Choi, Rote, "Incremental constructions con BRIO", SoCG 2003, and
+//! Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates",
+//! Discrete Comput. Geom. 18 (1997).
+
+mod check;
+mod collinear;
+mod halves;
+mod insert;
+mod order;
+mod scale;
+
+use crate::error::Error;
+use crate::geometry::Point;
+use crate::geometry::Scale;
+use crate::mesh::MeshArrays;
+use crate::mesh::{Mesh, VertexId};
+use crate::threads::both;
+use alloc::vec::Vec;
+use insert::{Exact, Fast, Kernel};
+
+/// The largest number of input points.
+///
+/// The mesh of `n` points has `3(2n - 2)` half-edges (ghosts included), indexed by `u32` with
+/// `u32::MAX` reserved, which would allow about 715 million points. The limit keeps a factor-two
+/// margin below that bound: nothing larger has been run (at about 100 bytes per point it needs
+/// more memory than the machines we test on).
+///
+/// Beyond it, [`triangulate`] returns [`Error::TooManyPoints`] before allocating anything, and
+/// `io::read_points` (feature `std`) stops at the offending line. Below it, the triangulation
+/// allocates like any Rust code: if the system refuses memory the process aborts, while the
+/// readers of `condt_io` (which size their buffers by the input) return an error instead.
+pub const MAX_POINTS: usize = 350_000_000;
+
+/// A Delaunay triangulation of a point set.
+///
+/// Everything here speaks in input positions: the index of a point in the slice given to
+/// [`triangulate`]. Exact duplicates are one point, reported under the smallest input position
+/// holding it. The half-edge level is [`Triangulation::mesh`], in [`VertexId`]s, numbered in the
+/// (spatial) insertion order; [`Triangulation::vertex`] and [`Triangulation::input_of`] convert.
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let pts = [(0.0, 0.0), (4.0, 0.0), (4.0, 3.0), (0.0, 3.0), (1.0, 1.0)].map(Point::from);
+/// let tri = triangulate(&pts)?;
+/// assert_eq!(tri.triangles().count(), 4);
+/// assert_eq!(tri.edges().count(), 8);
+/// let mut hull: Vec<usize> = tri.hull().collect(); // counter-clockwise, from some hull point
+/// hull.sort_unstable();
+/// assert_eq!(hull, vec![0, 1, 2, 3]);
+/// assert_eq!(tri.neighbors(4).count(), 4);
+/// assert_eq!(tri.point(4), Point::new(1.0, 1.0));
+/// tri.validate()?;
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Triangulation {
+    /// Positions as the stages measure them (see [`Triangulation::vertex_point`]), by vertex id
+    /// (duplicates too: each input point has an id).
+    points: Vec<Point>,
+    /// The input coordinates by vertex id, kept only when `points` could not hold them exactly
+    /// (a set spanning so many orders of magnitude that its smallest coordinates lose bits in
+    /// the stages' frame).
+    inputs: Option<Vec<Point>>,
+    /// Input coordinates to the exactly rescaled frame the predicates decide in.
+    scale: Scale,
+    /// `points` to the predicates' frame (exact when `inputs` is `None`).
+    stage_to_predicates: Scale,
+    /// `points` to the input coordinates (exact when `inputs` is `None`).
+    stage_to_input: Scale,
+    mesh: Mesh,
+    /// Vertex id -> input position; for a kept vertex, the smallest position of its duplicates.
+    input_of_vertex: Vec<u32>,
+    /// Input position -> the vertex that stands for it.
+    vertex_of_input: Vec<VertexId>,
+    num_vertices: usize,
+}
+
+/// Triangulates `points`.
+///
+/// Every finite input is accepted: fewer than three points, collinear points (the mesh then holds
+/// the chain of segments between consecutive points, and no triangle), exact duplicates (merged,
+/// see [`Triangulation::vertex`]) and cocircular sets. The result is deterministic and
+/// depends only on the set of points, not on their order.
+///
+/// Any finite coordinates are accepted, at any scale and with any spread of magnitudes: a set
+/// whose coordinates span more than 2^200 in magnitude (`1` and `1e-61` together) is decided by
+/// exact integer arithmetic instead of Shewchuk's predicates, slower but just as exact
+/// (`docs/predicates.md`).
+///
+/// A set of 65,536 points or more is cut by a vertical line into two halves, built apart and
+/// stitched together (`docs/triangulation.md`); with the `parallel` feature the halves are built
+/// at once on rayon's threads. The result is the same on any number of threads: to keep the
+/// call on one, run it inside a one-thread pool (`rayon::ThreadPool::install`).
+///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite coordinate, naming the first such input index;
+/// [`Error::TooManyPoints`] beyond [`MAX_POINTS`].
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let line: Vec<Point> = (0..5).map(|i| Point::new(i as f64, 2.0 * i as f64)).collect();
+/// let tri = triangulate(&line)?;
+/// assert_eq!(tri.triangles().count(), 0);
+/// assert_eq!(tri.edges().collect::<Vec<_>>(), vec![[0, 1], [1, 2], [2, 3], [3, 4]]);
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
+    triangulate_with(points, cfg!(feature = "parallel"))
+}
+
+/// [`triangulate`], on one thread unless `parallel`; the result is the same either way.
+pub(crate) fn triangulate_with(points: &[Point], parallel: bool) -> Result<Triangulation, Error> {
+    triangulate_split(points, parallel, halves::SPLIT_MIN)
+}
+
+/// [`triangulate_with`], cutting sets of `split_min` points and more in two.
+fn triangulate_split(
+    points: &[Point],
+    parallel: bool,
+    split_min: usize,
+) -> Result<Triangulation, Error> {
+    if points.len() > MAX_POINTS {
+        return Err(Error::TooManyPoints {
+            count: points.len(),
+            limit: MAX_POINTS,
+        });
+    }
+    let frames = scale::choose_frames(points)?;
+    let scale = frames.predicates;
+    let (order, mut sorted, built) = construct(points, &frames, parallel, split_min);
+    let (mesh, merged, order) = match built {
+        None => {
+            // No triangle: the chain in line order is the vertex order instead.
+            let (mesh, merged, line_order) = collinear::chain(points);
+            for (slot, &i) in sorted.iter_mut().zip(&line_order) {
+                *slot = scale.apply(points[i as usize]);
+            }
+            (mesh, merged, line_order)
+        }
+        Some((mesh, merged)) => (mesh, merged, order),
+    };
+    // The stored coordinates are the stages' positions: the predicates' copy times a power of
+    // two, exact for a set in the fast range (every nonzero coordinate ends at least 1). A wider
+    // set may lose bits of its smallest coordinates there: it keeps its inputs as well.
+    let (predicates_exponent, stages_exponent) = frames.exponents;
+    let stage_to_input = frames.stages.inverse();
+    let mut inputs = None;
+    if frames.wide {
+        let stage = frames.stages;
+        let exact = points
+            .iter()
+            .all(|&p| stage_to_input.apply(stage.apply(p)) == p);
+        if !exact {
+            inputs = Some(order.iter().map(|&i| points[i as usize]).collect());
+        }
+        for (slot, &i) in sorted.iter_mut().zip(&order) {
+            *slot = stage.apply(points[i as usize]);
+        }
+    } else {
+        let to_stages = Scale::power_of_two(stages_exponent - predicates_exponent);
+        let rescale = |points: &mut [Point]| {
+            for p in points {
+                *p = to_stages.apply(*p);
+            }
+        };
+        let middle = sorted.len() / 2;
+        let (low, high) = sorted.split_at_mut(middle);
+        both(
+            parallel && low.len() >= PARALLEL_MIN / 2,
+            || rescale(low),
+            || rescale(high),
+        );
+    }
+    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel);
+    let num_vertices = vertex_of_input.len() - merged.len();
+    Ok(Triangulation {
+        points: sorted,
+        inputs,
+        scale,
+        stage_to_predicates: Scale::power_of_two(predicates_exponent - stages_exponent),
+        stage_to_input,
+        mesh,
+        input_of_vertex,
+        vertex_of_input,
+        num_vertices,
+    })
+}
+
+/// The mesh of `points`: the insertion order (input positions), the points in it in the
+/// predicates' frame, and their mesh with the `(duplicate, kept)` pairs merged, or `None` for
+/// the mesh when the points make no triangle.
+#[allow(clippy::type_complexity)]
+fn construct(
+    points: &[Point],
+    frames: &scale::Frames,
+    parallel: bool,
+    split_min: usize,
+) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
+    let Some(cut) = halves::cut(points, split_min, parallel) else {
+        return construct_whole(points, frames);
+    };
+    let (order, sorted) = cut_order(points, frames, &cut, parallel, true);
+    let built = if frames.wide {
+        halves::build::<Exact>(&sorted, cut.left_len(), parallel)
+    } else {
+        halves::build::<Fast>(&sorted, cut.left_len(), parallel)
+    };
+    if built.is_some() {
+        return (order, sorted, built);
+    }
+    // A half without a triangle, or a failed stitch: the set in one piece.
+    drop((order, sorted));
+    construct_whole(points, frames)
+}
+
+/// The insertion order of a set cut in two (the left half's order, then the right half's) and,
+/// with `with_points`, the points in it in the predicates' frame (else an empty list). Each half
+/// is picked out of the input, ordered and written into its part of the two lists by its own
+/// thread when `parallel`.
+fn cut_order(
+    points: &[Point],
+    frames: &scale::Frames,
+    cut: &halves::Cut,
+    parallel: bool,
+    with_points: bool,
+) -> (Vec<u32>, Vec<Point>) {
+    let n = points.len();
+    let mut order = filled(0u32, n, parallel);
+    let mut sorted = if with_points {
+        filled(Point::default(), n, parallel)
+    } else {
+        Vec::new()
+    };
+    let left = cut.left_len();
+    let (order_left, order_right) = order.split_at_mut(left);
+    let (sorted_left, sorted_right) = sorted.split_at_mut(if with_points { left } else { 0 });
+    let half = |is_left: bool, order: &mut [u32], sorted: &mut [Point]| {
+        // Every point is written to the next free slot, which only a member then takes: no
+        // branch on the side, which the input order makes a coin toss for unorganized points.
+        // The one spare slot takes the writes after the last member.
+        let len = order.len();
+        let mut members = alloc::vec![0u32; len + 1];
+        let mut gathered = alloc::vec![Point::default(); len + 1];
+        let mut next = 0;
+        for (i, &p) in points.iter().enumerate() {
+            members[next] = i as u32;
+            gathered[next] = p;
+            next = (next + usize::from(cut.is_left(p) == is_left)).min(len);
+        }
+        debug_assert_eq!(next, len);
+        members.truncate(len);
+        gathered.truncate(len);
+        let local = spatial_order(&gathered, frames);
+        for (slot, &k) in order.iter_mut().zip(&local) {
+            *slot = members[k as usize];
+        }
+        for (slot, &k) in sorted.iter_mut().zip(&local) {
+            *slot = frames.predicates.apply(gathered[k as usize]);
+        }
+    };
+    both(
+        parallel,
+        || half(true, order_left, sorted_left),
+        || half(false, order_right, sorted_right),
+    );
+    (order, sorted)
+}
+
+/// `n` copies of `value`, written on rayon's threads when `parallel` (the first touch of each
+/// page is most of the cost).
+fn filled<T: Copy + Send + Sync>(value: T, n: usize, parallel: bool) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::iter::{repeat_n, ParallelExtend};
+        let mut list = Vec::with_capacity(n);
+        list.par_extend(repeat_n(value, n));
+        return list;
+    }
+    let _ = parallel;
+    alloc::vec![value; n]
+}
+
+/// [`construct`] without the cut.
+#[allow(clippy::type_complexity)]
+fn construct_whole(
+    points: &[Point],
+    frames: &scale::Frames,
+) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
+    let order = spatial_order(points, frames);
+    let sorted: Vec<Point> = order
+        .iter()
+        .map(|&i| frames.predicates.apply(points[i as usize]))
+        .collect();
+    let built = if frames.wide {
+        build::<Exact>(&sorted)
+    } else {
+        build::<Fast>(&sorted)
+    };
+    (order, sorted, built)
+}
+
+/// The order to insert `points` in, as input positions, and for a set cut in two
+/// ([`halves::cut`]) the size of the left half, whose points come first.
+fn insertion_order(
+    points: &[Point],
+    frames: &scale::Frames,
+    parallel: bool,
+    split_min: usize,
+) -> (Vec<u32>, Option<usize>) {
+    match halves::cut(points, split_min, parallel) {
+        Some(cut) => (
+            cut_order(points, frames, &cut, parallel, false).0,
+            Some(cut.left_len()),
+        ),
+        None => (spatial_order(points, frames), None),
+    }
+}
+
+/// The spatial insertion order of `points` in one piece.
+fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
+    if frames.wide {
+        // Sets spanning many orders of magnitude, ordered on a logarithmic grid: on a linear
+        // one, all but the largest points share a cell and the walks grow long.
+        let warped: Vec<Point> = points
+            .iter()
+            .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
+            .collect();
+        order::insertion_order(&warped)
+    } else {
+        order::insertion_order(points)
+    }
+}
+
+/// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
+/// merged on the way, or `None` when they make no triangle.
+fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
+    insert::first_triangle::<K>(points)?;
+    let mut arrays = MeshArrays::new(insert::half_edges(points.len()), false);
+    let (mesh, merged) = insert::build_into::<K>(points, arrays.builder(0))?;
+    let len = mesh.len();
+    Some((arrays.seal(len, points.len(), false), merged))
+}
+
+/// Below this many points, the passes after the construction (rescaling, the vertex maps) run on
+/// one thread: a second costs more than it saves.
+const PARALLEL_MIN: usize = 1 << 16;
+
+/// The two maps between vertex ids (positions in `order`) and input positions. A vertex that
+/// absorbed duplicates reports the smallest of their input positions.
+///
+/// With `parallel`, two threads each read the whole order and write the input positions of
+/// their half: the writes scatter (the input order is the caller's), so each thread keeps its
+/// own half of the list in cache, and a write outside it rewrites the half's first slot with
+/// its own value instead of branching on a coin toss.
+fn vertex_maps(
+    mut input_of_vertex: Vec<u32>,
+    merged: &[(u32, u32)],
+    parallel: bool,
+) -> (Vec<u32>, Vec<VertexId>) {
+    let n = input_of_vertex.len();
+    let mut vertex_of_input = filled(VertexId::INFINITE, n, parallel);
+    let order = &input_of_vertex;
+    let place = |slots: &mut [VertexId], first: usize| {
+        if slots.is_empty() {
+            return;
+        }
+        for (v, &i) in order.iter().enumerate() {
+            let slot = (i as usize).wrapping_sub(first);
+            let mine = slot < slots.len();
+            let slot = if mine { slot } else { 0 };
+            let kept = slots[slot];
+            slots[slot] = if mine { VertexId::new(v as u32) } else { kept };
+        }
+    };
+    if parallel && n >= PARALLEL_MIN {
+        let middle = n / 2;
+        let (low, high) = vertex_of_input.split_at_mut(middle);
+        both(true, || place(low, 0), || place(high, middle));
+    } else {
+        for (v, &i) in input_of_vertex.iter().enumerate() {
+            vertex_of_input[i as usize] = VertexId::new(v as u32);
+        }
+    }
+    for &(duplicate, kept) in merged {
+        vertex_of_input[input_of_vertex[duplicate as usize] as usize] = VertexId::new(kept);
+    }
+    for &(duplicate, kept) in merged {
+        let smallest = input_of_vertex[kept as usize].min(input_of_vertex[duplicate as usize]);
+        input_of_vertex[kept as usize] = smallest;
+    }
+    (input_of_vertex, vertex_of_input)
+}
+
+impl Triangulation {
+    /// The order in which [`triangulate`] inserts `points`, as input positions: biased
+    /// randomized rounds, Hilbert order inside each (`docs/triangulation.md`); for a set cut in
+    /// two, the left half's order and then the right half's. It is the spatial
+    /// sort alone, with the input check before it, and the yardstick the triangulation
+    /// benchmarks measure the whole construction against. Unless every point is on one line,
+    /// vertex ids number the points in this order (exact duplicates included).
+    ///
+    /// # Errors
+    /// Those of [`triangulate`]: [`Error::NonFinite`] and [`Error::TooManyPoints`].
+    ///
+    /// ```
+    /// use condt::mesh::VertexId;
+    /// use condt::{triangulate, Point, Triangulation};
+    /// let pts: Vec<Point> = (0..100).map(|i| Point::new((i % 10) as f64, (i / 10) as f64)).collect();
+    /// let order = Triangulation::insertion_order(&pts)?;
+    /// let tri = triangulate(&pts)?;
+    /// for (v, &i) in order.iter().enumerate() {
+    ///     assert_eq!(tri.input_of(VertexId::new(v as u32)), i as usize);
+    /// }
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
+        if points.len() > MAX_POINTS {
+            return Err(Error::TooManyPoints {
+                count: points.len(),
+                limit: MAX_POINTS,
+            });
+        }
+        let frames = scale::choose_frames(points)?;
+        Ok(insertion_order(
+            points,
+            &frames,
+            cfg!(feature = "parallel"),
+            halves::SPLIT_MIN,
+        )
+        .0)
+    }
+
+    /// The half-edge topology, in vertex ids.
+    #[inline]
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The coordinates of input point `index`.
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    #[inline]
+    pub fn point(&self, index: usize) -> Point {
+        self.input_point(self.vertex(index))
+    }
+
+    /// The input coordinates of vertex `v`.
+    #[inline]
+    pub(crate) fn input_point(&self, v: VertexId) -> Point {
+        match &self.inputs {
+            Some(inputs) => inputs[v.index()],
+            None => self.stage_to_input.apply(self.points[v.index()]),
+        }
+    }
+
+    /// A position in the stages' frame ([`Triangulation::vertex_point`]) in input coordinates.
+    #[inline]
+    pub(crate) fn stage_to_input(&self, p: Point) -> Point {
+        self.stage_to_input.apply(p)
+    }
+
+    /// The vertex that input point `index` became (exact duplicates share one).
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.0, 0.0)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// assert_eq!(tri.vertex(3), tri.vertex(0)); // a duplicate is merged...
+    /// assert_eq!(tri.input_of(tri.vertex(3)), 0); // ...into its first position
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    #[inline]
+    pub fn vertex(&self, index: usize) -> VertexId {
+        self.vertex_of_input[index]
+    }
+
+    /// The input position vertex `v` stands for (for merged duplicates, the smallest one).
+    ///
+    /// # Panics
+    /// If `v` is not a vertex id of this triangulation (for example [`VertexId::INFINITE`]).
+    #[inline]
+    pub fn input_of(&self, v: VertexId) -> usize {
+        self.input_of_vertex[v.index()] as usize
+    }
+
+    /// Asks the cache for [`Triangulation::input_of`] of `v`, which a loop will read soon
+    /// ([`crate::prefetch`]); nothing when `v` is not an id.
+    #[inline]
+    pub(crate) fn prefetch_input_of(&self, v: VertexId) {
+        crate::prefetch::prefetch(&self.input_of_vertex, v.index());
+    }
+
+    /// Number of input points, duplicates included.
+    #[inline]
+    pub fn num_points(&self) -> usize {
+        self.vertex_of_input.len()
+    }
+
+    /// Number of distinct points, that is of mesh vertices.
+    #[inline]
+    pub fn num_vertices(&self) -> usize {
+        self.num_vertices
+    }
+
+    /// The input position of every distinct point (the smallest of a group of duplicates),
+    /// ascending.
+    pub fn distinct_points(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.num_points()).filter(move |&i| self.input_of(self.vertex(i)) == i)
+    }
+
+    /// The real triangles as the input positions of their corners, counter-clockwise.
+    pub fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
+        self.mesh
+            .triangles()
+            .map(|t| self.mesh.triangle_vertices(t).map(|v| self.input_of(v)))
+    }
+
+    /// Every edge once, as input positions `[a, b]` with `a < b`.
+    pub fn edges(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
+        self.mesh.edges().map(|e| {
+            let (a, b) = (
+                self.input_of(self.mesh.origin(e)),
+                self.input_of(self.mesh.dest(e)),
+            );
+            [a.min(b), a.max(b)]
+        })
+    }
+
+    /// The Delaunay neighbours of input point `index`, counter-clockwise (for a hull point, from
+    /// one hull neighbour through the interior to the other); see [`Mesh::ring`].
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    pub fn neighbors(&self, index: usize) -> impl Iterator<Item = usize> + '_ {
+        self.mesh
+            .neighbors(self.vertex(index))
+            .map(|w| self.input_of(w))
+    }
+
+    /// The convex hull as input positions, counter-clockwise, starting at some hull point; see
+    /// [`Mesh::hull`].
+    pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
+        self.mesh.hull().map(|v| self.input_of(v))
+    }
+
+    /// `true` when there is no triangle: all points are collinear or fewer than three are distinct.
+    pub fn is_degenerate(&self) -> bool {
+        self.mesh.triangles().next().is_none()
+    }
+
+    /// The position of vertex `v` as the stages measure it: the input coordinates times the one
+    /// power of two that brings the set's largest coordinate magnitude into [2^200, 2^201).
+    /// Lengths, their ratios and comparisons are those of the input, but squared lengths (and
+    /// their products) neither overflow nor underflow at any input scale, and a set and its
+    /// power-of-two multiples give the stages the same numbers, bit for bit.
+    #[inline]
+    pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
+        self.points[v.index()]
+    }
+
+    /// Every [`Triangulation::vertex_point`], by vertex id (for a loop that prefetches them).
+    #[inline]
+    pub(crate) fn vertex_points(&self) -> &[Point] {
+        &self.points
+    }
+
+    /// `true` when `v` is a vertex of the mesh: not an id left over by a merged duplicate, not
+    /// [`VertexId::INFINITE`], not out of range.
+    #[inline]
+    pub(crate) fn is_vertex(&self, v: VertexId) -> bool {
+        self.input_of_vertex
+            .get(v.index())
+            .is_some_and(|&i| self.vertex_of_input[i as usize] == v)
+    }
+
+    /// The vertices, in id (spatial) order.
+    pub(crate) fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
+        (0..self.points.len() as u32)
+            .map(VertexId::new)
+            .filter(move |&v| self.is_vertex(v))
+    }
+
+    /// [`Triangulation::vertex`] for every input position at once.
+    #[inline]
+    pub(crate) fn input_to_vertex(&self) -> &[VertexId] {
+        &self.vertex_of_input
+    }
+
+    /// Vertex position in the exactly rescaled frame the predicates work in.
+    #[inline]
+    pub(crate) fn scaled_point(&self, v: VertexId) -> Point {
+        match &self.inputs {
+            Some(inputs) => self.scale.apply(inputs[v.index()]),
+            None => self.stage_to_predicates.apply(self.points[v.index()]),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::Xorshift;
+
+    /// A triangle's corners in the same cyclic order, starting from the smallest.
+    pub(super) fn smallest_first<T: Ord + Copy>([a, b, c]: [T; 3]) -> [T; 3] {
+        let first = a.min(b).min(c);
+        if first == a {
+            [a, b, c]
+        } else if first == b {
+            [b, c, a]
+        } else {
+            [c, a, b]
+        }
+    }
+
+    /// The triangles of the mesh `build` makes, as vertex ids from the smallest, sorted; and the
+    /// merged duplicates.
+    fn triangles<K: Kernel>(points: &[Point]) -> (Vec<[u32; 3]>, Vec<(u32, u32)>) {
+        let (mesh, merged) = build::<K>(points).expect("a triangle");
+        let mut triangles: Vec<[u32; 3]> = mesh
+            .triangles()
+            .map(|t| smallest_first(mesh.triangle_vertices(t).map(|v| v.index() as u32)))
+            .collect();
+        triangles.sort_unstable();
+        (triangles, merged)
+    }
+
+    /// The three kernels build the same triangulation on sets in the fast range: random points,
+    /// a grid (cocircular everywhere) and duplicates. The same insertion order gives the same
+    /// splits and flips whatever path the walk takes (only the slots triangles land in may
+    /// differ, when a point on an edge is reached from the other side), so any difference is a
+    /// sign the kernels disagree on.
+    #[test]
+    fn fast_exact_and_integer_kernels_build_the_same_mesh() {
+        let mut rng = Xorshift::new(0x082e_fa98_ec4e_6c89);
+        let mut sets: Vec<Vec<Point>> = Vec::new();
+        sets.push(rng.unit_points(400));
+        sets.push(
+            (0..225)
+                .map(|i| Point::new((i % 15) as f64 / 8.0, (i / 15) as f64 / 8.0))
+                .collect(),
+        );
+        let mut repeated: Vec<Point> = (0..150)
+            .map(|_| Point::new((rng.below(20) as f64) / 16.0, (rng.below(20) as f64) / 16.0))
+            .collect();
+        repeated.extend_from_slice(&repeated.clone()[..50]);
+        sets.push(repeated);
+        // Grids the small-integer path takes (integers, an offset of 10^6, binary fixed point)
+        // and ones it refuses (decimal steps), in the predicates' frame, with holes.
+        let power = |k: i32| Scale::power_of_two(k).apply(Point::new(1.0, 0.0)).x;
+        let frame = |p: Point, scale: f64| Point::new(p.x * scale, p.y * scale);
+        let holey: Vec<Point> = shuffled_grid(24, &mut rng)
+            .into_iter()
+            .filter(|p| (p.x as i32 * 7 + p.y as i32 * 3) % 5 != 0)
+            .collect();
+        for (points, scale) in [
+            (holey.clone(), power(-5)),
+            (moved(&holey, |p| frame(p, 0.001)), power(5)),
+            (moved(&holey, |p| frame(p, 1.0 / 1024.0)), power(5)),
+        ] {
+            sets.push(moved(&points, |p| frame(p, scale)));
+        }
+        sets.push(moved(&holey, |p| {
+            frame(Point::new(p.x + 1e6, p.y - 1e6), power(-20))
+        }));
+        for points in &sets {
+            let fast = triangles::<Fast>(points);
+            assert!(fast.0.len() > 100);
+            assert_eq!(fast, triangles::<Exact>(points));
+            assert_eq!(fast, triangles::<insert::Integers>(points));
+        }
+    }
+
+    /// The `side` x `side` integer grid, shuffled.
+    fn shuffled_grid(side: usize, rng: &mut Xorshift) -> Vec<Point> {
+        let mut points: Vec<Point> = (0..side * side)
+            .map(|i| Point::new((i % side) as f64, (i / side) as f64))
+            .collect();
+        for i in (1..points.len()).rev() {
+            points.swap(i, rng.below(i as u64 + 1) as usize);
+        }
+        points
+    }
+
+    fn moved(points: &[Point], f: impl Fn(Point) -> Point) -> Vec<Point> {
+        points.iter().map(|&p| f(p)).collect()
+    }
+
+    /// Grids in every form the small-integer path takes or refuses: integers, binary fixed point,
+    /// decimal steps (0.001, 0.01) that are not exact binary fractions, offsets of 10^6 exact and
+    /// not, steps of 2^-30 next to 1, huge integers; whole, with holes, and with a block cut out.
+    /// Each triangulates validly; a whole grid into its `2 (side - 1)^2` unit cells, any set into
+    /// `2n - h - 2` triangles (h hull vertices).
+    #[test]
+    fn grids_triangulate_validly_in_every_form() {
+        let mut rng = Xorshift::new(0x3f84_d5b5_b547_0917);
+        let side = 40;
+        let whole = shuffled_grid(side, &mut rng);
+        let holey: Vec<Point> = whole
+            .iter()
+            .copied()
+            .filter(|_| rng.below(10) != 0)
+            .collect();
+        let cut: Vec<Point> = whole
+            .iter()
+            .copied()
+            .filter(|p| !(10.0..25.0).contains(&p.x) || !(5.0..30.0).contains(&p.y))
+            .collect();
+        let forms: [fn(Point) -> Point; 9] = [
+            |p| p,
+            |p| Point::new(p.x - 20.0, p.y - 20.0),
+            |p| Point::new(p.x / 1024.0, p.y / 1024.0),
+            |p| Point::new(p.x * 0.001, p.y * 0.001),
+            |p| Point::new(p.x * 0.01 - 0.3, p.y * 0.01 + 7.0),
+            |p| Point::new(p.x + 1e6, p.y - 1e6),
+            |p| Point::new(p.x * 0.001 + 1e6, p.y * 0.001 + 1e6),
+            |p| Point::new(1.0 + p.x * 2f64.powi(-30), 1.0 + p.y * 2f64.powi(-30)),
+            |p| Point::new(p.x * 2f64.powi(40), p.y * -2f64.powi(40)),
+        ];
+        for (k, form) in forms.iter().enumerate() {
+            for (set, points) in [("whole", &whole), ("holes", &holey), ("cut", &cut)] {
+                let points = moved(points, form);
+                let tri = triangulate(&points).unwrap();
+                tri.validate()
+                    .unwrap_or_else(|v| panic!("form {k}, {set}: {v:?}"));
+                let (n, h) = (tri.num_vertices(), tri.hull().count());
+                assert_eq!(tri.triangles().count(), 2 * n - h - 2, "form {k}, {set}");
+                if set == "whole" {
+                    assert_eq!(tri.triangles().count(), 2 * (side - 1) * (side - 1));
+                }
+            }
+        }
+    }
+
+    /// Above the size where sealing, rescaling and the vertex maps take two threads, they give
+    /// what one thread gives: the same vertex edges, stored points and maps both ways, on
+    /// points in a shuffled input order with duplicates (merged into their first copy).
+    #[test]
+    fn passes_after_the_construction_match_on_two_threads() {
+        let mut rng = Xorshift::new(0x5ea1);
+        let mut points = rng.unit_points(PARALLEL_MIN + 4321);
+        for k in 0..500 {
+            let copy = points[(k * 131) % points.len()];
+            points.push(copy);
+        }
+        let n = points.len();
+        for k in (1..n).rev() {
+            points.swap(k, rng.below(k as u64 + 1) as usize);
+        }
+        let one = triangulate_with(&points, false).unwrap();
+        let two = triangulate_with(&points, true).unwrap();
+        one.validate().unwrap();
+        let mesh = one.mesh();
+        assert_eq!(mesh.num_half_edges(), two.mesh().num_half_edges());
+        assert_eq!(mesh.num_vertex_ids(), n);
+        for v in 0..n as u32 {
+            let v = VertexId::new(v);
+            assert_eq!(mesh.vertex_edge(v), two.mesh().vertex_edge(v));
+            assert_eq!(one.input_of(v), two.input_of(v));
+        }
+        for i in 0..n {
+            assert_eq!(one.vertex(i), two.vertex(i));
+            assert_eq!(one.point(i).x.to_bits(), two.point(i).x.to_bits());
+            assert_eq!(one.point(i).y.to_bits(), two.point(i).y.to_bits());
+            assert_eq!(one.point(i), points[i]);
+            // Every input maps to a vertex that maps back to it or to the first copy of it.
+            let back = one.input_of(one.vertex(i));
+            assert!(back <= i && points[back] == points[i]);
+        }
+    }
+}

@@ -1,0 +1,203 @@
+//! Coordinates at any scale and with any spread of magnitudes (issue 11, items 2 and 8): the
+//! triangulation accepts every finite input, and the reconstruction of a set does not change
+//! when the set is multiplied by a power of two.
+
+mod common;
+
+use common::{edge_set, Rng};
+use condt::{reconstruct, triangulate, Params, Point, Reconstruction};
+use condt_eval::sample::{sample, Sampling, Shape};
+
+fn scaled(points: &[Point], factor: f64) -> Vec<Point> {
+    let out: Vec<Point> = points
+        .iter()
+        .map(|p| Point::new(p.x * factor, p.y * factor))
+        .collect();
+    // The factor is a power of two and nothing leaves the normal range: exact, and reversible.
+    for (p, q) in points.iter().zip(&out) {
+        assert_eq!(Point::new(q.x / factor, q.y / factor), *p);
+    }
+    out
+}
+
+fn shapes_txt() -> Vec<Point> {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/shapes.txt");
+    condt_io::read_points(path).unwrap()
+}
+
+/// Everything a reconstruction reports, in input positions.
+fn summary(r: &Reconstruction) -> (Vec<[usize; 2]>, Vec<Vec<usize>>, Vec<usize>) {
+    let curves = r.curves().iter().map(|c| c.points().collect()).collect();
+    (r.edges().collect(), curves, r.unused().to_vec())
+}
+
+/// Issue 11, item 2: `shapes.txt` times 2^600 gave 49 curves and 106 unused points instead of 4
+/// and 7, because the stages squared unscaled coordinates (overflow above about 1e154); times
+/// 2^-600 their squares underflowed to zero.
+#[test]
+fn shapes_txt_times_2_pow_600_and_2_pow_minus_600_reconstruct_as_unscaled() {
+    let points = shapes_txt();
+    for params in [Params::default(), Params::paper()] {
+        let unscaled = reconstruct(&points, &params).unwrap();
+        for factor in [2f64.powi(600), 2f64.powi(-600), 2f64.powi(-1000)] {
+            let r = reconstruct(&scaled(&points, factor), &params).unwrap();
+            assert_eq!(summary(&r), summary(&unscaled), "factor {factor:e}");
+        }
+    }
+    let r = reconstruct(&scaled(&points, 2f64.powi(600)), &Params::default()).unwrap();
+    assert_eq!((r.curves().len(), r.unused().len()), (4, 7));
+}
+
+/// The same for sampled shapes with outliers, at scales from 2^-1000 to 2^1000, and with the
+/// local outlier stage, whose rules multiply squared lengths together.
+#[test]
+fn sampled_shapes_reconstruct_the_same_at_every_power_of_two_scale() {
+    let shapes = [
+        Shape::circle(Point::new(0.0, 0.0), 3.0),
+        Shape::Ellipse {
+            center: Point::new(9.0, 1.0),
+            radii: (4.0, 1.5),
+            rotation: 0.4,
+        },
+        Shape::FigureEight {
+            center: Point::new(0.0, 9.0),
+            size: 4.0,
+        },
+    ];
+    let mut sampling = Sampling::new(0.3);
+    sampling.outlier_fraction = 0.05;
+    sampling.noise = 0.01;
+    let points = sample(&shapes, &sampling).points;
+    let local = Params {
+        local_outliers: true,
+        ..Params::default()
+    };
+    for params in [Params::default(), local] {
+        let unscaled = reconstruct(&points, &params).unwrap();
+        assert!(unscaled.curves().len() >= 3);
+        for k in [-1000, -700, -400, -100, 100, 400, 700, 1000] {
+            let r = reconstruct(&scaled(&points, 2f64.powi(k)), &params).unwrap();
+            assert_eq!(summary(&r), summary(&unscaled), "scaled by 2^{k}");
+        }
+    }
+}
+
+/// Issue 11, item 8: a unit triangle and a point 1e-61 right of its left side spans more than
+/// 2^200 in magnitude and was refused (`RangeTooWide`). The point is strictly inside the
+/// triangle, so the triangulation is the fan of three triangles around it.
+#[test]
+fn a_point_1e_minus_61_from_a_side_is_triangulated() {
+    let points = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1e-61, 0.5)].map(Point::from);
+    let tri = triangulate(&points).unwrap();
+    tri.validate().unwrap();
+    assert_eq!(tri.triangles().count(), 3);
+    let mut around: Vec<usize> = tri.neighbors(3).collect();
+    around.sort_unstable();
+    assert_eq!(around, vec![0, 1, 2]);
+    let mut hull: Vec<usize> = tri.hull().collect();
+    hull.sort_unstable();
+    assert_eq!(hull, vec![0, 1, 2]);
+    // Moved onto the side, it splits that edge instead: two triangles, still valid.
+    let on_side = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.0, 0.5)].map(Point::from);
+    assert_eq!(triangulate(&on_side).unwrap().triangles().count(), 2);
+}
+
+/// A double with a random sign, a random exponent in `exponents` and a random mantissa.
+fn random_double(rng: &mut Rng, exponents: core::ops::Range<i32>) -> f64 {
+    let span = (exponents.end - exponents.start) as usize;
+    let e = exponents.start + rng.below(span) as i32;
+    let magnitude = (1.0 + rng.unit()) * 2f64.powi(e.max(-1022)) * 2f64.powi((e + 1022).min(0));
+    if rng.below(2) == 0 {
+        magnitude
+    } else {
+        -magnitude
+    }
+}
+
+/// Random sets whose coordinates span the whole double range, from subnormals to 2^1023, and
+/// mixes of an ordinary cloud with a few points at extreme magnitudes: every one triangulates,
+/// passes `validate()` (with the exact predicates) and has the triangle count its hull implies.
+#[test]
+fn sets_spanning_the_whole_double_range_triangulate_validly() {
+    let mut rng = Rng::new(11);
+    for round in 0..6 {
+        let mut points: Vec<Point> = if round % 2 == 0 {
+            (0..60)
+                .map(|_| {
+                    let x = random_double(&mut rng, -1074..1023);
+                    Point::new(x, random_double(&mut rng, -1074..1023))
+                })
+                .collect()
+        } else {
+            (0..600)
+                .map(|_| Point::new(rng.unit(), rng.unit()))
+                .collect()
+        };
+        for _ in 0..8 {
+            let p = Point::new(
+                random_double(&mut rng, -1074..1023),
+                random_double(&mut rng, -1074..1023),
+            );
+            // Some extreme points, some with one extreme and one ordinary coordinate.
+            if rng.below(2) == 0 {
+                points.push(p);
+            } else {
+                let q = points[rng.below(points.len())];
+                points.push(Point::new(p.x, q.y));
+            }
+        }
+        let tri = triangulate(&points).unwrap();
+        tri.validate().unwrap();
+        let (n, h) = (tri.num_vertices(), tri.hull().count());
+        assert!(!tri.is_degenerate());
+        assert_eq!(tri.triangles().count(), 2 * n - 2 - h, "round {round}");
+    }
+}
+
+/// A set just beyond the fast range triangulates like the same set with the tiny coordinate
+/// set to zero, where the fast predicates apply, when the move crosses no predicate: here the
+/// point sits alone in the middle of an empty square either way.
+#[test]
+fn a_tiny_coordinate_changes_nothing_it_should_not() {
+    let mut rng = Rng::new(5);
+    let mut points: Vec<Point> = (0..2000)
+        .map(|_| {
+            let p = Point::new(2.0 * rng.unit() - 1.0, rng.unit());
+            // Keep a square hole around (0, 0.5).
+            if p.x.abs() < 0.1 && (p.y - 0.5).abs() < 0.1 {
+                Point::new(p.x + 0.5, p.y)
+            } else {
+                p
+            }
+        })
+        .collect();
+    points.push(Point::new(0.0, 0.5));
+    let reference = triangulate(&points).unwrap();
+    let last = points.len() - 1;
+    for tiny in [1e-70, -1e-200, 1e-320] {
+        points[last] = Point::new(tiny, 0.5);
+        let exact = triangulate(&points).unwrap();
+        exact.validate().unwrap();
+        assert_eq!(edge_set(&exact), edge_set(&reference), "{tiny:e}");
+    }
+}
+
+/// The stages' positions of a set spanning the whole range lose the smallest coordinates' bits;
+/// the triangulation still answers every input point exactly as given, and validates.
+#[test]
+fn input_points_come_back_exactly_from_the_widest_sets() {
+    let points = [
+        (f64::MAX, 0.0),
+        (5e-324, 1e-300),
+        (0.0, -f64::MAX),
+        (-1e-310, 3.0),
+        (-f64::MAX, f64::MAX),
+        (1.0, 1e-320),
+    ]
+    .map(Point::from);
+    let tri = triangulate(&points).unwrap();
+    tri.validate().unwrap();
+    for (i, &p) in points.iter().enumerate() {
+        assert_eq!(tri.point(i), p, "point {i}");
+    }
+}
