@@ -116,8 +116,8 @@ pub use geometry::Point;
 pub use graph::{Graph, OutlierRemoval};
 pub use provenance::{Change, EdgeStory, EndChoice, Reason};
 pub use reconstruct::{
-    reconstruct, reconstruct_owned, reconstruct_triangulation, Method, Params, Reconstruction,
-    Smoothing, StageReport,
+    reconstruct, reconstruct_owned, reconstruct_triangulation, Method, Params, Pipeline,
+    Reconstruction, Smoothing, StageReport, StepReport,
 };
 pub use stages::{Repair, Stage, Uniformity};
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};

@@ -1,0 +1,709 @@
+//! The [`Pipeline`]: a reconstruction run one step at a time, and [`reconstruct`], which runs
+//! it to the end.
+//!
+//! Owns: the triangulation of the input, the run of the stages in the order [`Params::stages`]
+//! gives, the smoothing passes (each a step), the fixed-point test that ends them, and the
+//! clocks. It may not implement a stage (that is [`crate::stages`]) nor decide the order of
+//! the stages (that is [`Params`]).
+//!
+//! A run is: the first graph (the proximity graph, or a baseline), then each step, then the
+//! tally of the last graph in input positions. With smoothing passes on, a run whose degrees
+//! show noise is followed by a pass (points moved along its curves, triangulated again) and a
+//! new run on the moved points, until two runs agree or [`MAX_PASSES`] ran.
+
+use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
+use super::params::{Method, Params};
+use super::result::{tally, Reconstruction, Smoothing, StageReport};
+use crate::adjacency::{CurveGraph, Edge};
+use crate::curve::curves_in_input_positions;
+use crate::error::Error;
+use crate::geometry::Point;
+use crate::graph::Graph;
+use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
+use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
+use crate::threads::both;
+use crate::triangulate::{triangulate_with, Triangulation};
+use alloc::borrow::Cow;
+use alloc::vec::Vec;
+use core::time::Duration;
+
+/// A reconstruction run one step at a time: each [`step`](Pipeline::step) runs the next stage
+/// (or smoothing pass) and reports it; [`finish`](Pipeline::finish) runs what is left and gives
+/// the [`Reconstruction`]. Stepping to the end gives exactly what [`reconstruct`] gives, which
+/// is this loop.
+///
+/// ```
+/// use condt::{Params, Pipeline, Point, StepReport};
+/// let points: Vec<Point> = (0..24)
+///     .map(|k| {
+///         let t = k as f64 * std::f64::consts::TAU / 24.0;
+///         Point::new(2.0 * t.cos(), t.sin())
+///     })
+///     .collect();
+/// let mut pipeline = Pipeline::new(&points, &Params::default())?;
+/// while let Some(step) = pipeline.step()? {
+///     match step {
+///         StepReport::Stage(report) => println!("{}: {} edges", report.stage, report.graph.num_edges()),
+///         StepReport::SmoothingPass { pass, moved, .. } => println!("pass {pass} moved {moved}"),
+///         _ => {}
+///     }
+/// }
+/// let result = pipeline.finish()?;
+/// assert_eq!(result.curves().len(), 1);
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Debug)]
+pub struct Pipeline {
+    params: Params,
+    state: State,
+    /// What the passes did so far (`None` until one ran).
+    smoothing: Option<Smoothing>,
+    /// Time of every run but the current one and of every smoothing, for [`Smoothing`].
+    earlier_passes: Duration,
+    /// Laps at the ends of triangulations and smoothings: what lies between is a run's cost.
+    pass_clock: Stopwatch,
+}
+
+/// What one [`Pipeline::step`] did.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub enum StepReport<'p> {
+    /// A stage ran: its report, with the graph it left.
+    Stage(StageReport<'p>),
+    /// A smoothing pass moved points along the previous run's curves and triangulated them
+    /// again; the stages run again on the moved points next ([`Params::smooth`]).
+    SmoothingPass {
+        /// Which pass (the first is 1).
+        pass: usize,
+        /// How many points it moved.
+        moved: usize,
+        /// The wall-clock time of the triangulation of the moved points (zero without `std`).
+        time: Duration,
+    },
+}
+
+/// Where the pipeline is.
+#[derive(Debug)]
+enum State {
+    /// Running the stages on a triangulation.
+    Stages(Run),
+    /// A run ended and its degrees show noise (or it differs from the run before it): a
+    /// smoothing pass comes next.
+    Smooth(Reconstruction),
+    /// The result.
+    Done(Reconstruction),
+    /// A step failed (the error was returned) and left nothing to go on with.
+    Failed(Error),
+    /// Only while a step moves the state from one variant to the next.
+    Moving,
+}
+
+/// One run of the stages on one triangulation.
+#[derive(Debug)]
+struct Run {
+    tri: Triangulation,
+    triangulation_time: Duration,
+    steps: Vec<Step>,
+    history: History,
+    /// The latest stage's output; each stage's record keeps only how to get its input back.
+    current: Vec<Edge>,
+    /// The curve graph of `current` when the last stage handed one on (`Outcome::graph`).
+    current_graph: Option<CurveGraph>,
+    assembly: CurveAssembly,
+    /// The fingerprint of the previous run's final edges, for the fixed-point test of a pass
+    /// that another may follow.
+    previous: Option<EdgesFingerprint>,
+}
+
+/// When a run's curves are assembled, which depends on whether it is the final one: a run that
+/// a smoothing pass replaces is read only for its final edges, degrees and graph, so its curves
+/// would be dead (10.6 bytes per point of uniform points beside the final tally).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum CurveAssembly {
+    /// The final one: the curves are assembled beside the final tally.
+    Now,
+    /// The first run when smoothing passes may follow: final unless its degrees show noise
+    /// ([`shows_noise`], read off the curve graph before the tally), and then no curves.
+    UnlessNoisy,
+    /// A pass that another may follow: the curves wait until the fixed-point test says.
+    Later,
+}
+
+impl Pipeline {
+    /// Triangulates `points` and readies the stages that `params` chooses; nothing else runs
+    /// until [`step`](Pipeline::step) or [`finish`](Pipeline::finish).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] when [`Params::check`] refuses `params` (checked first); as
+    /// [`triangulate`](crate::triangulate()): non-finite coordinates, an over-wide dynamic
+    /// range, too many points; and, for the Crust, a set too wide for its second triangulation.
+    pub fn new(points: &[Point], params: &Params) -> Result<Pipeline, Error> {
+        Pipeline::of_input(Cow::Borrowed(points), params)
+    }
+
+    /// [`Pipeline::new`] on points the caller hands over: they are freed as soon as they are
+    /// triangulated (the triangulation keeps them in its own frame), so the stages run without
+    /// them.
+    ///
+    /// # Errors
+    /// As [`Pipeline::new`].
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point};
+    /// let points = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.5, 1.0)];
+    /// let result = Pipeline::new_owned(points, &Params::paper())?.finish()?;
+    /// assert_eq!(result.edges().len(), 3);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn new_owned(points: Vec<Point>, params: &Params) -> Result<Pipeline, Error> {
+        Pipeline::of_input(Cow::Owned(points), params)
+    }
+
+    /// The stages on a triangulation already built, which the result keeps. No smoothing
+    /// passes run: they would need the points triangulated again.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] when [`Params::check`] refuses `params`; for the Crust, a
+    /// set too wide for its second triangulation.
+    ///
+    /// ```
+    /// use condt::{triangulate, Params, Pipeline, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from))?;
+    /// let result = Pipeline::on_triangulation(tri, &Params::paper())?.finish()?;
+    /// assert_eq!(result.edges().collect::<Vec<_>>(), vec![[0, 1], [0, 2], [1, 2]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn on_triangulation(tri: Triangulation, params: &Params) -> Result<Pipeline, Error> {
+        Pipeline::start(tri, Duration::ZERO, params, false, Stopwatch::start())
+    }
+
+    fn of_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Pipeline, Error> {
+        params.check()?;
+        let mut clock = Stopwatch::start();
+        let tri = triangulate_with(&points, params.parallel)?;
+        let triangulation_time = clock.lap();
+        drop(points);
+        let may_smooth = params.smooth && params.method == Method::ConDT;
+        Pipeline::start(tri, triangulation_time, params, may_smooth, clock)
+    }
+
+    fn start(
+        tri: Triangulation,
+        triangulation_time: Duration,
+        params: &Params,
+        may_smooth: bool,
+        pass_clock: Stopwatch,
+    ) -> Result<Pipeline, Error> {
+        params.check()?;
+        if params.method == Method::Crust {
+            crate::baselines::crust_fits(&tri)?;
+        }
+        let assembly = if may_smooth {
+            CurveAssembly::UnlessNoisy
+        } else {
+            CurveAssembly::Now
+        };
+        Ok(Pipeline {
+            params: *params,
+            state: State::Stages(Run::new(tri, triangulation_time, params, assembly, None)),
+            smoothing: None,
+            earlier_passes: Duration::ZERO,
+            pass_clock,
+        })
+    }
+
+    /// The parameters it runs with.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The triangulation the stages walk now (after a smoothing pass, of the moved points);
+    /// `None` once a step failed.
+    pub fn triangulation(&self) -> Option<&Triangulation> {
+        match &self.state {
+            State::Stages(run) => Some(&run.tri),
+            State::Smooth(result) | State::Done(result) => Some(result.triangulation()),
+            State::Failed(_) | State::Moving => None,
+        }
+    }
+
+    /// Whether every step has run: [`finish`](Pipeline::finish) returns at once.
+    pub fn is_done(&self) -> bool {
+        matches!(self.state, State::Done(_) | State::Failed(_))
+    }
+
+    /// Runs the next stage, or the next smoothing pass, and reports it; `None` once every step
+    /// has run.
+    ///
+    /// # Errors
+    /// As [`triangulate`](crate::triangulate()), when a smoothing pass triangulates the moved
+    /// points (in practice never: they lie between input points). The pipeline is then spent:
+    /// every later step and [`finish`](Pipeline::finish) return the same error.
+    pub fn step(&mut self) -> Result<Option<StepReport<'_>>, Error> {
+        match core::mem::replace(&mut self.state, State::Moving) {
+            State::Stages(mut run) => {
+                let k = run.history.records.len();
+                let in_parallel = self.params.parallel && run.tri.num_points() >= PARALLEL_FROM;
+                on_worker(in_parallel, || run.run_stage(&self.params));
+                let stage_done = k;
+                self.state = if run.history.records.len() > run.steps.len() {
+                    self.end_of_run(run)
+                } else {
+                    State::Stages(run)
+                };
+                Ok(Some(StepReport::Stage(self.report(stage_done))))
+            }
+            State::Smooth(result) => {
+                let (pass, moved) = match self.smoothing_pass(result) {
+                    Ok(done) => done,
+                    Err(error) => {
+                        self.state = State::Failed(error);
+                        return Err(error);
+                    }
+                };
+                let time = match &self.state {
+                    State::Stages(run) => run.triangulation_time,
+                    _ => Duration::ZERO,
+                };
+                Ok(Some(StepReport::SmoothingPass { pass, moved, time }))
+            }
+            State::Done(result) => {
+                self.state = State::Done(result);
+                Ok(None)
+            }
+            State::Failed(error) => {
+                self.state = State::Failed(error);
+                Err(error)
+            }
+            State::Moving => unreachable!("a step leaves a state"),
+        }
+    }
+
+    /// Runs every step left and gives the result.
+    ///
+    /// # Errors
+    /// As [`step`](Pipeline::step).
+    pub fn finish(mut self) -> Result<Reconstruction, Error> {
+        while self.step()?.is_some() {}
+        match self.state {
+            State::Done(result) => Ok(result),
+            State::Failed(error) => Err(error),
+            State::Stages(_) | State::Smooth(_) | State::Moving => {
+                unreachable!("the steps ran to the end")
+            }
+        }
+    }
+
+    /// The report of the `k`-th stage of the current run, which has just run.
+    fn report(&self, k: usize) -> StageReport<'_> {
+        match &self.state {
+            State::Stages(run) => {
+                let record = &run.history.records[k];
+                StageReport {
+                    stage: record.stage,
+                    graph: Graph::new(&run.tri, Cow::Borrowed(&run.current)),
+                    applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
+                    time: record.time,
+                }
+            }
+            State::Smooth(result) | State::Done(result) => result.report(k),
+            State::Failed(_) | State::Moving => unreachable!("a stage that ran leaves a state"),
+        }
+    }
+
+    /// What follows a run whose last stage has just run: its tally, and the result, a
+    /// smoothing pass, or (at a fixed point) the result with its curves assembled.
+    fn end_of_run(&mut self, run: Run) -> State {
+        let (assembly, previous) = (run.assembly, run.previous);
+        let (mut result, waiting) = run.finish(&self.params);
+        let smooth_next = match assembly {
+            CurveAssembly::Now => false,
+            CurveAssembly::UnlessNoisy => shows_noise(result.degrees.iter()),
+            CurveAssembly::Later => {
+                // Another pass follows unless this one reached a fixed point (the same final
+                // edges as the pass before), which is final: its curves are assembled.
+                let previous = previous.expect("a pass that may be followed has the last edges");
+                let graph = waiting.expect("a pass that may be followed keeps its graph");
+                if previous == EdgesFingerprint::of(&result.edges) {
+                    result.assemble_curves(graph);
+                    false
+                } else {
+                    drop(graph);
+                    true
+                }
+            }
+        };
+        if smooth_next {
+            return State::Smooth(result);
+        }
+        if let Some(mut smoothing) = self.smoothing {
+            smoothing.earlier_passes = self.earlier_passes;
+            result.smoothing = Some(smoothing);
+        }
+        State::Done(result)
+    }
+
+    /// Moves the points of `result` along its curves and triangulates them again, readying the
+    /// next run; the pass number and how many points moved.
+    fn smoothing_pass(&mut self, mut result: Reconstruction) -> Result<(usize, usize), Error> {
+        let mut smoothing = self.smoothing.unwrap_or_default();
+        // Of the previous run only its final edges are read again (the fixed-point test, by
+        // their fingerprint), and its triangulation and final graph to smooth along: the rest
+        // (stage records, degrees) is freed before the positions are computed (26 bytes per
+        // point of uniform points at the passes' peak), those two once they are, and the moved
+        // positions once they are triangulated. The last pass allowed stops whatever its
+        // edges, so they are not kept for it.
+        let last_pass = smoothing.passes + 1 >= MAX_PASSES;
+        let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
+        drop(core::mem::take(&mut result.edges));
+        let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
+        let (positions, moved) = smoothed_positions(&triangulation, &final_edges);
+        drop((triangulation, final_edges));
+        // The replaced run's triangulation is an earlier pass's cost too.
+        self.earlier_passes += triangulation_time;
+        self.earlier_passes += self.pass_clock.lap();
+        let tri = triangulate_with(&positions, self.params.parallel)?;
+        drop(positions);
+        let triangulation_time = self.pass_clock.lap();
+        smoothing.passes += 1;
+        smoothing.moved = moved;
+        self.smoothing = Some(smoothing);
+        let assembly = if last_pass {
+            CurveAssembly::Now
+        } else {
+            CurveAssembly::Later
+        };
+        self.state = State::Stages(Run::new(
+            tri,
+            triangulation_time,
+            &self.params,
+            assembly,
+            previous,
+        ));
+        Ok((smoothing.passes, moved))
+    }
+}
+
+impl Run {
+    fn new(
+        tri: Triangulation,
+        triangulation_time: Duration,
+        params: &Params,
+        assembly: CurveAssembly,
+        previous: Option<EdgesFingerprint>,
+    ) -> Run {
+        Run {
+            tri,
+            triangulation_time,
+            steps: params.steps().collect(),
+            history: History {
+                records: Vec::with_capacity(6),
+            },
+            current: Vec::new(),
+            current_graph: None,
+            assembly,
+            previous,
+        }
+    }
+
+    /// Runs the next stage: the first graph, then each step in order.
+    fn run_stage(&mut self, params: &Params) {
+        let mut clock = Stopwatch::start();
+        let k = self.history.records.len();
+        if k == 0 {
+            self.current = first_graph(&self.tri, params);
+            self.history.records.push(StageRecord {
+                stage: params.first_stage(),
+                undo: Undo::Unchanged,
+                time: clock.lap(),
+            });
+            return;
+        }
+        let step = self.steps[k - 1];
+        let (tri, history, current) = (&self.tri, &self.history, &self.current);
+        // The input of an earlier stage, rebuilt from the history only for the step that reads
+        // it (`Step::run` says which reads which), and only while it runs.
+        let first = || first_graph(tri, params);
+        let input_of = |stage: Stage, read: bool| {
+            if read {
+                history.input_of(stage, current, &first)
+            } else {
+                Cow::Borrowed(current.as_slice())
+            }
+        };
+        let earlier = Earlier {
+            before_outliers: input_of(Stage::Outliers, step == Step::LocalOutliers),
+            before_local: input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack),
+        };
+        let outcome = step.run(tri, current, earlier, self.current_graph.take());
+        self.current_graph = outcome.graph;
+        let undo = match outcome.edges {
+            None => Undo::Unchanged,
+            Some(output) => {
+                let input = core::mem::replace(&mut self.current, output);
+                // Only the repair's record may stand for the first graph (see FIRST_KEPT_UP_TO).
+                let reads_first = k == 1 && matches!(step, Step::Repair(_));
+                // `r * K > len` as `r > len / K` (the same for integers), which cannot overflow.
+                if reads_first
+                    && Undo::removals(&input, &self.current) > input.len() / FIRST_KEPT_UP_TO
+                {
+                    Undo::First
+                } else {
+                    Undo::of(input, &self.current)
+                }
+            }
+        };
+        // A handed-on graph must be the curve graph of exactly the list the next stage reads
+        // (checked in debug builds, so every test of the pipeline checks it).
+        debug_assert!(self
+            .current_graph
+            .as_ref()
+            .is_none_or(|graph| *graph == CurveGraph::new(self.tri.num_points(), &self.current)));
+        self.history.records.push(StageRecord {
+            stage: step.stage(),
+            undo,
+            time: clock.lap(),
+        });
+    }
+
+    /// The tally of the last graph, and the curves when they are assembled now; the curve
+    /// graph is returned when they wait ([`CurveAssembly::Later`]).
+    fn finish(self, params: &Params) -> (Reconstruction, Option<CurveGraph>) {
+        let mut clock = Stopwatch::start();
+        let Run {
+            tri,
+            triangulation_time,
+            history,
+            current,
+            current_graph,
+            assembly,
+            ..
+        } = self;
+        let n = tri.num_points();
+        let in_parallel = params.parallel && n >= PARALLEL_FROM;
+        let (graph, curves, tally) = on_worker(in_parallel, || {
+            let last = current.as_slice();
+            let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
+            let curves_now = match assembly {
+                CurveAssembly::Now => true,
+                CurveAssembly::UnlessNoisy => {
+                    !shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
+                }
+                CurveAssembly::Later => false,
+            };
+            let (curves, tally) = if curves_now {
+                both(
+                    in_parallel,
+                    || curves_in_input_positions(&tri, &graph),
+                    || tally(&tri, &graph, last.len()),
+                )
+            } else {
+                (Vec::new(), tally(&tri, &graph, last.len()))
+            };
+            // The curve graph's degrees are the tally's.
+            debug_assert!(
+                assembly != CurveAssembly::UnlessNoisy
+                    || curves_now != shows_noise(tally.degrees.iter())
+            );
+            (graph, curves, tally)
+        });
+        let curves_time = clock.lap();
+        let result = Reconstruction {
+            params: *params,
+            triangulation: tri,
+            history,
+            final_edges: current,
+            edges: tally.edges,
+            degrees: tally.degrees,
+            curves,
+            unused: tally.unused,
+            triangulation_time,
+            curves_time,
+            smoothing: None,
+        };
+        let waiting = (assembly == CurveAssembly::Later).then_some(graph);
+        (result, waiting)
+    }
+}
+
+/// Triangulates `points` and reconstructs the curves through them: [`Pipeline::new`] run to
+/// its end.
+///
+/// # Errors
+/// As [`triangulate`](crate::triangulate()): non-finite coordinates, an over-wide dynamic
+/// range, too many points; and [`Error::InvalidParameter`] when [`Params::check`] refuses
+/// `params` (checked first).
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// // Twelve points on a circle: one closed curve through all of them.
+/// let circle: Vec<Point> = (0..12)
+///     .map(|k| {
+///         let t = k as f64 * std::f64::consts::TAU / 12.0;
+///         Point::new(t.cos(), t.sin())
+///     })
+///     .collect();
+/// let result = reconstruct(&circle, &Params::default())?;
+/// assert_eq!(result.curves().len(), 1);
+/// assert!(result.curves()[0].is_closed());
+/// assert_eq!(result.edges().len(), 12);
+/// assert!(result.unused().is_empty());
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, Error> {
+    Pipeline::new(points, params)?.finish()
+}
+
+/// [`reconstruct`] of points the caller hands over: the same result, but the points are freed
+/// as soon as they are triangulated (the triangulation keeps them in its own frame), so the
+/// stages run without them (16 bytes per point less at the peak; the command line reads its
+/// points into memory only to reconstruct them). The result speaks in input positions; for
+/// the input coordinates afterwards (where the smoothing passes moved points, the result has
+/// only the moved positions, [`Reconstruction::stage_point`]), keep the points and call
+/// [`reconstruct`].
+///
+/// # Errors
+/// As [`reconstruct`].
+///
+/// ```
+/// use condt::{reconstruct, reconstruct_owned, Params, Point};
+/// let points: Vec<Point> = (0..40)
+///     .map(|k| {
+///         let t = k as f64 * std::f64::consts::TAU / 40.0;
+///         Point::new(t.cos(), (2.0 * t).sin())
+///     })
+///     .collect();
+/// let borrowed = reconstruct(&points, &Params::default())?;
+/// let owned = reconstruct_owned(points, &Params::default())?;
+/// assert_eq!(owned.edges().collect::<Vec<_>>(), borrowed.edges().collect::<Vec<_>>());
+/// assert_eq!(owned.curves(), borrowed.curves());
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn reconstruct_owned(points: Vec<Point>, params: &Params) -> Result<Reconstruction, Error> {
+    Pipeline::new_owned(points, params)?.finish()
+}
+
+/// Runs the ConDT stages on a triangulation already built, which the result keeps:
+/// [`Pipeline::on_triangulation`] run to its end (no smoothing passes).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] when [`Params::check`] refuses `params`.
+///
+/// ```
+/// use condt::{reconstruct_triangulation, triangulate, Params, Point};
+/// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from))?;
+/// // The paper's pipeline: the default's local outlier removal drops curves under five points.
+/// let result = reconstruct_triangulation(tri, &Params::paper())?;
+/// assert_eq!(result.edges().collect::<Vec<_>>(), vec![[0, 1], [0, 2], [1, 2]]);
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn reconstruct_triangulation(
+    tri: Triangulation,
+    params: &Params,
+) -> Result<Reconstruction, Error> {
+    Pipeline::on_triangulation(tri, params)?.finish()
+}
+
+/// The first stage's graph of a reconstruction on `tri` with `params`, as the run computed it.
+pub(super) fn first_graph(tri: &Triangulation, params: &Params) -> Vec<Edge> {
+    match params.method {
+        Method::ConDT => proximity::proximity_graph(tri, params.uniformity, params.parallel),
+        Method::NnCrust => crate::baselines::nn_crust_edges(tri),
+        // The pipeline checked that it fits (`crust_fits`), the one way it fails.
+        Method::Crust => crate::baselines::crust_edges(tri).unwrap_or_default(),
+    }
+}
+
+/// The fixed-point test's record of a pass's final edges (input positions `[i, j]`, sorted, as
+/// the tally makes them): their count and two 64-bit hashes of the list, each chained over the
+/// edges through a different bijective mixer (the finalizers of SplitMix64 and of MurmurHash3).
+/// Reason: the list itself was held through the whole next pass, every phase of which it raised
+/// (3.2 bytes per point of uniform points packed, 6.5 unpacked), for one comparison at its end.
+/// Two different lists of the same length give the same record with a chance of about 2^-128;
+/// the passes would then stop one pass early, with a result that is still the reconstruction of
+/// the last pass's positions.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(super) struct EdgesFingerprint {
+    len: usize,
+    pub(super) hashes: [u64; 2],
+}
+
+impl EdgesFingerprint {
+    pub(super) fn of(edges: &[[u32; 2]]) -> EdgesFingerprint {
+        let mut hashes = [0x243f_6a88_85a3_08d3_u64, 0x1319_8a2e_0370_7344];
+        for &[i, j] in edges {
+            let word = (u64::from(i) << 32) | u64::from(j);
+            hashes = [
+                splitmix64_finalizer(hashes[0] ^ word),
+                murmur3_finalizer(hashes[1].wrapping_add(word).rotate_left(29)),
+            ];
+        }
+        EdgesFingerprint {
+            len: edges.len(),
+            hashes,
+        }
+    }
+}
+
+/// The output function of SplitMix64 (Steele, Lea and Flood 2014), a bijection of `u64`.
+fn splitmix64_finalizer(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// The 64-bit finalizer of MurmurHash3 (Appleby), a bijection of `u64`.
+fn murmur3_finalizer(mut z: u64) -> u64 {
+    z = (z ^ (z >> 33)).wrapping_mul(0xff51_afd7_ed55_8ccd);
+    z = (z ^ (z >> 33)).wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+    z ^ (z >> 33)
+}
+
+/// A clock that reads zero without `std`.
+#[derive(Debug)]
+pub(super) struct Stopwatch {
+    #[cfg(feature = "std")]
+    start: std::time::Instant,
+}
+
+impl Stopwatch {
+    pub(super) fn start() -> Self {
+        Stopwatch {
+            #[cfg(feature = "std")]
+            start: std::time::Instant::now(),
+        }
+    }
+
+    /// Time since the start or the previous lap.
+    pub(super) fn lap(&mut self) -> Duration {
+        #[cfg(feature = "std")]
+        {
+            let now = std::time::Instant::now();
+            let elapsed = now - self.start;
+            self.start = now;
+            elapsed
+        }
+        #[cfg(not(feature = "std"))]
+        Duration::ZERO
+    }
+}
+
+/// Runs `work` on one of rayon's worker threads when `parallel`. Called from outside the pool,
+/// rayon's parallel loops leave the caller blocked and, once done, their workers spinning for a
+/// while: with as many workers as cores, the sequential stages that follow then share a core with
+/// a spinning worker (gap closing measured 22 to 29 ms after the parallel proximity pass instead
+/// of 9 to 10 ms at 1M points, 2 cores). From inside the pool the caller's own thread is one of
+/// the workers, so nothing spins beside it but the others.
+#[cfg(feature = "parallel")]
+pub(super) fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send) -> R {
+    if parallel {
+        rayon::scope(|_| work())
+    } else {
+        work()
+    }
+}
+
+#[cfg(not(feature = "parallel"))]
+pub(super) fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
+    work()
+}

@@ -1,0 +1,426 @@
+//! What a reconstruction leaves: the [`Reconstruction`] with its [`StageReport`]s and
+//! [`Smoothing`] record, and the final tally in input positions.
+//!
+//! Owns: the result's public reading (edges, curves, unused points, degrees, stage reports), the
+//! packed degrees, and the tally that turns the last graph into input positions. It may not run
+//! a stage: the pipeline hands it the finished run.
+
+use super::history::{History, Undo};
+use super::params::Params;
+use super::pipeline::{first_graph, on_worker, Stopwatch};
+use crate::adjacency::{CurveGraph, Edge};
+use crate::curve::{curves_in_input_positions, Curve};
+use crate::geometry::Point;
+use crate::graph::Graph;
+use crate::mesh::VertexId;
+use crate::prefetch::PREFETCH_FROM;
+use crate::stages::{Stage, PARALLEL_FROM};
+use crate::triangulate::Triangulation;
+#[cfg(doc)]
+use crate::{reconstruct, reconstruct_owned};
+use alloc::borrow::Cow;
+use alloc::vec::Vec;
+use core::time::Duration;
+
+/// Everything a reconstruction computed, stage by stage, in input positions. Exact duplicates
+/// are one point, reported under the smallest input position holding it (see
+/// [`Triangulation::vertex`]).
+///
+/// ```
+/// use condt::{reconstruct, Params, Point, Stage};
+/// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.1)].map(Point::from);
+/// let result = reconstruct(&pts, &Params::default())?;
+/// for report in result.stages() {
+///     println!("{}: {} edges, rule applied: {}", report.stage, report.graph.num_edges(), report.applied);
+/// }
+/// assert_eq!(result.stages().next().unwrap().stage, Stage::Proximity);
+/// assert_eq!(result.stages().count(), Params::default().stages().len());
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Reconstruction {
+    pub(super) params: Params,
+    pub(super) triangulation: Triangulation,
+    /// The stages in the order they ran, the proximity graph first.
+    pub(super) history: History,
+    /// The last stage's output, from which the history gives back every earlier stage's.
+    pub(super) final_edges: Vec<Edge>,
+    /// The final edges, sorted, in input positions (32-bit, as the kernel stores indices).
+    pub(super) edges: Vec<[u32; 2]>,
+    /// Final degree of every input point.
+    pub(super) degrees: Degrees,
+    pub(super) curves: Vec<Curve>,
+    pub(super) unused: Vec<usize>,
+    pub(super) triangulation_time: Duration,
+    pub(super) curves_time: Duration,
+    pub(super) smoothing: Option<Smoothing>,
+}
+
+/// What the smoothing passes ([`Params::smooth`]) did, as [`Reconstruction::smoothing`]
+/// reports them.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// // A noisy open arc: 30 samples over three quarters of a circle, every other one pushed out
+/// // by 4 % of the radius. Its two ends are loose ends, so the passes run.
+/// let pts: Vec<Point> = (0..30)
+///     .map(|k| {
+///         let t = k as f64 * 1.5 * std::f64::consts::PI / 29.0;
+///         let r = if k % 2 == 0 { 1.04 } else { 1.0 };
+///         Point::new(r * t.cos(), r * t.sin())
+///     })
+///     .collect();
+/// let result = reconstruct(&pts, &Params::default())?;
+/// let smoothing = result.smoothing().expect("it ran");
+/// assert!(smoothing.passes >= 1 && smoothing.moved > 0);
+/// // The stages saw the moved points; the edges are between input positions.
+/// assert_ne!(result.stage_point(2), pts[2]);
+/// assert_eq!(result.curves().len(), 1);
+/// assert!(reconstruct(&pts, &Params::paper())?.smoothing().is_none());
+/// # Ok::<(), condt::Error>(())
+/// ```
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct Smoothing {
+    /// How many smoothing passes ran, each a reconstruction of moved points (at least one):
+    /// the result is the last one's.
+    pub passes: usize,
+    /// How many points the last pass moved (from the positions the pass before it saw).
+    pub moved: usize,
+    /// The wall-clock time of the first reconstruction, every pass but the last, and every
+    /// smoothing (zero without `std`); the result's stage and triangulation times are the last
+    /// pass's.
+    pub earlier_passes: Duration,
+}
+
+/// One stage of a [`Reconstruction`], as [`Reconstruction::stages`] reports it.
+#[derive(Clone, Debug)]
+pub struct StageReport<'r> {
+    /// Which stage.
+    pub stage: Stage,
+    /// The graph it left.
+    pub graph: Graph<'r>,
+    /// Whether its rule applied (a vertex needed repair; the outlier rule fired). The proximity
+    /// graph always applies.
+    pub applied: bool,
+    /// Its wall-clock time (zero without the `std` feature, which has no clock).
+    pub time: Duration,
+}
+
+impl Reconstruction {
+    /// The parameters it ran with.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// What the smoothing pass did, or `None` when it did not run ([`Params::smooth`]).
+    pub fn smoothing(&self) -> Option<Smoothing> {
+        self.smoothing
+    }
+
+    /// The Delaunay triangulation the stages walked (of the smoothed positions when
+    /// [`Params::smooth`] is on).
+    pub fn triangulation(&self) -> &Triangulation {
+        &self.triangulation
+    }
+
+    /// The stages in the order they ran, the proximity graph first; see [`Params::stages`].
+    ///
+    /// Each stage's graph is rebuilt from the final one when its report is made (the
+    /// reconstruction keeps only what each stage changed), in O(edges) per stage after it; the
+    /// proximity graph may be computed again from the triangulation (when the repair changed
+    /// more than one of its edges in twelve, its record does not keep it).
+    pub fn stages(&self) -> impl ExactSizeIterator<Item = StageReport<'_>> + '_ {
+        (0..self.history.records.len()).map(move |k| self.report(k))
+    }
+
+    /// The report of `stage`, or `None` when it did not run. Only its graph is rebuilt.
+    pub fn stage(&self, stage: Stage) -> Option<StageReport<'_>> {
+        let k = self
+            .history
+            .records
+            .iter()
+            .position(|record| record.stage == stage)?;
+        Some(self.report(k))
+    }
+
+    /// Every stage that ran with its wall-clock time, in order: what [`stages`](Self::stages)
+    /// reports of them, without rebuilding their graphs (zero times without `std`).
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::default())?;
+    /// let names: Vec<_> = result.stage_times().map(|(stage, _)| stage).collect();
+    /// assert_eq!(names, Params::default().stages());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn stage_times(&self) -> impl ExactSizeIterator<Item = (Stage, Duration)> + '_ {
+        self.history
+            .records
+            .iter()
+            .map(|record| (record.stage, record.time))
+    }
+
+    /// The report of the `k`-th stage that ran, its graph rebuilt from the final one.
+    pub(super) fn report(&self, k: usize) -> StageReport<'_> {
+        let record = &self.history.records[k];
+        StageReport {
+            stage: record.stage,
+            graph: Graph::new(
+                &self.triangulation,
+                self.history.output_of(&self.final_edges, k, &|| {
+                    first_graph(&self.triangulation, &self.params)
+                }),
+            ),
+            // The first graph has no input to leave as it was.
+            applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
+            time: record.time,
+        }
+    }
+
+    /// The final graph, as the last stage left it.
+    pub fn graph(&self) -> Graph<'_> {
+        Graph::new(&self.triangulation, Cow::Borrowed(&self.final_edges))
+    }
+
+    /// The final edges as input positions `[a, b]`, `a < b`, sorted.
+    pub fn edges(&self) -> impl ExactSizeIterator<Item = [usize; 2]> + Clone + '_ {
+        self.edges.iter().map(|&[a, b]| [a as usize, b as usize])
+    }
+
+    /// The final edges as [`Reconstruction::edges`] gives them, as the slice they are kept in,
+    /// so that a writer can cut it into pieces.
+    ///
+    /// ```
+    /// # use condt::{reconstruct, Params, Point};
+    /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+    /// let result = reconstruct(&square, &Params::default())?;
+    /// assert_eq!(result.edge_list(), [[0, 1], [0, 3], [1, 2], [2, 3]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn edge_list(&self) -> &[[u32; 2]] {
+        &self.edges
+    }
+
+    /// The curves, in input positions, sorted; see [`Graph::curves`].
+    pub fn curves(&self) -> &[Curve] {
+        &self.curves
+    }
+
+    /// Input positions whose point ended with no edge (outliers), ascending.
+    pub fn unused(&self) -> &[usize] {
+        &self.unused
+    }
+
+    /// The final degree of input point `index` (duplicates share their point's degree).
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    pub fn degree(&self, index: usize) -> usize {
+        self.degrees.get(index)
+    }
+
+    /// The coordinates of input point `index` as the stages saw them: the input point, or the
+    /// smoothed position when the smoothing passes ([`Params::smooth`]) moved it. The stage
+    /// drawings show these, because the rings and lengths the stages tested are theirs.
+    ///
+    /// The result keeps no copy of the input: the input coordinates are the caller's (the
+    /// slice given to [`reconstruct`]; [`reconstruct_owned`] hands them over for good).
+    /// Reason: a copy of the points the passes moved cost 10 to 16 bytes a point through every
+    /// pass and in the result, a tenth of the peak (`docs/performance.md`, "Where the bytes per
+    /// point go").
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    pub fn stage_point(&self, index: usize) -> Point {
+        self.triangulation.point(index)
+    }
+
+    /// Number of input points.
+    pub fn num_points(&self) -> usize {
+        self.degrees.len()
+    }
+
+    /// Wall-clock time of the triangulation (zero without `std`).
+    pub fn triangulation_time(&self) -> Duration {
+        self.triangulation_time
+    }
+
+    /// Wall-clock time of the curve assembly and final tally (zero without `std`).
+    pub fn curves_time(&self) -> Duration {
+        self.curves_time
+    }
+}
+
+impl Reconstruction {
+    /// Assembles the curves of a reconstruction that ran without them, `graph` the curve graph of
+    /// its final edges; the time is added to the curves' time.
+    pub(super) fn assemble_curves(&mut self, graph: CurveGraph) {
+        debug_assert!(graph == CurveGraph::new(self.triangulation.num_points(), &self.final_edges));
+        let mut clock = Stopwatch::start();
+        let tri = &self.triangulation;
+        let in_parallel = self.params.parallel && tri.num_points() >= PARALLEL_FROM;
+        self.curves = on_worker(in_parallel, || curves_in_input_positions(tri, &graph));
+        drop(graph);
+        self.curves_time += clock.lap();
+    }
+
+    /// The triangulation, the final edges and the triangulation's time; everything else is
+    /// freed here (a partial move out of a variable would keep the rest until it is assigned
+    /// again, after the next pass).
+    pub(super) fn into_last_graph(self) -> (Triangulation, Vec<Edge>, Duration) {
+        (
+            self.triangulation,
+            self.final_edges,
+            self.triangulation_time,
+        )
+    }
+}
+
+/// The degree of every input point in a byte, the rare degree above 254 in a sorted side list.
+/// Reason: the list is kept in the result and is alive at the last step's peak, where four
+/// bytes a point were 3 more than any graph of the stages needs.
+#[derive(Clone, Default)]
+pub(super) struct Degrees {
+    /// The degree, or [`Degrees::LARGE`] when it is in `large`.
+    small: Vec<u8>,
+    /// `(input position, degree)` of every degree from [`Degrees::LARGE`] up, by position.
+    pub(super) large: Vec<(u32, u32)>,
+}
+
+impl Degrees {
+    const LARGE: u8 = u8::MAX;
+
+    pub(super) fn with_capacity(n: usize) -> Degrees {
+        Degrees {
+            small: Vec::with_capacity(n),
+            large: Vec::new(),
+        }
+    }
+
+    /// Appends the degree of the next input position.
+    pub(super) fn push(&mut self, degree: usize) {
+        match u8::try_from(degree) {
+            Ok(small) if small < Self::LARGE => self.small.push(small),
+            _ => {
+                let position = self.small.len() as u32;
+                self.large.push((position, degree as u32));
+                self.small.push(Self::LARGE);
+            }
+        }
+    }
+
+    pub(super) fn get(&self, index: usize) -> usize {
+        match self.small[index] {
+            Self::LARGE => {
+                let at = self
+                    .large
+                    .binary_search_by_key(&(index as u32), |&(position, _)| position);
+                // Every LARGE byte has its entry: `push` writes both.
+                debug_assert!(at.is_ok(), "degree {index} missing from the side list");
+                at.map_or(usize::from(Self::LARGE), |k| self.large[k].1 as usize)
+            }
+            small => usize::from(small),
+        }
+    }
+
+    pub(super) fn len(&self) -> usize {
+        self.small.len()
+    }
+
+    pub(super) fn iter(&self) -> impl ExactSizeIterator<Item = usize> + '_ {
+        (0..self.len()).map(|i| self.get(i))
+    }
+}
+
+/// The degrees as a list, as `Reconstruction`'s `Debug` showed them before they were packed.
+impl core::fmt::Debug for Degrees {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+/// The final graph seen from the input positions.
+pub(super) struct Tally {
+    pub(super) degrees: Degrees,
+    pub(super) unused: Vec<usize>,
+    pub(super) edges: Vec<[u32; 2]>,
+}
+
+/// How many input positions ahead [`tally`] asks for the neighbours' positions (and twice as
+/// many for the records).
+const TALLY_PREFETCH: usize = 16;
+
+/// One pass over the input positions gives the degrees, the unused points and the final edges
+/// already sorted: an edge is listed by its smaller input position. For the common vertex of
+/// degree <= 2 both candidates are written and the count advances only past those that belong
+/// (whether they do is a coin toss, so it is not branched on). A vertex's degree and neighbours
+/// are one record of the curve graph; the neighbours' input positions come from the
+/// triangulation's dense map, which packs sixteen to a cache line where the records pack four.
+/// (Gathering each vertex's contribution in vertex order first, or scattering it to its input
+/// position, was tried: fewer cache misses on shuffled input, more on input in curve order.)
+pub(super) fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
+    let n = tri.num_points();
+    // Without duplicates every input position stands for its own vertex: no need to look.
+    let has_duplicates = tri.num_vertices() < n;
+    let mut degrees = Degrees::with_capacity(n);
+    let mut unused = Vec::new();
+    // Room for the two candidates a vertex writes past the last edge it lists.
+    let mut edges: Vec<[u32; 2]> = alloc::vec![[0, 0]; edge_count + 2];
+    let mut count = 0;
+    let input_of = |w: VertexId| {
+        if w.is_infinite() {
+            0
+        } else {
+            tri.input_of(w) as u32
+        }
+    };
+    let order = tri.input_to_vertex();
+    let prefetching = n >= PREFETCH_FROM;
+    for (i, &v) in order.iter().enumerate() {
+        if prefetching {
+            // On shuffled input every record and neighbour position is a miss: the record is
+            // asked for two distances ahead, the positions of its neighbours one distance ahead,
+            // once the record has arrived.
+            if let Some(&later) = order.get(i + 2 * TALLY_PREFETCH) {
+                graph.prefetch(later);
+            }
+            if let Some(&soon) = order.get(i + TALLY_PREFETCH) {
+                for w in graph.first_two(soon) {
+                    tri.prefetch_input_of(w);
+                }
+            }
+        }
+        let degree = graph.degree(v);
+        degrees.push(degree);
+        let i = i as u32;
+        if degree == 0 {
+            unused.push(i as usize);
+        } else if degree <= 2 {
+            let [x, y] = graph.first_two(v).map(input_of);
+            // A duplicate input point lists nothing: its edges are under the first copy.
+            let listing = !has_duplicates || tri.input_of(v) as u32 == i;
+            for j in [x.min(y), x.max(y)] {
+                edges[count] = [i, j];
+                count += usize::from(listing & (j > i));
+            }
+        } else if !has_duplicates || tri.input_of(v) as u32 == i {
+            let first = count;
+            for k in 0..degree {
+                let j = input_of(graph.neighbor(v, k));
+                if j > i {
+                    edges[count] = [i, j];
+                    count += 1;
+                }
+            }
+            edges[first..count].sort_unstable();
+        }
+    }
+    edges.truncate(count);
+    Tally {
+        degrees,
+        unused,
+        edges,
+    }
+}
