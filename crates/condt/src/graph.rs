@@ -76,9 +76,8 @@ impl<'t> Graph<'t> {
         Graph { tri, edges }
     }
 
-    /// The edges in vertex ids, in the order the stage listed them (for tests that check the
-    /// order too).
-    #[cfg(test)]
+    /// The edges in vertex ids, in the order the stage listed them (explanations run a stage
+    /// again on them; tests check the order too).
     pub(crate) fn listed(&self) -> &[Edge] {
         &self.edges
     }

@@ -1,13 +1,14 @@
 //! Why each edge was kept or dropped: the story of every Delaunay edge (and every edge a stage
 //! added) through the stages of a [`Reconstruction`], with the numbers that decided it.
 //!
-//! Owns: [`Reconstruction::provenance`] and the values it returns ([`EdgeStory`], [`EndChoice`],
-//! [`Change`], [`Reason`]). It is computed only when asked, from what the reconstruction already
-//! keeps (the triangulation, the parameters and every stage's graph), so the pipeline pays nothing
-//! for it. It may not change a reconstruction, and it decides nothing: it explains. Where it
-//! re-derives a stage's numbers (the two shortest edges and the uniformity test of Algorithm 1,
-//! the IQR threshold of Algorithm 3), its tests check that the explanation agrees with what the
-//! stage did on every edge.
+//! Owns: [`Reconstruction::provenance`] and the values it returns ([`EdgeStory`], [`Change`],
+//! [`Reason`]; [`EndChoice`] is Algorithm 1's, re-exported). It is computed only when asked,
+//! from what the reconstruction already keeps (the triangulation, the parameters and every
+//! stage's graph), so the pipeline pays nothing for it. It may not change a reconstruction, and
+//! it implements no rule: every number and every choice of rule comes from the stage's own
+//! evidence function (`proximity::end_choice`, `outliers::iqr_threshold`,
+//! `local_outliers::rule_evidence`); it formats them. Its tests check that the explanations
+//! agree with what the stages did on every edge.
 //!
 //! What it can tell per stage:
 //! - **proximity** (Algorithm 1): at each end, whether the edge is that point's shortest, its
@@ -16,59 +17,22 @@
 //! - **repair** (Algorithm 2): the end that had three or more edges, and how many;
 //! - **IQR outliers** (Algorithm 3): the edge's length and the threshold `√T` it exceeded;
 //! - **local outliers**: given back (rule 1), long at an end (rule 2, with the ratio), a whole
-//!   component removed (rule 4), or otherwise a short spur (rule 3); the rule is inferred from the
-//!   graphs before and after the stage;
+//!   component removed (rule 4), or a short spur (rule 3), as the stage's rules applied them;
 //! - **given-back check**: a component of given-back edges not clearly apart from the rest;
 //! - **gaps**: closed.
 
-use crate::graph::Graph;
-use crate::mesh::VertexId;
+use crate::adjacency::Edge;
 use crate::reconstruct::Reconstruction;
+use crate::stages::local_outliers::{rule_evidence, LocalRule};
+use crate::stages::outliers::iqr_threshold;
+use crate::stages::proximity::end_choice;
 use crate::stages::{Stage, Uniformity};
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt;
 
-/// How one end of an edge saw it in Algorithm 1.
-#[derive(Copy, Clone, Debug, PartialEq)]
-pub enum EndChoice {
-    /// The end's shortest Delaunay edge: always kept.
-    Shortest,
-    /// The end's second shortest edge, kept when `ratio < bound`.
-    Second {
-        /// `|e2| / |e1|` at this end.
-        ratio: f64,
-        /// The uniformity bound: `u`, or with the adaptive test the ring's mean length over
-        /// `|e1|`.
-        bound: f64,
-        /// Whether the test passed.
-        kept: bool,
-    },
-    /// Neither: the edge is the end's `rank`-th shortest (3 or more).
-    Later {
-        /// Rank in the ring, 1 for the shortest.
-        rank: usize,
-    },
-    /// The edge is not a Delaunay edge at this end (a stage added it).
-    NotDelaunay,
-}
-
-impl EndChoice {
-    /// Whether this end keeps the edge in the proximity graph.
-    ///
-    /// ```
-    /// use condt::EndChoice;
-    /// assert!(EndChoice::Shortest.keeps());
-    /// assert!(!EndChoice::Second { ratio: 3.0, bound: 2.75, kept: false }.keeps());
-    /// ```
-    pub fn keeps(&self) -> bool {
-        matches!(
-            self,
-            EndChoice::Shortest | EndChoice::Second { kept: true, .. }
-        )
-    }
-}
+pub use crate::stages::proximity::EndChoice;
 
 /// Why a stage removed or added an edge.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -194,14 +158,16 @@ impl Reconstruction {
         }
         for k in 1..reports.len() {
             let (before, after) = (&graphs[k - 1], &graphs[k]);
-            let explain = Explainer::new(
-                tri,
-                reports[k].stage,
-                &reports[k - 1].graph,
-                before,
-                after,
-                self,
-            );
+            // The local outlier removal also read the graph the IQR stage started from.
+            let before_outliers = match reports.iter().position(|r| r.stage == Stage::Outliers) {
+                Some(i) if i > 0 && i < k => reports[i - 1].graph.listed(),
+                _ => reports[k - 1].graph.listed(),
+            };
+            let inputs = StageInputs {
+                graph: reports[k - 1].graph.listed(),
+                before_outliers,
+            };
+            let explain = Explainer::new(tri, reports[k].stage, inputs, before, after, self);
             for (story, &edge) in stories.iter_mut().zip(&all) {
                 let was = before.binary_search(&edge).is_ok();
                 let is = after.binary_search(&edge).is_ok();
@@ -222,8 +188,7 @@ impl Reconstruction {
     }
 }
 
-/// Algorithm 1's view of every ring, re-derived: the two shortest neighbours (by squared length
-/// in the stages' frame, then vertex id, as the stage orders them) and the test's numbers.
+/// Algorithm 1's view of every ring, as the stage gives it ([`end_choice`]).
 struct Rings<'t> {
     tri: &'t Triangulation,
     uniformity: Uniformity,
@@ -236,98 +201,90 @@ impl<'t> Rings<'t> {
 
     /// How input position `at` saw its edge to input position `other`.
     fn choice(&self, at: usize, other: usize) -> EndChoice {
-        let tri = self.tri;
-        let (v, w) = (tri.vertex(at), tri.vertex(other));
-        let p = tri.vertex_point(v);
-        let key = |u: VertexId| (p.dist2(tri.vertex_point(u)), u);
-        // The ring is walked again for each number instead of being collected: no allocation.
-        let ring = || tri.mesh().neighbors(v).map(key);
-        if !ring().any(|(_, u)| u == w) {
-            return EndChoice::NotDelaunay;
-        }
-        let target = key(w);
-        // The stage's order: squared length, then vertex id (a tuple's order).
-        let before =
-            |a: &(f64, VertexId), b: &(f64, VertexId)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
-        let rank = 1 + ring().filter(|e| before(e, &target)).count();
-        match rank {
-            1 => EndChoice::Shortest,
-            2 => {
-                let first = ring()
-                    .reduce(|a, b| if before(&b, &a) { b } else { a })
-                    .unwrap_or(target);
-                let (l1, l2) = (libm::sqrt(first.0), libm::sqrt(target.0));
-                let (kept, bound) = match self.uniformity {
-                    Uniformity::Fixed(u) => (l2 < u * l1, u),
-                    Uniformity::Adaptive => {
-                        let (sum, count) =
-                            ring().fold((0.0, 0u32), |(s, c), e| (s + libm::sqrt(e.0), c + 1));
-                        let mean = sum / f64::from(count);
-                        (l2 < mean, mean / l1)
-                    }
-                };
-                EndChoice::Second {
-                    ratio: l2 / l1,
-                    bound,
-                    kept,
-                }
-            }
-            rank => EndChoice::Later { rank },
-        }
+        let (v, w) = (self.tri.vertex(at), self.tri.vertex(other));
+        end_choice(self.tri, v, w, self.uniformity)
     }
 }
 
-/// The numbers one stage's reasons need, computed once per stage.
+/// The graphs a stage read, in vertex ids: its input, and the graph the IQR stage started from
+/// (the local outlier removal reads it).
+struct StageInputs<'g> {
+    graph: &'g [Edge],
+    before_outliers: &'g [Edge],
+}
+
+/// The numbers one stage's reasons need, computed once per stage, each from the stage's own
+/// code: Algorithm 3's threshold from [`iqr_threshold`], the local rules from
+/// [`rule_evidence`]. Nothing here decides whether an edge goes.
 struct Explainer<'a> {
     tri: &'a Triangulation,
     stage: Stage,
     /// Degrees of the stage's input graph, by input position.
     degrees_before: Vec<usize>,
-    /// Neighbours in the stage's input and output graphs, built only for the stages whose
-    /// reasons read them (local outliers and the repair), so an explanation costs O(degree).
-    before: Neighbours,
+    /// Neighbours in the stage's output, built for the repair only (whose reason names the
+    /// edges the non-manifold vertex kept), so an explanation costs O(degree).
     after: Neighbours,
     /// Algorithm 3's `√T` in input units, when the stage is the IQR rule.
     threshold: f64,
-    /// For local outliers: per input position, whether its component in the stage's input lost
-    /// every edge.
-    component_gone: Vec<bool>,
+    /// For local outliers: the rule that changed each edge it changed, by edge in input
+    /// positions, sorted.
+    local: Vec<([usize; 2], LocalRule)>,
 }
 
 impl<'a> Explainer<'a> {
     fn new(
         tri: &'a Triangulation,
         stage: Stage,
-        input: &Graph<'_>,
+        inputs: StageInputs<'_>,
         before: &'a [[usize; 2]],
         after: &'a [[usize; 2]],
         result: &Reconstruction,
     ) -> Self {
-        let degrees_before = input.degrees();
-        let threshold = if stage == Stage::Outliers {
-            iqr_threshold(tri, before, result.params().outlier_factor.unwrap_or(0.0))
-        } else {
-            0.0
+        let n = tri.num_points();
+        let mut degrees_before = vec![0; n];
+        for &[a, b] in before {
+            degrees_before[a] += 1;
+            degrees_before[b] += 1;
+        }
+        // On lengths in input units the stage's threshold is the same number, scaled by the
+        // square of the power of two between the frames.
+        let threshold = match stage {
+            Stage::Outliers if !before.is_empty() => {
+                let lengths: Vec<f64> = before
+                    .iter()
+                    .map(|&[a, b]| tri.point(a).dist2(tri.point(b)))
+                    .collect();
+                libm::sqrt(iqr_threshold(
+                    &lengths,
+                    result.params().outlier_factor.unwrap_or(0.0),
+                ))
+            }
+            _ => 0.0,
         };
-        let component_gone = if stage == Stage::LocalOutliers {
-            components_gone(tri.num_points(), before, after)
+        let mut local: Vec<([usize; 2], LocalRule)> = if stage == Stage::LocalOutliers {
+            rule_evidence(tri, inputs.graph, inputs.before_outliers)
+                .into_iter()
+                .map(|([v, w], rule)| {
+                    let (a, b) = (tri.input_of(v), tri.input_of(w));
+                    ([a.min(b), a.max(b)], rule)
+                })
+                .collect()
         } else {
             Vec::new()
         };
-        let n = tri.num_points();
-        let (before_neighbours, after_neighbours) = match stage {
-            Stage::LocalOutliers => (Neighbours::new(n, before), Neighbours::empty()),
-            Stage::Repair => (Neighbours::empty(), Neighbours::new(n, after)),
-            _ => (Neighbours::empty(), Neighbours::empty()),
+        local.sort_unstable_by_key(|&(edge, _)| edge);
+        let after = if stage == Stage::Repair {
+            Neighbours::new(n, after)
+        } else {
+            Neighbours::empty()
         };
         Explainer {
             tri,
             stage,
             degrees_before,
-            before: before_neighbours,
-            after: after_neighbours,
+            after,
             threshold,
-            component_gone,
+            local,
         }
     }
 
@@ -336,27 +293,24 @@ impl<'a> Explainer<'a> {
             (Stage::Gaps, _) => Reason::GapClosed,
             (Stage::GivenBack, _) => Reason::NotConfirmed,
             (Stage::NnCrust | Stage::Crust, _) => Reason::Baseline,
-            (Stage::LocalOutliers, true) => Reason::GivenBack,
             (Stage::Outliers, _) => Reason::LongerThanThreshold {
-                length: input_length(self.tri, a, b),
+                length: libm::sqrt(self.tri.point(a).dist2(self.tri.point(b))),
                 threshold: self.threshold,
             },
-            (Stage::LocalOutliers, false) => {
-                if self.component_gone[a] {
-                    return Reason::Component;
-                }
-                let long = [a, b]
-                    .into_iter()
-                    .filter_map(|end| {
-                        let other = if end == a { b } else { a };
-                        self.longest_other(end, other)
-                            .map(|l| (end, input_length(self.tri, a, b) / l))
-                    })
-                    .filter(|&(_, ratio)| ratio > crate::stages::local_outliers::LONG)
-                    .max_by(|x, y| x.1.total_cmp(&y.1));
-                match long {
-                    Some((vertex, ratio)) => Reason::LongAt { vertex, ratio },
-                    None => Reason::Spur,
+            (Stage::LocalOutliers, _) => {
+                let rule = self
+                    .local
+                    .binary_search_by_key(&[a, b], |&(edge, _)| edge)
+                    .map(|k| self.local[k].1);
+                match rule {
+                    Ok(LocalRule::GaveBack) => Reason::GivenBack,
+                    Ok(LocalRule::Long { vertex, ratio }) => Reason::LongAt {
+                        vertex: self.tri.input_of(vertex),
+                        ratio,
+                    },
+                    Ok(LocalRule::Component) => Reason::Component,
+                    // The stage changed it (the graphs say so): rule 3 is what is left.
+                    Ok(LocalRule::Spur) | Err(_) => Reason::Spur,
                 }
             }
             (Stage::Repair | Stage::Proximity, _) => {
@@ -373,16 +327,6 @@ impl<'a> Explainer<'a> {
                 }
             }
         }
-    }
-
-    /// The longest edge at `end` in the stage's input other than the one to `other`.
-    fn longest_other(&self, end: usize, other: usize) -> Option<f64> {
-        self.before
-            .of(end)
-            .iter()
-            .filter(|&&w| w != other)
-            .map(|&w| input_length(self.tri, end, w))
-            .reduce(f64::max)
     }
 }
 
@@ -426,48 +370,6 @@ impl Neighbours {
             _ => &[],
         }
     }
-}
-
-fn input_length(tri: &Triangulation, a: usize, b: usize) -> f64 {
-    libm::sqrt(tri.point(a).dist2(tri.point(b)))
-}
-
-/// Algorithm 3's `√T` for the graph `edges`, in input units: squared lengths sorted,
-/// `T = Q3 + k (Q3 - Q1)` with `Q1 = s[n/4]`, `Q3 = s[min(3n/4, n-1)]`.
-fn iqr_threshold(tri: &Triangulation, edges: &[[usize; 2]], factor: f64) -> f64 {
-    let mut lengths: Vec<f64> = edges
-        .iter()
-        .map(|&[a, b]| tri.point(a).dist2(tri.point(b)))
-        .collect();
-    if lengths.is_empty() {
-        return 0.0;
-    }
-    lengths.sort_unstable_by(f64::total_cmp);
-    let n = lengths.len();
-    let (q1, q3) = (lengths[n / 4], lengths[(3 * n / 4).min(n - 1)]);
-    libm::sqrt(q3 + factor * (q3 - q1))
-}
-
-/// Per point: whether its component in `before` has no edge left in `after`.
-fn components_gone(n: usize, before: &[[usize; 2]], after: &[[usize; 2]]) -> Vec<bool> {
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
-    for &[a, b] in before {
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        parent[ra.max(rb)] = ra.min(rb);
-    }
-    let mut survives = vec![false; n];
-    for &[a, _] in after {
-        let root = find(&mut parent, a);
-        survives[root] = true;
-    }
-    (0..n).map(|x| !survives[find(&mut parent, x)]).collect()
 }
 
 impl fmt::Display for EdgeStory {

@@ -207,6 +207,93 @@ pub(crate) fn remove_local_outliers(
     }
 }
 
+/// Which local rule changed an edge: the stage's evidence, asked for by explanations
+/// ([`crate::Reconstruction::provenance`]).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub(crate) enum LocalRule {
+    /// Rule 1 gave it back.
+    GaveBack,
+    /// Rule 2 dropped it: long at `vertex`, `ratio` times as long as the longest other edge
+    /// there (the end where the ratio is larger when it is long at both).
+    Long { vertex: VertexId, ratio: f64 },
+    /// Rule 3 dropped it with its short spur.
+    Spur,
+    /// Rule 4 dropped its component.
+    Component,
+}
+
+/// The stage on `edges` and `before` (as [`remove_local_outliers`] takes them) run again with
+/// one rule more each time, naming the rule that changed each edge the stage changed. The
+/// rules run in order and each reads only what the earlier ones left, so the graph after the
+/// first `k` rules is the stage's own intermediate graph: the evidence is the stage's decision,
+/// not a second reading of it. Costs four runs of the stage; only explanations ask for it.
+pub(crate) fn rule_evidence(
+    tri: &Triangulation,
+    edges: &[Edge],
+    before: &[Edge],
+) -> Vec<(Edge, LocalRule)> {
+    let none = Rules {
+        give_back: false,
+        long_at_branches: false,
+        long_at_both_ends: false,
+        short_spurs: false,
+        separated_components: false,
+    };
+    let first = Rules {
+        give_back: true,
+        ..none
+    };
+    let second = Rules {
+        long_at_branches: true,
+        long_at_both_ends: true,
+        ..first
+    };
+    let third = Rules {
+        short_spurs: true,
+        ..second
+    };
+    let sorted = |mut list: Vec<Edge>| {
+        list.sort_unstable();
+        list
+    };
+    let mut previous = sorted(edges.to_vec());
+    let mut evidence = Vec::new();
+    for (k, rules) in [first, second, third, Rules::ALL].iter().enumerate() {
+        let outcome = remove_local_outliers(tri, edges, Cow::Borrowed(before), rules);
+        let now = sorted(outcome.edges.unwrap_or_else(|| edges.to_vec()));
+        let missing_from = |list: &[Edge], e: &Edge| list.binary_search(e).is_err();
+        evidence.extend(
+            now.iter()
+                .filter(|e| missing_from(&previous, e))
+                .map(|&e| (e, LocalRule::GaveBack)),
+        );
+        let profile = (k == 1).then(|| Profile::of(tri, &previous));
+        for &edge in previous.iter().filter(|e| missing_from(&now, e)) {
+            let rule = match (k, &profile) {
+                (1, Some(profile)) => {
+                    let l = length2(tri, edge);
+                    let (vertex, ratio) = edge
+                        .into_iter()
+                        .filter_map(|v| match long_at(tri, profile, v, l) {
+                            Some((true, ratio)) => Some((v, ratio)),
+                            _ => None,
+                        })
+                        .fold(
+                            (edge[0], 0.0),
+                            |best, x| if x.1 > best.1 { x } else { best },
+                        );
+                    LocalRule::Long { vertex, ratio }
+                }
+                (2, _) => LocalRule::Spur,
+                _ => LocalRule::Component,
+            };
+            evidence.push((edge, rule));
+        }
+        previous = now;
+    }
+    evidence
+}
+
 /// Squared length of an edge.
 fn length2(tri: &Triangulation, [a, b]: Edge) -> f64 {
     tri.vertex_point(a).dist2(tri.vertex_point(b))
@@ -389,6 +476,14 @@ fn top_two(top: [f64; 2], l: f64) -> [f64; 2] {
     }
 }
 
+/// Whether an edge of squared length `l` at `v` is long there (more than [`LONG`] times the
+/// longest other edge at `v`), with the ratio of the lengths; `None` when `v` has no other edge.
+fn long_at(tri: &Triangulation, profile: &Profile, v: VertexId, l: f64) -> Option<(bool, f64)> {
+    profile
+        .other_than(tri, v, l)
+        .map(|other| (l > LONG * LONG * other, libm::sqrt(l / other)))
+}
+
 /// Rule 2: whether an edge is long at an end with three or more edges, or long at each of its
 /// ends that has other edges (the edges it drops).
 fn long_edges<'a>(
@@ -396,13 +491,7 @@ fn long_edges<'a>(
     profile: &'a Profile,
     rules: &'a Rules,
 ) -> impl FnMut(&Edge) -> bool + 'a {
-    // `Some(true)` when an edge of squared length `l` is long at `v`; `None` when `v` has no
-    // other edge.
-    let long_at = move |v: VertexId, l: f64| {
-        profile
-            .other_than(tri, v, l)
-            .map(|other| l > LONG * LONG * other)
-    };
+    let long_at = move |v: VertexId, l: f64| long_at(tri, profile, v, l).map(|(long, _)| long);
     let degree = |v: VertexId| profile.graph.degree(v);
     move |&[a, b]: &Edge| {
         let l = length2(tri, [a, b]);

@@ -16,6 +16,27 @@ use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
+/// Algorithm 3's threshold `T = Q3 + k (Q3 - Q1)` on the squared lengths `lengths2` (not
+/// empty), `Q1 = s[n/4]` and `Q3 = s[min(3n/4, n - 1)]` of the sorted list `s`: the one place
+/// the threshold is computed (explanations ask it too, on lengths in input units, where it is
+/// the same number scaled by the same power of two).
+pub(crate) fn iqr_threshold(lengths2: &[f64], factor: f64) -> f64 {
+    let n = lengths2.len();
+    let upper = (3 * n / 4).min(n - 1);
+    // The quartiles of the sorted list, without sorting it: two selections on a scratch copy,
+    // the second only among the values the first put below Q3.
+    let mut scratch = lengths2.to_vec();
+    let q3 = *scratch.select_nth_unstable_by(upper, f64::total_cmp).1;
+    let q1 = if n / 4 < upper {
+        *scratch[..upper]
+            .select_nth_unstable_by(n / 4, f64::total_cmp)
+            .1
+    } else {
+        q3 // a single edge
+    };
+    q3 + factor * (q3 - q1)
+}
+
 /// Algorithm 3 on `edges` with the IQR factor `factor` (checked by the caller: finite, `>= 0`).
 /// The outcome is unchanged when the rule does not fire.
 pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) -> Outcome {
@@ -39,19 +60,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
     if below <= upper {
         return unchanged;
     }
-    // The quartiles of the sorted list, without sorting it: two selections on a scratch copy,
-    // the second only among the values the first put below Q3.
-    let mut scratch = lengths.clone();
-    let q3 = *scratch.select_nth_unstable_by(upper, f64::total_cmp).1;
-    let q1 = if n / 4 < upper {
-        *scratch[..upper]
-            .select_nth_unstable_by(n / 4, f64::total_cmp)
-            .1
-    } else {
-        q3 // a single edge
-    };
-    let threshold = q3 + factor * (q3 - q1);
-    drop(scratch);
+    let threshold = iqr_threshold(&lengths, factor);
     // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long
     // edges. Per vertex, bit 0 records an edge and bit 1 an edge within the bound.
     let mut seen = vec![0u8; tri.num_points()];

@@ -90,14 +90,107 @@ fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [
 
 /// Algorithm 1, line 6: the shortest edge always, the second when the uniformity test passes.
 /// `ring` is the sum of the ring's edge lengths and their count (read by the adaptive test only).
-fn keep(uniformity: Uniformity, best: &TwoBest, (sum, count): (f64, u32)) -> [VertexId; 2] {
+fn keep(uniformity: Uniformity, best: &TwoBest, ring: (f64, u32)) -> [VertexId; 2] {
     let ((l1, w1), (l2, w2)) = (best.get(0), best.get(1));
-    let keep_second = !w2.is_infinite()
-        && match uniformity {
-            Uniformity::Fixed(u) => libm::sqrt(l2) < u * libm::sqrt(l1),
-            Uniformity::Adaptive => libm::sqrt(l2) < sum / count as f64,
-        };
+    let keep_second =
+        !w2.is_infinite() && passes_uniformity(uniformity, libm::sqrt(l1), libm::sqrt(l2), ring);
     [w1, if keep_second { w2 } else { VertexId::INFINITE }]
+}
+
+/// The uniformity test itself, on the lengths `l1 <= l2` of the two shortest edges: `l2 < u l1`,
+/// or with the adaptive test `l2` below the mean length of the ring (`ring`: the sum of its
+/// lengths and their count). The one place the test is written.
+#[inline]
+fn passes_uniformity(uniformity: Uniformity, l1: f64, l2: f64, (sum, count): (f64, u32)) -> bool {
+    match uniformity {
+        Uniformity::Fixed(u) => l2 < u * l1,
+        Uniformity::Adaptive => l2 < sum / count as f64,
+    }
+}
+
+/// How input vertex `v` saw its edge to `w` in Algorithm 1, with the numbers of the test: the
+/// stage's evidence, asked for by explanations ([`crate::Reconstruction::provenance`]). Whether
+/// the edge is kept is the stage's own decision ([`kept_neighbors`]); the rank, ratio and bound
+/// are read off the same ring for display.
+pub(crate) fn end_choice(
+    tri: &Triangulation,
+    v: VertexId,
+    w: VertexId,
+    uniformity: Uniformity,
+) -> EndChoice {
+    let p = tri.vertex_point(v);
+    let key = |u: VertexId| (p.dist2(tri.vertex_point(u)), u);
+    // The ring is walked again for each number instead of being collected: no allocation.
+    let ring = || tri.mesh().neighbors(v).map(key);
+    if !ring().any(|(_, u)| u == w) {
+        return EndChoice::NotDelaunay;
+    }
+    let target = key(w);
+    // The stage's order ([`TwoBest::offer`]): squared length, then vertex id.
+    let before = |a: &(f64, VertexId), b: &(f64, VertexId)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
+    match 1 + ring().filter(|e| before(e, &target)).count() {
+        1 => EndChoice::Shortest,
+        2 => {
+            let first = ring()
+                .reduce(|a, b| if before(&b, &a) { b } else { a })
+                .unwrap_or(target);
+            let (l1, l2) = (libm::sqrt(first.0), libm::sqrt(target.0));
+            let bound = match uniformity {
+                Uniformity::Fixed(u) => u,
+                Uniformity::Adaptive => {
+                    let (sum, count) =
+                        ring().fold((0.0, 0u32), |(s, c), e| (s + libm::sqrt(e.0), c + 1));
+                    sum / f64::from(count) / l1
+                }
+            };
+            EndChoice::Second {
+                ratio: l2 / l1,
+                bound,
+                kept: kept_neighbors(tri, v, uniformity)[1] == w,
+            }
+        }
+        rank => EndChoice::Later { rank },
+    }
+}
+
+/// How one end of an edge saw it in Algorithm 1 ([`crate::EdgeStory::ends`]).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum EndChoice {
+    /// The end's shortest Delaunay edge: always kept.
+    Shortest,
+    /// The end's second shortest edge, kept when `ratio < bound`.
+    Second {
+        /// `|e2| / |e1|` at this end.
+        ratio: f64,
+        /// The uniformity bound: `u`, or with the adaptive test the ring's mean length over
+        /// `|e1|`.
+        bound: f64,
+        /// Whether the test passed.
+        kept: bool,
+    },
+    /// Neither: the edge is the end's `rank`-th shortest (3 or more).
+    Later {
+        /// Rank in the ring, 1 for the shortest.
+        rank: usize,
+    },
+    /// The edge is not a Delaunay edge at this end (a stage added it).
+    NotDelaunay,
+}
+
+impl EndChoice {
+    /// Whether this end keeps the edge in the proximity graph.
+    ///
+    /// ```
+    /// use condt::EndChoice;
+    /// assert!(EndChoice::Shortest.keeps());
+    /// assert!(!EndChoice::Second { ratio: 3.0, bound: 2.75, kept: false }.keeps());
+    /// ```
+    pub fn keeps(&self) -> bool {
+        matches!(
+            self,
+            EndChoice::Shortest | EndChoice::Second { kept: true, .. }
+        )
+    }
 }
 
 /// Most vertex ranges swept at once. Each sweep reads every triangle's corners to find its own
