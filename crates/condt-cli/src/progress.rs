@@ -27,9 +27,16 @@ const TICK: Duration = Duration::from_millis(100);
 /// How many bytes the writer lets pass before it moves the bar.
 const WRITE_STEP: u64 = 1 << 18;
 
+/// Where a bar is drawn: standard error, or a test's screen.
+type Target = Box<dyn Fn() -> ProgressDrawTarget>;
+
 /// The progress of one command; does nothing when hidden.
 pub(crate) struct Progress {
     /// `None`: nothing is shown.
+    target: Option<Target>,
+    /// The bar of the phase under way. Each phase has a bar of its own, made whole before it is
+    /// first drawn: changing one bar's style, message and length one by one would draw the
+    /// mixtures in between.
     bar: Option<ProgressBar>,
     /// The thread that follows the bytes read, while reading.
     watcher: Option<Watcher>,
@@ -41,57 +48,53 @@ impl Progress {
         if quiet || !io::stderr().is_terminal() {
             Progress::hidden()
         } else {
-            Progress::to(ProgressDrawTarget::stderr())
+            Progress::to(Box::new(ProgressDrawTarget::stderr))
         }
     }
 
     /// Shows nothing.
     pub(crate) fn hidden() -> Progress {
         Progress {
+            target: None,
             bar: None,
             watcher: None,
         }
     }
 
-    /// A bar drawn on `target`.
-    pub(crate) fn to(target: ProgressDrawTarget) -> Progress {
-        let bar = ProgressBar::with_draw_target(None, target);
-        // Nothing until the first phase says what it is.
-        if let Ok(style) = ProgressStyle::with_template("") {
-            bar.set_style(style);
-        }
-        bar.enable_steady_tick(TICK);
+    /// Bars drawn on what `target` makes.
+    fn to(target: Target) -> Progress {
         Progress {
-            bar: Some(bar),
+            target: Some(target),
+            bar: None,
             watcher: None,
         }
     }
 
     /// Whether anything is shown.
     pub(crate) fn is_shown(&self) -> bool {
-        self.bar.is_some()
+        self.target.is_some()
     }
 
-    /// Starts a phase: the bar is set to `template` and counts from 0 against `length`.
+    /// Starts a phase: a bar of `template` that counts from 0 against `length`.
     fn phase(&mut self, template: &str, length: Option<u64>, message: Cow<'static, str>) {
         self.stop_watching();
-        let Some(bar) = &self.bar else { return };
-        match length {
-            Some(length) => bar.set_length(length),
-            None => bar.unset_length(),
+        let Some(target) = &self.target else { return };
+        if let Some(old) = self.bar.take() {
+            old.finish_and_clear();
         }
-        bar.set_position(0);
-        bar.set_message(message);
-        bar.reset_elapsed();
-        if let Ok(style) = ProgressStyle::with_template(template) {
-            bar.set_style(style.progress_chars("=> "));
-        }
-        bar.tick();
+        let style = ProgressStyle::with_template(template)
+            .unwrap_or_else(|_| ProgressStyle::default_spinner())
+            .progress_chars("=> ");
+        let bar = ProgressBar::with_draw_target(length, target())
+            .with_style(style)
+            .with_message(message);
+        bar.enable_steady_tick(TICK);
+        self.bar = Some(bar);
     }
 
     /// Reading `shown`, of `size` bytes when known.
     pub(crate) fn reading(&mut self, shown: &str, size: Option<u64>) {
-        if self.bar.is_none() {
+        if !self.is_shown() {
             return;
         }
         let counter = ReadCounter::start();
@@ -135,8 +138,10 @@ impl Progress {
     /// `count` of `total` points inserted into the triangulation.
     #[allow(dead_code)] // Until the library reports the points it inserted.
     pub(crate) fn inserted(&mut self, count: u64, total: u64) {
-        let Some(bar) = &self.bar else { return };
-        if bar.length() != Some(total) {
+        if !self.is_shown() {
+            return;
+        }
+        if self.bar.as_ref().and_then(ProgressBar::length) != Some(total) {
             self.phase(
                 "{spinner} triangulating [{bar:30}] {human_pos}/{human_len} points ({elapsed})",
                 Some(total),
@@ -195,6 +200,7 @@ impl Progress {
     /// Takes the bar away for good; nothing is shown after.
     pub(crate) fn finish(&mut self) {
         self.stop_watching();
+        self.target = None;
         if let Some(bar) = self.bar.take() {
             bar.finish_and_clear();
         }
@@ -348,8 +354,9 @@ mod tests {
 
     fn on_screen() -> (Progress, Screen) {
         let screen = Screen::default();
-        let target = ProgressDrawTarget::term_like_with_hz(Box::new(screen.clone()), 200);
-        (Progress::to(target), screen)
+        let drawn = screen.clone();
+        let target = move || ProgressDrawTarget::term_like_with_hz(Box::new(drawn.clone()), 200);
+        (Progress::to(Box::new(target)), screen)
     }
 
     /// Draws the bar as it is now (the drawing is otherwise limited to a rate).
