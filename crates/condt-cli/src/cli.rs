@@ -764,7 +764,9 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         match given.id {
             Id::Output => paths.output(flag, given.value.clone())?,
             Id::Method => {
-                let name = value.map(|v| v.to_string_lossy()).unwrap_or_default();
+                let name = value
+                    .ok_or_else(|| usage("--method needs a name: condt, nn-crust or crust"))?
+                    .to_string_lossy();
                 let chosen = match &*name {
                     "condt" => Method::ConDT,
                     "nn-crust" => Method::NnCrust,
