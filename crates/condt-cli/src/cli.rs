@@ -4,7 +4,9 @@
 //! parameter's range: it calls the library and `condt_io` and reports what they say; where the
 //! output goes is [`crate::output`]'s business.
 
+use crate::options::{self, Opt};
 use crate::output::{refuse_same_file, Destination};
+use crate::progress::Progress;
 use crate::timings::Timings;
 use condt::{
     reconstruct, reconstruct_owned, triangulate, Error, Method, Params, Point, Repair, Uniformity,
@@ -42,15 +44,276 @@ OUTPUT (`-o`) is written whole or not at all; without it, or with `-`, the resul
 standard output. An existing file keeps its permissions, owner, hard links and symbolic links;
 a terminal, named pipe or device is written to, never replaced. OUTPUT may not be INPUT.
 
+An option's value is the next argument or joined to it: `--u 2.5` or `--u=2.5`, `-o out.svg` or
+`-oout.svg`; `--` ends the options (`condt reconstruct -- -file.txt`).
+
+When standard error is a terminal, a progress bar follows the reading, the computation and the
+writing, and is cleared at the end; `--quiet` (`-q`) shows neither it nor the notes on standard
+error. The output is the same either way.
+
 Exit codes: 0 success; 1 the input or output failed (the message names the file and line);
 2 a wrong command line. A reader that stops early (`| head`) ends the run silently, by SIGPIPE.
-
-Options:
-  -h, --help          show this help (`condt COMMAND --help`: that command's)
-  -V, --version       show the version
 ";
 
-const RECONSTRUCT_HELP: &str = "\
+/// The options before a command.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum GlobalId {
+    Help,
+    Version,
+}
+
+const GLOBAL_OPTIONS: &[Opt<GlobalId>] = &[
+    Opt {
+        id: GlobalId::Help,
+        short: Some('h'),
+        long: "help",
+        negatable: false,
+        value: None,
+        help: "show this help (`condt COMMAND --help`: that command's)",
+    },
+    Opt {
+        id: GlobalId::Version,
+        short: Some('V'),
+        long: "version",
+        negatable: false,
+        value: None,
+        help: "show the version",
+    },
+];
+
+/// `condt --help`.
+fn global_help() -> String {
+    format!("{USAGE}\nOptions:\n{}", options::help(GLOBAL_OPTIONS, 20))
+}
+
+/// `--quiet`, the same for every command that computes.
+const QUIET_HELP: &str = "no progress bar and no notes on standard error (errors and
+--timings lines are still written); the output is the same";
+
+/// The options of `condt reconstruct`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum ReconstructId {
+    Output,
+    Paper,
+    U,
+    Adaptive,
+    Iqr,
+    NoOutlierFilter,
+    OutliersFirst,
+    LocalOutliers,
+    ConfirmGivenBack,
+    CloseGaps,
+    Smooth,
+    NoManifoldFix,
+    Repair,
+    Method,
+    Format,
+    Stages,
+    Sequential,
+    Timings,
+    Quiet,
+    Help,
+}
+
+impl ReconstructId {
+    /// Whether the option sets a ConDT stage, which a baseline method refuses.
+    fn sets_a_condt_stage(self) -> bool {
+        use ReconstructId::*;
+        match self {
+            Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | LocalOutliers
+            | ConfirmGivenBack | CloseGaps | Smooth | NoManifoldFix | Repair => true,
+            Output | Method | Format | Stages | Sequential | Timings | Quiet | Help => false,
+        }
+    }
+}
+
+const RECONSTRUCT_OPTIONS: &[Opt<ReconstructId>] = &[
+    Opt {
+        id: ReconstructId::Output,
+        short: Some('o'),
+        long: "output",
+        negatable: false,
+        value: Some("FILE"),
+        help: "write to FILE instead of standard output",
+    },
+    Opt {
+        id: ReconstructId::Paper,
+        short: None,
+        long: "paper",
+        negatable: false,
+        value: None,
+        help: "the paper's pipeline (Algorithms 1-3 as docs/condt.md reads them)
+instead of the default; the options below still adjust it",
+    },
+    Opt {
+        id: ReconstructId::U,
+        short: None,
+        long: "u",
+        negatable: false,
+        value: Some("X"),
+        help: "uniformity parameter u (default 2.75)",
+    },
+    Opt {
+        id: ReconstructId::Adaptive,
+        short: None,
+        long: "adaptive",
+        negatable: false,
+        value: None,
+        help: "adaptive uniformity (section 4.1 of the paper)",
+    },
+    Opt {
+        id: ReconstructId::Iqr,
+        short: None,
+        long: "iqr",
+        negatable: false,
+        value: Some("K"),
+        help: "outlier factor (default 1.7)",
+    },
+    Opt {
+        id: ReconstructId::NoOutlierFilter,
+        short: None,
+        long: "no-outlier-filter",
+        negatable: false,
+        value: None,
+        help: "skip outlier removal",
+    },
+    Opt {
+        id: ReconstructId::OutliersFirst,
+        short: None,
+        long: "outliers-first",
+        negatable: false,
+        value: None,
+        help: "remove outliers before the non-manifold repair (see docs/condt.md)",
+    },
+    Opt {
+        id: ReconstructId::LocalOutliers,
+        short: None,
+        long: "local-outliers",
+        negatable: true,
+        value: None,
+        help: "(default on; off with --paper) after the outlier filter and the
+repair, remove outliers locally: give back edges the filter cut
+along regular passages; drop edges far longer than their
+neighbours, branches of fewer than 5 points and components of
+fewer than 5 points clearly apart from the rest, unless dense
+(a sparsely sampled 3- or 4-point curve is lost)",
+    },
+    Opt {
+        id: ReconstructId::ConfirmGivenBack,
+        short: None,
+        long: "confirm-given-back",
+        negatable: true,
+        value: None,
+        help: "(default on; off with --paper; needs the local outlier removal)
+right after it, drop a component rebuilt only from edges the
+outlier filter cut unless every point of it is apart from all
+else by twice its longest edge (a chance chain of outliers in a
+large scatter; a sparse curve the filter cut that passes near
+another point stays cut)",
+    },
+    Opt {
+        id: ReconstructId::CloseGaps,
+        short: None,
+        long: "close-gaps",
+        negatable: true,
+        value: None,
+        help: "(default on; off with --paper) last, join loose ends that face each
+other across a short gap or line up through a stranded point, and a
+crossing's dropped arms",
+    },
+    Opt {
+        id: ReconstructId::Smooth,
+        short: None,
+        long: "smooth",
+        negatable: true,
+        value: None,
+        help: "(default on; off with --paper) when one point in a hundred or more
+ends or branches the result, move each point with two edges
+meeting at a wide angle halfway to its neighbours' midpoint and
+run the stages again on the moved points, up to three times
+(edges stay between the input points; drawings show the moved
+ones); for noisy samples",
+    },
+    Opt {
+        id: ReconstructId::NoManifoldFix,
+        short: None,
+        long: "no-manifold-fix",
+        negatable: false,
+        value: None,
+        help: "keep every proximity edge (self-intersecting curves); the same as
+--repair off",
+    },
+    Opt {
+        id: ReconstructId::Repair,
+        short: None,
+        long: "repair",
+        negatable: false,
+        value: Some("MODE"),
+        help: "needs (default; paper with --paper), paper, mutual, crossing or off",
+    },
+    Opt {
+        id: ReconstructId::Method,
+        short: None,
+        long: "method",
+        negatable: false,
+        value: Some("M"),
+        help: "condt (default), or a classical baseline on the same Delaunay
+triangulation: nn-crust (Dey and Kumar) or crust (Amenta, Bern
+and Eppstein); a baseline takes none of the ConDT options",
+    },
+    Opt {
+        id: ReconstructId::Format,
+        short: None,
+        long: "format",
+        negatable: false,
+        value: Some("F"),
+        help: "edges, npy, txt, svg, geojson or html",
+    },
+    Opt {
+        id: ReconstructId::Stages,
+        short: None,
+        long: "stages",
+        negatable: false,
+        value: None,
+        help: "draw every stage (SVG output only)",
+    },
+    Opt {
+        id: ReconstructId::Sequential,
+        short: None,
+        long: "sequential",
+        negatable: false,
+        value: None,
+        help: "do not use threads (the result is the same)",
+    },
+    Opt {
+        id: ReconstructId::Timings,
+        short: None,
+        long: "timings",
+        negatable: false,
+        value: None,
+        help: "on standard error, one line `condt: time STEP SECONDS s` per step:
+read, earlier-passes (when smoothing ran), triangulation, each
+stage of the last pass, curves, other, write, total",
+    },
+    Opt {
+        id: ReconstructId::Quiet,
+        short: Some('q'),
+        long: "quiet",
+        negatable: false,
+        value: None,
+        help: QUIET_HELP,
+    },
+    Opt {
+        id: ReconstructId::Help,
+        short: Some('h'),
+        long: "help",
+        negatable: false,
+        value: None,
+        help: "show this help",
+    },
+];
+
+const RECONSTRUCT_ABOUT: &str = "\
 condt reconstruct: the curves through unorganized planar points (ConDT)
 
 Usage:
@@ -58,7 +321,7 @@ Usage:
                     [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
                     [--outliers-first] [--[no-]local-outliers] [--[no-]confirm-given-back]
                     [--[no-]close-gaps] [--[no-]smooth] [--format F] [--stages] [--sequential]
-                    [--timings]
+                    [--timings] [--quiet]
 
 Example:
   condt reconstruct data/shapes.txt -o shapes.svg --stages
@@ -75,59 +338,75 @@ and zoom, and a click on a point or an edge tells why it was kept or dropped). A
 The default pipeline is the paper's (Algorithms 1-3) with the repair `needs`, local outlier
 removal and gap closing; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points,
 which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error.
-
-Options:
-  -o, --output FILE       write to FILE instead of standard output
-      --paper             the paper's pipeline (Algorithms 1-3 as docs/condt.md reads them)
-                          instead of the default; the options below still adjust it
-      --u X               uniformity parameter u (default 2.75)
-      --adaptive          adaptive uniformity (section 4.1 of the paper)
-      --iqr K             outlier factor (default 1.7)
-      --no-outlier-filter skip outlier removal
-      --outliers-first    remove outliers before the non-manifold repair (see docs/condt.md)
-      --[no-]local-outliers
-                          (default on; off with --paper) after the outlier filter and the
-                          repair, remove outliers locally: give back edges the filter cut
-                          along regular passages; drop edges far longer than their
-                          neighbours, branches of fewer than 5 points and components of
-                          fewer than 5 points clearly apart from the rest, unless dense
-                          (a sparsely sampled 3- or 4-point curve is lost)
-      --[no-]confirm-given-back
-                          (default on; off with --paper; needs the local outlier removal)
-                          right after it, drop a component rebuilt only from edges the
-                          outlier filter cut unless every point of it is apart from all
-                          else by twice its longest edge (a chance chain of outliers in a
-                          large scatter; a sparse curve the filter cut that passes near
-                          another point stays cut)
-      --[no-]close-gaps   (default on; off with --paper) last, join loose ends that face each
-                          other across a short gap or line up through a stranded point, and a
-                          crossing's dropped arms
-      --[no-]smooth       (default on; off with --paper) when one point in a hundred or more
-                          ends or branches the result, move each point with two edges
-                          meeting at a wide angle halfway to its neighbours' midpoint and
-                          run the stages again on the moved points, up to three times
-                          (edges stay between the input points; drawings show the moved
-                          ones); for noisy samples
-      --no-manifold-fix   keep every proximity edge (self-intersecting curves); the same as
-                          --repair off
-      --repair MODE       needs (default; paper with --paper), paper, mutual, crossing or off
-      --method M          condt (default), or a classical baseline on the same Delaunay
-                          triangulation: nn-crust (Dey and Kumar) or crust (Amenta, Bern
-                          and Eppstein); a baseline takes none of the ConDT options
-      --format F          edges, npy, txt, svg, geojson or html
-      --stages            draw every stage (SVG output only)
-      --sequential        do not use threads (the result is the same)
-      --timings           on standard error, one line `condt: time STEP SECONDS s` per step:
-                          read, earlier-passes (when smoothing ran), triangulation, each
-                          stage of the last pass, curves, other, write, total
-  -h, --help              show this help
 ";
 
-const TRIANGULATE_HELP: &str = "\
+/// `condt reconstruct --help`.
+fn reconstruct_help() -> String {
+    format!(
+        "{RECONSTRUCT_ABOUT}\nOptions:\n{}",
+        options::help(RECONSTRUCT_OPTIONS, 24)
+    )
+}
+
+/// The options of `condt triangulate`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum TriangulateId {
+    Output,
+    Edges,
+    Timings,
+    Quiet,
+    Help,
+}
+
+const TRIANGULATE_OPTIONS: &[Opt<TriangulateId>] = &[
+    Opt {
+        id: TriangulateId::Output,
+        short: Some('o'),
+        long: "output",
+        negatable: false,
+        value: Some("FILE"),
+        help: "write to FILE instead of standard output",
+    },
+    Opt {
+        id: TriangulateId::Edges,
+        short: None,
+        long: "edges",
+        negatable: false,
+        value: None,
+        help: "write edges instead of triangles",
+    },
+    Opt {
+        id: TriangulateId::Timings,
+        short: None,
+        long: "timings",
+        negatable: false,
+        value: None,
+        help: "on standard error, one line `condt: time STEP SECONDS s` per step:
+read, triangulation, write, total",
+    },
+    Opt {
+        id: TriangulateId::Quiet,
+        short: Some('q'),
+        long: "quiet",
+        negatable: false,
+        value: None,
+        help: QUIET_HELP,
+    },
+    Opt {
+        id: TriangulateId::Help,
+        short: Some('h'),
+        long: "help",
+        negatable: false,
+        value: None,
+        help: "show this help",
+    },
+];
+
+const TRIANGULATE_ABOUT: &str = "\
 condt triangulate: the Delaunay triangulation of planar points
 
 Usage:
-  condt triangulate INPUT [-o OUTPUT] [--edges] [--timings]
+  condt triangulate INPUT [-o OUTPUT] [--edges] [--timings] [--quiet]
 
 Example:
   condt triangulate data/shapes.txt --edges -o shapes.edges
@@ -137,14 +416,15 @@ edge `i j` (i < j) per line instead, sorted. An OUTPUT ending in .npy gets the s
 array instead, of shape (t, 3) or with --edges (m, 2), uint32 when every point number fits,
 int64 otherwise. Points all on one line have no triangles: their chain of edges is written only
 with --edges, and a note on standard error says so.
-
-Options:
-  -o, --output FILE   write to FILE instead of standard output
-      --edges         write edges instead of triangles
-      --timings       on standard error, one line `condt: time STEP SECONDS s` per step:
-                      read, triangulation, write, total
-  -h, --help          show this help
 ";
+
+/// `condt triangulate --help`.
+fn triangulate_help() -> String {
+    format!(
+        "{TRIANGULATE_ABOUT}\nOptions:\n{}",
+        options::help(TRIANGULATE_OPTIONS, 20)
+    )
+}
 
 /// Why a command failed, and with which exit code.
 #[derive(Debug)]
@@ -216,85 +496,79 @@ struct TriangulateArgs {
     output: Option<PathBuf>,
     edges: bool,
     timings: bool,
+    quiet: bool,
 }
 
 /// Where `-o` and INPUT go while the arguments are read.
 #[derive(Default)]
 struct Paths {
-    input: Option<OsString>,
     output: Option<OsString>,
 }
 
 impl Paths {
-    /// The arguments every command takes: `-o FILE`, the one INPUT; anything else starting with
-    /// `-` is an unknown option.
-    fn take<'a>(
-        &mut self,
-        arg: &'a OsStr,
-        rest: &mut impl Iterator<Item = &'a OsString>,
-    ) -> Result<(), CliError> {
-        match arg.to_str() {
-            Some(flag @ ("-o" | "--output")) => {
-                let value = rest
-                    .next()
-                    .ok_or_else(|| usage(format!("{flag} needs a file name")))?;
-                if value.is_empty() {
-                    return Err(usage(format!(
-                        "{flag} needs a file name, and was given an empty one (use - for standard output)"
-                    )));
-                }
-                if self.output.replace(value.clone()).is_some() {
-                    return Err(usage(format!("{flag} is given twice")));
-                }
-            }
-            Some(flag) if flag.starts_with('-') && flag != "-" => {
-                return Err(usage(format!("unknown option {flag}")));
-            }
-            _ => {
-                if arg.is_empty() {
-                    return Err(usage(
-                        "INPUT is an empty file name (use - for standard input)",
-                    ));
-                }
-                if self.input.replace(arg.to_os_string()).is_some() {
-                    return Err(usage(format!(
-                        "unexpected extra argument {}",
-                        arg.to_string_lossy()
-                    )));
-                }
-            }
+    /// `-o FILE` (`flag` as written, `value` `None` when the command line ended before it).
+    fn output(&mut self, flag: &str, value: Option<OsString>) -> Result<(), CliError> {
+        let value = value.ok_or_else(|| usage(format!("{flag} needs a file name")))?;
+        if value.is_empty() {
+            return Err(usage(format!(
+                "{flag} needs a file name, and was given an empty one (use - for standard output)"
+            )));
+        }
+        if self.output.replace(value).is_some() {
+            return Err(usage(format!("{flag} is given twice")));
         }
         Ok(())
     }
 
-    /// INPUT and OUTPUT, `-` standing for the standard streams.
-    fn finish(self, command: &str) -> Result<(Option<PathBuf>, Option<PathBuf>), CliError> {
-        let input = self
-            .input
+    /// INPUT (the one operand) and OUTPUT, `-` standing for the standard streams.
+    fn finish(
+        self,
+        command: &str,
+        operands: Vec<OsString>,
+    ) -> Result<(Option<PathBuf>, Option<PathBuf>), CliError> {
+        let mut operands = operands.into_iter();
+        let input = operands
+            .next()
             .ok_or_else(|| usage(format!("{command} needs an INPUT file (or -)")))?;
+        if input.is_empty() {
+            return Err(usage(
+                "INPUT is an empty file name (use - for standard input)",
+            ));
+        }
+        if let Some(extra) = operands.next() {
+            return Err(usage(format!(
+                "unexpected extra argument {}",
+                extra.to_string_lossy()
+            )));
+        }
         let stream = |p: OsString| (p != "-").then(|| PathBuf::from(p));
         Ok((stream(input), self.output.and_then(stream)))
     }
 }
 
 fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
+    let lexed = options::lex(args, TRIANGULATE_OPTIONS, "")?;
     let mut edges = false;
     let mut timings = false;
+    let mut quiet = false;
     let mut paths = Paths::default();
-    let mut rest = args.iter();
-    while let Some(arg) = rest.next() {
-        match arg.to_str() {
-            Some("--edges") => edges = true,
-            Some("--timings") => timings = true,
-            _ => paths.take(arg, &mut rest)?,
+    for given in lexed.given {
+        match given.id {
+            TriangulateId::Output => paths.output(&given.flag, given.value)?,
+            TriangulateId::Edges => edges = true,
+            TriangulateId::Timings => timings = true,
+            TriangulateId::Quiet => quiet = true,
+            // Answered before the arguments are read (`run`).
+            TriangulateId::Help => {}
         }
     }
-    let (input, output) = paths.finish("triangulate")?;
+    let (input, output) = paths.finish("triangulate", lexed.operands)?;
     Ok(TriangulateArgs {
         input,
         output,
         edges,
         timings,
+        quiet,
     })
 }
 
@@ -307,23 +581,30 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
     let Some((command, rest)) = args.split_first() else {
         return Err(usage("no command given"));
     };
-    let asks_help = rest.iter().any(|a| a == "-h" || a == "--help");
-    match text(command, "command")? {
-        "-h" | "--help" => Ok(USAGE.to_string()),
+    let command = text(command, "command")?;
+    if command.starts_with('-') {
+        return match options::lex(&args[..1], GLOBAL_OPTIONS, "")?.given.first() {
+            Some(given) if given.id == GlobalId::Version => {
+                Ok(format!("condt {}\n", env!("CARGO_PKG_VERSION")))
+            }
+            Some(_) => Ok(global_help()),
+            None => Err(usage("no command given")),
+        };
+    }
+    match command {
         "help" => match rest.first().map(|c| c.to_str()) {
-            None => Ok(USAGE.to_string()),
-            Some(Some("reconstruct")) => Ok(RECONSTRUCT_HELP.to_string()),
-            Some(Some("triangulate")) => Ok(TRIANGULATE_HELP.to_string()),
-            Some(Some("score")) => Ok(crate::score::HELP.to_string()),
+            None => Ok(global_help()),
+            Some(Some("reconstruct")) => Ok(reconstruct_help()),
+            Some(Some("triangulate")) => Ok(triangulate_help()),
+            Some(Some("score")) => Ok(crate::score::help()),
             Some(_) => Err(usage(format!(
                 "help: unknown command {}; the commands are reconstruct, triangulate and score",
                 rest[0].to_string_lossy()
             ))),
         },
-        "-V" | "--version" => Ok(format!("condt {}\n", env!("CARGO_PKG_VERSION"))),
-        "reconstruct" if asks_help => Ok(RECONSTRUCT_HELP.to_string()),
-        "triangulate" if asks_help => Ok(TRIANGULATE_HELP.to_string()),
-        "score" if asks_help => Ok(crate::score::HELP.to_string()),
+        "reconstruct" if options::asks_help(rest, RECONSTRUCT_OPTIONS) => Ok(reconstruct_help()),
+        "triangulate" if options::asks_help(rest, TRIANGULATE_OPTIONS) => Ok(triangulate_help()),
+        "score" if options::asks_help(rest, crate::score::OPTIONS) => Ok(crate::score::help()),
         "score" => crate::score::command(rest),
         "reconstruct" => reconstruct_command(parse_reconstruct(rest)?).map(|()| String::new()),
         "triangulate" => triangulate_command(parse_triangulate(rest)?).map(|()| String::new()),
@@ -380,6 +661,7 @@ struct ReconstructArgs {
     format: Format,
     stages: bool,
     timings: bool,
+    quiet: bool,
 }
 
 /// The number after `flag`; whether its value is accepted is for the library to say.
@@ -448,8 +730,10 @@ fn repair_mode(value: Option<&OsString>) -> Result<Repair, CliError> {
 }
 
 fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
+    use ReconstructId as Id;
+    let lexed = options::lex(args, RECONSTRUCT_OPTIONS, "")?;
     // `--paper` chooses the starting point wherever it stands; the other options adjust it.
-    let mut params = if args.iter().any(|a| a == "--paper") {
+    let mut params = if lexed.given.iter().any(|g| g.id == Id::Paper) {
         Params::paper()
     } else {
         Params::default()
@@ -464,38 +748,25 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut smooth = Setting::new();
     let mut format = Setting::new();
     let mut method = Setting::new();
-    // ConDT's own options, to refuse them beside a baseline method.
-    let mut condt_options: Vec<String> = Vec::new();
+    // ConDT's own options, as written, to refuse them beside a baseline method.
+    let condt_options: Vec<&str> = lexed
+        .given
+        .iter()
+        .filter(|g| g.id.sets_a_condt_stage())
+        .map(|g| g.flag.as_str())
+        .collect();
     let mut stages = false;
     let mut timings = false;
-    let mut rest = args.iter();
-    while let Some(arg) = rest.next() {
-        // The options that set a ConDT stage, which a baseline method refuses.
-        if let Some(
-            flag @ ("--u"
-            | "--adaptive"
-            | "--iqr"
-            | "--no-outlier-filter"
-            | "--outliers-first"
-            | "--local-outliers"
-            | "--no-local-outliers"
-            | "--confirm-given-back"
-            | "--no-confirm-given-back"
-            | "--close-gaps"
-            | "--no-close-gaps"
-            | "--no-manifold-fix"
-            | "--repair"
-            | "--paper"
-            | "--smooth"
-            | "--no-smooth"),
-        ) = arg.to_str()
-        {
-            condt_options.push(flag.to_string());
-        }
-        match arg.to_str() {
-            Some(flag @ "--method") => {
-                let value = rest.next();
-                let name = value.map(|v| v.to_string_lossy()).unwrap_or_default();
+    let mut quiet = false;
+    for given in &lexed.given {
+        let flag = given.flag.as_str();
+        let value = given.value.as_ref();
+        match given.id {
+            Id::Output => paths.output(flag, given.value.clone())?,
+            Id::Method => {
+                let name = value
+                    .ok_or_else(|| usage("--method needs a name: condt, nn-crust or crust"))?
+                    .to_string_lossy();
                 let chosen = match &*name {
                     "condt" => Method::ConDT,
                     "nn-crust" => Method::NnCrust,
@@ -508,28 +779,23 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 };
                 method.set(chosen, format!("{flag} {name}"))?;
             }
-            Some(flag @ "--u") => {
-                let u = number(flag, rest.next())?;
+            Id::U => {
+                let u = number(flag, value)?;
                 uniformity.set(Uniformity::Fixed(u), format!("--u {u}"))?;
             }
-            Some(flag @ "--adaptive") => uniformity.set(Uniformity::Adaptive, flag)?,
-            Some(flag @ "--iqr") => {
-                let k = number(flag, rest.next())?;
+            Id::Adaptive => uniformity.set(Uniformity::Adaptive, flag)?,
+            Id::Iqr => {
+                let k = number(flag, value)?;
                 outliers.set(Some(k), format!("--iqr {k}"))?;
             }
-            Some(flag @ "--no-outlier-filter") => outliers.set(None, flag)?,
-            Some("--outliers-first") => params.outliers_first = true,
-            Some(flag @ "--local-outliers") => local.set(true, flag)?,
-            Some(flag @ "--no-local-outliers") => local.set(false, flag)?,
-            Some(flag @ "--confirm-given-back") => confirm.set(true, flag)?,
-            Some(flag @ "--no-confirm-given-back") => confirm.set(false, flag)?,
-            Some(flag @ "--close-gaps") => gaps.set(true, flag)?,
-            Some(flag @ "--no-close-gaps") => gaps.set(false, flag)?,
-            Some(flag @ "--smooth") => smooth.set(true, flag)?,
-            Some(flag @ "--no-smooth") => smooth.set(false, flag)?,
-            Some(flag @ "--no-manifold-fix") => repair.set(Repair::Off, flag)?,
-            Some(flag @ "--repair") => {
-                let value = rest.next();
+            Id::NoOutlierFilter => outliers.set(None, flag)?,
+            Id::OutliersFirst => params.outliers_first = true,
+            Id::LocalOutliers => local.set(given.on, flag)?,
+            Id::ConfirmGivenBack => confirm.set(given.on, flag)?,
+            Id::CloseGaps => gaps.set(given.on, flag)?,
+            Id::Smooth => smooth.set(given.on, flag)?,
+            Id::NoManifoldFix => repair.set(Repair::Off, flag)?,
+            Id::Repair => {
                 let mode = repair_mode(value)?;
                 repair.set(
                     mode,
@@ -539,8 +805,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                     ),
                 )?;
             }
-            Some(flag @ "--format") => {
-                let value = rest.next().ok_or_else(|| {
+            Id::Format => {
+                let value = value.ok_or_else(|| {
                     usage("--format needs a name: edges, npy, txt, svg, geojson or html")
                 })?;
                 let name = text(value, flag)?;
@@ -551,11 +817,14 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
             }
-            Some("--stages") => stages = true,
-            Some("--timings") => timings = true,
-            Some("--paper") => {}
-            Some("--sequential") => params.parallel = false,
-            _ => paths.take(arg, &mut rest)?,
+            Id::Stages => stages = true,
+            Id::Timings => timings = true,
+            Id::Quiet => quiet = true,
+            // The starting point, chosen above.
+            Id::Paper => {}
+            Id::Sequential => params.parallel = false,
+            // Answered before the arguments are read (`run`).
+            Id::Help => {}
         }
     }
     if let Some(u) = uniformity.get() {
@@ -590,7 +859,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         params.method = chosen;
     }
     params.check().map_err(refused)?;
-    let (input, output) = paths.finish("reconstruct")?;
+    let (input, output) = paths.finish("reconstruct", lexed.operands)?;
     let format = match (format.get(), output.as_deref()) {
         (Some(f), _) => f,
         (None, None) => Format::Polylines,
@@ -618,6 +887,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         format,
         stages,
         timings,
+        quiet,
     })
 }
 
@@ -659,12 +929,31 @@ fn note_duplicates(points: usize, distinct: usize) {
     }
 }
 
+/// The size of INPUT when it is a regular file (`None`: standard input, a pipe, a device).
+fn input_size(input: Option<&Path>) -> Option<u64> {
+    let meta = std::fs::metadata(input?).ok()?;
+    meta.is_file().then_some(meta.len())
+}
+
+/// Whether the output goes to the terminal the progress bar is drawn on (standard output
+/// without `-o`, when it is a terminal): then the bar is taken away before writing.
+fn writes_to_terminal(output: Option<&Path>) -> bool {
+    use std::io::IsTerminal;
+    output.is_none() && io::stdout().is_terminal()
+}
+
 fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     let mut timings = Timings::new(args.timings);
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
+    let mut progress = Progress::new(args.quiet);
+    if progress.is_shown() {
+        let size = input_size(args.input.as_deref());
+        progress.reading(&shown_input(args.input.as_deref()), size);
+    }
     let points = read_input(args.input.as_deref(), args.params.parallel)?;
-    timings.lap("read");
+    progress.computing("triangulating and reconstructing");
+    progress.suspend(|| timings.lap("read"));
     let count = points.len();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
     // result does not keep (`Reconstruction::stage_point`), so for them the points stay (16
@@ -683,74 +972,109 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     let result = result
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     let call = timings.quiet_lap();
-    timings.reconstruction(&result, call);
-    destination.write(|out| match args.format {
-        Format::Edges => write_edges(out, &result),
-        Format::Npy => write_npy_edges(out, &result),
-        Format::Polylines => write_polylines(out, &result),
-        Format::Svg if args.stages => write_svg_stages(out, &result),
-        Format::Svg => write_svg(out, &result, &input),
-        Format::GeoJson => write_geojson(out, &result, &input),
-        Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
+    progress.writing(
+        &shown_output(args.output.as_deref()),
+        writes_to_terminal(args.output.as_deref()),
+    );
+    progress.suspend(|| timings.reconstruction(&result, call));
+    destination.write(|out| {
+        progress.count_written(out, |out| match args.format {
+            Format::Edges => write_edges(out, &result),
+            Format::Npy => write_npy_edges(out, &result),
+            Format::Polylines => write_polylines(out, &result),
+            Format::Svg if args.stages => write_svg_stages(out, &result),
+            Format::Svg => write_svg(out, &result, &input),
+            Format::GeoJson => write_geojson(out, &result, &input),
+            Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
+        })
     })?;
+    progress.finish();
     timings.lap("write");
-    note_duplicates(count, result.triangulation().num_vertices());
-    let curves = result.curves();
-    let closed = curves.iter().filter(|c| c.is_closed()).count();
-    note(format_args!(
-        "{}, {} ({closed} closed, {} open), {} unused",
-        Counted(count, "point"),
-        Counted(curves.len(), "curve"),
-        curves.len() - closed,
-        result.unused().len()
-    ));
+    if !args.quiet {
+        note_duplicates(count, result.triangulation().num_vertices());
+        let curves = result.curves();
+        let closed = curves.iter().filter(|c| c.is_closed()).count();
+        note(format_args!(
+            "{}, {} ({closed} closed, {} open), {} unused",
+            Counted(count, "point"),
+            Counted(curves.len(), "curve"),
+            curves.len() - closed,
+            result.unused().len()
+        ));
+    }
     timings.total();
     Ok(())
+}
+
+fn shown_output(output: Option<&Path>) -> String {
+    output.map_or("<stdout>".into(), |p| p.display().to_string())
 }
 
 fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     let mut timings = Timings::new(args.timings);
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
+    let mut progress = Progress::new(args.quiet);
+    if progress.is_shown() {
+        let size = input_size(args.input.as_deref());
+        progress.reading(&shown_input(args.input.as_deref()), size);
+    }
     let points = read_input(args.input.as_deref(), true)?;
-    timings.lap("read");
+    progress.computing("triangulating");
+    progress.suspend(|| timings.lap("read"));
     let tri = triangulate(&points)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
-    timings.lap("triangulation");
-    note_duplicates(points.len(), tri.num_vertices());
+    progress.writing(
+        &shown_output(args.output.as_deref()),
+        writes_to_terminal(args.output.as_deref()),
+    );
+    progress.suspend(|| timings.lap("triangulation"));
+    let count = points.len();
     // The output reads only the triangulation: the points need not stay while it is written
     // (16 bytes per point of the peak).
     drop(points);
-    if !args.edges && tri.triangles().next().is_none() {
-        let distinct = tri.num_vertices();
-        let chain = tri.edges().count();
-        if chain == 0 {
-            note(format_args!(
-                "no triangles and no edges: {}",
-                Counted(distinct, "distinct point")
-            ));
-        } else {
-            note(format_args!(
-                "no triangles: the {distinct} distinct points lie on one line; \
-                 their chain of {} is written with --edges",
-                Counted(chain, "edge")
-            ));
-        }
-    }
     let npy = args
         .output
         .as_deref()
         .and_then(Path::extension)
         .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
-    destination.write(|out| match (args.edges, npy) {
-        (true, false) => write_triangulation_edges(out, &tri),
-        (false, false) => write_triangles(out, &tri),
-        (true, true) => write_npy_triangulation_edges(out, &tri),
-        (false, true) => write_npy_triangles(out, &tri),
+    destination.write(|out| {
+        progress.count_written(out, |out| match (args.edges, npy) {
+            (true, false) => write_triangulation_edges(out, &tri),
+            (false, false) => write_triangles(out, &tri),
+            (true, true) => write_npy_triangulation_edges(out, &tri),
+            (false, true) => write_npy_triangles(out, &tri),
+        })
     })?;
+    progress.finish();
     timings.lap("write");
+    if !args.quiet {
+        note_duplicates(count, tri.num_vertices());
+        note_no_triangles(&tri, args.edges);
+    }
     timings.total();
     Ok(())
+}
+
+/// An output without triangles is explained: where the chain of edges is, or that there is none.
+fn note_no_triangles(tri: &condt::Triangulation, edges: bool) {
+    if edges || tri.triangles().next().is_some() {
+        return;
+    }
+    let distinct = tri.num_vertices();
+    let chain = tri.edges().count();
+    if chain == 0 {
+        note(format_args!(
+            "no triangles and no edges: {}",
+            Counted(distinct, "distinct point")
+        ));
+    } else {
+        note(format_args!(
+            "no triangles: the {distinct} distinct points lie on one line; \
+             their chain of {} is written with --edges",
+            Counted(chain, "edge")
+        ));
+    }
 }
 
 #[cfg(test)]
@@ -770,7 +1094,8 @@ mod tests {
                 input: Some("in.txt".into()),
                 output: Some("out.txt".into()),
                 edges: true,
-                timings: false
+                timings: false,
+                quiet: false,
             }
         );
     }

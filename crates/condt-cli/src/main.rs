@@ -3,7 +3,9 @@
 
 mod allocator;
 mod cli;
+mod options;
 mod output;
+mod progress;
 mod score;
 mod timings;
 

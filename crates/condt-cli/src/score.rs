@@ -10,13 +10,14 @@
 //! the first problem is reported with its line; a malformed TRUTH is an error.
 
 use crate::cli::{usage, CliError};
+use crate::options::{self, Opt};
 use condt_eval::score::{score, EdgeProblem, Score};
 use condt_io::{read_points, IoError, IoErrorKind};
 use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-pub(crate) const HELP: &str = "\
+const ABOUT: &str = "\
 condt score: compare an edge list with a ground truth
 
 Usage:
@@ -32,25 +33,45 @@ the root-mean-square distance of the output to the truth (each output edge sampl
 1/2, 3/4 and 1 of its length), over the diagonal of the points' bounding box. A malformed
 OUTPUT scores 0 and its first problem is printed with its line; a malformed TRUTH is an error.
 The metrics are those of the evaluation suite's score.py.
-
-Options:
-      --json          one JSON object (the keys of score.py --json)
-  -h, --help          show this help
 ";
+
+/// The options of `condt score`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum ScoreId {
+    Json,
+    Help,
+}
+
+pub(crate) const OPTIONS: &[Opt<ScoreId>] = &[
+    Opt {
+        id: ScoreId::Json,
+        short: None,
+        long: "json",
+        negatable: false,
+        value: None,
+        help: "one JSON object (the keys of score.py --json)",
+    },
+    Opt {
+        id: ScoreId::Help,
+        short: Some('h'),
+        long: "help",
+        negatable: false,
+        value: None,
+        help: "show this help",
+    },
+];
+
+/// `condt score --help`.
+pub(crate) fn help() -> String {
+    format!("{ABOUT}\nOptions:\n{}", options::help(OPTIONS, 20))
+}
 
 /// Runs `condt score` on its arguments (after the command name); returns what to print.
 pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
-    let mut json = false;
-    let mut files: Vec<PathBuf> = Vec::new();
-    for arg in args {
-        match arg.to_str() {
-            Some("--json") => json = true,
-            Some(flag) if flag.starts_with('-') && flag.len() > 1 => {
-                return Err(usage(format!("score: unknown option {flag}")))
-            }
-            _ => files.push(PathBuf::from(arg)),
-        }
-    }
+    let lexed = options::lex(args, OPTIONS, "score: ")?;
+    // `--help` is answered before the arguments are read (`cli::run`).
+    let json = lexed.given.iter().any(|g| g.id == ScoreId::Json);
+    let files: Vec<PathBuf> = lexed.operands.into_iter().map(PathBuf::from).collect();
     let [points, output, truth] = <[PathBuf; 3]>::try_from(files).map_err(|files| {
         usage(format!(
             "score needs three files, POINTS OUTPUT.edges TRUTH.edges; {} given",

@@ -1,0 +1,275 @@
+//! The command line as every Unix tool reads it: values joined to their option (`--u=2.5`,
+//! `-oFILE`), `--` ending the options, file names that are not UTF-8, `--quiet`; and the
+//! progress bar, which changes no output whether standard error is a terminal or not.
+
+use std::ffi::{OsStr, OsString};
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+/// The binary under test: this build's, or `CONDT_TEST_BIN` (to show a test fails on another).
+fn binary() -> OsString {
+    std::env::var_os("CONDT_TEST_BIN").unwrap_or_else(|| env!("CARGO_BIN_EXE_condt").into())
+}
+
+fn condt<S: AsRef<OsStr>>(args: &[S]) -> Output {
+    Command::new(binary())
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .output()
+        .expect("the binary runs")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// 40 points on a circle and two outliers, in `dir/name`.
+fn points(dir: &Path, name: &str) -> std::path::PathBuf {
+    let mut text: String = (0..40)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / 40.0;
+            format!("{} {}\n", t.cos(), t.sin())
+        })
+        .collect();
+    text.push_str("3 3\n0 0\n");
+    let path = dir.join(name);
+    fs::write(&path, text).unwrap();
+    path
+}
+
+fn ok(out: &Output) {
+    assert!(out.status.success(), "{}", stderr(out));
+}
+
+#[test]
+fn a_value_is_joined_to_its_option_or_follows_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = points(dir.path(), "in.txt");
+    let input = input.to_str().unwrap();
+    let apart = condt(&["reconstruct", input, "--u", "2.5", "--iqr", "2"]);
+    ok(&apart);
+    for joined in [
+        &["reconstruct", input, "--u=2.5", "--iqr=2"][..],
+        &["reconstruct", "--u=2.5", input, "--iqr", "2"],
+    ] {
+        let out = condt(joined);
+        ok(&out);
+        assert_eq!(out.stdout, apart.stdout, "{joined:?}");
+    }
+    // The same value told apart from another: joined or not, it is the value that was given.
+    let said = stderr(&condt(&["reconstruct", input, "--u=2.5", "--adaptive"]));
+    assert!(said.contains("--u 2.5 and --adaptive contradict"), "{said}");
+    // A value that starts with a dash is still the value.
+    let out = condt(&["reconstruct", input, "--u=-1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("--u"), "{}", stderr(&out));
+    // An option that takes no value refuses one.
+    let out = condt(&["triangulate", input, "--edges=yes"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("--edges"), "{}", stderr(&out));
+    assert!(stderr(&out).contains("condt --help"), "{}", stderr(&out));
+}
+
+#[test]
+fn the_output_file_is_joined_to_o_or_follows_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = points(dir.path(), "in.txt");
+    let input = input.to_str().unwrap();
+    for command in ["reconstruct", "triangulate"] {
+        // /dev/null has no extension to tell reconstruct's format by.
+        let out = condt(
+            &[command, input, "-o/dev/null", "--format=edges"]
+                [..3 + usize::from(command == "reconstruct")],
+        );
+        ok(&out);
+        assert!(out.stdout.is_empty(), "{command}: written to /dev/null");
+        let apart = dir.path().join(format!("{command}-apart.edges"));
+        let joined = dir.path().join(format!("{command}-joined.edges"));
+        let long = dir.path().join(format!("{command}-long.edges"));
+        ok(&condt(&[
+            command.as_ref(),
+            input.as_ref(),
+            OsStr::new("-o"),
+            apart.as_os_str(),
+        ]));
+        let mut o_joined = OsString::from("-o");
+        o_joined.push(&joined);
+        ok(&condt(&[
+            command.as_ref(),
+            input.as_ref(),
+            o_joined.as_os_str(),
+        ]));
+        let mut long_joined = OsString::from("--output=");
+        long_joined.push(&long);
+        ok(&condt(&[
+            command.as_ref(),
+            long_joined.as_os_str(),
+            input.as_ref(),
+        ]));
+        let expected = fs::read(&apart).unwrap();
+        assert!(!expected.is_empty());
+        assert_eq!(fs::read(&joined).unwrap(), expected, "{command}");
+        assert_eq!(fs::read(&long).unwrap(), expected, "{command}");
+    }
+}
+
+#[test]
+fn a_double_dash_ends_the_options() {
+    let dir = tempfile::tempdir().unwrap();
+    let dashed = points(dir.path(), "-points.txt");
+    let out = Command::new(binary())
+        .current_dir(dir.path())
+        .args(["triangulate", "--edges", "--", "-points.txt"])
+        .output()
+        .unwrap();
+    ok(&out);
+    let plain = condt(&[
+        OsStr::new("triangulate"),
+        dashed.as_os_str(),
+        OsStr::new("--edges"),
+    ]);
+    assert_eq!(out.stdout, plain.stdout);
+    // Without it, the name is an option.
+    let out = Command::new(binary())
+        .current_dir(dir.path())
+        .args(["triangulate", "-points.txt"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("unknown option -p"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn file_names_need_not_be_utf8() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = tempfile::tempdir().unwrap();
+    let source = points(dir.path(), "in.txt");
+    let input = dir.path().join(OsStr::from_bytes(b"caf\xe9.txt"));
+    fs::rename(&source, &input).unwrap();
+    let output = dir.path().join(OsStr::from_bytes(b"r\xe9sultat.edges"));
+    let mut joined = OsString::from("-o");
+    joined.push(&output);
+    let out = condt(&[OsStr::new("reconstruct"), input.as_os_str(), &joined]);
+    ok(&out);
+    assert!(fs::read(&output).unwrap().ends_with(b"\n"));
+}
+
+#[test]
+fn quiet_keeps_the_output_and_drops_the_notes() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = points(dir.path(), "in.txt");
+    let input = input.to_str().unwrap();
+    for command in ["reconstruct", "triangulate"] {
+        let loud = condt(&[command, input]);
+        ok(&loud);
+        if command == "reconstruct" {
+            assert!(stderr(&loud).contains("42 points"), "{}", stderr(&loud));
+        }
+        for quiet in ["--quiet", "-q"] {
+            let out = condt(&[command, quiet, input]);
+            ok(&out);
+            assert_eq!(out.stdout, loud.stdout, "{command} {quiet}");
+            assert!(out.stderr.is_empty(), "{command} {quiet}: {}", stderr(&out));
+        }
+        // --timings was asked for: its lines stay.
+        let out = condt(&[command, input, "--quiet", "--timings"]);
+        ok(&out);
+        let said = stderr(&out);
+        assert!(
+            said.lines().all(|l| l.starts_with("condt: time ")),
+            "{said}"
+        );
+        assert!(said.contains("condt: time total "), "{said}");
+    }
+    // Notes about the input are notes too; errors are not.
+    let out = Command::new(binary())
+        .args(["triangulate", "-", "-q"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .and_then(|mut child| {
+            use std::io::Write;
+            child.stdin.take().unwrap().write_all(b"0 0\n0 0\n1 1\n")?;
+            child.wait_with_output()
+        })
+        .unwrap();
+    ok(&out);
+    assert!(out.stderr.is_empty(), "{}", stderr(&out));
+    let out = condt(&["reconstruct", "-q", "/nonexistent/points.txt"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("/nonexistent/points.txt"));
+}
+
+/// Runs `args` with standard error (and input and output) on a terminal, by `script`; `None`
+/// where there is no `script`.
+fn on_a_terminal(dir: &Path, args: &[&str]) -> Option<Output> {
+    let mut line = String::from("exec ");
+    for arg in std::iter::once(binary().to_str().unwrap()).chain(args.iter().copied()) {
+        line.push('\'');
+        line.push_str(&arg.replace('\'', "'\\''"));
+        line.push_str("' ");
+    }
+    Command::new("script")
+        .current_dir(dir)
+        .args(["-qec", &line, "/dev/null"])
+        .stdin(Stdio::null())
+        .output()
+        .ok()
+}
+
+#[test]
+fn the_progress_bar_changes_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = points(dir.path(), "in.txt");
+    let input = input.to_str().unwrap();
+    for (command, extension) in [
+        ("reconstruct", "edges"),
+        ("reconstruct", "svg"),
+        ("reconstruct", "npy"),
+        ("triangulate", "txt"),
+    ] {
+        let plain = dir.path().join(format!("{command}-plain.{extension}"));
+        ok(&condt(&[command, input, "-o", plain.to_str().unwrap()]));
+        let shown = dir.path().join(format!("{command}-shown.{extension}"));
+        let Some(out) = on_a_terminal(dir.path(), &[command, input, "-o", shown.to_str().unwrap()])
+        else {
+            eprintln!("no `script` here: the terminal is not tested");
+            return;
+        };
+        ok(&out);
+        assert_eq!(
+            fs::read(&shown).unwrap(),
+            fs::read(&plain).unwrap(),
+            "{command} .{extension}"
+        );
+    }
+    // The bar is cleared before the notes, which are still written.
+    let Some(out) = on_a_terminal(
+        dir.path(),
+        &["reconstruct", input, "-o", "/dev/null", "--format", "txt"],
+    ) else {
+        return;
+    };
+    let screen = String::from_utf8_lossy(&out.stdout);
+    assert!(screen.contains("condt: 42 points"), "{screen}");
+    let Some(out) = on_a_terminal(
+        dir.path(),
+        &["reconstruct", input, "-q", "-o/dev/null", "--format=txt"],
+    ) else {
+        return;
+    };
+    assert!(
+        out.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+}
