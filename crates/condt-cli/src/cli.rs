@@ -9,7 +9,8 @@ use crate::output::{refuse_same_file, Destination};
 use crate::progress::Progress;
 use crate::timings::Timings;
 use condt::{
-    reconstruct, reconstruct_owned, triangulate, Error, Method, Params, Point, Repair, Uniformity,
+    reconstruct, reconstruct_owned, triangulate, Error, Method, Params, Point, Repair, Stage,
+    Uniformity,
 };
 use condt_io::{
     read_points, write_edges, write_geojson, write_html, write_npy_edges, write_npy_triangles,
@@ -100,9 +101,8 @@ enum ReconstructId {
     Iqr,
     NoOutlierFilter,
     OutliersFirst,
-    LocalOutliers,
-    ConfirmGivenBack,
-    CloseGaps,
+    /// A stage's switch, from the library's table of stages ([`Stage::switch`]).
+    StageSwitch(Stage),
     Smooth,
     NoManifoldFix,
     Repair,
@@ -120,14 +120,16 @@ impl ReconstructId {
     fn sets_a_condt_stage(self) -> bool {
         use ReconstructId::*;
         match self {
-            Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | LocalOutliers
-            | ConfirmGivenBack | CloseGaps | Smooth | NoManifoldFix | Repair => true,
+            Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | StageSwitch(_)
+            | Smooth | NoManifoldFix | Repair => true,
             Output | Method | Format | Stages | Sequential | Timings | Quiet | Help => false,
         }
     }
 }
 
-const RECONSTRUCT_OPTIONS: &[Opt<ReconstructId>] = &[
+/// The options of `condt reconstruct` other than the stages' switches, which
+/// [`reconstruct_options`] puts after `--outliers-first`.
+const RECONSTRUCT_BASE_OPTIONS: &[Opt<ReconstructId>] = &[
     Opt {
         id: ReconstructId::Output,
         short: Some('o'),
@@ -184,42 +186,6 @@ instead of the default; the options below still adjust it",
         negatable: false,
         value: None,
         help: "remove outliers before the non-manifold repair (see docs/condt.md)",
-    },
-    Opt {
-        id: ReconstructId::LocalOutliers,
-        short: None,
-        long: "local-outliers",
-        negatable: true,
-        value: None,
-        help: "(default on; off with --paper) after the outlier filter and the
-repair, remove outliers locally: give back edges the filter cut
-along regular passages; drop edges far longer than their
-neighbours, branches of fewer than 5 points and components of
-fewer than 5 points clearly apart from the rest, unless dense
-(a sparsely sampled 3- or 4-point curve is lost)",
-    },
-    Opt {
-        id: ReconstructId::ConfirmGivenBack,
-        short: None,
-        long: "confirm-given-back",
-        negatable: true,
-        value: None,
-        help: "(default on; off with --paper; needs the local outlier removal)
-right after it, drop a component rebuilt only from edges the
-outlier filter cut unless every point of it is apart from all
-else by twice its longest edge (a chance chain of outliers in a
-large scatter; a sparse curve the filter cut that passes near
-another point stays cut)",
-    },
-    Opt {
-        id: ReconstructId::CloseGaps,
-        short: None,
-        long: "close-gaps",
-        negatable: true,
-        value: None,
-        help: "(default on; off with --paper) last, join loose ends that face each
-other across a short gap or line up through a stranded point, and a
-crossing's dropped arms",
     },
     Opt {
         id: ReconstructId::Smooth,
@@ -313,6 +279,29 @@ stage of the last pass, curves, other, write, total",
     },
 ];
 
+/// The options of `condt reconstruct`: the fixed ones, and a `--[no-]FLAG` for every stage
+/// the library's table gives a switch, so a new stage needs no change here.
+fn reconstruct_options() -> Vec<Opt<ReconstructId>> {
+    let switches = Stage::ALL.into_iter().filter_map(|stage| {
+        stage.switch().map(|switch| Opt {
+            id: ReconstructId::StageSwitch(stage),
+            short: None,
+            long: switch.flag,
+            negatable: true,
+            value: None,
+            help: switch.help,
+        })
+    });
+    let at = RECONSTRUCT_BASE_OPTIONS
+        .iter()
+        .position(|opt| opt.id == ReconstructId::OutliersFirst)
+        .map_or(RECONSTRUCT_BASE_OPTIONS.len(), |k| k + 1);
+    let mut options: Vec<Opt<ReconstructId>> = RECONSTRUCT_BASE_OPTIONS[..at].to_vec();
+    options.extend(switches);
+    options.extend_from_slice(&RECONSTRUCT_BASE_OPTIONS[at..]);
+    options
+}
+
 const RECONSTRUCT_ABOUT: &str = "\
 condt reconstruct: the curves through unorganized planar points (ConDT)
 
@@ -344,7 +333,7 @@ which the local removal takes for outliers; --paper runs the paper's pipeline al
 fn reconstruct_help() -> String {
     format!(
         "{RECONSTRUCT_ABOUT}\nOptions:\n{}",
-        options::help(RECONSTRUCT_OPTIONS, 24)
+        options::help(&reconstruct_options(), 24)
     )
 }
 
@@ -602,7 +591,7 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
                 rest[0].to_string_lossy()
             ))),
         },
-        "reconstruct" if options::asks_help(rest, RECONSTRUCT_OPTIONS) => Ok(reconstruct_help()),
+        "reconstruct" if options::asks_help(rest, &reconstruct_options()) => Ok(reconstruct_help()),
         "triangulate" if options::asks_help(rest, TRIANGULATE_OPTIONS) => Ok(triangulate_help()),
         "score" if options::asks_help(rest, crate::score::OPTIONS) => Ok(crate::score::help()),
         "score" => crate::score::command(rest),
@@ -731,7 +720,7 @@ fn repair_mode(value: Option<&OsString>) -> Result<Repair, CliError> {
 
 fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     use ReconstructId as Id;
-    let lexed = options::lex(args, RECONSTRUCT_OPTIONS, "")?;
+    let lexed = options::lex(args, &reconstruct_options(), "")?;
     // `--paper` chooses the starting point wherever it stands; the other options adjust it.
     let mut params = if lexed.given.iter().any(|g| g.id == Id::Paper) {
         Params::paper()
@@ -742,9 +731,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut uniformity = Setting::new();
     let mut outliers = Setting::new();
     let mut repair = Setting::new();
-    let mut local = Setting::new();
-    let mut confirm = Setting::new();
-    let mut gaps = Setting::new();
+    // Per stage with a switch, its setting, in the table's order.
+    let mut switched: Vec<(Stage, Setting<bool>)> = Vec::new();
     let mut smooth = Setting::new();
     let mut format = Setting::new();
     let mut method = Setting::new();
@@ -790,9 +778,16 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             }
             Id::NoOutlierFilter => outliers.set(None, flag)?,
             Id::OutliersFirst => params.outliers_first = true,
-            Id::LocalOutliers => local.set(given.on, flag)?,
-            Id::ConfirmGivenBack => confirm.set(given.on, flag)?,
-            Id::CloseGaps => gaps.set(given.on, flag)?,
+            Id::StageSwitch(stage) => {
+                let k = match switched.iter().position(|(s, _)| *s == stage) {
+                    Some(k) => k,
+                    None => {
+                        switched.push((stage, Setting::new()));
+                        switched.len() - 1
+                    }
+                };
+                switched[k].1.set(given.on, flag)?;
+            }
             Id::Smooth => smooth.set(given.on, flag)?,
             Id::NoManifoldFix => repair.set(Repair::Off, flag)?,
             Id::Repair => {
@@ -836,14 +831,10 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     if let Some(mode) = repair.get() {
         params.repair = mode;
     }
-    if let Some(on) = local.get() {
-        params.local_outliers = on;
-    }
-    if let Some(on) = confirm.get() {
-        params.confirm_given_back = on;
-    }
-    if let Some(on) = gaps.get() {
-        params.close_gaps = on;
+    for (stage, setting) in switched {
+        if let Some(on) = setting.get() {
+            params.set_stage(stage, on);
+        }
     }
     if let Some(on) = smooth.get() {
         params.smooth = on;

@@ -12,6 +12,7 @@ use lexopt::{Arg, Parser};
 use std::ffi::OsString;
 
 /// One option of a command.
+#[derive(Clone)]
 pub(crate) struct Opt<Id> {
     /// What the command does with it.
     pub(crate) id: Id,

@@ -9,7 +9,7 @@
 //! them; the format is tested in `tests/cli.rs`.
 
 use crate::cli::note;
-use condt::{Reconstruction, Stage};
+use condt::Reconstruction;
 use std::time::{Duration, Instant};
 
 /// The clock of one command; prints nothing when `--timings` was not given.
@@ -67,7 +67,7 @@ impl Timings {
         }
         show("triangulation", result.triangulation_time(), "");
         for (stage, time) in result.stage_times() {
-            show(stage_step(stage), time, "");
+            show(stage.key(), time, "");
         }
         show("curves", result.curves_time(), "");
         // What the library did outside the steps it timed: the parameter check, starting its
@@ -88,21 +88,5 @@ impl Timings {
                 time.as_secs_f64()
             ));
         }
-    }
-}
-
-/// The one-word name of a stage on a `--timings` line.
-fn stage_step(stage: Stage) -> &'static str {
-    match stage {
-        Stage::Proximity => "proximity",
-        Stage::Repair => "repair",
-        Stage::Outliers => "iqr-outliers",
-        Stage::LocalOutliers => "local-outliers",
-        Stage::GivenBack => "given-back",
-        Stage::Gaps => "gaps",
-        Stage::NnCrust => "nn-crust",
-        Stage::Crust => "crust",
-        // A stage added to the library after this binary was written: still one word.
-        _ => "stage",
     }
 }

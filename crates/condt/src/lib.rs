@@ -119,7 +119,7 @@ pub use reconstruct::{
     reconstruct, reconstruct_owned, reconstruct_triangulation, Method, Params, Pipeline,
     Reconstruction, Smoothing, StageReport, StepReport,
 };
-pub use stages::{Repair, Stage, Uniformity};
+pub use stages::{Repair, Stage, Switch, Uniformity};
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};
 
 /// The README's code examples, compiled and run as doctests so they cannot go stale.

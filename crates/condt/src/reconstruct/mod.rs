@@ -39,6 +39,23 @@ mod tests {
     use alloc::borrow::Cow;
     use alloc::vec::Vec;
 
+    /// Every stage with a switch can be turned on and off through `Params::set_stage`, and
+    /// doing so adds it to or takes it from the stages that run; no other stage can.
+    #[test]
+    fn the_stage_switches_and_the_parameters_agree() {
+        for stage in Stage::ALL {
+            let mut on = Params::default();
+            let mut off = Params::default();
+            let switchable = on.set_stage(stage, true);
+            assert_eq!(off.set_stage(stage, false), switchable, "{stage:?}");
+            assert_eq!(switchable, stage.switch().is_some(), "{stage:?}");
+            if switchable {
+                assert!(on.stages().contains(&stage), "{stage:?}");
+                assert!(!off.stages().contains(&stage), "{stage:?}");
+            }
+        }
+    }
+
     fn edge(a: u32, b: u32) -> Edge {
         [VertexId::new(a), VertexId::new(b)]
     }

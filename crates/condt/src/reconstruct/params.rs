@@ -248,6 +248,29 @@ impl Params {
     }
 }
 
+impl Params {
+    /// Turns `stage` on or off, for the stages with a [`Switch`](crate::stages::Switch)
+    /// ([`Stage::switch`]); `false` for any other stage, which is left as it is.
+    ///
+    /// ```
+    /// use condt::{Params, Stage};
+    /// let mut p = Params::default();
+    /// assert!(p.set_stage(Stage::Gaps, false));
+    /// assert!(!p.close_gaps && !p.stages().contains(&Stage::Gaps));
+    /// assert!(!p.set_stage(Stage::Proximity, false));
+    /// ```
+    pub fn set_stage(&mut self, stage: Stage, on: bool) -> bool {
+        let field = match stage {
+            Stage::LocalOutliers => &mut self.local_outliers,
+            Stage::GivenBack => &mut self.confirm_given_back,
+            Stage::Gaps => &mut self.close_gaps,
+            _ => return false,
+        };
+        *field = on;
+        true
+    }
+}
+
 /// Chainable setters, one per field, so that a pipeline is spelled from a preset:
 /// `Params::paper().with_repair(Repair::Needs)`.
 ///

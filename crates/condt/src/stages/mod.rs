@@ -22,6 +22,23 @@ pub(crate) mod repair;
 pub use proximity::Uniformity;
 pub use repair::Repair;
 
+#[cfg(test)]
+mod table_tests {
+    use super::*;
+
+    #[test]
+    fn the_rows_are_in_the_order_of_the_variants_and_their_words_are_distinct() {
+        for (k, stage) in Stage::ALL.iter().enumerate() {
+            assert_eq!(ROWS[k].stage, *stage);
+            assert_eq!(stage.row().stage, *stage);
+        }
+        let mut keys: Vec<&str> = Stage::ALL.iter().map(|s| s.key()).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), Stage::ALL.len());
+    }
+}
+
 use crate::adjacency::{CurveGraph, Edge};
 use crate::error::Error;
 use crate::triangulate::Triangulation;
@@ -63,7 +80,133 @@ pub enum Stage {
     Crust,
 }
 
+/// A command-line switch that turns a stage on or off (`--NAME` and `--no-NAME`), with its
+/// help; [`Params::set_stage`](crate::Params::set_stage) does what it says.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Switch {
+    /// The flag without its dashes.
+    pub flag: &'static str,
+    /// What the stage does, for a command line's help (lines of at most 70 columns).
+    pub help: &'static str,
+}
+
+/// Everything that names a stage, one row per stage, in [`Stage`]'s order: a new stage is its
+/// module and one row here (with its `Step` and its field of `Params`); the command line's
+/// switches and `--timings` lines, the drawings' titles and the viewer's layers all read it.
+struct Row {
+    /// The stage the row is for (a test checks the order: [`Stage::row`] indexes by variant).
+    #[cfg_attr(not(test), allow(dead_code))]
+    stage: Stage,
+    name: &'static str,
+    title: &'static str,
+    key: &'static str,
+    switch: Option<Switch>,
+}
+
+const ROWS: [Row; 8] = [
+    Row {
+        stage: Stage::Proximity,
+        name: "proximity",
+        title: "ConDT proximity graph",
+        key: "proximity",
+        switch: None,
+    },
+    Row {
+        stage: Stage::Repair,
+        name: "repair",
+        title: "after non-manifold repair",
+        key: "repair",
+        switch: None,
+    },
+    Row {
+        stage: Stage::Outliers,
+        name: "IQR outliers",
+        title: "after outlier removal",
+        key: "iqr-outliers",
+        switch: None,
+    },
+    Row {
+        stage: Stage::LocalOutliers,
+        name: "local outliers",
+        title: "after local outlier removal",
+        key: "local-outliers",
+        switch: Some(Switch {
+            flag: "local-outliers",
+            help: "(default on; off with --paper) after the outlier filter and the
+repair, remove outliers locally: give back edges the filter cut
+along regular passages; drop edges far longer than their
+neighbours, branches of fewer than 5 points and components of
+fewer than 5 points clearly apart from the rest, unless dense
+(a sparsely sampled 3- or 4-point curve is lost)",
+        }),
+    },
+    Row {
+        stage: Stage::GivenBack,
+        name: "given-back check",
+        title: "after confirming given-back components",
+        key: "given-back",
+        switch: Some(Switch {
+            flag: "confirm-given-back",
+            help: "(default on; off with --paper; needs the local outlier removal)
+right after it, drop a component rebuilt only from edges the
+outlier filter cut unless every point of it is apart from all
+else by twice its longest edge (a chance chain of outliers in a
+large scatter; a sparse curve the filter cut that passes near
+another point stays cut)",
+        }),
+    },
+    Row {
+        stage: Stage::Gaps,
+        name: "gaps",
+        title: "after closing gaps",
+        key: "gaps",
+        switch: Some(Switch {
+            flag: "close-gaps",
+            help: "(default on; off with --paper) last, join loose ends that face each
+other across a short gap or line up through a stranded point, and a
+crossing's dropped arms",
+        }),
+    },
+    Row {
+        stage: Stage::NnCrust,
+        name: "NN-Crust",
+        title: "NN-Crust (baseline)",
+        key: "nn-crust",
+        switch: None,
+    },
+    Row {
+        stage: Stage::Crust,
+        name: "Crust",
+        title: "Crust (baseline)",
+        key: "crust",
+        switch: None,
+    },
+];
+
 impl Stage {
+    /// Every stage, in the order of the table that names them.
+    ///
+    /// ```
+    /// use condt::Stage;
+    /// assert_eq!(Stage::ALL[0], Stage::Proximity);
+    /// assert!(Stage::ALL.iter().all(|s| !s.key().contains(' ')));
+    /// ```
+    pub const ALL: [Stage; 8] = [
+        Stage::Proximity,
+        Stage::Repair,
+        Stage::Outliers,
+        Stage::LocalOutliers,
+        Stage::GivenBack,
+        Stage::Gaps,
+        Stage::NnCrust,
+        Stage::Crust,
+    ];
+
+    fn row(self) -> &'static Row {
+        // The rows are in the variants' order (a test checks it).
+        &ROWS[self as usize]
+    }
+
     /// A short name for the stage itself, as explanations and the viewer's panel use it.
     ///
     /// ```
@@ -71,30 +214,39 @@ impl Stage {
     /// assert_eq!(Stage::Outliers.name(), "IQR outliers");
     /// ```
     pub fn name(self) -> &'static str {
-        match self {
-            Stage::Proximity => "proximity",
-            Stage::Repair => "repair",
-            Stage::Outliers => "IQR outliers",
-            Stage::LocalOutliers => "local outliers",
-            Stage::GivenBack => "given-back check",
-            Stage::Gaps => "gaps",
-            Stage::NnCrust => "NN-Crust",
-            Stage::Crust => "Crust",
-        }
+        self.row().name
     }
 
     /// A title for the graph this stage leaves, as drawings label it.
+    ///
+    /// ```
+    /// use condt::Stage;
+    /// assert_eq!(Stage::Gaps.title(), "after closing gaps");
+    /// ```
     pub fn title(self) -> &'static str {
-        match self {
-            Stage::Proximity => "ConDT proximity graph",
-            Stage::Repair => "after non-manifold repair",
-            Stage::Outliers => "after outlier removal",
-            Stage::LocalOutliers => "after local outlier removal",
-            Stage::GivenBack => "after confirming given-back components",
-            Stage::Gaps => "after closing gaps",
-            Stage::NnCrust => "NN-Crust (baseline)",
-            Stage::Crust => "Crust (baseline)",
-        }
+        self.row().title
+    }
+
+    /// One word for the stage, as the command line's `--timings` lines name it.
+    ///
+    /// ```
+    /// use condt::Stage;
+    /// assert_eq!(Stage::Outliers.key(), "iqr-outliers");
+    /// ```
+    pub fn key(self) -> &'static str {
+        self.row().key
+    }
+
+    /// The switch that turns the stage on or off, for the stages that have one (the others
+    /// are set by their parameters: the repair's mode, the IQR factor, the method).
+    ///
+    /// ```
+    /// use condt::Stage;
+    /// assert_eq!(Stage::Gaps.switch().unwrap().flag, "close-gaps");
+    /// assert!(Stage::Proximity.switch().is_none());
+    /// ```
+    pub fn switch(self) -> Option<&'static Switch> {
+        self.row().switch.as_ref()
     }
 }
 
