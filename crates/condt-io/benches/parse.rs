@@ -16,9 +16,10 @@
 #[path = "../../condt/tests/common/mod.rs"]
 mod common;
 #[path = "../src/decimal.rs"]
-#[allow(dead_code)]
+// Its unit tests' imports too: cargo builds benches with `cfg(test)`, without the `#[test]`s.
+#[allow(dead_code, unused_imports)]
 mod decimal;
-// What the unit tests inside `decimal.rs` use (cargo builds benches with `cfg(test)`).
+// What the unit tests inside `decimal.rs` use.
 #[cfg(test)]
 extern crate alloc;
 #[cfg(test)]
@@ -126,7 +127,10 @@ fn parse(c: &mut Criterion) {
         assert_eq!(read_numbers(text, hand_written), expected);
         assert_eq!(read_numbers(text, fast_float2), expected);
         for (reader, read) in [
-            ("hand_written", hand_written as fn(&[u8]) -> Option<(f64, usize)>),
+            (
+                "hand_written",
+                hand_written as fn(&[u8]) -> Option<(f64, usize)>,
+            ),
             ("fast_float2", fast_float2),
             ("str_parse", std_parse),
         ] {
