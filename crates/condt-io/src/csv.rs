@@ -2,11 +2,15 @@
 //!
 //! Owns: [`parse_csv`]. A CSV file says which columns hold the coordinates in its header, so
 //! the reader follows the header instead of taking the first two columns as the plain reader
-//! does (an `id,x,y` file would otherwise be read as points `(id, x)`).
+//! does (an `id,x,y` file would otherwise be read as points `(id, x)`). The records are split by
+//! the `csv` crate (RFC 4180); this module only checks what that crate lets through silently (a
+//! closing quote with more of the field after it, `"1"5`, which it would read as `15`) and
+//! numbers the lines.
 
-use super::points::{numbered_lines, quoted, Source};
+use super::points::{quoted, Source};
 use super::IoError;
 use condt::Point;
+use condt::MAX_POINTS;
 use std::vec::Vec;
 
 /// Names accepted for the first coordinate and for the second, compared without case.
@@ -16,12 +20,15 @@ const Y_LONG_NAME: &str = "latitude";
 
 /// Parses a CSV file with a header line; `file` names the source in error messages.
 ///
-/// The first line that is not blank is the header: comma-separated column names, quoted or
+/// The first record that is not blank is the header: comma-separated column names, quoted or
 /// not. The first coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the second
-/// the column named `y` (or `lat`, `latitude`), compared without case; other columns are
-/// ignored. Every following line that is not blank is a point; fields may be quoted (`""` is a
-/// quote inside quotes). A missing column, a field that is not a finite number or a row without
-/// the coordinate columns is an error naming the line.
+/// the column named `y` (or `lat`, `latitude`), compared without case and blanks around them;
+/// other columns are ignored. Every following record that is not blank is a point. Fields are
+/// read as RFC 4180 has them: a field may be quoted, `""` is a quote inside quotes, and a quoted
+/// field may hold commas and line ends; a quoted field must end at its closing quote. Lines end
+/// at LF, CRLF or a lone CR. A missing column, a field that is not a finite number, a record
+/// without the coordinate columns or a malformed quoted field is an error naming the line (the
+/// line where its record starts).
 ///
 /// ```
 /// use condt::Point;
@@ -32,45 +39,57 @@ const Y_LONG_NAME: &str = "latitude";
 /// let err = parse_csv("name,value\na,1\n", "table.csv").unwrap_err();
 /// assert_eq!(err.line, Some(1));
 /// assert!(err.to_string().contains("no x column"));
+///
+/// let err = parse_csv("x,y\n1,2\n\"1\"5,3\n", "quotes.csv").unwrap_err();
+/// assert_eq!(err.to_string(), "quotes.csv:3: text after the closing quote of a field");
 /// # Ok::<(), condt_io::IoError>(())
 /// ```
 pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     let source = Source { file };
-    let error = |line: usize, message: String| source.error(line, message);
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    // Lines end at LF, CRLF or a lone CR, as in every other point format.
-    let mut lines = numbered_lines(text).filter(|(_, line)| !line.trim().is_empty());
-    let Some((header_line, header)) = lines.next() else {
-        return Ok(Vec::new());
-    };
-    let names = fields(header).map_err(|m| error(header_line, m))?;
-    let find = |wanted: &dyn Fn(&str) -> bool, axis: &str| {
-        names
-            .iter()
-            .position(|name| wanted(&name.trim().to_ascii_lowercase()))
-            .ok_or_else(|| {
-                error(
-                    header_line,
-                    format!(
-                        "the header has no {axis} column (x, lon, lng, longitude and y, lat, \
-                         latitude are read): {}",
-                        quoted(header)
-                    ),
-                )
-            })
-    };
-    let x_column = find(&|n| X_NAMES.contains(&n), "x")?;
-    let y_column = find(&|n| Y_NAMES.contains(&n) || n == Y_LONG_NAME, "y")?;
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        // Rows of any length: a short row gets this module's message, naming the column.
+        .flexible(true)
+        .from_reader(text.as_bytes());
+    let mut lines = LineCounter::new(text.as_bytes());
+    let mut record = csv::StringRecord::new();
+    let mut columns: Option<(usize, usize)> = None;
     let mut points = Vec::new();
-    for (line, row) in lines {
-        let values = fields(row).map_err(|m| error(line, m))?;
+    loop {
+        let start = reader.position().byte() as usize;
+        let more = reader.read_record(&mut record).map_err(|err| {
+            let at = err.position().map_or(start, |p| p.byte() as usize);
+            source.error(lines.line_at(at), format!("not a CSV record: {err}"))
+        })?;
+        if !more {
+            break;
+        }
+        // Where this record starts and where the next one does. The crate may place a record
+        // at the line end before it (the `\n` of a CRLF, empty lines it skipped), which a
+        // record cannot start with.
+        let mut start = record.position().map_or(start, |p| p.byte() as usize);
+        while matches!(text.as_bytes().get(start), Some(b'\r' | b'\n')) {
+            start += 1;
+        }
+        let end = reader.position().byte() as usize;
+        let raw = text.get(start..end).unwrap_or_default();
+        if record.len() == 1 && record[0].trim().is_empty() && !raw.contains('"') {
+            continue;
+        }
+        let line = lines.line_at(start);
+        check_quotes(raw.as_bytes()).map_err(|m| source.error(line, m.to_string()))?;
+        let Some((x_column, y_column)) = columns else {
+            columns = Some(header_columns(&record, raw, &source, line)?);
+            continue;
+        };
         let coordinate = |column: usize, axis: &str| -> Result<f64, IoError> {
-            let field = values.get(column).ok_or_else(|| {
-                error(
+            let field = record.get(column).ok_or_else(|| {
+                source.error(
                     line,
                     format!(
                         "{} fields, but the {axis} column is field {}",
-                        values.len(),
+                        record.len(),
                         column + 1
                     ),
                 )
@@ -78,40 +97,109 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
             source.number(line, field.trim())
         };
         let point = Point::new(coordinate(x_column, "x")?, coordinate(y_column, "y")?);
+        if points.len() == MAX_POINTS {
+            return Err(source.error(
+                line,
+                format!("more than {MAX_POINTS} points, the most condt accepts"),
+            ));
+        }
         points
             .try_reserve(1)
-            .map_err(|_| error(line, "too many points to hold in memory".to_string()))?;
+            .map_err(|_| source.error(line, "too many points to hold in memory".to_string()))?;
         points.push(point);
     }
     Ok(points)
 }
 
-/// The fields of one CSV line, unquoted.
-fn fields(line: &str) -> Result<Vec<String>, String> {
-    let mut fields = Vec::new();
-    let mut field = String::new();
-    let mut chars = line.chars().peekable();
-    let mut quoted = false;
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', false) if field.trim().is_empty() => {
-                field.clear();
-                quoted = true;
+/// The x and y columns named by the header `record` (its text `raw`, on `line`).
+fn header_columns(
+    record: &csv::StringRecord,
+    raw: &str,
+    source: &Source<'_>,
+    line: usize,
+) -> Result<(usize, usize), IoError> {
+    let find = |wanted: &dyn Fn(&str) -> bool, axis: &str| {
+        record
+            .iter()
+            .position(|name| wanted(&name.trim().to_ascii_lowercase()))
+            .ok_or_else(|| {
+                source.error(
+                    line,
+                    format!(
+                        "the header has no {axis} column (x, lon, lng, longitude and y, lat, \
+                         latitude are read): {}",
+                        quoted(raw.trim_end_matches(['\r', '\n']))
+                    ),
+                )
+            })
+    };
+    let x_column = find(&|n| X_NAMES.contains(&n), "x")?;
+    let y_column = find(&|n| Y_NAMES.contains(&n) || n == Y_LONG_NAME, "y")?;
+    Ok((x_column, y_column))
+}
+
+/// Refuses what the `csv` crate reads without complaint but RFC 4180 does not allow: text after
+/// the closing quote of a field (`"1"5`, which the crate reads as `15`) and a quoted field that
+/// is never closed (which it ends at the end of the file). `raw` is one record as written, its
+/// line end included.
+fn check_quotes(raw: &[u8]) -> Result<(), &'static str> {
+    let mut at = 0;
+    let mut field_start = true;
+    while let Some(&byte) = raw.get(at) {
+        if field_start && byte == b'"' {
+            at += 1;
+            loop {
+                match (raw.get(at), raw.get(at + 1)) {
+                    (None, _) => return Err("a quoted field is not closed"),
+                    (Some(b'"'), Some(b'"')) => at += 2,
+                    (Some(b'"'), _) => break,
+                    _ => at += 1,
+                }
             }
-            ('"', true) if chars.peek() == Some(&'"') => {
-                chars.next();
-                field.push('"');
+            at += 1;
+            if !matches!(raw.get(at), None | Some(b',' | b'\r' | b'\n')) {
+                return Err("text after the closing quote of a field");
             }
-            ('"', true) => quoted = false,
-            (',', false) => fields.push(core::mem::take(&mut field)),
-            (c, _) => field.push(c),
+            field_start = false;
+            continue;
+        }
+        field_start = byte == b',';
+        at += 1;
+    }
+    Ok(())
+}
+
+/// Line numbers of byte offsets met in increasing order, with the line ends of the other point
+/// readers (LF, CRLF or a lone CR), counted once over the whole text.
+struct LineCounter<'a> {
+    bytes: &'a [u8],
+    offset: usize,
+    line: usize,
+}
+
+impl<'a> LineCounter<'a> {
+    fn new(bytes: &'a [u8]) -> LineCounter<'a> {
+        LineCounter {
+            bytes,
+            offset: 0,
+            line: 1,
         }
     }
-    if quoted {
-        return Err("a quoted field is not closed on its line".to_string());
+
+    /// The 1-based line holding byte `offset` (not before the last one asked for).
+    fn line_at(&mut self, offset: usize) -> usize {
+        let offset = offset.clamp(self.offset, self.bytes.len());
+        let bytes = self.bytes;
+        self.line += bytes[self.offset..offset]
+            .iter()
+            .enumerate()
+            .filter(|&(i, &b)| {
+                b == b'\n' || (b == b'\r' && bytes.get(self.offset + i + 1) != Some(&b'\n'))
+            })
+            .count();
+        self.offset = offset;
+        self.line
     }
-    fields.push(field);
-    Ok(fields)
 }
 
 #[cfg(test)]
@@ -145,12 +233,39 @@ mod tests {
             ("x,y\n1,2\n3,abc\n", 3, "cannot read \"abc\""),
             ("x,y\n1,nan\n", 2, "\"nan\" is not finite"),
             ("x,y\n1,\"2\n", 2, "not closed"),
+            ("x,y\n1,2\n\"1\"5,3\n", 3, "after the closing quote"),
+            ("x,y\r\n1,2\r\n3,\"4\" \r\n", 3, "after the closing quote"),
+            ("x,y\r1,2\r\r3,\"4\"x\r", 4, "after the closing quote"),
             ("\n\nid,y\n", 3, "no x column"),
         ] {
             let err = parse_csv(text, "bad.csv").unwrap_err();
             assert_eq!(err.line, Some(line), "{text:?}");
             assert!(err.to_string().contains(words), "{err}");
         }
+    }
+
+    #[test]
+    fn quoted_fields_follow_rfc_4180() {
+        // A line end inside quotes belongs to the field; the record's line is where it starts,
+        // and the lines after it count on.
+        let text = "label,x,y\n\"two\nlines\",1,\"2\"\n\"\",3,4\nc,5,bad\n";
+        let err = parse_csv(text, "q.csv").unwrap_err();
+        assert_eq!(err.line, Some(5), "{err}");
+        let pts = parse_csv(&text.replace("bad", "6"), "q.csv").unwrap();
+        assert_eq!(
+            pts,
+            vec![
+                Point::new(1.0, 2.0),
+                Point::new(3.0, 4.0),
+                Point::new(5.0, 6.0)
+            ]
+        );
+        // A quote inside an unquoted field is text, as the crate reads it (and not a number).
+        let err = parse_csv("x,y\n1,2\"\n", "q.csv").unwrap_err();
+        assert!(err.to_string().contains("cannot read \"2\\\"\""), "{err}");
+        // Blank lines, with blanks on them or not, are skipped anywhere.
+        let pts = parse_csv("\n  \nx,y\n\n \t\n1,2\n\n", "b.csv").unwrap();
+        assert_eq!(pts, vec![Point::new(1.0, 2.0)]);
     }
 
     #[test]

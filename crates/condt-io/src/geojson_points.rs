@@ -1,18 +1,26 @@
 //! GeoJSON point input: the Point and MultiPoint geometries of a GeoJSON document.
 //!
-//! Owns: [`parse_geojson`] and the small JSON reader it needs (the library takes no JSON
-//! dependency). It reads coordinates as they are written (GeoJSON's longitude, latitude order
-//! becomes x, y); it may not project them.
+//! Owns: [`parse_geojson`], the GeoJSON structure on top of `serde_json`'s parser. The positions
+//! go into the point vector as the parser meets them, through seeds and visitors: no tree of the
+//! document is built. A member that comes before its object's `"type"` (`"coordinates"` of a
+//! geometry written with sorted keys) is kept as its text, a slice of the document, and read
+//! once the type is known. It reads coordinates as they are written (GeoJSON's longitude,
+//! latitude order becomes x, y); it may not project them.
 
-use super::points::{line_at, quoted};
+use super::points::line_at;
+use super::points::quoted;
 use super::{IoError, IoErrorKind};
 use condt::Point;
 use condt::MAX_POINTS;
+use core::fmt;
+use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
+use serde_json::value::RawValue;
 use std::string::String;
 use std::vec::Vec;
 
-/// Deepest nesting of arrays and objects read; deeper documents are refused rather than risk
-/// the stack (GeoJSON points need five levels).
+/// Deepest nesting of GeoJSON objects and their arrays read; deeper documents are refused rather
+/// than risk the stack (GeoJSON points need five levels). Other JSON (properties) is skipped
+/// without recursion.
 const MAX_DEPTH: usize = 64;
 
 /// Parses the points of a GeoJSON document; `file` names the source in error messages.
@@ -21,7 +29,8 @@ const MAX_DEPTH: usize = 64;
 /// gives one point and every MultiPoint its points, in the order they are written (a third
 /// coordinate is ignored). A Feature without a geometry (`null`) gives none. Any other geometry
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
-/// coordinates that are not numbers.
+/// coordinates that are not numbers. Members may come in any order; strings may hold escapes
+/// (`"Po\u0069nt"` is `"Point"`); numbers are read exactly as `str::parse` reads them.
 ///
 /// ```
 /// use condt::Point;
@@ -30,7 +39,7 @@ const MAX_DEPTH: usize = 64;
 ///   {"type": "Feature", "properties": {"name": "a"},
 ///    "geometry": {"type": "Point", "coordinates": [1.5, 2]}},
 ///   {"type": "Feature", "properties": null,
-///    "geometry": {"type": "MultiPoint", "coordinates": [[3, 4, 100], [5, 6]]}}
+///    "geometry": {"coordinates": [[3, 4, 100], [5, 6]], "type": "MultiPoint"}}
 /// ]}"#;
 /// let pts = parse_geojson(text, "points.geojson")?;
 /// assert_eq!(pts, vec![Point::new(1.5, 2.0), Point::new(3.0, 4.0), Point::new(5.0, 6.0)]);
@@ -43,308 +52,408 @@ const MAX_DEPTH: usize = 64;
 /// ```
 pub fn parse_geojson(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut reader = Reader {
-        bytes: text.as_bytes(),
-        at: 0,
+    let mut state = State {
+        text,
+        points: Vec::new(),
+        failure: None,
     };
-    let fail = |reader: &Reader, at: usize, message: String| IoError {
-        file: file.to_string(),
-        line: Some(reader.line_of(at)),
-        kind: IoErrorKind::Content(message),
-    };
-    let document = reader
-        .value(0)
-        .map_err(|(at, message)| fail(&reader, at, message))?;
-    reader.skip_space();
-    if reader.at < reader.bytes.len() {
-        return Err(fail(
-            &reader,
-            reader.at,
-            "text after the end of the JSON document".to_string(),
-        ));
-    }
-    let mut points = Vec::new();
-    collect(&document, &mut points).map_err(|(at, message)| fail(&reader, at, message))?;
-    Ok(points)
-}
-
-/// A JSON value with the byte offset where it starts (for messages).
-#[derive(Debug)]
-struct Value {
-    at: usize,
-    kind: Kind,
-}
-
-#[derive(Debug)]
-enum Kind {
-    Null,
-    Bool,
-    Number(f64),
-    Text(String),
-    Array(Vec<Value>),
-    Object(Vec<(String, Value)>),
-}
-
-impl Value {
-    fn field(&self, name: &str) -> Option<&Value> {
-        match &self.kind {
-            Kind::Object(fields) => fields.iter().find(|(k, _)| k == name).map(|(_, v)| v),
-            _ => None,
-        }
-    }
-
-    fn text(&self) -> Option<&str> {
-        match &self.kind {
-            Kind::Text(t) => Some(t),
-            _ => None,
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    let read = Member::Object
+        .read(&mut state, 0, &mut deserializer)
+        .and_then(|()| deserializer.end());
+    match read {
+        Ok(()) => Ok(state.points),
+        Err(err) => {
+            let (at, message) = state
+                .failure
+                .take()
+                .unwrap_or_else(|| (offset_of(text, &err), message_of(&err)));
+            Err(IoError {
+                file: file.to_string(),
+                line: Some(line_at(text.as_bytes(), at.min(text.len()))),
+                kind: IoErrorKind::Content(message),
+            })
         }
     }
 }
 
-type Failure = (usize, String);
+/// What a read has gathered: the points, and the first error met in a member read after its
+/// object's type (its byte offset in the document and its message), which the error that the
+/// outer parse then returns only carries up.
+struct State<'t> {
+    text: &'t str,
+    points: Vec<Point>,
+    failure: Option<(usize, String)>,
+}
 
-/// Appends the points of `value` (a GeoJSON object) to `points`.
-fn collect(value: &Value, points: &mut Vec<Point>) -> Result<(), Failure> {
-    let kind = value
-        .field("type")
-        .and_then(Value::text)
-        .ok_or((value.at, "a GeoJSON object needs a \"type\"".to_string()))?;
-    let list = |name: &str| -> Result<&[Value], Failure> {
-        match value.field(name).map(|v| &v.kind) {
-            Some(Kind::Array(items)) => Ok(items),
-            _ => Err((value.at, format!("a {kind} needs a \"{name}\" array"))),
+impl State<'_> {
+    /// Appends `p`, refusing more than [`MAX_POINTS`] points as every point reader does.
+    fn push<E: de::Error>(&mut self, p: Point) -> Result<(), E> {
+        if self.points.len() == MAX_POINTS {
+            return Err(E::custom(format_args!(
+                "more than {MAX_POINTS} points, the most condt accepts"
+            )));
         }
+        self.points.try_reserve(1).map_err(|_| {
+            E::custom(format_args!(
+                "cannot hold {} points in memory",
+                self.points.len() + 1
+            ))
+        })?;
+        self.points.push(p);
+        Ok(())
+    }
+
+    /// Reads `member` from `raw`, a slice of the document kept while its object's type was
+    /// not known; an error is kept with its place in the whole document.
+    fn read_later<E: de::Error>(
+        &mut self,
+        member: Member,
+        depth: usize,
+        raw: &RawValue,
+    ) -> Result<(), E> {
+        let text = raw.get();
+        let mut deserializer = serde_json::Deserializer::from_str(text);
+        if let Err(err) = member.read(self, depth, &mut deserializer) {
+            if self.failure.is_none() {
+                // `raw` lies inside the document: its offset there, by address.
+                let start = (text.as_ptr() as usize).wrapping_sub(self.text.as_ptr() as usize);
+                self.failure = Some((start + offset_of(text, &err), message_of(&err)));
+            }
+            return Err(E::custom("(reported above)"));
+        }
+        Ok(())
+    }
+}
+
+/// The byte offset in `text` of the line and column `err` names (serde_json counts lines at
+/// LF alone; the offset is then numbered as the other readers number lines).
+fn offset_of(text: &str, err: &serde_json::Error) -> usize {
+    let line_start = if err.line() <= 1 {
+        0
+    } else {
+        text.bytes()
+            .enumerate()
+            .filter(|&(_, b)| b == b'\n')
+            .nth(err.line() - 2)
+            .map_or(text.len(), |(i, _)| i + 1)
     };
-    match kind {
-        "FeatureCollection" => list("features")?
-            .iter()
-            .try_for_each(|feature| collect(feature, points)),
-        "Feature" => match value.field("geometry") {
-            None => Err((value.at, "a Feature needs a \"geometry\"".to_string())),
-            Some(Value {
-                kind: Kind::Null, ..
-            }) => Ok(()),
-            Some(geometry) => collect(geometry, points),
-        },
-        "GeometryCollection" => list("geometries")?
-            .iter()
-            .try_for_each(|geometry| collect(geometry, points)),
-        "Point" => {
-            let coordinates = value
-                .field("coordinates")
-                .ok_or((value.at, "a Point needs \"coordinates\"".to_string()))?;
-            push(points, position(coordinates)?, value.at)?;
+    (line_start + err.column().saturating_sub(1)).min(text.len())
+}
+
+/// The message of `err` without serde_json's "at line L column C" (the error names the line).
+fn message_of(err: &serde_json::Error) -> String {
+    let message = err.to_string();
+    match message.rfind(" at line ") {
+        Some(cut) if err.line() > 0 => message[..cut].to_string(),
+        _ => message,
+    }
+}
+
+/// What a member holds, and so how it is read.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Member {
+    /// A GeoJSON object (the document, a feature).
+    Object,
+    /// A Feature's geometry: an object or `null`.
+    Geometry,
+    /// An array of objects: `"features"` or `"geometries"`, named in the message.
+    Objects(&'static str),
+    /// A Point's coordinates.
+    Position,
+    /// A MultiPoint's coordinates.
+    Positions,
+}
+
+impl Member {
+    /// Reads this member from `deserializer` into `state`.
+    fn read<'de, D: Deserializer<'de>>(
+        self,
+        state: &mut State<'_>,
+        depth: usize,
+        deserializer: D,
+    ) -> Result<(), D::Error> {
+        if depth > MAX_DEPTH {
+            return Err(de::Error::custom(format_args!(
+                "nested deeper than {MAX_DEPTH} levels"
+            )));
+        }
+        let reader = Reader {
+            member: self,
+            state,
+            depth,
+        };
+        // By what the value is: the visitor refuses the wrong kinds with this member's message.
+        deserializer.deserialize_any(reader)
+    }
+
+    /// What this member must be, for the message when it is something else.
+    fn wanted(self) -> &'static str {
+        match self {
+            Member::Object | Member::Geometry => "a GeoJSON object needs a \"type\"",
+            Member::Objects("features") => "a FeatureCollection needs a \"features\" array",
+            Member::Objects(_) => "a GeometryCollection needs a \"geometries\" array",
+            Member::Position => POSITION,
+            Member::Positions => "a MultiPoint needs a \"coordinates\" array",
+        }
+    }
+}
+
+const POSITION: &str = "a position must be [x, y] or [x, y, z], numbers";
+
+/// A [`Member`] read into the state: the visitor of every level.
+struct Reader<'s, 't> {
+    member: Member,
+    state: &'s mut State<'t>,
+    depth: usize,
+}
+
+/// The member of a seed, as a seed (for `next_element_seed`, `next_value_seed`).
+impl<'de> DeserializeSeed<'de> for Reader<'_, '_> {
+    type Value = ();
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<(), D::Error> {
+        self.member.read(self.state, self.depth, deserializer)
+    }
+}
+
+/// Any value of the wrong kind for the member: its message, at the parser's place.
+macro_rules! refuse {
+    ($($method:ident($($arg:ty)?)),*) => {
+        $(fn $method<E: de::Error>(self $(, _: $arg)?) -> Result<(), E> {
+            Err(E::custom(self.member.wanted()))
+        })*
+    };
+}
+
+impl<'de> Visitor<'de> for Reader<'_, '_> {
+    type Value = ();
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.member.wanted())
+    }
+
+    refuse!(
+        visit_bool(bool),
+        visit_i64(i64),
+        visit_u64(u64),
+        visit_f64(f64),
+        visit_str(&str)
+    );
+
+    fn visit_unit<E: de::Error>(self) -> Result<(), E> {
+        if self.member == Member::Geometry {
             Ok(())
+        } else {
+            Err(E::custom(self.member.wanted()))
         }
-        "MultiPoint" => list("coordinates")?.iter().try_for_each(|p| {
-            push(points, position(p)?, p.at)?;
-            Ok(())
-        }),
-        other => Err((
-            value.at,
-            format!(
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
+        let depth = self.depth + 1;
+        match self.member {
+            Member::Objects(_) => {
+                while seq
+                    .next_element_seed(Reader {
+                        member: Member::Object,
+                        state: &mut *self.state,
+                        depth,
+                    })?
+                    .is_some()
+                {}
+                Ok(())
+            }
+            Member::Positions => {
+                while seq
+                    .next_element_seed(Reader {
+                        member: Member::Position,
+                        state: &mut *self.state,
+                        depth,
+                    })?
+                    .is_some()
+                {}
+                Ok(())
+            }
+            Member::Position => {
+                let x = seq.next_element_seed(Coordinate)?;
+                let y = x.and(seq.next_element_seed(Coordinate)?);
+                let (Some(x), Some(y)) = (x, y) else {
+                    return Err(de::Error::custom(POSITION));
+                };
+                // A third coordinate, of any kind, is ignored; a fourth is refused.
+                if seq.next_element::<IgnoredAny>()?.is_some()
+                    && seq.next_element::<IgnoredAny>()?.is_some()
+                {
+                    return Err(de::Error::custom(POSITION));
+                }
+                self.state.push(Point::new(x, y))
+            }
+            Member::Object | Member::Geometry => Err(de::Error::custom(self.member.wanted())),
+        }
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+        if !matches!(self.member, Member::Object | Member::Geometry) {
+            return Err(de::Error::custom(self.member.wanted()));
+        }
+        let depth = self.depth + 1;
+        // The type once read (`None` inside when it is not a string); the member read for it,
+        // whether it was met, and members met before the type, kept as text.
+        let mut kind: Option<Option<String>> = None;
+        let mut seen = Vec::new();
+        let mut later: Vec<(Key, &'de RawValue)> = Vec::new();
+        while let Some(key) = map.next_key::<Key>()? {
+            if key == Key::Other || seen.contains(&key) {
+                map.next_value::<IgnoredAny>()?;
+                continue;
+            }
+            seen.push(key);
+            if key == Key::Type {
+                let raw = map.next_value::<&'de RawValue>()?;
+                let name = serde_json::from_str::<String>(raw.get()).ok();
+                // An unknown type is refused at once, on the line of the type.
+                wanted_member::<A::Error>(name.as_deref())?;
+                kind = Some(name);
+                continue;
+            }
+            match &kind {
+                Some(name) => match wanted_member::<A::Error>(name.as_deref())? {
+                    Some((wanted, member)) if wanted == key => map.next_value_seed(Reader {
+                        member,
+                        state: &mut *self.state,
+                        depth,
+                    })?,
+                    _ => {
+                        map.next_value::<IgnoredAny>()?;
+                    }
+                },
+                None => later.push((key, map.next_value::<&'de RawValue>()?)),
+            }
+        }
+        let Some(name) = kind else {
+            return Err(de::Error::custom(Member::Object.wanted()));
+        };
+        let Some((wanted, member)) = wanted_member::<A::Error>(name.as_deref())? else {
+            return Err(de::Error::custom(Member::Object.wanted()));
+        };
+        if let Some(&(_, raw)) = later.iter().find(|(key, _)| *key == wanted) {
+            self.state.read_later(member, depth, raw)?;
+        }
+        if !seen.contains(&wanted) {
+            return Err(de::Error::custom(match wanted {
+                Key::Geometry => "a Feature needs a \"geometry\"".to_string(),
+                Key::Coordinates if member == Member::Position => {
+                    "a Point needs \"coordinates\"".to_string()
+                }
+                _ => member.wanted().to_string(),
+            }));
+        }
+        Ok(())
+    }
+}
+
+/// The member that an object of type `name` is read by, and how; `None` for no type (not a
+/// string); an error for a type that holds no points.
+fn wanted_member<E: de::Error>(name: Option<&str>) -> Result<Option<(Key, Member)>, E> {
+    Ok(Some(match name {
+        None => return Ok(None),
+        Some("FeatureCollection") => (Key::Features, Member::Objects("features")),
+        Some("Feature") => (Key::Geometry, Member::Geometry),
+        Some("GeometryCollection") => (Key::Geometries, Member::Objects("geometries")),
+        Some("Point") => (Key::Coordinates, Member::Position),
+        Some("MultiPoint") => (Key::Coordinates, Member::Positions),
+        Some(other) => {
+            return Err(E::custom(format_args!(
                 "a {}: only Point and MultiPoint geometries are read as points",
                 quoted(other)
-            ),
-        )),
+            )))
+        }
+    }))
+}
+
+/// The members of a GeoJSON object that matter here.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Key {
+    Type,
+    Features,
+    Geometries,
+    Geometry,
+    Coordinates,
+    Other,
+}
+
+impl<'de> de::Deserialize<'de> for Key {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Key, D::Error> {
+        struct KeyVisitor;
+        impl Visitor<'_> for KeyVisitor {
+            type Value = Key;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a member name")
+            }
+            fn visit_str<E: de::Error>(self, name: &str) -> Result<Key, E> {
+                Ok(match name {
+                    "type" => Key::Type,
+                    "features" => Key::Features,
+                    "geometries" => Key::Geometries,
+                    "geometry" => Key::Geometry,
+                    "coordinates" => Key::Coordinates,
+                    _ => Key::Other,
+                })
+            }
+        }
+        deserializer.deserialize_identifier(KeyVisitor)
     }
 }
 
-/// A GeoJSON position `[x, y]` or `[x, y, z]`.
-fn position(value: &Value) -> Result<Point, Failure> {
-    let bad = || {
-        (
-            value.at,
-            "a position must be [x, y] or [x, y, z], numbers".to_string(),
-        )
-    };
-    let Kind::Array(items) = &value.kind else {
-        return Err(bad());
-    };
-    match items.as_slice() {
-        [x, y] | [x, y, _] => match (&x.kind, &y.kind) {
-            (Kind::Number(x), Kind::Number(y)) => Ok(Point::new(*x, *y)),
-            _ => Err(bad()),
-        },
-        _ => Err(bad()),
+/// One coordinate: a JSON number, as an `f64`.
+struct Coordinate;
+
+impl<'de> DeserializeSeed<'de> for Coordinate {
+    type Value = f64;
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<f64, D::Error> {
+        deserializer.deserialize_any(self)
     }
 }
 
-/// A cursor over the document's bytes.
-struct Reader<'a> {
-    bytes: &'a [u8],
-    at: usize,
-}
+impl<'de> Visitor<'de> for Coordinate {
+    type Value = f64;
 
-impl Reader<'_> {
-    fn line_of(&self, at: usize) -> usize {
-        line_at(self.bytes, at.min(self.bytes.len()))
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(POSITION)
     }
 
-    fn skip_space(&mut self) {
-        while self
-            .bytes
-            .get(self.at)
-            .is_some_and(|b| matches!(b, b' ' | b'\t' | b'\n' | b'\r'))
-        {
-            self.at += 1;
-        }
+    fn visit_f64<E: de::Error>(self, x: f64) -> Result<f64, E> {
+        Ok(x)
     }
 
-    fn expect(&mut self, byte: u8) -> Result<(), Failure> {
-        self.skip_space();
-        if self.bytes.get(self.at) == Some(&byte) {
-            self.at += 1;
-            Ok(())
-        } else {
-            Err((self.at, format!("expected '{}'", byte as char)))
-        }
+    fn visit_i64<E: de::Error>(self, x: i64) -> Result<f64, E> {
+        Ok(x as f64)
     }
 
-    fn value(&mut self, depth: usize) -> Result<Value, Failure> {
-        self.skip_space();
-        let at = self.at;
-        if depth > MAX_DEPTH {
-            return Err((at, format!("nested deeper than {MAX_DEPTH} levels")));
-        }
-        let kind = match self.bytes.get(at) {
-            None => return Err((at, "the document ends where a value was expected".into())),
-            Some(b'{') => {
-                self.at += 1;
-                let mut fields = Vec::new();
-                self.skip_space();
-                if self.bytes.get(self.at) == Some(&b'}') {
-                    self.at += 1;
-                } else {
-                    loop {
-                        self.skip_space();
-                        let key = self.string()?;
-                        self.expect(b':')?;
-                        let value = self.value(depth + 1)?;
-                        fields.push((key, value));
-                        self.skip_space();
-                        match self.bytes.get(self.at) {
-                            Some(b',') => self.at += 1,
-                            Some(b'}') => {
-                                self.at += 1;
-                                break;
-                            }
-                            _ => return Err((self.at, "expected ',' or '}'".into())),
-                        }
-                    }
-                }
-                Kind::Object(fields)
-            }
-            Some(b'[') => {
-                self.at += 1;
-                let mut items = Vec::new();
-                self.skip_space();
-                if self.bytes.get(self.at) == Some(&b']') {
-                    self.at += 1;
-                } else {
-                    loop {
-                        items.push(self.value(depth + 1)?);
-                        self.skip_space();
-                        match self.bytes.get(self.at) {
-                            Some(b',') => self.at += 1,
-                            Some(b']') => {
-                                self.at += 1;
-                                break;
-                            }
-                            _ => return Err((self.at, "expected ',' or ']'".into())),
-                        }
-                    }
-                }
-                Kind::Array(items)
-            }
-            Some(b'"') => Kind::Text(self.string()?),
-            Some(b't') => self.word("true", Kind::Bool)?,
-            Some(b'f') => self.word("false", Kind::Bool)?,
-            Some(b'n') => self.word("null", Kind::Null)?,
-            Some(_) => Kind::Number(self.number()?),
-        };
-        Ok(Value { at, kind })
+    fn visit_u64<E: de::Error>(self, x: u64) -> Result<f64, E> {
+        Ok(x as f64)
     }
 
-    fn word(&mut self, word: &str, kind: Kind) -> Result<Kind, Failure> {
-        if self.bytes[self.at..].starts_with(word.as_bytes()) {
-            self.at += word.len();
-            Ok(kind)
-        } else {
-            Err((self.at, "not a JSON value".into()))
-        }
+    fn visit_bool<E: de::Error>(self, _: bool) -> Result<f64, E> {
+        Err(E::custom(POSITION))
     }
 
-    fn number(&mut self) -> Result<f64, Failure> {
-        let start = self.at;
-        while self
-            .bytes
-            .get(self.at)
-            .is_some_and(|b| matches!(b, b'0'..=b'9' | b'-' | b'+' | b'.' | b'e' | b'E'))
-        {
-            self.at += 1;
-        }
-        let token = core::str::from_utf8(&self.bytes[start..self.at]).unwrap_or("");
-        match token.parse::<f64>() {
-            Ok(x) if x.is_finite() && !token.is_empty() => Ok(x),
-            _ => {
-                let end = (start + 40).min(self.bytes.len());
-                let near = String::from_utf8_lossy(&self.bytes[start..end]);
-                Err((start, format!("not a JSON value: {}", quoted(&near))))
-            }
-        }
+    fn visit_str<E: de::Error>(self, _: &str) -> Result<f64, E> {
+        Err(E::custom(POSITION))
     }
 
-    fn string(&mut self) -> Result<String, Failure> {
-        let start = self.at;
-        if self.bytes.get(self.at) != Some(&b'"') {
-            return Err((start, "expected a string".into()));
-        }
-        self.at += 1;
-        let mut text = Vec::new();
-        loop {
-            match self.bytes.get(self.at) {
-                None => return Err((start, "a string is not closed".into())),
-                Some(b'"') => {
-                    self.at += 1;
-                    break;
-                }
-                Some(b'\\') => {
-                    // Escapes matter only in keys and type names, which are plain ASCII; any
-                    // escaped character is kept as written after the backslash.
-                    let escaped = self.bytes.get(self.at + 1).copied();
-                    let Some(escaped) = escaped else {
-                        return Err((start, "a string is not closed".into()));
-                    };
-                    text.push(escaped);
-                    self.at += 2;
-                }
-                Some(&b) => {
-                    text.push(b);
-                    self.at += 1;
-                }
-            }
-        }
-        Ok(String::from_utf8_lossy(&text).into_owned())
+    fn visit_unit<E: de::Error>(self) -> Result<f64, E> {
+        Err(E::custom(POSITION))
     }
-}
 
-/// Appends `p`, refusing more than [`MAX_POINTS`] points as every point reader does.
-fn push(points: &mut Vec<Point>, p: Point, at: usize) -> Result<(), Failure> {
-    if points.len() == MAX_POINTS {
-        return Err((
-            at,
-            format!("more than {MAX_POINTS} points, the most condt accepts"),
-        ));
+    fn visit_seq<A: SeqAccess<'de>>(self, _: A) -> Result<f64, A::Error> {
+        Err(de::Error::custom(POSITION))
     }
-    points.try_reserve(1).map_err(|_| {
-        (
-            at,
-            format!("cannot hold {} points in memory", points.len() + 1),
-        )
-    })?;
-    points.push(p);
-    Ok(())
+
+    fn visit_map<A: MapAccess<'de>>(self, _: A) -> Result<f64, A::Error> {
+        Err(de::Error::custom(POSITION))
+    }
 }
 
 #[cfg(test)]
@@ -375,42 +484,143 @@ mod tests {
     #[test]
     fn bad_documents_are_refused_with_their_line() {
         for (text, line, words) in [
-            ("{\"type\":\"Point\",\n\"coordinates\":[1]}", 2, "position"),
+            ("{\"type\":\"Point\",\n\"coordinates\":[1]}", 2, "a position must be"),
+            ("{\"type\":\"Point\",\n\"coordinates\":[1,2,3,4]}", 2, "a position must be"),
+            ("{\"type\":\"Point\",\n\"coordinates\":[1,null]}", 2, "a position must be"),
+            ("{\"type\":\"Point\",\n\"coordinates\":7}", 2, "a position must be"),
             (
                 "{\"type\":\"Point\",\"coordinates\":[1,2]}\n,",
                 2,
-                "after the end",
+                "trailing characters",
             ),
             (
                 "{\"type\":\"Point\",\n\"coordinates\":[1,2}",
                 2,
-                "expected ',' or ']'",
+                "expected `,` or `]`",
             ),
             ("{\"features\":[]}", 1, "needs a \"type\""),
+            ("{\"type\":7,\"features\":[]}", 1, "needs a \"type\""),
             ("{\"type\":\"FeatureCollection\"}", 1, "\"features\" array"),
+            (
+                "{\"type\":\"FeatureCollection\",\"features\":{}}",
+                1,
+                "\"features\" array",
+            ),
+            ("{\"type\":\"Feature\"}", 1, "needs a \"geometry\""),
+            ("{\"type\":\"Point\"}", 1, "needs \"coordinates\""),
             (
                 "\n\n{\"type\":\"Polygon\",\"coordinates\":[]}",
                 3,
-                "Polygon",
+                "\"Polygon\": only Point and MultiPoint",
             ),
             (
                 "{\"type\":\"Point\",\"coordinates\":[1e999,2]}",
                 1,
-                "not a JSON value",
+                "number out of range",
             ),
-            ("{\"type\":\"Po", 1, "not closed"),
-            ("", 1, "ends where a value"),
+            // JSON's number syntax, which `str::parse` is laxer than.
+            ("{\"type\":\"Point\",\"coordinates\":[+1,2]}", 1, "expected value"),
+            ("{\"type\":\"Point\",\"coordinates\":[.5,2]}", 1, "expected value"),
+            ("{\"type\":\"Point\",\"coordinates\":[1.,2]}", 1, "invalid number"),
+            ("{\"type\":\"Po", 1, "EOF while parsing a string"),
+            ("", 1, "EOF while parsing a value"),
+            ("[1,2]", 1, "needs a \"type\""),
+            // A member read after the type it waited for: the line is the document's.
+            (
+                "{\"features\":[\n{\"geometry\":\n{\"coordinates\":\n[1,\"2\"],\"type\":\"Point\"},\n\
+                 \"type\":\"Feature\"}],\n\"type\":\"FeatureCollection\"}",
+                4,
+                "a position must be",
+            ),
+            (
+                "{\"coordinates\":[[1,2],\r\n[3,4],\r\n[5]],\r\n\"type\":\"MultiPoint\"}",
+                3,
+                "a position must be",
+            ),
         ] {
             let err = parse_geojson(text, "bad.geojson").unwrap_err();
             assert_eq!(err.line, Some(line), "{text:?}: {err}");
             assert!(err.to_string().contains(words), "{err}");
+            assert!(!err.to_string().contains(" column "), "{err}");
+        }
+    }
+
+    #[test]
+    fn escapes_and_member_order_are_json_s() {
+        let text = r#"{"coordinates": [[1, 2], [3, 4]], "t\u0079pe": "Multi\u0050oint"}"#;
+        assert_eq!(
+            parse_geojson(text, "e.json").unwrap(),
+            vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0)]
+        );
+        let text = r#"{"type":"Feature","geometry":{"type":"Po\u0069nt","coordinates":[5,6]},
+            "properties":{"name":"a \"quoted\" \\ name \u00e9"}}"#;
+        assert_eq!(
+            parse_geojson(text, "e.json").unwrap(),
+            vec![Point::new(5.0, 6.0)]
+        );
+        // Sorted keys (Python's `json.dump(..., sort_keys=True)`): every member before its type.
+        let text = r#"{"features": [{"geometry": {"coordinates": [1, 2], "type": "Point"},
+            "properties": {}, "type": "Feature"}, {"geometry": null, "type": "Feature"},
+            {"geometry": {"coordinates": [[3, 4, 0]], "type": "MultiPoint"},
+            "type": "Feature"}], "type": "FeatureCollection"}"#;
+        assert_eq!(
+            parse_geojson(text, "sorted.json").unwrap(),
+            vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0)]
+        );
+        // The first of two members of one name counts, as before; members of other types'
+        // names are skipped whatever they hold.
+        let text = r#"{"type":"Point","coordinates":[1,2],"coordinates":[3,4],"features":7}"#;
+        assert_eq!(
+            parse_geojson(text, "d.json").unwrap(),
+            vec![Point::new(1.0, 2.0)]
+        );
+    }
+
+    #[test]
+    fn numbers_read_as_str_parse_reads_them() {
+        let mut stream = crate::test_rng::Xorshift::new(7);
+        let mut texts: Vec<String> = ["-0", "0", "-0.0", "1e-320", "9007199254740993", "-12"]
+            .map(String::from)
+            .to_vec();
+        texts.push("123456789012345678901234567890".to_string());
+        texts.push("2.2250738585072011e-308".to_string());
+        for _ in 0..2000 {
+            let x = f64::from_bits(stream.next_u64());
+            if x.is_finite() {
+                texts.push(format!("{x:?}"));
+                texts.push(format!("{x:.7e}"));
+            }
+        }
+        for text in &texts {
+            let json = format!("{{\"type\":\"Point\",\"coordinates\":[{text},{text}]}}");
+            let read = parse_geojson(&json, "n.json").unwrap();
+            let expected = text.parse::<f64>().unwrap().to_bits();
+            assert_eq!(read[0].x.to_bits(), expected, "{text}");
         }
     }
 
     #[test]
     fn deep_nesting_is_refused_not_a_stack_overflow() {
         let deep = "[".repeat(100_000);
-        let err = parse_geojson(&deep, "deep.json").unwrap_err();
-        assert!(err.to_string().contains("nested deeper"), "{err}");
+        assert!(parse_geojson(&deep, "deep.json").is_err());
+        // Deep properties are skipped without recursion, and end in a syntax error here.
+        let deep = format!(
+            "{{\"type\":\"Feature\",\"geometry\":null,\"properties\":{}",
+            "[".repeat(100_000)
+        );
+        assert!(parse_geojson(&deep, "deep.json").is_err());
+        // Collections in collections, their type before or after their members.
+        for type_first in [true, false] {
+            let (open, close) = if type_first {
+                ("{\"type\":\"GeometryCollection\",\"geometries\":[", "]}")
+            } else {
+                ("{\"geometries\":[", "],\"type\":\"GeometryCollection\"}")
+            };
+            let deep = open.repeat(10_000) + &close.repeat(10_000);
+            let err = parse_geojson(&deep, "deep.json").unwrap_err();
+            assert!(err.to_string().contains("nested deeper"), "{err}");
+            let shallow = open.repeat(20) + &close.repeat(20);
+            assert_eq!(parse_geojson(&shallow, "s.json").unwrap(), vec![]);
+        }
     }
 }
