@@ -30,6 +30,7 @@ use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshArrays, MeshBuilder, VertexId};
 use crate::predicates::Orientation;
 use crate::threads::both;
 use alloc::vec::Vec;
+use core::sync::atomic::{AtomicUsize, Ordering};
 
 /// Sets with fewer points are built in one piece. Below it the second thread gains little (the
 /// whole construction takes under 20 ms); the same bound decides sequential and parallel runs.
@@ -136,10 +137,14 @@ pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)
 /// The mesh of `points` (in insertion order: the left half's `left` points first, then the right
 /// half's) and the `(duplicate, kept)` pairs merged on the way, or `None` when a half has no
 /// triangle or the stitch fails.
+///
+/// Each half adds its insertions to `progress` as [`insert::build_into`] does; on `None`, what
+/// they added is taken back (the caller then builds the set in one piece and counts again).
 pub(crate) fn build<K: Kernel>(
     points: &[Point],
     left: usize,
     parallel: bool,
+    progress: Option<&AtomicUsize>,
 ) -> Option<(Mesh, Vec<(u32, u32)>)> {
     let (left_points, right_points) = points.split_at(left);
     let left_room = insert::half_edges(left_points.len());
@@ -150,15 +155,31 @@ pub(crate) fn build<K: Kernel>(
     let (left_built, right_built) = both(
         parallel,
         move || {
-            insert::build_into::<K>(left_points, low).map(|(mesh, merged)| (mesh.len(), merged))
+            insert::build_into::<K>(left_points, low, progress)
+                .map(|(mesh, merged)| (mesh.len(), merged))
         },
         move || {
-            let (mut mesh, merged) = insert::build_into::<K>(right_points, high)?;
+            let (mut mesh, merged) = insert::build_into::<K>(right_points, high, progress)?;
             mesh.renumber(left as u32, left_room as u32);
             Some((mesh.len(), merged))
         },
     );
-    let ((left_len, mut merged), (right_len, right_merged)) = (left_built?, right_built?);
+    // What a half added to `progress`: its distinct points, if it was built.
+    let added = |built: &Option<(usize, Vec<(u32, u32)>)>, len: usize| {
+        built.as_ref().map_or(0, |(_, merged)| len - merged.len())
+    };
+    let take_back = |count: usize| {
+        if let Some(counter) = progress {
+            counter.fetch_sub(count, Ordering::Relaxed);
+        }
+    };
+    let ((left_len, mut merged), (right_len, right_merged)) = match (left_built, right_built) {
+        (Some(left_built), Some(right_built)) => (left_built, right_built),
+        (left_built, right_built) => {
+            take_back(added(&left_built, left) + added(&right_built, points.len() - left));
+            return None;
+        }
+    };
     if left_len < left_room {
         // Duplicates merged on the left left its range short: close the gap.
         arrays.close_gap(left_room, right_len, left_len);
@@ -169,7 +190,10 @@ pub(crate) fn build<K: Kernel>(
             .map(|(duplicate, kept)| (duplicate + left as u32, kept + left as u32)),
     );
     let mut mesh = arrays.builder(left_len + right_len);
-    stitch::<K>(&mut mesh, points, left_len, right_len)?;
+    if stitch::<K>(&mut mesh, points, left_len, right_len).is_none() {
+        take_back(points.len() - merged.len());
+        return None;
+    }
     let len = mesh.len();
     Some((arrays.seal(len, points.len(), parallel), merged))
 }
@@ -481,7 +505,7 @@ mod tests {
             .iter()
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
-        build::<super::super::insert::Fast>(&sorted, left?, false)
+        build::<super::super::insert::Fast>(&sorted, left?, false, None)
     }
 
     /// The triangles of a triangulation in input positions, each from its smallest, sorted.
@@ -556,10 +580,10 @@ mod tests {
     #[test]
     fn cut_sets_are_delaunay_and_one_thread_builds_what_two_do() {
         for (name, points) in sets() {
-            let one = triangulate_split(&points, false, 0).unwrap();
+            let one = triangulate_split(&points, false, 0, None).unwrap();
             one.validate()
                 .unwrap_or_else(|e| panic!("{name} ({} points): {e}", points.len()));
-            let two = triangulate_split(&points, true, 0).unwrap();
+            let two = triangulate_split(&points, true, 0, None).unwrap();
             assert_eq!(triangles(&one), triangles(&two), "{name}");
             assert_eq!(
                 one.mesh().num_half_edges(),
@@ -603,8 +627,8 @@ mod tests {
                 right.len()
             );
             if name == "uniform" {
-                let whole = triangulate_split(&points, false, usize::MAX).unwrap();
-                let cut = triangulate_split(&points, false, 0).unwrap();
+                let whole = triangulate_split(&points, false, usize::MAX, None).unwrap();
+                let cut = triangulate_split(&points, false, 0, None).unwrap();
                 assert_eq!(triangles(&whole), triangles(&cut), "{name}");
             }
         }
@@ -629,11 +653,11 @@ mod tests {
                     }
                 })
                 .collect();
-            let cut = triangulate_split(&points, false, 0).unwrap();
+            let cut = triangulate_split(&points, false, 0, None).unwrap();
             cut.validate()
                 .unwrap_or_else(|e| panic!("round {round}, {n} points: {e}"));
             if !integers {
-                let whole = triangulate_split(&points, false, usize::MAX).unwrap();
+                let whole = triangulate_split(&points, false, usize::MAX, None).unwrap();
                 assert_eq!(triangles(&whole), triangles(&cut), "round {round}");
             }
         }
@@ -645,7 +669,7 @@ mod tests {
         for n in [10, 100, 1000, 5000, 300_000] {
             let points = rng.unit_points(n);
             assert!(built_in_halves(&points).is_some(), "{n}");
-            let tri = triangulate_split(&points, false, 0).unwrap();
+            let tri = triangulate_split(&points, false, 0, None).unwrap();
             tri.validate().unwrap();
         }
     }
@@ -666,9 +690,9 @@ mod tests {
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
         if frames.wide {
-            build::<super::super::insert::Exact>(&sorted, left?, false)
+            build::<super::super::insert::Exact>(&sorted, left?, false, None)
         } else {
-            build::<super::super::insert::Fast>(&sorted, left?, false)
+            build::<super::super::insert::Fast>(&sorted, left?, false, None)
         }
     }
 
@@ -688,10 +712,10 @@ mod tests {
     /// thread and two, and (in general position) the triangles of the one-piece construction.
     /// Returns whether the set fell back to one piece though each half has a triangle.
     fn check(name: &str, points: &[Point], general: bool) -> bool {
-        let one = triangulate_split(points, false, 0).unwrap();
+        let one = triangulate_split(points, false, 0, None).unwrap();
         one.validate()
             .unwrap_or_else(|e| panic!("{name} ({} points): {e}", points.len()));
-        let two = triangulate_split(points, true, 0).unwrap();
+        let two = triangulate_split(points, true, 0, None).unwrap();
         assert_eq!(triangles(&one), triangles(&two), "{name}: threads");
         for e in 0..one.mesh().num_half_edges() as u32 {
             let e = HalfEdgeId::new(e);
@@ -699,7 +723,7 @@ mod tests {
             assert_eq!(one.mesh().twin(e), two.mesh().twin(e), "{name}");
         }
         if general {
-            let whole = triangulate_split(points, false, usize::MAX).unwrap();
+            let whole = triangulate_split(points, false, usize::MAX, None).unwrap();
             assert_eq!(
                 triangles(&whole),
                 triangles(&one),
@@ -1149,7 +1173,7 @@ mod tests {
             let mut best = f64::MAX;
             for _ in 0..3 {
                 let t = std::time::Instant::now();
-                let tri = triangulate_split(pts, false, 0).unwrap();
+                let tri = triangulate_split(pts, false, 0, None).unwrap();
                 best = best.min(t.elapsed().as_secs_f64());
                 core::hint::black_box(tri);
             }
