@@ -23,6 +23,16 @@
 //! a candidate that fails the circle test is flipped with its ghost (its triangle goes outside),
 //! and a chosen one with `top` (its ghost becomes the new triangle). Only triangles near the
 //! seam change (`docs/triangulation.md`).
+//!
+//! Optional: this is a speed-up of the parallel build, not a second definition of the result.
+//! The reference is the sequential insertion of the whole set (`insert`, through `build` in the
+//! parent module), which every failure here falls back to. The two must agree: identical
+//! triangles on points in general position, valid Delaunay triangulations where cocircular
+//! points leave a choice. `super::tests::halves_build_what_the_sequential_insertion_builds`
+//! compares them on one large set through the real threshold; the tests below compare them on
+//! many small sets cut at any size (`halves_stitch_without_falling_back`,
+//! `random_sets_cut_in_two_are_delaunay`, `check` in the degenerate-input tests) and check that
+//! one thread builds exactly what two do.
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;

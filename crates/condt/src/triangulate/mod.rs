@@ -9,6 +9,18 @@
 //! triangulation as Bowyer–Watson's cavity retriangulation) in a biased randomized insertion order
 //! with Hilbert order inside each round, locating each point by a visibility walk from the
 //! previous one; `docs/triangulation.md` explains the choice and gives the measurements.
+//!
+//! Two constructions, one result:
+//! - the reference, `insert`: the sequential insertion of the whole set in one piece (`build`);
+//! - an optional speed-up, `halves`: a set of 65,536 points or more is cut by a vertical line,
+//!   the halves are built by the same insertion (at once on two threads with `parallel`) and
+//!   stitched. It must equal the reference: the same triangles on points in general position
+//!   (where the Delaunay triangulation is unique), a valid Delaunay triangulation with the same
+//!   count where cocircular points allow several. The test that builds one large set both ways
+//!   is `tests::halves_build_what_the_sequential_insertion_builds` below; `halves`' own tests
+//!   compare the two on many small sets cut at any size. Whenever the halves cannot be built or
+//!   stitched, the reference builds the set instead, so dropping `halves` (calling `build`
+//!   only) changes the speed, never the result.
 //! See also: Amenta, Choi, Rote, "Incremental constructions con BRIO", SoCG 2003, and
 //! Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates",
 //! Discrete Comput. Geom. 18 (1997).
@@ -906,6 +918,58 @@ mod tests {
         assert_eq!(inserted.into_inner(), 0);
     }
 
+    /// The triangles in input positions, each from its smallest corner, sorted.
+    fn input_triangles(tri: &Triangulation) -> Vec<[usize; 3]> {
+        let mut all: Vec<[usize; 3]> = tri.triangles().map(smallest_first).collect();
+        all.sort_unstable();
+        all
+    }
+
+    /// The reference test of the construction in two halves ([`halves`]): above the size where
+    /// [`triangulate`] cuts a set in two (the halves built at once on two threads), it builds
+    /// what the sequential insertion of the whole set builds. On points in general position the
+    /// Delaunay triangulation is unique: the same triangles exactly. On a grid (cocircular
+    /// everywhere, so many triangulations are Delaunay) both are valid with the same count.
+    #[test]
+    fn halves_build_what_the_sequential_insertion_builds() {
+        let mut rng = Xorshift::new(0x4a1f_5eed);
+        let random = rng.unit_points(halves::SPLIT_MIN + 5000);
+        let side = 260;
+        let grid = shuffled_grid(side, &mut rng);
+        for (name, points, general) in [("random", &random, true), ("grid", &grid, false)] {
+            assert!(points.len() >= halves::SPLIT_MIN, "{name}");
+            assert!(
+                halves::cut(points, halves::SPLIT_MIN, true).is_some(),
+                "{name}"
+            );
+            // The real path: built in two halves, and nothing fell back to one piece.
+            assert!(built_in_two(points).is_some(), "{name}");
+            let halves = triangulate_with(points, true).unwrap();
+            let whole = triangulate_split(points, false, usize::MAX, None).unwrap();
+            halves.validate().unwrap();
+            whole.validate().unwrap();
+            if general {
+                assert_eq!(input_triangles(&halves), input_triangles(&whole), "{name}");
+            } else {
+                let count = 2 * (side - 1) * (side - 1);
+                assert_eq!(halves.triangles().count(), count);
+                assert_eq!(whole.triangles().count(), count);
+            }
+        }
+    }
+
+    /// The mesh of `points` cut in two as [`triangulate`] cuts it, or `None` where the
+    /// construction would fall back to one piece.
+    fn built_in_two(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
+        let frames = scale::choose_frames(points).unwrap();
+        let (order, left) = insertion_order(points, &frames, false, halves::SPLIT_MIN);
+        let sorted: Vec<Point> = order
+            .iter()
+            .map(|&i| frames.predicates.apply(points[i as usize]))
+            .collect();
+        halves::build::<Fast>(&sorted, left?, false, None)
+    }
+
     /// Above the size where sealing, rescaling and the vertex maps take two threads, they give
     /// what one thread gives: the same vertex edges, stored points and maps both ways, on
     /// points in a shuffled input order with duplicates (merged into their first copy).
@@ -921,6 +985,9 @@ mod tests {
         for k in (1..n).rev() {
             points.swap(k, rng.below(k as u64 + 1) as usize);
         }
+        // The parallel passes run: the set is past their threshold and cut in two.
+        assert!(n >= PARALLEL_MIN && n >= halves::SPLIT_MIN);
+        assert!(halves::cut(&points, halves::SPLIT_MIN, true).is_some());
         let one = triangulate_with(&points, false).unwrap();
         let two = triangulate_with(&points, true).unwrap();
         one.validate().unwrap();
