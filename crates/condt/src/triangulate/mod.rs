@@ -21,6 +21,7 @@
 //!   compare the two on many small sets cut at any size. Whenever the halves cannot be built or
 //!   stitched, the reference builds the set instead, so dropping `halves` (calling `build`
 //!   only) changes the speed, never the result.
+//!
 //! See also: Amenta, Choi, Rote, "Incremental constructions con BRIO", SoCG 2003, and
 //! Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates",
 //! Discrete Comput. Geom. 18 (1997).
