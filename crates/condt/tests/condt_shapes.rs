@@ -1,9 +1,11 @@
 //! ConDT on curves the crate samples itself: exact reconstruction, outliers, invariances, and
-//! parallel == sequential. Every test names its shape.
+//! parallel == sequential on sets past the parallel threshold
+//! (`parallel_equals_sequential_above_the_parallel_threshold`; below it both take the same code,
+//! so `run` reconstructs once). Every test names its shape.
 
 mod common;
 
-use common::{edges, final_edges, run, stage_edges, truth, Rng};
+use common::{edges, final_edges, run, run_both, stage_edges, truth, Rng, PARALLEL_FROM};
 use condt::Point;
 use condt::{reconstruct, Params, Reconstruction, Repair, Stage, Uniformity};
 use condt_eval::sample::{sample, Sample, Sampling, Shape};
@@ -416,9 +418,11 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
         .map(|k| Shape::circle(Point::new(3.0 * k as f64, 0.0), 1.0))
         .collect();
     let s = sample(&circles, &Sampling::new(3e-4));
-    assert!(s.points.len() >= 1 << 16, "{}", s.points.len());
-    // `run` compares every stage of the two passes.
-    let r = run(&s.points, Params::default());
+    // `run_both` asserts the size too: past it, the stages, the triangulation (cut in two, the
+    // halves on two threads) and the curves take their parallel paths.
+    assert!(s.points.len() >= PARALLEL_FROM, "{}", s.points.len());
+    // `run_both` compares every stage of the two passes.
+    let r = run_both(&s.points, Params::default());
     assert_eq!(r.curves().iter().filter(|c| c.is_closed()).count(), 4);
     assert_eq!(edges(&r), truth(&s));
     // Noise and outliers give branch points and unused points; both uniformity tests; the
@@ -430,6 +434,11 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
             outlier_fraction: 0.02,
             ..Sampling::new(3e-4)
         },
+    );
+    assert!(
+        noisy.points.len() >= PARALLEL_FROM,
+        "{}",
+        noisy.points.len()
     );
     let mut branch_points = 0;
     for uniformity in [Uniformity::Fixed(2.75), Uniformity::Adaptive] {
@@ -443,19 +452,19 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
                 uniformity,
                 ..Params::paper()
             };
-            let r = pool.install(|| run(&noisy.points, params));
+            let r = pool.install(|| run_both(&noisy.points, params));
             branch_points += (0..r.num_points()).filter(|&i| r.degree(i) > 2).count();
             assert!(!r.unused().is_empty());
         }
     }
     assert!(branch_points > 0);
     // The default pipeline, whose later stages are sequential by construction, after stages
-    // that ran on rayon: `run` compares every stage of the two.
+    // that ran on rayon: `run_both` compares every stage of the two.
     let every_step = Params {
         local_outliers: true,
         ..Params::default()
     };
-    let r = run(&noisy.points, every_step);
+    let r = run_both(&noisy.points, every_step);
     assert!(r.stage(Stage::LocalOutliers).is_some() && r.stage(Stage::Gaps).is_some());
 }
 

@@ -654,5 +654,33 @@ mod tests {
         }
         // Not vacuous: the uniformity test dropped some second edges, kept others.
         assert!(dropped > 0);
+        // The ring walks on rayon split the vertices into jobs of at least 1,024: a set that
+        // makes several jobs, so the parallel walks really run apart (the sets above make one).
+        let s = sample(
+            &[Shape::circle(centre, 1.0)],
+            &Sampling {
+                outlier_fraction: 0.05,
+                noise: 0.01,
+                ..Sampling::new(0.002)
+            },
+        );
+        let tri = triangulate(&s.points).unwrap();
+        let n = tri.num_points();
+        assert!(n >= 3 * 1024, "{n}");
+        for uniformity in [Uniformity::Fixed(2.75), Uniformity::Adaptive] {
+            let choose = || ring_choice(&tri, uniformity);
+            assert_eq!(
+                per_vertex(true, n, choose()),
+                per_vertex(false, n, choose()),
+                "{uniformity:?}"
+            );
+        }
+    }
+
+    /// `tests/common/mod.rs` (the integration tests' `run`) compares sequential and parallel
+    /// reconstructions only from this size, below which both take the same sequential code.
+    #[test]
+    fn the_parallel_threshold_is_the_one_the_integration_tests_assume() {
+        assert_eq!(PARALLEL_FROM, 1 << 16);
     }
 }

@@ -19,6 +19,7 @@ use crate::mesh::{wrap3, HalfEdgeId, MeshBuilder, VertexId};
 use crate::predicates::{self, Orientation};
 use alloc::vec::Vec;
 use core::marker::PhantomData;
+use core::sync::atomic::{AtomicUsize, Ordering};
 
 /// The predicates a construction decides with, chosen once per point set.
 pub(crate) trait Kernel {
@@ -206,19 +207,38 @@ pub(crate) fn half_edges(n: usize) -> usize {
     6 * n.max(3) - 6
 }
 
+/// The insertions between two reports to a progress counter ([`build_into`]).
+pub(crate) const REPORT_EVERY: usize = 1 << 16;
+
 /// Builds the mesh of `points` (in insertion order) in `mesh`, which must be empty and hold
 /// [`half_edges`] of `points.len()`; returns it with the `(duplicate, kept)` pairs merged on the
 /// way, or `None` when the points make no triangle.
+///
+/// With a `progress` counter, adds to it the vertices inserted so far (points minus merged
+/// duplicates) after every [`REPORT_EVERY`] points and at the end: `points.len()` minus the
+/// merged pairs in all when it returns a mesh, nothing when it returns `None`.
 pub(crate) fn build_into<'m, K: Kernel>(
     points: &[Point],
     mesh: MeshBuilder<'m>,
+    progress: Option<&AtomicUsize>,
 ) -> Option<(MeshBuilder<'m>, Vec<(u32, u32)>)> {
     let start = first_triangle::<K>(points)?;
     let mut builder = Builder::<K>::new(points, start, mesh);
-    for v in 0..points.len() as u32 {
-        if !start.contains(&v) {
-            builder.insert(v);
+    let n = points.len();
+    let (mut from, mut reported) = (0, 0);
+    while from < n {
+        let to = n.min(from + REPORT_EVERY);
+        for v in from as u32..to as u32 {
+            if !start.contains(&v) {
+                builder.insert(v);
+            }
         }
+        if let Some(counter) = progress {
+            let inserted = to - builder.merged.len();
+            counter.fetch_add(inserted - reported, Ordering::Relaxed);
+            reported = inserted;
+        }
+        from = to;
     }
     Some(builder.finish())
 }

@@ -9,6 +9,19 @@
 //! triangulation as Bowyer–Watson's cavity retriangulation) in a biased randomized insertion order
 //! with Hilbert order inside each round, locating each point by a visibility walk from the
 //! previous one; `docs/triangulation.md` explains the choice and gives the measurements.
+//!
+//! Two constructions, one result:
+//! - the reference, `insert`: the sequential insertion of the whole set in one piece (`build`);
+//! - an optional speed-up, `halves`: a set of 65,536 points or more is cut by a vertical line,
+//!   the halves are built by the same insertion (at once on two threads with `parallel`) and
+//!   stitched. It must equal the reference: the same triangles on points in general position
+//!   (where the Delaunay triangulation is unique), a valid Delaunay triangulation with the same
+//!   count where cocircular points allow several. The test that builds one large set both ways
+//!   is `tests::halves_build_what_the_sequential_insertion_builds` below; `halves`' own tests
+//!   compare the two on many small sets cut at any size. Whenever the halves cannot be built or
+//!   stitched, the reference builds the set instead, so dropping `halves` (calling `build`
+//!   only) changes the speed, never the result.
+//!
 //! See also: Amenta, Choi, Rote, "Incremental constructions con BRIO", SoCG 2003, and
 //! Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates",
 //! Discrete Comput. Geom. 18 (1997).
@@ -27,6 +40,7 @@ use crate::mesh::MeshArrays;
 use crate::mesh::{Mesh, VertexId};
 use crate::threads::both;
 use alloc::vec::Vec;
+use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
 
 /// The largest number of input points.
@@ -121,14 +135,25 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
 
 /// [`triangulate`], on one thread unless `parallel`; the result is the same either way.
 pub(crate) fn triangulate_with(points: &[Point], parallel: bool) -> Result<Triangulation, Error> {
-    triangulate_split(points, parallel, halves::SPLIT_MIN)
+    triangulate_with_progress(points, parallel, None)
 }
 
-/// [`triangulate_with`], cutting sets of `split_min` points and more in two.
+/// [`triangulate_with`], adding to `inserted` (when given) the points inserted as it goes
+/// ([`Triangulation::triangulate_observed`]).
+pub(crate) fn triangulate_with_progress(
+    points: &[Point],
+    parallel: bool,
+    inserted: Option<&AtomicUsize>,
+) -> Result<Triangulation, Error> {
+    triangulate_split(points, parallel, halves::SPLIT_MIN, inserted)
+}
+
+/// [`triangulate_with_progress`], cutting sets of `split_min` points and more in two.
 fn triangulate_split(
     points: &[Point],
     parallel: bool,
     split_min: usize,
+    progress: Option<&AtomicUsize>,
 ) -> Result<Triangulation, Error> {
     if points.len() > MAX_POINTS {
         return Err(Error::TooManyPoints {
@@ -138,11 +163,14 @@ fn triangulate_split(
     }
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
-    let (order, mut sorted, built) = construct(points, &frames, parallel, split_min);
+    let (order, mut sorted, built) = construct(points, &frames, parallel, split_min, progress);
     let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
             let (mesh, merged, line_order) = collinear::chain(points);
+            if let Some(counter) = progress {
+                counter.fetch_add(points.len() - merged.len(), Ordering::Relaxed);
+            }
             for (slot, &i) in sorted.iter_mut().zip(&line_order) {
                 *slot = scale.apply(points[i as usize]);
             }
@@ -206,22 +234,23 @@ fn construct(
     frames: &scale::Frames,
     parallel: bool,
     split_min: usize,
+    progress: Option<&AtomicUsize>,
 ) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
     let Some(cut) = halves::cut(points, split_min, parallel) else {
-        return construct_whole(points, frames);
+        return construct_whole(points, frames, progress);
     };
     let (order, sorted) = cut_order(points, frames, &cut, parallel, true);
     let built = if frames.wide {
-        halves::build::<Exact>(&sorted, cut.left_len(), parallel)
+        halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress)
     } else {
-        halves::build::<Fast>(&sorted, cut.left_len(), parallel)
+        halves::build::<Fast>(&sorted, cut.left_len(), parallel, progress)
     };
     if built.is_some() {
         return (order, sorted, built);
     }
     // A half without a triangle, or a failed stitch: the set in one piece.
     drop((order, sorted));
-    construct_whole(points, frames)
+    construct_whole(points, frames, progress)
 }
 
 /// The insertion order of a set cut in two (the left half's order, then the right half's) and,
@@ -296,6 +325,7 @@ fn filled<T: Copy + Send + Sync>(value: T, n: usize, parallel: bool) -> Vec<T> {
 fn construct_whole(
     points: &[Point],
     frames: &scale::Frames,
+    progress: Option<&AtomicUsize>,
 ) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
     let order = spatial_order(points, frames);
     let sorted: Vec<Point> = order
@@ -303,9 +333,9 @@ fn construct_whole(
         .map(|&i| frames.predicates.apply(points[i as usize]))
         .collect();
     let built = if frames.wide {
-        build::<Exact>(&sorted)
+        build::<Exact>(&sorted, progress)
     } else {
-        build::<Fast>(&sorted)
+        build::<Fast>(&sorted, progress)
     };
     (order, sorted, built)
 }
@@ -343,11 +373,16 @@ fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
 }
 
 /// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
-/// merged on the way, or `None` when they make no triangle.
-fn build<K: Kernel>(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
+/// merged on the way, or `None` when they make no triangle; the sequential reference the
+/// construction in two halves ([`halves`]) must equal. Reports to `progress` as
+/// [`insert::build_into`] does.
+fn build<K: Kernel>(
+    points: &[Point],
+    progress: Option<&AtomicUsize>,
+) -> Option<(Mesh, Vec<(u32, u32)>)> {
     insert::first_triangle::<K>(points)?;
     let mut arrays = MeshArrays::new(insert::half_edges(points.len()), false);
-    let (mesh, merged) = insert::build_into::<K>(points, arrays.builder(0))?;
+    let (mesh, merged) = insert::build_into::<K>(points, arrays.builder(0), progress)?;
     let len = mesh.len();
     Some((arrays.seal(len, points.len(), false), merged))
 }
@@ -439,6 +474,48 @@ impl Triangulation {
             halves::SPLIT_MIN,
         )
         .0)
+    }
+
+    /// [`triangulate`], counting the points inserted as it goes: for a caller (a progress bar on
+    /// another thread) to watch a long triangulation. Otherwise the same call, with the same
+    /// result and errors.
+    ///
+    /// Every path adds to `inserted` (with `Relaxed` ordering): the insertion in one piece, both
+    /// halves of a large set (at once on two threads with the `parallel` feature), and sets
+    /// without a triangle (all at once, at the end). The insertion adds the vertices it has
+    /// made every 65,536 points or so, so on success it has added [`Triangulation::num_vertices`]
+    /// in all: the distinct points (an exact duplicate is not counted). Counting happens only
+    /// then: nothing is added per point, and [`triangulate`] (no counter) pays nothing. In the
+    /// rare case that a set cut in two must be built again in one piece (`docs/triangulation.md`),
+    /// what the halves added is taken back first, so the count may step back once. On an error,
+    /// nothing is added.
+    ///
+    /// It only ever adds (or takes back what it added): a counter that does not start at zero,
+    /// or is shared by several calls, ends that many higher.
+    ///
+    /// # Errors
+    /// Those of [`triangulate`]: [`Error::NonFinite`] and [`Error::TooManyPoints`].
+    ///
+    /// ```
+    /// use condt::{triangulate, Point, Triangulation};
+    /// use core::sync::atomic::{AtomicUsize, Ordering};
+    /// let mut pts: Vec<Point> = (0..3000)
+    ///     .map(|i| Point::new((i * 37 % 1009) as f64, (i * 101 % 1013) as f64))
+    ///     .collect();
+    /// pts.push(pts[0]); // a duplicate: one vertex for two points
+    /// let inserted = AtomicUsize::new(0);
+    /// // A progress display would read `inserted` from another thread meanwhile.
+    /// let tri = Triangulation::triangulate_observed(&pts, &inserted)?;
+    /// assert_eq!(inserted.load(Ordering::Relaxed), tri.num_vertices());
+    /// assert_eq!(tri.num_vertices(), pts.len() - 1);
+    /// assert!(tri.triangles().eq(triangulate(&pts)?.triangles()));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn triangulate_observed(
+        points: &[Point],
+        inserted: &AtomicUsize,
+    ) -> Result<Triangulation, Error> {
+        triangulate_with_progress(points, cfg!(feature = "parallel"), Some(inserted))
     }
 
     /// The half-edge topology, in vertex ids.
@@ -615,6 +692,7 @@ impl Triangulation {
 mod tests {
     use super::*;
     use crate::test_rng::Xorshift;
+    use alloc::vec;
 
     /// A triangle's corners in the same cyclic order, starting from the smallest.
     pub(super) fn smallest_first<T: Ord + Copy>([a, b, c]: [T; 3]) -> [T; 3] {
@@ -631,7 +709,7 @@ mod tests {
     /// The triangles of the mesh `build` makes, as vertex ids from the smallest, sorted; and the
     /// merged duplicates.
     fn triangles<K: Kernel>(points: &[Point]) -> (Vec<[u32; 3]>, Vec<(u32, u32)>) {
-        let (mesh, merged) = build::<K>(points).expect("a triangle");
+        let (mesh, merged) = build::<K>(points, None).expect("a triangle");
         let mut triangles: Vec<[u32; 3]> = mesh
             .triangles()
             .map(|t| smallest_first(mesh.triangle_vertices(t).map(|v| v.index() as u32)))
@@ -747,6 +825,152 @@ mod tests {
         }
     }
 
+    /// The same mesh, half-edge for half-edge, and the same maps.
+    fn assert_same(one: &Triangulation, two: &Triangulation, name: &str) {
+        let (a, b) = (one.mesh(), two.mesh());
+        assert_eq!(a.num_half_edges(), b.num_half_edges(), "{name}");
+        for e in 0..a.num_half_edges() as u32 {
+            let e = crate::mesh::HalfEdgeId::new(e);
+            assert_eq!(a.origin(e), b.origin(e), "{name}");
+            assert_eq!(a.twin(e), b.twin(e), "{name}");
+        }
+        assert_eq!(one.num_vertices(), two.num_vertices(), "{name}");
+        for i in 0..one.num_points() {
+            assert_eq!(one.vertex(i), two.vertex(i), "{name}");
+        }
+    }
+
+    /// [`Triangulation::triangulate_observed`] builds what [`triangulate`] builds and its counter
+    /// ends at the number of distinct points on every path: one piece, two halves (on one
+    /// thread and on two, past several reports each), halves that fall back to one piece (what
+    /// they counted taken back), sets without a triangle, wide sets, and no points at all.
+    #[test]
+    fn observed_counts_the_vertices_and_builds_what_triangulate_builds() {
+        let mut rng = Xorshift::new(0x0b5e_55ed);
+        let with_copies = |mut points: Vec<Point>, copies: usize| {
+            for k in 0..copies {
+                let copy = points[(k * 7919) % points.len()];
+                points.push(copy);
+            }
+            points
+        };
+        let mut sets: Vec<(&str, Vec<Point>)> = vec![
+            ("none", Vec::new()),
+            ("one", vec![Point::new(1.0, 2.0)]),
+            ("random", with_copies(rng.unit_points(5000), 300)),
+            (
+                "line",
+                with_copies((0..1000).map(|i| Point::new(i as f64, 0.5)).collect(), 50),
+            ),
+            (
+                "wide",
+                (0..500)
+                    .map(|k| {
+                        let f = if k % 2 == 0 { 1e-200 } else { 1.0 };
+                        Point::new(rng.unit() * f, rng.unit() * f)
+                    })
+                    .collect(),
+            ),
+        ];
+        // Above the size the set is cut in two, with over two reports per half.
+        let large = with_copies(rng.unit_points(halves::SPLIT_MIN * 5), 1000);
+        assert!(halves::cut(&large, halves::SPLIT_MIN, true).is_some());
+        sets.push(("halves", large));
+        for (name, points) in &sets {
+            let expected = triangulate(points).unwrap();
+            for parallel in [false, true] {
+                let inserted = AtomicUsize::new(0);
+                let tri = triangulate_with_progress(points, parallel, Some(&inserted)).unwrap();
+                assert_eq!(inserted.into_inner(), expected.num_vertices(), "{name}");
+                assert_same(&tri, &expected, name);
+            }
+            let inserted = AtomicUsize::new(5);
+            let tri = Triangulation::triangulate_observed(points, &inserted).unwrap();
+            assert_eq!(inserted.into_inner(), 5 + expected.num_vertices(), "{name}");
+            assert_same(&tri, &expected, name);
+        }
+        // Cut at any size: a column on the left and scattered points on the right (the left half
+        // has no triangle, so the set is built in one piece after the right half has counted),
+        // and a set whose halves stitch.
+        let column: Vec<Point> = (0..400)
+            .map(|k| {
+                if k % 2 == 0 {
+                    Point::new(0.0, k as f64)
+                } else {
+                    Point::new(1.0 + rng.unit(), rng.unit() * 400.0)
+                }
+            })
+            .collect();
+        let (left, right) = halves::split(&column, 0).unwrap();
+        assert_eq!((left.len(), right.len()), (200, 200));
+        let inserted = AtomicUsize::new(0);
+        let tri = triangulate_split(&column, true, 0, Some(&inserted)).unwrap();
+        assert_eq!(inserted.into_inner(), 400);
+        assert_same(&tri, &triangulate(&column).unwrap(), "column");
+        let small = with_copies(rng.unit_points(3000), 100);
+        let inserted = AtomicUsize::new(0);
+        let tri = triangulate_split(&small, true, 0, Some(&inserted)).unwrap();
+        assert!(halves::cut(&small, 0, true).is_some());
+        assert_eq!(inserted.into_inner(), tri.num_vertices());
+        assert_eq!(tri.num_vertices(), 3000);
+        let inserted = AtomicUsize::new(0);
+        let nan = [Point::new(0.0, 0.0), Point::new(f64::NAN, 0.0)];
+        assert!(Triangulation::triangulate_observed(&nan, &inserted).is_err());
+        assert_eq!(inserted.into_inner(), 0);
+    }
+
+    /// The triangles in input positions, each from its smallest corner, sorted.
+    fn input_triangles(tri: &Triangulation) -> Vec<[usize; 3]> {
+        let mut all: Vec<[usize; 3]> = tri.triangles().map(smallest_first).collect();
+        all.sort_unstable();
+        all
+    }
+
+    /// The reference test of the construction in two halves ([`halves`]): above the size where
+    /// [`triangulate`] cuts a set in two (the halves built at once on two threads), it builds
+    /// what the sequential insertion of the whole set builds. On points in general position the
+    /// Delaunay triangulation is unique: the same triangles exactly. On a grid (cocircular
+    /// everywhere, so many triangulations are Delaunay) both are valid with the same count.
+    #[test]
+    fn halves_build_what_the_sequential_insertion_builds() {
+        let mut rng = Xorshift::new(0x4a1f_5eed);
+        let random = rng.unit_points(halves::SPLIT_MIN + 5000);
+        let side = 260;
+        let grid = shuffled_grid(side, &mut rng);
+        for (name, points, general) in [("random", &random, true), ("grid", &grid, false)] {
+            assert!(points.len() >= halves::SPLIT_MIN, "{name}");
+            assert!(
+                halves::cut(points, halves::SPLIT_MIN, true).is_some(),
+                "{name}"
+            );
+            // The real path: built in two halves, and nothing fell back to one piece.
+            assert!(built_in_two(points).is_some(), "{name}");
+            let halves = triangulate_with(points, true).unwrap();
+            let whole = triangulate_split(points, false, usize::MAX, None).unwrap();
+            halves.validate().unwrap();
+            whole.validate().unwrap();
+            if general {
+                assert_eq!(input_triangles(&halves), input_triangles(&whole), "{name}");
+            } else {
+                let count = 2 * (side - 1) * (side - 1);
+                assert_eq!(halves.triangles().count(), count);
+                assert_eq!(whole.triangles().count(), count);
+            }
+        }
+    }
+
+    /// The mesh of `points` cut in two as [`triangulate`] cuts it, or `None` where the
+    /// construction would fall back to one piece.
+    fn built_in_two(points: &[Point]) -> Option<(Mesh, Vec<(u32, u32)>)> {
+        let frames = scale::choose_frames(points).unwrap();
+        let (order, left) = insertion_order(points, &frames, false, halves::SPLIT_MIN);
+        let sorted: Vec<Point> = order
+            .iter()
+            .map(|&i| frames.predicates.apply(points[i as usize]))
+            .collect();
+        halves::build::<Fast>(&sorted, left?, false, None)
+    }
+
     /// Above the size where sealing, rescaling and the vertex maps take two threads, they give
     /// what one thread gives: the same vertex edges, stored points and maps both ways, on
     /// points in a shuffled input order with duplicates (merged into their first copy).
@@ -762,6 +986,9 @@ mod tests {
         for k in (1..n).rev() {
             points.swap(k, rng.below(k as u64 + 1) as usize);
         }
+        // The parallel passes run: the set is past their threshold and cut in two.
+        assert!(n >= PARALLEL_MIN && n >= halves::SPLIT_MIN);
+        assert!(halves::cut(&points, halves::SPLIT_MIN, true).is_some());
         let one = triangulate_with(&points, false).unwrap();
         let two = triangulate_with(&points, true).unwrap();
         one.validate().unwrap();

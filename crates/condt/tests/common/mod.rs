@@ -178,8 +178,30 @@ pub fn truth(s: &Sample) -> BTreeSet<[usize; 2]> {
     s.edges.iter().copied().collect()
 }
 
-/// Reconstructs, checks sequential == parallel, and returns the result.
+/// The size from which the stages (and the triangulation, cut in two) take their parallel
+/// paths; below it `parallel: true` runs the same sequential code. The crate's
+/// `PARALLEL_FROM` (crate-private; a unit test in `stages/proximity.rs` keeps the two equal).
+pub const PARALLEL_FROM: usize = 1 << 16;
+
+/// Reconstructs with `params` and returns the result. From [`PARALLEL_FROM`] points, where the
+/// parallel paths run, it reconstructs both ways and checks sequential == parallel stage by
+/// stage; below, the two would run the same code, so it reconstructs once.
 pub fn run(points: &[Point], params: Params) -> Reconstruction {
+    if points.len() < PARALLEL_FROM {
+        return reconstruct(points, &params).unwrap();
+    }
+    run_both(points, params)
+}
+
+/// Reconstructs sequentially and in parallel, checks that every stage, the curves and the
+/// unused points agree, and returns the sequential result. The set must be past
+/// [`PARALLEL_FROM`], so that the parallel run takes the parallel paths.
+pub fn run_both(points: &[Point], params: Params) -> Reconstruction {
+    assert!(
+        points.len() >= PARALLEL_FROM,
+        "{} points: below the parallel threshold both runs take the same code",
+        points.len()
+    );
     let sequential = reconstruct(
         points,
         &Params {
