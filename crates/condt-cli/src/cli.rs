@@ -9,8 +9,7 @@ use crate::output::{refuse_same_file, Destination};
 use crate::progress::Progress;
 use crate::timings::Timings;
 use condt::{
-    reconstruct, reconstruct_owned, triangulate, Error, Method, Params, Point, Repair, Stage,
-    Uniformity,
+    triangulate, Error, Method, Params, Pipeline, Point, Repair, Stage, Uniformity, Upcoming,
 };
 use condt_io::{
     read_points, write_edges, write_geojson, write_html, write_npy_edges, write_npy_triangles,
@@ -21,6 +20,7 @@ use std::ffi::{OsStr, OsString};
 use std::fmt;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicUsize;
 
 const USAGE: &str = "\
 condt: Delaunay triangulation and curve reconstruction of planar points
@@ -943,7 +943,6 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         progress.reading(&shown_input(args.input.as_deref()), size);
     }
     let points = read_input(args.input.as_deref(), args.params.parallel)?;
-    progress.computing("triangulating and reconstructing");
     progress.suspend(|| timings.lap("read"));
     let count = points.len();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
@@ -955,13 +954,36 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         Format::GeoJson => true,
         _ => false,
     };
-    let (result, input) = if keeps_input {
-        (reconstruct(&points, &args.params), points)
+    let failed =
+        |err: Error| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref())));
+    let inserted = AtomicUsize::new(0);
+    let (pipeline, input) = if keeps_input {
+        progress.computing("triangulating");
+        (Pipeline::new(&points, &args.params), points)
     } else {
-        (reconstruct_owned(points, &args.params), Vec::new())
+        let pipeline = progress.triangulating(count, &inserted, || {
+            Pipeline::new_owned_observed(points, &args.params, &inserted)
+        });
+        (pipeline, Vec::new())
     };
-    let result = result
-        .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
+    // Step by step, so that the bar can name each stage and smoothing pass: the same result
+    // as `reconstruct` (`Pipeline::finish` runs this loop).
+    let mut pipeline = pipeline.map_err(failed)?;
+    let mut passes = 0;
+    while let Some(next) = pipeline.upcoming() {
+        match next {
+            Upcoming::Stage(stage) if passes == 0 => progress.stage(stage.name()),
+            Upcoming::Stage(stage) => progress.stage(&format!("{} (pass {passes})", stage.name())),
+            _ => {
+                passes += 1;
+                progress.stage(&format!(
+                    "smoothing pass {passes}: moving points, triangulating"
+                ));
+            }
+        }
+        pipeline.step().map_err(failed)?;
+    }
+    let result = pipeline.finish().map_err(failed)?;
     let call = timings.quiet_lap();
     progress.writing(
         &shown_output(args.output.as_deref()),

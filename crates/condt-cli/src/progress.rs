@@ -17,6 +17,7 @@
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::borrow::Cow;
 use std::io::{self, IsTerminal, Write};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::thread::JoinHandle;
 use std::time::Duration;
@@ -126,7 +127,6 @@ impl Progress {
     }
 
     /// The library entered the stage `name` (a spinner: a stage has no count).
-    #[allow(dead_code)] // Until the library reports its stages.
     pub(crate) fn stage(&mut self, name: &str) {
         self.phase(
             "{spinner} stage {msg} ({elapsed})",
@@ -135,8 +135,36 @@ impl Progress {
         );
     }
 
+    /// Runs `work`, which triangulates `total` points and adds to `inserted` as it inserts
+    /// them, with a bar that follows the count (read every [`TICK`] by a second thread while
+    /// `work` runs; nothing runs beside it when nothing is shown).
+    pub(crate) fn triangulating<R>(
+        &mut self,
+        total: usize,
+        inserted: &AtomicUsize,
+        work: impl FnOnce() -> R,
+    ) -> R {
+        if !self.is_shown() {
+            return work();
+        }
+        self.inserted(0, total as u64);
+        let Some(bar) = self.bar.clone() else {
+            return work();
+        };
+        let (stop, stopped) = mpsc::channel::<()>();
+        std::thread::scope(|scope| {
+            scope.spawn(move || {
+                while let Err(mpsc::RecvTimeoutError::Timeout) = stopped.recv_timeout(TICK) {
+                    bar.set_position(inserted.load(Ordering::Relaxed) as u64);
+                }
+            });
+            let result = work();
+            let _ = stop.send(());
+            result
+        })
+    }
+
     /// `count` of `total` points inserted into the triangulation.
-    #[allow(dead_code)] // Until the library reports the points it inserted.
     pub(crate) fn inserted(&mut self, count: u64, total: u64) {
         if !self.is_shown() {
             return;

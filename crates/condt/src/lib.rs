@@ -117,7 +117,7 @@ pub use graph::{Graph, OutlierRemoval};
 pub use provenance::{Change, EdgeStory, EndChoice, Reason};
 pub use reconstruct::{
     reconstruct, reconstruct_owned, reconstruct_triangulation, Method, Params, Pipeline,
-    Reconstruction, Smoothing, StageReport, StepReport,
+    Reconstruction, Smoothing, StageReport, StepReport, Upcoming,
 };
 pub use stages::{Repair, Stage, Switch, Uniformity};
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};

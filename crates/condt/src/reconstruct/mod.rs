@@ -19,7 +19,7 @@ mod result;
 
 pub use params::{Method, Params};
 pub use pipeline::{
-    reconstruct, reconstruct_owned, reconstruct_triangulation, Pipeline, StepReport,
+    reconstruct, reconstruct_owned, reconstruct_triangulation, Pipeline, StepReport, Upcoming,
 };
 pub use result::{Reconstruction, Smoothing, StageReport};
 

@@ -22,9 +22,10 @@ use crate::graph::Graph;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
-use crate::triangulate::{triangulate_with, Triangulation};
+use crate::triangulate::{triangulate_with, triangulate_with_progress, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
+use core::sync::atomic::AtomicUsize;
 use core::time::Duration;
 
 /// A reconstruction run one step at a time: each [`step`](Pipeline::step) runs the next stage
@@ -80,6 +81,16 @@ pub enum StepReport<'p> {
         /// The wall-clock time of the triangulation of the moved points (zero without `std`).
         time: Duration,
     },
+}
+
+/// What [`Pipeline::step`] runs next ([`Pipeline::upcoming`]).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Upcoming {
+    /// A stage.
+    Stage(Stage),
+    /// A smoothing pass: the points move and are triangulated again.
+    SmoothingPass,
 }
 
 /// Where the pipeline is.
@@ -138,7 +149,7 @@ impl Pipeline {
     /// [`triangulate`](crate::triangulate()): non-finite coordinates, an over-wide dynamic
     /// range, too many points; and, for the Crust, a set too wide for its second triangulation.
     pub fn new(points: &[Point], params: &Params) -> Result<Pipeline, Error> {
-        Pipeline::of_input(Cow::Borrowed(points), params)
+        Pipeline::of_input(Cow::Borrowed(points), params, None)
     }
 
     /// [`Pipeline::new`] on points the caller hands over: they are freed as soon as they are
@@ -156,7 +167,32 @@ impl Pipeline {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn new_owned(points: Vec<Point>, params: &Params) -> Result<Pipeline, Error> {
-        Pipeline::of_input(Cow::Owned(points), params)
+        Pipeline::of_input(Cow::Owned(points), params, None)
+    }
+
+    /// [`Pipeline::new_owned`], adding to `inserted` as the points are inserted into the
+    /// triangulation (about every 65,536 points, from any thread; it ends at the number of
+    /// distinct points), so that another thread can show progress. The result is the same.
+    ///
+    /// # Errors
+    /// As [`Pipeline::new`].
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point};
+    /// use std::sync::atomic::{AtomicUsize, Ordering};
+    /// let points = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.5, 1.0)];
+    /// let inserted = AtomicUsize::new(0);
+    /// let pipeline = Pipeline::new_owned_observed(points, &Params::paper(), &inserted)?;
+    /// assert_eq!(inserted.load(Ordering::Relaxed), 3);
+    /// assert_eq!(pipeline.finish()?.edges().len(), 3);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn new_owned_observed(
+        points: Vec<Point>,
+        params: &Params,
+        inserted: &AtomicUsize,
+    ) -> Result<Pipeline, Error> {
+        Pipeline::of_input(Cow::Owned(points), params, Some(inserted))
     }
 
     /// The stages on a triangulation already built, which the result keeps. No smoothing
@@ -177,10 +213,14 @@ impl Pipeline {
         Pipeline::start(tri, Duration::ZERO, params, false, Stopwatch::start())
     }
 
-    fn of_input(points: Cow<'_, [Point]>, params: &Params) -> Result<Pipeline, Error> {
+    fn of_input(
+        points: Cow<'_, [Point]>,
+        params: &Params,
+        inserted: Option<&AtomicUsize>,
+    ) -> Result<Pipeline, Error> {
         params.check()?;
         let mut clock = Stopwatch::start();
-        let tri = triangulate_with(&points, params.parallel)?;
+        let tri = triangulate_with_progress(&points, params.parallel, inserted)?;
         let triangulation_time = clock.lap();
         drop(points);
         let may_smooth = params.smooth && params.method == Method::ConDT;
@@ -224,6 +264,29 @@ impl Pipeline {
             State::Stages(run) => Some(&run.tri),
             State::Smooth(result) | State::Done(result) => Some(result.triangulation()),
             State::Failed(_) | State::Moving => None,
+        }
+    }
+
+    /// What the next [`step`](Pipeline::step) will run: a stage, a smoothing pass, or nothing
+    /// (`None`: every step has run, or a step failed).
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point, Stage, Upcoming};
+    /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let mut pipeline = Pipeline::new(&points, &Params::paper())?;
+    /// assert_eq!(pipeline.upcoming(), Some(Upcoming::Stage(Stage::Proximity)));
+    /// while pipeline.step()?.is_some() {}
+    /// assert_eq!(pipeline.upcoming(), None);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn upcoming(&self) -> Option<Upcoming> {
+        match &self.state {
+            State::Stages(run) => Some(Upcoming::Stage(match run.history.records.len() {
+                0 => self.params.first_stage(),
+                k => run.steps[k - 1].stage(),
+            })),
+            State::Smooth(_) => Some(Upcoming::SmoothingPass),
+            State::Done(_) | State::Failed(_) | State::Moving => None,
         }
     }
 
