@@ -237,16 +237,14 @@ fn decode_params(bytes: &mut Bytes) -> Params {
     // Today every field is set; the update keeps this compiling, with defaults, when a field is
     // added.
     #[allow(clippy::needless_update)]
-    Params {
-        uniformity,
-        repair,
-        outlier_factor,
-        outliers_first: flags & 1 != 0,
-        local_outliers: flags & 2 != 0,
-        close_gaps: flags & 4 != 0,
-        parallel: flags & 8 != 0,
-        ..Params::default()
-    }
+    Params::default()
+        .with_uniformity(uniformity)
+        .with_repair(repair)
+        .with_outlier_factor(outlier_factor)
+        .with_outliers_first(flags & 1 != 0)
+        .with_local_outliers(flags & 2 != 0)
+        .with_close_gaps(flags & 4 != 0)
+        .with_parallel(flags & 8 != 0)
 }
 
 /// Target `reconstruct`: the whole pipeline with arbitrary parameters returns a consistent

@@ -228,11 +228,7 @@ fn main() {
             Repair::Needs,
         ] {
             for uniformity in [Uniformity::Fixed(2.75), Uniformity::Adaptive] {
-                let p = Params {
-                    repair,
-                    uniformity,
-                    ..params
-                };
+                let p = params.with_repair(repair).with_uniformity(uniformity);
                 run(
                     dir,
                     &sets,

@@ -112,14 +112,7 @@ fn drawings_say_when_points_are_at_smoothed_positions() {
         .collect();
     let smoothed = reconstruct(&arc, &Params::default()).unwrap();
     assert!(smoothed.smoothing().is_some());
-    let plain = reconstruct(
-        &arc,
-        &Params {
-            smooth: false,
-            ..Params::default()
-        },
-    )
-    .unwrap();
+    let plain = reconstruct(&arc, &Params::default().with_smooth(false)).unwrap();
     assert_eq!(
         plain.edges().collect::<Vec<_>>(),
         smoothed.edges().collect::<Vec<_>>()

@@ -125,14 +125,7 @@ fn pipeline(c: &mut Criterion) {
     ];
     for (name, points) in inputs {
         for parallel in [false, true] {
-            breakdown(
-                name,
-                &points,
-                &Params {
-                    parallel,
-                    ..Params::default()
-                },
-            );
+            breakdown(name, &points, &Params::default().with_parallel(parallel));
         }
         let mut group = c.benchmark_group(format!("condt_{name}"));
         group
@@ -152,10 +145,7 @@ fn pipeline(c: &mut Criterion) {
             b.iter(|| triangulate(&points).unwrap())
         });
         for parallel in [false, true] {
-            let params = Params {
-                parallel,
-                ..Params::default()
-            };
+            let params = Params::default().with_parallel(parallel);
             let label = if parallel { "parallel" } else { "sequential" };
             group.bench_function(format!("stages_after_triangulation_{label}"), |b| {
                 b.iter_batched(

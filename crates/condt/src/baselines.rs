@@ -254,10 +254,7 @@ mod tests {
             (Method::NnCrust, Stage::NnCrust, tri.nn_crust().edges()),
             (Method::Crust, Stage::Crust, tri.crust().unwrap().edges()),
         ] {
-            let params = Params {
-                method,
-                ..Params::default()
-            };
+            let params = Params::default().with_method(method);
             let result = reconstruct(&truth.points, &params).unwrap();
             let stages: Vec<Stage> = result.stages().map(|r| r.stage).collect();
             assert_eq!(stages, vec![stage]);

@@ -14,7 +14,7 @@ use core::fmt;
 /// assert_eq!(err, Error::NonFinite { index: 1 });
 /// assert_eq!(err.to_string(), "point 1 has a NaN or infinite coordinate");
 ///
-/// let params = Params { uniformity: Uniformity::Fixed(-1.0), ..Params::default() };
+/// let params = Params::default().with_uniformity(Uniformity::Fixed(-1.0));
 /// let err = reconstruct(&[Point::new(0.0, 0.0)], &params).unwrap_err();
 /// assert_eq!(err, Error::InvalidParameter { name: "u", value: -1.0 });
 /// ```

@@ -490,10 +490,7 @@ mod tests {
         for params in [
             Params::default(),
             Params::paper(),
-            Params {
-                uniformity: Uniformity::Adaptive,
-                ..Params::default()
-            },
+            Params::default().with_uniformity(Uniformity::Adaptive),
         ] {
             let result = reconstruct(&points, &params).unwrap();
             let stories = result.provenance();

@@ -146,10 +146,7 @@ mod tests {
                 ..Sampling::new(0.1)
             },
         );
-        let params = Params {
-            smooth: true,
-            ..Params::default()
-        };
+        let params = Params::default().with_smooth(true);
         let expected: Vec<[usize; 2]> = reconstruct(&noisy.points, &params)
             .unwrap()
             .edges()
@@ -194,23 +191,13 @@ mod tests {
             !tri.edges().any(|[a, b]| [a.min(b), a.max(b)] == hidden),
             "not a Delaunay edge of the noisy points"
         );
-        let unsmoothed = Params {
-            smooth: false,
-            ..Params::default()
-        };
+        let unsmoothed = Params::default().with_smooth(false);
         let plain = reconstruct(&noisy.points, &unsmoothed).unwrap();
         assert!(
             !plain.edges().any(|e| e == hidden),
             "so no stage can keep it"
         );
-        let smoothed = reconstruct(
-            &noisy.points,
-            &Params {
-                smooth: true,
-                ..Params::default()
-            },
-        )
-        .unwrap();
+        let smoothed = reconstruct(&noisy.points, &Params::default().with_smooth(true)).unwrap();
         assert!(
             smoothed.edges().any(|e| e == hidden),
             "the moved points have it"
@@ -274,14 +261,7 @@ mod tests {
             sweep: 4.0,
         };
         let clean = sample(&[square, arc], &Sampling::new(0.2));
-        let plain = reconstruct(
-            &clean.points,
-            &Params {
-                smooth: false,
-                ..Params::default()
-            },
-        )
-        .unwrap();
+        let plain = reconstruct(&clean.points, &Params::default().with_smooth(false)).unwrap();
         let smoothed = reconstruct(&clean.points, &Params::default()).unwrap();
         assert!(plain.edges().eq(clean.edges.iter().copied()));
         assert!(smoothed.edges().eq(plain.edges()));

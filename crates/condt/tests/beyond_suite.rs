@@ -296,10 +296,7 @@ fn clumped(fraction: f64, (min, max): (usize, usize), radius: f64, seed: u64) ->
 
 /// The default pipeline with the local outlier removal on.
 fn with_local_outliers() -> Params {
-    Params {
-        local_outliers: true,
-        ..Params::default()
-    }
+    Params::default().with_local_outliers(true)
 }
 
 /// With the local outlier removal on (`--local-outliers`: off by default), clumps of three or

@@ -117,10 +117,7 @@ fn figure_eight_keeps_its_crossing_with_repair_off() {
         center: origin(),
         size: 2.0,
     };
-    let params = Params {
-        repair: Repair::Off,
-        ..Params::default()
-    };
+    let params = Params::default().with_repair(Repair::Off);
     let r = assert_exact(&[eight], 0.1, params, "figure eight");
     assert_eq!(r.degree(0), 4, "the crossing sample has degree four");
 }
@@ -136,10 +133,7 @@ fn figure_eight_gets_its_crossing_back_when_gaps_are_closed() {
     let s = sample(&[eight], &Sampling::new(0.1));
     let repaired = run(&s.points, Params::paper());
     assert_eq!(repaired.degree(0), 2, "the repair cut the crossing");
-    let params = Params {
-        close_gaps: true,
-        ..Params::paper()
-    };
+    let params = Params::paper().with_close_gaps(true);
     let r = assert_exact(
         &[Shape::FigureEight {
             center: origin(),
@@ -174,13 +168,7 @@ fn a_gap_in_a_noisy_circle_is_closed() {
         "the pipeline leaves one gap"
     );
     assert!(found.is_subset(&gt));
-    let closed = run(
-        &s.points,
-        Params {
-            close_gaps: true,
-            ..Params::paper()
-        },
-    );
+    let closed = run(&s.points, Params::paper().with_close_gaps(true));
     assert_eq!(edges(&closed), gt);
     assert_eq!(closed.curves().len(), 1);
     assert!(closed.curves()[0].is_closed());
@@ -188,10 +176,7 @@ fn a_gap_in_a_noisy_circle_is_closed() {
 
 #[test]
 fn closing_gaps_leaves_open_arcs_and_clean_shapes_alone() {
-    let params = Params {
-        close_gaps: true,
-        ..Params::default()
-    };
+    let params = Params::default().with_close_gaps(true);
     let arc = Shape::Arc {
         center: origin(),
         radius: 1.0,
@@ -217,10 +202,7 @@ fn closing_gaps_leaves_open_arcs_and_clean_shapes_alone() {
 
 #[test]
 fn adaptive_uniformity_on_a_circle_and_an_arc() {
-    let params = Params {
-        uniformity: Uniformity::Adaptive,
-        ..Params::default()
-    };
+    let params = Params::default().with_uniformity(Uniformity::Adaptive);
     assert_exact(
         &[Shape::circle(origin(), 1.0)],
         0.2,
@@ -448,10 +430,7 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
                 .build()
                 .unwrap();
             // The paper's pipeline leaves branch points, which the parallel passes must see.
-            let params = Params {
-                uniformity,
-                ..Params::paper()
-            };
+            let params = Params::paper().with_uniformity(uniformity);
             let r = pool.install(|| run_both(&noisy.points, params));
             branch_points += (0..r.num_points()).filter(|&i| r.degree(i) > 2).count();
             assert!(!r.unused().is_empty());
@@ -460,10 +439,7 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
     assert!(branch_points > 0);
     // The default pipeline, whose later stages are sequential by construction, after stages
     // that ran on rayon: `run_both` compares every stage of the two.
-    let every_step = Params {
-        local_outliers: true,
-        ..Params::default()
-    };
+    let every_step = Params::default().with_local_outliers(true);
     let r = run_both(&noisy.points, every_step);
     assert!(r.stage(Stage::LocalOutliers).is_some() && r.stage(Stage::Gaps).is_some());
 }
@@ -495,10 +471,7 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
     for outliers_first in [false, true] {
         let r = run(
             &s.points,
-            Params {
-                outliers_first,
-                ..Params::paper()
-            },
+            Params::paper().with_outliers_first(outliers_first),
         );
         let order: Vec<Stage> = r.stages().map(|report| report.stage).collect();
         let expected = if outliers_first {
@@ -527,11 +500,9 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
     // Stages that are off do not run, and the final graph is the proximity graph.
     let unrepaired = run(
         &s.points,
-        Params {
-            repair: Repair::Off,
-            outlier_factor: None,
-            ..Params::paper()
-        },
+        Params::paper()
+            .with_repair(Repair::Off)
+            .with_outlier_factor(None),
     );
     assert_eq!(unrepaired.stages().count(), 1);
     assert!(stage_edges(&unrepaired, Stage::Repair).is_none());
@@ -549,10 +520,7 @@ fn invalid_parameters_are_refused_with_their_name() {
     use condt::{triangulate, Error};
     let s = sample(&[Shape::circle(origin(), 1.0)], &Sampling::new(0.3));
     for u in [f64::NAN, f64::INFINITY, -1.0, 0.0] {
-        let params = Params {
-            uniformity: Uniformity::Fixed(u),
-            ..Params::default()
-        };
+        let params = Params::default().with_uniformity(Uniformity::Fixed(u));
         let err = reconstruct(&s.points, &params).unwrap_err();
         assert!(
             matches!(err, Error::InvalidParameter { name: "u", value } if value.to_bits() == u.to_bits()),
@@ -564,10 +532,7 @@ fn invalid_parameters_are_refused_with_their_name() {
         ));
     }
     for k in [f64::NAN, f64::NEG_INFINITY, f64::INFINITY, -0.5] {
-        let params = Params {
-            outlier_factor: Some(k),
-            ..Params::default()
-        };
+        let params = Params::default().with_outlier_factor(Some(k));
         let err = reconstruct(&s.points, &params).unwrap_err();
         assert!(
             matches!(err, Error::InvalidParameter { name: "k", .. }),
@@ -575,11 +540,9 @@ fn invalid_parameters_are_refused_with_their_name() {
         );
     }
     // Accepted at the edges of the ranges: the smallest positive u, k = 0.
-    let edge_values = Params {
-        uniformity: Uniformity::Fixed(f64::MIN_POSITIVE),
-        outlier_factor: Some(0.0),
-        ..Params::default()
-    };
+    let edge_values = Params::default()
+        .with_uniformity(Uniformity::Fixed(f64::MIN_POSITIVE))
+        .with_outlier_factor(Some(0.0));
     assert!(reconstruct(&s.points, &edge_values).is_ok());
     let tri = triangulate(&s.points).unwrap();
     assert!(tri.proximity_graph(Uniformity::Fixed(f64::NAN)).is_err());
@@ -597,10 +560,7 @@ fn step_methods_compose_into_the_pipeline() {
     let s = noisy_circles_with_outliers();
     let tri = triangulate(&s.points).unwrap();
     for outliers_first in [false, true] {
-        let params = Params {
-            outliers_first,
-            ..Params::default()
-        };
+        let params = Params::default().with_outliers_first(outliers_first);
         let r = reconstruct(&s.points, &params).unwrap();
         let proximity = tri.proximity_graph(params.uniformity).unwrap();
         let (repaired, filtered) = if outliers_first {

@@ -119,10 +119,7 @@ mod tests {
             let tri = triangulate(&points).unwrap();
             tri.validate().unwrap();
             for smooth in [false, true] {
-                let params = Params {
-                    smooth,
-                    ..Params::default()
-                };
+                let params = Params::default().with_smooth(smooth);
                 let borrowed = reconstruct(&points, &params).unwrap();
                 let owned = reconstruct_owned(points.clone(), &params).unwrap();
                 assert_eq!(owned.edges, borrowed.edges);
@@ -191,10 +188,7 @@ mod tests {
             })
             .collect();
         points.extend((0..60).map(|_| Point::new(3.0 * rng.unit() - 1.5, 3.0 * rng.unit() - 1.5)));
-        let params = Params {
-            smooth: false,
-            ..Params::default()
-        };
+        let params = Params::default().with_smooth(false);
         let result = reconstruct(&points, &params).unwrap();
         let tri = result.triangulation();
         let reports: Vec<StageReport<'_>> = result.stages().collect();
@@ -231,10 +225,7 @@ mod tests {
                 Point::new(libm::cos(t), 0.5 * libm::sin(t))
             })
             .collect();
-        let params = Params {
-            smooth: false,
-            ..Params::default()
-        };
+        let params = Params::default().with_smooth(false);
         for (points, recomputed) in [(uniform, true), (curve, false)] {
             let result = reconstruct(&points, &params).unwrap();
             let repair = &result.history.records[1];

@@ -22,7 +22,7 @@ use alloc::vec::Vec;
 ///         Point::new(t.cos(), t.sin())
 ///     })
 ///     .collect();
-/// let params = Params { method: Method::NnCrust, ..Params::default() };
+/// let params = Params::default().with_method(Method::NnCrust);
 /// let result = reconstruct(&points, &params)?;
 /// assert_eq!(params.stages(), vec![Stage::NnCrust]);
 /// assert_eq!(result.edges().len(), 10);
@@ -49,10 +49,11 @@ pub enum Method {
 /// assert_eq!(p.outlier_factor, Some(1.7));
 /// assert_eq!(p.repair, Repair::Needs);
 /// assert!(p.check().is_ok());
-/// let bad = Params { outlier_factor: Some(f64::NAN), ..p };
+/// let bad = p.with_outlier_factor(Some(f64::NAN));
 /// assert!(bad.check().is_err());
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Params {
     /// ConDT (the default) or a baseline; with a baseline, the fields below are not used.
     pub method: Method,
@@ -136,14 +137,12 @@ impl Default for Params {
     /// );
     /// ```
     fn default() -> Self {
-        Params {
-            repair: Repair::Needs,
-            local_outliers: true,
-            confirm_given_back: true,
-            close_gaps: true,
-            smooth: true,
-            ..Params::paper()
-        }
+        Params::paper()
+            .with_repair(Repair::Needs)
+            .with_local_outliers(true)
+            .with_confirm_given_back(true)
+            .with_close_gaps(true)
+            .with_smooth(true)
     }
 }
 
@@ -193,14 +192,14 @@ impl Params {
     ///
     /// ```
     /// use condt::{Params, Repair, Stage};
-    /// let p = Params { outliers_first: true, repair: Repair::Off, ..Params::paper() };
+    /// let p = Params::paper().with_outliers_first(true).with_repair(Repair::Off);
     /// assert_eq!(p.stages(), vec![Stage::Proximity, Stage::Outliers]);
-    /// let local = Params { outliers_first: true, local_outliers: true, ..Params::paper() };
+    /// let local = Params::paper().with_outliers_first(true).with_local_outliers(true);
     /// assert_eq!(
     ///     local.stages(),
     ///     vec![Stage::Proximity, Stage::Outliers, Stage::Repair, Stage::LocalOutliers]
     /// );
-    /// let q = Params { close_gaps: true, ..Params::paper() };
+    /// let q = Params::paper().with_close_gaps(true);
     /// assert_eq!(q.stages().last(), Some(&Stage::Gaps));
     /// ```
     pub fn stages(&self) -> Vec<Stage> {

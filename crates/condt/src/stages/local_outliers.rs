@@ -733,10 +733,7 @@ mod tests {
     fn run(points: &[Point], local_outliers: bool) -> Reconstruction {
         reconstruct(
             points,
-            &Params {
-                local_outliers,
-                ..Params::default()
-            },
+            &Params::default().with_local_outliers(local_outliers),
         )
         .unwrap()
     }

@@ -202,22 +202,8 @@ pub fn run_both(points: &[Point], params: Params) -> Reconstruction {
         "{} points: below the parallel threshold both runs take the same code",
         points.len()
     );
-    let sequential = reconstruct(
-        points,
-        &Params {
-            parallel: false,
-            ..params
-        },
-    )
-    .unwrap();
-    let parallel = reconstruct(
-        points,
-        &Params {
-            parallel: true,
-            ..params
-        },
-    )
-    .unwrap();
+    let sequential = reconstruct(points, &params.with_parallel(false)).unwrap();
+    let parallel = reconstruct(points, &params.with_parallel(true)).unwrap();
     for (ours, theirs) in sequential.stages().zip(parallel.stages()) {
         assert_eq!(ours.stage, theirs.stage);
         assert_eq!(ours.applied, theirs.applied);
