@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Prints the docs/performance.md table from the medians criterion saved under target/criterion.
 
-Run after `cargo bench --bench triangulate`: `python3 benches/criterion_table.py`.
+Run after `cargo bench -p condt-compare --bench triangulate`:
+`python3 scripts/criterion_table.py [CRITERION_DIR]` (default: the workspace's target/criterion).
 """
 import json, os, sys
 root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "target", "criterion")

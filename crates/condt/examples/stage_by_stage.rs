@@ -26,8 +26,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("  {i}: {around:?}");
     }
 
-    // Every step, one at a time: the default pipeline plus the local outlier removal, which
-    // `Params::default()` leaves off (`Repair::Paper` would be Algorithm 2).
+    // Every stage of `Params::default()`, one at a time and in its order: `Repair::Needs`
+    // (`Repair::Paper` would be Algorithm 2), the IQR rule with k = 1.7, the local outlier
+    // removal, the check of the components it gave back, gap closing. Not run here: the
+    // default's smoothing passes, which only `reconstruct` and `Pipeline` run (so on noisy
+    // input the default's result can differ from this one).
     let repaired = proximity.repair(Repair::Needs);
     println!("after the repair: {} edges", repaired.num_edges());
 

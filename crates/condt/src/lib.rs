@@ -28,6 +28,11 @@
 //! # Ok::<(), condt::Error>(())
 //! ```
 //!
+//! [`reconstruct`] is a [`Pipeline`] run to its end: [`Pipeline::step`] runs one stage (or
+//! smoothing pass) at a time and reports it ([`StepReport`]), [`Pipeline::upcoming`] says what
+//! comes next. [`Params`] start from a preset ([`Params::default`], [`Params::paper`]) and
+//! change through their `with_*` setters.
+//!
 //! The stages can also be run one by one, each a method on the graph the previous one left:
 //!
 //! ```
@@ -60,7 +65,8 @@
 //!
 //! ## Features
 //! - `std` (default): `std::error::Error` for [`Error`] and stage timings.
-//! - `parallel` (default, implies `std`): multi-threaded stages, on rayon (same results).
+//! - `parallel` (default, implies `std`): multi-threaded stages and the two halves of a large
+//!   triangulation built at once, on rayon (same results).
 //!
 //! With `--no-default-features` the crate is `#![no_std]`, needs only `alloc`, and depends on
 //! `robust` and `libm` alone.
@@ -71,15 +77,18 @@
 //! `condt-cli`. This crate knows none of them.
 //!
 //! ## Layout
-//! Public: this page's re-exports, [`mesh`] (the half-edge level), [`predicates`] and
-//! [`geometry`] (points and exact power-of-two scaling). Private, from the bottom up (each uses
-//! only modules listed before it): `error`, `prefetch` (a cache hint, the crate's one `unsafe`
-//! call), `geometry`, `triangulate` (the kernel), `adjacency` (edge lists in vertex ids),
-//! `stages` (one module per ConDT stage), `curve` ([`Curve`]), `graph` ([`Graph`]), `smooth`
-//! (moving noisy points along a first reconstruction's curves), `reconstruct` (the pipeline, the
-//! order of its stages and the smoothing passes), `baselines` (NN-Crust and Crust as methods of
-//! [`Triangulation`]); `test_rng` serves unit tests only. `docs/architecture.md` draws the graph
-//! and says what each module may not touch.
+//! Public as modules: [`mesh`] (the half-edge level), [`predicates`] (the exact signs) and
+//! [`geometry`] (points and exact power-of-two scaling); everything else is reached through this
+//! page's re-exports. All modules, from the bottom up (each uses only modules listed before it):
+//! `threads` (two pieces of work at once), `prefetch` (a cache hint, the crate's one `unsafe`
+//! call), [`geometry`], [`predicates`], [`mesh`], `error` ([`Error`]), `triangulate` (the
+//! kernel), `adjacency` (edge lists in vertex ids), `stages` (the stage table and one module per
+//! stage), `curve` ([`Curve`]), `graph` ([`Graph`]), `smooth` (moving noisy points along a first
+//! reconstruction's curves), `baselines` (NN-Crust and Crust as methods of [`Triangulation`]),
+//! `reconstruct` ([`Params`], the [`Pipeline`] and its smoothing passes, the stage history, the
+//! [`Reconstruction`]), `provenance` (why each edge was kept or dropped, from the stages' own
+//! evidence); `test_rng` serves unit tests only. `docs/architecture.md` draws the layers and
+//! says what each module may not touch.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
