@@ -1,5 +1,5 @@
-//! The library's one `unsafe` block is the cache hint in `src/prefetch.rs`; the binary's
-//! allocator (Linux with glibc only) is `src/bin/condt/allocator.rs`, where every `unsafe` block
+//! The library's one `unsafe` block is the cache hint in `crates/condt/src/prefetch.rs`; the binary's
+//! allocator (Linux with glibc only) is `crates/condt-cli/src/allocator.rs`, where every `unsafe` block
 //! must say why it is sound in a `// SAFETY:` comment right above it. `lib.rs` denies unsafe
 //! code, but a module could still allow it; this test reads every source file and fails on an
 //! `unsafe` keyword or an `allow(unsafe_code)` anywhere else.
