@@ -1,8 +1,8 @@
-//! The library's one `unsafe` block is the cache hint in `crates/condt/src/prefetch.rs`; the binary's
-//! allocator (Linux with glibc only) is `crates/condt-cli/src/allocator.rs`, where every `unsafe` block
-//! must say why it is sound in a `// SAFETY:` comment right above it. `lib.rs` denies unsafe
-//! code, but a module could still allow it; this test reads every source file and fails on an
-//! `unsafe` keyword or an `allow(unsafe_code)` anywhere else.
+//! The library's one `unsafe` block is the cache hint in `crates/condt/src/prefetch.rs`; the
+//! binary's allocator (Linux with glibc only) is `crates/condt-cli/src/allocator.rs`, where every
+//! `unsafe` block must say why it is sound in a `// SAFETY:` comment right above it. `lib.rs`
+//! denies unsafe code, but a module could still allow it; this test reads every source file and
+//! fails on an `unsafe` keyword or an `allow(unsafe_code)` anywhere else.
 
 use std::fs;
 use std::path::{Path, PathBuf};
