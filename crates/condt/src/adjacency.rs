@@ -26,9 +26,8 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
 
 /// Compressed adjacency of an edge list over `vertex_count` vertices: the neighbours of `v` are
 /// `neighbors[offsets[v]..offsets[v + 1]]`, in the order the edges are listed, each with the
-/// position of its edge in the list. Only the tests build one now, as the reference the compact
-/// forms ([`CurveGraph`], [`BranchAdjacency`]) are checked against: at 20 bytes per point it
-/// was the peak of the stages that used it.
+/// position of its edge in the list. Only the tests build one now (for memory), as the reference
+/// the compact forms ([`CurveGraph`], [`BranchAdjacency`]) are checked against.
 #[cfg(test)]
 pub(crate) struct Adjacency {
     offsets: Vec<u32>,
@@ -68,8 +67,7 @@ impl Adjacency {
 }
 
 /// [`Adjacency`] of the vertices of degree three or more only (the non-manifold vertices, a
-/// few in a hundred on noisy curves): the same lists, the same order, without the 20 bytes per
-/// point a full adjacency costs (the repair's peak, beside its input and output).
+/// few in a hundred on noisy curves): the same lists, the same order, for memory.
 pub(crate) struct BranchAdjacency {
     /// The vertices with three or more edges, ascending, and where their lists start.
     vertices: Vec<(VertexId, u32)>,
@@ -133,12 +131,8 @@ impl BranchAdjacency {
 /// read per vertex where separate arrays would cost one per array. The few vertices with three
 /// or more neighbours list all of them in a small side table, in id order; nothing is built for
 /// the others. It keeps no name per vertex: the curves and the final tally read the input
-/// position a vertex stands for from the triangulation's map (a 16-byte record with the name
-/// measured slower in gap closing, which scans every vertex's degree, and a separate array of
-/// names cost 4 bytes per point at the reconstruction's last step). Reason for the packing:
-/// memory. The graph is held at the reconstruction's highest phases (the local outlier stage
-/// and the last step), where a 12-byte record (the degree in a word of its own) was 12 bytes per
-/// point of the peak.
+/// position a vertex stands for from the triangulation's map. Reason for the packing: memory;
+/// the graph is held at the reconstruction's highest phases.
 #[derive(Debug, PartialEq)]
 pub(crate) struct CurveGraph {
     /// Per vertex id: the first neighbour's id in the low [`ID_BITS`] bits of the first word and
@@ -241,8 +235,7 @@ impl CurveGraph {
     /// Takes `removed` (edges of this graph, each once) out: the graph becomes the one
     /// [`CurveGraph::new`] builds from the remaining list in its order. Records are patched in
     /// place and the side table is rewritten in one pass over it, so a few removals cost next to
-    /// nothing where a new graph costs a pass over every edge with scattered writes (10-15 ms at
-    /// 1M points, after rules that drop a handful of edges).
+    /// nothing where a new graph costs a pass over every edge with scattered writes.
     pub(crate) fn remove_edges(&mut self, removed: &[Edge]) {
         let mut at_branches: Vec<(VertexId, VertexId)> = Vec::new();
         for &[a, b] in removed {
@@ -421,10 +414,8 @@ pub(crate) fn sort_pairs<T: Copy + Ord>(
     out
 }
 
-/// The edges of `edges` (at most `room` of them) in one list of their exact length. Reason:
-/// memory. A stage's filtered output is held beside its input (the pipeline records what the
-/// stage changed) at the reconstruction's highest phases; collecting grew the list by
-/// doubling, up to twice what it holds, where this allocates `room` once and shrinks in place.
+/// The edges of `edges` (at most `room` of them) in one list of their exact length, allocated
+/// once. Reason: memory; collecting would grow the list by doubling, up to twice what it holds.
 pub(crate) fn collect_exact(room: usize, edges: impl Iterator<Item = Edge>) -> Vec<Edge> {
     let mut list = Vec::with_capacity(room);
     list.extend(edges);

@@ -34,8 +34,7 @@ use alloc::vec::Vec;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Curve {
     /// Input positions in order; 32 bits, as the kernel stores every index. Boxed at its
-    /// length: uniform points make a curve for every eight points, where a `Vec`'s capacity
-    /// took a byte per point.
+    /// length (memory).
     points: Box<[u32]>,
     closed: bool,
 }
@@ -130,8 +129,8 @@ pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> 
 }
 
 /// The curves of `graph` (over the vertex ids of `tri`), in input positions, canonical and
-/// sorted. The positions are read from the triangulation's map, not copied into the graph: a
-/// name per vertex took 4 bytes per point at the reconstruction's last step.
+/// sorted. The positions are read from the triangulation's map, not copied into the graph
+/// (memory).
 pub(crate) fn curves_in_input_positions(tri: &Triangulation, graph: &CurveGraph) -> Vec<Curve> {
     let mut curves = curves_of(graph, |v| tri.input_of(v) as u32);
     canonical(&mut curves);
@@ -146,8 +145,7 @@ fn canonical(curves: &mut [Curve]) {
     // Sorted by their first two points, which is the order of the whole point lists: no two
     // curves share them (they would share an edge, and every edge lies on one curve). Comparing
     // keys computed once, not the lists behind pointers, spares the sort a cache miss per
-    // comparison: 190 ms instead of 375 ms for the 1.8 million curves of 10 million uniform
-    // points.
+    // comparison.
     curves.sort_by_cached_key(|curve| {
         let p = &curve.points;
         let at = |k: usize| u64::from(p.get(k).copied().unwrap_or(0));
@@ -197,7 +195,7 @@ pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> V
             ));
         }
     }
-    // Grown by doubling: up to half of it was room (3 bytes per point of uniform points).
+    // Grown by doubling: up to half of it was room (memory).
     curves.shrink_to_fit();
     curves
 }

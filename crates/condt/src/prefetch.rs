@@ -6,21 +6,13 @@
 //! `tests/unsafe_code.rs` fails if any other source file does (but for the binary's allocator,
 //! `src/bin/condt/allocator.rs`).
 //!
-//! Why: the proximity sweep reads the point and the candidate record of each triangle's three
-//! corners. Triangles are stored in the order the insertion made them and vertices in insertion
-//! order, so at a million points most of those reads miss the caches, and the sweep waited on
-//! them (about 40 % of its samples in a `perf` profile). A prefetch issued some triangles ahead
-//! retires at once, unlike a load, so the misses overlap: the sweep took 90 instead of 143 ms
-//! at 1M points (medians of alternated runs, `docs/performance.md`). The final tally, which
-//! reads the curve graph in input order, does the same for shuffled input. It changes no
-//! result.
+//! Why: at a million points most reads of the proximity sweep and of the final tally (on
+//! shuffled input) miss the caches; a prefetch issued ahead lets the misses overlap. It changes
+//! no result.
 
 /// Fewest points for which loops over them prefetch (the proximity sweep and the final tally):
-/// 2^16 points take 1 MB in coordinates alone, and with what a loop reads beside them (the
-/// sweep's 24-byte records) more than the second-level caches of current processors (1 MB per
-/// core here). Below that the reads hit the caches anyway and the prefetches only add work (a
-/// third more time for the proximity sweep at 10k points). On targets where [`prefetch`] does
-/// nothing, never: the loops then skip the work of asking.
+/// below it the reads fit the second-level cache and prefetches only add work. On targets where
+/// [`prefetch`] does nothing, never: the loops then skip the work of asking.
 pub(crate) const PREFETCH_FROM: usize = if cfg!(target_arch = "x86_64") {
     1 << 16
 } else {

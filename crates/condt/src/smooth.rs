@@ -32,17 +32,15 @@ use alloc::vec::Vec;
 /// How far a point moves towards its neighbours' midpoint: half way. Reason: for a zig-zag, the
 /// noise pattern that pushes samples into each other's Delaunay circles (each sample on the
 /// other side of its neighbours' chord), half way puts every sample on the chord of its
-/// neighbours' old positions, the largest step that does not overshoot; a smaller step leaves
-/// part of that displacement (a quarter: noise 41.7 % against 45.8 % after one pass, seeds 1-3).
+/// neighbours' old positions, the largest step that does not overshoot.
 pub(crate) const WEIGHT: f64 = 0.5;
 
 /// Most smoothing passes after the first reconstruction (each pass smooths the previous pass's
 /// positions along its final graph and reconstructs again; passes stop early once a pass leaves
 /// the final edges as they were, the fixed point). Reason: every pass can find true neighbours
 /// the previous one missed (a closed gap gives its two ends a second edge, and so a smoothed
-/// position in the next pass), but each costs a whole reconstruction; measured on the suite's
-/// noise cases (seeds 1-3): 45.8 % exact after one pass, 48.6 % after two, 51.4 % after three
-/// and four, 52.8 % after six. Three is where the gain flattens.
+/// position in the next pass), but each costs a whole reconstruction; three is where the
+/// measured gain flattens.
 pub(crate) const MAX_PASSES: usize = 3;
 
 /// Whether a reconstruction whose input points have the final `degrees` shows enough noise to
@@ -62,15 +60,9 @@ pub(crate) fn shows_noise(degrees: impl ExactSizeIterator<Item = usize>) -> bool
 }
 
 /// A pass runs only when at least one point in this many shows noise (see [`shows_noise`]).
-/// Reason: cost against what a pass can mend. A pass costs a whole reconstruction of every
-/// point, the first one's price again (three passes, four times it), but it changes results only
-/// near the loose ends and branches. Noisy samples show noise all along their curves: the
-/// suite's noise cases that start a pass have 1.1 % to 35 % of their points at ends or branches.
-/// A large, mostly clean set does not: the 200,000 points of `scripts/scale.py`'s crossing
-/// ellipses have 0.09 % (182 vertices), where three passes took 1.35 s instead of 0.41 s and
-/// moved the edge F1 from 0.99880 to 0.99886. The suite gives the same exact scores for one in
-/// 50, 100 and 400 (one more outlier edge on seed 3 at 50), so the choice is the cost policy,
-/// not a fit: a point in a hundred.
+/// Reason: cost against what a pass can mend. A pass costs a whole reconstruction, but it
+/// changes results only near loose ends and branches, which noisy samples show all along their
+/// curves and a large, mostly clean set does not; a cost policy, not a fit.
 pub(crate) const NOISE_SHARE: usize = 100;
 
 /// The smoothed position of every input position for a reconstruction on `tri` whose final
@@ -80,9 +72,7 @@ pub(crate) const NOISE_SHARE: usize = 100;
 /// the suite's and the paper's sharp corners are under 60° and noise of a few per cent of the
 /// spacing tilts each edge by a few degrees, so no corner sample reaches a right angle, while a
 /// curve sampled densely enough for the proximity graph (an ε-sample with ε < 1/2: about 30° of
-/// turn per sample at most) gives angles far above it along its smooth parts. (Measured on
-/// `../shared/eval`, seeds 1-3, three passes: 120° instead gives the same noise figure, 135°
-/// loses 2.8 points of noise.)
+/// turn per sample at most) gives angles far above it along its smooth parts.
 pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> (Vec<Point>, usize) {
     let n = tri.num_points();
     let graph = CurveGraph::new(n, edges);

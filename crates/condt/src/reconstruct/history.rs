@@ -3,9 +3,7 @@
 //!
 //! Owns: [`StageRecord`], the [`Undo`] deltas that keep a stage's input in a few bytes, and the
 //! walk back from the last graph ([`output_of`], [`History::input_of`]). It may not run a stage
-//! or decide which runs: it only remembers. Reason for the deltas: memory; a full copy per stage
-//! that changed its graph took 8 bytes per point and stage, while a stage changes a few edges in
-//! a hundred.
+//! or decide which runs: it only remembers. Reason for the deltas: memory.
 
 use crate::adjacency::Edge;
 use crate::stages::Stage;
@@ -56,9 +54,8 @@ pub(super) struct StageRecord {
 }
 
 /// How a stage's input is recovered from its output: the stage graphs are stored as the final
-/// graph and one of these per stage, walked back from the last stage. Reason: memory. A full
-/// copy per stage that changed its graph took 8 bytes per point and stage (26.5 at the
-/// reconstruction's peak on curves), while a stage changes a few edges in a hundred.
+/// graph and one of these per stage, walked back from the last stage. Reason: memory (a stage
+/// changes a few edges in a hundred; a full copy costs 8 bytes per point).
 #[derive(Clone, Debug)]
 pub(super) enum Undo {
     /// The rule did not apply: the output is the input (the proximity graph, which has no input,
@@ -82,13 +79,9 @@ pub(super) enum Undo {
 /// The record of the step that reads the first stage's graph (the proximity graph) keeps a
 /// delta only while it holds at most one removal per this many edges of that graph, under a
 /// byte per edge (12 bytes a removal); past it, the graph is computed again when a report asks
-/// for it ([`Undo::First`]). Reason: memory against the time of a report. On uniform points the
-/// repair keeps the edges of few vertices as they were (200k points: 146,489 removals of
-/// 233,262 edges, or the whole graph, 9.3 bytes per point through every later stage and pass);
-/// along curves it changes a few edges in a hundred (1,299 of 201,159), and the reports there
-/// cost nothing more. Only the repair's record is replaced so: the local outlier removal reads
-/// the IQR stage's input, which with `outliers_first` is the proximity graph, and must not
-/// recompute it.
+/// for it ([`Undo::First`]). Reason: memory against the time of a report. Only the repair's
+/// record is replaced so: the local outlier removal reads the IQR stage's input, which with
+/// `outliers_first` is the proximity graph, and must not recompute it.
 pub(super) const FIRST_KEPT_UP_TO: usize = 12;
 
 impl Undo {

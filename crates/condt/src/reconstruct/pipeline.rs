@@ -128,7 +128,7 @@ struct Run {
 
 /// When a run's curves are assembled, which depends on whether it is the final one: a run that
 /// a smoothing pass replaces is read only for its final edges, degrees and graph, so its curves
-/// would be dead (10.6 bytes per point of uniform points beside the final tally).
+/// would be dead memory beside the final tally.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum CurveAssembly {
     /// The final one: the curves are assembled beside the final tally.
@@ -412,10 +412,9 @@ impl Pipeline {
         let mut smoothing = self.smoothing.unwrap_or_default();
         // Of the previous run only its final edges are read again (the fixed-point test, by
         // their fingerprint), and its triangulation and final graph to smooth along: the rest
-        // (stage records, degrees) is freed before the positions are computed (26 bytes per
-        // point of uniform points at the passes' peak), those two once they are, and the moved
-        // positions once they are triangulated. The last pass allowed stops whatever its
-        // edges, so they are not kept for it.
+        // is freed before the positions are computed, those two once they are, and the moved
+        // positions once they are triangulated (memory). The last pass allowed stops whatever
+        // its edges, so they are not kept for it.
         let last_pass = smoothing.passes + 1 >= MAX_PASSES;
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
@@ -619,11 +618,10 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
 
 /// [`reconstruct`] of points the caller hands over: the same result, but the points are freed
 /// as soon as they are triangulated (the triangulation keeps them in its own frame), so the
-/// stages run without them (16 bytes per point less at the peak; the command line reads its
-/// points into memory only to reconstruct them). The result speaks in input positions; for
-/// the input coordinates afterwards (where the smoothing passes moved points, the result has
-/// only the moved positions, [`Reconstruction::stage_point`]), keep the points and call
-/// [`reconstruct`].
+/// stages run without them (16 bytes per point less at the peak). The result speaks in input
+/// positions; for the input coordinates afterwards (where the smoothing passes moved points,
+/// the result has only the moved positions, [`Reconstruction::stage_point`]), keep the points
+/// and call [`reconstruct`].
 ///
 /// # Errors
 /// As [`reconstruct`].
@@ -680,11 +678,10 @@ pub(super) fn first_graph(tri: &Triangulation, params: &Params) -> Vec<Edge> {
 /// The fixed-point test's record of a pass's final edges (input positions `[i, j]`, sorted, as
 /// the tally makes them): their count and two 64-bit hashes of the list, each chained over the
 /// edges through a different bijective mixer (the finalizers of SplitMix64 and of MurmurHash3).
-/// Reason: the list itself was held through the whole next pass, every phase of which it raised
-/// (3.2 bytes per point of uniform points packed, 6.5 unpacked), for one comparison at its end.
-/// Two different lists of the same length give the same record with a chance of about 2^-128;
-/// the passes would then stop one pass early, with a result that is still the reconstruction of
-/// the last pass's positions.
+/// Reason: memory; the list itself would be held through the whole next pass. Two different
+/// lists of the same length give the same record with a chance of about 2^-128; the passes would
+/// then stop one pass early, with a result that is still the reconstruction of the last pass's
+/// positions.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(super) struct EdgesFingerprint {
     len: usize,
@@ -751,12 +748,8 @@ impl Stopwatch {
     }
 }
 
-/// Runs `work` on one of rayon's worker threads when `parallel`. Called from outside the pool,
-/// rayon's parallel loops leave the caller blocked and, once done, their workers spinning for a
-/// while: with as many workers as cores, the sequential stages that follow then share a core with
-/// a spinning worker (gap closing measured 22 to 29 ms after the parallel proximity pass instead
-/// of 9 to 10 ms at 1M points, 2 cores). From inside the pool the caller's own thread is one of
-/// the workers, so nothing spins beside it but the others.
+/// Runs `work` on one of rayon's worker threads when `parallel`. Reason: called from outside
+/// the pool, rayon leaves its workers spinning beside the sequential stages that follow.
 #[cfg(feature = "parallel")]
 pub(super) fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send) -> R {
     if parallel {

@@ -227,9 +227,7 @@ impl Reconstruction {
     ///
     /// The result keeps no copy of the input: the input coordinates are the caller's (the
     /// slice given to [`reconstruct`]; [`reconstruct_owned`] hands them over for good).
-    /// Reason: a copy of the points the passes moved cost 10 to 16 bytes a point through every
-    /// pass and in the result, a tenth of the peak (`docs/performance.md`, "Where the bytes per
-    /// point go").
+    /// Reason: memory; a copy would cost a tenth of the peak (`docs/perf-log.md`).
     ///
     /// # Panics
     /// If `index` is not an input position.
@@ -279,8 +277,7 @@ impl Reconstruction {
 }
 
 /// The degree of every input point in a byte, the rare degree above 254 in a sorted side list.
-/// Reason: the list is kept in the result and is alive at the last step's peak, where four
-/// bytes a point were 3 more than any graph of the stages needs.
+/// Reason: memory; the list is alive at the last step's peak.
 #[derive(Clone, Default)]
 pub(super) struct Degrees {
     /// The degree, or [`Degrees::LARGE`] when it is in `large`.
@@ -358,8 +355,6 @@ const TALLY_PREFETCH: usize = 16;
 /// (whether they do is a coin toss, so it is not branched on). A vertex's degree and neighbours
 /// are one record of the curve graph; the neighbours' input positions come from the
 /// triangulation's dense map, which packs sixteen to a cache line where the records pack four.
-/// (Gathering each vertex's contribution in vertex order first, or scattering it to its input
-/// position, was tried: fewer cache misses on shuffled input, more on input in curve order.)
 pub(super) fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
     let n = tri.num_points();
     // Without duplicates every input position stands for its own vertex: no need to look.

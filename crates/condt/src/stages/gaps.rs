@@ -19,13 +19,12 @@
 //! - **ahead**: `w` lies in the open half-plane ahead of the end, the angle at `a` between `a'`
 //!   and `w` above 90° ([`AHEAD`]). Anything behind the perpendicular at `a` leads back along
 //!   the end's own curve. A half-plane, not a narrower cone: at noisy ends and sharp corners the
-//!   last edge is a poor guide to the curve's direction (on the evaluation suite a 120° cone
-//!   closed fewer gaps: noise 38.9 % exact against 41.7 %, sharp F1 0.770 against 0.825).
+//!   last edge is a poor guide to the curve's direction.
 //! - **short**: `|aw| <= GAP_RATIO · |aa'|`, with [`GAP_RATIO`] = `u = 2.75`, the paper's
 //!   uniformity ratio: Algorithm 1 treats a second edge up to `u` times the first as the same
 //!   sampling, so a gap no longer than that is within the sampling the graph was built for; a
 //!   longer one is a real end (an open curve stops there). A ratio of lengths, so independent of
-//!   the scale and position of the input. (A larger ratio, 3.5, joins the ends of open arcs.)
+//!   the scale and position of the input.
 //!
 //! A candidate is one of:
 //!
@@ -219,8 +218,7 @@ pub(crate) fn close_gaps(
         graph: graph.unwrap_or_else(|| CurveGraph::new(n, edges)),
     };
     // Only loose ends choose, and most points are not loose: the choices are kept as a list
-    // in increasing vertex id, searched by id (a slot per point took 24 bytes per point, the
-    // reconstruction's peak on curves).
+    // in increasing vertex id, searched by id (memory).
     let targets: Vec<(VertexId, Target)> = (0..n as u32)
         .map(VertexId::new)
         .filter(|&a| ends.is_loose(a))
@@ -271,8 +269,7 @@ pub(crate) fn close_gaps(
     if joins.is_empty() {
         return Outcome::unchanged_with(Some(ends.graph));
     }
-    // The curve graph (12 bytes per point) is not the output's and not read again: freed
-    // before the output is built.
+    // The curve graph is not the output's and not read again: freed before the output is built.
     drop((ends, lined_up));
     let mut out = Vec::with_capacity(edges.len() + joins.len());
     out.extend_from_slice(edges);

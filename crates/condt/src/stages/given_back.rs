@@ -12,8 +12,7 @@
 //! large uniform scatter of outliers every point keeps its two nearest neighbours, and a third
 //! of them see those two at an angle above 120°: chance chains of such passages form, and rule 1
 //! gives all their edges back. Its component rule (rule 4) then keeps a chain with five
-//! separated vertices. On the evaluation suite, 10,000 outliers around a densely sampled
-//! superellipse left a smooth chain of eleven outliers (ten outlier edges in one case).
+//! separated vertices.
 //!
 //! Rule. A component every edge of which was given back (missing from the graph the local
 //! outlier removal started from) keeps its edges only when **every** one of its vertices with two
@@ -75,7 +74,7 @@ pub(crate) fn confirm_given_back(
         }
     }
     // The longest edge (squared) of the vertices of those components only, which are few: a
-    // list of them, ascending, beside their lengths, where a length per point took 8 bytes.
+    // list of them, ascending, beside their lengths (memory).
     let in_given = |v: VertexId| only_given[root[v.index()] as usize];
     let members: Vec<VertexId> = (0..n as u32)
         .map(VertexId::new)
@@ -123,9 +122,8 @@ pub(crate) fn confirm_given_back(
 /// Whether each edge of `edges` is missing from `before` (each list with distinct edges). The
 /// local outlier removal keeps its input's edges in their order and appends those it gives
 /// back, so one merge-like pass matches all but a short tail, and only the tail is looked up
-/// (sorted, against one pass over `before`). Reason: memory. A full adjacency of `before` took
-/// 20 bytes per point beside both lists; this holds a byte per edge and the tail. Exact for any
-/// two lists: an edge the pass cannot match falls into the tail and is looked up.
+/// (sorted, against one pass over `before`). Reason: memory (a byte per edge and the tail).
+/// Exact for any two lists: an edge the pass cannot match falls into the tail and is looked up.
 fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
     let mut missing = vec![false; edges.len()];
     let mut at = 0;

@@ -59,9 +59,8 @@
 //! the result is the same with `parallel` on or off. It is O(n): a curve graph (one record per
 //! vertex) read in vertex order and shared by rules 2 to 4, a union-find over the edges, walks
 //! of at most [`MIN_SAMPLES`] steps and at most one walk of the Delaunay ring of every vertex
-//! that has an edge. Its memory beyond its input and output is the curve graph (12 bytes per
-//! point) and a few bytes per point of flags and component names: edge lengths are recomputed
-//! where a rule reads them rather than stored.
+//! that has an edge. Its memory beyond its input and output is the curve graph and a few bytes
+//! per point of flags and component names: edge lengths are recomputed, not stored.
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
@@ -76,8 +75,7 @@ use alloc::vec::Vec;
 /// Reason: it is the paper's uniformity bound (Algorithm 1, default `u = 2.75`): a sample whose
 /// second-nearest neighbour is `u` times farther than its nearest keeps only the nearest, so an
 /// edge `u` times longer than the others at a vertex is one that vertex's spacing does not
-/// support. (On the evaluation suite 2.0 removes more outliers but cuts noisy curves; 2.75 is
-/// the paper's number, not one tuned here.)
+/// support; the paper's number, not one tuned here.
 pub(crate) const LONG: f64 = 2.75;
 
 /// Cosine of Algorithm 2's straight-passage angle `2π/3`: two edges at a vertex continue each
@@ -152,8 +150,7 @@ pub(crate) fn remove_local_outliers(
             graph = Cow::Owned([edges, &given[..]].concat());
         }
     }
-    // Read by rule 1 only: freed before the later rules' curve graph and components (a
-    // pipeline rebuilds it for this stage, 7 bytes per point of uniform points).
+    // Read by rule 1 only: freed before the later rules' curve graph and components (memory).
     drop(before);
     // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and updated
     // only after a rule changed the graph (`Profile::update`).
@@ -353,10 +350,9 @@ fn smooth_and_regular(tri: &Triangulation, x: VertexId, y: VertexId, z: VertexId
 }
 
 /// What rules 2 to 4 read of a graph: its degrees and neighbours, from which the squared length
-/// of each vertex's two longest edges is recomputed where a rule asks (two distances at the
-/// common vertex with two edges; a stored array of them took 16 bytes per point at the stage's
-/// peak, more than the curve graph itself). The lengths are the same numbers whichever end
-/// they are computed from (`dist2` is symmetric), and in whatever order the neighbours come
+/// of each vertex's two longest edges is recomputed where a rule asks (memory: two distances at
+/// the common vertex with two edges). The lengths are the same numbers whichever end they are
+/// computed from (`dist2` is symmetric), and in whatever order the neighbours come
 /// ([`top_two`]).
 struct Profile {
     graph: CurveGraph,
@@ -373,8 +369,7 @@ impl Profile {
 
     /// Makes this the profile of `edges`, which are its edges less `removed`: a few removed
     /// edges are taken out of the graph in place ([`CurveGraph::remove_edges`]); beyond one
-    /// per 64 vertices the graph is built again, freeing the old one first (the two together
-    /// were the stage's peak).
+    /// per 64 vertices the graph is built again, freeing the old one first (memory).
     fn update(&mut self, tri: &Triangulation, edges: &[Edge], removed: &[Edge]) {
         if removed.is_empty() {
             return;
@@ -406,9 +401,7 @@ impl Profile {
 /// as a bit set over vertex ids, or `None` when there is none (the common case). Rule 2 drops
 /// an edge only where it is long at one of its ends, and an edge long at `v` is such a longest
 /// edge, so only edges at these vertices need its test. By vertex id: the ids are spatial, so
-/// the reads of the neighbours' points stay near each other. Reason for the bit set: the
-/// full test of every edge read the two longest edges at both of its ends, four or five
-/// scattered points per edge (43-65 ms at 1M points along curves, to drop four edges).
+/// the reads of the neighbours' points stay near each other. Reason for the bit set: speed.
 fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> Option<Vec<u64>> {
     let n = graph.vertex_count();
     let mut long = alloc::vec![0u64; n.div_ceil(64)];
@@ -505,11 +498,8 @@ fn long_edges<'a>(
 }
 
 /// Takes the edges `dropped` selects out of `graph`, the others kept in their order, judging
-/// each edge once; whether it took any. Reason: memory. The stage's input is borrowed and
-/// stays alive (the pipeline records what the stage changed), so a first change copies it once
-/// at its exact size; a later one filters that copy in place. Collecting into a new list instead
-/// grew it by doubling, up to twice its length, while the input and the previous copy were held
-/// (55 bytes per point at the stage's peak along curves).
+/// each edge once; whether it took any. A first change copies the borrowed input once at its
+/// exact size; a later one filters that copy in place. Reason: memory.
 fn drop_edges(
     graph: &mut Cow<'_, [Edge]>,
     removed: &mut Vec<Edge>,
@@ -557,8 +547,7 @@ fn drop_edges(
 ///
 /// A spur's vertices other than its branch have no edge off the spur (one edge at its loose
 /// end, two on the way), so its edges are those with an end among them: the walk marks
-/// vertices (a byte per point) and reads the curve graph the other rules share, where edge
-/// positions would need a full adjacency (17 bytes per point at the stage's peak).
+/// vertices (a byte per point) and reads the curve graph the other rules share (memory).
 fn short_spurs(graph: &CurveGraph) -> Option<Vec<bool>> {
     let n = graph.vertex_count();
     let mut dropped = vec![false; n];

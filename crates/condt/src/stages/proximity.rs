@@ -11,9 +11,8 @@
 //!
 //! Two passes compute this. With a fixed `u` the triangles are swept in memory order and every
 //! half-edge offers its destination to its origin, which keeps the two best offers (no chain of
-//! dependent loads). In parallel the vertex ids are cut into a few ranges swept at once, each
-//! over all the triangles for the offers to its own vertices, into one shared array (each
-//! vertex then decides in place, where its offers were). The adaptive test needs the sum of the ring's
+//! dependent loads; in parallel, a few ranges of vertex ids swept at once into one shared array).
+//! The adaptive test needs the sum of the ring's
 //! lengths, and a floating-point sum depends on its order; so that mode walks each vertex's ring
 //! from its first half-edge, the same order whether the walks run one after the other or on
 //! rayon. Both passes keep candidates with the same update (`TwoBest`, ordered by squared length,
@@ -215,8 +214,7 @@ pub(crate) fn proximity_graph(
                 1
             };
             let mut best = two_best_offers(tri, ranges);
-            // Each vertex's choice replaces its offers in place (the ids of its record), so no
-            // second array of 8 bytes per point is held beside them.
+            // Each vertex's choice replaces its offers in place (the ids of its record): memory.
             let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
             if parallel {
                 decide_all(&mut best, &decide, |b, pair| b.keep_only(pair));
@@ -292,10 +290,7 @@ fn list_kept<T>(
     let none = [VertexId::INFINITE; 2];
     let n = records.len();
     // Curves keep about one edge per vertex, two at most: start at one and grow by an eighth
-    // when a vertex might not find room for its two. A buffer sized for the worst case was 160
-    // KB at 10k points, enough for glibc to hand it back and fault it in again on every run; one
-    // grown by half held up to 4 bytes per point of filler beside the 24 of the offers, the
-    // stage's peak (large buffers grow in place, by `mremap`, so small steps cost no copy).
+    // when a vertex might not find room for its two (speed and memory; `docs/perf-log.md`).
     let mut edges = alloc::vec![none; n + 2];
     let mut count = 0;
     for i in 0..n {
@@ -453,9 +448,8 @@ fn two_best_offers(tri: &Triangulation, parts: usize) -> Vec<TwoBest> {
 }
 
 /// The vertices cut into `parts` ranges of ids, each swept on its own worker into its own part
-/// of `best`. Reason: memory. Cutting the triangles instead gave each range a whole array of
-/// offers (24 bytes per point each) for a merge; here the ranges share one, and every worker
-/// reads all the corners (12 bytes a triangle, in order) to find its own.
+/// of `best`. Reason: memory; the ranges share one array of offers, and every worker reads all
+/// the corners to find its own.
 #[cfg(feature = "parallel")]
 fn sweep_parts(tri: &Triangulation, best: &mut [TwoBest], parts: usize) {
     use rayon::prelude::*;
@@ -471,8 +465,7 @@ fn sweep_parts(tri: &Triangulation, best: &mut [TwoBest], _parts: usize) {
 }
 
 /// How many triangles ahead the sweep asks for the points and records it will read: far
-/// enough that a miss resolves before they are needed, near enough that the lines are still in
-/// the first-level cache (32 triangles touch at most 96 points and 96 records, 12 KB).
+/// enough that a miss resolves first, near enough that the lines are still in the L1 cache.
 const PREFETCH_TRIANGLES: usize = 32;
 
 /// The two best offers the half-edges of every triangle make: each finite half-edge offers its

@@ -27,8 +27,7 @@
 //!    above 150°), `v` keeps those four edges. Of several such pairings it takes the one whose
 //!    less straight pair is straightest, so that both passages are as straight as they can be
 //!    together ([`Repair::CrossingAware`] takes the straightest pair first and pairs it with
-//!    what is left; on the suite below the two pick the same crossings, and the thresholds 140°
-//!    and 160° score as 150° does). Why 150°: consecutive chords of a curve sampled at spacing
+//!    what is left). Why 150°: consecutive chords of a curve sampled at spacing
 //!    `ε · lfs` turn by at most about `ε` radians, so a passage through a sample of an
 //!    `ε`-sampling with `ε <= 1/2` is straighter than 180° − 28.6°.
 //! 2. **Needs.** A neighbour `w` of degree <= 2 needs the edge `vw`: dropping it leaves `w` an
@@ -41,9 +40,7 @@
 //!    are straight enough for Algorithm 2 (`θ > 2π/3`) or whose two edges are both needed,
 //!    ranked by: straight enough, then the number of needed edges, then `θ` over the length of
 //!    the path through `v` (the two lengths added: Algorithm 2's preference for short, straight
-//!    edges, for a pair; dividing by the longer edge alone instead lets a long straight pair beat
-//!    the short edge Algorithm 2 keeps, and loses a sparse closed curve of `shared/data`), then
-//!    the smaller ids.
+//!    edges, for a pair), then the smaller ids.
 //!    A straight pair comes first so that a needy stray point beside a curve does not bend it; a
 //!    bent pair of two needed edges is a corner whose apex has a third edge.
 //! 3. **Score.** When no pair holds a needed edge, Algorithm 2's own choice: the shortest edge
@@ -59,11 +56,8 @@
 //! order of the edges or on threads; the pairs a crossing compares live in one buffer reused
 //! from vertex to vertex.
 //!
-//! Measured on the evaluation suite (`shared/eval`, seeds 1 to 3, 154 cases each, mean exact):
-//! sharp corners 24% (`Paper`) to 85%, self-intersections 0% to 88% (`CrossingAware` 88% too),
-//! outliers 20% to 24%, every other category unchanged; all cases 57% to 74%. On the 60
-//! ground-truth sets of `shared/data` (`cargo run --release --example evaluate -- --compare`):
-//! 25 exact as `Paper`, mean F1 0.9248 against 0.9245.
+//! It keeps sharp corners and self-intersections that `Paper` loses; the measurements on the
+//! evaluation suite are in `docs/perf-log.md`.
 
 use crate::adjacency::{degrees, ordered, BranchAdjacency, Edge};
 use crate::mesh::VertexId;
@@ -193,8 +187,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     // Scratch space of `Repair::Needs`, reused by every vertex.
     let mut pairs = needs::Pairs::new();
     // Lines 6–12: every non-manifold vertex selects its edges (up to four for a crossing).
-    // One per non-manifold vertex, counted first (a list grown by doubling held up to twice
-    // that: 13.1 bytes per point of uniform points, the highest phase of their passes).
+    // One per non-manifold vertex, counted first (memory: no growth by doubling).
     let mut selections: Vec<(VertexId, [VertexId; 4])> = Vec::with_capacity(graph.branch_count());
     for i in 0..vertex_count {
         let v = VertexId::new(i as u32);
@@ -227,7 +220,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     };
     // Algorithm 2, lines 3–5: edges between manifold vertices stay.
     // Every edge of the output is an input edge, listed once: the input's length is room
-    // enough, where collecting grew the list by doubling (up to twice its length).
+    // enough (memory: no growth by doubling).
     let mut kept: Vec<Edge> = Vec::with_capacity(edges.len());
     kept.extend(
         edges

@@ -24,9 +24,8 @@ use core::sync::atomic::{AtomicUsize, Ordering};
 /// The predicates a construction decides with, chosen once per point set.
 pub(crate) trait Kernel {
     fn orient2d(a: Point, b: Point, c: Point) -> Orientation;
-    /// A number with the sign of [`Kernel::orient2d`] (positive: counter-clockwise). The walk
-    /// branches on it: matching on an `Orientation` built from the determinant made the
-    /// compiler build the value and then test it again (3 % more instructions in `insert`).
+    /// A number with the sign of [`Kernel::orient2d`] (positive: counter-clockwise), for the
+    /// walk to branch on (speed).
     fn orient2d_sign(a: Point, b: Point, c: Point) -> f64;
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool;
     /// [`Kernel::in_circle`]`(u, w, v, q)` for the new point `v` of an insertion, which every

@@ -40,10 +40,9 @@ pub(crate) struct Frames {
 /// Checks every point and picks the frames; the first non-finite point is an error naming its
 /// index.
 pub(crate) fn choose_frames(points: &[Point]) -> Result<Frames, Error> {
-    // One pass: the largest magnitude, and the smallest nonzero one.
-    // Magnitudes compare as their bit patterns (NaN above infinity above every finite value),
-    // and zero, one below, wraps to the top when looking for the smallest nonzero one: integer
-    // minima and maxima, one chain per axis, where float ones with NaN rules chain far slower.
+    // One pass: the largest magnitude, and the smallest nonzero one. Magnitudes compare as
+    // their bit patterns (NaN above infinity above every finite value), and zero, one below,
+    // wraps to the top when looking for the smallest nonzero one (speed: integer minima).
     const MAGNITUDE: u64 = !(1 << 63);
     let (mut largest, mut smallest) = ([0u64; 2], [u64::MAX; 2]);
     for p in points {
