@@ -1,4 +1,4 @@
-//! Smoothing noisy positions before the reconstruction (not in the paper; off by default and in
+//! Smoothing noisy positions before the reconstruction (not in the paper; on by default, off in
 //! `Params::paper`; [`Params::smooth`](crate::Params::smooth)).
 //!
 //! Owns: one rule that moves points to smoothed positions read off a finished reconstruction's

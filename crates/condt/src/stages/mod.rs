@@ -9,8 +9,10 @@
 //! none may modify it, and none decides which stage runs when: that is
 //! [`Params::stages`](crate::Params::stages), in one place.
 //!
-//! A new stage is a new submodule, a [`Stage`] variant, a [`Step`] variant with its parameter,
-//! and a line in `Params::stages`; the other stages do not change.
+//! A new stage is a new submodule, a [`Stage`] variant with its row in the stage table
+//! (`ROWS`), a [`Step`] variant with its parameter, a field of `Params` and a line in
+//! `Params::steps` (and in `Params::set_stage` when it has a switch); the other stages, the
+//! command line and the drawings do not change (`docs/architecture.md`, "Adding a stage").
 
 pub(crate) mod gaps;
 pub(crate) mod given_back;
