@@ -7,7 +7,7 @@
 //! tests of this binary, run on parallel threads, do not see each other's allocations.
 
 use condt::Point;
-use condt_io::{parse_npy, read_points};
+use condt_io::{parse_geojson, parse_npy, read_points};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
@@ -95,6 +95,15 @@ fn measure<T>(f: impl FnOnce() -> T) -> (T, usize) {
     PEAK.with(|p| p.set(start));
     let result = f();
     (result, PEAK.with(Cell::get) - start)
+}
+
+/// Runs `f` with allocations beyond `extra` more bytes than are live now refused.
+fn limited<T>(extra: usize, f: impl FnOnce() -> T) -> T {
+    let start = LIVE.with(Cell::get);
+    LIMIT.with(|l| l.set(start + extra));
+    let result = f();
+    LIMIT.with(|l| l.set(usize::MAX));
+    result
 }
 
 /// A version 1.0 `.npy` header for `rows` float64 points, padded as NumPy pads it.
@@ -210,4 +219,49 @@ fn a_npy_stream_of_unknown_length_allocates_as_its_data_arrive() {
         assert_eq!(read_points(&fifo).unwrap(), points);
         writer.join().unwrap();
     }
+}
+
+/// A MultiPoint of 1M points: the reader holds less than twice the points' size beyond the
+/// text (no tree of the document, the positions pushed into the point vector as they are met).
+fn multipoint(n: usize) -> (String, Vec<Point>) {
+    let points: Vec<Point> = (0..n)
+        .map(|i| Point::new(i as f64 * 0.25, (i % 1000) as f64 - 0.5))
+        .collect();
+    let mut text = String::from(r#"{"type":"MultiPoint","coordinates":["#);
+    for (i, p) in points.iter().enumerate() {
+        if i > 0 {
+            text.push(',');
+        }
+        text.push_str(&format!("[{:?},{:?}]", p.x, p.y));
+    }
+    text.push_str("]}");
+    (text, points)
+}
+
+#[test]
+fn geojson_memory_is_bounded_by_the_points() {
+    let n = 1_000_000;
+    let (text, points) = multipoint(n);
+    let size = n * std::mem::size_of::<Point>();
+    let (read, peak) = measure(|| parse_geojson(&text, "many.geojson").unwrap());
+    assert!(read == points);
+    drop(read);
+    assert!(
+        peak < 2 * size,
+        "{peak} bytes held for {size} bytes of points ({} bytes of text)",
+        text.len()
+    );
+}
+
+/// When the memory for the points runs out, the reader reports it as an error (the test's
+/// allocator refuses any block past a limit); no abort.
+#[test]
+fn geojson_memory_exhausted_is_an_error() {
+    let (text, _) = multipoint(200_000);
+    let err = limited(1 << 20, || parse_geojson(&text, "many.geojson")).unwrap_err();
+    let message = err.to_string();
+    assert!(
+        message.starts_with("many.geojson") && message.contains("memory"),
+        "{message}"
+    );
 }
