@@ -117,6 +117,12 @@ impl Source<'_> {
     }
 }
 
+/// The refusal of a byte-order mark anywhere but at the very start of the file (where every
+/// reader skips it), on every path: it is not whitespace, and a reader that skipped it at the
+/// start of a line would read a file in pieces differently from one read whole.
+const BOM_INSIDE: &str =
+    "a byte-order mark (U+FEFF) inside the file; it is allowed only at the very start";
+
 /// `true` for a token that names a column (`x`, `lat`, `"y"`) rather than holds a number: it
 /// starts with a letter or `_`, quotes aside, and is not a number (`inf`, `NaN`).
 fn is_name(token: &str) -> bool {
@@ -400,6 +406,9 @@ fn lines_by<const ONE_PASS: bool>(
             Some(row) if seen_content || row.count == 0 => row,
             _ => {
                 let content = line.split('#').next().unwrap_or("");
+                if content.contains('\u{feff}') {
+                    return Err(source.error(number, BOM_INSIDE.to_string()));
+                }
                 let fields = columns(content).map_err(|message| source.error(number, message))?;
                 if fields.is_empty() {
                     continue;
@@ -511,7 +520,8 @@ fn expected_points(text: &str) -> usize {
 ///
 /// One point `x y` per line, the two numbers separated by spaces, tabs or one comma; `#` starts
 /// a comment; blank lines are skipped; LF, CRLF and CR-only line ends all work; a UTF-8
-/// byte-order mark is skipped. Refused, with the line:
+/// byte-order mark at the very start is skipped. Refused, with the line:
+/// - a byte-order mark anywhere else (outside a comment);
 /// - a single number, or four or more columns (a Triangle `.node` header `n 2 a m` among them);
 /// - a line where both commas and spaces separate numbers (`1,5 2`: a decimal comma?);
 /// - a word where a number should be, NaN and infinities;
