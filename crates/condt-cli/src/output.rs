@@ -32,7 +32,8 @@
 //! `sync_all` then has little left) showed no gain on two busy cores and was not kept.
 //!
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
-//! (the process then ends by that signal, as it would have); SIGKILL cannot be caught, so
+//! (the process then ends by that signal, as it would have), unless the caller left the signal
+//! ignored (`nohup`, a shell's `cmd &`): it then stays ignored; SIGKILL cannot be caught, so
 //! `kill -9` may leave a `.NAME.XXXXXX.partial` file beside the output.
 
 use std::fs::{self, File};
@@ -431,16 +432,41 @@ mod signals {
         }
     }
 
+    /// The signals this process ignores, as a bit set (bit `n - 1` for signal `n`): those it
+    /// inherited ignored, as `nohup` ignores SIGHUP and a shell SIGINT and SIGQUIT for `cmd &`.
+    /// Read from the kernel's `SigIgn` line of `/proc/self/status`, which needs no `unsafe`
+    /// (a `sigaction` query would); `0` where it cannot be read (no `/proc`, another system),
+    /// and then the signals are caught as before.
+    #[cfg(unix)]
+    fn ignored_signals() -> u64 {
+        std::fs::read_to_string("/proc/self/status")
+            .ok()
+            .and_then(|status| {
+                let line = status.lines().find_map(|l| l.strip_prefix("SigIgn:"))?;
+                u64::from_str_radix(line.trim(), 16).ok()
+            })
+            .unwrap_or(0)
+    }
+
     /// Starts, once, the thread that waits for SIGINT, SIGTERM and SIGHUP, removes the pending
     /// temporary file and then ends the process by the same signal, as if it had not been
-    /// caught (so a shell sees an interrupted run).
+    /// caught (so a shell sees an interrupted run). A signal the caller left ignored stays
+    /// ignored: catching it would turn it back on, and a run under `nohup` would end at the
+    /// hangup it was meant to survive.
     #[cfg(unix)]
     fn install() {
         use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
         static ONCE: Once = Once::new();
         ONCE.call_once(|| {
-            let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])
-            else {
+            let ignored = ignored_signals();
+            let caught: Vec<i32> = [SIGINT, SIGTERM, SIGHUP]
+                .into_iter()
+                .filter(|&signal| ignored & (1u64 << (signal - 1)) == 0)
+                .collect();
+            if caught.is_empty() {
+                return;
+            }
+            let Ok(mut signals) = signal_hook::iterator::Signals::new(caught) else {
                 return;
             };
             let _ = std::thread::Builder::new()

@@ -676,3 +676,67 @@ fn a_writable_file_in_a_closed_directory_is_written_in_place() {
     assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
     assert_eq!(names(&closed), ["open.txt"]);
 }
+
+/// `condt triangulate INPUT -o OUT` started with `signal` ignored, as `nohup` ignores SIGHUP and
+/// a shell ignores SIGINT for `cmd &`; the input a named pipe, so that the signal arrives while
+/// the run reads it. The run must keep the disposition it inherited: finish, exit 0, write.
+fn ignored_signal_is_left_ignored(signal: libc::c_int) {
+    use std::os::unix::process::CommandExt;
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in.txt");
+    mkfifo(&input);
+    let target = dir.path().join("out.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    let mut command = Command::new(binary());
+    command
+        .args([
+            "triangulate".as_ref(),
+            input.as_os_str(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ])
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    // SAFETY: `signal` is async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(move || {
+            libc::signal(signal, libc::SIG_IGN);
+            Ok(())
+        });
+    }
+    let child = command.spawn().unwrap();
+    // Opening the pipe waits for the run to open it: it has prepared its output by then.
+    let mut pipe = fs::OpenOptions::new().write(true).open(&input).unwrap();
+    pipe.write_all(b"0 0\n1 0\n").unwrap();
+    pipe.flush().unwrap();
+    find_temporary(dir.path(), &target, Duration::from_secs(60))
+        .expect("a temporary file while the run reads its input");
+    // SAFETY: a plain system call on the child's id.
+    assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
+    std::thread::sleep(Duration::from_millis(200));
+    // A run killed by the signal closed the pipe: writing then fails, which is the failure
+    // reported below.
+    let _ = pipe.write_all(b"1 1\n0 1\n");
+    drop(pipe);
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "signal {signal} ignored: {:?} {}",
+        out.status,
+        stderr(&out)
+    );
+    assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
+    assert_eq!(names(dir.path()), ["in.txt", "out.txt"]);
+}
+
+#[test]
+fn sighup_ignored_as_under_nohup_is_left_ignored() {
+    ignored_signal_is_left_ignored(libc::SIGHUP);
+}
+
+#[test]
+fn sigint_ignored_as_for_a_background_job_is_left_ignored() {
+    ignored_signal_is_left_ignored(libc::SIGINT);
+}
