@@ -34,7 +34,7 @@
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
 //! (the process then ends by that signal, as it would have), unless the caller left the signal
 //! ignored (`nohup`, a shell's `cmd &`): it then stays ignored; SIGKILL cannot be caught, so
-//! `kill -9` may leave a `.NAME.XXXXXX.partial` file beside the output.
+//! `kill -9` may leave a `.condt.XXXXXX.tmp` file beside the output.
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
@@ -99,17 +99,14 @@ fn directory_of(path: &Path) -> &Path {
     }
 }
 
-/// A temporary file beside `target`, hidden and named after it, registered for removal on a
-/// signal before anyone can see it. It is private (0600) unless it is to become a `new_file`,
-/// which gets what any new file would: 0666 less the umask, applied by the kernel.
+/// A temporary file beside `target`, hidden, registered for removal on a signal before anyone
+/// can see it. It is private (0600) unless it is to become a `new_file`, which gets what any
+/// new file would: 0666 less the umask, applied by the kernel. Its name, `.condt.XXXXXX.tmp`,
+/// is not made from the target's: any valid name (up to NAME_MAX, 255 bytes) can be an output,
+/// and a name built on it would pass that limit.
 fn temporary_beside(target: &Path, new_file: bool) -> io::Result<signals::Temp> {
-    let name = target
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let prefix = format!(".{name}.");
     let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".partial");
+    builder.prefix(".condt.").suffix(".tmp");
     #[cfg(unix)]
     if new_file {
         use std::os::unix::fs::PermissionsExt;

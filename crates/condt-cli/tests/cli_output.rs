@@ -104,7 +104,7 @@ fn mkfifo(path: &Path) {
     assert!(status.success());
 }
 
-/// The temporary file in `dir` (condt names it `.NAME.XXXXXX.partial`) other than `except`,
+/// The temporary file in `dir` (condt names it `.condt.XXXXXX.tmp`) other than `except`,
 /// waited for up to `patience`: a run blocked on its standard input is past preparing its
 /// output once it exists.
 fn find_temporary(dir: &Path, except: &Path, patience: Duration) -> Option<PathBuf> {
@@ -113,7 +113,10 @@ fn find_temporary(dir: &Path, except: &Path, patience: Duration) -> Option<PathB
         let found = fs::read_dir(dir)
             .unwrap()
             .map(|e| e.unwrap().path())
-            .find(|p| p != except && p.file_name().unwrap().as_bytes().ends_with(b".partial"));
+            .find(|p| {
+                let name = p.file_name().unwrap().as_bytes();
+                p != except && name.starts_with(b".condt.") && name.ends_with(b".tmp")
+            });
         if found.is_some() || start.elapsed() > patience {
             return found;
         }
@@ -603,7 +606,7 @@ fn a_directory_is_not_an_output() {
         said.starts_with(&format!("condt: {}: ", lost.display())),
         "{said}"
     );
-    assert!(!said.contains("partial"), "{said}");
+    assert!(!said.contains(".condt."), "{said}");
 }
 
 /// A command for the binary, run as an unprivileged user: `nobody` when the tests run as root
@@ -739,4 +742,22 @@ fn sighup_ignored_as_under_nohup_is_left_ignored() {
 #[test]
 fn sigint_ignored_as_for_a_background_job_is_left_ignored() {
     ignored_signal_is_left_ignored(libc::SIGINT);
+}
+
+/// A valid name of 255 bytes (NAME_MAX on Linux) is an output like any other: the temporary
+/// file beside it must not be named after it.
+#[test]
+fn an_output_name_of_255_bytes_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let name = format!("{}.txt", "n".repeat(251));
+    assert_eq!(name.len(), 255);
+    let target = dir.path().join(&name);
+    let out = triangulate_to(&target, SQUARE);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
+    // And replaced, once it exists.
+    let out = triangulate_to(&target, "0 0\n1 0\n0 1\n");
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(fs::read_to_string(&target).unwrap().lines().count(), 1);
+    assert_eq!(names(dir.path()), [name]);
 }
