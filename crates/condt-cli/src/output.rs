@@ -34,7 +34,8 @@
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
 //! (the process then ends by that signal, as it would have), unless the caller left the signal
 //! ignored (`nohup`, a shell's `cmd &`): it then stays ignored; SIGKILL cannot be caught, so
-//! `kill -9` may leave a `.condt.XXXXXX.tmp` file beside the output.
+//! `kill -9` may leave a `.condt.XXXXXX.tmp` file beside the output. A file-size limit does
+//! not end the run (SIGXFSZ is caught): the write fails, and the run reports it as any error.
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
@@ -486,6 +487,22 @@ mod signals {
     fn install() {
         static ONCE: Once = Once::new();
         ONCE.call_once(|| {});
+    }
+}
+
+/// Keeps a file-size limit (`ulimit -f`, RLIMIT_FSIZE) from killing the process: SIGXFSZ is
+/// caught (by a handler that only sets a flag nobody reads, signal-hook's safe way of ignoring
+/// it), so a write past the limit fails with EFBIG instead, and the error path removes the
+/// temporary file and leaves the output as it was. This binary starts no other program and
+/// has no use for the signal, so catching it is always safe.
+pub(crate) fn survive_file_size_limit() {
+    #[cfg(unix)]
+    {
+        use std::sync::{atomic::AtomicBool, Arc};
+        let _ = signal_hook::flag::register(
+            signal_hook::consts::SIGXFSZ,
+            Arc::new(AtomicBool::new(false)),
+        );
     }
 }
 
