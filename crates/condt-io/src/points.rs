@@ -48,6 +48,20 @@ pub(super) fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> 
     })
 }
 
+/// The lines of a text file as the point readers split them, for other line-based files (the
+/// edge files of `condt score`) to be read alike: a UTF-8 byte-order mark at the very start
+/// skipped; LF, CRLF and CR-only line ends; each line numbered from 1 as error messages number
+/// it, without its line end.
+///
+/// ```
+/// let text = "\u{feff}# edges\r0 1\r\n1 2\n\n2 0";
+/// let lines: Vec<(usize, &str)> = condt_io::text_lines(text).collect();
+/// assert_eq!(lines, [(1, "# edges"), (2, "0 1"), (3, "1 2"), (4, ""), (5, "2 0")]);
+/// ```
+pub fn text_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    numbered_lines(text.strip_prefix('\u{feff}').unwrap_or(text))
+}
+
 /// The 1-based line holding byte `offset`, with the line ends of [`numbered_lines`].
 pub(super) fn line_at(bytes: &[u8], offset: usize) -> usize {
     let ends = bytes[..offset]
