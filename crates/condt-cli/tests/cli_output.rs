@@ -807,7 +807,13 @@ fn a_file_size_limit_is_an_error_that_leaves_no_temporary_file() {
         .write_all(input.as_bytes())
         .unwrap();
     let out = child.wait_with_output().unwrap();
-    assert_eq!(out.status.code(), Some(1), "{:?} {}", out.status, stderr(&out));
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{:?} {}",
+        out.status,
+        stderr(&out)
+    );
     let said = stderr(&out);
     assert!(
         said.contains("out.txt") && said.contains("File too large"),

@@ -186,11 +186,22 @@ fn edge_files_accept_what_point_files_accept() {
         ("cr.edges", lf.replace('\n', "\r")),
         ("crlf.edges", lf.replace('\n', "\r\n")),
         ("bom.edges", format!("\u{feff}{lf}")),
-        ("bom-cr.edges", format!("\u{feff}{}", lf.replace('\n', "\r"))),
+        (
+            "bom-cr.edges",
+            format!("\u{feff}{}", lf.replace('\n', "\r")),
+        ),
     ] {
         let edges = write(dir.path(), name, &text);
-        assert_eq!(score_json(&points, &edges, &truth), expected, "{name} as output");
-        assert_eq!(score_json(&points, &truth, &edges), expected, "{name} as truth");
+        assert_eq!(
+            score_json(&points, &edges, &truth),
+            expected,
+            "{name} as output"
+        );
+        assert_eq!(
+            score_json(&points, &truth, &edges),
+            expected,
+            "{name} as truth"
+        );
     }
     // A bad line is named by the same count of line ends, CR-only ones included.
     let bad = write(dir.path(), "bad.edges", "0 1\r1 2\r2 x\r3 0\r");

@@ -514,7 +514,11 @@ pub fn parse_npy(bytes: &[u8], file: &str) -> Result<Vec<Point>, IoError> {
 pub(super) fn read_npy_file(path: &std::path::Path, shown: &str) -> Result<Vec<Point>, IoError> {
     let mut file = File::open(path).map_err(|err| IoError::os(shown, err))?;
     // A regular file's length is known; a pipe's is not.
-    let length = file.metadata().ok().filter(|m| m.is_file()).map(|m| m.len());
+    let length = file
+        .metadata()
+        .ok()
+        .filter(|m| m.is_file())
+        .map(|m| m.len());
     read_npy_from(&mut file, shown, length)
 }
 

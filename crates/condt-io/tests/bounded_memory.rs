@@ -149,7 +149,10 @@ fn a_npy_header_alone_does_not_allocate_the_points_it_announces() {
             std::fs::write(&path, &bytes).unwrap();
             let (result, peak) = measure(|| read_points(&path));
             let err = result.unwrap_err().to_string();
-            assert!(err.contains("the header announces 20000000 points"), "{err}");
+            assert!(
+                err.contains("the header announces 20000000 points"),
+                "{err}"
+            );
             assert!(
                 peak < BOUND,
                 "file, fortran_order {fortran_order}, {data} bytes: {peak} bytes allocated"
@@ -189,7 +192,10 @@ fn a_npy_stream_of_unknown_length_allocates_as_its_data_arrive() {
             err.ends_with("the file ends after 3145728 bytes of them"),
             "{err}"
         );
-        assert!(peak < 16 << 20, "fortran_order {fortran_order}: {peak} bytes");
+        assert!(
+            peak < 16 << 20,
+            "fortran_order {fortran_order}: {peak} bytes"
+        );
     }
     // Valid data through the pipe read as from memory.
     let points: Vec<Point> = (0..300_000)
