@@ -10,6 +10,9 @@ mod score;
 mod timings;
 
 fn main() {
+    // A file-size limit makes writes fail (an error, the temporary file removed) rather than
+    // end the process by SIGXFSZ.
+    output::survive_file_size_limit();
     // File names need not be UTF-8: the arguments are taken as the OS gives them.
     let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
     // What `run` returns (help, or results without -o) goes out as -o - would.

@@ -32,8 +32,10 @@
 //! `sync_all` then has little left) showed no gain on two busy cores and was not kept.
 //!
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
-//! (the process then ends by that signal, as it would have); SIGKILL cannot be caught, so
-//! `kill -9` may leave a `.NAME.XXXXXX.partial` file beside the output.
+//! (the process then ends by that signal, as it would have), unless the caller left the signal
+//! ignored (`nohup`, a shell's `cmd &`): it then stays ignored; SIGKILL cannot be caught, so
+//! `kill -9` may leave a `.condt.XXXXXX.tmp` file beside the output. A file-size limit does
+//! not end the run (SIGXFSZ is caught): the write fails, and the run reports it as any error.
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
@@ -98,17 +100,14 @@ fn directory_of(path: &Path) -> &Path {
     }
 }
 
-/// A temporary file beside `target`, hidden and named after it, registered for removal on a
-/// signal before anyone can see it. It is private (0600) unless it is to become a `new_file`,
-/// which gets what any new file would: 0666 less the umask, applied by the kernel.
+/// A temporary file beside `target`, hidden, registered for removal on a signal before anyone
+/// can see it. It is private (0600) unless it is to become a `new_file`, which gets what any
+/// new file would: 0666 less the umask, applied by the kernel. Its name, `.condt.XXXXXX.tmp`,
+/// is not made from the target's: any valid name (up to NAME_MAX, 255 bytes) can be an output,
+/// and a name built on it would pass that limit.
 fn temporary_beside(target: &Path, new_file: bool) -> io::Result<signals::Temp> {
-    let name = target
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let prefix = format!(".{name}.");
     let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".partial");
+    builder.prefix(".condt.").suffix(".tmp");
     #[cfg(unix)]
     if new_file {
         use std::os::unix::fs::PermissionsExt;
@@ -431,16 +430,41 @@ mod signals {
         }
     }
 
+    /// The signals this process ignores, as a bit set (bit `n - 1` for signal `n`): those it
+    /// inherited ignored, as `nohup` ignores SIGHUP and a shell SIGINT and SIGQUIT for `cmd &`.
+    /// Read from the kernel's `SigIgn` line of `/proc/self/status`, which needs no `unsafe`
+    /// (a `sigaction` query would); `0` where it cannot be read (no `/proc`, another system),
+    /// and then the signals are caught as before.
+    #[cfg(unix)]
+    fn ignored_signals() -> u64 {
+        std::fs::read_to_string("/proc/self/status")
+            .ok()
+            .and_then(|status| {
+                let line = status.lines().find_map(|l| l.strip_prefix("SigIgn:"))?;
+                u64::from_str_radix(line.trim(), 16).ok()
+            })
+            .unwrap_or(0)
+    }
+
     /// Starts, once, the thread that waits for SIGINT, SIGTERM and SIGHUP, removes the pending
     /// temporary file and then ends the process by the same signal, as if it had not been
-    /// caught (so a shell sees an interrupted run).
+    /// caught (so a shell sees an interrupted run). A signal the caller left ignored stays
+    /// ignored: catching it would turn it back on, and a run under `nohup` would end at the
+    /// hangup it was meant to survive.
     #[cfg(unix)]
     fn install() {
         use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
         static ONCE: Once = Once::new();
         ONCE.call_once(|| {
-            let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])
-            else {
+            let ignored = ignored_signals();
+            let caught: Vec<i32> = [SIGINT, SIGTERM, SIGHUP]
+                .into_iter()
+                .filter(|&signal| ignored & (1u64 << (signal - 1)) == 0)
+                .collect();
+            if caught.is_empty() {
+                return;
+            }
+            let Ok(mut signals) = signal_hook::iterator::Signals::new(caught) else {
                 return;
             };
             let _ = std::thread::Builder::new()
@@ -463,6 +487,22 @@ mod signals {
     fn install() {
         static ONCE: Once = Once::new();
         ONCE.call_once(|| {});
+    }
+}
+
+/// Keeps a file-size limit (`ulimit -f`, RLIMIT_FSIZE) from killing the process: SIGXFSZ is
+/// caught (by a handler that only sets a flag nobody reads, signal-hook's safe way of ignoring
+/// it), so a write past the limit fails with EFBIG instead, and the error path removes the
+/// temporary file and leaves the output as it was. This binary starts no other program and
+/// has no use for the signal, so catching it is always safe.
+pub(crate) fn survive_file_size_limit() {
+    #[cfg(unix)]
+    {
+        use std::sync::{atomic::AtomicBool, Arc};
+        let _ = signal_hook::flag::register(
+            signal_hook::consts::SIGXFSZ,
+            Arc::new(AtomicBool::new(false)),
+        );
     }
 }
 

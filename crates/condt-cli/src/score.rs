@@ -5,14 +5,15 @@
 //! `score` does, so benches, tests and this command agree by construction.
 //!
 //! An edge file holds one edge `i j` per line (0-based point numbers); `#` lines and blank lines
-//! are skipped. A malformed OUTPUT (a line that is not two numbers, a point that does not exist, a
+//! are skipped; its lines are split as point files' are ([`condt_io::text_lines`]: LF, CRLF or
+//! CR-only line ends, a byte-order mark at the start skipped). A malformed OUTPUT (a line that is not two numbers, a point that does not exist, a
 //! self-loop, a repeated edge) is scored as a failure, as the evaluation suite's scorer does, and
 //! the first problem is reported with its line; a malformed TRUTH is an error.
 
 use crate::cli::{usage, CliError};
 use crate::options::{self, Opt};
 use condt_eval::score::{score, EdgeProblem, Score};
-use condt_io::{read_points, IoError, IoErrorKind};
+use condt_io::{read_points, text_lines, IoError, IoErrorKind};
 use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -150,7 +151,8 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
         lines: Vec::new(),
         bad_line: None,
     };
-    for (k, line) in text.lines().enumerate() {
+    // The line ends and the byte-order mark of point files, by the same reader.
+    for (number, line) in text_lines(&text) {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
             continue;
@@ -160,12 +162,12 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
         match parsed.as_deref() {
             Some(&[a, b]) if fields.iter().all(|f| f.bytes().all(|c| c.is_ascii_digit())) => {
                 read.edges.push([a, b]);
-                read.lines.push(k + 1);
+                read.lines.push(number);
             }
             _ => {
                 if read.bad_line.is_none() {
                     let shown: String = line.chars().take(40).collect();
-                    read.bad_line = Some((k + 1, format!("not an edge `i j`: {shown:?}")));
+                    read.bad_line = Some((number, format!("not an edge `i j`: {shown:?}")));
                 }
             }
         }

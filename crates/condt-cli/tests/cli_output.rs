@@ -104,7 +104,7 @@ fn mkfifo(path: &Path) {
     assert!(status.success());
 }
 
-/// The temporary file in `dir` (condt names it `.NAME.XXXXXX.partial`) other than `except`,
+/// The temporary file in `dir` (condt names it `.condt.XXXXXX.tmp`) other than `except`,
 /// waited for up to `patience`: a run blocked on its standard input is past preparing its
 /// output once it exists.
 fn find_temporary(dir: &Path, except: &Path, patience: Duration) -> Option<PathBuf> {
@@ -113,7 +113,10 @@ fn find_temporary(dir: &Path, except: &Path, patience: Duration) -> Option<PathB
         let found = fs::read_dir(dir)
             .unwrap()
             .map(|e| e.unwrap().path())
-            .find(|p| p != except && p.file_name().unwrap().as_bytes().ends_with(b".partial"));
+            .find(|p| {
+                let name = p.file_name().unwrap().as_bytes();
+                p != except && name.starts_with(b".condt.") && name.ends_with(b".tmp")
+            });
         if found.is_some() || start.elapsed() > patience {
             return found;
         }
@@ -603,7 +606,7 @@ fn a_directory_is_not_an_output() {
         said.starts_with(&format!("condt: {}: ", lost.display())),
         "{said}"
     );
-    assert!(!said.contains("partial"), "{said}");
+    assert!(!said.contains(".condt."), "{said}");
 }
 
 /// A command for the binary, run as an unprivileged user: `nobody` when the tests run as root
@@ -675,4 +678,147 @@ fn a_writable_file_in_a_closed_directory_is_written_in_place() {
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
     assert_eq!(names(&closed), ["open.txt"]);
+}
+
+/// `condt triangulate INPUT -o OUT` started with `signal` ignored, as `nohup` ignores SIGHUP and
+/// a shell ignores SIGINT for `cmd &`; the input a named pipe, so that the signal arrives while
+/// the run reads it. The run must keep the disposition it inherited: finish, exit 0, write.
+fn ignored_signal_is_left_ignored(signal: libc::c_int) {
+    use std::os::unix::process::CommandExt;
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in.txt");
+    mkfifo(&input);
+    let target = dir.path().join("out.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    let mut command = Command::new(binary());
+    command
+        .args([
+            "triangulate".as_ref(),
+            input.as_os_str(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ])
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    // SAFETY: `signal` is async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(move || {
+            libc::signal(signal, libc::SIG_IGN);
+            Ok(())
+        });
+    }
+    let child = command.spawn().unwrap();
+    // Opening the pipe waits for the run to open it: it has prepared its output by then.
+    let mut pipe = fs::OpenOptions::new().write(true).open(&input).unwrap();
+    pipe.write_all(b"0 0\n1 0\n").unwrap();
+    pipe.flush().unwrap();
+    find_temporary(dir.path(), &target, Duration::from_secs(60))
+        .expect("a temporary file while the run reads its input");
+    // SAFETY: a plain system call on the child's id.
+    assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
+    std::thread::sleep(Duration::from_millis(200));
+    // A run killed by the signal closed the pipe: writing then fails, which is the failure
+    // reported below.
+    let _ = pipe.write_all(b"1 1\n0 1\n");
+    drop(pipe);
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "signal {signal} ignored: {:?} {}",
+        out.status,
+        stderr(&out)
+    );
+    assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
+    assert_eq!(names(dir.path()), ["in.txt", "out.txt"]);
+}
+
+#[test]
+fn sighup_ignored_as_under_nohup_is_left_ignored() {
+    ignored_signal_is_left_ignored(libc::SIGHUP);
+}
+
+#[test]
+fn sigint_ignored_as_for_a_background_job_is_left_ignored() {
+    ignored_signal_is_left_ignored(libc::SIGINT);
+}
+
+/// A valid name of 255 bytes (NAME_MAX on Linux) is an output like any other: the temporary
+/// file beside it must not be named after it.
+#[test]
+fn an_output_name_of_255_bytes_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let name = format!("{}.txt", "n".repeat(251));
+    assert_eq!(name.len(), 255);
+    let target = dir.path().join(&name);
+    let out = triangulate_to(&target, SQUARE);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
+    // And replaced, once it exists.
+    let out = triangulate_to(&target, "0 0\n1 0\n0 1\n");
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(fs::read_to_string(&target).unwrap().lines().count(), 1);
+    assert_eq!(names(dir.path()), [name]);
+}
+
+/// A file-size limit (`ulimit -f`) that the output passes: the write fails (EFBIG) instead of
+/// SIGXFSZ ending the run, so the run reports it, exits 1, removes its temporary file and
+/// leaves the old output as it was.
+#[test]
+fn a_file_size_limit_is_an_error_that_leaves_no_temporary_file() {
+    use std::os::unix::process::CommandExt;
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("out.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    // 2,000 points: some 40 kB of triangles, past a limit of 4 kB.
+    let input: String = (0..2000)
+        .map(|i| format!("{} {}\n", i % 50, (i / 50) as f64 + 0.01 * (i % 7) as f64))
+        .collect();
+    let mut command = Command::new(binary());
+    command
+        .args([
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    // SAFETY: `setrlimit` is async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(|| {
+            let limit = libc::rlimit {
+                rlim_cur: 4096,
+                rlim_max: 4096,
+            };
+            if libc::setrlimit(libc::RLIMIT_FSIZE, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let mut child = command.spawn().unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{:?} {}",
+        out.status,
+        stderr(&out)
+    );
+    let said = stderr(&out);
+    assert!(
+        said.contains("out.txt") && said.contains("File too large"),
+        "{said}"
+    );
+    assert_eq!(fs::read_to_string(&target).unwrap(), "previous content\n");
+    assert_eq!(names(dir.path()), ["out.txt"]);
 }

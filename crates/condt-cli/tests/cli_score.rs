@@ -172,3 +172,41 @@ fn a_bad_truth_or_command_line_is_an_error() {
     ]);
     assert_eq!(absent.status.code(), Some(1));
 }
+
+/// Edge files are read with the line ends and the byte-order mark point files accept: CR-only
+/// and CRLF line ends, a mark at the start; their lines numbered alike in messages.
+#[test]
+fn edge_files_accept_what_point_files_accept() {
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0\r1 0\r1 1\r0 1\r");
+    let lf = "# square\n0 1\n1 2\n2 3\n3 0\n";
+    let truth = write(dir.path(), "truth.edges", lf);
+    let expected = score_json(&points, &truth, &truth);
+    for (name, text) in [
+        ("cr.edges", lf.replace('\n', "\r")),
+        ("crlf.edges", lf.replace('\n', "\r\n")),
+        ("bom.edges", format!("\u{feff}{lf}")),
+        (
+            "bom-cr.edges",
+            format!("\u{feff}{}", lf.replace('\n', "\r")),
+        ),
+    ] {
+        let edges = write(dir.path(), name, &text);
+        assert_eq!(
+            score_json(&points, &edges, &truth),
+            expected,
+            "{name} as output"
+        );
+        assert_eq!(
+            score_json(&points, &truth, &edges),
+            expected,
+            "{name} as truth"
+        );
+    }
+    // A bad line is named by the same count of line ends, CR-only ones included.
+    let bad = write(dir.path(), "bad.edges", "0 1\r1 2\r2 x\r3 0\r");
+    let scored = condt(&[Path::new("score"), &points, &truth, &bad]);
+    let said = String::from_utf8_lossy(&scored.stderr);
+    assert_eq!(scored.status.code(), Some(1), "{said}");
+    assert!(said.contains("bad.edges:3: "), "{said}");
+}

@@ -101,3 +101,68 @@ fn bad_csv_and_geojson_files_are_refused_by_file_and_line() {
         assert!(stderr.contains(message), "{stderr}");
     }
 }
+
+/// A byte-order mark after the first line that the parallel reader starts a piece at (past
+/// byte 1 MiB) is refused with its line from standard input with `--sequential`, from
+/// standard input, and from the file: one answer on every path.
+#[test]
+fn a_byte_order_mark_inside_the_file_is_refused_on_every_path() {
+    use std::io::Write;
+    let mut text = String::new();
+    let mut i = 0u64;
+    while text.len() < 5 << 19 {
+        text.push_str(&format!("{}.25 {}\n", i, 2 * i + 1));
+        i += 1;
+    }
+    let cut = (1 << 20) + text[1 << 20..].find('\n').unwrap() + 1;
+    let line = 1 + text[..cut].matches('\n').count();
+    text.insert(cut, '\u{feff}');
+    let dir = scratch_dir();
+    let file = dir.path().join("bom.txt");
+    std::fs::write(&file, &text).unwrap();
+    let runs: [(&[&str], bool); 4] = [
+        (&["reconstruct", "-", "--sequential"], true),
+        (&["reconstruct", "-"], true),
+        (&["reconstruct", "FILE", "--sequential"], false),
+        (&["triangulate", "FILE"], false),
+    ];
+    for (args, stdin) in runs {
+        let args: Vec<&std::ffi::OsStr> = args
+            .iter()
+            .map(|a| {
+                if *a == "FILE" {
+                    file.as_os_str()
+                } else {
+                    a.as_ref()
+                }
+            })
+            .collect();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_condt"))
+            .args(&args)
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut input = child.stdin.take().unwrap();
+        if stdin {
+            // The run may stop reading at the error.
+            if let Err(e) = input.write_all(text.as_bytes()) {
+                assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "{e}");
+            }
+        }
+        drop(input);
+        let out = child.wait_with_output().unwrap();
+        let said = String::from_utf8_lossy(&out.stderr);
+        let name = if stdin {
+            "<stdin>".to_string()
+        } else {
+            file.display().to_string()
+        };
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {said}");
+        assert!(
+            said.contains(&format!("{name}:{line}: ")) && said.contains("byte-order mark"),
+            "{args:?}: {said}"
+        );
+    }
+}

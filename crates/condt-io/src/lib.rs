@@ -42,7 +42,7 @@ pub use npy::{
     parse_npy, write_npy_edges, write_npy_points, write_npy_triangles,
     write_npy_triangulation_edges,
 };
-pub use points::{parse_node, parse_points, read_points};
+pub use points::{parse_node, parse_points, read_points, text_lines};
 pub use svg::{write_svg, write_svg_stages};
 pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};
 

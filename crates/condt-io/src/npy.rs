@@ -258,8 +258,8 @@ fn read_up_to(reader: &mut dyn Read, buffer: &mut [u8]) -> io::Result<usize> {
     Ok(filled)
 }
 
-/// The header of a `.npy` stream, read up to the first data byte.
-fn read_header(reader: &mut dyn Read, file: &str) -> Result<Header, IoError> {
+/// The header of a `.npy` stream, read up to the first data byte, and how many bytes it took.
+fn read_header(reader: &mut dyn Read, file: &str) -> Result<(Header, usize), IoError> {
     let io_error = |err: io::Error| IoError::os(file, err);
     let mut start = [0u8; 8];
     let got = read_up_to(reader, &mut start).map_err(io_error)?;
@@ -300,27 +300,37 @@ fn read_header(reader: &mut dyn Read, file: &str) -> Result<Header, IoError> {
     if major < 3 && !text.is_ascii() {
         return Err(content(file, "the header is not ASCII text".to_string()));
     }
-    point_header(&text).map_err(|message| content(file, message))
+    let header = point_header(&text).map_err(|message| content(file, message))?;
+    Ok((header, 8 + length_bytes + length))
 }
 
-/// The points of a `.npy` stream, read in blocks straight into the point array.
-fn read_npy_from(reader: &mut dyn Read, file: &str) -> Result<Vec<Point>, IoError> {
-    let header = read_header(reader, file)?;
+/// The points of a `.npy` stream, read in blocks straight into the point array. `length`, the
+/// stream's length in bytes when it is known (a regular file, bytes in memory), is checked
+/// against what the header announces before anything is allocated for the points: a short
+/// header must not make the reader allocate gigabytes for data that are not there. Of a stream
+/// of unknown length (a pipe), the points are allocated as their data arrive.
+fn read_npy_from(
+    reader: &mut dyn Read,
+    file: &str,
+    length: Option<u64>,
+) -> Result<Vec<Point>, IoError> {
+    let (header, header_length) = read_header(reader, file)?;
     let size = match header.float {
         Float::F64 => 8,
         Float::F32 => 4,
     };
     let n = header.rows;
     let mut points: Vec<Point> = Vec::new();
-    points.try_reserve_exact(n).map_err(|_| {
-        content(
-            file,
-            format!(
-                "out of memory: {n} points do not fit ({} bytes)",
-                n.saturating_mul(16)
-            ),
-        )
-    })?;
+    if let Some(length) = length {
+        // `n` is at most MAX_POINTS, so the data's size fits a u64.
+        let data = 2 * n as u64 * size as u64;
+        let available = length.saturating_sub(header_length as u64);
+        if available < data {
+            // What a read to the end would report, without reading.
+            return Err(ends_early(file, n, size, available as usize));
+        }
+        reserve(&mut points, n, file)?;
+    }
     if !header.fortran_order {
         read_rows(reader, file, &header, size, &mut points)?;
     } else {
@@ -344,6 +354,31 @@ fn read_npy_from(reader: &mut dyn Read, file: &str) -> Result<Vec<Point>, IoErro
         ));
     }
     Ok(points)
+}
+
+/// Room for `more` points, refused as an error (not an abort) when the memory is not there.
+fn reserve(points: &mut Vec<Point>, more: usize, file: &str) -> Result<(), IoError> {
+    points.try_reserve_exact(more).map_err(|_| {
+        content(
+            file,
+            format!(
+                "out of memory: {} points do not fit ({} bytes)",
+                points.len() + more,
+                (points.len() + more).saturating_mul(16)
+            ),
+        )
+    })
+}
+
+/// Room for the `more` points of a block about to be read, of `n` in all: nothing when a known
+/// length let [`read_npy_from`] reserve them all; otherwise the vector grows with the data read
+/// (doubling, never past `n`), so what is allocated follows what arrived.
+fn room_for(points: &mut Vec<Point>, n: usize, more: usize, file: &str) -> Result<(), IoError> {
+    if points.capacity() - points.len() >= more {
+        return Ok(());
+    }
+    let grow = (n - points.len()).min(more.max(points.len()));
+    reserve(points, grow, file)
 }
 
 /// The error for a file that ends `read` bytes into the `n` points its header announces.
@@ -374,6 +409,7 @@ fn read_rows(
     while points.len() < n {
         let want = ((n - points.len()) * row).min(block.len());
         let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError::os(file, err))?;
+        room_for(points, n, got / row, file)?;
         let rows = block[..got - got % row].chunks_exact(row);
         match (header.float, header.big_endian) {
             (Float::F64, false) => points.extend(rows.map(|b| {
@@ -395,7 +431,8 @@ fn read_rows(
     Ok(())
 }
 
-/// The points of a Fortran-order array (all `x`, then all `y`), into `points`, zeroed first.
+/// The points of a Fortran-order array (all `x`, then all `y`): each `x` appended to `points`
+/// as it is read (its `y` zero), then each `y` written into its point.
 fn read_columns(
     reader: &mut dyn Read,
     file: &str,
@@ -404,7 +441,6 @@ fn read_columns(
     points: &mut Vec<Point>,
 ) -> Result<(), IoError> {
     let n = header.rows;
-    points.resize(n, Point::new(0.0, 0.0));
     let values = 2 * n;
     let mut block = vec![0u8; BLOCK - BLOCK % size];
     let mut done = 0usize;
@@ -412,16 +448,16 @@ fn read_columns(
         let want = ((values - done) * size).min(block.len());
         let got = read_up_to(reader, &mut block[..want]).map_err(|err| IoError::os(file, err))?;
         let whole = got / size;
-        for (k, bytes) in block[..whole * size].chunks_exact(size).enumerate() {
-            let value = decode(bytes, header.float, header.big_endian);
-            let index = done + k;
-            let (row, column) = (index % n, index / n);
-            let point = &mut points[row];
-            if column == 0 {
-                point.x = value;
-            } else {
-                point.y = value;
-            }
+        let values = block[..whole * size]
+            .chunks_exact(size)
+            .map(|bytes| decode(bytes, header.float, header.big_endian));
+        // The block's `x` values (the first column) come before its `y` values.
+        let xs = n.saturating_sub(done).min(whole);
+        room_for(points, n, xs, file)?;
+        let mut values = values.enumerate();
+        points.extend(values.by_ref().take(xs).map(|(_, x)| Point::new(x, 0.0)));
+        for (k, y) in values {
+            points[done + k - n].y = y;
         }
         done += whole;
         if got < want {
@@ -471,13 +507,19 @@ fn decode(bytes: &[u8], float: Float, big_endian: bool) -> f64 {
 /// ```
 pub fn parse_npy(bytes: &[u8], file: &str) -> Result<Vec<Point>, IoError> {
     let mut reader = bytes;
-    read_npy_from(&mut reader, file)
+    read_npy_from(&mut reader, file, Some(bytes.len() as u64))
 }
 
 /// Reads a `.npy` file of points (see [`parse_npy`]) in blocks, straight into the points.
 pub(super) fn read_npy_file(path: &std::path::Path, shown: &str) -> Result<Vec<Point>, IoError> {
     let mut file = File::open(path).map_err(|err| IoError::os(shown, err))?;
-    read_npy_from(&mut file, shown)
+    // A regular file's length is known; a pipe's is not.
+    let length = file
+        .metadata()
+        .ok()
+        .filter(|m| m.is_file())
+        .map(|m| m.len());
+    read_npy_from(&mut file, shown, length)
 }
 
 /// A version 1.0 header (version 2.0 when the dictionary is over 65,535 bytes, which no shape

@@ -48,6 +48,20 @@ pub(super) fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> 
     })
 }
 
+/// The lines of a text file as the point readers split them, for other line-based files (the
+/// edge files of `condt score`) to be read alike: a UTF-8 byte-order mark at the very start
+/// skipped; LF, CRLF and CR-only line ends; each line numbered from 1 as error messages number
+/// it, without its line end.
+///
+/// ```
+/// let text = "\u{feff}# edges\r0 1\r\n1 2\n\n2 0";
+/// let lines: Vec<(usize, &str)> = condt_io::text_lines(text).collect();
+/// assert_eq!(lines, [(1, "# edges"), (2, "0 1"), (3, "1 2"), (4, ""), (5, "2 0")]);
+/// ```
+pub fn text_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    numbered_lines(text.strip_prefix('\u{feff}').unwrap_or(text))
+}
+
 /// The 1-based line holding byte `offset`, with the line ends of [`numbered_lines`].
 pub(super) fn line_at(bytes: &[u8], offset: usize) -> usize {
     let ends = bytes[..offset]
@@ -116,6 +130,12 @@ impl Source<'_> {
             .map_err(|_| self.error(line, format!("out of memory after {} points", points.len())))
     }
 }
+
+/// The refusal of a byte-order mark anywhere but at the very start of the file (where every
+/// reader skips it), on every path: it is not whitespace, and a reader that skipped it at the
+/// start of a line would read a file in pieces differently from one read whole.
+const BOM_INSIDE: &str =
+    "a byte-order mark (U+FEFF) inside the file; it is allowed only at the very start";
 
 /// `true` for a token that names a column (`x`, `lat`, `"y"`) rather than holds a number: it
 /// starts with a letter or `_`, quotes aside, and is not a number (`inf`, `NaN`).
@@ -400,6 +420,9 @@ fn lines_by<const ONE_PASS: bool>(
             Some(row) if seen_content || row.count == 0 => row,
             _ => {
                 let content = line.split('#').next().unwrap_or("");
+                if content.contains('\u{feff}') {
+                    return Err(source.error(number, BOM_INSIDE.to_string()));
+                }
                 let fields = columns(content).map_err(|message| source.error(number, message))?;
                 if fields.is_empty() {
                     continue;
@@ -511,7 +534,8 @@ fn expected_points(text: &str) -> usize {
 ///
 /// One point `x y` per line, the two numbers separated by spaces, tabs or one comma; `#` starts
 /// a comment; blank lines are skipped; LF, CRLF and CR-only line ends all work; a UTF-8
-/// byte-order mark is skipped. Refused, with the line:
+/// byte-order mark at the very start is skipped. Refused, with the line:
+/// - a byte-order mark anywhere else (outside a comment);
 /// - a single number, or four or more columns (a Triangle `.node` header `n 2 a m` among them);
 /// - a line where both commas and spaces separate numbers (`1,5 2`: a decimal comma?);
 /// - a word where a number should be, NaN and infinities;

@@ -330,3 +330,65 @@ fn an_index_column_in_a_large_text_is_refused_and_a_break_in_it_is_not() {
         Point::new(5.0, (199_989 % 977) as f64 + 0.25)
     );
 }
+
+/// Over 2 MiB of points, with a byte-order mark starting the first line after byte 1 MiB, where
+/// the parallel readers begin a piece; with the line of the mark.
+fn text_with_a_mark_after_a_piece_boundary() -> (String, usize) {
+    let mut text = String::new();
+    let mut i = 0u64;
+    while text.len() < 5 << 19 {
+        text.push_str(&format!("{}.25 {}\n", i, 2 * i + 1));
+        i += 1;
+    }
+    let cut = (1 << 20) + text[1 << 20..].find('\n').unwrap() + 1;
+    let line = 1 + text[..cut].matches('\n').count();
+    text.insert(cut, '\u{feff}');
+    (text, line)
+}
+
+/// A byte-order mark is allowed only at the very start of the file; anywhere else it is an
+/// error naming its line, whichever way the file is read: in memory or from a file, in pieces
+/// on two threads or on one.
+#[cfg(feature = "parallel")]
+#[test]
+fn a_byte_order_mark_inside_the_file_is_refused_on_every_path() {
+    let (text, line) = text_with_a_mark_after_a_piece_boundary();
+    let file = TempFile::new("bom.txt", text.as_bytes());
+    let clean = text.replacen('\u{feff}', "", 1);
+    let expected = parse_points(&clean, "clean.txt").unwrap();
+    let marked_at_start = TempFile::new("bom-start.txt", format!("\u{feff}{clean}").as_bytes());
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let results = [
+                ("parse_points", parse_points(&text, "bom.txt")),
+                ("read_points", file.read()),
+            ];
+            for (path, result) in results {
+                let err = match result {
+                    Ok(points) => panic!("{path} on {threads} threads: {} points", points.len()),
+                    Err(err) => err,
+                };
+                assert_eq!(err.line, Some(line), "{path}, {threads} threads: {err}");
+                assert!(
+                    err.to_string().contains("byte-order mark"),
+                    "{path}, {threads} threads: {err}"
+                );
+            }
+            // At the very start it is skipped, on every path.
+            let start = format!("\u{feff}{clean}");
+            assert!(parse_points(&start, "start.txt").unwrap() == expected);
+            assert!(marked_at_start.read().unwrap() == expected);
+        });
+    }
+    // In a small file, and inside a line, the same.
+    let err = parse_points("1 2\n\u{feff}3 4\n", "small.txt").unwrap_err();
+    assert_eq!(err.line, Some(2), "{err}");
+    assert!(err.to_string().contains("byte-order mark"), "{err}");
+    let err = parse_points("1 2\n3 \u{feff}4\n", "small.txt").unwrap_err();
+    assert_eq!(err.line, Some(2), "{err}");
+    assert!(err.to_string().contains("byte-order mark"), "{err}");
+}

@@ -176,7 +176,13 @@ fn read_piece(
         share + 1 + newline(&bytes[share..])?
     };
     let text = core::str::from_utf8(&bytes[first..after]).ok()?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    // A byte-order mark is skipped at the very start of the file only: at the start of a
+    // later piece it is inside the file, which the parse refuses as the whole-file parse does.
+    let text = if k == 0 {
+        text.strip_prefix('\u{feff}').unwrap_or(text)
+    } else {
+        text
+    };
     parse_piece(text, source, k)
 }
 
