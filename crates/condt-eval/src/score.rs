@@ -185,7 +185,7 @@ pub struct Score {
 /// use condt_eval::sample::{sample, Sampling, Shape};
 /// use condt_eval::score::score;
 /// use condt::{reconstruct, Params, Point};
-/// let circle = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.3));
+/// let circle = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.3)).unwrap();
 /// let result = reconstruct(&circle.points, &Params::default())?;
 /// let edges: Vec<[usize; 2]> = result.edges().collect();
 /// let s = score(&circle.points, &edges, &circle.edges).unwrap();
