@@ -24,7 +24,8 @@ fn each_method_writes_its_own_edges() {
             rotation: 0.5,
         }],
         &Sampling::new(0.35),
-    );
+    )
+    .unwrap();
     let text: String = shape
         .points
         .iter()

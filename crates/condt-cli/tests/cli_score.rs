@@ -82,7 +82,8 @@ fn a_reconstruction_of_a_sampled_circle_scores_exact_against_its_truth() {
     let circle = sample(
         &[Shape::circle(Point::new(3.0, -1.0), 2.0)],
         &Sampling::new(0.3),
-    );
+    )
+    .unwrap();
     let points = write(dir.path(), "circle.pts", &points_text(&circle.points));
     let truth = write(dir.path(), "circle.gt", &edges_text(&circle.edges));
     let output = dir.path().join("circle.edges");

@@ -18,6 +18,7 @@ fn circle() -> Vec<Point> {
         &[Shape::circle(Point::new(1e6, -2e6), 3.0)],
         &Sampling::new(0.3),
     )
+    .unwrap()
     .points
 }
 

@@ -42,7 +42,7 @@ fn main() -> std::io::Result<()> {
         seed: 7,
         ..Sampling::new(0.2)
     };
-    let mut points = sample(&shapes, &sampling).points;
+    let mut points = sample(&shapes, &sampling).unwrap().points;
     points.push(points[10]);
     // A fixed shuffle (multiplication by a number coprime with the count), so the file order
     // carries no curve order.

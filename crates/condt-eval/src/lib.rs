@@ -10,7 +10,7 @@
 //! use condt_eval::sample::{sample, Sampling, Shape};
 //! use condt_eval::score::score;
 //!
-//! let truth = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.2));
+//! let truth = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.2))?;
 //! let result = reconstruct(&truth.points, &Params::default())?;
 //! let edges: Vec<[usize; 2]> = result.edges().collect();
 //! let s = score(&truth.points, &edges, &truth.edges)?;
@@ -24,6 +24,9 @@
 extern crate alloc;
 
 pub mod sample;
+
+/// The most points a sample may have: as many as the triangulation takes.
+use condt::MAX_POINTS;
 pub mod score;
 
 /// The one geometric type both modules speak, under the path they use inside `condt` too (the

@@ -17,14 +17,16 @@
 //! ```
 //! use condt_eval::sample::{sample, Sampling, Shape};
 //! use condt::Point;
-//! let s = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.2));
+//! let s = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.2)).unwrap();
 //! assert_eq!(s.points.len(), s.edges.len()); // closed: as many edges as points
 //! assert!(s.outliers.is_empty());
 //! ```
 
 use crate::geometry::Point;
+use crate::MAX_POINTS;
 use alloc::vec::Vec;
 use core::f64::consts::{PI, TAU};
+use core::fmt;
 
 /// A curve to sample.
 #[derive(Clone, Debug, PartialEq)]
@@ -60,7 +62,9 @@ pub enum Shape {
         /// Number of turns.
         turns: f64,
     },
-    /// A closed polygon with sharp corners, each corner a sample.
+    /// A closed polygon with sharp corners, each corner a sample. A corner equal to the one
+    /// before it (or the last equal to the first, a polygon closed by repeating its first corner)
+    /// is the same corner and counted once.
     Polygon(Vec<Point>),
     /// Gerono's lemniscate `(s sin t, s sin t cos t)`: a figure eight whose crossing at the
     /// centre is a sample shared by both lobes (degree four in the ground truth).
@@ -152,6 +156,54 @@ pub struct Sample {
     pub outliers: Vec<usize>,
 }
 
+/// Why [`sample`] refuses.
+///
+/// ```
+/// use condt_eval::sample::{sample, SampleError, Sampling, Shape};
+/// use condt::Point;
+/// let circle = [Shape::circle(Point::new(0.0, 0.0), 1.0)];
+/// assert_eq!(sample(&circle, &Sampling::new(0.0)), Err(SampleError::Epsilon(0.0)));
+/// assert!(matches!(sample(&circle, &Sampling::new(1e-12)), Err(SampleError::TooManyPoints { .. })));
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum SampleError {
+    /// `epsilon` is zero, negative or NaN: no spacing.
+    Epsilon(f64),
+    /// The sample would have more points than the triangulation takes
+    /// ([`condt::MAX_POINTS`]).
+    TooManyPoints {
+        /// The limit.
+        limit: usize,
+    },
+}
+
+impl fmt::Display for SampleError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            SampleError::Epsilon(epsilon) => {
+                write!(f, "epsilon must be a positive number, not {epsilon}")
+            }
+            SampleError::TooManyPoints { limit } => {
+                write!(f, "the sample would have more than {limit} points")
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for SampleError {}
+
+/// Room for `count` more points (a float, so that an infinite or huge count is refused before
+/// anything is allocated) after `used`.
+fn check_room(used: usize, count: f64) -> Result<usize, SampleError> {
+    if count <= (MAX_POINTS.saturating_sub(used)) as f64 {
+        // NaN (a shape of zero size: 0 / 0) counts as nothing.
+        Ok(if count >= 0.0 { count as usize } else { 0 })
+    } else {
+        Err(SampleError::TooManyPoints { limit: MAX_POINTS })
+    }
+}
+
 /// SplitMix64: small, seedable, good enough for test data.
 struct Random(u64);
 
@@ -174,9 +226,16 @@ fn spacing_factor(variation: f64, fraction: f64) -> f64 {
 }
 
 /// Samples of `curve(t)`, `t` in `[0, 1]`, at most `spacing` apart in arc length: evenly spaced
-/// when `variation` is 1, otherwise with the local spacing `spacing · spacing_factor`. For a
-/// closed curve `curve(1) == curve(0)` and the last sample is not repeated.
-fn along(curve: impl Fn(f64) -> Point, closed: bool, spacing: f64, variation: f64) -> Vec<Point> {
+/// when `variation` is 1, otherwise with the local spacing `spacing · spacing_factor`; at least
+/// `min_pieces` pieces. For a closed curve `curve(1) == curve(0)` and the last sample is not
+/// repeated. Refused when there would be more samples than fit after `used` points.
+fn along(
+    curve: impl Fn(f64) -> Point,
+    (closed, min_pieces): (bool, f64),
+    spacing: f64,
+    variation: f64,
+    used: usize,
+) -> Result<Vec<Point>, SampleError> {
     const FINE: usize = 8192;
     let dense: Vec<Point> = (0..=FINE).map(|k| curve(k as f64 / FINE as f64)).collect();
     let mut cumulative = Vec::with_capacity(dense.len());
@@ -198,7 +257,9 @@ fn along(curve: impl Fn(f64) -> Point, closed: bool, spacing: f64, variation: f6
         }
         total = stretched;
     }
-    let pieces = libm::ceil(total / spacing).max(if closed { 3.0 } else { 1.0 }) as usize;
+    let pieces = libm::ceil(total / spacing).max(min_pieces);
+    check_room(used, if closed { pieces } else { pieces + 1.0 })?;
+    let pieces = pieces as usize;
     let count = if closed { pieces } else { pieces + 1 };
     let mut samples = Vec::with_capacity(count);
     let mut j = 0;
@@ -217,8 +278,12 @@ fn along(curve: impl Fn(f64) -> Point, closed: bool, spacing: f64, variation: f6
         // piece would be collinear, which no curve is.
         samples.push(curve((j as f64 + f) / FINE as f64));
     }
-    samples
+    Ok(samples)
 }
+
+/// Fewest pieces of a closed curve (a triangle) and of an open one (a segment).
+const CLOSED: (bool, f64) = (true, 3.0);
+const OPEN: (bool, f64) = (false, 1.0);
 
 /// Appends a chain of samples to `out`, joining consecutive ones (and the ends, if closed).
 fn push_chain(out: &mut Sample, chain: &[Point], closed: bool) {
@@ -234,14 +299,22 @@ fn push_chain(out: &mut Sample, chain: &[Point], closed: bool) {
 
 /// Samples `shapes` as `sampling` says.
 ///
+/// # Errors
+/// [`SampleError::Epsilon`] when `epsilon` is not positive (or NaN);
+/// [`SampleError::TooManyPoints`] when the samples and outliers would be more than
+/// [`condt::MAX_POINTS`] (refused before they are allocated).
+///
 /// ```
 /// use condt_eval::sample::{sample, Sampling, Shape};
 /// use condt::Point;
-/// let eight = sample(&[Shape::FigureEight { center: Point::new(0.0, 0.0), size: 1.0 }], &Sampling::new(0.1));
+/// let eight = sample(&[Shape::FigureEight { center: Point::new(0.0, 0.0), size: 1.0 }], &Sampling::new(0.1)).unwrap();
 /// let crossing_degree = eight.edges.iter().filter(|e| e.contains(&0)).count();
 /// assert_eq!(crossing_degree, 4);
 /// ```
-pub fn sample(shapes: &[Shape], sampling: &Sampling) -> Sample {
+pub fn sample(shapes: &[Shape], sampling: &Sampling) -> Result<Sample, SampleError> {
+    if sampling.epsilon.is_nan() || sampling.epsilon <= 0.0 {
+        return Err(SampleError::Epsilon(sampling.epsilon));
+    }
     let mut out = Sample::default();
     for shape in shapes {
         push_shape(
@@ -249,18 +322,27 @@ pub fn sample(shapes: &[Shape], sampling: &Sampling) -> Sample {
             shape,
             sampling.epsilon,
             sampling.density_variation,
-        );
+        )?;
     }
+    check_room(
+        out.points.len(),
+        libm::round(sampling.outlier_fraction * out.points.len() as f64),
+    )?;
     // One stream for both steps: the outliers draw where the noise stopped.
     let mut random = Random(sampling.seed);
     add_noise(&mut out.points, sampling, &mut random);
     add_outliers(&mut out, sampling, &mut random);
     sort_edges(&mut out.edges);
-    out
+    Ok(out)
 }
 
 /// Appends the samples and ground-truth edges of one shape to `out`.
-fn push_shape(out: &mut Sample, shape: &Shape, eps: f64, variation: f64) {
+fn push_shape(
+    out: &mut Sample,
+    shape: &Shape,
+    eps: f64,
+    variation: f64,
+) -> Result<(), SampleError> {
     let eps = (eps, variation);
     match *shape {
         Shape::Ellipse {
@@ -292,18 +374,17 @@ fn push_ellipse(
     (a, b): (f64, f64),
     rotation: f64,
     (eps, variation): (f64, f64),
-) {
+) -> Result<(), SampleError> {
     let (big, small) = (a.max(b), a.min(b));
     let (c, s) = (libm::cos(rotation), libm::sin(rotation));
     let at = |t: f64| {
         let (x, y) = (a * libm::cos(TAU * t), b * libm::sin(TAU * t));
         Point::new(center.x + c * x - s * y, center.y + s * x + c * y)
     };
-    push_chain(
-        out,
-        &along(at, true, eps * small * small / big, variation),
-        true,
-    );
+    let used = out.points.len();
+    let chain = along(at, CLOSED, eps * small * small / big, variation, used)?;
+    push_chain(out, &chain, true);
+    Ok(())
 }
 
 /// An open circular arc; its lfs is the radius.
@@ -314,7 +395,7 @@ fn push_arc(
     start: f64,
     sweep: f64,
     (eps, variation): (f64, f64),
-) {
+) -> Result<(), SampleError> {
     let at = |t: f64| {
         let angle = start + sweep * t;
         Point::new(
@@ -322,7 +403,9 @@ fn push_arc(
             center.y + radius * libm::sin(angle),
         )
     };
-    push_chain(out, &along(at, false, eps * radius, variation), false);
+    let chain = along(at, OPEN, eps * radius, variation, out.points.len())?;
+    push_chain(out, &chain, false);
+    Ok(())
 }
 
 /// An open Archimedean spiral; its lfs is the smaller of the start radius and half the gap.
@@ -333,7 +416,7 @@ fn push_spiral(
     gap: f64,
     turns: f64,
     (eps, variation): (f64, f64),
-) {
+) -> Result<(), SampleError> {
     let at = |t: f64| {
         let angle = TAU * turns * t;
         let r = inner + gap * angle / TAU;
@@ -342,40 +425,62 @@ fn push_spiral(
             center.y + r * libm::sin(angle),
         )
     };
-    push_chain(
-        out,
-        &along(at, false, eps * inner.min(gap / 2.0), variation),
-        false,
-    );
+    let spacing = eps * inner.min(gap / 2.0);
+    let chain = along(at, OPEN, spacing, variation, out.points.len())?;
+    push_chain(out, &chain, false);
+    Ok(())
 }
 
 /// A closed polygon: every corner is a sample, and each side is cut evenly into pieces at most
 /// `eps` times the shortest side long (side `k` of `n` at `spacing_factor(variation, k / n)` of
-/// that bound).
-fn push_polygon(out: &mut Sample, corners: &[Point], (eps, variation): (f64, f64)) {
+/// that bound). A corner equal to the one before it (cyclically) is dropped: it would make the
+/// shortest side, and so the spacing, zero.
+fn push_polygon(
+    out: &mut Sample,
+    corners: &[Point],
+    (eps, variation): (f64, f64),
+) -> Result<(), SampleError> {
+    let mut corners: Vec<Point> = corners.to_vec();
+    corners.dedup();
+    while corners.len() > 1 && corners.first() == corners.last() {
+        corners.pop();
+    }
     let n = corners.len();
     let side = |k: usize| libm::sqrt(corners[k].dist2(corners[(k + 1) % n]));
     let shortest = (0..n).map(side).fold(f64::INFINITY, f64::min);
-    let mut chain = Vec::new();
-    for k in 0..n {
-        let (p, q) = (corners[k], corners[(k + 1) % n]);
-        let bound = if variation > 1.0 {
+    let bound = |k: usize| {
+        if variation > 1.0 {
             eps * shortest * spacing_factor(variation, k as f64 / n as f64)
         } else {
             eps * shortest
-        };
-        let pieces = libm::ceil(side(k) / bound).max(1.0) as usize;
+        }
+    };
+    let pieces = |k: usize| libm::ceil(side(k) / bound(k)).max(1.0);
+    check_room(out.points.len(), (0..n).map(pieces).sum())?;
+    let mut chain = Vec::new();
+    for k in 0..n {
+        let (p, q) = (corners[k], corners[(k + 1) % n]);
+        let pieces = pieces(k) as usize;
         for j in 0..pieces {
             let f = j as f64 / pieces as f64;
             chain.push(Point::new(p.x + f * (q.x - p.x), p.y + f * (q.y - p.y)));
         }
     }
     push_chain(out, &chain, true);
+    Ok(())
 }
 
 /// Gerono's lemniscate as two lobes, `t` in `[0, π]` and `t` in `[π, 2π]`. Both start and end
-/// at the crossing, which is sampled once and shared, so it gets four edges.
-fn push_figure_eight(out: &mut Sample, center: Point, size: f64, (eps, variation): (f64, f64)) {
+/// at the crossing, which is sampled once and shared, so it gets four edges. Each lobe has at
+/// least two samples besides the crossing (three pieces, a triangle), however large `eps`: with
+/// fewer its edges would be a self-loop or the same edge twice.
+fn push_figure_eight(
+    out: &mut Sample,
+    center: Point,
+    size: f64,
+    (eps, variation): (f64, f64),
+) -> Result<(), SampleError> {
+    check_room(out.points.len(), 1.0)?;
     let crossing = out.points.len();
     out.points.push(center);
     for lobe in 0..2 {
@@ -387,7 +492,8 @@ fn push_figure_eight(out: &mut Sample, center: Point, size: f64, (eps, variation
                 center.y + size * libm::sin(u) * libm::cos(u),
             )
         };
-        let chain = along(at, false, eps * size / 4.0, variation);
+        let used = out.points.len();
+        let chain = along(at, (false, 3.0), eps * size / 4.0, variation, used)?;
         let inner = &chain[1..chain.len() - 1];
         let base = out.points.len();
         out.points.extend_from_slice(inner);
@@ -397,6 +503,7 @@ fn push_figure_eight(out: &mut Sample, center: Point, size: f64, (eps, variation
         }
         out.edges.push([crossing, base + inner.len() - 1]);
     }
+    Ok(())
 }
 
 /// Moves each point by the sampling's noise, uniform within `±noise` in x and y (x drawn before
@@ -511,7 +618,8 @@ mod tests {
                     density_variation: variation,
                     ..Sampling::new(0.1)
                 },
-            );
+            )
+            .unwrap();
             let d = spacings(&s);
             let (short, long) = d.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| {
                 (lo.min(x), hi.max(x))
@@ -524,11 +632,105 @@ mod tests {
                 "{variation}: {ratio}"
             );
         }
-        let even = spacings(&sample(&circle, &Sampling::new(0.1)));
+        let even = spacings(&sample(&circle, &Sampling::new(0.1)).unwrap());
         let (lo, hi) = even.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| {
             (lo.min(x), hi.max(x))
         });
         assert!(hi / lo < 1.01, "even sampling stays even: {}", hi / lo);
+    }
+
+    /// A sample's edges are within its points, none a self-loop and none twice.
+    fn assert_well_formed(s: &Sample) {
+        for &[a, b] in &s.edges {
+            assert!(
+                a < b && b < s.points.len(),
+                "edge {a} {b} of {}",
+                s.points.len()
+            );
+        }
+        assert!(s.edges.windows(2).all(|w| w[0] != w[1]), "{:?}", s.edges);
+    }
+
+    #[test]
+    fn repeated_polygon_corners_are_one_corner() {
+        let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+        let plain = sample(&[Shape::Polygon(square.to_vec())], &Sampling::new(0.25)).unwrap();
+        assert_eq!(plain.points.len(), 16);
+        // Closed by repeating the first corner, and with a corner given twice in a row.
+        let closed = [&square[..], &square[..1]].concat();
+        let doubled = [&square[..2], &square[1..]].concat();
+        for corners in [closed, doubled] {
+            let s = sample(&[Shape::Polygon(corners)], &Sampling::new(0.25)).unwrap();
+            assert_eq!(s, plain);
+        }
+    }
+
+    #[test]
+    fn a_spacing_that_is_not_positive_is_refused() {
+        let circle = [Shape::circle(Point::new(0.0, 0.0), 1.0)];
+        for epsilon in [0.0, -0.1, f64::NEG_INFINITY] {
+            assert_eq!(
+                sample(&circle, &Sampling::new(epsilon)),
+                Err(SampleError::Epsilon(epsilon))
+            );
+        }
+        let nan = sample(&circle, &Sampling::new(f64::NAN)).unwrap_err();
+        assert!(matches!(nan, SampleError::Epsilon(e) if e.is_nan()));
+    }
+
+    #[test]
+    fn more_points_than_the_triangulation_takes_are_refused_before_allocating() {
+        let too_many = Err(SampleError::TooManyPoints { limit: MAX_POINTS });
+        let circle = Shape::circle(Point::new(0.0, 0.0), 1.0);
+        let square = Shape::Polygon(
+            [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)]
+                .map(Point::from)
+                .to_vec(),
+        );
+        let eight = Shape::FigureEight {
+            center: Point::new(0.0, 0.0),
+            size: 1.0,
+        };
+        let arc = Shape::Arc {
+            center: Point::new(0.0, 0.0),
+            radius: 1.0,
+            start: 0.0,
+            sweep: 1.0,
+        };
+        for shape in [circle.clone(), square, eight, arc] {
+            // 1e-12 asked for a 100 TB allocation; the smallest positive number, infinitely many.
+            for epsilon in [1e-12, f64::from_bits(1)] {
+                assert_eq!(
+                    sample(core::slice::from_ref(&shape), &Sampling::new(epsilon)),
+                    too_many
+                );
+            }
+        }
+        // The limit counts the whole sample, outliers too.
+        let outliers = Sampling {
+            outlier_fraction: 1e12,
+            ..Sampling::new(0.1)
+        };
+        assert_eq!(sample(&[circle], &outliers), too_many);
+    }
+
+    #[test]
+    fn a_coarse_figure_eight_keeps_a_sample_per_lobe_and_no_bad_edge() {
+        for epsilon in [1.0, 4.0, 100.0, f64::INFINITY] {
+            let s = sample(
+                &[Shape::FigureEight {
+                    center: Point::new(0.0, 0.0),
+                    size: 1.0,
+                }],
+                &Sampling::new(epsilon),
+            )
+            .unwrap();
+            assert_well_formed(&s);
+            // The crossing and two samples on each side of it: two triangles sharing a corner.
+            assert!(s.points[1..].iter().any(|p| p.x > 0.0), "{epsilon}");
+            assert!(s.points[1..].iter().any(|p| p.x < 0.0), "{epsilon}");
+            assert_eq!(s.edges.iter().filter(|e| e.contains(&0)).count(), 4);
+        }
     }
 
     #[test]
@@ -545,7 +747,8 @@ mod tests {
                 density_variation: 4.0,
                 ..Sampling::new(0.1)
             },
-        );
+        )
+        .unwrap();
         // Side 0 at a quarter of the bound, side 2 at the bound: 40 and 10 pieces.
         let per_side = |k: usize| {
             let on_side = |p: &Point| match k {
@@ -561,7 +764,7 @@ mod tests {
     #[test]
     fn gaussian_noise_has_the_asked_deviation_and_uniform_noise_stays_in_its_box() {
         let shapes = [Shape::circle(Point::new(0.0, 0.0), 10.0)];
-        let clean = sample(&shapes, &Sampling::new(0.001));
+        let clean = sample(&shapes, &Sampling::new(0.001)).unwrap();
         assert!(clean.points.len() > 5000);
         let moved = |gaussian_noise: bool| {
             let noisy = sample(
@@ -571,7 +774,8 @@ mod tests {
                     gaussian_noise,
                     ..Sampling::new(0.001)
                 },
-            );
+            )
+            .unwrap();
             clean
                 .points
                 .iter()
@@ -608,7 +812,8 @@ mod tests {
                 }),
                 ..Sampling::new(0.05)
             },
-        );
+        )
+        .unwrap();
         let curve_points = s.points.len() - s.outliers.len();
         assert_eq!(
             s.outliers.len(),

@@ -13,7 +13,9 @@
 //! - **maximum and RMS distance** of the output to the truth: each output edge is sampled at 0,
 //!   1/4, 1/2, 3/4 and 1 of its length, each sample's distance to the nearest truth segment is
 //!   divided by the diagonal of the points' bounding box. An output edge that is a truth edge
-//!   contributes five zeros; an end that has a truth edge is at distance zero.
+//!   contributes five zeros; an end that has a truth edge is at distance zero. They are
+//!   computed on the points scaled by a power of two, so they are the same at every such scale,
+//!   up to ±`f64::MAX` and down to the smallest normal numbers.
 //!
 //! The distances are exact nearest-segment distances (a bounding-volume hierarchy over the truth
 //! segments), for every output edge however many are wrong; the suite's scorer samples at most
@@ -23,6 +25,7 @@
 use crate::geometry::Point;
 use alloc::vec;
 use alloc::vec::Vec;
+use condt::geometry::{binary_exponent, Scale};
 use core::fmt;
 
 /// The fractions of its length at which an output edge is sampled for the distances.
@@ -182,7 +185,7 @@ pub struct Score {
 /// use condt_eval::sample::{sample, Sampling, Shape};
 /// use condt_eval::score::score;
 /// use condt::{reconstruct, Params, Point};
-/// let circle = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.3));
+/// let circle = sample(&[Shape::circle(Point::new(0.0, 0.0), 1.0)], &Sampling::new(0.3)).unwrap();
 /// let result = reconstruct(&circle.points, &Params::default())?;
 /// let edges: Vec<[usize; 2]> = result.edges().collect();
 /// let s = score(&circle.points, &edges, &circle.edges).unwrap();
@@ -315,19 +318,32 @@ fn distances(
     if output.is_empty() {
         return (None, None);
     }
-    // Coordinates relative to the box's corner, so that offsets of 1e6 cost no precision in the
+    // First scaled by the power of two that brings the largest coordinate into [1, 2), as the
+    // stages scale their input: exact, and it changes no ratio, so the distances (ratios to the
+    // diagonal) are the same at every power-of-two scale. Unscaled, the squares overflow beyond
+    // about 1e154 and vanish below about 1e-162, and the box of ±f64::MAX is infinite.
+    let largest = points
+        .iter()
+        .map(|p| p.x.abs().max(p.y.abs()))
+        .fold(0.0f64, f64::max);
+    let scale = if largest > 0.0 {
+        Scale::power_of_two(-binary_exponent(largest))
+    } else {
+        Scale::IDENTITY
+    };
+    // Then relative to the box's corner, so that offsets of 1e6 cost no precision in the
     // differences the distances are made of.
     let (mut min, mut max) = (
         Point::new(f64::INFINITY, f64::INFINITY),
         Point::new(0.0, 0.0),
     );
-    for p in points {
+    let mut local: Vec<Point> = points.iter().map(|&p| scale.apply(p)).collect();
+    for p in &local {
         min = Point::new(min.x.min(p.x), min.y.min(p.y));
     }
-    let local: Vec<Point> = points
-        .iter()
-        .map(|p| Point::new(p.x - min.x, p.y - min.y))
-        .collect();
+    for p in &mut local {
+        *p = Point::new(p.x - min.x, p.y - min.y);
+    }
     for p in &local {
         max = Point::new(max.x.max(p.x), max.y.max(p.y));
     }
@@ -637,6 +653,53 @@ mod tests {
         assert_eq!(
             score(&near, &output, &truth).unwrap(),
             score(&far, &output, &truth).unwrap()
+        );
+    }
+
+    /// A set whose distances are all non-trivial: a square's truth and an output with a diagonal,
+    /// a side off the truth and an outlier edge.
+    fn square_case(scale: Scale) -> (Vec<Point>, Vec<[usize; 2]>, Vec<[usize; 2]>) {
+        let corners = [
+            (-1.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 1.0),
+            (-1.0, 1.0),
+            (0.25, 0.5),
+        ];
+        let points = corners.map(|p| scale.apply(Point::from(p))).to_vec();
+        let truth = vec![[0, 1], [1, 2], [2, 3], [0, 3]];
+        let output = vec![[0, 1], [0, 2], [1, 3], [2, 4]];
+        (points, output, truth)
+    }
+
+    #[test]
+    fn distances_are_the_same_at_every_power_of_two_scale() {
+        let (points, output, truth) = square_case(Scale::IDENTITY);
+        let unit = score(&points, &output, &truth).unwrap();
+        let max = unit.max_distance.unwrap();
+        assert!(max > 0.0 && max < 1.0, "{max}");
+        assert!(unit.rms_distance.unwrap() > 0.0);
+        // 2^±600 (beyond 1e154 squares overflow, below 1e-162 they vanish) and the extremes
+        // of the range, where the corners are ±f64::MAX and the box's sides overflow.
+        for k in [600, -600, 1000, -1000, 1023] {
+            let (points, output, truth) = square_case(Scale::power_of_two(k));
+            assert_eq!(score(&points, &output, &truth).unwrap(), unit, "2^{k}");
+        }
+        let widest = Scale::power_of_two(1023)
+            .apply(Point::new(2.0 - f64::EPSILON, 0.0))
+            .x;
+        assert_eq!(widest, f64::MAX);
+        let at_max: Vec<Point> = points
+            .iter()
+            .map(|p| Point::new(p.x * widest, p.y * widest))
+            .collect();
+        let unit_max: Vec<Point> = points
+            .iter()
+            .map(|p| Point::new(p.x * (2.0 - f64::EPSILON), p.y * (2.0 - f64::EPSILON)))
+            .collect();
+        assert_eq!(
+            score(&at_max, &output, &truth).unwrap(),
+            score(&unit_max, &output, &truth).unwrap()
         );
     }
 

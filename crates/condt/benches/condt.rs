@@ -25,7 +25,7 @@ fn one_ellipse_10k(noise: f64) -> Vec<Point> {
         noise,
         ..Sampling::new(0.00119)
     };
-    let points = sample(&[ellipse], &sampling).points;
+    let points = sample(&[ellipse], &sampling).unwrap().points;
     assert_eq!(points.len(), 10_000);
     points
 }
@@ -45,6 +45,7 @@ fn ellipses_1m() -> Vec<Point> {
             ..Sampling::new(0.00295)
         },
     )
+    .unwrap()
     .points
 }
 

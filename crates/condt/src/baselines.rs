@@ -212,6 +212,7 @@ mod tests {
             ],
             &Sampling::new(0.2),
         )
+        .unwrap()
     }
 
     #[test]

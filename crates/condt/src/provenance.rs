@@ -481,6 +481,7 @@ mod tests {
             ],
             &sampling,
         )
+        .unwrap()
         .points
     }
 

@@ -135,7 +135,8 @@ mod tests {
                 seed: 675,
                 ..Sampling::new(0.1)
             },
-        );
+        )
+        .unwrap();
         let params = Params::default().with_smooth(true);
         let expected: Vec<[usize; 2]> = reconstruct(&noisy.points, &params)
             .unwrap()
@@ -173,7 +174,8 @@ mod tests {
                 seed: 675,
                 ..Sampling::new(0.1)
             },
-        );
+        )
+        .unwrap();
         let hidden = [114, 115];
         assert!(noisy.edges.contains(&hidden), "a true edge");
         let tri = triangulate(&noisy.points).unwrap();
@@ -204,7 +206,7 @@ mod tests {
     fn clean_closed_curves_run_no_pass() {
         let square = Shape::Polygon(UNIT_SQUARE.to_vec());
         let circle = Shape::circle(Point::new(3.0, 0.0), 1.0);
-        let clean = sample(&[square, circle], &Sampling::new(0.2));
+        let clean = sample(&[square, circle], &Sampling::new(0.2)).unwrap();
         let result = reconstruct(&clean.points, &Params::default()).unwrap();
         assert!(result.edges().eq(clean.edges.iter().copied()));
         assert_eq!(result.smoothing(), None);
@@ -221,7 +223,7 @@ mod tests {
             sweep: 4.0,
         };
         let passes = |spacing: f64| {
-            let s = sample(core::slice::from_ref(&arc), &Sampling::new(spacing));
+            let s = sample(core::slice::from_ref(&arc), &Sampling::new(spacing)).unwrap();
             let r = reconstruct(&s.points, &Params::default()).unwrap();
             assert!(r.edges().eq(s.edges.iter().copied()));
             (s.points.len(), r.smoothing().map_or(0, |m| m.passes))
@@ -250,7 +252,7 @@ mod tests {
             start: 0.0,
             sweep: 4.0,
         };
-        let clean = sample(&[square, arc], &Sampling::new(0.2));
+        let clean = sample(&[square, arc], &Sampling::new(0.2)).unwrap();
         let plain = reconstruct(&clean.points, &Params::default().with_smooth(false)).unwrap();
         let smoothed = reconstruct(&clean.points, &Params::default()).unwrap();
         assert!(plain.edges().eq(clean.edges.iter().copied()));

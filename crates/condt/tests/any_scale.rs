@@ -67,7 +67,7 @@ fn sampled_shapes_reconstruct_the_same_at_every_power_of_two_scale() {
     let mut sampling = Sampling::new(0.3);
     sampling.outlier_fraction = 0.05;
     sampling.noise = 0.01;
-    let points = sample(&shapes, &sampling).points;
+    let points = sample(&shapes, &sampling).unwrap().points;
     let local = Params::default().with_local_outliers(true);
     for params in [Params::default(), local] {
         let unscaled = reconstruct(&points, &params).unwrap();

@@ -60,7 +60,7 @@ fn spacings(s: &Sample) -> (f64, f64) {
 /// `shapes` sampled with `sampling`, then again with uniform noise of `jitter` times the
 /// shortest true spacing of the clean sample (the same points before the noise).
 fn jittered(shapes: &[Shape], sampling: Sampling, jitter: f64) -> Sample {
-    let (shortest, _) = spacings(&sample(shapes, &sampling));
+    let (shortest, _) = spacings(&sample(shapes, &sampling).unwrap());
     sample(
         shapes,
         &Sampling {
@@ -68,6 +68,7 @@ fn jittered(shapes: &[Shape], sampling: Sampling, jitter: f64) -> Sample {
             ..sampling
         },
     )
+    .unwrap()
 }
 
 fn origin() -> Point {
@@ -252,7 +253,7 @@ fn acute_triangle_with_sides_at_different_spacings_loses_edges_only_at_corners()
                     seed,
                     ..Sampling::new(eps)
                 };
-                let clean = sample(&[Shape::Polygon(corners.clone())], &sampling);
+                let clean = sample(&[Shape::Polygon(corners.clone())], &sampling).unwrap();
                 let s = jittered(&[Shape::Polygon(corners.clone())], sampling, 0.03);
                 let label = format!("triangle eps {eps} variation {variation} seed {seed}");
                 let r = run(&s.points, Params::default());
@@ -292,6 +293,7 @@ fn clumped(fraction: f64, (min, max): (usize, usize), radius: f64, seed: u64) ->
             ..Sampling::new(0.1)
         },
     )
+    .unwrap()
 }
 
 /// The default pipeline with the local outlier removal on.
@@ -406,7 +408,8 @@ fn small_uniform_and_gaussian_noise_is_exact() {
                             seed,
                             ..Sampling::new(0.1)
                         },
-                    );
+                    )
+                    .unwrap();
                     let label = format!("{name} noise {fraction} gaussian {gaussian_noise} {seed}");
                     assert_exact(&s, Params::default(), &label);
                     assert_exact(&s, Params::paper(), &format!("paper, {label}"));
@@ -433,6 +436,7 @@ fn concentric(eps: f64, gap_in_spacings: f64, seed: u64) -> Sample {
             ..Sampling::new(eps)
         },
     )
+    .unwrap()
 }
 
 /// A gap of 2.5 or 3 inner spacings (2.2 to 2.8 times the outer circle's spacing): exact, two
@@ -503,7 +507,8 @@ fn parallel_arcs_three_spacings_apart_stay_two_open_curves() {
                     seed,
                     ..Sampling::new(eps)
                 },
-            );
+            )
+            .unwrap();
             let (_, hi) = spacings(&s);
             assert!(gap >= 2.8 * hi, "gap {gap} against spacing {hi}");
             let label = format!("parallel arcs eps {eps} seed {seed}");
@@ -544,6 +549,7 @@ fn facing_arcs(eps: f64, gap_in_spacings: f64, seed: u64) -> Sample {
             ..Sampling::new(eps)
         },
     )
+    .unwrap()
 }
 
 /// Ends 3 to 4 spacings apart stay apart: two open curves, exact, with the default and the

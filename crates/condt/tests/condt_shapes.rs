@@ -13,7 +13,7 @@ use std::collections::BTreeSet;
 use std::f64::consts::PI;
 
 fn assert_exact(shapes: &[Shape], epsilon: f64, params: Params, label: &str) -> Reconstruction {
-    let s = sample(shapes, &Sampling::new(epsilon));
+    let s = sample(shapes, &Sampling::new(epsilon)).unwrap();
     let r = run(&s.points, params);
     let (ours, gt) = (edges(&r), truth(&s));
     let missing: Vec<_> = gt.difference(&ours).collect();
@@ -130,7 +130,7 @@ fn figure_eight_gets_its_crossing_back_when_gaps_are_closed() {
         center: origin(),
         size: 2.0,
     };
-    let s = sample(&[eight], &Sampling::new(0.1));
+    let s = sample(&[eight], &Sampling::new(0.1)).unwrap();
     let repaired = run(&s.points, Params::paper());
     assert_eq!(repaired.degree(0), 2, "the repair cut the crossing");
     let params = Params::paper().with_close_gaps(true);
@@ -158,7 +158,8 @@ fn a_gap_in_a_noisy_circle_is_closed() {
             seed: 14,
             ..Sampling::new(0.1)
         },
-    );
+    )
+    .unwrap();
     let gt = truth(&s);
     let plain = run(&s.points, Params::paper());
     let found = edges(&plain);
@@ -228,7 +229,7 @@ fn with_outliers(fraction: f64, seed: u64) -> (Sample, Reconstruction) {
         seed,
         ..Sampling::new(0.15)
     };
-    let s = sample(&shapes, &sampling);
+    let s = sample(&shapes, &sampling).unwrap();
     let r = run(&s.points, Params::paper());
     (s, r)
 }
@@ -269,7 +270,7 @@ fn test_shapes() -> Vec<(&'static str, Sample)> {
     vec![
         (
             "circle",
-            sample(&[Shape::circle(origin(), 1.0)], &Sampling::new(0.2)),
+            sample(&[Shape::circle(origin(), 1.0)], &Sampling::new(0.2)).unwrap(),
         ),
         (
             "spiral",
@@ -281,7 +282,8 @@ fn test_shapes() -> Vec<(&'static str, Sample)> {
                     turns: 2.0,
                 }],
                 &Sampling::new(0.1),
-            ),
+            )
+            .unwrap(),
         ),
         ("two circles with outliers", with_outliers(0.1, 3).0),
         (
@@ -292,7 +294,8 @@ fn test_shapes() -> Vec<(&'static str, Sample)> {
                     size: 2.0,
                 }],
                 &Sampling::new(0.1),
-            ),
+            )
+            .unwrap(),
         ),
     ]
 }
@@ -355,7 +358,7 @@ fn permuting_the_input_permutes_the_edges() {
 
 #[test]
 fn duplicates_map_back_to_their_vertex() {
-    let mut s = sample(&[Shape::circle(origin(), 1.0)], &Sampling::new(0.3));
+    let mut s = sample(&[Shape::circle(origin(), 1.0)], &Sampling::new(0.3)).unwrap();
     let copy = s.points[3];
     s.points.push(copy);
     let r = run(&s.points, Params::default());
@@ -399,7 +402,7 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
     let circles: Vec<Shape> = (0..4)
         .map(|k| Shape::circle(Point::new(3.0 * k as f64, 0.0), 1.0))
         .collect();
-    let s = sample(&circles, &Sampling::new(3e-4));
+    let s = sample(&circles, &Sampling::new(3e-4)).unwrap();
     // `run_both` asserts the size too: past it, the stages, the triangulation (cut in two, the
     // halves on two threads) and the curves take their parallel paths.
     assert!(s.points.len() >= PARALLEL_FROM, "{}", s.points.len());
@@ -416,7 +419,8 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
             outlier_fraction: 0.02,
             ..Sampling::new(3e-4)
         },
-    );
+    )
+    .unwrap();
     assert!(
         noisy.points.len() >= PARALLEL_FROM,
         "{}",
@@ -458,7 +462,7 @@ fn noisy_circles_with_outliers() -> Sample {
         seed: 1,
         ..Sampling::new(0.15)
     };
-    sample(&shapes, &sampling)
+    sample(&shapes, &sampling).unwrap()
 }
 
 /// Noisy circles with outliers, repaired by the paper's rule, in both stage orders: each stage's
@@ -518,7 +522,7 @@ fn stage_graphs_chain_in_either_order_on_noisy_circles_with_outliers() {
 #[test]
 fn invalid_parameters_are_refused_with_their_name() {
     use condt::{triangulate, Error};
-    let s = sample(&[Shape::circle(origin(), 1.0)], &Sampling::new(0.3));
+    let s = sample(&[Shape::circle(origin(), 1.0)], &Sampling::new(0.3)).unwrap();
     for u in [f64::NAN, f64::INFINITY, -1.0, 0.0] {
         let params = Params::default().with_uniformity(Uniformity::Fixed(u));
         let err = reconstruct(&s.points, &params).unwrap_err();
@@ -686,7 +690,7 @@ fn paper_preset_reproduces_the_pinned_outputs() {
         ),
     ];
     for (label, shapes, sampling, count, hash) in cases {
-        let s = sample(&shapes, &sampling);
+        let s = sample(&shapes, &sampling).unwrap();
         let r = run(&s.points, Params::paper());
         assert_eq!(r.edges().len(), count, "{label}");
         assert_eq!(edge_hash(r.edges()), hash, "{label}");

@@ -32,7 +32,7 @@ fn noisy_curves(seed: u64) -> Vec<Point> {
         seed,
         ..Sampling::new(0.08)
     };
-    sample(&shapes, &sampling).points
+    sample(&shapes, &sampling).unwrap().points
 }
 
 /// What a test compares of two results: everything public that does not depend on the clock.

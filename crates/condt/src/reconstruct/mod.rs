@@ -330,7 +330,7 @@ mod tests {
                 seed,
                 ..Sampling::new(0.08)
             };
-            let points = sample(&shapes, &sampling).points;
+            let points = sample(&shapes, &sampling).unwrap().points;
             let tri = triangulate(&points).unwrap();
             let n = tri.num_points();
             let params = Params::default();

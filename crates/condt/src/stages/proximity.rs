@@ -620,7 +620,8 @@ mod tests {
                     noise: 0.01,
                     ..Sampling::new(epsilon)
                 },
-            );
+            )
+            .unwrap();
             let tri = triangulate(&s.points).unwrap();
             let fixed = Uniformity::Fixed(2.75);
             let n = tri.num_points();
@@ -656,7 +657,8 @@ mod tests {
                 noise: 0.01,
                 ..Sampling::new(0.002)
             },
-        );
+        )
+        .unwrap();
         let tri = triangulate(&s.points).unwrap();
         let n = tri.num_points();
         assert!(n >= 3 * 1024, "{n}");

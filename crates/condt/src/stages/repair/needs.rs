@@ -168,7 +168,7 @@ mod tests {
                 Point::new(r * libm::cos(angle), r * libm::sin(angle))
             })
             .collect();
-        let s = sample(&[Shape::Polygon(corners.clone())], &Sampling::new(epsilon));
+        let s = sample(&[Shape::Polygon(corners.clone())], &Sampling::new(epsilon)).unwrap();
         let tips = (0..5)
             .map(|k| {
                 let tip = corners[2 * k];
@@ -264,7 +264,8 @@ mod tests {
                 size: 2.0,
             }],
             &Sampling::new(0.1),
-        );
+        )
+        .unwrap();
         let paper = repaired(&eight.points, Repair::Paper)?;
         assert_eq!(degrees(eight.points.len(), &paper)[0], 2);
         assert_eq!(repaired(&eight.points, Repair::Needs)?, eight.edges);
