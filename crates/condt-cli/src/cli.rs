@@ -933,7 +933,18 @@ fn writes_to_terminal(output: Option<&Path>) -> bool {
     output.is_none() && io::stdout().is_terminal()
 }
 
+/// A note when rayon's threads cannot be started (a limit on processes or memory,
+/// `RAYON_NUM_THREADS` too large): the library then runs on this thread, with the same results.
+fn threads_note(quiet: bool) {
+    if !quiet && !condt::parallel_available() {
+        note(format_args!(
+            "cannot start worker threads; running on one thread (the results are the same)"
+        ));
+    }
+}
+
 fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
+    threads_note(args.quiet);
     let mut timings = Timings::new(args.timings);
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;
@@ -1024,6 +1035,7 @@ fn shown_output(output: Option<&Path>) -> String {
 }
 
 fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
+    threads_note(args.quiet);
     let mut timings = Timings::new(args.timings);
     refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
     let destination = Destination::prepare(args.output.as_deref())?;

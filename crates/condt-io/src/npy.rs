@@ -642,11 +642,10 @@ fn count_finite_triangles(tri: &Triangulation) -> usize {
     let corners = mesh.corner_slice(0..mesh.num_triangles_with_ghosts());
     let finite = |corners: &[VertexId]| !corners.iter().any(|v| v.is_infinite());
     #[cfg(feature = "parallel")]
-    {
+    if condt::parallel_available() {
         use rayon::prelude::*;
-        corners.par_chunks_exact(3).filter(|c| finite(c)).count()
+        return corners.par_chunks_exact(3).filter(|c| finite(c)).count();
     }
-    #[cfg(not(feature = "parallel"))]
     corners.chunks_exact(3).filter(|c| finite(c)).count()
 }
 

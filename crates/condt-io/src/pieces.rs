@@ -79,7 +79,10 @@ pub(super) fn write_pieces(
     // Not from inside a rayon job: the calling thread waits on a channel for the batches, and
     // were every worker of the pool waiting so, no thread would be left to format them.
     #[cfg(feature = "parallel")]
-    if rayon::current_num_threads() >= 2 && rayon::current_thread_index().is_none() && units > piece
+    if condt::parallel_available()
+        && rayon::current_num_threads() >= 2
+        && rayon::current_thread_index().is_none()
+        && units > piece
     {
         return parallel::write_pieces(out, units, piece, format);
     }

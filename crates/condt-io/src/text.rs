@@ -269,11 +269,11 @@ pub(super) fn sorted_edge_keys(tri: &Triangulation) -> io::Result<Vec<u64>> {
         .map_err(|_| io::Error::new(io::ErrorKind::OutOfMemory, "no memory for the edges"))?;
     keys.extend(tri.edges().map(|[a, b]| (a as u64) << 32 | b as u64));
     #[cfg(feature = "parallel")]
-    {
+    if condt::parallel_available() {
         use rayon::slice::ParallelSliceMut;
         keys.par_sort_unstable();
+        return Ok(keys);
     }
-    #[cfg(not(feature = "parallel"))]
     keys.sort_unstable();
     Ok(keys)
 }

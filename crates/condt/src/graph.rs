@@ -271,7 +271,7 @@ impl Triangulation {
     /// ```
     pub fn proximity_graph(&self, uniformity: Uniformity) -> Result<Graph<'_>, Error> {
         uniformity.check()?;
-        let parallel = cfg!(feature = "parallel");
+        let parallel = crate::threads::parallel_available();
         let edges = proximity::proximity_graph(self, uniformity, parallel);
         Ok(Graph::new(self, Cow::Owned(edges)))
     }

@@ -129,6 +129,7 @@ pub use reconstruct::{
     Reconstruction, Smoothing, StageReport, StepReport, Upcoming,
 };
 pub use stages::{Repair, Stage, Switch, Uniformity};
+pub use threads::parallel_available;
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};
 
 /// The README's code examples, compiled and run as doctests so they cannot go stale.

@@ -1,8 +1,9 @@
 //! Running two pieces of work at once, on rayon's threads with the `parallel` feature, or one
 //! after the other without it (or when the caller asks for one thread).
 //!
-//! Owns: only the choice of how to run; it knows nothing of what the work is. The triangulation
-//! (its two halves) and the pipeline's last step (curves and tally) share it.
+//! Owns: only the choice of how to run, and whether rayon's threads can run at all
+//! ([`parallel_available`]); it knows nothing of what the work is. The triangulation (its two
+//! halves) and the pipeline's last step (curves and tally) share it.
 
 /// `(a(), b())`, at once on rayon's threads when `parallel`.
 #[cfg(feature = "parallel")]
@@ -22,4 +23,32 @@ pub(crate) fn both<A: Send, B: Send>(
 #[cfg(not(feature = "parallel"))]
 pub(crate) fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
     (a(), b())
+}
+
+/// Whether rayon's global pool can run work: `false` without the `parallel` feature, and when
+/// the pool could not be started (a limit on processes or address space, `RAYON_NUM_THREADS`
+/// beyond what the system gives), in which case rayon would panic at its first use; every
+/// parallel path of the library then runs on the caller's thread instead, with the same
+/// results. Asked once per process: the first call starts the global pool as rayon's first use
+/// would (with its default settings, or the caller's if it built the pool first).
+///
+/// ```
+/// // On a machine that can start threads, with the default features:
+/// assert!(condt::parallel_available() || !cfg!(feature = "parallel"));
+/// ```
+#[cfg(feature = "parallel")]
+pub fn parallel_available() -> bool {
+    static AVAILABLE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *AVAILABLE.get_or_init(|| match rayon::ThreadPoolBuilder::new().build_global() {
+        Ok(()) => true,
+        // Built before (by the caller, or by an earlier use): an error without a source. A pool
+        // that could not be started has the system's error as its source.
+        Err(error) => std::error::Error::source(&error).is_none(),
+    })
+}
+
+/// Whether rayon's global pool can run work: never without the `parallel` feature.
+#[cfg(not(feature = "parallel"))]
+pub fn parallel_available() -> bool {
+    false
 }

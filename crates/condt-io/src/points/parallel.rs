@@ -39,6 +39,10 @@ fn pieces(text: &str, pieces: usize) -> Vec<&str> {
 /// (the line count of each piece would otherwise be needed, and the refusals that depend
 /// on earlier lines would differ).
 pub(super) fn parse_pieces(text: &str, file: &str) -> Option<Vec<Parsed>> {
+    // Without rayon's threads (they could not be started) the sequential parse reads it.
+    if !condt::parallel_available() {
+        return None;
+    }
     let threads = rayon::current_num_threads();
     if threads < 2 || text.len() < 2 * MIN_PIECE {
         return None;
@@ -97,6 +101,9 @@ const LOOK_AHEAD: usize = 1 << 16;
 /// bytes long when read (it changed meanwhile).
 #[cfg(unix)]
 pub(super) fn read_pieces(file: &std::fs::File, size: u64, name: &str) -> Option<Vec<Point>> {
+    if !condt::parallel_available() {
+        return None;
+    }
     let size = usize::try_from(size).ok()?;
     let threads = rayon::current_num_threads();
     if threads < 2 || size < 2 * MIN_PIECE {

@@ -248,6 +248,17 @@ impl Params {
 }
 
 impl Params {
+    /// These parameters with `parallel` off when rayon's threads cannot run
+    /// ([`parallel_available`](crate::parallel_available)): what a reconstruction runs with,
+    /// and what its result reports.
+    pub(crate) fn on_available_threads(self) -> Params {
+        if self.parallel && !crate::threads::parallel_available() {
+            self.with_parallel(false)
+        } else {
+            self
+        }
+    }
+
     /// Turns `stage` on or off, for the stages with a [`Switch`](crate::stages::Switch)
     /// ([`Stage::switch`]); `false` for any other stage, which is left as it is.
     ///

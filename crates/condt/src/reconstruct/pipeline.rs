@@ -219,6 +219,7 @@ impl Pipeline {
         inserted: Option<&AtomicUsize>,
     ) -> Result<Pipeline, Error> {
         params.check()?;
+        let params = &params.on_available_threads();
         let mut clock = Stopwatch::start();
         let tri = triangulate_with_progress(&points, params.parallel, inserted)?;
         let triangulation_time = clock.lap();
@@ -235,6 +236,7 @@ impl Pipeline {
         pass_clock: Stopwatch,
     ) -> Result<Pipeline, Error> {
         params.check()?;
+        let params = &params.on_available_threads();
         if params.method == Method::Crust {
             crate::baselines::crust_fits(&tri)?;
         }

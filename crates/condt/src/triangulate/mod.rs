@@ -145,6 +145,7 @@ pub(crate) fn triangulate_with_progress(
     parallel: bool,
     inserted: Option<&AtomicUsize>,
 ) -> Result<Triangulation, Error> {
+    let parallel = parallel && crate::threads::parallel_available();
     triangulate_split(points, parallel, halves::SPLIT_MIN, inserted)
 }
 
@@ -470,7 +471,7 @@ impl Triangulation {
         Ok(insertion_order(
             points,
             &frames,
-            cfg!(feature = "parallel"),
+            crate::threads::parallel_available(),
             halves::SPLIT_MIN,
         )
         .0)
