@@ -943,16 +943,32 @@ fn threads_note(quiet: bool) {
     }
 }
 
-fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
-    threads_note(args.quiet);
-    let mut timings = Timings::new(args.timings);
-    refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
-    let destination = Destination::prepare(args.output.as_deref())?;
-    let mut progress = Progress::new(args.quiet);
+/// What both commands do before reading: the note on threads, the clock, the output checked
+/// against the input and made ready, and the progress bar through the reading.
+fn start_command(
+    input: Option<&Path>,
+    output: Option<&Path>,
+    quiet: bool,
+    timings: bool,
+) -> Result<(Timings, Destination, Progress), CliError> {
+    threads_note(quiet);
+    let timings = Timings::new(timings);
+    refuse_same_file(input, output)?;
+    let destination = Destination::prepare(output)?;
+    let mut progress = Progress::new(quiet);
     if progress.is_shown() {
-        let size = input_size(args.input.as_deref());
-        progress.reading(&shown_input(args.input.as_deref()), size);
+        progress.reading(&shown_input(input), input_size(input));
     }
+    Ok((timings, destination, progress))
+}
+
+fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
+    let (mut timings, destination, mut progress) = start_command(
+        args.input.as_deref(),
+        args.output.as_deref(),
+        args.quiet,
+        args.timings,
+    )?;
     let points = read_input(args.input.as_deref(), args.params.parallel)?;
     progress.suspend(|| timings.lap("read"));
     let count = points.len();
@@ -1035,15 +1051,12 @@ fn shown_output(output: Option<&Path>) -> String {
 }
 
 fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
-    threads_note(args.quiet);
-    let mut timings = Timings::new(args.timings);
-    refuse_same_file(args.input.as_deref(), args.output.as_deref())?;
-    let destination = Destination::prepare(args.output.as_deref())?;
-    let mut progress = Progress::new(args.quiet);
-    if progress.is_shown() {
-        let size = input_size(args.input.as_deref());
-        progress.reading(&shown_input(args.input.as_deref()), size);
-    }
+    let (mut timings, destination, mut progress) = start_command(
+        args.input.as_deref(),
+        args.output.as_deref(),
+        args.quiet,
+        args.timings,
+    )?;
     let points = read_input(args.input.as_deref(), true)?;
     progress.computing("triangulating");
     progress.suspend(|| timings.lap("read"));

@@ -16,8 +16,8 @@ fn run(args: &[&str], starved: bool) -> Output {
     let mut command = Command::new(env!("CARGO_BIN_EXE_condt"));
     command.args(args);
     if starved {
-        // As an unprivileged user (root is exempt from the limit) allowed one process: no
-        // thread can be started. Skipped where the test cannot change its user.
+        // Allowed one process, no thread can be started; root is exempt from the limit, so
+        // as root the child first becomes the unprivileged user 65534.
         // SAFETY: `setrlimit` and `setuid` are async-signal-safe, as `pre_exec` requires.
         unsafe {
             command.pre_exec(|| {

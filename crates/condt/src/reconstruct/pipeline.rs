@@ -114,7 +114,6 @@ enum State {
 struct Run {
     tri: Triangulation,
     triangulation_time: Duration,
-    steps: Vec<Step>,
     history: History,
     /// The latest stage's output; each stage's record keeps only how to get its input back.
     current: Vec<Edge>,
@@ -247,7 +246,7 @@ impl Pipeline {
         };
         Ok(Pipeline {
             params: *params,
-            state: State::Stages(Run::new(tri, triangulation_time, params, assembly, None)),
+            state: State::Stages(Run::new(tri, triangulation_time, assembly, None)),
             smoothing: None,
             earlier_passes: Duration::ZERO,
             pass_clock,
@@ -285,7 +284,10 @@ impl Pipeline {
         match &self.state {
             State::Stages(run) => Some(Upcoming::Stage(match run.history.records.len() {
                 0 => self.params.first_stage(),
-                k => run.steps[k - 1].stage(),
+                k => match self.params.steps().nth(k - 1) {
+                    Some(step) => step.stage(),
+                    None => return None,
+                },
             })),
             State::Smooth(_) => Some(Upcoming::SmoothingPass),
             State::Done(_) | State::Failed(_) | State::Moving => None,
@@ -310,13 +312,12 @@ impl Pipeline {
                 let k = run.history.records.len();
                 let in_parallel = self.params.parallel && run.tri.num_points() >= PARALLEL_FROM;
                 on_worker(in_parallel, || run.run_stage(&self.params));
-                let stage_done = k;
-                self.state = if run.history.records.len() > run.steps.len() {
+                self.state = if run.history.records.len() > self.params.steps().count() {
                     self.end_of_run(run)
                 } else {
                     State::Stages(run)
                 };
-                Ok(Some(StepReport::Stage(self.report(stage_done))))
+                Ok(Some(StepReport::Stage(self.report(k))))
             }
             State::Smooth(result) => {
                 let (pass, moved) = match self.smoothing_pass(result) {
@@ -437,13 +438,7 @@ impl Pipeline {
         } else {
             CurveAssembly::Later
         };
-        self.state = State::Stages(Run::new(
-            tri,
-            triangulation_time,
-            &self.params,
-            assembly,
-            previous,
-        ));
+        self.state = State::Stages(Run::new(tri, triangulation_time, assembly, previous));
         Ok((smoothing.passes, moved))
     }
 }
@@ -452,14 +447,12 @@ impl Run {
     fn new(
         tri: Triangulation,
         triangulation_time: Duration,
-        params: &Params,
         assembly: CurveAssembly,
         previous: Option<EdgesFingerprint>,
     ) -> Run {
         Run {
             tri,
             triangulation_time,
-            steps: params.steps().collect(),
             history: History {
                 records: Vec::with_capacity(6),
             },
@@ -483,7 +476,9 @@ impl Run {
             });
             return;
         }
-        let step = self.steps[k - 1];
+        let Some(step) = params.steps().nth(k - 1) else {
+            return;
+        };
         let (tri, history, current) = (&self.tri, &self.history, &self.current);
         // The input of an earlier stage, rebuilt from the history only for the step that reads
         // it (`Step::run` says which reads which), and only while it runs.
