@@ -591,6 +591,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "local-outliers",
                 "given-back",
                 "gaps",
+                "junctions",
                 "curves",
                 "other",
                 "write",

@@ -93,6 +93,7 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::LocalOutliers => "local outliers",
         Stage::GivenBack => "given back",
         Stage::Gaps => "gaps",
+        Stage::Junctions => "junctions",
         _ => "other stage",
     }
 }

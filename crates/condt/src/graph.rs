@@ -3,7 +3,7 @@
 //!
 //! Owns: the public view of a stage's edges in input positions and the step methods
 //! ([`Triangulation::proximity_graph`], [`Graph::repair`], [`Graph::remove_outliers`],
-//! [`Graph::remove_local_outliers`], [`Graph::confirm_given_back`], [`Graph::close_gaps`],
+//! [`Graph::remove_local_outliers`], [`Graph::confirm_given_back`], [`Graph::close_gaps`], [`Graph::join_junctions`],
 //! [`Graph::curves`]). It may not
 //! implement a stage's rule (that is [`crate::stages`], reached
 //! through `Step::run`) nor decide the order of the stages (that is
@@ -218,6 +218,29 @@ impl<'t> Graph<'t> {
     /// ```
     pub fn close_gaps(&self) -> Graph<'t> {
         self.step(Step::CloseGaps).0
+    }
+
+    /// Joins loose ends to the curves they meet at junctions of three curves (not in the paper;
+    /// the rule is that of [`Params::junctions`](crate::Params::junctions)). Never removes an
+    /// edge.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // A straight curve 0..=12 along y = 0 and a branch 13..=19 coming down to point 6,
+    /// // one sample short of it: a T.
+    /// let mut pts: Vec<Point> = (0..=12).map(|i| Point::new(i as f64, 0.0)).collect();
+    /// pts.extend((1..=7).map(|k| Point::new(6.0, k as f64)));
+    /// let tri = triangulate(&pts)?;
+    /// let mut edges: Vec<[usize; 2]> = (0..12).map(|i| [i, i + 1]).collect();
+    /// edges.extend((13..19).map(|i| [i, i + 1]));
+    /// let joined = tri.graph_from_edges(edges.clone()).join_junctions();
+    /// edges.push([6, 13]);
+    /// edges.sort();
+    /// assert_eq!(joined.edges(), edges);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn join_junctions(&self) -> Graph<'t> {
+        self.step(Step::JoinJunctions).0
     }
 
     /// The curves through the graph, in input positions: each curve starts at its smallest

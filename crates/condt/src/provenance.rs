@@ -19,7 +19,8 @@
 //! - **local outliers**: given back (rule 1), long at an end (rule 2, with the ratio), a whole
 //!   component removed (rule 4), or a short spur (rule 3), as the stage's rules applied them;
 //! - **given-back check**: a component of given-back edges not clearly apart from the rest;
-//! - **gaps**: closed.
+//! - **gaps**: closed;
+//! - **junctions**: joined at a junction.
 
 use crate::adjacency::Edge;
 use crate::reconstruct::Reconstruction;
@@ -69,6 +70,8 @@ pub enum Reason {
     Spur,
     /// Gap closing joined two loose ends.
     GapClosed,
+    /// A loose end joined to the curve it meets at a junction of three curves.
+    Junction,
     /// A baseline method (NN-Crust or Crust) chose it; the ends then say how ConDT's
     /// Algorithm 1 would have seen the edge, for comparison.
     Baseline,
@@ -291,6 +294,7 @@ impl<'a> Explainer<'a> {
     fn reason(&self, [a, b]: [usize; 2], added: bool) -> Reason {
         match (self.stage, added) {
             (Stage::Gaps, _) => Reason::GapClosed,
+            (Stage::Junctions, _) => Reason::Junction,
             (Stage::GivenBack, _) => Reason::NotConfirmed,
             (Stage::NnCrust | Stage::Crust, _) => Reason::Baseline,
             (Stage::Outliers, _) => Reason::LongerThanThreshold {
@@ -436,6 +440,7 @@ impl fmt::Display for EdgeStory {
                 Reason::Component => write!(f, "isolated component")?,
                 Reason::Spur => write!(f, "short spur")?,
                 Reason::GapClosed => write!(f, "gap closed")?,
+                Reason::Junction => write!(f, "joined at a junction of three curves")?,
                 Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
                 Reason::Baseline => write!(f, "chosen by the baseline")?,
             }

@@ -225,6 +225,7 @@
       () => "gap closed",
       () => "a given-back component not clearly apart",
       () => "chosen by the baseline",
+      () => "joined at a junction of three curves",
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

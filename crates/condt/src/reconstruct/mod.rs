@@ -205,7 +205,9 @@ mod tests {
         assert_eq!(reports[4].graph.listed(), confirmed.listed());
         let closed = confirmed.close_gaps();
         assert_eq!(reports[5].graph.listed(), closed.listed());
-        assert_eq!(result.graph().listed(), closed.listed());
+        let joined = closed.join_junctions();
+        assert_eq!(reports[6].graph.listed(), joined.listed());
+        assert_eq!(result.graph().listed(), joined.listed());
         assert!(
             reports.iter().skip(1).any(|r| r.applied),
             "some stage changed the graph"

@@ -91,6 +91,11 @@ pub struct Params {
     /// in [`Params::paper`]; the rules and the reason for each constant are in
     /// `src/stages/gaps.rs`.
     pub close_gaps: bool,
+    /// Join a loose end to the curve it meets where three curves meet (not in the paper): map
+    /// borders, a T in a drawing. Runs last, after closing gaps; the junction needs three
+    /// branches of at least five points each, sampled alike. On by default, off in
+    /// [`Params::paper`]; the rule and its reasons are in `src/stages/junctions.rs`.
+    pub junctions: bool,
     /// Smoothing passes (not in the paper; on by default, off in [`Params::paper`]): when at
     /// least one point in a hundred ends the first reconstruction's curves or branches them (a
     /// vertex with one edge, or with three or more), a point with two edges meeting at a wide
@@ -132,7 +137,8 @@ impl Default for Params {
     ///         Stage::Outliers,
     ///         Stage::LocalOutliers,
     ///         Stage::GivenBack,
-    ///         Stage::Gaps
+    ///         Stage::Gaps,
+    ///         Stage::Junctions
     ///     ]
     /// );
     /// ```
@@ -142,6 +148,7 @@ impl Default for Params {
             .with_local_outliers(true)
             .with_confirm_given_back(true)
             .with_close_gaps(true)
+            .with_junctions(true)
             .with_smooth(true)
     }
 }
@@ -168,6 +175,7 @@ impl Params {
             local_outliers: false,
             confirm_given_back: false,
             close_gaps: false,
+            junctions: false,
             smooth: false,
             parallel: cfg!(feature = "parallel"),
         }
@@ -235,6 +243,9 @@ impl Params {
         let confirm =
             (self.local_outliers && self.confirm_given_back).then_some(Step::ConfirmGivenBack);
         let gaps = self.close_gaps.then_some(Step::CloseGaps);
+        // Junctions come after the gaps: an end that a gap join or a crossing claims is not a
+        // junction's.
+        let junctions = self.junctions.then_some(Step::JoinJunctions);
         // A baseline is the whole method: no ConDT stage follows it.
         let condt = self.method == Method::ConDT;
         first
@@ -243,6 +254,7 @@ impl Params {
             .chain(local)
             .chain(confirm)
             .chain(gaps)
+            .chain(junctions)
             .filter(move |_| condt)
     }
 }
@@ -274,6 +286,7 @@ impl Params {
             Stage::LocalOutliers => &mut self.local_outliers,
             Stage::GivenBack => &mut self.confirm_given_back,
             Stage::Gaps => &mut self.close_gaps,
+            Stage::Junctions => &mut self.junctions,
             _ => return false,
         };
         *field = on;
@@ -336,6 +349,12 @@ impl Params {
     /// Sets [`Params::close_gaps`].
     pub fn with_close_gaps(mut self, close_gaps: bool) -> Params {
         self.close_gaps = close_gaps;
+        self
+    }
+
+    /// Sets [`Params::junctions`].
+    pub fn with_junctions(mut self, junctions: bool) -> Params {
+        self.junctions = junctions;
         self
     }
 

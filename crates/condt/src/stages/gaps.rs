@@ -71,11 +71,11 @@ const AHEAD: f64 = 0.0;
 /// straight passage: 150°, as [`Repair::CrossingAware`](crate::Repair::CrossingAware).
 const STRAIGHT: f64 = -0.866_025_403_784_438_6;
 /// Longest gap, as a multiple of the loose end's own edge: the paper's `u = 2.75`.
-const GAP_RATIO: f64 = 2.75;
+pub(super) const GAP_RATIO: f64 = 2.75;
 
 /// The cosine of the angle at `p` between the directions to `a` and to `b` (`1` when either is
 /// at `p`, so a degenerate angle never passes a test).
-fn cos_at(p: Point, a: Point, b: Point) -> f64 {
+pub(super) fn cos_at(p: Point, a: Point, b: Point) -> f64 {
     let (ux, uy, wx, wy) = (a.x - p.x, a.y - p.y, b.x - p.x, b.y - p.y);
     let norms = libm::sqrt((ux * ux + uy * uy) * (wx * wx + wy * wy));
     if norms > 0.0 {
@@ -104,28 +104,29 @@ enum Partner {
     End(VertexId),
 }
 
-struct Ends<'a> {
-    tri: &'a Triangulation,
-    graph: CurveGraph,
+/// The loose ends of a graph and the tests on them (shared with [`super::junctions`]).
+pub(super) struct Ends<'a> {
+    pub(super) tri: &'a Triangulation,
+    pub(super) graph: CurveGraph,
 }
 
 impl Ends<'_> {
-    fn point(&self, v: VertexId) -> Point {
+    pub(super) fn point(&self, v: VertexId) -> Point {
         self.tri.vertex_point(v)
     }
 
-    fn is_loose(&self, v: VertexId) -> bool {
+    pub(super) fn is_loose(&self, v: VertexId) -> bool {
         self.graph.degree(v) == 1
     }
 
     /// The one neighbour of the loose end `a`.
-    fn along(&self, a: VertexId) -> VertexId {
+    pub(super) fn along(&self, a: VertexId) -> VertexId {
         self.graph.first_two(a)[0]
     }
 
     /// Whether `w` is ahead of the loose end `a` and the gap is short (the two tests of the
     /// module comment).
-    fn faces(&self, a: VertexId, w: VertexId) -> bool {
+    pub(super) fn faces(&self, a: VertexId, w: VertexId) -> bool {
         let next = self.along(a);
         let (p, back, q) = (self.point(a), self.point(next), self.point(w));
         w != next

@@ -1,7 +1,8 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each:
 //! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3), and
 //! [`local_outliers`], [`given_back`] (confirming the components the local outlier removal
-//! rebuilt) and [`gaps`] (closing gaps at loose ends), the last three not in the paper.
+//! rebuilt), [`gaps`] (closing gaps at loose ends) and [`junctions`] (joining loose ends at
+//! junctions of three curves), the last four not in the paper.
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which
 //! both the pipeline ([`reconstruct`](crate::reconstruct)) and the public
@@ -16,6 +17,7 @@
 
 pub(crate) mod gaps;
 pub(crate) mod given_back;
+pub(crate) mod junctions;
 pub(crate) mod local_outliers;
 pub(crate) mod outliers;
 pub(crate) mod proximity;
@@ -58,6 +60,9 @@ pub enum Stage {
     GivenBack,
     /// Closing gaps at loose ends (not in the paper; see [`Params::close_gaps`](crate::Params::close_gaps)).
     Gaps,
+    /// Joining loose ends at junctions of three curves (not in the paper; see
+    /// [`Params::junctions`](crate::Params::junctions)).
+    Junctions,
     /// The NN-Crust baseline, the whole method when chosen (see
     /// [`Method::NnCrust`](crate::Method::NnCrust)).
     NnCrust,
@@ -88,7 +93,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 8] = [
+const ROWS: [Row; 9] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -153,6 +158,18 @@ crossing's dropped arms",
         }),
     },
     Row {
+        stage: Stage::Junctions,
+        name: "junctions",
+        title: "after joining junctions",
+        key: "junctions",
+        switch: Some(Switch {
+            flag: "junctions",
+            help: "(default on; off with --paper) last, join a loose end to the curve
+it meets where three curves meet (map borders, a T): three
+branches of at least 5 points each, evenly sampled",
+        }),
+    },
+    Row {
         stage: Stage::NnCrust,
         name: "NN-Crust",
         title: "NN-Crust (baseline)",
@@ -176,13 +193,14 @@ impl Stage {
     /// assert_eq!(Stage::ALL[0], Stage::Proximity);
     /// assert!(Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 8] = [
+    pub const ALL: [Stage; 9] = [
         Stage::Proximity,
         Stage::Repair,
         Stage::Outliers,
         Stage::LocalOutliers,
         Stage::GivenBack,
         Stage::Gaps,
+        Stage::Junctions,
         Stage::NnCrust,
         Stage::Crust,
     ];
@@ -249,6 +267,7 @@ pub(crate) enum Step {
     LocalOutliers,
     ConfirmGivenBack,
     CloseGaps,
+    JoinJunctions,
 }
 
 /// The graphs of earlier stages that a step may read besides its input (see [`Step::run`]),
@@ -272,6 +291,7 @@ impl Step {
             Step::LocalOutliers => Stage::LocalOutliers,
             Step::ConfirmGivenBack => Stage::GivenBack,
             Step::CloseGaps => Stage::Gaps,
+            Step::JoinJunctions => Stage::Junctions,
         }
     }
 
@@ -330,6 +350,7 @@ impl Step {
                 given_back::confirm_given_back(tri, edges, &earlier.before_local, graph)
             }
             Step::CloseGaps => gaps::close_gaps(tri, edges, graph),
+            Step::JoinJunctions => junctions::join_junctions(tri, edges, graph),
         }
     }
 }
