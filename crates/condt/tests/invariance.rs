@@ -97,7 +97,7 @@ fn categories() -> Vec<(&'static str, Vec<Point>)> {
             ),
         ),
         ("sharp", with(&[square], 0.3, 0.0, 0.0)),
-        ("selfint", with(&[eight.clone()], 0.3, 0.0, 0.0)),
+        ("selfint", with(std::slice::from_ref(&eight), 0.3, 0.0, 0.0)),
         (
             "outliers",
             with(&[ellipse(0.0, 0.0, 5.0, 2.0), eight], 0.3, 0.1, 0.0),
@@ -112,7 +112,8 @@ fn categories() -> Vec<(&'static str, Vec<Point>)> {
 
 #[test]
 fn permuting_scaling_turning_and_mirroring_keep_the_edges() {
-    let transforms: [(&str, fn(Point) -> Point); 5] = [
+    type Transform = (&'static str, fn(Point) -> Point);
+    let transforms: [Transform; 5] = [
         ("times 8", |p| Point::new(8.0 * p.x, 8.0 * p.y)),
         ("times 2^-5", |p| Point::new(p.x / 32.0, p.y / 32.0)),
         ("turned by 90 degrees", |p| Point::new(-p.y, p.x)),
