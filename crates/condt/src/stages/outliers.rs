@@ -79,7 +79,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
         edges
             .iter()
             .zip(&lengths)
-            .filter(|&(_, &length2)| length2 <= 4.0 * threshold)
+            .filter(|&(_, &length2)| length2 <= threshold)
             .map(|(&edge, _)| edge),
     )))
 }
