@@ -119,15 +119,26 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
 /// ([`crust_fits`] tells beforehand).
 pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
     // The second triangulation is built in the stages' frame, where every sample is exact
-    // and circumcentres of ordinary triangles cannot overflow.
+    // and circumcentres of ordinary triangles cannot overflow, and relative to the corner of
+    // the samples' box: every coordinate is a difference of two positions, which an exact
+    // translation of the input leaves as it was (rounded the same way), so the circumcentres,
+    // and with them the edges, do not depend on where the set lies (issue 29, defect 8).
     let samples: Vec<VertexId> = tri.vertices().collect();
-    let mut points: Vec<Point> = samples.iter().map(|&v| tri.vertex_point(v)).collect();
+    let corner = samples
+        .iter()
+        .map(|&v| tri.vertex_point(v))
+        .fold(None, |corner: Option<Point>, p| {
+            Some(corner.map_or(p, |c| Point::new(c.x.min(p.x), c.y.min(p.y))))
+        })
+        .unwrap_or_default();
+    let relative = |v: VertexId| difference(tri.vertex_point(v), corner);
+    let mut points: Vec<Point> = samples.iter().map(|&v| relative(v)).collect();
     let mesh = tri.mesh();
     points.extend(
         mesh.triangles()
             .filter(|&t| !mesh.is_ghost(t))
             .filter_map(|t| {
-                let [a, b, c] = mesh.triangle_vertices(t).map(|v| tri.vertex_point(v));
+                let [a, b, c] = mesh.triangle_vertices(t).map(relative);
                 circumcentre(a, b, c)
             }),
     );

@@ -291,7 +291,7 @@ fn cut_order(
         debug_assert_eq!(next, len);
         members.truncate(len);
         gathered.truncate(len);
-        let local = spatial_order(&gathered, frames);
+        let local = spatial_order(&gathered, frames, n);
         for (slot, &k) in order.iter_mut().zip(&local) {
             *slot = members[k as usize];
         }
@@ -328,7 +328,7 @@ fn construct_whole(
     frames: &scale::Frames,
     progress: Option<&AtomicUsize>,
 ) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
-    let order = spatial_order(points, frames);
+    let order = spatial_order(points, frames, points.len());
     let sorted: Vec<Point> = order
         .iter()
         .map(|&i| frames.predicates.apply(points[i as usize]))
@@ -354,12 +354,13 @@ fn insertion_order(
             cut_order(points, frames, &cut, parallel, false).0,
             Some(cut.left_len()),
         ),
-        None => (spatial_order(points, frames), None),
+        None => (spatial_order(points, frames, points.len()), None),
     }
 }
 
-/// The spatial insertion order of `points` in one piece.
-fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
+/// The spatial insertion order of `points` in one piece, a set of `whole` points or part of one.
+fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<u32> {
+    let reorder_crowded = whole >= order::REORDER_FROM;
     if frames.wide {
         // Sets spanning many orders of magnitude, ordered on a logarithmic grid: on a linear
         // one, all but the largest points share a cell and the walks grow long.
@@ -367,9 +368,9 @@ fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
             .iter()
             .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
             .collect();
-        order::insertion_order(&warped)
+        order::insertion_order(&warped, reorder_crowded)
     } else {
-        order::insertion_order(points)
+        order::insertion_order(points, reorder_crowded)
     }
 }
 

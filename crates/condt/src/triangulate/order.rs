@@ -100,8 +100,9 @@ fn mix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// The order in which to insert `points`, as indices into it.
-pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
+/// The order in which to insert `points`, as indices into it; with `reorder_crowded`, a grid
+/// cell of [`CROWDED_CELL`] points or more gets an order of its own (see there).
+pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u32> {
     let n = points.len();
     let (mut min_x, mut min_y) = (f64::INFINITY, f64::INFINITY);
     let (mut max_x, mut max_y) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
@@ -136,7 +137,6 @@ pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
     };
     let key_bits = 2 * levels + (u32::BITS - rounds.leading_zeros());
     let index_bits = usize::BITS - (n - 1).leading_zeros();
-    let by_position = |&i: &u32, &j: &u32| points[i as usize].lexicographic_cmp(points[j as usize]);
     if key_bits + index_bits <= u64::BITS {
         // Key and input position packed in one word, radix-sorted on the key bits only.
         let mut packed: Vec<u64> = points
@@ -150,7 +150,7 @@ pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
         for_each_run(
             &packed,
             |w| w >> index_bits,
-            |run| order[run].sort_unstable_by(by_position),
+            |run| order_cell(points, &mut order[run], reorder_crowded),
         );
         order
     } else {
@@ -164,10 +164,46 @@ pub(crate) fn insertion_order(points: &[Point]) -> Vec<u32> {
         for_each_run(
             &keyed,
             |&(key, _)| key,
-            |run| order[run].sort_unstable_by(by_position),
+            |run| order_cell(points, &mut order[run], reorder_crowded),
         );
         order
     }
+}
+
+/// The sets (whole, before a cut into halves) from which crowded grid cells are reordered
+/// ([`CROWDED_CELL`]). Reason: below it a crowded cell costs little in coordinate order, and the
+/// order, and with it the triangulation of cocircular points, stays exactly what it was before
+/// the rule (every shipped data set, and the Crust's second triangulation of each, is smaller).
+pub(crate) const REORDER_FROM: usize = 1 << 16;
+
+/// In a set of [`REORDER_FROM`] points or more, a grid cell holding this many points is ordered
+/// like a set of its own (BRIO + Hilbert over its own bounding box) instead of by coordinates.
+/// Reason: a few points far from the rest stretch the box until most points share a few cells,
+/// and a large cell inserted in coordinate order makes each walk cross a large part of it
+/// (1M uniform points and one point 10^7 away: 8.8 s instead of 0.64 s; the Crust's
+/// circumcentres of hull slivers do this to its second triangulation). A set has about 2^8
+/// cells per point on average, so a cell this full is a dense cluster far from the rest.
+const CROWDED_CELL: usize = 1 << 10;
+
+/// Orders the points `run` (indices into `points`) that share one grid cell: with
+/// `reorder_crowded`, a crowded cell ([`CROWDED_CELL`]) whose points are not all at one position
+/// by [`insertion_order`] on them alone, any other by the points' coordinates, never by their
+/// input position.
+fn order_cell(points: &[Point], run: &mut [u32], reorder_crowded: bool) {
+    let position = |i: &u32| points[*i as usize];
+    if reorder_crowded && run.len() >= CROWDED_CELL {
+        let cell: Vec<Point> = run.iter().map(position).collect();
+        // Each call's grid spans its own points, so the points with the smallest and the
+        // largest coordinate along the wider axis land in different cells: every level of
+        // this recursion splits its set, and a level only runs on a crowded cell.
+        if cell.iter().any(|p| p.lexicographic_cmp(cell[0]).is_ne()) {
+            let local = insertion_order(&cell, true);
+            let ordered: Vec<u32> = local.iter().map(|&k| run[k as usize]).collect();
+            run.copy_from_slice(&ordered);
+            return;
+        }
+    }
+    run.sort_unstable_by(|i, j| position(i).lexicographic_cmp(position(j)));
 }
 
 /// Calls `sort` on every range of two or more consecutive items with equal `key`: points sharing
@@ -314,13 +350,70 @@ mod tests {
         let pts: Vec<Point> = (0..200)
             .map(|i| Point::new((i * 37 % 101) as f64, (i * 53 % 97) as f64))
             .collect();
-        let order = insertion_order(&pts);
+        let order = insertion_order(&pts, false);
         let mut seen = order.clone();
         seen.sort_unstable();
         assert!(seen.iter().enumerate().all(|(i, &j)| i as u32 == j));
         let reversed: Vec<Point> = pts.iter().rev().copied().collect();
-        let order_rev = insertion_order(&reversed);
+        let order_rev = insertion_order(&reversed, false);
         let a: Vec<Point> = order.iter().map(|&i| pts[i as usize]).collect();
+        let b: Vec<Point> = order_rev.iter().map(|&i| reversed[i as usize]).collect();
+        assert_eq!(a, b);
+    }
+
+    /// Points `i` and `i + 1` of `order`, summed over the order: how far the walks of an
+    /// insertion in that order travel, roughly.
+    fn path_length(points: &[Point], order: &[u32]) -> f64 {
+        order
+            .windows(2)
+            .map(|w| libm::sqrt(points[w[0] as usize].dist2(points[w[1] as usize])))
+            .sum()
+    }
+
+    /// A large set whose box one far point stretches: its cluster shares one grid cell, and is
+    /// ordered as a set of its own (a short path through it), not by coordinates (where every
+    /// step jumps across the cluster in y). Below `REORDER_FROM` points the coordinate order
+    /// stays, so smaller sets keep the order they had.
+    #[test]
+    fn a_crowded_cell_of_a_large_set_gets_a_spatial_order() {
+        let n = REORDER_FROM + 1000;
+        let mut points: Vec<Point> = (0..n as u64)
+            .map(|k| {
+                let (a, b) = (mix(2 * k), mix(2 * k + 1));
+                Point::new(
+                    (a >> 11) as f64 / 2f64.powi(53),
+                    (b >> 11) as f64 / 2f64.powi(53),
+                )
+            })
+            .collect();
+        points.push(Point::new(1e7, 1e7));
+        let order = insertion_order(&points, true);
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert!(seen.iter().enumerate().all(|(i, &j)| i as u32 == j));
+        let cluster: Vec<u32> = order
+            .iter()
+            .copied()
+            .filter(|&i| (i as usize) < n)
+            .collect();
+        // A Hilbert order through n uniform points is about 0.7 sqrt(n) long (with the BRIO
+        // rounds a little more); the coordinate order about n / 3.
+        let length = path_length(&points, &cluster);
+        assert!(length < 4.0 * libm::sqrt(n as f64), "path {length}");
+        // The same set below the size keeps coordinate order in the crowded cell (split only
+        // between the BRIO rounds of the few finest cells it covers): a long path.
+        let unordered = insertion_order(&points, false);
+        let cluster: Vec<u32> = unordered
+            .iter()
+            .copied()
+            .filter(|&i| (i as usize) < n)
+            .collect();
+        let length = path_length(&points, &cluster);
+        assert!(length > n as f64 / 20.0, "path {length}");
+        // Input order does not matter.
+        let reversed: Vec<Point> = points.iter().rev().copied().collect();
+        let order_rev = insertion_order(&reversed, true);
+        let a: Vec<Point> = order.iter().map(|&i| points[i as usize]).collect();
         let b: Vec<Point> = order_rev.iter().map(|&i| reversed[i as usize]).collect();
         assert_eq!(a, b);
     }
