@@ -65,37 +65,61 @@ pub(crate) fn shows_noise(degrees: impl ExactSizeIterator<Item = usize>) -> bool
 /// curves and a large, mostly clean set does not; a cost policy, not a fit.
 pub(crate) const NOISE_SHARE: usize = 100;
 
+/// Where the points of a smoothing pass go: relative to a corner, so that the next
+/// triangulation does not depend on where the set lies.
+pub(crate) struct Smoothed {
+    /// The smoothed position of every input position, relative to `corner`.
+    pub(crate) positions: Vec<Point>,
+    /// The corner of the positions the pass started from, in the caller's coordinates (for
+    /// showing the moved points; no decision reads it).
+    pub(crate) corner: Point,
+    /// How many points moved.
+    pub(crate) moved: usize,
+}
+
 /// The smoothed position of every input position for a reconstruction on `tri` whose final
-/// graph is `edges` (see the module comment), and how many points moved.
+/// graph is `edges` (see the module comment), relative to the lower left corner of `tri`'s box.
+///
+/// Why relative: the sums below round by the magnitude of the coordinates, so absolute
+/// positions moved by an exact translation would round differently and the next triangulation
+/// could differ. Differences from the corner are the same numbers (the corner of a translated
+/// set is the translated corner, exactly, and `(q + t) - (c + t)` rounds as `q - c` does), so
+/// the positions, the next triangulation and its edges are the same for every exact translation.
 ///
 /// A point moves only when the angle between its two edges is wider than a right angle. Reason:
 /// the suite's and the paper's sharp corners are under 60° and noise of a few per cent of the
 /// spacing tilts each edge by a few degrees, so no corner sample reaches a right angle, while a
 /// curve sampled densely enough for the proximity graph (an ε-sample with ε < 1/2: about 30° of
 /// turn per sample at most) gives angles far above it along its smooth parts.
-pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> (Vec<Point>, usize) {
+pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothed {
     let n = tri.num_points();
     let graph = CurveGraph::new(n, edges);
+    let corner = tri
+        .vertex_points()
+        .iter()
+        .fold(Point::new(f64::INFINITY, f64::INFINITY), |c, p| {
+            Point::new(c.x.min(p.x), c.y.min(p.y))
+        });
+    let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
     let mut moved = 0;
     let positions = (0..n)
         .map(|i| {
-            let p = tri.point(i);
             let v = tri.vertex(i);
+            let q = relative(tri.vertex_point(v));
             if graph.degree(v) != 2 {
-                return p;
+                return tri.stage_to_input(q);
             }
             let [x, y] = graph.first_two(v);
             // In the stages' frame, where the sums and products below neither overflow nor
             // underflow at any input scale; a power of two from the input, so for every set in
             // the fast range the moved position is the one the input frame would give, bit for
-            // bit.
-            let q = tri.vertex_point(v);
-            let (a, b) = (tri.vertex_point(x), tri.vertex_point(y));
+            // bit (relative to the corner, which is scaled by the same power of two).
+            let (a, b) = (relative(tri.vertex_point(x)), relative(tri.vertex_point(y)));
             let (ux, uy) = (a.x - q.x, a.y - q.y);
             let (wx, wy) = (b.x - q.x, b.y - q.y);
             // The angle at the point is wider than a right angle exactly when u·w < 0.
             if ux * wx + uy * wy >= 0.0 {
-                return p;
+                return tri.stage_to_input(q);
             }
             moved += 1;
             let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
@@ -105,7 +129,13 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> (Vec<Po
             ))
         })
         .collect();
-    (positions, moved)
+    let offset = tri.offset();
+    let shift = tri.stage_to_input(corner);
+    Smoothed {
+        positions,
+        corner: Point::new(offset.x + shift.x, offset.y + shift.y),
+        moved,
+    }
 }
 
 #[cfg(test)]

@@ -422,13 +422,15 @@ impl Pipeline {
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
         let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
-        let (positions, moved) = smoothed_positions(&triangulation, &final_edges);
+        let smoothed = smoothed_positions(&triangulation, &final_edges);
         drop((triangulation, final_edges));
+        let moved = smoothed.moved;
         // The replaced run's triangulation is an earlier pass's cost too.
         self.earlier_passes += triangulation_time;
         self.earlier_passes += self.pass_clock.lap();
-        let tri = triangulate_with(&positions, self.params.parallel)?;
-        drop(positions);
+        let tri = triangulate_with(&smoothed.positions, self.params.parallel)?
+            .with_offset(smoothed.corner);
+        drop(smoothed);
         let triangulation_time = self.pass_clock.lap();
         smoothing.passes += 1;
         smoothing.moved = moved;

@@ -92,6 +92,11 @@ pub struct Triangulation {
     stage_to_predicates: Scale,
     /// `points` to the input coordinates (exact when `inputs` is `None`).
     stage_to_input: Scale,
+    /// Where the input frame's zero lies in the caller's coordinates, when it is not at zero:
+    /// a smoothing pass triangulates positions relative to the corner of the set, so that an
+    /// exact translation of the input gives the same positions and the same edges, and adds
+    /// the corner back only where coordinates are shown ([`Triangulation::point`]).
+    offset: Option<Point>,
     mesh: Mesh,
     /// Vertex id -> input position; for a kept vertex, the smallest position of its duplicates.
     input_of_vertex: Vec<u32>,
@@ -219,6 +224,7 @@ fn triangulate_split(
         scale,
         stage_to_predicates: Scale::power_of_two(predicates_exponent - stages_exponent),
         stage_to_input,
+        offset: None,
         mesh,
         input_of_vertex,
         vertex_of_input,
@@ -538,10 +544,27 @@ impl Triangulation {
     /// The input coordinates of vertex `v`.
     #[inline]
     pub(crate) fn input_point(&self, v: VertexId) -> Point {
-        match &self.inputs {
+        let p = match &self.inputs {
             Some(inputs) => inputs[v.index()],
             None => self.stage_to_input.apply(self.points[v.index()]),
+        };
+        match self.offset {
+            Some(offset) => Point::new(p.x + offset.x, p.y + offset.y),
+            None => p,
         }
+    }
+
+    /// This triangulation with its input frame's zero at `offset` in the caller's coordinates
+    /// (see the `offset` field): its points were given relative to `offset`.
+    pub(crate) fn with_offset(mut self, offset: Point) -> Triangulation {
+        self.offset = Some(offset);
+        self
+    }
+
+    /// Where the input frame's zero lies in the caller's coordinates (the origin unless a
+    /// smoothing pass moved it).
+    pub(crate) fn offset(&self) -> Point {
+        self.offset.unwrap_or(Point::new(0.0, 0.0))
     }
 
     /// A position in the stages' frame ([`Triangulation::vertex_point`]) in input coordinates.
