@@ -309,8 +309,8 @@ Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive]
                     [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
                     [--outliers-first] [--[no-]local-outliers] [--[no-]confirm-given-back]
-                    [--[no-]close-gaps] [--[no-]junctions] [--[no-]smooth] [--format F]
-                    [--stages] [--sequential] [--timings] [--quiet]
+                    [--[no-]clumps] [--[no-]close-gaps] [--[no-]junctions] [--[no-]smooth]
+                    [--format F] [--stages] [--sequential] [--timings] [--quiet]
 
 Example:
   condt reconstruct data/shapes.txt -o shapes.svg --stages
@@ -325,7 +325,7 @@ and zoom, and a click on a point or an edge tells why it was kept or dropped). A
 (those with no edge in the result: outliers).
 
 The default pipeline is the paper's (Algorithms 1-3) with the repair `needs`, local outlier
-removal, gap closing, junctions and smoothing passes; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points,
+removal, clumps, gap closing, junctions and smoothing passes; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points,
 which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error.
 ";
 

@@ -589,6 +589,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "repair",
                 "iqr-outliers",
                 "local-outliers",
+                "clumps",
                 "given-back",
                 "gaps",
                 "junctions",

@@ -194,6 +194,11 @@ fn main() {
             params.close_gaps = on;
         }
     }
+    for (flag, on) in [("--clumps", true), ("--no-clumps", false)] {
+        if args.iter().any(|a| a == flag) {
+            params.clumps = on;
+        }
+    }
     for (flag, on) in [("--junctions", true), ("--no-junctions", false)] {
         if args.iter().any(|a| a == flag) {
             params.junctions = on;

@@ -162,6 +162,7 @@ fn write_data(
                 Reason::NotConfirmed => (7, 0.0, 0.0),
                 Reason::Baseline => (8, 0.0, 0.0),
                 Reason::Junction => (9, 0.0, 0.0),
+                Reason::Clump => (10, 0.0, 0.0),
             };
             let sep = if first { "" } else { "," };
             first = false;

@@ -92,6 +92,7 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::Outliers => "outliers",
         Stage::LocalOutliers => "local outliers",
         Stage::GivenBack => "given back",
+        Stage::Clumps => "clumps",
         Stage::Gaps => "gaps",
         Stage::Junctions => "junctions",
         _ => "other stage",

@@ -3,7 +3,7 @@
 //!
 //! Owns: the public view of a stage's edges in input positions and the step methods
 //! ([`Triangulation::proximity_graph`], [`Graph::repair`], [`Graph::remove_outliers`],
-//! [`Graph::remove_local_outliers`], [`Graph::confirm_given_back`], [`Graph::close_gaps`], [`Graph::join_junctions`],
+//! [`Graph::remove_local_outliers`], [`Graph::confirm_given_back`], [`Graph::remove_clumps`], [`Graph::close_gaps`], [`Graph::join_junctions`],
 //! [`Graph::curves`]). It may not
 //! implement a stage's rule (that is [`crate::stages`], reached
 //! through `Step::run`) nor decide the order of the stages (that is
@@ -200,6 +200,29 @@ impl<'t> Graph<'t> {
             before_local: Cow::Borrowed(&before_local.edges),
         };
         self.step_with(Step::ConfirmGivenBack, earlier).0
+    }
+
+    /// Removes the components that are clumps, not curves (not in the paper; the rule is that of
+    /// [`Params::clumps`](crate::Params::clumps)). Never adds an edge.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // A smooth arc of 30 samples, and far from it a zig-zag through 6 points (a fifth of
+    /// // the points: clumps are removed while they hold less than a quarter).
+    /// let mut pts: Vec<Point> = (0..30)
+    ///     .map(|k| Point::new(10.0 * (0.1 * k as f64).cos(), 10.0 * (0.1 * k as f64).sin()))
+    ///     .collect();
+    /// pts.extend([(40.0, 0.0), (41.0, 1.0), (40.2, 1.1), (41.3, 2.0), (40.1, 2.2), (41.0, 3.1)]
+    ///     .map(Point::from));
+    /// let tri = triangulate(&pts)?;
+    /// let arc: Vec<[usize; 2]> = (0..29).map(|i| [i, i + 1]).collect();
+    /// let mut edges = arc.clone();
+    /// edges.extend((30..35).map(|i| [i, i + 1]));
+    /// assert_eq!(tri.graph_from_edges(edges).remove_clumps().edges(), arc);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn remove_clumps(&self) -> Graph<'t> {
+        self.step(Step::RemoveClumps).0
     }
 
     /// Closes gaps at loose ends (not in the paper; the rules are those of

@@ -19,6 +19,7 @@
 //! - **local outliers**: given back (rule 1), long at an end (rule 2, with the ratio), a whole
 //!   component removed (rule 4), or a short spur (rule 3), as the stage's rules applied them;
 //! - **given-back check**: a component of given-back edges not clearly apart from the rest;
+//! - **clumps**: a component that is not a curve;
 //! - **gaps**: closed;
 //! - **junctions**: joined at a junction.
 
@@ -68,6 +69,8 @@ pub enum Reason {
     Component,
     /// Local outlier rule 3: part of a short chain hanging off a junction.
     Spur,
+    /// Its component is a clump: fewer than half of its points pass smoothly and evenly.
+    Clump,
     /// Gap closing joined two loose ends.
     GapClosed,
     /// A loose end joined to the curve it meets at a junction of three curves.
@@ -293,6 +296,7 @@ impl<'a> Explainer<'a> {
 
     fn reason(&self, [a, b]: [usize; 2], added: bool) -> Reason {
         match (self.stage, added) {
+            (Stage::Clumps, _) => Reason::Clump,
             (Stage::Gaps, _) => Reason::GapClosed,
             (Stage::Junctions, _) => Reason::Junction,
             (Stage::GivenBack, _) => Reason::NotConfirmed,
@@ -439,6 +443,7 @@ impl fmt::Display for EdgeStory {
                 )?,
                 Reason::Component => write!(f, "isolated component")?,
                 Reason::Spur => write!(f, "short spur")?,
+                Reason::Clump => write!(f, "a clump: fewer than half its points pass smoothly")?,
                 Reason::GapClosed => write!(f, "gap closed")?,
                 Reason::Junction => write!(f, "joined at a junction of three curves")?,
                 Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,

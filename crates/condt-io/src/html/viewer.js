@@ -226,6 +226,7 @@
       () => "a given-back component not clearly apart",
       () => "chosen by the baseline",
       () => "joined at a junction of three curves",
+      () => "a clump: fewer than half its points pass smoothly",
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

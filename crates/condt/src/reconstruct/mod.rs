@@ -201,12 +201,14 @@ mod tests {
         assert_eq!(reports[2].applied, filtered.fired);
         let local = filtered.graph.remove_local_outliers(&repaired);
         assert_eq!(reports[3].graph.listed(), local.listed());
-        let confirmed = local.confirm_given_back(&filtered.graph);
-        assert_eq!(reports[4].graph.listed(), confirmed.listed());
+        let unclumped = local.remove_clumps();
+        assert_eq!(reports[4].graph.listed(), unclumped.listed());
+        let confirmed = unclumped.confirm_given_back(&filtered.graph);
+        assert_eq!(reports[5].graph.listed(), confirmed.listed());
         let closed = confirmed.close_gaps();
-        assert_eq!(reports[5].graph.listed(), closed.listed());
+        assert_eq!(reports[6].graph.listed(), closed.listed());
         let joined = closed.join_junctions();
-        assert_eq!(reports[6].graph.listed(), joined.listed());
+        assert_eq!(reports[7].graph.listed(), joined.listed());
         assert_eq!(result.graph().listed(), joined.listed());
         assert!(
             reports.iter().skip(1).any(|r| r.applied),

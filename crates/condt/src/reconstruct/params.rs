@@ -91,6 +91,13 @@ pub struct Params {
     /// in [`Params::paper`]; the rules and the reason for each constant are in
     /// `src/stages/gaps.rs`.
     pub close_gaps: bool,
+    /// Remove components fewer than half of whose points a curve passes smoothly and evenly
+    /// (not in the paper): clumps of outliers, which the local outlier removal keeps because
+    /// they lie apart from everything else. Runs after the local outlier removal and its
+    /// given-back check; removes nothing when that would remove a quarter of the points with
+    /// edges. On by default, off in [`Params::paper`]; the rule and its reasons are in
+    /// `src/stages/clumps.rs`.
+    pub clumps: bool,
     /// Join a loose end to the curve it meets where three curves meet (not in the paper): map
     /// borders, a T in a drawing. Runs last, after closing gaps; the junction needs three
     /// branches of at least five points each, sampled alike. On by default, off in
@@ -136,6 +143,7 @@ impl Default for Params {
     ///         Stage::Repair,
     ///         Stage::Outliers,
     ///         Stage::LocalOutliers,
+    ///         Stage::Clumps,
     ///         Stage::GivenBack,
     ///         Stage::Gaps,
     ///         Stage::Junctions
@@ -147,6 +155,7 @@ impl Default for Params {
             .with_repair(Repair::Needs)
             .with_local_outliers(true)
             .with_confirm_given_back(true)
+            .with_clumps(true)
             .with_close_gaps(true)
             .with_junctions(true)
             .with_smooth(true)
@@ -175,6 +184,7 @@ impl Params {
             local_outliers: false,
             confirm_given_back: false,
             close_gaps: false,
+            clumps: false,
             junctions: false,
             smooth: false,
             parallel: cfg!(feature = "parallel"),
@@ -242,6 +252,8 @@ impl Params {
         let local = self.local_outliers.then_some(Step::LocalOutliers);
         let confirm =
             (self.local_outliers && self.confirm_given_back).then_some(Step::ConfirmGivenBack);
+        // Clumps are whole components; they go before the joins so that no join reaches one.
+        let clumps = self.clumps.then_some(Step::RemoveClumps);
         let gaps = self.close_gaps.then_some(Step::CloseGaps);
         // Junctions come after the gaps: an end that a gap join or a crossing claims is not a
         // junction's.
@@ -252,6 +264,7 @@ impl Params {
             .into_iter()
             .chain(second)
             .chain(local)
+            .chain(clumps)
             .chain(confirm)
             .chain(gaps)
             .chain(junctions)
@@ -285,6 +298,7 @@ impl Params {
         let field = match stage {
             Stage::LocalOutliers => &mut self.local_outliers,
             Stage::GivenBack => &mut self.confirm_given_back,
+            Stage::Clumps => &mut self.clumps,
             Stage::Gaps => &mut self.close_gaps,
             Stage::Junctions => &mut self.junctions,
             _ => return false,
@@ -349,6 +363,12 @@ impl Params {
     /// Sets [`Params::close_gaps`].
     pub fn with_close_gaps(mut self, close_gaps: bool) -> Params {
         self.close_gaps = close_gaps;
+        self
+    }
+
+    /// Sets [`Params::clumps`].
+    pub fn with_clumps(mut self, clumps: bool) -> Params {
+        self.clumps = clumps;
         self
     }
 

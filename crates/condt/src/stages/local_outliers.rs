@@ -336,7 +336,12 @@ fn passage(
 /// Whether the edges from `x` to `y` and to `z` continue each other (an angle above `2π/3`,
 /// [`SMOOTH_COS`]) and are regularly spaced (the longer under [`LONG`] times the shorter): how a
 /// curve passes through one of its samples.
-fn smooth_and_regular(tri: &Triangulation, x: VertexId, y: VertexId, z: VertexId) -> bool {
+pub(super) fn smooth_and_regular(
+    tri: &Triangulation,
+    x: VertexId,
+    y: VertexId,
+    z: VertexId,
+) -> bool {
     let (p, q, r) = (
         tri.vertex_point(x),
         tri.vertex_point(y),
@@ -380,11 +385,6 @@ impl Profile {
             self.graph = CurveGraph::new(0, &[]);
             *self = Profile::of(tri, edges);
         }
-    }
-
-    /// The squared length of the longest edge at `v` (`NONE` when it has none).
-    fn longest(&self, tri: &Triangulation, v: VertexId) -> f64 {
-        tops(tri, &self.graph, v)[0]
     }
 
     /// The squared length of the longest edge at `v` other than one of squared length `l` held
@@ -627,23 +627,7 @@ fn separated_components(
 ) -> Option<(Vec<u32>, Vec<bool>)> {
     let n = tri.num_points();
     let root = components(n, edges);
-    // Separated vertices per component, counted up to the bound only (it fits a byte).
-    let mut separated = vec![0u8; n];
-    for (i, &r) in root.iter().enumerate() {
-        let v = VertexId::new(i as u32);
-        if profile.graph.degree(v) == 0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
-            // No edge, or the component is kept already: only whether the count reaches the
-            // bound matters, so a long curve stops measuring its samples after its first few.
-            continue;
-        }
-        let longest = profile.longest(tri, v);
-        let p = tri.vertex_point(v);
-        // An unused point is its own root, so it counts as outside every component.
-        let apart = tri.mesh().neighbors(v).all(|w| {
-            root[w.index()] == r || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
-        });
-        separated[r as usize] += u8::from(apart);
-    }
+    let separated = separated_counts(tri, &profile.graph, &root);
     let mut kept: Vec<bool> = separated
         .iter()
         .map(|&c| usize::from(c) >= MIN_SAMPLES)
@@ -656,6 +640,29 @@ fn separated_components(
         return None;
     }
     Some((root, kept))
+}
+
+/// Per component root, how many of its vertices are separated (rule 4), counted up to
+/// [`MIN_SAMPLES`] only (it fits a byte): the one implementation of the test, which the clump
+/// stage reads too.
+pub(super) fn separated_counts(tri: &Triangulation, graph: &CurveGraph, root: &[u32]) -> Vec<u8> {
+    let mut separated = vec![0u8; root.len()];
+    for (i, &r) in root.iter().enumerate() {
+        let v = VertexId::new(i as u32);
+        if graph.degree(v) == 0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
+            // No edge, or the component is kept already: only whether the count reaches the
+            // bound matters, so a long curve stops measuring its samples after its first few.
+            continue;
+        }
+        let longest = tops(tri, graph, v)[0];
+        let p = tri.vertex_point(v);
+        // An unused point is its own root, so it counts as outside every component.
+        let apart = tri.mesh().neighbors(v).all(|w| {
+            root[w.index()] == r || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
+        });
+        separated[r as usize] += u8::from(apart);
+    }
+    separated
 }
 
 /// Marks as kept every component not kept yet that is a closed curve sampled as a curve: at

@@ -1,8 +1,9 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each:
 //! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3), and
 //! [`local_outliers`], [`given_back`] (confirming the components the local outlier removal
-//! rebuilt), [`gaps`] (closing gaps at loose ends) and [`junctions`] (joining loose ends at
-//! junctions of three curves), the last four not in the paper.
+//! rebuilt), [`clumps`] (removing components that are not curves), [`gaps`] (closing gaps at
+//! loose ends) and [`junctions`] (joining loose ends at junctions of three curves), the last
+//! five not in the paper.
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which
 //! both the pipeline ([`reconstruct`](crate::reconstruct)) and the public
@@ -15,6 +16,7 @@
 //! `Params::steps` (and in `Params::set_stage` when it has a switch); the other stages, the
 //! command line and the drawings do not change (`docs/architecture.md`, "Adding a stage").
 
+pub(crate) mod clumps;
 pub(crate) mod gaps;
 pub(crate) mod given_back;
 pub(crate) mod junctions;
@@ -58,6 +60,9 @@ pub enum Stage {
     /// Confirming the components the local outlier removal rebuilt from edges the IQR stage cut
     /// (not in the paper; see [`Params::confirm_given_back`](crate::Params::confirm_given_back)).
     GivenBack,
+    /// Removing components that are not curves (not in the paper; see
+    /// [`Params::clumps`](crate::Params::clumps)).
+    Clumps,
     /// Closing gaps at loose ends (not in the paper; see [`Params::close_gaps`](crate::Params::close_gaps)).
     Gaps,
     /// Joining loose ends at junctions of three curves (not in the paper; see
@@ -93,7 +98,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 9] = [
+const ROWS: [Row; 10] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -146,6 +151,19 @@ another point stays cut)",
         }),
     },
     Row {
+        stage: Stage::Clumps,
+        name: "clumps",
+        title: "after removing clumps",
+        key: "clumps",
+        switch: Some(Switch {
+            flag: "clumps",
+            help: "(default on; off with --paper) after the local outlier removal,
+remove components fewer than half of whose points a curve passes
+smoothly and evenly (clumps of outliers), unless that would
+remove a quarter of the points with edges",
+        }),
+    },
+    Row {
         stage: Stage::Gaps,
         name: "gaps",
         title: "after closing gaps",
@@ -193,12 +211,13 @@ impl Stage {
     /// assert_eq!(Stage::ALL[0], Stage::Proximity);
     /// assert!(Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 9] = [
+    pub const ALL: [Stage; 10] = [
         Stage::Proximity,
         Stage::Repair,
         Stage::Outliers,
         Stage::LocalOutliers,
         Stage::GivenBack,
+        Stage::Clumps,
         Stage::Gaps,
         Stage::Junctions,
         Stage::NnCrust,
@@ -266,6 +285,7 @@ pub(crate) enum Step {
     Outliers { factor: f64 },
     LocalOutliers,
     ConfirmGivenBack,
+    RemoveClumps,
     CloseGaps,
     JoinJunctions,
 }
@@ -290,6 +310,7 @@ impl Step {
             Step::Outliers { .. } => Stage::Outliers,
             Step::LocalOutliers => Stage::LocalOutliers,
             Step::ConfirmGivenBack => Stage::GivenBack,
+            Step::RemoveClumps => Stage::Clumps,
             Step::CloseGaps => Stage::Gaps,
             Step::JoinJunctions => Stage::Junctions,
         }
@@ -349,6 +370,7 @@ impl Step {
             Step::ConfirmGivenBack => {
                 given_back::confirm_given_back(tri, edges, &earlier.before_local, graph)
             }
+            Step::RemoveClumps => clumps::remove_clumps(tri, edges, graph),
             Step::CloseGaps => gaps::close_gaps(tri, edges, graph),
             Step::JoinJunctions => junctions::join_junctions(tri, edges, graph),
         }

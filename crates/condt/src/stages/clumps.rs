@@ -1,0 +1,167 @@
+//! Clumps: components that are not curves (not in the paper; on by default, off in
+//! `Params::paper`).
+//!
+//! Owns: removing whole components whose points mostly are not where a curve passes. It reads
+//! point positions and the graph; it may not touch the triangulation, it adds no edge, and it
+//! does not decide when it runs (that is [`Params::stages`](crate::Params::stages): right
+//! after the local outlier removal, before its given-back check).
+//!
+//! Why: a clump of outliers (dust on a scan, a burst of bad fixes) is a few points close to
+//! each other and far from everything else. The proximity graph strings them into a small
+//! component, and the local outlier removal keeps it: its points are separated from the rest,
+//! as a curve's are. What tells it from a curve is its shape: a curve passes through most of
+//! its samples smoothly and evenly, a clump zig-zags through its points at random angles with
+//! uneven steps.
+//!
+//! Rule. A point *passes smoothly* when it has exactly two edges that continue each other (an
+//! angle above `2π/3`) and are regularly spaced (the longer under 2.75 times the shorter): the
+//! test the local outlier removal uses for its passages and its regular cycles. A component
+//! fewer than half of whose points pass smoothly is removed. Reason for the half: a curve's
+//! points that do not pass smoothly are its ends, corners and junctions, a minority of any
+//! curve sampled densely enough for the proximity graph; the points of a random zig-zag pass
+//! smoothly at most one time in three (a third of random angles are that wide, and not all of
+//! those steps are even). Only components that stand apart are judged: at least five of their
+//! points separated from everything else, the local outlier removal's rule 4 test (a component
+//! that is not apart is a piece of a noisy band, which that rule judges). And as that rule does,
+//! nothing is removed when the clumps and the components not apart would together hold a
+//! quarter or more of the points with edges: outliers are a minority, and a graph that would
+//! lose that much is a noisy band or a fragmented scan.
+//!
+//! What a user loses: a genuine small curve drawn with sharp corners at most of its samples (a
+//! triangle or a square sampled at its corners only) and pieces of very noisy curves whose
+//! samples zig-zag; `--no-clumps` keeps them.
+//!
+//! The stage is sequential and deterministic (loops go by vertex id), O(n) beyond the
+//! union-find over the edges.
+
+use super::local_outliers::{
+    components, separated_counts, smooth_and_regular, MIN_SAMPLES, OUTLIER_SHARE,
+};
+use super::Outcome;
+use crate::adjacency::{collect_exact, CurveGraph, Edge};
+use crate::mesh::VertexId;
+use crate::triangulate::Triangulation;
+use alloc::vec;
+
+/// Removes from `edges` (each edge once, any order) the components that are clumps (see the
+/// module comment). The outcome is unchanged when there is none, or when they would hold a
+/// quarter or more of the points with edges; otherwise the kept edges in their order.
+pub(crate) fn remove_clumps(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+) -> Outcome {
+    let n = tri.num_points();
+    let graph = graph.unwrap_or_else(|| CurveGraph::new(n, edges));
+    let root = components(n, edges);
+    // Per component: points with edges, and of those the ones passing smoothly.
+    let (mut size, mut smooth) = (vec![0u32; n], vec![0u32; n]);
+    for (i, &r) in root.iter().enumerate() {
+        let v = VertexId::new(i as u32);
+        let degree = graph.degree(v);
+        if degree == 0 {
+            continue;
+        }
+        size[r as usize] += 1;
+        if degree == 2 {
+            let [y, z] = graph.first_two(v);
+            smooth[r as usize] += u32::from(smooth_and_regular(tri, v, y, z));
+        }
+    }
+    // Only components that stand apart as curves do: a piece of a noisy band or a fragmented
+    // scan that is not apart is the local outlier removal's to judge, not this stage's.
+    let separated = separated_counts(tri, &graph, &root);
+    let is_clump = |r: usize| {
+        size[r] > 0 && 2 * smooth[r] < size[r] && usize::from(separated[r]) >= MIN_SAMPLES
+    };
+    let with_edges: u64 = size.iter().map(|&s| u64::from(s)).sum();
+    let points_in = |keep: &dyn Fn(usize) -> bool| -> u64 {
+        (0..n)
+            .filter(|&r| keep(r))
+            .map(|r| u64::from(size[r]))
+            .sum()
+    };
+    let in_clumps = points_in(&is_clump);
+    // The quarter guard counts what the local outlier removal's rule 4 left only because of
+    // its own guard (components not apart) with the clumps: the two rules judge one graph.
+    let not_apart = points_in(&|r| usize::from(separated[r]) < MIN_SAMPLES);
+    if in_clumps == 0 || (in_clumps + not_apart) as f64 >= OUTLIER_SHARE * with_edges as f64 {
+        return Outcome::unchanged_with(Some(graph));
+    }
+    drop(graph);
+    Outcome::from(Some(collect_exact(
+        edges.len(),
+        edges
+            .iter()
+            .filter(|&&[a, _]| !is_clump(root[a.index()] as usize))
+            .copied(),
+    )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::adjacency::ordered;
+    use crate::{triangulate, Point};
+
+    /// A smooth circle of 40 samples and, far from it, `extra` joined as one path; returns the
+    /// input positions of the edges the stage keeps.
+    fn kept(extra: &[(f64, f64)]) -> Vec<[usize; 2]> {
+        let mut pts: Vec<Point> = (0..40)
+            .map(|k| {
+                let t = core::f64::consts::TAU * k as f64 / 40.0;
+                Point::new(10.0 * libm::cos(t), 10.0 * libm::sin(t))
+            })
+            .collect();
+        let mut pairs: Vec<[usize; 2]> = (0..40).map(|k| [k, (k + 1) % 40]).collect();
+        let first = pts.len();
+        pts.extend(extra.iter().map(|&p| Point::from(p)));
+        pairs.extend((first..pts.len() - 1).map(|i| [i, i + 1]));
+        let tri = triangulate(&pts).unwrap();
+        let edges: Vec<Edge> = pairs
+            .iter()
+            .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
+            .collect();
+        let out = remove_clumps(&tri, &edges, None)
+            .edges
+            .unwrap_or_else(|| edges.clone());
+        crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&out[..])).edges()
+    }
+
+    #[test]
+    fn a_zig_zag_clump_apart_from_the_curve_goes() {
+        let clump = [
+            (40.0, 0.0),
+            (41.0, 1.0),
+            (40.2, 1.1),
+            (41.3, 2.0),
+            (40.1, 2.2),
+            (41.0, 3.1),
+        ];
+        let out = kept(&clump);
+        assert_eq!(out.len(), 40, "the circle stays, the clump goes: {out:?}");
+        assert!(out.iter().all(|&[a, b]| a < 40 && b < 40));
+    }
+
+    #[test]
+    fn a_small_smooth_arc_apart_from_the_curve_stays() {
+        let arc: Vec<(f64, f64)> = (0..7)
+            .map(|k| {
+                (
+                    40.0 + 3.0 * libm::cos(0.3 * k as f64),
+                    3.0 * libm::sin(0.3 * k as f64),
+                )
+            })
+            .collect();
+        assert_eq!(kept(&arc).len(), 46);
+    }
+
+    #[test]
+    fn nothing_goes_when_clumps_are_a_quarter_of_the_points() {
+        // Fourteen zig-zag points beside the 40 of the circle: more than a quarter of 54.
+        let clump: Vec<(f64, f64)> = (0..14)
+            .map(|k| (40.0 + (k % 2) as f64, 0.7 * k as f64))
+            .collect();
+        assert_eq!(kept(&clump).len(), 53);
+    }
+}
