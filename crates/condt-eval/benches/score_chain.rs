@@ -41,7 +41,11 @@ fn main() {
         .filter(|a| !a.starts_with('-'))
         .filter_map(|a| a.parse().ok())
         .collect();
-    let sizes = if sizes.is_empty() { vec![100_000] } else { sizes };
+    let sizes = if sizes.is_empty() {
+        vec![100_000]
+    } else {
+        sizes
+    };
     for edges in sizes {
         let mut rng = Xorshift(0x9e37_79b9_7f4a_7c15);
         let n = edges + 1;
@@ -56,12 +60,19 @@ fn main() {
         let mut by_strip: Vec<usize> = (0..n).collect();
         let key = |i: usize| {
             let s = ((points[i].y * strips as f64) as usize).min(strips - 1);
-            let x = if s % 2 == 0 { points[i].x } else { -points[i].x };
+            let x = if s % 2 == 0 {
+                points[i].x
+            } else {
+                -points[i].x
+            };
             (s, x)
         };
         by_strip.sort_by(|&a, &b| key(a).partial_cmp(&key(b)).unwrap());
         let short_output = chain(&by_strip);
-        for (name, output) in [("random chain", &random_output), ("short path", &short_output)] {
+        for (name, output) in [
+            ("random chain", &random_output),
+            ("short path", &short_output),
+        ] {
             let start = Instant::now();
             let s = score(&points, output, &truth).expect("a valid truth");
             let seconds = start.elapsed().as_secs_f64();
