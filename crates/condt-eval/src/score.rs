@@ -197,6 +197,32 @@ pub fn score(
     output: &[[usize; 2]],
     truth: &[[usize; 2]],
 ) -> Result<Score, ScoreError> {
+    score_with::<Index>(points, output, truth)
+}
+
+/// A nearest-segment search over the truth, on the scaled points.
+trait Nearest {
+    /// The search over `segments` of `points`, whose coordinates lie in `[0, size]`.
+    fn build(points: &[Point], segments: &[[usize; 2]], size: f64) -> Self;
+    /// Squared distance from `p` to the nearest segment; infinite without segments.
+    fn nearest_squared(&self, p: Point) -> f64;
+}
+
+impl Nearest for Index {
+    fn build(points: &[Point], segments: &[[usize; 2]], size: f64) -> Self {
+        Index::new(points, segments, size)
+    }
+    fn nearest_squared(&self, p: Point) -> f64 {
+        Index::nearest_squared(self, p)
+    }
+}
+
+/// [`score`] with the nearest-segment search `N`.
+fn score_with<N: Nearest>(
+    points: &[Point],
+    output: &[[usize; 2]],
+    truth: &[[usize; 2]],
+) -> Result<Score, ScoreError> {
     if let Some(index) = points
         .iter()
         .position(|p| !(p.x.is_finite() && p.y.is_finite()))
@@ -237,7 +263,7 @@ pub fn score(
         .iter()
         .filter(|&&[a, b]| !has_truth_edge[a] || !has_truth_edge[b])
         .count();
-    let (max_distance, rms_distance) = distances(points, &output, &truth, &has_truth_edge);
+    let (max_distance, rms_distance) = distances::<N>(points, &output, &truth, &has_truth_edge);
 
     let (precision, recall, f1) = if malformed.is_some() {
         (0.0, 0.0, 0.0)
@@ -309,7 +335,7 @@ fn count_common(a: &[[usize; 2]], b: &[[usize; 2]]) -> usize {
 
 /// Maximum and RMS sample distance of `output` to `truth` (both sorted edge sets), over the
 /// bounding-box diagonal of `points`.
-fn distances(
+fn distances<N: Nearest>(
     points: &[Point],
     output: &[[usize; 2]],
     truth: &[[usize; 2]],
@@ -351,7 +377,7 @@ fn distances(
         d if d > 0.0 => d,
         _ => 1.0,
     };
-    let segments = SegmentTree::new(&local, truth);
+    let segments = N::build(&local, truth, max.x.max(max.y));
     let (mut largest, mut sum_of_squares) = (0.0f64, 0.0f64);
     for &[a, b] in output {
         if truth.binary_search(&[a, b]).is_ok() {
@@ -386,6 +412,197 @@ fn segment_distance_squared(p: Point, a: Point, b: Point) -> f64 {
     };
     let (ex, ey) = (wx - t * dx, wy - t * dy);
     ex * ex + ey * ey
+}
+
+/// Relative slack of every pruning test, far above the rounding of the distances (a few units
+/// in the last place of coordinates below 4).
+const RELATIVE_SLACK: f64 = 1e-9;
+
+/// The squared distance beyond which a lower bound computed in floating point proves that a
+/// segment's rounded [`segment_distance_squared`] is not below `best`: `best`'s root widened by
+/// [`RELATIVE_SLACK`] and by `margin`, an absolute slack of `RELATIVE_SLACK` times the size of the
+/// box the coordinates lie in (plus 1e-150, which covers the underflow of squares), squared.
+///
+/// The rounded distance of a segment whose exact distance is `D` is at least `(D - e)^2` up to a
+/// relative `2^-51`, where `e`, a few units in the last place of the box's size, is much less
+/// than `margin`; so a segment whose exact distance exceeds `widened`'s root has a rounded
+/// distance above `best`, and skipping it cannot change the minimum.
+fn widened(best: f64, margin: f64) -> f64 {
+    let reach = libm::sqrt(best) * (1.0 + RELATIVE_SLACK) + margin;
+    reach * reach * (1.0 + RELATIVE_SLACK)
+}
+
+/// The nearest-segment search of the distances: short segments in a [`SegmentTree`], whose
+/// boxes are small, long ones in [`LongSegments`], where boxes would overlap everywhere (a
+/// chain through random points in a random order made every query visit most of the tree).
+/// Both skip only what is provably not nearer (see [`widened`]), so the answer is the minimum
+/// of [`segment_distance_squared`] over all segments, whatever the split.
+struct Index {
+    short: SegmentTree,
+    long: LongSegments,
+    margin: f64,
+}
+
+impl Index {
+    /// The index over `segments` of `points`, whose coordinates lie in `[0, size]`.
+    fn new(points: &[Point], segments: &[[usize; 2]], size: f64) -> Index {
+        // Segments longer than this go to the long search: a uniform set of segments of this
+        // length puts about 64 boxes over each point.
+        let threshold = 8.0 * size / libm::sqrt(segments.len().max(1) as f64);
+        let (mut short, mut long) = (Vec::new(), Vec::new());
+        for &[a, b] in segments {
+            let (p, q) = (points[a], points[b]);
+            if libm::hypot(q.x - p.x, q.y - p.y) > threshold {
+                long.push([p, q]);
+            } else {
+                short.push([p, q]);
+            }
+        }
+        Index {
+            short: SegmentTree::from_ends(short),
+            long: LongSegments::new(long, Point::new(size / 2.0, size / 2.0)),
+            margin: RELATIVE_SLACK * size + 1e-150,
+        }
+    }
+
+    /// Squared distance from `p` to the nearest segment; infinite without segments.
+    fn nearest_squared(&self, p: Point) -> f64 {
+        let best = self
+            .short
+            .nearest_squared(p, f64::INFINITY, Some(self.margin));
+        self.long.nearest_squared(p, best, self.margin)
+    }
+}
+
+/// The most direction classes of [`LongSegments`].
+const MAX_CLASSES: usize = 1024;
+
+/// Long segments by direction: `classes` classes of equal angle, and in each the segments
+/// sorted by the signed distance of their line from a fixed centre. A query's distance to a
+/// segment is at least its distance to the segment's line, and within a class that is, up to
+/// the class's angle times the query's distance from the centre, the difference between the
+/// query's offset along the class's normal and the segment's key: each class is searched from
+/// the query's offset outwards until that bound exceeds the best distance found. On `n`
+/// segments through random points this looks at about `n^(1/3)` classes and as many segments
+/// of each per query, where a tree over the segments' boxes looked at most of them.
+struct LongSegments {
+    centre: Point,
+    /// Bound on the distance between a segment's unit normal and its class's.
+    width: f64,
+    /// Unit normal of each class's middle direction.
+    normals: Vec<Point>,
+    /// Class `c` holds `keys[starts[c]..starts[c + 1]]`, ascending, and `ends` alike.
+    starts: Vec<usize>,
+    keys: Vec<f64>,
+    ends: Vec<[Point; 2]>,
+}
+
+impl LongSegments {
+    /// The search over `segments` (none of zero length).
+    fn new(segments: Vec<[Point; 2]>, centre: Point) -> LongSegments {
+        let n = segments.len();
+        let classes = (libm::cbrt(n as f64) as usize).clamp(1, MAX_CLASSES);
+        let pi = core::f64::consts::PI;
+        let mut keyed: Vec<(usize, f64, [Point; 2])> = segments
+            .into_iter()
+            .map(|[a, b]| {
+                let (mut dx, mut dy) = (b.x - a.x, b.y - a.y);
+                let length = libm::hypot(dx, dy);
+                let mut angle = libm::atan2(dy, dx);
+                if angle < 0.0 {
+                    // The line's direction in [0, pi], and the normal of that direction.
+                    angle += pi;
+                    (dx, dy) = (-dx, -dy);
+                }
+                let class = ((angle / pi * classes as f64) as usize).min(classes - 1);
+                let normal = Point::new(-dy / length, dx / length);
+                let key = normal.x * (centre.x - a.x) + normal.y * (centre.y - a.y);
+                (class, key, [a, b])
+            })
+            .collect();
+        keyed.sort_unstable_by(|s, t| s.0.cmp(&t.0).then(s.1.total_cmp(&t.1)));
+        let mut starts = vec![0; classes + 1];
+        for &(class, _, _) in &keyed {
+            starts[class + 1] += 1;
+        }
+        for c in 0..classes {
+            starts[c + 1] += starts[c];
+        }
+        let normals = (0..classes)
+            .map(|c| {
+                let middle = (c as f64 + 0.5) / classes as f64 * pi;
+                Point::new(-libm::sin(middle), libm::cos(middle))
+            })
+            .collect();
+        LongSegments {
+            centre,
+            // Half a class's angle (a chord is shorter than its arc), widened for the rounding
+            // of the angles, of the normals and of the class boundaries.
+            width: pi / (2 * classes) as f64 * (1.0 + RELATIVE_SLACK) + 1e-12,
+            normals,
+            starts,
+            keys: keyed.iter().map(|k| k.1).collect(),
+            ends: keyed.iter().map(|k| k.2).collect(),
+        }
+    }
+
+    /// Squared distance from `p` to the nearest long segment, or `best` if none is nearer.
+    fn nearest_squared(&self, p: Point, mut best: f64, margin: f64) -> f64 {
+        if self.keys.is_empty() {
+            return best;
+        }
+        let (vx, vy) = (p.x - self.centre.x, p.y - self.centre.y);
+        // How far a segment's line may be nearer than its key says.
+        let slack = self.width * libm::hypot(vx, vy) * (1.0 + RELATIVE_SLACK) + margin;
+        let reach = |best: f64| libm::sqrt(widened(best, margin)) + slack;
+        let classes = self.normals.len();
+        let mut offsets = [0.0f64; MAX_CLASSES];
+        let mut positions = [0usize; MAX_CLASSES];
+        // First the segment nearest by key in each class, for a good `best` to prune with.
+        for c in 0..classes {
+            let keys = &self.keys[self.starts[c]..self.starts[c + 1]];
+            let n = self.normals[c];
+            let offset = -(n.x * vx + n.y * vy);
+            let position = keys.partition_point(|&k| k < offset);
+            offsets[c] = offset;
+            positions[c] = position;
+            for i in [position.wrapping_sub(1), position] {
+                if i < keys.len() {
+                    let [a, b] = self.ends[self.starts[c] + i];
+                    best = best.min(segment_distance_squared(p, a, b));
+                }
+            }
+        }
+        let mut within = reach(best);
+        for c in 0..classes {
+            let first = self.starts[c];
+            let keys = &self.keys[first..self.starts[c + 1]];
+            let (offset, position) = (offsets[c], positions[c]);
+            let above = keys[position..].iter().zip(&self.ends[first + position..]);
+            for (&key, &[a, b]) in above {
+                if key - offset > within {
+                    break;
+                }
+                let d = segment_distance_squared(p, a, b);
+                if d < best {
+                    best = d;
+                    within = reach(best);
+                }
+            }
+            for i in (0..position).rev() {
+                if offset - keys[i] > within {
+                    break;
+                }
+                let [a, b] = self.ends[first + i];
+                let d = segment_distance_squared(p, a, b);
+                if d < best {
+                    best = d;
+                    within = reach(best);
+                }
+            }
+        }
+        best
+    }
 }
 
 /// Axis-aligned box.
@@ -444,12 +661,18 @@ struct Node {
 }
 
 impl SegmentTree {
+    #[cfg(test)]
     fn new(points: &[Point], segments: &[[usize; 2]]) -> SegmentTree {
-        let mut ends: Vec<[Point; 2]> = segments
-            .iter()
-            .map(|&[a, b]| [points[a], points[b]])
-            .collect();
-        let mut nodes = Vec::with_capacity(2 * segments.len() / LEAF + 1);
+        SegmentTree::from_ends(
+            segments
+                .iter()
+                .map(|&[a, b]| [points[a], points[b]])
+                .collect(),
+        )
+    }
+
+    fn from_ends(mut ends: Vec<[Point; 2]>) -> SegmentTree {
+        let mut nodes = Vec::with_capacity(2 * ends.len() / LEAF + 1);
         if !ends.is_empty() {
             let count = ends.len();
             build(&mut ends, 0, count, &mut nodes);
@@ -457,12 +680,23 @@ impl SegmentTree {
         SegmentTree { ends, nodes }
     }
 
-    /// Squared distance from `p` to the nearest segment; infinite without segments.
-    fn nearest_squared(&self, p: Point) -> f64 {
-        let mut best = f64::INFINITY;
+    /// Squared distance from `p` to the nearest segment, or `best` if none is nearer; infinite
+    /// without segments and an infinite `best`.
+    ///
+    /// With a `margin` (see [`widened`]), a box is skipped only when it is provably farther than
+    /// `best` whatever the rounding, so the answer is the minimum of [`segment_distance_squared`]
+    /// over every segment. Without one, a box is skipped when its rounded distance is not below
+    /// `best`: the rule of the implementation before issue 29's defect 6, kept for the tests'
+    /// reference.
+    fn nearest_squared(&self, p: Point, mut best: f64, margin: Option<f64>) -> f64 {
         if self.nodes.is_empty() {
             return best;
         }
+        let limit = |best: f64| match margin {
+            Some(margin) => widened(best, margin),
+            None => best,
+        };
+        let mut beyond = limit(best);
         // Depth-first, nearer child first. A median split halves every node, so the tree is at
         // most 64 levels deep and the stack, one deferred child per level and the node being
         // looked at, fits a fixed array: no allocation per query.
@@ -471,7 +705,11 @@ impl SegmentTree {
         while depth > 0 {
             depth -= 1;
             let (bound, k) = stack[depth];
-            if bound >= best {
+            let skip = match margin {
+                Some(_) => bound > beyond,
+                None => bound >= best,
+            };
+            if skip {
                 continue;
             }
             let node = self.nodes[k];
@@ -479,6 +717,7 @@ impl SegmentTree {
                 for &[a, b] in &self.ends[node.first..node.first + node.count] {
                     best = best.min(segment_distance_squared(p, a, b));
                 }
+                beyond = limit(best);
                 continue;
             }
             let (left, right) = (k + 1, node.first);
@@ -547,6 +786,178 @@ mod tests {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// The search of the implementation before issue 29's defect 6: one tree over all the
+    /// segments, skipping a box whose rounded distance is not below the best found.
+    struct Reference(SegmentTree);
+
+    impl Nearest for Reference {
+        fn build(points: &[Point], segments: &[[usize; 2]], _size: f64) -> Self {
+            Reference(SegmentTree::new(points, segments))
+        }
+        fn nearest_squared(&self, p: Point) -> f64 {
+            self.0.nearest_squared(p, f64::INFINITY, None)
+        }
+    }
+
+    /// The minimum over all segments, one by one.
+    struct Brute(Vec<[Point; 2]>);
+
+    impl Nearest for Brute {
+        fn build(points: &[Point], segments: &[[usize; 2]], _size: f64) -> Self {
+            Brute(
+                segments
+                    .iter()
+                    .map(|&[a, b]| [points[a], points[b]])
+                    .collect(),
+            )
+        }
+        fn nearest_squared(&self, p: Point) -> f64 {
+            self.0
+                .iter()
+                .map(|&[a, b]| segment_distance_squared(p, a, b))
+                .fold(f64::INFINITY, f64::min)
+        }
+    }
+
+    /// A chain through `order`.
+    fn chain(order: &[usize]) -> Vec<[usize; 2]> {
+        order.windows(2).map(|w| [w[0], w[1]]).collect()
+    }
+
+    fn shuffled(rng: &mut Xorshift, n: usize) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..n).collect();
+        for i in (1..n).rev() {
+            order.swap(i, rng.below(i as u64 + 1) as usize);
+        }
+        order
+    }
+
+    /// Random edges: each joins a random point to one of the next `reach` (in input order), a
+    /// random reach, so that some sets have short edges only and others long ones too.
+    fn random_edges(rng: &mut Xorshift, n: usize, count: usize) -> Vec<[usize; 2]> {
+        let reach = 1 + rng.below(n as u64);
+        (0..count)
+            .map(|_| {
+                let a = rng.below(n as u64) as usize;
+                let b = (a + 1 + rng.below(reach) as usize) % n;
+                [a.min(b), a.max(b)]
+            })
+            .filter(|&[a, b]| a != b)
+            .collect::<alloc::collections::BTreeSet<[usize; 2]>>()
+            .into_iter()
+            .collect()
+    }
+
+    /// Points of several kinds: uniform, on a coarse grid (exact ties, axis-parallel
+    /// segments), clustered with a far outlier, and with repeated points.
+    fn random_points(rng: &mut Xorshift, n: usize, kind: u64) -> Vec<Point> {
+        (0..n)
+            .map(|i| match kind {
+                0 => Point::new(rng.unit(), rng.unit()),
+                1 => Point::new(rng.below(12) as f64, rng.below(9) as f64 * 0.5),
+                2 if i == 0 => Point::new(1e3, -2e3),
+                2 => Point::new(1.0 + rng.unit() * 1e-3, rng.unit() * 1e-3),
+                _ => Point::new(rng.below(40) as f64 * 0.1, rng.unit().sqrt()),
+            })
+            .collect()
+    }
+
+    /// Every distance of the fast search against the reference and against the minimum over
+    /// all segments, bit for bit, on random sets where segments are short, long and mixed,
+    /// including the adversarial chain through random points in a random order.
+    #[test]
+    fn the_fast_search_scores_exactly_as_the_reference_does() {
+        let mut rng = Xorshift::new(0x5eed_2906);
+        let (mut compared, mut reference_off) = (0, Vec::new());
+        for case in 0..240 {
+            let n = 2 + rng.below(if case % 8 == 0 { 3000 } else { 200 }) as usize;
+            let points = random_points(&mut rng, n, case % 4);
+            let (truth, output) = match case % 3 {
+                // The adversarial chain, scored against another chain.
+                0 => (chain(&shuffled(&mut rng, n)), chain(&shuffled(&mut rng, n))),
+                // Mixed lengths.
+                1 => (
+                    random_edges(&mut rng, n, n),
+                    random_edges(&mut rng, n, 2 * n),
+                ),
+                // Short truth (a chain in input order), output of any length.
+                _ => (
+                    chain(&(0..n).collect::<Vec<_>>()),
+                    random_edges(&mut rng, n, n),
+                ),
+            };
+            let fast = score_with::<Index>(&points, &output, &truth);
+            let brute = score_with::<Brute>(&points, &output, &truth);
+            assert_eq!(fast, brute, "case {case}: {n} points, against brute");
+            let reference = score_with::<Reference>(&points, &output, &truth);
+            let (fast, brute) = (fast.unwrap(), brute.unwrap());
+            assert_eq!(
+                (
+                    fast.max_distance.map(f64::to_bits),
+                    fast.rms_distance.map(f64::to_bits)
+                ),
+                (
+                    brute.max_distance.map(f64::to_bits),
+                    brute.rms_distance.map(f64::to_bits)
+                ),
+                "case {case}"
+            );
+            // The reference skips a box when its rounded distance is not below the best found,
+            // which can skip a segment whose rounded distance is a unit in the last place below
+            // its box's (case 223: the RMS differs in its last bit). Everywhere else the
+            // reference is the minimum too, and the fast search gives its numbers.
+            if reference.as_ref().unwrap() != &brute {
+                reference_off.push(case);
+                continue;
+            }
+            compared += output.len();
+        }
+        assert!(compared > 50_000, "{compared}");
+        assert!(reference_off.len() <= 2, "{reference_off:?}");
+    }
+
+    /// Query by query, inside and outside the box, the index against the minimum over all
+    /// segments, with the long search holding every segment, some or none.
+    #[test]
+    fn the_index_returns_the_minimum_over_all_segments() {
+        let mut rng = Xorshift::new(29);
+        for case in 0..40 {
+            let n = 2 + rng.below(1500) as usize;
+            let points = random_points(&mut rng, n, case % 4);
+            let truth = match case % 2 {
+                0 => chain(&shuffled(&mut rng, n)),
+                _ => random_edges(&mut rng, n, n),
+            };
+            // In the frame `distances` uses: corner at the origin.
+            let min = points
+                .iter()
+                .fold(Point::new(f64::INFINITY, f64::INFINITY), |m, p| {
+                    Point::new(m.x.min(p.x), m.y.min(p.y))
+                });
+            let local: Vec<Point> = points
+                .iter()
+                .map(|p| Point::new(p.x - min.x, p.y - min.y))
+                .collect();
+            let size = local.iter().fold(0.0f64, |m, p| m.max(p.x).max(p.y));
+            let index = Index::new(&local, &truth, size);
+            if case % 4 == 0 {
+                assert!(!index.long.keys.is_empty(), "case {case}");
+            }
+            for _ in 0..200 {
+                let s = Point::new(
+                    (rng.unit() * 1.4 - 0.2) * size,
+                    (rng.unit() * 1.4 - 0.2) * size,
+                );
+                let brute = brute_nearest(&local, &truth, s);
+                assert_eq!(
+                    index.nearest_squared(s).to_bits(),
+                    brute.to_bits(),
+                    "case {case}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn the_tree_finds_the_nearest_segment_near_and_far() {
         let mut rng = Xorshift::new(7);
@@ -558,7 +969,9 @@ mod tests {
             let p = Point::new((rng.unit() - 0.5) * 200.0, (rng.unit() - 0.5) * 200.0);
             let q = Point::new(rng.unit(), rng.unit());
             for s in [p, q] {
-                assert_eq!(tree.nearest_squared(s), brute_nearest(&points, &truth, s));
+                let brute = brute_nearest(&points, &truth, s);
+                assert_eq!(tree.nearest_squared(s, f64::INFINITY, None), brute);
+                assert_eq!(tree.nearest_squared(s, f64::INFINITY, Some(1e-9)), brute);
             }
         }
     }
