@@ -23,7 +23,7 @@
 use condt::{Method, Params, Repair, Stage, Uniformity};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyFloat, PyInt};
+use pyo3::types::{PyBool, PyDict};
 
 /// The keywords other than the stage switches, for the message on an unknown one.
 const KEYWORDS: &[&str] = &[
@@ -97,10 +97,20 @@ fn type_name(value: &Bound<'_, PyAny>) -> String {
         .map_or_else(|_| "?".into(), |name| name.to_string())
 }
 
-/// A `bool` keyword's value: `True` or `False` (or numpy's `bool_`), nothing else.
+/// Whether `value` is a bool: Python's, or numpy's (`numpy.bool`, `numpy.bool_` before numpy 2).
+fn is_bool(value: &Bound<'_, PyAny>) -> bool {
+    if value.is_instance_of::<PyBool>() {
+        return true;
+    }
+    let kind = value.get_type();
+    let module = kind.module().map(|m| m.to_string()).unwrap_or_default();
+    module == "numpy" && matches!(type_name(value).as_str(), "bool" | "bool_")
+}
+
+/// A `bool` keyword's value: `True` or `False` (or numpy's bool), nothing else.
 fn boolean(name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
-    if value.is_instance_of::<PyBool>() || type_name(value) == "bool_" {
-        if let Ok(on) = value.extract::<bool>() {
+    if is_bool(value) {
+        if let Ok(on) = value.is_truthy() {
             return Ok(on);
         }
     }
@@ -110,17 +120,11 @@ fn boolean(name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
     )))
 }
 
-/// A number keyword's value: an int or a float (numpy's too), not a bool; whether the library
-/// accepts it is `Params::check`'s to say.
+/// A number keyword's value: anything Python converts with `float()` by its `__float__` (an
+/// int, a float, numpy's numbers), but not a bool nor a str; whether the library accepts it is
+/// `Params::check`'s to say.
 fn number(name: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
-    let numeric = (value.is_instance_of::<PyFloat>() || value.is_instance_of::<PyInt>())
-        && !value.is_instance_of::<PyBool>();
-    let numpy_number = matches!(
-        type_name(value).as_str(),
-        "float64" | "float32" | "float16" | "int64" | "int32" | "int16" | "int8" | "uint64"
-            | "uint32" | "uint16" | "uint8"
-    );
-    if numeric || numpy_number {
+    if !is_bool(value) {
         if let Ok(x) = value.extract::<f64>() {
             return Ok(x);
         }
