@@ -189,9 +189,7 @@ pub(crate) fn params(paper: bool, kwargs: Option<&Bound<'_, PyDict>>) -> PyResul
     for (key, value) in kwargs.into_iter().flat_map(|d| d.iter()) {
         let name: String = key.extract()?;
         let name = name.as_str();
-        let repr = value
-            .repr()
-            .map_or_else(|_| "?".into(), |r| r.to_string());
+        let repr = value.repr().map_or_else(|_| "?".into(), |r| r.to_string());
         let said = format!("{name}={repr}");
         if name != "method" && name != "sequential" {
             condt_keywords.push(said.clone());

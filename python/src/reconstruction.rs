@@ -137,17 +137,19 @@ impl Reconstruction {
         let stages = self.stages.get_or_try_init(py, || {
             let result = &self.result;
             let graphs: Vec<(&'static str, Vec<[i64; 2]>)> = py.detach(|| {
-                result
-                    .stages()
-                    .map(|report| {
-                        let edges = report.graph.edges();
-                        let rows = edges
-                            .into_iter()
-                            .map(|[a, b]| [position(a), position(b)])
-                            .collect();
-                        (report.stage.key(), rows)
-                    })
-                    .collect()
+                crate::within_call(|| {
+                    result
+                        .stages()
+                        .map(|report| {
+                            let edges = report.graph.edges();
+                            let rows = edges
+                                .into_iter()
+                                .map(|[a, b]| [position(a), position(b)])
+                                .collect();
+                            (report.stage.key(), rows)
+                        })
+                        .collect()
+                })
             });
             let dict = PyDict::new(py);
             for (name, rows) in graphs {
@@ -189,7 +191,7 @@ impl Reconstruction {
             Some(stories) => stories,
             None => {
                 let result = &self.result;
-                let computed = py.detach(|| result.provenance());
+                let computed = py.detach(|| crate::within_call(|| result.provenance()));
                 self.stories.get_or_init(|| computed)
             }
         };

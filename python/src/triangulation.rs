@@ -67,9 +67,11 @@ impl Triangulation {
         let edges = self.edges.get_or_try_init(py, || {
             let tri = &self.tri;
             let rows = py.detach(|| {
-                let mut rows: Vec<[i64; 2]> = tri.edges().map(|e| e.map(position)).collect();
-                rows.sort_unstable();
-                rows
+                crate::within_call(|| {
+                    let mut rows: Vec<[i64; 2]> = tri.edges().map(|e| e.map(position)).collect();
+                    rows.sort_unstable();
+                    rows
+                })
             });
             index_array(py, rows).map(Bound::unbind)
         })?;
@@ -82,12 +84,9 @@ impl Triangulation {
     /// Raises ``IndexError`` when ``i`` is not an input position.
     fn neighbors<'py>(&self, py: Python<'py>, i: i64) -> PyResult<Bound<'py, PyArray1<i64>>> {
         let n = self.tri.num_points();
-        let index = usize::try_from(i)
-            .ok()
-            .filter(|&i| i < n)
-            .ok_or_else(|| {
-                PyIndexError::new_err(format!("{i} is not an input position (0 to {n} - 1)"))
-            })?;
+        let index = usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {
+            PyIndexError::new_err(format!("{i} is not an input position (0 to {n} - 1)"))
+        })?;
         index_vector(py, self.tri.neighbors(index).map(position).collect())
     }
 
