@@ -47,6 +47,15 @@ def test_any_array_like_gives_the_same_result(convert):
     )
 
 
+def test_a_memory_mapped_read_only_array_is_read_in_place(tmp_path):
+    points = condt.read_points(SHAPES)
+    np.save(tmp_path / "p.npy", points)
+    mapped = np.load(tmp_path / "p.npy", mmap_mode="r")
+    assert not mapped.flags.writeable
+    assert np.array_equal(condt.reconstruct(mapped).edges, condt.reconstruct(points).edges)
+    assert np.array_equal(condt.triangulate(mapped).edges, condt.triangulate(points).edges)
+
+
 def test_integer_and_empty_inputs():
     square = np.array([[0, 0], [2, 0], [2, 2], [0, 2]], dtype=np.int32)
     assert condt.reconstruct(square).edges.tolist() == [[0, 1], [0, 3], [1, 2], [2, 3]]
