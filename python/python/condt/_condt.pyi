@@ -1,11 +1,23 @@
 # Type stubs of the native module condt._condt (python/src/*.rs). The docstrings, with examples,
 # are the runtime's (`help(condt.reconstruct)`); tests/test_api.py checks that these signatures
-# match the module's.
+# match the module's, as `python -m mypy.stubtest condt._condt` does.
 import os
-from typing import Any, Literal, Optional, Sequence, TypedDict, Union
+from typing import Any, Literal, Optional, TypedDict, Union, final
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = [
+    "reconstruct",
+    "triangulate",
+    "read_points",
+    "score",
+    "Reconstruction",
+    "Curve",
+    "EdgeStory",
+    "Triangulation",
+    "__version__",
+]
 
 __version__: str
 
@@ -14,6 +26,7 @@ _Edges = npt.ArrayLike
 _Index = npt.NDArray[np.int64]
 _Coords = npt.NDArray[np.float64]
 
+@final
 class Curve:
     @property
     def points(self) -> _Index: ...
@@ -23,6 +36,7 @@ class Curve:
     def coords(self) -> _Coords: ...
     def __len__(self) -> int: ...
 
+@final
 class EdgeStory:
     @property
     def edge(self) -> tuple[int, int]: ...
@@ -35,6 +49,7 @@ class EdgeStory:
     @property
     def text(self) -> str: ...
 
+@final
 class Reconstruction:
     @property
     def edges(self) -> _Index: ...
@@ -49,6 +64,7 @@ class Reconstruction:
     def to_shapely(self) -> Any: ...
     def __len__(self) -> int: ...
 
+@final
 class Triangulation:
     @property
     def triangles(self) -> _Index: ...
@@ -61,7 +77,8 @@ class Triangulation:
     def neighbors(self, i: int) -> _Index: ...
     def __len__(self) -> int: ...
 
-class Score(TypedDict):
+# What `score` returns: a plain dict at run time, typed here for type checkers only.
+class _Score(TypedDict):
     exact: bool
     precision: float
     recall: float
@@ -97,4 +114,4 @@ def reconstruct(
 ) -> Reconstruction: ...
 def triangulate(points: _Points) -> Triangulation: ...
 def read_points(path: Union[str, os.PathLike[str]]) -> _Coords: ...
-def score(points: _Points, output: _Edges, truth: _Edges) -> Score: ...
+def score(points: _Points, output: _Edges, truth: _Edges) -> _Score: ...
