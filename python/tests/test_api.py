@@ -418,3 +418,17 @@ def test_every_docstring_example_runs():
     results = runner.summarize(verbose=False)
     assert results.failed == 0
     assert seen > 30, seen
+
+
+def test_mypy_stubtest_finds_no_difference_between_the_stubs_and_the_module(tmp_path):
+    pytest.importorskip("mypy")
+    import subprocess
+
+    done = subprocess.run(
+        [sys.executable, "-m", "mypy.stubtest", "condt._condt"],
+        cwd=tmp_path,  # where it leaves its cache
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
