@@ -47,10 +47,18 @@
 //! and 2.02 -> 1.13 s of system time; uniform points, 1M, 323,258 -> 73,445 and 1.06 -> 0.32 s.
 //! The peak resident set is within 1.7 % (109,968 against 109,440 kB along curves at 1M,
 //! 128,628 against 126,516 on uniform points). Every output is byte-identical.
+//!
+//! **In a library.** The Python package (`python/src/lib.rs`) compiles this file too, with
+//! [`Recycling::scoped`]: a process that lives on between calls must not hold freed pages, so
+//! runs are kept only while a call runs ([`Recycling::within_call`]) and unmapped when the last
+//! one ends; a block freed between calls is unmapped at once, as glibc would. The binary keeps
+//! them for its whole run ([`Recycling::new`]), since it exits.
+//!
+//! The crate declares the global allocator (`main.rs`: `#[global_allocator] static ALLOCATOR:
+//! allocator::Recycling = allocator::Recycling::new();`, on Linux with glibc).
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
-#[global_allocator]
-static ALLOCATOR: linux::Recycling = linux::Recycling::new();
+pub(crate) use linux::Recycling;
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 mod linux {
@@ -152,10 +160,29 @@ mod linux {
         small_live: AtomicUsize,
         /// The most such bytes live at once so far.
         small_high: AtomicUsize,
+        /// Whether freed runs are kept only while a call runs ([`Recycling::scoped`]).
+        scoped: bool,
+        /// The calls running now ([`Recycling::within_call`]); changed to zero only under the
+        /// lock of `kept`, so that a run is never kept once the last call has ended.
+        calls: AtomicUsize,
     }
 
     impl Recycling {
+        /// The binary's allocator: freed runs are kept for the whole run.
+        #[cfg_attr(not(test), allow(dead_code))] // the Python package uses `scoped` only
         pub(crate) const fn new() -> Self {
+            Self::with_scope(false)
+        }
+
+        /// A library's allocator (the Python package's): freed runs are kept only while a
+        /// call runs ([`Recycling::within_call`]), all unmapped when the last call ends, and
+        /// a run freed outside every call is unmapped at once.
+        #[cfg_attr(not(test), allow(dead_code))] // the binary uses `new` only
+        pub(crate) const fn scoped() -> Self {
+            Self::with_scope(true)
+        }
+
+        const fn with_scope(scoped: bool) -> Self {
             Recycling {
                 kept: Mutex::new(Kept {
                     runs: [Run::EMPTY; KEPT_RUNS],
@@ -163,7 +190,35 @@ mod linux {
                 }),
                 small_live: AtomicUsize::new(0),
                 small_high: AtomicUsize::new(0),
+                scoped,
+                calls: AtomicUsize::new(0),
             }
+        }
+
+        /// Runs `work` as one call of a [`scoped`](Recycling::scoped) allocator: the runs it
+        /// frees are kept for its later blocks; when the last call running ends (here, or
+        /// when `work` unwinds), every kept run is unmapped.
+        #[cfg_attr(not(test), allow(dead_code))] // the binary never ends a call
+        pub(crate) fn within_call<T>(&self, work: impl FnOnce() -> T) -> T {
+            /// Ends the call on the way out, unwinding included.
+            struct End<'a>(&'a Recycling);
+            impl Drop for End<'_> {
+                fn drop(&mut self) {
+                    let mut kept = self.0.kept();
+                    if self.0.calls.fetch_sub(1, Ordering::SeqCst) == 1 {
+                        while let Some(run) = kept.take_smallest() {
+                            if !unmap(run.start, run.len) {
+                                // Kept (the system refused to unmap it); the next call reuses it.
+                                let _ = kept.put(run);
+                                return;
+                            }
+                        }
+                    }
+                }
+            }
+            self.calls.fetch_add(1, Ordering::SeqCst);
+            let _end = End(self);
+            work()
         }
 
         fn kept(&self) -> MutexGuard<'_, Kept> {
@@ -267,9 +322,20 @@ mod linux {
             }
         }
 
-        /// Keeps the pages of a freed block, or unmaps the smallest run when too many are kept.
+        /// Keeps the pages of a freed block, or unmaps the smallest run when too many are kept;
+        /// a [`scoped`](Recycling::scoped) allocator unmaps it when no call runs.
         fn give_back(&self, run: Run) {
-            if let Some(dropped) = self.kept().put(run) {
+            let mut kept = self.kept();
+            if self.scoped && self.calls.load(Ordering::SeqCst) == 0 {
+                drop(kept);
+                if unmap(run.start, run.len) {
+                    return;
+                }
+                // Kept, as a run the system would not unmap is below.
+                kept = self.kept();
+            }
+            if let Some(dropped) = kept.put(run) {
+                drop(kept);
                 // If the system refuses, the pages stay mapped and unused: a leak, not an error.
                 unmap(dropped.start, dropped.len);
             }
@@ -540,6 +606,54 @@ mod linux {
             unsafe { std::slice::from_raw_parts(block, len) }
                 .iter()
                 .all(|&b| b == 0)
+        }
+
+        /// A scoped allocator keeps runs within a call, for the call's later blocks, and holds
+        /// none once the last call ends or outside every call; the binary's keeps them.
+        #[test]
+        fn a_scoped_allocator_keeps_runs_only_within_calls() {
+            let scoped = Recycling::scoped();
+            let big = layout(4 * unit());
+            // SAFETY: every block is used within its layout and freed with it, once.
+            unsafe {
+                let outside = scoped.alloc(big);
+                fill_and_check(outside, big.size(), 1);
+                scoped.dealloc(outside, big);
+                assert_eq!(kept_bytes(&scoped), 0, "freed outside a call: unmapped");
+                let reused = scoped.within_call(|| {
+                    let a = scoped.alloc(big);
+                    fill_and_check(a, big.size(), 2);
+                    scoped.dealloc(a, big);
+                    assert_eq!(kept_bytes(&scoped), big.size(), "kept within the call");
+                    // A call inside the call (another thread's) ends without releasing.
+                    scoped.within_call(|| ());
+                    assert_eq!(kept_bytes(&scoped), big.size());
+                    let b = scoped.alloc(big);
+                    assert_eq!(a, b, "the call's own run, reused");
+                    fill_and_check(b, big.size(), 3);
+                    scoped.dealloc(b, big);
+                    b
+                });
+                assert!(!reused.is_null());
+                assert_eq!(kept_bytes(&scoped), 0, "the last call ended: all unmapped");
+                let unwound = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    scoped.within_call(|| {
+                        let a = scoped.alloc(big);
+                        scoped.dealloc(a, big);
+                        panic!("unwinding");
+                    })
+                }));
+                assert!(unwound.is_err());
+                assert_eq!(kept_bytes(&scoped), 0, "unwinding ends the call too");
+            }
+            let binary = Recycling::new();
+            // SAFETY: as above.
+            unsafe {
+                let a = binary.alloc(big);
+                binary.dealloc(a, big);
+            }
+            assert_eq!(kept_bytes(&binary), big.size());
+            unmap_all(&binary);
         }
 
         #[test]

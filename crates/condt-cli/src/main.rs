@@ -9,6 +9,11 @@ mod progress;
 mod score;
 mod timings;
 
+/// Large blocks recycled instead of faulted in again (`allocator.rs` says why).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+#[global_allocator]
+static ALLOCATOR: allocator::Recycling = allocator::Recycling::new();
+
 fn main() {
     // A file-size limit makes writes fail (an error, the temporary file removed) rather than
     // end the process by SIGXFSZ.

@@ -7,13 +7,21 @@
 
 /// A point of the plane, in double precision.
 ///
+/// Its layout is fixed (`#[repr(C)]`): `x` then `y`, the size and alignment of `[f64; 2]`, so
+/// that a binding can view the rows of an `(n, 2)` float64 array (NumPy's, in the Python
+/// package) as `&[Point]` without copying them.
+///
 /// ```
 /// use condt::Point;
 /// let p = Point::new(3.0, 4.0);
 /// assert_eq!(p.dist2(Point::new(0.0, 0.0)), 25.0);
 /// assert_eq!(Point::from([3.0, 4.0]), p);
+/// assert_eq!(core::mem::size_of::<Point>(), core::mem::size_of::<[f64; 2]>());
+/// assert_eq!(core::mem::align_of::<Point>(), core::mem::align_of::<[f64; 2]>());
+/// assert_eq!(core::mem::offset_of!(Point, y), core::mem::size_of::<f64>());
 /// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
+#[repr(C)]
 pub struct Point {
     /// Abscissa.
     pub x: f64,

@@ -1,8 +1,10 @@
 //! The library's one `unsafe` block is the cache hint in `crates/condt/src/prefetch.rs`; the
 //! binary's allocator (Linux with glibc only) is `crates/condt-cli/src/allocator.rs`, where every
-//! `unsafe` block must say why it is sound in a `// SAFETY:` comment right above it. `lib.rs`
-//! denies unsafe code, but a module could still allow it; this test reads every source file and
-//! fails on an `unsafe` keyword or an `allow(unsafe_code)` anywhere else.
+//! `unsafe` block must say why it is sound in a `// SAFETY:` comment right above it; the Python
+//! package's native module (`python/src`) has one, viewing a NumPy array's rows as points, in
+//! `python/src/convert.rs`, with its `// SAFETY:` comment. `lib.rs` denies unsafe code, but a
+//! module could still allow it; this test reads every source file and fails on an `unsafe`
+//! keyword or an `allow(unsafe_code)` anywhere else.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -39,8 +41,12 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
             rust_files(&src, &mut files);
         }
     }
+    // And the Python package's native module.
+    let python = crates.join("../python/src");
+    rust_files(&python, &mut files);
     let prefetch_path = crates.join("condt/src/prefetch.rs");
     let allocator_path = crates.join("condt-cli/src/allocator.rs");
+    let binding_path = python.join("convert.rs");
     assert!(
         files.len() > 20,
         "found the sources ({} files)",
@@ -48,7 +54,10 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
     );
     let mut found = Vec::new();
     for file in &files {
-        if file.ends_with("condt/src/prefetch.rs") || file.ends_with("condt-cli/src/allocator.rs") {
+        if file.ends_with("condt/src/prefetch.rs")
+            || file.ends_with("condt-cli/src/allocator.rs")
+            || file.ends_with("python/src/convert.rs")
+        {
             continue;
         }
         let text = fs::read_to_string(file).expect("a source file is UTF-8");
@@ -60,7 +69,8 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
     }
     assert!(
         found.is_empty(),
-        "unsafe code outside condt/src/prefetch.rs and condt-cli/src/allocator.rs:\n{}",
+        "unsafe code outside condt/src/prefetch.rs, condt-cli/src/allocator.rs and \
+         python/src/convert.rs:\n{}",
         found.join("\n")
     );
     let prefetch = fs::read_to_string(prefetch_path).expect("condt/src/prefetch.rs");
@@ -79,6 +89,16 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
     assert!(
         allocator.lines().filter(|l| uses_unsafe(l)).count() > 5,
         "the scan sees the allocator's unsafe blocks"
+    );
+    let binding = fs::read_to_string(binding_path).expect("python/src/convert.rs");
+    assert!(
+        unsafe_without_safety_comment(&binding).is_empty(),
+        "python/src/convert.rs: unsafe code without a `// SAFETY:` comment right above it"
+    );
+    assert_eq!(
+        binding.lines().filter(|l| uses_unsafe(l)).count(),
+        1,
+        "python/src/convert.rs holds one unsafe block"
     );
 }
 

@@ -1,0 +1,42 @@
+"""Curves through unorganized planar points (ConDT) and their exact Delaunay triangulation.
+
+The functions take points as any ``(n, 2)`` array-like and give NumPy arrays back; every
+index is an input position (the row of the point in the array given). They compute exactly
+what the ``condt`` command line computes:
+
+- ``reconstruct(points, *, paper=False, **params)``: the curves, as ``condt reconstruct``;
+- ``triangulate(points)``: the Delaunay triangulation, as ``condt triangulate``;
+- ``read_points(path)``: the points of a file in any format the command line reads;
+- ``score(points, output, truth)``: the metrics of ``condt score``.
+
+>>> import condt
+>>> r = condt.reconstruct([(0, 0), (1, 0), (1, 1), (0, 1)])
+>>> r.edges.tolist()
+[[0, 1], [0, 3], [1, 2], [2, 3]]
+"""
+
+# The native module (Rust, python/src); this package only re-exports it, so that pure-Python
+# modules (a later ``condt.dask``) can sit beside it.
+from ._condt import (
+    Curve,
+    EdgeStory,
+    Reconstruction,
+    Triangulation,
+    __version__,
+    read_points,
+    reconstruct,
+    score,
+    triangulate,
+)
+
+__all__ = [
+    "Curve",
+    "EdgeStory",
+    "Reconstruction",
+    "Triangulation",
+    "__version__",
+    "read_points",
+    "reconstruct",
+    "score",
+    "triangulate",
+]

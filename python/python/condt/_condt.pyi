@@ -1,0 +1,117 @@
+# Type stubs of the native module condt._condt (python/src/*.rs). The docstrings, with examples,
+# are the runtime's (`help(condt.reconstruct)`); tests/test_api.py checks that these signatures
+# match the module's, as `python -m mypy.stubtest condt._condt` does.
+import os
+from typing import Any, Literal, Optional, TypedDict, Union, final
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = [
+    "reconstruct",
+    "triangulate",
+    "read_points",
+    "score",
+    "Reconstruction",
+    "Curve",
+    "EdgeStory",
+    "Triangulation",
+    "__version__",
+]
+
+__version__: str
+
+_Points = npt.ArrayLike
+_Edges = npt.ArrayLike
+_Index = npt.NDArray[np.int64]
+_Coords = npt.NDArray[np.float64]
+
+@final
+class Curve:
+    @property
+    def points(self) -> _Index: ...
+    @property
+    def closed(self) -> bool: ...
+    @property
+    def coords(self) -> _Coords: ...
+    def __len__(self) -> int: ...
+
+@final
+class EdgeStory:
+    @property
+    def edge(self) -> tuple[int, int]: ...
+    @property
+    def kept(self) -> bool: ...
+    @property
+    def ends(self) -> tuple[dict[str, Any], dict[str, Any]]: ...
+    @property
+    def changes(self) -> list[dict[str, Any]]: ...
+    @property
+    def text(self) -> str: ...
+
+@final
+class Reconstruction:
+    @property
+    def edges(self) -> _Index: ...
+    @property
+    def curves(self) -> list[Curve]: ...
+    @property
+    def unused(self) -> _Index: ...
+    @property
+    def stages(self) -> dict[str, _Index]: ...
+    def explain(self, i: int, j: int) -> EdgeStory: ...
+    def to_geojson(self) -> str: ...
+    def to_shapely(self) -> Any: ...
+    def __len__(self) -> int: ...
+
+@final
+class Triangulation:
+    @property
+    def triangles(self) -> _Index: ...
+    @property
+    def edges(self) -> _Index: ...
+    @property
+    def hull(self) -> _Index: ...
+    @property
+    def num_vertices(self) -> int: ...
+    def neighbors(self, i: int) -> _Index: ...
+    def __len__(self) -> int: ...
+
+# What `score` returns: a plain dict at run time, typed here for type checkers only.
+class _Score(TypedDict):
+    exact: bool
+    precision: float
+    recall: float
+    f1: float
+    tp: int
+    fp: int
+    fn: int
+    outlier_edges: int
+    max_dist: Optional[float]
+    rms_dist: Optional[float]
+    malformed: Optional[str]
+    n_points: int
+    n_gt: int
+    n_out: int
+
+def reconstruct(
+    points: _Points,
+    *,
+    paper: bool = False,
+    u: float = ...,
+    adaptive: bool = ...,
+    iqr: Optional[float] = ...,
+    outlier_filter: bool = ...,
+    outliers_first: bool = ...,
+    local_outliers: bool = ...,
+    confirm_given_back: bool = ...,
+    close_gaps: bool = ...,
+    smooth: bool = ...,
+    repair: Literal["needs", "paper", "mutual", "crossing", "off"] = ...,
+    manifold_fix: bool = ...,
+    method: Literal["condt", "nn-crust", "crust"] = ...,
+    sequential: bool = ...,
+) -> Reconstruction: ...
+def triangulate(points: _Points) -> Triangulation: ...
+def read_points(path: Union[str, os.PathLike[str]]) -> _Coords: ...
+def score(points: _Points, output: _Edges, truth: _Edges) -> _Score: ...

@@ -1,0 +1,201 @@
+//! NumPy in and out, and the library's errors as Python exceptions.
+//!
+//! Owns: turning whatever the caller passed as points into a C-contiguous float64 `(n, 2)` array
+//! (the caller's own array when it already is one: no copy), viewing its rows as `&[Point]`,
+//! building index arrays from the library's results, and mapping every Rust error to the Python
+//! exception a Python user expects. It may not compute anything.
+
+use condt::{Error, Point};
+use condt_io::{IoError, IoErrorKind};
+use numpy::ndarray::Array2;
+use numpy::{PyArray1, PyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::PyDict;
+
+/// `numpy.ascontiguousarray`, looked up once.
+fn ascontiguousarray(py: Python<'_>) -> PyResult<&Bound<'_, PyAny>> {
+    static FUNCTION: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
+    FUNCTION
+        .get_or_try_init(py, || {
+            Ok::<_, PyErr>(py.import("numpy")?.getattr("ascontiguousarray")?.unbind())
+        })
+        .map(|f| f.bind(py))
+}
+
+/// Whether `array` can be read as `&[Point]` as it is: C order, aligned, shape `(n, 2)` (its
+/// dtype, native float64, is checked by the cast that made it a `PyArray2<f64>`).
+fn readable_as_points(array: &Bound<'_, PyArray2<f64>>) -> bool {
+    array.is_c_contiguous() && array.is_aligned() && array.shape()[1] == 2
+}
+
+/// The points `obj` holds, as a C-contiguous, aligned, native float64 array of shape `(n, 2)`:
+/// `obj` itself when it is one (no copy), otherwise `numpy.ascontiguousarray(obj, "float64")`.
+/// An empty sequence (`[]`, shape `(0,)`) is no points.
+///
+/// # Errors
+/// `ValueError` for any other shape, and numpy's own error for what it cannot convert.
+pub(crate) fn points_array<'py>(
+    py: Python<'py>,
+    obj: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    if let Ok(array) = obj.cast::<PyArray2<f64>>() {
+        if readable_as_points(array) {
+            return Ok(array.clone());
+        }
+    }
+    let converted = ascontiguousarray(py)?.call1((obj, "float64"))?;
+    let converted = converted.cast_into::<numpy::PyUntypedArray>()?;
+    let shape = converted.shape().to_vec();
+    let converted = match shape.as_slice() {
+        [_, 2] => converted.into_any(),
+        [0] => converted.call_method1("reshape", ((0, 2),))?,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "points must be an array of shape (n, 2); got one of shape {}",
+                shape_text(&shape)
+            )))
+        }
+    };
+    let array = converted.cast_into::<PyArray2<f64>>()?;
+    if readable_as_points(&array) {
+        Ok(array)
+    } else {
+        // Unaligned data (a buffer at an odd offset): a fresh array is aligned.
+        let copy = array.call_method0("copy")?.cast_into::<PyArray2<f64>>()?;
+        Ok(copy)
+    }
+}
+
+/// A shape as Python writes it: `(3,)`, `(4, 3)`.
+fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [one] => format!("({one},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// The rows of a C-contiguous `(n, 2)` float64 array's data as points.
+pub(crate) fn as_points(flat: &[f64]) -> &[Point] {
+    const _: () = assert!(
+        core::mem::size_of::<Point>() == 2 * core::mem::size_of::<f64>()
+            && core::mem::align_of::<Point>() == core::mem::align_of::<f64>()
+    );
+    // SAFETY: `Point` is `#[repr(C)]` with two `f64` fields, `x` then `y` (its documentation
+    // promises this layout; the assertion above checks size and alignment), so the memory of
+    // `2k` consecutive aligned `f64` is that of `k` points. Every bit pattern is a valid `f64`.
+    // The pointer comes from a slice, so it is non-null and aligned for `f64`, which is
+    // `Point`'s alignment; `flat.len() / 2` points lie within the slice, and the result
+    // borrows `flat`, so it lives no longer than the data.
+    unsafe { core::slice::from_raw_parts(flat.as_ptr().cast::<Point>(), flat.len() / 2) }
+}
+
+/// A float as Python's `repr` writes it (`nan`, `inf`, `1.5`), for messages.
+fn float_text(x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        format!("{x:?}")
+    }
+}
+
+/// The library's refusal as a Python exception: `ValueError` for the input (a non-finite point
+/// is named by its index and row) and for a parameter, `RuntimeError` for a broken invariant,
+/// which would be a bug.
+pub(crate) fn library_error(err: Error, points: &[Point]) -> PyErr {
+    match err {
+        Error::NonFinite { index } => match points.get(index) {
+            Some(p) => PyValueError::new_err(format!(
+                "point {index} has a NaN or infinite coordinate: row {index} of the points is \
+                 [{}, {}]",
+                float_text(p.x),
+                float_text(p.y)
+            )),
+            None => PyValueError::new_err(err.to_string()),
+        },
+        Error::TooManyPoints { .. } => PyValueError::new_err(err.to_string()),
+        Error::InvalidParameter { name, .. } => {
+            // The library names the IQR factor `k`; here it is the keyword `iqr`, as the
+            // command line's option is `--iqr`.
+            let keyword = if name == "k" { "iqr" } else { name };
+            PyValueError::new_err(format!("{keyword}: {err}"))
+        }
+        Error::InvalidTriangulation(_) => PyRuntimeError::new_err(format!(
+            "condt found a broken invariant (a bug; please report it): {err}"
+        )),
+        _ => PyRuntimeError::new_err(err.to_string()),
+    }
+}
+
+/// A point file that could not be read: `OSError` (its subclass for the errno, such as
+/// `FileNotFoundError`, with `filename` set) when the system refused, `ValueError` with the file
+/// and line when the content is not a point file.
+pub(crate) fn io_error(err: IoError) -> PyErr {
+    match &err.kind {
+        IoErrorKind::Io(cause) => {
+            let text = cause.to_string();
+            match cause.raw_os_error() {
+                // OSError(errno, strerror, filename) is made the subclass its errno stands for.
+                // Python adds the errno itself: Rust's " (os error 2)" would repeat it.
+                Some(errno) => {
+                    let text = text
+                        .strip_suffix(&format!(" (os error {errno})"))
+                        .unwrap_or(&text)
+                        .to_string();
+                    PyOSError::new_err((errno, text, err.file.clone()))
+                }
+                None => PyOSError::new_err(format!("{}: {text}", err.file)),
+            }
+        }
+        _ => PyValueError::new_err(err.to_string()),
+    }
+}
+
+/// An array of index pairs (or triples) as a read-only `(len, K)` int64 array; the data is
+/// moved into numpy, not copied.
+pub(crate) fn index_array<'py, const K: usize>(
+    py: Python<'py>,
+    rows: Vec<[i64; K]>,
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let len = rows.len();
+    let flat: Vec<i64> = rows.into_iter().flatten().collect();
+    let array = Array2::from_shape_vec((len, K), flat)
+        .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
+    let array = PyArray2::from_owned_array(py, array);
+    read_only(&array)?;
+    Ok(array)
+}
+
+/// A list of indices as a read-only int64 array, moved into numpy.
+pub(crate) fn index_vector<'py>(
+    py: Python<'py>,
+    values: Vec<i64>,
+) -> PyResult<Bound<'py, PyArray1<i64>>> {
+    let array = PyArray1::from_vec(py, values);
+    read_only(&array)?;
+    Ok(array)
+}
+
+/// Makes `array` read-only: the results are cached and shared between accesses, so an
+/// in-place change would change what the next access returns (`.copy()` gives a writable one).
+pub(crate) fn read_only(array: &Bound<'_, PyAny>) -> PyResult<()> {
+    let kwargs = PyDict::new(array.py());
+    kwargs.set_item("write", false)?;
+    array.call_method("setflags", (), Some(&kwargs))?;
+    Ok(())
+}
+
+/// An input position as `i64` (positions are below `condt::MAX_POINTS`, far below `i64::MAX`).
+pub(crate) fn position(i: usize) -> i64 {
+    i64::try_from(i).unwrap_or(i64::MAX)
+}

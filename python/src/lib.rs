@@ -1,0 +1,282 @@
+//! The native module of the `condt` Python package, `condt._condt` (PyO3, the `numpy` crate,
+//! built by maturin; `python/pyproject.toml`). The package `python/python/condt` re-exports it.
+//!
+//! Owns: the Python functions and classes, their arguments and their errors. It may not compute
+//! geometry nor decide a parameter's range: `condt`, `condt-io` and `condt-eval` do, so the
+//! package gives what the command line gives. Modules: `convert` (NumPy in and out, errors),
+//! `params` (the keywords), `reconstruction` and `triangulation` (the result classes).
+
+// The command line's allocator, which recycles the pipeline's large blocks instead of faulting
+// fresh pages in for each (a third of the page faults, a tenth of the time at 1M points along
+// curves: python/README.md has the figures), in its scoped form: it keeps freed pages only
+// while a call runs, so the Python process holds none between calls.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+#[path = "../../crates/condt-cli/src/allocator.rs"]
+mod allocator;
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+#[global_allocator]
+static ALLOCATOR: allocator::Recycling = allocator::Recycling::scoped();
+
+/// Runs `work` as one call of the allocator (see above): the large blocks it frees are reused by
+/// its later ones, and unmapped when it ends.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+pub(crate) fn within_call<T>(work: impl FnOnce() -> T) -> T {
+    ALLOCATOR.within_call(work)
+}
+
+/// Elsewhere the system allocator serves everything: `work` runs as it is.
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+pub(crate) fn within_call<T>(work: impl FnOnce() -> T) -> T {
+    work()
+}
+mod convert;
+mod params;
+mod reconstruction;
+mod triangulation;
+
+use condt_eval::score::{EdgeProblem, ScoreError};
+use convert::{as_points, io_error, library_error, points_array};
+use numpy::ndarray::Array2;
+use numpy::{PyArray2, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use reconstruction::{Curve, EdgeStory, Reconstruction};
+use std::path::PathBuf;
+use triangulation::Triangulation;
+
+/// The curves through the points: ConDT's reconstruction, as ``condt reconstruct`` runs it.
+///
+/// ``points`` is any ``(n, 2)`` array-like of numbers (an empty sequence is no points). A
+/// C-contiguous float64 ndarray is read where it lies, without a copy (do not change it from
+/// another thread during the call); anything else is converted first. The work runs without the
+/// GIL, so other Python threads run meanwhile.
+///
+/// The parameters are the command line's options, ``-`` written ``_``: ``paper=True`` starts
+/// from the paper's pipeline instead of the default, and the keywords adjust it: ``u`` (a
+/// number) or ``adaptive=True``; ``iqr`` (a number, or ``None`` to skip the outlier removal,
+/// as ``outlier_filter=False`` does); ``outliers_first``; ``local_outliers``,
+/// ``confirm_given_back``, ``close_gaps``, ``smooth`` (True or False); ``repair`` (``"needs"``,
+/// ``"paper"``, ``"mutual"``, ``"crossing"`` or ``"off"``; ``manifold_fix=False`` is ``"off"``);
+/// ``method`` (``"condt"``, ``"nn-crust"`` or ``"crust"``, a baseline taking none of the
+/// others); ``sequential=True`` runs on one thread (same result).
+///
+/// Raises ``ValueError`` for a point with a NaN or infinite coordinate (named by its index and
+/// row), a value the library refuses or two keywords that contradict each other, and
+/// ``TypeError`` for an unknown keyword or a value of the wrong type.
+///
+/// >>> import condt, numpy as np
+/// >>> t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+/// >>> circle = np.column_stack([np.cos(t), np.sin(t)])
+/// >>> r = condt.reconstruct(circle)
+/// >>> len(r.curves), r.curves[0].closed, len(r.edges)
+/// (1, True, 40)
+/// >>> condt.reconstruct(circle, paper=True, u=2.0, iqr=None).edges.shape
+/// (40, 2)
+/// >>> condt.reconstruct([(0, 0), (1, float("nan"))])
+/// Traceback (most recent call last):
+///     ...
+/// ValueError: point 1 has a NaN or infinite coordinate: row 1 of the points is [1.0, nan]
+#[pyfunction]
+#[pyo3(signature = (points, *, paper = false, **params))]
+fn reconstruct(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    paper: bool,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Reconstruction> {
+    let params = params::params(paper, params)?;
+    let array = points_array(py, points)?;
+    let result = {
+        let borrowed = array.try_readonly()?;
+        let points = as_points(borrowed.as_slice()?);
+        py.detach(|| within_call(|| condt::reconstruct(points, &params)))
+            .map_err(|err| library_error(err, points))?
+    };
+    Ok(Reconstruction::new(result, array.unbind()))
+}
+
+/// The Delaunay triangulation of the points, as ``condt triangulate`` computes it.
+///
+/// ``points`` as for ``reconstruct`` (read without a copy when it is a C-contiguous float64
+/// array; the GIL is released while it runs). Raises ``ValueError`` for a NaN or infinite
+/// coordinate.
+///
+/// >>> import condt
+/// >>> t = condt.triangulate([(0, 0), (1, 0), (0, 1), (1, 1)])
+/// >>> t.triangles.shape, t.edges.tolist()
+/// ((2, 3), [[0, 1], [0, 2], [1, 2], [1, 3], [2, 3]])
+#[pyfunction]
+fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulation> {
+    let array = points_array(py, points)?;
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?);
+    let tri = py
+        .detach(|| within_call(|| condt::triangulate(points)))
+        .map_err(|err| library_error(err, points))?;
+    Ok(Triangulation::new(tri))
+}
+
+/// The points of a file, as an ``(n, 2)`` float64 array: every format ``condt`` reads, told
+/// apart by the name's ending (any case): ``.npy``, ``.csv``, ``.geojson`` or ``.json``,
+/// ``.node`` (Triangle), anything else plain text (one ``x y`` per line). Row ``i`` is point
+/// ``i``, as the command line numbers them.
+///
+/// Raises ``OSError`` (``FileNotFoundError``, ``PermissionError``, ...) when the file cannot be
+/// read, and ``ValueError`` naming the file and line when its content is not a point file.
+///
+/// >>> import condt, tempfile, os
+/// >>> path = os.path.join(tempfile.mkdtemp(), "pts.txt")
+/// >>> with open(path, "w") as f:
+/// ...     _ = f.write("# x y\n0 0\n1.5 2\n")
+/// >>> condt.read_points(path).tolist()
+/// [[0.0, 0.0], [1.5, 2.0]]
+#[pyfunction]
+fn read_points<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let points = py
+        .detach(|| within_call(|| condt_io::read_points(&path)))
+        .map_err(io_error)?;
+    let n = points.len();
+    let flat: Vec<f64> = points.into_iter().flat_map(|p| [p.x, p.y]).collect();
+    let array = Array2::from_shape_vec((n, 2), flat)
+        .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, array))
+}
+
+/// An edge list as given (`name` for messages): an `(m, 2)` array-like of integers.
+fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<Vec<[i64; 2]>> {
+    let numpy = py.import("numpy")?;
+    let array = numpy.call_method1("asarray", (edges,))?;
+    let size: usize = array.getattr("size")?.extract()?;
+    if size == 0 {
+        return Ok(Vec::new());
+    }
+    let kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
+    if kind != "i" && kind != "u" {
+        return Err(PyTypeError::new_err(format!(
+            "{name} must be an (m, 2) array of integers (point indices); got dtype {}",
+            array.getattr("dtype")?.str()?
+        )));
+    }
+    // uint64 beyond int64 cannot name a point either: numpy refuses the cast (OverflowError).
+    let array = numpy.call_method1("ascontiguousarray", (array, "int64"))?;
+    let array = array.cast_into::<numpy::PyUntypedArray>()?;
+    if !matches!(array.shape(), [_, 2]) {
+        return Err(PyValueError::new_err(format!(
+            "{name} must be an array of shape (m, 2); got one of shape {:?}",
+            array.shape()
+        )));
+    }
+    let array = array.cast_into::<PyArray2<i64>>()?;
+    let readonly = array.try_readonly()?;
+    Ok(readonly
+        .as_slice()?
+        .chunks_exact(2)
+        .map(|pair| [pair[0], pair[1]])
+        .collect())
+}
+
+/// Edges for `condt_eval::score`: a negative end, which no point has, becomes `usize::MAX`,
+/// which the library reports as out of range like any other.
+fn as_positions(edges: &[[i64; 2]]) -> Vec<[usize; 2]> {
+    edges
+        .iter()
+        .map(|e| e.map(|i| usize::try_from(i).unwrap_or(usize::MAX)))
+        .collect()
+}
+
+/// An edge list's problem, with the edge's row and the end as given (a negative one included).
+fn problem_text(problem: EdgeProblem, given: &[[i64; 2]]) -> String {
+    let row = problem.position();
+    match problem {
+        EdgeProblem::OutOfRange { .. } => {
+            let [a, b] = given[row];
+            let index = if a < 0 || b < 0 { a.min(b) } else { a.max(b) };
+            format!("edge {row}: point {index} does not exist")
+        }
+        other => format!("edge {row}: {other}"),
+    }
+}
+
+/// How an output edge list compares with a ground truth: the metrics of ``condt score`` (and of
+/// ``condt_eval::score``), as the dict ``condt score --json`` prints.
+///
+/// ``points`` as for ``reconstruct``; ``output`` and ``truth`` are ``(m, 2)`` integer
+/// array-likes of point indices, edges in either direction. The keys: ``exact``,
+/// ``precision``, ``recall``, ``f1``, ``tp``, ``fp``, ``fn``, ``outlier_edges`` (output edges
+/// touching a point the truth leaves without an edge), ``max_dist`` and ``rms_dist`` (of the
+/// output to the truth, over the bounding-box diagonal; ``None`` without output edges, or when
+/// not finite), ``malformed`` (``None``, or the output's first problem: ``"edge K: ..."``, K its
+/// row), ``n_points``, ``n_gt``, ``n_out``. A malformed output (an index out of range or
+/// negative, a self-loop, a repeated edge) scores precision, recall and F1 0; its valid edges
+/// are counted once each.
+///
+/// Raises ``ValueError`` for a malformed truth or a NaN or infinite point.
+///
+/// >>> import condt
+/// >>> square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+/// >>> s = condt.score(square, [(0, 1), (1, 2), (2, 3), (0, 2)], [(0, 1), (1, 2), (2, 3), (3, 0)])
+/// >>> s["exact"], s["tp"], s["fp"], s["fn"], s["f1"]
+/// (False, 3, 1, 1, 0.75)
+/// >>> condt.score(square, [(0, 1), (1, 0)], [(0, 1)])["malformed"]
+/// 'edge 1: edge 0 1 repeated'
+#[pyfunction]
+fn score<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    output: &Bound<'py, PyAny>,
+    truth: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let array = points_array(py, points)?;
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?);
+    let output = edge_rows(py, "output", output)?;
+    let truth = edge_rows(py, "truth", truth)?;
+    let (output_positions, truth_positions) = (as_positions(&output), as_positions(&truth));
+    let result = py
+        .detach(|| condt_eval::score::score(points, &output_positions, &truth_positions))
+        .map_err(|err| match err {
+            ScoreError::NonFinite { index } => {
+                library_error(condt::Error::NonFinite { index }, points)
+            }
+            ScoreError::Truth(problem) => {
+                PyValueError::new_err(format!("ground truth: {}", problem_text(problem, &truth)))
+            }
+        })?;
+    // JSON has no infinity: `condt score --json` writes null, and so does this.
+    let finite = |x: Option<f64>| x.filter(|x| x.is_finite());
+    let dict = PyDict::new(py);
+    dict.set_item("exact", result.exact)?;
+    dict.set_item("f1", result.f1)?;
+    dict.set_item("fn", result.false_negatives)?;
+    dict.set_item("fp", result.false_positives)?;
+    dict.set_item(
+        "malformed",
+        result.malformed.map(|p| problem_text(p, &output)),
+    )?;
+    dict.set_item("max_dist", finite(result.max_distance))?;
+    dict.set_item("n_gt", truth.len())?;
+    dict.set_item("n_out", output.len())?;
+    dict.set_item("n_points", points.len())?;
+    dict.set_item("outlier_edges", result.outlier_edges)?;
+    dict.set_item("precision", result.precision)?;
+    dict.set_item("recall", result.recall)?;
+    dict.set_item("rms_dist", finite(result.rms_distance))?;
+    dict.set_item("tp", result.true_positives)?;
+    Ok(dict)
+}
+
+/// Curves through unorganized planar points (ConDT) and their exact Delaunay triangulation.
+#[pymodule]
+fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(reconstruct, m)?)?;
+    m.add_function(wrap_pyfunction!(triangulate, m)?)?;
+    m.add_function(wrap_pyfunction!(read_points, m)?)?;
+    m.add_function(wrap_pyfunction!(score, m)?)?;
+    m.add_class::<Reconstruction>()?;
+    m.add_class::<Curve>()?;
+    m.add_class::<EdgeStory>()?;
+    m.add_class::<Triangulation>()?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

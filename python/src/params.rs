@@ -1,0 +1,269 @@
+//! `reconstruct`'s keyword arguments as a `condt::Params`, with the command line's names and
+//! rules.
+//!
+//! Owns: the names (each `condt reconstruct` option, `-` written `_`), their types, and the
+//! contradictions the command line refuses. It may not check a value's range: `Params::check`
+//! does, as for the command line, and its refusal is reported with the keyword.
+//!
+//! | keyword | command line | `Params` |
+//! |---|---|---|
+//! | `paper=True` | `--paper` | `Params::paper()` as the start instead of `Params::default()` |
+//! | `u=X` | `--u X` | `uniformity = Fixed(X)` |
+//! | `adaptive=True` | `--adaptive` | `uniformity = Adaptive` |
+//! | `iqr=K` / `iqr=None` | `--iqr K` / `--no-outlier-filter` | `outlier_factor` |
+//! | `outlier_filter=False` | `--no-outlier-filter` | `outlier_factor = None` |
+//! | `outliers_first=B` | `--outliers-first` | `outliers_first` |
+//! | `local_outliers=B`, `confirm_given_back=B`, `close_gaps=B` | `--[no-]FLAG` (`Stage::switch`) | `set_stage` |
+//! | `smooth=B` | `--[no-]smooth` | `smooth` |
+//! | `repair=MODE` | `--repair MODE` | `repair` |
+//! | `manifold_fix=False` | `--no-manifold-fix` | `repair = Off` |
+//! | `method=M` | `--method M` | `method` |
+//! | `sequential=B` | `--sequential` | `parallel = !B` |
+
+use condt::{Method, Params, Repair, Stage, Uniformity};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict};
+
+/// The keywords other than the stage switches, for the message on an unknown one.
+const KEYWORDS: &[&str] = &[
+    "u",
+    "adaptive",
+    "iqr",
+    "outlier_filter",
+    "outliers_first",
+    "smooth",
+    "repair",
+    "manifold_fix",
+    "method",
+    "sequential",
+];
+
+/// The repair modes, by the command line's names.
+const REPAIR_MODES: &[(&str, Repair)] = &[
+    ("needs", Repair::Needs),
+    ("paper", Repair::Paper),
+    ("mutual", Repair::Mutual),
+    ("crossing", Repair::CrossingAware),
+    ("off", Repair::Off),
+];
+
+/// The methods, by the command line's names.
+const METHODS: &[(&str, Method)] = &[
+    ("condt", Method::ConDT),
+    ("nn-crust", Method::NnCrust),
+    ("crust", Method::Crust),
+];
+
+/// A stage's switch as a keyword: its command-line flag with `_` for `-`.
+fn switch_keyword(stage: Stage) -> Option<String> {
+    stage.switch().map(|switch| switch.flag.replace('-', "_"))
+}
+
+/// One setting that two keywords can make (`u` and `adaptive`; `iqr` and `outlier_filter`;
+/// `repair` and `manifold_fix`): a second keyword saying otherwise is refused, as the command
+/// line refuses `--u 2 --adaptive`.
+struct Setting<T> {
+    value: Option<(T, String)>,
+}
+
+impl<T: PartialEq> Setting<T> {
+    fn new() -> Self {
+        Setting { value: None }
+    }
+
+    fn set(&mut self, value: T, said: String) -> PyResult<()> {
+        match &self.value {
+            Some((old, old_said)) if *old != value => Err(PyValueError::new_err(format!(
+                "{old_said} and {said} contradict each other: give one of them"
+            ))),
+            Some(_) => Ok(()),
+            None => {
+                self.value = Some((value, said));
+                Ok(())
+            }
+        }
+    }
+
+    fn get(self) -> Option<T> {
+        self.value.map(|(value, _)| value)
+    }
+}
+
+fn type_name(value: &Bound<'_, PyAny>) -> String {
+    value
+        .get_type()
+        .name()
+        .map_or_else(|_| "?".into(), |name| name.to_string())
+}
+
+/// Whether `value` is a bool: Python's, or numpy's (`numpy.bool`, `numpy.bool_` before numpy 2).
+fn is_bool(value: &Bound<'_, PyAny>) -> bool {
+    if value.is_instance_of::<PyBool>() {
+        return true;
+    }
+    let kind = value.get_type();
+    let module = kind.module().map(|m| m.to_string()).unwrap_or_default();
+    module == "numpy" && matches!(type_name(value).as_str(), "bool" | "bool_")
+}
+
+/// A `bool` keyword's value: `True` or `False` (or numpy's bool), nothing else.
+fn boolean(name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
+    if is_bool(value) {
+        if let Ok(on) = value.is_truthy() {
+            return Ok(on);
+        }
+    }
+    Err(PyTypeError::new_err(format!(
+        "{name} must be True or False, not {}",
+        type_name(value)
+    )))
+}
+
+/// A number keyword's value: anything Python converts with `float()` by its `__float__` (an
+/// int, a float, numpy's numbers), but not a bool nor a str; whether the library accepts it is
+/// `Params::check`'s to say.
+fn number(name: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
+    if !is_bool(value) {
+        if let Ok(x) = value.extract::<f64>() {
+            return Ok(x);
+        }
+    }
+    Err(PyTypeError::new_err(format!(
+        "{name} must be a number, not {}",
+        type_name(value)
+    )))
+}
+
+/// A name among `choices` (`repair`, `method`).
+fn choice<T: Copy>(name: &str, value: &Bound<'_, PyAny>, choices: &[(&str, T)]) -> PyResult<T> {
+    let names = choices
+        .iter()
+        .map(|(n, _)| format!("'{n}'"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let text: String = value.extract().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "{name} must be a str, one of {names}; not {}",
+            type_name(value)
+        ))
+    })?;
+    choices
+        .iter()
+        .find(|(n, _)| *n == text)
+        .map(|&(_, v)| v)
+        .ok_or_else(|| {
+            let repr = value
+                .repr()
+                .map_or_else(|_| text.clone(), |r| r.to_string());
+            PyValueError::new_err(format!("{name}={repr}: must be one of {names}"))
+        })
+}
+
+/// The parameters `paper` and the keywords `kwargs` ask for, checked as the command line checks
+/// them.
+///
+/// # Errors
+/// `TypeError` for an unknown keyword or a value of the wrong type; `ValueError` for two
+/// keywords that contradict each other, a ConDT keyword beside a baseline method, or a value the
+/// library refuses (`Params::check`).
+pub(crate) fn params(paper: bool, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
+    let mut params = if paper {
+        Params::paper()
+    } else {
+        Params::default()
+    };
+    let mut uniformity = Setting::new();
+    let mut outliers = Setting::new();
+    let mut repair = Setting::new();
+    let mut method = None;
+    // ConDT's own keywords as given, to refuse them beside a baseline method.
+    let mut condt_keywords: Vec<String> = Vec::new();
+    if paper {
+        condt_keywords.push("paper=True".into());
+    }
+    let switches: Vec<(Stage, String)> = Stage::ALL
+        .into_iter()
+        .filter_map(|stage| switch_keyword(stage).map(|k| (stage, k)))
+        .collect();
+    for (key, value) in kwargs.into_iter().flat_map(|d| d.iter()) {
+        let name: String = key.extract()?;
+        let name = name.as_str();
+        let repr = value.repr().map_or_else(|_| "?".into(), |r| r.to_string());
+        let said = format!("{name}={repr}");
+        if name != "method" && name != "sequential" {
+            condt_keywords.push(said.clone());
+        }
+        match name {
+            "u" => uniformity.set(Uniformity::Fixed(number(name, &value)?), said)?,
+            "adaptive" => {
+                if boolean(name, &value)? {
+                    uniformity.set(Uniformity::Adaptive, said)?;
+                }
+            }
+            "iqr" => {
+                let k = if value.is_none() {
+                    None
+                } else {
+                    Some(number(name, &value)?)
+                };
+                outliers.set(k, said)?;
+            }
+            "outlier_filter" => {
+                if !boolean(name, &value)? {
+                    outliers.set(None, said)?;
+                }
+            }
+            "outliers_first" => params.outliers_first = boolean(name, &value)?,
+            "smooth" => params.smooth = boolean(name, &value)?,
+            "repair" => repair.set(choice(name, &value, REPAIR_MODES)?, said)?,
+            "manifold_fix" => {
+                if !boolean(name, &value)? {
+                    repair.set(Repair::Off, said)?;
+                }
+            }
+            "method" => method = Some((choice(name, &value, METHODS)?, said)),
+            "sequential" => params.parallel = !boolean(name, &value)?,
+            _ => match switches.iter().find(|(_, keyword)| keyword == name) {
+                Some(&(stage, _)) => {
+                    params.set_stage(stage, boolean(name, &value)?);
+                }
+                None => {
+                    let known: Vec<&str> = KEYWORDS
+                        .iter()
+                        .copied()
+                        .chain(switches.iter().map(|(_, k)| k.as_str()))
+                        .collect();
+                    return Err(PyTypeError::new_err(format!(
+                        "reconstruct() got an unexpected keyword argument '{name}'; the \
+                         parameters are paper, {}",
+                        known.join(", ")
+                    )));
+                }
+            },
+        }
+    }
+    if let Some(u) = uniformity.get() {
+        params.uniformity = u;
+    }
+    if let Some(k) = outliers.get() {
+        params.outlier_factor = k;
+    }
+    if let Some(mode) = repair.get() {
+        params.repair = mode;
+    }
+    if let Some((chosen, said)) = method {
+        if chosen != Method::ConDT {
+            if let Some(keyword) = condt_keywords.first() {
+                return Err(PyValueError::new_err(format!(
+                    "{keyword} sets a ConDT stage, but {said} chooses a baseline, which has none"
+                )));
+            }
+        }
+        params.method = chosen;
+    }
+    params
+        .check()
+        .map_err(|err| crate::convert::library_error(err, &[]))?;
+    Ok(params)
+}

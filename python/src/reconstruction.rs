@@ -1,0 +1,436 @@
+//! `Reconstruction`, `Curve` and `EdgeStory`: a finished `condt::Reconstruction` as Python reads it.
+//!
+//! Owns: the Python view of a result (arrays made once, when first read, and cached read-only),
+//! the explanation of an edge as text and numbers, and the GeoJSON and shapely outputs. It may
+//! not run a stage: every number comes from the result or its `provenance`.
+
+use crate::convert::{as_points, index_array, index_vector, position};
+use condt::{Change, EndChoice, Reason};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::{PyImportError, PyIndexError, PyKeyError, PyRuntimeError};
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyList, PyTuple};
+use std::sync::OnceLock;
+
+/// The curves through a set of points, and every stage that found them: what
+/// ``condt.reconstruct`` returns.
+///
+/// Every index is an input position: the row of the point in the array given to
+/// ``reconstruct``. Index arrays are ``int64`` and read-only (they are made once, on first
+/// access, and shared; ``.copy()`` gives a writable one).
+///
+/// >>> import condt
+/// >>> square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+/// >>> r = condt.reconstruct(square)
+/// >>> r.edges.tolist()
+/// [[0, 1], [0, 3], [1, 2], [2, 3]]
+/// >>> [(c.points.tolist(), c.closed) for c in r.curves]
+/// [([0, 1, 2, 3], True)]
+/// >>> r.unused.tolist()
+/// []
+/// >>> list(r.stages)
+/// ['proximity', 'repair', 'iqr-outliers', 'local-outliers', 'given-back', 'gaps']
+#[pyclass(module = "condt", frozen)]
+pub(crate) struct Reconstruction {
+    result: condt::Reconstruction,
+    /// The points as given (the caller's array when it was float64 in C order): GeoJSON, shapely
+    /// and `Curve.coords` read the input coordinates from it, since the result keeps none.
+    points: Py<PyArray2<f64>>,
+    edges: PyOnceLock<Py<PyArray2<i64>>>,
+    unused: PyOnceLock<Py<PyArray1<i64>>>,
+    curves: PyOnceLock<Vec<Py<Curve>>>,
+    stages: PyOnceLock<Py<PyDict>>,
+    /// Every edge's story, computed on the first `explain` (O(n log n)).
+    stories: OnceLock<Vec<condt::EdgeStory>>,
+}
+
+impl Reconstruction {
+    pub(crate) fn new(result: condt::Reconstruction, points: Py<PyArray2<f64>>) -> Self {
+        Reconstruction {
+            result,
+            points,
+            edges: PyOnceLock::new(),
+            unused: PyOnceLock::new(),
+            curves: PyOnceLock::new(),
+            stages: PyOnceLock::new(),
+            stories: OnceLock::new(),
+        }
+    }
+
+    /// The input coordinates of input positions `indices`, as a new `(len, 2)` float64 array.
+    fn coordinates<'py>(
+        &self,
+        py: Python<'py>,
+        indices: impl Iterator<Item = usize>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let points = self.points.bind(py).try_readonly()?;
+        let points = as_points(points.as_slice()?);
+        let rows: Vec<[f64; 2]> = indices
+            .map(|i| points.get(i).map_or([f64::NAN; 2], |p| [p.x, p.y]))
+            .collect();
+        let len = rows.len();
+        let flat: Vec<f64> = rows.into_iter().flatten().collect();
+        let array = numpy::ndarray::Array2::from_shape_vec((len, 2), flat)
+            .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
+        Ok(PyArray2::from_owned_array(py, array))
+    }
+}
+
+#[pymethods]
+impl Reconstruction {
+    /// The final edges, an ``(m, 2)`` int64 array of input positions ``[i, j]``, ``i < j``,
+    /// sorted: the rows ``condt reconstruct -o out.edges`` writes.
+    #[getter]
+    fn edges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let edges = self.edges.get_or_try_init(py, || {
+            let list = self.result.edge_list();
+            let rows = py.detach(|| {
+                list.iter()
+                    .map(|&[a, b]| [i64::from(a), i64::from(b)])
+                    .collect::<Vec<_>>()
+            });
+            index_array(py, rows).map(Bound::unbind)
+        })?;
+        Ok(edges.bind(py).clone())
+    }
+
+    /// The curves, a list of ``Curve``, sorted as ``condt reconstruct`` writes them (``.txt``).
+    #[getter]
+    fn curves(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<Curve>>> {
+        let py = slf.py();
+        let this = slf.get();
+        let curves = this.curves.get_or_try_init(py, || {
+            (0..this.result.curves().len())
+                .map(|index| {
+                    Py::new(
+                        py,
+                        Curve {
+                            owner: slf.clone().unbind(),
+                            index,
+                            points: PyOnceLock::new(),
+                        },
+                    )
+                })
+                .collect::<PyResult<Vec<_>>>()
+        })?;
+        Ok(curves.iter().map(|c| c.clone_ref(py)).collect())
+    }
+
+    /// The input positions whose point ended with no edge (outliers), ascending, int64.
+    #[getter]
+    fn unused<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
+        let unused = self.unused.get_or_try_init(py, || {
+            let values = self.result.unused().iter().map(|&i| position(i)).collect();
+            index_vector(py, values).map(Bound::unbind)
+        })?;
+        Ok(unused.bind(py).clone())
+    }
+
+    /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
+    /// ``"repair"``, ``"iqr-outliers"``, ``"local-outliers"``, ``"given-back"``, ``"gaps"``, or a
+    /// baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
+    /// the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
+    /// the stages are the last pass's.
+    #[getter]
+    fn stages<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let stages = self.stages.get_or_try_init(py, || {
+            let result = &self.result;
+            let graphs: Vec<(&'static str, Vec<[i64; 2]>)> = py.detach(|| {
+                crate::within_call(|| {
+                    result
+                        .stages()
+                        .map(|report| {
+                            let edges = report.graph.edges();
+                            let rows = edges
+                                .into_iter()
+                                .map(|[a, b]| [position(a), position(b)])
+                                .collect();
+                            (report.stage.key(), rows)
+                        })
+                        .collect()
+                })
+            });
+            let dict = PyDict::new(py);
+            for (name, rows) in graphs {
+                dict.set_item(name, index_array(py, rows)?)?;
+            }
+            Ok::<_, PyErr>(dict.unbind())
+        })?;
+        // A new dict each time (the arrays are shared): changing it changes nothing here.
+        stages.bind(py).copy()
+    }
+
+    /// Why the edge between input positions ``i`` and ``j`` (either order) was kept or dropped:
+    /// an ``EdgeStory`` with the text ``condt``'s HTML viewer shows and its numbers.
+    ///
+    /// The stories of all edges are computed on the first call (``O(n log n)``) and kept.
+    ///
+    /// Raises ``IndexError`` when ``i`` or ``j`` is not an input position, ``KeyError`` when
+    /// the edge is neither a Delaunay edge nor one a stage added.
+    ///
+    /// >>> import condt
+    /// >>> r = condt.reconstruct([(0, 0), (1, 0), (2, 0), (2, 9)])
+    /// >>> story = r.explain(3, 0)
+    /// >>> print(story)
+    /// 0-3: second shortest at 0, dropped by the uniformity test: |e2| = 9.220 |e1| >= 2.750 |e1|; rank 3 at 3; dropped
+    /// >>> story.kept, story.ends[0]["choice"], round(story.ends[0]["ratio"], 3)
+    /// (False, 'second', 9.22)
+    /// >>> r.explain(0, 1).kept
+    /// True
+    fn explain(&self, py: Python<'_>, i: i64, j: i64) -> PyResult<EdgeStory> {
+        let n = self.result.num_points();
+        let index = |k: i64| {
+            usize::try_from(k).ok().filter(|&k| k < n).ok_or_else(|| {
+                PyIndexError::new_err(format!("{k} is not an input position (0 to {n} - 1)"))
+            })
+        };
+        let (a, b) = (index(i)?, index(j)?);
+        let edge = [a.min(b), a.max(b)];
+        let stories = match self.stories.get() {
+            Some(stories) => stories,
+            None => {
+                let result = &self.result;
+                let computed = py.detach(|| crate::within_call(|| result.provenance()));
+                self.stories.get_or_init(|| computed)
+            }
+        };
+        let story = stories
+            .binary_search_by_key(&edge, |s| s.edge)
+            .map(|k| &stories[k])
+            .map_err(|_| {
+                PyKeyError::new_err(format!(
+                    "{a}-{b} is neither a Delaunay edge nor an edge a stage added"
+                ))
+            })?;
+        EdgeStory::new(py, story)
+    }
+
+    /// The curves as GeoJSON text, exactly what ``condt reconstruct -o out.geojson`` writes: a
+    /// FeatureCollection with one LineString per curve (a closed one repeats its first point)
+    /// and a ``closed`` property, on the input coordinates.
+    ///
+    /// >>> import condt, json
+    /// >>> doc = json.loads(condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True).to_geojson())
+    /// >>> doc["features"][0]["geometry"]["coordinates"]
+    /// [[0, 0], [1, 0], [0.5, 2], [0, 0]]
+    fn to_geojson(&self, py: Python<'_>) -> PyResult<String> {
+        let points = self.points.bind(py).try_readonly()?;
+        let points = as_points(points.as_slice()?);
+        let mut out = Vec::new();
+        condt_io::write_geojson(&mut out, &self.result, points)
+            .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
+        String::from_utf8(out).map_err(|err| PyRuntimeError::new_err(err.to_string()))
+    }
+
+    /// The curves as one ``shapely.MultiLineString`` on the input coordinates, a closed curve
+    /// repeating its first point (``.is_closed``), in the order of ``curves``. Needs shapely 2
+    /// (``pip install shapely``); ``ImportError`` without it.
+    fn to_shapely<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let shapely = py.import("shapely").map_err(|err| {
+            PyImportError::new_err(format!(
+                "Reconstruction.to_shapely() needs shapely (pip install shapely): {err}"
+            ))
+        })?;
+        let this = slf.get();
+        let lines = PyList::empty(py);
+        for curve in this.result.curves() {
+            let closing = curve.points().next().filter(|_| curve.is_closed());
+            lines.append(this.coordinates(py, curve.points().chain(closing))?)?;
+        }
+        shapely.getattr("MultiLineString")?.call1((lines,))
+    }
+
+    /// The number of input points.
+    fn __len__(&self) -> usize {
+        self.result.num_points()
+    }
+
+    fn __repr__(&self) -> String {
+        let curves = self.result.curves();
+        let closed = curves.iter().filter(|c| c.is_closed()).count();
+        format!(
+            "<condt.Reconstruction: {} points, {} edges, {} curves ({closed} closed), {} unused>",
+            self.result.num_points(),
+            self.result.edge_list().len(),
+            curves.len(),
+            self.result.unused().len()
+        )
+    }
+}
+
+/// One curve of a ``Reconstruction``: its points in order along it, and whether it closes.
+///
+/// ``points`` are input positions (int64; a closed curve does not repeat its first point);
+/// ``coords`` are their coordinates, an ``(len, 2)`` float64 array.
+///
+/// >>> import condt
+/// >>> r = condt.reconstruct([(0, 0), (1, 0), (1, 1), (0, 1)])
+/// >>> curve = r.curves[0]
+/// >>> curve.closed, len(curve), curve.points.tolist()
+/// (True, 4, [0, 1, 2, 3])
+/// >>> curve.coords.tolist()
+/// [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+#[pyclass(module = "condt", frozen)]
+pub(crate) struct Curve {
+    owner: Py<Reconstruction>,
+    index: usize,
+    points: PyOnceLock<Py<PyArray1<i64>>>,
+}
+
+impl Curve {
+    fn curve<'a>(&self, owner: &'a Reconstruction) -> &'a condt::Curve {
+        &owner.result.curves()[self.index]
+    }
+}
+
+#[pymethods]
+impl Curve {
+    /// The input positions of its points, in order along it (int64, read-only).
+    #[getter]
+    fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
+        let points = self.points.get_or_try_init(py, || {
+            let owner = self.owner.get();
+            let values = self.curve(owner).points().map(position).collect();
+            index_vector(py, values).map(Bound::unbind)
+        })?;
+        Ok(points.bind(py).clone())
+    }
+
+    /// Whether the last point joins back to the first.
+    #[getter]
+    fn closed(&self) -> bool {
+        self.curve(self.owner.get()).is_closed()
+    }
+
+    /// The coordinates of its points, a new ``(len, 2)`` float64 array.
+    #[getter]
+    fn coords<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let owner = self.owner.get();
+        owner.coordinates(py, self.curve(owner).points())
+    }
+
+    fn __len__(&self) -> usize {
+        self.curve(self.owner.get()).len()
+    }
+
+    fn __repr__(&self) -> String {
+        let curve = self.curve(self.owner.get());
+        format!(
+            "<condt.Curve: {} points, {}>",
+            curve.len(),
+            if curve.is_closed() { "closed" } else { "open" }
+        )
+    }
+}
+
+/// Why one edge was kept or dropped: ``Reconstruction.explain`` returns it.
+///
+/// - ``edge``: the two input positions, smaller first;
+/// - ``kept``: whether it is in the result;
+/// - ``ends``: how each end saw it in Algorithm 1, two dicts with ``at`` (the end) and
+///   ``choice``: ``"shortest"``, ``"second"`` (with ``ratio`` = ``|e2| / |e1|``, ``bound`` and
+///   ``kept``, the uniformity test's numbers), ``"later"`` (with ``rank``) or ``"not-delaunay"``;
+/// - ``changes``: what each later stage did to it, dicts with ``stage`` (its name, as in
+///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``kept``),
+///   ``"longer-than-threshold"`` (``length``, ``threshold``), ``"given-back"``, ``"long-at"``
+///   (``vertex``, ``ratio``), ``"component"``, ``"spur"``, ``"gap-closed"``, ``"baseline"``
+///   or ``"not-confirmed"``;
+/// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
+#[pyclass(module = "condt", frozen, get_all)]
+pub(crate) struct EdgeStory {
+    edge: Py<PyTuple>,
+    kept: bool,
+    ends: Py<PyTuple>,
+    changes: Py<PyList>,
+    text: String,
+}
+
+impl EdgeStory {
+    fn new(py: Python<'_>, story: &condt::EdgeStory) -> PyResult<EdgeStory> {
+        let [a, b] = story.edge;
+        let ends = [(a, story.ends[0]), (b, story.ends[1])]
+            .into_iter()
+            .map(|(at, choice)| end_dict(py, at, choice))
+            .collect::<PyResult<Vec<_>>>()?;
+        let changes = PyList::empty(py);
+        for change in &story.changes {
+            changes.append(change_dict(py, change)?)?;
+        }
+        Ok(EdgeStory {
+            edge: PyTuple::new(py, [a, b])?.unbind(),
+            kept: story.kept,
+            ends: PyTuple::new(py, ends)?.unbind(),
+            changes: changes.unbind(),
+            text: story.to_string(),
+        })
+    }
+}
+
+#[pymethods]
+impl EdgeStory {
+    fn __str__(&self) -> &str {
+        &self.text
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<condt.EdgeStory {}>", self.text)
+    }
+}
+
+fn end_dict<'py>(py: Python<'py>, at: usize, choice: EndChoice) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    dict.set_item("at", at)?;
+    match choice {
+        EndChoice::Shortest => dict.set_item("choice", "shortest")?,
+        EndChoice::Second { ratio, bound, kept } => {
+            dict.set_item("choice", "second")?;
+            dict.set_item("ratio", ratio)?;
+            dict.set_item("bound", bound)?;
+            dict.set_item("kept", kept)?;
+        }
+        EndChoice::Later { rank } => {
+            dict.set_item("choice", "later")?;
+            dict.set_item("rank", rank)?;
+        }
+        EndChoice::NotDelaunay => dict.set_item("choice", "not-delaunay")?,
+    }
+    Ok(dict)
+}
+
+fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    dict.set_item("stage", change.stage.key())?;
+    dict.set_item("added", change.added)?;
+    let reason = match change.reason {
+        Reason::Repair {
+            vertex,
+            degree,
+            kept,
+        } => {
+            dict.set_item("vertex", vertex)?;
+            dict.set_item("degree", degree)?;
+            dict.set_item("kept", kept.iter().flatten().copied().collect::<Vec<_>>())?;
+            "repair"
+        }
+        Reason::LongerThanThreshold { length, threshold } => {
+            dict.set_item("length", length)?;
+            dict.set_item("threshold", threshold)?;
+            "longer-than-threshold"
+        }
+        Reason::GivenBack => "given-back",
+        Reason::LongAt { vertex, ratio } => {
+            dict.set_item("vertex", vertex)?;
+            dict.set_item("ratio", ratio)?;
+            "long-at"
+        }
+        Reason::Component => "component",
+        Reason::Spur => "spur",
+        Reason::GapClosed => "gap-closed",
+        Reason::Baseline => "baseline",
+        Reason::NotConfirmed => "not-confirmed",
+    };
+    dict.set_item("reason", reason)?;
+    Ok(dict)
+}
