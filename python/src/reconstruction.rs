@@ -428,6 +428,8 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
         Reason::Component => "component",
         Reason::Spur => "spur",
         Reason::GapClosed => "gap-closed",
+        Reason::Junction => "junction",
+        Reason::Clump => "clump",
         Reason::Baseline => "baseline",
         Reason::NotConfirmed => "not-confirmed",
     };

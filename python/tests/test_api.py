@@ -284,7 +284,7 @@ def test_explain_tells_why_with_numbers():
     reasons = {c["reason"] for s in dropped for c in s.changes}
     assert reasons <= {
         "repair", "longer-than-threshold", "given-back", "long-at", "component", "spur",
-        "gap-closed", "baseline", "not-confirmed",
+        "gap-closed", "junction", "clump", "baseline", "not-confirmed",
     }
     for story in dropped:
         for change in story.changes:
