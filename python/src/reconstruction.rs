@@ -335,8 +335,8 @@ impl Curve {
 /// - ``changes``: what each later stage did to it, dicts with ``stage`` (its name, as in
 ///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``kept``),
 ///   ``"longer-than-threshold"`` (``length``, ``threshold``), ``"given-back"``, ``"long-at"``
-///   (``vertex``, ``ratio``), ``"component"``, ``"spur"``, ``"gap-closed"``, ``"baseline"``
-///   or ``"not-confirmed"``;
+///   (``vertex``, ``ratio``), ``"component"``, ``"spur"``, ``"clump"``, ``"gap-closed"``,
+///   ``"junction"``, ``"baseline"`` or ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
 #[pyclass(module = "condt", frozen, get_all)]
 pub(crate) struct EdgeStory {
