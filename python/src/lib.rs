@@ -55,8 +55,8 @@ use triangulation::Triangulation;
 /// The parameters are the command line's options, ``-`` written ``_``: ``paper=True`` starts
 /// from the paper's pipeline instead of the default, and the keywords adjust it: ``u`` (a
 /// number) or ``adaptive=True``; ``iqr`` (a number, or ``None`` to skip the outlier removal,
-/// as ``outlier_filter=False`` does); ``outliers_first``; ``local_outliers``,
-/// ``confirm_given_back``, ``close_gaps``, ``smooth`` (True or False); ``repair`` (``"needs"``,
+/// as ``outlier_filter=False`` does); ``outliers_first``; ``local_outliers``, ``clumps``,
+/// ``confirm_given_back``, ``close_gaps``, ``junctions``, ``smooth`` (True or False); ``repair`` (``"needs"``,
 /// ``"paper"``, ``"mutual"``, ``"crossing"`` or ``"off"``; ``manifold_fix=False`` is ``"off"``);
 /// ``method`` (``"condt"``, ``"nn-crust"`` or ``"crust"``, a baseline taking none of the
 /// others); ``sequential=True`` runs on one thread (same result).

@@ -30,7 +30,7 @@ use std::sync::OnceLock;
 /// >>> r.unused.tolist()
 /// []
 /// >>> list(r.stages)
-/// ['proximity', 'repair', 'iqr-outliers', 'local-outliers', 'given-back', 'gaps']
+/// ['proximity', 'repair', 'iqr-outliers', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions']
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Reconstruction {
     result: condt::Reconstruction,
@@ -128,8 +128,8 @@ impl Reconstruction {
     }
 
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
-    /// ``"repair"``, ``"iqr-outliers"``, ``"local-outliers"``, ``"given-back"``, ``"gaps"``, or a
-    /// baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
+    /// ``"repair"``, ``"iqr-outliers"``, ``"local-outliers"``, ``"clumps"``, ``"given-back"``,
+    /// ``"gaps"``, ``"junctions"``, or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
     /// the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
     /// the stages are the last pass's.
     #[getter]

@@ -260,10 +260,13 @@ def test_the_result_arrays():
         assert np.array_equal(c.coords, points[c.points])
         assert repr(c).startswith("<condt.Curve: ")
     stages = r.stages
-    assert list(stages) == ["proximity", "repair", "iqr-outliers", "local-outliers", "given-back", "gaps"]
-    assert np.array_equal(stages["gaps"], r.edges)
+    assert list(stages) == [
+        "proximity", "repair", "iqr-outliers", "local-outliers", "clumps", "given-back", "gaps",
+        "junctions",
+    ]
+    assert np.array_equal(stages["junctions"], r.edges)
     stages.clear()  # a copy: the result's stays
-    assert len(r.stages) == 6
+    assert len(r.stages) == 8
     assert "235 points" in repr(r)
 
 
