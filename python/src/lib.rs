@@ -11,11 +11,8 @@
 // curves: python/README.md has the figures), in its scoped form: it keeps freed pages only
 // while a call runs, so the Python process holds none between calls.
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
-#[path = "../../crates/condt-cli/src/allocator.rs"]
-mod allocator;
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
 #[global_allocator]
-static ALLOCATOR: allocator::Recycling = allocator::Recycling::scoped();
+static ALLOCATOR: condt_alloc::Recycling = condt_alloc::Recycling::scoped();
 
 /// Runs `work` as one call of the allocator (see above): the large blocks it frees are reused by
 /// its later ones, and unmapped when it ends.

@@ -1,7 +1,6 @@
 //! The `condt` command-line tool: argument parsing and messages live in [`cli`], where the
 //! output goes in [`output`]; everything it computes comes from the library.
 
-mod allocator;
 mod cli;
 mod options;
 mod output;
@@ -9,10 +8,10 @@ mod progress;
 mod score;
 mod timings;
 
-/// Large blocks recycled instead of faulted in again (`allocator.rs` says why).
+/// Large blocks recycled instead of faulted in again (the `condt-alloc` crate says why).
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 #[global_allocator]
-static ALLOCATOR: allocator::Recycling = allocator::Recycling::new();
+static ALLOCATOR: condt_alloc::Recycling = condt_alloc::Recycling::new();
 
 fn main() {
     // A file-size limit makes writes fail (an error, the temporary file removed) rather than

@@ -4,7 +4,7 @@
 //! Owns: [`prefetch`] and [`PREFETCH_FROM`]. It may not read or write memory, and nothing else
 //! in the crate may use `unsafe`: `lib.rs` denies unsafe code, this module alone allows it, and
 //! `tests/unsafe_code.rs` fails if any other source file does (but for the binary's allocator,
-//! `crates/condt-cli/src/allocator.rs`).
+//! `crates/condt-alloc/src/lib.rs`).
 //!
 //! Why: at a million points most reads of the proximity sweep and of the final tally (on
 //! shuffled input) miss the caches; a prefetch issued ahead lets the misses overlap. It changes

@@ -1,5 +1,5 @@
 //! The library's one `unsafe` block is the cache hint in `crates/condt/src/prefetch.rs`; the
-//! binary's allocator (Linux with glibc only) is `crates/condt-cli/src/allocator.rs`, where every
+//! binary's allocator (Linux with glibc only) is `crates/condt-alloc/src/lib.rs`, where every
 //! `unsafe` block must say why it is sound in a `// SAFETY:` comment right above it; the Python
 //! package's native module (`python/src`) has one, viewing a NumPy array's rows as points, in
 //! `python/src/convert.rs`, with its `// SAFETY:` comment. `lib.rs` denies unsafe code, but a
@@ -45,7 +45,7 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
     let python = crates.join("../python/src");
     rust_files(&python, &mut files);
     let prefetch_path = crates.join("condt/src/prefetch.rs");
-    let allocator_path = crates.join("condt-cli/src/allocator.rs");
+    let allocator_path = crates.join("condt-alloc/src/lib.rs");
     let binding_path = python.join("convert.rs");
     assert!(
         files.len() > 20,
@@ -55,7 +55,7 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
     let mut found = Vec::new();
     for file in &files {
         if file.ends_with("condt/src/prefetch.rs")
-            || file.ends_with("condt-cli/src/allocator.rs")
+            || file.ends_with("condt-alloc/src/lib.rs")
             || file.ends_with("python/src/convert.rs")
         {
             continue;
@@ -69,7 +69,7 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
     }
     assert!(
         found.is_empty(),
-        "unsafe code outside condt/src/prefetch.rs, condt-cli/src/allocator.rs and \
+        "unsafe code outside condt/src/prefetch.rs, condt-alloc/src/lib.rs and \
          python/src/convert.rs:\n{}",
         found.join("\n")
     );
@@ -79,11 +79,11 @@ fn unsafe_code_appears_only_in_the_prefetch_module_and_the_allocator() {
         2,
         "condt/src/prefetch.rs holds one allow and one unsafe block"
     );
-    let allocator = fs::read_to_string(allocator_path).expect("condt-cli/src/allocator.rs");
+    let allocator = fs::read_to_string(allocator_path).expect("condt-alloc/src/lib.rs");
     let unjustified = unsafe_without_safety_comment(&allocator);
     assert!(
         unjustified.is_empty(),
-        "condt-cli/src/allocator.rs: unsafe code without a `// SAFETY:` comment right above it \
+        "condt-alloc/src/lib.rs: unsafe code without a `// SAFETY:` comment right above it \
          (lines {unjustified:?})"
     );
     assert!(

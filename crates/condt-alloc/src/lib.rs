@@ -48,17 +48,19 @@
 //! The peak resident set is within 1.7 % (109,968 against 109,440 kB along curves at 1M,
 //! 128,628 against 126,516 on uniform points). Every output is byte-identical.
 //!
-//! **In a library.** The Python package (`python/src/lib.rs`) compiles this file too, with
+//! **In a library.** The Python package (`python/src/lib.rs`) uses this crate too, with
 //! [`Recycling::scoped`]: a process that lives on between calls must not hold freed pages, so
 //! runs are kept only while a call runs ([`Recycling::within_call`]) and unmapped when the last
 //! one ends; a block freed between calls is unmapped at once, as glibc would. The binary keeps
 //! them for its whole run ([`Recycling::new`]), since it exits.
 //!
-//! The crate declares the global allocator (`main.rs`: `#[global_allocator] static ALLOCATOR:
-//! allocator::Recycling = allocator::Recycling::new();`, on Linux with glibc).
+//! A crate of its own so that the binary and the Python package share it (and a source
+//! distribution of the package carries it). Each declares the global allocator itself, on Linux
+//! with glibc (the binary's `main.rs`: `#[global_allocator] static ALLOCATOR:
+//! condt_alloc::Recycling = condt_alloc::Recycling::new();`). Elsewhere the crate is empty.
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
-pub(crate) use linux::Recycling;
+pub use linux::Recycling;
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 mod linux {
@@ -153,7 +155,7 @@ mod linux {
     }
 
     /// The binary's global allocator (see the module comment).
-    pub(crate) struct Recycling {
+    pub struct Recycling {
         kept: Mutex<Kept>,
         /// Bytes of glibc's heap the small blocks live now take (their chunks,
         /// [`Recycling::chunk`]).
@@ -167,10 +169,17 @@ mod linux {
         calls: AtomicUsize,
     }
 
+    impl Default for Recycling {
+        /// [`Recycling::new`]: the binary's allocator.
+        fn default() -> Self {
+            Self::new()
+        }
+    }
+
     impl Recycling {
         /// The binary's allocator: freed runs are kept for the whole run.
         #[cfg_attr(not(test), allow(dead_code))] // the Python package uses `scoped` only
-        pub(crate) const fn new() -> Self {
+        pub const fn new() -> Self {
             Self::with_scope(false)
         }
 
@@ -178,7 +187,7 @@ mod linux {
         /// call runs ([`Recycling::within_call`]), all unmapped when the last call ends, and
         /// a run freed outside every call is unmapped at once.
         #[cfg_attr(not(test), allow(dead_code))] // the binary uses `new` only
-        pub(crate) const fn scoped() -> Self {
+        pub const fn scoped() -> Self {
             Self::with_scope(true)
         }
 
@@ -199,7 +208,7 @@ mod linux {
         /// frees are kept for its later blocks; when the last call running ends (here, or
         /// when `work` unwinds), every kept run is unmapped.
         #[cfg_attr(not(test), allow(dead_code))] // the binary never ends a call
-        pub(crate) fn within_call<T>(&self, work: impl FnOnce() -> T) -> T {
+        pub fn within_call<T>(&self, work: impl FnOnce() -> T) -> T {
             /// Ends the call on the way out, unwinding included.
             struct End<'a>(&'a Recycling);
             impl Drop for End<'_> {
