@@ -110,7 +110,21 @@ pub(super) struct Ends<'a> {
     pub(super) graph: CurveGraph,
 }
 
-impl Ends<'_> {
+impl<'a> Ends<'a> {
+    /// The loose ends of `edges` on `tri`, with `graph` when the previous stage had it (built
+    /// here otherwise).
+    pub(super) fn new(tri: &'a Triangulation, edges: &[Edge], graph: Option<CurveGraph>) -> Self {
+        let graph = graph.unwrap_or_else(|| CurveGraph::new(tri.num_points(), edges));
+        Ends { tri, graph }
+    }
+
+    /// The loose ends, in increasing vertex id.
+    pub(super) fn loose(&self) -> impl Iterator<Item = VertexId> + '_ {
+        (0..self.tri.num_points() as u32)
+            .map(VertexId::new)
+            .filter(|&a| self.is_loose(a))
+    }
+
     pub(super) fn point(&self, v: VertexId) -> Point {
         self.tri.vertex_point(v)
     }
@@ -214,15 +228,11 @@ pub(crate) fn close_gaps(
     graph: Option<CurveGraph>,
 ) -> Outcome {
     let n = tri.num_points();
-    let ends = Ends {
-        tri,
-        graph: graph.unwrap_or_else(|| CurveGraph::new(n, edges)),
-    };
+    let ends = Ends::new(tri, edges, graph);
     // Only loose ends choose, and most points are not loose: the choices are kept as a list
     // in increasing vertex id, searched by id (memory).
-    let targets: Vec<(VertexId, Target)> = (0..n as u32)
-        .map(VertexId::new)
-        .filter(|&a| ends.is_loose(a))
+    let targets: Vec<(VertexId, Target)> = ends
+        .loose()
         .map(|a| (a, ends.target(a)))
         .filter(|&(_, target)| target != Target::None)
         .collect();

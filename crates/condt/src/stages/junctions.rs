@@ -96,13 +96,9 @@ pub(crate) fn join_junctions(
     graph: Option<CurveGraph>,
 ) -> Outcome {
     let n = tri.num_points();
-    let ends = Ends {
-        tri,
-        graph: graph.unwrap_or_else(|| CurveGraph::new(n, edges)),
-    };
-    let choices: Vec<(VertexId, VertexId)> = (0..n as u32)
-        .map(VertexId::new)
-        .filter(|&a| ends.is_loose(a))
+    let ends = Ends::new(tri, edges, graph);
+    let choices: Vec<(VertexId, VertexId)> = ends
+        .loose()
         .filter_map(|a| ends.junction_of(a).map(|c| (a, c)))
         .collect();
     // How many loose ends chose each point, saturating at two.
