@@ -70,6 +70,11 @@ pub(crate) const NOISE_SHARE: usize = 100;
 pub(crate) struct Smoothed {
     /// The smoothed position of every input position, relative to `corner`.
     pub(crate) positions: Vec<Point>,
+    /// The same positions in the caller's coordinates, computed there: the fallback when the
+    /// relative ones make two distinct points one (a coordinate far smaller than the set's
+    /// extent is lost in a difference from the corner), which would make the result depend on
+    /// the order of the input.
+    pub(crate) absolute: Vec<Point>,
     /// The corner of the positions the pass started from, in the caller's coordinates (for
     /// showing the moved points; no decision reads it).
     pub(crate) corner: Point,
@@ -101,12 +106,16 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothe
             Point::new(c.x.min(p.x), c.y.min(p.y))
         });
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
+    let offset = tri.offset();
+    let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
     let mut moved = 0;
+    let mut absolute = Vec::with_capacity(n);
     let positions = (0..n)
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_point(v));
             if graph.degree(v) != 2 {
+                absolute.push(tri.point(i));
                 return tri.stage_to_input(q);
             }
             let [x, y] = graph.first_two(v);
@@ -119,20 +128,27 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothe
             let (wx, wy) = (b.x - q.x, b.y - q.y);
             // The angle at the point is wider than a right angle exactly when u·w < 0.
             if ux * wx + uy * wy >= 0.0 {
+                absolute.push(tri.point(i));
                 return tri.stage_to_input(q);
             }
             moved += 1;
-            let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
-            tri.stage_to_input(Point::new(
-                q.x + WEIGHT * (mid.x - q.x),
-                q.y + WEIGHT * (mid.y - q.y),
-            ))
+            let step = |q: Point, a: Point, b: Point| {
+                let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
+                Point::new(q.x + WEIGHT * (mid.x - q.x), q.y + WEIGHT * (mid.y - q.y))
+            };
+            let (qa, aa, ba) = (
+                tri.vertex_point(v),
+                tri.vertex_point(x),
+                tri.vertex_point(y),
+            );
+            absolute.push(shown(tri.stage_to_input(step(qa, aa, ba))));
+            tri.stage_to_input(step(q, a, b))
         })
         .collect();
-    let offset = tri.offset();
     let shift = tri.stage_to_input(corner);
     Smoothed {
         positions,
+        absolute,
         corner: Point::new(offset.x + shift.x, offset.y + shift.y),
         moved,
     }

@@ -423,13 +423,22 @@ impl Pipeline {
         drop(core::mem::take(&mut result.edges));
         let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
         let smoothed = smoothed_positions(&triangulation, &final_edges);
+        let merged_before = triangulation.num_points() - triangulation.num_vertices();
         drop((triangulation, final_edges));
         let moved = smoothed.moved;
         // The replaced run's triangulation is an earlier pass's cost too.
         self.earlier_passes += triangulation_time;
         self.earlier_passes += self.pass_clock.lap();
-        let tri = triangulate_with(&smoothed.positions, self.params.parallel)?
-            .with_offset(smoothed.corner);
+        // Relative to the corner, so that an exact translation gives the same result; unless
+        // that makes distinct points one, which would make it depend on the input's order: then
+        // in the caller's coordinates (a set spanning orders of magnitude far beyond its spacing).
+        let relative = triangulate_with(&smoothed.positions, self.params.parallel)?;
+        let tri = if relative.num_points() - relative.num_vertices() > merged_before {
+            drop(relative);
+            triangulate_with(&smoothed.absolute, self.params.parallel)?
+        } else {
+            relative.with_offset(smoothed.corner)
+        };
         drop(smoothed);
         let triangulation_time = self.pass_clock.lap();
         smoothing.passes += 1;
