@@ -277,15 +277,24 @@ pub(crate) fn close_gaps(
             _ => {}
         }
     }
-    if joins.is_empty() {
-        return Outcome::unchanged_with(Some(ends.graph));
+    drop(lined_up);
+    ends.joined(edges, &joins)
+}
+
+impl Ends<'_> {
+    /// The outcome of a stage that adds `joins` to `edges`: unchanged (the curve graph handed
+    /// on) when there is none; otherwise `edges` in their order, then `joins`, the curve graph
+    /// freed first (it is not the output's).
+    pub(super) fn joined(self, edges: &[Edge], joins: &[Edge]) -> Outcome {
+        if joins.is_empty() {
+            return Outcome::unchanged_with(Some(self.graph));
+        }
+        drop(self);
+        let mut out = Vec::with_capacity(edges.len() + joins.len());
+        out.extend_from_slice(edges);
+        out.extend_from_slice(joins);
+        Outcome::from(Some(out))
     }
-    // The curve graph is not the output's and not read again: freed before the output is built.
-    drop((ends, lined_up));
-    let mut out = Vec::with_capacity(edges.len() + joins.len());
-    out.extend_from_slice(edges);
-    out.extend_from_slice(&joins);
-    Outcome::from(Some(out))
 }
 
 #[cfg(test)]

@@ -111,14 +111,8 @@ pub(crate) fn join_junctions(
         .filter(|&&(_, c)| chosen[c.index()] == 1)
         .map(|&(a, c)| ordered(a, c))
         .collect();
-    if joins.is_empty() {
-        return Outcome::unchanged_with(Some(ends.graph));
-    }
-    drop((ends, chosen));
-    let mut out = Vec::with_capacity(edges.len() + joins.len());
-    out.extend_from_slice(edges);
-    out.extend_from_slice(&joins);
-    Outcome::from(Some(out))
+    drop(chosen);
+    ends.joined(edges, &joins)
 }
 
 #[cfg(test)]
