@@ -40,6 +40,27 @@ fn evenly_spaced_junctions() -> Vec<Point> {
     points
 }
 
+/// The edges of `points` shuffled by `rng`, mapped back to the positions of `points` and each
+/// end named by `name` (the same point for copies of it).
+fn edges_of_permuted(
+    points: &[Point],
+    params: &Params,
+    rng: &mut Rng,
+    name: impl Fn(usize) -> usize,
+) -> BTreeSet<[usize; 2]> {
+    // Input position k of the permuted set holds the point that was at order[k].
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    rng.shuffle(&mut order);
+    let permuted: Vec<Point> = order.iter().map(|&k| points[k]).collect();
+    edges(&permuted, params)
+        .into_iter()
+        .map(|[a, b]| {
+            let (a, b) = (name(order[a]), name(order[b]));
+            [a.min(b), a.max(b)]
+        })
+        .collect()
+}
+
 /// One set per sampled category of the evaluation suites, plus evenly spaced junctions.
 fn categories() -> Vec<(&'static str, Vec<Point>)> {
     let ellipse = |x: f64, y: f64, a: f64, b: f64| Shape::Ellipse {
@@ -134,17 +155,7 @@ fn permuting_scaling_turning_and_mirroring_keep_the_edges() {
                 let moved = mapped(&points, map);
                 assert_eq!(edges(&moved, &params), original, "{name}, {what}");
             }
-            // Permuted: input position k holds the point that was at order[k].
-            let mut order: Vec<usize> = (0..points.len()).collect();
-            rng.shuffle(&mut order);
-            let permuted: Vec<Point> = order.iter().map(|&k| points[k]).collect();
-            let back: BTreeSet<[usize; 2]> = edges(&permuted, &params)
-                .into_iter()
-                .map(|[a, b]| {
-                    let (a, b) = (order[a], order[b]);
-                    [a.min(b), a.max(b)]
-                })
-                .collect();
+            let back = edges_of_permuted(&points, &params, &mut rng, |k| k);
             assert_eq!(back, original, "{name}, permuted");
         }
     }
@@ -167,25 +178,15 @@ fn a_point_lost_in_a_difference_from_the_corner_keeps_the_edges_independent_of_o
     let original = edges(&points, &params);
     // Copies of the origin are one point: name each edge end by its first copy.
     let first = |k: usize| points.iter().position(|&p| p == points[k]).unwrap();
+    let named: BTreeSet<[usize; 2]> = original
+        .iter()
+        .map(|&[a, b]| {
+            let (a, b) = (first(a), first(b));
+            [a.min(b), a.max(b)]
+        })
+        .collect();
     let mut rng = Rng::new(4584);
     for _ in 0..20 {
-        let mut order: Vec<usize> = (0..points.len()).collect();
-        rng.shuffle(&mut order);
-        let permuted: Vec<Point> = order.iter().map(|&k| points[k]).collect();
-        let back: BTreeSet<[usize; 2]> = edges(&permuted, &params)
-            .into_iter()
-            .map(|[a, b]| {
-                let (a, b) = (first(order[a]), first(order[b]));
-                [a.min(b), a.max(b)]
-            })
-            .collect();
-        let named: BTreeSet<[usize; 2]> = original
-            .iter()
-            .map(|&[a, b]| {
-                let (a, b) = (first(a), first(b));
-                [a.min(b), a.max(b)]
-            })
-            .collect();
-        assert_eq!(back, named, "{order:?}");
+        assert_eq!(edges_of_permuted(&points, &params, &mut rng, first), named);
     }
 }
