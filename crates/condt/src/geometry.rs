@@ -1,9 +1,8 @@
 //! Points and plain floating-point helpers.
 //!
 //! Owns: the [`Point`] type, arithmetic that measures (distances, bounding boxes) and exact
-//! rescaling by powers of two ([`Scale`], [`binary_exponent`]), which the drawings of
-//! `condt-io` share with the stages. It may not
-//! decide an orientation or an in-circle sign: that belongs to [`crate::predicates`] alone.
+//! rescaling by powers of two ([`Scale`], [`binary_exponent`]), shared with `condt-io`'s drawings.
+//! It may not decide an orientation or in-circle sign: that is [`crate::predicates`]'s alone.
 
 /// A point of the plane, in double precision.
 ///
@@ -118,14 +117,12 @@ fn pow2(k: i32) -> f64 {
     f64::from_bits(((k + 1023) as u64) << 52)
 }
 
-/// Multiplication by a power of two, kept as two factors so that each stays a normal double
-/// (`2^k` for `k` from -2044 to 2046). It is exact, and changes no sign and no ratio, as long as
-/// no coordinate leaves the normal range. The stages work on the input scaled this way, and
-/// the drawings use it to bring any coordinates into view without rounding them.
+/// Multiplication by a power of two, kept as two factors so each stays a normal double (`2^k` for
+/// `k` from -2044 to 2046): exact, changing no sign or ratio, while no coordinate leaves the
+/// normal range. The stages work on the input scaled so; the drawings use it to zoom exactly.
 ///
 /// ```
-/// use condt::geometry::Scale;
-/// use condt::Point;
+/// use condt::{geometry::Scale, Point};
 /// let big = Point::new(3.0 * 2f64.powi(1000), -2f64.powi(1001));
 /// let scale = Scale::power_of_two(-1000);
 /// assert_eq!(scale.apply(big), Point::new(3.0, -2.0));

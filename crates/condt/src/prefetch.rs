@@ -1,18 +1,13 @@
-//! A hint to the processor that an element of a slice will be read soon: the crate's one use of
-//! `unsafe`, confined here.
+//! A hint to the processor that a slice element will be read soon: the crate's one use of
+//! `unsafe`, confined here (`lib.rs` denies unsafe code, this module alone allows it, and
+//! `tests/unsafe_code.rs` fails if any other source file but the binary's allocator uses it).
 //!
-//! Owns: [`prefetch`] and [`PREFETCH_FROM`]. It may not read or write memory, and nothing else
-//! in the crate may use `unsafe`: `lib.rs` denies unsafe code, this module alone allows it, and
-//! `tests/unsafe_code.rs` fails if any other source file does (but for the binary's allocator,
-//! `crates/condt-alloc/src/lib.rs`).
-//!
-//! Why: at a million points most reads of the proximity sweep and of the final tally (on
-//! shuffled input) miss the caches; a prefetch issued ahead lets the misses overlap. It changes
-//! no result.
+//! Owns: [`prefetch`] and [`PREFETCH_FROM`]; it may not read or write memory. Why: at a million
+//! points most reads of the proximity sweep and the final tally (on shuffled input) miss the
+//! caches; a prefetch issued ahead lets the misses overlap. It changes no result.
 
-/// Fewest points for which loops over them prefetch (the proximity sweep and the final tally):
-/// below it the reads fit the second-level cache and prefetches only add work. On targets where
-/// [`prefetch`] does nothing, never: the loops then skip the work of asking.
+/// Fewest points for which loops prefetch (below it the reads fit the second-level cache); never
+/// on targets where [`prefetch`] does nothing.
 pub(crate) const PREFETCH_FROM: usize = if cfg!(target_arch = "x86_64") {
     1 << 16
 } else {

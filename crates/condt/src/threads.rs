@@ -1,9 +1,7 @@
-//! Running two pieces of work at once, on rayon's threads with the `parallel` feature, or one
-//! after the other without it (or when the caller asks for one thread).
-//!
-//! Owns: only the choice of how to run, and whether rayon's threads can run at all
-//! ([`parallel_available`]); it knows nothing of what the work is. The triangulation (its two
-//! halves) and the pipeline's last step (curves and tally) share it.
+//! Running two pieces of work at once on rayon's threads (feature `parallel`), or one after the
+//! other. Owns: only the choice of how to run and whether rayon can run at all
+//! ([`parallel_available`]); it knows nothing of the work (the triangulation's two halves, the
+//! pipeline's curves and tally).
 
 /// `(a(), b())`, at once on rayon's threads when `parallel`.
 #[cfg(feature = "parallel")]
@@ -25,12 +23,11 @@ pub(crate) fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce(
     (a(), b())
 }
 
-/// Whether rayon's global pool can run work: `false` without the `parallel` feature, and when
-/// the pool could not be started (a limit on processes or address space, `RAYON_NUM_THREADS`
-/// beyond what the system gives), in which case rayon would panic at its first use; every
-/// parallel path of the library then runs on the caller's thread instead, with the same
-/// results. Asked once per process: the first call starts the global pool as rayon's first use
-/// would (with its default settings, or the caller's if it built the pool first).
+/// Whether rayon's global pool can run work: `false` without the `parallel` feature, or when the
+/// pool could not start (a limit on processes or address space, `RAYON_NUM_THREADS` beyond what
+/// the system gives), where rayon would panic at first use; every parallel path then runs on the
+/// caller's thread, with the same results. Asked once per process: the first call starts the
+/// global pool as rayon's first use would (with the caller's settings if it built it first).
 ///
 /// ```
 /// // With the default features, on a machine that can start threads:

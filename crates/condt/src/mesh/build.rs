@@ -1,21 +1,11 @@
 //! Construction of a [`Mesh`]: the one place outside `mesh/mod.rs` that writes its arrays.
 //!
-//! Owns: the half-edge arrays (`origins`, `twins`) while a mesh is being built. [`MeshArrays`]
-//! holds them, sized once for the whole construction; a [`MeshBuilder`] is lent a range of them
-//! and offers the triangulator exactly the edits it makes (append a triangle, overwrite a
-//! triangle's corners, link two twins) and the reads it needs between edits. Two builders may
-//! fill two disjoint ranges at once (the two halves of [`crate::triangulate()`]), then one builder
-//! over the whole range stitches them. [`MeshArrays::seal`] ends the construction and derives
-//! `vertex_edges`.
-//!
-//! It may not look at a coordinate or decide a sign (that is the caller's business), and it does
-//! not check invariants while the mesh is under construction: between two edits the arrays may
-//! describe no sphere at all (unlinked twins, stale corners). [`Mesh::check_topology`] checks the
-//! finished mesh. Once [`MeshArrays::seal`] has run, nothing outside `mesh` can change it.
-//!
-//! Triangles are addressed either by [`TriangleId`] or, in the hot loops, by `base`, the index of
-//! the triangle's first half-edge as [`HalfEdgeId::base_and_corner`] returns it, so that a caller
-//! holding a half-edge reads its triangle after one division and no multiplication.
+//! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once); a
+//! [`MeshBuilder`] lent a range offers the triangulator exactly its edits and reads, and two may
+//! fill disjoint ranges at once (the halves of [`crate::triangulate()`]). [`MeshArrays::seal`]
+//! derives `vertex_edges` and ends it. It may not look at a coordinate or decide a sign, and checks
+//! nothing while building (between edits the arrays may describe no sphere); hot loops address a
+//! triangle by `base`, its first half-edge's index ([`HalfEdgeId::base_and_corner`]).
 
 use super::{HalfEdgeId, Mesh, TriangleId, VertexId};
 use alloc::vec::Vec;
@@ -28,8 +18,7 @@ pub(crate) struct MeshArrays {
 
 impl MeshArrays {
     /// Room for `half_edges` half-edges (a multiple of three), filled on rayon's threads when
-    /// `parallel` (with the `parallel` feature): the first touch of each page is most of the
-    /// cost, and each thread takes its share of it.
+    /// `parallel`: the first touch of each page is most of the cost.
     pub(crate) fn new(half_edges: usize, parallel: bool) -> Self {
         #[cfg(feature = "parallel")]
         if parallel {
@@ -86,9 +75,8 @@ impl MeshArrays {
         }
     }
 
-    /// Ends the construction: keeps the first `len` half-edges and seals the mesh over vertex
-    /// ids `0..vertex_count`, deriving each vertex's edge (for a hull vertex, the one pointing
-    /// to infinity), on two threads when `parallel`. Read-only from now on.
+    /// Keeps the first `len` half-edges and seals the mesh over vertex ids `0..vertex_count`,
+    /// deriving each vertex's edge (on two threads when `parallel`). Read-only from now on.
     pub(crate) fn seal(mut self, len: usize, vertex_count: usize, parallel: bool) -> Mesh {
         self.origins.truncate(len);
         self.twins.truncate(len);
@@ -111,7 +99,6 @@ pub(crate) struct MeshBuilder<'m> {
 }
 
 impl MeshBuilder<'_> {
-    /// The number of half-edges written so far.
     #[inline]
     pub(crate) fn len(&self) -> usize {
         self.len
@@ -137,30 +124,27 @@ impl MeshBuilder<'_> {
         self.set_corners_at(t.index() * 3, corners);
     }
 
-    /// Overwrites the corners of the triangle whose first half-edge is at `base`.
+    /// Overwrites the corners of the triangle at `base`.
     #[inline]
     pub(crate) fn set_corners_at(&mut self, base: usize, corners: [VertexId; 3]) {
         self.origins[base..base + 3].copy_from_slice(&corners);
     }
 
-    /// The corners of the triangle whose first half-edge is at `base`, corner `k` being the
-    /// origin of half-edge `base + k`. One bounds check for the three.
+    /// The corners of the triangle at `base`, corner `k` the origin of half-edge `base + k`.
     #[inline]
     pub(crate) fn corners_at(&self, base: usize) -> [VertexId; 3] {
         let c = &self.origins[base..base + 3];
         [c[0], c[1], c[2]]
     }
 
-    /// The twins of the triangle whose first half-edge is at `base`. One bounds check for the
-    /// three.
+    /// The twins of the triangle at `base` (one bounds check for the three, as above).
     #[inline]
     pub(crate) fn twins_at(&self, base: usize) -> [HalfEdgeId; 3] {
         let t = &self.twins[base..base + 3];
         [t[0], t[1], t[2]]
     }
 
-    /// Overwrites the twins of the triangle whose first half-edge is at `base` (the caller
-    /// links the other sides: see [`MeshBuilder::set_twin`]).
+    /// Overwrites the twins of the triangle at `base` (the caller links the other sides).
     #[inline]
     pub(crate) fn set_twins_at(&mut self, base: usize, twins: [HalfEdgeId; 3]) {
         self.twins[base..base + 3].copy_from_slice(&twins);
@@ -172,7 +156,6 @@ impl MeshBuilder<'_> {
         self.twins[a.index()] = b;
     }
 
-    /// Where `e` starts.
     #[inline]
     pub(crate) fn origin(&self, e: HalfEdgeId) -> VertexId {
         self.origins[e.index()]
@@ -191,9 +174,8 @@ impl MeshBuilder<'_> {
         self.twins[b.index()] = a;
     }
 
-    /// Renumbers what was written as if the range started `edge_offset` half-edges and
-    /// `vertex_offset` vertex ids further on (the vertex at infinity stays): a mesh built on its
-    /// own, placed after another.
+    /// Shifts the written ids by `edge_offset` half-edges and `vertex_offset` finite vertices: a
+    /// mesh built on its own, placed after another.
     pub(crate) fn renumber(&mut self, vertex_offset: u32, edge_offset: u32) {
         for v in &mut self.origins[..self.len] {
             if !v.is_infinite() {

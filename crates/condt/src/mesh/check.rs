@@ -9,14 +9,9 @@ use core::fmt;
 /// where it was seen.
 ///
 /// ```
-/// use condt::{triangulate, Point};
-/// let tri = triangulate(&[Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)])?;
-/// assert!(tri.validate().is_ok());
-///
 /// use condt::mesh::{Element, Rule, TriangleId, Violation};
 /// let broken = Violation { rule: Rule::TriangleNotCcw, element: Element::Triangle(TriangleId::new(3)) };
 /// assert_eq!(broken.to_string(), "invalid mesh: triangle is not counter-clockwise (at triangle 3)");
-/// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct Violation {
@@ -53,36 +48,30 @@ pub enum Rule {
     TwinOutOfRange,
     /// The twin of a half-edge's twin is not the half-edge. [`Element::HalfEdge`].
     TwinNotMutual,
-    /// A half-edge's twin does not join the same two vertices the other way.
-    /// [`Element::HalfEdge`].
+    /// A half-edge's twin does not join the same two vertices the other way. [`Element::HalfEdge`].
     TwinNotReversed,
     /// A vertex that no half-edge leaves has a vertex edge. [`Element::Vertex`].
     StrayVertexEdge,
-    /// A vertex that half-edges leave has no (or an out-of-range) vertex edge.
-    /// [`Element::Vertex`].
+    /// A vertex that half-edges leave has no (or an out-of-range) vertex edge. [`Element::Vertex`].
     MissingVertexEdge,
     /// A vertex edge does not leave its vertex. [`Element::Vertex`].
     VertexEdgeNotLeaving,
     /// The vertex edge of a hull vertex does not point to infinity. [`Element::Vertex`].
     HullVertexEdgeNotToInfinity,
-    /// Turning around a vertex does not come back to its vertex edge within its degree.
-    /// [`Element::Vertex`].
+    /// The ring of a vertex does not close within its degree. [`Element::Vertex`].
     RingNotClosed,
-    /// The ring of a vertex closes before it has met every half-edge leaving the vertex.
-    /// [`Element::Vertex`].
+    /// The ring of a vertex closes before meeting every half-edge leaving it. [`Element::Vertex`].
     RingIncomplete,
     /// `V - E + F` is not 2: the triangles do not form a sphere. [`Element::Whole`].
     EulerCharacteristic,
 
     // Maps: `Triangulation::validate`.
-    /// The mesh's vertex id space, the coordinates and the two maps have different lengths.
-    /// [`Element::Whole`].
+    /// The vertex id space, the coordinates and the two maps differ in length. [`Element::Whole`].
     VertexArrayLengths,
     /// An input point maps to no vertex, or its vertex reports another input point than the
     /// smallest of its duplicates. [`Element::InputPoint`].
     InputNotMapped,
-    /// A vertex id left by a merged duplicate holds a point other than its vertex's.
-    /// [`Element::Vertex`].
+    /// A merged duplicate's id holds a point other than its vertex's. [`Element::Vertex`].
     DuplicateMisplaced,
     /// A vertex edge is present on an id that is no vertex, or missing on a vertex (when there
     /// are at least two vertices). [`Element::Vertex`].
@@ -184,16 +173,14 @@ impl fmt::Display for Element {
     }
 }
 
-/// `Err` of a [`Violation`] of `rule` at `element`.
 fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
     Err(Violation { rule, element })
 }
 
 impl Mesh {
-    /// Checks that the arrays describe a triangulated sphere: twins are mutual and run the other
-    /// way, no triangle repeats a corner or has two infinite ones, every vertex's ring closes and
-    /// holds all its edges, the vertex edge of a hull vertex points to infinity, and Euler's
-    /// formula holds.
+    /// Checks that the arrays describe a triangulated sphere: twins mutual and reversed, no
+    /// repeated corner, every vertex's ring closed and holding all its edges, hull vertices' edges
+    /// to infinity, and Euler's formula.
     ///
     /// ```
     /// use condt::{triangulate, Point};
@@ -230,7 +217,6 @@ impl Mesh {
                 return fail(Rule::TwinNotReversed, Element::HalfEdge(e));
             }
         }
-
         let mut out_degree = vec![0u32; self.vertex_edges.len()];
         let mut to_infinity = vec![false; self.vertex_edges.len()];
         let mut infinite_used = false;

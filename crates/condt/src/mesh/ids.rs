@@ -1,9 +1,8 @@
 //! Typed 32-bit handles for vertices, half-edges and triangles.
 
-/// A vertex. A [`Triangulation`](crate::Triangulation) numbers vertices in its insertion order,
-/// which is spatial; [`Triangulation::input_of`](crate::Triangulation::input_of) gives the
-/// input position a vertex stands for. [`VertexId::INFINITE`] is the vertex at infinity that
-/// closes the mesh into a sphere.
+/// A vertex, numbered in the (spatial) insertion order;
+/// [`Triangulation::input_of`](crate::Triangulation::input_of) gives its input position.
+/// [`VertexId::INFINITE`] closes the mesh into a sphere.
 ///
 /// ```
 /// use condt::mesh::VertexId;
@@ -37,9 +36,9 @@ impl VertexId {
     }
 }
 
-/// A directed edge. Triangle `t` owns half-edges `3t`, `3t + 1`, `3t + 2` in counter-clockwise
-/// order, so [`next`](HalfEdgeId::next), [`prev`](HalfEdgeId::prev) and
-/// [`triangle`](HalfEdgeId::triangle) are arithmetic; the twin is stored in the [`Mesh`](crate::mesh::Mesh).
+/// A directed edge. Triangle `t` owns half-edges `3t`, `3t + 1`, `3t + 2` counter-clockwise, so
+/// [`next`](HalfEdgeId::next), [`prev`](HalfEdgeId::prev) and [`triangle`](HalfEdgeId::triangle)
+/// are arithmetic; the twin is stored in the [`Mesh`](crate::mesh::Mesh).
 ///
 /// ```
 /// use condt::mesh::{HalfEdgeId, TriangleId};

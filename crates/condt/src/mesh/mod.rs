@@ -1,25 +1,10 @@
-//! Half-edge topology of a triangulated sphere.
+//! Half-edge topology of a triangulated sphere, closed by ghost triangles at
+//! [`VertexId::INFINITE`] (`docs/half_edge.md` draws the layout and lists the walks).
 //!
-//! Owns: connectivity only, in three flat arrays indexed by typed ids. The arrays are private to
-//! this module: only `mesh` writes them, while a mesh is built through `MeshBuilder` (in
-//! `build.rs`, which turns the triangulator's edits into array writes and seals the result), and
-//! every other module reads a finished [`Mesh`] through its typed accessors. It may not look at a
-//! coordinate, and it knows nothing of where a vertex is or why a triangle was made: the caller
-//! of the builder decides that, `check.rs` verifies the result.
-//!
-//! Layout (see `docs/half_edge.md` for pictures):
-//! - triangle `t` owns half-edges `3t, 3t+1, 3t+2`, counter-clockwise; `origins[e]` is where `e`
-//!   starts, so `e` runs from `origins[e]` to `origins[e.next()]`;
-//! - `twins[e]` is the opposite half-edge; every half-edge has one, because the convex hull is closed
-//!   off by *ghost triangles* that join each hull edge to [`VertexId::INFINITE`];
-//! - `vertex_edges[v]` is one half-edge leaving `v`; for a hull vertex it is the one that points to
-//!   infinity, so that the counter-clockwise walk of the ring starts and ends on the hull.
-//!
-//! Turning counter-clockwise around the origin of `e` is `twin(prev(e))`, so a vertex's 1-ring is
-//! walked in O(degree) for interior and hull vertices alike, with no allocation.
-//!
-//! When all points are collinear there is no real triangle: each segment of the chain is covered by
-//! two ghost triangles, one on each side, and the same walks still work.
+//! Owns: connectivity only, in three flat arrays indexed by typed ids, private to this module:
+//! only `mesh` writes them (through `MeshBuilder` in `build.rs` while a mesh is built), and every
+//! other module reads a finished [`Mesh`] through its accessors. It may not look at a coordinate
+//! and knows nothing of why a triangle was made; `check.rs` verifies the result.
 
 mod build;
 mod check;
@@ -68,9 +53,8 @@ impl Mesh {
         self.origins.len() / 3
     }
 
-    /// Size of the vertex id space: ids `0..num_vertex_ids()` may appear as corners (for a
-    /// [`Triangulation`](crate::Triangulation), the number of input points, merged duplicates
-    /// included). Not a count of vertices with edges, and not an allocation's capacity.
+    /// Size of the vertex id space (for a [`Triangulation`](crate::Triangulation), the number of
+    /// input points, duplicates included): not a count of vertices with edges.
     #[inline]
     pub fn num_vertex_ids(&self) -> usize {
         self.vertex_edges.len()
@@ -109,8 +93,7 @@ impl Mesh {
         [self.origins[i], self.origins[i + 1], self.origins[i + 2]]
     }
 
-    /// The corners of `triangles`, three per triangle in the order of
-    /// [`Mesh::triangle_corners`], as one slice.
+    /// The corners of `triangles` as one slice, three per triangle ([`Mesh::triangle_corners`]).
     ///
     /// # Panics
     /// If the range goes past [`Mesh::num_triangles_with_ghosts`].
@@ -119,8 +102,7 @@ impl Mesh {
         &self.origins[3 * triangles.start..3 * triangles.end]
     }
 
-    /// The corners of every triangle in `triangles` (indices, ghosts included), in index order:
-    /// what [`Mesh::triangle_vertices`] gives for each, read as one sequential pass.
+    /// [`Mesh::triangle_vertices`] of every triangle in `triangles` (ghosts included), in one pass.
     ///
     /// # Panics
     /// If the range goes past [`Mesh::num_triangles_with_ghosts`].
@@ -220,11 +202,10 @@ impl Mesh {
             .unwrap_or(HalfEdgeId::NONE)
     }
 
-    /// Fills `vertex_edges` from the triangles: one pass that records the last edge leaving each
-    /// vertex, then a walk along the ghosts that gives every hull vertex its edge to infinity.
-    /// With `parallel` (the caller's choice: a set built in two halves), two threads each scan
-    /// every origin and record the vertices of their half of the ids: the same last edge per
-    /// vertex, so the same mesh, and each thread's scattered writes stay in its own half.
+    /// Fills `vertex_edges`: one pass records the last edge leaving each vertex, then a walk along
+    /// the ghosts gives every hull vertex its edge to infinity. With `parallel` (a set built in two
+    /// halves), two threads each scan every origin and record only their half of the ids: the same
+    /// mesh, with each thread's scattered writes in its own half.
     fn rebuild_vertex_edges(&mut self, vertex_count: usize, parallel: bool) {
         // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
         let sink = vertex_count;

@@ -1,13 +1,10 @@
 //! Exact signs by integer arithmetic, for coordinates whose spread of magnitudes Shewchuk's
 //! floating-point expansions cannot take without underflow.
 //!
-//! Every finite double is an integer times a power of two, `m · 2^e` with `|m| < 2^53` and
-//! `-1074 <= e <= 971`. Bringing the coordinates of one call to their smallest exponent `e0` makes
-//! them integers below `2^53 · 2^(971 + 1074) = 2^2098`. The orientation determinant is of degree
-//! 2 in their differences and the in-circle determinant of degree 4, so every intermediate value
-//! stays below `2^8400`: the integers live on the stack in fixed arrays of 64-bit limbs sized for
-//! that worst case, and no call allocates. The arithmetic is schoolbook and visits only the limbs
-//! in use, so a call costs what its own spread needs: a few microseconds at worst, which is why
+//! Every finite double is `m · 2^e` (`|m| < 2^53`, `-1074 <= e <= 971`): brought to the call's
+//! smallest exponent, the coordinates are integers below `2^2098`, and the determinants (degree 4
+//! at most) stay below `2^8400`, in fixed arrays of 64-bit limbs on the stack (no allocation).
+//! Schoolbook arithmetic over the limbs in use costs microseconds at worst, which is why
 //! [`super`] runs it only where the fast predicates could be wrong.
 
 use core::cmp::Ordering;
@@ -190,8 +187,7 @@ fn subtract_magnitudes(a: &[u64], b: &[u64]) -> Int {
     out
 }
 
-/// The sign of `(ax - cx)(by - cy) - (ay - cy)(bx - cx)`: `Greater` when `a, b, c` turn
-/// counter-clockwise. Exact for every finite input.
+/// The exact orientation sign: `Greater` when `a, b, c` turn counter-clockwise.
 pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
     let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1]]);
     let int = |x: f64| Int::from_f64(x, e0);
@@ -201,9 +197,8 @@ pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
     acx.mul(&bcy).sub(&acy.mul(&bcx)).signum()
 }
 
-/// The sign of the in-circle determinant: `Greater` when `d` lies strictly inside the circle
-/// through the counter-clockwise `a, b, c` (the opposite for a clockwise triangle), `Equal` when
-/// the four points are cocircular. Exact for every finite input.
+/// The exact in-circle sign: `Greater` when `d` is strictly inside the circle through the
+/// counter-clockwise `a, b, c`, `Equal` when the four are cocircular.
 pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
     let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]]);
     let int = |x: f64| Int::from_f64(x, e0);
@@ -222,7 +217,7 @@ pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2])
         .signum()
 }
 
-/// The sign of the dot product `(a - b) · (c - d)`. Exact for every finite input.
+/// The exact sign of the dot product `(a - b) · (c - d)`.
 pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
     let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]]);
     let int = |x: f64| Int::from_f64(x, e0);

@@ -3,30 +3,13 @@
 //! Owns: every decision about a geometric sign. Nothing else in the crate may compute a sign with
 //! plain floating point, and this module may not depend on the mesh or the triangulator.
 //!
-//! Three ways to the same exact sign:
-//! - Shewchuk's adaptive-precision `orient2d` and `incircle` (the `robust` crate), exact for
-//!   every input whose intermediate products neither overflow nor underflow. Both first try
-//!   Shewchuk's static error bound inline, which settles most calls without a function call.
-//!   This is the fast path, and the triangulator calls it directly on coordinates it has
-//!   rescaled into the range where it is exact (`docs/predicates.md` derives that range).
-//! - When the static bound cannot settle a call (cocircular or collinear, or nearly so), machine
-//!   integers first (`src/predicates/small.rs`): exact when the call's coordinates are small
-//!   integers on a common binary grid (integer grids, pixel and fixed-point data, where nearly
-//!   every in-circle call is exactly cocircular), and far cheaper than `robust`'s adaptive
-//!   stages, which take what it refuses.
-//! - Integer arithmetic on the coordinates brought to a common binary exponent
-//!   (`src/predicates/exact.rs`): exact for every finite input, and far slower.
-//!
-//! The public functions take any finite coordinates: a call whose coordinates lie in the fast
-//! range goes the fast way, one whose coordinates can be brought there by a power of two (exact,
-//! sign-preserving) is rescaled first, and only a call spanning more than 2^200 in magnitude on
-//! its own goes to the integers.
-//!
-//! Sign conventions (y axis pointing up):
-//! - [`orient2d`]`(a, b, c)` is [`Orientation::Ccw`] when `c` lies strictly left of the directed
-//!   line `a → b`, that is when `a, b, c` turn counter-clockwise.
-//! - [`in_circle`]`(a, b, c, d)` is `true` when `d` lies strictly inside the circle through the
-//!   counter-clockwise triangle `a, b, c`.
+//! Three ways to the same exact sign (`docs/predicates.md` derives the ranges and measures): for
+//! coordinates rescaled into the range where no product overflows or underflows, Shewchuk's
+//! static filter inline, then his adaptive stages (the `robust` crate); before those stages,
+//! machine integers when the call's coordinates are small integers on a common binary grid
+//! (`small.rs`); and big integers, exact for any finite input and far slower (`exact.rs`). The
+//! public functions rescale a call into the fast range by a power of two when one does it, and
+//! send only calls spanning more than 2^200 on their own to the big integers.
 
 mod exact;
 mod small;
@@ -38,8 +21,7 @@ use robust::Coord;
 /// The turn made by three points.
 ///
 /// ```
-/// use condt::predicates::{orient2d, Orientation};
-/// use condt::Point;
+/// use condt::{predicates::{orient2d, Orientation}, Point};
 /// let (a, b) = (Point::new(0.0, 0.0), Point::new(1.0, 0.0));
 /// assert_eq!(orient2d(a, b, Point::new(0.5, 1.0)), Orientation::Ccw);
 /// assert_eq!(orient2d(a, b, Point::new(0.5, -1.0)), Orientation::Cw);
@@ -63,8 +45,7 @@ fn coord(p: Point) -> Coord<f64> {
 /// Exact orientation of the triangle `a, b, c`, for any finite coordinates.
 ///
 /// ```
-/// use condt::predicates::{orient2d, Orientation};
-/// use condt::Point;
+/// use condt::{predicates::{orient2d, Orientation}, Point};
 /// let (a, b) = (Point::new(0.0, 0.0), Point::new(1.0, 1.0));
 /// // One unit in the last place above the diagonal, 10^15 away from the origin:
 /// let just_above = Point::new(1e15, f64::from_bits(1e15f64.to_bits() + 1));
@@ -88,8 +69,7 @@ pub fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
 /// Exact for any finite coordinates.
 ///
 /// ```
-/// use condt::predicates::in_circle;
-/// use condt::Point;
+/// use condt::{predicates::in_circle, Point};
 /// let (a, b, c) = (Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0));
 /// assert!(in_circle(a, b, c, Point::new(0.5, 0.5)));
 /// assert!(!in_circle(a, b, c, Point::new(0.0, 1.0))); // cocircular
@@ -112,8 +92,7 @@ pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
 /// finite coordinates.
 ///
 /// ```
-/// use condt::predicates::is_cocircular;
-/// use condt::Point;
+/// use condt::{predicates::is_cocircular, Point};
 /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
 /// assert!(is_cocircular(square[0], square[1], square[2], square[3]));
 /// ```
@@ -130,8 +109,7 @@ pub fn is_cocircular(a: Point, b: Point, c: Point, d: Point) -> bool {
     }
 }
 
-/// The integer predicates alone: the public predicates' answer beyond the fast range, and what
-/// tests check whole constructions against.
+/// The big-integer predicates alone (beyond the fast range, and for tests).
 pub(crate) mod integers {
     use super::{exact, Orientation, Point};
     use core::cmp::Ordering;
@@ -149,8 +127,7 @@ pub(crate) mod integers {
     }
 }
 
-/// The sign of the dot product `(a - b) · (c - d)`, exactly, for any finite coordinates. Only
-/// the triangulator's walk along the hull asks it, for sets beyond the fast range.
+/// The exact sign of `(a - b) · (c - d)`, for the hull walk of sets beyond the fast range.
 pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
     exact::dot_sign(a.into(), b.into(), c.into(), d.into())
 }
@@ -208,8 +185,7 @@ fn rescale_or_integers(points: &[Point]) -> Reach {
     }
 }
 
-/// [`orient2d`] for coordinates in the fast range (every nonzero magnitude in `[2^-200, 2)`, or
-/// more loosely any call whose products neither overflow nor underflow): Shewchuk's predicate.
+/// [`orient2d`] for coordinates whose products neither overflow nor underflow (the fast range).
 #[inline(always)]
 pub(crate) fn fast_orient2d(a: Point, b: Point, c: Point) -> Orientation {
     let det = fast_orient2d_det(a, b, c);
@@ -222,8 +198,7 @@ pub(crate) fn fast_orient2d(a: Point, b: Point, c: Point) -> Orientation {
     }
 }
 
-/// The exact sign of [`fast_orient2d`]'s determinant, as a number whose sign is exact: a hot loop
-/// can branch on it directly rather than on an [`Orientation`] built from it.
+/// [`fast_orient2d`]'s determinant, a number whose sign is exact, for a hot loop to branch on.
 #[inline(always)]
 pub(crate) fn fast_orient2d_det(a: Point, b: Point, c: Point) -> f64 {
     // Shewchuk's first-stage bound, as `robust::orient2d` has it inline (Ozaki et al.'s one-branch
@@ -256,8 +231,7 @@ const ORIENT2D_FILTER: f64 = 3.3306690621773722e-16;
 /// [`in_circle`] for coordinates in the fast range (see [`fast_orient2d`]).
 #[inline]
 pub(crate) fn fast_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
-    // Most calls are far from cocircular: decide those inline with Shewchuk's first-stage bound
-    // (Shewchuk 1997, `incircle`, error bound A), and let `robust` settle the rest exactly.
+    // Shewchuk's first-stage bound (1997, `incircle`, bound A) settles most calls inline.
     let (det, bound) = in_circle_det(a, b, c, d);
     if det > bound {
         true
@@ -268,13 +242,10 @@ pub(crate) fn fast_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
     }
 }
 
-/// [`fast_in_circle`]`(u, w, v, q)`, whether `q` lies strictly inside the circle through the
-/// counter-clockwise `u, w, v`, with the differences taken from `v` instead of `q`: the
-/// insertion tests every edge opposite its new point `v` against it, so `v` is loaded once per
-/// insertion rather than once per test. Swapping the last two points of the lifted determinant
-/// flips its sign, so `q` is inside when the determinant around `v` is negative; the filter's
-/// bound holds whichever point the differences start from, and a call it cannot settle goes to
-/// the same exact test, so every answer is the same as [`fast_in_circle`]'s.
+/// [`fast_in_circle`]`(u, w, v, q)` with the differences taken from `v`, the new point that every
+/// test of one insertion shares. Swapping the last two points flips the lifted determinant's sign,
+/// the filter's bound holds from any base point, and undecided calls go to the same exact test,
+/// so every answer is [`fast_in_circle`]'s.
 #[inline(always)]
 pub(crate) fn fast_in_circle_around(v: Point, u: Point, w: Point, q: Point) -> bool {
     let (det, bound) = in_circle_det(u, w, q, v);
@@ -287,9 +258,8 @@ pub(crate) fn fast_in_circle_around(v: Point, u: Point, w: Point, q: Point) -> b
     }
 }
 
-/// The in-circle determinant of `a, b, c, d` in floating point, with the differences taken from
-/// `d` (positive when `d` is inside the circle of the counter-clockwise `a, b, c`), and the
-/// bound on its rounding error: its sign is exact when its magnitude exceeds the bound.
+/// The in-circle determinant in floating point, differences from `d` (positive: `d` inside the
+/// circle of the counter-clockwise `a, b, c`), and the bound past which its sign is exact.
 #[inline(always)]
 fn in_circle_det(a: Point, b: Point, c: Point, d: Point) -> (f64, f64) {
     let (adx, ady) = (a.x - d.x, a.y - d.y);
@@ -310,9 +280,8 @@ fn in_circle_det(a: Point, b: Point, c: Point, d: Point) -> (f64, f64) {
     (det, IN_CIRCLE_FILTER * permanent)
 }
 
-/// [`fast_in_circle`] past its filter: cocircular or nearly so. Small integers on a common grid
-/// (integer grids, pixel and fixed-point data, where nearly every call lands here) are decided
-/// exactly in machine integers; the rest by `robust`'s adaptive stages.
+/// [`fast_in_circle`] past its filter (cocircular or nearly so): small integers on a common grid
+/// in machine integers, the rest by `robust`'s adaptive stages.
 #[inline(never)]
 fn undecided_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
     match small::in_circle_sign(a.into(), b.into(), c.into(), d.into()) {

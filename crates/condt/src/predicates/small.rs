@@ -1,19 +1,15 @@
-//! Exact signs in machine integers, for the calls the floating-point filters cannot settle
-//! whose coordinates are small integers on a common binary grid: integer grids, pixel contours,
-//! fixed-point and CAD data, where nearly every in-circle test is exactly cocircular.
+//! Exact signs in machine integers for the calls the floating-point filters cannot settle whose
+//! coordinates are small integers on a common binary grid (integer grids, pixel contours,
+//! fixed-point data, where nearly every in-circle test is exactly cocircular).
 //!
 //! Owns: the fixed-point reading of a call's coordinates and the two determinants on it. It is
-//! only a shortcut: a call it cannot take (`None`) goes on to Shewchuk's adaptive stages, so a
-//! wrong refusal costs time, never a sign.
+//! only a shortcut: a call it refuses (`None`) goes on to Shewchuk's adaptive stages, so a wrong
+//! refusal costs time, never a sign.
 //!
-//! Every coordinate that is a multiple of `2^-49` in `[-4, 4)` (in the fast frame
-//! every coordinate is below 2) is read exactly as the integer `x · 2^49`. Their differences are
-//! exact; their common factor of two (the grid's unit) is divided out, and when every difference
-//! is then below `2^30` the in-circle determinant, of degree 4, is below `3 · 2^122` and is
-//! computed exactly in `i128` (the orientation determinant, of degree 2, in `i64`). A grid of
-//! a billion cells per side fits; so do scaled and offset grids whose coordinates are exact
-//! binary fractions (a step of 1/1024, an offset of 10^6 on integers). Decimal steps such as 0.001
-//! are not exact binary fractions and take the adaptive stages, as every other input does.
+//! Coordinates that are multiples of `2^-49` in `[-4, 4)` are read exactly as the integers
+//! `x · 2^49`; their differences, divided by their common power of two (the grid's unit), must
+//! be below `2^30`, so that the in-circle determinant (degree 4, below `3 · 2^122`) is exact in
+//! `i128` and the orientation (degree 2) in `i64` (`docs/predicates.md`, item 4).
 
 use core::cmp::Ordering;
 
@@ -22,14 +18,12 @@ use core::cmp::Ordering;
 /// on `x + 12`, and `(x + 12).to_bits() - 12.to_bits()` is the integer `x · 2^49` (speed).
 const ANCHOR: f64 = 12.0;
 
-/// `x · 2^49` while it is exact and within range: the integer lies in `[-2^51, 2^51)` and `x + 12`
-/// rounded to nothing. A flag collects the checks so that a call reads all its coordinates
-/// without a branch.
+/// `x · 2^49` while exact and within range (the integer in `[-2^51, 2^51)`, nothing rounded off
+/// `x + 12`); the checks collect in a flag so that a call reads its coordinates without a branch.
 #[inline(always)]
 fn fixed(x: f64, exact: &mut bool) -> i64 {
     let shifted = x + ANCHOR;
-    // Wrapping: a negative `shifted` can take the difference below i64::MIN, and it stays
-    // outside [-2^51, 2^51) when it wraps.
+    // Wrapping: a negative `shifted` may wrap below i64::MIN, landing outside [-2^51, 2^51).
     let integer = (shifted.to_bits() as i64).wrapping_sub(ANCHOR.to_bits() as i64);
     // Outside [8, 16) (or negative: the sign bit makes the pattern negative) the integer leaves
     // [-2^51, 2^51); inside, `shifted - 12` is exact and equals `x` only if nothing was rounded.
@@ -42,9 +36,8 @@ fn fixed(x: f64, exact: &mut bool) -> i64 {
 /// the in-circle determinant's products and sums all fit an `i128` (see the module doc).
 const SMALL_LIMIT: u64 = 1 << 30;
 
-/// The differences `p - origin` of every point `p`, exactly, divided by their largest common
-/// power of two, when all of them then lie below `SMALL_LIMIT` in magnitude. All zero is allowed
-/// (every point the same).
+/// The differences `p - origin`, exactly, divided by their largest common power of two, when all
+/// then lie below `SMALL_LIMIT` in magnitude (all zero allowed: every point the same).
 #[inline(always)]
 fn small_differences<const N: usize>(
     points: [[f64; 2]; N],
@@ -79,9 +72,8 @@ fn small_differences<const N: usize>(
     (largest < SMALL_LIMIT).then_some(out)
 }
 
-/// The sign of the in-circle determinant of `a, b, c, d` (positive: `d` strictly inside the
-/// circle of the counter-clockwise `a, b, c`), or `None` when the coordinates are not small
-/// integers on a common grid.
+/// The in-circle sign (positive: `d` strictly inside the circle of the counter-clockwise
+/// `a, b, c`), or `None` when the coordinates are not small integers on a common grid.
 // Inlined into its one caller, itself out of line (the filter's slow branch).
 #[inline(always)]
 pub(super) fn in_circle_sign(
@@ -101,8 +93,7 @@ pub(super) fn in_circle_sign(
     Some(det.cmp(&0))
 }
 
-/// The sign of the orientation determinant of `a, b, c` (positive: counter-clockwise), or `None`
-/// when the coordinates are not small integers on a common grid.
+/// The orientation sign (positive: counter-clockwise), or `None` as for [`in_circle_sign`].
 // Inlined into its one caller, itself out of line (the filter's slow branch).
 #[inline(always)]
 pub(super) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Ordering> {

@@ -11,23 +11,18 @@ fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
 
 impl Triangulation {
     /// Checks everything a Delaunay triangulation promises, with exact predicates:
-    /// - the topology ([`Mesh::check_topology`](crate::mesh::Mesh::check_topology));
-    /// - every input point maps to a vertex at the same position, every vertex to itself, and
-    ///   exactly the vertices have edges (when there are at least two);
-    /// - every real triangle is counter-clockwise;
-    /// - every edge between two real triangles is locally Delaunay (strict in-circle test fails);
-    /// - the hull turns only clockwise-or-straight along its ghosts, i.e. it is convex;
-    /// - with no triangle, all points are collinear and each chain vertex lies between its
-    ///   two neighbours.
     ///
-    /// Local Delaunayhood of every edge of a valid triangulation implies the empty-circle
-    /// property for every triangle.
+    /// The topology ([`Mesh::check_topology`](crate::mesh::Mesh::check_topology)); every input
+    /// point maps to a vertex at its position, every vertex to itself, and exactly the vertices
+    /// have edges (when there are two or more); every real triangle is counter-clockwise; every
+    /// edge between two real triangles is locally Delaunay, which implies the empty-circle
+    /// property for every triangle; the hull is convex (it turns only clockwise or straight along
+    /// its ghosts); with no triangle, every point is on one line, between its chain neighbours.
     ///
     /// ```
     /// use condt::{triangulate, Point};
     /// let grid: Vec<Point> = (0..100).map(|i| Point::new((i % 10) as f64, (i / 10) as f64)).collect();
-    /// // Valid even though every square of the grid is cocircular; a violation would convert
-    /// // into `condt::Error` through `?`.
+    /// // Valid although every grid square is cocircular; a violation converts to `condt::Error`.
     /// triangulate(&grid)?.validate()?;
     /// # Ok::<(), condt::Error>(())
     /// ```

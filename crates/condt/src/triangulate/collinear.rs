@@ -1,8 +1,7 @@
 //! The mesh of a point set with no triangle: all points on one line (or fewer than three distinct).
 //!
-//! The distinct points are sorted along the line and chained. Each segment `q_s – q_{s+1}` is
-//! covered by two ghost triangles, `L_s = (q_s, q_{s+1}, ∞)` and `R_s = (q_{s+1}, q_s, ∞)`, so the
-//! mesh is still a closed sphere and the ring of every point holds its chain neighbours.
+//! The distinct points are sorted along the line and chained; each segment is covered by two
+//! ghosts, `L_s = (q_s, q_{s+1}, ∞)` and `R_s = (q_{s+1}, q_s, ∞)`, so the mesh is still a sphere.
 //!
 //! ```text
 //!            ∞                 L_s occupies half-edges 6s .. 6s+2, R_s 6s+3 .. 6s+5
@@ -16,9 +15,8 @@ use crate::geometry::Point;
 use crate::mesh::{HalfEdgeId, Mesh, MeshArrays, VertexId};
 use alloc::vec::Vec;
 
-/// Builds the chain over `points` (input order, all collinear). Vertex ids are positions in the
-/// returned order (sorted along the line; duplicates next to each other, smallest input position
-/// first); returns the mesh, the `(duplicate, kept)` pairs merged, and that order.
+/// The chain over `points` (all collinear), the `(duplicate, kept)` pairs and the vertex order
+/// (along the line, duplicates together, smallest input position first).
 pub(crate) fn chain(points: &[Point]) -> (Mesh, Vec<(u32, u32)>, Vec<u32>) {
     let mut sorted: Vec<u32> = (0..points.len() as u32).collect();
     // On a line, lexicographic order is the order along it; ties (duplicates) by input index.

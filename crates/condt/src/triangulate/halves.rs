@@ -1,38 +1,15 @@
-//! Divide and conquer, one level: a large set is cut by a vertical line into two halves, each
-//! half is built by incremental insertion (at the same time on two threads with `parallel`), and
-//! the two meshes are stitched into the Delaunay triangulation of the whole set.
+//! Divide and conquer, one level: a large set is cut by a vertical line, the halves are built by
+//! incremental insertion (at once with `parallel`) and stitched by Guibas and Stolfi's merge
+//! ("Primitives for the manipulation of general subdivisions and the computation of Voronoi
+//! diagrams", ACM TOG 4(2), 1985), done by flips as in Shewchuk's Triangle so that the mesh stays
+//! a sphere throughout (`docs/triangulation.md`, "Two halves").
 //!
-//! Owns: the cut and the stitch. It decides signs only through the
-//! construction's [`Kernel`] and writes topology only through [`MeshBuilder`]; each half is an
-//! ordinary [`insert::Builder`] run, in its own range of one [`MeshArrays`].
-//!
-//! The cut depends only on the set of points (never on their order or on the number of threads),
-//! so the triangulation stays a function of the set, and a sequential run builds exactly the mesh a
-//! parallel one does. Any step that cannot go as planned (a half with no triangle; a stitch
-//! whose bookkeeping does not add up, which exact predicates rule out but the code does not
-//! assume) returns `None`, and the caller builds the whole set in one piece instead.
-//!
-//! The stitch is Guibas and Stolfi's merge ("Primitives for the manipulation of general
-//! subdivisions and the computation of Voronoi diagrams", ACM TOG 4(2), 1985) on this crate's
-//! triangles: the two hulls are strictly apart, so their lower common tangent exists; from it a
-//! base edge climbs, at each step joining the candidate of either half that the empty-circle
-//! test picks, after deleting that half's triangles the new triangle's circle would contain. It
-//! ends at the upper tangent. As in Shewchuk's Triangle, every step is an edge flip, so the
-//! mesh stays a triangulated sphere throughout: two new ghosts (in two slots reserved for them)
-//! join the halves' ghosts, one under the lower tangent and one, `top`, over the climbing base;
-//! a candidate that fails the circle test is flipped with its ghost (its triangle goes outside),
-//! and a chosen one with `top` (its ghost becomes the new triangle). Only triangles near the
-//! seam change (`docs/triangulation.md`).
-//!
-//! Optional: this is a speed-up of the parallel build, not a second definition of the result.
-//! The reference is the sequential insertion of the whole set (`insert`, through `build` in the
-//! parent module), which every failure here falls back to. The two must agree: identical
-//! triangles on points in general position, valid Delaunay triangulations where cocircular
-//! points leave a choice. `super::tests::halves_build_what_the_sequential_insertion_builds`
-//! compares them on one large set through the real threshold; the tests below compare them on
-//! many small sets cut at any size (`halves_stitch_without_falling_back`,
-//! `random_sets_cut_in_two_are_delaunay`, `check` in the degenerate-input tests) and check that
-//! one thread builds exactly what two do.
+//! Owns: the cut and the stitch. It decides signs only through the construction's [`Kernel`] and
+//! writes topology only through [`MeshBuilder`]; each half is an ordinary [`insert::Builder`] run
+//! in its own range of one [`MeshArrays`]. The cut depends only on the set of points, so one
+//! thread builds what two do. Whatever cannot go as planned (a half with no triangle; a stitch
+//! that does not add up, which exact predicates rule out but the code does not assume) returns
+//! `None`, and the caller builds the set in one piece: the reference this must equal.
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -42,16 +19,13 @@ use crate::threads::both;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 
-/// Sets with fewer points are built in one piece. Below it the second thread gains little (the
-/// whole construction takes under 20 ms); the same bound decides sequential and parallel runs.
+/// Smaller sets are built in one piece (in under 20 ms), in sequential and parallel runs alike.
 pub(crate) const SPLIT_MIN: usize = 1 << 16;
 
-/// Buckets of x the cut is chosen among: it falls between two of them, so it is set within
-/// 1/1024 of the span of the median.
+/// Buckets of x the cut falls between: it is within 1/1024 of the span of the median.
 const BUCKETS: usize = 1024;
 
-/// Where a set is cut: the left half is the points whose x falls in a bucket below `boundary`
-/// (see [`cut`]).
+/// Where a set is cut ([`cut`]): the left half is the points in buckets below `boundary`.
 #[derive(Copy, Clone, Debug)]
 pub(crate) struct Cut {
     low: f64,
@@ -61,13 +35,11 @@ pub(crate) struct Cut {
 }
 
 impl Cut {
-    /// Whether `p` belongs to the left half.
     #[inline]
     pub(crate) fn is_left(&self, p: Point) -> bool {
         bucket(p.x, self.low, self.per_unit) < self.boundary
     }
 
-    /// The number of points in the left half.
     pub(crate) fn left_len(&self) -> usize {
         self.left
     }
@@ -79,14 +51,10 @@ fn bucket(x: f64, low: f64, per_unit: f64) -> usize {
     (((x - low) * per_unit) as usize).min(BUCKETS - 1)
 }
 
-/// Where to cut `points` by a vertical line into a left and a right half; `None` when the set
-/// has fewer than `min` points or no such line leaves at least a quarter of them on each side
-/// (most points sharing a few x). The two passes (the x range, then a count per bucket) run on
-/// two threads when `parallel`, each over half the points; the result is the same.
-///
-/// The line lies between two of [`BUCKETS`] equal buckets of the x span; a bucket's index is
-/// monotone in x, so every point of the left half lies strictly left of every point of the
-/// right one, and points with the same x (duplicates among them) fall on the same side.
+/// Where to cut `points` by a vertical line between two of [`BUCKETS`] equal buckets of the x
+/// span, nearest the median; `None` below `min` points or when no line leaves a quarter of them on
+/// each side. Bucket indices are monotone in x, so the left half lies strictly left of the right
+/// one and equal x (duplicates too) stay together. Both passes run on two threads when `parallel`.
 pub(crate) fn cut(points: &[Point], min: usize, parallel: bool) -> Option<Cut> {
     let n = points.len();
     if n < min.max(4) {
@@ -144,12 +112,10 @@ pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)
     Some((left, right))
 }
 
-/// The mesh of `points` (in insertion order: the left half's `left` points first, then the right
-/// half's) and the `(duplicate, kept)` pairs merged on the way, or `None` when a half has no
-/// triangle or the stitch fails.
-///
-/// Each half adds its insertions to `progress` as [`insert::build_into`] does; on `None`, what
-/// they added is taken back (the caller then builds the set in one piece and counts again).
+/// The mesh of `points` (in insertion order: the left half's `left` points, then the right half's)
+/// and the `(duplicate, kept)` pairs merged, or `None` when a half has no triangle or the stitch
+/// fails. Each half reports to `progress` as [`insert::build_into`] does; on `None` their counts
+/// are taken back (the caller then builds and counts in one piece).
 pub(crate) fn build<K: Kernel>(
     points: &[Point],
     left: usize,
@@ -216,7 +182,7 @@ struct Hull {
 }
 
 impl Hull {
-    /// Walks the hull of the mesh in the half-edges `range` (a closed sphere), from any ghost.
+    /// Walks the hull of the closed mesh in the half-edges `range`, from any ghost.
     fn of(mesh: &MeshBuilder<'_>, range: core::ops::Range<usize>) -> Option<Hull> {
         let start = range
             .step_by(3)
@@ -267,8 +233,7 @@ fn infinite_corner(mesh: &MeshBuilder<'_>, base: usize) -> usize {
     corners.iter().position(|v| v.is_infinite()).unwrap_or(0)
 }
 
-/// Joins the two meshes in `mesh` (the left one in half-edges `0..left_len`, the right one after
-/// it; vertex ids of the left half below those of the right) and flips until Delaunay.
+/// Joins the left mesh (half-edges `0..left_len`, the lower vertex ids) and the right one after it.
 fn stitch<K: Kernel>(
     mesh: &mut MeshBuilder<'_>,
     points: &[Point],
@@ -297,10 +262,9 @@ fn stitch<K: Kernel>(
     let (start_l, start_r) = (extreme(&left, true)?, extreme(&right, false)?);
     // The tangent's walk moves each pivot at most once round its hull.
     let budget = 2 * (left.len() + right.len()) + 4;
-    // A common tangent from the extreme points: each pivot steps round its hull (the left one
-    // by `left_step`, the right one by `right_step`) while its next vertex lies on the `away`
-    // side of the line from left pivot to right pivot, or on the line nearer the other half;
-    // so among points on the tangent the pivots are the two nearest each other.
+    // A common tangent from the extreme points: each pivot steps round its hull while its next
+    // vertex lies on the `away` side of the line between the pivots, or on it nearer the other
+    // half, so of the points on the tangent the pivots are the two nearest each other.
     let tangent = |away: Orientation,
                    left_step: fn(&Hull, usize) -> usize,
                    right_step: fn(&Hull, usize) -> usize| {
@@ -326,19 +290,12 @@ fn stitch<K: Kernel>(
     // Lower tangent: every point on or above the line; upper: on or below it.
     let (i0, j0) = tangent(Orientation::Cw, Hull::cw, Hull::ccw)?;
     let (i1, j1) = tangent(Orientation::Ccw, Hull::ccw, Hull::cw)?;
-
-    // Two new ghosts join the two spheres into one: `below`, `(r0, l0, ∞)`, the ghost of the
-    // lower tangent, between the ghosts before `l0` and after `r0`; and `top`, `(l0, r0, ∞)`,
-    // above the base, between the ghosts of the hull edges facing the other half (left: from
-    // `i0` counter-clockwise to `i1`; right: from `j1` counter-clockwise to `j0`). Every step of
-    // the merge is then an edge flip of two triangles, so the mesh stays a triangulated sphere
-    // throughout (as in Shewchuk's Triangle): `top` stays `(l, r, ∞)` over the current base, and
-    // across its edges to infinity lie the ghosts of the two halves' current boundary edges
-    // facing the other half. The candidates of Guibas and Stolfi are those boundary edges. A
-    // candidate edge that fails the circle test is flipped with its ghost (its triangle becomes
-    // outside, the boundary takes its other two sides), and a chosen candidate is flipped with
-    // `top` (its ghost becomes the new triangle, `top` climbs). Edges of a half with outside on
-    // both sides (Guibas and Stolfi keep them) are then ordinary edges between two ghosts.
+    // Two new ghosts join the spheres so that every merge step is a flip: `below`, `(r0, l0, ∞)`,
+    // the lower tangent's ghost, between the ghosts before `l0` and after `r0`; `top`,
+    // `(l0, r0, ∞)`, over the base, between the ghosts of the hull edges facing the other half
+    // (left: `i0` counter-clockwise to `i1`; right: `j1` to `j0`). Across `top`'s edges to infinity
+    // lie the ghosts of the current boundary edges facing the other half: Guibas and Stolfi's
+    // candidates. An edge with outside on both sides is just an edge between two ghosts.
     let from_infinity = |ghost: usize| HalfEdgeId::at(ghost, infinite_corner(mesh, ghost));
     let to_infinity = |ghost: usize| HalfEdgeId::at(ghost, wrap3(infinite_corner(mesh, ghost) + 2));
     let into_l0 = from_infinity(left.ghosts[left.cw(i0)]);
@@ -366,7 +323,6 @@ fn stitch<K: Kernel>(
         HalfEdgeId::at(top, 1),
         HalfEdgeId::at(top, 2),
     );
-    // Writes the triangle `corners` at `slot` and links its edges to `twins`.
     let write = |mesh: &mut MeshBuilder<'_>,
                  slot: usize,
                  corners: [VertexId; 3],
@@ -376,7 +332,6 @@ fn stitch<K: Kernel>(
             mesh.link(HalfEdgeId::at(slot, k), twin);
         }
     };
-
     let (mut l, mut r) = (l0, r0);
     let mut steps = 0;
     let limit = 4 * mesh.len();
@@ -397,8 +352,7 @@ fn stitch<K: Kernel>(
             if !(above(x) && above(n) && K::in_circle(at(l), at(r), at(x), at(n))) {
                 break x;
             }
-            // Flip `l – x`: `(l, x, n)` and its ghost `(x, l, ∞)` become the ghosts
-            // `(n, l, ∞)` and `(x, n, ∞)`.
+            // Flip `l – x`: `(l, x, n)` and ghost `(x, l, ∞)` turn into `(n, l, ∞)`, `(x, n, ∞)`.
             let (ghost, _) = ghost_in.base_and_corner();
             let (inner, _) = e_l.base_and_corner();
             let (w_xn, w_nl, w_x) = (
@@ -433,8 +387,7 @@ fn stitch<K: Kernel>(
             if !(above(y) && above(m) && K::in_circle(at(l), at(r), at(y), at(m))) {
                 break y;
             }
-            // Flip `r – y`: `(y, r, m)` and its ghost `(r, y, ∞)` become the ghosts
-            // `(r, m, ∞)` and `(m, y, ∞)`.
+            // Flip `r – y`: `(y, r, m)` and ghost `(r, y, ∞)` turn into `(r, m, ∞)`, `(m, y, ∞)`.
             let (ghost, _) = ghost_in.base_and_corner();
             let (inner, _) = f_r.base_and_corner();
             let (w_rm, w_my, w_y) = (
@@ -463,8 +416,7 @@ fn stitch<K: Kernel>(
             !left_ok || (right_ok && K::in_circle(at(cand_l), at(l), at(r), at(cand_r)));
         let w_base = mesh.twin(t_base);
         if take_right {
-            // Flip `r – ∞` of `top` and the ghost `(r, y, ∞)`: the triangle `(l, r, y)` in the
-            // ghost's slot, `top` becomes `(l, y, ∞)`.
+            // Flip `top`'s `r – ∞` with ghost `(r, y, ∞)`: `(l, r, y)` there, `top` is `(l, y, ∞)`.
             let ghost_in = mesh.twin(t_right);
             let (ghost, _) = ghost_in.base_and_corner();
             let (w_ry, w_y, w_left) = (
@@ -478,8 +430,7 @@ fn stitch<K: Kernel>(
             mesh.link(t_left, w_left);
             r = cand_r;
         } else {
-            // Flip `∞ – l` of `top` and the ghost `(x, l, ∞)`: the triangle `(l, r, x)` in the
-            // ghost's slot, `top` becomes `(x, r, ∞)`.
+            // Flip `top`'s `∞ – l` with ghost `(x, l, ∞)`: `(l, r, x)` there, `top` is `(x, r, ∞)`.
             let ghost_in = mesh.twin(t_left);
             let (ghost, _) = ghost_in.base_and_corner();
             let (w_xl, w_x, w_right) = (

@@ -1,16 +1,6 @@
 //! Incremental Delaunay construction: walk to the new point, split, restore the empty-circle
-//! property by edge flips.
+//! property by edge flips (`docs/triangulation.md`, step 4, describes each).
 //!
-//! Each point is located by a visibility walk from the triangle of the previous point (short,
-//! because the insertion order is spatial), then
-//! - strictly inside a triangle, or strictly outside a hull edge (inside its ghost triangle):
-//!   split that triangle in three;
-//! - on an edge: split the two triangles beside it in four;
-//! - on a vertex: record an exact duplicate and insert nothing.
-//!
-//! Then every edge opposite the new point is tested and, if illegal, flipped, with an explicit
-//! stack. On finite edges the test is the exact in-circle predicate; an edge to infinity is
-//! illegal when the new point sees the neighbouring hull edge, which is how the hull grows.
 //! Owns: the construction state. It may not decide a sign except through `predicates`, and it
 //! edits the mesh only through [`MeshBuilder`].
 
@@ -40,7 +30,6 @@ pub(crate) trait Kernel {
     fn slide(a: Point, b: Point, p: Point) -> Slide;
 }
 
-/// An orientation as the sign of a number, for [`Kernel::orient2d_sign`].
 fn sign_of(orientation: Orientation) -> f64 {
     match orientation {
         Orientation::Ccw => 1.0,
@@ -85,8 +74,7 @@ impl Kernel for Fast {
     }
 }
 
-/// The public predicates, exact for every finite input, for sets spanning more than the fast
-/// range; the slide test is exact too.
+/// The public predicates, exact for every finite input (sets beyond the fast range).
 pub(crate) struct Exact;
 
 impl Kernel for Exact {
@@ -133,11 +121,9 @@ impl Kernel for Integers {
     }
 }
 
-/// Where a point falls in the current triangulation.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum Location {
-    /// Strictly inside the triangle of this half-edge; for a ghost triangle, the half-edge is its
-    /// finite (hull) edge and the point is strictly outside it.
+    /// Strictly inside this half-edge's triangle; for a ghost, strictly outside its hull edge.
     Face(HalfEdgeId),
     /// In the relative interior of this finite edge.
     Edge(HalfEdgeId),
@@ -148,17 +134,14 @@ enum Location {
 /// Where a walk stands between two steps (see `Builder::locate`).
 #[derive(Copy, Clone, Debug)]
 struct Walk {
-    /// A half-edge of the current triangle.
     at: HalfEdgeId,
-    /// Whether the walk entered the current triangle across `at`: then the point is known to lie
-    /// strictly left of `at`, and that edge is not tested again.
+    /// Whether the walk entered across `at`: the point is strictly left of it, no test needed.
     entered: bool,
     /// The hull slides still allowed.
     slide: Slide,
 }
 
 impl Walk {
-    /// Crosses into the triangle of `e`, the point being strictly left of it.
     #[inline(always)]
     fn enter(&mut self, e: HalfEdgeId) -> Option<Location> {
         self.at = e;
@@ -166,7 +149,6 @@ impl Walk {
         None
     }
 
-    /// Moves along the hull to the ghost triangle of `e`, knowing nothing new.
     #[inline(always)]
     fn slide_to(&mut self, e: HalfEdgeId) -> Option<Location> {
         self.at = e;
@@ -175,8 +157,7 @@ impl Walk {
     }
 }
 
-/// The hull slides the walk may still take (see `Builder::ghost_step`): at most one way, and
-/// only before the walk first enters a real triangle.
+/// The hull slides the walk may still take (see `Builder::ghost_step`).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum Slide {
     /// No slide yet: either way.
@@ -200,8 +181,7 @@ pub(crate) struct Builder<'a, 'm, K: Kernel> {
     merged: Vec<(u32, u32)>,
 }
 
-/// The half-edges a construction over `n` points may write: a triangulated sphere with `n + 1`
-/// vertices has `2n - 2` triangles.
+/// The half-edges of `n` points: a sphere with `n + 1` vertices has `2n - 2` triangles.
 pub(crate) fn half_edges(n: usize) -> usize {
     6 * n.max(3) - 6
 }
@@ -209,13 +189,10 @@ pub(crate) fn half_edges(n: usize) -> usize {
 /// The insertions between two reports to a progress counter ([`build_into`]).
 pub(crate) const REPORT_EVERY: usize = 1 << 16;
 
-/// Builds the mesh of `points` (in insertion order) in `mesh`, which must be empty and hold
-/// [`half_edges`] of `points.len()`; returns it with the `(duplicate, kept)` pairs merged on the
-/// way, or `None` when the points make no triangle.
-///
-/// With a `progress` counter, adds to it the vertices inserted so far (points minus merged
-/// duplicates) after every [`REPORT_EVERY`] points and at the end: `points.len()` minus the
-/// merged pairs in all when it returns a mesh, nothing when it returns `None`.
+/// Builds the mesh of `points` (in insertion order) in `mesh`, empty and holding [`half_edges`];
+/// returns it with the `(duplicate, kept)` pairs merged, or `None` when there is no triangle.
+/// `progress` gets the vertices inserted every [`REPORT_EVERY`] points: all of them, or none on
+/// `None`.
 pub(crate) fn build_into<'m, K: Kernel>(
     points: &[Point],
     mesh: MeshBuilder<'m>,
@@ -258,8 +235,8 @@ pub(crate) fn first_triangle<K: Kernel>(points: &[Point]) -> Option<[u32; 3]> {
 }
 
 impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
-    /// Starts from the counter-clockwise triangle `a, b, c` and its three ghosts, in `mesh`,
-    /// which must be empty and hold [`half_edges`] of `points.len()`.
+    /// Starts from the counter-clockwise triangle `a, b, c` and its ghosts, in `mesh` (as in
+    /// [`build_into`]).
     fn new(points: &'a [Point], [a, b, c]: [u32; 3], mut mesh: MeshBuilder<'m>) -> Self {
         debug_assert_eq!(
             K::orient2d(points[a as usize], points[b as usize], points[c as usize]),
@@ -286,8 +263,7 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// The mesh written (fewer than [`half_edges`] half-edges when duplicates were merged) and
-    /// the `(duplicate, kept vertex)` pairs merged on the way.
+    /// The mesh written and the `(duplicate, kept vertex)` pairs merged on the way.
     pub(crate) fn finish(self) -> (MeshBuilder<'m>, Vec<(u32, u32)>) {
         (self.mesh, self.merged)
     }
@@ -307,7 +283,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         self.mesh.twin(e)
     }
 
-    /// Inserts the point with id `v`.
     pub(crate) fn insert(&mut self, v: u32) {
         let p = self.points[v as usize];
         let v = VertexId::new(v);
@@ -329,10 +304,9 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// A half-edge of a ghost triangle at the hull vertex `v`, found by turning around `v` from
-    /// the last hint (which lies in a triangle at `v`). Points that follow a hull point in the
-    /// insertion order usually lie outside the hull next to it: a walk from here reaches them
-    /// along the hull instead of across the fan of triangles at `v`.
+    /// A half-edge of a ghost at the hull vertex `v`, found by turning around `v` from the hint
+    /// (in a triangle at `v`). Points following a hull point usually lie outside the hull next to
+    /// it: a walk from here reaches them along the hull instead of across `v`'s fan.
     fn ghost_at(&self, v: VertexId) -> HalfEdgeId {
         let (base, _) = self.hint.base_and_corner();
         let Some(k) = self.mesh.corners_at(base).iter().position(|&c| c == v) else {
@@ -356,12 +330,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// Visibility walk from the hint. It terminates because the "lies in front of" relation among
-    /// the triangles of a Delaunay triangulation, seen from any point, has no cycle.
-    ///
-    /// Each step reads the current triangle's corners once and hands them to
-    /// [`Builder::ghost_step`] or [`Builder::triangle_step`], which either locate the point or
-    /// move the walk on.
+    /// Visibility walk from the hint; it terminates because, seen from any point, "lies in front
+    /// of" has no cycle among the triangles of a Delaunay triangulation.
     fn locate(&self, p: Point) -> Location {
         let mut walk = Walk {
             at: self.hint,
@@ -369,8 +339,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
             slide: Slide::Either,
         };
         loop {
-            // The triangle's half-edges are `base + k`, `k` in `0..3`, half-edge `k` running from
-            // corner `k` to corner `k + 1` (mod 3).
             let (base, corner) = walk.at.base_and_corner();
             let corners = self.mesh.corners_at(base);
             let found = match corners.iter().position(|v| v.is_infinite()) {
@@ -386,10 +354,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// One step in the ghost triangle at `base`, whose corner `infinite` is the vertex at
-    /// infinity: `p` is outside its hull edge (found), on the edge's line (found, or a slide along
-    /// it), or inside the hull, where the walk either slides to a neighbouring ghost or enters
-    /// the real triangle across the hull edge.
+    /// One step in the ghost at `base` (its corner `infinite` at infinity): `p` is outside its
+    /// hull edge (found), on its line (found, or slide), or inside (slide, or enter across it).
     #[inline(always)]
     fn ghost_step(
         &self,
@@ -400,9 +366,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         walk: &mut Walk,
     ) -> Option<Location> {
         let half_edge = |k: usize| HalfEdgeId::at(base, k);
-        // The finite edge of the ghost starts right after the infinite corner; the ghost before it
-        // along the hull lies across the edge into the infinite corner, the one after it across
-        // the edge out of the finite edge's end.
+        // The ghost's finite edge `a → b` starts after the infinite corner; the ghost before it
+        // along the hull lies across `∞ → a`, the one after it across `b → ∞`.
         let (h, after) = (wrap3(infinite + 1), wrap3(infinite + 2));
         let hull = half_edge(h);
         let (a, b) = (corners[h], corners[after]);
@@ -412,13 +377,11 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         match K::orient2d(pa, pb, p) {
             Orientation::Ccw => Some(Location::Face(hull)),
             Orientation::Cw => {
-                // `p` is on the inner side of this hull edge's line. If it lies past one end, it is
-                // likely outside the hull further along: slide to the next ghost that way. Slides
-                // go one way only, and only before the walk first enters a real triangle: past the
-                // far end of `a → b`, `p` is nearer `b` than `a`, so the distance to the slide's
-                // vertex shrinks and cannot cycle. After them the walk is the plain visibility walk.
+                // `p` is on the inner side of this hull edge's line; past one end it is likely
+                // outside further along, so slide to the next ghost that way. Slides go one way
+                // only, before the walk first enters a real triangle: past the far end of `a → b`,
+                // `p` is nearer `b` than `a`, so the distance to the slide's vertex shrinks.
                 let way = K::slide(pa, pb, p);
-                // A slide needs a way out (`p` past an end) that the walk still allows.
                 if way != Slide::Done && (walk.slide == Slide::Either || walk.slide == way) {
                     walk.slide = way;
                     walk.slide_to(if way == Slide::Forward {
@@ -439,7 +402,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
                     Segment::AtStart => Some(Location::Vertex(a)),
                     Segment::AtEnd => Some(Location::Vertex(b)),
                     Segment::Inside => Some(Location::Edge(hull)),
-                    // Slide along the hull to the ghost on that side.
                     Segment::BeyondEnd => walk.slide_to(to_ghost_after()),
                     Segment::BeforeStart => walk.slide_to(to_ghost_before()),
                 }
@@ -447,10 +409,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// One step in the real triangle at `base`, the walk standing at its `corner`: leave through
-    /// any edge that has `p` strictly on its right, testing the edges in order from the one the
-    /// walk entered through (if it did: known, skipped); if there is none, `p` is inside, on one
-    /// edge, or on a corner.
+    /// One step in the real triangle at `base`, entered at `corner`: leave through any edge with
+    /// `p` strictly on its right; with none, `p` is inside, on one edge, or on a corner.
     #[inline(always)]
     fn triangle_step(
         &self,
@@ -559,11 +519,9 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         self.hint = t_bc.edge(0);
     }
 
-    /// Flips illegal edges opposite the new vertex `v` until none is left.
-    ///
-    /// The edges wait on a stack; after a flip, the edge the stack would give next is tested
-    /// at once instead of going through it (the same order of tests, one push and pop fewer),
-    /// with its twin and ends as the flip knew them.
+    /// Flips illegal edges opposite the new vertex `v` until none is left. After a flip, the edge
+    /// the stack would give next is tested at once, with its twin and ends as the flip knew them
+    /// (the same order of tests, one push and pop fewer).
     fn restore_delaunay(&mut self, v: VertexId) {
         let pv = self.point(v);
         let mut next = self.flips.pop().map(|e| self.to_test(e));
@@ -579,7 +537,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// The edge `e` opposite the new vertex, with its twin and ends, as [`Opposite`] holds them.
     #[inline(always)]
     fn to_test(&self, e: HalfEdgeId) -> Opposite {
         let f = self.twin(e);
@@ -591,8 +548,7 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// Whether the edge `u – w`, with the new vertex (at `pv`) on its left and `q` on its right,
-    /// must be flipped.
+    /// Whether edge `u – w`, with the new vertex (at `pv`) left of it and `q` right, must flip.
     #[inline]
     fn is_illegal(&self, u: VertexId, w: VertexId, pv: Point, q: VertexId) -> bool {
         // The vertex at infinity has the largest id: one comparison settles the common case.
@@ -612,7 +568,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
 
     /// Replaces the edge `u – w` (half-edges `e` in `(u, w, v)` and `f` in `(w, u, q)`) by `v – q`,
     /// giving `(v, u, q)` and `(v, q, w)`; queues the edge of the first opposite `v` and returns
-    /// that of the second, to be tested next.
+    /// that of the second, to be tested next. `f` comes as its triangle's base and corner, and
+    /// `[u, w, q]` as the caller read them, to save dividing and loading again.
     ///
     /// ```text
     ///          v                    v
@@ -621,10 +578,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     ///        \   /                \ | /
     ///          q                    q
     /// ```
-    ///
-    /// `f` comes as its triangle's first half-edge and its corner, `[u, w, q]` as read by the
-    /// caller: the flip reuses them instead of dividing and loading again, and returns the
-    /// second edge with its twin and ends for the same reason.
     fn flip(
         &mut self,
         e: HalfEdgeId,
@@ -662,8 +615,7 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     }
 }
 
-/// An edge `u → w` opposite the new vertex, about to be tested: the half-edge `e` in the new
-/// vertex's triangle and its twin `f`.
+/// An edge `u → w` to test: `e` in the new vertex's triangle, `f` its twin.
 #[derive(Copy, Clone)]
 struct Opposite {
     e: HalfEdgeId,

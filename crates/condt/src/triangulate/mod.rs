@@ -1,30 +1,18 @@
 //! Delaunay triangulation of a planar point set.
 //!
-//! Owns: turning points into a [`Triangulation`] (a [`Mesh`] plus the points and the maps between
-//! input positions and vertices) and checking one. It decides signs only through
-//! [`crate::predicates`] and writes topology only through the mesh's builder; it knows nothing of
-//! the ConDT stages.
+//! Owns: turning points into a [`Triangulation`] (a [`Mesh`], the points, the maps between input
+//! positions and vertices) and checking one. It decides signs only through [`crate::predicates`],
+//! writes topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
-//! The method is incremental insertion (Lawson's flips after each split, which yields the same
-//! triangulation as Bowyer–Watson's cavity retriangulation) in a biased randomized insertion order
-//! with Hilbert order inside each round, locating each point by a visibility walk from the
-//! previous one; `docs/triangulation.md` explains the choice and gives the measurements.
+//! Incremental insertion with Lawson's flips in BRIO order, each point located by a visibility
+//! walk (`docs/triangulation.md`). The reference is `build`, the set in one piece; `halves`, a
+//! speed-up for large sets, must build the same triangles in general position
+//! (`tests::halves_build_what_the_sequential_insertion_builds`) and falls back to `build` when it
+//! cannot finish, so dropping it changes the speed, never the result.
 //!
-//! Two constructions, one result:
-//! - the reference, `insert`: the sequential insertion of the whole set in one piece (`build`);
-//! - an optional speed-up, `halves`: a set of 65,536 points or more is cut by a vertical line,
-//!   the halves are built by the same insertion (at once on two threads with `parallel`) and
-//!   stitched. It must equal the reference: the same triangles on points in general position
-//!   (where the Delaunay triangulation is unique), a valid Delaunay triangulation with the same
-//!   count where cocircular points allow several. The test that builds one large set both ways
-//!   is `tests::halves_build_what_the_sequential_insertion_builds` below; `halves`' own tests
-//!   compare the two on many small sets cut at any size. Whenever the halves cannot be built or
-//!   stitched, the reference builds the set instead, so dropping `halves` (calling `build`
-//!   only) changes the speed, never the result.
-//!
-//! See also: Amenta, Choi, Rote, "Incremental constructions con BRIO", SoCG 2003, and
-//! Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates",
-//! Discrete Comput. Geom. 18 (1997).
+//! See also: Amenta, Choi, Rote, "Incremental constructions con BRIO", SoCG 2003, and Shewchuk,
+//! "Adaptive precision floating-point arithmetic and fast robust geometric predicates", Discrete
+//! Comput. Geom. 18 (1997).
 
 mod check;
 mod collinear;
@@ -45,23 +33,16 @@ use insert::{Exact, Fast, Kernel};
 
 /// The largest number of input points.
 ///
-/// The mesh of `n` points has `3(2n - 2)` half-edges (ghosts included), indexed by `u32` with
-/// `u32::MAX` reserved, which would allow about 715 million points. The limit keeps a factor-two
-/// margin below that bound: nothing larger has been run (at about 100 bytes per point it needs
-/// more memory than the machines we test on).
-///
-/// Beyond it, [`triangulate`] returns [`Error::TooManyPoints`] before allocating anything, and
-/// `io::read_points` (feature `std`) stops at the offending line. Below it, the triangulation
-/// allocates like any Rust code: if the system refuses memory the process aborts, while the
-/// readers of `condt_io` (which size their buffers by the input) return an error instead.
+/// Half of what `u32` half-edge ids allow; beyond it [`triangulate`] returns
+/// [`Error::TooManyPoints`] before allocating (`docs/triangulation.md`, "Memory").
 pub const MAX_POINTS: usize = 350_000_000;
 
 /// A Delaunay triangulation of a point set.
 ///
-/// Everything here speaks in input positions: the index of a point in the slice given to
-/// [`triangulate`]. Exact duplicates are one point, reported under the smallest input position
-/// holding it. The half-edge level is [`Triangulation::mesh`], in [`VertexId`]s, numbered in the
-/// (spatial) insertion order; [`Triangulation::vertex`] and [`Triangulation::input_of`] convert.
+/// Everything here speaks in input positions (indices into the slice given to [`triangulate`]);
+/// exact duplicates are one point, under their smallest input position. [`Triangulation::mesh`]
+/// is in [`VertexId`]s, numbered in the (spatial) insertion order; [`Triangulation::vertex`] and
+/// [`Triangulation::input_of`] convert.
 ///
 /// ```
 /// use condt::{triangulate, Point};
@@ -79,12 +60,9 @@ pub const MAX_POINTS: usize = 350_000_000;
 /// ```
 #[derive(Clone, Debug)]
 pub struct Triangulation {
-    /// Positions as the stages measure them (see [`Triangulation::vertex_point`]), by vertex id
-    /// (duplicates too: each input point has an id).
+    /// Positions as the stages measure them ([`Triangulation::vertex_point`]), by vertex id.
     points: Vec<Point>,
-    /// The input coordinates by vertex id, kept only when `points` could not hold them exactly
-    /// (a set spanning so many orders of magnitude that its smallest coordinates lose bits in
-    /// the stages' frame).
+    /// The input coordinates by vertex id, when `points` cannot hold them exactly (a wide set).
     inputs: Option<Vec<Point>>,
     /// Input coordinates to the exactly rescaled frame the predicates decide in.
     scale: Scale,
@@ -92,10 +70,8 @@ pub struct Triangulation {
     stage_to_predicates: Scale,
     /// `points` to the input coordinates (exact when `inputs` is `None`).
     stage_to_input: Scale,
-    /// Where the input frame's zero lies in the caller's coordinates, when it is not at zero:
-    /// a smoothing pass triangulates positions relative to the corner of the set, so that an
-    /// exact translation of the input gives the same positions and the same edges, and adds
-    /// the corner back only where coordinates are shown ([`Triangulation::point`]).
+    /// The caller's coordinates of the input frame's zero, if not zero: smoothing triangulates
+    /// positions relative to the set's corner (so that exact translations give the same edges).
     offset: Option<Point>,
     mesh: Mesh,
     /// Vertex id -> input position; for a kept vertex, the smallest position of its duplicates.
@@ -107,20 +83,14 @@ pub struct Triangulation {
 
 /// Triangulates `points`.
 ///
-/// Every finite input is accepted: fewer than three points, collinear points (the mesh then holds
-/// the chain of segments between consecutive points, and no triangle), exact duplicates (merged,
-/// see [`Triangulation::vertex`]) and cocircular sets. The result is deterministic and
-/// depends only on the set of points, not on their order.
-///
-/// Any finite coordinates are accepted, at any scale and with any spread of magnitudes: a set
-/// whose coordinates span more than 2^200 in magnitude (`1` and `1e-61` together) is decided by
-/// exact integer arithmetic instead of Shewchuk's predicates, slower but just as exact
-/// (`docs/predicates.md`).
-///
-/// A set of 65,536 points or more is cut by a vertical line into two halves, built apart and
-/// stitched together (`docs/triangulation.md`); with the `parallel` feature the halves are built
-/// at once on rayon's threads. The result is the same on any number of threads: to keep the
-/// call on one, run it inside a one-thread pool (`rayon::ThreadPool::install`).
+/// Every finite input is accepted, at any scale and spread of magnitudes: fewer than three
+/// points, collinear points (the mesh then holds the chain of segments and no triangle), exact
+/// duplicates (merged, see [`Triangulation::vertex`]) and cocircular sets. A set spanning more
+/// than 2^200 in magnitude is decided by exact integer arithmetic, slower but as exact
+/// (`docs/predicates.md`). The result depends only on the set of points, not on their order nor
+/// on the number of threads: a set of 65,536 points or more is built in two halves, at once with
+/// the `parallel` feature (`docs/triangulation.md`); to stay on one thread, call it inside a
+/// one-thread pool (`rayon::ThreadPool::install`).
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a NaN or infinite coordinate, naming the first such input index;
@@ -184,9 +154,8 @@ fn triangulate_split(
         }
         Some((mesh, merged)) => (mesh, merged, order),
     };
-    // The stored coordinates are the stages' positions: the predicates' copy times a power of
-    // two, exact for a set in the fast range (every nonzero coordinate ends at least 1). A wider
-    // set may lose bits of its smallest coordinates there: it keeps its inputs as well.
+    // The stored coordinates are the stages' positions: exact in the fast range (every nonzero
+    // coordinate ends at least 1); a wide set may lose low bits there, so it keeps its inputs too.
     let (predicates_exponent, stages_exponent) = frames.exponents;
     let stage_to_input = frames.stages.inverse();
     let mut inputs = None;
@@ -232,9 +201,8 @@ fn triangulate_split(
     })
 }
 
-/// The mesh of `points`: the insertion order (input positions), the points in it in the
-/// predicates' frame, and their mesh with the `(duplicate, kept)` pairs merged, or `None` for
-/// the mesh when the points make no triangle.
+/// The insertion order (input positions), its points in the predicates' frame, and their mesh
+/// with the `(duplicate, kept)` pairs merged (`None` when the points make no triangle).
 #[allow(clippy::type_complexity)]
 fn construct(
     points: &[Point],
@@ -260,10 +228,8 @@ fn construct(
     construct_whole(points, frames, progress)
 }
 
-/// The insertion order of a set cut in two (the left half's order, then the right half's) and,
-/// with `with_points`, the points in it in the predicates' frame (else an empty list). Each half
-/// is picked out of the input, ordered and written into its part of the two lists by its own
-/// thread when `parallel`.
+/// The insertion order of a set cut in two (left half's, then right half's) and, with
+/// `with_points`, its points in the predicates' frame; each half on its own thread if `parallel`.
 fn cut_order(
     points: &[Point],
     frames: &scale::Frames,
@@ -282,9 +248,8 @@ fn cut_order(
     let (order_left, order_right) = order.split_at_mut(left);
     let (sorted_left, sorted_right) = sorted.split_at_mut(if with_points { left } else { 0 });
     let half = |is_left: bool, order: &mut [u32], sorted: &mut [Point]| {
-        // Every point is written to the next free slot, which only a member then takes: no
-        // branch on the side, which the input order makes a coin toss for unorganized points.
-        // The one spare slot takes the writes after the last member.
+        // Branch-free (the side is a coin toss on unorganized input): every point is written to
+        // the next free slot, which only a member keeps; the spare slot absorbs the tail.
         let len = order.len();
         let mut members = alloc::vec![0u32; len + 1];
         let mut gathered = alloc::vec![Point::default(); len + 1];
@@ -313,8 +278,7 @@ fn cut_order(
     (order, sorted)
 }
 
-/// `n` copies of `value`, written on rayon's threads when `parallel` (the first touch of each
-/// page is most of the cost).
+/// `n` copies of `value`, written on rayon's threads when `parallel` (first touches cost most).
 fn filled<T: Copy + Send + Sync>(value: T, n: usize, parallel: bool) -> Vec<T> {
     #[cfg(feature = "parallel")]
     if parallel {
@@ -347,8 +311,7 @@ fn construct_whole(
     (order, sorted, built)
 }
 
-/// The order to insert `points` in, as input positions, and for a set cut in two
-/// ([`halves::cut`]) the size of the left half, whose points come first.
+/// The insertion order of `points` and, for a set cut in two ([`halves::cut`]), the left size.
 fn insertion_order(
     points: &[Point],
     frames: &scale::Frames,
@@ -368,8 +331,7 @@ fn insertion_order(
 fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<u32> {
     let reorder_crowded = whole >= order::REORDER_FROM;
     if frames.wide {
-        // Sets spanning many orders of magnitude, ordered on a logarithmic grid: on a linear
-        // one, all but the largest points share a cell and the walks grow long.
+        // Wide sets: a logarithmic grid (on a linear one, most points share one cell).
         let warped: Vec<Point> = points
             .iter()
             .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
@@ -381,9 +343,8 @@ fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<
 }
 
 /// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
-/// merged on the way, or `None` when they make no triangle; the sequential reference the
-/// construction in two halves ([`halves`]) must equal. Reports to `progress` as
-/// [`insert::build_into`] does.
+/// merged, or `None` when they make no triangle: the reference [`halves`] must equal. Reports
+/// to `progress` as [`insert::build_into`] does.
 fn build<K: Kernel>(
     points: &[Point],
     progress: Option<&AtomicUsize>,
@@ -395,17 +356,13 @@ fn build<K: Kernel>(
     Some((arrays.seal(len, points.len(), false), merged))
 }
 
-/// Below this many points, the passes after the construction (rescaling, the vertex maps) run on
-/// one thread: a second costs more than it saves.
+/// Below this many points, the passes after the construction run on one thread.
 const PARALLEL_MIN: usize = 1 << 16;
 
-/// The two maps between vertex ids (positions in `order`) and input positions. A vertex that
-/// absorbed duplicates reports the smallest of their input positions.
-///
-/// With `parallel`, two threads each read the whole order and write the input positions of
-/// their half: the writes scatter (the input order is the caller's), so each thread keeps its
-/// own half of the list in cache, and a write outside it rewrites the half's first slot with
-/// its own value instead of branching on a coin toss.
+/// The two maps between vertex ids (positions in `order`) and input positions (a merged group
+/// reports its smallest). With `parallel`, two threads each read the whole order and write only
+/// their half, which stays in cache; a write outside it rewrites the half's first slot with its
+/// own value instead of branching on a coin toss.
 fn vertex_maps(
     mut input_of_vertex: Vec<u32>,
     merged: &[(u32, u32)],
@@ -446,19 +403,16 @@ fn vertex_maps(
 }
 
 impl Triangulation {
-    /// The order in which [`triangulate`] inserts `points`, as input positions: biased
-    /// randomized rounds, Hilbert order inside each (`docs/triangulation.md`); for a set cut in
-    /// two, the left half's order and then the right half's. It is the spatial
-    /// sort alone, with the input check before it, and the yardstick the triangulation
-    /// benchmarks measure the whole construction against. Unless every point is on one line,
-    /// vertex ids number the points in this order (exact duplicates included).
+    /// The order in which [`triangulate`] inserts `points`, as input positions
+    /// (`docs/triangulation.md`); for a set cut in two, the left half's, then the right half's.
+    /// Unless every point is on one line, vertex ids number the points in this order. It is the
+    /// spatial sort alone, after the input check: the benchmarks' yardstick for the whole build.
     ///
     /// # Errors
     /// Those of [`triangulate`]: [`Error::NonFinite`] and [`Error::TooManyPoints`].
     ///
     /// ```
-    /// use condt::mesh::VertexId;
-    /// use condt::{triangulate, Point, Triangulation};
+    /// use condt::{mesh::VertexId, triangulate, Point, Triangulation};
     /// let pts: Vec<Point> = (0..100).map(|i| Point::new((i % 10) as f64, (i / 10) as f64)).collect();
     /// let order = Triangulation::insertion_order(&pts)?;
     /// let tri = triangulate(&pts)?;
@@ -484,22 +438,11 @@ impl Triangulation {
         .0)
     }
 
-    /// [`triangulate`], counting the points inserted as it goes: for a caller (a progress bar on
-    /// another thread) to watch a long triangulation. Otherwise the same call, with the same
-    /// result and errors.
-    ///
-    /// Every path adds to `inserted` (with `Relaxed` ordering): the insertion in one piece, both
-    /// halves of a large set (at once on two threads with the `parallel` feature), and sets
-    /// without a triangle (all at once, at the end). The insertion adds the vertices it has
-    /// made every 65,536 points or so, so on success it has added [`Triangulation::num_vertices`]
-    /// in all: the distinct points (an exact duplicate is not counted). Counting happens only
-    /// then: nothing is added per point, and [`triangulate`] (no counter) pays nothing. In the
-    /// rare case that a set cut in two must be built again in one piece (`docs/triangulation.md`),
-    /// what the halves added is taken back first, so the count may step back once. On an error,
-    /// nothing is added.
-    ///
-    /// It only ever adds (or takes back what it added): a counter that does not start at zero,
-    /// or is shared by several calls, ends that many higher.
+    /// [`triangulate`] (same result and errors), adding to `inserted` (`Relaxed`), every 65,536
+    /// points or so, the points inserted: a progress bar on another thread can watch it. On
+    /// success it has added [`Triangulation::num_vertices`] (duplicates are not counted), on an
+    /// error nothing; a set cut in two that must be rebuilt in one piece first takes back what
+    /// its halves added, so the count may step back once.
     ///
     /// # Errors
     /// Those of [`triangulate`]: [`Error::NonFinite`] and [`Error::TooManyPoints`].
@@ -512,7 +455,6 @@ impl Triangulation {
     ///     .collect();
     /// pts.push(pts[0]); // a duplicate: one vertex for two points
     /// let inserted = AtomicUsize::new(0);
-    /// // A progress display would read `inserted` from another thread meanwhile.
     /// let tri = Triangulation::triangulate_observed(&pts, &inserted)?;
     /// assert_eq!(inserted.load(Ordering::Relaxed), tri.num_vertices());
     /// assert_eq!(tri.num_vertices(), pts.len() - 1);
@@ -554,15 +496,13 @@ impl Triangulation {
         }
     }
 
-    /// This triangulation with its input frame's zero at `offset` in the caller's coordinates
-    /// (see the `offset` field): its points were given relative to `offset`.
+    /// This triangulation, its points given relative to `offset` (see the `offset` field).
     pub(crate) fn with_offset(mut self, offset: Point) -> Triangulation {
         self.offset = Some(offset);
         self
     }
 
-    /// Where the input frame's zero lies in the caller's coordinates (the origin unless a
-    /// smoothing pass moved it).
+    /// Where the input frame's zero lies in the caller's coordinates (see the `offset` field).
     pub(crate) fn offset(&self) -> Point {
         self.offset.unwrap_or(Point::new(0.0, 0.0))
     }
@@ -600,8 +540,7 @@ impl Triangulation {
         self.input_of_vertex[v.index()] as usize
     }
 
-    /// Asks the cache for [`Triangulation::input_of`] of `v`, which a loop will read soon
-    /// ([`crate::prefetch`]); nothing when `v` is not an id.
+    /// Prefetches [`Triangulation::input_of`] of `v` ([`crate::prefetch`]); nothing if no id.
     #[inline]
     pub(crate) fn prefetch_input_of(&self, v: VertexId) {
         crate::prefetch::prefetch(&self.input_of_vertex, v.index());
@@ -619,8 +558,7 @@ impl Triangulation {
         self.num_vertices
     }
 
-    /// The input position of every distinct point (the smallest of a group of duplicates),
-    /// ascending.
+    /// The input position of every distinct point (the smallest of its duplicates), ascending.
     pub fn distinct_points(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.num_points()).filter(move |&i| self.input_of(self.vertex(i)) == i)
     }
@@ -643,8 +581,7 @@ impl Triangulation {
         })
     }
 
-    /// The Delaunay neighbours of input point `index`, counter-clockwise (for a hull point, from
-    /// one hull neighbour through the interior to the other); see [`Mesh::ring`].
+    /// The Delaunay neighbours of input point `index`, counter-clockwise ([`Mesh::ring`]).
     ///
     /// # Panics
     /// If `index` is not an input position.
@@ -654,8 +591,7 @@ impl Triangulation {
             .map(|w| self.input_of(w))
     }
 
-    /// The convex hull as input positions, counter-clockwise, starting at some hull point; see
-    /// [`Mesh::hull`].
+    /// The convex hull as input positions, counter-clockwise from some hull point ([`Mesh::hull`]).
     pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
         self.mesh.hull().map(|v| self.input_of(v))
     }
@@ -665,11 +601,9 @@ impl Triangulation {
         self.mesh.triangles().next().is_none()
     }
 
-    /// The position of vertex `v` as the stages measure it: the input coordinates times the one
-    /// power of two that brings the set's largest coordinate magnitude into [2^200, 2^201).
-    /// Lengths, their ratios and comparisons are those of the input, but squared lengths (and
-    /// their products) neither overflow nor underflow at any input scale, and a set and its
-    /// power-of-two multiples give the stages the same numbers, bit for bit.
+    /// The position of vertex `v` as the stages measure it: the input times the power of two that
+    /// brings the largest coordinate magnitude into [2^200, 2^201), so that squared lengths and
+    /// their products neither overflow nor underflow at any scale (`docs/predicates.md`).
     #[inline]
     pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
         self.points[v.index()]
@@ -681,8 +615,7 @@ impl Triangulation {
         &self.points
     }
 
-    /// `true` when `v` is a vertex of the mesh: not an id left over by a merged duplicate, not
-    /// [`VertexId::INFINITE`], not out of range.
+    /// `true` when `v` is a mesh vertex: not a merged duplicate's id, infinite or out of range.
     #[inline]
     pub(crate) fn is_vertex(&self, v: VertexId) -> bool {
         self.input_of_vertex

@@ -1,24 +1,21 @@
 //! The insertion order: biased randomized insertion order (BRIO) rounds, Hilbert order inside each.
 //!
-//! Rounds keep the expected cost of incremental insertion near O(n log n) even on points along
-//! curves, where a purely spatial order can degrade; the Hilbert order inside a round keeps every
-//! walk short and the memory access local. The "random" round of each point is a hash of its
-//! bounding-box-relative quantized position, so the order depends only on the set of points: the
-//! same set in any input order, or translated by a power of two, is inserted in the same sequence.
+//! Rounds keep insertion near O(n log n) even on curves; the Hilbert order keeps walks short and
+//! memory access local (`docs/triangulation.md` measures both). A point's round is a hash of its
+//! quantized bounding-box-relative position, so the order depends only on the set of points.
 
 use crate::geometry::Point;
 use alloc::vec::Vec;
 
-/// Most bits per axis of the quantized grid; two axes make at most a 48-bit Hilbert index.
+/// Most bits per axis of the quantized grid (a 48-bit Hilbert index at most).
 const GRID_BITS: u32 = 24;
 
 /// Each BRIO round holds about `2^ROUND_GROWTH_BITS` times as many points as the one before.
 const ROUND_GROWTH_BITS: u32 = 2;
 
-/// One level of the Hilbert curve, branch-free: the bits `bx`, `by` of a cell at this level and
-/// the curve's orientation (`swap` exchanges the axes, `flip` mirrors both) give the quadrant's
-/// rank along the curve (lower-left 0, upper-left 1, upper-right 2, lower-right 3 in the base
-/// orientation) and the orientation for the next level.
+/// One level of the Hilbert curve, branch-free: from a cell's bits `bx`, `by` at this level and
+/// the orientation (`swap` exchanges the axes, `flip` mirrors both), the quadrant's rank (0 to 3:
+/// lower-left, upper-left, upper-right, lower-right, unrotated) and the next level's orientation.
 const fn hilbert_step(bx: u32, by: u32, swap: u32, flip: u32) -> (u32, u32, u32) {
     let exchanged = swap & (bx ^ by);
     let right = bx ^ exchanged ^ flip;
@@ -27,8 +24,8 @@ const fn hilbert_step(bx: u32, by: u32, swap: u32, flip: u32) -> (u32, u32, u32)
     ((3 * right) ^ up, swap ^ low, flip ^ (low & right))
 }
 
-/// Four levels at once: entry `state * 256 + (x_nibble << 4 | y_nibble)` holds the eight index
-/// bits in its low byte and the orientation after them (`swap | flip << 1`) above.
+/// Four levels at once: entry `state << 8 | x_nibble << 4 | y_nibble` holds the eight index bits
+/// and, above them, the orientation after them (`swap | flip << 1`).
 const HILBERT_NIBBLES: [u16; 1024] = {
     let mut table = [0u16; 1024];
     let mut entry = 0;
@@ -51,8 +48,8 @@ const HILBERT_NIBBLES: [u16; 1024] = {
     table
 };
 
-/// Position of `(x, y)` along the Hilbert curve filling the grid, using its top `levels` bits
-/// (a multiple of four). Dispatched to a fixed number of table steps, whose loop unrolls (speed).
+/// Position of `(x, y)` on the Hilbert curve of its top `levels` bits (a multiple of four), in a
+/// fixed number of table steps so that the loop unrolls.
 fn hilbert_index(x: u32, y: u32, levels: u32) -> u64 {
     debug_assert!(levels % 4 == 0 && levels <= GRID_BITS);
     match levels {
@@ -81,9 +78,8 @@ fn hilbert_steps<const STEPS: u32>(x: u32, y: u32) -> u64 {
     index
 }
 
-/// A strictly increasing map of the finite doubles onto numbers below 2^63 in magnitude that
-/// grows like the logarithm of the magnitude (the ordered bit pattern), so that a grid on it has
-/// as many cells between 1e-300 and 1e-299 as between 1 and 10.
+/// A strictly increasing map of the finite doubles growing like the log of the magnitude (the
+/// ordered bit pattern): a grid on it has as many cells in [1e-300, 1e-299] as in [1, 10].
 pub(crate) fn logarithmic(x: f64) -> f64 {
     let magnitude = (x.to_bits() & !(1 << 63)) as f64;
     if x < 0.0 {
@@ -93,7 +89,7 @@ pub(crate) fn logarithmic(x: f64) -> f64 {
     }
 }
 
-/// SplitMix64 finalizer: a cheap, well-mixed hash of a 64-bit word.
+/// SplitMix64 finalizer.
 fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
@@ -106,8 +102,7 @@ pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u3
     let n = points.len();
     let (mut min_x, mut min_y) = (f64::INFINITY, f64::INFINITY);
     let (mut max_x, mut max_y) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
-    // The points are finite: plain comparisons, not `f64::min`, whose NaN rule costs a longer
-    // chain per step.
+    // Finite points: plain comparisons, a shorter chain than `f64::min`'s NaN rule.
     for p in points {
         min_x = if p.x < min_x { p.x } else { min_x };
         min_y = if p.y < min_y { p.y } else { min_y };
@@ -170,32 +165,23 @@ pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u3
     }
 }
 
-/// The sets (whole, before a cut into halves) from which crowded grid cells are reordered
-/// ([`CROWDED_CELL`]). Reason: below it a crowded cell costs little in coordinate order, and the
-/// order, and with it the triangulation of cocircular points, stays exactly what it was before
-/// the rule (every shipped data set, and the Crust's second triangulation of each, is smaller).
+/// The sets (whole, before a cut) from which crowded cells are reordered: below it they cost
+/// little, and smaller sets (every shipped data set) keep their cocircular choices.
 pub(crate) const REORDER_FROM: usize = 1 << 16;
 
-/// In a set of [`REORDER_FROM`] points or more, a grid cell holding this many points is ordered
-/// like a set of its own (BRIO + Hilbert over its own bounding box) instead of by coordinates.
-/// Reason: a few points far from the rest stretch the box until most points share a few cells,
-/// and a large cell inserted in coordinate order makes each walk cross a large part of it
-/// (1M uniform points and one point 10^7 away: 8.8 s instead of 0.64 s; the Crust's
-/// circumcentres of hull slivers do this to its second triangulation). A set has about 2^8
-/// cells per point on average, so a cell this full is a dense cluster far from the rest.
+/// In a set of [`REORDER_FROM`] points or more, a grid cell this full (a dense cluster, far points
+/// having stretched the box) is ordered like a set of its own instead of by coordinates, which
+/// would make each walk cross much of it (`docs/triangulation.md`, "Crowded cells").
 const CROWDED_CELL: usize = 1 << 10;
 
-/// Orders the points `run` (indices into `points`) that share one grid cell: with
-/// `reorder_crowded`, a crowded cell ([`CROWDED_CELL`]) whose points are not all at one position
-/// by [`insertion_order`] on them alone, any other by the points' coordinates, never by their
-/// input position.
+/// Orders the points `run` sharing one grid cell: a crowded one (with `reorder_crowded`) by
+/// [`insertion_order`] on them alone, any other by coordinates, never by input position.
 fn order_cell(points: &[Point], run: &mut [u32], reorder_crowded: bool) {
     let position = |i: &u32| points[*i as usize];
     if reorder_crowded && run.len() >= CROWDED_CELL {
         let cell: Vec<Point> = run.iter().map(position).collect();
-        // Each call's grid spans its own points, so the points with the smallest and the
-        // largest coordinate along the wider axis land in different cells: every level of
-        // this recursion splits its set, and a level only runs on a crowded cell.
+        // Each call's grid spans its own points, whose extremes along the wider axis land in
+        // different cells: every level of this recursion splits its set.
         if cell.iter().any(|p| p.lexicographic_cmp(cell[0]).is_ne()) {
             let local = insertion_order(&cell, true);
             let ordered: Vec<u32> = local.iter().map(|&k| run[k as usize]).collect();
@@ -206,8 +192,7 @@ fn order_cell(points: &[Point], run: &mut [u32], reorder_crowded: bool) {
     run.sort_unstable_by(|i, j| position(i).lexicographic_cmp(position(j)));
 }
 
-/// Calls `sort` on every range of two or more consecutive items with equal `key`: points sharing
-/// a grid cell are then ordered by their coordinates, never by their input position.
+/// Calls `sort` on every range of two or more consecutive items with equal `key`.
 fn for_each_run<T, K: PartialEq>(
     items: &[T],
     key: impl Fn(&T) -> K,
@@ -227,13 +212,11 @@ fn for_each_run<T, K: PartialEq>(
     }
 }
 
-/// Stable least-significant-digit radix sort of `values` by their bits `low .. low + bits`.
-/// Nine-bit digits keep each pass's counters (2 KiB) and scatter targets few; one read of the
-/// values counts the digits of every pass.
+/// Stable LSD radix sort of `values` by their bits `low .. low + bits`, in nine-bit digits (2 KiB
+/// of counters a pass, few scatter targets), all passes counted in one read.
 fn radix_sort(values: &mut Vec<u64>, low: u32, bits: u32) {
     const DIGIT_BITS: u32 = 9;
     const DIGITS: usize = 1 << DIGIT_BITS;
-    // Keys have at most 64 bits.
     const MAX_PASSES: usize = 64usize.div_ceil(DIGIT_BITS as usize);
     let passes = (bits.div_ceil(DIGIT_BITS) as usize).min(MAX_PASSES);
     let digit =

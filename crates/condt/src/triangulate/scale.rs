@@ -1,21 +1,8 @@
-//! Input checks and the exact power-of-two rescalings: one for the predicates, one for the
-//! lengths the ConDT stages measure.
-//!
-//! Multiplying by a power of two changes no predicate sign, no length ratio and loses no bit as
-//! long as no result leaves the normal range.
-//!
-//! - The predicates: the triangulator works on a copy scaled to make the largest coordinate
-//!   magnitude fall in [1, 2). With every nonzero coordinate at least 2^-200 after scaling, every
-//!   coordinate is a multiple of 2^-252, every degree-4 product inside `incircle` a multiple of
-//!   2^-1008, and all of them stay normal doubles: Shewchuk's predicates are exact and the fast
-//!   kernel runs. A set spanning more (a *wide* set) is triangulated with the exact predicates
-//!   of [`crate::predicates`], which are exact for every finite input.
-//! - The stages: they see the points multiplied by the power of two that brings the largest
-//!   coordinate magnitude into [2^200, 2^201), whatever the input's own scale, so a set and any
-//!   power-of-two multiple of it give the same positions to the stages, bit for bit. There,
-//!   squared lengths stay below 2^406 and their products below 2^812, and no squared length
-//!   underflows for points at least 2^-700 times the largest magnitude apart (products of two,
-//!   2^-450).
+//! Input checks and the exact power-of-two rescalings: one into the frame the predicates decide
+//! in (largest magnitude in [1, 2)), one into the positions the ConDT stages measure (largest
+//! magnitude in [2^200, 2^201)). A power of two changes no sign and no ratio and loses no bit
+//! while no result leaves the normal range; `docs/predicates.md` derives both ranges and when a
+//! set is *wide*, needing the exact predicates.
 
 use crate::error::Error;
 use crate::geometry::{binary_exponent, Point, Scale};
@@ -33,16 +20,14 @@ pub(crate) struct Frames {
     pub(crate) wide: bool,
     /// Input to the positions the stages measure.
     pub(crate) stages: Scale,
-    /// The binary exponents of the two scales, `predicates` and `stages`.
+    /// The binary exponents of `predicates` and `stages`.
     pub(crate) exponents: (i32, i32),
 }
 
-/// Checks every point and picks the frames; the first non-finite point is an error naming its
-/// index.
+/// Checks every point (naming the first non-finite one) and picks the frames.
 pub(crate) fn choose_frames(points: &[Point]) -> Result<Frames, Error> {
-    // One pass: the largest magnitude, and the smallest nonzero one. Magnitudes compare as
-    // their bit patterns (NaN above infinity above every finite value), and zero, one below,
-    // wraps to the top when looking for the smallest nonzero one (speed: integer minima).
+    // One pass, in integers (speed): magnitudes compare as bit patterns (NaN above infinity above
+    // every finite value); zero, one below, wraps to the top when seeking the smallest nonzero.
     const MAGNITUDE: u64 = !(1 << 63);
     let (mut largest, mut smallest) = ([0u64; 2], [u64::MAX; 2]);
     for p in points {
