@@ -34,7 +34,6 @@ impl Point {
     pub const fn new(x: f64, y: f64) -> Self {
         Point { x, y }
     }
-
     /// Squared Euclidean distance to `other`.
     #[inline]
     pub fn dist2(self, other: Point) -> f64 {
@@ -48,13 +47,11 @@ impl Point {
     pub fn is_finite(self) -> bool {
         self.x.is_finite() && self.y.is_finite()
     }
-
     /// The point with both coordinates multiplied by `factor`.
     #[inline]
     pub(crate) fn scaled(self, factor: f64) -> Point {
         Point::new(self.x * factor, self.y * factor)
     }
-
     /// Lexicographic order, x first, by value (so -0.0 equals 0.0). Any exact translation keeps
     /// it; along a line it is the order of the points on that line.
     ///
@@ -155,7 +152,6 @@ impl Scale {
     pub fn apply(self, p: Point) -> Point {
         p.scaled(self.first).scaled(self.second)
     }
-
     /// The scale that undoes this one, exactly (its factors are powers of two).
     pub fn inverse(self) -> Scale {
         Scale {

@@ -103,7 +103,6 @@ impl MeshBuilder<'_> {
     pub(crate) fn len(&self) -> usize {
         self.len
     }
-
     /// Appends the triangle `corners` (counter-clockwise) with no twins yet, and returns it.
     ///
     /// # Panics
@@ -123,13 +122,11 @@ impl MeshBuilder<'_> {
     pub(crate) fn set_corners(&mut self, t: TriangleId, corners: [VertexId; 3]) {
         self.set_corners_at(t.index() * 3, corners);
     }
-
     /// Overwrites the corners of the triangle at `base`.
     #[inline]
     pub(crate) fn set_corners_at(&mut self, base: usize, corners: [VertexId; 3]) {
         self.origins[base..base + 3].copy_from_slice(&corners);
     }
-
     /// The corners of the triangle at `base`, corner `k` the origin of half-edge `base + k`.
     #[inline]
     pub(crate) fn corners_at(&self, base: usize) -> [VertexId; 3] {
@@ -149,24 +146,20 @@ impl MeshBuilder<'_> {
     pub(crate) fn set_twins_at(&mut self, base: usize, twins: [HalfEdgeId; 3]) {
         self.twins[base..base + 3].copy_from_slice(&twins);
     }
-
     /// Makes `b` the twin of `a`, one way only.
     #[inline]
     pub(crate) fn set_twin(&mut self, a: HalfEdgeId, b: HalfEdgeId) {
         self.twins[a.index()] = b;
     }
-
     #[inline]
     pub(crate) fn origin(&self, e: HalfEdgeId) -> VertexId {
         self.origins[e.index()]
     }
-
     /// The half-edge across from `e` (or [`HalfEdgeId::NONE`] if not linked yet).
     #[inline]
     pub(crate) fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
         self.twins[e.index()]
     }
-
     /// Makes `a` and `b` each other's twin.
     #[inline]
     pub(crate) fn link(&mut self, a: HalfEdgeId, b: HalfEdgeId) {

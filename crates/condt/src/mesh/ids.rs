@@ -22,13 +22,11 @@ impl VertexId {
     pub const fn new(index: u32) -> Self {
         VertexId(index)
     }
-
     /// Position in the arrays indexed by vertex (not an input position in general).
     #[inline]
     pub const fn index(self) -> usize {
         self.0 as usize
     }
-
     /// `true` for [`VertexId::INFINITE`].
     #[inline]
     pub const fn is_infinite(self) -> bool {
@@ -60,13 +58,11 @@ impl HalfEdgeId {
     pub const fn new(index: u32) -> Self {
         HalfEdgeId(index)
     }
-
     /// Position in the mesh arrays.
     #[inline]
     pub const fn index(self) -> usize {
         self.0 as usize
     }
-
     /// The next half-edge counter-clockwise in the same triangle.
     #[inline]
     pub const fn next(self) -> Self {
@@ -92,7 +88,6 @@ impl HalfEdgeId {
     pub const fn triangle(self) -> TriangleId {
         TriangleId(self.0 / 3)
     }
-
     /// The position of its triangle's first half-edge and its own corner (`0..3`) in it: one
     /// division, after which the triangle's other half-edges are corner steps ([`wrap3`]).
     #[inline]
@@ -107,7 +102,6 @@ impl HalfEdgeId {
     pub(crate) const fn at(base: usize, corner: usize) -> Self {
         HalfEdgeId((base + corner) as u32)
     }
-
     /// `true` for [`HalfEdgeId::NONE`].
     #[inline]
     pub const fn is_none(self) -> bool {
@@ -131,13 +125,11 @@ impl TriangleId {
     pub const fn new(index: u32) -> Self {
         TriangleId(index)
     }
-
     /// Position among the mesh's triangles.
     #[inline]
     pub const fn index(self) -> usize {
         self.0 as usize
     }
-
     /// Its `corner`-th half-edge (`corner` in `0..3`).
     #[inline]
     pub const fn edge(self, corner: u32) -> HalfEdgeId {

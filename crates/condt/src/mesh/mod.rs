@@ -46,38 +46,32 @@ impl Mesh {
     pub fn num_half_edges(&self) -> usize {
         self.origins.len()
     }
-
     /// Number of triangles, ghosts included.
     #[inline]
     pub fn num_triangles_with_ghosts(&self) -> usize {
         self.origins.len() / 3
     }
-
     /// Size of the vertex id space (for a [`Triangulation`](crate::Triangulation), the number of
     /// input points, duplicates included): not a count of vertices with edges.
     #[inline]
     pub fn num_vertex_ids(&self) -> usize {
         self.vertex_edges.len()
     }
-
     /// Where `e` starts.
     #[inline]
     pub fn origin(&self, e: HalfEdgeId) -> VertexId {
         self.origins[e.index()]
     }
-
     /// Where `e` ends.
     #[inline]
     pub fn dest(&self, e: HalfEdgeId) -> VertexId {
         self.origins[e.next().index()]
     }
-
     /// The half-edge running the other way along the same edge.
     #[inline]
     pub fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
         self.twins[e.index()]
     }
-
     /// One half-edge leaving `v` (on the hull: the one pointing to infinity), or `None` when `v`
     /// has no edge: it is a merged duplicate, or the only distinct point.
     #[inline]
@@ -101,7 +95,6 @@ impl Mesh {
     pub fn corner_slice(&self, triangles: core::ops::Range<usize>) -> &[VertexId] {
         &self.origins[3 * triangles.start..3 * triangles.end]
     }
-
     /// [`Mesh::triangle_vertices`] of every triangle in `triangles` (ghosts included), in one pass.
     ///
     /// # Panics
@@ -121,13 +114,11 @@ impl Mesh {
     pub fn is_ghost(&self, t: TriangleId) -> bool {
         self.triangle_vertices(t).iter().any(|v| v.is_infinite())
     }
-
     /// `true` when both ends of `e` are finite vertices.
     #[inline]
     pub fn is_finite_edge(&self, e: HalfEdgeId) -> bool {
         !self.origin(e).is_infinite() && !self.dest(e).is_infinite()
     }
-
     /// `true` when `e` is finite and has a ghost triangle on one side: it lies on the convex hull
     /// (or, for collinear input, on the chain).
     #[inline]
@@ -181,7 +172,6 @@ impl Mesh {
     pub fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
         self.ring(v).map(move |e| self.dest(e))
     }
-
     /// The vertices of the convex hull, counter-clockwise, each hull edge once. Points lying on a
     /// hull edge are hull vertices too. For collinear input the walk goes out along the chain and
     /// back, so inner chain vertices appear twice.

@@ -60,7 +60,6 @@ impl Int {
     fn magnitude(&self) -> &[u64] {
         &self.limbs[..self.len]
     }
-
     fn signum(&self) -> Ordering {
         match (self.len, self.negative) {
             (0, _) => Ordering::Equal,
@@ -94,7 +93,6 @@ impl Int {
     fn sub(&self, other: &Int) -> Int {
         self.add(&other.negated())
     }
-
     fn mul(&self, other: &Int) -> Int {
         let (a, b) = (self.magnitude(), other.magnitude());
         if a.is_empty() || b.is_empty() {

@@ -39,7 +39,6 @@ impl Cut {
     pub(crate) fn is_left(&self, p: Point) -> bool {
         bucket(p.x, self.low, self.per_unit) < self.boundary
     }
-
     pub(crate) fn left_len(&self) -> usize {
         self.left
     }
@@ -209,7 +208,6 @@ impl Hull {
     fn len(&self) -> usize {
         self.vertices.len()
     }
-
     fn ccw(&self, i: usize) -> usize {
         if i + 1 == self.len() {
             0

@@ -267,22 +267,18 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     pub(crate) fn finish(self) -> (MeshBuilder<'m>, Vec<(u32, u32)>) {
         (self.mesh, self.merged)
     }
-
     #[inline]
     fn point(&self, v: VertexId) -> Point {
         self.points[v.index()]
     }
-
     #[inline]
     fn origin(&self, e: HalfEdgeId) -> VertexId {
         self.mesh.origin(e)
     }
-
     #[inline]
     fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
         self.mesh.twin(e)
     }
-
     pub(crate) fn insert(&mut self, v: u32) {
         let p = self.points[v as usize];
         let v = VertexId::new(v);

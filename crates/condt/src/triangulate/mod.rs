@@ -473,7 +473,6 @@ impl Triangulation {
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
     }
-
     /// The coordinates of input point `index`.
     ///
     /// # Panics
@@ -482,7 +481,6 @@ impl Triangulation {
     pub fn point(&self, index: usize) -> Point {
         self.input_point(self.vertex(index))
     }
-
     /// The input coordinates of vertex `v`.
     #[inline]
     pub(crate) fn input_point(&self, v: VertexId) -> Point {
@@ -506,13 +504,11 @@ impl Triangulation {
     pub(crate) fn offset(&self) -> Point {
         self.offset.unwrap_or(Point::new(0.0, 0.0))
     }
-
     /// A position in the stages' frame ([`Triangulation::vertex_point`]) in input coordinates.
     #[inline]
     pub(crate) fn stage_to_input(&self, p: Point) -> Point {
         self.stage_to_input.apply(p)
     }
-
     /// The vertex that input point `index` became (exact duplicates share one).
     ///
     /// # Panics
@@ -530,7 +526,6 @@ impl Triangulation {
     pub fn vertex(&self, index: usize) -> VertexId {
         self.vertex_of_input[index]
     }
-
     /// The input position vertex `v` stands for (for merged duplicates, the smallest one).
     ///
     /// # Panics
@@ -539,30 +534,25 @@ impl Triangulation {
     pub fn input_of(&self, v: VertexId) -> usize {
         self.input_of_vertex[v.index()] as usize
     }
-
     /// Prefetches [`Triangulation::input_of`] of `v` ([`crate::prefetch`]); nothing if no id.
     #[inline]
     pub(crate) fn prefetch_input_of(&self, v: VertexId) {
         crate::prefetch::prefetch(&self.input_of_vertex, v.index());
     }
-
     /// Number of input points, duplicates included.
     #[inline]
     pub fn num_points(&self) -> usize {
         self.vertex_of_input.len()
     }
-
     /// Number of distinct points, that is of mesh vertices.
     #[inline]
     pub fn num_vertices(&self) -> usize {
         self.num_vertices
     }
-
     /// The input position of every distinct point (the smallest of its duplicates), ascending.
     pub fn distinct_points(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.num_points()).filter(move |&i| self.input_of(self.vertex(i)) == i)
     }
-
     /// The real triangles as the input positions of their corners, counter-clockwise.
     pub fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
         self.mesh
@@ -595,12 +585,10 @@ impl Triangulation {
     pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
         self.mesh.hull().map(|v| self.input_of(v))
     }
-
     /// `true` when there is no triangle: all points are collinear or fewer than three are distinct.
     pub fn is_degenerate(&self) -> bool {
         self.mesh.triangles().next().is_none()
     }
-
     /// The position of vertex `v` as the stages measure it: the input times the power of two that
     /// brings the largest coordinate magnitude into [2^200, 2^201), so that squared lengths and
     /// their products neither overflow nor underflow at any scale (`docs/predicates.md`).
@@ -608,13 +596,11 @@ impl Triangulation {
     pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
         self.points[v.index()]
     }
-
     /// Every [`Triangulation::vertex_point`], by vertex id (for a loop that prefetches them).
     #[inline]
     pub(crate) fn vertex_points(&self) -> &[Point] {
         &self.points
     }
-
     /// `true` when `v` is a mesh vertex: not a merged duplicate's id, infinite or out of range.
     #[inline]
     pub(crate) fn is_vertex(&self, v: VertexId) -> bool {
@@ -635,7 +621,6 @@ impl Triangulation {
     pub(crate) fn input_to_vertex(&self) -> &[VertexId] {
         &self.vertex_of_input
     }
-
     /// Vertex position in the exactly rescaled frame the predicates work in.
     #[inline]
     pub(crate) fn scaled_point(&self, v: VertexId) -> Point {
