@@ -1,11 +1,9 @@
-//! Edge lists in vertex ids and their adjacency: the internal form of the graphs the stages pass
-//! to each other and curves are read from.
+//! Edge lists in vertex ids and their adjacency: the internal form of the graphs the stages pass on
+//! and curves are read from.
 //!
-//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), the curve graph that keeps each
-//! vertex's degree and first two neighbours in one record for walking curves, the branch
-//! adjacency of the vertices with three or more edges, the exact-size collection of a filtered
-//! list, and the O(n) pair sort. It may not look at coordinates, and nothing here is public:
-//! users see edges in input positions through [`Graph`](crate::Graph).
+//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), [`CurveGraph`], [`BranchAdjacency`],
+//! exact-size collection and the O(n) pair sort. It may not look at coordinates; nothing here is
+//! public (users see edges in input positions through [`Graph`](crate::Graph)).
 
 use crate::mesh::VertexId;
 use alloc::vec;
@@ -14,7 +12,6 @@ use alloc::vec::Vec;
 /// An undirected edge `[a, b]` with `a < b`, in vertex ids.
 pub(crate) type Edge = [VertexId; 2];
 
-/// `[a, b]` ordered so that `a < b`.
 #[inline]
 pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
     if a < b {
@@ -24,10 +21,8 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
     }
 }
 
-/// Compressed adjacency of an edge list over `vertex_count` vertices: the neighbours of `v` are
-/// `neighbors[offsets[v]..offsets[v + 1]]`, in the order the edges are listed, each with the
-/// position of its edge in the list. Only the tests build one now (for memory), as the reference
-/// the compact forms ([`CurveGraph`], [`BranchAdjacency`]) are checked against.
+/// Compressed adjacency (each vertex's neighbours with their edge's position, in list order): the
+/// reference the tests check [`CurveGraph`] and [`BranchAdjacency`] against.
 #[cfg(test)]
 pub(crate) struct Adjacency {
     offsets: Vec<u32>,
@@ -66,8 +61,7 @@ impl Adjacency {
     }
 }
 
-/// [`Adjacency`] of the vertices of degree three or more only (the non-manifold vertices, a
-/// few in a hundred on noisy curves): the same lists, the same order, for memory.
+/// [`Adjacency`] of the vertices of degree three or more only (few on curves), for memory.
 pub(crate) struct BranchAdjacency {
     /// The vertices with three or more edges, ascending, and where their lists start.
     vertices: Vec<(VertexId, u32)>,
@@ -106,13 +100,11 @@ impl BranchAdjacency {
         }
     }
 
-    /// How many vertices have degree three or more (the ones with lists).
     pub(crate) fn branch_count(&self) -> usize {
         self.vertices.len()
     }
 
-    /// The neighbours of `v` (of degree three or more) with the positions of the joining edges;
-    /// empty for any other vertex.
+    /// The neighbours of `v` with the positions of the joining edges; empty unless `v` is a branch.
     pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {
         let Ok(at) = self.vertices.binary_search_by_key(&v, |&(u, _)| u) else {
             return &[];
@@ -125,29 +117,25 @@ impl BranchAdjacency {
     }
 }
 
-/// The neighbours of every vertex of a graph that is a union of curves: almost every vertex has
-/// at most two. Each vertex has one 8-byte record, its first two neighbours with its degree in
-/// the top bits of the first, so following a curve, or reading a vertex's neighbours, costs one
-/// read per vertex where separate arrays would cost one per array. The few vertices with three
-/// or more neighbours list all of them in a small side table, in id order; nothing is built for
-/// the others. It keeps no name per vertex: the curves and the final tally read the input
-/// position a vertex stands for from the triangulation's map. Reason for the packing: memory;
-/// the graph is held at the reconstruction's highest phases.
+/// The neighbours of every vertex of a union of curves, where almost every vertex has at most two:
+/// one 8-byte record per vertex, its first two neighbours with its degree in the top bits of the
+/// first, so following a curve costs one read per vertex. Vertices with three or more neighbours
+/// list them all in a small side table, in id order. No name per vertex (the curves read input
+/// positions from the triangulation). Reason for the packing: memory; the graph is held at the
+/// reconstruction's highest phases.
 #[derive(Debug, PartialEq)]
 pub(crate) struct CurveGraph {
     /// Per vertex id: the first neighbour's id in the low [`ID_BITS`] bits of the first word and
     /// the degree (up to [`DEGREE_SATURATED`]) above them, the second neighbour's id in the
     /// second word; a missing neighbour is [`NO_ID`].
     records: Vec<[u32; 2]>,
-    /// The vertices with three or more neighbours, ascending, and where their neighbours start
-    /// in `branch_neighbors` (they end where the next one's start).
+    /// The vertices with three or more neighbours, ascending, with where their lists start.
     branch_vertices: Vec<(VertexId, u32)>,
     /// The neighbours of the branch vertices, each vertex's in the order its edges are listed.
     branch_neighbors: Vec<VertexId>,
 }
 
-/// Bits of a vertex id in a record: ids are under [`crate::triangulate::MAX_POINTS`] (350
-/// million), below 2^29.
+/// Bits of a vertex id in a record: ids are under [`crate::triangulate::MAX_POINTS`] < 2^29.
 const ID_BITS: u32 = 29;
 const ID_MASK: u32 = (1 << ID_BITS) - 1;
 /// A missing neighbour in a record (read back as [`VertexId::INFINITE`]).
@@ -166,8 +154,9 @@ impl CurveGraph {
     /// The largest number of vertices a curve graph holds (ids must fit [`ID_BITS`]).
     pub(crate) const MAX_VERTICES: usize = NO_ID as usize;
 
-    /// The graph of `edges` (each edge once, `[a, b]` with `a < b`, any order) over `vertex_count` vertices
-    /// (at most [`CurveGraph::MAX_VERTICES`]). Neighbours come in the order the edges are listed.
+    /// The graph of `edges` (each edge once, `[a, b]` with `a < b`, any order) over `vertex_count`
+    /// vertices (at most [`CurveGraph::MAX_VERTICES`]). Neighbours come in the order the edges are
+    /// listed.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
         assert!(vertex_count <= Self::MAX_VERTICES);
         let mut records = vec![[NO_ID, NO_ID]; vertex_count];
@@ -196,7 +185,6 @@ impl CurveGraph {
         }
     }
 
-    /// Whether some vertex has three or more neighbours.
     pub(crate) fn has_branch(&self) -> bool {
         !self.branch_vertices.is_empty()
     }
@@ -232,10 +220,9 @@ impl CurveGraph {
         }
     }
 
-    /// Takes `removed` (edges of this graph, each once) out: the graph becomes the one
-    /// [`CurveGraph::new`] builds from the remaining list in its order. Records are patched in
-    /// place and the side table is rewritten in one pass over it, so a few removals cost next to
-    /// nothing where a new graph costs a pass over every edge with scattered writes.
+    /// Takes `removed` (edges of this graph, each once) out, leaving the graph [`CurveGraph::new`]
+    /// builds from the remaining list. Records are patched in place and the side table rewritten in
+    /// one pass, so a few removals cost next to nothing.
     pub(crate) fn remove_edges(&mut self, removed: &[Edge]) {
         let mut at_branches: Vec<(VertexId, VertexId)> = Vec::new();
         for &[a, b] in removed {
@@ -306,17 +293,15 @@ impl CurveGraph {
         &self.branch_neighbors[start..end]
     }
 
-    /// The first two neighbours of `v` ([`VertexId::INFINITE`] where it has fewer); all of
-    /// them when `degree(v) <= 2`.
+    /// The first two neighbours of `v` ([`VertexId::INFINITE`] where it has fewer).
     #[inline]
     pub(crate) fn first_two(&self, v: VertexId) -> [VertexId; 2] {
         let record = &self.records[v.index()];
         [vertex_of(record[0]), vertex_of(record[1])]
     }
 
-    /// For `v` of degree two and `from` one of its neighbours, the other one: the next step along
-    /// a curve. Which slot holds `from` is a coin toss, so the other is taken by exclusive or
-    /// (`x ^ y ^ x = y`) rather than by a branch the predictor would miss half the time.
+    /// For `v` of degree two and `from` one of its neighbours, the other: the next step along a
+    /// curve. Which slot holds `from` is a coin toss, so it is taken by exclusive or, not a branch.
     #[inline]
     pub(crate) fn onward(&self, v: VertexId, from: VertexId) -> VertexId {
         let record = &self.records[v.index()];
@@ -327,8 +312,8 @@ impl CurveGraph {
 }
 
 /// The side table of [`CurveGraph`]: the vertices of degree three or more, ascending, with the
-/// start of their neighbours, listed in the order of `edges`. A stored degree below the
-/// saturation is exact; the rare vertex at it (seven or more neighbours) is counted here.
+/// start of their neighbours in the order of `edges`. Stored degrees below the saturation are
+/// exact; the rest are counted here.
 fn branch_table(records: &[[u32; 2]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, Vec<VertexId>) {
     let stored = |v: VertexId| records[v.index()][0] >> ID_BITS;
     let mut vertices: Vec<(VertexId, u32)> = Vec::new();
@@ -414,8 +399,7 @@ pub(crate) fn sort_pairs<T: Copy + Ord>(
     out
 }
 
-/// The edges of `edges` (at most `room` of them) in one list of their exact length, allocated
-/// once. Reason: memory; collecting would grow the list by doubling, up to twice what it holds.
+/// `edges` (at most `room`) in one list of exact length, allocated once (collecting would double).
 pub(crate) fn collect_exact(room: usize, edges: impl Iterator<Item = Edge>) -> Vec<Edge> {
     let mut list = Vec::with_capacity(room);
     list.extend(edges);
@@ -423,7 +407,6 @@ pub(crate) fn collect_exact(room: usize, edges: impl Iterator<Item = Edge>) -> V
     list
 }
 
-/// The degree of every vertex in `edges`, indexed by vertex id.
 pub(crate) fn degrees(vertex_count: usize, edges: &[Edge]) -> Vec<u32> {
     let mut degree = vec![0u32; vertex_count];
     for &[a, b] in edges {

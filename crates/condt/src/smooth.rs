@@ -1,101 +1,67 @@
 //! Smoothing noisy positions before the reconstruction (not in the paper; on by default, off in
 //! `Params::paper`; [`Params::smooth`](crate::Params::smooth)).
 //!
-//! Owns: one rule that moves points to smoothed positions read off a finished reconstruction's
-//! final graph. It reads that reconstruction's triangulation and edges and returns new
-//! positions, one per input position; it touches neither, and it does not decide how often it
-//! runs (that is [`reconstruct`](crate::reconstruct)).
+//! Owns: moving points to smoothed positions read off a finished reconstruction's final graph, one
+//! per input position. It changes neither the triangulation nor the edges and does not decide how
+//! often it runs ([`reconstruct`](crate::reconstruct) does).
 //!
-//! Why: at 1-3 % noise some true edges of a curve are not Delaunay edges of the noisy points: a
-//! sample pushed off the curve lies inside every empty circle through the two samples it sits
-//! between, so no stage that chooses among Delaunay edges can keep their edge. Moved back
-//! towards the curve, the samples have a Delaunay triangulation that holds those edges again;
-//! the stages then run on it, and the edges they choose are still between input positions.
-//!
-//! Rule. A point with exactly two edges in the final graph, the two meeting at an angle wider
-//! than 90° (see [`smoothed_positions`]), moves to `(a + 2p + b) / 4` (`a`, `b` its two neighbours):
-//! one step of the umbrella (Laplacian) operator with weight one half ([`WEIGHT`]). Every other
-//! point stays where it is: a point with one, three or more edges (an end, a crossing, a
-//! branch) or none (an outlier) has no two-sided curve neighbourhood to average over, and at a
-//! sharp corner (90° or less) averaging would round the corner off.
-//!
-//! What it costs a user: a reconstruction per pass ([`reconstruct`](crate::reconstruct) runs at
-//! most [`MAX_PASSES`] of them after the first), and on curves with outliers beside them, an
-//! outlier that the first pass threaded into the curve (a detour through it, at a wide angle) is
-//! pulled towards the curve and its neighbours towards it: measured in `docs/condt.md`.
+//! Rule: a point with exactly two edges meeting at more than 90° ([`smoothed_positions`]) moves to
+//! `(a + 2p + b) / 4` (`a`, `b` its neighbours), one umbrella (Laplacian) step of weight
+//! [`WEIGHT`]; ends, branches and unused points have no two-sided neighbourhood to average, and a
+//! sharp corner would be rounded off. Why, costs and measurements: docs/condt.md, *Smoothing
+//! passes*.
 
 use crate::adjacency::{CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
-/// How far a point moves towards its neighbours' midpoint: half way. Reason: for a zig-zag, the
-/// noise pattern that pushes samples into each other's Delaunay circles (each sample on the
-/// other side of its neighbours' chord), half way puts every sample on the chord of its
-/// neighbours' old positions, the largest step that does not overshoot.
+/// How far a point moves towards its neighbours' midpoint. Reason: on a zig-zag, the noise pattern
+/// that pushes samples into each other's Delaunay circles, half way puts every sample on its
+/// neighbours' old chord, the largest step that does not overshoot.
 pub(crate) const WEIGHT: f64 = 0.5;
 
-/// Most smoothing passes after the first reconstruction (each pass smooths the previous pass's
-/// positions along its final graph and reconstructs again; passes stop early once a pass leaves
-/// the final edges as they were, the fixed point). Reason: every pass can find true neighbours
-/// the previous one missed (a closed gap gives its two ends a second edge, and so a smoothed
-/// position in the next pass), but each costs a whole reconstruction; three is where the
-/// measured gain flattens.
+/// Most smoothing passes after the first reconstruction; they stop early once a pass leaves the
+/// final edges as they were. Reason: each pass can find neighbours the previous one missed, but
+/// costs a reconstruction; three is where the measured gain flattens.
 pub(crate) const MAX_PASSES: usize = 3;
 
-/// Whether a reconstruction whose input points have the final `degrees` shows enough noise to
-/// pay for a smoothing pass: at least one point in [`NOISE_SHARE`] with one edge (a loose end) or
-/// with three or more (a branch).
-///
-/// Reason: what noise does to the stages shows at such vertices. A true edge that is not a
-/// Delaunay edge of the noisy points, or that the stages missed on a zig-zag, leaves its two
-/// ends with one edge each (or a detour and a branch); a reconstruction made only of cycles
-/// (and unused points, which the smoothing does not move) has nothing a pass can mend, so it
-/// costs nothing there. An open curve's two ends look the same, so a small clean open curve pays
-/// for one pass, which leaves its edges as they were and stops.
+/// Whether a reconstruction with these final `degrees` (one per input point) shows enough noise to
+/// pay for a smoothing pass: at least one point in [`NOISE_SHARE`] is a loose end or a branch.
+/// Reason: a missed true edge leaves two loose ends (or a detour and a branch); a result of cycles
+/// and unused points has nothing a pass can mend, so it pays nothing.
 pub(crate) fn shows_noise(degrees: impl ExactSizeIterator<Item = usize>) -> bool {
     let len = degrees.len();
     let signs = degrees.filter(|&d| d == 1 || d >= 3).count();
     signs > 0 && signs * NOISE_SHARE >= len
 }
 
-/// A pass runs only when at least one point in this many shows noise (see [`shows_noise`]).
-/// Reason: cost against what a pass can mend. A pass costs a whole reconstruction, but it
-/// changes results only near loose ends and branches, which noisy samples show all along their
-/// curves and a large, mostly clean set does not; a cost policy, not a fit.
+/// A pass runs only when at least one point in this many shows noise ([`shows_noise`]). Reason: a
+/// pass costs a reconstruction but changes results only near ends and branches, which noise shows
+/// all along its curves and a large, mostly clean set does not; a cost policy, not a fit.
 pub(crate) const NOISE_SHARE: usize = 100;
 
-/// Where the points of a smoothing pass go: relative to a corner, so that the next
-/// triangulation does not depend on where the set lies.
+/// Where a smoothing pass moves the points: relative to a corner (see [`smoothed_positions`]).
 pub(crate) struct Smoothed {
     /// The smoothed position of every input position, relative to `corner`.
     pub(crate) positions: Vec<Point>,
-    /// The same positions in the caller's coordinates, computed there: the fallback when the
-    /// relative ones make two distinct points one (a coordinate far smaller than the set's
-    /// extent is lost in a difference from the corner), which would make the result depend on
-    /// the order of the input.
+    /// The same positions in the caller's coordinates: the fallback when the relative ones merge
+    /// two distinct points (a coordinate far below the extent is lost in the difference), which
+    /// would make the result depend on the input order.
     pub(crate) absolute: Vec<Point>,
-    /// The corner of the positions the pass started from, in the caller's coordinates (for
-    /// showing the moved points; no decision reads it).
+    /// The starting positions' corner, in the caller's coordinates (display only).
     pub(crate) corner: Point,
     /// How many points moved.
     pub(crate) moved: usize,
 }
 
-/// The smoothed position of every input position for a reconstruction on `tri` whose final
-/// graph is `edges` (see the module comment), relative to the lower left corner of `tri`'s box.
-///
-/// Why relative: the sums below round by the magnitude of the coordinates, so absolute
-/// positions moved by an exact translation would round differently and the next triangulation
-/// could differ. Differences from the corner are the same numbers (the corner of a translated
-/// set is the translated corner, exactly, and `(q + t) - (c + t)` rounds as `q - c` does), so
-/// the positions, the next triangulation and its edges are the same for every exact translation.
-///
-/// A point moves only when the angle between its two edges is wider than a right angle. Reason:
-/// the suite's and the paper's sharp corners are under 60° and noise of a few per cent of the
-/// spacing tilts each edge by a few degrees, so no corner sample reaches a right angle, while a
-/// curve sampled densely enough for the proximity graph (an ε-sample with ε < 1/2: about 30° of
-/// turn per sample at most) gives angles far above it along its smooth parts.
+/// The smoothed position of every input position for a reconstruction on `tri` with final graph
+/// `edges`, relative to the lower left corner of `tri`'s box. Why relative: sums round by the
+/// magnitude of the coordinates, so after an exact translation absolute positions could change the
+/// next triangulation; differences from the corner do not (`(q + t) - (c + t)` rounds as `q - c`).
+/// Why above 90°: the suite's and the paper's sharp corners are under 60° and noise tilts edges by
+/// a few degrees, while a curve sampled densely enough for the proximity graph (ε < 1/2: at most
+/// about 30° of turn per sample) is far above it along its smooth parts.
 pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothed {
     let n = tri.num_points();
     let graph = CurveGraph::new(n, edges);
@@ -119,10 +85,9 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothe
                 return tri.stage_to_input(q);
             }
             let [x, y] = graph.first_two(v);
-            // In the stages' frame, where the sums and products below neither overflow nor
-            // underflow at any input scale; a power of two from the input, so for every set in
-            // the fast range the moved position is the one the input frame would give, bit for
-            // bit (relative to the corner, which is scaled by the same power of two).
+            // In the stages' frame, where these sums and products neither overflow nor underflow at
+            // any scale; it differs from the input's by a power of two, so in the fast range the
+            // moved position is bit for bit the input frame's.
             let (a, b) = (relative(tri.vertex_point(x)), relative(tri.vertex_point(y)));
             let (ux, uy) = (a.x - q.x, a.y - q.y);
             let (wx, wy) = (b.x - q.x, b.y - q.y);

@@ -2,37 +2,17 @@
 //! `Params::paper`).
 //!
 //! Owns: removing whole components whose points mostly are not where a curve passes. It reads
-//! point positions and the graph; it may not touch the triangulation, it adds no edge, and it
-//! does not decide when it runs (that is [`Params::stages`](crate::Params::stages): right
-//! after the local outlier removal, before its given-back check).
+//! positions and the graph; it may not touch the triangulation, adds no edge, and does not decide
+//! when it runs ([`Params::stages`](crate::Params::stages): right after the local outlier removal,
+//! before its given-back check).
 //!
-//! Why: a clump of outliers (dust on a scan, a burst of bad fixes) is a few points close to
-//! each other and far from everything else. The proximity graph strings them into a small
-//! component, and the local outlier removal keeps it: its points are separated from the rest,
-//! as a curve's are. What tells it from a curve is its shape: a curve passes through most of
-//! its samples smoothly and evenly, a clump zig-zags through its points at random angles with
-//! uneven steps.
-//!
-//! Rule. A point *passes smoothly* when it has exactly two edges that continue each other (an
-//! angle above `2π/3`) and are regularly spaced (the longer under 2.75 times the shorter): the
-//! test the local outlier removal uses for its passages and its regular cycles. A component
-//! fewer than half of whose points pass smoothly is removed. Reason for the half: a curve's
-//! points that do not pass smoothly are its ends, corners and junctions, a minority of any
-//! curve sampled densely enough for the proximity graph; the points of a random zig-zag pass
-//! smoothly at most one time in three (a third of random angles are that wide, and not all of
-//! those steps are even). Only components that stand apart are judged: at least five of their
-//! points separated from everything else, the local outlier removal's rule 4 test (a component
-//! that is not apart is a piece of a noisy band, which that rule judges). And as that rule does,
-//! nothing is removed when the clumps and the components not apart would together hold a
-//! quarter or more of the points with edges: outliers are a minority, and a graph that would
-//! lose that much is a noisy band or a fragmented scan.
-//!
-//! What a user loses: a genuine small curve drawn with sharp corners at most of its samples (a
-//! triangle or a square sampled at its corners only) and pieces of very noisy curves whose
-//! samples zig-zag; `--no-clumps` keeps them.
-//!
-//! The stage is sequential and deterministic (loops go by vertex id), O(n) beyond the
-//! union-find over the edges.
+//! Rule (docs/condt.md, *Clumps*, with measurements and losses): a component that stands apart
+//! (rule 4's test; one that does not is a piece of a noisy band, rule 4's to judge) goes when fewer
+//! than half of its points pass smoothly ([`smooth_and_regular`]), unless the clumps and the
+//! components not apart would hold [`OUTLIER_SHARE`] of the points with edges. Reason for the half:
+//! a curve's other points are its ends, corners and junctions, a minority at any sampling dense
+//! enough for the proximity graph, while a random zig-zag passes smoothly at most one time in
+//! three. Sequential; O(n) beyond the union-find.
 
 use super::local_outliers::{
     components, separated_counts, smooth_and_regular, MIN_SAMPLES, OUTLIER_SHARE,
@@ -43,9 +23,7 @@ use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 
-/// Removes from `edges` (each edge once, any order) the components that are clumps (see the
-/// module comment). The outcome is unchanged when there is none, or when they would hold a
-/// quarter or more of the points with edges; otherwise the kept edges in their order.
+/// `edges` (each once, any order) less the clumps, in order; unchanged if none, or by the guard.
 pub(crate) fn remove_clumps(
     tri: &Triangulation,
     edges: &[Edge],
@@ -68,8 +46,6 @@ pub(crate) fn remove_clumps(
             smooth[r as usize] += u32::from(smooth_and_regular(tri, v, y, z));
         }
     }
-    // Only components that stand apart as curves do: a piece of a noisy band or a fragmented
-    // scan that is not apart is the local outlier removal's to judge, not this stage's.
     let separated = separated_counts(tri, &graph, &root);
     let is_clump = |r: usize| {
         size[r] > 0 && 2 * smooth[r] < size[r] && usize::from(separated[r]) >= MIN_SAMPLES

@@ -1,59 +1,31 @@
 //! Closing gaps at loose ends (not in the paper; on by default, off in `Params::paper`).
 //!
-//! Owns: adding edges at loose ends, the points of degree one in the graph the earlier stages
-//! left. It reads point positions, the graph and the Delaunay rings; it may not touch the
-//! triangulation, it never removes an edge, and it does not decide when it runs (that is
-//! [`Params::stages`](crate::Params::stages): last, after the outlier removal).
+//! Owns: adding edges at loose ends (degree one) of the graph the earlier stages left. It reads
+//! positions, the graph and the Delaunay rings; it may not touch the triangulation, never removes
+//! an edge, and does not decide when it runs ([`Params::stages`](crate::Params::stages)). Why: with
+//! at most two edges per point, the edge between two samples at a tight bend or in noise can be
+//! nobody's choice, a sharp corner's sample can lose both edges, and at a sampled crossing the
+//! repair drops two arms.
 //!
-//! Why: the proximity graph keeps at most two edges per point and the repair at most two per
-//! non-manifold vertex. Where a curve bends tightly, or noise moves a sample, the edge between
-//! two consecutive samples can be nobody's choice, and the curve falls apart into pieces whose
-//! ends face each other across a gap. At a sharp corner the corner sample can lose both its
-//! edges. At a crossing sampled exactly (degree four), the repair keeps one passage and drops
-//! the other two arms, which then point at the crossing.
+//! A loose end `a` (one edge, to `a'`) *faces* a Delaunay neighbour `w` **ahead** (the angle at `a`
+//! between `a'` and `w` above 90°, [`AHEAD`]: a half-plane, not a cone, since at noisy ends and
+//! sharp corners the last edge is a poor guide) within a **short** gap
+//! (`|aw| <= GAP_RATIO · |aa'|`, the paper's `u`: Algorithm 1 treats a second edge up to `u` times
+//! the first as the same sampling; a longer gap is a real end).
 //!
-//! Rules. A loose end `a` has one edge, to `a'`. Its candidates are its Delaunay neighbours `w`
-//! (the ring of `a` in the triangulation, so the work is bounded by the rings around loose ends)
-//! that pass two tests:
+//! Candidates: (1) another loose end `b` facing `a`; (2) a point `c` of degree zero with a loose
+//! end `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample: a sharp
+//! corner, or one the outlier removal cut off); (3) a crossing `c` of degree two where `a` lines up
+//! (above [`STRAIGHT`]) with one of `c`'s neighbours while `c`'s passage is bent (the repair paired
+//! an arm of each curve), or with a loose end facing `c` across `c`'s passage (the repair kept one
+//! curve whole).
 //!
-//! - **ahead**: `w` lies in the open half-plane ahead of the end, the angle at `a` between `a'`
-//!   and `w` above 90° ([`AHEAD`]). Anything behind the perpendicular at `a` leads back along
-//!   the end's own curve. A half-plane, not a narrower cone: at noisy ends and sharp corners the
-//!   last edge is a poor guide to the curve's direction.
-//! - **short**: `|aw| <= GAP_RATIO · |aa'|`, with [`GAP_RATIO`] = `u = 2.75`, the paper's
-//!   uniformity ratio: Algorithm 1 treats a second edge up to `u` times the first as the same
-//!   sampling, so a gap no longer than that is within the sampling the graph was built for; a
-//!   longer one is a real end (an open curve stops there). A ratio of lengths, so independent of
-//!   the scale and position of the input.
-//!
-//! A candidate is one of:
-//!
-//! 1. another loose end `b` that passes both tests from its own side (a gap of one edge);
-//! 2. a point `c` of degree zero with another loose end `d` across it, `d` passing both tests
-//!    towards `c` and the angle `a c d` above [`STRAIGHT`] (150°): a stranded sample, typically a
-//!    sharp corner or a sample the outlier removal cut off (a gap of two edges through `c`);
-//! 3. a point `c` of degree two, a crossing, where the arm from `a` lines up (angle above
-//!    [`STRAIGHT`]) with `x`, either one of `c`'s two neighbours while `c`'s own passage is bent
-//!    (the repair paired an arm of each curve), or another loose end that passes both tests
-//!    towards `c`, with `c`'s two neighbours strictly on opposite sides of the line through `a`
-//!    and `x` (the repair kept one curve whole and dropped both arms of the other).
-//!    150° is the passage angle of [`Repair::CrossingAware`](crate::Repair::CrossingAware).
-//!
-//! Each loose end takes its nearest candidate (ties by vertex id): at a gap the facing end is
-//! nearer than the sample after it, at a crossing the crossing is nearer than the arm beyond it.
-//! A join needs evidence from both sides, which is what keeps a genuinely open end open:
-//!
-//! - between two loose ends, each must be the other's choice;
-//! - through a stranded point, `a` and `d` must choose the point with each other as partner;
-//! - at a crossing, both dropped arms must come back: two loose ends lined up with the two
-//!   different neighbours of `c`, or with each other. One arm alone pointing at a curve is the
-//!   end of an open curve near it (a T), not a crossing.
-//! - a lone edge (both its points loose, as two nearby outliers form) is joined only if both its
-//!   ends are: a piece of curve between two gaps, not a pair of outliers next to a curve's end.
-//!
-//! All choices are made on the graph as it came in, at once, so the result does not depend on
-//! the order in which ends are visited; the stage is sequential, and the same with `parallel`
-//! on or off.
+//! Each end takes its nearest candidate (ties by id): a facing end is nearer than the sample after
+//! it, a crossing nearer than the arm beyond. Joins need evidence from both sides, which keeps a
+//! genuinely open end open: two ends must choose each other, or the same point with each other as
+//! partner; at a crossing both dropped arms must come back (one arm alone at a curve is an open
+//! curve's end, a T); a lone edge (both points loose, as two nearby outliers form) joins only if
+//! both its ends do. All choices are made at once on the input graph; sequential.
 
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
@@ -64,17 +36,14 @@ use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// Cosine of the smallest angle at a loose end between its edge and a join: 90°, the half-plane
-/// ahead of the end (see the module comment).
+/// Cosine of the smallest angle at a loose end between its edge and a join (90°: a half-plane).
 const AHEAD: f64 = 0.0;
-/// Cosine of the smallest angle at a stranded point or a crossing for two arms to form one
-/// straight passage: 150°, as [`Repair::CrossingAware`](crate::Repair::CrossingAware).
+/// Cosine of the smallest angle for two arms to form a straight passage (150°, as `CrossingAware`).
 const STRAIGHT: f64 = -0.866_025_403_784_438_6;
 /// Longest gap, as a multiple of the loose end's own edge: the paper's `u = 2.75`.
 pub(super) const GAP_RATIO: f64 = 2.75;
 
-/// The cosine of the angle at `p` between the directions to `a` and to `b` (`1` when either is
-/// at `p`, so a degenerate angle never passes a test).
+/// The cosine of the angle at `p` between `a` and `b` (`1` if either is at `p`: it passes no test).
 pub(super) fn cos_at(p: Point, a: Point, b: Point) -> f64 {
     let (ux, uy, wx, wy) = (a.x - p.x, a.y - p.y, b.x - p.x, b.y - p.y);
     let norms = libm::sqrt((ux * ux + uy * uy) * (wx * wx + wy * wy));
@@ -111,8 +80,7 @@ pub(super) struct Ends<'a> {
 }
 
 impl<'a> Ends<'a> {
-    /// The loose ends of `edges` on `tri`, with `graph` when the previous stage had it (built
-    /// here otherwise).
+    /// The loose ends of `edges`, with the previous stage's curve `graph` when it had one.
     pub(super) fn new(tri: &'a Triangulation, edges: &[Edge], graph: Option<CurveGraph>) -> Self {
         let graph = graph.unwrap_or_else(|| CurveGraph::new(tri.num_points(), edges));
         Ends { tri, graph }
@@ -138,8 +106,7 @@ impl<'a> Ends<'a> {
         self.graph.first_two(a)[0]
     }
 
-    /// Whether `w` is ahead of the loose end `a` and the gap is short (the two tests of the
-    /// module comment).
+    /// Whether `w` is ahead of the loose end `a` and the gap is short (the module's two tests).
     pub(super) fn faces(&self, a: VertexId, w: VertexId) -> bool {
         let next = self.along(a);
         let (p, back, q) = (self.point(a), self.point(next), self.point(w));
@@ -217,11 +184,8 @@ impl<'a> Ends<'a> {
     }
 }
 
-/// Closes gaps in `edges` (each edge once, any order) by the rules of the module comment. The
-/// outcome is unchanged when no gap qualifies; otherwise the input edges in their order, then the
-/// joins in increasing vertex id of their loose end.
-/// `graph` is the curve graph of `edges` when the previous stage had it (built here otherwise);
-/// it goes on to the curves when no gap is closed.
+/// Closes gaps in `edges` (each edge once, any order): the input edges in order, then the joins by
+/// increasing loose end; unchanged (the curve `graph`, if given, handed on) when none qualifies.
 pub(crate) fn close_gaps(
     tri: &Triangulation,
     edges: &[Edge],
@@ -229,8 +193,7 @@ pub(crate) fn close_gaps(
 ) -> Outcome {
     let n = tri.num_points();
     let ends = Ends::new(tri, edges, graph);
-    // Only loose ends choose, and most points are not loose: the choices are kept as a list
-    // in increasing vertex id, searched by id (memory).
+    // Only loose ends choose (few): a list by increasing id, searched by id (memory).
     let targets: Vec<(VertexId, Target)> = ends
         .loose()
         .map(|a| (a, ends.target(a)))
@@ -239,7 +202,6 @@ pub(crate) fn close_gaps(
     if targets.is_empty() {
         return Outcome::unchanged_with(Some(ends.graph));
     }
-    // The position of the loose end `a` in `targets`, if it chose.
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
     let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
     // Which of its two neighbours each crossing has been lined up with, one bit per slot.
@@ -258,7 +220,6 @@ pub(crate) fn close_gaps(
         Target::Through(c, Partner::End(d)) => target_of(d) == Target::Through(c, Partner::End(a)),
         Target::None => false,
     };
-    // Whether each chosen join is agreed, by position in `targets`.
     let joined: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
     let is_joined = |a: VertexId| slot(a).is_some_and(|k| joined[k]);
     // A lone edge (both its points loose) is joined only when both its ends are.
@@ -282,9 +243,8 @@ pub(crate) fn close_gaps(
 }
 
 impl Ends<'_> {
-    /// The outcome of a stage that adds `joins` to `edges`: unchanged (the curve graph handed
-    /// on) when there is none; otherwise `edges` in their order, then `joins`, the curve graph
-    /// freed first (it is not the output's).
+    /// The outcome of a stage that adds `joins` to `edges`: unchanged (the curve graph handed on)
+    /// when there is none; otherwise `edges` in order, then `joins` (the curve graph freed first).
     pub(super) fn joined(self, edges: &[Edge], joins: &[Edge]) -> Outcome {
         if joins.is_empty() {
             return Outcome::unchanged_with(Some(self.graph));

@@ -1,36 +1,14 @@
-//! Confirming given-back components, right after the local outlier removal (not in the paper;
-//! on by default, off in `Params::paper`; [`Params::confirm_given_back`](crate::Params::confirm_given_back)).
+//! Confirming given-back components, right after the local outlier removal (not in the paper; on by
+//! default, off in `Params::paper`).
 //!
-//! Owns: one rule on the components that the local outlier removal's rule 1 rebuilt from edges
-//! the global IQR rule had cut. It reads point positions, the Delaunay rings, the graph and the
-//! graph the local outlier removal started from; it may not touch the triangulation, and it only
-//! removes edges.
+//! Owns: one rule on the components that the local outlier removal's rule 1 rebuilt from edges the
+//! IQR rule cut. It reads positions, the Delaunay rings, the graph and the local outlier removal's
+//! input; it may not touch the triangulation and only removes edges.
 //!
-//! Why: rule 1 of the local outlier removal gives back an edge the global threshold cut when
-//! each of its ends had two edges forming a smooth, regularly spaced passage. That is how a
-//! sparsely sampled curve beside a dense one looks, which is what the rule is for. But in a
-//! large uniform scatter of outliers every point keeps its two nearest neighbours, and a third
-//! of them see those two at an angle above 120°: chance chains of such passages form, and rule 1
-//! gives all their edges back. Its component rule (rule 4) then keeps a chain with five
-//! separated vertices.
-//!
-//! Rule. A component every edge of which was given back (missing from the graph the local
-//! outlier removal started from) keeps its edges only when **every** one of its vertices with two
-//! edges is separated (its loose ends are not tested: an end is near the rest of its curve): every Delaunay neighbour outside the component (another component or an unused
-//! point) is farther than [`SEPARATION`] times the vertex's own longest edge. Reason: the global
-//! rule judged every edge of such a component an outlier, and rule 1 overturned that on evidence
-//! at each vertex; a sparse curve beside a dense one is apart from everything at every sample
-//! (an ε-sampling with `ε <= 1/2` puts anything else at least twice the spacing away; the same
-//! bound as rule 4), while a chain of outliers lies inside the scatter it came from, whose
-//! points are about as far from it as its own spacing somewhere along it.
-//!
-//! What a user loses: a sparse curve that the global rule cut whole and that passes within
-//! twice its spacing of some other point (an outlier beside it, another curve) stays cut, as
-//! the paper's pipeline leaves it. Turn the stage off (`--no-confirm-given-back`) to keep it.
-//!
-//! Cost: nothing when the local outlier removal changed nothing; otherwise one adjacency of the
-//! earlier graph, a union-find over the edges, and one ring walk per vertex of a component made
-//! only of given-back edges. Sequential and deterministic, so the same with `parallel` on or off.
+//! Rule: such a component keeps its edges only when every vertex of it with two edges is separated
+//! ([`SEPARATION`], rule 4's test): a sparse curve is apart from everything at every sample, a
+//! chance chain of outliers lies inside the scatter it came from. Reasons, losses and costs:
+//! docs/condt.md, *Confirming given-back components*. Sequential and deterministic.
 
 use super::local_outliers::SEPARATION;
 use super::Outcome;
@@ -40,8 +18,7 @@ use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// The rule of the module comment on `edges`, the graph the local outlier removal left;
-/// `before_local` is the graph it started from. Unchanged when no component goes.
+/// The rule on `edges`, the local outlier removal's output; `before_local` is its input.
 pub(crate) fn confirm_given_back(
     tri: &Triangulation,
     edges: &[Edge],
@@ -73,8 +50,7 @@ pub(crate) fn confirm_given_back(
             degree[v.index()] = degree[v.index()].saturating_add(1);
         }
     }
-    // The longest edge (squared) of the vertices of those components only, which are few: a
-    // list of them, ascending, beside their lengths (memory).
+    // The longest (squared) edge of those components' vertices only, few: a sorted list (memory).
     let in_given = |v: VertexId| only_given[root[v.index()] as usize];
     let members: Vec<VertexId> = (0..n as u32)
         .map(VertexId::new)
@@ -119,11 +95,10 @@ pub(crate) fn confirm_given_back(
     )))
 }
 
-/// Whether each edge of `edges` is missing from `before` (each list with distinct edges). The
-/// local outlier removal keeps its input's edges in their order and appends those it gives
-/// back, so one merge-like pass matches all but a short tail, and only the tail is looked up
-/// (sorted, against one pass over `before`). Reason: memory (a byte per edge and the tail).
-/// Exact for any two lists: an edge the pass cannot match falls into the tail and is looked up.
+/// Whether each edge of `edges` (distinct) is missing from `before`. The local outlier removal
+/// keeps its input's edges in order and appends those it gives back, so a merge-like pass matches
+/// all but a short tail, sorted and looked up in one pass over `before` (memory). Exact for any
+/// lists.
 fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
     let mut missing = vec![false; edges.len()];
     let mut at = 0;

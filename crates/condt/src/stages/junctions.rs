@@ -1,36 +1,17 @@
 //! Junctions: where three curves meet (not in the paper; on by default, off in `Params::paper`).
 //!
-//! Owns: adding one edge at a loose end that meets a curve at a junction. It reads point
-//! positions, the graph and the Delaunay rings; it may not touch the triangulation, it never
-//! removes an edge, and it does not decide when it runs (that is
-//! [`Params::stages`](crate::Params::stages): last, after closing gaps).
+//! Owns: adding one edge at a loose end that meets a curve at a junction. It reads positions, the
+//! graph and the Delaunay rings; it may not touch the triangulation, never removes an edge, and
+//! does not decide when it runs ([`Params::stages`](crate::Params::stages): last).
 //!
-//! Why: the proximity graph and the repair keep at most two edges per point, except at
-//! crossings. Where three curves meet at a sample (shared borders on a map, a T in a drawing),
-//! the sample at the junction has three neighbours it needs, and the repair drops one of them:
-//! the third curve ends one sample short, in a loose end facing the junction. Gap closing does
-//! not join it, on purpose: one arm alone pointing at a curve may be the end of an open curve.
+//! Why: at a junction of three curves (map borders, a T) the repair keeps two of the sample's three
+//! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.
 //!
-//! Rule. A loose end `a`, with its one edge to `a'`, joins `c` when:
-//!
-//! - `c` is a Delaunay neighbour of `a` with two edges, and **faces** `a` as gap closing asks
-//!   (ahead of the end, `|ac| <= 2.75 |aa'|`), and `|ac|` is also within 2.75 times `c`'s
-//!   shorter edge: the junction's three edges belong to one sampling, by the ratio Algorithm 1
-//!   uses for its second edge;
-//! - **three branches of their own**: from `c` along each of its two edges, and from `a` away
-//!   from `c`, the graph runs through at least five points of degree two
-//!   ([`MIN_SAMPLES`], the size below which the local outlier removal calls a branch a spur)
-//!   without meeting the other two branches' first points. Noise and outliers make short
-//!   spurs and small loops near a curve, not three long branches;
-//! - among the Delaunay neighbours of `a` that pass, `c` is the one straightest ahead of the
-//!   end (the smallest angle between `a' -> a` and `a -> c`; ties by vertex id): the curve's
-//!   last edge points at the junction, while the points next to it on the other curve are off
-//!   to the side;
-//! - no other loose end chose `c` (two would make it a crossing, gap closing's case).
-//!
-//! All choices are made on the graph as it came in, at once, so the result does not depend on
-//! the order in which ends are visited; the stage is sequential, and the same with `parallel` on
-//! or off.
+//! Rule (reasons: docs/condt.md, *Junctions*): a loose end `a` joins the Delaunay neighbour `c`
+//! with two edges that it faces, within [`GAP_RATIO`] times `c`'s shorter edge, with three branches
+//! of [`MIN_SAMPLES`] points of degree two (`Ends::branch`), straightest ahead of the end among
+//! those that pass (ties by id), and chosen by no other loose end (two make a crossing, gap
+//! closing's case). Choices are made at once on the input graph; sequential.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO};
 use super::local_outliers::MIN_SAMPLES;
@@ -57,8 +38,7 @@ impl Ends<'_> {
         true
     }
 
-    /// Whether the loose end `a` meets the degree-two point `c` at a junction (the first two
-    /// tests of the module comment).
+    /// Whether the loose end `a` meets the degree-two point `c` at a junction (tests 1 and 2).
     fn meets_at_junction(&self, a: VertexId, c: VertexId) -> bool {
         if self.graph.degree(c) != 2 || !self.faces(a, c) {
             return false;
@@ -85,11 +65,9 @@ impl Ends<'_> {
     }
 }
 
-/// Joins loose ends in `edges` (each edge once, any order) to the junctions they meet, by the
-/// rule of the module comment. The outcome is unchanged when no junction qualifies; otherwise
-/// the input edges in their order, then the joins in increasing vertex id of their loose end.
-/// `graph` is the curve graph of `edges` when the previous stage had it (built here otherwise);
-/// it goes on to the curves when nothing is joined.
+/// Joins loose ends in `edges` (each edge once, any order) to the junctions they meet: the input
+/// edges in order, then the joins by increasing loose end; unchanged (the curve `graph`, if given,
+/// handed on) when none qualifies.
 pub(crate) fn join_junctions(
     tri: &Triangulation,
     edges: &[Edge],

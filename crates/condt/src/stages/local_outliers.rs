@@ -1,66 +1,26 @@
-//! Local outlier removal, run after the global IQR rule (Algorithm 3) and the repair, whichever
-//! order they ran in. Not in the paper; on by default, off in `Params::paper`
-//! ([`Params::local_outliers`](crate::Params::local_outliers)).
+//! Local outlier removal (not in the paper; on by default, off in `Params::paper`), after the IQR
+//! rule and the repair, in either order.
 //!
-//! Owns: four local rules on the graph those stages left. It is the one stage that reads the
-//! graph an earlier stage started from (the IQR stage's input, handed over by `Step::run`). It
-//! reads point positions, the Delaunay rings and the graphs; it may not touch the triangulation,
-//! and it adds no edge that was not in the IQR stage's input.
+//! Owns: four local rules on the graph those stages left. It alone reads an earlier stage's input
+//! (the IQR stage's, via `Step::run`); it may not touch the triangulation and adds no edge absent
+//! from that input.
 //!
-//! Algorithm 3 fails in two ways that no single threshold can fix, because its threshold is one
-//! number for the whole point set:
-//! - outliers near each other are each other's nearest neighbours, so pairs, chains and clumps
-//!   of outliers are short edges by ConDT's own definition, and the global rule either does not
-//!   fire or keeps them; an outlier near a curve hangs off it by an edge one end chose;
-//! - a component sampled much more sparsely than another (a regular circle beside a dense star)
-//!   makes the rule fire and loses every edge, since all of its edges exceed the global `T`.
+//! Why: Algorithm 3's threshold is one number for the whole set: nearby outliers are each other's
+//! nearest neighbours, and a sparse component beside a dense one loses every edge once it fires.
+//! The rules, in order, compare lengths by ratios only (scale-free):
+//! 1. **Give back** an edge the IQR stage cut along a smooth, regular passage ([`passage`]), which
+//!    an outlier (one edge, or two at a sharp angle or of unequal lengths) does not form.
+//! 2. **Drop long edges**, more than [`LONG`] times the longest other edge at an end with three or
+//!    more edges (a far longer third edge comes from a point off the curve that chose this sample,
+//!    kept by Algorithm 2's union), or at each end with others (an outlier joined to an open
+//!    curve's end).
+//! 3. **Drop short spurs** ([`short_spurs`]): outliers hanging off a curve, unseen by rule 4.
+//! 4. **Keep separated components** ([`separated_components`]): a clump of outliers is about as far
+//!    from the rest as from itself, a curve's samples much closer to each other.
 //!
-//! The rules, in the order they run, all on ratios of lengths (scale-free, so a 1e6 offset or a
-//! 1e-5 feature gives the same result):
-//! 1. **Give back** an edge the IQR stage cut when, in the graph it started from, each end had
-//!    exactly two edges forming a smooth, regularly spaced passage (the angle between them above
-//!    `2π/3`, [`SMOOTH_COS`]; the longer less than [`LONG`] times the shorter) and the end
-//!    gained no edge since. Every vertex then still has at most two edges. An outlier has one
-//!    edge, or two at a sharp angle or of unequal lengths, so it is not given back.
-//! 2. **Drop long edges.** An edge is *long at* an end that has other edges when it is more than
-//!    [`LONG`] times the longest of them. Dropped: an edge long at an end with three or more
-//!    edges (a curve passes a sample with two edges; a third far longer than both comes from a
-//!    point off the curve that chose this sample, and Algorithm 2's union keeps an edge one end
-//!    selected); and an edge long at each end that has other edges (no spacing either end shows
-//!    supports it: an outlier joined to the end of an open curve).
-//! 3. **Drop short spurs**: a chain of fewer than [`MIN_SAMPLES`] vertices from a vertex with one
-//!    edge, through vertices with two, to a vertex with three or more (a few outliers hanging off
-//!    a curve, which the component rule cannot see because they are joined to it).
-//! 4. **Keep separated components.** A vertex is *separated* when every Delaunay neighbour
-//!    outside its component (another component or an unused point) is farther than
-//!    [`SEPARATION`] times its own longest edge. A component keeps its edges only when at least
-//!    [`MIN_SAMPLES`] of its vertices are separated. A clump of outliers looks like a tiny curve,
-//!    but its points are about as far from the rest as from each other; a curve's samples are
-//!    much closer to each other than to anything else. A component that fails this test is
-//!    still kept when it is a smooth, regularly spaced cycle of at least [`MIN_SAMPLES`] points
-//!    (every point with two edges at an angle above `2π/3`, within a factor [`LONG`]): a closed
-//!    curve two spacings from another one has no separated sample, and outliers almost never
-//!    close into such a cycle.
-//!    Finally, rule 4 removes **nothing when it would remove a quarter or more** of the points
-//!    that have edges ([`OUTLIER_SHARE`]): outliers are a minority, and the quartiles that
-//!    Algorithm 3 stands on break down at a quarter of contamination. A graph that would lose
-//!    that much is not curves plus a few outliers but a noisy band or a fragmented scan, whose
-//!    pieces the rule cannot tell from outliers (it would empty a thick noisy band).
-//!
-//! What a user loses: a genuine curve of fewer than [`MIN_SAMPLES`] points (a 3-point open curve,
-//! a 4-point closed one) is always removed by rule 4, however isolated it is; so is a branch of
-//! fewer than [`MIN_SAMPLES`] points at a junction (rule 3), and a curve, or a piece of one left
-//! by an earlier stage, whose samples are not clearly closer to each other than to other points
-//! (pieces of noisy curves, the sides of a polygon the repair cut at its sharp corners), unless
-//! that would take a quarter of the points. Turn the stage off (`--no-local-outliers` in the
-//! binary) to keep them.
-//!
-//! The stage is sequential and deterministic (every loop goes by vertex id or edge position), so
-//! the result is the same with `parallel` on or off. It is O(n): a curve graph (one record per
-//! vertex) read in vertex order and shared by rules 2 to 4, a union-find over the edges, walks
-//! of at most [`MIN_SAMPLES`] steps and at most one walk of the Delaunay ring of every vertex
-//! that has an edge. Its memory beyond its input and output is the curve graph and a few bytes
-//! per point of flags and component names: edge lengths are recomputed, not stored.
+//! It loses curves and branches of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart
+//! (noisy curves), unless a quarter of the points (docs/condt.md, *The local outlier removal and
+//! real data*). Sequential and deterministic; O(n), edge lengths recomputed, not stored (memory).
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
@@ -70,51 +30,39 @@ use alloc::borrow::Cow;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// An edge more than `LONG` times the longest other edge at an end is long at that end; two
-/// edges at a vertex are regularly spaced when the longer is less than `LONG` times the shorter.
-/// Reason: it is the paper's uniformity bound (Algorithm 1, default `u = 2.75`): a sample whose
-/// second-nearest neighbour is `u` times farther than its nearest keeps only the nearest, so an
-/// edge `u` times longer than the others at a vertex is one that vertex's spacing does not
-/// support; the paper's number, not one tuned here.
+/// An edge more than `LONG` times the longest other edge at an end is long there; two edges are
+/// regularly spaced when the longer is under `LONG` times the shorter. Reason: the paper's
+/// uniformity bound (Algorithm 1, `u = 2.75`), not a number tuned here.
 pub(crate) const LONG: f64 = 2.75;
 
-/// Cosine of Algorithm 2's straight-passage angle `2π/3`: two edges at a vertex continue each
-/// other when the angle between them is larger, that is when its cosine is below `-1/2`.
+/// Cosine of Algorithm 2's straight-passage angle `2π/3`: two edges continue each other above it.
 pub(crate) const SMOOTH_COS: f64 = -0.5;
 
 /// A vertex is separated when everything outside its component is more than `SEPARATION` times
-/// its longest edge away. Reason: in an ε-sampling every edge at `p` is at most `ε lfs(p)` long,
-/// and another component is at least `lfs(p)` away (the medial axis lies between them), so the
-/// ratio is at least `1/ε`: 2 for the coarsest sampling the reconstruction guarantees are
-/// stated for (`ε = 0.5`).
+/// its longest edge away. Reason: in an ε-sampling edges at `p` are at most `ε lfs(p)` long and
+/// another component is at least `lfs(p)` away (the medial axis lies between), so the ratio is at
+/// least `1/ε`: 2 at `ε = 0.5`, the coarsest sampling the guarantees are stated for.
 pub(crate) const SEPARATION: f64 = 2.0;
 
-/// Fewest samples that show a curve: a component needs this many separated vertices, and a
-/// spur this many vertices, to stay. Reason: a closed curve ε-sampled with `ε <= 1` has more
-/// than `2π/ε > 6` samples (the circle is the tightest), while pairs and triples of outliers are
-/// common (in a uniform scatter nearest neighbours pair up); five is where a chance alignment of
-/// outliers becomes rare, and it is below what any closed curve needs.
+/// Fewest samples that show a curve: a component needs this many separated vertices, a spur this
+/// many vertices, to stay. Reason: an ε-sampled closed curve (`ε <= 1`) has more than `2π/ε > 6`
+/// samples, while pairs and triples of outliers are common (nearest neighbours pair up); at five a
+/// chance alignment of outliers becomes rare.
 pub(crate) const MIN_SAMPLES: usize = 5;
 
-/// Rule 4 removes nothing when the components it would remove hold at least this share of the
-/// points that have edges. Reason: the breakdown point of the quartiles, which Algorithm 3 uses
-/// to tell outliers from samples: beyond a quarter, "outlier" no longer means the tail of the
-/// sampling.
+/// Rule 4 removes nothing when it would remove this share of the points with edges. Reason: the
+/// quartiles Algorithm 3 stands on break down beyond a quarter of contamination.
 pub(crate) const OUTLIER_SHARE: f64 = 0.25;
 
-/// Which rules run; [`Rules::ALL`] is the stage. The switches exist so that the tests can show
-/// what each rule does on its own.
+/// Which rules run ([`Rules::ALL`] is the stage); the tests switch them one by one.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) struct Rules {
-    /// Rule 1.
     pub(crate) give_back: bool,
     /// Rule 2, at vertices with three or more edges.
     pub(crate) long_at_branches: bool,
     /// Rule 2, at both ends.
     pub(crate) long_at_both_ends: bool,
-    /// Rule 3.
     pub(crate) short_spurs: bool,
-    /// Rule 4.
     pub(crate) separated_components: bool,
 }
 
@@ -128,12 +76,8 @@ impl Rules {
     };
 }
 
-/// The stage on `edges`, the graph the IQR stage and the repair left; `before` is the graph the
-/// IQR stage started from (`edges` itself when it did not run); rule 1 gives an edge back only
-/// at vertices that gained no edge since. Unchanged when no rule changes anything. The outcome
-/// carries the curve graph of the output (`Outcome::graph`), which gap closing and the curves
-/// read, unless rule 4 changed the edges: its profile is then stale and freed before the output
-/// is built, and the next stage that reads a graph builds one.
+/// The stage on `edges`; `before` is the IQR stage's input. The outcome carries the output's curve
+/// graph unless rule 4 changed the edges (then stale, freed before the output is built).
 pub(crate) fn remove_local_outliers(
     tri: &Triangulation,
     edges: &[Edge],
@@ -145,15 +89,12 @@ pub(crate) fn remove_local_outliers(
     if rules.give_back && before.len() > edges.len() {
         let given = given_back(tri, edges, &before);
         if !given.is_empty() {
-            // One allocation of the final size: `to_mut` and `extend` would copy the input and
-            // then grow the copy to twice its size.
+            // One allocation of the final size (`to_mut` + `extend` would copy, then double).
             graph = Cow::Owned([edges, &given[..]].concat());
         }
     }
     // Read by rule 1 only: freed before the later rules' curve graph and components (memory).
     drop(before);
-    // Degrees, neighbours and each vertex's longest edge, shared by rules 2 to 4 and updated
-    // only after a rule changed the graph (`Profile::update`).
     let mut profile = Profile::of(tri, &graph);
     if rules.long_at_branches || rules.long_at_both_ends {
         if let Some(long) = long_vertices(tri, &profile.graph) {
@@ -204,14 +145,12 @@ pub(crate) fn remove_local_outliers(
     }
 }
 
-/// Which local rule changed an edge: the stage's evidence, asked for by explanations
-/// ([`crate::Reconstruction::provenance`]).
+/// Which local rule changed an edge: the stage's evidence for explanations.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub(crate) enum LocalRule {
     /// Rule 1 gave it back.
     GaveBack,
-    /// Rule 2 dropped it: long at `vertex`, `ratio` times as long as the longest other edge
-    /// there (the end where the ratio is larger when it is long at both).
+    /// Rule 2: long at `vertex`, `ratio` times the longest other edge there (the larger if both).
     Long { vertex: VertexId, ratio: f64 },
     /// Rule 3 dropped it with its short spur.
     Spur,
@@ -219,11 +158,9 @@ pub(crate) enum LocalRule {
     Component,
 }
 
-/// The stage on `edges` and `before` (as [`remove_local_outliers`] takes them) run again with
-/// one rule more each time, naming the rule that changed each edge the stage changed. The
-/// rules run in order and each reads only what the earlier ones left, so the graph after the
-/// first `k` rules is the stage's own intermediate graph: the evidence is the stage's decision,
-/// not a second reading of it. Costs four runs of the stage; only explanations ask for it.
+/// The stage on `edges` and `before` run again with one rule more each time, naming the rule that
+/// changed each edge. Each rule reads only what the earlier ones left, so these are the stage's
+/// own intermediate graphs: its decision, not a second reading. Four runs; only explanations ask.
 pub(crate) fn rule_evidence(
     tri: &Triangulation,
     edges: &[Edge],
@@ -291,7 +228,6 @@ pub(crate) fn rule_evidence(
     evidence
 }
 
-/// Squared length of an edge.
 fn length2(tri: &Triangulation, [a, b]: Edge) -> f64 {
     tri.vertex_point(a).dist2(tri.vertex_point(b))
 }
@@ -310,11 +246,8 @@ fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> Vec<Edge> {
         .collect()
 }
 
-/// Whether the cut edge from `x` to `y` continued a smooth, regularly spaced passage through `x`
-/// in `was` (exactly two edges, at an angle above 2π/3, lengths within a factor [`LONG`]), and
-/// `x` has gained no edge since (its edges in `now` are among those it had), so that giving the
-/// edge back leaves `x` at most two edges. The degree in `now` is read from a vertex with two
-/// edges in `was`, so this costs O(1).
+/// Whether the cut edge `xy` continued a smooth, regular passage through `x` in `was` (exactly two
+/// edges) and `x` has gained no edge since, so giving it back leaves `x` at most two. O(1).
 fn passage(
     tri: &Triangulation,
     now: &CurveGraph,
@@ -333,9 +266,7 @@ fn passage(
     smooth_and_regular(tri, x, y, z)
 }
 
-/// Whether the edges from `x` to `y` and to `z` continue each other (an angle above `2π/3`,
-/// [`SMOOTH_COS`]) and are regularly spaced (the longer under [`LONG`] times the shorter): how a
-/// curve passes through one of its samples.
+/// Whether `xy` and `xz` continue each other (above `2π/3`) and differ by under a factor [`LONG`].
 pub(super) fn smooth_and_regular(
     tri: &Triangulation,
     x: VertexId,
@@ -354,11 +285,8 @@ pub(super) fn smooth_and_regular(
     regular && smooth
 }
 
-/// What rules 2 to 4 read of a graph: its degrees and neighbours, from which the squared length
-/// of each vertex's two longest edges is recomputed where a rule asks (memory: two distances at
-/// the common vertex with two edges). The lengths are the same numbers whichever end they are
-/// computed from (`dist2` is symmetric), and in whatever order the neighbours come
-/// ([`top_two`]).
+/// What rules 2 to 4 read of a graph. Squared lengths are recomputed where asked (memory), the same
+/// whichever end computes them and in whatever order the neighbours come ([`top_two`]).
 struct Profile {
     graph: CurveGraph,
 }
@@ -372,9 +300,8 @@ impl Profile {
         }
     }
 
-    /// Makes this the profile of `edges`, which are its edges less `removed`: a few removed
-    /// edges are taken out of the graph in place ([`CurveGraph::remove_edges`]); beyond one
-    /// per 64 vertices the graph is built again, freeing the old one first (memory).
+    /// Makes this the profile of `edges` (its edges less `removed`): in place for up to one
+    /// removal per 64 vertices ([`CurveGraph::remove_edges`]), else rebuilt (old one freed first).
     fn update(&mut self, tri: &Triangulation, edges: &[Edge], removed: &[Edge]) {
         if removed.is_empty() {
             return;
@@ -387,9 +314,7 @@ impl Profile {
         }
     }
 
-    /// The squared length of the longest edge at `v` other than one of squared length `l` held
-    /// there, if there is one. With ties the answer is the same whichever of the tied edges is
-    /// meant: when `l` is the longest, the other is the second (equal to `l` if another ties).
+    /// The squared length of `v`'s longest edge besides one of squared length `l` (ties agree).
     fn other_than(&self, tri: &Triangulation, v: VertexId, l: f64) -> Option<f64> {
         let [first, second] = tops(tri, &self.graph, v);
         let other = if l == first { second } else { first };
@@ -397,11 +322,9 @@ impl Profile {
     }
 }
 
-/// The vertices whose longest edge in `graph` is more than [`LONG`] times their second longest,
-/// as a bit set over vertex ids, or `None` when there is none (the common case). Rule 2 drops
-/// an edge only where it is long at one of its ends, and an edge long at `v` is such a longest
-/// edge, so only edges at these vertices need its test. By vertex id: the ids are spatial, so
-/// the reads of the neighbours' points stay near each other. Reason for the bit set: speed.
+/// The vertices whose longest edge in `graph` is more than [`LONG`] times their second, as a bit
+/// set by vertex id (speed), or `None` (the common case). An edge long at `v` is `v`'s longest, so
+/// rule 2 tests only edges at these vertices.
 fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> Option<Vec<u64>> {
     let n = graph.vertex_count();
     let mut long = alloc::vec![0u64; n.div_ceil(64)];
@@ -434,8 +357,7 @@ fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> Option<Vec<u64>> {
     any.then_some(long)
 }
 
-/// Squared lengths of the two longest edges of `graph` at `v`, longest first (`Profile::NONE`
-/// where it has fewer).
+/// Squared lengths of `v`'s two longest edges, longest first (`Profile::NONE` where it has fewer).
 #[inline]
 fn tops(tri: &Triangulation, graph: &CurveGraph, v: VertexId) -> [f64; 2] {
     let degree = graph.degree(v);
@@ -456,8 +378,7 @@ fn tops(tri: &Triangulation, graph: &CurveGraph, v: VertexId) -> [f64; 2] {
     top
 }
 
-/// The two largest of `top` (largest first) and `l`: the same values in whatever order the
-/// lengths come.
+/// The two largest of `top` and `l`, largest first, in whatever order the lengths come.
 #[inline]
 fn top_two(top: [f64; 2], l: f64) -> [f64; 2] {
     if l > top[0] {
@@ -477,8 +398,7 @@ fn long_at(tri: &Triangulation, profile: &Profile, v: VertexId, l: f64) -> Optio
         .map(|other| (l > LONG * LONG * other, libm::sqrt(l / other)))
 }
 
-/// Rule 2: whether an edge is long at an end with three or more edges, or long at each of its
-/// ends that has other edges (the edges it drops).
+/// Rule 2: whether an edge is long at an end with three or more edges, or at each end with others.
 fn long_edges<'a>(
     tri: &'a Triangulation,
     profile: &'a Profile,
@@ -497,9 +417,9 @@ fn long_edges<'a>(
     }
 }
 
-/// Takes the edges `dropped` selects out of `graph`, the others kept in their order, judging
-/// each edge once; whether it took any. A first change copies the borrowed input once at its
-/// exact size; a later one filters that copy in place. Reason: memory.
+/// Takes the edges `dropped` selects out of `graph` (the rest kept in order, each judged once);
+/// whether it took any. The first change copies the borrowed input at its exact size, later ones
+/// filter in place (memory).
 fn drop_edges(
     graph: &mut Cow<'_, [Edge]>,
     removed: &mut Vec<Edge>,
@@ -537,17 +457,9 @@ fn drop_edges(
     true
 }
 
-/// Rule 3: marks the vertices of every spur of fewer than [`MIN_SAMPLES`] vertices (the rule
-/// drops the edges with an end among them): a chain from a vertex with one edge through
-/// vertices with two up to a vertex with three or more (not counted). Each walk stops after
-/// [`MIN_SAMPLES`] steps; all are read from the same graph, `graph`, the curve graph of the
-/// stage's current edges. `None` when there is no short spur. The caller skips it when no vertex has three
-/// edges: a spur ends at one, so without one there is none (the common case once the repair has
-/// run).
-///
-/// A spur's vertices other than its branch have no edge off the spur (one edge at its loose
-/// end, two on the way), so its edges are those with an end among them: the walk marks
-/// vertices (a byte per point) and reads the curve graph the other rules share (memory).
+/// Rule 3: marks the vertices of every spur of fewer than [`MIN_SAMPLES`] vertices (from a loose
+/// end through vertices with two edges to one with three or more, not counted), or `None`. A spur's
+/// vertices have no edge off it, so the edges to drop are those with a marked end.
 fn short_spurs(graph: &CurveGraph) -> Option<Vec<bool>> {
     let n = graph.vertex_count();
     let mut dropped = vec![false; n];
@@ -597,10 +509,8 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
     v
 }
 
-/// The component of every vertex, named by its smallest vertex id: a union-find over the
-/// edges in which the smaller root becomes the parent, so the sets depend only on the edges and
-/// every vertex's parent is at most the vertex itself. Then one pass in increasing id order
-/// turns parents into roots: a vertex's parent is smaller, so its root is already known.
+/// Each vertex's component, named by its smallest id: a union-find where the smaller root becomes
+/// the parent, then one pass in id order turns parents (smaller) into roots.
 pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..n as u32).collect();
     for &[a, b] in edges {
@@ -616,10 +526,8 @@ pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
     parent
 }
 
-/// Rule 4: which components keep their edges (those with at least [`MIN_SAMPLES`] separated
-/// vertices), as each vertex's component and whether that component is kept; `None` when it
-/// keeps them all. Ids that are not vertices (merged duplicates) have no edge, so
-/// every loop goes over all ids and skips those without one.
+/// Rule 4: each vertex's component and whether it keeps its edges (at least [`MIN_SAMPLES`]
+/// separated vertices), or `None` when all do. Merged duplicates' ids have no edge and are skipped.
 fn separated_components(
     tri: &Triangulation,
     edges: &[Edge],
@@ -643,15 +551,13 @@ fn separated_components(
 }
 
 /// Per component root, how many of its vertices are separated (rule 4), counted up to
-/// [`MIN_SAMPLES`] only (it fits a byte): the one implementation of the test, which the clump
-/// stage reads too.
+/// [`MIN_SAMPLES`] (a byte): the one implementation of the test, shared with the clump stage.
 pub(super) fn separated_counts(tri: &Triangulation, graph: &CurveGraph, root: &[u32]) -> Vec<u8> {
     let mut separated = vec![0u8; root.len()];
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
         if graph.degree(v) == 0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
-            // No edge, or the component is kept already: only whether the count reaches the
-            // bound matters, so a long curve stops measuring its samples after its first few.
+            // No edge, or already kept: a long curve stops measuring after its first few samples.
             continue;
         }
         let longest = tops(tri, graph, v)[0];
@@ -665,16 +571,14 @@ pub(super) fn separated_counts(tri: &Triangulation, graph: &CurveGraph, root: &[
     separated
 }
 
-/// Marks as kept every component not kept yet that is a closed curve sampled as a curve: at
-/// least [`MIN_SAMPLES`] points, each with exactly two edges that continue each other (an angle
-/// above `2π/3`) and are regularly spaced (within a factor [`LONG`]). Reason: such a cycle is
-/// what a sampled closed curve looks like, whatever lies near it: a second curve only two or
-/// three spacings away (concentric circles) would otherwise make none of its samples separated.
-/// A clump of outliers almost never closes into a smooth, even cycle of five or more points.
+/// Rule 4's exemption: marks as kept every sampled closed curve, at least [`MIN_SAMPLES`] points
+/// each with two edges passing [`smooth_and_regular`]. Reason: a curve two or three spacings from
+/// another (concentric circles) has no separated sample, and outliers almost never close into such
+/// a cycle.
 fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], kept: &mut [bool]) {
     let n = root.len();
     let mut regular = vec![true; n];
-    // Counted up to the bound only: a byte per point where a `u32` took four.
+    // Up to the bound only: a byte per point (memory).
     let mut size = vec![0u8; n];
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
@@ -693,7 +597,7 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], ke
     }
 }
 
-/// Whether the components not kept hold at least [`OUTLIER_SHARE`] of the points with edges.
+/// Rule 4's guard: whether the components not kept hold [`OUTLIER_SHARE`] of the points with edges.
 fn too_many_dropped(root: &[u32], profile: &Profile, kept: &[bool]) -> bool {
     let (mut with_edges, mut dropped) = (0usize, 0usize);
     for (i, &r) in root.iter().enumerate() {

@@ -1,20 +1,11 @@
-//! The ConDT stages that run on the finished triangulation, one submodule each:
-//! [`proximity`] (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3), and
-//! [`local_outliers`], [`given_back`] (confirming the components the local outlier removal
-//! rebuilt), [`clumps`] (removing components that are not curves), [`gaps`] (closing gaps at
-//! loose ends) and [`junctions`] (joining loose ends at junctions of three curves), the last
-//! five not in the paper.
+//! The ConDT stages that run on the finished triangulation, one submodule each: [`proximity`]
+//! (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3) and, not in the paper,
+//! [`local_outliers`], [`given_back`], [`clumps`], [`gaps`] and [`junctions`].
 //!
-//! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which
-//! both the pipeline ([`reconstruct`](crate::reconstruct)) and the public
-//! [`Graph`](crate::Graph) methods call a stage on an edge list. Stages read the triangulation;
-//! none may modify it, and none decides which stage runs when: that is
-//! [`Params::stages`](crate::Params::stages), in one place.
-//!
-//! A new stage is a new submodule, a [`Stage`] variant with its row in the stage table
-//! (`ROWS`), a [`Step`] variant with its parameter, a field of `Params` and a line in
-//! `Params::steps` (and in `Params::set_stage` when it has a switch); the other stages, the
-//! command line and the drawings do not change (`docs/architecture.md`, "Adding a stage").
+//! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which the
+//! pipeline ([`reconstruct`](crate::reconstruct)) and the public [`Graph`](crate::Graph) methods
+//! run a stage. Stages read the triangulation and may not modify it; when each runs is decided by
+//! [`Params::stages`](crate::Params::stages). Adding a stage: `docs/architecture.md`.
 
 pub(crate) mod clumps;
 pub(crate) mod gaps;
@@ -39,10 +30,7 @@ use alloc::vec::Vec;
 ///
 /// ```
 /// use condt::{Params, Stage};
-/// assert_eq!(
-///     Params::paper().stages(),
-///     vec![Stage::Proximity, Stage::Repair, Stage::Outliers]
-/// );
+/// assert_eq!(Params::paper().stages(), vec![Stage::Proximity, Stage::Repair, Stage::Outliers]);
 /// assert_eq!(Stage::Repair.to_string(), "after non-manifold repair");
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
@@ -54,24 +42,20 @@ pub enum Stage {
     Repair,
     /// The IQR outlier removal (Algorithm 3).
     Outliers,
-    /// The local outlier removal, after the IQR stage and the repair (not in the paper; see
-    /// [`Params::local_outliers`](crate::Params::local_outliers)).
+    /// The local outlier removal ([`Params::local_outliers`](crate::Params::local_outliers)).
     LocalOutliers,
     /// Confirming the components the local outlier removal rebuilt from edges the IQR stage cut
     /// (not in the paper; see [`Params::confirm_given_back`](crate::Params::confirm_given_back)).
     GivenBack,
-    /// Removing components that are not curves (not in the paper; see
-    /// [`Params::clumps`](crate::Params::clumps)).
+    /// Removing components that are not curves ([`Params::clumps`](crate::Params::clumps)).
     Clumps,
-    /// Closing gaps at loose ends (not in the paper; see [`Params::close_gaps`](crate::Params::close_gaps)).
+    /// Closing gaps at loose ends ([`Params::close_gaps`](crate::Params::close_gaps)).
     Gaps,
-    /// Joining loose ends at junctions of three curves (not in the paper; see
-    /// [`Params::junctions`](crate::Params::junctions)).
+    /// Joining loose ends at junctions ([`Params::junctions`](crate::Params::junctions)).
     Junctions,
-    /// The NN-Crust baseline, the whole method when chosen (see
-    /// [`Method::NnCrust`](crate::Method::NnCrust)).
+    /// The NN-Crust baseline, the whole method ([`Method::NnCrust`](crate::Method::NnCrust)).
     NnCrust,
-    /// The Crust baseline, the whole method when chosen (see [`Method::Crust`](crate::Method::Crust)).
+    /// The Crust baseline, the whole method ([`Method::Crust`](crate::Method::Crust)).
     Crust,
 }
 
@@ -85,8 +69,7 @@ pub struct Switch {
     pub help: &'static str,
 }
 
-/// Everything that names a stage, one row per stage, in [`Stage`]'s order: a new stage is its
-/// module and one row here (with its `Step` and its field of `Params`); the command line's
+/// Everything that names a stage, one row per stage in [`Stage`]'s order; the command line's
 /// switches and `--timings` lines, the drawings' titles and the viewer's layers all read it.
 struct Row {
     /// The stage the row is for (a test checks the order: [`Stage::row`] indexes by variant).
@@ -207,9 +190,8 @@ impl Stage {
     /// Every stage, in the order of the table that names them.
     ///
     /// ```
-    /// use condt::Stage;
-    /// assert_eq!(Stage::ALL[0], Stage::Proximity);
-    /// assert!(Stage::ALL.iter().all(|s| !s.key().contains(' ')));
+    /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
+    /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
     pub const ALL: [Stage; 10] = [
         Stage::Proximity,
@@ -225,15 +207,13 @@ impl Stage {
     ];
 
     fn row(self) -> &'static Row {
-        // The rows are in the variants' order (a test checks it).
         &ROWS[self as usize]
     }
 
     /// A short name for the stage itself, as explanations and the viewer's panel use it.
     ///
     /// ```
-    /// use condt::Stage;
-    /// assert_eq!(Stage::Outliers.name(), "IQR outliers");
+    /// assert_eq!(condt::Stage::Outliers.name(), "IQR outliers");
     /// ```
     pub fn name(self) -> &'static str {
         self.row().name
@@ -242,8 +222,7 @@ impl Stage {
     /// A title for the graph this stage leaves, as drawings label it.
     ///
     /// ```
-    /// use condt::Stage;
-    /// assert_eq!(Stage::Gaps.title(), "after closing gaps");
+    /// assert_eq!(condt::Stage::Gaps.title(), "after closing gaps");
     /// ```
     pub fn title(self) -> &'static str {
         self.row().title
@@ -252,20 +231,18 @@ impl Stage {
     /// One word for the stage, as the command line's `--timings` lines name it.
     ///
     /// ```
-    /// use condt::Stage;
-    /// assert_eq!(Stage::Outliers.key(), "iqr-outliers");
+    /// assert_eq!(condt::Stage::Outliers.key(), "iqr-outliers");
     /// ```
     pub fn key(self) -> &'static str {
         self.row().key
     }
 
-    /// The switch that turns the stage on or off, for the stages that have one (the others
-    /// are set by their parameters: the repair's mode, the IQR factor, the method).
+    /// The switch that turns the stage on or off, if it has one (the others are set by their
+    /// parameters: the repair's mode, the IQR factor, the method).
     ///
     /// ```
-    /// use condt::Stage;
-    /// assert_eq!(Stage::Gaps.switch().unwrap().flag, "close-gaps");
-    /// assert!(Stage::Proximity.switch().is_none());
+    /// assert_eq!(condt::Stage::Gaps.switch().unwrap().flag, "close-gaps");
+    /// assert!(condt::Stage::Proximity.switch().is_none());
     /// ```
     pub fn switch(self) -> Option<&'static Switch> {
         self.row().switch.as_ref()
@@ -290,20 +267,16 @@ pub(crate) enum Step {
     JoinJunctions,
 }
 
-/// The graphs of earlier stages that a step may read besides its input (see [`Step::run`]),
-/// handed over so that the step frees one it has read once it is done with it.
+/// The graphs of earlier stages a step may read ([`Step::run`]), handed over so it can free them.
 #[derive(Clone)]
 pub(crate) struct Earlier<'a> {
-    /// The graph the IQR stage ([`Step::Outliers`]) started from, or the step's input when that
-    /// stage has not run.
+    /// The IQR stage's input ([`Step::Outliers`]), or the step's input when it has not run.
     pub(crate) before_outliers: Cow<'a, [Edge]>,
-    /// The graph the local outlier removal ([`Step::LocalOutliers`]) started from, or the step's
-    /// input when that stage has not run.
+    /// The local outlier removal's input ([`Step::LocalOutliers`]), or the step's input likewise.
     pub(crate) before_local: Cow<'a, [Edge]>,
 }
 
 impl Step {
-    /// The stage this step is.
     pub(crate) fn stage(self) -> Stage {
         match self {
             Step::Repair(_) => Stage::Repair,
@@ -330,18 +303,10 @@ impl Step {
     }
 
     /// Runs the stage on `edges` (each edge once, any order); the parameter must have passed
-    /// [`Step::check`].
-    ///
-    /// `earlier` holds the graphs of earlier stages, the one way a stage sees them: only
-    /// [`Step::LocalOutliers`] reads the graph before the IQR stage, to give back edges the
-    /// global rule cut, and only [`Step::ConfirmGivenBack`] the graph before the local outlier
-    /// removal, to tell which edges were given back.
-    ///
-    /// `graph`, when given, is the curve graph of `edges` (over every point id) that the
-    /// previous stage handed on ([`Outcome::graph`]). Gap closing takes it instead of building
-    /// it again, and the given-back check passes it on when it returns at once; every other
-    /// stage drops it before it runs, so it never adds to a stage's memory. (The local outlier
-    /// removal builds the graph that the others hand on: no stage before it has one.)
+    /// [`Step::check`]. Only [`Step::LocalOutliers`] and [`Step::ConfirmGivenBack`] read `earlier`.
+    /// `graph`, when given, is the curve graph of `edges` (over every point id) that the previous
+    /// stage handed on ([`Outcome::graph`]): stages that read one take it instead of building one;
+    /// the others drop it first, so it never adds to their memory.
     pub(crate) fn run(
         self,
         tri: &Triangulation,
@@ -379,13 +344,9 @@ impl Step {
 
 /// What a stage made of its input.
 pub(crate) struct Outcome {
-    /// The new edge list, or `None` when the stage's rule did not apply and it left its input as
-    /// it was (stored once): no vertex needed repair, the outlier rule did not fire, no local
-    /// rule changed an edge, no gap was closed.
+    /// The new edge list, or `None` when the rule did not apply and the input stands (stored once).
     pub(crate) edges: Option<Vec<Edge>>,
-    /// The curve graph of the stage's output (its input when `edges` is `None`), when the stage
-    /// had it at hand: building one costs about as much as a light stage, and the local outlier
-    /// removal, gap closing and the curves all read one.
+    /// The output's curve graph (the input's when `edges` is `None`), if the stage had it at hand.
     pub(crate) graph: Option<CurveGraph>,
 }
 
@@ -395,7 +356,6 @@ impl Outcome {
         graph: None,
     };
 
-    /// The input left as it was, with its curve graph when there is one.
     pub(crate) fn unchanged_with(graph: Option<CurveGraph>) -> Outcome {
         Outcome { edges: None, graph }
     }
@@ -407,8 +367,7 @@ impl From<Option<Vec<Edge>>> for Outcome {
     }
 }
 
-/// Fewest points for which stages split their work over rayon's workers: below it, waking them
-/// costs more than they save.
+/// Fewest points for which stages use rayon: below it, waking the workers costs more than it saves.
 pub(crate) const PARALLEL_FROM: usize = 1 << 16;
 
 #[cfg(test)]

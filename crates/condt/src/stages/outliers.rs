@@ -3,12 +3,11 @@
 //! Owns: the interquartile-range rule on squared edge lengths. It reads point positions and the
 //! graph; it may not touch the triangulation.
 //!
-//! With the sorted squared lengths `s` of the `n` edges: `Q1 = s[n/4]`, `Q3 = s[3n/4]`,
-//! `T = Q3 + k (Q3 - Q1)` (`k = 1.7` by default). The filter applies only when some vertex has
-//! every one of its edges longer than twice the threshold taken as a length, `|e| > 2 √T` (squared
-//! length `> 4T`); it then keeps the edges whose squared length is not above `T`. The paper compares
-//! plain lengths with `2 T`, mixing units; `docs/condt.md` (note 5) gives the readings tried and
-//! the evidence.
+//! With the sorted squared lengths `s` of the `n` edges, `T = Q3 + k (Q3 - Q1)`, `Q1 = s[n/4]`,
+//! `Q3 = s[3n/4]` (`k = 1.7` by default). The filter applies only when some vertex has every edge
+//! longer than twice the threshold taken as a length, `|e| > 2 √T`; it then keeps the edges of
+//! squared length not above `T`. The paper compares plain lengths with `2 T`, mixing units:
+//! `docs/condt.md`, notes 5 and 6.
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, Edge};
@@ -16,10 +15,9 @@ use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// Algorithm 3's threshold `T = Q3 + k (Q3 - Q1)` on the squared lengths `lengths2` (not
-/// empty), `Q1 = s[n/4]` and `Q3 = s[min(3n/4, n - 1)]` of the sorted list `s`: the one place
-/// the threshold is computed (explanations ask it too, on lengths in input units, where it is
-/// the same number scaled by the same power of two).
+/// Algorithm 3's threshold on the squared lengths `lengths2` (not empty), with
+/// `Q3 = s[min(3n/4, n - 1)]`: the one place it is computed (explanations ask it too, in input
+/// units).
 pub(crate) fn iqr_threshold(lengths2: &[f64], factor: f64) -> f64 {
     let n = lengths2.len();
     let upper = (3 * n / 4).min(n - 1);
@@ -37,8 +35,7 @@ pub(crate) fn iqr_threshold(lengths2: &[f64], factor: f64) -> f64 {
     q3 + factor * (q3 - q1)
 }
 
-/// Algorithm 3 on `edges` with the IQR factor `factor` (checked by the caller: finite, `>= 0`).
-/// The outcome is unchanged when the rule does not fire.
+/// Algorithm 3 on `edges` (`factor` checked by the caller: finite, `>= 0`); unchanged unless fired.
 pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) -> Outcome {
     let unchanged = Outcome::UNCHANGED;
     let lengths: Vec<f64> = edges
@@ -50,9 +47,8 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
     }
     let n = lengths.len();
     let upper = (3 * n / 4).min(n - 1);
-    // With `factor >= 0`, T >= Q3, so no edge exceeds the bound 4T when the longest is within
-    // 4 Q3, that is when at most `upper` lengths lie below a quarter of the longest: a count, not
-    // a selection.
+    // With `factor >= 0`, T >= Q3: no edge exceeds 4T when at most `upper` lengths lie below a
+    // quarter of the longest (the longest is then within 4 Q3). A count, not a selection.
     let longest = lengths
         .iter()
         .fold(0.0f64, |m, &l| if l > m { l } else { m });

@@ -1,23 +1,13 @@
 //! Stage 1, the ConDT proximity graph (Algorithm 1, lines 2–8).
 //!
-//! Owns: the per-vertex choice of the two shortest Delaunay edges and the uniformity test. It reads
+//! Owns: each vertex's choice of its two shortest Delaunay edges and the uniformity test. It reads
 //! the finished triangulation only; it may not change it.
 //!
-//! For every vertex `p` the ring of the half-edge mesh is walked once, keeping the two shortest
-//! edges `e1 <= e2` (ties: the smaller neighbour id first). `e1` is always kept; `e2` is kept when
-//! - fixed `u`: `|e2| < u |e1|` (Algorithm 1, line 6, negated);
-//! - adaptive (section 4.1): `|e2| < u_p |e1|` with `u_p = mean |e| / |e1|` over the ring, that is
-//!   `|e2| < mean |e|`.
-//!
-//! Two passes compute this. With a fixed `u` the triangles are swept in memory order and every
-//! half-edge offers its destination to its origin, which keeps the two best offers (no chain of
-//! dependent loads; in parallel, a few ranges of vertex ids swept at once into one shared array).
-//! The adaptive test needs the sum of the ring's
-//! lengths, and a floating-point sum depends on its order; so that mode walks each vertex's ring
-//! from its first half-edge, the same order whether the walks run one after the other or on
-//! rayon. Both passes keep candidates with the same update (`TwoBest`, ordered by squared length,
-//! then neighbour id: a total order, so the two best of a set do not depend on the order of the
-//! offers) and decide with the same test (`keep`); the tests compare them.
+//! Each vertex keeps its shortest edge `e1` and, when [`Uniformity`]'s test passes, its second
+//! `e2`. Fixed `u` sweeps the triangles in memory order ([`sweep`]: no chain of dependent loads);
+//! adaptive `u` walks each ring from its first half-edge, since its floating-point mean depends on
+//! the order of the sum (docs/condt.md, *Why adaptive `u` walks rings*). Both rank with `TwoBest`
+//! (a total order) and decide with [`keep`]; the tests compare them.
 
 use super::PARALLEL_FROM;
 use crate::adjacency::{ordered, Edge};
@@ -30,19 +20,15 @@ use alloc::vec::Vec;
 /// The local uniformity test of Algorithm 1, line 6: when a point keeps its second shortest edge.
 ///
 /// ```
-/// use condt::{Error, Uniformity};
+/// use condt::Uniformity;
 /// assert_eq!(Uniformity::default(), Uniformity::Fixed(2.75));
-/// assert!(Uniformity::Fixed(2.0).check().is_ok());
-/// assert_eq!(
-///     Uniformity::Fixed(f64::NAN).check().unwrap_err().to_string(),
-///     "parameter u = NaN is not accepted"
-/// );
-/// # let _: Result<(), Error> = Uniformity::Adaptive.check();
+/// assert!(Uniformity::Fixed(2.0).check().is_ok() && Uniformity::Adaptive.check().is_ok());
+/// let err = Uniformity::Fixed(f64::NAN).check().unwrap_err();
+/// assert_eq!(err.to_string(), "parameter u = NaN is not accepted");
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum Uniformity {
-    /// Keep the second shortest edge `e2` when `|e2| < u |e1|`; the paper uses `u = 2.75`.
-    /// `u` must be finite and positive.
+    /// Keep `e2` when `|e2| < u |e1|` (the paper: `u = 2.75`); `u` must be finite and positive.
     Fixed(f64),
     /// Section 4.1: `u` of each point is the mean length of its Delaunay edges over `|e1|`, so
     /// `e2` is kept when it is shorter than that mean.
@@ -87,8 +73,7 @@ fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [
     keep(uniformity, &best, ring)
 }
 
-/// Algorithm 1, line 6: the shortest edge always, the second when the uniformity test passes.
-/// `ring` is the sum of the ring's edge lengths and their count (read by the adaptive test only).
+/// Algorithm 1, line 6: the shortest edge always, the second when it passes the uniformity test.
 fn keep(uniformity: Uniformity, best: &TwoBest, ring: (f64, u32)) -> [VertexId; 2] {
     let ((l1, w1), (l2, w2)) = (best.get(0), best.get(1));
     let keep_second =
@@ -96,9 +81,7 @@ fn keep(uniformity: Uniformity, best: &TwoBest, ring: (f64, u32)) -> [VertexId; 
     [w1, if keep_second { w2 } else { VertexId::INFINITE }]
 }
 
-/// The uniformity test itself, on the lengths `l1 <= l2` of the two shortest edges: `l2 < u l1`,
-/// or with the adaptive test `l2` below the mean length of the ring (`ring`: the sum of its
-/// lengths and their count). The one place the test is written.
+/// The uniformity test, the one place it is written (`ring`: the sum of its lengths, their count).
 #[inline]
 fn passes_uniformity(uniformity: Uniformity, l1: f64, l2: f64, (sum, count): (f64, u32)) -> bool {
     match uniformity {
@@ -107,10 +90,9 @@ fn passes_uniformity(uniformity: Uniformity, l1: f64, l2: f64, (sum, count): (f6
     }
 }
 
-/// How input vertex `v` saw its edge to `w` in Algorithm 1, with the numbers of the test: the
-/// stage's evidence, asked for by explanations ([`crate::Reconstruction::provenance`]). Whether
-/// the edge is kept is the stage's own decision ([`kept_neighbors`]); the rank, ratio and bound
-/// are read off the same ring for display.
+/// How input vertex `v` saw its edge to `w` in Algorithm 1 (evidence for
+/// [`crate::Reconstruction::provenance`]): kept as [`kept_neighbors`] decides; rank, ratio and
+/// bound read off the same ring.
 pub(crate) fn end_choice(
     tri: &Triangulation,
     v: VertexId,
@@ -161,8 +143,7 @@ pub enum EndChoice {
     Second {
         /// `|e2| / |e1|` at this end.
         ratio: f64,
-        /// The uniformity bound: `u`, or with the adaptive test the ring's mean length over
-        /// `|e1|`.
+        /// The uniformity bound: `u`, or with the adaptive test the ring's mean length over `|e1|`.
         bound: f64,
         /// Whether the test passed.
         kept: bool,
@@ -180,9 +161,8 @@ impl EndChoice {
     /// Whether this end keeps the edge in the proximity graph.
     ///
     /// ```
-    /// use condt::EndChoice;
-    /// assert!(EndChoice::Shortest.keeps());
-    /// assert!(!EndChoice::Second { ratio: 3.0, bound: 2.75, kept: false }.keeps());
+    /// assert!(condt::EndChoice::Shortest.keeps());
+    /// assert!(!condt::EndChoice::Second { ratio: 3.0, bound: 2.75, kept: false }.keeps());
     /// ```
     pub fn keeps(&self) -> bool {
         matches!(
@@ -196,9 +176,7 @@ impl EndChoice {
 /// vertices, so more ranges cost memory traffic that more threads do not repay.
 const MAX_SWEEP_RANGES: usize = 4;
 
-/// The proximity graph: the union over all vertices of their kept edges, each edge once, in a
-/// deterministic order (by the vertex that kept it; not sorted). The same with or without
-/// `parallel`.
+/// The proximity graph, each edge once, listed by the vertex that kept it; the same for `parallel`.
 pub(crate) fn proximity_graph(
     tri: &Triangulation,
     uniformity: Uniformity,
@@ -275,12 +253,10 @@ fn decide_all<T>(
     }
 }
 
-/// Every kept edge once, from one record per vertex: `read` gives what a vertex keeps once it
-/// has decided. With `decide`, each vertex decides just before listing, in the same pass, and
-/// `store` writes its choice into its record; without, every record holds its choice already
-/// (decided on rayon). An edge both ends kept is listed by its smaller end only, so no sort is
-/// needed to drop repeats. Every candidate is written and the count advances only past those
-/// that belong: whether one does is unpredictable, so it is not branched on.
+/// Every kept edge once, from one record per vertex (`read` gives its choice). With `decide`, each
+/// vertex decides in the listing pass and `store` records it; else all decided already (on rayon).
+/// An edge kept by both ends is listed by its smaller end (no sort); the count advances without a
+/// branch.
 fn list_kept<T>(
     records: &mut [T],
     decide: Option<&impl Fn(usize, &T) -> [VertexId; 2]>,
@@ -355,7 +331,6 @@ fn per_vertex(
         .collect()
 }
 
-/// Without the `parallel` feature, one vertex after the other.
 #[cfg(not(feature = "parallel"))]
 fn per_vertex(
     _parallel: bool,
@@ -375,9 +350,8 @@ fn worker_count() -> usize {
     1
 }
 
-/// The two best offers a vertex has had: `(squared length as bits, neighbour)`, best first.
-/// A non-negative `f64` orders like its bits, so offers compare as integer pairs, which lets
-/// the update below run without branches (whose outcome no predictor could guess).
+/// The two best offers a vertex has had, best first: `(squared length as bits, neighbour)`. A
+/// non-negative `f64` orders like its bits, so offers compare as integers, without branches.
 #[derive(Copy, Clone)]
 struct TwoBest {
     lengths: [u64; 2],
@@ -390,8 +364,7 @@ impl TwoBest {
         ids: [u32::MAX; 2],
     };
 
-    /// Keeps the two smallest of the two held and `(length, id)`, ordered by length, then id
-    /// (a total order, so ties never depend on where a ring walk starts).
+    /// Keeps the two smallest of those held and `(length, id)`, by length, then id.
     #[inline]
     fn offer(&mut self, length2: f64, w: VertexId) {
         let (l, w) = (length2.to_bits(), w.index() as u32);
@@ -421,8 +394,7 @@ impl TwoBest {
         (f64::from_bits(self.lengths[k]), VertexId::new(self.ids[k]))
     }
 
-    /// Replaces the offers by the neighbours the vertex keeps (read back by
-    /// [`TwoBest::kept`]); the lengths are not read again.
+    /// Replaces the offers by the kept neighbours ([`TwoBest::kept`]); lengths are not read again.
     #[inline]
     fn keep_only(&mut self, pair: [VertexId; 2]) {
         self.ids = pair.map(|w| w.index() as u32);
@@ -435,8 +407,7 @@ impl TwoBest {
     }
 }
 
-/// For every vertex, its two best offers, from `parts` sweeps at once, each over every triangle
-/// for the vertices of its own range of ids.
+/// Every vertex's two best offers, from `parts` sweeps at once, each for its own range of ids.
 fn two_best_offers(tri: &Triangulation, parts: usize) -> Vec<TwoBest> {
     let mut best = alloc::vec![TwoBest::EMPTY; tri.num_points()];
     if parts <= 1 {
@@ -447,9 +418,8 @@ fn two_best_offers(tri: &Triangulation, parts: usize) -> Vec<TwoBest> {
     best
 }
 
-/// The vertices cut into `parts` ranges of ids, each swept on its own worker into its own part
-/// of `best`. Reason: memory; the ranges share one array of offers, and every worker reads all
-/// the corners to find its own.
+/// The vertex ids cut into `parts` ranges, each swept on its own worker into its own part of
+/// `best`. Reason: memory (one shared array of offers; each worker reads all the corners).
 #[cfg(feature = "parallel")]
 fn sweep_parts(tri: &Triangulation, best: &mut [TwoBest], parts: usize) {
     use rayon::prelude::*;
@@ -468,9 +438,8 @@ fn sweep_parts(tri: &Triangulation, best: &mut [TwoBest], _parts: usize) {
 /// enough that a miss resolves first, near enough that the lines are still in the L1 cache.
 const PREFETCH_TRIANGLES: usize = 32;
 
-/// The two best offers the half-edges of every triangle make: each finite half-edge offers its
-/// destination to its origin. `best` holds the records of every vertex (`first` is `None`), or
-/// those of the ids from `first` on, and only their offers are taken.
+/// The offers the half-edges of every triangle make: each finite half-edge offers its destination
+/// to its origin. `best` holds every vertex's record (`first` is `None`) or those from `first` on.
 fn sweep(tri: &Triangulation, best: &mut [TwoBest], first: Option<usize>) {
     match (tri.num_points() >= PREFETCH_FROM, first) {
         (true, None) => sweep_with::<true, false>(tri, best, 0),
@@ -480,9 +449,8 @@ fn sweep(tri: &Triangulation, best: &mut [TwoBest], first: Option<usize>) {
     }
 }
 
-/// [`sweep`], prefetching the corners' points and records [`PREFETCH_TRIANGLES`] triangles
-/// ahead when `PREFETCH` ([`crate::prefetch`]); `PART` when `best` holds the records of the ids
-/// from `first` on only.
+/// [`sweep`], prefetching corners' points and records [`PREFETCH_TRIANGLES`] triangles ahead when
+/// `PREFETCH` ([`crate::prefetch`]); `PART` when `best` holds only the records from `first` on.
 fn sweep_with<const PREFETCH: bool, const PART: bool>(
     tri: &Triangulation,
     best: &mut [TwoBest],

@@ -4,60 +4,31 @@
 //! positions and the graph; it may not touch the triangulation.
 //!
 //! At a vertex `v` of degree >= 3 the paper keeps its shortest edge `e1` and the edge with the best
-//! score `(θ/π)(Lmin/Le)` among those making an angle `θ > 2π/3` with it; edges between two
-//! vertices of degree <= 2 are kept as they are. Readings of what the paper leaves open, with the
-//! evidence, are in `docs/condt.md` (notes 2 to 4).
+//! score `(θ/π)(Lmin/Le)` among those at an angle `θ > 2π/3` to it; edges between vertices of
+//! degree <= 2 stay. Open readings: `docs/condt.md`, notes 2 to 4.
 //!
 //! # Needs before score ([`Repair::Needs`])
 //!
-//! Algorithm 2 looks only at the vertex it repairs, and fails in two places:
-//!
-//! - *Sharp corners.* At a tip of angle `α < 60°` sampled `h` apart, the two samples beside the
-//!   apex are `2h sin(α/2) < h` apart: that chord is the shortest edge `e1` of both. A partner
-//!   must lie more than 120° from `e1`, but the sides of the tip lie at `90° + α/2 < 120°` from
-//!   it, so each of the two samples keeps the chord alone, and the tip (the apex and both of its
-//!   edges) vanishes together with the next edge down each side. A five-pointed star (36° tips)
-//!   loses every tip.
-//! - *Self-intersections.* A curve crossing itself at a sample gives that sample four edges in
-//!   the proximity graph; Algorithm 2 keeps two.
-//!
-//! `Needs` decides at every vertex `v` of degree >= 3, in this order:
-//!
-//! 1. **Crossing.** If two disjoint pairs of edges at `v` are each nearly straight (angle at `v`
-//!    above 150°), `v` keeps those four edges. Of several such pairings it takes the one whose
-//!    less straight pair is straightest, so that both passages are as straight as they can be
-//!    together ([`Repair::CrossingAware`] takes the straightest pair first and pairs it with
-//!    what is left). Why 150°: consecutive chords of a curve sampled at spacing
-//!    `ε · lfs` turn by at most about `ε` radians, so a passage through a sample of an
-//!    `ε`-sampling with `ε <= 1/2` is straighter than 180° − 28.6°.
-//! 2. **Needs.** A neighbour `w` of degree <= 2 needs the edge `vw`: dropping it leaves `w` an
-//!    end or alone, and nothing restores it later. The need counts only if `vw` is at most 1.3
-//!    times as long as `v`'s second shortest edge: a curve's own edges at a sample are among its
-//!    shortest (Algorithm 1 keeps each point's two shortest), and at a sharp tip the chord takes
-//!    the first place, the sides the second; the slack covers sides cut into pieces of different
-//!    lengths, and a needy neighbour farther than that is the end of another curve or an outlier.
-//!    `v` keeps the best pair of its edges holding at least one needed edge, among pairs that
-//!    are straight enough for Algorithm 2 (`θ > 2π/3`) or whose two edges are both needed,
-//!    ranked by: straight enough, then the number of needed edges, then `θ` over the length of
-//!    the path through `v` (the two lengths added: Algorithm 2's preference for short, straight
-//!    edges, for a pair), then the smaller ids.
-//!    A straight pair comes first so that a needy stray point beside a curve does not bend it; a
+//! Algorithm 2 cuts sharp tips and sampled crossings (`docs/condt.md`, *Needs before score*).
+//! `Needs` decides at each vertex `v` with three or more edges, in this order:
+//! 1. **Crossing.** If two disjoint pairs of edges at `v` are each nearly straight (above 150°),
+//!    `v` keeps the four, pairing so that the less straight pair is straightest
+//!    ([`Repair::CrossingAware`] takes the straightest pair first). Why 150°: chords of an
+//!    `ε`-sampled curve turn by at most about `ε` radians, so with `ε <= 1/2` a passage is
+//!    straighter than 180° − 28.6°.
+//! 2. **Needs.** A neighbour `w` of degree <= 2 needs `vw` (without it `w` is an end or alone, and
+//!    nothing restores it later) if `vw` is at most `NEED_RATIO` times `v`'s second shortest edge.
+//!    `v` keeps the best pair holding a needed edge, among pairs straight enough for Algorithm 2
+//!    (`θ > 2π/3`) or with both edges needed, ranked by: straight enough (a needy stray point
+//!    beside a curve must not bend it), the number of needed edges, `θ` over the path length
+//!    through `v` (Algorithm 2's preference for short, straight edges, for a pair), smaller ids. A
 //!    bent pair of two needed edges is a corner whose apex has a third edge.
-//! 3. **Score.** When no pair holds a needed edge, Algorithm 2's own choice: the shortest edge
-//!    and its best partner beyond 120°.
-//! 4. **Consent.** An edge between two vertices of degree >= 3 survives only if both keep it
-//!    (as [`Repair::Mutual`]); an edge to a vertex of degree <= 2 survives if `v` keeps it.
+//! 3. **Score.** Otherwise Algorithm 2's own choice.
+//! 4. **Consent.** An edge between two vertices of degree >= 3 survives only if both keep it (as
+//!    [`Repair::Mutual`]); an edge to a vertex of degree <= 2, if `v` keeps it.
 //!
-//! At a sharp tip the chord joins two vertices of degree 3 whose other two neighbours need
-//! them along a straight side, so neither keeps the chord and the tip stays. At a sampled
-//! crossing step 1 keeps the four edges, and consent removes the chords between the two curves'
-//! samples next to it, which neither end keeps. Each vertex decides from the graph's degrees and
-//! the positions alone, with ties broken by vertex id, so the result does not depend on the
-//! order of the edges or on threads; the pairs a crossing compares live in one buffer reused
-//! from vertex to vertex.
-//!
-//! It keeps sharp corners and self-intersections that `Paper` loses; the measurements on the
-//! evaluation suite are in `docs/perf-log.md`.
+//! Each vertex decides from degrees and positions alone, ties by id, so the result depends neither
+//! on the edges' order nor on threads. Measured: `docs/perf-log.md`, *`stages/repair.rs`*.
 
 use crate::adjacency::{degrees, ordered, BranchAdjacency, Edge};
 use crate::mesh::VertexId;
@@ -80,8 +51,7 @@ mod needs;
 /// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Repair {
-    /// No repair: keep every proximity edge (needed for self-intersecting curves, whose crossings
-    /// have degree four).
+    /// No repair: every proximity edge stays (as a self-intersecting curve's crossings need).
     Off,
     /// Algorithm 2 as printed: every non-manifold vertex selects two edges and the selections are
     /// united, so an edge selected by one end survives even if the other end did not select it.
@@ -92,13 +62,10 @@ pub enum Repair {
     /// Keeps up to two nearly straight pairs of edges through a vertex (a crossing), and falls
     /// back to [`Repair::Paper`]'s choice elsewhere.
     CrossingAware,
-    /// Needs before score: a non-manifold vertex keeps a crossing (two disjoint nearly straight
-    /// pairs of edges) whole; otherwise the best pair of edges that a neighbour of degree <= 2
-    /// needs (one it would be left dangling without, not much longer than the vertex's second
-    /// shortest edge), straight pairs first; otherwise Algorithm 2's choice. An edge between two
-    /// non-manifold vertices survives only if both keep it. Keeps the tips of sharp corners and
-    /// sampled crossings, which [`Repair::Paper`] cuts; the module documentation gives the rule,
-    /// the reason for each constant and the measurements.
+    /// Needs before score: a non-manifold vertex keeps a crossing whole, else the best pair of
+    /// edges its neighbours of degree <= 2 need, else Algorithm 2's choice; an edge between two
+    /// non-manifold vertices needs both. Keeps the sharp tips and sampled crossings
+    /// [`Repair::Paper`] cuts.
     #[default]
     Needs,
 }
@@ -119,8 +86,7 @@ fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
     libm::atan2((ux * wy - uy * wx).abs(), ux * wx + uy * wy)
 }
 
-/// Algorithm 2, lines 10–11: the shortest edge and the best-scoring partner (if any qualifies).
-/// `around` is the vertex's adjacency (neighbour, edge position); no allocation.
+/// Algorithm 2, lines 10–11: the shortest edge and the best-scoring partner, if any; no allocation.
 fn paper_choice(tri: &Triangulation, v: VertexId, around: &[(VertexId, u32)]) -> [VertexId; 2] {
     let p = tri.vertex_point(v);
     let length2 = |w: VertexId| p.dist2(tri.vertex_point(w));
@@ -134,8 +100,7 @@ fn paper_choice(tri: &Triangulation, v: VertexId, around: &[(VertexId, u32)]) ->
             .map(move |w| (w, angle_at(tri, v, shortest, w)))
             .filter(|&(_, theta)| theta > PAIR_ANGLE)
     };
-    // Lmin/Le: Lmin is the same for every candidate, so it scales all scores alike; it is kept to
-    // match the paper's formula.
+    // Lmin is the same for every candidate, so it never changes the choice: kept as in the paper.
     let l_min = qualified()
         .map(|(w, _)| libm::sqrt(length2(w)))
         .fold(f64::INFINITY, f64::min);
@@ -169,9 +134,9 @@ fn crossing_choice(
 }
 
 /// Applies `repair` to the proximity graph `edges` (each edge once, any order): `None` when there
-/// is nothing to repair (off, or no vertex of degree three or more), so the input stands.
-/// Otherwise the result lists each edge once: first the edges between manifold vertices in their
-/// input order, then the selections of the non-manifold vertices in increasing vertex id.
+/// is nothing to repair (off, or no vertex of degree three or more). Otherwise each edge once: the
+/// edges between manifold vertices in input order, then the non-manifold vertices' selections by
+/// increasing id.
 pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Option<Vec<Edge>> {
     if repair == Repair::Off {
         return None;
@@ -184,10 +149,8 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     }
     // Only the non-manifold vertices' lists are read.
     let graph = BranchAdjacency::new(&degree, edges);
-    // Scratch space of `Repair::Needs`, reused by every vertex.
     let mut pairs = needs::Pairs::new();
-    // Lines 6–12: every non-manifold vertex selects its edges (up to four for a crossing).
-    // One per non-manifold vertex, counted first (memory: no growth by doubling).
+    // Lines 6–12: one selection per non-manifold vertex (up to four edges), sized first (memory).
     let mut selections: Vec<(VertexId, [VertexId; 4])> = Vec::with_capacity(graph.branch_count());
     for i in 0..vertex_count {
         let v = VertexId::new(i as u32);
@@ -218,9 +181,8 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
             .binary_search_by_key(&w, |&(u, _)| u)
             .is_ok_and(|k| selections[k].1.contains(&v))
     };
-    // Algorithm 2, lines 3–5: edges between manifold vertices stay.
-    // Every edge of the output is an input edge, listed once: the input's length is room
-    // enough (memory: no growth by doubling).
+    // Algorithm 2, lines 3–5: edges between manifold vertices stay. Output edges are input edges,
+    // each once, so the input's length is room enough (memory).
     let mut kept: Vec<Edge> = Vec::with_capacity(edges.len());
     kept.extend(
         edges

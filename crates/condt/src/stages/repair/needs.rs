@@ -1,6 +1,5 @@
-//! [`Repair::Needs`](super::Repair::Needs): a non-manifold vertex keeps a crossing whole, or
-//! else the straightest pair of edges its neighbours need, or else Algorithm 2's choice. The rule
-//! and the reason for every constant are in the documentation of [`super`].
+//! [`Repair::Needs`](super::Repair::Needs). The rule and the reason for every constant but
+//! [`NEED_RATIO`] are in [`super`]'s documentation.
 
 use super::{angle_at, paper_choice, PAIR_ANGLE, STRAIGHT_ANGLE};
 use crate::mesh::VertexId;
@@ -8,20 +7,17 @@ use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 use core::cmp::Ordering;
 
-/// A neighbour's need counts only for an edge at most this many times as long as the second
-/// shortest edge of the vertex (compared squared). A curve's own edges at a sample are among its
-/// shortest (Algorithm 1 keeps each point's two shortest); at a sharp tip the chord between the
-/// two samples beside the apex takes the first place and the sides come second, so the bound is
-/// taken from the second. The slack covers sides cut into pieces of different lengths; a
-/// neighbour of degree <= 2 farther than that is the end of another curve or an outlier.
+/// A neighbour's need counts only for an edge at most this many times as long as the vertex's
+/// second shortest edge (compared squared). A curve's own edges at a sample are among its shortest
+/// (Algorithm 1 keeps each point's two shortest); at a sharp tip the chord beside the apex comes
+/// first and the sides second, hence the second. The slack covers sides cut into pieces of
+/// different lengths; a needy neighbour farther away is another curve's end or an outlier.
 const NEED_RATIO: f64 = 1.3;
 
-/// Pairs of neighbours `(angle, a, b)` with `a < b`: scratch space for [`choice`], reused from
-/// vertex to vertex so that the loop over vertices does not allocate.
+/// Pairs `(angle, a, b)` with `a < b`: [`choice`]'s scratch space, reused from vertex to vertex.
 pub(super) type Pairs = Vec<(f64, VertexId, VertexId)>;
 
-/// What the non-manifold vertex `v` keeps ([`VertexId::INFINITE`] in unused slots). `around` is
-/// its adjacency, `degree` every vertex's degree in the graph being repaired.
+/// What the non-manifold vertex `v` keeps (unused slots [`VertexId::INFINITE`]); `degree`: all.
 pub(super) fn choice(
     tri: &Triangulation,
     v: VertexId,
@@ -41,10 +37,7 @@ pub(super) fn choice(
     }
 }
 
-/// The best pair of edges at `v` holding at least one needed edge, among pairs that are straight
-/// enough for Algorithm 2 (`θ > 2π/3`) or whose edges are both needed; ranked by: straight
-/// enough, then more needed edges, then `θ` over the length of the path through `v` (the sum of
-/// the two lengths), then smaller ids. `None` when no pair qualifies.
+/// Step 2 of [`super`]'s documentation: the best pair holding a needed edge, or `None`.
 fn needed_pair(
     tri: &Triangulation,
     v: VertexId,
@@ -99,9 +92,8 @@ fn needed_pair(
     best.map(|(_, pair)| pair)
 }
 
-/// Two disjoint nearly straight pairs of edges through `v` (angle above [`STRAIGHT_ANGLE`]): of
-/// all such pairings, the one whose less straight pair is straightest (ties: the straighter
-/// other pair, then smaller ids). `None` when there are not two such pairs.
+/// Step 1 of [`super`]'s documentation: the pairing of two disjoint pairs above [`STRAIGHT_ANGLE`]
+/// whose less straight pair is straightest (ties: the other pair, then ids), or `None`.
 fn crossing(
     tri: &Triangulation,
     v: VertexId,
