@@ -1,24 +1,8 @@
-//! Two classical curve reconstructions on the same triangulation as ConDT, so that methods can be
-//! compared on identical Delaunay edges: NN-Crust and the Crust.
-//!
-//! Owns: [`Triangulation::nn_crust`] and [`Triangulation::crust`]. It reads the finished
-//! triangulation (rings and the stages' positions) and, for the Crust, triangulates a second
-//! point set through the kernel's public entry; it may not change a triangulation, and it shares
-//! no rule with the ConDT stages (a baseline that borrowed them would not be a baseline).
-//!
-//! - **NN-Crust** (T. K. Dey and P. Kumar, "A simple provable algorithm for curve
-//!   reconstruction", SODA 1999): every sample keeps the edge to its nearest neighbour and the
-//!   shortest edge to a *half neighbour*, a neighbour at an angle of at least 90 degrees from
-//!   the nearest one. Both are Delaunay edges, so each sample's Delaunay ring is all it reads.
-//!   Exact for a smooth closed curve sampled at spacing below a third of the local feature size.
-//! - **Crust** (N. Amenta, M. Bern and D. Eppstein, "The crust and the beta-skeleton:
-//!   combinatorial curve reconstruction", Graphical Models and Image Processing 60(2), 1998):
-//!   the Delaunay edges between two samples in the triangulation of the samples together with
-//!   their Voronoi vertices (the circumcentres of the Delaunay triangles). Exact below 0.252 of
-//!   the local feature size.
-//!
-//! Ties between equally long edges go to the neighbour with the smaller vertex id, so both are
-//! deterministic. Duplicate points are merged as in every other graph of a [`Triangulation`].
+//! Two classical reconstructions on ConDT's triangulation, to compare methods on identical
+//! Delaunay edges: [`Triangulation::nn_crust`] and [`Triangulation::crust`]. They read the finished
+//! triangulation (the Crust also triangulates a second set through the public entry), may not
+//! change a triangulation, and share no rule with the stages (or they would not be baselines).
+//! Ties between equal lengths go to the smaller vertex id; duplicates are merged as everywhere.
 
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
@@ -30,21 +14,15 @@ use alloc::borrow::Cow;
 use alloc::vec::Vec;
 
 impl Triangulation {
-    /// The NN-Crust of the points (T. K. Dey and P. Kumar, "A simple provable algorithm for
-    /// curve reconstruction", SODA 1999): each point's edge to its nearest neighbour and to its
-    /// nearest *half neighbour*, one at least 90 degrees away from the nearest. A baseline to
-    /// compare ConDT with on the same triangulation; exact for smooth curves sampled at spacing
-    /// below a third of the local feature size. Ties go to the smaller vertex id.
-    ///
+    /// The NN-Crust (T. K. Dey and P. Kumar, "A simple provable algorithm for curve
+    /// reconstruction", SODA 1999): each point's edges to its nearest neighbour and to its nearest
+    /// *half neighbour*, one at least 90 degrees from the nearest (both Delaunay edges: the ring is
+    /// all it reads). Exact for smooth curves sampled below a third of the local feature size.
     /// ```
     /// use condt::{triangulate, Point};
     /// // Eight points on a circle, and the edges between consecutive ones.
-    /// let points: Vec<Point> = (0..8)
-    ///     .map(|k| {
-    ///         let t = k as f64 * std::f64::consts::TAU / 8.0;
-    ///         Point::new(t.cos(), t.sin())
-    ///     })
-    ///     .collect();
+    /// let angles = (0..8).map(|k| k as f64 * std::f64::consts::TAU / 8.0);
+    /// let points: Vec<Point> = angles.map(|t| Point::new(t.cos(), t.sin())).collect();
     /// let tri = triangulate(&points)?;
     /// let edges = tri.nn_crust().edges();
     /// assert_eq!(edges.len(), 8);
@@ -55,24 +33,17 @@ impl Triangulation {
         Graph::new(self, Cow::Owned(nn_crust_edges(self)))
     }
 
-    /// The Crust of the points (N. Amenta, M. Bern and D. Eppstein, "The crust and the
-    /// beta-skeleton: combinatorial curve reconstruction", 1998): the Delaunay edges between
-    /// points once the circumcentres of the Delaunay triangles (the Voronoi vertices) are added
-    /// to the set. A baseline to compare ConDT with; exact for smooth curves sampled below 0.252
-    /// of the local feature size.
-    ///
+    /// The Crust (N. Amenta, M. Bern and D. Eppstein, "The crust and the beta-skeleton:
+    /// combinatorial curve reconstruction", 1998): the Delaunay edges between points once the
+    /// circumcentres of the Delaunay triangles (Voronoi vertices) join the set. Exact for smooth
+    /// curves sampled below 0.252 of the local feature size.
     /// # Errors
     /// [`Error::TooManyPoints`] when the points and the circumcentres together exceed
     /// [`MAX_POINTS`](crate::MAX_POINTS).
-    ///
     /// ```
     /// use condt::{triangulate, Point};
-    /// let points: Vec<Point> = (0..12)
-    ///     .map(|k| {
-    ///         let t = k as f64 * std::f64::consts::TAU / 12.0;
-    ///         Point::new(2.0 * t.cos(), t.sin())
-    ///     })
-    ///     .collect();
+    /// let angles = (0..12).map(|k| k as f64 * std::f64::consts::TAU / 12.0);
+    /// let points: Vec<Point> = angles.map(|t| Point::new(2.0 * t.cos(), t.sin())).collect();
     /// let tri = triangulate(&points)?;
     /// let crust = tri.crust()?;
     /// assert_eq!(crust.num_edges(), 12);
@@ -113,16 +84,12 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
 }
 
 /// [`Triangulation::crust`]'s edges in vertex ids, sorted.
-///
 /// # Errors
-/// [`Error::TooManyPoints`] when the points and the circumcentres exceed the kernel's limit
-/// ([`crust_fits`] tells beforehand).
+/// [`Error::TooManyPoints`] past the kernel's limit ([`crust_fits`] tells beforehand).
 pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
-    // The second triangulation is built in the stages' frame, where every sample is exact
-    // and circumcentres of ordinary triangles cannot overflow, and relative to the corner of
-    // the samples' box: every coordinate is a difference of two positions, which an exact
-    // translation of the input leaves as it was (rounded the same way), so the circumcentres,
-    // and with them the edges, do not depend on where the set lies (issue 29, defect 8).
+    // In the stages' frame (samples exact, no ordinary circumcentre overflows) and relative to the
+    // corner of the samples' box: an exact translation leaves these differences as they were, so
+    // the edges do not depend on where the set lies (issue 29, defect 8).
     let samples: Vec<VertexId> = tri.vertices().collect();
     let corner = samples
         .iter()
@@ -154,8 +121,7 @@ pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
     Ok(edges)
 }
 
-/// Whether [`crust_edges`] can triangulate the points with the circumcentres of their
-/// triangles: `Ok`, or the error it would return.
+/// `Ok` when [`crust_edges`] can triangulate the points with their circumcentres, else its error.
 pub(crate) fn crust_fits(tri: &Triangulation) -> Result<(), Error> {
     let count = tri.num_vertices()
         + tri
@@ -172,7 +138,6 @@ pub(crate) fn crust_fits(tri: &Triangulation) -> Result<(), Error> {
     Ok(())
 }
 
-/// Orders candidate neighbours by squared distance, then by vertex id.
 fn closer(a: &(f64, VertexId), b: &(f64, VertexId)) -> core::cmp::Ordering {
     a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
 }
@@ -190,9 +155,8 @@ fn squared_distance(a: Point, b: Point) -> f64 {
     dot(d, d)
 }
 
-/// The circumcentre of a triangle, computed relative to its first corner; `None` when it is not
-/// a finite point (a sliver so flat that its centre lies beyond the range of doubles, where it
-/// would change no edge between samples).
+/// The circumcentre of a triangle, relative to its first corner; `None` when not finite (a sliver
+/// whose centre lies beyond the range of doubles, where it would change no edge between samples).
 fn circumcentre(a: Point, b: Point, c: Point) -> Option<Point> {
     let (ab, ac) = (difference(b, a), difference(c, a));
     let denominator = 2.0 * (ab.x * ac.y - ab.y * ac.x);

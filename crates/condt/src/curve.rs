@@ -1,13 +1,7 @@
-//! Curves from an edge set: ordered polylines, closed or open.
-//!
-//! Owns: the [`Curve`] type and turning a graph whose vertices mostly have degree two into
-//! polylines, in a canonical order. It may not look at coordinates: the order along a curve is the
-//! graph's.
-//!
-//! A polyline runs between vertices whose degree is not two (ends and branch points); what is
-//! left once those are walked are cycles of degree-two vertices, reported as closed curves. A
-//! polyline that leaves a branch vertex and comes back to it (one lobe of a figure eight) is
-//! closed too.
+//! Curves from an edge set: [`Curve`], and the split of a mostly degree-two graph into polylines in
+//! canonical order, by the graph alone (it may not look at coordinates). Polylines run between
+//! vertices of other degrees (ends, branch points); the cycles left are closed curves, as is a
+//! polyline that leaves a branch vertex and returns to it (a lobe of a figure eight).
 
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -16,9 +10,7 @@ use alloc::boxed::Box;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// One curve: its points in order along it, as input positions. A closed curve does not repeat
-/// its first point at the end.
-///
+/// One curve: its points in order, as input positions (a closed one does not repeat its first).
 /// ```
 /// use condt::curves_from_edges;
 /// // A triangle 0-1-2 and a separate segment 3-4.
@@ -33,8 +25,7 @@ use alloc::vec::Vec;
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Curve {
-    /// Input positions in order; 32 bits, as the kernel stores every index. Boxed at its
-    /// length (memory).
+    /// Input positions in order, 32-bit as in the kernel, boxed at its length (memory).
     points: Box<[u32]>,
     closed: bool,
 }
@@ -88,11 +79,9 @@ impl Curve {
     }
 }
 
-/// Splits the edges between `num_points` points into curves: every edge lies on exactly one
-/// curve. Edges are input positions; an edge may be listed either way round and more than once;
-/// loops and edges reaching past `num_points` are ignored. Deterministic: each curve starts at
-/// its smallest position (an open one at its smaller end), and curves are sorted.
-///
+/// Splits the edges between `num_points` points into curves, each edge on exactly one. Edges are
+/// input positions, either way round, repeats allowed; loops and positions past `num_points` are
+/// ignored. Each curve starts at its smallest position (an open one at its smaller end); sorted.
 /// ```
 /// use condt::curves_from_edges;
 /// // A figure eight: two loops through point 0, which has degree four.
@@ -128,24 +117,20 @@ pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> 
     curves
 }
 
-/// The curves of `graph` (over the vertex ids of `tri`), in input positions, canonical and
-/// sorted. The positions are read from the triangulation's map, not copied into the graph
-/// (memory).
+/// The curves of `graph` (over `tri`'s vertex ids) in input positions, canonical and sorted; the
+/// positions are read from the triangulation's map, not copied into the graph (memory).
 pub(crate) fn curves_in_input_positions(tri: &Triangulation, graph: &CurveGraph) -> Vec<Curve> {
     let mut curves = curves_of(graph, |v| tri.input_of(v) as u32);
     canonical(&mut curves);
     curves
 }
 
-/// Gives each curve its canonical start and direction and sorts them.
 fn canonical(curves: &mut [Curve]) {
     for curve in curves.iter_mut() {
         curve.make_canonical();
     }
-    // Sorted by their first two points, which is the order of the whole point lists: no two
-    // curves share them (they would share an edge, and every edge lies on one curve). Comparing
-    // keys computed once, not the lists behind pointers, spares the sort a cache miss per
-    // comparison.
+    // By their first two points, the order of the whole lists: no two curves share them (they
+    // would share an edge). Keys computed once spare the sort a cache miss per comparison.
     curves.sort_by_cached_key(|curve| {
         let p = &curve.points;
         let at = |k: usize| u64::from(p.get(k).copied().unwrap_or(0));
@@ -163,7 +148,6 @@ pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> V
     // One buffer for every walk: each curve then gets one allocation of its exact size.
     let mut path = Vec::new();
     let vertices = (0..vertex_count as u32).map(VertexId::new);
-    // Polylines between ends and branch points first, then the remaining pure cycles.
     for v in vertices.clone() {
         let degree = graph.degree(v);
         if degree == 0 || degree == 2 {
@@ -200,9 +184,8 @@ pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> V
     curves
 }
 
-/// Follows unvisited degree-two vertices from `start` through `first` until an end, a branch
-/// point, or a vertex already visited (`start` itself, on a cycle); marks what it passes. `path`
-/// is scratch space.
+/// Follows unvisited degree-two vertices from `start` through `first`, marking them, until an
+/// end, a branch point or a visited vertex (`start`, on a cycle); `path` is scratch space.
 fn walk(
     graph: &CurveGraph,
     name: &impl Fn(VertexId) -> u32,

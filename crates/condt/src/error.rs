@@ -1,19 +1,15 @@
-//! The error type returned by the library.
-//!
-//! Owns: every way a call into the library can refuse its input. It may not depend on any other
-//! module but for the mesh's [`Violation`], which it carries; the others depend on it.
+//! The library's error type: every way a call can refuse its input. It may depend on no other
+//! module but for the mesh's [`Violation`], which it carries.
 
 use crate::mesh::Violation;
 use core::fmt;
 
 /// Why a call into the library refused its input.
-///
 /// ```
 /// use condt::{reconstruct, triangulate, Error, Params, Point, Uniformity};
 /// let err = triangulate(&[Point::new(0.0, 0.0), Point::new(f64::NAN, 1.0)]).unwrap_err();
 /// assert_eq!(err, Error::NonFinite { index: 1 });
 /// assert_eq!(err.to_string(), "point 1 has a NaN or infinite coordinate");
-///
 /// let params = Params::default().with_uniformity(Uniformity::Fixed(-1.0));
 /// let err = reconstruct(&[Point::new(0.0, 0.0)], &params).unwrap_err();
 /// assert_eq!(err, Error::InvalidParameter { name: "u", value: -1.0 });
@@ -33,8 +29,7 @@ pub enum Error {
         /// The largest number accepted.
         limit: usize,
     },
-    /// A parameter is NaN, infinite or out of its range; [`Params`](crate::Params) says which
-    /// values each parameter accepts.
+    /// A parameter is NaN, infinite or out of range (see [`Params`](crate::Params)).
     InvalidParameter {
         /// The parameter's name as the documentation and the command line spell it (`u`, `k`).
         name: &'static str,
@@ -42,8 +37,7 @@ pub enum Error {
         value: f64,
     },
     /// [`Triangulation::validate`](crate::Triangulation::validate) or
-    /// [`Mesh::check_topology`](crate::mesh::Mesh::check_topology) found a broken invariant; the
-    /// conversion lets `?` carry it in a function returning this error.
+    /// [`Mesh::check_topology`](crate::mesh::Mesh::check_topology) found a broken invariant.
     InvalidTriangulation(Violation),
 }
 

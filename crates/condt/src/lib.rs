@@ -5,22 +5,15 @@
 //! constrained-neighbor proximity graph"), on its own exact Delaunay kernel.
 //!
 //! [`reconstruct`] gives the curves through a point set and keeps every stage for inspection:
-//!
 //! ```
 //! use condt::{reconstruct, Params, Point};
-//!
-//! let points: Vec<Point> = (0..16)
-//!     .map(|k| {
-//!         let t = k as f64 * std::f64::consts::TAU / 16.0;
-//!         Point::new(2.0 * t.cos(), t.sin())
-//!     })
-//!     .collect();
+//! let angles = (0..16).map(|k| k as f64 * std::f64::consts::TAU / 16.0);
+//! let points: Vec<Point> = angles.map(|t| Point::new(2.0 * t.cos(), t.sin())).collect();
 //! let result = reconstruct(&points, &Params::default())?;
 //! let curve = &result.curves()[0];
-//! assert!(curve.is_closed());
+//! assert!(curve.is_closed() && curve.len() == 16);
 //! for i in curve.points() {
-//!     let p = points[i]; // every index is a position in `points`
-//!     # let _ = p;
+//!     let _p: Point = points[i]; // every index is a position in `points`
 //! }
 //! for report in result.stages() {
 //!     println!("{}: {} edges", report.stage, report.graph.num_edges());
@@ -29,12 +22,9 @@
 //! ```
 //!
 //! [`reconstruct`] is a [`Pipeline`] run to its end: [`Pipeline::step`] runs one stage (or
-//! smoothing pass) at a time and reports it ([`StepReport`]), [`Pipeline::upcoming`] says what
-//! comes next. [`Params`] start from a preset ([`Params::default`], [`Params::paper`]) and
-//! change through their `with_*` setters.
-//!
-//! The stages can also be run one by one, each a method on the graph the previous one left:
-//!
+//! smoothing pass) at a time and reports it ([`StepReport`]). [`Params`] start from a preset
+//! ([`Params::default`], [`Params::paper`]) and change through their `with_*` setters. The stages
+//! can also be run one by one, each a method on the graph the previous one left:
 //! ```
 //! use condt::{triangulate, Point, Repair, Uniformity};
 //! let points = [(0.0, 0.0), (1.0, 0.1), (2.0, 0.0), (3.0, 0.2)].map(Point::from);
@@ -47,13 +37,11 @@
 //! # Ok::<(), condt::Error>(())
 //! ```
 //!
-//! Underneath is the kernel, usable on its own: [`triangulate`] builds a [`Triangulation`],
-//! read in input positions, with the half-edge level in [`mesh`] and the exact predicates in
+//! Underneath is the kernel, usable on its own: [`triangulate`] builds a [`Triangulation`], read
+//! in input positions, with the half-edge level in [`mesh`] and the exact predicates in
 //! [`predicates`].
-//!
 //! ```
 //! use condt::{triangulate, Point};
-//!
 //! let points = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.0, 0.0)].map(Point::from);
 //! let tri = triangulate(&points)?;
 //! assert_eq!(tri.num_vertices(), 4); // point 4 repeats point 0 and is merged into it
@@ -64,31 +52,19 @@
 //! ```
 //!
 //! ## Features
-//! - `std` (default): `std::error::Error` for [`Error`] and stage timings.
-//! - `parallel` (default, implies `std`): multi-threaded stages and the two halves of a large
-//!   triangulation built at once, on rayon (same results).
-//!
-//! With `--no-default-features` the crate is `#![no_std]`, needs only `alloc`, and depends on
-//! `robust` and `libm` alone.
-//!
-//! ## The workspace around it
-//! File formats, drawings and the HTML stage viewer are in `condt-io`; sampled curves with
-//! ground truth and the metrics against it in `condt-eval`; the `condt` command-line tool in
-//! `condt-cli`. This crate knows none of them.
+//! `std` (default): `std::error::Error` for [`Error`], and stage timings. `parallel` (default,
+//! implies `std`): multi-threaded stages and the two halves of a large triangulation built at
+//! once, on rayon (same results). Without default features the crate is `#![no_std]`, needs only
+//! `alloc`, and depends on `robust` and `libm` alone.
 //!
 //! ## Layout
 //! Public as modules: [`mesh`] (the half-edge level), [`predicates`] (the exact signs) and
-//! [`geometry`] (points and exact power-of-two scaling); everything else is reached through this
-//! page's re-exports. All modules, from the bottom up (each uses only modules listed before it):
-//! `threads` (two pieces of work at once), `prefetch` (a cache hint, the crate's one `unsafe`
-//! call), [`geometry`], [`predicates`], [`mesh`], `error` ([`Error`]), `triangulate` (the
-//! kernel), `adjacency` (edge lists in vertex ids), `stages` (the stage table and one module per
-//! stage), `curve` ([`Curve`]), `graph` ([`Graph`]), `smooth` (moving noisy points along a first
-//! reconstruction's curves), `baselines` (NN-Crust and Crust as methods of [`Triangulation`]),
-//! `reconstruct` ([`Params`], the [`Pipeline`] and its smoothing passes, the stage history, the
-//! [`Reconstruction`]), `provenance` (why each edge was kept or dropped, from the stages' own
-//! evidence); `test_rng` serves unit tests only. `docs/architecture.md` draws the layers and
-//! says what each module may not touch.
+//! [`geometry`] (points, exact power-of-two scaling); the rest is re-exported here. The modules
+//! bottom up, each using only those before it: `threads`, `prefetch` (the one `unsafe` call),
+//! [`geometry`], [`predicates`], [`mesh`], `error`, `triangulate` (the kernel), `adjacency`,
+//! `stages` (one module per stage), `curve`, `graph`, `smooth`, `baselines` (NN-Crust, Crust),
+//! `reconstruct` (the [`Pipeline`]), `provenance` (why each edge was kept or dropped).
+//! `docs/architecture.md` says what each owns and may not touch, and maps the workspace around it.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![deny(unsafe_code)]
 #![warn(missing_docs)]

@@ -1,27 +1,9 @@
-//! Why each edge was kept or dropped: the story of every Delaunay edge (and every edge a stage
-//! added) through the stages of a [`Reconstruction`], with the numbers that decided it.
-//!
-//! Owns: [`Reconstruction::provenance`] and the values it returns ([`EdgeStory`], [`Change`],
-//! [`Reason`]; [`EndChoice`] is Algorithm 1's, re-exported). It is computed only when asked,
-//! from what the reconstruction already keeps (the triangulation, the parameters and every
-//! stage's graph), so the pipeline pays nothing for it. It may not change a reconstruction, and
-//! it implements no rule: every number and every choice of rule comes from the stage's own
-//! evidence function (`proximity::end_choice`, `outliers::iqr_threshold`,
-//! `local_outliers::rule_evidence`); it formats them. Its tests check that the explanations
-//! agree with what the stages did on every edge.
-//!
-//! What it can tell per stage:
-//! - **proximity** (Algorithm 1): at each end, whether the edge is that point's shortest, its
-//!   second shortest (with the ratio `|e2| / |e1|` and the bound it was held to), or neither
-//!   (with its rank in the ring);
-//! - **repair** (Algorithm 2): the end that had three or more edges, and how many;
-//! - **IQR outliers** (Algorithm 3): the edge's length and the threshold `√T` it exceeded;
-//! - **local outliers**: given back (rule 1), long at an end (rule 2, with the ratio), a whole
-//!   component removed (rule 4), or a short spur (rule 3), as the stage's rules applied them;
-//! - **given-back check**: a component of given-back edges not clearly apart from the rest;
-//! - **clumps**: a component that is not a curve;
-//! - **gaps**: closed;
-//! - **junctions**: joined at a junction.
+//! Why each edge was kept or dropped: [`Reconstruction::provenance`] tells every Delaunay edge's
+//! story (and every added edge's) through the stages, with the numbers that decided it
+//! ([`EdgeStory`], [`Change`], [`Reason`]; [`EndChoice`] is Algorithm 1's). Computed on demand, so
+//! the pipeline pays nothing. It may not change a reconstruction and implements no rule: it
+//! formats each stage's own evidence (`end_choice`, `iqr_threshold`, `rule_evidence`), and its
+//! tests check every explanation against what the stages did.
 
 use crate::adjacency::Edge;
 use crate::reconstruct::Reconstruction;
@@ -57,8 +39,7 @@ pub enum Reason {
     },
     /// Local outlier rule 1: an edge the IQR stage cut between two smooth, regular passages.
     GivenBack,
-    /// Local outlier rule 2: more than `ratio` times longer than the longest other edge at
-    /// `vertex`.
+    /// Local outlier rule 2: `ratio` times the longest other edge at `vertex`, too long.
     LongAt {
         /// The end where it is long (input position).
         vertex: usize,
@@ -75,12 +56,9 @@ pub enum Reason {
     GapClosed,
     /// A loose end joined to the curve it meets at a junction of three curves.
     Junction,
-    /// A baseline method (NN-Crust or Crust) chose it; the ends then say how ConDT's
-    /// Algorithm 1 would have seen the edge, for comparison.
+    /// A baseline (NN-Crust, Crust) chose it; the ends say how Algorithm 1 would have seen it.
     Baseline,
-    /// The confirmation of given-back components removed it: its component was made only of
-    /// edges local outlier rule 1 gave back, and not every point of it is clearly apart from
-    /// everything else.
+    /// The given-back check removed it: a component of given-back edges not clearly apart.
     NotConfirmed,
 }
 
@@ -97,7 +75,6 @@ pub struct Change {
 
 /// The story of one edge: how its ends chose it in Algorithm 1, what each later stage did to it,
 /// and whether it is in the result. `Display` tells it in a sentence or two.
-///
 /// ```
 /// use condt::{reconstruct, Params, Point};
 /// // Three points in a row and one far above the last.
@@ -126,8 +103,7 @@ pub struct EdgeStory {
 }
 
 impl Reconstruction {
-    /// The story of every Delaunay edge and of every edge a stage added, sorted by edge; see
-    /// [`EdgeStory`]. Computed on demand: O(n log n) time and memory for the list.
+    /// Every Delaunay or added edge's [`EdgeStory`], sorted by edge; O(n log n), on demand.
     pub fn provenance(&self) -> Vec<EdgeStory> {
         let tri = self.triangulation();
         let reports: Vec<_> = self.stages().collect();
@@ -212,28 +188,24 @@ impl<'t> Rings<'t> {
     }
 }
 
-/// The graphs a stage read, in vertex ids: its input, and the graph the IQR stage started from
-/// (the local outlier removal reads it).
+/// The graphs a stage read, in vertex ids: its input and (for local outliers) the IQR stage's.
 struct StageInputs<'g> {
     graph: &'g [Edge],
     before_outliers: &'g [Edge],
 }
 
-/// The numbers one stage's reasons need, computed once per stage, each from the stage's own
-/// code: Algorithm 3's threshold from [`iqr_threshold`], the local rules from
-/// [`rule_evidence`]. Nothing here decides whether an edge goes.
+/// The numbers one stage's reasons need, computed once per stage by the stage's own code
+/// ([`iqr_threshold`], [`rule_evidence`]); nothing here decides whether an edge goes.
 struct Explainer<'a> {
     tri: &'a Triangulation,
     stage: Stage,
-    /// Degrees of the stage's input graph, by input position.
     degrees_before: Vec<usize>,
-    /// Neighbours in the stage's output, built for the repair only (whose reason names the
-    /// edges the non-manifold vertex kept), so an explanation costs O(degree).
+    /// Neighbours in the stage's output, for the repair only (its reason names the edges the
+    /// non-manifold vertex kept), so an explanation costs O(degree).
     after: Neighbours,
     /// Algorithm 3's `√T` in input units, when the stage is the IQR rule.
     threshold: f64,
-    /// For local outliers: the rule that changed each edge it changed, by edge in input
-    /// positions, sorted.
+    /// For local outliers: the rule behind each edge it changed, by edge in input positions.
     local: Vec<([usize; 2], LocalRule)>,
 }
 

@@ -1,9 +1,6 @@
-//! The stage history of a run: which stages ran, in order, and how to get each one's graph back
-//! from the last one's.
-//!
-//! Owns: [`StageRecord`], the [`Undo`] deltas that keep a stage's input in a few bytes, and the
-//! walk back from the last graph ([`output_of`], [`History::input_of`]). It may not run a stage
-//! or decide which runs: it only remembers. Reason for the deltas: memory.
+//! The stage history of a run: the [`StageRecord`]s in order, the [`Undo`] deltas that keep each
+//! stage's input in a few bytes (memory), and the walk back from the last graph ([`output_of`]).
+//! It may not run a stage or decide which runs: it only remembers.
 
 use crate::adjacency::Edge;
 use crate::stages::Stage;
@@ -18,9 +15,8 @@ pub(super) struct History {
 }
 
 impl History {
-    /// The graph `stage` started from when it ran, walked back from `current` (the latest
-    /// output); `current` itself when `stage` has not run (or is the first). `first` computes the
-    /// first stage's graph when a record says to.
+    /// The graph `stage` started from, walked back from `current` (the latest output); `current`
+    /// itself when `stage` has not run or is the first. `first` computes the first graph.
     pub(super) fn input_of<'e>(
         &'e self,
         stage: Stage,
@@ -33,7 +29,7 @@ impl History {
         }
     }
 
-    /// The output of the `k`-th stage, walked back from `last`, the latest stage's output.
+    /// The output of the `k`-th stage, walked back from `last` (see [`output_of`]).
     pub(super) fn output_of<'e>(
         &'e self,
         last: &'e [Edge],
@@ -44,26 +40,20 @@ impl History {
     }
 }
 
-/// One stage as it ran.
 #[derive(Clone, Debug)]
 pub(super) struct StageRecord {
     pub(super) stage: Stage,
-    /// How to get its input back from its output.
     pub(super) undo: Undo,
     pub(super) time: Duration,
 }
 
-/// How a stage's input is recovered from its output: the stage graphs are stored as the final
-/// graph and one of these per stage, walked back from the last stage. Reason: memory (a stage
-/// changes a few edges in a hundred; a full copy costs 8 bytes per point).
+/// How a stage's input is recovered from its output. Reason: memory (a stage changes a few edges
+/// in a hundred; a full copy costs 8 bytes per point).
 #[derive(Clone, Debug)]
 pub(super) enum Undo {
-    /// The rule did not apply: the output is the input (the proximity graph, which has no input,
-    /// is recorded so too).
+    /// The rule did not apply: the output is the input (so is the first graph recorded).
     Unchanged,
-    /// The output is the input with the edges at the positions `removed` lists taken out (the
-    /// others in their order) and `appended` edges added at the end: the input is the output's
-    /// first `len - appended` edges with each removed edge put back at its position.
+    /// The output is the input without the edges at `removed`, plus `appended` edges at the end.
     Delta {
         appended: usize,
         /// `(position in the input, edge)`, positions ascending.
@@ -71,28 +61,21 @@ pub(super) enum Undo {
     },
     /// The input itself, when the output is not of that form or the delta would not be smaller.
     Input(Vec<Edge>),
-    /// The input is the first stage's graph, which is computed again from the triangulation
-    /// when a report asks for it (see [`FIRST_KEPT_UP_TO`]).
+    /// The input is the first graph, computed again when a report asks ([`FIRST_KEPT_UP_TO`]).
     First,
 }
 
-/// The record of the step that reads the first stage's graph (the proximity graph) keeps a
-/// delta only while it holds at most one removal per this many edges of that graph, under a
-/// byte per edge (12 bytes a removal); past it, the graph is computed again when a report asks
-/// for it ([`Undo::First`]). Reason: memory against the time of a report. Only the repair's
-/// record is replaced so: the local outlier removal reads the IQR stage's input, which with
-/// `outliers_first` is the proximity graph, and must not recompute it.
+/// The repair's record keeps a delta of the first graph only up to one removal (12 bytes) per this
+/// many edges, under a byte per edge; past it, [`Undo::First`] (memory against a report's time).
+/// Only the repair's: the local outlier removal reads the IQR stage's input (with
+/// `outliers_first`, the proximity graph) and must not recompute it.
 pub(super) const FIRST_KEPT_UP_TO: usize = 12;
 
 impl Undo {
-    /// How to get `input` back from `output`. The input is moved into the record only when no
-    /// delta is smaller than it.
-    ///
-    /// The delta matches the two lists greedily: an input edge equal to the next unmatched
-    /// output edge is kept, any other is removed, and the output's unmatched tail is appended.
-    /// Edges are distinct within a list, so undoing it gives the input back exactly, whatever
-    /// the stage did; a stage that keeps its edges in order and appends the ones it adds (all of
-    /// them do) gives the smallest delta, its actual change.
+    /// How to get `input` back from `output` (the input itself when no delta is smaller). Matched
+    /// greedily: an input edge equal to the next unmatched output edge is kept, others removed,
+    /// the output's unmatched tail appended. Edges are distinct, so undoing is exact; a stage that
+    /// keeps its order and appends its additions (all do) gets the smallest delta, its change.
     pub(super) fn of(input: Vec<Edge>, output: &[Edge]) -> Undo {
         // Past this many removals the delta (12 bytes each) outweighs the input (8 per edge).
         let most = 2 * input.len() / 3;
@@ -114,7 +97,7 @@ impl Undo {
         }
     }
 
-    /// How many edges of `input` the delta of [`Undo::of`] would list as removed.
+    /// How many edges of `input` [`Undo::of`] would list as removed.
     pub(super) fn removals(input: &[Edge], output: &[Edge]) -> usize {
         let mut kept = 0;
         for &edge in input {
@@ -150,15 +133,14 @@ impl Undo {
     }
 }
 
-/// The output of stage `k` of `records`, walking back from `last`, the last stage's output;
-/// `first` computes the first stage's graph when a record says to ([`Undo::First`]).
+/// Stage `k`'s output, walked back from `last` (the last output); `first` serves [`Undo::First`].
 pub(super) fn output_of<'e>(
     records: &'e [StageRecord],
     last: &'e [Edge],
     k: usize,
     first: &dyn Fn() -> Vec<Edge>,
 ) -> Cow<'e, [Edge]> {
-    // The next stage's input is the first stage's graph itself: nothing to walk back through.
+    // The next stage's input is the first graph itself: nothing to walk back through.
     if matches!(records.get(k + 1).map(|r| &r.undo), Some(Undo::First)) {
         return Cow::Owned(first());
     }

@@ -1,16 +1,8 @@
-//! The whole ConDT pipeline: [`reconstruct`], its [`Params`], the [`Pipeline`] that runs it a
-//! step at a time, and the [`Reconstruction`] that keeps every stage.
-//!
-//! Reference: J. Antony, M. Reghunath, S. B. Thayyil, R. Muthuganapathy, "ConDT: A 2D curve
-//! reconstruction algorithm based on a constrained-neighbor proximity graph" (sections 3 to 5);
-//! `docs/condt.md` maps every line of its algorithms to this code and records each reading of an
-//! ambiguity.
-//!
-//! Split along its seams: [`params`] (what runs, and in which order: the one place it is
-//! decided), [`pipeline`] (running it, step by step, with the smoothing passes), [`history`]
-//! (what each stage changed, to give its graph back later) and [`result`] (the public reading of
-//! a finished run). None of them implements a stage (that is [`crate::stages`]) or modifies
-//! the triangulation.
+//! The whole ConDT pipeline (paper sections 3 to 5; `docs/condt.md` maps each line of its
+//! algorithms to the code), split along its seams: [`params`] (what runs and in which order),
+//! [`pipeline`] (running it step by step, with the smoothing passes), [`history`] (what each
+//! stage changed, to give its graph back) and [`result`] (the [`Reconstruction`]). None of them
+//! implements a stage ([`crate::stages`]) or modifies the triangulation.
 
 mod history;
 mod params;

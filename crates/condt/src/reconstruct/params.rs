@@ -1,8 +1,6 @@
-//! What a reconstruction runs: the [`Method`] and its [`Params`], and the order of the stages.
-//!
-//! Owns: the parameters, their check, and [`Params::stages`], the one place where the order of
-//! the stages is decided. It may not run a stage (that is the pipeline) nor implement one (that
-//! is [`crate::stages`]).
+//! What a reconstruction runs: the [`Method`], its [`Params`] and their check, and the order of
+//! the stages ([`Params::stages`], the one place it is decided). It may not run a stage (the
+//! pipeline does) nor implement one ([`crate::stages`]).
 
 use crate::error::Error;
 use crate::stages::{Repair, Stage, Step, Uniformity};
@@ -10,18 +8,12 @@ use crate::stages::{Repair, Stage, Step, Uniformity};
 use crate::{reconstruct, reconstruct_triangulation, Reconstruction, Triangulation};
 use alloc::vec::Vec;
 
-/// Which reconstruction runs on the Delaunay triangulation: ConDT (the stages [`Params`]
-/// chooses), or one of two classical baselines, for comparing methods on the identical
-/// triangulation.
-///
+/// Which reconstruction runs on the Delaunay triangulation: ConDT (the stages [`Params`] chooses)
+/// or a classical baseline, to compare methods on the identical triangulation.
 /// ```
 /// use condt::{reconstruct, Method, Params, Point, Stage};
-/// let points: Vec<Point> = (0..10)
-///     .map(|k| {
-///         let t = k as f64 * std::f64::consts::TAU / 10.0;
-///         Point::new(t.cos(), t.sin())
-///     })
-///     .collect();
+/// let angles = (0..10).map(|k| k as f64 * std::f64::consts::TAU / 10.0);
+/// let points: Vec<Point> = angles.map(|t| Point::new(t.cos(), t.sin())).collect();
 /// let params = Params::default().with_method(Method::NnCrust);
 /// let result = reconstruct(&points, &params)?;
 /// assert_eq!(params.stages(), vec![Stage::NnCrust]);
@@ -35,22 +27,19 @@ pub enum Method {
     ConDT,
     /// NN-Crust (Dey and Kumar), [`Triangulation::nn_crust`]; the ConDT parameters are unused.
     NnCrust,
-    /// The Crust (Amenta, Bern and Eppstein), [`Triangulation::crust`]; the ConDT parameters are
-    /// unused.
+    /// The Crust (Amenta, Bern and Eppstein), [`Triangulation::crust`]; ConDT parameters unused.
     Crust,
 }
 
-/// Parameters of a reconstruction.
-///
+/// Parameters of a reconstruction. The stages *beyond the paper* are on by default and off in
+/// [`Params::paper`].
 /// ```
-/// use condt::{Params, Repair, Uniformity};
+/// use condt::{Params, Uniformity};
 /// let p = Params::default();
 /// assert_eq!(p.uniformity, Uniformity::Fixed(2.75));
 /// assert_eq!(p.outlier_factor, Some(1.7));
-/// assert_eq!(p.repair, Repair::Needs);
 /// assert!(p.check().is_ok());
-/// let bad = p.with_outlier_factor(Some(f64::NAN));
-/// assert!(bad.check().is_err());
+/// assert!(p.with_outlier_factor(Some(f64::NAN)).check().is_err());
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 #[non_exhaustive]
@@ -63,61 +52,35 @@ pub struct Params {
     pub repair: Repair,
     /// The IQR factor `k` of the outlier removal (finite, `>= 0`), or `None` to skip the stage.
     pub outlier_factor: Option<f64>,
-    /// Remove outliers before the non-manifold repair instead of after it (the paper's order).
-    /// Outlier edges can make a curve vertex non-manifold, and the repair then cuts a sharp
-    /// corner there; `docs/condt.md` (note 8) measures both orders.
+    /// Remove outliers before the repair, not after (the paper's order): outlier edges can make a
+    /// curve vertex non-manifold, and the repair cuts a corner there (`docs/condt.md`, note 8).
     pub outliers_first: bool,
-    /// Run the local outlier removal after the IQR stage and the repair, whichever order they ran
-    /// in (not in the paper; on by default, off in [`Params::paper`]): give back the edges the
-    /// global rule cut along smooth, regularly spaced passages; drop edges far longer than the
-    /// others at a branch or at both ends, branches of fewer than five points, and components
-    /// that look like outliers: fewer than five points clearly apart from everything else,
-    /// unless they close a regular cycle or are densely sampled (three or more points, every
-    /// edge at most the median edge); nothing is dropped as a component when that would drop a
-    /// quarter of the points. A sparsely sampled curve or branch of three or four points is lost
-    /// with it on; the rules and the reason for each constant are in
-    /// `src/stages/local_outliers.rs`.
+    /// The local outlier removal, after the IQR stage and the repair (beyond the paper): gives
+    /// back edges the global rule cut along smooth, regular passages; drops long edges at branches
+    /// and ends, short branches and small isolated components. It loses a sparse curve of three or
+    /// four points. Rules and constants: `src/stages/local_outliers.rs`.
     pub local_outliers: bool,
-    /// Right after the local outlier removal (and only when it runs), drop every component
-    /// made only of edges its first rule gave back unless every vertex of it with two edges is
-    /// apart from everything else by more than twice its longest edge (not in the paper; on by default,
-    /// off in [`Params::paper`]): a chance chain of smooth passages in a large scatter of
-    /// outliers is given back whole, a sparse curve beside a dense one is apart everywhere.
-    /// The rule and its reason are in `src/stages/given_back.rs`.
+    /// After the local outlier removal (only with it; beyond the paper), drop each component made
+    /// only of edges it gave back unless each of its vertices with two edges lies apart by more
+    /// than twice its longest edge: a chance chain among outliers goes, a sparse curve stays.
     pub confirm_given_back: bool,
-    /// Close gaps at loose ends after the other stages (not in the paper): join two loose ends
-    /// that face each other across a short gap, two loose ends to the stranded sample they line
-    /// up through, and the two dropped arms of a crossing to the crossing. On by default, off
-    /// in [`Params::paper`]; the rules and the reason for each constant are in
-    /// `src/stages/gaps.rs`.
+    /// Close gaps at loose ends (beyond the paper): join two facing across a short gap, two to the
+    /// stranded sample they line up through, a crossing's lost arms to it (`src/stages/gaps.rs`).
     pub close_gaps: bool,
     /// Remove components fewer than half of whose points a curve passes smoothly and evenly
-    /// (not in the paper): clumps of outliers, which the local outlier removal keeps because
-    /// they lie apart from everything else. Runs after the local outlier removal and its
-    /// given-back check; removes nothing when that would remove a quarter of the points with
-    /// edges. On by default, off in [`Params::paper`]; the rule and its reasons are in
-    /// `src/stages/clumps.rs`.
+    /// (beyond the paper): clumps of outliers, which the local outlier removal keeps as they lie
+    /// apart. Never a quarter of the points with edges; see `src/stages/clumps.rs`.
     pub clumps: bool,
-    /// Join a loose end to the curve it meets where three curves meet (not in the paper): map
-    /// borders, a T in a drawing. Runs last, after closing gaps; the junction needs three
-    /// branches of at least five points each, sampled alike. On by default, off in
-    /// [`Params::paper`]; the rule and its reasons are in `src/stages/junctions.rs`.
+    /// Join a loose end to the curve it meets where three curves of five points or more, sampled
+    /// alike, meet, as on map borders or a T (beyond the paper; `src/stages/junctions.rs`).
     pub junctions: bool,
-    /// Smoothing passes (not in the paper; on by default, off in [`Params::paper`]): when at
-    /// least one point in a hundred ends the first reconstruction's curves or branches them (a
-    /// vertex with one edge, or with three or more), a point with two edges meeting at a wide
-    /// angle moves halfway to its neighbours' midpoint, and the stages run again on the
-    /// Delaunay triangulation of the moved points, up to three times. A reconstruction made
-    /// only of cycles, or a large one with few ends and branches, is final at once and pays
-    /// nothing; a small clean open curve pays one pass. The result's
-    /// edges are between input positions as always; its
-    /// [`triangulation`](Reconstruction::triangulation) and drawings show the moved points.
-    /// Noise can push a sample into the empty circle of two true neighbours, so that their edge
-    /// is not a Delaunay edge of the noisy points; the moved points can have it again. The rule
-    /// and its reasons are in `src/smooth.rs`. Only [`reconstruct`] runs the passes:
-    /// [`reconstruct_triangulation`] takes its triangulation as given. It lifts the evaluation
-    /// suite's noise cases from 40.3 % to 50.0 % exact and lowers its outlier cases from 92.0 %
-    /// to 89.3 %; `docs/condt.md`, "Smoothing passes".
+    /// Smoothing passes (beyond the paper): when one point in a hundred or more ends or branches
+    /// the first result's curves, each point with two edges at a wide angle moves halfway to its
+    /// neighbours' midpoint and the stages run again, up to three times: noise can push a sample
+    /// into the empty circle of two true neighbours, whose edge the moved points can have again.
+    /// Edges stay between input positions; the [`triangulation`](Reconstruction::triangulation)
+    /// is of the moved points. [`reconstruct_triangulation`] runs no passes, [`reconstruct`] does.
+    /// See `src/smooth.rs` and `docs/condt.md`, "Smoothing passes".
     pub smooth: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
@@ -125,30 +88,16 @@ pub struct Params {
 }
 
 impl Default for Params {
-    /// The best pipeline measured (`docs/condt.md`, "Beyond the paper"): the paper's proximity
-    /// graph and outlier rule with [`Repair::Needs`], then the local outlier removal and gap
-    /// closing, and smoothing passes where the result shows noise. Its cost: a sparsely sampled curve of three or four points, isolated, counts as
-    /// outliers (`local_outliers: false` keeps it). [`Params::paper`] turns every step beyond
-    /// the paper off.
-    ///
+    /// The best pipeline measured (`docs/condt.md`, "Beyond the paper"): the paper's with
+    /// [`Repair::Needs`] and every stage and pass beyond it. Its cost: an isolated curve of three
+    /// or four sparse points counts as outliers (`local_outliers: false` keeps it).
     /// ```
-    /// use condt::{Params, Repair, Stage};
+    /// use condt::{Params, Stage::*};
     /// let p = Params::default();
-    /// assert_eq!(p.repair, Repair::Needs);
+    /// assert_eq!(p.repair, condt::Repair::Needs);
     /// assert!(p.close_gaps && p.local_outliers && p.smooth);
-    /// assert_eq!(
-    ///     p.stages(),
-    ///     vec![
-    ///         Stage::Proximity,
-    ///         Stage::Repair,
-    ///         Stage::Outliers,
-    ///         Stage::LocalOutliers,
-    ///         Stage::Clumps,
-    ///         Stage::GivenBack,
-    ///         Stage::Gaps,
-    ///         Stage::Junctions
-    ///     ]
-    /// );
+    /// let all = [Proximity, Repair, Outliers, LocalOutliers, Clumps, GivenBack, Gaps, Junctions];
+    /// assert_eq!(p.stages(), all);
     /// ```
     fn default() -> Self {
         Params::paper()
@@ -163,10 +112,8 @@ impl Default for Params {
 }
 
 impl Params {
-    /// The paper's pipeline as we read it, for studying and reproducing it: Algorithm 1 with
-    /// `u = 2.75`, Algorithm 2 as printed ([`Repair::Paper`]), then Algorithm 3 with `k = 1.7`,
-    /// and no stage beyond the paper. `docs/condt.md` lists every reading of an ambiguity.
-    ///
+    /// The paper's pipeline as we read it (`docs/condt.md`): Algorithm 1 with `u = 2.75`,
+    /// Algorithm 2 as printed ([`Repair::Paper`]), Algorithm 3 with `k = 1.7`, nothing beyond.
     /// ```
     /// use condt::{Params, Repair, Stage, Uniformity};
     /// let paper = Params::paper();
@@ -192,10 +139,8 @@ impl Params {
     }
 
     /// `Ok` when every parameter is one its stage accepts.
-    ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming the first parameter that is NaN, infinite or out of
-    /// range.
+    /// [`Error::InvalidParameter`] naming the first parameter NaN, infinite or out of range.
     pub fn check(&self) -> Result<(), Error> {
         if self.method != Method::ConDT {
             return Ok(());
@@ -204,19 +149,15 @@ impl Params {
         self.steps().try_for_each(|step| step.check())
     }
 
-    /// The stages these parameters run, in the order they run: the proximity graph, then the
-    /// repair and the outlier removal in the order [`Params::outliers_first`] chooses, then the
-    /// local outlier removal, then closing gaps, each only when it is on.
-    ///
+    /// The stages these parameters run, in order: the first graph, then each stage that is on,
+    /// the repair and the IQR stage in the order [`Params::outliers_first`] chooses.
     /// ```
     /// use condt::{Params, Repair, Stage};
     /// let p = Params::paper().with_outliers_first(true).with_repair(Repair::Off);
     /// assert_eq!(p.stages(), vec![Stage::Proximity, Stage::Outliers]);
     /// let local = Params::paper().with_outliers_first(true).with_local_outliers(true);
-    /// assert_eq!(
-    ///     local.stages(),
-    ///     vec![Stage::Proximity, Stage::Outliers, Stage::Repair, Stage::LocalOutliers]
-    /// );
+    /// let order = [Stage::Proximity, Stage::Outliers, Stage::Repair, Stage::LocalOutliers];
+    /// assert_eq!(local.stages(), order);
     /// let q = Params::paper().with_close_gaps(true);
     /// assert_eq!(q.stages().last(), Some(&Stage::Gaps));
     /// ```
@@ -244,19 +185,16 @@ impl Params {
         } else {
             (repair, outliers)
         };
-        // The local outlier removal comes after both: its rules read vertices with three or more
-        // edges as branches, which only a repaired graph makes true. Closing gaps runs last: it
-        // joins loose ends, which the earlier stages create.
-        // Confirming given-back components reads what the local outlier removal added, so it
-        // comes right after it, and only with it.
+        // The local outlier removal follows both: it reads three or more edges as a branch, which
+        // only a repaired graph makes true. The given-back check reads what it added, so runs only
+        // with it. Clumps are whole components, removed before any join can reach one. The gaps
+        // join the loose ends the earlier stages leave; a junction takes only an end that no gap
+        // join or crossing claimed.
         let local = self.local_outliers.then_some(Step::LocalOutliers);
         let confirm =
             (self.local_outliers && self.confirm_given_back).then_some(Step::ConfirmGivenBack);
-        // Clumps are whole components; they go before the joins so that no join reaches one.
         let clumps = self.clumps.then_some(Step::RemoveClumps);
         let gaps = self.close_gaps.then_some(Step::CloseGaps);
-        // Junctions come after the gaps: an end that a gap join or a crossing claims is not a
-        // junction's.
         let junctions = self.junctions.then_some(Step::JoinJunctions);
         // A baseline is the whole method: no ConDT stage follows it.
         let condt = self.method == Method::ConDT;
@@ -274,8 +212,7 @@ impl Params {
 
 impl Params {
     /// These parameters with `parallel` off when rayon's threads cannot run
-    /// ([`parallel_available`](crate::parallel_available)): what a reconstruction runs with,
-    /// and what its result reports.
+    /// ([`parallel_available`](crate::parallel_available)): what a run uses and its result reports.
     pub(crate) fn on_available_threads(self) -> Params {
         if self.parallel && !crate::threads::parallel_available() {
             self.with_parallel(false)
@@ -286,7 +223,6 @@ impl Params {
 
     /// Turns `stage` on or off, for the stages with a [`Switch`](crate::stages::Switch)
     /// ([`Stage::switch`]); `false` for any other stage, which is left as it is.
-    ///
     /// ```
     /// use condt::{Params, Stage};
     /// let mut p = Params::default();
@@ -308,9 +244,7 @@ impl Params {
     }
 }
 
-/// Chainable setters, one per field, so that a pipeline is spelled from a preset:
-/// `Params::paper().with_repair(Repair::Needs)`.
-///
+/// Chainable setters, one per field, to spell a pipeline from a preset.
 /// ```
 /// use condt::{Params, Repair};
 /// let p = Params::paper().with_repair(Repair::Needs).with_smooth(true);

@@ -1,15 +1,9 @@
-//! The [`Pipeline`]: a reconstruction run one step at a time, and [`reconstruct`], which runs
-//! it to the end.
-//!
-//! Owns: the triangulation of the input, the run of the stages in the order [`Params::stages`]
-//! gives, the smoothing passes (each a step), the fixed-point test that ends them, and the
-//! clocks. It may not implement a stage (that is [`crate::stages`]) nor decide the order of
-//! the stages (that is [`Params`]).
-//!
-//! A run is: the first graph (the proximity graph, or a baseline), then each step, then the
-//! tally of the last graph in input positions. With smoothing passes on, a run whose degrees
-//! show noise is followed by a pass (points moved along its curves, triangulated again) and a
-//! new run on the moved points, until two runs agree or [`MAX_PASSES`] ran.
+//! The [`Pipeline`]: a reconstruction run one step at a time ([`reconstruct`] runs it to the end):
+//! the first graph (proximity graph or baseline), each step in the order [`Params::stages`]
+//! gives, then the tally of the last graph in input positions. With smoothing on, a run whose
+//! degrees show noise is followed by a pass (points moved along its curves, triangulated again)
+//! and a new run, until two runs agree or [`MAX_PASSES`] ran. It owns the runs, the passes and
+//! the clocks; it may not implement a stage ([`crate::stages`]) nor decide their order.
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
@@ -28,23 +22,16 @@ use alloc::vec::Vec;
 use core::sync::atomic::AtomicUsize;
 use core::time::Duration;
 
-/// A reconstruction run one step at a time: each [`step`](Pipeline::step) runs the next stage
-/// (or smoothing pass) and reports it; [`finish`](Pipeline::finish) runs what is left and gives
-/// the [`Reconstruction`]. Stepping to the end gives exactly what [`reconstruct`] gives, which
-/// is this loop.
-///
+/// A reconstruction run one step at a time: [`step`](Pipeline::step) runs and reports the next
+/// stage or smoothing pass, [`finish`](Pipeline::finish) the rest; [`reconstruct`] is this loop.
 /// ```
 /// use condt::{Params, Pipeline, Point, StepReport};
-/// let points: Vec<Point> = (0..24)
-///     .map(|k| {
-///         let t = k as f64 * std::f64::consts::TAU / 24.0;
-///         Point::new(2.0 * t.cos(), t.sin())
-///     })
-///     .collect();
+/// let angles = (0..24).map(|k| k as f64 * std::f64::consts::TAU / 24.0);
+/// let points: Vec<Point> = angles.map(|t| Point::new(2.0 * t.cos(), t.sin())).collect();
 /// let mut pipeline = Pipeline::new(&points, &Params::default())?;
 /// while let Some(step) = pipeline.step()? {
 ///     match step {
-///         StepReport::Stage(report) => println!("{}: {} edges", report.stage, report.graph.num_edges()),
+///         StepReport::Stage(r) => println!("{}: {} edges", r.stage, r.graph.num_edges()),
 ///         StepReport::SmoothingPass { pass, moved, .. } => println!("pass {pass} moved {moved}"),
 ///         _ => {}
 ///     }
@@ -71,8 +58,7 @@ pub struct Pipeline {
 pub enum StepReport<'p> {
     /// A stage ran: its report, with the graph it left.
     Stage(StageReport<'p>),
-    /// A smoothing pass moved points along the previous run's curves and triangulated them
-    /// again; the stages run again on the moved points next ([`Params::smooth`]).
+    /// A smoothing pass ([`Params::smooth`]): points moved and triangulated again for a new run.
     SmoothingPass {
         /// Which pass (the first is 1).
         pass: usize,
@@ -93,23 +79,18 @@ pub enum Upcoming {
     SmoothingPass,
 }
 
-/// Where the pipeline is.
 #[derive(Debug)]
 enum State {
-    /// Running the stages on a triangulation.
     Stages(Run),
-    /// A run ended and its degrees show noise (or it differs from the run before it): a
-    /// smoothing pass comes next.
+    /// A run ended showing noise (or differing from the run before): a smoothing pass is next.
     Smooth(Reconstruction),
-    /// The result.
     Done(Reconstruction),
-    /// A step failed (the error was returned) and left nothing to go on with.
+    /// A step failed (its error was returned), leaving nothing to go on with.
     Failed(Error),
     /// Only while a step moves the state from one variant to the next.
     Moving,
 }
 
-/// One run of the stages on one triangulation.
 #[derive(Debug)]
 struct Run {
     tri: Triangulation,
@@ -120,44 +101,33 @@ struct Run {
     /// The curve graph of `current` when the last stage handed one on (`Outcome::graph`).
     current_graph: Option<CurveGraph>,
     assembly: CurveAssembly,
-    /// The fingerprint of the previous run's final edges, for the fixed-point test of a pass
-    /// that another may follow.
+    /// The previous run's final edges, for the fixed-point test of a pass another may follow.
     previous: Option<EdgesFingerprint>,
 }
 
-/// When a run's curves are assembled, which depends on whether it is the final one: a run that
-/// a smoothing pass replaces is read only for its final edges, degrees and graph, so its curves
-/// would be dead memory beside the final tally.
+/// When a run's curves are assembled: only the final run's are read (others are dead memory).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum CurveAssembly {
     /// The final one: the curves are assembled beside the final tally.
     Now,
-    /// The first run when smoothing passes may follow: final unless its degrees show noise
-    /// ([`shows_noise`], read off the curve graph before the tally), and then no curves.
+    /// The first run when passes may follow: no curves if its degrees show noise ([`shows_noise`]).
     UnlessNoisy,
     /// A pass that another may follow: the curves wait until the fixed-point test says.
     Later,
 }
 
 impl Pipeline {
-    /// Triangulates `points` and readies the stages that `params` chooses; nothing else runs
-    /// until [`step`](Pipeline::step) or [`finish`](Pipeline::finish).
-    ///
+    /// Triangulates `points` and readies the stages; nothing else runs until `step` or `finish`.
     /// # Errors
-    /// [`Error::InvalidParameter`] when [`Params::check`] refuses `params` (checked first); as
-    /// [`triangulate`](crate::triangulate()): non-finite coordinates, an over-wide dynamic
-    /// range, too many points; and, for the Crust, a set too wide for its second triangulation.
+    /// [`Params::check`]'s error (checked first); as [`triangulate`](crate::triangulate()); for the
+    /// Crust, [`Error::TooManyPoints`] when its second triangulation would be too large.
     pub fn new(points: &[Point], params: &Params) -> Result<Pipeline, Error> {
         Pipeline::of_input(Cow::Borrowed(points), params, None)
     }
 
-    /// [`Pipeline::new`] on points the caller hands over: they are freed as soon as they are
-    /// triangulated (the triangulation keeps them in its own frame), so the stages run without
-    /// them.
-    ///
+    /// [`Pipeline::new`] on points handed over, freed once triangulated (the stages do without).
     /// # Errors
     /// As [`Pipeline::new`].
-    ///
     /// ```
     /// use condt::{Params, Pipeline, Point};
     /// let points = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.5, 1.0)];
@@ -169,13 +139,10 @@ impl Pipeline {
         Pipeline::of_input(Cow::Owned(points), params, None)
     }
 
-    /// [`Pipeline::new_owned`], adding to `inserted` as the points are inserted into the
-    /// triangulation (about every 65,536 points, from any thread; it ends at the number of
-    /// distinct points), so that another thread can show progress. The result is the same.
-    ///
+    /// [`Pipeline::new_owned`], adding to `inserted` as points are inserted (about every 65,536,
+    /// from any thread, up to the number of distinct points) so another thread shows progress.
     /// # Errors
     /// As [`Pipeline::new`].
-    ///
     /// ```
     /// use condt::{Params, Pipeline, Point};
     /// use std::sync::atomic::{AtomicUsize, Ordering};
@@ -194,13 +161,9 @@ impl Pipeline {
         Pipeline::of_input(Cow::Owned(points), params, Some(inserted))
     }
 
-    /// The stages on a triangulation already built, which the result keeps. No smoothing
-    /// passes run: they would need the points triangulated again.
-    ///
+    /// The stages on a triangulation already built, which the result keeps (no smoothing passes).
     /// # Errors
-    /// [`Error::InvalidParameter`] when [`Params::check`] refuses `params`; for the Crust, a
-    /// set too wide for its second triangulation.
-    ///
+    /// [`Params::check`]'s error; for the Crust, [`Error::TooManyPoints`] (as [`Pipeline::new`]).
     /// ```
     /// use condt::{triangulate, Params, Pipeline, Point};
     /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from))?;
@@ -258,8 +221,7 @@ impl Pipeline {
         &self.params
     }
 
-    /// The triangulation the stages walk now (after a smoothing pass, of the moved points);
-    /// `None` once a step failed.
+    /// The triangulation the stages walk now (of the moved points after a pass); `None` on failure.
     pub fn triangulation(&self) -> Option<&Triangulation> {
         match &self.state {
             State::Stages(run) => Some(&run.tri),
@@ -268,9 +230,7 @@ impl Pipeline {
         }
     }
 
-    /// What the next [`step`](Pipeline::step) will run: a stage, a smoothing pass, or nothing
-    /// (`None`: every step has run, or a step failed).
-    ///
+    /// What the next [`step`](Pipeline::step) runs; `None` once every step has run or one failed.
     /// ```
     /// use condt::{Params, Pipeline, Point, Stage, Upcoming};
     /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
@@ -299,13 +259,10 @@ impl Pipeline {
         matches!(self.state, State::Done(_) | State::Failed(_))
     }
 
-    /// Runs the next stage, or the next smoothing pass, and reports it; `None` once every step
-    /// has run.
-    ///
+    /// Runs the next stage or smoothing pass and reports it; `None` once every step has run.
     /// # Errors
-    /// As [`triangulate`](crate::triangulate()), when a smoothing pass triangulates the moved
-    /// points (in practice never: they lie between input points). The pipeline is then spent:
-    /// every later step and [`finish`](Pipeline::finish) return the same error.
+    /// As [`triangulate`](crate::triangulate()) when a pass triangulates the moved points (never
+    /// in practice: they lie between input points); later steps and `finish` repeat the error.
     pub fn step(&mut self) -> Result<Option<StepReport<'_>>, Error> {
         match core::mem::replace(&mut self.state, State::Moving) {
             State::Stages(mut run) => {
@@ -346,7 +303,6 @@ impl Pipeline {
     }
 
     /// Runs every step left and gives the result.
-    ///
     /// # Errors
     /// As [`step`](Pipeline::step).
     pub fn finish(mut self) -> Result<Reconstruction, Error> {
@@ -377,8 +333,7 @@ impl Pipeline {
         }
     }
 
-    /// What follows a run whose last stage has just run: its tally, and the result, a
-    /// smoothing pass, or (at a fixed point) the result with its curves assembled.
+    /// What follows a run's last stage: its tally, then a smoothing pass or the result.
     fn end_of_run(&mut self, run: Run) -> State {
         let (assembly, previous) = (run.assembly, run.previous);
         let (mut result, waiting) = run.finish(&self.params);
@@ -386,8 +341,7 @@ impl Pipeline {
             CurveAssembly::Now => false,
             CurveAssembly::UnlessNoisy => shows_noise(result.degrees.iter()),
             CurveAssembly::Later => {
-                // Another pass follows unless this one reached a fixed point (the same final
-                // edges as the pass before), which is final: its curves are assembled.
+                // A fixed point (the same final edges as the pass before) is final.
                 let previous = previous.expect("a pass that may be followed has the last edges");
                 let graph = waiting.expect("a pass that may be followed keeps its graph");
                 if previous == EdgesFingerprint::of(&result.edges) {
@@ -409,15 +363,12 @@ impl Pipeline {
         State::Done(result)
     }
 
-    /// Moves the points of `result` along its curves and triangulates them again, readying the
-    /// next run; the pass number and how many points moved.
+    /// Moves `result`'s points along its curves and triangulates them again: (pass, points moved).
     fn smoothing_pass(&mut self, mut result: Reconstruction) -> Result<(usize, usize), Error> {
         let mut smoothing = self.smoothing.unwrap_or_default();
-        // Of the previous run only its final edges are read again (the fixed-point test, by
-        // their fingerprint), and its triangulation and final graph to smooth along: the rest
-        // is freed before the positions are computed, those two once they are, and the moved
-        // positions once they are triangulated (memory). The last pass allowed stops whatever
-        // its edges, so they are not kept for it.
+        // Memory: of the previous run only its edges' fingerprint (none for the last pass
+        // allowed, which stops whatever its edges), its triangulation and its final graph are
+        // kept, each freed as soon as it has been read; the moved positions once triangulated.
         let last_pass = smoothing.passes + 1 >= MAX_PASSES;
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
@@ -429,9 +380,8 @@ impl Pipeline {
         // The replaced run's triangulation is an earlier pass's cost too.
         self.earlier_passes += triangulation_time;
         self.earlier_passes += self.pass_clock.lap();
-        // Relative to the corner, so that an exact translation gives the same result; unless
-        // that makes distinct points one, which would make it depend on the input's order: then
-        // in the caller's coordinates (a set spanning orders of magnitude far beyond its spacing).
+        // Relative to the corner, so an exact translation gives the same result, unless that merges
+        // distinct points (making the result depend on input order): then in the caller's frame.
         let relative = triangulate_with(&smoothed.positions, self.params.parallel)?;
         let tri = if relative.num_points() - relative.num_vertices() > merged_before {
             drop(relative);
@@ -491,8 +441,7 @@ impl Run {
             return;
         };
         let (tri, history, current) = (&self.tri, &self.history, &self.current);
-        // The input of an earlier stage, rebuilt from the history only for the step that reads
-        // it (`Step::run` says which reads which), and only while it runs.
+        // An earlier stage's input, rebuilt only for the step that reads it, only while it runs.
         let first = || first_graph(tri, params);
         let input_of = |stage: Stage, read: bool| {
             if read {
@@ -523,8 +472,7 @@ impl Run {
                 }
             }
         };
-        // A handed-on graph must be the curve graph of exactly the list the next stage reads
-        // (checked in debug builds, so every test of the pipeline checks it).
+        // A handed-on graph must be the curve graph of exactly the list the next stage reads.
         debug_assert!(self
             .current_graph
             .as_ref()
@@ -536,8 +484,7 @@ impl Run {
         });
     }
 
-    /// The tally of the last graph, and the curves when they are assembled now; the curve
-    /// graph is returned when they wait ([`CurveAssembly::Later`]).
+    /// The tally and the curves, or the curve graph when they wait ([`CurveAssembly::Later`]).
     fn finish(self, params: &Params) -> (Reconstruction, Option<CurveGraph>) {
         let mut clock = Stopwatch::start();
         let Run {
@@ -596,23 +543,14 @@ impl Run {
     }
 }
 
-/// Triangulates `points` and reconstructs the curves through them: [`Pipeline::new`] run to
-/// its end.
-///
+/// Triangulates `points` and reconstructs the curves through them ([`Pipeline::new`] to the end).
 /// # Errors
-/// As [`triangulate`](crate::triangulate()): non-finite coordinates, an over-wide dynamic
-/// range, too many points; and [`Error::InvalidParameter`] when [`Params::check`] refuses
-/// `params` (checked first).
-///
+/// As [`Pipeline::new`] and [`Pipeline::step`].
 /// ```
 /// use condt::{reconstruct, Params, Point};
 /// // Twelve points on a circle: one closed curve through all of them.
-/// let circle: Vec<Point> = (0..12)
-///     .map(|k| {
-///         let t = k as f64 * std::f64::consts::TAU / 12.0;
-///         Point::new(t.cos(), t.sin())
-///     })
-///     .collect();
+/// let angles = (0..12).map(|k| k as f64 * std::f64::consts::TAU / 12.0);
+/// let circle: Vec<Point> = angles.map(|t| Point::new(t.cos(), t.sin())).collect();
 /// let result = reconstruct(&circle, &Params::default())?;
 /// assert_eq!(result.curves().len(), 1);
 /// assert!(result.curves()[0].is_closed());
@@ -624,24 +562,15 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
     Pipeline::new(points, params)?.finish()
 }
 
-/// [`reconstruct`] of points the caller hands over: the same result, but the points are freed
-/// as soon as they are triangulated (the triangulation keeps them in its own frame), so the
-/// stages run without them (16 bytes per point less at the peak). The result speaks in input
-/// positions; for the input coordinates afterwards (where the smoothing passes moved points,
-/// the result has only the moved positions, [`Reconstruction::stage_point`]), keep the points
-/// and call [`reconstruct`].
-///
+/// [`reconstruct`] of points handed over and freed once triangulated (16 bytes per point less at
+/// the peak). The result keeps only the positions the stages saw ([`Reconstruction::stage_point`]):
+/// to read the input afterwards, keep the points and call [`reconstruct`].
 /// # Errors
 /// As [`reconstruct`].
-///
 /// ```
 /// use condt::{reconstruct, reconstruct_owned, Params, Point};
-/// let points: Vec<Point> = (0..40)
-///     .map(|k| {
-///         let t = k as f64 * std::f64::consts::TAU / 40.0;
-///         Point::new(t.cos(), (2.0 * t).sin())
-///     })
-///     .collect();
+/// let angles = (0..40).map(|k| k as f64 * std::f64::consts::TAU / 40.0);
+/// let points: Vec<Point> = angles.map(|t| Point::new(t.cos(), (2.0 * t).sin())).collect();
 /// let borrowed = reconstruct(&points, &Params::default())?;
 /// let owned = reconstruct_owned(points, &Params::default())?;
 /// assert_eq!(owned.edges().collect::<Vec<_>>(), borrowed.edges().collect::<Vec<_>>());
@@ -652,12 +581,10 @@ pub fn reconstruct_owned(points: Vec<Point>, params: &Params) -> Result<Reconstr
     Pipeline::new_owned(points, params)?.finish()
 }
 
-/// Runs the ConDT stages on a triangulation already built, which the result keeps:
-/// [`Pipeline::on_triangulation`] run to its end (no smoothing passes).
-///
+/// Runs the stages on a built triangulation, which the result keeps: [`Pipeline::on_triangulation`]
+/// run to its end.
 /// # Errors
-/// [`Error::InvalidParameter`] when [`Params::check`] refuses `params`.
-///
+/// As [`Pipeline::on_triangulation`].
 /// ```
 /// use condt::{reconstruct_triangulation, triangulate, Params, Point};
 /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from))?;
@@ -683,13 +610,9 @@ pub(super) fn first_graph(tri: &Triangulation, params: &Params) -> Vec<Edge> {
     }
 }
 
-/// The fixed-point test's record of a pass's final edges (input positions `[i, j]`, sorted, as
-/// the tally makes them): their count and two 64-bit hashes of the list, each chained over the
-/// edges through a different bijective mixer (the finalizers of SplitMix64 and of MurmurHash3).
-/// Reason: memory; the list itself would be held through the whole next pass. Two different
-/// lists of the same length give the same record with a chance of about 2^-128; the passes would
-/// then stop one pass early, with a result that is still the reconstruction of the last pass's
-/// positions.
+/// The fixed-point test's record of a pass's final edges: their count and two 64-bit hashes.
+/// Reason: memory (the list would be held through the next pass). A collision (chance about
+/// 2^-128) stops the passes one early, with the last pass's reconstruction still valid.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(super) struct EdgesFingerprint {
     len: usize,
@@ -742,7 +665,6 @@ impl Stopwatch {
         }
     }
 
-    /// Time since the start or the previous lap.
     pub(super) fn lap(&mut self) -> Duration {
         #[cfg(feature = "std")]
         {

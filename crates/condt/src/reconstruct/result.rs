@@ -1,9 +1,6 @@
-//! What a reconstruction leaves: the [`Reconstruction`] with its [`StageReport`]s and
-//! [`Smoothing`] record, and the final tally in input positions.
-//!
-//! Owns: the result's public reading (edges, curves, unused points, degrees, stage reports), the
-//! packed degrees, and the tally that turns the last graph into input positions. It may not run
-//! a stage: the pipeline hands it the finished run.
+//! What a reconstruction leaves: the [`Reconstruction`] (edges, curves, unused points, packed
+//! degrees, [`StageReport`]s, the [`Smoothing`] record) and the tally that turns the last graph
+//! into input positions. It may not run a stage: the pipeline hands it the finished run.
 
 use super::history::{History, Undo};
 use super::params::Params;
@@ -23,15 +20,13 @@ use alloc::vec::Vec;
 use core::time::Duration;
 
 /// Everything a reconstruction computed, stage by stage, in input positions. Exact duplicates
-/// are one point, reported under the smallest input position holding it (see
-/// [`Triangulation::vertex`]).
-///
+/// are one point, under its smallest input position ([`Triangulation::vertex`]).
 /// ```
 /// use condt::{reconstruct, Params, Point, Stage};
 /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.1)].map(Point::from);
 /// let result = reconstruct(&pts, &Params::default())?;
-/// for report in result.stages() {
-///     println!("{}: {} edges, rule applied: {}", report.stage, report.graph.num_edges(), report.applied);
+/// for r in result.stages() {
+///     println!("{}: {} edges, rule applied: {}", r.stage, r.graph.num_edges(), r.applied);
 /// }
 /// assert_eq!(result.stages().next().unwrap().stage, Stage::Proximity);
 /// assert_eq!(result.stages().count(), Params::default().stages().len());
@@ -41,13 +36,11 @@ use core::time::Duration;
 pub struct Reconstruction {
     pub(super) params: Params,
     pub(super) triangulation: Triangulation,
-    /// The stages in the order they ran, the proximity graph first.
     pub(super) history: History,
     /// The last stage's output, from which the history gives back every earlier stage's.
     pub(super) final_edges: Vec<Edge>,
     /// The final edges, sorted, in input positions (32-bit, as the kernel stores indices).
     pub(super) edges: Vec<[u32; 2]>,
-    /// Final degree of every input point.
     pub(super) degrees: Degrees,
     pub(super) curves: Vec<Curve>,
     pub(super) unused: Vec<usize>,
@@ -56,19 +49,15 @@ pub struct Reconstruction {
     pub(super) smoothing: Option<Smoothing>,
 }
 
-/// What the smoothing passes ([`Params::smooth`]) did, as [`Reconstruction::smoothing`]
-/// reports them.
-///
+/// What the smoothing passes ([`Params::smooth`]) did ([`Reconstruction::smoothing`]).
 /// ```
 /// use condt::{reconstruct, Params, Point};
 /// // A noisy open arc: 30 samples over three quarters of a circle, every other one pushed out
 /// // by 4 % of the radius. Its two ends are loose ends, so the passes run.
+/// let t = |k: usize| k as f64 * 1.5 * std::f64::consts::PI / 29.0;
+/// let r = |k: usize| if k % 2 == 0 { 1.04 } else { 1.0 };
 /// let pts: Vec<Point> = (0..30)
-///     .map(|k| {
-///         let t = k as f64 * 1.5 * std::f64::consts::PI / 29.0;
-///         let r = if k % 2 == 0 { 1.04 } else { 1.0 };
-///         Point::new(r * t.cos(), r * t.sin())
-///     })
+///     .map(|k| Point::new(r(k) * t(k).cos(), r(k) * t(k).sin()))
 ///     .collect();
 /// let result = reconstruct(&pts, &Params::default())?;
 /// let smoothing = result.smoothing().expect("it ran");
@@ -82,14 +71,12 @@ pub struct Reconstruction {
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct Smoothing {
-    /// How many smoothing passes ran, each a reconstruction of moved points (at least one):
-    /// the result is the last one's.
+    /// How many passes ran (at least one); the result is the last one's.
     pub passes: usize,
     /// How many points the last pass moved (from the positions the pass before it saw).
     pub moved: usize,
-    /// The wall-clock time of the first reconstruction, every pass but the last, and every
-    /// smoothing (zero without `std`); the result's stage and triangulation times are the last
-    /// pass's.
+    /// Wall-clock time of the first reconstruction, every pass but the last, and every smoothing
+    /// (zero without `std`); the result's stage and triangulation times are the last pass's.
     pub earlier_passes: Duration,
 }
 
@@ -100,10 +87,9 @@ pub struct StageReport<'r> {
     pub stage: Stage,
     /// The graph it left.
     pub graph: Graph<'r>,
-    /// Whether its rule applied (a vertex needed repair; the outlier rule fired). The proximity
-    /// graph always applies.
+    /// Whether its rule applied (a vertex needed repair, the outlier rule fired); always the first.
     pub applied: bool,
-    /// Its wall-clock time (zero without the `std` feature, which has no clock).
+    /// Its wall-clock time (zero without `std`).
     pub time: Duration,
 }
 
@@ -118,18 +104,14 @@ impl Reconstruction {
         self.smoothing
     }
 
-    /// The Delaunay triangulation the stages walked (of the smoothed positions when
-    /// [`Params::smooth`] is on).
+    /// The Delaunay triangulation the stages walked (of the moved points after smoothing passes).
     pub fn triangulation(&self) -> &Triangulation {
         &self.triangulation
     }
 
-    /// The stages in the order they ran, the proximity graph first; see [`Params::stages`].
-    ///
-    /// Each stage's graph is rebuilt from the final one when its report is made (the
-    /// reconstruction keeps only what each stage changed), in O(edges) per stage after it; the
-    /// proximity graph may be computed again from the triangulation (when the repair changed
-    /// more than one of its edges in twelve, its record does not keep it).
+    /// The stages in the order they ran ([`Params::stages`]). Each graph is rebuilt from the final
+    /// one in O(edges) per later stage (the result keeps only what each stage changed); the
+    /// proximity graph may be computed again (when the repair changed over one edge in twelve).
     pub fn stages(&self) -> impl ExactSizeIterator<Item = StageReport<'_>> + '_ {
         (0..self.history.records.len()).map(move |k| self.report(k))
     }
@@ -144,9 +126,7 @@ impl Reconstruction {
         Some(self.report(k))
     }
 
-    /// Every stage that ran with its wall-clock time, in order: what [`stages`](Self::stages)
-    /// reports of them, without rebuilding their graphs (zero times without `std`).
-    ///
+    /// Each stage that ran and its wall-clock time (zero without `std`), graphs not rebuilt.
     /// ```
     /// use condt::{reconstruct, Params, Point};
     /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
@@ -173,7 +153,6 @@ impl Reconstruction {
                     first_graph(&self.triangulation, &self.params)
                 }),
             ),
-            // The first graph has no input to leave as it was.
             applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
             time: record.time,
         }
@@ -189,9 +168,7 @@ impl Reconstruction {
         self.edges.iter().map(|&[a, b]| [a as usize, b as usize])
     }
 
-    /// The final edges as [`Reconstruction::edges`] gives them, as the slice they are kept in,
-    /// so that a writer can cut it into pieces.
-    ///
+    /// The final edges as [`Reconstruction::edges`] gives them, as the slice kept (for writers).
     /// ```
     /// # use condt::{reconstruct, Params, Point};
     /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
@@ -214,21 +191,15 @@ impl Reconstruction {
     }
 
     /// The final degree of input point `index` (duplicates share their point's degree).
-    ///
     /// # Panics
     /// If `index` is not an input position.
     pub fn degree(&self, index: usize) -> usize {
         self.degrees.get(index)
     }
 
-    /// The coordinates of input point `index` as the stages saw them: the input point, or the
-    /// smoothed position when the smoothing passes ([`Params::smooth`]) moved it. The stage
-    /// drawings show these, because the rings and lengths the stages tested are theirs.
-    ///
-    /// The result keeps no copy of the input: the input coordinates are the caller's (the
-    /// slice given to [`reconstruct`]; [`reconstruct_owned`] hands them over for good).
-    /// Reason: memory; a copy would cost a tenth of the peak (`docs/perf-log.md`).
-    ///
+    /// Input point `index` as the stages saw it (where smoothing passes moved it, if they did),
+    /// which stage drawings show. The input stays the caller's ([`reconstruct`],
+    /// [`reconstruct_owned`]): a copy would cost a tenth of the peak (`docs/perf-log.md`).
     /// # Panics
     /// If `index` is not an input position.
     pub fn stage_point(&self, index: usize) -> Point {
@@ -252,8 +223,7 @@ impl Reconstruction {
 }
 
 impl Reconstruction {
-    /// Assembles the curves of a reconstruction that ran without them, `graph` the curve graph of
-    /// its final edges; the time is added to the curves' time.
+    /// Assembles the curves of a run that waited, `graph` the curve graph of its final edges.
     pub(super) fn assemble_curves(&mut self, graph: CurveGraph) {
         debug_assert!(graph == CurveGraph::new(self.triangulation.num_points(), &self.final_edges));
         let mut clock = Stopwatch::start();
@@ -264,9 +234,8 @@ impl Reconstruction {
         self.curves_time += clock.lap();
     }
 
-    /// The triangulation, the final edges and the triangulation's time; everything else is
-    /// freed here (a partial move out of a variable would keep the rest until it is assigned
-    /// again, after the next pass).
+    /// The triangulation, final edges and triangulation time; the rest is freed here (a partial
+    /// move would keep it until the variable is assigned again, after the next pass).
     pub(super) fn into_last_graph(self) -> (Triangulation, Vec<Edge>, Duration) {
         (
             self.triangulation,
@@ -338,26 +307,22 @@ impl core::fmt::Debug for Degrees {
     }
 }
 
-/// The final graph seen from the input positions.
 pub(super) struct Tally {
     pub(super) degrees: Degrees,
     pub(super) unused: Vec<usize>,
     pub(super) edges: Vec<[u32; 2]>,
 }
 
-/// How many input positions ahead [`tally`] asks for the neighbours' positions (and twice as
-/// many for the records).
+/// How far ahead [`tally`] prefetches neighbours' positions (twice as far for records).
 const TALLY_PREFETCH: usize = 16;
 
-/// One pass over the input positions gives the degrees, the unused points and the final edges
-/// already sorted: an edge is listed by its smaller input position. For the common vertex of
-/// degree <= 2 both candidates are written and the count advances only past those that belong
-/// (whether they do is a coin toss, so it is not branched on). A vertex's degree and neighbours
-/// are one record of the curve graph; the neighbours' input positions come from the
-/// triangulation's dense map, which packs sixteen to a cache line where the records pack four.
+/// One pass over the input positions gives the degrees, the unused points and the final edges,
+/// sorted (each listed by its smaller position). At the common degree <= 2 both candidates are
+/// written and the count passes those that belong (a coin toss, not branched on). Neighbours'
+/// positions come from the dense map: sixteen to a cache line, where curve-graph records pack four.
 pub(super) fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
     let n = tri.num_points();
-    // Without duplicates every input position stands for its own vertex: no need to look.
+    // Without duplicates every input position stands for its own vertex.
     let has_duplicates = tri.num_vertices() < n;
     let mut degrees = Degrees::with_capacity(n);
     let mut unused = Vec::new();
@@ -375,9 +340,8 @@ pub(super) fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) 
     let prefetching = n >= PREFETCH_FROM;
     for (i, &v) in order.iter().enumerate() {
         if prefetching {
-            // On shuffled input every record and neighbour position is a miss: the record is
-            // asked for two distances ahead, the positions of its neighbours one distance ahead,
-            // once the record has arrived.
+            // On shuffled input each record and neighbour position misses: the record is
+            // fetched two distances ahead, its neighbours' positions one, once it has arrived.
             if let Some(&later) = order.get(i + 2 * TALLY_PREFETCH) {
                 graph.prefetch(later);
             }
