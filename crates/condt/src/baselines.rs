@@ -18,6 +18,7 @@ impl Triangulation {
     /// reconstruction", SODA 1999): each point's edges to its nearest neighbour and to its nearest
     /// *half neighbour*, one at least 90 degrees from the nearest (both Delaunay edges: the ring is
     /// all it reads). Exact for smooth curves sampled below a third of the local feature size.
+    ///
     /// ```
     /// use condt::{triangulate, Point};
     /// // Eight points on a circle, and the edges between consecutive ones.
@@ -37,9 +38,11 @@ impl Triangulation {
     /// combinatorial curve reconstruction", 1998): the Delaunay edges between points once the
     /// circumcentres of the Delaunay triangles (Voronoi vertices) join the set. Exact for smooth
     /// curves sampled below 0.252 of the local feature size.
+    ///
     /// # Errors
     /// [`Error::TooManyPoints`] when the points and the circumcentres together exceed
     /// [`MAX_POINTS`](crate::MAX_POINTS).
+    ///
     /// ```
     /// use condt::{triangulate, Point};
     /// let angles = (0..12).map(|k| k as f64 * std::f64::consts::TAU / 12.0);
@@ -84,6 +87,7 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
 }
 
 /// [`Triangulation::crust`]'s edges in vertex ids, sorted.
+///
 /// # Errors
 /// [`Error::TooManyPoints`] past the kernel's limit ([`crust_fits`] tells beforehand).
 pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {

@@ -11,6 +11,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 /// One curve: its points in order, as input positions (a closed one does not repeat its first).
+///
 /// ```
 /// use condt::curves_from_edges;
 /// // A triangle 0-1-2 and a separate segment 3-4.
@@ -82,6 +83,7 @@ impl Curve {
 /// Splits the edges between `num_points` points into curves, each edge on exactly one. Edges are
 /// input positions, either way round, repeats allowed; loops and positions past `num_points` are
 /// ignored. Each curve starts at its smallest position (an open one at its smaller end); sorted.
+///
 /// ```
 /// use condt::curves_from_edges;
 /// // A figure eight: two loops through point 0, which has degree four.

@@ -5,6 +5,7 @@ use crate::mesh::Violation;
 use core::fmt;
 
 /// Why a call into the library refused its input.
+///
 /// ```
 /// use condt::{reconstruct, triangulate, Error, Params, Point, Uniformity};
 /// let err = triangulate(&[Point::new(0.0, 0.0), Point::new(f64::NAN, 1.0)]).unwrap_err();

@@ -12,6 +12,7 @@ use alloc::borrow::Cow;
 use alloc::vec::Vec;
 
 /// A stage's edges on its triangulation, read in input positions; stage methods return new graphs.
+///
 /// ```
 /// use condt::{triangulate, Point, Repair};
 /// // A plus sign: four arms through a centre point 0.
@@ -41,6 +42,7 @@ pub struct OutlierRemoval<'t> {
 }
 
 /// Shows the size and the edges in input positions, not the whole triangulation it borrows.
+///
 /// ```
 /// use condt::{triangulate, Point};
 /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
@@ -104,6 +106,7 @@ impl<'t> Graph<'t> {
     }
 
     /// Algorithm 3: the IQR outlier removal with factor `k` (the paper uses 1.7).
+    ///
     /// # Errors
     /// [`Error::InvalidParameter`] named `k` when `k` is NaN, infinite or negative.
     pub fn remove_outliers(&self, k: f64) -> Result<OutlierRemoval<'t>, Error> {
@@ -116,8 +119,10 @@ impl<'t> Graph<'t> {
     /// The local outlier removal ([`Params::local_outliers`](crate::Params::local_outliers)) on
     /// this graph as the IQR stage (and a later repair) left it; `before_outliers` (the IQR stage's
     /// input, or this graph if it did not run) holds the edges to give back.
+    ///
     /// # Panics
     /// If `before_outliers` lives on another triangulation.
+    ///
     /// ```
     /// use condt::{triangulate, Point, Repair, Uniformity};
     /// // Twelve points on a circle, and two stray points near each other far away.
@@ -144,8 +149,10 @@ impl<'t> Graph<'t> {
     /// Confirms given-back components
     /// ([`Params::confirm_given_back`](crate::Params::confirm_given_back)) after the local outlier
     /// removal; `before_local` (that stage's input) tells which edges it gave back.
+    ///
     /// # Panics
     /// If `before_local` lives on another triangulation.
+    ///
     /// ```
     /// use condt::{triangulate, Point};
     /// // A chain of 14 points 0.3 apart, and two stray points 0.45 beside its middle.
@@ -174,6 +181,7 @@ impl<'t> Graph<'t> {
 
     /// Removes the components that are clumps, not curves
     /// ([`Params::clumps`](crate::Params::clumps)); never adds an edge.
+    ///
     /// ```
     /// use condt::{triangulate, Point};
     /// // A smooth arc of 30 samples and, far away, a zig-zag of 6 (a fifth: under the quarter).
@@ -194,6 +202,7 @@ impl<'t> Graph<'t> {
     }
 
     /// Closes gaps at loose ends ([`Params::close_gaps`](crate::Params::close_gaps)); adds only.
+    ///
     /// ```
     /// use condt::{triangulate, Point};
     /// // A polyline with one edge missing in the middle: 0-1-2  3-4-5.
@@ -209,6 +218,7 @@ impl<'t> Graph<'t> {
 
     /// Joins loose ends to the curves they meet at junctions of three curves
     /// ([`Params::junctions`](crate::Params::junctions)); never removes an edge.
+    ///
     /// ```
     /// use condt::{triangulate, Point};
     /// // A line 0..=12 along y = 0 and a branch 13..=19 ending one sample above point 6: a T.
@@ -260,8 +270,10 @@ impl<'t> Graph<'t> {
 impl Triangulation {
     /// Stage 1, Algorithm 1: every point keeps its shortest Delaunay edge and, when the
     /// uniformity test passes, its second shortest.
+    ///
     /// # Errors
     /// [`Error::InvalidParameter`] named `u` for a fixed `u` that is NaN, infinite or not positive.
+    ///
     /// ```
     /// use condt::{triangulate, Point, Uniformity};
     /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
@@ -280,6 +292,7 @@ impl Triangulation {
 
     /// A graph of your own on this triangulation, to run a stage on: `edges` are input positions,
     /// either way round, Delaunay or not; repeats, loops and positions out of range are ignored.
+    ///
     /// ```
     /// use condt::{triangulate, Point};
     /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);

@@ -5,6 +5,7 @@
 //! constrained-neighbor proximity graph"), on its own exact Delaunay kernel.
 //!
 //! [`reconstruct`] gives the curves through a point set and keeps every stage for inspection:
+//!
 //! ```
 //! use condt::{reconstruct, Params, Point};
 //! let angles = (0..16).map(|k| k as f64 * std::f64::consts::TAU / 16.0);
@@ -25,6 +26,7 @@
 //! smoothing pass) at a time and reports it ([`StepReport`]). [`Params`] start from a preset
 //! ([`Params::default`], [`Params::paper`]) and change through their `with_*` setters. The stages
 //! can also be run one by one, each a method on the graph the previous one left:
+//!
 //! ```
 //! use condt::{triangulate, Point, Repair, Uniformity};
 //! let points = [(0.0, 0.0), (1.0, 0.1), (2.0, 0.0), (3.0, 0.2)].map(Point::from);
@@ -40,6 +42,7 @@
 //! Underneath is the kernel, usable on its own: [`triangulate`] builds a [`Triangulation`], read
 //! in input positions, with the half-edge level in [`mesh`] and the exact predicates in
 //! [`predicates`].
+//!
 //! ```
 //! use condt::{triangulate, Point};
 //! let points = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.0, 0.0)].map(Point::from);

@@ -75,6 +75,7 @@ pub struct Change {
 
 /// The story of one edge: how its ends chose it in Algorithm 1, what each later stage did to it,
 /// and whether it is in the result. `Display` tells it in a sentence or two.
+///
 /// ```
 /// use condt::{reconstruct, Params, Point};
 /// // Three points in a row and one far above the last.

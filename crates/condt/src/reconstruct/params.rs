@@ -10,6 +10,7 @@ use alloc::vec::Vec;
 
 /// Which reconstruction runs on the Delaunay triangulation: ConDT (the stages [`Params`] chooses)
 /// or a classical baseline, to compare methods on the identical triangulation.
+///
 /// ```
 /// use condt::{reconstruct, Method, Params, Point, Stage};
 /// let angles = (0..10).map(|k| k as f64 * std::f64::consts::TAU / 10.0);
@@ -33,6 +34,7 @@ pub enum Method {
 
 /// Parameters of a reconstruction. The stages *beyond the paper* are on by default and off in
 /// [`Params::paper`].
+///
 /// ```
 /// use condt::{Params, Uniformity};
 /// let p = Params::default();
@@ -91,6 +93,7 @@ impl Default for Params {
     /// The best pipeline measured (`docs/condt.md`, "Beyond the paper"): the paper's with
     /// [`Repair::Needs`] and every stage and pass beyond it. Its cost: an isolated curve of three
     /// or four sparse points counts as outliers (`local_outliers: false` keeps it).
+    ///
     /// ```
     /// use condt::{Params, Stage::*};
     /// let p = Params::default();
@@ -114,6 +117,7 @@ impl Default for Params {
 impl Params {
     /// The paper's pipeline as we read it (`docs/condt.md`): Algorithm 1 with `u = 2.75`,
     /// Algorithm 2 as printed ([`Repair::Paper`]), Algorithm 3 with `k = 1.7`, nothing beyond.
+    ///
     /// ```
     /// use condt::{Params, Repair, Stage, Uniformity};
     /// let paper = Params::paper();
@@ -139,6 +143,7 @@ impl Params {
     }
 
     /// `Ok` when every parameter is one its stage accepts.
+    ///
     /// # Errors
     /// [`Error::InvalidParameter`] naming the first parameter NaN, infinite or out of range.
     pub fn check(&self) -> Result<(), Error> {
@@ -151,6 +156,7 @@ impl Params {
 
     /// The stages these parameters run, in order: the first graph, then each stage that is on,
     /// the repair and the IQR stage in the order [`Params::outliers_first`] chooses.
+    ///
     /// ```
     /// use condt::{Params, Repair, Stage};
     /// let p = Params::paper().with_outliers_first(true).with_repair(Repair::Off);
@@ -223,6 +229,7 @@ impl Params {
 
     /// Turns `stage` on or off, for the stages with a [`Switch`](crate::stages::Switch)
     /// ([`Stage::switch`]); `false` for any other stage, which is left as it is.
+    ///
     /// ```
     /// use condt::{Params, Stage};
     /// let mut p = Params::default();
@@ -245,6 +252,7 @@ impl Params {
 }
 
 /// Chainable setters, one per field, to spell a pipeline from a preset.
+///
 /// ```
 /// use condt::{Params, Repair};
 /// let p = Params::paper().with_repair(Repair::Needs).with_smooth(true);

@@ -24,6 +24,7 @@ use core::time::Duration;
 
 /// A reconstruction run one step at a time: [`step`](Pipeline::step) runs and reports the next
 /// stage or smoothing pass, [`finish`](Pipeline::finish) the rest; [`reconstruct`] is this loop.
+///
 /// ```
 /// use condt::{Params, Pipeline, Point, StepReport};
 /// let angles = (0..24).map(|k| k as f64 * std::f64::consts::TAU / 24.0);
@@ -118,6 +119,7 @@ enum CurveAssembly {
 
 impl Pipeline {
     /// Triangulates `points` and readies the stages; nothing else runs until `step` or `finish`.
+    ///
     /// # Errors
     /// [`Params::check`]'s error (checked first); as [`triangulate`](crate::triangulate()); for the
     /// Crust, [`Error::TooManyPoints`] when its second triangulation would be too large.
@@ -126,8 +128,10 @@ impl Pipeline {
     }
 
     /// [`Pipeline::new`] on points handed over, freed once triangulated (the stages do without).
+    ///
     /// # Errors
     /// As [`Pipeline::new`].
+    ///
     /// ```
     /// use condt::{Params, Pipeline, Point};
     /// let points = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.5, 1.0)];
@@ -141,8 +145,10 @@ impl Pipeline {
 
     /// [`Pipeline::new_owned`], adding to `inserted` as points are inserted (about every 65,536,
     /// from any thread, up to the number of distinct points) so another thread shows progress.
+    ///
     /// # Errors
     /// As [`Pipeline::new`].
+    ///
     /// ```
     /// use condt::{Params, Pipeline, Point};
     /// use std::sync::atomic::{AtomicUsize, Ordering};
@@ -162,8 +168,10 @@ impl Pipeline {
     }
 
     /// The stages on a triangulation already built, which the result keeps (no smoothing passes).
+    ///
     /// # Errors
     /// [`Params::check`]'s error; for the Crust, [`Error::TooManyPoints`] (as [`Pipeline::new`]).
+    ///
     /// ```
     /// use condt::{triangulate, Params, Pipeline, Point};
     /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from))?;
@@ -231,6 +239,7 @@ impl Pipeline {
     }
 
     /// What the next [`step`](Pipeline::step) runs; `None` once every step has run or one failed.
+    ///
     /// ```
     /// use condt::{Params, Pipeline, Point, Stage, Upcoming};
     /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
@@ -260,6 +269,7 @@ impl Pipeline {
     }
 
     /// Runs the next stage or smoothing pass and reports it; `None` once every step has run.
+    ///
     /// # Errors
     /// As [`triangulate`](crate::triangulate()) when a pass triangulates the moved points (never
     /// in practice: they lie between input points); later steps and `finish` repeat the error.
@@ -303,6 +313,7 @@ impl Pipeline {
     }
 
     /// Runs every step left and gives the result.
+    ///
     /// # Errors
     /// As [`step`](Pipeline::step).
     pub fn finish(mut self) -> Result<Reconstruction, Error> {
@@ -544,8 +555,10 @@ impl Run {
 }
 
 /// Triangulates `points` and reconstructs the curves through them ([`Pipeline::new`] to the end).
+///
 /// # Errors
 /// As [`Pipeline::new`] and [`Pipeline::step`].
+///
 /// ```
 /// use condt::{reconstruct, Params, Point};
 /// // Twelve points on a circle: one closed curve through all of them.
@@ -565,8 +578,10 @@ pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, 
 /// [`reconstruct`] of points handed over and freed once triangulated (16 bytes per point less at
 /// the peak). The result keeps only the positions the stages saw ([`Reconstruction::stage_point`]):
 /// to read the input afterwards, keep the points and call [`reconstruct`].
+///
 /// # Errors
 /// As [`reconstruct`].
+///
 /// ```
 /// use condt::{reconstruct, reconstruct_owned, Params, Point};
 /// let angles = (0..40).map(|k| k as f64 * std::f64::consts::TAU / 40.0);
@@ -583,8 +598,10 @@ pub fn reconstruct_owned(points: Vec<Point>, params: &Params) -> Result<Reconstr
 
 /// Runs the stages on a built triangulation, which the result keeps: [`Pipeline::on_triangulation`]
 /// run to its end.
+///
 /// # Errors
 /// As [`Pipeline::on_triangulation`].
+///
 /// ```
 /// use condt::{reconstruct_triangulation, triangulate, Params, Point};
 /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from))?;

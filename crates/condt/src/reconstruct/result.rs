@@ -21,6 +21,7 @@ use core::time::Duration;
 
 /// Everything a reconstruction computed, stage by stage, in input positions. Exact duplicates
 /// are one point, under its smallest input position ([`Triangulation::vertex`]).
+///
 /// ```
 /// use condt::{reconstruct, Params, Point, Stage};
 /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.1)].map(Point::from);
@@ -50,6 +51,7 @@ pub struct Reconstruction {
 }
 
 /// What the smoothing passes ([`Params::smooth`]) did ([`Reconstruction::smoothing`]).
+///
 /// ```
 /// use condt::{reconstruct, Params, Point};
 /// // A noisy open arc: 30 samples over three quarters of a circle, every other one pushed out
@@ -127,6 +129,7 @@ impl Reconstruction {
     }
 
     /// Each stage that ran and its wall-clock time (zero without `std`), graphs not rebuilt.
+    ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
     /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
@@ -169,6 +172,7 @@ impl Reconstruction {
     }
 
     /// The final edges as [`Reconstruction::edges`] gives them, as the slice kept (for writers).
+    ///
     /// ```
     /// # use condt::{reconstruct, Params, Point};
     /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
@@ -191,6 +195,7 @@ impl Reconstruction {
     }
 
     /// The final degree of input point `index` (duplicates share their point's degree).
+    ///
     /// # Panics
     /// If `index` is not an input position.
     pub fn degree(&self, index: usize) -> usize {
@@ -200,6 +205,7 @@ impl Reconstruction {
     /// Input point `index` as the stages saw it (where smoothing passes moved it, if they did),
     /// which stage drawings show. The input stays the caller's ([`reconstruct`],
     /// [`reconstruct_owned`]): a copy would cost a tenth of the peak (`docs/perf-log.md`).
+    ///
     /// # Panics
     /// If `index` is not an input position.
     pub fn stage_point(&self, index: usize) -> Point {
