@@ -6,9 +6,10 @@
 //! input; it may not touch the triangulation and only removes edges.
 //!
 //! Rule: such a component keeps its edges only when every vertex of it with two edges is separated
-//! ([`SEPARATION`], rule 4's test): a sparse curve is apart from everything at every sample, a
-//! chance chain of outliers lies inside the scatter it came from. Reasons, losses and costs:
-//! docs/condt.md, *Confirming given-back components*. Sequential and deterministic.
+//! ([`SEPARATION`], rule 4's test) from the points left unused and from other given-back
+//! components: a chance chain of outliers lies inside the scatter it came from, a stretch of curve
+//! lies at most beside other curves. Reasons, losses and costs: docs/condt.md, *Confirming
+//! given-back components*. Sequential and deterministic.
 
 use super::local_outliers::SEPARATION;
 use super::Outcome;
@@ -76,9 +77,12 @@ pub(crate) fn confirm_given_back(
         }
         let p = tri.vertex_point(v);
         let longest = longest[slot(v)];
-        // An unused point is its own root, so it counts as outside every component.
+        // Only unused points and other given-back components count as near: an unused point
+        // is its own root with no edge, and a point of a kept curve tells nothing about a scatter.
         let apart = tri.mesh().neighbors(v).all(|w| {
-            root[w.index()] == root[i]
+            let j = w.index();
+            root[j] == root[i]
+                || (degree[j] > 0 && !only_given[root[j] as usize])
                 || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
         });
         dropped[r] = !apart;
@@ -216,6 +220,21 @@ mod tests {
         pts.extend([Point::new(1.75, 3.0), Point::new(1.85, 3.01)]);
         let tri = triangulate(&pts).unwrap();
         assert_eq!(apply(&tri, &given, &[]), None);
+    }
+
+    #[test]
+    fn a_given_back_chain_beside_a_kept_curve_stays() {
+        // A kept curve 0.45 beside the chain, within twice its spacing at every point: the
+        // stretch of an evenly spaced outline that the IQR rule cut, beside the outline's other
+        // side. Kept; the same points left unused make a scatter, and the chain goes.
+        let (mut pts, mut given) = chain();
+        pts.extend((0..14).map(|k| Point::new(0.3 * k as f64, 0.45)));
+        let tri = triangulate(&pts).unwrap();
+        let kept: Vec<[usize; 2]> = (14..27).map(|k| [k, k + 1]).collect();
+        given.extend(&kept);
+        assert_eq!(apply(&tri, &given, &kept), None);
+        let scattered = apply(&tri, &given[..13], &[]).expect("the chain goes");
+        assert!(scattered.is_empty(), "{scattered:?}");
     }
 
     #[test]
