@@ -414,20 +414,34 @@ fn the_temporary_file_is_random_exclusive_and_cannot_be_hijacked() {
     );
 }
 
-/// A run that has prepared its output and waits for its input, then gets `signal`.
+/// A run that has prepared its output and waits for its input, then gets `signal`. The run starts
+/// with the signal's default disposition, whatever the test inherited: started as a background
+/// job of a script, the test process has SIGINT ignored, which the run would keep (see
+/// `ignored_signal_is_left_ignored`) and wait for its input forever.
 fn interrupted(signal: &str, number: i32) {
+    use std::os::unix::process::CommandExt;
     let dir = tempfile::tempdir().unwrap();
     let target = dir.path().join("out.txt");
     fs::write(&target, "previous content\n").unwrap();
-    let mut child = spawn(
-        &[
+    let mut command = Command::new(binary());
+    command
+        .args([
             "triangulate".as_ref(),
             "-".as_ref(),
             "-o".as_ref(),
             target.as_os_str(),
-        ],
-        Stdio::piped(),
-    );
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    // SAFETY: `signal` is async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(move || {
+            libc::signal(number, libc::SIG_DFL);
+            Ok(())
+        });
+    }
+    let mut child = command.spawn().expect("the binary runs");
     // Half an input: the run is still reading.
     let mut stdin = child.stdin.take().unwrap();
     stdin.write_all(b"0 0\n1 0\n").unwrap();
