@@ -19,8 +19,9 @@
 //!    from the rest as from itself, a curve's samples much closer to each other.
 //!
 //! It loses curves and branches of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart
-//! (noisy curves), unless a quarter of the points (docs/condt.md, *The local outlier removal and
-//! real data*). Sequential and deterministic; O(n), edge lengths recomputed, not stored (memory).
+//! (noisy curves), unless rule 4 would remove a quarter of the points or more, when it removes
+//! none ([`OUTLIER_SHARE`]; docs/condt.md, *The local outlier removal and real data*).
+//! Sequential and deterministic; O(n), edge lengths recomputed, not stored (memory).
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
