@@ -39,7 +39,7 @@ pub enum Reason {
     },
     /// Local outlier rule 1: an edge the IQR stage cut between two smooth, regular passages.
     GivenBack,
-    /// Local outlier rule 2: `ratio` times the longest other edge at `vertex`, too long.
+    /// Local outlier rule 2: too long at `vertex`, `ratio` times the longest other edge there.
     LongAt {
         /// The end where it is long (input position).
         vertex: usize,

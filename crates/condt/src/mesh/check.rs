@@ -179,8 +179,8 @@ fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
 
 impl Mesh {
     /// Checks that the arrays describe a triangulated sphere: twins mutual and reversed, no
-    /// repeated corner, every vertex's ring closed and holding all its edges, hull vertices' edges
-    /// to infinity, and Euler's formula.
+    /// triangle repeating a corner or with two infinite ones, every vertex's ring closed and
+    /// holding all its edges, hull vertices' edges to infinity, and Euler's formula.
     ///
     /// ```
     /// use condt::{triangulate, Point};

@@ -1,4 +1,4 @@
-//! Exact geometric predicates.
+//! Exact geometric predicates (y axis up: counter-clockwise is a left turn).
 //!
 //! Owns: every decision about a geometric sign. Nothing else in the crate may compute a sign with
 //! plain floating point, and this module may not depend on the mesh or the triangulator.

@@ -51,7 +51,8 @@ pub(super) struct StageRecord {
 /// in a hundred; a full copy costs 8 bytes per point).
 #[derive(Clone, Debug)]
 pub(super) enum Undo {
-    /// The rule did not apply: the output is the input (so is the first graph recorded).
+    /// The rule did not apply: the output is the input. The first graph, which has no input, is
+    /// recorded so too.
     Unchanged,
     /// The output is the input without the edges at `removed`, plus `appended` edges at the end.
     Delta {

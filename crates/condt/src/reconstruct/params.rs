@@ -63,15 +63,17 @@ pub struct Params {
     /// four points. Rules and constants: `src/stages/local_outliers.rs`.
     pub local_outliers: bool,
     /// After the local outlier removal (only with it; beyond the paper), drop each component made
-    /// only of edges it gave back unless each of its vertices with two edges lies apart by more
-    /// than twice its longest edge: a chance chain among outliers goes, a sparse curve stays.
+    /// only of edges it gave back unless each of its vertices with two edges lies more than twice
+    /// its longest edge from every unused point and other given-back component: a chance chain
+    /// among outliers goes, a sparse curve stays (`src/stages/given_back.rs`).
     pub confirm_given_back: bool,
     /// Close gaps at loose ends (beyond the paper): join two facing across a short gap, two to the
     /// stranded sample they line up through, a crossing's lost arms to it (`src/stages/gaps.rs`).
     pub close_gaps: bool,
     /// Remove components fewer than half of whose points a curve passes smoothly and evenly
     /// (beyond the paper): clumps of outliers, which the local outlier removal keeps as they lie
-    /// apart. Never a quarter of the points with edges; see `src/stages/clumps.rs`.
+    /// apart. It removes nothing when that would remove a quarter or more of the points with
+    /// edges; see `src/stages/clumps.rs`.
     pub clumps: bool,
     /// Join a loose end to the curve it meets where three curves of five points or more, sampled
     /// alike, meet, as on map borders or a T (beyond the paper; `src/stages/junctions.rs`).

@@ -89,7 +89,8 @@ pub struct StageReport<'r> {
     pub stage: Stage,
     /// The graph it left.
     pub graph: Graph<'r>,
-    /// Whether its rule applied (a vertex needed repair, the outlier rule fired); always the first.
+    /// Whether its rule applied (a vertex needed repair, the outlier rule fired); always `true`
+    /// for the first graph.
     pub applied: bool,
     /// Its wall-clock time (zero without `std`).
     pub time: Duration,

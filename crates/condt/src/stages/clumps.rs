@@ -9,9 +9,9 @@
 //! Rule (docs/condt.md, *Clumps*, with measurements and losses): a component that stands apart
 //! (rule 4's test; one that does not is a piece of a noisy band, rule 4's to judge) goes when fewer
 //! than half of its points pass smoothly ([`smooth_and_regular`]), unless the clumps and the
-//! components not apart would hold [`OUTLIER_SHARE`] of the points with edges. Reason for the half:
-//! a curve's other points are its ends, corners and junctions, a minority at any sampling dense
-//! enough for the proximity graph, while a random zig-zag passes smoothly at most one time in
+//! components not apart would hold [`OUTLIER_SHARE`] or more of the points with edges. Reason for
+//! the half: a curve's other points are its ends, corners and junctions, a minority at any sampling
+//! dense enough for the proximity graph, while a random zig-zag passes smoothly at most one time in
 //! three. Sequential; O(n) beyond the union-find.
 
 use super::local_outliers::{
@@ -23,7 +23,8 @@ use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 
-/// `edges` (each once, any order) less the clumps, in order; unchanged if none, or by the guard.
+/// Removes the clumps from `edges` (each once, any order), keeping the rest in order; the outcome
+/// is unchanged when there is none or when the quarter guard ([`OUTLIER_SHARE`]) holds.
 pub(crate) fn remove_clumps(
     tri: &Triangulation,
     edges: &[Edge],

@@ -25,7 +25,8 @@
 //! genuinely open end open: two ends must choose each other, or the same point with each other as
 //! partner; at a crossing both dropped arms must come back (one arm alone at a curve is an open
 //! curve's end, a T); a lone edge (both points loose, as two nearby outliers form) joins only if
-//! both its ends do. All choices are made at once on the input graph; sequential.
+//! both its ends do. All choices are made at once on the graph as it came in, so the result does not
+//! depend on the order in which ends are visited; sequential, the same with `parallel` on or off.
 
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};

@@ -6,10 +6,10 @@
 //! input; it may not touch the triangulation and only removes edges.
 //!
 //! Rule: such a component keeps its edges only when every vertex of it with two edges is separated
-//! ([`SEPARATION`], rule 4's test) from the points left unused and from other given-back
-//! components: a chance chain of outliers lies inside the scatter it came from, a stretch of curve
-//! lies at most beside other curves. Reasons, losses and costs: docs/condt.md, *Confirming
-//! given-back components*. Sequential and deterministic.
+//! ([`SEPARATION`] times its longest edge, rule 4's bound) from the points left unused and from
+//! other given-back components: a chance chain of outliers lies inside the scatter it came from, a
+//! stretch of curve lies at most beside other curves. Reasons, losses and costs: docs/condt.md,
+//! *Confirming given-back components*. Sequential and deterministic.
 
 use super::local_outliers::SEPARATION;
 use super::Outcome;

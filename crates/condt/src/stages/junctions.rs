@@ -11,7 +11,8 @@
 //! with two edges that it faces, within [`GAP_RATIO`] times `c`'s shorter edge, with three branches
 //! of [`MIN_SAMPLES`] points of degree two (`Ends::branch`), straightest ahead of the end among
 //! those that pass (ties by id), and chosen by no other loose end (two make a crossing, gap
-//! closing's case). Choices are made at once on the input graph; sequential.
+//! closing's case). All choices are made at once on the graph as it came in, so the result does not
+//! depend on the order in which ends are visited; sequential, the same with `parallel` on or off.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO};
 use super::local_outliers::MIN_SAMPLES;
@@ -38,7 +39,8 @@ impl Ends<'_> {
         true
     }
 
-    /// Whether the loose end `a` meets the degree-two point `c` at a junction (tests 1 and 2).
+    /// Whether the loose end `a` meets the degree-two point `c` at a junction: `c` faces `a`
+    /// within [`GAP_RATIO`] of its shorter edge, and three branches of [`MIN_SAMPLES`] meet there.
     fn meets_at_junction(&self, a: VertexId, c: VertexId) -> bool {
         if self.graph.degree(c) != 2 || !self.faces(a, c) {
             return false;

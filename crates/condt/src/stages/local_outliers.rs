@@ -1,12 +1,12 @@
 //! Local outlier removal (not in the paper; on by default, off in `Params::paper`), after the IQR
 //! rule and the repair, in either order.
 //!
-//! Owns: four local rules on the graph those stages left. It alone reads an earlier stage's input
-//! (the IQR stage's, via `Step::run`); it may not touch the triangulation and adds no edge absent
-//! from that input.
+//! Owns: four local rules on the graph those stages left. Besides its input it reads the IQR
+//! stage's (via `Step::run`); it may not touch the triangulation and adds no edge absent from it.
 //!
-//! Why: Algorithm 3's threshold is one number for the whole set: nearby outliers are each other's
-//! nearest neighbours, and a sparse component beside a dense one loses every edge once it fires.
+//! Why: Algorithm 3's threshold is one number for the whole set. Nearby outliers are each other's
+//! nearest neighbours, so their edges are short and the global rule keeps them; a sparse
+//! component beside a dense one loses every edge once the rule fires.
 //! The rules, in order, compare lengths by ratios only (scale-free):
 //! 1. **Give back** an edge the IQR stage cut along a smooth, regular passage ([`passage`]), which
 //!    an outlier (one edge, or two at a sharp angle or of unequal lengths) does not form.
@@ -15,12 +15,13 @@
 //!    kept by Algorithm 2's union), or at each end with others (an outlier joined to an open
 //!    curve's end).
 //! 3. **Drop short spurs** ([`short_spurs`]): outliers hanging off a curve, unseen by rule 4.
-//! 4. **Keep separated components** ([`separated_components`]): a clump of outliers is about as far
-//!    from the rest as from itself, a curve's samples much closer to each other.
+//! 4. **Keep separated components** ([`separated_components`]): a clump's points are about as far
+//!    from the rest as from each other, a curve's samples much closer to each other.
 //!
-//! It loses curves and branches of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart
-//! (noisy curves), unless rule 4 would remove a quarter of the points or more, when it removes
-//! none ([`OUTLIER_SHARE`]; docs/condt.md, *The local outlier removal and real data*).
+//! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
+//! curves), unless rule 4 would remove a quarter or more of the points with edges, when it
+//! removes none ([`OUTLIER_SHARE`]; docs/condt.md, *The local outlier removal and real data*);
+//! branches of fewer than [`MIN_SAMPLES`] points at a junction (rule 3) go regardless.
 //! Sequential and deterministic; O(n), edge lengths recomputed, not stored (memory).
 
 use super::Outcome;
@@ -51,8 +52,8 @@ pub(crate) const SEPARATION: f64 = 2.0;
 /// chance alignment of outliers becomes rare.
 pub(crate) const MIN_SAMPLES: usize = 5;
 
-/// Rule 4 removes nothing when it would remove this share of the points with edges. Reason: the
-/// quartiles Algorithm 3 stands on break down beyond a quarter of contamination.
+/// Rule 4 removes nothing when it would remove this share or more of the points with edges. Reason:
+/// the quartiles Algorithm 3 stands on break down beyond a quarter of contamination.
 pub(crate) const OUTLIER_SHARE: f64 = 0.25;
 
 /// Which rules run ([`Rules::ALL`] is the stage); the tests switch them one by one.
@@ -151,7 +152,8 @@ pub(crate) fn remove_local_outliers(
 pub(crate) enum LocalRule {
     /// Rule 1 gave it back.
     GaveBack,
-    /// Rule 2: long at `vertex`, `ratio` times the longest other edge there (the larger if both).
+    /// Rule 2 dropped it: long at `vertex`, `ratio` times the longest other edge there (if long
+    /// at both ends, the end with the larger ratio).
     Long { vertex: VertexId, ratio: f64 },
     /// Rule 3 dropped it with its short spur.
     Spur,
@@ -598,7 +600,8 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], ke
     }
 }
 
-/// Rule 4's guard: whether the components not kept hold [`OUTLIER_SHARE`] of the points with edges.
+/// Rule 4's guard: whether the components not kept hold at least [`OUTLIER_SHARE`] of the points
+/// with edges.
 fn too_many_dropped(root: &[u32], profile: &Profile, kept: &[bool]) -> bool {
     let (mut with_edges, mut dropped) = (0usize, 0usize);
     for (i, &r) in root.iter().enumerate() {

@@ -305,8 +305,9 @@ impl Step {
     /// Runs the stage on `edges` (each edge once, any order); the parameter must have passed
     /// [`Step::check`]. Only [`Step::LocalOutliers`] and [`Step::ConfirmGivenBack`] read `earlier`.
     /// `graph`, when given, is the curve graph of `edges` (over every point id) that the previous
-    /// stage handed on ([`Outcome::graph`]): stages that read one take it instead of building one;
-    /// the others drop it first, so it never adds to their memory.
+    /// stage handed on ([`Outcome::graph`]): the clump stage, gap closing and junctions take it
+    /// instead of building one, the given-back check hands it on when it returns at once, and the
+    /// others (the local outlier removal too) drop it first, so it never adds to their memory.
     pub(crate) fn run(
         self,
         tri: &Triangulation,
@@ -346,7 +347,8 @@ impl Step {
 pub(crate) struct Outcome {
     /// The new edge list, or `None` when the rule did not apply and the input stands (stored once).
     pub(crate) edges: Option<Vec<Edge>>,
-    /// The output's curve graph (the input's when `edges` is `None`), if the stage had it at hand.
+    /// The output's curve graph (the input's when `edges` is `None`), if the stage had it at hand:
+    /// building one costs about as much as a light stage, and later stages and the curves read one.
     pub(crate) graph: Option<CurveGraph>,
 }
 

@@ -176,7 +176,8 @@ impl EndChoice {
 /// vertices, so more ranges cost memory traffic that more threads do not repay.
 const MAX_SWEEP_RANGES: usize = 4;
 
-/// The proximity graph, each edge once, listed by the vertex that kept it; the same for `parallel`.
+/// The proximity graph, each edge once, listed by the vertex that kept it; the same with `parallel`
+/// on or off.
 pub(crate) fn proximity_graph(
     tri: &Triangulation,
     uniformity: Uniformity,

@@ -63,9 +63,10 @@ pub enum Repair {
     /// back to [`Repair::Paper`]'s choice elsewhere.
     CrossingAware,
     /// Needs before score: a non-manifold vertex keeps a crossing whole, else the best pair of
-    /// edges its neighbours of degree <= 2 need, else Algorithm 2's choice; an edge between two
-    /// non-manifold vertices needs both. Keeps the sharp tips and sampled crossings
-    /// [`Repair::Paper`] cuts.
+    /// edges its neighbours of degree <= 2 need (edges they would dangle without, at most 1.3
+    /// times the vertex's second shortest edge), else Algorithm 2's choice; an edge between two
+    /// non-manifold vertices survives only if both keep it. Keeps the sharp tips and sampled
+    /// crossings [`Repair::Paper`] cuts (`docs/condt.md`, *Needs before score*).
     #[default]
     Needs,
 }

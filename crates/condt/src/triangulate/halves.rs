@@ -9,7 +9,9 @@
 //! in its own range of one [`MeshArrays`]. The cut depends only on the set of points, so one
 //! thread builds what two do. Whatever cannot go as planned (a half with no triangle; a stitch
 //! that does not add up, which exact predicates rule out but the code does not assume) returns
-//! `None`, and the caller builds the set in one piece: the reference this must equal.
+//! `None`, and the caller builds the set in one piece: the reference, whose triangles this must
+//! give in general position (where cocircular points allow several, a valid Delaunay
+//! triangulation with the same count).
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -19,7 +21,8 @@ use crate::threads::both;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 
-/// Smaller sets are built in one piece (in under 20 ms), in sequential and parallel runs alike.
+/// Smaller sets are built in one piece: it takes under 20 ms, and a second thread gains little.
+/// The same bound holds in sequential and parallel runs, so both give one result.
 pub(crate) const SPLIT_MIN: usize = 1 << 16;
 
 /// Buckets of x the cut falls between: it is within 1/1024 of the span of the median.

@@ -343,7 +343,8 @@ fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<
 }
 
 /// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
-/// merged, or `None` when they make no triangle: the reference [`halves`] must equal. Reports
+/// merged, or `None` when they make no triangle: the reference [`halves`] must match (see its
+/// module doc for cocircular points). Reports
 /// to `progress` as [`insert::build_into`] does.
 fn build<K: Kernel>(
     points: &[Point],

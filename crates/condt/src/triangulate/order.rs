@@ -165,8 +165,9 @@ pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u3
     }
 }
 
-/// The sets (whole, before a cut) from which crowded cells are reordered: below it they cost
-/// little, and smaller sets (every shipped data set) keep their cocircular choices.
+/// The sets (whole, before a cut) from which crowded cells are reordered: below it a crowded
+/// cell costs little, and smaller sets (every shipped data set) keep their earlier order and,
+/// with it, their triangulation of cocircular points.
 pub(crate) const REORDER_FROM: usize = 1 << 16;
 
 /// In a set of [`REORDER_FROM`] points or more, a grid cell this full (a dense cluster, far points

@@ -17,7 +17,8 @@ const NEED_RATIO: f64 = 1.3;
 /// Pairs `(angle, a, b)` with `a < b`: [`choice`]'s scratch space, reused from vertex to vertex.
 pub(super) type Pairs = Vec<(f64, VertexId, VertexId)>;
 
-/// What the non-manifold vertex `v` keeps (unused slots [`VertexId::INFINITE`]); `degree`: all.
+/// What the non-manifold vertex `v` keeps ([`VertexId::INFINITE`] in unused slots); `around` is
+/// its adjacency, `degree` every vertex's degree in the graph being repaired.
 pub(super) fn choice(
     tri: &Triangulation,
     v: VertexId,
@@ -93,7 +94,8 @@ fn needed_pair(
 }
 
 /// Step 1 of [`super`]'s documentation: the pairing of two disjoint pairs above [`STRAIGHT_ANGLE`]
-/// whose less straight pair is straightest (ties: the other pair, then ids), or `None`.
+/// whose less straight pair is straightest (ties: the straighter other pair, then smaller ids),
+/// or `None`.
 fn crossing(
     tri: &Triangulation,
     v: VertexId,
