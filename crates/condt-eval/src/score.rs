@@ -25,8 +25,9 @@
 //! the same numbers as on one). Their cost on a truth of `n` long segments that cross one
 //! another, as a chain through random points does, grows as `n^(4/3)`: exact answers for `n`
 //! points among `n` lines in less would decide Hopcroft's problem (does a point lie on a line)
-//! faster than its best known bound. What the strips win is the constant: a chain of 2M edges
-//! through random points is scored against another in seconds.
+//! faster than its best known bound. What the strips win is the constant: scored against another
+//! chain, a chain of 2M edges through random points takes about 12 s on two busy cores, where
+//! cells of direction classes took 60 s on a quiet machine.
 
 use crate::geometry::Point;
 use alloc::vec;
@@ -509,13 +510,19 @@ impl Index {
 
     /// [`Index::nearest_squared`] of every query, found in an order of the index's choosing.
     fn nearest_squared_all(&self, queries: &[Point]) -> Vec<f64> {
-        let mut best: Vec<f64> = queries
-            .iter()
-            .map(|&p| {
-                self.short
-                    .nearest_squared(p, f64::INFINITY, Some(self.margin))
-            })
-            .collect();
+        let short = |&p: &Point| {
+            self.short
+                .nearest_squared(p, f64::INFINITY, Some(self.margin))
+        };
+        #[cfg(feature = "parallel")]
+        let mut best: Vec<f64> = if self.parallel {
+            use rayon::prelude::*;
+            queries.par_iter().map(short).collect()
+        } else {
+            queries.iter().map(short).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let mut best: Vec<f64> = queries.iter().map(short).collect();
         self.strips
             .nearest_squared_all(queries, &mut best, &self.long, self.margin, self.parallel);
         best
@@ -723,9 +730,12 @@ impl LongSegments {
 /// Strips of [`Strips`] per cube root of the number of long segments, slope classes per square
 /// root of the segments a query would otherwise look at, and entries per bucket of a class:
 /// measured on the chain through random points at 100k, 1M and 2M edges.
-const STRIPS_PER_CUBE_ROOT: f64 = 2.0;
+const STRIPS_PER_CUBE_ROOT: f64 = 2.5;
 const CLASSES_PER_SQUARE_ROOT: f64 = 1.0;
 const ENTRIES_PER_BUCKET: f64 = 1.0;
+
+/// The fewest entries a window of [`Strips`] looks at.
+const SCANNED: usize = 4;
 
 /// The first reach of a query's windows in [`Strips`], in mean spacings of a strip's lines.
 const GUESS_PER_SPACING: f64 = 4.0;
@@ -752,8 +762,8 @@ const QUERY_BINS: usize = 256;
 /// balances the two, for `n^(4/3)` in all. No algorithm is known that does better on `n` lines
 /// and `n` points: distance zero would decide Hopcroft's problem (does a point lie on a line),
 /// whose best known bound is `n^(4/3)`. On random input the constant is what can be won, and the
-/// strips keep it small (4 times below cells of [`Classes`] around their centres, each with a
-/// sorted list per class): each segment is stored once per strip it crosses, not once per cell;
+/// strips keep it small (about 4 times below cells of [`Classes`] around their centres, each with
+/// a sorted list per class, on one thread): each segment is stored once per strip it crosses, not once per cell;
 /// a class is rebuilt from the last strip's (nearly in order) by counting into buckets of its
 /// key, with no sort, and a window is found in the buckets, with no binary search; a class is
 /// searched by all the strip's queries while it is in the cache; and an entry is tested by the
@@ -797,11 +807,20 @@ impl LongStrips {
             .search(queries, best, &mut unsure, margin, parallel);
         self.flat
             .search(queries, best, &mut unsure, margin, parallel);
-        for ((&p, d), &unsure) in queries.iter().zip(best.iter_mut()).zip(&unsure) {
+        let finish = |((&p, d), &unsure): ((&Point, &mut f64), &bool)| {
             if unsure {
                 *d = all.nearest_squared(p, *d, margin);
             }
+        };
+        #[cfg(feature = "parallel")]
+        if parallel {
+            use rayon::prelude::*;
+            let queries = queries.par_iter().zip(best.par_iter_mut());
+            queries.zip(unsure.par_iter()).for_each(finish);
+            return;
         }
+        let queries = queries.iter().zip(best.iter_mut());
+        queries.zip(&unsure).for_each(finish);
     }
 }
 
@@ -1057,6 +1076,7 @@ impl Strips {
         let mut incoming: Vec<Slanted> = Vec::new();
         let mut added = 0;
         let mut pending: Vec<Pending> = Vec::new();
+        let mut placed: Vec<(u32, f64)> = Vec::new();
         for r in rows {
             if row_starts[r] == row_starts[r + 1] {
                 continue; // the segments that entered meanwhile enter at the next strip built
@@ -1116,15 +1136,16 @@ impl Strips {
                         .map(|i| (table.keys[i][1], table.ends[i], table.lasts[i]))
                         .chain(new.iter().map(|s| (s.slope, s.ends, s.strips[1])))
                         .filter(|&(_, _, last)| last as usize >= r)
-                        .map(|(slope, ends, last)| {
-                            let a = self.frame(ends[0]);
-                            let key = a.x + (y - a.y) * slope;
-                            (self.bucket(key), [key, slope], ends, last)
-                        })
                 };
+                // Counted into buckets of the key, then placed.
+                placed.clear();
                 counts.iter_mut().for_each(|n| *n = 0);
-                for (b, ..) in live() {
+                for (slope, ends, _) in live() {
+                    let a = self.frame(ends[0]);
+                    let key = a.x + (y - a.y) * slope;
+                    let b = self.bucket(key);
                     counts[b + 1] += 1;
+                    placed.push((b as u32, key));
                 }
                 let base = next.keys.len();
                 for b in 0..nb {
@@ -1132,10 +1153,10 @@ impl Strips {
                     next_starts[c * nb + b] = (base + counts[b] as usize) as u32;
                 }
                 next.resize(base + counts[nb] as usize);
-                for (b, key, ends, last) in live() {
-                    let i = base + counts[b] as usize;
-                    (next.keys[i], next.ends[i], next.lasts[i]) = (key, ends, last);
-                    counts[b] += 1;
+                for ((slope, ends, last), &(b, key)) in live().zip(&placed) {
+                    let i = base + counts[b as usize] as usize;
+                    (next.keys[i], next.ends[i], next.lasts[i]) = ([key, slope], ends, last);
+                    counts[b as usize] += 1;
                 }
                 next_starts[(c + 1) * nb] = next.keys.len() as u32;
                 let class = Class {
@@ -1194,7 +1215,10 @@ impl Class<'_> {
         let bucket = |x: f64| self.strips.bucket(x);
         let lo = bucket(target - spread - reach);
         let hi = bucket(target + spread + reach);
-        let range = self.starts[lo] as usize..self.starts[hi + 1] as usize;
+        // At least `SCANNED` entries, so that the loop runs the same number of times for most
+        // windows (the branch predicted): the ones after the window are segments too.
+        let (first, end) = (self.starts[lo] as usize, self.starts[hi + 1] as usize);
+        let range = first..end.max((first + SCANNED).min(self.table.keys.len()));
         let keys = self.table.keys[range.clone()].iter();
         for (&[key, slope], i) in keys.zip(range) {
             let offset = query.p.x - (key + slope * query.dy);
