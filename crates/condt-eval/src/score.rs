@@ -17,11 +17,17 @@
 //!   computed on the points scaled by a power of two, so they are the same at every such scale,
 //!   up to ±`f64::MAX` and down to the smallest normal numbers.
 //!
-//! The distances are exact nearest-segment distances (a bounding-volume hierarchy over the short
-//! truth segments, direction classes in a grid of cells over the long ones), for every output
-//! edge however many are wrong; the suite's scorer samples at most 10,000 wrong edges and stops
-//! a query within 1 % of the answer, so on outputs with more wrong edges than that its RMS is an
-//! estimate of this one.
+//! The distances are exact nearest-segment distances, for every output edge however many are
+//! wrong; the suite's scorer samples at most 10,000 wrong edges and stops a query within 1 % of
+//! the answer, so on outputs with more wrong edges than that its RMS is an estimate of this one.
+//! A bounding-volume hierarchy holds the short truth segments, and strips the long ones, with
+//! classes of slope in each strip (`LongStrips`, on rayon's threads with the feature `parallel`,
+//! the same numbers as on one). Their cost on a truth of `n` long segments that cross one
+//! another, as a chain through random points does, grows as `n^(4/3)`: exact answers for `n`
+//! points among `n` lines in less would decide Hopcroft's problem (does a point lie on a line)
+//! faster than its best known bound. What the strips win is the constant: scored against another
+//! chain, a chain of 2M edges through random points takes about 12 s on two busy cores, where
+//! cells of direction classes took 60 s on a quiet machine.
 
 use crate::geometry::Point;
 use alloc::vec;
@@ -457,15 +463,17 @@ fn widened(best: f64, margin: f64) -> f64 {
 }
 
 /// The nearest-segment search of the distances: short segments in a [`SegmentTree`], whose
-/// boxes are small, long ones in [`LongSegments`] and [`LongGrid`], where boxes would overlap
+/// boxes are small, long ones in [`LongSegments`] and [`LongStrips`], where boxes would overlap
 /// everywhere (a chain through random points in a random order made every query visit most of
 /// the tree). Every part skips only what is provably not nearer (see [`widened`]), so the answer
 /// is the minimum of [`segment_distance_squared`] over all segments, whatever the split.
 struct Index {
     short: SegmentTree,
     long: LongSegments,
-    grid: LongGrid,
+    strips: LongStrips,
     margin: f64,
+    /// Whether [`LongStrips`] searches on rayon's threads.
+    parallel: bool,
 }
 
 impl Index {
@@ -485,9 +493,10 @@ impl Index {
         }
         Index {
             short: SegmentTree::from_ends(short),
-            grid: LongGrid::new(&long, size),
+            strips: LongStrips::new(&long, size),
             long: LongSegments::new(long, Point::new(size / 2.0, size / 2.0)),
             margin: RELATIVE_SLACK * size + 1e-150,
+            parallel: cfg!(feature = "parallel"),
         }
     }
 
@@ -501,15 +510,21 @@ impl Index {
 
     /// [`Index::nearest_squared`] of every query, found in an order of the index's choosing.
     fn nearest_squared_all(&self, queries: &[Point]) -> Vec<f64> {
-        let mut best: Vec<f64> = queries
-            .iter()
-            .map(|&p| {
-                self.short
-                    .nearest_squared(p, f64::INFINITY, Some(self.margin))
-            })
-            .collect();
-        self.grid
-            .nearest_squared_all(queries, &mut best, &self.long, self.margin);
+        let short = |&p: &Point| {
+            self.short
+                .nearest_squared(p, f64::INFINITY, Some(self.margin))
+        };
+        #[cfg(feature = "parallel")]
+        let mut best: Vec<f64> = if self.parallel {
+            use rayon::prelude::*;
+            queries.par_iter().map(short).collect()
+        } else {
+            queries.iter().map(short).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let mut best: Vec<f64> = queries.iter().map(short).collect();
+        self.strips
+            .nearest_squared_all(queries, &mut best, &self.long, self.margin, self.parallel);
         best
     }
 }
@@ -650,25 +665,8 @@ impl Classes<'_> {
     }
 }
 
-/// Sorts `entries`, whose group `g` holds `entries[starts[g]..starts[g + 1]]`, each group by
-/// key, into `keys` and `ends`.
-fn sort_groups(
-    starts: &[usize],
-    entries: &mut [(f64, [Point; 2])],
-    keys: &mut Vec<f64>,
-    ends: &mut Vec<[Point; 2]>,
-) {
-    for g in starts.windows(2) {
-        entries[g[0]..g[1]].sort_unstable_by(|s, t| s.0.total_cmp(&t.0));
-    }
-    keys.clear();
-    keys.extend(entries.iter().map(|e| e.0));
-    ends.clear();
-    ends.extend(entries.iter().map(|e| e.1));
-}
-
 /// All the long segments in [`Classes`] around one centre, `n^(1/3)` classes for `n` segments:
-/// the search of a single query, and of the queries [`LongGrid`] leaves.
+/// the search of a single query, and of the queries [`LongStrips`] leaves.
 struct LongSegments {
     centre: Point,
     width: f64,
@@ -729,246 +727,538 @@ impl LongSegments {
     }
 }
 
-/// Cells of [`LongGrid`] along a side per cube root of the number of segments, and classes of a
-/// cell per square root of its segments: measured on the chain through random points.
-const CELLS_PER_CUBE_ROOT: f64 = 1.0;
-const CLASSES_PER_SQUARE_ROOT: f64 = 0.5;
+/// Strips of [`Strips`] per cube root of the number of long segments, slope classes per square
+/// root of the segments a query would otherwise look at, and entries per bucket of a class:
+/// measured on the chain through random points at 100k, 1M and 2M edges.
+const STRIPS_PER_CUBE_ROOT: f64 = 2.5;
+const CLASSES_PER_SQUARE_ROOT: f64 = 1.0;
+const ENTRIES_PER_BUCKET: f64 = 1.0;
 
-/// The most cells of [`LongGrid`] along a side.
-const MAX_CELLS: usize = 1024;
+/// The fewest entries a window of [`Strips`] looks at.
+const SCANNED: usize = 4;
 
-/// The long segments in a square grid of cells, each cell with [`Classes`] around its own
-/// centre over the segments that pass within an eighth of a cell of it; the queries are
-/// answered cell by cell, a row of cells built at a time.
+/// The first reach of a query's windows in [`Strips`], in mean spacings of a strip's lines.
+const GUESS_PER_SPACING: f64 = 4.0;
+
+/// The most strips of [`Strips`], and the most buckets of one of its classes.
+const MAX_STRIPS: usize = 4096;
+const MAX_BUCKETS: usize = 1 << 16;
+
+/// How far beyond its strip a strip's segments reach at least, in strip heights.
+const REACH_PER_STRIP: f64 = 1.0 / 16.0;
+
+/// Bins of the queries along a strip: a strip's queries are answered bin by bin, so that the
+/// windows they look at in each class move along the class's entries.
+const QUERY_BINS: usize = 256;
+
+/// The long segments in two [`Strips`]: the steep ones (`|dy| >= |dx|`) in horizontal strips,
+/// the others in vertical ones (the same search with `x` and `y` exchanged).
 ///
-/// Why: [`LongSegments`] alone prunes by the class's angle times the query's distance from
-/// its centre, so on `n` segments through random points a query looks at `n^(2/3)` of them.
-/// Around a cell's centre that distance is at most a cell's size, and a cell of side `s` holds
-/// about `n s` segments (each is stored once per cell it crosses, `n / s` pieces in all), of
-/// which a query looks at about `sqrt(n s)` with as many classes: `s ~ n^(-1/3)` balances the
-/// two, for `n^(4/3)` in all. No algorithm is known that does better on `n` lines and `n`
-/// points: distance zero would decide Hopcroft's problem (does a point lie on a line), whose
-/// best known bound is `n^(4/3)`. Storing each segment in every cell it crosses at a finer
-/// grid, or searching a finer tree of boxes, costs `n^(3/2)`.
+/// Why: [`LongSegments`] alone prunes by the class's angle times the query's distance from its
+/// centre, so on `n` segments through random points a query looks at `n^(2/3)` of them. In a
+/// strip of height `h` that distance is at most `h / 2` across the strip: a strip holds about
+/// `m = n / 3` pieces of segments, of which a query with `k` classes of slope looks at about
+/// `k + m h / k`, `sqrt(m h)` at best; the strips hold `n / h` pieces in all. `h ~ n^(-1/3)`
+/// balances the two, for `n^(4/3)` in all. No algorithm is known that does better on `n` lines
+/// and `n` points: distance zero would decide Hopcroft's problem (does a point lie on a line),
+/// whose best known bound is `n^(4/3)`. On random input the constant is what can be won, and the
+/// strips keep it small (about 4 times below cells of [`Classes`] around their centres, each with
+/// a sorted list per class, on one thread): each segment is stored once per strip it crosses, not once per cell;
+/// a class is rebuilt from the last strip's (nearly in order) by counting into buckets of its
+/// key, with no sort, and a window is found in the buckets, with no binary search; a class is
+/// searched by all the strip's queries while it is in the cache; and an entry is tested by the
+/// offset of its line before its ends are read.
 ///
-/// A query whose best distance might be beaten by a segment that misses its cell's margin (near
+/// A query whose best distance might be beaten by a segment that misses its strip's margin (near
 /// an empty part of the box) is finished by [`LongSegments`], so the answer is exact whatever the
 /// layout.
-struct LongGrid {
-    cells: usize,
-    /// Side of a cell.
-    side: f64,
-    /// How far beyond its cell a cell's segments reach at least.
-    reach: f64,
-    /// The segments with their direction (see [`direction`]) and the first and last rows of
-    /// cells they are in, by first row.
-    segments: Vec<Spanning>,
+struct LongStrips {
+    steep: Strips,
+    flat: Strips,
 }
 
-struct Spanning {
-    ends: [Point; 2],
-    turn: f64,
-    normal: Point,
-    rows: [usize; 2],
-}
-
-impl LongGrid {
-    /// The grid over `segments`, whose coordinates lie in `[0, size]`.
-    fn new(segments: &[[Point; 2]], size: f64) -> LongGrid {
-        let cells = ((libm::cbrt(segments.len() as f64) * CELLS_PER_CUBE_ROOT) as usize)
-            .clamp(1, MAX_CELLS);
-        let side = size / cells as f64;
-        let reach = side / 8.0;
-        let mut grid = LongGrid {
-            cells,
-            side,
-            reach,
-            segments: Vec::with_capacity(segments.len()),
-        };
-        for &[a, b] in segments {
-            let (turn, normal) = direction(a, b);
-            let rows = [
-                grid.cell_of(a.y.min(b.y) - 2.0 * reach),
-                grid.cell_of(a.y.max(b.y) + 2.0 * reach),
-            ];
-            grid.segments.push(Spanning {
-                ends: [a, b],
-                turn,
-                normal,
-                rows,
-            });
+impl LongStrips {
+    /// The strips over `segments`, whose coordinates lie in `[0, size]`.
+    fn new(segments: &[[Point; 2]], size: f64) -> LongStrips {
+        let (steep, flat): (Vec<[Point; 2]>, Vec<[Point; 2]>) = segments
+            .iter()
+            .partition(|[a, b]| (b.y - a.y).abs() >= (b.x - a.x).abs());
+        let count = ((libm::cbrt(segments.len() as f64) * STRIPS_PER_CUBE_ROOT) as usize)
+            .clamp(1, MAX_STRIPS);
+        LongStrips {
+            steep: Strips::new(&steep, size, count, false),
+            flat: Strips::new(&flat, size, count, true),
         }
-        grid.segments.sort_by_key(|s| s.rows[0]);
-        grid
-    }
-
-    /// The row (or column) of cells of the coordinate `v`, clamped to the grid.
-    fn cell_of(&self, v: f64) -> usize {
-        ((v / self.side).max(0.0) as usize).min(self.cells - 1)
     }
 
     /// Lowers each `best[i]` to the squared distance from `queries[i]` to the nearest segment
-    /// if one is nearer, finishing with `all` (the same segments) where the grid cannot tell.
+    /// if one is nearer, finishing with `all` (the same segments) where the strips cannot tell;
+    /// on rayon's threads with `parallel`, with the same answers.
     fn nearest_squared_all(
         &self,
         queries: &[Point],
         best: &mut [f64],
         all: &LongSegments,
         margin: f64,
+        parallel: bool,
+    ) {
+        let mut unsure = vec![false; queries.len()];
+        self.steep
+            .search(queries, best, &mut unsure, margin, parallel);
+        self.flat
+            .search(queries, best, &mut unsure, margin, parallel);
+        let finish = |((&p, d), &unsure): ((&Point, &mut f64), &bool)| {
+            if unsure {
+                *d = all.nearest_squared(p, *d, margin);
+            }
+        };
+        #[cfg(feature = "parallel")]
+        if parallel {
+            use rayon::prelude::*;
+            let queries = queries.par_iter().zip(best.par_iter_mut());
+            queries.zip(unsure.par_iter()).for_each(finish);
+            return;
+        }
+        let queries = queries.iter().zip(best.iter_mut());
+        queries.zip(&unsure).for_each(finish);
+    }
+}
+
+/// Segments whose direction is nearer the `y` axis than the `x` axis (in their frame: given, or
+/// with `x` and `y` exchanged), in horizontal strips: in each strip, classes of equal range of
+/// slope `dx / dy`, and in each class the segments by the `x` of their line at the strip's
+/// middle (their key), in buckets of equal width. A query's distance to a segment is at least
+/// the horizontal offset of the segment's line over `sqrt(1 + slope^2)` (at most `sqrt(2)`), and
+/// within a class that offset
+/// is, up to the class's range of slope times the query's height over the middle, the
+/// difference between the query's `x` moved along the class's middle slope and the key: each
+/// class is searched in the buckets of that window.
+struct Strips {
+    transposed: bool,
+    count: usize,
+    height: f64,
+    /// How far beyond its strip a strip's segments reach at least.
+    reach: f64,
+    classes: usize,
+    /// Bound on the difference between a segment's slope and its class's middle slope.
+    width: f64,
+    /// Buckets of a class, and the inverse of their width (the first starts at 0).
+    buckets: usize,
+    inverse: f64,
+    /// The last bucket, as a float.
+    last: f64,
+    /// The reach of a line's offset a query's windows are first searched with: a few times the
+    /// mean offset of the nearest line.
+    guess: f64,
+    /// The segments by first strip.
+    segments: Vec<Slanted>,
+}
+
+/// The entries of a strip of [`Strips`]: the key (the `x` of its line at the strip's middle, in
+/// the frame) and slope of each, its ends and its last strip.
+#[derive(Default)]
+struct Table {
+    keys: Vec<[f64; 2]>,
+    ends: Vec<[Point; 2]>,
+    lasts: Vec<u32>,
+}
+
+impl Table {
+    fn clear(&mut self) {
+        self.keys.clear();
+        self.ends.clear();
+        self.lasts.clear();
+    }
+
+    fn resize(&mut self, len: usize) {
+        self.keys.resize(len, [0.0; 2]);
+        self.ends.resize(len, [Point::new(0.0, 0.0); 2]);
+        self.lasts.resize(len, 0);
+    }
+}
+
+/// A segment of [`Strips`], as it moves from strip to strip.
+#[derive(Copy, Clone)]
+struct Slanted {
+    /// `dx / dy` in the frame, in `[-1, 1]` (0 for a segment of length zero).
+    slope: f64,
+    /// The ends as given, for the distance.
+    ends: [Point; 2],
+    class: u32,
+    /// First and last strips it is in.
+    strips: [u32; 2],
+}
+
+impl Strips {
+    /// The steep `segments` (in the frame), whose coordinates lie in `[0, size]`, in `count`
+    /// strips.
+    fn new(segments: &[[Point; 2]], size: f64, count: usize, transposed: bool) -> Strips {
+        // Entries are counted in `u32`: 2^32 segments would take 64 GiB of ends.
+        assert!(segments.len() < u32::MAX as usize, "too many segments");
+        let size = if size > 0.0 { size } else { 1.0 };
+        let height = size / count as f64;
+        let mut strips = Strips {
+            transposed,
+            count,
+            height,
+            reach: height * REACH_PER_STRIP,
+            classes: 1,
+            width: 0.0,
+            buckets: 1,
+            inverse: 0.0,
+            last: 0.0,
+            guess: 0.0,
+            segments: Vec::with_capacity(segments.len()),
+        };
+        let mut pieces = 0;
+        for &ends in segments {
+            let [a, b] = ends.map(|p| strips.frame(p));
+            let dy = b.y - a.y;
+            let slope = if dy == 0.0 { 0.0 } else { (b.x - a.x) / dy };
+            let reach = 2.0 * strips.reach;
+            let (first, last) = (
+                strips.strip_of(a.y.min(b.y) - reach),
+                strips.strip_of(a.y.max(b.y) + reach),
+            );
+            pieces += last - first + 1;
+            strips.segments.push(Slanted {
+                slope,
+                ends,
+                class: 0,
+                strips: [first as u32, last as u32],
+            });
+        }
+        // A query looks at `k` windows, with `m h / (2 k)` entries in all on average: `m` the
+        // pieces in a strip, spread over `size`, and a window of `2 |dy| / k` at a height `dy`
+        // of `h / 4` on average.
+        let per_strip = pieces as f64 / count as f64;
+        let examined = per_strip * height / (2.0 * size);
+        strips.classes =
+            ((libm::sqrt(examined) * CLASSES_PER_SQUARE_ROOT) as usize).clamp(1, MAX_CLASSES);
+        let k = strips.classes;
+        strips.width = (1.0 + RELATIVE_SLACK) / k as f64 + 1e-12;
+        for s in &mut strips.segments {
+            s.class = class_of((s.slope + 1.0) / 2.0, k) as u32;
+        }
+        strips.segments.sort_by_key(|s| s.strips[0]);
+        let per_class = (per_strip / k as f64).max(1.0);
+        strips.buckets = ((per_class / ENTRIES_PER_BUCKET) as usize).clamp(1, MAX_BUCKETS);
+        strips.inverse = strips.buckets as f64 / size;
+        strips.last = (strips.buckets - 1) as f64;
+        strips.guess = GUESS_PER_SPACING * size / per_strip.max(1.0);
+        strips
+    }
+
+    /// `p` in the frame of the strips.
+    fn frame(&self, p: Point) -> Point {
+        if self.transposed {
+            Point::new(p.y, p.x)
+        } else {
+            p
+        }
+    }
+
+    /// The strip of the coordinate `v`, clamped to the strips.
+    fn strip_of(&self, v: f64) -> usize {
+        ((v / self.height).max(0.0) as usize).min(self.count - 1)
+    }
+
+    /// The bucket of the key `x`, clamped to the buckets: non-decreasing in `x`.
+    fn bucket(&self, x: f64) -> usize {
+        // Clamped as a float, the conversion needs no saturation of its own.
+        (x * self.inverse).max(0.0).min(self.last) as usize
+    }
+
+    /// Middle slope of class `c`.
+    fn middle(&self, c: usize) -> f64 {
+        (2 * c + 1) as f64 / self.classes as f64 - 1.0
+    }
+
+    /// Lowers `best` as [`LongStrips::nearest_squared_all`] does, over these segments, and marks
+    /// as `unsure` the queries a segment outside the strips might be nearer to.
+    fn search(
+        &self,
+        queries: &[Point],
+        best: &mut [f64],
+        unsure: &mut [bool],
+        margin: f64,
+        parallel: bool,
     ) {
         if self.segments.is_empty() {
             return;
         }
-        let g = self.cells;
-        // The queries by cell, row by row.
-        let cell = |p: Point| self.cell_of(p.y) * g + self.cell_of(p.x);
-        let mut starts = vec![0usize; g * g + 1];
+        // The queries by strip, and in a strip by bin along it.
+        let bins = QUERY_BINS;
+        let key = |p: Point| {
+            let p = self.frame(p);
+            let bin = ((p.x * self.inverse / self.buckets as f64 * bins as f64).max(0.0) as usize)
+                .min(bins - 1);
+            self.strip_of(p.y) * bins + bin
+        };
+        let mut starts = vec![0usize; self.count * bins + 1];
         for &p in queries {
-            starts[cell(p) + 1] += 1;
+            starts[key(p) + 1] += 1;
         }
-        for c in 0..g * g {
-            starts[c + 1] += starts[c];
+        for i in 0..self.count * bins {
+            starts[i + 1] += starts[i];
         }
-        let mut next = starts.clone();
         let mut order = vec![0usize; queries.len()];
-        for (i, &p) in queries.iter().enumerate() {
-            let c = cell(p);
-            order[next[c]] = i;
-            next[c] += 1;
-        }
-        let (mut row, mut scratch) = (Row::default(), Vec::new());
-        let (mut added, mut active) = (0, Vec::new());
-        for r in 0..g {
-            while added < self.segments.len() && self.segments[added].rows[0] <= r {
-                active.push(added);
-                added += 1;
-            }
-            active.retain(|&s| self.segments[s].rows[1] >= r);
-            if starts[r * g] == starts[(r + 1) * g] {
-                continue;
-            }
-            row.build(self, r, &active);
-            let (y0, y1) = (r as f64 * self.side, (r + 1) as f64 * self.side);
-            for c in 0..g {
-                let (x0, x1) = (c as f64 * self.side, (c + 1) as f64 * self.side);
-                let classes = row.cell(c);
-                for &i in &order[starts[r * g + c]..starts[r * g + c + 1]] {
-                    let p = queries[i];
-                    let mut d = classes.nearest_squared(p, best[i], margin, &mut scratch);
-                    // A segment missing the cell's margin is at least this far from `p`.
-                    let beyond = self.reach + (p.x - x0).min(x1 - p.x).min(p.y - y0).min(y1 - p.y);
-                    if libm::sqrt(widened(d, margin)) + margin > beyond {
-                        d = all.nearest_squared(p, d, margin);
-                    }
-                    best[i] = d;
-                }
-            }
-        }
-    }
-}
-
-/// The [`Classes`] of each cell of a row of a [`LongGrid`]; buffers kept from row to row.
-#[derive(Default)]
-struct Row {
-    classes: usize,
-    width: f64,
-    centres: Vec<Point>,
-    normals: Vec<Point>,
-    /// Cell `c`'s class `k` is group `c * classes + k`.
-    starts: Vec<usize>,
-    keys: Vec<f64>,
-    ends: Vec<[Point; 2]>,
-    /// The entries of `keys` and `ends` while they are sorted.
-    entries: Vec<(f64, [Point; 2])>,
-    /// For each active segment, its first and last cells in the row and its class.
-    spans: Vec<[usize; 3]>,
-}
-
-impl Row {
-    /// Row `r` of `grid`, over its segments `active` (all those whose rows include `r`).
-    fn build(&mut self, grid: &LongGrid, r: usize, active: &[usize]) {
-        let (g, side, reach) = (grid.cells, grid.side, grid.reach);
-        // Every segment with a point within `reach` of a cell is in the cell: the part of the
-        // segment in the row's band widened by twice that, widened by twice that along x,
-        // covers the part within `reach` of the row's cells whatever the rounding (a few
-        // units in the last place of the box's size, much less than `reach`).
-        let (low, high) = (
-            r as f64 * side - 2.0 * reach,
-            (r + 1) as f64 * side + 2.0 * reach,
-        );
-        self.spans.clear();
-        let mut pieces = 0;
-        for &s in active {
-            let [a, b] = grid.segments[s].ends;
-            let (dx, dy) = (b.x - a.x, b.y - a.y);
-            let (mut t0, mut t1) = (0.0f64, 1.0f64);
-            if dy != 0.0 {
-                let (u, v) = ((low - a.y) / dy, (high - a.y) / dy);
-                (t0, t1) = (u.min(v).max(0.0), u.max(v).min(1.0));
-                if t0 > t1 {
-                    (t0, t1) = (0.0, 1.0);
-                }
-            }
-            let (xa, xb) = (a.x + t0 * dx, a.x + t1 * dx);
-            let first = grid.cell_of(xa.min(xb) - 2.0 * reach);
-            let last = grid.cell_of(xa.max(xb) + 2.0 * reach);
-            self.spans.push([first, last, 0]);
-            pieces += last - first + 1;
-        }
-        let per_cell = pieces as f64 / g as f64;
-        self.classes =
-            ((libm::sqrt(per_cell) * CLASSES_PER_SQUARE_ROOT) as usize).clamp(1, MAX_CLASSES);
-        let k = self.classes;
-        self.width = class_normals(k, &mut self.normals);
-        let y = (r as f64 + 0.5) * side;
-        self.centres.clear();
-        self.centres
-            .extend((0..g).map(|c| Point::new((c as f64 + 0.5) * side, y)));
-        self.starts.clear();
-        self.starts.resize(g * k + 1, 0);
-        for (span, &s) in self.spans.iter_mut().zip(active) {
-            span[2] = class_of(grid.segments[s].turn, k);
-            for c in span[0]..=span[1] {
-                self.starts[c * k + span[2] + 1] += 1;
-            }
-        }
-        for i in 0..g * k {
-            self.starts[i + 1] += self.starts[i];
-        }
-        self.entries.clear();
-        self.entries
-            .resize(pieces, (0.0, [Point::new(0.0, 0.0); 2]));
-        let mut next = self.starts.clone();
-        for (span, &s) in self.spans.iter().zip(active) {
-            let segment = &grid.segments[s];
-            let (a, n) = (segment.ends[0], segment.normal);
-            for c in span[0]..=span[1] {
-                let centre = self.centres[c];
-                let key = n.x * (centre.x - a.x) + n.y * (centre.y - a.y);
-                let slot = &mut next[c * k + span[2]];
-                self.entries[*slot] = (key, segment.ends);
+        {
+            let mut next = starts.clone();
+            for (i, &p) in queries.iter().enumerate() {
+                let slot = &mut next[key(p)];
+                order[*slot] = i;
                 *slot += 1;
             }
         }
-        sort_groups(
-            &self.starts,
-            &mut self.entries,
-            &mut self.keys,
-            &mut self.ends,
-        );
+        let sorted: Vec<Point> = order.iter().map(|&i| queries[i]).collect();
+        let mut found: Vec<(f64, bool)> = order.iter().map(|&i| (best[i], false)).collect();
+        let row_starts: Vec<usize> = (0..=self.count).map(|r| starts[r * bins]).collect();
+        // Runs of strips with about the same number of queries, each searched on its own.
+        let runs = if parallel { 16 } else { 1 };
+        let mut pieces = Vec::with_capacity(runs);
+        let mut rest: &mut [(f64, bool)] = &mut found;
+        let mut first = 0;
+        for run in 1..=runs {
+            let target = queries.len() * run / runs;
+            let mut last = first;
+            while last < self.count && (row_starts[last] < target || run == runs) {
+                last += 1;
+            }
+            let (piece, tail) = rest.split_at_mut(row_starts[last] - row_starts[first]);
+            pieces.push((first..last, piece));
+            rest = tail;
+            first = last;
+        }
+        let search = |(rows, found): (core::ops::Range<usize>, &mut [(f64, bool)])| {
+            let from = row_starts[rows.start];
+            self.search_rows(
+                rows,
+                &row_starts,
+                &sorted[from..from + found.len()],
+                found,
+                margin,
+            );
+        };
+        #[cfg(feature = "parallel")]
+        if parallel {
+            use rayon::prelude::*;
+            pieces.into_par_iter().for_each(search);
+        } else {
+            pieces.into_iter().for_each(search);
+        }
+        #[cfg(not(feature = "parallel"))]
+        pieces.into_iter().for_each(search);
+        for (&i, &(d, u)) in order.iter().zip(&found) {
+            best[i] = d;
+            unsure[i] |= u;
+        }
     }
 
-    /// The classes of cell `c` of the row.
-    fn cell(&self, c: usize) -> Classes<'_> {
-        let k = self.classes;
-        Classes {
-            centre: self.centres[c],
-            width: self.width,
-            normals: &self.normals,
-            starts: &self.starts[c * k..=(c + 1) * k],
-            keys: &self.keys,
-            ends: &self.ends,
+    /// [`Strips::search`] of the strips `rows`, whose queries (`queries[row_starts[r] - from..]`
+    /// for `from = row_starts[rows.start]`) have the best distances and marks `found`.
+    fn search_rows(
+        &self,
+        rows: core::ops::Range<usize>,
+        row_starts: &[usize],
+        queries: &[Point],
+        found: &mut [(f64, bool)],
+        margin: f64,
+    ) {
+        let (k, nb) = (self.classes, self.buckets);
+        let from = row_starts[rows.start];
+        // The entries of the current strip, class by class and in a class bucket by bucket:
+        // class `c`'s bucket `b` is entries `starts[c * nb + b]..starts[c * nb + b + 1]` of
+        // `table` (whose keys are apart from the rest, for the queries to read them alone).
+        let (mut table, mut next) = (Table::default(), Table::default());
+        let (mut starts, mut next_starts) = (vec![0u32; k * nb + 1], vec![0u32; k * nb + 1]);
+        let mut counts = vec![0u32; nb + 1];
+        let mut incoming: Vec<Slanted> = Vec::new();
+        let mut added = 0;
+        let mut pending: Vec<Pending> = Vec::new();
+        let mut placed: Vec<(u32, f64)> = Vec::new();
+        for r in rows {
+            if row_starts[r] == row_starts[r + 1] {
+                continue; // the segments that entered meanwhile enter at the next strip built
+            }
+            // The segments that enter, by class.
+            incoming.clear();
+            while added < self.segments.len() && self.segments[added].strips[0] as usize <= r {
+                if self.segments[added].strips[1] as usize >= r {
+                    incoming.push(self.segments[added]);
+                }
+                added += 1;
+            }
+            incoming.sort_unstable_by_key(|s| s.class);
+            let y = (r as f64 + 0.5) * self.height;
+            let (y0, y1) = (r as f64 * self.height, (r + 1) as f64 * self.height);
+            let span = row_starts[r] - from..row_starts[r + 1] - from;
+            pending.clear();
+            pending.extend(queries[span.clone()].iter().zip(&found[span.clone()]).map(
+                |(&q, &(best, _))| {
+                    let p = self.frame(q);
+                    let mut query = Pending {
+                        p,
+                        dy: p.y - y,
+                        best,
+                        limit: 0.0,
+                        within: 0.0,
+                    };
+                    query.lower(best, margin);
+                    query
+                },
+            ));
+            // How far a segment outside the strip is at least, and `within` for a best distance
+            // that far.
+            let beyond = |query: &Pending| self.reach + (query.p.y - y0).min(y1 - query.p.y);
+            let cap = |query: &Pending| {
+                core::f64::consts::SQRT_2
+                    * beyond(query)
+                    * (1.0 + RELATIVE_SLACK)
+                    * (1.0 + RELATIVE_SLACK)
+                    + margin
+            };
+            // Class by class: the class is rebuilt from the last strip's entries of the class
+            // (nearly in order already), keyed at this strip's middle, and searched by the
+            // strip's queries while it is in the cache, each in the window of its best
+            // distance's reach up to `guess`; ...
+            next.clear();
+            let mut entering = 0;
+            for c in 0..k {
+                let old = starts[c * nb] as usize..starts[(c + 1) * nb] as usize;
+                let new_from = entering;
+                while entering < incoming.len() && incoming[entering].class as usize == c {
+                    entering += 1;
+                }
+                let new = &incoming[new_from..entering];
+                let live = || {
+                    old.clone()
+                        .map(|i| (table.keys[i][1], table.ends[i], table.lasts[i]))
+                        .chain(new.iter().map(|s| (s.slope, s.ends, s.strips[1])))
+                        .filter(|&(_, _, last)| last as usize >= r)
+                };
+                // Counted into buckets of the key, then placed.
+                placed.clear();
+                counts.iter_mut().for_each(|n| *n = 0);
+                for (slope, ends, _) in live() {
+                    let a = self.frame(ends[0]);
+                    let key = a.x + (y - a.y) * slope;
+                    let b = self.bucket(key);
+                    counts[b + 1] += 1;
+                    placed.push((b as u32, key));
+                }
+                let base = next.keys.len();
+                for b in 0..nb {
+                    counts[b + 1] += counts[b];
+                    next_starts[c * nb + b] = (base + counts[b] as usize) as u32;
+                }
+                next.resize(base + counts[nb] as usize);
+                for ((slope, ends, last), &(b, key)) in live().zip(&placed) {
+                    let i = base + counts[b as usize] as usize;
+                    (next.keys[i], next.ends[i], next.lasts[i]) = ([key, slope], ends, last);
+                    counts[b as usize] += 1;
+                }
+                next_starts[(c + 1) * nb] = next.keys.len() as u32;
+                let class = Class {
+                    strips: self,
+                    middle: self.middle(c),
+                    starts: &next_starts[c * nb..=(c + 1) * nb],
+                    table: &next,
+                };
+                for query in &mut pending {
+                    class.look(query, query.within.min(self.guess), margin);
+                }
+            }
+            core::mem::swap(&mut table, &mut next);
+            core::mem::swap(&mut starts, &mut next_starts);
+            // ... then, for the queries whose best distance reaches farther, again with all of
+            // it, as far as a segment outside the strip might be nearer (a query far from every
+            // segment of a sparse strip is left unsure).
+            for c in 0..k {
+                let class = Class {
+                    strips: self,
+                    middle: self.middle(c),
+                    starts: &starts[c * nb..=(c + 1) * nb],
+                    table: &table,
+                };
+                for query in pending.iter_mut().filter(|q| q.within > self.guess) {
+                    class.look(query, query.within.min(cap(query)), margin);
+                }
+            }
+            for (query, found) in pending.iter().zip(&mut found[span]) {
+                let unsure = libm::sqrt(widened(query.best, margin)) + margin > beyond(query)
+                    || query.within > cap(query);
+                *found = (query.best, unsure);
+            }
         }
+    }
+}
+
+/// One class of a strip of [`Strips`].
+struct Class<'a> {
+    strips: &'a Strips,
+    middle: f64,
+    /// Bucket `b` is entries `starts[b]..starts[b + 1]` of `table`.
+    starts: &'a [u32],
+    table: &'a Table,
+}
+
+impl Class<'_> {
+    /// Lowers `query.best` to the distance of every segment of the class whose key is within
+    /// the query's window of the class widened by `reach` (none if negative, as it is for a
+    /// query outside the strip), if that is nearer.
+    fn look(&self, query: &mut Pending, reach: f64, margin: f64) {
+        let reach = reach.max(0.0);
+        let target = query.p.x - self.middle * query.dy;
+        // The class's slopes move the key by up to this much over the query's height.
+        let spread = self.strips.width * query.dy.abs() * (1.0 + RELATIVE_SLACK) + margin;
+        let bucket = |x: f64| self.strips.bucket(x);
+        let lo = bucket(target - spread - reach);
+        let hi = bucket(target + spread + reach);
+        // At least `SCANNED` entries, so that the loop runs the same number of times for most
+        // windows (the branch predicted): the ones after the window are segments too.
+        let (first, end) = (self.starts[lo] as usize, self.starts[hi + 1] as usize);
+        let range = first..end.max((first + SCANNED).min(self.table.keys.len()));
+        let keys = self.table.keys[range.clone()].iter();
+        for (&[key, slope], i) in keys.zip(range) {
+            let offset = query.p.x - (key + slope * query.dy);
+            if offset * offset <= query.limit * (1.0 + slope * slope) {
+                let [a, b] = self.table.ends[i];
+                let d = segment_distance_squared(self.strips.frame(query.p), a, b);
+                if d < query.best {
+                    query.lower(d, margin);
+                }
+            }
+        }
+    }
+}
+
+/// A query of [`Strips::search_rows`] in its strip, with what its windows need and no more
+/// (every class reads them all).
+struct Pending {
+    /// The query in the frame.
+    p: Point,
+    /// Its height over the strip's middle.
+    dy: f64,
+    best: f64,
+    /// The square of the distance beyond which a line's segment is not nearer than `best`
+    /// whatever the rounding: a segment whose line's offset (see [`Strips`]) has a square above
+    /// `limit * (1 + slope^2)` is skipped.
+    limit: f64,
+    /// Bound on the offset of a line that is not skipped.
+    within: f64,
+}
+
+impl Pending {
+    /// Sets the best distance.
+    fn lower(&mut self, best: f64, margin: f64) {
+        // The rounded distance of a segment farther than `widened`'s root from the query is
+        // above `best`, and a segment is at least as far as its line, up to the rounding of
+        // the line (a few units in the last place of the box's size, much less than `margin`).
+        let reach = libm::sqrt(widened(best, margin)) * (1.0 + RELATIVE_SLACK) + margin;
+        self.best = best;
+        self.limit = reach * reach;
+        self.within = core::f64::consts::SQRT_2 * reach * (1.0 + RELATIVE_SLACK) + margin;
     }
 }
 
@@ -1325,11 +1615,12 @@ mod tests {
         }
     }
 
-    /// The grid, given the segments directly (so that it also holds segments of length zero,
-    /// which the index leaves to the tree), against the minimum over all segments, query by
-    /// query: long crossing segments, collinear and axis-parallel ones, a cluster with a far
-    /// outlier, queries inside, on and outside the box. Then whole scores against the brute
-    /// search at scales from 2^-1000 to 2^1000.
+    /// The strips (once a grid of cells), given the segments directly (so that they also hold
+    /// segments of length zero, which the index leaves to the tree), against the minimum over
+    /// all segments, query by query, on one thread and in runs of strips on rayon's: long
+    /// crossing segments, collinear and axis-parallel ones, a cluster with a far outlier,
+    /// queries inside, on and outside the box. Then whole scores against the brute search at
+    /// scales from 2^-1000 to 2^1000.
     #[test]
     fn the_grid_returns_the_minimum_over_all_segments() {
         let mut rng = Xorshift::new(0x6d_2906);
@@ -1370,13 +1661,15 @@ mod tests {
                 )
             }));
             let margin = RELATIVE_SLACK * size + 1e-150;
-            let grid = LongGrid::new(&ends, size);
+            let strips = LongStrips::new(&ends, size);
             let all = LongSegments::new(ends.clone(), Point::new(size / 2.0, size / 2.0));
-            let mut found = vec![f64::INFINITY; queries.len()];
-            grid.nearest_squared_all(&queries, &mut found, &all, margin);
-            for (&s, d) in queries.iter().zip(found) {
-                let brute = brute_nearest(&local, &truth, s);
-                assert_eq!(d.to_bits(), brute.to_bits(), "case {case}: {s:?}");
+            for parallel in [false, true] {
+                let mut found = vec![f64::INFINITY; queries.len()];
+                strips.nearest_squared_all(&queries, &mut found, &all, margin, parallel);
+                for (&s, d) in queries.iter().zip(found) {
+                    let brute = brute_nearest(&local, &truth, s);
+                    assert_eq!(d.to_bits(), brute.to_bits(), "case {case}: {s:?}");
+                }
             }
             if case % 4 == 0 {
                 truth.retain(|&[a, b]| a != b);
@@ -1390,6 +1683,40 @@ mod tests {
                         "case {case}: 2^{k}"
                     );
                 }
+            }
+        }
+    }
+
+    /// On rayon's threads (in runs of strips, each building its first strip from nothing) and
+    /// on one, the same distances bit for bit, on chains long enough for many strips, with
+    /// queries on another chain and all over the box.
+    #[test]
+    fn the_parallel_search_finds_what_one_thread_does() {
+        let mut rng = Xorshift::new(0x9a7a_2906);
+        for (n, kind) in [(30_000, 0), (6_000, 1), (6_000, 3)] {
+            let points = random_points(&mut rng, n, kind);
+            let truth = chain(&shuffled(&mut rng, n));
+            let size = points.iter().fold(0.0f64, |m, p| m.max(p.x).max(p.y));
+            let mut index = Index::new(&points, &truth, size);
+            assert!(index.strips.steep.count > 16, "{n} points");
+            let order = shuffled(&mut rng, n);
+            let mut queries: Vec<Point> = order
+                .windows(2)
+                .map(|w| {
+                    let (a, b) = (points[w[0]], points[w[1]]);
+                    Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0)
+                })
+                .collect();
+            queries.extend((0..n).map(|_| Point::new(rng.unit() * size, rng.unit() * size)));
+            index.parallel = false;
+            let one = index.nearest_squared_all(&queries);
+            index.parallel = true;
+            let many = index.nearest_squared_all(&queries);
+            for (i, (a, b)) in one.iter().zip(&many).enumerate() {
+                assert_eq!(a.to_bits(), b.to_bits(), "{n} points, query {i}");
+            }
+            for (&s, d) in queries.iter().zip(&one).step_by(97) {
+                assert_eq!(d.to_bits(), brute_nearest(&points, &truth, s).to_bits());
             }
         }
     }
