@@ -30,7 +30,7 @@ use std::sync::OnceLock;
 /// >>> r.unused.tolist()
 /// []
 /// >>> list(r.stages)
-/// ['proximity', 'repair', 'iqr-outliers', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions']
+/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions']
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Reconstruction {
     result: condt::Reconstruction,
@@ -128,7 +128,7 @@ impl Reconstruction {
     }
 
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
-    /// ``"repair"``, ``"iqr-outliers"``, ``"local-outliers"``, ``"clumps"``, ``"given-back"``,
+    /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``, ``"given-back"``,
     /// ``"gaps"``, ``"junctions"``, or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
     /// the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
     /// the stages are the last pass's.
@@ -335,8 +335,8 @@ impl Curve {
 /// - ``changes``: what each later stage did to it, dicts with ``stage`` (its name, as in
 ///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``kept``),
 ///   ``"longer-than-threshold"`` (``length``, ``threshold``), ``"given-back"``, ``"long-at"``
-///   (``vertex``, ``ratio``), ``"component"``, ``"spur"``, ``"clump"``, ``"gap-closed"``,
-///   ``"junction"``, ``"baseline"`` or ``"not-confirmed"``;
+///   (``vertex``, ``ratio``), ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``,
+///   ``"gap-closed"``, ``"junction"``, ``"baseline"`` or ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
 #[pyclass(module = "condt", frozen, get_all)]
 pub(crate) struct EdgeStory {
@@ -430,6 +430,7 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
         Reason::GapClosed => "gap-closed",
         Reason::Junction => "junction",
         Reason::Clump => "clump",
+        Reason::RepairedAgain => "repaired-again",
         Reason::Baseline => "baseline",
         Reason::NotConfirmed => "not-confirmed",
     };

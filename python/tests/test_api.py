@@ -261,12 +261,12 @@ def test_the_result_arrays():
         assert repr(c).startswith("<condt.Curve: ")
     stages = r.stages
     assert list(stages) == [
-        "proximity", "repair", "iqr-outliers", "local-outliers", "clumps", "given-back", "gaps",
-        "junctions",
+        "proximity", "repair", "iqr-outliers", "repair-again", "local-outliers", "clumps",
+        "given-back", "gaps", "junctions",
     ]
     assert np.array_equal(stages["junctions"], r.edges)
     stages.clear()  # a copy: the result's stays
-    assert len(r.stages) == 8
+    assert len(r.stages) == 9
     assert "235 points" in repr(r)
 
 
@@ -287,7 +287,7 @@ def test_explain_tells_why_with_numbers():
     reasons = {c["reason"] for s in dropped for c in s.changes}
     assert reasons <= {
         "repair", "longer-than-threshold", "given-back", "long-at", "component", "spur",
-        "gap-closed", "junction", "clump", "baseline", "not-confirmed",
+        "gap-closed", "junction", "clump", "baseline", "not-confirmed", "repaired-again",
     }
     for story in dropped:
         for change in story.changes:

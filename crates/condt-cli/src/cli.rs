@@ -308,8 +308,9 @@ condt reconstruct: the curves through unorganized planar points (ConDT)
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive]
                     [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
-                    [--outliers-first] [--[no-]local-outliers] [--[no-]confirm-given-back]
-                    [--[no-]clumps] [--[no-]close-gaps] [--[no-]junctions] [--[no-]smooth]
+                    [--outliers-first] [--[no-]repair-again] [--[no-]local-outliers]
+                    [--[no-]confirm-given-back] [--[no-]clumps] [--[no-]close-gaps]
+                    [--[no-]junctions] [--[no-]smooth]
                     [--format F] [--stages] [--sequential] [--timings] [--quiet]
 
 Example:
@@ -324,8 +325,8 @@ LineString per curve), `html` (.html: a self-contained page to explore every sta
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 
-The default pipeline is the paper's (Algorithms 1-3) with the repair `needs`, local outlier
-removal, clumps, gap closing, junctions and smoothing passes; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points,
+The default pipeline is the paper's (Algorithms 1-3) with the repair `needs` (run again without
+the edges the outlier filter cut), local outlier removal, clumps, gap closing, junctions and smoothing passes; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points,
 which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error.
 ";
 

@@ -588,6 +588,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "proximity",
                 "repair",
                 "iqr-outliers",
+                "repair-again",
                 "local-outliers",
                 "clumps",
                 "given-back",

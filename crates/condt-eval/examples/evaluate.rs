@@ -194,6 +194,11 @@ fn main() {
             params.close_gaps = on;
         }
     }
+    for (flag, on) in [("--repair-again", true), ("--no-repair-again", false)] {
+        if args.iter().any(|a| a == flag) {
+            params.repair_again = on;
+        }
+    }
     for (flag, on) in [("--clumps", true), ("--no-clumps", false)] {
         if args.iter().any(|a| a == flag) {
             params.clumps = on;

@@ -163,6 +163,7 @@ fn write_data(
                 Reason::Baseline => (8, 0.0, 0.0),
                 Reason::Junction => (9, 0.0, 0.0),
                 Reason::Clump => (10, 0.0, 0.0),
+                Reason::RepairedAgain => (11, 0.0, 0.0),
             };
             let sep = if first { "" } else { "," };
             first = false;

@@ -90,6 +90,7 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::Proximity => "proximity",
         Stage::Repair => "repair",
         Stage::Outliers => "outliers",
+        Stage::RepairAgain => "repair again",
         Stage::LocalOutliers => "local outliers",
         Stage::GivenBack => "given back",
         Stage::Clumps => "clumps",

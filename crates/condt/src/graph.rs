@@ -116,6 +116,62 @@ impl<'t> Graph<'t> {
         Ok(OutlierRemoval { graph, fired })
     }
 
+    /// Repairs again without the cut edges ([`Params::repair_again`](crate::Params::repair_again)):
+    /// this graph is the IQR stage's output, `repaired` its input (the repair's output) and
+    /// `proximity` the repair's input; `k` and `repair` as those stages ran. When the IQR stage
+    /// removed edges, the result is `proximity` less every edge above the IQR threshold of
+    /// `repaired`, repaired by `repair`; otherwise this graph.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] named `k` when `k` is NaN, infinite or negative.
+    ///
+    /// # Panics
+    /// If `repaired` or `proximity` lives on another triangulation.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point, Repair, Uniformity};
+    /// // A square outline, 10 points a side, an outlier off a corner and one far away.
+    /// let mut pts = Vec::new();
+    /// for k in 0..10 {
+    ///     let t = k as f64;
+    ///     pts.extend([(t, 0.0), (10.0, t), (10.0 - t, 10.0), (0.0, 10.0 - t)].map(Point::from));
+    /// }
+    /// pts.extend([Point::new(-0.9, -0.9), Point::new(30.0, 30.0)]);
+    /// let tri = triangulate(&pts)?;
+    /// let proximity = tri.proximity_graph(Uniformity::Fixed(2.75))?;
+    /// let repaired = proximity.repair(Repair::Needs);
+    /// let cut = repaired.remove_outliers(1.7)?;
+    /// assert!(cut.fired);
+    /// let again = cut.graph.repair_again(&repaired, &proximity, 1.7, Repair::Needs)?;
+    /// // The square's 40 edges, and none to the two outliers.
+    /// assert_eq!(again.edges().len(), 40);
+    /// assert!(again.edges().iter().all(|&[a, b]| a < 40 && b < 40));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn repair_again(
+        &self,
+        repaired: &Graph<'t>,
+        proximity: &Graph<'t>,
+        k: f64,
+        repair: Repair,
+    ) -> Result<Graph<'t>, Error> {
+        assert!(
+            core::ptr::eq(self.tri, repaired.tri) && core::ptr::eq(self.tri, proximity.tri),
+            "repair_again: the graphs live on different triangulations"
+        );
+        let step = Step::RepairAgain {
+            factor: k,
+            mode: repair,
+        };
+        step.check()?;
+        let earlier = Earlier {
+            before_outliers: Cow::Borrowed(&repaired.edges),
+            before_local: Cow::Borrowed(&self.edges),
+            before_repair: Cow::Borrowed(&proximity.edges),
+        };
+        Ok(self.step_with(step, earlier).0)
+    }
+
     /// The local outlier removal ([`Params::local_outliers`](crate::Params::local_outliers)) on
     /// this graph as the IQR stage (and a later repair) left it; `before_outliers` (the IQR stage's
     /// input, or this graph if it did not run) holds the edges to give back.
@@ -179,6 +235,7 @@ impl<'t> Graph<'t> {
         let earlier = Earlier {
             before_outliers: Cow::Borrowed(&self.edges),
             before_local: Cow::Borrowed(&before_local.edges),
+            before_repair: Cow::Borrowed(&self.edges),
         };
         self.step_with(Step::ConfirmGivenBack, earlier).0
     }
@@ -258,6 +315,7 @@ impl<'t> Graph<'t> {
         let earlier = Earlier {
             before_outliers: Cow::Borrowed(before_outliers),
             before_local: Cow::Borrowed(&self.edges),
+            before_repair: Cow::Borrowed(&self.edges),
         };
         self.step_with(step, earlier)
     }

@@ -46,6 +46,8 @@ pub enum Reason {
         /// Its length over the longest other edge there.
         ratio: f64,
     },
+    /// The repair decided again without the edges above the IQR threshold.
+    RepairedAgain,
     /// Local outlier rule 4: its whole component was removed.
     Component,
     /// Local outlier rule 3: part of a short chain hanging off a junction.
@@ -270,6 +272,7 @@ impl<'a> Explainer<'a> {
     fn reason(&self, [a, b]: [usize; 2], added: bool) -> Reason {
         match (self.stage, added) {
             (Stage::Clumps, _) => Reason::Clump,
+            (Stage::RepairAgain, _) => Reason::RepairedAgain,
             (Stage::Gaps, _) => Reason::GapClosed,
             (Stage::Junctions, _) => Reason::Junction,
             (Stage::GivenBack, _) => Reason::NotConfirmed,
@@ -414,6 +417,7 @@ impl fmt::Display for EdgeStory {
                     f,
                     "{ratio:.2} times as long as the longest other edge at vertex {vertex}"
                 )?,
+                Reason::RepairedAgain => write!(f, "repaired again without the edges above √T")?,
                 Reason::Component => write!(f, "isolated component")?,
                 Reason::Spur => write!(f, "short spur")?,
                 Reason::Clump => write!(f, "a clump: fewer than half its points pass smoothly")?,

@@ -227,6 +227,7 @@
       () => "chosen by the baseline",
       () => "joined at a junction of three curves",
       () => "a clump: fewer than half its points pass smoothly",
+      () => "repaired again without the edges above √T",
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

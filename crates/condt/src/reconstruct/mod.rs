@@ -191,16 +191,21 @@ mod tests {
         let filtered = repaired.remove_outliers(1.7).unwrap();
         assert_eq!(reports[2].graph.listed(), filtered.graph.listed());
         assert_eq!(reports[2].applied, filtered.fired);
-        let local = filtered.graph.remove_local_outliers(&repaired);
-        assert_eq!(reports[3].graph.listed(), local.listed());
+        let again = filtered
+            .graph
+            .repair_again(&repaired, &proximity, 1.7, params.repair)
+            .unwrap();
+        assert_eq!(reports[3].graph.listed(), again.listed());
+        let local = again.remove_local_outliers(&repaired);
+        assert_eq!(reports[4].graph.listed(), local.listed());
         let unclumped = local.remove_clumps();
-        assert_eq!(reports[4].graph.listed(), unclumped.listed());
-        let confirmed = unclumped.confirm_given_back(&filtered.graph);
-        assert_eq!(reports[5].graph.listed(), confirmed.listed());
+        assert_eq!(reports[5].graph.listed(), unclumped.listed());
+        let confirmed = unclumped.confirm_given_back(&again);
+        assert_eq!(reports[6].graph.listed(), confirmed.listed());
         let closed = confirmed.close_gaps();
-        assert_eq!(reports[6].graph.listed(), closed.listed());
+        assert_eq!(reports[7].graph.listed(), closed.listed());
         let joined = closed.join_junctions();
-        assert_eq!(reports[7].graph.listed(), joined.listed());
+        assert_eq!(reports[8].graph.listed(), joined.listed());
         assert_eq!(result.graph().listed(), joined.listed());
         assert!(
             reports.iter().skip(1).any(|r| r.applied),
@@ -333,6 +338,7 @@ mod tests {
             let mut current = proximity::proximity_graph(&tri, params.uniformity, params.parallel);
             let mut graph: Option<CurveGraph> = None;
             let (mut before_outliers, mut before_local) = (current.clone(), current.clone());
+            let before_repair = current.clone();
             for step in params.steps() {
                 if matches!(step, Step::Outliers { .. }) {
                     before_outliers = current.clone();
@@ -349,6 +355,7 @@ mod tests {
                             &before_local
                         },
                     ),
+                    before_repair: Cow::Borrowed(&before_repair),
                 };
                 let given = graph.is_some();
                 let with = step.run(&tri, &current, earlier.clone(), graph.take());

@@ -57,6 +57,10 @@ pub struct Params {
     /// Remove outliers before the repair, not after (the paper's order): outlier edges can make a
     /// curve vertex non-manifold, and the repair cuts a corner there (`docs/condt.md`, note 8).
     pub outliers_first: bool,
+    /// When the IQR stage cut edges, repair the proximity graph again without every edge above
+    /// its threshold (beyond the paper; only with the repair first): a curve edge the repair
+    /// dropped for an outlier's pair comes back (`src/stages/repair_again.rs`).
+    pub repair_again: bool,
     /// The local outlier removal, after the IQR stage and the repair (beyond the paper): gives
     /// back edges the global rule cut along smooth, regular passages; drops long edges at branches
     /// and ends, short branches and small isolated components. It loses a sparse curve of three or
@@ -101,12 +105,13 @@ impl Default for Params {
     /// let p = Params::default();
     /// assert_eq!(p.repair, condt::Repair::Needs);
     /// assert!(p.close_gaps && p.local_outliers && p.smooth);
-    /// let all = [Proximity, Repair, Outliers, LocalOutliers, Clumps, GivenBack, Gaps, Junctions];
-    /// assert_eq!(p.stages(), all);
+    /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
+    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions]].concat());
     /// ```
     fn default() -> Self {
         Params::paper()
             .with_repair(Repair::Needs)
+            .with_repair_again(true)
             .with_local_outliers(true)
             .with_confirm_given_back(true)
             .with_clumps(true)
@@ -134,6 +139,7 @@ impl Params {
             repair: Repair::Paper,
             outlier_factor: Some(1.7),
             outliers_first: false,
+            repair_again: false,
             local_outliers: false,
             confirm_given_back: false,
             close_gaps: false,
@@ -193,6 +199,14 @@ impl Params {
         } else {
             (repair, outliers)
         };
+        // Only a repair that ran before the cut can be run again without the cut edges.
+        let again = match (self.repair_again && !self.outliers_first, repair, outliers) {
+            (true, Some(_), Some(Step::Outliers { factor })) => Some(Step::RepairAgain {
+                factor,
+                mode: self.repair,
+            }),
+            _ => None,
+        };
         // The local outlier removal follows both: it reads three or more edges as a branch, which
         // only a repaired graph makes true. The given-back check reads what it added, so runs only
         // with it. Clumps are whole components, removed before any join can reach one. The gaps
@@ -209,6 +223,7 @@ impl Params {
         first
             .into_iter()
             .chain(second)
+            .chain(again)
             .chain(local)
             .chain(clumps)
             .chain(confirm)
@@ -241,6 +256,7 @@ impl Params {
     /// ```
     pub fn set_stage(&mut self, stage: Stage, on: bool) -> bool {
         let field = match stage {
+            Stage::RepairAgain => &mut self.repair_again,
             Stage::LocalOutliers => &mut self.local_outliers,
             Stage::GivenBack => &mut self.confirm_given_back,
             Stage::Clumps => &mut self.clumps,
@@ -307,6 +323,12 @@ impl Params {
     /// Sets [`Params::close_gaps`].
     pub fn with_close_gaps(mut self, close_gaps: bool) -> Params {
         self.close_gaps = close_gaps;
+        self
+    }
+
+    /// Sets [`Params::repair_again`].
+    pub fn with_repair_again(mut self, repair_again: bool) -> Params {
+        self.repair_again = repair_again;
         self
     }
 

@@ -462,8 +462,12 @@ impl Run {
             }
         };
         let earlier = Earlier {
-            before_outliers: input_of(Stage::Outliers, step == Step::LocalOutliers),
+            before_outliers: input_of(
+                Stage::Outliers,
+                matches!(step, Step::LocalOutliers | Step::RepairAgain { .. }),
+            ),
             before_local: input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack),
+            before_repair: input_of(Stage::Repair, matches!(step, Step::RepairAgain { .. })),
         };
         let outcome = step.run(tri, current, earlier, self.current_graph.take());
         self.current_graph = outcome.graph;

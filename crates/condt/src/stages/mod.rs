@@ -1,6 +1,6 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each: [`proximity`]
 //! (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3) and, not in the paper,
-//! [`local_outliers`], [`given_back`], [`clumps`], [`gaps`] and [`junctions`].
+//! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`] and [`junctions`].
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which the
 //! pipeline ([`reconstruct`](crate::reconstruct)) and the public [`Graph`](crate::Graph) methods
@@ -15,6 +15,7 @@ pub(crate) mod local_outliers;
 pub(crate) mod outliers;
 pub(crate) mod proximity;
 pub(crate) mod repair;
+pub(crate) mod repair_again;
 
 pub use proximity::Uniformity;
 pub use repair::Repair;
@@ -42,6 +43,9 @@ pub enum Stage {
     Repair,
     /// The IQR outlier removal (Algorithm 3).
     Outliers,
+    /// Repairing again without the edges the IQR stage cut
+    /// ([`Params::repair_again`](crate::Params::repair_again)).
+    RepairAgain,
     /// The local outlier removal ([`Params::local_outliers`](crate::Params::local_outliers)).
     LocalOutliers,
     /// Confirming the components the local outlier removal rebuilt from edges the IQR stage cut
@@ -81,7 +85,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 10] = [
+const ROWS: [Row; 11] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -102,6 +106,19 @@ const ROWS: [Row; 10] = [
         title: "after outlier removal",
         key: "iqr-outliers",
         switch: None,
+    },
+    Row {
+        stage: Stage::RepairAgain,
+        name: "repair again",
+        title: "after repairing again without the cut edges",
+        key: "repair-again",
+        switch: Some(Switch {
+            flag: "repair-again",
+            help: "(default on; off with --paper) when the outlier filter cut
+edges, repair the proximity graph again without every edge above
+its threshold: a curve edge the repair dropped for an outlier's
+pair comes back",
+        }),
     },
     Row {
         stage: Stage::LocalOutliers,
@@ -127,10 +144,10 @@ fewer than 5 points clearly apart from the rest, unless dense
             flag: "confirm-given-back",
             help: "(default on; off with --paper; needs the local outlier removal)
 right after it, drop a component rebuilt only from edges the
-outlier filter cut unless every point of it is apart from all
-else by twice its longest edge (a chance chain of outliers in a
-large scatter; a sparse curve the filter cut that passes near
-another point stays cut)",
+outlier filter cut unless every point of it is apart from every
+unused point or other such component by twice its longest edge
+(a chance chain of outliers in a large scatter; a sparse curve
+the filter cut that passes near an unused point stays cut)",
         }),
     },
     Row {
@@ -193,10 +210,11 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 10] = [
+    pub const ALL: [Stage; 11] = [
         Stage::Proximity,
         Stage::Repair,
         Stage::Outliers,
+        Stage::RepairAgain,
         Stage::LocalOutliers,
         Stage::GivenBack,
         Stage::Clumps,
@@ -260,6 +278,7 @@ impl core::fmt::Display for Stage {
 pub(crate) enum Step {
     Repair(Repair),
     Outliers { factor: f64 },
+    RepairAgain { factor: f64, mode: Repair },
     LocalOutliers,
     ConfirmGivenBack,
     RemoveClumps,
@@ -274,6 +293,8 @@ pub(crate) struct Earlier<'a> {
     pub(crate) before_outliers: Cow<'a, [Edge]>,
     /// The local outlier removal's input ([`Step::LocalOutliers`]), or the step's input likewise.
     pub(crate) before_local: Cow<'a, [Edge]>,
+    /// The repair's input, the proximity graph ([`Step::Repair`]), or the step's input likewise.
+    pub(crate) before_repair: Cow<'a, [Edge]>,
 }
 
 impl Step {
@@ -281,6 +302,7 @@ impl Step {
         match self {
             Step::Repair(_) => Stage::Repair,
             Step::Outliers { .. } => Stage::Outliers,
+            Step::RepairAgain { .. } => Stage::RepairAgain,
             Step::LocalOutliers => Stage::LocalOutliers,
             Step::ConfirmGivenBack => Stage::GivenBack,
             Step::RemoveClumps => Stage::Clumps,
@@ -292,7 +314,9 @@ impl Step {
     /// `Ok` when the parameter is one the stage accepts.
     pub(crate) fn check(self) -> Result<(), Error> {
         match self {
-            Step::Outliers { factor } if !(factor.is_finite() && factor >= 0.0) => {
+            Step::Outliers { factor } | Step::RepairAgain { factor, .. }
+                if !(factor.is_finite() && factor >= 0.0) =>
+            {
                 Err(Error::InvalidParameter {
                     name: "k",
                     value: factor,
@@ -303,7 +327,8 @@ impl Step {
     }
 
     /// Runs the stage on `edges` (each edge once, any order); the parameter must have passed
-    /// [`Step::check`]. Only [`Step::LocalOutliers`] and [`Step::ConfirmGivenBack`] read `earlier`.
+    /// [`Step::check`]. Only [`Step::RepairAgain`], [`Step::LocalOutliers`] and
+    /// [`Step::ConfirmGivenBack`] read `earlier`.
     /// `graph`, when given, is the curve graph of `edges` (over every point id) that the previous
     /// stage handed on ([`Outcome::graph`]): the clump stage, gap closing and junctions take it
     /// instead of building one, the given-back check hands it on when it returns at once, and the
@@ -323,6 +348,17 @@ impl Step {
             Step::Outliers { factor } => {
                 drop(graph);
                 outliers::remove_outliers(tri, edges, factor)
+            }
+            Step::RepairAgain { factor, mode } => {
+                drop(graph);
+                repair_again::repair_again(
+                    tri,
+                    edges,
+                    &earlier.before_outliers,
+                    &earlier.before_repair,
+                    factor,
+                    mode,
+                )
             }
             Step::LocalOutliers => {
                 drop(graph);

@@ -1,0 +1,113 @@
+//! Repairing again without the cut edges (not in the paper; on by default, off in
+//! `Params::paper`), right after the IQR rule, when it fired.
+//!
+//! Owns: one rule. It reads the proximity graph and the repair's output (the IQR stage's input)
+//! through `Step::run`, point positions and the IQR threshold ([`iqr_threshold`], the one
+//! implementation); it may not touch the triangulation.
+//!
+//! Why: the repair (Algorithm 2) runs before the IQR rule, so it decides at every point with
+//! three or more edges among edges the rule then cuts. An outlier near a curve picks two curve
+//! points as its nearest neighbours; each then has three edges, and the repair may keep the
+//! outlier's pair and drop the curve edge between them (a corner's chord, a stretch's edge). The
+//! rule then cuts the outlier's edges, and the curve edge is lost. Running the IQR rule first
+//! (`outliers_first`) is no cure: on the unrepaired graph a fifth of outliers put the upper
+//! quartile among their edges and the rule never fires.
+//!
+//! Rule: when the IQR stage removed edges, the output is the repair of the proximity graph less
+//! every edge longer than the IQR stage's threshold, `T` taken from the repaired graph as that
+//! stage took it. Every decision of the first repair that an edge above `T` took part in is made
+//! again without it; the others come out the same. Measurements and losses: docs/condt.md,
+//! *Repairing again without the cut edges*.
+
+use super::outliers::iqr_threshold;
+use super::repair::repair;
+use super::{Outcome, Repair};
+use crate::adjacency::Edge;
+use crate::triangulate::Triangulation;
+use alloc::vec::Vec;
+
+/// The rule on `edges`, the IQR stage's output: `repaired` is that stage's input, `proximity`
+/// the repair's, `factor` the IQR factor and `mode` the repair. Unchanged when the IQR stage left
+/// its input as it was.
+pub(crate) fn repair_again(
+    tri: &Triangulation,
+    edges: &[Edge],
+    repaired: &[Edge],
+    proximity: &[Edge],
+    factor: f64,
+    mode: Repair,
+) -> Outcome {
+    // The IQR stage only removes edges: it fired exactly when the lists differ.
+    if edges == repaired {
+        return Outcome::UNCHANGED;
+    }
+    let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
+    let lengths: Vec<f64> = repaired.iter().map(length2).collect();
+    let threshold = iqr_threshold(&lengths, factor);
+    drop(lengths);
+    let short: Vec<Edge> = proximity
+        .iter()
+        .filter(|e| length2(e) <= threshold)
+        .copied()
+        .collect();
+    Outcome::from(Some(repair(tri, &short, mode).unwrap_or(short)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Point;
+    use crate::triangulate;
+    use crate::Params;
+
+    /// An evenly spaced square outline, 10 points a side, and one outlier just outside a corner,
+    /// nearer to the corner's two neighbours than they are to each other across the corner.
+    fn square_with_outlier() -> Vec<Point> {
+        let mut pts = Vec::new();
+        for k in 0..10 {
+            let t = k as f64;
+            pts.extend([
+                Point::new(t, 0.0),
+                Point::new(10.0, t),
+                Point::new(10.0 - t, 10.0),
+                Point::new(0.0, 10.0 - t),
+            ]);
+        }
+        pts.push(Point::new(-0.9, -0.9));
+        pts.push(Point::new(30.0, 30.0)); // far away: the IQR rule fires
+        pts
+    }
+
+    #[test]
+    fn the_outliers_pair_at_a_corner_gives_way_to_the_curve() {
+        let pts = square_with_outlier();
+        let with = crate::reconstruct(&pts, &Params::default().with_smooth(false)).unwrap();
+        let without = crate::reconstruct(
+            &pts,
+            &Params::default()
+                .with_smooth(false)
+                .with_repair_again(false),
+        )
+        .unwrap();
+        let curve = |r: &crate::Reconstruction| {
+            let edges: Vec<[usize; 2]> = r.edges().collect();
+            (edges.len(), edges.iter().all(|&[a, b]| a < 40 && b < 40))
+        };
+        assert_eq!(
+            curve(&with),
+            (40, true),
+            "{:?}",
+            with.edges().collect::<Vec<_>>()
+        );
+        assert_ne!(curve(&without), (40, true));
+    }
+
+    #[test]
+    fn nothing_changes_when_the_rule_did_not_fire() {
+        let pts = square_with_outlier();
+        let tri = triangulate(&pts).unwrap();
+        let edges = [[crate::mesh::VertexId::new(0), crate::mesh::VertexId::new(1)]];
+        let outcome = repair_again(&tri, &edges, &edges, &edges, 1.7, Repair::Needs);
+        assert!(outcome.edges.is_none());
+    }
+}
