@@ -115,9 +115,8 @@ const ROWS: [Row; 11] = [
         switch: Some(Switch {
             flag: "repair-again",
             help: "(default on; off with --paper) when the outlier filter cut
-edges, repair the proximity graph again without every edge above
-its threshold: a curve edge the repair dropped for an outlier's
-pair comes back",
+edges, repair again without them: a curve edge the repair
+dropped for an outlier's pair comes back",
         }),
     },
     Row {

@@ -1,23 +1,16 @@
 //! Repairing again without the cut edges (not in the paper; on by default, off in
 //! `Params::paper`), right after the IQR rule, when it fired.
 //!
-//! Owns: one rule. It reads the proximity graph and the repair's output (the IQR stage's input)
-//! through `Step::run`, point positions and the IQR threshold ([`iqr_threshold`], the one
-//! implementation); it may not touch the triangulation.
+//! Owns: one rule. It reads the proximity graph and the repair's output through `Step::run` and
+//! the IQR threshold ([`iqr_threshold`]); it may not touch the triangulation.
 //!
-//! Why: the repair (Algorithm 2) runs before the IQR rule, so it decides at every point with
-//! three or more edges among edges the rule then cuts. An outlier near a curve picks two curve
-//! points as its nearest neighbours; each then has three edges, and the repair may keep the
-//! outlier's pair and drop the curve edge between them (a corner's chord, a stretch's edge). The
-//! rule then cuts the outlier's edges, and the curve edge is lost. Running the IQR rule first
-//! (`outliers_first`) is no cure: on the unrepaired graph a fifth of outliers put the upper
-//! quartile among their edges and the rule never fires.
-//!
-//! Rule: when the IQR stage removed edges, the output is the repair of the proximity graph less
-//! every edge longer than the IQR stage's threshold, `T` taken from the repaired graph as that
-//! stage took it. Every decision of the first repair that an edge above `T` took part in is made
-//! again without it; the others come out the same. Measurements and losses: docs/condt.md,
-//! *Repairing again without the cut edges*.
+//! Why: the repair (Algorithm 2) decides among edges the IQR rule cuts next. An outlier near a
+//! curve makes two curve points non-manifold, the repair may keep the outlier's pair over the
+//! curve edge between them, and the cut then loses that edge. Cutting first (`outliers_first`)
+//! is no cure: on the unrepaired graph a fifth of outliers lift the upper quartile among their
+//! edges and the rule never fires. Rule: when the IQR stage removed edges, repair the proximity
+//! graph less every edge above `T`, taken from the repaired graph as that stage took it. Gains
+//! and losses: docs/condt.md, *Repairing again without the cut edges*.
 
 use super::outliers::iqr_threshold;
 use super::repair::repair;
@@ -26,9 +19,8 @@ use crate::adjacency::Edge;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
-/// The rule on `edges`, the IQR stage's output: `repaired` is that stage's input, `proximity`
-/// the repair's, `factor` the IQR factor and `mode` the repair. Unchanged when the IQR stage left
-/// its input as it was.
+/// The rule on `edges`, the IQR stage's output; `repaired` is that stage's input, `proximity`
+/// the repair's.
 pub(crate) fn repair_again(
     tri: &Triangulation,
     edges: &[Edge],
