@@ -99,7 +99,6 @@ impl BranchAdjacency {
             neighbors,
         }
     }
-
     pub(crate) fn branch_count(&self) -> usize {
         self.vertices.len()
     }
@@ -118,16 +117,13 @@ impl BranchAdjacency {
 }
 
 /// The neighbours of every vertex of a union of curves, where almost every vertex has at most two:
-/// one 8-byte record per vertex, its first two neighbours with its degree in the top bits of the
-/// first, so following a curve costs one read per vertex. Vertices with three or more neighbours
-/// list them all in a small side table, in id order. No name per vertex (the curves read input
-/// positions from the triangulation). Reason for the packing: memory; the graph is held at the
-/// reconstruction's highest phases.
+/// one 8-byte record per vertex (its first two neighbours and its degree), so following a curve
+/// costs one read per vertex; vertices with three or more list them all in a small side table.
+/// Reason for the packing: memory; the graph is held at the reconstruction's highest phases.
 #[derive(Debug, PartialEq)]
 pub(crate) struct CurveGraph {
-    /// Per vertex id: the first neighbour's id in the low [`ID_BITS`] bits of the first word and
-    /// the degree (up to [`DEGREE_SATURATED`]) above them, the second neighbour's id in the
-    /// second word; a missing neighbour is [`NO_ID`].
+    /// Per vertex id: the first neighbour in the low [`ID_BITS`] bits with the degree (up to
+    /// [`DEGREE_SATURATED`]) above, then the second neighbour; [`NO_ID`] where none.
     records: Vec<[u32; 2]>,
     /// The vertices with three or more neighbours, ascending, with where their lists start.
     branch_vertices: Vec<(VertexId, u32)>,
@@ -154,9 +150,8 @@ impl CurveGraph {
     /// The largest number of vertices a curve graph holds (ids must fit [`ID_BITS`]).
     pub(crate) const MAX_VERTICES: usize = NO_ID as usize;
 
-    /// The graph of `edges` (each edge once, `[a, b]` with `a < b`, any order) over `vertex_count`
-    /// vertices (at most [`CurveGraph::MAX_VERTICES`]). Neighbours come in the order the edges are
-    /// listed.
+    /// The graph of `edges` (each once, `[a, b]` with `a < b`, any order) over `vertex_count`
+    /// vertices (at most [`CurveGraph::MAX_VERTICES`]); neighbours in the order of `edges`.
     pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
         assert!(vertex_count <= Self::MAX_VERTICES);
         let mut records = vec![[NO_ID, NO_ID]; vertex_count];
@@ -184,11 +179,9 @@ impl CurveGraph {
             branch_neighbors,
         }
     }
-
     pub(crate) fn has_branch(&self) -> bool {
         !self.branch_vertices.is_empty()
     }
-
     pub(crate) fn vertex_count(&self) -> usize {
         self.records.len()
     }
@@ -198,7 +191,6 @@ impl CurveGraph {
     pub(crate) fn prefetch(&self, v: VertexId) {
         crate::prefetch::prefetch(&self.records, v.index());
     }
-
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
         let d = self.records[v.index()][0] >> ID_BITS;
@@ -208,7 +200,6 @@ impl CurveGraph {
             self.branch(v).len()
         }
     }
-
     /// The `k`-th neighbour of `v`, `k < degree(v)`.
     #[inline]
     pub(crate) fn neighbor(&self, v: VertexId, k: usize) -> VertexId {
@@ -220,9 +211,8 @@ impl CurveGraph {
         }
     }
 
-    /// Takes `removed` (edges of this graph, each once) out, leaving the graph [`CurveGraph::new`]
-    /// builds from the remaining list. Records are patched in place and the side table rewritten in
-    /// one pass, so a few removals cost next to nothing.
+    /// Takes `removed` (edges of this graph, each once) out, as [`CurveGraph::new`] of the rest
+    /// would build: records patched in place, the side table rewritten in one pass (cheap).
     pub(crate) fn remove_edges(&mut self, removed: &[Edge]) {
         let mut at_branches: Vec<(VertexId, VertexId)> = Vec::new();
         for &[a, b] in removed {
@@ -312,8 +302,7 @@ impl CurveGraph {
 }
 
 /// The side table of [`CurveGraph`]: the vertices of degree three or more, ascending, with the
-/// start of their neighbours in the order of `edges`. Stored degrees below the saturation are
-/// exact; the rest are counted here.
+/// start of their neighbours in the order of `edges`; degrees at the saturation counted here.
 fn branch_table(records: &[[u32; 2]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, Vec<VertexId>) {
     let stored = |v: VertexId| records[v.index()][0] >> ID_BITS;
     let mut vertices: Vec<(VertexId, u32)> = Vec::new();
@@ -323,7 +312,6 @@ fn branch_table(records: &[[u32; 2]], edges: &[Edge]) -> (Vec<(VertexId, u32)>, 
         }
     }
     let slot = |v: VertexId| vertices.binary_search_by_key(&v, |&(w, _)| w).ok();
-    // Each branch vertex's degree, exact.
     let mut degree: Vec<u32> = vertices.iter().map(|&(v, _)| stored(v)).collect();
     if degree.contains(&DEGREE_SATURATED) {
         degree.iter_mut().for_each(|d| *d = 0);

@@ -5,8 +5,7 @@ use alloc::vec;
 use core::fmt;
 
 /// A broken invariant found by [`Mesh::check_topology`] or
-/// [`Triangulation::validate`](crate::Triangulation::validate): which rule fails, and the element
-/// where it was seen.
+/// [`Triangulation::validate`](crate::Triangulation::validate): the rule, and where it fails.
 ///
 /// ```
 /// use condt::mesh::{Element, Rule, TriangleId, Violation};
@@ -30,10 +29,9 @@ impl fmt::Display for Violation {
 #[cfg(feature = "std")]
 impl std::error::Error for Violation {}
 
-/// One invariant of a mesh or a triangulation. The topological rules are checked by
-/// [`Mesh::check_topology`], the others (maps between input points and vertices, and exact
-/// geometry) by [`Triangulation::validate`](crate::Triangulation::validate). Each rule names the
-/// kind of [`Element`] it reports.
+/// One invariant of a mesh or a triangulation: topology, checked by [`Mesh::check_topology`], or
+/// maps and exact geometry, by [`Triangulation::validate`](crate::Triangulation::validate). Each
+/// names the kind of [`Element`] it reports.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Rule {
@@ -68,13 +66,11 @@ pub enum Rule {
     // Maps: `Triangulation::validate`.
     /// The vertex id space, the coordinates and the two maps differ in length. [`Element::Whole`].
     VertexArrayLengths,
-    /// An input point maps to no vertex, or its vertex reports another input point than the
-    /// smallest of its duplicates. [`Element::InputPoint`].
+    /// An input maps to no vertex, or one not naming its smallest copy. [`Element::InputPoint`].
     InputNotMapped,
     /// A merged duplicate's id holds a point other than its vertex's. [`Element::Vertex`].
     DuplicateMisplaced,
-    /// A vertex edge is present on an id that is no vertex, or missing on a vertex (when there
-    /// are at least two vertices). [`Element::Vertex`].
+    /// A vertex edge on a non-vertex id, or none on a vertex (of two or more). [`Element::Vertex`].
     VertexEdgePresence,
     /// The stored number of vertices disagrees with the maps. [`Element::Whole`].
     VertexCount,
@@ -85,8 +81,8 @@ pub enum Rule {
     /// An edge between two real triangles fails the strict in-circle test: it is not locally
     /// Delaunay. [`Element::HalfEdge`] (the one of the pair with the smaller id).
     NotLocallyDelaunay,
-    /// Two consecutive hull edges turn counter-clockwise seen from the ghosts: the hull is not
-    /// convex. [`Element::HalfEdge`] (the first hull edge, clockwise).
+    /// Consecutive hull edges turn counter-clockwise seen from the ghosts: the hull is not convex.
+    /// [`Element::HalfEdge`] (the first hull edge, clockwise).
     HullNotConvex,
 
     // Collinear input (no real triangle): `Triangulation::validate`.
@@ -178,9 +174,7 @@ fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
 }
 
 impl Mesh {
-    /// Checks that the arrays describe a triangulated sphere: twins mutual and reversed, no
-    /// triangle repeating a corner or with two infinite ones, every vertex's ring closed and
-    /// holding all its edges, hull vertices' edges to infinity, and Euler's formula.
+    /// Checks that the arrays describe a triangulated sphere: every topological [`Rule`].
     ///
     /// ```
     /// use condt::{triangulate, Point};

@@ -35,8 +35,7 @@ pub struct Mesh {
     origins: Vec<VertexId>,
     /// `twins[e]`: the half-edge across from `e`.
     twins: Vec<HalfEdgeId>,
-    /// `vertex_edges[v]`: one half-edge leaving `v` (to infinity for a hull vertex), or
-    /// [`HalfEdgeId::NONE`].
+    /// A half-edge leaving each vertex (to infinity on the hull), or [`HalfEdgeId::NONE`].
     vertex_edges: Vec<HalfEdgeId>,
 }
 
@@ -108,7 +107,6 @@ impl Mesh {
             .chunks_exact(3)
             .map(|c| [c[0], c[1], c[2]])
     }
-
     /// `true` when `t` is a ghost triangle (one corner is [`VertexId::INFINITE`]).
     #[inline]
     pub fn is_ghost(&self, t: TriangleId) -> bool {
@@ -119,21 +117,18 @@ impl Mesh {
     pub fn is_finite_edge(&self, e: HalfEdgeId) -> bool {
         !self.origin(e).is_infinite() && !self.dest(e).is_infinite()
     }
-    /// `true` when `e` is finite and has a ghost triangle on one side: it lies on the convex hull
-    /// (or, for collinear input, on the chain).
+    /// `true` when `e` is finite with a ghost on one side: on the hull (or the collinear chain).
     #[inline]
     pub fn is_hull_edge(&self, e: HalfEdgeId) -> bool {
         self.is_finite_edge(e)
             && (self.is_ghost(e.triangle()) || self.is_ghost(self.twin(e).triangle()))
     }
-
     /// The real (non-ghost) triangles.
     pub fn triangles(&self) -> impl Iterator<Item = TriangleId> + '_ {
         (0..self.num_triangles_with_ghosts() as u32)
             .map(TriangleId::new)
             .filter(move |&t| !self.is_ghost(t))
     }
-
     /// Every finite undirected edge once, as the half-edge of the pair with the smaller id.
     pub fn edges(&self) -> impl Iterator<Item = HalfEdgeId> + '_ {
         (0..self.num_half_edges() as u32)
@@ -141,22 +136,18 @@ impl Mesh {
             .filter(move |&e| e < self.twin(e) && self.is_finite_edge(e))
     }
 
-    /// The half-edges leaving `v` towards finite vertices, counter-clockwise. For a hull vertex
-    /// the walk starts at its hull neighbour that follows it clockwise and sweeps through the
-    /// interior to the other hull neighbour. O(degree), no allocation.
+    /// The half-edges leaving `v` towards finite vertices, counter-clockwise (for a hull vertex,
+    /// from one hull neighbour through the interior to the other). O(degree), no allocation.
     ///
     /// ```
     /// use condt::{triangulate, Point};
     /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
     /// let tri = triangulate(&square)?;
-    /// let centre = tri.vertex(4);
-    /// let around: Vec<usize> =
-    ///     tri.mesh().ring(centre).map(|e| tri.input_of(tri.mesh().dest(e))).collect();
+    /// let mesh = tri.mesh();
+    /// let around: Vec<_> = mesh.ring(tri.vertex(4)).map(|e| tri.input_of(mesh.dest(e))).collect();
     /// assert_eq!(around.len(), 4);
     /// // Counter-clockwise: each neighbour is the next corner of the square after the previous one.
-    /// for w in around.windows(2) {
-    ///     assert_eq!(w[1], (w[0] + 1) % 4);
-    /// }
+    /// assert!(around.windows(2).all(|w| w[1] == (w[0] + 1) % 4));
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn ring(&self, v: VertexId) -> Ring<'_> {
@@ -167,14 +158,12 @@ impl Mesh {
             current: start,
         }
     }
-
     /// The finite neighbours of `v`, counter-clockwise (the destinations of [`Mesh::ring`]).
     pub fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
         self.ring(v).map(move |e| self.dest(e))
     }
-    /// The vertices of the convex hull, counter-clockwise, each hull edge once. Points lying on a
-    /// hull edge are hull vertices too. For collinear input the walk goes out along the chain and
-    /// back, so inner chain vertices appear twice.
+    /// The vertices of the convex hull, counter-clockwise, each hull edge once (points on a hull
+    /// edge included). On a collinear chain the walk goes out and back: inner vertices twice.
     pub fn hull(&self) -> Hull<'_> {
         let start = self.first_hull_edge();
         Hull {
@@ -183,7 +172,6 @@ impl Mesh {
             current: start,
         }
     }
-
     /// The finite half-edge of some ghost triangle, if there is one.
     fn first_hull_edge(&self) -> HalfEdgeId {
         (0..self.num_half_edges() as u32)
@@ -193,9 +181,8 @@ impl Mesh {
     }
 
     /// Fills `vertex_edges`: one pass records the last edge leaving each vertex, then a walk along
-    /// the ghosts gives every hull vertex its edge to infinity. With `parallel` (a set built in two
-    /// halves), two threads each scan every origin and record only their half of the ids: the same
-    /// mesh, with each thread's scattered writes in its own half.
+    /// the ghosts gives every hull vertex its edge to infinity. With `parallel`, two threads each
+    /// scan every origin and record only their half of the ids (scattered writes kept apart).
     fn rebuild_vertex_edges(&mut self, vertex_count: usize, parallel: bool) {
         // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
         let sink = vertex_count;
@@ -223,9 +210,8 @@ impl Mesh {
         if from_infinity.is_none() {
             return;
         }
-        // `∞ → a` is followed in its ghost by the hull edge `a → b`, then by `b → ∞`; across
-        // `∞ → a` lies the previous ghost's `a → ∞`, followed there by `∞ → c`. Walked back
-        // along the hull, one division per ghost.
+        // `∞ → a` is followed in its ghost by `a → b`, then `b → ∞`; across `∞ → a` lies the
+        // previous ghost's `a → ∞`, followed by `∞ → c`. Walked back, one division per ghost.
         let start = from_infinity;
         let mut entry = start;
         loop {

@@ -10,19 +10,17 @@
 //! The rules, in order, compare lengths by ratios only (scale-free):
 //! 1. **Give back** an edge the IQR stage cut along a smooth, regular passage ([`passage`]), which
 //!    an outlier (one edge, or two at a sharp angle or of unequal lengths) does not form.
-//! 2. **Drop long edges**, more than [`LONG`] times the longest other edge at an end with three or
-//!    more edges (a far longer third edge comes from a point off the curve that chose this sample,
-//!    kept by Algorithm 2's union), or at each end with others (an outlier joined to an open
-//!    curve's end).
+//! 2. **Drop long edges** ([`LONG`]) at an end with three or more edges (a point off the curve
+//!    that chose this sample, kept by Algorithm 2's union), or at each end with others (an
+//!    outlier joined to an open curve's end).
 //! 3. **Drop short spurs** ([`short_spurs`]): outliers hanging off a curve, unseen by rule 4.
 //! 4. **Keep separated components** ([`separated_components`]): a clump's points are about as far
 //!    from the rest as from each other, a curve's samples much closer to each other.
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
-//! curves), unless rule 4 would remove a quarter or more of the points with edges, when it
-//! removes none ([`OUTLIER_SHARE`]; docs/condt.md, *The local outlier removal and real data*);
-//! branches of fewer than [`MIN_SAMPLES`] points at a junction (rule 3) go regardless.
-//! Sequential and deterministic; O(n), edge lengths recomputed, not stored (memory).
+//! curves), unless rule 4 would remove [`OUTLIER_SHARE`] of the points with edges, when it removes
+//! none (docs/condt.md, *The local outlier removal and real data*); shorter junction branches
+//! (rule 3) go regardless. Sequential, deterministic, O(n); lengths recomputed, not kept (memory).
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
@@ -47,9 +45,8 @@ pub(crate) const SMOOTH_COS: f64 = -0.5;
 pub(crate) const SEPARATION: f64 = 2.0;
 
 /// Fewest samples that show a curve: a component needs this many separated vertices, a spur this
-/// many vertices, to stay. Reason: an ε-sampled closed curve (`ε <= 1`) has more than `2π/ε > 6`
-/// samples, while pairs and triples of outliers are common (nearest neighbours pair up); at five a
-/// chance alignment of outliers becomes rare.
+/// many vertices, to stay. Reason: an ε-sampled closed curve (`ε <= 1`) has over `2π/ε > 6`
+/// samples; outlier pairs and triples are common (nearest neighbours pair up), five aligned rare.
 pub(crate) const MIN_SAMPLES: usize = 5;
 
 /// Rule 4 removes nothing when it would remove this share or more of the points with edges. Reason:
@@ -152,8 +149,7 @@ pub(crate) fn remove_local_outliers(
 pub(crate) enum LocalRule {
     /// Rule 1 gave it back.
     GaveBack,
-    /// Rule 2 dropped it: long at `vertex`, `ratio` times the longest other edge there (if long
-    /// at both ends, the end with the larger ratio).
+    /// Rule 2 dropped it: long at `vertex` (of two, the larger `ratio` to its next longest edge).
     Long { vertex: VertexId, ratio: f64 },
     /// Rule 3 dropped it with its short spur.
     Spur,
@@ -161,9 +157,9 @@ pub(crate) enum LocalRule {
     Component,
 }
 
-/// The stage on `edges` and `before` run again with one rule more each time, naming the rule that
-/// changed each edge. Each rule reads only what the earlier ones left, so these are the stage's
-/// own intermediate graphs: its decision, not a second reading. Four runs; only explanations ask.
+/// The stage run four times, one rule more each time, naming the rule that changed each edge:
+/// the stage's own intermediate graphs (each rule reads only what the earlier left), not a second
+/// reading. Only explanations ask.
 pub(crate) fn rule_evidence(
     tri: &Triangulation,
     edges: &[Edge],
@@ -302,7 +298,6 @@ impl Profile {
             graph: CurveGraph::new(tri.num_points(), edges),
         }
     }
-
     /// Makes this the profile of `edges` (its edges less `removed`): in place for up to one
     /// removal per 64 vertices ([`CurveGraph::remove_edges`]), else rebuilt (old one freed first).
     fn update(&mut self, tri: &Triangulation, edges: &[Edge], removed: &[Edge]) {
@@ -316,7 +311,6 @@ impl Profile {
             *self = Profile::of(tri, edges);
         }
     }
-
     /// The squared length of `v`'s longest edge besides one of squared length `l` (ties agree).
     fn other_than(&self, tri: &Triangulation, v: VertexId, l: f64) -> Option<f64> {
         let [first, second] = tops(tri, &self.graph, v);
@@ -325,9 +319,8 @@ impl Profile {
     }
 }
 
-/// The vertices whose longest edge in `graph` is more than [`LONG`] times their second, as a bit
-/// set by vertex id (speed), or `None` (the common case). An edge long at `v` is `v`'s longest, so
-/// rule 2 tests only edges at these vertices.
+/// The vertices whose longest edge in `graph` is over [`LONG`] times their second, as a bit set by
+/// vertex id (speed), or `None` (the common case): rule 2 tests only edges at these.
 fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> Option<Vec<u64>> {
     let n = graph.vertex_count();
     let mut long = alloc::vec![0u64; n.div_ceil(64)];
@@ -421,8 +414,7 @@ fn long_edges<'a>(
 }
 
 /// Takes the edges `dropped` selects out of `graph` (the rest kept in order, each judged once);
-/// whether it took any. The first change copies the borrowed input at its exact size, later ones
-/// filter in place (memory).
+/// whether it took any. The first copies the borrowed input at its exact size (memory).
 fn drop_edges(
     graph: &mut Cow<'_, [Edge]>,
     removed: &mut Vec<Edge>,
@@ -460,9 +452,9 @@ fn drop_edges(
     true
 }
 
-/// Rule 3: marks the vertices of every spur of fewer than [`MIN_SAMPLES`] vertices (from a loose
-/// end through vertices with two edges to one with three or more, not counted), or `None`. A spur's
-/// vertices have no edge off it, so the edges to drop are those with a marked end.
+/// Rule 3: marks the vertices of every spur of fewer than [`MIN_SAMPLES`] vertices (a loose end
+/// through degree-2 vertices to a junction, not counted), or `None`. A spur's vertices have no
+/// edge off it, so the edges to drop are those with a marked end.
 fn short_spurs(graph: &CurveGraph) -> Option<Vec<bool>> {
     let n = graph.vertex_count();
     let mut dropped = vec![false; n];
@@ -574,10 +566,9 @@ pub(super) fn separated_counts(tri: &Triangulation, graph: &CurveGraph, root: &[
     separated
 }
 
-/// Rule 4's exemption: marks as kept every sampled closed curve, at least [`MIN_SAMPLES`] points
-/// each with two edges passing [`smooth_and_regular`]. Reason: a curve two or three spacings from
-/// another (concentric circles) has no separated sample, and outliers almost never close into such
-/// a cycle.
+/// Rule 4's exemption: keeps every cycle of at least [`MIN_SAMPLES`] points passing
+/// [`smooth_and_regular`]. Reason: a curve two or three spacings from another (concentric
+/// circles) has no separated sample, and outliers almost never close into such a cycle.
 fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], kept: &mut [bool]) {
     let n = root.len();
     let mut regular = vec![true; n];
@@ -600,8 +591,7 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], ke
     }
 }
 
-/// Rule 4's guard: whether the components not kept hold at least [`OUTLIER_SHARE`] of the points
-/// with edges.
+/// Rule 4's guard: whether dropped components hold [`OUTLIER_SHARE`] of the points with edges.
 fn too_many_dropped(root: &[u32], profile: &Profile, kept: &[bool]) -> bool {
     let (mut with_edges, mut dropped) = (0usize, 0usize);
     for (i, &r) in root.iter().enumerate() {

@@ -3,8 +3,7 @@
 //! Owns: each vertex's choice of its two shortest Delaunay edges and the uniformity test. It reads
 //! the finished triangulation only; it may not change it.
 //!
-//! Each vertex keeps its shortest edge `e1` and, when [`Uniformity`]'s test passes, its second
-//! `e2`. Fixed `u` sweeps the triangles in memory order ([`sweep`]: no chain of dependent loads);
+//! Fixed `u` sweeps the triangles in memory order ([`sweep`]: no chain of dependent loads);
 //! adaptive `u` walks each ring from its first half-edge, since its floating-point mean depends on
 //! the order of the sum (docs/condt.md, *Why adaptive `u` walks rings*). Both rank with `TwoBest`
 //! (a total order) and decide with [`keep`]; the tests compare them.
@@ -30,8 +29,7 @@ use alloc::vec::Vec;
 pub enum Uniformity {
     /// Keep `e2` when `|e2| < u |e1|` (the paper: `u = 2.75`); `u` must be finite and positive.
     Fixed(f64),
-    /// Section 4.1: `u` of each point is the mean length of its Delaunay edges over `|e1|`, so
-    /// `e2` is kept when it is shorter than that mean.
+    /// Section 4.1: keep `e2` when shorter than the mean length of the point's Delaunay edges.
     Adaptive,
 }
 
@@ -90,9 +88,8 @@ fn passes_uniformity(uniformity: Uniformity, l1: f64, l2: f64, (sum, count): (f6
     }
 }
 
-/// How input vertex `v` saw its edge to `w` in Algorithm 1 (evidence for
-/// [`crate::Reconstruction::provenance`]): kept as [`kept_neighbors`] decides; rank, ratio and
-/// bound read off the same ring.
+/// How vertex `v` saw its edge to `w` in Algorithm 1, read off its ring as [`kept_neighbors`]
+/// reads it (evidence for [`crate::Reconstruction::provenance`]).
 pub(crate) fn end_choice(
     tri: &Triangulation,
     v: VertexId,
@@ -176,8 +173,7 @@ impl EndChoice {
 /// vertices, so more ranges cost memory traffic that more threads do not repay.
 const MAX_SWEEP_RANGES: usize = 4;
 
-/// The proximity graph, each edge once, listed by the vertex that kept it; the same with `parallel`
-/// on or off.
+/// The proximity graph, each edge once, listed by the vertex that kept it, whatever `parallel`.
 pub(crate) fn proximity_graph(
     tri: &Triangulation,
     uniformity: Uniformity,
@@ -256,8 +252,7 @@ fn decide_all<T>(
 
 /// Every kept edge once, from one record per vertex (`read` gives its choice). With `decide`, each
 /// vertex decides in the listing pass and `store` records it; else all decided already (on rayon).
-/// An edge kept by both ends is listed by its smaller end (no sort); the count advances without a
-/// branch.
+/// An edge kept by both ends is listed by its smaller end (no sort), without a branch.
 fn list_kept<T>(
     records: &mut [T],
     decide: Option<&impl Fn(usize, &T) -> [VertexId; 2]>,
@@ -385,7 +380,6 @@ impl TwoBest {
             pick(m0, i0.into(), second_i) as u32,
         ];
     }
-
     /// `(squared length, neighbour)` of the best (`k = 0`) or second best offer.
     #[inline]
     fn get(&self, k: usize) -> (f64, VertexId) {
@@ -394,14 +388,11 @@ impl TwoBest {
         }
         (f64::from_bits(self.lengths[k]), VertexId::new(self.ids[k]))
     }
-
     /// Replaces the offers by the kept neighbours ([`TwoBest::kept`]); lengths are not read again.
     #[inline]
     fn keep_only(&mut self, pair: [VertexId; 2]) {
         self.ids = pair.map(|w| w.index() as u32);
     }
-
-    /// The neighbours stored by [`TwoBest::keep_only`].
     #[inline]
     fn kept(&self) -> [VertexId; 2] {
         self.ids.map(VertexId::new)

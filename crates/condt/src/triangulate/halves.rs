@@ -1,17 +1,14 @@
 //! Divide and conquer, one level: a large set is cut by a vertical line, the halves are built by
-//! incremental insertion (at once with `parallel`) and stitched by Guibas and Stolfi's merge
-//! ("Primitives for the manipulation of general subdivisions and the computation of Voronoi
-//! diagrams", ACM TOG 4(2), 1985), done by flips as in Shewchuk's Triangle so that the mesh stays
-//! a sphere throughout (`docs/triangulation.md`, "Two halves").
+//! incremental insertion (at once with `parallel`) and stitched by Guibas and Stolfi's merge (ACM
+//! TOG 4(2), 1985), done by flips as in Shewchuk's Triangle so that the mesh stays a sphere
+//! throughout (`docs/triangulation.md`, "Two halves").
 //!
 //! Owns: the cut and the stitch. It decides signs only through the construction's [`Kernel`] and
 //! writes topology only through [`MeshBuilder`]; each half is an ordinary [`insert::Builder`] run
 //! in its own range of one [`MeshArrays`]. The cut depends only on the set of points, so one
-//! thread builds what two do. Whatever cannot go as planned (a half with no triangle; a stitch
-//! that does not add up, which exact predicates rule out but the code does not assume) returns
-//! `None`, and the caller builds the set in one piece: the reference, whose triangles this must
-//! give in general position (where cocircular points allow several, a valid Delaunay
-//! triangulation with the same count).
+//! thread builds what two do. A half with no triangle, or a stitch that does not add up (exact
+//! predicates rule it out; the code does not assume it), returns `None`: the caller builds the
+//! set in one piece, the reference.
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -53,10 +50,9 @@ fn bucket(x: f64, low: f64, per_unit: f64) -> usize {
     (((x - low) * per_unit) as usize).min(BUCKETS - 1)
 }
 
-/// Where to cut `points` by a vertical line between two of [`BUCKETS`] equal buckets of the x
-/// span, nearest the median; `None` below `min` points or when no line leaves a quarter of them on
-/// each side. Bucket indices are monotone in x, so the left half lies strictly left of the right
-/// one and equal x (duplicates too) stay together. Both passes run on two threads when `parallel`.
+/// Where to cut `points` by a vertical line between two of [`BUCKETS`] x buckets, nearest the
+/// median; `None` below `min` points or when no line leaves a quarter of them on each side
+/// (`docs/triangulation.md`, "The cut"). Both passes run on two threads when `parallel`.
 pub(crate) fn cut(points: &[Point], min: usize, parallel: bool) -> Option<Cut> {
     let n = points.len();
     if n < min.max(4) {
@@ -115,9 +111,8 @@ pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)
 }
 
 /// The mesh of `points` (in insertion order: the left half's `left` points, then the right half's)
-/// and the `(duplicate, kept)` pairs merged, or `None` when a half has no triangle or the stitch
-/// fails. Each half reports to `progress` as [`insert::build_into`] does; on `None` their counts
-/// are taken back (the caller then builds and counts in one piece).
+/// and the `(duplicate, kept)` pairs merged, or `None` (see the module doc). Each half reports to
+/// `progress` as [`insert::build_into`] does; on `None` their counts are taken back.
 pub(crate) fn build<K: Kernel>(
     points: &[Point],
     left: usize,
@@ -207,7 +202,6 @@ impl Hull {
             base = next;
         }
     }
-
     fn len(&self) -> usize {
         self.vertices.len()
     }
@@ -218,7 +212,6 @@ impl Hull {
             i + 1
         }
     }
-
     fn cw(&self, i: usize) -> usize {
         if i == 0 {
             self.len() - 1
@@ -291,12 +284,11 @@ fn stitch<K: Kernel>(
     // Lower tangent: every point on or above the line; upper: on or below it.
     let (i0, j0) = tangent(Orientation::Cw, Hull::cw, Hull::ccw)?;
     let (i1, j1) = tangent(Orientation::Ccw, Hull::ccw, Hull::cw)?;
-    // Two new ghosts join the spheres so that every merge step is a flip: `below`, `(r0, l0, ∞)`,
-    // the lower tangent's ghost, between the ghosts before `l0` and after `r0`; `top`,
-    // `(l0, r0, ∞)`, over the base, between the ghosts of the hull edges facing the other half
-    // (left: `i0` counter-clockwise to `i1`; right: `j1` to `j0`). Across `top`'s edges to infinity
-    // lie the ghosts of the current boundary edges facing the other half: Guibas and Stolfi's
-    // candidates. An edge with outside on both sides is just an edge between two ghosts.
+    // Two new ghosts join the spheres so that every merge step is a flip (docs/triangulation.md,
+    // "The merge"): `below`, `(r0, l0, ∞)`, between the ghosts before `l0` and after `r0`; `top`,
+    // `(l0, r0, ∞)`, between the ghosts of the hull edges facing the other half (left: `i0`
+    // counter-clockwise to `i1`; right: `j1` to `j0`). An edge outside on both sides just lies
+    // between two ghosts.
     let from_infinity = |ghost: usize| HalfEdgeId::at(ghost, infinite_corner(mesh, ghost));
     let to_infinity = |ghost: usize| HalfEdgeId::at(ghost, wrap3(infinite_corner(mesh, ghost) + 2));
     let into_l0 = from_infinity(left.ghosts[left.cw(i0)]);

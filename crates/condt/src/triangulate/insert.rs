@@ -14,12 +14,10 @@ use core::sync::atomic::{AtomicUsize, Ordering};
 /// The predicates a construction decides with, chosen once per point set.
 pub(crate) trait Kernel {
     fn orient2d(a: Point, b: Point, c: Point) -> Orientation;
-    /// A number with the sign of [`Kernel::orient2d`] (positive: counter-clockwise), for the
-    /// walk to branch on (speed).
+    /// A number with the sign of [`Kernel::orient2d`], for the walk to branch on (speed).
     fn orient2d_sign(a: Point, b: Point, c: Point) -> f64;
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool;
-    /// [`Kernel::in_circle`]`(u, w, v, q)` for the new point `v` of an insertion, which every
-    /// test of the insertion shares (a kernel may compute around it).
+    /// [`Kernel::in_circle`]`(u, w, v, q)`, `v` the new point every test of an insertion shares.
     #[inline(always)]
     fn in_circle_around(v: Point, u: Point, w: Point, q: Point) -> bool {
         Self::in_circle(u, w, v, q)
@@ -148,7 +146,6 @@ impl Walk {
         self.entered = true;
         None
     }
-
     #[inline(always)]
     fn slide_to(&mut self, e: HalfEdgeId) -> Option<Location> {
         self.at = e;
@@ -190,9 +187,8 @@ pub(crate) fn half_edges(n: usize) -> usize {
 pub(crate) const REPORT_EVERY: usize = 1 << 16;
 
 /// Builds the mesh of `points` (in insertion order) in `mesh`, empty and holding [`half_edges`];
-/// returns it with the `(duplicate, kept)` pairs merged, or `None` when there is no triangle.
-/// `progress` gets the vertices inserted every [`REPORT_EVERY`] points: all of them, or none on
-/// `None`.
+/// returns it with the `(duplicate, kept)` pairs merged, or `None` without a triangle. `progress`
+/// gets the vertices inserted every [`REPORT_EVERY`] points: all of them, or none on `None`.
 pub(crate) fn build_into<'m, K: Kernel>(
     points: &[Point],
     mesh: MeshBuilder<'m>,
@@ -235,8 +231,7 @@ pub(crate) fn first_triangle<K: Kernel>(points: &[Point]) -> Option<[u32; 3]> {
 }
 
 impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
-    /// Starts from the counter-clockwise triangle `a, b, c` and its ghosts, in `mesh` (as in
-    /// [`build_into`]).
+    /// Starts from the counter-clockwise triangle `a, b, c` and its ghosts, in `mesh`.
     fn new(points: &'a [Point], [a, b, c]: [u32; 3], mut mesh: MeshBuilder<'m>) -> Self {
         debug_assert_eq!(
             K::orient2d(points[a as usize], points[b as usize], points[c as usize]),
@@ -262,7 +257,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
             merged: Vec::new(),
         }
     }
-
     /// The mesh written and the `(duplicate, kept vertex)` pairs merged on the way.
     pub(crate) fn finish(self) -> (MeshBuilder<'m>, Vec<(u32, u32)>) {
         (self.mesh, self.merged)
@@ -300,9 +294,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         }
     }
 
-    /// A half-edge of a ghost at the hull vertex `v`, found by turning around `v` from the hint
-    /// (in a triangle at `v`). Points following a hull point usually lie outside the hull next to
-    /// it: a walk from here reaches them along the hull instead of across `v`'s fan.
+    /// A ghost's half-edge at hull vertex `v`, turning around `v` from the hint (at `v`): the next
+    /// point usually lies outside the hull near `v`, reached along the hull, not across its fan.
     fn ghost_at(&self, v: VertexId) -> HalfEdgeId {
         let (base, _) = self.hint.base_and_corner();
         let Some(k) = self.mesh.corners_at(base).iter().position(|&c| c == v) else {
@@ -373,10 +366,10 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         match K::orient2d(pa, pb, p) {
             Orientation::Ccw => Some(Location::Face(hull)),
             Orientation::Cw => {
-                // `p` is on the inner side of this hull edge's line; past one end it is likely
-                // outside further along, so slide to the next ghost that way. Slides go one way
-                // only, before the walk first enters a real triangle: past the far end of `a → b`,
-                // `p` is nearer `b` than `a`, so the distance to the slide's vertex shrinks.
+                // `p` is inside this hull edge's line; past one end it is likely outside further
+                // along, so slide to the next ghost that way. Slides go one way only, before the
+                // walk enters a real triangle: past the far end of `a → b`, `p` is nearer `b`
+                // than `a`, so the distance to the slide's vertex shrinks.
                 let way = K::slide(pa, pb, p);
                 if way != Slide::Done && (walk.slide == Slide::Either || walk.slide == way) {
                     walk.slide = way;
@@ -515,9 +508,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
         self.hint = t_bc.edge(0);
     }
 
-    /// Flips illegal edges opposite the new vertex `v` until none is left. After a flip, the edge
-    /// the stack would give next is tested at once, with its twin and ends as the flip knew them
-    /// (the same order of tests, one push and pop fewer).
+    /// Flips illegal edges opposite the new vertex `v` until none is left. A flip hands over the
+    /// edge to test next with its twin and ends (same order of tests, one push and pop fewer).
     fn restore_delaunay(&mut self, v: VertexId) {
         let pv = self.point(v);
         let mut next = self.flips.pop().map(|e| self.to_test(e));
@@ -563,9 +555,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     }
 
     /// Replaces the edge `u – w` (half-edges `e` in `(u, w, v)` and `f` in `(w, u, q)`) by `v – q`,
-    /// giving `(v, u, q)` and `(v, q, w)`; queues the edge of the first opposite `v` and returns
-    /// that of the second, to be tested next. `f` comes as its triangle's base and corner, and
-    /// `[u, w, q]` as the caller read them, to save dividing and loading again.
+    /// giving `(v, u, q)` and `(v, q, w)`; queues the edge of the first opposite `v`, returns the
+    /// second's. `f` and `[u, w, q]` come as the caller read them, to save dividing and loading.
     ///
     /// ```text
     ///          v                    v

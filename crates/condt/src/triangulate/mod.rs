@@ -4,15 +4,11 @@
 //! positions and vertices) and checking one. It decides signs only through [`crate::predicates`],
 //! writes topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
-//! Incremental insertion with Lawson's flips in BRIO order, each point located by a visibility
-//! walk (`docs/triangulation.md`). The reference is `build`, the set in one piece; `halves`, a
-//! speed-up for large sets, must build the same triangles in general position
-//! (`tests::halves_build_what_the_sequential_insertion_builds`) and falls back to `build` when it
-//! cannot finish, so dropping it changes the speed, never the result.
-//!
-//! See also: Amenta, Choi, Rote, "Incremental constructions con BRIO", SoCG 2003, and Shewchuk,
-//! "Adaptive precision floating-point arithmetic and fast robust geometric predicates", Discrete
-//! Comput. Geom. 18 (1997).
+//! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
+//! point located by a visibility walk (`docs/triangulation.md`). The reference is `build`, the set
+//! in one piece; `halves`, a speed-up for large sets, must build the same triangles in general
+//! position (`tests::halves_build_what_the_sequential_insertion_builds`) and falls back to `build`
+//! when it cannot finish, so dropping it changes the speed, never the result.
 
 mod check;
 mod collinear;
@@ -31,10 +27,8 @@ use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
 
-/// The largest number of input points.
-///
-/// Half of what `u32` half-edge ids allow; beyond it [`triangulate`] returns
-/// [`Error::TooManyPoints`] before allocating (`docs/triangulation.md`, "Memory").
+/// The largest number of input points: half of what `u32` half-edge ids allow; beyond it
+/// [`triangulate`] returns [`Error::TooManyPoints`] before allocating (`docs/triangulation.md`).
 pub const MAX_POINTS: usize = 350_000_000;
 
 /// A Delaunay triangulation of a point set.
@@ -83,14 +77,12 @@ pub struct Triangulation {
 
 /// Triangulates `points`.
 ///
-/// Every finite input is accepted, at any scale and spread of magnitudes: fewer than three
-/// points, collinear points (the mesh then holds the chain of segments and no triangle), exact
-/// duplicates (merged, see [`Triangulation::vertex`]) and cocircular sets. A set spanning more
-/// than 2^200 in magnitude is decided by exact integer arithmetic, slower but as exact
-/// (`docs/predicates.md`). The result depends only on the set of points, not on their order nor
-/// on the number of threads: a set of 65,536 points or more is built in two halves, at once with
-/// the `parallel` feature (`docs/triangulation.md`); to stay on one thread, call it inside a
-/// one-thread pool (`rayon::ThreadPool::install`).
+/// Every finite input is accepted at any scale: fewer than three points, collinear points (a
+/// chain of segments, no triangle), exact duplicates (merged, see [`Triangulation::vertex`]),
+/// cocircular sets, and sets spanning more than 2^200 in magnitude (slower exact integer
+/// arithmetic, `docs/predicates.md`). The result depends only on the set of points, not on their
+/// order nor on the number of threads: 65,536 points or more are built in two halves, at once
+/// with `parallel` (`docs/triangulation.md`); for one thread, use a one-thread rayon pool.
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a NaN or infinite coordinate, naming the first such input index;
@@ -113,8 +105,7 @@ pub(crate) fn triangulate_with(points: &[Point], parallel: bool) -> Result<Trian
     triangulate_with_progress(points, parallel, None)
 }
 
-/// [`triangulate_with`], adding to `inserted` (when given) the points inserted as it goes
-/// ([`Triangulation::triangulate_observed`]).
+/// [`triangulate_with`], counting inserted points ([`Triangulation::triangulate_observed`]).
 pub(crate) fn triangulate_with_progress(
     points: &[Point],
     parallel: bool,
@@ -223,7 +214,6 @@ fn construct(
     if built.is_some() {
         return (order, sorted, built);
     }
-    // A half without a triangle, or a failed stitch: the set in one piece.
     drop((order, sorted));
     construct_whole(points, frames, progress)
 }
@@ -343,9 +333,8 @@ fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<
 }
 
 /// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
-/// merged, or `None` when they make no triangle: the reference [`halves`] must match (see its
-/// module doc for cocircular points). Reports
-/// to `progress` as [`insert::build_into`] does.
+/// merged, or `None` without a triangle: the reference [`halves`] must match. Reports to
+/// `progress` as [`insert::build_into`] does.
 fn build<K: Kernel>(
     points: &[Point],
     progress: Option<&AtomicUsize>,
@@ -360,10 +349,9 @@ fn build<K: Kernel>(
 /// Below this many points, the passes after the construction run on one thread.
 const PARALLEL_MIN: usize = 1 << 16;
 
-/// The two maps between vertex ids (positions in `order`) and input positions (a merged group
+/// The maps between vertex ids (positions in `order`) and input positions (a merged group
 /// reports its smallest). With `parallel`, two threads each read the whole order and write only
-/// their half, which stays in cache; a write outside it rewrites the half's first slot with its
-/// own value instead of branching on a coin toss.
+/// their half, kept in cache; a write outside it rewrites the half's first slot, not branching.
 fn vertex_maps(
     mut input_of_vertex: Vec<u32>,
     merged: &[(u32, u32)],
@@ -404,10 +392,9 @@ fn vertex_maps(
 }
 
 impl Triangulation {
-    /// The order in which [`triangulate`] inserts `points`, as input positions
-    /// (`docs/triangulation.md`); for a set cut in two, the left half's, then the right half's.
-    /// Unless every point is on one line, vertex ids number the points in this order. It is the
-    /// spatial sort alone, after the input check: the benchmarks' yardstick for the whole build.
+    /// The order in which [`triangulate`] inserts `points`, as input positions (for a set cut in
+    /// two, the left half's, then the right half's); unless all are collinear, vertex ids follow
+    /// it. The spatial sort alone: the benchmarks' yardstick for the whole build.
     ///
     /// # Errors
     /// Those of [`triangulate`]: [`Error::NonFinite`] and [`Error::TooManyPoints`].
@@ -439,11 +426,9 @@ impl Triangulation {
         .0)
     }
 
-    /// [`triangulate`] (same result and errors), adding to `inserted` (`Relaxed`), every 65,536
-    /// points or so, the points inserted: a progress bar on another thread can watch it. On
-    /// success it has added [`Triangulation::num_vertices`] (duplicates are not counted), on an
-    /// error nothing; a set cut in two that must be rebuilt in one piece first takes back what
-    /// its halves added, so the count may step back once.
+    /// [`triangulate`], adding to `inserted` (`Relaxed`) every 65,536 points or so the points
+    /// inserted, for a progress bar on another thread. It adds [`Triangulation::num_vertices`] in
+    /// all, nothing on an error; halves rebuilt in one piece take back their count first.
     ///
     /// # Errors
     /// Those of [`triangulate`]: [`Error::NonFinite`] and [`Error::TooManyPoints`].
@@ -494,13 +479,11 @@ impl Triangulation {
             None => p,
         }
     }
-
     /// This triangulation, its points given relative to `offset` (see the `offset` field).
     pub(crate) fn with_offset(mut self, offset: Point) -> Triangulation {
         self.offset = Some(offset);
         self
     }
-
     /// Where the input frame's zero lies in the caller's coordinates (see the `offset` field).
     pub(crate) fn offset(&self) -> Point {
         self.offset.unwrap_or(Point::new(0.0, 0.0))
@@ -560,7 +543,6 @@ impl Triangulation {
             .triangles()
             .map(|t| self.mesh.triangle_vertices(t).map(|v| self.input_of(v)))
     }
-
     /// Every edge once, as input positions `[a, b]` with `a < b`.
     pub fn edges(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
         self.mesh.edges().map(|e| {
@@ -571,7 +553,6 @@ impl Triangulation {
             [a.min(b), a.max(b)]
         })
     }
-
     /// The Delaunay neighbours of input point `index`, counter-clockwise ([`Mesh::ring`]).
     ///
     /// # Panics
@@ -581,7 +562,6 @@ impl Triangulation {
             .neighbors(self.vertex(index))
             .map(|w| self.input_of(w))
     }
-
     /// The convex hull as input positions, counter-clockwise from some hull point ([`Mesh::hull`]).
     pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
         self.mesh.hull().map(|v| self.input_of(v))
@@ -590,9 +570,8 @@ impl Triangulation {
     pub fn is_degenerate(&self) -> bool {
         self.mesh.triangles().next().is_none()
     }
-    /// The position of vertex `v` as the stages measure it: the input times the power of two that
-    /// brings the largest coordinate magnitude into [2^200, 2^201), so that squared lengths and
-    /// their products neither overflow nor underflow at any scale (`docs/predicates.md`).
+    /// Vertex `v` as the stages measure it: scaled by a power of two into [2^200, 2^201), so
+    /// squared lengths and their products never overflow nor underflow (`docs/predicates.md`).
     #[inline]
     pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
         self.points[v.index()]
@@ -609,14 +588,12 @@ impl Triangulation {
             .get(v.index())
             .is_some_and(|&i| self.vertex_of_input[i as usize] == v)
     }
-
     /// The vertices, in id (spatial) order.
     pub(crate) fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
         (0..self.points.len() as u32)
             .map(VertexId::new)
             .filter(move |&v| self.is_vertex(v))
     }
-
     /// [`Triangulation::vertex`] for every input position at once.
     #[inline]
     pub(crate) fn input_to_vertex(&self) -> &[VertexId] {
