@@ -1,7 +1,5 @@
-//! Curves from an edge set: [`Curve`], and the split of a mostly degree-two graph into polylines in
-//! canonical order, by the graph alone (it may not look at coordinates). Polylines run between
-//! vertices of other degrees (ends, branch points); the cycles left are closed curves, as is a
-//! polyline that leaves a branch vertex and returns to it (a lobe of a figure eight).
+//! Curves from an edge set ([`Curve`]): polylines between vertices of degree other than two, closed
+//! for cycles and lobes, in canonical order, by the graph alone (it may not look at coordinates).
 
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -14,15 +12,12 @@ use alloc::vec::Vec;
 ///
 /// ```
 /// use condt::curves_from_edges;
-/// // A triangle 0-1-2 and a separate segment 3-4.
 /// let curves = curves_from_edges(5, &[[0, 1], [2, 0], [1, 2], [3, 4]]);
 /// assert_eq!(curves.len(), 2);
-/// let (triangle, segment) = (&curves[0], &curves[1]);
-/// assert!(triangle.is_closed());
-/// assert_eq!(triangle.points().collect::<Vec<_>>(), vec![0, 1, 2]);
-/// assert_eq!(triangle.edges().collect::<Vec<_>>(), vec![[0, 1], [1, 2], [2, 0]]);
-/// assert!(!segment.is_closed());
-/// assert_eq!(segment.points().collect::<Vec<_>>(), vec![3, 4]);
+/// assert!(curves[0].is_closed() && !curves[1].is_closed());
+/// assert_eq!(curves[0].points().collect::<Vec<_>>(), vec![0, 1, 2]);
+/// assert_eq!(curves[0].edges().collect::<Vec<_>>(), vec![[0, 1], [1, 2], [2, 0]]);
+/// assert_eq!(curves[1].points().collect::<Vec<_>>(), vec![3, 4]);
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Curve {

@@ -1,5 +1,4 @@
-//! The library's error type: every way a call can refuse its input. It may depend on no other
-//! module but for the mesh's [`Violation`], which it carries.
+//! Every way a call can refuse its input; it may use no module but the mesh's [`Violation`].
 
 use crate::mesh::Violation;
 use core::fmt;
@@ -7,12 +6,11 @@ use core::fmt;
 /// Why a call into the library refused its input.
 ///
 /// ```
-/// use condt::{reconstruct, triangulate, Error, Params, Point, Uniformity};
+/// use condt::{triangulate, Error, Params, Point, Uniformity};
 /// let err = triangulate(&[Point::new(0.0, 0.0), Point::new(f64::NAN, 1.0)]).unwrap_err();
 /// assert_eq!(err, Error::NonFinite { index: 1 });
 /// assert_eq!(err.to_string(), "point 1 has a NaN or infinite coordinate");
-/// let params = Params::default().with_uniformity(Uniformity::Fixed(-1.0));
-/// let err = reconstruct(&[Point::new(0.0, 0.0)], &params).unwrap_err();
+/// let err = Params::default().with_uniformity(Uniformity::Fixed(-1.0)).check().unwrap_err();
 /// assert_eq!(err, Error::InvalidParameter { name: "u", value: -1.0 });
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]

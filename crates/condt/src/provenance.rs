@@ -1,9 +1,7 @@
-//! Why each edge was kept or dropped: [`Reconstruction::provenance`] tells every Delaunay edge's
-//! story (and every added edge's) through the stages, with the numbers that decided it
-//! ([`EdgeStory`], [`Change`], [`Reason`]; [`EndChoice`] is Algorithm 1's). Computed on demand, so
-//! the pipeline pays nothing. It may not change a reconstruction and implements no rule: it
-//! formats each stage's own evidence (`end_choice`, `iqr_threshold`, `rule_evidence`), and its
-//! tests check every explanation against what the stages did.
+//! Why each edge was kept or dropped: [`Reconstruction::provenance`] tells every Delaunay or added
+//! edge's story with the numbers that decided it ([`EdgeStory`], [`Change`], [`Reason`]), on
+//! demand, so the pipeline pays nothing. It may not change a reconstruction and implements no
+//! rule: it formats each stage's own evidence; its tests check each against the stages.
 
 use crate::adjacency::Edge;
 use crate::reconstruct::Reconstruction;
@@ -75,21 +73,16 @@ pub struct Change {
     pub reason: Reason,
 }
 
-/// The story of one edge: how its ends chose it in Algorithm 1, what each later stage did to it,
-/// and whether it is in the result. `Display` tells it in a sentence or two.
+/// One edge's story: how its ends chose it in Algorithm 1, each later change, whether it is kept.
 ///
 /// ```
 /// use condt::{reconstruct, Params, Point};
-/// // Three points in a row and one far above the last.
 /// let points = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 9.0)].map(Point::from);
 /// let result = reconstruct(&points, &Params::default())?;
 /// let stories = result.provenance();
 /// let long = stories.iter().find(|s| s.edge == [0, 3]).unwrap();
-/// assert_eq!(
-///     long.to_string(),
-///     "0-3: second shortest at 0, dropped by the uniformity test: \
-///      |e2| = 9.220 |e1| >= 2.750 |e1|; rank 3 at 3; dropped"
-/// );
+/// assert_eq!(long.to_string(), "0-3: second shortest at 0, dropped by the uniformity test: \
+///     |e2| = 9.220 |e1| >= 2.750 |e1|; rank 3 at 3; dropped");
 /// assert!(stories.iter().find(|s| s.edge == [0, 1]).unwrap().kept);
 /// # Ok::<(), condt::Error>(())
 /// ```
@@ -197,14 +190,12 @@ struct StageInputs<'g> {
     before_outliers: &'g [Edge],
 }
 
-/// The numbers one stage's reasons need, computed once per stage by the stage's own code
-/// ([`iqr_threshold`], [`rule_evidence`]); nothing here decides whether an edge goes.
+/// The numbers one stage's reasons need, computed once per stage by the stage's own code.
 struct Explainer<'a> {
     tri: &'a Triangulation,
     stage: Stage,
     degrees_before: Vec<usize>,
-    /// Neighbours in the stage's output, for the repair only (its reason names the edges the
-    /// non-manifold vertex kept), so an explanation costs O(degree).
+    /// Neighbours in the repair's output (its reason names the edges kept), for O(degree) reasons.
     after: Neighbours,
     /// Algorithm 3's `√T` in input units, when the stage is the IQR rule.
     threshold: f64,
@@ -227,8 +218,7 @@ impl<'a> Explainer<'a> {
             degrees_before[a] += 1;
             degrees_before[b] += 1;
         }
-        // On lengths in input units the stage's threshold is the same number, scaled by the
-        // square of the power of two between the frames.
+        // On input-unit lengths: the stage's threshold, scaled by the frames' power of two squared.
         let threshold = match stage {
             Stage::Outliers if !before.is_empty() => {
                 let lengths: Vec<f64> = before

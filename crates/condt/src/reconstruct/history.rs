@@ -1,6 +1,5 @@
-//! The stage history of a run: the [`StageRecord`]s in order, the [`Undo`] deltas that keep each
-//! stage's input in a few bytes (memory), and the walk back from the last graph ([`output_of`]).
-//! It may not run a stage or decide which runs: it only remembers.
+//! A run's stage history: the [`StageRecord`]s, the [`Undo`] deltas that keep each stage's input in
+//! a few bytes (memory) and the walk back ([`output_of`]). It may not run a stage or choose one.
 
 use crate::adjacency::Edge;
 use crate::stages::Stage;
@@ -51,8 +50,7 @@ pub(super) struct StageRecord {
 /// in a hundred; a full copy costs 8 bytes per point).
 #[derive(Clone, Debug)]
 pub(super) enum Undo {
-    /// The rule did not apply: the output is the input. The first graph, which has no input, is
-    /// recorded so too.
+    /// The output is the input: the rule did not apply, or this is the first graph (no input).
     Unchanged,
     /// The output is the input without the edges at `removed`, plus `appended` edges at the end.
     Delta {
@@ -122,7 +120,6 @@ impl Undo {
                 let mut input = Vec::with_capacity(kept.len() + removed.len());
                 let mut rest = kept.iter().copied();
                 for &(position, edge) in removed {
-                    // The kept edges before this position, in their order.
                     let gap = (position as usize).saturating_sub(input.len());
                     input.extend(rest.by_ref().take(gap));
                     input.push(edge);

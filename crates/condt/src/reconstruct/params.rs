@@ -1,6 +1,5 @@
-//! What a reconstruction runs: the [`Method`], its [`Params`] and their check, and the order of
-//! the stages ([`Params::stages`], the one place it is decided). It may not run a stage (the
-//! pipeline does) nor implement one ([`crate::stages`]).
+//! What a reconstruction runs: the [`Method`], the checked [`Params`] and the stage order, decided
+//! only in [`Params::stages`]. It may not run a stage nor implement one ([`crate::stages`]).
 
 use crate::error::Error;
 use crate::stages::{Repair, Stage, Step, Uniformity};
@@ -8,17 +7,15 @@ use crate::stages::{Repair, Stage, Step, Uniformity};
 use crate::{reconstruct, reconstruct_triangulation, Reconstruction, Triangulation};
 use alloc::vec::Vec;
 
-/// Which reconstruction runs on the Delaunay triangulation: ConDT (the stages [`Params`] chooses)
-/// or a classical baseline, to compare methods on the identical triangulation.
+/// ConDT (the stages [`Params`] chooses) or a classical baseline, compared on one triangulation.
 ///
 /// ```
 /// use condt::{reconstruct, Method, Params, Point, Stage};
 /// let angles = (0..10).map(|k| k as f64 * std::f64::consts::TAU / 10.0);
 /// let points: Vec<Point> = angles.map(|t| Point::new(t.cos(), t.sin())).collect();
 /// let params = Params::default().with_method(Method::NnCrust);
-/// let result = reconstruct(&points, &params)?;
 /// assert_eq!(params.stages(), vec![Stage::NnCrust]);
-/// assert_eq!(result.edges().len(), 10);
+/// assert_eq!(reconstruct(&points, &params)?.edges().len(), 10);
 /// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -32,14 +29,12 @@ pub enum Method {
     Crust,
 }
 
-/// Parameters of a reconstruction. The stages *beyond the paper* are on by default and off in
-/// [`Params::paper`].
+/// Parameters of a reconstruction; the stages *beyond the paper* are off in [`Params::paper`].
 ///
 /// ```
 /// use condt::{Params, Uniformity};
 /// let p = Params::default();
-/// assert_eq!(p.uniformity, Uniformity::Fixed(2.75));
-/// assert_eq!(p.outlier_factor, Some(1.7));
+/// assert_eq!((p.uniformity, p.outlier_factor), (Uniformity::Fixed(2.75), Some(1.7)));
 /// assert!(p.check().is_ok());
 /// assert!(p.with_outlier_factor(Some(f64::NAN)).check().is_err());
 /// ```
@@ -57,38 +52,33 @@ pub struct Params {
     /// Remove outliers before the repair, not after (the paper's order): outlier edges can make a
     /// curve vertex non-manifold, and the repair cuts a corner there (`docs/condt.md`, note 8).
     pub outliers_first: bool,
-    /// When the IQR stage cut edges, repair the proximity graph again without every edge above
-    /// its threshold (beyond the paper; only with the repair first): a curve edge the repair
-    /// dropped for an outlier's pair comes back (`src/stages/repair_again.rs`).
+    /// If the IQR stage cut edges, repair again without all above its threshold (beyond the paper;
+    /// repair first only): curve edges an outlier cost come back (`src/stages/repair_again.rs`).
     pub repair_again: bool,
     /// The local outlier removal, after the IQR stage and the repair (beyond the paper): gives
     /// back edges the global rule cut along smooth, regular passages; drops long edges at branches
-    /// and ends, short branches and small isolated components. It loses a sparse curve of three or
-    /// four points. Rules and constants: `src/stages/local_outliers.rs`.
+    /// and ends, short branches and small components (`src/stages/local_outliers.rs`).
     pub local_outliers: bool,
-    /// After the local outlier removal (only with it; beyond the paper), drop each component made
-    /// only of edges it gave back unless each of its vertices with two edges lies more than twice
-    /// its longest edge from every unused point and other given-back component: a chance chain
-    /// among outliers goes, a sparse curve stays (`src/stages/given_back.rs`).
+    /// After the local outlier removal (only with it; beyond the paper), drop each component of
+    /// edges it gave back unless it lies clearly apart from unused points and other such ones: a
+    /// chance chain among outliers goes, a sparse curve stays (`src/stages/given_back.rs`).
     pub confirm_given_back: bool,
     /// Close gaps at loose ends (beyond the paper): join two facing across a short gap, two to the
     /// stranded sample they line up through, a crossing's lost arms to it (`src/stages/gaps.rs`).
     pub close_gaps: bool,
     /// Remove components fewer than half of whose points a curve passes smoothly and evenly
     /// (beyond the paper): clumps of outliers, which the local outlier removal keeps as they lie
-    /// apart. It removes nothing when that would remove a quarter or more of the points with
-    /// edges; see `src/stages/clumps.rs`.
+    /// apart; none if that removes a quarter or more of the points with edges (`stages/clumps.rs`).
     pub clumps: bool,
     /// Join a loose end to the curve it meets where three curves of five points or more, sampled
     /// alike, meet, as on map borders or a T (beyond the paper; `src/stages/junctions.rs`).
     pub junctions: bool,
     /// Smoothing passes (beyond the paper): when one point in a hundred or more ends or branches
-    /// the first result's curves, each point with two edges at a wide angle moves halfway to its
-    /// neighbours' midpoint and the stages run again, up to three times: noise can push a sample
-    /// into the empty circle of two true neighbours, whose edge the moved points can have again.
-    /// Edges stay between input positions; the [`triangulation`](Reconstruction::triangulation)
-    /// is of the moved points. [`reconstruct_triangulation`] runs no passes, [`reconstruct`] does.
-    /// See `src/smooth.rs` and `docs/condt.md`, "Smoothing passes".
+    /// the curves, each point with two edges at a wide angle moves halfway to its neighbours'
+    /// midpoint and the stages run again, up to three times: noise can push a sample into the empty
+    /// circle of two true neighbours, whose edge the moved points can have again. Edges stay
+    /// between input positions, the [`triangulation`](Reconstruction::triangulation) is of the
+    /// moved points; [`reconstruct`] runs passes, [`reconstruct_triangulation`] none (`smooth.rs`).
     pub smooth: bool,
     /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
     /// 65,536 points, below which waking the workers costs more than they save; same result).
@@ -96,15 +86,13 @@ pub struct Params {
 }
 
 impl Default for Params {
-    /// The best pipeline measured (`docs/condt.md`, "Beyond the paper"): the paper's with
-    /// [`Repair::Needs`] and every stage and pass beyond it. Its cost: an isolated curve of three
-    /// or four sparse points counts as outliers (`local_outliers: false` keeps it).
+    /// The best pipeline measured (`docs/condt.md`): the paper's, [`Repair::Needs`], all beyond it;
+    /// it loses a lone curve of three or four sparse points (`local_outliers: false` keeps it).
     ///
     /// ```
     /// use condt::{Params, Stage::*};
     /// let p = Params::default();
-    /// assert_eq!(p.repair, condt::Repair::Needs);
-    /// assert!(p.close_gaps && p.local_outliers && p.smooth);
+    /// assert!(p.repair == condt::Repair::Needs && p.smooth);
     /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
     /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions]].concat());
     /// ```
@@ -128,8 +116,7 @@ impl Params {
     /// ```
     /// use condt::{Params, Repair, Stage, Uniformity};
     /// let paper = Params::paper();
-    /// assert_eq!(paper.uniformity, Uniformity::Fixed(2.75));
-    /// assert_eq!(paper.repair, Repair::Paper);
+    /// assert_eq!((paper.uniformity, paper.repair), (Uniformity::Fixed(2.75), Repair::Paper));
     /// assert_eq!(paper.stages(), vec![Stage::Proximity, Stage::Repair, Stage::Outliers]);
     /// ```
     pub fn paper() -> Params {
@@ -166,14 +153,11 @@ impl Params {
     /// the repair and the IQR stage in the order [`Params::outliers_first`] chooses.
     ///
     /// ```
-    /// use condt::{Params, Repair, Stage};
+    /// use condt::{Params, Repair, Stage as S};
     /// let p = Params::paper().with_outliers_first(true).with_repair(Repair::Off);
-    /// assert_eq!(p.stages(), vec![Stage::Proximity, Stage::Outliers]);
+    /// assert_eq!(p.stages(), vec![S::Proximity, S::Outliers]);
     /// let local = Params::paper().with_outliers_first(true).with_local_outliers(true);
-    /// let order = [Stage::Proximity, Stage::Outliers, Stage::Repair, Stage::LocalOutliers];
-    /// assert_eq!(local.stages(), order);
-    /// let q = Params::paper().with_close_gaps(true);
-    /// assert_eq!(q.stages().last(), Some(&Stage::Gaps));
+    /// assert_eq!(local.stages(), [S::Proximity, S::Outliers, S::Repair, S::LocalOutliers]);
     /// ```
     pub fn stages(&self) -> Vec<Stage> {
         core::iter::once(self.first_stage())
@@ -208,10 +192,9 @@ impl Params {
             _ => None,
         };
         // The local outlier removal follows both: it reads three or more edges as a branch, which
-        // only a repaired graph makes true. The given-back check reads what it added, so runs only
-        // with it. Clumps are whole components, removed before any join can reach one. The gaps
-        // join the loose ends the earlier stages leave; a junction takes only an end that no gap
-        // join or crossing claimed.
+        // only a repaired graph makes true; the given-back check reads what it added. Clumps are
+        // whole components, removed before a join can reach one. The gaps join the loose ends left;
+        // a junction takes only an end that no gap join or crossing claimed.
         let local = self.local_outliers.then_some(Step::LocalOutliers);
         let confirm =
             (self.local_outliers && self.confirm_given_back).then_some(Step::ConfirmGivenBack);
@@ -244,8 +227,7 @@ impl Params {
         }
     }
 
-    /// Turns `stage` on or off, for the stages with a [`Switch`](crate::stages::Switch)
-    /// ([`Stage::switch`]); `false` for any other stage, which is left as it is.
+    /// Turns a switchable `stage` ([`Stage::switch`]) on or off; `false` for any other, left as is.
     ///
     /// ```
     /// use condt::{Params, Stage};
@@ -274,8 +256,7 @@ impl Params {
 /// ```
 /// use condt::{Params, Repair};
 /// let p = Params::paper().with_repair(Repair::Needs).with_smooth(true);
-/// assert_eq!(p.repair, Repair::Needs);
-/// assert!(p.smooth && !p.close_gaps);
+/// assert!(p.repair == Repair::Needs && p.smooth && !p.close_gaps);
 /// ```
 impl Params {
     /// Sets [`Params::method`].

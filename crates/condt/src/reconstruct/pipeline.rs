@@ -1,9 +1,7 @@
-//! The [`Pipeline`]: a reconstruction run one step at a time ([`reconstruct`] runs it to the end):
-//! the first graph (proximity graph or baseline), each step in the order [`Params::stages`]
-//! gives, then the tally of the last graph in input positions. With smoothing on, a run whose
-//! degrees show noise is followed by a pass (points moved along its curves, triangulated again)
-//! and a new run, until two runs agree or [`MAX_PASSES`] ran. It owns the runs, the passes and
-//! the clocks; it may not implement a stage ([`crate::stages`]) nor decide their order.
+//! The [`Pipeline`], a reconstruction one step at a time ([`reconstruct`] runs it to the end): the
+//! first graph, each step in [`Params::stages`]' order, the tally of the last graph. With smoothing
+//! on, a run whose degrees show noise is followed by a smoothing pass and a new run until two agree
+//! or [`MAX_PASSES`] ran. It owns runs, passes and clocks; it may not implement nor order stages.
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
@@ -31,14 +29,11 @@ use core::time::Duration;
 /// let points: Vec<Point> = angles.map(|t| Point::new(2.0 * t.cos(), t.sin())).collect();
 /// let mut pipeline = Pipeline::new(&points, &Params::default())?;
 /// while let Some(step) = pipeline.step()? {
-///     match step {
-///         StepReport::Stage(r) => println!("{}: {} edges", r.stage, r.graph.num_edges()),
-///         StepReport::SmoothingPass { pass, moved, .. } => println!("pass {pass} moved {moved}"),
-///         _ => {}
+///     if let StepReport::Stage(r) = step {
+///         println!("{}: {} edges", r.stage, r.graph.num_edges());
 ///     }
 /// }
-/// let result = pipeline.finish()?;
-/// assert_eq!(result.curves().len(), 1);
+/// assert_eq!(pipeline.finish()?.curves().len(), 1);
 /// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Debug)]
@@ -135,8 +130,7 @@ impl Pipeline {
     /// ```
     /// use condt::{Params, Pipeline, Point};
     /// let points = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.5, 1.0)];
-    /// let result = Pipeline::new_owned(points, &Params::paper())?.finish()?;
-    /// assert_eq!(result.edges().len(), 3);
+    /// assert_eq!(Pipeline::new_owned(points, &Params::paper())?.finish()?.edges().len(), 3);
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn new_owned(points: Vec<Point>, params: &Params) -> Result<Pipeline, Error> {
@@ -154,9 +148,8 @@ impl Pipeline {
     /// use std::sync::atomic::{AtomicUsize, Ordering};
     /// let points = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.5, 1.0)];
     /// let inserted = AtomicUsize::new(0);
-    /// let pipeline = Pipeline::new_owned_observed(points, &Params::paper(), &inserted)?;
+    /// Pipeline::new_owned_observed(points, &Params::paper(), &inserted)?;
     /// assert_eq!(inserted.load(Ordering::Relaxed), 3);
-    /// assert_eq!(pipeline.finish()?.edges().len(), 3);
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn new_owned_observed(
@@ -377,9 +370,8 @@ impl Pipeline {
     /// Moves `result`'s points along its curves and triangulates them again: (pass, points moved).
     fn smoothing_pass(&mut self, mut result: Reconstruction) -> Result<(usize, usize), Error> {
         let mut smoothing = self.smoothing.unwrap_or_default();
-        // Memory: of the previous run only its edges' fingerprint (none for the last pass
-        // allowed, which stops whatever its edges), its triangulation and its final graph are
-        // kept, each freed as soon as it has been read; the moved positions once triangulated.
+        // Memory: only the previous run's edge fingerprint (none for a last pass), triangulation
+        // and final graph are kept, each freed once read; the moved points once triangulated.
         let last_pass = smoothing.passes + 1 >= MAX_PASSES;
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
@@ -565,23 +557,19 @@ impl Run {
 ///
 /// ```
 /// use condt::{reconstruct, Params, Point};
-/// // Twelve points on a circle: one closed curve through all of them.
 /// let angles = (0..12).map(|k| k as f64 * std::f64::consts::TAU / 12.0);
 /// let circle: Vec<Point> = angles.map(|t| Point::new(t.cos(), t.sin())).collect();
 /// let result = reconstruct(&circle, &Params::default())?;
-/// assert_eq!(result.curves().len(), 1);
-/// assert!(result.curves()[0].is_closed());
-/// assert_eq!(result.edges().len(), 12);
-/// assert!(result.unused().is_empty());
+/// assert!(result.curves().len() == 1 && result.curves()[0].is_closed());
+/// assert!(result.edges().len() == 12 && result.unused().is_empty());
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn reconstruct(points: &[Point], params: &Params) -> Result<Reconstruction, Error> {
     Pipeline::new(points, params)?.finish()
 }
 
-/// [`reconstruct`] of points handed over and freed once triangulated (16 bytes per point less at
-/// the peak). The result keeps only the positions the stages saw ([`Reconstruction::stage_point`]):
-/// to read the input afterwards, keep the points and call [`reconstruct`].
+/// [`reconstruct`] of points handed over, freed once triangulated (16 bytes per point less at the
+/// peak); the result keeps only the positions the stages saw ([`Reconstruction::stage_point`]).
 ///
 /// # Errors
 /// As [`reconstruct`].
@@ -600,8 +588,7 @@ pub fn reconstruct_owned(points: Vec<Point>, params: &Params) -> Result<Reconstr
     Pipeline::new_owned(points, params)?.finish()
 }
 
-/// Runs the stages on a built triangulation, which the result keeps: [`Pipeline::on_triangulation`]
-/// run to its end.
+/// [`Pipeline::on_triangulation`] run to its end: the stages on a triangulation the result keeps.
 ///
 /// # Errors
 /// As [`Pipeline::on_triangulation`].
@@ -631,9 +618,8 @@ pub(super) fn first_graph(tri: &Triangulation, params: &Params) -> Vec<Edge> {
     }
 }
 
-/// The fixed-point test's record of a pass's final edges: their count and two 64-bit hashes.
-/// Reason: memory (the list would be held through the next pass). A collision (chance about
-/// 2^-128) stops the passes one early, with the last pass's reconstruction still valid.
+/// Memory: the fixed-point test keeps a pass's final edges as count and two 64-bit hashes, not the
+/// list held through the next pass; a collision (about 2^-128) stops the passes one early, validly.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(super) struct EdgesFingerprint {
     len: usize,

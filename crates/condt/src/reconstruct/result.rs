@@ -1,6 +1,5 @@
-//! What a reconstruction leaves: the [`Reconstruction`] (edges, curves, unused points, packed
-//! degrees, [`StageReport`]s, the [`Smoothing`] record) and the tally that turns the last graph
-//! into input positions. It may not run a stage: the pipeline hands it the finished run.
+//! What a reconstruction leaves: the [`Reconstruction`], its [`StageReport`]s and [`Smoothing`],
+//! and the tally of the last graph in input positions. It may not run a stage.
 
 use super::history::{History, Undo};
 use super::params::Params;
@@ -26,10 +25,8 @@ use core::time::Duration;
 /// use condt::{reconstruct, Params, Point, Stage};
 /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.1)].map(Point::from);
 /// let result = reconstruct(&pts, &Params::default())?;
-/// for r in result.stages() {
-///     println!("{}: {} edges, rule applied: {}", r.stage, r.graph.num_edges(), r.applied);
-/// }
-/// assert_eq!(result.stages().next().unwrap().stage, Stage::Proximity);
+/// let first = result.stages().next().unwrap();
+/// assert!(first.stage == Stage::Proximity && first.applied);
 /// assert_eq!(result.stages().count(), Params::default().stages().len());
 /// # Ok::<(), condt::Error>(())
 /// ```
@@ -54,20 +51,15 @@ pub struct Reconstruction {
 ///
 /// ```
 /// use condt::{reconstruct, Params, Point};
-/// // A noisy open arc: 30 samples over three quarters of a circle, every other one pushed out
-/// // by 4 % of the radius. Its two ends are loose ends, so the passes run.
+/// // 30 samples on three quarters of a circle, every other one 4 % out: loose ends, so passes run.
 /// let t = |k: usize| k as f64 * 1.5 * std::f64::consts::PI / 29.0;
 /// let r = |k: usize| if k % 2 == 0 { 1.04 } else { 1.0 };
-/// let pts: Vec<Point> = (0..30)
-///     .map(|k| Point::new(r(k) * t(k).cos(), r(k) * t(k).sin()))
-///     .collect();
-/// let result = reconstruct(&pts, &Params::default())?;
-/// let smoothing = result.smoothing().expect("it ran");
-/// assert!(smoothing.passes >= 1 && smoothing.moved > 0);
-/// // The stages saw the moved points; the edges are between input positions.
-/// assert_ne!(result.stage_point(2), pts[2]);
+/// let p: Vec<Point> = (0..30).map(|k| Point::new(r(k) * t(k).cos(), r(k) * t(k).sin())).collect();
+/// let result = reconstruct(&p, &Params::default())?;
+/// assert!(result.smoothing().is_some_and(|s| s.passes >= 1 && s.moved > 0));
+/// assert_ne!(result.stage_point(2), p[2]);
 /// assert_eq!(result.curves().len(), 1);
-/// assert!(reconstruct(&pts, &Params::paper())?.smoothing().is_none());
+/// assert!(reconstruct(&p, &Params::paper())?.smoothing().is_none());
 /// # Ok::<(), condt::Error>(())
 /// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -89,8 +81,7 @@ pub struct StageReport<'r> {
     pub stage: Stage,
     /// The graph it left.
     pub graph: Graph<'r>,
-    /// Whether its rule applied (a vertex needed repair, the outlier rule fired); always `true`
-    /// for the first graph.
+    /// Whether its rule applied (a vertex needed repair, an outlier rule fired); always at first.
     pub applied: bool,
     /// Its wall-clock time (zero without `std`).
     pub time: Duration,
@@ -112,9 +103,8 @@ impl Reconstruction {
         &self.triangulation
     }
 
-    /// The stages in the order they ran ([`Params::stages`]). Each graph is rebuilt from the final
-    /// one in O(edges) per later stage (the result keeps only what each stage changed); the
-    /// proximity graph may be computed again (when the repair changed over one edge in twelve).
+    /// The stages in the order they ran ([`Params::stages`]), each graph rebuilt from the final one
+    /// in O(edges) per later stage (only changes are kept); the proximity graph may be recomputed.
     pub fn stages(&self) -> impl ExactSizeIterator<Item = StageReport<'_>> + '_ {
         (0..self.history.records.len()).map(move |k| self.report(k))
     }
@@ -135,8 +125,7 @@ impl Reconstruction {
     /// use condt::{reconstruct, Params, Point};
     /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
     /// let result = reconstruct(&pts, &Params::default())?;
-    /// let names: Vec<_> = result.stage_times().map(|(stage, _)| stage).collect();
-    /// assert_eq!(names, Params::default().stages());
+    /// assert!(result.stage_times().map(|(stage, _)| stage).eq(Params::default().stages()));
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn stage_times(&self) -> impl ExactSizeIterator<Item = (Stage, Duration)> + '_ {
@@ -203,9 +192,8 @@ impl Reconstruction {
         self.degrees.get(index)
     }
 
-    /// Input point `index` as the stages saw it (where smoothing passes moved it, if they did),
-    /// which stage drawings show. The input stays the caller's ([`reconstruct`],
-    /// [`reconstruct_owned`]): a copy would cost a tenth of the peak (`docs/perf-log.md`).
+    /// Input point `index` as the stages saw it, moved if smoothing passes ran. The input stays the
+    /// caller's ([`reconstruct`], [`reconstruct_owned`]): a copy would cost a tenth of the peak.
     ///
     /// # Panics
     /// If `index` is not an input position.
@@ -329,7 +317,6 @@ const TALLY_PREFETCH: usize = 16;
 /// positions come from the dense map: sixteen to a cache line, where curve-graph records pack four.
 pub(super) fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
     let n = tri.num_points();
-    // Without duplicates every input position stands for its own vertex.
     let has_duplicates = tri.num_vertices() < n;
     let mut degrees = Degrees::with_capacity(n);
     let mut unused = Vec::new();
