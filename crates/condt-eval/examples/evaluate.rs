@@ -9,7 +9,7 @@
 //!  [--[no-]confirm-given-back] [--[no-]close-gaps] [--[no-]smooth] [--paper] [--sets]`
 //! With `--compare`, runs every repair variant and uniformity mode and prints one table each.
 
-use condt::{reconstruct, Params, Repair, Uniformity};
+use condt::{reconstruct, Params, Repair, Stage, Uniformity};
 use condt_io::read_points;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -171,42 +171,23 @@ fn main() {
     } else {
         Params::default()
     };
-    for (flag, on) in [("--local-outliers", true), ("--no-local-outliers", false)] {
-        if args.iter().any(|a| a == flag) {
-            params.local_outliers = on;
-        }
-    }
-    for (flag, on) in [
-        ("--confirm-given-back", true),
-        ("--no-confirm-given-back", false),
-    ] {
-        if args.iter().any(|a| a == flag) {
-            params.confirm_given_back = on;
+    // Every stage switch of the stage table (`--[no-]local-outliers`, `--[no-]clumps`, ...), as
+    // the command line reads them, and the smoothing passes.
+    for stage in Stage::ALL {
+        if let Some(switch) = stage.switch() {
+            for (flag, on) in [
+                (format!("--{}", switch.flag), true),
+                (format!("--no-{}", switch.flag), false),
+            ] {
+                if args.contains(&flag) {
+                    params.set_stage(stage, on);
+                }
+            }
         }
     }
     for (flag, on) in [("--smooth", true), ("--no-smooth", false)] {
         if args.iter().any(|a| a == flag) {
             params.smooth = on;
-        }
-    }
-    for (flag, on) in [("--close-gaps", true), ("--no-close-gaps", false)] {
-        if args.iter().any(|a| a == flag) {
-            params.close_gaps = on;
-        }
-    }
-    for (flag, on) in [("--repair-again", true), ("--no-repair-again", false)] {
-        if args.iter().any(|a| a == flag) {
-            params.repair_again = on;
-        }
-    }
-    for (flag, on) in [("--clumps", true), ("--no-clumps", false)] {
-        if args.iter().any(|a| a == flag) {
-            params.clumps = on;
-        }
-    }
-    for (flag, on) in [("--junctions", true), ("--no-junctions", false)] {
-        if args.iter().any(|a| a == flag) {
-            params.junctions = on;
         }
     }
     if let Some(r) = value("--repair") {

@@ -371,22 +371,8 @@ fn distances<N: Nearest>(
     } else {
         Scale::IDENTITY
     };
-    // Then relative to the box's corner, so that offsets of 1e6 cost no precision in the
-    // differences the distances are made of.
-    let (mut min, mut max) = (
-        Point::new(f64::INFINITY, f64::INFINITY),
-        Point::new(0.0, 0.0),
-    );
     let mut local: Vec<Point> = points.iter().map(|&p| scale.apply(p)).collect();
-    for p in &local {
-        min = Point::new(min.x.min(p.x), min.y.min(p.y));
-    }
-    for p in &mut local {
-        *p = Point::new(p.x - min.x, p.y - min.y);
-    }
-    for p in &local {
-        max = Point::new(max.x.max(p.x), max.y.max(p.y));
-    }
+    let max = to_corner(&mut local);
     let diagonal = match libm::hypot(max.x, max.y) {
         d if d > 0.0 => d,
         _ => 1.0,
@@ -431,6 +417,23 @@ fn distances<N: Nearest>(
 }
 
 /// Squared distance from `p` to the segment `a`–`b`.
+/// Moves `points` so that their box's lower left corner is the origin, and returns the box's
+/// upper right corner. Reason: offsets of 1e6 then cost no precision in the differences the
+/// distances are made of.
+fn to_corner(points: &mut [Point]) -> Point {
+    let min = points
+        .iter()
+        .fold(Point::new(f64::INFINITY, f64::INFINITY), |m, p| {
+            Point::new(m.x.min(p.x), m.y.min(p.y))
+        });
+    let mut max = Point::new(0.0, 0.0);
+    for p in points {
+        *p = Point::new(p.x - min.x, p.y - min.y);
+        max = Point::new(max.x.max(p.x), max.y.max(p.y));
+    }
+    max
+}
+
 fn segment_distance_squared(p: Point, a: Point, b: Point) -> f64 {
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     let (wx, wy) = (p.x - a.x, p.y - a.y);
@@ -1586,16 +1589,9 @@ mod tests {
                 _ => random_edges(&mut rng, n, n),
             };
             // In the frame `distances` uses: corner at the origin.
-            let min = points
-                .iter()
-                .fold(Point::new(f64::INFINITY, f64::INFINITY), |m, p| {
-                    Point::new(m.x.min(p.x), m.y.min(p.y))
-                });
-            let local: Vec<Point> = points
-                .iter()
-                .map(|p| Point::new(p.x - min.x, p.y - min.y))
-                .collect();
-            let size = local.iter().fold(0.0f64, |m, p| m.max(p.x).max(p.y));
+            let mut local = points.clone();
+            let corner = to_corner(&mut local);
+            let size = corner.x.max(corner.y);
             let index = Index::new(&local, &truth, size);
             if case % 4 == 0 {
                 assert!(!index.long.keys.is_empty(), "case {case}");
@@ -1632,16 +1628,9 @@ mod tests {
                 1 => random_edges(&mut rng, n, n),
                 _ => chain(&(0..n).collect::<Vec<_>>()),
             };
-            let min = points
-                .iter()
-                .fold(Point::new(f64::INFINITY, f64::INFINITY), |m, p| {
-                    Point::new(m.x.min(p.x), m.y.min(p.y))
-                });
-            let local: Vec<Point> = points
-                .iter()
-                .map(|p| Point::new(p.x - min.x, p.y - min.y))
-                .collect();
-            let size = local.iter().fold(0.0f64, |m, p| m.max(p.x).max(p.y));
+            let mut local = points.clone();
+            let corner = to_corner(&mut local);
+            let size = corner.x.max(corner.y);
             if size == 0.0 {
                 continue;
             }

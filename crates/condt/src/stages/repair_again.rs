@@ -7,10 +7,10 @@
 //! Why: the repair (Algorithm 2) decides among edges the IQR rule cuts next. An outlier near a
 //! curve makes two curve points non-manifold, the repair may keep the outlier's pair over the
 //! curve edge between them, and the cut then loses that edge. Cutting first (`outliers_first`)
-//! is no cure: on the unrepaired graph a fifth of outliers lift the upper quartile among their
-//! edges and the rule never fires. Rule: when the IQR stage removed edges, repair the proximity
-//! graph less every edge above `T`, taken from the repaired graph as that stage took it. Gains
-//! and losses: docs/condt.md, *Repairing again without the cut edges*.
+//! is no cure: on the unrepaired graph, with a fifth of the points outliers, the upper quartile
+//! falls among their edges and the rule never fires. Rule: when the IQR stage removed edges,
+//! repair the proximity graph less every edge above `T`, taken from the repaired graph as that
+//! stage took it. Gains and losses: docs/condt.md, *Repairing again without the cut edges*.
 
 use super::outliers::iqr_threshold;
 use super::repair::repair;
