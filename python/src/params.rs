@@ -13,6 +13,7 @@
 //! | `iqr=K` / `iqr=None` | `--iqr K` / `--no-outlier-filter` | `outlier_factor` |
 //! | `outlier_filter=False` | `--no-outlier-filter` | `outlier_factor = None` |
 //! | `outliers_first=B` | `--outliers-first` | `outliers_first` |
+//! | `iqr_floor=B` | `--[no-]iqr-floor` | `iqr_floor` |
 //! | `repair_again=B`, `local_outliers=B`, `clumps=B`, `confirm_given_back=B`, `close_gaps=B`, `junctions=B` | `--[no-]FLAG` (`Stage::switch`) | `set_stage` |
 //! | `smooth=B` | `--[no-]smooth` | `smooth` |
 //! | `repair=MODE` | `--repair MODE` | `repair` |
@@ -32,6 +33,7 @@ const KEYWORDS: &[&str] = &[
     "iqr",
     "outlier_filter",
     "outliers_first",
+    "iqr_floor",
     "smooth",
     "repair",
     "manifold_fix",
@@ -215,6 +217,7 @@ pub(crate) fn params(paper: bool, kwargs: Option<&Bound<'_, PyDict>>) -> PyResul
                 }
             }
             "outliers_first" => params.outliers_first = boolean(name, &value)?,
+            "iqr_floor" => params.iqr_floor = boolean(name, &value)?,
             "smooth" => params.smooth = boolean(name, &value)?,
             "repair" => repair.set(choice(name, &value, REPAIR_MODES)?, said)?,
             "manifold_fix" => {

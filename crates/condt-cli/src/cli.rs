@@ -101,6 +101,7 @@ enum ReconstructId {
     Iqr,
     NoOutlierFilter,
     OutliersFirst,
+    IqrFloor,
     /// A stage's switch, from the library's table of stages ([`Stage::switch`]).
     StageSwitch(Stage),
     Smooth,
@@ -120,8 +121,8 @@ impl ReconstructId {
     fn sets_a_condt_stage(self) -> bool {
         use ReconstructId::*;
         match self {
-            Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | StageSwitch(_)
-            | Smooth | NoManifoldFix | Repair => true,
+            Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | IqrFloor
+            | StageSwitch(_) | Smooth | NoManifoldFix | Repair => true,
             Output | Method | Format | Stages | Sequential | Timings | Quiet | Help => false,
         }
     }
@@ -178,6 +179,16 @@ instead of the default; the options below still adjust it",
         negatable: false,
         value: None,
         help: "skip outlier removal",
+    },
+    Opt {
+        id: ReconstructId::IqrFloor,
+        short: None,
+        long: "iqr-floor",
+        negatable: true,
+        value: None,
+        help: "(default on; off with --paper) the outlier filter cuts no edge up to
+1.5 times the median edge: on evenly spaced samples the paper's
+threshold falls onto the spacing and cuts stretches a little wider",
     },
     Opt {
         id: ReconstructId::OutliersFirst,
@@ -307,7 +318,8 @@ condt reconstruct: the curves through unorganized planar points (ConDT)
 
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [--paper] [--u X | --adaptive]
-                    [--iqr K | --no-outlier-filter] [--no-manifold-fix | --repair MODE]
+                    [--iqr K | --no-outlier-filter] [--[no-]iqr-floor]
+                    [--no-manifold-fix | --repair MODE]
                     [--outliers-first] [--[no-]repair-again] [--[no-]local-outliers]
                     [--[no-]confirm-given-back] [--[no-]clumps] [--[no-]close-gaps]
                     [--[no-]junctions] [--[no-]smooth]
@@ -325,7 +337,7 @@ LineString per curve), `html` (.html: a self-contained page to explore every sta
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 
-The default pipeline is the paper's (Algorithms 1-3) with the repair `needs` (run again without
+The default pipeline is the paper's (Algorithms 1-3) with the outlier filter's spacing floor, the repair `needs` (run again without
 the edges the outlier filter cut), local outlier removal, clumps, gap closing, junctions and smoothing passes; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points,
 which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error.
 ";
@@ -735,6 +747,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     // Per stage with a switch, its setting, in the table's order.
     let mut switched: Vec<(Stage, Setting<bool>)> = Vec::new();
     let mut smooth = Setting::new();
+    let mut iqr_floor = Setting::new();
     let mut format = Setting::new();
     let mut method = Setting::new();
     // ConDT's own options, as written, to refuse them beside a baseline method.
@@ -790,6 +803,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 switched[k].1.set(given.on, flag)?;
             }
             Id::Smooth => smooth.set(given.on, flag)?,
+            Id::IqrFloor => iqr_floor.set(given.on, flag)?,
             Id::NoManifoldFix => repair.set(Repair::Off, flag)?,
             Id::Repair => {
                 let mode = repair_mode(value)?;
@@ -839,6 +853,9 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     }
     if let Some(on) = smooth.get() {
         params.smooth = on;
+    }
+    if let Some(on) = iqr_floor.get() {
+        params.iqr_floor = on;
     }
     if let Some(chosen) = method.get() {
         if chosen != Method::ConDT {

@@ -4,6 +4,7 @@
 use crate::adjacency::{degrees, ordered, sort_pairs, CurveGraph, Edge};
 use crate::curve::{curves_in_input_positions, Curve};
 use crate::error::Error;
+use crate::stages::outliers::IqrRule;
 use crate::stages::{proximity, Earlier, Repair, Step, Uniformity};
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
@@ -28,13 +29,63 @@ pub struct Graph<'t> {
     edges: Cow<'t, [Edge]>,
 }
 
-/// What [`Graph::remove_outliers`] did.
+/// What [`Graph::remove_outliers`] (or [`Graph::remove_outliers_floored`]) did.
 #[derive(Clone, Debug)]
 pub struct OutlierRemoval<'t> {
     /// The graph after the stage (the input itself when the rule did not fire).
     pub graph: Graph<'t>,
     /// Whether Algorithm 3's rule fired: some point had every edge longer than `2 √T`.
     pub fired: bool,
+    /// The rule as it ran, for [`OutlierRemoval::repair_again`].
+    rule: IqrRule,
+}
+
+impl<'t> OutlierRemoval<'t> {
+    /// Repairs again without the cut edges ([`Params::repair_again`](crate::Params::repair_again)):
+    /// `repaired` is this stage's input and `proximity` the repair's, `repair` as that ran. If
+    /// the rule fired, `proximity` less every edge above this cut's threshold, repaired by
+    /// `repair`; otherwise this stage's graph.
+    ///
+    /// # Panics
+    /// If `repaired` or `proximity` lives on another triangulation.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point, Repair, Uniformity};
+    /// // A square outline, 10 points a side, an outlier off a corner and one far away.
+    /// let side = |t: f64| [(t, 0.0), (10.0, t), (10.0 - t, 10.0), (0.0, 10.0 - t)];
+    /// let mut pts: Vec<Point> = (0..10).flat_map(|k| side(k as f64)).map(Point::from).collect();
+    /// pts.extend([Point::new(-0.9, -0.9), Point::new(30.0, 30.0)]);
+    /// let tri = triangulate(&pts)?;
+    /// let proximity = tri.proximity_graph(Uniformity::Fixed(2.75))?;
+    /// let repaired = proximity.repair(Repair::Needs);
+    /// let cut = repaired.remove_outliers(1.7)?;
+    /// assert!(cut.fired);
+    /// let again = cut.repair_again(&repaired, &proximity, Repair::Needs).edges();
+    /// assert!(again.len() == 40 && again.iter().all(|&[a, b]| a < 40 && b < 40));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn repair_again(
+        &self,
+        repaired: &Graph<'t>,
+        proximity: &Graph<'t>,
+        repair: Repair,
+    ) -> Graph<'t> {
+        let this = &self.graph;
+        assert!(
+            core::ptr::eq(this.tri, repaired.tri) && core::ptr::eq(this.tri, proximity.tri),
+            "repair_again: the graphs live on different triangulations"
+        );
+        let step = Step::RepairAgain {
+            rule: self.rule,
+            mode: repair,
+        };
+        let earlier = Earlier {
+            before_outliers: Cow::Borrowed(&repaired.edges),
+            before_local: Cow::Borrowed(&this.edges),
+            before_repair: Cow::Borrowed(&proximity.edges),
+        };
+        this.step_with(step, earlier).0
+    }
 }
 
 /// Shows the size and the edges in input positions, not the whole triangulation it borrows.
@@ -106,60 +157,48 @@ impl<'t> Graph<'t> {
     /// # Errors
     /// [`Error::InvalidParameter`] named `k` when `k` is NaN, infinite or negative.
     pub fn remove_outliers(&self, k: f64) -> Result<OutlierRemoval<'t>, Error> {
-        let step = Step::Outliers { factor: k };
-        step.check()?;
-        let (graph, fired) = self.step(step);
-        Ok(OutlierRemoval { graph, fired })
+        self.cut(IqrRule {
+            factor: k,
+            floor: false,
+        })
     }
 
-    /// Repairs again without the cut edges ([`Params::repair_again`](crate::Params::repair_again)):
-    /// this graph is the IQR stage's output, `repaired` its input and `proximity` the repair's;
-    /// `k` and `repair` as those stages ran. If the IQR stage removed edges, `proximity` less every
-    /// edge above the IQR threshold of `repaired`, repaired by `repair`; otherwise this graph.
+    /// Algorithm 3 with the spacing floor ([`Params::iqr_floor`](crate::Params::iqr_floor), the
+    /// default's reading): it fires as [`Graph::remove_outliers`] does, but cuts no edge up to
+    /// 1.5 times the median edge.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] named `k` when `k` is NaN, infinite or negative.
     ///
-    /// # Panics
-    /// If `repaired` or `proximity` lives on another triangulation.
-    ///
     /// ```
-    /// use condt::{triangulate, Point, Repair, Uniformity};
-    /// // A square outline, 10 points a side, an outlier off a corner and one far away.
-    /// let side = |t: f64| [(t, 0.0), (10.0, t), (10.0 - t, 10.0), (0.0, 10.0 - t)];
-    /// let mut pts: Vec<Point> = (0..10).flat_map(|k| side(k as f64)).map(Point::from).collect();
-    /// pts.extend([Point::new(-0.9, -0.9), Point::new(30.0, 30.0)]);
+    /// use condt::{triangulate, Point, Uniformity};
+    /// // Unit spacing along a line, the last three edges 4 % longer, and a point far above it.
+    /// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+    /// for p in &mut pts[18..] {
+    ///     p.x = 17.0 + (p.x - 17.0) * 1.04;
+    /// }
+    /// pts.push(Point::new(10.0, 3.0));
     /// let tri = triangulate(&pts)?;
-    /// let proximity = tri.proximity_graph(Uniformity::Fixed(2.75))?;
-    /// let repaired = proximity.repair(Repair::Needs);
-    /// let cut = repaired.remove_outliers(1.7)?;
-    /// assert!(cut.fired);
-    /// let again = cut.graph.repair_again(&repaired, &proximity, 1.7, Repair::Needs)?.edges();
-    /// assert!(again.len() == 40 && again.iter().all(|&[a, b]| a < 40 && b < 40));
+    /// let graph = tri.proximity_graph(Uniformity::Fixed(2.75))?;
+    /// let (paper, floored) = (graph.remove_outliers(1.7)?, graph.remove_outliers_floored(1.7)?);
+    /// assert!(paper.fired && floored.fired);
+    /// assert!(!paper.graph.edges().contains(&[19, 20]));
+    /// assert!(floored.graph.edges().contains(&[19, 20]));
+    /// assert!(floored.graph.edges().iter().all(|e| !e.contains(&21)));
     /// # Ok::<(), condt::Error>(())
     /// ```
-    pub fn repair_again(
-        &self,
-        repaired: &Graph<'t>,
-        proximity: &Graph<'t>,
-        k: f64,
-        repair: Repair,
-    ) -> Result<Graph<'t>, Error> {
-        assert!(
-            core::ptr::eq(self.tri, repaired.tri) && core::ptr::eq(self.tri, proximity.tri),
-            "repair_again: the graphs live on different triangulations"
-        );
-        let step = Step::RepairAgain {
+    pub fn remove_outliers_floored(&self, k: f64) -> Result<OutlierRemoval<'t>, Error> {
+        self.cut(IqrRule {
             factor: k,
-            mode: repair,
-        };
+            floor: true,
+        })
+    }
+
+    fn cut(&self, rule: IqrRule) -> Result<OutlierRemoval<'t>, Error> {
+        let step = Step::Outliers(rule);
         step.check()?;
-        let earlier = Earlier {
-            before_outliers: Cow::Borrowed(&repaired.edges),
-            before_local: Cow::Borrowed(&self.edges),
-            before_repair: Cow::Borrowed(&proximity.edges),
-        };
-        Ok(self.step_with(step, earlier).0)
+        let (graph, fired) = self.step(step);
+        Ok(OutlierRemoval { graph, fired, rule })
     }
 
     /// The local outlier removal ([`Params::local_outliers`](crate::Params::local_outliers)) on

@@ -6,7 +6,7 @@
 use crate::adjacency::Edge;
 use crate::reconstruct::Reconstruction;
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
-use crate::stages::outliers::iqr_threshold;
+use crate::stages::outliers::{iqr_thresholds, IqrRule};
 use crate::stages::proximity::end_choice;
 use crate::stages::{Stage, Uniformity};
 use crate::triangulate::Triangulation;
@@ -225,10 +225,11 @@ impl<'a> Explainer<'a> {
                     .iter()
                     .map(|&[a, b]| tri.point(a).dist2(tri.point(b)))
                     .collect();
-                libm::sqrt(iqr_threshold(
-                    &lengths,
-                    result.params().outlier_factor.unwrap_or(0.0),
-                ))
+                let rule = IqrRule {
+                    factor: result.params().outlier_factor.unwrap_or(0.0),
+                    floor: result.params().iqr_floor,
+                };
+                libm::sqrt(iqr_thresholds(&lengths, rule).cut)
             }
             _ => 0.0,
         };

@@ -103,6 +103,7 @@ def reconstruct(
     iqr: Optional[float] = ...,
     outlier_filter: bool = ...,
     outliers_first: bool = ...,
+    iqr_floor: bool = ...,
     repair_again: bool = ...,
     local_outliers: bool = ...,
     clumps: bool = ...,

@@ -188,13 +188,10 @@ mod tests {
         assert_eq!(reports[0].graph.listed(), proximity.listed());
         let repaired = proximity.repair(params.repair);
         assert_eq!(reports[1].graph.listed(), repaired.listed());
-        let filtered = repaired.remove_outliers(1.7).unwrap();
+        let filtered = repaired.remove_outliers_floored(1.7).unwrap();
         assert_eq!(reports[2].graph.listed(), filtered.graph.listed());
         assert_eq!(reports[2].applied, filtered.fired);
-        let again = filtered
-            .graph
-            .repair_again(&repaired, &proximity, 1.7, params.repair)
-            .unwrap();
+        let again = filtered.repair_again(&repaired, &proximity, params.repair);
         assert_eq!(reports[3].graph.listed(), again.listed());
         let local = again.remove_local_outliers(&repaired);
         assert_eq!(reports[4].graph.listed(), local.listed());
@@ -238,7 +235,7 @@ mod tests {
             assert_eq!(reports[0].graph.listed(), proximity.listed());
             let repaired = proximity.repair(params.repair);
             assert_eq!(reports[1].graph.listed(), repaired.listed());
-            let filtered = repaired.remove_outliers(1.7).unwrap();
+            let filtered = repaired.remove_outliers_floored(1.7).unwrap();
             assert_eq!(reports[2].graph.listed(), filtered.graph.listed());
             assert_eq!(
                 result.stage(Stage::Proximity).unwrap().graph.listed(),
@@ -340,7 +337,7 @@ mod tests {
             let (mut before_outliers, mut before_local) = (current.clone(), current.clone());
             let before_repair = current.clone();
             for step in params.steps() {
-                if matches!(step, Step::Outliers { .. }) {
+                if matches!(step, Step::Outliers(_)) {
                     before_outliers = current.clone();
                 }
                 if step == Step::LocalOutliers {

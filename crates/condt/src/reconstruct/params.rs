@@ -2,6 +2,7 @@
 //! only in [`Params::stages`]. It may not run a stage nor implement one ([`crate::stages`]).
 
 use crate::error::Error;
+use crate::stages::outliers::IqrRule;
 use crate::stages::{Repair, Stage, Step, Uniformity};
 #[cfg(doc)]
 use crate::{reconstruct, reconstruct_triangulation, Reconstruction, Triangulation};
@@ -52,6 +53,10 @@ pub struct Params {
     /// Remove outliers before the repair, not after (the paper's order): outlier edges can make a
     /// curve vertex non-manifold, and the repair cuts a corner there (`docs/condt.md`, note 8).
     pub outliers_first: bool,
+    /// The IQR stage cuts no edge up to 1.5 times the median edge (beyond the paper): on evenly
+    /// spaced samples the lengths hardly spread, `T` falls onto the spacing, and the paper's rule
+    /// cuts straight stretches spaced a few per cent wider (`src/stages/outliers.rs`).
+    pub iqr_floor: bool,
     /// If the IQR stage cut edges, repair again without all above its threshold (beyond the paper;
     /// repair first only): curve edges an outlier cost come back (`src/stages/repair_again.rs`).
     pub repair_again: bool,
@@ -99,6 +104,7 @@ impl Default for Params {
     fn default() -> Self {
         Params::paper()
             .with_repair(Repair::Needs)
+            .with_iqr_floor(true)
             .with_repair_again(true)
             .with_local_outliers(true)
             .with_confirm_given_back(true)
@@ -126,6 +132,7 @@ impl Params {
             repair: Repair::Paper,
             outlier_factor: Some(1.7),
             outliers_first: false,
+            iqr_floor: false,
             repair_again: false,
             local_outliers: false,
             confirm_given_back: false,
@@ -177,7 +184,12 @@ impl Params {
     /// The steps after the proximity graph, in order: the one place the order is decided.
     pub(crate) fn steps(&self) -> impl Iterator<Item = Step> {
         let repair = (self.repair != Repair::Off).then_some(Step::Repair(self.repair));
-        let outliers = self.outlier_factor.map(|factor| Step::Outliers { factor });
+        let outliers = self.outlier_factor.map(|factor| {
+            Step::Outliers(IqrRule {
+                factor,
+                floor: self.iqr_floor,
+            })
+        });
         let (first, second) = if self.outliers_first {
             (outliers, repair)
         } else {
@@ -185,8 +197,8 @@ impl Params {
         };
         // Only a repair that ran before the cut can be run again without the cut edges.
         let again = match (self.repair_again && !self.outliers_first, repair, outliers) {
-            (true, Some(_), Some(Step::Outliers { factor })) => Some(Step::RepairAgain {
-                factor,
+            (true, Some(_), Some(Step::Outliers(rule))) => Some(Step::RepairAgain {
+                rule,
                 mode: self.repair,
             }),
             _ => None,
@@ -286,6 +298,12 @@ impl Params {
     /// Sets [`Params::outliers_first`].
     pub fn with_outliers_first(mut self, outliers_first: bool) -> Params {
         self.outliers_first = outliers_first;
+        self
+    }
+
+    /// Sets [`Params::iqr_floor`].
+    pub fn with_iqr_floor(mut self, iqr_floor: bool) -> Params {
+        self.iqr_floor = iqr_floor;
         self
     }
 

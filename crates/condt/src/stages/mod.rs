@@ -276,8 +276,11 @@ impl core::fmt::Display for Stage {
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub(crate) enum Step {
     Repair(Repair),
-    Outliers { factor: f64 },
-    RepairAgain { factor: f64, mode: Repair },
+    Outliers(outliers::IqrRule),
+    RepairAgain {
+        rule: outliers::IqrRule,
+        mode: Repair,
+    },
     LocalOutliers,
     ConfirmGivenBack,
     RemoveClumps,
@@ -300,7 +303,7 @@ impl Step {
     pub(crate) fn stage(self) -> Stage {
         match self {
             Step::Repair(_) => Stage::Repair,
-            Step::Outliers { .. } => Stage::Outliers,
+            Step::Outliers(_) => Stage::Outliers,
             Step::RepairAgain { .. } => Stage::RepairAgain,
             Step::LocalOutliers => Stage::LocalOutliers,
             Step::ConfirmGivenBack => Stage::GivenBack,
@@ -313,12 +316,12 @@ impl Step {
     /// `Ok` when the parameter is one the stage accepts.
     pub(crate) fn check(self) -> Result<(), Error> {
         match self {
-            Step::Outliers { factor } | Step::RepairAgain { factor, .. }
-                if !(factor.is_finite() && factor >= 0.0) =>
+            Step::Outliers(rule) | Step::RepairAgain { rule, .. }
+                if !(rule.factor.is_finite() && rule.factor >= 0.0) =>
             {
                 Err(Error::InvalidParameter {
                     name: "k",
-                    value: factor,
+                    value: rule.factor,
                 })
             }
             _ => Ok(()),
@@ -344,18 +347,18 @@ impl Step {
                 drop(graph);
                 Outcome::from(repair::repair(tri, edges, mode))
             }
-            Step::Outliers { factor } => {
+            Step::Outliers(rule) => {
                 drop(graph);
-                outliers::remove_outliers(tri, edges, factor)
+                outliers::remove_outliers(tri, edges, rule)
             }
-            Step::RepairAgain { factor, mode } => {
+            Step::RepairAgain { rule, mode } => {
                 drop(graph);
                 repair_again::repair_again(
                     tri,
                     edges,
                     &earlier.before_outliers,
                     &earlier.before_repair,
-                    factor,
+                    rule,
                     mode,
                 )
             }

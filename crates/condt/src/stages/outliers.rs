@@ -1,13 +1,20 @@
 //! Stage 3, outlier removal (Algorithm 3).
 //!
-//! Owns: the interquartile-range rule on squared edge lengths. It reads point positions and the
-//! graph; it may not touch the triangulation.
+//! Owns: the interquartile-range rule on squared edge lengths, and its spacing floor (beyond the
+//! paper). It reads point positions and the graph; it may not touch the triangulation.
 //!
 //! With the sorted squared lengths `s` of the `n` edges, `T = Q3 + k (Q3 - Q1)`, `Q1 = s[n/4]`,
 //! `Q3 = s[3n/4]` (`k = 1.7` by default). The filter applies only when some vertex has every edge
 //! longer than twice the threshold taken as a length, `|e| > 2 √T`; it then keeps the edges of
 //! squared length not above `T`. The paper compares plain lengths with `2 T`, mixing units:
 //! `docs/condt.md`, notes 5 and 6.
+//!
+//! **Spacing floor** ([`Params::iqr_floor`](crate::Params::iqr_floor), on by default): the cut
+//! keeps every edge up to [`FLOOR_RATIO`] times the median edge, whatever `T`; whether the rule
+//! fires is still decided on `T`. Why: `T` scales with the spread of the lengths, and evenly
+//! spaced samples (resampled outlines, maps, fonts) have almost none, so `T` falls within a few
+//! per cent of the spacing and the rule cuts whole straight stretches spaced a little wider than
+//! the rest (docs/condt.md, *The spacing floor*).
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, Edge};
@@ -15,28 +22,66 @@ use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// Algorithm 3's threshold on the squared lengths `lengths2` (not empty), with
-/// `Q3 = s[min(3n/4, n - 1)]`: the one place it is computed (explanations ask it too, in input
-/// units).
-pub(crate) fn iqr_threshold(lengths2: &[f64], factor: f64) -> f64 {
-    let n = lengths2.len();
-    let upper = (3 * n / 4).min(n - 1);
-    // The quartiles of the sorted list, without sorting it: two selections on a scratch copy,
-    // the second only among the values the first put below Q3.
-    let mut scratch = lengths2.to_vec();
-    let q3 = *scratch.select_nth_unstable_by(upper, f64::total_cmp).1;
-    let q1 = if n / 4 < upper {
-        *scratch[..upper]
-            .select_nth_unstable_by(n / 4, f64::total_cmp)
-            .1
-    } else {
-        q3 // a single edge
-    };
-    q3 + factor * (q3 - q1)
+/// The floor's ratio to the median edge. Reason: a tool that spaces points evenly at `h` splits
+/// each segment of length `L` into `L / h` pieces rounded to a whole number, so its pieces reach
+/// `3h/2` (a segment just under `3h/2` stays whole; rounding up instead keeps them under `h`),
+/// while the median edge is about `h`. The median, not `Q3`: outliers are a minority (the
+/// quartiles' premise), so it is a curve edge even when a quarter of the edges are outliers'.
+pub(crate) const FLOOR_RATIO: f64 = 1.5;
+
+/// Algorithm 3's parameters: the factor `k` (checked by the caller: finite, `>= 0`) and whether
+/// the cut has the spacing floor.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub(crate) struct IqrRule {
+    pub(crate) factor: f64,
+    pub(crate) floor: bool,
 }
 
-/// Algorithm 3 on `edges` (`factor` checked by the caller: finite, `>= 0`); unchanged unless fired.
-pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) -> Outcome {
+/// The rule's two thresholds on squared lengths.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub(crate) struct Thresholds {
+    /// Algorithm 3's `T`: the rule fires when some vertex has every edge above `4 T`.
+    pub(crate) fire: f64,
+    /// Edges above it are cut when the rule fires: `T`, or with the floor the larger of `T` and
+    /// `FLOOR_RATIO²` times the median squared length.
+    pub(crate) cut: f64,
+}
+
+/// The thresholds on the squared lengths `lengths2` (not empty), with `Q3 = s[min(3n/4, n - 1)]`
+/// and the median `s[n/2]`: the one place they are computed (repairing again and explanations
+/// ask them too).
+pub(crate) fn iqr_thresholds(lengths2: &[f64], rule: IqrRule) -> Thresholds {
+    let n = lengths2.len();
+    let upper = (3 * n / 4).min(n - 1);
+    // The quartiles of the sorted list, without sorting it: selections on a scratch copy, each
+    // among the values the one before put below it.
+    let mut scratch = lengths2.to_vec();
+    let q3 = *scratch.select_nth_unstable_by(upper, f64::total_cmp).1;
+    let (q1, median) = if n / 4 < upper {
+        let below_q3 = &mut scratch[..upper];
+        let median = if n / 2 < upper {
+            *below_q3.select_nth_unstable_by(n / 2, f64::total_cmp).1
+        } else {
+            q3
+        };
+        // n / 4 < n / 2 here (n >= 2), and n / 4 < upper.
+        let below_median = &mut below_q3[..(n / 2).min(upper)];
+        let q1 = *below_median.select_nth_unstable_by(n / 4, f64::total_cmp).1;
+        (q1, median)
+    } else {
+        (q3, q3) // a single edge
+    };
+    let fire = q3 + rule.factor * (q3 - q1);
+    let cut = if rule.floor {
+        fire.max(FLOOR_RATIO * FLOOR_RATIO * median)
+    } else {
+        fire
+    };
+    Thresholds { fire, cut }
+}
+
+/// Algorithm 3 on `edges`; unchanged unless fired.
+pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], rule: IqrRule) -> Outcome {
     let unchanged = Outcome::UNCHANGED;
     let lengths: Vec<f64> = edges
         .iter()
@@ -56,12 +101,12 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
     if below <= upper {
         return unchanged;
     }
-    let threshold = iqr_threshold(&lengths, factor);
+    let Thresholds { fire, cut } = iqr_thresholds(&lengths, rule);
     // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long
     // edges. Per vertex, bit 0 records an edge and bit 1 an edge within the bound.
     let mut seen = vec![0u8; tri.num_points()];
     for (&[a, b], &length2) in edges.iter().zip(&lengths) {
-        let mark = 1 | (u8::from(length2 <= 4.0 * threshold) << 1);
+        let mark = 1 | (u8::from(length2 <= 4.0 * fire) << 1);
         seen[a.index()] |= mark;
         seen[b.index()] |= mark;
     }
@@ -75,7 +120,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
         edges
             .iter()
             .zip(&lengths)
-            .filter(|&(_, &length2)| length2 <= threshold)
+            .filter(|&(_, &length2)| length2 <= cut)
             .map(|(&edge, _)| edge),
     )))
 }
@@ -84,6 +129,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], factor: f64) 
 mod tests {
     use super::*;
     use crate::adjacency::ordered;
+    use crate::mesh::VertexId;
     use crate::{triangulate, Point};
 
     /// Ten unit edges along a line (so IQR = 0 and T = 1), plus a vertex at `(5, gap)` tied to
@@ -102,20 +148,26 @@ mod tests {
 
     /// The rule as the module comment states it, by sorting: the reference for the selections
     /// and the counting shortcut.
-    fn by_sorting(tri: &Triangulation, edges: &[Edge], factor: f64) -> (bool, Vec<Edge>) {
+    fn by_sorting(tri: &Triangulation, edges: &[Edge], rule: IqrRule) -> (bool, Vec<Edge>) {
         let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
         let mut sorted: Vec<f64> = edges.iter().map(length2).collect();
         sorted.sort_by(f64::total_cmp);
         let n = sorted.len();
         let (q1, q3) = (sorted[n / 4], sorted[(3 * n / 4).min(n - 1)]);
-        let threshold = q3 + factor * (q3 - q1);
+        let threshold = q3 + rule.factor * (q3 - q1);
+        let floor = FLOOR_RATIO * FLOOR_RATIO * sorted[n / 2];
+        let cut = if rule.floor {
+            threshold.max(floor)
+        } else {
+            threshold
+        };
         let lone = tri.vertices().any(|v| {
             let mut incident = edges.iter().filter(|e| e.contains(&v)).peekable();
             incident.peek().is_some() && incident.all(|e| length2(e) > 4.0 * threshold)
         });
         let kept = edges
             .iter()
-            .filter(|e| !lone || length2(e) <= threshold)
+            .filter(|e| !lone || length2(e) <= cut)
             .copied()
             .collect();
         (lone, kept)
@@ -146,9 +198,13 @@ mod tests {
                 continue;
             }
             let factor = [0.0, 0.5, 1.7, 3.0][round % 4];
-            let (lone, kept) = by_sorting(&tri, &edges, factor);
-            let filtered = remove_outliers(&tri, &edges, factor);
-            assert_eq!(filtered.edges.is_some(), lone, "{edges:?}, k = {factor}");
+            let rule = IqrRule {
+                factor,
+                floor: round % 8 >= 4,
+            };
+            let (lone, kept) = by_sorting(&tri, &edges, rule);
+            let filtered = remove_outliers(&tri, &edges, rule);
+            assert_eq!(filtered.edges.is_some(), lone, "{edges:?}, {rule:?}");
             assert_eq!(filtered.edges.unwrap_or(edges), kept);
             applied += usize::from(lone);
             not_applied += usize::from(!lone);
@@ -156,20 +212,56 @@ mod tests {
         assert!(applied > 40 && not_applied > 40, "{applied} {not_applied}");
     }
 
+    const PAPER: IqrRule = IqrRule {
+        factor: 1.7,
+        floor: false,
+    };
+
     #[test]
     fn triggers_only_when_every_edge_of_a_vertex_exceeds_twice_the_threshold_length() {
         // T = 1 (IQR 0): the bound is |e| > 2.
         let (tri, edges) = line_and_lone_point(1.9);
         assert!(
-            remove_outliers(&tri, &edges, 1.7).edges.is_none(),
+            remove_outliers(&tri, &edges, PAPER).edges.is_none(),
             "|e| = 1.9 <= 2: no outlier"
         );
         let (tri, edges) = line_and_lone_point(2.1);
-        let filtered = remove_outliers(&tri, &edges, 1.7);
+        let filtered = remove_outliers(&tri, &edges, PAPER);
         assert!(filtered.edges.is_some(), "|e| = 2.1 > 2: an outlier");
         // Every unit edge survives (it equals T), the two long ones go.
         let kept = filtered.edges.expect("applied");
         assert_eq!(kept.len(), 10);
         assert!(kept.iter().all(|e| !e.contains(&tri.vertex(11))));
+    }
+
+    /// An evenly spaced line (unit edges, IQR 0, so T = 1) with three edges 4 % longer,
+    /// and a point 3 away tied to it: the rule fires on the far point either way; without the
+    /// floor it also cuts the stretch, with it only the far point's edges.
+    #[test]
+    fn the_floor_keeps_a_slightly_wider_stretch_and_still_cuts_an_outlier() {
+        let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+        for p in &mut pts[18..] {
+            p.x = 17.0 + (p.x - 17.0) * 1.04;
+        }
+        pts.push(Point::new(7.0, 3.0));
+        let tri = triangulate(&pts).unwrap();
+        let v = |i: usize| tri.vertex(i);
+        let mut edges: Vec<Edge> = (0..20).map(|i| ordered(v(i), v(i + 1))).collect();
+        edges.extend([ordered(v(7), v(21)), ordered(v(6), v(21))]);
+        let x = |w: VertexId| tri.vertex_point(w).x;
+        let wide = |e: &Edge| !e.contains(&v(21)) && x(e[0]).min(x(e[1])) > 16.9;
+        let cut = |floor| {
+            let rule = IqrRule { floor, ..PAPER };
+            let kept = remove_outliers(&tri, &edges, rule).edges.expect("fires");
+            let lost: Vec<Edge> = edges
+                .iter()
+                .filter(|e| !kept.contains(e))
+                .copied()
+                .collect();
+            lost
+        };
+        let (paper, floored) = (cut(false), cut(true));
+        assert_eq!(paper.iter().filter(|e| wide(e)).count(), 3, "{paper:?}");
+        assert_eq!(floored, [ordered(v(7), v(21)), ordered(v(6), v(21))]);
     }
 }

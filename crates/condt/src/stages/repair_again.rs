@@ -2,17 +2,17 @@
 //! `Params::paper`), right after the IQR rule, when it fired.
 //!
 //! Owns: one rule. It reads the proximity graph and the repair's output through `Step::run` and
-//! the IQR threshold ([`iqr_threshold`]); it may not touch the triangulation.
+//! the IQR stage's cut threshold ([`iqr_thresholds`]); it may not touch the triangulation.
 //!
 //! Why: the repair (Algorithm 2) decides among edges the IQR rule cuts next. An outlier near a
 //! curve makes two curve points non-manifold, the repair may keep the outlier's pair over the
 //! curve edge between them, and the cut then loses that edge. Cutting first (`outliers_first`)
 //! is no cure: on the unrepaired graph, with a fifth of the points outliers, the upper quartile
 //! falls among their edges and the rule never fires. Rule: when the IQR stage removed edges,
-//! repair the proximity graph less every edge above `T`, taken from the repaired graph as that
-//! stage took it. Gains and losses: docs/condt.md, *Repairing again without the cut edges*.
+//! repair the proximity graph less every edge above the cut threshold (`T`, or the spacing
+//! floor), taken from the repaired graph as that stage took it. Gains and losses: docs/condt.md, *Repairing again without the cut edges*.
 
-use super::outliers::iqr_threshold;
+use super::outliers::{iqr_thresholds, IqrRule};
 use super::repair::repair;
 use super::{Outcome, Repair};
 use crate::adjacency::Edge;
@@ -26,7 +26,7 @@ pub(crate) fn repair_again(
     edges: &[Edge],
     repaired: &[Edge],
     proximity: &[Edge],
-    factor: f64,
+    rule: IqrRule,
     mode: Repair,
 ) -> Outcome {
     // The IQR stage only removes edges: it fired exactly when the lists differ.
@@ -35,7 +35,7 @@ pub(crate) fn repair_again(
     }
     let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
     let lengths: Vec<f64> = repaired.iter().map(length2).collect();
-    let threshold = iqr_threshold(&lengths, factor);
+    let threshold = iqr_thresholds(&lengths, rule).cut;
     drop(lengths);
     let short: Vec<Edge> = proximity
         .iter()
@@ -70,17 +70,14 @@ mod tests {
         pts
     }
 
+    /// Without the spacing floor: the outlier lies 1.27 spacings off the corner, within the floor
+    /// (1.5 median edges), which keeps its edge to the corner whichever pair the repair chose.
     #[test]
     fn the_outliers_pair_at_a_corner_gives_way_to_the_curve() {
         let pts = square_with_outlier();
-        let with = crate::reconstruct(&pts, &Params::default().with_smooth(false)).unwrap();
-        let without = crate::reconstruct(
-            &pts,
-            &Params::default()
-                .with_smooth(false)
-                .with_repair_again(false),
-        )
-        .unwrap();
+        let params = Params::default().with_smooth(false).with_iqr_floor(false);
+        let with = crate::reconstruct(&pts, &params).unwrap();
+        let without = crate::reconstruct(&pts, &params.with_repair_again(false)).unwrap();
         let curve = |r: &crate::Reconstruction| {
             let edges: Vec<[usize; 2]> = r.edges().collect();
             (edges.len(), edges.iter().all(|&[a, b]| a < 40 && b < 40))
@@ -99,7 +96,11 @@ mod tests {
         let pts = square_with_outlier();
         let tri = triangulate(&pts).unwrap();
         let edges = [[crate::mesh::VertexId::new(0), crate::mesh::VertexId::new(1)]];
-        let outcome = repair_again(&tri, &edges, &edges, &edges, 1.7, Repair::Needs);
+        let rule = IqrRule {
+            factor: 1.7,
+            floor: true,
+        };
+        let outcome = repair_again(&tri, &edges, &edges, &edges, rule, Repair::Needs);
         assert!(outcome.edges.is_none());
     }
 }
