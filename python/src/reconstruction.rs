@@ -334,7 +334,7 @@ impl Curve {
 ///   ``kept``, the uniformity test's numbers), ``"later"`` (with ``rank``) or ``"not-delaunay"``;
 /// - ``changes``: what each later stage did to it, dicts with ``stage`` (its name, as in
 ///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``kept``),
-///   ``"longer-than-threshold"`` (``length``, ``threshold``), ``"given-back"``, ``"long-at"``
+///   ``"longer-than-threshold"`` (``length``, ``threshold``, ``floored``), ``"given-back"``, ``"long-at"``
 ///   (``vertex``, ``ratio``), ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``,
 ///   ``"gap-closed"``, ``"junction"``, ``"baseline"`` or ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
@@ -414,9 +414,14 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
             dict.set_item("kept", kept.iter().flatten().copied().collect::<Vec<_>>())?;
             "repair"
         }
-        Reason::LongerThanThreshold { length, threshold } => {
+        Reason::LongerThanThreshold {
+            length,
+            threshold,
+            floored,
+        } => {
             dict.set_item("length", length)?;
             dict.set_item("threshold", threshold)?;
+            dict.set_item("floored", floored)?;
             "longer-than-threshold"
         }
         Reason::GivenBack => "given-back",

@@ -153,7 +153,16 @@ fn write_data(
             let stage = stages.iter().position(|&s| s == change.stage).unwrap_or(0);
             let (code, x, y) = match change.reason {
                 Reason::Repair { vertex, degree, .. } => (0, vertex as f64, degree as f64),
-                Reason::LongerThanThreshold { length, threshold } => (1, length, threshold),
+                Reason::LongerThanThreshold {
+                    length,
+                    threshold,
+                    floored: false,
+                } => (1, length, threshold),
+                Reason::LongerThanThreshold {
+                    length,
+                    threshold,
+                    floored: true,
+                } => (12, length, threshold),
                 Reason::GivenBack => (2, 0.0, 0.0),
                 Reason::LongAt { vertex, ratio } => (3, vertex as f64, ratio),
                 Reason::Component => (4, 0.0, 0.0),

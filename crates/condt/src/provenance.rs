@@ -28,12 +28,15 @@ pub enum Reason {
         /// The neighbours it kept (input positions), at most two shown.
         kept: [Option<usize>; 2],
     },
-    /// Algorithm 3: the edge is longer than the threshold `√T`.
+    /// Algorithm 3: the edge is longer than the cut threshold: `√T`, or the spacing floor
+    /// ([`Params::iqr_floor`](crate::Params::iqr_floor)) where that is larger.
     LongerThanThreshold {
         /// The edge's length, in input units.
         length: f64,
-        /// `√T` in input units.
+        /// The cut threshold in input units.
         threshold: f64,
+        /// Whether the threshold is the floor (1.5 times the median edge) rather than `√T`.
+        floored: bool,
     },
     /// Local outlier rule 1: an edge the IQR stage cut between two smooth, regular passages.
     GivenBack,
@@ -197,8 +200,9 @@ struct Explainer<'a> {
     degrees_before: Vec<usize>,
     /// Neighbours in the repair's output (its reason names the edges kept), for O(degree) reasons.
     after: Neighbours,
-    /// Algorithm 3's `√T` in input units, when the stage is the IQR rule.
-    threshold: f64,
+    /// Algorithm 3's cut threshold in input units, when the stage is the IQR rule, and whether
+    /// it is the spacing floor.
+    threshold: (f64, bool),
     /// For local outliers: the rule behind each edge it changed, by edge in input positions.
     local: Vec<([usize; 2], LocalRule)>,
 }
@@ -229,9 +233,10 @@ impl<'a> Explainer<'a> {
                     factor: result.params().outlier_factor.unwrap_or(0.0),
                     floor: result.params().iqr_floor,
                 };
-                libm::sqrt(iqr_thresholds(&lengths, rule).cut)
+                let thresholds = iqr_thresholds(&lengths, rule);
+                (libm::sqrt(thresholds.cut), thresholds.cut > thresholds.fire)
             }
-            _ => 0.0,
+            _ => (0.0, false),
         };
         let mut local: Vec<([usize; 2], LocalRule)> = if stage == Stage::LocalOutliers {
             rule_evidence(tri, inputs.graph, inputs.before_outliers)
@@ -270,7 +275,8 @@ impl<'a> Explainer<'a> {
             (Stage::NnCrust | Stage::Crust, _) => Reason::Baseline,
             (Stage::Outliers, _) => Reason::LongerThanThreshold {
                 length: libm::sqrt(self.tri.point(a).dist2(self.tri.point(b))),
-                threshold: self.threshold,
+                threshold: self.threshold.0,
+                floored: self.threshold.1,
             },
             (Stage::LocalOutliers, _) => {
                 let rule = self
@@ -400,9 +406,19 @@ impl fmt::Display for EdgeStory {
                         [None, None] => write!(f, "none")?,
                     }
                 }
-                Reason::LongerThanThreshold { length, threshold } => {
-                    write!(f, "length {length:.6} above √T = {threshold:.6}")?
-                }
+                Reason::LongerThanThreshold {
+                    length,
+                    threshold,
+                    floored: false,
+                } => write!(f, "length {length:.6} above √T = {threshold:.6}")?,
+                Reason::LongerThanThreshold {
+                    length,
+                    threshold,
+                    floored: true,
+                } => write!(
+                    f,
+                    "length {length:.6} above the spacing floor {threshold:.6} (1.5 median edges)"
+                )?,
                 Reason::GivenBack => write!(f, "given back between two regular passages")?,
                 Reason::LongAt { vertex, ratio } => write!(
                     f,
@@ -551,7 +567,10 @@ mod tests {
             "the scene has outliers the IQR rule removes"
         );
         for reason in removed {
-            let Reason::LongerThanThreshold { length, threshold } = reason else {
+            let Reason::LongerThanThreshold {
+                length, threshold, ..
+            } = reason
+            else {
                 panic!("{reason:?}");
             };
             assert!(length > threshold, "{length} <= {threshold}");

@@ -228,6 +228,7 @@
       () => "joined at a junction of three curves",
       () => "a clump: fewer than half its points pass smoothly",
       () => "repaired again without the edges above √T",
+      () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }
