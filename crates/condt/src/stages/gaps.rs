@@ -13,7 +13,8 @@
 //! (`|aw| <= GAP_RATIO · |aa'|`, the paper's `u`: Algorithm 1 treats a second edge up to `u` times
 //! the first as the same sampling; a longer gap is a real end).
 //!
-//! Candidates: (1) another loose end `b` facing `a`; (2) a point `c` of degree zero with a loose
+//! Candidates: (1) another loose end `b` facing `a`, or, at a sharp tip, `b` facing `a` while the
+//! join runs within 60° of `a`'s own edge ([`TIP`]: `a` is the apex and kept one side only); (2) a point `c` of degree zero with a loose
 //! end `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample: a sharp
 //! corner, or one the outlier removal cut off); (3) a crossing `c` of degree two where `a` lines up
 //! (above [`STRAIGHT`]) with one of `c`'s neighbours while `c`'s passage is bent (the repair paired
@@ -39,6 +40,10 @@ use alloc::vec::Vec;
 
 /// Cosine of the smallest angle at a loose end between its edge and a join (90°: a half-plane).
 const AHEAD: f64 = 0.0;
+/// Cosine of the largest angle at a sharp tip's apex between its one edge and the join to the
+/// other side (60°: the tip `Repair::Needs` reads, whose two sides beside the apex are nearer
+/// each other than the spacing). Two curve ends side by side make about 90° there, not less.
+const TIP: f64 = 0.5;
 /// Cosine of the smallest angle for two arms to form a straight passage (150°, as `CrossingAware`).
 const STRAIGHT: f64 = -0.866_025_403_784_438_6;
 /// Longest gap, as a multiple of the loose end's own edge: the paper's `u = 2.75`.
@@ -116,6 +121,26 @@ impl<'a> Ends<'a> {
             && p.dist2(q) <= GAP_RATIO * GAP_RATIO * p.dist2(back)
     }
 
+    /// Whether the loose ends `a` and `b` may join: the gap short for both, and ahead of both, or
+    /// ahead of one while the other is a sharp tip's apex ([`TIP`]), whose edge runs back along
+    /// the other side (noise or the repair can leave a tip's apex with one side only).
+    fn ends_meet(&self, a: VertexId, b: VertexId) -> bool {
+        let cos = |x: VertexId, y: VertexId| {
+            cos_at(self.point(x), self.point(self.along(x)), self.point(y))
+        };
+        let short = |x: VertexId, y: VertexId| {
+            let (p, back) = (self.point(x), self.point(self.along(x)));
+            p.dist2(self.point(y)) <= GAP_RATIO * GAP_RATIO * p.dist2(back)
+        };
+        let (at_a, at_b) = (cos(a, b), cos(b, a));
+        let ahead_or_tip = |here: f64, there: f64| here < AHEAD && (there < AHEAD || there > TIP);
+        b != self.along(a)
+            && a != self.along(b)
+            && short(a, b)
+            && short(b, a)
+            && (ahead_or_tip(at_a, at_b) || ahead_or_tip(at_b, at_a))
+    }
+
     /// The loose end across `c` from `a` that faces `c` and lines up with `a` best, among those
     /// `across` accepts.
     fn end_across(
@@ -163,16 +188,17 @@ impl<'a> Ends<'a> {
         for w in self.tri.mesh().neighbors(a) {
             let key = (pa.dist2(self.point(w)), w);
             let nearer = key.0.total_cmp(&best_key.0).then(key.1.cmp(&best_key.1));
-            if nearer != core::cmp::Ordering::Less || !self.faces(a, w) {
+            if nearer != core::cmp::Ordering::Less {
                 continue;
             }
+            let facing = self.faces(a, w);
             let candidate = match self.graph.degree(w) {
-                0 => match self.end_across(a, w, |_| true) {
+                0 if facing => match self.end_across(a, w, |_| true) {
                     Some(d) => Target::Through(w, Partner::End(d)),
                     None => continue,
                 },
-                1 if self.faces(w, a) => Target::End(w),
-                2 => match self.crossing_partner(a, w) {
+                1 if self.ends_meet(a, w) => Target::End(w),
+                2 if facing => match self.crossing_partner(a, w) {
                     Some(partner) => Target::Through(w, partner),
                     None => continue,
                 },
@@ -331,6 +357,33 @@ mod tests {
         let broken = chain(8, &[3]);
         assert_eq!(joins(&line(2.7), &broken), vec![[3, 4]]);
         assert_eq!(joins(&line(2.8), &broken), NONE);
+    }
+
+    /// A sharp tip: two arms of unit spacing meeting at 20° at the apex `0`, which kept its edge
+    /// up the left arm; the right arm ends one spacing from the apex. The join is ahead of the
+    /// right arm's end only (at the apex it runs 20° beside the apex's own edge), which suffices
+    /// at a tip.
+    #[test]
+    fn a_sharp_tips_missing_side_is_joined_from_the_arm_that_sees_it_ahead() {
+        let half = 10f64.to_radians();
+        let arm = |side: f64, k: usize| {
+            let r = k as f64;
+            Point::new(side * r * libm::sin(half), r * libm::cos(half))
+        };
+        let mut pts = vec![Point::new(0.0, 0.0)];
+        pts.extend((1..5).map(|k| arm(-1.0, k))); // 1..=4, the left arm
+        pts.extend((1..5).map(|k| arm(1.0, k))); // 5..=8, the right arm
+        let edges = [[0, 1], [1, 2], [2, 3], [3, 4], [5, 6], [6, 7], [7, 8]];
+        assert_eq!(joins(&pts, &edges), vec![[0, 5]]);
+        // Two parallel strokes ending side by side, one end a tenth of a spacing higher: the
+        // join is ahead of that end (94°) but not a tip at the other (86°): no join.
+        let strokes: Vec<Point> = (0..8)
+            .map(|k| Point::new(1.5 * (k / 4) as f64, (k % 4) as f64 + 0.1 * (k / 4) as f64))
+            .collect();
+        assert_eq!(
+            joins(&strokes, &[[0, 1], [1, 2], [2, 3], [4, 5], [5, 6], [6, 7]]),
+            NONE
+        );
     }
 
     #[test]
