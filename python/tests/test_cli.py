@@ -27,6 +27,8 @@ OPTIONS = [
         ["--no-local-outliers", "--no-manifold-fix", "--sequential"],
     ),
     ({"confirm_given_back": False, "iqr": 1.2}, ["--no-confirm-given-back", "--iqr", "1.2"]),
+    ({"iqr_floor": False}, ["--no-iqr-floor"]),
+    ({"paper": True, "iqr_floor": True}, ["--paper", "--iqr-floor"]),
     ({"method": "nn-crust"}, ["--method", "nn-crust"]),
     ({"method": "crust"}, ["--method", "crust"]),
 ]

@@ -14,7 +14,9 @@
 //! the first as the same sampling; a longer gap is a real end).
 //!
 //! Candidates: (1) another loose end `b` facing `a`, or, at a sharp tip, `b` facing `a` while the
-//! join runs within 60° of `a`'s own edge ([`TIP`]: `a` is the apex and kept one side only); (2) a point `c` of degree zero with a loose
+//! join runs within 60° of `a`'s own edge ([`TIP`]: `a` is the apex and kept one side only);
+//! where the join continues both ends straight ([`STRAIGHT`]), each gap is measured against the
+//! longer of the end's last two edges (noise crowding a sample shortens the last); (2) a point `c` of degree zero with a loose
 //! end `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample: a sharp
 //! corner, or one the outlier removal cut off); (3) a crossing `c` of degree two where `a` lines up
 //! (above [`STRAIGHT`]) with one of `c`'s neighbours while `c`'s passage is bent (the repair paired
@@ -128,11 +130,19 @@ impl<'a> Ends<'a> {
         let cos = |x: VertexId, y: VertexId| {
             cos_at(self.point(x), self.point(self.along(x)), self.point(y))
         };
-        let short = |x: VertexId, y: VertexId| {
-            let (p, back) = (self.point(x), self.point(self.along(x)));
-            p.dist2(self.point(y)) <= GAP_RATIO * GAP_RATIO * p.dist2(back)
-        };
         let (at_a, at_b) = (cos(a, b), cos(b, a));
+        let straight = at_a < STRAIGHT && at_b < STRAIGHT;
+        let short = |x: VertexId, y: VertexId| {
+            let next = self.along(x);
+            let (p, back) = (self.point(x), self.point(next));
+            let mut spacing = p.dist2(back);
+            if straight && self.graph.degree(next) == 2 {
+                let [u, v] = self.graph.first_two(next);
+                let beyond = if u == x { v } else { u };
+                spacing = spacing.max(back.dist2(self.point(beyond)));
+            }
+            p.dist2(self.point(y)) <= GAP_RATIO * GAP_RATIO * spacing
+        };
         let ahead_or_tip = |here: f64, there: f64| here < AHEAD && (there < AHEAD || there > TIP);
         b != self.along(a)
             && a != self.along(b)
@@ -384,6 +394,23 @@ mod tests {
             joins(&strokes, &[[0, 1], [1, 2], [2, 3], [4, 5], [5, 6], [6, 7]]),
             NONE
         );
+    }
+
+    /// A crowded sample at the end of a unit-spaced line: its last edge is 0.35, the gap to the
+    /// next line's end 1.15 (over 2.75 times 0.35). Straight on, the end's spacing is the
+    /// longer of its last two edges and the gap closes; bent by 36° at the end, it stays open.
+    #[test]
+    fn a_straight_gap_is_measured_against_the_ends_last_two_edges() {
+        let mut pts: Vec<Point> = [0.0, 1.0, 2.0, 3.0, 3.35]
+            .map(|x| Point::new(x, 0.0))
+            .to_vec();
+        pts.extend([4.5, 5.5, 6.5, 7.5].map(|x| Point::new(x, 0.0)));
+        let edges = chain(9, &[4]);
+        assert_eq!(joins(&pts, &edges), vec![[4, 5]]);
+        for (k, p) in pts[5..].iter_mut().enumerate() {
+            *p = Point::new(4.3 + k as f64, 0.7 * (k + 1) as f64);
+        }
+        assert_eq!(joins(&pts, &edges), NONE);
     }
 
     #[test]
