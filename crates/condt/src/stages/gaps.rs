@@ -143,7 +143,8 @@ impl<'a> Ends<'a> {
             }
             p.dist2(self.point(y)) <= GAP_RATIO * GAP_RATIO * spacing
         };
-        let ahead_or_tip = |here: f64, there: f64| here < AHEAD && (there < AHEAD || there > TIP);
+        let (ahead, tip) = (|c: f64| c < AHEAD, |c: f64| c > TIP);
+        let ahead_or_tip = |here: f64, there: f64| ahead(here) && (ahead(there) || tip(there));
         b != self.along(a)
             && a != self.along(b)
             && short(a, b)
