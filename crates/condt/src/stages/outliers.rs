@@ -19,20 +19,37 @@ use alloc::vec::Vec;
 /// `Q3 = s[min(3n/4, n - 1)]`: the one place it is computed (explanations ask it too, in input
 /// units).
 pub(crate) fn iqr_threshold(lengths2: &[f64], factor: f64) -> f64 {
+    iqr_threshold_of(lengths2.to_vec(), factor)
+}
+
+/// [`iqr_threshold`] of lengths the caller no longer needs: their list is the scratch space.
+pub(crate) fn iqr_threshold_of(lengths2: Vec<f64>, factor: f64) -> f64 {
     let n = lengths2.len();
     let upper = (3 * n / 4).min(n - 1);
-    // The quartiles of the sorted list, without sorting it: two selections on a scratch copy,
-    // the second only among the values the first put below Q3.
-    let mut scratch = lengths2.to_vec();
-    let q3 = *scratch.select_nth_unstable_by(upper, f64::total_cmp).1;
+    // The quartiles of the sorted list, without sorting it: two selections, the second only among
+    // the values the first put below Q3. They select integer keys in `f64::total_cmp`'s order
+    // (the same values, compared faster), in the lengths' own list.
+    let mut keys: Vec<i64> = lengths2.into_iter().map(total_order_key).collect();
+    let q3 = total_order_key_value(*keys.select_nth_unstable(upper).1);
     let q1 = if n / 4 < upper {
-        *scratch[..upper]
-            .select_nth_unstable_by(n / 4, f64::total_cmp)
-            .1
+        total_order_key_value(*keys[..upper].select_nth_unstable(n / 4).1)
     } else {
         q3 // a single edge
     };
     q3 + factor * (q3 - q1)
+}
+
+/// An integer that orders as `x` does under `f64::total_cmp` (which compares these keys).
+#[inline]
+fn total_order_key(x: f64) -> i64 {
+    let bits = x.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
+}
+
+/// The `f64` of a [`total_order_key`] (the map is its own inverse).
+#[inline]
+fn total_order_key_value(key: i64) -> f64 {
+    f64::from_bits((key ^ (((key >> 63) as u64) >> 1) as i64) as u64)
 }
 
 /// Algorithm 3 on `edges` (`factor` checked by the caller: finite, `>= 0`); unchanged unless fired.

@@ -2,7 +2,7 @@
 //! `Params::paper`), right after the IQR rule, when it fired.
 //!
 //! Owns: one rule. It reads the proximity graph and the repair's output through `Step::run` and
-//! the IQR threshold ([`iqr_threshold`]); it may not touch the triangulation.
+//! the IQR threshold ([`iqr_threshold_of`]); it may not touch the triangulation.
 //!
 //! Why: the repair (Algorithm 2) decides among edges the IQR rule cuts next. An outlier near a
 //! curve makes two curve points non-manifold, the repair may keep the outlier's pair over the
@@ -12,7 +12,7 @@
 //! repair the proximity graph less every edge above `T`, taken from the repaired graph as that
 //! stage took it. Gains and losses: docs/condt.md, *Repairing again without the cut edges*.
 
-use super::outliers::iqr_threshold;
+use super::outliers::iqr_threshold_of;
 use super::repair::repair;
 use super::{Outcome, Repair};
 use crate::adjacency::Edge;
@@ -34,9 +34,7 @@ pub(crate) fn repair_again(
         return Outcome::UNCHANGED;
     }
     let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
-    let lengths: Vec<f64> = repaired.iter().map(length2).collect();
-    let threshold = iqr_threshold(&lengths, factor);
-    drop(lengths);
+    let threshold = iqr_threshold_of(repaired.iter().map(length2).collect(), factor);
     let short: Vec<Edge> = proximity
         .iter()
         .filter(|e| length2(e) <= threshold)
