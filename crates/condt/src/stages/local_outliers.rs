@@ -548,37 +548,20 @@ fn separated_components(
 /// Per component root, how many of its vertices are separated (rule 4), counted up to
 /// [`MIN_SAMPLES`] (a byte): the one implementation of the test, shared with the clump stage.
 pub(super) fn separated_counts(tri: &Triangulation, graph: &CurveGraph, root: &[u32]) -> Vec<u8> {
-    let bound = |v: VertexId| SEPARATION * SEPARATION * tops(tri, graph, v)[0];
     let mut separated = vec![0u8; root.len()];
-    // Vertices of later ids already known not to be separated, a bit each (memory): walking a
-    // Delaunay ring misses the caches at every step, and on scattered points most of the work is
-    // walking to a near vertex of another component, which often is itself near, so found once.
-    let mut near = vec![0u64; root.len().div_ceil(64)];
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
-        if near[i / 64] >> (i % 64) & 1 == 1
-            || graph.degree(v) == 0
-            || usize::from(separated[r as usize]) >= MIN_SAMPLES
-        {
-            // Known near, no edge, or already kept: a long curve stops measuring after its first
-            // few samples.
+        if graph.degree(v) == 0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
+            // No edge, or already kept: a long curve stops measuring after its first few samples.
             continue;
         }
-        let (p, bound_v) = (tri.vertex_point(v), bound(v));
+        let longest = tops(tri, graph, v)[0];
+        let p = tri.vertex_point(v);
         // An unused point is its own root, so it counts as outside every component.
-        let near_by = tri
-            .mesh()
-            .neighbors(v)
-            .find(|&w| !(root[w.index()] == r || p.dist2(tri.vertex_point(w)) > bound_v));
-        match near_by {
-            None => separated[r as usize] += 1,
-            // `v` lies outside `w`'s component too, at the same distance (`dist2` is symmetric).
-            Some(w) if w.index() > i && graph.degree(w) > 0 => {
-                let far = p.dist2(tri.vertex_point(w)) > bound(w);
-                near[w.index() / 64] |= u64::from(!far) << (w.index() % 64);
-            }
-            Some(_) => {}
-        }
+        let apart = tri.mesh().neighbors(v).all(|w| {
+            root[w.index()] == r || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
+        });
+        separated[r as usize] += u8::from(apart);
     }
     separated
 }
