@@ -32,6 +32,7 @@
 
 use crate::adjacency::{degrees, ordered, BranchAdjacency, Edge};
 use crate::mesh::VertexId;
+use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -71,6 +72,9 @@ pub enum Repair {
     #[default]
     Needs,
 }
+
+/// How many non-manifold vertices ahead the repair prefetches a choice's reads.
+const PREFETCH_VERTICES: usize = 8;
 
 /// Smallest angle at `v` for an edge to pair with the shortest one (Algorithm 2's `θ > 2π/3`).
 const PAIR_ANGLE: f64 = 2.0 * PI / 3.0;
@@ -288,7 +292,16 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     // Lines 6–12: one selection per non-manifold vertex (up to four edges) by rank, sized first
     // (memory).
     let mut selections: Vec<[VertexId; 4]> = Vec::with_capacity(graph.count());
+    let prefetching = vertex_count >= PREFETCH_FROM;
     for (r, v) in graph.vertices().enumerate() {
+        if prefetching && r + PREFETCH_VERTICES < graph.count() {
+            // A choice reads its neighbours' points and degrees, misses on scattered points: the
+            // lists lie in rank order, so those of a vertex a few ranks on are asked for ahead.
+            for &w in graph.incident(r + PREFETCH_VERTICES) {
+                prefetch(tri.vertex_points(), w.index());
+                prefetch(&degree, w.index());
+            }
+        }
         let around = graph.incident(r);
         if repair == Repair::Needs {
             selections.push(needs::choice(tri, v, around, &degree, &mut pairs));
