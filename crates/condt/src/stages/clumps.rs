@@ -15,7 +15,7 @@
 //! three. Sequential; O(n) beyond the union-find.
 
 use super::local_outliers::{
-    components, separated_counts, smooth_and_regular, MIN_SAMPLES, OUTLIER_SHARE,
+    components, separated_counts_until, smooth_and_regular, MIN_SAMPLES, OUTLIER_SHARE,
 };
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
@@ -47,11 +47,16 @@ pub(crate) fn remove_clumps(
             smooth[r as usize] += u32::from(smooth_and_regular(tri, v, y, z));
         }
     }
-    let separated = separated_counts(tri, &graph, &root);
+    let with_edges: u64 = size.iter().map(|&s| u64::from(s)).sum();
+    // The guard below holds once the components not apart alone reach its share: the separation
+    // test, the stage's main cost, stops there (on scattered points, before it starts or soon).
+    let guard = OUTLIER_SHARE * with_edges as f64;
+    let Some(separated) = separated_counts_until(tri, &graph, &root, Some((&size, guard))) else {
+        return Outcome::unchanged_with(Some(graph));
+    };
     let is_clump = |r: usize| {
         size[r] > 0 && 2 * smooth[r] < size[r] && usize::from(separated[r]) >= MIN_SAMPLES
     };
-    let with_edges: u64 = size.iter().map(|&s| u64::from(s)).sum();
     let points_in = |keep: &dyn Fn(usize) -> bool| -> u64 {
         (0..n)
             .filter(|&r| keep(r))
@@ -62,7 +67,7 @@ pub(crate) fn remove_clumps(
     // The quarter guard counts what the local outlier removal's rule 4 left only because of
     // its own guard (components not apart) with the clumps: the two rules judge one graph.
     let not_apart = points_in(&|r| usize::from(separated[r]) < MIN_SAMPLES);
-    if in_clumps == 0 || (in_clumps + not_apart) as f64 >= OUTLIER_SHARE * with_edges as f64 {
+    if in_clumps == 0 || (in_clumps + not_apart) as f64 >= guard {
         return Outcome::unchanged_with(Some(graph));
     }
     drop(graph);

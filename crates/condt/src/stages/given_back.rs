@@ -101,8 +101,8 @@ pub(crate) fn confirm_given_back(
 
 /// Whether each edge of `edges` (distinct) is missing from `before`. The local outlier removal
 /// keeps its input's edges in order and appends those it gives back, so a merge-like pass matches
-/// all but a short tail, sorted and looked up in one pass over `before` (memory). Exact for any
-/// lists.
+/// all but a short tail, sorted and looked up in one pass over `before` (memory), only for edges
+/// whose smaller end starts one of the tail's. Exact for any lists.
 fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
     let mut missing = vec![false; edges.len()];
     let mut at = 0;
@@ -123,7 +123,18 @@ fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
         for (_, k) in &unmatched {
             missing[*k] = true;
         }
-        for b in before {
+        // The smaller ends of the unmatched edges, a bit each: the other edges of `before`, most
+        // of them, skip the search (speed).
+        let bound = unmatched.iter().map(|(e, _)| e[0].index() + 1).max();
+        let mut ends = vec![0u64; bound.unwrap_or(0).div_ceil(64)];
+        for (e, _) in &unmatched {
+            ends[e[0].index() / 64] |= 1 << (e[0].index() % 64);
+        }
+        let maybe = |a: VertexId| {
+            ends.get(a.index() / 64)
+                .is_some_and(|w| w >> (a.index() % 64) & 1 == 1)
+        };
+        for b in before.iter().filter(|b| maybe(b[0])) {
             let first = unmatched.partition_point(|&(e, _)| e < *b);
             if let Some(&(e, k)) = unmatched.get(first) {
                 if e == *b {

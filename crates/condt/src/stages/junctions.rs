@@ -56,6 +56,12 @@ impl Ends<'_> {
 
     /// The junction the loose end `a` chooses, if any: the straightest ahead that passes.
     fn junction_of(&self, a: VertexId) -> Option<VertexId> {
+        // Every junction needs the end's own branch (`meets_at_junction`), and points to avoid only
+        // make that test fail more: without one (most ends on scattered points) no neighbour can
+        // pass, so the ring is not walked (speed).
+        if !self.branch(a, self.along(a), &[]) {
+            return None;
+        }
         let (pa, back) = (self.point(a), self.point(self.along(a)));
         self.tri
             .mesh()

@@ -548,22 +548,74 @@ fn separated_components(
 /// Per component root, how many of its vertices are separated (rule 4), counted up to
 /// [`MIN_SAMPLES`] (a byte): the one implementation of the test, shared with the clump stage.
 pub(super) fn separated_counts(tri: &Triangulation, graph: &CurveGraph, root: &[u32]) -> Vec<u8> {
+    separated_counts_until(tri, graph, root, None).expect("no limit to reach")
+}
+
+/// [`separated_counts`], or, with `limit` (each root's number of vertices with edges and a number
+/// of points), `None` as soon as the components that cannot reach [`MIN_SAMPLES`] separated
+/// vertices hold `limit.1` points or more; counts below [`MIN_SAMPLES`] then only tell that they
+/// are below it. Speed: the test walks a vertex's Delaunay ring, a cache miss at every step, and
+/// on scattered points nearly every component is small or has a near vertex after the first few.
+pub(super) fn separated_counts_until(
+    tri: &Triangulation,
+    graph: &CurveGraph,
+    root: &[u32],
+    limit: Option<(&[u32], f64)>,
+) -> Option<Vec<u8>> {
     let mut separated = vec![0u8; root.len()];
+    // With a limit: per root, its vertices with edges not yet judged (saturating: a large
+    // component is judged until it has enough), and the points in components that cannot reach.
+    let mut unjudged: Vec<u8> = Vec::new();
+    let mut short = 0u64;
+    if let Some((size, limit)) = limit {
+        unjudged = size
+            .iter()
+            .map(|&s| s.min(u32::from(u8::MAX)) as u8)
+            .collect();
+        short = size
+            .iter()
+            .filter(|&&s| (s as usize) < MIN_SAMPLES)
+            .map(|&s| u64::from(s))
+            .sum();
+        if short as f64 >= limit {
+            return None;
+        }
+    }
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
-        if graph.degree(v) == 0 || usize::from(separated[r as usize]) >= MIN_SAMPLES {
-            // No edge, or already kept: a long curve stops measuring after its first few samples.
+        let r = r as usize;
+        let reachable = |found: u8, left: &[u8]| {
+            left.is_empty() || usize::from(found) + usize::from(left[r]) >= MIN_SAMPLES
+        };
+        if graph.degree(v) == 0
+            || usize::from(separated[r]) >= MIN_SAMPLES
+            || !reachable(separated[r], &unjudged)
+        {
+            // No edge, or already kept (a long curve stops measuring after its first few
+            // samples), or never to be kept.
             continue;
         }
         let longest = tops(tri, graph, v)[0];
         let p = tri.vertex_point(v);
         // An unused point is its own root, so it counts as outside every component.
         let apart = tri.mesh().neighbors(v).all(|w| {
-            root[w.index()] == r || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
+            root[w.index()] as usize == r
+                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
         });
-        separated[r as usize] += u8::from(apart);
+        separated[r] += u8::from(apart);
+        if let (Some((size, limit)), Some(left)) = (limit, unjudged.get_mut(r)) {
+            if *left != u8::MAX {
+                *left -= 1;
+                if !reachable(separated[r], &unjudged) {
+                    short += u64::from(size[r]);
+                    if short as f64 >= limit {
+                        return None;
+                    }
+                }
+            }
+        }
     }
-    separated
+    Some(separated)
 }
 
 /// Rule 4's exemption: keeps every cycle of at least [`MIN_SAMPLES`] points passing

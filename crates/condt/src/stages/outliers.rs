@@ -51,22 +51,28 @@ pub(crate) struct Thresholds {
 /// and the median `s[n/2]`: the one place they are computed (repairing again and explanations
 /// ask them too).
 pub(crate) fn iqr_thresholds(lengths2: &[f64], rule: IqrRule) -> Thresholds {
+    iqr_thresholds_of(lengths2.to_vec(), rule)
+}
+
+/// [`iqr_thresholds`] of lengths the caller no longer needs: their list is the scratch space.
+pub(crate) fn iqr_thresholds_of(lengths2: Vec<f64>, rule: IqrRule) -> Thresholds {
     let n = lengths2.len();
     let upper = (3 * n / 4).min(n - 1);
-    // The quartiles of the sorted list, without sorting it: selections on a scratch copy, each
-    // among the values the one before put below it.
-    let mut scratch = lengths2.to_vec();
-    let q3 = *scratch.select_nth_unstable_by(upper, f64::total_cmp).1;
+    // The quartiles of the sorted list, without sorting it: selections, each among the values the
+    // one before put below it. They select integer keys in `f64::total_cmp`'s order (the same
+    // values, compared faster), in the lengths' own list.
+    let mut keys: Vec<i64> = lengths2.into_iter().map(total_order_key).collect();
+    let q3 = total_order_key_value(*keys.select_nth_unstable(upper).1);
     let (q1, median) = if n / 4 < upper {
-        let below_q3 = &mut scratch[..upper];
+        let below_q3 = &mut keys[..upper];
         let median = if n / 2 < upper {
-            *below_q3.select_nth_unstable_by(n / 2, f64::total_cmp).1
+            total_order_key_value(*below_q3.select_nth_unstable(n / 2).1)
         } else {
             q3
         };
         // n / 4 < n / 2 here (n >= 2), and n / 4 < upper.
         let below_median = &mut below_q3[..(n / 2).min(upper)];
-        let q1 = *below_median.select_nth_unstable_by(n / 4, f64::total_cmp).1;
+        let q1 = total_order_key_value(*below_median.select_nth_unstable(n / 4).1);
         (q1, median)
     } else {
         (q3, q3) // a single edge
@@ -78,6 +84,19 @@ pub(crate) fn iqr_thresholds(lengths2: &[f64], rule: IqrRule) -> Thresholds {
         fire
     };
     Thresholds { fire, cut }
+}
+
+/// An integer that orders as `x` does under `f64::total_cmp` (which compares these keys).
+#[inline]
+fn total_order_key(x: f64) -> i64 {
+    let bits = x.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
+}
+
+/// The `f64` of a [`total_order_key`] (the map is its own inverse).
+#[inline]
+fn total_order_key_value(key: i64) -> f64 {
+    f64::from_bits((key ^ (((key >> 63) as u64) >> 1) as i64) as u64)
 }
 
 /// Algorithm 3 on `edges`; unchanged unless fired.

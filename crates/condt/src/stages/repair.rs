@@ -32,7 +32,9 @@
 
 use crate::adjacency::{degrees, ordered, BranchAdjacency, Edge};
 use crate::mesh::VertexId;
+use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::triangulate::Triangulation;
+use alloc::vec;
 use alloc::vec::Vec;
 use core::f64::consts::PI;
 
@@ -71,35 +73,71 @@ pub enum Repair {
     Needs,
 }
 
+/// How many non-manifold vertices ahead the repair prefetches a choice's reads.
+const PREFETCH_VERTICES: usize = 8;
+
 /// Smallest angle at `v` for an edge to pair with the shortest one (Algorithm 2's `θ > 2π/3`).
 const PAIR_ANGLE: f64 = 2.0 * PI / 3.0;
 /// Smallest angle for two edges through a vertex to count as one nearly straight passage.
 const STRAIGHT_ANGLE: f64 = 5.0 * PI / 6.0;
 
-/// The angle at `v` between the edges to `a` and to `b`, in `[0, π]`.
-fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
+/// Squared cosines of [`PAIR_ANGLE`] and [`STRAIGHT_ANGLE`], for [`angle_above`].
+const PAIR_COS2: f64 = 0.25;
+const STRAIGHT_COS2: f64 = 0.75;
+
+/// The absolute cross product and the dot product of the edges at `v` to `a` and to `b`.
+#[inline]
+fn cross_dot(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> (f64, f64) {
     let (p, q, r) = (
         tri.vertex_point(v),
         tri.vertex_point(a),
         tri.vertex_point(b),
     );
     let (ux, uy, wx, wy) = (q.x - p.x, q.y - p.y, r.x - p.x, r.y - p.y);
-    libm::atan2((ux * wy - uy * wx).abs(), ux * wx + uy * wy)
+    ((ux * wy - uy * wx).abs(), ux * wx + uy * wy)
+}
+
+/// The angle at `v` between the edges to `a` and to `b`, in `[0, π]`.
+fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
+    let (cross, dot) = cross_dot(tri, v, a, b);
+    libm::atan2(cross, dot)
+}
+
+/// [`angle_at`] when it is above `min` (an obtuse angle whose squared cosine is `cos2`), else
+/// `None`. Speed: the arc tangent, most of a choice's cost, is skipped for the many angles clearly
+/// at most `min` (acute, or obtuse with a squared cosine below `cos2` by a relative millionth, far
+/// beyond rounding); where it is computed, the result is [`angle_at`]'s own.
+#[inline]
+fn angle_above(
+    tri: &Triangulation,
+    v: VertexId,
+    a: VertexId,
+    b: VertexId,
+    min: f64,
+    cos2: f64,
+) -> Option<f64> {
+    let (cross, dot) = cross_dot(tri, v, a, b);
+    if dot >= 0.0 || dot * dot < cos2 * (1.0 - 1e-6) * (cross * cross + dot * dot) {
+        return None;
+    }
+    let theta = libm::atan2(cross, dot);
+    (theta > min).then_some(theta)
 }
 
 /// Algorithm 2, lines 10–11: the shortest edge and the best-scoring partner, if any; no allocation.
-fn paper_choice(tri: &Triangulation, v: VertexId, around: &[(VertexId, u32)]) -> [VertexId; 2] {
+fn paper_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> [VertexId; 2] {
     let p = tri.vertex_point(v);
     let length2 = |w: VertexId| p.dist2(tri.vertex_point(w));
-    let neighbours = || around.iter().map(|&(w, _)| w);
+    let neighbours = || around.iter().copied();
     let shortest = neighbours()
         .min_by(|&a, &b| length2(a).total_cmp(&length2(b)).then(a.cmp(&b)))
         .expect("degree >= 3");
     let qualified = || {
         neighbours()
             .filter(move |&w| w != shortest)
-            .map(move |w| (w, angle_at(tri, v, shortest, w)))
-            .filter(|&(_, theta)| theta > PAIR_ANGLE)
+            .filter_map(move |w| {
+                angle_above(tri, v, shortest, w, PAIR_ANGLE, PAIR_COS2).map(|theta| (w, theta))
+            })
     };
     // Lmin is the same for every candidate, so it never changes the choice: kept as in the paper.
     let l_min = qualified()
@@ -112,16 +150,11 @@ fn paper_choice(tri: &Triangulation, v: VertexId, around: &[(VertexId, u32)]) ->
 }
 
 /// Up to two disjoint nearly straight pairs through `v`; `None` when there are not two.
-fn crossing_choice(
-    tri: &Triangulation,
-    v: VertexId,
-    around: &[(VertexId, u32)],
-) -> Option<[VertexId; 4]> {
+fn crossing_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> Option<[VertexId; 4]> {
     let mut pairs: Vec<(f64, VertexId, VertexId)> = Vec::new();
-    for (i, &(a, _)) in around.iter().enumerate() {
-        for &(b, _) in &around[i + 1..] {
-            let theta = angle_at(tri, v, a, b);
-            if theta > STRAIGHT_ANGLE {
+    for (i, &a) in around.iter().enumerate() {
+        for &b in &around[i + 1..] {
+            if let Some(theta) = angle_above(tri, v, a, b, STRAIGHT_ANGLE, STRAIGHT_COS2) {
                 pairs.push((theta, a, b));
             }
         }
@@ -132,6 +165,102 @@ fn crossing_choice(
         .iter()
         .find(|&&(_, c, d)| c != a && c != b && d != a && d != b)?;
     Some([a, b, c, d])
+}
+
+/// The neighbour lists of the vertices with three or more edges (a third or more of the vertices on
+/// uniform points, few on curves), each in the order of the edges, and each such vertex's rank
+/// among them, read from a bit set by vertex id: O(1) where a search over the vertices would cost a
+/// cache miss per step at every edge end (speed). Rank `r`'s list is `neighbors[starts[r]..
+/// starts[r + 1]]`.
+struct Branches {
+    /// Bit `v % 64` of word `v / 64`: whether `v` has three or more edges.
+    bits: Vec<u64>,
+    /// Per word of `bits`, the bits set in the words before it.
+    before: Vec<u32>,
+    starts: Vec<u32>,
+    neighbors: Vec<VertexId>,
+}
+
+impl Branches {
+    /// `degree` must be the degrees of `edges` ([`degrees`]).
+    fn new(degree: &[u32], edges: &[Edge]) -> Branches {
+        let mut bits = vec![0u64; degree.len().div_ceil(64)];
+        for (v, &d) in degree.iter().enumerate() {
+            bits[v / 64] |= u64::from(d > 2) << (v % 64);
+        }
+        let mut before = Vec::with_capacity(bits.len());
+        let mut count = 0u32;
+        for word in &bits {
+            before.push(count);
+            count += word.count_ones();
+        }
+        // Each list's end first, filled backwards from it, so `starts` ends up at the starts.
+        let mut starts = Vec::with_capacity(count as usize + 1);
+        let mut total = 0u32;
+        starts.push(0);
+        for &d in degree.iter().filter(|&&d| d > 2) {
+            total += d;
+            starts.push(total);
+        }
+        let mut branches = Branches {
+            bits,
+            before,
+            starts,
+            neighbors: vec![VertexId::INFINITE; total as usize],
+        };
+        for &[a, b] in edges.iter().rev() {
+            for (v, w) in [(a, b), (b, a)] {
+                if let Some(r) = branches.rank(v) {
+                    let slot = &mut branches.starts[r + 1];
+                    *slot -= 1;
+                    branches.neighbors[*slot as usize] = w;
+                }
+            }
+        }
+        // Every list is full, so each end has come down to the start of the next: shifted back.
+        branches.starts.rotate_left(1);
+        *branches.starts.last_mut().expect("not empty") = total;
+        branches
+    }
+
+    fn count(&self) -> usize {
+        self.starts.len() - 1
+    }
+
+    /// `v`'s rank among the vertices with three or more edges, `None` if it has two or fewer.
+    #[inline]
+    fn rank(&self, v: VertexId) -> Option<usize> {
+        let (word, bit) = (v.index() / 64, v.index() % 64);
+        let bits = self.bits[word];
+        (bits >> bit & 1 == 1)
+            .then(|| (self.before[word] + (bits & ((1u64 << bit) - 1)).count_ones()) as usize)
+    }
+
+    /// The neighbours of the vertex of rank `r`, in the order of the edges.
+    #[inline]
+    fn incident(&self, r: usize) -> &[VertexId] {
+        &self.neighbors[self.starts[r] as usize..self.starts[r + 1] as usize]
+    }
+
+    /// The vertices with three or more edges, ascending (so the `k`-th has rank `k`).
+    fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
+        self.bits.iter().enumerate().flat_map(|(word, &bits)| {
+            let mut rest = bits;
+            core::iter::from_fn(move || {
+                (rest != 0).then(|| {
+                    let bit = rest.trailing_zeros();
+                    rest &= rest - 1;
+                    VertexId::new(word as u32 * 64 + bit)
+                })
+            })
+        })
+    }
+
+    /// Frees the lists, keeping the ranks (memory).
+    fn drop_lists(&mut self) {
+        self.starts = Vec::new();
+        self.neighbors = Vec::new();
+    }
 }
 
 /// Applies `repair` to the proximity graph `edges` (each edge once, any order): `None` when there
@@ -149,19 +278,33 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
         return None;
     }
     // Only the non-manifold vertices' lists are read.
-    let graph = BranchAdjacency::new(&degree, edges);
-    let mut pairs = needs::Pairs::new();
-    // Lines 6–12: one selection per non-manifold vertex (up to four edges), sized first (memory).
-    let mut selections: Vec<(VertexId, [VertexId; 4])> = Vec::with_capacity(graph.branch_count());
-    for i in 0..vertex_count {
-        let v = VertexId::new(i as u32);
-        if manifold(v) {
-            continue;
+    let mut graph = Branches::new(&degree, edges);
+    if cfg!(debug_assertions) {
+        // The lists [`BranchAdjacency`] gives, checked in debug builds (tests).
+        let reference = BranchAdjacency::new(&degree, edges);
+        debug_assert_eq!(reference.branch_count(), graph.count());
+        for (r, v) in graph.vertices().enumerate() {
+            let listed = reference.incident(v).iter().map(|&(w, _)| w);
+            debug_assert!(listed.eq(graph.incident(r).iter().copied()));
         }
-        let around = graph.incident(v);
+    }
+    let mut pairs = needs::Pairs::new();
+    // Lines 6–12: one selection per non-manifold vertex (up to four edges) by rank, sized first
+    // (memory).
+    let mut selections: Vec<[VertexId; 4]> = Vec::with_capacity(graph.count());
+    let prefetching = vertex_count >= PREFETCH_FROM;
+    for (r, v) in graph.vertices().enumerate() {
+        if prefetching && r + PREFETCH_VERTICES < graph.count() {
+            // A choice reads its neighbours' points and degrees, misses on scattered points: the
+            // lists lie in rank order, so those of a vertex a few ranks on are asked for ahead.
+            for &w in graph.incident(r + PREFETCH_VERTICES) {
+                prefetch(tri.vertex_points(), w.index());
+                prefetch(&degree, w.index());
+            }
+        }
+        let around = graph.incident(r);
         if repair == Repair::Needs {
-            let chosen = needs::choice(tri, v, around, &degree, &mut pairs);
-            selections.push((v, chosen));
+            selections.push(needs::choice(tri, v, around, &degree, &mut pairs));
             continue;
         }
         let crossing = if repair == Repair::CrossingAware {
@@ -173,15 +316,12 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
             let [a, b] = paper_choice(tri, v, around);
             [a, b, VertexId::INFINITE, VertexId::INFINITE]
         });
-        selections.push((v, chosen));
+        selections.push(chosen);
     }
-    drop(graph);
-    // `selections` is in increasing vertex id, so a binary search finds a vertex's choice.
-    let selected_by = |w: VertexId, v: VertexId| {
-        selections
-            .binary_search_by_key(&w, |&(u, _)| u)
-            .is_ok_and(|k| selections[k].1.contains(&v))
-    };
+    graph.drop_lists();
+    // Whether the non-manifold `w` selected `v`.
+    let selected_by =
+        |w: VertexId, v: VertexId| graph.rank(w).is_some_and(|r| selections[r].contains(&v));
     // Algorithm 2, lines 3–5: edges between manifold vertices stay. Output edges are input edges,
     // each once, so the input's length is room enough (memory).
     let mut kept: Vec<Edge> = Vec::with_capacity(edges.len());
@@ -191,7 +331,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
             .copied()
             .filter(|&[a, b]| manifold(a) && manifold(b)),
     );
-    for &(v, chosen) in &selections {
+    for (v, chosen) in graph.vertices().zip(&selections) {
         for &w in chosen.iter().filter(|w| !w.is_infinite()) {
             let keep = if manifold(w) {
                 true

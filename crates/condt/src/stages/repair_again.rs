@@ -2,7 +2,7 @@
 //! `Params::paper`), right after the IQR rule, when it fired.
 //!
 //! Owns: one rule. It reads the proximity graph and the repair's output through `Step::run` and
-//! the IQR stage's cut threshold ([`iqr_thresholds`]); it may not touch the triangulation.
+//! the IQR stage's cut threshold ([`iqr_thresholds_of`]); it may not touch the triangulation.
 //!
 //! Why: the repair (Algorithm 2) decides among edges the IQR rule cuts next. An outlier near a
 //! curve makes two curve points non-manifold, the repair may keep the outlier's pair over the
@@ -10,9 +10,10 @@
 //! is no cure: on the unrepaired graph, with a fifth of the points outliers, the upper quartile
 //! falls among their edges and the rule never fires. Rule: when the IQR stage removed edges,
 //! repair the proximity graph less every edge above the cut threshold (`T`, or the spacing
-//! floor), taken from the repaired graph as that stage took it. Gains and losses: docs/condt.md, *Repairing again without the cut edges*.
+//! floor), taken from the repaired graph as that stage took it. Gains and losses: docs/condt.md,
+//! *Repairing again without the cut edges*.
 
-use super::outliers::{iqr_thresholds, IqrRule};
+use super::outliers::{iqr_thresholds_of, IqrRule};
 use super::repair::repair;
 use super::{Outcome, Repair};
 use crate::adjacency::Edge;
@@ -34,9 +35,7 @@ pub(crate) fn repair_again(
         return Outcome::UNCHANGED;
     }
     let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
-    let lengths: Vec<f64> = repaired.iter().map(length2).collect();
-    let threshold = iqr_thresholds(&lengths, rule).cut;
-    drop(lengths);
+    let threshold = iqr_thresholds_of(repaired.iter().map(length2).collect(), rule).cut;
     let short: Vec<Edge> = proximity
         .iter()
         .filter(|e| length2(e) <= threshold)

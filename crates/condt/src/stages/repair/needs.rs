@@ -1,7 +1,9 @@
 //! [`Repair::Needs`](super::Repair::Needs). The rule and the reason for every constant but
 //! [`NEED_RATIO`] are in [`super`]'s documentation.
 
-use super::{angle_at, paper_choice, PAIR_ANGLE, STRAIGHT_ANGLE};
+use super::{
+    angle_above, angle_at, paper_choice, PAIR_ANGLE, PAIR_COS2, STRAIGHT_ANGLE, STRAIGHT_COS2,
+};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
@@ -22,7 +24,7 @@ pub(super) type Pairs = Vec<(f64, VertexId, VertexId)>;
 pub(super) fn choice(
     tri: &Triangulation,
     v: VertexId,
-    around: &[(VertexId, u32)],
+    around: &[VertexId],
     degree: &[u32],
     pairs: &mut Pairs,
 ) -> [VertexId; 4] {
@@ -42,14 +44,14 @@ pub(super) fn choice(
 fn needed_pair(
     tri: &Triangulation,
     v: VertexId,
-    around: &[(VertexId, u32)],
+    around: &[VertexId],
     degree: &[u32],
 ) -> Option<[VertexId; 2]> {
     let p = tri.vertex_point(v);
     let length2 = |w: VertexId| p.dist2(tri.vertex_point(w));
     // The two shortest squared lengths at `v` (ties count twice).
     let (mut first, mut second) = (f64::INFINITY, f64::INFINITY);
-    for &(w, _) in around {
+    for &w in around {
         let l = length2(w);
         if l < first {
             second = first;
@@ -61,17 +63,19 @@ fn needed_pair(
     let bound = NEED_RATIO * NEED_RATIO * second;
     let needed = |w: VertexId| degree[w.index()] <= 2 && length2(w) <= bound;
     let mut best: Option<((bool, u32, f64), [VertexId; 2])> = None;
-    for (i, &(a, _)) in around.iter().enumerate() {
-        for &(b, _) in &around[i + 1..] {
+    for (i, &a) in around.iter().enumerate() {
+        for &b in &around[i + 1..] {
             let count = u32::from(needed(a)) + u32::from(needed(b));
-            if count == 0 {
-                continue;
-            }
-            let theta = angle_at(tri, v, a, b);
+            // A pair with one needed edge must be straight: its angle only if so.
+            let theta = match count {
+                0 => continue,
+                1 => match angle_above(tri, v, a, b, PAIR_ANGLE, PAIR_COS2) {
+                    Some(theta) => theta,
+                    None => continue,
+                },
+                _ => angle_at(tri, v, a, b),
+            };
             let straight = theta > PAIR_ANGLE;
-            if !straight && count < 2 {
-                continue;
-            }
             let key = (
                 straight,
                 count,
@@ -99,17 +103,16 @@ fn needed_pair(
 fn crossing(
     tri: &Triangulation,
     v: VertexId,
-    around: &[(VertexId, u32)],
+    around: &[VertexId],
     pairs: &mut Pairs,
 ) -> Option<[VertexId; 4]> {
     if around.len() < 4 {
         return None;
     }
     pairs.clear();
-    for (i, &(a, _)) in around.iter().enumerate() {
-        for &(b, _) in &around[i + 1..] {
-            let theta = angle_at(tri, v, a, b);
-            if theta > STRAIGHT_ANGLE {
+    for (i, &a) in around.iter().enumerate() {
+        for &b in &around[i + 1..] {
+            if let Some(theta) = angle_above(tri, v, a, b, STRAIGHT_ANGLE, STRAIGHT_COS2) {
                 pairs.push((theta, a.min(b), a.max(b)));
             }
         }
