@@ -5,7 +5,7 @@
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
-use super::result::{tally, Reconstruction, Smoothing, StageReport};
+use super::result::{tally, Reconstruction, Smoothing, StageReport, Tally};
 use crate::adjacency::{CurveGraph, Edge};
 use crate::curve::curves_in_input_positions;
 use crate::error::Error;
@@ -524,14 +524,15 @@ impl Run {
                 }
                 CurveAssembly::Later => false,
             };
+            let room = Tally::with_room(n, last.len());
             let (curves, tally) = if curves_now {
                 both(
                     in_parallel,
                     || curves_in_input_positions(&tri, &graph),
-                    || tally(&tri, &graph, last.len()),
+                    || tally(&tri, &graph, last.len(), room),
                 )
             } else {
-                (Vec::new(), tally(&tri, &graph, last.len()))
+                (Vec::new(), tally(&tri, &graph, last.len(), room))
             };
             // The curve graph's degrees are the tally's.
             debug_assert!(

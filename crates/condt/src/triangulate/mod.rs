@@ -279,11 +279,23 @@ fn cut_order(
     let left = cut.left_len();
     let (order_left, order_right) = order.split_at_mut(left);
     let (sorted_left, sorted_right) = sorted.split_at_mut(if with_points { left } else { 0 });
-    let half = |is_left: bool, order: &mut [u32], sorted: &mut [Point]| {
+    // Each half's scratch arrays are allocated here, by the calling thread. Reason: memory; the
+    // second half runs on another thread, whose own malloc arena (glibc) would keep them once
+    // freed (about 20 bytes per point of its half).
+    let scratch = |len: usize| {
+        (
+            alloc::vec![0u32; len + 1],
+            order::Scratch::with_capacity(len),
+        )
+    };
+    let (scratch_left, scratch_right) = (scratch(left), scratch(n - left));
+    let half = |is_left: bool,
+                order: &mut [u32],
+                sorted: &mut [Point],
+                (mut members, mut scratch): (Vec<u32>, order::Scratch)| {
         // Branch-free (the side is a coin toss on unorganized input): every position is written
         // to the next free slot, which only a member keeps; the spare slot absorbs the tail.
         let len = order.len();
-        let mut members = alloc::vec![0u32; len + 1];
         let mut next = 0;
         for (i, &p) in points.iter().enumerate() {
             members[next] = i as u32;
@@ -293,19 +305,20 @@ fn cut_order(
         members.truncate(len);
         // The half's points in input order, for its spatial order, gathered in `sorted` itself.
         // Reason: memory; a list of its own was 16 bytes per point at the smoothing passes' peak.
-        let mut scratch = Vec::new();
+        let mut spare = Vec::new();
         let gathered = if sorted.len() == len {
             sorted
         } else {
-            scratch.resize(len, Point::default());
-            &mut scratch[..]
+            spare.resize(len, Point::default());
+            &mut spare[..]
         };
         for (slot, &i) in gathered.iter_mut().zip(&members) {
             *slot = points[i as usize];
         }
-        let local = spatial_order(gathered, frames, n);
-        for (slot, &k) in order.iter_mut().zip(&local) {
-            *slot = members[k as usize];
+        // The order of the half's own points, then of the input positions.
+        spatial_order_into(gathered, frames, n, order, &mut scratch);
+        for slot in order.iter_mut() {
+            *slot = members[*slot as usize];
         }
         for (slot, &i) in gathered.iter_mut().zip(order.iter()) {
             *slot = frames.predicates.apply(points[i as usize]);
@@ -313,8 +326,8 @@ fn cut_order(
     };
     both(
         parallel,
-        || half(true, order_left, sorted_left),
-        || half(false, order_right, sorted_right),
+        || half(true, order_left, sorted_left, scratch_left),
+        || half(false, order_right, sorted_right, scratch_right),
     );
     (order, sorted)
 }
@@ -373,6 +386,25 @@ fn insertion_order(
 
 /// The spatial insertion order of `points` in one piece, a set of `whole` points or part of one.
 fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<u32> {
+    let mut order = alloc::vec![0; points.len()];
+    spatial_order_into(
+        points,
+        frames,
+        whole,
+        &mut order,
+        &mut order::Scratch::default(),
+    );
+    order
+}
+
+/// [`spatial_order`] written into `order`, sorting in `scratch`.
+fn spatial_order_into(
+    points: &[Point],
+    frames: &scale::Frames,
+    whole: usize,
+    order: &mut [u32],
+    scratch: &mut order::Scratch,
+) {
     let reorder_crowded = whole >= order::REORDER_FROM;
     if frames.wide {
         // Wide sets: a logarithmic grid (on a linear one, most points share one cell).
@@ -380,9 +412,9 @@ fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<
             .iter()
             .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
             .collect();
-        order::insertion_order(&warped, reorder_crowded)
+        order::insertion_order_into(&warped, reorder_crowded, order, scratch);
     } else {
-        order::insertion_order(points, reorder_crowded)
+        order::insertion_order_into(points, reorder_crowded, order, scratch);
     }
 }
 
