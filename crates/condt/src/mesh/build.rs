@@ -1,6 +1,7 @@
 //! Construction of a [`Mesh`]: the one place outside `mesh/mod.rs` that writes its arrays.
 //!
-//! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once); a
+//! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once, in the arrays
+//! of a finished mesh given back as [`MeshStorage`] when there is one); a
 //! [`MeshBuilder`] lent a range offers the triangulator exactly its edits and reads, and two may
 //! fill disjoint ranges at once (the halves of [`crate::triangulate()`]). [`MeshArrays::seal`]
 //! derives `vertex_edges` and ends it. It may not look at a coordinate or decide a sign, and checks

@@ -1,7 +1,8 @@
 //! The [`Pipeline`], a reconstruction one step at a time ([`reconstruct`] runs it to the end): the
 //! first graph, each step in [`Params::stages`]' order, the tally of the last graph. With smoothing
 //! on, a run whose degrees show noise is followed by a smoothing pass and a new run until two agree
-//! or [`MAX_PASSES`] ran. It owns runs, passes and clocks; it may not implement nor order stages.
+//! or [`MAX_PASSES`] ran. It owns runs, passes, clocks and which thread runs them ([`on_worker`]);
+//! it may not implement nor order stages.
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
@@ -717,4 +718,23 @@ pub(super) fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send
 #[cfg(not(feature = "parallel"))]
 pub(super) fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
     work()
+}
+
+#[cfg(all(test, feature = "parallel"))]
+mod tests {
+    use super::on_worker;
+
+    /// Every call runs on the same worker, the pool's first, whichever thread asks.
+    #[test]
+    fn on_worker_runs_on_the_first_worker() {
+        let index = || rayon::current_thread_index();
+        assert_eq!(on_worker(true, index), Some(0));
+        assert_eq!(on_worker(false, index), None);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        let from_workers: Vec<_> = pool.broadcast(|_| on_worker(true, index));
+        assert_eq!(from_workers, vec![Some(0); 3]);
+    }
 }

@@ -1,7 +1,8 @@
 //! Delaunay triangulation of a planar point set.
 //!
 //! Owns: turning points into a [`Triangulation`] (a [`Mesh`], the points, the maps between input
-//! positions and vertices) and checking one. It decides signs only through [`crate::predicates`],
+//! positions and vertices), possibly in the arrays of one no longer needed ([`Storage`]), and
+//! checking one. It decides signs only through [`crate::predicates`],
 //! writes topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
 //! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
