@@ -1,6 +1,7 @@
 //! Construction of a [`Mesh`]: the one place outside `mesh/mod.rs` that writes its arrays.
 //!
-//! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once); a
+//! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once, in the arrays
+//! of a finished mesh given back as [`MeshStorage`] when there is one); a
 //! [`MeshBuilder`] lent a range offers the triangulator exactly its edits and reads, and two may
 //! fill disjoint ranges at once (the halves of [`crate::triangulate()`]). [`MeshArrays::seal`]
 //! derives `vertex_edges` and ends it. It may not look at a coordinate or decide a sign, and checks
@@ -14,25 +15,48 @@ use alloc::vec::Vec;
 pub(crate) struct MeshArrays {
     origins: Vec<VertexId>,
     twins: Vec<HalfEdgeId>,
+    /// The buffer [`MeshArrays::seal`] fills (empty unless one was given back).
+    vertex_edges: Vec<HalfEdgeId>,
+}
+
+/// The arrays of a mesh no longer needed ([`Mesh::into_storage`]), for the next one to fill.
+/// Reason: memory; a smoothing pass builds a mesh as large as the one it replaces, and glibc's
+/// malloc keeps a freed block of its size (once its mmap threshold rose) out of the system's reach.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct MeshStorage {
+    pub(super) origins: Vec<VertexId>,
+    pub(super) twins: Vec<HalfEdgeId>,
+    pub(super) vertex_edges: Vec<HalfEdgeId>,
+}
+
+/// `buffer` cleared and refilled with `n` copies of `value` (on rayon's threads when `parallel`).
+fn filled<T: Copy + Send + Sync>(mut buffer: Vec<T>, value: T, n: usize, parallel: bool) -> Vec<T> {
+    buffer.clear();
+    buffer.reserve_exact(n);
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::iter::{repeat_n, ParallelExtend};
+        buffer.par_extend(repeat_n(value, n));
+        return buffer;
+    }
+    let _ = parallel;
+    buffer.resize(n, value);
+    buffer
 }
 
 impl MeshArrays {
     /// Room for `half_edges` half-edges (a multiple of three), filled on rayon's threads when
     /// `parallel`: the first touch of each page is most of the cost.
     pub(crate) fn new(half_edges: usize, parallel: bool) -> Self {
-        #[cfg(feature = "parallel")]
-        if parallel {
-            use rayon::iter::{repeat_n, ParallelExtend};
-            let mut origins = Vec::with_capacity(half_edges);
-            origins.par_extend(repeat_n(VertexId::INFINITE, half_edges));
-            let mut twins = Vec::with_capacity(half_edges);
-            twins.par_extend(repeat_n(HalfEdgeId::NONE, half_edges));
-            return MeshArrays { origins, twins };
-        }
-        let _ = parallel;
+        MeshArrays::reusing(MeshStorage::default(), half_edges, parallel)
+    }
+
+    /// [`MeshArrays::new`] in `storage`'s buffers where they are large enough.
+    pub(crate) fn reusing(storage: MeshStorage, half_edges: usize, parallel: bool) -> Self {
         MeshArrays {
-            origins: alloc::vec![VertexId::INFINITE; half_edges],
-            twins: alloc::vec![HalfEdgeId::NONE; half_edges],
+            origins: filled(storage.origins, VertexId::INFINITE, half_edges, parallel),
+            twins: filled(storage.twins, HalfEdgeId::NONE, half_edges, parallel),
+            vertex_edges: storage.vertex_edges,
         }
     }
 
@@ -83,7 +107,7 @@ impl MeshArrays {
         let mut mesh = Mesh {
             origins: self.origins,
             twins: self.twins,
-            vertex_edges: Vec::new(),
+            vertex_edges: self.vertex_edges,
         };
         mesh.rebuild_vertex_edges(vertex_count, parallel);
         mesh

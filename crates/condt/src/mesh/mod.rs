@@ -10,7 +10,7 @@ mod build;
 mod check;
 mod ids;
 
-pub(crate) use build::{MeshArrays, MeshBuilder};
+pub(crate) use build::{MeshArrays, MeshBuilder, MeshStorage};
 pub use check::{Element, Rule, Violation};
 pub(crate) use ids::wrap3;
 pub use ids::{HalfEdgeId, TriangleId, VertexId};
@@ -180,6 +180,15 @@ impl Mesh {
             .unwrap_or(HalfEdgeId::NONE)
     }
 
+    /// Its arrays, for the next mesh to be built in ([`MeshStorage`]).
+    pub(crate) fn into_storage(self) -> MeshStorage {
+        MeshStorage {
+            origins: self.origins,
+            twins: self.twins,
+            vertex_edges: self.vertex_edges,
+        }
+    }
+
     /// Fills `vertex_edges`: one pass records the last edge leaving each vertex, then a walk along
     /// the ghosts gives every hull vertex its edge to infinity. With `parallel`, two threads each
     /// scan every origin and record only their half of the ids (scattered writes kept apart).
@@ -196,7 +205,9 @@ impl Mesh {
                 }
             }
         };
-        let mut edges = alloc::vec![HalfEdgeId::NONE; vertex_count + 1];
+        let mut edges = core::mem::take(&mut self.vertex_edges);
+        edges.clear();
+        edges.resize(vertex_count + 1, HalfEdgeId::NONE);
         if parallel {
             let middle = vertex_count / 2;
             let (low, high) = edges.split_at_mut(middle);

@@ -1,11 +1,12 @@
 //! The [`Pipeline`], a reconstruction one step at a time ([`reconstruct`] runs it to the end): the
 //! first graph, each step in [`Params::stages`]' order, the tally of the last graph. With smoothing
 //! on, a run whose degrees show noise is followed by a smoothing pass and a new run until two agree
-//! or [`MAX_PASSES`] ran. It owns runs, passes and clocks; it may not implement nor order stages.
+//! or [`MAX_PASSES`] ran. It owns runs, passes, clocks and which thread runs them ([`on_worker`]);
+//! it may not implement nor order stages.
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
-use super::result::{tally, Reconstruction, Smoothing, StageReport};
+use super::result::{tally, Reconstruction, Smoothing, StageReport, Tally};
 use crate::adjacency::{CurveGraph, Edge};
 use crate::curve::curves_in_input_positions;
 use crate::error::Error;
@@ -14,7 +15,7 @@ use crate::graph::Graph;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
-use crate::triangulate::{triangulate_with, triangulate_with_progress, Triangulation};
+use crate::triangulate::{triangulate_reusing, triangulate_with_progress, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::sync::atomic::AtomicUsize;
@@ -184,7 +185,11 @@ impl Pipeline {
         params.check()?;
         let params = &params.on_available_threads();
         let mut clock = Stopwatch::start();
-        let tri = triangulate_with_progress(&points, params.parallel, inserted)?;
+        // On the stages' worker: their allocations reuse what it freed (`on_worker`).
+        let in_parallel = params.parallel && points.len() >= PARALLEL_FROM;
+        let tri = on_worker(in_parallel, || {
+            triangulate_with_progress(&points, params.parallel, inserted)
+        })?;
         let triangulation_time = clock.lap();
         drop(points);
         let may_smooth = params.smooth && params.method == Method::ConDT;
@@ -280,7 +285,10 @@ impl Pipeline {
                 Ok(Some(StepReport::Stage(self.report(k))))
             }
             State::Smooth(result) => {
-                let (pass, moved) = match self.smoothing_pass(result) {
+                let n = result.triangulation().num_points();
+                let in_parallel = self.params.parallel && n >= PARALLEL_FROM;
+                // On the stages' worker: its arena holds the memory they freed (`on_worker`).
+                let (pass, moved) = match on_worker(in_parallel, || self.smoothing_pass(result)) {
                     Ok(done) => done,
                     Err(error) => {
                         self.state = State::Failed(error);
@@ -371,24 +379,26 @@ impl Pipeline {
     fn smoothing_pass(&mut self, mut result: Reconstruction) -> Result<(usize, usize), Error> {
         let mut smoothing = self.smoothing.unwrap_or_default();
         // Memory: only the previous run's edge fingerprint (none for a last pass), triangulation
-        // and final graph are kept, each freed once read; the moved points once triangulated.
+        // and final graph are kept, each freed once read (the triangulation's arrays hold the
+        // next one); the moved points once triangulated.
         let last_pass = smoothing.passes + 1 >= MAX_PASSES;
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
         let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
         let smoothed = smoothed_positions(&triangulation, &final_edges);
         let merged_before = triangulation.num_points() - triangulation.num_vertices();
-        drop((triangulation, final_edges));
+        drop(final_edges);
+        let storage = triangulation.into_storage();
         let moved = smoothed.moved;
         // The replaced run's triangulation is an earlier pass's cost too.
         self.earlier_passes += triangulation_time;
         self.earlier_passes += self.pass_clock.lap();
         // Relative to the corner, so an exact translation gives the same result, unless that merges
         // distinct points (making the result depend on input order): then in the caller's frame.
-        let relative = triangulate_with(&smoothed.positions, self.params.parallel)?;
+        let parallel = self.params.parallel;
+        let relative = triangulate_reusing(&smoothed.positions, parallel, storage)?;
         let tri = if relative.num_points() - relative.num_vertices() > merged_before {
-            drop(relative);
-            triangulate_with(&smoothed.absolute, self.params.parallel)?
+            triangulate_reusing(&smoothed.absolute, parallel, relative.into_storage())?
         } else {
             relative.with_offset(smoothed.corner)
         };
@@ -515,14 +525,15 @@ impl Run {
                 }
                 CurveAssembly::Later => false,
             };
+            let room = Tally::with_room(n, last.len());
             let (curves, tally) = if curves_now {
                 both(
                     in_parallel,
                     || curves_in_input_positions(&tri, &graph),
-                    || tally(&tri, &graph, last.len()),
+                    || tally(&tri, &graph, last.len(), room),
                 )
             } else {
-                (Vec::new(), tally(&tri, &graph, last.len()))
+                (Vec::new(), tally(&tri, &graph, last.len(), room))
             };
             // The curve graph's degrees are the tally's.
             debug_assert!(
@@ -685,18 +696,45 @@ impl Stopwatch {
     }
 }
 
-/// Runs `work` on one of rayon's worker threads when `parallel`. Reason: called from outside
-/// the pool, rayon leaves its workers spinning beside the sequential stages that follow.
+/// Runs `work` on rayon's first worker thread when `parallel`. Reason: called from outside the
+/// pool, rayon leaves its workers spinning beside the sequential stages that follow. Always the
+/// same worker: glibc's malloc gives each thread its own arena and keeps what an arena freed, so
+/// stages run on whichever worker was free would each grow a different arena to their peak.
 #[cfg(feature = "parallel")]
 pub(super) fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send) -> R {
-    if parallel {
-        rayon::scope(|_| work())
-    } else {
-        work()
+    if !parallel || rayon::current_thread_index() == Some(0) {
+        return work();
     }
+    let work = std::sync::Mutex::new(Some(work));
+    let mut results = rayon::broadcast(|context| match context.index() {
+        0 => work.lock().ok()?.take().map(|work| work()),
+        _ => None,
+    });
+    results
+        .swap_remove(0)
+        .expect("the first worker ran the work")
 }
 
 #[cfg(not(feature = "parallel"))]
 pub(super) fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
     work()
+}
+
+#[cfg(all(test, feature = "parallel"))]
+mod tests {
+    use super::on_worker;
+
+    /// Every call runs on the same worker, the pool's first, whichever thread asks.
+    #[test]
+    fn on_worker_runs_on_the_first_worker() {
+        let index = || rayon::current_thread_index();
+        assert_eq!(on_worker(true, index), Some(0));
+        assert_eq!(on_worker(false, index), None);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        let from_workers: Vec<_> = pool.broadcast(|_| on_worker(true, index));
+        assert_eq!(from_workers, vec![Some(0); 3]);
+    }
 }

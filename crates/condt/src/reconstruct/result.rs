@@ -308,6 +308,19 @@ pub(super) struct Tally {
     pub(super) edges: Vec<[u32; 2]>,
 }
 
+impl Tally {
+    /// Empty lists with room for the tally of `n` input positions and `edge_count` edges, taken
+    /// by the calling thread. Reason: memory; the tally runs beside the curves on another thread,
+    /// whose own malloc arena (glibc) would take these blocks from the system anew.
+    pub(super) fn with_room(n: usize, edge_count: usize) -> Tally {
+        Tally {
+            degrees: Degrees::with_capacity(n),
+            unused: Vec::new(),
+            edges: Vec::with_capacity(edge_count + 2),
+        }
+    }
+}
+
 /// How far ahead [`tally`] prefetches neighbours' positions (twice as far for records).
 const TALLY_PREFETCH: usize = 16;
 
@@ -315,13 +328,22 @@ const TALLY_PREFETCH: usize = 16;
 /// sorted (each listed by its smaller position). At the common degree <= 2 both candidates are
 /// written and the count passes those that belong (a coin toss, not branched on). Neighbours'
 /// positions come from the dense map: sixteen to a cache line, where curve-graph records pack four.
-pub(super) fn tally(tri: &Triangulation, graph: &CurveGraph, edge_count: usize) -> Tally {
+/// The lists are written in `room` ([`Tally::with_room`]).
+pub(super) fn tally(
+    tri: &Triangulation,
+    graph: &CurveGraph,
+    edge_count: usize,
+    room: Tally,
+) -> Tally {
     let n = tri.num_points();
     let has_duplicates = tri.num_vertices() < n;
-    let mut degrees = Degrees::with_capacity(n);
-    let mut unused = Vec::new();
+    let Tally {
+        mut degrees,
+        mut unused,
+        mut edges,
+    } = room;
     // Room for the two candidates a vertex writes past the last edge it lists.
-    let mut edges: Vec<[u32; 2]> = alloc::vec![[0, 0]; edge_count + 2];
+    edges.resize(edge_count + 2, [0, 0]);
     let mut count = 0;
     let input_of = |w: VertexId| {
         if w.is_infinite() {

@@ -12,7 +12,7 @@
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
-use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshArrays, MeshBuilder, VertexId};
+use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshArrays, MeshBuilder, MeshStorage, VertexId};
 use crate::predicates::Orientation;
 use crate::threads::both;
 use alloc::vec::Vec;
@@ -112,18 +112,20 @@ pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)
 
 /// The mesh of `points` (in insertion order: the left half's `left` points, then the right half's)
 /// and the `(duplicate, kept)` pairs merged, or `None` (see the module doc). Each half reports to
-/// `progress` as [`insert::build_into`] does; on `None` their counts are taken back.
+/// `progress` as [`insert::build_into`] does; on `None` their counts are taken back. The mesh is
+/// built in `storage`'s arrays where they are large enough.
 pub(crate) fn build<K: Kernel>(
     points: &[Point],
     left: usize,
     parallel: bool,
     progress: Option<&AtomicUsize>,
+    storage: MeshStorage,
 ) -> Option<(Mesh, Vec<(u32, u32)>)> {
     let (left_points, right_points) = points.split_at(left);
     let left_room = insert::half_edges(left_points.len());
     let right_room = insert::half_edges(right_points.len());
     // The stitch adds two ghosts: 2(n_l + n_r) - 2 triangles in all.
-    let mut arrays = MeshArrays::new(left_room + right_room + 6, parallel);
+    let mut arrays = MeshArrays::reusing(storage, left_room + right_room + 6, parallel);
     let (low, high) = arrays.halves(left_room);
     let (left_built, right_built) = both(
         parallel,
@@ -459,7 +461,7 @@ mod tests {
             .iter()
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
-        build::<super::super::insert::Fast>(&sorted, left?, false, None)
+        build::<super::super::insert::Fast>(&sorted, left?, false, None, MeshStorage::default())
     }
 
     /// The triangles of a triangulation in input positions, each from its smallest, sorted.
@@ -672,9 +674,15 @@ mod tests {
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
         if frames.wide {
-            build::<super::super::insert::Exact>(&sorted, left?, false, None)
+            build::<super::super::insert::Exact>(
+                &sorted,
+                left?,
+                false,
+                None,
+                MeshStorage::default(),
+            )
         } else {
-            build::<super::super::insert::Fast>(&sorted, left?, false, None)
+            build::<super::super::insert::Fast>(&sorted, left?, false, None, MeshStorage::default())
         }
     }
 

@@ -1,7 +1,8 @@
 //! Delaunay triangulation of a planar point set.
 //!
 //! Owns: turning points into a [`Triangulation`] (a [`Mesh`], the points, the maps between input
-//! positions and vertices) and checking one. It decides signs only through [`crate::predicates`],
+//! positions and vertices), possibly in the arrays of one no longer needed ([`Storage`]), and
+//! checking one. It decides signs only through [`crate::predicates`],
 //! writes topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
 //! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
@@ -20,8 +21,8 @@ mod scale;
 use crate::error::Error;
 use crate::geometry::Point;
 use crate::geometry::Scale;
-use crate::mesh::MeshArrays;
 use crate::mesh::{Mesh, VertexId};
+use crate::mesh::{MeshArrays, MeshStorage};
 use crate::threads::both;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
@@ -115,12 +116,44 @@ pub(crate) fn triangulate_with_progress(
     triangulate_split(points, parallel, halves::SPLIT_MIN, inserted)
 }
 
+/// [`triangulate_with`], built in `storage`'s arrays where they are large enough.
+pub(crate) fn triangulate_reusing(
+    points: &[Point],
+    parallel: bool,
+    storage: Storage,
+) -> Result<Triangulation, Error> {
+    let parallel = parallel && crate::threads::parallel_available();
+    triangulate_in(points, parallel, halves::SPLIT_MIN, None, storage)
+}
+
+/// A triangulation's arrays no longer needed ([`Triangulation::into_storage`]), for the next
+/// triangulation of as many points (a smoothing pass's) to be built in. Reason: memory, see
+/// [`MeshStorage`]; the points and the two maps are per-point arrays like the mesh's.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Storage {
+    points: Vec<Point>,
+    mesh: MeshStorage,
+    input_of_vertex: Vec<u32>,
+    vertex_of_input: Vec<VertexId>,
+}
+
 /// [`triangulate_with_progress`], cutting sets of `split_min` points and more in two.
 fn triangulate_split(
     points: &[Point],
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
+) -> Result<Triangulation, Error> {
+    triangulate_in(points, parallel, split_min, progress, Storage::default())
+}
+
+/// [`triangulate_split`] in `storage`'s arrays.
+fn triangulate_in(
+    points: &[Point],
+    parallel: bool,
+    split_min: usize,
+    progress: Option<&AtomicUsize>,
+    mut storage: Storage,
 ) -> Result<Triangulation, Error> {
     if points.len() > MAX_POINTS {
         return Err(Error::TooManyPoints {
@@ -130,7 +163,8 @@ fn triangulate_split(
     }
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
-    let (order, mut sorted, built) = construct(points, &frames, parallel, split_min, progress);
+    let (order, mut sorted, built) =
+        construct(points, &frames, parallel, split_min, progress, &mut storage);
     let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
@@ -176,7 +210,8 @@ fn triangulate_split(
             || rescale(high),
         );
     }
-    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel);
+    let (input_of_vertex, vertex_of_input) =
+        vertex_maps(order, &merged, parallel, storage.vertex_of_input);
     let num_vertices = vertex_of_input.len() - merged.len();
     Ok(Triangulation {
         points: sorted,
@@ -201,15 +236,21 @@ fn construct(
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
+    storage: &mut Storage,
 ) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
     let Some(cut) = halves::cut(points, split_min, parallel) else {
         return construct_whole(points, frames, progress);
     };
-    let (order, sorted) = cut_order(points, frames, &cut, parallel, true);
+    let buffers = (
+        core::mem::take(&mut storage.input_of_vertex),
+        core::mem::take(&mut storage.points),
+    );
+    let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
+    let mesh = core::mem::take(&mut storage.mesh);
     let built = if frames.wide {
-        halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress)
+        halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
     } else {
-        halves::build::<Fast>(&sorted, cut.left_len(), parallel, progress)
+        halves::build::<Fast>(&sorted, cut.left_len(), parallel, progress, mesh)
     };
     if built.is_some() {
         return (order, sorted, built);
@@ -220,65 +261,92 @@ fn construct(
 
 /// The insertion order of a set cut in two (left half's, then right half's) and, with
 /// `with_points`, its points in the predicates' frame; each half on its own thread if `parallel`.
+/// They are written in `buffers` (order, points) where these are large enough.
 fn cut_order(
     points: &[Point],
     frames: &scale::Frames,
     cut: &halves::Cut,
     parallel: bool,
     with_points: bool,
+    buffers: (Vec<u32>, Vec<Point>),
 ) -> (Vec<u32>, Vec<Point>) {
     let n = points.len();
-    let mut order = filled(0u32, n, parallel);
+    let mut order = filled(buffers.0, 0u32, n, parallel);
     let mut sorted = if with_points {
-        filled(Point::default(), n, parallel)
+        filled(buffers.1, Point::default(), n, parallel)
     } else {
         Vec::new()
     };
     let left = cut.left_len();
     let (order_left, order_right) = order.split_at_mut(left);
     let (sorted_left, sorted_right) = sorted.split_at_mut(if with_points { left } else { 0 });
-    let half = |is_left: bool, order: &mut [u32], sorted: &mut [Point]| {
-        // Branch-free (the side is a coin toss on unorganized input): every point is written to
-        // the next free slot, which only a member keeps; the spare slot absorbs the tail.
+    // Each half's scratch arrays are allocated here, by the calling thread. Reason: memory; the
+    // second half runs on another thread, whose own malloc arena (glibc) would keep them once
+    // freed (about 20 bytes per point of its half).
+    let scratch = |len: usize| {
+        (
+            alloc::vec![0u32; len + 1],
+            order::Scratch::with_capacity(len),
+        )
+    };
+    let (scratch_left, scratch_right) = (scratch(left), scratch(n - left));
+    let half = |is_left: bool,
+                order: &mut [u32],
+                sorted: &mut [Point],
+                (mut members, mut scratch): (Vec<u32>, order::Scratch)| {
+        // Branch-free (the side is a coin toss on unorganized input): every position is written
+        // to the next free slot, which only a member keeps; the spare slot absorbs the tail.
         let len = order.len();
-        let mut members = alloc::vec![0u32; len + 1];
-        let mut gathered = alloc::vec![Point::default(); len + 1];
         let mut next = 0;
         for (i, &p) in points.iter().enumerate() {
             members[next] = i as u32;
-            gathered[next] = p;
             next = (next + usize::from(cut.is_left(p) == is_left)).min(len);
         }
         debug_assert_eq!(next, len);
         members.truncate(len);
-        gathered.truncate(len);
-        let local = spatial_order(&gathered, frames, n);
-        for (slot, &k) in order.iter_mut().zip(&local) {
-            *slot = members[k as usize];
+        // The half's points in input order, for its spatial order, gathered in `sorted` itself.
+        // Reason: memory; a list of its own was 16 bytes per point at the smoothing passes' peak.
+        let mut spare = Vec::new();
+        let gathered = if sorted.len() == len {
+            sorted
+        } else {
+            spare.resize(len, Point::default());
+            &mut spare[..]
+        };
+        for (slot, &i) in gathered.iter_mut().zip(&members) {
+            *slot = points[i as usize];
         }
-        for (slot, &k) in sorted.iter_mut().zip(&local) {
-            *slot = frames.predicates.apply(gathered[k as usize]);
+        // The order of the half's own points, then of the input positions.
+        spatial_order_into(gathered, frames, n, order, &mut scratch);
+        for slot in order.iter_mut() {
+            *slot = members[*slot as usize];
+        }
+        for (slot, &i) in gathered.iter_mut().zip(order.iter()) {
+            *slot = frames.predicates.apply(points[i as usize]);
         }
     };
     both(
         parallel,
-        || half(true, order_left, sorted_left),
-        || half(false, order_right, sorted_right),
+        || half(true, order_left, sorted_left, scratch_left),
+        || half(false, order_right, sorted_right, scratch_right),
     );
     (order, sorted)
 }
 
-/// `n` copies of `value`, written on rayon's threads when `parallel` (first touches cost most).
-fn filled<T: Copy + Send + Sync>(value: T, n: usize, parallel: bool) -> Vec<T> {
+/// `n` copies of `value` in `buffer` (cleared first), written on rayon's threads when `parallel`
+/// (first touches cost most).
+fn filled<T: Copy + Send + Sync>(mut buffer: Vec<T>, value: T, n: usize, parallel: bool) -> Vec<T> {
+    buffer.clear();
+    buffer.reserve_exact(n);
     #[cfg(feature = "parallel")]
     if parallel {
         use rayon::iter::{repeat_n, ParallelExtend};
-        let mut list = Vec::with_capacity(n);
-        list.par_extend(repeat_n(value, n));
-        return list;
+        buffer.par_extend(repeat_n(value, n));
+        return buffer;
     }
     let _ = parallel;
-    alloc::vec![value; n]
+    buffer.resize(n, value);
+    buffer
 }
 
 /// [`construct`] without the cut.
@@ -310,7 +378,7 @@ fn insertion_order(
 ) -> (Vec<u32>, Option<usize>) {
     match halves::cut(points, split_min, parallel) {
         Some(cut) => (
-            cut_order(points, frames, &cut, parallel, false).0,
+            cut_order(points, frames, &cut, parallel, false, Default::default()).0,
             Some(cut.left_len()),
         ),
         None => (spatial_order(points, frames, points.len()), None),
@@ -319,6 +387,25 @@ fn insertion_order(
 
 /// The spatial insertion order of `points` in one piece, a set of `whole` points or part of one.
 fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<u32> {
+    let mut order = alloc::vec![0; points.len()];
+    spatial_order_into(
+        points,
+        frames,
+        whole,
+        &mut order,
+        &mut order::Scratch::default(),
+    );
+    order
+}
+
+/// [`spatial_order`] written into `order`, sorting in `scratch`.
+fn spatial_order_into(
+    points: &[Point],
+    frames: &scale::Frames,
+    whole: usize,
+    order: &mut [u32],
+    scratch: &mut order::Scratch,
+) {
     let reorder_crowded = whole >= order::REORDER_FROM;
     if frames.wide {
         // Wide sets: a logarithmic grid (on a linear one, most points share one cell).
@@ -326,9 +413,9 @@ fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<
             .iter()
             .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
             .collect();
-        order::insertion_order(&warped, reorder_crowded)
+        order::insertion_order_into(&warped, reorder_crowded, order, scratch);
     } else {
-        order::insertion_order(points, reorder_crowded)
+        order::insertion_order_into(points, reorder_crowded, order, scratch);
     }
 }
 
@@ -356,9 +443,10 @@ fn vertex_maps(
     mut input_of_vertex: Vec<u32>,
     merged: &[(u32, u32)],
     parallel: bool,
+    buffer: Vec<VertexId>,
 ) -> (Vec<u32>, Vec<VertexId>) {
     let n = input_of_vertex.len();
-    let mut vertex_of_input = filled(VertexId::INFINITE, n, parallel);
+    let mut vertex_of_input = filled(buffer, VertexId::INFINITE, n, parallel);
     let order = &input_of_vertex;
     let place = |slots: &mut [VertexId], first: usize| {
         if slots.is_empty() {
@@ -477,6 +565,15 @@ impl Triangulation {
         match self.offset {
             Some(offset) => Point::new(p.x + offset.x, p.y + offset.y),
             None => p,
+        }
+    }
+    /// Its arrays, for the next triangulation to be built in ([`Storage`]).
+    pub(crate) fn into_storage(self) -> Storage {
+        Storage {
+            points: self.points,
+            mesh: self.mesh.into_storage(),
+            input_of_vertex: self.input_of_vertex,
+            vertex_of_input: self.vertex_of_input,
         }
     }
     /// This triangulation, its points given relative to `offset` (see the `offset` field).
@@ -761,6 +858,38 @@ mod tests {
         }
     }
 
+    /// A triangulation built in the arrays of another ([`Storage`], as the smoothing passes do)
+    /// is the one built afresh, whether those arrays are larger, smaller or of a set as large,
+    /// on the cut and the one-piece paths, with duplicates.
+    #[test]
+    fn built_in_another_triangulations_arrays_is_the_same() {
+        let mut rng = Xorshift::new(0x5707_a9e5);
+        let mut set = rng.unit_points(2000);
+        set.extend_from_within(..300);
+        let grid: Vec<Point> = (0..900)
+            .map(|k| Point::new((k % 30) as f64, (k / 30) as f64))
+            .collect();
+        for points in [&set, &grid] {
+            for split_min in [0, usize::MAX] {
+                let expected = triangulate_split(points, false, split_min, None).unwrap();
+                for other in [rng.unit_points(5000), rng.unit_points(50), points.clone()] {
+                    let storage = triangulate(&other).unwrap().into_storage();
+                    for parallel in [false, true] {
+                        let tri =
+                            triangulate_in(points, parallel, split_min, None, storage.clone());
+                        let tri = tri.unwrap();
+                        assert_same(&tri, &expected, "reused");
+                        assert_eq!(tri.vertex_points(), expected.vertex_points());
+                        for v in 0..tri.num_points() {
+                            let v = VertexId::new(v as u32);
+                            assert_eq!(tri.input_of(v), expected.input_of(v));
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     /// [`Triangulation::triangulate_observed`] builds what [`triangulate`] builds and its counter
     /// ends at the number of distinct points on every path: one piece, two halves (on one
     /// thread and on two, past several reports each), halves that fall back to one piece (what
@@ -889,7 +1018,7 @@ mod tests {
             .iter()
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
-        halves::build::<Fast>(&sorted, left?, false, None)
+        halves::build::<Fast>(&sorted, left?, false, None, MeshStorage::default())
     }
 
     /// Above the size where sealing, rescaling and the vertex maps take two threads, they give

@@ -99,7 +99,39 @@ fn mix(mut z: u64) -> u64 {
 /// The order in which to insert `points`, as indices into it; with `reorder_crowded`, a grid
 /// cell of [`CROWDED_CELL`] points or more gets an order of its own (see there).
 pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u32> {
+    let mut order = alloc::vec![0; points.len()];
+    insertion_order_into(points, reorder_crowded, &mut order, &mut Scratch::default());
+    order
+}
+
+/// The sort keys of [`insertion_order_into`] and the radix sort's second array, lent by the
+/// caller. Reason: memory; a half of a cut set is ordered on a second thread, whose own malloc
+/// arena (glibc) would keep these 16 bytes per point once freed.
+#[derive(Default)]
+pub(crate) struct Scratch {
+    keys: Vec<u64>,
+    buffer: Vec<u64>,
+}
+
+impl Scratch {
+    /// Room for ordering `n` points, allocated by the calling thread.
+    pub(crate) fn with_capacity(n: usize) -> Scratch {
+        Scratch {
+            keys: Vec::with_capacity(n),
+            buffer: Vec::with_capacity(n),
+        }
+    }
+}
+
+/// [`insertion_order`] written into `order` (as long as `points`), sorting in `scratch`.
+pub(crate) fn insertion_order_into(
+    points: &[Point],
+    reorder_crowded: bool,
+    order: &mut [u32],
+    scratch: &mut Scratch,
+) {
     let n = points.len();
+    debug_assert_eq!(order.len(), n);
     let (mut min_x, mut min_y) = (f64::INFINITY, f64::INFINITY);
     let (mut max_x, mut max_y) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
     // Finite points: plain comparisons, a shorter chain than `f64::min`'s NaN rule.
@@ -111,7 +143,10 @@ pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u3
     }
     let span = (max_x - min_x).max(max_y - min_y);
     if n < 2 || span <= 0.0 {
-        return (0..n as u32).collect();
+        for (slot, i) in order.iter_mut().zip(0..) {
+            *slot = i;
+        }
+        return;
     }
     let cells = ((1u64 << GRID_BITS) - 1) as f64;
     let to_grid = cells / span;
@@ -134,20 +169,24 @@ pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u3
     let index_bits = usize::BITS - (n - 1).leading_zeros();
     if key_bits + index_bits <= u64::BITS {
         // Key and input position packed in one word, radix-sorted on the key bits only.
-        let mut packed: Vec<u64> = points
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (key_of(p) << index_bits) | i as u64)
-            .collect();
-        radix_sort(&mut packed, index_bits, key_bits);
+        let packed = &mut scratch.keys;
+        packed.clear();
+        packed.extend(
+            points
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (key_of(p) << index_bits) | i as u64),
+        );
+        radix_sort(packed, &mut scratch.buffer, index_bits, key_bits);
         let index_mask = (1u64 << index_bits) - 1;
-        let mut order: Vec<u32> = packed.iter().map(|&w| (w & index_mask) as u32).collect();
+        for (slot, &w) in order.iter_mut().zip(packed.iter()) {
+            *slot = (w & index_mask) as u32;
+        }
         for_each_run(
-            &packed,
+            packed,
             |w| w >> index_bits,
             |run| order_cell(points, &mut order[run], reorder_crowded),
         );
-        order
     } else {
         let mut keyed: Vec<(u64, u32)> = points
             .iter()
@@ -155,13 +194,14 @@ pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u3
             .map(|(i, p)| (key_of(p), i as u32))
             .collect();
         keyed.sort_unstable_by_key(|&(key, _)| key);
-        let mut order: Vec<u32> = keyed.iter().map(|&(_, i)| i).collect();
+        for (slot, &(_, i)) in order.iter_mut().zip(&keyed) {
+            *slot = i;
+        }
         for_each_run(
             &keyed,
             |&(key, _)| key,
             |run| order_cell(points, &mut order[run], reorder_crowded),
         );
-        order
     }
 }
 
@@ -214,8 +254,9 @@ fn for_each_run<T, K: PartialEq>(
 }
 
 /// Stable LSD radix sort of `values` by their bits `low .. low + bits`, in nine-bit digits (2 KiB
-/// of counters a pass, few scatter targets), all passes counted in one read.
-fn radix_sort(values: &mut Vec<u64>, low: u32, bits: u32) {
+/// of counters a pass, few scatter targets), all passes counted in one read; `buffer` is the
+/// second array the passes alternate with.
+fn radix_sort(values: &mut Vec<u64>, buffer: &mut Vec<u64>, low: u32, bits: u32) {
     const DIGIT_BITS: u32 = 9;
     const DIGITS: usize = 1 << DIGIT_BITS;
     const MAX_PASSES: usize = 64usize.div_ceil(DIGIT_BITS as usize);
@@ -228,7 +269,8 @@ fn radix_sort(values: &mut Vec<u64>, low: u32, bits: u32) {
             count[digit(v, pass)] += 1;
         }
     }
-    let mut buffer = alloc::vec![0u64; values.len()];
+    buffer.clear();
+    buffer.resize(values.len(), 0);
     for (pass, offsets) in counts.iter_mut().enumerate().take(passes) {
         // A digit shared by every value would not move anything.
         if offsets.contains(&(values.len() as u32)) {
@@ -245,7 +287,7 @@ fn radix_sort(values: &mut Vec<u64>, low: u32, bits: u32) {
             buffer[offsets[d] as usize] = v;
             offsets[d] += 1;
         }
-        core::mem::swap(values, &mut buffer);
+        core::mem::swap(values, buffer);
     }
 }
 
@@ -325,7 +367,7 @@ mod tests {
             .collect();
         let mut expected = values.clone();
         expected.sort_by_key(|v| v >> 8);
-        radix_sort(&mut values, 8, 24);
+        radix_sort(&mut values, &mut Vec::new(), 8, 24);
         assert_eq!(values, expected);
     }
 
