@@ -1,7 +1,7 @@
 //! Edge lists in vertex ids and their adjacency: the internal form of the graphs the stages pass on
 //! and curves are read from.
 //!
-//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), [`CurveGraph`], [`BranchAdjacency`],
+//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), [`CurveGraph`] (and test references),
 //! exact-size collection and the O(n) pair sort. It may not look at coordinates; nothing here is
 //! public (users see edges in input positions through [`Graph`](crate::Graph)).
 
@@ -22,7 +22,7 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
 }
 
 /// Compressed adjacency (each vertex's neighbours with their edge's position, in list order): the
-/// reference the tests check [`CurveGraph`] and [`BranchAdjacency`] against.
+/// reference the tests check [`CurveGraph`] and `BranchAdjacency` against.
 #[cfg(test)]
 pub(crate) struct Adjacency {
     offsets: Vec<u32>,
@@ -61,13 +61,16 @@ impl Adjacency {
     }
 }
 
-/// [`Adjacency`] of the vertices of degree three or more only (few on curves), for memory.
+/// [`Adjacency`] of the vertices of degree three or more only: the tests' reference for the
+/// repair's rank lists.
+#[cfg(test)]
 pub(crate) struct BranchAdjacency {
     /// The vertices with three or more edges, ascending, and where their lists start.
     vertices: Vec<(VertexId, u32)>,
     neighbors: Vec<(VertexId, u32)>,
 }
 
+#[cfg(test)]
 impl BranchAdjacency {
     /// `degree` must be the degrees of `edges` ([`degrees`]).
     pub(crate) fn new(degree: &[u32], edges: &[Edge]) -> Self {

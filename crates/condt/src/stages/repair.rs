@@ -30,7 +30,7 @@
 //! Each vertex decides from degrees and positions alone, ties by id, so the result depends neither
 //! on the edges' order nor on threads. Measured: `docs/perf-log.md`, *`stages/repair.rs`*.
 
-use crate::adjacency::{degrees, ordered, BranchAdjacency, Edge};
+use crate::adjacency::{degrees, ordered, Edge};
 use crate::mesh::VertexId;
 use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::triangulate::Triangulation;
@@ -279,9 +279,10 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     }
     // Only the non-manifold vertices' lists are read.
     let mut graph = Branches::new(&degree, edges);
-    if cfg!(debug_assertions) {
-        // The lists [`BranchAdjacency`] gives, checked in debug builds (tests).
-        let reference = BranchAdjacency::new(&degree, edges);
+    #[cfg(test)]
+    {
+        // The lists the reference `BranchAdjacency` gives, checked in the tests.
+        let reference = crate::adjacency::BranchAdjacency::new(&degree, edges);
         debug_assert_eq!(reference.branch_count(), graph.count());
         for (r, v) in graph.vertices().enumerate() {
             let listed = reference.incident(v).iter().map(|&(w, _)| w);
