@@ -8,28 +8,24 @@
 //! repair drops two arms.
 //!
 //! A loose end `a` (one edge, to `a'`) *faces* a Delaunay neighbour `w` **ahead** (the angle at `a`
-//! between `a'` and `w` above 90°, [`AHEAD`]: a half-plane, not a cone, since at noisy ends and
-//! sharp corners the last edge is a poor guide) within a **short** gap
-//! (`|aw| <= GAP_RATIO · |aa'|`, the paper's `u`: Algorithm 1 treats a second edge up to `u` times
-//! the first as the same sampling; a longer gap is a real end).
+//! between `a'` and `w` above 90°, [`AHEAD`]: a half-plane, since at noisy ends and sharp corners
+//! the last edge is a poor guide) within a **short** gap (`|aw| <= GAP_RATIO · |aa'|`, the paper's
+//! `u`: Algorithm 1's bound for one sampling; a longer gap is a real end).
 //!
-//! Candidates: (1) another loose end `b` facing `a`, or, at a sharp tip, `b` facing `a` while the
-//! join runs within 60° of `a`'s own edge ([`TIP`]: `a` is the apex and kept one side only);
-//! where the join continues both ends straight ([`STRAIGHT`]), each gap is measured against the
-//! longer of the end's last two edges (noise crowding a sample shortens the last); (2) a point `c` of degree zero with a loose
-//! end `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample: a sharp
-//! corner, or one the outlier removal cut off); (3) a crossing `c` of degree two where `a` lines up
-//! (above [`STRAIGHT`]) with one of `c`'s neighbours while `c`'s passage is bent (the repair paired
-//! an arm of each curve), or with a loose end facing `c` across `c`'s passage (the repair kept one
-//! curve whole).
+//! Candidates: (1) another loose end `b` facing `a`, or facing `a` while the join runs within 60°
+//! of `a`'s edge ([`TIP`]: a sharp tip's apex left with one side); across a straight join
+//! ([`STRAIGHT`] at both ends) a gap is measured against the longer of the end's last two edges
+//! (noise crowding a sample shortens the last); (2) a point `c` of degree zero with a loose end
+//! `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample); (3) a
+//! crossing `c` of degree two where `a` lines up (above [`STRAIGHT`]) with one of `c`'s neighbours
+//! while `c`'s passage is bent (the repair paired an arm of each curve), or with a loose end facing
+//! `c` across `c`'s passage (the repair kept one curve whole).
 //!
-//! Each end takes its nearest candidate (ties by id): a facing end is nearer than the sample after
-//! it, a crossing nearer than the arm beyond. Joins need evidence from both sides, which keeps a
-//! genuinely open end open: two ends must choose each other, or the same point with each other as
-//! partner; at a crossing both dropped arms must come back (one arm alone at a curve is an open
-//! curve's end, a T); a lone edge (both points loose, as two nearby outliers form) joins only if
-//! both its ends do. All choices are made at once on the graph as it came in, so the result does not
-//! depend on the order in which ends are visited; sequential, the same with `parallel` on or off.
+//! Each end takes its nearest candidate (ties by id). Joins need evidence from both sides, which
+//! keeps a genuinely open end open: two ends must choose each other, or the same point with each
+//! other as partner; at a crossing both dropped arms must come back (one arm alone is a T); a lone
+//! edge (two nearby outliers) joins only if both its ends do. All choices are made at once on the
+//! graph as it came in: the result does not depend on the order of the ends, nor on `parallel`.
 
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};

@@ -10,11 +10,10 @@
 //! `docs/condt.md`, notes 5 and 6.
 //!
 //! **Spacing floor** ([`Params::iqr_floor`](crate::Params::iqr_floor), on by default): the cut
-//! keeps every edge up to [`FLOOR_RATIO`] times the median edge, whatever `T`; whether the rule
-//! fires is still decided on `T`. Why: `T` scales with the spread of the lengths, and evenly
-//! spaced samples (resampled outlines, maps, fonts) have almost none, so `T` falls within a few
-//! per cent of the spacing and the rule cuts whole straight stretches spaced a little wider than
-//! the rest (docs/condt.md, *The spacing floor*).
+//! keeps every edge up to [`FLOOR_RATIO`] times the median edge; whether the rule fires is still
+//! decided on `T`. Why: `T` scales with the spread of the lengths, which evenly spaced samples
+//! (fonts, maps, resampled outlines) hardly have, so it cuts straight stretches spaced a few per
+//! cent wider than the rest (docs/condt.md, *The spacing floor*).
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, Edge};
@@ -22,11 +21,9 @@ use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// The floor's ratio to the median edge. Reason: a tool that spaces points evenly at `h` splits
-/// each segment of length `L` into `L / h` pieces rounded to a whole number, so its pieces reach
-/// `3h/2` (a segment just under `3h/2` stays whole; rounding up instead keeps them under `h`),
-/// while the median edge is about `h`. The median, not `Q3`: outliers are a minority (the
-/// quartiles' premise), so it is a curve edge even when a quarter of the edges are outliers'.
+/// The floor's ratio to the median edge. Reason: a tool spacing points evenly at `h` splits each
+/// segment into a whole number of pieces, rounded, so they reach `3h/2`; the median edge is about
+/// `h`, and a curve edge even with a quarter of the edges outliers' (the quartiles' premise).
 pub(crate) const FLOOR_RATIO: f64 = 1.5;
 
 /// Algorithm 3's parameters: the factor `k` (checked by the caller: finite, `>= 0`) and whether
