@@ -3,12 +3,11 @@
 //! TOG 4(2), 1985), done by flips as in Shewchuk's Triangle so that the mesh stays a sphere
 //! throughout (`docs/triangulation.md`, "Two halves").
 //!
-//! Owns: the cut and the stitch. It decides signs only through the construction's [`Kernel`] and
-//! writes topology only through [`MeshBuilder`]; each half is an ordinary [`insert::Builder`] run
-//! in its own range of one [`MeshArrays`]. The cut depends only on the set of points, so one
-//! thread builds what two do. A half with no triangle, or a stitch that does not add up (exact
-//! predicates rule it out; the code does not assume it), returns `None`: the caller builds the
-//! set in one piece, the reference.
+//! Owns: the cut and the stitch. It decides signs only by the construction's [`Kernel`] and writes
+//! topology only through [`MeshBuilder`]; each half is a plain [`insert::Builder`] run in its own
+//! range of one [`MeshArrays`]. The cut depends only on the set of points, so one thread builds
+//! what two do. A half with no triangle, or a stitch that does not add up (exact predicates rule it
+//! out; the code does not assume it), returns `None`: the caller builds the set in one piece.
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -110,10 +109,9 @@ pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)
     Some((left, right))
 }
 
-/// The mesh of `points` (in insertion order: the left half's `left` points, then the right half's)
-/// and the `(duplicate, kept)` pairs merged, or `None` (see the module doc). Each half reports to
-/// `progress` as [`insert::build_into`] does; on `None` their counts are taken back. The mesh is
-/// built in `storage`'s arrays where they are large enough.
+/// The mesh of `points` (in insertion order: the left half's `left` points first), in `storage`'s
+/// arrays if large enough, and the merged `(duplicate, kept)` pairs, or `None` (module doc). Each
+/// half reports to `progress` like [`insert::build_into`]; `None` takes their counts back.
 pub(crate) fn build<K: Kernel>(
     points: &[Point],
     left: usize,
