@@ -416,9 +416,8 @@ fn spatial_order_into(
     }
 }
 
-/// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
-/// merged, or `None` without a triangle: the reference [`halves`] must match. Reports to
-/// `progress` as [`insert::build_into`] does.
+/// The mesh of `points` (in insertion order) in one piece and the merged `(duplicate, kept)` pairs,
+/// or `None` with no triangle: the reference for [`halves`]. Reports like [`insert::build_into`].
 fn build<K: Kernel>(
     points: &[Point],
     progress: Option<&AtomicUsize>,
