@@ -284,11 +284,10 @@ fn stitch<K: Kernel>(
     // Lower tangent: every point on or above the line; upper: on or below it.
     let (i0, j0) = tangent(Orientation::Cw, Hull::cw, Hull::ccw)?;
     let (i1, j1) = tangent(Orientation::Ccw, Hull::ccw, Hull::cw)?;
-    // Two new ghosts join the spheres so that every merge step is a flip (docs/triangulation.md,
+    // Two new ghosts join the spheres so every merge step is a flip (docs/triangulation.md,
     // "The merge"): `below`, `(r0, l0, ∞)`, between the ghosts before `l0` and after `r0`; `top`,
-    // `(l0, r0, ∞)`, between the ghosts of the hull edges facing the other half (left: `i0`
-    // counter-clockwise to `i1`; right: `j1` to `j0`). An edge outside on both sides just lies
-    // between two ghosts.
+    // `(l0, r0, ∞)`, between those of the hull edges facing the other half (counter-clockwise, left
+    // `i0` to `i1`, right `j1` to `j0`). An edge outside on both sides lies between two ghosts.
     let from_infinity = |ghost: usize| HalfEdgeId::at(ghost, infinite_corner(mesh, ghost));
     let to_infinity = |ghost: usize| HalfEdgeId::at(ghost, wrap3(infinite_corner(mesh, ghost) + 2));
     let into_l0 = from_infinity(left.ghosts[left.cw(i0)]);
