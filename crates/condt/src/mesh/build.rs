@@ -151,8 +151,7 @@ impl MeshBuilder<'_> {
     pub(crate) fn set_corners_at(&mut self, base: usize, corners: [VertexId; 3]) {
         self.origins[base..base + 3].copy_from_slice(&corners);
     }
-    /// The corners of the triangle at `base`, corner `k` the origin of half-edge `base + k` (one
-    /// bounds check for the three).
+    /// Corners of the triangle at `base`, corner `k` the origin of `base + k` (one bounds check).
     #[inline]
     pub(crate) fn corners_at(&self, base: usize) -> [VertexId; 3] {
         let c = &self.origins[base..base + 3];

@@ -3,12 +3,11 @@
 //! TOG 4(2), 1985), done by flips as in Shewchuk's Triangle so that the mesh stays a sphere
 //! throughout (`docs/triangulation.md`, "Two halves").
 //!
-//! Owns: the cut and the stitch. It decides signs only through the construction's [`Kernel`] and
-//! writes topology only through [`MeshBuilder`]; each half is an ordinary [`insert::Builder`] run
-//! in its own range of one [`MeshArrays`]. The cut depends only on the set of points, so one
-//! thread builds what two do. A half with no triangle, or a stitch that does not add up (exact
-//! predicates rule it out; the code does not assume it), returns `None`: the caller builds the
-//! set in one piece, the reference.
+//! Owns: the cut and the stitch. It decides signs only by the construction's [`Kernel`] and writes
+//! topology only through [`MeshBuilder`]; each half is a plain [`insert::Builder`] run in its own
+//! range of one [`MeshArrays`]. The cut depends only on the set of points, so one thread builds
+//! what two do. A half with no triangle, or a stitch that does not add up (exact predicates rule it
+//! out; the code does not assume it), returns `None`: the caller builds the set in one piece.
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -110,10 +109,9 @@ pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)
     Some((left, right))
 }
 
-/// The mesh of `points` (in insertion order: the left half's `left` points, then the right half's)
-/// and the `(duplicate, kept)` pairs merged, or `None` (see the module doc). Each half reports to
-/// `progress` as [`insert::build_into`] does; on `None` their counts are taken back. The mesh is
-/// built in `storage`'s arrays where they are large enough.
+/// The mesh of `points` (in insertion order: the left half's `left` points first), in `storage`'s
+/// arrays if large enough, and the merged `(duplicate, kept)` pairs, or `None` (module doc). Each
+/// half reports to `progress` like [`insert::build_into`]; `None` takes their counts back.
 pub(crate) fn build<K: Kernel>(
     points: &[Point],
     left: usize,
@@ -286,11 +284,10 @@ fn stitch<K: Kernel>(
     // Lower tangent: every point on or above the line; upper: on or below it.
     let (i0, j0) = tangent(Orientation::Cw, Hull::cw, Hull::ccw)?;
     let (i1, j1) = tangent(Orientation::Ccw, Hull::ccw, Hull::cw)?;
-    // Two new ghosts join the spheres so that every merge step is a flip (docs/triangulation.md,
+    // Two new ghosts join the spheres so every merge step is a flip (docs/triangulation.md,
     // "The merge"): `below`, `(r0, l0, ∞)`, between the ghosts before `l0` and after `r0`; `top`,
-    // `(l0, r0, ∞)`, between the ghosts of the hull edges facing the other half (left: `i0`
-    // counter-clockwise to `i1`; right: `j1` to `j0`). An edge outside on both sides just lies
-    // between two ghosts.
+    // `(l0, r0, ∞)`, between those of the hull edges facing the other half (counter-clockwise, left
+    // `i0` to `i1`, right `j1` to `j0`). An edge outside on both sides lies between two ghosts.
     let from_infinity = |ghost: usize| HalfEdgeId::at(ghost, infinite_corner(mesh, ghost));
     let to_infinity = |ghost: usize| HalfEdgeId::at(ghost, wrap3(infinite_corner(mesh, ghost) + 2));
     let into_l0 = from_infinity(left.ghosts[left.cw(i0)]);

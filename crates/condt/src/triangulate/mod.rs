@@ -1,8 +1,7 @@
 //! Delaunay triangulation of a planar point set.
 //!
-//! Owns: turning points into a [`Triangulation`] (a [`Mesh`], the points, the maps between input
-//! positions and vertices), possibly in the arrays of one no longer needed ([`Storage`]), and
-//! checking one. It decides signs only through [`crate::predicates`],
+//! Owns: building a [`Triangulation`] ([`Mesh`], points, input/vertex maps), possibly in a spent
+//! one's arrays ([`Storage`]), and checking one. It decides signs only by [`crate::predicates`],
 //! writes topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
 //! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
@@ -259,9 +258,8 @@ fn construct(
     construct_whole(points, frames, progress)
 }
 
-/// The insertion order of a set cut in two (left half's, then right half's) and, with
-/// `with_points`, its points in the predicates' frame; each half on its own thread if `parallel`.
-/// They are written in `buffers` (order, points) where these are large enough.
+/// The insertion order of a set cut in two (left half first) and, with `with_points`, its points in
+/// the predicates' frame, in `buffers` if large enough; each half on its own thread if `parallel`.
 fn cut_order(
     points: &[Point],
     frames: &scale::Frames,
@@ -280,9 +278,8 @@ fn cut_order(
     let left = cut.left_len();
     let (order_left, order_right) = order.split_at_mut(left);
     let (sorted_left, sorted_right) = sorted.split_at_mut(if with_points { left } else { 0 });
-    // Each half's scratch arrays are allocated here, by the calling thread. Reason: memory; the
-    // second half runs on another thread, whose own malloc arena (glibc) would keep them once
-    // freed (about 20 bytes per point of its half).
+    // Both halves' scratch is allocated on this thread. Reason: memory; the second half runs on
+    // another thread, whose glibc malloc arena would retain it once freed (20 bytes a point).
     let scratch = |len: usize| {
         (
             alloc::vec![0u32; len + 1],
@@ -419,9 +416,8 @@ fn spatial_order_into(
     }
 }
 
-/// The mesh of `points` (in insertion order) in one piece and the `(duplicate, kept)` pairs
-/// merged, or `None` without a triangle: the reference [`halves`] must match. Reports to
-/// `progress` as [`insert::build_into`] does.
+/// The mesh of `points` (in insertion order) in one piece and the merged `(duplicate, kept)` pairs,
+/// or `None` with no triangle: the reference for [`halves`]. Reports like [`insert::build_into`].
 fn build<K: Kernel>(
     points: &[Point],
     progress: Option<&AtomicUsize>,

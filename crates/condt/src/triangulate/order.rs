@@ -253,9 +253,8 @@ fn for_each_run<T, K: PartialEq>(
     }
 }
 
-/// Stable LSD radix sort of `values` by their bits `low .. low + bits`, in nine-bit digits (2 KiB
-/// of counters a pass, few scatter targets), all passes counted in one read; `buffer` is the
-/// second array the passes alternate with.
+/// Stable LSD radix sort of `values` on bits `low .. low + bits`, in nine-bit digits (2 KiB of
+/// counters a pass, few scatter targets), all counts in one read, alternating with `buffer`.
 fn radix_sort(values: &mut Vec<u64>, buffer: &mut Vec<u64>, low: u32, bits: u32) {
     const DIGIT_BITS: u32 = 9;
     const DIGITS: usize = 1 << DIGIT_BITS;
