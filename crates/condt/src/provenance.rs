@@ -200,8 +200,7 @@ struct Explainer<'a> {
     degrees_before: Vec<usize>,
     /// Neighbours in the repair's output (its reason names the edges kept), for O(degree) reasons.
     after: Neighbours,
-    /// Algorithm 3's cut threshold in input units, when the stage is the IQR rule, and whether
-    /// it is the spacing floor.
+    /// The IQR rule's cut threshold in input units, and whether it is the spacing floor.
     threshold: (f64, bool),
     /// For local outliers: the rule behind each edge it changed, by edge in input positions.
     local: Vec<([usize; 2], LocalRule)>,

@@ -1,8 +1,7 @@
-//! The [`Pipeline`], a reconstruction one step at a time ([`reconstruct`] runs it to the end): the
-//! first graph, each step in [`Params::stages`]' order, the tally of the last graph. With smoothing
-//! on, a run whose degrees show noise is followed by a smoothing pass and a new run until two agree
-//! or [`MAX_PASSES`] ran. It owns runs, passes, clocks and which thread runs them ([`on_worker`]);
-//! it may not implement nor order stages.
+//! The [`Pipeline`] runs a reconstruction step by step ([`reconstruct`] to the end): the first
+//! graph, each of [`Params::stages`], the last graph's tally; with smoothing on, a noisy run is
+//! followed by a smoothing pass and a new run until two agree or [`MAX_PASSES`] ran. It owns runs,
+//! passes, clocks and their thread ([`on_worker`]); it may not implement nor order stages.
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};

@@ -324,11 +324,10 @@ impl Tally {
 /// How far ahead [`tally`] prefetches neighbours' positions (twice as far for records).
 const TALLY_PREFETCH: usize = 16;
 
-/// One pass over the input positions gives the degrees, the unused points and the final edges,
-/// sorted (each listed by its smaller position). At the common degree <= 2 both candidates are
-/// written and the count passes those that belong (a coin toss, not branched on). Neighbours'
-/// positions come from the dense map: sixteen to a cache line, where curve-graph records pack four.
-/// The lists are written in `room` ([`Tally::with_room`]).
+/// One pass over the input positions writes into `room` ([`Tally::with_room`]) the degrees, the
+/// unused points and the final edges, sorted (each under its smaller position). At degree <= 2 (the
+/// common case) both candidates are written and the count keeps those that belong: no branch on a
+/// coin toss. Neighbours' positions come from the dense map: 16 to a cache line, records only 4.
 pub(super) fn tally(
     tri: &Triangulation,
     graph: &CurveGraph,

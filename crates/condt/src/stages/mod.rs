@@ -26,8 +26,7 @@ use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 
-/// The stages of a reconstruction, as [`Reconstruction::stages`](crate::Reconstruction::stages)
-/// reports them in the order they ran.
+/// A reconstruction stage, as [`Reconstruction::stages`](crate::Reconstruction::stages) reports it.
 ///
 /// ```
 /// use condt::{Params, Stage};
@@ -43,8 +42,7 @@ pub enum Stage {
     Repair,
     /// The IQR outlier removal (Algorithm 3).
     Outliers,
-    /// Repairing again without the edges the IQR stage cut
-    /// ([`Params::repair_again`](crate::Params::repair_again)).
+    /// Repairing again without cut edges ([`Params::repair_again`](crate::Params::repair_again)).
     RepairAgain,
     /// The local outlier removal ([`Params::local_outliers`](crate::Params::local_outliers)).
     LocalOutliers,
@@ -328,13 +326,12 @@ impl Step {
         }
     }
 
-    /// Runs the stage on `edges` (each edge once, any order); the parameter must have passed
-    /// [`Step::check`]. Only [`Step::RepairAgain`], [`Step::LocalOutliers`] and
-    /// [`Step::ConfirmGivenBack`] read `earlier`.
-    /// `graph`, when given, is the curve graph of `edges` (over every point id) that the previous
-    /// stage handed on ([`Outcome::graph`]): the clump stage, gap closing and junctions take it
-    /// instead of building one, the given-back check hands it on when it returns at once, and the
-    /// others (the local outlier removal too) drop it first, so it never adds to their memory.
+    /// Runs the stage on `edges` (each edge once, any order) with a parameter that passed
+    /// [`Step::check`]; only [`Step::RepairAgain`], [`Step::LocalOutliers`] and
+    /// [`Step::ConfirmGivenBack`] read `earlier`. `graph`, if given, is the curve graph of `edges`
+    /// (over every point id) the previous stage handed on ([`Outcome::graph`]): the clump stage,
+    /// gap closing and junctions use it instead of building one, the given-back check hands it on
+    /// when it returns at once, and the others drop it first, so it never adds to their memory.
     pub(crate) fn run(
         self,
         tri: &Triangulation,

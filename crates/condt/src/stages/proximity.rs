@@ -1,12 +1,10 @@
 //! Stage 1, the ConDT proximity graph (Algorithm 1, lines 2–8).
 //!
-//! Owns: each vertex's choice of its two shortest Delaunay edges and the uniformity test. It reads
-//! the finished triangulation only; it may not change it.
-//!
-//! Fixed `u` sweeps the triangles in memory order ([`sweep`]: no chain of dependent loads);
-//! adaptive `u` walks each ring from its first half-edge, since its floating-point mean depends on
-//! the order of the sum (docs/condt.md, *Why adaptive `u` walks rings*). Both rank with `TwoBest`
-//! (a total order) and decide with [`keep`]; the tests compare them.
+//! Owns: each vertex's choice of its two shortest Delaunay edges and the uniformity test; it reads
+//! the finished triangulation and may not change it. Fixed `u` sweeps the triangles in memory order
+//! ([`sweep`]: no chain of dependent loads); adaptive `u` walks each ring from its first half-edge,
+//! as its floating-point mean depends on the sum's order (docs/condt.md, *Why adaptive `u` walks
+//! rings*). Both rank with `TwoBest` (a total order) and decide with [`keep`]; tests compare them.
 
 use super::PARALLEL_FROM;
 use crate::adjacency::{ordered, Edge};
