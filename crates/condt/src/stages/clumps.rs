@@ -1,18 +1,16 @@
-//! Clumps: components that are not curves (not in the paper; on by default, off in
-//! `Params::paper`).
+//! Clumps: non-curve components (not in the paper; on by default, off in `Params::paper`).
 //!
 //! Owns: removing whole components whose points mostly are not where a curve passes. It reads
 //! positions and the graph; it may not touch the triangulation, adds no edge, and does not decide
 //! when it runs ([`Params::stages`](crate::Params::stages): right after the local outlier removal,
 //! before its given-back check).
 //!
-//! Rule (docs/condt.md, *Clumps*, with measurements and losses): a component that stands apart
-//! (rule 4's test; one that does not is a piece of a noisy band, rule 4's to judge) goes when fewer
-//! than half of its points pass smoothly ([`smooth_and_regular`]), unless the clumps and the
-//! components not apart would hold [`OUTLIER_SHARE`] or more of the points with edges. Reason for
-//! the half: a curve's other points are its ends, corners and junctions, a minority at any sampling
-//! dense enough for the proximity graph, while a random zig-zag passes smoothly at most one time in
-//! three. Sequential; O(n) beyond the union-find.
+//! Rule (docs/condt.md, *Clumps*, with measurements and losses): a component apart from the rest
+//! (rule 4's test; one that is not is a piece of a noisy band, rule 4's to judge) goes when under
+//! half of its points pass [`smooth_and_regular`], unless the clumps and the components not apart
+//! would hold [`OUTLIER_SHARE`] or more of the points with edges. Why half: a curve's ends, corners
+//! and junctions are a minority at any sampling dense enough for the proximity graph; a random
+//! zig-zag passes smoothly at most one time in three. Sequential; O(n) beyond the union-find.
 
 use super::local_outliers::{
     components, separated_counts_until, smooth_and_regular, MIN_SAMPLES, OUTLIER_SHARE,

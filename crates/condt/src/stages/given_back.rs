@@ -1,15 +1,14 @@
 //! Confirming given-back components, right after the local outlier removal (not in the paper; on by
 //! default, off in `Params::paper`).
 //!
-//! Owns: one rule on the components that the local outlier removal's rule 1 rebuilt from edges the
-//! IQR rule cut. It reads positions, the Delaunay rings, the graph and the local outlier removal's
-//! input; it may not touch the triangulation and only removes edges.
+//! Owns: one rule on components that local rule 1 rebuilt from IQR-cut edges. It reads positions,
+//! Delaunay rings, the graph and the local stage's input; it may not touch the triangulation and
+//! only removes edges.
 //!
-//! Rule: such a component keeps its edges only when every vertex of it with two edges is separated
-//! ([`SEPARATION`] times its longest edge, rule 4's bound) from the points left unused and from
-//! other given-back components: a chance chain of outliers lies inside the scatter it came from, a
-//! stretch of curve lies at most beside other curves. Reasons, losses and costs: docs/condt.md,
-//! *Confirming given-back components*. Sequential and deterministic.
+//! Rule (docs/condt.md, *Confirming given-back components*, with losses and costs): such a
+//! component stays only if each of its degree-2 vertices is separated (by rule 4's [`SEPARATION`]
+//! times its longest edge) from unused points and other such components: a chance chain of outliers
+//! lies in its scatter, a stretch of curve at most beside other curves. Sequential, deterministic.
 
 use super::local_outliers::SEPARATION;
 use super::Outcome;
@@ -99,10 +98,9 @@ pub(crate) fn confirm_given_back(
     )))
 }
 
-/// Whether each edge of `edges` (distinct) is missing from `before`. The local outlier removal
-/// keeps its input's edges in order and appends those it gives back, so a merge-like pass matches
-/// all but a short tail, sorted and looked up in one pass over `before` (memory), only for edges
-/// whose smaller end starts one of the tail's. Exact for any lists.
+/// Whether each of `edges` (distinct) is missing from `before`: a merge pass matches all but a
+/// short tail (the local stage keeps its input's order, then appends), and one pass over `before`
+/// (memory) looks up in the tail only edges whose smaller end starts one. Exact for any lists.
 fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
     let mut missing = vec![false; edges.len()];
     let mut at = 0;
@@ -123,8 +121,7 @@ fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
         for (_, k) in &unmatched {
             missing[*k] = true;
         }
-        // The smaller ends of the unmatched edges, a bit each: the other edges of `before`, most
-        // of them, skip the search (speed).
+        // A bit per unmatched edge's smaller end: most edges of `before` skip the search (speed).
         let bound = unmatched.iter().map(|(e, _)| e[0].index() + 1).max();
         let mut ends = vec![0u64; bound.unwrap_or(0).div_ceil(64)];
         for (e, _) in &unmatched {

@@ -6,13 +6,12 @@
 //!
 //! Why: at a junction of three curves (map borders, a T) the repair keeps two of the sample's three
 //! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.
-//!
 //! Rule (reasons: docs/condt.md, *Junctions*): a loose end `a` joins the Delaunay neighbour `c`
 //! with two edges that it faces, within [`GAP_RATIO`] times `c`'s shorter edge, with three branches
 //! of [`MIN_SAMPLES`] points of degree two (`Ends::branch`), straightest ahead of the end among
 //! those that pass (ties by id), and chosen by no other loose end (two make a crossing, gap
-//! closing's case). All choices are made at once on the graph as it came in, so the result does not
-//! depend on the order in which ends are visited; sequential, the same with `parallel` on or off.
+//! closing's case). All choices are made on the graph as it came in, so the result is independent
+//! of the order of the ends; sequential, the same with `parallel` on or off.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO};
 use super::local_outliers::MIN_SAMPLES;
@@ -56,9 +55,8 @@ impl Ends<'_> {
 
     /// The junction the loose end `a` chooses, if any: the straightest ahead that passes.
     fn junction_of(&self, a: VertexId) -> Option<VertexId> {
-        // Every junction needs the end's own branch (`meets_at_junction`), and points to avoid only
-        // make that test fail more: without one (most ends on scattered points) no neighbour can
-        // pass, so the ring is not walked (speed).
+        // Every junction needs the end's own branch even with no points to avoid: without it (most
+        // ends on scattered points) no neighbour passes, so the ring is skipped (speed).
         if !self.branch(a, self.along(a), &[]) {
             return None;
         }
@@ -73,9 +71,8 @@ impl Ends<'_> {
     }
 }
 
-/// Joins loose ends in `edges` (each edge once, any order) to the junctions they meet: the input
-/// edges in order, then the joins by increasing loose end; unchanged (the curve `graph`, if given,
-/// handed on) when none qualifies.
+/// Joins loose ends in `edges` (each once, any order) to the junctions they meet: input edges in
+/// order, then joins by increasing loose end; unchanged (`graph` handed on) if none qualifies.
 pub(crate) fn join_junctions(
     tri: &Triangulation,
     edges: &[Edge],

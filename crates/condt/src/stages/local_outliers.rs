@@ -4,23 +4,21 @@
 //! Owns: four local rules on the graph those stages left. Besides its input it reads the IQR
 //! stage's (via `Step::run`); it may not touch the triangulation and adds no edge absent from it.
 //!
-//! Why: Algorithm 3's threshold is one number for the whole set. Nearby outliers are each other's
-//! nearest neighbours, so their edges are short and the global rule keeps them; a sparse
-//! component beside a dense one loses every edge once the rule fires.
-//! The rules, in order, compare lengths by ratios only (scale-free):
+//! Why: Algorithm 3's threshold is global: nearby outliers are each other's nearest neighbours, so
+//! their short edges pass it, and a sparse component beside a dense one loses every edge once it
+//! fires. The rules, in order, compare lengths by ratios only (scale-free):
 //! 1. **Give back** an edge the IQR stage cut along a smooth, regular passage ([`passage`]), which
 //!    an outlier (one edge, or two at a sharp angle or of unequal lengths) does not form.
-//! 2. **Drop long edges** ([`LONG`]) at an end with three or more edges (a point off the curve
-//!    that chose this sample, kept by Algorithm 2's union), or at each end with others (an
-//!    outlier joined to an open curve's end).
+//! 2. **Drop long edges** ([`LONG`]) at a point of degree >= 3 (an off-curve point that chose it,
+//!    kept by Algorithm 2's union) or at each end with others (an outlier at an open curve's end).
 //! 3. **Drop short spurs** ([`short_spurs`]): outliers hanging off a curve, unseen by rule 4.
 //! 4. **Keep separated components** ([`separated_components`]): a clump's points are about as far
 //!    from the rest as from each other, a curve's samples much closer to each other.
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
-//! curves), unless rule 4 would remove [`OUTLIER_SHARE`] of the points with edges, when it removes
-//! none (docs/condt.md, *The local outlier removal and real data*); shorter junction branches
-//! (rule 3) go regardless. Sequential, deterministic, O(n); lengths recomputed, not kept (memory).
+//! curves), unless rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes
+//! none; docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter junction
+//! branches regardless. Sequential, deterministic, O(n); lengths recomputed, not kept (memory).
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
@@ -30,9 +28,8 @@ use alloc::borrow::Cow;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// An edge more than `LONG` times the longest other edge at an end is long there; two edges are
-/// regularly spaced when the longer is under `LONG` times the shorter. Reason: the paper's
-/// uniformity bound (Algorithm 1, `u = 2.75`), not a number tuned here.
+/// Long: over `LONG` times the longest other edge at an end; regular: two edges, the longer under
+/// `LONG` times the shorter. Reason: Algorithm 1's uniformity bound `u = 2.75`, not tuned here.
 pub(crate) const LONG: f64 = 2.75;
 
 /// Cosine of Algorithm 2's straight-passage angle `2π/3`: two edges continue each other above it.
@@ -157,9 +154,8 @@ pub(crate) enum LocalRule {
     Component,
 }
 
-/// The stage run four times, one rule more each time, naming the rule that changed each edge:
-/// the stage's own intermediate graphs (each rule reads only what the earlier left), not a second
-/// reading. Only explanations ask.
+/// The stage run four times, one rule more each time (each rule reads only what the earlier left),
+/// naming the rule that changed each edge; for explanations only.
 pub(crate) fn rule_evidence(
     tri: &Triangulation,
     edges: &[Edge],
@@ -551,11 +547,10 @@ pub(super) fn separated_counts(tri: &Triangulation, graph: &CurveGraph, root: &[
     separated_counts_until(tri, graph, root, None).expect("no limit to reach")
 }
 
-/// [`separated_counts`], or, with `limit` (each root's number of vertices with edges and a number
-/// of points), `None` as soon as the components that cannot reach [`MIN_SAMPLES`] separated
-/// vertices hold `limit.1` points or more; counts below [`MIN_SAMPLES`] then only tell that they
-/// are below it. Speed: the test walks a vertex's Delaunay ring, a cache miss at every step, and
-/// on scattered points nearly every component is small or has a near vertex after the first few.
+/// [`separated_counts`], or with `limit` (each root's vertices with edges, a point count) `None`
+/// once the components that cannot reach [`MIN_SAMPLES`] separated vertices hold at least `limit.1`
+/// points; counts below it are then inexact. Speed: the test walks a vertex's Delaunay ring, a
+/// cache miss per step; on scattered points most components are small or soon show a near vertex.
 pub(super) fn separated_counts_until(
     tri: &Triangulation,
     graph: &CurveGraph,
@@ -591,8 +586,7 @@ pub(super) fn separated_counts_until(
             || usize::from(separated[r]) >= MIN_SAMPLES
             || !reachable(separated[r], &unjudged)
         {
-            // No edge, or already kept (a long curve stops measuring after its first few
-            // samples), or never to be kept.
+            // No edge, already kept (a long curve stops after a few samples) or never to be kept.
             continue;
         }
         let longest = tops(tri, graph, v)[0];

@@ -7,22 +7,20 @@
 //! score `(θ/π)(Lmin/Le)` among those at an angle `θ > 2π/3` to it; edges between vertices of
 //! degree <= 2 stay. Open readings: `docs/condt.md`, notes 2 to 4.
 //!
-//! # Needs before score ([`Repair::Needs`])
-//!
-//! Algorithm 2 cuts sharp tips and sampled crossings (`docs/condt.md`, *Needs before score*).
-//! `Needs` decides at each vertex `v` with three or more edges, in this order:
+//! Needs before score ([`Repair::Needs`]) keeps the sharp tips and sampled crossings Algorithm 2
+//! cuts (`docs/condt.md`, *Needs before score*), deciding at each `v` of degree >= 3, in order:
 //! 1. **Crossing.** If two disjoint pairs of edges at `v` are each nearly straight (above 150°),
-//!    `v` keeps the four, pairing so that the less straight pair is straightest
+//!    `v` keeps the four, paired so that the less straight pair is straightest
 //!    ([`Repair::CrossingAware`] takes the straightest pair first). Why 150°: chords of an
 //!    `ε`-sampled curve turn by at most about `ε` radians, so with `ε <= 1/2` a passage is
 //!    straighter than 180° − 28.6°.
 //! 2. **Needs.** A neighbour `w` of degree <= 2 needs `vw` (without it `w` is an end or alone, and
 //!    nothing restores it later) if `vw` is at most `NEED_RATIO` times `v`'s second shortest edge.
 //!    `v` keeps the best pair holding a needed edge, among pairs straight enough for Algorithm 2
-//!    (`θ > 2π/3`) or with both edges needed, ranked by: straight enough (a needy stray point
-//!    beside a curve must not bend it), the number of needed edges, `θ` over the path length
-//!    through `v` (Algorithm 2's preference for short, straight edges, for a pair), smaller ids. A
-//!    bent pair of two needed edges is a corner whose apex has a third edge.
+//!    (`θ > 2π/3`) or with both edges needed (if bent, a corner whose apex has a third edge),
+//!    ranked by: straight enough (a needy stray point beside a curve must not bend it), the number
+//!    of needed edges, `θ` over the path length through `v` (Algorithm 2's preference for short,
+//!    straight edges), smaller ids.
 //! 3. **Score.** Otherwise Algorithm 2's own choice.
 //! 4. **Consent.** An edge between two vertices of degree >= 3 survives only if both keep it (as
 //!    [`Repair::Mutual`]); an edge to a vertex of degree <= 2, if `v` keeps it.
@@ -40,10 +38,8 @@ use core::f64::consts::PI;
 
 mod needs;
 
-/// How vertices of degree three or more in the proximity graph are treated.
-///
-/// The default is the default pipeline's choice, [`Repair::Needs`]; the paper's preset uses
-/// [`Repair::Paper`].
+/// How vertices of degree three or more in the proximity graph are treated: [`Repair::Needs`] by
+/// default, [`Repair::Paper`] in the paper's preset.
 ///
 /// ```
 /// use condt::{Params, Repair};
@@ -55,20 +51,17 @@ mod needs;
 pub enum Repair {
     /// No repair: every proximity edge stays (as a self-intersecting curve's crossings need).
     Off,
-    /// Algorithm 2 as printed: every non-manifold vertex selects two edges and the selections are
-    /// united, so an edge selected by one end survives even if the other end did not select it.
+    /// Algorithm 2 as printed: the non-manifold vertices' selections of two edges are united.
     Paper,
     /// Algorithm 2 with mutual consent: an edge between two non-manifold vertices survives only
     /// if both select it, so no vertex keeps more than two edges.
     Mutual,
-    /// Keeps up to two nearly straight pairs of edges through a vertex (a crossing), and falls
-    /// back to [`Repair::Paper`]'s choice elsewhere.
+    /// Keeps two nearly straight pairs of edges at a crossing, else [`Repair::Paper`]'s choice.
     CrossingAware,
     /// Needs before score: a non-manifold vertex keeps a crossing whole, else the best pair of
-    /// edges its neighbours of degree <= 2 need (edges they would dangle without, at most 1.3
-    /// times the vertex's second shortest edge), else Algorithm 2's choice; an edge between two
-    /// non-manifold vertices survives only if both keep it. Keeps the sharp tips and sampled
-    /// crossings [`Repair::Paper`] cuts (`docs/condt.md`, *Needs before score*).
+    /// edges that neighbours of degree <= 2 need (up to 1.3 times its second shortest), else
+    /// Algorithm 2's choice; an edge between two such vertices needs both to keep it. Keeps the
+    /// tips and crossings [`Repair::Paper`] cuts (`docs/condt.md`, *Needs before score*).
     #[default]
     Needs,
 }
@@ -103,10 +96,9 @@ fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
     libm::atan2(cross, dot)
 }
 
-/// [`angle_at`] when it is above `min` (an obtuse angle whose squared cosine is `cos2`), else
-/// `None`. Speed: the arc tangent, most of a choice's cost, is skipped for the many angles clearly
-/// at most `min` (acute, or obtuse with a squared cosine below `cos2` by a relative millionth, far
-/// beyond rounding); where it is computed, the result is [`angle_at`]'s own.
+/// [`angle_at`] if above `min` (obtuse, squared cosine `cos2`), else `None`. Speed: skips the arc
+/// tangent (most of a choice's cost) for angles clearly at most `min` (acute, or squared cosine a
+/// relative millionth under `cos2`, far beyond rounding); where computed, it is [`angle_at`]'s own.
 #[inline]
 fn angle_above(
     tri: &Triangulation,
@@ -168,10 +160,9 @@ fn crossing_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> Opt
 }
 
 /// The neighbour lists of the vertices with three or more edges (a third or more of the vertices on
-/// uniform points, few on curves), each in the order of the edges, and each such vertex's rank
-/// among them, read from a bit set by vertex id: O(1) where a search over the vertices would cost a
-/// cache miss per step at every edge end (speed). Rank `r`'s list is `neighbors[starts[r]..
-/// starts[r + 1]]`.
+/// uniform points, few on curves), in edge order, and each such vertex's rank among them, read from
+/// a bit set by vertex id: O(1) where a search over the vertices would cost a cache miss per step
+/// at every edge end (speed). Rank `r`'s list is `neighbors[starts[r]..starts[r + 1]]`.
 struct Branches {
     /// Bit `v % 64` of word `v / 64`: whether `v` has three or more edges.
     bits: Vec<u64>,
@@ -263,10 +254,9 @@ impl Branches {
     }
 }
 
-/// Applies `repair` to the proximity graph `edges` (each edge once, any order): `None` when there
-/// is nothing to repair (off, or no vertex of degree three or more). Otherwise each edge once: the
-/// edges between manifold vertices in input order, then the non-manifold vertices' selections by
-/// increasing id.
+/// Applies `repair` to the proximity graph `edges` (each edge once, any order): `None` if off or no
+/// vertex has three or more edges, else each edge once, those between manifold vertices in input
+/// order, then the non-manifold vertices' selections by increasing id.
 pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Option<Vec<Edge>> {
     if repair == Repair::Off {
         return None;
@@ -290,8 +280,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
         }
     }
     let mut pairs = needs::Pairs::new();
-    // Lines 6–12: one selection per non-manifold vertex (up to four edges) by rank, sized first
-    // (memory).
+    // Lines 6–12: up to four edges per non-manifold vertex, by rank, sized first (memory).
     let mut selections: Vec<[VertexId; 4]> = Vec::with_capacity(graph.count());
     let prefetching = vertex_count >= PREFETCH_FROM;
     for (r, v) in graph.vertices().enumerate() {

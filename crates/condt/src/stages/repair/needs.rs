@@ -1,5 +1,4 @@
-//! [`Repair::Needs`](super::Repair::Needs). The rule and the reason for every constant but
-//! [`NEED_RATIO`] are in [`super`]'s documentation.
+//! [`Repair::Needs`](super::Repair::Needs). Rule and reasons: [`super`]; [`NEED_RATIO`]'s are here.
 
 use super::{
     angle_above, angle_at, paper_choice, PAIR_ANGLE, PAIR_COS2, STRAIGHT_ANGLE, STRAIGHT_COS2,
@@ -9,11 +8,10 @@ use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 use core::cmp::Ordering;
 
-/// A neighbour's need counts only for an edge at most this many times as long as the vertex's
-/// second shortest edge (compared squared). A curve's own edges at a sample are among its shortest
-/// (Algorithm 1 keeps each point's two shortest); at a sharp tip the chord beside the apex comes
-/// first and the sides second, hence the second. The slack covers sides cut into pieces of
-/// different lengths; a needy neighbour farther away is another curve's end or an outlier.
+/// A neighbour's need counts only for an edge up to this many times the vertex's second shortest.
+/// Why the second: a curve's own edges at a sample are among its shortest (Algorithm 1 keeps two),
+/// but at a sharp tip the chord beside the apex comes first. The slack covers sides cut into
+/// unequal pieces; a needy neighbour farther away is another curve's end or an outlier.
 const NEED_RATIO: f64 = 1.3;
 
 /// Pairs `(angle, a, b)` with `a < b`: [`choice`]'s scratch space, reused from vertex to vertex.
@@ -97,9 +95,8 @@ fn needed_pair(
     best.map(|(_, pair)| pair)
 }
 
-/// Step 1 of [`super`]'s documentation: the pairing of two disjoint pairs above [`STRAIGHT_ANGLE`]
-/// whose less straight pair is straightest (ties: the straighter other pair, then smaller ids),
-/// or `None`.
+/// Step 1 ([`super`]): the pairing of two disjoint pairs above [`STRAIGHT_ANGLE`] whose less
+/// straight pair is straightest (ties: the straighter other pair, then smaller ids), or `None`.
 fn crossing(
     tri: &Triangulation,
     v: VertexId,
