@@ -52,7 +52,7 @@ use triangulation::Triangulation;
 /// The parameters are the command line's options, ``-`` written ``_``: ``paper=True`` starts
 /// from the paper's pipeline instead of the default, and the keywords adjust it: ``u`` (a
 /// number) or ``adaptive=True``; ``iqr`` (a number, or ``None`` to skip the outlier removal,
-/// as ``outlier_filter=False`` does); ``outliers_first``; ``repair_again``, ``local_outliers``, ``clumps``,
+/// as ``outlier_filter=False`` does); ``outliers_first``; ``iqr_floor``, ``repair_again``, ``local_outliers``, ``clumps``,
 /// ``confirm_given_back``, ``close_gaps``, ``junctions``, ``smooth`` (True or False); ``repair`` (``"needs"``,
 /// ``"paper"``, ``"mutual"``, ``"crossing"`` or ``"off"``; ``manifold_fix=False`` is ``"off"``);
 /// ``method`` (``"condt"``, ``"nn-crust"`` or ``"crust"``, a baseline taking none of the
