@@ -634,37 +634,40 @@ impl Classes<'_> {
                 best = best.min(segment_distance_squared(p, a, b));
             }
         }
-        let mut within = reach(best);
+        let mut nearest = (best, reach(best));
         for (c, &(offset, position, slack)) in scratch.iter().enumerate() {
             let (first, end) = (self.starts[c], self.starts[c + 1]);
-            let above = self.keys[position..end]
-                .iter()
-                .zip(&self.ends[position..end]);
-            for (&key, &[a, b]) in above {
-                if key - offset > within + slack {
-                    break;
-                }
-                let d = segment_distance_squared(p, a, b);
-                if d < best {
-                    best = d;
-                    within = reach(best);
-                }
-            }
-            let below = self.keys[first..position]
-                .iter()
-                .zip(&self.ends[first..position]);
-            for (&key, &[a, b]) in below.rev() {
-                if offset - key > within + slack {
-                    break;
-                }
-                let d = segment_distance_squared(p, a, b);
-                if d < best {
-                    best = d;
-                    within = reach(best);
-                }
-            }
+            let keyed =
+                |from: usize, to: usize| self.keys[from..to].iter().zip(&self.ends[from..to]);
+            let above = keyed(position, end).map(|(&key, ends)| (key - offset, ends));
+            walk_away(p, above, slack, &mut nearest, &reach);
+            let below = keyed(first, position)
+                .rev()
+                .map(|(&key, ends)| (offset - key, ends));
+            walk_away(p, below, slack, &mut nearest, &reach);
         }
-        best
+        nearest.0
+    }
+}
+
+/// Walks `run`, segments ordered by their key's distance from the query's (`gap`), until a gap
+/// exceeds the reach of the nearest so far plus `slack`; `nearest` is the squared distance and
+/// its reach, updated.
+fn walk_away<'a>(
+    p: Point,
+    run: impl Iterator<Item = (f64, &'a [Point; 2])>,
+    slack: f64,
+    nearest: &mut (f64, f64),
+    reach: &impl Fn(f64) -> f64,
+) {
+    for (gap, &[a, b]) in run {
+        if gap > nearest.1 + slack {
+            break;
+        }
+        let d = segment_distance_squared(p, a, b);
+        if d < nearest.0 {
+            *nearest = (d, reach(d));
+        }
     }
 }
 

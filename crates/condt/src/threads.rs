@@ -1,7 +1,30 @@
 //! Running two pieces of work at once on rayon's threads (feature `parallel`), or one after the
-//! other. Owns: only the choice of how to run and whether rayon can run at all
-//! ([`parallel_available`]); it knows nothing of the work (the triangulation's two halves, the
-//! pipeline's curves and tally).
+//! other, and filling a buffer there. Owns: only the choice of how to run and whether rayon can
+//! run at all ([`parallel_available`]); it knows nothing of the work (the triangulation's two
+//! halves, the pipeline's curves and tally).
+
+use alloc::vec::Vec;
+
+/// `buffer` cleared and refilled with `n` copies of `value`, on rayon's threads when `parallel`:
+/// the first touch of each page is most of the cost.
+pub(crate) fn filled<T: Copy + Send + Sync>(
+    mut buffer: Vec<T>,
+    value: T,
+    n: usize,
+    parallel: bool,
+) -> Vec<T> {
+    buffer.clear();
+    buffer.reserve_exact(n);
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::iter::{repeat_n, ParallelExtend};
+        buffer.par_extend(repeat_n(value, n));
+        return buffer;
+    }
+    let _ = parallel;
+    buffer.resize(n, value);
+    buffer
+}
 
 /// `(a(), b())`, at once on rayon's threads when `parallel`.
 #[cfg(feature = "parallel")]

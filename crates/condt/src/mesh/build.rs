@@ -9,6 +9,7 @@
 //! triangle by `base`, its first half-edge's index ([`HalfEdgeId::base_and_corner`]).
 
 use super::{HalfEdgeId, Mesh, TriangleId, VertexId};
+use crate::threads::filled;
 use alloc::vec::Vec;
 
 /// The storage of a mesh under construction: `half_edges` slots, filled by [`MeshBuilder`]s.
@@ -27,21 +28,6 @@ pub(crate) struct MeshStorage {
     pub(super) origins: Vec<VertexId>,
     pub(super) twins: Vec<HalfEdgeId>,
     pub(super) vertex_edges: Vec<HalfEdgeId>,
-}
-
-/// `buffer` cleared and refilled with `n` copies of `value` (on rayon's threads when `parallel`).
-fn filled<T: Copy + Send + Sync>(mut buffer: Vec<T>, value: T, n: usize, parallel: bool) -> Vec<T> {
-    buffer.clear();
-    buffer.reserve_exact(n);
-    #[cfg(feature = "parallel")]
-    if parallel {
-        use rayon::iter::{repeat_n, ParallelExtend};
-        buffer.par_extend(repeat_n(value, n));
-        return buffer;
-    }
-    let _ = parallel;
-    buffer.resize(n, value);
-    buffer
 }
 
 impl MeshArrays {

@@ -112,39 +112,39 @@ impl<'a> Ends<'a> {
 
     /// Whether `w` is ahead of the loose end `a` and the gap is short (the module's two tests).
     pub(super) fn faces(&self, a: VertexId, w: VertexId) -> bool {
+        w != self.along(a) && self.turn(a, w) < AHEAD && self.short(a, w, false)
+    }
+
+    /// The cosine of the angle at the loose end `a` between its edge and `w`.
+    fn turn(&self, a: VertexId, w: VertexId) -> f64 {
+        cos_at(self.point(a), self.point(self.along(a)), self.point(w))
+    }
+
+    /// Whether the gap from the loose end `a` to `w` is within [`GAP_RATIO`] of `a`'s edge, or with
+    /// `two_edges` of the longer of its last two edges.
+    fn short(&self, a: VertexId, w: VertexId, two_edges: bool) -> bool {
         let next = self.along(a);
-        let (p, back, q) = (self.point(a), self.point(next), self.point(w));
-        w != next
-            && cos_at(p, back, q) < AHEAD
-            && p.dist2(q) <= GAP_RATIO * GAP_RATIO * p.dist2(back)
+        let (p, back) = (self.point(a), self.point(next));
+        let mut spacing = p.dist2(back);
+        if two_edges && self.graph.degree(next) == 2 {
+            let beyond = self.point(self.graph.onward(next, a));
+            spacing = spacing.max(back.dist2(beyond));
+        }
+        p.dist2(self.point(w)) <= GAP_RATIO * GAP_RATIO * spacing
     }
 
     /// Whether the loose ends `a` and `b` may join: the gap short for both, and ahead of both, or
     /// ahead of one while the other is a sharp tip's apex ([`TIP`]), whose edge runs back along
     /// the other side (noise or the repair can leave a tip's apex with one side only).
     fn ends_meet(&self, a: VertexId, b: VertexId) -> bool {
-        let cos = |x: VertexId, y: VertexId| {
-            cos_at(self.point(x), self.point(self.along(x)), self.point(y))
-        };
-        let (at_a, at_b) = (cos(a, b), cos(b, a));
+        let (at_a, at_b) = (self.turn(a, b), self.turn(b, a));
         let straight = at_a < STRAIGHT && at_b < STRAIGHT;
-        let short = |x: VertexId, y: VertexId| {
-            let next = self.along(x);
-            let (p, back) = (self.point(x), self.point(next));
-            let mut spacing = p.dist2(back);
-            if straight && self.graph.degree(next) == 2 {
-                let [u, v] = self.graph.first_two(next);
-                let beyond = if u == x { v } else { u };
-                spacing = spacing.max(back.dist2(self.point(beyond)));
-            }
-            p.dist2(self.point(y)) <= GAP_RATIO * GAP_RATIO * spacing
-        };
         let (ahead, tip) = (|c: f64| c < AHEAD, |c: f64| c > TIP);
         let ahead_or_tip = |here: f64, there: f64| ahead(here) && (ahead(there) || tip(there));
         b != self.along(a)
             && a != self.along(b)
-            && short(a, b)
-            && short(b, a)
+            && self.short(a, b, straight)
+            && self.short(b, a, straight)
             && (ahead_or_tip(at_a, at_b) || ahead_or_tip(at_b, at_a))
     }
 

@@ -22,7 +22,7 @@ use crate::geometry::Point;
 use crate::geometry::Scale;
 use crate::mesh::{Mesh, VertexId};
 use crate::mesh::{MeshArrays, MeshStorage};
-use crate::threads::both;
+use crate::threads::{both, filled};
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
@@ -328,22 +328,6 @@ fn cut_order(
         || half(false, order_right, sorted_right, scratch_right),
     );
     (order, sorted)
-}
-
-/// `n` copies of `value` in `buffer` (cleared first), written on rayon's threads when `parallel`
-/// (first touches cost most).
-fn filled<T: Copy + Send + Sync>(mut buffer: Vec<T>, value: T, n: usize, parallel: bool) -> Vec<T> {
-    buffer.clear();
-    buffer.reserve_exact(n);
-    #[cfg(feature = "parallel")]
-    if parallel {
-        use rayon::iter::{repeat_n, ParallelExtend};
-        buffer.par_extend(repeat_n(value, n));
-        return buffer;
-    }
-    let _ = parallel;
-    buffer.resize(n, value);
-    buffer
 }
 
 /// [`construct`] without the cut.
