@@ -14,7 +14,7 @@
 //! | `outlier_filter=False` | `--no-outlier-filter` | `outlier_factor = None` |
 //! | `outliers_first=B` | `--outliers-first` | `outliers_first` |
 //! | `iqr_floor=B` | `--[no-]iqr-floor` | `iqr_floor` |
-//! | `repair_again=B`, `local_outliers=B`, `clumps=B`, `confirm_given_back=B`, `close_gaps=B`, `junctions=B` | `--[no-]FLAG` (`Stage::switch`) | `set_stage` |
+//! | `repair_again=B`, `local_outliers=B`, `clumps=B`, `confirm_given_back=B`, `close_gaps=B`, `junctions=B`, `crossings=B` | `--[no-]FLAG` (`Stage::switch`) | `set_stage` |
 //! | `smooth=B` | `--[no-]smooth` | `smooth` |
 //! | `repair=MODE` | `--repair MODE` | `repair` |
 //! | `manifold_fix=False` | `--no-manifold-fix` | `repair = Off` |

@@ -30,7 +30,7 @@ use std::sync::OnceLock;
 /// >>> r.unused.tolist()
 /// []
 /// >>> list(r.stages)
-/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions']
+/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions', 'crossings']
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Reconstruction {
     result: condt::Reconstruction,
@@ -129,7 +129,7 @@ impl Reconstruction {
 
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
     /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``, ``"given-back"``,
-    /// ``"gaps"``, ``"junctions"``, or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
+    /// ``"gaps"``, ``"junctions"``, ``"crossings"``, or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
     /// the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
     /// the stages are the last pass's.
     #[getter]
@@ -336,7 +336,7 @@ impl Curve {
 ///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``kept``),
 ///   ``"longer-than-threshold"`` (``length``, ``threshold``, ``floored``), ``"given-back"``, ``"long-at"``
 ///   (``vertex``, ``ratio``), ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``,
-///   ``"gap-closed"``, ``"junction"``, ``"baseline"`` or ``"not-confirmed"``;
+///   ``"gap-closed"``, ``"junction"``, ``"crossing"``, ``"baseline"`` or ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
 #[pyclass(module = "condt", frozen, get_all)]
 pub(crate) struct EdgeStory {
@@ -434,6 +434,10 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
         Reason::Spur => "spur",
         Reason::GapClosed => "gap-closed",
         Reason::Junction => "junction",
+        Reason::Crossing { vertex } => {
+            dict.set_item("vertex", vertex)?;
+            "crossing"
+        }
         Reason::Clump => "clump",
         Reason::RepairedAgain => "repaired-again",
         Reason::Baseline => "baseline",

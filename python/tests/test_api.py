@@ -262,11 +262,11 @@ def test_the_result_arrays():
     stages = r.stages
     assert list(stages) == [
         "proximity", "repair", "iqr-outliers", "repair-again", "local-outliers", "clumps",
-        "given-back", "gaps", "junctions",
+        "given-back", "gaps", "junctions", "crossings",
     ]
-    assert np.array_equal(stages["junctions"], r.edges)
+    assert np.array_equal(stages["crossings"], r.edges)
     stages.clear()  # a copy: the result's stays
-    assert len(r.stages) == 9
+    assert len(r.stages) == 10
     assert "235 points" in repr(r)
 
 
@@ -288,6 +288,7 @@ def test_explain_tells_why_with_numbers():
     assert reasons <= {
         "repair", "longer-than-threshold", "given-back", "long-at", "component", "spur",
         "gap-closed", "junction", "clump", "baseline", "not-confirmed", "repaired-again",
+        "crossing",
     }
     for story in dropped:
         for change in story.changes:

@@ -594,6 +594,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "given-back",
                 "gaps",
                 "junctions",
+                "crossings",
                 "curves",
                 "other",
                 "write",

@@ -314,6 +314,34 @@ impl<'t> Graph<'t> {
         self.step(Step::JoinJunctions).0
     }
 
+    /// Restores crossings read as two bends ([`Params::crossings`](crate::Params::crossings)):
+    /// a chord between two neighbours of a bent passage gives way to the crossing's other arms.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // Two lines crossing at point 0 at 40°, arms of five unit-spaced samples (1..=5 along +x,
+    /// // 6..=10 at 40°, 11..=15 along -x, 16..=20 at 220°), read as two bends: 0 kept the first
+    /// // two arms, and the first samples of the others (0.68 apart) were paired.
+    /// let t = 40f64.to_radians();
+    /// let arms = [(1.0, 0.0), (t.cos(), t.sin()), (-1.0, 0.0), (-t.cos(), -t.sin())];
+    /// let mut pts = vec![Point::new(0.0, 0.0)];
+    /// for (dx, dy) in arms {
+    ///     pts.extend((1..=5).map(|i| Point::new(dx * i as f64, dy * i as f64)));
+    /// }
+    /// let tri = triangulate(&pts)?;
+    /// let mut edges: Vec<[usize; 2]> = (0..4)
+    ///     .flat_map(|k| (1..5).map(move |i| [5 * k + i, 5 * k + i + 1]))
+    ///     .collect();
+    /// edges.extend([[0, 1], [0, 6], [11, 16]]);
+    /// let restored = tri.graph_from_edges(edges).restore_crossings().edges();
+    /// assert!(restored.contains(&[0, 11]) && restored.contains(&[0, 16]));
+    /// assert!(!restored.contains(&[11, 16]));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn restore_crossings(&self) -> Graph<'t> {
+        self.step(Step::RestoreCrossings).0
+    }
+
     /// The curves through the graph in input positions, ordered as [`crate::curves_from_edges`]'s.
     pub fn curves(&self) -> Vec<Curve> {
         let tri = self.tri;

@@ -59,6 +59,12 @@ pub enum Reason {
     GapClosed,
     /// A loose end joined to the curve it meets at a junction of three curves.
     Junction,
+    /// A crossing restored at `vertex`: an arm added there, or the chord between two of its
+    /// arms removed.
+    Crossing {
+        /// The crossing (input position).
+        vertex: usize,
+    },
     /// A baseline (NN-Crust, Crust) chose it; the ends say how Algorithm 1 would have seen it.
     Baseline,
     /// The given-back check removed it: a component of given-back edges not clearly apart.
@@ -249,7 +255,7 @@ impl<'a> Explainer<'a> {
             Vec::new()
         };
         local.sort_unstable_by_key(|&(edge, _)| edge);
-        let after = if stage == Stage::Repair {
+        let after = if matches!(stage, Stage::Repair | Stage::Crossings) {
             Neighbours::new(n, after)
         } else {
             Neighbours::empty()
@@ -270,6 +276,22 @@ impl<'a> Explainer<'a> {
             (Stage::RepairAgain, _) => Reason::RepairedAgain,
             (Stage::Gaps, _) => Reason::GapClosed,
             (Stage::Junctions, _) => Reason::Junction,
+            (Stage::Crossings, _) => {
+                // The crossing is the point that gained arms: an added edge's end, or the removed
+                // chord's common neighbour after the stage.
+                let gained = |v: usize| self.after.of(v).len() > self.degrees_before[v];
+                let vertex = if added {
+                    if gained(a) {
+                        a
+                    } else {
+                        b
+                    }
+                } else {
+                    let shared = |&&w: &&usize| self.after.of(b).contains(&w) && gained(w);
+                    self.after.of(a).iter().find(shared).copied().unwrap_or(a)
+                };
+                Reason::Crossing { vertex }
+            }
             (Stage::GivenBack, _) => Reason::NotConfirmed,
             (Stage::NnCrust | Stage::Crust, _) => Reason::Baseline,
             (Stage::Outliers, _) => Reason::LongerThanThreshold {
@@ -429,6 +451,7 @@ impl fmt::Display for EdgeStory {
                 Reason::Clump => write!(f, "a clump: fewer than half its points pass smoothly")?,
                 Reason::GapClosed => write!(f, "gap closed")?,
                 Reason::Junction => write!(f, "joined at a junction of three curves")?,
+                Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,
                 Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
                 Reason::Baseline => write!(f, "chosen by the baseline")?,
             }
@@ -476,6 +499,36 @@ mod tests {
         )
         .unwrap()
         .points
+    }
+
+    /// Two lines crossing at point 0 at 40°: arms of five samples, the first 1.1 from 0 and 1
+    /// apart after, so the first samples of neighbouring arms (0.75 apart) pair in Algorithm 1.
+    #[test]
+    fn a_restored_crossing_names_its_vertex() {
+        let t = 40f64.to_radians();
+        let arms = [(1.0, 0.0), (libm::cos(t), libm::sin(t))];
+        let arms = [arms[0], arms[1], (-1.0, 0.0), (-arms[1].0, -arms[1].1)];
+        let mut points = vec![Point::new(0.0, 0.0)];
+        for (k, (dx, dy)) in arms.iter().enumerate() {
+            // A hundredth more per arm: point 0 has one nearest pair of arms, not a tie.
+            let r = |i: usize| i as f64 + 0.1 + 0.01 * k as f64;
+            points.extend((1..=5).map(|i| Point::new(dx * r(i), dy * r(i))));
+        }
+        let bends = reconstruct(&points, &Params::default().with_crossings(false)).unwrap();
+        assert!(bends.edges().any(|e| e == [11, 16]) && bends.degree(0) == 2);
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        assert_eq!(result.degree(0), 4);
+        let stories = result.provenance();
+        for (edge, added) in [([0, 11], true), ([0, 16], true), ([11, 16], false)] {
+            let story = stories.iter().find(|s| s.edge == edge).unwrap();
+            let change = story.changes.last().unwrap();
+            assert_eq!((change.stage, change.added), (Stage::Crossings, added));
+            assert_eq!(change.reason, Reason::Crossing { vertex: 0 });
+            assert!(
+                story.to_string().contains("restored the crossing at 0"),
+                "{story}"
+            );
+        }
     }
 
     #[test]

@@ -110,6 +110,7 @@ def reconstruct(
     confirm_given_back: bool = ...,
     close_gaps: bool = ...,
     junctions: bool = ...,
+    crossings: bool = ...,
     smooth: bool = ...,
     repair: Literal["needs", "paper", "mutual", "crossing", "off"] = ...,
     manifold_fix: bool = ...,

@@ -229,6 +229,7 @@
       () => "a clump: fewer than half its points pass smoothly",
       () => "repaired again without the edges above √T",
       () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,
+      () => `restored the crossing at vertex ${c.x}`,
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

@@ -78,6 +78,10 @@ pub struct Params {
     /// Join a loose end to the curve it meets where three curves of five points or more, sampled
     /// alike, meet, as on map borders or a T (beyond the paper; `src/stages/junctions.rs`).
     pub junctions: bool,
+    /// Restore a crossing that Algorithm 1 read as two bends (beyond the paper): a sample where
+    /// two curves cross at a narrow angle keeps an arm of each, its neighbours are paired by a
+    /// chord; the chord gives way to the other two arms (`src/stages/crossings.rs`).
+    pub crossings: bool,
     /// Smoothing passes (beyond the paper): when one point in a hundred or more ends or branches
     /// the curves, each point with two edges at a wide angle moves halfway to its neighbours'
     /// midpoint and the stages run again, up to three times: noise can push a sample into the empty
@@ -99,7 +103,7 @@ impl Default for Params {
     /// let p = Params::default();
     /// assert!(p.repair == condt::Repair::Needs && p.smooth);
     /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
-    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions]].concat());
+    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions, Crossings]].concat());
     /// ```
     fn default() -> Self {
         Params::paper()
@@ -111,6 +115,7 @@ impl Default for Params {
             .with_clumps(true)
             .with_close_gaps(true)
             .with_junctions(true)
+            .with_crossings(true)
             .with_smooth(true)
     }
 }
@@ -139,6 +144,7 @@ impl Params {
             close_gaps: false,
             clumps: false,
             junctions: false,
+            crossings: false,
             smooth: false,
             parallel: cfg!(feature = "parallel"),
         }
@@ -213,6 +219,7 @@ impl Params {
         let clumps = self.clumps.then_some(Step::RemoveClumps);
         let gaps = self.close_gaps.then_some(Step::CloseGaps);
         let junctions = self.junctions.then_some(Step::JoinJunctions);
+        let crossings = self.crossings.then_some(Step::RestoreCrossings);
         // A baseline is the whole method: no ConDT stage follows it.
         let condt = self.method == Method::ConDT;
         first
@@ -224,6 +231,7 @@ impl Params {
             .chain(confirm)
             .chain(gaps)
             .chain(junctions)
+            .chain(crossings)
             .filter(move |_| condt)
     }
 }
@@ -256,6 +264,7 @@ impl Params {
             Stage::Clumps => &mut self.clumps,
             Stage::Gaps => &mut self.close_gaps,
             Stage::Junctions => &mut self.junctions,
+            Stage::Crossings => &mut self.crossings,
             _ => return false,
         };
         *field = on;
@@ -340,6 +349,12 @@ impl Params {
     /// Sets [`Params::junctions`].
     pub fn with_junctions(mut self, junctions: bool) -> Params {
         self.junctions = junctions;
+        self
+    }
+
+    /// Sets [`Params::crossings`].
+    pub fn with_crossings(mut self, crossings: bool) -> Params {
+        self.crossings = crossings;
         self
     }
 

@@ -1,6 +1,7 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each: [`proximity`]
 //! (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3) and, not in the paper,
-//! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`] and [`junctions`].
+//! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`] and
+//! [`crossings`].
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which the
 //! pipeline ([`reconstruct`](crate::reconstruct)) and the public [`Graph`](crate::Graph) methods
@@ -8,6 +9,7 @@
 //! [`Params::stages`](crate::Params::stages). Adding a stage: `docs/architecture.md`.
 
 pub(crate) mod clumps;
+pub(crate) mod crossings;
 pub(crate) mod gaps;
 pub(crate) mod given_back;
 pub(crate) mod junctions;
@@ -55,6 +57,8 @@ pub enum Stage {
     Gaps,
     /// Joining loose ends at junctions ([`Params::junctions`](crate::Params::junctions)).
     Junctions,
+    /// Restoring crossings read as two bends ([`Params::crossings`](crate::Params::crossings)).
+    Crossings,
     /// The NN-Crust baseline, the whole method ([`Method::NnCrust`](crate::Method::NnCrust)).
     NnCrust,
     /// The Crust baseline, the whole method ([`Method::Crust`](crate::Method::Crust)).
@@ -83,7 +87,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 11] = [
+const ROWS: [Row; 12] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -185,6 +189,19 @@ branches of at least 5 points each, evenly sampled",
         }),
     },
     Row {
+        stage: Stage::Crossings,
+        name: "crossings",
+        title: "after restoring crossings",
+        key: "crossings",
+        switch: Some(Switch {
+            flag: "crossings",
+            help: "(default on; off with --paper) last, where two curves cross at a
+sample at a narrow angle and the sample kept an arm of each
+(two V shapes), give it all four arms in place of the edge
+that paired its neighbours",
+        }),
+    },
+    Row {
         stage: Stage::NnCrust,
         name: "NN-Crust",
         title: "NN-Crust (baseline)",
@@ -207,7 +224,7 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 11] = [
+    pub const ALL: [Stage; 12] = [
         Stage::Proximity,
         Stage::Repair,
         Stage::Outliers,
@@ -217,6 +234,7 @@ impl Stage {
         Stage::Clumps,
         Stage::Gaps,
         Stage::Junctions,
+        Stage::Crossings,
         Stage::NnCrust,
         Stage::Crust,
     ];
@@ -284,6 +302,7 @@ pub(crate) enum Step {
     RemoveClumps,
     CloseGaps,
     JoinJunctions,
+    RestoreCrossings,
 }
 
 /// The graphs of earlier stages a step may read ([`Step::run`]), handed over so it can free them.
@@ -308,6 +327,7 @@ impl Step {
             Step::RemoveClumps => Stage::Clumps,
             Step::CloseGaps => Stage::Gaps,
             Step::JoinJunctions => Stage::Junctions,
+            Step::RestoreCrossings => Stage::Crossings,
         }
     }
 
@@ -374,6 +394,7 @@ impl Step {
             Step::RemoveClumps => clumps::remove_clumps(tri, edges, graph),
             Step::CloseGaps => gaps::close_gaps(tri, edges, graph),
             Step::JoinJunctions => junctions::join_junctions(tri, edges, graph),
+            Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph),
         }
     }
 }

@@ -1,0 +1,246 @@
+//! Restoring crossings (not in the paper; on by default, off in `Params::paper`).
+//!
+//! Owns: turning a bent passage and a chord beside it into the crossing they cut short. It reads
+//! positions, the graph and the Delaunay rings; it may not touch the triangulation, and does not
+//! decide when it runs ([`Params::stages`](crate::Params::stages): last).
+//!
+//! Why: where two curves cross at a sample `x` at a narrow angle, `x`'s four arms are about one
+//! spacing long, and the samples next to `x` on the two curves can be nearer each other than to
+//! `x`. Algorithm 1 then pairs them (the chord `c d`) and gives `x` two arms of different curves
+//! (a bent passage `a x b`): two V shapes where the curves make an X. No point is left loose, so
+//! gap closing (which restores a crossing's dropped arms) sees nothing.
+//!
+//! Rule: a point `x` of degree two whose passage `a x b` bends (below [`STRAIGHT`]), and an edge
+//! `c d` between two Delaunay neighbours of `x` of degree two, such that `a x c` and `b x d` are
+//! straight (above [`STRAIGHT`], as gap closing's crossings), the four arms evenly spaced (the
+//! longest within [`GAP_RATIO`] of the shortest: one sampling) and the passages at `c` and at `d`
+//! both straighter through `x` than along the chord. Then `c d` gives way to `x c` and `x d`. The
+//! last test keeps a curve's own edge: a chord that continues its curve straight is no chord.
+//! All choices are made on the graph as it came in; a point in two choices takes part in none, so
+//! the result does not depend on the order of the points, nor on `parallel`; a point where two
+//! chords pass restores neither.
+
+use super::gaps::{cos_at, GAP_RATIO};
+use super::Outcome;
+use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::mesh::VertexId;
+use crate::triangulate::Triangulation;
+use alloc::vec;
+use alloc::vec::Vec;
+
+/// Cosine of the smallest angle of a straight passage (150°, as gap closing's).
+const STRAIGHT: f64 = -0.866_025_403_784_438_6;
+
+/// A crossing to restore: at `x`, the chord `c d` replaced by `x c` and `x d`.
+#[derive(Copy, Clone, Debug, PartialEq)]
+struct Crossing {
+    x: VertexId,
+    c: VertexId,
+    d: VertexId,
+}
+
+struct Scene<'a> {
+    tri: &'a Triangulation,
+    graph: &'a CurveGraph,
+}
+
+impl Scene<'_> {
+    fn cos(&self, at: VertexId, u: VertexId, w: VertexId) -> f64 {
+        let point = |v: VertexId| self.tri.vertex_point(v);
+        cos_at(point(at), point(u), point(w))
+    }
+
+    fn dist2(&self, u: VertexId, w: VertexId) -> f64 {
+        self.tri.vertex_point(u).dist2(self.tri.vertex_point(w))
+    }
+
+    /// Whether the passage at `c` (degree two) is straighter through `x` than along `d`, its
+    /// neighbour that `x` replaces.
+    fn straighter(&self, c: VertexId, d: VertexId, x: VertexId) -> bool {
+        let other = self.graph.onward(c, d);
+        self.cos(c, other, x) < self.cos(c, other, d)
+    }
+
+    /// The crossing `x` restores, if exactly one chord passes (two would be a guess).
+    fn crossing_at(&self, x: VertexId) -> Option<Crossing> {
+        if self.graph.degree(x) != 2 {
+            return None;
+        }
+        let [a, b] = self.graph.first_two(x);
+        if self.cos(x, a, b) < STRAIGHT {
+            return None;
+        }
+        let mesh = self.tri.mesh();
+        let mut found: Option<Crossing> = None;
+        for c in mesh.neighbors(x) {
+            if c == a || c == b || self.graph.degree(c) != 2 {
+                continue;
+            }
+            // `c` continues `a` or `b` straight through `x`; `d` must continue the other.
+            let other = if self.cos(x, a, c) < STRAIGHT {
+                b
+            } else if self.cos(x, b, c) < STRAIGHT {
+                a
+            } else {
+                continue;
+            };
+            for d in self.graph.first_two(c) {
+                let passes = d != x
+                    && d != a
+                    && d != b
+                    && self.graph.degree(d) == 2
+                    && self.cos(x, other, d) < STRAIGHT
+                    && mesh.neighbors(x).any(|w| w == d)
+                    && self.even([a, b, c, d].map(|w| self.dist2(x, w)))
+                    && self.straighter(c, d, x)
+                    && self.straighter(d, c, x);
+                if !passes {
+                    continue;
+                }
+                // Each chord is met from both its ends: keep it once, smaller end first.
+                let (c, d) = (c.min(d), c.max(d));
+                match found {
+                    None => found = Some(Crossing { x, c, d }),
+                    Some(k) if (k.c, k.d) == (c, d) => {}
+                    Some(_) => return None,
+                }
+            }
+        }
+        found
+    }
+
+    /// Whether squared arm lengths are one sampling: the longest within [`GAP_RATIO`] of the
+    /// shortest.
+    fn even(&self, arms2: [f64; 4]) -> bool {
+        let longest = arms2.iter().copied().fold(0.0, f64::max);
+        let shortest = arms2.iter().copied().fold(f64::INFINITY, f64::min);
+        longest <= GAP_RATIO * GAP_RATIO * shortest
+    }
+}
+
+/// Restores crossings in `edges` (each edge once, any order): the input edges in order without
+/// the chords, then each crossing's two arms by increasing `x`; unchanged (the curve `graph`, if
+/// given, handed on) when none qualifies.
+pub(crate) fn restore_crossings(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+) -> Outcome {
+    let n = tri.num_points();
+    let graph = graph.unwrap_or_else(|| CurveGraph::new(n, edges));
+    let scene = Scene { tri, graph: &graph };
+    let found: Vec<Crossing> = (0..n as u32)
+        .map(VertexId::new)
+        .filter_map(|x| scene.crossing_at(x))
+        .collect();
+    if found.is_empty() {
+        return Outcome::unchanged_with(Some(graph));
+    }
+    // A point in two crossings (or found from both ends) takes part in none.
+    let mut uses = vec![0u8; n];
+    for crossing in &found {
+        for v in [crossing.x, crossing.c, crossing.d] {
+            uses[v.index()] = uses[v.index()].saturating_add(1);
+        }
+    }
+    let alone = |k: &&Crossing| [k.x, k.c, k.d].iter().all(|v| uses[v.index()] == 1);
+    let restored: Vec<Crossing> = found.iter().filter(alone).copied().collect();
+    drop(uses);
+    if restored.is_empty() {
+        return Outcome::unchanged_with(Some(graph));
+    }
+    drop(graph);
+    let mut chords: Vec<Edge> = restored.iter().map(|k| ordered(k.c, k.d)).collect();
+    chords.sort_unstable();
+    let mut out: Vec<Edge> = Vec::with_capacity(edges.len() + restored.len());
+    out.extend(
+        edges
+            .iter()
+            .filter(|e| chords.binary_search(e).is_err())
+            .copied(),
+    );
+    for k in &restored {
+        out.push(ordered(k.x, k.c));
+        out.push(ordered(k.x, k.d));
+    }
+    Outcome::from(Some(out))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{triangulate, Point};
+
+    /// Two straight curves crossing at point 0 at `angle` degrees, unit spacing, `arm` samples on
+    /// each of the four arms (arm k: points 1 + k * arm ..), and the edges of the V reading: `0`
+    /// keeps the first sample of arms 0 and 1; the first samples of arms 2 and 3 are paired.
+    fn crossed(angle: f64, arm: usize) -> (Vec<Point>, Vec<[usize; 2]>) {
+        let t = angle.to_radians();
+        let directions = [(1.0, 0.0), (libm::cos(t), libm::sin(t)), (-1.0, 0.0)];
+        let directions = [
+            directions[0],
+            directions[1],
+            directions[2],
+            (-libm::cos(t), -libm::sin(t)),
+        ];
+        let mut pts = vec![Point::new(0.0, 0.0)];
+        let mut edges = Vec::new();
+        for (k, (dx, dy)) in directions.iter().enumerate() {
+            let first = pts.len();
+            pts.extend((1..=arm).map(|i| Point::new(dx * i as f64, dy * i as f64)));
+            edges.extend((first..first + arm - 1).map(|i| [i, i + 1]));
+            if k < 2 {
+                edges.push([0, first]);
+            }
+        }
+        edges.push([1 + 2 * arm, 1 + 3 * arm]);
+        (pts, edges)
+    }
+
+    /// Runs the stage and returns its edges (input positions, sorted), or `None` if unchanged.
+    fn run(pts: &[Point], pairs: &[[usize; 2]]) -> Option<Vec<[usize; 2]>> {
+        let tri = triangulate(pts).unwrap();
+        let edges: Vec<Edge> = pairs
+            .iter()
+            .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
+            .collect();
+        let out = restore_crossings(&tri, &edges, None).edges?;
+        Some(crate::Graph::new(&tri, alloc::borrow::Cow::Owned(out)).edges())
+    }
+
+    #[test]
+    fn two_vs_at_a_narrow_crossing_become_an_x() {
+        for angle in [40.0, 60.0, 90.0] {
+            let arm = 5;
+            let (pts, edges) = crossed(angle, arm);
+            let out = run(&pts, &edges).expect("the crossing is restored");
+            let degree = |v: usize| out.iter().filter(|e| e.contains(&v)).count();
+            assert_eq!(degree(0), 4, "{angle}°");
+            assert!(!out.contains(&[1 + 2 * arm, 1 + 3 * arm]), "{angle}°");
+            assert!(out.contains(&[0, 1 + 2 * arm]) && out.contains(&[0, 1 + 3 * arm]));
+            assert_eq!(out.len(), edges.len() + 1);
+        }
+    }
+
+    #[test]
+    fn a_chord_that_continues_its_curve_stays() {
+        // A straight curve 0..8 along y = 0 and, just below its edge 3-4, the apex 8 of a V (a
+        // sharp corner of another curve) whose legs 9..13 and 13..17 run straight away from 4
+        // and from 3: all but the last test pass, but 3 and 4 pass straighter along their edge
+        // than through 8, so it is no chord.
+        let mut pts: Vec<Point> = (0..8).map(|i| Point::new(i as f64, 0.0)).collect();
+        let apex = Point::new(3.5, -0.8);
+        pts.push(apex);
+        let norm = libm::sqrt(0.5 * 0.5 + 0.8 * 0.8);
+        for dx in [-0.5, 0.5] {
+            pts.extend((1..=4).map(|i| {
+                let r = i as f64 / norm;
+                Point::new(apex.x + dx * r, apex.y - 0.8 * r)
+            }));
+        }
+        let mut edges: Vec<[usize; 2]> = (0..7).map(|i| [i, i + 1]).collect();
+        edges.extend([[8, 9], [9, 10], [10, 11], [11, 12]]);
+        edges.extend([[8, 13], [13, 14], [14, 15], [15, 16]]);
+        assert_eq!(run(&pts, &edges), None);
+    }
+}
