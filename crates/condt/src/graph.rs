@@ -319,23 +319,23 @@ impl<'t> Graph<'t> {
     ///
     /// ```
     /// use condt::{triangulate, Point};
-    /// // Two lines crossing at point 0 at 40°, arms of five unit-spaced samples (1..=5 along +x,
-    /// // 6..=10 at 40°, 11..=15 along -x, 16..=20 at 220°), read as two bends: 0 kept the first
+    /// // Two lines crossing at point 0 at 40°, arms of seven unit-spaced samples (1..=7 along +x,
+    /// // 8..=14 at 40°, 15..=21 along -x, 22..=28 at 220°), read as two bends: 0 kept the first
     /// // two arms, and the first samples of the others (0.68 apart) were paired.
     /// let t = 40f64.to_radians();
     /// let arms = [(1.0, 0.0), (t.cos(), t.sin()), (-1.0, 0.0), (-t.cos(), -t.sin())];
     /// let mut pts = vec![Point::new(0.0, 0.0)];
     /// for (dx, dy) in arms {
-    ///     pts.extend((1..=5).map(|i| Point::new(dx * i as f64, dy * i as f64)));
+    ///     pts.extend((1..=7).map(|i| Point::new(dx * i as f64, dy * i as f64)));
     /// }
     /// let tri = triangulate(&pts)?;
     /// let mut edges: Vec<[usize; 2]> = (0..4)
-    ///     .flat_map(|k| (1..5).map(move |i| [5 * k + i, 5 * k + i + 1]))
+    ///     .flat_map(|k| (1..7).map(move |i| [7 * k + i, 7 * k + i + 1]))
     ///     .collect();
-    /// edges.extend([[0, 1], [0, 6], [11, 16]]);
+    /// edges.extend([[0, 1], [0, 8], [15, 22]]);
     /// let restored = tri.graph_from_edges(edges).restore_crossings().edges();
-    /// assert!(restored.contains(&[0, 11]) && restored.contains(&[0, 16]));
-    /// assert!(!restored.contains(&[11, 16]));
+    /// assert!(restored.contains(&[0, 15]) && restored.contains(&[0, 22]));
+    /// assert!(!restored.contains(&[15, 22]));
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn restore_crossings(&self) -> Graph<'t> {

@@ -501,7 +501,7 @@ mod tests {
         .points
     }
 
-    /// Two lines crossing at point 0 at 40°: arms of five samples, the first 1.1 from 0 and 1
+    /// Two lines crossing at point 0 at 40°: arms of seven samples, the first 1.1 from 0 and 1
     /// apart after, so the first samples of neighbouring arms (0.75 apart) pair in Algorithm 1.
     #[test]
     fn a_restored_crossing_names_its_vertex() {
@@ -512,14 +512,14 @@ mod tests {
         for (k, (dx, dy)) in arms.iter().enumerate() {
             // A hundredth more per arm: point 0 has one nearest pair of arms, not a tie.
             let r = |i: usize| i as f64 + 0.1 + 0.01 * k as f64;
-            points.extend((1..=5).map(|i| Point::new(dx * r(i), dy * r(i))));
+            points.extend((1..=7).map(|i| Point::new(dx * r(i), dy * r(i))));
         }
         let bends = reconstruct(&points, &Params::default().with_crossings(false)).unwrap();
-        assert!(bends.edges().any(|e| e == [11, 16]) && bends.degree(0) == 2);
+        assert!(bends.edges().any(|e| e == [15, 22]) && bends.degree(0) == 2);
         let result = reconstruct(&points, &Params::default()).unwrap();
         assert_eq!(result.degree(0), 4);
         let stories = result.provenance();
-        for (edge, added) in [([0, 11], true), ([0, 16], true), ([11, 16], false)] {
+        for (edge, added) in [([0, 15], true), ([0, 22], true), ([15, 22], false)] {
             let story = stories.iter().find(|s| s.edge == edge).unwrap();
             let change = story.changes.last().unwrap();
             assert_eq!((change.stage, change.added), (Stage::Crossings, added));

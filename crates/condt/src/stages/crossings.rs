@@ -14,13 +14,16 @@
 //! `c d` between two Delaunay neighbours of `x` of degree two, such that `a x c` and `b x d` are
 //! straight (above [`STRAIGHT`], as gap closing's crossings), the four arms evenly spaced (the
 //! longest within [`GAP_RATIO`] of the shortest: one sampling) and the passages at `c` and at `d`
-//! both straighter through `x` than along the chord. Then `c d` gives way to `x c` and `x d`. The
-//! last test keeps a curve's own edge: a chord that continues its curve straight is no chord.
+//! both straighter through `x` than along the chord, and each of the four arms a branch of
+//! [`MIN_SAMPLES`] points of degree two (as at a junction). Then `c d` gives way to `x c` and
+//! `x d`. The passage test keeps a curve's own edge: a chord that continues its curve straight is
+//! no chord; the branches keep a scatter's chance V shapes as they are.
 //! All choices are made on the graph as it came in; a point in two choices takes part in none, so
 //! the result does not depend on the order of the points, nor on `parallel`; a point where two
 //! chords pass restores neither.
 
 use super::gaps::{cos_at, GAP_RATIO};
+use super::local_outliers::MIN_SAMPLES;
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -30,6 +33,14 @@ use alloc::vec::Vec;
 
 /// Cosine of the smallest angle of a straight passage (150°, as gap closing's).
 const STRAIGHT: f64 = -0.866_025_403_784_438_6;
+
+/// Whether the vectors `u` and `w` from one point make a straight passage (an angle above 150°,
+/// [`STRAIGHT`]), without a square root: most points are tested once, on every pass.
+fn straight(u: (f64, f64), w: (f64, f64)) -> bool {
+    let dot = u.0 * w.0 + u.1 * w.1;
+    let norms2 = (u.0 * u.0 + u.1 * u.1) * (w.0 * w.0 + w.1 * w.1);
+    dot < 0.0 && dot * dot > STRAIGHT * STRAIGHT * norms2
+}
 
 /// A crossing to restore: at `x`, the chord `c d` replaced by `x c` and `x d`.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -67,33 +78,45 @@ impl Scene<'_> {
             return None;
         }
         let [a, b] = self.graph.first_two(x);
-        if self.cos(x, a, b) < STRAIGHT {
+        let px = self.tri.vertex_point(x);
+        let arm = |v: VertexId| {
+            let p = self.tri.vertex_point(v);
+            (p.x - px.x, p.y - px.y)
+        };
+        let (to_a, to_b) = (arm(a), arm(b));
+        if straight(to_a, to_b) {
             return None;
         }
         let mesh = self.tri.mesh();
         let mut found: Option<Crossing> = None;
         for c in mesh.neighbors(x) {
-            if c == a || c == b || self.graph.degree(c) != 2 {
+            if c == a || c == b {
                 continue;
             }
             // `c` continues `a` or `b` straight through `x`; `d` must continue the other.
-            let other = if self.cos(x, a, c) < STRAIGHT {
-                b
-            } else if self.cos(x, b, c) < STRAIGHT {
-                a
+            let to_c = arm(c);
+            let (other, to_other) = if straight(to_a, to_c) {
+                (b, to_b)
+            } else if straight(to_b, to_c) {
+                (a, to_a)
             } else {
                 continue;
             };
+            if self.graph.degree(c) != 2 {
+                continue;
+            }
             for d in self.graph.first_two(c) {
                 let passes = d != x
-                    && d != a
-                    && d != b
+                    && d != other
+                    && straight(to_other, arm(d))
                     && self.graph.degree(d) == 2
-                    && self.cos(x, other, d) < STRAIGHT
                     && mesh.neighbors(x).any(|w| w == d)
                     && self.even([a, b, c, d].map(|w| self.dist2(x, w)))
                     && self.straighter(c, d, x)
-                    && self.straighter(d, c, x);
+                    && self.straighter(d, c, x)
+                    && [(x, a), (x, b), (d, c), (c, d)]
+                        .iter()
+                        .all(|&(from, next)| self.branch(from, next));
                 if !passes {
                     continue;
                 }
@@ -107,6 +130,21 @@ impl Scene<'_> {
             }
         }
         found
+    }
+
+    /// Whether the chain from `next` away from `from` runs through at least [`MIN_SAMPLES`]
+    /// points of degree two: an arm of a curve, not of a scatter.
+    fn branch(&self, from: VertexId, next: VertexId) -> bool {
+        let (mut prev, mut here) = (from, next);
+        for _ in 0..MIN_SAMPLES {
+            if self.graph.degree(here) != 2 {
+                return false;
+            }
+            let onward = self.graph.onward(here, prev);
+            prev = here;
+            here = onward;
+        }
+        true
     }
 
     /// Whether squared arm lengths are one sampling: the longest within [`GAP_RATIO`] of the
@@ -211,7 +249,7 @@ mod tests {
     #[test]
     fn two_vs_at_a_narrow_crossing_become_an_x() {
         for angle in [40.0, 60.0, 90.0] {
-            let arm = 5;
+            let arm = 7;
             let (pts, edges) = crossed(angle, arm);
             let out = run(&pts, &edges).expect("the crossing is restored");
             let degree = |v: usize| out.iter().filter(|e| e.contains(&v)).count();
@@ -223,24 +261,32 @@ mod tests {
     }
 
     #[test]
+    fn short_arms_are_a_scatter_not_a_crossing() {
+        // Four samples per arm: the chain from an arm's first sample has three points of degree
+        // two before its end, under the five a branch needs.
+        let (pts, edges) = crossed(40.0, 4);
+        assert_eq!(run(&pts, &edges), None);
+    }
+
+    #[test]
     fn a_chord_that_continues_its_curve_stays() {
-        // A straight curve 0..8 along y = 0 and, just below its edge 3-4, the apex 8 of a V (a
-        // sharp corner of another curve) whose legs 9..13 and 13..17 run straight away from 4
-        // and from 3: all but the last test pass, but 3 and 4 pass straighter along their edge
-        // than through 8, so it is no chord.
-        let mut pts: Vec<Point> = (0..8).map(|i| Point::new(i as f64, 0.0)).collect();
-        let apex = Point::new(3.5, -0.8);
+        // A straight curve 0..16 along y = 0 and, just below its edge 7-8, the apex 16 of a V (a
+        // sharp corner of another curve) whose legs 17..24 and 24..31 run straight away from 8
+        // and from 7: all but the passage test pass, but 7 and 8 pass straighter along their
+        // edge than through 16, so it is no chord.
+        let mut pts: Vec<Point> = (0..16).map(|i| Point::new(i as f64, 0.0)).collect();
+        let apex = Point::new(7.5, -0.8);
         pts.push(apex);
         let norm = libm::sqrt(0.5 * 0.5 + 0.8 * 0.8);
         for dx in [-0.5, 0.5] {
-            pts.extend((1..=4).map(|i| {
+            pts.extend((1..=7).map(|i| {
                 let r = i as f64 / norm;
                 Point::new(apex.x + dx * r, apex.y - 0.8 * r)
             }));
         }
-        let mut edges: Vec<[usize; 2]> = (0..7).map(|i| [i, i + 1]).collect();
-        edges.extend([[8, 9], [9, 10], [10, 11], [11, 12]]);
-        edges.extend([[8, 13], [13, 14], [14, 15], [15, 16]]);
+        let mut edges: Vec<[usize; 2]> = (0..15).map(|i| [i, i + 1]).collect();
+        edges.extend([[16, 17], [16, 24]]);
+        edges.extend((17..23).chain(24..30).map(|i| [i, i + 1]));
         assert_eq!(run(&pts, &edges), None);
     }
 }
