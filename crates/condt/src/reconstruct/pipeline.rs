@@ -719,7 +719,8 @@ pub(super) fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
     work()
 }
 
-#[cfg(all(test, feature = "parallel"))]
+#[cfg(test)]
+#[cfg(feature = "parallel")]
 mod tests {
     use super::on_worker;
 
