@@ -14,7 +14,7 @@ use crate::graph::Graph;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
-use crate::triangulate::{triangulate_reusing, triangulate_with_progress, Triangulation};
+use crate::triangulate::{triangulate_with, Storage, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::sync::atomic::AtomicUsize;
@@ -187,7 +187,7 @@ impl Pipeline {
         // On the stages' worker: their allocations reuse what it freed (`on_worker`).
         let in_parallel = params.parallel && points.len() >= PARALLEL_FROM;
         let tri = on_worker(in_parallel, || {
-            triangulate_with_progress(&points, params.parallel, inserted)
+            triangulate_with(&points, params.parallel, inserted, Storage::default())
         })?;
         let triangulation_time = clock.lap();
         drop(points);
@@ -395,9 +395,9 @@ impl Pipeline {
         // Relative to the corner, so an exact translation gives the same result, unless that merges
         // distinct points (making the result depend on input order): then in the caller's frame.
         let parallel = self.params.parallel;
-        let relative = triangulate_reusing(&smoothed.positions, parallel, storage)?;
+        let relative = triangulate_with(&smoothed.positions, parallel, None, storage)?;
         let tri = if relative.num_points() - relative.num_vertices() > merged_before {
-            triangulate_reusing(&smoothed.absolute, parallel, relative.into_storage())?
+            triangulate_with(&smoothed.absolute, parallel, None, relative.into_storage())?
         } else {
             relative.with_offset(smoothed.corner)
         };

@@ -11,7 +11,7 @@
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
-use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshArrays, MeshBuilder, MeshStorage, VertexId};
+use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshArrays, MeshBuilder, VertexId};
 use crate::predicates::Orientation;
 use crate::threads::both;
 use alloc::vec::Vec;
@@ -117,7 +117,7 @@ pub(crate) fn build<K: Kernel>(
     left: usize,
     parallel: bool,
     progress: Option<&AtomicUsize>,
-    storage: MeshStorage,
+    storage: Mesh,
 ) -> Option<(Mesh, Vec<(u32, u32)>)> {
     let (left_points, right_points) = points.split_at(left);
     let left_room = insert::half_edges(left_points.len());
@@ -445,7 +445,8 @@ fn stitch<K: Kernel>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{scale, triangulate_split};
+    use super::super::scale;
+    use super::super::tests::triangulate_split;
     use super::*;
     use crate::test_rng::Xorshift;
     use alloc::format;
@@ -458,7 +459,7 @@ mod tests {
             .iter()
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
-        build::<super::super::insert::Fast>(&sorted, left?, false, None, MeshStorage::default())
+        build::<super::super::insert::Fast>(&sorted, left?, false, None, Mesh::default())
     }
 
     /// The triangles of a triangulation in input positions, each from its smallest, sorted.
@@ -671,15 +672,9 @@ mod tests {
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
         if frames.wide {
-            build::<super::super::insert::Exact>(
-                &sorted,
-                left?,
-                false,
-                None,
-                MeshStorage::default(),
-            )
+            build::<super::super::insert::Exact>(&sorted, left?, false, None, Mesh::default())
         } else {
-            build::<super::super::insert::Fast>(&sorted, left?, false, None, MeshStorage::default())
+            build::<super::super::insert::Fast>(&sorted, left?, false, None, Mesh::default())
         }
     }
 

@@ -20,8 +20,8 @@ mod scale;
 use crate::error::Error;
 use crate::geometry::Point;
 use crate::geometry::Scale;
+use crate::mesh::MeshArrays;
 use crate::mesh::{Mesh, VertexId};
-use crate::mesh::{MeshArrays, MeshStorage};
 use crate::threads::{both, filled};
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
@@ -97,56 +97,34 @@ pub struct Triangulation {
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
-    triangulate_with(points, cfg!(feature = "parallel"))
+    triangulate_with(points, cfg!(feature = "parallel"), None, Storage::default())
 }
 
-/// [`triangulate`], on one thread unless `parallel`; the result is the same either way.
-pub(crate) fn triangulate_with(points: &[Point], parallel: bool) -> Result<Triangulation, Error> {
-    triangulate_with_progress(points, parallel, None)
-}
-
-/// [`triangulate_with`], counting inserted points ([`Triangulation::triangulate_observed`]).
-pub(crate) fn triangulate_with_progress(
+/// [`triangulate`], on one thread unless `parallel` (the same result either way), adding the
+/// inserted points to `inserted` ([`Triangulation::triangulate_observed`]), built in `storage`'s
+/// arrays where they are large enough.
+pub(crate) fn triangulate_with(
     points: &[Point],
     parallel: bool,
     inserted: Option<&AtomicUsize>,
-) -> Result<Triangulation, Error> {
-    let parallel = parallel && crate::threads::parallel_available();
-    triangulate_split(points, parallel, halves::SPLIT_MIN, inserted)
-}
-
-/// [`triangulate_with`], built in `storage`'s arrays where they are large enough.
-pub(crate) fn triangulate_reusing(
-    points: &[Point],
-    parallel: bool,
     storage: Storage,
 ) -> Result<Triangulation, Error> {
     let parallel = parallel && crate::threads::parallel_available();
-    triangulate_in(points, parallel, halves::SPLIT_MIN, None, storage)
+    triangulate_in(points, parallel, halves::SPLIT_MIN, inserted, storage)
 }
 
 /// A triangulation's arrays no longer needed ([`Triangulation::into_storage`]), for the next
 /// triangulation of as many points (a smoothing pass's) to be built in. Reason: memory, see
-/// [`MeshStorage`]; the points and the two maps are per-point arrays like the mesh's.
+/// [`MeshArrays::reusing`]; the points and the two maps are per-point arrays like the mesh's.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Storage {
     points: Vec<Point>,
-    mesh: MeshStorage,
+    mesh: Mesh,
     input_of_vertex: Vec<u32>,
     vertex_of_input: Vec<VertexId>,
 }
 
-/// [`triangulate_with_progress`], cutting sets of `split_min` points and more in two.
-fn triangulate_split(
-    points: &[Point],
-    parallel: bool,
-    split_min: usize,
-    progress: Option<&AtomicUsize>,
-) -> Result<Triangulation, Error> {
-    triangulate_in(points, parallel, split_min, progress, Storage::default())
-}
-
-/// [`triangulate_split`] in `storage`'s arrays.
+/// [`triangulate_with`] cutting sets of `split_min` points and more in two, in `storage`'s arrays.
 fn triangulate_in(
     points: &[Point],
     parallel: bool,
@@ -154,12 +132,6 @@ fn triangulate_in(
     progress: Option<&AtomicUsize>,
     mut storage: Storage,
 ) -> Result<Triangulation, Error> {
-    if points.len() > MAX_POINTS {
-        return Err(Error::TooManyPoints {
-            count: points.len(),
-            limit: MAX_POINTS,
-        });
-    }
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
     let (order, mut sorted, built) =
@@ -478,12 +450,6 @@ impl Triangulation {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
-        if points.len() > MAX_POINTS {
-            return Err(Error::TooManyPoints {
-                count: points.len(),
-                limit: MAX_POINTS,
-            });
-        }
         let frames = scale::choose_frames(points)?;
         Ok(insertion_order(
             points,
@@ -519,7 +485,8 @@ impl Triangulation {
         points: &[Point],
         inserted: &AtomicUsize,
     ) -> Result<Triangulation, Error> {
-        triangulate_with_progress(points, cfg!(feature = "parallel"), Some(inserted))
+        let parallel = cfg!(feature = "parallel");
+        triangulate_with(points, parallel, Some(inserted), Storage::default())
     }
 
     /// The half-edge topology, in vertex ids.
@@ -551,7 +518,7 @@ impl Triangulation {
     pub(crate) fn into_storage(self) -> Storage {
         Storage {
             points: self.points,
-            mesh: self.mesh.into_storage(),
+            mesh: self.mesh,
             input_of_vertex: self.input_of_vertex,
             vertex_of_input: self.vertex_of_input,
         }
@@ -689,6 +656,16 @@ impl Triangulation {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`triangulate_in`] afresh.
+    pub(super) fn triangulate_split(
+        points: &[Point],
+        parallel: bool,
+        split_min: usize,
+        progress: Option<&AtomicUsize>,
+    ) -> Result<Triangulation, Error> {
+        triangulate_in(points, parallel, split_min, progress, Storage::default())
+    }
     use crate::test_rng::Xorshift;
     use alloc::vec;
 
@@ -910,7 +887,8 @@ mod tests {
             let expected = triangulate(points).unwrap();
             for parallel in [false, true] {
                 let inserted = AtomicUsize::new(0);
-                let tri = triangulate_with_progress(points, parallel, Some(&inserted)).unwrap();
+                let tri = triangulate_with(points, parallel, Some(&inserted), Storage::default())
+                    .unwrap();
                 assert_eq!(inserted.into_inner(), expected.num_vertices(), "{name}");
                 assert_same(&tri, &expected, name);
             }
@@ -975,7 +953,7 @@ mod tests {
             );
             // The real path: built in two halves, and nothing fell back to one piece.
             assert!(built_in_two(points).is_some(), "{name}");
-            let halves = triangulate_with(points, true).unwrap();
+            let halves = triangulate_with(points, true, None, Storage::default()).unwrap();
             let whole = triangulate_split(points, false, usize::MAX, None).unwrap();
             halves.validate().unwrap();
             whole.validate().unwrap();
@@ -998,7 +976,7 @@ mod tests {
             .iter()
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
-        halves::build::<Fast>(&sorted, left?, false, None, MeshStorage::default())
+        halves::build::<Fast>(&sorted, left?, false, None, Mesh::default())
     }
 
     /// Above the size where sealing, rescaling and the vertex maps take two threads, they give
@@ -1019,8 +997,8 @@ mod tests {
         // The parallel passes run: the set is past their threshold and cut in two.
         assert!(n >= PARALLEL_MIN && n >= halves::SPLIT_MIN);
         assert!(halves::cut(&points, halves::SPLIT_MIN, true).is_some());
-        let one = triangulate_with(&points, false).unwrap();
-        let two = triangulate_with(&points, true).unwrap();
+        let one = triangulate_with(&points, false, None, Storage::default()).unwrap();
+        let two = triangulate_with(&points, true, None, Storage::default()).unwrap();
         one.validate().unwrap();
         let mesh = one.mesh();
         assert_eq!(mesh.num_half_edges(), two.mesh().num_half_edges());
