@@ -1,5 +1,5 @@
 //! A run's stage history: the [`StageRecord`]s, the [`Undo`] deltas that keep each stage's input in
-//! a few bytes (memory) and the walk back ([`output_of`]). It may not run a stage or choose one.
+//! a few bytes (memory) and the walk back ([`History::output_of`]). It may not run a stage or choose one.
 
 use crate::adjacency::Edge;
 use crate::stages::Stage;
@@ -23,19 +23,30 @@ impl History {
         first: &dyn Fn() -> Vec<Edge>,
     ) -> Cow<'e, [Edge]> {
         match self.records.iter().position(|r| r.stage == stage) {
-            Some(k) if k > 0 => output_of(&self.records, current, k - 1, first),
+            Some(k) if k > 0 => self.output_of(current, k - 1, first),
             _ => Cow::Borrowed(current),
         }
     }
 
-    /// The output of the `k`-th stage, walked back from `last` (see [`output_of`]).
+    /// Stage `k`'s output, walked back from `last` (the last output); `first` serves
+    /// [`Undo::First`].
     pub(super) fn output_of<'e>(
         &'e self,
         last: &'e [Edge],
         k: usize,
         first: &dyn Fn() -> Vec<Edge>,
     ) -> Cow<'e, [Edge]> {
-        output_of(&self.records, last, k, first)
+        let records = &self.records;
+        // The next stage's input is the first graph itself: nothing to walk back through.
+        if matches!(records.get(k + 1).map(|r| &r.undo), Some(Undo::First)) {
+            return Cow::Owned(first());
+        }
+        records[k + 1..]
+            .iter()
+            .rev()
+            .fold(Cow::Borrowed(last), |output, record| {
+                record.undo.input(output, first)
+            })
     }
 }
 
@@ -129,23 +140,4 @@ impl Undo {
             }
         }
     }
-}
-
-/// Stage `k`'s output, walked back from `last` (the last output); `first` serves [`Undo::First`].
-pub(super) fn output_of<'e>(
-    records: &'e [StageRecord],
-    last: &'e [Edge],
-    k: usize,
-    first: &dyn Fn() -> Vec<Edge>,
-) -> Cow<'e, [Edge]> {
-    // The next stage's input is the first graph itself: nothing to walk back through.
-    if matches!(records.get(k + 1).map(|r| &r.undo), Some(Undo::First)) {
-        return Cow::Owned(first());
-    }
-    records[k + 1..]
-        .iter()
-        .rev()
-        .fold(Cow::Borrowed(last), |output, record| {
-            record.undo.input(output, first)
-        })
 }
