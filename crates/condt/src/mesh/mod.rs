@@ -11,6 +11,7 @@ mod check;
 mod ids;
 
 pub(crate) use build::{MeshArrays, MeshBuilder};
+pub(crate) use check::fail;
 pub use check::{Element, Rule, Violation};
 pub(crate) use ids::wrap3;
 pub use ids::{HalfEdgeId, TriangleId, VertexId};

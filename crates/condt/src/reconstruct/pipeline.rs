@@ -14,7 +14,7 @@ use crate::graph::Graph;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
-use crate::triangulate::{triangulate_with, Storage, Triangulation};
+use crate::triangulate::{splitmix64_finalizer, triangulate_with, Storage, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::sync::atomic::AtomicUsize;
@@ -651,13 +651,6 @@ impl EdgesFingerprint {
             hashes,
         }
     }
-}
-
-/// The output function of SplitMix64 (Steele, Lea and Flood 2014), a bijection of `u64`.
-fn splitmix64_finalizer(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
 }
 
 /// The 64-bit finalizer of MurmurHash3 (Appleby), a bijection of `u64`.

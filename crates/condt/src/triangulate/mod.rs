@@ -26,6 +26,7 @@ use crate::threads::{both, filled};
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
+pub(crate) use order::mix as splitmix64_finalizer;
 
 /// The largest number of input points: half of what `u32` half-edge ids allow; beyond it
 /// [`triangulate`] returns [`Error::TooManyPoints`] before allocating (`docs/triangulation.md`).
