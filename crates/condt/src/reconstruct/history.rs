@@ -1,7 +1,9 @@
 //! A run's stage history: the [`StageRecord`]s, the [`Undo`] deltas that keep each stage's input in
 //! a few bytes (memory) and the walk back ([`History::output_of`]). It may not run a stage or choose one.
 
+use super::result::StageReport;
 use crate::adjacency::Edge;
+use crate::graph::Graph;
 use crate::stages::Stage;
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -55,6 +57,18 @@ pub(super) struct StageRecord {
     pub(super) stage: Stage,
     pub(super) undo: Undo,
     pub(super) time: Duration,
+}
+
+impl StageRecord {
+    /// The report of the `k`-th stage of a run, `graph` the graph it left.
+    pub(super) fn report<'r>(&self, k: usize, graph: Graph<'r>) -> StageReport<'r> {
+        StageReport {
+            stage: self.stage,
+            graph,
+            applied: k == 0 || !matches!(self.undo, Undo::Unchanged),
+            time: self.time,
+        }
+    }
 }
 
 /// How a stage's input is recovered from its output. Reason: memory (a stage changes a few edges

@@ -331,13 +331,8 @@ impl Pipeline {
     fn report(&self, k: usize) -> StageReport<'_> {
         match &self.state {
             State::Stages(run) => {
-                let record = &run.history.records[k];
-                StageReport {
-                    stage: record.stage,
-                    graph: Graph::new(&run.tri, Cow::Borrowed(&run.current)),
-                    applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
-                    time: record.time,
-                }
+                let graph = Graph::new(&run.tri, Cow::Borrowed(&run.current));
+                run.history.records[k].report(k, graph)
             }
             State::Smooth(result) | State::Done(result) => result.report(k),
             State::Failed(_) | State::Moving => unreachable!("a stage that ran leaves a state"),
