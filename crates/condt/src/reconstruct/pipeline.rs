@@ -14,7 +14,7 @@ use crate::graph::Graph;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
-use crate::triangulate::{splitmix64_finalizer, triangulate_with, Storage, Triangulation};
+use crate::triangulate::{splitmix64_finalizer, triangulate_with, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::sync::atomic::AtomicUsize;
@@ -187,7 +187,7 @@ impl Pipeline {
         // On the stages' worker: their allocations reuse what it freed (`on_worker`).
         let in_parallel = params.parallel && points.len() >= PARALLEL_FROM;
         let tri = on_worker(in_parallel, || {
-            triangulate_with(&points, params.parallel, inserted, Storage::default())
+            triangulate_with(&points, params.parallel, inserted, None)
         })?;
         let triangulation_time = clock.lap();
         drop(points);
@@ -382,7 +382,6 @@ impl Pipeline {
         let smoothed = smoothed_positions(&triangulation, &final_edges);
         let merged_before = triangulation.num_points() - triangulation.num_vertices();
         drop(final_edges);
-        let storage = triangulation.into_storage();
         let moved = smoothed.moved;
         // The replaced run's triangulation is an earlier pass's cost too.
         self.earlier_passes += triangulation_time;
@@ -390,9 +389,9 @@ impl Pipeline {
         // Relative to the corner, so an exact translation gives the same result, unless that merges
         // distinct points (making the result depend on input order): then in the caller's frame.
         let parallel = self.params.parallel;
-        let relative = triangulate_with(&smoothed.positions, parallel, None, storage)?;
+        let relative = triangulate_with(&smoothed.positions, parallel, None, Some(triangulation))?;
         let tri = if relative.num_points() - relative.num_vertices() > merged_before {
-            triangulate_with(&smoothed.absolute, parallel, None, relative.into_storage())?
+            triangulate_with(&smoothed.absolute, parallel, None, Some(relative))?
         } else {
             relative.with_offset(smoothed.corner)
         };

@@ -1,7 +1,7 @@
 //! Delaunay triangulation of a planar point set.
 //!
 //! Owns: building a [`Triangulation`] ([`Mesh`], points, input/vertex maps), possibly in a spent
-//! one's arrays ([`Storage`]), and checking one. It decides signs only by [`crate::predicates`],
+//! one's arrays ([`triangulate_with`]), and checking one. It decides signs only by [`crate::predicates`],
 //! writes topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
 //! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
@@ -98,45 +98,42 @@ pub struct Triangulation {
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
-    triangulate_with(points, cfg!(feature = "parallel"), None, Storage::default())
+    triangulate_with(points, cfg!(feature = "parallel"), None, None)
 }
 
 /// [`triangulate`], on one thread unless `parallel` (the same result either way), adding the
-/// inserted points to `inserted` ([`Triangulation::triangulate_observed`]), built in `storage`'s
-/// arrays where they are large enough.
+/// inserted points to `inserted` ([`Triangulation::triangulate_observed`]), built in the arrays of
+/// `spent`, a triangulation no longer needed (a smoothing pass's, of as many points), where they
+/// are large enough. Reason: memory, see [`MeshArrays::reusing`]; the points and the two maps are
+/// per-point arrays like the mesh's.
 pub(crate) fn triangulate_with(
     points: &[Point],
     parallel: bool,
     inserted: Option<&AtomicUsize>,
-    storage: Storage,
+    spent: Option<Triangulation>,
 ) -> Result<Triangulation, Error> {
     let parallel = parallel && crate::threads::parallel_available();
-    triangulate_in(points, parallel, halves::SPLIT_MIN, inserted, storage)
+    triangulate_in(points, parallel, halves::SPLIT_MIN, inserted, spent)
 }
 
-/// A triangulation's arrays no longer needed ([`Triangulation::into_storage`]), for the next
-/// triangulation of as many points (a smoothing pass's) to be built in. Reason: memory, see
-/// [`MeshArrays::reusing`]; the points and the two maps are per-point arrays like the mesh's.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Storage {
-    points: Vec<Point>,
-    mesh: Mesh,
-    input_of_vertex: Vec<u32>,
-    vertex_of_input: Vec<VertexId>,
-}
-
-/// [`triangulate_with`] cutting sets of `split_min` points and more in two, in `storage`'s arrays.
+/// [`triangulate_with`] cutting sets of `split_min` points and more in two.
 fn triangulate_in(
     points: &[Point],
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
-    mut storage: Storage,
+    spent: Option<Triangulation>,
 ) -> Result<Triangulation, Error> {
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
+    // The spent arrays; the rest of it is freed here.
+    let (spare_order, spare_points, spare_mesh, spare_map) = match spent {
+        Some(t) => (t.input_of_vertex, t.points, t.mesh, t.vertex_of_input),
+        None => Default::default(),
+    };
+    let spare = (spare_order, spare_points, spare_mesh);
     let (order, mut sorted, built) =
-        construct(points, &frames, parallel, split_min, progress, &mut storage);
+        construct(points, &frames, parallel, split_min, progress, spare);
     let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
@@ -182,8 +179,7 @@ fn triangulate_in(
             || rescale(high),
         );
     }
-    let (input_of_vertex, vertex_of_input) =
-        vertex_maps(order, &merged, parallel, storage.vertex_of_input);
+    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel, spare_map);
     let num_vertices = vertex_of_input.len() - merged.len();
     Ok(Triangulation {
         points: sorted,
@@ -200,7 +196,8 @@ fn triangulate_in(
 }
 
 /// The insertion order (input positions), its points in the predicates' frame, and their mesh
-/// with the `(duplicate, kept)` pairs merged (`None` when the points make no triangle).
+/// with the `(duplicate, kept)` pairs merged (`None` when the points make no triangle), in the
+/// `spare` arrays for these three if large enough.
 #[allow(clippy::type_complexity)]
 fn construct(
     points: &[Point],
@@ -208,17 +205,13 @@ fn construct(
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
-    storage: &mut Storage,
+    (spare_order, spare_points, mesh): (Vec<u32>, Vec<Point>, Mesh),
 ) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
     let Some(cut) = halves::cut(points, split_min, parallel) else {
         return construct_whole(points, frames, progress);
     };
-    let buffers = (
-        core::mem::take(&mut storage.input_of_vertex),
-        core::mem::take(&mut storage.points),
-    );
+    let buffers = (spare_order, spare_points);
     let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
-    let mesh = core::mem::take(&mut storage.mesh);
     let built = if frames.wide {
         halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
     } else {
@@ -487,7 +480,7 @@ impl Triangulation {
         inserted: &AtomicUsize,
     ) -> Result<Triangulation, Error> {
         let parallel = cfg!(feature = "parallel");
-        triangulate_with(points, parallel, Some(inserted), Storage::default())
+        triangulate_with(points, parallel, Some(inserted), None)
     }
 
     /// The half-edge topology, in vertex ids.
@@ -513,15 +506,6 @@ impl Triangulation {
         match self.offset {
             Some(offset) => Point::new(p.x + offset.x, p.y + offset.y),
             None => p,
-        }
-    }
-    /// Its arrays, for the next triangulation to be built in ([`Storage`]).
-    pub(crate) fn into_storage(self) -> Storage {
-        Storage {
-            points: self.points,
-            mesh: self.mesh,
-            input_of_vertex: self.input_of_vertex,
-            vertex_of_input: self.vertex_of_input,
         }
     }
     /// This triangulation, its points given relative to `offset` (see the `offset` field).
@@ -665,7 +649,7 @@ mod tests {
         split_min: usize,
         progress: Option<&AtomicUsize>,
     ) -> Result<Triangulation, Error> {
-        triangulate_in(points, parallel, split_min, progress, Storage::default())
+        triangulate_in(points, parallel, split_min, progress, None)
     }
     use crate::test_rng::Xorshift;
     use alloc::vec;
@@ -816,7 +800,7 @@ mod tests {
         }
     }
 
-    /// A triangulation built in the arrays of another ([`Storage`], as the smoothing passes do)
+    /// A triangulation built in the arrays of another (as the smoothing passes do)
     /// is the one built afresh, whether those arrays are larger, smaller or of a set as large,
     /// on the cut and the one-piece paths, with duplicates.
     #[test]
@@ -831,10 +815,10 @@ mod tests {
             for split_min in [0, usize::MAX] {
                 let expected = triangulate_split(points, false, split_min, None).unwrap();
                 for other in [rng.unit_points(5000), rng.unit_points(50), points.clone()] {
-                    let storage = triangulate(&other).unwrap().into_storage();
+                    let spent = triangulate(&other).unwrap();
                     for parallel in [false, true] {
                         let tri =
-                            triangulate_in(points, parallel, split_min, None, storage.clone());
+                            triangulate_in(points, parallel, split_min, None, Some(spent.clone()));
                         let tri = tri.unwrap();
                         assert_same(&tri, &expected, "reused");
                         assert_eq!(tri.vertex_points(), expected.vertex_points());
@@ -888,8 +872,7 @@ mod tests {
             let expected = triangulate(points).unwrap();
             for parallel in [false, true] {
                 let inserted = AtomicUsize::new(0);
-                let tri = triangulate_with(points, parallel, Some(&inserted), Storage::default())
-                    .unwrap();
+                let tri = triangulate_with(points, parallel, Some(&inserted), None).unwrap();
                 assert_eq!(inserted.into_inner(), expected.num_vertices(), "{name}");
                 assert_same(&tri, &expected, name);
             }
@@ -954,7 +937,7 @@ mod tests {
             );
             // The real path: built in two halves, and nothing fell back to one piece.
             assert!(built_in_two(points).is_some(), "{name}");
-            let halves = triangulate_with(points, true, None, Storage::default()).unwrap();
+            let halves = triangulate_with(points, true, None, None).unwrap();
             let whole = triangulate_split(points, false, usize::MAX, None).unwrap();
             halves.validate().unwrap();
             whole.validate().unwrap();
@@ -998,8 +981,8 @@ mod tests {
         // The parallel passes run: the set is past their threshold and cut in two.
         assert!(n >= PARALLEL_MIN && n >= halves::SPLIT_MIN);
         assert!(halves::cut(&points, halves::SPLIT_MIN, true).is_some());
-        let one = triangulate_with(&points, false, None, Storage::default()).unwrap();
-        let two = triangulate_with(&points, true, None, Storage::default()).unwrap();
+        let one = triangulate_with(&points, false, None, None).unwrap();
+        let two = triangulate_with(&points, true, None, None).unwrap();
         one.validate().unwrap();
         let mesh = one.mesh();
         assert_eq!(mesh.num_half_edges(), two.mesh().num_half_edges());
