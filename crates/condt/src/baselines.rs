@@ -6,7 +6,7 @@
 
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
-use crate::geometry::Point;
+use crate::geometry::{lower_left, Point};
 use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::triangulate::{triangulate, Triangulation};
@@ -67,7 +67,7 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
             tri.mesh()
                 .neighbors(v)
                 .filter(|&w| tri.is_vertex(w))
-                .map(|w| (squared_distance(p, tri.vertex_point(w)), w))
+                .map(|w| (p.dist2(tri.vertex_point(w)), w))
         };
         let Some((_, nearest)) = neighbours().min_by(closer) else {
             continue;
@@ -95,24 +95,14 @@ pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
     // corner of the samples' box: an exact translation leaves these differences as they were, so
     // the edges do not depend on where the set lies (issue 29, defect 8).
     let samples: Vec<VertexId> = tri.vertices().collect();
-    let corner = samples
-        .iter()
-        .map(|&v| tri.vertex_point(v))
-        .fold(None, |corner: Option<Point>, p| {
-            Some(corner.map_or(p, |c| Point::new(c.x.min(p.x), c.y.min(p.y))))
-        })
-        .unwrap_or_default();
+    let corner = lower_left(samples.iter().map(|&v| tri.vertex_point(v))).unwrap_or_default();
     let relative = |v: VertexId| difference(tri.vertex_point(v), corner);
     let mut points: Vec<Point> = samples.iter().map(|&v| relative(v)).collect();
     let mesh = tri.mesh();
-    points.extend(
-        mesh.triangles()
-            .filter(|&t| !mesh.is_ghost(t))
-            .filter_map(|t| {
-                let [a, b, c] = mesh.triangle_vertices(t).map(relative);
-                circumcentre(a, b, c)
-            }),
-    );
+    points.extend(mesh.triangles().filter_map(|t| {
+        let [a, b, c] = mesh.triangle_vertices(t).map(relative);
+        circumcentre(a, b, c)
+    }));
     let with_centres = triangulate(&points)?;
     let num_samples = samples.len();
     let mut edges: Vec<Edge> = with_centres
@@ -127,12 +117,7 @@ pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
 
 /// `Ok` when [`crust_edges`] can triangulate the points with their circumcentres, else its error.
 pub(crate) fn crust_fits(tri: &Triangulation) -> Result<(), Error> {
-    let count = tri.num_vertices()
-        + tri
-            .mesh()
-            .triangles()
-            .filter(|&t| !tri.mesh().is_ghost(t))
-            .count();
+    let count = tri.num_vertices() + tri.mesh().triangles().count();
     if count > crate::MAX_POINTS {
         return Err(Error::TooManyPoints {
             count,
@@ -152,11 +137,6 @@ fn difference(a: Point, b: Point) -> Point {
 
 fn dot(a: Point, b: Point) -> f64 {
     a.x * b.x + a.y * b.y
-}
-
-fn squared_distance(a: Point, b: Point) -> f64 {
-    let d = difference(a, b);
-    dot(d, d)
 }
 
 /// The circumcentre of a triangle, relative to its first corner; `None` when not finite (a sliver

@@ -68,6 +68,11 @@ impl Point {
     }
 }
 
+/// The lower left corner of the bounding box of `points`, `None` for no point.
+pub(crate) fn lower_left(points: impl Iterator<Item = Point>) -> Option<Point> {
+    points.reduce(|c, p| Point::new(c.x.min(p.x), c.y.min(p.y)))
+}
+
 impl From<[f64; 2]> for Point {
     #[inline]
     fn from([x, y]: [f64; 2]) -> Self {

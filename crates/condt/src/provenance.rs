@@ -3,12 +3,12 @@
 //! demand, so the pipeline pays nothing. It may not change a reconstruction and implements no
 //! rule: it formats each stage's own evidence; its tests check each against the stages.
 
-use crate::adjacency::Edge;
+use crate::adjacency::{CurveGraph, Edge};
 use crate::reconstruct::Reconstruction;
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
 use crate::stages::outliers::{iqr_thresholds, IqrRule};
 use crate::stages::proximity::end_choice;
-use crate::stages::{Stage, Uniformity};
+use crate::stages::Stage;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -112,22 +112,23 @@ impl Reconstruction {
     pub fn provenance(&self) -> Vec<EdgeStory> {
         let tri = self.triangulation();
         let reports: Vec<_> = self.stages().collect();
-        let mut all: Vec<[usize; 2]> = tri.edges().map(|[a, b]| [a.min(b), a.max(b)]).collect();
-        for report in &reports {
-            all.extend(report.graph.edges());
-        }
+        let graphs: Vec<Vec<[usize; 2]>> = reports.iter().map(|r| r.graph.edges()).collect();
+        let mut all: Vec<[usize; 2]> = tri
+            .edges()
+            .chain(graphs.iter().flatten().copied())
+            .collect();
         all.sort_unstable();
         all.dedup();
-        let graphs: Vec<Vec<[usize; 2]>> = reports.iter().map(|r| r.graph.edges()).collect();
-        let rings = Rings::new(tri, self.params().uniformity);
+        // Algorithm 1's view of every ring, as the stage gives it ([`end_choice`]).
+        let uniformity = self.params().uniformity;
+        let choice = |at: usize, other: usize| {
+            end_choice(tri, tri.vertex(at), tri.vertex(other), uniformity)
+        };
         let mut stories: Vec<EdgeStory> = all
             .iter()
             .map(|&edge| EdgeStory {
                 edge,
-                ends: [
-                    rings.choice(edge[0], edge[1]),
-                    rings.choice(edge[1], edge[0]),
-                ],
+                ends: [choice(edge[0], edge[1]), choice(edge[1], edge[0])],
                 changes: Vec::new(),
                 kept: false,
             })
@@ -150,11 +151,13 @@ impl Reconstruction {
                 Some(i) if i > 0 && i < k => reports[i - 1].graph.listed(),
                 _ => reports[k - 1].graph.listed(),
             };
-            let inputs = StageInputs {
-                graph: reports[k - 1].graph.listed(),
+            let explain = Explainer::new(
+                tri,
+                [&reports[k - 1], &reports[k]].map(|r| r.graph.listed()),
                 before_outliers,
-            };
-            let explain = Explainer::new(tri, reports[k].stage, inputs, before, after, self);
+                (reports[k].stage, before),
+                self,
+            );
             for (story, &edge) in stories.iter_mut().zip(&all) {
                 let was = before.binary_search(&edge).is_ok();
                 let is = after.binary_search(&edge).is_ok();
@@ -175,37 +178,14 @@ impl Reconstruction {
     }
 }
 
-/// Algorithm 1's view of every ring, as the stage gives it ([`end_choice`]).
-struct Rings<'t> {
-    tri: &'t Triangulation,
-    uniformity: Uniformity,
-}
-
-impl<'t> Rings<'t> {
-    fn new(tri: &'t Triangulation, uniformity: Uniformity) -> Self {
-        Rings { tri, uniformity }
-    }
-
-    /// How input position `at` saw its edge to input position `other`.
-    fn choice(&self, at: usize, other: usize) -> EndChoice {
-        let (v, w) = (self.tri.vertex(at), self.tri.vertex(other));
-        end_choice(self.tri, v, w, self.uniformity)
-    }
-}
-
-/// The graphs a stage read, in vertex ids: its input and (for local outliers) the IQR stage's.
-struct StageInputs<'g> {
-    graph: &'g [Edge],
-    before_outliers: &'g [Edge],
-}
-
 /// The numbers one stage's reasons need, computed once per stage by the stage's own code.
 struct Explainer<'a> {
     tri: &'a Triangulation,
     stage: Stage,
     degrees_before: Vec<usize>,
-    /// Neighbours in the repair's output (its reason names the edges kept), for O(degree) reasons.
-    after: Neighbours,
+    /// The output of the repair (its reason names the edges kept) or of the crossings (theirs
+    /// names the point that gained arms), for O(degree) reasons.
+    after: Option<CurveGraph>,
     /// The IQR rule's cut threshold in input units, and whether it is the spacing floor.
     threshold: (f64, bool),
     /// For local outliers: the rule behind each edge it changed, by edge in input positions.
@@ -213,12 +193,13 @@ struct Explainer<'a> {
 }
 
 impl<'a> Explainer<'a> {
+    /// `[input, output]` of `stage` in vertex ids, `before` its input in input positions, and
+    /// `before_outliers` the IQR stage's input (the local outlier removal reads it).
     fn new(
         tri: &'a Triangulation,
-        stage: Stage,
-        inputs: StageInputs<'_>,
-        before: &'a [[usize; 2]],
-        after: &'a [[usize; 2]],
+        [input, output]: [&[Edge]; 2],
+        before_outliers: &[Edge],
+        (stage, before): (Stage, &[[usize; 2]]),
         result: &Reconstruction,
     ) -> Self {
         let n = tri.num_points();
@@ -244,7 +225,7 @@ impl<'a> Explainer<'a> {
             _ => (0.0, false),
         };
         let mut local: Vec<([usize; 2], LocalRule)> = if stage == Stage::LocalOutliers {
-            rule_evidence(tri, inputs.graph, inputs.before_outliers)
+            rule_evidence(tri, input, before_outliers)
                 .into_iter()
                 .map(|([v, w], rule)| {
                     let (a, b) = (tri.input_of(v), tri.input_of(w));
@@ -255,16 +236,12 @@ impl<'a> Explainer<'a> {
             Vec::new()
         };
         local.sort_unstable_by_key(|&(edge, _)| edge);
-        let after = if matches!(stage, Stage::Repair | Stage::Crossings) {
-            Neighbours::new(n, after)
-        } else {
-            Neighbours::empty()
-        };
         Explainer {
             tri,
             stage,
             degrees_before,
-            after,
+            after: matches!(stage, Stage::Repair | Stage::Crossings)
+                .then(|| CurveGraph::new(n, output)),
             threshold,
             local,
         }
@@ -279,7 +256,7 @@ impl<'a> Explainer<'a> {
             (Stage::Crossings, _) => {
                 // The crossing is the point that gained arms: an added edge's end, or the removed
                 // chord's common neighbour after the stage.
-                let gained = |v: usize| self.after.of(v).len() > self.degrees_before[v];
+                let gained = |v: usize| self.after_of(v).len() > self.degrees_before[v];
                 let vertex = if added {
                     if gained(a) {
                         a
@@ -287,8 +264,8 @@ impl<'a> Explainer<'a> {
                         b
                     }
                 } else {
-                    let shared = |&&w: &&usize| self.after.of(b).contains(&w) && gained(w);
-                    self.after.of(a).iter().find(shared).copied().unwrap_or(a)
+                    let shared = |w: &usize| self.after_of(b).contains(w) && gained(*w);
+                    self.after_of(a).into_iter().find(shared).unwrap_or(a)
                 };
                 Reason::Crossing { vertex }
             }
@@ -321,56 +298,29 @@ impl<'a> Explainer<'a> {
                 } else {
                     b
                 };
-                let mut kept = self.after.of(vertex).iter().map(|&w| Some(w));
+                // The two smallest input positions it kept edges to.
+                let mut kept = self.after_of(vertex);
+                kept.sort_unstable();
                 Reason::Repair {
                     vertex,
                     degree: self.degrees_before[vertex],
-                    kept: [kept.next().flatten(), kept.next().flatten()],
+                    kept: [kept.first().copied(), kept.get(1).copied()],
                 }
             }
         }
     }
 }
 
-/// The neighbours of every point in an edge list, compressed (offsets into one array).
-struct Neighbours {
-    start: Vec<usize>,
-    list: Vec<usize>,
-}
-
-impl Neighbours {
-    fn new(n: usize, edges: &[[usize; 2]]) -> Self {
-        let mut start = vec![0usize; n + 1];
-        for &[a, b] in edges {
-            start[a + 1] += 1;
-            start[b + 1] += 1;
-        }
-        for i in 0..n {
-            start[i + 1] += start[i];
-        }
-        let mut fill = start.clone();
-        let mut list = vec![0usize; 2 * edges.len()];
-        for &[a, b] in edges {
-            list[fill[a]] = b;
-            fill[a] += 1;
-            list[fill[b]] = a;
-            fill[b] += 1;
-        }
-        Neighbours { start, list }
-    }
-
-    fn empty() -> Self {
-        Neighbours {
-            start: Vec::new(),
-            list: Vec::new(),
-        }
-    }
-
-    fn of(&self, i: usize) -> &[usize] {
-        match (self.start.get(i), self.start.get(i + 1)) {
-            (Some(&from), Some(&to)) => &self.list[from..to],
-            _ => &[],
-        }
+impl Explainer<'_> {
+    /// The input positions the stage's output joins to `vertex` (an input position); none when
+    /// the stage's output is not kept ([`Explainer::after`]).
+    fn after_of(&self, vertex: usize) -> Vec<usize> {
+        let Some(after) = &self.after else {
+            return Vec::new();
+        };
+        let v = self.tri.vertex(vertex);
+        let ends = (0..after.degree(v)).map(|k| after.neighbor(v, k));
+        ends.map(|w| self.tri.input_of(w)).collect()
     }
 }
 
@@ -465,6 +415,7 @@ mod tests {
     use super::*;
     use crate::reconstruct::{reconstruct, Params};
     use crate::sample::{sample, Clumps, Sampling, Shape};
+    use crate::stages::Uniformity;
     use crate::Point;
     use alloc::format;
     use alloc::string::{String, ToString};

@@ -12,7 +12,7 @@
 //! passes*.
 
 use crate::adjacency::{CurveGraph, Edge};
-use crate::geometry::Point;
+use crate::geometry::{lower_left, Point};
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
@@ -65,12 +65,7 @@ pub(crate) struct Smoothed {
 pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothed {
     let n = tri.num_points();
     let graph = CurveGraph::new(n, edges);
-    let corner = tri
-        .vertex_points()
-        .iter()
-        .fold(Point::new(f64::INFINITY, f64::INFINITY), |c, p| {
-            Point::new(c.x.min(p.x), c.y.min(p.y))
-        });
+    let corner = lower_left(tri.vertex_points().iter().copied()).unwrap_or_default();
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);

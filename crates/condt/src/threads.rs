@@ -26,6 +26,16 @@ pub(crate) fn filled<T: Copy + Send + Sync>(
     buffer
 }
 
+/// How many threads work at once: rayon's when `parallel`, else one.
+pub(crate) fn workers(parallel: bool) -> usize {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        return rayon::current_num_threads();
+    }
+    let _ = parallel;
+    1
+}
+
 /// `(a(), b())`, at once on rayon's threads when `parallel`.
 #[cfg(feature = "parallel")]
 pub(crate) fn both<A: Send, B: Send>(

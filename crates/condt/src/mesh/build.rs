@@ -1,7 +1,7 @@
 //! Construction of a [`Mesh`]: the one place outside `mesh/mod.rs` that writes its arrays.
 //!
 //! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once, in the arrays
-//! of a finished mesh given back as [`MeshStorage`] when there is one); a
+//! of a finished mesh given back when there is one, [`MeshArrays::reusing`]); a
 //! [`MeshBuilder`] lent a range offers the triangulator exactly its edits and reads, and two may
 //! fill disjoint ranges at once (the halves of [`crate::triangulate()`]). [`MeshArrays::seal`]
 //! derives `vertex_edges` and ends it. It may not look at a coordinate or decide a sign, and checks
@@ -20,25 +20,18 @@ pub(crate) struct MeshArrays {
     vertex_edges: Vec<HalfEdgeId>,
 }
 
-/// The arrays of a mesh no longer needed ([`Mesh::into_storage`]), for the next one to fill.
-/// Reason: memory; a smoothing pass builds a mesh as large as the one it replaces, and glibc's
-/// malloc keeps a freed block of its size (once its mmap threshold rose) out of the system's reach.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct MeshStorage {
-    pub(super) origins: Vec<VertexId>,
-    pub(super) twins: Vec<HalfEdgeId>,
-    pub(super) vertex_edges: Vec<HalfEdgeId>,
-}
-
 impl MeshArrays {
     /// Room for `half_edges` half-edges (a multiple of three), filled on rayon's threads when
     /// `parallel`: the first touch of each page is most of the cost.
     pub(crate) fn new(half_edges: usize, parallel: bool) -> Self {
-        MeshArrays::reusing(MeshStorage::default(), half_edges, parallel)
+        MeshArrays::reusing(Mesh::default(), half_edges, parallel)
     }
 
-    /// [`MeshArrays::new`] in `storage`'s buffers where they are large enough.
-    pub(crate) fn reusing(storage: MeshStorage, half_edges: usize, parallel: bool) -> Self {
+    /// [`MeshArrays::new`] in the arrays of `storage`, a mesh no longer needed, where they are
+    /// large enough. Reason: memory; a smoothing pass builds a mesh as large as the one it
+    /// replaces, and glibc's malloc keeps a freed block of its size (once its mmap threshold rose)
+    /// out of the system's reach.
+    pub(crate) fn reusing(storage: Mesh, half_edges: usize, parallel: bool) -> Self {
         MeshArrays {
             origins: filled(storage.origins, VertexId::INFINITE, half_edges, parallel),
             twins: filled(storage.twins, HalfEdgeId::NONE, half_edges, parallel),

@@ -169,7 +169,8 @@ impl fmt::Display for Element {
     }
 }
 
-fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
+/// `rule` broken at `element`, as an error.
+pub(crate) fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
     Err(Violation { rule, element })
 }
 

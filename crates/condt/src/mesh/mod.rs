@@ -10,7 +10,8 @@ mod build;
 mod check;
 mod ids;
 
-pub(crate) use build::{MeshArrays, MeshBuilder, MeshStorage};
+pub(crate) use build::{MeshArrays, MeshBuilder};
+pub(crate) use check::fail;
 pub use check::{Element, Rule, Violation};
 pub(crate) use ids::wrap3;
 pub use ids::{HalfEdgeId, TriangleId, VertexId};
@@ -178,15 +179,6 @@ impl Mesh {
             .map(HalfEdgeId::new)
             .find(|&e| self.origin(e.prev()).is_infinite())
             .unwrap_or(HalfEdgeId::NONE)
-    }
-
-    /// Its arrays, for the next mesh to be built in ([`MeshStorage`]).
-    pub(crate) fn into_storage(self) -> MeshStorage {
-        MeshStorage {
-            origins: self.origins,
-            twins: self.twins,
-            vertex_edges: self.vertex_edges,
-        }
     }
 
     /// Fills `vertex_edges`: one pass records the last edge leaving each vertex, then a walk along

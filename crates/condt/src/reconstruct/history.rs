@@ -1,7 +1,9 @@
 //! A run's stage history: the [`StageRecord`]s, the [`Undo`] deltas that keep each stage's input in
-//! a few bytes (memory) and the walk back ([`output_of`]). It may not run a stage or choose one.
+//! a few bytes (memory) and the walk back ([`History::output_of`]). It may not run a stage or choose one.
 
+use super::result::StageReport;
 use crate::adjacency::Edge;
+use crate::graph::Graph;
 use crate::stages::Stage;
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -23,19 +25,30 @@ impl History {
         first: &dyn Fn() -> Vec<Edge>,
     ) -> Cow<'e, [Edge]> {
         match self.records.iter().position(|r| r.stage == stage) {
-            Some(k) if k > 0 => output_of(&self.records, current, k - 1, first),
+            Some(k) if k > 0 => self.output_of(current, k - 1, first),
             _ => Cow::Borrowed(current),
         }
     }
 
-    /// The output of the `k`-th stage, walked back from `last` (see [`output_of`]).
+    /// Stage `k`'s output, walked back from `last` (the last output); `first` serves
+    /// [`Undo::First`].
     pub(super) fn output_of<'e>(
         &'e self,
         last: &'e [Edge],
         k: usize,
         first: &dyn Fn() -> Vec<Edge>,
     ) -> Cow<'e, [Edge]> {
-        output_of(&self.records, last, k, first)
+        let records = &self.records;
+        // The next stage's input is the first graph itself: nothing to walk back through.
+        if matches!(records.get(k + 1).map(|r| &r.undo), Some(Undo::First)) {
+            return Cow::Owned(first());
+        }
+        records[k + 1..]
+            .iter()
+            .rev()
+            .fold(Cow::Borrowed(last), |output, record| {
+                record.undo.input(output, first)
+            })
     }
 }
 
@@ -44,6 +57,18 @@ pub(super) struct StageRecord {
     pub(super) stage: Stage,
     pub(super) undo: Undo,
     pub(super) time: Duration,
+}
+
+impl StageRecord {
+    /// The report of the `k`-th stage of a run, `graph` the graph it left.
+    pub(super) fn report<'r>(&self, k: usize, graph: Graph<'r>) -> StageReport<'r> {
+        StageReport {
+            stage: self.stage,
+            graph,
+            applied: k == 0 || !matches!(self.undo, Undo::Unchanged),
+            time: self.time,
+        }
+    }
 }
 
 /// How a stage's input is recovered from its output. Reason: memory (a stage changes a few edges
@@ -129,23 +154,4 @@ impl Undo {
             }
         }
     }
-}
-
-/// Stage `k`'s output, walked back from `last` (the last output); `first` serves [`Undo::First`].
-pub(super) fn output_of<'e>(
-    records: &'e [StageRecord],
-    last: &'e [Edge],
-    k: usize,
-    first: &dyn Fn() -> Vec<Edge>,
-) -> Cow<'e, [Edge]> {
-    // The next stage's input is the first graph itself: nothing to walk back through.
-    if matches!(records.get(k + 1).map(|r| &r.undo), Some(Undo::First)) {
-        return Cow::Owned(first());
-    }
-    records[k + 1..]
-        .iter()
-        .rev()
-        .fold(Cow::Borrowed(last), |output, record| {
-            record.undo.input(output, first)
-        })
 }

@@ -14,7 +14,7 @@ use crate::graph::Graph;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
-use crate::triangulate::{triangulate_reusing, triangulate_with_progress, Triangulation};
+use crate::triangulate::{splitmix64_finalizer, triangulate_with, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::sync::atomic::AtomicUsize;
@@ -187,7 +187,7 @@ impl Pipeline {
         // On the stages' worker: their allocations reuse what it freed (`on_worker`).
         let in_parallel = params.parallel && points.len() >= PARALLEL_FROM;
         let tri = on_worker(in_parallel, || {
-            triangulate_with_progress(&points, params.parallel, inserted)
+            triangulate_with(&points, params.parallel, inserted, None)
         })?;
         let triangulation_time = clock.lap();
         drop(points);
@@ -331,13 +331,8 @@ impl Pipeline {
     fn report(&self, k: usize) -> StageReport<'_> {
         match &self.state {
             State::Stages(run) => {
-                let record = &run.history.records[k];
-                StageReport {
-                    stage: record.stage,
-                    graph: Graph::new(&run.tri, Cow::Borrowed(&run.current)),
-                    applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
-                    time: record.time,
-                }
+                let graph = Graph::new(&run.tri, Cow::Borrowed(&run.current));
+                run.history.records[k].report(k, graph)
             }
             State::Smooth(result) | State::Done(result) => result.report(k),
             State::Failed(_) | State::Moving => unreachable!("a stage that ran leaves a state"),
@@ -387,7 +382,6 @@ impl Pipeline {
         let smoothed = smoothed_positions(&triangulation, &final_edges);
         let merged_before = triangulation.num_points() - triangulation.num_vertices();
         drop(final_edges);
-        let storage = triangulation.into_storage();
         let moved = smoothed.moved;
         // The replaced run's triangulation is an earlier pass's cost too.
         self.earlier_passes += triangulation_time;
@@ -395,9 +389,9 @@ impl Pipeline {
         // Relative to the corner, so an exact translation gives the same result, unless that merges
         // distinct points (making the result depend on input order): then in the caller's frame.
         let parallel = self.params.parallel;
-        let relative = triangulate_reusing(&smoothed.positions, parallel, storage)?;
+        let relative = triangulate_with(&smoothed.positions, parallel, None, Some(triangulation))?;
         let tri = if relative.num_points() - relative.num_vertices() > merged_before {
-            triangulate_reusing(&smoothed.absolute, parallel, relative.into_storage())?
+            triangulate_with(&smoothed.absolute, parallel, None, Some(relative))?
         } else {
             relative.with_offset(smoothed.corner)
         };
@@ -653,13 +647,6 @@ impl EdgesFingerprint {
     }
 }
 
-/// The output function of SplitMix64 (Steele, Lea and Flood 2014), a bijection of `u64`.
-fn splitmix64_finalizer(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
-
 /// The 64-bit finalizer of MurmurHash3 (Appleby), a bijection of `u64`.
 fn murmur3_finalizer(mut z: u64) -> u64 {
     z = (z ^ (z >> 33)).wrapping_mul(0xff51_afd7_ed55_8ccd);
@@ -719,7 +706,8 @@ pub(super) fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
     work()
 }
 
-#[cfg(all(test, feature = "parallel"))]
+#[cfg(test)]
+#[cfg(feature = "parallel")]
 mod tests {
     use super::on_worker;
 

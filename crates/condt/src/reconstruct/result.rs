@@ -1,7 +1,7 @@
 //! What a reconstruction leaves: the [`Reconstruction`], its [`StageReport`]s and [`Smoothing`],
 //! and the tally of the last graph in input positions. It may not run a stage.
 
-use super::history::{History, Undo};
+use super::history::History;
 use super::params::Params;
 use super::pipeline::{first_graph, on_worker, Stopwatch};
 use crate::adjacency::{CurveGraph, Edge};
@@ -137,18 +137,9 @@ impl Reconstruction {
 
     /// The report of the `k`-th stage that ran, its graph rebuilt from the final one.
     pub(super) fn report(&self, k: usize) -> StageReport<'_> {
-        let record = &self.history.records[k];
-        StageReport {
-            stage: record.stage,
-            graph: Graph::new(
-                &self.triangulation,
-                self.history.output_of(&self.final_edges, k, &|| {
-                    first_graph(&self.triangulation, &self.params)
-                }),
-            ),
-            applied: k == 0 || !matches!(record.undo, Undo::Unchanged),
-            time: record.time,
-        }
+        let first = || first_graph(&self.triangulation, &self.params);
+        let edges = self.history.output_of(&self.final_edges, k, &first);
+        self.history.records[k].report(k, Graph::new(&self.triangulation, edges))
     }
 
     /// The final graph, as the last stage left it.

@@ -63,13 +63,18 @@ pub(crate) struct Rules {
 }
 
 impl Rules {
-    pub(crate) const ALL: Rules = Rules {
-        give_back: true,
-        long_at_branches: true,
-        long_at_both_ends: true,
-        short_spurs: true,
-        separated_components: true,
-    };
+    pub(crate) const ALL: Rules = Rules::up_to(4);
+
+    /// Rules 1 to `k` (rule 2 in both readings).
+    const fn up_to(k: usize) -> Rules {
+        Rules {
+            give_back: k >= 1,
+            long_at_branches: k >= 2,
+            long_at_both_ends: k >= 2,
+            short_spurs: k >= 3,
+            separated_components: k >= 4,
+        }
+    }
 }
 
 /// The stage on `edges`; `before` is the IQR stage's input. The outcome carries the output's curve
@@ -91,9 +96,10 @@ pub(crate) fn remove_local_outliers(
     }
     // Read by rule 1 only: freed before the later rules' curve graph and components (memory).
     drop(before);
-    let mut profile = Profile::of(tri, &graph);
+    // What rules 2 to 4 read; squared lengths are recomputed where asked (memory).
+    let mut profile = CurveGraph::new(tri.num_points(), &graph);
     if rules.long_at_branches || rules.long_at_both_ends {
-        if let Some(long) = long_vertices(tri, &profile.graph) {
+        if let Some(long) = long_vertices(tri, &profile) {
             // Only an edge with an end where it is long can go: the full test runs on those.
             let mut removed = Vec::new();
             {
@@ -104,19 +110,19 @@ pub(crate) fn remove_local_outliers(
                 });
             }
             drop(long);
-            profile.update(tri, &graph, &removed);
+            update(&mut profile, &graph, &removed);
         }
     }
-    if rules.short_spurs && profile.graph.has_branch() {
-        if let Some(dropped) = short_spurs(&profile.graph) {
+    if rules.short_spurs && profile.has_branch() {
+        if let Some(dropped) = short_spurs(&profile) {
             let mut removed = Vec::new();
             drop_edges(&mut graph, &mut removed, |&[a, b]| {
                 dropped[a.index()] || dropped[b.index()]
             });
-            profile.update(tri, &graph, &removed);
+            update(&mut profile, &graph, &removed);
         }
     }
-    // The profile's curve graph is that of `graph` until rule 4 removes a component.
+    // `profile` is the curve graph of `graph` until rule 4 removes a component.
     let mut profile = Some(profile);
     if rules.separated_components {
         let judged = profile
@@ -130,14 +136,13 @@ pub(crate) fn remove_local_outliers(
             });
         }
     }
-    let output_graph = profile.map(|p| p.graph);
     match graph {
         Cow::Owned(changed) if changed.as_slice() != edges => Outcome {
             edges: Some(changed),
-            graph: output_graph,
+            graph: profile,
         },
         // The same edges in the same order: the same curve graph.
-        _ => Outcome::unchanged_with(output_graph),
+        _ => Outcome::unchanged_with(profile),
     }
 }
 
@@ -161,34 +166,15 @@ pub(crate) fn rule_evidence(
     edges: &[Edge],
     before: &[Edge],
 ) -> Vec<(Edge, LocalRule)> {
-    let none = Rules {
-        give_back: false,
-        long_at_branches: false,
-        long_at_both_ends: false,
-        short_spurs: false,
-        separated_components: false,
-    };
-    let first = Rules {
-        give_back: true,
-        ..none
-    };
-    let second = Rules {
-        long_at_branches: true,
-        long_at_both_ends: true,
-        ..first
-    };
-    let third = Rules {
-        short_spurs: true,
-        ..second
-    };
     let sorted = |mut list: Vec<Edge>| {
         list.sort_unstable();
         list
     };
     let mut previous = sorted(edges.to_vec());
     let mut evidence = Vec::new();
-    for (k, rules) in [first, second, third, Rules::ALL].iter().enumerate() {
-        let outcome = remove_local_outliers(tri, edges, Cow::Borrowed(before), rules);
+    for k in 0..4 {
+        let outcome =
+            remove_local_outliers(tri, edges, Cow::Borrowed(before), &Rules::up_to(k + 1));
         let now = sorted(outcome.edges.unwrap_or_else(|| edges.to_vec()));
         let missing_from = |list: &[Edge], e: &Edge| list.binary_search(e).is_err();
         evidence.extend(
@@ -196,7 +182,7 @@ pub(crate) fn rule_evidence(
                 .filter(|e| missing_from(&previous, e))
                 .map(|&e| (e, LocalRule::GaveBack)),
         );
-        let profile = (k == 1).then(|| Profile::of(tri, &previous));
+        let profile = (k == 1).then(|| CurveGraph::new(tri.num_points(), &previous));
         for &edge in previous.iter().filter(|e| missing_from(&now, e)) {
             let rule = match (k, &profile) {
                 (1, Some(profile)) => {
@@ -280,39 +266,26 @@ pub(super) fn smooth_and_regular(
     regular && smooth
 }
 
-/// What rules 2 to 4 read of a graph. Squared lengths are recomputed where asked (memory), the same
-/// whichever end computes them and in whatever order the neighbours come ([`top_two`]).
-struct Profile {
-    graph: CurveGraph,
+/// Makes `graph` that of `edges` (its edges less `removed`): in place for up to one removal per 64
+/// vertices ([`CurveGraph::remove_edges`]), else rebuilt (the old one freed first).
+fn update(graph: &mut CurveGraph, edges: &[Edge], removed: &[Edge]) {
+    let n = graph.vertex_count();
+    if removed.len() <= n / 64 {
+        graph.remove_edges(removed);
+    } else {
+        *graph = CurveGraph::new(0, &[]);
+        *graph = CurveGraph::new(n, edges);
+    }
 }
 
-impl Profile {
-    const NONE: f64 = -1.0;
+/// No edge, in [`tops`].
+const NONE: f64 = -1.0;
 
-    fn of(tri: &Triangulation, edges: &[Edge]) -> Profile {
-        Profile {
-            graph: CurveGraph::new(tri.num_points(), edges),
-        }
-    }
-    /// Makes this the profile of `edges` (its edges less `removed`): in place for up to one
-    /// removal per 64 vertices ([`CurveGraph::remove_edges`]), else rebuilt (old one freed first).
-    fn update(&mut self, tri: &Triangulation, edges: &[Edge], removed: &[Edge]) {
-        if removed.is_empty() {
-            return;
-        }
-        if removed.len() <= self.graph.vertex_count() / 64 {
-            self.graph.remove_edges(removed);
-        } else {
-            self.graph = CurveGraph::new(0, &[]);
-            *self = Profile::of(tri, edges);
-        }
-    }
-    /// The squared length of `v`'s longest edge besides one of squared length `l` (ties agree).
-    fn other_than(&self, tri: &Triangulation, v: VertexId, l: f64) -> Option<f64> {
-        let [first, second] = tops(tri, &self.graph, v);
-        let other = if l == first { second } else { first };
-        (other != Self::NONE).then_some(other)
-    }
+/// The squared length of `v`'s longest edge besides one of squared length `l` (ties agree).
+fn other_than(tri: &Triangulation, graph: &CurveGraph, v: VertexId, l: f64) -> Option<f64> {
+    let [first, second] = tops(tri, graph, v);
+    let other = if l == first { second } else { first };
+    (other != NONE).then_some(other)
 }
 
 /// The vertices whose longest edge in `graph` is over [`LONG`] times their second, as a bit set by
@@ -349,11 +322,12 @@ fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> Option<Vec<u64>> {
     any.then_some(long)
 }
 
-/// Squared lengths of `v`'s two longest edges, longest first (`Profile::NONE` where it has fewer).
+/// Squared lengths of `v`'s two longest edges, longest first ([`NONE`] where it has fewer), the
+/// same whichever end computes them and in whatever order the neighbours come ([`top_two`]).
 #[inline]
 fn tops(tri: &Triangulation, graph: &CurveGraph, v: VertexId) -> [f64; 2] {
     let degree = graph.degree(v);
-    let mut top = [Profile::NONE; 2];
+    let mut top = [NONE; 2];
     if degree == 0 {
         return top;
     }
@@ -384,20 +358,18 @@ fn top_two(top: [f64; 2], l: f64) -> [f64; 2] {
 
 /// Whether an edge of squared length `l` at `v` is long there (more than [`LONG`] times the
 /// longest other edge at `v`), with the ratio of the lengths; `None` when `v` has no other edge.
-fn long_at(tri: &Triangulation, profile: &Profile, v: VertexId, l: f64) -> Option<(bool, f64)> {
-    profile
-        .other_than(tri, v, l)
-        .map(|other| (l > LONG * LONG * other, libm::sqrt(l / other)))
+fn long_at(tri: &Triangulation, graph: &CurveGraph, v: VertexId, l: f64) -> Option<(bool, f64)> {
+    other_than(tri, graph, v, l).map(|other| (l > LONG * LONG * other, libm::sqrt(l / other)))
 }
 
 /// Rule 2: whether an edge is long at an end with three or more edges, or at each end with others.
 fn long_edges<'a>(
     tri: &'a Triangulation,
-    profile: &'a Profile,
+    profile: &'a CurveGraph,
     rules: &'a Rules,
 ) -> impl FnMut(&Edge) -> bool + 'a {
     let long_at = move |v: VertexId, l: f64| long_at(tri, profile, v, l).map(|(long, _)| long);
-    let degree = |v: VertexId| profile.graph.degree(v);
+    let degree = |v: VertexId| profile.degree(v);
     move |&[a, b]: &Edge| {
         let l = length2(tri, [a, b]);
         let (at_a, at_b) = (long_at(a, l), long_at(b, l));
@@ -522,11 +494,11 @@ pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
 fn separated_components(
     tri: &Triangulation,
     edges: &[Edge],
-    profile: &Profile,
+    profile: &CurveGraph,
 ) -> Option<(Vec<u32>, Vec<bool>)> {
     let n = tri.num_points();
     let root = components(n, edges);
-    let separated = separated_counts(tri, &profile.graph, &root);
+    let separated = separated_counts(tri, profile, &root);
     let mut kept: Vec<bool> = separated
         .iter()
         .map(|&c| usize::from(c) >= MIN_SAMPLES)
@@ -534,7 +506,7 @@ fn separated_components(
     if edges.iter().all(|&[a, _]| kept[root[a.index()] as usize]) {
         return None;
     }
-    keep_regular_cycles(tri, &profile.graph, &root, &mut kept);
+    keep_regular_cycles(tri, profile, &root, &mut kept);
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
@@ -638,10 +610,10 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], ke
 }
 
 /// Rule 4's guard: whether dropped components hold [`OUTLIER_SHARE`] of the points with edges.
-fn too_many_dropped(root: &[u32], profile: &Profile, kept: &[bool]) -> bool {
+fn too_many_dropped(root: &[u32], profile: &CurveGraph, kept: &[bool]) -> bool {
     let (mut with_edges, mut dropped) = (0usize, 0usize);
     for (i, &r) in root.iter().enumerate() {
-        if profile.graph.degree(VertexId::new(i as u32)) > 0 {
+        if profile.degree(VertexId::new(i as u32)) > 0 {
             with_edges += 1;
             dropped += usize::from(!kept[r as usize]);
         }

@@ -11,6 +11,7 @@ use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
 use crate::mesh::VertexId;
 use crate::prefetch::{prefetch, PREFETCH_FROM};
+use crate::threads::workers;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
@@ -178,85 +179,63 @@ pub(crate) fn proximity_graph(
     parallel: bool,
 ) -> Vec<Edge> {
     let parallel = parallel && tri.num_points() >= PARALLEL_FROM;
-    let n = tri.num_points();
     match uniformity {
         Uniformity::Fixed(_) => {
-            let ranges = if parallel {
-                worker_count().min(MAX_SWEEP_RANGES)
-            } else {
-                1
-            };
-            let mut best = two_best_offers(tri, ranges);
+            let mut best = two_best_offers(tri, workers(parallel).min(MAX_SWEEP_RANGES));
             // Each vertex's choice replaces its offers in place (the ids of its record): memory.
             let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
-            if parallel {
-                decide_all(&mut best, &decide, |b, pair| b.keep_only(pair));
-            }
             list_kept(
                 &mut best,
-                (!parallel).then_some(&decide),
-                |b, pair| b.keep_only(pair),
+                parallel,
+                &decide,
+                TwoBest::keep_only,
                 TwoBest::kept,
             )
         }
         Uniformity::Adaptive => {
-            let none = [VertexId::INFINITE; 2];
-            let choose = ring_choice(tri, uniformity);
-            let decide = |i: usize, _: &[VertexId; 2]| choose(i);
-            let mut kept = if parallel {
-                per_vertex(true, n, &choose)
-            } else {
-                alloc::vec![none; n]
-            };
-            list_kept(
-                &mut kept,
-                (!parallel).then_some(&decide),
-                |k, pair| *k = pair,
-                |k| *k,
-            )
+            let mut kept = alloc::vec![[VertexId::INFINITE; 2]; tri.num_points()];
+            let decide = ring_choice(tri, uniformity);
+            list_kept(&mut kept, parallel, &decide, |k, pair| *k = pair, |k| *k)
         }
     }
 }
 
-/// `decide` for every record, stored into it by `store`, on rayon.
-#[cfg(feature = "parallel")]
-fn decide_all<T: Send>(
-    records: &mut [T],
-    decide: &(impl Fn(usize, &T) -> [VertexId; 2] + Sync),
-    store: impl Fn(&mut T, [VertexId; 2]) + Sync,
-) {
-    use rayon::prelude::*;
-    records
-        .par_iter_mut()
-        .enumerate()
-        .with_min_len(4096)
-        .for_each(|(i, r)| {
-            let pair = decide(i, r);
-            store(r, pair);
-        });
-}
-
-#[cfg(not(feature = "parallel"))]
-fn decide_all<T>(
-    records: &mut [T],
-    decide: &impl Fn(usize, &T) -> [VertexId; 2],
-    store: impl Fn(&mut T, [VertexId; 2]),
-) {
-    for (i, r) in records.iter_mut().enumerate() {
-        let pair = decide(i, r);
-        store(r, pair);
+/// What vertex `i` keeps, from a walk of its ring (none for an id left by a merged duplicate).
+fn ring_choice(
+    tri: &Triangulation,
+    uniformity: Uniformity,
+) -> impl Fn(usize, &[VertexId; 2]) -> [VertexId; 2] + Sync + '_ {
+    move |i, _| {
+        let v = VertexId::new(i as u32);
+        if tri.is_vertex(v) {
+            kept_neighbors(tri, v, uniformity)
+        } else {
+            [VertexId::INFINITE; 2]
+        }
     }
 }
 
-/// Every kept edge once, from one record per vertex (`read` gives its choice). With `decide`, each
-/// vertex decides in the listing pass and `store` records it; else all decided already (on rayon).
-/// An edge kept by both ends is listed by its smaller end (no sort), without a branch.
-fn list_kept<T>(
+/// Every kept edge once, from one record per vertex (`read` gives its choice): each vertex
+/// decides with `decide` and `store` records it, all at once on rayon first when `parallel`, else
+/// in the listing pass. An edge kept by both ends is listed by its smaller end (no sort), without
+/// a branch.
+fn list_kept<T: Send>(
     records: &mut [T],
-    decide: Option<&impl Fn(usize, &T) -> [VertexId; 2]>,
-    store: impl Fn(&mut T, [VertexId; 2]),
+    parallel: bool,
+    decide: &(impl Fn(usize, &T) -> [VertexId; 2] + Sync),
+    store: impl Fn(&mut T, [VertexId; 2]) + Sync,
     read: impl Fn(&T) -> [VertexId; 2],
 ) -> Vec<Edge> {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::prelude::*;
+        records
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(4096)
+            .for_each(|(i, r)| store(r, decide(i, r)));
+    }
+    let decided = parallel && cfg!(feature = "parallel");
     let none = [VertexId::INFINITE; 2];
     let n = records.len();
     // Curves keep about one edge per vertex, two at most: start at one and grow by an eighth
@@ -270,13 +249,12 @@ fn list_kept<T>(
             edges.reserve_exact(more);
             edges.resize(edges.len() + more, none);
         }
-        let pair = match decide {
-            Some(decide) => {
-                let pair = decide(i, &records[i]);
-                store(&mut records[i], pair);
-                pair
-            }
-            None => read(&records[i]),
+        let pair = if decided {
+            read(&records[i])
+        } else {
+            let pair = decide(i, &records[i]);
+            store(&mut records[i], pair);
+            pair
         };
         let v = VertexId::new(i as u32);
         for w in pair {
@@ -290,58 +268,6 @@ fn list_kept<T>(
     edges.truncate(count);
     edges.shrink_to_fit();
     edges
-}
-
-/// What vertex `i` keeps, from a walk of its ring (none for an id left by a merged duplicate).
-fn ring_choice(
-    tri: &Triangulation,
-    uniformity: Uniformity,
-) -> impl Fn(usize) -> [VertexId; 2] + Sync + '_ {
-    move |i: usize| {
-        let v = VertexId::new(i as u32);
-        if tri.is_vertex(v) {
-            kept_neighbors(tri, v, uniformity)
-        } else {
-            [VertexId::INFINITE; 2]
-        }
-    }
-}
-
-/// `choose` for every vertex in `0..count`, on rayon when `parallel`.
-#[cfg(feature = "parallel")]
-fn per_vertex(
-    parallel: bool,
-    count: usize,
-    choose: impl Fn(usize) -> [VertexId; 2] + Sync,
-) -> Vec<[VertexId; 2]> {
-    use rayon::prelude::*;
-    if !parallel {
-        return (0..count).map(&choose).collect();
-    }
-    (0..count)
-        .into_par_iter()
-        .with_min_len(1024)
-        .map(&choose)
-        .collect()
-}
-
-#[cfg(not(feature = "parallel"))]
-fn per_vertex(
-    _parallel: bool,
-    count: usize,
-    choose: impl Fn(usize) -> [VertexId; 2],
-) -> Vec<[VertexId; 2]> {
-    (0..count).map(choose).collect()
-}
-
-#[cfg(feature = "parallel")]
-fn worker_count() -> usize {
-    rayon::current_num_threads()
-}
-
-#[cfg(not(feature = "parallel"))]
-fn worker_count() -> usize {
-    1
 }
 
 /// The two best offers a vertex has had, best first: `(squared length as bits, neighbour)`. A
@@ -397,31 +323,23 @@ impl TwoBest {
     }
 }
 
-/// Every vertex's two best offers, from `parts` sweeps at once, each for its own range of ids.
+/// Every vertex's two best offers, from `parts` sweeps at once (on rayon), each for its own range
+/// of ids into its own part of the records. Reason: memory (one shared array of offers; each
+/// sweep reads all the corners).
 fn two_best_offers(tri: &Triangulation, parts: usize) -> Vec<TwoBest> {
     let mut best = alloc::vec![TwoBest::EMPTY; tri.num_points()];
-    if parts <= 1 {
-        sweep(tri, &mut best, None);
-    } else {
-        sweep_parts(tri, &mut best, parts);
+    #[cfg(feature = "parallel")]
+    if parts > 1 {
+        use rayon::prelude::*;
+        let size = best.len().div_ceil(parts);
+        best.par_chunks_mut(size)
+            .enumerate()
+            .for_each(|(k, part)| sweep(tri, part, Some(k * size)));
+        return best;
     }
+    let _ = parts;
+    sweep(tri, &mut best, None);
     best
-}
-
-/// The vertex ids cut into `parts` ranges, each swept on its own worker into its own part of
-/// `best`. Reason: memory (one shared array of offers; each worker reads all the corners).
-#[cfg(feature = "parallel")]
-fn sweep_parts(tri: &Triangulation, best: &mut [TwoBest], parts: usize) {
-    use rayon::prelude::*;
-    let size = best.len().div_ceil(parts);
-    best.par_chunks_mut(size)
-        .enumerate()
-        .for_each(|(k, part)| sweep(tri, part, Some(k * size)));
-}
-
-#[cfg(not(feature = "parallel"))]
-fn sweep_parts(tri: &Triangulation, best: &mut [TwoBest], _parts: usize) {
-    sweep(tri, best, None);
 }
 
 /// How many triangles ahead the sweep asks for the points and records it will read: far
@@ -506,7 +424,7 @@ mod tests {
             Uniformity::Fixed(100.0),
             Uniformity::Adaptive,
         ] {
-            let kept = per_vertex(false, n, ring_choice(&tri, uniformity));
+            let kept = ring_walks(&tri, uniformity, false);
             let mut expected = alloc::collections::BTreeSet::new();
             for (v, pair) in kept.iter().enumerate() {
                 for &w in pair.iter().filter(|w| !w.is_infinite()) {
@@ -525,10 +443,8 @@ mod tests {
                 // As the parallel path lists them: swept in two ranges, decided first, in place.
                 let mut best = two_best_offers(&tri, 2);
                 let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
-                decide_all(&mut best, &decide, |b, pair| b.keep_only(pair));
-                let none: Option<&fn(usize, &TwoBest) -> [VertexId; 2]> = None;
                 let decided =
-                    list_kept(&mut best, none, |b, pair| b.keep_only(pair), TwoBest::kept);
+                    list_kept(&mut best, true, &decide, TwoBest::keep_only, TwoBest::kept);
                 assert_eq!(decided, union, "{uniformity:?}");
             }
             if uniformity == Uniformity::Fixed(100.0) {
@@ -582,9 +498,7 @@ mod tests {
             .unwrap();
             let tri = triangulate(&s.points).unwrap();
             let fixed = Uniformity::Fixed(2.75);
-            let n = tri.num_points();
-            let ring_walks =
-                |uniformity, parallel| per_vertex(parallel, n, ring_choice(&tri, uniformity));
+            let ring_walks = |uniformity, parallel| ring_walks(&tri, uniformity, parallel);
             let walked = ring_walks(fixed, false);
             for ranges in 1..=4 {
                 let best = two_best_offers(&tri, ranges);
@@ -606,28 +520,39 @@ mod tests {
         }
         // Not vacuous: the uniformity test dropped some second edges, kept others.
         assert!(dropped > 0);
-        // The ring walks on rayon split the vertices into jobs of at least 1,024: a set that
+        // The ring walks on rayon split the vertices into jobs of at least 4,096: a set that
         // makes several jobs, so the parallel walks really run apart (the sets above make one).
         let s = sample(
             &[Shape::circle(centre, 1.0)],
             &Sampling {
                 outlier_fraction: 0.05,
                 noise: 0.01,
-                ..Sampling::new(0.002)
+                ..Sampling::new(0.0005)
             },
         )
         .unwrap();
         let tri = triangulate(&s.points).unwrap();
         let n = tri.num_points();
-        assert!(n >= 3 * 1024, "{n}");
+        assert!(n >= 3 * 4096, "{n}");
         for uniformity in [Uniformity::Fixed(2.75), Uniformity::Adaptive] {
-            let choose = || ring_choice(&tri, uniformity);
             assert_eq!(
-                per_vertex(true, n, choose()),
-                per_vertex(false, n, choose()),
+                ring_walks(&tri, uniformity, true),
+                ring_walks(&tri, uniformity, false),
                 "{uniformity:?}"
             );
         }
+    }
+
+    /// Every vertex's choice from a walk of its ring, as the adaptive test lists them.
+    fn ring_walks(
+        tri: &Triangulation,
+        uniformity: Uniformity,
+        parallel: bool,
+    ) -> Vec<[VertexId; 2]> {
+        let mut kept = vec![[VertexId::INFINITE; 2]; tri.num_points()];
+        let decide = ring_choice(tri, uniformity);
+        list_kept(&mut kept, parallel, &decide, |k, pair| *k = pair, |k| *k);
+        kept
     }
 
     /// `tests/common/mod.rs` (the integration tests' `run`) compares sequential and parallel

@@ -2,12 +2,8 @@
 
 use super::insert::{position_on_segment, Segment};
 use super::Triangulation;
-use crate::mesh::{Element, HalfEdgeId, Rule, VertexId, Violation};
+use crate::mesh::{fail, Element, HalfEdgeId, Rule, VertexId, Violation};
 use crate::predicates::{in_circle, orient2d, Orientation};
-
-fn fail(rule: Rule, element: Element) -> Result<(), Violation> {
-    Err(Violation { rule, element })
-}
 
 impl Triangulation {
     /// Checks everything a Delaunay triangulation promises, with exact predicates:

@@ -11,7 +11,7 @@
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
-use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshArrays, MeshBuilder, MeshStorage, VertexId};
+use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshArrays, MeshBuilder, VertexId};
 use crate::predicates::Orientation;
 use crate::threads::both;
 use alloc::vec::Vec;
@@ -117,7 +117,7 @@ pub(crate) fn build<K: Kernel>(
     left: usize,
     parallel: bool,
     progress: Option<&AtomicUsize>,
-    storage: MeshStorage,
+    storage: Mesh,
 ) -> Option<(Mesh, Vec<(u32, u32)>)> {
     let (left_points, right_points) = points.split_at(left);
     let left_room = insert::half_edges(left_points.len());
@@ -331,75 +331,48 @@ fn stitch<K: Kernel>(
         let above =
             |x: VertexId| !x.is_infinite() && orient(at(l), at(r), at(x)) == Orientation::Ccw;
         // The left candidate `l → x`: across `∞ → l` of `top` lies the ghost `(x, l, ∞)`, and
-        // across its `x → l` the triangle `(l, x, n)` (`n` is `∞` if it is a ghost too).
-        let cand_l = loop {
+        // across its `x → l` the triangle `(l, x, n)` (`n` is `∞` if it is a ghost too). The right
+        // one mirrors it (every triangle reversed: `next` for `prev`, corners 1 and 2 exchanged):
+        // `r → y`, across `r → ∞` the ghost `(r, y, ∞)`, across its `r → y` `(y, r, m)`.
+        let mut candidate = |mesh: &mut MeshBuilder<'_>, left: bool| loop {
             steps += 1;
             if steps > limit {
                 return None;
             }
-            let ghost_in = mesh.twin(t_left); // l → ∞
-            let e_l = mesh.twin(ghost_in.prev()); // l → x
-            let x = mesh.origin(e_l.next());
-            let n = mesh.origin(e_l.prev());
-            if !(above(x) && above(n) && K::in_circle(at(l), at(r), at(x), at(n))) {
-                break x;
+            let fwd = |e: HalfEdgeId| if left { e.prev() } else { e.next() };
+            let bwd = |e: HalfEdgeId| if left { e.next() } else { e.prev() };
+            let (near, t_side) = if left { (l, t_left) } else { (r, t_right) };
+            let ghost_in = mesh.twin(t_side); // l → ∞ (∞ → r)
+            let e = mesh.twin(fwd(ghost_in)); // l → x (y → r)
+            let far = mesh.origin(if left { e.next() } else { e });
+            let apex = mesh.origin(e.prev());
+            if !(above(far) && above(apex) && K::in_circle(at(l), at(r), at(far), at(apex))) {
+                return Some(far);
             }
             // Flip `l – x`: `(l, x, n)` and ghost `(x, l, ∞)` turn into `(n, l, ∞)`, `(x, n, ∞)`.
             let (ghost, _) = ghost_in.base_and_corner();
-            let (inner, _) = e_l.base_and_corner();
-            let (w_xn, w_nl, w_x) = (
-                mesh.twin(e_l.next()),
-                mesh.twin(e_l.prev()),
-                mesh.twin(ghost_in.next()),
+            let (inner, _) = e.base_and_corner();
+            let (w_far_apex, w_apex_near) = (mesh.twin(bwd(e)), mesh.twin(fwd(e)));
+            let w_far = mesh.twin(bwd(ghost_in));
+            let corner = |k: usize| if left { k } else { 3 - k }; // 1 or 2
+            let (to_inner, to_ghost) = (
+                HalfEdgeId::at(inner, corner(1)),
+                HalfEdgeId::at(ghost, corner(2)),
             );
-            write(
-                mesh,
-                ghost,
-                [n, l, inf],
-                [w_nl, t_left, HalfEdgeId::at(inner, 1)],
-            );
-            write(
-                mesh,
-                inner,
-                [x, n, inf],
-                [w_xn, HalfEdgeId::at(ghost, 2), w_x],
-            );
+            let mirrored = |[a, b, c]: [VertexId; 3], [t0, t1, t2]: [HalfEdgeId; 3]| {
+                if left {
+                    ([a, b, c], [t0, t1, t2])
+                } else {
+                    ([b, a, c], [t0, t2, t1])
+                }
+            };
+            let (corners, twins) = mirrored([apex, near, inf], [w_apex_near, t_side, to_inner]);
+            write(mesh, ghost, corners, twins);
+            let (corners, twins) = mirrored([far, apex, inf], [w_far_apex, to_ghost, w_far]);
+            write(mesh, inner, corners, twins);
         };
-        // The right candidate `r → y`: across `r → ∞` of `top` lies the ghost `(r, y, ∞)`,
-        // and across its `r → y` the triangle `(y, r, m)`.
-        let cand_r = loop {
-            steps += 1;
-            if steps > limit {
-                return None;
-            }
-            let ghost_in = mesh.twin(t_right); // ∞ → r
-            let f_r = mesh.twin(ghost_in.next()); // y → r
-            let y = mesh.origin(f_r);
-            let m = mesh.origin(f_r.prev());
-            if !(above(y) && above(m) && K::in_circle(at(l), at(r), at(y), at(m))) {
-                break y;
-            }
-            // Flip `r – y`: `(y, r, m)` and ghost `(r, y, ∞)` turn into `(r, m, ∞)`, `(m, y, ∞)`.
-            let (ghost, _) = ghost_in.base_and_corner();
-            let (inner, _) = f_r.base_and_corner();
-            let (w_rm, w_my, w_y) = (
-                mesh.twin(f_r.next()),
-                mesh.twin(f_r.prev()),
-                mesh.twin(ghost_in.prev()),
-            );
-            write(
-                mesh,
-                ghost,
-                [r, m, inf],
-                [w_rm, HalfEdgeId::at(inner, 2), t_right],
-            );
-            write(
-                mesh,
-                inner,
-                [m, y, inf],
-                [w_my, w_y, HalfEdgeId::at(ghost, 1)],
-            );
-        };
+        let cand_l = candidate(mesh, true)?;
+        let cand_r = candidate(mesh, false)?;
         let (left_ok, right_ok) = (above(cand_l), above(cand_r));
         if !left_ok && !right_ok {
             break;
@@ -445,7 +418,8 @@ fn stitch<K: Kernel>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{scale, triangulate_split};
+    use super::super::scale;
+    use super::super::tests::triangulate_split;
     use super::*;
     use crate::test_rng::Xorshift;
     use alloc::format;
@@ -458,7 +432,7 @@ mod tests {
             .iter()
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
-        build::<super::super::insert::Fast>(&sorted, left?, false, None, MeshStorage::default())
+        build::<super::super::insert::Fast>(&sorted, left?, false, None, Mesh::default())
     }
 
     /// The triangles of a triangulation in input positions, each from its smallest, sorted.
@@ -671,15 +645,9 @@ mod tests {
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
         if frames.wide {
-            build::<super::super::insert::Exact>(
-                &sorted,
-                left?,
-                false,
-                None,
-                MeshStorage::default(),
-            )
+            build::<super::super::insert::Exact>(&sorted, left?, false, None, Mesh::default())
         } else {
-            build::<super::super::insert::Fast>(&sorted, left?, false, None, MeshStorage::default())
+            build::<super::super::insert::Fast>(&sorted, left?, false, None, Mesh::default())
         }
     }
 

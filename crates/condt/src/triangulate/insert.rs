@@ -15,7 +15,13 @@ use core::sync::atomic::{AtomicUsize, Ordering};
 pub(crate) trait Kernel {
     fn orient2d(a: Point, b: Point, c: Point) -> Orientation;
     /// A number with the sign of [`Kernel::orient2d`], for the walk to branch on (speed).
-    fn orient2d_sign(a: Point, b: Point, c: Point) -> f64;
+    fn orient2d_sign(a: Point, b: Point, c: Point) -> f64 {
+        match Self::orient2d(a, b, c) {
+            Orientation::Ccw => 1.0,
+            Orientation::Cw => -1.0,
+            Orientation::Collinear => 0.0,
+        }
+    }
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool;
     /// [`Kernel::in_circle`]`(u, w, v, q)`, `v` the new point every test of an insertion shares.
     #[inline(always)]
@@ -25,14 +31,16 @@ pub(crate) trait Kernel {
     /// For `p` on the inner side of the hull edge `a → b`: whether it lies past `b` (`Forward`)
     /// or before `a` (`Backward`) along the edge, or between (`Done`). It only guides the walk
     /// along the hull (see [`Builder::ghost_step`]), which needs it exact only to be sure to end.
-    fn slide(a: Point, b: Point, p: Point) -> Slide;
-}
-
-fn sign_of(orientation: Orientation) -> f64 {
-    match orientation {
-        Orientation::Ccw => 1.0,
-        Orientation::Cw => -1.0,
-        Orientation::Collinear => 0.0,
+    /// Exact by default.
+    fn slide(a: Point, b: Point, p: Point) -> Slide {
+        use core::cmp::Ordering::{Greater, Less};
+        if predicates::dot_sign(p, b, b, a) == Greater {
+            Slide::Forward
+        } else if predicates::dot_sign(p, a, b, a) == Less {
+            Slide::Backward
+        } else {
+            Slide::Done
+        }
     }
 }
 
@@ -80,22 +88,9 @@ impl Kernel for Exact {
     fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
         predicates::orient2d(a, b, c)
     }
-    fn orient2d_sign(a: Point, b: Point, c: Point) -> f64 {
-        sign_of(Self::orient2d(a, b, c))
-    }
     #[inline(always)]
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
         predicates::in_circle(a, b, c, d)
-    }
-    fn slide(a: Point, b: Point, p: Point) -> Slide {
-        use core::cmp::Ordering::{Greater, Less};
-        if predicates::dot_sign(p, b, b, a) == Greater {
-            Slide::Forward
-        } else if predicates::dot_sign(p, a, b, a) == Less {
-            Slide::Backward
-        } else {
-            Slide::Done
-        }
     }
 }
 
@@ -108,14 +103,8 @@ impl Kernel for Integers {
     fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
         predicates::integers::orient2d(a, b, c)
     }
-    fn orient2d_sign(a: Point, b: Point, c: Point) -> f64 {
-        sign_of(Self::orient2d(a, b, c))
-    }
     fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
         predicates::integers::in_circle(a, b, c, d)
-    }
-    fn slide(a: Point, b: Point, p: Point) -> Slide {
-        Exact::slide(a, b, p)
     }
 }
 

@@ -1,7 +1,7 @@
 //! Delaunay triangulation of a planar point set.
 //!
 //! Owns: building a [`Triangulation`] ([`Mesh`], points, input/vertex maps), possibly in a spent
-//! one's arrays ([`Storage`]), and checking one. It decides signs only by [`crate::predicates`],
+//! one's arrays ([`triangulate_with`]), and checking one. It decides signs only by [`crate::predicates`],
 //! writes topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
 //! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
@@ -20,12 +20,13 @@ mod scale;
 use crate::error::Error;
 use crate::geometry::Point;
 use crate::geometry::Scale;
+use crate::mesh::MeshArrays;
 use crate::mesh::{Mesh, VertexId};
-use crate::mesh::{MeshArrays, MeshStorage};
 use crate::threads::{both, filled};
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
+pub(crate) use order::mix as splitmix64_finalizer;
 
 /// The largest number of input points: half of what `u32` half-edge ids allow; beyond it
 /// [`triangulate`] returns [`Error::TooManyPoints`] before allocating (`docs/triangulation.md`).
@@ -97,73 +98,42 @@ pub struct Triangulation {
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
-    triangulate_with(points, cfg!(feature = "parallel"))
+    triangulate_with(points, cfg!(feature = "parallel"), None, None)
 }
 
-/// [`triangulate`], on one thread unless `parallel`; the result is the same either way.
-pub(crate) fn triangulate_with(points: &[Point], parallel: bool) -> Result<Triangulation, Error> {
-    triangulate_with_progress(points, parallel, None)
-}
-
-/// [`triangulate_with`], counting inserted points ([`Triangulation::triangulate_observed`]).
-pub(crate) fn triangulate_with_progress(
+/// [`triangulate`], on one thread unless `parallel` (the same result either way), adding the
+/// inserted points to `inserted` ([`Triangulation::triangulate_observed`]), built in the arrays of
+/// `spent`, a triangulation no longer needed (a smoothing pass's, of as many points), where they
+/// are large enough. Reason: memory, see [`MeshArrays::reusing`]; the points and the two maps are
+/// per-point arrays like the mesh's.
+pub(crate) fn triangulate_with(
     points: &[Point],
     parallel: bool,
     inserted: Option<&AtomicUsize>,
+    spent: Option<Triangulation>,
 ) -> Result<Triangulation, Error> {
     let parallel = parallel && crate::threads::parallel_available();
-    triangulate_split(points, parallel, halves::SPLIT_MIN, inserted)
+    triangulate_in(points, parallel, halves::SPLIT_MIN, inserted, spent)
 }
 
-/// [`triangulate_with`], built in `storage`'s arrays where they are large enough.
-pub(crate) fn triangulate_reusing(
-    points: &[Point],
-    parallel: bool,
-    storage: Storage,
-) -> Result<Triangulation, Error> {
-    let parallel = parallel && crate::threads::parallel_available();
-    triangulate_in(points, parallel, halves::SPLIT_MIN, None, storage)
-}
-
-/// A triangulation's arrays no longer needed ([`Triangulation::into_storage`]), for the next
-/// triangulation of as many points (a smoothing pass's) to be built in. Reason: memory, see
-/// [`MeshStorage`]; the points and the two maps are per-point arrays like the mesh's.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Storage {
-    points: Vec<Point>,
-    mesh: MeshStorage,
-    input_of_vertex: Vec<u32>,
-    vertex_of_input: Vec<VertexId>,
-}
-
-/// [`triangulate_with_progress`], cutting sets of `split_min` points and more in two.
-fn triangulate_split(
-    points: &[Point],
-    parallel: bool,
-    split_min: usize,
-    progress: Option<&AtomicUsize>,
-) -> Result<Triangulation, Error> {
-    triangulate_in(points, parallel, split_min, progress, Storage::default())
-}
-
-/// [`triangulate_split`] in `storage`'s arrays.
+/// [`triangulate_with`] cutting sets of `split_min` points and more in two.
 fn triangulate_in(
     points: &[Point],
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
-    mut storage: Storage,
+    spent: Option<Triangulation>,
 ) -> Result<Triangulation, Error> {
-    if points.len() > MAX_POINTS {
-        return Err(Error::TooManyPoints {
-            count: points.len(),
-            limit: MAX_POINTS,
-        });
-    }
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
+    // The spent arrays; the rest of it is freed here.
+    let (spare_order, spare_points, spare_mesh, spare_map) = match spent {
+        Some(t) => (t.input_of_vertex, t.points, t.mesh, t.vertex_of_input),
+        None => Default::default(),
+    };
+    let spare = (spare_order, spare_points, spare_mesh);
     let (order, mut sorted, built) =
-        construct(points, &frames, parallel, split_min, progress, &mut storage);
+        construct(points, &frames, parallel, split_min, progress, spare);
     let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
@@ -209,8 +179,7 @@ fn triangulate_in(
             || rescale(high),
         );
     }
-    let (input_of_vertex, vertex_of_input) =
-        vertex_maps(order, &merged, parallel, storage.vertex_of_input);
+    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel, spare_map);
     let num_vertices = vertex_of_input.len() - merged.len();
     Ok(Triangulation {
         points: sorted,
@@ -227,7 +196,8 @@ fn triangulate_in(
 }
 
 /// The insertion order (input positions), its points in the predicates' frame, and their mesh
-/// with the `(duplicate, kept)` pairs merged (`None` when the points make no triangle).
+/// with the `(duplicate, kept)` pairs merged (`None` when the points make no triangle), in the
+/// `spare` arrays for these three if large enough.
 #[allow(clippy::type_complexity)]
 fn construct(
     points: &[Point],
@@ -235,17 +205,13 @@ fn construct(
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
-    storage: &mut Storage,
+    (spare_order, spare_points, mesh): (Vec<u32>, Vec<Point>, Mesh),
 ) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
     let Some(cut) = halves::cut(points, split_min, parallel) else {
         return construct_whole(points, frames, progress);
     };
-    let buffers = (
-        core::mem::take(&mut storage.input_of_vertex),
-        core::mem::take(&mut storage.points),
-    );
+    let buffers = (spare_order, spare_points);
     let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
-    let mesh = core::mem::take(&mut storage.mesh);
     let built = if frames.wide {
         halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
     } else {
@@ -478,12 +444,6 @@ impl Triangulation {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
-        if points.len() > MAX_POINTS {
-            return Err(Error::TooManyPoints {
-                count: points.len(),
-                limit: MAX_POINTS,
-            });
-        }
         let frames = scale::choose_frames(points)?;
         Ok(insertion_order(
             points,
@@ -519,7 +479,8 @@ impl Triangulation {
         points: &[Point],
         inserted: &AtomicUsize,
     ) -> Result<Triangulation, Error> {
-        triangulate_with_progress(points, cfg!(feature = "parallel"), Some(inserted))
+        let parallel = cfg!(feature = "parallel");
+        triangulate_with(points, parallel, Some(inserted), None)
     }
 
     /// The half-edge topology, in vertex ids.
@@ -545,15 +506,6 @@ impl Triangulation {
         match self.offset {
             Some(offset) => Point::new(p.x + offset.x, p.y + offset.y),
             None => p,
-        }
-    }
-    /// Its arrays, for the next triangulation to be built in ([`Storage`]).
-    pub(crate) fn into_storage(self) -> Storage {
-        Storage {
-            points: self.points,
-            mesh: self.mesh.into_storage(),
-            input_of_vertex: self.input_of_vertex,
-            vertex_of_input: self.vertex_of_input,
         }
     }
     /// This triangulation, its points given relative to `offset` (see the `offset` field).
@@ -689,6 +641,16 @@ impl Triangulation {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`triangulate_in`] afresh.
+    pub(super) fn triangulate_split(
+        points: &[Point],
+        parallel: bool,
+        split_min: usize,
+        progress: Option<&AtomicUsize>,
+    ) -> Result<Triangulation, Error> {
+        triangulate_in(points, parallel, split_min, progress, None)
+    }
     use crate::test_rng::Xorshift;
     use alloc::vec;
 
@@ -838,7 +800,7 @@ mod tests {
         }
     }
 
-    /// A triangulation built in the arrays of another ([`Storage`], as the smoothing passes do)
+    /// A triangulation built in the arrays of another (as the smoothing passes do)
     /// is the one built afresh, whether those arrays are larger, smaller or of a set as large,
     /// on the cut and the one-piece paths, with duplicates.
     #[test]
@@ -853,10 +815,10 @@ mod tests {
             for split_min in [0, usize::MAX] {
                 let expected = triangulate_split(points, false, split_min, None).unwrap();
                 for other in [rng.unit_points(5000), rng.unit_points(50), points.clone()] {
-                    let storage = triangulate(&other).unwrap().into_storage();
+                    let spent = triangulate(&other).unwrap();
                     for parallel in [false, true] {
                         let tri =
-                            triangulate_in(points, parallel, split_min, None, storage.clone());
+                            triangulate_in(points, parallel, split_min, None, Some(spent.clone()));
                         let tri = tri.unwrap();
                         assert_same(&tri, &expected, "reused");
                         assert_eq!(tri.vertex_points(), expected.vertex_points());
@@ -910,7 +872,7 @@ mod tests {
             let expected = triangulate(points).unwrap();
             for parallel in [false, true] {
                 let inserted = AtomicUsize::new(0);
-                let tri = triangulate_with_progress(points, parallel, Some(&inserted)).unwrap();
+                let tri = triangulate_with(points, parallel, Some(&inserted), None).unwrap();
                 assert_eq!(inserted.into_inner(), expected.num_vertices(), "{name}");
                 assert_same(&tri, &expected, name);
             }
@@ -975,7 +937,7 @@ mod tests {
             );
             // The real path: built in two halves, and nothing fell back to one piece.
             assert!(built_in_two(points).is_some(), "{name}");
-            let halves = triangulate_with(points, true).unwrap();
+            let halves = triangulate_with(points, true, None, None).unwrap();
             let whole = triangulate_split(points, false, usize::MAX, None).unwrap();
             halves.validate().unwrap();
             whole.validate().unwrap();
@@ -998,7 +960,7 @@ mod tests {
             .iter()
             .map(|&i| frames.predicates.apply(points[i as usize]))
             .collect();
-        halves::build::<Fast>(&sorted, left?, false, None, MeshStorage::default())
+        halves::build::<Fast>(&sorted, left?, false, None, Mesh::default())
     }
 
     /// Above the size where sealing, rescaling and the vertex maps take two threads, they give
@@ -1019,8 +981,8 @@ mod tests {
         // The parallel passes run: the set is past their threshold and cut in two.
         assert!(n >= PARALLEL_MIN && n >= halves::SPLIT_MIN);
         assert!(halves::cut(&points, halves::SPLIT_MIN, true).is_some());
-        let one = triangulate_with(&points, false).unwrap();
-        let two = triangulate_with(&points, true).unwrap();
+        let one = triangulate_with(&points, false, None, None).unwrap();
+        let two = triangulate_with(&points, true, None, None).unwrap();
         one.validate().unwrap();
         let mesh = one.mesh();
         assert_eq!(mesh.num_half_edges(), two.mesh().num_half_edges());

@@ -89,8 +89,8 @@ pub(crate) fn logarithmic(x: f64) -> f64 {
     }
 }
 
-/// SplitMix64 finalizer.
-fn mix(mut z: u64) -> u64 {
+/// The output function of SplitMix64 (Steele, Lea and Flood 2014), a bijection of `u64`.
+pub(crate) fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)

@@ -7,6 +7,7 @@
 use crate::error::Error;
 use crate::geometry::{binary_exponent, Point, Scale};
 use crate::predicates::MAX_SPREAD_BITS;
+use crate::triangulate::MAX_POINTS;
 
 /// The binary exponent the stages' positions give the largest coordinate magnitude.
 pub(crate) const STAGE_EXPONENT: i32 = 200;
@@ -24,8 +25,15 @@ pub(crate) struct Frames {
     pub(crate) exponents: (i32, i32),
 }
 
-/// Checks every point (naming the first non-finite one) and picks the frames.
+/// Checks the size ([`MAX_POINTS`]) and every point (naming the first non-finite one) and picks
+/// the frames.
 pub(crate) fn choose_frames(points: &[Point]) -> Result<Frames, Error> {
+    if points.len() > MAX_POINTS {
+        return Err(Error::TooManyPoints {
+            count: points.len(),
+            limit: MAX_POINTS,
+        });
+    }
     // One pass, in integers (speed): magnitudes compare as bit patterns (NaN above infinity above
     // every finite value); zero, one below, wraps to the top when seeking the smallest nonzero.
     const MAGNITUDE: u64 = !(1 << 63);
