@@ -14,8 +14,10 @@
 //!
 //! Candidates: (1) another loose end `b` facing `a`, or facing `a` while the join runs within 60°
 //! of `a`'s edge ([`TIP`]: a sharp tip's apex left with one side); across a straight join
-//! ([`STRAIGHT`] at both ends) a gap is measured against the longer of the end's last two edges
-//! (noise crowding a sample shortens the last); (2) a point `c` of degree zero with a loose end
+//! ([`STRAIGHT`] at both ends), or a smooth one ([`SMOOTH_COS`] at both ends) that bends no more
+//! than the curve's sharpest passage near either end ([`NEAR_END`]: noise bends both alike), a
+//! gap is measured against the longer of the end's last two edges (noise crowding a sample
+//! shortens the last); (2) a point `c` of degree zero with a loose end
 //! `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample); (3) a
 //! crossing `c` of degree two where `a` lines up (above [`STRAIGHT`]) with one of `c`'s neighbours
 //! while `c`'s passage is bent (the repair paired an arm of each curve), or with a loose end facing
@@ -27,6 +29,7 @@
 //! edge (two nearby outliers) joins only if both its ends do. All choices are made at once on the
 //! graph as it came in: the result does not depend on the order of the ends, nor on `parallel`.
 
+use super::local_outliers::SMOOTH_COS;
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
@@ -44,6 +47,8 @@ const AHEAD: f64 = 0.0;
 const TIP: f64 = 0.5;
 /// Cosine of the smallest angle for two arms to form a straight passage (150°, as `CrossingAware`).
 const STRAIGHT: f64 = -0.866_025_403_784_438_6;
+/// Passages read from a loose end to see how much its curve bends (noise included) near it.
+const NEAR_END: usize = 3;
 /// Longest gap, as a multiple of the loose end's own edge: the paper's `u = 2.75`.
 pub(super) const GAP_RATIO: f64 = 2.75;
 
@@ -133,12 +138,31 @@ impl<'a> Ends<'a> {
         p.dist2(self.point(w)) <= GAP_RATIO * GAP_RATIO * spacing
     }
 
+    /// The cosine of the sharpest of the (at most [`NEAR_END`]) passages along the curve from the
+    /// loose end `a` (`-1`, straight, where there is none): how much the curve bends there.
+    fn sharpest_passage(&self, a: VertexId) -> f64 {
+        let (mut prev, mut here) = (a, self.along(a));
+        let mut sharpest = -1.0f64;
+        for _ in 0..NEAR_END {
+            if self.graph.degree(here) != 2 {
+                break;
+            }
+            let next = self.graph.onward(here, prev);
+            sharpest = sharpest.max(cos_at(self.point(here), self.point(prev), self.point(next)));
+            (prev, here) = (here, next);
+        }
+        sharpest
+    }
+
     /// Whether the loose ends `a` and `b` may join: the gap short for both, and ahead of both, or
     /// ahead of one while the other is a sharp tip's apex ([`TIP`]), whose edge runs back along
     /// the other side (noise or the repair can leave a tip's apex with one side only).
     fn ends_meet(&self, a: VertexId, b: VertexId) -> bool {
         let (at_a, at_b) = (self.turn(a, b), self.turn(b, a));
-        let straight = at_a < STRAIGHT && at_b < STRAIGHT;
+        let straight = (at_a < STRAIGHT && at_b < STRAIGHT)
+            || (at_a < SMOOTH_COS
+                && at_b < SMOOTH_COS
+                && at_a.max(at_b) <= self.sharpest_passage(a).max(self.sharpest_passage(b)));
         let (ahead, tip) = (|c: f64| c < AHEAD, |c: f64| c > TIP);
         let ahead_or_tip = |here: f64, there: f64| ahead(here) && (ahead(there) || tip(there));
         b != self.along(a)
@@ -408,6 +432,38 @@ mod tests {
             *p = Point::new(4.3 + k as f64, 0.7 * (k + 1) as f64);
         }
         assert_eq!(joins(&pts, &edges), NONE);
+    }
+
+    /// A turtle walk from the origin: each step turns by the given degrees, then goes the
+    /// given length.
+    fn walk(steps: &[(f64, f64)]) -> Vec<Point> {
+        let (mut p, mut heading) = (Point::new(0.0, 0.0), 0.0f64);
+        let mut pts = vec![p];
+        for &(turn, length) in steps {
+            heading += turn.to_radians();
+            p = Point::new(
+                p.x + length * libm::cos(heading),
+                p.y + length * libm::sin(heading),
+            );
+            pts.push(p);
+        }
+        pts
+    }
+
+    /// A zig-zag (passages of 140°, as noise bends a curve) whose point 4 was crowded onto point
+    /// 3 (its edge 0.35): the gap 4-5 (1.05, bent 35° at both ends) is three times that edge.
+    /// The join bends no more than the curve does, so the gap is measured against the longer of
+    /// the end's last two edges and closes; along a straight curve the same bent join stays open.
+    #[test]
+    fn a_gap_that_bends_like_its_curve_is_measured_against_the_last_two_edges() {
+        let zigzag = |bend: f64| -> Vec<(f64, f64)> {
+            let turns = [0.0, bend, -bend, bend, -35.0, 35.0, -bend, bend, -bend];
+            let lengths = [1.0, 1.0, 1.0, 0.35, 1.05, 1.0, 1.0, 1.0, 1.0];
+            turns.into_iter().zip(lengths).collect()
+        };
+        let edges = chain(10, &[4]);
+        assert_eq!(joins(&walk(&zigzag(40.0)), &edges), vec![[4, 5]]);
+        assert_eq!(joins(&walk(&zigzag(0.0)), &edges), NONE);
     }
 
     #[test]
