@@ -18,7 +18,9 @@
 //! than the curve's sharpest passage near either end ([`NEAR_END`]: noise bends both alike), a
 //! gap is measured against the longer of the end's last two edges (noise crowding a sample
 //! shortens the last); (2) a point `c` of degree zero with a loose end
-//! `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample); (3) a
+//! `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample; one of the
+//! two may instead be a tip's apex that sees `c` within [`TIP`] of its edge, if the other runs on
+//! straight into `c`, the first sample of the tip's other side); (3) a
 //! crossing `c` of degree two where `a` lines up (above [`STRAIGHT`]) with one of `c`'s neighbours
 //! while `c`'s passage is bent (the repair paired an arm of each curve), or with a loose end facing
 //! `c` across `c`'s passage (the repair kept one curve whole).
@@ -172,19 +174,38 @@ impl<'a> Ends<'a> {
             && (ahead_or_tip(at_a, at_b) || ahead_or_tip(at_b, at_a))
     }
 
-    /// The loose end across `c` from `a` that faces `c` and lines up with `a` best, among those
-    /// `across` accepts.
+    /// Whether `w` is within [`TIP`] of the loose end `a`'s edge at a short gap: `a` is a sharp
+    /// tip's apex whose other side starts at `w`.
+    fn tip_toward(&self, a: VertexId, w: VertexId) -> bool {
+        w != self.along(a) && self.turn(a, w) > TIP && self.short(a, w, false)
+    }
+
+    /// Whether the loose end `a` reaches the point `c` for rule 2: faces it, or is a tip's apex
+    /// toward it; `other_faces` says whether the end across does. With a tip on one side, the end
+    /// facing `c` must run on straight into it (`c` starts the tip's other side).
+    fn reaches(&self, a: VertexId, c: VertexId, other_faces: bool, other: VertexId) -> bool {
+        let straight_on = |e: VertexId| self.turn(e, c) < STRAIGHT;
+        if self.faces(a, c) {
+            other_faces || straight_on(a)
+        } else {
+            other_faces && straight_on(other) && self.tip_toward(a, c)
+        }
+    }
+
+    /// The loose end across `c` from `a` that `reaches` accepts and lines up with `a` best, among
+    /// those `across` accepts.
     fn end_across(
         &self,
         a: VertexId,
         c: VertexId,
+        reaches: impl Fn(VertexId) -> bool,
         across: impl Fn(Point) -> bool,
     ) -> Option<VertexId> {
         let (pa, pc) = (self.point(a), self.point(c));
         self.tri
             .mesh()
             .neighbors(c)
-            .filter(|&d| d != a && self.is_loose(d) && self.faces(d, c))
+            .filter(|&d| d != a && self.is_loose(d) && reaches(d))
             .map(|d| (d, cos_at(pc, pa, self.point(d))))
             .filter(|&(d, cos)| cos < STRAIGHT && across(self.point(d)))
             .min_by(|x, y| x.1.total_cmp(&y.1).then(x.0.cmp(&y.0)))
@@ -204,10 +225,15 @@ impl<'a> Ends<'a> {
             }
         }
         // A loose end across `c`, the pair crossing `c`'s passage.
-        self.end_across(a, c, |pd| {
-            let (sx, sy) = (orient2d(pa, pd, px), orient2d(pa, pd, py));
-            sx != Orientation::Collinear && sy != Orientation::Collinear && sx != sy
-        })
+        self.end_across(
+            a,
+            c,
+            |d| self.faces(d, c),
+            |pd| {
+                let (sx, sy) = (orient2d(pa, pd, px), orient2d(pa, pd, py));
+                sx != Orientation::Collinear && sy != Orientation::Collinear && sx != sy
+            },
+        )
         .map(Partner::End)
     }
 
@@ -224,10 +250,14 @@ impl<'a> Ends<'a> {
             }
             let facing = self.faces(a, w);
             let candidate = match self.graph.degree(w) {
-                0 if facing => match self.end_across(a, w, |_| true) {
-                    Some(d) => Target::Through(w, Partner::End(d)),
-                    None => continue,
-                },
+                // A stranded sample; one of the two ends may be a tip's apex whose other side
+                // starts there, if the other end faces it.
+                0 if facing || self.tip_toward(a, w) => {
+                    match self.end_across(a, w, |d| self.reaches(d, w, facing, a), |_| true) {
+                        Some(d) => Target::Through(w, Partner::End(d)),
+                        None => continue,
+                    }
+                }
                 1 if self.ends_meet(a, w) => Target::End(w),
                 2 if facing => match self.crossing_partner(a, w) {
                     Some(partner) => Target::Through(w, partner),
@@ -406,6 +436,10 @@ mod tests {
         pts.extend((1..5).map(|k| arm(1.0, k))); // 5..=8, the right arm
         let edges = [[0, 1], [1, 2], [2, 3], [3, 4], [5, 6], [6, 7], [7, 8]];
         assert_eq!(joins(&pts, &edges), vec![[0, 5]]);
+        // The right arm's first sample stranded as well: the arm's end runs on straight through
+        // it to the apex, which sees it within 20° of its edge (rule 2 with a tip on one side).
+        let edges = [[0, 1], [1, 2], [2, 3], [3, 4], [6, 7], [7, 8]];
+        assert_eq!(joins(&pts, &edges), vec![[0, 5], [5, 6]]);
         // Two parallel strokes ending side by side, one end a tenth of a spacing higher: the
         // join is ahead of that end (94°) but not a tip at the other (86°): no join.
         let strokes: Vec<Point> = (0..8)
