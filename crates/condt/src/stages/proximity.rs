@@ -242,7 +242,20 @@ fn list_kept<T: Send>(
     // when a vertex might not find room for its two (speed and memory; `docs/perf-log.md`).
     let mut edges = alloc::vec![none; n + 2];
     let mut count = 0;
+    // Decided records name their partners ahead of the listing: their records are prefetched
+    // (speed: on a large set most partner reads would miss, each waited for in turn).
+    let prefetching = decided && n >= PREFETCH_FROM;
     for i in 0..n {
+        if prefetching {
+            if let Some(ahead) = records.get(i + PARTNERS_AHEAD) {
+                for w in read(ahead) {
+                    // Only a smaller partner's record is read.
+                    if w.index() < i + PARTNERS_AHEAD {
+                        prefetch(records, w.index());
+                    }
+                }
+            }
+        }
         if count + 2 > edges.len() {
             // `resize` alone would double the capacity.
             let more = (edges.len() / 8).max(2);
@@ -258,9 +271,11 @@ fn list_kept<T: Send>(
         };
         let v = VertexId::new(i as u32);
         for w in pair {
-            // Only a smaller `w` can have listed the edge already (and it has decided).
-            let partner = records.get(w.index()).map_or(none, &read);
-            let listed_by_w = (w < v) & ((partner[0] == v) | (partner[1] == v));
+            // Only a smaller `w` can have listed the edge already (and it has decided). For the
+            // others `v`'s own record, at hand, is read instead: no miss and no branch.
+            let earlier = w < v;
+            let partner = read(&records[if earlier { w.index() } else { i }]);
+            let listed_by_w = earlier & ((partner[0] == v) | (partner[1] == v));
             edges[count] = ordered(v, w);
             count += usize::from(!w.is_infinite() & !listed_by_w);
         }
@@ -269,6 +284,9 @@ fn list_kept<T: Send>(
     edges.shrink_to_fit();
     edges
 }
+
+/// How many vertices ahead [`list_kept`] prefetches the records of a decided vertex's partners.
+const PARTNERS_AHEAD: usize = 16;
 
 /// The two best offers a vertex has had, best first: `(squared length as bits, neighbour)`. A
 /// non-negative `f64` orders like its bits, so offers compare as integers, without branches.
