@@ -910,6 +910,24 @@ mod tests {
             .map(|e| crate::Graph::new(tri, alloc::borrow::Cow::Owned(e)).edges())
     }
 
+    /// The shortcut's condition holds on clean closed curves only: a cycle of seven evenly spaced
+    /// points (angles of 128.6°) and a circle close beside it are, and the stage keeps both; an
+    /// open end or a square's corners are not.
+    #[test]
+    fn only_smooth_cycles_are_clean_closed_curves() {
+        let mut pts = circle(Point::new(0.0, 0.0), 1.0, 7, 0.0);
+        pts.extend(circle(Point::new(1.5, 0.0), 0.3, 40, 0.0));
+        pts.extend([(5.0, 0.0), (6.0, 0.0), (6.0, 1.0), (5.0, 1.0)].map(Point::from));
+        let tri = triangulate(&pts).unwrap();
+        let cycles = vertex_edges(&tri, &[loop_edges(0, 7), loop_edges(7, 40)].concat());
+        let smooth = |edges: &[Edge]| only_smooth_cycles(&tri, &CurveGraph::new(pts.len(), edges));
+        assert!(smooth(&cycles));
+        assert_eq!(apply(&tri, &cycles, Rules::ALL), None);
+        assert!(!smooth(&cycles[1..]), "an open end");
+        let square = vertex_edges(&tri, &loop_edges(47, 4));
+        assert!(!smooth(&[cycles.clone(), square].concat()), "corners");
+    }
+
     const NONE: Rules = Rules {
         give_back: false,
         long_at_branches: false,
