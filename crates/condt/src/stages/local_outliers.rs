@@ -276,8 +276,22 @@ fn smooth_and_regular_at(p: Point, q: Point, r: Point) -> bool {
     let (to_y, to_z) = (p.dist2(q), p.dist2(r));
     let dot = (q.x - p.x) * (r.x - p.x) + (q.y - p.y) * (r.y - p.y);
     let regular = to_y.max(to_z) < LONG * LONG * to_y.min(to_z);
-    let smooth = dot < SMOOTH_COS * libm::sqrt(to_y * to_z);
-    regular && smooth
+    regular && smooth(dot, to_y * to_z)
+}
+
+/// Whether `dot < SMOOTH_COS * sqrt(product)`, the square root taken only where the answer is not
+/// certain (speed: along a curve it hardly ever is not). Certain: a negative `dot` whose double
+/// squares to over twice `product`. The margin, a factor of two, is far beyond the roundings of
+/// the square (half a unit in the last place, or 2^-1075 below the normal range, where `product`
+/// is 0 or at least 2^-1074) and of the root; doubling and halving are exact, and an overflow
+/// compares as the exact value would.
+#[inline]
+fn smooth(dot: f64, product: f64) -> bool {
+    const _: () = assert!(SMOOTH_COS == -0.5, "the margin is worked out for 120°");
+    dot < 0.0 && {
+        let twice = -2.0 * dot;
+        twice * twice > 2.0 * product || dot < SMOOTH_COS * libm::sqrt(product)
+    }
 }
 
 /// How many vertex ids ahead [`only_smooth_cycles`] and the scans like it prefetch the positions
@@ -908,6 +922,47 @@ mod tests {
         outcome
             .edges
             .map(|e| crate::Graph::new(tri, alloc::borrow::Cow::Owned(e)).edges())
+    }
+
+    /// The square-root-free answer is the root's, near the bound (a few units in the last place
+    /// either side), far from it, and from the smallest magnitudes to the largest.
+    #[test]
+    fn the_smooth_test_without_a_root_is_the_test_with_it() {
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let mut unit = move || rng.unit();
+        let reference = |dot: f64, product: f64| dot < SMOOTH_COS * libm::sqrt(product);
+        for _ in 0..200_000 {
+            let exponent = (unit() * 2100.0) as i32 - 1080;
+            let product = (1.0 + unit()) * libm::pow(2.0, f64::from(exponent));
+            let bound = SMOOTH_COS * libm::sqrt(product);
+            let ulps = ((unit() - 0.5) * 16.0) as i64;
+            let near = f64::from_bits((bound.to_bits() as i64).wrapping_add(ulps) as u64);
+            let far = bound * (4.0 * unit() - 1.0);
+            for dot in [near, far, -near, 0.0, -0.0, bound] {
+                assert_eq!(
+                    smooth(dot, product),
+                    reference(dot, product),
+                    "{dot:e}, {product:e}"
+                );
+            }
+        }
+        for product in [0.0, f64::MIN_POSITIVE, 5e-324, f64::MAX, f64::INFINITY] {
+            for dot in [
+                -f64::MAX,
+                -1e200,
+                -1e-160,
+                -5e-324,
+                0.0,
+                1.0,
+                f64::NEG_INFINITY,
+            ] {
+                assert_eq!(
+                    smooth(dot, product),
+                    reference(dot, product),
+                    "{dot:e}, {product:e}"
+                );
+            }
+        }
     }
 
     /// The shortcut's condition holds on clean closed curves only: a cycle of seven evenly spaced
