@@ -96,6 +96,7 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::Clumps => "clumps",
         Stage::Gaps => "gaps",
         Stage::Junctions => "junctions",
+        Stage::Crossings => "crossings",
         _ => "other stage",
     }
 }

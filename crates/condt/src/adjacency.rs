@@ -194,6 +194,18 @@ impl CurveGraph {
     pub(crate) fn prefetch(&self, v: VertexId) {
         crate::prefetch::prefetch(&self.records, v.index());
     }
+
+    /// Asks the cache for the elements of `slice` (indexed by vertex id: positions, say) at the
+    /// first two neighbours of `v`, which a loop over the ids will read soon; nothing for an id
+    /// out of range or a missing neighbour ([`crate::prefetch`]).
+    #[inline]
+    pub(crate) fn prefetch_neighbors<T>(&self, v: VertexId, slice: &[T]) {
+        if let Some(record) = self.records.get(v.index()) {
+            // A missing neighbour reads as `NO_ID`, beyond any slice of at most `MAX_VERTICES`.
+            crate::prefetch::prefetch(slice, (record[0] & ID_MASK) as usize);
+            crate::prefetch::prefetch(slice, (record[1] & ID_MASK) as usize);
+        }
+    }
     #[inline]
     pub(crate) fn degree(&self, v: VertexId) -> usize {
         let d = self.records[v.index()][0] >> ID_BITS;

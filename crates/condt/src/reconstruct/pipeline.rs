@@ -11,6 +11,7 @@ use crate::curve::curves_in_input_positions;
 use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
+use crate::mesh::VertexId;
 use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
@@ -513,6 +514,11 @@ impl Run {
             let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
             let curves_now = match assembly {
                 CurveAssembly::Now => true,
+                // Without duplicates the input positions name the ids one to one, so the count
+                // reads the records in memory order instead of the input's (speed).
+                CurveAssembly::UnlessNoisy if tri.num_vertices() == n => {
+                    !shows_noise((0..n as u32).map(|v| graph.degree(VertexId::new(v))))
+                }
                 CurveAssembly::UnlessNoisy => {
                     !shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
                 }

@@ -13,7 +13,8 @@
 //! zig-zag passes smoothly at most one time in three. Sequential; O(n) beyond the union-find.
 
 use super::local_outliers::{
-    components, separated_counts_until, smooth_and_regular, MIN_SAMPLES, OUTLIER_SHARE,
+    components, only_smooth_cycles, separated_counts_until, smooth_and_regular, MIN_SAMPLES,
+    OUTLIER_SHARE,
 };
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
@@ -30,6 +31,11 @@ pub(crate) fn remove_clumps(
 ) -> Outcome {
     let n = tri.num_points();
     let graph = graph.unwrap_or_else(|| CurveGraph::new(n, edges));
+    // A clump has a majority of points that do not pass smoothly; where every point does there is
+    // none, so the components and the separation test (the stage's cost) are not computed.
+    if only_smooth_cycles(tri, &graph) {
+        return Outcome::unchanged_with(Some(graph));
+    }
     let root = components(n, edges);
     // Per component: points with edges, and of those the ones passing smoothly.
     let (mut size, mut smooth) = (vec![0u32; n], vec![0u32; n]);

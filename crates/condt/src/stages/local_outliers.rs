@@ -22,7 +22,9 @@
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
+use crate::geometry::Point;
 use crate::mesh::VertexId;
+use crate::prefetch::PREFETCH_FROM;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 use alloc::vec;
@@ -98,8 +100,13 @@ pub(crate) fn remove_local_outliers(
     drop(before);
     // What rules 2 to 4 read; squared lengths are recomputed where asked (memory).
     let mut profile = CurveGraph::new(tri.num_points(), &graph);
+    // Whether rule 2's pass found only smooth, regular cycles; then rules 2 and 3 change nothing
+    // (nothing is long, and there is no branch), so it still holds at rule 4.
+    let mut smooth_cycles = None;
     if rules.long_at_branches || rules.long_at_both_ends {
-        if let Some(long) = long_vertices(tri, &profile) {
+        let scan = long_vertices(tri, &profile);
+        smooth_cycles = Some(scan.smooth_cycles);
+        if let Some(long) = scan.long {
             // Only an edge with an end where it is long can go: the full test runs on those.
             let mut removed = Vec::new();
             {
@@ -125,9 +132,11 @@ pub(crate) fn remove_local_outliers(
     // `profile` is the curve graph of `graph` until rule 4 removes a component.
     let mut profile = Some(profile);
     if rules.separated_components {
-        let judged = profile
-            .as_ref()
-            .and_then(|p| separated_components(tri, &graph, p));
+        let judged = profile.as_ref().and_then(|p| {
+            // A `false` may be stale (rules 2 and 3 changed the graph): the full test then runs.
+            let smooth_cycles = smooth_cycles.unwrap_or_else(|| only_smooth_cycles(tri, p));
+            separated_components(tri, &graph, p, smooth_cycles)
+        });
         if let Some((root, kept)) = judged {
             // Not read again and not the output's: freed before the output is built.
             profile = None;
@@ -254,16 +263,68 @@ pub(super) fn smooth_and_regular(
     y: VertexId,
     z: VertexId,
 ) -> bool {
-    let (p, q, r) = (
+    smooth_and_regular_at(
         tri.vertex_point(x),
         tri.vertex_point(y),
         tri.vertex_point(z),
-    );
+    )
+}
+
+/// [`smooth_and_regular`] at the point `p` between `q` and `r`, the one place the test is written.
+#[inline]
+fn smooth_and_regular_at(p: Point, q: Point, r: Point) -> bool {
     let (to_y, to_z) = (p.dist2(q), p.dist2(r));
     let dot = (q.x - p.x) * (r.x - p.x) + (q.y - p.y) * (r.y - p.y);
     let regular = to_y.max(to_z) < LONG * LONG * to_y.min(to_z);
-    let smooth = dot < SMOOTH_COS * libm::sqrt(to_y * to_z);
-    regular && smooth
+    regular && smooth(dot, to_y * to_z)
+}
+
+/// Whether `dot < SMOOTH_COS * sqrt(product)`, the square root taken only where the answer is not
+/// certain (speed: along a curve it hardly ever is not). Certain: a negative `dot` whose double
+/// squares to over twice `product`. The margin, a factor of two, is far beyond the roundings of
+/// the square (half a unit in the last place, or 2^-1075 below the normal range, where `product`
+/// is 0 or at least 2^-1074) and of the root; doubling and halving are exact, and an overflow
+/// compares as the exact value would.
+#[inline]
+fn smooth(dot: f64, product: f64) -> bool {
+    const _: () = assert!(SMOOTH_COS == -0.5, "the margin is worked out for 120°");
+    dot < 0.0 && {
+        let twice = -2.0 * dot;
+        twice * twice > 2.0 * product || dot < SMOOTH_COS * libm::sqrt(product)
+    }
+}
+
+/// How many vertex ids ahead [`only_smooth_cycles`] and the scans like it prefetch the positions
+/// of a vertex's two neighbours: the vertex's own record and position come in order, theirs from
+/// anywhere (ids follow BRIO rounds, so a curve's samples are far apart in memory).
+pub(super) const NEIGHBORS_AHEAD: usize = 16;
+
+/// Whether every vertex with edges has exactly two that pass [`smooth_and_regular`]: the graph is
+/// a union of smooth, regular cycles (clean closed curves), the case where rule 4 and the clump
+/// stage provably remove nothing. Stops at the first vertex that fails (at once on scattered
+/// points); reads each vertex's neighbours' positions, prefetched [`NEIGHBORS_AHEAD`].
+pub(super) fn only_smooth_cycles(tri: &Triangulation, graph: &CurveGraph) -> bool {
+    let n = graph.vertex_count();
+    let prefetching = n >= PREFETCH_FROM;
+    for i in 0..n {
+        if prefetching {
+            graph.prefetch_neighbors(
+                VertexId::new((i + NEIGHBORS_AHEAD) as u32),
+                tri.vertex_points(),
+            );
+        }
+        let v = VertexId::new(i as u32);
+        match graph.degree(v) {
+            0 => continue,
+            2 => {}
+            _ => return false,
+        }
+        let [y, z] = graph.first_two(v);
+        if !smooth_and_regular(tri, v, y, z) {
+            return false;
+        }
+    }
+    true
 }
 
 /// Makes `graph` that of `edges` (its edges less `removed`): in place for up to one removal per 64
@@ -288,29 +349,51 @@ fn other_than(tri: &Triangulation, graph: &CurveGraph, v: VertexId, l: f64) -> O
     (other != NONE).then_some(other)
 }
 
-/// The vertices whose longest edge in `graph` is over [`LONG`] times their second, as a bit set by
-/// vertex id (speed), or `None` (the common case): rule 2 tests only edges at these.
-fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> Option<Vec<u64>> {
+/// What rule 2's pass over every vertex's edges finds.
+struct LongScan {
+    /// The vertices whose longest edge is over [`LONG`] times their second, as a bit set by vertex
+    /// id (speed), or `None` (the common case): rule 2 tests only edges at these.
+    long: Option<Vec<u64>>,
+    /// Whether the graph is only smooth, regular cycles ([`only_smooth_cycles`]), from the same
+    /// reads of the positions. When it is, `long` is `None`: a regular pair of edges is not long.
+    smooth_cycles: bool,
+}
+
+/// Rule 2's pass ([`LongScan`]), prefetching neighbours' positions [`NEIGHBORS_AHEAD`].
+fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> LongScan {
     let n = graph.vertex_count();
+    let prefetching = n >= PREFETCH_FROM;
     let mut long = alloc::vec![0u64; n.div_ceil(64)];
     let mut any = false;
+    let mut smooth_cycles = true;
     for (word, bits) in long.iter_mut().enumerate() {
         for bit in 0..64 {
             let i = word * 64 + bit;
             if i >= n {
                 break;
             }
+            if prefetching {
+                let ahead = VertexId::new((i + NEIGHBORS_AHEAD) as u32);
+                graph.prefetch_neighbors(ahead, tri.vertex_points());
+            }
             let v = VertexId::new(i as u32);
             let is_long = match graph.degree(v) {
-                0 | 1 => false,
+                0 => false,
+                1 => {
+                    smooth_cycles = false;
+                    false
+                }
                 // Almost every vertex: its two lengths compared directly, without ranking them.
                 2 => {
                     let p = tri.vertex_point(v);
-                    let [y, z] = graph.first_two(v);
-                    let (to_y, to_z) = (p.dist2(tri.vertex_point(y)), p.dist2(tri.vertex_point(z)));
+                    let [q, r] = graph.first_two(v).map(|w| tri.vertex_point(w));
+                    // Tested until one vertex fails (on scattered points at once).
+                    smooth_cycles = smooth_cycles && smooth_and_regular_at(p, q, r);
+                    let (to_y, to_z) = (p.dist2(q), p.dist2(r));
                     to_y.max(to_z) > LONG * LONG * to_y.min(to_z)
                 }
                 _ => {
+                    smooth_cycles = false;
                     let top = tops(tri, graph, v);
                     top[0] > LONG * LONG * top[1]
                 }
@@ -319,7 +402,10 @@ fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> Option<Vec<u64>> {
             any |= is_long;
         }
     }
-    any.then_some(long)
+    LongScan {
+        long: any.then_some(long),
+        smooth_cycles,
+    }
 }
 
 /// Squared lengths of `v`'s two longest edges, longest first ([`NONE`] where it has fewer), the
@@ -490,12 +576,26 @@ pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
 }
 
 /// Rule 4: each vertex's component and whether it keeps its edges (at least [`MIN_SAMPLES`]
-/// separated vertices), or `None` when all do. Merged duplicates' ids have no edge and are skipped.
+/// separated vertices), or `None` when all do; `smooth_cycles`: whether `profile` is only smooth,
+/// regular cycles ([`only_smooth_cycles`]). Merged duplicates' ids have no edge and are skipped.
 fn separated_components(
     tri: &Triangulation,
     edges: &[Edge],
     profile: &CurveGraph,
+    smooth_cycles: bool,
 ) -> Option<(Vec<u32>, Vec<bool>)> {
+    // Clean closed curves keep everything, so neither components nor separation are computed
+    // (speed: they are most of the stage there). Why nothing goes: every component is then a
+    // cycle passing `smooth_and_regular` everywhere, which `keep_regular_cycles` keeps once it has
+    // `MIN_SAMPLES` points, and none has fewer: a closed polygon of three points has an angle of at
+    // most 60°, one of four (simple or crossed) one of at most 90°, and smooth means over 120°.
+    const _: () = assert!(
+        MIN_SAMPLES <= 5,
+        "the argument covers cycles of three and four"
+    );
+    if smooth_cycles {
+        return None;
+    }
     let n = tri.num_points();
     let root = components(n, edges);
     let separated = separated_counts(tri, profile, &root);
@@ -822,6 +922,65 @@ mod tests {
         outcome
             .edges
             .map(|e| crate::Graph::new(tri, alloc::borrow::Cow::Owned(e)).edges())
+    }
+
+    /// The square-root-free answer is the root's, near the bound (a few units in the last place
+    /// either side), far from it, and from the smallest magnitudes to the largest.
+    #[test]
+    fn the_smooth_test_without_a_root_is_the_test_with_it() {
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let mut unit = move || rng.unit();
+        let reference = |dot: f64, product: f64| dot < SMOOTH_COS * libm::sqrt(product);
+        for _ in 0..200_000 {
+            let exponent = (unit() * 2100.0) as i32 - 1080;
+            let product = (1.0 + unit()) * libm::pow(2.0, f64::from(exponent));
+            let bound = SMOOTH_COS * libm::sqrt(product);
+            let ulps = ((unit() - 0.5) * 16.0) as i64;
+            let near = f64::from_bits((bound.to_bits() as i64).wrapping_add(ulps) as u64);
+            let far = bound * (4.0 * unit() - 1.0);
+            for dot in [near, far, -near, 0.0, -0.0, bound] {
+                assert_eq!(
+                    smooth(dot, product),
+                    reference(dot, product),
+                    "{dot:e}, {product:e}"
+                );
+            }
+        }
+        for product in [0.0, f64::MIN_POSITIVE, 5e-324, f64::MAX, f64::INFINITY] {
+            for dot in [
+                -f64::MAX,
+                -1e200,
+                -1e-160,
+                -5e-324,
+                0.0,
+                1.0,
+                f64::NEG_INFINITY,
+            ] {
+                assert_eq!(
+                    smooth(dot, product),
+                    reference(dot, product),
+                    "{dot:e}, {product:e}"
+                );
+            }
+        }
+    }
+
+    /// The shortcut's condition holds on clean closed curves only: a cycle of seven evenly spaced
+    /// points (angles of 128.6°) and a circle close beside it are, and the stage keeps both; an
+    /// open end or a square's corners are not.
+    #[test]
+    fn only_smooth_cycles_are_clean_closed_curves() {
+        let mut pts = circle(Point::new(0.0, 0.0), 1.0, 7, 0.0);
+        pts.extend(circle(Point::new(1.5, 0.0), 0.3, 40, 0.0));
+        pts.extend([(5.0, 0.0), (6.0, 0.0), (6.0, 1.0), (5.0, 1.0)].map(Point::from));
+        let tri = triangulate(&pts).unwrap();
+        let cycles = vertex_edges(&tri, &[loop_edges(0, 7), loop_edges(7, 40)].concat());
+        let smooth = |edges: &[Edge]| only_smooth_cycles(&tri, &CurveGraph::new(pts.len(), edges));
+        assert!(smooth(&cycles));
+        assert_eq!(apply(&tri, &cycles, Rules::ALL), None);
+        assert!(!smooth(&cycles[1..]), "an open end");
+        let square = vertex_edges(&tri, &loop_edges(47, 4));
+        assert!(!smooth(&[cycles.clone(), square].concat()), "corners");
     }
 
     const NONE: Rules = Rules {

@@ -218,13 +218,14 @@ fn ring_choice(
 /// Every kept edge once, from one record per vertex (`read` gives its choice): each vertex
 /// decides with `decide` and `store` records it, all at once on rayon first when `parallel`, else
 /// in the listing pass. An edge kept by both ends is listed by its smaller end (no sort), without
-/// a branch.
-fn list_kept<T: Send>(
+/// a branch. Decided records are listed in consecutive ranges of ids at once, one per thread,
+/// joined in order: the same list (speed: the listing reads a partner's record at random).
+fn list_kept<T: Send + Sync>(
     records: &mut [T],
     parallel: bool,
     decide: &(impl Fn(usize, &T) -> [VertexId; 2] + Sync),
     store: impl Fn(&mut T, [VertexId; 2]) + Sync,
-    read: impl Fn(&T) -> [VertexId; 2],
+    read: impl Fn(&T) -> [VertexId; 2] + Sync,
 ) -> Vec<Edge> {
     #[cfg(feature = "parallel")]
     if parallel {
@@ -234,41 +235,115 @@ fn list_kept<T: Send>(
             .enumerate()
             .with_min_len(4096)
             .for_each(|(i, r)| store(r, decide(i, r)));
+        let records = &*records;
+        let size = records.len().div_ceil(workers(true)).max(1);
+        let pieces: Vec<Vec<Edge>> = (0..records.len())
+            .step_by(size)
+            .collect::<Vec<usize>>()
+            .into_par_iter()
+            .map(|first| list_decided(records, first..(first + size).min(records.len()), &read))
+            .collect();
+        let total: usize = pieces.iter().map(Vec::len).sum();
+        let mut pieces = pieces.into_iter();
+        let mut edges = pieces.next().unwrap_or_default();
+        edges.reserve_exact(total - edges.len());
+        for piece in pieces {
+            edges.extend_from_slice(&piece);
+        }
+        return edges;
     }
-    let decided = parallel && cfg!(feature = "parallel");
-    let none = [VertexId::INFINITE; 2];
-    let n = records.len();
-    // Curves keep about one edge per vertex, two at most: start at one and grow by an eighth
-    // when a vertex might not find room for its two (speed and memory; `docs/perf-log.md`).
-    let mut edges = alloc::vec![none; n + 2];
-    let mut count = 0;
-    for i in 0..n {
-        if count + 2 > edges.len() {
+    let _ = parallel;
+    let mut listing = Listing::new(records.len());
+    for i in 0..records.len() {
+        let pair = decide(i, &records[i]);
+        store(&mut records[i], pair);
+        listing.add(records, i, pair, &read);
+    }
+    listing.done()
+}
+
+/// [`list_kept`] of the decided records of the ids in `range`, prefetching partners' records.
+#[cfg(feature = "parallel")]
+fn list_decided<T>(
+    records: &[T],
+    range: core::ops::Range<usize>,
+    read: &impl Fn(&T) -> [VertexId; 2],
+) -> Vec<Edge> {
+    let prefetching = records.len() >= PREFETCH_FROM;
+    let mut listing = Listing::new(range.len());
+    for i in range.clone() {
+        if prefetching {
+            // Decided records name their partners ahead of the listing: their records are asked
+            // for early (on a large set most partner reads would miss, each waited for in turn).
+            if let Some(ahead) = records[..range.end].get(i + PARTNERS_AHEAD) {
+                for w in read(ahead) {
+                    // Only a smaller partner's record is read.
+                    if w.index() < i + PARTNERS_AHEAD {
+                        prefetch(records, w.index());
+                    }
+                }
+            }
+        }
+        listing.add(records, i, read(&records[i]), read);
+    }
+    listing.done()
+}
+
+/// The edges listed so far, in a buffer grown by an eighth as needed.
+struct Listing {
+    edges: Vec<Edge>,
+    count: usize,
+}
+
+impl Listing {
+    /// Room for `vertices` edges: curves keep about one edge per vertex, two at most, so the
+    /// buffer starts at one and grows by an eighth when a vertex might not find room for its two
+    /// (speed and memory; `docs/perf-log.md`).
+    fn new(vertices: usize) -> Listing {
+        Listing {
+            edges: alloc::vec![[VertexId::INFINITE; 2]; vertices + 2],
+            count: 0,
+        }
+    }
+
+    /// Lists the edges vertex `i` keeps (`pair`) that a smaller partner has not listed already.
+    #[inline]
+    fn add<T>(
+        &mut self,
+        records: &[T],
+        i: usize,
+        pair: [VertexId; 2],
+        read: &impl Fn(&T) -> [VertexId; 2],
+    ) {
+        let edges = &mut self.edges;
+        if self.count + 2 > edges.len() {
             // `resize` alone would double the capacity.
             let more = (edges.len() / 8).max(2);
             edges.reserve_exact(more);
-            edges.resize(edges.len() + more, none);
+            edges.resize(edges.len() + more, [VertexId::INFINITE; 2]);
         }
-        let pair = if decided {
-            read(&records[i])
-        } else {
-            let pair = decide(i, &records[i]);
-            store(&mut records[i], pair);
-            pair
-        };
         let v = VertexId::new(i as u32);
         for w in pair {
-            // Only a smaller `w` can have listed the edge already (and it has decided).
-            let partner = records.get(w.index()).map_or(none, &read);
-            let listed_by_w = (w < v) & ((partner[0] == v) | (partner[1] == v));
-            edges[count] = ordered(v, w);
-            count += usize::from(!w.is_infinite() & !listed_by_w);
+            // Only a smaller `w` can have listed the edge already (and it has decided). For the
+            // others `v`'s own record, at hand, is read instead: no miss and no branch.
+            let earlier = w < v;
+            let partner = read(&records[if earlier { w.index() } else { i }]);
+            let listed_by_w = earlier & ((partner[0] == v) | (partner[1] == v));
+            edges[self.count] = ordered(v, w);
+            self.count += usize::from(!w.is_infinite() & !listed_by_w);
         }
     }
-    edges.truncate(count);
-    edges.shrink_to_fit();
-    edges
+
+    fn done(mut self) -> Vec<Edge> {
+        self.edges.truncate(self.count);
+        self.edges.shrink_to_fit();
+        self.edges
+    }
 }
+
+/// How many vertices ahead [`list_decided`] prefetches the records of a vertex's partners.
+#[cfg(feature = "parallel")]
+const PARTNERS_AHEAD: usize = 16;
 
 /// The two best offers a vertex has had, best first: `(squared length as bits, neighbour)`. A
 /// non-negative `f64` orders like its bits, so offers compare as integers, without branches.
