@@ -22,7 +22,7 @@
 //! the result does not depend on the order of the points, nor on `parallel`; a point where two
 //! chords pass restores neither.
 
-use super::gaps::{cos_at, GAP_RATIO};
+use super::gaps::{cos_at, GAP_RATIO, STRAIGHT};
 use super::local_outliers::{MIN_SAMPLES, NEIGHBORS_AHEAD};
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
@@ -31,9 +31,6 @@ use crate::prefetch::PREFETCH_FROM;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
-
-/// Cosine of the smallest angle of a straight passage (150°, as gap closing's).
-const STRAIGHT: f64 = -0.866_025_403_784_438_6;
 
 /// Whether the vectors `u` and `w` from one point make a straight passage (an angle above 150°,
 /// [`STRAIGHT`]), without a square root: most points are tested once, on every pass.

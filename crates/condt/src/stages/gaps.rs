@@ -48,7 +48,7 @@ const AHEAD: f64 = 0.0;
 /// each other than the spacing). Two curve ends side by side make about 90° there, not less.
 const TIP: f64 = 0.5;
 /// Cosine of the smallest angle for two arms to form a straight passage (150°, as `CrossingAware`).
-const STRAIGHT: f64 = -0.866_025_403_784_438_6;
+pub(super) const STRAIGHT: f64 = -0.866_025_403_784_438_6;
 /// Passages read from a loose end to see how much its curve bends (noise included) near it.
 const NEAR_END: usize = 3;
 /// Longest gap, as a multiple of the loose end's own edge: the paper's `u = 2.75`.
