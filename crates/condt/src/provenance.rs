@@ -264,7 +264,8 @@ impl<'a> Explainer<'a> {
                         b
                     }
                 } else {
-                    let shared = |w: &usize| self.after_of(b).contains(w) && gained(*w);
+                    let at_b = self.after_of(b);
+                    let shared = |w: &usize| at_b.contains(w) && gained(*w);
                     self.after_of(a).into_iter().find(shared).unwrap_or(a)
                 };
                 Reason::Crossing { vertex }

@@ -15,15 +15,15 @@
 //! straight (above [`STRAIGHT`], as gap closing's crossings), the four arms evenly spaced (the
 //! longest within [`GAP_RATIO`] of the shortest: one sampling) and the passages at `c` and at `d`
 //! both straighter through `x` than along the chord, and each of the four arms a branch of
-//! [`MIN_SAMPLES`] points of degree two (as at a junction). Then `c d` gives way to `x c` and
-//! `x d`. The passage test keeps a curve's own edge: a chord that continues its curve straight is
+//! [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`, as
+//! at a junction). Then `c d` gives way to `x c` and `x d`. The passage test keeps a curve's own edge: a chord that continues its curve straight is
 //! no chord; the branches keep a scatter's chance V shapes as they are.
 //! All choices are made on the graph as it came in; a point in two choices takes part in none, so
 //! the result does not depend on the order of the points, nor on `parallel`; a point where two
 //! chords pass restores neither.
 
-use super::gaps::{cos_at, GAP_RATIO, STRAIGHT};
-use super::local_outliers::{MIN_SAMPLES, NEIGHBORS_AHEAD};
+use super::gaps::{cos_at, Ends, GAP_RATIO, STRAIGHT};
+use super::local_outliers::NEIGHBORS_AHEAD;
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -48,19 +48,13 @@ struct Crossing {
     d: VertexId,
 }
 
-struct Scene<'a> {
-    tri: &'a Triangulation,
-    graph: &'a CurveGraph,
-}
-
-impl Scene<'_> {
+impl Ends<'_> {
     fn cos(&self, at: VertexId, u: VertexId, w: VertexId) -> f64 {
-        let point = |v: VertexId| self.tri.vertex_point(v);
-        cos_at(point(at), point(u), point(w))
+        cos_at(self.point(at), self.point(u), self.point(w))
     }
 
     fn dist2(&self, u: VertexId, w: VertexId) -> f64 {
-        self.tri.vertex_point(u).dist2(self.tri.vertex_point(w))
+        self.point(u).dist2(self.point(w))
     }
 
     /// Whether the passage at `c` (degree two) is straighter through `x` than along `d`, its
@@ -76,9 +70,9 @@ impl Scene<'_> {
             return None;
         }
         let [a, b] = self.graph.first_two(x);
-        let px = self.tri.vertex_point(x);
+        let px = self.point(x);
         let arm = |v: VertexId| {
-            let p = self.tri.vertex_point(v);
+            let p = self.point(v);
             (p.x - px.x, p.y - px.y)
         };
         let (to_a, to_b) = (arm(a), arm(b));
@@ -114,7 +108,7 @@ impl Scene<'_> {
                     && self.straighter(d, c, x)
                     && [(x, a), (x, b), (d, c), (c, d)]
                         .iter()
-                        .all(|&(from, next)| self.branch(from, next));
+                        .all(|&(from, next)| self.branch(from, next, &[]));
                 if !passes {
                     continue;
                 }
@@ -128,21 +122,6 @@ impl Scene<'_> {
             }
         }
         found
-    }
-
-    /// Whether the chain from `next` away from `from` runs through at least [`MIN_SAMPLES`]
-    /// points of degree two: an arm of a curve, not of a scatter.
-    fn branch(&self, from: VertexId, next: VertexId) -> bool {
-        let (mut prev, mut here) = (from, next);
-        for _ in 0..MIN_SAMPLES {
-            if self.graph.degree(here) != 2 {
-                return false;
-            }
-            let onward = self.graph.onward(here, prev);
-            prev = here;
-            here = onward;
-        }
-        true
     }
 
     /// Whether squared arm lengths are one sampling: the longest within [`GAP_RATIO`] of the
@@ -163,23 +142,23 @@ pub(crate) fn restore_crossings(
     graph: Option<CurveGraph>,
 ) -> Outcome {
     let n = tri.num_points();
-    let graph = graph.unwrap_or_else(|| CurveGraph::new(n, edges));
-    let scene = Scene { tri, graph: &graph };
+    let ends = Ends::new(tri, edges, graph);
     // Most of the stage's cost: each point's two neighbours' positions, prefetched (speed).
     let prefetching = n >= PREFETCH_FROM;
     let found: Vec<Crossing> = (0..n)
         .filter_map(|i| {
             if prefetching {
                 let ahead = VertexId::new((i + NEIGHBORS_AHEAD) as u32);
-                graph.prefetch_neighbors(ahead, tri.vertex_points());
+                ends.graph.prefetch_neighbors(ahead, tri.vertex_points());
             }
-            scene.crossing_at(VertexId::new(i as u32))
+            ends.crossing_at(VertexId::new(i as u32))
         })
         .collect();
     if found.is_empty() {
-        return Outcome::unchanged_with(Some(graph));
+        return Outcome::unchanged_with(Some(ends.graph));
     }
-    // A point in two crossings (or found from both ends) takes part in none.
+    // A point in two crossings (as the crossing of one and a chord's end of another, say) takes
+    // part in none.
     let mut uses = vec![0u8; n];
     for crossing in &found {
         for v in [crossing.x, crossing.c, crossing.d] {
@@ -190,9 +169,9 @@ pub(crate) fn restore_crossings(
     let restored: Vec<Crossing> = found.iter().filter(alone).copied().collect();
     drop(uses);
     if restored.is_empty() {
-        return Outcome::unchanged_with(Some(graph));
+        return Outcome::unchanged_with(Some(ends.graph));
     }
-    drop(graph);
+    drop(ends);
     let mut chords: Vec<Edge> = restored.iter().map(|k| ordered(k.c, k.d)).collect();
     chords.sort_unstable();
     let mut out: Vec<Edge> = Vec::with_capacity(edges.len() + restored.len());

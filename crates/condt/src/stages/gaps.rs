@@ -31,7 +31,7 @@
 //! edge (two nearby outliers) joins only if both its ends do. All choices are made at once on the
 //! graph as it came in: the result does not depend on the order of the ends, nor on `parallel`.
 
-use super::local_outliers::SMOOTH_COS;
+use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
@@ -115,6 +115,21 @@ impl<'a> Ends<'a> {
     /// The one neighbour of the loose end `a`.
     pub(super) fn along(&self, a: VertexId) -> VertexId {
         self.graph.first_two(a)[0]
+    }
+
+    /// Whether the chain from `next` away from `from` runs through at least [`MIN_SAMPLES`]
+    /// points of degree two, none of them in `avoid`.
+    pub(super) fn branch(&self, from: VertexId, next: VertexId, avoid: &[VertexId]) -> bool {
+        let (mut prev, mut here) = (from, next);
+        for _ in 0..MIN_SAMPLES {
+            if self.graph.degree(here) != 2 || avoid.contains(&here) {
+                return false;
+            }
+            let onward = self.graph.onward(here, prev);
+            prev = here;
+            here = onward;
+        }
+        true
     }
 
     /// Whether `w` is ahead of the loose end `a` and the gap is short (the module's two tests).

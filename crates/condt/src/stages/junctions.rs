@@ -8,13 +8,12 @@
 //! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.
 //! Rule (reasons: docs/condt.md, *Junctions*): a loose end `a` joins the Delaunay neighbour `c`
 //! with two edges that it faces, within [`GAP_RATIO`] times `c`'s shorter edge, with three branches
-//! of [`MIN_SAMPLES`] points of degree two (`Ends::branch`), straightest ahead of the end among
-//! those that pass (ties by id), and chosen by no other loose end (two make a crossing, gap
+//! of [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`),
+//! straightest ahead of the end among those that pass (ties by id), and chosen by no other loose end (two make a crossing, gap
 //! closing's case). All choices are made on the graph as it came in, so the result is independent
 //! of the order of the ends; sequential, the same with `parallel` on or off.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO};
-use super::local_outliers::MIN_SAMPLES;
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -23,23 +22,9 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 impl Ends<'_> {
-    /// Whether the chain from `next` away from `from` runs through at least [`MIN_SAMPLES`]
-    /// points of degree two, none of them in `avoid`.
-    fn branch(&self, from: VertexId, next: VertexId, avoid: &[VertexId]) -> bool {
-        let (mut prev, mut here) = (from, next);
-        for _ in 0..MIN_SAMPLES {
-            if self.graph.degree(here) != 2 || avoid.contains(&here) {
-                return false;
-            }
-            let onward = self.graph.onward(here, prev);
-            prev = here;
-            here = onward;
-        }
-        true
-    }
-
     /// Whether the loose end `a` meets the degree-two point `c` at a junction: `c` faces `a`
-    /// within [`GAP_RATIO`] of its shorter edge, and three branches of [`MIN_SAMPLES`] meet there.
+    /// within [`GAP_RATIO`] of its shorter edge, and three branches
+    /// ([`Ends::branch`](super::gaps::Ends::branch)) meet there.
     fn meets_at_junction(&self, a: VertexId, c: VertexId) -> bool {
         if self.graph.degree(c) != 2 || !self.faces(a, c) {
             return false;
