@@ -14,7 +14,8 @@
 //!
 //! Candidates: (1) another loose end `b` facing `a`, or facing `a` while the join runs within 60°
 //! of `a`'s edge ([`TIP`]: a sharp tip's apex left with one side); across a straight join
-//! ([`STRAIGHT`] at both ends), or a smooth one ([`SMOOTH_COS`] at both ends) that bends no more
+//! ([`STRAIGHT`] at both ends, from the end's edge or the chord over its last two edges, which
+//! noise moving the end sample bends less), or a smooth one ([`SMOOTH_COS`] at both ends) that bends no more
 //! than the curve's sharpest passage near either end ([`NEAR_END`]: noise bends both alike), a
 //! gap is measured against the longer of the end's last two edges (noise crowding a sample
 //! shortens the last); (2) a point `c` of degree zero with a loose end
@@ -142,6 +143,18 @@ impl<'a> Ends<'a> {
         cos_at(self.point(a), self.point(self.along(a)), self.point(w))
     }
 
+    /// The cosine of the angle at the loose end `a` between the point two edges back and `w`
+    /// (`1` where the curve ends sooner): the chord over the last two edges, a steadier guide to
+    /// the curve's direction than a last edge that noise shortened.
+    fn chord_turn(&self, a: VertexId, w: VertexId) -> f64 {
+        let next = self.along(a);
+        if self.graph.degree(next) != 2 {
+            return 1.0;
+        }
+        let beyond = self.graph.onward(next, a);
+        cos_at(self.point(a), self.point(beyond), self.point(w))
+    }
+
     /// Whether the gap from the loose end `a` to `w` is within [`GAP_RATIO`] of `a`'s edge, or with
     /// `two_edges` of the longer of its last two edges.
     fn short(&self, a: VertexId, w: VertexId, two_edges: bool) -> bool {
@@ -176,10 +189,14 @@ impl<'a> Ends<'a> {
     /// the other side (noise or the repair can leave a tip's apex with one side only).
     fn ends_meet(&self, a: VertexId, b: VertexId) -> bool {
         let (at_a, at_b) = (self.turn(a, b), self.turn(b, a));
-        let straight = (at_a < STRAIGHT && at_b < STRAIGHT)
-            || (at_a < SMOOTH_COS
-                && at_b < SMOOTH_COS
-                && at_a.max(at_b) <= self.sharpest_passage(a).max(self.sharpest_passage(b)));
+        let (line_a, line_b) = (
+            self.chord_turn(a, b).min(at_a),
+            self.chord_turn(b, a).min(at_b),
+        );
+        let straight = (line_a < STRAIGHT && line_b < STRAIGHT)
+            || (line_a < SMOOTH_COS
+                && line_b < SMOOTH_COS
+                && line_a.max(line_b) <= self.sharpest_passage(a).max(self.sharpest_passage(b)));
         let (ahead, tip) = (|c: f64| c < AHEAD, |c: f64| c > TIP);
         let ahead_or_tip = |here: f64, there: f64| ahead(here) && (ahead(there) || tip(there));
         b != self.along(a)
@@ -481,6 +498,18 @@ mod tests {
             *p = Point::new(4.3 + k as f64, 0.7 * (k + 1) as f64);
         }
         assert_eq!(joins(&pts, &edges), NONE);
+    }
+
+    /// A straight line whose end sample 4 noise pushed aside and onto sample 3 (its edge 0.5,
+    /// at 37° to the line): the join to 5 bends 45° from that edge, but only 8° from the chord
+    /// 2-4, so it is straight and closes (read along the edge alone, it stays open: the gap is four
+    /// times that edge).
+    #[test]
+    fn a_straight_gap_is_read_along_the_chord_over_the_last_two_edges() {
+        let mut pts: Vec<Point> = [0.0, 1.0, 2.0, 3.0].map(|x| Point::new(x, 0.0)).to_vec();
+        pts.push(Point::new(3.4, -0.3));
+        pts.extend([5.5, 6.5, 7.5, 8.5].map(|x| Point::new(x, 0.0)));
+        assert_eq!(joins(&pts, &chain(9, &[4])), vec![[4, 5]]);
     }
 
     /// A turtle walk from the origin: each step turns by the given degrees, then goes the
