@@ -162,7 +162,7 @@ mod tests {
     }
 
     /// A noisy ellipse the crate samples itself (142 samples, uniform noise of 2 % of the long
-    /// radius), chosen because one true edge, 114-115, is not a Delaunay edge of the noisy
+    /// radius), chosen because one true edge, 100-101, is not a Delaunay edge of the noisy
     /// points: a sample pushed off the curve sits in every empty circle through its two ends.
     /// (Found by searching seeds: a case like it is rare, one in several hundred noisy
     /// ellipses; most of the measured noise gain comes from the stages choosing on smoother positions.)
@@ -177,12 +177,12 @@ mod tests {
             &[ellipse],
             &Sampling {
                 noise: 0.02,
-                seed: 675,
+                seed: 895,
                 ..Sampling::new(0.1)
             },
         )
         .unwrap();
-        let hidden = [114, 115];
+        let hidden = [100, 101];
         assert!(noisy.edges.contains(&hidden), "a true edge");
         let tri = triangulate(&noisy.points).unwrap();
         assert!(

@@ -2,7 +2,8 @@
 //! rule and the repair, in either order.
 //!
 //! Owns: four local rules on the graph those stages left. Besides its input it reads the IQR
-//! stage's (via `Step::run`); it may not touch the triangulation and adds no edge absent from it.
+//! stage's (via `Step::run`) and asks gap closing which joins it would make (rule 4); it may not
+//! touch the triangulation and adds no edge absent from it.
 //!
 //! Why: Algorithm 3's threshold is global: nearby outliers are each other's nearest neighbours, so
 //! their short edges pass it, and a sparse component beside a dense one loses every edge once it
@@ -16,7 +17,8 @@
 //!    from the rest as from each other, a curve's samples much closer to each other.
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
-//! curves), unless rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes
+//! curves) unless gap closing would join them to a kept component ([`keep_joined_pieces`]), or
+//! rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes
 //! none; docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter junction
 //! branches regardless. Sequential, deterministic, O(n); lengths recomputed, not kept (memory).
 
@@ -607,10 +609,36 @@ fn separated_components(
         return None;
     }
     keep_regular_cycles(tri, profile, &root, &mut kept);
+    let (root, kept) = keep_joined_pieces(tri, edges, root, kept);
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
     Some((root, kept))
+}
+
+/// Rule 4's third exemption: a piece that gap closing would join, directly or through other
+/// pieces, to a kept component is kept. Reason: noise breaks a curve into pieces of a few
+/// samples lying along it, none apart from the curve; gap closing needs evidence from both sides
+/// of each join, which outliers beside a curve rarely give. Returns the components with those
+/// joins (by their smallest id) and which are kept.
+fn keep_joined_pieces(
+    tri: &Triangulation,
+    edges: &[Edge],
+    root: Vec<u32>,
+    kept: Vec<bool>,
+) -> (Vec<u32>, Vec<bool>) {
+    let Some(joined) = super::gaps::close_gaps(tri, edges, None).edges else {
+        return (root, kept);
+    };
+    let joined_root = components(root.len(), &joined);
+    drop(joined);
+    let mut joined_kept = vec![false; root.len()];
+    for (v, &r) in root.iter().enumerate() {
+        if kept[r as usize] {
+            joined_kept[joined_root[v] as usize] = true;
+        }
+    }
+    (joined_root, joined_kept)
 }
 
 /// Per component root, how many of its vertices are separated (rule 4), counted up to
@@ -990,6 +1018,30 @@ mod tests {
         short_spurs: false,
         separated_components: false,
     };
+
+    /// A circle of 40 samples broken by noise into an arc of 36 and a piece of four: the piece
+    /// has no sample apart from the arc, but gap closing would join it to the arc at both ends,
+    /// so rule 4 keeps it. Four points of the same size inside the circle, lined up with nothing,
+    /// go.
+    #[test]
+    fn rule_4_keeps_a_piece_that_gap_closing_joins_to_a_kept_curve() {
+        let rule_4 = Rules {
+            separated_components: true,
+            ..NONE
+        };
+        let mut pts = circle(Point::new(0.0, 0.0), 1.0, 40, 0.1);
+        let mut pairs: Vec<[usize; 2]> = (0..35).map(|k| [k, k + 1]).collect();
+        pairs.extend([[36, 37], [37, 38], [38, 39]]);
+        let tri = triangulate(&pts).unwrap();
+        assert_eq!(apply(&tri, &vertex_edges(&tri, &pairs), rule_4), None);
+
+        let inside = [(0.1, 0.0), (0.25, 0.1), (0.3, 0.25), (0.45, 0.3)];
+        pts.extend(inside.map(|(x, y)| Point::new(x, y)));
+        pairs.extend([[40, 41], [41, 42], [42, 43]]);
+        let tri = triangulate(&pts).unwrap();
+        let kept = apply(&tri, &vertex_edges(&tri, &pairs), rule_4).expect("a piece goes");
+        assert_eq!(kept, pairs[..38].to_vec());
+    }
 
     /// A thick noisy band, as a noisy scan gives: three rows of points 0.1 apart, 0.1 between the
     /// rows, joined as short pieces of three along each row. No piece is separated from the next

@@ -133,7 +133,8 @@ repair, remove outliers locally: give back edges the filter cut
 along regular passages; drop edges far longer than their
 neighbours, branches of fewer than 5 points and components of
 fewer than 5 points clearly apart from the rest, unless dense
-(a sparsely sampled 3- or 4-point curve is lost)",
+or gap closing would join them to a curve that stays (a
+sparsely sampled 3- or 4-point curve is lost)",
         }),
     },
     Row {
