@@ -69,7 +69,8 @@ pub struct Params {
     /// chance chain among outliers goes, a sparse curve stays (`src/stages/given_back.rs`).
     pub confirm_given_back: bool,
     /// Close gaps at loose ends (beyond the paper): join two facing across a short gap, two to the
-    /// stranded sample they line up through, a crossing's lost arms to it (`src/stages/gaps.rs`).
+    /// stranded sample they line up through, two whose straight walks through unused points meet,
+    /// a crossing's lost arms to it (`src/stages/gaps.rs`).
     pub close_gaps: bool,
     /// Remove components fewer than half of whose points a curve passes smoothly and evenly
     /// (beyond the paper): clumps of outliers, which the local outlier removal keeps as they lie

@@ -26,6 +26,12 @@
 //! while `c`'s passage is bent (the repair paired an arm of each curve), or with a loose end facing
 //! `c` across `c`'s passage (the repair kept one curve whole).
 //!
+//! (4) Last, for the ends none of these joined: each walks straight on (above [`STRAIGHT`], each
+//! step within [`GAP_RATIO`] of the one before, up to [`MIN_SAMPLES`] points) through unused
+//! points; two walks that reach each other's ends or end at the same point join along them (a
+//! run of samples the earlier stages dropped; a sharp tip's apex with its nearest samples, which
+//! lay nearer the other side than their own).
+//!
 //! Each end takes its nearest candidate (ties by id). Joins need evidence from both sides, which
 //! keeps a genuinely open end open: two ends must choose each other, or the same point with each
 //! other as partner; at a crossing both dropped arms must come back (one arm alone is a T); a lone
@@ -320,7 +326,8 @@ pub(crate) fn close_gaps(
         .filter(|&(_, target)| target != Target::None)
         .collect();
     if targets.is_empty() {
-        return Outcome::unchanged_with(Some(ends.graph));
+        let runs = ends.stranded_runs(&[]);
+        return ends.joined(edges, &runs);
     }
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
     let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
@@ -359,7 +366,115 @@ pub(crate) fn close_gaps(
         }
     }
     drop(lined_up);
+    let joined_ends: Vec<VertexId> = targets
+        .iter()
+        .zip(&joined)
+        .filter(|&(&(a, _), &j)| j && supported(a))
+        .map(|(&(a, _), _)| a)
+        .collect();
+    joins.extend(ends.stranded_runs(&joined_ends));
     ends.joined(edges, &joins)
+}
+
+impl Ends<'_> {
+    /// The unused points a straight walk from the loose end `a` passes (see [`Self::stranded_runs`]),
+    /// ending with the loose end it runs into, if any.
+    fn straight_walk(&self, a: VertexId) -> Vec<VertexId> {
+        let mut path = Vec::new();
+        let (mut prev, mut here) = (self.along(a), a);
+        for _ in 0..MIN_SAMPLES {
+            let (pp, ph) = (self.point(prev), self.point(here));
+            let reach = GAP_RATIO * GAP_RATIO * pp.dist2(ph);
+            let next = self
+                .tri
+                .mesh()
+                .neighbors(here)
+                .filter(|&w| w != a && !path.contains(&w))
+                .filter(|&w| matches!(self.graph.degree(w), 0 | 1))
+                .map(|w| (ph.dist2(self.point(w)), w))
+                .filter(|&(d, w)| d <= reach && cos_at(ph, pp, self.point(w)) < STRAIGHT)
+                .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+            let Some((_, w)) = next else { break };
+            path.push(w);
+            if self.graph.degree(w) == 1 {
+                break;
+            }
+            (prev, here) = (here, w);
+        }
+        path
+    }
+
+    /// Runs of unused points between two loose ends: each end walks straight on (above
+    /// [`STRAIGHT`], steps within [`GAP_RATIO`] of the last) through unused points; two walks
+    /// that reach each other's end, or meet at the same unused point (a sharp tip's apex), join.
+    fn stranded_runs(&self, joined: &[VertexId]) -> Vec<Edge> {
+        let walks: Vec<(VertexId, Vec<VertexId>)> = self
+            .loose()
+            .filter(|a| joined.binary_search(a).is_err())
+            .map(|a| (a, self.straight_walk(a)))
+            .filter(|(_, walk)| !walk.is_empty())
+            .collect();
+        let walk_of = |v: VertexId| {
+            walks
+                .binary_search_by_key(&v, |(a, _)| *a)
+                .ok()
+                .map(|k| &walks[k].1)
+        };
+        // Walks by the point they end at, to find two that meet.
+        let mut by_last: Vec<(VertexId, usize)> = walks
+            .iter()
+            .enumerate()
+            .map(|(k, (_, walk))| (*walk.last().expect("non-empty"), k))
+            .collect();
+        by_last.sort_unstable();
+        let mut used = vec![
+            false;
+            if walks.is_empty() {
+                0
+            } else {
+                self.tri.num_points()
+            }
+        ];
+        let mut out = Vec::new();
+        for (a, walk) in &walks {
+            let last = *walk.last().expect("non-empty");
+            let chain: Vec<VertexId> = if self.is_loose(last) {
+                // Reached a loose end: it must reach `a` back, through the same points.
+                match walk_of(last) {
+                    Some(back)
+                        if last > *a && back.last() == Some(a) && back.len() == walk.len() =>
+                    {
+                        core::iter::once(*a).chain(walk.iter().copied()).collect()
+                    }
+                    _ => continue,
+                }
+            } else {
+                // Ended at an unused point: another walk must end there too, from elsewhere.
+                let from = by_last.partition_point(|&(v, _)| v < last);
+                let other = by_last[from..]
+                    .iter()
+                    .take_while(|&&(v, _)| v == last)
+                    .map(|&(_, k)| &walks[k])
+                    .find(|(b, w)| b > a && w.iter().all(|v| *v == last || !walk.contains(v)));
+                match other {
+                    Some((b, w)) => core::iter::once(*a)
+                        .chain(walk.iter().copied())
+                        .chain(w.iter().rev().skip(1).copied())
+                        .chain(core::iter::once(*b))
+                        .collect(),
+                    None => continue,
+                }
+            };
+            if chain.iter().any(|v| used[v.index()]) {
+                continue;
+            }
+            for v in &chain {
+                used[v.index()] = true;
+            }
+            out.extend(chain.windows(2).map(|p| ordered(p[0], p[1])));
+        }
+        out
+    }
 }
 
 impl Ends<'_> {
@@ -510,6 +625,34 @@ mod tests {
         pts.push(Point::new(3.4, -0.3));
         pts.extend([5.5, 6.5, 7.5, 8.5].map(|x| Point::new(x, 0.0)));
         assert_eq!(joins(&pts, &chain(9, &[4])), vec![[4, 5]]);
+    }
+
+    /// A 40° tip whose apex and the four samples before it on each side are unused (the sides'
+    /// ends are too far apart to face each other across the tip): the two sides walk straight on
+    /// through them and meet at the apex. A row of unused points that meets no walk stays.
+    #[test]
+    fn straight_walks_that_meet_at_a_tips_apex_join() {
+        let side = |degrees: f64| -> Vec<Point> {
+            let (c, s) = (
+                libm::cos(degrees.to_radians()),
+                libm::sin(degrees.to_radians()),
+            );
+            (1..=7)
+                .map(|k| Point::new(k as f64 * c, k as f64 * s))
+                .collect()
+        };
+        // 0-6 one side (0 nearest the apex), 7-13 the other, 14 the apex.
+        let mut pts = side(160.0);
+        pts.extend(side(200.0));
+        pts.push(Point::new(0.0, 0.0));
+        let sides = [[4, 5], [5, 6], [11, 12], [12, 13]];
+        let mut expected: Vec<[usize; 2]> =
+            (0..4).flat_map(|k| [[k, k + 1], [k + 7, k + 8]]).collect();
+        expected.extend([[0, 14], [7, 14]]);
+        expected.sort_unstable();
+        assert_eq!(joins(&pts, &sides), expected);
+        pts.extend((0..4).map(|k| Point::new(-2.0 - k as f64, 5.0)));
+        assert_eq!(joins(&pts, &sides), expected);
     }
 
     /// A turtle walk from the origin: each step turns by the given degrees, then goes the

@@ -173,7 +173,8 @@ remove a quarter of the points with edges",
         switch: Some(Switch {
             flag: "close-gaps",
             help: "(default on; off with --paper) last, join loose ends that face each
-other across a short gap or line up through a stranded point, and a
+other across a short gap or line up through a stranded point, two
+that walk straight on through unused points and meet, and a
 crossing's dropped arms",
         }),
     },
