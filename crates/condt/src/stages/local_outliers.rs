@@ -14,7 +14,8 @@
 //!    kept by Algorithm 2's union) or at each end with others (an outlier at an open curve's end).
 //! 3. **Drop short spurs** ([`short_spurs`]): outliers hanging off a curve, unseen by rule 4.
 //! 4. **Keep separated components** ([`separated_components`]): a clump's points are about as far
-//!    from the rest as from each other, a curve's samples much closer to each other.
+//!    from the rest as from each other, a curve's samples much closer to each other; a closed
+//!    polygon of five or six is a clump however far apart ([`drop_short_cycles`]).
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
 //! curves) unless gap closing would join them to a kept component ([`keep_joined_pieces`]), or
@@ -605,6 +606,7 @@ fn separated_components(
         .iter()
         .map(|&c| usize::from(c) >= MIN_SAMPLES)
         .collect();
+    drop_short_cycles(profile, &root, &mut kept);
     if edges.iter().all(|&[a, _]| kept[root[a.index()] as usize]) {
         return None;
     }
@@ -736,6 +738,33 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], ke
         }
     }
 }
+
+/// Rule 4's limit: a component that is one cycle of fewer than [`CLOSED_MIN`] points is not kept
+/// for being apart. Reason: a closed curve sampled within the guarantees (`ε <= 1`) has more
+/// than `2π / ε`, over six, samples; a closed polygon of five or six apart from everything is a
+/// clump of outliers that closed up.
+fn drop_short_cycles(graph: &CurveGraph, root: &[u32], kept: &mut [bool]) {
+    let n = root.len();
+    let mut size = vec![0u8; n];
+    let mut cycle = vec![true; n];
+    for (i, &r) in root.iter().enumerate() {
+        let v = VertexId::new(i as u32);
+        let r = r as usize;
+        if !kept[r] || graph.degree(v) == 0 {
+            continue;
+        }
+        size[r] = size[r].saturating_add(1);
+        cycle[r] &= graph.degree(v) == 2;
+    }
+    for r in 0..n {
+        if kept[r] && cycle[r] && size[r] > 0 && (size[r] as usize) < CLOSED_MIN {
+            kept[r] = false;
+        }
+    }
+}
+
+/// Fewest samples of a closed curve: more than `2π` (see [`drop_short_cycles`]).
+const CLOSED_MIN: usize = 7;
 
 /// Rule 4's guard: whether dropped components hold [`OUTLIER_SHARE`] of the points with edges.
 fn too_many_dropped(root: &[u32], profile: &CurveGraph, kept: &[bool]) -> bool {
@@ -1018,6 +1047,34 @@ mod tests {
         short_spurs: false,
         separated_components: false,
     };
+
+    /// A closed pentagon and a closed hexagon far from a circle of 40 samples: every point of
+    /// each is apart from everything else, but a closed curve needs more than six samples, so
+    /// rule 4 drops both (the circle stays).
+    #[test]
+    fn rule_4_drops_a_closed_polygon_of_five_or_six_points() {
+        let rule_4 = Rules {
+            separated_components: true,
+            ..NONE
+        };
+        let mut pts = circle(Point::new(0.0, 0.0), 1.0, 40, 0.0);
+        let mut pairs: Vec<[usize; 2]> = (0..40).map(|k| [k, (k + 1) % 40]).collect();
+        let circle_edges = pairs.len();
+        for (center, count) in [(Point::new(10.0, 0.0), 5), (Point::new(0.0, 10.0), 6)] {
+            let first = pts.len();
+            // Irregular, so that no polygon of five or six is a smooth, regular cycle either.
+            pts.extend(circle(center, 0.2, count, 0.2));
+            pairs.extend((0..count).map(|k| [first + k, first + (k + 1) % count]));
+        }
+        let tri = triangulate(&pts).unwrap();
+        let kept = apply(&tri, &vertex_edges(&tri, &pairs), rule_4).expect("the polygons go");
+        let mut circle_only: Vec<[usize; 2]> = pairs[..circle_edges]
+            .iter()
+            .map(|&[a, b]| [a.min(b), a.max(b)])
+            .collect();
+        circle_only.sort_unstable();
+        assert_eq!(kept, circle_only);
+    }
 
     /// A circle of 40 samples broken by noise into an arc of 36 and a piece of four: the piece
     /// has no sample apart from the arc, but gap closing would join it to the arc at both ends,

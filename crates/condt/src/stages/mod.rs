@@ -134,7 +134,8 @@ along regular passages; drop edges far longer than their
 neighbours, branches of fewer than 5 points and components of
 fewer than 5 points clearly apart from the rest, unless dense
 or gap closing would join them to a curve that stays (a
-sparsely sampled 3- or 4-point curve is lost)",
+sparsely sampled curve of 3 or 4 points, or a closed one of 5
+or 6, is lost)",
         }),
     },
     Row {
