@@ -611,11 +611,12 @@ fn separated_components(
         return None;
     }
     keep_regular_cycles(tri, profile, &root, &mut kept);
-    let (root, kept) = keep_joined_pieces(tri, edges, root, kept);
+    // The guard judges the components as they are: the joined pieces kept below only lower the
+    // share, and a guard that then let go of the rest would drop more than without them.
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
-    Some((root, kept))
+    Some(keep_joined_pieces(tri, edges, root, kept))
 }
 
 /// Rule 4's third exemption: a piece that gap closing would join, directly or through other
