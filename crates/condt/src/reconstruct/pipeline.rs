@@ -712,8 +712,8 @@ pub(super) fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
     work()
 }
 
-#[cfg(test)]
 #[cfg(feature = "parallel")]
+#[cfg(test)]
 mod tests {
     use super::on_worker;
 
