@@ -100,15 +100,6 @@ pub(crate) fn cut(points: &[Point], min: usize, parallel: bool) -> Option<Cut> {
     })
 }
 
-/// The input positions of the two halves of [`cut`], each in input order.
-#[cfg(test)]
-pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)> {
-    let cut = cut(points, min, false)?;
-    let (left, right): (Vec<u32>, Vec<u32>) =
-        (0..points.len() as u32).partition(|&i| cut.is_left(points[i as usize]));
-    Some((left, right))
-}
-
 /// The mesh of `points` (in insertion order: the left half's `left` points first), in `storage`'s
 /// arrays if large enough, and the merged `(duplicate, kept)` pairs, or `None` (module doc). Each
 /// half reports to `progress` like [`insert::build_into`]; `None` takes their counts back.
@@ -419,7 +410,7 @@ fn stitch<K: Kernel>(
 #[cfg(test)]
 mod tests {
     use super::super::scale;
-    use super::super::tests::triangulate_split;
+    use super::super::tests::{split, triangulate_split};
     use super::*;
     use crate::test_rng::Xorshift;
     use alloc::format;

@@ -651,6 +651,27 @@ mod tests {
     ) -> Result<Triangulation, Error> {
         triangulate_in(points, parallel, split_min, progress, None)
     }
+
+    /// The input positions of the two halves of [`halves::cut`], each in input order.
+    pub(super) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)> {
+        let cut = halves::cut(points, min, false)?;
+        let (left, right): (Vec<u32>, Vec<u32>) =
+            (0..points.len() as u32).partition(|&i| cut.is_left(points[i as usize]));
+        Some((left, right))
+    }
+
+    /// The integer predicates alone, to check constructions against.
+    struct Integers;
+
+    impl Kernel for Integers {
+        fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
+            crate::predicates::integers::orient2d(a, b, c)
+        }
+        fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+            crate::predicates::integers::in_circle(a, b, c, d)
+        }
+    }
+    use crate::predicates::Orientation;
     use crate::test_rng::Xorshift;
     use alloc::vec;
 
@@ -720,7 +741,7 @@ mod tests {
             let fast = triangles::<Fast>(points);
             assert!(fast.0.len() > 100);
             assert_eq!(fast, triangles::<Exact>(points));
-            assert_eq!(fast, triangles::<insert::Integers>(points));
+            assert_eq!(fast, triangles::<Integers>(points));
         }
     }
 
@@ -893,7 +914,7 @@ mod tests {
                 }
             })
             .collect();
-        let (left, right) = halves::split(&column, 0).unwrap();
+        let (left, right) = split(&column, 0).unwrap();
         assert_eq!((left.len(), right.len()), (200, 200));
         let inserted = AtomicUsize::new(0);
         let tri = triangulate_split(&column, true, 0, Some(&inserted)).unwrap();
