@@ -190,12 +190,10 @@ impl Params {
     /// The steps after the proximity graph, in order: the one place the order is decided.
     pub(crate) fn steps(&self) -> impl Iterator<Item = Step> {
         let repair = (self.repair != Repair::Off).then_some(Step::Repair(self.repair));
-        let outliers = self.outlier_factor.map(|factor| {
-            Step::Outliers(IqrRule {
-                factor,
-                floor: self.iqr_floor,
-            })
-        });
+        let floor = self.iqr_floor;
+        let outliers = self
+            .outlier_factor
+            .map(|factor| Step::Outliers(IqrRule { factor, floor }));
         let (first, second) = if self.outliers_first {
             (outliers, repair)
         } else {
