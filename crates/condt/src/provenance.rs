@@ -310,9 +310,7 @@ impl<'a> Explainer<'a> {
             }
         }
     }
-}
 
-impl Explainer<'_> {
     /// The input positions the stage's output joins to `vertex` (an input position); none when
     /// the stage's output is not kept ([`Explainer::after`]).
     fn after_of(&self, vertex: usize) -> Vec<usize> {

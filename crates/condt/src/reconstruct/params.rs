@@ -238,11 +238,7 @@ impl Params {
     /// These parameters with `parallel` off when rayon's threads cannot run
     /// ([`parallel_available`](crate::parallel_available)): what a run uses and its result reports.
     pub(crate) fn on_available_threads(self) -> Params {
-        if self.parallel && !crate::threads::parallel_available() {
-            self.with_parallel(false)
-        } else {
-            self
-        }
+        self.with_parallel(self.parallel && crate::threads::parallel_available())
     }
 
     /// Turns a switchable `stage` ([`Stage::switch`]) on or off; `false` for any other, left as is.

@@ -287,7 +287,6 @@ impl Pipeline {
             State::Smooth(result) => {
                 let n = result.triangulation().num_points();
                 let in_parallel = self.params.parallel && n >= PARALLEL_FROM;
-                // On the stages' worker: its arena holds the memory they freed (`on_worker`).
                 let (pass, moved) = match on_worker(in_parallel, || self.smoothing_pass(result)) {
                     Ok(done) => done,
                     Err(error) => {

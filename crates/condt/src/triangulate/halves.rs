@@ -197,18 +197,10 @@ impl Hull {
         self.vertices.len()
     }
     fn ccw(&self, i: usize) -> usize {
-        if i + 1 == self.len() {
-            0
-        } else {
-            i + 1
-        }
+        (i + 1) % self.len()
     }
     fn cw(&self, i: usize) -> usize {
-        if i == 0 {
-            self.len() - 1
-        } else {
-            i - 1
-        }
+        (i + self.len() - 1) % self.len()
     }
 }
 
