@@ -358,11 +358,8 @@ impl fmt::Display for EdgeStory {
         }
         for change in &self.changes {
             let stage = change.stage.name();
-            write!(
-                f,
-                "; {stage}: {} ",
-                if change.added { "added" } else { "removed" }
-            )?;
+            let verb = if change.added { "added" } else { "removed" };
+            write!(f, "; {stage}: {verb} ")?;
             match change.reason {
                 Reason::Repair {
                     vertex,

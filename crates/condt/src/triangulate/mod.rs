@@ -173,11 +173,8 @@ fn triangulate_in(
         };
         let middle = sorted.len() / 2;
         let (low, high) = sorted.split_at_mut(middle);
-        both(
-            parallel && low.len() >= PARALLEL_MIN / 2,
-            || rescale(low),
-            || rescale(high),
-        );
+        let split = parallel && low.len() >= PARALLEL_MIN / 2;
+        both(split, || rescale(low), || rescale(high));
     }
     let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel, spare_map);
     let num_vertices = vertex_of_input.len() - merged.len();
@@ -334,14 +331,9 @@ fn insertion_order(
 
 /// The spatial insertion order of `points` in one piece, a set of `whole` points or part of one.
 fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<u32> {
+    let mut scratch = order::Scratch::default();
     let mut order = alloc::vec![0; points.len()];
-    spatial_order_into(
-        points,
-        frames,
-        whole,
-        &mut order,
-        &mut order::Scratch::default(),
-    );
+    spatial_order_into(points, frames, whole, &mut order, &mut scratch);
     order
 }
 
@@ -445,13 +437,8 @@ impl Triangulation {
     /// ```
     pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
         let frames = scale::choose_frames(points)?;
-        Ok(insertion_order(
-            points,
-            &frames,
-            crate::threads::parallel_available(),
-            halves::SPLIT_MIN,
-        )
-        .0)
+        let parallel = crate::threads::parallel_available();
+        Ok(insertion_order(points, &frames, parallel, halves::SPLIT_MIN).0)
     }
 
     /// [`triangulate`], adding to `inserted` (`Relaxed`) every 65,536 points or so the points
