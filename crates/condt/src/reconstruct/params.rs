@@ -232,9 +232,7 @@ impl Params {
             .chain(crossings)
             .filter(move |_| condt)
     }
-}
 
-impl Params {
     /// These parameters with `parallel` off when rayon's threads cannot run
     /// ([`parallel_available`](crate::parallel_available)): what a run uses and its result reports.
     pub(crate) fn on_available_threads(self) -> Params {
