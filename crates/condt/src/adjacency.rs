@@ -1,9 +1,9 @@
 //! Edge lists in vertex ids and their adjacency: the internal form of the graphs the stages pass on
 //! and curves are read from.
 //!
-//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), [`CurveGraph`],
-//! exact-size collection and the O(n) pair sort. It may not look at coordinates; nothing here is
-//! public (users see edges in input positions through [`Graph`](crate::Graph)).
+//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), [`CurveGraph`], exact-size collection
+//! and the O(n) pair sort. It may not look at coordinates; nothing here is public (users see edges
+//! in input positions through [`Graph`](crate::Graph)).
 
 use crate::mesh::VertexId;
 use alloc::vec;
@@ -325,16 +325,16 @@ pub(crate) fn degrees(vertex_count: usize, edges: &[Edge]) -> Vec<u32> {
 pub(crate) mod tests {
     use super::*;
 
-    /// Compressed adjacency (each vertex's neighbours with their edge's position, in list order): the
-    /// reference the tests check [`CurveGraph`] and the repair's branch lists against.
+    /// Compressed adjacency (each vertex's neighbours with their edge's position, in list order):
+    /// the reference the tests check [`CurveGraph`] and the repair's branch lists against.
     pub(crate) struct Adjacency {
         offsets: Vec<u32>,
         neighbors: Vec<(VertexId, u32)>,
     }
 
     impl Adjacency {
-        /// `edges` must list every edge once (`[a, b]` with `a < b`, in any order). Built by counting,
-        /// in O(n), without sorting.
+        /// `edges` must list every edge once (`[a, b]` with `a < b`, in any order). Built by
+        /// counting, in O(n), without sorting.
         pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
             debug_assert!(edges.iter().all(|e| e[0] < e[1]));
             let mut offsets = vec![0u32; vertex_count + 1];
