@@ -268,8 +268,11 @@ fn in_circle_det(a: Point, b: Point, c: Point, d: Point) -> (f64, f64) {
     let (bc, cb) = (bdx * cdy, cdx * bdy);
     let (ca, ac) = (cdx * ady, adx * cdy);
     let (ab, ba) = (adx * bdy, bdx * ady);
-    let lift = |x: f64, y: f64| x * x + y * y;
-    let (alift, blift, clift) = (lift(adx, ady), lift(bdx, bdy), lift(cdx, cdy));
+    let (alift, blift, clift) = (
+        adx * adx + ady * ady,
+        bdx * bdx + bdy * bdy,
+        cdx * cdx + cdy * cdy,
+    );
     let det = alift * (bc - cb) + blift * (ca - ac) + clift * (ab - ba);
     let permanent = (bc.abs() + cb.abs()) * alift
         + (ca.abs() + ac.abs()) * blift

@@ -243,7 +243,14 @@ fn list_kept<T: Send + Sync>(
             .into_par_iter()
             .map(|first| list_decided(records, first..(first + size).min(records.len()), &read))
             .collect();
-        return pieces.concat();
+        let total: usize = pieces.iter().map(Vec::len).sum();
+        let mut pieces = pieces.into_iter();
+        let mut edges = pieces.next().unwrap_or_default();
+        edges.reserve_exact(total - edges.len());
+        for piece in pieces {
+            edges.extend_from_slice(&piece);
+        }
+        return edges;
     }
     let _ = parallel;
     let mut listing = Listing::new(records.len());
