@@ -1,9 +1,9 @@
 //! Edge lists in vertex ids and their adjacency: the internal form of the graphs the stages pass on
 //! and curves are read from.
 //!
-//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), [`CurveGraph`] (and test references),
-//! exact-size collection and the O(n) pair sort. It may not look at coordinates; nothing here is
-//! public (users see edges in input positions through [`Graph`](crate::Graph)).
+//! Owns: the edge list (`[a, b]`, `a < b`, each edge once), [`CurveGraph`], exact-size collection
+//! and the O(n) pair sort. It may not look at coordinates; nothing here is public (users see edges
+//! in input positions through [`Graph`](crate::Graph)).
 
 use crate::mesh::VertexId;
 use alloc::vec;
@@ -18,104 +18,6 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
         [a, b]
     } else {
         [b, a]
-    }
-}
-
-/// Compressed adjacency (each vertex's neighbours with their edge's position, in list order): the
-/// reference the tests check [`CurveGraph`] and `BranchAdjacency` against.
-#[cfg(test)]
-pub(crate) struct Adjacency {
-    offsets: Vec<u32>,
-    neighbors: Vec<(VertexId, u32)>,
-}
-
-#[cfg(test)]
-impl Adjacency {
-    /// `edges` must list every edge once (`[a, b]` with `a < b`, in any order). Built by counting,
-    /// in O(n), without sorting.
-    pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
-        debug_assert!(edges.iter().all(|e| e[0] < e[1]));
-        let mut offsets = vec![0u32; vertex_count + 1];
-        for &[a, b] in edges {
-            offsets[a.index() + 1] += 1;
-            offsets[b.index() + 1] += 1;
-        }
-        for i in 0..vertex_count {
-            offsets[i + 1] += offsets[i];
-        }
-        let mut fill = offsets.clone();
-        let mut neighbors = vec![(VertexId::INFINITE, 0); 2 * edges.len()];
-        for (k, &[a, b]) in edges.iter().enumerate() {
-            neighbors[fill[a.index()] as usize] = (b, k as u32);
-            fill[a.index()] += 1;
-            neighbors[fill[b.index()] as usize] = (a, k as u32);
-            fill[b.index()] += 1;
-        }
-        Adjacency { offsets, neighbors }
-    }
-
-    /// The neighbours of `v` with the positions of the joining edges.
-    #[inline]
-    pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {
-        &self.neighbors[self.offsets[v.index()] as usize..self.offsets[v.index() + 1] as usize]
-    }
-}
-
-/// [`Adjacency`] of the vertices of degree three or more only: the tests' reference for the
-/// repair's rank lists.
-#[cfg(test)]
-pub(crate) struct BranchAdjacency {
-    /// The vertices with three or more edges, ascending, and where their lists start.
-    vertices: Vec<(VertexId, u32)>,
-    neighbors: Vec<(VertexId, u32)>,
-}
-
-#[cfg(test)]
-impl BranchAdjacency {
-    /// `degree` must be the degrees of `edges` ([`degrees`]).
-    pub(crate) fn new(degree: &[u32], edges: &[Edge]) -> Self {
-        // Counted first: on uniform points a third or more of the vertices have three edges or
-        // more, and a list grown by doubling would hold up to twice as many.
-        let branches = degree.iter().filter(|&&d| d > 2).count();
-        let mut vertices = Vec::with_capacity(branches);
-        let mut total = 0u32;
-        for (v, &d) in degree.iter().enumerate() {
-            if d > 2 {
-                vertices.push((VertexId::new(v as u32), total));
-                total += d;
-            }
-        }
-        let mut fill: Vec<u32> = vertices.iter().map(|&(_, start)| start).collect();
-        let mut neighbors = vec![(VertexId::INFINITE, 0); total as usize];
-        for (k, &[a, b]) in edges.iter().enumerate() {
-            for (v, w) in [(a, b), (b, a)] {
-                if degree[v.index()] > 2 {
-                    if let Ok(slot) = vertices.binary_search_by_key(&v, |&(u, _)| u) {
-                        neighbors[fill[slot] as usize] = (w, k as u32);
-                        fill[slot] += 1;
-                    }
-                }
-            }
-        }
-        BranchAdjacency {
-            vertices,
-            neighbors,
-        }
-    }
-    pub(crate) fn branch_count(&self) -> usize {
-        self.vertices.len()
-    }
-
-    /// The neighbours of `v` with the positions of the joining edges; empty unless `v` is a branch.
-    pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {
-        let Ok(at) = self.vertices.binary_search_by_key(&v, |&(u, _)| u) else {
-            return &[];
-        };
-        let end = self
-            .vertices
-            .get(at + 1)
-            .map_or(self.neighbors.len(), |&(_, start)| start as usize);
-        &self.neighbors[self.vertices[at].1 as usize..end]
     }
 }
 
@@ -420,12 +322,50 @@ pub(crate) fn degrees(vertex_count: usize, edges: &[Edge]) -> Vec<u32> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    /// Compressed adjacency (each vertex's neighbours with their edge's position, in list order):
+    /// the reference the tests check [`CurveGraph`] and the repair's branch lists against.
+    pub(crate) struct Adjacency {
+        offsets: Vec<u32>,
+        neighbors: Vec<(VertexId, u32)>,
+    }
+
+    impl Adjacency {
+        /// `edges` must list every edge once (`[a, b]` with `a < b`, in any order). Built by
+        /// counting, in O(n), without sorting.
+        pub(crate) fn new(vertex_count: usize, edges: &[Edge]) -> Self {
+            debug_assert!(edges.iter().all(|e| e[0] < e[1]));
+            let mut offsets = vec![0u32; vertex_count + 1];
+            for &[a, b] in edges {
+                offsets[a.index() + 1] += 1;
+                offsets[b.index() + 1] += 1;
+            }
+            for i in 0..vertex_count {
+                offsets[i + 1] += offsets[i];
+            }
+            let mut fill = offsets.clone();
+            let mut neighbors = vec![(VertexId::INFINITE, 0); 2 * edges.len()];
+            for (k, &[a, b]) in edges.iter().enumerate() {
+                neighbors[fill[a.index()] as usize] = (b, k as u32);
+                fill[a.index()] += 1;
+                neighbors[fill[b.index()] as usize] = (a, k as u32);
+                fill[b.index()] += 1;
+            }
+            Adjacency { offsets, neighbors }
+        }
+
+        /// The neighbours of `v` with the positions of the joining edges.
+        #[inline]
+        pub(crate) fn incident(&self, v: VertexId) -> &[(VertexId, u32)] {
+            &self.neighbors[self.offsets[v.index()] as usize..self.offsets[v.index() + 1] as usize]
+        }
+    }
 
     /// A random graph on 2 to `2 + most` vertices with up to `per_vertex` times as many edges,
     /// each once, listed in a scrambled order: neighbours must follow the list, not the ids.
-    fn random_graph(
+    pub(crate) fn random_graph(
         rng: &mut crate::test_rng::Xorshift,
         most: u64,
         per_vertex: u64,
@@ -446,8 +386,7 @@ mod tests {
 
     /// On random graphs with branch points, the curve graph gives every vertex the neighbours
     /// the full adjacency gives it, in the same order (that of the edge list), and,
-    /// at degree two, the other neighbour from either one; the branch adjacency gives a vertex
-    /// with three or more the full adjacency's list, edge positions included.
+    /// at degree two, the other neighbour from either one.
     #[test]
     fn the_curve_graph_lists_the_neighbours_of_the_full_adjacency() {
         let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
@@ -456,19 +395,12 @@ mod tests {
             let (n, edges) = random_graph(&mut rng, 30, 3);
             let full = Adjacency::new(n, &edges);
             let graph = CurveGraph::new(n, &edges);
-            let branches = BranchAdjacency::new(&degrees(n, &edges), &edges);
             for v in (0..n as u32).map(VertexId::new) {
                 let expected: Vec<VertexId> = full.incident(v).iter().map(|&(w, _)| w).collect();
                 let listed: Vec<VertexId> =
                     (0..graph.degree(v)).map(|k| graph.neighbor(v, k)).collect();
                 assert_eq!(listed, expected, "{edges:?}");
                 branch_vertices += usize::from(expected.len() > 2);
-                let branch_list = branches.incident(v);
-                if expected.len() > 2 {
-                    assert_eq!(branch_list, full.incident(v), "{edges:?}");
-                } else {
-                    assert!(branch_list.is_empty());
-                }
                 if let [x, y] = expected[..] {
                     assert_eq!(graph.onward(v, x), y);
                     assert_eq!(graph.onward(v, y), x);

@@ -93,7 +93,7 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
 pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
     // In the stages' frame (samples exact, no ordinary circumcentre overflows) and relative to the
     // corner of the samples' box: an exact translation leaves these differences as they were, so
-    // the edges do not depend on where the set lies (issue 29, defect 8).
+    // the edges do not depend on where the set lies.
     let samples: Vec<VertexId> = tri.vertices().collect();
     let corner = lower_left(samples.iter().map(|&v| tri.vertex_point(v))).unwrap_or_default();
     let relative = |v: VertexId| difference(tri.vertex_point(v), corner);
@@ -118,11 +118,9 @@ pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
 /// `Ok` when [`crust_edges`] can triangulate the points with their circumcentres, else its error.
 pub(crate) fn crust_fits(tri: &Triangulation) -> Result<(), Error> {
     let count = tri.num_vertices() + tri.mesh().triangles().count();
-    if count > crate::MAX_POINTS {
-        return Err(Error::TooManyPoints {
-            count,
-            limit: crate::MAX_POINTS,
-        });
+    let limit = crate::MAX_POINTS;
+    if count > limit {
+        return Err(Error::TooManyPoints { count, limit });
     }
     Ok(())
 }

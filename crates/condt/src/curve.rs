@@ -168,13 +168,8 @@ pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> V
     let mut back = Vec::new();
     for v in vertices {
         if graph.degree(v) == 2 && !visited[v.index()] {
-            curves.push(walk_cycle(
-                graph,
-                &name,
-                &mut visited,
-                [&mut path, &mut back],
-                v,
-            ));
+            let paths = [&mut path, &mut back];
+            curves.push(walk_cycle(graph, &name, &mut visited, paths, v));
         }
     }
     // Grown by doubling: up to half of it was room (memory).

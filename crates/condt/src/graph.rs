@@ -157,10 +157,7 @@ impl<'t> Graph<'t> {
     /// # Errors
     /// [`Error::InvalidParameter`] named `k` when `k` is NaN, infinite or negative.
     pub fn remove_outliers(&self, k: f64) -> Result<OutlierRemoval<'t>, Error> {
-        self.cut(IqrRule {
-            factor: k,
-            floor: false,
-        })
+        self.cut(k, false)
     }
 
     /// Algorithm 3 with the spacing floor ([`Params::iqr_floor`](crate::Params::iqr_floor), the
@@ -188,13 +185,11 @@ impl<'t> Graph<'t> {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn remove_outliers_floored(&self, k: f64) -> Result<OutlierRemoval<'t>, Error> {
-        self.cut(IqrRule {
-            factor: k,
-            floor: true,
-        })
+        self.cut(k, true)
     }
 
-    fn cut(&self, rule: IqrRule) -> Result<OutlierRemoval<'t>, Error> {
+    fn cut(&self, factor: f64, floor: bool) -> Result<OutlierRemoval<'t>, Error> {
+        let rule = IqrRule { factor, floor };
         let step = Step::Outliers(rule);
         step.check()?;
         let (graph, fired) = self.step(step);

@@ -85,18 +85,20 @@ pub mod predicates;
 mod prefetch;
 mod provenance;
 mod reconstruct;
+mod smooth;
+mod stages;
+mod threads;
+mod triangulate;
+
+#[cfg(test)]
+mod test_rng;
+
 /// The unit tests sample curves with `condt_eval::sample`, compiled into this crate (a
 /// dev-dependency on condt-eval would bring a second, incompatible `Point`).
 #[cfg(test)]
 #[path = "../../condt-eval/src/sample.rs"]
 #[allow(dead_code)] // the tests use some of the shapes
 mod sample;
-mod smooth;
-mod stages;
-#[cfg(test)]
-mod test_rng;
-mod threads;
-mod triangulate;
 
 pub use curve::{curves_from_edges, Curve};
 pub use error::Error;

@@ -310,9 +310,7 @@ impl<'a> Explainer<'a> {
             }
         }
     }
-}
 
-impl Explainer<'_> {
     /// The input positions the stage's output joins to `vertex` (an input position); none when
     /// the stage's output is not kept ([`Explainer::after`]).
     fn after_of(&self, vertex: usize) -> Vec<usize> {
@@ -360,11 +358,8 @@ impl fmt::Display for EdgeStory {
         }
         for change in &self.changes {
             let stage = change.stage.name();
-            write!(
-                f,
-                "; {stage}: {} ",
-                if change.added { "added" } else { "removed" }
-            )?;
+            let verb = if change.added { "added" } else { "removed" };
+            write!(f, "; {stage}: {verb} ")?;
             match change.reason {
                 Reason::Repair {
                     vertex,

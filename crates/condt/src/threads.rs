@@ -37,22 +37,16 @@ pub(crate) fn workers(parallel: bool) -> usize {
 }
 
 /// `(a(), b())`, at once on rayon's threads when `parallel`.
-#[cfg(feature = "parallel")]
 pub(crate) fn both<A: Send, B: Send>(
     parallel: bool,
     a: impl FnOnce() -> A + Send,
     b: impl FnOnce() -> B + Send,
 ) -> (A, B) {
+    #[cfg(feature = "parallel")]
     if parallel {
-        rayon::join(a, b)
-    } else {
-        (a(), b())
+        return rayon::join(a, b);
     }
-}
-
-/// `(a(), b())`: without the `parallel` feature, one after the other.
-#[cfg(not(feature = "parallel"))]
-pub(crate) fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
+    let _ = parallel;
     (a(), b())
 }
 
@@ -66,19 +60,17 @@ pub(crate) fn both<A, B>(_parallel: bool, a: impl FnOnce() -> A, b: impl FnOnce(
 /// // With the default features, on a machine that can start threads:
 /// assert!(condt::parallel_available());
 /// ```
-#[cfg(feature = "parallel")]
 pub fn parallel_available() -> bool {
-    static AVAILABLE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *AVAILABLE.get_or_init(|| match rayon::ThreadPoolBuilder::new().build_global() {
-        Ok(()) => true,
-        // Built before (by the caller, or by an earlier use): an error without a source. A pool
-        // that could not be started has the system's error as its source.
-        Err(error) => std::error::Error::source(&error).is_none(),
-    })
-}
-
-/// Whether rayon's global pool can run work: never without the `parallel` feature.
-#[cfg(not(feature = "parallel"))]
-pub fn parallel_available() -> bool {
+    #[cfg(feature = "parallel")]
+    {
+        static AVAILABLE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+        *AVAILABLE.get_or_init(|| match rayon::ThreadPoolBuilder::new().build_global() {
+            Ok(()) => true,
+            // Built before (by the caller, or by an earlier use): an error without a source. A
+            // pool that could not be started has the system's error as its source.
+            Err(error) => std::error::Error::source(&error).is_none(),
+        })
+    }
+    #[cfg(not(feature = "parallel"))]
     false
 }

@@ -191,12 +191,10 @@ impl Params {
     /// The steps after the proximity graph, in order: the one place the order is decided.
     pub(crate) fn steps(&self) -> impl Iterator<Item = Step> {
         let repair = (self.repair != Repair::Off).then_some(Step::Repair(self.repair));
-        let outliers = self.outlier_factor.map(|factor| {
-            Step::Outliers(IqrRule {
-                factor,
-                floor: self.iqr_floor,
-            })
-        });
+        let floor = self.iqr_floor;
+        let outliers = self
+            .outlier_factor
+            .map(|factor| Step::Outliers(IqrRule { factor, floor }));
         let (first, second) = if self.outliers_first {
             (outliers, repair)
         } else {
@@ -235,17 +233,11 @@ impl Params {
             .chain(crossings)
             .filter(move |_| condt)
     }
-}
 
-impl Params {
     /// These parameters with `parallel` off when rayon's threads cannot run
     /// ([`parallel_available`](crate::parallel_available)): what a run uses and its result reports.
     pub(crate) fn on_available_threads(self) -> Params {
-        if self.parallel && !crate::threads::parallel_available() {
-            self.with_parallel(false)
-        } else {
-            self
-        }
+        self.with_parallel(self.parallel && crate::threads::parallel_available())
     }
 
     /// Turns a switchable `stage` ([`Stage::switch`]) on or off; `false` for any other, left as is.
@@ -273,6 +265,17 @@ impl Params {
     }
 }
 
+/// `with_FIELD(FIELD: TYPE)`: a chainable setter for each field listed.
+macro_rules! setters {
+    ($($setter:ident($field:ident: $type:ty),)*) => {$(
+        #[doc = concat!("Sets [`Params::", stringify!($field), "`].")]
+        pub fn $setter(mut self, $field: $type) -> Params {
+            self.$field = $field;
+            self
+        }
+    )*};
+}
+
 /// Chainable setters, one per field, to spell a pipeline from a preset.
 ///
 /// ```
@@ -281,93 +284,21 @@ impl Params {
 /// assert!(p.repair == Repair::Needs && p.smooth && !p.close_gaps);
 /// ```
 impl Params {
-    /// Sets [`Params::method`].
-    pub fn with_method(mut self, method: Method) -> Params {
-        self.method = method;
-        self
-    }
-
-    /// Sets [`Params::uniformity`].
-    pub fn with_uniformity(mut self, uniformity: Uniformity) -> Params {
-        self.uniformity = uniformity;
-        self
-    }
-
-    /// Sets [`Params::repair`].
-    pub fn with_repair(mut self, repair: Repair) -> Params {
-        self.repair = repair;
-        self
-    }
-
-    /// Sets [`Params::outlier_factor`].
-    pub fn with_outlier_factor(mut self, outlier_factor: Option<f64>) -> Params {
-        self.outlier_factor = outlier_factor;
-        self
-    }
-
-    /// Sets [`Params::outliers_first`].
-    pub fn with_outliers_first(mut self, outliers_first: bool) -> Params {
-        self.outliers_first = outliers_first;
-        self
-    }
-
-    /// Sets [`Params::iqr_floor`].
-    pub fn with_iqr_floor(mut self, iqr_floor: bool) -> Params {
-        self.iqr_floor = iqr_floor;
-        self
-    }
-
-    /// Sets [`Params::local_outliers`].
-    pub fn with_local_outliers(mut self, local_outliers: bool) -> Params {
-        self.local_outliers = local_outliers;
-        self
-    }
-
-    /// Sets [`Params::confirm_given_back`].
-    pub fn with_confirm_given_back(mut self, confirm_given_back: bool) -> Params {
-        self.confirm_given_back = confirm_given_back;
-        self
-    }
-
-    /// Sets [`Params::close_gaps`].
-    pub fn with_close_gaps(mut self, close_gaps: bool) -> Params {
-        self.close_gaps = close_gaps;
-        self
-    }
-
-    /// Sets [`Params::repair_again`].
-    pub fn with_repair_again(mut self, repair_again: bool) -> Params {
-        self.repair_again = repair_again;
-        self
-    }
-
-    /// Sets [`Params::clumps`].
-    pub fn with_clumps(mut self, clumps: bool) -> Params {
-        self.clumps = clumps;
-        self
-    }
-
-    /// Sets [`Params::junctions`].
-    pub fn with_junctions(mut self, junctions: bool) -> Params {
-        self.junctions = junctions;
-        self
-    }
-
-    /// Sets [`Params::crossings`].
-    pub fn with_crossings(mut self, crossings: bool) -> Params {
-        self.crossings = crossings;
-        self
-    }
-
-    /// Sets [`Params::smooth`].
-    pub fn with_smooth(mut self, smooth: bool) -> Params {
-        self.smooth = smooth;
-        self
-    }
-
-    /// Sets [`Params::parallel`].
-    pub fn with_parallel(mut self, parallel: bool) -> Params {
-        self.parallel = parallel;
-        self
+    setters! {
+        with_method(method: Method),
+        with_uniformity(uniformity: Uniformity),
+        with_repair(repair: Repair),
+        with_outlier_factor(outlier_factor: Option<f64>),
+        with_outliers_first(outliers_first: bool),
+        with_iqr_floor(iqr_floor: bool),
+        with_local_outliers(local_outliers: bool),
+        with_confirm_given_back(confirm_given_back: bool),
+        with_close_gaps(close_gaps: bool),
+        with_repair_again(repair_again: bool),
+        with_clumps(clumps: bool),
+        with_junctions(junctions: bool),
+        with_crossings(crossings: bool),
+        with_smooth(smooth: bool),
+        with_parallel(parallel: bool),
     }
 }

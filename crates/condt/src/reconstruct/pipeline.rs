@@ -287,7 +287,6 @@ impl Pipeline {
             State::Smooth(result) => {
                 let n = result.triangulation().num_points();
                 let in_parallel = self.params.parallel && n >= PARALLEL_FROM;
-                // On the stages' worker: its arena holds the memory they freed (`on_worker`).
                 let (pass, moved) = match on_worker(in_parallel, || self.smoothing_pass(result)) {
                     Ok(done) => done,
                     Err(error) => {
@@ -692,28 +691,24 @@ impl Stopwatch {
 /// pool, rayon leaves its workers spinning beside the sequential stages that follow. Always the
 /// same worker: glibc's malloc gives each thread its own arena and keeps what an arena freed, so
 /// stages run on whichever worker was free would each grow a different arena to their peak.
-#[cfg(feature = "parallel")]
 pub(super) fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send) -> R {
-    if !parallel || rayon::current_thread_index() == Some(0) {
-        return work();
+    #[cfg(feature = "parallel")]
+    if parallel && rayon::current_thread_index() != Some(0) {
+        let work = std::sync::Mutex::new(Some(work));
+        let mut results = rayon::broadcast(|context| match context.index() {
+            0 => work.lock().ok()?.take().map(|work| work()),
+            _ => None,
+        });
+        return results
+            .swap_remove(0)
+            .expect("the first worker ran the work");
     }
-    let work = std::sync::Mutex::new(Some(work));
-    let mut results = rayon::broadcast(|context| match context.index() {
-        0 => work.lock().ok()?.take().map(|work| work()),
-        _ => None,
-    });
-    results
-        .swap_remove(0)
-        .expect("the first worker ran the work")
-}
-
-#[cfg(not(feature = "parallel"))]
-pub(super) fn on_worker<R>(_parallel: bool, work: impl FnOnce() -> R) -> R {
+    let _ = parallel;
     work()
 }
 
-#[cfg(test)]
 #[cfg(feature = "parallel")]
+#[cfg(test)]
 mod tests {
     use super::on_worker;
 

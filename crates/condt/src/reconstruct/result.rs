@@ -206,9 +206,7 @@ impl Reconstruction {
     pub fn curves_time(&self) -> Duration {
         self.curves_time
     }
-}
 
-impl Reconstruction {
     /// Assembles the curves of a run that waited, `graph` the curve graph of its final edges.
     pub(super) fn assemble_curves(&mut self, graph: CurveGraph) {
         debug_assert!(graph == CurveGraph::new(self.triangulation.num_points(), &self.final_edges));

@@ -1,9 +1,7 @@
-//! Confirming given-back components, right after the local outlier removal (not in the paper; on by
-//! default, off in `Params::paper`).
+//! Confirming given-back components, right after the local outlier removal (not in the paper).
 //!
-//! Owns: one rule on components that local rule 1 rebuilt from IQR-cut edges. It reads positions,
-//! Delaunay rings, the graph and the local stage's input; it may not touch the triangulation and
-//! only removes edges.
+//! Owns: one rule on components that local rule 1 rebuilt from IQR-cut edges; it only removes
+//! edges, and may not touch the triangulation.
 //!
 //! Rule (docs/condt.md, *Confirming given-back components*, with losses and costs): such a
 //! component stays only if each of its degree-2 vertices is separated (by rule 4's [`SEPARATION`]
@@ -29,8 +27,7 @@ pub(crate) fn confirm_given_back(
         // The local outlier removal changed nothing: its curve graph goes on to the next stage.
         return Outcome::unchanged_with(graph);
     }
-    // Not read here: freed before the adjacency is built.
-    drop(graph);
+    drop(graph); // not read here: freed before the adjacency is built
     let n = tri.num_points();
     let given = missing_from(edges, before_local);
     if !given.contains(&true) {

@@ -1,7 +1,7 @@
 //! Stage 3, outlier removal (Algorithm 3).
 //!
 //! Owns: the interquartile-range rule on squared edge lengths, and its spacing floor (beyond the
-//! paper). It reads point positions and the graph; it may not touch the triangulation.
+//! paper); it may not touch the triangulation.
 //!
 //! With the sorted squared lengths `s` of the `n` edges, `T = Q3 + k (Q3 - Q1)`, `Q1 = s[n/4]`,
 //! `Q3 = s[3n/4]` (`k = 1.7` by default). The filter applies only when some vertex has every edge
@@ -44,9 +44,8 @@ pub(crate) struct Thresholds {
     pub(crate) cut: f64,
 }
 
-/// The thresholds on the squared lengths `lengths2` (not empty), with `Q3 = s[min(3n/4, n - 1)]`
-/// and the median `s[n/2]`: the one place they are computed (repairing again and explanations
-/// ask them too).
+/// The thresholds on the squared lengths `lengths2` (not empty), `Q3 = s[min(3n/4, n - 1)]`, the
+/// median `s[n/2]`: the one place they are computed (for repairing again and explanations too).
 pub(crate) fn iqr_thresholds(lengths2: &[f64], rule: IqrRule) -> Thresholds {
     iqr_thresholds_of(lengths2.to_vec(), rule)
 }

@@ -269,16 +269,6 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     }
     // Only the non-manifold vertices' lists are read.
     let mut graph = Branches::new(&degree, edges);
-    #[cfg(test)]
-    {
-        // The lists the reference `BranchAdjacency` gives, checked in the tests.
-        let reference = crate::adjacency::BranchAdjacency::new(&degree, edges);
-        debug_assert_eq!(reference.branch_count(), graph.count());
-        for (r, v) in graph.vertices().enumerate() {
-            let listed = reference.incident(v).iter().map(|&(w, _)| w);
-            debug_assert!(listed.eq(graph.incident(r).iter().copied()));
-        }
-    }
     let mut pairs = needs::Pairs::new();
     // Lines 6–12: up to four edges per non-manifold vertex, by rank, sized first (memory).
     let mut selections: Vec<[VertexId; 4]> = Vec::with_capacity(graph.count());
@@ -361,6 +351,36 @@ mod tests {
         let mut out = super::repair(tri, edges, mode).unwrap_or_else(|| edges.to_vec());
         out.sort_unstable();
         out
+    }
+
+    /// On random graphs, the branch lists give each vertex with three or more edges, by rank in
+    /// increasing id, the full adjacency's neighbours in edge order, and no other vertex a rank.
+    #[test]
+    fn branches_list_the_neighbours_of_the_full_adjacency() {
+        use crate::adjacency::tests::{random_graph, Adjacency};
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let mut branch_vertices = 0;
+        for _ in 0..500 {
+            let (n, edges) = random_graph(&mut rng, 30, 3);
+            let (full, degree) = (Adjacency::new(n, &edges), degrees(n, &edges));
+            let branches = Branches::new(&degree, &edges);
+            let expected: Vec<VertexId> = (0..n as u32)
+                .map(VertexId::new)
+                .filter(|&v| full.incident(v).len() > 2)
+                .collect();
+            assert!(branches.vertices().eq(expected.iter().copied()));
+            assert_eq!(branches.count(), expected.len());
+            for v in (0..n as u32).map(VertexId::new) {
+                let rank = expected.iter().position(|&w| w == v);
+                assert_eq!(branches.rank(v), rank, "{edges:?}");
+                if let Some(r) = rank {
+                    let listed = full.incident(v).iter().map(|&(w, _)| w);
+                    assert!(listed.eq(branches.incident(r).iter().copied()), "{edges:?}");
+                }
+            }
+            branch_vertices += expected.len();
+        }
+        assert!(branch_vertices > 1000, "the graphs have branch points");
     }
 
     #[test]

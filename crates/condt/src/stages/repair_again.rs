@@ -4,14 +4,11 @@
 //! Owns: one rule. It reads the proximity graph and the repair's output through `Step::run` and
 //! the IQR stage's cut threshold ([`iqr_thresholds_of`]); it may not touch the triangulation.
 //!
-//! Why: the repair (Algorithm 2) decides among edges the IQR rule cuts next. An outlier near a
-//! curve makes two curve points non-manifold, the repair may keep the outlier's pair over the
-//! curve edge between them, and the cut then loses that edge. Cutting first (`outliers_first`)
-//! is no cure: on the unrepaired graph, with a fifth of the points outliers, the upper quartile
-//! falls among their edges and the rule never fires. Rule: when the IQR stage removed edges,
-//! repair the proximity graph less every edge above the cut threshold (`T`, or the spacing
-//! floor), taken from the repaired graph as that stage took it. Gains and losses: docs/condt.md,
-//! *Repairing again without the cut edges*.
+//! Why: an outlier near a curve makes two curve points non-manifold, the repair may keep the
+//! outlier's pair over the curve edge between them, and the cut then loses that edge. Rule: when
+//! the IQR stage removed edges, repair the proximity graph less every edge above its cut
+//! threshold, taken from the repaired graph as that stage took it (docs/condt.md, *Repairing
+//! again without the cut edges*, says why cutting first is no cure, and what it gains).
 
 use super::outliers::{iqr_thresholds_of, IqrRule};
 use super::repair::repair;

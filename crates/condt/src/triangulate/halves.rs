@@ -100,15 +100,6 @@ pub(crate) fn cut(points: &[Point], min: usize, parallel: bool) -> Option<Cut> {
     })
 }
 
-/// The input positions of the two halves of [`cut`], each in input order.
-#[cfg(test)]
-pub(crate) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)> {
-    let cut = cut(points, min, false)?;
-    let (left, right): (Vec<u32>, Vec<u32>) =
-        (0..points.len() as u32).partition(|&i| cut.is_left(points[i as usize]));
-    Some((left, right))
-}
-
 /// The mesh of `points` (in insertion order: the left half's `left` points first), in `storage`'s
 /// arrays if large enough, and the merged `(duplicate, kept)` pairs, or `None` (module doc). Each
 /// half reports to `progress` like [`insert::build_into`]; `None` takes their counts back.
@@ -206,18 +197,10 @@ impl Hull {
         self.vertices.len()
     }
     fn ccw(&self, i: usize) -> usize {
-        if i + 1 == self.len() {
-            0
-        } else {
-            i + 1
-        }
+        (i + 1) % self.len()
     }
     fn cw(&self, i: usize) -> usize {
-        if i == 0 {
-            self.len() - 1
-        } else {
-            i - 1
-        }
+        (i + self.len() - 1) % self.len()
     }
 }
 
@@ -237,10 +220,8 @@ fn stitch<K: Kernel>(
     let left = Hull::of(mesh, 0..left_len)?;
     let right = Hull::of(mesh, left_len..left_len + right_len)?;
     let at = |v: VertexId| points[v.index()];
-    let (l_at, r_at) = (
-        |i: usize| at(left.vertices[i]),
-        |j: usize| at(right.vertices[j]),
-    );
+    let l_at = |i: usize| at(left.vertices[i]);
+    let r_at = |j: usize| at(right.vertices[j]);
     let orient = |a: Point, b: Point, c: Point| K::orient2d(a, b, c);
     let extreme = |hull: &Hull, rightmost: bool| {
         (0..hull.len()).max_by(|&i, &j| {
@@ -295,12 +276,8 @@ fn stitch<K: Kernel>(
     let out_of_r0 = to_infinity(right.ghosts[j0]);
     let into_r0 = from_infinity(right.ghosts[right.cw(j0)]);
     let inf = VertexId::INFINITE;
-    let (l0, r0, l1, r1) = (
-        left.vertices[i0],
-        right.vertices[j0],
-        left.vertices[i1],
-        right.vertices[j1],
-    );
+    let (l0, r0) = (left.vertices[i0], right.vertices[j0]);
+    let (l1, r1) = (left.vertices[i1], right.vertices[j1]);
     let below = mesh.push_triangle([r0, l0, inf]);
     let top = mesh.push_triangle([l0, r0, inf]);
     mesh.link(below.edge(0), top.edge(0));
@@ -310,11 +287,7 @@ fn stitch<K: Kernel>(
     mesh.link(top.edge(2), out_of_l0);
     let top = top.edge(0).base_and_corner().0;
     // `top` is `[l, r, ∞]`: edge 0 the base `l → r`, edge 1 `r → ∞`, edge 2 `∞ → l`.
-    let (t_base, t_right, t_left) = (
-        HalfEdgeId::at(top, 0),
-        HalfEdgeId::at(top, 1),
-        HalfEdgeId::at(top, 2),
-    );
+    let [t_base, t_right, t_left] = [0, 1, 2].map(|k| HalfEdgeId::at(top, k));
     let write = |mesh: &mut MeshBuilder<'_>,
                  slot: usize,
                  corners: [VertexId; 3],
@@ -355,10 +328,8 @@ fn stitch<K: Kernel>(
             let (w_far_apex, w_apex_near) = (mesh.twin(bwd(e)), mesh.twin(fwd(e)));
             let w_far = mesh.twin(bwd(ghost_in));
             let corner = |k: usize| if left { k } else { 3 - k }; // 1 or 2
-            let (to_inner, to_ghost) = (
-                HalfEdgeId::at(inner, corner(1)),
-                HalfEdgeId::at(ghost, corner(2)),
-            );
+            let to_inner = HalfEdgeId::at(inner, corner(1));
+            let to_ghost = HalfEdgeId::at(ghost, corner(2));
             let mirrored = |[a, b, c]: [VertexId; 3], [t0, t1, t2]: [HalfEdgeId; 3]| {
                 if left {
                     ([a, b, c], [t0, t1, t2])
@@ -384,11 +355,8 @@ fn stitch<K: Kernel>(
             // Flip `top`'s `r – ∞` with ghost `(r, y, ∞)`: `(l, r, y)` there, `top` is `(l, y, ∞)`.
             let ghost_in = mesh.twin(t_right);
             let (ghost, _) = ghost_in.base_and_corner();
-            let (w_ry, w_y, w_left) = (
-                mesh.twin(ghost_in.next()),
-                mesh.twin(ghost_in.prev()),
-                mesh.twin(t_left),
-            );
+            let (w_ry, w_y) = (mesh.twin(ghost_in.next()), mesh.twin(ghost_in.prev()));
+            let w_left = mesh.twin(t_left);
             write(mesh, ghost, [l, r, cand_r], [w_base, w_ry, t_base]);
             mesh.set_corners_at(top, [l, cand_r, inf]);
             mesh.link(t_right, w_y);
@@ -398,11 +366,8 @@ fn stitch<K: Kernel>(
             // Flip `top`'s `∞ – l` with ghost `(x, l, ∞)`: `(l, r, x)` there, `top` is `(x, r, ∞)`.
             let ghost_in = mesh.twin(t_left);
             let (ghost, _) = ghost_in.base_and_corner();
-            let (w_xl, w_x, w_right) = (
-                mesh.twin(ghost_in.prev()),
-                mesh.twin(ghost_in.next()),
-                mesh.twin(t_right),
-            );
+            let (w_xl, w_x) = (mesh.twin(ghost_in.prev()), mesh.twin(ghost_in.next()));
+            let w_right = mesh.twin(t_right);
             write(mesh, ghost, [l, r, cand_l], [w_base, t_base, w_xl]);
             mesh.set_corners_at(top, [cand_l, r, inf]);
             mesh.link(t_right, w_right);
@@ -419,7 +384,7 @@ fn stitch<K: Kernel>(
 #[cfg(test)]
 mod tests {
     use super::super::scale;
-    use super::super::tests::triangulate_split;
+    use super::super::tests::{split, triangulate_split};
     use super::*;
     use crate::test_rng::Xorshift;
     use alloc::format;

@@ -94,20 +94,6 @@ impl Kernel for Exact {
     }
 }
 
-/// The integer predicates alone, to check constructions against.
-#[cfg(test)]
-pub(crate) struct Integers;
-
-#[cfg(test)]
-impl Kernel for Integers {
-    fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
-        predicates::integers::orient2d(a, b, c)
-    }
-    fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
-        predicates::integers::in_circle(a, b, c, d)
-    }
-}
-
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum Location {
     /// Strictly inside this half-edge's triangle; for a ghost, strictly outside its hull edge.

@@ -173,11 +173,8 @@ fn triangulate_in(
         };
         let middle = sorted.len() / 2;
         let (low, high) = sorted.split_at_mut(middle);
-        both(
-            parallel && low.len() >= PARALLEL_MIN / 2,
-            || rescale(low),
-            || rescale(high),
-        );
+        let split = parallel && low.len() >= PARALLEL_MIN / 2;
+        both(split, || rescale(low), || rescale(high));
     }
     let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel, spare_map);
     let num_vertices = vertex_of_input.len() - merged.len();
@@ -334,14 +331,9 @@ fn insertion_order(
 
 /// The spatial insertion order of `points` in one piece, a set of `whole` points or part of one.
 fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<u32> {
+    let mut scratch = order::Scratch::default();
     let mut order = alloc::vec![0; points.len()];
-    spatial_order_into(
-        points,
-        frames,
-        whole,
-        &mut order,
-        &mut order::Scratch::default(),
-    );
+    spatial_order_into(points, frames, whole, &mut order, &mut scratch);
     order
 }
 
@@ -445,13 +437,8 @@ impl Triangulation {
     /// ```
     pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
         let frames = scale::choose_frames(points)?;
-        Ok(insertion_order(
-            points,
-            &frames,
-            crate::threads::parallel_available(),
-            halves::SPLIT_MIN,
-        )
-        .0)
+        let parallel = crate::threads::parallel_available();
+        Ok(insertion_order(points, &frames, parallel, halves::SPLIT_MIN).0)
     }
 
     /// [`triangulate`], adding to `inserted` (`Relaxed`) every 65,536 points or so the points
@@ -651,6 +638,27 @@ mod tests {
     ) -> Result<Triangulation, Error> {
         triangulate_in(points, parallel, split_min, progress, None)
     }
+
+    /// The input positions of the two halves of [`halves::cut`], each in input order.
+    pub(super) fn split(points: &[Point], min: usize) -> Option<(Vec<u32>, Vec<u32>)> {
+        let cut = halves::cut(points, min, false)?;
+        let (left, right): (Vec<u32>, Vec<u32>) =
+            (0..points.len() as u32).partition(|&i| cut.is_left(points[i as usize]));
+        Some((left, right))
+    }
+
+    /// The integer predicates alone, to check constructions against.
+    struct Integers;
+
+    impl Kernel for Integers {
+        fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
+            crate::predicates::integers::orient2d(a, b, c)
+        }
+        fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
+            crate::predicates::integers::in_circle(a, b, c, d)
+        }
+    }
+    use crate::predicates::Orientation;
     use crate::test_rng::Xorshift;
     use alloc::vec;
 
@@ -720,7 +728,7 @@ mod tests {
             let fast = triangles::<Fast>(points);
             assert!(fast.0.len() > 100);
             assert_eq!(fast, triangles::<Exact>(points));
-            assert_eq!(fast, triangles::<insert::Integers>(points));
+            assert_eq!(fast, triangles::<Integers>(points));
         }
     }
 
@@ -893,7 +901,7 @@ mod tests {
                 }
             })
             .collect();
-        let (left, right) = halves::split(&column, 0).unwrap();
+        let (left, right) = split(&column, 0).unwrap();
         assert_eq!((left.len(), right.len()), (200, 200));
         let inserted = AtomicUsize::new(0);
         let tri = triangulate_split(&column, true, 0, Some(&inserted)).unwrap();

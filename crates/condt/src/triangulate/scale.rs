@@ -28,11 +28,9 @@ pub(crate) struct Frames {
 /// Checks the size ([`MAX_POINTS`]) and every point (naming the first non-finite one) and picks
 /// the frames.
 pub(crate) fn choose_frames(points: &[Point]) -> Result<Frames, Error> {
-    if points.len() > MAX_POINTS {
-        return Err(Error::TooManyPoints {
-            count: points.len(),
-            limit: MAX_POINTS,
-        });
+    let (count, limit) = (points.len(), MAX_POINTS);
+    if count > limit {
+        return Err(Error::TooManyPoints { count, limit });
     }
     // One pass, in integers (speed): magnitudes compare as bit patterns (NaN above infinity above
     // every finite value); zero, one below, wraps to the top when seeking the smallest nonzero.
