@@ -326,7 +326,7 @@ pub(crate) fn close_gaps(
         .filter(|&(_, target)| target != Target::None)
         .collect();
     if targets.is_empty() {
-        let runs = ends.stranded_runs(&[]);
+        let runs = ends.stranded_runs(&[], &[]);
         return ends.joined(edges, &runs);
     }
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
@@ -372,7 +372,8 @@ pub(crate) fn close_gaps(
         .filter(|&(&(a, _), &j)| j && supported(a))
         .map(|(&(a, _), _)| a)
         .collect();
-    joins.extend(ends.stranded_runs(&joined_ends));
+    let runs = ends.stranded_runs(&joined_ends, &joins);
+    joins.extend(runs);
     ends.joined(edges, &joins)
 }
 
@@ -404,10 +405,11 @@ impl Ends<'_> {
         path
     }
 
-    /// Runs of unused points between two loose ends: each end walks straight on (above
-    /// [`STRAIGHT`], steps within [`GAP_RATIO`] of the last) through unused points; two walks
-    /// that reach each other's end, or meet at the same unused point (a sharp tip's apex), join.
-    fn stranded_runs(&self, joined: &[VertexId]) -> Vec<Edge> {
+    /// Runs of unused points between two loose ends other than the `joined` ones: each end walks
+    /// straight on (above [`STRAIGHT`], steps within [`GAP_RATIO`] of the last) through unused
+    /// points; two walks that run into each other's ends through the same points, or meet at the
+    /// same unused point (a sharp tip's apex), join, unless a point is in one of the `joins` made.
+    fn stranded_runs(&self, joined: &[VertexId], joins: &[Edge]) -> Vec<Edge> {
         let walks: Vec<(VertexId, Vec<VertexId>)> = self
             .loose()
             .filter(|a| joined.binary_search(a).is_err())
@@ -435,14 +437,20 @@ impl Ends<'_> {
                 self.tri.num_points()
             }
         ];
+        for v in joins.iter().flatten().filter(|_| !walks.is_empty()) {
+            used[v.index()] = true;
+        }
         let mut out = Vec::new();
         for (a, walk) in &walks {
             let last = *walk.last().expect("non-empty");
             let chain: Vec<VertexId> = if self.is_loose(last) {
                 // Reached a loose end: it must reach `a` back, through the same points.
+                let inner = &walk[..walk.len() - 1];
                 match walk_of(last) {
                     Some(back)
-                        if last > *a && back.last() == Some(a) && back.len() == walk.len() =>
+                        if last > *a
+                            && back.last() == Some(a)
+                            && back[..back.len() - 1].iter().rev().eq(inner) =>
                     {
                         core::iter::once(*a).chain(walk.iter().copied()).collect()
                     }
