@@ -606,11 +606,12 @@ fn separated_components(
         .iter()
         .map(|&c| usize::from(c) >= MIN_SAMPLES)
         .collect();
-    drop_short_cycles(profile, &root, &mut kept);
+    let shapes = Shapes::of(profile, &root);
+    drop_short_cycles(&shapes, &mut kept);
     if edges.iter().all(|&[a, _]| kept[root[a.index()] as usize]) {
         return None;
     }
-    keep_regular_cycles(tri, profile, &root, &mut kept);
+    keep_regular_cycles(tri, profile, &root, shapes, &mut kept);
     // The guard judges the components as they are: the joined pieces kept below only lower the
     // share, and a guard that then let go of the rest would drop more than without them.
     if too_many_dropped(&root, profile, &kept) {
@@ -715,26 +716,50 @@ pub(super) fn separated_counts_until(
     Some(separated)
 }
 
+/// Per component root: how many of its points have edges (up to the bound only: a byte per point,
+/// memory) and whether each of them has two (a cycle).
+struct Shapes {
+    size: Vec<u8>,
+    cycle: Vec<bool>,
+}
+
+impl Shapes {
+    fn of(graph: &CurveGraph, root: &[u32]) -> Shapes {
+        let n = root.len();
+        let (mut size, mut cycle) = (vec![0u8; n], vec![true; n]);
+        for (i, &r) in root.iter().enumerate() {
+            let degree = graph.degree(VertexId::new(i as u32));
+            if degree > 0 {
+                size[r as usize] = size[r as usize].saturating_add(1);
+                cycle[r as usize] &= degree == 2;
+            }
+        }
+        Shapes { size, cycle }
+    }
+}
+
 /// Rule 4's exemption: keeps every cycle of at least [`MIN_SAMPLES`] points passing
 /// [`smooth_and_regular`]. Reason: a curve two or three spacings from another (concentric
 /// circles) has no separated sample, and outliers almost never close into such a cycle.
-fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], kept: &mut [bool]) {
-    let n = root.len();
-    let mut regular = vec![true; n];
-    // Up to the bound only: a byte per point (memory).
-    let mut size = vec![0u8; n];
+fn keep_regular_cycles(
+    tri: &Triangulation,
+    graph: &CurveGraph,
+    root: &[u32],
+    shapes: Shapes,
+    kept: &mut [bool],
+) {
+    let Shapes { size, mut cycle } = shapes;
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
         let r = r as usize;
-        if kept[r] || graph.degree(v) == 0 {
+        if kept[r] || !cycle[r] || graph.degree(v) != 2 {
             continue;
         }
-        size[r] = size[r].saturating_add(1);
         let [y, z] = graph.first_two(v);
-        regular[r] &= graph.degree(v) == 2 && smooth_and_regular(tri, v, y, z);
+        cycle[r] = smooth_and_regular(tri, v, y, z);
     }
-    for r in 0..n {
-        if !kept[r] && size[r] as usize >= MIN_SAMPLES && regular[r] {
+    for r in 0..root.len() {
+        if !kept[r] && size[r] as usize >= MIN_SAMPLES && cycle[r] {
             kept[r] = true;
         }
     }
@@ -744,22 +769,11 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, root: &[u32], ke
 /// for being apart. Reason: a closed curve sampled within the guarantees (`ε <= 1`) has more
 /// than `2π / ε`, over six, samples; a closed polygon of five or six apart from everything is a
 /// clump of outliers that closed up.
-fn drop_short_cycles(graph: &CurveGraph, root: &[u32], kept: &mut [bool]) {
-    let n = root.len();
-    let mut size = vec![0u8; n];
-    let mut cycle = vec![true; n];
-    for (i, &r) in root.iter().enumerate() {
-        let v = VertexId::new(i as u32);
-        let r = r as usize;
-        if !kept[r] || graph.degree(v) == 0 {
-            continue;
-        }
-        size[r] = size[r].saturating_add(1);
-        cycle[r] &= graph.degree(v) == 2;
-    }
-    for r in 0..n {
-        if kept[r] && cycle[r] && size[r] > 0 && (size[r] as usize) < CLOSED_MIN {
-            kept[r] = false;
+fn drop_short_cycles(shapes: &Shapes, kept: &mut [bool]) {
+    for (r, kept) in kept.iter_mut().enumerate() {
+        let size = shapes.size[r] as usize;
+        if *kept && shapes.cycle[r] && size > 0 && size < CLOSED_MIN {
+            *kept = false;
         }
     }
 }
@@ -1049,15 +1063,17 @@ mod tests {
         separated_components: false,
     };
 
+    /// Rule 4 alone.
+    const RULE_4: Rules = Rules {
+        separated_components: true,
+        ..NONE
+    };
+
     /// A closed pentagon and a closed hexagon far from a circle of 40 samples: every point of
     /// each is apart from everything else, but a closed curve needs more than six samples, so
     /// rule 4 drops both (the circle stays).
     #[test]
     fn rule_4_drops_a_closed_polygon_of_five_or_six_points() {
-        let rule_4 = Rules {
-            separated_components: true,
-            ..NONE
-        };
         let mut pts = circle(Point::new(0.0, 0.0), 1.0, 40, 0.0);
         let mut pairs: Vec<[usize; 2]> = (0..40).map(|k| [k, (k + 1) % 40]).collect();
         let circle_edges = pairs.len();
@@ -1068,7 +1084,7 @@ mod tests {
             pairs.extend((0..count).map(|k| [first + k, first + (k + 1) % count]));
         }
         let tri = triangulate(&pts).unwrap();
-        let kept = apply(&tri, &vertex_edges(&tri, &pairs), rule_4).expect("the polygons go");
+        let kept = apply(&tri, &vertex_edges(&tri, &pairs), RULE_4).expect("the polygons go");
         let mut circle_only: Vec<[usize; 2]> = pairs[..circle_edges]
             .iter()
             .map(|&[a, b]| [a.min(b), a.max(b)])
@@ -1083,21 +1099,17 @@ mod tests {
     /// go.
     #[test]
     fn rule_4_keeps_a_piece_that_gap_closing_joins_to_a_kept_curve() {
-        let rule_4 = Rules {
-            separated_components: true,
-            ..NONE
-        };
         let mut pts = circle(Point::new(0.0, 0.0), 1.0, 40, 0.1);
         let mut pairs: Vec<[usize; 2]> = (0..35).map(|k| [k, k + 1]).collect();
         pairs.extend([[36, 37], [37, 38], [38, 39]]);
         let tri = triangulate(&pts).unwrap();
-        assert_eq!(apply(&tri, &vertex_edges(&tri, &pairs), rule_4), None);
+        assert_eq!(apply(&tri, &vertex_edges(&tri, &pairs), RULE_4), None);
 
         let inside = [(0.1, 0.0), (0.25, 0.1), (0.3, 0.25), (0.45, 0.3)];
         pts.extend(inside.map(|(x, y)| Point::new(x, y)));
         pairs.extend([[40, 41], [41, 42], [42, 43]]);
         let tri = triangulate(&pts).unwrap();
-        let kept = apply(&tri, &vertex_edges(&tri, &pairs), rule_4).expect("a piece goes");
+        let kept = apply(&tri, &vertex_edges(&tri, &pairs), RULE_4).expect("a piece goes");
         assert_eq!(kept, pairs[..38].to_vec());
     }
 
@@ -1108,10 +1120,6 @@ mod tests {
     /// holds most of the points, the same pieces (then under a quarter) go.
     #[test]
     fn rule_4_drops_nothing_when_it_would_drop_a_quarter_of_the_points() {
-        let rule_4 = Rules {
-            separated_components: true,
-            ..NONE
-        };
         let band = |x0: f64| -> (Vec<Point>, Vec<[usize; 2]>) {
             let mut pts = Vec::new();
             let mut pairs = Vec::new();
@@ -1131,7 +1139,7 @@ mod tests {
         let tri = triangulate(&pts).unwrap();
         let edges = vertex_edges(&tri, &pairs);
         assert_eq!(
-            apply(&tri, &edges, rule_4),
+            apply(&tri, &edges, RULE_4),
             None,
             "the band keeps every piece"
         );
@@ -1146,7 +1154,7 @@ mod tests {
         let tri = triangulate(&pts).unwrap();
         let edges = vertex_edges(&tri, &pairs);
         assert_eq!(
-            apply(&tri, &edges, rule_4),
+            apply(&tri, &edges, RULE_4),
             Some(loop_edges(0, 400)),
             "a minority of pieces goes"
         );
