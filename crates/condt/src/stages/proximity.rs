@@ -181,11 +181,11 @@ pub(crate) fn proximity_graph(
     let parallel = parallel && tri.num_points() >= PARALLEL_FROM;
     match uniformity {
         Uniformity::Fixed(_) => {
-            let mut best = two_best_offers(tri, workers(parallel).min(MAX_SWEEP_RANGES));
+            let best = two_best_offers(tri, workers(parallel).min(MAX_SWEEP_RANGES));
             // Each vertex's choice replaces its offers in place (the ids of its record): memory.
             let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
             list_kept(
-                &mut best,
+                best,
                 parallel,
                 &decide,
                 TwoBest::keep_only,
@@ -193,9 +193,9 @@ pub(crate) fn proximity_graph(
             )
         }
         Uniformity::Adaptive => {
-            let mut kept = alloc::vec![[VertexId::INFINITE; 2]; tri.num_points()];
+            let kept = alloc::vec![[VertexId::INFINITE; 2]; tri.num_points()];
             let decide = ring_choice(tri, uniformity);
-            list_kept(&mut kept, parallel, &decide, |k, pair| *k = pair, |k| *k)
+            list_kept(kept, parallel, &decide, |k, pair| *k = pair, |k| *k)
         }
     }
 }
@@ -219,9 +219,10 @@ fn ring_choice(
 /// decides with `decide` and `store` records it, all at once on rayon first when `parallel`, else
 /// in the listing pass. An edge kept by both ends is listed by its smaller end (no sort), without
 /// a branch. Decided records are listed in consecutive ranges of ids at once, one per thread,
-/// joined in order: the same list (speed: the listing reads a partner's record at random).
+/// joined in order: the same list (speed: the listing reads a partner's record at random). The
+/// records are freed before the pieces are joined (memory: the peak of the stage).
 fn list_kept<T: Send + Sync>(
-    records: &mut [T],
+    mut records: Vec<T>,
     parallel: bool,
     decide: &(impl Fn(usize, &T) -> [VertexId; 2] + Sync),
     store: impl Fn(&mut T, [VertexId; 2]) + Sync,
@@ -230,19 +231,16 @@ fn list_kept<T: Send + Sync>(
     #[cfg(feature = "parallel")]
     if parallel {
         use rayon::prelude::*;
-        records
-            .par_iter_mut()
-            .enumerate()
-            .with_min_len(4096)
-            .for_each(|(i, r)| store(r, decide(i, r)));
-        let records = &*records;
-        let size = records.len().div_ceil(workers(true)).max(1);
-        let pieces: Vec<Vec<Edge>> = (0..records.len())
+        decide_all(&mut records, decide, &store);
+        let decided = &*records;
+        let size = decided.len().div_ceil(workers(true)).max(1);
+        let pieces: Vec<Vec<Edge>> = (0..decided.len())
             .step_by(size)
             .collect::<Vec<usize>>()
             .into_par_iter()
-            .map(|first| list_decided(records, first..(first + size).min(records.len()), &read))
+            .map(|first| list_decided(decided, first..(first + size).min(decided.len()), &read))
             .collect();
+        drop(records);
         let total: usize = pieces.iter().map(Vec::len).sum();
         let mut pieces = pieces.into_iter();
         let mut edges = pieces.next().unwrap_or_default();
@@ -257,9 +255,24 @@ fn list_kept<T: Send + Sync>(
     for i in 0..records.len() {
         let pair = decide(i, &records[i]);
         store(&mut records[i], pair);
-        listing.add(records, i, pair, &read);
+        listing.add(&records, i, pair, &read);
     }
     listing.done()
+}
+
+/// Every record decided by `decide` and stored by `store`, on rayon ([`list_kept`]'s first half).
+#[cfg(feature = "parallel")]
+fn decide_all<T: Send + Sync>(
+    records: &mut [T],
+    decide: &(impl Fn(usize, &T) -> [VertexId; 2] + Sync),
+    store: &(impl Fn(&mut T, [VertexId; 2]) + Sync),
+) {
+    use rayon::prelude::*;
+    records
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(4096)
+        .for_each(|(i, r)| store(r, decide(i, r)));
 }
 
 /// [`list_kept`] of the decided records of the ids in `range`, prefetching partners' records.
@@ -516,10 +529,9 @@ mod tests {
             assert_eq!(listed, expected, "{uniformity:?}");
             if let Uniformity::Fixed(_) = uniformity {
                 // As the parallel path lists them: swept in two ranges, decided first, in place.
-                let mut best = two_best_offers(&tri, 2);
+                let best = two_best_offers(&tri, 2);
                 let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
-                let decided =
-                    list_kept(&mut best, true, &decide, TwoBest::keep_only, TwoBest::kept);
+                let decided = list_kept(best, true, &decide, TwoBest::keep_only, TwoBest::kept);
                 assert_eq!(decided, union, "{uniformity:?}");
             }
             if uniformity == Uniformity::Fixed(100.0) {
@@ -626,7 +638,15 @@ mod tests {
     ) -> Vec<[VertexId; 2]> {
         let mut kept = vec![[VertexId::INFINITE; 2]; tri.num_points()];
         let decide = ring_choice(tri, uniformity);
-        list_kept(&mut kept, parallel, &decide, |k, pair| *k = pair, |k| *k);
+        #[cfg(feature = "parallel")]
+        if parallel {
+            decide_all(&mut kept, &decide, &|k: &mut [VertexId; 2], pair| *k = pair);
+            return kept;
+        }
+        let _ = parallel;
+        for (i, k) in kept.iter_mut().enumerate() {
+            *k = decide(i, k);
+        }
         kept
     }
 
