@@ -35,7 +35,7 @@ INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a t
 ignored; `#` comments and blank lines are skipped); `-` reads text from standard input. By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
-and y columns (or lon, lat), `.geojson` or `.json` the Point and MultiPoint geometries of a
+and y columns (or lon, lat), or of two numeric columns without a header, `.geojson` or `.json` the Point and MultiPoint geometries of a
 GeoJSON document. Points are numbered from 0 in the order of their lines (rows, features);
 every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how

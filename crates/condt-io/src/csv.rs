@@ -1,4 +1,5 @@
-//! CSV point files with a header line naming the columns (`x,y`, or `lon,lat`, among others).
+//! CSV point files with a header line naming the columns (`x,y`, or `lon,lat`, among others),
+//! or of exactly two numeric columns without one (as `numpy.savetxt` writes them).
 //!
 //! Owns: [`parse_csv`]. A CSV file says which columns hold the coordinates in its header, so
 //! the reader follows the header instead of taking the first two columns as the plain reader
@@ -21,8 +22,9 @@ const Y_LONG_NAME: &str = "latitude";
 /// Parses a CSV file with a header line; `file` names the source in error messages.
 ///
 /// The first record that is not blank is the header: comma-separated column names, quoted or
-/// not. The first coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the second
-/// the column named `y` (or `lat`, `latitude`), compared without case and blanks around them;
+/// not; when it is exactly two numbers there is no header and every record is `x,y`. The first
+/// coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the second the column
+/// named `y` (or `lat`, `latitude`), compared without case and blanks around them;
 /// other columns are ignored. Every following record that is not blank is a point. Fields are
 /// read as RFC 4180 has them: a field may be quoted, `""` is a quote inside quotes, and a quoted
 /// field may hold commas and line ends; a quoted field must end at its closing quote. Lines end
@@ -35,6 +37,10 @@ const Y_LONG_NAME: &str = "latitude";
 /// use condt_io::parse_csv;
 /// let pts = parse_csv("id,X,\"y\",label\n7,1.5,2,\"a, b\"\n8,3,4,c\n", "points.csv")?;
 /// assert_eq!(pts, vec![Point::new(1.5, 2.0), Point::new(3.0, 4.0)]);
+///
+/// // Two numeric columns need no header; with more, which are x and y would be a guess.
+/// assert_eq!(parse_csv("1.5,2\n3,4\n", "pairs.csv")?.len(), 2);
+/// assert!(parse_csv("7,1.5,2\n", "rows.csv").unwrap_err().to_string().contains("no header"));
 ///
 /// let err = parse_csv("name,value\na,1\n", "table.csv").unwrap_err();
 /// assert_eq!(err.line, Some(1));
@@ -79,9 +85,14 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
         }
         let line = lines.line_at(start);
         check_quotes(raw.as_bytes()).map_err(|m| source.error(line, m.to_string()))?;
-        let Some((x_column, y_column)) = columns else {
-            columns = Some(header_columns(&record, raw, &source, line)?);
-            continue;
+        let (x_column, y_column) = match columns {
+            Some(columns) => columns,
+            // `numpy.savetxt(..., delimiter=",")` writes no header: two numbers can only be x, y.
+            None if headerless_pair(&record) => *columns.insert((0, 1)),
+            None => {
+                columns = Some(header_columns(&record, raw, &source, line)?);
+                continue;
+            }
         };
         let coordinate = |column: usize, axis: &str| -> Result<f64, IoError> {
             let field = record.get(column).ok_or_else(|| {
@@ -111,6 +122,12 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     Ok(points)
 }
 
+/// Whether the first record is a point rather than a header: exactly two fields, both numbers.
+/// With more columns, which two are x and y is a guess (`id,x,y`), so a header must say.
+fn headerless_pair(record: &csv::StringRecord) -> bool {
+    record.len() == 2 && record.iter().all(|f| f.trim().parse::<f64>().is_ok())
+}
+
 /// The x and y columns named by the header `record` (its text `raw`, on `line`).
 fn header_columns(
     record: &csv::StringRecord,
@@ -133,6 +150,16 @@ fn header_columns(
                 )
             })
     };
+    if record.len() > 2 && record.iter().all(|f| f.trim().parse::<f64>().is_ok()) {
+        return Err(source.error(
+            line,
+            format!(
+                "{} numbers and no header: a CSV of two columns is read as x, y without one, \
+                 with more a header line must name the x and y columns",
+                record.len()
+            ),
+        ));
+    }
     let x_column = find(&|n| X_NAMES.contains(&n), "x")?;
     let y_column = find(&|n| Y_NAMES.contains(&n) || n == Y_LONG_NAME, "y")?;
     Ok((x_column, y_column))

@@ -184,13 +184,7 @@ pub(crate) fn proximity_graph(
             let best = two_best_offers(tri, workers(parallel).min(MAX_SWEEP_RANGES));
             // Each vertex's choice replaces its offers in place (the ids of its record): memory.
             let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
-            list_kept(
-                best,
-                parallel,
-                &decide,
-                TwoBest::keep_only,
-                TwoBest::kept,
-            )
+            list_kept(best, parallel, &decide, TwoBest::keep_only, TwoBest::kept)
         }
         Uniformity::Adaptive => {
             let kept = alloc::vec![[VertexId::INFINITE; 2]; tri.num_points()];
