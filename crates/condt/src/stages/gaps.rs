@@ -145,7 +145,7 @@ impl<'a> Ends<'a> {
     }
 
     /// The cosine of the angle at the loose end `a` between its edge and `w`.
-    fn turn(&self, a: VertexId, w: VertexId) -> f64 {
+    pub(super) fn turn(&self, a: VertexId, w: VertexId) -> f64 {
         cos_at(self.point(a), self.point(self.along(a)), self.point(w))
     }
 

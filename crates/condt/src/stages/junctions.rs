@@ -7,13 +7,14 @@
 //! Why: at a junction of three curves (map borders, a T) the repair keeps two of the sample's three
 //! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.
 //! Rule (reasons: docs/condt.md, *Junctions*): a loose end `a` joins the Delaunay neighbour `c`
-//! with two edges that it faces, within [`GAP_RATIO`] times `c`'s shorter edge, with three branches
+//! with two edges that it faces straight on (within 30°, [`STRAIGHT`]: the branch's next sample),
+//! within [`GAP_RATIO`] times `c`'s shorter edge, with three branches
 //! of [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`),
 //! straightest ahead of the end among those that pass (ties by id), and chosen by no other loose end (two make a crossing, gap
 //! closing's case). All choices are made on the graph as it came in, so the result is independent
 //! of the order of the ends; sequential, the same with `parallel` on or off.
 
-use super::gaps::{cos_at, Ends, GAP_RATIO};
+use super::gaps::{cos_at, Ends, GAP_RATIO, STRAIGHT};
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -22,11 +23,11 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 impl Ends<'_> {
-    /// Whether the loose end `a` meets the degree-two point `c` at a junction: `c` faces `a`
-    /// within [`GAP_RATIO`] of its shorter edge, and three branches
+    /// Whether the loose end `a` meets the degree-two point `c` at a junction: `a` faces `c`
+    /// straight on, within [`GAP_RATIO`] of `c`'s shorter edge, and three branches
     /// ([`Ends::branch`](super::gaps::Ends::branch)) meet there.
     fn meets_at_junction(&self, a: VertexId, c: VertexId) -> bool {
-        if self.graph.degree(c) != 2 || !self.faces(a, c) {
+        if self.graph.degree(c) != 2 || !self.faces(a, c) || self.turn(a, c) >= STRAIGHT {
             return false;
         }
         let [x, y] = self.graph.first_two(c);
@@ -93,12 +94,23 @@ mod tests {
     /// `below > 0` (a crossing whose two arms were dropped). Returns the joins the stage adds, in
     /// input positions.
     fn joins(branch: usize, gap: f64, below: usize) -> Vec<[usize; 2]> {
+        let arms = [(1.0, branch), (-1.0, below)].map(|(sign, count)| {
+            (0..count)
+                .map(|k| Point::new(6.0, sign * (gap + k as f64)))
+                .collect()
+        });
+        joins_of(&arms)
+    }
+
+    /// [`joins`] with the straight curve `0..=12` along `y = 0` and `arms`, each a curve of its
+    /// own whose first point is its loose end.
+    fn joins_of(arms: &[Vec<Point>]) -> Vec<[usize; 2]> {
         let mut pts: Vec<Point> = (0..=12).map(|i| Point::new(i as f64, 0.0)).collect();
         let mut edges: Vec<[usize; 2]> = (0..12).map(|i| [i, i + 1]).collect();
-        for (sign, count) in [(1.0, branch), (-1.0, below)] {
+        for arm in arms {
             let first = pts.len();
-            pts.extend((0..count).map(|k| Point::new(6.0, sign * (gap + k as f64))));
-            edges.extend((first..first + count.saturating_sub(1)).map(|i| [i, i + 1]));
+            pts.extend_from_slice(arm);
+            edges.extend((first..first + arm.len().saturating_sub(1)).map(|i| [i, i + 1]));
         }
         let tri = triangulate(&pts).unwrap();
         let listed: Vec<Edge> = edges
@@ -118,6 +130,19 @@ mod tests {
         // Sampled alike: a gap of 2.5 spacings is still one sampling, 3 is not.
         assert_eq!(joins(7, 2.5, 0), vec![[6, 13]]);
         assert_eq!(joins(7, 3.0, 0), Vec::<[usize; 2]>::new());
+    }
+
+    #[test]
+    fn a_junction_continues_its_branch_straight_on() {
+        // A branch leaving the curve at 45°: its end runs straight on into point 6.
+        let slanted: Vec<Point> = (1..8)
+            .map(|k| Point::new(6.0 + k as f64, k as f64))
+            .collect();
+        assert_eq!(joins_of(&[slanted]), vec![[6, 13]]);
+        // A curve alongside, one spacing above, ending over point 7: every point of the line
+        // lies 45° or more off its way (point 6 at 135°), so it is no junction.
+        let alongside: Vec<Point> = (7..14).map(|x| Point::new(x as f64, 1.0)).collect();
+        assert_eq!(joins_of(&[alongside]), Vec::<[usize; 2]>::new());
     }
 
     #[test]
