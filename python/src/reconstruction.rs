@@ -363,7 +363,7 @@ impl EdgeStory {
             kept: story.kept,
             ends: PyTuple::new(py, ends)?.unbind(),
             changes: changes.unbind(),
-            text: story.to_string(),
+            text: condt_io::story_text(story),
         })
     }
 }

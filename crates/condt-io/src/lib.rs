@@ -9,7 +9,8 @@
 //! `.node` files ([`parse_node`]), NumPy `.npy` arrays of shape `(n, 2)` ([`parse_npy`]), CSV
 //! with a header ([`parse_csv`]) or GeoJSON points ([`parse_geojson`]); [`read_points`] tells
 //! them apart by the file name. Results are written as text, one item per line, as `.npy` arrays
-//! of indices ([`write_npy_edges`], [`write_npy_triangles`]), or drawn (SVG, the HTML viewer).
+//! of indices ([`write_npy_edges`], [`write_npy_triangles`]), or drawn (SVG, the HTML viewer); an
+//! edge's story is told in a sentence ([`story_text`]).
 
 mod csv;
 mod decimal;
@@ -19,6 +20,7 @@ mod html;
 mod npy;
 mod pieces;
 mod points;
+mod story;
 mod svg;
 mod text;
 #[cfg(test)]
@@ -43,6 +45,7 @@ pub use npy::{
     write_npy_triangulation_edges,
 };
 pub use points::{parse_node, parse_points, read_points, text_lines};
+pub use story::story_text;
 pub use svg::{write_svg, write_svg_stages};
 pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};
 

@@ -79,12 +79,8 @@ impl<'t> OutlierRemoval<'t> {
             rule: self.rule,
             mode: repair,
         };
-        let earlier = Earlier {
-            before_outliers: Cow::Borrowed(&repaired.edges),
-            before_local: Cow::Borrowed(&this.edges),
-            before_repair: Cow::Borrowed(&proximity.edges),
-        };
-        this.step_with(step, earlier).0
+        this.step_with(step, [&repaired.edges, &this.edges, &proximity.edges])
+            .0
     }
 }
 
@@ -219,8 +215,8 @@ impl<'t> Graph<'t> {
             core::ptr::eq(self.tri, before_outliers.tri),
             "remove_local_outliers: the two graphs live on different triangulations"
         );
-        self.step_after(Step::LocalOutliers, &before_outliers.edges)
-            .0
+        let earlier: [&[Edge]; 3] = [&before_outliers.edges, &self.edges, &self.edges];
+        self.step_with(Step::LocalOutliers, earlier).0
     }
 
     /// Confirms given-back components, `before_local` being the local outlier removal's input
@@ -250,11 +246,7 @@ impl<'t> Graph<'t> {
             core::ptr::eq(self.tri, before_local.tri),
             "confirm_given_back: the two graphs live on different triangulations"
         );
-        let earlier = Earlier {
-            before_outliers: Cow::Borrowed(&self.edges),
-            before_local: Cow::Borrowed(&before_local.edges),
-            before_repair: Cow::Borrowed(&self.edges),
-        };
+        let earlier: [&[Edge]; 3] = [&self.edges, &before_local.edges, &self.edges];
         self.step_with(Step::ConfirmGivenBack, earlier).0
     }
 
@@ -346,21 +338,17 @@ impl<'t> Graph<'t> {
 
     /// Runs `step` (its parameter checked) and reports whether its rule applied.
     fn step(&self, step: Step) -> (Graph<'t>, bool) {
-        self.step_after(step, &self.edges)
+        self.step_with(step, [&self.edges; 3])
     }
 
-    /// [`Graph::step`] also reading `before_outliers`, the IQR stage's input (see `Step::run`).
-    fn step_after(&self, step: Step, before_outliers: &[Edge]) -> (Graph<'t>, bool) {
+    /// [`Graph::step`] reading the graphs before the IQR stage, the local outlier removal and the
+    /// repair, in this order, where a step reads them (see `Step::run`).
+    fn step_with(&self, step: Step, [outliers, local, repair]: [&[Edge]; 3]) -> (Graph<'t>, bool) {
         let earlier = Earlier {
-            before_outliers: Cow::Borrowed(before_outliers),
-            before_local: Cow::Borrowed(&self.edges),
-            before_repair: Cow::Borrowed(&self.edges),
+            before_outliers: Cow::Borrowed(outliers),
+            before_local: Cow::Borrowed(local),
+            before_repair: Cow::Borrowed(repair),
         };
-        self.step_with(step, earlier)
-    }
-
-    /// [`Graph::step`] with the earlier graphs a step may read (see `Step::run`).
-    fn step_with(&self, step: Step, earlier: Earlier<'_>) -> (Graph<'t>, bool) {
         match step.run(self.tri, &self.edges, earlier, None).edges {
             Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
             None => (self.clone(), false),

@@ -62,12 +62,9 @@
 //!
 //! ## Layout
 //! Public as modules: [`mesh`] (the half-edge level), [`predicates`] (the exact signs) and
-//! [`geometry`] (points, exact power-of-two scaling); the rest is re-exported here. The modules
-//! bottom up, each using only those before it: `threads`, `prefetch` (the one `unsafe` call),
-//! [`geometry`], [`predicates`], [`mesh`], `error`, `triangulate` (the kernel), `adjacency`,
-//! `stages` (one module per stage), `curve`, `graph`, `smooth`, `baselines` (NN-Crust, Crust),
-//! `reconstruct` (the [`Pipeline`]), `provenance` (why each edge was kept or dropped).
-//! `docs/architecture.md` says what each owns and may not touch, and maps the workspace around it.
+//! [`geometry`] (points, exact power-of-two scaling); the rest is re-exported here.
+//! `docs/architecture.md` draws the modules in layers, each using only those below it, with what
+//! each owns and may not touch, and maps the workspace around the crate.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![deny(unsafe_code)]
 #![warn(missing_docs)]

@@ -29,111 +29,92 @@ impl fmt::Display for Violation {
 #[cfg(feature = "std")]
 impl std::error::Error for Violation {}
 
-/// One invariant of a mesh or a triangulation: topology, checked by [`Mesh::check_topology`], or
-/// maps and exact geometry, by [`Triangulation::validate`](crate::Triangulation::validate). Each
-/// names the kind of [`Element`] it reports.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Rule {
+/// Declares [`Rule`] and its [`Rule::description`], each variant's words beside its documentation.
+macro_rules! rules {
+    ($($(#[$doc:meta])* $rule:ident => $words:literal,)*) => {
+        /// One invariant of a mesh or a triangulation: topology, checked by
+        /// [`Mesh::check_topology`], or maps and exact geometry, by
+        /// [`Triangulation::validate`](crate::Triangulation::validate). Each names the kind of
+        /// [`Element`] it reports.
+        #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+        #[non_exhaustive]
+        pub enum Rule {
+            $($(#[$doc])* $rule,)*
+        }
+
+        impl Rule {
+            /// The invariant, in words.
+            pub fn description(&self) -> &'static str {
+                match self {
+                    $(Rule::$rule => $words,)*
+                }
+            }
+        }
+    };
+}
+
+rules! {
     // Topology: `Mesh::check_topology`.
     /// The half-edge arrays have different lengths, or not a multiple of three. [`Element::Whole`].
-    ArrayLengths,
+    ArrayLengths => "array lengths disagree",
     /// A triangle has the same vertex at two corners. [`Element::Triangle`].
-    RepeatedCorner,
+    RepeatedCorner => "triangle repeats a corner",
     /// A triangle corner is a finite vertex outside the vertex id space. [`Element::Triangle`].
-    CornerOutOfRange,
+    CornerOutOfRange => "triangle corner out of range",
     /// A half-edge's twin is out of range, or is the half-edge itself. [`Element::HalfEdge`].
-    TwinOutOfRange,
+    TwinOutOfRange => "twin out of range or itself",
     /// The twin of a half-edge's twin is not the half-edge. [`Element::HalfEdge`].
-    TwinNotMutual,
+    TwinNotMutual => "twin of twin is not the half-edge",
     /// A half-edge's twin does not join the same two vertices the other way. [`Element::HalfEdge`].
-    TwinNotReversed,
+    TwinNotReversed => "twin does not run the other way",
     /// A vertex that no half-edge leaves has a vertex edge. [`Element::Vertex`].
-    StrayVertexEdge,
+    StrayVertexEdge => "vertex without edges has a vertex edge",
     /// A vertex that half-edges leave has no (or an out-of-range) vertex edge. [`Element::Vertex`].
-    MissingVertexEdge,
+    MissingVertexEdge => "vertex with edges has no vertex edge",
     /// A vertex edge does not leave its vertex. [`Element::Vertex`].
-    VertexEdgeNotLeaving,
+    VertexEdgeNotLeaving => "vertex edge does not leave its vertex",
     /// The vertex edge of a hull vertex does not point to infinity. [`Element::Vertex`].
-    HullVertexEdgeNotToInfinity,
+    HullVertexEdgeNotToInfinity => "vertex edge of a hull vertex does not point to infinity",
     /// The ring of a vertex does not close within its degree. [`Element::Vertex`].
-    RingNotClosed,
+    RingNotClosed => "ring does not close within the vertex's degree",
     /// The ring of a vertex closes before meeting every half-edge leaving it. [`Element::Vertex`].
-    RingIncomplete,
+    RingIncomplete => "ring misses some edges of its vertex",
     /// `V - E + F` is not 2: the triangles do not form a sphere. [`Element::Whole`].
-    EulerCharacteristic,
+    EulerCharacteristic => "Euler's formula fails: not a sphere",
 
     // Maps: `Triangulation::validate`.
     /// The vertex id space, the coordinates and the two maps differ in length. [`Element::Whole`].
-    VertexArrayLengths,
+    VertexArrayLengths => "vertex arrays do not match the number of points",
     /// An input maps to no vertex, or one not naming its smallest copy. [`Element::InputPoint`].
-    InputNotMapped,
+    InputNotMapped => "input point maps to no vertex, or not to its smallest duplicate",
     /// A merged duplicate's id holds a point other than its vertex's. [`Element::Vertex`].
-    DuplicateMisplaced,
+    DuplicateMisplaced => "duplicate merged into a vertex elsewhere",
     /// A vertex edge on a non-vertex id, or none on a vertex (of two or more). [`Element::Vertex`].
-    VertexEdgePresence,
+    VertexEdgePresence => "vertex edge present where no vertex is, or missing",
     /// The stored number of vertices disagrees with the maps. [`Element::Whole`].
-    VertexCount,
+    VertexCount => "vertex count disagrees with the maps",
 
     // Geometry: `Triangulation::validate`, exact predicates.
     /// A real triangle is not strictly counter-clockwise. [`Element::Triangle`].
-    TriangleNotCcw,
+    TriangleNotCcw => "triangle is not counter-clockwise",
     /// An edge between two real triangles fails the strict in-circle test: it is not locally
     /// Delaunay. [`Element::HalfEdge`] (the one of the pair with the smaller id).
-    NotLocallyDelaunay,
+    NotLocallyDelaunay => "edge is not locally Delaunay",
     /// Consecutive hull edges turn counter-clockwise seen from the ghosts: the hull is not convex.
     /// [`Element::HalfEdge`] (the first hull edge, clockwise).
-    HullNotConvex,
+    HullNotConvex => "hull is not convex",
 
     // Collinear input (no real triangle): `Triangulation::validate`.
     /// At least two distinct points, but no edge. [`Element::Whole`].
-    ChainMissing,
+    ChainMissing => "distinct points but no edge",
     /// There is no real triangle, yet a vertex is off the line of the chain. [`Element::Vertex`].
-    ChainNotCollinear,
+    ChainNotCollinear => "no triangle, yet the points are not collinear",
     /// A chain vertex has more than two neighbours. [`Element::Vertex`].
-    ChainBranches,
+    ChainBranches => "chain vertex with more than two neighbours",
     /// A chain vertex does not lie between its two neighbours. [`Element::Vertex`].
-    ChainDoublesBack,
+    ChainDoublesBack => "chain vertex is not between its neighbours",
     /// The chain's edges do not join every vertex. [`Element::Whole`].
-    ChainDisconnected,
-}
-
-impl Rule {
-    /// The invariant, in words.
-    pub fn description(&self) -> &'static str {
-        match self {
-            Rule::ArrayLengths => "array lengths disagree",
-            Rule::RepeatedCorner => "triangle repeats a corner",
-            Rule::CornerOutOfRange => "triangle corner out of range",
-            Rule::TwinOutOfRange => "twin out of range or itself",
-            Rule::TwinNotMutual => "twin of twin is not the half-edge",
-            Rule::TwinNotReversed => "twin does not run the other way",
-            Rule::StrayVertexEdge => "vertex without edges has a vertex edge",
-            Rule::MissingVertexEdge => "vertex with edges has no vertex edge",
-            Rule::VertexEdgeNotLeaving => "vertex edge does not leave its vertex",
-            Rule::HullVertexEdgeNotToInfinity => {
-                "vertex edge of a hull vertex does not point to infinity"
-            }
-            Rule::RingNotClosed => "ring does not close within the vertex's degree",
-            Rule::RingIncomplete => "ring misses some edges of its vertex",
-            Rule::EulerCharacteristic => "Euler's formula fails: not a sphere",
-            Rule::VertexArrayLengths => "vertex arrays do not match the number of points",
-            Rule::InputNotMapped => {
-                "input point maps to no vertex, or not to its smallest duplicate"
-            }
-            Rule::DuplicateMisplaced => "duplicate merged into a vertex elsewhere",
-            Rule::VertexEdgePresence => "vertex edge present where no vertex is, or missing",
-            Rule::VertexCount => "vertex count disagrees with the maps",
-            Rule::TriangleNotCcw => "triangle is not counter-clockwise",
-            Rule::NotLocallyDelaunay => "edge is not locally Delaunay",
-            Rule::HullNotConvex => "hull is not convex",
-            Rule::ChainMissing => "distinct points but no edge",
-            Rule::ChainNotCollinear => "no triangle, yet the points are not collinear",
-            Rule::ChainBranches => "chain vertex with more than two neighbours",
-            Rule::ChainDoublesBack => "chain vertex is not between its neighbours",
-            Rule::ChainDisconnected => "chain does not join every vertex",
-        }
-    }
+    ChainDisconnected => "chain does not join every vertex",
 }
 
 impl fmt::Display for Rule {

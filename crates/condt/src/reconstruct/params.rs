@@ -53,35 +53,28 @@ pub struct Params {
     /// Remove outliers before the repair, not after (the paper's order): outlier edges can make a
     /// curve vertex non-manifold, and the repair cuts a corner there (`docs/condt.md`, note 8).
     pub outliers_first: bool,
-    /// The IQR stage cuts no edge up to 1.5 times the median edge (beyond the paper): on evenly
-    /// spaced samples the lengths hardly spread, `T` falls onto the spacing, and the paper's rule
-    /// cuts straight stretches spaced a few per cent wider (`src/stages/outliers.rs`).
+    /// The IQR stage cuts no edge up to 1.5 times the median edge (beyond the paper; why:
+    /// `src/stages/outliers.rs`).
     pub iqr_floor: bool,
     /// If the IQR stage cut edges, repair again without all above its threshold (beyond the paper;
     /// repair first only): curve edges an outlier cost come back (`src/stages/repair_again.rs`).
     pub repair_again: bool,
-    /// The local outlier removal, after the IQR stage and the repair (beyond the paper): gives
-    /// back edges the global rule cut along smooth, regular passages; drops long edges at branches
-    /// and ends, short branches and small components (`src/stages/local_outliers.rs`).
+    /// The local outlier removal, after the IQR stage and the repair (beyond the paper; its four
+    /// rules: `src/stages/local_outliers.rs`).
     pub local_outliers: bool,
     /// After the local outlier removal (only with it; beyond the paper), drop each component of
-    /// edges it gave back unless it lies clearly apart from unused points and other such ones: a
-    /// chance chain among outliers goes, a sparse curve stays (`src/stages/given_back.rs`).
+    /// edges it gave back unless it lies clearly apart (`src/stages/given_back.rs`).
     pub confirm_given_back: bool,
-    /// Close gaps at loose ends (beyond the paper): join two facing across a short gap, two to the
-    /// stranded sample they line up through, two whose straight walks through unused points meet,
-    /// a crossing's lost arms to it (`src/stages/gaps.rs`).
+    /// Close gaps at loose ends (beyond the paper; the joins it makes: `src/stages/gaps.rs`).
     pub close_gaps: bool,
-    /// Remove components fewer than half of whose points a curve passes smoothly and evenly
-    /// (beyond the paper): clumps of outliers, which the local outlier removal keeps as they lie
-    /// apart; none if that removes a quarter or more of the points with edges (`stages/clumps.rs`).
+    /// Remove components fewer than half of whose points a curve passes smoothly and evenly:
+    /// clumps of outliers (beyond the paper; `src/stages/clumps.rs`).
     pub clumps: bool,
     /// Join a loose end to the curve it meets where three curves of five points or more, sampled
     /// alike, meet, as on map borders or a T (beyond the paper; `src/stages/junctions.rs`).
     pub junctions: bool,
-    /// Restore a crossing that Algorithm 1 read as two bends (beyond the paper): a sample where
-    /// two curves cross at a narrow angle keeps an arm of each, its neighbours are paired by a
-    /// chord; the chord gives way to the other two arms (`src/stages/crossings.rs`).
+    /// Restore a crossing that Algorithm 1 read as two bends (beyond the paper;
+    /// `src/stages/crossings.rs`).
     pub crossings: bool,
     /// Smoothing passes (beyond the paper): when one point in a hundred or more ends or branches
     /// the curves, each point with two edges at a wide angle moves halfway to its neighbours'

@@ -78,8 +78,8 @@ pub struct Switch {
 /// Everything that names a stage, one row per stage in [`Stage`]'s order; the command line's
 /// switches and `--timings` lines, the drawings' titles and the viewer's layers all read it.
 struct Row {
-    /// The stage the row is for (a test checks the order: [`Stage::row`] indexes by variant).
-    #[cfg_attr(not(test), allow(dead_code))]
+    /// The stage the row is for ([`Stage::ALL`] lists them; a test checks that [`Stage::row`],
+    /// which indexes by variant, finds each stage's own row).
     stage: Stage,
     name: &'static str,
     title: &'static str,
@@ -227,20 +227,15 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 12] = [
-        Stage::Proximity,
-        Stage::Repair,
-        Stage::Outliers,
-        Stage::RepairAgain,
-        Stage::LocalOutliers,
-        Stage::GivenBack,
-        Stage::Clumps,
-        Stage::Gaps,
-        Stage::Junctions,
-        Stage::Crossings,
-        Stage::NnCrust,
-        Stage::Crust,
-    ];
+    pub const ALL: [Stage; 12] = {
+        let mut all = [Stage::Proximity; 12];
+        let mut k = 0;
+        while k < all.len() {
+            all[k] = ROWS[k].stage;
+            k += 1;
+        }
+        all
+    };
 
     fn row(self) -> &'static Row {
         &ROWS[self as usize]

@@ -1,0 +1,138 @@
+//! The text of an edge's story ([`EdgeStory`], from [`Reconstruction::provenance`]): one line
+//! with the numbers that decided it, as the Python package's `EdgeStory.text` gives it. It may not
+//! decide anything: every verdict and number comes from the story.
+//!
+//! [`Reconstruction::provenance`]: condt::Reconstruction::provenance
+
+use condt::{EdgeStory, EndChoice, Reason};
+use std::fmt::{self, Write};
+
+/// `story` in one line: how each end chose the edge in Algorithm 1, each later change and why,
+/// and whether it is kept.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// let points = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 9.0)].map(Point::from);
+/// let stories = reconstruct(&points, &Params::default())?.provenance();
+/// let long = stories.iter().find(|s| s.edge == [0, 3]).unwrap();
+/// assert_eq!(condt_io::story_text(long), "0-3: second shortest at 0, dropped by the uniformity \
+///     test: |e2| = 9.220 |e1| >= 2.750 |e1|; rank 3 at 3; dropped");
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn story_text(story: &EdgeStory) -> String {
+    let mut text = String::new();
+    write_story(&mut text, story).expect("writing to a String cannot fail");
+    text
+}
+
+fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
+    let [a, b] = story.edge;
+    write!(f, "{a}-{b}: ")?;
+    match story.ends {
+        [EndChoice::Later { rank: ra }, EndChoice::Later { rank: rb }] => write!(
+            f,
+            "not among the two shortest at either end (ranks {ra} and {rb})"
+        )?,
+        [EndChoice::NotDelaunay, _] | [_, EndChoice::NotDelaunay] => {
+            write!(f, "not a Delaunay edge")?
+        }
+        ends => {
+            let mut first = true;
+            for (end, choice) in [a, b].into_iter().zip(ends) {
+                if !first {
+                    write!(f, "; ")?;
+                }
+                first = false;
+                match choice {
+                    EndChoice::Shortest => write!(f, "shortest at {end}")?,
+                    EndChoice::Second { ratio, bound, kept } => write!(
+                        f,
+                        "second shortest at {end}, {} by the uniformity test: |e2| = {ratio:.3} |e1| {} {bound:.3} |e1|",
+                        if kept { "kept" } else { "dropped" },
+                        if kept { "<" } else { ">=" }
+                    )?,
+                    EndChoice::Later { rank } => write!(f, "rank {rank} at {end}")?,
+                    EndChoice::NotDelaunay => {}
+                }
+            }
+        }
+    }
+    for change in &story.changes {
+        let stage = change.stage.name();
+        let verb = if change.added { "added" } else { "removed" };
+        write!(f, "; {stage}: {verb} ")?;
+        match change.reason {
+            Reason::Repair {
+                vertex,
+                degree,
+                kept,
+            } => {
+                write!(f, "at vertex {vertex} (degree {degree}), which kept ")?;
+                match kept {
+                    [Some(x), Some(y)] => write!(f, "its edges to {x} and {y}")?,
+                    [Some(x), None] | [None, Some(x)] => write!(f, "its edge to {x} only")?,
+                    [None, None] => write!(f, "none")?,
+                }
+            }
+            Reason::LongerThanThreshold {
+                length,
+                threshold,
+                floored: false,
+            } => write!(f, "length {length:.6} above √T = {threshold:.6}")?,
+            Reason::LongerThanThreshold {
+                length,
+                threshold,
+                floored: true,
+            } => write!(
+                f,
+                "length {length:.6} above the spacing floor {threshold:.6} (1.5 median edges)"
+            )?,
+            Reason::GivenBack => write!(f, "given back between two regular passages")?,
+            Reason::LongAt { vertex, ratio } => write!(
+                f,
+                "{ratio:.2} times as long as the longest other edge at vertex {vertex}"
+            )?,
+            Reason::RepairedAgain => write!(f, "repaired again without the edges above √T")?,
+            Reason::Component => write!(f, "isolated component")?,
+            Reason::Spur => write!(f, "short spur")?,
+            Reason::Clump => write!(f, "a clump: fewer than half its points pass smoothly")?,
+            Reason::GapClosed => write!(f, "gap closed")?,
+            Reason::Junction => write!(f, "joined at a junction of three curves")?,
+            Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,
+            Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
+            Reason::Baseline => write!(f, "chosen by the baseline")?,
+        }
+    }
+    write!(f, "; {}", if story.kept { "kept" } else { "dropped" })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::story_text;
+    use condt::{reconstruct, Params, Point};
+
+    /// Two lines crossing at point 0 at 40°, as in `condt`'s provenance tests: the crossing's
+    /// story names its vertex.
+    #[test]
+    fn a_restored_crossing_is_told_with_its_vertex() {
+        let t = 40f64.to_radians();
+        let arms = [
+            (1.0, 0.0),
+            (t.cos(), t.sin()),
+            (-1.0, 0.0),
+            (-t.cos(), -t.sin()),
+        ];
+        let mut points = vec![Point::new(0.0, 0.0)];
+        for (k, (dx, dy)) in arms.iter().enumerate() {
+            let r = |i: usize| i as f64 + 0.1 + 0.01 * k as f64;
+            points.extend((1..=7).map(|i| Point::new(dx * r(i), dy * r(i))));
+        }
+        let stories = reconstruct(&points, &Params::default())
+            .unwrap()
+            .provenance();
+        for edge in [[0, 15], [0, 22], [15, 22]] {
+            let text = story_text(stories.iter().find(|s| s.edge == edge).unwrap());
+            assert!(text.contains("crossings: ") && text.contains("restored the crossing at 0"));
+        }
+    }
+}
