@@ -25,7 +25,7 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
 /// one 8-byte record per vertex (its first two neighbours and its degree), so following a curve
 /// costs one read per vertex; vertices with three or more list them all in a small side table.
 /// Reason for the packing: memory; the graph is held at the reconstruction's highest phases.
-#[derive(Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct CurveGraph {
     /// Per vertex id: the first neighbour in the low [`ID_BITS`] bits with the degree (up to
     /// [`DEGREE_SATURATED`]) above, then the second neighbour; [`NO_ID`] where none.

@@ -456,13 +456,24 @@ impl Run {
                 Cow::Borrowed(current.as_slice())
             }
         };
+        // Repairing again reads the proximity graph only when the IQR stage cut an edge: rebuilt
+        // (`Undo::First`), it costs a proximity stage's time and memory (its peak on scattered
+        // points, where the cut rarely happens).
+        let cut = history
+            .records
+            .iter()
+            .any(|r| r.stage == Stage::Outliers && !matches!(r.undo, Undo::Unchanged));
+        let before_repair = input_of(
+            Stage::Repair,
+            matches!(step, Step::RepairAgain { .. }) && cut,
+        );
         let earlier = Earlier {
             before_outliers: input_of(
                 Stage::Outliers,
                 matches!(step, Step::LocalOutliers | Step::RepairAgain { .. }),
             ),
             before_local: input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack),
-            before_repair: input_of(Stage::Repair, matches!(step, Step::RepairAgain { .. })),
+            before_repair,
         };
         let outcome = step.run(tri, current, earlier, self.current_graph.take());
         self.current_graph = outcome.graph;

@@ -155,7 +155,7 @@ pub(crate) fn restore_crossings(
         })
         .collect();
     if found.is_empty() {
-        return Outcome::unchanged_with(Some(ends.graph));
+        return Outcome::unchanged_with(ends.into_graph());
     }
     // A point in two crossings (as the crossing of one and a chord's end of another, say) takes
     // part in none.
@@ -169,7 +169,7 @@ pub(crate) fn restore_crossings(
     let restored: Vec<Crossing> = found.iter().filter(alone).copied().collect();
     drop(uses);
     if restored.is_empty() {
-        return Outcome::unchanged_with(Some(ends.graph));
+        return Outcome::unchanged_with(ends.into_graph());
     }
     drop(ends);
     let mut chords: Vec<Edge> = restored.iter().map(|k| ordered(k.c, k.d)).collect();

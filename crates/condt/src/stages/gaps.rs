@@ -45,6 +45,7 @@ use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::predicates::{orient2d, Orientation};
 use crate::triangulate::Triangulation;
+use alloc::borrow::Cow;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -94,14 +95,27 @@ enum Partner {
 /// The loose ends of a graph and the tests on them (shared with [`super::junctions`]).
 pub(super) struct Ends<'a> {
     pub(super) tri: &'a Triangulation,
-    pub(super) graph: CurveGraph,
+    /// Borrowed when a caller that goes on using the graph lends it (rule 4), else owned and
+    /// handed on ([`Ends::into_graph`]).
+    pub(super) graph: Cow<'a, CurveGraph>,
 }
 
 impl<'a> Ends<'a> {
     /// The loose ends of `edges`, with the previous stage's curve `graph` when it had one.
     pub(super) fn new(tri: &'a Triangulation, edges: &[Edge], graph: Option<CurveGraph>) -> Self {
         let graph = graph.unwrap_or_else(|| CurveGraph::new(tri.num_points(), edges));
-        Ends { tri, graph }
+        Ends {
+            tri,
+            graph: Cow::Owned(graph),
+        }
+    }
+
+    /// The curve graph, to hand on to the next stage, if it is this stage's own.
+    pub(super) fn into_graph(self) -> Option<CurveGraph> {
+        match self.graph {
+            Cow::Owned(graph) => Some(graph),
+            Cow::Borrowed(_) => None,
+        }
     }
 
     /// The loose ends, in increasing vertex id.
@@ -317,8 +331,14 @@ pub(crate) fn close_gaps(
     edges: &[Edge],
     graph: Option<CurveGraph>,
 ) -> Outcome {
-    let n = tri.num_points();
     let ends = Ends::new(tri, edges, graph);
+    let joins = gap_joins(&ends);
+    ends.joined(edges, &joins)
+}
+
+/// The joins [`close_gaps`] adds to the graph of `ends`, by increasing loose end.
+pub(super) fn gap_joins(ends: &Ends<'_>) -> Vec<Edge> {
+    let n = ends.tri.num_points();
     // Only loose ends choose (few): a list by increasing id, searched by id (memory).
     let targets: Vec<(VertexId, Target)> = ends
         .loose()
@@ -326,8 +346,7 @@ pub(crate) fn close_gaps(
         .filter(|&(_, target)| target != Target::None)
         .collect();
     if targets.is_empty() {
-        let runs = ends.stranded_runs(&[], &[]);
-        return ends.joined(edges, &runs);
+        return ends.stranded_runs(&[], &[]);
     }
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
     let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
@@ -374,7 +393,7 @@ pub(crate) fn close_gaps(
         .collect();
     let runs = ends.stranded_runs(&joined_ends, &joins);
     joins.extend(runs);
-    ends.joined(edges, &joins)
+    joins
 }
 
 impl Ends<'_> {
@@ -490,7 +509,7 @@ impl Ends<'_> {
     /// when there is none; otherwise `edges` in order, then `joins` (the curve graph freed first).
     pub(super) fn joined(self, edges: &[Edge], joins: &[Edge]) -> Outcome {
         if joins.is_empty() {
-            return Outcome::unchanged_with(Some(self.graph));
+            return Outcome::unchanged_with(self.into_graph());
         }
         drop(self);
         let mut out = Vec::with_capacity(edges.len() + joins.len());

@@ -617,7 +617,7 @@ fn separated_components(
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
-    Some(keep_joined_pieces(tri, edges, root, kept))
+    Some(keep_joined_pieces(tri, profile, root, kept))
 }
 
 /// Rule 4's third exemption: a piece that gap closing would join, directly or through other
@@ -627,20 +627,37 @@ fn separated_components(
 /// joins (by their smallest id) and which are kept.
 fn keep_joined_pieces(
     tri: &Triangulation,
-    edges: &[Edge],
+    profile: &CurveGraph,
     root: Vec<u32>,
     kept: Vec<bool>,
 ) -> (Vec<u32>, Vec<bool>) {
-    let Some(joined) = super::gaps::close_gaps(tri, edges, None).edges else {
-        return (root, kept);
+    let ends = super::gaps::Ends {
+        tri,
+        graph: Cow::Borrowed(profile),
     };
-    let joined_root = components(root.len(), &joined);
-    drop(joined);
-    let mut joined_kept = vec![false; root.len()];
-    for (v, &r) in root.iter().enumerate() {
-        if kept[r as usize] {
-            joined_kept[joined_root[v] as usize] = true;
+    let joins = super::gaps::gap_joins(&ends);
+    if joins.is_empty() {
+        return (root, kept);
+    }
+    // The components of `edges` and the joins, as `components` names them (the smallest id), from
+    // those of `edges` merged along the joins: no copy of the edge list (memory).
+    let mut parent: Vec<u32> = (0..root.len() as u32).collect();
+    for &[a, b] in &joins {
+        let (ra, rb) = (
+            find(&mut parent, root[a.index()]),
+            find(&mut parent, root[b.index()]),
+        );
+        parent[ra.max(rb) as usize] = ra.min(rb);
+    }
+    drop(joins);
+    let mut joined_root = root;
+    let mut joined_kept = vec![false; joined_root.len()];
+    for r in joined_root.iter_mut() {
+        let joined = find(&mut parent, *r);
+        if kept[*r as usize] {
+            joined_kept[joined as usize] = true;
         }
+        *r = joined;
     }
     (joined_root, joined_kept)
 }

@@ -371,8 +371,8 @@ impl Step {
                 repair_again::repair_again(
                     tri,
                     edges,
-                    &earlier.before_outliers,
-                    &earlier.before_repair,
+                    earlier.before_outliers,
+                    earlier.before_repair,
                     rule,
                     mode,
                 )

@@ -15,29 +15,32 @@ use super::repair::repair;
 use super::{Outcome, Repair};
 use crate::adjacency::Edge;
 use crate::triangulate::Triangulation;
+use alloc::borrow::Cow;
 use alloc::vec::Vec;
 
 /// The rule on `edges`, the IQR stage's output; `repaired` is that stage's input, `proximity`
-/// the repair's.
+/// the repair's. Each is freed once read, before the repair runs (memory: its peak).
 pub(crate) fn repair_again(
     tri: &Triangulation,
     edges: &[Edge],
-    repaired: &[Edge],
-    proximity: &[Edge],
+    repaired: Cow<'_, [Edge]>,
+    proximity: Cow<'_, [Edge]>,
     rule: IqrRule,
     mode: Repair,
 ) -> Outcome {
     // The IQR stage only removes edges: it fired exactly when the lists differ.
-    if edges == repaired {
+    if edges == &*repaired {
         return Outcome::UNCHANGED;
     }
     let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
     let threshold = iqr_thresholds_of(repaired.iter().map(length2).collect(), rule).cut;
+    drop(repaired);
     let short: Vec<Edge> = proximity
         .iter()
         .filter(|e| length2(e) <= threshold)
         .copied()
         .collect();
+    drop(proximity);
     Outcome::from(Some(repair(tri, &short, mode).unwrap_or(short)))
 }
 
@@ -96,7 +99,8 @@ mod tests {
             factor: 1.7,
             floor: true,
         };
-        let outcome = repair_again(&tri, &edges, &edges, &edges, rule, Repair::Needs);
+        let (same, also) = (Cow::Borrowed(&edges[..]), Cow::Borrowed(&edges[..]));
+        let outcome = repair_again(&tri, &edges, same, also, rule, Repair::Needs);
         assert!(outcome.edges.is_none());
     }
 }
