@@ -13,7 +13,7 @@
 
 use crate::adjacency::{CurveGraph, Edge};
 use crate::geometry::{lower_left, Point};
-use crate::triangulate::Triangulation;
+use crate::triangulate::{splitmix64_finalizer, Triangulation};
 use alloc::vec::Vec;
 
 /// How far a point moves towards its neighbours' midpoint. Reason: on a zig-zag, the noise pattern
@@ -45,9 +45,10 @@ pub(crate) const NOISE_SHARE: usize = 100;
 pub(crate) struct Smoothed {
     /// The smoothed position of every input position, relative to `corner`.
     pub(crate) positions: Vec<Point>,
-    /// The same positions in the caller's coordinates: the fallback when the relative ones merge
-    /// two distinct points (a coordinate far below the extent is lost in the difference), which
-    /// would make the result depend on the input order.
+    /// With `absolute` asked for, the same positions in the caller's coordinates: the fallback
+    /// when the relative ones merge two distinct points (a coordinate far below the extent is
+    /// lost in the difference), which would make the result depend on the input order. Empty
+    /// otherwise (memory: 16 bytes a point at the pass's peak).
     pub(crate) absolute: Vec<Point>,
     /// The starting positions' corner, in the caller's coordinates (display only).
     pub(crate) corner: Point,
@@ -62,7 +63,8 @@ pub(crate) struct Smoothed {
 /// Why above 90°: the suite's and the paper's sharp corners are under 60° and noise tilts edges by
 /// a few degrees, while a curve sampled densely enough for the proximity graph (ε < 1/2: at most
 /// about 30° of turn per sample) is far above it along its smooth parts.
-pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothed {
+pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], absolute: bool) -> Smoothed {
+    let wanted = absolute;
     let n = tri.num_points();
     let graph = CurveGraph::new(n, edges);
     let corner = lower_left(tri.vertex_points().iter().copied()).unwrap_or_default();
@@ -70,13 +72,18 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothe
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
     let mut moved = 0;
-    let mut absolute = Vec::with_capacity(n);
+    let mut absolute = Vec::with_capacity(if wanted { n } else { 0 });
+    let mut keep = |p: Point| {
+        if wanted {
+            absolute.push(p);
+        }
+    };
     let positions = (0..n)
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_point(v));
             if graph.degree(v) != 2 {
-                absolute.push(tri.point(i));
+                keep(tri.point(i));
                 return tri.stage_to_input(q);
             }
             let [x, y] = graph.first_two(v);
@@ -88,7 +95,7 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothe
             let (wx, wy) = (b.x - q.x, b.y - q.y);
             // The angle at the point is wider than a right angle exactly when u·w < 0.
             if ux * wx + uy * wy >= 0.0 {
-                absolute.push(tri.point(i));
+                keep(tri.point(i));
                 return tri.stage_to_input(q);
             }
             moved += 1;
@@ -101,10 +108,13 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothe
                 tri.vertex_point(x),
                 tri.vertex_point(y),
             );
-            absolute.push(shown(tri.stage_to_input(step(qa, aa, ba))));
+            if wanted {
+                keep(shown(tri.stage_to_input(step(qa, aa, ba))));
+            }
             tri.stage_to_input(step(q, a, b))
         })
         .collect();
+    drop(keep);
     let shift = tri.stage_to_input(corner);
     Smoothed {
         positions,
@@ -114,11 +124,64 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge]) -> Smoothe
     }
 }
 
+/// How many of `points` repeat an earlier one (exact equality, as the triangulation merges them:
+/// `n` less the distinct points), by open addressing over a table of ids (a quarter of the
+/// points' own size, instead of a copy in the caller's coordinates kept just in case).
+pub(crate) fn repeats(points: &[Point]) -> usize {
+    let size = (2 * points.len()).next_power_of_two().max(2);
+    let mask = size - 1;
+    // Slot contents: a point's index plus one; zero is empty.
+    let mut table = alloc::vec![0u32; size];
+    // `+ 0.0` turns -0 into +0, which compare equal: equal points hash alike.
+    let key = |p: Point| {
+        let (x, y) = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+        splitmix64_finalizer(x ^ y.rotate_left(32).wrapping_mul(0x9e37_79b9_7f4a_7c15)) as usize
+    };
+    let mut repeated = 0;
+    for (i, &p) in points.iter().enumerate() {
+        let mut slot = key(p) & mask;
+        loop {
+            match table[slot] {
+                0 => {
+                    table[slot] = i as u32 + 1;
+                    break;
+                }
+                j if points[j as usize - 1] == p => {
+                    repeated += 1;
+                    break;
+                }
+                _ => slot = (slot + 1) & mask,
+            }
+        }
+    }
+    repeated
+}
+
 #[cfg(test)]
 mod tests {
     use crate::sample::{sample, Sampling, Shape};
     use crate::{reconstruct, triangulate, Params, Point};
     use alloc::vec::Vec;
+
+    #[test]
+    fn repeats_counts_the_points_equal_to_an_earlier_one() {
+        let p = |x, y| Point::new(x, y);
+        assert_eq!(super::repeats(&[]), 0);
+        // -0 equals +0, as in the triangulation; the next double up is another point.
+        let near = f64::from_bits(1.0f64.to_bits() + 1);
+        let points = [
+            p(0.0, 1.0),
+            p(-0.0, 1.0),
+            p(0.0, near),
+            p(0.0, 1.0),
+            p(2.0, 3.0),
+        ];
+        assert_eq!(super::repeats(&points), 2);
+        // Many copies, and more distinct points than table slots would hold without growing.
+        let mut many: Vec<Point> = (0..1000).map(|k| p(k as f64, -(k as f64))).collect();
+        many.extend((0..1000).map(|k| p((k % 7) as f64, -((k % 7) as f64))));
+        assert_eq!(super::repeats(&many), 1000);
+    }
 
     /// The corners of the unit square, counter-clockwise from the origin.
     const UNIT_SQUARE: [Point; 4] = [

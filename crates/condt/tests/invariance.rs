@@ -165,13 +165,21 @@ fn permuting_scaling_turning_and_mirroring_keep_the_edges() {
 /// `9.56e-206` right of the origin. The smoothing passes run (the result has loose ends), and
 /// positions relative to the set's corner made the tiny point and the origin one point, so the
 /// edge to `(-1, 0)` was reported from whichever of the two came first in the input. Such a set
-/// is smoothed in the caller's coordinates instead.
+/// is smoothed in the caller's coordinates instead. The same at `2^-100`, a spread the fast
+/// predicates take (under 200 bits), where the pass sees the merge coming by counting repeated
+/// relative positions rather than from the set's width.
 #[test]
 fn a_point_lost_in_a_difference_from_the_corner_keeps_the_edges_independent_of_order() {
+    for tiny in [9.559214296344705e-206, 2f64.powi(-100)] {
+        lost_in_a_difference(tiny);
+    }
+}
+
+fn lost_in_a_difference(tiny: f64) {
     let mut points = vec![Point::new(0.0, 0.0); 16];
     points.extend([
         Point::new(-1.0, 0.0),
-        Point::new(9.559214296344705e-206, 0.0),
+        Point::new(tiny, 0.0),
         Point::new(0.0, 0.0),
     ]);
     let params = Params::default();

@@ -12,10 +12,10 @@ use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::smooth::{shows_noise, smoothed_positions, MAX_PASSES};
+use crate::smooth::{repeats, shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
-use crate::triangulate::{splitmix64_finalizer, triangulate_with, Triangulation};
+use crate::triangulate::{choose_frames, splitmix64_finalizer, triangulate_with, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::sync::atomic::AtomicUsize;
@@ -379,18 +379,30 @@ impl Pipeline {
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
         let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
-        let smoothed = smoothed_positions(&triangulation, &final_edges);
+        let mut smoothed = smoothed_positions(&triangulation, &final_edges, false);
         let merged_before = triangulation.num_points() - triangulation.num_vertices();
+        // Relative to the corner, so an exact translation gives the same result, unless that merges
+        // distinct points (making the result depend on input order): then in the caller's frame,
+        // computed only then, while the old triangulation is at hand. The triangulation merges
+        // exactly equal points, as `repeats` counts them; a wide set (whose frames could round a
+        // coordinate) is given the caller's frame at once, as it would be after a look.
+        let relative_merges = repeats(&smoothed.positions) > merged_before
+            || choose_frames(&smoothed.positions).is_ok_and(|frames| frames.wide);
+        if relative_merges {
+            smoothed = smoothed_positions(&triangulation, &final_edges, true);
+        }
         drop(final_edges);
         let moved = smoothed.moved;
         // The replaced run's triangulation is an earlier pass's cost too.
         self.earlier_passes += triangulation_time;
         self.earlier_passes += self.pass_clock.lap();
-        // Relative to the corner, so an exact translation gives the same result, unless that merges
-        // distinct points (making the result depend on input order): then in the caller's frame.
         let parallel = self.params.parallel;
         let relative = triangulate_with(&smoothed.positions, parallel, None, Some(triangulation))?;
         let tri = if relative.num_points() - relative.num_vertices() > merged_before {
+            assert!(
+                relative_merges,
+                "`repeats` counts what the triangulation merges"
+            );
             triangulate_with(&smoothed.absolute, parallel, None, Some(relative))?
         } else {
             relative.with_offset(smoothed.corner)

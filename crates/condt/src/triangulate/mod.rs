@@ -27,6 +27,7 @@ use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
 pub(crate) use order::mix as splitmix64_finalizer;
+pub(crate) use scale::choose_frames;
 
 /// The largest number of input points: half of what `u32` half-edge ids allow; beyond it
 /// [`triangulate`] returns [`Error::TooManyPoints`] before allocating (`docs/triangulation.md`).
