@@ -114,7 +114,6 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], absolute: 
             tri.stage_to_input(step(q, a, b))
         })
         .collect();
-    drop(keep);
     let shift = tri.stage_to_input(corner);
     Smoothed {
         positions,
