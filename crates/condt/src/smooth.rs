@@ -45,7 +45,7 @@ pub(crate) const NOISE_SHARE: usize = 100;
 pub(crate) struct Smoothed {
     /// The smoothed position of every input position, relative to `corner`.
     pub(crate) positions: Vec<Point>,
-    /// With `absolute` asked for, the same positions in the caller's coordinates: the fallback
+    /// When asked for (`wanted`), the same positions in the caller's coordinates: the fallback
     /// when the relative ones merge two distinct points (a coordinate far below the extent is
     /// lost in the difference), which would make the result depend on the input order. Empty
     /// otherwise (memory: 16 bytes a point at the pass's peak).
@@ -63,8 +63,7 @@ pub(crate) struct Smoothed {
 /// Why above 90°: the suite's and the paper's sharp corners are under 60° and noise tilts edges by
 /// a few degrees, while a curve sampled densely enough for the proximity graph (ε < 1/2: at most
 /// about 30° of turn per sample) is far above it along its smooth parts.
-pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], absolute: bool) -> Smoothed {
-    let wanted = absolute;
+pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bool) -> Smoothed {
     let n = tri.num_points();
     let graph = CurveGraph::new(n, edges);
     let corner = lower_left(tri.vertex_points().iter().copied()).unwrap_or_default();
@@ -108,6 +107,7 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], absolute: 
                 tri.vertex_point(x),
                 tri.vertex_point(y),
             );
+            // Computed only when asked for (speed): `keep` would drop it.
             if wanted {
                 keep(shown(tri.stage_to_input(step(qa, aa, ba))));
             }
