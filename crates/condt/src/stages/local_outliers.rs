@@ -639,8 +639,8 @@ fn keep_joined_pieces(
     if joins.is_empty() {
         return (root, kept);
     }
-    // The components of `edges` and the joins, as `components` names them (the smallest id), from
-    // those of `edges` merged along the joins: no copy of the edge list (memory).
+    // The components of the graph with the joins, as `components` names them (the smallest id):
+    // the graph's components merged along the joins, with no copy of its edge list (memory).
     let mut parent: Vec<u32> = (0..root.len() as u32).collect();
     for &[a, b] in &joins {
         let (ra, rb) = (
