@@ -125,7 +125,13 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// Whether the first record is a point rather than a header: exactly two fields, both numbers.
 /// With more columns, which two are x and y is a guess (`id,x,y`), so a header must say.
 fn headerless_pair(record: &csv::StringRecord) -> bool {
-    record.len() == 2 && record.iter().all(|f| f.trim().parse::<f64>().is_ok())
+    record.len() == 2 && all_numbers(record)
+}
+
+/// Whether every field of `record` reads as a number (a finite one or not: a point's check names
+/// the line of a non-finite one).
+fn all_numbers(record: &csv::StringRecord) -> bool {
+    record.iter().all(|f| f.trim().parse::<f64>().is_ok())
 }
 
 /// The x and y columns named by the header `record` (its text `raw`, on `line`).
@@ -150,7 +156,7 @@ fn header_columns(
                 )
             })
     };
-    if record.len() > 2 && record.iter().all(|f| f.trim().parse::<f64>().is_ok()) {
+    if record.len() > 2 && all_numbers(record) {
         return Err(source.error(
             line,
             format!(

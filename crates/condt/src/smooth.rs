@@ -72,17 +72,14 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
     let mut moved = 0;
     let mut absolute = Vec::with_capacity(if wanted { n } else { 0 });
-    let mut keep = |p: Point| {
-        if wanted {
-            absolute.push(p);
-        }
-    };
     let positions = (0..n)
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_point(v));
             if graph.degree(v) != 2 {
-                keep(tri.point(i));
+                if wanted {
+                    absolute.push(tri.point(i));
+                }
                 return tri.stage_to_input(q);
             }
             let [x, y] = graph.first_two(v);
@@ -94,7 +91,9 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
             let (wx, wy) = (b.x - q.x, b.y - q.y);
             // The angle at the point is wider than a right angle exactly when u·w < 0.
             if ux * wx + uy * wy >= 0.0 {
-                keep(tri.point(i));
+                if wanted {
+                    absolute.push(tri.point(i));
+                }
                 return tri.stage_to_input(q);
             }
             moved += 1;
@@ -107,9 +106,8 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
                 tri.vertex_point(x),
                 tri.vertex_point(y),
             );
-            // Computed only when asked for (speed): `keep` would drop it.
             if wanted {
-                keep(shown(tri.stage_to_input(step(qa, aa, ba))));
+                absolute.push(shown(tri.stage_to_input(step(qa, aa, ba))));
             }
             tri.stage_to_input(step(q, a, b))
         })

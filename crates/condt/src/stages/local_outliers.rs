@@ -640,24 +640,20 @@ fn keep_joined_pieces(
         return (root, kept);
     }
     // The components of the graph with the joins, as `components` names them (the smallest id):
-    // the graph's components merged along the joins, with no copy of its edge list (memory).
-    let mut parent: Vec<u32> = (0..root.len() as u32).collect();
-    for &[a, b] in &joins {
-        let (ra, rb) = (
-            find(&mut parent, root[a.index()]),
-            find(&mut parent, root[b.index()]),
-        );
-        parent[ra.max(rb) as usize] = ra.min(rb);
-    }
+    // the graph's components, named by their roots, merged along the joins (no copy of the edge
+    // list: memory).
+    let label = |v: VertexId| VertexId::new(root[v.index()]);
+    let merged_joins: Vec<Edge> = joins.iter().map(|&[a, b]| [label(a), label(b)]).collect();
     drop(joins);
+    let merged = components(root.len(), &merged_joins);
+    drop(merged_joins);
     let mut joined_root = root;
     let mut joined_kept = vec![false; joined_root.len()];
     for r in joined_root.iter_mut() {
-        let joined = find(&mut parent, *r);
         if kept[*r as usize] {
-            joined_kept[joined as usize] = true;
+            joined_kept[merged[*r as usize] as usize] = true;
         }
-        *r = joined;
+        *r = merged[*r as usize];
     }
     (joined_root, joined_kept)
 }
