@@ -601,8 +601,7 @@ fn separated_components(
     }
     let n = tri.num_points();
     let root = components(n, edges);
-    let separated = separated_counts(tri, profile, &root);
-    let mut kept: Vec<bool> = separated
+    let mut kept: Vec<bool> = separated_counts(tri, profile, &root)
         .iter()
         .map(|&c| usize::from(c) >= MIN_SAMPLES)
         .collect();
@@ -636,26 +635,53 @@ fn keep_joined_pieces(
         graph: Cow::Borrowed(profile),
     };
     let joins = super::gaps::gap_joins(&ends);
+    merged_along(root, kept, joins)
+}
+
+/// The components of `root` (each vertex's component, named by its smallest id) merged along
+/// `joins`, named as [`components`] would name them on the edges and the joins, and which of them
+/// are kept: those with a kept part (only merged names are to be read in `kept` afterwards).
+/// Memory: the merging runs on the names the joins touch, renumbered in order (so that the
+/// smallest number is the smallest name), not on an array of every vertex: this is the peak of
+/// the local outlier removal along curves.
+fn merged_along(root: Vec<u32>, mut kept: Vec<bool>, joins: Vec<Edge>) -> (Vec<u32>, Vec<bool>) {
     if joins.is_empty() {
         return (root, kept);
     }
-    // The components of the graph with the joins, as `components` names them (the smallest id):
-    // the graph's components, named by their roots, merged along the joins (no copy of the edge
-    // list: memory).
-    let label = |v: VertexId| VertexId::new(root[v.index()]);
-    let merged_joins: Vec<Edge> = joins.iter().map(|&[a, b]| [label(a), label(b)]).collect();
+    let label = |v: VertexId| root[v.index()];
+    let mut touched: Vec<u32> = joins
+        .iter()
+        .flat_map(|&[a, b]| [label(a), label(b)])
+        .collect();
+    touched.sort_unstable();
+    touched.dedup();
+    let number = |r: u32| touched.binary_search(&r).ok();
+    let numbered_joins: Vec<Edge> = joins
+        .iter()
+        .map(|&[a, b]| [a, b].map(|v| VertexId::new(number(label(v)).expect("touched") as u32)))
+        .collect();
     drop(joins);
-    let merged = components(root.len(), &merged_joins);
-    drop(merged_joins);
-    let mut joined_root = root;
-    let mut joined_kept = vec![false; joined_root.len()];
-    for r in joined_root.iter_mut() {
-        if kept[*r as usize] {
-            joined_kept[merged[*r as usize] as usize] = true;
-        }
-        *r = merged[*r as usize];
+    let merged = components(touched.len(), &numbered_joins);
+    drop(numbered_joins);
+    let mut is_touched = vec![0u64; root.len().div_ceil(64)];
+    for &r in &touched {
+        is_touched[r as usize / 64] |= 1 << (r % 64);
     }
-    (joined_root, joined_kept)
+    let merged_root = |r: u32| match is_touched[r as usize / 64] >> (r % 64) & 1 {
+        1 => touched[merged[number(r).expect("touched")] as usize],
+        _ => r,
+    };
+    // A merged component is kept when one of its parts was; only the merged roots are read on.
+    for &r in &touched {
+        if kept[r as usize] {
+            kept[merged_root(r) as usize] = true;
+        }
+    }
+    let mut joined_root = root;
+    for r in joined_root.iter_mut() {
+        *r = merged_root(*r);
+    }
+    (joined_root, kept)
 }
 
 /// Per component root, how many of its vertices are separated (rule 4), counted up to
@@ -809,6 +835,40 @@ fn too_many_dropped(root: &[u32], profile: &CurveGraph, kept: &[bool]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The merge over the touched names only equals merging every vertex's component along the
+    /// joins by `components` (random components, joins and kept flags, from one to many joins).
+    #[test]
+    fn merging_along_joins_names_and_keeps_as_a_whole_union_find_would() {
+        let mut rng = crate::test_rng::Xorshift::new(0x51ed_2701_93a4_c6b5);
+        for round in 0..200 {
+            let n = 1 + rng.below(300) as usize;
+            let edges: Vec<Edge> = (0..rng.below(n as u64 + 1))
+                .map(|_| [0, 1].map(|_| VertexId::new(rng.below(n as u64) as u32)))
+                .collect();
+            let root = components(n, &edges);
+            let kept: Vec<bool> = (0..n).map(|_| rng.below(3) == 0).collect();
+            let joins: Vec<Edge> = (0..rng.below(1 + round % 20))
+                .map(|_| [0, 1].map(|_| VertexId::new(rng.below(n as u64) as u32)))
+                .collect();
+            let name = |v: VertexId| VertexId::new(root[v.index()]);
+            let named: Vec<Edge> = joins.iter().map(|&[a, b]| [name(a), name(b)]).collect();
+            let whole = components(n, &named);
+            let mut whole_kept = vec![false; n];
+            for &r in &root {
+                whole_kept[whole[r as usize] as usize] |= kept[r as usize];
+            }
+            let (merged, merged_kept) = merged_along(root.clone(), kept, joins);
+            for v in 0..n {
+                let r = merged[v] as usize;
+                assert_eq!(
+                    r, whole[root[v] as usize] as usize,
+                    "round {round}, vertex {v}"
+                );
+                assert_eq!(merged_kept[r], whole_kept[r], "round {round}, vertex {v}");
+            }
+        }
+    }
     use crate::{reconstruct, triangulate, Params, Point, Reconstruction, Stage};
     use alloc::vec::Vec;
     use core::f64::consts::TAU;
