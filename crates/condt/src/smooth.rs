@@ -70,6 +70,19 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
+    // Relative positions in the input frame, or, where the box's extent overflows there (a
+    // width beyond `f64::MAX`), in the stages' frame: a power of two apart, which the next
+    // triangulation and every stage measure alike.
+    let overflows = {
+        let upper_right = tri.vertex_points().iter().fold(corner, |m, p| {
+            Point::new(
+                if p.x > m.x { p.x } else { m.x },
+                if p.y > m.y { p.y } else { m.y },
+            )
+        });
+        !tri.stage_to_input(relative(upper_right)).is_finite()
+    };
+    let out = |p: Point| if overflows { p } else { tri.stage_to_input(p) };
     let mut moved = 0;
     let mut absolute = Vec::with_capacity(if wanted { n } else { 0 });
     let positions = (0..n)
@@ -80,7 +93,7 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
                 if wanted {
                     absolute.push(tri.point(i));
                 }
-                return tri.stage_to_input(q);
+                return out(q);
             }
             let [x, y] = graph.first_two(v);
             // In the stages' frame, where these sums and products neither overflow nor underflow at
@@ -94,7 +107,7 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
                 if wanted {
                     absolute.push(tri.point(i));
                 }
-                return tri.stage_to_input(q);
+                return out(q);
             }
             moved += 1;
             let step = |q: Point, a: Point, b: Point| {
@@ -109,7 +122,7 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
             if wanted {
                 absolute.push(shown(tri.stage_to_input(step(qa, aa, ba))));
             }
-            tri.stage_to_input(step(q, a, b))
+            out(step(q, a, b))
         })
         .collect();
     let shift = tri.stage_to_input(corner);

@@ -198,3 +198,36 @@ fn input_points_come_back_exactly_from_the_widest_sets() {
         assert_eq!(tri.point(i), p, "point {i}");
     }
 }
+
+/// From 65,536 points crowded grid cells are ordered again, each on a grid of its own. A set
+/// narrower than about 2^-992 made the grid's step overflow (and a set wider than `f64::MAX`
+/// made it zero): every point fell in one cell, which was ordered again the same way until the
+/// stack overflowed (an abort, not a panic). Such sets now reconstruct, as their rescaled copies.
+#[test]
+fn sets_of_65536_points_narrower_than_2_pow_minus_992_or_wider_than_f64_max_reconstruct() {
+    let n = 1 << 16;
+    let mut rng = Rng::new(65_536);
+    let narrow: Vec<Point> = (0..n)
+        .map(|_| Point::new(rng.unit() * 1e-303, rng.unit() * 1e-303))
+        .collect();
+    let wide: Vec<Point> = (0..n)
+        .map(|_| {
+            Point::new(
+                (2.0 * rng.unit() - 1.0) * 1.7e308,
+                (2.0 * rng.unit() - 1.0) * 1.7e308,
+            )
+        })
+        .collect();
+    assert!(
+        wide.iter().map(|p| p.x).fold(0.0, f64::max) - wide.iter().map(|p| p.x).fold(0.0, f64::min)
+            == f64::INFINITY
+    );
+    let params = Params::default();
+    let narrow_result = summary(&reconstruct(&narrow, &params).unwrap());
+    let narrow_scaled = summary(&reconstruct(&scaled(&narrow, 2f64.powi(600)), &params).unwrap());
+    assert_eq!(narrow_result, narrow_scaled);
+    let wide_result = summary(&reconstruct(&wide, &params).unwrap());
+    let wide_halved = summary(&reconstruct(&scaled(&wide, 0.5), &params).unwrap());
+    assert_eq!(wide_result, wide_halved);
+    assert!(!wide_result.0.is_empty());
+}

@@ -150,6 +150,13 @@ pub(crate) fn insertion_order_into(
     }
     let cells = ((1u64 << GRID_BITS) - 1) as f64;
     let to_grid = cells / span;
+    if !to_grid.is_normal() {
+        // The width overflows (`span` infinite, `to_grid` 0) or is so small that `to_grid` does:
+        // every point would land in one cell, and a crowded cell would be ordered again, the same
+        // way, without end. The same grid on a copy brought into range by a power of two.
+        let copy = within_range(points, span, (min_x, min_y));
+        return insertion_order_into(&copy, reorder_crowded, order, scratch);
+    }
     let size_bits = usize::BITS - n.leading_zeros();
     // Round r (0 = first) holds about n / g^(rounds - r) points, g = 2^ROUND_GROWTH_BITS: a point
     // lands in the last round with probability 1 - 1/g, in the one before with (1 - 1/g) / g, ...
@@ -202,6 +209,27 @@ pub(crate) fn insertion_order_into(
             |&(key, _)| key,
             |run| order_cell(points, &mut order[run], reorder_crowded),
         );
+    }
+}
+
+/// `points` with a width whose grid step is a normal number, placing every point in the same
+/// cell as the ideal grid would: halved when the width overflows (each coordinate halved, exact
+/// for every normal one), or shifted to the lower-left corner `min` and scaled up by 2^600 when it
+/// is below about 2^-992 (the differences of such points are exact, and so is the scaling).
+/// Memory: a copy, only for such sets.
+fn within_range(points: &[Point], span: f64, min: (f64, f64)) -> Vec<Point> {
+    if span.is_infinite() {
+        points
+            .iter()
+            .map(|p| Point::new(p.x / 2.0, p.y / 2.0))
+            .collect()
+    } else {
+        let up = libm::ldexp(1.0, 600);
+        let (min_x, min_y) = min;
+        points
+            .iter()
+            .map(|p| Point::new((p.x - min_x) * up, (p.y - min_y) * up))
+            .collect()
     }
 }
 
