@@ -459,8 +459,8 @@ fn concentric_circles_two_and_a_half_spacings_apart_are_exact() {
 /// At two inner spacings (1.8 to 1.9 times the outer spacing) ConDT itself is exact: every
 /// sample's two nearest neighbours are on its own circle. The default's local outlier removal
 /// used to delete a whole circle here (no sample of it is twice its edge length from the other
-/// circle); it now keeps any smooth, evenly spaced cycle of five or more points, so both
-/// pipelines are exact.
+/// circle); it now keeps any cycle of seven or more points of which three quarters pass smoothly
+/// and evenly, so both pipelines are exact.
 #[test]
 fn both_pipelines_keep_concentric_circles_two_spacings_apart() {
     for eps in [0.03, 0.05] {
