@@ -30,7 +30,8 @@ const Y_LONG_NAME: &str = "latitude";
 /// field may hold commas and line ends; a quoted field must end at its closing quote. Lines end
 /// at LF, CRLF or a lone CR. A missing column, a field that is not a finite number, a record
 /// without the coordinate columns or a malformed quoted field is an error naming the line (the
-/// line where its record starts).
+/// line where its record starts), and so is a record with more fields than the header (or, without
+/// one, than two): a decimal comma would make one.
 ///
 /// ```
 /// use condt::Point;
@@ -45,6 +46,9 @@ const Y_LONG_NAME: &str = "latitude";
 /// let err = parse_csv("name,value\na,1\n", "table.csv").unwrap_err();
 /// assert_eq!(err.line, Some(1));
 /// assert!(err.to_string().contains("no x column"));
+///
+/// let err = parse_csv("x,y\n1,5,2,5\n", "decimal_commas.csv").unwrap_err();
+/// assert_eq!(err.to_string(), "decimal_commas.csv:2: 4 fields, but the header has 2");
 ///
 /// let err = parse_csv("x,y\n1,2\n\"1\"5,3\n", "quotes.csv").unwrap_err();
 /// assert_eq!(err.to_string(), "quotes.csv:3: text after the closing quote of a field");
@@ -61,6 +65,8 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     let mut lines = LineCounter::new(text.as_bytes());
     let mut record = csv::StringRecord::new();
     let mut columns: Option<(usize, usize)> = None;
+    // Fields per record: the header's, or two without one.
+    let (mut width, mut headerless) = (0, false);
     let mut points = Vec::new();
     loop {
         let start = reader.position().byte() as usize;
@@ -88,12 +94,29 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
         let (x_column, y_column) = match columns {
             Some(columns) => columns,
             // `numpy.savetxt(..., delimiter=",")` writes no header: two numbers can only be x, y.
-            None if headerless_pair(&record) => *columns.insert((0, 1)),
+            None if headerless_pair(&record) => {
+                (width, headerless) = (2, true);
+                *columns.insert((0, 1))
+            }
             None => {
                 columns = Some(header_columns(&record, raw, &source, line)?);
+                width = record.len();
                 continue;
             }
         };
+        // More fields than the first line has: a decimal comma (`1,5,2,5`) or a shifted row,
+        // which read silently would be wrong coordinates.
+        if record.len() > width {
+            let first = if headerless {
+                "the first line"
+            } else {
+                "the header"
+            };
+            return Err(source.error(
+                line,
+                format!("{} fields, but {first} has {width}", record.len()),
+            ));
+        }
         let coordinate = |column: usize, axis: &str| -> Result<f64, IoError> {
             let field = record.get(column).ok_or_else(|| {
                 source.error(
