@@ -349,9 +349,15 @@ fn spatial_order_into(
     let reorder_crowded = whole >= order::REORDER_FROM;
     if frames.wide {
         // Wide sets: a logarithmic grid (on a linear one, most points share one cell).
+        let smallest = order::smallest_magnitude(points);
         let warped: Vec<Point> = points
             .iter()
-            .map(|p| Point::new(order::logarithmic(p.x), order::logarithmic(p.y)))
+            .map(|p| {
+                Point::new(
+                    order::logarithmic(p.x, smallest),
+                    order::logarithmic(p.y, smallest),
+                )
+            })
             .collect();
         order::insertion_order_into(&warped, reorder_crowded, order, scratch);
     } else {

@@ -79,14 +79,34 @@ fn hilbert_steps<const STEPS: u32>(x: u32, y: u32) -> u64 {
 }
 
 /// A strictly increasing map of the finite doubles growing like the log of the magnitude (the
-/// ordered bit pattern): a grid on it has as many cells in [1e-300, 1e-299] as in [1, 10].
-pub(crate) fn logarithmic(x: f64) -> f64 {
-    let magnitude = (x.to_bits() & !(1 << 63)) as f64;
+/// ordered bit pattern): a grid on it has as many cells in [1e-300, 1e-299] as in [1, 10]. It is
+/// taken from `smallest`, the bit pattern of the set's smallest nonzero magnitude, so that the
+/// set times a power of two maps to the same values (its patterns shift by a multiple of 2^52)
+/// and gets the same insertion order, as a set that is not wide does on its linear grid.
+pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
+    let bits = x.to_bits() & !(1 << 63);
+    let magnitude = if bits == 0 {
+        0.0
+    } else {
+        (bits - smallest + 1) as f64
+    };
     if x < 0.0 {
         -magnitude
     } else {
         magnitude
     }
+}
+
+/// The bit pattern of the smallest nonzero magnitude among `points`' coordinates (for
+/// [`logarithmic`]); 1 when every coordinate is zero.
+pub(crate) fn smallest_magnitude(points: &[Point]) -> u64 {
+    points
+        .iter()
+        .flat_map(|p| [p.x, p.y])
+        .map(|c| c.to_bits() & !(1 << 63))
+        .filter(|&bits| bits != 0)
+        .min()
+        .unwrap_or(1)
 }
 
 /// The output function of SplitMix64 (Steele, Lea and Flood 2014), a bijection of `u64`.
