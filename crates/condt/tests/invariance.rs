@@ -198,3 +198,37 @@ fn lost_in_a_difference(tiny: f64) {
         assert_eq!(edges_of_permuted(&points, &params, &mut rng, first), named);
     }
 }
+
+/// A regular pentagon's samples (computed with `cos` and `sin`) and a point inside: from the
+/// sample at (-1, 0), two neighbours are at lengths whose squares round to the same double but
+/// differ exactly. Ties were broken by vertex id, which follows the orientation: mirrored across
+/// the diagonal, the set kept another edge, with every preset. Such ties now go by the exact
+/// lengths (only an exact tie goes by id).
+#[test]
+fn lengths_tied_only_by_rounding_are_ordered_the_same_in_every_orientation() {
+    let points = [
+        Point::new(0.9510565162951535, 0.30901699437494745),
+        Point::new(0.9510565162951536, -0.30901699437494734),
+        Point::new(1.2246467991473532e-16, -1.0),
+        Point::new(0.3479427230652008, -0.023673685482489493),
+        Point::new(-0.9510565162951535, -0.30901699437494756),
+    ];
+    for params in [
+        Params::default(),
+        Params::default().with_smooth(false),
+        Params::paper(),
+    ] {
+        let original = edges(&points, &params);
+        for map in [
+            |p: Point| Point::new(p.y, p.x),
+            |p: Point| Point::new(-p.y, p.x),
+            |p: Point| Point::new(-p.x, p.y),
+        ] {
+            assert_eq!(
+                edges(&mapped(&points, map), &params),
+                original,
+                "{params:?}"
+            );
+        }
+    }
+}

@@ -225,6 +225,17 @@ pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Or
     ux.mul(&vx).add(&uy.mul(&vy)).signum()
 }
 
+/// The exact order of `|a - p|` and `|b - p|`.
+pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
+    let e0 = common_exponent(&[p[0], p[1], a[0], a[1], b[0], b[1]]);
+    let int = |x: f64| Int::from_f64(x, e0);
+    let squared = |q: [f64; 2]| {
+        let (dx, dy) = (int(q[0]).sub(&int(p[0])), int(q[1]).sub(&int(p[1])));
+        dx.mul(&dx).add(&dy.mul(&dy))
+    };
+    squared(a).sub(&squared(b)).signum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -320,5 +331,22 @@ mod tests {
         assert_eq!(orient2d_sign(a, b, c), Ordering::Less);
         assert_eq!(in_circle_sign(a, c, b, [tiny, -tiny]), Ordering::Greater);
         assert_eq!(in_circle_sign(a, c, b, [huge, huge]), Ordering::Less);
+    }
+
+    /// Two lengths whose rounded squares are equal (1.381966011250105, from a pentagon's
+    /// `cos`/`sin` samples) are ordered exactly, the same after mirroring.
+    #[test]
+    fn distances_tied_when_rounded_are_ordered_exactly() {
+        let p = [-1.0, 1.2246467991473532e-16];
+        let a = [-0.30901699437494734, 0.9510565162951536];
+        let b = [-0.30901699437494756, -0.9510565162951535];
+        let squared = |q: [f64; 2]| (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]);
+        assert_eq!(squared(a), squared(b));
+        let order = compare_distances(p, a, b);
+        assert_ne!(order, Ordering::Equal);
+        let mirror = |q: [f64; 2]| [q[1], q[0]];
+        assert_eq!(compare_distances(mirror(p), mirror(a), mirror(b)), order);
+        assert_eq!(compare_distances(p, b, a), order.reverse());
+        assert_eq!(compare_distances(p, a, a), Ordering::Equal);
     }
 }

@@ -132,6 +132,11 @@ pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
     exact::dot_sign(a.into(), b.into(), c.into(), d.into())
 }
 
+/// Which of `a` and `b` is nearer to `p`, exactly (any finite coordinates).
+pub(crate) fn compare_distances(p: Point, a: Point, b: Point) -> Ordering {
+    exact::compare_distances(p.into(), a.into(), b.into())
+}
+
 /// How a call's coordinates can be decided.
 enum Reach {
     /// Already in the fast range: every nonzero magnitude in `[2^-200, 2)`.

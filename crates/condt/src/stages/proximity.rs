@@ -9,11 +9,13 @@
 use super::PARALLEL_FROM;
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
+use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::threads::workers;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
+use core::cmp::Ordering;
 
 /// The local uniformity test of Algorithm 1, line 6: when a point keeps its second shortest edge.
 ///
@@ -65,9 +67,40 @@ fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [
             ring.0 += libm::sqrt(length2);
             ring.1 += 1;
         }
-        best.offer(length2, w);
+        best.offer(length2, w, |x, y| closer(tri, v, x, y));
     }
     keep(uniformity, &best, ring)
+}
+
+/// Which of `x` and `y` is nearer to `v`, exactly, for two whose rounded squared lengths are
+/// equal; `Equal` when the lengths are (the caller then goes by id).
+fn closer(tri: &Triangulation, v: VertexId, x: VertexId, y: VertexId) -> Ordering {
+    let (p, a, b) = (
+        tri.vertex_point(v),
+        tri.vertex_point(x),
+        tri.vertex_point(y),
+    );
+    if exactly_squared(p, a) && exactly_squared(p, b) {
+        return Ordering::Equal;
+    }
+    crate::predicates::compare_distances(p, a, b)
+}
+
+/// Whether `p.dist2(q)` is the exact squared distance: no rounding in any of its steps (each
+/// sum's error by Knuth's two-sum, each square's by a fused multiply-add).
+fn exactly_squared(p: Point, q: Point) -> bool {
+    let exact_sum = |a: f64, b: f64| {
+        let s = a + b;
+        let b_part = s - a;
+        (a - (s - b_part)) + (b - b_part) == 0.0
+    };
+    let exact_square = |d: f64| libm::fma(d, d, -(d * d)) == 0.0;
+    let (dx, dy) = (q.x - p.x, q.y - p.y);
+    exact_sum(q.x, -p.x)
+        && exact_sum(q.y, -p.y)
+        && exact_square(dx)
+        && exact_square(dy)
+        && exact_sum(dx * dx, dy * dy)
 }
 
 /// Algorithm 1, line 6: the shortest edge always, the second when it passes the uniformity test.
@@ -103,8 +136,10 @@ pub(crate) fn end_choice(
         return EndChoice::NotDelaunay;
     }
     let target = key(w);
-    // The stage's order ([`TwoBest::offer`]): squared length, then vertex id.
-    let before = |a: &(f64, VertexId), b: &(f64, VertexId)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
+    // The stage's order ([`TwoBest::offer`]): squared length, exact length on a tie, then id.
+    let before = |a: &(f64, VertexId), b: &(f64, VertexId)| {
+        a.0 < b.0 || (a.0 == b.0 && closer(tri, v, a.1, b.1).then(a.1.cmp(&b.1)) == Ordering::Less)
+    };
     match 1 + ring().filter(|e| before(e, &target)).count() {
         1 => EndChoice::Shortest,
         2 => {
@@ -368,10 +403,18 @@ impl TwoBest {
 
     /// Keeps the two smallest of those held and `(length, id)`, by length, then id.
     #[inline]
-    fn offer(&mut self, length2: f64, w: VertexId) {
+    fn offer(
+        &mut self,
+        length2: f64,
+        w: VertexId,
+        closer: impl Fn(VertexId, VertexId) -> Ordering,
+    ) {
         let (l, w) = (length2.to_bits(), w.index() as u32);
         let [l0, l1] = self.lengths;
         let [i0, i1] = self.ids;
+        if l == l0 || l == l1 {
+            return self.offer_tied(l, w, closer);
+        }
         let before_first = (l < l0) | ((l == l0) & (w < i0));
         let before_second = (l < l1) | ((l == l1) & (w < i1));
         // All ones when the condition holds: selections by mask compile to no branch.
@@ -385,6 +428,25 @@ impl TwoBest {
             pick(m0, w.into(), i0.into()) as u32,
             pick(m0, i0.into(), second_i) as u32,
         ];
+    }
+    /// [`TwoBest::offer`] when the rounded length equals one held: by exact length, then id.
+    #[cold]
+    fn offer_tied(&mut self, l: u64, w: u32, closer: impl Fn(VertexId, VertexId) -> Ordering) {
+        let [l0, l1] = self.lengths;
+        let [i0, i1] = self.ids;
+        let before = |li: u64, ii: u32| {
+            l < li
+                || (l == li
+                    && closer(VertexId::new(w), VertexId::new(ii)).then(w.cmp(&ii))
+                        == Ordering::Less)
+        };
+        if before(l0, i0) {
+            self.lengths = [l, l0];
+            self.ids = [w, i0];
+        } else if before(l1, i1) {
+            self.lengths = [l0, l];
+            self.ids = [i0, w];
+        }
     }
     /// `(squared length, neighbour)` of the best (`k = 0`) or second best offer.
     #[inline]
@@ -450,7 +512,9 @@ fn sweep_with<const PREFETCH: bool, const PART: bool>(
     let slot = |u: VertexId| u.index().wrapping_sub(first);
     let offer = |best: &mut [TwoBest], u: VertexId, w: VertexId| {
         if !PART || slot(u) < best.len() {
-            best[slot(u)].offer(tri.vertex_point(u).dist2(tri.vertex_point(w)), w);
+            best[slot(u)].offer(tri.vertex_point(u).dist2(tri.vertex_point(w)), w, |x, y| {
+                closer(tri, u, x, y)
+            });
         }
     };
     let triangles = 0..tri.mesh().num_triangles_with_ghosts();
@@ -487,6 +551,27 @@ fn sweep_with<const PREFETCH: bool, const PART: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Exact squares are told from rounded ones, a difference absorbed by a large coordinate
+    /// included (2^-60 - 1 rounds to -1, which the naive check `d - a == -b` would pass).
+    #[test]
+    fn squared_lengths_are_known_exact_only_when_no_step_rounds() {
+        let origin = Point::new(0.0, 0.0);
+        assert!(exactly_squared(origin, Point::new(3.0, 4.0)));
+        assert!(exactly_squared(
+            Point::new(0.5, -2.0),
+            Point::new(-1.25, 8.0)
+        ));
+        assert!(!exactly_squared(origin, Point::new(0.1, 0.2)));
+        assert!(!exactly_squared(
+            Point::new(2f64.powi(-60), 0.0),
+            Point::new(1.0, 0.0)
+        ));
+        assert!(!exactly_squared(
+            origin,
+            Point::new(1.0 + f64::EPSILON, 0.0)
+        ));
+    }
     use crate::geometry::Point;
     use crate::sample::{sample, Sampling, Shape};
     use crate::triangulate;
