@@ -30,8 +30,8 @@ const Y_LONG_NAME: &str = "latitude";
 /// field may hold commas and line ends; a quoted field must end at its closing quote. Lines end
 /// at LF, CRLF or a lone CR. A missing column, a field that is not a finite number, a record
 /// without the coordinate columns or a malformed quoted field is an error naming the line (the
-/// line where its record starts), and so is a record with more fields than the header (or, without
-/// one, than two): a decimal comma would make one.
+/// line where its record starts), and so is a record with more nonempty fields than the header
+/// (or, without one, than two): a decimal comma would make one.
 ///
 /// ```
 /// use condt::Point;
@@ -49,6 +49,7 @@ const Y_LONG_NAME: &str = "latitude";
 ///
 /// let err = parse_csv("x,y\n1,5,2,5\n", "decimal_commas.csv").unwrap_err();
 /// assert_eq!(err.to_string(), "decimal_commas.csv:2: 4 fields, but the header has 2");
+/// assert_eq!(parse_csv("x,y\n1,2,\n", "trailing_comma.csv")?.len(), 1);
 ///
 /// let err = parse_csv("x,y\n1,2\n\"1\"5,3\n", "quotes.csv").unwrap_err();
 /// assert_eq!(err.to_string(), "quotes.csv:3: text after the closing quote of a field");
@@ -105,8 +106,9 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
             }
         };
         // More fields than the first line has: a decimal comma (`1,5,2,5`) or a shifted row,
-        // which read silently would be wrong coordinates.
-        if record.len() > width {
+        // which read silently would be wrong coordinates. Empty ones (a trailing comma, which
+        // some exporters write) hold nothing to misread.
+        if record.len() > width && record.iter().skip(width).any(|f| !f.trim().is_empty()) {
             let first = if headerless {
                 "the first line"
             } else {

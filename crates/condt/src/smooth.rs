@@ -71,8 +71,9 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
     // Relative positions in the input frame, or, where the box's extent overflows there (a
-    // width beyond `f64::MAX`), in the stages' frame: a power of two apart, which the next
-    // triangulation and every stage measure alike.
+    // width beyond `f64::MAX`), the caller's positions themselves (from the corner (0, 0)):
+    // finite, as every moved point stays in the box, at the cost of the exact translations'
+    // invariance, which such a set cannot have anyway (its translates overflow).
     let overflows = {
         let upper_right = tri.vertex_points().iter().fold(corner, |m, p| {
             Point::new(
@@ -82,18 +83,17 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
         });
         !tri.stage_to_input(relative(upper_right)).is_finite()
     };
-    let out = |p: Point| if overflows { p } else { tri.stage_to_input(p) };
     let mut moved = 0;
-    let mut absolute = Vec::with_capacity(if wanted { n } else { 0 });
+    let mut absolute = Vec::with_capacity(if wanted || overflows { n } else { 0 });
     let positions = (0..n)
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_point(v));
             if graph.degree(v) != 2 {
-                if wanted {
+                if wanted || overflows {
                     absolute.push(tri.point(i));
                 }
-                return out(q);
+                return tri.stage_to_input(q);
             }
             let [x, y] = graph.first_two(v);
             // In the stages' frame, where these sums and products neither overflow nor underflow at
@@ -104,10 +104,10 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
             let (wx, wy) = (b.x - q.x, b.y - q.y);
             // The angle at the point is wider than a right angle exactly when u·w < 0.
             if ux * wx + uy * wy >= 0.0 {
-                if wanted {
+                if wanted || overflows {
                     absolute.push(tri.point(i));
                 }
-                return out(q);
+                return tri.stage_to_input(q);
             }
             moved += 1;
             let step = |q: Point, a: Point, b: Point| {
@@ -119,12 +119,21 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
                 tri.vertex_point(x),
                 tri.vertex_point(y),
             );
-            if wanted {
+            if wanted || overflows {
                 absolute.push(shown(tri.stage_to_input(step(qa, aa, ba))));
             }
-            out(step(q, a, b))
+            tri.stage_to_input(step(q, a, b))
         })
         .collect();
+    if overflows {
+        let absolute_again = if wanted { absolute.clone() } else { Vec::new() };
+        return Smoothed {
+            positions: absolute,
+            absolute: absolute_again,
+            corner: Point::new(0.0, 0.0),
+            moved,
+        };
+    }
     let shift = tri.stage_to_input(corner);
     Smoothed {
         positions,

@@ -639,9 +639,10 @@ fn keep_joined_pieces(
 /// The components of `root` (each vertex's component, named by its smallest id) merged along
 /// `joins`, named as [`components`] would name them on the edges and the joins, and which of them
 /// are kept: those with a kept part (only merged names are to be read in `kept` afterwards).
-/// Memory: the merging runs on the names the joins touch, renumbered in order (so that the
-/// smallest number is the smallest name), not on an array of every vertex: this is the peak of
-/// the local outlier removal along curves.
+/// Memory: the union-find runs on the names the joins touch, renumbered in order (so that the
+/// smallest number is the smallest name), not on an array of every vertex (4 bytes each: this is
+/// the peak of the local outlier removal along curves); a bit per vertex marks the touched names
+/// (speed: most names are not, and need no search).
 fn merged_along(root: Vec<u32>, mut kept: Vec<bool>, joins: Vec<Edge>) -> (Vec<u32>, Vec<bool>) {
     if joins.is_empty() {
         return (root, kept);
@@ -799,18 +800,21 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, shapes: Shapes, 
             count += 1;
             (previous, at) = (at, next);
         }
-        kept[r] = passing as f64 >= CYCLE_PASSING * count as f64;
+        let (share_passing, of) = CYCLE_PASSING;
+        kept[r] = of * passing >= share_passing * count;
     }
 }
 
-/// The share of a cycle's samples that must pass [`smooth_and_regular`] for rule 4 to keep it
-/// when it is not apart ([`keep_regular_cycles`]). Reason: a closed curve's corners are a minority
-/// of its samples (a drawn eye, a slit, a teardrop has one to a few), while a cycle of outliers
-/// passes at a sample about one time in three at most (the clump stage's figure, [`super::clumps`]):
-/// three quarters of 7, 8 or 9 such samples pass by chance with probability 0.7 %, 2.0 % and
-/// 0.8 %, less for longer cycles. Before 2026-12-02 every sample had to pass: one corner lost a
-/// whole closed curve (docs/condt.md, *Closed curves with a corner*).
-const CYCLE_PASSING: f64 = 0.75;
+/// The share of a cycle's samples, as a fraction `(3, 4)` compared in integers, that must pass
+/// [`smooth_and_regular`] for rule 4 to keep it when it is not apart ([`keep_regular_cycles`]).
+/// Reason: a closed curve's corners are a minority of its samples (a drawn eye, a slit, a
+/// teardrop has one to a few), while a cycle of outliers passes at a sample about one time in
+/// three at most (the clump stage's figure, [`super::clumps`]): were its samples independent,
+/// three quarters of 7, 8 or 9 would pass by chance with probability 0.7 %, 2.0 % and 0.8 %,
+/// less for longer cycles (neighbouring samples share edges, so this is a guide, not a bound).
+/// Before 2026-12-02 every sample had to pass: one corner lost a whole closed curve
+/// (docs/condt.md, *Closed curves with a corner*).
+const CYCLE_PASSING: (usize, usize) = (3, 4);
 
 /// Rule 4's limit: a component that is one cycle of fewer than [`CLOSED_MIN`] points is not kept
 /// for being apart. Reason: a closed curve sampled within the guarantees (`ε <= 1`) has more
@@ -843,6 +847,9 @@ fn too_many_dropped(root: &[u32], profile: &CurveGraph, kept: &[bool]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{reconstruct, triangulate, Params, Point, Reconstruction, Stage};
+    use alloc::vec::Vec;
+    use core::f64::consts::TAU;
 
     /// An eye in a large circle: a ring between a pupil and an iris, two spacings from each.
     /// No sample of the three has a separated sample; the pupil and the iris are smooth cycles.
@@ -904,9 +911,6 @@ mod tests {
             }
         }
     }
-    use crate::{reconstruct, triangulate, Params, Point, Reconstruction, Stage};
-    use alloc::vec::Vec;
-    use core::f64::consts::TAU;
 
     /// `count` points on a circle, the `k`-th at angle `2π (k + wobble sin(3k)) / count`: with
     /// `wobble > 0` the spacing varies, so the quartiles of the edge lengths are apart.

@@ -78,13 +78,18 @@ fn hilbert_steps<const STEPS: u32>(x: u32, y: u32) -> u64 {
     index
 }
 
-/// A strictly increasing map of the finite doubles growing like the log of the magnitude (the
-/// ordered bit pattern): a grid on it has as many cells in [1e-300, 1e-299] as in [1, 10]. It is
-/// taken from `smallest`, the bit pattern of the set's smallest nonzero magnitude, so that the
-/// set times a power of two maps to the same values (its patterns shift by a multiple of 2^52)
-/// and gets the same insertion order, as a set that is not wide does on its linear grid.
+/// A strictly increasing map of the finite doubles of one set (zero, and magnitudes from
+/// `smallest` up), growing like the log of the magnitude (the ordered bit pattern): a grid on it
+/// has as many cells in [1e-300, 1e-299] as in [1, 10]. It counts from `smallest`, the bit
+/// pattern of the set's smallest nonzero magnitude, so that the set times a power of two maps to
+/// the same values (its patterns shift by a multiple of 2^52) and gets the same insertion order,
+/// as a set that is not wide does on its linear grid.
 pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
     let bits = x.to_bits() & !(1 << 63);
+    debug_assert!(
+        bits == 0 || bits >= smallest,
+        "a magnitude below the set's smallest"
+    );
     let magnitude = if bits == 0 {
         0.0
     } else {
@@ -232,11 +237,11 @@ pub(crate) fn insertion_order_into(
     }
 }
 
-/// `points` with a width whose grid step is a normal number, placing every point in the same
-/// cell as the ideal grid would: halved when the width overflows (each coordinate halved, exact
-/// for every normal one), or shifted to the lower-left corner `min` and scaled up by 2^600 when it
-/// is below about 2^-992 (the differences of such points are exact, and so is the scaling).
-/// Memory: a copy, only for such sets.
+/// `points` with a width whose grid step is a normal number, placing every point in the cell the
+/// ideal grid would: halved when the width overflows (each coordinate halved, exact for every
+/// normal one), or shifted to the lower-left corner `min` and scaled up by 2^600 when it is below
+/// about 2^-1000 (`GRID_BITS` bits of cells over it would overflow); the shift rounds as the ideal
+/// grid's differences round, and the scaling is exact. Memory: a copy, only for such sets.
 fn within_range(points: &[Point], span: f64, min: (f64, f64)) -> Vec<Point> {
     if span.is_infinite() {
         points
