@@ -86,15 +86,20 @@ fn closer(tri: &Triangulation, v: VertexId, x: VertexId, y: VertexId) -> Orderin
     crate::predicates::compare_distances(p, a, b)
 }
 
-/// Whether `p.dist2(q)` is the exact squared distance: no rounding in any of its steps (each
-/// sum's error by Knuth's two-sum, each square's by a fused multiply-add).
+/// Whether `p.dist2(q)` is known to be the exact squared distance: each difference and the sum
+/// checked by Knuth's two-sum, each square by its mantissa (26 significant bits or fewer, far
+/// above the subnormal range: exact). Speed: on grids every length ties exactly and this runs at
+/// each offer; a square it cannot vouch for only sends the tie to the exact comparison.
 fn exactly_squared(p: Point, q: Point) -> bool {
     let exact_sum = |a: f64, b: f64| {
         let s = a + b;
         let b_part = s - a;
         (a - (s - b_part)) + (b - b_part) == 0.0
     };
-    let exact_square = |d: f64| libm::fma(d, d, -(d * d)) == 0.0;
+    let exact_square = |d: f64| {
+        let bits = d.to_bits();
+        d == 0.0 || ((bits >> 52) & 0x7ff > 600 && bits & ((1 << 27) - 1) == 0)
+    };
     let (dx, dy) = (q.x - p.x, q.y - p.y);
     exact_sum(q.x, -p.x)
         && exact_sum(q.y, -p.y)
