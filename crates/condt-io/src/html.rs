@@ -86,14 +86,20 @@ fn write_data(
     } else {
         1.0
     };
-    // Back in input units for the page's readouts (saturating at the largest double).
-    let input = |x: f64| libm::ldexp(x, exponent).clamp(-f64::MAX, f64::MAX);
+    // Back in input units for the page's readouts. A set wider than the largest double has a
+    // scale beyond it: the page is given a part of it (a half or a quarter) and adds it `parts`
+    // times (each sum stays within the doubles, as every point does).
+    let input = |x: f64| libm::ldexp(x, exponent);
+    let mut parts: u32 = 1;
+    while !libm::ldexp(scale, exponent - parts.trailing_zeros() as i32).is_finite() {
+        parts *= 2;
+    }
     write!(
         out,
-        "{{\"origin\":[{:e},{:e}],\"scale\":{:e},\"points\":[",
+        "{{\"origin\":[{:e},{:e}],\"scale\":{:e},\"parts\":{parts},\"points\":[",
         input(min.x),
         input(min.y),
-        input(scale)
+        libm::ldexp(scale, exponent - parts.trailing_zeros() as i32)
     )?;
     for (k, p) in points.iter().enumerate() {
         let sep = if k == 0 { "" } else { "," };
@@ -327,6 +333,31 @@ mod tests {
         assert_eq!(pairs.len(), 4);
         for (i, a) in pairs.iter().enumerate() {
             assert!(pairs[i + 1..].iter().all(|b| b != a), "{pairs:?}");
+        }
+        // The readouts, computed as the page computes them, land on the input points (to the
+        // digits written): the set is wider than the largest double, so the page adds a part of
+        // the scale `parts` times. (The scale was clamped to the largest double: readouts off by
+        // 100 %.)
+        let field = |name: &str| {
+            let at = data.find(&format!("\"{name}\":")).unwrap() + name.len() + 3;
+            let end = at + data[at..].find([',', '}']).unwrap();
+            &data[at..end]
+        };
+        let origin_at = data.find("\"origin\":[").unwrap() + 10;
+        let origin: Vec<f64> = data[origin_at..origin_at + data[origin_at..].find(']').unwrap()]
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect();
+        let scale: f64 = field("scale").parse().unwrap();
+        let parts: usize = field("parts").parse().unwrap();
+        assert!(parts > 1);
+        for (p, (x, y)) in points.iter().zip(&pairs) {
+            let at = |o: f64, v: &str| {
+                let t = v.parse::<f64>().unwrap() * scale;
+                (0..parts).fold(o, |sum, _| sum + t)
+            };
+            let (rx, ry) = (at(origin[0], x), at(origin[1], y));
+            assert!((rx - p.x).abs() <= 1e-5 * 1e308 && (ry - p.y).abs() <= 1e-5 * 1e308);
         }
     }
 

@@ -59,7 +59,7 @@
 
   function length(k) {
     const a = E[2 * k], b = E[2 * k + 1];
-    return Math.hypot(P[2 * a] - P[2 * b], P[2 * a + 1] - P[2 * b + 1]) * data.scale;
+    return Math.hypot(P[2 * a] - P[2 * b], P[2 * a + 1] - P[2 * b + 1]) * data.scale * data.parts;
   }
   const fmt = (x) => (Math.abs(x) >= 1e5 || (Math.abs(x) < 1e-3 && x !== 0)) ? x.toExponential(4) : +x.toPrecision(6) + "";
   const sx = (i) => view.ox + P[2 * i] * view.k;
@@ -192,7 +192,10 @@
 
   const details = document.getElementById("details");
   function point(i) {
-    const x = data.origin[0] + P[2 * i] * data.scale, y = data.origin[1] + P[2 * i + 1] * data.scale;
+    // A set wider than the largest double gets a part of its scale, added `parts` times: each
+    // sum stays finite, as the point does.
+    const at = (k, o) => { const t = P[k] * data.scale; for (let j = 0; j < data.parts; j++) o += t; return o; };
+    const x = at(2 * i, data.origin[0]), y = at(2 * i + 1, data.origin[1]);
     return `${i} (${fmt(x)}, ${fmt(y)})`;
   }
   function endWords(k, end) {
