@@ -9,7 +9,7 @@ use condt::{Error, Point};
 use condt_io::{IoError, IoErrorKind};
 use numpy::ndarray::Array2;
 use numpy::{PyArray1, PyArray2, PyUntypedArrayMethods};
-use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
@@ -35,7 +35,8 @@ fn readable_as_points(array: &Bound<'_, PyArray2<f64>>) -> bool {
 /// An empty sequence (`[]`, shape `(0,)`) is no points.
 ///
 /// # Errors
-/// `ValueError` for any other shape, and numpy's own error for what it cannot convert.
+/// `TypeError` for `None` or a scalar, `ValueError` for any other shape, and numpy's own error
+/// for what it cannot convert.
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,
@@ -44,6 +45,14 @@ pub(crate) fn points_array<'py>(
         if readable_as_points(array) {
             return Ok(array.clone());
         }
+    }
+    // None and scalars are the wrong type, not a wrong shape: numpy would make them one point.
+    let numpy = py.import("numpy")?;
+    if obj.is_none() || numpy.getattr("ndim")?.call1((obj,))?.extract::<usize>()? == 0 {
+        return Err(PyTypeError::new_err(format!(
+            "points must be an array-like of shape (n, 2), not {}",
+            obj.get_type().name()?
+        )));
     }
     let converted = ascontiguousarray(py)?.call1((obj, "float64"))?;
     let converted = converted.cast_into::<numpy::PyUntypedArray>()?;

@@ -132,6 +132,15 @@ def test_a_wrong_shape_is_a_value_error(shape):
         condt.triangulate(np.zeros(shape))
 
 
+@pytest.mark.parametrize("points", [None, 3.0, np.float64(2)], ids=["None", "float", "numpy"])
+def test_none_or_a_scalar_is_a_type_error(points):
+    name = type(points).__name__
+    with pytest.raises(TypeError, match=f"array-like of shape \\(n, 2\\), not {name}"):
+        condt.reconstruct(points)
+    with pytest.raises(TypeError):
+        condt.triangulate(points)
+
+
 def test_what_numpy_cannot_convert_is_its_error():
     with pytest.raises(ValueError):
         condt.reconstruct([("a", "b")])
