@@ -35,19 +35,33 @@ fn readable_as_points(array: &Bound<'_, PyArray2<f64>>) -> bool {
 /// An empty sequence (`[]`, shape `(0,)`) is no points.
 ///
 /// # Errors
-/// `TypeError` for `None` or a scalar, `ValueError` for any other shape, and numpy's own error
-/// for what it cannot convert.
+/// `TypeError` for `None` or a scalar, `ValueError` for a masked array with masked entries or
+/// any other shape, and numpy's own error for what it cannot convert.
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let numpy = py.import("numpy")?;
+    // A masked array's mask would be dropped by reading its data, and its masked entries read as
+    // points: a silently wrong result. Refused unless nothing is masked.
+    if obj.is_instance(&numpy.getattr("ma")?.getattr("MaskedArray")?)?
+        && numpy
+            .getattr("ma")?
+            .getattr("is_masked")?
+            .call1((obj,))?
+            .is_truthy()?
+    {
+        return Err(PyValueError::new_err(
+            "points is a masked array with masked entries: drop those rows first \
+             (numpy.ma.compress_rows) or fill them",
+        ));
+    }
     if let Ok(array) = obj.cast::<PyArray2<f64>>() {
         if readable_as_points(array) {
             return Ok(array.clone());
         }
     }
     // None and scalars are the wrong type, not a wrong shape: numpy would make them one point.
-    let numpy = py.import("numpy")?;
     if obj.is_none() || numpy.getattr("ndim")?.call1((obj,))?.extract::<usize>()? == 0 {
         return Err(PyTypeError::new_err(format!(
             "points must be an array-like of shape (n, 2), not {}",

@@ -141,6 +141,16 @@ def test_none_or_a_scalar_is_a_type_error(points):
         condt.triangulate(points)
 
 
+def test_a_masked_array_with_masked_rows_is_refused_and_one_without_is_read():
+    points = np.ma.masked_array([[0.0, 0.0], [1.0, 0.0], [0.5, 1.0], [9.0, 9.0]])
+    assert condt.reconstruct(points).edges.tolist() == condt.reconstruct(points.data).edges.tolist()
+    points[3] = np.ma.masked
+    with pytest.raises(ValueError, match="masked entries"):
+        condt.reconstruct(points)
+    rows = np.ma.compress_rows(points)
+    assert condt.reconstruct(rows).edges.tolist() == [[0, 1], [0, 2], [1, 2]]
+
+
 def test_what_numpy_cannot_convert_is_its_error():
     with pytest.raises(ValueError):
         condt.reconstruct([("a", "b")])
