@@ -13,6 +13,7 @@
 
 use crate::adjacency::{CurveGraph, Edge};
 use crate::geometry::{lower_left, Point};
+use crate::mesh::VertexId;
 use crate::triangulate::{splitmix64_finalizer, Triangulation};
 use alloc::vec::Vec;
 
@@ -84,16 +85,30 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
         !tri.stage_to_input(relative(upper_right)).is_finite()
     };
     let mut moved = 0;
-    let mut absolute = Vec::with_capacity(if wanted || overflows { n } else { 0 });
+    let mut absolute = Vec::with_capacity(if wanted { n } else { 0 });
+    // Each point's position as handed on (`relative`, or the caller's when the extent
+    // overflows), and the caller's into `absolute` when wanted; the caller's is computed only
+    // then.
+    let mut emit = |relative: Point, caller: &dyn Fn() -> Point| {
+        if !(wanted || overflows) {
+            return relative;
+        }
+        let caller = caller();
+        if wanted {
+            absolute.push(caller);
+        }
+        if overflows {
+            caller
+        } else {
+            relative
+        }
+    };
     let positions = (0..n)
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_point(v));
             if graph.degree(v) != 2 {
-                if wanted || overflows {
-                    absolute.push(tri.point(i));
-                }
-                return tri.stage_to_input(q);
+                return emit(tri.stage_to_input(q), &|| tri.point(i));
             }
             let [x, y] = graph.first_two(v);
             // In the stages' frame, where these sums and products neither overflow nor underflow at
@@ -104,32 +119,23 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
             let (wx, wy) = (b.x - q.x, b.y - q.y);
             // The angle at the point is wider than a right angle exactly when u·w < 0.
             if ux * wx + uy * wy >= 0.0 {
-                if wanted || overflows {
-                    absolute.push(tri.point(i));
-                }
-                return tri.stage_to_input(q);
+                return emit(tri.stage_to_input(q), &|| tri.point(i));
             }
             moved += 1;
             let step = |q: Point, a: Point, b: Point| {
                 let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
                 Point::new(q.x + WEIGHT * (mid.x - q.x), q.y + WEIGHT * (mid.y - q.y))
             };
-            let (qa, aa, ba) = (
-                tri.vertex_point(v),
-                tri.vertex_point(x),
-                tri.vertex_point(y),
-            );
-            if wanted || overflows {
-                absolute.push(shown(tri.stage_to_input(step(qa, aa, ba))));
-            }
-            tri.stage_to_input(step(q, a, b))
+            emit(tri.stage_to_input(step(q, a, b)), &|| {
+                let at = |u: VertexId| tri.vertex_point(u);
+                shown(tri.stage_to_input(step(at(v), at(x), at(y))))
+            })
         })
         .collect();
     if overflows {
-        let absolute_again = if wanted { absolute.clone() } else { Vec::new() };
         return Smoothed {
-            positions: absolute,
-            absolute: absolute_again,
+            positions,
+            absolute,
             corner: Point::new(0.0, 0.0),
             moved,
         };

@@ -406,7 +406,8 @@ impl TwoBest {
         ids: [u32::MAX; 2],
     };
 
-    /// Keeps the two smallest of those held and `(length, id)`, by length, then id.
+    /// Keeps the two smallest of those held and `(length, id)`, by length, then (on a tie,
+    /// [`TwoBest::offer_tied`]) by exact length and id.
     #[inline]
     fn offer(
         &mut self,
@@ -420,8 +421,8 @@ impl TwoBest {
         if l == l0 || l == l1 {
             return self.offer_tied(l, w, closer);
         }
-        let before_first = (l < l0) | ((l == l0) & (w < i0));
-        let before_second = (l < l1) | ((l == l1) & (w < i1));
+        // No tie is left here: a strict comparison decides.
+        let (before_first, before_second) = (l < l0, l < l1);
         // All ones when the condition holds: selections by mask compile to no branch.
         let m0 = u64::from(before_first).wrapping_neg();
         let m1 = u64::from(before_second).wrapping_neg();
@@ -556,6 +557,10 @@ fn sweep_with<const PREFETCH: bool, const PART: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::Point;
+    use crate::sample::{sample, Sampling, Shape};
+    use crate::triangulate;
+    use alloc::vec;
 
     /// Exact squares are told from rounded ones, a difference absorbed by a large coordinate
     /// included (2^-60 - 1 rounds to -1, which the naive check `d - a == -b` would pass).
@@ -577,10 +582,6 @@ mod tests {
             Point::new(1.0 + f64::EPSILON, 0.0)
         ));
     }
-    use crate::geometry::Point;
-    use crate::sample::{sample, Sampling, Shape};
-    use crate::triangulate;
-    use alloc::vec;
 
     /// The union, against a set built edge by edge, on scattered points where many vertices keep
     /// two edges their neighbours do not keep back: more edges than vertices, so the buffer grows.
