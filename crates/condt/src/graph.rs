@@ -349,7 +349,9 @@ impl<'t> Graph<'t> {
             before_local: Cow::Borrowed(local),
             before_repair: Cow::Borrowed(repair),
         };
-        match step.run(self.tri, &self.edges, earlier, None).edges {
+        let parallel = crate::threads::parallel_available()
+            && self.tri.num_points() >= crate::stages::PARALLEL_FROM;
+        match step.run(self.tri, &self.edges, earlier, None, parallel).edges {
             Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
             None => (self.clone(), false),
         }

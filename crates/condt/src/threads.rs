@@ -1,7 +1,7 @@
 //! Running two pieces of work at once on rayon's threads (feature `parallel`), or one after the
-//! other, and filling a buffer there. Owns: only the choice of how to run and whether rayon can
-//! run at all ([`parallel_available`]); it knows nothing of the work (the triangulation's two
-//! halves, the pipeline's curves and tally).
+//! other, filling a buffer there, and scanning the ids `0..n` there. Owns: only the choice of how
+//! to run and whether rayon can run at all ([`parallel_available`]); it knows nothing of the work
+//! (the triangulation's two halves, the pipeline's curves and tally, the stages' scans).
 
 use alloc::vec::Vec;
 
@@ -48,6 +48,24 @@ pub(crate) fn both<A: Send, B: Send>(
     }
     let _ = parallel;
     (a(), b())
+}
+
+/// The values `find` gives for the ids `0..n`, in increasing id: the same list either way, split
+/// into ranges on rayon's threads when `parallel`. For scans that only read (a stage's search for
+/// candidates), whose results the caller then applies in order.
+pub(crate) fn found_in_order<T: Send>(
+    n: usize,
+    parallel: bool,
+    find: impl Fn(usize) -> Option<T> + Sync + Send,
+) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::prelude::*;
+        // Rayon collects a filtered range in the range's order.
+        return (0..n).into_par_iter().filter_map(find).collect();
+    }
+    let _ = parallel;
+    (0..n).filter_map(find).collect()
 }
 
 /// Whether rayon's global pool can run work: `false` without the `parallel` feature, or when the

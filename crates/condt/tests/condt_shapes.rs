@@ -441,11 +441,46 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
         }
     }
     assert!(branch_points > 0);
-    // The default pipeline, whose later stages are sequential by construction, after stages
-    // that ran on rayon: `run_both` compares every stage of the two.
-    let every_step = Params::default().with_local_outliers(true);
-    let r = run_both(&noisy.points, every_step);
-    assert!(r.stage(Stage::LocalOutliers).is_some() && r.stage(Stage::Gaps).is_some());
+    // The default pipeline: gap closing, junctions and crossings search for their candidates in
+    // ranges on rayon's threads; `run_both` compares every stage of the two, and each of those
+    // stages changes the graph of one of these sets, so their parallel searches found work.
+    let mut applied = Vec::new();
+    for points in [noisy.points, junctions_and_crossings()] {
+        let r = run_both(&points, Params::default());
+        applied.extend(r.stages().filter(|s| s.applied).map(|s| s.stage));
+    }
+    for stage in [Stage::LocalOutliers, Stage::Gaps, Stage::Junctions, Stage::Crossings] {
+        assert!(applied.contains(&stage), "{stage}");
+    }
+}
+
+/// Over 65,536 evenly spaced points: in each cell a T (the stem's end one spacing below the bar's
+/// middle) and an X (two strokes crossing at a shared sample at 30 degrees), jittered slightly.
+fn junctions_and_crossings() -> Vec<Point> {
+    let mut rng = Rng::new(7);
+    let mut points = Vec::new();
+    for cell in 0..1_700 {
+        let (x0, y0) = (f64::from(cell % 50) * 40.0, f64::from(cell / 50) * 40.0);
+        let mut add = |x: f64, y: f64| {
+            let (dx, dy) = (rng.unit() - 0.5, rng.unit() - 0.5);
+            points.push(Point::new(x0 + x + 0.02 * dx, y0 + y + 0.02 * dy));
+        };
+        for k in -8..=8 {
+            add(f64::from(k), 0.0);
+        }
+        for k in 1..=8 {
+            add(0.0, -f64::from(k));
+        }
+        let (along, across) = (15f64.to_radians().cos(), 15f64.to_radians().sin());
+        for k in -6..=6 {
+            let k = f64::from(k);
+            add(20.0 + k * along, 20.0 + k * across);
+            if k != 0.0 {
+                add(20.0 + k * along, 20.0 - k * across);
+            }
+        }
+    }
+    points
 }
 
 /// Two noisy circles with 10 % outliers kept clear of them: the repair changes the proximity

@@ -355,8 +355,8 @@ mod tests {
                     before_repair: Cow::Borrowed(&before_repair),
                 };
                 let given = graph.is_some();
-                let with = step.run(&tri, &current, earlier.clone(), graph.take());
-                let without = step.run(&tri, &current, earlier, None);
+                let with = step.run(&tri, &current, earlier.clone(), graph.take(), false);
+                let without = step.run(&tri, &current, earlier, None, false);
                 assert_eq!(
                     with.edges, without.edges,
                     "seed {seed}, {step:?}, given {given}"

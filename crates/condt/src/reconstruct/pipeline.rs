@@ -488,7 +488,8 @@ impl Run {
             before_local: input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack),
             before_repair,
         };
-        let outcome = step.run(tri, current, earlier, self.current_graph.take());
+        let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
+        let outcome = step.run(tri, current, earlier, self.current_graph.take(), in_parallel);
         self.current_graph = outcome.graph;
         let undo = match outcome.edges {
             None => Undo::Unchanged,

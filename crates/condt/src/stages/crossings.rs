@@ -28,6 +28,7 @@ use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::prefetch::PREFETCH_FROM;
+use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -140,20 +141,20 @@ pub(crate) fn restore_crossings(
     tri: &Triangulation,
     edges: &[Edge],
     graph: Option<CurveGraph>,
+    parallel: bool,
 ) -> Outcome {
     let n = tri.num_points();
     let ends = Ends::new(tri, edges, graph);
-    // Most of the stage's cost: each point's two neighbours' positions, prefetched (speed).
+    // Most of the stage's cost: each point's two neighbours' positions, prefetched (speed); each
+    // point is judged alone, so the scan runs in ranges on several threads when `parallel`.
     let prefetching = n >= PREFETCH_FROM;
-    let found: Vec<Crossing> = (0..n)
-        .filter_map(|i| {
-            if prefetching {
-                let ahead = VertexId::new((i + NEIGHBORS_AHEAD) as u32);
-                ends.graph.prefetch_neighbors(ahead, tri.vertex_points());
-            }
-            ends.crossing_at(VertexId::new(i as u32))
-        })
-        .collect();
+    let found: Vec<Crossing> = found_in_order(n, parallel, |i| {
+        if prefetching {
+            let ahead = VertexId::new((i + NEIGHBORS_AHEAD) as u32);
+            ends.graph.prefetch_neighbors(ahead, tri.vertex_points());
+        }
+        ends.crossing_at(VertexId::new(i as u32))
+    });
     if found.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
@@ -226,7 +227,7 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
-        let out = restore_crossings(&tri, &edges, None).edges?;
+        let out = restore_crossings(&tri, &edges, None, false).edges?;
         Some(crate::Graph::new(&tri, alloc::borrow::Cow::Owned(out)).edges())
     }
 

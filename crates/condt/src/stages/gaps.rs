@@ -44,6 +44,7 @@ use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::predicates::{orient2d, Orientation};
+use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 use alloc::vec;
@@ -123,6 +124,19 @@ impl<'a> Ends<'a> {
         (0..self.tri.num_points() as u32)
             .map(VertexId::new)
             .filter(|&a| self.is_loose(a))
+    }
+
+    /// The values `find` gives for the loose ends, by increasing id; the ends in ranges on
+    /// several threads when `parallel` (the same list).
+    pub(super) fn each_loose<T: Send>(
+        &self,
+        parallel: bool,
+        find: impl Fn(VertexId) -> Option<T> + Sync + Send,
+    ) -> Vec<T> {
+        found_in_order(self.tri.num_points(), parallel, |i| {
+            let a = VertexId::new(i as u32);
+            self.is_loose(a).then(|| find(a)).flatten()
+        })
     }
 
     pub(super) fn point(&self, v: VertexId) -> Point {
@@ -330,21 +344,21 @@ pub(crate) fn close_gaps(
     tri: &Triangulation,
     edges: &[Edge],
     graph: Option<CurveGraph>,
+    parallel: bool,
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
-    let joins = gap_joins(&ends);
+    let joins = gap_joins(&ends, parallel);
     ends.joined(edges, &joins)
 }
 
 /// The joins [`close_gaps`] adds to the graph of `ends`, by increasing loose end.
-pub(super) fn gap_joins(ends: &Ends<'_>) -> Vec<Edge> {
+pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
     let n = ends.tri.num_points();
-    // Only loose ends choose (few): a list by increasing id, searched by id (memory).
-    let targets: Vec<(VertexId, Target)> = ends
-        .loose()
-        .map(|a| (a, ends.target(a)))
-        .filter(|&(_, target)| target != Target::None)
-        .collect();
+    // Only loose ends choose (few): a list by increasing id, searched by id (memory). Each end
+    // chooses alone (the stage's cost), in ranges on several threads when `parallel`.
+    let targets: Vec<(VertexId, Target)> = ends.each_loose(parallel, |a| {
+        Some((a, ends.target(a))).filter(|&(_, target)| target != Target::None)
+    });
     if targets.is_empty() {
         return ends.stranded_runs(&[], &[]);
     }
@@ -535,7 +549,7 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
-        let outcome = close_gaps(&tri, &edges, None);
+        let outcome = close_gaps(&tri, &edges, None, false);
         let out = outcome.edges.unwrap_or_else(|| edges.clone());
         assert_eq!(&out[..edges.len()], &edges[..], "never removes an edge");
         crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&out[edges.len()..])).edges()

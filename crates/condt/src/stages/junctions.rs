@@ -63,13 +63,12 @@ pub(crate) fn join_junctions(
     tri: &Triangulation,
     edges: &[Edge],
     graph: Option<CurveGraph>,
+    parallel: bool,
 ) -> Outcome {
     let n = tri.num_points();
     let ends = Ends::new(tri, edges, graph);
-    let choices: Vec<(VertexId, VertexId)> = ends
-        .loose()
-        .filter_map(|a| ends.junction_of(a).map(|c| (a, c)))
-        .collect();
+    let choices: Vec<(VertexId, VertexId)> =
+        ends.each_loose(parallel, |a| ends.junction_of(a).map(|c| (a, c)));
     // How many loose ends chose each point, saturating at two.
     let mut chosen = vec![0u8; n];
     for &(_, c) in &choices {
@@ -117,7 +116,7 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
-        let out = join_junctions(&tri, &listed, None)
+        let out = join_junctions(&tri, &listed, None, false)
             .edges
             .unwrap_or_else(|| listed.clone());
         assert_eq!(&out[..listed.len()], &listed[..], "never removes an edge");

@@ -632,7 +632,7 @@ fn keep_joined_pieces(
         tri,
         graph: Cow::Borrowed(profile),
     };
-    let joins = super::gaps::gap_joins(&ends);
+    let joins = super::gaps::gap_joins(&ends, false);
     merged_along(root, kept, joins)
 }
 

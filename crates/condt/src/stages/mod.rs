@@ -350,12 +350,15 @@ impl Step {
     /// (over every point id) the previous stage handed on ([`Outcome::graph`]): the clump stage,
     /// gap closing and junctions use it instead of building one, the given-back check hands it on
     /// when it returns at once, and the others drop it first, so it never adds to their memory.
+    /// `parallel`: gap closing, junctions and crossings search for their candidates on several
+    /// threads (the same outcome).
     pub(crate) fn run(
         self,
         tri: &Triangulation,
         edges: &[Edge],
         earlier: Earlier<'_>,
         graph: Option<CurveGraph>,
+        parallel: bool,
     ) -> Outcome {
         match self {
             Step::Repair(mode) => {
@@ -390,9 +393,9 @@ impl Step {
                 given_back::confirm_given_back(tri, edges, &earlier.before_local, graph)
             }
             Step::RemoveClumps => clumps::remove_clumps(tri, edges, graph),
-            Step::CloseGaps => gaps::close_gaps(tri, edges, graph),
-            Step::JoinJunctions => junctions::join_junctions(tri, edges, graph),
-            Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph),
+            Step::CloseGaps => gaps::close_gaps(tri, edges, graph, parallel),
+            Step::JoinJunctions => junctions::join_junctions(tri, edges, graph, parallel),
+            Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph, parallel),
         }
     }
 }
