@@ -137,6 +137,42 @@ pub(crate) fn compare_distances(p: Point, a: Point, b: Point) -> Ordering {
     exact::compare_distances(p.into(), a.into(), b.into())
 }
 
+/// Which of `a` and `b` is nearer to `p`, for two whose rounded squared distances
+/// ([`Point::dist2`]) are equal: `Equal` when both are known exact ([`exactly_squared`]), so the
+/// lengths are, else exactly ([`compare_distances`]). Why: the stages rank edges by rounded
+/// squared lengths, and a tie they broke by vertex id would depend on the input's orientation
+/// (ids follow the insertion order, which follows the orientation); lengths equal only after
+/// rounding are told apart here, and only an exact tie is left to the caller's id. Call it only on
+/// a rounded tie: the check is cheap, the exact comparison is not.
+pub(crate) fn compare_tied_distances(p: Point, a: Point, b: Point) -> Ordering {
+    if exactly_squared(p, a) && exactly_squared(p, b) {
+        return Ordering::Equal;
+    }
+    compare_distances(p, a, b)
+}
+
+/// Whether `p.dist2(q)` is known to be the exact squared distance: each difference and the sum
+/// checked by Knuth's two-sum, each square by its mantissa (26 significant bits or fewer, far
+/// above the subnormal range: exact). Speed: on grids every length ties exactly and this runs at
+/// each tie; a square it cannot vouch for only sends the tie to the exact comparison.
+fn exactly_squared(p: Point, q: Point) -> bool {
+    let exact_sum = |a: f64, b: f64| {
+        let s = a + b;
+        let b_part = s - a;
+        (a - (s - b_part)) + (b - b_part) == 0.0
+    };
+    let exact_square = |d: f64| {
+        let bits = d.to_bits();
+        d == 0.0 || ((bits >> 52) & 0x7ff > 600 && bits & ((1 << 27) - 1) == 0)
+    };
+    let (dx, dy) = (q.x - p.x, q.y - p.y);
+    exact_sum(q.x, -p.x)
+        && exact_sum(q.y, -p.y)
+        && exact_square(dx)
+        && exact_square(dy)
+        && exact_sum(dx * dx, dy * dy)
+}
+
 /// How a call's coordinates can be decided.
 enum Reach {
     /// Already in the fast range: every nonzero magnitude in `[2^-200, 2)`.
@@ -301,6 +337,27 @@ const IN_CIRCLE_FILTER: f64 = (10.0 + 96.0 * f64::EPSILON / 2.0) * (f64::EPSILON
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Exact squares are told from rounded ones, a difference absorbed by a large coordinate
+    /// included (2^-60 - 1 rounds to -1, which the naive check `d - a == -b` would pass).
+    #[test]
+    fn squared_lengths_are_known_exact_only_when_no_step_rounds() {
+        let origin = Point::new(0.0, 0.0);
+        assert!(exactly_squared(origin, Point::new(3.0, 4.0)));
+        assert!(exactly_squared(
+            Point::new(0.5, -2.0),
+            Point::new(-1.25, 8.0)
+        ));
+        assert!(!exactly_squared(origin, Point::new(0.1, 0.2)));
+        assert!(!exactly_squared(
+            Point::new(2f64.powi(-60), 0.0),
+            Point::new(1.0, 0.0)
+        ));
+        assert!(!exactly_squared(
+            origin,
+            Point::new(1.0 + f64::EPSILON, 0.0)
+        ));
+    }
 
     #[test]
     fn orientation_is_antisymmetric_under_swap() {

@@ -32,18 +32,20 @@
 //! run of samples the earlier stages dropped; a sharp tip's apex with its nearest samples, which
 //! lay nearer the other side than their own).
 //!
-//! Each end takes its nearest candidate (ties by id). Joins need evidence from both sides, which
-//! keeps a genuinely open end open: two ends must choose each other, or the same point with each
-//! other as partner; at a crossing both dropped arms must come back (one arm alone is a T); a lone
-//! edge (two nearby outliers) joins only if both its ends do. All choices are made at once on the
-//! graph as it came in: the result does not depend on the order of the ends, nor on `parallel`.
+//! Each end takes its nearest candidate (distances whose squares round alike compared exactly, as
+//! ids follow the orientation of the input; only an exact tie by id). Joins need evidence from
+//! both sides, which keeps a genuinely open end open: two ends must choose each other, or the same
+//! point with each other as partner; at a crossing both dropped arms must come back (one arm alone
+//! is a T); a lone edge (two nearby outliers) joins only if both its ends do. All choices are made
+//! at once on the graph as it came in: the result does not depend on the order of the ends, nor on
+//! `parallel`.
 
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
-use crate::predicates::{orient2d, Orientation};
+use crate::predicates::{compare_tied_distances, orient2d, Orientation};
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
@@ -303,14 +305,23 @@ impl<'a> Ends<'a> {
         .map(Partner::End)
     }
 
-    /// The nearest candidate of the loose end `a` (ties by vertex id).
+    /// The nearest candidate of the loose end `a` (as the module says: exactly where squared
+    /// distances round alike, an exact tie by vertex id).
     fn target(&self, a: VertexId) -> Target {
         let pa = self.point(a);
         let mut best = Target::None;
         let mut best_key = (f64::INFINITY, VertexId::INFINITE);
         for w in self.tri.mesh().neighbors(a) {
             let key = (pa.dist2(self.point(w)), w);
-            let nearer = key.0.total_cmp(&best_key.0).then(key.1.cmp(&best_key.1));
+            let nearer = key
+                .0
+                .total_cmp(&best_key.0)
+                .then_with(|| match best_key.1.is_infinite() {
+                    // No candidate yet (only an infinite length ties with the start).
+                    true => core::cmp::Ordering::Equal,
+                    false => compare_tied_distances(pa, self.point(w), self.point(best_key.1)),
+                })
+                .then(key.1.cmp(&best_key.1));
             if nearer != core::cmp::Ordering::Less {
                 continue;
             }

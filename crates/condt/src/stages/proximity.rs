@@ -9,7 +9,6 @@
 use super::PARALLEL_FROM;
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
-use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::threads::workers;
@@ -75,37 +74,11 @@ fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [
 /// Which of `x` and `y` is nearer to `v`, exactly, for two whose rounded squared lengths are
 /// equal; `Equal` when the lengths are (the caller then goes by id).
 fn closer(tri: &Triangulation, v: VertexId, x: VertexId, y: VertexId) -> Ordering {
-    let (p, a, b) = (
+    crate::predicates::compare_tied_distances(
         tri.vertex_point(v),
         tri.vertex_point(x),
         tri.vertex_point(y),
-    );
-    if exactly_squared(p, a) && exactly_squared(p, b) {
-        return Ordering::Equal;
-    }
-    crate::predicates::compare_distances(p, a, b)
-}
-
-/// Whether `p.dist2(q)` is known to be the exact squared distance: each difference and the sum
-/// checked by Knuth's two-sum, each square by its mantissa (26 significant bits or fewer, far
-/// above the subnormal range: exact). Speed: on grids every length ties exactly and this runs at
-/// each offer; a square it cannot vouch for only sends the tie to the exact comparison.
-fn exactly_squared(p: Point, q: Point) -> bool {
-    let exact_sum = |a: f64, b: f64| {
-        let s = a + b;
-        let b_part = s - a;
-        (a - (s - b_part)) + (b - b_part) == 0.0
-    };
-    let exact_square = |d: f64| {
-        let bits = d.to_bits();
-        d == 0.0 || ((bits >> 52) & 0x7ff > 600 && bits & ((1 << 27) - 1) == 0)
-    };
-    let (dx, dy) = (q.x - p.x, q.y - p.y);
-    exact_sum(q.x, -p.x)
-        && exact_sum(q.y, -p.y)
-        && exact_square(dx)
-        && exact_square(dy)
-        && exact_sum(dx * dx, dy * dy)
+    )
 }
 
 /// Algorithm 1, line 6: the shortest edge always, the second when it passes the uniformity test.
@@ -561,27 +534,6 @@ mod tests {
     use crate::sample::{sample, Sampling, Shape};
     use crate::triangulate;
     use alloc::vec;
-
-    /// Exact squares are told from rounded ones, a difference absorbed by a large coordinate
-    /// included (2^-60 - 1 rounds to -1, which the naive check `d - a == -b` would pass).
-    #[test]
-    fn squared_lengths_are_known_exact_only_when_no_step_rounds() {
-        let origin = Point::new(0.0, 0.0);
-        assert!(exactly_squared(origin, Point::new(3.0, 4.0)));
-        assert!(exactly_squared(
-            Point::new(0.5, -2.0),
-            Point::new(-1.25, 8.0)
-        ));
-        assert!(!exactly_squared(origin, Point::new(0.1, 0.2)));
-        assert!(!exactly_squared(
-            Point::new(2f64.powi(-60), 0.0),
-            Point::new(1.0, 0.0)
-        ));
-        assert!(!exactly_squared(
-            origin,
-            Point::new(1.0 + f64::EPSILON, 0.0)
-        ));
-    }
 
     /// The union, against a set built edge by edge, on scattered points where many vertices keep
     /// two edges their neighbours do not keep back: more edges than vertices, so the buffer grows.

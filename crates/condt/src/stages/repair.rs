@@ -26,10 +26,13 @@
 //!    [`Repair::Mutual`]); an edge to a vertex of degree <= 2, if `v` keeps it.
 //!
 //! Each vertex decides from degrees and positions alone, ties by id, so the result depends neither
-//! on the edges' order nor on threads. Measured: `docs/perf-log.md`, *`stages/repair.rs`*.
+//! on the edges' order nor on threads. Lengths equal only after rounding are no tie: the shortest
+//! edge is found exactly, as Algorithm 1 finds it, since ids follow the input's orientation.
+//! Measured: `docs/perf-log.md`, *`stages/repair.rs`*.
 
 use crate::adjacency::{degrees, ordered, Edge};
 use crate::mesh::VertexId;
+use crate::predicates::compare_tied_distances;
 use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -121,8 +124,15 @@ fn paper_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> [Verte
     let p = tri.vertex_point(v);
     let length2 = |w: VertexId| p.dist2(tri.vertex_point(w));
     let neighbours = || around.iter().copied();
+    // Lengths equal only after rounding are told apart exactly: by id, the shortest would follow
+    // the orientation of the input ([`compare_tied_distances`]); only an exact tie goes by id.
     let shortest = neighbours()
-        .min_by(|&a, &b| length2(a).total_cmp(&length2(b)).then(a.cmp(&b)))
+        .min_by(|&a, &b| {
+            length2(a)
+                .total_cmp(&length2(b))
+                .then_with(|| compare_tied_distances(p, tri.vertex_point(a), tri.vertex_point(b)))
+                .then(a.cmp(&b))
+        })
         .expect("degree >= 3");
     let qualified = || {
         neighbours()
