@@ -351,7 +351,10 @@ impl<'t> Graph<'t> {
         };
         let parallel = crate::threads::parallel_available()
             && self.tri.num_points() >= crate::stages::PARALLEL_FROM;
-        match step.run(self.tri, &self.edges, earlier, None, parallel).edges {
+        match step
+            .run(self.tri, &self.edges, earlier, None, parallel)
+            .edges
+        {
             Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
             None => (self.clone(), false),
         }

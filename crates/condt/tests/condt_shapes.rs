@@ -449,7 +449,12 @@ fn parallel_equals_sequential_above_the_parallel_threshold() {
         let r = run_both(&points, Params::default());
         applied.extend(r.stages().filter(|s| s.applied).map(|s| s.stage));
     }
-    for stage in [Stage::LocalOutliers, Stage::Gaps, Stage::Junctions, Stage::Crossings] {
+    for stage in [
+        Stage::LocalOutliers,
+        Stage::Gaps,
+        Stage::Junctions,
+        Stage::Crossings,
+    ] {
         assert!(applied.contains(&stage), "{stage}");
     }
 }

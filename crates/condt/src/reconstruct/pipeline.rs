@@ -489,7 +489,13 @@ impl Run {
             before_repair,
         };
         let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
-        let outcome = step.run(tri, current, earlier, self.current_graph.take(), in_parallel);
+        let outcome = step.run(
+            tri,
+            current,
+            earlier,
+            self.current_graph.take(),
+            in_parallel,
+        );
         self.current_graph = outcome.graph;
         let undo = match outcome.edges {
             None => Undo::Unchanged,
