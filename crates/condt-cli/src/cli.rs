@@ -154,7 +154,7 @@ instead of the default; the options below still adjust it",
         long: "u",
         negatable: false,
         value: Some("X"),
-        help: "uniformity parameter u (default 2.75)",
+        help: "uniformity parameter u, a finite number greater than 0 (default 2.75)",
     },
     Opt {
         id: ReconstructId::Adaptive,
@@ -170,7 +170,7 @@ instead of the default; the options below still adjust it",
         long: "iqr",
         negatable: false,
         value: Some("K"),
-        help: "outlier factor (default 1.7)",
+        help: "outlier factor, a finite number, 0 or more (default 1.7)",
     },
     Opt {
         id: ReconstructId::NoOutlierFilter,
@@ -323,6 +323,7 @@ Usage:
                     [--outliers-first] [--[no-]repair-again] [--[no-]local-outliers]
                     [--[no-]confirm-given-back] [--[no-]clumps] [--[no-]close-gaps]
                     [--[no-]junctions] [--[no-]crossings] [--[no-]smooth]
+                    [--method condt|nn-crust|crust]
                     [--format F] [--stages] [--sequential] [--timings] [--quiet]
 
 Example:
@@ -339,7 +340,8 @@ and zoom, and a click on a point or an edge tells why it was kept or dropped). A
 
 The default pipeline is the paper's (Algorithms 1-3) with the outlier filter's spacing floor, the repair `needs` (run again without
 the edges the outlier filter cut), local outlier removal, clumps, gap closing, junctions, crossings and smoothing passes; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points
-and closed ones of 5 or 6, which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error.
+and closed ones of 5 or 6, which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error; an option
+given twice with the same value (`--u 2 --u 2.0`) is taken once.
 ";
 
 /// `condt reconstruct --help`.
@@ -375,7 +377,8 @@ const TRIANGULATE_OPTIONS: &[Opt<TriangulateId>] = &[
         long: "edges",
         negatable: false,
         value: None,
-        help: "write edges instead of triangles",
+        help: "write edges instead of triangles (an OUTPUT ending in .edges gets
+edges without it)",
     },
     Opt {
         id: TriangulateId::Timings,
@@ -414,10 +417,13 @@ Example:
   condt triangulate data/shapes.txt --edges -o shapes.edges
 
 Writes one triangle `i j k` per line, counter-clockwise, in point numbers; with --edges one
-edge `i j` (i < j) per line instead, sorted. An OUTPUT ending in .npy gets the same as a NumPy
-array instead, of shape (t, 3) or with --edges (m, 2), uint32 when every point number fits,
-int64 otherwise. Points all on one line have no triangles: their chain of edges is written only
-with --edges, and a note on standard error says so.
+edge `i j` (i < j) per line instead, sorted. What is written follows OUTPUT's extension (any
+case): .txt, or a name without one (standard output, /dev/null), gets that text; .edges gets
+the edges, with or without --edges; .npy gets the same as a NumPy array, of shape (t, 3) or
+with --edges (m, 2), uint32 when every point number fits, int64 otherwise. Any other extension
+(.svg, .geojson, .html: `condt reconstruct` draws those) is refused before anything is read.
+Points all on one line have no triangles: their chain of edges is written only with --edges,
+and a note on standard error says so.
 ";
 
 /// `condt triangulate --help`.
@@ -496,9 +502,34 @@ struct TriangulateArgs {
     input: Option<PathBuf>,
     /// `None`: standard output.
     output: Option<PathBuf>,
+    /// Edges instead of triangles: `--edges`, or an OUTPUT ending in `.edges`.
     edges: bool,
+    /// A NumPy array instead of text: an OUTPUT ending in `.npy`.
+    npy: bool,
     timings: bool,
     quiet: bool,
+}
+
+/// What `triangulate` writes to an OUTPUT by its extension (any case): `(edges, npy)`, edges
+/// being forced on by `.edges` and left to `--edges` otherwise. A name without an extension is
+/// text, as standard output is (`/dev/null`, a pipe's name); an extension it has no writer for
+/// is refused rather than given text that its name says is something else.
+fn triangulate_output(output: Option<&Path>) -> Result<(bool, bool), CliError> {
+    let Some(extension) = output.and_then(Path::extension) else {
+        return Ok((false, false));
+    };
+    let lower = extension.to_string_lossy().to_ascii_lowercase();
+    match lower.as_str() {
+        "txt" => Ok((false, false)),
+        "edges" => Ok((true, false)),
+        "npy" => Ok((false, true)),
+        _ => Err(usage(format!(
+            "{}: triangulate cannot write a .{} file; it writes text (.txt, or a name without \
+             an extension), edges (.edges, as --edges) or a NumPy array (.npy)",
+            output.map_or(String::new(), |p| p.display().to_string()),
+            extension.to_string_lossy(),
+        ))),
+    }
 }
 
 /// Where `-o` and INPUT go while the arguments are read.
@@ -565,10 +596,12 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
         }
     }
     let (input, output) = paths.finish("triangulate", lexed.operands)?;
+    let (edges_by_name, npy) = triangulate_output(output.as_deref())?;
     Ok(TriangulateArgs {
         input,
         output,
-        edges,
+        edges: edges || edges_by_name,
+        npy,
         timings,
         quiet,
     })
@@ -666,12 +699,29 @@ struct ReconstructArgs {
     quiet: bool,
 }
 
-/// The number after `flag`; whether its value is accepted is for the library to say.
-fn number(flag: &str, value: Option<&OsString>) -> Result<f64, CliError> {
+/// The number after `flag`, and the text it was read from; whether its value is accepted is for
+/// the library to say.
+fn number<'a>(flag: &str, value: Option<&'a OsString>) -> Result<(f64, &'a str), CliError> {
     let value = value.ok_or_else(|| usage(format!("{flag} needs a number")))?;
     let text = text(value, flag)?;
-    text.parse::<f64>()
-        .map_err(|_| usage(format!("{flag} {text}: not a number")))
+    let x = text
+        .parse::<f64>()
+        .map_err(|_| usage(format!("{flag} {text}: not a number")))?;
+    Ok((x, text))
+}
+
+/// What `--u` accepts, as the library's `Uniformity::check` decides it.
+const U_RANGE: &str = "a finite number greater than 0";
+/// What `--iqr` accepts, as the library's `Params::check` decides it.
+const IQR_RANGE: &str = "a finite number, 0 or more";
+
+/// A number the library refused, told as the user typed it with the option they typed: the
+/// parsed value would say `inf` for `1e400` and `NaN` for `nan`, and the library's name `k` is
+/// not an option.
+fn out_of_range(flag: &str, typed: &str, range: &str) -> CliError {
+    usage(format!(
+        "{flag} {typed}: out of range ({flag} takes {range})"
+    ))
 }
 
 /// A parameter the library refused, told with the option that set it.
@@ -781,14 +831,24 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 };
                 method.set(chosen, format!("{flag} {name}"))?;
             }
+            // Each value is checked as it is given, so that a refused one is told as typed
+            // (not as a contradiction: NaN differs from NaN) and a value repeated is compared
+            // only once it is accepted.
             Id::U => {
-                let u = number(flag, value)?;
-                uniformity.set(Uniformity::Fixed(u), format!("--u {u}"))?;
+                let (u, typed) = number(flag, value)?;
+                Uniformity::Fixed(u)
+                    .check()
+                    .map_err(|_| out_of_range(flag, typed, U_RANGE))?;
+                uniformity.set(Uniformity::Fixed(u), format!("{flag} {typed}"))?;
             }
             Id::Adaptive => uniformity.set(Uniformity::Adaptive, flag)?,
             Id::Iqr => {
-                let k = number(flag, value)?;
-                outliers.set(Some(k), format!("--iqr {k}"))?;
+                let (k, typed) = number(flag, value)?;
+                Params::default()
+                    .with_outlier_factor(Some(k))
+                    .check()
+                    .map_err(|_| out_of_range(flag, typed, IQR_RANGE))?;
+                outliers.set(Some(k), format!("{flag} {typed}"))?;
             }
             Id::NoOutlierFilter => outliers.set(None, flag)?,
             Id::OutliersFirst => params.outliers_first = true,
@@ -1089,13 +1149,8 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     // The output reads only the triangulation: the points need not stay while it is written
     // (16 bytes per point of the peak).
     drop(points);
-    let npy = args
-        .output
-        .as_deref()
-        .and_then(Path::extension)
-        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
     destination.write(|out| {
-        progress.count_written(out, |out| match (args.edges, npy) {
+        progress.count_written(out, |out| match (args.edges, args.npy) {
             (true, false) => write_triangulation_edges(out, &tri),
             (false, false) => write_triangles(out, &tri),
             (true, true) => write_npy_triangulation_edges(out, &tri),
@@ -1150,10 +1205,28 @@ mod tests {
                 input: Some("in.txt".into()),
                 output: Some("out.txt".into()),
                 edges: true,
+                npy: false,
                 timings: false,
                 quiet: false,
             }
         );
+    }
+
+    #[test]
+    fn triangulate_output_by_extension() {
+        for (output, edges, npy) in [
+            ("out.edges", true, false),
+            ("OUT.Edges", true, false),
+            ("out.npy", false, true),
+            ("out.txt", false, false),
+            ("/dev/null", false, false),
+            ("-", false, false),
+        ] {
+            let a = parse_triangulate(&strings(&["in.txt", "-o", output])).unwrap();
+            assert_eq!((a.edges, a.npy), (edges, npy), "{output}");
+        }
+        let a = parse_triangulate(&strings(&["in.txt", "-o", "out.npy", "--edges"])).unwrap();
+        assert_eq!((a.edges, a.npy), (true, true));
     }
 
     #[test]
@@ -1227,6 +1300,8 @@ mod tests {
     fn usage_errors_exit_with_two() {
         for bad in [
             &["in.txt", "-o"][..],
+            &["in.txt", "-o", "out.svg"],
+            &["in.txt", "-o", "out.SVG", "--edges"],
             &["--frobnicate", "in.txt"],
             &[],
             &["a", "b"],

@@ -6,33 +6,49 @@
 //!
 //! An edge file holds one edge `i j` per line (0-based point numbers); `#` lines and blank lines
 //! are skipped; its lines are split as point files' are ([`condt_io::text_lines`]: LF, CRLF or
-//! CR-only line ends, a byte-order mark at the start skipped). A malformed OUTPUT (a line that is not two numbers, a point that does not exist, a
-//! self-loop, a repeated edge) is scored as a failure, as the evaluation suite's scorer does, and
-//! the first problem is reported with its line; a malformed TRUTH is an error.
+//! CR-only line ends, a byte-order mark at the start skipped). A name ending in `.npy` is a
+//! NumPy array of shape `(m, 2)`, uint32 or int64, as `condt reconstruct -o out.npy` writes it
+//! ([`condt_io::parse_npy_edges`]), its problems told by row. `-` reads text from standard input,
+//! for one of the three files.
+//!
+//! A malformed OUTPUT (a line that is not two numbers, a point that does not exist, a self-loop,
+//! a repeated edge) is scored as a failure, as the evaluation suite's scorer does, and the first
+//! problem is reported with its line; a malformed TRUTH is an error. A file that is not an edge
+//! list at all is an error whichever it is: bytes that are not text (not UTF-8, a NUL byte, a
+//! NumPy array under another name), an `.npy` array of another dtype or shape, or text of which
+//! no line is an edge. Messages quote a line escaped and cut short, never the file's raw bytes.
 
 use crate::cli::{usage, CliError};
 use crate::options::{self, Opt};
 use condt_eval::score::{score, EdgeProblem, Score};
-use condt_io::{read_points, text_lines, IoError, IoErrorKind};
+use condt_io::{
+    parse_npy_edges, read_points, text_lines, utf8_text, IoError, IoErrorKind, NPY_MAGIC,
+};
 use std::ffi::OsString;
 use std::fmt::Write as _;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 const ABOUT: &str = "\
 condt score: compare an edge list with a ground truth
 
 Usage:
-  condt score POINTS OUTPUT.edges TRUTH.edges [--json]
+  condt score POINTS OUTPUT TRUTH [--json]
 
 Example:
   condt reconstruct case.pts -o case.edges && condt score case.pts case.edges case.gt
 
 Edge files hold one edge `i j` per line, in point numbers of POINTS (`#` lines and blank lines
-are skipped). Prints: exact (the edge sets are equal), precision, recall and F1 on the edge sets,
-the output edges touching a point the truth gives no edge (outlier edges), and the largest and
-the root-mean-square distance of the output to the truth (each output edge sampled at 0, 1/4,
-1/2, 3/4 and 1 of its length), over the diagonal of the points' bounding box. A malformed
-OUTPUT scores 0 and its first problem is printed with its line; a malformed TRUTH is an error.
+are skipped); a name ending in .npy (any case) is a NumPy array of shape (m, 2), uint32 or
+int64, either byte order, as `condt reconstruct -o out.npy` writes it. `-` reads standard input
+(as text) for one of POINTS, OUTPUT and TRUTH. Prints: exact (the edge sets are equal),
+precision, recall and F1 on the edge sets, the output edges touching a point the truth gives no
+edge (outlier edges), and the largest and the root-mean-square distance of the output to the
+truth (each output edge sampled at 0, 1/4, 1/2, 3/4 and 1 of its length), over the diagonal of
+the points' bounding box. A malformed OUTPUT (a bad line among edges, a point that does not
+exist, a self-loop, a repeated edge) scores 0 and its first problem is printed with its line
+(row, for .npy); a malformed TRUTH is an error. A file that is not an edge list (not text, an
+array of another dtype or shape, text with no edge line) is an error, OUTPUT or TRUTH.
 The metrics are those of the evaluation suite's score.py.
 ";
 
@@ -75,38 +91,60 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     let files: Vec<PathBuf> = lexed.operands.into_iter().map(PathBuf::from).collect();
     let [points, output, truth] = <[PathBuf; 3]>::try_from(files).map_err(|files| {
         usage(format!(
-            "score needs three files, POINTS OUTPUT.edges TRUTH.edges; {} given",
+            "score needs three files, POINTS OUTPUT TRUTH; {} given",
             files.len()
         ))
     })?;
-    let points = read_points(&points)?;
-    let truth_file = read_edges(&truth)?;
-    if let Some((line, why)) = truth_file.bad_line {
-        return Err(content(&truth, line, why));
+    let dashes = [&points, &output, &truth]
+        .iter()
+        .filter(|p| p.as_os_str() == "-")
+        .count();
+    if dashes > 1 {
+        return Err(usage(format!(
+            "score: - (standard input) is given {dashes} times; standard input can be read \
+             once: give - for one of POINTS, OUTPUT and TRUTH"
+        )));
     }
-    let output_file = read_edges(&output)?;
-    let result =
-        score(&points, &output_file.edges, &truth_file.edges).map_err(|err| match err {
-            condt_eval::score::ScoreError::Truth(problem) => content(
-                &truth,
-                truth_file.lines[problem.position()],
-                problem.to_string(),
-            ),
-            other => CliError::Input(format!("{}: {other}", truth.display())),
-        })?;
+    let points = read_points(&points)?;
+    let truth = read_edges(&truth)?;
+    if let Some((line, why)) = truth.bad_line {
+        return Err(content(&truth.name, Some(line), why));
+    }
+    let output = read_edges(&output)?;
+    // A text of which no line is an edge is some other file (a drawing, GeoJSON, curves),
+    // not an edge list scored 0.
+    if let (true, Some((line, why))) = (output.edges.is_empty(), &output.bad_line) {
+        return Err(content(
+            &output.name,
+            Some(*line),
+            format!("{why}; no line of the file is an edge `i j`: it is not an edge list"),
+        ));
+    }
+    let result = score(&points, &output.edges, &truth.edges).map_err(|err| match err {
+        condt_eval::score::ScoreError::Truth(problem) => {
+            let (line, why) = truth.place(problem.position(), problem.to_string());
+            content(&truth.name, line, why)
+        }
+        other => CliError::Input(format!("{}: {other}", truth.name)),
+    })?;
     // The output's first problem: a line that is not an edge, or the library's, whichever comes
-    // first in the file.
+    // first in the file. An array has neither lines nor lines that are not edges: its one
+    // problem carries its row in the message.
     let problem = [
-        output_file.bad_line.clone(),
-        result
-            .malformed
-            .map(|p: EdgeProblem| (output_file.lines[p.position()], p.to_string())),
+        output.bad_line.clone(),
+        result.malformed.map(|p: EdgeProblem| {
+            let (line, why) = output.place(p.position(), p.to_string());
+            (line.unwrap_or(0), why)
+        }),
     ]
     .into_iter()
     .flatten()
     .min_by_key(|(line, _)| *line)
-    .map(|(line, why)| format!("line {line}: {why}"));
-    let result = if output_file.bad_line.is_some() {
+    .map(|(line, why)| match output.places {
+        Places::Lines(_) => format!("line {line}: {why}"),
+        Places::Rows => why,
+    });
+    let result = if output.bad_line.is_some() {
         Score {
             exact: false,
             precision: 0.0,
@@ -117,11 +155,7 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     } else {
         result
     };
-    let counts = [
-        points.len(),
-        truth_file.edges.len(),
-        output_file.edges.len(),
-    ];
+    let counts = [points.len(), truth.edges.len(), output.edges.len()];
     Ok(if json {
         as_json(&result, problem.as_deref(), counts)
     } else {
@@ -129,30 +163,96 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     })
 }
 
-/// An edge file as read: its edges, the line of each, and the first line that is not an edge.
+/// Where the edges of a file are: each on its line of a text, or in its row of an array.
+enum Places {
+    Lines(Vec<usize>),
+    Rows,
+}
+
+/// An edge file as read: its edges, where each is, and the first line that is not an edge.
 struct EdgeFile {
+    /// The file as messages name it (`<stdin>` for standard input).
+    name: String,
     edges: Vec<[usize; 2]>,
-    lines: Vec<usize>,
+    places: Places,
     bad_line: Option<(usize, String)>,
 }
 
+impl EdgeFile {
+    /// A problem of the edge at `position`, placed: its line, or (in an array, which has no
+    /// lines) its row at the start of the message.
+    fn place(&self, position: usize, why: String) -> (Option<usize>, String) {
+        match &self.places {
+            Places::Lines(lines) => (Some(lines[position]), why),
+            Places::Rows => (None, format!("row {position}: {why}")),
+        }
+    }
+}
+
 fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
-    let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|error| {
+    let stdin = path.as_os_str() == "-";
+    let name = if stdin {
+        "<stdin>".to_string()
+    } else {
+        path.display().to_string()
+    };
+    let os_error = |error| {
         CliError::Io(IoError {
-            file: file.clone(),
+            file: name.clone(),
             line: None,
             kind: IoErrorKind::Io(error),
         })
-    })?;
-    let text = String::from_utf8_lossy(&bytes);
+    };
+    let bytes = if stdin {
+        let mut bytes = Vec::new();
+        std::io::stdin()
+            .lock()
+            .read_to_end(&mut bytes)
+            .map_err(os_error)?;
+        bytes
+    } else {
+        std::fs::read(path).map_err(os_error)?
+    };
+    let npy = !stdin
+        && path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+    if npy {
+        return Ok(EdgeFile {
+            edges: parse_npy_edges(&bytes, &name)?,
+            name,
+            places: Places::Rows,
+            bad_line: None,
+        });
+    }
+    // Text is read as text: an array under another name (or piped in) is told as one, and
+    // never quoted as a line.
+    if bytes.starts_with(NPY_MAGIC) {
+        let why = if stdin {
+            "a NumPy .npy array, but standard input is read as text; give the file by its name, \
+             ending in .npy"
+        } else {
+            "a NumPy .npy array, but only a name ending in .npy is read as one: rename it"
+        };
+        return Err(content(&name, None, why.to_string()));
+    }
+    let text = utf8_text(bytes, &name)?;
+    let mut lines = Vec::new();
     let mut read = EdgeFile {
+        name,
         edges: Vec::new(),
-        lines: Vec::new(),
+        places: Places::Rows,
         bad_line: None,
     };
     // The line ends and the byte-order mark of point files, by the same reader.
     for (number, line) in text_lines(&text) {
+        if line.contains('\0') {
+            return Err(content(
+                &read.name,
+                Some(number),
+                "a NUL byte: binary data, not a text edge list".to_string(),
+            ));
+        }
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
             continue;
@@ -162,7 +262,7 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
         match parsed.as_deref() {
             Some(&[a, b]) if fields.iter().all(|f| f.bytes().all(|c| c.is_ascii_digit())) => {
                 read.edges.push([a, b]);
-                read.lines.push(number);
+                lines.push(number);
             }
             _ => {
                 if read.bad_line.is_none() {
@@ -172,13 +272,15 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
             }
         }
     }
+    read.places = Places::Lines(lines);
     Ok(read)
 }
 
-fn content(path: &Path, line: usize, why: String) -> CliError {
+/// A content error of `file`, at `line` when it has lines.
+fn content(file: &str, line: Option<usize>, why: String) -> CliError {
     CliError::Io(IoError {
-        file: path.display().to_string(),
-        line: Some(line),
+        file: file.to_string(),
+        line,
         kind: IoErrorKind::Content(why),
     })
 }
@@ -215,8 +317,12 @@ fn as_json(s: &Score, problem: Option<&str>, [n, n_gt, n_out]: [usize; 3]) -> St
 
 fn as_text(s: &Score, problem: Option<&str>, [n, n_gt, n_out]: [usize; 3]) -> String {
     let mut text = String::new();
-    let distance =
-        |d: Option<f64>| d.map_or("none (no output edges)".into(), |d| format!("{d:.6e}"));
+    // A distance is a fraction of the diagonal; with no output edge there is none.
+    let distance = |d: Option<f64>| {
+        d.map_or("none (no output edges)".into(), |d| {
+            format!("{d:.6e} of the box diagonal")
+        })
+    };
     let _ = writeln!(text, "exact          {}", s.exact);
     let _ = writeln!(text, "precision      {:.6}", s.precision);
     let _ = writeln!(text, "recall         {:.6}", s.recall);
@@ -227,16 +333,8 @@ fn as_text(s: &Score, problem: Option<&str>, [n, n_gt, n_out]: [usize; 3]) -> St
         s.true_positives, s.false_positives, s.false_negatives
     );
     let _ = writeln!(text, "outlier edges  {}", s.outlier_edges);
-    let _ = writeln!(
-        text,
-        "max distance   {} of the box diagonal",
-        distance(s.max_distance)
-    );
-    let _ = writeln!(
-        text,
-        "rms distance   {} of the box diagonal",
-        distance(s.rms_distance)
-    );
+    let _ = writeln!(text, "max distance   {}", distance(s.max_distance));
+    let _ = writeln!(text, "rms distance   {}", distance(s.rms_distance));
     let _ = writeln!(text, "points         {n}");
     if let Some(problem) = problem {
         let _ = writeln!(text, "malformed      {problem}");

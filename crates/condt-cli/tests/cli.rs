@@ -508,7 +508,13 @@ fn npy_points_in_and_npy_indices_out_match_the_text_results() {
         ("triangulate", Some("--edges"), 2),
         ("reconstruct", None, 2),
     ] {
-        let text_out = dir.path().join(format!("{command}.edges"));
+        // `.edges` gets edges from triangulate too: its triangles go to a `.txt`.
+        let ending = if (command, extra) == ("triangulate", None) {
+            "txt"
+        } else {
+            "edges"
+        };
+        let text_out = dir.path().join(format!("{command}.{ending}"));
         let npy_out = dir.path().join(format!("{command}.npy"));
         let mut args = vec![command, txt, "-o", text_out.to_str().unwrap()];
         args.extend(extra);
@@ -646,5 +652,120 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 .collect()
         };
         assert_eq!(other(&plain.stderr), other(&timed.stderr), "{args:?}");
+    }
+}
+
+/// `triangulate` chooses what it writes by the output's name as `reconstruct` does: `.edges`
+/// gets edges (as `--edges`), `.txt` or a name without an extension text, `.npy` an array, and a
+/// name it cannot write (a drawing, GeoJSON) is refused before anything is read or written, the
+/// message naming the extension and what it can write (found by a stress run: `-o t.svg` got
+/// triangles as text, `-o tri.edges` without `--edges` got triangles).
+#[test]
+fn triangulate_writes_what_the_output_name_says_or_refuses_it() {
+    let scratch = scratch_dir();
+    let dir = scratch.path();
+    let square = "0 0\n1 0\n1 1\n0 1\n";
+    let edges = condt(&["triangulate", "-", "--edges"], square);
+    assert!(edges.status.success());
+    let triangles = condt(&["triangulate", "-"], square);
+    assert!(triangles.status.success());
+    for (name, extra, expected) in [
+        ("tri.edges", None, &edges.stdout),
+        ("TRI.EDGES", None, &edges.stdout),
+        ("both.edges", Some("--edges"), &edges.stdout),
+        ("tri.txt", None, &triangles.stdout),
+        ("edges.txt", Some("--edges"), &edges.stdout),
+        ("plain", None, &triangles.stdout),
+    ] {
+        let target = dir.join(name);
+        let mut args = vec!["triangulate", "-", "-o", target.to_str().unwrap()];
+        args.extend(extra);
+        let out = condt(&args, square);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert_eq!(&std::fs::read(&target).unwrap(), expected, "{name}");
+    }
+    for name in ["t.svg", "t.geojson", "t.json", "t.html", "t.csv", "t.png"] {
+        let target = dir.join(name);
+        for extra in [None, Some("--edges")] {
+            let mut args = vec!["triangulate", "-", "-o", target.to_str().unwrap()];
+            args.extend(extra);
+            let said = refused(&args);
+            let extension = name.rsplit('.').next().unwrap();
+            assert!(said.contains(&format!(".{extension}")), "{name}: {said}");
+            for can in [".txt", ".edges", ".npy"] {
+                assert!(said.contains(can), "{name}: {said}");
+            }
+            assert!(!target.exists(), "{name}: nothing is written");
+        }
+    }
+    // The help says so.
+    let help = String::from_utf8(condt(&["triangulate", "--help"], "").stdout).unwrap();
+    assert!(help.contains(".edges"), "{help}");
+}
+
+/// A refused number is told as the user typed it, with the option they typed: not as the
+/// library's parameter name, not as the float it parsed to, and not as a contradiction with
+/// itself when given twice (found by a stress run: `--u nan --u nan` said "--u NaN and --u NaN
+/// contradict each other", `--u 1e400` "u = inf", `--iqr -1` "parameter k = -1").
+#[test]
+fn a_refused_number_is_told_as_typed() {
+    for (args, typed) in [
+        (&["--u", "nan", "--u", "nan"][..], "--u nan"),
+        (&["--u=nan", "--u=nan"], "--u nan"),
+        (&["--u", "nan"], "--u nan"),
+        (&["--u", "1e400"], "--u 1e400"),
+        (&["--u", "2", "--u", "1e400"], "--u 1e400"),
+        (&["--u", "-0"], "--u -0"),
+        (&["--iqr", "-1"], "--iqr -1"),
+        (&["--iqr", "1E999"], "--iqr 1E999"),
+        (&["--iqr", "NaN", "--iqr", "NaN"], "--iqr NaN"),
+    ] {
+        let mut line = vec!["reconstruct", "-"];
+        line.extend(args);
+        let said = refused(&line);
+        assert!(said.contains(typed), "{line:?}: {said}");
+        assert!(!said.contains("contradict"), "{line:?}: {said}");
+        assert!(!said.contains("parameter k"), "{line:?}: {said}");
+        assert!(!said.contains("inf"), "{line:?}: {said}");
+        assert!(said.contains("out of range"), "{line:?}: {said}");
+    }
+    // The same value twice is no contradiction, however it is written; two values are.
+    for args in [
+        &["--u", "2", "--u", "2"][..],
+        &["--u", "2", "--u=2.0"],
+        &["--iqr", "1.5", "--iqr", "1.50"],
+    ] {
+        let mut line = vec!["reconstruct", "-"];
+        line.extend(args);
+        let out = condt(&line, &circle_input(12));
+        assert!(
+            out.status.success(),
+            "{line:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let said = refused(&["reconstruct", "-", "--u", "2", "--u", "3"]);
+    assert!(said.contains("--u 2 and --u 3 contradict"), "{said}");
+}
+
+/// The usage lines of `reconstruct --help` name every option, `--method` among them, as the
+/// README's do (found by a stress run).
+#[test]
+fn the_usage_of_reconstruct_names_method() {
+    let help = String::from_utf8(condt(&["reconstruct", "--help"], "").stdout).unwrap();
+    let usage = &help[help.find("Usage:").unwrap()..help.find("Example:").unwrap()];
+    assert!(usage.contains("[--method condt|nn-crust|crust]"), "{usage}");
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+            .unwrap();
+    for line in usage.lines().skip(1).filter(|l| !l.trim().is_empty()) {
+        assert!(
+            readme.contains(line.trim_start()),
+            "README lacks the usage line {line:?}"
+        );
     }
 }

@@ -211,3 +211,298 @@ fn edge_files_accept_what_point_files_accept() {
     assert_eq!(scored.status.code(), Some(1), "{said}");
     assert!(said.contains("bad.edges:3: "), "{said}");
 }
+
+/// `condt score` with standard input (`input`) and what it said: (exit code, stdout, stderr).
+fn score_with_stdin(args: &[&Path], input: &[u8]) -> (Option<i32>, String, String) {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_condt"))
+        .arg("score")
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // A run refused on its arguments may exit before reading: a closed pipe is fine.
+    let _ = child.stdin.take().unwrap().write_all(input);
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// `-` reads standard input for any one of POINTS, OUTPUT and TRUTH, as text; given twice, it
+/// is refused (found by a stress run: OUTPUT or TRUTH `-` gave "-: No such file or directory").
+#[test]
+fn a_dash_reads_standard_input_for_one_file() {
+    let dir = scratch_dir();
+    let square = "0 0\n1 0\n1 1\n0 1\n";
+    let points = write(dir.path(), "p.txt", square);
+    let truth_text = "0 1\n1 2\n2 3\n3 0\n";
+    let truth = write(dir.path(), "t.edges", truth_text);
+    let output = write(dir.path(), "o.edges", "0 1\n1 2\n0 2\n");
+    let json = Path::new("--json");
+    let dash = Path::new("-");
+    let expected = score_json(&points, &output, &truth);
+    for (args, input) in [
+        ([dash, &output, &truth, json], square),
+        ([&points, dash, &truth, json], "0 1\n1 2\n0 2\n"),
+        ([&points, &output, dash, json], truth_text),
+    ] {
+        let (code, stdout, stderr) = score_with_stdin(&args, input.as_bytes());
+        assert_eq!(code, Some(0), "{args:?}: {stderr}");
+        assert_eq!(stdout, expected, "{args:?}");
+    }
+    // A bad line of standard input is named as <stdin>'s.
+    let (code, _, stderr) = score_with_stdin(&[&points, &output, dash], b"0 1\n1 x\n");
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("<stdin>:2:"), "{stderr}");
+    for args in [
+        [dash, dash, &truth],
+        [&points, dash, dash],
+        [dash, &output, dash],
+    ] {
+        let (code, _, stderr) = score_with_stdin(&args, truth_text.as_bytes());
+        assert_eq!(code, Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("standard input"), "{args:?}: {stderr}");
+        assert!(!stderr.contains("No such file"), "{args:?}: {stderr}");
+    }
+}
+
+/// A NumPy `.npy` array of shape `(rows, 2)` with dtype `descr`, the values given as bytes.
+fn npy(descr: &str, shape: &str, data: &[u8]) -> Vec<u8> {
+    let mut dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    while (10 + dict.len() + 1) % 64 != 0 {
+        dict.push(' ');
+    }
+    dict.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(dict.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(dict.as_bytes());
+    bytes.extend_from_slice(data);
+    bytes
+}
+
+/// Whether a message holds only printable ASCII and line ends: no raw bytes of a binary file.
+fn printable(message: &str) -> bool {
+    message
+        .chars()
+        .all(|c| c == '\n' || (' '..='~').contains(&c))
+}
+
+/// The `.npy` edge arrays `reconstruct -o out.npy` writes (uint32, and int64 for larger sets)
+/// are read as OUTPUT and as TRUTH, and score as the same edges in text; other dtypes and
+/// shapes are refused (found by a stress run: such a file scored 0, exit 0, with binary junk
+/// in its "malformed" line).
+#[test]
+fn npy_edge_arrays_are_read() {
+    let dir = scratch_dir();
+    let circle = sample(
+        &[Shape::circle(Point::new(3.0, -1.0), 2.0)],
+        &Sampling::new(0.3),
+    )
+    .unwrap();
+    let points = write(dir.path(), "circle.pts", &points_text(&circle.points));
+    let truth = write(dir.path(), "circle.gt", &edges_text(&circle.edges));
+    let edges = dir.path().join("circle.edges");
+    let array = dir.path().join("circle.NPY");
+    for output in [&edges, &array] {
+        let run = Command::new(env!("CARGO_BIN_EXE_condt"))
+            .args([Path::new("reconstruct"), &points, Path::new("-o"), output])
+            .output()
+            .unwrap();
+        assert!(run.status.success());
+    }
+    let expected = score_json(&points, &edges, &truth);
+    assert_eq!(json_value(&expected, "exact"), "true");
+    assert_eq!(score_json(&points, &array, &truth), expected);
+    assert_eq!(score_json(&points, &edges, &array), expected);
+    // int64 (what reconstruct writes past 2^32 points), C and Fortran order, either byte
+    // order, and uint32 big-endian: the same edges.
+    let wrong = [[0usize, 1], [1, 2], [0, 2]];
+    let text = write(dir.path(), "wrong.edges", &edges_text(&wrong));
+    let expected = score_json(&points, &text, &truth);
+    let c_order = |put: fn(usize) -> Vec<u8>| -> Vec<u8> {
+        wrong.iter().flatten().flat_map(|&i| put(i)).collect()
+    };
+    let columns: Vec<u8> = (0..2)
+        .flat_map(|k| wrong.iter().map(move |e| e[k] as u32))
+        .flat_map(u32::to_le_bytes)
+        .collect();
+    // The same header with `'fortran_order': True ` (the length kept).
+    let mut fortran = npy("<u4", "(3, 2)", &[]);
+    let at = fortran.windows(5).position(|w| w == b"False").unwrap();
+    fortran[at..at + 5].copy_from_slice(b"True ");
+    for (name, bytes) in [
+        (
+            "i8.npy",
+            npy(
+                "<i8",
+                "(3, 2)",
+                &c_order(|i| (i as i64).to_le_bytes().to_vec()),
+            ),
+        ),
+        (
+            "i8be.npy",
+            npy(
+                ">i8",
+                "(3, 2)",
+                &c_order(|i| (i as i64).to_be_bytes().to_vec()),
+            ),
+        ),
+        (
+            "u4be.npy",
+            npy(
+                ">u4",
+                "(3, 2)",
+                &c_order(|i| (i as u32).to_be_bytes().to_vec()),
+            ),
+        ),
+        ("fortran.npy", [fortran, columns].concat()),
+    ] {
+        let file = dir.path().join(name);
+        std::fs::write(&file, &bytes).unwrap();
+        assert_eq!(score_json(&points, &file, &truth), expected, "{name}");
+    }
+    // A problem of the array's edges is told by its row; the output scores 0.
+    let repeated = dir.path().join("repeated.npy");
+    let data: Vec<u8> = [0u32, 1, 1, 2, 2, 1]
+        .iter()
+        .flat_map(|i| i.to_le_bytes())
+        .collect();
+    std::fs::write(&repeated, npy("<u4", "(3, 2)", &data)).unwrap();
+    let json = score_json(&points, &repeated, &truth);
+    assert_eq!(
+        json_value(&json, "malformed"),
+        "\"row 2: edge 1 2 repeated\""
+    );
+    assert_eq!(json_value(&json, "f1"), "0.0");
+    // What is not an edge array is an error naming the file, in words.
+    let floats: Vec<u8> = [0f64, 1.0].iter().flat_map(|x| x.to_le_bytes()).collect();
+    let negative: Vec<u8> = [0i64, -1].iter().flat_map(|x| x.to_le_bytes()).collect();
+    let small: Vec<u8> = [0u32, 1].iter().flat_map(|x| x.to_le_bytes()).collect();
+    for (name, bytes, said) in [
+        (
+            "float.npy",
+            npy("<f8", "(1, 2)", &floats),
+            "\"<f8\" is not supported",
+        ),
+        (
+            "int32.npy",
+            npy("<i4", "(1, 2)", &small),
+            "\"<i4\" is not supported",
+        ),
+        ("shape.npy", npy("<u4", "(2,)", &small), "shape (2)"),
+        ("three.npy", npy("<u4", "(1, 3)", &small), "shape (1, 3)"),
+        (
+            "short.npy",
+            npy("<u4", "(2, 2)", &small),
+            "the header announces 2 edges",
+        ),
+        ("long.npy", npy("<u4", "(0, 2)", &small), "bytes after"),
+        ("negative.npy", npy("<i8", "(1, 2)", &negative), "-1"),
+        ("text.npy", b"0 1\n1 2\n".to_vec(), "not a NumPy .npy file"),
+    ] {
+        let file = dir.path().join(name);
+        std::fs::write(&file, &bytes).unwrap();
+        for args in [[&points, &file, &truth], [&points, &truth, &file]] {
+            let out = condt(&[Path::new("score"), args[0], args[1], args[2]]);
+            let message = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{name}: {message}");
+            assert!(out.stdout.is_empty(), "{name}");
+            assert!(message.contains(name), "{name}: {message}");
+            assert!(message.contains(said), "{name}: {message}");
+            assert!(printable(&message), "{name}: {message:?}");
+        }
+    }
+}
+
+/// A file that is not a text edge list (binary bytes, an `.npy` array under another name,
+/// standard input holding one, a drawing or GeoJSON with no edge line at all) is an error
+/// naming it, never a score of 0 with raw bytes in its message; a text edge list with a bad
+/// line among edges still scores 0.
+#[test]
+fn what_is_not_an_edge_list_is_an_error() {
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0\n1 0\n1 1\n0 1\n");
+    let truth = write(dir.path(), "t.edges", "0 1\n1 2\n2 3\n3 0\n");
+    let edges: Vec<u8> = [0u32, 1, 1, 2]
+        .iter()
+        .flat_map(|i| i.to_le_bytes())
+        .collect();
+    let array = npy("<u4", "(2, 2)", &edges);
+    let mut nul = b"0 1\n1 2\n".to_vec();
+    nul.extend_from_slice(b"2 3\0\n");
+    for (name, bytes, said) in [
+        ("array.edges", array.clone(), "NumPy"),
+        ("nul.edges", nul, "nul.edges:3"),
+        (
+            "latin1.edges",
+            b"0 1\n1 2 \xe9\n".to_vec(),
+            "latin1.edges:2",
+        ),
+        (
+            "drawing.svg",
+            b"<svg xmlns=\"x\">\n</svg>\n".to_vec(),
+            "drawing.svg",
+        ),
+        (
+            "shape.geojson",
+            b"{\"type\": \"FeatureCollection\",\n\"features\": []}\n".to_vec(),
+            "shape.geojson",
+        ),
+    ] {
+        let file = dir.path().join(name);
+        std::fs::write(&file, &bytes).unwrap();
+        for args in [[&points, &file, &truth], [&points, &truth, &file]] {
+            let out = condt(&[Path::new("score"), args[0], args[1], args[2]]);
+            let message = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{name}: {message}");
+            assert!(out.stdout.is_empty(), "{name}");
+            assert!(message.contains(said), "{name}: {message}");
+            assert!(printable(&message), "{name}: {message:?}");
+        }
+    }
+    let (code, _, stderr) = score_with_stdin(&[&points, Path::new("-"), &truth], &array);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(
+        stderr.contains("<stdin>") && stderr.contains("NumPy"),
+        "{stderr}"
+    );
+    assert!(printable(&stderr), "{stderr:?}");
+    // One bad line among edges: a malformed output, scored 0.
+    let output = write(dir.path(), "o.edges", "0 1\nclosed 1 2\n");
+    let json = score_json(&points, &output, &truth);
+    assert_eq!(json_value(&json, "f1"), "0.0");
+    assert!(
+        json_value(&json, "malformed").starts_with("\"line 2: "),
+        "{json}"
+    );
+}
+
+/// Without output edges there is no distance, and the line says so without "of the box
+/// diagonal" after it (found by a stress run).
+#[test]
+fn no_output_edges_read_as_no_distance() {
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0\n1 0\n1 1\n0 1\n");
+    let truth = write(dir.path(), "t.edges", "0 1\n1 2\n2 3\n3 0\n");
+    let output = write(dir.path(), "o.edges", "# nothing\n");
+    let out = condt(&[Path::new("score"), &points, &output, &truth]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    for line in text.lines().filter(|l| l.contains("distance")) {
+        assert!(
+            !line.contains("none") || !line.contains("diagonal"),
+            "{line}"
+        );
+        assert!(line.contains("none"), "{line}");
+    }
+    let output = write(dir.path(), "o.edges", "0 1\n1 3\n");
+    let text =
+        String::from_utf8(condt(&[Path::new("score"), &points, &output, &truth]).stdout).unwrap();
+    assert!(text.contains("of the box diagonal"), "{text}");
+}

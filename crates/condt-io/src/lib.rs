@@ -10,7 +10,8 @@
 //! with a header ([`parse_csv`]) or GeoJSON points ([`parse_geojson`]); [`read_points`] tells
 //! them apart by the file name. Results are written as text, one item per line, as `.npy` arrays
 //! of indices ([`write_npy_edges`], [`write_npy_triangles`]), or drawn (SVG, the HTML viewer); an
-//! edge's story is told in a sentence ([`story_text`]).
+//! edge's story is told in a sentence ([`story_text`]). Edge arrays are read back by
+//! [`parse_npy_edges`] (for `condt score`).
 
 mod csv;
 mod decimal;
@@ -41,10 +42,10 @@ pub use geojson::write_geojson;
 pub use geojson_points::parse_geojson;
 pub use html::write_html;
 pub use npy::{
-    parse_npy, write_npy_edges, write_npy_points, write_npy_triangles,
-    write_npy_triangulation_edges,
+    parse_npy, parse_npy_edges, write_npy_edges, write_npy_points, write_npy_triangles,
+    write_npy_triangulation_edges, NPY_MAGIC,
 };
-pub use points::{parse_node, parse_points, read_points, text_lines};
+pub use points::{parse_node, parse_points, read_points, text_lines, utf8_text};
 pub use story::story_text;
 pub use svg::{write_svg, write_svg_stages};
 pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};

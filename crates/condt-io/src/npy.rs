@@ -1,5 +1,6 @@
 //! NumPy `.npy` files: points in (float64 or float32, shape `(n, 2)`), indices out (edges
-//! `(m, 2)`, triangles `(t, 3)`, as uint32 when every index fits, int64 otherwise).
+//! `(m, 2)`, triangles `(t, 3)`, as uint32 when every index fits, int64 otherwise), and edges
+//! in again (`(m, 2)`, uint32 or int64: what is written out, for `condt score`).
 //!
 //! Owns the NPY format (versions 1.0, 2.0 and 3.0 of NumPy's `format` module): the magic
 //! string, the version, the header length, the header (a Python dictionary literal with
@@ -23,8 +24,8 @@ use std::io::{self, Read, Write};
 use std::string::String;
 use std::vec::Vec;
 
-/// The first six bytes of every `.npy` file.
-const MAGIC: &[u8; 6] = b"\x93NUMPY";
+/// The first six bytes of every `.npy` file (the first is not UTF-8: no text file starts so).
+pub const NPY_MAGIC: &[u8; 6] = b"\x93NUMPY";
 
 /// Longest header read: NumPy's own writer needs about 128 bytes; this bounds what a damaged
 /// length field can make us allocate.
@@ -191,8 +192,15 @@ impl Literal<'_> {
     }
 }
 
-/// The meaning of a header dictionary for a point file.
-fn point_header(text: &[u8]) -> Result<Header, String> {
+/// The three entries of a header dictionary, whatever the array holds.
+struct Entries {
+    descr: String,
+    fortran_order: bool,
+    shape: Vec<u64>,
+}
+
+/// The entries of a header dictionary; an unknown key or a missing one is refused.
+fn entries(text: &[u8]) -> Result<Entries, String> {
     let entries = Literal { text, at: 0 }.dictionary()?;
     let (mut descr, mut fortran_order, mut shape) = (None, None, None);
     for (key, value) in entries {
@@ -206,9 +214,26 @@ fn point_header(text: &[u8]) -> Result<Header, String> {
             (other, _) => return Err(format!("the header has an unknown key '{other}'")),
         }
     }
-    let descr = descr.ok_or("the header has no 'descr' (the element type)")?;
-    let fortran_order = fortran_order.ok_or("the header has no 'fortran_order'")?;
-    let shape = shape.ok_or("the header has no 'shape'")?;
+    Ok(Entries {
+        descr: descr.ok_or("the header has no 'descr' (the element type)")?,
+        fortran_order: fortran_order.ok_or("the header has no 'fortran_order'")?,
+        shape: shape.ok_or("the header has no 'shape'")?,
+    })
+}
+
+/// The shape as NumPy prints it, without the trailing comma of a 1-tuple: `(2)`, `(1, 3)`.
+fn shown_shape(shape: &[u64]) -> String {
+    let shown: Vec<String> = shape.iter().map(u64::to_string).collect();
+    format!("({})", shown.join(", "))
+}
+
+/// The meaning of a header dictionary for a point file.
+fn point_header(text: &[u8]) -> Result<Header, String> {
+    let Entries {
+        descr,
+        fortran_order,
+        shape,
+    } = entries(text)?;
     let (float, big_endian) = match descr.as_str() {
         "<f8" => (Float::F64, false),
         ">f8" => (Float::F64, true),
@@ -224,10 +249,9 @@ fn point_header(text: &[u8]) -> Result<Header, String> {
     let rows = match shape[..] {
         [rows, 2] => usize::try_from(rows).unwrap_or(usize::MAX),
         _ => {
-            let shown: Vec<String> = shape.iter().map(u64::to_string).collect();
             return Err(format!(
-                "shape ({}) is not (n, 2): one row `x y` per point",
-                shown.join(", ")
+                "shape {} is not (n, 2): one row `x y` per point",
+                shown_shape(&shape)
             ));
         }
     };
@@ -258,12 +282,20 @@ fn read_up_to(reader: &mut dyn Read, buffer: &mut [u8]) -> io::Result<usize> {
     Ok(filled)
 }
 
-/// The header of a `.npy` stream, read up to the first data byte, and how many bytes it took.
+/// The header of a point file, read up to the first data byte, and how many bytes it took.
 fn read_header(reader: &mut dyn Read, file: &str) -> Result<(Header, usize), IoError> {
+    let (text, length) = read_header_text(reader, file)?;
+    let header = point_header(&text).map_err(|message| content(file, message))?;
+    Ok((header, length))
+}
+
+/// The dictionary text of a `.npy` stream's header, read up to the first data byte, and how
+/// many bytes the header took (magic, version and length included).
+fn read_header_text(reader: &mut dyn Read, file: &str) -> Result<(Vec<u8>, usize), IoError> {
     let io_error = |err: io::Error| IoError::os(file, err);
     let mut start = [0u8; 8];
     let got = read_up_to(reader, &mut start).map_err(io_error)?;
-    if got < 8 || &start[..6] != MAGIC {
+    if got < 8 || &start[..6] != NPY_MAGIC {
         return Err(content(
             file,
             "not a NumPy .npy file (it does not start with \\x93NUMPY)".to_string(),
@@ -300,8 +332,7 @@ fn read_header(reader: &mut dyn Read, file: &str) -> Result<(Header, usize), IoE
     if major < 3 && !text.is_ascii() {
         return Err(content(file, "the header is not ASCII text".to_string()));
     }
-    let header = point_header(&text).map_err(|message| content(file, message))?;
-    Ok((header, 8 + length_bytes + length))
+    Ok((text, 8 + length_bytes + length))
 }
 
 /// The points of a `.npy` stream, read in blocks straight into the point array. `length`, the
@@ -522,6 +553,132 @@ pub(super) fn read_npy_file(path: &std::path::Path, shown: &str) -> Result<Vec<P
     read_npy_from(&mut file, shown, length)
 }
 
+/// The element types an edge array may hold: those [`write_npy_edges`] writes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Index {
+    U32,
+    I64,
+}
+
+/// Parses the bytes of a NumPy `.npy` file of edges, as [`write_npy_edges`] and
+/// [`write_npy_triangulation_edges`] write them (and `numpy.save` of such an array): shape
+/// `(m, 2)`, uint32 or int64, either byte order, C or Fortran order, NPY version 1.0, 2.0 or
+/// 3.0. Row `r` is edge `r`, its two point numbers as they are (a self-loop or a repeated edge
+/// is the caller's to judge). `file` names the source in error messages.
+///
+/// # Errors
+/// Content errors naming `file`, in words (never the file's raw bytes): another dtype (float,
+/// int32, ...) or shape, a file shorter or longer than its header says, a negative number
+/// (with its row), or no NumPy header at all.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// use condt_io::{parse_npy_edges, write_npy_edges};
+/// let r = reconstruct(&[(0.0, 0.0), (1.0, 0.0), (0.5, 2.0)].map(Point::from), &Params::paper())?;
+/// let mut bytes = Vec::new();
+/// write_npy_edges(&mut bytes, &r)?;
+/// assert_eq!(parse_npy_edges(&bytes, "out.npy")?, [[0, 1], [0, 2], [1, 2]]);
+///
+/// let err = parse_npy_edges(b"0 1\n", "out.npy").unwrap_err();
+/// assert!(err.to_string().starts_with("out.npy: not a NumPy .npy file"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn parse_npy_edges(bytes: &[u8], file: &str) -> Result<Vec<[usize; 2]>, IoError> {
+    let mut reader = bytes;
+    let (text, header_length) = read_header_text(&mut reader, file)?;
+    let Entries {
+        descr,
+        fortran_order,
+        shape,
+    } = entries(&text).map_err(|message| content(file, message))?;
+    let (index, big_endian) = match descr.as_str() {
+        "<u4" => (Index::U32, false),
+        ">u4" => (Index::U32, true),
+        "<i8" => (Index::I64, false),
+        ">i8" => (Index::I64, true),
+        other => {
+            return Err(content(
+                file,
+                format!(
+                    "element type {other:?} is not supported: edges are uint32 ('<u4', '>u4') \
+                     or int64 ('<i8', '>i8'), as condt writes them"
+                ),
+            ))
+        }
+    };
+    let rows = match shape[..] {
+        [rows, 2] => rows,
+        _ => {
+            return Err(content(
+                file,
+                format!(
+                    "shape {} is not (m, 2): one row `i j` per edge",
+                    shown_shape(&shape)
+                ),
+            ))
+        }
+    };
+    let size: u64 = match index {
+        Index::U32 => 4,
+        Index::I64 => 8,
+    };
+    let data = &bytes[header_length..];
+    // Compared before anything is allocated: a damaged header must not ask for gigabytes.
+    let wanted = rows.checked_mul(2 * size);
+    match wanted {
+        Some(wanted) if wanted == data.len() as u64 => {}
+        Some(wanted) if wanted < data.len() as u64 => {
+            return Err(content(
+                file,
+                format!("bytes after the {rows} edges the header announces"),
+            ))
+        }
+        _ => {
+            return Err(content(
+                file,
+                format!(
+                    "the header announces {rows} edges ({} bytes of data), the file has {} \
+                     bytes of them",
+                    wanted.map_or_else(|| "more than 2^64".to_string(), |w| w.to_string()),
+                    data.len()
+                ),
+            ))
+        }
+    }
+    let rows = rows as usize;
+    let size = size as usize;
+    let value = |k: usize| -> i128 {
+        let bytes = &data[k * size..(k + 1) * size];
+        match (index, big_endian) {
+            (Index::U32, false) => u32::from_le_bytes(bytes.try_into().unwrap_or([0; 4])).into(),
+            (Index::U32, true) => u32::from_be_bytes(bytes.try_into().unwrap_or([0; 4])).into(),
+            (Index::I64, false) => i64::from_le_bytes(bytes.try_into().unwrap_or([0; 8])).into(),
+            (Index::I64, true) => i64::from_be_bytes(bytes.try_into().unwrap_or([0; 8])).into(),
+        }
+    };
+    // C order holds row after row; Fortran order the first column, then the second.
+    let at = |row: usize, column: usize| {
+        if fortran_order {
+            column * rows + row
+        } else {
+            2 * row + column
+        }
+    };
+    let mut edges = Vec::with_capacity(rows);
+    for row in 0..rows {
+        let mut edge = [0usize; 2];
+        for (column, end) in edge.iter_mut().enumerate() {
+            let v = value(at(row, column));
+            *end = usize::try_from(v).map_err(|_| {
+                let why = if v < 0 { "negative" } else { "too large" };
+                content(file, format!("row {row}: point number {v} is {why}"))
+            })?;
+        }
+        edges.push(edge);
+    }
+    Ok(edges)
+}
+
 /// A version 1.0 header (version 2.0 when the dictionary is over 65,535 bytes, which no shape
 /// here needs) for `descr` and `shape`, padded with spaces to a multiple of 64 bytes as NumPy
 /// pads it.
@@ -542,7 +699,7 @@ fn header(descr: &str, shape: &[usize]) -> Vec<u8> {
     dict.extend(std::iter::repeat_n(' ', (64 - unpadded % 64) % 64));
     dict.push('\n');
     let mut out = Vec::with_capacity(prefix + dict.len());
-    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(NPY_MAGIC);
     out.extend_from_slice(&[version, 0]);
     if version == 1 {
         out.extend_from_slice(&(dict.len() as u16).to_le_bytes());

@@ -765,11 +765,7 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
         read_all(file, size)
     }
     .map_err(io_error)?;
-    let text = String::from_utf8(bytes).map_err(|e| IoError {
-        file: name.to_string(),
-        line: Some(line_at(e.as_bytes(), e.utf8_error().valid_up_to())),
-        kind: IoErrorKind::Content("not UTF-8 text".to_string()),
-    })?;
+    let text = utf8_text(bytes, name)?;
     if !other_format {
         parse_owned_points(text, name)
     } else if extension("node") {
@@ -779,6 +775,24 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
     } else {
         super::parse_geojson(&text, name)
     }
+}
+
+/// A file's bytes as text, refused as [`read_points`] refuses a text file that is not UTF-8:
+/// naming `file` and the line of the first byte that is not (for other text files, such as the
+/// edge files of `condt score`, to be refused alike).
+///
+/// ```
+/// assert_eq!(condt_io::utf8_text(b"0 1\n".to_vec(), "a.edges")?, "0 1\n");
+/// let err = condt_io::utf8_text(b"0 1\r\n1 \xe9\n".to_vec(), "a.edges").unwrap_err();
+/// assert_eq!(err.to_string(), "a.edges:2: not UTF-8 text");
+/// # Ok::<(), condt_io::IoError>(())
+/// ```
+pub fn utf8_text(bytes: Vec<u8>, file: &str) -> Result<String, IoError> {
+    String::from_utf8(bytes).map_err(|e| IoError {
+        file: file.to_string(),
+        line: Some(line_at(e.as_bytes(), e.utf8_error().valid_up_to())),
+        kind: IoErrorKind::Content("not UTF-8 text".to_string()),
+    })
 }
 
 /// [`parse_points`] on a text it may free before joining the pieces of a parallel parse, so
