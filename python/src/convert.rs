@@ -1,18 +1,21 @@
 //! NumPy in and out, and the library's errors as Python exceptions.
 //!
 //! Owns: turning whatever the caller passed as points into a C-contiguous float64 `(n, 2)` array
-//! (the caller's own array when it already is one: no copy), viewing its rows as `&[Point]`,
-//! building index arrays from the library's results, and mapping every Rust error to the Python
-//! exception a Python user expects. It may not compute anything.
+//! (the caller's own array when it already is one: no copy), refusing what does not hold numbers,
+//! viewing its rows as `&[Point]`, reading an index argument, building index arrays from the
+//! library's results, and mapping every Rust error to the Python exception a Python user
+//! expects. It may not compute anything.
 
 use condt::{Error, Point};
 use condt_io::{IoError, IoErrorKind};
 use numpy::ndarray::Array2;
 use numpy::{PyArray1, PyArray2, PyUntypedArrayMethods};
-use pyo3::exceptions::{PyOSError, PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::{
+    PyIndexError, PyOSError, PyOverflowError, PyRuntimeError, PyTypeError, PyValueError,
+};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyType};
 
 /// `numpy.ascontiguousarray`, looked up once.
 fn ascontiguousarray(py: Python<'_>) -> PyResult<&Bound<'_, PyAny>> {
@@ -30,13 +33,65 @@ fn readable_as_points(array: &Bound<'_, PyArray2<f64>>) -> bool {
     array.is_c_contiguous() && array.is_aligned() && array.shape()[1] == 2
 }
 
+/// Whether numpy's dtype kind `kind` is a number a coordinate can be: a signed or unsigned
+/// integer, or a float. Every other kind numpy would convert to float64 without a word or with
+/// only a warning, and the result would be silently wrong: a complex number's imaginary part
+/// dropped, a bool as 0 or 1, a string parsed, a date or a duration as its raw count of units.
+fn is_number_kind(kind: &str) -> bool {
+    matches!(kind, "i" | "u" | "f")
+}
+
+/// Refuses an array that does not hold numbers (`is_number_kind`). An object array (Decimal or
+/// Fraction values, a list mixing them with ints; numpy makes one of those) is judged by what
+/// numpy makes of each element's type: `numpy.dtype(type)` is an integer or float kind (`int`,
+/// `numpy.float32`), or object (`Decimal`, `Fraction`: converted by their `__float__`); a str,
+/// bytes, bool, complex, date or duration among them is refused as its own array would be.
+fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyResult<()> {
+    let dtype = array.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    if is_number_kind(&kind) {
+        return Ok(());
+    }
+    if kind != "O" {
+        return Err(PyTypeError::new_err(format!(
+            "points must hold numbers (integers or floats), not dtype {}",
+            dtype.str()?
+        )));
+    }
+    let numpy_dtype = numpy.getattr("dtype")?;
+    // Few distinct types in practice: each is judged once.
+    let mut judged: Vec<Bound<'_, PyType>> = Vec::new();
+    for element in array.getattr("flat")?.try_iter()? {
+        let element_type = element?.get_type();
+        if judged.iter().any(|t| t.is(&element_type)) {
+            continue;
+        }
+        // A type numpy cannot make a dtype of is an object to it, as `Decimal` is.
+        let kind = numpy_dtype
+            .call1((&element_type,))
+            .and_then(|d| d.getattr("kind")?.extract::<String>())
+            .unwrap_or_else(|_| "O".into());
+        if !is_number_kind(&kind) && kind != "O" {
+            return Err(PyTypeError::new_err(format!(
+                "points must hold numbers (integers or floats), not {} (in an array of dtype \
+                 object)",
+                element_type.name()?
+            )));
+        }
+        judged.push(element_type);
+    }
+    Ok(())
+}
+
 /// The points `obj` holds, as a C-contiguous, aligned, native float64 array of shape `(n, 2)`:
-/// `obj` itself when it is one (no copy), otherwise `numpy.ascontiguousarray(obj, "float64")`.
-/// An empty sequence (`[]`, shape `(0,)`) is no points.
+/// `obj` itself when it is one (no copy), otherwise `numpy.ascontiguousarray(obj, "float64")`
+/// of what `numpy.asarray(obj)` gives, when that holds numbers (`check_numbers`). An empty
+/// sequence (`[]`, shape `(0,)`) is no points.
 ///
 /// # Errors
-/// `TypeError` for `None` or a scalar, `ValueError` for a masked array with masked entries or
-/// any other shape, and numpy's own error for what it cannot convert.
+/// `TypeError` for `None`, a scalar, or an array whose dtype is not an integer or a float (or an
+/// object array holding something else); `ValueError` for a masked array with masked entries or
+/// any other shape; numpy's own error for what it cannot convert.
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,
@@ -68,7 +123,15 @@ pub(crate) fn points_array<'py>(
             obj.get_type().name()?
         )));
     }
-    let converted = ascontiguousarray(py)?.call1((obj, "float64"))?;
+    // What numpy makes of it, before any conversion to float64: that decides whether it holds
+    // numbers (a list of Python numbers is int64 or float64; of bools, bool; of Decimals, object).
+    let given = if obj.cast::<numpy::PyUntypedArray>().is_ok() {
+        obj.clone()
+    } else {
+        numpy.getattr("asarray")?.call1((obj,))?
+    };
+    check_numbers(&numpy, &given)?;
+    let converted = ascontiguousarray(py)?.call1((given, "float64"))?;
     let converted = converted.cast_into::<numpy::PyUntypedArray>()?;
     let shape = converted.shape().to_vec();
     let converted = match shape.as_slice() {
@@ -149,9 +212,14 @@ pub(crate) fn library_error(err: Error, points: &[Point]) -> PyErr {
         Error::TooManyPoints { .. } => PyValueError::new_err(err.to_string()),
         Error::InvalidParameter { name, .. } => {
             // The library names the IQR factor `k`; here it is the keyword `iqr`, as the
-            // command line's option is `--iqr`.
-            let keyword = if name == "k" { "iqr" } else { name };
-            PyValueError::new_err(format!("{keyword}: {err}"))
+            // command line's option is `--iqr`: the text says `iqr` wherever it said `k`.
+            let (keyword, text) = if name == "k" {
+                let text = err.to_string();
+                ("iqr", text.replacen("parameter k ", "parameter iqr ", 1))
+            } else {
+                (name, err.to_string())
+            };
+            PyValueError::new_err(format!("{keyword}: {text}"))
         }
         Error::InvalidTriangulation(_) => PyRuntimeError::new_err(format!(
             "condt found a broken invariant (a bug; please report it): {err}"
@@ -216,6 +284,31 @@ pub(crate) fn read_only(array: &Bound<'_, PyAny>) -> PyResult<()> {
     kwargs.set_item("write", false)?;
     array.call_method("setflags", (), Some(&kwargs))?;
     Ok(())
+}
+
+/// The input position argument `name` (`i`, `j`) of a result of `n` points holds, as `usize`.
+///
+/// # Errors
+/// `IndexError` when it is no input position: negative, `n` or above, or beyond any integer the
+/// machine has (`2**70`: an `IndexError` as any other, not numpy's or Python's
+/// `OverflowError`); `TypeError` when it is not an integer (anything with `__index__` is).
+pub(crate) fn input_position(name: &str, value: &Bound<'_, PyAny>, n: usize) -> PyResult<usize> {
+    let out_of_range = || {
+        let shown = value.str().map_or_else(|_| "?".into(), |r| r.to_string());
+        PyIndexError::new_err(if n == 0 {
+            format!("{shown} is not an input position: there are no points")
+        } else {
+            format!("{shown} is not an input position (0 to {})", n - 1)
+        })
+    };
+    match value.extract::<i64>() {
+        Ok(k) => usize::try_from(k)
+            .ok()
+            .filter(|&k| k < n)
+            .ok_or_else(out_of_range),
+        Err(err) if err.is_instance_of::<PyOverflowError>(value.py()) => Err(out_of_range()),
+        Err(err) => Err(PyTypeError::new_err(format!("argument '{name}': {err}"))),
+    }
 }
 
 /// An input position as `i64` (positions are below `condt::MAX_POINTS`, far below `i64::MAX`).

@@ -34,20 +34,28 @@ mod triangulation;
 use condt_eval::score::{EdgeProblem, ScoreError};
 use convert::{as_points, io_error, library_error, points_array};
 use numpy::ndarray::Array2;
-use numpy::{PyArray2, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::{PyArray2, PyArrayMethods, PyUntypedArray};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBool, PyDict, PyInt};
 use reconstruction::{Curve, EdgeStory, Reconstruction};
 use std::path::PathBuf;
 use triangulation::Triangulation;
 
 /// The curves through the points: ConDT's reconstruction, as ``condt reconstruct`` runs it.
 ///
-/// ``points`` is any ``(n, 2)`` array-like of numbers (an empty sequence is no points). A
-/// C-contiguous float64 ndarray is read where it lies, without a copy (do not change it from
-/// another thread during the call); anything else is converted first. The work runs without the
-/// GIL, so other Python threads run meanwhile.
+/// ``points`` is any ``(n, 2)`` array-like of numbers, integers or floats (an empty sequence is
+/// no points). A C-contiguous float64 ndarray is read where it lies, without a copy (do not
+/// change it from another thread during the call); anything else is converted first. The work
+/// runs without the GIL, so other Python threads run meanwhile. The result keeps its own copy of
+/// the coordinates, made once the work is done: changing the array afterwards changes nothing
+/// in it.
+///
+/// An array whose dtype is not an integer or a float (complex, bool, str, bytes, datetime64,
+/// timedelta64) is refused: numpy would convert it quietly into other numbers. What numpy makes
+/// of a list decides (``numpy.asarray``): a list of Python numbers is fine, of bools it is not.
+/// An object array (``Decimal`` or ``Fraction`` values, which numpy leaves as objects) is
+/// converted by each value's ``float()``, unless it holds a value of one of the refused kinds.
 ///
 /// The parameters are the command line's options, ``-`` written ``_``: ``paper=True`` starts
 /// from the paper's pipeline instead of the default, and the keywords adjust it: ``u`` (a
@@ -59,8 +67,11 @@ use triangulation::Triangulation;
 /// others); ``sequential=True`` runs on one thread (same result).
 ///
 /// Raises ``ValueError`` for a point with a NaN or infinite coordinate (named by its index and
-/// row), a value the library refuses or two keywords that contradict each other, and
-/// ``TypeError`` for an unknown keyword or a value of the wrong type.
+/// row), a value the library refuses (an int too large for a float is infinite, and refused as
+/// such) or two keywords that contradict each other (``u=2, adaptive=True``; ``iqr=1.5`` or
+/// ``iqr=None`` against ``outlier_filter=False`` or ``True``; a ``repair`` mode or ``"off"``
+/// against ``manifold_fix=False`` or ``True``), and ``TypeError`` for points that are not
+/// numbers, an unknown keyword or a value of the wrong type.
 ///
 /// >>> import condt, numpy as np
 /// >>> t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
@@ -74,30 +85,45 @@ use triangulation::Triangulation;
 /// Traceback (most recent call last):
 ///     ...
 /// ValueError: point 1 has a NaN or infinite coordinate: row 1 of the points is [1.0, nan]
+/// >>> condt.reconstruct([(0, 0), (1, 1j)])
+/// Traceback (most recent call last):
+///     ...
+/// TypeError: points must hold numbers (integers or floats), not dtype complex128
+// `paper` is read with the other keywords (`params::params`), so that a value of the wrong type
+// is refused with its name as theirs are ("paper must be True or False, not int"), not by
+// PyO3's own message naming no parameter.
 #[pyfunction]
-#[pyo3(signature = (points, *, paper = false, **params))]
+#[pyo3(signature = (points, **params))]
 fn reconstruct(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
-    paper: bool,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Reconstruction> {
-    let params = params::params(paper, params)?;
+    let params = params::params(params)?;
     let array = points_array(py, points)?;
-    let result = {
-        let borrowed = array.try_readonly()?;
-        let points = as_points(borrowed.as_slice()?);
-        py.detach(|| within_call(|| condt::reconstruct(points, &params)))
-            .map_err(|err| library_error(err, points))?
-    };
-    Ok(Reconstruction::new(result, array.unbind()))
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?);
+    // The result keeps its own copy of the points (GeoJSON, shapely and `Curve.coords` read
+    // them later): the caller's array, read in place during the call, is the caller's to change
+    // afterwards, and a result that kept reading it would change with it. Copied once the work is
+    // done, still without the GIL and within the call's allocator scope (it may reuse a freed
+    // block of the pipeline).
+    let (result, owned) = py
+        .detach(|| {
+            within_call(|| {
+                condt::reconstruct(points, &params).map(|result| (result, points.to_vec()))
+            })
+        })
+        .map_err(|err| library_error(err, points))?;
+    Ok(Reconstruction::new(result, owned))
 }
 
 /// The Delaunay triangulation of the points, as ``condt triangulate`` computes it.
 ///
 /// ``points`` as for ``reconstruct`` (read without a copy when it is a C-contiguous float64
-/// array; the GIL is released while it runs). Raises ``ValueError`` for a NaN or infinite
-/// coordinate.
+/// array; the GIL is released while it runs; the result holds input positions only, so it does
+/// not depend on the array afterwards). Raises ``ValueError`` for a NaN or infinite coordinate,
+/// ``TypeError`` for points that are not numbers.
 ///
 /// >>> import condt
 /// >>> t = condt.triangulate([(0, 0), (1, 0), (0, 1), (1, 1)])
@@ -119,8 +145,13 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 /// ``.node`` (Triangle), anything else plain text (one ``x y`` per line). Row ``i`` is point
 /// ``i``, as the command line numbers them.
 ///
+/// ``path`` is a ``str``, ``bytes`` or ``os.PathLike`` (``pathlib.Path``), as ``open`` takes
+/// it. A path is always a file: ``"-"`` is the file named ``-`` (the command line reads its
+/// standard input for ``-``; this function never does).
+///
 /// Raises ``OSError`` (``FileNotFoundError``, ``PermissionError``, ...) when the file cannot be
-/// read, and ``ValueError`` naming the file and line when its content is not a point file.
+/// read, ``ValueError`` naming the file and line when its content is not a point file, and
+/// ``TypeError`` when ``path`` is not a path.
 ///
 /// >>> import condt, tempfile, os
 /// >>> path = os.path.join(tempfile.mkdtemp(), "pts.txt")
@@ -129,10 +160,45 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 /// >>> condt.read_points(path).tolist()
 /// [[0.0, 0.0], [1.5, 2.0]]
 #[pyfunction]
-fn read_points<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyArray2<f64>>> {
+fn read_points<'py>(
+    py: Python<'py>,
+    path: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    // `os.fsdecode` takes what `open` takes (str, bytes, os.PathLike of either) and gives a str
+    // whose undecodable bytes are escaped, which becomes the same bytes again as an `OsString`.
+    let decoded = py
+        .import("os")?
+        .call_method1("fsdecode", (path,))
+        .map_err(|err| {
+            if err.is_instance_of::<PyTypeError>(py) {
+                PyTypeError::new_err(format!(
+                    "path must be a str, bytes or os.PathLike, not {}",
+                    path.get_type()
+                        .name()
+                        .map_or_else(|_| "?".into(), |n| n.to_string())
+                ))
+            } else {
+                err
+            }
+        })?;
+    let given: PathBuf = decoded.extract()?;
+    // `condt_io::read_points` reads standard input for `-`, the command line's convention; from
+    // Python that would block a notebook on a terminal it does not show. `./-` is the file.
+    let stdin_name = given.as_os_str() == "-";
+    let path = if stdin_name {
+        PathBuf::from("./-")
+    } else {
+        given
+    };
     let points = py
         .detach(|| within_call(|| condt_io::read_points(&path)))
-        .map_err(io_error)?;
+        .map_err(|mut err| {
+            // Named as given, in the message and in `OSError.filename`.
+            if stdin_name {
+                err.file = "-".into();
+            }
+            io_error(err)
+        })?;
     let n = points.len();
     let flat: Vec<f64> = points.into_iter().flat_map(|p| [p.x, p.y]).collect();
     let array = Array2::from_shape_vec((n, 2), flat)
@@ -140,56 +206,145 @@ fn read_points<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyArr
     Ok(PyArray2::from_owned_array(py, array))
 }
 
+/// An edge list as given: each end as `i64`, and the text of each end no `i64` holds (a uint64
+/// or a Python int of `2**63` or more, or below `-2**63`), which is kept as `i64::MAX` (or
+/// `i64::MIN`): out of range as any index no point has, and named as given in messages.
+struct EdgeRows {
+    rows: Vec<[i64; 2]>,
+    /// `(row, end, value as given)`, in row order.
+    beyond: Vec<(usize, usize, String)>,
+}
+
+impl EdgeRows {
+    /// End `end` of row `row` as given, for messages.
+    fn text(&self, row: usize, end: usize) -> String {
+        self.beyond
+            .iter()
+            .find(|&&(r, e, _)| r == row && e == end)
+            .map_or_else(|| self.rows[row][end].to_string(), |(_, _, t)| t.clone())
+    }
+}
+
+/// Whether `value` is an integer: a Python int (not a bool) or a numpy integer.
+fn is_integer(numpy: &Bound<'_, PyModule>, value: &Bound<'_, PyAny>) -> PyResult<bool> {
+    Ok(
+        (value.is_instance_of::<PyInt>() && !value.is_instance_of::<PyBool>())
+            || value.is_instance(&numpy.getattr("integer")?)?,
+    )
+}
+
 /// An edge list as given (`name` for messages): an `(m, 2)` array-like of integers.
-fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<Vec<[i64; 2]>> {
+///
+/// A value no `i64` holds is kept (`EdgeRows`), not wrapped: numpy's cast of a uint64 above
+/// `2**63 - 1` to int64 wraps it to a negative number, which would be reported as another index.
+/// A list holding such a value is one numpy makes float64 (`[0, 2**63]`) or object (`2**64`):
+/// it is read again as Python ints.
+fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<EdgeRows> {
     let numpy = py.import("numpy")?;
-    let array = numpy.call_method1("asarray", (edges,))?;
+    let mut array = numpy.call_method1("asarray", (edges,))?;
     let size: usize = array.getattr("size")?.extract()?;
+    let mut read = EdgeRows {
+        rows: Vec::new(),
+        beyond: Vec::new(),
+    };
     if size == 0 {
-        return Ok(Vec::new());
+        return Ok(read);
     }
-    let kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
-    if kind != "i" && kind != "u" {
-        return Err(PyTypeError::new_err(format!(
-            "{name} must be an (m, 2) array of integers (point indices); got dtype {}",
-            array.getattr("dtype")?.str()?
-        )));
+    let dtype = array.getattr("dtype")?.str()?.to_string();
+    let not_integers = || {
+        PyTypeError::new_err(format!(
+            "{name} must be an (m, 2) array of integers (point indices); got dtype {dtype}"
+        ))
+    };
+    let mut kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
+    if kind != "i" && kind != "u" && kind != "O" && edges.cast::<PyUntypedArray>().is_err() {
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("dtype", "object")?;
+        array = numpy.getattr("asarray")?.call((edges,), Some(&kwargs))?;
+        kind = "O".into();
     }
-    // uint64 beyond int64 cannot name a point either: numpy refuses the cast (OverflowError).
-    let array = numpy.call_method1("ascontiguousarray", (array, "int64"))?;
-    let array = array.cast_into::<numpy::PyUntypedArray>()?;
-    if !matches!(array.shape(), [_, 2]) {
+    let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+    if !matches!(shape.as_slice(), [_, 2]) {
         return Err(PyValueError::new_err(format!(
-            "{name} must be an array of shape (m, 2); got one of shape {:?}",
-            array.shape()
+            "{name} must be an array of shape (m, 2); got one of shape {shape:?}"
         )));
     }
-    let array = array.cast_into::<PyArray2<i64>>()?;
-    let readonly = array.try_readonly()?;
-    Ok(readonly
-        .as_slice()?
-        .chunks_exact(2)
-        .map(|pair| [pair[0], pair[1]])
-        .collect())
+    let mut put = |k: usize, value: Result<i64, String>| {
+        let (row, end) = (k / 2, k % 2);
+        if end == 0 {
+            read.rows.push([0; 2]);
+        }
+        read.rows[row][end] = value.unwrap_or_else(|text| {
+            let clamped = if text.starts_with('-') {
+                i64::MIN
+            } else {
+                i64::MAX
+            };
+            read.beyond.push((row, end, text));
+            clamped
+        });
+    };
+    match kind.as_str() {
+        "i" => {
+            // Every integer dtype numpy has fits int64.
+            let array = numpy.call_method1("ascontiguousarray", (array, "int64"))?;
+            let array = array.cast_into::<PyArray2<i64>>()?;
+            let readonly = array.try_readonly()?;
+            for (k, &value) in readonly.as_slice()?.iter().enumerate() {
+                put(k, Ok(value));
+            }
+        }
+        "u" => {
+            let array = numpy.call_method1("ascontiguousarray", (array, "uint64"))?;
+            let array = array.cast_into::<PyArray2<u64>>()?;
+            let readonly = array.try_readonly()?;
+            for (k, &value) in readonly.as_slice()?.iter().enumerate() {
+                put(k, i64::try_from(value).map_err(|_| value.to_string()));
+            }
+        }
+        "O" => {
+            for (k, value) in array.getattr("flat")?.try_iter()?.enumerate() {
+                let value = value?;
+                if !is_integer(&numpy, &value)? {
+                    return Err(not_integers());
+                }
+                put(
+                    k,
+                    value
+                        .extract::<i64>()
+                        .map_err(|_| value.str().map_or_else(|_| "?".into(), |t| t.to_string())),
+                );
+            }
+        }
+        _ => return Err(not_integers()),
+    }
+    Ok(read)
 }
 
 /// Edges for `condt_eval::score`: a negative end, which no point has, becomes `usize::MAX`,
 /// which the library reports as out of range like any other.
-fn as_positions(edges: &[[i64; 2]]) -> Vec<[usize; 2]> {
+fn as_positions(edges: &EdgeRows) -> Vec<[usize; 2]> {
     edges
+        .rows
         .iter()
         .map(|e| e.map(|i| usize::try_from(i).unwrap_or(usize::MAX)))
         .collect()
 }
 
-/// An edge list's problem, with the edge's row and the end as given (a negative one included).
-fn problem_text(problem: EdgeProblem, given: &[[i64; 2]]) -> String {
+/// An edge list's problem, with the edge's row and the end as given (a negative one, or one
+/// beyond any integer type, included).
+fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
     let row = problem.position();
     match problem {
         EdgeProblem::OutOfRange { .. } => {
-            let [a, b] = given[row];
-            let index = if a < 0 || b < 0 { a.min(b) } else { a.max(b) };
-            format!("edge {row}: point {index} does not exist")
+            let [a, b] = given.rows[row];
+            // The negative end if there is one, else the larger one.
+            let end = if a < 0 || b < 0 {
+                usize::from(b < a)
+            } else {
+                usize::from(b > a)
+            };
+            format!("edge {row}: point {} does not exist", given.text(row, end))
         }
         other => format!("edge {row}: {other}"),
     }
@@ -206,9 +361,11 @@ fn problem_text(problem: EdgeProblem, given: &[[i64; 2]]) -> String {
 /// not finite), ``malformed`` (``None``, or the output's first problem: ``"edge K: ..."``, K its
 /// row), ``n_points``, ``n_gt``, ``n_out``. A malformed output (an index out of range or
 /// negative, a self-loop, a repeated edge) scores precision, recall and F1 0; its valid edges
-/// are counted once each.
+/// are counted once each. An index beyond int64 (a uint64 from ``2**63``, a Python int) is out
+/// of range as any other and named as given, never wrapped.
 ///
-/// Raises ``ValueError`` for a malformed truth or a NaN or infinite point.
+/// Raises ``ValueError`` for a malformed truth or a NaN or infinite point, ``TypeError`` for
+/// edges that are not integers or points that are not numbers (as ``reconstruct`` refuses them).
 ///
 /// >>> import condt
 /// >>> square = [(0, 0), (1, 0), (1, 1), (0, 1)]
@@ -252,8 +409,8 @@ fn score<'py>(
         result.malformed.map(|p| problem_text(p, &output)),
     )?;
     dict.set_item("max_dist", finite(result.max_distance))?;
-    dict.set_item("n_gt", truth.len())?;
-    dict.set_item("n_out", output.len())?;
+    dict.set_item("n_gt", truth.rows.len())?;
+    dict.set_item("n_out", output.rows.len())?;
     dict.set_item("n_points", points.len())?;
     dict.set_item("outlier_edges", result.outlier_edges)?;
     dict.set_item("precision", result.precision)?;

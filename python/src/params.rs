@@ -2,8 +2,10 @@
 //! rules.
 //!
 //! Owns: the names (each `condt reconstruct` option, `-` written `_`), their types, and the
-//! contradictions the command line refuses. It may not check a value's range: `Params::check`
-//! does, as for the command line, and its refusal is reported with the keyword.
+//! contradictions the command line refuses, and those of the keywords it has no option for
+//! (`outlier_filter=True`, `manifold_fix=True`, which say what `--iqr` and `--repair` imply). It
+//! may not check a value's range: `Params::check` does, as for the command line, and its refusal
+//! is reported with the keyword.
 //!
 //! | keyword | command line | `Params` |
 //! |---|---|---|
@@ -11,22 +13,22 @@
 //! | `u=X` | `--u X` | `uniformity = Fixed(X)` |
 //! | `adaptive=True` | `--adaptive` | `uniformity = Adaptive` |
 //! | `iqr=K` / `iqr=None` | `--iqr K` / `--no-outlier-filter` | `outlier_factor` |
-//! | `outlier_filter=False` | `--no-outlier-filter` | `outlier_factor = None` |
+//! | `outlier_filter=False` / `True` | `--no-outlier-filter` / none | `outlier_factor = None` / kept |
 //! | `outliers_first=B` | `--outliers-first` | `outliers_first` |
 //! | `iqr_floor=B` | `--[no-]iqr-floor` | `iqr_floor` |
 //! | `repair_again=B`, `local_outliers=B`, `clumps=B`, `confirm_given_back=B`, `close_gaps=B`, `junctions=B`, `crossings=B` | `--[no-]FLAG` (`Stage::switch`) | `set_stage` |
 //! | `smooth=B` | `--[no-]smooth` | `smooth` |
 //! | `repair=MODE` | `--repair MODE` | `repair` |
-//! | `manifold_fix=False` | `--no-manifold-fix` | `repair = Off` |
+//! | `manifold_fix=False` / `True` | `--no-manifold-fix` / none | `repair = Off` / kept |
 //! | `method=M` | `--method M` | `method` |
 //! | `sequential=B` | `--sequential` | `parallel = !B` |
 
 use condt::{Method, Params, Repair, Stage, Uniformity};
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 
-/// The keywords other than the stage switches, for the message on an unknown one.
+/// The keywords other than `paper` and the stage switches, for the message on an unknown one.
 const KEYWORDS: &[&str] = &[
     "u",
     "adaptive",
@@ -62,9 +64,9 @@ fn switch_keyword(stage: Stage) -> Option<String> {
     stage.switch().map(|switch| switch.flag.replace('-', "_"))
 }
 
-/// One setting that two keywords can make (`u` and `adaptive`; `iqr` and `outlier_filter`;
-/// `repair` and `manifold_fix`): a second keyword saying otherwise is refused, as the command
-/// line refuses `--u 2 --adaptive`.
+/// One setting that two keywords can make (`u` and `adaptive`; whether the outlier filter runs,
+/// `iqr` and `outlier_filter`; whether the repair runs, `repair` and `manifold_fix`): a second
+/// keyword saying otherwise is refused, as the command line refuses `--u 2 --adaptive`.
 struct Setting<T> {
     value: Option<(T, String)>,
 }
@@ -124,11 +126,21 @@ fn boolean(name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
 
 /// A number keyword's value: anything Python converts with `float()` by its `__float__` (an
 /// int, a float, numpy's numbers), but not a bool nor a str; whether the library accepts it is
-/// `Params::check`'s to say.
+/// `Params::check`'s to say. A number too large for a float (`2**2000`, whose `float()` raises
+/// `OverflowError`) is infinite, with its sign: a number all the same, which the check refuses
+/// as it refuses `float("inf")`, naming the keyword.
 fn number(name: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
     if !is_bool(value) {
-        if let Ok(x) = value.extract::<f64>() {
-            return Ok(x);
+        match value.extract::<f64>() {
+            Ok(x) => return Ok(x),
+            Err(err) if err.is_instance_of::<PyOverflowError>(value.py()) => {
+                return Ok(if value.lt(0)? {
+                    f64::NEG_INFINITY
+                } else {
+                    f64::INFINITY
+                });
+            }
+            Err(_) => {}
         }
     }
     Err(PyTypeError::new_err(format!(
@@ -162,22 +174,33 @@ fn choice<T: Copy>(name: &str, value: &Bound<'_, PyAny>, choices: &[(&str, T)]) 
         })
 }
 
-/// The parameters `paper` and the keywords `kwargs` ask for, checked as the command line checks
-/// them.
+/// The parameters the keywords `kwargs` (`paper` among them) ask for, checked as the command
+/// line checks them.
 ///
 /// # Errors
 /// `TypeError` for an unknown keyword or a value of the wrong type; `ValueError` for two
 /// keywords that contradict each other, a ConDT keyword beside a baseline method, or a value the
 /// library refuses (`Params::check`).
-pub(crate) fn params(paper: bool, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
+pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
+    // `paper=True` chooses the starting point wherever it stands; the other keywords adjust it.
+    let paper = match kwargs.map(|d| d.get_item("paper")).transpose()?.flatten() {
+        Some(value) => boolean("paper", &value)?,
+        None => false,
+    };
     let mut params = if paper {
         Params::paper()
     } else {
         Params::default()
     };
     let mut uniformity = Setting::new();
-    let mut outliers = Setting::new();
-    let mut repair = Setting::new();
+    // Whether the outlier filter runs (`iqr=None` and `outlier_filter=False` say no; `iqr=K`
+    // and `outlier_filter=True` say yes), and its factor when `iqr` gives one.
+    let mut filter = Setting::new();
+    let mut factor = None;
+    // Whether the repair runs (`repair="off"` and `manifold_fix=False` say no, any other mode and
+    // `manifold_fix=True` yes), and its mode when `repair` gives one.
+    let mut repairing = Setting::new();
+    let mut repair_mode = None;
     let mut method = None;
     // ConDT's own keywords as given, to refuse them beside a baseline method.
     let mut condt_keywords: Vec<String> = Vec::new();
@@ -193,10 +216,12 @@ pub(crate) fn params(paper: bool, kwargs: Option<&Bound<'_, PyDict>>) -> PyResul
         let name = name.as_str();
         let repr = value.repr().map_or_else(|_| "?".into(), |r| r.to_string());
         let said = format!("{name}={repr}");
-        if name != "method" && name != "sequential" {
+        if name != "method" && name != "sequential" && name != "paper" {
             condt_keywords.push(said.clone());
         }
         match name {
+            // Read above.
+            "paper" => {}
             "u" => uniformity.set(Uniformity::Fixed(number(name, &value)?), said)?,
             "adaptive" => {
                 if boolean(name, &value)? {
@@ -204,27 +229,23 @@ pub(crate) fn params(paper: bool, kwargs: Option<&Bound<'_, PyDict>>) -> PyResul
                 }
             }
             "iqr" => {
-                let k = if value.is_none() {
-                    None
+                if value.is_none() {
+                    filter.set(false, said)?;
                 } else {
-                    Some(number(name, &value)?)
-                };
-                outliers.set(k, said)?;
-            }
-            "outlier_filter" => {
-                if !boolean(name, &value)? {
-                    outliers.set(None, said)?;
+                    factor = Some(number(name, &value)?);
+                    filter.set(true, said)?;
                 }
             }
+            "outlier_filter" => filter.set(boolean(name, &value)?, said)?,
             "outliers_first" => params.outliers_first = boolean(name, &value)?,
             "iqr_floor" => params.iqr_floor = boolean(name, &value)?,
             "smooth" => params.smooth = boolean(name, &value)?,
-            "repair" => repair.set(choice(name, &value, REPAIR_MODES)?, said)?,
-            "manifold_fix" => {
-                if !boolean(name, &value)? {
-                    repair.set(Repair::Off, said)?;
-                }
+            "repair" => {
+                let mode = choice(name, &value, REPAIR_MODES)?;
+                repair_mode = Some(mode);
+                repairing.set(mode != Repair::Off, said)?;
             }
+            "manifold_fix" => repairing.set(boolean(name, &value)?, said)?,
             "method" => method = Some((choice(name, &value, METHODS)?, said)),
             "sequential" => params.parallel = !boolean(name, &value)?,
             _ => match switches.iter().find(|(_, keyword)| keyword == name) {
@@ -249,11 +270,17 @@ pub(crate) fn params(paper: bool, kwargs: Option<&Bound<'_, PyDict>>) -> PyResul
     if let Some(u) = uniformity.get() {
         params.uniformity = u;
     }
-    if let Some(k) = outliers.get() {
-        params.outlier_factor = k;
+    match filter.get() {
+        Some(false) => params.outlier_factor = None,
+        // Both starting points filter (k = 1.7); `outlier_filter=True` alone keeps theirs.
+        Some(true) => params.outlier_factor = factor.or(params.outlier_factor),
+        None => {}
     }
-    if let Some(mode) = repair.get() {
-        params.repair = mode;
+    match repairing.get() {
+        Some(false) => params.repair = Repair::Off,
+        // `manifold_fix=True` alone keeps the starting point's mode (both repair).
+        Some(true) => params.repair = repair_mode.unwrap_or(params.repair),
+        None => {}
     }
     if let Some((chosen, said)) = method {
         if chosen != Method::ConDT {

@@ -4,10 +4,10 @@
 //! the explanation of an edge as text and numbers, and the GeoJSON and shapely outputs. It may
 //! not run a stage: every number comes from the result or its `provenance`.
 
-use crate::convert::{as_points, index_array, index_vector, position};
-use condt::{Change, EndChoice, Reason};
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
-use pyo3::exceptions::{PyImportError, PyIndexError, PyKeyError, PyRuntimeError};
+use crate::convert::{index_array, index_vector, input_position, position};
+use condt::{Change, EndChoice, Point, Reason};
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::{PyImportError, PyKeyError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PyTuple};
@@ -34,9 +34,10 @@ use std::sync::OnceLock;
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Reconstruction {
     result: condt::Reconstruction,
-    /// The points as given (the caller's array when it was float64 in C order): GeoJSON, shapely
-    /// and `Curve.coords` read the input coordinates from it, since the result keeps none.
-    points: Py<PyArray2<f64>>,
+    /// A copy of the points as given: GeoJSON, shapely and `Curve.coords` read the input
+    /// coordinates from it, since the result keeps none. Not the caller's array, read in place
+    /// during the call: the caller may change that afterwards (`lib.rs`, `reconstruct`).
+    points: Vec<Point>,
     edges: PyOnceLock<Py<PyArray2<i64>>>,
     unused: PyOnceLock<Py<PyArray1<i64>>>,
     curves: PyOnceLock<Vec<Py<Curve>>>,
@@ -46,7 +47,7 @@ pub(crate) struct Reconstruction {
 }
 
 impl Reconstruction {
-    pub(crate) fn new(result: condt::Reconstruction, points: Py<PyArray2<f64>>) -> Self {
+    pub(crate) fn new(result: condt::Reconstruction, points: Vec<Point>) -> Self {
         Reconstruction {
             result,
             points,
@@ -64,10 +65,8 @@ impl Reconstruction {
         py: Python<'py>,
         indices: impl Iterator<Item = usize>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let points = self.points.bind(py).try_readonly()?;
-        let points = as_points(points.as_slice()?);
         let rows: Vec<[f64; 2]> = indices
-            .map(|i| points.get(i).map_or([f64::NAN; 2], |p| [p.x, p.y]))
+            .map(|i| self.points.get(i).map_or([f64::NAN; 2], |p| [p.x, p.y]))
             .collect();
         let len = rows.len();
         let flat: Vec<f64> = rows.into_iter().flatten().collect();
@@ -166,8 +165,17 @@ impl Reconstruction {
     ///
     /// The stories of all edges are computed on the first call (``O(n log n)``) and kept.
     ///
-    /// Raises ``IndexError`` when ``i`` or ``j`` is not an input position, ``KeyError`` when
-    /// the edge is neither a Delaunay edge nor one a stage added.
+    /// An exact duplicate of an earlier point is that point (it shares the first one's edges, as
+    /// in the triangulation): ``explain(4, 1)``, point 4 repeating point 0, tells the story of
+    /// the edge 0-1, and the story's ``edge`` is ``(0, 1)``.
+    ///
+    /// With a baseline (``method="crust"`` or ``"nn-crust"``) the baseline's choice is the change
+    /// with ``reason`` ``"baseline"``; the ends (and the text's start) still tell how ConDT's
+    /// Algorithm 1 would have seen the edge, which the baseline did not use.
+    ///
+    /// Raises ``IndexError`` when ``i`` or ``j`` is not an input position, ``ValueError`` when
+    /// they are the same point (the same position, or duplicates), ``KeyError`` when the edge is
+    /// neither a Delaunay edge nor one a stage added.
     ///
     /// >>> import condt
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (2, 0), (2, 9)])
@@ -178,15 +186,31 @@ impl Reconstruction {
     /// (False, 'second', 9.22)
     /// >>> r.explain(0, 1).kept
     /// True
-    fn explain(&self, py: Python<'_>, i: i64, j: i64) -> PyResult<EdgeStory> {
+    fn explain(
+        &self,
+        py: Python<'_>,
+        i: &Bound<'_, PyAny>,
+        j: &Bound<'_, PyAny>,
+    ) -> PyResult<EdgeStory> {
         let n = self.result.num_points();
-        let index = |k: i64| {
-            usize::try_from(k).ok().filter(|&k| k < n).ok_or_else(|| {
-                PyIndexError::new_err(format!("{k} is not an input position (0 to {n} - 1)"))
-            })
-        };
-        let (a, b) = (index(i)?, index(j)?);
-        let edge = [a.min(b), a.max(b)];
+        let (a, b) = (input_position("i", i, n)?, input_position("j", j, n)?);
+        if a == b {
+            return Err(PyValueError::new_err(format!(
+                "explain({a}, {b}): an edge joins two points, not a point to itself"
+            )));
+        }
+        // A duplicate is merged into its first point, whose edges the stories name (the
+        // triangulation the stages walked says which that is).
+        let tri = self.result.triangulation();
+        let first = |k: usize| tri.input_of(tri.vertex(k));
+        let (first_a, first_b) = (first(a), first(b));
+        if first_a == first_b {
+            return Err(PyValueError::new_err(format!(
+                "explain({a}, {b}): {a} and {b} are the same point (duplicates: the first is \
+                 {first_a}), and no edge joins a point to itself"
+            )));
+        }
+        let edge = [first_a.min(first_b), first_a.max(first_b)];
         let stories = match self.stories.get() {
             Some(stories) => stories,
             None => {
@@ -214,11 +238,9 @@ impl Reconstruction {
     /// >>> doc = json.loads(condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True).to_geojson())
     /// >>> doc["features"][0]["geometry"]["coordinates"]
     /// [[0, 0], [1, 0], [0.5, 2], [0, 0]]
-    fn to_geojson(&self, py: Python<'_>) -> PyResult<String> {
-        let points = self.points.bind(py).try_readonly()?;
-        let points = as_points(points.as_slice()?);
+    fn to_geojson(&self) -> PyResult<String> {
         let mut out = Vec::new();
-        condt_io::write_geojson(&mut out, &self.result, points)
+        condt_io::write_geojson(&mut out, &self.result, &self.points)
             .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
         String::from_utf8(out).map_err(|err| PyRuntimeError::new_err(err.to_string()))
     }

@@ -3,9 +3,8 @@
 //! Owns: the Python view of the kernel's result in input positions, arrays made once and cached
 //! read-only. It may not build or change a triangulation.
 
-use crate::convert::{index_array, index_vector, position};
+use crate::convert::{index_array, index_vector, input_position, position};
 use numpy::{PyArray1, PyArray2};
-use pyo3::exceptions::PyIndexError;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 
@@ -82,15 +81,24 @@ impl Triangulation {
     /// one hull neighbour through the interior to the other), as a new int64 array.
     ///
     /// Raises ``IndexError`` when ``i`` is not an input position.
-    fn neighbors<'py>(&self, py: Python<'py>, i: i64) -> PyResult<Bound<'py, PyArray1<i64>>> {
-        let n = self.tri.num_points();
-        let index = usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {
-            PyIndexError::new_err(format!("{i} is not an input position (0 to {n} - 1)"))
-        })?;
+    fn neighbors<'py>(
+        &self,
+        py: Python<'py>,
+        i: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<i64>>> {
+        let index = input_position("i", i, self.tri.num_points())?;
         index_vector(py, self.tri.neighbors(index).map(position).collect())
     }
 
-    /// The convex hull, input positions counter-clockwise from some hull point.
+    /// The convex hull, input positions counter-clockwise from some hull point, each hull edge
+    /// once (points on a hull edge included, as the Rust ``Mesh::hull`` gives them).
+    ///
+    /// On points all on one line (no triangle) the walk goes out along the line and back: the
+    /// inner points appear twice, the two ends once.
+    ///
+    /// >>> import condt
+    /// >>> condt.triangulate([(0, 0), (1, 0), (2, 0), (3, 0)]).hull.tolist()
+    /// [0, 1, 2, 3, 2, 1]
     #[getter]
     fn hull<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
         let hull = self.hull.get_or_try_init(py, || {

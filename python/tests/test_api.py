@@ -4,10 +4,16 @@ GIL released, the input read without a copy, and the stubs matching the module."
 import ast
 import inspect
 import json
+import os
 import pathlib
+import re
 import sys
 import threading
 import time
+import tracemalloc
+import warnings
+from decimal import Decimal
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -68,19 +74,48 @@ def test_integer_and_empty_inputs():
     assert one.unused.tolist() == [0]
 
 
-def test_a_float64_c_array_is_read_where_it_lies():
-    points = circle()
-    result = condt.reconstruct(points)
-    # The result reads its coordinates from the caller's array (no copy was made): a change
-    # made afterwards shows in them.
-    points[0] = (7.0, 8.0)
-    curve = result.curves[0]
-    assert curve.coords[list(curve.points).index(0)].tolist() == [7.0, 8.0]
-    # A list is converted: the result holds its own array.
-    listed = circle().tolist()
-    result = condt.reconstruct(listed)
-    listed[0] = [7.0, 8.0]
-    assert result.curves[0].coords[0].tolist() == [1.0, 0.0]
+def test_a_float64_c_array_is_read_without_a_copy_during_the_call():
+    # numpy's allocations are traced by tracemalloc, the Rust side's are not: a conversion of
+    # the points would show as an allocation of their size.
+    points = circle(100_000)
+    tracemalloc.start()
+    try:
+        condt.reconstruct(points)
+        _, in_place = tracemalloc.get_traced_memory()
+        tracemalloc.reset_peak()
+        condt.reconstruct(np.asfortranarray(points))
+        _, converted = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert in_place < points.nbytes / 10 and converted >= points.nbytes, (in_place, converted)
+
+
+def test_the_result_does_not_change_with_the_callers_array_afterwards():
+    # The array is read in place during the call; the result keeps its own copy of what it
+    # needs, so changing the array afterwards (even to NaN) changes nothing in it.
+    points = np.array([(0, 0), (1, 0), (1, 1), (0, 1)], float)
+    r = condt.reconstruct(points)
+    tri = condt.triangulate(points)
+
+    def seen():
+        strict = json.loads(r.to_geojson(), parse_constant=lambda c: pytest.fail(f"{c} in JSON"))
+        return (
+            [c.coords.tolist() for c in r.curves],
+            strict,
+            [list(line.coords) for line in r.to_shapely().geoms],
+            r.edges.tolist(),
+            tri.triangles.tolist(),
+            tri.edges.tolist(),
+            tri.hull.tolist(),
+            [tri.neighbors(i).tolist() for i in range(4)],
+        )
+
+    pytest.importorskip("shapely")
+    before = seen()
+    points[0] = (100.0, 100.0)
+    points[1] = np.nan
+    assert seen() == before
+    assert before[0] == [[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]]
 
 
 def test_the_gil_is_released_while_the_work_runs():
@@ -152,12 +187,51 @@ def test_a_masked_array_with_masked_rows_is_refused_and_one_without_is_read():
 
 
 def test_what_numpy_cannot_convert_is_its_error():
-    with pytest.raises(ValueError):
-        condt.reconstruct([("a", "b")])
     with pytest.raises((ValueError, TypeError)):
         condt.reconstruct([(0, 0), (1,)])
     with pytest.raises(TypeError):
         condt.reconstruct([(0, 0), (1, 1j)])
+    with pytest.raises(TypeError):
+        condt.reconstruct(np.array([(0, 0), (1, object())], dtype=object))
+
+
+SQUARE = [(0, 0), (1, 0), (1, 1), (0, 1)]
+
+
+@pytest.mark.parametrize(
+    "dtype", [complex, bool, "U8", "S8", "datetime64[s]", "timedelta64[s]"], ids=str
+)
+def test_points_that_are_not_numbers_are_a_type_error_naming_the_dtype(dtype):
+    points = np.array(SQUARE).astype(dtype)
+    functions = [condt.reconstruct, condt.triangulate, lambda p: condt.score(p, [], [])]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # not converted with only numpy's ComplexWarning
+        for function in functions:
+            with pytest.raises(TypeError, match=f"not dtype {re.escape(str(points.dtype))}$"):
+                function(points)
+            # The same values in an object array, or in a list numpy makes that dtype of.
+            with pytest.raises(TypeError):
+                function(points.astype(object))
+            with pytest.raises(TypeError):
+                function(points.tolist())
+
+
+def test_numbers_of_any_kind_numpy_converts_to_float_are_read():
+    expected = condt.reconstruct(SQUARE).edges.tolist()
+    readable = [
+        [[Decimal(x), Decimal(y)] for x, y in SQUARE],  # numpy: an object array
+        np.array([[Fraction(x), Fraction(y)] for x, y in SQUARE], dtype=object),
+        np.array(SQUARE, dtype=object),
+        [[0, 0.0], [1, 0], [np.float32(1), 1], [np.int8(0), 1]],
+        np.array(SQUARE, dtype=np.uint8),
+        np.array(SQUARE, dtype=np.float16),
+        [[False, 0], [1, 0], [1, 1], [0, 1]],  # numpy: int64 (a bool among ints is an int)
+    ]
+    for points in readable:
+        assert condt.reconstruct(points).edges.tolist() == expected
+    for refused in ([[True, False]], np.array([[0, "1"]], dtype=object)):
+        with pytest.raises(TypeError, match="numbers"):
+            condt.reconstruct(refused)
 
 
 @pytest.mark.parametrize(
@@ -167,7 +241,7 @@ def test_what_numpy_cannot_convert_is_its_error():
         ({"u": 0}, ValueError, "u = 0"),
         ({"u": float("nan")}, ValueError, "u = NaN"),
         ({"u": float("inf")}, ValueError, "u = inf"),
-        ({"iqr": -0.5}, ValueError, "iqr: parameter k = -0.5"),
+        ({"iqr": -0.5}, ValueError, "iqr: parameter iqr = -0.5"),
         ({"iqr": float("nan")}, ValueError, "iqr"),
         ({"u": 2, "adaptive": True}, ValueError, "contradict"),
         ({"iqr": 2, "outlier_filter": False}, ValueError, "contradict"),
@@ -190,6 +264,80 @@ def test_parameters_are_checked_as_on_the_command_line(params, error, words):
     with pytest.raises(error) as err:
         condt.reconstruct(circle(), **params)
     assert words in str(err.value)
+
+
+def test_keyword_pairs_that_contradict_each_other_are_value_errors():
+    points = condt.read_points(SHAPES)
+    for contradicting in [
+        {"iqr": None, "outlier_filter": True},
+        {"outlier_filter": True, "iqr": None},
+        {"iqr": 1.5, "outlier_filter": False},
+        {"repair": "off", "manifold_fix": True},
+        {"manifold_fix": True, "repair": "off"},
+        {"repair": "needs", "manifold_fix": False},
+        {"u": 2, "adaptive": True},
+    ]:
+        with pytest.raises(ValueError, match="contradict each other"):
+            condt.reconstruct(points, **contradicting)
+    # Pairs that agree run what they say.
+    stages = lambda **params: list(condt.reconstruct(points, paper=True, **params).stages)
+    assert stages(iqr=None, outlier_filter=False) == ["proximity", "repair"]
+    assert stages(iqr=1.5, outlier_filter=True) == ["proximity", "repair", "iqr-outliers"]
+    assert stages(outlier_filter=True) == ["proximity", "repair", "iqr-outliers"]
+    assert stages(repair="off", manifold_fix=False) == ["proximity", "iqr-outliers"]
+    assert stages(repair="mutual", manifold_fix=True) == ["proximity", "repair", "iqr-outliers"]
+    assert np.array_equal(
+        condt.reconstruct(points, u=2, adaptive=False).edges,
+        condt.reconstruct(points, u=2).edges,
+    )
+    assert np.array_equal(
+        condt.reconstruct(points, iqr=1.5, outlier_filter=True).edges,
+        condt.reconstruct(points, iqr=1.5).edges,
+    )
+
+
+def test_numbers_out_of_range_are_the_documented_errors_naming_the_parameter():
+    for huge in (2**2000, -(2**2000)):
+        with pytest.raises(ValueError, match=r"^u: parameter u = -?inf is not accepted"):
+            condt.reconstruct(SQUARE, u=huge)
+        with pytest.raises(ValueError, match=r"^iqr: parameter iqr = -?inf is not accepted"):
+            condt.reconstruct(SQUARE, iqr=huge)
+    with pytest.raises(ValueError, match=r"^iqr: parameter iqr = -1 is not accepted"):
+        condt.reconstruct(SQUARE, iqr=-1)
+    for flag in (1, None, "yes"):
+        with pytest.raises(TypeError, match=f"^paper must be True or False, not {type(flag).__name__}$"):
+            condt.reconstruct(SQUARE, paper=flag)
+    assert list(condt.reconstruct(SQUARE, paper=np.bool_(True)).stages) == [
+        "proximity", "repair", "iqr-outliers",
+    ]
+    r = condt.reconstruct(SQUARE)
+    tri = condt.triangulate(SQUARE)
+    for position in (2**63, 2**70, -(2**63) - 1, np.uint64(2**64 - 1), 4, -1):
+        with pytest.raises(IndexError, match=f"^{position} is not an input position \\(0 to 3\\)$"):
+            r.explain(position, 0)
+        with pytest.raises(IndexError, match="not an input position"):
+            r.explain(0, position)
+        with pytest.raises(IndexError, match=f"^{position} is not an input position"):
+            tri.neighbors(position)
+    with pytest.raises(TypeError, match="'i'"):
+        tri.neighbors(1.0)
+    assert tri.neighbors(np.int64(0)).tolist() == tri.neighbors(0).tolist()
+    assert r.explain(np.uint8(1), False).edge == (0, 1)
+
+
+def test_explain_reads_a_duplicate_as_its_first_point():
+    points = [(0, 0), (1, 0), (0, 1), (1, 1), (0, 0)]  # 4 repeats 0
+    r = condt.reconstruct(points)
+    tri = condt.triangulate(points)
+    assert 1 in tri.neighbors(4).tolist()
+    for i, j in [(4, 1), (1, 4)]:
+        story = r.explain(i, j)
+        assert story.edge == (0, 1) and str(story) == str(r.explain(0, 1))
+        assert story.kept == r.explain(0, 1).kept
+    with pytest.raises(ValueError, match=r"explain\(2, 2\): an edge joins two points"):
+        r.explain(2, 2)
+    with pytest.raises(ValueError, match=r"4 and 0 are the same point \(duplicates: the first is 0\)"):
+        r.explain(4, 0)
 
 
 def test_accepted_parameters_change_what_runs():
@@ -225,6 +373,28 @@ def test_file_errors_are_os_errors_and_bad_content_value_errors(tmp_path):
         condt.read_points(tmp_path / "bad.npy")
 
 
+def test_read_points_reads_a_path_as_a_file_even_a_dash(tmp_path, monkeypatch):
+    (tmp_path / "-").write_text("0 0\n1.5 2\n")
+    expected = [[0.0, 0.0], [1.5, 2.0]]
+    monkeypatch.chdir(tmp_path)
+    # The file named `-`, never standard input (which pytest gives as empty).
+    assert condt.read_points("-").tolist() == expected
+    for path in (b"-", pathlib.Path("-"), tmp_path / "-", os.fsencode(tmp_path / "-")):
+        assert condt.read_points(path).tolist() == expected
+    (tmp_path / "pts.txt").write_text("3 4\n")
+    assert condt.read_points(b"pts.txt").tolist() == [[3.0, 4.0]]
+    (tmp_path / "-").unlink()
+    with pytest.raises(FileNotFoundError) as err:
+        condt.read_points("-")
+    assert err.value.filename == "-"
+    (tmp_path / "-").write_text("0 0\nnot a point\n")
+    with pytest.raises(ValueError, match=r"^-:2: "):
+        condt.read_points("-")
+    for wrong in (3, None, ["pts.txt"]):
+        with pytest.raises(TypeError, match=f"^path must be a str, bytes or os.PathLike, not {type(wrong).__name__}$"):
+            condt.read_points(wrong)
+
+
 def test_score_checks_its_edges():
     square = [(0, 0), (1, 0), (1, 1), (0, 1)]
     truth = [(0, 1), (1, 2), (2, 3), (3, 0)]
@@ -245,6 +415,32 @@ def test_score_checks_its_edges():
         condt.score(square, [(0.5, 1)], truth)
     with pytest.raises(ValueError, match=r"shape \(m, 2\)"):
         condt.score(square, [(0, 1, 2)], truth)
+
+
+def test_score_names_an_index_beyond_int64_as_given_and_never_wraps_it():
+    square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    truth = [(0, 1), (1, 2), (2, 3), (3, 0)]
+    beyond = [
+        (np.array([[0, 2**63 + 1]], dtype=np.uint64), "9223372036854775809"),
+        (np.array([[2**64 - 1, 0]], dtype=np.uint64), "18446744073709551615"),
+        ([[0, 2**63]], "9223372036854775808"),  # numpy: float64
+        ([[0, 2**70]], "1180591620717411303424"),  # numpy: object
+        ([[1, -(2**70)]], "-1180591620717411303424"),
+        (np.array([[0, 2**80]], dtype=object), "1208925819614629174706176"),
+    ]
+    for edges, value in beyond:
+        s = condt.score(square, edges, truth)
+        assert s["malformed"] == f"edge 0: point {value} does not exist", edges
+        assert (s["f1"], s["n_out"]) == (0.0, 1)
+        with pytest.raises(ValueError, match=f"^ground truth: edge 0: point {value} does not exist$"):
+            condt.score(square, [], edges)
+    # Unsigned and object arrays of indices in range are read as they are.
+    for edges in (np.array(truth, dtype=np.uint64), np.array(truth, dtype=object), np.array(truth, np.uint8)):
+        assert condt.score(square, edges, truth)["exact"]
+        assert condt.score(square, truth, edges)["exact"]
+    for not_indices in ([[0, 2**63 + 0.5]], np.array([[0, 1.0]], dtype=object), [[0.5, 1]]):
+        with pytest.raises(TypeError, match="integers"):
+            condt.score(square, not_indices, truth)
 
 
 # --- results -----------------------------------------------------------------------------------
@@ -380,6 +576,22 @@ def test_the_triangulation():
         tri.neighbors(-1)
     line = condt.triangulate([(0, 0), (2, 0), (1, 0)])
     assert line.triangles.shape == (0, 3) and line.edges.tolist() == [[0, 2], [1, 2]]
+
+
+def test_no_points_collinear_hulls_and_baselines_are_told_as_they_are():
+    for empty in (condt.reconstruct([]), condt.triangulate([])):
+        with pytest.raises(IndexError, match="^0 is not an input position: there are no points$"):
+            empty.explain(0, 0) if isinstance(empty, condt.Reconstruction) else empty.neighbors(0)
+    # The hull of collinear points goes out and back, as its docstring and stub say.
+    line = condt.triangulate([(0, 0), (1, 0), (2, 0), (3, 0)])
+    assert line.hull.tolist() == [0, 1, 2, 3, 2, 1]
+    assert "out along the line and back" in condt.Triangulation.hull.__doc__
+    assert "out and back" in STUB.read_text()
+    # A baseline's story: its choice is the change with reason "baseline"; the ends are
+    # Algorithm 1's view, as the docstring says (the text comes from condt-io's story_text).
+    story = condt.reconstruct(SQUARE, method="crust").explain(0, 1)
+    assert [c["reason"] for c in story.changes] == ["baseline"]
+    assert "Algorithm 1 would have seen" in condt.Reconstruction.explain.__doc__
 
 
 # --- stubs and docs ----------------------------------------------------------------------------
