@@ -76,16 +76,25 @@ fn json_value(json: &str, key: &str) -> String {
     rest[..end].to_string()
 }
 
-#[test]
-fn a_reconstruction_of_a_sampled_circle_scores_exact_against_its_truth() {
-    let dir = scratch_dir();
+/// A sampled circle's points and true edges, written to `circle.pts` and `circle.gt` in `dir`,
+/// and how many true edges there are.
+fn sampled_circle(dir: &Path) -> (PathBuf, PathBuf, usize) {
     let circle = sample(
         &[Shape::circle(Point::new(3.0, -1.0), 2.0)],
         &Sampling::new(0.3),
     )
     .unwrap();
-    let points = write(dir.path(), "circle.pts", &points_text(&circle.points));
-    let truth = write(dir.path(), "circle.gt", &edges_text(&circle.edges));
+    (
+        write(dir, "circle.pts", &points_text(&circle.points)),
+        write(dir, "circle.gt", &edges_text(&circle.edges)),
+        circle.edges.len(),
+    )
+}
+
+#[test]
+fn a_reconstruction_of_a_sampled_circle_scores_exact_against_its_truth() {
+    let dir = scratch_dir();
+    let (points, truth, true_edges) = sampled_circle(dir.path());
     let output = dir.path().join("circle.edges");
     let run = Command::new(env!("CARGO_BIN_EXE_condt"))
         .args([Path::new("reconstruct"), &points, Path::new("-o"), &output])
@@ -96,7 +105,7 @@ fn a_reconstruction_of_a_sampled_circle_scores_exact_against_its_truth() {
     assert_eq!(json_value(&json, "exact"), "true");
     assert_eq!(json_value(&json, "f1"), "1.0");
     assert_eq!(json_value(&json, "max_dist"), "0.0");
-    assert_eq!(json_value(&json, "n_gt"), circle.edges.len().to_string());
+    assert_eq!(json_value(&json, "n_gt"), true_edges.to_string());
     assert_eq!(json_value(&json, "malformed"), "null");
 }
 
@@ -300,13 +309,7 @@ fn printable(message: &str) -> bool {
 #[test]
 fn npy_edge_arrays_are_read() {
     let dir = scratch_dir();
-    let circle = sample(
-        &[Shape::circle(Point::new(3.0, -1.0), 2.0)],
-        &Sampling::new(0.3),
-    )
-    .unwrap();
-    let points = write(dir.path(), "circle.pts", &points_text(&circle.points));
-    let truth = write(dir.path(), "circle.gt", &edges_text(&circle.edges));
+    let (points, truth, _) = sampled_circle(dir.path());
     let edges = dir.path().join("circle.edges");
     let array = dir.path().join("circle.NPY");
     for output in [&edges, &array] {
