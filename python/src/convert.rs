@@ -259,7 +259,8 @@ pub(crate) fn index_array<'py, const K: usize>(
     rows: Vec<[i64; K]>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let len = rows.len();
-    let flat: Vec<i64> = rows.into_iter().flatten().collect();
+    // The rows' memory as it is (no copy: a collected `flatten` copied it, growing by doubling).
+    let flat: Vec<i64> = rows.into_flattened();
     let array = Array2::from_shape_vec((len, K), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
     let array = PyArray2::from_owned_array(py, array);

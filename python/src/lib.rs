@@ -200,7 +200,8 @@ fn read_points<'py>(
             io_error(err)
         })?;
     let n = points.len();
-    let flat: Vec<f64> = points.into_iter().flat_map(|p| [p.x, p.y]).collect();
+    let mut flat: Vec<f64> = Vec::with_capacity(2 * n);
+    flat.extend(points.iter().flat_map(|p| [p.x, p.y]));
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
     Ok(PyArray2::from_owned_array(py, array))

@@ -69,7 +69,7 @@ impl Reconstruction {
             .map(|i| self.points.get(i).map_or([f64::NAN; 2], |p| [p.x, p.y]))
             .collect();
         let len = rows.len();
-        let flat: Vec<f64> = rows.into_iter().flatten().collect();
+        let flat: Vec<f64> = rows.into_flattened();
         let array = numpy::ndarray::Array2::from_shape_vec((len, 2), flat)
             .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
         Ok(PyArray2::from_owned_array(py, array))
