@@ -3,7 +3,7 @@
 //! `cargo run --example stage_by_stage -- [POINT_FILE]` (default: the shipped
 //! `data/shapes.txt`)
 
-use condt::{triangulate, Repair, Uniformity};
+use condt::{reconstruct, triangulate, Params, Repair, Uniformity};
 use condt_io::read_points;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -26,30 +26,38 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("  {i}: {around:?}");
     }
 
-    // Every stage of `Params::default()`, one at a time and in its order: `Repair::Needs`
-    // (`Repair::Paper` would be Algorithm 2), the IQR rule with k = 1.7, the local outlier
-    // removal, the check of the components it gave back, gap closing. Not run here: the
-    // default's smoothing passes, which only `reconstruct` and `Pipeline` run (so on noisy
-    // input the default's result can differ from this one).
+    // Every stage of `Params::default()`, one at a time and in its order (`Params::stages`):
+    // `Repair::Needs` (`Repair::Paper` would be Algorithm 2), the IQR rule with k = 1.7 and the
+    // spacing floor, the repair run again without the cut edges, the local outlier removal,
+    // clumps, the check of the components it gave back, gap closing, junctions, crossings. Not
+    // run here: the default's smoothing passes, which only `reconstruct` and `Pipeline` run (so
+    // on noisy input the default's result can differ from this one; the check below is
+    // against the default without them).
     let repaired = proximity.repair(Repair::Needs);
     println!("after the repair: {} edges", repaired.num_edges());
 
-    let outliers = repaired.remove_outliers(1.7)?;
+    let outliers = repaired.remove_outliers_floored(1.7)?;
     println!(
         "after outlier removal: {} edges (the rule fired: {})",
         outliers.graph.num_edges(),
         outliers.fired
     );
-    let local = outliers.graph.remove_local_outliers(&repaired);
-    let confirmed = local.confirm_given_back(&outliers.graph);
-    let closed = confirmed.close_gaps();
+    let again = outliers.repair_again(&repaired, &proximity, Repair::Needs);
+    let local = again.remove_local_outliers(&repaired);
+    let clumps = local.remove_clumps();
+    let confirmed = clumps.confirm_given_back(&again);
+    let closed = confirmed.close_gaps().join_junctions().restore_crossings();
     println!(
-        "after local outlier removal: {} edges; after confirming given-back components: {}; \
-         after closing gaps: {}",
+        "repaired again: {} edges; after local outlier removal: {}; after clumps: {}; after \
+         confirming given-back components: {}; after gaps, junctions and crossings: {}",
+        again.num_edges(),
         local.num_edges(),
+        clumps.num_edges(),
         confirmed.num_edges(),
         closed.num_edges()
     );
+    let pipeline = reconstruct(&points, &Params::default().with_smooth(false))?;
+    assert_eq!(closed.edges(), pipeline.edges().collect::<Vec<_>>());
 
     for curve in closed.curves() {
         let kind = if curve.is_closed() { "closed" } else { "open" };

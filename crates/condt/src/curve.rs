@@ -77,7 +77,9 @@ impl Curve {
 
 /// Splits the edges between `num_points` points into curves, each edge on exactly one. Edges are
 /// input positions, either way round, repeats allowed; loops and positions past `num_points` are
-/// ignored. Each curve starts at its smallest position (an open one at its smaller end); sorted.
+/// ignored, as are positions from `u32::MAX` on (the library's limit on points,
+/// [`MAX_POINTS`](crate::MAX_POINTS), is far below). Each curve starts at its smallest position
+/// (an open one at its smaller end); sorted.
 ///
 /// ```
 /// use condt::curves_from_edges;

@@ -144,7 +144,14 @@ impl Scale {
     };
 
     /// Multiplication by `2^k`.
+    ///
+    /// # Panics
+    /// If `k` is outside `-2044..=2046`, where the two factors would leave the normal range.
     pub fn power_of_two(k: i32) -> Scale {
+        assert!(
+            (-2044..=2046).contains(&k),
+            "Scale::power_of_two: 2^{k} is outside 2^-2044 to 2^2046"
+        );
         let half = k / 2;
         Scale {
             first: pow2(half),
@@ -169,6 +176,20 @@ impl Scale {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The ends of the range scale exactly; one step beyond is refused, not a wrong factor
+    /// (found by a stress run: `2^-2045` gave 0 in a release build).
+    #[test]
+    fn a_power_of_two_scale_is_exact_to_its_range_and_refused_beyond() {
+        let tiny = f64::from_bits(1); // 2^-1074
+        let up = Scale::power_of_two(2046).apply(Point::new(tiny, 1.0));
+        assert_eq!(up.x, 2f64.powi(972));
+        let down = Scale::power_of_two(-2044).apply(Point::new(f64::MAX, 2f64.powi(1000)));
+        assert_eq!(down.y, 2f64.powi(-1044));
+        for k in [-2045, 2047, i32::MIN, i32::MAX] {
+            assert!(std::panic::catch_unwind(|| Scale::power_of_two(k)).is_err(), "{k}");
+        }
+    }
 
     #[test]
     fn lexicographic_order_is_numeric_for_negative_coordinates() {

@@ -43,8 +43,10 @@ pub struct OutlierRemoval<'t> {
 impl<'t> OutlierRemoval<'t> {
     /// Repairs again without the cut edges ([`Params::repair_again`](crate::Params::repair_again)):
     /// `repaired` is this stage's input and `proximity` the repair's, `repair` as that ran. If
-    /// the rule fired, `proximity` less every edge above this cut's threshold, repaired by
-    /// `repair`; otherwise this stage's graph.
+    /// this stage cut an edge (its graph differs from `repaired`; with the spacing floor the rule
+    /// can fire and cut nothing), `proximity` less every edge above the cut's threshold, taken
+    /// from `repaired`, repaired by `repair`; otherwise this stage's graph, as when `repaired` is
+    /// empty. Other graphs than the documented ones give a graph, not the pipeline's.
     ///
     /// # Panics
     /// If `repaired` or `proximity` lives on another triangulation.
@@ -62,6 +64,9 @@ impl<'t> OutlierRemoval<'t> {
     /// assert!(cut.fired);
     /// let again = cut.repair_again(&repaired, &proximity, Repair::Needs).edges();
     /// assert!(again.len() == 40 && again.iter().all(|&[a, b]| a < 40 && b < 40));
+    /// // Given an empty graph for `repaired`: this stage's graph.
+    /// let none = tri.graph_from_edges([]);
+    /// assert_eq!(cut.repair_again(&none, &none, Repair::Needs).edges(), cut.graph.edges());
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn repair_again(

@@ -8,7 +8,7 @@ use crate::adjacency::{CurveGraph, Edge};
 use crate::reconstruct::Reconstruction;
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
 use crate::stages::outliers::{iqr_thresholds, IqrRule};
-use crate::stages::proximity::end_choice;
+use crate::stages::proximity::{end_choice, Uniformity};
 use crate::stages::Stage;
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -65,7 +65,9 @@ pub enum Reason {
         /// The crossing (input position).
         vertex: usize,
     },
-    /// A baseline (NN-Crust, Crust) chose it; the ends say how Algorithm 1 would have seen it.
+    /// A baseline (NN-Crust, Crust) chose it; the ends say how Algorithm 1 would have seen it
+    /// (with the run's `u`, or the default 2.75 where that is not one Algorithm 1 accepts: a
+    /// baseline's run does not check it).
     Baseline,
     /// The given-back check removed it: a component of given-back edges not clearly apart.
     NotConfirmed,
@@ -120,7 +122,14 @@ impl Reconstruction {
         all.sort_unstable();
         all.dedup();
         // Algorithm 1's view of every ring, as the stage gives it ([`end_choice`]).
-        let uniformity = self.params().uniformity;
+        // A baseline's run does not check `u` (it reads none): where its `u` is not one Algorithm 1
+        // accepts, the ends are told with the default.
+        let given = self.params().uniformity;
+        let uniformity = if given.check().is_ok() {
+            given
+        } else {
+            Uniformity::default()
+        };
         let choice = |at: usize, other: usize| {
             end_choice(tri, tri.vertex(at), tri.vertex(other), uniformity)
         };
@@ -328,10 +337,27 @@ mod tests {
     use super::*;
     use crate::reconstruct::{reconstruct, Params};
     use crate::sample::{sample, Clumps, Sampling, Shape};
-    use crate::stages::Uniformity;
     use crate::Point;
     use alloc::format;
     use alloc::string::{String, ToString};
+
+    /// A baseline's run does not check `u`; its stories tell the ends with the default then
+    /// (found by a stress run: `bound: NaN`, every second edge "dropped").
+    #[test]
+    fn a_baseline_with_a_u_algorithm_1_refuses_tells_the_ends_with_the_default() {
+        use crate::Method;
+        let points = noisy_scene();
+        let told = |u: f64| {
+            let params = Params::default()
+                .with_method(Method::Crust)
+                .with_uniformity(Uniformity::Fixed(u));
+            reconstruct(&points, &params).unwrap().provenance()
+        };
+        for u in [f64::NAN, -1.0, 0.0, f64::INFINITY] {
+            assert_eq!(told(u), told(2.75), "{u}");
+        }
+        assert_ne!(told(1.5), told(2.75), "a valid u is the run's");
+    }
 
     fn noisy_scene() -> Vec<Point> {
         let mut sampling = Sampling::new(0.3);

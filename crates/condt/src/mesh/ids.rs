@@ -63,7 +63,9 @@ impl HalfEdgeId {
     pub const fn index(self) -> usize {
         self.0 as usize
     }
-    /// The next half-edge counter-clockwise in the same triangle.
+    /// The next half-edge counter-clockwise in the same triangle. For a half-edge of a mesh:
+    /// [`HalfEdgeId::NONE`] has none (a debug build panics on the overflow, a release build
+    /// gives an id of no meaning; no check on this hot path).
     #[inline]
     pub const fn next(self) -> Self {
         HalfEdgeId(if self.0 % 3 == 2 {
@@ -73,7 +75,8 @@ impl HalfEdgeId {
         })
     }
 
-    /// The previous half-edge in the same triangle.
+    /// The previous half-edge in the same triangle (for a half-edge of a mesh, as
+    /// [`HalfEdgeId::next`]).
     #[inline]
     pub const fn prev(self) -> Self {
         HalfEdgeId(if self.0 % 3 == 0 {
@@ -130,7 +133,8 @@ impl TriangleId {
     pub const fn index(self) -> usize {
         self.0 as usize
     }
-    /// Its `corner`-th half-edge (`corner` in `0..3`).
+    /// Its `corner`-th half-edge (`corner` in `0..3`; for a triangle of a mesh, whose ids are
+    /// below `u32::MAX / 3`: a larger one overflows as [`HalfEdgeId::next`] says).
     #[inline]
     pub const fn edge(self, corner: u32) -> HalfEdgeId {
         HalfEdgeId(self.0 * 3 + corner)

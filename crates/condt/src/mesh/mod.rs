@@ -21,6 +21,10 @@ use alloc::vec::Vec;
 
 /// The topology of a Delaunay triangulation, closed into a sphere by ghost triangles.
 ///
+/// Every method that takes a vertex, half-edge or triangle id reads the mesh's arrays at it:
+/// an id that is not this mesh's (out of range, or a `NONE`) panics as slice indexing does,
+/// unless the method says otherwise.
+///
 /// ```
 /// use condt::{triangulate, Point};
 /// let tri = triangulate(&[Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)])?;

@@ -2,7 +2,8 @@
 //!
 //! Owns: adding one edge at a loose end that meets a curve at a junction. It reads positions, the
 //! graph and the Delaunay rings; it may not touch the triangulation, never removes an edge, and
-//! does not decide when it runs ([`Params::stages`](crate::Params::stages): last).
+//! does not decide when it runs ([`Params::stages`](crate::Params::stages): after gap closing,
+//! before the crossings).
 //!
 //! Why: at a junction of three curves (map borders, a T) the repair keeps two of the sample's three
 //! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.

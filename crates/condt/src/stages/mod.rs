@@ -146,8 +146,8 @@ or 6, is lost)",
         switch: Some(Switch {
             flag: "confirm-given-back",
             help: "(default on; off with --paper; needs the local outlier removal)
-right after it, drop a component rebuilt only from edges the
-outlier filter cut unless every point of it is apart from every
+after it and the clumps, drop a component rebuilt only from edges
+the outlier filter cut unless every point of it is apart from every
 unused point or other such component by twice its longest edge
 (a chance chain of outliers in a large scatter; a sparse curve
 the filter cut that passes near an unused point stays cut)",
@@ -173,10 +173,10 @@ remove a quarter of the points with edges",
         key: "gaps",
         switch: Some(Switch {
             flag: "close-gaps",
-            help: "(default on; off with --paper) last, join loose ends that face each
-other across a short gap or line up through a stranded point, two
-that walk straight on through unused points and meet, and a
-crossing's dropped arms",
+            help: "(default on; off with --paper) after the removals, join loose
+ends that face each other across a short gap or line up through a
+stranded point, two that walk straight on through unused points
+and meet, and a crossing's dropped arms",
         }),
     },
     Row {
@@ -186,9 +186,9 @@ crossing's dropped arms",
         key: "junctions",
         switch: Some(Switch {
             flag: "junctions",
-            help: "(default on; off with --paper) last, join a loose end to the curve
-it meets where three curves meet (map borders, a T): three
-branches of at least 5 points each, evenly sampled",
+            help: "(default on; off with --paper) after gap closing, join a loose
+end to the curve it meets where three curves meet (map borders, a
+T): three branches of at least 5 points each, evenly sampled",
         }),
     },
     Row {

@@ -533,7 +533,9 @@ impl Triangulation {
     pub fn vertex(&self, index: usize) -> VertexId {
         self.vertex_of_input[index]
     }
-    /// The input position vertex `v` stands for (for merged duplicates, the smallest one).
+    /// The input position vertex `v` stands for (for merged duplicates, the smallest one). An
+    /// id a merged duplicate left unused (no vertex has it) gives that duplicate's own position,
+    /// whose [`Triangulation::vertex`] is its group's.
     ///
     /// # Panics
     /// If `v` is not a vertex id of this triangulation (for example [`VertexId::INFINITE`]).
