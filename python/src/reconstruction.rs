@@ -169,9 +169,10 @@ impl Reconstruction {
     /// in the triangulation): ``explain(4, 1)``, point 4 repeating point 0, tells the story of
     /// the edge 0-1, and the story's ``edge`` is ``(0, 1)``.
     ///
-    /// With a baseline (``method="crust"`` or ``"nn-crust"``) the baseline's choice is the change
-    /// with ``reason`` ``"baseline"``; the ends (and the text's start) still tell how ConDT's
-    /// Algorithm 1 would have seen the edge, which the baseline did not use.
+    /// With a baseline (``method="crust"`` or ``"nn-crust"``) the baseline's decision is the
+    /// first change, ``reason`` ``"baseline"`` (``added`` whether it chose the edge); the ends
+    /// still tell how ConDT's Algorithm 1 would have seen the edge, which the baseline did not
+    /// use, and the text says so ("chosen by the Crust; Algorithm 1 would have seen it as: ...").
     ///
     /// Raises ``IndexError`` when ``i`` or ``j`` is not an input position, ``ValueError`` when
     /// they are the same point (the same position, or duplicates), ``KeyError`` when the edge is

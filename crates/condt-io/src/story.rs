@@ -28,6 +28,20 @@ pub fn story_text(story: &EdgeStory) -> String {
 fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
     let [a, b] = story.edge;
     write!(f, "{a}-{b}: ")?;
+    // A baseline decided the edge (its change comes first): the ends are only Algorithm 1's
+    // view, told after it.
+    let baseline = story
+        .changes
+        .first()
+        .filter(|c| c.reason == Reason::Baseline);
+    if let Some(change) = baseline {
+        let chosen = if change.added { "chosen" } else { "not chosen" };
+        write!(
+            f,
+            "{chosen} by the {}; Algorithm 1 would have seen it as: ",
+            change.stage.name()
+        )?;
+    }
     match story.ends {
         [EndChoice::Later { rank: ra }, EndChoice::Later { rank: rb }] => write!(
             f,
@@ -57,7 +71,7 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             }
         }
     }
-    for change in &story.changes {
+    for change in &story.changes[usize::from(baseline.is_some())..] {
         let stage = change.stage.name();
         let verb = if change.added { "added" } else { "removed" };
         write!(f, "; {stage}: {verb} ")?;
@@ -100,6 +114,7 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::Junction => write!(f, "joined at a junction of three curves")?,
             Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,
             Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
+            // Only first (told above): a baseline is the whole method.
             Reason::Baseline => write!(f, "chosen by the baseline")?,
         }
     }
@@ -110,6 +125,45 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
 mod tests {
     use super::story_text;
     use condt::{reconstruct, Params, Point};
+
+    /// A baseline's run: every story starts with the baseline's decision, chosen or not, and
+    /// tells Algorithm 1's ends as its view only (found by a stress run: "shortest at 0; shortest
+    /// at 1; Crust: added chosen by the baseline").
+    #[test]
+    fn a_baseline_decides_every_story_and_algorithm_1_is_only_its_view() {
+        let points = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (1.0, 1.0),
+            (0.0, 1.0),
+            (0.5, 0.45),
+            (3.0, 3.0),
+        ]
+        .map(Point::from);
+        let params = Params::default().with_method(condt::Method::Crust);
+        let result = reconstruct(&points, &params).unwrap();
+        let stories = result.provenance();
+        let (mut chosen, mut not_chosen) = (0, 0);
+        for story in &stories {
+            let text = story_text(story);
+            let lead = if story.kept { "chosen" } else { "not chosen" };
+            let [a, b] = story.edge;
+            let expected =
+                format!("{a}-{b}: {lead} by the Crust; Algorithm 1 would have seen it as: ");
+            assert!(text.starts_with(&expected), "{text}");
+            assert!(!text.contains("baseline"), "{text}");
+            assert!(
+                text.ends_with(if story.kept { "; kept" } else { "; dropped" }),
+                "{text}"
+            );
+            if story.kept {
+                chosen += 1;
+            } else {
+                not_chosen += 1;
+            }
+        }
+        assert!(chosen > 0 && not_chosen > 0, "{chosen} {not_chosen}");
+    }
 
     /// Two lines crossing at point 0 at 40°, as in `condt`'s provenance tests: the crossing's
     /// story names its vertex.

@@ -224,11 +224,15 @@ mod tests {
                 .filter(|s| {
                     s.changes
                         .iter()
-                        .any(|c| c.reason == crate::Reason::Baseline)
+                        .any(|c| c.reason == crate::Reason::Baseline && c.added)
                 })
                 .map(|s| s.edge)
                 .collect();
             assert_eq!(chosen, edges);
+            // Every other edge's story has the baseline's decision too, not chosen.
+            assert!(stories
+                .iter()
+                .all(|s| s.changes.len() == 1 && s.kept == s.changes[0].added));
         }
     }
 

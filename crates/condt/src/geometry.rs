@@ -187,7 +187,10 @@ mod tests {
         let down = Scale::power_of_two(-2044).apply(Point::new(f64::MAX, 2f64.powi(1000)));
         assert_eq!(down.y, 2f64.powi(-1044));
         for k in [-2045, 2047, i32::MIN, i32::MAX] {
-            assert!(std::panic::catch_unwind(|| Scale::power_of_two(k)).is_err(), "{k}");
+            assert!(
+                std::panic::catch_unwind(|| Scale::power_of_two(k)).is_err(),
+                "{k}"
+            );
         }
     }
 

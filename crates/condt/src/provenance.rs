@@ -65,7 +65,8 @@ pub enum Reason {
         /// The crossing (input position).
         vertex: usize,
     },
-    /// A baseline (NN-Crust, Crust) chose it; the ends say how Algorithm 1 would have seen it
+    /// A baseline (NN-Crust, Crust) chose it (`added`) or not (every other edge of a baseline's
+    /// run has this change, `added` false); the ends say how Algorithm 1 would have seen it
     /// (with the run's `u`, or the default 2.75 where that is not one Algorithm 1 accepts: a
     /// baseline's run does not check it).
     Baseline,
@@ -144,13 +145,13 @@ impl Reconstruction {
             .collect();
         if let Some(first) = reports.first().filter(|r| r.stage != Stage::Proximity) {
             for (story, edge) in stories.iter_mut().zip(&all) {
-                if graphs[0].binary_search(edge).is_ok() {
-                    story.changes.push(Change {
-                        stage: first.stage,
-                        added: true,
-                        reason: Reason::Baseline,
-                    });
-                }
+                // Chosen or not, the baseline decided every edge: a change either way, so that
+                // no story reads as if Algorithm 1's ends had decided it.
+                story.changes.push(Change {
+                    stage: first.stage,
+                    added: graphs[0].binary_search(edge).is_ok(),
+                    reason: Reason::Baseline,
+                });
             }
         }
         for k in 1..reports.len() {

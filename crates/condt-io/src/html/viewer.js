@@ -242,7 +242,12 @@
     if (a === 0 || b === 0) parts.push("not a Delaunay edge");
     else if (a >= 3 && b >= 3) parts.push(`not among the two shortest at either end (ranks ${a} and ${b})`);
     else parts.push(endWords(k, 0), endWords(k, 1));
-    for (const c of changes.get(k) || []) parts.push(changeWords(c));
+    // A baseline decided the edge (its change, code 8, comes first): the ends are only
+    // Algorithm 1's view, told after it.
+    const all = changes.get(k) || [];
+    const baseline = all.length > 0 && all[0].code === 8 ? all[0] : null;
+    if (baseline) parts[0] = `${baseline.added ? "chosen" : "not chosen"} by the ${baseline.stage}; Algorithm 1 would have seen it as: ${parts[0]}`;
+    for (const c of baseline ? all.slice(1) : all) parts.push(changeWords(c));
     parts.push(resultEdges[k] ? "kept" : "dropped");
     return parts;
   }
