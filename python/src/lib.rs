@@ -200,8 +200,13 @@ fn read_points<'py>(
             io_error(err)
         })?;
     let n = points.len();
-    let mut flat: Vec<f64> = Vec::with_capacity(2 * n);
-    flat.extend(points.iter().flat_map(|p| [p.x, p.y]));
+    // Into the points' own memory (same size and alignment: the collect reuses it), not a
+    // second list beside them.
+    let flat: Vec<f64> = points
+        .into_iter()
+        .map(|p| [p.x, p.y])
+        .collect::<Vec<[f64; 2]>>()
+        .into_flattened();
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
     Ok(PyArray2::from_owned_array(py, array))
@@ -226,11 +231,12 @@ impl EdgeRows {
     }
 }
 
-/// Whether `value` is an integer: a Python int (not a bool) or a numpy integer.
-fn is_integer(numpy: &Bound<'_, PyModule>, value: &Bound<'_, PyAny>) -> PyResult<bool> {
+/// Whether `value` is an integer: a Python int (not a bool) or a numpy integer
+/// (`numpy_integer`, `numpy.integer`, looked up once by the caller).
+fn is_integer(numpy_integer: &Bound<'_, PyAny>, value: &Bound<'_, PyAny>) -> PyResult<bool> {
     Ok(
         (value.is_instance_of::<PyInt>() && !value.is_instance_of::<PyBool>())
-            || value.is_instance(&numpy.getattr("integer")?)?,
+            || value.is_instance(numpy_integer)?,
     )
 }
 
@@ -304,9 +310,10 @@ fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<E
             }
         }
         "O" => {
+            let numpy_integer = numpy.getattr("integer")?;
             for (k, value) in array.getattr("flat")?.try_iter()?.enumerate() {
                 let value = value?;
-                if !is_integer(&numpy, &value)? {
+                if !is_integer(&numpy_integer, &value)? {
                     return Err(not_integers());
                 }
                 put(

@@ -515,7 +515,7 @@ struct TriangulateArgs {
 /// text, as standard output is (`/dev/null`, a pipe's name); an extension it has no writer for
 /// is refused rather than given text that its name says is something else.
 fn triangulate_output(output: Option<&Path>) -> Result<(bool, bool), CliError> {
-    let Some(extension) = output.and_then(Path::extension) else {
+    let Some((path, extension)) = output.and_then(|p| Some((p, p.extension()?))) else {
         return Ok((false, false));
     };
     let lower = extension.to_string_lossy().to_ascii_lowercase();
@@ -526,7 +526,7 @@ fn triangulate_output(output: Option<&Path>) -> Result<(bool, bool), CliError> {
         _ => Err(usage(format!(
             "{}: triangulate cannot write a .{} file; it writes text (.txt, or a name without \
              an extension), edges (.edges, as --edges) or a NumPy array (.npy)",
-            output.map_or(String::new(), |p| p.display().to_string()),
+            path.display(),
             extension.to_string_lossy(),
         ))),
     }

@@ -16,7 +16,9 @@
 //! problem is reported with its line; a malformed TRUTH is an error. A file that is not an edge
 //! list at all is an error whichever it is: bytes that are not text (not UTF-8, a NUL byte, a
 //! NumPy array under another name), an `.npy` array of another dtype or shape, or text of which
-//! no line is an edge. Messages quote a line escaped and cut short, never the file's raw bytes.
+//! no line is an edge. There this command parts from the suite's scorer, which reads any file
+//! (undecodable bytes replaced) and scores such an output 0: a user handing it a wrong file is
+//! told so. Messages quote a line escaped and cut short, never the file's raw bytes.
 
 use crate::cli::{usage, CliError};
 use crate::options::{self, Opt};

@@ -277,13 +277,18 @@ fn options_that_contradict_each_other_are_refused() {
         }
     }
     // Saying the same thing twice, or what --paper already says, is no contradiction.
-    for args in [
-        &["--no-manifold-fix", "--repair", "off"][..],
+    assert_reconstruct_accepts(&[
+        &["--no-manifold-fix", "--repair", "off"],
         &["--paper", "--repair", "paper"],
         &["--close-gaps", "--close-gaps"],
-    ] {
+    ]);
+}
+
+/// Each of `options` after `condt reconstruct -` runs on a circle without an error.
+fn assert_reconstruct_accepts(options: &[&[&str]]) {
+    for args in options {
         let mut line = vec!["reconstruct", "-"];
-        line.extend(args);
+        line.extend(args.iter());
         let out = condt(&line, &circle_input(12));
         assert!(
             out.status.success(),
@@ -734,20 +739,11 @@ fn a_refused_number_is_told_as_typed() {
         assert!(said.contains("out of range"), "{line:?}: {said}");
     }
     // The same value twice is no contradiction, however it is written; two values are.
-    for args in [
-        &["--u", "2", "--u", "2"][..],
+    assert_reconstruct_accepts(&[
+        &["--u", "2", "--u", "2"],
         &["--u", "2", "--u=2.0"],
         &["--iqr", "1.5", "--iqr", "1.50"],
-    ] {
-        let mut line = vec!["reconstruct", "-"];
-        line.extend(args);
-        let out = condt(&line, &circle_input(12));
-        assert!(
-            out.status.success(),
-            "{line:?}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
+    ]);
     let said = refused(&["reconstruct", "-", "--u", "2", "--u", "3"]);
     assert!(said.contains("--u 2 and --u 3 contradict"), "{said}");
 }

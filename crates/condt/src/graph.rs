@@ -80,6 +80,10 @@ impl<'t> OutlierRemoval<'t> {
             core::ptr::eq(this.tri, repaired.tri) && core::ptr::eq(this.tri, proximity.tri),
             "repair_again: the graphs live on different triangulations"
         );
+        // An empty `repaired` (not this stage's input) has no quartiles to take a threshold from.
+        if repaired.edges.is_empty() {
+            return this.clone();
+        }
         let step = Step::RepairAgain {
             rule: self.rule,
             mode: repair,
@@ -354,8 +358,7 @@ impl<'t> Graph<'t> {
             before_local: Cow::Borrowed(local),
             before_repair: Cow::Borrowed(repair),
         };
-        let parallel = crate::threads::parallel_available()
-            && self.tri.num_points() >= crate::stages::PARALLEL_FROM;
+        let parallel = crate::threads::parallel_available();
         match step
             .run(self.tri, &self.edges, earlier, None, parallel)
             .edges

@@ -11,7 +11,7 @@
 mod common;
 
 use common::Rng;
-use condt::{reconstruct, Params, Point};
+use condt::{reconstruct, Params, Point, Stage};
 use condt_eval::sample::{sample, Sampling, Shape};
 use std::collections::BTreeSet;
 
@@ -270,6 +270,7 @@ fn the_shortest_edge_at_a_branch_point_is_the_same_in_every_orientation() {
         (0.9863622745483219, 0.8210591542043668),
     ]
     .map(Point::from);
+    assert!(changed_by(&paper_star, &Params::paper(), Stage::Repair));
     assert_same_in_every_presentation(&paper_star, &Params::paper(), "paper");
     let default_star = [
         (0.17942640138287425, 0.33704459434572964),
@@ -281,6 +282,7 @@ fn the_shortest_edge_at_a_branch_point_is_the_same_in_every_orientation() {
     ]
     .map(Point::from);
     for params in [Params::default(), Params::default().with_smooth(false)] {
+        assert!(changed_by(&default_star, &params, Stage::Repair));
         assert_same_in_every_presentation(&default_star, &params, "default");
     }
 }
@@ -303,6 +305,15 @@ fn gap_closing_takes_the_same_end_in_every_orientation() {
     ]
     .map(Point::from);
     for params in [Params::default(), Params::default().with_smooth(false)] {
+        assert!(changed_by(&points, &params, Stage::Gaps));
         assert_same_in_every_presentation(&points, &params, "default");
     }
+}
+
+/// Whether `stage` changed the graph in the reconstruction of `points` with `params`: the stage a
+/// tie test is about must have decided something.
+fn changed_by(points: &[Point], params: &Params, stage: Stage) -> bool {
+    let result = reconstruct(points, params).unwrap();
+    let applied = result.stages().any(|s| s.stage == stage && s.applied);
+    applied
 }

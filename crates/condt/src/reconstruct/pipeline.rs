@@ -488,13 +488,12 @@ impl Run {
             before_local: input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack),
             before_repair,
         };
-        let in_parallel = params.parallel && tri.num_points() >= PARALLEL_FROM;
         let outcome = step.run(
             tri,
             current,
             earlier,
             self.current_graph.take(),
-            in_parallel,
+            params.parallel,
         );
         self.current_graph = outcome.graph;
         let undo = match outcome.edges {

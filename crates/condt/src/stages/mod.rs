@@ -351,7 +351,7 @@ impl Step {
     /// gap closing and junctions use it instead of building one, the given-back check hands it on
     /// when it returns at once, and the others drop it first, so it never adds to their memory.
     /// `parallel`: gap closing, junctions and crossings search for their candidates on several
-    /// threads (the same outcome).
+    /// threads from [`PARALLEL_FROM`] points on (the same outcome).
     pub(crate) fn run(
         self,
         tri: &Triangulation,
@@ -360,6 +360,8 @@ impl Step {
         graph: Option<CurveGraph>,
         parallel: bool,
     ) -> Outcome {
+        // The one place the stages' threshold applies: below it, threads cost more than they save.
+        let parallel = parallel && tri.num_points() >= PARALLEL_FROM;
         match self {
             Step::Repair(mode) => {
                 drop(graph);

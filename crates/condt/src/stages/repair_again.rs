@@ -28,10 +28,8 @@ pub(crate) fn repair_again(
     rule: IqrRule,
     mode: Repair,
 ) -> Outcome {
-    // The IQR stage only removes edges: it cut exactly when the lists differ. An empty
-    // `repaired` (a caller's graph that is not the stage's input: `OutlierRemoval::repair_again`)
-    // has no quartiles to take a threshold from: nothing to repair again.
-    if edges == &*repaired || repaired.is_empty() {
+    // The IQR stage only removes edges: it cut exactly when the lists differ.
+    if edges == &*repaired {
         return Outcome::UNCHANGED;
     }
     let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
