@@ -42,7 +42,7 @@
 //! A block asked for zeroed is cleared where its pages were reused (fresh pages come zeroed).
 //!
 //! Measured against glibc with its mmap threshold fixed at 128 KiB, which this replaced (`perf
-//! stat -e page-faults`, `/usr/bin/time`; `docs/performance.md`, "The binary's allocator"):
+//! stat -e page-faults`, `/usr/bin/time`; `docs/perf-log.md`, "The binary's allocator"):
 //! `reconstruct` along curves, 1M points, 64,723 page faults -> 32,726; 10M 663,281 -> 325,248
 //! and 2.02 -> 1.13 s of system time; uniform points, 1M, 323,258 -> 73,445 and 1.06 -> 0.32 s.
 //! The peak resident set is within 1.7 % (109,968 against 109,440 kB along curves at 1M,

@@ -7,7 +7,8 @@
 //!
 //! Point files hold one point per line, `x y` ([`parse_points`] has the rules), or are Triangle
 //! `.node` files ([`parse_node`]), NumPy `.npy` arrays of shape `(n, 2)` ([`parse_npy`]), CSV
-//! with a header ([`parse_csv`]) or GeoJSON points ([`parse_geojson`]); [`read_points`] tells
+//! with a header naming the columns or of two numeric columns without one ([`parse_csv`]) or
+//! GeoJSON points ([`parse_geojson`]); [`read_points`] tells
 //! them apart by the file name. Results are written as text, one item per line, as `.npy` arrays
 //! of indices ([`write_npy_edges`], [`write_npy_triangles`]), or drawn (SVG, the HTML viewer); an
 //! edge's story is told in a sentence ([`story_text`]). Edge arrays are read back by

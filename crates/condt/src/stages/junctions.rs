@@ -13,7 +13,8 @@
 //! of [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`),
 //! straightest ahead of the end among those that pass (ties by id), and chosen by no other loose end (two make a crossing, gap
 //! closing's case). All choices are made on the graph as it came in, so the result is independent
-//! of the order of the ends; sequential, the same with `parallel` on or off.
+//! of the order of the ends; the ends' search may run on several threads (`parallel`), the joins
+//! are made in order: the same result either way.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO, STRAIGHT};
 use super::Outcome;
