@@ -129,23 +129,23 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
         }
         other => CliError::Input(format!("{}: {other}", truth.name)),
     })?;
-    // The output's first problem: a line that is not an edge, or the library's, whichever comes
-    // first in the file. An array has neither lines nor lines that are not edges: its one
-    // problem carries its row in the message.
-    let problem = [
-        output.bad_line.clone(),
-        result.malformed.map(|p: EdgeProblem| {
-            let (line, why) = output.place(p.position(), p.to_string());
-            (line.unwrap_or(0), why)
-        }),
-    ]
-    .into_iter()
-    .flatten()
-    .min_by_key(|(line, _)| *line)
-    .map(|(line, why)| match output.places {
-        Places::Lines(_) => format!("line {line}: {why}"),
-        Places::Rows => why,
-    });
+    // The output's first problem: in a text, a line that is not an edge or the library's,
+    // whichever comes first in the file; an array has no lines, and no line that is not an edge.
+    let problem = match &output.places {
+        Places::Rows => result
+            .malformed
+            .map(|p: EdgeProblem| format!("row {}: {p}", p.position())),
+        Places::Lines(lines) => [
+            output.bad_line.clone(),
+            result
+                .malformed
+                .map(|p: EdgeProblem| (lines[p.position()], p.to_string())),
+        ]
+        .into_iter()
+        .flatten()
+        .min_by_key(|(line, _)| *line)
+        .map(|(line, why)| format!("line {line}: {why}")),
+    };
     let result = if output.bad_line.is_some() {
         Score {
             exact: false,

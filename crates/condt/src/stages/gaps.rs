@@ -316,10 +316,13 @@ impl<'a> Ends<'a> {
             let nearer = key
                 .0
                 .total_cmp(&best_key.0)
-                .then_with(|| match best_key.1.is_infinite() {
-                    // No candidate yet (only an infinite length ties with the start).
-                    true => core::cmp::Ordering::Equal,
-                    false => compare_tied_distances(pa, self.point(w), self.point(best_key.1)),
+                .then_with(|| {
+                    // No candidate yet: only an infinite length ties with the start.
+                    if best_key.1.is_infinite() {
+                        core::cmp::Ordering::Equal
+                    } else {
+                        compare_tied_distances(pa, self.point(w), self.point(best_key.1))
+                    }
                 })
                 .then(key.1.cmp(&best_key.1));
             if nearer != core::cmp::Ordering::Less {
