@@ -185,6 +185,103 @@ impl CurveGraph {
         self.branch_neighbors = neighbors;
     }
 
+    /// Adds `added` (edges absent from this graph, each once), as [`CurveGraph::new`] of this
+    /// graph's list followed by `added` would build: records filled in place, the side table
+    /// rewritten in one pass when a vertex reaches three neighbours.
+    pub(crate) fn add_edges(&mut self, added: &[Edge]) {
+        let mut at_branches: Vec<(VertexId, VertexId)> = Vec::new();
+        for &[a, b] in added {
+            for (v, w) in [(a, b), (b, a)] {
+                let record = &mut self.records[v.index()];
+                let d = record[0] >> ID_BITS;
+                if d >= 2 {
+                    at_branches.push((v, w));
+                }
+                let w = w.index() as u32;
+                let first = if d == 0 { w } else { record[0] & ID_MASK };
+                record[0] = first | ((d + 1).min(DEGREE_SATURATED) << ID_BITS);
+                if d == 1 {
+                    record[1] = w;
+                }
+            }
+        }
+        if at_branches.is_empty() {
+            return;
+        }
+        // Stable: each vertex's new neighbours stay in the order of `added`.
+        at_branches.sort_by_key(|&(v, _)| v);
+        let old_vertices = core::mem::take(&mut self.branch_vertices);
+        let old_neighbors = core::mem::take(&mut self.branch_neighbors);
+        let mut vertices = Vec::with_capacity(old_vertices.len() + at_branches.len());
+        let mut neighbors = Vec::with_capacity(old_neighbors.len() + 3 * at_branches.len());
+        let (mut old, mut new) = (0, 0);
+        while old < old_vertices.len() || new < at_branches.len() {
+            let v = match (old_vertices.get(old), at_branches.get(new)) {
+                (Some(&(u, _)), Some(&(w, _))) => u.min(w),
+                (Some(&(u, _)), None) => u,
+                (None, Some(&(w, _))) => w,
+                (None, None) => unreachable!(),
+            };
+            vertices.push((v, neighbors.len() as u32));
+            if old_vertices.get(old).is_some_and(|&(u, _)| u == v) {
+                let start = old_vertices[old].1 as usize;
+                let end = old_vertices
+                    .get(old + 1)
+                    .map_or(old_neighbors.len(), |&(_, next)| next as usize);
+                neighbors.extend_from_slice(&old_neighbors[start..end]);
+                old += 1;
+            } else {
+                // Two neighbours before: both in the record, which the branch does not change.
+                neighbors.extend_from_slice(&self.first_two(v));
+            }
+            while at_branches.get(new).is_some_and(|&(u, _)| u == v) {
+                neighbors.push(at_branches[new].1);
+                new += 1;
+            }
+        }
+        self.branch_vertices = vertices;
+        self.branch_neighbors = neighbors;
+    }
+
+    /// Makes this, the curve graph of a stage's `input`, that of its `output`: `input` less some
+    /// edges, in order, then new edges (the form every stage's output has). Patched in place for
+    /// up to one change per 64 vertices, else rebuilt (the old graph freed first).
+    pub(crate) fn follow(&mut self, input: &[Edge], output: &[Edge]) {
+        if !self.patch(input, output, self.vertex_count() / 64) {
+            self.rebuild(output);
+        }
+    }
+
+    /// [`CurveGraph::follow`] in place when it takes at most `most` changes; `false` (and the
+    /// graph unchanged) otherwise.
+    fn patch(&mut self, input: &[Edge], output: &[Edge], most: usize) -> bool {
+        let mut removed = Vec::new();
+        let mut kept = 0;
+        for &edge in input {
+            if output.get(kept) == Some(&edge) {
+                kept += 1;
+            } else if removed.len() < most {
+                removed.push(edge);
+            } else {
+                return false;
+            }
+        }
+        let appended = &output[kept..];
+        if removed.len() + appended.len() > most {
+            return false;
+        }
+        self.remove_edges(&removed);
+        self.add_edges(appended);
+        true
+    }
+
+    /// Makes this the curve graph of `edges`, freeing the old one first (memory).
+    pub(crate) fn rebuild(&mut self, edges: &[Edge]) {
+        let n = self.vertex_count();
+        *self = CurveGraph::new(0, &[]);
+        *self = CurveGraph::new(n, edges);
+    }
+
     /// All neighbours of a vertex with three or more (a binary search: such vertices are few).
     #[cold]
     fn branch(&self, v: VertexId) -> &[VertexId] {
@@ -442,5 +539,55 @@ pub(crate) mod tests {
             );
         }
         assert!(patched_branches > 500, "removals reach branch points");
+    }
+
+    /// Adding edges in place gives the graph of the list with them appended, and following a
+    /// stage's output (some edges removed, others appended) gives the output's graph, on random
+    /// graphs whose vertices reach every degree from zero to beyond the saturation.
+    #[test]
+    fn adding_and_following_edges_in_place_give_the_graph_of_the_new_list() {
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let (mut new_branches, mut grown_branches, mut followed) = (0, 0, 0);
+        for _ in 0..500 {
+            let (n, all) = random_graph(&mut rng, 25, 4);
+            let share = 1 + rng.below(4);
+            let (mut input, mut added) = (Vec::new(), Vec::new());
+            for &e in &all {
+                if rng.below(share + 1) == 0 {
+                    added.push(e);
+                } else {
+                    input.push(e);
+                }
+            }
+            let before = CurveGraph::new(n, &input);
+            let mut graph = before.clone();
+            graph.add_edges(&added);
+            let whole: Vec<Edge> = input.iter().chain(&added).copied().collect();
+            assert_eq!(graph, CurveGraph::new(n, &whole), "{input:?} and {added:?}");
+            for v in (0..n as u32).map(VertexId::new) {
+                new_branches += usize::from(before.degree(v) <= 2 && graph.degree(v) > 2);
+                grown_branches +=
+                    usize::from(before.degree(v) > 2 && graph.degree(v) > before.degree(v));
+            }
+            // A stage's output: the input less some edges, in order, then the added ones.
+            let output: Vec<Edge> = input
+                .iter()
+                .filter(|_| rng.below(3) != 0)
+                .chain(&added)
+                .copied()
+                .collect();
+            let mut patched = before.clone();
+            assert!(patched.patch(&input, &output, usize::MAX));
+            assert_eq!(
+                patched,
+                CurveGraph::new(n, &output),
+                "{input:?} to {output:?}"
+            );
+            let mut rebuilt = before;
+            rebuilt.follow(&input, &output);
+            assert_eq!(rebuilt, patched);
+            followed += usize::from(output.len() != input.len());
+        }
+        assert!(new_branches > 200 && grown_branches > 200 && followed > 400);
     }
 }

@@ -21,6 +21,7 @@ use crate::adjacency::{collect_exact, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
+use alloc::vec::Vec;
 
 /// Removes the clumps from `edges` (each once, any order), keeping the rest in order; the outcome
 /// is unchanged when there is none or when the quarter guard ([`OUTLIER_SHARE`]) holds.
@@ -74,14 +75,19 @@ pub(crate) fn remove_clumps(
     if in_clumps == 0 || (in_clumps + not_apart) as f64 >= guard {
         return Outcome::unchanged_with(Some(graph));
     }
-    drop(graph);
-    Outcome::from(Some(collect_exact(
+    // One byte per component while the output is built, not the tallies (memory: the curve
+    // graph is kept to hand on).
+    let clump: Vec<bool> = (0..n).map(is_clump).collect();
+    drop((size, smooth, separated));
+    let kept = collect_exact(
         edges.len(),
         edges
             .iter()
-            .filter(|&&[a, _]| !is_clump(root[a.index()] as usize))
+            .filter(|&&[a, _]| !clump[root[a.index()] as usize])
             .copied(),
-    )))
+    );
+    drop((root, clump));
+    Outcome::changed(edges, kept, Some(graph))
 }
 
 #[cfg(test)]

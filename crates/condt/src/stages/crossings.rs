@@ -172,7 +172,7 @@ pub(crate) fn restore_crossings(
     if restored.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
-    drop(ends);
+    let graph = ends.into_graph();
     let mut chords: Vec<Edge> = restored.iter().map(|k| ordered(k.c, k.d)).collect();
     chords.sort_unstable();
     let mut out: Vec<Edge> = Vec::with_capacity(edges.len() + restored.len());
@@ -186,7 +186,7 @@ pub(crate) fn restore_crossings(
         out.push(ordered(k.x, k.c));
         out.push(ordered(k.x, k.d));
     }
-    Outcome::from(Some(out))
+    Outcome::changed(edges, out, graph)
 }
 
 #[cfg(test)]

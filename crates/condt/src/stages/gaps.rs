@@ -533,17 +533,17 @@ impl Ends<'_> {
 }
 
 impl Ends<'_> {
-    /// The outcome of a stage that adds `joins` to `edges`: unchanged (the curve graph handed on)
-    /// when there is none; otherwise `edges` in order, then `joins` (the curve graph freed first).
+    /// The outcome of a stage that adds `joins` to `edges`: unchanged when there is none;
+    /// otherwise `edges` in order, then `joins`; the curve graph follows and is handed on.
     pub(super) fn joined(self, edges: &[Edge], joins: &[Edge]) -> Outcome {
+        let graph = self.into_graph();
         if joins.is_empty() {
-            return Outcome::unchanged_with(self.into_graph());
+            return Outcome::unchanged_with(graph);
         }
-        drop(self);
         let mut out = Vec::with_capacity(edges.len() + joins.len());
         out.extend_from_slice(edges);
         out.extend_from_slice(joins);
-        Outcome::from(Some(out))
+        Outcome::changed(edges, out, graph)
     }
 }
 

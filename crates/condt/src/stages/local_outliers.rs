@@ -83,7 +83,7 @@ impl Rules {
 }
 
 /// The stage on `edges`; `before` is the IQR stage's input. The outcome carries the output's curve
-/// graph unless rule 4 changed the edges (then stale, freed before the output is built).
+/// graph.
 pub(crate) fn remove_local_outliers(
     tri: &Triangulation,
     edges: &[Edge],
@@ -132,29 +132,25 @@ pub(crate) fn remove_local_outliers(
             update(&mut profile, &graph, &removed);
         }
     }
-    // `profile` is the curve graph of `graph` until rule 4 removes a component.
-    let mut profile = Some(profile);
     if rules.separated_components {
-        let judged = profile.as_ref().and_then(|p| {
-            // A `false` may be stale (rules 2 and 3 changed the graph): the full test then runs.
-            let smooth_cycles = smooth_cycles.unwrap_or_else(|| only_smooth_cycles(tri, p));
-            separated_components(tri, &graph, p, smooth_cycles)
-        });
-        if let Some((root, kept)) = judged {
-            // Not read again and not the output's: freed before the output is built.
-            profile = None;
-            drop_edges(&mut graph, &mut Vec::new(), |&[a, _]| {
+        // A `false` may be stale (rules 2 and 3 changed the graph): the full test then runs.
+        let smooth_cycles = smooth_cycles.unwrap_or_else(|| only_smooth_cycles(tri, &profile));
+        if let Some((root, kept)) = separated_components(tri, &graph, &profile, smooth_cycles) {
+            let mut removed = Vec::new();
+            drop_edges(&mut graph, &mut removed, |&[a, _]| {
                 !kept[root[a.index()] as usize]
             });
+            update(&mut profile, &graph, &removed);
         }
     }
+    // `profile` is the curve graph of `graph`, handed on.
     match graph {
         Cow::Owned(changed) if changed.as_slice() != edges => Outcome {
             edges: Some(changed),
-            graph: profile,
+            graph: Some(profile),
         },
         // The same edges in the same order: the same curve graph.
-        _ => Outcome::unchanged_with(profile),
+        _ => Outcome::unchanged_with(Some(profile)),
     }
 }
 

@@ -348,8 +348,10 @@ impl Step {
     /// [`Step::check`]; only [`Step::RepairAgain`], [`Step::LocalOutliers`] and
     /// [`Step::ConfirmGivenBack`] read `earlier`. `graph`, if given, is the curve graph of `edges`
     /// (over every point id) the previous stage handed on ([`Outcome::graph`]): the clump stage,
-    /// gap closing and junctions use it instead of building one, the given-back check hands it on
-    /// when it returns at once, and the others drop it first, so it never adds to their memory.
+    /// gap closing, junctions and crossings use it instead of building one and hand it on made
+    /// their output's ([`Outcome::changed`]; the local outlier removal hands on the one it
+    /// builds), the given-back check hands it on when it returns at once, and the others drop it
+    /// first, so it never adds to their memory.
     /// `parallel`: gap closing, junctions and crossings search for their candidates on several
     /// threads from [`PARALLEL_FROM`] points on (the same outcome).
     pub(crate) fn run(
@@ -419,6 +421,21 @@ impl Outcome {
 
     pub(crate) fn unchanged_with(graph: Option<CurveGraph>) -> Outcome {
         Outcome { edges: None, graph }
+    }
+}
+
+impl Outcome {
+    /// The outcome `output` of a stage on `input` (the form [`CurveGraph::follow`] reads), with
+    /// `graph`, the input's curve graph if the stage had it, made the output's and handed on.
+    pub(crate) fn changed(input: &[Edge], output: Vec<Edge>, graph: Option<CurveGraph>) -> Outcome {
+        let graph = graph.map(|mut graph| {
+            graph.follow(input, &output);
+            graph
+        });
+        Outcome {
+            edges: Some(output),
+            graph,
+        }
     }
 }
 
