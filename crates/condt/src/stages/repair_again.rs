@@ -13,10 +13,9 @@
 use super::outliers::{iqr_thresholds_of, IqrRule};
 use super::repair::repair;
 use super::{Outcome, Repair};
-use crate::adjacency::Edge;
+use crate::adjacency::{collect_exact, Edge};
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
-use alloc::vec::Vec;
 
 /// The rule on `edges`, the IQR stage's output; `repaired` is that stage's input, `proximity`
 /// the repair's. Each is freed once read, before the repair runs (memory: its peak).
@@ -35,11 +34,13 @@ pub(crate) fn repair_again(
     let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
     let threshold = iqr_thresholds_of(repaired.iter().map(length2).collect(), rule).cut;
     drop(repaired);
-    let short: Vec<Edge> = proximity
-        .iter()
-        .filter(|e| length2(e) <= threshold)
-        .copied()
-        .collect();
+    let short = collect_exact(
+        proximity.len(),
+        proximity
+            .iter()
+            .filter(|e| length2(e) <= threshold)
+            .copied(),
+    );
     drop(proximity);
     Outcome::from(Some(repair(tri, &short, mode).unwrap_or(short)))
 }
