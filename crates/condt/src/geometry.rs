@@ -47,7 +47,6 @@ impl Point {
     pub fn is_finite(self) -> bool {
         self.x.is_finite() && self.y.is_finite()
     }
-    /// The point with both coordinates multiplied by `factor`.
     #[inline]
     pub(crate) fn scaled(self, factor: f64) -> Point {
         Point::new(self.x * factor, self.y * factor)

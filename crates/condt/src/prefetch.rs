@@ -2,9 +2,8 @@
 //! `unsafe`, confined here (`lib.rs` denies unsafe code, this module alone allows it, and
 //! `tests/unsafe_code.rs` fails if any other source file but the binary's allocator uses it).
 //!
-//! Owns: [`prefetch`] and [`PREFETCH_FROM`]; it may not read or write memory. Why: at a million
-//! points most reads of the proximity sweep and the final tally (on shuffled input) miss the
-//! caches; a prefetch issued ahead lets the misses overlap. It changes no result.
+//! Owns: [`prefetch`] and [`PREFETCH_FROM`]; it may not read or write memory, and changes no
+//! result (it lets the cache misses of large sweeps overlap).
 
 /// Fewest points for which loops prefetch (below it the reads fit the second-level cache); never
 /// on targets where [`prefetch`] does nothing.

@@ -51,8 +51,7 @@ pub(crate) fn both<A: Send, B: Send>(
 }
 
 /// The values `find` gives for the ids `0..n`, in increasing id: the same list either way, split
-/// into ranges on rayon's threads when `parallel`. For scans that only read (a stage's search for
-/// candidates), whose results the caller then applies in order.
+/// into ranges on rayon's threads when `parallel` (for read-only scans applied later in order).
 pub(crate) fn found_in_order<T: Send>(
     n: usize,
     parallel: bool,

@@ -1,12 +1,11 @@
 //! Construction of a [`Mesh`]: the one place outside `mesh/mod.rs` that writes its arrays.
 //!
-//! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once, in the arrays
-//! of a finished mesh given back when there is one, [`MeshArrays::reusing`]); a
+//! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once); a
 //! [`MeshBuilder`] lent a range offers the triangulator exactly its edits and reads, and two may
-//! fill disjoint ranges at once (the halves of [`crate::triangulate()`]). [`MeshArrays::seal`]
-//! derives `vertex_edges` and ends it. It may not look at a coordinate or decide a sign, and checks
-//! nothing while building (between edits the arrays may describe no sphere); hot loops address a
-//! triangle by `base`, its first half-edge's index ([`HalfEdgeId::base_and_corner`]).
+//! fill disjoint ranges at once. [`MeshArrays::seal`] derives `vertex_edges` and ends it. It may
+//! not look at a coordinate or decide a sign, and checks nothing while building (between edits
+//! the arrays may describe no sphere); hot loops address a triangle by `base`, its first
+//! half-edge's index ([`HalfEdgeId::base_and_corner`]).
 
 use super::{HalfEdgeId, Mesh, TriangleId, VertexId};
 use crate::threads::filled;
@@ -21,16 +20,13 @@ pub(crate) struct MeshArrays {
 }
 
 impl MeshArrays {
-    /// Room for `half_edges` half-edges (a multiple of three), filled on rayon's threads when
-    /// `parallel`: the first touch of each page is most of the cost.
+    /// Room for `half_edges` half-edges (a multiple of three), filled as [`filled`] does.
     pub(crate) fn new(half_edges: usize, parallel: bool) -> Self {
         MeshArrays::reusing(Mesh::default(), half_edges, parallel)
     }
 
     /// [`MeshArrays::new`] in the arrays of `storage`, a mesh no longer needed, where they are
-    /// large enough. Reason: memory; a smoothing pass builds a mesh as large as the one it
-    /// replaces, and glibc's malloc keeps a freed block of its size (once its mmap threshold rose)
-    /// out of the system's reach.
+    /// large enough (memory: a smoothing pass replaces a mesh by one as large; `docs/perf-log.md`).
     pub(crate) fn reusing(storage: Mesh, half_edges: usize, parallel: bool) -> Self {
         MeshArrays {
             origins: filled(storage.origins, VertexId::INFINITE, half_edges, parallel),

@@ -63,9 +63,8 @@ impl HalfEdgeId {
     pub const fn index(self) -> usize {
         self.0 as usize
     }
-    /// The next half-edge counter-clockwise in the same triangle. For a half-edge of a mesh:
-    /// [`HalfEdgeId::NONE`] has none (a debug build panics on the overflow, a release build
-    /// gives an id of no meaning; no check on this hot path).
+    /// The next half-edge counter-clockwise in the same triangle. [`HalfEdgeId::NONE`] has none
+    /// (unchecked on this hot path: a debug build panics, a release build gives a meaningless id).
     #[inline]
     pub const fn next(self) -> Self {
         HalfEdgeId(if self.0 % 3 == 2 {
@@ -75,8 +74,7 @@ impl HalfEdgeId {
         })
     }
 
-    /// The previous half-edge in the same triangle (for a half-edge of a mesh, as
-    /// [`HalfEdgeId::next`]).
+    /// The previous half-edge in the same triangle (unchecked, as [`HalfEdgeId::next`]).
     #[inline]
     pub const fn prev(self) -> Self {
         HalfEdgeId(if self.0 % 3 == 0 {

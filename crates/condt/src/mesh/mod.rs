@@ -1,10 +1,9 @@
 //! Half-edge topology of a triangulated sphere, closed by ghost triangles at
 //! [`VertexId::INFINITE`] (`docs/half_edge.md` draws the layout and lists the walks).
 //!
-//! Owns: connectivity only, in three flat arrays indexed by typed ids, private to this module:
-//! only `mesh` writes them (through `MeshBuilder` in `build.rs` while a mesh is built), and every
-//! other module reads a finished [`Mesh`] through its accessors. It may not look at a coordinate
-//! and knows nothing of why a triangle was made; `check.rs` verifies the result.
+//! Owns: connectivity only, in three flat arrays indexed by typed ids, private to this module
+//! (`build.rs` writes them while a mesh is built; others read a finished [`Mesh`] through its
+//! accessors). It may not look at a coordinate and knows nothing of why a triangle was made.
 
 mod build;
 mod check;
@@ -108,9 +107,8 @@ impl Mesh {
         &self,
         triangles: core::ops::Range<usize>,
     ) -> impl Iterator<Item = [VertexId; 3]> + '_ {
-        self.origins[3 * triangles.start..3 * triangles.end]
-            .chunks_exact(3)
-            .map(|c| [c[0], c[1], c[2]])
+        let corners = self.corner_slice(triangles).chunks_exact(3);
+        corners.map(|c| [c[0], c[1], c[2]])
     }
     /// `true` when `t` is a ghost triangle (one corner is [`VertexId::INFINITE`]).
     #[inline]
@@ -187,7 +185,7 @@ impl Mesh {
 
     /// Fills `vertex_edges`: one pass records the last edge leaving each vertex, then a walk along
     /// the ghosts gives every hull vertex its edge to infinity. With `parallel`, two threads each
-    /// scan every origin and record only their half of the ids (scattered writes kept apart).
+    /// scan every origin and record only their half of the ids.
     fn rebuild_vertex_edges(&mut self, vertex_count: usize, parallel: bool) {
         // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
         let sink = vertex_count;

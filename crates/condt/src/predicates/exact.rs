@@ -79,7 +79,6 @@ impl Int {
             sum.negative = self.negative && sum.len > 0;
             return sum;
         }
-        // Opposite signs: the larger magnitude decides the sign of the difference.
         let (large, small) = match compare_magnitudes(self.magnitude(), other.magnitude()) {
             Ordering::Equal => return Int::ZERO,
             Ordering::Greater => (self, other),
@@ -135,14 +134,12 @@ fn decompose(x: f64) -> Option<(bool, u64, i32)> {
     Some((bits >> 63 == 1, mantissa >> zeros, exponent + zeros as i32))
 }
 
-/// The exponent of the last set bit of the least precise coordinate: every coordinate is an
-/// integer multiple of `2^e0`. Zero when all coordinates are zero.
-fn common_exponent(coordinates: &[f64]) -> i32 {
-    coordinates
-        .iter()
-        .filter_map(|&c| decompose(c).map(|(_, _, e)| e))
-        .min()
-        .unwrap_or(0)
+/// The points' coordinates as integers in units of `2^e0`, `e0` the exponent of the last set bit
+/// of the least precise one (zero when all are zero): each is an integer multiple of `2^e0`.
+fn integers<const N: usize>(points: [[f64; 2]; N]) -> [[Int; 2]; N] {
+    let exponents = points.as_flattened().iter().filter_map(|&c| decompose(c));
+    let e0 = exponents.map(|(_, _, e)| e).min().unwrap_or(0);
+    points.map(|p| p.map(|c| Int::from_f64(c, e0)))
 }
 
 fn compare_magnitudes(a: &[u64], b: &[u64]) -> Ordering {
@@ -187,21 +184,17 @@ fn subtract_magnitudes(a: &[u64], b: &[u64]) -> Int {
 
 /// The exact orientation sign: `Greater` when `a, b, c` turn counter-clockwise.
 pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
-    let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1]]);
-    let int = |x: f64| Int::from_f64(x, e0);
-    let (cx, cy) = (int(c[0]), int(c[1]));
-    let (acx, acy) = (int(a[0]).sub(&cx), int(a[1]).sub(&cy));
-    let (bcx, bcy) = (int(b[0]).sub(&cx), int(b[1]).sub(&cy));
+    let [[ax, ay], [bx, by], [cx, cy]] = integers([a, b, c]);
+    let (acx, acy) = (ax.sub(&cx), ay.sub(&cy));
+    let (bcx, bcy) = (bx.sub(&cx), by.sub(&cy));
     acx.mul(&bcy).sub(&acy.mul(&bcx)).signum()
 }
 
 /// The exact in-circle sign: `Greater` when `d` is strictly inside the circle through the
 /// counter-clockwise `a, b, c`, `Equal` when the four are cocircular.
 pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
-    let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]]);
-    let int = |x: f64| Int::from_f64(x, e0);
-    let (dx, dy) = (int(d[0]), int(d[1]));
-    let relative = |p: [f64; 2]| (int(p[0]).sub(&dx), int(p[1]).sub(&dy));
+    let [a, b, c, [dx, dy]] = integers([a, b, c, d]);
+    let relative = |[x, y]: [Int; 2]| (x.sub(&dx), y.sub(&dy));
     let ((adx, ady), (bdx, bdy), (cdx, cdy)) = (relative(a), relative(b), relative(c));
     let lift = |x: &Int, y: &Int| x.mul(x).add(&y.mul(y));
     let (alift, blift, clift) = (lift(&adx, &ady), lift(&bdx, &bdy), lift(&cdx, &cdy));
@@ -217,20 +210,16 @@ pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2])
 
 /// The exact sign of the dot product `(a - b) · (c - d)`.
 pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
-    let e0 = common_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]]);
-    let int = |x: f64| Int::from_f64(x, e0);
-    let difference =
-        |p: [f64; 2], q: [f64; 2]| (int(p[0]).sub(&int(q[0])), int(p[1]).sub(&int(q[1])));
-    let ((ux, uy), (vx, vy)) = (difference(a, b), difference(c, d));
+    let [[ax, ay], [bx, by], [cx, cy], [dx, dy]] = integers([a, b, c, d]);
+    let (ux, uy, vx, vy) = (ax.sub(&bx), ay.sub(&by), cx.sub(&dx), cy.sub(&dy));
     ux.mul(&vx).add(&uy.mul(&vy)).signum()
 }
 
 /// The exact order of `|a - p|` and `|b - p|`.
 pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
-    let e0 = common_exponent(&[p[0], p[1], a[0], a[1], b[0], b[1]]);
-    let int = |x: f64| Int::from_f64(x, e0);
-    let squared = |q: [f64; 2]| {
-        let (dx, dy) = (int(q[0]).sub(&int(p[0])), int(q[1]).sub(&int(p[1])));
+    let [[px, py], a, b] = integers([p, a, b]);
+    let squared = |[x, y]: [Int; 2]| {
+        let (dx, dy) = (x.sub(&px), y.sub(&py));
         dx.mul(&dx).add(&dy.mul(&dy))
     };
     squared(a).sub(&squared(b)).signum()

@@ -3,13 +3,12 @@
 //! Owns: every decision about a geometric sign. Nothing else in the crate may compute a sign with
 //! plain floating point, and this module may not depend on the mesh or the triangulator.
 //!
-//! Three ways to the same exact sign (`docs/predicates.md` derives the ranges and measures): for
-//! coordinates rescaled into the range where no product overflows or underflows, Shewchuk's
-//! static filter inline, then his adaptive stages (the `robust` crate); before those stages,
-//! machine integers when the call's coordinates are small integers on a common binary grid
-//! (`small.rs`); and big integers, exact for any finite input and far slower (`exact.rs`). The
-//! public functions rescale a call into the fast range by a power of two when one does it, and
-//! send only calls spanning more than 2^200 on their own to the big integers.
+//! Three ways to the same exact sign (`docs/predicates.md` derives the ranges): in the range where
+//! no product overflows or underflows, Shewchuk's static filter inline, then machine integers for
+//! small integers on a common binary grid (`small.rs`), then his adaptive stages (`robust`); and
+//! big integers, exact for any finite input and far slower (`exact.rs`). The public functions
+//! rescale a call into the fast range by a power of two when one does it, and send only calls
+//! spanning more than 2^200 to the big integers.
 
 mod exact;
 mod small;
@@ -138,12 +137,10 @@ pub(crate) fn compare_distances(p: Point, a: Point, b: Point) -> Ordering {
 }
 
 /// Which of `a` and `b` is nearer to `p`, for two whose rounded squared distances
-/// ([`Point::dist2`]) are equal: `Equal` when both are known exact ([`exactly_squared`]), so the
-/// lengths are, else exactly ([`compare_distances`]). Why: the stages rank edges by rounded
-/// squared lengths, and a tie they broke by vertex id would depend on the input's orientation
-/// (ids follow the insertion order, which follows the orientation); lengths equal only after
-/// rounding are told apart here, and only an exact tie is left to the caller's id. Call it only on
-/// a rounded tie: the check is cheap, the exact comparison is not.
+/// ([`Point::dist2`]) are equal: `Equal` when both are known exact ([`exactly_squared`]), else
+/// exactly ([`compare_distances`]). Why: a rounded tie broken by vertex id would depend on the
+/// input's orientation (ids follow the insertion order); only an exact tie is left to the
+/// caller's id. Call it only on a rounded tie: the exact comparison is slow.
 pub(crate) fn compare_tied_distances(p: Point, a: Point, b: Point) -> Ordering {
     if exactly_squared(p, a) && exactly_squared(p, b) {
         return Ordering::Equal;
@@ -153,8 +150,7 @@ pub(crate) fn compare_tied_distances(p: Point, a: Point, b: Point) -> Ordering {
 
 /// Whether `p.dist2(q)` is known to be the exact squared distance: each difference and the sum
 /// checked by Knuth's two-sum, each square by its mantissa (26 significant bits or fewer, far
-/// above the subnormal range: exact). Speed: on grids every length ties exactly and this runs at
-/// each tie; a square it cannot vouch for only sends the tie to the exact comparison.
+/// above the subnormal range: exact). A square it cannot vouch for goes to the exact comparison.
 fn exactly_squared(p: Point, q: Point) -> bool {
     let exact_sum = |a: f64, b: f64| {
         let s = a + b;
@@ -242,8 +238,8 @@ pub(crate) fn fast_orient2d(a: Point, b: Point, c: Point) -> Orientation {
 /// [`fast_orient2d`]'s determinant, a number whose sign is exact, for a hot loop to branch on.
 #[inline(always)]
 pub(crate) fn fast_orient2d_det(a: Point, b: Point, c: Point) -> f64 {
-    // Shewchuk's first-stage bound, as `robust::orient2d` has it inline (Ozaki et al.'s one-branch
-    // form), so that a call it cannot settle tries the small integers before the adaptive stages.
+    // Shewchuk's first-stage bound, as `robust::orient2d` has it, inline so that a call it cannot
+    // settle tries the small integers before the adaptive stages.
     let left = (a.x - c.x) * (b.y - c.y);
     let right = (a.y - c.y) * (b.x - c.x);
     let det = left - right;
@@ -265,8 +261,7 @@ fn undecided_orient2d(a: Point, b: Point, c: Point) -> f64 {
 }
 
 /// The first-stage error bound of the orientation determinant relative to `|left + right|`
-/// (`robust`'s constant: Ozaki, Ogita, Rump, Oishi, "Accurate and efficient floating-point
-/// expansions for geometric predicates", BIT 2016).
+/// (`robust`'s constant, from Ozaki, Ogita, Rump and Oishi, BIT 2016).
 const ORIENT2D_FILTER: f64 = 3.3306690621773722e-16;
 
 /// [`in_circle`] for coordinates in the fast range (see [`fast_orient2d`]).
@@ -283,10 +278,8 @@ pub(crate) fn fast_in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
     }
 }
 
-/// [`fast_in_circle`]`(u, w, v, q)` with the differences taken from `v`, the new point that every
-/// test of one insertion shares. Swapping the last two points flips the lifted determinant's sign,
-/// the filter's bound holds from any base point, and undecided calls go to the same exact test,
-/// so every answer is [`fast_in_circle`]'s.
+/// [`fast_in_circle`]`(u, w, v, q)` with the differences taken from `v`, the new point every test
+/// of one insertion shares: the same answers (`docs/triangulation.md`, step 4).
 #[inline(always)]
 pub(crate) fn fast_in_circle_around(v: Point, u: Point, w: Point, q: Point) -> bool {
     let (det, bound) = in_circle_det(u, w, q, v);

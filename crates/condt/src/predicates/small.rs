@@ -1,10 +1,9 @@
 //! Exact signs in machine integers for the calls the floating-point filters cannot settle whose
-//! coordinates are small integers on a common binary grid (integer grids, pixel contours,
-//! fixed-point data, where nearly every in-circle test is exactly cocircular).
+//! coordinates are small integers on a common binary grid (integer grids, pixel contours, where
+//! nearly every in-circle test is exactly cocircular).
 //!
-//! Owns: the fixed-point reading of a call's coordinates and the two determinants on it. It is
-//! only a shortcut: a call it refuses (`None`) goes on to Shewchuk's adaptive stages, so a wrong
-//! refusal costs time, never a sign.
+//! Owns: the fixed-point reading of a call's coordinates and the two determinants on it. A call
+//! it refuses (`None`) goes on to Shewchuk's adaptive stages: a wrong refusal costs time only.
 //!
 //! Coordinates that are multiples of `2^-49` in `[-4, 4)` are read exactly as the integers
 //! `x · 2^49`; their differences, divided by their common power of two (the grid's unit), must
@@ -13,9 +12,9 @@
 
 use core::cmp::Ordering;
 
-/// `12 = 1.5 · 2^3`: the doubles in `[8, 16)` are the multiples of `2^-49` there, and their bit
-/// patterns count them. A coordinate `x` in `[-4, 4)` that is a multiple of `2^-49` lands exactly
-/// on `x + 12`, and `(x + 12).to_bits() - 12.to_bits()` is the integer `x · 2^49` (speed).
+/// The doubles in `[8, 16)` are the multiples of `2^-49` there, counted by their bit patterns: a
+/// multiple `x` of `2^-49` in `[-4, 4)` lands exactly on `x + 12`, and `(x + 12).to_bits() -
+/// 12.to_bits()` is the integer `x · 2^49`.
 const ANCHOR: f64 = 12.0;
 
 /// `x · 2^49` while exact and within range (the integer in `[-2^51, 2^51)`, nothing rounded off
@@ -32,8 +31,7 @@ fn fixed(x: f64, exact: &mut bool) -> i64 {
     integer
 }
 
-/// Differences, in units of their common power of two, at or above this are refused: below it
-/// the in-circle determinant's products and sums all fit an `i128` (see the module doc).
+/// Differences, in units of their common power of two, at or above this are refused (module doc).
 const SMALL_LIMIT: u64 = 1 << 30;
 
 /// The differences `p - origin`, exactly, divided by their largest common power of two, when all
@@ -74,7 +72,7 @@ fn small_differences<const N: usize>(
 
 /// The in-circle sign (positive: `d` strictly inside the circle of the counter-clockwise
 /// `a, b, c`), or `None` when the coordinates are not small integers on a common grid.
-// Inlined into its one caller, itself out of line (the filter's slow branch).
+// Inlined into its one caller, itself out of line (the filter's slow branch); so is the next.
 #[inline(always)]
 pub(super) fn in_circle_sign(
     a: [f64; 2],
@@ -94,7 +92,6 @@ pub(super) fn in_circle_sign(
 }
 
 /// The orientation sign (positive: counter-clockwise), or `None` as for [`in_circle_sign`].
-// Inlined into its one caller, itself out of line (the filter's slow branch).
 #[inline(always)]
 pub(super) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Ordering> {
     let [[acx, acy], [bcx, bcy]] = small_differences([a, b], c)?;

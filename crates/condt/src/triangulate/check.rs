@@ -101,10 +101,7 @@ impl Triangulation {
                 fail(Rule::ChainMissing, Element::Whole)
             };
         };
-        let (a, b) = (
-            self.scaled_point(mesh.origin(first)),
-            self.scaled_point(mesh.dest(first)),
-        );
+        let [a, b] = [mesh.origin(first), mesh.dest(first)].map(|v| self.scaled_point(v));
         for v in self.vertices() {
             let p = self.scaled_point(v);
             if orient2d(a, b, p) != Orientation::Collinear {

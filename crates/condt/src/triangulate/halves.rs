@@ -1,13 +1,12 @@
 //! Divide and conquer, one level: a large set is cut by a vertical line, the halves are built by
-//! incremental insertion (at once with `parallel`) and stitched by Guibas and Stolfi's merge (ACM
-//! TOG 4(2), 1985), done by flips as in Shewchuk's Triangle so that the mesh stays a sphere
-//! throughout (`docs/triangulation.md`, "Two halves").
+//! incremental insertion (at once with `parallel`) and stitched by Guibas and Stolfi's merge, done
+//! by flips so that the mesh stays a sphere throughout (`docs/triangulation.md`, "Two halves").
 //!
 //! Owns: the cut and the stitch. It decides signs only by the construction's [`Kernel`] and writes
 //! topology only through [`MeshBuilder`]; each half is a plain [`insert::Builder`] run in its own
-//! range of one [`MeshArrays`]. The cut depends only on the set of points, so one thread builds
-//! what two do. A half with no triangle, or a stitch that does not add up (exact predicates rule it
-//! out; the code does not assume it), returns `None`: the caller builds the set in one piece.
+//! range of one [`MeshArrays`]. A half with no triangle, or a stitch that does not add up (exact
+//! predicates rule it out; the code does not assume it), returns `None`: the caller builds the
+//! set in one piece.
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -17,11 +16,11 @@ use crate::threads::both;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 
-/// Smaller sets are built in one piece: it takes under 20 ms, and a second thread gains little.
-/// The same bound holds in sequential and parallel runs, so both give one result.
+/// Smaller sets are built in one piece (a second thread gains little). The same bound holds in
+/// sequential and parallel runs, so both give one result.
 pub(crate) const SPLIT_MIN: usize = 1 << 16;
 
-/// Buckets of x the cut falls between: it is within 1/1024 of the span of the median.
+/// Buckets of x the cut falls between: within 1/1024 of the span of the median.
 const BUCKETS: usize = 1024;
 
 /// Where a set is cut ([`cut`]): the left half is the points in buckets below `boundary`.
@@ -50,8 +49,7 @@ fn bucket(x: f64, low: f64, per_unit: f64) -> usize {
 }
 
 /// Where to cut `points` by a vertical line between two of [`BUCKETS`] x buckets, nearest the
-/// median; `None` below `min` points or when no line leaves a quarter of them on each side
-/// (`docs/triangulation.md`, "The cut"). Both passes run on two threads when `parallel`.
+/// median; `None` below `min` points or when no line leaves a quarter of them on each side.
 pub(crate) fn cut(points: &[Point], min: usize, parallel: bool) -> Option<Cut> {
     let n = points.len();
     if n < min.max(4) {
@@ -101,15 +99,14 @@ pub(crate) fn cut(points: &[Point], min: usize, parallel: bool) -> Option<Cut> {
 }
 
 /// The mesh of `points` (in insertion order: the left half's `left` points first), in `storage`'s
-/// arrays if large enough, and the merged `(duplicate, kept)` pairs, or `None` (module doc). Each
-/// half reports to `progress` like [`insert::build_into`]; `None` takes their counts back.
+/// arrays if large enough, or `None` (module doc) after taking back what the halves counted.
 pub(crate) fn build<K: Kernel>(
     points: &[Point],
     left: usize,
     parallel: bool,
     progress: Option<&AtomicUsize>,
     storage: Mesh,
-) -> Option<(Mesh, Vec<(u32, u32)>)> {
+) -> super::Built {
     let (left_points, right_points) = points.split_at(left);
     let left_room = insert::half_edges(left_points.len());
     let right_room = insert::half_edges(right_points.len());
@@ -128,7 +125,6 @@ pub(crate) fn build<K: Kernel>(
             Some((mesh.len(), merged))
         },
     );
-    // What a half added to `progress`: its distinct points, if it was built.
     let added = |built: &Option<(usize, Vec<(u32, u32)>)>, len: usize| {
         built.as_ref().map_or(0, |(_, merged)| len - merged.len())
     };
@@ -223,18 +219,9 @@ fn stitch<K: Kernel>(
     let l_at = |i: usize| at(left.vertices[i]);
     let r_at = |j: usize| at(right.vertices[j]);
     let orient = |a: Point, b: Point, c: Point| K::orient2d(a, b, c);
-    let extreme = |hull: &Hull, rightmost: bool| {
-        (0..hull.len()).max_by(|&i, &j| {
-            let (p, q) = (at(hull.vertices[i]), at(hull.vertices[j]));
-            let order = p.lexicographic_cmp(q);
-            if rightmost {
-                order
-            } else {
-                order.reverse()
-            }
-        })
-    };
-    let (start_l, start_r) = (extreme(&left, true)?, extreme(&right, false)?);
+    // The left hull's rightmost vertex and the right hull's leftmost (all distinct points).
+    let start_l = (0..left.len()).max_by(|&i, &j| l_at(i).lexicographic_cmp(l_at(j)))?;
+    let start_r = (0..right.len()).min_by(|&i, &j| r_at(i).lexicographic_cmp(r_at(j)))?;
     // The tangent's walk moves each pivot at most once round its hull.
     let budget = 2 * (left.len() + right.len()) + 4;
     // A common tangent from the extreme points: each pivot steps round its hull while its next

@@ -1,8 +1,8 @@
 //! Incremental Delaunay construction: walk to the new point, split, restore the empty-circle
-//! property by edge flips (`docs/triangulation.md`, step 4, describes each).
+//! property by edge flips (`docs/triangulation.md`, step 4).
 //!
-//! Owns: the construction state. It may not decide a sign except through `predicates`, and it
-//! edits the mesh only through [`MeshBuilder`].
+//! Owns: the construction state. It decides signs only through `predicates`, and edits the mesh
+//! only through [`MeshBuilder`].
 
 use crate::geometry::Point;
 use crate::mesh::{wrap3, HalfEdgeId, MeshBuilder, VertexId};
@@ -28,10 +28,8 @@ pub(crate) trait Kernel {
     fn in_circle_around(v: Point, u: Point, w: Point, q: Point) -> bool {
         Self::in_circle(u, w, v, q)
     }
-    /// For `p` on the inner side of the hull edge `a → b`: whether it lies past `b` (`Forward`)
-    /// or before `a` (`Backward`) along the edge, or between (`Done`). It only guides the walk
-    /// along the hull (see [`Builder::ghost_step`]), which needs it exact only to be sure to end.
-    /// Exact by default.
+    /// For `p` on the inner side of the hull edge `a → b`: past `b` (`Forward`), before `a`
+    /// (`Backward`) or between (`Done`) along it; only a guide for [`Builder::ghost_step`].
     fn slide(a: Point, b: Point, p: Point) -> Slide {
         use core::cmp::Ordering::{Greater, Less};
         if predicates::dot_sign(p, b, b, a) == Greater {
@@ -64,8 +62,8 @@ impl Kernel for Fast {
     fn in_circle_around(v: Point, u: Point, w: Point, q: Point) -> bool {
         predicates::fast_in_circle_around(v, u, w, q)
     }
-    /// In floating point: coordinates below 2 cannot overflow, and a rounding error can only
-    /// make one slide more or less, which the one-way rule keeps finite.
+    /// In floating point: coordinates below 2 cannot overflow, and a rounding error only makes
+    /// one slide more or less, which the one-way rule keeps finite.
     #[inline(always)]
     fn slide(pa: Point, pb: Point, p: Point) -> Slide {
         let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
@@ -94,6 +92,7 @@ impl Kernel for Exact {
     }
 }
 
+/// Where [`Builder::locate`] found a point.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum Location {
     /// Strictly inside this half-edge's triangle; for a ghost, strictly outside its hull edge.
@@ -104,13 +103,12 @@ enum Location {
     Vertex(VertexId),
 }
 
-/// Where a walk stands between two steps (see `Builder::locate`).
+/// Where a walk stands between two steps.
 #[derive(Copy, Clone, Debug)]
 struct Walk {
     at: HalfEdgeId,
     /// Whether the walk entered across `at`: the point is strictly left of it, no test needed.
     entered: bool,
-    /// The hull slides still allowed.
     slide: Slide,
 }
 
@@ -129,16 +127,13 @@ impl Walk {
     }
 }
 
-/// The hull slides the walk may still take (see `Builder::ghost_step`).
+/// The hull slides the walk may still take: `Either` way (none yet), only `Forward` (to the
+/// ghost after the current hull edge), only `Backward`, or none (`Done`: a plain visibility walk).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum Slide {
-    /// No slide yet: either way.
     Either,
-    /// Only forward, to the ghost after the current hull edge.
     Forward,
-    /// Only backward, to the ghost before the current hull edge.
     Backward,
-    /// No more slides: the walk is the plain visibility walk.
     Done,
 }
 
@@ -232,7 +227,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
             merged: Vec::new(),
         }
     }
-    /// The mesh written and the `(duplicate, kept vertex)` pairs merged on the way.
     pub(crate) fn finish(self) -> (MeshBuilder<'m>, Vec<(u32, u32)>) {
         (self.mesh, self.merged)
     }
@@ -484,7 +478,7 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     }
 
     /// Flips illegal edges opposite the new vertex `v` until none is left. A flip hands over the
-    /// edge to test next with its twin and ends (same order of tests, one push and pop fewer).
+    /// next edge to test directly, not through the stack (the same order of tests).
     fn restore_delaunay(&mut self, v: VertexId) {
         let pv = self.point(v);
         let mut next = self.flips.pop().map(|e| self.to_test(e));
@@ -586,7 +580,7 @@ struct Opposite {
     w: VertexId,
 }
 
-/// Where a point collinear with a segment `a → b` lies relative to it.
+/// Where a point collinear with a segment `a → b` lies along it.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum Segment {
     BeforeStart,
@@ -604,19 +598,15 @@ pub(crate) fn position_on_segment(a: Point, b: Point, p: Point) -> Segment {
     } else {
         (a.y, b.y, p.y)
     };
+    // At neither end, a backward segment reverses both strict tests.
     let forward = ka < kb;
-    let (before, after) = if forward {
-        (kp < ka, kp > kb)
-    } else {
-        (kp > ka, kp < kb)
-    };
     if kp == ka {
         Segment::AtStart
     } else if kp == kb {
         Segment::AtEnd
-    } else if before {
+    } else if (kp < ka) == forward {
         Segment::BeforeStart
-    } else if after {
+    } else if (kp > kb) == forward {
         Segment::BeyondEnd
     } else {
         Segment::Inside

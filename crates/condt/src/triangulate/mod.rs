@@ -1,8 +1,8 @@
 //! Delaunay triangulation of a planar point set.
 //!
 //! Owns: building a [`Triangulation`] ([`Mesh`], points, input/vertex maps), possibly in a spent
-//! one's arrays ([`triangulate_with`]), and checking one. It decides signs only by [`crate::predicates`],
-//! writes topology only through the mesh's builder, and knows nothing of the ConDT stages.
+//! one's arrays, and checking one. It decides signs only by [`crate::predicates`], writes
+//! topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
 //! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
 //! point located by a visibility walk (`docs/triangulation.md`). The reference is `build`, the set
@@ -18,10 +18,8 @@ mod order;
 mod scale;
 
 use crate::error::Error;
-use crate::geometry::Point;
-use crate::geometry::Scale;
-use crate::mesh::MeshArrays;
-use crate::mesh::{Mesh, VertexId};
+use crate::geometry::{Point, Scale};
+use crate::mesh::{Mesh, MeshArrays, VertexId};
 use crate::threads::{both, filled};
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
@@ -102,11 +100,8 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     triangulate_with(points, cfg!(feature = "parallel"), None, None)
 }
 
-/// [`triangulate`], on one thread unless `parallel` (the same result either way), adding the
-/// inserted points to `inserted` ([`Triangulation::triangulate_observed`]), built in the arrays of
-/// `spent`, a triangulation no longer needed (a smoothing pass's, of as many points), where they
-/// are large enough. Reason: memory, see [`MeshArrays::reusing`]; the points and the two maps are
-/// per-point arrays like the mesh's.
+/// [`triangulate`], on one thread unless `parallel` (the same result), counting into `inserted`,
+/// in the arrays of `spent` (a triangulation no longer needed) as [`MeshArrays::reusing`] does.
 pub(crate) fn triangulate_with(
     points: &[Point],
     parallel: bool,
@@ -128,11 +123,10 @@ fn triangulate_in(
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
     // The spent arrays; the rest of it is freed here.
-    let (spare_order, spare_points, spare_mesh, spare_map) = match spent {
-        Some(t) => (t.input_of_vertex, t.points, t.mesh, t.vertex_of_input),
+    let (spare, spare_map) = match spent {
+        Some(t) => ((t.input_of_vertex, t.points, t.mesh), t.vertex_of_input),
         None => Default::default(),
     };
-    let spare = (spare_order, spare_points, spare_mesh);
     let (order, mut sorted, built) =
         construct(points, &frames, parallel, split_min, progress, spare);
     let (mesh, merged, order) = match built {
@@ -193,10 +187,11 @@ fn triangulate_in(
     })
 }
 
-/// The insertion order (input positions), its points in the predicates' frame, and their mesh
-/// with the `(duplicate, kept)` pairs merged (`None` when the points make no triangle), in the
-/// `spare` arrays for these three if large enough.
-#[allow(clippy::type_complexity)]
+/// A mesh and the `(duplicate, kept)` pairs merged into it, or `None` without a triangle.
+type Built = Option<(Mesh, Vec<(u32, u32)>)>;
+
+/// The insertion order (input positions), its points in the predicates' frame, and their mesh,
+/// in the `spare` arrays for these three if large enough.
 fn construct(
     points: &[Point],
     frames: &scale::Frames,
@@ -204,7 +199,7 @@ fn construct(
     split_min: usize,
     progress: Option<&AtomicUsize>,
     (spare_order, spare_points, mesh): (Vec<u32>, Vec<Point>, Mesh),
-) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
+) -> (Vec<u32>, Vec<Point>, Built) {
     let Some(cut) = halves::cut(points, split_min, parallel) else {
         return construct_whole(points, frames, progress);
     };
@@ -242,8 +237,8 @@ fn cut_order(
     let left = cut.left_len();
     let (order_left, order_right) = order.split_at_mut(left);
     let (sorted_left, sorted_right) = sorted.split_at_mut(if with_points { left } else { 0 });
-    // Both halves' scratch is allocated on this thread. Reason: memory; the second half runs on
-    // another thread, whose glibc malloc arena would retain it once freed (20 bytes a point).
+    // Both halves' scratch is allocated on this thread, not the second half's (memory: another
+    // thread's malloc arena would keep it once freed; `docs/perf-log.md`).
     let scratch = |len: usize| {
         (
             alloc::vec![0u32; len + 1],
@@ -265,8 +260,8 @@ fn cut_order(
         }
         debug_assert_eq!(next, len);
         members.truncate(len);
-        // The half's points in input order, for its spatial order, gathered in `sorted` itself.
-        // Reason: memory; a list of its own was 16 bytes per point at the smoothing passes' peak.
+        // The half's points in input order, for its spatial order, gathered in `sorted` itself
+        // (memory: a list of its own raised the smoothing passes' peak).
         let mut spare = Vec::new();
         let gathered = if sorted.len() == len {
             sorted
@@ -277,7 +272,6 @@ fn cut_order(
         for (slot, &i) in gathered.iter_mut().zip(&members) {
             *slot = points[i as usize];
         }
-        // The order of the half's own points, then of the input positions.
         spatial_order_into(gathered, frames, n, order, &mut scratch);
         for slot in order.iter_mut() {
             *slot = members[*slot as usize];
@@ -295,12 +289,11 @@ fn cut_order(
 }
 
 /// [`construct`] without the cut.
-#[allow(clippy::type_complexity)]
 fn construct_whole(
     points: &[Point],
     frames: &scale::Frames,
     progress: Option<&AtomicUsize>,
-) -> (Vec<u32>, Vec<Point>, Option<(Mesh, Vec<(u32, u32)>)>) {
+) -> (Vec<u32>, Vec<Point>, Built) {
     let order = spatial_order(points, frames, points.len());
     let sorted: Vec<Point> = order
         .iter()
@@ -365,12 +358,9 @@ fn spatial_order_into(
     }
 }
 
-/// The mesh of `points` (in insertion order) in one piece and the merged `(duplicate, kept)` pairs,
-/// or `None` with no triangle: the reference for [`halves`]. Reports like [`insert::build_into`].
-fn build<K: Kernel>(
-    points: &[Point],
-    progress: Option<&AtomicUsize>,
-) -> Option<(Mesh, Vec<(u32, u32)>)> {
+/// The mesh of `points` (in insertion order) in one piece: the reference for [`halves`]. Reports
+/// like [`insert::build_into`].
+fn build<K: Kernel>(points: &[Point], progress: Option<&AtomicUsize>) -> Built {
     insert::first_triangle::<K>(points)?;
     let mut arrays = MeshArrays::new(insert::half_edges(points.len()), false);
     let (mesh, merged) = insert::build_into::<K>(points, arrays.builder(0), progress)?;
@@ -383,7 +373,7 @@ const PARALLEL_MIN: usize = 1 << 16;
 
 /// The maps between vertex ids (positions in `order`) and input positions (a merged group
 /// reports its smallest). With `parallel`, two threads each read the whole order and write only
-/// their half, kept in cache; a write outside it rewrites the half's first slot, not branching.
+/// their half; a write outside it rewrites the half's first slot, not branching.
 fn vertex_maps(
     mut input_of_vertex: Vec<u32>,
     merged: &[(u32, u32)],

@@ -1,8 +1,8 @@
 //! The insertion order: biased randomized insertion order (BRIO) rounds, Hilbert order inside each.
 //!
-//! Rounds keep insertion near O(n log n) even on curves; the Hilbert order keeps walks short and
-//! memory access local (`docs/triangulation.md` measures both). A point's round is a hash of its
-//! quantized bounding-box-relative position, so the order depends only on the set of points.
+//! Rounds keep insertion near O(n log n) even on curves; the Hilbert order keeps walks short
+//! (`docs/triangulation.md`). A point's round is a hash of its quantized bounding-box-relative
+//! position, so the order depends only on the set of points.
 
 use crate::geometry::Point;
 use alloc::vec::Vec;
@@ -80,10 +80,8 @@ fn hilbert_steps<const STEPS: u32>(x: u32, y: u32) -> u64 {
 
 /// A strictly increasing map of the finite doubles of one set (zero, and magnitudes from
 /// `smallest` up), growing like the log of the magnitude (the ordered bit pattern): a grid on it
-/// has as many cells in [1e-300, 1e-299] as in [1, 10]. It counts from `smallest`, the bit
-/// pattern of the set's smallest nonzero magnitude, so that the set times a power of two maps to
-/// the same values (its patterns shift by a multiple of 2^52) and gets the same insertion order,
-/// as a set that is not wide does on its linear grid.
+/// has as many cells in [1e-300, 1e-299] as in [1, 10]. Counting from `smallest`, the bit pattern
+/// of the set's smallest nonzero magnitude, the set times a power of two gets the same order.
 pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
     let bits = x.to_bits() & !(1 << 63);
     debug_assert!(
@@ -130,8 +128,7 @@ pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u3
 }
 
 /// The sort keys of [`insertion_order_into`] and the radix sort's second array, lent by the
-/// caller. Reason: memory; a half of a cut set is ordered on a second thread, whose own malloc
-/// arena (glibc) would keep these 16 bytes per point once freed.
+/// caller (allocated on the caller's thread: see `cut_order`).
 #[derive(Default)]
 pub(crate) struct Scratch {
     keys: Vec<u64>,
@@ -159,7 +156,7 @@ pub(crate) fn insertion_order_into(
     debug_assert_eq!(order.len(), n);
     let (mut min_x, mut min_y) = (f64::INFINITY, f64::INFINITY);
     let (mut max_x, mut max_y) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
-    // Finite points: plain comparisons, a shorter chain than `f64::min`'s NaN rule.
+    // Finite points: plain comparisons, cheaper than `f64::min`'s NaN rule.
     for p in points {
         min_x = if p.x < min_x { p.x } else { min_x };
         min_y = if p.y < min_y { p.y } else { min_y };
@@ -237,11 +234,10 @@ pub(crate) fn insertion_order_into(
     }
 }
 
-/// `points` with a width whose grid step is a normal number, placing every point in the cell the
-/// ideal grid would: halved when the width overflows (each coordinate halved, exact for every
-/// normal one), or shifted to the lower-left corner `min` and scaled up by 2^600 when it is below
-/// about 2^-1000 (`GRID_BITS` bits of cells over it would overflow); the shift rounds as the ideal
-/// grid's differences round, and the scaling is exact. Memory: a copy, only for such sets.
+/// `points` with a width whose grid step is a normal number, each in the cell the ideal grid
+/// would give it: halved when the width overflows (exact for every normal coordinate), or shifted
+/// to the lower-left corner `min` (rounding as the ideal grid's differences do) and scaled up by
+/// 2^600 when it is below about 2^-1000.
 fn within_range(points: &[Point], span: f64, min: (f64, f64)) -> Vec<Point> {
     if span.is_infinite() {
         points
@@ -306,8 +302,8 @@ fn for_each_run<T, K: PartialEq>(
     }
 }
 
-/// Stable LSD radix sort of `values` on bits `low .. low + bits`, in nine-bit digits (2 KiB of
-/// counters a pass, few scatter targets), all counts in one read, alternating with `buffer`.
+/// Stable LSD radix sort of `values` on bits `low .. low + bits`, in nine-bit digits, all counts
+/// in one read, alternating with `buffer`.
 fn radix_sort(values: &mut Vec<u64>, buffer: &mut Vec<u64>, low: u32, bits: u32) {
     const DIGIT_BITS: u32 = 9;
     const DIGITS: usize = 1 << DIGIT_BITS;
