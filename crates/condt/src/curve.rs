@@ -180,11 +180,9 @@ pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> V
 }
 
 /// Walks the cycle of unvisited degree-two vertices through `start`, marking them, from both of
-/// its neighbours at once, and gives its points as [`walk`] from `start` through its first
-/// neighbour would: `start`, then on the way out, then on the way back reversed. Why both ways:
-/// a walk waits for each vertex's record before it knows the next one, so two walks at once
-/// have two reads on the way at a time (speed; on large sets most of them miss the caches).
-/// `paths` is scratch space.
+/// its neighbours at once, and gives its points as [`walk`] through its first neighbour would.
+/// Why: a walk waits for each record to know the next, so two walks have two cache misses on the
+/// way at a time. `paths` is scratch space.
 fn walk_cycle(
     graph: &CurveGraph,
     name: &impl Fn(VertexId) -> u32,

@@ -359,10 +359,8 @@ impl<'t> Graph<'t> {
             before_repair: Cow::Borrowed(repair),
         };
         let parallel = crate::threads::parallel_available();
-        match step
-            .run(self.tri, &self.edges, earlier, None, parallel)
-            .edges
-        {
+        let outcome = step.run(self.tri, &self.edges, earlier, None, parallel);
+        match outcome.edges {
             Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
             None => (self.clone(), false),
         }

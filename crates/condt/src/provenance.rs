@@ -4,14 +4,13 @@
 //! reconstruction and implements no rule: it reads each stage's own evidence; its tests check each
 //! against the stages.
 
-use crate::adjacency::{CurveGraph, Edge};
-use crate::reconstruct::Reconstruction;
+use crate::adjacency::CurveGraph;
+use crate::reconstruct::{Reconstruction, StageReport};
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
 use crate::stages::outliers::{iqr_thresholds, IqrRule};
 use crate::stages::proximity::{end_choice, Uniformity};
 use crate::stages::Stage;
 use crate::triangulate::Triangulation;
-use alloc::vec;
 use alloc::vec::Vec;
 
 pub use crate::stages::proximity::EndChoice;
@@ -122,25 +121,23 @@ impl Reconstruction {
             .collect();
         all.sort_unstable();
         all.dedup();
-        // Algorithm 1's view of every ring, as the stage gives it ([`end_choice`]).
         // A baseline's run does not check `u` (it reads none): where its `u` is not one Algorithm 1
         // accepts, the ends are told with the default.
-        let given = self.params().uniformity;
-        let uniformity = if given.check().is_ok() {
-            given
-        } else {
-            Uniformity::default()
+        let uniformity = match self.params().uniformity {
+            given if given.check().is_ok() => given,
+            _ => Uniformity::default(),
         };
         let choice = |at: usize, other: usize| {
             end_choice(tri, tri.vertex(at), tri.vertex(other), uniformity)
         };
+        let last = graphs.last().map(Vec::as_slice).unwrap_or(&[]);
         let mut stories: Vec<EdgeStory> = all
             .iter()
             .map(|&edge| EdgeStory {
                 edge,
                 ends: [choice(edge[0], edge[1]), choice(edge[1], edge[0])],
                 changes: Vec::new(),
-                kept: false,
+                kept: last.binary_search(&edge).is_ok(),
             })
             .collect();
         if let Some(first) = reports.first().filter(|r| r.stage != Stage::Proximity) {
@@ -156,18 +153,7 @@ impl Reconstruction {
         }
         for k in 1..reports.len() {
             let (before, after) = (&graphs[k - 1], &graphs[k]);
-            // The local outlier removal also read the graph the IQR stage started from.
-            let before_outliers = match reports.iter().position(|r| r.stage == Stage::Outliers) {
-                Some(i) if i > 0 && i < k => reports[i - 1].graph.listed(),
-                _ => reports[k - 1].graph.listed(),
-            };
-            let explain = Explainer::new(
-                tri,
-                [&reports[k - 1], &reports[k]].map(|r| r.graph.listed()),
-                before_outliers,
-                (reports[k].stage, before),
-                self,
-            );
+            let explain = Explainer::new(self, &reports[..=k], before);
             for (story, &edge) in stories.iter_mut().zip(&all) {
                 let was = before.binary_search(&edge).is_ok();
                 let is = after.binary_search(&edge).is_ok();
@@ -179,10 +165,6 @@ impl Reconstruction {
                     });
                 }
             }
-        }
-        let last = graphs.last().map(Vec::as_slice).unwrap_or(&[]);
-        for story in &mut stories {
-            story.kept = last.binary_search(&story.edge).is_ok();
         }
         stories
     }
@@ -203,21 +185,13 @@ struct Explainer<'a> {
 }
 
 impl<'a> Explainer<'a> {
-    /// `[input, output]` of `stage` in vertex ids, `before` its input in input positions, and
-    /// `before_outliers` the IQR stage's input (the local outlier removal reads it).
-    fn new(
-        tri: &'a Triangulation,
-        [input, output]: [&[Edge]; 2],
-        before_outliers: &[Edge],
-        (stage, before): (Stage, &[[usize; 2]]),
-        result: &Reconstruction,
-    ) -> Self {
-        let n = tri.num_points();
-        let mut degrees_before = vec![0; n];
-        for &[a, b] in before {
-            degrees_before[a] += 1;
-            degrees_before[b] += 1;
-        }
+    /// For the last of `reports` (the stages up to it), `before` its input in input positions.
+    fn new(result: &'a Reconstruction, reports: &[StageReport<'_>], before: &[[usize; 2]]) -> Self {
+        let tri = result.triangulation();
+        let [.., input, output] = reports else {
+            unreachable!("a stage after the first")
+        };
+        let stage = output.stage;
         // On input-unit lengths: the stage's threshold, scaled by the frames' power of two squared.
         let threshold = match stage {
             Stage::Outliers if !before.is_empty() => {
@@ -234,36 +208,41 @@ impl<'a> Explainer<'a> {
             }
             _ => (0.0, false),
         };
-        let mut local: Vec<([usize; 2], LocalRule)> = if stage == Stage::LocalOutliers {
-            rule_evidence(tri, input, before_outliers)
+        let mut local = Vec::new();
+        if stage == Stage::LocalOutliers {
+            // The stage also read the graph the IQR stage started from.
+            let before_outliers = match reports.iter().position(|r| r.stage == Stage::Outliers) {
+                Some(i) if i > 0 => reports[i - 1].graph.listed(),
+                _ => input.graph.listed(),
+            };
+            let evidence = rule_evidence(tri, input.graph.listed(), before_outliers);
+            local = evidence
                 .into_iter()
                 .map(|([v, w], rule)| {
                     let (a, b) = (tri.input_of(v), tri.input_of(w));
                     ([a.min(b), a.max(b)], rule)
                 })
-                .collect()
-        } else {
-            Vec::new()
-        };
-        local.sort_unstable_by_key(|&(edge, _)| edge);
+                .collect();
+            local.sort_unstable_by_key(|&(edge, _)| edge);
+        }
         Explainer {
             tri,
             stage,
-            degrees_before,
+            degrees_before: input.graph.degrees(),
             after: matches!(stage, Stage::Repair | Stage::Crossings)
-                .then(|| CurveGraph::new(n, output)),
+                .then(|| CurveGraph::new(tri.num_points(), output.graph.listed())),
             threshold,
             local,
         }
     }
 
     fn reason(&self, [a, b]: [usize; 2], added: bool) -> Reason {
-        match (self.stage, added) {
-            (Stage::Clumps, _) => Reason::Clump,
-            (Stage::RepairAgain, _) => Reason::RepairedAgain,
-            (Stage::Gaps, _) => Reason::GapClosed,
-            (Stage::Junctions, _) => Reason::Junction,
-            (Stage::Crossings, _) => {
+        match self.stage {
+            Stage::Clumps => Reason::Clump,
+            Stage::RepairAgain => Reason::RepairedAgain,
+            Stage::Gaps => Reason::GapClosed,
+            Stage::Junctions => Reason::Junction,
+            Stage::Crossings => {
                 // The crossing is the point that gained arms: an added edge's end, or the removed
                 // chord's common neighbour after the stage.
                 let gained = |v: usize| self.after_of(v).len() > self.degrees_before[v];
@@ -280,14 +259,14 @@ impl<'a> Explainer<'a> {
                 };
                 Reason::Crossing { vertex }
             }
-            (Stage::GivenBack, _) => Reason::NotConfirmed,
-            (Stage::NnCrust | Stage::Crust, _) => Reason::Baseline,
-            (Stage::Outliers, _) => Reason::LongerThanThreshold {
+            Stage::GivenBack => Reason::NotConfirmed,
+            Stage::NnCrust | Stage::Crust => Reason::Baseline,
+            Stage::Outliers => Reason::LongerThanThreshold {
                 length: libm::sqrt(self.tri.point(a).dist2(self.tri.point(b))),
                 threshold: self.threshold.0,
                 floored: self.threshold.1,
             },
-            (Stage::LocalOutliers, _) => {
+            Stage::LocalOutliers => {
                 let rule = self
                     .local
                     .binary_search_by_key(&[a, b], |&(edge, _)| edge)
@@ -303,18 +282,15 @@ impl<'a> Explainer<'a> {
                     Ok(LocalRule::Spur) | Err(_) => Reason::Spur,
                 }
             }
-            (Stage::Repair | Stage::Proximity, _) => {
-                let vertex = if self.degrees_before[a] >= self.degrees_before[b] {
-                    a
-                } else {
-                    b
-                };
+            Stage::Repair | Stage::Proximity => {
+                let degree = &self.degrees_before;
+                let vertex = if degree[a] >= degree[b] { a } else { b };
                 // The two smallest input positions it kept edges to.
                 let mut kept = self.after_of(vertex);
                 kept.sort_unstable();
                 Reason::Repair {
                     vertex,
-                    degree: self.degrees_before[vertex],
+                    degree: degree[vertex],
                     kept: [kept.first().copied(), kept.get(1).copied()],
                 }
             }
@@ -341,6 +317,7 @@ mod tests {
     use crate::Point;
     use alloc::format;
     use alloc::string::{String, ToString};
+    use alloc::vec;
 
     /// A baseline's run does not check `u`; its stories tell the ends with the default then
     /// (found by a stress run: `bound: NaN`, every second edge "dropped").

@@ -1,15 +1,12 @@
-//! Smoothing noisy positions before the reconstruction (not in the paper; on by default, off in
-//! `Params::paper`; [`Params::smooth`](crate::Params::smooth)).
+//! Smoothing noisy positions before the reconstruction ([`Params::smooth`](crate::Params::smooth);
+//! not in the paper). Owns: moving points to smoothed positions read off a finished
+//! reconstruction's final graph, one per input position. It changes neither the triangulation nor
+//! the edges and does not decide how often it runs ([`reconstruct`](crate::reconstruct) does).
 //!
-//! Owns: moving points to smoothed positions read off a finished reconstruction's final graph, one
-//! per input position. It changes neither the triangulation nor the edges and does not decide how
-//! often it runs ([`reconstruct`](crate::reconstruct) does).
-//!
-//! Rule: a point with exactly two edges meeting at more than 90° ([`smoothed_positions`]) moves to
-//! `(a + 2p + b) / 4` (`a`, `b` its neighbours), one umbrella (Laplacian) step of weight
-//! [`WEIGHT`]; ends, branches and unused points have no two-sided neighbourhood to average, and a
-//! sharp corner would be rounded off. Why, costs and measurements: docs/condt.md, *Smoothing
-//! passes*.
+//! Rule: a point with exactly two edges meeting at more than 90° moves to `(a + 2p + b) / 4` (`a`,
+//! `b` its neighbours), one umbrella (Laplacian) step of weight [`WEIGHT`]; ends, branches and
+//! unused points have no two-sided neighbourhood to average, and a sharp corner would be rounded
+//! off. Why, costs and measurements: docs/condt.md, *Smoothing passes*.
 
 use crate::adjacency::{CurveGraph, Edge};
 use crate::geometry::{lower_left, Point};
@@ -22,9 +19,8 @@ use alloc::vec::Vec;
 /// neighbours' old chord, the largest step that does not overshoot.
 pub(crate) const WEIGHT: f64 = 0.5;
 
-/// Most smoothing passes after the first reconstruction; they stop early once a pass leaves the
-/// final edges as they were. Reason: each pass can find neighbours the previous one missed, but
-/// costs a reconstruction; three is where the measured gain flattens.
+/// Most smoothing passes after the first reconstruction (fewer once one changes no final edge):
+/// each finds neighbours the last one missed, but costs a reconstruction; the gain flattens at 3.
 pub(crate) const MAX_PASSES: usize = 3;
 
 /// Whether a reconstruction with these final `degrees` (one per input point) shows enough noise to
@@ -37,19 +33,17 @@ pub(crate) fn shows_noise(degrees: impl ExactSizeIterator<Item = usize>) -> bool
     signs > 0 && signs * NOISE_SHARE >= len
 }
 
-/// A pass runs only when at least one point in this many shows noise ([`shows_noise`]). Reason: a
-/// pass costs a reconstruction but changes results only near ends and branches, which noise shows
-/// all along its curves and a large, mostly clean set does not; a cost policy, not a fit.
+/// A pass runs only when at least one point in this many shows noise ([`shows_noise`]): a cost
+/// policy, not a fit (measurements: docs/perf-log.md).
 pub(crate) const NOISE_SHARE: usize = 100;
 
 /// Where a smoothing pass moves the points: relative to a corner (see [`smoothed_positions`]).
 pub(crate) struct Smoothed {
     /// The smoothed position of every input position, relative to `corner`.
     pub(crate) positions: Vec<Point>,
-    /// When asked for (`wanted`), the same positions in the caller's coordinates: the fallback
-    /// when the relative ones merge two distinct points (a coordinate far below the extent is
-    /// lost in the difference), which would make the result depend on the input order. Empty
-    /// otherwise (memory: 16 bytes a point at the pass's peak).
+    /// When `wanted`, the same positions in the caller's coordinates: the fallback when the
+    /// relative ones merge two distinct points (a coordinate far below the extent is lost in the
+    /// difference), which would make the result depend on the input order. Else empty (memory).
     pub(crate) absolute: Vec<Point>,
     /// The starting positions' corner, in the caller's coordinates (display only).
     pub(crate) corner: Point,
@@ -75,20 +69,14 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
     // width beyond `f64::MAX`), the caller's positions themselves (from the corner (0, 0)):
     // finite, as every moved point stays in the box, at the cost of the exact translations'
     // invariance, which such a set cannot have anyway (its translates overflow).
-    let overflows = {
-        let upper_right = tri.vertex_points().iter().fold(corner, |m, p| {
-            Point::new(
-                if p.x > m.x { p.x } else { m.x },
-                if p.y > m.y { p.y } else { m.y },
-            )
-        });
-        !tri.stage_to_input(relative(upper_right)).is_finite()
-    };
+    let overflows = tri
+        .vertex_points()
+        .iter()
+        .any(|&p| !tri.stage_to_input(relative(p)).is_finite());
     let mut moved = 0;
     let mut absolute = Vec::with_capacity(if wanted { n } else { 0 });
-    // Each point's position as handed on (`relative`, or the caller's when the extent
-    // overflows), and the caller's into `absolute` when wanted; the caller's is computed only
-    // then.
+    // The position handed on: `relative`, or the caller's when the extent overflows; the caller's
+    // is computed only then or when `wanted`, and kept in `absolute`.
     let mut emit = |relative: Point, caller: &dyn Fn() -> Point| {
         if !(wanted || overflows) {
             return relative;
@@ -132,26 +120,21 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
             })
         })
         .collect();
-    if overflows {
-        return Smoothed {
-            positions,
-            absolute,
-            corner: Point::new(0.0, 0.0),
-            moved,
-        };
-    }
-    let shift = tri.stage_to_input(corner);
+    let corner = if overflows {
+        Point::new(0.0, 0.0)
+    } else {
+        shown(tri.stage_to_input(corner))
+    };
     Smoothed {
         positions,
         absolute,
-        corner: Point::new(offset.x + shift.x, offset.y + shift.y),
+        corner,
         moved,
     }
 }
 
 /// How many of `points` repeat an earlier one (exact equality, as the triangulation merges them:
-/// `n` less the distinct points), by open addressing over a table of ids (a quarter of the
-/// points' own size, instead of a copy in the caller's coordinates kept just in case).
+/// `n` less the distinct points), by open addressing over a table of ids (why: docs/perf-log.md).
 pub(crate) fn repeats(points: &[Point]) -> usize {
     let size = (2 * points.len()).next_power_of_two().max(2);
     let mask = size - 1;

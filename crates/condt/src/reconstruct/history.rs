@@ -16,6 +16,11 @@ pub(super) struct History {
 }
 
 impl History {
+    /// Where `stage` ran among the records.
+    pub(super) fn position(&self, stage: Stage) -> Option<usize> {
+        self.records.iter().position(|r| r.stage == stage)
+    }
+
     /// The graph `stage` started from, walked back from `current` (the latest output); `current`
     /// itself when `stage` has not run or is the first. `first` computes the first graph.
     pub(super) fn input_of<'e>(
@@ -24,7 +29,7 @@ impl History {
         current: &'e [Edge],
         first: &dyn Fn() -> Vec<Edge>,
     ) -> Cow<'e, [Edge]> {
-        match self.records.iter().position(|r| r.stage == stage) {
+        match self.position(stage) {
             Some(k) if k > 0 => self.output_of(current, k - 1, first),
             _ => Cow::Borrowed(current),
         }

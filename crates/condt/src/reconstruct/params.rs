@@ -205,26 +205,20 @@ impl Params {
         // only a repaired graph makes true; the given-back check reads what it added. Clumps are
         // whole components, removed before a join can reach one. The gaps join the loose ends left;
         // a junction takes only an end that no gap join or crossing claimed.
-        let local = self.local_outliers.then_some(Step::LocalOutliers);
-        let confirm =
-            (self.local_outliers && self.confirm_given_back).then_some(Step::ConfirmGivenBack);
-        let clumps = self.clumps.then_some(Step::RemoveClumps);
-        let gaps = self.close_gaps.then_some(Step::CloseGaps);
-        let junctions = self.junctions.then_some(Step::JoinJunctions);
-        let crossings = self.crossings.then_some(Step::RestoreCrossings);
+        let steps = [
+            first,
+            second,
+            again,
+            self.local_outliers.then_some(Step::LocalOutliers),
+            self.clumps.then_some(Step::RemoveClumps),
+            (self.local_outliers && self.confirm_given_back).then_some(Step::ConfirmGivenBack),
+            self.close_gaps.then_some(Step::CloseGaps),
+            self.junctions.then_some(Step::JoinJunctions),
+            self.crossings.then_some(Step::RestoreCrossings),
+        ];
         // A baseline is the whole method: no ConDT stage follows it.
         let condt = self.method == Method::ConDT;
-        first
-            .into_iter()
-            .chain(second)
-            .chain(again)
-            .chain(local)
-            .chain(clumps)
-            .chain(confirm)
-            .chain(gaps)
-            .chain(junctions)
-            .chain(crossings)
-            .filter(move |_| condt)
+        steps.into_iter().flatten().filter(move |_| condt)
     }
 
     /// These parameters with `parallel` off when rayon's threads cannot run

@@ -186,8 +186,7 @@ impl Pipeline {
         let params = &params.on_available_threads();
         let mut clock = Stopwatch::start();
         // On the stages' worker: their allocations reuse what it freed (`on_worker`).
-        let in_parallel = params.parallel && points.len() >= PARALLEL_FROM;
-        let tri = on_worker(in_parallel, || {
+        let tri = on_worker(params.parallel, points.len(), || {
             triangulate_with(&points, params.parallel, inserted, None)
         })?;
         let triangulation_time = clock.lap();
@@ -249,13 +248,10 @@ impl Pipeline {
     /// ```
     pub fn upcoming(&self) -> Option<Upcoming> {
         match &self.state {
-            State::Stages(run) => Some(Upcoming::Stage(match run.history.records.len() {
-                0 => self.params.first_stage(),
-                k => match self.params.steps().nth(k - 1) {
-                    Some(step) => step.stage(),
-                    None => return None,
-                },
-            })),
+            State::Stages(run) => {
+                let next = self.params.stages().get(run.history.records.len()).copied();
+                next.map(Upcoming::Stage)
+            }
             State::Smooth(_) => Some(Upcoming::SmoothingPass),
             State::Done(_) | State::Failed(_) | State::Moving => None,
         }
@@ -275,8 +271,8 @@ impl Pipeline {
         match core::mem::replace(&mut self.state, State::Moving) {
             State::Stages(mut run) => {
                 let k = run.history.records.len();
-                let in_parallel = self.params.parallel && run.tri.num_points() >= PARALLEL_FROM;
-                on_worker(in_parallel, || run.run_stage(&self.params));
+                let n = run.tri.num_points();
+                on_worker(self.params.parallel, n, || run.run_stage(&self.params));
                 self.state = if run.history.records.len() > self.params.steps().count() {
                     self.end_of_run(run)
                 } else {
@@ -286,19 +282,8 @@ impl Pipeline {
             }
             State::Smooth(result) => {
                 let n = result.triangulation().num_points();
-                let in_parallel = self.params.parallel && n >= PARALLEL_FROM;
-                let (pass, moved) = match on_worker(in_parallel, || self.smoothing_pass(result)) {
-                    Ok(done) => done,
-                    Err(error) => {
-                        self.state = State::Failed(error);
-                        return Err(error);
-                    }
-                };
-                let time = match &self.state {
-                    State::Stages(run) => run.triangulation_time,
-                    _ => Duration::ZERO,
-                };
-                Ok(Some(StepReport::SmoothingPass { pass, moved, time }))
+                let pass = on_worker(self.params.parallel, n, || self.smoothing_pass(result));
+                Ok(Some(pass.inspect_err(|&e| self.state = State::Failed(e))?))
             }
             State::Done(result) => {
                 self.state = State::Done(result);
@@ -320,10 +305,8 @@ impl Pipeline {
         while self.step()?.is_some() {}
         match self.state {
             State::Done(result) => Ok(result),
-            State::Failed(error) => Err(error),
-            State::Stages(_) | State::Smooth(_) | State::Moving => {
-                unreachable!("the steps ran to the end")
-            }
+            // A failed step returned its error above.
+            _ => unreachable!("the steps ran to the end"),
         }
     }
 
@@ -341,26 +324,15 @@ impl Pipeline {
 
     /// What follows a run's last stage: its tally, then a smoothing pass or the result.
     fn end_of_run(&mut self, run: Run) -> State {
-        let (assembly, previous) = (run.assembly, run.previous);
+        let previous = run.previous;
         let (mut result, waiting) = run.finish(&self.params);
-        let smooth_next = match assembly {
-            CurveAssembly::Now => false,
-            CurveAssembly::UnlessNoisy => shows_noise(result.degrees.iter()),
-            CurveAssembly::Later => {
-                // A fixed point (the same final edges as the pass before) is final.
-                let previous = previous.expect("a pass that may be followed has the last edges");
-                let graph = waiting.expect("a pass that may be followed keeps its graph");
-                if previous == EdgesFingerprint::of(&result.edges) {
-                    result.assemble_curves(graph);
-                    false
-                } else {
-                    drop(graph);
-                    true
-                }
+        // Curves wait after a noisy first run (no `previous`) and after a pass another may follow,
+        // which is final at a fixed point: the same final edges as the pass before.
+        if let Some(graph) = waiting {
+            if previous.is_none_or(|edges| edges != EdgesFingerprint::of(&result.edges)) {
+                return State::Smooth(result);
             }
-        };
-        if smooth_next {
-            return State::Smooth(result);
+            result.assemble_curves(graph);
         }
         if let Some(mut smoothing) = self.smoothing {
             smoothing.earlier_passes = self.earlier_passes;
@@ -369,8 +341,8 @@ impl Pipeline {
         State::Done(result)
     }
 
-    /// Moves `result`'s points along its curves and triangulates them again: (pass, points moved).
-    fn smoothing_pass(&mut self, mut result: Reconstruction) -> Result<(usize, usize), Error> {
+    /// Moves `result`'s points along its curves and triangulates them again for the next run.
+    fn smoothing_pass(&mut self, mut result: Reconstruction) -> Result<StepReport<'static>, Error> {
         let mut smoothing = self.smoothing.unwrap_or_default();
         // Memory: only the previous run's edge fingerprint (none for a last pass), triangulation
         // and final graph are kept, each freed once read (the triangulation's arrays hold the
@@ -419,7 +391,11 @@ impl Pipeline {
             CurveAssembly::Later
         };
         self.state = State::Stages(Run::new(tri, triangulation_time, assembly, previous));
-        Ok((smoothing.passes, moved))
+        Ok(StepReport::SmoothingPass {
+            pass: smoothing.passes,
+            moved,
+            time: triangulation_time,
+        })
     }
 }
 
@@ -488,13 +464,8 @@ impl Run {
             before_local: input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack),
             before_repair,
         };
-        let outcome = step.run(
-            tri,
-            current,
-            earlier,
-            self.current_graph.take(),
-            params.parallel,
-        );
+        let graph = self.current_graph.take();
+        let outcome = step.run(tri, current, earlier, graph, params.parallel);
         self.current_graph = outcome.graph;
         let undo = match outcome.edges {
             None => Undo::Unchanged,
@@ -524,7 +495,7 @@ impl Run {
         });
     }
 
-    /// The tally and the curves, or the curve graph when they wait ([`CurveAssembly::Later`]).
+    /// The tally and the curves, or the curve graph when they wait (not [`CurveAssembly::Now`]).
     fn finish(self, params: &Params) -> (Reconstruction, Option<CurveGraph>) {
         let mut clock = Stopwatch::start();
         let Run {
@@ -538,7 +509,7 @@ impl Run {
         } = self;
         let n = tri.num_points();
         let in_parallel = params.parallel && n >= PARALLEL_FROM;
-        let (graph, curves, tally) = on_worker(in_parallel, || {
+        let (waiting, curves, tally) = on_worker(in_parallel, n, || {
             let last = current.as_slice();
             let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
             let curves_now = match assembly {
@@ -563,12 +534,7 @@ impl Run {
             } else {
                 (Vec::new(), tally(&tri, &graph, last.len(), room))
             };
-            // The curve graph's degrees are the tally's.
-            debug_assert!(
-                assembly != CurveAssembly::UnlessNoisy
-                    || curves_now != shows_noise(tally.degrees.iter())
-            );
-            (graph, curves, tally)
+            ((!curves_now).then_some(graph), curves, tally)
         });
         let curves_time = clock.lap();
         let result = Reconstruction {
@@ -584,7 +550,6 @@ impl Run {
             curves_time,
             smoothing: None,
         };
-        let waiting = (assembly == CurveAssembly::Later).then_some(graph);
         (result, waiting)
     }
 }
@@ -657,8 +622,7 @@ pub(super) fn first_graph(tri: &Triangulation, params: &Params) -> Vec<Edge> {
     }
 }
 
-/// Memory: the fixed-point test keeps a pass's final edges as count and two 64-bit hashes, not the
-/// list held through the next pass; a collision (about 2^-128) stops the passes one early, validly.
+/// A pass's final edges as the fixed-point test keeps them (memory): count and two 64-bit hashes.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(super) struct EdgesFingerprint {
     len: usize,
@@ -708,22 +672,20 @@ impl Stopwatch {
         #[cfg(feature = "std")]
         {
             let now = std::time::Instant::now();
-            let elapsed = now - self.start;
-            self.start = now;
-            elapsed
+            now - core::mem::replace(&mut self.start, now)
         }
         #[cfg(not(feature = "std"))]
         Duration::ZERO
     }
 }
 
-/// Runs `work` on rayon's first worker thread when `parallel`. Reason: called from outside the
-/// pool, rayon leaves its workers spinning beside the sequential stages that follow. Always the
-/// same worker: glibc's malloc gives each thread its own arena and keeps what an arena freed, so
-/// stages run on whichever worker was free would each grow a different arena to their peak.
-pub(super) fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send) -> R {
+/// Runs `work` on rayon's first worker thread when `parallel` and `n` points reach the stages'
+/// threshold: called from outside the pool, rayon leaves its workers spinning beside the
+/// sequential stages that follow. Always the same worker: glibc's malloc keeps what each thread's
+/// arena freed, so stages on whichever worker was free would each grow an arena to their peak.
+pub(super) fn on_worker<R: Send>(parallel: bool, n: usize, work: impl FnOnce() -> R + Send) -> R {
     #[cfg(feature = "parallel")]
-    if parallel && rayon::current_thread_index() != Some(0) {
+    if parallel && n >= PARALLEL_FROM && rayon::current_thread_index() != Some(0) {
         let work = std::sync::Mutex::new(Some(work));
         let mut results = rayon::broadcast(|context| match context.index() {
             0 => work.lock().ok()?.take().map(|work| work()),
@@ -733,7 +695,7 @@ pub(super) fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send
             .swap_remove(0)
             .expect("the first worker ran the work");
     }
-    let _ = parallel;
+    let _ = (parallel, n);
     work()
 }
 
@@ -741,18 +703,20 @@ pub(super) fn on_worker<R: Send>(parallel: bool, work: impl FnOnce() -> R + Send
 #[cfg(test)]
 mod tests {
     use super::on_worker;
+    use crate::stages::PARALLEL_FROM;
 
     /// Every call runs on the same worker, the pool's first, whichever thread asks.
     #[test]
     fn on_worker_runs_on_the_first_worker() {
         let index = || rayon::current_thread_index();
-        assert_eq!(on_worker(true, index), Some(0));
-        assert_eq!(on_worker(false, index), None);
+        assert_eq!(on_worker(true, PARALLEL_FROM, index), Some(0));
+        assert_eq!(on_worker(false, PARALLEL_FROM, index), None);
+        assert_eq!(on_worker(true, PARALLEL_FROM - 1, index), None);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(3)
             .build()
             .unwrap();
-        let from_workers: Vec<_> = pool.broadcast(|_| on_worker(true, index));
+        let from_workers: Vec<_> = pool.broadcast(|_| on_worker(true, PARALLEL_FROM, index));
         assert_eq!(from_workers, vec![Some(0); 3]);
     }
 }

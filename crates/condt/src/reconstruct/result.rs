@@ -10,7 +10,7 @@ use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::prefetch::PREFETCH_FROM;
-use crate::stages::{Stage, PARALLEL_FROM};
+use crate::stages::Stage;
 use crate::triangulate::Triangulation;
 #[cfg(doc)]
 use crate::{reconstruct, reconstruct_owned};
@@ -111,12 +111,7 @@ impl Reconstruction {
 
     /// The report of `stage`, or `None` when it did not run. Only its graph is rebuilt.
     pub fn stage(&self, stage: Stage) -> Option<StageReport<'_>> {
-        let k = self
-            .history
-            .records
-            .iter()
-            .position(|record| record.stage == stage)?;
-        Some(self.report(k))
+        Some(self.report(self.history.position(stage)?))
     }
 
     /// Each stage that ran and its wall-clock time (zero without `std`), graphs not rebuilt.
@@ -212,8 +207,8 @@ impl Reconstruction {
         debug_assert!(graph == CurveGraph::new(self.triangulation.num_points(), &self.final_edges));
         let mut clock = Stopwatch::start();
         let tri = &self.triangulation;
-        let in_parallel = self.params.parallel && tri.num_points() >= PARALLEL_FROM;
-        self.curves = on_worker(in_parallel, || curves_in_input_positions(tri, &graph));
+        let assemble = || curves_in_input_positions(tri, &graph);
+        self.curves = on_worker(self.params.parallel, tri.num_points(), assemble);
         drop(graph);
         self.curves_time += clock.lap();
     }
