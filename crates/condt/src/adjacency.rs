@@ -6,6 +6,7 @@
 //! in input positions through [`Graph`](crate::Graph)).
 
 use crate::mesh::VertexId;
+use crate::prefetch::PREFETCH_FROM;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -22,9 +23,9 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
 }
 
 /// The neighbours of every vertex of a union of curves, where almost every vertex has at most two:
-/// one 8-byte record per vertex (its first two neighbours and its degree), so following a curve
-/// costs one read per vertex; vertices with three or more list them all in a small side table.
-/// Reason for the packing: memory; the graph is held at the reconstruction's highest phases.
+/// one 8-byte record per vertex (its first two neighbours and its degree; packed for memory), so
+/// following a curve costs one read per vertex; vertices with three or more list them all in a
+/// small side table.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct CurveGraph {
     /// Per vertex id: the first neighbour in the low [`ID_BITS`] bits with the degree (up to
@@ -39,6 +40,9 @@ pub(crate) struct CurveGraph {
 /// Bits of a vertex id in a record: ids are under [`crate::triangulate::MAX_POINTS`] < 2^29.
 const ID_BITS: u32 = 29;
 const ID_MASK: u32 = (1 << ID_BITS) - 1;
+/// How many vertex ids ahead [`CurveGraph::prefetch_ahead`] reads: a vertex's own record comes in
+/// order, its neighbours' from anywhere (ids follow BRIO rounds).
+const NEIGHBORS_AHEAD: usize = 16;
 /// A missing neighbour in a record (read back as [`VertexId::INFINITE`]).
 const NO_ID: u32 = ID_MASK;
 /// The stored degree saturates here; the side table gives the exact degree beyond.
@@ -63,14 +67,7 @@ impl CurveGraph {
         let mut branches = false;
         for &[a, b] in edges {
             for (v, w) in [(a, b), (b, a)] {
-                let record = &mut records[v.index()];
-                let d = record[0] >> ID_BITS;
-                let w = w.index() as u32;
-                // Whether a slot fills is a coin toss per edge: selected, not branched on.
-                let first = if d == 0 { w } else { record[0] & ID_MASK };
-                record[0] = first | ((d + 1).min(DEGREE_SATURATED) << ID_BITS);
-                record[1] = if d == 1 { w } else { record[1] };
-                branches |= d >= 2;
+                branches |= push(&mut records[v.index()], w) >= 2;
             }
         }
         let (branch_vertices, branch_neighbors) = if branches {
@@ -97,12 +94,14 @@ impl CurveGraph {
         crate::prefetch::prefetch(&self.records, v.index());
     }
 
-    /// Asks the cache for the elements of `slice` (indexed by vertex id: positions, say) at the
-    /// first two neighbours of `v`, which a loop over the ids will read soon; nothing for an id
-    /// out of range or a missing neighbour ([`crate::prefetch`]).
+    /// For a loop over the ids at `i`: asks the cache for the elements of `slice` (by vertex id)
+    /// at the neighbours of vertex `i + NEIGHBORS_AHEAD`, from [`PREFETCH_FROM`] vertices on.
     #[inline]
-    pub(crate) fn prefetch_neighbors<T>(&self, v: VertexId, slice: &[T]) {
-        if let Some(record) = self.records.get(v.index()) {
+    pub(crate) fn prefetch_ahead<T>(&self, i: usize, slice: &[T]) {
+        if self.records.len() < PREFETCH_FROM {
+            return;
+        }
+        if let Some(record) = self.records.get(i + NEIGHBORS_AHEAD) {
             // A missing neighbour reads as `NO_ID`, beyond any slice of at most `MAX_VERTICES`.
             crate::prefetch::prefetch(slice, (record[0] & ID_MASK) as usize);
             crate::prefetch::prefetch(slice, (record[1] & ID_MASK) as usize);
@@ -151,38 +150,7 @@ impl CurveGraph {
                 };
             }
         }
-        if at_branches.is_empty() {
-            return;
-        }
-        at_branches.sort_unstable();
-        let old_vertices = core::mem::take(&mut self.branch_vertices);
-        let old_neighbors = core::mem::take(&mut self.branch_neighbors);
-        let mut vertices = Vec::with_capacity(old_vertices.len());
-        let mut neighbors = Vec::with_capacity(old_neighbors.len());
-        let mut kept: Vec<VertexId> = Vec::new();
-        for (k, &(v, start)) in old_vertices.iter().enumerate() {
-            let end = old_vertices
-                .get(k + 1)
-                .map_or(old_neighbors.len(), |&(_, next)| next as usize);
-            let list = &old_neighbors[start as usize..end];
-            let gone = |w: &VertexId| at_branches.binary_search(&(v, *w)).is_ok();
-            if !list.iter().any(gone) {
-                vertices.push((v, neighbors.len() as u32));
-                neighbors.extend_from_slice(list);
-                continue;
-            }
-            kept.clear();
-            kept.extend(list.iter().copied().filter(|w| !gone(w)));
-            let field = |k: usize| kept.get(k).map_or(NO_ID, |w| w.index() as u32);
-            let d = kept.len() as u32;
-            self.records[v.index()] = [field(0) | (d.min(DEGREE_SATURATED) << ID_BITS), field(1)];
-            if d > 2 {
-                vertices.push((v, neighbors.len() as u32));
-                neighbors.extend_from_slice(&kept);
-            }
-        }
-        self.branch_vertices = vertices;
-        self.branch_neighbors = neighbors;
+        self.rewrite_branches(at_branches, false);
     }
 
     /// Adds `added` (edges absent from this graph, each once), as [`CurveGraph::new`] of this
@@ -192,51 +160,62 @@ impl CurveGraph {
         let mut at_branches: Vec<(VertexId, VertexId)> = Vec::new();
         for &[a, b] in added {
             for (v, w) in [(a, b), (b, a)] {
-                let record = &mut self.records[v.index()];
-                let d = record[0] >> ID_BITS;
-                if d >= 2 {
+                if push(&mut self.records[v.index()], w) >= 2 {
                     at_branches.push((v, w));
-                }
-                let w = w.index() as u32;
-                let first = if d == 0 { w } else { record[0] & ID_MASK };
-                record[0] = first | ((d + 1).min(DEGREE_SATURATED) << ID_BITS);
-                if d == 1 {
-                    record[1] = w;
                 }
             }
         }
-        if at_branches.is_empty() {
+        self.rewrite_branches(at_branches, true);
+    }
+
+    /// Rewrites the side table in one pass for the neighbours `(v, w)` added (`adding`) or removed
+    /// at vertices with three or more (before or after); a removal's records are written here.
+    fn rewrite_branches(&mut self, mut changes: Vec<(VertexId, VertexId)>, adding: bool) {
+        if changes.is_empty() {
             return;
         }
-        // Stable: each vertex's new neighbours stay in the order of `added`.
-        at_branches.sort_by_key(|&(v, _)| v);
+        // Stable: each vertex's new neighbours stay in the order they were added.
+        changes.sort_by_key(|&(v, _)| v);
         let old_vertices = core::mem::take(&mut self.branch_vertices);
         let old_neighbors = core::mem::take(&mut self.branch_neighbors);
-        let mut vertices = Vec::with_capacity(old_vertices.len() + at_branches.len());
-        let mut neighbors = Vec::with_capacity(old_neighbors.len() + 3 * at_branches.len());
+        let mut vertices = Vec::with_capacity(old_vertices.len() + changes.len());
+        let mut neighbors = Vec::with_capacity(old_neighbors.len() + 3 * changes.len());
         let (mut old, mut new) = (0, 0);
-        while old < old_vertices.len() || new < at_branches.len() {
-            let v = match (old_vertices.get(old), at_branches.get(new)) {
+        while old < old_vertices.len() || new < changes.len() {
+            let v = match (old_vertices.get(old), changes.get(new)) {
                 (Some(&(u, _)), Some(&(w, _))) => u.min(w),
                 (Some(&(u, _)), None) => u,
                 (None, Some(&(w, _))) => w,
                 (None, None) => unreachable!(),
             };
-            vertices.push((v, neighbors.len() as u32));
+            let start = neighbors.len();
             if old_vertices.get(old).is_some_and(|&(u, _)| u == v) {
-                let start = old_vertices[old].1 as usize;
-                let end = old_vertices
-                    .get(old + 1)
-                    .map_or(old_neighbors.len(), |&(_, next)| next as usize);
-                neighbors.extend_from_slice(&old_neighbors[start..end]);
+                neighbors.extend_from_slice(listed(&old_vertices, &old_neighbors, old));
                 old += 1;
             } else {
                 // Two neighbours before: both in the record, which the branch does not change.
                 neighbors.extend_from_slice(&self.first_two(v));
             }
-            while at_branches.get(new).is_some_and(|&(u, _)| u == v) {
-                neighbors.push(at_branches[new].1);
-                new += 1;
+            let count = changes[new..].iter().take_while(|&&(u, _)| u == v).count();
+            let changed = &changes[new..new + count];
+            new += count;
+            if adding {
+                neighbors.extend(changed.iter().map(|&(_, w)| w));
+            } else if count > 0 {
+                let kept: Vec<VertexId> = neighbors
+                    .drain(start..)
+                    .filter(|w| changed.iter().all(|&(_, gone)| gone != *w))
+                    .collect();
+                let field = |k: usize| kept.get(k).map_or(NO_ID, |w| w.index() as u32);
+                let d = kept.len() as u32;
+                self.records[v.index()] =
+                    [field(0) | (d.min(DEGREE_SATURATED) << ID_BITS), field(1)];
+                neighbors.extend_from_slice(&kept);
+            }
+            if neighbors.len() - start > 2 {
+                vertices.push((v, start as u32));
+            } else {
+                neighbors.truncate(start);
             }
         }
         self.branch_vertices = vertices;
@@ -289,12 +268,24 @@ impl CurveGraph {
             .branch_vertices
             .binary_search_by_key(&v, |&(w, _)| w)
             .unwrap_or(0);
-        let start = self.branch_vertices[at].1 as usize;
-        let end = self
-            .branch_vertices
-            .get(at + 1)
-            .map_or(self.branch_neighbors.len(), |&(_, next)| next as usize);
-        &self.branch_neighbors[start..end]
+        listed(&self.branch_vertices, &self.branch_neighbors, at)
+    }
+
+    /// The passages `[previous, here, next]` along a curve from `next` on, away from `from`, for as
+    /// long as `here` has two neighbours (without end around a cycle).
+    pub(crate) fn passages(
+        &self,
+        from: VertexId,
+        next: VertexId,
+    ) -> impl Iterator<Item = [VertexId; 3]> + '_ {
+        let mut step = (from, next);
+        core::iter::from_fn(move || {
+            let (previous, here) = step;
+            (self.degree(here) == 2).then(|| {
+                step = (here, self.onward(here, previous));
+                [previous, here, step.1]
+            })
+        })
     }
 
     /// The first two neighbours of `v` ([`VertexId::INFINITE`] where it has fewer).
@@ -313,6 +304,26 @@ impl CurveGraph {
         debug_assert!(from.index() as u32 == x || from.index() as u32 == y);
         VertexId::new(x ^ y ^ from.index() as u32)
     }
+}
+
+/// Adds the neighbour `w` to a record, as [`CurveGraph::new`] does; returns the degree before.
+#[inline]
+fn push(record: &mut [u32; 2], w: VertexId) -> u32 {
+    let d = record[0] >> ID_BITS;
+    let w = w.index() as u32;
+    // Whether a slot fills is a coin toss per edge: selected, not branched on.
+    let first = if d == 0 { w } else { record[0] & ID_MASK };
+    record[0] = first | ((d + 1).min(DEGREE_SATURATED) << ID_BITS);
+    record[1] = if d == 1 { w } else { record[1] };
+    d
+}
+
+/// The `k`-th list of a side table.
+fn listed<'a>(vertices: &[(VertexId, u32)], neighbors: &'a [VertexId], k: usize) -> &'a [VertexId] {
+    let end = vertices
+        .get(k + 1)
+        .map_or(neighbors.len(), |&(_, next)| next as usize);
+    &neighbors[vertices[k].1 as usize..end]
 }
 
 /// The side table of [`CurveGraph`]: the vertices of degree three or more, ascending, with the

@@ -32,8 +32,7 @@ pub(crate) fn remove_clumps(
 ) -> Outcome {
     let n = tri.num_points();
     let graph = graph.unwrap_or_else(|| CurveGraph::new(n, edges));
-    // A clump has a majority of points that do not pass smoothly; where every point does there is
-    // none, so the components and the separation test (the stage's cost) are not computed.
+    // Where every point passes smoothly there is no clump: the stage's cost is skipped.
     if only_smooth_cycles(tri, &graph) {
         return Outcome::unchanged_with(Some(graph));
     }

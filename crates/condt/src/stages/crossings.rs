@@ -14,27 +14,23 @@
 //! `c d` between two Delaunay neighbours of `x` of degree two, such that `a x c` and `b x d` are
 //! straight (above [`STRAIGHT`], as gap closing's crossings), the four arms evenly spaced (the
 //! longest within [`GAP_RATIO`] of the shortest: one sampling) and the passages at `c` and at `d`
-//! both straighter through `x` than along the chord, and each of the four arms a branch of
-//! [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`, as
-//! at a junction). Then `c d` gives way to `x c` and `x d`. The passage test keeps a curve's own edge: a chord that continues its curve straight is
-//! no chord; the branches keep a scatter's chance V shapes as they are.
-//! All choices are made on the graph as it came in; a point in two choices takes part in none, so
-//! the result does not depend on the order of the points, nor on `parallel`; a point where two
-//! chords pass restores neither.
+//! both straighter through `x` than along the chord (a curve's own edge stays), and each of the
+//! four arms a branch of [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two
+//! (`Ends::branch`: a scatter's chance V shapes stay). Then `c d` gives way to `x c` and `x d`.
+//! All choices are made on the graph as it came in; a point in two choices, or where two chords
+//! pass, takes part in none: the result depends neither on the order nor on `parallel`.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO, STRAIGHT};
-use super::local_outliers::NEIGHBORS_AHEAD;
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
-use crate::prefetch::PREFETCH_FROM;
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// Whether the vectors `u` and `w` from one point make a straight passage (an angle above 150°,
-/// [`STRAIGHT`]), without a square root: most points are tested once, on every pass.
+/// Whether the vectors `u` and `w` from one point make a straight passage ([`STRAIGHT`]), without
+/// a square root (speed).
 fn straight(u: (f64, f64), w: (f64, f64)) -> bool {
     let dot = u.0 * w.0 + u.1 * w.1;
     let norms2 = (u.0 * u.0 + u.1 * u.1) * (w.0 * w.0 + w.1 * w.1);
@@ -52,10 +48,6 @@ struct Crossing {
 impl Ends<'_> {
     fn cos(&self, at: VertexId, u: VertexId, w: VertexId) -> f64 {
         cos_at(self.point(at), self.point(u), self.point(w))
-    }
-
-    fn dist2(&self, u: VertexId, w: VertexId) -> f64 {
-        self.point(u).dist2(self.point(w))
     }
 
     /// Whether the passage at `c` (degree two) is straighter through `x` than along `d`, its
@@ -104,7 +96,7 @@ impl Ends<'_> {
                     && straight(to_other, arm(d))
                     && self.graph.degree(d) == 2
                     && mesh.neighbors(x).any(|w| w == d)
-                    && self.even([a, b, c, d].map(|w| self.dist2(x, w)))
+                    && self.even([a, b, c, d].map(|w| px.dist2(self.point(w))))
                     && self.straighter(c, d, x)
                     && self.straighter(d, c, x)
                     && [(x, a), (x, b), (d, c), (c, d)]
@@ -125,8 +117,7 @@ impl Ends<'_> {
         found
     }
 
-    /// Whether squared arm lengths are one sampling: the longest within [`GAP_RATIO`] of the
-    /// shortest.
+    /// Whether squared arm lengths are one sampling (within [`GAP_RATIO`] of each other).
     fn even(&self, arms2: [f64; 4]) -> bool {
         let longest = arms2.iter().copied().fold(0.0, f64::max);
         let shortest = arms2.iter().copied().fold(f64::INFINITY, f64::min);
@@ -135,8 +126,7 @@ impl Ends<'_> {
 }
 
 /// Restores crossings in `edges` (each edge once, any order): the input edges in order without
-/// the chords, then each crossing's two arms by increasing `x`; unchanged (the curve `graph`, if
-/// given, handed on) when none qualifies.
+/// the chords, then each crossing's two arms by increasing `x`.
 pub(crate) fn restore_crossings(
     tri: &Triangulation,
     edges: &[Edge],
@@ -145,21 +135,15 @@ pub(crate) fn restore_crossings(
 ) -> Outcome {
     let n = tri.num_points();
     let ends = Ends::new(tri, edges, graph);
-    // Most of the stage's cost: each point's two neighbours' positions, prefetched (speed); each
-    // point is judged alone, so the scan runs in ranges on several threads when `parallel`.
-    let prefetching = n >= PREFETCH_FROM;
+    // Most of the stage's cost: each point judged alone, in ranges on threads when `parallel`.
     let found: Vec<Crossing> = found_in_order(n, parallel, |i| {
-        if prefetching {
-            let ahead = VertexId::new((i + NEIGHBORS_AHEAD) as u32);
-            ends.graph.prefetch_neighbors(ahead, tri.vertex_points());
-        }
+        ends.graph.prefetch_ahead(i, tri.vertex_points());
         ends.crossing_at(VertexId::new(i as u32))
     });
     if found.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
-    // A point in two crossings (as the crossing of one and a chord's end of another, say) takes
-    // part in none.
+    // A point in two crossings (a crossing's and a chord's end, say) takes part in none.
     let mut uses = vec![0u8; n];
     for crossing in &found {
         for v in [crossing.x, crossing.c, crossing.d] {
@@ -176,12 +160,7 @@ pub(crate) fn restore_crossings(
     let mut chords: Vec<Edge> = restored.iter().map(|k| ordered(k.c, k.d)).collect();
     chords.sort_unstable();
     let mut out: Vec<Edge> = Vec::with_capacity(edges.len() + restored.len());
-    out.extend(
-        edges
-            .iter()
-            .filter(|e| chords.binary_search(e).is_err())
-            .copied(),
-    );
+    out.extend(edges.iter().filter(|e| chords.binary_search(e).is_err()));
     for k in &restored {
         out.push(ordered(k.x, k.c));
         out.push(ordered(k.x, k.d));

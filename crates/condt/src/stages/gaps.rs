@@ -15,16 +15,16 @@
 //! Candidates: (1) another loose end `b` facing `a`, or facing `a` while the join runs within 60°
 //! of `a`'s edge ([`TIP`]: a sharp tip's apex left with one side); across a straight join
 //! ([`STRAIGHT`] at both ends, from the end's edge or the chord over its last two edges, which
-//! noise moving the end sample bends less), or a smooth one ([`SMOOTH_COS`] at both ends) that bends no more
-//! than the curve's sharpest passage near either end ([`NEAR_END`]: noise bends both alike), a
-//! gap is measured against the longer of the end's last two edges (noise crowding a sample
-//! shortens the last); (2) a point `c` of degree zero with a loose end
-//! `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample; one of the
-//! two may instead be a tip's apex that sees `c` within [`TIP`] of its edge, if the other runs on
-//! straight into `c`, the first sample of the tip's other side); (3) a
-//! crossing `c` of degree two where `a` lines up (above [`STRAIGHT`]) with one of `c`'s neighbours
-//! while `c`'s passage is bent (the repair paired an arm of each curve), or with a loose end facing
-//! `c` across `c`'s passage (the repair kept one curve whole).
+//! noise moving the end sample bends less), or a smooth one ([`SMOOTH_COS`] at both ends) that
+//! bends no more than the curve's sharpest passage near either end ([`NEAR_END`]: noise bends both
+//! alike), a gap is measured against the longer of the end's last two edges (noise crowding a
+//! sample shortens the last); (2) a point `c` of degree zero with a loose end `d` across it facing
+//! `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample; one of the two may instead be a
+//! tip's apex that sees `c` within [`TIP`] of its edge, if the other runs on straight into `c`, the
+//! first sample of the tip's other side); (3) a crossing `c` of degree two where `a` lines up
+//! (above [`STRAIGHT`]) with one of `c`'s neighbours while `c`'s passage is bent (the repair paired
+//! an arm of each curve), or with a loose end facing `c` across `c`'s passage (the repair kept one
+//! curve whole).
 //!
 //! (4) Last, for the ends none of these joined: each walks straight on (above [`STRAIGHT`], each
 //! step within [`GAP_RATIO`] of the one before, up to [`MIN_SAMPLES`] points) through unused
@@ -55,8 +55,7 @@ use alloc::vec::Vec;
 /// Cosine of the smallest angle at a loose end between its edge and a join (90°: a half-plane).
 const AHEAD: f64 = 0.0;
 /// Cosine of the largest angle at a sharp tip's apex between its one edge and the join to the
-/// other side (60°: the tip `Repair::Needs` reads, whose two sides beside the apex are nearer
-/// each other than the spacing). Two curve ends side by side make about 90° there, not less.
+/// other side (60°: the tip `Repair::Needs` reads). Two curve ends side by side make about 90°.
 const TIP: f64 = 0.5;
 /// Cosine of the smallest angle for two arms to form a straight passage (150°, as `CrossingAware`).
 pub(super) const STRAIGHT: f64 = -0.866_025_403_784_438_6;
@@ -98,13 +97,12 @@ enum Partner {
 /// The loose ends of a graph and the tests on them (shared with [`super::junctions`]).
 pub(super) struct Ends<'a> {
     pub(super) tri: &'a Triangulation,
-    /// Borrowed when a caller that goes on using the graph lends it (rule 4), else owned and
-    /// handed on ([`Ends::into_graph`]).
+    /// Borrowed from a caller that goes on using it (rule 4), else owned and handed on.
     pub(super) graph: Cow<'a, CurveGraph>,
 }
 
 impl<'a> Ends<'a> {
-    /// The loose ends of `edges`, with the previous stage's curve `graph` when it had one.
+    /// The loose ends of `edges`, with the previous stage's curve `graph` if any.
     pub(super) fn new(tri: &'a Triangulation, edges: &[Edge], graph: Option<CurveGraph>) -> Self {
         let graph = graph.unwrap_or_else(|| CurveGraph::new(tri.num_points(), edges));
         Ends {
@@ -121,15 +119,7 @@ impl<'a> Ends<'a> {
         }
     }
 
-    /// The loose ends, in increasing vertex id.
-    pub(super) fn loose(&self) -> impl Iterator<Item = VertexId> + '_ {
-        (0..self.tri.num_points() as u32)
-            .map(VertexId::new)
-            .filter(|&a| self.is_loose(a))
-    }
-
-    /// The values `find` gives for the loose ends, by increasing id; the ends in ranges on
-    /// several threads when `parallel` (the same list).
+    /// The values `find` gives for the loose ends, by increasing id (on threads if `parallel`).
     pub(super) fn each_loose<T: Send>(
         &self,
         parallel: bool,
@@ -157,16 +147,11 @@ impl<'a> Ends<'a> {
     /// Whether the chain from `next` away from `from` runs through at least [`MIN_SAMPLES`]
     /// points of degree two, none of them in `avoid`.
     pub(super) fn branch(&self, from: VertexId, next: VertexId, avoid: &[VertexId]) -> bool {
-        let (mut prev, mut here) = (from, next);
-        for _ in 0..MIN_SAMPLES {
-            if self.graph.degree(here) != 2 || avoid.contains(&here) {
-                return false;
-            }
-            let onward = self.graph.onward(here, prev);
-            prev = here;
-            here = onward;
-        }
-        true
+        let clear = self
+            .graph
+            .passages(from, next)
+            .take_while(|p| !avoid.contains(&p[1]));
+        clear.take(MIN_SAMPLES).count() == MIN_SAMPLES
     }
 
     /// Whether `w` is ahead of the loose end `a` and the gap is short (the module's two tests).
@@ -179,9 +164,8 @@ impl<'a> Ends<'a> {
         cos_at(self.point(a), self.point(self.along(a)), self.point(w))
     }
 
-    /// The cosine of the angle at the loose end `a` between the point two edges back and `w`
-    /// (`1` where the curve ends sooner): the chord over the last two edges, a steadier guide to
-    /// the curve's direction than a last edge that noise shortened.
+    /// The cosine of the angle at the loose end `a` between the point two edges back and `w` (`1`
+    /// where the curve ends sooner): the chord of the module's rule (1).
     fn chord_turn(&self, a: VertexId, w: VertexId) -> f64 {
         let next = self.along(a);
         if self.graph.degree(next) != 2 {
@@ -204,25 +188,15 @@ impl<'a> Ends<'a> {
         p.dist2(self.point(w)) <= GAP_RATIO * GAP_RATIO * spacing
     }
 
-    /// The cosine of the sharpest of the (at most [`NEAR_END`]) passages along the curve from the
-    /// loose end `a` (`-1`, straight, where there is none): how much the curve bends there.
+    /// The cosine of the sharpest of the first [`NEAR_END`] passages from the loose end `a`, or -1.
     fn sharpest_passage(&self, a: VertexId) -> f64 {
-        let (mut prev, mut here) = (a, self.along(a));
-        let mut sharpest = -1.0f64;
-        for _ in 0..NEAR_END {
-            if self.graph.degree(here) != 2 {
-                break;
-            }
-            let next = self.graph.onward(here, prev);
-            sharpest = sharpest.max(cos_at(self.point(here), self.point(prev), self.point(next)));
-            (prev, here) = (here, next);
-        }
-        sharpest
+        let passages = self.graph.passages(a, self.along(a)).take(NEAR_END);
+        passages
+            .map(|[prev, here, next]| cos_at(self.point(here), self.point(prev), self.point(next)))
+            .fold(-1.0, f64::max)
     }
 
-    /// Whether the loose ends `a` and `b` may join: the gap short for both, and ahead of both, or
-    /// ahead of one while the other is a sharp tip's apex ([`TIP`]), whose edge runs back along
-    /// the other side (noise or the repair can leave a tip's apex with one side only).
+    /// Whether the loose ends `a` and `b` may join (the module's rule (1)).
     fn ends_meet(&self, a: VertexId, b: VertexId) -> bool {
         let (at_a, at_b) = (self.turn(a, b), self.turn(b, a));
         let (line_a, line_b) = (
@@ -242,15 +216,13 @@ impl<'a> Ends<'a> {
             && (ahead_or_tip(at_a, at_b) || ahead_or_tip(at_b, at_a))
     }
 
-    /// Whether `w` is within [`TIP`] of the loose end `a`'s edge at a short gap: `a` is a sharp
-    /// tip's apex whose other side starts at `w`.
+    /// Whether `w` is within [`TIP`] of the loose end `a`'s edge at a short gap (a tip's apex).
     fn tip_toward(&self, a: VertexId, w: VertexId) -> bool {
         w != self.along(a) && self.turn(a, w) > TIP && self.short(a, w, false)
     }
 
-    /// Whether the loose end `a` reaches the point `c` for rule 2: faces it, or is a tip's apex
-    /// toward it; `other_faces` says whether the end across does. With a tip on one side, the end
-    /// facing `c` must run on straight into it (`c` starts the tip's other side).
+    /// Whether the loose end `a` reaches the point `c` for rule (2): faces it, or is a tip's apex
+    /// toward it; `other_faces` says whether the end across, `other`, does.
     fn reaches(&self, a: VertexId, c: VertexId, other_faces: bool, other: VertexId) -> bool {
         let straight_on = |e: VertexId| self.turn(e, c) < STRAIGHT;
         if self.faces(a, c) {
@@ -305,8 +277,7 @@ impl<'a> Ends<'a> {
         .map(Partner::End)
     }
 
-    /// The nearest candidate of the loose end `a` (as the module says: exactly where squared
-    /// distances round alike, an exact tie by vertex id).
+    /// The nearest candidate of the loose end `a` (ties as the module says).
     fn target(&self, a: VertexId) -> Target {
         let pa = self.point(a);
         let mut best = Target::None;
@@ -330,8 +301,6 @@ impl<'a> Ends<'a> {
             }
             let facing = self.faces(a, w);
             let candidate = match self.graph.degree(w) {
-                // A stranded sample; one of the two ends may be a tip's apex whose other side
-                // starts there, if the other end faces it.
                 0 if facing || self.tip_toward(a, w) => {
                     match self.end_across(a, w, |d| self.reaches(d, w, facing, a), |_| true) {
                         Some(d) => Target::Through(w, Partner::End(d)),
@@ -350,83 +319,8 @@ impl<'a> Ends<'a> {
         }
         best
     }
-}
 
-/// Closes gaps in `edges` (each edge once, any order): the input edges in order, then the joins by
-/// increasing loose end; unchanged (the curve `graph`, if given, handed on) when none qualifies.
-pub(crate) fn close_gaps(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let ends = Ends::new(tri, edges, graph);
-    let joins = gap_joins(&ends, parallel);
-    ends.joined(edges, &joins)
-}
-
-/// The joins [`close_gaps`] adds to the graph of `ends`, by increasing loose end.
-pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
-    let n = ends.tri.num_points();
-    // Only loose ends choose (few): a list by increasing id, searched by id (memory). Each end
-    // chooses alone (the stage's cost), in ranges on several threads when `parallel`.
-    let targets: Vec<(VertexId, Target)> = ends.each_loose(parallel, |a| {
-        Some((a, ends.target(a))).filter(|&(_, target)| target != Target::None)
-    });
-    if targets.is_empty() {
-        return ends.stranded_runs(&[], &[]);
-    }
-    let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
-    let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
-    // Which of its two neighbours each crossing has been lined up with, one bit per slot.
-    let mut lined_up = vec![0u8; n];
-    for &(_, target) in &targets {
-        if let Target::Through(c, Partner::Neighbor(slot)) = target {
-            lined_up[c.index()] |= 1 << slot;
-        }
-    }
-    // Whether the loose end `a` gets the join it chose: the other side agrees.
-    let agreed = |a: VertexId| match target_of(a) {
-        Target::End(b) => target_of(b) == Target::End(a),
-        // Both dropped arms come back, each in line with one of the two kept ones.
-        Target::Through(c, Partner::Neighbor(_)) => lined_up[c.index()] == 0b11,
-        // Both come back, in line with each other, through a crossing or a stranded point.
-        Target::Through(c, Partner::End(d)) => target_of(d) == Target::Through(c, Partner::End(a)),
-        Target::None => false,
-    };
-    let joined: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
-    let is_joined = |a: VertexId| slot(a).is_some_and(|k| joined[k]);
-    // A lone edge (both its points loose) is joined only when both its ends are.
-    let supported = |a: VertexId| {
-        let next = ends.along(a);
-        ends.graph.degree(next) != 1 || is_joined(next)
-    };
-    let mut joins: Vec<Edge> = Vec::new();
-    for (&(a, target), &joined) in targets.iter().zip(&joined) {
-        if !joined || !supported(a) {
-            continue;
-        }
-        match target {
-            Target::End(b) if a < b && supported(b) => joins.push(ordered(a, b)),
-            Target::Through(c, _) => joins.push(ordered(a, c)),
-            _ => {}
-        }
-    }
-    drop(lined_up);
-    let joined_ends: Vec<VertexId> = targets
-        .iter()
-        .zip(&joined)
-        .filter(|&(&(a, _), &j)| j && supported(a))
-        .map(|(&(a, _), _)| a)
-        .collect();
-    let runs = ends.stranded_runs(&joined_ends, &joins);
-    joins.extend(runs);
-    joins
-}
-
-impl Ends<'_> {
-    /// The unused points a straight walk from the loose end `a` passes (see [`Self::stranded_runs`]),
-    /// ending with the loose end it runs into, if any.
+    /// The unused points a straight walk from the loose end `a` passes, then the end it meets.
     fn straight_walk(&self, a: VertexId) -> Vec<VertexId> {
         let mut path = Vec::new();
         let (mut prev, mut here) = (self.along(a), a);
@@ -452,17 +346,19 @@ impl Ends<'_> {
         path
     }
 
-    /// Runs of unused points between two loose ends other than the `joined` ones: each end walks
-    /// straight on (above [`STRAIGHT`], steps within [`GAP_RATIO`] of the last) through unused
-    /// points; two walks that run into each other's ends through the same points, or meet at the
-    /// same unused point (a sharp tip's apex), join, unless a point is in one of the `joins` made.
+    /// Rule (4) of the module: runs of unused points between two loose ends other than the `joined`
+    /// ones, unless a point is in one of the `joins` made.
     fn stranded_runs(&self, joined: &[VertexId], joins: &[Edge]) -> Vec<Edge> {
-        let walks: Vec<(VertexId, Vec<VertexId>)> = self
-            .loose()
-            .filter(|a| joined.binary_search(a).is_err())
-            .map(|a| (a, self.straight_walk(a)))
-            .filter(|(_, walk)| !walk.is_empty())
-            .collect();
+        let walks: Vec<(VertexId, Vec<VertexId>)> = self.each_loose(false, |a| {
+            if joined.binary_search(&a).is_ok() {
+                return None;
+            }
+            let walk = self.straight_walk(a);
+            (!walk.is_empty()).then_some((a, walk))
+        });
+        if walks.is_empty() {
+            return Vec::new();
+        }
         let walk_of = |v: VertexId| {
             walks
                 .binary_search_by_key(&v, |(a, _)| *a)
@@ -476,15 +372,8 @@ impl Ends<'_> {
             .map(|(k, (_, walk))| (*walk.last().expect("non-empty"), k))
             .collect();
         by_last.sort_unstable();
-        let mut used = vec![
-            false;
-            if walks.is_empty() {
-                0
-            } else {
-                self.tri.num_points()
-            }
-        ];
-        for v in joins.iter().flatten().filter(|_| !walks.is_empty()) {
+        let mut used = vec![false; self.tri.num_points()];
+        for v in joins.iter().flatten() {
             used[v.index()] = true;
         }
         let mut out = Vec::new();
@@ -530,9 +419,7 @@ impl Ends<'_> {
         }
         out
     }
-}
 
-impl Ends<'_> {
     /// The outcome of a stage that adds `joins` to `edges`: unchanged when there is none;
     /// otherwise `edges` in order, then `joins`; the curve graph follows and is handed on.
     pub(super) fn joined(self, edges: &[Edge], joins: &[Edge]) -> Outcome {
@@ -545,6 +432,73 @@ impl Ends<'_> {
         out.extend_from_slice(joins);
         Outcome::changed(edges, out, graph)
     }
+}
+
+/// Closes gaps in `edges` (each edge once, any order): the input edges in order, then the joins
+/// ([`Ends::joined`]).
+pub(crate) fn close_gaps(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+    parallel: bool,
+) -> Outcome {
+    let ends = Ends::new(tri, edges, graph);
+    let joins = gap_joins(&ends, parallel);
+    ends.joined(edges, &joins)
+}
+
+/// The joins [`close_gaps`] adds to the graph of `ends`, by increasing loose end.
+pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
+    let n = ends.tri.num_points();
+    // Only loose ends choose (few): a list by increasing id, searched by id (memory). Each end
+    // chooses alone (the stage's cost), in ranges on several threads when `parallel`.
+    let targets: Vec<(VertexId, Target)> = ends.each_loose(parallel, |a| {
+        Some((a, ends.target(a))).filter(|&(_, target)| target != Target::None)
+    });
+    if targets.is_empty() {
+        return ends.stranded_runs(&[], &[]);
+    }
+    let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
+    let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
+    // Which of its two neighbours each crossing has been lined up with, one bit per slot.
+    let mut lined_up = vec![0u8; n];
+    for &(_, target) in &targets {
+        if let Target::Through(c, Partner::Neighbor(slot)) = target {
+            lined_up[c.index()] |= 1 << slot;
+        }
+    }
+    // Whether the loose end `a` gets the join it chose: the other side agrees.
+    let agreed = |a: VertexId| match target_of(a) {
+        Target::End(b) => target_of(b) == Target::End(a),
+        // Both dropped arms come back, each in line with one of the two kept ones.
+        Target::Through(c, Partner::Neighbor(_)) => lined_up[c.index()] == 0b11,
+        // Both come back, in line with each other, through a crossing or a stranded point.
+        Target::Through(c, Partner::End(d)) => target_of(d) == Target::Through(c, Partner::End(a)),
+        Target::None => false,
+    };
+    let joined: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
+    drop(lined_up);
+    let is_joined = |a: VertexId| slot(a).is_some_and(|k| joined[k]);
+    // A lone edge (both its points loose) is joined only when both its ends are.
+    let supported = |a: VertexId| {
+        let next = ends.along(a);
+        ends.graph.degree(next) != 1 || is_joined(next)
+    };
+    let (mut joins, mut joined_ends) = (Vec::new(), Vec::new());
+    for (&(a, target), &joined) in targets.iter().zip(&joined) {
+        if !joined || !supported(a) {
+            continue;
+        }
+        joined_ends.push(a);
+        match target {
+            Target::End(b) if a < b && supported(b) => joins.push(ordered(a, b)),
+            Target::Through(c, _) => joins.push(ordered(a, c)),
+            _ => {}
+        }
+    }
+    let runs = ends.stranded_runs(&joined_ends, &joins);
+    joins.extend(runs);
+    joins
 }
 
 #[cfg(test)]

@@ -27,13 +27,12 @@ pub(crate) fn confirm_given_back(
         // The local outlier removal changed nothing: its curve graph goes on to the next stage.
         return Outcome::unchanged_with(graph);
     }
-    drop(graph); // not read here: freed before the adjacency is built
+    drop(graph); // not read here (memory)
     let n = tri.num_points();
     let given = missing_from(edges, before_local);
     if !given.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    // Each vertex's component, named by its smallest id (the local outlier removal's union-find).
     let root = super::local_outliers::components(n, edges);
     // Components made only of given-back edges, and each vertex's degree (up to 255).
     let mut only_given = vec![false; n];
@@ -115,9 +114,7 @@ fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
         let mut unmatched: Vec<(Edge, usize)> =
             (tail..edges.len()).map(|k| (edges[k], k)).collect();
         unmatched.sort_unstable();
-        for (_, k) in &unmatched {
-            missing[*k] = true;
-        }
+        missing[tail..].fill(true);
         // A bit per unmatched edge's smaller end: most edges of `before` skip the search (speed).
         let bound = unmatched.iter().map(|(e, _)| e[0].index() + 1).max();
         let mut ends = vec![0u64; bound.unwrap_or(0).div_ceil(64)];

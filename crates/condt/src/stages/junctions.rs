@@ -9,12 +9,11 @@
 //! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.
 //! Rule (reasons: docs/condt.md, *Junctions*): a loose end `a` joins the Delaunay neighbour `c`
 //! with two edges that it faces straight on (within 30°, [`STRAIGHT`]: the branch's next sample),
-//! within [`GAP_RATIO`] times `c`'s shorter edge, with three branches
-//! of [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`),
-//! straightest ahead of the end among those that pass (ties by id), and chosen by no other loose end (two make a crossing, gap
-//! closing's case). All choices are made on the graph as it came in, so the result is independent
-//! of the order of the ends; the ends' search may run on several threads (`parallel`), the joins
-//! are made in order: the same result either way.
+//! within [`GAP_RATIO`] times `c`'s shorter edge, with three branches of
+//! [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`),
+//! straightest ahead of the end among those that pass (ties by id), and chosen by no other loose
+//! end (two make a crossing, gap closing's case). All choices are made on the graph as it came in:
+//! the result depends neither on the order of the ends nor on `parallel`.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO, STRAIGHT};
 use super::Outcome;
@@ -25,9 +24,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 impl Ends<'_> {
-    /// Whether the loose end `a` meets the degree-two point `c` at a junction: `a` faces `c`
-    /// straight on, within [`GAP_RATIO`] of `c`'s shorter edge, and three branches
-    /// ([`Ends::branch`](super::gaps::Ends::branch)) meet there.
+    /// Whether the loose end `a` meets the degree-two point `c` at a junction (the module's rule).
     fn meets_at_junction(&self, a: VertexId, c: VertexId) -> bool {
         if self.graph.degree(c) != 2 || !self.faces(a, c) || self.turn(a, c) >= STRAIGHT {
             return false;
@@ -43,8 +40,8 @@ impl Ends<'_> {
 
     /// The junction the loose end `a` chooses, if any: the straightest ahead that passes.
     fn junction_of(&self, a: VertexId) -> Option<VertexId> {
-        // Every junction needs the end's own branch even with no points to avoid: without it (most
-        // ends on scattered points) no neighbour passes, so the ring is skipped (speed).
+        // Every junction needs the end's own branch: without it (most ends on scattered points)
+        // the ring is skipped (speed).
         if !self.branch(a, self.along(a), &[]) {
             return None;
         }
@@ -59,8 +56,7 @@ impl Ends<'_> {
     }
 }
 
-/// Joins loose ends in `edges` (each once, any order) to the junctions they meet: input edges in
-/// order, then joins by increasing loose end; unchanged (`graph` handed on) if none qualifies.
+/// Joins loose ends in `edges` (each once, any order) to the junctions they meet.
 pub(crate) fn join_junctions(
     tri: &Triangulation,
     edges: &[Edge],

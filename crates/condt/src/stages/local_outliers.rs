@@ -19,15 +19,14 @@
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
 //! curves) unless gap closing would join them to a kept component ([`keep_joined_pieces`]), or
-//! rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes
-//! none; docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter junction
+//! rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes none;
+//! docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter junction
 //! branches regardless. Sequential, deterministic, O(n); lengths recomputed, not kept (memory).
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
-use crate::prefetch::PREFETCH_FROM;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 use alloc::vec;
@@ -82,8 +81,7 @@ impl Rules {
     }
 }
 
-/// The stage on `edges`; `before` is the IQR stage's input. The outcome carries the output's curve
-/// graph.
+/// The stage on `edges` (`before`: the IQR stage's input), with the output's curve graph.
 pub(crate) fn remove_local_outliers(
     tri: &Triangulation,
     edges: &[Edge],
@@ -101,7 +99,6 @@ pub(crate) fn remove_local_outliers(
     }
     // Read by rule 1 only: freed before the later rules' curve graph and components (memory).
     drop(before);
-    // What rules 2 to 4 read; squared lengths are recomputed where asked (memory).
     let mut profile = CurveGraph::new(tri.num_points(), &graph);
     // Whether rule 2's pass found only smooth, regular cycles; then rules 2 and 3 change nothing
     // (nothing is long, and there is no branch), so it still holds at rule 4.
@@ -111,22 +108,18 @@ pub(crate) fn remove_local_outliers(
         smooth_cycles = Some(scan.smooth_cycles);
         if let Some(long) = scan.long {
             // Only an edge with an end where it is long can go: the full test runs on those.
-            let mut removed = Vec::new();
-            {
-                let candidate = |v: VertexId| long[v.index() / 64] >> (v.index() % 64) & 1 == 1;
-                let mut dropped = long_edges(tri, &profile, rules);
-                drop_edges(&mut graph, &mut removed, |e| {
-                    (candidate(e[0]) || candidate(e[1])) && dropped(e)
-                });
-            }
+            let candidate = |v: VertexId| long[v.index() / 64] >> (v.index() % 64) & 1 == 1;
+            let mut dropped = long_edges(tri, &profile, rules);
+            let removed = drop_edges(&mut graph, move |e| {
+                (candidate(e[0]) || candidate(e[1])) && dropped(e)
+            });
             drop(long);
             update(&mut profile, &graph, &removed);
         }
     }
     if rules.short_spurs && profile.has_branch() {
         if let Some(dropped) = short_spurs(&profile) {
-            let mut removed = Vec::new();
-            drop_edges(&mut graph, &mut removed, |&[a, b]| {
+            let removed = drop_edges(&mut graph, |&[a, b]| {
                 dropped[a.index()] || dropped[b.index()]
             });
             update(&mut profile, &graph, &removed);
@@ -136,10 +129,7 @@ pub(crate) fn remove_local_outliers(
         // A `false` may be stale (rules 2 and 3 changed the graph): the full test then runs.
         let smooth_cycles = smooth_cycles.unwrap_or_else(|| only_smooth_cycles(tri, &profile));
         if let Some((root, kept)) = separated_components(tri, &graph, &profile, smooth_cycles) {
-            let mut removed = Vec::new();
-            drop_edges(&mut graph, &mut removed, |&[a, _]| {
-                !kept[root[a.index()] as usize]
-            });
+            let removed = drop_edges(&mut graph, |&[a, _]| !kept[root[a.index()] as usize]);
             update(&mut profile, &graph, &removed);
         }
     }
@@ -247,8 +237,7 @@ fn passage(
     if was.degree(x) != 2 {
         return false;
     }
-    let [first, second] = was.first_two(x);
-    let z = if first == y { second } else { first };
+    let z = was.onward(x, y);
     if now.degree(x) > 1 || (now.degree(x) == 1 && now.first_two(x)[0] != z) {
         return false;
     }
@@ -278,12 +267,11 @@ fn smooth_and_regular_at(p: Point, q: Point, r: Point) -> bool {
     regular && smooth(dot, to_y * to_z)
 }
 
-/// Whether `dot < SMOOTH_COS * sqrt(product)`, the square root taken only where the answer is not
-/// certain (speed: along a curve it hardly ever is not). Certain: a negative `dot` whose double
-/// squares to over twice `product`. The margin, a factor of two, is far beyond the roundings of
-/// the square (half a unit in the last place, or 2^-1075 below the normal range, where `product`
-/// is 0 or at least 2^-1074) and of the root; doubling and halving are exact, and an overflow
-/// compares as the exact value would.
+/// Whether `dot < SMOOTH_COS * sqrt(product)`, the root taken only where the answer is not certain
+/// (speed). Certain: a negative `dot` whose double squares to over twice `product`; the factor of
+/// two is far beyond the roundings of the square (half an ulp, or 2^-1075 below the normal range,
+/// where `product` is 0 or at least 2^-1074) and of the root; doubling and halving are exact, and
+/// an overflow compares as the exact value would.
 #[inline]
 fn smooth(dot: f64, product: f64) -> bool {
     const _: () = assert!(SMOOTH_COS == -0.5, "the margin is worked out for 120°");
@@ -293,48 +281,27 @@ fn smooth(dot: f64, product: f64) -> bool {
     }
 }
 
-/// How many vertex ids ahead [`only_smooth_cycles`] and the scans like it prefetch the positions
-/// of a vertex's two neighbours: the vertex's own record and position come in order, theirs from
-/// anywhere (ids follow BRIO rounds, so a curve's samples are far apart in memory).
-pub(super) const NEIGHBORS_AHEAD: usize = 16;
-
-/// Whether every vertex with edges has exactly two that pass [`smooth_and_regular`]: the graph is
-/// a union of smooth, regular cycles (clean closed curves), the case where rule 4 and the clump
-/// stage provably remove nothing. Stops at the first vertex that fails (at once on scattered
-/// points); reads each vertex's neighbours' positions, prefetched [`NEIGHBORS_AHEAD`].
+/// Whether every vertex with edges has exactly two that pass [`smooth_and_regular`] (clean closed
+/// curves, where rule 4 and the clump stage provably remove nothing).
 pub(super) fn only_smooth_cycles(tri: &Triangulation, graph: &CurveGraph) -> bool {
-    let n = graph.vertex_count();
-    let prefetching = n >= PREFETCH_FROM;
-    for i in 0..n {
-        if prefetching {
-            graph.prefetch_neighbors(
-                VertexId::new((i + NEIGHBORS_AHEAD) as u32),
-                tri.vertex_points(),
-            );
-        }
+    (0..graph.vertex_count()).all(|i| {
+        graph.prefetch_ahead(i, tri.vertex_points());
         let v = VertexId::new(i as u32);
-        match graph.degree(v) {
-            0 => continue,
-            2 => {}
-            _ => return false,
-        }
         let [y, z] = graph.first_two(v);
-        if !smooth_and_regular(tri, v, y, z) {
-            return false;
+        match graph.degree(v) {
+            0 => true,
+            2 => smooth_and_regular(tri, v, y, z),
+            _ => false,
         }
-    }
-    true
+    })
 }
 
-/// Makes `graph` that of `edges` (its edges less `removed`): in place for up to one removal per 64
-/// vertices ([`CurveGraph::remove_edges`]), else rebuilt (the old one freed first).
+/// Makes `graph` that of `edges` (its edges less `removed`): patched for up to one per 64 vertices.
 fn update(graph: &mut CurveGraph, edges: &[Edge], removed: &[Edge]) {
-    let n = graph.vertex_count();
-    if removed.len() <= n / 64 {
+    if removed.len() <= graph.vertex_count() / 64 {
         graph.remove_edges(removed);
     } else {
-        *graph = CurveGraph::new(0, &[]);
-        *graph = CurveGraph::new(n, edges);
+        graph.rebuild(edges);
     }
 }
 
@@ -358,48 +325,35 @@ struct LongScan {
     smooth_cycles: bool,
 }
 
-/// Rule 2's pass ([`LongScan`]), prefetching neighbours' positions [`NEIGHBORS_AHEAD`].
+/// Rule 2's pass ([`LongScan`]).
 fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> LongScan {
     let n = graph.vertex_count();
-    let prefetching = n >= PREFETCH_FROM;
     let mut long = alloc::vec![0u64; n.div_ceil(64)];
     let mut any = false;
     let mut smooth_cycles = true;
-    for (word, bits) in long.iter_mut().enumerate() {
-        for bit in 0..64 {
-            let i = word * 64 + bit;
-            if i >= n {
-                break;
+    for i in 0..n {
+        graph.prefetch_ahead(i, tri.vertex_points());
+        let v = VertexId::new(i as u32);
+        let degree = graph.degree(v);
+        smooth_cycles &= matches!(degree, 0 | 2);
+        let is_long = match degree {
+            0 | 1 => false,
+            // Almost every vertex: its two lengths compared directly, without ranking them.
+            2 => {
+                let p = tri.vertex_point(v);
+                let [q, r] = graph.first_two(v).map(|w| tri.vertex_point(w));
+                // Tested until one vertex fails (on scattered points at once).
+                smooth_cycles = smooth_cycles && smooth_and_regular_at(p, q, r);
+                let (to_y, to_z) = (p.dist2(q), p.dist2(r));
+                to_y.max(to_z) > LONG * LONG * to_y.min(to_z)
             }
-            if prefetching {
-                let ahead = VertexId::new((i + NEIGHBORS_AHEAD) as u32);
-                graph.prefetch_neighbors(ahead, tri.vertex_points());
+            _ => {
+                let top = tops(tri, graph, v);
+                top[0] > LONG * LONG * top[1]
             }
-            let v = VertexId::new(i as u32);
-            let is_long = match graph.degree(v) {
-                0 => false,
-                1 => {
-                    smooth_cycles = false;
-                    false
-                }
-                // Almost every vertex: its two lengths compared directly, without ranking them.
-                2 => {
-                    let p = tri.vertex_point(v);
-                    let [q, r] = graph.first_two(v).map(|w| tri.vertex_point(w));
-                    // Tested until one vertex fails (on scattered points at once).
-                    smooth_cycles = smooth_cycles && smooth_and_regular_at(p, q, r);
-                    let (to_y, to_z) = (p.dist2(q), p.dist2(r));
-                    to_y.max(to_z) > LONG * LONG * to_y.min(to_z)
-                }
-                _ => {
-                    smooth_cycles = false;
-                    let top = tops(tri, graph, v);
-                    top[0] > LONG * LONG * top[1]
-                }
-            };
-            *bits |= u64::from(is_long) << bit;
-            any |= is_long;
-        }
+        };
+        long[i / 64] |= u64::from(is_long) << (i % 64);
+        any |= is_long;
     }
     LongScan {
         long: any.then_some(long),
@@ -411,20 +365,10 @@ fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> LongScan {
 /// same whichever end computes them and in whatever order the neighbours come ([`top_two`]).
 #[inline]
 fn tops(tri: &Triangulation, graph: &CurveGraph, v: VertexId) -> [f64; 2] {
-    let degree = graph.degree(v);
-    let mut top = [NONE; 2];
-    if degree == 0 {
-        return top;
-    }
     let p = tri.vertex_point(v);
-    if degree <= 2 {
-        for w in &graph.first_two(v)[..degree] {
-            top = top_two(top, p.dist2(tri.vertex_point(*w)));
-        }
-    } else {
-        for k in 0..degree {
-            top = top_two(top, p.dist2(tri.vertex_point(graph.neighbor(v, k))));
-        }
+    let mut top = [NONE; 2];
+    for k in 0..graph.degree(v) {
+        top = top_two(top, p.dist2(tri.vertex_point(graph.neighbor(v, k))));
     }
     top
 }
@@ -466,15 +410,12 @@ fn long_edges<'a>(
     }
 }
 
-/// Takes the edges `dropped` selects out of `graph` (the rest kept in order, each judged once);
-/// whether it took any. The first copies the borrowed input at its exact size (memory).
-fn drop_edges(
-    graph: &mut Cow<'_, [Edge]>,
-    removed: &mut Vec<Edge>,
-    mut dropped: impl FnMut(&Edge) -> bool,
-) -> bool {
+/// Takes the edges `dropped` selects out of `graph` (the rest kept in order, each judged once) and
+/// returns them. The first copies the borrowed input at its exact size (memory).
+fn drop_edges(graph: &mut Cow<'_, [Edge]>, mut dropped: impl FnMut(&Edge) -> bool) -> Vec<Edge> {
+    let mut removed = Vec::new();
     let Some(first) = graph.iter().position(&mut dropped) else {
-        return false;
+        return removed;
     };
     removed.push(graph[first]);
     let mut keep = |e: &Edge| {
@@ -502,12 +443,11 @@ fn drop_edges(
             *graph = Cow::Owned(collect_exact(list.len() - 1, kept));
         }
     }
-    true
+    removed
 }
 
-/// Rule 3: marks the vertices of every spur of fewer than [`MIN_SAMPLES`] vertices (a loose end
-/// through degree-2 vertices to a junction, not counted), or `None`. A spur's vertices have no
-/// edge off it, so the edges to drop are those with a marked end.
+/// Rule 3: marks the vertices of every spur of fewer than [`MIN_SAMPLES`] (a loose end through
+/// degree-2 vertices to a junction, not counted), or `None`; the edges to drop have a marked end.
 fn short_spurs(graph: &CurveGraph) -> Option<Vec<bool>> {
     let n = graph.vertex_count();
     let mut dropped = vec![false; n];
@@ -519,25 +459,14 @@ fn short_spurs(graph: &CurveGraph) -> Option<Vec<bool>> {
             continue;
         }
         path.clear();
-        let (mut at, mut from, mut count) = (v, VertexId::INFINITE, 1);
-        let short_spur = loop {
-            path.push(at);
-            // `at` is the loose end (one edge) or a vertex with two on the way: the next step.
-            let w = if from.is_infinite() {
-                graph.first_two(at)[0]
-            } else {
-                graph.onward(at, from)
-            };
-            if graph.degree(w) >= 3 {
-                break count < MIN_SAMPLES;
-            }
-            if graph.degree(w) != 2 || count + 1 >= MIN_SAMPLES {
-                break false; // the other end of a path, or long enough
-            }
-            count += 1;
-            (from, at) = (at, w);
-        };
-        if short_spur {
+        path.push(v);
+        let mut end = graph.first_two(v)[0];
+        for [_, here, next] in graph.passages(v, end).take(MIN_SAMPLES - 1) {
+            path.push(here);
+            end = next;
+        }
+        // Not long enough, and ends at a junction (not at the other end of a path).
+        if path.len() < MIN_SAMPLES && graph.degree(end) >= 3 {
             any = true;
             for &u in &path {
                 dropped[u.index()] = true;
@@ -575,8 +504,7 @@ pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
 }
 
 /// Rule 4: each vertex's component and whether it keeps its edges (at least [`MIN_SAMPLES`]
-/// separated vertices), or `None` when all do; `smooth_cycles`: whether `profile` is only smooth,
-/// regular cycles ([`only_smooth_cycles`]). Merged duplicates' ids have no edge and are skipped.
+/// separated vertices), or `None` when all do; `smooth_cycles`: [`only_smooth_cycles`] holds.
 fn separated_components(
     tri: &Triangulation,
     edges: &[Edge],
@@ -595,7 +523,8 @@ fn separated_components(
     }
     let n = tri.num_points();
     let root = components(n, edges);
-    let mut kept: Vec<bool> = separated_counts(tri, profile, &root)
+    let mut kept: Vec<bool> = separated_counts_until(tri, profile, &root, None)
+        .expect("no limit to reach")
         .iter()
         .map(|&c| usize::from(c) >= MIN_SAMPLES)
         .collect();
@@ -614,10 +543,9 @@ fn separated_components(
 }
 
 /// Rule 4's third exemption: a piece that gap closing would join, directly or through other
-/// pieces, to a kept component is kept. Reason: noise breaks a curve into pieces of a few
-/// samples lying along it, none apart from the curve; gap closing needs evidence from both sides
-/// of each join, which outliers beside a curve rarely give. Returns the components with those
-/// joins (by their smallest id) and which are kept.
+/// pieces, to a kept component is kept. Reason: noise breaks a curve into pieces lying along it,
+/// none apart from the curve; gap closing needs evidence from both sides of each join, which
+/// outliers beside a curve rarely give.
 fn keep_joined_pieces(
     tri: &Triangulation,
     profile: &CurveGraph,
@@ -632,13 +560,10 @@ fn keep_joined_pieces(
     merged_along(root, kept, joins)
 }
 
-/// The components of `root` (each vertex's component, named by its smallest id) merged along
-/// `joins`, named as [`components`] would name them on the edges and the joins, and which of them
-/// are kept: those with a kept part (only merged names are to be read in `kept` afterwards).
-/// Memory: the union-find runs on the names the joins touch, renumbered in order (so that the
-/// smallest number is the smallest name), not on an array of every vertex (4 bytes each: this is
-/// the peak of the local outlier removal along curves); a bit per vertex marks the touched names
-/// (speed: most names are not, and need no search).
+/// The components `root` merged along `joins`, named as [`components`] would name them, and which
+/// are kept: those with a kept part (only merged names are to be read in `kept` afterwards). The
+/// union-find runs on the names the joins touch, renumbered in order, not on every vertex (memory:
+/// the stage's peak along curves); a bit per vertex marks the touched names (speed).
 fn merged_along(root: Vec<u32>, mut kept: Vec<bool>, joins: Vec<Edge>) -> (Vec<u32>, Vec<bool>) {
     if joins.is_empty() {
         return (root, kept);
@@ -680,15 +605,9 @@ fn merged_along(root: Vec<u32>, mut kept: Vec<bool>, joins: Vec<Edge>) -> (Vec<u
 }
 
 /// Per component root, how many of its vertices are separated (rule 4), counted up to
-/// [`MIN_SAMPLES`] (a byte): the one implementation of the test, shared with the clump stage.
-pub(super) fn separated_counts(tri: &Triangulation, graph: &CurveGraph, root: &[u32]) -> Vec<u8> {
-    separated_counts_until(tri, graph, root, None).expect("no limit to reach")
-}
-
-/// [`separated_counts`], or with `limit` (each root's vertices with edges, a point count) `None`
-/// once the components that cannot reach [`MIN_SAMPLES`] separated vertices hold at least `limit.1`
-/// points; counts below it are then inexact. Speed: the test walks a vertex's Delaunay ring, a
-/// cache miss per step; on scattered points most components are small or soon show a near vertex.
+/// [`MIN_SAMPLES`] (a byte), shared with the clump stage; with `limit` (each root's vertices with
+/// edges, a point count), counts below it inexact, and `None` once the components that cannot
+/// reach it hold `limit.1` points or more (speed: the test walks a Delaunay ring, a miss a step).
 pub(super) fn separated_counts_until(
     tri: &Triangulation,
     graph: &CurveGraph,
@@ -775,8 +694,7 @@ impl Shapes {
 /// Rule 4's exemption: keeps every cycle of at least [`CLOSED_MIN`] points of which at least
 /// three quarters ([`CYCLE_PASSING`]) pass [`smooth_and_regular`]. Reason: a curve two or three
 /// spacings from another (concentric circles, an eye's rings) has no separated sample, and
-/// outliers rarely close into such a cycle. Walks each candidate cycle from its root (the
-/// component's smallest id, a vertex of it): O(n), no array per vertex.
+/// outliers rarely close into such a cycle. O(n): each cycle walked once from its root.
 fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, shapes: Shapes, kept: &mut [bool]) {
     let Shapes { size, cycle } = shapes;
     for r in 0..kept.len() {
@@ -785,16 +703,13 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, shapes: Shapes, 
             continue;
         }
         let start = VertexId::new(r as u32);
-        let [first, last] = graph.first_two(start);
-        let mut passing = usize::from(smooth_and_regular(tri, start, first, last));
-        let mut count = 1;
-        let (mut previous, mut at) = (start, first);
-        while at != start {
-            let [y, z] = graph.first_two(at);
-            let next = if y == previous { z } else { y };
+        let (mut passing, mut count) = (0, 0);
+        for [previous, at, next] in graph.passages(graph.first_two(start)[1], start) {
             passing += usize::from(smooth_and_regular(tri, at, previous, next));
             count += 1;
-            (previous, at) = (at, next);
+            if next == start {
+                break;
+            }
         }
         let (share_passing, of) = CYCLE_PASSING;
         kept[r] = of * passing >= share_passing * count;
@@ -803,19 +718,13 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, shapes: Shapes, 
 
 /// The share of a cycle's samples, as a fraction `(3, 4)` compared in integers, that must pass
 /// [`smooth_and_regular`] for rule 4 to keep it when it is not apart ([`keep_regular_cycles`]).
-/// Reason: a closed curve's corners are a minority of its samples (a drawn eye, a slit, a
-/// teardrop has one to a few), while a cycle of outliers passes at a sample about one time in
-/// three at most (the clump stage's figure, [`super::clumps`]): were its samples independent,
-/// three quarters of 7, 8 or 9 would pass by chance with probability 0.7 %, 2.0 % and 0.8 %,
-/// less for longer cycles (neighbouring samples share edges, so this is a guide, not a bound).
-/// Before 2026-12-02 every sample had to pass: one corner lost a whole closed curve
-/// (docs/condt.md, *Closed curves with a corner*).
+/// Reason: a closed curve's corners are a minority of its samples, while a cycle of outliers
+/// passes at a sample about one time in three at most ([`super::clumps`]); the odds of chance:
+/// docs/condt.md, *Closed curves with a corner*.
 const CYCLE_PASSING: (usize, usize) = (3, 4);
 
 /// Rule 4's limit: a component that is one cycle of fewer than [`CLOSED_MIN`] points is not kept
-/// for being apart. Reason: a closed curve sampled within the guarantees (`ε <= 1`) has more
-/// than `2π / ε`, over six, samples; a closed polygon of five or six apart from everything is a
-/// clump of outliers that closed up.
+/// for being apart (a clump of outliers that closed up).
 fn drop_short_cycles(shapes: &Shapes, kept: &mut [bool]) {
     for (r, kept) in kept.iter_mut().enumerate() {
         let size = shapes.size[r] as usize;
@@ -825,7 +734,7 @@ fn drop_short_cycles(shapes: &Shapes, kept: &mut [bool]) {
     }
 }
 
-/// Fewest samples of a closed curve: more than `2π` (see [`drop_short_cycles`]).
+/// Fewest samples of a closed curve sampled within the guarantees (`ε <= 1`): over `2π / ε`.
 const CLOSED_MIN: usize = 7;
 
 /// Rule 4's guard: whether dropped components hold [`OUTLIER_SHARE`] of the points with edges.

@@ -78,8 +78,7 @@ pub struct Switch {
 /// Everything that names a stage, one row per stage in [`Stage`]'s order; the command line's
 /// switches and `--timings` lines, the drawings' titles and the viewer's layers all read it.
 struct Row {
-    /// The stage the row is for ([`Stage::ALL`] lists them; a test checks that [`Stage::row`],
-    /// which indexes by variant, finds each stage's own row).
+    /// The stage the row is for (a test checks that [`Stage::row`] finds each stage's own row).
     stage: Stage,
     name: &'static str,
     title: &'static str,
@@ -347,13 +346,9 @@ impl Step {
     /// Runs the stage on `edges` (each edge once, any order) with a parameter that passed
     /// [`Step::check`]; only [`Step::RepairAgain`], [`Step::LocalOutliers`] and
     /// [`Step::ConfirmGivenBack`] read `earlier`. `graph`, if given, is the curve graph of `edges`
-    /// (over every point id) the previous stage handed on ([`Outcome::graph`]): the clump stage,
-    /// gap closing, junctions and crossings use it instead of building one and hand it on made
-    /// their output's ([`Outcome::changed`]; the local outlier removal hands on the one it
-    /// builds), the given-back check hands it on when it returns at once, and the others drop it
-    /// first, so it never adds to their memory.
-    /// `parallel`: gap closing, junctions and crossings search for their candidates on several
-    /// threads from [`PARALLEL_FROM`] points on (the same outcome).
+    /// the previous stage handed on ([`Outcome::graph`]): the stages after the local outlier
+    /// removal read it, the others drop it first (memory). `parallel`: gap closing, junctions and
+    /// crossings search on several threads from [`PARALLEL_FROM`] points on (the same outcome).
     pub(crate) fn run(
         self,
         tri: &Triangulation,
@@ -362,37 +357,29 @@ impl Step {
         graph: Option<CurveGraph>,
         parallel: bool,
     ) -> Outcome {
-        // The one place the stages' threshold applies: below it, threads cost more than they save.
         let parallel = parallel && tri.num_points() >= PARALLEL_FROM;
+        let reads_graph = !matches!(
+            self,
+            Step::Repair(_) | Step::Outliers(_) | Step::RepairAgain { .. } | Step::LocalOutliers
+        );
+        let graph = graph.filter(|_| reads_graph);
         match self {
-            Step::Repair(mode) => {
-                drop(graph);
-                Outcome::from(repair::repair(tri, edges, mode))
-            }
-            Step::Outliers(rule) => {
-                drop(graph);
-                outliers::remove_outliers(tri, edges, rule)
-            }
-            Step::RepairAgain { rule, mode } => {
-                drop(graph);
-                repair_again::repair_again(
-                    tri,
-                    edges,
-                    earlier.before_outliers,
-                    earlier.before_repair,
-                    rule,
-                    mode,
-                )
-            }
-            Step::LocalOutliers => {
-                drop(graph);
-                local_outliers::remove_local_outliers(
-                    tri,
-                    edges,
-                    earlier.before_outliers,
-                    &local_outliers::Rules::ALL,
-                )
-            }
+            Step::Repair(mode) => Outcome::from(repair::repair(tri, edges, mode)),
+            Step::Outliers(rule) => outliers::remove_outliers(tri, edges, rule),
+            Step::RepairAgain { rule, mode } => repair_again::repair_again(
+                tri,
+                edges,
+                earlier.before_outliers,
+                earlier.before_repair,
+                rule,
+                mode,
+            ),
+            Step::LocalOutliers => local_outliers::remove_local_outliers(
+                tri,
+                edges,
+                earlier.before_outliers,
+                &local_outliers::Rules::ALL,
+            ),
             Step::ConfirmGivenBack => {
                 given_back::confirm_given_back(tri, edges, &earlier.before_local, graph)
             }
@@ -422,9 +409,7 @@ impl Outcome {
     pub(crate) fn unchanged_with(graph: Option<CurveGraph>) -> Outcome {
         Outcome { edges: None, graph }
     }
-}
 
-impl Outcome {
     /// The outcome `output` of a stage on `input` (the form [`CurveGraph::follow`] reads), with
     /// `graph`, the input's curve graph if the stage had it, made the output's and handed on.
     pub(crate) fn changed(input: &[Edge], output: Vec<Edge>, graph: Option<CurveGraph>) -> Outcome {

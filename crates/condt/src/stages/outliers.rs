@@ -97,24 +97,21 @@ fn total_order_key_value(key: i64) -> f64 {
 
 /// Algorithm 3 on `edges`; unchanged unless fired.
 pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], rule: IqrRule) -> Outcome {
-    let unchanged = Outcome::UNCHANGED;
     let lengths: Vec<f64> = edges
         .iter()
         .map(|&[a, b]| tri.vertex_point(a).dist2(tri.vertex_point(b)))
         .collect();
     if lengths.is_empty() {
-        return unchanged;
+        return Outcome::UNCHANGED;
     }
     let n = lengths.len();
     let upper = (3 * n / 4).min(n - 1);
     // With `factor >= 0`, T >= Q3: no edge exceeds 4T when at most `upper` lengths lie below a
     // quarter of the longest (the longest is then within 4 Q3). A count, not a selection.
-    let longest = lengths
-        .iter()
-        .fold(0.0f64, |m, &l| if l > m { l } else { m });
+    let longest = lengths.iter().copied().fold(0.0, f64::max);
     let below = lengths.iter().filter(|&&l| 4.0 * l < longest).count();
     if below <= upper {
-        return unchanged;
+        return Outcome::UNCHANGED;
     }
     let Thresholds { fire, cut } = iqr_thresholds(&lengths, rule);
     // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long
@@ -126,7 +123,7 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], rule: IqrRule
         seen[b.index()] |= mark;
     }
     if !seen.contains(&1) {
-        return unchanged;
+        return Outcome::UNCHANGED;
     }
     drop(seen);
     // Not above T: with a perfectly uniform sample IQR = 0 and every edge equals T exactly.

@@ -223,11 +223,9 @@ fn ring_choice(
 }
 
 /// Every kept edge once, from one record per vertex (`read` gives its choice): each vertex
-/// decides with `decide` and `store` records it, all at once on rayon first when `parallel`, else
-/// in the listing pass. An edge kept by both ends is listed by its smaller end (no sort), without
-/// a branch. Decided records are listed in consecutive ranges of ids at once, one per thread,
-/// joined in order: the same list (speed: the listing reads a partner's record at random). The
-/// records are freed before the pieces are joined (memory: the peak of the stage).
+/// decides with `decide` and `store` records it, in the listing pass, or when `parallel` all on
+/// rayon first, then listed in ranges of ids, one per thread, joined in order (the same list).
+/// The records are freed before the pieces are joined (memory: the peak of the stage).
 fn list_kept<T: Send + Sync>(
     mut records: Vec<T>,
     parallel: bool,
@@ -267,7 +265,7 @@ fn list_kept<T: Send + Sync>(
     listing.done()
 }
 
-/// Every record decided by `decide` and stored by `store`, on rayon ([`list_kept`]'s first half).
+/// [`list_kept`]'s first half on rayon: every record decided and stored.
 #[cfg(feature = "parallel")]
 fn decide_all<T: Send + Sync>(
     records: &mut [T],
@@ -293,8 +291,7 @@ fn list_decided<T>(
     let mut listing = Listing::new(range.len());
     for i in range.clone() {
         if prefetching {
-            // Decided records name their partners ahead of the listing: their records are asked
-            // for early (on a large set most partner reads would miss, each waited for in turn).
+            // Decided records name their partners ahead of the listing (most reads would miss).
             if let Some(ahead) = records[..range.end].get(i + PARTNERS_AHEAD) {
                 for w in read(ahead) {
                     // Only a smaller partner's record is read.
@@ -316,9 +313,7 @@ struct Listing {
 }
 
 impl Listing {
-    /// Room for `vertices` edges: curves keep about one edge per vertex, two at most, so the
-    /// buffer starts at one and grows by an eighth when a vertex might not find room for its two
-    /// (speed and memory; `docs/perf-log.md`).
+    /// Room for `vertices` edges, about what curves keep (memory: `docs/perf-log.md`).
     fn new(vertices: usize) -> Listing {
         Listing {
             edges: alloc::vec![[VertexId::INFINITE; 2]; vertices + 2],
@@ -379,8 +374,7 @@ impl TwoBest {
         ids: [u32::MAX; 2],
     };
 
-    /// Keeps the two smallest of those held and `(length, id)`, by length, then (on a tie,
-    /// [`TwoBest::offer_tied`]) by exact length and id.
+    /// Keeps the two smallest of those held and `(length, id)` (ties: [`TwoBest::offer_tied`]).
     #[inline]
     fn offer(
         &mut self,
@@ -447,8 +441,7 @@ impl TwoBest {
 }
 
 /// Every vertex's two best offers, from `parts` sweeps at once (on rayon), each for its own range
-/// of ids into its own part of the records. Reason: memory (one shared array of offers; each
-/// sweep reads all the corners).
+/// of ids into its own part of one shared array (memory).
 fn two_best_offers(tri: &Triangulation, parts: usize) -> Vec<TwoBest> {
     let mut best = alloc::vec![TwoBest::EMPTY; tri.num_points()];
     #[cfg(feature = "parallel")]

@@ -120,12 +120,10 @@ fn angle_above(
 }
 
 /// Algorithm 2, lines 10–11: the shortest edge and the best-scoring partner, if any; no allocation.
-fn paper_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> [VertexId; 2] {
+fn paper_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> [VertexId; 4] {
     let p = tri.vertex_point(v);
     let length2 = |w: VertexId| p.dist2(tri.vertex_point(w));
     let neighbours = || around.iter().copied();
-    // Lengths equal only after rounding are told apart exactly: by id, the shortest would follow
-    // the orientation of the input ([`compare_tied_distances`]); only an exact tie goes by id.
     let shortest = neighbours()
         .min_by(|&a, &b| {
             length2(a)
@@ -148,7 +146,8 @@ fn paper_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> [Verte
     let best = qualified()
         .map(|(w, theta)| (w, theta / PI * (l_min / libm::sqrt(length2(w)))))
         .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
-    [shortest, best.map_or(VertexId::INFINITE, |(w, _)| w)]
+    let partner = best.map_or(VertexId::INFINITE, |(w, _)| w);
+    [shortest, partner, VertexId::INFINITE, VertexId::INFINITE]
 }
 
 /// Up to two disjoint nearly straight pairs through `v`; `None` when there are not two.
@@ -172,7 +171,7 @@ fn crossing_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> Opt
 /// The neighbour lists of the vertices with three or more edges (a third or more of the vertices on
 /// uniform points, few on curves), in edge order, and each such vertex's rank among them, read from
 /// a bit set by vertex id: O(1) where a search over the vertices would cost a cache miss per step
-/// at every edge end (speed). Rank `r`'s list is `neighbors[starts[r]..starts[r + 1]]`.
+/// at every edge end (speed).
 struct Branches {
     /// Bit `v % 64` of word `v / 64`: whether `v` has three or more edges.
     bits: Vec<u64>,
@@ -277,7 +276,6 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     if degree.iter().all(|&d| d <= 2) {
         return None;
     }
-    // Only the non-manifold vertices' lists are read.
     let mut graph = Branches::new(&degree, edges);
     let mut pairs = needs::Pairs::new();
     // Lines 6–12: up to four edges per non-manifold vertex, by rank, sized first (memory).
@@ -293,20 +291,13 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
             }
         }
         let around = graph.incident(r);
-        if repair == Repair::Needs {
-            selections.push(needs::choice(tri, v, around, &degree, &mut pairs));
-            continue;
-        }
-        let crossing = if repair == Repair::CrossingAware {
-            crossing_choice(tri, v, around)
-        } else {
-            None
-        };
-        let chosen = crossing.unwrap_or_else(|| {
-            let [a, b] = paper_choice(tri, v, around);
-            [a, b, VertexId::INFINITE, VertexId::INFINITE]
+        selections.push(match repair {
+            Repair::Needs => needs::choice(tri, v, around, &degree, &mut pairs),
+            Repair::CrossingAware => {
+                crossing_choice(tri, v, around).unwrap_or_else(|| paper_choice(tri, v, around))
+            }
+            _ => paper_choice(tri, v, around),
         });
-        selections.push(chosen);
     }
     graph.drop_lists();
     // Whether the non-manifold `w` selected `v`.
@@ -315,12 +306,7 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
     // Algorithm 2, lines 3–5: edges between manifold vertices stay. Output edges are input edges,
     // each once, so the input's length is room enough (memory).
     let mut kept: Vec<Edge> = Vec::with_capacity(edges.len());
-    kept.extend(
-        edges
-            .iter()
-            .copied()
-            .filter(|&[a, b]| manifold(a) && manifold(b)),
-    );
+    kept.extend(edges.iter().filter(|&&[a, b]| manifold(a) && manifold(b)));
     for (v, chosen) in graph.vertices().zip(&selections) {
         for &w in chosen.iter().filter(|w| !w.is_infinite()) {
             let keep = if manifold(w) {

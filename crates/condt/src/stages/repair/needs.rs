@@ -31,10 +31,7 @@ pub(super) fn choice(
     }
     match needed_pair(tri, v, around, degree) {
         Some([a, b]) => [a, b, VertexId::INFINITE, VertexId::INFINITE],
-        None => {
-            let [a, b] = paper_choice(tri, v, around);
-            [a, b, VertexId::INFINITE, VertexId::INFINITE]
-        }
+        None => paper_choice(tri, v, around),
     }
 }
 
