@@ -84,6 +84,10 @@ impl CurveGraph {
     pub(crate) fn has_branch(&self) -> bool {
         !self.branch_vertices.is_empty()
     }
+    /// Whether some vertex has exactly one neighbour: a scan of the records, stopping at the first.
+    pub(crate) fn has_loose_end(&self) -> bool {
+        self.records.iter().any(|r| r[0] >> ID_BITS == 1)
+    }
     pub(crate) fn vertex_count(&self) -> usize {
         self.records.len()
     }
@@ -550,6 +554,32 @@ pub(crate) mod tests {
             );
         }
         assert!(patched_branches > 500, "removals reach branch points");
+    }
+
+    /// `has_loose_end` agrees with the degrees, on random graphs with and without degree-one
+    /// vertices (a saturated degree is never taken for one).
+    #[test]
+    fn a_loose_end_is_found_exactly_when_a_vertex_has_one_neighbour() {
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let (mut with, mut without) = (0, 0);
+        for _ in 0..300 {
+            let (n, edges) = random_graph(&mut rng, 25, 4);
+            let graph = CurveGraph::new(n, &edges);
+            let expected = (0..n as u32).any(|v| graph.degree(VertexId::new(v)) == 1);
+            assert_eq!(graph.has_loose_end(), expected, "{edges:?}");
+            with += usize::from(expected);
+            without += usize::from(!expected);
+        }
+        // A cycle has none; cut once, it has two.
+        let ring: Vec<Edge> = (0..6u32)
+            .map(|k| ordered(VertexId::new(k), VertexId::new((k + 1) % 6)))
+            .collect();
+        assert!(!CurveGraph::new(6, &ring).has_loose_end());
+        assert!(CurveGraph::new(6, &ring[1..]).has_loose_end());
+        assert!(
+            with > 0 && without > 0,
+            "{with} graphs with a loose end, {without} without"
+        );
     }
 
     /// Adding edges in place gives the graph of the list with them appended, and following a

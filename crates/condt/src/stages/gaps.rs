@@ -125,6 +125,10 @@ impl<'a> Ends<'a> {
         parallel: bool,
         find: impl Fn(VertexId) -> Option<T> + Sync + Send,
     ) -> Vec<T> {
+        // Clean curves have none: the stages that start from loose ends then cost one scan.
+        if !self.graph.has_loose_end() {
+            return Vec::new();
+        }
         found_in_order(self.tri.num_points(), parallel, |i| {
             let a = VertexId::new(i as u32);
             self.is_loose(a).then(|| find(a)).flatten()
