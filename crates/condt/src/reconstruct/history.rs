@@ -35,6 +35,18 @@ impl History {
         }
     }
 
+    /// The first graph a record holds ([`Undo::Held`]), handed over: the record becomes `First`.
+    pub(super) fn take_held(&mut self) -> Option<Vec<Edge>> {
+        let record = self
+            .records
+            .iter_mut()
+            .find(|r| matches!(r.undo, Undo::Held(_)))?;
+        match core::mem::replace(&mut record.undo, Undo::First) {
+            Undo::Held(first) => Some(first),
+            _ => None,
+        }
+    }
+
     /// Stage `k`'s output, walked back from `last` (the last output); `first` serves
     /// [`Undo::First`].
     pub(super) fn output_of<'e>(
@@ -94,6 +106,9 @@ pub(super) enum Undo {
     Input(Vec<Edge>),
     /// The input is the first graph, computed again when a report asks ([`FIRST_KEPT_UP_TO`]).
     First,
+    /// [`Undo::First`] held until repairing again reads it ([`History::take_held`]): computed
+    /// again there, it would add the proximity stage's peak to the graphs that step holds.
+    Held(Vec<Edge>),
 }
 
 /// The repair's record keeps a delta of the first graph only up to one removal (12 bytes) per this
@@ -200,7 +215,7 @@ impl Undo {
         match self {
             Undo::Unchanged => output,
             Undo::First => Cow::Owned(first()),
-            Undo::Input(input) => Cow::Borrowed(input),
+            Undo::Input(input) | Undo::Held(input) => Cow::Borrowed(input),
             Undo::Delta {
                 appended,
                 inserted,
