@@ -11,12 +11,20 @@ use super::{HalfEdgeId, Mesh, TriangleId, VertexId};
 use crate::threads::filled;
 use alloc::vec::Vec;
 
+impl Mesh {
+    /// The arrays [`MeshArrays::reusing`] refills, the vertex edges (derived last) freed now.
+    pub(crate) fn into_storage(self) -> Mesh {
+        Mesh {
+            vertex_edges: Vec::new(),
+            ..self
+        }
+    }
+}
+
 /// The storage of a mesh under construction: `half_edges` slots, filled by [`MeshBuilder`]s.
 pub(crate) struct MeshArrays {
     origins: Vec<VertexId>,
     twins: Vec<HalfEdgeId>,
-    /// The buffer [`MeshArrays::seal`] fills (empty unless one was given back).
-    vertex_edges: Vec<HalfEdgeId>,
 }
 
 impl MeshArrays {
@@ -31,7 +39,6 @@ impl MeshArrays {
         MeshArrays {
             origins: filled(storage.origins, VertexId::INFINITE, half_edges, parallel),
             twins: filled(storage.twins, HalfEdgeId::NONE, half_edges, parallel),
-            vertex_edges: storage.vertex_edges,
         }
     }
 
@@ -82,7 +89,7 @@ impl MeshArrays {
         let mut mesh = Mesh {
             origins: self.origins,
             twins: self.twins,
-            vertex_edges: self.vertex_edges,
+            vertex_edges: Vec::new(),
         };
         mesh.rebuild_vertex_edges(vertex_count, parallel);
         mesh

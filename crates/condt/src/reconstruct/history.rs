@@ -35,6 +35,18 @@ impl History {
         }
     }
 
+    /// The first graph a record holds ([`Undo::Held`]), handed over: the record becomes `First`.
+    pub(super) fn take_held(&mut self) -> Option<Vec<Edge>> {
+        let record = self
+            .records
+            .iter_mut()
+            .find(|r| matches!(r.undo, Undo::Held(_)))?;
+        match core::mem::replace(&mut record.undo, Undo::First) {
+            Undo::Held(first) => Some(first),
+            _ => None,
+        }
+    }
+
     /// Stage `k`'s output, walked back from `last` (the last output); `first` serves
     /// [`Undo::First`].
     pub(super) fn output_of<'e>(
@@ -82,9 +94,11 @@ impl StageRecord {
 pub(super) enum Undo {
     /// The output is the input: the rule did not apply, or this is the first graph (no input).
     Unchanged,
-    /// The output is the input without the edges at `removed`, plus `appended` edges at the end.
+    /// The output is the input without the edges at `removed`, plus `appended` edges at the end
+    /// and the edges at `inserted` (output positions, ascending) before them.
     Delta {
         appended: usize,
+        inserted: Vec<u32>,
         /// `(position in the input, edge)`, positions ascending.
         removed: Vec<(u32, Edge)>,
     },
@@ -92,6 +106,9 @@ pub(super) enum Undo {
     Input(Vec<Edge>),
     /// The input is the first graph, computed again when a report asks ([`FIRST_KEPT_UP_TO`]).
     First,
+    /// [`Undo::First`] held until repairing again reads it ([`History::take_held`]): computed
+    /// again there, it would add the proximity stage's peak to the graphs that step holds.
+    Held(Vec<Edge>),
 }
 
 /// The repair's record keeps a delta of the first graph only up to one removal (12 bytes) per this
@@ -104,24 +121,78 @@ impl Undo {
     /// How to get `input` back from `output` (the input itself when no delta is smaller). Matched
     /// greedily: an input edge equal to the next unmatched output edge is kept, others removed,
     /// the output's unmatched tail appended. Edges are distinct, so undoing is exact; a stage that
-    /// keeps its order and appends its additions (all do) gets the smallest delta, its change.
+    /// keeps its order and appends its additions (most do) gets the smallest delta, its change.
+    /// Repairing again lists its additions among the rest: [`Undo::aligned`] (memory: its input
+    /// was kept whole, 8 bytes an edge, to the run's last step, whose peak it raised).
     pub(super) fn of(input: Vec<Edge>, output: &[Edge]) -> Undo {
         // Past this many removals the delta (12 bytes each) outweighs the input (8 per edge).
-        let most = 2 * input.len() / 3;
-        let mut removed = Vec::new();
+        let removals = Undo::removals(&input, output);
+        if removals > 2 * input.len() / 3 {
+            return Undo::aligned(input, output);
+        }
+        let mut removed = Vec::with_capacity(removals);
         let mut kept = 0;
         for (position, &edge) in input.iter().enumerate() {
             if output.get(kept) == Some(&edge) {
                 kept += 1;
-            } else if removed.len() < most {
-                removed.push((position as u32, edge));
             } else {
-                return Undo::Input(input);
+                removed.push((position as u32, edge));
             }
         }
-        removed.shrink_to_fit();
         Undo::Delta {
             appended: output.len() - kept,
+            inserted: Vec::new(),
+            removed,
+        }
+    }
+
+    /// The delta that keeps the most edges: the longest run of edges common to both lists in the
+    /// same order (the longest increasing run of their output positions, in O(n log n)); the
+    /// input itself when that delta is larger.
+    fn aligned(input: Vec<Edge>, output: &[Edge]) -> Undo {
+        let at = positions_in(output, &input);
+        // `tails[l]`: the input position ending the best run of length `l + 1` so far.
+        let mut tails: Vec<u32> = Vec::new();
+        let mut before = vec![u32::MAX; input.len()];
+        for (i, &p) in at.iter().enumerate().filter(|&(_, &p)| p != u32::MAX) {
+            let ends_below = |&t: &u32| at[t as usize] < p;
+            let l = match tails.last() {
+                Some(last) if !ends_below(last) => tails.partition_point(ends_below),
+                _ => tails.len(),
+            };
+            if l > 0 {
+                before[i] = tails[l - 1];
+            }
+            if l == tails.len() {
+                tails.push(i as u32);
+            } else {
+                tails[l] = i as u32;
+            }
+        }
+        let mut in_run = vec![false; input.len()];
+        let mut i = tails.last().copied().unwrap_or(u32::MAX);
+        while i != u32::MAX {
+            in_run[i as usize] = true;
+            i = before[i as usize];
+        }
+        drop((tails, before));
+        let (mut inserted, mut removed, mut next) = (Vec::new(), Vec::new(), 0);
+        for (i, &edge) in input.iter().enumerate() {
+            if in_run[i] {
+                inserted.extend(next..at[i]);
+                next = at[i] + 1;
+            } else {
+                removed.push((i as u32, edge));
+            }
+        }
+        if 12 * removed.len() + 4 * inserted.len() > 8 * input.len() {
+            return Undo::Input(input);
+        }
+        inserted.shrink_to_fit();
+        removed.shrink_to_fit();
+        Undo::Delta {
+            appended: output.len() - next as usize,
+            inserted,
             removed,
         }
     }
@@ -144,11 +215,21 @@ impl Undo {
         match self {
             Undo::Unchanged => output,
             Undo::First => Cow::Owned(first()),
-            Undo::Input(input) => Cow::Borrowed(input),
-            Undo::Delta { appended, removed } => {
-                let kept = &output[..output.len() - appended];
-                let mut input = Vec::with_capacity(kept.len() + removed.len());
-                let mut rest = kept.iter().copied();
+            Undo::Input(input) | Undo::Held(input) => Cow::Borrowed(input),
+            Undo::Delta {
+                appended,
+                inserted,
+                removed,
+            } => {
+                let end = output.len() - appended;
+                let mut input = Vec::with_capacity(end - inserted.len() + removed.len());
+                let mut skipped = inserted.iter().peekable();
+                let mut rest = output[..end].iter().enumerate().filter_map(|(p, &edge)| {
+                    match skipped.next_if_eq(&&(p as u32)) {
+                        Some(_) => None,
+                        None => Some(edge),
+                    }
+                });
                 for &(position, edge) in removed {
                     let gap = (position as usize).saturating_sub(input.len());
                     input.extend(rest.by_ref().take(gap));
@@ -159,4 +240,30 @@ impl Undo {
             }
         }
     }
+}
+
+/// Each edge of `edges`' position in `output` (`u32::MAX` when absent), found among the output
+/// positions bucketed by their edge's first end.
+fn positions_in(output: &[Edge], edges: &[Edge]) -> Vec<u32> {
+    let bound = output.iter().map(|e| e[0].index() + 1).max().unwrap_or(0);
+    // Counted at `a + 2`, summed: `starts[a + 1]` is where bucket `a` begins, then, filled, ends.
+    let mut starts = vec![0u32; bound + 2];
+    for edge in output {
+        starts[edge[0].index() + 2] += 1;
+    }
+    for a in 1..=bound {
+        starts[a + 1] += starts[a];
+    }
+    let mut by_first = vec![0u32; output.len()];
+    for (p, edge) in output.iter().enumerate() {
+        let slot = &mut starts[edge[0].index() + 1];
+        by_first[*slot as usize] = p as u32;
+        *slot += 1;
+    }
+    let find = |&edge: &Edge| {
+        let a = edge[0].index().min(bound);
+        let bucket = &by_first[starts[a] as usize..starts[a + 1] as usize];
+        bucket.iter().copied().find(|&p| output[p as usize] == edge)
+    };
+    edges.iter().map(|e| find(e).unwrap_or(u32::MAX)).collect()
 }

@@ -435,6 +435,10 @@ impl Run {
         let Some(step) = params.steps().nth(k - 1) else {
             return;
         };
+        let held = match step {
+            Step::RepairAgain { .. } => self.history.take_held(),
+            _ => None,
+        };
         let (tri, history, current) = (&self.tri, &self.history, &self.current);
         // An earlier stage's input, rebuilt only for the step that reads it, only while it runs.
         let first = || first_graph(tri, params);
@@ -445,17 +449,16 @@ impl Run {
                 Cow::Borrowed(current.as_slice())
             }
         };
-        // Repairing again reads the proximity graph only when the IQR stage cut an edge: rebuilt
-        // (`Undo::First`), it costs a proximity stage's time and memory (its peak on scattered
-        // points, where the cut rarely happens).
+        // Repairing again reads the proximity graph only when the IQR stage cut an edge: the one
+        // the repair's record held, else walked back (a delta) or rebuilt (`Undo::First`).
         let cut = history
             .records
             .iter()
             .any(|r| r.stage == Stage::Outliers && !matches!(r.undo, Undo::Unchanged));
-        let before_repair = input_of(
-            Stage::Repair,
-            matches!(step, Step::RepairAgain { .. }) && cut,
-        );
+        let reads_first = matches!(step, Step::RepairAgain { .. }) && cut;
+        let before_repair = held
+            .filter(|_| reads_first)
+            .map_or_else(|| input_of(Stage::Repair, reads_first), Cow::Owned);
         let earlier = Earlier {
             before_outliers: input_of(
                 Stage::Outliers,
@@ -473,11 +476,18 @@ impl Run {
                 let input = core::mem::replace(&mut self.current, output);
                 // Only the repair's record may stand for the first graph (see FIRST_KEPT_UP_TO).
                 let reads_first = k == 1 && matches!(step, Step::Repair(_));
+                let repairs_again = params
+                    .steps()
+                    .any(|s| matches!(s, Step::RepairAgain { .. }));
                 // `r * K > len` as `r > len / K` (the same for integers), which cannot overflow.
                 if reads_first
                     && Undo::removals(&input, &self.current) > input.len() / FIRST_KEPT_UP_TO
                 {
-                    Undo::First
+                    if repairs_again {
+                        Undo::Held(input)
+                    } else {
+                        Undo::First
+                    }
                 } else {
                     Undo::of(input, &self.current)
                 }

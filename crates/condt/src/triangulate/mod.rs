@@ -122,9 +122,10 @@ fn triangulate_in(
 ) -> Result<Triangulation, Error> {
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
-    // The spent arrays; the rest of it is freed here.
-    let (spare, spare_map) = match spent {
-        Some(t) => ((t.input_of_vertex, t.points, t.mesh), t.vertex_of_input),
+    // The spent arrays the construction refills; the rest of it is freed here, before the cut's
+    // scratch (memory: the maps and vertex edges, 8 bytes a point, would sit idle beside it).
+    let spare = match spent {
+        Some(t) => (t.input_of_vertex, t.points, t.mesh.into_storage()),
         None => Default::default(),
     };
     let (order, mut sorted, built) =
@@ -171,7 +172,7 @@ fn triangulate_in(
         let split = parallel && low.len() >= PARALLEL_MIN / 2;
         both(split, || rescale(low), || rescale(high));
     }
-    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel, spare_map);
+    let (input_of_vertex, vertex_of_input) = vertex_maps(order, &merged, parallel);
     let num_vertices = vertex_of_input.len() - merged.len();
     Ok(Triangulation {
         points: sorted,
@@ -378,10 +379,9 @@ fn vertex_maps(
     mut input_of_vertex: Vec<u32>,
     merged: &[(u32, u32)],
     parallel: bool,
-    buffer: Vec<VertexId>,
 ) -> (Vec<u32>, Vec<VertexId>) {
     let n = input_of_vertex.len();
-    let mut vertex_of_input = filled(buffer, VertexId::INFINITE, n, parallel);
+    let mut vertex_of_input = filled(Vec::new(), VertexId::INFINITE, n, parallel);
     let order = &input_of_vertex;
     let place = |slots: &mut [VertexId], first: usize| {
         if slots.is_empty() {
