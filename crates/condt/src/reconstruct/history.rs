@@ -117,6 +117,10 @@ pub(super) enum Undo {
 /// `outliers_first`, the proximity graph) and must not recompute it.
 pub(super) const FIRST_KEPT_UP_TO: usize = 12;
 
+/// A greedy delta lists at most one removal (12 bytes) per this many input edges before the
+/// aligned match takes over ([`Undo::of`]).
+const ALIGNED_PAST: usize = 8;
+
 impl Undo {
     /// How to get `input` back from `output` (the input itself when no delta is smaller). Matched
     /// greedily: an input edge equal to the next unmatched output edge is kept, others removed,
@@ -125,20 +129,23 @@ impl Undo {
     /// Repairing again lists its additions among the rest: [`Undo::aligned`] (memory: its input
     /// was kept whole, 8 bytes an edge, to the run's last step, whose peak it raised).
     pub(super) fn of(input: Vec<Edge>, output: &[Edge]) -> Undo {
-        // Past this many removals the delta (12 bytes each) outweighs the input (8 per edge).
-        let removals = Undo::removals(&input, output);
-        if removals > 2 * input.len() / 3 {
-            return Undo::aligned(input, output);
-        }
-        let mut removed = Vec::with_capacity(removals);
+        // Past this many removals the greedy match gives way to the aligned one, whose delta is
+        // no larger: the list grown so far is then spare (memory), and a second pass that
+        // counted first would cost every stage that changes its edges one more read of both.
+        let most = input.len() / ALIGNED_PAST;
+        let mut removed = Vec::new();
         let mut kept = 0;
         for (position, &edge) in input.iter().enumerate() {
             if output.get(kept) == Some(&edge) {
                 kept += 1;
-            } else {
+            } else if removed.len() < most {
                 removed.push((position as u32, edge));
+            } else {
+                drop(removed);
+                return Undo::aligned(input, output);
             }
         }
+        removed.shrink_to_fit();
         Undo::Delta {
             appended: output.len() - kept,
             inserted: Vec::new(),
@@ -221,21 +228,30 @@ impl Undo {
                 inserted,
                 removed,
             } => {
+                // Copied a run at a time (speed: a later stage reads its input back this way).
                 let end = output.len() - appended;
-                let mut input = Vec::with_capacity(end - inserted.len() + removed.len());
-                let mut skipped = inserted.iter().peekable();
-                let mut rest = output[..end].iter().enumerate().filter_map(|(p, &edge)| {
-                    match skipped.next_if_eq(&&(p as u32)) {
-                        Some(_) => None,
-                        None => Some(edge),
+                let kept: Cow<'_, [Edge]> = if inserted.is_empty() {
+                    Cow::Borrowed(&output[..end])
+                } else {
+                    let mut kept = Vec::with_capacity(end - inserted.len());
+                    let mut from = 0;
+                    for &p in inserted {
+                        kept.extend_from_slice(&output[from..p as usize]);
+                        from = p as usize + 1;
                     }
-                });
+                    kept.extend_from_slice(&output[from..end]);
+                    Cow::Owned(kept)
+                };
+                let mut input = Vec::with_capacity(kept.len() + removed.len());
+                let mut from = 0;
                 for &(position, edge) in removed {
-                    let gap = (position as usize).saturating_sub(input.len());
-                    input.extend(rest.by_ref().take(gap));
+                    let to =
+                        (from + (position as usize).saturating_sub(input.len())).min(kept.len());
+                    input.extend_from_slice(&kept[from..to]);
                     input.push(edge);
+                    from = to;
                 }
-                input.extend(rest);
+                input.extend_from_slice(&kept[from..]);
                 Cow::Owned(input)
             }
         }
