@@ -6,6 +6,7 @@ use crate::adjacency::Edge;
 use crate::graph::Graph;
 use crate::stages::Stage;
 use alloc::borrow::Cow;
+use alloc::vec;
 use alloc::vec::Vec;
 use core::time::Duration;
 
