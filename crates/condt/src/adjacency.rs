@@ -26,7 +26,7 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
 /// one 8-byte record per vertex (its first two neighbours and its degree; packed for memory), so
 /// following a curve costs one read per vertex; vertices with three or more list them all in a
 /// small side table.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub(crate) struct CurveGraph {
     /// Per vertex id: the first neighbour in the low [`ID_BITS`] bits with the degree (up to
     /// [`DEGREE_SATURATED`]) above, then the second neighbour; [`NO_ID`] where none.
@@ -35,6 +35,18 @@ pub(crate) struct CurveGraph {
     branch_vertices: Vec<(VertexId, u32)>,
     /// The neighbours of the branch vertices, each vertex's in the order its edges are listed.
     branch_neighbors: Vec<VertexId>,
+    /// Whether a stage proved, on its triangulation's positions, that every vertex with edges has
+    /// two passing `smooth_and_regular` ([`CurveGraph::mark_smooth_cycles`]); cleared by any
+    /// change. Not part of the graph: equality ignores it.
+    smooth_cycles: bool,
+}
+
+impl PartialEq for CurveGraph {
+    fn eq(&self, other: &Self) -> bool {
+        self.records == other.records
+            && self.branch_vertices == other.branch_vertices
+            && self.branch_neighbors == other.branch_neighbors
+    }
 }
 
 /// Bits of a vertex id in a record: ids are under [`crate::triangulate::MAX_POINTS`] < 2^29.
@@ -79,7 +91,18 @@ impl CurveGraph {
             records,
             branch_vertices,
             branch_neighbors,
+            smooth_cycles: false,
         }
+    }
+    /// Records that every vertex with edges has two passing `smooth_and_regular` (clean closed
+    /// curves): the local outlier removal's scan proves it, and the clump stage then need not
+    /// test every vertex again (speed: on 1M points along clean curves, a tenth of the stages).
+    pub(crate) fn mark_smooth_cycles(&mut self) {
+        self.smooth_cycles = true;
+    }
+    /// Whether [`CurveGraph::mark_smooth_cycles`] holds for the graph as it is.
+    pub(crate) fn proven_smooth_cycles(&self) -> bool {
+        self.smooth_cycles
     }
     pub(crate) fn has_branch(&self) -> bool {
         !self.branch_vertices.is_empty()
@@ -134,6 +157,7 @@ impl CurveGraph {
     /// Takes `removed` (edges of this graph, each once) out, as [`CurveGraph::new`] of the rest
     /// would build: records patched in place, the side table rewritten in one pass (cheap).
     pub(crate) fn remove_edges(&mut self, removed: &[Edge]) {
+        self.smooth_cycles = false;
         let mut at_branches: Vec<(VertexId, VertexId)> = Vec::new();
         for &[a, b] in removed {
             for (v, w) in [(a, b), (b, a)] {
@@ -161,6 +185,7 @@ impl CurveGraph {
     /// graph's list followed by `added` would build: records filled in place, the side table
     /// rewritten in one pass when a vertex reaches three neighbours.
     pub(crate) fn add_edges(&mut self, added: &[Edge]) {
+        self.smooth_cycles = false;
         let mut at_branches: Vec<(VertexId, VertexId)> = Vec::new();
         for &[a, b] in added {
             for (v, w) in [(a, b), (b, a)] {

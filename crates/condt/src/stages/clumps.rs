@@ -33,7 +33,8 @@ pub(crate) fn remove_clumps(
     let n = tri.num_points();
     let graph = graph.unwrap_or_else(|| CurveGraph::new(n, edges));
     // Where every point passes smoothly there is no clump: the stage's cost is skipped.
-    if only_smooth_cycles(tri, &graph) {
+    debug_assert!(!graph.proven_smooth_cycles() || only_smooth_cycles(tri, &graph));
+    if graph.proven_smooth_cycles() || only_smooth_cycles(tri, &graph) {
         return Outcome::unchanged_with(Some(graph));
     }
     let root = components(n, edges);

@@ -139,8 +139,14 @@ pub(crate) fn remove_local_outliers(
             edges: Some(changed),
             graph: Some(profile),
         },
-        // The same edges in the same order: the same curve graph.
-        _ => Outcome::unchanged_with(Some(profile)),
+        // The same edges in the same order: the same curve graph. Smooth cycles at the scan are
+        // still the graph now: no rule changes them, and given-back edges would have stayed.
+        _ => {
+            if smooth_cycles == Some(true) {
+                profile.mark_smooth_cycles();
+            }
+            Outcome::unchanged_with(Some(profile))
+        }
     }
 }
 
@@ -1070,6 +1076,31 @@ mod tests {
         assert!(!smooth(&cycles[1..]), "an open end");
         let square = vertex_edges(&tri, &loop_edges(47, 4));
         assert!(!smooth(&[cycles.clone(), square].concat()), "corners");
+    }
+
+    /// The stage hands on its curve graph marked as smooth cycles exactly where its scan proved
+    /// it (the clump stage then skips its own test), and a change to the graph clears the mark.
+    #[test]
+    fn the_handed_on_graph_is_marked_smooth_only_for_clean_closed_curves() {
+        let mut pts = circle(Point::new(0.0, 0.0), 1.0, 30, 0.0);
+        pts.extend(circle(Point::new(3.0, 0.0), 1.0, 30, 0.0));
+        let tri = triangulate(&pts).unwrap();
+        let marked = |pairs: &[[usize; 2]]| {
+            let edges = vertex_edges(&tri, pairs);
+            let outcome = remove_local_outliers(&tri, &edges, Cow::Borrowed(&edges), &Rules::ALL);
+            let graph = outcome.graph.expect("the stage hands on its graph");
+            assert_eq!(
+                graph.proven_smooth_cycles(),
+                only_smooth_cycles(&tri, &graph)
+            );
+            graph
+        };
+        let cycles = [loop_edges(0, 30), loop_edges(30, 30)].concat();
+        let mut graph = marked(&cycles);
+        assert!(graph.proven_smooth_cycles());
+        assert!(!marked(&cycles[1..]).proven_smooth_cycles(), "an open end");
+        graph.add_edges(&[]);
+        assert!(!graph.proven_smooth_cycles(), "any change clears the mark");
     }
 
     const NONE: Rules = Rules {
