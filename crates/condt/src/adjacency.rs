@@ -2,8 +2,9 @@
 //! and curves are read from.
 //!
 //! Owns: the edge list (`[a, b]`, `a < b`, each edge once), [`CurveGraph`], exact-size collection
-//! and the O(n) pair sort. It may not look at coordinates; nothing here is public (users see edges
-//! in input positions through [`Graph`](crate::Graph)).
+//! and the O(n) pair sort. It may not look at coordinates (it keeps, unchecked, the one fact about
+//! them a stage proved, [`CurveGraph::mark_smooth_cycles`], until the graph changes); nothing here
+//! is public (users see edges in input positions through [`Graph`](crate::Graph)).
 
 use crate::mesh::VertexId;
 use crate::prefetch::PREFETCH_FROM;
