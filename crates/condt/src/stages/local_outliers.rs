@@ -87,6 +87,7 @@ pub(crate) fn remove_local_outliers(
     edges: &[Edge],
     before: Cow<'_, [Edge]>,
     rules: &Rules,
+    parallel: bool,
 ) -> Outcome {
     // The input is copied only once a rule changes it (on a clean curve none does).
     let mut graph = Cow::Borrowed(edges);
@@ -128,7 +129,9 @@ pub(crate) fn remove_local_outliers(
     if rules.separated_components {
         // A `false` may be stale (rules 2 and 3 changed the graph): the full test then runs.
         let smooth_cycles = smooth_cycles.unwrap_or_else(|| only_smooth_cycles(tri, &profile));
-        if let Some((root, kept)) = separated_components(tri, &graph, &profile, smooth_cycles) {
+        if let Some((root, kept)) =
+            separated_components(tri, &graph, &profile, smooth_cycles, parallel)
+        {
             let removed = drop_edges(&mut graph, |&[a, _]| !kept[root[a.index()] as usize]);
             update(&mut profile, &graph, &removed);
         }
@@ -177,8 +180,13 @@ pub(crate) fn rule_evidence(
     let mut previous = sorted(edges.to_vec());
     let mut evidence = Vec::new();
     for k in 0..4 {
-        let outcome =
-            remove_local_outliers(tri, edges, Cow::Borrowed(before), &Rules::up_to(k + 1));
+        let outcome = remove_local_outliers(
+            tri,
+            edges,
+            Cow::Borrowed(before),
+            &Rules::up_to(k + 1),
+            false,
+        );
         let now = sorted(outcome.edges.unwrap_or_else(|| edges.to_vec()));
         let missing_from = |list: &[Edge], e: &Edge| list.binary_search(e).is_err();
         evidence.extend(
@@ -516,6 +524,7 @@ fn separated_components(
     edges: &[Edge],
     profile: &CurveGraph,
     smooth_cycles: bool,
+    parallel: bool,
 ) -> Option<(Vec<u32>, Vec<bool>)> {
     // Clean closed curves keep everything, so neither components nor separation are computed
     // (speed: they are most of the stage there). Why nothing goes: every component is then a
@@ -529,8 +538,7 @@ fn separated_components(
     }
     let n = tri.num_points();
     let root = components(n, edges);
-    let mut kept: Vec<bool> = separated_counts_until(tri, profile, &root, None)
-        .expect("no limit to reach")
+    let mut kept: Vec<bool> = separated_counts(tri, profile, &root, parallel)
         .iter()
         .map(|&c| usize::from(c) >= MIN_SAMPLES)
         .collect();
@@ -610,6 +618,50 @@ fn merged_along(root: Vec<u32>, mut kept: Vec<bool>, joins: Vec<Edge>) -> (Vec<u
     (joined_root, kept)
 }
 
+/// Whether `v` is separated (rule 4): every Delaunay neighbour outside its component lies beyond
+/// [`SEPARATION`] times its longest edge. An unused point is its own root, so it counts as outside.
+fn separated_at(tri: &Triangulation, graph: &CurveGraph, root: &[u32], v: VertexId) -> bool {
+    let longest = tops(tri, graph, v)[0];
+    let (p, r) = (tri.vertex_point(v), root[v.index()]);
+    tri.mesh().neighbors(v).all(|w| {
+        root[w.index()] == r || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
+    })
+}
+
+/// [`separated_counts_until`] without a limit, on rayon's threads when `parallel`: a component's
+/// count stops at [`MIN_SAMPLES`] whichever thread reaches it (a saturating atomic byte), so the
+/// counts are the sequential ones (speed: on scattered points every vertex is tested).
+fn separated_counts(
+    tri: &Triangulation,
+    graph: &CurveGraph,
+    root: &[u32],
+    parallel: bool,
+) -> Vec<u8> {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use core::sync::atomic::{AtomicU8, Ordering::Relaxed};
+        use rayon::prelude::*;
+        let counts: Vec<AtomicU8> = root.iter().map(|_| AtomicU8::new(0)).collect();
+        let below = |c: u8| usize::from(c) < MIN_SAMPLES;
+        (0..root.len())
+            .into_par_iter()
+            .with_min_len(1 << 12)
+            .for_each(|i| {
+                let (v, count) = (VertexId::new(i as u32), &counts[root[i] as usize]);
+                if graph.degree(v) > 0
+                    && below(count.load(Relaxed))
+                    && separated_at(tri, graph, root, v)
+                {
+                    // Err: another thread brought the count to the bound first.
+                    let _ = count.fetch_update(Relaxed, Relaxed, |c| below(c).then_some(c + 1));
+                }
+            });
+        return counts.into_iter().map(AtomicU8::into_inner).collect();
+    }
+    let _ = parallel;
+    separated_counts_until(tri, graph, root, None).expect("no limit to reach")
+}
+
 /// Per component root, how many of its vertices are separated (rule 4), counted up to
 /// [`MIN_SAMPLES`] (a byte), shared with the clump stage; with `limit` (each root's vertices with
 /// edges, a point count), counts below it inexact, and `None` once the components that cannot
@@ -652,14 +704,7 @@ pub(super) fn separated_counts_until(
             // No edge, already kept (a long curve stops after a few samples) or never to be kept.
             continue;
         }
-        let longest = tops(tri, graph, v)[0];
-        let p = tri.vertex_point(v);
-        // An unused point is its own root, so it counts as outside every component.
-        let apart = tri.mesh().neighbors(v).all(|w| {
-            root[w.index()] as usize == r
-                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
-        });
-        separated[r] += u8::from(apart);
+        separated[r] += u8::from(separated_at(tri, graph, root, v));
         if let (Some((size, limit)), Some(left)) = (limit, unjudged.get_mut(r)) {
             if *left != u8::MAX {
                 *left -= 1;
@@ -1013,7 +1058,7 @@ mod tests {
 
     /// The stage with `rules` on `edges` (nothing cut before), in sorted input positions.
     fn apply(tri: &Triangulation, edges: &[Edge], rules: Rules) -> Option<Vec<[usize; 2]>> {
-        let outcome = remove_local_outliers(tri, edges, Cow::Borrowed(edges), &rules);
+        let outcome = remove_local_outliers(tri, edges, Cow::Borrowed(edges), &rules, false);
         outcome
             .edges
             .map(|e| crate::Graph::new(tri, alloc::borrow::Cow::Owned(e)).edges())
@@ -1087,7 +1132,8 @@ mod tests {
         let tri = triangulate(&pts).unwrap();
         let marked = |pairs: &[[usize; 2]]| {
             let edges = vertex_edges(&tri, pairs);
-            let outcome = remove_local_outliers(&tri, &edges, Cow::Borrowed(&edges), &Rules::ALL);
+            let outcome =
+                remove_local_outliers(&tri, &edges, Cow::Borrowed(&edges), &Rules::ALL, false);
             let graph = outcome.graph.expect("the stage hands on its graph");
             assert_eq!(
                 graph.proven_smooth_cycles(),
@@ -1101,6 +1147,43 @@ mod tests {
         assert!(!marked(&cycles[1..]).proven_smooth_cycles(), "an open end");
         graph.add_edges(&[]);
         assert!(!graph.proven_smooth_cycles(), "any change clears the mark");
+    }
+
+    /// Rule 4's separation counts are the same on rayon's threads as on one, on scattered points
+    /// (many small components, every vertex tested) and on curves (large ones, stopped at the
+    /// bound): a count reaches `MIN_SAMPLES` once, whichever thread gets there.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn separation_counts_agree_on_threads() {
+        let mut rng = crate::test_rng::Xorshift::new(0x5eed_c0de);
+        let mut scattered: Vec<Point> = (0..20_000)
+            .map(|_| Point::new(rng.unit(), rng.unit()))
+            .collect();
+        scattered.extend(circle(Point::new(3.0, 0.0), 1.0, 5_000, 0.0));
+        let tri = triangulate(&scattered).unwrap();
+        let proximity = crate::stages::proximity::proximity_graph(
+            &tri,
+            crate::stages::Uniformity::default(),
+            false,
+        );
+        let graph = CurveGraph::new(tri.num_points(), &proximity);
+        let root = components(tri.num_points(), &proximity);
+        let one = separated_counts(&tri, &graph, &root, false);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(4)
+            .build()
+            .unwrap();
+        let many = pool.install(|| separated_counts(&tri, &graph, &root, true));
+        assert_eq!(one, many);
+        // Components with edges, by their root: some reach the bound, some do not.
+        let roots = (0..tri.num_points())
+            .filter(|&i| root[i] as usize == i && graph.degree(VertexId::new(i as u32)) > 0);
+        let (reached, short): (Vec<usize>, Vec<usize>) =
+            roots.partition(|&r| usize::from(one[r]) == MIN_SAMPLES);
+        assert!(
+            !reached.is_empty() && !short.is_empty(),
+            "both kinds of component"
+        );
     }
 
     const NONE: Rules = Rules {

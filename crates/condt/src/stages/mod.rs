@@ -379,6 +379,7 @@ impl Step {
                 edges,
                 earlier.before_outliers,
                 &local_outliers::Rules::ALL,
+                parallel,
             ),
             Step::ConfirmGivenBack => {
                 given_back::confirm_given_back(tri, edges, &earlier.before_local, graph)
