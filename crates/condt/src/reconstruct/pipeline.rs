@@ -476,13 +476,13 @@ impl Run {
                 let input = core::mem::replace(&mut self.current, output);
                 // Only the repair's record may stand for the first graph (see FIRST_KEPT_UP_TO).
                 let reads_first = k == 1 && matches!(step, Step::Repair(_));
-                let repairs_again = params
-                    .steps()
-                    .any(|s| matches!(s, Step::RepairAgain { .. }));
                 // `r * K > len` as `r > len / K` (the same for integers), which cannot overflow.
                 if reads_first
                     && Undo::removals(&input, &self.current) > input.len() / FIRST_KEPT_UP_TO
                 {
+                    let repairs_again = params
+                        .steps()
+                        .any(|s| matches!(s, Step::RepairAgain { .. }));
                     if repairs_again {
                         Undo::Held(input)
                     } else {

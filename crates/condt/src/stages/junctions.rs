@@ -67,9 +67,6 @@ pub(crate) fn join_junctions(
     let ends = Ends::new(tri, edges, graph);
     let choices: Vec<(VertexId, VertexId)> =
         ends.each_loose(parallel, |a| ends.junction_of(a).map(|c| (a, c)));
-    if choices.is_empty() {
-        return ends.joined(edges, &[]);
-    }
     // How many loose ends chose each point, saturating at two.
     let mut chosen = vec![0u8; n];
     for &(_, c) in &choices {
