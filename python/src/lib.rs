@@ -29,6 +29,7 @@ pub(crate) fn within_call<T>(work: impl FnOnce() -> T) -> T {
 mod convert;
 mod params;
 mod reconstruction;
+mod tiles;
 mod triangulation;
 
 use condt_eval::score::{EdgeProblem, ScoreError};
@@ -435,6 +436,9 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(triangulate, m)?)?;
     m.add_function(wrap_pyfunction!(read_points, m)?)?;
     m.add_function(wrap_pyfunction!(score, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_tile_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_run_tile, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_gathered_outliers, m)?)?;
     m.add_class::<Reconstruction>()?;
     m.add_class::<Curve>()?;
     m.add_class::<EdgeStory>()?;

@@ -443,7 +443,7 @@ pub(crate) fn sort_pairs<T: Copy + Ord>(
 }
 
 /// `edges` (at most `room`) in one list of exact length, allocated once (collecting would double).
-pub(crate) fn collect_exact(room: usize, edges: impl Iterator<Item = Edge>) -> Vec<Edge> {
+pub(crate) fn collect_exact<E>(room: usize, edges: impl Iterator<Item = E>) -> Vec<E> {
     let mut list = Vec::with_capacity(room);
     list.extend(edges);
     list.shrink_to_fit();

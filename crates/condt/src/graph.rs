@@ -367,6 +367,54 @@ impl<'t> Graph<'t> {
     }
 }
 
+/// Algorithm 3 on edges gathered from elsewhere, without their triangulation: which of `edges`
+/// (pairs of positions in `points`) [`Graph::remove_outliers`] keeps of a graph of those edges,
+/// or with `floor` [`Graph::remove_outliers_floored`], and whether it fired. Lengths are measured
+/// in the stages' own frame, so the answer is the stage's. For a run split in tiles (Python's
+/// `condt.dask`): each tile repairs its part, and the rule, global, runs once on what they send.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] named `k` as [`Graph::remove_outliers`], or named `edge` (the
+/// position) for an end not in `points`; [`Error::NonFinite`] for a NaN or infinite point.
+///
+/// ```
+/// use condt::{remove_gathered_outliers, triangulate, Point, Uniformity};
+/// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+/// pts.push(Point::new(10.0, 6.0));
+/// let tri = triangulate(&pts)?;
+/// let graph = tri.proximity_graph(Uniformity::Fixed(2.75))?;
+/// let (fired, kept) = remove_gathered_outliers(&pts, &graph.edges(), 1.7, false)?;
+/// let stage = graph.remove_outliers(1.7)?;
+/// assert_eq!((fired, kept), (stage.fired, stage.graph.edges()));
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn remove_gathered_outliers(
+    points: &[crate::Point],
+    edges: &[[usize; 2]],
+    k: f64,
+    floor: bool,
+) -> Result<(bool, Vec<[usize; 2]>), Error> {
+    let rule = IqrRule { factor: k, floor };
+    Step::Outliers(rule).check()?;
+    let stages = crate::triangulate::choose_frames(points)?.stages;
+    let mut lengths = Vec::with_capacity(edges.len());
+    for &[a, b] in edges {
+        let (Some(&p), Some(&q)) = (points.get(a), points.get(b)) else {
+            let value = a.max(b) as f64;
+            return Err(Error::InvalidParameter {
+                name: "edge",
+                value,
+            });
+        };
+        lengths.push(stages.apply(p).dist2(stages.apply(q)));
+    }
+    let cut = crate::stages::outliers::iqr_cut(edges, |e| e, &lengths, points.len(), rule);
+    Ok(match cut {
+        Some(kept) => (true, kept),
+        None => (false, edges.to_vec()),
+    })
+}
+
 /// The graph-level entry points, kept here so the kernel does not depend on the stages.
 impl Triangulation {
     /// Algorithm 1: each point's shortest Delaunay edge, its second if the uniformity test passes.

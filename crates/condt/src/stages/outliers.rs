@@ -101,8 +101,22 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], rule: IqrRule
         .iter()
         .map(|&[a, b]| tri.vertex_point(a).dist2(tri.vertex_point(b)))
         .collect();
+    let ends = |[a, b]: Edge| [a.index(), b.index()];
+    Outcome::from(iqr_cut(edges, ends, &lengths, tri.num_points(), rule))
+}
+
+/// The edges Algorithm 3 keeps of `edges` (ends by `ends`, below `vertex_count`; squared lengths
+/// `lengths`), `None` unless it fires: the one implementation of the rule, for the stage and for
+/// edges gathered from tiles ([`crate::remove_gathered_outliers`]).
+pub(crate) fn iqr_cut<E: Copy>(
+    edges: &[E],
+    ends: impl Fn(E) -> [usize; 2],
+    lengths: &[f64],
+    vertex_count: usize,
+    rule: IqrRule,
+) -> Option<Vec<E>> {
     if lengths.is_empty() {
-        return Outcome::UNCHANGED;
+        return None;
     }
     let n = lengths.len();
     let upper = (3 * n / 4).min(n - 1);
@@ -111,30 +125,31 @@ pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], rule: IqrRule
     let longest = lengths.iter().copied().fold(0.0, f64::max);
     let below = lengths.iter().filter(|&&l| 4.0 * l < longest).count();
     if below <= upper {
-        return Outcome::UNCHANGED;
+        return None;
     }
-    let Thresholds { fire, cut } = iqr_thresholds(&lengths, rule);
+    let Thresholds { fire, cut } = iqr_thresholds(lengths, rule);
     // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long
     // edges. Per vertex, bit 0 records an edge and bit 1 an edge within the bound.
-    let mut seen = vec![0u8; tri.num_points()];
-    for (&[a, b], &length2) in edges.iter().zip(&lengths) {
+    let mut seen = vec![0u8; vertex_count];
+    for (&edge, &length2) in edges.iter().zip(lengths) {
         let mark = 1 | (u8::from(length2 <= 4.0 * fire) << 1);
-        seen[a.index()] |= mark;
-        seen[b.index()] |= mark;
+        let [a, b] = ends(edge);
+        seen[a] |= mark;
+        seen[b] |= mark;
     }
     if !seen.contains(&1) {
-        return Outcome::UNCHANGED;
+        return None;
     }
     drop(seen);
     // Not above T: with a perfectly uniform sample IQR = 0 and every edge equals T exactly.
-    Outcome::from(Some(collect_exact(
+    Some(collect_exact(
         edges.len(),
         edges
             .iter()
-            .zip(&lengths)
+            .zip(lengths)
             .filter(|&(_, &length2)| length2 <= cut)
             .map(|(&edge, _)| edge),
-    )))
+    ))
 }
 
 #[cfg(test)]

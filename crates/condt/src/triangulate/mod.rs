@@ -109,16 +109,18 @@ pub(crate) fn triangulate_with(
     spent: Option<Triangulation>,
 ) -> Result<Triangulation, Error> {
     let parallel = parallel && crate::threads::parallel_available();
-    triangulate_in(points, parallel, halves::SPLIT_MIN, inserted, spent)
+    triangulate_in(points, parallel, halves::SPLIT_MIN, inserted, spent, None)
 }
 
-/// [`triangulate_with`] cutting sets of `split_min` points and more in two.
+/// [`triangulate_with`] cutting sets of `split_min` points and more in two, or inserting them in
+/// the `given` order (a permutation of the input positions) on one thread.
 fn triangulate_in(
     points: &[Point],
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
     spent: Option<Triangulation>,
+    given: Option<Vec<u32>>,
 ) -> Result<Triangulation, Error> {
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
@@ -128,8 +130,10 @@ fn triangulate_in(
         Some(t) => (t.input_of_vertex, t.points, t.mesh.into_storage()),
         None => Default::default(),
     };
-    let (order, mut sorted, built) =
-        construct(points, &frames, parallel, split_min, progress, spare);
+    let (order, mut sorted, built) = match given {
+        Some(order) => construct_in_order(points, &frames, order, progress),
+        None => construct(points, &frames, parallel, split_min, progress, spare),
+    };
     let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
@@ -296,6 +300,16 @@ fn construct_whole(
     progress: Option<&AtomicUsize>,
 ) -> (Vec<u32>, Vec<Point>, Built) {
     let order = spatial_order(points, frames, points.len());
+    construct_in_order(points, frames, order, progress)
+}
+
+/// [`construct_whole`] in the insertion order given.
+fn construct_in_order(
+    points: &[Point],
+    frames: &scale::Frames,
+    order: Vec<u32>,
+    progress: Option<&AtomicUsize>,
+) -> (Vec<u32>, Vec<Point>, Built) {
     let sorted: Vec<Point> = order
         .iter()
         .map(|&i| frames.predicates.apply(points[i as usize]))
@@ -467,6 +481,53 @@ impl Triangulation {
         triangulate_with(points, parallel, Some(inserted), None)
     }
 
+    /// [`triangulate`] inserting the points in `order`, which names every input position once,
+    /// on one thread: vertex ids follow `order` (unless all points are collinear), and so do
+    /// the stages' ties, which go to the smaller id. A tile of a larger set, inserted in that
+    /// set's [`insertion_order`](Triangulation::insertion_order) restricted to the tile, orders
+    /// its vertices as the whole set does: what `condt.dask` in Python builds on.
+    ///
+    /// # Errors
+    /// Those of [`triangulate`]; [`Error::InvalidParameter`] named `order` (its value the first
+    /// position missing or repeated) when `order` is not a permutation of `0..points.len()`.
+    ///
+    /// ```
+    /// use condt::{mesh::VertexId, triangulate, Point, Triangulation};
+    /// let pts: Vec<Point> = (0..50).map(|i| Point::new(i as f64, (i as f64).sin())).collect();
+    /// let order: Vec<u32> = (0..50).rev().collect();
+    /// let tri = Triangulation::triangulate_in_order(&pts, &order)?;
+    /// assert_eq!(tri.input_of(VertexId::new(0)), 49); // the first inserted is vertex 0
+    /// let sorted = |t: &Triangulation| {
+    ///     let mut all: Vec<[usize; 3]> = t.triangles().map(|mut v| { v.sort(); v }).collect();
+    ///     all.sort();
+    ///     all
+    /// };
+    /// assert_eq!(sorted(&tri), sorted(&triangulate(&pts)?)); // in general position, one answer
+    /// assert!(Triangulation::triangulate_in_order(&pts, &[0, 0]).is_err());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn triangulate_in_order(points: &[Point], order: &[u32]) -> Result<Triangulation, Error> {
+        let mut seen = alloc::vec![false; points.len()];
+        let mut misfit = (order.len() != points.len()).then_some(order.len());
+        for &i in order {
+            match seen.get_mut(i as usize) {
+                Some(slot) if !*slot => *slot = true,
+                _ => {
+                    misfit = misfit.or(Some(i as usize));
+                    break;
+                }
+            }
+        }
+        if let Some(position) = misfit {
+            let value = position as f64;
+            return Err(Error::InvalidParameter {
+                name: "order",
+                value,
+            });
+        }
+        triangulate_in(points, false, usize::MAX, None, None, Some(order.to_vec()))
+    }
+
     /// The half-edge topology, in vertex ids.
     #[inline]
     pub fn mesh(&self) -> &Mesh {
@@ -635,7 +696,7 @@ mod tests {
         split_min: usize,
         progress: Option<&AtomicUsize>,
     ) -> Result<Triangulation, Error> {
-        triangulate_in(points, parallel, split_min, progress, None)
+        triangulate_in(points, parallel, split_min, progress, None, None)
     }
 
     /// The input positions of the two halves of [`halves::cut`], each in input order.
@@ -824,8 +885,14 @@ mod tests {
                 for other in [rng.unit_points(5000), rng.unit_points(50), points.clone()] {
                     let spent = triangulate(&other).unwrap();
                     for parallel in [false, true] {
-                        let tri =
-                            triangulate_in(points, parallel, split_min, None, Some(spent.clone()));
+                        let tri = triangulate_in(
+                            points,
+                            parallel,
+                            split_min,
+                            None,
+                            Some(spent.clone()),
+                            None,
+                        );
                         let tri = tri.unwrap();
                         assert_same(&tri, &expected, "reused");
                         assert_eq!(tri.vertex_points(), expected.vertex_points());

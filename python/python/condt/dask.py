@@ -1,0 +1,233 @@
+"""The reconstruction tiled across a Dask cluster, with the one-machine result.
+
+``condt.dask.reconstruct(points, client=None, tiles=16, **params)`` cuts the plane into
+``tiles`` rectangles holding about as many points each, sends each rectangle's points with a
+margin around them (the *halo*) to the cluster's workers, and joins the edges each tile owns.
+The result equals ``condt.reconstruct(points, **params).edges``, as a set of edges, always:
+
+- every tile proves that the part of the Delaunay triangulation its stages read is the whole
+  set's (the certificate in ``python/src/tiles.rs``); a tile that cannot, because its halo is
+  too narrow, is sent again with a halo twice as wide;
+- its vertices follow the whole set's insertion order, so the stages break ties as one machine
+  does;
+- the one global step, Algorithm 3's threshold, runs once on the joined edges, in the library;
+- where the triangulation is not unique (four cocircular points, as on integer grids), where all
+  points are collinear, or where the coordinates span more than 200 binary orders of magnitude,
+  the whole set runs in one piece on one worker instead.
+
+Tiled today: the proximity graph with a fixed ``u``, the repair and Algorithm 3, which is the
+paper's pipeline (``paper=True``, with any of its ``u``, ``iqr``, ``repair`` and ``iqr_floor``).
+Any other step (the default's local outlier removal, gap closing, junctions, smoothing passes,
+adaptive ``u``) raises ``NotImplementedError`` naming it: ``docs/distributed.md`` says what each
+needs. The points themselves stay on the machine that calls this (the driver), which computes
+their insertion order and hull once; the workers triangulate and run the stages.
+
+>>> import numpy as np, condt, condt.dask
+>>> from dask.distributed import Client, LocalCluster
+>>> t = np.linspace(0, 2 * np.pi, 2000, endpoint=False)
+>>> points = np.column_stack([np.cos(t), np.sin(3 * t) / 3])
+>>> with LocalCluster(n_workers=2, threads_per_worker=1, processes=False) as cluster:
+...     with Client(cluster) as client:
+...         tiled = condt.dask.reconstruct(points, client, tiles=4, paper=True)
+>>> np.array_equal(tiled.edges, condt.reconstruct(points, paper=True).edges)
+True
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+from . import _condt
+
+__all__ = ["TiledReconstruction", "reconstruct"]
+
+# Delaunay hops around an owned point whose stars a tile must certify: the proximity graph reads
+# one ring and the repair two more hops of it (python/src/tiles.rs); twice that, for margin.
+REACH = 6
+
+
+@dataclasses.dataclass(frozen=True)
+class TiledReconstruction:
+    """What ``condt.dask.reconstruct`` gives: the edges and how the tiles ran.
+
+    ``edges`` is an ``(m, 2)`` int64 array of input positions, ``i < j``, sorted by rows: the
+    same as ``condt.reconstruct(points, **params).edges``. ``tiles`` is the number of tiles,
+    ``rounds`` how many times the widest-halo tile was sent (1 when every first halo sufficed),
+    ``workers`` the addresses of the workers that ran a tile, and ``whole`` why the set ran in
+    one piece instead (``None`` when it was tiled).
+    """
+
+    edges: np.ndarray
+    tiles: int
+    rounds: int
+    workers: frozenset
+    whole: str | None
+
+
+def reconstruct(
+    points: Any,
+    client: Any = None,
+    tiles: int = 16,
+    **params: Any,
+) -> TiledReconstruction:
+    """The reconstruction of ``points`` by tiles on ``client``'s cluster.
+
+    ``points`` is an ``(n, 2)`` array-like or a Dask array (computed on the driver); ``client``
+    a ``dask.distributed.Client`` (``None``: the current one, ``distributed.get_client()``);
+    ``tiles`` how many rectangles to cut the plane into (at least 1). ``params`` are
+    ``condt.reconstruct``'s keywords; see the module's text for those that can be tiled.
+
+    Raises ``NotImplementedError`` for a step that is not tiled yet, ``ValueError`` for a NaN or
+    infinite point (named) or a refused parameter, as ``condt.reconstruct`` does.
+    """
+    if isinstance(tiles, bool) or not isinstance(tiles, int) or tiles < 1:
+        raise ValueError(f"tiles must be a positive integer, not {tiles!r}")
+    if client is None:
+        from distributed import get_client
+
+        client = get_client()
+    if hasattr(points, "dask") and hasattr(points, "compute"):
+        points = points.compute()
+    if isinstance(points, np.ndarray) and points.dtype == np.float64:
+        points = np.ascontiguousarray(points)
+    plan = _condt._tile_plan(points, **params)
+    points = np.ascontiguousarray(np.asarray(points, dtype=np.float64)).reshape(-1, 2)
+    n = len(points)
+    if plan["whole"] is not None or n == 0:
+        return _in_one_piece(points, client, params, plan["whole"] or "no points")
+
+    bbox = np.concatenate([points.min(axis=0), points.max(axis=0)])
+    rects = _cut(points, tiles, bbox)
+    spacing = math.sqrt(max((bbox[2] - bbox[0]) * (bbox[3] - bbox[1]), 0.0) / n)
+    width = max(bbox[2] - bbox[0], bbox[3] - bbox[1])
+    halo = [max(4.0 * spacing, width * 1e-3)] * len(rects)
+    ranks, boundary = plan["ranks"], plan["boundary"]
+    boundary_len = plan["boundary_len"]
+    gathered: list[np.ndarray | None] = [None] * len(rects)
+    workers: set = set()
+    rounds = 0
+    pending = list(range(len(rects)))
+    while pending:
+        rounds += 1
+        futures = {}
+        for k in pending:
+            # Each tile gets only its points (the driver cuts them out): a worker never holds
+            # the whole set.
+            known = _known(rects[k], halo[k], bbox)
+            positions = np.flatnonzero(_inside(points, known, closed=True))
+            futures[k] = client.submit(
+                _tile,
+                np.ascontiguousarray(points[positions]),
+                positions.astype(np.int64),
+                np.ascontiguousarray(ranks[positions]),
+                np.ascontiguousarray(boundary[positions]),
+                boundary_len,
+                plan["hull"],
+                rects[k],
+                known,
+                tuple(float(b) for b in bbox),
+                params,
+                pure=False,
+            )
+        results = client.gather(list(futures.values()))
+        pending = []
+        for k, (status, edges, wanted, worker) in zip(futures, results):
+            workers.add(worker)
+            if status == "ok":
+                gathered[k] = edges
+            elif status == "cocircular":
+                return _in_one_piece(points, client, params, "cocircular points")
+            elif all(math.isinf(side) for side in _known(rects[k], halo[k], bbox)):
+                # The tile held every point: no wider halo can certify more.
+                return _in_one_piece(points, client, params, "a tile held every point")
+            else:
+                # At least twice as wide, and as wide as the circles it met ask.
+                halo[k] = max(2.0 * halo[k], 1.05 * wanted)
+                pending.append(k)
+    parts = [e for e in gathered if e is not None]
+    joined = np.concatenate(parts) if parts else np.empty((0, 2), np.int64)
+    edges = _condt._gathered_outliers(points, np.ascontiguousarray(joined), **params)
+    return TiledReconstruction(edges, len(rects), rounds, frozenset(workers), None)
+
+
+def _inside(points, rect, closed):
+    """Which points lie in ``rect``: closed on every side, or half-open ``[x0, x1) x [y0, y1)``."""
+    x, y = points[:, 0], points[:, 1]
+    if closed:
+        return (x >= rect[0]) & (y >= rect[1]) & (x <= rect[2]) & (y <= rect[3])
+    return (x >= rect[0]) & (y >= rect[1]) & (x < rect[2]) & (y < rect[3])
+
+
+def _tile(points, positions, ranks, boundary, boundary_len, hull, rect, known, bbox, params):
+    """On a worker: one tile's owned edges after the repair, or why it could not certify."""
+    from distributed import get_worker
+
+    status, edges, wanted = _condt._run_tile(
+        points,
+        positions,
+        ranks,
+        _inside(points, rect, closed=False),
+        boundary,
+        boundary_len,
+        hull,
+        rect,
+        known,
+        bbox,
+        REACH,
+        **params,
+    )
+    return status, edges, wanted, get_worker().address
+
+
+def _in_one_piece(points, client, params, why):
+    """The whole set on one worker, when tiles cannot give the one-machine result."""
+    edges, worker = client.submit(_whole, points, params, pure=False).result()
+    return TiledReconstruction(edges, 1, 1, frozenset([worker]), why)
+
+
+def _whole(points, params):
+    """On a worker: ``condt.reconstruct`` of the whole set."""
+    from distributed import get_worker
+
+    from condt import reconstruct as one_machine
+
+    return np.array(one_machine(points, **params).edges), get_worker().address
+
+
+def _cut(points, tiles, bbox):
+    """``tiles`` rectangles ``[x0, y0, x1, y1)`` covering the bounding box, about as many points
+    in each: columns at x quantiles, each cut into rows at its own y quantiles. The last column
+    and row are closed by an upper bound just above the box."""
+    columns = max(1, int(round(math.sqrt(tiles))))
+    while tiles % columns:
+        columns -= 1
+    rows = tiles // columns
+    top = (np.nextafter(bbox[2], np.inf), np.nextafter(bbox[3], np.inf))
+    xs = np.quantile(points[:, 0], np.linspace(0, 1, columns + 1)[1:-1])
+    x_cuts = np.concatenate([[bbox[0]], xs, [top[0]]])
+    rects = []
+    for c in range(columns):
+        x0, x1 = x_cuts[c], x_cuts[c + 1]
+        inside = (points[:, 0] >= x0) & (points[:, 0] < x1)
+        column = points[inside, 1]
+        ys = np.quantile(column, np.linspace(0, 1, rows + 1)[1:-1]) if len(column) else []
+        y_cuts = np.concatenate([[bbox[1]], ys, [top[1]]])
+        for r in range(rows):
+            rects.append((float(x0), float(y_cuts[r]), float(x1), float(y_cuts[r + 1])))
+    return rects
+
+
+def _known(rect, halo, bbox):
+    """The rectangle whose points a tile holds: its own widened by ``halo``, a side that reaches
+    the bounding box made infinite (nothing lies beyond it)."""
+    x0, y0, x1, y1 = rect[0] - halo, rect[1] - halo, rect[2] + halo, rect[3] + halo
+    return (
+        -math.inf if x0 <= bbox[0] else x0,
+        -math.inf if y0 <= bbox[1] else y0,
+        math.inf if x1 >= bbox[2] else x1,
+        math.inf if y1 >= bbox[3] else y1,
+    )

@@ -1,0 +1,593 @@
+//! The native half of `condt.dask` (`python/python/condt/dask.py`): what the driver computes
+//! once for the whole set, what a worker computes for one tile, and the global step run on the
+//! edges the tiles send back.
+//!
+//! Owns: the tile's certificate (which of its triangles and hull edges are provably the whole
+//! set's) and the global facts it needs (insertion ranks, the convex hull's boundary). It may not
+//! implement a stage: the tile runs the library's own stages on the library's own triangulation
+//! ([`Triangulation::triangulate_in_order`]), and Algorithm 3 runs once, in the library
+//! ([`condt::remove_gathered_outliers`]).
+//!
+//! Why a certified tile gives the whole set's edges: a triangle of the tile's Delaunay
+//! triangulation whose circumcircle meets no part of the set's bounding box outside the region
+//! whose points the tile holds (its *known* region) has no point of the whole set inside that
+//! circle, so it is one of the whole set's Delaunay triangles; a hull edge of the tile is one of
+//! the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
+//! triangles and hull edges are certified has the whole set's star. The stages read a bounded
+//! number of Delaunay hops around a vertex (proximity one ring, the repair two more), and break
+//! ties by vertex id, which follows the set's insertion order restricted to the tile: so an
+//! owned vertex whose every vertex within `reach` hops is certified gets the whole set's edges.
+//! Four cocircular points make the triangulation not unique; the tile reports them and the
+//! driver runs the whole set in one piece instead.
+
+use crate::convert::{as_points, index_array, index_vector, library_error, points_array};
+use crate::params;
+use condt::geometry::binary_exponent;
+use condt::predicates::{is_cocircular, orient2d, Orientation};
+use condt::{Method, Params, Point, Stage, Triangulation, Uniformity};
+use numpy::ndarray::Array2;
+use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray1};
+use pyo3::exceptions::{PyNotImplementedError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::collections::VecDeque;
+
+/// The widest spread, in binary orders of magnitude, between a set's largest coordinate
+/// magnitude and its smallest nonzero one for which every tile measures exactly as the whole set
+/// does (the library's fast range: a tile's power-of-two frames then lose no bit).
+const MAX_TILED_SPREAD: i32 = 200;
+
+/// Why the stages `params` select cannot run in tiles, or `None` when they can: the proximity
+/// graph with a fixed `u`, the repair, then Algorithm 3 (run once on the gathered edges).
+fn untiled_step(params: &Params) -> Option<String> {
+    if params.method != Method::ConDT {
+        return Some(format!("method {:?}", params.method));
+    }
+    if !matches!(params.uniformity, Uniformity::Fixed(_)) {
+        return Some("adaptive u".into());
+    }
+    if params.smooth {
+        return Some("the smoothing passes".into());
+    }
+    let stages = params.stages();
+    let mut allowed = [Stage::Proximity, Stage::Repair, Stage::Outliers].iter();
+    for stage in &stages {
+        if !allowed.any(|a| a == stage) {
+            return Some(if *stage == Stage::Repair {
+                "the repair after Algorithm 3 (outliers_first)".into()
+            } else {
+                format!("the {stage} step")
+            });
+        }
+    }
+    None
+}
+
+/// The stages `params` select, or `NotImplementedError` naming the first that cannot be tiled.
+fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
+    let params = params::params(kwargs)?;
+    match untiled_step(&params) {
+        None => Ok(params),
+        Some(step) => Err(PyNotImplementedError::new_err(format!(
+            "condt.dask runs the proximity graph (fixed u), the repair and Algorithm 3 in tiles; \
+             {step} is not tiled yet: use condt.reconstruct"
+        ))),
+    }
+}
+
+/// For the driver, once: checks the points and the parameters, and returns the facts every tile
+/// needs as a dict: `ranks` (each point's place in the whole set's insertion order), `boundary`
+/// (each point's place along the convex hull's boundary, counter-clockwise, `-1` inside) and
+/// `boundary_len`, and `whole` (why the set must run in one piece, or `None`).
+#[pyfunction]
+#[pyo3(signature = (points, **params))]
+pub(crate) fn _tile_plan<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    tiled_params(params)?;
+    let array = points_array(py, points)?;
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?);
+    let (order, boundary, hull, whole) = py
+        .detach(|| {
+            let order = Triangulation::insertion_order(points)?;
+            let (boundary, len, hull) = hull_boundary(points);
+            let whole = if len < 3 {
+                Some("all points lie on one line")
+            } else if spread(points) > MAX_TILED_SPREAD {
+                Some("the coordinates span too many orders of magnitude")
+            } else {
+                None
+            };
+            Ok((order, (boundary, len), hull, whole))
+        })
+        .map_err(|err| library_error(err, points))?;
+    let mut ranks = vec![0i64; points.len()];
+    for (rank, &i) in order.iter().enumerate() {
+        ranks[i as usize] = rank as i64;
+    }
+    let plan = PyDict::new(py);
+    plan.set_item("ranks", index_vector(py, ranks)?)?;
+    plan.set_item("boundary", index_vector(py, boundary.0)?)?;
+    plan.set_item("boundary_len", boundary.1)?;
+    plan.set_item("whole", whole)?;
+    let flat: Vec<f64> = hull.iter().flat_map(|p| [p.x, p.y]).collect();
+    let hull = Array2::from_shape_vec((flat.len() / 2, 2), flat)
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    plan.set_item("hull", PyArray2::from_owned_array(py, hull))?;
+    Ok(plan)
+}
+
+/// The binary orders of magnitude between the largest coordinate magnitude and the smallest
+/// nonzero one (0 for a set of zeros).
+fn spread(points: &[Point]) -> i32 {
+    let magnitudes = points.iter().flat_map(|p| [p.x.abs(), p.y.abs()]);
+    let (mut low, mut high) = (f64::INFINITY, 0.0f64);
+    for m in magnitudes.filter(|&m| m > 0.0) {
+        low = low.min(m);
+        high = high.max(m);
+    }
+    if high == 0.0 {
+        0
+    } else {
+        binary_exponent(high) - binary_exponent(low)
+    }
+}
+
+/// Each point's place along the convex hull's boundary, counter-clockwise, with the points on
+/// its edges (the Delaunay triangulation's hull edges join neighbours along it), `-1` for a point
+/// inside or an exact duplicate of a smaller position; the boundary's length (at most 2 if all
+/// are collinear); and the hull's corners, counter-clockwise. Andrew's monotone chain on the exact
+/// orientation, keeping the points on the hull's edges.
+fn hull_boundary(points: &[Point]) -> (Vec<i64>, usize, Vec<Point>) {
+    let mut sorted: Vec<usize> = (0..points.len()).collect();
+    sorted.sort_by(|&a, &b| points[a].lexicographic_cmp(points[b]).then(a.cmp(&b)));
+    sorted.dedup_by(|later, kept| points[*later] == points[*kept]);
+    let turns_right = |chain: &[usize], p: usize| {
+        let [a, b] = [chain[chain.len() - 2], chain[chain.len() - 1]];
+        orient2d(points[a], points[b], points[p]) == Orientation::Cw
+    };
+    let mut chain: Vec<usize> = Vec::with_capacity(sorted.len() + 1);
+    for pass in [&sorted[..], &sorted[..]] {
+        let start = chain.len();
+        let ordered: Box<dyn Iterator<Item = &usize>> = if start == 0 {
+            Box::new(pass.iter())
+        } else {
+            Box::new(pass.iter().rev())
+        };
+        for &p in ordered {
+            while chain.len() >= start + 2 && turns_right(&chain, p) {
+                chain.pop();
+            }
+            chain.push(p);
+        }
+        chain.pop(); // the other chain starts there
+    }
+    let mut boundary = vec![-1i64; points.len()];
+    let collinear = chain.len() >= 2 * sorted.len().saturating_sub(1);
+    if collinear {
+        return (boundary, sorted.len().min(2), Vec::new());
+    }
+    for (k, &p) in chain.iter().enumerate() {
+        boundary[p] = k as i64;
+    }
+    let len = chain.len();
+    let corners = (0..len)
+        .filter(|&k| {
+            let [a, b, c] = [chain[(k + len - 1) % len], chain[k], chain[(k + 1) % len]];
+            orient2d(points[a], points[b], points[c]) != Orientation::Collinear
+        })
+        .map(|k| points[chain[k]])
+        .collect();
+    (boundary, len, corners)
+}
+
+/// What a tile sends back: `("ok", edges, 0.0)` with the edges it owns after the repair, in
+/// input positions of the whole set; `("grow", None, halo)` when a vertex within `reach` hops of
+/// an owned one has an uncertified star (the known region is too small; `halo` is how far the
+/// circles it met reach beyond `rect`, a hint for the next try); `("cocircular", None, 0.0)` when
+/// four points there are cocircular.
+///
+/// The tile's points are `points` (every point of the whole set inside `known`, a rectangle
+/// `[x0, y0, x1, y1]` whose sides may be infinite), listed by their `positions` in the whole set,
+/// ascending; `ranks`, `boundary`, `boundary_len` and `hull` are the plan's (for its points, and
+/// the whole hull); `owned` marks the points inside `rect`, the tile's own; `bbox` is the whole
+/// set's bounding box.
+#[allow(clippy::too_many_arguments)]
+#[pyfunction]
+#[pyo3(signature = (points, positions, ranks, owned, boundary, boundary_len, hull, rect, known, bbox, reach, **params))]
+pub(crate) fn _run_tile<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    positions: PyReadonlyArray1<'py, i64>,
+    ranks: PyReadonlyArray1<'py, i64>,
+    owned: PyReadonlyArray1<'py, bool>,
+    boundary: PyReadonlyArray1<'py, i64>,
+    boundary_len: i64,
+    hull: &Bound<'py, PyAny>,
+    rect: [f64; 4],
+    known: [f64; 4],
+    bbox: [f64; 4],
+    reach: usize,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<TileReport<'py>> {
+    let params = tiled_params(params)?;
+    let array = points_array(py, points)?;
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?);
+    let hull_array = points_array(py, hull)?;
+    let hull_borrowed = hull_array.try_readonly()?;
+    let hull = as_points(hull_borrowed.as_slice()?);
+    let (positions, ranks, owned, boundary) = (
+        positions.as_slice()?,
+        ranks.as_slice()?,
+        owned.as_slice()?,
+        boundary.as_slice()?,
+    );
+    let n = points.len();
+    if [positions.len(), ranks.len(), owned.len(), boundary.len()] != [n; 4] {
+        return Err(PyValueError::new_err("a tile's arrays differ in length"));
+    }
+    let outcome = py
+        .detach(|| {
+            crate::within_call(|| -> Result<Result<Vec<[i64; 2]>, Failure>, condt::Error> {
+                let tile = Tile::new(rect, known, bbox, boundary, boundary_len, hull);
+                let mut order: Vec<u32> = (0..n as u32).collect();
+                order.sort_unstable_by_key(|&i| ranks[i as usize]);
+                let tri = Triangulation::triangulate_in_order(points, &order)?;
+                if let Err(failure) = tile.certify(&tri, points, owned, reach) {
+                    return Ok(Err(failure));
+                }
+                let mut graph = tri.proximity_graph(params.uniformity)?;
+                if params.stages().contains(&Stage::Repair) {
+                    graph = graph.repair(params.repair);
+                }
+                let edges = graph.edges().into_iter().filter(|&[a, _]| owned[a]);
+                Ok(Ok(edges
+                    .map(|[a, b]| [positions[a], positions[b]])
+                    .collect()))
+            })
+        })
+        .map_err(|err| library_error(err, points))?;
+    match outcome {
+        Ok(edges) => Ok(("ok", Some(index_array(py, edges)?), 0.0)),
+        Err(Failure::Grow(halo)) => Ok(("grow", None, halo)),
+        Err(Failure::Cocircular) => Ok(("cocircular", None, 0.0)),
+    }
+}
+
+/// A tile's status, its owned edges when it certified, and the halo it asks for otherwise.
+type TileReport<'py> = (&'static str, Option<Bound<'py, PyArray2<i64>>>, f64);
+
+/// Why a tile's certificate failed.
+enum Failure {
+    /// A star near an owned point is not provably the whole set's: the halo (at least this wide,
+    /// as far as the tile can tell) must grow.
+    Grow(f64),
+    /// Four cocircular points near an owned point: the triangulation is not unique there.
+    Cocircular,
+}
+
+/// What a tile knows of the whole set, for its certificate.
+struct Tile<'a> {
+    rect: [f64; 4],
+    boundary: &'a [i64],
+    boundary_len: i64,
+    /// The parts of the bounding box outside the known region, closed rectangles.
+    strips: Vec<[f64; 4]>,
+    /// The same parts cut down to the convex hull, where the points are: convex polygons.
+    hull_parts: Vec<Vec<Point>>,
+    /// An absolute slack for the polygons' rounded corners: far above their rounding error.
+    corner_slack: f64,
+}
+
+impl<'a> Tile<'a> {
+    fn new(
+        rect: [f64; 4],
+        known: [f64; 4],
+        bbox: [f64; 4],
+        boundary: &'a [i64],
+        boundary_len: i64,
+        hull: &[Point],
+    ) -> Tile<'a> {
+        let [bx0, by0, bx1, by1] = bbox;
+        let [kx0, ky0, kx1, ky1] = known;
+        let (mx0, mx1) = (kx0.max(bx0), kx1.min(bx1));
+        let mut strips = Vec::with_capacity(4);
+        if kx0 > bx0 {
+            strips.push([bx0, by0, kx0, by1]);
+        }
+        if kx1 < bx1 {
+            strips.push([kx1, by0, bx1, by1]);
+        }
+        if ky0 > by0 {
+            strips.push([mx0, by0, mx1, ky0]);
+        }
+        if ky1 < by1 {
+            strips.push([mx0, ky1, mx1, by1]);
+        }
+        let hull_parts = strips.iter().map(|&strip| clip(hull, strip)).collect();
+        let extent = bbox.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        Tile {
+            rect,
+            boundary,
+            boundary_len,
+            strips,
+            hull_parts,
+            corner_slack: 1e-12 * extent,
+        }
+    }
+
+    /// `Ok` when every vertex within `reach` hops of an owned point has the whole set's star and
+    /// no four points there are cocircular.
+    fn certify(
+        &self,
+        tri: &Triangulation,
+        points: &[Point],
+        owned: &[bool],
+        reach: usize,
+    ) -> Result<(), Failure> {
+        let n = points.len();
+        let mut needed = 0.0f64;
+        if tri.triangles().next().is_none() {
+            return Err(Failure::Grow(needed)); // collinear in the tile: a larger region shows more
+        }
+        // Per vertex: NaN when certified, else the halo its uncertain circles ask for.
+        let mut uncertain = vec![f64::NAN; n];
+        for [a, b, c] in tri.triangles() {
+            if let Some(halo) = self.uncertain_circle(points[a], points[b], points[c]) {
+                for v in [a, b, c] {
+                    uncertain[v] = uncertain[v].max(halo).max(0.0);
+                }
+            }
+        }
+        let hull: Vec<usize> = tri.hull().collect();
+        for (k, &a) in hull.iter().enumerate() {
+            let b = hull[(k + 1) % hull.len()];
+            let (pa, pb) = (self.boundary[a], self.boundary[b]);
+            let apart = (pa - pb).rem_euclid(self.boundary_len);
+            let neighbours = pa >= 0 && pb >= 0 && (apart == 1 || apart == self.boundary_len - 1);
+            if !neighbours {
+                uncertain[a] = uncertain[a].max(0.0);
+                uncertain[b] = uncertain[b].max(0.0);
+            }
+        }
+        // Breadth first from the owned points (a merged duplicate walks from its vertex).
+        let mut hops = vec![usize::MAX; n];
+        let mut queue = VecDeque::new();
+        for i in (0..n).filter(|&i| owned[i]) {
+            let v = tri.input_of(tri.vertex(i));
+            if hops[v] == usize::MAX {
+                hops[v] = 0;
+                queue.push_back(v);
+            }
+        }
+        let mut certified = true;
+        while let Some(v) = queue.pop_front() {
+            if !uncertain[v].is_nan() {
+                // Walk on to gather what the others ask for: the next try's halo.
+                certified = false;
+                needed = needed.max(uncertain[v]);
+            }
+            let ring: Vec<usize> = tri.neighbors(v).collect();
+            for (k, &w) in ring.iter().enumerate() {
+                let before = ring[(k + ring.len() - 1) % ring.len()];
+                let after = ring[(k + 1) % ring.len()];
+                if certified
+                    && ring.len() >= 3
+                    && is_cocircular(points[v], points[before], points[w], points[after])
+                {
+                    return Err(Failure::Cocircular);
+                }
+                if hops[v] < reach && hops[w] == usize::MAX {
+                    hops[w] = hops[v] + 1;
+                    queue.push_back(w);
+                }
+            }
+        }
+        if certified {
+            Ok(())
+        } else {
+            Err(Failure::Grow(needed))
+        }
+    }
+
+    /// `None` when the circumcircle of `a`, `b`, `c`, widened by a bound on its rounding error,
+    /// misses every part of the hull outside the known region: then no point of the whole set
+    /// lies inside it. Else the halo around `rect` that would hold the circle's part inside the
+    /// bounding box (infinite for a degenerate triangle).
+    fn uncertain_circle(&self, a: Point, b: Point, c: Point) -> Option<f64> {
+        let Some((o, reach)) = circumcircle(a, b, c) else {
+            return Some(f64::INFINITY);
+        };
+        let misses_box = |&[x0, y0, x1, y1]: &[f64; 4]| {
+            let dx = (x0 - o.x).max(o.x - x1).max(0.0);
+            let dy = (y0 - o.y).max(o.y - y1).max(0.0);
+            dx * dx + dy * dy > reach * reach
+        };
+        let slack = reach + self.corner_slack;
+        // The bounding boxes of the circle's parts that may hold points the tile does not know.
+        let mut unknown: Option<[f64; 4]> = None;
+        for (strip, part) in self.strips.iter().zip(&self.hull_parts) {
+            if !misses_box(strip) && meets(part, o, slack) {
+                let [x0, y0, x1, y1] = disk_part_box(part, o, slack);
+                let [u0, v0, u1, v1] = unknown.unwrap_or([x0, y0, x1, y1]);
+                unknown = Some([u0.min(x0), v0.min(y0), u1.max(x1), v1.max(y1)]);
+            }
+        }
+        let [x0, y0, x1, y1] = unknown?;
+        let [rx0, ry0, rx1, ry1] = self.rect;
+        Some((rx0 - x0).max(x1 - rx1).max(ry0 - y0).max(y1 - ry1))
+    }
+}
+
+/// A box holding the part of the disk of centre `o` and radius `r` inside the convex polygon
+/// `polygon` (counter-clockwise, meeting the disk): the corners inside the disk, the crossings of
+/// edges and circle, and the circle's extreme points inside the polygon, each widened by `r`'s
+/// thousandth for rounding.
+fn disk_part_box(polygon: &[Point], o: Point, r: f64) -> [f64; 4] {
+    let mut found: Vec<Point> = Vec::new();
+    let len = polygon.len();
+    for (k, &p) in polygon.iter().enumerate() {
+        let q = polygon[(k + 1) % len];
+        if o.dist2(p) <= r * r {
+            found.push(p);
+        }
+        // |p + t (q - p) - o|^2 = r^2 for t in [0, 1].
+        let (ex, ey, wx, wy) = (q.x - p.x, q.y - p.y, p.x - o.x, p.y - o.y);
+        let (a, b, c) = (
+            ex * ex + ey * ey,
+            2.0 * (ex * wx + ey * wy),
+            wx * wx + wy * wy - r * r,
+        );
+        let discriminant = b * b - 4.0 * a * c;
+        if a > 0.0 && discriminant >= 0.0 {
+            for t in [
+                (-b - discriminant.sqrt()) / (2.0 * a),
+                (-b + discriminant.sqrt()) / (2.0 * a),
+            ] {
+                if (0.0..=1.0).contains(&t) {
+                    found.push(Point::new(p.x + t * ex, p.y + t * ey));
+                }
+            }
+        }
+    }
+    for extreme in [(r, 0.0), (-r, 0.0), (0.0, r), (0.0, -r)] {
+        let e = Point::new(o.x + extreme.0, o.y + extreme.1);
+        if meets(polygon, e, 0.0) {
+            found.push(e);
+        }
+    }
+    let widen = 1e-3 * r;
+    found.iter().fold(
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |[x0, y0, x1, y1], p| {
+            [
+                x0.min(p.x - widen),
+                y0.min(p.y - widen),
+                x1.max(p.x + widen),
+                y1.max(p.y + widen),
+            ]
+        },
+    )
+}
+
+/// The circumcircle of `a`, `b`, `c`: its centre and its radius widened by a bound on the
+/// rounding error of both; `None` for a degenerate or overflowing triangle.
+fn circumcircle(a: Point, b: Point, c: Point) -> Option<(Point, f64)> {
+    let (bx, by, cx, cy) = (b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y);
+    let det = bx * cy - by * cx;
+    let (lb, lc) = (bx * bx + by * by, cx * cx + cy * cy);
+    let (ux, uy) = (
+        (cy * lb - by * lc) / (2.0 * det),
+        (bx * lc - cx * lb) / (2.0 * det),
+    );
+    let radius = ux.hypot(uy);
+    // Each product and sum rounds by a relative 2^-53; the bound takes every term at its
+    // magnitude, the quotient's by the determinant's condition, and 64 roundings of each.
+    let magnitude = (cy.abs() * lb + by.abs() * lc + bx.abs() * lc + cx.abs() * lb) / det.abs();
+    let condition = ((bx * cy).abs() + (by * cx).abs()) / det.abs();
+    let slack =
+        64.0 * f64::EPSILON * (magnitude + radius * condition + radius + a.x.abs() + a.y.abs());
+    let reach = radius + slack;
+    (det != 0.0 && reach.is_finite()).then(|| (Point::new(a.x + ux, a.y + uy), reach))
+}
+
+/// The convex polygon `polygon` (counter-clockwise) cut to the closed rectangle `[x0, y0, x1,
+/// y1]` (Sutherland and Hodgman's clipping, one side at a time).
+fn clip(polygon: &[Point], [x0, y0, x1, y1]: [f64; 4]) -> Vec<Point> {
+    type Side = (fn(Point) -> f64, f64, f64);
+    let sides: [Side; 4] = [
+        (|p| p.x, x0, 1.0),
+        (|p| p.x, x1, -1.0),
+        (|p| p.y, y0, 1.0),
+        (|p| p.y, y1, -1.0),
+    ];
+    let mut shape = polygon.to_vec();
+    for (coordinate, bound, sign) in sides {
+        let inside = |p: Point| sign * (coordinate(p) - bound) >= 0.0;
+        let mut cut = Vec::with_capacity(shape.len() + 1);
+        for (k, &p) in shape.iter().enumerate() {
+            let q = shape[(k + 1) % shape.len()];
+            if inside(p) {
+                cut.push(p);
+            }
+            if inside(p) != inside(q) {
+                let t = (bound - coordinate(p)) / (coordinate(q) - coordinate(p));
+                cut.push(Point::new(p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)));
+            }
+        }
+        shape = cut;
+        if shape.is_empty() {
+            break;
+        }
+    }
+    shape
+}
+
+/// Whether the disk of centre `o` and radius `r` meets the convex polygon `polygon`
+/// (counter-clockwise, possibly empty or degenerate).
+fn meets(polygon: &[Point], o: Point, r: f64) -> bool {
+    let Some(&first) = polygon.first() else {
+        return false;
+    };
+    let mut inside = polygon.len() >= 3;
+    let mut nearest = o.dist2(first);
+    for (k, &p) in polygon.iter().enumerate() {
+        let q = polygon[(k + 1) % polygon.len()];
+        let (ex, ey) = (q.x - p.x, q.y - p.y);
+        let (wx, wy) = (o.x - p.x, o.y - p.y);
+        inside &= ex * wy - ey * wx >= 0.0;
+        let length2 = ex * ex + ey * ey;
+        let t = if length2 > 0.0 {
+            ((wx * ex + wy * ey) / length2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (dx, dy) = (wx - t * ex, wy - t * ey);
+        nearest = nearest.min(dx * dx + dy * dy);
+    }
+    inside || nearest <= r * r
+}
+
+/// The global step after the tiles: Algorithm 3 (when `params` run it) on the edges they sent,
+/// in the library, as one `(m, 2)` int64 array sorted by rows.
+#[pyfunction]
+#[pyo3(signature = (points, edges, **params))]
+pub(crate) fn _gathered_outliers<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    edges: &Bound<'py, PyArray2<i64>>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let params = tiled_params(params)?;
+    let array = points_array(py, points)?;
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?);
+    let readonly = edges.try_readonly()?;
+    let flat = readonly.as_slice()?;
+    let edges: Vec<[usize; 2]> = flat
+        .chunks_exact(2)
+        .map(|e| [e[0].min(e[1]) as usize, e[0].max(e[1]) as usize])
+        .collect();
+    let kept = py
+        .detach(|| match params.outlier_factor {
+            Some(k) => condt::remove_gathered_outliers(points, &edges, k, params.iqr_floor)
+                .map(|(_, kept)| kept),
+            None => Ok(edges),
+        })
+        .map_err(|err| library_error(err, points))?;
+    let mut rows: Vec<[i64; 2]> = kept
+        .into_iter()
+        .map(|[a, b]| [a as i64, b as i64])
+        .collect();
+    rows.sort_unstable();
+    index_array(py, rows)
+}
