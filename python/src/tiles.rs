@@ -26,7 +26,7 @@ use condt::geometry::binary_exponent;
 use condt::predicates::{is_cocircular, orient2d, Orientation};
 use condt::{Method, Params, Point, Stage, Triangulation, Uniformity};
 use numpy::ndarray::Array2;
-use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray1};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::{PyNotImplementedError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -36,6 +36,10 @@ use std::collections::VecDeque;
 /// magnitude and its smallest nonzero one for which every tile measures exactly as the whole set
 /// does (the library's fast range: a tile's power-of-two frames then lose no bit).
 const MAX_TILED_SPREAD: i32 = 200;
+
+/// The most hull corners for which tiles hold a band along the hull's boundary (the depths cost
+/// a pass over the points per corner); above it, tiles near the hull grow their halos instead.
+const MAX_BAND_CORNERS: usize = 512;
 
 /// Why the stages `params` select cannot run in tiles, or `None` when they can: the proximity
 /// graph with a fixed `u`, the repair, then Algorithm 3 (run once on the gathered edges).
@@ -90,7 +94,7 @@ pub(crate) fn _tile_plan<'py>(
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    let (order, boundary, hull, whole) = py
+    let (order, boundary, hull, depth, whole) = py
         .detach(|| {
             let order = Triangulation::insertion_order(points)?;
             let (boundary, len, hull) = hull_boundary(points);
@@ -101,7 +105,10 @@ pub(crate) fn _tile_plan<'py>(
             } else {
                 None
             };
-            Ok((order, (boundary, len), hull, whole))
+            // The band along the hull's boundary (see `_run_tile`) needs each point's depth:
+            // one pass per corner, so only for hulls of few corners.
+            let depth = (hull.len() <= MAX_BAND_CORNERS).then(|| depths(points, &hull));
+            Ok((order, (boundary, len), hull, depth, whole))
         })
         .map_err(|err| library_error(err, points))?;
     let mut ranks = vec![0i64; points.len()];
@@ -113,6 +120,7 @@ pub(crate) fn _tile_plan<'py>(
     plan.set_item("boundary", index_vector(py, boundary.0)?)?;
     plan.set_item("boundary_len", boundary.1)?;
     plan.set_item("whole", whole)?;
+    plan.set_item("depth", depth.map(|d| PyArray1::from_vec(py, d)))?;
     let flat: Vec<f64> = hull.iter().flat_map(|p| [p.x, p.y]).collect();
     let hull = Array2::from_shape_vec((flat.len() / 2, 2), flat)
         .map_err(|err| PyValueError::new_err(err.to_string()))?;
@@ -184,20 +192,22 @@ fn hull_boundary(points: &[Point]) -> (Vec<i64>, usize, Vec<Point>) {
     (boundary, len, corners)
 }
 
-/// What a tile sends back: `("ok", edges, 0.0)` with the edges it owns after the repair, in
-/// input positions of the whole set; `("grow", None, halo)` when a vertex within `reach` hops of
-/// an owned one has an uncertified star (the known region is too small; `halo` is how far the
-/// circles it met reach beyond `rect`, a hint for the next try); `("cocircular", None, 0.0)` when
-/// four points there are cocircular.
+/// What a tile sends back: `("ok", edges)` with the edges it owns after the repair, in input
+/// positions of the whole set; `("grow", None)` when a vertex within `reach` hops of an owned one
+/// has an uncertified star (the known region is too small); `("cocircular", None)` when four
+/// points there are cocircular.
 ///
 /// The tile's points are `points` (every point of the whole set inside `known`, a rectangle
 /// `[x0, y0, x1, y1]` whose sides may be infinite), listed by their `positions` in the whole set,
-/// ascending; `ranks`, `boundary`, `boundary_len` and `hull` are the plan's (for its points, and
-/// the whole hull); `owned` marks the points inside `rect`, the tile's own; `bbox` is the whole
-/// set's bounding box.
+/// ascending, and besides them every point within `band` of the hull's boundary (`0`: none);
+/// `ranks`, `boundary`, `boundary_len` and `hull` are the plan's (for its points, and the hull's
+/// corners); `owned` marks the tile's own points; `bbox` is the whole set's
+/// bounding box. Why the band: a Delaunay triangle on a long hull edge has a circle that runs
+/// along the edge, far beyond the tile, but only a thin sliver of it lies inside the hull; with
+/// the band the tile knows that sliver without holding the whole length of the edge.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (points, positions, ranks, owned, boundary, boundary_len, hull, rect, known, bbox, reach, **params))]
+#[pyo3(signature = (points, positions, ranks, owned, boundary, boundary_len, hull, band, known, bbox, reach, **params))]
 pub(crate) fn _run_tile<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
@@ -207,7 +217,7 @@ pub(crate) fn _run_tile<'py>(
     boundary: PyReadonlyArray1<'py, i64>,
     boundary_len: i64,
     hull: &Bound<'py, PyAny>,
-    rect: [f64; 4],
+    band: f64,
     known: [f64; 4],
     bbox: [f64; 4],
     reach: usize,
@@ -233,7 +243,7 @@ pub(crate) fn _run_tile<'py>(
     let outcome = py
         .detach(|| {
             crate::within_call(|| -> Result<Result<Vec<[i64; 2]>, Failure>, condt::Error> {
-                let tile = Tile::new(rect, known, bbox, boundary, boundary_len, hull);
+                let tile = Tile::new(known, bbox, boundary, boundary_len, hull, band);
                 let mut order: Vec<u32> = (0..n as u32).collect();
                 order.sort_unstable_by_key(|&i| ranks[i as usize]);
                 let tri = Triangulation::triangulate_in_order(points, &order)?;
@@ -252,27 +262,25 @@ pub(crate) fn _run_tile<'py>(
         })
         .map_err(|err| library_error(err, points))?;
     match outcome {
-        Ok(edges) => Ok(("ok", Some(index_array(py, edges)?), 0.0)),
-        Err(Failure::Grow(halo)) => Ok(("grow", None, halo)),
-        Err(Failure::Cocircular) => Ok(("cocircular", None, 0.0)),
+        Ok(edges) => Ok(("ok", Some(index_array(py, edges)?))),
+        Err(Failure::Grow) => Ok(("grow", None)),
+        Err(Failure::Cocircular) => Ok(("cocircular", None)),
     }
 }
 
-/// A tile's status, its owned edges when it certified, and the halo it asks for otherwise.
-type TileReport<'py> = (&'static str, Option<Bound<'py, PyArray2<i64>>>, f64);
+/// A tile's status, with its owned edges when it certified.
+type TileReport<'py> = (&'static str, Option<Bound<'py, PyArray2<i64>>>);
 
 /// Why a tile's certificate failed.
 enum Failure {
-    /// A star near an owned point is not provably the whole set's: the halo (at least this wide,
-    /// as far as the tile can tell) must grow.
-    Grow(f64),
+    /// A star near an owned point is not provably the whole set's: the halo must grow.
+    Grow,
     /// Four cocircular points near an owned point: the triangulation is not unique there.
     Cocircular,
 }
 
 /// What a tile knows of the whole set, for its certificate.
 struct Tile<'a> {
-    rect: [f64; 4],
     boundary: &'a [i64],
     boundary_len: i64,
     /// The parts of the bounding box outside the known region, closed rectangles.
@@ -285,12 +293,12 @@ struct Tile<'a> {
 
 impl<'a> Tile<'a> {
     fn new(
-        rect: [f64; 4],
         known: [f64; 4],
         bbox: [f64; 4],
         boundary: &'a [i64],
         boundary_len: i64,
         hull: &[Point],
+        band: f64,
     ) -> Tile<'a> {
         let [bx0, by0, bx1, by1] = bbox;
         let [kx0, ky0, kx1, ky1] = known;
@@ -308,15 +316,23 @@ impl<'a> Tile<'a> {
         if ky1 < by1 {
             strips.push([mx0, ky1, mx1, by1]);
         }
-        let hull_parts = strips.iter().map(|&strip| clip(hull, strip)).collect();
         let extent = bbox.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        let corner_slack = 1e-12 * extent;
+        // Where a point the tile does not hold can be: inside the hull, and deeper than the band
+        // (a little less deep, for rounding: the driver sent every point up to `band`).
+        let depth = band * (1.0 - 1e-9) - corner_slack;
+        let region = if depth > 0.0 {
+            inner(hull, depth)
+        } else {
+            hull.to_vec()
+        };
+        let hull_parts = strips.iter().map(|&strip| clip(&region, strip)).collect();
         Tile {
-            rect,
             boundary,
             boundary_len,
             strips,
             hull_parts,
-            corner_slack: 1e-12 * extent,
+            corner_slack,
         }
     }
 
@@ -329,17 +345,14 @@ impl<'a> Tile<'a> {
         owned: &[bool],
         reach: usize,
     ) -> Result<(), Failure> {
-        let n = points.len();
-        let mut needed = 0.0f64;
         if tri.triangles().next().is_none() {
-            return Err(Failure::Grow(needed)); // collinear in the tile: a larger region shows more
+            return Err(Failure::Grow); // collinear in the tile: a larger region shows more
         }
-        // Per vertex: NaN when certified, else the halo its uncertain circles ask for.
-        let mut uncertain = vec![f64::NAN; n];
+        let mut certified = vec![true; points.len()];
         for [a, b, c] in tri.triangles() {
-            if let Some(halo) = self.uncertain_circle(points[a], points[b], points[c]) {
+            if self.uncertain_circle(points[a], points[b], points[c]) {
                 for v in [a, b, c] {
-                    uncertain[v] = uncertain[v].max(halo).max(0.0);
+                    certified[v] = false;
                 }
             }
         }
@@ -348,35 +361,30 @@ impl<'a> Tile<'a> {
             let b = hull[(k + 1) % hull.len()];
             let (pa, pb) = (self.boundary[a], self.boundary[b]);
             let apart = (pa - pb).rem_euclid(self.boundary_len);
-            let neighbours = pa >= 0 && pb >= 0 && (apart == 1 || apart == self.boundary_len - 1);
-            if !neighbours {
-                uncertain[a] = uncertain[a].max(0.0);
-                uncertain[b] = uncertain[b].max(0.0);
+            if pa < 0 || pb < 0 || (apart != 1 && apart != self.boundary_len - 1) {
+                certified[a] = false;
+                certified[b] = false;
             }
         }
         // Breadth first from the owned points (a merged duplicate walks from its vertex).
-        let mut hops = vec![usize::MAX; n];
+        let mut hops = vec![usize::MAX; points.len()];
         let mut queue = VecDeque::new();
-        for i in (0..n).filter(|&i| owned[i]) {
+        for i in (0..points.len()).filter(|&i| owned[i]) {
             let v = tri.input_of(tri.vertex(i));
             if hops[v] == usize::MAX {
                 hops[v] = 0;
                 queue.push_back(v);
             }
         }
-        let mut certified = true;
         while let Some(v) = queue.pop_front() {
-            if !uncertain[v].is_nan() {
-                // Walk on to gather what the others ask for: the next try's halo.
-                certified = false;
-                needed = needed.max(uncertain[v]);
+            if !certified[v] {
+                return Err(Failure::Grow);
             }
             let ring: Vec<usize> = tri.neighbors(v).collect();
             for (k, &w) in ring.iter().enumerate() {
                 let before = ring[(k + ring.len() - 1) % ring.len()];
                 let after = ring[(k + 1) % ring.len()];
-                if certified
-                    && ring.len() >= 3
+                if ring.len() >= 3
                     && is_cocircular(points[v], points[before], points[w], points[after])
                 {
                     return Err(Failure::Cocircular);
@@ -387,20 +395,15 @@ impl<'a> Tile<'a> {
                 }
             }
         }
-        if certified {
-            Ok(())
-        } else {
-            Err(Failure::Grow(needed))
-        }
+        Ok(())
     }
 
-    /// `None` when the circumcircle of `a`, `b`, `c`, widened by a bound on its rounding error,
-    /// misses every part of the hull outside the known region: then no point of the whole set
-    /// lies inside it. Else the halo around `rect` that would hold the circle's part inside the
-    /// bounding box (infinite for a degenerate triangle).
-    fn uncertain_circle(&self, a: Point, b: Point, c: Point) -> Option<f64> {
+    /// Whether the circumcircle of `a`, `b`, `c`, widened by a bound on its rounding error, may
+    /// hold a point the tile does not: whether it meets a part of the hull outside the known
+    /// region (and deeper than the band). If not, no point of the whole set lies inside it.
+    fn uncertain_circle(&self, a: Point, b: Point, c: Point) -> bool {
         let Some((o, reach)) = circumcircle(a, b, c) else {
-            return Some(f64::INFINITY);
+            return true;
         };
         let misses_box = |&[x0, y0, x1, y1]: &[f64; 4]| {
             let dx = (x0 - o.x).max(o.x - x1).max(0.0);
@@ -408,75 +411,11 @@ impl<'a> Tile<'a> {
             dx * dx + dy * dy > reach * reach
         };
         let slack = reach + self.corner_slack;
-        // The bounding boxes of the circle's parts that may hold points the tile does not know.
-        let mut unknown: Option<[f64; 4]> = None;
-        for (strip, part) in self.strips.iter().zip(&self.hull_parts) {
-            if !misses_box(strip) && meets(part, o, slack) {
-                let [x0, y0, x1, y1] = disk_part_box(part, o, slack);
-                let [u0, v0, u1, v1] = unknown.unwrap_or([x0, y0, x1, y1]);
-                unknown = Some([u0.min(x0), v0.min(y0), u1.max(x1), v1.max(y1)]);
-            }
-        }
-        let [x0, y0, x1, y1] = unknown?;
-        let [rx0, ry0, rx1, ry1] = self.rect;
-        Some((rx0 - x0).max(x1 - rx1).max(ry0 - y0).max(y1 - ry1))
+        let strips = self.strips.iter().zip(&self.hull_parts);
+        strips
+            .into_iter()
+            .any(|(strip, part)| !misses_box(strip) && meets(part, o, slack))
     }
-}
-
-/// A box holding the part of the disk of centre `o` and radius `r` inside the convex polygon
-/// `polygon` (counter-clockwise, meeting the disk): the corners inside the disk, the crossings of
-/// edges and circle, and the circle's extreme points inside the polygon, each widened by `r`'s
-/// thousandth for rounding.
-fn disk_part_box(polygon: &[Point], o: Point, r: f64) -> [f64; 4] {
-    let mut found: Vec<Point> = Vec::new();
-    let len = polygon.len();
-    for (k, &p) in polygon.iter().enumerate() {
-        let q = polygon[(k + 1) % len];
-        if o.dist2(p) <= r * r {
-            found.push(p);
-        }
-        // |p + t (q - p) - o|^2 = r^2 for t in [0, 1].
-        let (ex, ey, wx, wy) = (q.x - p.x, q.y - p.y, p.x - o.x, p.y - o.y);
-        let (a, b, c) = (
-            ex * ex + ey * ey,
-            2.0 * (ex * wx + ey * wy),
-            wx * wx + wy * wy - r * r,
-        );
-        let discriminant = b * b - 4.0 * a * c;
-        if a > 0.0 && discriminant >= 0.0 {
-            for t in [
-                (-b - discriminant.sqrt()) / (2.0 * a),
-                (-b + discriminant.sqrt()) / (2.0 * a),
-            ] {
-                if (0.0..=1.0).contains(&t) {
-                    found.push(Point::new(p.x + t * ex, p.y + t * ey));
-                }
-            }
-        }
-    }
-    for extreme in [(r, 0.0), (-r, 0.0), (0.0, r), (0.0, -r)] {
-        let e = Point::new(o.x + extreme.0, o.y + extreme.1);
-        if meets(polygon, e, 0.0) {
-            found.push(e);
-        }
-    }
-    let widen = 1e-3 * r;
-    found.iter().fold(
-        [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ],
-        |[x0, y0, x1, y1], p| {
-            [
-                x0.min(p.x - widen),
-                y0.min(p.y - widen),
-                x1.max(p.x + widen),
-                y1.max(p.y + widen),
-            ]
-        },
-    )
 }
 
 /// The circumcircle of `a`, `b`, `c`: its centre and its radius widened by a bound on the
@@ -501,35 +440,81 @@ fn circumcircle(a: Point, b: Point, c: Point) -> Option<(Point, f64)> {
 }
 
 /// The convex polygon `polygon` (counter-clockwise) cut to the closed rectangle `[x0, y0, x1,
-/// y1]` (Sutherland and Hodgman's clipping, one side at a time).
+/// y1]`.
 fn clip(polygon: &[Point], [x0, y0, x1, y1]: [f64; 4]) -> Vec<Point> {
-    type Side = (fn(Point) -> f64, f64, f64);
-    let sides: [Side; 4] = [
-        (|p| p.x, x0, 1.0),
-        (|p| p.x, x1, -1.0),
-        (|p| p.y, y0, 1.0),
-        (|p| p.y, y1, -1.0),
+    let sides = [
+        ((1.0, 0.0), x0),
+        ((-1.0, 0.0), -x1),
+        ((0.0, 1.0), y0),
+        ((0.0, -1.0), -y1),
     ];
+    sides
+        .into_iter()
+        .fold(polygon.to_vec(), |shape, (normal, offset)| {
+            cut(&shape, normal, offset)
+        })
+}
+
+/// The convex polygon `polygon` (counter-clockwise) moved in by `depth` from every edge: where
+/// a point lies when more than `depth` from the boundary. Empty when nothing is that deep.
+fn inner(polygon: &[Point], depth: f64) -> Vec<Point> {
+    let len = polygon.len();
     let mut shape = polygon.to_vec();
-    for (coordinate, bound, sign) in sides {
-        let inside = |p: Point| sign * (coordinate(p) - bound) >= 0.0;
-        let mut cut = Vec::with_capacity(shape.len() + 1);
-        for (k, &p) in shape.iter().enumerate() {
-            let q = shape[(k + 1) % shape.len()];
-            if inside(p) {
-                cut.push(p);
-            }
-            if inside(p) != inside(q) {
-                let t = (bound - coordinate(p)) / (coordinate(q) - coordinate(p));
-                cut.push(Point::new(p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)));
-            }
+    for k in 0..len {
+        let (a, b) = (polygon[k], polygon[(k + 1) % len]);
+        let length = (b.x - a.x).hypot(b.y - a.y);
+        if length == 0.0 {
+            continue;
         }
-        shape = cut;
-        if shape.is_empty() {
-            break;
-        }
+        // The inward normal of a counter-clockwise edge is its direction turned left.
+        let normal = ((a.y - b.y) / length, (b.x - a.x) / length);
+        shape = cut(&shape, normal, normal.0 * a.x + normal.1 * a.y + depth);
     }
     shape
+}
+
+/// The part of the convex polygon `shape` where `normal · p >= offset` (Sutherland and
+/// Hodgman's clipping by one half-plane).
+fn cut(shape: &[Point], normal: (f64, f64), offset: f64) -> Vec<Point> {
+    let side = |p: Point| normal.0 * p.x + normal.1 * p.y - offset;
+    let mut kept = Vec::with_capacity(shape.len() + 1);
+    for (k, &p) in shape.iter().enumerate() {
+        let q = shape[(k + 1) % shape.len()];
+        let (sp, sq) = (side(p), side(q));
+        if sp >= 0.0 {
+            kept.push(p);
+        }
+        if (sp >= 0.0) != (sq >= 0.0) {
+            let t = sp / (sp - sq);
+            kept.push(Point::new(p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)));
+        }
+    }
+    kept
+}
+
+/// Each point's distance to the boundary of the convex polygon `corners` (counter-clockwise)
+/// that holds it: the least over the edges' lines, as the points lie inside.
+fn depths(points: &[Point], corners: &[Point]) -> Vec<f64> {
+    let len = corners.len();
+    let lines: Vec<((f64, f64), f64)> = (0..len)
+        .filter_map(|k| {
+            let (a, b) = (corners[k], corners[(k + 1) % len]);
+            let length = (b.x - a.x).hypot(b.y - a.y);
+            (length > 0.0).then(|| {
+                let normal = ((a.y - b.y) / length, (b.x - a.x) / length);
+                (normal, normal.0 * a.x + normal.1 * a.y)
+            })
+        })
+        .collect();
+    points
+        .iter()
+        .map(|p| {
+            let least = lines
+                .iter()
+                .map(|&(n, offset)| n.0 * p.x + n.1 * p.y - offset);
+            least.fold(f64::INFINITY, f64::min).max(0.0)
+        })
+        .collect()
 }
 
 /// Whether the disk of centre `o` and radius `r` meets the convex polygon `polygon`

@@ -17,6 +17,9 @@ __all__ = [
     "EdgeStory",
     "Triangulation",
     "__version__",
+    "_tile_plan",
+    "_run_tile",
+    "_gathered_outliers",
 ]
 
 __version__: str
@@ -123,3 +126,23 @@ def triangulate(points: _Points) -> Triangulation: ...
 # A path is always a file: "-" is the file named "-", not standard input.
 def read_points(path: Union[str, bytes, os.PathLike[str], os.PathLike[bytes]]) -> _Coords: ...
 def score(points: _Points, output: _Edges, truth: _Edges) -> _Score: ...
+
+# condt.dask's native half (python/src/tiles.rs); not for direct use.
+def _tile_plan(points: _Points, **params: Any) -> dict[str, Any]: ...
+def _run_tile(
+    points: _Points,
+    positions: npt.NDArray[np.int64],
+    ranks: npt.NDArray[np.int64],
+    owned: npt.NDArray[np.bool_],
+    boundary: npt.NDArray[np.int64],
+    boundary_len: int,
+    hull: _Points,
+    band: float,
+    known: tuple[float, float, float, float],
+    bbox: tuple[float, float, float, float],
+    reach: int,
+    **params: Any,
+) -> tuple[str, Optional[npt.NDArray[np.int64]]]: ...
+def _gathered_outliers(
+    points: _Points, edges: npt.NDArray[np.int64], **params: Any
+) -> npt.NDArray[np.int64]: ...

@@ -7,7 +7,9 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
 
 - every tile proves that the part of the Delaunay triangulation its stages read is the whole
   set's (the certificate in ``python/src/tiles.rs``); a tile that cannot, because its halo is
-  too narrow, is sent again with a halo twice as wide;
+  too narrow, is sent again with a halo twice as wide (near the convex hull a tile also gets
+  the points within its halo of the hull's boundary, where the circles of triangles on long
+  hull edges reach);
 - its vertices follow the whole set's insertion order, so the stages break ties as one machine
   does;
 - the one global step, Algorithm 3's threshold, runs once on the joined edges, in the library;
@@ -57,14 +59,17 @@ class TiledReconstruction:
     ``edges`` is an ``(m, 2)`` int64 array of input positions, ``i < j``, sorted by rows: the
     same as ``condt.reconstruct(points, **params).edges``. ``tiles`` is the number of tiles,
     ``rounds`` how many times the widest-halo tile was sent (1 when every first halo sufficed),
-    ``workers`` the addresses of the workers that ran a tile, and ``whole`` why the set ran in
-    one piece instead (``None`` when it was tiled).
+    ``workers`` the addresses of the workers that ran a tile, ``sent`` how many points went to
+    workers in all (every tile and round, halos included: its ratio to the set's size is the
+    cost of tiling), and ``whole`` why the set ran in one piece instead (``None`` when it was
+    tiled).
     """
 
     edges: np.ndarray
     tiles: int
     rounds: int
     workers: frozenset
+    sent: int
     whole: str | None
 
 
@@ -72,13 +77,17 @@ def reconstruct(
     points: Any,
     client: Any = None,
     tiles: int = 16,
+    *,
+    halo: float | None = None,
     **params: Any,
 ) -> TiledReconstruction:
     """The reconstruction of ``points`` by tiles on ``client``'s cluster.
 
     ``points`` is an ``(n, 2)`` array-like or a Dask array (computed on the driver); ``client``
     a ``dask.distributed.Client`` (``None``: the current one, ``distributed.get_client()``);
-    ``tiles`` how many rectangles to cut the plane into (at least 1). ``params`` are
+    ``tiles`` how many rectangles to cut the plane into (at least 1); ``halo`` the margin
+    each tile's points are first sent with (``None``: a quarter of the tile's shorter side),
+    doubled for a tile whose certificate needs more. ``params`` are
     ``condt.reconstruct``'s keywords; see the module's text for those that can be tiled.
 
     Raises ``NotImplementedError`` for a step that is not tiled yet, ``ValueError`` for a NaN or
@@ -86,6 +95,8 @@ def reconstruct(
     """
     if isinstance(tiles, bool) or not isinstance(tiles, int) or tiles < 1:
         raise ValueError(f"tiles must be a positive integer, not {tiles!r}")
+    if halo is not None and (isinstance(halo, bool) or not isinstance(halo, (int, float)) or not 0 < halo < math.inf):
+        raise ValueError(f"halo must be a positive finite number or None, not {halo!r}")
     if client is None:
         from distributed import get_client
 
@@ -97,19 +108,17 @@ def reconstruct(
     plan = _condt._tile_plan(points, **params)
     points = np.ascontiguousarray(np.asarray(points, dtype=np.float64)).reshape(-1, 2)
     n = len(points)
-    if plan["whole"] is not None or n == 0:
-        return _in_one_piece(points, client, params, plan["whole"] or "no points")
+    whole = "no points" if n == 0 else plan["whole"]
+    if whole is not None:
+        return _in_one_piece(points, client, params, whole)
 
     bbox = np.concatenate([points.min(axis=0), points.max(axis=0)])
     rects = _cut(points, tiles, bbox)
-    spacing = math.sqrt(max((bbox[2] - bbox[0]) * (bbox[3] - bbox[1]), 0.0) / n)
-    width = max(bbox[2] - bbox[0], bbox[3] - bbox[1])
-    halo = [max(4.0 * spacing, width * 1e-3)] * len(rects)
-    ranks, boundary = plan["ranks"], plan["boundary"]
-    boundary_len = plan["boundary_len"]
+    halo_of = [float(halo) if halo is not None else _first_halo(r, bbox) for r in rects]
+    ranks, boundary, depth = plan["ranks"], plan["boundary"], plan["depth"]
     gathered: list[np.ndarray | None] = [None] * len(rects)
     workers: set = set()
-    rounds = 0
+    rounds = sent = 0
     pending = list(range(len(rects)))
     while pending:
         rounds += 1
@@ -117,16 +126,31 @@ def reconstruct(
         for k in pending:
             # Each tile gets only its points (the driver cuts them out): a worker never holds
             # the whole set.
-            known = _known(rects[k], halo[k], bbox)
-            positions = np.flatnonzero(_inside(points, known, closed=True))
+            known = _known(rects[k], halo_of[k], bbox)
+            inside = _inside(points, known, closed=True)
+            # Near the hull, the band along its boundary too (python/src/tiles.rs says why).
+            band = 0.0
+            if depth is not None and inside.any() and depth[inside].min() <= halo_of[k]:
+                band = halo_of[k]
+                inside |= depth <= band
+            positions = np.flatnonzero(inside)
+            sent += len(positions)
+            # Scattered, not put into the task graph: the arrays go to a worker directly.
+            payload = client.scatter(
+                (
+                    np.ascontiguousarray(points[positions]),
+                    positions.astype(np.int64),
+                    np.ascontiguousarray(ranks[positions]),
+                    np.ascontiguousarray(boundary[positions]),
+                ),
+                hash=False,
+            )
             futures[k] = client.submit(
                 _tile,
-                np.ascontiguousarray(points[positions]),
-                positions.astype(np.int64),
-                np.ascontiguousarray(ranks[positions]),
-                np.ascontiguousarray(boundary[positions]),
-                boundary_len,
+                payload,
+                plan["boundary_len"],
                 plan["hull"],
+                band,
                 rects[k],
                 known,
                 tuple(float(b) for b in bbox),
@@ -135,23 +159,22 @@ def reconstruct(
             )
         results = client.gather(list(futures.values()))
         pending = []
-        for k, (status, edges, wanted, worker) in zip(futures, results):
+        for k, (status, edges, worker) in zip(futures, results):
             workers.add(worker)
             if status == "ok":
                 gathered[k] = edges
             elif status == "cocircular":
                 return _in_one_piece(points, client, params, "cocircular points")
-            elif all(math.isinf(side) for side in _known(rects[k], halo[k], bbox)):
+            elif all(math.isinf(side) for side in _known(rects[k], halo_of[k], bbox)):
                 # The tile held every point: no wider halo can certify more.
                 return _in_one_piece(points, client, params, "a tile held every point")
             else:
-                # At least twice as wide, and as wide as the circles it met ask.
-                halo[k] = max(2.0 * halo[k], 1.05 * wanted)
+                halo_of[k] *= 2.0
                 pending.append(k)
     parts = [e for e in gathered if e is not None]
     joined = np.concatenate(parts) if parts else np.empty((0, 2), np.int64)
     edges = _condt._gathered_outliers(points, np.ascontiguousarray(joined), **params)
-    return TiledReconstruction(edges, len(rects), rounds, frozenset(workers), None)
+    return TiledReconstruction(edges, len(rects), rounds, frozenset(workers), sent, None)
 
 
 def _inside(points, rect, closed):
@@ -162,11 +185,13 @@ def _inside(points, rect, closed):
     return (x >= rect[0]) & (y >= rect[1]) & (x < rect[2]) & (y < rect[3])
 
 
-def _tile(points, positions, ranks, boundary, boundary_len, hull, rect, known, bbox, params):
+def _tile(payload, boundary_len, hull, band, rect, known, bbox, params):
     """On a worker: one tile's owned edges after the repair, or why it could not certify."""
     from distributed import get_worker
 
-    status, edges, wanted = _condt._run_tile(
+    # Arrays that crossed processes may arrive misaligned: the native module reads them in place.
+    points, positions, ranks, boundary = (np.require(a, requirements="CA") for a in payload)
+    status, edges = _condt._run_tile(
         points,
         positions,
         ranks,
@@ -174,19 +199,19 @@ def _tile(points, positions, ranks, boundary, boundary_len, hull, rect, known, b
         boundary,
         boundary_len,
         hull,
-        rect,
+        band,
         known,
         bbox,
         REACH,
         **params,
     )
-    return status, edges, wanted, get_worker().address
+    return status, edges, get_worker().address
 
 
 def _in_one_piece(points, client, params, why):
     """The whole set on one worker, when tiles cannot give the one-machine result."""
     edges, worker = client.submit(_whole, points, params, pure=False).result()
-    return TiledReconstruction(edges, 1, 1, frozenset([worker]), why)
+    return TiledReconstruction(edges, 1, 1, frozenset([worker]), len(points), why)
 
 
 def _whole(points, params):
@@ -219,6 +244,15 @@ def _cut(points, tiles, bbox):
         for r in range(rows):
             rects.append((float(x0), float(y_cuts[r]), float(x1), float(y_cuts[r + 1])))
     return rects
+
+
+def _first_halo(rect, bbox):
+    """A quarter of the tile's shorter side (within the bounding box): each tile is first sent
+    with about twice its own points, whatever the set's scale."""
+    width = min(rect[2], bbox[2]) - max(rect[0], bbox[0])
+    height = min(rect[3], bbox[3]) - max(rect[1], bbox[1])
+    side = min(width, height) if min(width, height) > 0 else max(width, height)
+    return 0.25 * side if side > 0 else 1.0
 
 
 def _known(rect, halo, bbox):

@@ -1,0 +1,172 @@
+"""condt.dask: the tiled reconstruction equals the one-machine one, edge for edge.
+
+The cluster tests need `dask[distributed]` (`pip install ./python[dask]`; CI installs it).
+"""
+
+import numpy as np
+import pytest
+
+distributed = pytest.importorskip("distributed")
+hypothesis = pytest.importorskip("hypothesis")
+
+import condt  # noqa: E402
+import condt.dask  # noqa: E402
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def client():
+    """Two workers in this process: quick to start, enough for the equality properties."""
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        yield client
+
+
+def curves(n, rng, outliers=0.01, noisy_every=4):
+    """About `n` points on ellipses of random size and place, every `noisy_every`-th with
+    Gaussian noise of a fifth of its spacing, and `outliers` of `n` uniform random points."""
+    parts = []
+    k = 0
+    while sum(len(p) for p in parts) < n:
+        centre = rng.uniform(0, 100, 2)
+        radius = rng.uniform(0.5, 3.0)
+        m = int(rng.integers(30, 300))
+        t = np.sort(rng.uniform(0, 2 * np.pi, m))
+        p = np.column_stack(
+            [centre[0] + radius * np.cos(t), centre[1] + radius * rng.uniform(0.3, 1) * np.sin(t)]
+        )
+        if k % noisy_every == 0:
+            p += rng.normal(0, 0.2 * 2 * np.pi * radius / m, p.shape)
+        parts.append(p)
+        k += 1
+    points = np.concatenate(parts)[:n]
+    return np.concatenate([points, rng.uniform(0, 100, (int(n * outliers), 2))])
+
+
+def one_machine(points, **params):
+    return condt.reconstruct(points, **params).edges
+
+
+def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
+    points = curves(1_000_000, np.random.default_rng(7))
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        tiled = condt.dask.reconstruct(points, client, tiles=16, paper=True)
+        workers = set(client.scheduler_info()["workers"])
+    assert tiled.whole is None
+    assert tiled.tiles == 16
+    assert tiled.workers == workers and len(workers) == 2
+    expected = one_machine(points, paper=True)
+    assert len(expected) > 500_000  # most points keep edges: a real result, not an empty one
+    np.testing.assert_array_equal(tiled.edges, expected)
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    n=st.integers(3, 3000),
+    tiles=st.integers(1, 12),
+    kind=st.sampled_from(["curves", "uniform", "clustered"]),
+    repeats=st.booleans(),
+    narrow=st.booleans(),
+)
+def test_any_tiling_gives_the_one_machine_edges(client, seed, n, tiles, kind, repeats, narrow):
+    rng = np.random.default_rng(seed)
+    if kind == "curves":
+        points = curves(n, rng, outliers=0.02)
+    elif kind == "uniform":
+        points = rng.uniform(-5, 5, (n, 2))
+    else:
+        centres = rng.uniform(0, 1000, (max(1, n // 200), 2))
+        points = centres[rng.integers(0, len(centres), n)] + rng.normal(0, 1, (n, 2))
+    if repeats:
+        points = np.concatenate([points, points[rng.integers(0, len(points), len(points) // 10)]])
+        points = points[rng.permutation(len(points))]
+    # A narrow first halo makes most tiles prove too little at first and grow.
+    halo = 1e-3 * np.ptp(points, axis=0).max() if narrow else None
+    tiled = condt.dask.reconstruct(points, client, tiles=tiles, halo=halo, paper=True)
+    assert tiled.whole is None  # random floats: never cocircular, never all on one line
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+
+
+def test_tiles_whose_circles_reach_far_grow_their_halo(client):
+    # Five small blobs far apart: the triangles between them have circles as wide as the set.
+    rng = np.random.default_rng(11)
+    centres = rng.uniform(0, 1000, (5, 2))
+    points = centres[rng.integers(0, 5, 20_000)] + rng.normal(0, 1, (20_000, 2))
+    tiled = condt.dask.reconstruct(points, client, tiles=16, paper=True)
+    assert tiled.whole is None and tiled.rounds > 1
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+
+
+@pytest.mark.parametrize(
+    "params",
+    [
+        {"paper": True, "u": 2.0},
+        {"paper": True, "iqr": 0.5, "iqr_floor": True},
+        {"paper": True, "repair": "needs"},
+        {"paper": True, "repair": "mutual", "iqr": None},
+        {"paper": True, "repair": "off"},
+    ],
+)
+def test_the_paper_pipelines_variants_are_tiled_exactly(client, params):
+    points = curves(40_000, np.random.default_rng(3), outliers=0.03)
+    tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
+    assert tiled.whole is None
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, **params))
+
+
+def test_cocircular_points_run_in_one_piece_with_the_same_edges(client):
+    grid = np.array([(x, y) for x in range(60) for y in range(40)], dtype=float)
+    tiled = condt.dask.reconstruct(grid, client, tiles=4, paper=True)
+    assert tiled.whole == "cocircular points"
+    np.testing.assert_array_equal(tiled.edges, one_machine(grid, paper=True))
+
+
+@pytest.mark.parametrize(
+    "points, why",
+    [
+        (np.column_stack([np.arange(50.0), 2 * np.arange(50.0)]), "all points lie on one line"),
+        (np.empty((0, 2)), "no points"),
+        (np.array([[0.0, 0.0], [1.0, 1.0]]), "all points lie on one line"),
+        (np.array([[1e-250, 0.5], [1e250, 0.0], [0.0, 1.0]]), "the coordinates span"),
+    ],
+)
+def test_sets_that_cannot_be_tiled_run_in_one_piece(client, points, why):
+    tiled = condt.dask.reconstruct(points, client, tiles=4, paper=True)
+    assert tiled.whole.startswith(why)
+    np.testing.assert_array_equal(
+        tiled.edges.reshape(-1, 2), one_machine(points, paper=True).reshape(-1, 2)
+    )
+
+
+def test_a_dask_array_is_computed_first(client):
+    da = pytest.importorskip("dask.array")
+    points = curves(5_000, np.random.default_rng(5))
+    tiled = condt.dask.reconstruct(da.from_array(points, chunks=1000), client, tiles=4, paper=True)
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+
+
+def test_a_step_that_is_not_tiled_is_refused_by_name(client):
+    points = curves(1_000, np.random.default_rng(1))
+    with pytest.raises(NotImplementedError, match="local outlier removal|smoothing|not tiled"):
+        condt.dask.reconstruct(points, client)
+    with pytest.raises(NotImplementedError, match="adaptive u"):
+        condt.dask.reconstruct(points, client, paper=True, adaptive=True)
+    with pytest.raises(NotImplementedError, match="outliers_first"):
+        condt.dask.reconstruct(points, client, paper=True, outliers_first=True)
+
+
+def test_bad_input_is_refused_as_condt_reconstruct_refuses_it(client):
+    points = curves(1_000, np.random.default_rng(1))
+    points[5] = [np.nan, 1.0]
+    with pytest.raises(ValueError, match="point 5 has a NaN"):
+        condt.dask.reconstruct(points, client, paper=True)
+    with pytest.raises(ValueError, match="iqr"):
+        condt.dask.reconstruct(points[:4], client, paper=True, iqr=-1.0)
+    for tiles in (0, -3, True, 2.5):
+        with pytest.raises(ValueError, match="tiles must be a positive integer"):
+            condt.dask.reconstruct(points[:4], client, tiles=tiles, paper=True)
