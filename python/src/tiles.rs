@@ -8,11 +8,12 @@
 //! ([`Triangulation::triangulate_in_order`]), and Algorithm 3 runs once, in the library
 //! ([`condt::remove_gathered_outliers`]).
 //!
-//! Why a certified tile gives the whole set's edges: a triangle of the tile's Delaunay
-//! triangulation whose circumcircle meets no part of the set's bounding box outside the region
-//! whose points the tile holds (its *known* region) has no point of the whole set inside that
-//! circle, so it is one of the whole set's Delaunay triangles; a hull edge of the tile is one of
-//! the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
+//! Why a certified tile gives the whole set's edges: a point the tile does not hold lies inside
+//! the set's convex hull, outside the rectangle whose points the tile holds (its *known*
+//! region), and deeper below the hull's boundary than the band the tile was sent. A triangle of
+//! the tile's Delaunay triangulation whose circumcircle misses that region has no point of the
+//! whole set inside it, so it is one of the whole set's Delaunay triangles; a hull edge of the
+//! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
 //! number of Delaunay hops around a vertex (proximity one ring, the repair two more), and break
 //! ties by vertex id, which follows the set's insertion order restricted to the tile: so an
@@ -73,16 +74,18 @@ fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
     match untiled_step(&params) {
         None => Ok(params),
         Some(step) => Err(PyNotImplementedError::new_err(format!(
-            "condt.dask runs the proximity graph (fixed u), the repair and Algorithm 3 in tiles; \
-             {step} is not tiled yet: use condt.reconstruct"
+            "condt.dask tiles only the proximity graph (fixed u), the repair and Algorithm 3, \
+             not yet {step}: use condt.reconstruct, or paper=True"
         ))),
     }
 }
 
 /// For the driver, once: checks the points and the parameters, and returns the facts every tile
 /// needs as a dict: `ranks` (each point's place in the whole set's insertion order), `boundary`
-/// (each point's place along the convex hull's boundary, counter-clockwise, `-1` inside) and
-/// `boundary_len`, and `whole` (why the set must run in one piece, or `None`).
+/// (each point's place along the convex hull's boundary, counter-clockwise, `-1` inside),
+/// `boundary_len`, `hull` (the hull's corners, counter-clockwise), `depth` (each point's distance
+/// to the hull's boundary, or `None` for a hull of over [`MAX_BAND_CORNERS`] corners), and
+/// `whole` (why the set must run in one piece, or `None`).
 #[pyfunction]
 #[pyo3(signature = (points, **params))]
 pub(crate) fn _tile_plan<'py>(
@@ -292,6 +295,8 @@ struct Tile<'a> {
 }
 
 impl<'a> Tile<'a> {
+    /// The tile holds every point inside `known`, and every point within `band` of the hull's
+    /// boundary.
     fn new(
         known: [f64; 4],
         bbox: [f64; 4],
@@ -300,32 +305,18 @@ impl<'a> Tile<'a> {
         hull: &[Point],
         band: f64,
     ) -> Tile<'a> {
-        let [bx0, by0, bx1, by1] = bbox;
-        let [kx0, ky0, kx1, ky1] = known;
-        let (mx0, mx1) = (kx0.max(bx0), kx1.min(bx1));
-        let mut strips = Vec::with_capacity(4);
-        if kx0 > bx0 {
-            strips.push([bx0, by0, kx0, by1]);
-        }
-        if kx1 < bx1 {
-            strips.push([kx1, by0, bx1, by1]);
-        }
-        if ky0 > by0 {
-            strips.push([mx0, by0, mx1, ky0]);
-        }
-        if ky1 < by1 {
-            strips.push([mx0, ky1, mx1, by1]);
-        }
         let extent = bbox.iter().fold(0.0f64, |m, c| m.max(c.abs()));
         let corner_slack = 1e-12 * extent;
-        // Where a point the tile does not hold can be: inside the hull, and deeper than the band
-        // (a little less deep, for rounding: the driver sent every point up to `band`).
+        // Where a point the tile does not hold can be: inside the hull, outside `known`, and
+        // deeper than the band (a little less deep, for rounding: the driver sent every point up
+        // to `band`).
         let depth = band * (1.0 - 1e-9) - corner_slack;
         let region = if depth > 0.0 {
             inner(hull, depth)
         } else {
             hull.to_vec()
         };
+        let strips = frame(bbox, known);
         let hull_parts = strips.iter().map(|&strip| clip(&region, strip)).collect();
         Tile {
             boundary,
@@ -345,6 +336,9 @@ impl<'a> Tile<'a> {
         owned: &[bool],
         reach: usize,
     ) -> Result<(), Failure> {
+        if !owned.contains(&true) {
+            return Ok(()); // nothing to certify
+        }
         if tri.triangles().next().is_none() {
             return Err(Failure::Grow); // collinear in the tile: a larger region shows more
         }
@@ -437,6 +431,28 @@ fn circumcircle(a: Point, b: Point, c: Point) -> Option<(Point, f64)> {
         64.0 * f64::EPSILON * (magnitude + radius * condition + radius + a.x.abs() + a.y.abs());
     let reach = radius + slack;
     (det != 0.0 && reach.is_finite()).then(|| (Point::new(a.x + ux, a.y + uy), reach))
+}
+
+/// The parts of the rectangle `outer` outside the rectangle `inner` (both `[x0, y0, x1, y1]`,
+/// sides possibly infinite): up to four closed rectangles.
+fn frame(outer: [f64; 4], inner: [f64; 4]) -> Vec<[f64; 4]> {
+    let [ox0, oy0, ox1, oy1] = outer;
+    let [ix0, iy0, ix1, iy1] = inner;
+    let (mx0, mx1) = (ix0.max(ox0), ix1.min(ox1));
+    let mut parts = Vec::with_capacity(4);
+    if ix0 > ox0 {
+        parts.push([ox0, oy0, ix0.min(ox1), oy1]);
+    }
+    if ix1 < ox1 {
+        parts.push([ix1.max(ox0), oy0, ox1, oy1]);
+    }
+    if iy0 > oy0 && mx0 <= mx1 {
+        parts.push([mx0, oy0, mx1, iy0.min(oy1)]);
+    }
+    if iy1 < oy1 && mx0 <= mx1 {
+        parts.push([mx0, iy1.max(oy0), mx1, oy1]);
+    }
+    parts
 }
 
 /// The convex polygon `polygon` (counter-clockwise) cut to the closed rectangle `[x0, y0, x1,

@@ -7,7 +7,9 @@ what the ``condt`` command line computes:
 - ``reconstruct(points, *, paper=False, **params)``: the curves, as ``condt reconstruct``;
 - ``triangulate(points)``: the Delaunay triangulation, as ``condt triangulate``;
 - ``read_points(path)``: the points of a file in any format the command line reads;
-- ``score(points, output, truth)``: the metrics of ``condt score``.
+- ``score(points, output, truth)``: the metrics of ``condt score``;
+- ``condt.dask.reconstruct(points, client, tiles)``: the paper's pipeline tiled across a Dask
+  cluster, with ``reconstruct``'s edges (``import condt.dask``; needs ``dask[distributed]``).
 
 >>> import condt
 >>> r = condt.reconstruct([(0, 0), (1, 0), (1, 1), (0, 1)])
@@ -16,7 +18,7 @@ what the ``condt`` command line computes:
 """
 
 # The native module (Rust, python/src); this package only re-exports it, so that pure-Python
-# modules (a later ``condt.dask``) can sit beside it.
+# modules (``condt.dask``, imported on its own as it needs dask[distributed]) can sit beside it.
 from ._condt import (
     Curve,
     EdgeStory,

@@ -95,7 +95,8 @@ def reconstruct(
     """
     if isinstance(tiles, bool) or not isinstance(tiles, int) or tiles < 1:
         raise ValueError(f"tiles must be a positive integer, not {tiles!r}")
-    if halo is not None and (isinstance(halo, bool) or not isinstance(halo, (int, float)) or not 0 < halo < math.inf):
+    number = isinstance(halo, (int, float)) and not isinstance(halo, bool)
+    if halo is not None and not (number and 0 < halo < math.inf):
         raise ValueError(f"halo must be a positive finite number or None, not {halo!r}")
     if client is None:
         from distributed import get_client
@@ -119,7 +120,8 @@ def reconstruct(
     gathered: list[np.ndarray | None] = [None] * len(rects)
     workers: set = set()
     rounds = sent = 0
-    pending = list(range(len(rects)))
+    # A tile that owns no point has nothing to send back.
+    pending = [k for k in range(len(rects)) if _inside(points, rects[k], closed=False).any()]
     while pending:
         rounds += 1
         futures = {}
@@ -239,7 +241,10 @@ def _cut(points, tiles, bbox):
         x0, x1 = x_cuts[c], x_cuts[c + 1]
         inside = (points[:, 0] >= x0) & (points[:, 0] < x1)
         column = points[inside, 1]
-        ys = np.quantile(column, np.linspace(0, 1, rows + 1)[1:-1]) if len(column) else []
+        if len(column):
+            ys = np.quantile(column, np.linspace(0, 1, rows + 1)[1:-1])
+        else:
+            ys = np.linspace(bbox[1], bbox[3], rows + 1)[1:-1]
         y_cuts = np.concatenate([[bbox[1]], ys, [top[1]]])
         for r in range(rows):
             rects.append((float(x0), float(y_cuts[r]), float(x1), float(y_cuts[r + 1])))
