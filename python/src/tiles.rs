@@ -156,26 +156,10 @@ fn hull_boundary(points: &[Point]) -> (Vec<i64>, usize, Vec<Point>) {
     let mut sorted: Vec<usize> = (0..points.len()).collect();
     sorted.sort_by(|&a, &b| points[a].lexicographic_cmp(points[b]).then(a.cmp(&b)));
     sorted.dedup_by(|later, kept| points[*later] == points[*kept]);
-    let turns_right = |chain: &[usize], p: usize| {
-        let [a, b] = [chain[chain.len() - 2], chain[chain.len() - 1]];
-        orient2d(points[a], points[b], points[p]) == Orientation::Cw
-    };
+    // The lower chain left to right, then the upper one back; each ends where the other starts.
     let mut chain: Vec<usize> = Vec::with_capacity(sorted.len() + 1);
-    for pass in [&sorted[..], &sorted[..]] {
-        let start = chain.len();
-        let ordered: Box<dyn Iterator<Item = &usize>> = if start == 0 {
-            Box::new(pass.iter())
-        } else {
-            Box::new(pass.iter().rev())
-        };
-        for &p in ordered {
-            while chain.len() >= start + 2 && turns_right(&chain, p) {
-                chain.pop();
-            }
-            chain.push(p);
-        }
-        chain.pop(); // the other chain starts there
-    }
+    extend_chain(&mut chain, points, sorted.iter().copied());
+    extend_chain(&mut chain, points, sorted.iter().rev().copied());
     let mut boundary = vec![-1i64; points.len()];
     let collinear = chain.len() >= 2 * sorted.len().saturating_sub(1);
     if collinear {
@@ -193,6 +177,23 @@ fn hull_boundary(points: &[Point]) -> (Vec<i64>, usize, Vec<Point>) {
         .map(|k| points[chain[k]])
         .collect();
     (boundary, len, corners)
+}
+
+/// Appends to `chain` the points of `ordered` that make no right turn (Andrew's monotone chain,
+/// keeping collinear points), without its last point, which starts the next chain.
+fn extend_chain(chain: &mut Vec<usize>, points: &[Point], ordered: impl Iterator<Item = usize>) {
+    let start = chain.len();
+    for p in ordered {
+        while chain.len() >= start + 2 {
+            let [a, b] = [chain[chain.len() - 2], chain[chain.len() - 1]];
+            if orient2d(points[a], points[b], points[p]) != Orientation::Cw {
+                break;
+            }
+            chain.pop();
+        }
+        chain.push(p);
+    }
+    chain.pop();
 }
 
 /// What a tile sends back: `("ok", edges)` with the edges it owns after the repair, in input

@@ -64,7 +64,7 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
     np.testing.assert_array_equal(tiled.edges, expected)
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=20, deadline=None)
 @given(
     seed=st.integers(0, 2**32 - 1),
     n=st.integers(3, 3000),

@@ -488,8 +488,9 @@ impl Triangulation {
     /// its vertices as the whole set does: what `condt.dask` in Python builds on.
     ///
     /// # Errors
-    /// Those of [`triangulate`]; [`Error::InvalidParameter`] named `order` (its value the first
-    /// position missing or repeated) when `order` is not a permutation of `0..points.len()`.
+    /// Those of [`triangulate`]; [`Error::InvalidParameter`] named `order` when `order` is not a
+    /// permutation of `0..points.len()`: its value is `order`'s length if that differs from the
+    /// number of points, else the first position repeated or out of range.
     ///
     /// ```
     /// use condt::{mesh::VertexId, triangulate, Point, Triangulation};
