@@ -23,7 +23,7 @@
 
 use crate::convert::{as_points, index_array, index_vector, library_error, points_array};
 use crate::params;
-use condt::geometry::binary_exponent;
+use condt::geometry::{binary_exponent, Scale};
 use condt::predicates::{is_cocircular, orient2d, Orientation};
 use condt::{Method, Params, Point, Stage, Triangulation, Uniformity};
 use numpy::ndarray::Array2;
@@ -291,8 +291,11 @@ struct Tile<'a> {
     strips: Vec<[f64; 4]>,
     /// The same parts cut down to the convex hull, where the points are: convex polygons.
     hull_parts: Vec<Vec<Point>>,
-    /// An absolute slack for the polygons' rounded corners: far above their rounding error.
+    /// An absolute slack (in the frame of `unit`) for the polygons' rounded corners: far above
+    /// their rounding error.
     corner_slack: f64,
+    /// Input coordinates to the frame of `strips` and `hull_parts`.
+    unit: Scale,
 }
 
 impl<'a> Tile<'a> {
@@ -306,16 +309,33 @@ impl<'a> Tile<'a> {
         hull: &[Point],
         band: f64,
     ) -> Tile<'a> {
+        // The certificate's geometry in a power-of-two frame where the box's largest coordinate
+        // is about 1 (exact): squares of huge or tiny coordinates would overflow or underflow.
         let extent = bbox.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-        let corner_slack = 1e-12 * extent;
+        let unit = Scale::power_of_two(if extent > 0.0 {
+            -binary_exponent(extent)
+        } else {
+            0
+        });
+        let rect = |[x0, y0, x1, y1]: [f64; 4]| {
+            let (low, high) = (
+                unit.apply(Point::new(x0, y0)),
+                unit.apply(Point::new(x1, y1)),
+            );
+            [low.x, low.y, high.x, high.y]
+        };
+        let (known, bbox) = (rect(known), rect(bbox));
+        let hull: Vec<Point> = hull.iter().map(|&p| unit.apply(p)).collect();
+        let band = unit.apply(Point::new(band, 0.0)).x;
+        let corner_slack = 1e-12;
         // Where a point the tile does not hold can be: inside the hull, outside `known`, and
         // deeper than the band (a little less deep, for rounding: the driver sent every point up
         // to `band`).
         let depth = band * (1.0 - 1e-9) - corner_slack;
         let region = if depth > 0.0 {
-            inner(hull, depth)
+            inner(&hull, depth)
         } else {
-            hull.to_vec()
+            hull
         };
         let strips = frame(bbox, known);
         let hull_parts = strips.iter().map(|&strip| clip(&region, strip)).collect();
@@ -325,6 +345,7 @@ impl<'a> Tile<'a> {
             strips,
             hull_parts,
             corner_slack,
+            unit,
         }
     }
 
@@ -345,7 +366,7 @@ impl<'a> Tile<'a> {
         }
         let mut certified = vec![true; points.len()];
         for [a, b, c] in tri.triangles() {
-            if self.uncertain_circle(points[a], points[b], points[c]) {
+            if self.uncertain_circle([a, b, c].map(|v| self.unit.apply(points[v]))) {
                 for v in [a, b, c] {
                     certified[v] = false;
                 }
@@ -396,7 +417,7 @@ impl<'a> Tile<'a> {
     /// Whether the circumcircle of `a`, `b`, `c`, widened by a bound on its rounding error, may
     /// hold a point the tile does not: whether it meets a part of the hull outside the known
     /// region (and deeper than the band). If not, no point of the whole set lies inside it.
-    fn uncertain_circle(&self, a: Point, b: Point, c: Point) -> bool {
+    fn uncertain_circle(&self, [a, b, c]: [Point; 3]) -> bool {
         let Some((o, reach)) = circumcircle(a, b, c) else {
             return true;
         };

@@ -124,6 +124,15 @@ def test_the_paper_pipelines_variants_are_tiled_exactly(client, params):
     np.testing.assert_array_equal(tiled.edges, one_machine(points, **params))
 
 
+@pytest.mark.parametrize("scale", [1e-300, 1e-150, 1e150, 1e299])
+def test_huge_and_tiny_coordinates_are_tiled(client, scale):
+    # Squared, such coordinates overflow or underflow: the certificate works in a scaled frame.
+    points = scale * curves(3_000, np.random.default_rng(2), outliers=0.03)
+    tiled = condt.dask.reconstruct(points, client, tiles=9, paper=True)
+    assert tiled.whole is None
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+
+
 def test_cocircular_points_run_in_one_piece_with_the_same_edges(client):
     grid = np.array([(x, y) for x in range(60) for y in range(40)], dtype=float)
     tiled = condt.dask.reconstruct(grid, client, tiles=4, paper=True)

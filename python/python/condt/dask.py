@@ -166,10 +166,12 @@ def reconstruct(
             if status == "ok":
                 gathered[k] = edges
             elif status == "cocircular":
-                return _in_one_piece(points, client, params, "cocircular points")
+                why = "cocircular points"
+                return _in_one_piece(points, client, params, why, rounds, sent, workers)
             elif all(math.isinf(side) for side in _known(rects[k], halo_of[k], bbox)):
                 # The tile held every point: no wider halo can certify more.
-                return _in_one_piece(points, client, params, "a tile held every point")
+                why = "a tile held every point"
+                return _in_one_piece(points, client, params, why, rounds, sent, workers)
             else:
                 halo_of[k] *= 2.0
                 pending.append(k)
@@ -210,10 +212,12 @@ def _tile(payload, boundary_len, hull, band, rect, known, bbox, params):
     return status, edges, get_worker().address
 
 
-def _in_one_piece(points, client, params, why):
-    """The whole set on one worker, when tiles cannot give the one-machine result."""
+def _in_one_piece(points, client, params, why, rounds=0, sent=0, workers=frozenset()):
+    """The whole set on one worker, when tiles cannot give the one-machine result (after
+    ``rounds`` of tiles that sent ``sent`` points to ``workers``)."""
     edges, worker = client.submit(_whole, points, params, pure=False).result()
-    return TiledReconstruction(edges, 1, 1, frozenset([worker]), len(points), why)
+    workers = frozenset(workers) | {worker}
+    return TiledReconstruction(edges, 1, rounds + 1, workers, sent + len(points), why)
 
 
 def _whole(points, params):
