@@ -392,11 +392,13 @@ impl<'a> Tile<'a> {
                 queue.push_back(v);
             }
         }
+        let mut ring = Vec::new();
         while let Some(v) = queue.pop_front() {
             if !certified[v] {
                 return Err(Failure::Grow);
             }
-            let ring: Vec<usize> = tri.neighbors(v).collect();
+            ring.clear();
+            ring.extend(tri.neighbors(v));
             for (k, &w) in ring.iter().enumerate() {
                 let before = ring[(k + ring.len() - 1) % ring.len()];
                 let after = ring[(k + 1) % ring.len()];
