@@ -461,6 +461,7 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
             dict.set_item("vertex", vertex)?;
             "crossing"
         }
+        Reason::Tip => "tip",
         Reason::Clump => "clump",
         Reason::RepairedAgain => "repaired-again",
         Reason::Baseline => "baseline",

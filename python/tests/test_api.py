@@ -485,11 +485,11 @@ def test_the_result_arrays():
     stages = r.stages
     assert list(stages) == [
         "proximity", "repair", "iqr-outliers", "repair-again", "local-outliers", "clumps",
-        "given-back", "gaps", "junctions", "crossings",
+        "given-back", "gaps", "junctions", "crossings", "tips",
     ]
-    assert np.array_equal(stages["crossings"], r.edges)
+    assert np.array_equal(stages["tips"], r.edges)
     stages.clear()  # a copy: the result's stays
-    assert len(r.stages) == 10
+    assert len(r.stages) == 11
     assert "235 points" in repr(r)
 
 

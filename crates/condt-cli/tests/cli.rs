@@ -606,6 +606,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "gaps",
                 "junctions",
                 "crossings",
+                "tips",
                 "curves",
                 "other",
                 "write",

@@ -180,6 +180,7 @@ fn write_data(
                 Reason::Clump => (10, 0.0, 0.0),
                 Reason::RepairedAgain => (11, 0.0, 0.0),
                 Reason::Crossing { vertex } => (13, vertex as f64, 0.0),
+                Reason::Tip => (14, 0.0, 0.0),
             };
             let sep = if first { "" } else { "," };
             first = false;

@@ -97,6 +97,7 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::Gaps => "gaps",
         Stage::Junctions => "junctions",
         Stage::Crossings => "crossings",
+        Stage::Tips => "tips",
         _ => "other stage",
     }
 }

@@ -338,6 +338,33 @@ impl<'t> Graph<'t> {
         self.step(Step::RestoreCrossings).0
     }
 
+    /// Where an edge pairs two samples of degree two and loose ends lie beside it, joins each to
+    /// a loose end in place of the edge (the stage [`Stage::Tips`](crate::Stage::Tips), not in the
+    /// paper; its rule: `src/stages/tips.rs`).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // Two lines 0.8 apart, unit-spaced: 0..=7 at (-k, 0), 8..=15 at (1 + k, 0), 16..=23 at
+    /// // (0.8 + k, 0.8), 24..=31 at (-0.2 - k, 0.8). The graph follows each piece and pairs 0 with
+    /// // 16 across the lines (a chord), leaving 8 and 24 as loose ends beside its two ends.
+    /// let piece = |x0: f64, dx: f64, y: f64| (0..8).map(move |k| Point::new(x0 + dx * k as f64, y));
+    /// let pts: Vec<Point> = [(0.0, -1.0, 0.0), (1.0, 1.0, 0.0), (0.8, 1.0, 0.8), (-0.2, -1.0, 0.8)]
+    ///     .iter()
+    ///     .flat_map(|&(x0, dx, y)| piece(x0, dx, y))
+    ///     .collect();
+    /// let tri = triangulate(&pts)?;
+    /// let mut edges: Vec<[usize; 2]> = (0..4)
+    ///     .flat_map(|p| (0..7).map(move |k| [8 * p + k, 8 * p + k + 1]))
+    ///     .collect();
+    /// edges.push([0, 16]);
+    /// let tips = tri.graph_from_edges(edges).repair_tips().edges();
+    /// assert!(tips.contains(&[0, 8]) && tips.contains(&[16, 24]) && !tips.contains(&[0, 16]));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn repair_tips(&self) -> Graph<'t> {
+        self.step(Step::RepairTips).0
+    }
+
     /// The curves through the graph in input positions, ordered as [`crate::curves_from_edges`]'s.
     pub fn curves(&self) -> Vec<Curve> {
         let tri = self.tri;

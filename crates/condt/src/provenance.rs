@@ -64,6 +64,8 @@ pub enum Reason {
         /// The crossing (input position).
         vertex: usize,
     },
+    /// A chord at a tip gave way to two edges to loose ends beside it (or was that chord).
+    Tip,
     /// A baseline (NN-Crust, Crust) chose it (`added`) or not (every other edge of a baseline's
     /// run has this change, `added` false); the ends say how Algorithm 1 would have seen it
     /// (with the run's `u`, or the default 2.75 where that is not one Algorithm 1 accepts: a
@@ -242,6 +244,7 @@ impl<'a> Explainer<'a> {
             Stage::RepairAgain => Reason::RepairedAgain,
             Stage::Gaps => Reason::GapClosed,
             Stage::Junctions => Reason::Junction,
+            Stage::Tips => Reason::Tip,
             Stage::Crossings => {
                 // The crossing is the point that gained arms: an added edge's end, or the removed
                 // chord's common neighbour after the stage.

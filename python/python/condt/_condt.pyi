@@ -116,6 +116,7 @@ def reconstruct(
     close_gaps: bool = ...,
     junctions: bool = ...,
     crossings: bool = ...,
+    tips: bool = ...,
     smooth: bool = ...,
     repair: Literal["needs", "paper", "mutual", "crossing", "off"] = ...,
     manifold_fix: bool = ...,

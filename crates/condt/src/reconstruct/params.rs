@@ -76,6 +76,9 @@ pub struct Params {
     /// Restore a crossing that Algorithm 1 read as two bends (beyond the paper;
     /// `src/stages/crossings.rs`).
     pub crossings: bool,
+    /// Where an edge pairs the samples on either side of a sharp tip, join each to a loose end
+    /// beside it instead (beyond the paper; `src/stages/tips.rs`).
+    pub tips: bool,
     /// Smoothing passes (beyond the paper): when one point in a hundred or more ends or branches
     /// the curves, each point with two edges at a wide angle moves halfway to its neighbours'
     /// midpoint and the stages run again, up to three times: noise can push a sample into the empty
@@ -97,7 +100,7 @@ impl Default for Params {
     /// let p = Params::default();
     /// assert!(p.repair == condt::Repair::Needs && p.smooth);
     /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
-    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions, Crossings]].concat());
+    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions, Crossings, Tips]].concat());
     /// ```
     fn default() -> Self {
         Params::paper()
@@ -110,6 +113,7 @@ impl Default for Params {
             .with_close_gaps(true)
             .with_junctions(true)
             .with_crossings(true)
+            .with_tips(true)
             .with_smooth(true)
     }
 }
@@ -139,6 +143,7 @@ impl Params {
             clumps: false,
             junctions: false,
             crossings: false,
+            tips: false,
             smooth: false,
             parallel: cfg!(feature = "parallel"),
         }
@@ -204,7 +209,8 @@ impl Params {
         // The local outlier removal follows both: it reads three or more edges as a branch, which
         // only a repaired graph makes true; the given-back check reads what it added. Clumps are
         // whole components, removed before a join can reach one. The gaps join the loose ends left;
-        // a junction takes only an end that no gap join or crossing claimed.
+        // a junction takes only an end that no gap join or crossing claimed. Tips re-pair only
+        // the loose ends that every join before left.
         let steps = [
             first,
             second,
@@ -215,6 +221,7 @@ impl Params {
             self.close_gaps.then_some(Step::CloseGaps),
             self.junctions.then_some(Step::JoinJunctions),
             self.crossings.then_some(Step::RestoreCrossings),
+            self.tips.then_some(Step::RepairTips),
         ];
         // A baseline is the whole method: no ConDT stage follows it.
         let condt = self.method == Method::ConDT;
@@ -245,6 +252,7 @@ impl Params {
             Stage::Gaps => &mut self.close_gaps,
             Stage::Junctions => &mut self.junctions,
             Stage::Crossings => &mut self.crossings,
+            Stage::Tips => &mut self.tips,
             _ => return false,
         };
         *field = on;
@@ -285,6 +293,7 @@ impl Params {
         with_clumps(clumps: bool),
         with_junctions(junctions: bool),
         with_crossings(crossings: bool),
+        with_tips(tips: bool),
         with_smooth(smooth: bool),
         with_parallel(parallel: bool),
     }

@@ -1,7 +1,7 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each: [`proximity`]
 //! (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3) and, not in the paper,
-//! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`] and
-//! [`crossings`].
+//! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`],
+//! [`crossings`] and [`tips`].
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which the
 //! pipeline ([`reconstruct`](crate::reconstruct)) and the public [`Graph`](crate::Graph) methods
@@ -18,6 +18,7 @@ pub(crate) mod outliers;
 pub(crate) mod proximity;
 pub(crate) mod repair;
 pub(crate) mod repair_again;
+pub(crate) mod tips;
 
 pub use proximity::Uniformity;
 pub use repair::Repair;
@@ -59,6 +60,8 @@ pub enum Stage {
     Junctions,
     /// Restoring crossings read as two bends ([`Params::crossings`](crate::Params::crossings)).
     Crossings,
+    /// Re-pairing loose ends across a chord at a tip ([`Params::tips`](crate::Params::tips)).
+    Tips,
     /// The NN-Crust baseline, the whole method ([`Method::NnCrust`](crate::Method::NnCrust)).
     NnCrust,
     /// The Crust baseline, the whole method ([`Method::Crust`](crate::Method::Crust)).
@@ -86,7 +89,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 12] = [
+const ROWS: [Row; 13] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -204,6 +207,20 @@ that paired its neighbours",
         }),
     },
     Row {
+        stage: Stage::Tips,
+        name: "tips",
+        title: "after re-pairing loose ends at tips",
+        key: "tips",
+        switch: Some(Switch {
+            flag: "tips",
+            help: "(default on; off with --paper) last, where an edge pairs the
+samples on either side of a sharp tip and leaves loose ends
+beside it, join each of the two to a loose end in place of
+that edge, when both passages become smooth and no curve is
+split or closed short",
+        }),
+    },
+    Row {
         stage: Stage::NnCrust,
         name: "NN-Crust",
         title: "NN-Crust (baseline)",
@@ -226,8 +243,8 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 12] = {
-        let mut all = [Stage::Proximity; 12];
+    pub const ALL: [Stage; 13] = {
+        let mut all = [Stage::Proximity; 13];
         let mut k = 0;
         while k < all.len() {
             all[k] = ROWS[k].stage;
@@ -300,6 +317,7 @@ pub(crate) enum Step {
     CloseGaps,
     JoinJunctions,
     RestoreCrossings,
+    RepairTips,
 }
 
 /// The graphs of earlier stages a step may read ([`Step::run`]), handed over so it can free them.
@@ -325,6 +343,7 @@ impl Step {
             Step::CloseGaps => Stage::Gaps,
             Step::JoinJunctions => Stage::Junctions,
             Step::RestoreCrossings => Stage::Crossings,
+            Step::RepairTips => Stage::Tips,
         }
     }
 
@@ -347,8 +366,8 @@ impl Step {
     /// [`Step::check`]; only [`Step::RepairAgain`], [`Step::LocalOutliers`] and
     /// [`Step::ConfirmGivenBack`] read `earlier`. `graph`, if given, is the curve graph of `edges`
     /// the previous stage handed on ([`Outcome::graph`]): the stages after the local outlier
-    /// removal read it, the others drop it first (memory). `parallel`: gap closing, junctions and
-    /// crossings search on several threads from [`PARALLEL_FROM`] points on (the same outcome).
+    /// removal read it, the others drop it first (memory). `parallel`: gap closing, junctions,
+    /// crossings and tips search on several threads from [`PARALLEL_FROM`] points on (the same outcome).
     pub(crate) fn run(
         self,
         tri: &Triangulation,
@@ -388,6 +407,7 @@ impl Step {
             Step::CloseGaps => gaps::close_gaps(tri, edges, graph, parallel),
             Step::JoinJunctions => junctions::join_junctions(tri, edges, graph, parallel),
             Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph, parallel),
+            Step::RepairTips => tips::repair_tips(tri, edges, graph, parallel),
         }
     }
 }

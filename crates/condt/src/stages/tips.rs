@@ -1,0 +1,282 @@
+//! Tips: two loose ends re-paired across a chord (not in the paper; on by default, off in
+//! `Params::paper`).
+//!
+//! Owns: replacing one edge between two points of degree two by two edges to loose ends. It reads
+//! positions, the graph and the Delaunay rings; it may not touch the triangulation, and does not
+//! decide when it runs ([`Params::stages`](crate::Params::stages): last).
+//!
+//! Why: at a sharp tip sampled coarsely, the samples on either side of the tip can be nearer each
+//! other than to the tip, so Algorithm 1 pairs them (the chord `x y`) and the tip's sample, or the
+//! last sample of the far side, is left a loose end; the repair keeps the chord, which every point
+//! near it chose. No later stage sees it: gap closing joins loose ends to each other, not across
+//! an edge.
+//!
+//! Rule (reasons and measurements: docs/condt.md, *Tips*): for an edge `x y` between two points of
+//! degree two, a loose end `q` that is a Delaunay neighbour of `x` and a loose end `p` that is one
+//! of `y`, the chord gives way to `q x` and `p y` when
+//! - the passages at `x` (from its other neighbour to `q`) and at `y` (to `p`) become smooth
+//!   (wider than Algorithm 2's 120°, [`SMOOTH_COS`]) and straighter than along the chord;
+//! - each new edge is within [`GAP_RATIO`] times the edge it continues (Algorithm 1's `u`);
+//! - the new passage at `q` or at `p` is smooth too (a tip has one sharp side at most);
+//! - `q` and `p` each end a branch of [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points
+//!   of degree two (`Ends::branch`: the short pieces of a scatter do not move);
+//! - the move splits no curve in two (a chain through `x y` whose own end is `q` would close into
+//!   two loops). When `q` and `p` end the same chain the move closes it into one curve, of at
+//!   least seven points by the branches (`2π/ε` for `ε <= 1`, rule 4's least closed curve).
+//!
+//! All choices are made on the graph as it came in; a point in two moves, or a loose end with two
+//! candidates, takes part in none: the result depends neither on the order nor on `parallel`.
+
+use super::gaps::{cos_at, Ends, GAP_RATIO};
+use super::local_outliers::SMOOTH_COS;
+use super::Outcome;
+use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::mesh::VertexId;
+use crate::triangulate::Triangulation;
+use alloc::vec;
+use alloc::vec::Vec;
+
+/// A move: the chord `x y` replaced by `q x` and `p y` (`q < p`, so each move has one form).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Move {
+    q: VertexId,
+    x: VertexId,
+    y: VertexId,
+    p: VertexId,
+}
+
+impl Move {
+    fn new(q: VertexId, x: VertexId, y: VertexId, p: VertexId) -> Move {
+        if q < p {
+            Move { q, x, y, p }
+        } else {
+            Move {
+                q: p,
+                x: y,
+                y: x,
+                p: q,
+            }
+        }
+    }
+
+    fn points(self) -> [VertexId; 4] {
+        [self.q, self.x, self.y, self.p]
+    }
+}
+
+/// What a loose end found: its one move, or that it has more than one (it then takes part in none).
+#[derive(Copy, Clone, Debug, PartialEq)]
+enum Found {
+    One(Move),
+    Several(VertexId),
+}
+
+impl Ends<'_> {
+    /// The cosine of the angle at `at` between `u` and `w`.
+    fn cos_of(&self, at: VertexId, u: VertexId, w: VertexId) -> f64 {
+        cos_at(self.point(at), self.point(u), self.point(w))
+    }
+
+    /// Whether the passage at `x` (degree two) from its neighbour other than `y` to the loose end
+    /// `q` is smooth, straighter than the one through `y`, and its new edge short enough.
+    fn continues(&self, x: VertexId, y: VertexId, q: VertexId) -> bool {
+        let other = self.graph.onward(x, y);
+        let to_q = self.cos_of(x, other, q);
+        let (px, po) = (self.point(x), self.point(other));
+        to_q < SMOOTH_COS
+            && to_q < self.cos_of(x, other, y)
+            && px.dist2(self.point(q)) <= GAP_RATIO * GAP_RATIO * px.dist2(po)
+    }
+
+    /// Whether the chain from the loose end `q` reaches `x` before `y`: the move would cut it at
+    /// `x y` and close both halves (walks only for candidates that passed every other test).
+    fn splits(&self, q: VertexId, x: VertexId, y: VertexId) -> bool {
+        let mut step = [q, self.along(q)];
+        loop {
+            if step[1] == x || step[1] == y {
+                return step[1] == x;
+            }
+            if self.graph.degree(step[1]) != 2 {
+                return false;
+            }
+            step = [step[1], self.graph.onward(step[1], step[0])];
+        }
+    }
+
+    /// The move the loose end `q` takes part in, if any (the module's rule).
+    fn tip_at(&self, q: VertexId) -> Option<Found> {
+        // Every move needs the end's own branch: without it (most ends on scattered points) the
+        // ring is skipped (speed).
+        let along_q = self.along(q);
+        if !self.branch(q, along_q, &[]) {
+            return None;
+        }
+        let mesh = self.tri.mesh();
+        let mut found = None;
+        for x in mesh.neighbors(q) {
+            if x == along_q || self.graph.degree(x) != 2 {
+                continue;
+            }
+            for y in self.graph.first_two(x) {
+                if self.graph.degree(y) != 2 || !self.continues(x, y, q) {
+                    continue;
+                }
+                for p in mesh.neighbors(y) {
+                    if p == q || !self.is_loose(p) || self.along(p) == y {
+                        continue;
+                    }
+                    let along_p = self.along(p);
+                    let passes = self.continues(y, x, p)
+                        && (self.cos_of(q, along_q, x) < SMOOTH_COS
+                            || self.cos_of(p, along_p, y) < SMOOTH_COS)
+                        && self.branch(p, along_p, &[])
+                        && !self.splits(q, x, y)
+                        && !self.splits(p, y, x);
+                    if !passes {
+                        continue;
+                    }
+                    if found.is_some() {
+                        return Some(Found::Several(q));
+                    }
+                    found = Some(Found::One(Move::new(q, x, y, p)));
+                }
+            }
+        }
+        found
+    }
+}
+
+/// Re-pairs loose ends at tips in `edges` (each edge once, any order): the input edges in order
+/// without the chords, then each move's two edges by increasing move.
+pub(crate) fn repair_tips(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+    parallel: bool,
+) -> Outcome {
+    let ends = Ends::new(tri, edges, graph);
+    let found = ends.each_loose(parallel, |q| ends.tip_at(q));
+    if found.is_empty() {
+        return Outcome::unchanged_with(ends.into_graph());
+    }
+    let n = tri.num_points();
+    // Each move is found from both its loose ends; a point in two moves, or a loose end with two
+    // candidates, takes part in none.
+    let mut blocked = vec![false; n];
+    let mut moves: Vec<Move> = Vec::with_capacity(found.len());
+    for f in found {
+        match f {
+            Found::One(m) => moves.push(m),
+            Found::Several(q) => blocked[q.index()] = true,
+        }
+    }
+    moves.sort_unstable();
+    moves.dedup();
+    let mut uses = vec![0u8; n];
+    for m in &moves {
+        for v in m.points() {
+            uses[v.index()] = uses[v.index()].saturating_add(1);
+        }
+    }
+    moves.retain(|m| {
+        m.points()
+            .iter()
+            .all(|v| uses[v.index()] == 1 && !blocked[v.index()])
+    });
+    drop((uses, blocked));
+    if moves.is_empty() {
+        return Outcome::unchanged_with(ends.into_graph());
+    }
+    let graph = ends.into_graph();
+    let mut chords: Vec<Edge> = moves.iter().map(|m| ordered(m.x, m.y)).collect();
+    chords.sort_unstable();
+    let mut out: Vec<Edge> = Vec::with_capacity(edges.len() + moves.len());
+    out.extend(edges.iter().filter(|e| chords.binary_search(e).is_err()));
+    for m in &moves {
+        out.push(ordered(m.q, m.x));
+        out.push(ordered(m.p, m.y));
+    }
+    Outcome::changed(edges, out, graph)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{triangulate, Point};
+
+    /// Two unit-spaced lines 0.8 apart, pieces of `len` points: 0.. at (-k, 0), then (1 + k, 0),
+    /// (0.8 + k, 0.8) and (-0.2 - k, 0.8); each piece a chain, and the chord between the first
+    /// points of pieces 0 and 2. With `loops`, arcs below and above join pieces 0 and 1, and 2
+    /// and 3, far ends to far ends: the same neighbourhood, but two long chains.
+    fn two_lines(len: usize, loops: bool) -> (Vec<Point>, Vec<[usize; 2]>) {
+        let starts = [
+            (0.0, -1.0, 0.0),
+            (1.0, 1.0, 0.0),
+            (0.8, 1.0, 0.8),
+            (-0.2, -1.0, 0.8),
+        ];
+        let mut pts = Vec::new();
+        let mut edges = Vec::new();
+        for &(x0, dx, y) in &starts {
+            let first = pts.len();
+            pts.extend((0..len).map(|k| Point::new(x0 + dx * k as f64, y)));
+            edges.extend((first..first + len - 1).map(|i| [i, i + 1]));
+        }
+        edges.push([0, 2 * len]);
+        if loops {
+            for (a, b, below) in [
+                (len - 1, 2 * len - 1, true),
+                (3 * len - 1, 4 * len - 1, false),
+            ] {
+                let (pa, pb) = (pts[a], pts[b]);
+                let (cx, cy) = ((pa.x + pb.x) / 2.0, pa.y);
+                let r = (pa.x - pb.x).abs() / 2.0;
+                let steps = (core::f64::consts::PI * r).ceil() as usize;
+                let mut last = b;
+                for k in 1..steps {
+                    let t = core::f64::consts::PI * k as f64 / steps as f64;
+                    let sign = if below { -1.0 } else { 1.0 };
+                    pts.push(Point::new(
+                        cx - r * libm::cos(t),
+                        cy + sign * r * libm::sin(t),
+                    ));
+                    edges.push([last, pts.len() - 1]);
+                    last = pts.len() - 1;
+                }
+                edges.push([last, a]);
+            }
+        }
+        (pts, edges)
+    }
+
+    fn tips(pts: &[Point], edges: Vec<[usize; 2]>) -> Vec<[usize; 2]> {
+        let tri = triangulate(pts).unwrap();
+        tri.graph_from_edges(edges).repair_tips().edges()
+    }
+
+    #[test]
+    fn a_chord_between_two_pieces_gives_way_to_their_loose_ends() {
+        let (pts, edges) = two_lines(8, false);
+        let out = tips(&pts, edges.clone());
+        assert!(out.contains(&[0, 8]) && out.contains(&[16, 24]) && !out.contains(&[0, 16]));
+        assert_eq!(out.len(), edges.len() + 1);
+    }
+
+    #[test]
+    fn pieces_shorter_than_a_branch_stay() {
+        // The loose ends' pieces have 5 points: 4 of degree two behind the end, one short.
+        let (pts, edges) = two_lines(5, false);
+        let mut sorted = edges.clone();
+        sorted.sort_unstable();
+        assert_eq!(tips(&pts, edges), sorted);
+    }
+
+    #[test]
+    fn a_chord_inside_one_chain_that_would_close_two_loops_stays() {
+        let (pts, edges) = two_lines(8, true);
+        let mut sorted: Vec<[usize; 2]> =
+            edges.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+        sorted.sort_unstable();
+        assert_eq!(tips(&pts, edges), sorted);
+    }
+}
