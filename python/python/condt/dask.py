@@ -19,9 +19,9 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
 
 Tiled today: the proximity graph with a fixed ``u``, the repair and Algorithm 3, which is the
 paper's pipeline (``paper=True``, with any of its ``u``, ``iqr``, ``repair`` and ``iqr_floor``).
-Any other step (the default's local outlier removal, gap closing, junctions, smoothing passes,
-adaptive ``u``) raises ``NotImplementedError`` naming it: ``docs/distributed.md`` says what each
-needs. The points themselves stay on the machine that calls this (the driver), which computes
+Any other step (the default's local outlier removal, gap closing, junctions, tips, smoothing
+passes, adaptive ``u``) raises ``NotImplementedError`` naming it: ``docs/distributed.md`` says
+what each needs. The points themselves stay on the machine that calls this (the driver), which computes
 their insertion order and hull once; the workers triangulate and run the stages.
 
 >>> import numpy as np, condt, condt.dask

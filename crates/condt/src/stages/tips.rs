@@ -262,6 +262,36 @@ mod tests {
         assert_eq!(out.len(), edges.len() + 1);
     }
 
+    /// Over [`PARALLEL_FROM`](super::super::PARALLEL_FROM) points, the search on rayon's threads
+    /// finds what one thread finds: every copy of the two lines makes its move.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn the_parallel_search_makes_the_same_moves() {
+        let (motif, motif_edges) = two_lines(8, false);
+        let copies = 2_100;
+        let mut pts = Vec::new();
+        let mut edges = Vec::new();
+        for k in 0..copies {
+            let (dx, dy) = (40.0 * (k % 50) as f64, 40.0 * (k / 50) as f64);
+            let first = pts.len();
+            pts.extend(motif.iter().map(|p| Point::new(p.x + dx, p.y + dy)));
+            edges.extend(motif_edges.iter().map(|&[a, b]| [first + a, first + b]));
+        }
+        assert!(pts.len() >= super::super::PARALLEL_FROM);
+        let tri = triangulate(&pts).unwrap();
+        let ids: Vec<Edge> = edges
+            .iter()
+            .map(|&[a, b]| ordered(tri.input_to_vertex()[a], tri.input_to_vertex()[b]))
+            .collect();
+        let [one, many] = [false, true].map(|parallel| {
+            let mut out = repair_tips(&tri, &ids, None, parallel).edges.unwrap();
+            out.sort_unstable();
+            out
+        });
+        assert_eq!(one, many);
+        assert_eq!(one.len(), ids.len() + copies);
+    }
+
     #[test]
     fn pieces_shorter_than_a_branch_stay() {
         // The loose ends' pieces have 5 points: 4 of degree two behind the end, one short.
