@@ -30,7 +30,7 @@ use std::sync::OnceLock;
 /// >>> r.unused.tolist()
 /// []
 /// >>> list(r.stages)
-/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions', 'crossings']
+/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions', 'crossings', 'tips']
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Reconstruction {
     result: condt::Reconstruction,
