@@ -156,16 +156,12 @@ pub(crate) fn restore_crossings(
     if restored.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
-    let graph = ends.into_graph();
-    let mut chords: Vec<Edge> = restored.iter().map(|k| ordered(k.c, k.d)).collect();
-    chords.sort_unstable();
-    let mut out: Vec<Edge> = Vec::with_capacity(edges.len() + restored.len());
-    out.extend(edges.iter().filter(|e| chords.binary_search(e).is_err()));
-    for k in &restored {
-        out.push(ordered(k.x, k.c));
-        out.push(ordered(k.x, k.d));
-    }
-    Outcome::changed(edges, out, graph)
+    let chords = restored.iter().map(|k| ordered(k.c, k.d)).collect();
+    let arms = restored
+        .iter()
+        .flat_map(|k| [ordered(k.x, k.c), ordered(k.x, k.d)])
+        .collect();
+    Outcome::replacing(edges, ends.into_graph(), chords, arms)
 }
 
 #[cfg(test)]

@@ -443,6 +443,23 @@ impl Outcome {
             graph,
         }
     }
+
+    /// The outcome of a stage that replaces edges of `input`: the input in order without
+    /// `removed`, then `added` in order, with `graph` (the input's, if the stage had it) made the
+    /// output's. The crossings and the tips step replace chords this way.
+    pub(crate) fn replacing(
+        input: &[Edge],
+        graph: Option<CurveGraph>,
+        mut removed: Vec<Edge>,
+        added: Vec<Edge>,
+    ) -> Outcome {
+        removed.sort_unstable();
+        let mut out: Vec<Edge> =
+            Vec::with_capacity(input.len().saturating_sub(removed.len()) + added.len());
+        out.extend(input.iter().filter(|e| removed.binary_search(e).is_err()));
+        out.extend(added);
+        Outcome::changed(input, out, graph)
+    }
 }
 
 impl From<Option<Vec<Edge>>> for Outcome {

@@ -187,16 +187,12 @@ pub(crate) fn repair_tips(
     if moves.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
-    let graph = ends.into_graph();
-    let mut chords: Vec<Edge> = moves.iter().map(|m| ordered(m.x, m.y)).collect();
-    chords.sort_unstable();
-    let mut out: Vec<Edge> = Vec::with_capacity(edges.len() + moves.len());
-    out.extend(edges.iter().filter(|e| chords.binary_search(e).is_err()));
-    for m in &moves {
-        out.push(ordered(m.q, m.x));
-        out.push(ordered(m.p, m.y));
-    }
-    Outcome::changed(edges, out, graph)
+    let chords = moves.iter().map(|m| ordered(m.x, m.y)).collect();
+    let joins = moves
+        .iter()
+        .flat_map(|m| [ordered(m.q, m.x), ordered(m.p, m.y)])
+        .collect();
+    Outcome::replacing(edges, ends.into_graph(), chords, joins)
 }
 
 #[cfg(test)]
