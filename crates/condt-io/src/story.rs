@@ -113,10 +113,8 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::GapClosed => write!(f, "gap closed")?,
             Reason::Junction => write!(f, "joined at a junction of three curves")?,
             Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,
-            Reason::Tip if change.added => {
-                write!(f, "a loose end joined in place of a chord at a tip")?
-            }
-            Reason::Tip => write!(f, "a chord at a tip, between loose ends' neighbours")?,
+            Reason::Tip if change.added => write!(f, "joined at a tip in place of a chord")?,
+            Reason::Tip => write!(f, "a chord across a tip")?,
             Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
             // Only first (told above): a baseline is the whole method.
             Reason::Baseline => write!(f, "chosen by the baseline")?,

@@ -339,7 +339,8 @@ impl<'t> Graph<'t> {
     }
 
     /// Where an edge pairs two samples of degree two and loose ends lie beside it, joins each to
-    /// a loose end in place of the edge (the stage [`Stage::Tips`](crate::Stage::Tips), not in the
+    /// a loose end in place of the edge; where a point without edges beside it continues both
+    /// sides evenly, joins both to it (the stage [`Stage::Tips`](crate::Stage::Tips), not in the
     /// paper; its rule: `src/stages/tips.rs`).
     ///
     /// ```

@@ -64,7 +64,8 @@ pub enum Reason {
         /// The crossing (input position).
         vertex: usize,
     },
-    /// A chord at a tip gave way to two edges to loose ends beside it (or was that chord).
+    /// A chord at a tip gave way to two edges to loose ends beside it or to the tip's sample (or
+    /// was that chord).
     Tip,
     /// A baseline (NN-Crust, Crust) chose it (`added`) or not (every other edge of a baseline's
     /// run has this change, `added` false); the ends say how Algorithm 1 would have seen it

@@ -233,7 +233,7 @@
       () => "repaired again without the edges above √T",
       () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,
       () => `restored the crossing at vertex ${c.x}`,
-      () => (c.added ? "a loose end joined in place of a chord at a tip" : "a chord at a tip, between loose ends' neighbours"),
+      () => (c.added ? "joined at a tip in place of a chord" : "a chord across a tip"),
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

@@ -77,7 +77,8 @@ pub struct Params {
     /// `src/stages/crossings.rs`).
     pub crossings: bool,
     /// Where an edge pairs the samples on either side of a sharp tip, join each to a loose end
-    /// beside it instead (beyond the paper; `src/stages/tips.rs`).
+    /// beside it, or both to the tip's sample if it has no edge, instead (beyond the paper;
+    /// `src/stages/tips.rs`).
     pub tips: bool,
     /// Smoothing passes (beyond the paper): when one point in a hundred or more ends or branches
     /// the curves, each point with two edges at a wide angle moves halfway to its neighbours'

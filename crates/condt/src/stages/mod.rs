@@ -214,10 +214,10 @@ that paired its neighbours",
         switch: Some(Switch {
             flag: "tips",
             help: "(default on; off with --paper) last, where an edge pairs the
-samples on either side of a sharp tip and leaves loose ends
-beside it, join each of the two to a loose end in place of
-that edge, when both passages become smooth and no curve is
-split or closed short",
+samples on either side of a sharp tip, join each of the two to a
+loose end beside it, or both to the tip's sample if it has no
+edge and continues both sides evenly, in place of that edge,
+when both passages become smooth and no curve is split",
         }),
     },
     Row {

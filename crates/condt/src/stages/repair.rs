@@ -40,6 +40,7 @@ use alloc::vec::Vec;
 use core::f64::consts::PI;
 
 mod needs;
+pub(crate) use needs::NEED_RATIO;
 
 /// How vertices of degree three or more in the proximity graph are treated: [`Repair::Needs`] by
 /// default, [`Repair::Paper`] in the paper's preset.

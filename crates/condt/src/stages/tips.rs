@@ -7,13 +7,15 @@
 //!
 //! Why: at a sharp tip sampled coarsely, the samples on either side of the tip can be nearer each
 //! other than to the tip, so Algorithm 1 pairs them (the chord `x y`) and the tip's sample, or the
-//! last sample of the far side, is left a loose end; the repair keeps the chord, which every point
-//! near it chose. No later stage sees it: gap closing joins loose ends to each other, not across
-//! an edge.
+//! last sample of the far side, is left a loose end, or the tip's sample is left without any edge;
+//! the repair keeps the chord, which every point near it chose. No later stage sees it: gap
+//! closing joins loose ends to each other, not across an edge.
 //!
-//! Rule (reasons and measurements: docs/condt.md, *Tips*): for an edge `x y` between two points of
-//! degree two, a loose end `q` that is a Delaunay neighbour of `x` and a loose end `p` that is one
-//! of `y`, the chord gives way to `q x` and `p y` when
+//! Rule (reasons and measurements: docs/condt.md, *Tips*), in two forms.
+//!
+//! **Loose ends.** For an edge `x y` between two points of degree two, a loose end `q` that is a
+//! Delaunay neighbour of `x` and a loose end `p` that is one of `y`, the chord gives way to `q x`
+//! and `p y` when
 //! - the passages at `x` (from its other neighbour to `q`) and at `y` (to `p`) become smooth
 //!   (wider than Algorithm 2's 120°, [`SMOOTH_COS`]) and straighter than along the chord;
 //! - each new edge is within [`GAP_RATIO`] times the edge it continues (Algorithm 1's `u`);
@@ -24,19 +26,30 @@
 //!   two loops). When `q` and `p` end the same chain the move closes it into one curve, of at
 //!   least seven points by the branches (`2π/ε` for `ε <= 1`, rule 4's least closed curve).
 //!
+//! **The apex.** For an edge `a b` between two points of degree two and a point `u` without edges
+//! that is a Delaunay neighbour of both, the chord gives way to `u a` and `u b` when at each end
+//! the passage along the chord turns sharply (120° or less) and through `u` is smooth, `u` is
+//! within [`NEED_RATIO`] of the end's other edge (the repair's bound for an evenly spaced
+//! neighbour: a point with no edge has no spacing of its own to show it is a sample, so it must
+//! continue both sides evenly; at 2.75 chords were pulled out to outliers and stray points in real
+//! drawings), and both ends have branches of five points behind them.
+//!
 //! All choices are made on the graph as it came in; a point in two moves, or a loose end with two
 //! candidates, takes part in none: the result depends neither on the order nor on `parallel`.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO};
 use super::local_outliers::SMOOTH_COS;
+use super::repair::NEED_RATIO;
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
+use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// A move: the chord `x y` replaced by `q x` and `p y` (`q < p`, so each move has one form).
+/// A move: the chord `x y` replaced by `q x` and `p y` (`q < p`, so each move has one form; an
+/// apex move has `q == p`, the apex, and `x < y`).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct Move {
     q: VertexId,
@@ -59,12 +72,17 @@ impl Move {
         }
     }
 
-    fn points(self) -> [VertexId; 4] {
-        [self.q, self.x, self.y, self.p]
+    /// The points the move joins, each once.
+    fn points(self) -> impl Iterator<Item = VertexId> {
+        let apex = self.q == self.p;
+        [self.q, self.x, self.y]
+            .into_iter()
+            .chain((!apex).then_some(self.p))
     }
 }
 
-/// What a loose end found: its one move, or that it has more than one (it then takes part in none).
+/// What a loose end or an apex found: its one move, or that it has more than one (it then takes
+/// part in none).
 #[derive(Copy, Clone, Debug, PartialEq)]
 enum Found {
     One(Move),
@@ -146,6 +164,52 @@ impl Ends<'_> {
     }
 }
 
+impl Ends<'_> {
+    /// The apex move the point without edges `u` takes part in, if any (the module's rule).
+    fn apex_at(&self, u: VertexId) -> Option<Found> {
+        let mesh = self.tri.mesh();
+        let mut found = None;
+        for a in mesh.neighbors(u) {
+            if self.graph.degree(a) != 2 {
+                continue;
+            }
+            for b in self.graph.first_two(a) {
+                // Each chord once, from its smaller end.
+                if b < a || self.graph.degree(b) != 2 || !mesh.neighbors(u).any(|w| w == b) {
+                    continue;
+                }
+                let passes = self.bends_into(a, b, u)
+                    && self.bends_into(b, a, u)
+                    && self.branch(b, a, &[])
+                    && self.branch(a, b, &[]);
+                if !passes {
+                    continue;
+                }
+                if found.is_some() {
+                    return Some(Found::Several(u));
+                }
+                found = Some(Found::One(Move {
+                    q: u,
+                    x: a,
+                    y: b,
+                    p: u,
+                }));
+            }
+        }
+        found
+    }
+
+    /// Whether the passage at `a` (degree two) along the chord to `b` turns sharply and through `u`
+    /// instead is smooth, with `a u` within [`NEED_RATIO`] of `a`'s other edge.
+    fn bends_into(&self, a: VertexId, b: VertexId, u: VertexId) -> bool {
+        let other = self.graph.onward(a, b);
+        let (pa, po) = (self.point(a), self.point(other));
+        self.cos_of(a, other, b) >= SMOOTH_COS
+            && self.cos_of(a, other, u) < SMOOTH_COS
+            && pa.dist2(self.point(u)) <= NEED_RATIO * NEED_RATIO * pa.dist2(po)
+    }
+}
+
 /// Re-pairs loose ends at tips in `edges` (each edge once, any order): the input edges in order
 /// without the chords, then each move's two edges by increasing move.
 pub(crate) fn repair_tips(
@@ -155,13 +219,19 @@ pub(crate) fn repair_tips(
     parallel: bool,
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
-    let found = ends.each_loose(parallel, |q| ends.tip_at(q));
+    let mut found = ends.each_loose(parallel, |q| ends.tip_at(q));
+    found.extend(found_in_order(tri.num_points(), parallel, |i| {
+        let u = VertexId::new(i as u32);
+        (ends.graph.degree(u) == 0)
+            .then(|| ends.apex_at(u))
+            .flatten()
+    }));
     if found.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
     let n = tri.num_points();
-    // Each move is found from both its loose ends; a point in two moves, or a loose end with two
-    // candidates, takes part in none.
+    // Each loose-end move is found from both its loose ends, an apex move from its apex; a point
+    // in two moves, or a loose end or apex with two candidates, takes part in none.
     let mut blocked = vec![false; n];
     let mut moves: Vec<Move> = Vec::with_capacity(found.len());
     for f in found {
@@ -180,7 +250,6 @@ pub(crate) fn repair_tips(
     }
     moves.retain(|m| {
         m.points()
-            .iter()
             .all(|v| uses[v.index()] == 1 && !blocked[v.index()])
     });
     drop((uses, blocked));
@@ -286,6 +355,39 @@ mod tests {
         });
         assert_eq!(one, many);
         assert_eq!(one.len(), ids.len() + copies);
+    }
+
+    /// A 40° tip: sides of eight unit-spaced samples from `(1, 0)` and from `(cos 40°, sin 40°)`
+    /// outwards (points 1..=8 and 9..=16), the chord `1 9` between their first samples, and the
+    /// tip's sample, point 0, at `apex` without an edge.
+    fn tip_without_its_apex(apex: Point) -> (Vec<Point>, Vec<[usize; 2]>) {
+        let t = 40f64.to_radians();
+        let mut pts = vec![apex];
+        pts.extend((1..=8).map(|k| Point::new(k as f64, 0.0)));
+        pts.extend((1..=8).map(|k| Point::new(k as f64 * libm::cos(t), k as f64 * libm::sin(t))));
+        let mut edges: Vec<[usize; 2]> = (1..8).chain(9..16).map(|i| [i, i + 1]).collect();
+        edges.push([1, 9]);
+        (pts, edges)
+    }
+
+    #[test]
+    fn a_tips_sample_without_edges_takes_the_chords_place() {
+        let (pts, edges) = tip_without_its_apex(Point::new(0.0, 0.0));
+        let out = tips(&pts, edges.clone());
+        assert!(out.contains(&[0, 1]) && out.contains(&[0, 9]) && !out.contains(&[1, 9]));
+        assert_eq!(out.len(), edges.len() + 1);
+    }
+
+    #[test]
+    fn a_point_beyond_an_even_spacing_from_the_chord_stays_apart() {
+        // The same tip with its point 1.48 spacings from the chord's ends, beyond `NEED_RATIO`:
+        // both passages through it would be smooth, but a stray point there makes a spike.
+        let t = 20f64.to_radians();
+        let (pts, edges) =
+            tip_without_its_apex(Point::new(-0.5 * libm::cos(t), -0.5 * libm::sin(t)));
+        let mut sorted = edges.clone();
+        sorted.sort_unstable();
+        assert_eq!(tips(&pts, edges), sorted);
     }
 
     #[test]

@@ -12,7 +12,7 @@ use core::cmp::Ordering;
 /// Why the second: a curve's own edges at a sample are among its shortest (Algorithm 1 keeps two),
 /// but at a sharp tip the chord beside the apex comes first. The slack covers sides cut into
 /// unequal pieces; a needy neighbour farther away is another curve's end or an outlier.
-const NEED_RATIO: f64 = 1.3;
+pub(crate) const NEED_RATIO: f64 = 1.3;
 
 /// Pairs `(angle, a, b)` with `a < b`: [`choice`]'s scratch space, reused from vertex to vertex.
 pub(super) type Pairs = Vec<(f64, VertexId, VertexId)>;
