@@ -174,12 +174,13 @@ impl Ends<'_> {
                 continue;
             }
             for b in self.graph.first_two(a) {
-                // Each chord once, from its smaller end.
-                if b < a || self.graph.degree(b) != 2 || !mesh.neighbors(u).any(|w| w == b) {
+                // Each chord once, from its smaller end; the ring and the branches walk last.
+                if b < a || self.graph.degree(b) != 2 {
                     continue;
                 }
                 let passes = self.bends_into(a, b, u)
                     && self.bends_into(b, a, u)
+                    && mesh.neighbors(u).any(|w| w == b)
                     && self.branch(b, a, &[])
                     && self.branch(a, b, &[]);
                 if !passes {
