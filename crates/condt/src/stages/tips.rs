@@ -1,9 +1,10 @@
-//! Tips: two loose ends re-paired across a chord (not in the paper; on by default, off in
-//! `Params::paper`).
+//! Tips: a chord across a sharp tip given up for the tip's own edges (not in the paper; on by
+//! default, off in `Params::paper`).
 //!
-//! Owns: replacing one edge between two points of degree two by two edges to loose ends. It reads
-//! positions, the graph and the Delaunay rings; it may not touch the triangulation, and does not
-//! decide when it runs ([`Params::stages`](crate::Params::stages): last).
+//! Owns: replacing one edge between two points of degree two by two edges, to loose ends beside
+//! it or to the tip's sample. It reads positions, the graph and the Delaunay rings; it may not
+//! touch the triangulation, and does not decide when it runs
+//! ([`Params::stages`](crate::Params::stages): last).
 //!
 //! Why: at a sharp tip sampled coarsely, the samples on either side of the tip can be nearer each
 //! other than to the tip, so Algorithm 1 pairs them (the chord `x y`) and the tip's sample, or the
@@ -34,8 +35,10 @@
 //! continue both sides evenly; at 2.75 chords were pulled out to outliers and stray points in real
 //! drawings), and both ends have branches of five points behind them.
 //!
-//! All choices are made on the graph as it came in; a point in two moves, or a loose end with two
-//! candidates, takes part in none: the result depends neither on the order nor on `parallel`.
+//! All choices are made on the graph as it came in; a point in two moves, or a loose end or apex
+//! with two candidates, takes part in none: the result depends neither on the order nor on
+//! `parallel`. The walk behind the split test ends: from a loose end, a chain of points of degree
+//! two cannot come back to itself.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO};
 use super::local_outliers::SMOOTH_COS;
@@ -211,7 +214,7 @@ impl Ends<'_> {
     }
 }
 
-/// Re-pairs loose ends at tips in `edges` (each edge once, any order): the input edges in order
+/// Replaces chords at tips in `edges` (each edge once, any order): the input edges in order
 /// without the chords, then each move's two edges by increasing move.
 pub(crate) fn repair_tips(
     tri: &Triangulation,
