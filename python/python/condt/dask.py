@@ -21,8 +21,8 @@ Tiled today: the proximity graph with a fixed ``u``, the repair and Algorithm 3,
 paper's pipeline (``paper=True``, with any of its ``u``, ``iqr``, ``repair`` and ``iqr_floor``).
 Any other step (the default's local outlier removal, gap closing, junctions, tips, smoothing
 passes, adaptive ``u``) raises ``NotImplementedError`` naming it: ``docs/distributed.md`` says
-what each needs. The points themselves stay on the machine that calls this (the driver), which computes
-their insertion order and hull once; the workers triangulate and run the stages.
+what each needs. The points themselves stay on the machine that calls this (the driver), which
+computes their insertion order and hull once; the workers triangulate and run the stages.
 
 >>> import numpy as np, condt, condt.dask
 >>> from dask.distributed import Client, LocalCluster

@@ -21,12 +21,11 @@
 //! pass, takes part in none: the result depends neither on the order nor on `parallel`.
 
 use super::gaps::{cos_at, Ends, GAP_RATIO, STRAIGHT};
-use super::Outcome;
+use super::{alone, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
-use alloc::vec;
 use alloc::vec::Vec;
 
 /// Whether the vectors `u` and `w` from one point make a straight passage ([`STRAIGHT`]), without
@@ -144,15 +143,8 @@ pub(crate) fn restore_crossings(
         return Outcome::unchanged_with(ends.into_graph());
     }
     // A point in two crossings (a crossing's and a chord's end, say) takes part in none.
-    let mut uses = vec![0u8; n];
-    for crossing in &found {
-        for v in [crossing.x, crossing.c, crossing.d] {
-            uses[v.index()] = uses[v.index()].saturating_add(1);
-        }
-    }
-    let alone = |k: &&Crossing| [k.x, k.c, k.d].iter().all(|v| uses[v.index()] == 1);
-    let restored: Vec<Crossing> = found.iter().filter(alone).copied().collect();
-    drop(uses);
+    let mut restored = found;
+    alone(n, &mut restored, &[], |k| [k.x, k.c, k.d]);
     if restored.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }

@@ -25,8 +25,10 @@ pub use repair::Repair;
 
 use crate::adjacency::{CurveGraph, Edge};
 use crate::error::Error;
+use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
+use alloc::vec;
 use alloc::vec::Vec;
 
 /// A reconstruction stage, as [`Reconstruction::stages`](crate::Reconstruction::stages) reports it.
@@ -466,6 +468,29 @@ impl From<Option<Vec<Edge>>> for Outcome {
     fn from(edges: Option<Vec<Edge>>) -> Outcome {
         Outcome { edges, graph: None }
     }
+}
+
+/// Keeps the `choices` none of whose points another choice names, or `claimed` holds (points that
+/// had two candidates): where two choices meet, either would be a guess, so neither is made, and
+/// the outcome depends on no order. `points` lists a choice's points, each once.
+pub(crate) fn alone<C, P>(
+    n: usize,
+    choices: &mut Vec<C>,
+    claimed: &[VertexId],
+    points: impl Fn(&C) -> P,
+) where
+    P: IntoIterator<Item = VertexId>,
+{
+    let mut uses = vec![0u8; n];
+    for v in claimed {
+        uses[v.index()] = 1;
+    }
+    for choice in choices.iter() {
+        for v in points(choice) {
+            uses[v.index()] = uses[v.index()].saturating_add(1);
+        }
+    }
+    choices.retain(|choice| points(choice).into_iter().all(|v| uses[v.index()] == 1));
 }
 
 /// Fewest points for which stages use rayon: below it, waking the workers costs more than it saves.

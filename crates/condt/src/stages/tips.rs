@@ -43,12 +43,11 @@
 use super::gaps::{cos_at, Ends, GAP_RATIO};
 use super::local_outliers::SMOOTH_COS;
 use super::repair::NEED_RATIO;
-use super::Outcome;
+use super::{alone, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
-use alloc::vec;
 use alloc::vec::Vec;
 
 /// A move: the chord `x y` replaced by `q x` and `p y` (`q < p`, so each move has one form; an
@@ -223,40 +222,31 @@ pub(crate) fn repair_tips(
     parallel: bool,
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
-    let mut found = ends.each_loose(parallel, |q| ends.tip_at(q));
-    found.extend(found_in_order(tri.num_points(), parallel, |i| {
-        let u = VertexId::new(i as u32);
-        (ends.graph.degree(u) == 0)
-            .then(|| ends.apex_at(u))
-            .flatten()
-    }));
+    // One pass: a loose end may start a move with another, a point without edges an apex move.
+    let found = found_in_order(tri.num_points(), parallel, |i| {
+        let v = VertexId::new(i as u32);
+        match ends.graph.degree(v) {
+            0 => ends.apex_at(v),
+            1 => ends.tip_at(v),
+            _ => None,
+        }
+    });
     if found.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
-    let n = tri.num_points();
     // Each loose-end move is found from both its loose ends, an apex move from its apex; a point
     // in two moves, or a loose end or apex with two candidates, takes part in none.
-    let mut blocked = vec![false; n];
+    let mut claimed = Vec::new();
     let mut moves: Vec<Move> = Vec::with_capacity(found.len());
     for f in found {
         match f {
             Found::One(m) => moves.push(m),
-            Found::Several(q) => blocked[q.index()] = true,
+            Found::Several(v) => claimed.push(v),
         }
     }
     moves.sort_unstable();
     moves.dedup();
-    let mut uses = vec![0u8; n];
-    for m in &moves {
-        for v in m.points() {
-            uses[v.index()] = uses[v.index()].saturating_add(1);
-        }
-    }
-    moves.retain(|m| {
-        m.points()
-            .all(|v| uses[v.index()] == 1 && !blocked[v.index()])
-    });
-    drop((uses, blocked));
+    alone(tri.num_points(), &mut moves, &claimed, |m| m.points());
     if moves.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
@@ -321,6 +311,14 @@ mod tests {
     fn tips(pts: &[Point], edges: Vec<[usize; 2]>) -> Vec<[usize; 2]> {
         let tri = triangulate(pts).unwrap();
         tri.graph_from_edges(edges).repair_tips().edges()
+    }
+
+    /// Asserts that the step leaves `edges` as they are.
+    fn assert_unchanged(pts: &[Point], edges: Vec<[usize; 2]>) {
+        let mut sorted: Vec<[usize; 2]> =
+            edges.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+        sorted.sort_unstable();
+        assert_eq!(tips(pts, edges), sorted);
     }
 
     #[test]
@@ -389,26 +387,19 @@ mod tests {
         let t = 20f64.to_radians();
         let (pts, edges) =
             tip_without_its_apex(Point::new(-0.5 * libm::cos(t), -0.5 * libm::sin(t)));
-        let mut sorted = edges.clone();
-        sorted.sort_unstable();
-        assert_eq!(tips(&pts, edges), sorted);
+        assert_unchanged(&pts, edges);
     }
 
     #[test]
     fn pieces_shorter_than_a_branch_stay() {
         // The loose ends' pieces have 5 points: 4 of degree two behind the end, one short.
         let (pts, edges) = two_lines(5, false);
-        let mut sorted = edges.clone();
-        sorted.sort_unstable();
-        assert_eq!(tips(&pts, edges), sorted);
+        assert_unchanged(&pts, edges);
     }
 
     #[test]
     fn a_chord_inside_one_chain_that_would_close_two_loops_stays() {
         let (pts, edges) = two_lines(8, true);
-        let mut sorted: Vec<[usize; 2]> =
-            edges.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
-        sorted.sort_unstable();
-        assert_eq!(tips(&pts, edges), sorted);
+        assert_unchanged(&pts, edges);
     }
 }
