@@ -26,19 +26,20 @@
 //! an arm of each curve), or with a loose end facing `c` across `c`'s passage (the repair kept one
 //! curve whole).
 //!
-//! (4) Last, for the ends none of these joined: each walks straight on (above [`STRAIGHT`], each
-//! step within [`GAP_RATIO`] of the one before, up to [`MIN_SAMPLES`] points) through unused
-//! points; two walks that reach each other's ends or end at the same point join along them (a
-//! run of samples the earlier stages dropped; a sharp tip's apex with its nearest samples, which
-//! lay nearer the other side than their own).
+//! (4) Last, for the ends that agreed on none of these: each walks straight on (above
+//! [`STRAIGHT`], each step within [`GAP_RATIO`] of the one before, up to [`MIN_SAMPLES`] points)
+//! through unused points; two walks that reach each other's ends or end at the same point join
+//! along them (a run of samples the earlier stages dropped; a sharp tip's apex with its nearest
+//! samples, which lay nearer the other side than their own).
 //!
 //! Each end takes its nearest candidate (distances whose squares round alike compared exactly, as
 //! ids follow the orientation of the input; only an exact tie by id). Joins need evidence from
 //! both sides, which keeps a genuinely open end open: two ends must choose each other, or the same
 //! point with each other as partner; at a crossing both dropped arms must come back (one arm alone
-//! is a T); a lone edge (two nearby outliers) joins only if both its ends do. All choices are made
-//! at once on the graph as it came in: the result does not depend on the order of the ends, nor on
-//! `parallel`.
+//! is a T); a lone edge (two nearby outliers) joins only if both its ends do, along chains of
+//! them to a fixed point (an end whose agreed join is so undone does not walk either, (4)). All
+//! choices are made at once on the graph as it came in: the result does not depend on the order
+//! of the ends, nor on `parallel`.
 
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::Outcome;
@@ -480,22 +481,57 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
         Target::Through(c, Partner::End(d)) => target_of(d) == Target::Through(c, Partner::End(a)),
         Target::None => false,
     };
-    let joined: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
-    drop(lined_up);
-    let is_joined = |a: VertexId| slot(a).is_some_and(|k| joined[k]);
-    // A lone edge (both its points loose) is joined only when both its ends are.
-    let supported = |a: VertexId| {
-        let next = ends.along(a);
-        ends.graph.degree(next) != 1 || is_joined(next)
-    };
-    let (mut joins, mut joined_ends) = (Vec::new(), Vec::new());
-    for (&(a, target), &joined) in targets.iter().zip(&joined) {
-        if !joined || !supported(a) {
-            continue;
+    let agreed: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
+    let mut made = agreed.clone();
+    // A lone edge (both its points loose) is joined only when both its ends are, and a join is
+    // made only when every end taking part in it is (its partner; at a crossing, the other arm):
+    // dropping one can drop another along a chain of lone edges, so to a fixed point. Rule 4
+    // asks for these joins to keep pieces: a join counted there is one this stage makes.
+    loop {
+        for &(_, target) in &targets {
+            if let Target::Through(c, Partner::Neighbor(_)) = target {
+                lined_up[c.index()] = 0;
+            }
         }
-        joined_ends.push(a);
+        for (&(_, target), _) in targets.iter().zip(&made).filter(|(_, &m)| m) {
+            if let Target::Through(c, Partner::Neighbor(slot)) = target {
+                lined_up[c.index()] |= 1 << slot;
+            }
+        }
+        let is_made = |a: VertexId| slot(a).is_some_and(|k| made[k]);
+        let supported = |a: VertexId| {
+            let next = ends.along(a);
+            ends.graph.degree(next) != 1 || is_made(next)
+        };
+        let holds = |&(a, target): &(VertexId, Target)| {
+            supported(a)
+                && match target {
+                    Target::End(b) | Target::Through(_, Partner::End(b)) => is_made(b),
+                    Target::Through(c, Partner::Neighbor(_)) => lined_up[c.index()] == 0b11,
+                    Target::None => false,
+                }
+        };
+        let undone: Vec<usize> = (0..targets.len())
+            .filter(|&k| made[k] && !holds(&targets[k]))
+            .collect();
+        if undone.is_empty() {
+            break;
+        }
+        for k in undone {
+            made[k] = false;
+        }
+    }
+    drop(lined_up);
+    let (mut joins, mut joined_ends) = (Vec::new(), Vec::new());
+    for (k, &(a, target)) in targets.iter().enumerate() {
+        // An end that found its partner does not walk (form 4), also where the lone-edge rule
+        // undid the join: a walk would join what that rule keeps apart.
+        if agreed[k] {
+            joined_ends.push(a);
+        }
         match target {
-            Target::End(b) if a < b && supported(b) => joins.push(ordered(a, b)),
+            _ if !made[k] => {}
+            Target::End(b) if a < b => joins.push(ordered(a, b)),
             Target::Through(c, _) => joins.push(ordered(a, c)),
             _ => {}
         }
@@ -757,6 +793,10 @@ mod tests {
         // The same pair past the end of a curve (nothing beyond 4): two outliers, left alone.
         let short = &pts[..5];
         assert_eq!(joins(short, &chain(5, &[2])), NONE);
+        // Two such pairs in a row: the far one is left alone, so the near one joins on one side
+        // only and is left alone too (not joined to the curve at 2-3).
+        let shorter = &pts[..7];
+        assert_eq!(joins(shorter, &chain(7, &[2, 4])), NONE);
     }
 
     /// A plus sign: a horizontal chain `0..7` and a vertical chain `7..14`, both through the

@@ -1244,6 +1244,21 @@ mod tests {
         assert_eq!(kept, pairs[..38].to_vec());
     }
 
+    /// An open arc of 21 samples, then two pairs of samples beyond its end, each a spacing from
+    /// the next, and nothing beyond: gap closing joins neither pair (the far pair has an end with
+    /// nothing to join, so the near one would join on one side only), so rule 4 keeps neither.
+    #[test]
+    fn rule_4_keeps_no_piece_that_gap_closing_does_not_join() {
+        let pts: Vec<Point> = (0..25)
+            .map(|i| Point::new(i as f64, 0.01 * (i as f64 - 12.0).powi(2)))
+            .collect();
+        let mut pairs: Vec<[usize; 2]> = (0..20).map(|k| [k, k + 1]).collect();
+        pairs.extend([[21, 22], [23, 24]]);
+        let tri = triangulate(&pts).unwrap();
+        let kept = apply(&tri, &vertex_edges(&tri, &pairs), RULE_4).expect("the pairs go");
+        assert_eq!(kept, pairs[..20].to_vec());
+    }
+
     /// A thick noisy band, as a noisy scan gives: three rows of points 0.1 apart, 0.1 between the
     /// rows, joined as short pieces of three along each row. No piece is separated from the next
     /// (the next row is as near as its own edges) and none has five points, so rule 4 alone would
