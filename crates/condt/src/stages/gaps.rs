@@ -17,14 +17,15 @@
 //! ([`STRAIGHT`] at both ends, from the end's edge or the chord over its last two edges, which
 //! noise moving the end sample bends less), or a smooth one ([`SMOOTH_COS`] at both ends) that
 //! bends no more than the curve's sharpest passage near either end ([`NEAR_END`]: noise bends both
-//! alike), a gap is measured against the longer of the end's last two edges (noise crowding a
-//! sample shortens the last); (2) a point `c` of degree zero with a loose end `d` across it facing
-//! `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample; one of the two may instead be a
-//! tip's apex that sees `c` within [`TIP`] of its edge, if the other runs on straight into `c`, the
-//! first sample of the tip's other side); (3) a crossing `c` of degree two where `a` lines up
-//! (above [`STRAIGHT`]) with one of `c`'s neighbours while `c`'s passage is bent (the repair paired
-//! an arm of each curve), or with a loose end facing `c` across `c`'s passage (the repair kept one
-//! curve whole).
+//! alike), or a tip's join with a curve of [`MIN_SAMPLES`] behind both ends (a sharp tip's apex
+//! often lies nearer its neighbour), a gap is measured against the longer of the end's last two
+//! edges (noise crowding a sample shortens the last); (2) a point `c` of degree zero with a loose
+//! end `d` across it facing `c`, the angle `a c d` above [`STRAIGHT`] (a stranded sample; one of
+//! the two may instead be a tip's apex that sees `c` within [`TIP`] of its edge, if the other runs
+//! on straight into `c`, the first sample of the tip's other side); (3) a crossing `c` of degree
+//! two where `a` lines up (above [`STRAIGHT`]) with one of `c`'s neighbours while `c`'s passage is
+//! bent (the repair paired an arm of each curve), or with a loose end facing `c` across `c`'s
+//! passage (the repair kept one curve whole).
 //!
 //! (4) Last, for the ends that agreed on none of these: each walks straight on (above
 //! [`STRAIGHT`], each step within [`GAP_RATIO`] of the one before, up to [`MIN_SAMPLES`] points)
@@ -214,10 +215,15 @@ impl<'a> Ends<'a> {
                 && line_a.max(line_b) <= self.sharpest_passage(a).max(self.sharpest_passage(b)));
         let (ahead, tip) = (|c: f64| c < AHEAD, |c: f64| c > TIP);
         let ahead_or_tip = |here: f64, there: f64| ahead(here) && (ahead(there) || tip(there));
+        // A tip's join between two curves (branches of MIN_SAMPLES behind both ends) is measured
+        // as a straight one is: a sharp tip's apex often lies nearer its neighbour than the
+        // spacing, and an outlier pair at a sharp angle has no such branches.
+        let sided = |e: VertexId| self.branch(e, self.along(e), &[]);
+        let two_edges = straight || ((tip(at_a) || tip(at_b)) && sided(a) && sided(b));
         b != self.along(a)
             && a != self.along(b)
-            && self.short(a, b, straight)
-            && self.short(b, a, straight)
+            && self.short(a, b, two_edges)
+            && self.short(b, a, two_edges)
             && (ahead_or_tip(at_a, at_b) || ahead_or_tip(at_b, at_a))
     }
 
@@ -650,6 +656,33 @@ mod tests {
     /// A crowded sample at the end of a unit-spaced line: its last edge is 0.35, the gap to the
     /// next line's end 1.15 (over 2.75 times 0.35). Straight on, the end's spacing is the
     /// longer of its last two edges and the gap closes; bent by 36° at the end, it stays open.
+    /// A sharp tip (35°) whose apex `0` has lost its edge to the other side's last sample, `8`
+    /// (straight on from that side), and lies 0.35 from its own neighbour where the spacing is
+    /// 0.7: the gap of 1.3 is within 2.75 of the spacing, not of the apex's last edge. `sides`
+    /// samples on each side.
+    fn tip_with_a_crowded_apex(sides: usize) -> (Vec<Point>, Vec<[usize; 2]>) {
+        let (c, s) = (libm::cos(35f64.to_radians()), libm::sin(35f64.to_radians()));
+        let mut pts = vec![Point::new(0.0, 0.0)];
+        pts.extend((0..sides - 1).map(|k| {
+            let r = 0.35 + 0.7 * k as f64;
+            Point::new(r * c, r * s)
+        }));
+        pts.extend((0..sides).map(|k| Point::new(1.3 + 0.7 * k as f64, 0.0)));
+        let mut pairs: Vec<[usize; 2]> = (0..sides - 1).map(|k| [k, k + 1]).collect();
+        pairs.extend((sides..2 * sides - 1).map(|k| [k, k + 1]));
+        (pts, pairs)
+    }
+
+    #[test]
+    fn a_tips_gap_between_two_curves_is_measured_against_the_spacing() {
+        let (pts, pairs) = tip_with_a_crowded_apex(8);
+        assert_eq!(joins(&pts, &pairs), vec![[0, 8]]);
+        // With four samples a side there is no curve behind either end: the apex's last edge
+        // is the measure, and the gap is too long for it.
+        let (pts, pairs) = tip_with_a_crowded_apex(4);
+        assert_eq!(joins(&pts, &pairs), NONE);
+    }
+
     #[test]
     fn a_straight_gap_is_measured_against_the_ends_last_two_edges() {
         let mut pts: Vec<Point> = [0.0, 1.0, 2.0, 3.0, 3.35]
