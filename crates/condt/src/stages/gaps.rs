@@ -383,11 +383,7 @@ impl<'a> Ends<'a> {
             .map(|(k, (_, walk))| (*walk.last().expect("non-empty"), k))
             .collect();
         by_last.sort_unstable();
-        let mut used = vec![false; self.tri.num_points()];
-        for v in joins.iter().flatten() {
-            used[v.index()] = true;
-        }
-        let mut out = Vec::new();
+        let mut chains: Vec<Vec<VertexId>> = Vec::new();
         for (a, walk) in &walks {
             let last = *walk.last().expect("non-empty");
             let chain: Vec<VertexId> = if self.is_loose(last) {
@@ -404,28 +400,35 @@ impl<'a> Ends<'a> {
                     _ => continue,
                 }
             } else {
-                // Ended at an unused point: another walk must end there too, from elsewhere.
+                // Ended at an unused point: exactly one other walk must end there, from
+                // elsewhere (of three or more, which two meet would be a guess).
                 let from = by_last.partition_point(|&(v, _)| v < last);
-                let other = by_last[from..]
+                let mut others = by_last[from..]
                     .iter()
                     .take_while(|&&(v, _)| v == last)
                     .map(|&(_, k)| &walks[k])
-                    .find(|(b, w)| b > a && w.iter().all(|v| *v == last || !walk.contains(v)));
-                match other {
-                    Some((b, w)) => core::iter::once(*a)
-                        .chain(walk.iter().copied())
-                        .chain(w.iter().rev().skip(1).copied())
-                        .chain(core::iter::once(*b))
-                        .collect(),
-                    None => continue,
+                    .filter(|(b, _)| b != a);
+                match (others.next(), others.next()) {
+                    (Some((b, w)), None)
+                        if b > a && w.iter().all(|v| *v == last || !walk.contains(v)) =>
+                    {
+                        core::iter::once(*a)
+                            .chain(walk.iter().copied())
+                            .chain(w.iter().rev().skip(1).copied())
+                            .chain(core::iter::once(*b))
+                            .collect()
+                    }
+                    _ => continue,
                 }
             };
-            if chain.iter().any(|v| used[v.index()]) {
-                continue;
-            }
-            for v in &chain {
-                used[v.index()] = true;
-            }
+            chains.push(chain);
+        }
+        // Two runs through one point, or a run through a point a join took: neither is made
+        // (which would win depends on the ids, that is on the input's orientation).
+        let claimed: Vec<VertexId> = joins.iter().flatten().copied().collect();
+        super::alone(self.tri.num_points(), &mut chains, &claimed, Vec::clone);
+        let mut out = Vec::new();
+        for chain in &chains {
             out.extend(chain.windows(2).map(|p| ordered(p[0], p[1])));
         }
         out
