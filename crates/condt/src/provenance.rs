@@ -5,6 +5,7 @@
 //! against the stages.
 
 use crate::adjacency::CurveGraph;
+use crate::geometry::Point;
 use crate::reconstruct::{Reconstruction, StageReport};
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
 use crate::stages::outliers::{iqr_thresholds, IqrRule};
@@ -187,6 +188,17 @@ struct Explainer<'a> {
     local: Vec<([usize; 2], LocalRule)>,
 }
 
+/// The squared length of the edge between input positions `a` and `b` in the stages' frame.
+fn stage_length2(tri: &Triangulation, a: usize, b: usize) -> f64 {
+    tri.vertex_point(tri.vertex(a))
+        .dist2(tri.vertex_point(tri.vertex(b)))
+}
+
+/// A length of the stages' frame in input units (the frames differ by a power of two).
+fn in_input_units(tri: &Triangulation, length: f64) -> f64 {
+    tri.stage_to_input(Point::new(length, 0.0)).x
+}
+
 impl<'a> Explainer<'a> {
     /// For the last of `reports` (the stages up to it), `before` its input in input positions.
     fn new(result: &'a Reconstruction, reports: &[StageReport<'_>], before: &[[usize; 2]]) -> Self {
@@ -195,19 +207,21 @@ impl<'a> Explainer<'a> {
             unreachable!("a stage after the first")
         };
         let stage = output.stage;
-        // On input-unit lengths: the stage's threshold, scaled by the frames' power of two squared.
+        // The stage's own threshold, on the stages' squared lengths (which neither overflow nor
+        // underflow at any scale), shown in input units.
         let threshold = match stage {
             Stage::Outliers if !before.is_empty() => {
                 let lengths: Vec<f64> = before
                     .iter()
-                    .map(|&[a, b]| tri.point(a).dist2(tri.point(b)))
+                    .map(|&[a, b]| stage_length2(tri, a, b))
                     .collect();
                 let rule = IqrRule {
                     factor: result.params().outlier_factor.unwrap_or(0.0),
                     floor: result.params().iqr_floor,
                 };
                 let thresholds = iqr_thresholds(&lengths, rule);
-                (libm::sqrt(thresholds.cut), thresholds.cut > thresholds.fire)
+                let cut = in_input_units(tri, libm::sqrt(thresholds.cut));
+                (cut, thresholds.cut > thresholds.fire)
             }
             _ => (0.0, false),
         };
@@ -266,7 +280,7 @@ impl<'a> Explainer<'a> {
             Stage::GivenBack => Reason::NotConfirmed,
             Stage::NnCrust | Stage::Crust => Reason::Baseline,
             Stage::Outliers => Reason::LongerThanThreshold {
-                length: libm::sqrt(self.tri.point(a).dist2(self.tri.point(b))),
+                length: in_input_units(self.tri, libm::sqrt(stage_length2(self.tri, a, b))),
                 threshold: self.threshold.0,
                 floored: self.threshold.1,
             },
@@ -339,6 +353,49 @@ mod tests {
             assert_eq!(told(u), told(2.75), "{u}");
         }
         assert_ne!(told(1.5), told(2.75), "a valid u is the run's");
+    }
+
+    /// Found by a stress harness: near 1e300 the lengths squared in input units overflowed, and
+    /// the story read "removed length inf above √T = NaN" (and 0 over 0 near 1e-300). The
+    /// numbers are the stage's, on its own frame's lengths, scaled: at 2^-2000 times the same
+    /// points (near 1e-302) they are the same numbers times 2^-2000.
+    #[test]
+    fn the_iqr_numbers_are_finite_and_scale_with_the_points() {
+        let points = [
+            (1.2348335793655945e300, 7.63642624069709e299),
+            (-3.450149863870813e299, 9.85395790618919e299),
+            (1.8313867200477662e300, -2.3428623461566455e299),
+            (1.4109064600348233e300, 6.6696949820415226e299),
+            (-5.766242975949384e299, 9.512374374966184e299),
+            (-9.574728927048945e298, 9.943898762192827e299),
+            (-1.8364483937608126e300, -1.9492109085902206e299),
+            (1.750665878516687e300, -3.651703566704582e299),
+        ]
+        .map(Point::from);
+        // Times `scale` twice (2^-2000 itself is below the smallest double).
+        let cuts = |scale: f64| -> Vec<(f64, f64)> {
+            let scaled = points.map(|p| Point::new(p.x * scale * scale, p.y * scale * scale));
+            let result = reconstruct(&scaled, &Params::paper()).unwrap();
+            let stories = result.provenance();
+            stories
+                .iter()
+                .flat_map(|story| &story.changes)
+                .filter_map(|change| match change.reason {
+                    Reason::LongerThanThreshold {
+                        length, threshold, ..
+                    } => Some((length, threshold)),
+                    _ => None,
+                })
+                .collect()
+        };
+        let tiny = 2f64.powi(-1000);
+        let (big, small) = (cuts(1.0), cuts(tiny));
+        assert!(!big.is_empty(), "the IQR rule cuts an edge");
+        assert_eq!(big.len(), small.len());
+        for (&(length, threshold), &(l, t)) in big.iter().zip(&small) {
+            assert!(length.is_finite() && threshold.is_finite() && length > threshold);
+            assert_eq!((l, t), (length * tiny * tiny, threshold * tiny * tiny));
+        }
     }
 
     fn noisy_scene() -> Vec<Point> {

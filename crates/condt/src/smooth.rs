@@ -133,6 +133,36 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
     }
 }
 
+/// Puts back at `original(i)` every point of `positions` that shares its position with a point of
+/// another original position (the caller's frame can round two averages together: subnormal or
+/// extreme coordinates), until none does; returns how many went back. Why: a pass must not merge
+/// two input points, or one of them would vanish from the result. Order-independent: a point
+/// goes back by the set of positions alone. O(n log n) a round, run only where `repeats` saw more
+/// merges than the input had.
+pub(crate) fn keep_apart(positions: &mut [Point], original: impl Fn(usize) -> Point) -> usize {
+    // `+ 0.0` turns -0 into +0: equal positions get equal keys.
+    let key = |p: Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+    let mut order: Vec<usize> = (0..positions.len()).collect();
+    let mut back = 0;
+    loop {
+        order.sort_unstable_by_key(|&i| key(positions[i]));
+        let mut going: Vec<usize> = Vec::new();
+        for run in order.chunk_by(|&i, &j| positions[i] == positions[j]) {
+            let first = original(run[0]);
+            if run.iter().any(|&i| original(i) != first) {
+                going.extend(run.iter().filter(|&&i| positions[i] != original(i)));
+            }
+        }
+        if going.is_empty() {
+            return back;
+        }
+        back += going.len();
+        for i in going {
+            positions[i] = original(i);
+        }
+    }
+}
+
 /// How many of `points` repeat an earlier one (exact equality, as the triangulation merges them:
 /// `n` less the distinct points), by open addressing over a table of ids (why: docs/perf-log.md).
 pub(crate) fn repeats(points: &[Point]) -> usize {
@@ -170,6 +200,57 @@ mod tests {
     use crate::sample::{sample, Sampling, Shape};
     use crate::{reconstruct, triangulate, Params, Point};
     use alloc::vec::Vec;
+
+    /// Found by a stress harness: distinct lattice points times 2^-1074 (subnormal), and a set
+    /// spread from 1e-296 to 1e303. A pass's averages round onto one position in the caller's
+    /// frame too, and the triangulation merged the two points: one vanished from the result (a
+    /// degree but no edge, not unused) and the edges depended on the input order. The points
+    /// that would meet stay where they were ([`super::keep_apart`]).
+    #[test]
+    fn a_pass_never_merges_two_input_points() {
+        let subnormal = [
+            (1.1e-322, 2.1e-322),
+            (-1.5e-323, 2.67e-322),
+            (3e-323, 2.5e-322),
+            (2.4e-322, 8e-323),
+            (6e-323, 2.67e-322),
+            (3e-323, 2.47e-322),
+            (4e-323, 1.5e-322),
+            (8e-323, -1.3e-322),
+        ];
+        let wide = [
+            (4.5353473530375125e281, 3.1021273130014907e-242),
+            (6.68268818201814e-206, 57854124.16365494),
+            (5.0341226938449086e53, 8.357732824608535e-211),
+            (1.3576637270390164e-296, 9.104256026318434e-163),
+            (8.998847905116815e303, -3.605607693502977e229),
+            (-2.751219279671994e-236, -1.2528524338855696e-191),
+            (1.363571677422622e146, -5.260769050249569e-63),
+        ];
+        for points in [&subnormal[..], &wide[..]] {
+            let points: Vec<Point> = points.iter().map(|&p| Point::from(p)).collect();
+            let r = reconstruct(&points, &Params::default()).unwrap();
+            assert!(r.smoothing().is_some_and(|s| s.passes > 0), "a pass ran");
+            let edges: Vec<[usize; 2]> = r.edges().collect();
+            for i in 0..points.len() {
+                let named = edges.iter().filter(|e| e.contains(&i)).count();
+                assert_eq!(r.degree(i), named, "point {i}");
+                assert_eq!(r.unused().contains(&i), named == 0, "point {i}");
+            }
+            // The same edges from the reversed input.
+            let reversed: Vec<Point> = points.iter().rev().copied().collect();
+            let n = points.len();
+            let mut back: Vec<[usize; 2]> = reconstruct(&reversed, &Params::default())
+                .unwrap()
+                .edges()
+                .map(|[a, b]| [(n - 1 - a).min(n - 1 - b), (n - 1 - a).max(n - 1 - b)])
+                .collect();
+            back.sort_unstable();
+            let mut sorted = edges.clone();
+            sorted.sort_unstable();
+            assert_eq!(back, sorted);
+        }
+    }
 
     #[test]
     fn repeats_counts_the_points_equal_to_an_earlier_one() {

@@ -12,7 +12,7 @@ use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::smooth::{repeats, shows_noise, smoothed_positions, MAX_PASSES};
+use crate::smooth::{keep_apart, repeats, shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
 use crate::triangulate::{choose_frames, splitmix64_finalizer, triangulate_with, Triangulation};
@@ -362,6 +362,8 @@ impl Pipeline {
             || choose_frames(&smoothed.positions).is_ok_and(|frames| frames.wide);
         if relative_merges {
             smoothed = smoothed_positions(&triangulation, &final_edges, true);
+            let original = |i: usize| triangulation.point(i);
+            smoothed.moved -= keep_apart(&mut smoothed.absolute, original);
         }
         drop(final_edges);
         let moved = smoothed.moved;
