@@ -217,14 +217,15 @@ impl<'a> Ends<'a> {
         let ahead_or_tip = |here: f64, there: f64| ahead(here) && (ahead(there) || tip(there));
         // A tip's join between two curves (branches of MIN_SAMPLES behind both ends) is measured
         // as a straight one is: a sharp tip's apex often lies nearer its neighbour than the
-        // spacing, and an outlier pair at a sharp angle has no such branches.
+        // spacing, and an outlier pair at a sharp angle has no such branches. The longer measure
+        // passes whatever the shorter does, so the walks along the branches come last (speed).
         let sided = |e: VertexId| self.branch(e, self.along(e), &[]);
-        let two_edges = straight || ((tip(at_a) || tip(at_b)) && sided(a) && sided(b));
+        let short = |two_edges: bool| self.short(a, b, two_edges) && self.short(b, a, two_edges);
         b != self.along(a)
             && a != self.along(b)
-            && self.short(a, b, two_edges)
-            && self.short(b, a, two_edges)
             && (ahead_or_tip(at_a, at_b) || ahead_or_tip(at_b, at_a))
+            && (short(straight)
+                || (!straight && (tip(at_a) || tip(at_b)) && short(true) && sided(a) && sided(b)))
     }
 
     /// Whether `w` is within [`TIP`] of the loose end `a`'s edge at a short gap (a tip's apex).
@@ -491,46 +492,66 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
         Target::None => false,
     };
     let agreed: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
-    let mut made = agreed.clone();
+    drop(lined_up);
     // A lone edge (both its points loose) is joined only when both its ends are, and a join is
     // made only when every end taking part in it is (its partner; at a crossing, the other arm):
-    // dropping one can drop another along a chain of lone edges, so to a fixed point. Rule 4
-    // asks for these joins to keep pieces: a join counted there is one this stage makes.
-    loop {
-        for &(_, target) in &targets {
-            if let Target::Through(c, Partner::Neighbor(_)) = target {
-                lined_up[c.index()] = 0;
-            }
-        }
-        for (&(_, target), _) in targets.iter().zip(&made).filter(|(_, &m)| m) {
-            if let Target::Through(c, Partner::Neighbor(slot)) = target {
-                lined_up[c.index()] |= 1 << slot;
-            }
-        }
-        let is_made = |a: VertexId| slot(a).is_some_and(|k| made[k]);
-        let supported = |a: VertexId| {
-            let next = ends.along(a);
-            ends.graph.degree(next) != 1 || is_made(next)
-        };
-        let holds = |&(a, target): &(VertexId, Target)| {
-            supported(a)
-                && match target {
-                    Target::End(b) | Target::Through(_, Partner::End(b)) => is_made(b),
-                    Target::Through(c, Partner::Neighbor(_)) => lined_up[c.index()] == 0b11,
-                    Target::None => false,
+    // undoing one can undo another along a chain of lone edges, so to a fixed point, asking again
+    // only the ends an undone one bears on (any order reaches the same point). Rule 4 asks for
+    // these joins to keep pieces: a join counted there is one this stage makes.
+    let mut at_crossing: Vec<(VertexId, usize)> = targets
+        .iter()
+        .enumerate()
+        .filter_map(|(k, &(_, target))| match target {
+            Target::Through(c, Partner::Neighbor(_)) => Some((c, k)),
+            _ => None,
+        })
+        .collect();
+    at_crossing.sort_unstable();
+    let arms = |c: VertexId| {
+        let from = at_crossing.partition_point(|&(v, _)| v < c);
+        at_crossing[from..]
+            .iter()
+            .take_while(move |&&(v, _)| v == c)
+            .map(|&(_, k)| k)
+    };
+    let holds = |made: &[bool], k: usize| {
+        let (a, target) = targets[k];
+        let is_made = |v: VertexId| slot(v).is_some_and(|j| made[j]);
+        let next = ends.along(a);
+        (ends.graph.degree(next) != 1 || is_made(next))
+            && match target {
+                Target::End(b) | Target::Through(_, Partner::End(b)) => is_made(b),
+                Target::Through(c, Partner::Neighbor(_)) => {
+                    let lined =
+                        arms(c)
+                            .filter(|&j| made[j])
+                            .fold(0u8, |bits, j| match targets[j].1 {
+                                Target::Through(_, Partner::Neighbor(s)) => bits | 1 << s,
+                                _ => bits,
+                            });
+                    lined == 0b11
                 }
-        };
-        let undone: Vec<usize> = (0..targets.len())
-            .filter(|&k| made[k] && !holds(&targets[k]))
-            .collect();
-        if undone.is_empty() {
-            break;
+                Target::None => false,
+            }
+    };
+    let mut made = agreed.clone();
+    let mut queue: Vec<usize> = (0..targets.len()).filter(|&k| made[k]).collect();
+    while let Some(k) = queue.pop() {
+        if !made[k] || holds(&made, k) {
+            continue;
         }
-        for k in undone {
-            made[k] = false;
+        made[k] = false;
+        let (a, target) = targets[k];
+        let next = ends.along(a);
+        if ends.graph.degree(next) == 1 {
+            queue.extend(slot(next));
+        }
+        match target {
+            Target::End(b) | Target::Through(_, Partner::End(b)) => queue.extend(slot(b)),
+            Target::Through(c, Partner::Neighbor(_)) => queue.extend(arms(c)),
+            Target::None => {}
         }
     }
-    drop(lined_up);
     let (mut joins, mut joined_ends) = (Vec::new(), Vec::new());
     for (k, &(a, target)) in targets.iter().enumerate() {
         // An end that found its partner does not walk (form 4), also where the lone-edge rule
