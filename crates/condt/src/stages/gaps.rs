@@ -51,7 +51,6 @@ use crate::predicates::{compare_tied_distances, orient2d, Orientation};
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
-use alloc::vec;
 use alloc::vec::Vec;
 
 /// Cosine of the smallest angle at a loose end between its edge and a join (90°: a half-plane).
@@ -464,7 +463,6 @@ pub(crate) fn close_gaps(
 
 /// The joins [`close_gaps`] adds to the graph of `ends`, by increasing loose end.
 pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
-    let n = ends.tri.num_points();
     // Only loose ends choose (few): a list by increasing id, searched by id (memory). Each end
     // chooses alone (the stage's cost), in ranges on several threads when `parallel`.
     let targets: Vec<(VertexId, Target)> = ends.each_loose(parallel, |a| {
@@ -475,29 +473,7 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
     }
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
     let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
-    // Which of its two neighbours each crossing has been lined up with, one bit per slot.
-    let mut lined_up = vec![0u8; n];
-    for &(_, target) in &targets {
-        if let Target::Through(c, Partner::Neighbor(slot)) = target {
-            lined_up[c.index()] |= 1 << slot;
-        }
-    }
-    // Whether the loose end `a` gets the join it chose: the other side agrees.
-    let agreed = |a: VertexId| match target_of(a) {
-        Target::End(b) => target_of(b) == Target::End(a),
-        // Both dropped arms come back, each in line with one of the two kept ones.
-        Target::Through(c, Partner::Neighbor(_)) => lined_up[c.index()] == 0b11,
-        // Both come back, in line with each other, through a crossing or a stranded point.
-        Target::Through(c, Partner::End(d)) => target_of(d) == Target::Through(c, Partner::End(a)),
-        Target::None => false,
-    };
-    let agreed: Vec<bool> = targets.iter().map(|&(a, _)| agreed(a)).collect();
-    drop(lined_up);
-    // A lone edge (both its points loose) is joined only when both its ends are, and a join is
-    // made only when every end taking part in it is (its partner; at a crossing, the other arm):
-    // undoing one can undo another along a chain of lone edges, so to a fixed point, asking again
-    // only the ends an undone one bears on (any order reaches the same point). Rule 4 asks for
-    // these joins to keep pieces: a join counted there is one this stage makes.
+    // The ends lined up at each crossing (few), by crossing.
     let mut at_crossing: Vec<(VertexId, usize)> = targets
         .iter()
         .enumerate()
@@ -514,6 +490,31 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
             .take_while(move |&&(v, _)| v == c)
             .map(|&(_, k)| k)
     };
+    // Which of its two neighbours the crossing `c` is lined up with by the ends `counted`, one
+    // bit per slot.
+    let lined_up = |c: VertexId, counted: &dyn Fn(usize) -> bool| {
+        arms(c)
+            .filter(|&k| counted(k))
+            .fold(0u8, |bits, k| match targets[k].1 {
+                Target::Through(_, Partner::Neighbor(s)) => bits | 1 << s,
+                _ => bits,
+            })
+    };
+    // Whether the loose end `a` gets the join it chose: the other side agrees.
+    let agrees = |a: VertexId| match target_of(a) {
+        Target::End(b) => target_of(b) == Target::End(a),
+        // Both dropped arms come back, each in line with one of the two kept ones.
+        Target::Through(c, Partner::Neighbor(_)) => lined_up(c, &|_| true) == 0b11,
+        // Both come back, in line with each other, through a crossing or a stranded point.
+        Target::Through(c, Partner::End(d)) => target_of(d) == Target::Through(c, Partner::End(a)),
+        Target::None => false,
+    };
+    let agreed: Vec<bool> = targets.iter().map(|&(a, _)| agrees(a)).collect();
+    // A lone edge (both its points loose) is joined only when both its ends are, and a join is
+    // made only when every end taking part in it is (its partner; at a crossing, the other arm):
+    // undoing one can undo another along a chain of lone edges, so to a fixed point, asking again
+    // only the ends an undone one bears on (any order reaches the same point). Rule 4 asks for
+    // these joins to keep pieces: a join counted there is one this stage makes.
     let holds = |made: &[bool], k: usize| {
         let (a, target) = targets[k];
         let is_made = |v: VertexId| slot(v).is_some_and(|j| made[j]);
@@ -521,16 +522,7 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
         (ends.graph.degree(next) != 1 || is_made(next))
             && match target {
                 Target::End(b) | Target::Through(_, Partner::End(b)) => is_made(b),
-                Target::Through(c, Partner::Neighbor(_)) => {
-                    let lined =
-                        arms(c)
-                            .filter(|&j| made[j])
-                            .fold(0u8, |bits, j| match targets[j].1 {
-                                Target::Through(_, Partner::Neighbor(s)) => bits | 1 << s,
-                                _ => bits,
-                            });
-                    lined == 0b11
-                }
+                Target::Through(c, Partner::Neighbor(_)) => lined_up(c, &|j| made[j]) == 0b11,
                 Target::None => false,
             }
     };
