@@ -9,7 +9,8 @@
 //! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.
 //! Rule (reasons: docs/condt.md, *Junctions*): a loose end `a` joins the Delaunay neighbour `c`
 //! with two edges that it faces straight on (within 30°, [`STRAIGHT`]: the branch's next sample),
-//! within [`GAP_RATIO`] times `c`'s shorter edge, with three branches of
+//! within [`GAP_RATIO`] times `c`'s shorter edge (its longer one where the two are not one
+//! sampling by that ratio: a sample right beside the junction), with three branches of
 //! [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`),
 //! straightest ahead of the end among those that pass (ties by id), and chosen by no other loose
 //! end (two make a crossing, gap closing's case). All choices are made on the graph as it came in:
@@ -31,8 +32,17 @@ impl Ends<'_> {
         }
         let [x, y] = self.graph.first_two(c);
         let (pa, pc) = (self.point(a), self.point(c));
-        let shorter = pc.dist2(self.point(x)).min(pc.dist2(self.point(y)));
-        pa.dist2(pc) <= GAP_RATIO * GAP_RATIO * shorter
+        let (e1, e2) = (pc.dist2(self.point(x)), pc.dist2(self.point(y)));
+        let (shorter, longer) = (e1.min(e2), e1.max(e2));
+        // Where `c`'s edges are no one sampling by Algorithm 1's own ratio, the shorter measures
+        // none: a second sample right beside the junction, as where outlines digitised apart
+        // meet (a Natural Earth junction has one 1/2000 of a spacing away).
+        let spacing = if longer > GAP_RATIO * GAP_RATIO * shorter {
+            longer
+        } else {
+            shorter
+        };
+        pa.dist2(pc) <= GAP_RATIO * GAP_RATIO * spacing
             && self.branch(a, self.along(a), &[c, x, y])
             && self.branch(c, x, &[a, y])
             && self.branch(c, y, &[a, x])
@@ -102,8 +112,14 @@ mod tests {
     /// [`joins`] with the straight curve `0..=12` along `y = 0` and `arms`, each a curve of its
     /// own whose first point is its loose end.
     fn joins_of(arms: &[Vec<Point>]) -> Vec<[usize; 2]> {
-        let mut pts: Vec<Point> = (0..=12).map(|i| Point::new(i as f64, 0.0)).collect();
-        let mut edges: Vec<[usize; 2]> = (0..12).map(|i| [i, i + 1]).collect();
+        let line: Vec<Point> = (0..=12).map(|i| Point::new(i as f64, 0.0)).collect();
+        joins_along(&line, arms)
+    }
+
+    /// [`joins_of`] with the curve through `line`, in order, in place of the straight one.
+    fn joins_along(line: &[Point], arms: &[Vec<Point>]) -> Vec<[usize; 2]> {
+        let mut pts = line.to_vec();
+        let mut edges: Vec<[usize; 2]> = (1..line.len()).map(|i| [i - 1, i]).collect();
         for arm in arms {
             let first = pts.len();
             pts.extend_from_slice(arm);
@@ -140,6 +156,21 @@ mod tests {
         // lies 45° or more off its way (point 6 at 135°), so it is no junction.
         let alongside: Vec<Point> = (7..14).map(|x| Point::new(x as f64, 1.0)).collect();
         assert_eq!(joins_of(&[alongside]), Vec::<[usize; 2]>::new());
+    }
+
+    #[test]
+    fn a_sample_next_to_the_junction_does_not_hide_it() {
+        // Two outlines digitised apart meet at (6, 0): the curve has a second sample 1e-4 beside
+        // it. The junction's two edges are then no one sampling, and its longer edge measures the
+        // gap (by its shorter one, 1e-4, the branch's end one spacing away was too far).
+        let branch: Vec<Point> = (1..8).map(|k| Point::new(6.0, k as f64)).collect();
+        let mut line: Vec<Point> = (0..=12).map(|i| Point::new(i as f64, 0.0)).collect();
+        line.insert(7, Point::new(6.0 + 1e-4, 0.0));
+        assert_eq!(joins_along(&line, &[branch.clone()]), vec![[6, 14]]);
+        // A curve evenly sampled five times as densely: its samples are a sampling, and the
+        // branch's end, five of their spacings away, is no junction of it.
+        let dense: Vec<Point> = (0..=60).map(|i| Point::new(i as f64 / 5.0, 0.0)).collect();
+        assert_eq!(joins_along(&dense, &[branch]), Vec::<[usize; 2]>::new());
     }
 
     #[test]
