@@ -571,4 +571,28 @@ mod tests {
             other => panic!("{other:?}"),
         }
     }
+
+    #[test]
+    fn a_ratio_at_the_bound_reads_on_the_side_the_test_took() {
+        // |e2| / |e1| is 2.75 at point 1 up to rounding: the test (strict) drops e2, and the
+        // rounded quotient, 2.7499999999999996, read on its own, would say it passed.
+        let points = [
+            (453_632.0, -2_510_848.0),
+            (375_808.0, -2_121_728.0),
+            (161_792.0, -1_051_648.0),
+        ]
+        .map(Point::from);
+        let stories = reconstruct(&points, &Params::paper()).unwrap().provenance();
+        let ends = stories.iter().flat_map(|s| s.ends);
+        let seconds: Vec<_> = ends
+            .filter_map(|end| match end {
+                EndChoice::Second { ratio, bound, kept } => Some((ratio, bound, kept)),
+                _ => None,
+            })
+            .collect();
+        assert!(seconds.contains(&(2.75, 2.75, false)), "{seconds:?}");
+        for (ratio, bound, kept) in seconds {
+            assert_eq!(ratio < bound, kept, "{ratio} against {bound}");
+        }
+    }
 }

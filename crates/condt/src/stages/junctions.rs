@@ -166,7 +166,10 @@ mod tests {
         let branch: Vec<Point> = (1..8).map(|k| Point::new(6.0, k as f64)).collect();
         let mut line: Vec<Point> = (0..=12).map(|i| Point::new(i as f64, 0.0)).collect();
         line.insert(7, Point::new(6.0 + 1e-4, 0.0));
-        assert_eq!(joins_along(&line, core::slice::from_ref(&branch)), vec![[6, 14]]);
+        assert_eq!(
+            joins_along(&line, core::slice::from_ref(&branch)),
+            vec![[6, 14]]
+        );
         // A curve evenly sampled five times as densely: its samples are a sampling, and the
         // branch's end, five of their spacings away, is no junction of it.
         let dense: Vec<Point> = (0..=60).map(|i| Point::new(i as f64 / 5.0, 0.0)).collect();

@@ -133,11 +133,16 @@ pub(crate) fn end_choice(
                     sum / f64::from(count) / l1
                 }
             };
-            EndChoice::Second {
-                ratio: l2 / l1,
-                bound,
-                kept: kept_neighbors(tri, v, uniformity)[1] == w,
-            }
+            let kept = kept_neighbors(tri, v, uniformity)[1] == w;
+            // The test compares `l2` with `u l1` (or the ring's mean), not the quotient: where
+            // the two round to opposite sides of the bound, the true ratio is the bound to within
+            // rounding, and it is read on the side the test took.
+            let ratio = match (l2 / l1, kept) {
+                (ratio, true) if ratio >= bound => bound.next_down(),
+                (ratio, false) if ratio < bound => bound,
+                (ratio, _) => ratio,
+            };
+            EndChoice::Second { ratio, bound, kept }
         }
         rank => EndChoice::Later { rank },
     }
@@ -150,7 +155,9 @@ pub enum EndChoice {
     Shortest,
     /// The end's second shortest edge, kept when `ratio < bound`.
     Second {
-        /// `|e2| / |e1|` at this end.
+        /// `|e2| / |e1|` at this end. The test compares `|e2|` with `bound · |e1|`; where the
+        /// rounded quotient falls on the other side of `bound`, it reads `bound` (not kept) or the
+        /// double just below it (kept), so `ratio < bound` always equals `kept`.
         ratio: f64,
         /// The uniformity bound: `u`, or with the adaptive test the ring's mean length over `|e1|`.
         bound: f64,
