@@ -91,16 +91,19 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::LongerThanThreshold {
                 length,
                 threshold,
-                floored: false,
-            } => write!(f, "length {length:.6} above √T = {threshold:.6}")?,
-            Reason::LongerThanThreshold {
-                length,
-                threshold,
-                floored: true,
-            } => write!(
-                f,
-                "length {length:.6} above the spacing floor {threshold:.6} (1.5 median edges)"
-            )?,
+                floored,
+            } => {
+                let (length, threshold) = told_apart(length, threshold);
+                if floored {
+                    let floor = "the spacing floor";
+                    write!(
+                        f,
+                        "length {length} above {floor} {threshold} (1.5 median edges)"
+                    )?
+                } else {
+                    write!(f, "length {length} above √T = {threshold}")?
+                }
+            }
             Reason::GivenBack => write!(f, "given back between two regular passages")?,
             Reason::LongAt { vertex, ratio } => write!(
                 f,
@@ -121,6 +124,39 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
         }
     }
     write!(f, "; {}", if story.kept { "kept" } else { "dropped" })
+}
+
+/// `a` and `b` with [`SIGNIFICANT`] significant digits, or as many more as tell them apart (up
+/// to 17, which tell every two doubles apart): a length just above its threshold must not read
+/// as equal to it, and lengths of any scale keep their digits (fixed decimals read 1e-8 as 0).
+fn told_apart(a: f64, b: f64) -> (String, String) {
+    let mut digits = SIGNIFICANT;
+    loop {
+        let (x, y) = (significant(a, digits), significant(b, digits));
+        if x != y || a == b || digits == 17 {
+            return (x, y);
+        }
+        digits += 1;
+    }
+}
+
+/// The fewest significant digits a length is told with.
+const SIGNIFICANT: usize = 7;
+
+/// `v` rounded to `digits` significant digits: plain from 1e-4 to 1e15, else in exponent form.
+fn significant(v: f64, digits: usize) -> String {
+    let magnitude = v.abs();
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    if (1e-4..1e15).contains(&magnitude) {
+        // The position of the leading digit; the decimals are the significant digits after it.
+        let leading = magnitude.log10().floor() as i32;
+        let decimals = (digits as i32 - 1 - leading).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.*e}", digits - 1)
+    }
 }
 
 #[cfg(test)]
@@ -165,6 +201,34 @@ mod tests {
             }
         }
         assert!(chosen > 0 && not_chosen > 0, "{chosen} {not_chosen}");
+    }
+
+    #[test]
+    fn lengths_are_told_apart_at_any_scale() {
+        use super::told_apart;
+        // Equal to the sixth decimal (a story once read "4.046733 above √T = 4.046733").
+        let (length, threshold) = told_apart(4.046_733_000_1, 4.046_733);
+        assert_ne!(length, threshold);
+        assert!(length.parse::<f64>().unwrap() > threshold.parse::<f64>().unwrap());
+        assert_eq!(
+            told_apart(861.980838, 384.055094),
+            ("861.9808".into(), "384.0551".into())
+        );
+        // Lengths in degrees of a fine survey, and far beyond: their digits stay.
+        assert_eq!(
+            told_apart(1.234e-8, 1.1e-8),
+            ("1.234000e-8".into(), "1.100000e-8".into())
+        );
+        assert_eq!(
+            told_apart(2.5e300, 2.5e300),
+            ("2.500000e300".into(), "2.500000e300".into())
+        );
+        let next = 1.0f64.next_up();
+        let (a, b) = told_apart(next, 1.0);
+        assert_eq!(
+            (a.parse::<f64>().unwrap(), b.parse::<f64>().unwrap()),
+            (next, 1.0)
+        );
     }
 
     /// Two lines crossing at point 0 at 40°, as in `condt`'s provenance tests: the crossing's

@@ -61,7 +61,15 @@
     const a = E[2 * k], b = E[2 * k + 1];
     return Math.hypot(P[2 * a] - P[2 * b], P[2 * a + 1] - P[2 * b + 1]) * data.scale * data.parts;
   }
-  const fmt = (x) => (Math.abs(x) >= 1e5 || (Math.abs(x) < 1e-3 && x !== 0)) ? x.toExponential(4) : +x.toPrecision(6) + "";
+  const fmtDigits = (x, d) => (Math.abs(x) >= 1e5 || (Math.abs(x) < 1e-3 && x !== 0)) ? x.toExponential(d - 2) : +x.toPrecision(d) + "";
+  const fmt = (x) => fmtDigits(x, 6);
+  // Two numbers with as many digits as tell them apart (a length just above its threshold).
+  const apart = (a, b) => {
+    for (let d = 6; ; d++) {
+      const [x, y] = [fmtDigits(a, d), fmtDigits(b, d)];
+      if (x !== y || a === b || d === 17) return [x, y];
+    }
+  };
   const sx = (i) => view.ox + P[2 * i] * view.k;
   const sy = (i) => view.oy - P[2 * i + 1] * view.k;
 
@@ -220,7 +228,7 @@
         const which = kept.length === 0 ? "none" : kept.length === 1 ? `its edge to ${kept[0]} only` : `its edges to ${kept.slice(0, 2).join(" and ")}`;
         return `at vertex ${c.x} (degree ${c.y}), which kept ${which}`;
       },
-      () => `length ${fmt(c.x)} above √T = ${fmt(c.y)}`,
+      () => { const [l, t] = apart(c.x, c.y); return `length ${l} above √T = ${t}`; },
       () => "given back between two regular passages",
       () => `${c.y.toFixed(2)} times as long as the longest other edge at vertex ${c.x}`,
       () => "isolated component",
