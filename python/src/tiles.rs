@@ -25,7 +25,7 @@ use crate::convert::{as_points, index_array, index_vector, library_error, points
 use crate::params;
 use condt::geometry::{binary_exponent, Scale};
 use condt::predicates::{is_cocircular, orient2d, Orientation};
-use condt::{Method, Params, Point, Stage, Triangulation, Uniformity};
+use condt::{Method, Params, Point, Stage, Triangulation};
 use numpy::ndarray::Array2;
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::{PyNotImplementedError, PyValueError};
@@ -43,13 +43,10 @@ const MAX_TILED_SPREAD: i32 = 200;
 const MAX_BAND_CORNERS: usize = 512;
 
 /// Why the stages `params` select cannot run in tiles, or `None` when they can: the proximity
-/// graph with a fixed `u`, the repair, then Algorithm 3 (run once on the gathered edges).
+/// graph (fixed or adaptive `u`), the repair, then Algorithm 3 (run once on the gathered edges).
 fn untiled_step(params: &Params) -> Option<String> {
     if params.method != Method::ConDT {
         return Some(format!("method {:?}", params.method));
-    }
-    if !matches!(params.uniformity, Uniformity::Fixed(_)) {
-        return Some("adaptive u".into());
     }
     if params.smooth {
         return Some("the smoothing passes".into());

@@ -72,8 +72,11 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
     kind=st.sampled_from(["curves", "uniform", "clustered", "columns"]),
     repeats=st.booleans(),
     narrow=st.booleans(),
+    adaptive=st.booleans(),
 )
-def test_any_tiling_gives_the_one_machine_edges(client, seed, n, tiles, kind, repeats, narrow):
+def test_any_tiling_gives_the_one_machine_edges(
+    client, seed, n, tiles, kind, repeats, narrow, adaptive
+):
     rng = np.random.default_rng(seed)
     if kind == "curves":
         points = curves(n, rng, outliers=0.02)
@@ -91,10 +94,12 @@ def test_any_tiling_gives_the_one_machine_edges(client, seed, n, tiles, kind, re
         points = points[rng.permutation(len(points))]
     # A narrow first halo makes most tiles prove too little at first and grow.
     halo = 1e-3 * np.ptp(points, axis=0).max() if narrow else None
-    tiled = condt.dask.reconstruct(points, client, tiles=tiles, halo=halo, paper=True)
+    tiled = condt.dask.reconstruct(
+        points, client, tiles=tiles, halo=halo, paper=True, adaptive=adaptive
+    )
     # Random floats are never cocircular (on the lines, almost never) nor all on one line.
     assert tiled.whole is None or (kind == "columns" and tiled.whole == "cocircular points")
-    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True, adaptive=adaptive))
 
 
 def test_tiles_whose_circles_reach_far_grow_their_halo(client):
@@ -115,6 +120,7 @@ def test_tiles_whose_circles_reach_far_grow_their_halo(client):
         {"paper": True, "repair": "needs"},
         {"paper": True, "repair": "mutual", "iqr": None},
         {"paper": True, "repair": "off"},
+        {"paper": True, "adaptive": True},
     ],
 )
 def test_the_paper_pipelines_variants_are_tiled_exactly(client, params):
@@ -168,8 +174,6 @@ def test_a_step_that_is_not_tiled_is_refused_by_name(client):
     points = curves(1_000, np.random.default_rng(1))
     with pytest.raises(NotImplementedError, match="local outlier removal|smoothing|not tiled"):
         condt.dask.reconstruct(points, client)
-    with pytest.raises(NotImplementedError, match="adaptive u"):
-        condt.dask.reconstruct(points, client, paper=True, adaptive=True)
     with pytest.raises(NotImplementedError, match="outliers_first"):
         condt.dask.reconstruct(points, client, paper=True, outliers_first=True)
 

@@ -17,11 +17,11 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
   points are collinear, or where the coordinates span more than 200 binary orders of magnitude,
   the whole set runs in one piece on one worker instead.
 
-Tiled today: the proximity graph with a fixed ``u``, the repair and Algorithm 3, which is the
-paper's pipeline (``paper=True``, with any of its ``u``, ``iqr``, ``repair`` and ``iqr_floor``).
-Any other step (the default's local outlier removal, gap closing, junctions, tips, smoothing
-passes, adaptive ``u``) raises ``NotImplementedError`` naming it: ``docs/distributed.md`` says
-what each needs. The points themselves stay on the machine that calls this (the driver), which
+Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3,
+which is the paper's pipeline (``paper=True``, with any of its ``u``, ``adaptive``, ``iqr``,
+``repair`` and ``iqr_floor``). Any other step (the default's local outlier removal, gap closing,
+junctions, tips, smoothing passes) raises ``NotImplementedError`` naming it:
+``docs/distributed.md`` says what each needs. The points themselves stay on the machine that calls this (the driver), which
 computes their insertion order and hull once; the workers triangulate and run the stages.
 
 >>> import numpy as np, condt, condt.dask

@@ -2,9 +2,9 @@
 //!
 //! Owns: each vertex's choice of its two shortest Delaunay edges and the uniformity test; it reads
 //! the finished triangulation and may not change it. Fixed `u` sweeps the triangles in memory order
-//! ([`sweep`]: no chain of dependent loads); adaptive `u` walks each ring from its first half-edge,
-//! as its floating-point mean depends on the sum's order (docs/condt.md, *Why adaptive `u` walks
-//! rings*). Both rank with `TwoBest` (a total order) and decide with [`keep`]; tests compare them.
+//! ([`sweep`]: no chain of dependent loads); adaptive `u` walks each ring, adding its lengths from
+//! the neighbour with the smallest id, as its floating-point mean depends on the sum's order
+//! (docs/condt.md, *Why adaptive `u` walks rings*). Both rank with `TwoBest` (a total order) and decide with [`keep`]; tests compare them.
 
 use super::PARALLEL_FROM;
 use crate::adjacency::{ordered, Edge};
@@ -59,16 +59,58 @@ impl Uniformity {
 fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [VertexId; 2] {
     let p = tri.vertex_point(v);
     let mut best = TwoBest::EMPTY;
-    let mut ring = (0.0, 0u32);
+    // Adaptive `u`: the ring's lengths as walked, for [`ring_lengths`]'s order without walking
+    // the ring again (rings longer than the buffer, rare, are walked again).
+    let mut walked = [(VertexId::INFINITE, 0.0); RING_BUFFER];
+    let mut degree = 0;
     for w in tri.mesh().neighbors(v) {
         let length2 = p.dist2(tri.vertex_point(w));
         if matches!(uniformity, Uniformity::Adaptive) {
-            ring.0 += libm::sqrt(length2);
-            ring.1 += 1;
+            if let Some(slot) = walked.get_mut(degree) {
+                *slot = (w, libm::sqrt(length2));
+            }
+            degree += 1;
         }
         best.offer(length2, w, |x, y| closer(tri, v, x, y));
     }
+    let ring = match uniformity {
+        Uniformity::Adaptive if degree <= RING_BUFFER => sum_from_smallest_id(&walked[..degree]),
+        Uniformity::Adaptive => ring_lengths(tri, v),
+        Uniformity::Fixed(_) => (0.0, 0),
+    };
     keep(uniformity, &best, ring)
+}
+
+/// Ring lengths [`kept_neighbors`] keeps as it walks (a Delaunay vertex has six neighbours on
+/// average; more than this many is rare).
+const RING_BUFFER: usize = 16;
+
+/// The sum and count of `ring`'s lengths (neighbour, length; counter-clockwise), added from the
+/// neighbour with the smallest id on: [`ring_lengths`]'s order.
+fn sum_from_smallest_id(ring: &[(VertexId, f64)]) -> (f64, u32) {
+    let first = (0..ring.len()).min_by_key(|&k| ring[k].0).unwrap_or(0);
+    let (before, from) = ring.split_at(first);
+    let sum = from.iter().chain(before).fold(0.0, |sum, &(_, l)| sum + l);
+    (sum, ring.len() as u32)
+}
+
+/// The sum of `v`'s Delaunay edge lengths and their count, for adaptive `u`. The floating-point
+/// sum depends on the order of its terms, so they are added counter-clockwise from the neighbour
+/// with the smallest id: an order fixed by `v`'s star and the order of the ids alone, whatever
+/// half-edge the mesh stores first (a tile of `condt.dask` that holds the same star, with ids in
+/// the same order, adds them alike). Three walks of the ring, no allocation.
+fn ring_lengths(tri: &Triangulation, v: VertexId) -> (f64, u32) {
+    let p = tri.vertex_point(v);
+    let ring = || tri.mesh().neighbors(v);
+    let Some((first, _)) = ring().enumerate().min_by_key(|&(_, w)| w) else {
+        return (0.0, 0);
+    };
+    ring()
+        .skip(first)
+        .chain(ring().take(first))
+        .fold((0.0, 0), |(sum, count), w| {
+            (sum + libm::sqrt(p.dist2(tri.vertex_point(w))), count + 1)
+        })
 }
 
 /// Which of `x` and `y` is nearer to `v`, exactly, for two whose rounded squared lengths are
@@ -128,8 +170,7 @@ pub(crate) fn end_choice(
             let bound = match uniformity {
                 Uniformity::Fixed(u) => u,
                 Uniformity::Adaptive => {
-                    let (sum, count) =
-                        ring().fold((0.0, 0u32), |(s, c), e| (s + libm::sqrt(e.0), c + 1));
+                    let (sum, count) = ring_lengths(tri, v);
                     sum / f64::from(count) / l1
                 }
             };
@@ -583,6 +624,60 @@ mod tests {
 
     /// The sweep (in one to four vertex ranges) and the ring walks (sequential and on
     /// rayon, run here at any size) choose the same neighbours for every vertex.
+    /// Adaptive `u`'s ring sum starts at the neighbour with the smallest id, so where the ring
+    /// walk starts does not change a bit of it (a tile of `condt.dask` stores other first
+    /// half-edges than the whole set); the walk's buffer and the walk again agree.
+    #[test]
+    fn a_rings_sum_does_not_depend_on_where_its_walk_starts() {
+        // Lengths whose sum rounds differently by the order of the terms.
+        let lengths = [1.0, 1e-16, 3.0, 1e-16, 0.1, 7.0, 1e-16, 0.3];
+        let ids = [5u32, 9, 2, 7, 4, 8, 3, 6];
+        let ring: Vec<(VertexId, f64)> = ids
+            .iter()
+            .zip(lengths)
+            .map(|(&i, l)| (VertexId::new(i), l))
+            .collect();
+        let sums: Vec<f64> = (0..ring.len())
+            .map(|start| {
+                let turned: Vec<_> = ring[start..]
+                    .iter()
+                    .chain(&ring[..start])
+                    .copied()
+                    .collect();
+                sum_from_smallest_id(&turned).0
+            })
+            .collect();
+        assert!(
+            sums.iter().all(|&s| s.to_bits() == sums[0].to_bits()),
+            "{sums:?}"
+        );
+        let plain = |start: usize| {
+            let turned = ring[start..].iter().chain(&ring[..start]);
+            turned.fold(0.0, |sum, &(_, l)| sum + l)
+        };
+        assert!(
+            (0..ring.len()).any(|k| plain(k).to_bits() != plain(0).to_bits()),
+            "the lengths must tell the orders apart"
+        );
+        // A fan of 40 points around a centre: its ring is longer than the buffer.
+        let mut points = vec![Point::new(0.0, 0.0)];
+        points.extend((0..40).map(|k| {
+            let t = k as f64 * core::f64::consts::TAU / 40.0;
+            Point::new(libm::cos(t) * (1.0 + 0.01 * k as f64), libm::sin(t))
+        }));
+        let tri = triangulate(&points).unwrap();
+        for v in (0..tri.num_points()).map(|i| tri.vertex(i)) {
+            let p = tri.vertex_point(v);
+            let walked: Vec<(VertexId, f64)> = tri
+                .mesh()
+                .neighbors(v)
+                .map(|w| (w, libm::sqrt(p.dist2(tri.vertex_point(w)))))
+                .collect();
+            assert_eq!(sum_from_smallest_id(&walked), ring_lengths(&tri, v));
+        }
+        assert!(tri.mesh().neighbors(tri.vertex(0)).count() > RING_BUFFER);
+    }
+
     #[test]
     fn sweep_and_ring_walks_agree_on_every_vertex() {
         let centre = Point::new(0.0, 0.0);
