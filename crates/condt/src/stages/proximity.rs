@@ -59,40 +59,50 @@ impl Uniformity {
 fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [VertexId; 2] {
     let p = tri.vertex_point(v);
     let mut best = TwoBest::EMPTY;
-    // Adaptive `u`: the ring's lengths as walked, for [`ring_lengths`]'s order without walking
-    // the ring again (rings longer than the buffer, rare, are walked again).
-    let mut walked = [(VertexId::INFINITE, 0.0); RING_BUFFER];
-    let mut degree = 0;
+    if let Uniformity::Fixed(_) = uniformity {
+        for w in tri.mesh().neighbors(v) {
+            best.offer(p.dist2(tri.vertex_point(w)), w, |x, y| closer(tri, v, x, y));
+        }
+        return keep(uniformity, &best, (0.0, 0));
+    }
+    let ring = offer_ring(tri, v, &mut best);
+    keep(uniformity, &best, ring)
+}
+
+/// Offers `v`'s ring to `best` and returns [`ring_lengths`] from the same walk: the lengths as
+/// walked and where the smallest id is are kept (rings longer than the buffer, rare, are walked
+/// again).
+fn offer_ring(tri: &Triangulation, v: VertexId, best: &mut TwoBest) -> (f64, u32) {
+    let p = tri.vertex_point(v);
+    let mut walked = [0.0; RING_BUFFER];
+    let (mut degree, mut first, mut smallest) = (0, 0, VertexId::INFINITE);
     for w in tri.mesh().neighbors(v) {
         let length2 = p.dist2(tri.vertex_point(w));
-        if matches!(uniformity, Uniformity::Adaptive) {
-            if let Some(slot) = walked.get_mut(degree) {
-                *slot = (w, libm::sqrt(length2));
-            }
-            degree += 1;
+        if let Some(slot) = walked.get_mut(degree) {
+            *slot = libm::sqrt(length2);
         }
+        if w < smallest {
+            (first, smallest) = (degree, w);
+        }
+        degree += 1;
         best.offer(length2, w, |x, y| closer(tri, v, x, y));
     }
-    let ring = match uniformity {
-        Uniformity::Adaptive if degree <= RING_BUFFER => sum_from_smallest_id(&walked[..degree]),
-        Uniformity::Adaptive => ring_lengths(tri, v),
-        Uniformity::Fixed(_) => (0.0, 0),
-    };
-    keep(uniformity, &best, ring)
+    if degree <= RING_BUFFER {
+        (sum_turned(&walked[..degree], first), degree as u32)
+    } else {
+        ring_lengths(tri, v)
+    }
+}
+
+/// The sum of `lengths` added from `lengths[first]` on, round to `lengths[first - 1]`.
+fn sum_turned(lengths: &[f64], first: usize) -> f64 {
+    let (before, from) = lengths.split_at(first);
+    from.iter().chain(before).fold(0.0, |sum, &l| sum + l)
 }
 
 /// Ring lengths [`kept_neighbors`] keeps as it walks (a Delaunay vertex has six neighbours on
 /// average; more than this many is rare).
 const RING_BUFFER: usize = 16;
-
-/// The sum and count of `ring`'s lengths (neighbour, length; counter-clockwise), added from the
-/// neighbour with the smallest id on: [`ring_lengths`]'s order.
-fn sum_from_smallest_id(ring: &[(VertexId, f64)]) -> (f64, u32) {
-    let first = (0..ring.len()).min_by_key(|&k| ring[k].0).unwrap_or(0);
-    let (before, from) = ring.split_at(first);
-    let sum = from.iter().chain(before).fold(0.0, |sum, &(_, l)| sum + l);
-    (sum, ring.len() as u32)
-}
 
 /// The sum of `v`'s Delaunay edge lengths and their count, for adaptive `u`. The floating-point
 /// sum depends on the order of its terms, so they are added counter-clockwise from the neighbour
@@ -632,31 +642,25 @@ mod tests {
         // Lengths whose sum rounds differently by the order of the terms.
         let lengths = [1.0, 1e-16, 3.0, 1e-16, 0.1, 7.0, 1e-16, 0.3];
         let ids = [5u32, 9, 2, 7, 4, 8, 3, 6];
-        let ring: Vec<(VertexId, f64)> = ids
-            .iter()
-            .zip(lengths)
-            .map(|(&i, l)| (VertexId::new(i), l))
-            .collect();
-        let sums: Vec<f64> = (0..ring.len())
+        let turned = |start: usize| -> (Vec<u32>, Vec<f64>) {
+            let turn = |k: usize| (k + start) % ids.len();
+            (0..ids.len())
+                .map(|k| (ids[turn(k)], lengths[turn(k)]))
+                .unzip()
+        };
+        let sums: Vec<u64> = (0..ids.len())
             .map(|start| {
-                let turned: Vec<_> = ring[start..]
-                    .iter()
-                    .chain(&ring[..start])
-                    .copied()
-                    .collect();
-                sum_from_smallest_id(&turned).0
+                let (ids, lengths) = turned(start);
+                let first = (0..ids.len()).min_by_key(|&k| ids[k]).unwrap();
+                sum_turned(&lengths, first).to_bits()
             })
             .collect();
+        assert!(sums.iter().all(|&s| s == sums[0]), "{sums:?}");
+        let plain: Vec<u64> = (0..ids.len())
+            .map(|start| sum_turned(&turned(start).1, 0).to_bits())
+            .collect();
         assert!(
-            sums.iter().all(|&s| s.to_bits() == sums[0].to_bits()),
-            "{sums:?}"
-        );
-        let plain = |start: usize| {
-            let turned = ring[start..].iter().chain(&ring[..start]);
-            turned.fold(0.0, |sum, &(_, l)| sum + l)
-        };
-        assert!(
-            (0..ring.len()).any(|k| plain(k).to_bits() != plain(0).to_bits()),
+            plain.iter().any(|&s| s != plain[0]),
             "the lengths must tell the orders apart"
         );
         // A fan of 40 points around a centre: its ring is longer than the buffer.
@@ -667,13 +671,9 @@ mod tests {
         }));
         let tri = triangulate(&points).unwrap();
         for v in (0..tri.num_points()).map(|i| tri.vertex(i)) {
-            let p = tri.vertex_point(v);
-            let walked: Vec<(VertexId, f64)> = tri
-                .mesh()
-                .neighbors(v)
-                .map(|w| (w, libm::sqrt(p.dist2(tri.vertex_point(w)))))
-                .collect();
-            assert_eq!(sum_from_smallest_id(&walked), ring_lengths(&tri, v));
+            let sum = offer_ring(&tri, v, &mut TwoBest::EMPTY);
+            assert_eq!(sum.0.to_bits(), ring_lengths(&tri, v).0.to_bits());
+            assert_eq!(sum.1, ring_lengths(&tri, v).1);
         }
         assert!(tri.mesh().neighbors(tri.vertex(0)).count() > RING_BUFFER);
     }
