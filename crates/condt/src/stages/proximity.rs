@@ -671,7 +671,8 @@ mod tests {
         }));
         let tri = triangulate(&points).unwrap();
         for v in (0..tri.num_points()).map(|i| tri.vertex(i)) {
-            let sum = offer_ring(&tri, v, &mut TwoBest::EMPTY);
+            let mut best = TwoBest::EMPTY;
+            let sum = offer_ring(&tri, v, &mut best);
             assert_eq!(sum.0.to_bits(), ring_lengths(&tri, v).0.to_bits());
             assert_eq!(sum.1, ring_lengths(&tri, v).1);
         }
