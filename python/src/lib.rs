@@ -439,6 +439,7 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tiles::_tile_plan, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_run_tile, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_outliers, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_gathered_repair_again, m)?)?;
     m.add_class::<Reconstruction>()?;
     m.add_class::<Curve>()?;
     m.add_class::<EdgeStory>()?;

@@ -27,7 +27,7 @@ use condt::geometry::{binary_exponent, Scale};
 use condt::predicates::{is_cocircular, orient2d, Orientation};
 use condt::{Method, Params, Point, Stage, Triangulation};
 use numpy::ndarray::Array2;
-use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyNotImplementedError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -42,37 +42,65 @@ const MAX_TILED_SPREAD: i32 = 200;
 /// a pass over the points per corner); above it, tiles near the hull grow their halos instead.
 const MAX_BAND_CORNERS: usize = 512;
 
-/// Why the stages `params` select cannot run in tiles, or `None` when they can: the proximity
-/// graph (fixed or adaptive `u`), the repair, then Algorithm 3 (run once on the gathered edges).
-fn untiled_step(params: &Params) -> Option<String> {
-    if params.method != Method::ConDT {
-        return Some(format!("method {:?}", params.method));
-    }
-    if params.smooth {
-        return Some("the smoothing passes".into());
-    }
-    let stages = params.stages();
-    let mut allowed = [Stage::Proximity, Stage::Repair, Stage::Outliers].iter();
-    for stage in &stages {
-        if !allowed.any(|a| a == stage) {
-            return Some(if *stage == Stage::Repair {
-                "the repair after Algorithm 3 (outliers_first)".into()
-            } else {
-                format!("the {stage} step")
-            });
+/// How a tiled run goes: which steps run on the tiles, and which global step runs on the driver
+/// between them.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Flow {
+    /// Tiles: the proximity graph, then the repair if selected; driver: Algorithm 3, if selected.
+    Repaired,
+    /// Tiles: the proximity graph; driver: Algorithm 3; tiles: the repair of what it kept.
+    OutliersFirst,
+    /// Tiles: the proximity graph and its repair; driver: Algorithm 3 and the edges to repair
+    /// again; tiles: the repair of those.
+    RepairAgain,
+}
+
+impl Flow {
+    fn name(self) -> &'static str {
+        match self {
+            Flow::Repaired => "repaired",
+            Flow::OutliersFirst => "outliers_first",
+            Flow::RepairAgain => "repair_again",
         }
     }
-    None
+}
+
+/// The flow of a tiled run of the stages `params` select, or why they cannot run in tiles: the
+/// proximity graph (fixed or adaptive `u`), the repair, Algorithm 3 in either order, and
+/// repairing again.
+fn tiled_flow(params: &Params) -> Result<Flow, String> {
+    if params.method != Method::ConDT {
+        return Err(format!("method {:?}", params.method));
+    }
+    if params.smooth {
+        return Err("the smoothing passes".into());
+    }
+    let stages = params.stages();
+    let tiled = [
+        Stage::Proximity,
+        Stage::Repair,
+        Stage::Outliers,
+        Stage::RepairAgain,
+    ];
+    if let Some(stage) = stages.iter().find(|s| !tiled.contains(s)) {
+        return Err(format!("the {stage} step"));
+    }
+    let at = |stage: Stage| stages.iter().position(|&s| s == stage);
+    Ok(match (at(Stage::Repair), at(Stage::Outliers)) {
+        (Some(repair), Some(outliers)) if outliers < repair => Flow::OutliersFirst,
+        _ if at(Stage::RepairAgain).is_some() => Flow::RepairAgain,
+        _ => Flow::Repaired,
+    })
 }
 
 /// The stages `params` select, or `NotImplementedError` naming the first that cannot be tiled.
-fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
+fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Flow)> {
     let params = params::params(kwargs)?;
-    match untiled_step(&params) {
-        None => Ok(params),
-        Some(step) => Err(PyNotImplementedError::new_err(format!(
-            "condt.dask tiles only the proximity graph (fixed u), the repair and Algorithm 3, \
-             not yet {step}: use condt.reconstruct, or paper=True"
+    match tiled_flow(&params) {
+        Ok(flow) => Ok((params, flow)),
+        Err(step) => Err(PyNotImplementedError::new_err(format!(
+            "condt.dask tiles only the proximity graph, the repair, Algorithm 3 and repairing \
+             again, not yet {step}: use condt.reconstruct, or paper=True"
         ))),
     }
 }
@@ -90,7 +118,7 @@ pub(crate) fn _tile_plan<'py>(
     points: &Bound<'py, PyAny>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    tiled_params(params)?;
+    let (_, flow) = tiled_params(params)?;
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
@@ -120,6 +148,7 @@ pub(crate) fn _tile_plan<'py>(
     plan.set_item("boundary", index_vector(py, boundary.0)?)?;
     plan.set_item("boundary_len", boundary.1)?;
     plan.set_item("whole", whole)?;
+    plan.set_item("flow", flow.name())?;
     plan.set_item("depth", depth.map(|d| PyArray1::from_vec(py, d)))?;
     let flat: Vec<f64> = hull.iter().flat_map(|p| [p.x, p.y]).collect();
     let hull = Array2::from_shape_vec((flat.len() / 2, 2), flat)
@@ -208,7 +237,7 @@ fn extend_chain(chain: &mut Vec<usize>, points: &[Point], ordered: impl Iterator
 /// the band the tile knows that sliver without holding the whole length of the edge.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (points, positions, ranks, owned, boundary, boundary_len, hull, band, known, bbox, reach, **params))]
+#[pyo3(signature = (points, positions, ranks, owned, boundary, boundary_len, hull, band, known, bbox, reach, phase, given, **params))]
 pub(crate) fn _run_tile<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
@@ -222,9 +251,12 @@ pub(crate) fn _run_tile<'py>(
     known: [f64; 4],
     bbox: [f64; 4],
     reach: usize,
+    phase: &str,
+    given: Option<PyReadonlyArray2<'py, i64>>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<TileReport<'py>> {
-    let params = tiled_params(params)?;
+    let (params, _) = tiled_params(params)?;
+    let phase = Phase::named(phase)?;
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
@@ -241,9 +273,14 @@ pub(crate) fn _run_tile<'py>(
     if [positions.len(), ranks.len(), owned.len(), boundary.len()] != [n; 4] {
         return Err(PyValueError::new_err("a tile's arrays differ in length"));
     }
+    let given: Option<Vec<[usize; 2]>> = match (&given, phase) {
+        (Some(pairs), Phase::Given) => Some(tile_pairs(pairs.as_slice()?, n)?),
+        (None, Phase::Given) => return Err(PyValueError::new_err("phase given needs edges")),
+        _ => None,
+    };
     let outcome = py
         .detach(|| {
-            crate::within_call(|| -> Result<Result<Vec<[i64; 2]>, Failure>, condt::Error> {
+            crate::within_call(|| -> Result<Result<OwnedLists, Failure>, condt::Error> {
                 let tile = Tile::new(known, bbox, boundary, boundary_len, hull, band);
                 let mut order: Vec<u32> = (0..n as u32).collect();
                 order.sort_unstable_by_key(|&i| ranks[i as usize]);
@@ -251,26 +288,83 @@ pub(crate) fn _run_tile<'py>(
                 if let Err(failure) = tile.certify(&tri, points, owned, reach) {
                     return Ok(Err(failure));
                 }
-                let mut graph = tri.proximity_graph(params.uniformity)?;
-                if params.stages().contains(&Stage::Repair) {
-                    graph = graph.repair(params.repair);
+                // The edges whose smaller end the tile owns, in the whole set's positions.
+                let owned_edges = |edges: Vec<[usize; 2]>| -> Vec<[i64; 2]> {
+                    let edges = edges.into_iter().filter(|&[a, _]| owned[a]);
+                    edges.map(|[a, b]| [positions[a], positions[b]]).collect()
+                };
+                if let Some(given) = given {
+                    let repaired = tri.graph_from_edges(given).repair(params.repair);
+                    return Ok(Ok(vec![owned_edges(repaired.edges())]));
                 }
-                let edges = graph.edges().into_iter().filter(|&[a, _]| owned[a]);
-                Ok(Ok(edges
-                    .map(|[a, b]| [positions[a], positions[b]])
-                    .collect()))
+                let proximity = tri.proximity_graph(params.uniformity)?;
+                let repair = params.stages().contains(&Stage::Repair);
+                Ok(Ok(match phase {
+                    Phase::Proximity => vec![owned_edges(proximity.edges())],
+                    Phase::Repaired if repair => {
+                        vec![owned_edges(proximity.repair(params.repair).edges())]
+                    }
+                    Phase::Repaired => vec![owned_edges(proximity.edges())],
+                    Phase::Both => vec![
+                        owned_edges(proximity.edges()),
+                        owned_edges(proximity.repair(params.repair).edges()),
+                    ],
+                    Phase::Given => unreachable!("answered above"),
+                }))
             })
         })
         .map_err(|err| library_error(err, points))?;
     match outcome {
-        Ok(edges) => Ok(("ok", Some(index_array(py, edges)?))),
+        Ok(lists) => {
+            let arrays = lists.into_iter().map(|edges| index_array(py, edges));
+            Ok(("ok", Some(arrays.collect::<PyResult<_>>()?)))
+        }
         Err(Failure::Grow) => Ok(("grow", None)),
         Err(Failure::Cocircular) => Ok(("cocircular", None)),
     }
 }
 
-/// A tile's status, with its owned edges when it certified.
-type TileReport<'py> = (&'static str, Option<Bound<'py, PyArray2<i64>>>);
+/// A tile's owned edges, one list per graph its phase asks, in the whole set's positions.
+type OwnedLists = Vec<Vec<[i64; 2]>>;
+
+/// A tile's status, with its owned edges when it certified (one list per graph its phase asks).
+type TileReport<'py> = (&'static str, Option<Vec<Bound<'py, PyArray2<i64>>>>);
+
+/// What a tile sends back ([`_run_tile`]'s `phase`).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Phase {
+    /// The proximity graph, repaired when the repair is selected.
+    Repaired,
+    /// The proximity graph alone.
+    Proximity,
+    /// The proximity graph, and its repair.
+    Both,
+    /// The repair of the `given` edges (the driver's, in the tile's positions).
+    Given,
+}
+
+impl Phase {
+    fn named(name: &str) -> PyResult<Phase> {
+        Ok(match name {
+            "repaired" => Phase::Repaired,
+            "proximity" => Phase::Proximity,
+            "both" => Phase::Both,
+            "given" => Phase::Given,
+            _ => return Err(PyValueError::new_err(format!("no tile phase {name:?}"))),
+        })
+    }
+}
+
+/// Edges as rows of a flat `(m, 2)` array of positions below `n`, smaller end first.
+fn tile_pairs(flat: &[i64], n: usize) -> PyResult<Vec<[usize; 2]>> {
+    let pair = |e: &[i64]| -> Option<[usize; 2]> {
+        let (a, b) = (usize::try_from(e[0]).ok()?, usize::try_from(e[1]).ok()?);
+        (a < n && b < n && a != b).then(|| [a.min(b), a.max(b)])
+    };
+    flat.chunks_exact(2)
+        .map(|e| pair(e).ok_or_else(|| PyValueError::new_err("a given edge is not in the tile")))
+        .collect()
+}
 
 /// Why a tile's certificate failed.
 enum Failure {
@@ -589,16 +683,11 @@ pub(crate) fn _gathered_outliers<'py>(
     edges: &Bound<'py, PyArray2<i64>>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
-    let params = tiled_params(params)?;
+    let (params, _) = tiled_params(params)?;
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    let readonly = edges.try_readonly()?;
-    let flat = readonly.as_slice()?;
-    let edges: Vec<[usize; 2]> = flat
-        .chunks_exact(2)
-        .map(|e| [e[0].min(e[1]) as usize, e[0].max(e[1]) as usize])
-        .collect();
+    let edges = gathered_pairs(edges)?;
     let kept = py
         .detach(|| match params.outlier_factor {
             Some(k) => condt::remove_gathered_outliers(points, &edges, k, params.iqr_floor)
@@ -606,7 +695,50 @@ pub(crate) fn _gathered_outliers<'py>(
             None => Ok(edges),
         })
         .map_err(|err| library_error(err, points))?;
-    let mut rows: Vec<[i64; 2]> = kept
+    sorted_rows(py, kept)
+}
+
+/// Repairing again's input on the edges the tiles sent, in the library: the proximity edges not
+/// above Algorithm 3's cut threshold of the repaired ones, as one `(m, 2)` int64 array sorted by
+/// rows, or `None` when Algorithm 3 cuts none of them (the step then changes nothing).
+#[pyfunction]
+#[pyo3(signature = (points, repaired, proximity, **params))]
+pub(crate) fn _gathered_repair_again<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    repaired: &Bound<'py, PyArray2<i64>>,
+    proximity: &Bound<'py, PyArray2<i64>>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+    let (params, _) = tiled_params(params)?;
+    let array = points_array(py, points)?;
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?);
+    let (repaired, proximity) = (gathered_pairs(repaired)?, gathered_pairs(proximity)?);
+    let Some(k) = params.outlier_factor else {
+        return Ok(None);
+    };
+    let short = py
+        .detach(|| {
+            condt::gathered_repair_again_input(points, &repaired, &proximity, k, params.iqr_floor)
+        })
+        .map_err(|err| library_error(err, points))?;
+    short.map(|edges| sorted_rows(py, edges)).transpose()
+}
+
+/// The rows of an `(m, 2)` array of positions, smaller end first.
+fn gathered_pairs(edges: &Bound<'_, PyArray2<i64>>) -> PyResult<Vec<[usize; 2]>> {
+    let readonly = edges.try_readonly()?;
+    let flat = readonly.as_slice()?;
+    Ok(flat
+        .chunks_exact(2)
+        .map(|e| [e[0].min(e[1]) as usize, e[0].max(e[1]) as usize])
+        .collect())
+}
+
+/// `edges` as an `(m, 2)` int64 array sorted by rows.
+fn sorted_rows(py: Python<'_>, edges: Vec<[usize; 2]>) -> PyResult<Bound<'_, PyArray2<i64>>> {
+    let mut rows: Vec<[i64; 2]> = edges
         .into_iter()
         .map(|[a, b]| [a as i64, b as i64])
         .collect();

@@ -73,9 +73,10 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
     repeats=st.booleans(),
     narrow=st.booleans(),
     adaptive=st.booleans(),
+    flow=st.sampled_from([{}, {"outliers_first": True}, {"repair_again": True}]),
 )
 def test_any_tiling_gives_the_one_machine_edges(
-    client, seed, n, tiles, kind, repeats, narrow, adaptive
+    client, seed, n, tiles, kind, repeats, narrow, adaptive, flow
 ):
     rng = np.random.default_rng(seed)
     if kind == "curves":
@@ -94,12 +95,11 @@ def test_any_tiling_gives_the_one_machine_edges(
         points = points[rng.permutation(len(points))]
     # A narrow first halo makes most tiles prove too little at first and grow.
     halo = 1e-3 * np.ptp(points, axis=0).max() if narrow else None
-    tiled = condt.dask.reconstruct(
-        points, client, tiles=tiles, halo=halo, paper=True, adaptive=adaptive
-    )
+    params = {"paper": True, "adaptive": adaptive, **flow}
+    tiled = condt.dask.reconstruct(points, client, tiles=tiles, halo=halo, **params)
     # Random floats are never cocircular (on the lines, almost never) nor all on one line.
     assert tiled.whole is None or (kind == "columns" and tiled.whole == "cocircular points")
-    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True, adaptive=adaptive))
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, **params))
 
 
 def test_tiles_whose_circles_reach_far_grow_their_halo(client):
@@ -121,13 +121,20 @@ def test_tiles_whose_circles_reach_far_grow_their_halo(client):
         {"paper": True, "repair": "mutual", "iqr": None},
         {"paper": True, "repair": "off"},
         {"paper": True, "adaptive": True},
+        {"paper": True, "outliers_first": True},
+        {"paper": True, "repair_again": True},
+        {"paper": True, "repair_again": True, "iqr": 0.5, "repair": "mutual"},
     ],
 )
 def test_the_paper_pipelines_variants_are_tiled_exactly(client, params):
     points = curves(40_000, np.random.default_rng(3), outliers=0.03)
     tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
     assert tiled.whole is None
-    np.testing.assert_array_equal(tiled.edges, one_machine(points, **params))
+    expected = one_machine(points, **params)
+    np.testing.assert_array_equal(tiled.edges, expected)
+    if params.get("outliers_first") or params.get("repair_again"):
+        # The tiles' second phase ran and mattered: the result is not the plain pipeline's.
+        assert not np.array_equal(expected, one_machine(points, paper=True))
 
 
 @pytest.mark.parametrize("scale", [1e-300, 1e299])
@@ -174,8 +181,8 @@ def test_a_step_that_is_not_tiled_is_refused_by_name(client):
     points = curves(1_000, np.random.default_rng(1))
     with pytest.raises(NotImplementedError, match="local outlier removal|smoothing|not tiled"):
         condt.dask.reconstruct(points, client)
-    with pytest.raises(NotImplementedError, match="outliers_first"):
-        condt.dask.reconstruct(points, client, paper=True, outliers_first=True)
+    with pytest.raises(NotImplementedError, match="local outlier removal|local-outliers"):
+        condt.dask.reconstruct(points, client, paper=True, repair_again=True, local_outliers=True)
 
 
 def test_bad_input_is_refused_as_condt_reconstruct_refuses_it(client):

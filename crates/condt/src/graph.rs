@@ -424,6 +424,66 @@ pub fn remove_gathered_outliers(
 ) -> Result<(bool, Vec<[usize; 2]>), Error> {
     let rule = IqrRule { factor: k, floor };
     Step::Outliers(rule).check()?;
+    let lengths = gathered_lengths(points, edges)?;
+    let cut = crate::stages::outliers::iqr_cut(edges, |e| e, &lengths, points.len(), rule);
+    Ok(match cut {
+        Some(kept) => (true, kept),
+        None => (false, edges.to_vec()),
+    })
+}
+
+/// Repairing again ([`OutlierRemoval::repair_again`]) on edges gathered from elsewhere: the edges
+/// of `proximity` that it repairs again, those not above the IQR cut threshold of `repaired` (the
+/// repair's output), or `None` where Algorithm 3 cuts none of `repaired` (the step then changes
+/// nothing). Pairs of positions in `points`; lengths measured in the stages' own frame, so the
+/// answer is the stage's. For a run split in tiles (Python's `condt.dask`): each tile repairs
+/// its part of the answer.
+///
+/// # Errors
+/// As [`remove_gathered_outliers`].
+///
+/// ```
+/// use condt::{gathered_repair_again_input, triangulate, Point, Repair, Uniformity};
+/// let side = |t: f64| [(t, 0.0), (10.0, t), (10.0 - t, 10.0), (0.0, 10.0 - t)];
+/// let mut pts: Vec<Point> = (0..10).flat_map(|k| side(k as f64)).map(Point::from).collect();
+/// pts.extend([Point::new(-0.9, -0.9), Point::new(30.0, 30.0)]);
+/// let tri = triangulate(&pts)?;
+/// let proximity = tri.proximity_graph(Uniformity::Fixed(2.75))?;
+/// let repaired = proximity.repair(Repair::Needs);
+/// let short = gathered_repair_again_input(&pts, &repaired.edges(), &proximity.edges(), 1.7, false)?;
+/// let again = tri.graph_from_edges(short.unwrap()).repair(Repair::Needs);
+/// let stage = repaired.remove_outliers(1.7)?.repair_again(&repaired, &proximity, Repair::Needs);
+/// assert_eq!(again.edges(), stage.edges());
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn gathered_repair_again_input(
+    points: &[crate::Point],
+    repaired: &[[usize; 2]],
+    proximity: &[[usize; 2]],
+    k: f64,
+    floor: bool,
+) -> Result<Option<Vec<[usize; 2]>>, Error> {
+    let rule = IqrRule { factor: k, floor };
+    Step::Outliers(rule).check()?;
+    let lengths = gathered_lengths(points, repaired)?;
+    let cut = crate::stages::outliers::iqr_cut(repaired, |e| e, &lengths, points.len(), rule);
+    if cut.is_none_or(|kept| kept.len() == repaired.len()) {
+        return Ok(None);
+    }
+    let threshold = crate::stages::outliers::iqr_thresholds_of(lengths, rule).cut;
+    let proximity_lengths = gathered_lengths(points, proximity)?;
+    Ok(Some(
+        proximity
+            .iter()
+            .zip(proximity_lengths)
+            .filter(|&(_, length2)| length2 <= threshold)
+            .map(|(&edge, _)| edge)
+            .collect(),
+    ))
+}
+
+/// The squared length of each of `edges` (pairs of positions in `points`) in the stages' frame.
+fn gathered_lengths(points: &[crate::Point], edges: &[[usize; 2]]) -> Result<Vec<f64>, Error> {
     let stages = crate::triangulate::choose_frames(points)?.stages;
     let mut lengths = Vec::with_capacity(edges.len());
     for &[a, b] in edges {
@@ -436,11 +496,7 @@ pub fn remove_gathered_outliers(
         };
         lengths.push(stages.apply(p).dist2(stages.apply(q)));
     }
-    let cut = crate::stages::outliers::iqr_cut(edges, |e| e, &lengths, points.len(), rule);
-    Ok(match cut {
-        Some(kept) => (true, kept),
-        None => (false, edges.to_vec()),
-    })
+    Ok(lengths)
 }
 
 /// The graph-level entry points, kept here so the kernel does not depend on the stages.

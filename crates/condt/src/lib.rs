@@ -100,7 +100,7 @@ mod sample;
 pub use curve::{curves_from_edges, Curve};
 pub use error::Error;
 pub use geometry::Point;
-pub use graph::{remove_gathered_outliers, Graph, OutlierRemoval};
+pub use graph::{gathered_repair_again_input, remove_gathered_outliers, Graph, OutlierRemoval};
 pub use provenance::{Change, EdgeStory, EndChoice, Reason};
 pub use reconstruct::{
     reconstruct, reconstruct_owned, reconstruct_triangulation, Method, Params, Pipeline,

@@ -20,6 +20,7 @@ __all__ = [
     "_tile_plan",
     "_run_tile",
     "_gathered_outliers",
+    "_gathered_repair_again",
 ]
 
 __version__: str
@@ -142,8 +143,16 @@ def _run_tile(
     known: tuple[float, float, float, float],
     bbox: tuple[float, float, float, float],
     reach: int,
+    phase: str,
+    given: Optional[npt.NDArray[np.int64]],
     **params: Any,
-) -> tuple[str, Optional[npt.NDArray[np.int64]]]: ...
+) -> tuple[str, Optional[list[npt.NDArray[np.int64]]]]: ...
 def _gathered_outliers(
     points: _Points, edges: npt.NDArray[np.int64], **params: Any
 ) -> npt.NDArray[np.int64]: ...
+def _gathered_repair_again(
+    points: _Points,
+    repaired: npt.NDArray[np.int64],
+    proximity: npt.NDArray[np.int64],
+    **params: Any,
+) -> Optional[npt.NDArray[np.int64]]: ...

@@ -17,9 +17,10 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
   points are collinear, or where the coordinates span more than 200 binary orders of magnitude,
   the whole set runs in one piece on one worker instead.
 
-Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3,
-which is the paper's pipeline (``paper=True``, with any of its ``u``, ``adaptive``, ``iqr``,
-``repair`` and ``iqr_floor``). Any other step (the default's local outlier removal, gap closing,
+Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3 in
+either order, which is the paper's pipeline (``paper=True``, with any of its ``u``,
+``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), and repairing again
+(``repair_again=True``). Any other step (the default's local outlier removal, gap closing,
 junctions, tips, smoothing passes) raises ``NotImplementedError`` naming it:
 ``docs/distributed.md`` says what each needs. The points themselves stay on the machine that calls this (the driver), which
 computes their insertion order and hull once; the workers triangulate and run the stages.
@@ -115,70 +116,131 @@ def reconstruct(
 
     bbox = np.concatenate([points.min(axis=0), points.max(axis=0)])
     rects = _cut(points, tiles, bbox)
-    halo_of = [float(halo) if halo is not None else _first_halo(r, bbox) for r in rects]
-    ranks, boundary, depth = plan["ranks"], plan["boundary"], plan["depth"]
-    gathered: list[np.ndarray | None] = [None] * len(rects)
-    workers: set = set()
-    rounds = sent = 0
-    # A tile that owns no point has nothing to send back.
-    pending = [k for k in range(len(rects)) if _inside(points, rects[k], closed=False).any()]
-    while pending:
-        rounds += 1
-        futures = {}
-        for k in pending:
-            # Each tile gets only its points (the driver cuts them out): a worker never holds
-            # the whole set.
-            known = _known(rects[k], halo_of[k], bbox)
-            inside = _inside(points, known, closed=True)
-            # Near the hull, the band along its boundary too (python/src/tiles.rs says why).
-            band = 0.0
-            if depth is not None and inside.any() and depth[inside].min() <= halo_of[k]:
-                band = halo_of[k]
-                inside |= depth <= band
-            positions = np.flatnonzero(inside)
-            sent += len(positions)
-            # Scattered, not put into the task graph: the arrays go to a worker directly.
-            payload = client.scatter(
-                (
-                    np.ascontiguousarray(points[positions]),
-                    positions.astype(np.int64),
-                    np.ascontiguousarray(ranks[positions]),
-                    np.ascontiguousarray(boundary[positions]),
-                ),
-                hash=False,
-            )
-            futures[k] = client.submit(
-                _tile,
-                payload,
-                plan["boundary_len"],
-                plan["hull"],
-                band,
-                rects[k],
-                known,
-                tuple(float(b) for b in bbox),
-                params,
-                pure=False,
-            )
-        results = client.gather(list(futures.values()))
-        pending = []
-        for k, (status, edges, worker) in zip(futures, results):
-            workers.add(worker)
-            if status == "ok":
-                gathered[k] = edges
-            elif status == "cocircular":
-                why = "cocircular points"
-                return _in_one_piece(points, client, params, why, rounds, sent, workers)
-            elif all(math.isinf(side) for side in _known(rects[k], halo_of[k], bbox)):
-                # The tile held every point: no wider halo can certify more.
-                why = "a tile held every point"
-                return _in_one_piece(points, client, params, why, rounds, sent, workers)
-            else:
-                halo_of[k] *= 2.0
-                pending.append(k)
-    parts = [e for e in gathered if e is not None]
-    joined = np.concatenate(parts) if parts else np.empty((0, 2), np.int64)
-    edges = _condt._gathered_outliers(points, np.ascontiguousarray(joined), **params)
-    return TiledReconstruction(edges, len(rects), rounds, frozenset(workers), sent, None)
+    run = _Run(points, client, plan, params, bbox, rects, halo)
+    try:
+        edges = _phases(run, plan["flow"], points, params)
+    except _WholeSet as whole:
+        return _in_one_piece(points, client, params, whole.why, run.rounds, run.sent, run.workers)
+    return TiledReconstruction(edges, len(rects), run.rounds, frozenset(run.workers), run.sent, None)
+
+
+def _phases(run, flow, points, params):
+    """The edges of a tiled run: the phases on the tiles, with the library's global steps
+    between them on the driver (``flow``: ``python/src/tiles.rs``'s ``Flow``)."""
+    if flow == "outliers_first":
+        (proximity,) = run.tiles("proximity")
+        kept = _condt._gathered_outliers(points, proximity, **params)
+        (edges,) = run.tiles("given", kept)
+    elif flow == "repair_again":
+        proximity, repaired = run.tiles("both")
+        short = _condt._gathered_repair_again(points, repaired, proximity, **params)
+        if short is None:
+            edges = _condt._gathered_outliers(points, repaired, **params)
+        else:
+            (edges,) = run.tiles("given", short)
+    else:
+        (repaired,) = run.tiles("repaired")
+        return _condt._gathered_outliers(points, repaired, **params)
+    # The tiles' own repairs: sorted by rows, as the library's answers are.
+    return np.unique(edges.reshape(-1, 2), axis=0)
+
+
+class _WholeSet(Exception):
+    """A tile cannot certify however wide its halo: the set runs in one piece (``why``)."""
+
+    def __init__(self, why):
+        super().__init__(why)
+        self.why = why
+
+
+class _Run:
+    """The tiles of one call: their halos (doubled where a certificate needs more, and kept for
+    the next phase) and what they cost."""
+
+    def __init__(self, points, client, plan, params, bbox, rects, halo):
+        self.points, self.client, self.plan, self.params = points, client, plan, params
+        self.bbox, self.rects = bbox, rects
+        self.halo_of = [float(halo) if halo is not None else _first_halo(r, bbox) for r in rects]
+        self.workers: set = set()
+        self.rounds = self.sent = 0
+        # A tile that owns no point has nothing to send back.
+        self.owning = [
+            k for k in range(len(rects)) if _inside(points, rects[k], closed=False).any()
+        ]
+
+    def tiles(self, phase, given=None):
+        """Every owning tile's edges for ``phase`` (one joined ``(m, 2)`` array per graph it
+        sends), ``given``: the driver's edges each tile repairs (``phase == "given"``). Raises
+        ``_WholeSet`` when the set must run in one piece instead."""
+        points, bbox, plan = self.points, self.bbox, self.plan
+        gathered = {}
+        pending = list(self.owning)
+        while pending:
+            self.rounds += 1
+            futures = {}
+            for k in pending:
+                # Each tile gets only its points (the driver cuts them out): a worker never
+                # holds the whole set.
+                known = _known(self.rects[k], self.halo_of[k], bbox)
+                inside = _inside(points, known, closed=True)
+                # Near the hull, the band along its boundary too (python/src/tiles.rs says why).
+                band = 0.0
+                depth = plan["depth"]
+                if depth is not None and inside.any() and depth[inside].min() <= self.halo_of[k]:
+                    band = self.halo_of[k]
+                    inside |= depth <= band
+                positions = np.flatnonzero(inside)
+                self.sent += len(positions)
+                local = None
+                if given is not None:
+                    # The given edges with both ends in the tile, in its own positions.
+                    at = np.full(len(points), -1, np.int64)
+                    at[positions] = np.arange(len(positions))
+                    pairs = at[given]
+                    local = np.ascontiguousarray(pairs[(pairs >= 0).all(axis=1)])
+                # Scattered, not put into the task graph: the arrays go to a worker directly.
+                payload = self.client.scatter(
+                    (
+                        np.ascontiguousarray(points[positions]),
+                        positions.astype(np.int64),
+                        np.ascontiguousarray(plan["ranks"][positions]),
+                        np.ascontiguousarray(plan["boundary"][positions]),
+                        local,
+                    ),
+                    hash=False,
+                )
+                futures[k] = self.client.submit(
+                    _tile,
+                    payload,
+                    plan["boundary_len"],
+                    plan["hull"],
+                    band,
+                    self.rects[k],
+                    known,
+                    tuple(float(b) for b in bbox),
+                    phase,
+                    self.params,
+                    pure=False,
+                )
+            results = self.client.gather(list(futures.values()))
+            pending = []
+            for k, (status, lists, worker) in zip(futures, results):
+                self.workers.add(worker)
+                if status == "ok":
+                    gathered[k] = lists
+                elif status == "cocircular":
+                    raise _WholeSet("cocircular points")
+                elif all(math.isinf(side) for side in _known(self.rects[k], self.halo_of[k], bbox)):
+                    # The tile held every point: no wider halo can certify more.
+                    raise _WholeSet("a tile held every point")
+                else:
+                    self.halo_of[k] *= 2.0
+                    pending.append(k)
+        graphs = len(next(iter(gathered.values()))) if gathered else 1
+        return [
+            np.concatenate([gathered[k][g] for k in sorted(gathered)] + [np.empty((0, 2), np.int64)])
+            for g in range(graphs)
+        ]
 
 
 def _inside(points, rect, closed):
@@ -189,12 +251,15 @@ def _inside(points, rect, closed):
     return (x >= rect[0]) & (y >= rect[1]) & (x < rect[2]) & (y < rect[3])
 
 
-def _tile(payload, boundary_len, hull, band, rect, known, bbox, params):
-    """On a worker: one tile's owned edges after the repair, or why it could not certify."""
+def _tile(payload, boundary_len, hull, band, rect, known, bbox, phase, params):
+    """On a worker: one tile's owned edges for ``phase``, or why it could not certify."""
     from distributed import get_worker
 
     # Arrays that crossed processes may arrive misaligned: the native module reads them in place.
-    points, positions, ranks, boundary = (np.require(a, requirements="CA") for a in payload)
+    *arrays, given = payload
+    points, positions, ranks, boundary = (np.require(a, requirements="CA") for a in arrays)
+    if given is not None:
+        given = np.require(given, requirements="CA")
     status, edges = _condt._run_tile(
         points,
         positions,
@@ -207,6 +272,8 @@ def _tile(payload, boundary_len, hull, band, rect, known, bbox, params):
         known,
         bbox,
         REACH,
+        phase,
+        given,
         **params,
     )
     return status, edges, get_worker().address
