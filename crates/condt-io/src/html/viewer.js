@@ -61,8 +61,10 @@
     const a = E[2 * k], b = E[2 * k + 1];
     return Math.hypot(P[2 * a] - P[2 * b], P[2 * a + 1] - P[2 * b + 1]) * data.scale * data.parts;
   }
-  const fmtDigits = (x, d) => (Math.abs(x) >= 1e5 || (Math.abs(x) < 1e-3 && x !== 0)) ? x.toExponential(d - 2) : +x.toPrecision(d) + "";
-  const fmt = (x) => fmtDigits(x, 6);
+  const exponent = (x) => Math.abs(x) >= 1e5 || (Math.abs(x) < 1e-3 && x !== 0);
+  const fmt = (x) => exponent(x) ? x.toExponential(4) : +x.toPrecision(6) + "";
+  // `x` with `d` significant digits.
+  const fmtDigits = (x, d) => exponent(x) ? x.toExponential(d - 1) : +x.toPrecision(d) + "";
   // Two numbers with as many digits as tell them apart (a length just above its threshold).
   const apart = (a, b) => {
     for (let d = 6; ; d++) {
