@@ -293,24 +293,18 @@ pub(crate) fn _run_tile<'py>(
                     let edges = edges.into_iter().filter(|&[a, _]| owned[a]);
                     edges.map(|[a, b]| [positions[a], positions[b]]).collect()
                 };
+                // The driver's edges repaired, or the proximity graph (with its repair).
                 if let Some(given) = given {
                     let repaired = tri.graph_from_edges(given).repair(params.repair);
                     return Ok(Ok(vec![owned_edges(repaired.edges())]));
                 }
                 let proximity = tri.proximity_graph(params.uniformity)?;
-                let repair = params.stages().contains(&Stage::Repair);
-                Ok(Ok(match phase {
-                    Phase::Proximity => vec![owned_edges(proximity.edges())],
-                    Phase::Repaired if repair => {
-                        vec![owned_edges(proximity.repair(params.repair).edges())]
-                    }
-                    Phase::Repaired => vec![owned_edges(proximity.edges())],
-                    Phase::Both => vec![
-                        owned_edges(proximity.edges()),
-                        owned_edges(proximity.repair(params.repair).edges()),
-                    ],
-                    Phase::Given => unreachable!("answered above"),
-                }))
+                let repaired = (phase == Phase::Both
+                    || (phase == Phase::Repaired && params.stages().contains(&Stage::Repair)))
+                .then(|| owned_edges(proximity.repair(params.repair).edges()));
+                let proximity = (phase != Phase::Repaired || repaired.is_none())
+                    .then(|| owned_edges(proximity.edges()));
+                Ok(Ok(proximity.into_iter().chain(repaired).collect()))
             })
         })
         .map_err(|err| library_error(err, points))?;
