@@ -95,20 +95,13 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_point(v));
-            if graph.degree(v) != 2 {
+            let Some([x, y]) = moving(tri, &graph, v, relative) else {
                 return emit(tri.stage_to_input(q), &|| tri.point(i));
-            }
-            let [x, y] = graph.first_two(v);
+            };
             // In the stages' frame, where these sums and products neither overflow nor underflow at
             // any scale; it differs from the input's by a power of two, so in the fast range the
             // moved position is bit for bit the input frame's.
             let (a, b) = (relative(tri.vertex_point(x)), relative(tri.vertex_point(y)));
-            let (ux, uy) = (a.x - q.x, a.y - q.y);
-            let (wx, wy) = (b.x - q.x, b.y - q.y);
-            // The angle at the point is wider than a right angle exactly when u·w < 0.
-            if ux * wx + uy * wy >= 0.0 {
-                return emit(tri.stage_to_input(q), &|| tri.point(i));
-            }
             moved += 1;
             let step = |q: Point, a: Point, b: Point| {
                 let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
@@ -131,6 +124,35 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
         corner,
         moved,
     }
+}
+
+/// The two neighbours of `v` when a pass moves it: `v` has exactly two edges in `graph`, meeting
+/// at more than a right angle (the module's rule, the one place it is written).
+/// Positions are compared `relative` to the corner the pass moves them from, as they are moved.
+fn moving(
+    tri: &Triangulation,
+    graph: &CurveGraph,
+    v: VertexId,
+    relative: impl Fn(Point) -> Point,
+) -> Option<[VertexId; 2]> {
+    if graph.degree(v) != 2 {
+        return None;
+    }
+    let [x, y] = graph.first_two(v);
+    let at = |u: VertexId| relative(tri.vertex_point(u));
+    let (p, a, b) = (at(v), at(x), at(y));
+    // Wider than a right angle exactly when u·w < 0.
+    let dot = (a.x - p.x) * (b.x - p.x) + (a.y - p.y) * (b.y - p.y);
+    (dot < 0.0).then_some([x, y])
+}
+
+/// Whether a smoothing pass would move any point of the reconstruction on `tri` with final graph
+/// `graph`. Where none moves, a pass would triangulate the same points again and give the same
+/// result: no pass runs (reconstruct's rule).
+pub(crate) fn moves_any(tri: &Triangulation, graph: &CurveGraph) -> bool {
+    let corner = lower_left(tri.vertex_points().iter().copied()).unwrap_or_default();
+    let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
+    (0..tri.num_points()).any(|i| moving(tri, graph, tri.vertex(i), relative).is_some())
 }
 
 /// Puts back at `original(i)` every point of `positions` that shares its position with a point of
@@ -368,6 +390,39 @@ mod tests {
         let result = reconstruct(&clean.points, &Params::default()).unwrap();
         assert!(result.edges().eq(clean.edges.iter().copied()));
         assert_eq!(result.smoothing(), None);
+    }
+
+    /// A result of short straight pieces (every point an end, or a sample whose two edges meet at
+    /// a right angle or less) shows noise, but a pass would move no point: none runs, and the
+    /// result is the first run's (a pass triangulated the same points again, relative to their
+    /// corner, and reported one pass that moved nothing).
+    #[test]
+    fn no_pass_runs_where_none_would_move_a_point() {
+        // Pairs far apart, and zig-zags of three points bent at 60°.
+        let mut points: Vec<Point> = (0..10)
+            .flat_map(|k| {
+                [
+                    Point::new(10.0 * k as f64, 0.0),
+                    Point::new(10.0 * k as f64 + 1.0, 0.0),
+                ]
+            })
+            .collect();
+        points.extend((0..10).flat_map(|k| {
+            let x = 10.0 * k as f64;
+            [
+                Point::new(x, 20.0),
+                Point::new(x + 0.5, 20.0 + 0.75f64.sqrt()),
+                Point::new(x + 1.0, 20.0),
+            ]
+        }));
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        assert!(
+            (0..points.len()).any(|i| result.degree(i) == 1),
+            "the result shows noise"
+        );
+        assert_eq!(result.smoothing(), None);
+        let plain = reconstruct(&points, &Params::default().with_smooth(false)).unwrap();
+        assert!(result.edges().eq(plain.edges()));
     }
 
     /// The share rule: an open arc whose two ends are at least one point in a hundred starts a

@@ -12,7 +12,7 @@ use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::smooth::{keep_apart, repeats, shows_noise, smoothed_positions, MAX_PASSES};
+use crate::smooth::{keep_apart, moves_any, repeats, shows_noise, smoothed_positions, MAX_PASSES};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
 use crate::triangulate::{choose_frames, splitmix64_finalizer, triangulate_with, Triangulation};
@@ -530,11 +530,14 @@ impl Run {
                 // reads the records in memory order instead of the input's (speed).
                 CurveAssembly::UnlessNoisy if tri.num_vertices() == n => {
                     !shows_noise((0..n as u32).map(|v| graph.degree(VertexId::new(v))))
+                        || !moves_any(&tri, &graph)
                 }
                 CurveAssembly::UnlessNoisy => {
                     !shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
+                        || !moves_any(&tri, &graph)
                 }
-                CurveAssembly::Later => false,
+                // A pass that would move no point would give this result again.
+                CurveAssembly::Later => !moves_any(&tri, &graph),
             };
             let room = Tally::with_room(n, last.len());
             let (curves, tally) = if curves_now {
