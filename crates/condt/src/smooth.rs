@@ -152,7 +152,9 @@ fn moving(
 pub(crate) fn moves_any(tri: &Triangulation, graph: &CurveGraph) -> bool {
     let corner = lower_left(tri.vertex_points().iter().copied()).unwrap_or_default();
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
-    (0..tri.num_points()).any(|i| moving(tri, graph, tri.vertex(i), relative).is_some())
+    (0..tri.num_vertices() as u32)
+        .map(VertexId::new)
+        .any(|v| moving(tri, graph, v, relative).is_some())
 }
 
 /// Puts back at `original(i)` every point of `positions` that shares its position with a point of

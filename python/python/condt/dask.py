@@ -22,8 +22,9 @@ either order, which is the paper's pipeline (``paper=True``, with any of its ``u
 ``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), and repairing again
 (``repair_again=True``). Any other step (the default's local outlier removal, gap closing,
 junctions, tips, smoothing passes) raises ``NotImplementedError`` naming it:
-``docs/distributed.md`` says what each needs. The points themselves stay on the machine that calls this (the driver), which
-computes their insertion order and hull once; the workers triangulate and run the stages.
+``docs/distributed.md`` says what each needs. The points themselves stay on the machine that
+calls this (the driver), which computes their insertion order and hull once; the workers
+triangulate and run the stages.
 
 >>> import numpy as np, condt, condt.dask
 >>> from dask.distributed import Client, LocalCluster
@@ -174,6 +175,8 @@ class _Run:
         ``_WholeSet`` when the set must run in one piece instead."""
         points, bbox, plan = self.points, self.bbox, self.plan
         gathered = {}
+        # Each point's place among a tile's points while its given edges are cut out (reset after).
+        at = np.full(len(points), -1, np.int64) if given is not None else None
         pending = list(self.owning)
         while pending:
             self.rounds += 1
@@ -194,10 +197,10 @@ class _Run:
                 local = None
                 if given is not None:
                     # The given edges with both ends in the tile, in its own positions.
-                    at = np.full(len(points), -1, np.int64)
                     at[positions] = np.arange(len(positions))
                     pairs = at[given]
                     local = np.ascontiguousarray(pairs[(pairs >= 0).all(axis=1)])
+                    at[positions] = -1
                 # Scattered, not put into the task graph: the arrays go to a worker directly.
                 payload = self.client.scatter(
                     (

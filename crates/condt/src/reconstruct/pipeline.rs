@@ -528,13 +528,13 @@ impl Run {
                 CurveAssembly::Now => true,
                 // Without duplicates the input positions name the ids one to one, so the count
                 // reads the records in memory order instead of the input's (speed).
-                CurveAssembly::UnlessNoisy if tri.num_vertices() == n => {
-                    !shows_noise((0..n as u32).map(|v| graph.degree(VertexId::new(v))))
-                        || !moves_any(&tri, &graph)
-                }
                 CurveAssembly::UnlessNoisy => {
-                    !shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
-                        || !moves_any(&tri, &graph)
+                    let noisy = if tri.num_vertices() == n {
+                        shows_noise((0..n as u32).map(|v| graph.degree(VertexId::new(v))))
+                    } else {
+                        shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
+                    };
+                    !noisy || !moves_any(&tri, &graph)
                 }
                 // A pass that would move no point would give this result again.
                 CurveAssembly::Later => !moves_any(&tri, &graph),

@@ -669,9 +669,6 @@ mod tests {
         );
     }
 
-    /// A crowded sample at the end of a unit-spaced line: its last edge is 0.35, the gap to the
-    /// next line's end 1.15 (over 2.75 times 0.35). Straight on, the end's spacing is the
-    /// longer of its last two edges and the gap closes; bent by 36° at the end, it stays open.
     /// A sharp tip (35°) whose apex `0` has lost its edge to the other side's last sample, `8`
     /// (straight on from that side), and lies 0.35 from its own neighbour where the spacing is
     /// 0.7: the gap of 1.3 is within 2.75 of the spacing, not of the apex's last edge. `sides`
@@ -699,6 +696,9 @@ mod tests {
         assert_eq!(joins(&pts, &pairs), NONE);
     }
 
+    /// A crowded sample at the end of a unit-spaced line: its last edge is 0.35, the gap to the
+    /// next line's end 1.15 (over 2.75 times 0.35). Straight on, the end's spacing is the
+    /// longer of its last two edges and the gap closes; bent by 36° at the end, it stays open.
     #[test]
     fn a_straight_gap_is_measured_against_the_ends_last_two_edges() {
         let mut pts: Vec<Point> = [0.0, 1.0, 2.0, 3.0, 3.35]

@@ -4,7 +4,8 @@
 //! the finished triangulation and may not change it. Fixed `u` sweeps the triangles in memory order
 //! ([`sweep`]: no chain of dependent loads); adaptive `u` walks each ring, adding its lengths from
 //! the neighbour with the smallest id, as its floating-point mean depends on the sum's order
-//! (docs/condt.md, *Why adaptive `u` walks rings*). Both rank with `TwoBest` (a total order) and decide with [`keep`]; tests compare them.
+//! (docs/condt.md, *Why adaptive `u` walks rings*). Both rank with `TwoBest` (a total order) and
+//! decide with [`keep`]; tests compare them.
 
 use super::PARALLEL_FROM;
 use crate::adjacency::{ordered, Edge};
@@ -632,8 +633,6 @@ mod tests {
         }
     }
 
-    /// The sweep (in one to four vertex ranges) and the ring walks (sequential and on
-    /// rayon, run here at any size) choose the same neighbours for every vertex.
     /// Adaptive `u`'s ring sum starts at the neighbour with the smallest id, so where the ring
     /// walk starts does not change a bit of it (a tile of `condt.dask` stores other first
     /// half-edges than the whole set); the walk's buffer and the walk again agree.
@@ -679,6 +678,8 @@ mod tests {
         assert!(tri.mesh().neighbors(tri.vertex(0)).count() > RING_BUFFER);
     }
 
+    /// The sweep (in one to four vertex ranges) and the ring walks (sequential and on
+    /// rayon, run here at any size) choose the same neighbours for every vertex.
     #[test]
     fn sweep_and_ring_walks_agree_on_every_vertex() {
         let centre = Point::new(0.0, 0.0);
