@@ -553,7 +553,7 @@ fn separated_components(
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
-    Some(keep_joined_pieces(tri, profile, root, kept))
+    Some(keep_joined_pieces(tri, profile, root, kept, parallel))
 }
 
 /// Rule 4's third exemption: a piece that gap closing would join, directly or through other
@@ -565,12 +565,13 @@ fn keep_joined_pieces(
     profile: &CurveGraph,
     root: Vec<u32>,
     kept: Vec<bool>,
+    parallel: bool,
 ) -> (Vec<u32>, Vec<bool>) {
     let ends = super::gaps::Ends {
         tri,
         graph: Cow::Borrowed(profile),
     };
-    let joins = super::gaps::gap_joins(&ends, false);
+    let joins = super::gaps::gap_joins(&ends, parallel);
     merged_along(root, kept, joins)
 }
 

@@ -368,8 +368,9 @@ impl Step {
     /// [`Step::check`]; only [`Step::RepairAgain`], [`Step::LocalOutliers`] and
     /// [`Step::ConfirmGivenBack`] read `earlier`. `graph`, if given, is the curve graph of `edges`
     /// the previous stage handed on ([`Outcome::graph`]): the stages after the local outlier
-    /// removal read it, the others drop it first (memory). `parallel`: gap closing, junctions,
-    /// crossings and tips search on several threads from [`PARALLEL_FROM`] points on (the same outcome).
+    /// removal read it, the others drop it first (memory). `parallel`: the repair (and repairing
+    /// again) chooses, and the local outlier removal, gap closing, junctions, crossings and tips
+    /// search, on several threads from [`PARALLEL_FROM`] points on (the same outcome).
     pub(crate) fn run(
         self,
         tri: &Triangulation,
@@ -385,7 +386,7 @@ impl Step {
         );
         let graph = graph.filter(|_| reads_graph);
         match self {
-            Step::Repair(mode) => Outcome::from(repair::repair(tri, edges, mode)),
+            Step::Repair(mode) => Outcome::from(repair::repair(tri, edges, mode, parallel)),
             Step::Outliers(rule) => outliers::remove_outliers(tri, edges, rule),
             Step::RepairAgain { rule, mode } => repair_again::repair_again(
                 tri,
@@ -394,6 +395,7 @@ impl Step {
                 earlier.before_repair,
                 rule,
                 mode,
+                parallel,
             ),
             Step::LocalOutliers => local_outliers::remove_local_outliers(
                 tri,

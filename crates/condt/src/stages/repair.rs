@@ -264,10 +264,48 @@ impl Branches {
     }
 }
 
+/// `choose(pairs, r, v)` for every non-manifold vertex `v` of rank `r`, in rank order; on rayon's
+/// threads when `parallel` (each with its own `pairs` scratch), else one after the other.
+fn chosen_by_rank(
+    graph: &Branches,
+    parallel: bool,
+    choose: impl Fn(&mut needs::Pairs, usize, VertexId) -> [VertexId; 4] + Sync,
+) -> Vec<[VertexId; 4]> {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::prelude::*;
+        let vertices: Vec<VertexId> = graph.vertices().collect();
+        let mut selections = Vec::new();
+        vertices
+            .par_iter()
+            .enumerate()
+            .with_min_len(1 << 10)
+            .map_init(needs::Pairs::new, |pairs, (r, &v)| choose(pairs, r, v))
+            .collect_into_vec(&mut selections);
+        return selections;
+    }
+    let _ = parallel;
+    // Sized first (memory).
+    let mut selections = Vec::with_capacity(graph.count());
+    let mut pairs = needs::Pairs::new();
+    selections.extend(
+        graph
+            .vertices()
+            .enumerate()
+            .map(|(r, v)| choose(&mut pairs, r, v)),
+    );
+    selections
+}
+
 /// Applies `repair` to the proximity graph `edges` (each edge once, any order): `None` if off or no
 /// vertex has three or more edges, else each edge once, those between manifold vertices in input
 /// order, then the non-manifold vertices' selections by increasing id.
-pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Option<Vec<Edge>> {
+pub(crate) fn repair(
+    tri: &Triangulation,
+    edges: &[Edge],
+    repair: Repair,
+    parallel: bool,
+) -> Option<Vec<Edge>> {
     if repair == Repair::Off {
         return None;
     }
@@ -278,11 +316,10 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
         return None;
     }
     let mut graph = Branches::new(&degree, edges);
-    let mut pairs = needs::Pairs::new();
-    // Lines 6–12: up to four edges per non-manifold vertex, by rank, sized first (memory).
-    let mut selections: Vec<[VertexId; 4]> = Vec::with_capacity(graph.count());
+    // Lines 6–12: up to four edges per non-manifold vertex, by rank. Each choice reads degrees and
+    // positions alone, so ranges of ranks are chosen on threads when `parallel` (the same list).
     let prefetching = vertex_count >= PREFETCH_FROM;
-    for (r, v) in graph.vertices().enumerate() {
+    let choose = |pairs: &mut needs::Pairs, r: usize, v: VertexId| {
         if prefetching && r + PREFETCH_VERTICES < graph.count() {
             // A choice reads its neighbours' points and degrees, misses on scattered points: the
             // lists lie in rank order, so those of a vertex a few ranks on are asked for ahead.
@@ -292,14 +329,15 @@ pub(crate) fn repair(tri: &Triangulation, edges: &[Edge], repair: Repair) -> Opt
             }
         }
         let around = graph.incident(r);
-        selections.push(match repair {
-            Repair::Needs => needs::choice(tri, v, around, &degree, &mut pairs),
+        match repair {
+            Repair::Needs => needs::choice(tri, v, around, &degree, pairs),
             Repair::CrossingAware => {
                 crossing_choice(tri, v, around).unwrap_or_else(|| paper_choice(tri, v, around))
             }
             _ => paper_choice(tri, v, around),
-        });
-    }
+        }
+    };
+    let selections: Vec<[VertexId; 4]> = chosen_by_rank(&graph, parallel, choose);
     graph.drop_lists();
     // Whether the non-manifold `w` selected `v`.
     let selected_by =
@@ -345,7 +383,7 @@ mod tests {
 
     /// `repair`, sorted for comparison.
     fn repair(tri: &Triangulation, edges: &[Edge], mode: Repair) -> Vec<Edge> {
-        let mut out = super::repair(tri, edges, mode).unwrap_or_else(|| edges.to_vec());
+        let mut out = super::repair(tri, edges, mode, false).unwrap_or_else(|| edges.to_vec());
         out.sort_unstable();
         out
     }

@@ -26,6 +26,7 @@ pub(crate) fn repair_again(
     proximity: Cow<'_, [Edge]>,
     rule: IqrRule,
     mode: Repair,
+    parallel: bool,
 ) -> Outcome {
     // The IQR stage only removes edges: it cut exactly when the lists differ.
     if edges == &*repaired {
@@ -42,7 +43,7 @@ pub(crate) fn repair_again(
             .copied(),
     );
     drop(proximity);
-    Outcome::from(Some(repair(tri, &short, mode).unwrap_or(short)))
+    Outcome::from(Some(repair(tri, &short, mode, parallel).unwrap_or(short)))
 }
 
 #[cfg(test)]
@@ -101,7 +102,7 @@ mod tests {
             floor: true,
         };
         let (same, also) = (Cow::Borrowed(&edges[..]), Cow::Borrowed(&edges[..]));
-        let outcome = repair_again(&tri, &edges, same, also, rule, Repair::Needs);
+        let outcome = repair_again(&tri, &edges, same, also, rule, Repair::Needs, false);
         assert!(outcome.edges.is_none());
     }
 }
