@@ -95,6 +95,38 @@ enum Partner {
     End(VertexId),
 }
 
+/// A straight walk's points ([`Ends::straight_walk`]): at most [`MIN_SAMPLES`], held inline (no
+/// allocation per loose end).
+#[derive(Copy, Clone, Debug)]
+struct Walk {
+    len: usize,
+    points: [VertexId; MIN_SAMPLES],
+}
+
+impl Default for Walk {
+    fn default() -> Walk {
+        Walk {
+            len: 0,
+            points: [VertexId::INFINITE; MIN_SAMPLES],
+        }
+    }
+}
+
+impl Walk {
+    fn push(&mut self, v: VertexId) {
+        self.points[self.len] = v;
+        self.len += 1;
+    }
+}
+
+impl core::ops::Deref for Walk {
+    type Target = [VertexId];
+
+    fn deref(&self) -> &[VertexId] {
+        &self.points[..self.len]
+    }
+}
+
 /// The loose ends of a graph and the tests on them (shared with [`super::junctions`]).
 pub(super) struct Ends<'a> {
     pub(super) tri: &'a Triangulation,
@@ -332,8 +364,8 @@ impl<'a> Ends<'a> {
     }
 
     /// The unused points a straight walk from the loose end `a` passes, then the end it meets.
-    fn straight_walk(&self, a: VertexId) -> Vec<VertexId> {
-        let mut path = Vec::new();
+    fn straight_walk(&self, a: VertexId) -> Walk {
+        let mut path = Walk::default();
         let (mut prev, mut here) = (self.along(a), a);
         for _ in 0..MIN_SAMPLES {
             let (pp, ph) = (self.point(prev), self.point(here));
@@ -358,9 +390,10 @@ impl<'a> Ends<'a> {
     }
 
     /// Rule (4) of the module: runs of unused points between two loose ends other than the `joined`
-    /// ones, unless a point is in one of the `joins` made.
-    fn stranded_runs(&self, joined: &[VertexId], joins: &[Edge]) -> Vec<Edge> {
-        let walks: Vec<(VertexId, Vec<VertexId>)> = self.each_loose(false, |a| {
+    /// ones, unless a point is in one of the `joins` made. The walks run in ranges on several
+    /// threads when `parallel` (each alone, the same list).
+    fn stranded_runs(&self, joined: &[VertexId], joins: &[Edge], parallel: bool) -> Vec<Edge> {
+        let walks: Vec<(VertexId, Walk)> = self.each_loose(parallel, |a| {
             if joined.binary_search(&a).is_ok() {
                 return None;
             }
@@ -469,7 +502,7 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
         Some((a, ends.target(a))).filter(|&(_, target)| target != Target::None)
     });
     if targets.is_empty() {
-        return ends.stranded_runs(&[], &[]);
+        return ends.stranded_runs(&[], &[], parallel);
     }
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
     let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
@@ -558,7 +591,7 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
             _ => {}
         }
     }
-    let runs = ends.stranded_runs(&joined_ends, &joins);
+    let runs = ends.stranded_runs(&joined_ends, &joins, parallel);
     joins.extend(runs);
     joins
 }
