@@ -1,5 +1,5 @@
 //! What a reconstruction runs: the [`Method`], the checked [`Params`] and the stage order, decided
-//! only in [`Params::stages`]. It may not run a stage nor implement one ([`crate::stages`]).
+//! only in `Params::steps` (read publicly through [`Params::stages`]). It may not run a stage nor implement one ([`crate::stages`]).
 
 use crate::error::Error;
 use crate::stages::outliers::IqrRule;
@@ -87,8 +87,9 @@ pub struct Params {
     /// between input positions, the [`triangulation`](Reconstruction::triangulation) is of the
     /// moved points; [`reconstruct`] runs passes, [`reconstruct_triangulation`] none (`smooth.rs`).
     pub smooth: bool,
-    /// Run the per-vertex stages on rayon (only with the `parallel` feature, and only from
-    /// 65,536 points, below which waking the workers costs more than they save; same result).
+    /// Use rayon's threads (only with the `parallel` feature; the same result): the two halves of
+    /// a large triangulation at once, the per-vertex stages and the final tally from 65,536 points
+    /// (below it, waking the workers costs more than they save).
     pub parallel: bool,
 }
 

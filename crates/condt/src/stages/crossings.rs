@@ -2,7 +2,7 @@
 //!
 //! Owns: turning a bent passage and a chord beside it into the crossing they cut short. It reads
 //! positions, the graph and the Delaunay rings; it may not touch the triangulation, and does not
-//! decide when it runs ([`Params::stages`](crate::Params::stages): last).
+//! decide when it runs ([`Params::stages`](crate::Params::stages): after the junctions, before the tips).
 //!
 //! Why: where two curves cross at a sample `x` at a narrow angle, `x`'s four arms are about one
 //! spacing long, and the samples next to `x` on the two curves can be nearer each other than to

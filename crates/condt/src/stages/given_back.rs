@@ -1,10 +1,11 @@
-//! Confirming given-back components, right after the local outlier removal (not in the paper).
+//! Confirming given-back components, after the local outlier removal and the clumps (not in the
+//! paper).
 //!
 //! Owns: one rule on components that local rule 1 rebuilt from IQR-cut edges; it only removes
 //! edges, and may not touch the triangulation.
 //!
 //! Rule (docs/condt.md, *Confirming given-back components*, with losses and costs): such a
-//! component stays only if each of its degree-2 vertices is separated (by rule 4's [`SEPARATION`]
+//! component stays only if each of its vertices with two or more edges is separated (by rule 4's [`SEPARATION`]
 //! times its longest edge) from unused points and other such components: a chance chain of outliers
 //! lies in its scatter, a stretch of curve at most beside other curves. Sequential, deterministic.
 
@@ -16,7 +17,8 @@ use crate::triangulate::Triangulation;
 use alloc::vec;
 use alloc::vec::Vec;
 
-/// The rule on `edges`, the local outlier removal's output; `before_local` is its input.
+/// The rule on `edges`, the previous stage's output (the clumps stage's when it runs);
+/// `before_local` is the local outlier removal's input.
 pub(crate) fn confirm_given_back(
     tri: &Triangulation,
     edges: &[Edge],

@@ -21,7 +21,9 @@
 //! curves) unless gap closing would join them to a kept component ([`keep_joined_pieces`]), or
 //! rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes none;
 //! docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter junction
-//! branches regardless. Sequential, deterministic, O(n); lengths recomputed, not kept (memory).
+//! branches regardless. Deterministic, O(n); rule 4's separation test and its search for gap
+//! closing's joins run on rayon's threads when `parallel` (the same result); lengths recomputed,
+//! not kept (memory).
 
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};

@@ -5,8 +5,10 @@
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which the
 //! pipeline ([`reconstruct`](crate::reconstruct)) and the public [`Graph`](crate::Graph) methods
-//! run a stage. Stages read the triangulation and may not modify it; when each runs is decided by
-//! [`Params::stages`](crate::Params::stages). Adding a stage: `docs/architecture.md`.
+//! run every stage after the first graph (the proximity graph is built by [`proximity`]'s
+//! function, and the gathered-edge helpers of [`crate::Graph`]'s module call Algorithm 3's cut
+//! directly). Stages read the triangulation and may not modify it; when each runs is decided by
+//! `Params::steps` (read through [`Params::stages`](crate::Params::stages)). Adding a stage: `docs/architecture.md`.
 
 pub(crate) mod clumps;
 pub(crate) mod crossings;
@@ -151,8 +153,9 @@ or 6, is lost)",
             flag: "confirm-given-back",
             help: "(default on; off with --paper; needs the local outlier removal)
 after it and the clumps, drop a component rebuilt only from edges
-the outlier filter cut unless every point of it is apart from every
-unused point or other such component by twice its longest edge
+the outlier filter cut unless every point of it with two edges or
+more is apart from every unused point or other such component by
+twice its longest edge
 (a chance chain of outliers in a large scatter; a sparse curve
 the filter cut that passes near an unused point stays cut)",
         }),
@@ -202,10 +205,10 @@ T): three branches of at least 5 points each, evenly sampled",
         key: "crossings",
         switch: Some(Switch {
             flag: "crossings",
-            help: "(default on; off with --paper) last, where two curves cross at a
-sample at a narrow angle and the sample kept an arm of each
-(two V shapes), give it all four arms in place of the edge
-that paired its neighbours",
+            help: "(default on; off with --paper) after the junctions, where two
+curves cross at a sample at a narrow angle and the sample kept
+an arm of each (two V shapes), give it all four arms in place of
+the edge that paired its neighbours",
         }),
     },
     Row {
