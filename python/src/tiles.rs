@@ -222,9 +222,10 @@ fn extend_chain(chain: &mut Vec<usize>, points: &[Point], ordered: impl Iterator
     chain.pop();
 }
 
-/// What a tile sends back: `("ok", edges)` with the edges it owns after the repair, in input
-/// positions of the whole set; `("grow", None)` when a vertex within `reach` hops of an owned one
-/// has an uncertified star (the known region is too small); `("cocircular", None)` when four
+/// What a tile sends back: `("ok", edges, state)` with the edges it owns after the repair, in
+/// input positions of the whole set, and with `keep` its certified triangulation ([`TileState`],
+/// else `None`) for a second phase on the same worker ([`_repair_kept`]); `("grow", None)` when a vertex within `reach` hops of an owned one
+/// has an uncertified star (the known region is too small); `("cocircular", None, None)` when four
 /// points there are cocircular.
 ///
 /// The tile's points are `points` (every point of the whole set inside `known`, a rectangle
@@ -237,7 +238,7 @@ fn extend_chain(chain: &mut Vec<usize>, points: &[Point], ordered: impl Iterator
 /// the band the tile knows that sliver without holding the whole length of the edge.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (points, positions, ranks, owned, boundary, boundary_len, hull, band, known, bbox, reach, phase, given, **params))]
+#[pyo3(signature = (points, positions, ranks, owned, boundary, boundary_len, hull, band, known, bbox, reach, phase, keep=false, **params))]
 pub(crate) fn _run_tile<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
@@ -252,7 +253,7 @@ pub(crate) fn _run_tile<'py>(
     bbox: [f64; 4],
     reach: usize,
     phase: &str,
-    given: Option<PyReadonlyArray2<'py, i64>>,
+    keep: bool,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<TileReport<'py>> {
     let (params, _) = tiled_params(params)?;
@@ -273,56 +274,177 @@ pub(crate) fn _run_tile<'py>(
     if [positions.len(), ranks.len(), owned.len(), boundary.len()] != [n; 4] {
         return Err(PyValueError::new_err("a tile's arrays differ in length"));
     }
-    let given: Option<Vec<[usize; 2]>> = match (&given, phase) {
-        (Some(pairs), Phase::Given) => Some(tile_pairs(pairs.as_slice()?, n)?),
-        (None, Phase::Given) => return Err(PyValueError::new_err("phase given needs edges")),
-        _ => None,
-    };
     let outcome = py
         .detach(|| {
-            crate::within_call(|| -> Result<Result<OwnedLists, Failure>, condt::Error> {
-                let tile = Tile::new(known, bbox, boundary, boundary_len, hull, band);
-                let mut order: Vec<u32> = (0..n as u32).collect();
-                order.sort_unstable_by_key(|&i| ranks[i as usize]);
-                let tri = Triangulation::triangulate_in_order(points, &order)?;
-                if let Err(failure) = tile.certify(&tri, points, owned, reach) {
-                    return Ok(Err(failure));
-                }
-                // The edges whose smaller end the tile owns, in the whole set's positions.
-                let owned_edges = |edges: Vec<[usize; 2]>| -> Vec<[i64; 2]> {
-                    let edges = edges.into_iter().filter(|&[a, _]| owned[a]);
-                    edges.map(|[a, b]| [positions[a], positions[b]]).collect()
-                };
-                // The driver's edges repaired, or the proximity graph (with its repair).
-                if let Some(given) = given {
-                    let repaired = tri.graph_from_edges(given).repair(params.repair);
-                    return Ok(Ok(vec![owned_edges(repaired.edges())]));
-                }
-                let proximity = tri.proximity_graph(params.uniformity)?;
-                let repaired = (phase == Phase::Both
-                    || (phase == Phase::Repaired && params.stages().contains(&Stage::Repair)))
-                .then(|| owned_edges(proximity.repair(params.repair).edges()));
-                let proximity = (phase != Phase::Repaired || repaired.is_none())
-                    .then(|| owned_edges(proximity.edges()));
-                Ok(Ok(proximity.into_iter().chain(repaired).collect()))
-            })
+            crate::within_call(
+                || -> Result<Result<(OwnedLists, Option<TileState>), Failure>, condt::Error> {
+                    let tile = Tile::new(known, bbox, boundary, boundary_len, hull, band);
+                    let mut order: Vec<u32> = (0..n as u32).collect();
+                    order.sort_unstable_by_key(|&i| ranks[i as usize]);
+                    let tri = Triangulation::triangulate_in_order(points, &order)?;
+                    if let Err(failure) = tile.certify(&tri, points, owned, reach) {
+                        return Ok(Err(failure));
+                    }
+                    // The edges whose smaller end the tile owns, in the whole set's positions.
+                    let owned_edges = |edges: Vec<[usize; 2]>| -> Vec<[i64; 2]> {
+                        let edges = edges.into_iter().filter(|&[a, _]| owned[a]);
+                        edges.map(|[a, b]| [positions[a], positions[b]]).collect()
+                    };
+                    // The proximity graph (with its repair).
+                    let proximity = tri.proximity_graph(params.uniformity)?;
+                    let repaired = (phase == Phase::Both
+                        || (phase == Phase::Repaired && params.stages().contains(&Stage::Repair)))
+                    .then(|| owned_edges(proximity.repair(params.repair).edges()));
+                    let proximity = (phase != Phase::Repaired || repaired.is_none())
+                        .then(|| owned_edges(proximity.edges()));
+                    let lists = proximity.into_iter().chain(repaired).collect();
+                    let state = keep.then(|| TileState {
+                        positions: positions.to_vec(),
+                        owned: owned.to_vec(),
+                        points: points.to_vec(),
+                        order,
+                        tri,
+                    });
+                    Ok(Ok((lists, state)))
+                },
+            )
         })
         .map_err(|err| library_error(err, points))?;
     match outcome {
-        Ok(lists) => {
+        Ok((lists, state)) => {
             let arrays = lists.into_iter().map(|edges| index_array(py, edges));
-            Ok(("ok", Some(arrays.collect::<PyResult<_>>()?)))
+            let state = state.map(|state| Bound::new(py, state)).transpose()?;
+            Ok(("ok", Some(arrays.collect::<PyResult<_>>()?), state))
         }
-        Err(Failure::Grow) => Ok(("grow", None)),
-        Err(Failure::Cocircular) => Ok(("cocircular", None)),
+        Err(Failure::Grow) => Ok(("grow", None, None)),
+        Err(Failure::Cocircular) => Ok(("cocircular", None, None)),
     }
+}
+
+/// A certified tile's triangulation, kept on its worker between two phases so that the second
+/// ([`_repair_kept`]) neither receives the tile's points again nor triangulates them again. When
+/// pickled (Dask moving it to another worker) it carries the points and their insertion order,
+/// and is triangulated again on arrival: the same triangulation, which its first phase certified.
+#[pyclass(module = "condt._condt", frozen)]
+pub(crate) struct TileState {
+    /// Each tile point's position in the whole set.
+    positions: Vec<i64>,
+    /// Which tile points the tile owns.
+    owned: Vec<bool>,
+    points: Vec<Point>,
+    /// The tile's points in the whole set's insertion order (indices into `points`).
+    order: Vec<u32>,
+    tri: Triangulation,
+}
+
+#[pymethods]
+impl TileState {
+    /// Pickling: the points, their insertion order, positions and ownership; the triangulation
+    /// is built again from them ([`_tile_state`]).
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        (
+            Bound<'py, PyArray2<f64>>,
+            Bound<'py, PyArray1<i64>>,
+            Bound<'py, PyArray1<i64>>,
+            Bound<'py, PyArray1<bool>>,
+        ),
+    )> {
+        let rebuild = py.import("condt._condt")?.getattr("_tile_state")?;
+        let flat: Vec<f64> = self.points.iter().flat_map(|p| [p.x, p.y]).collect();
+        let points = Array2::from_shape_vec((self.points.len(), 2), flat)
+            .map_err(|err| PyValueError::new_err(err.to_string()))?;
+        let order: Vec<i64> = self.order.iter().map(|&i| i64::from(i)).collect();
+        Ok((
+            rebuild,
+            (
+                PyArray2::from_owned_array(py, points),
+                PyArray1::from_vec(py, order),
+                PyArray1::from_slice(py, &self.positions),
+                PyArray1::from_slice(py, &self.owned),
+            ),
+        ))
+    }
+}
+
+/// A [`TileState`] from its pickled parts: the tile's points triangulated again in `order`.
+#[pyfunction]
+pub(crate) fn _tile_state<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    order: PyReadonlyArray1<'py, i64>,
+    positions: PyReadonlyArray1<'py, i64>,
+    owned: PyReadonlyArray1<'py, bool>,
+) -> PyResult<TileState> {
+    let array = points_array(py, points)?;
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?).to_vec();
+    let (order, positions, owned) = (order.as_slice()?, positions.as_slice()?, owned.as_slice()?);
+    let n = points.len();
+    let in_range = |&i: &i64| usize::try_from(i).is_ok_and(|i| i < n);
+    if [order.len(), positions.len(), owned.len()] != [n; 3] || !order.iter().all(in_range) {
+        return Err(PyValueError::new_err(
+            "a tile state's arrays do not fit together",
+        ));
+    }
+    let order: Vec<u32> = order.iter().map(|&i| i as u32).collect();
+    let tri = py
+        .detach(|| crate::within_call(|| Triangulation::triangulate_in_order(&points, &order)))
+        .map_err(|err| library_error(err, &points))?;
+    Ok(TileState {
+        positions: positions.to_vec(),
+        owned: owned.to_vec(),
+        points,
+        order,
+        tri,
+    })
+}
+
+/// A tile's second phase on its kept triangulation: the repair of the driver's `given` edges
+/// (rows of positions among the tile's points, both ends in the tile), and the edges whose
+/// smaller end the tile owns, in positions of the whole set, as an `(m, 2)` int64 array.
+#[pyfunction]
+#[pyo3(signature = (state, given, **params))]
+pub(crate) fn _repair_kept<'py>(
+    py: Python<'py>,
+    state: &Bound<'py, TileState>,
+    given: PyReadonlyArray2<'py, i64>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let (params, _) = tiled_params(params)?;
+    let state = state.get();
+    let given = tile_pairs(given.as_slice()?, state.points.len())?;
+    let edges = py.detach(|| {
+        crate::within_call(|| {
+            state
+                .tri
+                .graph_from_edges(given)
+                .repair(params.repair)
+                .edges()
+        })
+    });
+    let owned: Vec<[i64; 2]> = edges
+        .into_iter()
+        .filter(|&[a, _]| state.owned[a])
+        .map(|[a, b]| [state.positions[a], state.positions[b]])
+        .collect();
+    index_array(py, owned)
 }
 
 /// A tile's owned edges, one list per graph its phase asks, in the whole set's positions.
 type OwnedLists = Vec<Vec<[i64; 2]>>;
 
-/// A tile's status, with its owned edges when it certified (one list per graph its phase asks).
-type TileReport<'py> = (&'static str, Option<Vec<Bound<'py, PyArray2<i64>>>>);
+/// A tile's status, with its owned edges when it certified (one list per graph its phase asks)
+/// and, when asked to keep it, its state for a second phase.
+type TileReport<'py> = (
+    &'static str,
+    Option<Vec<Bound<'py, PyArray2<i64>>>>,
+    Option<Bound<'py, TileState>>,
+);
 
 /// What a tile sends back ([`_run_tile`]'s `phase`).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -333,8 +455,6 @@ enum Phase {
     Proximity,
     /// The proximity graph, and its repair.
     Both,
-    /// The repair of the `given` edges (the driver's, in the tile's positions).
-    Given,
 }
 
 impl Phase {
@@ -343,7 +463,6 @@ impl Phase {
             "repaired" => Phase::Repaired,
             "proximity" => Phase::Proximity,
             "both" => Phase::Both,
-            "given" => Phase::Given,
             _ => return Err(PyValueError::new_err(format!("no tile phase {name:?}"))),
         })
     }

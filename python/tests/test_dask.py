@@ -137,6 +137,43 @@ def test_the_paper_pipelines_variants_are_tiled_exactly(client, params):
         assert not np.array_equal(expected, one_machine(points, paper=True))
 
 
+def test_a_second_phase_sends_no_point_again(client):
+    # Both flows repair on the triangulations their tiles kept: the points sent are the first
+    # phase's, the same as the one-phase pipeline's on the same tiles (twice that before).
+    points = curves(40_000, np.random.default_rng(5), outliers=0.03)
+    plain = condt.dask.reconstruct(points, client, tiles=9, paper=True)
+    for flow in ({"outliers_first": True}, {"repair_again": True}):
+        tiled = condt.dask.reconstruct(points, client, tiles=9, paper=True, **flow)
+        np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True, **flow))
+        assert tiled.sent == plain.sent and tiled.rounds == plain.rounds + 1
+
+
+def test_a_kept_tile_pickles_to_the_same_repair():
+    # Dask may move a kept triangulation to another worker: it is rebuilt from its points and
+    # insertion order, and repairs as the original does.
+    import pickle
+
+    from condt import _condt
+    from condt.dask import REACH
+
+    points = curves(3_000, np.random.default_rng(9))
+    plan = _condt._tile_plan(points, paper=True)
+    n = len(points)
+    bbox = [float(v) for v in np.concatenate([points.min(axis=0), points.max(axis=0)])]
+    status, (proximity,), state = _condt._run_tile(
+        points, np.arange(n), plan["ranks"], np.ones(n, bool), plan["boundary"],
+        plan["boundary_len"], plan["hull"], 0.0, [-np.inf, -np.inf, np.inf, np.inf], bbox,
+        REACH, "proximity", keep=True, paper=True,
+    )
+    assert status == "ok"
+    again = pickle.loads(pickle.dumps(state))
+    repaired = _condt._repair_kept(state, proximity, paper=True)
+    np.testing.assert_array_equal(_condt._repair_kept(again, proximity, paper=True), repaired)
+    # The tile holds every point: its repair of the proximity graph is the whole set's.
+    expected = one_machine(points, paper=True, iqr=None)
+    np.testing.assert_array_equal(np.unique(repaired, axis=0), expected)
+
+
 @pytest.mark.parametrize("scale", [1e-300, 1e299])
 def test_huge_and_tiny_coordinates_are_tiled(client, scale):
     # Squared, such coordinates overflow or underflow: the certificate works in a scaled frame.
