@@ -325,7 +325,7 @@ pub(crate) fn _run_tile<'py>(
 /// ([`_repair_kept`]) neither receives the tile's points again nor triangulates them again. When
 /// pickled (Dask moving it to another worker) it carries the points and their insertion order,
 /// and is triangulated again on arrival: the same triangulation, which its first phase certified.
-#[pyclass(module = "condt._condt", frozen)]
+#[pyclass(module = "condt._condt", name = "_TileState", frozen)]
 pub(crate) struct TileState {
     /// Each tile point's position in the whole set.
     positions: Vec<i64>,

@@ -21,6 +21,9 @@ __all__ = [
     "_run_tile",
     "_gathered_outliers",
     "_gathered_repair_again",
+    "_tile_state",
+    "_repair_kept",
+    "_TileState",
 ]
 
 __version__: str
@@ -144,9 +147,33 @@ def _run_tile(
     bbox: tuple[float, float, float, float],
     reach: int,
     phase: str,
-    given: Optional[npt.NDArray[np.int64]],
+    keep: bool = ...,
     **params: Any,
-) -> tuple[str, Optional[list[npt.NDArray[np.int64]]]]: ...
+) -> tuple[str, Optional[list[npt.NDArray[np.int64]]], Optional[_TileState]]: ...
+@final
+class _TileState:
+    """A certified tile's triangulation, kept on its worker between two phases."""
+    def __reduce__(
+        self,
+    ) -> tuple[
+        Any,
+        tuple[
+            npt.NDArray[np.float64],
+            npt.NDArray[np.int64],
+            npt.NDArray[np.int64],
+            npt.NDArray[np.bool_],
+        ],
+    ]: ...
+
+def _tile_state(
+    points: _Points,
+    order: npt.NDArray[np.int64],
+    positions: npt.NDArray[np.int64],
+    owned: npt.NDArray[np.bool_],
+) -> _TileState: ...
+def _repair_kept(
+    state: _TileState, given: npt.NDArray[np.int64], **params: Any
+) -> npt.NDArray[np.int64]: ...
 def _gathered_outliers(
     points: _Points, edges: npt.NDArray[np.int64], **params: Any
 ) -> npt.NDArray[np.int64]: ...
