@@ -568,9 +568,36 @@ impl<'a> Tile<'a> {
         if tri.triangles().next().is_none() {
             return Err(Failure::Grow); // collinear in the tile: a larger region shows more
         }
+        // The vertices within `reach` hops of an owned point, in breadth-first order (a merged
+        // duplicate walks from its vertex): only their stars need certifying (speed: the halo
+        // holds most of the tile's triangles).
+        let mut hops = vec![usize::MAX; points.len()];
+        let mut queue = VecDeque::new();
+        for i in (0..points.len()).filter(|&i| owned[i]) {
+            let v = tri.input_of(tri.vertex(i));
+            if hops[v] == usize::MAX {
+                hops[v] = 0;
+                queue.push_back(v);
+            }
+        }
+        let mut walked = Vec::new();
+        while let Some(v) = queue.pop_front() {
+            walked.push(v);
+            if hops[v] < reach {
+                for w in tri.neighbors(v) {
+                    if hops[w] == usize::MAX {
+                        hops[w] = hops[v] + 1;
+                        queue.push_back(w);
+                    }
+                }
+            }
+        }
+        let near = |v: usize| hops[v] != usize::MAX;
         let mut certified = vec![true; points.len()];
         for [a, b, c] in tri.triangles() {
-            if self.uncertain_circle([a, b, c].map(|v| self.unit.apply(points[v]))) {
+            if (near(a) || near(b) || near(c))
+                && self.uncertain_circle([a, b, c].map(|v| self.unit.apply(points[v])))
+            {
                 for v in [a, b, c] {
                     certified[v] = false;
                 }
@@ -586,34 +613,25 @@ impl<'a> Tile<'a> {
                 certified[b] = false;
             }
         }
-        // Breadth first from the owned points (a merged duplicate walks from its vertex).
-        let mut hops = vec![usize::MAX; points.len()];
-        let mut queue = VecDeque::new();
-        for i in (0..points.len()).filter(|&i| owned[i]) {
-            let v = tri.input_of(tri.vertex(i));
-            if hops[v] == usize::MAX {
-                hops[v] = 0;
-                queue.push_back(v);
-            }
-        }
+        // In the walk's order, the first vertex without the whole set's star asks for a wider
+        // halo, the first cocircular quadruple in a star for the whole set in one piece.
         let mut ring = Vec::new();
-        while let Some(v) = queue.pop_front() {
+        for v in walked {
             if !certified[v] {
                 return Err(Failure::Grow);
             }
             ring.clear();
             ring.extend(tri.neighbors(v));
-            for (k, &w) in ring.iter().enumerate() {
-                let before = ring[(k + ring.len() - 1) % ring.len()];
-                let after = ring[(k + 1) % ring.len()];
+            for k in 0..ring.len() {
+                let (before, w, after) = (
+                    ring[(k + ring.len() - 1) % ring.len()],
+                    ring[k],
+                    ring[(k + 1) % ring.len()],
+                );
                 if ring.len() >= 3
                     && is_cocircular(points[v], points[before], points[w], points[after])
                 {
                     return Err(Failure::Cocircular);
-                }
-                if hops[v] < reach && hops[w] == usize::MAX {
-                    hops[w] = hops[v] + 1;
-                    queue.push_back(w);
                 }
             }
         }
