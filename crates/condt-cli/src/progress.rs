@@ -8,8 +8,9 @@
 //!
 //! Phases: [`Progress::reading`] (the bytes of the input read, against the file's size when it
 //! is known, else a spinner with the count), [`Progress::computing`] (a spinner with the elapsed
-//! time; [`Progress::stage`] and [`Progress::inserted`] are there for the library to feed once
-//! it reports its stages and the points inserted into the triangulation), [`Progress::writing`]
+//! time), [`Progress::triangulating`] (a bar of the points inserted, the library's counter),
+//! [`Progress::stage`] (each stage and smoothing pass as the pipeline reaches it),
+//! [`Progress::writing`]
 //! (the bytes written). The library's readers take a path and report nothing, so the bytes read
 //! are the process's own count of bytes read (`rchar` of `/proc/self/io`, Linux only; elsewhere
 //! a spinner).

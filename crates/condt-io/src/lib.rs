@@ -10,7 +10,8 @@
 //! with a header naming the columns or of two numeric columns without one ([`parse_csv`]) or
 //! GeoJSON points ([`parse_geojson`]); [`read_points`] tells
 //! them apart by the file name. Results are written as text, one item per line, as `.npy` arrays
-//! of indices ([`write_npy_edges`], [`write_npy_triangles`]), or drawn (SVG, the HTML viewer); an
+//! of indices ([`write_npy_edges`], [`write_npy_triangles`]), as GeoJSON ([`write_geojson`]), or
+//! drawn (SVG, the HTML viewer); an
 //! edge's story is told in a sentence ([`story_text`]). Edge arrays are read back by
 //! [`parse_npy_edges`] (for `condt score`).
 

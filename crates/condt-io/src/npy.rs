@@ -1,4 +1,5 @@
-//! NumPy `.npy` files: points in (float64 or float32, shape `(n, 2)`), indices out (edges
+//! NumPy `.npy` files: points in (float64 or float32, shape `(n, 2)`) and out (float64,
+//! `write_npy_points`), indices out (edges
 //! `(m, 2)`, triangles `(t, 3)`, as uint32 when every index fits, int64 otherwise), and edges
 //! in again (`(m, 2)`, uint32 or int64: what is written out, for `condt score`).
 //!
