@@ -95,10 +95,10 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             } => {
                 let (length, threshold) = told_apart(length, threshold);
                 if floored {
-                    let floor = "the spacing floor";
+                    let why = "(1.5 median edges)";
                     write!(
                         f,
-                        "length {length} above {floor} {threshold} (1.5 median edges)"
+                        "length {length} above the spacing floor {threshold} {why}"
                     )?
                 } else {
                     write!(f, "length {length} above √T = {threshold}")?

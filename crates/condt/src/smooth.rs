@@ -61,7 +61,7 @@ pub(crate) struct Smoothed {
 pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bool) -> Smoothed {
     let n = tri.num_points();
     let graph = CurveGraph::new(n, edges);
-    let corner = lower_left(tri.vertex_points().iter().copied()).unwrap_or_default();
+    let corner = corner(tri);
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
@@ -146,11 +146,16 @@ fn moving(
     (dot < 0.0).then_some([x, y])
 }
 
+/// The lower left corner of `tri`'s box (in the stages' frame), which a pass moves points from.
+fn corner(tri: &Triangulation) -> Point {
+    lower_left(tri.vertex_points().iter().copied()).unwrap_or_default()
+}
+
 /// Whether a smoothing pass would move any point of the reconstruction on `tri` with final graph
 /// `graph`. Where none moves, a pass would triangulate the same points again and give the same
 /// result: no pass runs (reconstruct's rule).
 pub(crate) fn moves_any(tri: &Triangulation, graph: &CurveGraph) -> bool {
-    let corner = lower_left(tri.vertex_points().iter().copied()).unwrap_or_default();
+    let corner = corner(tri);
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
     (0..tri.num_vertices() as u32)
         .map(VertexId::new)

@@ -247,24 +247,21 @@ class _Run:
             for g in range(graphs)
         ]
 
-
     def repair_kept(self, given):
         """The repair of the driver's edges ``given`` on each kept tile (the triangulation and
         halo that certified it, on its worker), joined: the second phase of a two-phase flow,
         which sends each tile only its given edges. The kept triangulations are released."""
-        # Which points a tile holds, and each one's place among them, while its edges are cut out
-        # (reset after); the membership test reads bytes, the places only for the edges kept.
-        member = np.zeros(len(self.points), bool)
+        # Each point's place among a tile's points (-1: not in it) while its edges are cut out
+        # (reset after).
         at = np.full(len(self.points), -1, np.int64)
         futures = []
         for k in sorted(self.kept):
             state, positions = self.kept[k]
             # The given edges with both ends in the tile, in its own positions.
-            member[positions] = True
             at[positions] = np.arange(len(positions))
-            inside = given[member[given[:, 0]] & member[given[:, 1]]]
-            local = np.ascontiguousarray(at[inside])
-            member[positions] = False
+            a, b = at[given[:, 0]], at[given[:, 1]]
+            both = (a >= 0) & (b >= 0)
+            local = np.column_stack((a[both], b[both]))
             at[positions] = -1
             futures.append(self.client.submit(_tile_given, state, local, self.params, pure=False))
         results = self.client.gather(futures)
