@@ -64,10 +64,10 @@ fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [
         for w in tri.mesh().neighbors(v) {
             best.offer(p.dist2(tri.vertex_point(w)), w, |x, y| closer(tri, v, x, y));
         }
-        return keep(uniformity, &best, (0.0, 0));
+        return keep(tri, v, uniformity, &best, (0.0, 0));
     }
     let ring = offer_ring(tri, v, &mut best);
-    keep(uniformity, &best, ring)
+    keep(tri, v, uniformity, &best, ring)
 }
 
 /// Offers `v`'s ring to `best` and returns [`ring_lengths`] from the same walk: the lengths as
@@ -124,21 +124,33 @@ fn ring_lengths(tri: &Triangulation, v: VertexId) -> (f64, u32) {
         })
 }
 
-/// Which of `x` and `y` is nearer to `v`, exactly, for two whose rounded squared lengths are
-/// equal; `Equal` when the lengths are (the caller then goes by id).
+/// Which of `x` and `y` is nearer to `v`, exactly; `Equal` when they are (the caller then goes
+/// by id). Rounded squared lengths decide when they differ, as rounding keeps their order.
 fn closer(tri: &Triangulation, v: VertexId, x: VertexId, y: VertexId) -> Ordering {
-    crate::predicates::compare_tied_distances(
+    let (p, px, py) = (
         tri.vertex_point(v),
         tri.vertex_point(x),
         tri.vertex_point(y),
-    )
+    );
+    match p.dist2(px).partial_cmp(&p.dist2(py)) {
+        Some(Ordering::Equal) | None => crate::predicates::compare_tied_distances(p, px, py),
+        Some(unequal) => unequal,
+    }
 }
 
 /// Algorithm 1, line 6: the shortest edge always, the second when it passes the uniformity test.
-fn keep(uniformity: Uniformity, best: &TwoBest, ring: (f64, u32)) -> [VertexId; 2] {
-    let ((l1, w1), (l2, w2)) = (best.get(0), best.get(1));
+/// `best` holds `v`'s offers; their lengths are measured again (the record keeps only a key).
+fn keep(
+    tri: &Triangulation,
+    v: VertexId,
+    uniformity: Uniformity,
+    best: &TwoBest,
+    ring: (f64, u32),
+) -> [VertexId; 2] {
+    let [w1, w2] = best.kept();
+    let length = |w: VertexId| libm::sqrt(tri.vertex_point(v).dist2(tri.vertex_point(w)));
     let keep_second =
-        !w2.is_infinite() && passes_uniformity(uniformity, libm::sqrt(l1), libm::sqrt(l2), ring);
+        !w2.is_infinite() && passes_uniformity(uniformity, length(w1), length(w2), ring);
     [w1, if keep_second { w2 } else { VertexId::INFINITE }]
 }
 
@@ -255,7 +267,8 @@ pub(crate) fn proximity_graph(
         Uniformity::Fixed(_) => {
             let best = two_best_offers(tri, workers(parallel).min(MAX_SWEEP_RANGES));
             // Each vertex's choice replaces its offers in place (the ids of its record): memory.
-            let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
+            let decide =
+                |i: usize, b: &TwoBest| keep(tri, VertexId::new(i as u32), uniformity, b, (0.0, 0));
             list_kept(best, parallel, &decide, TwoBest::keep_only, TwoBest::kept)
         }
         Uniformity::Adaptive => {
@@ -423,15 +436,24 @@ const PARTNERS_AHEAD: usize = 16;
 /// non-negative `f64` orders like its bits, so offers compare as integers, without branches.
 #[derive(Copy, Clone)]
 struct TwoBest {
-    lengths: [u64; 2],
+    /// [`TwoBest::key`]s of the two offers: 16 bytes a record, not 24 (memory: the stage's peak).
+    keys: [u32; 2],
     ids: [u32; 2],
 }
 
 impl TwoBest {
     const EMPTY: TwoBest = TwoBest {
-        lengths: [u64::MAX; 2],
+        keys: [u32::MAX; 2],
         ids: [u32::MAX; 2],
     };
+
+    /// A squared length's upper 32 bits (sign, exponent and 20 bits of mantissa): for the
+    /// non-negative lengths this keeps their order (it never swaps two) over the whole range of
+    /// `f64`, so unequal keys order their lengths and equal keys go to the exact comparison.
+    #[inline]
+    fn key(length2: f64) -> u32 {
+        (length2.to_bits() >> 32) as u32
+    }
 
     /// Keeps the two smallest of those held and `(length, id)` (ties: [`TwoBest::offer_tied`]).
     #[inline]
@@ -441,8 +463,8 @@ impl TwoBest {
         w: VertexId,
         closer: impl Fn(VertexId, VertexId) -> Ordering,
     ) {
-        let (l, w) = (length2.to_bits(), w.index() as u32);
-        let [l0, l1] = self.lengths;
+        let (l, w) = (Self::key(length2), w.index() as u32);
+        let [l0, l1] = self.keys;
         let [i0, i1] = self.ids;
         if l == l0 || l == l1 {
             return self.offer_tied(l, w, closer);
@@ -450,43 +472,31 @@ impl TwoBest {
         // No tie is left here: a strict comparison decides.
         let (before_first, before_second) = (l < l0, l < l1);
         // All ones when the condition holds: selections by mask compile to no branch.
-        let m0 = u64::from(before_first).wrapping_neg();
-        let m1 = u64::from(before_second).wrapping_neg();
-        let pick = |mask: u64, yes: u64, no: u64| (yes & mask) | (no & !mask);
-        let second_l = pick(m1, l, l1);
-        let second_i = pick(m1, w.into(), i1.into());
-        self.lengths = [pick(m0, l, l0), pick(m0, l0, second_l)];
-        self.ids = [
-            pick(m0, w.into(), i0.into()) as u32,
-            pick(m0, i0.into(), second_i) as u32,
-        ];
+        let m0 = u32::from(before_first).wrapping_neg();
+        let m1 = u32::from(before_second).wrapping_neg();
+        let pick = |mask: u32, yes: u32, no: u32| (yes & mask) | (no & !mask);
+        let (second_l, second_i) = (pick(m1, l, l1), pick(m1, w, i1));
+        self.keys = [pick(m0, l, l0), pick(m0, l0, second_l)];
+        self.ids = [pick(m0, w, i0), pick(m0, i0, second_i)];
     }
-    /// [`TwoBest::offer`] when the rounded length equals one held: by exact length, then id.
+    /// [`TwoBest::offer`] when the key equals one held: by exact length, then id.
     #[cold]
-    fn offer_tied(&mut self, l: u64, w: u32, closer: impl Fn(VertexId, VertexId) -> Ordering) {
-        let [l0, l1] = self.lengths;
+    fn offer_tied(&mut self, l: u32, w: u32, closer: impl Fn(VertexId, VertexId) -> Ordering) {
+        let [l0, l1] = self.keys;
         let [i0, i1] = self.ids;
-        let before = |li: u64, ii: u32| {
+        let before = |li: u32, ii: u32| {
             l < li
                 || (l == li
                     && closer(VertexId::new(w), VertexId::new(ii)).then(w.cmp(&ii))
                         == Ordering::Less)
         };
         if before(l0, i0) {
-            self.lengths = [l, l0];
+            self.keys = [l, l0];
             self.ids = [w, i0];
         } else if before(l1, i1) {
-            self.lengths = [l0, l];
+            self.keys = [l0, l];
             self.ids = [i0, w];
         }
-    }
-    /// `(squared length, neighbour)` of the best (`k = 0`) or second best offer.
-    #[inline]
-    fn get(&self, k: usize) -> (f64, VertexId) {
-        if self.ids[k] == u32::MAX {
-            return (f64::INFINITY, VertexId::INFINITE);
-        }
-        (f64::from_bits(self.lengths[k]), VertexId::new(self.ids[k]))
     }
     /// Replaces the offers by the kept neighbours ([`TwoBest::kept`]); lengths are not read again.
     #[inline]
@@ -619,7 +629,9 @@ mod tests {
             if let Uniformity::Fixed(_) = uniformity {
                 // As the parallel path lists them: swept in two ranges, decided first, in place.
                 let best = two_best_offers(&tri, 2);
-                let decide = |_: usize, b: &TwoBest| keep(uniformity, b, (0.0, 0));
+                let decide = |i: usize, b: &TwoBest| {
+                    keep(&tri, VertexId::new(i as u32), uniformity, b, (0.0, 0))
+                };
                 let decided = list_kept(best, true, &decide, TwoBest::keep_only, TwoBest::kept);
                 assert_eq!(decided, union, "{uniformity:?}");
             }
@@ -678,6 +690,30 @@ mod tests {
         assert!(tri.mesh().neighbors(tri.vertex(0)).count() > RING_BUFFER);
     }
 
+    /// Two neighbours at squared lengths 2^24 and 2^24 + 1, both exact, share a record key (an
+    /// `f32`); the nearer still comes first, in the sweep and the ring walk, whichever id it has.
+    #[test]
+    fn lengths_with_one_key_are_ordered_exactly() {
+        let (near, far) = (Point::new(4096.0, 0.0), Point::new(1.0, 4096.0));
+        let rest = [(-12e3, 2e3), (800.0, -12e3), (12e3, 12e3)].map(Point::from);
+        let origin = Point::new(0.0, 0.0);
+        assert_eq!(
+            TwoBest::key(origin.dist2(near)),
+            TwoBest::key(origin.dist2(far))
+        );
+        for (points, expected) in [([near, far], [1, 2]), ([far, near], [2, 1])] {
+            let mut all = vec![Point::new(0.0, 0.0)];
+            all.extend(points.iter().chain(&rest));
+            let tri = triangulate(&all).unwrap();
+            let (v, input) = (tri.vertex(0), |w: VertexId| tri.input_of(w));
+            let fixed = Uniformity::Fixed(2.75);
+            let walked = kept_neighbors(&tri, v, fixed).map(input);
+            let best = two_best_offers(&tri, 1);
+            let swept = keep(&tri, v, fixed, &best[v.index()], (0.0, 0)).map(input);
+            assert_eq!((walked, swept), (expected, expected));
+        }
+    }
+
     /// The sweep (in one to four vertex ranges) and the ring walks (sequential and on
     /// rayon, run here at any size) choose the same neighbours for every vertex.
     #[test]
@@ -723,7 +759,9 @@ mod tests {
             let walked = ring_walks(fixed, false);
             for ranges in 1..=4 {
                 let best = two_best_offers(&tri, ranges);
-                let swept: Vec<_> = best.iter().map(|b| keep(fixed, b, (0.0, 0))).collect();
+                let swept: Vec<_> = (best.iter().enumerate())
+                    .map(|(i, b)| keep(&tri, VertexId::new(i as u32), fixed, b, (0.0, 0)))
+                    .collect();
                 assert_eq!(swept, walked, "{label}, {ranges} ranges");
             }
             let adaptive = Uniformity::Adaptive;
