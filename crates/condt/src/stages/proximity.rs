@@ -714,6 +714,49 @@ mod tests {
         }
     }
 
+    /// On a grid of 4096 with every coordinate moved by -1, 0 or 1, many rings hold lengths
+    /// whose squares differ by 1 in 2^24 (one key) or not at all: every vertex's two picks, swept
+    /// and walked, are its two nearest by exact integer length, then vertex id.
+    #[test]
+    fn picks_follow_exact_lengths_among_near_ties() {
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let mut jitter = move || (rng.next_u64() % 3) as i64 - 1;
+        let cells: Vec<[i64; 2]> = (0..400)
+            .map(|k| [4096 * (k % 20) + jitter(), 4096 * (k / 20) + jitter()])
+            .collect();
+        let points: Vec<Point> = cells
+            .iter()
+            .map(|&[x, y]| Point::new(x as f64, y as f64))
+            .collect();
+        let tri = triangulate(&points).unwrap();
+        let wide = Uniformity::Fixed(100.0);
+        let best = two_best_offers(&tri, 1);
+        let mut key_ties = 0;
+        for v in (0..tri.num_points()).map(|i| tri.vertex(i)) {
+            let at = |w: VertexId| cells[tri.input_of(w)];
+            let length2 = |w: VertexId| {
+                let ([x, y], [a, b]) = (at(v), at(w));
+                (x - a).pow(2) + (y - b).pow(2)
+            };
+            let mut ring: Vec<VertexId> = tri.mesh().neighbors(v).collect();
+            ring.sort_by_key(|&w| (length2(w), w));
+            let key = |w: VertexId| TwoBest::key(tri.vertex_point(v).dist2(tri.vertex_point(w)));
+            key_ties += usize::from(key(ring[0]) == key(ring[1]) || key(ring[1]) == key(ring[2]));
+            let expected = [ring[0], ring[1]];
+            assert_eq!(
+                kept_neighbors(&tri, v, wide),
+                expected,
+                "walked, vertex {v:?}"
+            );
+            assert_eq!(
+                keep(&tri, v, wide, &best[v.index()], (0.0, 0)),
+                expected,
+                "swept"
+            );
+        }
+        assert!(key_ties > 50, "only {key_ties} rings with a tie of keys");
+    }
+
     /// The sweep (in one to four vertex ranges) and the ring walks (sequential and on
     /// rayon, run here at any size) choose the same neighbours for every vertex.
     #[test]
