@@ -95,10 +95,9 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             } => {
                 let (length, threshold) = told_apart(length, threshold);
                 if floored {
-                    let why = "(1.5 median edges)";
                     write!(
                         f,
-                        "length {length} above the spacing floor {threshold} {why}"
+                        "length {length} above the spacing floor {threshold} (1.5 median edges)"
                     )?
                 } else {
                     write!(f, "length {length} above √T = {threshold}")?

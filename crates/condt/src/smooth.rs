@@ -157,8 +157,7 @@ fn corner(tri: &Triangulation) -> Point {
 pub(crate) fn moves_any(tri: &Triangulation, graph: &CurveGraph) -> bool {
     let corner = corner(tri);
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
-    (0..tri.num_vertices() as u32)
-        .map(VertexId::new)
+    tri.vertices()
         .any(|v| moving(tri, graph, v, relative).is_some())
 }
 
@@ -430,6 +429,37 @@ mod tests {
         assert_eq!(result.smoothing(), None);
         let plain = reconstruct(&points, &Params::default().with_smooth(false)).unwrap();
         assert!(result.edges().eq(plain.edges()));
+    }
+
+    /// With merged duplicates the vertex ids leave holes, so a vertex can have an id at or above
+    /// the count of vertices: a pass that would move only that vertex is still seen to move one.
+    #[test]
+    fn moves_any_sees_every_vertex_id() {
+        use crate::adjacency::{ordered, CurveGraph};
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut points = rng.unit_points(200);
+        points.extend_from_within(..100); // 100 exact duplicates
+        let tri = triangulate(&points).unwrap();
+        let last = tri.vertices().last().unwrap();
+        assert!(last.index() >= tri.num_vertices(), "the ids leave holes");
+        // Two of its neighbours that meet at it at more than a right angle: a pass moves it.
+        let p = tri.vertex_point(last);
+        let ring: Vec<_> = tri.mesh().neighbors(last).collect();
+        let away = |w| {
+            let q = tri.vertex_point(w);
+            (q.x - p.x, q.y - p.y)
+        };
+        let pair = ring
+            .iter()
+            .flat_map(|&a| ring.iter().map(move |&b| [a, b]))
+            .find(|&[a, b]| {
+                let ((ux, uy), (wx, wy)) = (away(a), away(b));
+                ux * wx + uy * wy < 0.0
+            })
+            .unwrap();
+        let edges = pair.map(|w| ordered(last, w));
+        let graph = CurveGraph::new(tri.num_points(), &edges);
+        assert!(super::moves_any(&tri, &graph));
     }
 
     /// The share rule: an open arc whose two ends are at least one point in a hundred starts a
