@@ -25,7 +25,7 @@ use crate::convert::{as_points, index_array, index_vector, library_error, points
 use crate::params;
 use condt::geometry::{binary_exponent, Scale};
 use condt::predicates::{is_cocircular, orient2d, Orientation};
-use condt::{Method, Params, Point, Stage, Triangulation};
+use condt::{GatheredPass, Method, Params, Point, Stage, Triangulation};
 use numpy::ndarray::Array2;
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyNotImplementedError, PyValueError};
@@ -67,13 +67,11 @@ impl Flow {
 
 /// The flow of a tiled run of the stages `params` select, or why they cannot run in tiles: the
 /// proximity graph (fixed or adaptive `u`), the repair, Algorithm 3 in either order, and
-/// repairing again.
+/// repairing again; each run of the smoothing passes is one such flow
+/// ([`_gathered_smoothing_pass`] between them).
 fn tiled_flow(params: &Params) -> Result<Flow, String> {
     if params.method != Method::ConDT {
         return Err(format!("method {:?}", params.method));
-    }
-    if params.smooth {
-        return Err("the smoothing passes".into());
     }
     let stages = params.stages();
     let tiled = [
@@ -99,8 +97,8 @@ fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Flow)> 
     match tiled_flow(&params) {
         Ok(flow) => Ok((params, flow)),
         Err(step) => Err(PyNotImplementedError::new_err(format!(
-            "condt.dask tiles only the proximity graph, the repair, Algorithm 3 and repairing \
-             again, not yet {step}: use condt.reconstruct, or paper=True"
+            "condt.dask tiles only the proximity graph, the repair, Algorithm 3, repairing \
+             again and the smoothing passes, not yet {step}: use condt.reconstruct, or paper=True"
         ))),
     }
 }
@@ -118,7 +116,7 @@ pub(crate) fn _tile_plan<'py>(
     points: &Bound<'py, PyAny>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (_, flow) = tiled_params(params)?;
+    let (params, flow) = tiled_params(params)?;
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
@@ -149,6 +147,7 @@ pub(crate) fn _tile_plan<'py>(
     plan.set_item("boundary_len", boundary.1)?;
     plan.set_item("whole", whole)?;
     plan.set_item("flow", flow.name())?;
+    plan.set_item("smooth", params.smooth)?;
     plan.set_item("depth", depth.map(|d| PyArray1::from_vec(py, d)))?;
     let flat: Vec<f64> = hull.iter().flat_map(|p| [p.x, p.y]).collect();
     let hull = Array2::from_shape_vec((flat.len() / 2, 2), flat)
@@ -855,6 +854,49 @@ pub(crate) fn _gathered_repair_again<'py>(
         })
         .map_err(|err| library_error(err, points))?;
     short.map(|edges| sorted_rows(py, edges)).transpose()
+}
+
+/// Between two tiled runs with the smoothing passes: `None` when no pass follows the run on
+/// `points` whose final edges the tiles sent (`edges`), else the points the pass moves to, as an
+/// `(n, 2)` float64 array, for the next tiled run; or, where the runs of a split cannot follow
+/// `condt.reconstruct`'s pass, why the whole set must run in one piece. `passes` counts the passes
+/// before this run and `previous` holds the run before's edges. The library decides
+/// ([`condt::gathered_smoothing_pass`]).
+#[pyfunction]
+#[pyo3(signature = (points, edges, passes, previous=None))]
+pub(crate) fn _gathered_smoothing_pass<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    edges: &Bound<'py, PyArray2<i64>>,
+    passes: usize,
+    previous: Option<&Bound<'py, PyArray2<i64>>>,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    let array = points_array(py, points)?;
+    let borrowed = array.try_readonly()?;
+    let points = as_points(borrowed.as_slice()?);
+    let edges = gathered_pairs(edges)?;
+    let previous = previous.map(gathered_pairs).transpose()?;
+    let pass = py
+        .detach(|| {
+            crate::within_call(|| {
+                condt::gathered_smoothing_pass(points, &edges, passes, previous.as_deref())
+            })
+        })
+        .map_err(|err| library_error(err, points))?;
+    Ok(match pass {
+        GatheredPass::Next(moved) => {
+            let flat: Vec<f64> = moved.iter().flat_map(|p| [p.x, p.y]).collect();
+            let moved = Array2::from_shape_vec((moved.len(), 2), flat)
+                .map_err(|err| PyValueError::new_err(err.to_string()))?;
+            Some(PyArray2::from_owned_array(py, moved).into_any())
+        }
+        GatheredPass::InOnePiece => Some(
+            "a smoothing pass moves points in the caller's frame"
+                .into_pyobject(py)?
+                .into_any(),
+        ),
+        _ => None,
+    })
 }
 
 /// The rows of an `(m, 2)` array of positions, smaller end first.

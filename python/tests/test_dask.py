@@ -74,9 +74,10 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
     narrow=st.booleans(),
     adaptive=st.booleans(),
     flow=st.sampled_from([{}, {"outliers_first": True}, {"repair_again": True}]),
+    smooth=st.booleans(),
 )
 def test_any_tiling_gives_the_one_machine_edges(
-    client, seed, n, tiles, kind, repeats, narrow, adaptive, flow
+    client, seed, n, tiles, kind, repeats, narrow, adaptive, flow, smooth
 ):
     rng = np.random.default_rng(seed)
     if kind == "curves":
@@ -95,7 +96,7 @@ def test_any_tiling_gives_the_one_machine_edges(
         points = points[rng.permutation(len(points))]
     # A narrow first halo makes most tiles prove too little at first and grow.
     halo = 1e-3 * np.ptp(points, axis=0).max() if narrow else None
-    params = {"paper": True, "adaptive": adaptive, **flow}
+    params = {"paper": True, "adaptive": adaptive, "smooth": smooth, **flow}
     tiled = condt.dask.reconstruct(points, client, tiles=tiles, halo=halo, **params)
     # Random floats are never cocircular (on the lines, almost never) nor all on one line.
     assert tiled.whole is None or (kind == "columns" and tiled.whole == "cocircular points")
@@ -135,6 +136,28 @@ def test_the_paper_pipelines_variants_are_tiled_exactly(client, params):
     if params.get("outliers_first") or params.get("repair_again"):
         # The tiles' second phase ran and mattered: the result is not the plain pipeline's.
         assert not np.array_equal(expected, one_machine(points, paper=True))
+
+
+@pytest.mark.parametrize("flow", [{}, {"outliers_first": True}, {"repair_again": True}])
+def test_the_smoothing_passes_are_tiled_runs_with_the_one_machine_edges(client, flow):
+    # Every other ellipse noisy: loose ends show noise, so the passes run, each a tiled run of
+    # the moved points; the library decides on the driver whether another follows.
+    points = curves(20_000, np.random.default_rng(4), outliers=0.02, noisy_every=2)
+    params = {"paper": True, "smooth": True, **flow}
+    tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
+    assert tiled.whole is None and tiled.passes == 3
+    expected = one_machine(points, **params)
+    np.testing.assert_array_equal(tiled.edges, expected)
+    # The passes mattered: without them the edges differ.
+    assert not np.array_equal(expected, one_machine(points, paper=True, **flow))
+    # Evenly sampled circles show no noise: no pass, one tiled run (moved by a hair, so that
+    # their samples are not cocircular).
+    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
+    clean = np.concatenate([np.column_stack([5 * k + np.cos(t), np.sin(t)]) for k in range(8)])
+    clean += np.random.default_rng(4).uniform(-1e-9, 1e-9, clean.shape)
+    tiled = condt.dask.reconstruct(clean, client, tiles=4, **params)
+    assert tiled.passes == 0
+    np.testing.assert_array_equal(tiled.edges, one_machine(clean, **params))
 
 
 def test_a_second_phase_sends_no_point_again(client):

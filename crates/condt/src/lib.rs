@@ -106,6 +106,7 @@ pub use reconstruct::{
     reconstruct, reconstruct_owned, reconstruct_triangulation, Method, Params, Pipeline,
     Reconstruction, Smoothing, StageReport, StepReport, Upcoming,
 };
+pub use smooth::{gathered_smoothing_pass, GatheredPass};
 pub use stages::{Repair, Stage, Switch, Uniformity};
 pub use threads::parallel_available;
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};

@@ -9,9 +9,10 @@
 //! off. Why, costs and measurements: docs/condt.md, *Smoothing passes*.
 
 use crate::adjacency::{CurveGraph, Edge};
-use crate::geometry::{lower_left, Point};
+use crate::error::Error;
+use crate::geometry::{lower_left, Point, Scale};
 use crate::mesh::VertexId;
-use crate::triangulate::{splitmix64_finalizer, Triangulation};
+use crate::triangulate::{choose_frames, splitmix64_finalizer, Triangulation};
 use alloc::vec::Vec;
 
 /// How far a point moves towards its neighbours' midpoint. Reason: on a zig-zag, the noise pattern
@@ -37,6 +38,110 @@ pub(crate) fn shows_noise(degrees: impl ExactSizeIterator<Item = usize>) -> bool
 /// policy, not a fit (measurements: docs/perf-log.md).
 pub(crate) const NOISE_SHARE: usize = 100;
 
+/// What a pass reads of the run it follows: the run's triangulation, or (a run split in tiles,
+/// [`gathered_smoothing_pass`]) its points with their gathered edges. One pass rule for both.
+pub(crate) trait RunPositions {
+    /// The number of input positions (and of vertex ids).
+    fn len(&self) -> usize;
+    /// The vertex that input position `i` became (exact duplicates share one).
+    fn vertex(&self, i: usize) -> VertexId;
+    /// Every vertex's position in the stages' frame, by id.
+    fn vertex_points(&self) -> &[Point];
+    /// A position in the stages' frame in input coordinates.
+    fn stage_to_input(&self, p: Point) -> Point;
+    /// Where the input frame's zero lies in the caller's coordinates.
+    fn offset(&self) -> Point;
+    /// Input position `i` in the caller's coordinates.
+    fn point(&self, i: usize) -> Point;
+    /// Whether `v` may move: a vertex, not an id a merged duplicate left unused.
+    fn is_vertex(&self, v: VertexId) -> bool;
+}
+
+impl RunPositions for Triangulation {
+    fn len(&self) -> usize {
+        self.num_points()
+    }
+    fn vertex(&self, i: usize) -> VertexId {
+        Triangulation::vertex(self, i)
+    }
+    fn vertex_points(&self) -> &[Point] {
+        Triangulation::vertex_points(self)
+    }
+    fn stage_to_input(&self, p: Point) -> Point {
+        Triangulation::stage_to_input(self, p)
+    }
+    fn offset(&self) -> Point {
+        Triangulation::offset(self)
+    }
+    fn point(&self, i: usize) -> Point {
+        Triangulation::point(self, i)
+    }
+    fn is_vertex(&self, v: VertexId) -> bool {
+        Triangulation::is_vertex(self, v)
+    }
+}
+
+/// A run's points and gathered edges as a pass reads them: vertex ids are input positions, each
+/// exact duplicate standing for the smallest position of its group (as a triangulation's ids and
+/// [`Triangulation::input_of`] do), positions in the stages' frame of the whole set.
+struct Gathered<'a> {
+    points: &'a [Point],
+    stage_points: Vec<Point>,
+    stage_to_input: Scale,
+    /// Each position's vertex: the smallest position with its coordinates.
+    vertex_of: Vec<VertexId>,
+}
+
+impl<'a> Gathered<'a> {
+    fn new(points: &'a [Point]) -> Result<Gathered<'a>, Error> {
+        let stages = choose_frames(points)?.stages;
+        let stage_points: Vec<Point> = points.iter().map(|&p| stages.apply(p)).collect();
+        // `+ 0.0` turns -0 into +0, which the triangulation merges with it.
+        let key = |i: usize| {
+            let p = points[i];
+            ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits())
+        };
+        let mut order: Vec<usize> = (0..points.len()).collect();
+        order.sort_unstable_by_key(|&i| (key(i), i));
+        let mut vertex_of = alloc::vec![VertexId::new(0); points.len()];
+        for group in order.chunk_by(|&i, &j| key(i) == key(j)) {
+            for &i in group {
+                vertex_of[i] = VertexId::new(group[0] as u32);
+            }
+        }
+        Ok(Gathered {
+            points,
+            stage_points,
+            stage_to_input: stages.inverse(),
+            vertex_of,
+        })
+    }
+}
+
+impl RunPositions for Gathered<'_> {
+    fn len(&self) -> usize {
+        self.points.len()
+    }
+    fn vertex(&self, i: usize) -> VertexId {
+        self.vertex_of[i]
+    }
+    fn vertex_points(&self) -> &[Point] {
+        &self.stage_points
+    }
+    fn stage_to_input(&self, p: Point) -> Point {
+        self.stage_to_input.apply(p)
+    }
+    fn offset(&self) -> Point {
+        Point::new(0.0, 0.0)
+    }
+    fn point(&self, i: usize) -> Point {
+        self.points[i]
+    }
+    fn is_vertex(&self, v: VertexId) -> bool {
+        self.vertex_of[v.index()] == v
+    }
+}
+
 /// Where a smoothing pass moves the points: relative to a corner (see [`smoothed_positions`]).
 pub(crate) struct Smoothed {
     /// The smoothed position of every input position, relative to `corner`.
@@ -49,6 +154,8 @@ pub(crate) struct Smoothed {
     pub(crate) corner: Point,
     /// How many points moved.
     pub(crate) moved: usize,
+    /// Whether the box's extent overflows the input frame, so `positions` are the caller's.
+    pub(crate) overflows: bool,
 }
 
 /// The smoothed position of every input position for a reconstruction on `tri` with final graph
@@ -58,8 +165,12 @@ pub(crate) struct Smoothed {
 /// Why above 90°: the suite's and the paper's sharp corners are under 60° and noise tilts edges by
 /// a few degrees, while a curve sampled densely enough for the proximity graph (ε < 1/2: at most
 /// about 30° of turn per sample) is far above it along its smooth parts.
-pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bool) -> Smoothed {
-    let n = tri.num_points();
+pub(crate) fn smoothed_positions(
+    tri: &impl RunPositions,
+    edges: &[Edge],
+    wanted: bool,
+) -> Smoothed {
+    let n = tri.len();
     let graph = CurveGraph::new(n, edges);
     let corner = corner(tri);
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
@@ -94,21 +205,21 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
     let positions = (0..n)
         .map(|i| {
             let v = tri.vertex(i);
-            let q = relative(tri.vertex_point(v));
+            let q = relative(tri.vertex_points()[v.index()]);
             let Some([x, y]) = moving(tri, &graph, v, relative) else {
                 return emit(tri.stage_to_input(q), &|| tri.point(i));
             };
             // In the stages' frame, where these sums and products neither overflow nor underflow at
             // any scale; it differs from the input's by a power of two, so in the fast range the
             // moved position is bit for bit the input frame's.
-            let (a, b) = (relative(tri.vertex_point(x)), relative(tri.vertex_point(y)));
+            let at = |u: VertexId| tri.vertex_points()[u.index()];
+            let (a, b) = (relative(at(x)), relative(at(y)));
             moved += 1;
             let step = |q: Point, a: Point, b: Point| {
                 let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
                 Point::new(q.x + WEIGHT * (mid.x - q.x), q.y + WEIGHT * (mid.y - q.y))
             };
             emit(tri.stage_to_input(step(q, a, b)), &|| {
-                let at = |u: VertexId| tri.vertex_point(u);
                 shown(tri.stage_to_input(step(at(v), at(x), at(y))))
             })
         })
@@ -123,6 +234,7 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
         absolute,
         corner,
         moved,
+        overflows,
     }
 }
 
@@ -130,7 +242,7 @@ pub(crate) fn smoothed_positions(tri: &Triangulation, edges: &[Edge], wanted: bo
 /// at more than a right angle (the module's rule, the one place it is written).
 /// Positions are compared `relative` to the corner the pass moves them from, as they are moved.
 fn moving(
-    tri: &Triangulation,
+    tri: &impl RunPositions,
     graph: &CurveGraph,
     v: VertexId,
     relative: impl Fn(Point) -> Point,
@@ -139,7 +251,7 @@ fn moving(
         return None;
     }
     let [x, y] = graph.first_two(v);
-    let at = |u: VertexId| relative(tri.vertex_point(u));
+    let at = |u: VertexId| relative(tri.vertex_points()[u.index()]);
     let (p, a, b) = (at(v), at(x), at(y));
     // Wider than a right angle exactly when u·w < 0.
     let dot = (a.x - p.x) * (b.x - p.x) + (a.y - p.y) * (b.y - p.y);
@@ -147,18 +259,127 @@ fn moving(
 }
 
 /// The lower left corner of `tri`'s box (in the stages' frame), which a pass moves points from.
-fn corner(tri: &Triangulation) -> Point {
+fn corner(tri: &impl RunPositions) -> Point {
     lower_left(tri.vertex_points().iter().copied()).unwrap_or_default()
 }
 
 /// Whether a smoothing pass would move any point of the reconstruction on `tri` with final graph
 /// `graph`. Where none moves, a pass would triangulate the same points again and give the same
 /// result: no pass runs (reconstruct's rule).
-pub(crate) fn moves_any(tri: &Triangulation, graph: &CurveGraph) -> bool {
+pub(crate) fn moves_any(tri: &impl RunPositions, graph: &CurveGraph) -> bool {
     let corner = corner(tri);
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
-    tri.vertices()
+    (0..tri.len() as u32)
+        .map(VertexId::new)
+        .filter(|&v| tri.is_vertex(v))
         .any(|v| moving(tri, graph, v, relative).is_some())
+}
+
+/// What follows a run of a reconstruction split in tiles ([`gathered_smoothing_pass`]).
+///
+/// ```
+/// use condt::GatheredPass;
+/// assert_ne!(GatheredPass::Done, GatheredPass::InOnePiece);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum GatheredPass {
+    /// No pass follows: the run's edges are the reconstruction's.
+    Done,
+    /// A pass follows: the next run reconstructs these points, one per input position.
+    Next(Vec<Point>),
+    /// The pass would move two distinct points onto one position, or the box's extent overflows
+    /// `f64`: [`reconstruct`](crate::reconstruct) then moves points in the caller's frame of the
+    /// first run, which the runs of a split cannot follow, so the whole set must run in one piece.
+    InOnePiece,
+}
+
+/// A smoothing pass ([`Params::smooth`](crate::Params::smooth)) between runs of a reconstruction
+/// split in tiles (Python's `condt.dask`): whether [`reconstruct`](crate::reconstruct) follows the
+/// run on `points` whose final edges are `edges` (pairs of positions, the tiles' gathered answer)
+/// with a pass, and the points that pass moves to. `passes` is how many passes ran before this
+/// run, `previous` the final edges of the run before it (for the fixed point: once two runs agree
+/// no pass follows). Each run of the split reconstructs its points without passes; chained, the
+/// runs give the edges `reconstruct` gives with them. The pass's rule is the pipeline's own
+/// (`smoothed_positions` on the run's points); when it runs is `Pipeline::end_of_run`'s rule,
+/// written again here (a test chains runs and compares).
+///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite point; [`Error::InvalidParameter`] named `edge` for
+/// an end not in `points`.
+///
+/// ```
+/// use condt::{gathered_smoothing_pass, reconstruct, GatheredPass, Params, Point};
+/// // A noisy open arc: its two ends are one point in a hundred, so a pass follows.
+/// let noisy: Vec<Point> = (0..200)
+///     .map(|k| {
+///         let t = k as f64 * 1.5 * std::f64::consts::PI / 200.0;
+///         let r = 1.0 + 0.01 * ((k * k * 7919) % 101) as f64 / 101.0;
+///         Point::new(r * t.cos(), r * t.sin())
+///     })
+///     .collect();
+/// let smooth = Params::paper().with_smooth(true);
+/// let one_run = smooth.with_smooth(false);
+/// let (mut points, mut previous, mut passes) = (noisy.clone(), None, 0);
+/// let mut edges: Vec<[usize; 2]> = reconstruct(&points, &one_run)?.edges().collect();
+/// while let GatheredPass::Next(moved) =
+///     gathered_smoothing_pass(&points, &edges, passes, previous.as_deref())?
+/// {
+///     let next: Vec<[usize; 2]> = reconstruct(&moved, &one_run)?.edges().collect();
+///     (points, previous, passes) = (moved, Some(edges), passes + 1);
+///     edges = next;
+/// }
+/// assert!(passes > 0);
+/// assert_eq!(edges, reconstruct(&noisy, &smooth)?.edges().collect::<Vec<_>>());
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn gathered_smoothing_pass(
+    points: &[Point],
+    edges: &[[usize; 2]],
+    passes: usize,
+    previous: Option<&[[usize; 2]]>,
+) -> Result<GatheredPass, Error> {
+    let run = Gathered::new(points)?;
+    let n = points.len();
+    let mut listed: Vec<Edge> = Vec::with_capacity(edges.len());
+    for &[a, b] in edges {
+        if a >= n || b >= n {
+            let value = a.max(b) as f64;
+            return Err(Error::InvalidParameter {
+                name: "edge",
+                value,
+            });
+        }
+        listed.push([a, b].map(|i| VertexId::new(i as u32)));
+    }
+    if passes >= MAX_PASSES {
+        return Ok(GatheredPass::Done);
+    }
+    let graph = CurveGraph::new(n, &listed);
+    if !moves_any(&run, &graph) {
+        return Ok(GatheredPass::Done);
+    }
+    let follows = if passes == 0 {
+        shows_noise((0..n).map(|i| graph.degree(run.vertex(i))))
+    } else {
+        // The fixed point: a pass that changed no final edge would give the same run again.
+        let sorted = |edges: &[[usize; 2]]| {
+            let mut sorted: Vec<[usize; 2]> =
+                edges.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+            sorted.sort_unstable();
+            sorted
+        };
+        previous.is_none_or(|previous| sorted(previous) != sorted(edges))
+    };
+    if !follows {
+        return Ok(GatheredPass::Done);
+    }
+    drop(graph);
+    let smoothed = smoothed_positions(&run, &listed, false);
+    if smoothed.overflows || repeats(&smoothed.positions) > repeats(points) {
+        return Ok(GatheredPass::InOnePiece);
+    }
+    Ok(GatheredPass::Next(smoothed.positions))
 }
 
 /// Puts back at `original(i)` every point of `positions` that shares its position with a point of
@@ -278,6 +499,115 @@ mod tests {
             sorted.sort_unstable();
             assert_eq!(back, sorted);
         }
+    }
+
+    /// Runs without passes, chained by [`super::gathered_smoothing_pass`] as `condt.dask` chains
+    /// its tiled runs, give `reconstruct`'s edges with the passes: on noisy curves with outliers
+    /// and duplicates, at several scales and offsets, for the default and the paper's stages. The
+    /// cases reach every way out: no noise shown, a fixed point, and the last pass.
+    #[test]
+    fn chained_runs_give_the_passes_edges() {
+        use super::{gathered_smoothing_pass, GatheredPass, MAX_PASSES};
+        let mut endings = [0usize; MAX_PASSES + 1];
+        for seed in 0..24u64 {
+            let shapes = [
+                Shape::circle(Point::new(0.0, 0.0), 1.0),
+                Shape::Spiral {
+                    center: Point::new(3.0, 0.5),
+                    inner: 0.3,
+                    gap: 0.4,
+                    turns: 2.0,
+                },
+            ];
+            let noisy = sample(
+                &shapes,
+                &Sampling {
+                    noise: [0.0, 0.1, 0.25, 0.4][seed as usize % 4],
+                    gaussian_noise: seed % 3 == 0,
+                    outlier_fraction: 0.03,
+                    seed,
+                    ..Sampling::new(0.15)
+                },
+            )
+            .unwrap();
+            let (scale, shift) = [(1.0, 0.0), (1e-7, 3e-5), (3e6, -1e9)][seed as usize % 3];
+            let mut points: Vec<Point> = noisy
+                .points
+                .iter()
+                .map(|p| Point::new(p.x * scale + shift, p.y * scale - shift))
+                .collect();
+            points.extend_from_within(..7);
+            for params in [Params::default(), Params::paper().with_smooth(true)] {
+                let one_run = params.with_smooth(false);
+                let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
+                    reconstruct(points, &one_run).unwrap().edges().collect()
+                };
+                let (mut run, mut previous, mut passes) = (points.clone(), None, 0);
+                let mut edges = edges_of(&run);
+                loop {
+                    match gathered_smoothing_pass(&run, &edges, passes, previous.as_deref()) {
+                        Ok(GatheredPass::Next(moved)) => {
+                            let next = edges_of(&moved);
+                            (run, previous, passes) = (moved, Some(edges), passes + 1);
+                            edges = next;
+                        }
+                        Ok(GatheredPass::Done) => break,
+                        other => panic!("seed {seed}: {other:?}"),
+                    }
+                }
+                endings[passes] += 1;
+                let whole = reconstruct(&points, &params).unwrap();
+                assert_eq!(
+                    whole.smoothing().map_or(0, |s| s.passes),
+                    passes,
+                    "seed {seed}"
+                );
+                assert_eq!(edges, whole.edges().collect::<Vec<_>>(), "seed {seed}");
+            }
+        }
+        // Runs that end without a pass, after one or two (a fixed point), and after the last.
+        assert!(endings.iter().all(|&count| count > 0), "{endings:?}");
+    }
+
+    /// Where a pass would merge two input points (`a_pass_never_merges_two_input_points`'s
+    /// subnormal lattice), `reconstruct` moves them in the caller's frame: the chain says so.
+    #[test]
+    fn a_pass_that_would_merge_points_asks_for_one_piece() {
+        use super::{gathered_smoothing_pass, GatheredPass};
+        let subnormal = [
+            (1.1e-322, 2.1e-322),
+            (-1.5e-323, 2.67e-322),
+            (3e-323, 2.5e-322),
+            (2.4e-322, 8e-323),
+            (6e-323, 2.67e-322),
+            (3e-323, 2.47e-322),
+            (4e-323, 1.5e-322),
+            (8e-323, -1.3e-322),
+        ];
+        let points: Vec<Point> = subnormal.iter().map(|&p| Point::from(p)).collect();
+        let one_run = Params::default().with_smooth(false);
+        let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
+            reconstruct(points, &one_run).unwrap().edges().collect()
+        };
+        let (mut run, mut previous, mut passes) = (points.clone(), None, 0);
+        let mut edges = edges_of(&run);
+        let ending = loop {
+            match gathered_smoothing_pass(&run, &edges, passes, previous.as_deref()).unwrap() {
+                GatheredPass::Next(moved) => {
+                    let next = edges_of(&moved);
+                    (run, previous, passes) = (moved, Some(edges), passes + 1);
+                    edges = next;
+                }
+                ending => break ending,
+            }
+        };
+        assert_eq!((ending, passes), (GatheredPass::InOnePiece, 1));
+        // An edge naming no point is refused, by name.
+        let error = gathered_smoothing_pass(&points, &[[0, 8]], 0, None).unwrap_err();
+        assert!(matches!(
+            error,
+            crate::Error::InvalidParameter { name: "edge", .. }
+        ));
     }
 
     #[test]

@@ -21,6 +21,7 @@ __all__ = [
     "_run_tile",
     "_gathered_outliers",
     "_gathered_repair_again",
+    "_gathered_smoothing_pass",
     "_tile_state",
     "_repair_kept",
     "_TileState",
@@ -183,3 +184,9 @@ def _gathered_repair_again(
     proximity: npt.NDArray[np.int64],
     **params: Any,
 ) -> Optional[npt.NDArray[np.int64]]: ...
+def _gathered_smoothing_pass(
+    points: _Points,
+    edges: npt.NDArray[np.int64],
+    passes: int,
+    previous: Optional[npt.NDArray[np.int64]] = None,
+) -> Union[None, npt.NDArray[np.float64], str]: ...

@@ -19,9 +19,11 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
 
 Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3 in
 either order, which is the paper's pipeline (``paper=True``, with any of its ``u``,
-``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), and repairing again
-(``repair_again=True``). Any other step (the default's local outlier removal, gap closing,
-junctions, tips, smoothing passes) raises ``NotImplementedError`` naming it:
+``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), repairing again
+(``repair_again=True``) and the smoothing passes (``smooth=True``: each pass is a tiled run of
+its own on the moved points; whether a pass follows, and where it moves the points, the library
+decides on the driver from the edges the tiles sent). Any other step (the default's local
+outlier removal, gap closing, junctions, crossings, tips) raises ``NotImplementedError`` naming it:
 ``docs/distributed.md`` says what each needs. The points themselves stay on the machine that
 calls this (the driver), which computes their insertion order and hull once; the workers
 triangulate and run the stages.
@@ -60,11 +62,13 @@ class TiledReconstruction:
 
     ``edges`` is an ``(m, 2)`` int64 array of input positions, ``i < j``, sorted by rows: the
     same as ``condt.reconstruct(points, **params).edges``. ``tiles`` is the number of tiles,
-    ``rounds`` how many times the widest-halo tile was sent (1 when every first halo sufficed),
+    ``rounds`` how many times the widest-halo tile was sent (1 when every first halo sufficed;
+    summed over the runs of the smoothing passes),
     ``workers`` the addresses of the workers that ran a tile, ``sent`` how many points went to
     workers in all (every tile and round, halos included: its ratio to the set's size is the
-    cost of tiling), and ``whole`` why the set ran in one piece instead (``None`` when it was
-    tiled).
+    cost of tiling), ``whole`` why the set ran in one piece instead (``None`` when it was
+    tiled), and ``passes`` how many smoothing passes ran (each a tiled run of its own after the
+    first; ``None`` when the set ran in one piece).
     """
 
     edges: np.ndarray
@@ -73,6 +77,7 @@ class TiledReconstruction:
     workers: frozenset
     sent: int
     whole: str | None
+    passes: int | None = 0
 
 
 def reconstruct(
@@ -115,14 +120,30 @@ def reconstruct(
     if whole is not None:
         return _in_one_piece(points, client, params, whole)
 
-    bbox = np.concatenate([points.min(axis=0), points.max(axis=0)])
-    rects = _cut(points, tiles, bbox)
-    run = _Run(points, client, plan, params, bbox, rects, halo)
-    try:
-        edges = _phases(run, plan["flow"], points, params)
-    except _WholeSet as whole:
-        return _in_one_piece(points, client, params, whole.why, run.rounds, run.sent, run.workers)
-    return TiledReconstruction(edges, len(rects), run.rounds, frozenset(run.workers), run.sent, None)
+    # One tiled run, or with the smoothing passes one per pass: the library says after each run
+    # whether a pass follows and where it moves the points (``_gathered_smoothing_pass``).
+    original, runs, previous, passes = points, [], None, 0
+    while True:
+        bbox = np.concatenate([points.min(axis=0), points.max(axis=0)])
+        rects = _cut(points, tiles, bbox)
+        runs.append(_Run(points, client, plan, params, bbox, rects, halo))
+        try:
+            edges = _phases(runs[-1], plan["flow"], points, params)
+        except _WholeSet as whole:
+            return _in_one_piece(original, client, params, whole.why, runs)
+        if not plan["smooth"]:
+            break
+        moved = _condt._gathered_smoothing_pass(points, edges, passes, previous)
+        if moved is None:
+            break
+        if isinstance(moved, str):
+            return _in_one_piece(original, client, params, moved, runs)
+        previous, points, passes = edges, moved, passes + 1
+        plan = _condt._tile_plan(points, **params)
+        if plan["whole"] is not None:
+            return _in_one_piece(original, client, params, plan["whole"], runs)
+    rounds, sent, workers = _spent(runs)
+    return TiledReconstruction(edges, len(rects), rounds, workers, sent, None, passes)
 
 
 def _phases(run, flow, points, params):
@@ -320,12 +341,20 @@ def _tile_given(result, given, params):
     return edges, get_worker().address
 
 
-def _in_one_piece(points, client, params, why, rounds=0, sent=0, workers=frozenset()):
-    """The whole set on one worker, when tiles cannot give the one-machine result (after
-    ``rounds`` of tiles that sent ``sent`` points to ``workers``)."""
+def _spent(runs):
+    """What tiled ``runs`` cost together: rounds, points sent, and the workers that ran them."""
+    workers = frozenset().union(*(run.workers for run in runs))
+    return sum(run.rounds for run in runs), sum(run.sent for run in runs), workers
+
+
+def _in_one_piece(points, client, params, why, runs=()):
+    """The whole set on one worker, when tiles cannot give the one-machine result (after the
+    tiled ``runs`` that found it out)."""
+    rounds, sent, workers = _spent(runs)
     edges, worker = client.submit(_whole, points, params, pure=False).result()
-    workers = frozenset(workers) | {worker}
-    return TiledReconstruction(edges, 1, rounds + 1, workers, sent + len(points), why)
+    return TiledReconstruction(
+        edges, 1, rounds + 1, workers | {worker}, sent + len(points), why, None
+    )
 
 
 def _whole(points, params):
