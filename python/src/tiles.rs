@@ -891,7 +891,7 @@ pub(crate) fn _gathered_smoothing_pass<'py>(
             Some(PyArray2::from_owned_array(py, moved).into_any())
         }
         GatheredPass::InOnePiece => Some(
-            "a smoothing pass moves points in the caller's frame"
+            "a smoothing pass would bring points of a wide set together"
                 .into_pyobject(py)?
                 .into_any(),
         ),

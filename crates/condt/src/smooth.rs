@@ -51,8 +51,8 @@ pub(crate) trait RunPositions {
     fn stage_to_input(&self, p: Point) -> Point;
     /// Where the input frame's zero lies in the caller's coordinates.
     fn offset(&self) -> Point;
-    /// Input position `i` in the caller's coordinates.
-    fn point(&self, i: usize) -> Point;
+    /// Input position `i` in the input frame (the caller's coordinates less the offset).
+    fn frame_point(&self, i: usize) -> Point;
     /// Whether `v` may move: a vertex, not an id a merged duplicate left unused.
     fn is_vertex(&self, v: VertexId) -> bool;
 }
@@ -73,8 +73,8 @@ impl RunPositions for Triangulation {
     fn offset(&self) -> Point {
         Triangulation::offset(self)
     }
-    fn point(&self, i: usize) -> Point {
-        Triangulation::point(self, i)
+    fn frame_point(&self, i: usize) -> Point {
+        Triangulation::frame_point(self, Triangulation::vertex(self, i))
     }
     fn is_vertex(&self, v: VertexId) -> bool {
         Triangulation::is_vertex(self, v)
@@ -134,7 +134,7 @@ impl RunPositions for Gathered<'_> {
     fn offset(&self) -> Point {
         Point::new(0.0, 0.0)
     }
-    fn point(&self, i: usize) -> Point {
+    fn frame_point(&self, i: usize) -> Point {
         self.points[i]
     }
     fn is_vertex(&self, v: VertexId) -> bool {
@@ -146,15 +146,18 @@ impl RunPositions for Gathered<'_> {
 pub(crate) struct Smoothed {
     /// The smoothed position of every input position, relative to `corner`.
     pub(crate) positions: Vec<Point>,
-    /// When `wanted`, the same positions in the caller's coordinates: the fallback when the
-    /// relative ones merge two distinct points (a coordinate far below the extent is lost in the
-    /// difference), which would make the result depend on the input order. Else empty (memory).
-    pub(crate) absolute: Vec<Point>,
-    /// The starting positions' corner, in the caller's coordinates (display only).
+    /// When `wanted`, the same positions in the run's input frame, not relative to the corner:
+    /// the fallback when the relative ones merge two distinct points even where merging points
+    /// stay put (a coordinate far below the extent is lost in the difference), which would make
+    /// the result depend on the input order. Else empty (memory).
+    pub(crate) in_run_frame: Vec<Point>,
+    /// Where `positions`' zero lies in the caller's coordinates: the starting positions' corner,
+    /// or the input frame's zero when `overflows` (display only).
     pub(crate) corner: Point,
     /// How many points moved.
     pub(crate) moved: usize,
-    /// Whether the box's extent overflows the input frame, so `positions` are the caller's.
+    /// Whether the box's extent overflows the input frame, so `positions` are in the run's input
+    /// frame (`corner` its zero).
     pub(crate) overflows: bool,
 }
 
@@ -177,27 +180,27 @@ pub(crate) fn smoothed_positions(
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
     // Relative positions in the input frame, or, where the box's extent overflows there (a
-    // width beyond `f64::MAX`), the caller's positions themselves (from the corner (0, 0)):
-    // finite, as every moved point stays in the box, at the cost of the exact translations'
-    // invariance, which such a set cannot have anyway (its translates overflow).
+    // width beyond `f64::MAX`), the positions in the input frame itself (from its zero): finite,
+    // as every moved point stays in the box, at the cost of the exact translations' invariance,
+    // which such a set cannot have anyway (its translates overflow).
     let overflows = tri
         .vertex_points()
         .iter()
         .any(|&p| !tri.stage_to_input(relative(p)).is_finite());
     let mut moved = 0;
-    let mut absolute = Vec::with_capacity(if wanted { n } else { 0 });
-    // The position handed on: `relative`, or the caller's when the extent overflows; the caller's
-    // is computed only then or when `wanted`, and kept in `absolute`.
-    let mut emit = |relative: Point, caller: &dyn Fn() -> Point| {
+    let mut in_run_frame = Vec::with_capacity(if wanted { n } else { 0 });
+    // The position handed on: `relative`, or the input frame's when the extent overflows; the
+    // latter is computed only then or when `wanted`, and kept in `in_run_frame`.
+    let mut emit = |relative: Point, framed: &dyn Fn() -> Point| {
         if !(wanted || overflows) {
             return relative;
         }
-        let caller = caller();
+        let framed = framed();
         if wanted {
-            absolute.push(caller);
+            in_run_frame.push(framed);
         }
         if overflows {
-            caller
+            framed
         } else {
             relative
         }
@@ -207,7 +210,7 @@ pub(crate) fn smoothed_positions(
             let v = tri.vertex(i);
             let q = relative(tri.vertex_points()[v.index()]);
             let Some([x, y]) = moving(tri, &graph, v, relative) else {
-                return emit(tri.stage_to_input(q), &|| tri.point(i));
+                return emit(tri.stage_to_input(q), &|| tri.frame_point(i));
             };
             // In the stages' frame, where these sums and products neither overflow nor underflow at
             // any scale; it differs from the input's by a power of two, so in the fast range the
@@ -220,21 +223,35 @@ pub(crate) fn smoothed_positions(
                 Point::new(q.x + WEIGHT * (mid.x - q.x), q.y + WEIGHT * (mid.y - q.y))
             };
             emit(tri.stage_to_input(step(q, a, b)), &|| {
-                shown(tri.stage_to_input(step(at(v), at(x), at(y))))
+                tri.stage_to_input(step(at(v), at(x), at(y)))
             })
         })
         .collect();
     let corner = if overflows {
-        Point::new(0.0, 0.0)
+        offset
     } else {
         shown(tri.stage_to_input(corner))
     };
     Smoothed {
         positions,
-        absolute,
+        in_run_frame,
         corner,
         moved,
         overflows,
+    }
+}
+
+/// Where each input position's point stood before the pass, in the frame [`smoothed_positions`]
+/// gives `positions` in (relative to the corner, or the input frame's when `overflows`): where
+/// [`keep_apart`] puts a point back that would merge with another.
+pub(crate) fn unmoved(tri: &impl RunPositions, overflows: bool) -> impl Fn(usize) -> Point + '_ {
+    let corner = corner(tri);
+    move |i| {
+        if overflows {
+            return tri.frame_point(i);
+        }
+        let p = tri.vertex_points()[tri.vertex(i).index()];
+        tri.stage_to_input(Point::new(p.x - corner.x, p.y - corner.y))
     }
 }
 
@@ -288,9 +305,10 @@ pub enum GatheredPass {
     Done,
     /// A pass follows: the next run reconstructs these points, one per input position.
     Next(Vec<Point>),
-    /// The pass would move two distinct points onto one position, or the box's extent overflows
-    /// `f64`: [`reconstruct`](crate::reconstruct) then moves points in the caller's frame of the
-    /// first run, which the runs of a split cannot follow, so the whole set must run in one piece.
+    /// The moved points span more binary orders of magnitude than the fast predicates take
+    /// (a *wide* set, `docs/predicates.md`) and some would meet: whether the next triangulation
+    /// merges them is its own answer, which the runs of a split cannot foresee, so the whole set
+    /// must run in one piece.
     InOnePiece,
 }
 
@@ -375,11 +393,25 @@ pub fn gathered_smoothing_pass(
         return Ok(GatheredPass::Done);
     }
     drop(graph);
-    let smoothed = smoothed_positions(&run, &listed, false);
-    if smoothed.overflows || repeats(&smoothed.positions) > repeats(points) {
+    // As `Pipeline::smoothing_pass`, with `repeats` for what the next triangulation merges (the
+    // same count where the set is not wide).
+    let mut smoothed = smoothed_positions(&run, &listed, false);
+    let merged_before = repeats(points);
+    let wide = |positions: &[Point]| choose_frames(positions).is_ok_and(|frames| frames.wide);
+    let was_wide = wide(&smoothed.positions);
+    if repeats(&smoothed.positions) <= merged_before && !was_wide {
+        return Ok(GatheredPass::Next(smoothed.positions));
+    }
+    smoothed = smoothed_positions(&run, &listed, true);
+    keep_apart(&mut smoothed.positions, unmoved(&run, smoothed.overflows));
+    if was_wide || wide(&smoothed.positions) {
         return Ok(GatheredPass::InOnePiece);
     }
-    Ok(GatheredPass::Next(smoothed.positions))
+    if repeats(&smoothed.positions) <= merged_before {
+        return Ok(GatheredPass::Next(smoothed.positions));
+    }
+    keep_apart(&mut smoothed.in_run_frame, |i| run.frame_point(i));
+    Ok(GatheredPass::Next(smoothed.in_run_frame))
 }
 
 /// Puts back at `original(i)` every point of `positions` that shares its position with a point of
@@ -569,41 +601,124 @@ mod tests {
         assert!(endings.iter().all(|&count| count > 0), "{endings:?}");
     }
 
-    /// Where a pass would merge two input points (`a_pass_never_merges_two_input_points`'s
-    /// subnormal lattice), `reconstruct` moves them in the caller's frame: the chain says so.
+    /// Found by a fuzzer: points 2 and 8 (and 0 and 7, 4 and 9) differ by one unit in the last
+    /// place. The first pass keeps them apart relative to the corner; the second brought 2 and 8
+    /// together, and put them back where the run before had them in the caller's frame, which
+    /// adding the corner had already rounded together: the triangulation merged them, and which
+    /// of the two kept the edges depended on the input order. Merging points now stay where they
+    /// were relative to the corner, or in the run's own frame.
     #[test]
-    fn a_pass_that_would_merge_points_asks_for_one_piece() {
+    fn points_a_unit_in_the_last_place_apart_stay_apart_through_every_pass() {
+        let points: Vec<Point> = [
+            (-3.146087299210366, -7.3780373924017),
+            (-3.092475828128288, -7.367086286589445),
+            (-3.0398083051251965, -7.356327999125309),
+            (-2.9877525640669997, -7.345694679110813),
+            (-2.9282270577018465, -7.333535525377933),
+            (-2.8783902679021383, -7.323355466009591),
+            (-4.2310948137285935, -4.321963601872671),
+            (-3.1460872992103663, -7.3780373924016995),
+            (-3.039808305125197, -7.356327999125309),
+            (-2.928227057701847, -7.333535525377933),
+        ]
+        .iter()
+        .map(|&p| Point::from(p))
+        .collect();
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        assert!(
+            result.smoothing().is_some_and(|s| s.passes >= 2),
+            "two passes ran"
+        );
+        let tri = result.triangulation();
+        assert_eq!(tri.num_vertices(), points.len(), "no two points merged");
+        let n = points.len();
+        let reversed: Vec<Point> = points.iter().rev().copied().collect();
+        let mut back: Vec<[usize; 2]> = reconstruct(&reversed, &Params::default())
+            .unwrap()
+            .edges()
+            .map(|[a, b]| [(n - 1 - a).min(n - 1 - b), (n - 1 - a).max(n - 1 - b)])
+            .collect();
+        back.sort_unstable();
+        assert_eq!(back, result.edges().collect::<Vec<_>>());
+    }
+
+    /// Where a pass would merge input points (`a_pass_never_merges_two_input_points`'s sets, the
+    /// fuzzer's), chained runs keep them apart as `reconstruct` does; a wide set that would merge
+    /// some asks for one piece (the next triangulation's own answer decides there).
+    #[test]
+    fn chained_runs_keep_merging_points_apart_as_the_passes_do() {
         use super::{gathered_smoothing_pass, GatheredPass};
-        let subnormal = [
-            (1.1e-322, 2.1e-322),
-            (-1.5e-323, 2.67e-322),
-            (3e-323, 2.5e-322),
-            (2.4e-322, 8e-323),
-            (6e-323, 2.67e-322),
-            (3e-323, 2.47e-322),
-            (4e-323, 1.5e-322),
-            (8e-323, -1.3e-322),
+        let sets: [&[(f64, f64)]; 3] = [
+            &[
+                (1.1e-322, 2.1e-322),
+                (-1.5e-323, 2.67e-322),
+                (3e-323, 2.5e-322),
+                (2.4e-322, 8e-323),
+                (6e-323, 2.67e-322),
+                (3e-323, 2.47e-322),
+                (4e-323, 1.5e-322),
+                (8e-323, -1.3e-322),
+            ],
+            &[
+                (4.5353473530375125e281, 3.1021273130014907e-242),
+                (6.68268818201814e-206, 57854124.16365494),
+                (5.0341226938449086e53, 8.357732824608535e-211),
+                (1.3576637270390164e-296, 9.104256026318434e-163),
+                (8.998847905116815e303, -3.605607693502977e229),
+                (-2.751219279671994e-236, -1.2528524338855696e-191),
+                (1.363571677422622e146, -5.260769050249569e-63),
+            ],
+            &[
+                (6.840830477455761, -2.373103331372932),
+                (6.154204583071294, -1.813468943904072),
+                (5.38122848613447, -1.3577758303267178),
+                (6.154204583071296, -1.8134689439040723),
+                (5.38122848613447, -1.3577758303267182),
+                (5.381228486134469, -1.3577758303267176),
+                (1.8010562984034444, -1.2908035211402673),
+                (3.972577825795239, -6.654448150300074),
+                (6.239608850211445, -7.118064330857665),
+            ],
         ];
-        let points: Vec<Point> = subnormal.iter().map(|&p| Point::from(p)).collect();
-        let one_run = Params::default().with_smooth(false);
-        let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
-            reconstruct(points, &one_run).unwrap().edges().collect()
-        };
-        let (mut run, mut previous, mut passes) = (points.clone(), None, 0);
-        let mut edges = edges_of(&run);
-        let ending = loop {
-            match gathered_smoothing_pass(&run, &edges, passes, previous.as_deref()).unwrap() {
-                GatheredPass::Next(moved) => {
-                    let next = edges_of(&moved);
-                    (run, previous, passes) = (moved, Some(edges), passes + 1);
-                    edges = next;
+        let mut endings = Vec::new();
+        for set in sets {
+            let points: Vec<Point> = set.iter().map(|&p| Point::from(p)).collect();
+            let one_run = Params::default().with_smooth(false);
+            let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
+                reconstruct(points, &one_run).unwrap().edges().collect()
+            };
+            let (mut run, mut previous, mut passes) = (points.clone(), None, 0);
+            let mut edges = edges_of(&run);
+            let ending = loop {
+                match gathered_smoothing_pass(&run, &edges, passes, previous.as_deref()).unwrap() {
+                    GatheredPass::Next(moved) => {
+                        let next = edges_of(&moved);
+                        (run, previous, passes) = (moved, Some(edges), passes + 1);
+                        edges = next;
+                    }
+                    ending => break ending,
                 }
-                ending => break ending,
+            };
+            if ending == GatheredPass::Done {
+                let whole: Vec<[usize; 2]> = reconstruct(&points, &Params::default())
+                    .unwrap()
+                    .edges()
+                    .collect();
+                assert_eq!(edges, whole, "{set:?}");
             }
-        };
-        assert_eq!((ending, passes), (GatheredPass::InOnePiece, 1));
+            endings.push(ending);
+        }
+        assert_eq!(
+            endings,
+            [
+                GatheredPass::Done,
+                GatheredPass::InOnePiece,
+                GatheredPass::Done
+            ]
+        );
         // An edge naming no point is refused, by name.
-        let error = gathered_smoothing_pass(&points, &[[0, 8]], 0, None).unwrap_err();
+        let points = [Point::new(0.0, 0.0), Point::new(1.0, 0.0)];
+        let error = gathered_smoothing_pass(&points, &[[0, 2]], 0, None).unwrap_err();
         assert!(matches!(
             error,
             crate::Error::InvalidParameter { name: "edge", .. }

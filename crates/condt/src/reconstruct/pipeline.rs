@@ -12,7 +12,9 @@ use crate::error::Error;
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::smooth::{keep_apart, moves_any, repeats, shows_noise, smoothed_positions, MAX_PASSES};
+use crate::smooth::{
+    keep_apart, moves_any, repeats, shows_noise, smoothed_positions, unmoved, MAX_PASSES,
+};
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
 use crate::triangulate::{choose_frames, splitmix64_finalizer, triangulate_with, Triangulation};
@@ -353,34 +355,44 @@ impl Pipeline {
         let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
         let mut smoothed = smoothed_positions(&triangulation, &final_edges, false);
         let merged_before = triangulation.num_points() - triangulation.num_vertices();
-        // Relative to the corner, so an exact translation gives the same result, unless that merges
-        // distinct points (making the result depend on input order): then in the caller's frame,
-        // computed only then, while the old triangulation is at hand. The triangulation merges
-        // exactly equal points, as `repeats` counts them; a wide set (whose frames could round a
-        // coordinate) is given the caller's frame at once, as it would be after a look.
+        // Relative to the corner, so an exact translation gives the same result. Where that merges
+        // distinct points (making the result depend on input order), the points that would meet
+        // stay where they were, still relative to the corner; where even that merges points (two
+        // that the difference from the corner rounds together), the pass is made in the run's own
+        // input frame, where its points are distinct, computed only then, while the old
+        // triangulation is at hand. The triangulation merges exactly equal points, as `repeats`
+        // counts them; a wide set (whose frames could round a coordinate) is given both at once,
+        // as it would be after a look.
         let relative_merges = repeats(&smoothed.positions) > merged_before
             || choose_frames(&smoothed.positions).is_ok_and(|frames| frames.wide);
+        let (mut back, mut back_in_run_frame) = (0, 0);
         if relative_merges {
             smoothed = smoothed_positions(&triangulation, &final_edges, true);
-            let original = |i: usize| triangulation.point(i);
-            smoothed.moved -= keep_apart(&mut smoothed.absolute, original);
+            back = keep_apart(
+                &mut smoothed.positions,
+                unmoved(&triangulation, smoothed.overflows),
+            );
+            let original = |i: usize| triangulation.frame_point(triangulation.vertex(i));
+            back_in_run_frame = keep_apart(&mut smoothed.in_run_frame, original);
         }
         drop(final_edges);
-        let moved = smoothed.moved;
         // The replaced run's triangulation is an earlier pass's cost too.
         self.earlier_passes += triangulation_time;
         self.earlier_passes += self.pass_clock.lap();
         let parallel = self.params.parallel;
+        let run_offset = triangulation.frame_offset();
         let relative = triangulate_with(&smoothed.positions, parallel, None, Some(triangulation))?;
         let merges_more = relative.num_points() - relative.num_vertices() > merged_before;
         debug_assert!(
             relative_merges || !merges_more,
             "`repeats` counts what the triangulation merges"
         );
-        let tri = if merges_more && relative_merges {
-            triangulate_with(&smoothed.absolute, parallel, None, Some(relative))?
+        let (tri, moved) = if merges_more && relative_merges {
+            let framed = triangulate_with(&smoothed.in_run_frame, parallel, None, Some(relative))?;
+            let moved = smoothed.moved - back_in_run_frame;
+            (framed.with_frame_offset(run_offset), moved)
         } else {
-            relative.with_offset(smoothed.corner)
+            (relative.with_offset(smoothed.corner), smoothed.moved - back)
         };
         drop(smoothed);
         let triangulation_time = self.pass_clock.lap();

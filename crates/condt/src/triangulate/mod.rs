@@ -545,18 +545,34 @@ impl Triangulation {
     /// The input coordinates of vertex `v`.
     #[inline]
     pub(crate) fn input_point(&self, v: VertexId) -> Point {
-        let p = match &self.inputs {
-            Some(inputs) => inputs[v.index()],
-            None => self.stage_to_input.apply(self.points[v.index()]),
-        };
+        let p = self.frame_point(v);
         match self.offset {
             Some(offset) => Point::new(p.x + offset.x, p.y + offset.y),
             None => p,
         }
     }
+    /// Vertex `v` in the frame its points were given in: [`Triangulation::input_point`] less the
+    /// offset (exact, where adding the offset may round).
+    #[inline]
+    pub(crate) fn frame_point(&self, v: VertexId) -> Point {
+        match &self.inputs {
+            Some(inputs) => inputs[v.index()],
+            None => self.stage_to_input.apply(self.points[v.index()]),
+        }
+    }
     /// This triangulation, its points given relative to `offset` (see the `offset` field).
     pub(crate) fn with_offset(mut self, offset: Point) -> Triangulation {
         self.offset = Some(offset);
+        self
+    }
+    /// Where the input frame's zero lies in the caller's coordinates, `None` when it is theirs.
+    pub(crate) fn frame_offset(&self) -> Option<Point> {
+        self.offset
+    }
+    /// This triangulation, its points given in a frame whose zero lies at `offset` (`None`: the
+    /// caller's own frame).
+    pub(crate) fn with_frame_offset(mut self, offset: Option<Point>) -> Triangulation {
+        self.offset = offset;
         self
     }
     /// Where the input frame's zero lies in the caller's coordinates (see the `offset` field).
