@@ -332,7 +332,7 @@ Example:
 Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j` per line,
 i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), uint32 when every
 point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
-default on standard output), `svg` (.svg: the points and curves; with --stages the Delaunay
+default on standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points and curves; with --stages the Delaunay
 triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
 LineString per curve), `html` (.html: a self-contained page to explore every stage: layers, pan
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
@@ -932,15 +932,20 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let format = match (format.get(), output.as_deref()) {
         (Some(f), _) => f,
         (None, None) => Format::Polylines,
-        (None, Some(path)) => {
-            let extension = path.extension().and_then(OsStr::to_str).unwrap_or("");
-            Format::named(&extension.to_ascii_lowercase()).ok_or_else(|| {
-                usage(format!(
-                    "cannot tell the format of {} from its extension; use --format",
-                    path.display()
-                ))
-            })?
-        }
+        // A name without an extension (`/dev/null`, `/dev/stdout`, a pipe's) gets the text that
+        // standard output gets; an extension with no writer is refused, not given that text.
+        (None, Some(path)) => match path.extension() {
+            None => Format::Polylines,
+            Some(extension) => {
+                let extension = extension.to_str().unwrap_or("");
+                Format::named(&extension.to_ascii_lowercase()).ok_or_else(|| {
+                    usage(format!(
+                        "cannot tell the format of {} from its extension; use --format",
+                        path.display()
+                    ))
+                })?
+            }
+        },
     };
     if stages && format != Format::Svg {
         return Err(usage(format!(
@@ -1231,6 +1236,13 @@ mod tests {
 
     #[test]
     fn reconstruct_options_and_format_by_extension() {
+        // A name without an extension gets text, as standard output does; an unknown one is
+        // refused.
+        for output in ["-o/dev/null", "--output=/dev/stdout", "-oresult"] {
+            let a = parse_reconstruct(&strings(&["in.txt", output])).unwrap();
+            assert_eq!(a.format, Format::Polylines, "{output}");
+        }
+        assert!(parse_reconstruct(&strings(&["in.txt", "-o", "out.dat"])).is_err());
         let a = parse_reconstruct(&strings(&[
             "in.txt",
             "-o",

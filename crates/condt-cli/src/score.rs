@@ -24,7 +24,7 @@ use crate::cli::{usage, CliError};
 use crate::options::{self, Opt};
 use condt_eval::score::{score, EdgeProblem, Score};
 use condt_io::{
-    parse_npy_edges, read_points, text_lines, utf8_text, IoError, IoErrorKind, NPY_MAGIC,
+    parse_npy_index_rows, read_points, text_lines, utf8_text, IoError, IoErrorKind, NPY_MAGIC,
 };
 use std::ffi::OsString;
 use std::fmt::Write as _;
@@ -109,13 +109,15 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     }
     let points = read_points(&points)?;
     let truth = read_edges(&truth)?;
-    if let Some((line, why)) = truth.bad_line {
-        return Err(content(&truth.name, Some(line), why));
+    if let Some((at, why)) = &truth.bad_line {
+        let (line, why) = truth.tell(*at, why.clone());
+        return Err(content(&truth.name, line, why));
     }
     let output = read_edges(&output)?;
     // A text of which no line is an edge is some other file (a drawing, GeoJSON, curves),
     // not an edge list scored 0.
-    if let (true, Some((line, why))) = (output.edges.is_empty(), &output.bad_line) {
+    let text = matches!(output.places, Places::Lines(_));
+    if let (true, true, Some((line, why))) = (text, output.edges.is_empty(), &output.bad_line) {
         return Err(content(
             &output.name,
             Some(*line),
@@ -129,23 +131,22 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
         }
         other => CliError::Input(format!("{}: {other}", truth.name)),
     })?;
-    // The output's first problem: in a text, a line that is not an edge or the library's,
-    // whichever comes first in the file; an array has no lines, and no line that is not an edge.
-    let problem = match &output.places {
-        Places::Rows => result
-            .malformed
-            .map(|p: EdgeProblem| format!("row {}: {p}", p.position())),
-        Places::Lines(lines) => [
-            output.bad_line.clone(),
-            result
-                .malformed
-                .map(|p: EdgeProblem| (lines[p.position()], p.to_string())),
-        ]
-        .into_iter()
-        .flatten()
-        .min_by_key(|(line, _)| *line)
-        .map(|(line, why)| format!("line {line}: {why}")),
+    // The output's first problem: a line (row) that is not an edge or the library's, whichever
+    // comes first in the file.
+    let (places, unit) = match &output.places {
+        Places::Rows(rows) => (rows, "row"),
+        Places::Lines(lines) => (lines, "line"),
     };
+    let problem = [
+        output.bad_line.clone(),
+        result
+            .malformed
+            .map(|p: EdgeProblem| (places[p.position()], p.to_string())),
+    ]
+    .into_iter()
+    .flatten()
+    .min_by_key(|(at, _)| *at)
+    .map(|(at, why)| format!("{unit} {at}: {why}"));
     let result = if output.bad_line.is_some() {
         Score {
             exact: false,
@@ -168,7 +169,7 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
 /// Where the edges of a file are: each on its line of a text, or in its row of an array.
 enum Places {
     Lines(Vec<usize>),
-    Rows,
+    Rows(Vec<usize>),
 }
 
 /// An edge file as read: its edges, where each is, and the first line that is not an edge.
@@ -185,8 +186,16 @@ impl EdgeFile {
     /// lines) its row at the start of the message.
     fn place(&self, position: usize, why: String) -> (Option<usize>, String) {
         match &self.places {
-            Places::Lines(lines) => (Some(lines[position]), why),
-            Places::Rows => (None, format!("row {position}: {why}")),
+            Places::Lines(lines) => self.tell(lines[position], why),
+            Places::Rows(rows) => self.tell(rows[position], why),
+        }
+    }
+
+    /// A problem at line (or row) `at`: the line as the error's place, a row in the message.
+    fn tell(&self, at: usize, why: String) -> (Option<usize>, String) {
+        match &self.places {
+            Places::Lines(_) => (Some(at), why),
+            Places::Rows(_) => (None, format!("row {at}: {why}")),
         }
     }
 }
@@ -220,12 +229,33 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
     if npy {
-        return Ok(EdgeFile {
-            edges: parse_npy_edges(&bytes, &name)?,
+        // A row with a negative number is a malformed output's problem (scored 0, told by its
+        // row), as a text line `-1 0` is; its edge is left out, as that line is.
+        let mut read = EdgeFile {
             name,
-            places: Places::Rows,
+            edges: Vec::new(),
+            places: Places::Rows(Vec::new()),
             bad_line: None,
-        });
+        };
+        let mut rows = Vec::new();
+        for (row, pair) in parse_npy_index_rows(&bytes, &read.name)?
+            .into_iter()
+            .enumerate()
+        {
+            match pair.map(usize::try_from) {
+                [Ok(a), Ok(b)] => {
+                    read.edges.push([a, b]);
+                    rows.push(row);
+                }
+                _ if read.bad_line.is_none() => {
+                    let v = pair.into_iter().find(|&v| v < 0).unwrap_or(pair[0]);
+                    read.bad_line = Some((row, format!("point number {v} is negative")));
+                }
+                _ => {}
+            }
+        }
+        read.places = Places::Rows(rows);
+        return Ok(read);
     }
     // Text is read as text: an array under another name (or piped in) is told as one, and
     // never quoted as a line.
@@ -243,7 +273,7 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
     let mut read = EdgeFile {
         name,
         edges: Vec::new(),
-        places: Places::Rows,
+        places: Places::Lines(Vec::new()),
         bad_line: None,
     };
     // The line ends and the byte-order mark of point files, by the same reader.

@@ -19,6 +19,23 @@ const X_NAMES: [&str; 4] = ["x", "lon", "lng", "longitude"];
 const Y_NAMES: [&str; 2] = ["y", "lat"];
 const Y_LONG_NAME: &str = "latitude";
 
+/// The coordinate a header's column `name` names, `'x'` or `'y'` (case, blanks and quotes
+/// around it aside), or `None`: the names this reader follows, for the plain reader's check.
+pub(crate) fn axis_named(name: &str) -> Option<char> {
+    let name = name
+        .trim()
+        .trim_matches(['"', '\''])
+        .trim()
+        .to_ascii_lowercase();
+    if X_NAMES.contains(&name.as_str()) {
+        Some('x')
+    } else if Y_NAMES.contains(&name.as_str()) || name == Y_LONG_NAME {
+        Some('y')
+    } else {
+        None
+    }
+}
+
 /// Parses a CSV file with a header line; `file` names the source in error messages.
 ///
 /// The first record that is not blank is the header: comma-separated column names, quoted or

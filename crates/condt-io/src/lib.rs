@@ -44,8 +44,8 @@ pub use geojson::write_geojson;
 pub use geojson_points::parse_geojson;
 pub use html::write_html;
 pub use npy::{
-    parse_npy, parse_npy_edges, write_npy_edges, write_npy_points, write_npy_triangles,
-    write_npy_triangulation_edges, NPY_MAGIC,
+    parse_npy, parse_npy_edges, parse_npy_index_rows, write_npy_edges, write_npy_points,
+    write_npy_triangles, write_npy_triangulation_edges, NPY_MAGIC,
 };
 pub use points::{parse_node, parse_points, read_points, text_lines, utf8_text};
 pub use story::story_text;

@@ -585,6 +585,43 @@ enum Index {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn parse_npy_edges(bytes: &[u8], file: &str) -> Result<Vec<[usize; 2]>, IoError> {
+    let rows = parse_npy_index_rows(bytes, file)?;
+    let mut edges = Vec::with_capacity(rows.len());
+    for (row, pair) in rows.into_iter().enumerate() {
+        let mut edge = [0usize; 2];
+        for (end, v) in edge.iter_mut().zip(pair) {
+            *end = usize::try_from(v).map_err(|_| {
+                let why = if v < 0 { "negative" } else { "too large" };
+                content(file, format!("row {row}: point number {v} is {why}"))
+            })?;
+        }
+        edges.push(edge);
+    }
+    Ok(edges)
+}
+
+/// [`parse_npy_edges`] without judging the numbers: each row's two entries as they are (uint32
+/// and int64 both fit in `i64`), for a caller that tells a negative one as a problem of its
+/// row rather than of the file (`condt score` scores such an output 0, as it does a text line
+/// `-1 0`).
+///
+/// # Errors
+/// As [`parse_npy_edges`], but for the negative numbers.
+///
+/// ```
+/// use condt_io::{parse_npy_edges, parse_npy_index_rows};
+/// let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+/// let dict = "{'descr': '<i8', 'fortran_order': False, 'shape': (2, 2), }";
+/// let header = format!("{dict:<117}\n");
+/// bytes.extend((header.len() as u16).to_le_bytes());
+/// bytes.extend(header.bytes());
+/// bytes.extend([0i64, 1, 1, -1].iter().flat_map(|v| v.to_le_bytes()));
+/// assert_eq!(parse_npy_index_rows(&bytes, "out.npy")?, [[0, 1], [1, -1]]);
+/// let err = parse_npy_edges(&bytes, "out.npy").unwrap_err();
+/// assert_eq!(err.to_string(), "out.npy: row 1: point number -1 is negative");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, IoError> {
     let mut reader = bytes;
     let (text, header_length) = read_header_text(&mut reader, file)?;
     let Entries {
@@ -648,13 +685,13 @@ pub fn parse_npy_edges(bytes: &[u8], file: &str) -> Result<Vec<[usize; 2]>, IoEr
     }
     let rows = rows as usize;
     let size = size as usize;
-    let value = |k: usize| -> i128 {
+    let value = |k: usize| -> i64 {
         let bytes = &data[k * size..(k + 1) * size];
         match (index, big_endian) {
             (Index::U32, false) => u32::from_le_bytes(bytes.try_into().unwrap_or([0; 4])).into(),
             (Index::U32, true) => u32::from_be_bytes(bytes.try_into().unwrap_or([0; 4])).into(),
-            (Index::I64, false) => i64::from_le_bytes(bytes.try_into().unwrap_or([0; 8])).into(),
-            (Index::I64, true) => i64::from_be_bytes(bytes.try_into().unwrap_or([0; 8])).into(),
+            (Index::I64, false) => i64::from_le_bytes(bytes.try_into().unwrap_or([0; 8])),
+            (Index::I64, true) => i64::from_be_bytes(bytes.try_into().unwrap_or([0; 8])),
         }
     };
     // C order holds row after row; Fortran order the first column, then the second.
@@ -665,19 +702,9 @@ pub fn parse_npy_edges(bytes: &[u8], file: &str) -> Result<Vec<[usize; 2]>, IoEr
             2 * row + column
         }
     };
-    let mut edges = Vec::with_capacity(rows);
-    for row in 0..rows {
-        let mut edge = [0usize; 2];
-        for (column, end) in edge.iter_mut().enumerate() {
-            let v = value(at(row, column));
-            *end = usize::try_from(v).map_err(|_| {
-                let why = if v < 0 { "negative" } else { "too large" };
-                content(file, format!("row {row}: point number {v} is {why}"))
-            })?;
-        }
-        edges.push(edge);
-    }
-    Ok(edges)
+    Ok((0..rows)
+        .map(|row| [value(at(row, 0)), value(at(row, 1))])
+        .collect())
 }
 
 /// A version 1.0 header (version 2.0 when the dictionary is over 65,535 bytes, which no shape

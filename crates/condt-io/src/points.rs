@@ -149,6 +149,21 @@ fn is_name(token: &str) -> bool {
             .is_some_and(|c| c.is_alphabetic() || c == '_')
 }
 
+/// A header this format may skip: names it does not know (`a b`), or ones that put x and y in
+/// the first two columns (`x y`, `x y z`, `lon lat`), the columns it reads. Else (`id x y`,
+/// `y x`, `lat lon`) skipping it would read the wrong columns without a word.
+fn check_header(fields: &[&str]) -> Result<(), String> {
+    let axes: Vec<Option<char>> = fields.iter().map(|f| crate::csv::axis_named(f)).collect();
+    if axes.iter().all(Option::is_none) || axes.starts_with(&[Some('x'), Some('y')]) {
+        return Ok(());
+    }
+    Err(format!(
+        "the header `{}` names the columns, but this format reads x and y from the first two; \
+         name the file *.csv, whose reader follows the header, or put x and y first",
+        fields.join(" ")
+    ))
+}
+
 /// The columns of a plain line (comment already removed): separated by whitespace, or by commas
 /// alone. A comma next to a field that also holds whitespace is refused: `1,5 2` is either a
 /// decimal comma or a typo, and reading it as three columns would be a guess.
@@ -429,6 +444,7 @@ fn lines_by<const ONE_PASS: bool>(
                 }
                 if !core::mem::replace(&mut seen_content, true) && fields.iter().all(|f| is_name(f))
                 {
+                    check_header(&fields).map_err(|message| source.error(number, message))?;
                     continue; // a header
                 }
                 Row::from_columns(&fields)
@@ -548,7 +564,16 @@ fn expected_points(text: &str) -> usize {
 ///
 /// The first line that is neither blank nor a comment may be a header: when every column is a
 /// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
-/// it is skipped.
+/// it is skipped. A header that names x and y (`x`, `lon`, `lng`, `longitude`; `y`, `lat`,
+/// `latitude`) anywhere but in the first two columns, in that order, is refused: the points
+/// would be read from the wrong columns (`id x y`, `y x`).
+///
+/// ```
+/// use condt_io::parse_points;
+/// let err = parse_points("id x y\n7 0 0\n9 1 0\n", "ids.txt").unwrap_err();
+/// assert!(err.to_string().starts_with("ids.txt:1: the header `id x y` names the columns"));
+/// assert!(parse_points("x y z\n0.5 0 5\n2.5 1 5\n", "xyz.txt").is_ok());
+/// ```
 ///
 /// With the `parallel` feature a large text is parsed in pieces on rayon's threads; the points,
 /// and the error for a bad file, are the same as without it.
@@ -861,6 +886,33 @@ fn read_all(mut reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A header is skipped only where it cannot mean other columns than the first two; found by
+    /// a fuzzer: `id x y` read the ids as x, `y x` swapped the axes, both without a word.
+    #[test]
+    fn a_header_naming_other_columns_is_refused_not_skipped() {
+        for header in ["id x y", "y x", "lat lon", "n,x,y", "\"y\",\"x\""] {
+            let text = format!("{header}\n7.5 0 1\n9.5 1 1\n");
+            let err = parse_points(&text, "h.txt").unwrap_err().to_string();
+            assert!(err.starts_with("h.txt:1: the header"), "{header}: {err}");
+        }
+        for header in [
+            "x y",
+            "X Y z",
+            "lon lat",
+            "\"lon\",\"lat\"",
+            "a b",
+            "east north",
+        ] {
+            let text = format!("{header}\n7.5 0\n9.5 1\n");
+            let points = parse_points(&text.replace(',', " "), "h.txt").unwrap();
+            assert_eq!(
+                points,
+                vec![Point::new(7.5, 0.0), Point::new(9.5, 1.0)],
+                "{header}"
+            );
+        }
+    }
 
     #[test]
     fn long_tokens_are_cut_in_messages() {
