@@ -207,6 +207,10 @@ pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
     if paper {
         condt_keywords.push("paper=True".into());
     }
+    // As given, when they turn something on: a step the other keywords leave no way to run is
+    // refused, as the command line refuses it (`refuse_steps_that_cannot_run` there).
+    let mut named_on: Vec<(Stage, String)> = Vec::new();
+    let (mut iqr_floor_said, mut outliers_first_said) = (None::<String>, None::<String>);
     let switches: Vec<(Stage, String)> = Stage::ALL
         .into_iter()
         .filter_map(|stage| switch_keyword(stage).map(|k| (stage, k)))
@@ -237,8 +241,18 @@ pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
                 }
             }
             "outlier_filter" => filter.set(boolean(name, &value)?, said)?,
-            "outliers_first" => params.outliers_first = boolean(name, &value)?,
-            "iqr_floor" => params.iqr_floor = boolean(name, &value)?,
+            "outliers_first" => {
+                params.outliers_first = boolean(name, &value)?;
+                if params.outliers_first {
+                    outliers_first_said = Some(said);
+                }
+            }
+            "iqr_floor" => {
+                params.iqr_floor = boolean(name, &value)?;
+                if params.iqr_floor {
+                    iqr_floor_said = Some(said);
+                }
+            }
             "smooth" => params.smooth = boolean(name, &value)?,
             "repair" => {
                 let mode = choice(name, &value, REPAIR_MODES)?;
@@ -250,7 +264,11 @@ pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
             "sequential" => params.parallel = !boolean(name, &value)?,
             _ => match switches.iter().find(|(_, keyword)| keyword == name) {
                 Some(&(stage, _)) => {
-                    params.set_stage(stage, boolean(name, &value)?);
+                    let on = boolean(name, &value)?;
+                    params.set_stage(stage, on);
+                    if on {
+                        named_on.push((stage, said));
+                    }
                 }
                 None => {
                     let known: Vec<&str> = KEYWORDS
@@ -291,6 +309,30 @@ pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
             }
         }
         params.method = chosen;
+    }
+    if params.method == Method::ConDT {
+        let running = params.stages();
+        if let Some((stage, said)) = named_on.iter().find(|(stage, _)| !running.contains(stage)) {
+            let needs = match stage {
+                Stage::RepairAgain => "the repair and then the outlier filter",
+                Stage::GivenBack => "the local outlier removal",
+                _ => "a step the other parameters turn off",
+            };
+            return Err(PyValueError::new_err(format!(
+                "{said} needs {needs}, which the other parameters turn off"
+            )));
+        }
+        if let (Some(said), None) = (&iqr_floor_said, params.outlier_factor) {
+            return Err(PyValueError::new_err(format!(
+                "{said} sets the outlier filter's spacing floor, but the filter is off"
+            )));
+        }
+        let both = params.outlier_factor.is_some() && params.repair != Repair::Off;
+        if let (Some(said), false) = (&outliers_first_said, both) {
+            return Err(PyValueError::new_err(format!(
+                "{said} runs the outlier filter before the repair, but one of them is off"
+            )));
+        }
     }
     params
         .check()

@@ -259,6 +259,13 @@ def test_numbers_of_any_kind_numpy_converts_to_float_are_read():
         ({"method": "crust", "u": 2}, ValueError, "baseline"),
         ({"method": "nn-crust", "paper": True}, ValueError, "paper=True sets a ConDT stage"),
         ({"method": "crust", "smooth": False}, ValueError, "baseline"),
+        # A step the other keywords leave no way to run, as the command line refuses it.
+        ({"confirm_given_back": True, "local_outliers": False}, ValueError, "confirm_given_back=True needs the local outlier removal"),
+        ({"paper": True, "confirm_given_back": True}, ValueError, "needs the local outlier removal"),
+        ({"repair_again": True, "iqr": None}, ValueError, "repair_again=True needs the repair"),
+        ({"repair_again": True, "outliers_first": True}, ValueError, "needs the repair and then"),
+        ({"iqr_floor": True, "outlier_filter": False}, ValueError, "spacing floor"),
+        ({"outliers_first": True, "repair": "off"}, ValueError, "before the repair"),
         ({"u": "2"}, TypeError, "u must be a number, not str"),
         ({"u": True}, TypeError, "u must be a number, not bool"),
         ({"smooth": 1}, TypeError, "smooth must be True or False, not int"),

@@ -685,6 +685,47 @@ impl Format {
     }
 }
 
+/// Refuses an option that asks for a step the other options leave no way to run (the help:
+/// options that contradict each other are an error): repairing again without a repair before
+/// the outlier filter, the given-back check without the local outlier removal, the spacing
+/// floor without the filter, the filter first without both (found by a fuzzer: each was
+/// accepted and did nothing).
+fn refuse_steps_that_cannot_run(
+    params: &Params,
+    named_on: &[(Stage, String)],
+    iqr_floor: Option<&str>,
+    outliers_first: Option<&str>,
+) -> Result<(), CliError> {
+    let running = params.stages();
+    for (stage, said) in named_on {
+        if running.contains(stage) {
+            continue;
+        }
+        let needs = match stage {
+            Stage::RepairAgain => "the repair and then the outlier filter (it repairs again without the edges the filter cut)",
+            Stage::GivenBack => "the local outlier removal (it confirms what that removal gave back)",
+            _ => "a step the other options turn off",
+        };
+        return Err(usage(format!(
+            "{said} needs {needs}, which the other options turn off"
+        )));
+    }
+    if let (Some(said), None) = (iqr_floor, params.outlier_factor) {
+        return Err(usage(format!(
+            "{said} sets the outlier filter's spacing floor, but the filter is off (--no-outlier-filter)"
+        )));
+    }
+    if let Some(said) = outliers_first {
+        if params.outlier_factor.is_none() || params.repair == Repair::Off {
+            return Err(usage(format!(
+                "{said} runs the outlier filter before the repair, but one of them is off \
+                 (--no-outlier-filter or --no-manifold-fix)"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Options of `condt reconstruct`.
 #[derive(Debug, PartialEq)]
 struct ReconstructArgs {
@@ -798,6 +839,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut switched: Vec<(Stage, Setting<bool>)> = Vec::new();
     let mut smooth = Setting::new();
     let mut iqr_floor = Setting::new();
+    // As typed, when given: an option that needs a step the others turn off is refused.
+    let (mut iqr_floor_said, mut outliers_first_said) = (None::<String>, None::<String>);
     let mut format = Setting::new();
     let mut method = Setting::new();
     // ConDT's own options, as written, to refuse them beside a baseline method.
@@ -851,7 +894,10 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 outliers.set(Some(k), format!("{flag} {typed}"))?;
             }
             Id::NoOutlierFilter => outliers.set(None, flag)?,
-            Id::OutliersFirst => params.outliers_first = true,
+            Id::OutliersFirst => {
+                params.outliers_first = true;
+                outliers_first_said = Some(flag.to_string());
+            }
             Id::StageSwitch(stage) => {
                 let k = match switched.iter().position(|(s, _)| *s == stage) {
                     Some(k) => k,
@@ -863,7 +909,12 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 switched[k].1.set(given.on, flag)?;
             }
             Id::Smooth => smooth.set(given.on, flag)?,
-            Id::IqrFloor => iqr_floor.set(given.on, flag)?,
+            Id::IqrFloor => {
+                iqr_floor.set(given.on, flag)?;
+                if given.on {
+                    iqr_floor_said = Some(flag.to_string());
+                }
+            }
             Id::NoManifoldFix => repair.set(Repair::Off, flag)?,
             Id::Repair => {
                 let mode = repair_mode(value)?;
@@ -906,6 +957,14 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     if let Some(mode) = repair.get() {
         params.repair = mode;
     }
+    // The steps turned on by name, as typed, for the check below.
+    let named_on: Vec<(Stage, String)> = switched
+        .iter()
+        .filter_map(|(stage, setting)| match &setting.value {
+            Some((true, said)) => Some((*stage, said.clone())),
+            _ => None,
+        })
+        .collect();
     for (stage, setting) in switched {
         if let Some(on) = setting.get() {
             params.set_stage(stage, on);
@@ -927,6 +986,12 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         }
         params.method = chosen;
     }
+    refuse_steps_that_cannot_run(
+        &params,
+        &named_on,
+        iqr_floor_said.as_deref(),
+        outliers_first_said.as_deref(),
+    )?;
     params.check().map_err(refused)?;
     let (input, output) = paths.finish("reconstruct", lexed.operands)?;
     let format = match (format.get(), output.as_deref()) {
@@ -1232,6 +1297,45 @@ mod tests {
         }
         let a = parse_triangulate(&strings(&["in.txt", "-o", "out.npy", "--edges"])).unwrap();
         assert_eq!((a.edges, a.npy), (true, true));
+    }
+
+    /// An option that asks for a step the others leave no way to run is refused, naming it
+    /// (found by a fuzzer: each was accepted and did nothing); the same options alone run.
+    #[test]
+    fn a_step_the_other_options_turn_off_is_refused() {
+        for (args, named) in [
+            (
+                &["--confirm-given-back", "--no-local-outliers"][..],
+                "--confirm-given-back",
+            ),
+            (&["--paper", "--confirm-given-back"], "--confirm-given-back"),
+            (&["--repair-again", "--no-manifold-fix"], "--repair-again"),
+            (&["--repair-again", "--no-outlier-filter"], "--repair-again"),
+            (&["--repair-again", "--outliers-first"], "--repair-again"),
+            (&["--iqr-floor", "--no-outlier-filter"], "--iqr-floor"),
+            (
+                &["--outliers-first", "--no-manifold-fix"],
+                "--outliers-first",
+            ),
+        ] {
+            let mut line = vec!["in.txt"];
+            line.extend_from_slice(args);
+            match parse_reconstruct(&strings(&line)) {
+                Err(CliError::Usage(message)) => assert!(message.starts_with(named), "{message}"),
+                other => panic!("{args:?}: {other:?}"),
+            }
+        }
+        for args in [
+            &["--paper", "--repair-again"][..],
+            &["--paper", "--local-outliers", "--confirm-given-back"],
+            &["--outliers-first"],
+            &["--no-iqr-floor", "--no-outlier-filter"],
+            &["--no-confirm-given-back", "--no-local-outliers"],
+        ] {
+            let mut line = vec!["in.txt"];
+            line.extend_from_slice(args);
+            assert!(parse_reconstruct(&strings(&line)).is_ok(), "{args:?}");
+        }
     }
 
     #[test]

@@ -100,6 +100,21 @@ impl Source<'_> {
         }
     }
 
+    /// Checks the ignored third column: any number, NaN and infinities among them (a common mark
+    /// of a missing depth or height), but not a word.
+    pub(super) fn third_column(&self, line: usize, field: &str) -> Result<(), IoError> {
+        if decimal::parse(field.as_bytes()).is_some() || field.parse::<f64>().is_ok() {
+            return Ok(());
+        }
+        Err(self.error(
+            line,
+            format!(
+                "cannot read {} as a number (a third column is ignored, but must be a number)",
+                quoted(field)
+            ),
+        ))
+    }
+
     /// Appends `p`, refusing more than [`MAX_POINTS`] points or memory the system will not give,
     /// so that a huge file is an error and not an abort.
     #[inline]
@@ -479,7 +494,7 @@ fn lines_by<const ONE_PASS: bool>(
             source.number(number, second)?,
         );
         if row.count == 3 {
-            source.number(number, third)?;
+            source.third_column(number, third)?;
         }
         all_three_columns &= row.count == 3;
         source.push(&mut points, number, Point::new(x, y))?;
@@ -557,7 +572,8 @@ fn expected_points(text: &str) -> usize {
 /// - a word where a number should be, NaN and infinities;
 /// - more than [`MAX_POINTS`](condt::MAX_POINTS) points.
 ///
-/// A third column is ignored (files with a constant third column `1` or a depth are common),
+/// A third column is ignored (files with a constant third column `1` or a depth are common; it
+/// may be NaN or infinite, a missing depth's mark, but must be a number),
 /// except when the first column of every line counts 0, 1, 2, … or 1, 2, 3, …: that is the index
 /// column of a Triangle `.node` file without its header, and reading it as x would be wrong, so
 /// the file is refused (name it `*.node` for [`read_points`] to read it as one).
@@ -842,16 +858,48 @@ fn parse_owned_points(text: String, file: &str) -> Result<Vec<Point>, IoError> {
 
 /// Everything `reader` holds, growing the buffer with `try_reserve` so that a file larger than
 /// the memory the system gives is an `OutOfMemory` error instead of an abort. `size` is a hint.
-fn read_all(mut reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
+/// On Linux the buffer also stops at half the memory available when the read starts (the points
+/// parsed from a text take about as much again): with memory overcommitted, `try_reserve`
+/// grants what the system cannot give, and an endless stream (`/dev/zero`, a producer that never
+/// stops) was ended by the OOM killer, not an error.
+fn read_all(reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
+    read_all_within(reader, size, memory_available().unwrap_or(usize::MAX))
+}
+
+/// The memory the system says is available (`MemAvailable` of `/proc/meminfo`), where it says.
+fn memory_available() -> Option<usize> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: usize = line.split_whitespace().nth(1)?.parse().ok()?;
+    kib.checked_mul(1024)
+}
+
+/// [`read_all`] with `available` bytes of memory: holding at most half of them.
+fn read_all_within(mut reader: impl Read, size: u64, available: usize) -> io::Result<Vec<u8>> {
     const CHUNK: usize = 1 << 20;
+    let limit = if available == usize::MAX {
+        usize::MAX
+    } else {
+        available / 2
+    };
     let too_large = |len: usize| {
+        let available = if limit < usize::MAX {
+            format!(
+                "; it and its points would not fit in the {available} bytes of memory available"
+            )
+        } else {
+            String::new()
+        };
         io::Error::new(
             io::ErrorKind::OutOfMemory,
-            format!("cannot hold the file in memory (over {len} bytes)"),
+            format!("cannot hold the file in memory (over {len} bytes{available})"),
         )
     };
     let mut bytes: Vec<u8> = Vec::new();
-    let hint = usize::try_from(size).map_err(|_| too_large(usize::MAX))?;
+    let hint = usize::try_from(size)
+        .ok()
+        .filter(|&hint| hint <= limit)
+        .ok_or_else(|| too_large(usize::try_from(size).unwrap_or(usize::MAX)))?;
     bytes
         .try_reserve_exact(hint.saturating_add(1))
         .map_err(|_| too_large(hint))?;
@@ -869,7 +917,14 @@ fn read_all(mut reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
             if got == 0 {
                 return Ok(bytes);
             }
-            let more = bytes.len().max(CHUNK);
+            if bytes.len() >= limit {
+                return Err(too_large(bytes.len()));
+            }
+            let more = bytes
+                .len()
+                .max(CHUNK)
+                .min(limit - bytes.len())
+                .max(probe.len());
             bytes
                 .try_reserve_exact(more)
                 .map_err(|_| too_large(bytes.len() + more))?;
@@ -912,6 +967,25 @@ mod tests {
                 "{header}"
             );
         }
+    }
+
+    /// The ignored third column may be NaN or infinite (found by a fuzzer: `0 0 nan`, a missing
+    /// depth, was refused as a coordinate that is not finite), but not a word.
+    #[test]
+    fn the_ignored_third_column_may_be_nan_but_not_a_word() {
+        let points = parse_points("0.5 0 nan\n1.5 0 -inf\n2.5 1 NaN\n", "z.txt").unwrap();
+        assert_eq!(points.len(), 3);
+        let err = parse_points("0.5 0 1\n1.5 0 abc\n", "z.txt")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("z.txt:2: cannot read \"abc\" as a number (a third"),
+            "{err}"
+        );
+        let err = parse_points("0.5 nan 1\n", "z.txt")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("not finite"), "{err}");
     }
 
     #[test]
@@ -1181,6 +1255,17 @@ mod tests {
 
     #[test]
     fn an_impossible_size_is_an_out_of_memory_error() {
+        // An endless stream stops at the limit, an error rather than all the memory there is.
+        let err = read_all_within(io::repeat(b'0'), 0, 10 << 20).unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::OutOfMemory);
+        assert!(
+            err.to_string()
+                .contains("the 10485760 bytes of memory available"),
+            "{err}"
+        );
+        assert_eq!(read_all_within(&b"1 2\n"[..], 4, 8).unwrap(), b"1 2\n");
+        let err = read_all_within(&b"1 2\n"[..], 4, 7).unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::OutOfMemory);
         let err = read_all(&b"1 2\n"[..], u64::MAX / 2).unwrap_err();
         assert_eq!(err.kind(), io::ErrorKind::OutOfMemory);
     }
