@@ -152,13 +152,13 @@ pub(crate) struct Smoothed {
     /// the result depend on the input order. Else empty (memory).
     pub(crate) in_run_frame: Vec<Point>,
     /// Where `positions`' zero lies in the caller's coordinates: the starting positions' corner,
-    /// or the input frame's zero when `overflows` (display only).
+    /// or the input frame's zero in `own_frame` (display only).
     pub(crate) corner: Point,
     /// How many points moved.
     pub(crate) moved: usize,
-    /// Whether the box's extent overflows the input frame, so `positions` are in the run's input
-    /// frame (`corner` its zero).
-    pub(crate) overflows: bool,
+    /// Whether `positions` are in the run's own input frame, not relative to the corner: where
+    /// the box's extent overflows that frame, or the corner's frame is too coarse for the set.
+    pub(crate) own_frame: bool,
 }
 
 /// The smoothed position of every input position for a reconstruction on `tri` with final graph
@@ -175,31 +175,25 @@ pub(crate) fn smoothed_positions(
 ) -> Smoothed {
     let n = tri.len();
     let graph = CurveGraph::new(n, edges);
-    let corner = corner(tri);
+    let PassFrame { corner, own_frame } = PassFrame::of(tri, &graph);
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
+    // What `moving` measures in: the positions as they are moved.
+    let measured = |p: Point| if own_frame { p } else { relative(p) };
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
-    // Relative positions in the input frame, or, where the box's extent overflows there (a
-    // width beyond `f64::MAX`), the positions in the input frame itself (from its zero): finite,
-    // as every moved point stays in the box, at the cost of the exact translations' invariance,
-    // which such a set cannot have anyway (its translates overflow).
-    let overflows = tri
-        .vertex_points()
-        .iter()
-        .any(|&p| !tri.stage_to_input(relative(p)).is_finite());
     let mut moved = 0;
     let mut in_run_frame = Vec::with_capacity(if wanted { n } else { 0 });
-    // The position handed on: `relative`, or the input frame's when the extent overflows; the
+    // The position handed on: `relative`, or the input frame's in `own_frame`; the
     // latter is computed only then or when `wanted`, and kept in `in_run_frame`.
     let mut emit = |relative: Point, framed: &dyn Fn() -> Point| {
-        if !(wanted || overflows) {
+        if !(wanted || own_frame) {
             return relative;
         }
         let framed = framed();
         if wanted {
             in_run_frame.push(framed);
         }
-        if overflows {
+        if own_frame {
             framed
         } else {
             relative
@@ -209,7 +203,7 @@ pub(crate) fn smoothed_positions(
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_points()[v.index()]);
-            let Some([x, y]) = moving(tri, &graph, v, relative) else {
+            let Some([x, y]) = moving(tri, &graph, v, measured) else {
                 return emit(tri.stage_to_input(q), &|| tri.frame_point(i));
             };
             // In the stages' frame, where these sums and products neither overflow nor underflow at
@@ -227,7 +221,7 @@ pub(crate) fn smoothed_positions(
             })
         })
         .collect();
-    let corner = if overflows {
+    let corner = if own_frame {
         offset
     } else {
         shown(tri.stage_to_input(corner))
@@ -237,17 +231,17 @@ pub(crate) fn smoothed_positions(
         in_run_frame,
         corner,
         moved,
-        overflows,
+        own_frame,
     }
 }
 
 /// Where each input position's point stood before the pass, in the frame [`smoothed_positions`]
-/// gives `positions` in (relative to the corner, or the input frame's when `overflows`): where
+/// gives `positions` in (relative to the corner, or the input frame's in `own_frame`): where
 /// [`keep_apart`] puts a point back that would merge with another.
-pub(crate) fn unmoved(tri: &impl RunPositions, overflows: bool) -> impl Fn(usize) -> Point + '_ {
+pub(crate) fn unmoved(tri: &impl RunPositions, own_frame: bool) -> impl Fn(usize) -> Point + '_ {
     let corner = corner(tri);
     move |i| {
-        if overflows {
+        if own_frame {
             return tri.frame_point(i);
         }
         let p = tri.vertex_points()[tri.vertex(i).index()];
@@ -255,20 +249,74 @@ pub(crate) fn unmoved(tri: &impl RunPositions, overflows: bool) -> impl Fn(usize
     }
 }
 
+/// The frame a pass measures and moves points in: relative to the lower left corner of the box
+/// (so that an exact translation gives the same result), or the run's own input frame (from its
+/// zero), at the cost of that invariance, where the corner's frame cannot hold the set: where
+/// the box's extent overflows it (a width beyond `f64::MAX`; such a set's translates overflow
+/// anyway, and the moved points stay in the box, finite), and where its grid is too coarse for
+/// the set's spacing. That grid is about the extent times 2^-52: where the extent is over 2^26
+/// times the final edges' root mean square length, the moved positions would keep less than
+/// half of a double's bits below the spacing (a far point beside a fine curve: found by a
+/// fuzzer, one point at 1e17 beside a curve of spacing 0.1 put every sample on a grid of 16 once
+/// the corner was the far point's, so mirroring the set changed the result, and once moved no
+/// point at all). A mean, not the shortest edge: a pair of near duplicates joined by an edge is
+/// not a set's spacing, and would give up the invariance for nothing. The test reads lengths
+/// only: an exactly translated set gets the same answer.
+#[derive(Copy, Clone, Debug)]
+struct PassFrame {
+    /// The corner, in the stages' frame.
+    corner: Point,
+    own_frame: bool,
+}
+
+impl PassFrame {
+    fn of(tri: &impl RunPositions, graph: &CurveGraph) -> PassFrame {
+        let corner = corner(tri);
+        let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
+        let overflows = tri
+            .vertex_points()
+            .iter()
+            .any(|&p| !tri.stage_to_input(relative(p)).is_finite());
+        let at = |v: VertexId| tri.vertex_points()[v.index()];
+        let extent = tri
+            .vertex_points()
+            .iter()
+            .fold(0.0f64, |e, p| e.max(p.x - corner.x).max(p.y - corner.y));
+        // Each edge's squared length over the squared extent (at most 8) in units of 2^-60,
+        // summed exactly, so that neither the order of the vertices nor their ids can change
+        // the answer; each edge twice, from both ends, which leaves the mean as it is.
+        let unit = (1u64 << 60) as f64 / (extent * extent);
+        let (mut total, mut count) = (0u128, 0u128);
+        for v in (0..tri.len() as u32).map(VertexId::new) {
+            for k in 0..graph.degree(v) {
+                total += (at(v).dist2(at(graph.neighbor(v, k))) * unit) as u128;
+                count += 1;
+            }
+        }
+        // The root mean square edge under 2^-26 of the extent: a mean under 2^(60 - 52).
+        let too_coarse = count > 0 && extent > 0.0 && total < count << 8;
+        PassFrame {
+            corner,
+            own_frame: overflows || too_coarse,
+        }
+    }
+}
+
 /// The two neighbours of `v` when a pass moves it: `v` has exactly two edges in `graph`, meeting
 /// at more than a right angle (the module's rule, the one place it is written).
-/// Positions are compared `relative` to the corner the pass moves them from, as they are moved.
+/// Positions are compared in the frame the pass moves them in (`measured`: relative to the
+/// corner, or the run's own, [`PassFrame`]), as they are moved.
 fn moving(
     tri: &impl RunPositions,
     graph: &CurveGraph,
     v: VertexId,
-    relative: impl Fn(Point) -> Point,
+    measured: impl Fn(Point) -> Point,
 ) -> Option<[VertexId; 2]> {
     if graph.degree(v) != 2 {
         return None;
     }
     let [x, y] = graph.first_two(v);
-    let at = |u: VertexId| relative(tri.vertex_points()[u.index()]);
+    let at = |u: VertexId| measured(tri.vertex_points()[u.index()]);
     let (p, a, b) = (at(v), at(x), at(y));
     // Wider than a right angle exactly when u·w < 0.
     let dot = (a.x - p.x) * (b.x - p.x) + (a.y - p.y) * (b.y - p.y);
@@ -284,12 +332,18 @@ fn corner(tri: &impl RunPositions) -> Point {
 /// `graph`. Where none moves, a pass would triangulate the same points again and give the same
 /// result: no pass runs (reconstruct's rule).
 pub(crate) fn moves_any(tri: &impl RunPositions, graph: &CurveGraph) -> bool {
-    let corner = corner(tri);
-    let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
+    let PassFrame { corner, own_frame } = PassFrame::of(tri, graph);
+    let measured = |p: Point| {
+        if own_frame {
+            p
+        } else {
+            Point::new(p.x - corner.x, p.y - corner.y)
+        }
+    };
     (0..tri.len() as u32)
         .map(VertexId::new)
         .filter(|&v| tri.is_vertex(v))
-        .any(|v| moving(tri, graph, v, relative).is_some())
+        .any(|v| moving(tri, graph, v, measured).is_some())
 }
 
 /// What follows a run of a reconstruction split in tiles ([`gathered_smoothing_pass`]).
@@ -403,7 +457,7 @@ pub fn gathered_smoothing_pass(
         return Ok(GatheredPass::Next(smoothed.positions));
     }
     smoothed = smoothed_positions(&run, &listed, true);
-    keep_apart(&mut smoothed.positions, unmoved(&run, smoothed.overflows));
+    keep_apart(&mut smoothed.positions, unmoved(&run, smoothed.own_frame));
     if was_wide || wide(&smoothed.positions) {
         return Ok(GatheredPass::InOnePiece);
     }
@@ -640,6 +694,60 @@ mod tests {
             .collect();
         back.sort_unstable();
         assert_eq!(back, result.edges().collect::<Vec<_>>());
+    }
+
+    /// Found by a fuzzer: one point far from a fine curve put the curve's samples on the corner
+    /// frame's coarse grid (a grid of 16 beside a spacing of 0.1 once the corner was the far
+    /// point's), so mirroring changed the result and, with the corner at the far point, no pass
+    /// ran. Now each far point leaves the curve's edges and passes those of the curve alone, and
+    /// chained runs follow.
+    #[test]
+    fn a_far_point_leaves_a_curve_its_own_passes() {
+        use super::{gathered_smoothing_pass, GatheredPass};
+        let t = |k: usize| k as f64 * 1.5 * core::f64::consts::PI / 29.0;
+        let r = |k: usize| if k % 2 == 0 { 1.04 } else { 1.0 };
+        let arc: Vec<Point> = (0..30)
+            .map(|k| Point::new(r(k) * t(k).cos(), r(k) * t(k).sin()))
+            .collect();
+        let params = Params::default();
+        let alone = reconstruct(&arc, &params).unwrap();
+        let passes = |r: &crate::Reconstruction| r.smoothing().map_or(0, |s| s.passes);
+        assert!(passes(&alone) > 0, "the arc alone gets a pass");
+        let arc_edges: Vec<[usize; 2]> = alone.edges().collect();
+        for far in [
+            (1e17, 1e17),
+            (-1e17, 1e17),
+            (-1e17, -1e17),
+            (-1e12, -1e12),
+            (1e12, -1e12),
+        ] {
+            let mut points = arc.clone();
+            points.push(Point::from(far));
+            let result = reconstruct(&points, &params).unwrap();
+            assert_eq!(passes(&result), passes(&alone), "{far:?}");
+            let edges: Vec<[usize; 2]> = result.edges().filter(|e| e[1] < 30).collect();
+            assert_eq!(edges, arc_edges, "{far:?}");
+            assert_eq!(
+                result.stage_point(0),
+                arc[0],
+                "{far:?}: an end does not move"
+            );
+            // The same through chained runs.
+            let one_run = params.with_smooth(false);
+            let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
+                reconstruct(points, &one_run).unwrap().edges().collect()
+            };
+            let (mut run, mut previous, mut passes) = (points.clone(), None, 0);
+            let mut chained = edges_of(&run);
+            while let GatheredPass::Next(moved) =
+                gathered_smoothing_pass(&run, &chained, passes, previous.as_deref()).unwrap()
+            {
+                let next = edges_of(&moved);
+                (run, previous, passes) = (moved, Some(chained), passes + 1);
+                chained = next;
+            }
+            assert_eq!(chained, result.edges().collect::<Vec<_>>(), "{far:?}");
+        }
     }
 
     /// Where a pass would merge input points (`a_pass_never_merges_two_input_points`'s sets, the

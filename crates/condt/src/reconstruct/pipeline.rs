@@ -370,7 +370,7 @@ impl Pipeline {
             smoothed = smoothed_positions(&triangulation, &final_edges, true);
             back = keep_apart(
                 &mut smoothed.positions,
-                unmoved(&triangulation, smoothed.overflows),
+                unmoved(&triangulation, smoothed.own_frame),
             );
             let original = |i: usize| triangulation.frame_point(triangulation.vertex(i));
             back_in_run_frame = keep_apart(&mut smoothed.in_run_frame, original);
