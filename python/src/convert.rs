@@ -92,6 +92,28 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
 /// `TypeError` for `None`, a scalar, or an array whose dtype is not an integer or a float (or an
 /// object array holding something else); `ValueError` for a masked array with masked entries or
 /// any other shape; numpy's own error for what it cannot convert.
+/// The `ValueError` naming the first point of `given` (an array numpy made of the caller's
+/// points) whose coordinate no float64 holds, if one is found.
+fn overflowing_point(py: Python<'_>, given: &Bound<'_, PyAny>) -> PyResult<Option<PyErr>> {
+    let float = py.import("builtins")?.getattr("float")?;
+    let shape: Vec<usize> = given.getattr("shape")?.extract()?;
+    let columns = if shape.len() == 2 { shape[1].max(1) } else { 1 };
+    for (k, item) in given.call_method0("ravel")?.try_iter()?.enumerate() {
+        let item = item?;
+        if let Err(err) = float.call1((&item,)) {
+            if err.is_instance_of::<PyOverflowError>(py) {
+                let shown = item.repr().map_or_else(|_| "?".into(), |r| r.to_string());
+                let shown: String = shown.chars().take(40).collect();
+                return Ok(Some(PyValueError::new_err(format!(
+                    "point {} has a coordinate too large for a float64: {shown}",
+                    k / columns
+                ))));
+            }
+        }
+    }
+    Ok(None)
+}
+
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,
@@ -131,7 +153,14 @@ pub(crate) fn points_array<'py>(
         numpy.getattr("asarray")?.call1((obj,))?
     };
     check_numbers(&numpy, &given)?;
-    let converted = ascontiguousarray(py)?.call1((given, "float64"))?;
+    let converted = match ascontiguousarray(py)?.call1((given.clone(), "float64")) {
+        Ok(converted) => converted,
+        // A Python int beyond float64 (`10**400`): a bad point, named, as a NaN is.
+        Err(err) if err.is_instance_of::<PyOverflowError>(py) => {
+            return Err(overflowing_point(py, &given)?.unwrap_or(err));
+        }
+        Err(err) => return Err(err),
+    };
     let converted = converted.cast_into::<numpy::PyUntypedArray>()?;
     let shape = converted.shape().to_vec();
     let converted = match shape.as_slice() {

@@ -165,6 +165,14 @@ def test_a_non_finite_point_is_a_value_error_naming_it(function, bad):
         condt.score([(0, 0), (1, 0), (np.nan, 0)], [], [])
 
 
+@pytest.mark.parametrize("function", [condt.reconstruct, condt.triangulate])
+def test_an_int_beyond_float64_is_a_value_error_naming_its_point(function):
+    # Found by a fuzzer: numpy's OverflowError came through, naming no point.
+    points = [[0, 0], [1, 0], [0, -(10**400)], [1, 1]]
+    with pytest.raises(ValueError, match="^point 2 has a coordinate too large for a float64"):
+        function(points)
+
+
 @pytest.mark.parametrize(
     "shape", [(3,), (4, 3), (2, 2, 2), (5, 1)], ids=lambda s: "x".join(map(str, s))
 )
