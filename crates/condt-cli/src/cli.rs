@@ -547,10 +547,18 @@ impl Paths {
                 "{flag} needs a file name, and was given an empty one (use - for standard output)"
             )));
         }
-        if self.output.replace(value).is_some() {
-            return Err(usage(format!("{flag} is given twice")));
+        // Twice with the same name is taken once, as every option is (the help says so).
+        match &self.output {
+            Some(given) if *given != value => Err(usage(format!(
+                "{flag} is given twice, with {} and {}: give one of them",
+                given.to_string_lossy(),
+                value.to_string_lossy()
+            ))),
+            _ => {
+                self.output = Some(value);
+                Ok(())
+            }
         }
-        Ok(())
     }
 
     /// INPUT (the one operand) and OUTPUT, `-` standing for the standard streams.
@@ -1297,6 +1305,22 @@ mod tests {
         }
         let a = parse_triangulate(&strings(&["in.txt", "-o", "out.npy", "--edges"])).unwrap();
         assert_eq!((a.edges, a.npy), (true, true));
+    }
+
+    /// `-o` twice with one name is taken once, as every option is; with two names it is refused
+    /// (found by a fuzzer: `-o x -o x` was refused, against the help).
+    #[test]
+    fn an_output_given_twice_alike_is_taken_once() {
+        let a = parse_reconstruct(&strings(&["in.txt", "-o", "a.txt", "--output=a.txt"])).unwrap();
+        assert_eq!(a.output.as_deref(), Some(Path::new("a.txt")));
+        let a = parse_triangulate(&strings(&["in.txt", "-oa.txt", "-o", "a.txt"])).unwrap();
+        assert_eq!(a.output.as_deref(), Some(Path::new("a.txt")));
+        match parse_reconstruct(&strings(&["in.txt", "-o", "a.txt", "-o", "b.txt"])) {
+            Err(CliError::Usage(message)) => {
+                assert!(message.contains("a.txt and b.txt"), "{message}")
+            }
+            other => panic!("{other:?}"),
+        }
     }
 
     /// An option that asks for a step the others leave no way to run is refused, naming it

@@ -115,15 +115,29 @@ fn temporary_beside(target: &Path, new_file: bool) -> io::Result<signals::Temp> 
     }
     #[cfg(not(unix))]
     let _ = new_file;
+    let directory = directory_of(target);
     signals::Temp::create(|| {
-        builder.tempfile_in(directory_of(target)).map_err(|e| {
+        builder.tempfile_in(directory).map_err(|e| {
             // tempfile appends ` at path "…"` with the temporary file's name, no business of
-            // the user, who named only `target`: the operating system's words are enough.
+            // the user, who named only `target`: the operating system's words are enough, said
+            // of the directory, since the named file itself may well exist (`/proc/version`:
+            // "No such file or directory" alone was a puzzle, found by a fuzzer).
             let text = e.to_string();
-            match text.split_once(" at path ") {
-                Some((os_words, _)) => io::Error::new(e.kind(), os_words.to_string()),
-                None => e,
-            }
+            let os_words = text
+                .split_once(" at path ")
+                .map_or(text.as_str(), |(w, _)| w);
+            let shown = if directory.as_os_str().is_empty() {
+                Path::new(".")
+            } else {
+                directory
+            };
+            io::Error::new(
+                e.kind(),
+                format!(
+                    "cannot create the temporary file it is written through in {}: {os_words}",
+                    shown.display()
+                ),
+            )
         })
     })
 }

@@ -836,3 +836,20 @@ fn a_file_size_limit_is_an_error_that_leaves_no_temporary_file() {
     assert_eq!(fs::read_to_string(&target).unwrap(), "previous content\n");
     assert_eq!(names(dir.path()), ["out.txt"]);
 }
+
+/// Where the temporary file beside an existing output cannot be made (`/proc` takes no new
+/// file), the message says so: the operating system's "No such file or directory" alone, said
+/// of a file that exists, was a puzzle (found by a fuzzer).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_temporary_file_that_cannot_be_made_is_named_as_such() {
+    let out = condt(&["triangulate", "-", "-o", "/proc/version"], SQUARE);
+    assert_eq!(out.status.code(), Some(1));
+    let said = stderr(&out);
+    assert!(
+        said.contains(
+            "/proc/version: cannot create the temporary file it is written through in /proc"
+        ),
+        "{said}"
+    );
+}
