@@ -57,6 +57,8 @@ enum Value {
     Text(String),
     Bool(bool),
     Tuple(Vec<u64>),
+    /// A number: no known key takes one, but an unknown key is told as such, not by its value.
+    Number(String),
 }
 
 fn content(file: &str, message: String) -> IoError {
@@ -135,6 +137,21 @@ impl Literal<'_> {
         &self.text[start..self.at]
     }
 
+    /// The text from here to the next `,`, `)` or `}` (at most 30 characters), for a message
+    /// about what could not be read: `-50`, `[('x', '<f8')`, not an empty quote.
+    fn raw(&self) -> String {
+        let rest = &self.text[self.at.min(self.text.len())..];
+        let end = rest
+            .iter()
+            .position(|b| matches!(b, b',' | b')' | b'}'))
+            .unwrap_or(rest.len());
+        let shown: String = String::from_utf8_lossy(&rest[..end])
+            .chars()
+            .take(30)
+            .collect();
+        shown.trim().to_string()
+    }
+
     fn value(&mut self) -> Result<Value, String> {
         self.skip_space();
         match self.text.get(self.at) {
@@ -143,16 +160,12 @@ impl Literal<'_> {
                 self.at += 1;
                 let mut items = Vec::new();
                 while !self.take(b')') {
+                    let raw = self.raw();
                     let word = self.word();
                     let item = core::str::from_utf8(word)
                         .ok()
                         .and_then(|w| w.parse::<u64>().ok())
-                        .ok_or_else(|| {
-                            format!(
-                                "the shape holds {:?}, not a size",
-                                String::from_utf8_lossy(word)
-                            )
-                        })?;
+                        .ok_or_else(|| format!("the shape holds {raw:?}, not a size"))?;
                     items.push(item);
                     if !self.take(b',') {
                         self.expect(b')')?;
@@ -161,14 +174,21 @@ impl Literal<'_> {
                 }
                 Ok(Value::Tuple(items))
             }
-            _ => match self.word() {
-                b"True" => Ok(Value::Bool(true)),
-                b"False" => Ok(Value::Bool(false)),
-                other => Err(format!(
-                    "cannot read {:?} in the header",
-                    String::from_utf8_lossy(other)
-                )),
-            },
+            _ => {
+                let raw = self.raw();
+                match self.word() {
+                    b"True" => Ok(Value::Bool(true)),
+                    b"False" => Ok(Value::Bool(false)),
+                    word if !word.is_empty() && word.iter().all(u8::is_ascii_digit) => {
+                        Ok(Value::Number(String::from_utf8_lossy(word).into_owned()))
+                    }
+                    _ if raw.starts_with('[') => Err(format!(
+                        "cannot read {raw:?} in the header (a structured element type? \
+                         points are float64 or float32, edges uint32 or int64)"
+                    )),
+                    _ => Err(format!("cannot read {raw:?} in the header")),
+                }
+            }
         }
     }
 
@@ -210,7 +230,14 @@ fn entries(text: &[u8]) -> Result<Entries, String> {
             ("fortran_order", Value::Bool(f)) => fortran_order = Some(f),
             ("shape", Value::Tuple(s)) => shape = Some(s),
             (key @ ("descr" | "fortran_order" | "shape"), value) => {
-                return Err(format!("the header's '{key}' is {value:?}"))
+                let shown = match value {
+                    Value::Text(text) => format!("'{text}'"),
+                    Value::Bool(true) => "True".to_string(),
+                    Value::Bool(false) => "False".to_string(),
+                    Value::Tuple(items) => shown_shape(&items),
+                    Value::Number(number) => number,
+                };
+                return Err(format!("the header's '{key}' is {shown}"));
             }
             (other, _) => return Err(format!("the header has an unknown key '{other}'")),
         }
@@ -1085,11 +1112,21 @@ mod tests {
             ("{'descr': '<f8', 'shape': (5, 2), }", "no 'fortran_order'"),
             (
                 "{'descr': '<f8', 'fortran_order': 0, 'shape': (5, 2), }",
-                "cannot read \"0\"",
+                "the header's 'fortran_order' is 0",
             ),
+            // Found by a fuzzer: these said `cannot read "1"`, `the shape holds ""` and
+            // `cannot read ""`.
             (
                 "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 2), 'x': 1}",
-                "cannot read",
+                "unknown key 'x'",
+            ),
+            (
+                "{'descr': '<f8', 'fortran_order': False, 'shape': (+5, 2), }",
+                "the shape holds \"+5\", not a size",
+            ),
+            (
+                "{'descr': [('x', '<f8'), ('y', '<f8')], 'fortran_order': False, 'shape': (5,), }",
+                "cannot read \"[('x'\" in the header (a structured element type?",
             ),
             (
                 "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 2), 'x': True}",

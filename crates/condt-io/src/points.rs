@@ -468,10 +468,16 @@ fn lines_by<const ONE_PASS: bool>(
         match row.count {
             0 => continue,
             1 => {
+                // Found by a fuzzer: `1;0` said only "found one".
+                let hint = if line.contains(';') {
+                    " (a semicolon does not separate columns: spaces, tabs or one comma do)"
+                } else {
+                    ""
+                };
                 return Err(source.error(
                     number,
-                    "expected two coordinates `x y`, found one".to_string(),
-                ))
+                    format!("expected two coordinates `x y`, found one{hint}"),
+                ));
             }
             2 | 3 => {}
             n => {
@@ -986,6 +992,15 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("not finite"), "{err}");
+    }
+
+    #[test]
+    fn a_semicolon_separated_line_is_told_how_columns_are_separated() {
+        let err = parse_points("1;0\n", "s.txt").unwrap_err().to_string();
+        assert!(
+            err.contains("found one (a semicolon does not separate columns"),
+            "{err}"
+        );
     }
 
     #[test]
