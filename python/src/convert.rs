@@ -83,15 +83,6 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
     Ok(())
 }
 
-/// The points `obj` holds, as a C-contiguous, aligned, native float64 array of shape `(n, 2)`:
-/// `obj` itself when it is one (no copy), otherwise `numpy.ascontiguousarray(obj, "float64")`
-/// of what `numpy.asarray(obj)` gives, when that holds numbers (`check_numbers`). An empty
-/// sequence (`[]`, shape `(0,)`) is no points.
-///
-/// # Errors
-/// `TypeError` for `None`, a scalar, or an array whose dtype is not an integer or a float (or an
-/// object array holding something else); `ValueError` for a masked array with masked entries or
-/// any other shape; numpy's own error for what it cannot convert.
 /// The `ValueError` naming the first point of `given` (an array numpy made of the caller's
 /// points) whose coordinate no float64 holds, if one is found.
 fn overflowing_point(py: Python<'_>, given: &Bound<'_, PyAny>) -> PyResult<Option<PyErr>> {
@@ -114,6 +105,16 @@ fn overflowing_point(py: Python<'_>, given: &Bound<'_, PyAny>) -> PyResult<Optio
     Ok(None)
 }
 
+/// The points `obj` holds, as a C-contiguous, aligned, native float64 array of shape `(n, 2)`:
+/// `obj` itself when it is one (no copy), otherwise `numpy.ascontiguousarray(obj, "float64")`
+/// of what `numpy.asarray(obj)` gives, when that holds numbers (`check_numbers`). An empty
+/// sequence (`[]`, shape `(0,)`) is no points.
+///
+/// # Errors
+/// `TypeError` for `None`, a scalar, or an array whose dtype is not an integer or a float (or an
+/// object array holding something else); `ValueError` for a masked array with masked entries,
+/// any other shape, or an int beyond float64 (naming its point); numpy's own error for what it
+/// cannot convert.
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,

@@ -891,11 +891,17 @@ pub(crate) fn _gathered_smoothing_pass<'py>(
             Some(PyArray2::from_owned_array(py, moved).into_any())
         }
         GatheredPass::InOnePiece => Some(
-            "a smoothing pass would bring points of a wide set together"
+            "a smoothing pass moves points into a wide set"
                 .into_pyobject(py)?
                 .into_any(),
         ),
-        _ => None,
+        GatheredPass::Done => None,
+        // A way on this driver does not know: never a silently different answer.
+        _ => Some(
+            "a smoothing pass this driver cannot follow"
+                .into_pyobject(py)?
+                .into_any(),
+        ),
     })
 }
 

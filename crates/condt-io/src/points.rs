@@ -164,17 +164,24 @@ fn is_name(token: &str) -> bool {
             .is_some_and(|c| c.is_alphabetic() || c == '_')
 }
 
-/// A header this format may skip: names it does not know (`a b`), or ones that put x and y in
-/// the first two columns (`x y`, `x y z`, `lon lat`), the columns it reads. Else (`id x y`,
-/// `y x`, `lat lon`) skipping it would read the wrong columns without a word.
+/// A header this format may skip: none of its names contradicts the column it stands over, the
+/// first read as x, the second as y (`x y`, `x y z`, `lon lat`, `long lat`, `x_m y`, `a b`).
+/// Else (`id x y`, `y x`, `lat lon`) skipping it would read the wrong columns without a word.
 fn check_header(fields: &[&str]) -> Result<(), String> {
-    let axes: Vec<Option<char>> = fields.iter().map(|f| crate::csv::axis_named(f)).collect();
-    if axes.iter().all(Option::is_none) || axes.starts_with(&[Some('x'), Some('y')]) {
+    let contradicts =
+        |(column, field): (usize, &&str)| match (column, crate::csv::axis_named(field)) {
+            (_, None) => false,
+            (0, Some(axis)) => axis != 'x',
+            (1, Some(axis)) => axis != 'y',
+            (_, Some(_)) => true,
+        };
+    if !fields.iter().enumerate().any(contradicts) {
         return Ok(());
     }
     Err(format!(
-        "the header `{}` names the columns, but this format reads x and y from the first two; \
-         name the file *.csv, whose reader follows the header, or put x and y first",
+        "the header `{}` names x or y over another column than this format reads them from \
+         (x the first, y the second); name the file *.csv, whose reader follows the header, or \
+         put x and y first",
         fields.join(" ")
     ))
 }
@@ -593,7 +600,7 @@ fn expected_points(text: &str) -> usize {
 /// ```
 /// use condt_io::parse_points;
 /// let err = parse_points("id x y\n7 0 0\n9 1 0\n", "ids.txt").unwrap_err();
-/// assert!(err.to_string().starts_with("ids.txt:1: the header `id x y` names the columns"));
+/// assert!(err.to_string().starts_with("ids.txt:1: the header `id x y` names x or y over"));
 /// assert!(parse_points("x y z\n0.5 0 5\n2.5 1 5\n", "xyz.txt").is_ok());
 /// ```
 ///
@@ -872,12 +879,25 @@ fn read_all(reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
     read_all_within(reader, size, memory_available().unwrap_or(usize::MAX))
 }
 
-/// The memory the system says is available (`MemAvailable` of `/proc/meminfo`), where it says.
+/// The memory the system says is available (`MemAvailable` of `/proc/meminfo`), where it says,
+/// and no more than this process's cgroup (v2) has left under its limit (a container's or a CI
+/// job's, which `MemAvailable` does not see).
 fn memory_available() -> Option<usize> {
     let info = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kib: usize = line.split_whitespace().nth(1)?.parse().ok()?;
-    kib.checked_mul(1024)
+    let system = kib.checked_mul(1024)?;
+    let read = |name: &str| -> Option<usize> {
+        std::fs::read_to_string(format!("/sys/fs/cgroup/{name}"))
+            .ok()?
+            .trim()
+            .parse()
+            .ok()
+    };
+    // `memory.max` reads `max` where there is no limit: no number, no bound.
+    let left =
+        read("memory.max").map(|max| max.saturating_sub(read("memory.current").unwrap_or(0)));
+    Some(left.map_or(system, |left| left.min(system)))
 }
 
 /// [`read_all`] with `available` bytes of memory: holding at most half of them.
@@ -964,6 +984,9 @@ mod tests {
             "\"lon\",\"lat\"",
             "a b",
             "east north",
+            "long lat",
+            "x_m y",
+            "x z",
         ] {
             let text = format!("{header}\n7.5 0\n9.5 1\n");
             let points = parse_points(&text.replace(',', " "), "h.txt").unwrap();

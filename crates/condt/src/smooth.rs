@@ -282,15 +282,19 @@ impl PassFrame {
             .vertex_points()
             .iter()
             .fold(0.0f64, |e, p| e.max(p.x - corner.x).max(p.y - corner.y));
-        // Each edge's squared length over the squared extent (at most 8) in units of 2^-60,
+        // Each edge's squared length over the squared extent (each difference divided first, so
+        // that no quotient overflows where the extent is tiny: at most 2) in units of 2^-60,
         // summed exactly, so that neither the order of the vertices nor their ids can change
         // the answer; each edge twice, from both ends, which leaves the mean as it is.
-        let unit = (1u64 << 60) as f64 / (extent * extent);
         let (mut total, mut count) = (0u128, 0u128);
-        for v in (0..tri.len() as u32).map(VertexId::new) {
-            for k in 0..graph.degree(v) {
-                total += (at(v).dist2(at(graph.neighbor(v, k))) * unit) as u128;
-                count += 1;
+        if extent > 0.0 {
+            for v in (0..tri.len() as u32).map(VertexId::new) {
+                for k in 0..graph.degree(v) {
+                    let (p, q) = (at(v), at(graph.neighbor(v, k)));
+                    let (dx, dy) = ((p.x - q.x) / extent, (p.y - q.y) / extent);
+                    total += ((dx * dx + dy * dy) * (1u64 << 60) as f64) as u128;
+                    count += 1;
+                }
             }
         }
         // The root mean square edge under 2^-26 of the extent: a mean under 2^(60 - 52).
@@ -359,10 +363,10 @@ pub enum GatheredPass {
     Done,
     /// A pass follows: the next run reconstructs these points, one per input position.
     Next(Vec<Point>),
-    /// The moved points span more binary orders of magnitude than the fast predicates take
-    /// (a *wide* set, `docs/predicates.md`) and some would meet: whether the next triangulation
-    /// merges them is its own answer, which the runs of a split cannot foresee, so the whole set
-    /// must run in one piece.
+    /// The moved points (or those the pass would move) span more binary orders of magnitude than
+    /// the fast predicates take (a *wide* set, `docs/predicates.md`), where the pipeline lets its
+    /// next triangulation tell whether points merged: the runs of a split do not follow that
+    /// path, so the whole set must run in one piece.
     InOnePiece,
 }
 
@@ -413,6 +417,8 @@ pub fn gathered_smoothing_pass(
 ) -> Result<GatheredPass, Error> {
     let run = Gathered::new(points)?;
     let n = points.len();
+    // Each edge once, between vertices (a duplicate's position stands for its group's smallest,
+    // as a triangulation's edges do), smaller end first: what the pass's graph takes.
     let mut listed: Vec<Edge> = Vec::with_capacity(edges.len());
     for &[a, b] in edges {
         if a >= n || b >= n {
@@ -422,8 +428,13 @@ pub fn gathered_smoothing_pass(
                 value,
             });
         }
-        listed.push([a, b].map(|i| VertexId::new(i as u32)));
+        let [a, b] = [run.vertex(a), run.vertex(b)];
+        if a != b {
+            listed.push([a.min(b), a.max(b)]);
+        }
     }
+    listed.sort_unstable();
+    listed.dedup();
     if passes >= MAX_PASSES {
         return Ok(GatheredPass::Done);
     }
@@ -469,7 +480,7 @@ pub fn gathered_smoothing_pass(
 }
 
 /// Puts back at `original(i)` every point of `positions` that shares its position with a point of
-/// another original position (the caller's frame can round two averages together: subnormal or
+/// another original position (any frame can round two averages together: subnormal or
 /// extreme coordinates), until none does; returns how many went back. Why: a pass must not merge
 /// two input points, or one of them would vanish from the result. Order-independent: a point
 /// goes back by the set of positions alone. O(n log n) a round, run only where `repeats` saw more
@@ -831,6 +842,64 @@ mod tests {
             error,
             crate::Error::InvalidParameter { name: "edge", .. }
         ));
+    }
+
+    /// Found in review: a set whose box is tiny in the stages' frame (three points on a line,
+    /// 2^-700 apart beside a coordinate of 1) made the frame test's quotient infinite, so that
+    /// its exact sum could overflow (a panic in a debug build, by the review's reading). And the
+    /// gathered pass reads its edges as a triangulation's: either way round, repeated, or naming
+    /// a duplicate's other position.
+    #[test]
+    fn the_pass_frame_holds_tiny_boxes_and_gathered_edges_any_way_round() {
+        use super::{gathered_smoothing_pass, GatheredPass};
+        let tiny = [
+            (1.0, 0.0),
+            (1.0, libm::ldexp(1.0, -701)),
+            (1.0, libm::ldexp(1.0, -700)),
+        ];
+        let points: Vec<Point> = tiny.iter().map(|&p| Point::from(p)).collect();
+        for params in [Params::default(), Params::paper().with_smooth(true)] {
+            reconstruct(&points, &params).unwrap();
+        }
+        let edges: Vec<[usize; 2]> = reconstruct(&points, &Params::paper())
+            .unwrap()
+            .edges()
+            .collect();
+        gathered_smoothing_pass(&points, &edges, 0, None).unwrap();
+        // Empty, one point, all points alike: no pass.
+        for set in [&[][..], &[Point::new(2.0, 3.0)], &[Point::new(2.0, 3.0); 4]] {
+            assert_eq!(
+                gathered_smoothing_pass(set, &[], 0, None).unwrap(),
+                GatheredPass::Done
+            );
+        }
+        // An open noisy arc with a duplicate of its second point (position 40).
+        let mut arc: Vec<Point> = (0..40)
+            .map(|k| {
+                let t = k as f64 * 0.1;
+                let r = 1.0 + 0.02 * ((k * k * 7919) % 13) as f64 / 13.0;
+                Point::new(r * t.cos(), r * t.sin())
+            })
+            .collect();
+        arc.push(arc[1]);
+        let edges: Vec<[usize; 2]> = reconstruct(&arc, &Params::paper())
+            .unwrap()
+            .edges()
+            .collect();
+        let expected = gathered_smoothing_pass(&arc, &edges, 0, None).unwrap();
+        assert!(matches!(expected, GatheredPass::Next(_)));
+        let mut odd: Vec<[usize; 2]> = edges.iter().map(|&[a, b]| [b, a]).collect();
+        odd.extend_from_slice(&edges);
+        odd.push([7, 7]);
+        for end in odd.iter_mut().flatten() {
+            if *end == 1 {
+                *end = 40;
+            }
+        }
+        assert_eq!(
+            gathered_smoothing_pass(&arc, &odd, 0, None).unwrap(),
+            expected
+        );
     }
 
     #[test]
