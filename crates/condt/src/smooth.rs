@@ -547,6 +547,65 @@ mod tests {
     use crate::{reconstruct, triangulate, Params, Point};
     use alloc::vec::Vec;
 
+    /// Distinct lattice points times 2^-1074 (subnormal): a pass's averages round together.
+    const SUBNORMAL: [(f64, f64); 8] = [
+        (1.1e-322, 2.1e-322),
+        (-1.5e-323, 2.67e-322),
+        (3e-323, 2.5e-322),
+        (2.4e-322, 8e-323),
+        (6e-323, 2.67e-322),
+        (3e-323, 2.47e-322),
+        (4e-323, 1.5e-322),
+        (8e-323, -1.3e-322),
+    ];
+
+    /// A set spread from 1e-296 to 1e303 (wide).
+    const WIDE: [(f64, f64); 7] = [
+        (4.5353473530375125e281, 3.1021273130014907e-242),
+        (6.68268818201814e-206, 57854124.16365494),
+        (5.0341226938449086e53, 8.357732824608535e-211),
+        (1.3576637270390164e-296, 9.104256026318434e-163),
+        (8.998847905116815e303, -3.605607693502977e229),
+        (-2.751219279671994e-236, -1.2528524338855696e-191),
+        (1.363571677422622e146, -5.260769050249569e-63),
+    ];
+
+    /// The default's edges of `points` reversed, in the positions of `points`, sorted.
+    fn edges_of_reversed(points: &[Point]) -> Vec<[usize; 2]> {
+        let n = points.len();
+        let reversed: Vec<Point> = points.iter().rev().copied().collect();
+        let mut back: Vec<[usize; 2]> = reconstruct(&reversed, &Params::default())
+            .unwrap()
+            .edges()
+            .map(|[a, b]| [(n - 1 - a).min(n - 1 - b), (n - 1 - a).max(n - 1 - b)])
+            .collect();
+        back.sort_unstable();
+        back
+    }
+
+    /// Runs without passes on `points` chained by [`super::gathered_smoothing_pass`], as
+    /// `condt.dask` chains its tiled runs: the last run's edges, how the chain ended (`Done`, or
+    /// `InOnePiece`) and how many passes ran.
+    fn chained(points: &[Point], params: &Params) -> (Vec<[usize; 2]>, super::GatheredPass, usize) {
+        use super::{gathered_smoothing_pass, GatheredPass};
+        let one_run = params.with_smooth(false);
+        let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
+            reconstruct(points, &one_run).unwrap().edges().collect()
+        };
+        let (mut run, mut previous, mut passes) = (points.to_vec(), None, 0);
+        let mut edges = edges_of(&run);
+        loop {
+            match gathered_smoothing_pass(&run, &edges, passes, previous.as_deref()).unwrap() {
+                GatheredPass::Next(moved) => {
+                    let next = edges_of(&moved);
+                    (run, previous, passes) = (moved, Some(edges), passes + 1);
+                    edges = next;
+                }
+                ending => return (edges, ending, passes),
+            }
+        }
+    }
+
     /// Found by a stress harness: distinct lattice points times 2^-1074 (subnormal), and a set
     /// spread from 1e-296 to 1e303. A pass's averages round onto one position in the caller's
     /// frame too, and the triangulation merged the two points: one vanished from the result (a
@@ -554,26 +613,7 @@ mod tests {
     /// that would meet stay where they were ([`super::keep_apart`]).
     #[test]
     fn a_pass_never_merges_two_input_points() {
-        let subnormal = [
-            (1.1e-322, 2.1e-322),
-            (-1.5e-323, 2.67e-322),
-            (3e-323, 2.5e-322),
-            (2.4e-322, 8e-323),
-            (6e-323, 2.67e-322),
-            (3e-323, 2.47e-322),
-            (4e-323, 1.5e-322),
-            (8e-323, -1.3e-322),
-        ];
-        let wide = [
-            (4.5353473530375125e281, 3.1021273130014907e-242),
-            (6.68268818201814e-206, 57854124.16365494),
-            (5.0341226938449086e53, 8.357732824608535e-211),
-            (1.3576637270390164e-296, 9.104256026318434e-163),
-            (8.998847905116815e303, -3.605607693502977e229),
-            (-2.751219279671994e-236, -1.2528524338855696e-191),
-            (1.363571677422622e146, -5.260769050249569e-63),
-        ];
-        for points in [&subnormal[..], &wide[..]] {
+        for points in [&SUBNORMAL[..], &WIDE[..]] {
             let points: Vec<Point> = points.iter().map(|&p| Point::from(p)).collect();
             let r = reconstruct(&points, &Params::default()).unwrap();
             assert!(r.smoothing().is_some_and(|s| s.passes > 0), "a pass ran");
@@ -584,14 +624,7 @@ mod tests {
                 assert_eq!(r.unused().contains(&i), named == 0, "point {i}");
             }
             // The same edges from the reversed input.
-            let reversed: Vec<Point> = points.iter().rev().copied().collect();
-            let n = points.len();
-            let mut back: Vec<[usize; 2]> = reconstruct(&reversed, &Params::default())
-                .unwrap()
-                .edges()
-                .map(|[a, b]| [(n - 1 - a).min(n - 1 - b), (n - 1 - a).max(n - 1 - b)])
-                .collect();
-            back.sort_unstable();
+            let back = edges_of_reversed(&points);
             let mut sorted = edges.clone();
             sorted.sort_unstable();
             assert_eq!(back, sorted);
@@ -604,7 +637,7 @@ mod tests {
     /// cases reach every way out: no noise shown, a fixed point, and the last pass.
     #[test]
     fn chained_runs_give_the_passes_edges() {
-        use super::{gathered_smoothing_pass, GatheredPass, MAX_PASSES};
+        use super::{GatheredPass, MAX_PASSES};
         let mut endings = [0usize; MAX_PASSES + 1];
         for seed in 0..24u64 {
             let shapes = [
@@ -635,23 +668,8 @@ mod tests {
                 .collect();
             points.extend_from_within(..7);
             for params in [Params::default(), Params::paper().with_smooth(true)] {
-                let one_run = params.with_smooth(false);
-                let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
-                    reconstruct(points, &one_run).unwrap().edges().collect()
-                };
-                let (mut run, mut previous, mut passes) = (points.clone(), None, 0);
-                let mut edges = edges_of(&run);
-                loop {
-                    match gathered_smoothing_pass(&run, &edges, passes, previous.as_deref()) {
-                        Ok(GatheredPass::Next(moved)) => {
-                            let next = edges_of(&moved);
-                            (run, previous, passes) = (moved, Some(edges), passes + 1);
-                            edges = next;
-                        }
-                        Ok(GatheredPass::Done) => break,
-                        other => panic!("seed {seed}: {other:?}"),
-                    }
-                }
+                let (edges, ending, passes) = chained(&points, &params);
+                assert_eq!(ending, GatheredPass::Done, "seed {seed}");
                 endings[passes] += 1;
                 let whole = reconstruct(&points, &params).unwrap();
                 assert_eq!(
@@ -696,14 +714,7 @@ mod tests {
         );
         let tri = result.triangulation();
         assert_eq!(tri.num_vertices(), points.len(), "no two points merged");
-        let n = points.len();
-        let reversed: Vec<Point> = points.iter().rev().copied().collect();
-        let mut back: Vec<[usize; 2]> = reconstruct(&reversed, &Params::default())
-            .unwrap()
-            .edges()
-            .map(|[a, b]| [(n - 1 - a).min(n - 1 - b), (n - 1 - a).max(n - 1 - b)])
-            .collect();
-        back.sort_unstable();
+        let back = edges_of_reversed(&points);
         assert_eq!(back, result.edges().collect::<Vec<_>>());
     }
 
@@ -714,7 +725,6 @@ mod tests {
     /// chained runs follow.
     #[test]
     fn a_far_point_leaves_a_curve_its_own_passes() {
-        use super::{gathered_smoothing_pass, GatheredPass};
         let t = |k: usize| k as f64 * 1.5 * core::f64::consts::PI / 29.0;
         let r = |k: usize| if k % 2 == 0 { 1.04 } else { 1.0 };
         let arc: Vec<Point> = (0..30)
@@ -744,19 +754,7 @@ mod tests {
                 "{far:?}: an end does not move"
             );
             // The same through chained runs.
-            let one_run = params.with_smooth(false);
-            let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
-                reconstruct(points, &one_run).unwrap().edges().collect()
-            };
-            let (mut run, mut previous, mut passes) = (points.clone(), None, 0);
-            let mut chained = edges_of(&run);
-            while let GatheredPass::Next(moved) =
-                gathered_smoothing_pass(&run, &chained, passes, previous.as_deref()).unwrap()
-            {
-                let next = edges_of(&moved);
-                (run, previous, passes) = (moved, Some(chained), passes + 1);
-                chained = next;
-            }
+            let (chained, _, _) = chained(&points, &params);
             assert_eq!(chained, result.edges().collect::<Vec<_>>(), "{far:?}");
         }
     }
@@ -767,57 +765,22 @@ mod tests {
     #[test]
     fn chained_runs_keep_merging_points_apart_as_the_passes_do() {
         use super::{gathered_smoothing_pass, GatheredPass};
-        let sets: [&[(f64, f64)]; 3] = [
-            &[
-                (1.1e-322, 2.1e-322),
-                (-1.5e-323, 2.67e-322),
-                (3e-323, 2.5e-322),
-                (2.4e-322, 8e-323),
-                (6e-323, 2.67e-322),
-                (3e-323, 2.47e-322),
-                (4e-323, 1.5e-322),
-                (8e-323, -1.3e-322),
-            ],
-            &[
-                (4.5353473530375125e281, 3.1021273130014907e-242),
-                (6.68268818201814e-206, 57854124.16365494),
-                (5.0341226938449086e53, 8.357732824608535e-211),
-                (1.3576637270390164e-296, 9.104256026318434e-163),
-                (8.998847905116815e303, -3.605607693502977e229),
-                (-2.751219279671994e-236, -1.2528524338855696e-191),
-                (1.363571677422622e146, -5.260769050249569e-63),
-            ],
-            &[
-                (6.840830477455761, -2.373103331372932),
-                (6.154204583071294, -1.813468943904072),
-                (5.38122848613447, -1.3577758303267178),
-                (6.154204583071296, -1.8134689439040723),
-                (5.38122848613447, -1.3577758303267182),
-                (5.381228486134469, -1.3577758303267176),
-                (1.8010562984034444, -1.2908035211402673),
-                (3.972577825795239, -6.654448150300074),
-                (6.239608850211445, -7.118064330857665),
-            ],
+        let fuzzed = [
+            (6.840830477455761, -2.373103331372932),
+            (6.154204583071294, -1.813468943904072),
+            (5.38122848613447, -1.3577758303267178),
+            (6.154204583071296, -1.8134689439040723),
+            (5.38122848613447, -1.3577758303267182),
+            (5.381228486134469, -1.3577758303267176),
+            (1.8010562984034444, -1.2908035211402673),
+            (3.972577825795239, -6.654448150300074),
+            (6.239608850211445, -7.118064330857665),
         ];
+        let sets: [&[(f64, f64)]; 3] = [&SUBNORMAL, &WIDE, &fuzzed];
         let mut endings = Vec::new();
         for set in sets {
             let points: Vec<Point> = set.iter().map(|&p| Point::from(p)).collect();
-            let one_run = Params::default().with_smooth(false);
-            let edges_of = |points: &[Point]| -> Vec<[usize; 2]> {
-                reconstruct(points, &one_run).unwrap().edges().collect()
-            };
-            let (mut run, mut previous, mut passes) = (points.clone(), None, 0);
-            let mut edges = edges_of(&run);
-            let ending = loop {
-                match gathered_smoothing_pass(&run, &edges, passes, previous.as_deref()).unwrap() {
-                    GatheredPass::Next(moved) => {
-                        let next = edges_of(&moved);
-                        (run, previous, passes) = (moved, Some(edges), passes + 1);
-                        edges = next;
-                    }
-                    ending => break ending,
-                }
-            };
+            let (edges, ending, _) = chained(&points, &Params::default());
             if ending == GatheredPass::Done {
                 let whole: Vec<[usize; 2]> = reconstruct(&points, &Params::default())
                     .unwrap()
