@@ -316,7 +316,7 @@ pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
             let needs = match stage {
                 Stage::RepairAgain => "the repair and then the outlier filter",
                 Stage::GivenBack => "the local outlier removal",
-                _ => "a step the other parameters turn off",
+                _ => "other steps",
             };
             return Err(PyValueError::new_err(format!(
                 "{said} needs {needs}, which the other parameters turn off"

@@ -712,7 +712,7 @@ fn refuse_steps_that_cannot_run(
         let needs = match stage {
             Stage::RepairAgain => "the repair and then the outlier filter (it repairs again without the edges the filter cut)",
             Stage::GivenBack => "the local outlier removal (it confirms what that removal gave back)",
-            _ => "a step the other options turn off",
+            _ => "other steps",
         };
         return Err(usage(format!(
             "{said} needs {needs}, which the other options turn off"

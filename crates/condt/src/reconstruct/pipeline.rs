@@ -355,14 +355,15 @@ impl Pipeline {
         let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
         let mut smoothed = smoothed_positions(&triangulation, &final_edges, false);
         let merged_before = triangulation.num_points() - triangulation.num_vertices();
-        // Relative to the corner, so an exact translation gives the same result. Where that merges
-        // distinct points (making the result depend on input order), the points that would meet
-        // stay where they were, still relative to the corner; where even that merges points (two
-        // that the difference from the corner rounds together), the pass is made in the run's own
-        // input frame, where its points are distinct, computed only then, while the old
-        // triangulation is at hand. The triangulation merges exactly equal points, as `repeats`
-        // counts them; a wide set (whose frames could round a coordinate) is given both at once,
-        // as it would be after a look.
+        // Relative to the corner, so an exact translation gives the same result (or in the run's
+        // own input frame where the corner's cannot hold the set: `smooth::PassFrame`). Where
+        // that merges distinct points (making the result depend on input order), the points that
+        // would meet stay where they were, still relative to the corner; where even that merges
+        // points (two that the difference from the corner rounds together), the pass is made in
+        // the run's own input frame, where its points are distinct, computed only then, while
+        // the old triangulation is at hand. The triangulation merges exactly equal points, as
+        // `repeats` counts them; a wide set is given both at once, and its next triangulation
+        // tells whether points merged.
         let relative_merges = repeats(&smoothed.positions) > merged_before
             || choose_frames(&smoothed.positions).is_ok_and(|frames| frames.wide);
         let (mut back, mut back_in_run_frame) = (0, 0);
