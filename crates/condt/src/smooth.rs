@@ -96,11 +96,7 @@ impl<'a> Gathered<'a> {
     fn new(points: &'a [Point]) -> Result<Gathered<'a>, Error> {
         let stages = choose_frames(points)?.stages;
         let stage_points: Vec<Point> = points.iter().map(|&p| stages.apply(p)).collect();
-        // `+ 0.0` turns -0 into +0, which the triangulation merges with it.
-        let key = |i: usize| {
-            let p = points[i];
-            ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits())
-        };
+        let key = |i: usize| position_key(points[i]);
         let mut order: Vec<usize> = (0..points.len()).collect();
         order.sort_unstable_by_key(|&i| (key(i), i));
         let mut vertex_of = alloc::vec![VertexId::new(0); points.len()];
@@ -479,6 +475,12 @@ pub fn gathered_smoothing_pass(
     Ok(GatheredPass::Next(smoothed.in_run_frame))
 }
 
+/// A position's bits, equal exactly for equal positions (`+ 0.0` turns -0 into +0, which
+/// compares equal to it and which the triangulation merges with it).
+fn position_key(p: Point) -> (u64, u64) {
+    ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits())
+}
+
 /// Puts back at `original(i)` every point of `positions` that shares its position with a point of
 /// another original position (any frame can round two averages together: subnormal or
 /// extreme coordinates), until none does; returns how many went back. Why: a pass must not merge
@@ -486,8 +488,7 @@ pub fn gathered_smoothing_pass(
 /// goes back by the set of positions alone. O(n log n) a round, run only where `repeats` saw more
 /// merges than the input had.
 pub(crate) fn keep_apart(positions: &mut [Point], original: impl Fn(usize) -> Point) -> usize {
-    // `+ 0.0` turns -0 into +0: equal positions get equal keys.
-    let key = |p: Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+    let key = position_key;
     let mut order: Vec<usize> = (0..positions.len()).collect();
     let mut back = 0;
     loop {
@@ -516,9 +517,8 @@ pub(crate) fn repeats(points: &[Point]) -> usize {
     let mask = size - 1;
     // Slot contents: a point's index plus one; zero is empty.
     let mut table = alloc::vec![0u32; size];
-    // `+ 0.0` turns -0 into +0, which compare equal: equal points hash alike.
     let key = |p: Point| {
-        let (x, y) = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+        let (x, y) = position_key(p);
         splitmix64_finalizer(x ^ y.rotate_left(32).wrapping_mul(0x9e37_79b9_7f4a_7c15)) as usize
     };
     let mut repeated = 0;
