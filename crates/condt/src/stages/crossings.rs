@@ -4,23 +4,19 @@
 //! positions, the graph and the Delaunay rings; it may not touch the triangulation, and does not
 //! decide when it runs ([`Params::stages`](crate::Params::stages): after the junctions, before the tips).
 //!
-//! Why: where two curves cross at a sample `x` at a narrow angle, `x`'s four arms are about one
-//! spacing long, and the samples next to `x` on the two curves can be nearer each other than to
-//! `x`. Algorithm 1 then pairs them (the chord `c d`) and gives `x` two arms of different curves
-//! (a bent passage `a x b`): two V shapes where the curves make an X. No point is left loose, so
-//! gap closing (which restores a crossing's dropped arms) sees nothing.
+//! Why: where two curves cross at a sample `x` at a narrow angle, Algorithm 1 can pair the
+//! samples next to `x` (the chord `c d`) and give `x` two arms of different curves (a bent
+//! passage `a x b`): two V shapes, no point loose, so gap closing sees nothing.
 //!
-//! Rule: a point `x` of degree two whose passage `a x b` bends (below [`STRAIGHT`]), and an edge
-//! `c d` between two Delaunay neighbours of `x` of degree two, such that `a x c` and `b x d` are
-//! straight (above [`STRAIGHT`], as gap closing's crossings), the four arms evenly spaced (the
-//! longest within [`GAP_RATIO`] of the shortest: one sampling) and the passages at `c` and at `d`
-//! both straighter through `x` than along the chord (a curve's own edge stays), and each of the
-//! four arms a branch of [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two
-//! (`Ends::branch`: a scatter's chance V shapes stay). Then `c d` gives way to `x c` and `x d`.
-//! All choices are made on the graph as it came in; a point in two choices, or where two chords
-//! pass, takes part in none: the result depends neither on the order nor on `parallel`.
+//! Rule, each test with its reason: docs/condt.md, *Crossings read as two bends*. `c d` gives way
+//! to `x c` and `x d` when `a x b` bends (below [`STRAIGHT`]), `c`, `d` are Delaunay neighbours of
+//! `x` of degree two with `a x c` and `b x d` straight, the four arms are within [`GAP_RATIO`] of
+//! each other, the passages at `c` and `d` are straighter through `x` than along the chord, and
+//! each arm is a branch (`Ends::branch`). All choices are made on the graph as it came in; a point
+//! in two choices, or where two chords pass, takes part in none: the result depends neither on
+//! the order nor on `parallel`.
 
-use super::gaps::{cos_at, Ends, GAP_RATIO, STRAIGHT};
+use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::{alone, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -45,15 +41,11 @@ struct Crossing {
 }
 
 impl Ends<'_> {
-    fn cos(&self, at: VertexId, u: VertexId, w: VertexId) -> f64 {
-        cos_at(self.point(at), self.point(u), self.point(w))
-    }
-
     /// Whether the passage at `c` (degree two) is straighter through `x` than along `d`, its
     /// neighbour that `x` replaces.
     fn straighter(&self, c: VertexId, d: VertexId, x: VertexId) -> bool {
         let other = self.graph.onward(c, d);
-        self.cos(c, other, x) < self.cos(c, other, d)
+        self.cos_of(c, other, x) < self.cos_of(c, other, d)
     }
 
     /// The crossing `x` restores, if exactly one chord passes (two would be a guess).

@@ -196,9 +196,14 @@ impl<'a> Ends<'a> {
         w != self.along(a) && self.turn(a, w) < AHEAD && self.short(a, w, false)
     }
 
+    /// The cosine of the angle at `at` between `u` and `w`.
+    pub(super) fn cos_of(&self, at: VertexId, u: VertexId, w: VertexId) -> f64 {
+        cos_at(self.point(at), self.point(u), self.point(w))
+    }
+
     /// The cosine of the angle at the loose end `a` between its edge and `w`.
     pub(super) fn turn(&self, a: VertexId, w: VertexId) -> f64 {
-        cos_at(self.point(a), self.point(self.along(a)), self.point(w))
+        self.cos_of(a, self.along(a), w)
     }
 
     /// The cosine of the angle at the loose end `a` between the point two edges back and `w` (`1`
@@ -208,8 +213,7 @@ impl<'a> Ends<'a> {
         if self.graph.degree(next) != 2 {
             return 1.0;
         }
-        let beyond = self.graph.onward(next, a);
-        cos_at(self.point(a), self.point(beyond), self.point(w))
+        self.cos_of(a, self.graph.onward(next, a), w)
     }
 
     /// Whether the gap from the loose end `a` to `w` is within [`GAP_RATIO`] of `a`'s edge, or with
@@ -229,7 +233,7 @@ impl<'a> Ends<'a> {
     fn sharpest_passage(&self, a: VertexId) -> f64 {
         let passages = self.graph.passages(a, self.along(a)).take(NEAR_END);
         passages
-            .map(|[prev, here, next]| cos_at(self.point(here), self.point(prev), self.point(next)))
+            .map(|[prev, here, next]| self.cos_of(here, prev, next))
             .fold(-1.0, f64::max)
     }
 

@@ -7,16 +7,14 @@
 //!
 //! Why: at a junction of three curves (map borders, a T) the repair keeps two of the sample's three
 //! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.
-//! Rule (reasons: docs/condt.md, *Junctions*): a loose end `a` joins the Delaunay neighbour `c`
-//! with two edges that it faces straight on (within 30°, [`STRAIGHT`]: the branch's next sample),
-//! within [`GAP_RATIO`] times `c`'s shorter edge (its longer one where the two are not one
-//! sampling by that ratio: a sample right beside the junction), with three branches of
-//! [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points of degree two (`Ends::branch`),
-//! straightest ahead of the end among those that pass (ties by id), and chosen by no other loose
-//! end (two make a crossing, gap closing's case). All choices are made on the graph as it came in:
-//! the result depends neither on the order of the ends nor on `parallel`.
+//! Rule (each test with its reason: docs/condt.md, *Junctions*): a loose end `a` joins the
+//! Delaunay neighbour `c` with two edges that it faces within 30° ([`STRAIGHT`]), within
+//! [`GAP_RATIO`] times `c`'s shorter edge (its longer where the two are not one sampling), with
+//! three branches (`Ends::branch`), straightest ahead among those that pass (ties by id), and
+//! chosen by no other loose end. All choices are made on the graph as it came in: the result
+//! depends neither on the order of the ends nor on `parallel`.
 
-use super::gaps::{cos_at, Ends, GAP_RATIO, STRAIGHT};
+use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -55,12 +53,11 @@ impl Ends<'_> {
         if !self.branch(a, self.along(a), &[]) {
             return None;
         }
-        let (pa, back) = (self.point(a), self.point(self.along(a)));
         self.tri
             .mesh()
             .neighbors(a)
             .filter(|&c| self.meets_at_junction(a, c))
-            .map(|c| (cos_at(pa, back, self.point(c)), c))
+            .map(|c| (self.turn(a, c), c))
             .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
             .map(|(_, c)| c)
     }

@@ -6,41 +6,25 @@
 //! touch the triangulation, and does not decide when it runs
 //! ([`Params::stages`](crate::Params::stages): last).
 //!
-//! Why: at a sharp tip sampled coarsely, the samples on either side of the tip can be nearer each
-//! other than to the tip, so Algorithm 1 pairs them (the chord `x y`) and the tip's sample, or the
-//! last sample of the far side, is left a loose end, or the tip's sample is left without any edge;
-//! the repair keeps the chord, which every point near it chose. No later stage sees it: gap
-//! closing joins loose ends to each other, not across an edge.
+//! Why: at a coarsely sampled sharp tip Algorithm 1 can pair the samples on either side (the
+//! chord `x y`), leaving the tip's sample or the far side's last one loose or without edges; gap
+//! closing joins loose ends to each other, never across an edge.
 //!
-//! Rule (reasons and measurements: docs/condt.md, *Tips*), in two forms.
-//!
-//! **Loose ends.** For an edge `x y` between two points of degree two, a loose end `q` that is a
-//! Delaunay neighbour of `x` and a loose end `p` that is one of `y`, the chord gives way to `q x`
-//! and `p y` when
-//! - the passages at `x` (from its other neighbour to `q`) and at `y` (to `p`) become smooth
-//!   (wider than Algorithm 2's 120°, [`SMOOTH_COS`]) and straighter than along the chord;
-//! - each new edge is within [`GAP_RATIO`] times the edge it continues (Algorithm 1's `u`);
-//! - the new passage at `q` or at `p` is smooth too (a tip has one sharp side at most);
-//! - `q` and `p` each end a branch of [`MIN_SAMPLES`](super::local_outliers::MIN_SAMPLES) points
-//!   of degree two (`Ends::branch`: the short pieces of a scatter do not move);
-//! - the move splits no curve in two (a chain through `x y` whose own end is `q` would close into
-//!   two loops). When `q` and `p` end the same chain the move closes it into one curve, of at
-//!   least seven points by the branches (`2π/ε` for `ε <= 1`, rule 4's least closed curve).
-//!
-//! **The apex.** For an edge `a b` between two points of degree two and a point `u` without edges
-//! that is a Delaunay neighbour of both, the chord gives way to `u a` and `u b` when at each end
-//! the passage along the chord turns sharply (120° or less) and through `u` is smooth, `u` is
-//! within [`NEED_RATIO`] of the end's other edge (the repair's bound for an evenly spaced
-//! neighbour: a point with no edge has no spacing of its own to show it is a sample, so it must
-//! continue both sides evenly; at 2.75 chords were pulled out to outliers and stray points in real
-//! drawings), and both ends have branches of five points behind them.
+//! Rule, each test with its reason: docs/condt.md, *Tips*. **Loose ends**: `x y` gives way to
+//! `q x` and `p y` (`q`, `p` loose ends, Delaunay neighbours of `x`, `y`) when the passages at `x`
+//! and `y` become smooth ([`SMOOTH_COS`]) and straighter than along the chord, each new edge is
+//! within [`GAP_RATIO`] of the edge it continues, the passage at `q` or `p` is smooth too, both
+//! end a branch (`Ends::branch`), and no curve is split in two ([`Ends::splits`]). **The apex**:
+//! `a b` gives way to `u a` and `u b` (`u` without edges, a Delaunay neighbour of both) when at
+//! each end the chord turns sharply, `u` continues smoothly within [`NEED_RATIO`] of the end's
+//! other edge (a point with no edge shows no spacing of its own), and both ends have branches.
 //!
 //! All choices are made on the graph as it came in; a point in two moves, or a loose end or apex
 //! with two candidates, takes part in none: the result depends neither on the order nor on
 //! `parallel`. The walk behind the split test ends: from a loose end, a chain of points of degree
 //! two cannot come back to itself.
 
-use super::gaps::{cos_at, Ends, GAP_RATIO};
+use super::gaps::{Ends, GAP_RATIO};
 use super::local_outliers::SMOOTH_COS;
 use super::repair::NEED_RATIO;
 use super::{alone, Outcome};
@@ -61,17 +45,10 @@ struct Move {
 }
 
 impl Move {
+    /// The move read from either end (an apex's, `q == p`, as given).
     fn new(q: VertexId, x: VertexId, y: VertexId, p: VertexId) -> Move {
-        if q < p {
-            Move { q, x, y, p }
-        } else {
-            Move {
-                q: p,
-                x: y,
-                y: x,
-                p: q,
-            }
-        }
+        let (q, x, y, p) = if q <= p { (q, x, y, p) } else { (p, y, x, q) };
+        Move { q, x, y, p }
     }
 
     /// The points the move joins, each once.
@@ -92,11 +69,6 @@ enum Found {
 }
 
 impl Ends<'_> {
-    /// The cosine of the angle at `at` between `u` and `w`.
-    fn cos_of(&self, at: VertexId, u: VertexId, w: VertexId) -> f64 {
-        cos_at(self.point(at), self.point(u), self.point(w))
-    }
-
     /// Whether the passage at `x` (degree two) from its neighbour other than `y` to the loose end
     /// `q` is smooth, straighter than the one through `y`, and its new edge short enough.
     fn continues(&self, x: VertexId, y: VertexId, q: VertexId) -> bool {
@@ -164,9 +136,7 @@ impl Ends<'_> {
         }
         found
     }
-}
 
-impl Ends<'_> {
     /// The apex move the point without edges `u` takes part in, if any (the module's rule).
     fn apex_at(&self, u: VertexId) -> Option<Found> {
         let mesh = self.tri.mesh();
@@ -191,12 +161,7 @@ impl Ends<'_> {
                 if found.is_some() {
                     return Some(Found::Several(u));
                 }
-                found = Some(Found::One(Move {
-                    q: u,
-                    x: a,
-                    y: b,
-                    p: u,
-                }));
+                found = Some(Found::One(Move::new(u, a, b, u)));
             }
         }
         found
