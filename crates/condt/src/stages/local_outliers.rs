@@ -324,13 +324,6 @@ fn update(graph: &mut CurveGraph, edges: &[Edge], removed: &[Edge]) {
 /// No edge, in [`tops`].
 const NONE: f64 = -1.0;
 
-/// The squared length of `v`'s longest edge besides one of squared length `l` (ties agree).
-fn other_than(tri: &Triangulation, graph: &CurveGraph, v: VertexId, l: f64) -> Option<f64> {
-    let [first, second] = tops(tri, graph, v);
-    let other = if l == first { second } else { first };
-    (other != NONE).then_some(other)
-}
-
 /// What rule 2's pass over every vertex's edges finds.
 struct LongScan {
     /// The vertices whose longest edge is over [`LONG`] times their second, as a bit set by vertex
@@ -402,9 +395,12 @@ fn top_two(top: [f64; 2], l: f64) -> [f64; 2] {
 }
 
 /// Whether an edge of squared length `l` at `v` is long there (more than [`LONG`] times the
-/// longest other edge at `v`), with the ratio of the lengths; `None` when `v` has no other edge.
+/// longest other edge at `v`, ties agreeing), with the ratio of the lengths; `None` when `v` has
+/// no other edge.
 fn long_at(tri: &Triangulation, graph: &CurveGraph, v: VertexId, l: f64) -> Option<(bool, f64)> {
-    other_than(tri, graph, v, l).map(|other| (l > LONG * LONG * other, libm::sqrt(l / other)))
+    let [first, second] = tops(tri, graph, v);
+    let other = if l == first { second } else { first };
+    (other != NONE).then(|| (l > LONG * LONG * other, libm::sqrt(l / other)))
 }
 
 /// Rule 2: whether an edge is long at an end with three or more edges, or at each end with others.
@@ -573,8 +569,7 @@ fn keep_joined_pieces(
         tri,
         graph: Cow::Borrowed(profile),
     };
-    let joins = super::gaps::gap_joins(&ends, parallel);
-    merged_along(root, kept, joins)
+    merged_along(root, kept, super::gaps::gap_joins(&ends, parallel))
 }
 
 /// The components `root` merged along `joins`, named as [`components`] would name them, and which
@@ -781,10 +776,7 @@ const CYCLE_PASSING: (usize, usize) = (3, 4);
 /// for being apart (a clump of outliers that closed up).
 fn drop_short_cycles(shapes: &Shapes, kept: &mut [bool]) {
     for (r, kept) in kept.iter_mut().enumerate() {
-        let size = shapes.size[r] as usize;
-        if *kept && shapes.cycle[r] && size > 0 && size < CLOSED_MIN {
-            *kept = false;
-        }
+        *kept &= !(shapes.cycle[r] && (1..CLOSED_MIN).contains(&(shapes.size[r] as usize)));
     }
 }
 
