@@ -138,8 +138,9 @@ fn closer(tri: &Triangulation, v: VertexId, x: VertexId, y: VertexId) -> Orderin
     }
 }
 
-/// Algorithm 1, line 6: the shortest edge always, the second when it passes the uniformity test.
-/// `best` holds `v`'s offers; their lengths are measured again (the record keeps only a key).
+/// Algorithm 1, line 6: the shortest edge always, the second when it passes the uniformity test
+/// (the one place it is written; `ring`: the sum of its lengths, their count). `best` holds `v`'s
+/// offers; their lengths are measured again (the record keeps only a key).
 fn keep(
     tri: &Triangulation,
     v: VertexId,
@@ -149,18 +150,12 @@ fn keep(
 ) -> [VertexId; 2] {
     let [w1, w2] = best.kept();
     let length = |w: VertexId| libm::sqrt(tri.vertex_point(v).dist2(tri.vertex_point(w)));
-    let keep_second =
-        !w2.is_infinite() && passes_uniformity(uniformity, length(w1), length(w2), ring);
+    let keep_second = !w2.is_infinite()
+        && match (uniformity, ring) {
+            (Uniformity::Fixed(u), _) => length(w2) < u * length(w1),
+            (Uniformity::Adaptive, (sum, count)) => length(w2) < sum / count as f64,
+        };
     [w1, if keep_second { w2 } else { VertexId::INFINITE }]
-}
-
-/// The uniformity test, the one place it is written (`ring`: the sum of its lengths, their count).
-#[inline]
-fn passes_uniformity(uniformity: Uniformity, l1: f64, l2: f64, (sum, count): (f64, u32)) -> bool {
-    match uniformity {
-        Uniformity::Fixed(u) => l2 < u * l1,
-        Uniformity::Adaptive => l2 < sum / count as f64,
-    }
 }
 
 /// How vertex `v` saw its edge to `w` in Algorithm 1, read off its ring as [`kept_neighbors`]
