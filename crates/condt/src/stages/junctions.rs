@@ -15,11 +15,10 @@
 //! depends neither on the order of the ends nor on `parallel`.
 
 use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
-use super::Outcome;
+use super::{alone, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
-use alloc::vec;
 use alloc::vec::Vec;
 
 impl Ends<'_> {
@@ -70,21 +69,13 @@ pub(crate) fn join_junctions(
     graph: Option<CurveGraph>,
     parallel: bool,
 ) -> Outcome {
-    let n = tri.num_points();
     let ends = Ends::new(tri, edges, graph);
-    let choices: Vec<(VertexId, VertexId)> =
+    let mut choices: Vec<(VertexId, VertexId)> =
         ends.each_loose(parallel, |a| ends.junction_of(a).map(|c| (a, c)));
-    // How many loose ends chose each point, saturating at two.
-    let mut chosen = vec![0u8; n];
-    for &(_, c) in &choices {
-        chosen[c.index()] = (chosen[c.index()] + 1).min(2);
-    }
-    let joins: Vec<Edge> = choices
-        .iter()
-        .filter(|&&(_, c)| chosen[c.index()] == 1)
-        .map(|&(a, c)| ordered(a, c))
-        .collect();
-    drop(chosen);
+    // A point two loose ends chose goes to neither (each end chooses once, and a point of degree
+    // two is no loose end).
+    alone(tri.num_points(), &mut choices, &[], |&(a, c)| [a, c]);
+    let joins: Vec<Edge> = choices.iter().map(|&(a, c)| ordered(a, c)).collect();
     ends.joined(edges, &joins)
 }
 
