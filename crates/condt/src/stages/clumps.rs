@@ -13,11 +13,11 @@
 //! zig-zag passes smoothly at most one time in three. Sequential; O(n) beyond the union-find.
 
 use super::local_outliers::{
-    components, only_smooth_cycles, separated_counts_until, smooth_and_regular, MIN_SAMPLES,
-    OUTLIER_SHARE,
+    components, only_smooth_cycles, separated_counts_until, smooth_and_regular, without_components,
+    MIN_SAMPLES, OUTLIER_SHARE,
 };
 use super::Outcome;
-use crate::adjacency::{collect_exact, CurveGraph, Edge};
+use crate::adjacency::{CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -79,13 +79,7 @@ pub(crate) fn remove_clumps(
     // graph is kept to hand on).
     let clump: Vec<bool> = (0..n).map(is_clump).collect();
     drop((size, smooth, separated));
-    let kept = collect_exact(
-        edges.len(),
-        edges
-            .iter()
-            .filter(|&&[a, _]| !clump[root[a.index()] as usize])
-            .copied(),
-    );
+    let kept = without_components(edges, &root, &clump);
     drop((root, clump));
     Outcome::changed(edges, kept, Some(graph))
 }

@@ -9,9 +9,9 @@
 //! times its longest edge) from unused points and other such components: a chance chain of outliers
 //! lies in its scatter, a stretch of curve at most beside other curves. Sequential, deterministic.
 
-use super::local_outliers::SEPARATION;
+use super::local_outliers::{components, without_components, SEPARATION};
 use super::Outcome;
-use crate::adjacency::{collect_exact, CurveGraph, Edge};
+use crate::adjacency::{CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -35,7 +35,7 @@ pub(crate) fn confirm_given_back(
     if !given.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    let root = super::local_outliers::components(n, edges);
+    let root = components(n, edges);
     // Components made only of given-back edges, and each vertex's degree (up to 255).
     let mut only_given = vec![false; n];
     for &[a, _] in edges {
@@ -87,13 +87,7 @@ pub(crate) fn confirm_given_back(
     if !dropped.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    Outcome::from(Some(collect_exact(
-        edges.len(),
-        edges
-            .iter()
-            .filter(|&&[a, _]| !dropped[root[a.index()] as usize])
-            .copied(),
-    )))
+    Outcome::from(Some(without_components(edges, &root, &dropped)))
 }
 
 /// Whether each of `edges` (distinct) is missing from `before`: a merge pass matches all but a

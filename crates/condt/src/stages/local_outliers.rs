@@ -515,6 +515,15 @@ pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
     parent
 }
 
+/// `edges` in order without those of the components (named as [`components`] names them) that
+/// `gone` marks.
+pub(super) fn without_components(edges: &[Edge], root: &[u32], gone: &[bool]) -> Vec<Edge> {
+    let kept = edges
+        .iter()
+        .filter(|&&[a, _]| !gone[root[a.index()] as usize]);
+    collect_exact(edges.len(), kept.copied())
+}
+
 /// Rule 4: each vertex's component and whether it keeps its edges (at least [`MIN_SAMPLES`]
 /// separated vertices), or `None` when all do; `smooth_cycles`: [`only_smooth_cycles`] holds.
 fn separated_components(
