@@ -201,16 +201,12 @@ pub(crate) fn rule_evidence(
             let rule = match (k, &profile) {
                 (1, Some(profile)) => {
                     let l = length2(tri, edge);
-                    let (vertex, ratio) = edge
-                        .into_iter()
-                        .filter_map(|v| match long_at(tri, profile, v, l) {
-                            Some((true, ratio)) => Some((v, ratio)),
-                            _ => None,
-                        })
-                        .fold(
-                            (edge[0], 0.0),
-                            |best, x| if x.1 > best.1 { x } else { best },
-                        );
+                    let (vertex, ratio) = edge.into_iter().fold((edge[0], 0.0), |best, v| {
+                        match long_at(tri, profile, v, l) {
+                            Some((true, ratio)) if ratio > best.1 => (v, ratio),
+                            _ => best,
+                        }
+                    });
                     LocalRule::Long { vertex, ratio }
                 }
                 (2, _) => LocalRule::Spur,
