@@ -368,12 +368,10 @@ impl Step {
     }
 
     /// Runs the stage on `edges` (each edge once, any order) with a parameter that passed
-    /// [`Step::check`]; only [`Step::RepairAgain`], [`Step::LocalOutliers`] and
-    /// [`Step::ConfirmGivenBack`] read `earlier`. `graph`, if given, is the curve graph of `edges`
-    /// the previous stage handed on ([`Outcome::graph`]): the stages after the local outlier
-    /// removal read it, the others drop it first (memory). `parallel`: the repair (and repairing
-    /// again) chooses, and the local outlier removal, gap closing, junctions, crossings and tips
-    /// search, on several threads from [`PARALLEL_FROM`] points on (the same outcome).
+    /// [`Step::check`], reading from `earlier` what it needs. `graph`, if given, is the curve
+    /// graph of `edges` the previous stage handed on ([`Outcome::graph`]): the stages after the
+    /// local outlier removal read it, the others drop it first (memory). `parallel`: the stages
+    /// that can use threads do from [`PARALLEL_FROM`] points on (the same outcome).
     pub(crate) fn run(
         self,
         tri: &Triangulation,
