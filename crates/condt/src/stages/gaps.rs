@@ -439,11 +439,8 @@ impl<'a> Ends<'a> {
             } else {
                 // Ended at an unused point: exactly one other walk must end there, from
                 // elsewhere (of three or more, which two meet would be a guess).
-                let from = by_last.partition_point(|&(v, _)| v < last);
-                let mut others = by_last[from..]
-                    .iter()
-                    .take_while(|&&(v, _)| v == last)
-                    .map(|&(_, k)| &walks[k])
+                let mut others = listed_under(&by_last, last)
+                    .map(|k| &walks[k])
                     .filter(|(b, _)| b != a);
                 match (others.next(), others.next()) {
                     (Some((b, w)), None)
@@ -485,6 +482,13 @@ impl<'a> Ends<'a> {
     }
 }
 
+/// The indices listed under `v` in `sorted`, a list of (point, index) pairs sorted by point.
+fn listed_under(sorted: &[(VertexId, usize)], v: VertexId) -> impl Iterator<Item = usize> + '_ {
+    let from = sorted.partition_point(|&(w, _)| w < v);
+    let run = sorted[from..].iter().take_while(move |&&(w, _)| w == v);
+    run.map(|&(_, k)| k)
+}
+
 /// Closes gaps in `edges` (each edge once, any order): the input edges in order, then the joins
 /// ([`Ends::joined`]).
 pub(crate) fn close_gaps(
@@ -520,13 +524,7 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
         })
         .collect();
     at_crossing.sort_unstable();
-    let arms = |c: VertexId| {
-        let from = at_crossing.partition_point(|&(v, _)| v < c);
-        at_crossing[from..]
-            .iter()
-            .take_while(move |&&(v, _)| v == c)
-            .map(|&(_, k)| k)
-    };
+    let arms = |c: VertexId| listed_under(&at_crossing, c);
     // Which of its two neighbours the crossing `c` is lined up with by the ends `counted`, one
     // bit per slot.
     let lined_up = |c: VertexId, counted: &dyn Fn(usize) -> bool| {
