@@ -256,12 +256,6 @@ impl Branches {
             })
         })
     }
-
-    /// Frees the lists, keeping the ranks (memory).
-    fn drop_lists(&mut self) {
-        self.starts = Vec::new();
-        self.neighbors = Vec::new();
-    }
 }
 
 /// `choose(pairs, r, v)` for every non-manifold vertex `v` of rank `r`, in rank order; on rayon's
@@ -338,7 +332,8 @@ pub(crate) fn repair(
         }
     };
     let selections: Vec<[VertexId; 4]> = chosen_by_rank(&graph, parallel, choose);
-    graph.drop_lists();
+    // The lists are freed, the ranks kept (memory).
+    (graph.starts, graph.neighbors) = (Vec::new(), Vec::new());
     // Whether the non-manifold `w` selected `v`.
     let selected_by =
         |w: VertexId, v: VertexId| graph.rank(w).is_some_and(|r| selections[r].contains(&v));
