@@ -103,16 +103,12 @@ struct Walk {
     points: [VertexId; MIN_SAMPLES],
 }
 
-impl Default for Walk {
-    fn default() -> Walk {
-        Walk {
-            len: 0,
-            points: [VertexId::INFINITE; MIN_SAMPLES],
-        }
-    }
-}
-
 impl Walk {
+    const EMPTY: Walk = Walk {
+        len: 0,
+        points: [VertexId::INFINITE; MIN_SAMPLES],
+    };
+
     fn push(&mut self, v: VertexId) {
         self.points[self.len] = v;
         self.len += 1;
@@ -369,7 +365,7 @@ impl<'a> Ends<'a> {
 
     /// The unused points a straight walk from the loose end `a` passes, then the end it meets.
     fn straight_walk(&self, a: VertexId) -> Walk {
-        let mut path = Walk::default();
+        let mut path = Walk::EMPTY;
         let (mut prev, mut here) = (self.along(a), a);
         for _ in 0..MIN_SAMPLES {
             let (pp, ph) = (self.point(prev), self.point(here));

@@ -107,9 +107,9 @@ pub(crate) fn remove_local_outliers(
     // (nothing is long, and there is no branch), so it still holds at rule 4.
     let mut smooth_cycles = None;
     if rules.long_at_branches || rules.long_at_both_ends {
-        let scan = long_vertices(tri, &profile);
-        smooth_cycles = Some(scan.smooth_cycles);
-        if let Some(long) = scan.long {
+        let (long, only_smooth) = long_vertices(tri, &profile);
+        smooth_cycles = Some(only_smooth);
+        if let Some(long) = long {
             // Only an edge with an end where it is long can go: the full test runs on those.
             let candidate = |v: VertexId| long[v.index() / 64] >> (v.index() % 64) & 1 == 1;
             let mut dropped = long_edges(tri, &profile, rules);
@@ -320,18 +320,11 @@ fn update(graph: &mut CurveGraph, edges: &[Edge], removed: &[Edge]) {
 /// No edge, in [`tops`].
 const NONE: f64 = -1.0;
 
-/// What rule 2's pass over every vertex's edges finds.
-struct LongScan {
-    /// The vertices whose longest edge is over [`LONG`] times their second, as a bit set by vertex
-    /// id (speed), or `None` (the common case): rule 2 tests only edges at these.
-    long: Option<Vec<u64>>,
-    /// Whether the graph is only smooth, regular cycles ([`only_smooth_cycles`]), from the same
-    /// reads of the positions. When it is, `long` is `None`: a regular pair of edges is not long.
-    smooth_cycles: bool,
-}
-
-/// Rule 2's pass ([`LongScan`]).
-fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> LongScan {
+/// Rule 2's pass over every vertex's edges: the vertices whose longest edge is over [`LONG`] times
+/// their second, as a bit set by vertex id (speed), or `None` (the common case): rule 2 tests only
+/// edges at these. And whether the graph is only smooth, regular cycles ([`only_smooth_cycles`]),
+/// from the same reads of the positions; then the set is `None`: a regular pair is not long.
+fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> (Option<Vec<u64>>, bool) {
     let n = graph.vertex_count();
     let mut long = alloc::vec![0u64; n.div_ceil(64)];
     let mut any = false;
@@ -360,10 +353,7 @@ fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> LongScan {
         long[i / 64] |= u64::from(is_long) << (i % 64);
         any |= is_long;
     }
-    LongScan {
-        long: any.then_some(long),
-        smooth_cycles,
-    }
+    (any.then_some(long), smooth_cycles)
 }
 
 /// Squared lengths of `v`'s two longest edges, longest first ([`NONE`] where it has fewer), the
