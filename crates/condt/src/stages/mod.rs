@@ -3,12 +3,9 @@
 //! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`],
 //! [`crossings`] and [`tips`].
 //!
-//! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry through which the
-//! pipeline ([`reconstruct`](crate::reconstruct)) and the public [`Graph`](crate::Graph) methods
-//! run every stage after the first graph (the proximity graph is built by [`proximity`]'s
-//! function, and the gathered-edge helpers of [`crate::Graph`]'s module call Algorithm 3's cut
-//! directly). Stages read the triangulation and may not modify it; when each runs is decided by
-//! `Params::steps` (read through [`Params::stages`](crate::Params::stages)). Adding a stage: `docs/architecture.md`.
+//! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry to every stage
+//! after the first graph. Stages read the triangulation and may not modify it, nor decide when they
+//! run (`Params::steps`). What calls what, and adding a stage: `docs/architecture.md`.
 
 pub(crate) mod clumps;
 pub(crate) mod crossings;
