@@ -127,11 +127,7 @@ fn ring_lengths(tri: &Triangulation, v: VertexId) -> (f64, u32) {
 /// Which of `x` and `y` is nearer to `v`, exactly; `Equal` when they are (the caller then goes
 /// by id). Rounded squared lengths decide when they differ, as rounding keeps their order.
 fn closer(tri: &Triangulation, v: VertexId, x: VertexId, y: VertexId) -> Ordering {
-    let (p, px, py) = (
-        tri.vertex_point(v),
-        tri.vertex_point(x),
-        tri.vertex_point(y),
-    );
+    let [p, px, py] = [v, x, y].map(|u| tri.vertex_point(u));
     match p.dist2(px).partial_cmp(&p.dist2(py)) {
         Some(Ordering::Equal) | None => crate::predicates::compare_tied_distances(p, px, py),
         Some(unequal) => unequal,
