@@ -236,10 +236,8 @@ impl<'a> Ends<'a> {
     /// Whether the loose ends `a` and `b` may join (the module's rule (1)).
     fn ends_meet(&self, a: VertexId, b: VertexId) -> bool {
         let (at_a, at_b) = (self.turn(a, b), self.turn(b, a));
-        let (line_a, line_b) = (
-            self.chord_turn(a, b).min(at_a),
-            self.chord_turn(b, a).min(at_b),
-        );
+        let line_a = self.chord_turn(a, b).min(at_a);
+        let line_b = self.chord_turn(b, a).min(at_b);
         let straight = (line_a < STRAIGHT && line_b < STRAIGHT)
             || (line_a < SMOOTH_COS
                 && line_b < SMOOTH_COS

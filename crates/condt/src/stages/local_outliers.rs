@@ -489,10 +489,8 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
 pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..n as u32).collect();
     for &[a, b] in edges {
-        let (ra, rb) = (
-            find(&mut parent, a.index() as u32),
-            find(&mut parent, b.index() as u32),
-        );
+        let ra = find(&mut parent, a.index() as u32);
+        let rb = find(&mut parent, b.index() as u32);
         parent[ra.max(rb) as usize] = ra.min(rb);
     }
     for v in 0..n {
