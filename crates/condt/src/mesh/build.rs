@@ -56,17 +56,15 @@ impl MeshArrays {
     pub(crate) fn halves(&mut self, split: usize) -> (MeshBuilder<'_>, MeshBuilder<'_>) {
         let (origins_low, origins_high) = self.origins.split_at_mut(split);
         let (twins_low, twins_high) = self.twins.split_at_mut(split);
-        let low = MeshBuilder {
-            origins: origins_low,
-            twins: twins_low,
+        let builder = |origins, twins| MeshBuilder {
+            origins,
+            twins,
             len: 0,
         };
-        let high = MeshBuilder {
-            origins: origins_high,
-            twins: twins_high,
-            len: 0,
-        };
-        (low, high)
+        (
+            builder(origins_low, twins_low),
+            builder(origins_high, twins_high),
+        )
     }
 
     /// Moves the `len` half-edges at `from` down to `to`, keeping their links: a twin inside the

@@ -180,8 +180,10 @@ impl Mesh {
                 }
             }
         }
-        for i in 0..n_half {
-            let e = HalfEdgeId::new(i as u32);
+        let mut out_degree = vec![0u32; self.vertex_edges.len()];
+        let mut to_infinity = vec![false; self.vertex_edges.len()];
+        let mut infinite_used = false;
+        for e in (0..n_half as u32).map(HalfEdgeId::new) {
             let t = self.twin(e);
             if t.index() >= n_half || t == e {
                 return fail(Rule::TwinOutOfRange, Element::HalfEdge(e));
@@ -192,12 +194,6 @@ impl Mesh {
             if self.origin(t) != self.dest(e) || self.dest(t) != self.origin(e) {
                 return fail(Rule::TwinNotReversed, Element::HalfEdge(e));
             }
-        }
-        let mut out_degree = vec![0u32; self.vertex_edges.len()];
-        let mut to_infinity = vec![false; self.vertex_edges.len()];
-        let mut infinite_used = false;
-        for i in 0..n_half {
-            let e = HalfEdgeId::new(i as u32);
             let v = self.origin(e);
             if v.is_infinite() {
                 infinite_used = true;

@@ -166,11 +166,8 @@ fn triangulate_in(
         }
     } else {
         let to_stages = Scale::power_of_two(stages_exponent - predicates_exponent);
-        let rescale = |points: &mut [Point]| {
-            for p in points {
-                *p = to_stages.apply(*p);
-            }
-        };
+        let rescale =
+            |points: &mut [Point]| points.iter_mut().for_each(|p| *p = to_stages.apply(*p));
         let middle = sorted.len() / 2;
         let (low, high) = sorted.split_at_mut(middle);
         let split = parallel && low.len() >= PARALLEL_MIN / 2;
@@ -205,21 +202,20 @@ fn construct(
     progress: Option<&AtomicUsize>,
     (spare_order, spare_points, mesh): (Vec<u32>, Vec<Point>, Mesh),
 ) -> (Vec<u32>, Vec<Point>, Built) {
-    let Some(cut) = halves::cut(points, split_min, parallel) else {
-        return construct_whole(points, frames, progress);
-    };
-    let buffers = (spare_order, spare_points);
-    let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
-    let built = if frames.wide {
-        halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
-    } else {
-        halves::build::<Fast>(&sorted, cut.left_len(), parallel, progress, mesh)
-    };
-    if built.is_some() {
-        return (order, sorted, built);
+    if let Some(cut) = halves::cut(points, split_min, parallel) {
+        let buffers = (spare_order, spare_points);
+        let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
+        let built = if frames.wide {
+            halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
+        } else {
+            halves::build::<Fast>(&sorted, cut.left_len(), parallel, progress, mesh)
+        };
+        if built.is_some() {
+            return (order, sorted, built);
+        }
     }
-    drop((order, sorted));
-    construct_whole(points, frames, progress)
+    let order = spatial_order(points, frames, points.len());
+    construct_in_order(points, frames, order, progress)
 }
 
 /// The insertion order of a set cut in two (left half first) and, with `with_points`, its points in
@@ -293,17 +289,7 @@ fn cut_order(
     (order, sorted)
 }
 
-/// [`construct`] without the cut.
-fn construct_whole(
-    points: &[Point],
-    frames: &scale::Frames,
-    progress: Option<&AtomicUsize>,
-) -> (Vec<u32>, Vec<Point>, Built) {
-    let order = spatial_order(points, frames, points.len());
-    construct_in_order(points, frames, order, progress)
-}
-
-/// [`construct_whole`] in the insertion order given.
+/// [`construct`] in one piece, in the insertion order given.
 fn construct_in_order(
     points: &[Point],
     frames: &scale::Frames,
@@ -520,11 +506,8 @@ impl Triangulation {
             }
         }
         if let Some(position) = misfit {
-            let value = position as f64;
-            return Err(Error::InvalidParameter {
-                name: "order",
-                value,
-            });
+            let (name, value) = ("order", position as f64);
+            return Err(Error::InvalidParameter { name, value });
         }
         triangulate_in(points, false, usize::MAX, None, None, Some(order.to_vec()))
     }
