@@ -1,12 +1,10 @@
-//! Divide and conquer, one level: a large set is cut by a vertical line, the halves are built by
-//! incremental insertion (at once with `parallel`) and stitched by Guibas and Stolfi's merge, done
-//! by flips so that the mesh stays a sphere throughout (`docs/triangulation.md`, "Two halves").
+//! One level of divide and conquer: a vertical cut, each half built by [`insert::Builder`] in its
+//! own range of one [`MeshArrays`] (at once with `parallel`), then Guibas and Stolfi's merge done
+//! by flips, the mesh a sphere throughout (`docs/triangulation.md`, "Two halves").
 //!
-//! Owns: the cut and the stitch. It decides signs only by the construction's [`Kernel`] and writes
-//! topology only through [`MeshBuilder`]; each half is a plain [`insert::Builder`] run in its own
-//! range of one [`MeshArrays`]. A half with no triangle, or a stitch that does not add up (exact
-//! predicates rule it out; the code does not assume it), returns `None`: the caller builds the
-//! set in one piece.
+//! Owns: the cut and the stitch; signs only by the [`Kernel`], topology only through
+//! [`MeshBuilder`]. A half with no triangle, or a stitch that does not add up (exact predicates
+//! rule it out; the code does not assume it), returns `None`: the caller builds in one piece.
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -16,8 +14,8 @@ use crate::threads::both;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 
-/// Smaller sets are built in one piece (a second thread gains little). The same bound holds in
-/// sequential and parallel runs, so both give one result.
+/// Smaller sets are built in one piece (a second thread gains little); the same bound on one
+/// thread or two, so both give one result.
 pub(crate) const SPLIT_MIN: usize = 1 << 16;
 
 /// Buckets of x the cut falls between: within 1/1024 of the span of the median.
@@ -252,10 +250,9 @@ fn stitch<K: Kernel>(
     // Lower tangent: every point on or above the line; upper: on or below it.
     let (i0, j0) = tangent(Orientation::Cw, Hull::cw, Hull::ccw)?;
     let (i1, j1) = tangent(Orientation::Ccw, Hull::ccw, Hull::cw)?;
-    // Two new ghosts join the spheres so every merge step is a flip (docs/triangulation.md,
-    // "The merge"): `below`, `(r0, l0, ∞)`, between the ghosts before `l0` and after `r0`; `top`,
-    // `(l0, r0, ∞)`, between those of the hull edges facing the other half (counter-clockwise, left
-    // `i0` to `i1`, right `j1` to `j0`). An edge outside on both sides lies between two ghosts.
+    // Two new ghosts join the spheres (docs/triangulation.md, "The merge"): `below`, `(r0, l0, ∞)`,
+    // between the ghosts before `l0` and after `r0`; `top`, `(l0, r0, ∞)`, between those of the
+    // hull edges facing the other half (left `i0` to `i1`, right `j1` to `j0`, counter-clockwise).
     let from_infinity = |ghost: usize| HalfEdgeId::at(ghost, infinite_corner(mesh, ghost));
     let to_infinity = |ghost: usize| HalfEdgeId::at(ghost, wrap3(infinite_corner(mesh, ghost) + 2));
     let into_l0 = from_infinity(left.ghosts[left.cw(i0)]);

@@ -4,11 +4,10 @@
 //! one's arrays, and checking one. It decides signs only by [`crate::predicates`], writes
 //! topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
-//! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
-//! point located by a visibility walk (`docs/triangulation.md`). The reference is `build`, the set
-//! in one piece; `halves`, a speed-up for large sets, must build the same triangles in general
-//! position (`tests::halves_build_what_the_sequential_insertion_builds`) and falls back to `build`
-//! when it cannot finish, so dropping it changes the speed, never the result.
+//! Incremental insertion with Lawson's flips in BRIO order, each point located by a visibility
+//! walk (`docs/triangulation.md`). The reference is `build`, the set in one piece; `halves`, a
+//! speed-up for large sets, builds the same triangles in general position and falls back to
+//! `build` when it cannot finish: it changes the speed, never the result.
 
 mod check;
 mod collinear;
@@ -124,8 +123,7 @@ fn triangulate_in(
 ) -> Result<Triangulation, Error> {
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
-    // The spent arrays the construction refills; the rest of it is freed here, before the cut's
-    // scratch (memory: the maps and vertex edges, 8 bytes a point, would sit idle beside it).
+    // The rest of `spent` is freed before the cut's scratch is allocated (memory: 8 bytes a point).
     let spare = match spent {
         Some(t) => (t.input_of_vertex, t.points, t.mesh.into_storage()),
         None => Default::default(),
@@ -404,12 +402,11 @@ fn vertex_maps(
             vertex_of_input[i as usize] = VertexId::new(v as u32);
         }
     }
+    // A kept id is a vertex, never a duplicate: each pair reads what no other pair writes.
     for &(duplicate, kept) in merged {
-        vertex_of_input[input_of_vertex[duplicate as usize] as usize] = VertexId::new(kept);
-    }
-    for &(duplicate, kept) in merged {
-        let smallest = input_of_vertex[kept as usize].min(input_of_vertex[duplicate as usize]);
-        input_of_vertex[kept as usize] = smallest;
+        let (duplicate, kept_at) = (duplicate as usize, kept as usize);
+        vertex_of_input[input_of_vertex[duplicate] as usize] = VertexId::new(kept);
+        input_of_vertex[kept_at] = input_of_vertex[kept_at].min(input_of_vertex[duplicate]);
     }
     (input_of_vertex, vertex_of_input)
 }
