@@ -1,11 +1,9 @@
 //! Construction of a [`Mesh`]: the one place outside `mesh/mod.rs` that writes its arrays.
 //!
 //! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once); a
-//! [`MeshBuilder`] lent a range offers the triangulator exactly its edits and reads, and two may
-//! fill disjoint ranges at once. [`MeshArrays::seal`] derives `vertex_edges` and ends it. It may
-//! not look at a coordinate or decide a sign, and checks nothing while building (between edits
-//! the arrays may describe no sphere); hot loops address a triangle by `base`, its first
-//! half-edge's index ([`HalfEdgeId::base_and_corner`]).
+//! [`MeshBuilder`] lent a range (two may fill disjoint ones at once) offers the triangulator its
+//! edits and reads; [`MeshArrays::seal`] derives `vertex_edges`. It may not look at a coordinate,
+//! and checks nothing while building (between edits the arrays may describe no sphere).
 
 use super::{HalfEdgeId, Mesh, TriangleId, VertexId};
 use crate::threads::filled;
@@ -107,10 +105,8 @@ impl MeshBuilder<'_> {
     pub(crate) fn len(&self) -> usize {
         self.len
     }
-    /// Appends the triangle `corners` (counter-clockwise) with no twins yet, and returns it.
-    ///
-    /// # Panics
-    /// If the range is full: the caller sized it.
+    /// Appends the triangle `corners` (counter-clockwise) with no twins yet, and returns it
+    /// (panics if the range is full: the caller sized it).
     #[inline]
     pub(crate) fn push_triangle(&mut self, corners: [VertexId; 3]) -> TriangleId {
         let base = self.len;

@@ -216,7 +216,6 @@ fn stitch<K: Kernel>(
     let at = |v: VertexId| points[v.index()];
     let l_at = |i: usize| at(left.vertices[i]);
     let r_at = |j: usize| at(right.vertices[j]);
-    let orient = |a: Point, b: Point, c: Point| K::orient2d(a, b, c);
     // The left hull's rightmost vertex and the right hull's leftmost (all distinct points).
     let start_l = (0..left.len()).max_by(|&i, &j| l_at(i).lexicographic_cmp(l_at(j)))?;
     let start_r = (0..right.len()).min_by(|&i, &j| r_at(i).lexicographic_cmp(r_at(j)))?;
@@ -232,13 +231,13 @@ fn stitch<K: Kernel>(
         for _ in 0..budget {
             let (l, r) = (l_at(i), r_at(j));
             let next_l = left_step(&left, i);
-            let side = orient(l, r, l_at(next_l));
+            let side = K::orient2d(l, r, l_at(next_l));
             if side == away || (side == Orientation::Collinear && l_at(next_l).x > l.x) {
                 i = next_l;
                 continue;
             }
             let next_r = right_step(&right, j);
-            let side = orient(l, r, r_at(next_r));
+            let side = K::orient2d(l, r, r_at(next_r));
             if side == away || (side == Orientation::Collinear && r_at(next_r).x < r.x) {
                 j = next_r;
                 continue;
@@ -286,7 +285,7 @@ fn stitch<K: Kernel>(
     let limit = 4 * mesh.len();
     loop {
         let above =
-            |x: VertexId| !x.is_infinite() && orient(at(l), at(r), at(x)) == Orientation::Ccw;
+            |x: VertexId| !x.is_infinite() && K::orient2d(at(l), at(r), at(x)) == Orientation::Ccw;
         // The left candidate `l → x`: across `∞ → l` of `top` lies the ghost `(x, l, ∞)`, and
         // across its `x → l` the triangle `(l, x, n)` (`n` is `∞` if it is a ghost too). The right
         // one mirrors it (every triangle reversed: `next` for `prev`, corners 1 and 2 exchanged):

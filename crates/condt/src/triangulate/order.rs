@@ -255,8 +255,7 @@ fn within_range(points: &[Point], span: f64, min: (f64, f64)) -> Vec<Point> {
 }
 
 /// The sets (whole, before a cut) from which crowded cells are reordered: below it a crowded
-/// cell costs little, and smaller sets (every shipped data set) keep their earlier order and,
-/// with it, their triangulation of cocircular points.
+/// cell costs little, and smaller sets (every shipped data set) keep their cocircular choices.
 pub(crate) const REORDER_FROM: usize = 1 << 16;
 
 /// In a set of [`REORDER_FROM`] points or more, a grid cell this full (a dense cluster, far points
