@@ -541,16 +541,14 @@ impl Triangulation {
         }
     }
     /// This triangulation, its points given relative to `offset` (see the `offset` field).
-    pub(crate) fn with_offset(mut self, offset: Point) -> Triangulation {
-        self.offset = Some(offset);
-        self
+    pub(crate) fn with_offset(self, offset: Point) -> Triangulation {
+        self.with_frame_offset(Some(offset))
     }
     /// Where the input frame's zero lies in the caller's coordinates, `None` when it is theirs.
     pub(crate) fn frame_offset(&self) -> Option<Point> {
         self.offset
     }
-    /// This triangulation, its points given in a frame whose zero lies at `offset` (`None`: the
-    /// caller's own frame).
+    /// [`Triangulation::with_offset`], or in the caller's own frame for `None`.
     pub(crate) fn with_frame_offset(mut self, offset: Option<Point>) -> Triangulation {
         self.offset = offset;
         self

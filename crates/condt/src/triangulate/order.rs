@@ -119,14 +119,6 @@ pub(crate) fn mix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// The order in which to insert `points`, as indices into it; with `reorder_crowded`, a grid
-/// cell of [`CROWDED_CELL`] points or more gets an order of its own (see there).
-pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u32> {
-    let mut order = alloc::vec![0; points.len()];
-    insertion_order_into(points, reorder_crowded, &mut order, &mut Scratch::default());
-    order
-}
-
 /// The sort keys of [`insertion_order_into`] and the radix sort's second array, lent by the
 /// caller (allocated on the caller's thread: see `cut_order`).
 #[derive(Default)]
@@ -145,7 +137,9 @@ impl Scratch {
     }
 }
 
-/// [`insertion_order`] written into `order` (as long as `points`), sorting in `scratch`.
+/// Writes into `order` (as long as `points`) the order in which to insert `points`, as indices
+/// into it, sorting in `scratch`; with `reorder_crowded`, a grid cell of [`CROWDED_CELL`] points
+/// or more gets an order of its own (see there).
 pub(crate) fn insertion_order_into(
     points: &[Point],
     reorder_crowded: bool,
@@ -264,7 +258,7 @@ pub(crate) const REORDER_FROM: usize = 1 << 16;
 const CROWDED_CELL: usize = 1 << 10;
 
 /// Orders the points `run` sharing one grid cell: a crowded one (with `reorder_crowded`) by
-/// [`insertion_order`] on them alone, any other by coordinates, never by input position.
+/// [`insertion_order_into`] on them alone, any other by coordinates, never by input position.
 fn order_cell(points: &[Point], run: &mut [u32], reorder_crowded: bool) {
     let position = |i: &u32| points[*i as usize];
     if reorder_crowded && run.len() >= CROWDED_CELL {
@@ -272,7 +266,8 @@ fn order_cell(points: &[Point], run: &mut [u32], reorder_crowded: bool) {
         // Each call's grid spans its own points, whose extremes along the wider axis land in
         // different cells: every level of this recursion splits its set.
         if cell.iter().any(|p| p.lexicographic_cmp(cell[0]).is_ne()) {
-            let local = insertion_order(&cell, true);
+            let mut local = alloc::vec![0; cell.len()];
+            insertion_order_into(&cell, true, &mut local, &mut Scratch::default());
             let ordered: Vec<u32> = local.iter().map(|&k| run[k as usize]).collect();
             run.copy_from_slice(&ordered);
             return;
@@ -341,6 +336,13 @@ fn radix_sort(values: &mut Vec<u64>, buffer: &mut Vec<u64>, low: u32, bits: u32)
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`insertion_order_into`] into a new list.
+    fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u32> {
+        let mut order = alloc::vec![0; points.len()];
+        insertion_order_into(points, reorder_crowded, &mut order, &mut Scratch::default());
+        order
+    }
 
     /// The same curve one level at a time, without the table.
     fn hilbert_index_by_levels(x: u32, y: u32) -> u64 {
