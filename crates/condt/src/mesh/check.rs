@@ -222,20 +222,18 @@ impl Mesh {
             if to_infinity[v] && !self.dest(start).is_infinite() {
                 return fail(Rule::HullVertexEdgeNotToInfinity, Element::Vertex(vertex));
             }
+            // The ring must come back to `start` in exactly `degree` steps.
             let mut e = start;
-            let mut steps = 0u32;
-            loop {
-                steps += 1;
-                if steps > degree {
-                    return fail(Rule::RingNotClosed, Element::Vertex(vertex));
-                }
+            let back_after = (1..=degree).find(|_| {
                 e = self.twin(e.prev());
-                if e == start {
-                    break;
+                e == start
+            });
+            match back_after {
+                None => return fail(Rule::RingNotClosed, Element::Vertex(vertex)),
+                Some(steps) if steps != degree => {
+                    return fail(Rule::RingIncomplete, Element::Vertex(vertex))
                 }
-            }
-            if steps != degree {
-                return fail(Rule::RingIncomplete, Element::Vertex(vertex));
+                Some(_) => {}
             }
         }
         if n_half > 0 {

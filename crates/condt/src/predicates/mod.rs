@@ -108,8 +108,7 @@ pub fn is_cocircular(a: Point, b: Point, c: Point, d: Point) -> bool {
 
 /// The big-integer predicates alone (beyond the fast range, and for tests).
 pub(crate) mod integers {
-    use super::{exact, Orientation, Point};
-    use core::cmp::Ordering;
+    use super::{exact, Ordering, Orientation, Point};
 
     pub(crate) fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
         match exact::orient2d_sign(a.into(), b.into(), c.into()) {
