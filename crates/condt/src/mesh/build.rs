@@ -49,8 +49,7 @@ impl MeshArrays {
         }
     }
 
-    /// Two empty builders, over the half-edges `0..split` and `split..` (each numbered from 0, as
-    /// its own mesh: see [`MeshBuilder::renumber`]).
+    /// Empty builders over `0..split` and `split..`, each from 0 ([`MeshBuilder::renumber`]).
     pub(crate) fn halves(&mut self, split: usize) -> (MeshBuilder<'_>, MeshBuilder<'_>) {
         let (origins_low, origins_high) = self.origins.split_at_mut(split);
         let (twins_low, twins_high) = self.twins.split_at_mut(split);

@@ -1,8 +1,7 @@
 //! Incremental Delaunay construction: walk to the new point, split, restore the empty-circle
 //! property by edge flips (`docs/triangulation.md`, step 4).
 //!
-//! Owns: the construction state. It decides signs only through `predicates`, and edits the mesh
-//! only through [`MeshBuilder`].
+//! Owns: the construction state; signs only by `predicates`, edits only by [`MeshBuilder`].
 
 use crate::geometry::Point;
 use crate::mesh::{wrap3, HalfEdgeId, MeshBuilder, VertexId};

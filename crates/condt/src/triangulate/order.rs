@@ -100,8 +100,7 @@ pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
     }
 }
 
-/// The bit pattern of the smallest nonzero magnitude among `points`' coordinates (for
-/// [`logarithmic`]); 1 when every coordinate is zero.
+/// The bit pattern of the smallest nonzero coordinate magnitude (for [`logarithmic`]), 1 if none.
 pub(crate) fn smallest_magnitude(points: &[Point]) -> u64 {
     points
         .iter()

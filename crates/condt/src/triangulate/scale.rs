@@ -23,8 +23,7 @@ pub(crate) struct Frames {
     pub(crate) exponents: (i32, i32),
 }
 
-/// Checks the size ([`MAX_POINTS`]) and every point (naming the first non-finite one) and picks
-/// the frames.
+/// Checks the size ([`MAX_POINTS`]) and that every point is finite, and picks the frames.
 pub(crate) fn choose_frames(points: &[Point]) -> Result<Frames, Error> {
     let (count, limit) = (points.len(), MAX_POINTS);
     if count > limit {
