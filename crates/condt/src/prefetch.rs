@@ -1,7 +1,5 @@
 //! A hint to the processor that a slice element will be read soon: the crate's one use of
-//! `unsafe`, confined here (`lib.rs` denies unsafe code, this module alone allows it, and
-//! `tests/unsafe_code.rs` fails if any other source file but the binary's allocator and the
-//! Python binding's `python/src/convert.rs` uses it).
+//! `unsafe`, confined here (`lib.rs` denies it elsewhere; `tests/unsafe_code.rs` checks).
 //!
 //! Owns: [`prefetch`] and [`PREFETCH_FROM`]; it may not read or write memory, and changes no
 //! result (it lets the cache misses of large sweeps overlap).

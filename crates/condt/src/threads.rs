@@ -1,7 +1,6 @@
-//! Running two pieces of work at once on rayon's threads (feature `parallel`), or one after the
-//! other, filling a buffer there, and scanning the ids `0..n` there. Owns: only the choice of how
-//! to run and whether rayon can run at all ([`parallel_available`]); it knows nothing of the work
-//! (the triangulation's two halves, the pipeline's curves and tally, the stages' scans).
+//! Running two pieces of work, a buffer fill or a scan of the ids `0..n` on rayon's threads
+//! (feature `parallel`) or on the caller's. Owns: only the choice of how to run and whether rayon
+//! can run at all ([`parallel_available`]); it knows nothing of the work.
 
 use alloc::vec::Vec;
 

@@ -1,11 +1,9 @@
 //! Construction of a [`Mesh`]: the one place outside `mesh/mod.rs` that writes its arrays.
 //!
 //! Owns: the half-edge arrays while a mesh is built, in [`MeshArrays`] (sized once); a
-//! [`MeshBuilder`] lent a range offers the triangulator exactly its edits and reads, and two may
-//! fill disjoint ranges at once. [`MeshArrays::seal`] derives `vertex_edges` and ends it. It may
-//! not look at a coordinate or decide a sign, and checks nothing while building (between edits
-//! the arrays may describe no sphere); hot loops address a triangle by `base`, its first
-//! half-edge's index ([`HalfEdgeId::base_and_corner`]).
+//! [`MeshBuilder`] lent a range (two may fill disjoint ones at once) offers the triangulator its
+//! edits and reads; [`MeshArrays::seal`] derives `vertex_edges`. It may not look at a coordinate,
+//! and checks nothing while building (between edits the arrays may describe no sphere).
 
 use super::{HalfEdgeId, Mesh, TriangleId, VertexId};
 use crate::threads::filled;
@@ -51,22 +49,19 @@ impl MeshArrays {
         }
     }
 
-    /// Two empty builders, over the half-edges `0..split` and `split..` (each numbered from 0, as
-    /// its own mesh: see [`MeshBuilder::renumber`]).
+    /// Empty builders over `0..split` and `split..`, each from 0 ([`MeshBuilder::renumber`]).
     pub(crate) fn halves(&mut self, split: usize) -> (MeshBuilder<'_>, MeshBuilder<'_>) {
         let (origins_low, origins_high) = self.origins.split_at_mut(split);
         let (twins_low, twins_high) = self.twins.split_at_mut(split);
-        let low = MeshBuilder {
-            origins: origins_low,
-            twins: twins_low,
+        let builder = |origins, twins| MeshBuilder {
+            origins,
+            twins,
             len: 0,
         };
-        let high = MeshBuilder {
-            origins: origins_high,
-            twins: twins_high,
-            len: 0,
-        };
-        (low, high)
+        (
+            builder(origins_low, twins_low),
+            builder(origins_high, twins_high),
+        )
     }
 
     /// Moves the `len` half-edges at `from` down to `to`, keeping their links: a twin inside the
@@ -109,10 +104,8 @@ impl MeshBuilder<'_> {
     pub(crate) fn len(&self) -> usize {
         self.len
     }
-    /// Appends the triangle `corners` (counter-clockwise) with no twins yet, and returns it.
-    ///
-    /// # Panics
-    /// If the range is full: the caller sized it.
+    /// Appends the triangle `corners` (counter-clockwise) with no twins yet, and returns it
+    /// (panics if the range is full: the caller sized it).
     #[inline]
     pub(crate) fn push_triangle(&mut self, corners: [VertexId; 3]) -> TriangleId {
         let base = self.len;

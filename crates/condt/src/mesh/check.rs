@@ -180,8 +180,10 @@ impl Mesh {
                 }
             }
         }
-        for i in 0..n_half {
-            let e = HalfEdgeId::new(i as u32);
+        let mut out_degree = vec![0u32; self.vertex_edges.len()];
+        let mut to_infinity = vec![false; self.vertex_edges.len()];
+        let mut infinite_used = false;
+        for e in (0..n_half as u32).map(HalfEdgeId::new) {
             let t = self.twin(e);
             if t.index() >= n_half || t == e {
                 return fail(Rule::TwinOutOfRange, Element::HalfEdge(e));
@@ -192,12 +194,6 @@ impl Mesh {
             if self.origin(t) != self.dest(e) || self.dest(t) != self.origin(e) {
                 return fail(Rule::TwinNotReversed, Element::HalfEdge(e));
             }
-        }
-        let mut out_degree = vec![0u32; self.vertex_edges.len()];
-        let mut to_infinity = vec![false; self.vertex_edges.len()];
-        let mut infinite_used = false;
-        for i in 0..n_half {
-            let e = HalfEdgeId::new(i as u32);
             let v = self.origin(e);
             if v.is_infinite() {
                 infinite_used = true;
@@ -226,20 +222,18 @@ impl Mesh {
             if to_infinity[v] && !self.dest(start).is_infinite() {
                 return fail(Rule::HullVertexEdgeNotToInfinity, Element::Vertex(vertex));
             }
+            // The ring must come back to `start` in exactly `degree` steps.
             let mut e = start;
-            let mut steps = 0u32;
-            loop {
-                steps += 1;
-                if steps > degree {
-                    return fail(Rule::RingNotClosed, Element::Vertex(vertex));
-                }
+            let back_after = (1..=degree).find(|_| {
                 e = self.twin(e.prev());
-                if e == start {
-                    break;
+                e == start
+            });
+            match back_after {
+                None => return fail(Rule::RingNotClosed, Element::Vertex(vertex)),
+                Some(steps) if steps != degree => {
+                    return fail(Rule::RingIncomplete, Element::Vertex(vertex))
                 }
-            }
-            if steps != degree {
-                return fail(Rule::RingIncomplete, Element::Vertex(vertex));
+                Some(_) => {}
             }
         }
         if n_half > 0 {

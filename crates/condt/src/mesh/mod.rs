@@ -168,24 +168,20 @@ impl Mesh {
     /// The vertices of the convex hull, counter-clockwise, each hull edge once (points on a hull
     /// edge included). On a collinear chain the walk goes out and back: inner vertices twice.
     pub fn hull(&self) -> Hull<'_> {
-        let start = self.first_hull_edge();
+        // The finite half-edge of some ghost triangle, if there is one.
+        let start = (0..self.num_half_edges() as u32)
+            .map(HalfEdgeId::new)
+            .find(|&e| self.origin(e.prev()).is_infinite())
+            .unwrap_or(HalfEdgeId::NONE);
         Hull {
             mesh: self,
             start,
             current: start,
         }
     }
-    /// The finite half-edge of some ghost triangle, if there is one.
-    fn first_hull_edge(&self) -> HalfEdgeId {
-        (0..self.num_half_edges() as u32)
-            .map(HalfEdgeId::new)
-            .find(|&e| self.origin(e.prev()).is_infinite())
-            .unwrap_or(HalfEdgeId::NONE)
-    }
 
-    /// Fills `vertex_edges`: one pass records the last edge leaving each vertex, then a walk along
-    /// the ghosts gives every hull vertex its edge to infinity. With `parallel`, two threads each
-    /// scan every origin and record only their half of the ids.
+    /// Fills `vertex_edges`: the last edge leaving each vertex (with `parallel`, two threads each
+    /// scan every origin for their half of the ids), then each hull vertex's edge to infinity.
     fn rebuild_vertex_edges(&mut self, vertex_count: usize, parallel: bool) {
         // Slot `vertex_count` absorbs the half-edges leaving the vertex at infinity.
         let sink = vertex_count;

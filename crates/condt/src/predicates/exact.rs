@@ -1,11 +1,7 @@
 //! Exact signs by integer arithmetic, for coordinates whose spread of magnitudes Shewchuk's
-//! floating-point expansions cannot take without underflow.
-//!
-//! Every finite double is `m · 2^e` (`|m| < 2^53`, `-1074 <= e <= 971`): brought to the call's
-//! smallest exponent, the coordinates are integers below `2^2098`, and the determinants (degree 4
-//! at most) stay below `2^8400`, in fixed arrays of 64-bit limbs on the stack (no allocation).
-//! Schoolbook arithmetic over the limbs in use costs microseconds at worst, which is why
-//! [`super`] runs it only where the fast predicates could be wrong.
+//! floating-point expansions cannot take without underflow: integers below `2^2098` in units of
+//! the call's smallest exponent, determinants below `2^8400` in 64-bit limbs on the stack
+//! (`docs/predicates.md`, item 3). Microseconds at worst: [`super`] runs it only where needed.
 
 use core::cmp::Ordering;
 

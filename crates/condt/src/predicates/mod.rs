@@ -3,12 +3,10 @@
 //! Owns: every decision about a geometric sign. Nothing else in the crate may compute a sign with
 //! plain floating point, and this module may not depend on the mesh or the triangulator.
 //!
-//! Three ways to the same exact sign (`docs/predicates.md` derives the ranges): in the range where
-//! no product overflows or underflows, Shewchuk's static filter inline, then machine integers for
-//! small integers on a common binary grid (`small.rs`), then his adaptive stages (`robust`); and
-//! big integers, exact for any finite input and far slower (`exact.rs`). The public functions
-//! rescale a call into the fast range by a power of two when one does it, and send only calls
-//! spanning more than 2^200 to the big integers.
+//! In the fast range, where no product overflows or underflows (`docs/predicates.md`): Shewchuk's
+//! static filter inline, then machine integers on a common binary grid (`small.rs`), then his
+//! adaptive stages (`robust`). A call outside it is rescaled by a power of two when that brings it
+//! in, else goes to big integers (`exact.rs`: exact for any finite input, far slower).
 
 mod exact;
 mod small;
@@ -110,8 +108,7 @@ pub fn is_cocircular(a: Point, b: Point, c: Point, d: Point) -> bool {
 
 /// The big-integer predicates alone (beyond the fast range, and for tests).
 pub(crate) mod integers {
-    use super::{exact, Orientation, Point};
-    use core::cmp::Ordering;
+    use super::{exact, Ordering, Orientation, Point};
 
     pub(crate) fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
         match exact::orient2d_sign(a.into(), b.into(), c.into()) {
@@ -131,21 +128,15 @@ pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
     exact::dot_sign(a.into(), b.into(), c.into(), d.into())
 }
 
-/// Which of `a` and `b` is nearer to `p`, exactly (any finite coordinates).
-pub(crate) fn compare_distances(p: Point, a: Point, b: Point) -> Ordering {
-    exact::compare_distances(p.into(), a.into(), b.into())
-}
-
 /// Which of `a` and `b` is nearer to `p`, for two whose rounded squared distances
 /// ([`Point::dist2`]) are equal: `Equal` when both are known exact ([`exactly_squared`]), else
-/// exactly ([`compare_distances`]). Why: a rounded tie broken by vertex id would depend on the
-/// input's orientation (ids follow the insertion order); only an exact tie is left to the
-/// caller's id. Call it only on a rounded tie: the exact comparison is slow.
+/// by big integers (slow). Why: a rounded tie broken by vertex id would depend on the input's
+/// orientation (ids follow the insertion order); only an exact tie is left to the caller's id.
 pub(crate) fn compare_tied_distances(p: Point, a: Point, b: Point) -> Ordering {
     if exactly_squared(p, a) && exactly_squared(p, b) {
         return Ordering::Equal;
     }
-    compare_distances(p, a, b)
+    exact::compare_distances(p.into(), a.into(), b.into())
 }
 
 /// Whether `p.dist2(q)` is known to be the exact squared distance: each difference and the sum

@@ -1,14 +1,10 @@
 //! Exact signs in machine integers for the calls the floating-point filters cannot settle whose
 //! coordinates are small integers on a common binary grid (integer grids, pixel contours, where
-//! nearly every in-circle test is exactly cocircular).
+//! nearly every in-circle test is exactly cocircular): multiples of `2^-49` in `[-4, 4)`, whose
+//! differences over the grid's unit are below `2^30` (`docs/predicates.md`, item 4).
 //!
 //! Owns: the fixed-point reading of a call's coordinates and the two determinants on it. A call
 //! it refuses (`None`) goes on to Shewchuk's adaptive stages: a wrong refusal costs time only.
-//!
-//! Coordinates that are multiples of `2^-49` in `[-4, 4)` are read exactly as the integers
-//! `x · 2^49`; their differences, divided by their common power of two (the grid's unit), must
-//! be below `2^30`, so that the in-circle determinant (degree 4, below `3 · 2^122`) is exact in
-//! `i128` and the orientation (degree 2) in `i64` (`docs/predicates.md`, item 4).
 
 use core::cmp::Ordering;
 

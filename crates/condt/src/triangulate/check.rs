@@ -90,8 +90,7 @@ impl Triangulation {
         Ok(())
     }
 
-    /// With no real triangle: every vertex is on the line of the first edge, and the chain
-    /// never doubles back.
+    /// With no real triangle: every vertex on the first edge's line, the chain never doubling back.
     fn check_chain(&self) -> Result<(), Violation> {
         let mesh = &self.mesh;
         let Some(first) = mesh.edges().next() else {

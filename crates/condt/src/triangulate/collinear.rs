@@ -1,15 +1,8 @@
 //! The mesh of a point set with no triangle: all points on one line (or fewer than three distinct).
 //!
-//! The distinct points are sorted along the line and chained; each segment is covered by two
-//! ghosts, `L_s = (q_s, q_{s+1}, ∞)` and `R_s = (q_{s+1}, q_s, ∞)`, so the mesh is still a sphere.
-//!
-//! ```text
-//!            ∞                 L_s occupies half-edges 6s .. 6s+2, R_s 6s+3 .. 6s+5
-//!    L_0    L_1    L_2
-//!  q0 --- q1 --- q2 --- q3
-//!    R_0    R_1    R_2
-//!            ∞
-//! ```
+//! The distinct points are chained along the line, each segment `q_s – q_{s+1}` covered by the
+//! ghosts `L_s = (q_s, q_{s+1}, ∞)` at half-edges `6s..6s+3` and `R_s = (q_{s+1}, q_s, ∞)` at
+//! `6s+3..6s+6` (`docs/half_edge.md`, *Collinear input*).
 
 use crate::geometry::Point;
 use crate::mesh::{HalfEdgeId, Mesh, MeshArrays, VertexId};

@@ -1,12 +1,10 @@
-//! Divide and conquer, one level: a large set is cut by a vertical line, the halves are built by
-//! incremental insertion (at once with `parallel`) and stitched by Guibas and Stolfi's merge, done
-//! by flips so that the mesh stays a sphere throughout (`docs/triangulation.md`, "Two halves").
+//! One level of divide and conquer: a vertical cut, each half built by [`insert::Builder`] in its
+//! own range of one [`MeshArrays`] (at once with `parallel`), then Guibas and Stolfi's merge done
+//! by flips, the mesh a sphere throughout (`docs/triangulation.md`, "Two halves").
 //!
-//! Owns: the cut and the stitch. It decides signs only by the construction's [`Kernel`] and writes
-//! topology only through [`MeshBuilder`]; each half is a plain [`insert::Builder`] run in its own
-//! range of one [`MeshArrays`]. A half with no triangle, or a stitch that does not add up (exact
-//! predicates rule it out; the code does not assume it), returns `None`: the caller builds the
-//! set in one piece.
+//! Owns: the cut and the stitch; signs only by the [`Kernel`], topology only through
+//! [`MeshBuilder`]. A half with no triangle, or a stitch that does not add up (exact predicates
+//! rule it out; the code does not assume it), returns `None`: the caller builds in one piece.
 
 use super::insert::{self, Kernel};
 use crate::geometry::Point;
@@ -16,8 +14,8 @@ use crate::threads::both;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 
-/// Smaller sets are built in one piece (a second thread gains little). The same bound holds in
-/// sequential and parallel runs, so both give one result.
+/// Smaller sets are built in one piece (a second thread gains little); the same bound on one
+/// thread or two, so both give one result.
 pub(crate) const SPLIT_MIN: usize = 1 << 16;
 
 /// Buckets of x the cut falls between: within 1/1024 of the span of the median.
@@ -218,7 +216,6 @@ fn stitch<K: Kernel>(
     let at = |v: VertexId| points[v.index()];
     let l_at = |i: usize| at(left.vertices[i]);
     let r_at = |j: usize| at(right.vertices[j]);
-    let orient = |a: Point, b: Point, c: Point| K::orient2d(a, b, c);
     // The left hull's rightmost vertex and the right hull's leftmost (all distinct points).
     let start_l = (0..left.len()).max_by(|&i, &j| l_at(i).lexicographic_cmp(l_at(j)))?;
     let start_r = (0..right.len()).min_by(|&i, &j| r_at(i).lexicographic_cmp(r_at(j)))?;
@@ -234,13 +231,13 @@ fn stitch<K: Kernel>(
         for _ in 0..budget {
             let (l, r) = (l_at(i), r_at(j));
             let next_l = left_step(&left, i);
-            let side = orient(l, r, l_at(next_l));
+            let side = K::orient2d(l, r, l_at(next_l));
             if side == away || (side == Orientation::Collinear && l_at(next_l).x > l.x) {
                 i = next_l;
                 continue;
             }
             let next_r = right_step(&right, j);
-            let side = orient(l, r, r_at(next_r));
+            let side = K::orient2d(l, r, r_at(next_r));
             if side == away || (side == Orientation::Collinear && r_at(next_r).x < r.x) {
                 j = next_r;
                 continue;
@@ -252,10 +249,9 @@ fn stitch<K: Kernel>(
     // Lower tangent: every point on or above the line; upper: on or below it.
     let (i0, j0) = tangent(Orientation::Cw, Hull::cw, Hull::ccw)?;
     let (i1, j1) = tangent(Orientation::Ccw, Hull::ccw, Hull::cw)?;
-    // Two new ghosts join the spheres so every merge step is a flip (docs/triangulation.md,
-    // "The merge"): `below`, `(r0, l0, ∞)`, between the ghosts before `l0` and after `r0`; `top`,
-    // `(l0, r0, ∞)`, between those of the hull edges facing the other half (counter-clockwise, left
-    // `i0` to `i1`, right `j1` to `j0`). An edge outside on both sides lies between two ghosts.
+    // Two new ghosts join the spheres (docs/triangulation.md, "The merge"): `below`, `(r0, l0, ∞)`,
+    // between the ghosts before `l0` and after `r0`; `top`, `(l0, r0, ∞)`, between those of the
+    // hull edges facing the other half (left `i0` to `i1`, right `j1` to `j0`, counter-clockwise).
     let from_infinity = |ghost: usize| HalfEdgeId::at(ghost, infinite_corner(mesh, ghost));
     let to_infinity = |ghost: usize| HalfEdgeId::at(ghost, wrap3(infinite_corner(mesh, ghost) + 2));
     let into_l0 = from_infinity(left.ghosts[left.cw(i0)]);
@@ -289,7 +285,7 @@ fn stitch<K: Kernel>(
     let limit = 4 * mesh.len();
     loop {
         let above =
-            |x: VertexId| !x.is_infinite() && orient(at(l), at(r), at(x)) == Orientation::Ccw;
+            |x: VertexId| !x.is_infinite() && K::orient2d(at(l), at(r), at(x)) == Orientation::Ccw;
         // The left candidate `l → x`: across `∞ → l` of `top` lies the ghost `(x, l, ∞)`, and
         // across its `x → l` the triangle `(l, x, n)` (`n` is `∞` if it is a ghost too). The right
         // one mirrors it (every triangle reversed: `next` for `prev`, corners 1 and 2 exchanged):

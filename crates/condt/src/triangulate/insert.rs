@@ -1,8 +1,7 @@
 //! Incremental Delaunay construction: walk to the new point, split, restore the empty-circle
 //! property by edge flips (`docs/triangulation.md`, step 4).
 //!
-//! Owns: the construction state. It decides signs only through `predicates`, and edits the mesh
-//! only through [`MeshBuilder`].
+//! Owns: the construction state; signs only by `predicates`, edits only by [`MeshBuilder`].
 
 use crate::geometry::Point;
 use crate::mesh::{wrap3, HalfEdgeId, MeshBuilder, VertexId};
@@ -113,16 +112,10 @@ struct Walk {
 }
 
 impl Walk {
+    /// Moves to `e`: across it if `entered`, else sliding along the hull; the walk goes on.
     #[inline(always)]
-    fn enter(&mut self, e: HalfEdgeId) -> Option<Location> {
-        self.at = e;
-        self.entered = true;
-        None
-    }
-    #[inline(always)]
-    fn slide_to(&mut self, e: HalfEdgeId) -> Option<Location> {
-        self.at = e;
-        self.entered = false;
+    fn to(&mut self, e: HalfEdgeId, entered: bool) -> Option<Location> {
+        (self.at, self.entered) = (e, entered);
         None
     }
 }
@@ -182,7 +175,7 @@ pub(crate) fn build_into<'m, K: Kernel>(
         }
         from = to;
     }
-    Some(builder.finish())
+    Some((builder.mesh, builder.merged))
 }
 
 /// The first three points, in insertion order, that make a proper triangle, counter-clockwise.
@@ -226,9 +219,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
             hint: h(0),
             merged: Vec::new(),
         }
-    }
-    pub(crate) fn finish(self) -> (MeshBuilder<'m>, Vec<(u32, u32)>) {
-        (self.mesh, self.merged)
     }
     #[inline]
     fn point(&self, v: VertexId) -> Point {
@@ -342,14 +332,15 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
                 let way = K::slide(pa, pb, p);
                 if way != Slide::Done && (walk.slide == Slide::Either || walk.slide == way) {
                     walk.slide = way;
-                    walk.slide_to(if way == Slide::Forward {
+                    let next = if way == Slide::Forward {
                         to_ghost_after()
                     } else {
                         to_ghost_before()
-                    })
+                    };
+                    walk.to(next, false)
                 } else {
                     walk.slide = Slide::Done;
-                    walk.enter(self.twin(hull))
+                    walk.to(self.twin(hull), true)
                 }
             }
             Orientation::Collinear => {
@@ -360,8 +351,8 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
                     Segment::AtStart => Some(Location::Vertex(a)),
                     Segment::AtEnd => Some(Location::Vertex(b)),
                     Segment::Inside => Some(Location::Edge(hull)),
-                    Segment::BeyondEnd => walk.slide_to(to_ghost_after()),
-                    Segment::BeforeStart => walk.slide_to(to_ghost_before()),
+                    Segment::BeyondEnd => walk.to(to_ghost_after(), false),
+                    Segment::BeforeStart => walk.to(to_ghost_before(), false),
                 }
             }
         }
@@ -391,7 +382,7 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
                 continue;
             }
             if sign < 0.0 {
-                return walk.enter(self.twin(half_edge(k)));
+                return walk.to(self.twin(half_edge(k)), true);
             }
             collinear[n_collinear.min(1)] = k;
             n_collinear += 1;
@@ -413,15 +404,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     }
 
     /// Splits the triangle `(a, b, c)` of `e = a → b` into `(a, b, v)`, `(b, c, v)`, `(c, a, v)`.
-    ///
-    /// ```text
-    ///          c                    c
-    ///         / \                  /|\
-    ///        /   \                / | \
-    ///       /  v  \      =>      /  v  \
-    ///      /       \            / /   \ \
-    ///     a ------- b          a ------- b
-    /// ```
     fn split_triangle(&mut self, e: HalfEdgeId, v: VertexId) {
         let (a, b, c) = (self.origin(e), self.origin(e.next()), self.origin(e.prev()));
         let (out_ab, out_bc, out_ca) = (self.twin(e), self.twin(e.next()), self.twin(e.prev()));
@@ -443,14 +425,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
 
     /// Splits the finite edge `e = a → b`, between `(a, b, c)` and `(b, a, d)`, at `v` into the
     /// four triangles `(v, b, c)`, `(v, c, a)`, `(v, a, d)`, `(v, d, b)`.
-    ///
-    /// ```text
-    ///          c                    c
-    ///        /   \                / | \
-    ///     a ---v--- b    =>    a ---v--- b
-    ///        \   /                \ | /
-    ///          d                    d
-    /// ```
     fn split_edge(&mut self, e: HalfEdgeId, v: VertexId) {
         let f = self.twin(e);
         let (a, b) = (self.origin(e), self.origin(f));
@@ -526,14 +500,6 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     /// Replaces the edge `u – w` (half-edges `e` in `(u, w, v)` and `f` in `(w, u, q)`) by `v – q`,
     /// giving `(v, u, q)` and `(v, q, w)`; queues the edge of the first opposite `v`, returns the
     /// second's. `f` and `[u, w, q]` come as the caller read them, to save dividing and loading.
-    ///
-    /// ```text
-    ///          v                    v
-    ///        /   \                / | \
-    ///       u --- w      =>      u  |  w
-    ///        \   /                \ | /
-    ///          q                    q
-    /// ```
     fn flip(
         &mut self,
         e: HalfEdgeId,

@@ -4,11 +4,10 @@
 //! one's arrays, and checking one. It decides signs only by [`crate::predicates`], writes
 //! topology only through the mesh's builder, and knows nothing of the ConDT stages.
 //!
-//! Incremental insertion with Lawson's flips in BRIO order (Amenta, Choi, Rote, SoCG 2003), each
-//! point located by a visibility walk (`docs/triangulation.md`). The reference is `build`, the set
-//! in one piece; `halves`, a speed-up for large sets, must build the same triangles in general
-//! position (`tests::halves_build_what_the_sequential_insertion_builds`) and falls back to `build`
-//! when it cannot finish, so dropping it changes the speed, never the result.
+//! Incremental insertion with Lawson's flips in BRIO order, each point located by a visibility
+//! walk (`docs/triangulation.md`). The reference is `build`, the set in one piece; `halves`, a
+//! speed-up for large sets, builds the same triangles in general position and falls back to
+//! `build` when it cannot finish: it changes the speed, never the result.
 
 mod check;
 mod collinear;
@@ -124,8 +123,7 @@ fn triangulate_in(
 ) -> Result<Triangulation, Error> {
     let frames = scale::choose_frames(points)?;
     let scale = frames.predicates;
-    // The spent arrays the construction refills; the rest of it is freed here, before the cut's
-    // scratch (memory: the maps and vertex edges, 8 bytes a point, would sit idle beside it).
+    // The rest of `spent` is freed before the cut's scratch is allocated (memory: 8 bytes a point).
     let spare = match spent {
         Some(t) => (t.input_of_vertex, t.points, t.mesh.into_storage()),
         None => Default::default(),
@@ -166,11 +164,8 @@ fn triangulate_in(
         }
     } else {
         let to_stages = Scale::power_of_two(stages_exponent - predicates_exponent);
-        let rescale = |points: &mut [Point]| {
-            for p in points {
-                *p = to_stages.apply(*p);
-            }
-        };
+        let rescale =
+            |points: &mut [Point]| points.iter_mut().for_each(|p| *p = to_stages.apply(*p));
         let middle = sorted.len() / 2;
         let (low, high) = sorted.split_at_mut(middle);
         let split = parallel && low.len() >= PARALLEL_MIN / 2;
@@ -205,21 +200,20 @@ fn construct(
     progress: Option<&AtomicUsize>,
     (spare_order, spare_points, mesh): (Vec<u32>, Vec<Point>, Mesh),
 ) -> (Vec<u32>, Vec<Point>, Built) {
-    let Some(cut) = halves::cut(points, split_min, parallel) else {
-        return construct_whole(points, frames, progress);
-    };
-    let buffers = (spare_order, spare_points);
-    let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
-    let built = if frames.wide {
-        halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
-    } else {
-        halves::build::<Fast>(&sorted, cut.left_len(), parallel, progress, mesh)
-    };
-    if built.is_some() {
-        return (order, sorted, built);
+    if let Some(cut) = halves::cut(points, split_min, parallel) {
+        let buffers = (spare_order, spare_points);
+        let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
+        let built = if frames.wide {
+            halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
+        } else {
+            halves::build::<Fast>(&sorted, cut.left_len(), parallel, progress, mesh)
+        };
+        if built.is_some() {
+            return (order, sorted, built);
+        }
     }
-    drop((order, sorted));
-    construct_whole(points, frames, progress)
+    let order = spatial_order(points, frames, points.len());
+    construct_in_order(points, frames, order, progress)
 }
 
 /// The insertion order of a set cut in two (left half first) and, with `with_points`, its points in
@@ -293,17 +287,7 @@ fn cut_order(
     (order, sorted)
 }
 
-/// [`construct`] without the cut.
-fn construct_whole(
-    points: &[Point],
-    frames: &scale::Frames,
-    progress: Option<&AtomicUsize>,
-) -> (Vec<u32>, Vec<Point>, Built) {
-    let order = spatial_order(points, frames, points.len());
-    construct_in_order(points, frames, order, progress)
-}
-
-/// [`construct_whole`] in the insertion order given.
+/// [`construct`] in one piece, in the insertion order given.
 fn construct_in_order(
     points: &[Point],
     frames: &scale::Frames,
@@ -418,12 +402,11 @@ fn vertex_maps(
             vertex_of_input[i as usize] = VertexId::new(v as u32);
         }
     }
+    // A kept id is a vertex, never a duplicate: each pair reads what no other pair writes.
     for &(duplicate, kept) in merged {
-        vertex_of_input[input_of_vertex[duplicate as usize] as usize] = VertexId::new(kept);
-    }
-    for &(duplicate, kept) in merged {
-        let smallest = input_of_vertex[kept as usize].min(input_of_vertex[duplicate as usize]);
-        input_of_vertex[kept as usize] = smallest;
+        let (duplicate, kept_at) = (duplicate as usize, kept as usize);
+        vertex_of_input[input_of_vertex[duplicate] as usize] = VertexId::new(kept);
+        input_of_vertex[kept_at] = input_of_vertex[kept_at].min(input_of_vertex[duplicate]);
     }
     (input_of_vertex, vertex_of_input)
 }
@@ -520,11 +503,8 @@ impl Triangulation {
             }
         }
         if let Some(position) = misfit {
-            let value = position as f64;
-            return Err(Error::InvalidParameter {
-                name: "order",
-                value,
-            });
+            let (name, value) = ("order", position as f64);
+            return Err(Error::InvalidParameter { name, value });
         }
         triangulate_in(points, false, usize::MAX, None, None, Some(order.to_vec()))
     }
@@ -561,16 +541,14 @@ impl Triangulation {
         }
     }
     /// This triangulation, its points given relative to `offset` (see the `offset` field).
-    pub(crate) fn with_offset(mut self, offset: Point) -> Triangulation {
-        self.offset = Some(offset);
-        self
+    pub(crate) fn with_offset(self, offset: Point) -> Triangulation {
+        self.with_frame_offset(Some(offset))
     }
     /// Where the input frame's zero lies in the caller's coordinates, `None` when it is theirs.
     pub(crate) fn frame_offset(&self) -> Option<Point> {
         self.offset
     }
-    /// This triangulation, its points given in a frame whose zero lies at `offset` (`None`: the
-    /// caller's own frame).
+    /// [`Triangulation::with_offset`], or in the caller's own frame for `None`.
     pub(crate) fn with_frame_offset(mut self, offset: Option<Point>) -> Triangulation {
         self.offset = offset;
         self

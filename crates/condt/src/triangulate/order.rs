@@ -100,8 +100,7 @@ pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
     }
 }
 
-/// The bit pattern of the smallest nonzero magnitude among `points`' coordinates (for
-/// [`logarithmic`]); 1 when every coordinate is zero.
+/// The bit pattern of the smallest nonzero coordinate magnitude (for [`logarithmic`]), 1 if none.
 pub(crate) fn smallest_magnitude(points: &[Point]) -> u64 {
     points
         .iter()
@@ -117,14 +116,6 @@ pub(crate) fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
-}
-
-/// The order in which to insert `points`, as indices into it; with `reorder_crowded`, a grid
-/// cell of [`CROWDED_CELL`] points or more gets an order of its own (see there).
-pub(crate) fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u32> {
-    let mut order = alloc::vec![0; points.len()];
-    insertion_order_into(points, reorder_crowded, &mut order, &mut Scratch::default());
-    order
 }
 
 /// The sort keys of [`insertion_order_into`] and the radix sort's second array, lent by the
@@ -145,7 +136,9 @@ impl Scratch {
     }
 }
 
-/// [`insertion_order`] written into `order` (as long as `points`), sorting in `scratch`.
+/// Writes into `order` (as long as `points`) the order in which to insert `points`, as indices
+/// into it, sorting in `scratch`; with `reorder_crowded`, a grid cell of [`CROWDED_CELL`] points
+/// or more gets an order of its own (see there).
 pub(crate) fn insertion_order_into(
     points: &[Point],
     reorder_crowded: bool,
@@ -255,8 +248,7 @@ fn within_range(points: &[Point], span: f64, min: (f64, f64)) -> Vec<Point> {
 }
 
 /// The sets (whole, before a cut) from which crowded cells are reordered: below it a crowded
-/// cell costs little, and smaller sets (every shipped data set) keep their earlier order and,
-/// with it, their triangulation of cocircular points.
+/// cell costs little, and smaller sets (every shipped data set) keep their cocircular choices.
 pub(crate) const REORDER_FROM: usize = 1 << 16;
 
 /// In a set of [`REORDER_FROM`] points or more, a grid cell this full (a dense cluster, far points
@@ -265,7 +257,7 @@ pub(crate) const REORDER_FROM: usize = 1 << 16;
 const CROWDED_CELL: usize = 1 << 10;
 
 /// Orders the points `run` sharing one grid cell: a crowded one (with `reorder_crowded`) by
-/// [`insertion_order`] on them alone, any other by coordinates, never by input position.
+/// [`insertion_order_into`] on them alone, any other by coordinates, never by input position.
 fn order_cell(points: &[Point], run: &mut [u32], reorder_crowded: bool) {
     let position = |i: &u32| points[*i as usize];
     if reorder_crowded && run.len() >= CROWDED_CELL {
@@ -273,7 +265,8 @@ fn order_cell(points: &[Point], run: &mut [u32], reorder_crowded: bool) {
         // Each call's grid spans its own points, whose extremes along the wider axis land in
         // different cells: every level of this recursion splits its set.
         if cell.iter().any(|p| p.lexicographic_cmp(cell[0]).is_ne()) {
-            let local = insertion_order(&cell, true);
+            let mut local = alloc::vec![0; cell.len()];
+            insertion_order_into(&cell, true, &mut local, &mut Scratch::default());
             let ordered: Vec<u32> = local.iter().map(|&k| run[k as usize]).collect();
             run.copy_from_slice(&ordered);
             return;
@@ -342,6 +335,13 @@ fn radix_sort(values: &mut Vec<u64>, buffer: &mut Vec<u64>, low: u32, bits: u32)
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`insertion_order_into`] into a new list.
+    fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u32> {
+        let mut order = alloc::vec![0; points.len()];
+        insertion_order_into(points, reorder_crowded, &mut order, &mut Scratch::default());
+        order
+    }
 
     /// The same curve one level at a time, without the table.
     fn hilbert_index_by_levels(x: u32, y: u32) -> u64 {

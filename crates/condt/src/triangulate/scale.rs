@@ -1,8 +1,6 @@
-//! Input checks and the exact power-of-two rescalings: one into the frame the predicates decide
-//! in (largest magnitude in [1, 2)), one into the positions the ConDT stages measure (largest
-//! magnitude in [2^200, 2^201)). A power of two changes no sign and no ratio and loses no bit
-//! while no result leaves the normal range; `docs/predicates.md` derives both ranges and when a
-//! set is *wide*, needing the exact predicates.
+//! Input checks and the exact power-of-two rescalings: into the frame the predicates decide in
+//! (largest magnitude in [1, 2)) and into the stages' positions (in [2^200, 2^201)).
+//! `docs/predicates.md` derives both ranges and when a set is *wide*, needing exact predicates.
 
 use crate::error::Error;
 use crate::geometry::{binary_exponent, Point, Scale};
@@ -25,8 +23,7 @@ pub(crate) struct Frames {
     pub(crate) exponents: (i32, i32),
 }
 
-/// Checks the size ([`MAX_POINTS`]) and every point (naming the first non-finite one) and picks
-/// the frames.
+/// Checks the size ([`MAX_POINTS`]) and that every point is finite, and picks the frames.
 pub(crate) fn choose_frames(points: &[Point]) -> Result<Frames, Error> {
     let (count, limit) = (points.len(), MAX_POINTS);
     if count > limit {
