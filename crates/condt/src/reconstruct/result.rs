@@ -224,8 +224,8 @@ impl Reconstruction {
     }
 }
 
-/// The degree of every input point in a byte, the rare degree above 254 in a sorted side list.
-/// Reason: memory; the list is alive at the last step's peak.
+/// The degree of every input point in a byte, the rare degree above 254 in a sorted side list
+/// (memory: the list is alive at the last step's peak).
 #[derive(Clone, Default)]
 pub(super) struct Degrees {
     /// The degree, or [`Degrees::LARGE`] when it is in `large`.
@@ -279,7 +279,7 @@ impl Degrees {
     }
 }
 
-/// The degrees as a list, as `Reconstruction`'s `Debug` showed them before they were packed.
+/// The degrees as a list.
 impl core::fmt::Debug for Degrees {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_list().entries(self.iter()).finish()
