@@ -329,10 +329,9 @@ impl<'t> Graph<'t> {
         self.step(Step::RestoreCrossings).0
     }
 
-    /// Where an edge pairs two samples of degree two and loose ends lie beside it, joins each to
-    /// a loose end in place of the edge; where a point without edges beside it continues both
-    /// sides evenly, joins both to it (the stage [`Stage::Tips`](crate::Stage::Tips), not in the
-    /// paper; its rule: `src/stages/tips.rs`).
+    /// Repairs sharp tips ([`Params::tips`](crate::Params::tips)): an edge pairing two samples of
+    /// degree two gives way to edges to the loose ends beside it, or to a point without edges
+    /// beside it that continues both sides evenly (its rule: `src/stages/tips.rs`).
     ///
     /// ```
     /// use condt::{triangulate, Point};

@@ -43,10 +43,8 @@ use core::time::Duration;
 pub struct Pipeline {
     params: Params,
     state: State,
-    /// What the passes did so far (`None` until one ran).
+    /// What the passes did so far, their time included (`None` until one ran).
     smoothing: Option<Smoothing>,
-    /// Time of every run but the current one and of every smoothing, for [`Smoothing`].
-    earlier_passes: Duration,
     /// Laps at the ends of triangulations and smoothings: what lies between is a run's cost.
     pass_clock: Stopwatch,
 }
@@ -209,16 +207,10 @@ impl Pipeline {
         if params.method == Method::Crust {
             crate::baselines::crust_fits(&tri)?;
         }
-        let assembly = if may_smooth {
-            CurveAssembly::UnlessNoisy
-        } else {
-            CurveAssembly::Now
-        };
         Ok(Pipeline {
             params: *params,
-            state: State::Stages(Run::new(tri, triangulation_time, assembly, None)),
+            state: State::Stages(Run::new(tri, triangulation_time, may_smooth, None)),
             smoothing: None,
-            earlier_passes: Duration::ZERO,
             pass_clock,
         })
     }
@@ -336,10 +328,7 @@ impl Pipeline {
             }
             result.assemble_curves(graph);
         }
-        if let Some(mut smoothing) = self.smoothing {
-            smoothing.earlier_passes = self.earlier_passes;
-            result.smoothing = Some(smoothing);
-        }
+        result.smoothing = self.smoothing;
         State::Done(result)
     }
 
@@ -373,8 +362,8 @@ impl Pipeline {
         }
         drop(final_edges);
         // The replaced run's triangulation is an earlier pass's cost too.
-        self.earlier_passes += triangulation_time;
-        self.earlier_passes += self.pass_clock.lap();
+        smoothing.earlier_passes += triangulation_time;
+        smoothing.earlier_passes += self.pass_clock.lap();
         let parallel = self.params.parallel;
         let run_offset = triangulation.frame_offset();
         let relative = triangulate_with(&smoothed.positions, parallel, None, Some(triangulation))?;
@@ -395,12 +384,7 @@ impl Pipeline {
         smoothing.passes += 1;
         smoothing.moved = moved;
         self.smoothing = Some(smoothing);
-        let assembly = if last_pass {
-            CurveAssembly::Now
-        } else {
-            CurveAssembly::Later
-        };
-        self.state = State::Stages(Run::new(tri, triangulation_time, assembly, previous));
+        self.state = State::Stages(Run::new(tri, triangulation_time, false, previous));
         Ok(StepReport::SmoothingPass {
             pass: smoothing.passes,
             moved,
@@ -410,12 +394,19 @@ impl Pipeline {
 }
 
 impl Run {
+    /// A run on `tri`: with `previous`, a pass another may follow; else with `may_smooth`, a first
+    /// run that passes may follow; else a final run (the last pass, or a run without passes).
     fn new(
         tri: Triangulation,
         triangulation_time: Duration,
-        assembly: CurveAssembly,
+        may_smooth: bool,
         previous: Option<EdgesFingerprint>,
     ) -> Run {
+        let assembly = match previous {
+            Some(_) => CurveAssembly::Later,
+            None if may_smooth => CurveAssembly::UnlessNoisy,
+            None => CurveAssembly::Now,
+        };
         Run {
             tri,
             triangulation_time,

@@ -237,13 +237,6 @@ pub(super) struct Degrees {
 impl Degrees {
     const LARGE: u8 = u8::MAX;
 
-    pub(super) fn with_capacity(n: usize) -> Degrees {
-        Degrees {
-            small: Vec::with_capacity(n),
-            large: Vec::new(),
-        }
-    }
-
     /// Appends the degree of the next input position.
     pub(super) fn push(&mut self, degree: usize) {
         match u8::try_from(degree) {
@@ -298,7 +291,10 @@ impl Tally {
     /// whose own malloc arena (glibc) would take these blocks from the system anew.
     pub(super) fn with_room(n: usize, edge_count: usize) -> Tally {
         Tally {
-            degrees: Degrees::with_capacity(n),
+            degrees: Degrees {
+                small: Vec::with_capacity(n),
+                large: Vec::new(),
+            },
             unused: Vec::new(),
             edges: Vec::with_capacity(edge_count + 2),
         }
