@@ -212,12 +212,9 @@ impl CurveGraph {
         let mut neighbors = Vec::with_capacity(old_neighbors.len() + 3 * changes.len());
         let (mut old, mut new) = (0, 0);
         while old < old_vertices.len() || new < changes.len() {
-            let v = match (old_vertices.get(old), changes.get(new)) {
-                (Some(&(u, _)), Some(&(w, _))) => u.min(w),
-                (Some(&(u, _)), None) => u,
-                (None, Some(&(w, _))) => w,
-                (None, None) => unreachable!(),
-            };
+            // The smaller of the two lists' next vertices (an ended list reads as infinite).
+            let v = old_vertices.get(old).map_or(VertexId::INFINITE, |e| e.0);
+            let v = v.min(changes.get(new).map_or(VertexId::INFINITE, |e| e.0));
             let start = neighbors.len();
             if old_vertices.get(old).is_some_and(|&(u, _)| u == v) {
                 neighbors.extend_from_slice(listed(&old_vertices, &old_neighbors, old));

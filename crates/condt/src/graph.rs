@@ -76,10 +76,7 @@ impl<'t> OutlierRemoval<'t> {
         repair: Repair,
     ) -> Graph<'t> {
         let this = &self.graph;
-        assert!(
-            core::ptr::eq(this.tri, repaired.tri) && core::ptr::eq(this.tri, proximity.tri),
-            "repair_again: the graphs live on different triangulations"
-        );
+        this.assert_beside(&[repaired, proximity], "repair_again: the graphs");
         // An empty `repaired` (not this stage's input) has no quartiles to take a threshold from.
         if repaired.edges.is_empty() {
             return this.clone();
@@ -220,10 +217,7 @@ impl<'t> Graph<'t> {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn remove_local_outliers(&self, before_outliers: &Graph<'t>) -> Graph<'t> {
-        assert!(
-            core::ptr::eq(self.tri, before_outliers.tri),
-            "remove_local_outliers: the two graphs live on different triangulations"
-        );
+        self.assert_beside(&[before_outliers], "remove_local_outliers: the two graphs");
         let earlier: [&[Edge]; 3] = [&before_outliers.edges, &self.edges, &self.edges];
         self.step_with(Step::LocalOutliers, earlier).0
     }
@@ -251,10 +245,7 @@ impl<'t> Graph<'t> {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn confirm_given_back(&self, before_local: &Graph<'t>) -> Graph<'t> {
-        assert!(
-            core::ptr::eq(self.tri, before_local.tri),
-            "confirm_given_back: the two graphs live on different triangulations"
-        );
+        self.assert_beside(&[before_local], "confirm_given_back: the two graphs");
         let earlier: [&[Edge]; 3] = [&self.edges, &before_local.edges, &self.edges];
         self.step_with(Step::ConfirmGivenBack, earlier).0
     }
@@ -338,10 +329,9 @@ impl<'t> Graph<'t> {
         self.step(Step::RestoreCrossings).0
     }
 
-    /// Where an edge pairs two samples of degree two and loose ends lie beside it, joins each to
-    /// a loose end in place of the edge; where a point without edges beside it continues both
-    /// sides evenly, joins both to it (the stage [`Stage::Tips`](crate::Stage::Tips), not in the
-    /// paper; its rule: `src/stages/tips.rs`).
+    /// Repairs sharp tips ([`Params::tips`](crate::Params::tips)): an edge pairing two samples of
+    /// degree two gives way to edges to the loose ends beside it, or to a point without edges
+    /// beside it that continues both sides evenly (its rule: `src/stages/tips.rs`).
     ///
     /// ```
     /// use condt::{triangulate, Point};
@@ -371,6 +361,12 @@ impl<'t> Graph<'t> {
         let tri = self.tri;
         let graph = CurveGraph::new(tri.num_points(), &self.edges);
         curves_in_input_positions(tri, &graph)
+    }
+
+    /// Panics with "`which` live on different triangulations" unless `others` live on this one's.
+    fn assert_beside(&self, others: &[&Graph<'t>], which: &str) {
+        let beside = others.iter().all(|g| core::ptr::eq(self.tri, g.tri));
+        assert!(beside, "{which} live on different triangulations");
     }
 
     /// Runs `step` (its parameter checked) and reports whether its rule applied.

@@ -61,10 +61,9 @@
 //! `alloc`, and depends on `robust` and `libm` alone.
 //!
 //! ## Layout
-//! Public as modules: [`mesh`] (the half-edge level), [`predicates`] (the exact signs) and
-//! [`geometry`] (points, exact power-of-two scaling); the rest is re-exported here.
-//! `docs/architecture.md` draws the modules in layers, each using only those below it, with what
-//! each owns and may not touch, and maps the workspace around the crate.
+//! Public as modules: [`mesh`], [`predicates`] and [`geometry`] (points, exact power-of-two
+//! scaling); the rest is re-exported here. `docs/architecture.md` draws the modules in layers,
+//! each using only those below it, with what each owns and may not touch.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![deny(unsafe_code)]
 #![warn(missing_docs)]

@@ -264,16 +264,14 @@ impl<'a> Explainer<'a> {
                 // The crossing is the point that gained arms: an added edge's end, or the removed
                 // chord's common neighbour after the stage.
                 let gained = |v: usize| self.after_of(v).len() > self.degrees_before[v];
-                let vertex = if added {
-                    if gained(a) {
-                        a
-                    } else {
-                        b
-                    }
-                } else {
+                let vertex = if !added {
                     let at_b = self.after_of(b);
                     let shared = |w: &usize| at_b.contains(w) && gained(*w);
                     self.after_of(a).into_iter().find(shared).unwrap_or(a)
+                } else if gained(a) {
+                    a
+                } else {
+                    b
                 };
                 Reason::Crossing { vertex }
             }

@@ -142,18 +142,15 @@ impl RunPositions for Gathered<'_> {
 pub(crate) struct Smoothed {
     /// The smoothed position of every input position, relative to `corner`.
     pub(crate) positions: Vec<Point>,
-    /// When `wanted`, the same positions in the run's input frame, not relative to the corner:
-    /// the fallback when the relative ones merge two distinct points even where merging points
-    /// stay put (a coordinate far below the extent is lost in the difference), which would make
-    /// the result depend on the input order. Else empty (memory).
+    /// When `wanted`, the same positions in the run's input frame: the fallback where the relative
+    /// ones merge distinct points even after [`keep_apart`]. Else empty (memory).
     pub(crate) in_run_frame: Vec<Point>,
     /// Where `positions`' zero lies in the caller's coordinates: the starting positions' corner,
     /// or the input frame's zero in `own_frame` (display only).
     pub(crate) corner: Point,
     /// How many points moved.
     pub(crate) moved: usize,
-    /// Whether `positions` are in the run's own input frame, not relative to the corner: where
-    /// the box's extent overflows that frame, or the corner's frame is too coarse for the set.
+    /// Whether `positions` are in the run's own input frame ([`PassFrame`]), not the corner's.
     pub(crate) own_frame: bool,
 }
 
@@ -171,10 +168,9 @@ pub(crate) fn smoothed_positions(
 ) -> Smoothed {
     let n = tri.len();
     let graph = CurveGraph::new(n, edges);
-    let PassFrame { corner, own_frame } = PassFrame::of(tri, &graph);
+    let frame = PassFrame::of(tri, &graph);
+    let PassFrame { corner, own_frame } = frame;
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
-    // What `moving` measures in: the positions as they are moved.
-    let measured = |p: Point| if own_frame { p } else { relative(p) };
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
     let mut moved = 0;
@@ -182,24 +178,17 @@ pub(crate) fn smoothed_positions(
     // The position handed on: `relative`, or the input frame's in `own_frame`; the
     // latter is computed only then or when `wanted`, and kept in `in_run_frame`.
     let mut emit = |relative: Point, framed: &dyn Fn() -> Point| {
-        if !(wanted || own_frame) {
-            return relative;
-        }
-        let framed = framed();
+        let framed = (wanted || own_frame).then(framed);
         if wanted {
-            in_run_frame.push(framed);
+            in_run_frame.extend(framed);
         }
-        if own_frame {
-            framed
-        } else {
-            relative
-        }
+        framed.filter(|_| own_frame).unwrap_or(relative)
     };
     let positions = (0..n)
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_points()[v.index()]);
-            let Some([x, y]) = moving(tri, &graph, v, measured) else {
+            let Some([x, y]) = moving(tri, &graph, v, frame) else {
                 return emit(tri.stage_to_input(q), &|| tri.frame_point(i));
             };
             // In the stages' frame, where these sums and products neither overflow nor underflow at
@@ -246,18 +235,12 @@ pub(crate) fn unmoved(tri: &impl RunPositions, own_frame: bool) -> impl Fn(usize
 }
 
 /// The frame a pass measures and moves points in: relative to the lower left corner of the box
-/// (so that an exact translation gives the same result), or the run's own input frame (from its
-/// zero), at the cost of that invariance, where the corner's frame cannot hold the set: where
-/// the box's extent overflows it (a width beyond `f64::MAX`; such a set's translates overflow
-/// anyway, and the moved points stay in the box, finite), and where its grid is too coarse for
-/// the set's spacing. That grid is about the extent times 2^-52: where the extent is over 2^26
-/// times the final edges' root mean square length, the moved positions would keep less than
-/// half of a double's bits below the spacing (a far point beside a fine curve: found by a
-/// fuzzer, one point at 1e17 beside a curve of spacing 0.1 put every sample on a grid of 16 once
-/// the corner was the far point's, so mirroring the set changed the result, and once moved no
-/// point at all). A mean, not the shortest edge: a pair of near duplicates joined by an edge is
-/// not a set's spacing, and would give up the invariance for nothing. The test reads lengths
-/// only: an exactly translated set gets the same answer.
+/// (exact translations give the same result), or the run's own input frame where the corner's
+/// cannot hold the set: its extent overflows (a width beyond `f64::MAX`), or it is over 2^26
+/// times the final edges' root mean square length, so that its grid (the extent times 2^-52)
+/// would keep less than half of a double's bits below the spacing (docs/condt.md, *Smoothing
+/// passes*). A mean, not the shortest edge: two near duplicates joined by an edge are not a
+/// set's spacing. The test reads lengths only, so an exactly translated set gets the same answer.
 #[derive(Copy, Clone, Debug)]
 struct PassFrame {
     /// The corner, in the stages' frame.
@@ -266,6 +249,16 @@ struct PassFrame {
 }
 
 impl PassFrame {
+    /// A position in the frame the pass moves points in.
+    #[inline]
+    fn measured(self, p: Point) -> Point {
+        if self.own_frame {
+            p
+        } else {
+            Point::new(p.x - self.corner.x, p.y - self.corner.y)
+        }
+    }
+
     fn of(tri: &impl RunPositions, graph: &CurveGraph) -> PassFrame {
         let corner = corner(tri);
         let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
@@ -303,20 +296,19 @@ impl PassFrame {
 }
 
 /// The two neighbours of `v` when a pass moves it: `v` has exactly two edges in `graph`, meeting
-/// at more than a right angle (the module's rule, the one place it is written).
-/// Positions are compared in the frame the pass moves them in (`measured`: relative to the
-/// corner, or the run's own, [`PassFrame`]), as they are moved.
+/// at more than a right angle (the module's rule, the one place it is written), measured in the
+/// frame the pass moves points in.
 fn moving(
     tri: &impl RunPositions,
     graph: &CurveGraph,
     v: VertexId,
-    measured: impl Fn(Point) -> Point,
+    frame: PassFrame,
 ) -> Option<[VertexId; 2]> {
     if graph.degree(v) != 2 {
         return None;
     }
     let [x, y] = graph.first_two(v);
-    let at = |u: VertexId| measured(tri.vertex_points()[u.index()]);
+    let at = |u: VertexId| frame.measured(tri.vertex_points()[u.index()]);
     let (p, a, b) = (at(v), at(x), at(y));
     // Wider than a right angle exactly when u·w < 0.
     let dot = (a.x - p.x) * (b.x - p.x) + (a.y - p.y) * (b.y - p.y);
@@ -332,18 +324,11 @@ fn corner(tri: &impl RunPositions) -> Point {
 /// `graph`. Where none moves, a pass would triangulate the same points again and give the same
 /// result: no pass runs (reconstruct's rule).
 pub(crate) fn moves_any(tri: &impl RunPositions, graph: &CurveGraph) -> bool {
-    let PassFrame { corner, own_frame } = PassFrame::of(tri, graph);
-    let measured = |p: Point| {
-        if own_frame {
-            p
-        } else {
-            Point::new(p.x - corner.x, p.y - corner.y)
-        }
-    };
+    let frame = PassFrame::of(tri, graph);
     (0..tri.len() as u32)
         .map(VertexId::new)
         .filter(|&v| tri.is_vertex(v))
-        .any(|v| moving(tri, graph, v, measured).is_some())
+        .any(|v| moving(tri, graph, v, frame).is_some())
 }
 
 /// What follows a run of a reconstruction split in tiles ([`gathered_smoothing_pass`]).

@@ -1,5 +1,5 @@
-//! A run's stage history: the [`StageRecord`]s, the [`Undo`] deltas that keep each stage's input in
-//! a few bytes (memory) and the walk back ([`History::output_of`]). It may not run a stage or choose one.
+//! A run's stage history: the [`StageRecord`]s, the [`Undo`] deltas that keep each stage's input
+//! in a few bytes (memory) and the walk back. It may not run a stage or choose one.
 
 use super::result::StageReport;
 use crate::adjacency::Edge;
@@ -48,8 +48,7 @@ impl History {
         }
     }
 
-    /// Stage `k`'s output, walked back from `last` (the last output); `first` serves
-    /// [`Undo::First`].
+    /// Stage `k`'s output, walked back from `last` (the last output); `first` serves `Undo::First`.
     pub(super) fn output_of<'e>(
         &'e self,
         last: &'e [Edge],
@@ -126,13 +125,11 @@ impl Undo {
     /// How to get `input` back from `output` (the input itself when no delta is smaller). Matched
     /// greedily: an input edge equal to the next unmatched output edge is kept, others removed,
     /// the output's unmatched tail appended. Edges are distinct, so undoing is exact; a stage that
-    /// keeps its order and appends its additions (most do) gets the smallest delta, its change.
-    /// Repairing again lists its additions among the rest: [`Undo::aligned`] (memory: its input
-    /// was kept whole, 8 bytes an edge, to the run's last step, whose peak it raised).
+    /// keeps its order and appends its additions (most do) gets the smallest delta, its change;
+    /// one that lists its additions among the rest (repairing again) gets [`Undo::aligned`].
     pub(super) fn of(input: Vec<Edge>, output: &[Edge]) -> Undo {
-        // Past this many removals the greedy match gives way to the aligned one, whose delta is
-        // no larger: the list grown so far is then spare (memory), and a second pass that
-        // counted first would cost every stage that changes its edges one more read of both.
+        // Past this many removals the aligned delta, no larger, takes over: the list grown so far
+        // is spare, and counting first would cost every stage one more read of both lists.
         let most = input.len() / ALIGNED_PAST;
         let mut removed = Vec::new();
         let mut kept = 0;

@@ -156,7 +156,7 @@ mod tests {
     #[test]
     fn degrees_keep_large_values_exactly() {
         let values = [0, 2, 254, 255, 300, 1, 70_000, 254, u32::MAX as usize, 3];
-        let mut degrees = Degrees::with_capacity(values.len());
+        let mut degrees = Degrees::default();
         for &d in &values {
             degrees.push(d);
         }

@@ -1,5 +1,5 @@
 //! What a reconstruction runs: the [`Method`], the checked [`Params`] and the stage order, decided
-//! only in `Params::steps` (read publicly through [`Params::stages`]). It may not run a stage nor implement one ([`crate::stages`]).
+//! only in `Params::steps` ([`Params::stages`]). It may not run nor implement a stage.
 
 use crate::error::Error;
 use crate::stages::outliers::IqrRule;
@@ -80,16 +80,13 @@ pub struct Params {
     /// beside it, or both to the tip's sample if it has no edge, instead (beyond the paper;
     /// `src/stages/tips.rs`).
     pub tips: bool,
-    /// Smoothing passes (beyond the paper): when one point in a hundred or more ends or branches
-    /// the curves, each point with two edges at a wide angle moves halfway to its neighbours'
-    /// midpoint and the stages run again, up to three times: noise can push a sample into the empty
-    /// circle of two true neighbours, whose edge the moved points can have again. Edges stay
-    /// between input positions, the [`triangulation`](Reconstruction::triangulation) is of the
-    /// moved points; [`reconstruct`] runs passes, [`reconstruct_triangulation`] none (`smooth.rs`).
+    /// Smoothing passes (beyond the paper; `smooth.rs`): where the curves show noise, points move
+    /// towards their neighbours and the stages run again, up to three times. Edges stay between
+    /// input positions, the [`triangulation`](Reconstruction::triangulation) is of the moved
+    /// points; [`reconstruct`] runs passes, [`reconstruct_triangulation`] none.
     pub smooth: bool,
-    /// Use rayon's threads (only with the `parallel` feature; the same result): the two halves of
-    /// a large triangulation at once, the per-vertex stages and the final tally from 65,536 points
-    /// (below it, waking the workers costs more than they save).
+    /// Use rayon's threads (only with the `parallel` feature; the same result) on large sets (below
+    /// 65,536 points, waking the workers costs more than they save).
     pub parallel: bool,
 }
 
@@ -208,11 +205,10 @@ impl Params {
             }),
             _ => None,
         };
-        // The local outlier removal follows both: it reads three or more edges as a branch, which
-        // only a repaired graph makes true; the given-back check reads what it added. Clumps are
-        // whole components, removed before a join can reach one. The gaps join the loose ends left;
-        // a junction takes only an end that no gap join or crossing claimed. Tips re-pair only
-        // the loose ends that every join before left.
+        // The local outlier removal reads three or more edges as a branch, which only a repaired
+        // graph makes true; the given-back check reads what it added. Clumps go before a join can
+        // reach one; a junction takes only an end no gap join or crossing claimed; tips re-pair
+        // the loose ends every join before left.
         let steps = [
             first,
             second,

@@ -43,10 +43,8 @@ use core::time::Duration;
 pub struct Pipeline {
     params: Params,
     state: State,
-    /// What the passes did so far (`None` until one ran).
+    /// What the passes did so far, their time included (`None` until one ran).
     smoothing: Option<Smoothing>,
-    /// Time of every run but the current one and of every smoothing, for [`Smoothing`].
-    earlier_passes: Duration,
     /// Laps at the ends of triangulations and smoothings: what lies between is a run's cost.
     pass_clock: Stopwatch,
 }
@@ -209,16 +207,10 @@ impl Pipeline {
         if params.method == Method::Crust {
             crate::baselines::crust_fits(&tri)?;
         }
-        let assembly = if may_smooth {
-            CurveAssembly::UnlessNoisy
-        } else {
-            CurveAssembly::Now
-        };
         Ok(Pipeline {
             params: *params,
-            state: State::Stages(Run::new(tri, triangulation_time, assembly, None)),
+            state: State::Stages(Run::new(tri, triangulation_time, may_smooth, None)),
             smoothing: None,
-            earlier_passes: Duration::ZERO,
             pass_clock,
         })
     }
@@ -336,34 +328,26 @@ impl Pipeline {
             }
             result.assemble_curves(graph);
         }
-        if let Some(mut smoothing) = self.smoothing {
-            smoothing.earlier_passes = self.earlier_passes;
-            result.smoothing = Some(smoothing);
-        }
+        result.smoothing = self.smoothing;
         State::Done(result)
     }
 
     /// Moves `result`'s points along its curves and triangulates them again for the next run.
     fn smoothing_pass(&mut self, mut result: Reconstruction) -> Result<StepReport<'static>, Error> {
         let mut smoothing = self.smoothing.unwrap_or_default();
-        // Memory: only the previous run's edge fingerprint (none for a last pass), triangulation
-        // and final graph are kept, each freed once read (the triangulation's arrays hold the
-        // next one); the moved points once triangulated.
+        // Memory: of the previous run only its edge fingerprint (none for a last pass),
+        // triangulation (whose arrays hold the next) and final graph are kept, each freed once read.
         let last_pass = smoothing.passes + 1 >= MAX_PASSES;
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
         let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
         let mut smoothed = smoothed_positions(&triangulation, &final_edges, false);
         let merged_before = triangulation.num_points() - triangulation.num_vertices();
-        // Relative to the corner, so an exact translation gives the same result (or in the run's
-        // own input frame where the corner's cannot hold the set: `smooth::PassFrame`). Where
-        // that merges distinct points (making the result depend on input order), the points that
-        // would meet stay where they were, still relative to the corner; where even that merges
-        // points (two that the difference from the corner rounds together), the pass is made in
-        // the run's own input frame, where its points are distinct, computed only then, while
-        // the old triangulation is at hand. The triangulation merges exactly equal points, as
-        // `repeats` counts them; a wide set is given both at once, and its next triangulation
-        // tells whether points merged.
+        // Relative to the corner (or `smooth::PassFrame`'s own frame); where that merges distinct
+        // points, those stay where they were, and where even that merges, the pass is made in the
+        // run's own input frame, computed only then (docs/condt.md, *Smoothing passes*). `repeats`
+        // counts what the triangulation merges; a wide set is given both at once, and its next
+        // triangulation tells whether points merged.
         let relative_merges = repeats(&smoothed.positions) > merged_before
             || choose_frames(&smoothed.positions).is_ok_and(|frames| frames.wide);
         let (mut back, mut back_in_run_frame) = (0, 0);
@@ -378,8 +362,8 @@ impl Pipeline {
         }
         drop(final_edges);
         // The replaced run's triangulation is an earlier pass's cost too.
-        self.earlier_passes += triangulation_time;
-        self.earlier_passes += self.pass_clock.lap();
+        smoothing.earlier_passes += triangulation_time;
+        smoothing.earlier_passes += self.pass_clock.lap();
         let parallel = self.params.parallel;
         let run_offset = triangulation.frame_offset();
         let relative = triangulate_with(&smoothed.positions, parallel, None, Some(triangulation))?;
@@ -400,12 +384,7 @@ impl Pipeline {
         smoothing.passes += 1;
         smoothing.moved = moved;
         self.smoothing = Some(smoothing);
-        let assembly = if last_pass {
-            CurveAssembly::Now
-        } else {
-            CurveAssembly::Later
-        };
-        self.state = State::Stages(Run::new(tri, triangulation_time, assembly, previous));
+        self.state = State::Stages(Run::new(tri, triangulation_time, false, previous));
         Ok(StepReport::SmoothingPass {
             pass: smoothing.passes,
             moved,
@@ -415,12 +394,19 @@ impl Pipeline {
 }
 
 impl Run {
+    /// A run on `tri`: with `previous`, a pass another may follow; else with `may_smooth`, a first
+    /// run that passes may follow; else a final run (the last pass, or a run without passes).
     fn new(
         tri: Triangulation,
         triangulation_time: Duration,
-        assembly: CurveAssembly,
+        may_smooth: bool,
         previous: Option<EdgesFingerprint>,
     ) -> Run {
+        let assembly = match previous {
+            Some(_) => CurveAssembly::Later,
+            None if may_smooth => CurveAssembly::UnlessNoisy,
+            None => CurveAssembly::Now,
+        };
         Run {
             tri,
             triangulation_time,
@@ -523,21 +509,15 @@ impl Run {
     /// The tally and the curves, or the curve graph when they wait (not [`CurveAssembly::Now`]).
     fn finish(self, params: &Params) -> (Reconstruction, Option<CurveGraph>) {
         let mut clock = Stopwatch::start();
-        let Run {
-            tri,
-            triangulation_time,
-            history,
-            current,
-            current_graph,
-            assembly,
-            ..
-        } = self;
+        let tri = &self.tri;
         let n = tri.num_points();
         let in_parallel = params.parallel && n >= PARALLEL_FROM;
         let (waiting, curves, tally) = on_worker(in_parallel, n, || {
-            let last = current.as_slice();
-            let graph = current_graph.unwrap_or_else(|| CurveGraph::new(n, last));
-            let curves_now = match assembly {
+            let last = self.current.as_slice();
+            let graph = self
+                .current_graph
+                .unwrap_or_else(|| CurveGraph::new(n, last));
+            let curves_now = match self.assembly {
                 CurveAssembly::Now => true,
                 // Without duplicates the input positions name the ids one to one, so the count
                 // reads the records in memory order instead of the input's (speed).
@@ -547,34 +527,34 @@ impl Run {
                     } else {
                         shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
                     };
-                    !noisy || !moves_any(&tri, &graph)
+                    !noisy || !moves_any(tri, &graph)
                 }
                 // A pass that would move no point would give this result again.
-                CurveAssembly::Later => !moves_any(&tri, &graph),
+                CurveAssembly::Later => !moves_any(tri, &graph),
             };
             let room = Tally::with_room(n, last.len());
             let (curves, tally) = if curves_now {
                 both(
                     in_parallel,
-                    || curves_in_input_positions(&tri, &graph),
-                    || tally(&tri, &graph, last.len(), room),
+                    || curves_in_input_positions(tri, &graph),
+                    || tally(tri, &graph, last.len(), room),
                 )
             } else {
-                (Vec::new(), tally(&tri, &graph, last.len(), room))
+                (Vec::new(), tally(tri, &graph, last.len(), room))
             };
             ((!curves_now).then_some(graph), curves, tally)
         });
         let curves_time = clock.lap();
         let result = Reconstruction {
             params: *params,
-            triangulation: tri,
-            history,
-            final_edges: current,
+            triangulation: self.tri,
+            history: self.history,
+            final_edges: self.current,
             edges: tally.edges,
             degrees: tally.degrees,
             curves,
             unused: tally.unused,
-            triangulation_time,
+            triangulation_time: self.triangulation_time,
             curves_time,
             smoothing: None,
         };

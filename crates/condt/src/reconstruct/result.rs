@@ -224,8 +224,8 @@ impl Reconstruction {
     }
 }
 
-/// The degree of every input point in a byte, the rare degree above 254 in a sorted side list.
-/// Reason: memory; the list is alive at the last step's peak.
+/// The degree of every input point in a byte, the rare degree above 254 in a sorted side list
+/// (memory: the list is alive at the last step's peak).
 #[derive(Clone, Default)]
 pub(super) struct Degrees {
     /// The degree, or [`Degrees::LARGE`] when it is in `large`.
@@ -236,13 +236,6 @@ pub(super) struct Degrees {
 
 impl Degrees {
     const LARGE: u8 = u8::MAX;
-
-    pub(super) fn with_capacity(n: usize) -> Degrees {
-        Degrees {
-            small: Vec::with_capacity(n),
-            large: Vec::new(),
-        }
-    }
 
     /// Appends the degree of the next input position.
     pub(super) fn push(&mut self, degree: usize) {
@@ -279,7 +272,7 @@ impl Degrees {
     }
 }
 
-/// The degrees as a list, as `Reconstruction`'s `Debug` showed them before they were packed.
+/// The degrees as a list.
 impl core::fmt::Debug for Degrees {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_list().entries(self.iter()).finish()
@@ -298,7 +291,10 @@ impl Tally {
     /// whose own malloc arena (glibc) would take these blocks from the system anew.
     pub(super) fn with_room(n: usize, edge_count: usize) -> Tally {
         Tally {
-            degrees: Degrees::with_capacity(n),
+            degrees: Degrees {
+                small: Vec::with_capacity(n),
+                large: Vec::new(),
+            },
             unused: Vec::new(),
             edges: Vec::with_capacity(edge_count + 2),
         }
