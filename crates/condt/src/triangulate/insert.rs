@@ -404,6 +404,15 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     }
 
     /// Splits the triangle `(a, b, c)` of `e = a → b` into `(a, b, v)`, `(b, c, v)`, `(c, a, v)`.
+    ///
+    /// ```text
+    ///          c                    c
+    ///         / \                  /|\
+    ///        /   \                / | \
+    ///       /  v  \      =>      /  v  \
+    ///      /       \            / /   \ \
+    ///     a ------- b          a ------- b
+    /// ```
     fn split_triangle(&mut self, e: HalfEdgeId, v: VertexId) {
         let (a, b, c) = (self.origin(e), self.origin(e.next()), self.origin(e.prev()));
         let (out_ab, out_bc, out_ca) = (self.twin(e), self.twin(e.next()), self.twin(e.prev()));
@@ -425,6 +434,14 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
 
     /// Splits the finite edge `e = a → b`, between `(a, b, c)` and `(b, a, d)`, at `v` into the
     /// four triangles `(v, b, c)`, `(v, c, a)`, `(v, a, d)`, `(v, d, b)`.
+    ///
+    /// ```text
+    ///          c                    c
+    ///        /   \                / | \
+    ///     a ---v--- b    =>    a ---v--- b
+    ///        \   /                \ | /
+    ///          d                    d
+    /// ```
     fn split_edge(&mut self, e: HalfEdgeId, v: VertexId) {
         let f = self.twin(e);
         let (a, b) = (self.origin(e), self.origin(f));
@@ -500,6 +517,14 @@ impl<'a, 'm, K: Kernel> Builder<'a, 'm, K> {
     /// Replaces the edge `u – w` (half-edges `e` in `(u, w, v)` and `f` in `(w, u, q)`) by `v – q`,
     /// giving `(v, u, q)` and `(v, q, w)`; queues the edge of the first opposite `v`, returns the
     /// second's. `f` and `[u, w, q]` come as the caller read them, to save dividing and loading.
+    ///
+    /// ```text
+    ///          v                    v
+    ///        /   \                / | \
+    ///       u --- w      =>      u  |  w
+    ///        \   /                \ | /
+    ///          q                    q
+    /// ```
     fn flip(
         &mut self,
         e: HalfEdgeId,
