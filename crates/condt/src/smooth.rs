@@ -154,8 +154,8 @@ pub(crate) struct Smoothed {
     pub(crate) own_frame: bool,
 }
 
-/// The smoothed position of every input position for a reconstruction on `tri` with final graph
-/// `edges`, relative to the lower left corner of `tri`'s box. Why relative: sums round by the
+/// The smoothed position of every input position for a reconstruction on `tri` followed by the
+/// pass `input`, relative to the lower left corner of `tri`'s box. Why relative: sums round by the
 /// magnitude of the coordinates, so after an exact translation absolute positions could change the
 /// next triangulation; differences from the corner do not (`(q + t) - (c + t)` rounds as `q - c`).
 /// Why above 90°: the suite's and the paper's sharp corners are under 60° and noise tilts edges by
@@ -163,12 +163,11 @@ pub(crate) struct Smoothed {
 /// about 30° of turn per sample) is far above it along its smooth parts.
 pub(crate) fn smoothed_positions(
     tri: &impl RunPositions,
-    edges: &[Edge],
+    input: &PassInput,
     wanted: bool,
 ) -> Smoothed {
     let n = tri.len();
-    let graph = CurveGraph::new(n, edges);
-    let frame = PassFrame::of(tri, &graph);
+    let PassInput { ref graph, frame } = *input;
     let PassFrame { corner, own_frame } = frame;
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
     let offset = tri.offset();
@@ -188,7 +187,7 @@ pub(crate) fn smoothed_positions(
         .map(|i| {
             let v = tri.vertex(i);
             let q = relative(tri.vertex_points()[v.index()]);
-            let Some([x, y]) = moving(tri, &graph, v, frame) else {
+            let Some([x, y]) = moving(tri, graph, v, frame) else {
                 return emit(tri.stage_to_input(q), &|| tri.frame_point(i));
             };
             // In the stages' frame, where these sums and products neither overflow nor underflow at
@@ -320,15 +319,43 @@ fn corner(tri: &impl RunPositions) -> Point {
     lower_left(tri.vertex_points().iter().copied()).unwrap_or_default()
 }
 
-/// Whether a smoothing pass would move any point of the reconstruction on `tri` with final graph
-/// `graph`. Where none moves, a pass would triangulate the same points again and give the same
-/// result: no pass runs (reconstruct's rule).
-pub(crate) fn moves_any(tri: &impl RunPositions, graph: &CurveGraph) -> bool {
-    let frame = PassFrame::of(tri, graph);
-    (0..tri.len() as u32)
-        .map(VertexId::new)
-        .filter(|&v| tri.is_vertex(v))
-        .any(|v| moving(tri, graph, v, frame).is_some())
+/// What a smoothing pass reads of the run before it: the final curve graph and the frame the pass
+/// moves points in, measured once for both the test whether a pass moves any point and the pass.
+#[derive(Debug)]
+pub(crate) struct PassInput {
+    graph: CurveGraph,
+    frame: PassFrame,
+}
+
+impl PassInput {
+    /// The pass after the reconstruction on `tri` with final graph `graph`, if it would move any
+    /// point; else the graph back. Where none moves, a pass would triangulate the same points
+    /// again and give the same result: no pass runs (reconstruct's rule).
+    pub(crate) fn moving(
+        tri: &impl RunPositions,
+        graph: CurveGraph,
+    ) -> Result<PassInput, CurveGraph> {
+        let frame = PassFrame::of(tri, &graph);
+        let moves_any = (0..tri.len() as u32)
+            .map(VertexId::new)
+            .filter(|&v| tri.is_vertex(v))
+            .any(|v| moving(tri, &graph, v, frame).is_some());
+        if moves_any {
+            Ok(PassInput { graph, frame })
+        } else {
+            Err(graph)
+        }
+    }
+
+    /// The final curve graph of the run before the pass.
+    pub(crate) fn graph(&self) -> &CurveGraph {
+        &self.graph
+    }
+
+    /// The final curve graph, for the curves when no pass follows after all.
+    pub(crate) fn into_graph(self) -> CurveGraph {
+        self.graph
+    }
 }
 
 /// What follows a run of a reconstruction split in tiles ([`gathered_smoothing_pass`]).
@@ -419,10 +446,11 @@ pub fn gathered_smoothing_pass(
     if passes >= MAX_PASSES {
         return Ok(GatheredPass::Done);
     }
-    let graph = CurveGraph::new(n, &listed);
-    if !moves_any(&run, &graph) {
-        return Ok(GatheredPass::Done);
-    }
+    let input = match PassInput::moving(&run, CurveGraph::new(n, &listed)) {
+        Ok(input) => input,
+        Err(_) => return Ok(GatheredPass::Done),
+    };
+    let graph = input.graph();
     let follows = if passes == 0 {
         shows_noise((0..n).map(|i| graph.degree(run.vertex(i))))
     } else {
@@ -438,17 +466,17 @@ pub fn gathered_smoothing_pass(
     if !follows {
         return Ok(GatheredPass::Done);
     }
-    drop(graph);
+    drop(listed);
     // As `Pipeline::smoothing_pass`, with `repeats` for what the next triangulation merges (the
     // same count where the set is not wide).
-    let mut smoothed = smoothed_positions(&run, &listed, false);
+    let mut smoothed = smoothed_positions(&run, &input, false);
     let merged_before = repeats(points);
     let wide = |positions: &[Point]| choose_frames(positions).is_ok_and(|frames| frames.wide);
     let was_wide = wide(&smoothed.positions);
     if repeats(&smoothed.positions) <= merged_before && !was_wide {
         return Ok(GatheredPass::Next(smoothed.positions));
     }
-    smoothed = smoothed_positions(&run, &listed, true);
+    smoothed = smoothed_positions(&run, &input, true);
     keep_apart(&mut smoothed.positions, unmoved(&run, smoothed.own_frame));
     if was_wide || wide(&smoothed.positions) {
         return Ok(GatheredPass::InOnePiece);
@@ -1029,7 +1057,7 @@ mod tests {
             .unwrap();
         let edges = pair.map(|w| ordered(last, w));
         let graph = CurveGraph::new(tri.num_points(), &edges);
-        assert!(super::moves_any(&tri, &graph));
+        assert!(super::PassInput::moving(&tri, graph).is_ok());
     }
 
     /// The share rule: an open arc whose two ends are at least one point in a hundred starts a

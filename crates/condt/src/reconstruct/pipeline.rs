@@ -13,7 +13,7 @@ use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::smooth::{
-    keep_apart, moves_any, repeats, shows_noise, smoothed_positions, unmoved, MAX_PASSES,
+    keep_apart, repeats, shows_noise, smoothed_positions, unmoved, PassInput, MAX_PASSES,
 };
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
@@ -80,7 +80,7 @@ pub enum Upcoming {
 enum State {
     Stages(Run),
     /// A run ended showing noise (or differing from the run before): a smoothing pass is next.
-    Smooth(Reconstruction),
+    Smooth(Reconstruction, PassInput),
     Done(Reconstruction),
     /// A step failed (its error was returned), leaving nothing to go on with.
     Failed(Error),
@@ -224,7 +224,7 @@ impl Pipeline {
     pub fn triangulation(&self) -> Option<&Triangulation> {
         match &self.state {
             State::Stages(run) => Some(&run.tri),
-            State::Smooth(result) | State::Done(result) => Some(result.triangulation()),
+            State::Smooth(result, _) | State::Done(result) => Some(result.triangulation()),
             State::Failed(_) | State::Moving => None,
         }
     }
@@ -246,7 +246,7 @@ impl Pipeline {
                 let next = self.params.stages().get(run.history.records.len()).copied();
                 next.map(Upcoming::Stage)
             }
-            State::Smooth(_) => Some(Upcoming::SmoothingPass),
+            State::Smooth(..) => Some(Upcoming::SmoothingPass),
             State::Done(_) | State::Failed(_) | State::Moving => None,
         }
     }
@@ -274,9 +274,11 @@ impl Pipeline {
                 };
                 Ok(Some(StepReport::Stage(self.report(k))))
             }
-            State::Smooth(result) => {
+            State::Smooth(result, input) => {
                 let n = result.triangulation().num_points();
-                let pass = on_worker(self.params.parallel, n, || self.smoothing_pass(result));
+                let pass = on_worker(self.params.parallel, n, || {
+                    self.smoothing_pass(result, input)
+                });
                 Ok(Some(pass.inspect_err(|&e| self.state = State::Failed(e))?))
             }
             State::Done(result) => {
@@ -311,7 +313,7 @@ impl Pipeline {
                 let graph = Graph::new(&run.tri, Cow::Borrowed(&run.current));
                 run.history.records[k].report(k, graph)
             }
-            State::Smooth(result) | State::Done(result) => result.report(k),
+            State::Smooth(result, _) | State::Done(result) => result.report(k),
             State::Failed(_) | State::Moving => unreachable!("a stage that ran leaves a state"),
         }
     }
@@ -322,26 +324,31 @@ impl Pipeline {
         let (mut result, waiting) = run.finish(&self.params);
         // Curves wait after a noisy first run (no `previous`) and after a pass another may follow,
         // which is final at a fixed point: the same final edges as the pass before.
-        if let Some(graph) = waiting {
+        if let Some(pass) = waiting {
             if previous.is_none_or(|edges| edges != EdgesFingerprint::of(&result.edges)) {
-                return State::Smooth(result);
+                return State::Smooth(result, pass);
             }
-            result.assemble_curves(graph);
+            result.assemble_curves(pass.into_graph());
         }
         result.smoothing = self.smoothing;
         State::Done(result)
     }
 
     /// Moves `result`'s points along its curves and triangulates them again for the next run.
-    fn smoothing_pass(&mut self, mut result: Reconstruction) -> Result<StepReport<'static>, Error> {
+    fn smoothing_pass(
+        &mut self,
+        mut result: Reconstruction,
+        pass: PassInput,
+    ) -> Result<StepReport<'static>, Error> {
         let mut smoothing = self.smoothing.unwrap_or_default();
         // Memory: of the previous run only its edge fingerprint (none for a last pass),
-        // triangulation (whose arrays hold the next) and final graph are kept, each freed once read.
+        // triangulation (whose arrays hold the next) and final curve graph are kept, each freed
+        // once read.
         let last_pass = smoothing.passes + 1 >= MAX_PASSES;
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
-        let (triangulation, final_edges, triangulation_time) = result.into_last_graph();
-        let mut smoothed = smoothed_positions(&triangulation, &final_edges, false);
+        let (triangulation, triangulation_time) = result.into_last_triangulation();
+        let mut smoothed = smoothed_positions(&triangulation, &pass, false);
         let merged_before = triangulation.num_points() - triangulation.num_vertices();
         // Relative to the corner (or `smooth::PassFrame`'s own frame); where that merges distinct
         // points, those stay where they were, and where even that merges, the pass is made in the
@@ -352,7 +359,7 @@ impl Pipeline {
             || choose_frames(&smoothed.positions).is_ok_and(|frames| frames.wide);
         let (mut back, mut back_in_run_frame) = (0, 0);
         if relative_merges {
-            smoothed = smoothed_positions(&triangulation, &final_edges, true);
+            smoothed = smoothed_positions(&triangulation, &pass, true);
             back = keep_apart(
                 &mut smoothed.positions,
                 unmoved(&triangulation, smoothed.own_frame),
@@ -360,7 +367,7 @@ impl Pipeline {
             let original = |i: usize| triangulation.frame_point(triangulation.vertex(i));
             back_in_run_frame = keep_apart(&mut smoothed.in_run_frame, original);
         }
-        drop(final_edges);
+        drop(pass);
         // The replaced run's triangulation is an earlier pass's cost too.
         smoothing.earlier_passes += triangulation_time;
         smoothing.earlier_passes += self.pass_clock.lap();
@@ -506,8 +513,9 @@ impl Run {
         });
     }
 
-    /// The tally and the curves, or the curve graph when they wait (not [`CurveAssembly::Now`]).
-    fn finish(self, params: &Params) -> (Reconstruction, Option<CurveGraph>) {
+    /// The tally and the curves, or the pass that follows when they wait (not
+    /// [`CurveAssembly::Now`]).
+    fn finish(self, params: &Params) -> (Reconstruction, Option<PassInput>) {
         let mut clock = Stopwatch::start();
         let tri = &self.tri;
         let n = tri.num_points();
@@ -517,8 +525,8 @@ impl Run {
             let graph = self
                 .current_graph
                 .unwrap_or_else(|| CurveGraph::new(n, last));
-            let curves_now = match self.assembly {
-                CurveAssembly::Now => true,
+            let pass = match self.assembly {
+                CurveAssembly::Now => Err(graph),
                 // Without duplicates the input positions name the ids one to one, so the count
                 // reads the records in memory order instead of the input's (speed).
                 CurveAssembly::UnlessNoisy => {
@@ -527,22 +535,30 @@ impl Run {
                     } else {
                         shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
                     };
-                    !noisy || !moves_any(tri, &graph)
+                    if noisy {
+                        PassInput::moving(tri, graph)
+                    } else {
+                        Err(graph)
+                    }
                 }
                 // A pass that would move no point would give this result again.
-                CurveAssembly::Later => !moves_any(tri, &graph),
+                CurveAssembly::Later => PassInput::moving(tri, graph),
             };
             let room = Tally::with_room(n, last.len());
-            let (curves, tally) = if curves_now {
-                both(
-                    in_parallel,
-                    || curves_in_input_positions(tri, &graph),
-                    || tally(tri, &graph, last.len(), room),
-                )
-            } else {
-                (Vec::new(), tally(tri, &graph, last.len(), room))
-            };
-            ((!curves_now).then_some(graph), curves, tally)
+            match pass {
+                Ok(pass) => {
+                    let tally = tally(tri, pass.graph(), last.len(), room);
+                    (Some(pass), Vec::new(), tally)
+                }
+                Err(graph) => {
+                    let (curves, tally) = both(
+                        in_parallel,
+                        || curves_in_input_positions(tri, &graph),
+                        || tally(tri, &graph, last.len(), room),
+                    );
+                    (None, curves, tally)
+                }
+            }
         });
         let curves_time = clock.lap();
         let result = Reconstruction {

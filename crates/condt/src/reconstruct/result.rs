@@ -213,14 +213,10 @@ impl Reconstruction {
         self.curves_time += clock.lap();
     }
 
-    /// The triangulation, final edges and triangulation time; the rest is freed here (a partial
-    /// move would keep it until the variable is assigned again, after the next pass).
-    pub(super) fn into_last_graph(self) -> (Triangulation, Vec<Edge>, Duration) {
-        (
-            self.triangulation,
-            self.final_edges,
-            self.triangulation_time,
-        )
+    /// The triangulation and triangulation time; the rest is freed here (a partial move would
+    /// keep it until the variable is assigned again, after the next pass).
+    pub(super) fn into_last_triangulation(self) -> (Triangulation, Duration) {
+        (self.triangulation, self.triangulation_time)
     }
 }
 
