@@ -216,7 +216,37 @@ fn write_data(
         let sep = if k == 0 { "" } else { "," };
         write!(out, "{sep}\"{}\"", stage.name())?;
     }
+    write!(out, "],\"stageColors\":[")?;
+    for (k, stage) in stages.iter().enumerate() {
+        let sep = if k == 0 { "" } else { "," };
+        write!(out, "{sep}\"{}\"", stage_color(*stage))?;
+    }
     write!(out, "]}}")
+}
+
+/// Each stage's layer colour in the viewer, in the order of [`Stage::ALL`]: the array's length is
+/// the number of stages, so a stage added to the table does not build until it has its colour.
+/// The NN-Crust and the Crust share one: each replaces the proximity graph, never beside the other.
+const STAGE_COLORS: [&str; Stage::ALL.len()] = [
+    "#3b6fd8", // proximity
+    "#9b4dca", // repair
+    "#e08a00", // IQR outliers
+    "#6a3d9a", // repair again
+    "#1a9e8f", // local outliers
+    "#8c564b", // given-back check
+    "#bcbd22", // clumps
+    "#5fae2e", // gaps
+    "#e377c2", // junctions
+    "#17becf", // crossings
+    "#b5179e", // tips
+    "#d62728", // NN-Crust
+    "#d62728", // Crust
+];
+
+/// The viewer's layer colour of `stage`.
+fn stage_color(stage: Stage) -> &'static str {
+    let k = Stage::ALL.iter().position(|&s| s == stage);
+    STAGE_COLORS[k.expect("Stage::ALL holds every stage")]
 }
 
 /// Significant digits of positions (relative to the box, over its longer side): a ten-millionth

@@ -56,6 +56,18 @@ try {
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
   const details = () => page.innerText("#details");
 
+  // Every edge layer has a colour swatch in the legend, each stage its own (the page draws a
+  // layer in its swatch's colour).
+  const swatches = await page.$$eval("#legend .swatch", (marks) =>
+    marks.map((m) => [m.parentElement.textContent, getComputedStyle(m).backgroundColor]));
+  const layerCount = await page.evaluate(() => window.condtViewer.edgeLayers);
+  assert.equal(swatches.length, layerCount, "a swatch per edge layer");
+  for (const [name, color] of swatches) {
+    assert.ok(color && color !== "rgba(0, 0, 0, 0)", `layer "${name}" has a colour`);
+  }
+  const stageColors = swatches.slice(1, -1).map(([, color]) => color);
+  assert.equal(new Set(stageColors).size, stageColors.length, `stage colours differ: ${swatches}`);
+
   // A point of the result: the panel shows its ring, the test and the degree the edge list has.
   const chosen = [...degree.keys()].sort((a, b) => a - b)[0];
   let [x, y] = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);

@@ -4,20 +4,19 @@
   const started = performance.now();
   const data = JSON.parse(document.getElementById("data").textContent);
   const P = data.points, E = data.edges, n = P.length / 2, m = E.length / 2;
-  const COLORS = {
-    delaunay: "#c4c4c4", proximity: "#3b6fd8", repair: "#9b4dca", "IQR outliers": "#e08a00",
-    "local outliers": "#1a9e8f", "given-back check": "#8c564b", gaps: "#5fae2e", "NN-Crust": "#d62728", Crust: "#d62728", result: "#111111",
-  };
+  // Stage layers take the colour the file gives each stage (src/html.rs, STAGE_COLORS).
+  const COLORS = { delaunay: "#c4c4c4", result: "#111111" };
   const WIDTH = { delaunay: 1, result: 2.5 };
   const layers = data.layers.map((name, k) => ({
     name, kind: k === 0 ? "delaunay" : data.stageNames[k - 1], edges: [],
     isResult: k === data.layers.length - 1 && k > 0,
+    stageColor: k === 0 ? COLORS.delaunay : data.stageColors[k - 1],
   }));
   for (let e = 0; e < m; e++) {
     for (let bits = data.member[e], k = 0; bits > 0; bits >>= 1, k++) if (bits & 1) layers[k].edges.push(e);
   }
   for (const layer of layers) {
-    layer.color = layer.isResult ? COLORS.result : COLORS[layer.kind];
+    layer.color = layer.isResult ? COLORS.result : layer.stageColor;
     layer.width = layer.isResult ? WIDTH.result : (WIDTH[layer.kind] || 1.5);
     layer.on = layer.kind === "delaunay" || layer.isResult;
     if (layer.isResult) layer.name += " (the result)";
@@ -339,7 +338,7 @@
   draw();
   // For tests and scripts: where things are on screen, and how long the page took.
   window.condtViewer = {
-    points: n, edges: m,
+    points: n, edges: m, edgeLayers: layers.length,
     screenOf: (i) => { const r = canvas.getBoundingClientRect(); return [r.left + sx(i), r.top + sy(i)]; },
     edgeIndex: (a, b) => { for (let k = 0; k < m; k++) if (E[2 * k] === Math.min(a, b) && E[2 * k + 1] === Math.max(a, b)) return k; return -1; },
     edgeMidpoint: (k) => { const r = canvas.getBoundingClientRect(); return [r.left + (sx(E[2 * k]) + sx(E[2 * k + 1])) / 2, r.top + (sy(E[2 * k]) + sy(E[2 * k + 1])) / 2]; },
