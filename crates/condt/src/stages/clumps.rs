@@ -13,8 +13,8 @@
 //! zig-zag passes smoothly at most one time in three. Sequential; O(n) beyond the union-find.
 
 use super::local_outliers::{
-    components, only_smooth_cycles, separated_counts_until, smooth_and_regular, without_components,
-    MIN_SAMPLES, OUTLIER_SHARE,
+    components, only_smooth_cycles, separated_at, separated_counts_until, smooth_and_regular,
+    without_components, MIN_SAMPLES, OUTLIER_SHARE,
 };
 use super::Outcome;
 use crate::adjacency::{CurveGraph, Edge};
@@ -59,9 +59,22 @@ pub(crate) fn remove_clumps(
     let Some(separated) = separated_counts_until(tri, &graph, &root, Some((&size, guard))) else {
         return Outcome::unchanged_with(Some(graph));
     };
-    let is_clump = |r: usize| {
-        size[r] > 0 && 2 * smooth[r] < size[r] && usize::from(separated[r]) >= MIN_SAMPLES
-    };
+    // A tie (exactly half passing, such as six points with two ends and one corner) shows no
+    // majority of curve passages either; it goes only when every one of its points is apart, as a
+    // clump lies apart whole, while a piece of a noisy curve runs on towards the curve's other
+    // samples at its ends. The separation count stops at MIN_SAMPLES, so ties are tested here,
+    // in one pass over the points (the test walks a Delaunay ring only for a tie's points).
+    let apart = |r: usize| size[r] > 0 && usize::from(separated[r]) >= MIN_SAMPLES;
+    let mut tie_apart: Vec<bool> = (0..n)
+        .map(|r| apart(r) && 2 * smooth[r] == size[r])
+        .collect();
+    for (i, &r) in root.iter().enumerate() {
+        let v = VertexId::new(i as u32);
+        if tie_apart[r as usize] && graph.degree(v) > 0 && !separated_at(tri, &graph, &root, v) {
+            tie_apart[r as usize] = false;
+        }
+    }
+    let is_clump = |r: usize| apart(r) && (2 * smooth[r] < size[r] || tie_apart[r]);
     let points_in = |keep: &dyn Fn(usize) -> bool| -> u64 {
         (0..n)
             .filter(|&r| keep(r))
@@ -78,7 +91,7 @@ pub(crate) fn remove_clumps(
     // One byte per component while the output is built, not the tallies (memory: the curve
     // graph is kept to hand on).
     let clump: Vec<bool> = (0..n).map(is_clump).collect();
-    drop((size, smooth, separated));
+    drop((size, smooth, separated, tie_apart));
     let kept = without_components(edges, &root, &clump);
     drop((root, clump));
     Outcome::changed(edges, kept, Some(graph))
@@ -127,6 +140,21 @@ mod tests {
         let out = kept(&clump);
         assert_eq!(out.len(), 40, "the circle stays, the clump goes: {out:?}");
         assert!(out.iter().all(|&[a, b]| a < 40 && b < 40));
+    }
+
+    #[test]
+    fn a_six_point_chain_with_one_corner_apart_from_the_curve_goes() {
+        // Two ends, three smooth passages and a corner of 70°: exactly half passing, all apart.
+        let chain = [
+            (40.0, 0.0),
+            (41.0, 0.0),
+            (42.0, 0.1),
+            (43.0, 0.3),
+            (44.0, 0.6),
+            (43.4, 1.4),
+        ];
+        let out = kept(&chain);
+        assert_eq!(out.len(), 40, "the circle stays, the chain goes: {out:?}");
     }
 
     #[test]

@@ -611,7 +611,12 @@ fn merged_along(root: Vec<u32>, mut kept: Vec<bool>, joins: Vec<Edge>) -> (Vec<u
 
 /// Whether `v` is separated (rule 4): every Delaunay neighbour outside its component lies beyond
 /// [`SEPARATION`] times its longest edge. An unused point is its own root, so it counts as outside.
-fn separated_at(tri: &Triangulation, graph: &CurveGraph, root: &[u32], v: VertexId) -> bool {
+pub(super) fn separated_at(
+    tri: &Triangulation,
+    graph: &CurveGraph,
+    root: &[u32],
+    v: VertexId,
+) -> bool {
     let longest = tops(tri, graph, v)[0];
     let (p, r) = (tri.vertex_point(v), root[v.index()]);
     tri.mesh().neighbors(v).all(|w| {
