@@ -111,7 +111,7 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::RepairedAgain => write!(f, "repaired again without the edges above √T")?,
             Reason::Component => write!(f, "isolated component")?,
             Reason::Spur => write!(f, "short spur")?,
-            Reason::Clump => write!(f, "a clump: fewer than half its points pass smoothly")?,
+            Reason::Clump => write!(f, "a clump: at most half its points pass smoothly")?,
             Reason::GapClosed => write!(f, "gap closed")?,
             Reason::Junction => write!(f, "joined at a junction of three curves")?,
             Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,

@@ -238,7 +238,7 @@
       () => "a given-back component not clearly apart",
       () => "chosen by the baseline",
       () => "joined at a junction of three curves",
-      () => "a clump: fewer than half its points pass smoothly",
+      () => "a clump: at most half its points pass smoothly",
       () => "repaired again without the edges above √T",
       () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,
       () => `restored the crossing at vertex ${c.x}`,

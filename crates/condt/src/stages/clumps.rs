@@ -7,8 +7,10 @@
 //!
 //! Rule (docs/condt.md, *Clumps*, with measurements and losses): a component apart from the rest
 //! (rule 4's test; one that is not is a piece of a noisy band, rule 4's to judge) goes when under
-//! half of its points pass [`smooth_and_regular`], unless the clumps and the components not apart
-//! would hold [`OUTLIER_SHARE`] or more of the points with edges. Why half: a curve's ends, corners
+//! half of its points pass [`smooth_and_regular`], or exactly half and every point of it is apart
+//! (a tie shows no majority either; a piece of a noisy curve is not apart at its ends), unless the
+//! clumps and the components not apart would hold [`OUTLIER_SHARE`] or more of the points with
+//! edges. Why half: a curve's ends, corners
 //! and junctions are a minority at any sampling dense enough for the proximity graph; a random
 //! zig-zag passes smoothly at most one time in three. Sequential; O(n) beyond the union-find.
 

@@ -166,8 +166,9 @@ the filter cut that passes near an unused point stays cut)",
             flag: "clumps",
             help: "(default on; off with --paper) after the local outlier removal,
 remove components fewer than half of whose points a curve passes
-smoothly and evenly (clumps of outliers), unless that would
-remove a quarter of the points with edges",
+smoothly and evenly, or half and every point apart (clumps of
+outliers), unless that would remove a quarter of the points with
+edges",
         }),
     },
     Row {
