@@ -60,7 +60,7 @@ const METHODS: &[(&str, Method)] = &[
 ];
 
 /// A stage's switch as a keyword: its command-line flag with `_` for `-`.
-fn switch_keyword(stage: Stage) -> Option<String> {
+pub(crate) fn switch_keyword(stage: Stage) -> Option<String> {
     stage.switch().map(|switch| switch.flag.replace('-', "_"))
 }
 

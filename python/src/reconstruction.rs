@@ -174,9 +174,13 @@ impl Reconstruction {
     /// still tell how ConDT's Algorithm 1 would have seen the edge, which the baseline did not
     /// use, and the text says so ("chosen by the Crust; Algorithm 1 would have seen it as: ...").
     ///
+    /// The stories are the last run's: after smoothing passes (the default on noisy points) that
+    /// is the run on the moved points, whose Delaunay triangulation can differ from the input's.
+    ///
     /// Raises ``IndexError`` when ``i`` or ``j`` is not an input position, ``ValueError`` when
     /// they are the same point (the same position, or duplicates), ``KeyError`` when the edge is
-    /// neither a Delaunay edge nor one a stage added.
+    /// neither an edge of the triangulation the last run walked nor one a stage added (the
+    /// message says when smoothing passes moved the points).
     ///
     /// >>> import condt
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (2, 0), (2, 9)])
@@ -224,8 +228,16 @@ impl Reconstruction {
             .binary_search_by_key(&edge, |s| s.edge)
             .map(|k| &stories[k])
             .map_err(|_| {
+                let walked = match self.result.smoothing() {
+                    Some(smoothing) => format!(
+                        "an edge of the Delaunay triangulation of the points as {} smoothing \
+                         pass(es) moved them, which the last run walked",
+                        smoothing.passes
+                    ),
+                    None => "a Delaunay edge".to_string(),
+                };
                 PyKeyError::new_err(format!(
-                    "{a}-{b} is neither a Delaunay edge nor an edge a stage added"
+                    "{a}-{b} is neither {walked} nor an edge a stage added"
                 ))
             })?;
         EdgeStory::new(py, story)

@@ -80,8 +80,11 @@ fn tiled_flow(params: &Params) -> Result<Flow, String> {
         Stage::Outliers,
         Stage::RepairAgain,
     ];
-    if let Some(stage) = stages.iter().find(|s| !tiled.contains(s)) {
-        return Err(format!("the {stage} step"));
+    if let Some(&stage) = stages.iter().find(|s| !tiled.contains(s)) {
+        let keyword = crate::params::switch_keyword(stage)
+            .map(|keyword| format!(" ({keyword}=False leaves it out)"))
+            .unwrap_or_default();
+        return Err(format!("the {} step{keyword}", stage.name()));
     }
     let at = |stage: Stage| stages.iter().position(|&s| s == stage);
     Ok(match (at(Stage::Repair), at(Stage::Outliers)) {

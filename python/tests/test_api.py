@@ -540,8 +540,27 @@ def test_explain_tells_why_with_numbers():
     tri = condt.triangulate(points)
     delaunay = {tuple(e) for e in tri.edges.tolist()}
     far = next((0, j) for j in range(1, len(points)) if (0, j) not in delaunay)
-    with pytest.raises(KeyError, match="neither a Delaunay edge"):
+    with pytest.raises(KeyError, match="is neither .* nor an edge a stage added"):
         r.explain(*far)
+
+
+def test_after_smoothing_passes_explain_speaks_of_the_moved_points():
+    # A noisy circle: passes run, and some Delaunay edges of the input are no Delaunay edges
+    # of the moved points the last run walked; the refusal says so instead of denying that
+    # they are Delaunay edges.
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    points = np.column_stack([np.cos(t), np.sin(t)]) + rng.normal(0, 0.006, (300, 2))
+    r = condt.reconstruct(points)
+    refused = []
+    for a, b in condt.triangulate(points).edges.tolist():
+        try:
+            r.explain(a, b)
+        except KeyError as e:
+            refused.append(str(e))
+    assert refused, "the passes changed some Delaunay edges"
+    assert all("smoothing pass" in message for message in refused), refused[:1]
+    assert not any("neither a Delaunay edge" in message for message in refused)
 
 
 def test_geojson_and_shapely_agree():

@@ -115,7 +115,9 @@ pub struct EdgeStory {
 }
 
 impl Reconstruction {
-    /// Every Delaunay or added edge's [`EdgeStory`], sorted by edge; O(n log n), on demand.
+    /// Every Delaunay or added edge's [`EdgeStory`], sorted by edge; O(n log n), on demand. The
+    /// stories are the last run's: after smoothing passes, of the triangulation of the moved
+    /// points ([`Reconstruction::triangulation`]), whose edges can differ from the input's.
     pub fn provenance(&self) -> Vec<EdgeStory> {
         let tri = self.triangulation();
         let reports: Vec<_> = self.stages().collect();
