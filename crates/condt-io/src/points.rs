@@ -153,11 +153,23 @@ const BOM_INSIDE: &str =
     "a byte-order mark (U+FEFF) inside the file; it is allowed only at the very start";
 
 /// `true` for a token that names a column (`x`, `lat`, `"y"`) rather than holds a number: it
-/// starts with a letter or `_`, quotes aside, and is not a number (`inf`, `NaN`).
+/// starts with a letter or `_`, quotes aside, and is not a number (`inf`, `NaN`). Nor is it a
+/// missing value's marker (`NA`, `None`, `null`) or a value in a wrapper (`np.float64(51.8)`, a
+/// decimal number inside): a first line of such words is a point that failed, not a header, and
+/// skipping it would drop a row without a word.
 fn is_name(token: &str) -> bool {
     let bare = token.trim_matches(|c| c == '"' || c == '\'');
+    let missing = ["na", "n/a", "none", "null", "nil", "missing"]
+        .iter()
+        .any(|marker| bare.eq_ignore_ascii_case(marker));
+    let holds_decimal = bare
+        .as_bytes()
+        .windows(3)
+        .any(|w| w[0].is_ascii_digit() && w[1] == b'.' && w[2].is_ascii_digit());
     token.parse::<f64>().is_err()
         && bare.parse::<f64>().is_err()
+        && !missing
+        && !holds_decimal
         && bare
             .chars()
             .next()
@@ -996,6 +1008,24 @@ mod tests {
                 "{header}"
             );
         }
+    }
+
+    /// A first line of missing-value markers or wrapped numbers is a point that cannot be read,
+    /// not a header to skip (a new user's report: `NA NA` first dropped a row silently).
+    #[test]
+    fn a_first_line_of_missing_values_is_an_error_not_a_header() {
+        for first in [
+            "NA NA",
+            "None,None",
+            "null null",
+            "np.float64(51.8), np.float64(267.05)",
+        ] {
+            let text = format!("{first}\n0 0\n1 0\n");
+            let err = parse_points(&text, "m.txt").unwrap_err().to_string();
+            assert!(err.starts_with("m.txt:1: "), "{first}: {err}");
+        }
+        let points = parse_points("x1 y1\n0 0\n1 0\n", "m.txt").unwrap();
+        assert_eq!(points.len(), 2, "names with digits are still a header");
     }
 
     /// The ignored third column may be NaN or infinite (found by a fuzzer: `0 0 nan`, a missing
