@@ -41,8 +41,8 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 /// The first record that is not blank is the header: comma-separated column names, quoted or
 /// not; when it is exactly two numbers there is no header and every record is `x,y`. The first
 /// coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the second the column
-/// named `y` (or `lat`, `latitude`), compared without case and blanks around them;
-/// other columns are ignored. Every following record that is not blank is a point. Fields are
+/// named `y` (or `lat`, `latitude`), compared without case and blanks around them; a header
+/// that names one of them in two columns (`x,y,lon,lat`) is an error; other columns are ignored. Every following record that is not blank is a point. Fields are
 /// read as RFC 4180 has them: a field may be quoted, `""` is a quote inside quotes, and a quoted
 /// field may hold commas and line ends; a quoted field must end at its closing quote. Lines end
 /// at LF, CRLF or a lone CR. A missing column, a field that is not a finite number, a record
@@ -63,6 +63,9 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 /// let err = parse_csv("name,value\na,1\n", "table.csv").unwrap_err();
 /// assert_eq!(err.line, Some(1));
 /// assert!(err.to_string().contains("no x column"));
+///
+/// let err = parse_csv("x,y,lon,lat\n1,2,3,4\n", "both.csv").unwrap_err();
+/// assert!(err.to_string().contains("names the x coordinate in two columns (1 and 3)"));
 ///
 /// let err = parse_csv("x,y\n1,5,2,5\n", "decimal_commas.csv").unwrap_err();
 /// assert_eq!(err.to_string(), "decimal_commas.csv:2: 4 fields, but the header has 2");
@@ -183,20 +186,38 @@ fn header_columns(
     source: &Source<'_>,
     line: usize,
 ) -> Result<(usize, usize), IoError> {
+    let header = quoted(raw.trim_end_matches(['\r', '\n']));
     let find = |wanted: &dyn Fn(&str) -> bool, axis: &str| {
-        record
-            .iter()
-            .position(|name| wanted(&name.trim().to_ascii_lowercase()))
-            .ok_or_else(|| {
-                source.error(
+        let mut named =
+            (0..record.len()).filter(|&k| wanted(&record[k].trim().to_ascii_lowercase()));
+        match (named.next(), named.next()) {
+            (Some(column), None) => Ok(column),
+            (None, _) => {
+                // A semicolon-separated file reads as one column here: say so.
+                let hint = if raw.contains(';') && record.len() == 1 {
+                    "; this reader splits columns at commas, not semicolons"
+                } else {
+                    ""
+                };
+                Err(source.error(
                     line,
                     format!(
                         "the header has no {axis} column (x, lon, lng, longitude and y, lat, \
-                         latitude are read): {}",
-                        quoted(raw.trim_end_matches(['\r', '\n']))
+                         latitude are read): {header}{hint}"
                     ),
-                )
-            })
+                ))
+            }
+            // Two columns for one axis (`x,y,x`, `x,y,lon,lat`): which to read would be a guess.
+            (Some(first), Some(second)) => Err(source.error(
+                line,
+                format!(
+                    "the header names the {axis} coordinate in two columns ({} and {}): {header}; \
+                     keep one",
+                    first + 1,
+                    second + 1
+                ),
+            )),
+        }
     };
     if record.len() > 2 && all_numbers(record) {
         return Err(source.error(
@@ -293,6 +314,28 @@ mod tests {
     fn the_header_chooses_the_columns_in_any_order_and_case() {
         let pts = parse_csv("Latitude,Longitude\r\n1,2\r\n\r\n3,4\r\n", "geo.csv").unwrap();
         assert_eq!(pts, vec![Point::new(2.0, 1.0), Point::new(4.0, 3.0)]);
+    }
+
+    /// A header naming one coordinate twice is refused, not resolved by column order (a new
+    /// user's report: `x,y,x` and `lat,lon,x` were read without a word).
+    #[test]
+    fn a_coordinate_named_in_two_columns_is_refused() {
+        for (header, axis) in [
+            ("x,y,x", "x"),
+            ("x,y,lon,lat", "x"),
+            ("lat,lon,x", "x"),
+            ("y,x,lat", "y"),
+        ] {
+            let err = parse_csv(&format!("{header}\n1,2,3,4\n"), "h.csv").unwrap_err();
+            assert_eq!(err.line, Some(1), "{header}");
+            let message = err.to_string();
+            assert!(
+                message.contains(&format!("the {axis} coordinate in two columns")),
+                "{message}"
+            );
+        }
+        let err = parse_csv("x;y\n1;2\n", "semi.csv").unwrap_err().to_string();
+        assert!(err.contains("not semicolons"), "{err}");
     }
 
     #[test]
