@@ -142,11 +142,12 @@ fn main() {
         .unwrap_or_else(|| "../shared/data".into());
     let dir = Path::new(&dir);
     let Ok(index) = std::fs::read_to_string(dir.join("index.tsv")) else {
-        println!(
-            "no data at {} (index.tsv missing): nothing to evaluate",
+        eprintln!(
+            "no data at {} (index.tsv missing): name the data directory, \
+             `cargo run --release -p condt-eval --example evaluate -- DIR [--paper]`",
             dir.display()
         );
-        return;
+        std::process::exit(1);
     };
     let column = |at: usize, value: &str| -> Vec<String> {
         index
