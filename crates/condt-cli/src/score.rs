@@ -41,8 +41,9 @@ Example:
   condt reconstruct case.pts -o case.edges && condt score case.pts case.edges case.gt
 
 Edge files hold one edge `i j` per line, in point numbers of POINTS (`#` lines and blank lines
-are skipped); a name ending in .npy (any case) is a NumPy array of shape (m, 2), uint32 or
-int64, either byte order, as `condt reconstruct -o out.npy` writes it. `-` reads standard input
+are skipped); a name ending in .npy (any case) is a NumPy array of shape (m, 2) of integers
+(uint32 or int64 as `condt reconstruct -o out.npy` writes it, or any other width), either byte
+order. `-` reads standard input
 (as text) for one of POINTS, OUTPUT and TRUTH. Prints: exact (the edge sets are equal),
 precision, recall and F1 on the edge sets, the output edges touching a point the truth gives no
 edge (outlier edges), and the largest and the root-mean-square distance of the output to the

@@ -364,6 +364,22 @@ fn npy_edge_arrays_are_read() {
                 &c_order(|i| (i as u32).to_be_bytes().to_vec()),
             ),
         ),
+        (
+            "i4.npy",
+            npy(
+                "<i4",
+                "(3, 2)",
+                &c_order(|i| (i as i32).to_le_bytes().to_vec()),
+            ),
+        ),
+        (
+            "u8.npy",
+            npy(
+                "<u8",
+                "(3, 2)",
+                &c_order(|i| (i as u64).to_le_bytes().to_vec()),
+            ),
+        ),
         ("fortran.npy", [fortran, columns].concat()),
     ] {
         let file = dir.path().join(name);
@@ -418,9 +434,9 @@ fn npy_edge_arrays_are_read() {
             "\"<f8\" is not supported",
         ),
         (
-            "int32.npy",
-            npy("<i4", "(1, 2)", &small),
-            "\"<i4\" is not supported",
+            "bool.npy",
+            npy("|b1", "(1, 2)", &[0, 1]),
+            "\"|b1\" is not supported",
         ),
         ("shape.npy", npy("<u4", "(2,)", &small), "shape (2)"),
         ("three.npy", npy("<u4", "(1, 3)", &small), "shape (1, 3)"),

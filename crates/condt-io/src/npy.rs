@@ -581,22 +581,62 @@ pub(super) fn read_npy_file(path: &std::path::Path, shown: &str) -> Result<Vec<P
     read_npy_from(&mut file, shown, length)
 }
 
-/// The element types an edge array may hold: those [`write_npy_edges`] writes.
+/// An integer element type of an edge array: its width in bytes and whether it is signed.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Index {
-    U32,
-    I64,
+struct Index {
+    size: usize,
+    signed: bool,
+}
+
+impl Index {
+    /// The type a NumPy `descr` names (`'<u4'`, `'>i8'`, `'|u1'`, ...) and whether it is
+    /// big-endian, or `None` for any other type.
+    fn of(descr: &str) -> Option<(Index, bool)> {
+        let (order, kind, size) = (descr.get(..1)?, descr.get(1..2)?, descr.get(2..)?);
+        let big_endian = match order {
+            "<" | "|" | "=" => false,
+            ">" => true,
+            _ => return None,
+        };
+        let signed = match kind {
+            "i" => true,
+            "u" => false,
+            _ => return None,
+        };
+        let size: usize = size.parse().ok().filter(|s| [1, 2, 4, 8].contains(s))?;
+        Some((Index { size, signed }, big_endian && size > 1))
+    }
+
+    /// The number in `bytes` (exactly `size` of them), or `None` for an unsigned 64-bit one
+    /// beyond `i64` (no point number can be that large).
+    fn value(self, bytes: &[u8], big_endian: bool) -> Option<i64> {
+        let mut wide = [0u8; 8];
+        if big_endian {
+            wide[8 - self.size..].copy_from_slice(bytes);
+            wide.reverse();
+        } else {
+            wide[..self.size].copy_from_slice(bytes);
+        }
+        let raw = u64::from_le_bytes(wide);
+        if self.signed {
+            // Sign-extend from the type's width.
+            let shift = 64 - 8 * self.size as u32;
+            Some(((raw << shift) as i64) >> shift)
+        } else {
+            i64::try_from(raw).ok()
+        }
+    }
 }
 
 /// Parses the bytes of a NumPy `.npy` file of edges, as [`write_npy_edges`] and
 /// [`write_npy_triangulation_edges`] write them (and `numpy.save` of such an array): shape
-/// `(m, 2)`, uint32 or int64, either byte order, C or Fortran order, NPY version 1.0, 2.0 or
-/// 3.0. Row `r` is edge `r`, its two point numbers as they are (a self-loop or a repeated edge
+/// `(m, 2)`, any integer type (condt writes uint32 or int64; int32 is NumPy's default on some
+/// systems), either byte order, C or Fortran order, NPY version 1.0, 2.0 or 3.0. Row `r` is edge `r`, its two point numbers as they are (a self-loop or a repeated edge
 /// is the caller's to judge). `file` names the source in error messages.
 ///
 /// # Errors
 /// Content errors naming `file`, in words (never the file's raw bytes): another dtype (float,
-/// int32, ...) or shape, a file shorter or longer than its header says, a negative number
+/// bool, ...) or shape, a file shorter or longer than its header says, a negative number
 /// (with its row), or no NumPy header at all.
 ///
 /// ```
@@ -656,20 +696,14 @@ pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, I
         fortran_order,
         shape,
     } = entries(&text).map_err(|message| content(file, message))?;
-    let (index, big_endian) = match descr.as_str() {
-        "<u4" => (Index::U32, false),
-        ">u4" => (Index::U32, true),
-        "<i8" => (Index::I64, false),
-        ">i8" => (Index::I64, true),
-        other => {
-            return Err(content(
-                file,
-                format!(
-                    "element type {other:?} is not supported: edges are uint32 ('<u4', '>u4') \
-                     or int64 ('<i8', '>i8'), as condt writes them"
-                ),
-            ))
-        }
+    let Some((index, big_endian)) = Index::of(&descr) else {
+        return Err(content(
+            file,
+            format!(
+                "element type {descr:?} is not supported: edges are integers ('<u4' and '<i8' \
+                 as condt writes them, or any other signed or unsigned width)"
+            ),
+        ));
     };
     let rows = match shape[..] {
         [rows, 2] => rows,
@@ -683,10 +717,7 @@ pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, I
             ))
         }
     };
-    let size: u64 = match index {
-        Index::U32 => 4,
-        Index::I64 => 8,
-    };
+    let size = index.size as u64;
     let data = &bytes[header_length..];
     // Compared before anything is allocated: a damaged header must not ask for gigabytes.
     let wanted = rows.checked_mul(2 * size);
@@ -712,14 +743,15 @@ pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, I
     }
     let rows = rows as usize;
     let size = size as usize;
-    let value = |k: usize| -> i64 {
+    let value = |k: usize| -> Result<i64, IoError> {
         let bytes = &data[k * size..(k + 1) * size];
-        match (index, big_endian) {
-            (Index::U32, false) => u32::from_le_bytes(bytes.try_into().unwrap_or([0; 4])).into(),
-            (Index::U32, true) => u32::from_be_bytes(bytes.try_into().unwrap_or([0; 4])).into(),
-            (Index::I64, false) => i64::from_le_bytes(bytes.try_into().unwrap_or([0; 8])),
-            (Index::I64, true) => i64::from_be_bytes(bytes.try_into().unwrap_or([0; 8])),
-        }
+        index.value(bytes, big_endian).ok_or_else(|| {
+            let row = if fortran_order { k % rows } else { k / 2 };
+            content(
+                file,
+                format!("row {row}: a point number beyond 2^63 is too large"),
+            )
+        })
     };
     // C order holds row after row; Fortran order the first column, then the second.
     let at = |row: usize, column: usize| {
@@ -729,9 +761,9 @@ pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, I
             2 * row + column
         }
     };
-    Ok((0..rows)
-        .map(|row| [value(at(row, 0)), value(at(row, 1))])
-        .collect())
+    (0..rows)
+        .map(|row| Ok([value(at(row, 0))?, value(at(row, 1))?]))
+        .collect()
 }
 
 /// A version 1.0 header (version 2.0 when the dictionary is over 65,535 bytes, which no shape
@@ -957,6 +989,83 @@ pub fn write_npy_triangulation_edges(out: &mut dyn Write, tri: &Triangulation) -
 mod tests {
     use super::*;
     use crate::pieces::on_rayon_and_one_thread;
+
+    /// An `.npy` of shape (2, 2) with element type `descr` and these data bytes.
+    fn index_file(descr: &str, data: &[u8]) -> Vec<u8> {
+        let mut bytes = header(descr, &[2, 2]);
+        bytes.extend_from_slice(data);
+        bytes
+    }
+
+    /// Edges of any integer width and sign read as their numbers (a new user's report: int32,
+    /// NumPy's default integer on some systems, and uint64 were refused by `condt score`).
+    #[test]
+    fn edges_of_any_integer_type_read_alike() {
+        let rows = [[0i64, 1], [1, 300]];
+        let numbers = rows.concat();
+        let little = |size: usize| -> Vec<u8> {
+            numbers
+                .iter()
+                .flat_map(|&v| v.to_le_bytes()[..size].to_vec())
+                .collect()
+        };
+        let big = |size: usize| -> Vec<u8> {
+            numbers
+                .iter()
+                .flat_map(|&v| v.to_be_bytes()[8 - size..].to_vec())
+                .collect()
+        };
+        for (descr, data) in [
+            ("<i2", little(2)),
+            (">i2", big(2)),
+            ("<u2", little(2)),
+            ("<i4", little(4)),
+            (">i4", big(4)),
+            ("<u4", little(4)),
+            ("<i8", little(8)),
+            ("<u8", little(8)),
+            (">u8", big(8)),
+        ] {
+            let read = parse_npy_index_rows(&index_file(descr, &data), "e.npy").unwrap();
+            assert_eq!(read, rows, "{descr}");
+        }
+        let bytes: Vec<u8> = [0u8, 1, 1, 255].to_vec();
+        assert_eq!(
+            parse_npy_index_rows(&index_file("|u1", &bytes), "e.npy").unwrap(),
+            [[0, 1], [1, 255]]
+        );
+        assert_eq!(
+            parse_npy_index_rows(&index_file("|i1", &bytes), "e.npy").unwrap(),
+            [[0, 1], [1, -1]]
+        );
+        let err = parse_npy_edges(
+            &index_file(
+                "<i4",
+                &[0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 255, 255, 255, 255],
+            ),
+            "e.npy",
+        );
+        assert_eq!(
+            err.unwrap_err().to_string(),
+            "e.npy: row 1: point number -1 is negative"
+        );
+        let huge: Vec<u8> = [0u64, 1, 1, u64::MAX]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        let err = parse_npy_index_rows(&index_file("<u8", &huge), "e.npy").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "e.npy: row 1: a point number beyond 2^63 is too large"
+        );
+        for descr in ["<f8", "|b1", "<c16", "<i3", "<U4"] {
+            let err = parse_npy_index_rows(&index_file(descr, &[0; 32]), "e.npy").unwrap_err();
+            assert!(
+                err.to_string().contains("is not supported"),
+                "{descr}: {err}"
+            );
+        }
+    }
 
     /// Enough points for several pieces: the arrays hold the rows of the iterators, in order,
     /// on rayon's threads and on one.
