@@ -439,6 +439,11 @@ fn triangulate_help() -> String {
 pub(crate) enum CliError {
     /// The command line is wrong (exit code 2).
     Usage(String),
+    /// A command's own options are wrong (exit code 2): the help to read is that command's.
+    CommandUsage {
+        message: String,
+        command: &'static str,
+    },
     /// The input could not be read (exit code 1).
     Io(IoError),
     /// The points cannot be triangulated (exit code 1).
@@ -452,9 +457,17 @@ pub(crate) enum CliError {
 
 impl CliError {
     /// The process exit code for this error.
+    /// A usage error of `command`'s options, whose help is the one to read.
+    fn of_command(self, command: &'static str) -> CliError {
+        match self {
+            CliError::Usage(message) => CliError::CommandUsage { message, command },
+            other => other,
+        }
+    }
+
     pub(crate) fn exit_code(&self) -> i32 {
         match self {
-            CliError::Usage(_) => 2,
+            CliError::Usage(_) | CliError::CommandUsage { .. } => 2,
             CliError::Io(_) | CliError::Input(_) | CliError::File { .. } => 1,
             CliError::BrokenPipe => 141,
         }
@@ -465,6 +478,10 @@ impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             CliError::Usage(message) => write!(f, "{message}\n\nRun `condt --help` for usage."),
+            CliError::CommandUsage { message, command } => write!(
+                f,
+                "{message}\n\nRun `condt help {command}` for its options."
+            ),
             CliError::Io(err) => write!(f, "{err}"),
             CliError::Input(message) => write!(f, "{message}"),
             CliError::File { file, error } => write!(f, "{file}: {error}"),
@@ -636,7 +653,7 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
     }
     match command {
         "help" => match rest.first().map(|c| c.to_str()) {
-            None => Ok(global_help()),
+            None | Some(Some("help")) => Ok(global_help()),
             Some(Some("reconstruct")) => Ok(reconstruct_help()),
             Some(Some("triangulate")) => Ok(triangulate_help()),
             Some(Some("score")) => Ok(crate::score::help()),
@@ -648,9 +665,15 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
         "reconstruct" if options::asks_help(rest, &reconstruct_options()) => Ok(reconstruct_help()),
         "triangulate" if options::asks_help(rest, TRIANGULATE_OPTIONS) => Ok(triangulate_help()),
         "score" if options::asks_help(rest, crate::score::OPTIONS) => Ok(crate::score::help()),
-        "score" => crate::score::command(rest),
-        "reconstruct" => reconstruct_command(parse_reconstruct(rest)?).map(|()| String::new()),
-        "triangulate" => triangulate_command(parse_triangulate(rest)?).map(|()| String::new()),
+        "score" => crate::score::command(rest).map_err(|e| e.of_command("score")),
+        "reconstruct" => parse_reconstruct(rest)
+            .and_then(reconstruct_command)
+            .map(|()| String::new())
+            .map_err(|e| e.of_command("reconstruct")),
+        "triangulate" => parse_triangulate(rest)
+            .and_then(triangulate_command)
+            .map(|()| String::new())
+            .map_err(|e| e.of_command("triangulate")),
         other => Err(usage(format!(
             "unknown command {other}; the commands are reconstruct, triangulate and score"
         ))),

@@ -231,6 +231,14 @@ impl Destination {
             return Ok(Destination::Stdout);
         };
         let shown = path.display().to_string();
+        // A name ending in a separator names a directory, existing or not (the system's own
+        // words for a missing one, "Not a directory", were a puzzle).
+        if shown.ends_with(std::path::is_separator) && !path.is_dir() {
+            return Err(file_error(
+                &shown,
+                io::Error::other("names a directory (it ends with a slash); -o needs a file name"),
+            ));
+        }
         match fs::metadata(path) {
             Ok(meta) if meta.is_dir() => Err(file_error(
                 &shown,

@@ -141,16 +141,23 @@ fn output_file_is_complete_and_temporary_files_are_gone() {
 
 #[test]
 fn usage_errors_exit_with_two_and_explain() {
-    for args in [
-        &[][..],
-        &["triangulate"],
-        &["frobnicate"],
-        &["triangulate", "-", "--bogus"],
+    // A command's own usage errors point to that command's help; the others to the overview.
+    for (args, pointer) in [
+        (&[][..], "condt --help"),
+        (&["triangulate"], "condt help triangulate"),
+        (&["frobnicate"], "condt --help"),
+        (&["triangulate", "-", "--bogus"], "condt help triangulate"),
+        (&["reconstruct", "-", "--u", "0"], "condt help reconstruct"),
+        (&["score", "a"], "condt help score"),
     ] {
         let out = condt(args, "");
         assert_eq!(out.status.code(), Some(2), "{args:?}");
-        assert!(String::from_utf8_lossy(&out.stderr).contains("condt --help"));
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(pointer), "{args:?}: {stderr}");
     }
+    let help = condt(&["help", "help"], "");
+    assert!(help.status.success());
+    assert!(String::from_utf8_lossy(&help.stdout).contains("condt help COMMAND"));
 }
 
 #[test]

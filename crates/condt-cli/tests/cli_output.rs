@@ -610,6 +610,24 @@ fn a_directory_is_not_an_output() {
     assert_eq!(out.status.code(), Some(1));
     assert!(stderr(&out).contains("is a directory"), "{}", stderr(&out));
     assert!(names(dir.path()).is_empty());
+    // A name ending in a slash names a directory even where none exists yet.
+    let slashed = std::ffi::OsString::from(format!("{}/", dir.path().join("not-yet").display()));
+    let out = condt(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            slashed.as_os_str(),
+        ],
+        SQUARE,
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("names a directory"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(names(dir.path()).is_empty());
     // A file in a directory that does not exist: the error names the file the user gave, not
     // the temporary one.
     let lost = dir.path().join("no-such-directory").join("out.txt");
