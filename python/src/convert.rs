@@ -94,7 +94,15 @@ fn overflowing_point(py: Python<'_>, given: &Bound<'_, PyAny>) -> PyResult<Optio
         if let Err(err) = float.call1((&item,)) {
             if err.is_instance_of::<PyOverflowError>(py) {
                 let shown = item.repr().map_or_else(|_| "?".into(), |r| r.to_string());
-                let shown: String = shown.chars().take(40).collect();
+                // Shortened with a mark, so that a cut integer is not read as a smaller one.
+                let shown = match shown.char_indices().nth(40) {
+                    Some((cut, _)) => format!(
+                        "{}... ({} characters)",
+                        &shown[..cut],
+                        shown.chars().count()
+                    ),
+                    None => shown,
+                };
                 return Ok(Some(PyValueError::new_err(format!(
                     "point {} has a coordinate too large for a float64: {shown}",
                     k / columns
@@ -245,7 +253,8 @@ pub(crate) fn library_error(err: Error, points: &[Point]) -> PyErr {
             // command line's option is `--iqr`: the text says `iqr` wherever it said `k`.
             let (keyword, text) = if name == "k" {
                 let text = err.to_string();
-                ("iqr", text.replacen("parameter k ", "parameter iqr ", 1))
+                let text = text.replacen("parameter k ", "parameter iqr ", 1);
+                ("iqr", text.replacen("(k is ", "(iqr is ", 1))
             } else {
                 (name, err.to_string())
             };

@@ -12,6 +12,7 @@ use core::fmt;
 /// assert_eq!(err.to_string(), "point 1 has a NaN or infinite coordinate");
 /// let err = Params::default().with_uniformity(Uniformity::Fixed(-1.0)).check().unwrap_err();
 /// assert_eq!(err, Error::InvalidParameter { name: "u", value: -1.0 });
+/// assert_eq!(err.to_string(), "parameter u = -1 is not accepted (u is a finite number greater than 0)");
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 #[non_exhaustive]
@@ -56,7 +57,13 @@ impl fmt::Display for Error {
                 write!(f, "{count} points given, at most {limit} are supported")
             }
             Error::InvalidParameter { name, value } => {
-                write!(f, "parameter {name} = {value} is not accepted")
+                write!(f, "parameter {name} = {value} is not accepted")?;
+                // The ranges of the two a caller sets (`Params::check`'s rules).
+                match name {
+                    "u" => write!(f, " (u is a finite number greater than 0)"),
+                    "k" => write!(f, " (k is a finite number, 0 or more)"),
+                    _ => Ok(()),
+                }
             }
             Error::InvalidTriangulation(violation) => write!(f, "{violation}"),
         }
