@@ -32,7 +32,8 @@ Usage:
   condt help COMMAND                              a command's options, with an example
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
-ignored; `#` comments and blank lines are skipped); `-` reads text from standard input. By the
+ignored; `#` comments and blank lines are skipped); `-` reads standard input: a NumPy array or
+a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text. By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
 and y columns (or lon, lat), or of two numeric columns without a header, `.geojson` or `.json` the Point and MultiPoint geometries of a

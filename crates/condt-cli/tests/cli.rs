@@ -11,6 +11,10 @@ fn binary() -> std::ffi::OsString {
 }
 
 fn condt(args: &[&str], stdin: &str) -> Output {
+    condt_bytes(args, stdin.as_bytes())
+}
+
+fn condt_bytes(args: &[&str], stdin: &[u8]) -> Output {
     let mut child = Command::new(binary())
         .args(args)
         .stdin(Stdio::piped())
@@ -18,7 +22,7 @@ fn condt(args: &[&str], stdin: &str) -> Output {
         .stderr(Stdio::piped())
         .spawn()
         .expect("the binary runs");
-    let written = child.stdin.take().unwrap().write_all(stdin.as_bytes());
+    let written = child.stdin.take().unwrap().write_all(stdin);
     // A run refused on its options may exit before reading its input: a closed pipe is fine.
     if let Err(e) = written {
         assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "{e}");
@@ -137,6 +141,40 @@ fn output_file_is_complete_and_temporary_files_are_gone() {
     assert!(out.status.success());
     assert_eq!(std::fs::read_to_string(&target).unwrap(), "0 1\n0 2\n1 2\n");
     assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
+}
+
+/// Standard input has no name to tell its format: a NumPy array and a GeoJSON document are
+/// read by their content, as their files are (a new user's report: both were refused as text).
+#[test]
+fn standard_input_is_told_npy_or_geojson_by_its_content() {
+    let args = ["triangulate", "-", "--edges"];
+    let text = condt(&args, "0 0\n1 0\n0 1\n1 1.5\n");
+    assert!(text.status.success());
+    let geojson = r#" {"type":"MultiPoint","coordinates":[[0,0],[1,0],[0,1],[1,1.5]]}"#;
+    let out = condt(&args, geojson);
+    assert_eq!(
+        out.stdout,
+        text.stdout,
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (4, 2), }";
+    let header = format!("{dict:<117}\n");
+    let mut npy = b"\x93NUMPY\x01\x00".to_vec();
+    npy.extend((header.len() as u16).to_le_bytes());
+    npy.extend(header.bytes());
+    npy.extend(
+        [0.0f64, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.5]
+            .iter()
+            .flat_map(|v| v.to_le_bytes()),
+    );
+    let out = condt_bytes(&args, &npy);
+    assert_eq!(
+        out.stdout,
+        text.stdout,
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]

@@ -787,7 +787,8 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// blocks straight into the points), `.csv` CSV with a header naming the columns
 /// ([`parse_csv`](super::parse_csv)), `.geojson` or `.json` the Point and MultiPoint geometries
 /// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), anything else the plain
-/// format ([`parse_points`]); `-` reads the plain format from standard input.
+/// format ([`parse_points`]); `-` reads standard input: a NumPy array or a GeoJSON document by
+/// its content (the `.npy` magic bytes, a leading `{`), the plain format otherwise.
 ///
 /// A text file that is not UTF-8 is refused with the line of the first bad byte. A file too
 /// large for memory is an error rather than an abort, and so is one with more than
@@ -831,7 +832,20 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
         read_all(file, size)
     }
     .map_err(io_error)?;
+    // Standard input has no name to tell its format: a NumPy array and a GeoJSON document are
+    // told by their content (the magic bytes, which are not UTF-8; a `{`, which no point line
+    // starts with), anything else is read as text.
+    if stdin && bytes.starts_with(super::npy::NPY_MAGIC) {
+        return super::npy::parse_npy(&bytes, name);
+    }
     let text = utf8_text(bytes, name)?;
+    if stdin
+        && text
+            .trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n'])
+            .starts_with('{')
+    {
+        return super::parse_geojson(&text, name);
+    }
     if !other_format {
         parse_owned_points(text, name)
     } else if extension("node") {
