@@ -58,11 +58,13 @@ impl Timings {
         if let Some(smoothing) = result.smoothing() {
             // The stages below are the last pass's; the first reconstruction and every pass but
             // the last (each a triangulation and all the stages) are in this one figure.
-            let comment = format!(
-                "(the first reconstruction and {} of {} smoothing passes)",
-                smoothing.passes - 1,
-                smoothing.passes
-            );
+            let comment = match smoothing.passes {
+                1 => "(the first reconstruction, before the one smoothing pass)".to_string(),
+                passes => format!(
+                    "(the first reconstruction and the first {} of {passes} smoothing passes)",
+                    passes - 1
+                ),
+            };
             show("earlier-passes", smoothing.earlier_passes, &comment);
         }
         show("triangulation", result.triangulation_time(), "");
