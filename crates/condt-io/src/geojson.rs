@@ -44,9 +44,62 @@ pub fn write_geojson(
         let closing = curve.points().next().filter(|_| curve.is_closed());
         for (k, i) in curve.points().chain(closing).enumerate() {
             let p = input[i];
-            write!(out, "{}[{},{}]", if k > 0 { "," } else { "" }, p.x, p.y)?;
+            let (x, y) = (Coordinate(p.x), Coordinate(p.y));
+            write!(out, "{}[{x},{y}]", if k > 0 { "," } else { "" })?;
         }
         write!(out, "]}}}}")?;
     }
     writeln!(out, "]}}")
+}
+
+/// A coordinate as a JSON number that reads back as the same double: in positional notation,
+/// or with an exponent beyond 10^16 and below 10^-5, where positional notation runs to hundreds
+/// of digits (`9.05e299`, not a 300-digit integer).
+struct Coordinate(f64);
+
+impl std::fmt::Display for Coordinate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let size = self.0.abs();
+        if size >= 1e16 || (size > 0.0 && size < 1e-5) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
+#[cfg(test)]
+mod coordinate_tests {
+    use super::Coordinate;
+
+    /// Every coordinate reads back as the same double; far ones are written with an exponent.
+    #[test]
+    fn coordinates_read_back_exactly_and_short() {
+        for x in [
+            0.0,
+            -0.0,
+            5.0,
+            0.1,
+            -123.456,
+            1e-5,
+            9.99e15,
+            1e16,
+            9.05e299,
+            1e-300,
+            -2.5e-7,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+        ] {
+            let text = Coordinate(x).to_string();
+            assert_eq!(
+                text.parse::<f64>().unwrap().to_bits(),
+                x.to_bits(),
+                "{x}: {text}"
+            );
+            assert!(text.len() <= 24, "{x}: {text}");
+        }
+        assert_eq!(Coordinate(9.05e299).to_string(), "9.05e299");
+        assert_eq!(Coordinate(12.5).to_string(), "12.5");
+    }
 }
