@@ -42,13 +42,14 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 /// not; when it is exactly two numbers there is no header and every record is `x,y`. The first
 /// coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the second the column
 /// named `y` (or `lat`, `latitude`), compared without case and blanks around them; a header
-/// that names one of them in two columns (`x,y,lon,lat`) is an error; other columns are ignored. Every following record that is not blank is a point. Fields are
-/// read as RFC 4180 has them: a field may be quoted, `""` is a quote inside quotes, and a quoted
-/// field may hold commas and line ends; a quoted field must end at its closing quote. Lines end
-/// at LF, CRLF or a lone CR. A missing column, a field that is not a finite number, a record
-/// without the coordinate columns or a malformed quoted field is an error naming the line (the
-/// line where its record starts), and so is a record with more nonempty fields than the header
-/// (or, without one, than two): a decimal comma would make one.
+/// that names one of them in two columns (`x,y,lon,lat`) is an error; other columns are ignored.
+/// Every following record that is not blank is a point. Fields are read as RFC 4180 has them: a
+/// field may be quoted, `""` is a quote inside quotes, and a quoted field may hold commas and
+/// line ends; a quoted field must end at its closing quote. Lines end at LF, CRLF or a lone CR.
+/// A missing column, a field that is not a finite number, a record without the coordinate
+/// columns or a malformed quoted field is an error naming the line (the line where its record
+/// starts), and so is a record with more nonempty fields than the header (or, without one, than
+/// two): a decimal comma would make one.
 ///
 /// ```
 /// use condt::Point;

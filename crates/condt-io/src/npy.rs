@@ -631,8 +631,9 @@ impl Index {
 /// Parses the bytes of a NumPy `.npy` file of edges, as [`write_npy_edges`] and
 /// [`write_npy_triangulation_edges`] write them (and `numpy.save` of such an array): shape
 /// `(m, 2)`, any integer type (condt writes uint32 or int64; int32 is NumPy's default on some
-/// systems), either byte order, C or Fortran order, NPY version 1.0, 2.0 or 3.0. Row `r` is edge `r`, its two point numbers as they are (a self-loop or a repeated edge
-/// is the caller's to judge). `file` names the source in error messages.
+/// systems), either byte order, C or Fortran order, NPY version 1.0, 2.0 or 3.0. Row `r` is edge
+/// `r`, its two point numbers as they are (a self-loop or a repeated edge is the caller's to
+/// judge). `file` names the source in error messages.
 ///
 /// # Errors
 /// Content errors naming `file`, in words (never the file's raw bytes): another dtype (float,
@@ -743,16 +744,7 @@ pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, I
     }
     let rows = rows as usize;
     let size = size as usize;
-    let value = |k: usize| -> Result<i64, IoError> {
-        let bytes = &data[k * size..(k + 1) * size];
-        index.value(bytes, big_endian).ok_or_else(|| {
-            let row = if fortran_order { k % rows } else { k / 2 };
-            content(
-                file,
-                format!("row {row}: a point number beyond 2^63 is too large"),
-            )
-        })
-    };
+    let value = |k: usize| index.value(&data[k * size..(k + 1) * size], big_endian);
     // C order holds row after row; Fortran order the first column, then the second.
     let at = |row: usize, column: usize| {
         if fortran_order {
@@ -762,7 +754,13 @@ pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, I
         }
     };
     (0..rows)
-        .map(|row| Ok([value(at(row, 0))?, value(at(row, 1))?]))
+        .map(|row| match (value(at(row, 0)), value(at(row, 1))) {
+            (Some(a), Some(b)) => Ok([a, b]),
+            _ => Err(content(
+                file,
+                format!("row {row}: a point number beyond 2^63 is too large"),
+            )),
+        })
         .collect()
 }
 

@@ -12,7 +12,8 @@ use core::fmt;
 /// assert_eq!(err.to_string(), "point 1 has a NaN or infinite coordinate");
 /// let err = Params::default().with_uniformity(Uniformity::Fixed(-1.0)).check().unwrap_err();
 /// assert_eq!(err, Error::InvalidParameter { name: "u", value: -1.0 });
-/// assert_eq!(err.to_string(), "parameter u = -1 is not accepted (u is a finite number greater than 0)");
+/// let words = "parameter u = -1 is not accepted (u is a finite number greater than 0)";
+/// assert_eq!(err.to_string(), words);
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 #[non_exhaustive]

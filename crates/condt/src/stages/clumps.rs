@@ -10,9 +10,9 @@
 //! half of its points pass [`smooth_and_regular`], or exactly half and every point of it is apart
 //! (a tie shows no majority either; a piece of a noisy curve is not apart at its ends), unless the
 //! clumps and the components not apart would hold [`OUTLIER_SHARE`] or more of the points with
-//! edges. Why half: a curve's ends, corners
-//! and junctions are a minority at any sampling dense enough for the proximity graph; a random
-//! zig-zag passes smoothly at most one time in three. Sequential; O(n) beyond the union-find.
+//! edges. Why half: a curve's ends, corners and junctions are a minority at any sampling dense
+//! enough for the proximity graph; a random zig-zag passes smoothly at most one time in three.
+//! Sequential; O(n) beyond the union-find.
 
 use super::local_outliers::{
     components, only_smooth_cycles, separated_at, separated_counts_until, smooth_and_regular,

@@ -24,7 +24,8 @@ use core::cmp::Ordering;
 /// assert_eq!(Uniformity::default(), Uniformity::Fixed(2.75));
 /// assert!(Uniformity::Fixed(2.0).check().is_ok() && Uniformity::Adaptive.check().is_ok());
 /// let err = Uniformity::Fixed(f64::NAN).check().unwrap_err();
-/// assert_eq!(err.to_string(), "parameter u = NaN is not accepted (u is a finite number greater than 0)");
+/// let words = "parameter u = NaN is not accepted (u is a finite number greater than 0)";
+/// assert_eq!(err.to_string(), words);
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum Uniformity {
