@@ -302,7 +302,10 @@ impl<'a> Ends<'a> {
             // A bent passage: an arm of each curve.
             let (cx, cy) = (cos_at(pc, pa, px), cos_at(pc, pa, py));
             if cx.min(cy) < STRAIGHT {
-                return Some(Partner::Neighbor(usize::from(cy < cx)));
+                // An exact tie goes to the smaller id, not to the neighbour listed first: the
+                // order of `c`'s edges follows the edge list, which the result may not depend on.
+                let second = cy < cx || (cy == cx && y < x);
+                return Some(Partner::Neighbor(usize::from(second)));
             }
         }
         // A loose end across `c`, the pair crossing `c`'s passage.
@@ -612,6 +615,32 @@ mod tests {
         let out = outcome.edges.unwrap_or_else(|| edges.clone());
         assert_eq!(&out[..edges.len()], &edges[..], "never removes an edge");
         crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&out[edges.len()..])).edges()
+    }
+
+    /// Two arms meet at `c = 0` at equal angles to a loose end below: the tie between them is
+    /// settled by id, whichever of `c`'s two edges the list holds first.
+    #[test]
+    fn a_tie_between_the_arms_at_a_crossing_does_not_follow_the_list_order() {
+        let mut pts = vec![Point::new(0.0, 0.0)];
+        let mut pairs = Vec::new();
+        // Four straight arms of six samples from `c`: up-left, up-right, down, down-left.
+        for (dx, dy) in [(-1.0, 3.0), (1.0, 3.0), (0.0, -1.2), (-0.4, -1.2)] {
+            let first = pts.len();
+            pts.extend((1..=6).map(|k| Point::new(dx * k as f64, dy * k as f64)));
+            pairs.extend((first..first + 5).map(|i| [i, i + 1]));
+        }
+        let (up_left, up_right) = (1, 7);
+        let listed = |first: usize, second: usize| {
+            let mut list = pairs.clone();
+            list.extend([[0, first], [0, second]]);
+            joins(&pts, &list)
+        };
+        let left_first = listed(up_left, up_right);
+        assert_eq!(left_first, listed(up_right, up_left));
+        // The tie is real: the down arm's loose end lines up with both upper arms alike.
+        let (pa, pc) = (pts[13], pts[0]);
+        let cos = |p: Point| cos_at(pc, pa, p);
+        assert_eq!(cos(pts[up_left]), cos(pts[up_right]));
     }
 
     /// A chain through `0, 1, ..., n - 1`, without the edges listed in `missing` (by their
