@@ -442,7 +442,7 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tiles::_gathered_repair_again, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_smoothing_pass, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_tile_state, m)?)?;
-    m.add_function(wrap_pyfunction!(tiles::_repair_kept, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_step_kept, m)?)?;
     m.add_class::<tiles::TileState>()?;
     m.add_class::<Reconstruction>()?;
     m.add_class::<Curve>()?;

@@ -15,7 +15,8 @@
 //! whole set inside it, so it is one of the whole set's Delaunay triangles; a hull edge of the
 //! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
-//! number of Delaunay hops around a vertex (proximity one ring, the repair two more), and break
+//! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the junctions
+//! and the crossings eight: [`LATER_STAGES`]), and break
 //! ties by vertex id, which follows the set's insertion order restricted to the tile: so an
 //! owned vertex whose every vertex within `reach` hops is certified gets the whole set's edges.
 //! Four cocircular points make the triangulation not unique; the tile reports them and the
@@ -65,43 +66,76 @@ impl Flow {
     }
 }
 
-/// The flow of a tiled run of the stages `params` select, or why they cannot run in tiles: the
-/// proximity graph (fixed or adaptive `u`), the repair, Algorithm 3 in either order, and
-/// repairing again; each run of the smoothing passes is one such flow
-/// ([`_gathered_smoothing_pass`] between them).
-fn tiled_flow(params: &Params) -> Result<Flow, String> {
+/// The stages after the flow that tiles run one round each, on their kept triangulations and
+/// the driver's edges ([`_step_kept`]), with the Delaunay hops around an owned point each reads
+/// (docs/distributed.md, *Reach*): a junction's choice reads six hops from the loose end and the
+/// other ends choosing its point two more; a crossing's arms and chord, read from the chord's
+/// ends, eight.
+const LATER_STAGES: [(Stage, usize); 2] = [(Stage::Junctions, 8), (Stage::Crossings, 8)];
+
+/// The hops the flow's stages read around an owned point: the proximity graph one ring, the
+/// repair two more hops; twice that, for margin (docs/distributed.md, *The certificate*).
+const FLOW_REACH: usize = 6;
+
+/// How a tiled run of the stages `params` select goes, or why it cannot: the [`Flow`] of the
+/// proximity graph (fixed or adaptive `u`), the repair, Algorithm 3 in either order and repairing
+/// again, then the stages of [`LATER_STAGES`] one round each; each run of the smoothing passes is
+/// one such run ([`_gathered_smoothing_pass`] between them).
+struct Tiled {
+    flow: Flow,
+    /// The stages after the flow, in order.
+    later: Vec<Stage>,
+    /// The Delaunay hops around an owned point whose stars a tile must certify.
+    reach: usize,
+}
+
+fn tiled_flow(params: &Params) -> Result<Tiled, String> {
     if params.method != Method::ConDT {
         return Err(format!("method {:?}", params.method));
     }
     let stages = params.stages();
-    let tiled = [
+    let in_flow = [
         Stage::Proximity,
         Stage::Repair,
         Stage::Outliers,
         Stage::RepairAgain,
     ];
-    if let Some(&stage) = stages.iter().find(|s| !tiled.contains(s)) {
+    let later_reach = |stage: Stage| LATER_STAGES.iter().find(|(s, _)| *s == stage).map(|r| r.1);
+    let refused = stages
+        .iter()
+        .find(|&&s| !in_flow.contains(&s) && later_reach(s).is_none());
+    if let Some(&stage) = refused {
         let keyword = crate::params::switch_keyword(stage)
             .map(|keyword| format!(" ({keyword}=False leaves it out)"))
             .unwrap_or_default();
         return Err(format!("the {} step{keyword}", stage.name()));
     }
     let at = |stage: Stage| stages.iter().position(|&s| s == stage);
-    Ok(match (at(Stage::Repair), at(Stage::Outliers)) {
+    let flow = match (at(Stage::Repair), at(Stage::Outliers)) {
         (Some(repair), Some(outliers)) if outliers < repair => Flow::OutliersFirst,
         _ if at(Stage::RepairAgain).is_some() => Flow::RepairAgain,
         _ => Flow::Repaired,
-    })
+    };
+    let later: Vec<Stage> = stages
+        .into_iter()
+        .filter(|&s| later_reach(s).is_some())
+        .collect();
+    let reach = later
+        .iter()
+        .filter_map(|&s| later_reach(s))
+        .fold(FLOW_REACH, usize::max);
+    Ok(Tiled { flow, later, reach })
 }
 
 /// The stages `params` select, or `NotImplementedError` naming the first that cannot be tiled.
-fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Flow)> {
+fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Tiled)> {
     let params = params::params(kwargs)?;
     match tiled_flow(&params) {
-        Ok(flow) => Ok((params, flow)),
+        Ok(tiled) => Ok((params, tiled)),
         Err(step) => Err(PyNotImplementedError::new_err(format!(
             "condt.dask tiles only the proximity graph, the repair, Algorithm 3, repairing \
-             again and the smoothing passes, not yet {step}: use condt.reconstruct, or paper=True"
+             again, the junctions, the crossings and the smoothing passes, not yet {step}: use \
+             condt.reconstruct, or paper=True"
         ))),
     }
 }
@@ -119,7 +153,7 @@ pub(crate) fn _tile_plan<'py>(
     points: &Bound<'py, PyAny>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (params, flow) = tiled_params(params)?;
+    let (params, tiled) = tiled_params(params)?;
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
@@ -149,7 +183,10 @@ pub(crate) fn _tile_plan<'py>(
     plan.set_item("boundary", index_vector(py, boundary.0)?)?;
     plan.set_item("boundary_len", boundary.1)?;
     plan.set_item("whole", whole)?;
-    plan.set_item("flow", flow.name())?;
+    plan.set_item("flow", tiled.flow.name())?;
+    let later: Vec<&str> = tiled.later.iter().map(|s| s.key()).collect();
+    plan.set_item("later", later)?;
+    plan.set_item("reach", tiled.reach)?;
     plan.set_item("smooth", params.smooth)?;
     plan.set_item("depth", depth.map(|d| PyArray1::from_vec(py, d)))?;
     let flat: Vec<f64> = hull.iter().flat_map(|p| [p.x, p.y]).collect();
@@ -406,27 +443,43 @@ pub(crate) fn _tile_state<'py>(
     })
 }
 
-/// A tile's second phase on its kept triangulation: the repair of the driver's `given` edges
-/// (rows of positions among the tile's points, both ends in the tile), and the edges whose
-/// smaller end the tile owns, in positions of the whole set, as an `(m, 2)` int64 array.
+/// A round on a tile's kept triangulation: `step` (`"repair"`, the repair of the second phase of
+/// a two-phase flow, or the key of a stage of [`LATER_STAGES`]) run on the driver's `given` edges
+/// (rows of positions among the tile's points, both ends in the tile), and the edges of its
+/// result whose smaller end the tile owns, in positions of the whole set, as an `(m, 2)` int64
+/// array. The tile holds every edge of the whole set's graph at each vertex it certified (every
+/// stage adds only Delaunay edges), so those are the whole set's.
 #[pyfunction]
-#[pyo3(signature = (state, given, **params))]
-pub(crate) fn _repair_kept<'py>(
+#[pyo3(signature = (state, given, step, **params))]
+pub(crate) fn _step_kept<'py>(
     py: Python<'py>,
     state: &Bound<'py, TileState>,
     given: PyReadonlyArray2<'py, i64>,
+    step: &str,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
-    let (params, _) = tiled_params(params)?;
+    let (params, tiled) = tiled_params(params)?;
+    let stage = match step {
+        "repair" => Stage::Repair,
+        _ => *tiled
+            .later
+            .iter()
+            .find(|s| s.key() == step)
+            .ok_or_else(|| {
+                PyValueError::new_err(format!("no tiled round {step:?} for these parameters"))
+            })?,
+    };
     let state = state.get();
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
     let edges = py.detach(|| {
         crate::within_call(|| {
-            state
-                .tri
-                .graph_from_edges(given)
-                .repair(params.repair)
-                .edges()
+            let graph = state.tri.graph_from_edges(given);
+            let result = match stage {
+                Stage::Junctions => graph.join_junctions(),
+                Stage::Crossings => graph.restore_crossings(),
+                _ => graph.repair(params.repair),
+            };
+            result.edges()
         })
     });
     let owned: Vec<[i64; 2]> = edges

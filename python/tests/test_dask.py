@@ -75,9 +75,11 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
     adaptive=st.booleans(),
     flow=st.sampled_from([{}, {"outliers_first": True}, {"repair_again": True}]),
     smooth=st.booleans(),
+    junctions=st.booleans(),
+    crossings=st.booleans(),
 )
 def test_any_tiling_gives_the_one_machine_edges(
-    client, seed, n, tiles, kind, repeats, narrow, adaptive, flow, smooth
+    client, seed, n, tiles, kind, repeats, narrow, adaptive, flow, smooth, junctions, crossings
 ):
     rng = np.random.default_rng(seed)
     if kind == "curves":
@@ -97,6 +99,7 @@ def test_any_tiling_gives_the_one_machine_edges(
     # A narrow first halo makes most tiles prove too little at first and grow.
     halo = 1e-3 * np.ptp(points, axis=0).max() if narrow else None
     params = {"paper": True, "adaptive": adaptive, "smooth": smooth, **flow}
+    params.update(junctions=junctions, crossings=crossings)
     tiled = condt.dask.reconstruct(points, client, tiles=tiles, halo=halo, **params)
     # Random floats are never cocircular (on the lines, almost never) nor all on one line.
     assert tiled.whole is None or (kind == "columns" and tiled.whole == "cocircular points")
@@ -190,8 +193,8 @@ def test_a_kept_tile_pickles_to_the_same_repair():
     )
     assert status == "ok"
     again = pickle.loads(pickle.dumps(state))
-    repaired = _condt._repair_kept(state, proximity, paper=True)
-    np.testing.assert_array_equal(_condt._repair_kept(again, proximity, paper=True), repaired)
+    repaired = _condt._step_kept(state, proximity, "repair", paper=True)
+    np.testing.assert_array_equal(_condt._step_kept(again, proximity, "repair", paper=True), repaired)
     # The tile holds every point: its repair of the proximity graph is the whole set's.
     expected = one_machine(points, paper=True, iqr=None)
     np.testing.assert_array_equal(np.unique(repaired, axis=0), expected)
@@ -235,6 +238,31 @@ def test_a_dask_array_is_computed_first(client):
     points = curves(5_000, np.random.default_rng(5))
     tiled = condt.dask.reconstruct(da.from_array(points, chunks=1000), client, tiles=4, paper=True)
     np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+
+
+# The default's stages that are tiled so far, each a round on the kept tiles.
+LATER = {"local_outliers": False, "clumps": False, "close_gaps": False, "tips": False}
+
+
+@pytest.mark.parametrize(
+    "params",
+    [
+        {"paper": True, "junctions": True, "crossings": True},
+        {**LATER, "smooth": False},
+        LATER,
+        {**LATER, "junctions": False},
+    ],
+)
+def test_junctions_and_crossings_are_tiled_rounds_with_the_one_machine_edges(client, params):
+    # Ellipses overlapping at random: crossings, and curves meeting where a noisy one ends.
+    points = curves(20_000, np.random.default_rng(5))
+    tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
+    assert tiled.whole is None
+    expected = one_machine(points, **params)
+    np.testing.assert_array_equal(tiled.edges, expected)
+    # The rounds mattered: without those stages the edges differ.
+    without = {**params, "junctions": False, "crossings": False}
+    assert not np.array_equal(expected, one_machine(points, **without))
 
 
 def test_a_step_that_is_not_tiled_is_refused_by_name(client):

@@ -23,7 +23,7 @@ __all__ = [
     "_gathered_repair_again",
     "_gathered_smoothing_pass",
     "_tile_state",
-    "_repair_kept",
+    "_step_kept",
     "_TileState",
 ]
 
@@ -172,8 +172,8 @@ def _tile_state(
     positions: npt.NDArray[np.int64],
     owned: npt.NDArray[np.bool_],
 ) -> _TileState: ...
-def _repair_kept(
-    state: _TileState, given: npt.NDArray[np.int64], **params: Any
+def _step_kept(
+    state: _TileState, given: npt.NDArray[np.int64], step: str, **params: Any
 ) -> npt.NDArray[np.int64]: ...
 def _gathered_outliers(
     points: _Points, edges: npt.NDArray[np.int64], **params: Any

@@ -20,11 +20,13 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
 Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3 in
 either order, which is the paper's pipeline (``paper=True``, with any of its ``u``,
 ``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), repairing again
-(``repair_again=True``) and the smoothing passes (``smooth=True``: each pass is a tiled run of
-its own on the moved points; whether a pass follows, and where it moves the points, the library
-decides on the driver from the edges the tiles sent). Any other step (the default's local
-outlier removal, gap closing, junctions, crossings, tips) raises ``NotImplementedError`` naming it:
-``docs/distributed.md`` says what each needs. The points themselves stay on the machine that
+(``repair_again=True``), the junctions and the crossings (``junctions=True``,
+``crossings=True``: one round each on the tiles' kept triangulations, with the driver's edges)
+and the smoothing passes (``smooth=True``: each pass is a tiled run of its own on the moved
+points; whether a pass follows, and where it moves the points, the library decides on the
+driver from the edges the tiles sent). Any other step (the default's local outlier removal,
+clumps, gap closing, tips) raises ``NotImplementedError`` naming it: ``docs/distributed.md``
+says what each needs. The points themselves stay on the machine that
 calls this (the driver), which computes their insertion order and hull once; the workers
 triangulate and run the stages.
 
@@ -51,8 +53,9 @@ from . import _condt
 
 __all__ = ["TiledReconstruction", "reconstruct"]
 
-# Delaunay hops around an owned point whose stars a tile must certify: the proximity graph reads
-# one ring and the repair two more hops of it (python/src/tiles.rs); twice that, for margin.
+# Delaunay hops around an owned point whose stars a tile must certify for the paper's stages: the
+# proximity graph reads one ring and the repair two more hops of it (python/src/tiles.rs); twice
+# that, for margin. Later stages read farther: the plan says how far (``plan["reach"]``).
 REACH = 6
 
 
@@ -128,7 +131,7 @@ def reconstruct(
         rects = _cut(points, tiles, bbox)
         runs.append(_Run(points, client, plan, params, bbox, rects, halo))
         try:
-            edges = _phases(runs[-1], plan["flow"], points, params)
+            edges = _phases(runs[-1], plan, points, params)
         except _WholeSet as whole:
             return _in_one_piece(original, client, params, whole.why, runs)
         if not plan["smooth"]:
@@ -146,26 +149,35 @@ def reconstruct(
     return TiledReconstruction(edges, len(rects), rounds, workers, sent, None, passes)
 
 
-def _phases(run, flow, points, params):
+def _phases(run, plan, points, params):
     """The edges of a tiled run: the phases on the tiles, with the library's global steps
-    between them on the driver (``flow``: ``python/src/tiles.rs``'s ``Flow``)."""
+    between them on the driver (``plan["flow"]``: ``python/src/tiles.rs``'s ``Flow``), then one
+    round on the kept tiles per later stage (``plan["later"]``)."""
+    flow, later = plan["flow"], plan["later"]
+    keep = bool(later)
     if flow == "outliers_first":
         (proximity,) = run.tiles("proximity", keep=True)
         kept = _condt._gathered_outliers(points, proximity, **params)
-        edges = run.repair_kept(kept)
+        edges = run.on_kept(kept, "repair")
     elif flow == "repair_again":
         proximity, repaired = run.tiles("both", keep=True)
         short = _condt._gathered_repair_again(points, repaired, proximity, **params)
         if short is None:
-            run.kept.clear()
             edges = _condt._gathered_outliers(points, repaired, **params)
         else:
-            edges = run.repair_kept(short)
+            edges = _sorted(run.on_kept(short, "repair"))
     else:
-        (repaired,) = run.tiles("repaired")
-        return _condt._gathered_outliers(points, repaired, **params)
-    # The tiles' own repairs, each edge from the tile owning its smaller end (so once): sorted by
-    # rows, as the library's answers are (a lexical sort; `np.unique` by rows took 1.3 s at 1M).
+        (repaired,) = run.tiles("repaired", keep=keep)
+        edges = _condt._gathered_outliers(points, repaired, **params)
+    for step in later:
+        edges = _sorted(run.on_kept(edges, step))
+    run.kept.clear()
+    return _sorted(edges)
+
+
+def _sorted(edges):
+    """The tiles' edges, each from the tile owning its smaller end (so once), sorted by rows as
+    the library's answers are (a lexical sort; ``np.unique`` by rows took 1.3 s at 1M)."""
     edges = edges.reshape(-1, 2)
     return edges[np.lexsort((edges[:, 1], edges[:, 0]))]
 
@@ -239,6 +251,7 @@ class _Run:
                     self.rects[k],
                     known,
                     tuple(float(b) for b in bbox),
+                    plan["reach"],
                     phase,
                     keep,
                     self.params,
@@ -268,10 +281,10 @@ class _Run:
             for g in range(graphs)
         ]
 
-    def repair_kept(self, given):
-        """The repair of the driver's edges ``given`` on each kept tile (the triangulation and
-        halo that certified it, on its worker), joined: the second phase of a two-phase flow,
-        which sends each tile only its given edges. The kept triangulations are released."""
+    def on_kept(self, given, step):
+        """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
+        halo that certified it, on its worker), joined: the second phase of a two-phase flow
+        (``"repair"``) or a later stage's round, which sends each tile only its given edges."""
         # Each point's place among a tile's points (-1: not in it) while its edges are cut out
         # (reset after).
         at = np.full(len(self.points), -1, np.int64)
@@ -284,9 +297,10 @@ class _Run:
             both = (a >= 0) & (b >= 0)
             local = np.column_stack((a[both], b[both]))
             at[positions] = -1
-            futures.append(self.client.submit(_tile_given, state, local, self.params, pure=False))
+            futures.append(
+                self.client.submit(_tile_given, state, local, step, self.params, pure=False)
+            )
         results = self.client.gather(futures)
-        self.kept.clear()
         self.rounds += 1
         for _, worker in results:
             self.workers.add(worker)
@@ -301,7 +315,7 @@ def _inside(points, rect, closed):
     return (x >= rect[0]) & (y >= rect[1]) & (x < rect[2]) & (y < rect[3])
 
 
-def _tile(payload, boundary_len, hull, band, rect, known, bbox, phase, keep, params):
+def _tile(payload, boundary_len, hull, band, rect, known, bbox, reach, phase, keep, params):
     """On a worker: one tile's owned edges for ``phase``, or why it could not certify; with
     ``keep``, its triangulation too (left on the worker, see ``_report``)."""
     from distributed import get_worker
@@ -319,7 +333,7 @@ def _tile(payload, boundary_len, hull, band, rect, known, bbox, phase, keep, par
         band,
         known,
         bbox,
-        REACH,
+        reach,
         phase,
         keep,
         **params,
@@ -332,12 +346,12 @@ def _report(result):
     return result[:3]
 
 
-def _tile_given(result, given, params):
-    """On a worker: the repair of the driver's ``given`` edges on a tile's kept triangulation."""
+def _tile_given(result, given, step, params):
+    """On a worker: ``step`` on the driver's ``given`` edges on a tile's kept triangulation."""
     from distributed import get_worker
 
     state = result[3]
-    edges = _condt._repair_kept(state, np.require(given, requirements="CA"), **params)
+    edges = _condt._step_kept(state, np.require(given, requirements="CA"), step, **params)
     return edges, get_worker().address
 
 
