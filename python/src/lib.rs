@@ -443,6 +443,9 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tiles::_gathered_smoothing_pass, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_tile_state, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_step_kept, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_tests_kept, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_component_labels, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_gathered_clumps, m)?)?;
     m.add_class::<tiles::TileState>()?;
     m.add_class::<Reconstruction>()?;
     m.add_class::<Curve>()?;

@@ -67,11 +67,16 @@ impl Flow {
 }
 
 /// The stages after the flow that tiles run one round each, on their kept triangulations and
-/// the driver's edges ([`_step_kept`]), with the Delaunay hops around an owned point each reads
-/// (docs/distributed.md, *Reach*): a junction's choice reads six hops from the loose end and the
-/// other ends choosing its point two more; a crossing's arms and chord, read from the chord's
-/// ends, eight.
-const LATER_STAGES: [(Stage, usize); 2] = [(Stage::Junctions, 8), (Stage::Crossings, 8)];
+/// the driver's edges, with the Delaunay hops around an owned point each reads
+/// (docs/distributed.md, *Later stages as rounds*): a junction's choice reads six hops from the
+/// loose end and the other ends choosing its point two more; a crossing's arms and chord, read
+/// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
+/// rule itself on the driver, [`_gathered_clumps`]).
+const LATER_STAGES: [(Stage, usize); 3] = [
+    (Stage::Clumps, 1),
+    (Stage::Junctions, 8),
+    (Stage::Crossings, 8),
+];
 
 /// The hops the flow's stages read around an owned point: the proximity graph one ring, the
 /// repair two more hops; twice that, for margin (docs/distributed.md, *The certificate*).
@@ -134,7 +139,7 @@ fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Tiled)>
         Ok(tiled) => Ok((params, tiled)),
         Err(step) => Err(PyNotImplementedError::new_err(format!(
             "condt.dask tiles only the proximity graph, the repair, Algorithm 3, repairing \
-             again, the junctions, the crossings and the smoothing passes, not yet {step}: use \
+             again, the clumps, the junctions, the crossings and the smoothing passes, not yet {step}: use \
              condt.reconstruct, or paper=True"
         ))),
     }
@@ -459,15 +464,16 @@ pub(crate) fn _step_kept<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let (params, tiled) = tiled_params(params)?;
+    let later = |stage: Stage| tiled.later.contains(&stage) && step == stage.key();
     let stage = match step {
         "repair" => Stage::Repair,
-        _ => *tiled
-            .later
-            .iter()
-            .find(|s| s.key() == step)
-            .ok_or_else(|| {
-                PyValueError::new_err(format!("no tiled round {step:?} for these parameters"))
-            })?,
+        _ if later(Stage::Junctions) => Stage::Junctions,
+        _ if later(Stage::Crossings) => Stage::Crossings,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "no tiled round {step:?} for these parameters"
+            )))
+        }
     };
     let state = state.get();
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
@@ -488,6 +494,92 @@ pub(crate) fn _step_kept<'py>(
         .map(|[a, b]| [state.positions[a], state.positions[b]])
         .collect();
     index_array(py, owned)
+}
+
+/// A round of per-point tests on a tile's kept triangulation, for a stage whose rule runs on the
+/// driver: the clump tests ([`condt::tiled::clump_tests`]) on the driver's `given` edges (as for
+/// [`_step_kept`]) with `labels`, each tile point's component in the driver's graph. The tile's
+/// owned points as positions of the whole set, and their tests.
+#[pyfunction]
+#[pyo3(signature = (state, given, labels, step, **params))]
+pub(crate) fn _tests_kept<'py>(
+    py: Python<'py>,
+    state: &Bound<'py, TileState>,
+    given: PyReadonlyArray2<'py, i64>,
+    labels: PyReadonlyArray1<'py, i64>,
+    step: &str,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<OwnedTests<'py>> {
+    let (_, tiled) = tiled_params(params)?;
+    if step != Stage::Clumps.key() || !tiled.later.contains(&Stage::Clumps) {
+        return Err(PyValueError::new_err(format!(
+            "no round of tests {step:?} for these parameters"
+        )));
+    }
+    let state = state.get();
+    let given = tile_pairs(given.as_slice()?, state.points.len())?;
+    let labels: Vec<u32> = labels
+        .as_slice()?
+        .iter()
+        .map(|&l| u32::try_from(l))
+        .collect::<Result<_, _>>()
+        .map_err(|_| PyValueError::new_err("a component label is out of range"))?;
+    if labels.len() != state.points.len() {
+        return Err(PyValueError::new_err(
+            "a tile's labels differ in length from its points",
+        ));
+    }
+    let tests = py.detach(|| {
+        crate::within_call(|| {
+            condt::tiled::clump_tests(&state.tri.graph_from_edges(given), &labels)
+        })
+    });
+    let owned = (0..state.points.len()).filter(|&i| state.owned[i]);
+    let positions: Vec<i64> = owned.clone().map(|i| state.positions[i]).collect();
+    let tests: Vec<u8> = owned.map(|i| tests[i]).collect();
+    Ok((
+        PyArray1::from_vec(py, positions),
+        PyArray1::from_vec(py, tests),
+    ))
+}
+
+/// A tile's owned points, as positions of the whole set, and their tests.
+type OwnedTests<'py> = (Bound<'py, PyArray1<i64>>, Bound<'py, PyArray1<u8>>);
+
+/// Each position's component in the graph of the gathered `edges` over `n` points, named by its
+/// smallest position ([`condt::tiled::component_labels`]), as an int64 array.
+#[pyfunction]
+pub(crate) fn _component_labels<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+) -> PyResult<Bound<'py, PyArray1<i64>>> {
+    let edges = gathered_pairs(edges)?;
+    let labels = py
+        .detach(|| condt::tiled::component_labels(n, &edges))
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    Ok(PyArray1::from_vec(
+        py,
+        labels.into_iter().map(i64::from).collect(),
+    ))
+}
+
+/// The clump stage on the gathered `edges` over `n` points with each point's `tests` from the
+/// tile owning it ([`condt::tiled::remove_gathered_clumps`]): the edges kept, sorted by rows, or
+/// `None` when it changes nothing.
+#[pyfunction]
+pub(crate) fn _gathered_clumps<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    tests: PyReadonlyArray1<'py, u8>,
+) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+    let edges = gathered_pairs(edges)?;
+    let tests = tests.as_slice()?;
+    let kept = py
+        .detach(|| condt::tiled::remove_gathered_clumps(n, &edges, tests))
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    kept.map(|edges| sorted_rows(py, edges)).transpose()
 }
 
 /// A tile's owned edges, one list per graph its phase asks, in the whole set's positions.

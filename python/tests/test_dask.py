@@ -75,11 +75,12 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
     adaptive=st.booleans(),
     flow=st.sampled_from([{}, {"outliers_first": True}, {"repair_again": True}]),
     smooth=st.booleans(),
-    junctions=st.booleans(),
-    crossings=st.booleans(),
+    later=st.fixed_dictionaries(
+        {"clumps": st.booleans(), "junctions": st.booleans(), "crossings": st.booleans()}
+    ),
 )
 def test_any_tiling_gives_the_one_machine_edges(
-    client, seed, n, tiles, kind, repeats, narrow, adaptive, flow, smooth, junctions, crossings
+    client, seed, n, tiles, kind, repeats, narrow, adaptive, flow, smooth, later
 ):
     rng = np.random.default_rng(seed)
     if kind == "curves":
@@ -99,7 +100,7 @@ def test_any_tiling_gives_the_one_machine_edges(
     # A narrow first halo makes most tiles prove too little at first and grow.
     halo = 1e-3 * np.ptp(points, axis=0).max() if narrow else None
     params = {"paper": True, "adaptive": adaptive, "smooth": smooth, **flow}
-    params.update(junctions=junctions, crossings=crossings)
+    params.update(later)
     tiled = condt.dask.reconstruct(points, client, tiles=tiles, halo=halo, **params)
     # Random floats are never cocircular (on the lines, almost never) nor all on one line.
     assert tiled.whole is None or (kind == "columns" and tiled.whole == "cocircular points")
@@ -263,6 +264,21 @@ def test_junctions_and_crossings_are_tiled_rounds_with_the_one_machine_edges(cli
     # The rounds mattered: without those stages the edges differ.
     without = {**params, "junctions": False, "crossings": False}
     assert not np.array_equal(expected, one_machine(points, **without))
+
+
+def test_clumps_are_a_round_of_tests_and_the_rule_on_the_driver(client):
+    # Clean ellipses (one noisy, so that the smoothing passes run) and 40 blobs of 6 to 15 random
+    # points apart from them: the blobs are clumps.
+    rng = np.random.default_rng(6)
+    blobs = [c + rng.normal(0, 0.3, (int(rng.integers(6, 16)), 2)) for c in rng.uniform(0, 100, (40, 2))]
+    points = np.concatenate([curves(20_000, rng, outliers=0.0, noisy_every=10**6)] + blobs)
+    params = {**LATER, "clumps": True}
+    tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
+    assert tiled.whole is None
+    expected = one_machine(points, **params)
+    np.testing.assert_array_equal(tiled.edges, expected)
+    # The clumps went: without the stage the edges differ.
+    assert not np.array_equal(expected, one_machine(points, **{**params, "clumps": False}))
 
 
 def test_a_step_that_is_not_tiled_is_refused_by_name(client):

@@ -84,6 +84,7 @@ mod reconstruct;
 mod smooth;
 mod stages;
 mod threads;
+pub mod tiled;
 mod triangulate;
 
 #[cfg(test)]
@@ -99,7 +100,7 @@ mod sample;
 pub use curve::{curves_from_edges, Curve};
 pub use error::Error;
 pub use geometry::Point;
-pub use graph::{gathered_repair_again_input, remove_gathered_outliers, Graph, OutlierRemoval};
+pub use graph::{Graph, OutlierRemoval};
 pub use provenance::{Change, EdgeStory, EndChoice, Reason};
 pub use reconstruct::{
     reconstruct, reconstruct_owned, reconstruct_triangulation, Method, Params, Pipeline,
@@ -108,6 +109,7 @@ pub use reconstruct::{
 pub use smooth::{gathered_smoothing_pass, GatheredPass};
 pub use stages::{Repair, Stage, Switch, Uniformity};
 pub use threads::parallel_available;
+pub use tiled::{gathered_repair_again_input, remove_gathered_outliers};
 pub use triangulate::{triangulate, Triangulation, MAX_POINTS};
 
 /// The README's code examples, compiled and run as doctests so they cannot go stale.

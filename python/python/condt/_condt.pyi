@@ -24,6 +24,9 @@ __all__ = [
     "_gathered_smoothing_pass",
     "_tile_state",
     "_step_kept",
+    "_tests_kept",
+    "_component_labels",
+    "_gathered_clumps",
     "_TileState",
 ]
 
@@ -175,6 +178,17 @@ def _tile_state(
 def _step_kept(
     state: _TileState, given: npt.NDArray[np.int64], step: str, **params: Any
 ) -> npt.NDArray[np.int64]: ...
+def _tests_kept(
+    state: _TileState,
+    given: npt.NDArray[np.int64],
+    labels: npt.NDArray[np.int64],
+    step: str,
+    **params: Any,
+) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.uint8]]: ...
+def _component_labels(n: int, edges: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]: ...
+def _gathered_clumps(
+    n: int, edges: npt.NDArray[np.int64], tests: npt.NDArray[np.uint8]
+) -> npt.NDArray[np.int64] | None: ...
 def _gathered_outliers(
     points: _Points, edges: npt.NDArray[np.int64], **params: Any
 ) -> npt.NDArray[np.int64]: ...

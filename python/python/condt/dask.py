@@ -20,12 +20,13 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
 Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3 in
 either order, which is the paper's pipeline (``paper=True``, with any of its ``u``,
 ``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), repairing again
-(``repair_again=True``), the junctions and the crossings (``junctions=True``,
-``crossings=True``: one round each on the tiles' kept triangulations, with the driver's edges)
+(``repair_again=True``), the clumps, the junctions and the crossings (``clumps=True``,
+``junctions=True``, ``crossings=True``: one round each on the tiles' kept triangulations, with the
+driver's edges; the clumps' rule itself on the driver, on tests the tiles send)
 and the smoothing passes (``smooth=True``: each pass is a tiled run of its own on the moved
 points; whether a pass follows, and where it moves the points, the library decides on the
 driver from the edges the tiles sent). Any other step (the default's local outlier removal,
-clumps, gap closing, tips) raises ``NotImplementedError`` naming it: ``docs/distributed.md``
+gap closing, tips) raises ``NotImplementedError`` naming it: ``docs/distributed.md``
 says what each needs. The points themselves stay on the machine that
 calls this (the driver), which computes their insertion order and hull once; the workers
 triangulate and run the stages.
@@ -170,7 +171,14 @@ def _phases(run, plan, points, params):
         (repaired,) = run.tiles("repaired", keep=keep)
         edges = _condt._gathered_outliers(points, repaired, **params)
     for step in later:
-        edges = _sorted(run.on_kept(edges, step))
+        if step == "clumps":
+            # The tests at each point on the tiles, the rule (a component's tally) on the driver.
+            labels = _condt._component_labels(len(points), edges)
+            tests = run.tests_on_kept(edges, step, labels)
+            kept = _condt._gathered_clumps(len(points), edges, tests)
+            edges = edges if kept is None else kept
+        else:
+            edges = _sorted(run.on_kept(edges, step))
     run.kept.clear()
     return _sorted(edges)
 
@@ -281,22 +289,43 @@ class _Run:
             for g in range(graphs)
         ]
 
-    def on_kept(self, given, step):
-        """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
-        halo that certified it, on its worker), joined: the second phase of a two-phase flow
-        (``"repair"``) or a later stage's round, which sends each tile only its given edges."""
-        # Each point's place among a tile's points (-1: not in it) while its edges are cut out
-        # (reset after).
+    def tests_on_kept(self, given, step, labels):
+        """The per-point tests of ``step`` on each kept tile, with the driver's edges ``given``
+        and component ``labels`` (one per point), joined: one byte per point of the whole set,
+        each from the tile owning it."""
         at = np.full(len(self.points), -1, np.int64)
         futures = []
         for k in sorted(self.kept):
             state, positions = self.kept[k]
-            # The given edges with both ends in the tile, in its own positions.
-            at[positions] = np.arange(len(positions))
-            a, b = at[given[:, 0]], at[given[:, 1]]
-            both = (a >= 0) & (b >= 0)
-            local = np.column_stack((a[both], b[both]))
-            at[positions] = -1
+            local = _local(given, positions, at)
+            futures.append(
+                self.client.submit(
+                    _tile_tests,
+                    state,
+                    local,
+                    np.ascontiguousarray(labels[positions]),
+                    step,
+                    self.params,
+                    pure=False,
+                )
+            )
+        results = self.client.gather(futures)
+        self.rounds += 1
+        tests = np.zeros(len(self.points), np.uint8)
+        for (owned, bits), worker in results:
+            self.workers.add(worker)
+            tests[owned] = bits
+        return tests
+
+    def on_kept(self, given, step):
+        """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
+        halo that certified it, on its worker), joined: the second phase of a two-phase flow
+        (``"repair"``) or a later stage's round, which sends each tile only its given edges."""
+        at = np.full(len(self.points), -1, np.int64)
+        futures = []
+        for k in sorted(self.kept):
+            state, positions = self.kept[k]
+            local = _local(given, positions, at)
             futures.append(
                 self.client.submit(_tile_given, state, local, step, self.params, pure=False)
             )
@@ -305,6 +334,18 @@ class _Run:
         for _, worker in results:
             self.workers.add(worker)
         return np.concatenate([edges for edges, _ in results] + [np.empty((0, 2), np.int64)])
+
+
+def _local(given, positions, at):
+    """The rows of ``given`` with both ends among ``positions`` (a tile's points), in the tile's
+    own positions. ``at`` is scratch with one entry per point, all -1: each point's place among
+    the tile's points while its edges are cut out (reset after)."""
+    at[positions] = np.arange(len(positions))
+    a, b = at[given[:, 0]], at[given[:, 1]]
+    both = (a >= 0) & (b >= 0)
+    local = np.column_stack((a[both], b[both]))
+    at[positions] = -1
+    return local
 
 
 def _inside(points, rect, closed):
@@ -344,6 +385,15 @@ def _tile(payload, boundary_len, hull, band, rect, known, bbox, reach, phase, ke
 def _report(result):
     """On a worker: what the driver reads of a tile's result (not its kept triangulation)."""
     return result[:3]
+
+
+def _tile_tests(result, given, labels, step, params):
+    """On a worker: ``step``'s per-point tests on a tile's kept triangulation."""
+    from distributed import get_worker
+
+    state = result[3]
+    tests = _condt._tests_kept(state, np.require(given, requirements="CA"), labels, step, **params)
+    return tests, get_worker().address
 
 
 def _tile_given(result, given, step, params):

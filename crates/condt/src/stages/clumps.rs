@@ -40,8 +40,37 @@ pub(crate) fn remove_clumps(
         return Outcome::unchanged_with(Some(graph));
     }
     let root = components(n, edges);
+    let smooth = |v| {
+        let [y, z] = graph.first_two(v);
+        smooth_and_regular(tri, v, y, z)
+    };
+    let counts =
+        |size: &[u32], guard| separated_counts_until(tri, &graph, &root, Some((size, guard)));
+    let apart = |v| separated_at(tri, &graph, &root, v);
+    let Some(clump) = clumps_of(&graph, &root, smooth, counts, apart) else {
+        return Outcome::unchanged_with(Some(graph));
+    };
+    let kept = without_components(edges, &root, &clump);
+    drop((root, clump));
+    Outcome::changed(edges, kept, Some(graph))
+}
+
+/// The rule on `graph` with its components `root` ([`components`]), the tests at a point given:
+/// `smooth(v)` for a point of two edges ([`smooth_and_regular`]), `apart(v)` for a point with
+/// edges ([`separated_at`]) and `counts(size, guard)`, the separated points per root as
+/// [`separated_counts_until`] counts them with that limit. Which roots are clumps, or `None`
+/// when none goes (no clump, or the quarter guard holds). The stage reads the triangulation for
+/// the tests; a run split in tiles gathers them from the tiles ([`crate::tiled`]).
+pub(crate) fn clumps_of(
+    graph: &CurveGraph,
+    root: &[u32],
+    smooth: impl Fn(VertexId) -> bool,
+    counts: impl FnOnce(&[u32], f64) -> Option<Vec<u8>>,
+    apart: impl Fn(VertexId) -> bool,
+) -> Option<Vec<bool>> {
+    let n = root.len();
     // Per component: points with edges, and of those the ones passing smoothly.
-    let (mut size, mut smooth) = (vec![0u32; n], vec![0u32; n]);
+    let (mut size, mut smooth_count) = (vec![0u32; n], vec![0u32; n]);
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
         let degree = graph.degree(v);
@@ -50,33 +79,30 @@ pub(crate) fn remove_clumps(
         }
         size[r as usize] += 1;
         if degree == 2 {
-            let [y, z] = graph.first_two(v);
-            smooth[r as usize] += u32::from(smooth_and_regular(tri, v, y, z));
+            smooth_count[r as usize] += u32::from(smooth(v));
         }
     }
     let with_edges: u64 = size.iter().map(|&s| u64::from(s)).sum();
     // The guard below holds once the components not apart alone reach its share: the separation
     // test, the stage's main cost, stops there (on scattered points, before it starts or soon).
     let guard = OUTLIER_SHARE * with_edges as f64;
-    let Some(separated) = separated_counts_until(tri, &graph, &root, Some((&size, guard))) else {
-        return Outcome::unchanged_with(Some(graph));
-    };
+    let separated = counts(&size, guard)?;
     // A tie (exactly half passing, such as six points with two ends and one corner) shows no
     // majority of curve passages either; it goes only when every one of its points is apart, as a
     // clump lies apart whole, while a piece of a noisy curve runs on towards the curve's other
     // samples at its ends. The separation count stops at MIN_SAMPLES, so ties are tested here,
     // in one pass over the points (the test walks a Delaunay ring only for a tie's points).
-    let apart = |r: usize| size[r] > 0 && usize::from(separated[r]) >= MIN_SAMPLES;
+    let is_apart = |r: usize| size[r] > 0 && usize::from(separated[r]) >= MIN_SAMPLES;
     let mut tie_apart: Vec<bool> = (0..n)
-        .map(|r| apart(r) && 2 * smooth[r] == size[r])
+        .map(|r| is_apart(r) && 2 * smooth_count[r] == size[r])
         .collect();
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
-        if tie_apart[r as usize] && graph.degree(v) > 0 && !separated_at(tri, &graph, &root, v) {
+        if tie_apart[r as usize] && graph.degree(v) > 0 && !apart(v) {
             tie_apart[r as usize] = false;
         }
     }
-    let is_clump = |r: usize| apart(r) && (2 * smooth[r] < size[r] || tie_apart[r]);
+    let is_clump = |r: usize| is_apart(r) && (2 * smooth_count[r] < size[r] || tie_apart[r]);
     let points_in = |keep: &dyn Fn(usize) -> bool| -> u64 {
         (0..n)
             .filter(|&r| keep(r))
@@ -88,15 +114,11 @@ pub(crate) fn remove_clumps(
     // its own guard (components not apart) with the clumps: the two rules judge one graph.
     let not_apart = points_in(&|r| usize::from(separated[r]) < MIN_SAMPLES);
     if in_clumps == 0 || (in_clumps + not_apart) as f64 >= guard {
-        return Outcome::unchanged_with(Some(graph));
+        return None;
     }
     // One byte per component while the output is built, not the tallies (memory: the curve
     // graph is kept to hand on).
-    let clump: Vec<bool> = (0..n).map(is_clump).collect();
-    drop((size, smooth, separated, tie_apart));
-    let kept = without_components(edges, &root, &clump);
-    drop((root, clump));
-    Outcome::changed(edges, kept, Some(graph))
+    Some((0..n).map(is_clump).collect())
 }
 
 #[cfg(test)]

@@ -257,7 +257,7 @@ fn passage(
 }
 
 /// Whether `xy` and `xz` continue each other (above `2π/3`) and differ by under a factor [`LONG`].
-pub(super) fn smooth_and_regular(
+pub(crate) fn smooth_and_regular(
     tri: &Triangulation,
     x: VertexId,
     y: VertexId,
@@ -486,7 +486,7 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
 
 /// Each vertex's component, named by its smallest id: a union-find where the smaller root becomes
 /// the parent, then one pass in id order turns parents (smaller) into roots.
-pub(super) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
+pub(crate) fn components(n: usize, edges: &[Edge]) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..n as u32).collect();
     for &[a, b] in edges {
         let ra = find(&mut parent, a.index() as u32);
@@ -611,7 +611,7 @@ fn merged_along(root: Vec<u32>, mut kept: Vec<bool>, joins: Vec<Edge>) -> (Vec<u
 
 /// Whether `v` is separated (rule 4): every Delaunay neighbour outside its component lies beyond
 /// [`SEPARATION`] times its longest edge. An unused point is its own root, so it counts as outside.
-pub(super) fn separated_at(
+pub(crate) fn separated_at(
     tri: &Triangulation,
     graph: &CurveGraph,
     root: &[u32],

@@ -1,0 +1,270 @@
+//! What a run split in tiles needs from the library (Python's `condt.dask`): the stages' global
+//! rules run on edges gathered from the tiles, and the per-point tests a tile computes for them.
+//!
+//! Owns: the gathered entry points, in input positions. A tile holds the whole set's Delaunay
+//! star at the points it owns (its certificate, in the Python package), so a test at such a point
+//! that reads only its star and the graph there is the whole set's; a rule that needs the whole
+//! graph (a quantile, a component's tally, a guard over every point) runs once on the gathered
+//! edges, here. It may not implement a rule: each function calls the stage's own code, which the
+//! one-machine run calls too, and reads positions in the stages' frame.
+
+use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::error::Error;
+use crate::graph::Graph;
+use crate::mesh::VertexId;
+use crate::stages::local_outliers::{components, separated_at, smooth_and_regular, MIN_SAMPLES};
+use crate::stages::outliers::IqrRule;
+use crate::stages::{clumps, Step};
+use alloc::vec;
+use alloc::vec::Vec;
+
+/// Algorithm 3 on edges gathered from elsewhere, without their triangulation: which of `edges`
+/// (pairs of positions in `points`) [`Graph::remove_outliers`] keeps of a graph of those edges,
+/// or with `floor` [`Graph::remove_outliers_floored`], and whether it fired. Lengths are measured
+/// in the stages' own frame, so the answer is the stage's. For a run split in tiles (Python's
+/// `condt.dask`): each tile repairs its part, and the rule, global, runs once on what they send.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] named `k` as [`Graph::remove_outliers`], or named `edge` (the
+/// position) for an end not in `points`; [`Error::NonFinite`] for a NaN or infinite point.
+///
+/// ```
+/// use condt::{remove_gathered_outliers, triangulate, Point, Uniformity};
+/// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+/// pts.push(Point::new(10.0, 6.0));
+/// let tri = triangulate(&pts)?;
+/// let graph = tri.proximity_graph(Uniformity::Fixed(2.75))?;
+/// let (fired, kept) = remove_gathered_outliers(&pts, &graph.edges(), 1.7, false)?;
+/// let stage = graph.remove_outliers(1.7)?;
+/// assert_eq!((fired, kept), (stage.fired, stage.graph.edges()));
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn remove_gathered_outliers(
+    points: &[crate::Point],
+    edges: &[[usize; 2]],
+    k: f64,
+    floor: bool,
+) -> Result<(bool, Vec<[usize; 2]>), Error> {
+    let rule = IqrRule { factor: k, floor };
+    Step::Outliers(rule).check()?;
+    let lengths = gathered_lengths(points, edges)?;
+    let cut = crate::stages::outliers::iqr_cut(edges, |e| e, &lengths, points.len(), rule);
+    Ok(match cut {
+        Some(kept) => (true, kept),
+        None => (false, edges.to_vec()),
+    })
+}
+
+/// Repairing again ([`OutlierRemoval::repair_again`]) on edges gathered from elsewhere: the edges
+/// of `proximity` that it repairs again, those not above the IQR cut threshold of `repaired` (the
+/// repair's output), or `None` where Algorithm 3 cuts none of `repaired` (the step then changes
+/// nothing). Pairs of positions in `points`; lengths measured in the stages' own frame, so the
+/// answer is the stage's. For a run split in tiles (Python's `condt.dask`): each tile repairs
+/// its part of the answer.
+///
+/// # Errors
+/// As [`remove_gathered_outliers`].
+///
+/// ```
+/// use condt::{gathered_repair_again_input, triangulate, Point, Repair, Uniformity};
+/// let side = |t: f64| [(t, 0.0), (10.0, t), (10.0 - t, 10.0), (0.0, 10.0 - t)];
+/// let mut pts: Vec<Point> = (0..10).flat_map(|k| side(k as f64)).map(Point::from).collect();
+/// pts.extend([Point::new(-0.9, -0.9), Point::new(30.0, 30.0)]);
+/// let tri = triangulate(&pts)?;
+/// let proximity = tri.proximity_graph(Uniformity::Fixed(2.75))?;
+/// let repaired = proximity.repair(Repair::Needs);
+/// let short = gathered_repair_again_input(&pts, &repaired.edges(), &proximity.edges(), 1.7, false)?;
+/// let again = tri.graph_from_edges(short.unwrap()).repair(Repair::Needs);
+/// let stage = repaired.remove_outliers(1.7)?.repair_again(&repaired, &proximity, Repair::Needs);
+/// assert_eq!(again.edges(), stage.edges());
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn gathered_repair_again_input(
+    points: &[crate::Point],
+    repaired: &[[usize; 2]],
+    proximity: &[[usize; 2]],
+    k: f64,
+    floor: bool,
+) -> Result<Option<Vec<[usize; 2]>>, Error> {
+    let rule = IqrRule { factor: k, floor };
+    Step::Outliers(rule).check()?;
+    let lengths = gathered_lengths(points, repaired)?;
+    let cut = crate::stages::outliers::iqr_cut(repaired, |e| e, &lengths, points.len(), rule);
+    if cut.is_none_or(|kept| kept.len() == repaired.len()) {
+        return Ok(None);
+    }
+    let threshold = crate::stages::outliers::iqr_thresholds_of(lengths, rule).cut;
+    let proximity_lengths = gathered_lengths(points, proximity)?;
+    Ok(Some(
+        proximity
+            .iter()
+            .zip(proximity_lengths)
+            .filter(|&(_, length2)| length2 <= threshold)
+            .map(|(&edge, _)| edge)
+            .collect(),
+    ))
+}
+
+/// The squared length of each of `edges` (pairs of positions in `points`) in the stages' frame.
+fn gathered_lengths(points: &[crate::Point], edges: &[[usize; 2]]) -> Result<Vec<f64>, Error> {
+    let stages = crate::triangulate::choose_frames(points)?.stages;
+    let mut lengths = Vec::with_capacity(edges.len());
+    for &[a, b] in edges {
+        let (Some(&p), Some(&q)) = (points.get(a), points.get(b)) else {
+            let value = a.max(b) as f64;
+            return Err(Error::InvalidParameter {
+                name: "edge",
+                value,
+            });
+        };
+        lengths.push(stages.apply(p).dist2(stages.apply(q)));
+    }
+    Ok(lengths)
+}
+
+/// Each position's component in the graph of `edges` (pairs of positions below `n`), named by its
+/// smallest position: what the driver of a split run sends each tile for [`clump_tests`].
+///
+/// # Errors
+/// [`Error::InvalidParameter`] named `edge` (the position) for an end not below `n`, or named
+/// `n` when `n` exceeds `u32::MAX`.
+///
+/// ```
+/// let labels = condt::tiled::component_labels(5, &[[3, 4], [1, 3]])?;
+/// assert_eq!(labels, vec![0, 1, 2, 1, 1]);
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Error> {
+    let edges = vertex_edges(n, edges)?;
+    Ok(components(n, &edges))
+}
+
+/// The clump rule's tests at each input position of `graph`'s triangulation, for a tile of a split
+/// run: bit 0 when the point has two edges and passes smoothly, bit 1 when it has edges and lies
+/// apart from everything outside its component (rule 4's separation); 0 without edges. `labels`
+/// names each position's component in the whole set's graph ([`component_labels`], any names
+/// that are equal exactly within a component); the tests are the whole set's at every point
+/// whose Delaunay star and graph the tile holds.
+///
+/// # Panics
+/// If `labels` is shorter than the triangulation's points.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// // A zig-zag of 6 points far from a smooth arc: its middle points are bent, not smooth.
+/// let on_arc = |k: f64| Point::new(10.0 * (0.1 * k).cos(), 10.0 * (0.1 * k).sin());
+/// let mut pts: Vec<Point> = (0..30).map(|k| on_arc(k as f64)).collect();
+/// pts.extend([(40.0, 0.0), (41.0, 1.0), (40.2, 1.1), (41.3, 2.0), (40.1, 2.2), (41.0, 3.1)]
+///     .map(Point::from));
+/// let tri = triangulate(&pts)?;
+/// let edges: Vec<[usize; 2]> = (0..29).chain(30..35).map(|i| [i, i + 1]).collect();
+/// let labels = tiled::component_labels(pts.len(), &edges)?;
+/// let tests = tiled::clump_tests(&tri.graph_from_edges(edges.iter().copied()), &labels);
+/// assert_eq!(tests[10], 0b11); // on the arc: smooth, and apart from the zig-zag
+/// assert_eq!(tests[32], 0b10); // in the zig-zag: bent
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Vec<u8> {
+    let tri = graph.triangulation();
+    let edges = graph.listed();
+    let curve = CurveGraph::new(tri.num_points(), edges);
+    let root: Vec<u32> = (0..tri.num_points())
+        .map(|v| labels[tri.input_of(VertexId::new(v as u32))])
+        .collect();
+    (0..tri.num_points())
+        .map(|position| {
+            let v = tri.vertex(position);
+            if tri.input_of(v) != position || curve.degree(v) == 0 {
+                return 0; // a merged duplicate is tested at its vertex's own position
+            }
+            let smooth = curve.degree(v) == 2 && {
+                let [y, z] = curve.first_two(v);
+                smooth_and_regular(tri, v, y, z)
+            };
+            u8::from(smooth) | u8::from(separated_at(tri, &curve, &root, v)) << 1
+        })
+        .collect()
+}
+
+/// The clump stage ([`Graph::remove_clumps`]) on edges gathered from the tiles of a split run:
+/// the edges kept (in order), or `None` when it changes nothing. `edges` are pairs of positions
+/// below `n`; `tests` holds each position's [`clump_tests`], from the tile that owns it. The rule
+/// is the stage's own, on the same graph, with the tests read instead of measured.
+///
+/// # Errors
+/// As [`component_labels`], and named `tests` when `tests` is shorter than `n`.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// let on_arc = |k: f64| Point::new(10.0 * (0.1 * k).cos(), 10.0 * (0.1 * k).sin());
+/// let mut pts: Vec<Point> = (0..30).map(|k| on_arc(k as f64)).collect();
+/// pts.extend([(40.0, 0.0), (41.0, 1.0), (40.2, 1.1), (41.3, 2.0), (40.1, 2.2), (41.0, 3.1)]
+///     .map(Point::from));
+/// let tri = triangulate(&pts)?;
+/// let edges: Vec<[usize; 2]> = (0..29).chain(30..35).map(|i| [i, i + 1]).collect();
+/// let graph = tri.graph_from_edges(edges.iter().copied());
+/// let tests = tiled::clump_tests(&graph, &tiled::component_labels(pts.len(), &edges)?);
+/// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests)?;
+/// assert_eq!(kept, Some(graph.remove_clumps().edges()));
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn remove_gathered_clumps(
+    n: usize,
+    edges: &[[usize; 2]],
+    tests: &[u8],
+) -> Result<Option<Vec<[usize; 2]>>, Error> {
+    if tests.len() < n {
+        return Err(Error::InvalidParameter {
+            name: "tests",
+            value: tests.len() as f64,
+        });
+    }
+    let listed = vertex_edges(n, edges)?;
+    let graph = CurveGraph::new(n, &listed);
+    let root = components(n, &listed);
+    let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
+    // Every test is at hand: the counts are exact (capped as the stage caps them), which decides
+    // as the stage's early stop does (docs/distributed.md).
+    let counts = |_: &[u32], _: f64| {
+        let mut separated = vec![0u8; n];
+        for (i, &r) in root.iter().enumerate() {
+            let v = VertexId::new(i as u32);
+            if graph.degree(v) > 0 && test(v, 2) && usize::from(separated[r as usize]) < MIN_SAMPLES
+            {
+                separated[r as usize] += 1;
+            }
+        }
+        Some(separated)
+    };
+    let clump = clumps::clumps_of(&graph, &root, |v| test(v, 1), counts, |v| test(v, 2));
+    Ok(clump.map(|clump| {
+        edges
+            .iter()
+            .zip(&listed)
+            .filter(|(_, &[a, _])| !clump[root[a.index()] as usize])
+            .map(|(&edge, _)| edge)
+            .collect()
+    }))
+}
+
+/// `edges` (pairs of positions below `n`) as the stages' edges, a position standing for a vertex.
+fn vertex_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
+    if u32::try_from(n).is_err() {
+        return Err(Error::InvalidParameter {
+            name: "n",
+            value: n as f64,
+        });
+    }
+    edges
+        .iter()
+        .map(|&[a, b]| {
+            if a.max(b) >= n {
+                return Err(Error::InvalidParameter {
+                    name: "edge",
+                    value: a.max(b) as f64,
+                });
+            }
+            Ok(ordered(VertexId::new(a as u32), VertexId::new(b as u32)))
+        })
+        .collect()
+}
