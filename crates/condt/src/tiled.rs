@@ -55,7 +55,7 @@ pub fn remove_gathered_outliers(
     })
 }
 
-/// Repairing again ([`OutlierRemoval::repair_again`]) on edges gathered from elsewhere: the edges
+/// Repairing again ([`crate::OutlierRemoval::repair_again`]) on edges gathered from elsewhere: the edges
 /// of `proximity` that it repairs again, those not above the IQR cut threshold of `repaired` (the
 /// repair's output), or `None` where Algorithm 3 cuts none of `repaired` (the step then changes
 /// nothing). Pairs of positions in `points`; lengths measured in the stages' own frame, so the
