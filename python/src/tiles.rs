@@ -71,11 +71,14 @@ impl Flow {
 /// (docs/distributed.md, *Later stages as rounds*): a junction's choice reads six hops from the
 /// loose end and the other ends choosing its point two more; a crossing's arms and chord, read
 /// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
-/// rule itself on the driver, [`_gathered_clumps`]).
-const LATER_STAGES: [(Stage, usize); 3] = [
+/// rule itself on the driver, [`_gathered_clumps`]); a tip's candidate move eight, from the loose
+/// end to the other's branch ([`_tip_candidates_kept`], the split test and the settling on the
+/// driver, [`_gathered_tips`]).
+const LATER_STAGES: [(Stage, usize); 4] = [
     (Stage::Clumps, 1),
     (Stage::Junctions, 8),
     (Stage::Crossings, 8),
+    (Stage::Tips, 8),
 ];
 
 /// The hops the flow's stages read around an owned point: the proximity graph one ring, the
@@ -139,7 +142,7 @@ fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Tiled)>
         Ok(tiled) => Ok((params, tiled)),
         Err(step) => Err(PyNotImplementedError::new_err(format!(
             "condt.dask tiles only the proximity graph, the repair, Algorithm 3, repairing \
-             again, the clumps, the junctions, the crossings and the smoothing passes, not yet {step}: use \
+             again, the clumps, the junctions, the crossings, the tips and the smoothing passes, not yet {step}: use \
              condt.reconstruct, or paper=True"
         ))),
     }
@@ -545,6 +548,64 @@ pub(crate) fn _tests_kept<'py>(
 
 /// A tile's owned points, as positions of the whole set, and their tests.
 type OwnedTests<'py> = (Bound<'py, PyArray1<i64>>, Bound<'py, PyArray1<u8>>);
+
+/// A round of the tips stage's candidates on a tile's kept triangulation
+/// ([`condt::tiled::tip_candidates`]) on the driver's `given` edges (as for [`_step_kept`]), at
+/// the points the tile owns: an `(m, 4)` int64 array of positions of the whole set.
+#[pyfunction]
+#[pyo3(signature = (state, given, **params))]
+pub(crate) fn _tip_candidates_kept<'py>(
+    py: Python<'py>,
+    state: &Bound<'py, TileState>,
+    given: PyReadonlyArray2<'py, i64>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let (_, tiled) = tiled_params(params)?;
+    if !tiled.later.contains(&Stage::Tips) {
+        return Err(PyValueError::new_err("no tips round for these parameters"));
+    }
+    let state = state.get();
+    let given = tile_pairs(given.as_slice()?, state.points.len())?;
+    let rows = py.detach(|| {
+        crate::within_call(|| {
+            let graph = state.tri.graph_from_edges(given);
+            condt::tiled::tip_candidates(&graph, |i| state.owned[i])
+        })
+    });
+    let flat: Vec<i64> = rows
+        .iter()
+        .flat_map(|row| row.map(|i| state.positions[i]))
+        .collect();
+    let rows = Array2::from_shape_vec((flat.len() / 4, 4), flat)
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, rows))
+}
+
+/// The tips stage on the gathered `edges` over `n` points with every point's `candidates`
+/// ([`condt::tiled::repair_gathered_tips`]): the edges after it, sorted by rows, or `None` when
+/// it changes nothing.
+#[pyfunction]
+pub(crate) fn _gathered_tips<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    candidates: PyReadonlyArray2<'py, i64>,
+) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+    let edges = gathered_pairs(edges)?;
+    let rows: Vec<[usize; 4]> = candidates
+        .as_slice()?
+        .chunks_exact(4)
+        .map(|row| {
+            let at = |k: usize| usize::try_from(row[k]);
+            Ok([at(0)?, at(1)?, at(2)?, at(3)?])
+        })
+        .collect::<Result<_, std::num::TryFromIntError>>()
+        .map_err(|_| PyValueError::new_err("a tip candidate names a negative position"))?;
+    let after = py
+        .detach(|| condt::tiled::repair_gathered_tips(n, &edges, &rows))
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    after.map(|edges| sorted_rows(py, edges)).transpose()
+}
 
 /// Each position's component in the graph of the gathered `edges` over `n` points, named by its
 /// smallest position ([`condt::tiled::component_labels`]), as an int64 array.

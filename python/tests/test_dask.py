@@ -76,7 +76,12 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
     flow=st.sampled_from([{}, {"outliers_first": True}, {"repair_again": True}]),
     smooth=st.booleans(),
     later=st.fixed_dictionaries(
-        {"clumps": st.booleans(), "junctions": st.booleans(), "crossings": st.booleans()}
+        {
+            "clumps": st.booleans(),
+            "junctions": st.booleans(),
+            "crossings": st.booleans(),
+            "tips": st.booleans(),
+        }
     ),
 )
 def test_any_tiling_gives_the_one_machine_edges(
@@ -241,28 +246,31 @@ def test_a_dask_array_is_computed_first(client):
     np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
 
 
-# The default's stages that are tiled so far, each a round on the kept tiles.
-LATER = {"local_outliers": False, "clumps": False, "close_gaps": False, "tips": False}
+# The default's stages that are tiled so far, each a round on the kept tiles: all but these.
+LATER = {"local_outliers": False, "close_gaps": False}
 
 
 @pytest.mark.parametrize(
-    "params",
+    "params, stages",
     [
-        {"paper": True, "junctions": True, "crossings": True},
-        {**LATER, "smooth": False},
-        LATER,
-        {**LATER, "junctions": False},
+        ({"paper": True, "junctions": True, "crossings": True}, ["junctions", "crossings"]),
+        ({**LATER, "smooth": False}, ["junctions", "crossings"]),
+        (LATER, ["junctions", "crossings"]),
+        ({**LATER, "junctions": False}, ["crossings"]),
+        ({"paper": True, "tips": True}, ["tips"]),
+        (LATER, ["tips"]),
     ],
 )
-def test_junctions_and_crossings_are_tiled_rounds_with_the_one_machine_edges(client, params):
-    # Ellipses overlapping at random: crossings, and curves meeting where a noisy one ends.
-    points = curves(20_000, np.random.default_rng(5))
+def test_the_later_stages_are_tiled_rounds_with_the_one_machine_edges(client, params, stages):
+    # Ellipses overlapping at random: crossings, curves meeting where a noisy one ends, chords
+    # across sharp tips.
+    points = curves(20_000, np.random.default_rng(1))
     tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
     assert tiled.whole is None
     expected = one_machine(points, **params)
     np.testing.assert_array_equal(tiled.edges, expected)
     # The rounds mattered: without those stages the edges differ.
-    without = {**params, "junctions": False, "crossings": False}
+    without = {**params, **{stage: False for stage in stages}}
     assert not np.array_equal(expected, one_machine(points, **without))
 
 
@@ -272,7 +280,7 @@ def test_clumps_are_a_round_of_tests_and_the_rule_on_the_driver(client):
     rng = np.random.default_rng(6)
     blobs = [c + rng.normal(0, 0.3, (int(rng.integers(6, 16)), 2)) for c in rng.uniform(0, 100, (40, 2))]
     points = np.concatenate([curves(20_000, rng, outliers=0.0, noisy_every=10**6)] + blobs)
-    params = {**LATER, "clumps": True}
+    params = {**LATER, "tips": False}
     tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
     assert tiled.whole is None
     expected = one_machine(points, **params)

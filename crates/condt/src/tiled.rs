@@ -14,6 +14,7 @@ use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::stages::local_outliers::{components, separated_at, smooth_and_regular, MIN_SAMPLES};
 use crate::stages::outliers::IqrRule;
+use crate::stages::tips::{self, Candidate};
 use crate::stages::{clumps, Step};
 use alloc::vec;
 use alloc::vec::Vec;
@@ -245,6 +246,106 @@ pub fn remove_gathered_clumps(
             .map(|(&edge, _)| edge)
             .collect()
     }))
+}
+
+/// The tips stage's candidates at the points of `graph`'s triangulation that `at` selects (by
+/// input position), for a tile of a split run: rows of four input positions, `[q, x, y, p]` for a
+/// move of the loose end `q` (the chord `x y` given up for `q x` and `p y`) that passes every
+/// test but the split test (a walk along a curve), `[u, a, b, u]` for the move of the point
+/// without edges `u` onto the chord `a b`, `[u, u, u, u]` when `u` has several. A point's rows
+/// come together. They are the whole set's at every point whose Delaunay neighbourhood (eight
+/// hops) and graph the tile holds.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// // Two lines 0.8 apart, paired across by the chord 0-16 (as `Graph::repair_tips` shows).
+/// let piece = |x0: f64, dx: f64, y: f64| (0..8).map(move |k| Point::new(x0 + dx * k as f64, y));
+/// let pts: Vec<Point> = [(0.0, -1.0, 0.0), (1.0, 1.0, 0.0), (0.8, 1.0, 0.8), (-0.2, -1.0, 0.8)]
+///     .iter()
+///     .flat_map(|&(x0, dx, y)| piece(x0, dx, y))
+///     .collect();
+/// let tri = triangulate(&pts)?;
+/// let mut edges: Vec<[usize; 2]> = (0..4)
+///     .flat_map(|p| (0..7).map(move |k| [8 * p + k, 8 * p + k + 1]))
+///     .collect();
+/// edges.push([0, 16]);
+/// let graph = tri.graph_from_edges(edges.iter().copied());
+/// let candidates = tiled::tip_candidates(&graph, |_| true);
+/// assert!(candidates.contains(&[8, 0, 16, 24]));
+/// let kept = tiled::repair_gathered_tips(pts.len(), &edges, &candidates)?.unwrap();
+/// let mut expected = graph.repair_tips().edges();
+/// expected.sort();
+/// let mut kept = kept;
+/// kept.sort();
+/// assert_eq!(kept, expected);
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn tip_candidates(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize; 4]> {
+    let tri = graph.triangulation();
+    let position = |v: VertexId| tri.input_of(v);
+    tips::candidates(tri, graph.listed(), |v| at(position(v)))
+        .into_iter()
+        .map(|candidate| match candidate {
+            Candidate::Tip(move_) => move_.map(position),
+            Candidate::Apex([u, a, b]) => [u, a, b, u].map(position),
+            Candidate::SeveralAt(u) => [position(u); 4],
+        })
+        .collect()
+}
+
+/// The tips stage ([`Graph::repair_tips`]) on edges gathered from the tiles of a split run: the
+/// edges after it (the input's without the chords given up, then the new ones), or `None` when it
+/// changes nothing. `edges` are pairs of positions below `n`; `candidates` every point's rows of
+/// [`tip_candidates`], from the tile that owns it. The split test and the settling of moves that
+/// share a point are the stage's own, on the gathered graph.
+///
+/// # Errors
+/// As [`component_labels`], for `edges` and for the positions in `candidates`.
+pub fn repair_gathered_tips(
+    n: usize,
+    edges: &[[usize; 2]],
+    candidates: &[[usize; 4]],
+) -> Result<Option<Vec<[usize; 2]>>, Error> {
+    let listed = vertex_edges(n, edges)?;
+    let graph = CurveGraph::new(n, &listed);
+    let vertex = |i: usize| VertexId::new(i as u32);
+    let mut rows = Vec::with_capacity(candidates.len());
+    for &row in candidates {
+        if let Some(&end) = row.iter().find(|&&i| i >= n) {
+            return Err(Error::InvalidParameter {
+                name: "candidate",
+                value: end as f64,
+            });
+        }
+        let [q, x, y, p] = row.map(vertex);
+        rows.push(if row.iter().all(|&i| i == row[0]) {
+            Candidate::SeveralAt(q)
+        } else if q == p {
+            Candidate::Apex([q, x, y])
+        } else {
+            Candidate::Tip([q, x, y, p])
+        });
+    }
+    // A loose end's rows together, as one tile sends them.
+    rows.sort_by_key(|c| match c {
+        Candidate::Tip([q, ..]) | Candidate::Apex([q, ..]) | Candidate::SeveralAt(q) => *q,
+    });
+    let Some((chords, joins)) = tips::settle_candidates(n, &graph, rows) else {
+        return Ok(None);
+    };
+    let chords: Vec<Edge> = {
+        let mut chords = chords;
+        chords.sort_unstable();
+        chords
+    };
+    let mut out: Vec<[usize; 2]> = edges
+        .iter()
+        .zip(&listed)
+        .filter(|(_, e)| chords.binary_search(e).is_err())
+        .map(|(&edge, _)| edge)
+        .collect();
+    out.extend(joins.iter().map(|&[a, b]| [a.index(), b.index()]));
+    Ok(Some(out))
 }
 
 /// `edges` (pairs of positions below `n`) as the stages' edges, a position standing for a vertex.

@@ -27,6 +27,8 @@ __all__ = [
     "_tests_kept",
     "_component_labels",
     "_gathered_clumps",
+    "_tip_candidates_kept",
+    "_gathered_tips",
     "_TileState",
 ]
 
@@ -188,6 +190,12 @@ def _tests_kept(
 def _component_labels(n: int, edges: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]: ...
 def _gathered_clumps(
     n: int, edges: npt.NDArray[np.int64], tests: npt.NDArray[np.uint8]
+) -> npt.NDArray[np.int64] | None: ...
+def _tip_candidates_kept(
+    state: _TileState, given: npt.NDArray[np.int64], **params: Any
+) -> npt.NDArray[np.int64]: ...
+def _gathered_tips(
+    n: int, edges: npt.NDArray[np.int64], candidates: npt.NDArray[np.int64]
 ) -> npt.NDArray[np.int64] | None: ...
 def _gathered_outliers(
     points: _Points, edges: npt.NDArray[np.int64], **params: Any

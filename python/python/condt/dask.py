@@ -20,13 +20,14 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
 Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3 in
 either order, which is the paper's pipeline (``paper=True``, with any of its ``u``,
 ``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), repairing again
-(``repair_again=True``), the clumps, the junctions and the crossings (``clumps=True``,
-``junctions=True``, ``crossings=True``: one round each on the tiles' kept triangulations, with the
-driver's edges; the clumps' rule itself on the driver, on tests the tiles send)
+(``repair_again=True``), the clumps, the junctions, the crossings and the tips (``clumps=True``,
+``junctions=True``, ``crossings=True``, ``tips=True``: one round each on the tiles' kept
+triangulations, with the driver's edges; the clumps' rule and the tips' split test and settling
+on the driver, on what the tiles send)
 and the smoothing passes (``smooth=True``: each pass is a tiled run of its own on the moved
 points; whether a pass follows, and where it moves the points, the library decides on the
 driver from the edges the tiles sent). Any other step (the default's local outlier removal,
-gap closing, tips) raises ``NotImplementedError`` naming it: ``docs/distributed.md``
+gap closing) raises ``NotImplementedError`` naming it: ``docs/distributed.md``
 says what each needs. The points themselves stay on the machine that
 calls this (the driver), which computes their insertion order and hull once; the workers
 triangulate and run the stages.
@@ -177,6 +178,12 @@ def _phases(run, plan, points, params):
             tests = run.tests_on_kept(edges, step, labels)
             kept = _condt._gathered_clumps(len(points), edges, tests)
             edges = edges if kept is None else kept
+        elif step == "tips":
+            # The candidate moves on the tiles; the split test (a walk along a curve) and the
+            # settling of moves that share a point on the driver.
+            candidates = run.on_kept(edges, step, width=4)
+            after = _condt._gathered_tips(len(points), edges, candidates)
+            edges = edges if after is None else after
         else:
             edges = _sorted(run.on_kept(edges, step))
     run.kept.clear()
@@ -317,10 +324,11 @@ class _Run:
             tests[owned] = bits
         return tests
 
-    def on_kept(self, given, step):
+    def on_kept(self, given, step, width=2):
         """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
         halo that certified it, on its worker), joined: the second phase of a two-phase flow
-        (``"repair"``) or a later stage's round, which sends each tile only its given edges."""
+        (``"repair"``) or a later stage's round, which sends each tile only its given edges. The
+        tiles' rows (owned edges, or for the tips ``width`` 4, candidate moves) in tile order."""
         at = np.full(len(self.points), -1, np.int64)
         futures = []
         for k in sorted(self.kept):
@@ -333,7 +341,7 @@ class _Run:
         self.rounds += 1
         for _, worker in results:
             self.workers.add(worker)
-        return np.concatenate([edges for edges, _ in results] + [np.empty((0, 2), np.int64)])
+        return np.concatenate([rows for rows, _ in results] + [np.empty((0, width), np.int64)])
 
 
 def _local(given, positions, at):
@@ -400,9 +408,12 @@ def _tile_given(result, given, step, params):
     """On a worker: ``step`` on the driver's ``given`` edges on a tile's kept triangulation."""
     from distributed import get_worker
 
-    state = result[3]
-    edges = _condt._step_kept(state, np.require(given, requirements="CA"), step, **params)
-    return edges, get_worker().address
+    state, given = result[3], np.require(given, requirements="CA")
+    if step == "tips":
+        rows = _condt._tip_candidates_kept(state, given, **params)
+    else:
+        rows = _condt._step_kept(state, given, step, **params)
+    return rows, get_worker().address
 
 
 def _spent(runs):

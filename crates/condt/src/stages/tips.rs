@@ -60,6 +60,22 @@ impl Move {
     }
 }
 
+/// Whether the chain from the loose end `q` reaches `x` before `y`: the move would cut it at
+/// `x y` and close both halves (walks only for candidates that passed every other test). It reads
+/// the graph alone, so a run split in tiles takes it on the gathered edges.
+pub(crate) fn splits(graph: &CurveGraph, q: VertexId, x: VertexId, y: VertexId) -> bool {
+    let mut step = [q, graph.first_two(q)[0]];
+    loop {
+        if step[1] == x || step[1] == y {
+            return step[1] == x;
+        }
+        if graph.degree(step[1]) != 2 {
+            return false;
+        }
+        step = [step[1], graph.onward(step[1], step[0])];
+    }
+}
+
 /// What a loose end or an apex found: its one move, or that it has more than one (it then takes
 /// part in none).
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -80,31 +96,40 @@ impl Ends<'_> {
             && px.dist2(self.point(q)) <= GAP_RATIO * GAP_RATIO * px.dist2(po)
     }
 
-    /// Whether the chain from the loose end `q` reaches `x` before `y`: the move would cut it at
-    /// `x y` and close both halves (walks only for candidates that passed every other test).
-    fn splits(&self, q: VertexId, x: VertexId, y: VertexId) -> bool {
-        let mut step = [q, self.along(q)];
-        loop {
-            if step[1] == x || step[1] == y {
-                return step[1] == x;
+    /// The move the loose end `q` takes part in, if any (the module's rule).
+    fn tip_at(&self, q: VertexId) -> Option<Found> {
+        let mut found = None;
+        let mut several = false;
+        self.tip_candidates(q, |x, y, p| {
+            if splits(&self.graph, q, x, y) || splits(&self.graph, p, y, x) {
+                return true;
             }
-            if self.graph.degree(step[1]) != 2 {
-                return false;
-            }
-            step = [step[1], self.graph.onward(step[1], step[0])];
+            several = found.is_some();
+            found = Some(Found::One(Move::new(q, x, y, p)));
+            !several
+        });
+        if several {
+            Some(Found::Several(q))
+        } else {
+            found
         }
     }
 
-    /// The move the loose end `q` takes part in, if any (the module's rule).
-    fn tip_at(&self, q: VertexId) -> Option<Found> {
+    /// Calls `each(x, y, p)` for every move of the loose end `q` (the chord `x y`, the other loose
+    /// end `p`) that passes every test of the module's rule but the split test ([`splits`], a walk
+    /// along a curve, which a tile of a split run cannot take), until `each` returns `false`.
+    pub(crate) fn tip_candidates(
+        &self,
+        q: VertexId,
+        mut each: impl FnMut(VertexId, VertexId, VertexId) -> bool,
+    ) {
         // Every move needs the end's own branch: without it (most ends on scattered points) the
         // ring is skipped (speed).
         let along_q = self.along(q);
         if !self.branch(q, along_q, &[]) {
-            return None;
+            return;
         }
         let mesh = self.tri.mesh();
-        let mut found = None;
         for x in mesh.neighbors(q) {
             if x == along_q || self.graph.degree(x) != 2 {
                 continue;
@@ -121,20 +146,13 @@ impl Ends<'_> {
                     let passes = self.continues(y, x, p)
                         && (self.cos_of(q, along_q, x) < SMOOTH_COS
                             || self.cos_of(p, along_p, y) < SMOOTH_COS)
-                        && self.branch(p, along_p, &[])
-                        && !self.splits(q, x, y)
-                        && !self.splits(p, y, x);
-                    if !passes {
-                        continue;
+                        && self.branch(p, along_p, &[]);
+                    if passes && !each(x, y, p) {
+                        return;
                     }
-                    if found.is_some() {
-                        return Some(Found::Several(q));
-                    }
-                    found = Some(Found::One(Move::new(q, x, y, p)));
                 }
             }
         }
-        found
     }
 
     /// The apex move the point without edges `u` takes part in, if any (the module's rule).
@@ -196,8 +214,17 @@ pub(crate) fn repair_tips(
             _ => None,
         }
     });
+    match settle(tri.num_points(), found) {
+        Some((chords, joins)) => Outcome::replacing(edges, ends.into_graph(), chords, joins),
+        None => Outcome::unchanged_with(ends.into_graph()),
+    }
+}
+
+/// The chords to replace and the edges replacing them, from what every loose end and apex found
+/// (over `n` points), or `None` when no move stands.
+fn settle(n: usize, found: Vec<Found>) -> Option<(Vec<Edge>, Vec<Edge>)> {
     if found.is_empty() {
-        return Outcome::unchanged_with(ends.into_graph());
+        return None;
     }
     // Each loose-end move is found from both its loose ends, an apex move from its apex; a point
     // in two moves, or a loose end or apex with two candidates, takes part in none.
@@ -211,16 +238,90 @@ pub(crate) fn repair_tips(
     }
     moves.sort_unstable();
     moves.dedup();
-    alone(tri.num_points(), &mut moves, &claimed, |m| m.points());
+    alone(n, &mut moves, &claimed, |m| m.points());
     if moves.is_empty() {
-        return Outcome::unchanged_with(ends.into_graph());
+        return None;
     }
     let chords = moves.iter().map(|m| ordered(m.x, m.y)).collect();
     let joins = moves
         .iter()
         .flat_map(|m| [ordered(m.q, m.x), ordered(m.p, m.y)])
         .collect();
-    Outcome::replacing(edges, ends.into_graph(), chords, joins)
+    Some((chords, joins))
+}
+
+/// What a point found, for a run split in tiles ([`crate::tiled`]): a loose end's moves before
+/// the split test, an apex's move, or an apex's several.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Candidate {
+    /// A move of the loose end `q`: the chord `x y`, the other loose end `p` (`[q, x, y, p]`).
+    Tip([VertexId; 4]),
+    /// The apex move of `u` on the chord `a b` (`[u, a, b]`).
+    Apex([VertexId; 3]),
+    /// An apex with more than one move.
+    SeveralAt(VertexId),
+}
+
+/// Every [`Candidate`] at the points `at` selects (each by its degree in `edges`, as the stage
+/// asks), point by point in id order.
+pub(crate) fn candidates(
+    tri: &Triangulation,
+    edges: &[Edge],
+    at: impl Fn(VertexId) -> bool,
+) -> Vec<Candidate> {
+    let ends = Ends::new(tri, edges, None);
+    let mut out = Vec::new();
+    for v in (0..tri.num_points()).map(|i| VertexId::new(i as u32)) {
+        if !at(v) {
+            continue;
+        }
+        match ends.graph.degree(v) {
+            0 => match ends.apex_at(v) {
+                Some(Found::One(m)) => out.push(Candidate::Apex([m.q, m.x, m.y])),
+                Some(Found::Several(u)) => out.push(Candidate::SeveralAt(u)),
+                None => {}
+            },
+            1 => ends.tip_candidates(v, |x, y, p| {
+                out.push(Candidate::Tip([v, x, y, p]));
+                true
+            }),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The stage's rule on a graph of `n` points whose candidates were gathered (each point's from
+/// [`candidates_at`]): the split test on `graph`, then the moves settled as the stage settles
+/// them. The chords to replace and the edges replacing them, or `None`.
+pub(crate) fn settle_candidates(
+    n: usize,
+    graph: &CurveGraph,
+    candidates: impl IntoIterator<Item = Candidate>,
+) -> Option<(Vec<Edge>, Vec<Edge>)> {
+    let mut found = Vec::new();
+    // A loose end's candidates arrive together: the one that passes the split test, or several.
+    let mut end: Option<(VertexId, Option<Found>)> = None;
+    for candidate in candidates {
+        match candidate {
+            Candidate::Tip([q, x, y, p]) => {
+                if end.is_some_and(|(at, _)| at != q) {
+                    found.extend(end.take().and_then(|(_, f)| f));
+                }
+                let (_, f) = end.get_or_insert((q, None));
+                if !splits(graph, q, x, y) && !splits(graph, p, y, x) {
+                    *f = Some(match f {
+                        None => Found::One(Move::new(q, x, y, p)),
+                        Some(_) => Found::Several(q),
+                    });
+                }
+            }
+            Candidate::Apex([u, a, b]) => found.push(Found::One(Move::new(u, a, b, u))),
+            Candidate::SeveralAt(u) => found.push(Found::Several(u)),
+        }
+    }
+    found.extend(end.and_then(|(_, f)| f));
+    settle(n, found)
 }
 
 #[cfg(test)]
