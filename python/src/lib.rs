@@ -448,6 +448,8 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tiles::_gathered_clumps, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_tip_candidates_kept, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_tips, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_gap_choices_kept, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_gathered_gaps, m)?)?;
     m.add_class::<tiles::TileState>()?;
     m.add_class::<Reconstruction>()?;
     m.add_class::<Curve>()?;

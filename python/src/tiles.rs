@@ -73,9 +73,12 @@ impl Flow {
 /// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
 /// rule itself on the driver, [`_gathered_clumps`]); a tip's candidate move eight, from the loose
 /// end to the other's branch ([`_tip_candidates_kept`], the split test and the settling on the
-/// driver, [`_gathered_tips`]).
-const LATER_STAGES: [(Stage, usize); 4] = [
+/// driver, [`_gathered_tips`]); a loose end's gap choice six, its straight walk five
+/// ([`_gap_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
+/// driver, [`_gathered_gaps`]).
+const LATER_STAGES: [(Stage, usize); 5] = [
     (Stage::Clumps, 1),
+    (Stage::Gaps, 6),
     (Stage::Junctions, 8),
     (Stage::Crossings, 8),
     (Stage::Tips, 8),
@@ -142,7 +145,7 @@ fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Tiled)>
         Ok(tiled) => Ok((params, tiled)),
         Err(step) => Err(PyNotImplementedError::new_err(format!(
             "condt.dask tiles only the proximity graph, the repair, Algorithm 3, repairing \
-             again, the clumps, the junctions, the crossings, the tips and the smoothing passes, not yet {step}: use \
+             again, the clumps, gap closing, the junctions, the crossings, the tips and the smoothing passes, not yet {step}: use \
              condt.reconstruct, or paper=True"
         ))),
     }
@@ -579,6 +582,74 @@ pub(crate) fn _tip_candidates_kept<'py>(
     let rows = Array2::from_shape_vec((flat.len() / 4, 4), flat)
         .map_err(|err| PyValueError::new_err(err.to_string()))?;
     Ok(PyArray2::from_owned_array(py, rows))
+}
+
+/// A round of gap closing's choices on a tile's kept triangulation
+/// ([`condt::tiled::gap_choices`]) on the driver's `given` edges (as for [`_step_kept`]), at the
+/// loose ends the tile owns: an `(m, 10)` int64 array of positions of the whole set (the kind
+/// and the walk's length as they are).
+#[pyfunction]
+#[pyo3(signature = (state, given, **params))]
+pub(crate) fn _gap_choices_kept<'py>(
+    py: Python<'py>,
+    state: &Bound<'py, TileState>,
+    given: PyReadonlyArray2<'py, i64>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let (_, tiled) = tiled_params(params)?;
+    if !tiled.later.contains(&Stage::Gaps) {
+        return Err(PyValueError::new_err("no gaps round for these parameters"));
+    }
+    let state = state.get();
+    let given = tile_pairs(given.as_slice()?, state.points.len())?;
+    let rows = py.detach(|| {
+        crate::within_call(|| {
+            let graph = state.tri.graph_from_edges(given);
+            condt::tiled::gap_choices(&graph, |i| state.owned[i])
+        })
+    });
+    let width = condt::tiled::GAP_ROW;
+    let at = |row: &[usize; condt::tiled::GAP_ROW], k: usize| match k {
+        1 | 4 => row[k] as i64,
+        _ => state.positions[row[k]],
+    };
+    let flat: Vec<i64> = rows
+        .iter()
+        .flat_map(|row| (0..width).map(move |k| at(row, k)))
+        .collect();
+    let rows = Array2::from_shape_vec((flat.len() / width, width), flat)
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, rows))
+}
+
+/// Gap closing on the gathered `edges` over `n` points with every loose end's `choices`
+/// ([`condt::tiled::close_gathered_gaps`]): the edges with the joins, sorted by rows, or `None`
+/// when it adds none.
+#[pyfunction]
+pub(crate) fn _gathered_gaps<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    choices: PyReadonlyArray2<'py, i64>,
+) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+    let edges = gathered_pairs(edges)?;
+    let width = condt::tiled::GAP_ROW;
+    let rows: Vec<[usize; condt::tiled::GAP_ROW]> = choices
+        .as_slice()?
+        .chunks_exact(width)
+        .map(|row| {
+            let mut out = [0usize; condt::tiled::GAP_ROW];
+            for (slot, &value) in out.iter_mut().zip(row) {
+                *slot = usize::try_from(value)?;
+            }
+            Ok(out)
+        })
+        .collect::<Result<_, std::num::TryFromIntError>>()
+        .map_err(|_| PyValueError::new_err("a gap choice names a negative position"))?;
+    let after = py
+        .detach(|| condt::tiled::close_gathered_gaps(n, &edges, &rows))
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    after.map(|edges| sorted_rows(py, edges)).transpose()
 }
 
 /// The tips stage on the gathered `edges` over `n` points with every point's `candidates`

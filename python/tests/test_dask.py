@@ -81,6 +81,7 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
             "junctions": st.booleans(),
             "crossings": st.booleans(),
             "tips": st.booleans(),
+            "close_gaps": st.booleans(),
         }
     ),
 )
@@ -247,7 +248,7 @@ def test_a_dask_array_is_computed_first(client):
 
 
 # The default's stages that are tiled so far, each a round on the kept tiles: all but these.
-LATER = {"local_outliers": False, "close_gaps": False}
+LATER = {"local_outliers": False}
 
 
 @pytest.mark.parametrize(
@@ -259,6 +260,8 @@ LATER = {"local_outliers": False, "close_gaps": False}
         ({**LATER, "junctions": False}, ["crossings"]),
         ({"paper": True, "tips": True}, ["tips"]),
         (LATER, ["tips"]),
+        ({"paper": True, "close_gaps": True}, ["close_gaps"]),
+        (LATER, ["close_gaps"]),
     ],
 )
 def test_the_later_stages_are_tiled_rounds_with_the_one_machine_edges(client, params, stages):
@@ -280,7 +283,7 @@ def test_clumps_are_a_round_of_tests_and_the_rule_on_the_driver(client):
     rng = np.random.default_rng(6)
     blobs = [c + rng.normal(0, 0.3, (int(rng.integers(6, 16)), 2)) for c in rng.uniform(0, 100, (40, 2))]
     points = np.concatenate([curves(20_000, rng, outliers=0.0, noisy_every=10**6)] + blobs)
-    params = {**LATER, "tips": False}
+    params = {**LATER, "close_gaps": False, "tips": False}
     tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
     assert tiled.whole is None
     expected = one_machine(points, **params)

@@ -12,6 +12,7 @@ use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::error::Error;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
+use crate::stages::gaps::{self, Ends, Partner, Target, Walk};
 use crate::stages::local_outliers::{components, separated_at, smooth_and_regular, MIN_SAMPLES};
 use crate::stages::outliers::IqrRule;
 use crate::stages::tips::{self, Candidate};
@@ -344,6 +345,125 @@ pub fn repair_gathered_tips(
         .filter(|(_, e)| chords.binary_search(e).is_err())
         .map(|(&edge, _)| edge)
         .collect();
+    out.extend(joins.iter().map(|&[a, b]| [a.index(), b.index()]));
+    Ok(Some(out))
+}
+
+/// The width of a row of [`gap_choices`].
+pub const GAP_ROW: usize = 10;
+
+/// Gap closing's choices at the loose ends of `graph` that `at` selects (by input position), for
+/// a tile of a split run: one row of input positions per loose end that chose a join or walks
+/// straight on through a point, `[a, kind, t, u, walk, w0, w1, w2, w3, w4]`: the end `a`; its
+/// target by `kind` (0 none, 1 the loose end `t`, 2 the crossing `t` lined up with its neighbour
+/// `u`, 3 the point `t` with the loose end `u` across it); its straight walk's length and points.
+/// Slots that hold nothing hold `a`. They are the whole set's at every loose end whose Delaunay
+/// neighbourhood (six hops) and graph the tile holds.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// let pts: Vec<Point> = (0..6).map(|i| Point::new(i as f64, 0.1 * (i % 2) as f64)).collect();
+/// let tri = triangulate(&pts)?;
+/// let edges = [[0, 1], [1, 2], [3, 4], [4, 5]];
+/// let graph = tri.graph_from_edges(edges);
+/// let rows = tiled::gap_choices(&graph, |_| true);
+/// assert!(rows.iter().any(|row| row[..3] == [2, 1, 3])); // 2 chose the loose end 3
+/// let mut closed = tiled::close_gathered_gaps(pts.len(), &edges, &rows)?.unwrap();
+/// closed.sort();
+/// assert_eq!(closed, graph.close_gaps().edges());
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn gap_choices(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize; GAP_ROW]> {
+    let tri = graph.triangulation();
+    let ends = Ends::new(tri, graph.listed(), None);
+    let position = |v: VertexId| tri.input_of(v);
+    let mut rows = Vec::new();
+    for v in (0..tri.num_points()).map(|i| VertexId::new(i as u32)) {
+        if !ends.is_loose(v) || !at(position(v)) {
+            continue;
+        }
+        let (target, walk) = (ends.target(v), ends.straight_walk(v));
+        if target == Target::None && walk.is_empty() {
+            continue;
+        }
+        let a = position(v);
+        let (kind, t, u) = match target {
+            Target::None => (0, a, a),
+            Target::End(b) => (1, position(b), a),
+            Target::Through(c, Partner::Neighbor(x)) => (2, position(c), position(x)),
+            Target::Through(c, Partner::End(d)) => (3, position(c), position(d)),
+        };
+        let mut row = [a; GAP_ROW];
+        row[1..5].copy_from_slice(&[kind, t, u, walk.len()]);
+        for (k, &w) in walk.iter().enumerate() {
+            row[5 + k] = position(w);
+        }
+        rows.push(row);
+    }
+    rows
+}
+
+/// Gap closing ([`Graph::close_gaps`]) on edges gathered from the tiles of a split run: the edges
+/// with the joins after them, or `None` when it adds none. `edges` are pairs of positions below
+/// `n`; `rows` every loose end's row of [`gap_choices`], from the tile that owns it. Agreement,
+/// the fixed point of joins along lone edges, and the stranded runs are the stage's own code, on
+/// the gathered graph.
+///
+/// # Errors
+/// As [`component_labels`], for `edges` and for the positions in `rows` (named `choice`, also for
+/// a kind or a walk length out of range).
+pub fn close_gathered_gaps(
+    n: usize,
+    edges: &[[usize; 2]],
+    rows: &[[usize; GAP_ROW]],
+) -> Result<Option<Vec<[usize; 2]>>, Error> {
+    let listed = vertex_edges(n, edges)?;
+    let graph = CurveGraph::new(n, &listed);
+    let mut targets = Vec::new();
+    let mut walks = Vec::new();
+    for row in rows {
+        let bad = row[1] > 3 || row[4] > GAP_ROW - 5;
+        if bad || [row[0], row[2], row[3]].iter().any(|&i| i >= n) {
+            return Err(Error::InvalidParameter {
+                name: "choice",
+                value: row[0] as f64,
+            });
+        }
+        let v = |i: usize| VertexId::new(row[i] as u32);
+        let target = match row[1] {
+            1 => Target::End(v(2)),
+            2 => Target::Through(v(2), Partner::Neighbor(v(3))),
+            3 => Target::Through(v(2), Partner::End(v(3))),
+            _ => Target::None,
+        };
+        if target != Target::None {
+            targets.push((v(0), target));
+        }
+        if row[4] > 0 {
+            let mut walk = Walk::EMPTY;
+            for k in 0..row[4] {
+                if row[5 + k] >= n {
+                    return Err(Error::InvalidParameter {
+                        name: "choice",
+                        value: row[5 + k] as f64,
+                    });
+                }
+                walk.push(v(5 + k));
+            }
+            walks.push((v(0), walk));
+        }
+    }
+    targets.sort_unstable_by_key(|&(a, _)| a);
+    walks.sort_unstable_by_key(|&(a, _)| a);
+    let not_joined = |joined: &[VertexId]| {
+        walks.retain(|(a, _)| joined.binary_search(a).is_err());
+        walks
+    };
+    let joins = gaps::settle_joins(n, &graph, &targets, not_joined);
+    if joins.is_empty() {
+        return Ok(None);
+    }
+    let mut out = edges.to_vec();
     out.extend(joins.iter().map(|&[a, b]| [a.index(), b.index()]));
     Ok(Some(out))
 }

@@ -29,6 +29,8 @@ __all__ = [
     "_gathered_clumps",
     "_tip_candidates_kept",
     "_gathered_tips",
+    "_gap_choices_kept",
+    "_gathered_gaps",
     "_TileState",
 ]
 
@@ -196,6 +198,12 @@ def _tip_candidates_kept(
 ) -> npt.NDArray[np.int64]: ...
 def _gathered_tips(
     n: int, edges: npt.NDArray[np.int64], candidates: npt.NDArray[np.int64]
+) -> npt.NDArray[np.int64] | None: ...
+def _gap_choices_kept(
+    state: _TileState, given: npt.NDArray[np.int64], **params: Any
+) -> npt.NDArray[np.int64]: ...
+def _gathered_gaps(
+    n: int, edges: npt.NDArray[np.int64], choices: npt.NDArray[np.int64]
 ) -> npt.NDArray[np.int64] | None: ...
 def _gathered_outliers(
     points: _Points, edges: npt.NDArray[np.int64], **params: Any

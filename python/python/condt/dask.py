@@ -20,14 +20,13 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
 Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3 in
 either order, which is the paper's pipeline (``paper=True``, with any of its ``u``,
 ``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), repairing again
-(``repair_again=True``), the clumps, the junctions, the crossings and the tips (``clumps=True``,
-``junctions=True``, ``crossings=True``, ``tips=True``: one round each on the tiles' kept
-triangulations, with the driver's edges; the clumps' rule and the tips' split test and settling
-on the driver, on what the tiles send)
+(``repair_again=True``), the clumps, gap closing, the junctions, the crossings and the tips
+(``clumps=True``, ``close_gaps=True``, ``junctions=True``, ``crossings=True``, ``tips=True``: one
+round each on the tiles' kept triangulations, with the driver's edges; the clumps' rule, gap
+closing's settling and the tips' split test and settling on the driver, on what the tiles send)
 and the smoothing passes (``smooth=True``: each pass is a tiled run of its own on the moved
 points; whether a pass follows, and where it moves the points, the library decides on the
-driver from the edges the tiles sent). Any other step (the default's local outlier removal,
-gap closing) raises ``NotImplementedError`` naming it: ``docs/distributed.md``
+driver from the edges the tiles sent). Any other step (the default's local outlier removal) raises ``NotImplementedError`` naming it: ``docs/distributed.md``
 says what each needs. The points themselves stay on the machine that
 calls this (the driver), which computes their insertion order and hull once; the workers
 triangulate and run the stages.
@@ -178,6 +177,12 @@ def _phases(run, plan, points, params):
             tests = run.tests_on_kept(edges, step, labels)
             kept = _condt._gathered_clumps(len(points), edges, tests)
             edges = edges if kept is None else kept
+        elif step == "gaps":
+            # Each loose end's choice and straight walk on the tiles; agreement, the joins along
+            # lone edges (a fixed point along chains) and the stranded runs on the driver.
+            choices = run.on_kept(edges, step, width=10)
+            after = _condt._gathered_gaps(len(points), edges, choices)
+            edges = edges if after is None else after
         elif step == "tips":
             # The candidate moves on the tiles; the split test (a walk along a curve) and the
             # settling of moves that share a point on the driver.
@@ -328,7 +333,8 @@ class _Run:
         """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
         halo that certified it, on its worker), joined: the second phase of a two-phase flow
         (``"repair"``) or a later stage's round, which sends each tile only its given edges. The
-        tiles' rows (owned edges, or for the tips ``width`` 4, candidate moves) in tile order."""
+        tiles' rows (owned edges; for the tips, ``width`` 4, candidate moves; for gap closing,
+        ``width`` 10, choices) in tile order."""
         at = np.full(len(self.points), -1, np.int64)
         futures = []
         for k in sorted(self.kept):
@@ -411,6 +417,8 @@ def _tile_given(result, given, step, params):
     state, given = result[3], np.require(given, requirements="CA")
     if step == "tips":
         rows = _condt._tip_candidates_kept(state, given, **params)
+    elif step == "gaps":
+        rows = _condt._gap_choices_kept(state, given, **params)
     else:
         rows = _condt._step_kept(state, given, step, **params)
     return rows, get_worker().address

@@ -78,7 +78,7 @@ pub(super) fn cos_at(p: Point, a: Point, b: Point) -> f64 {
 
 /// What a loose end chose.
 #[derive(Copy, Clone, Debug, PartialEq)]
-enum Target {
+pub(crate) enum Target {
     None,
     /// Another loose end (rule 1).
     End(VertexId),
@@ -88,9 +88,9 @@ enum Target {
 
 /// The arm a loose end lines up with at a stranded point or a crossing.
 #[derive(Copy, Clone, Debug, PartialEq)]
-enum Partner {
-    /// The crossing's neighbour in this slot of its first two (0 or 1).
-    Neighbor(usize),
+pub(crate) enum Partner {
+    /// One of the crossing's two neighbours.
+    Neighbor(VertexId),
     /// Another loose end across the point.
     End(VertexId),
 }
@@ -98,18 +98,18 @@ enum Partner {
 /// A straight walk's points ([`Ends::straight_walk`]): at most [`MIN_SAMPLES`], held inline (no
 /// allocation per loose end).
 #[derive(Copy, Clone, Debug)]
-struct Walk {
+pub(crate) struct Walk {
     len: usize,
     points: [VertexId; MIN_SAMPLES],
 }
 
 impl Walk {
-    const EMPTY: Walk = Walk {
+    pub(crate) const EMPTY: Walk = Walk {
         len: 0,
         points: [VertexId::INFINITE; MIN_SAMPLES],
     };
 
-    fn push(&mut self, v: VertexId) {
+    pub(crate) fn push(&mut self, v: VertexId) {
         self.points[self.len] = v;
         self.len += 1;
     }
@@ -124,7 +124,7 @@ impl core::ops::Deref for Walk {
 }
 
 /// The loose ends of a graph and the tests on them (shared with [`super::junctions`]).
-pub(super) struct Ends<'a> {
+pub(crate) struct Ends<'a> {
     pub(super) tri: &'a Triangulation,
     /// Borrowed from a caller that goes on using it (rule 4), else owned and handed on.
     pub(super) graph: Cow<'a, CurveGraph>,
@@ -132,7 +132,7 @@ pub(super) struct Ends<'a> {
 
 impl<'a> Ends<'a> {
     /// The loose ends of `edges`, with the previous stage's curve `graph` if any.
-    pub(super) fn new(tri: &'a Triangulation, edges: &[Edge], graph: Option<CurveGraph>) -> Self {
+    pub(crate) fn new(tri: &'a Triangulation, edges: &[Edge], graph: Option<CurveGraph>) -> Self {
         let graph = graph.unwrap_or_else(|| CurveGraph::new(tri.num_points(), edges));
         Ends {
             tri,
@@ -168,7 +168,7 @@ impl<'a> Ends<'a> {
         self.tri.vertex_point(v)
     }
 
-    pub(super) fn is_loose(&self, v: VertexId) -> bool {
+    pub(crate) fn is_loose(&self, v: VertexId) -> bool {
         self.graph.degree(v) == 1
     }
 
@@ -305,7 +305,7 @@ impl<'a> Ends<'a> {
                 // An exact tie goes to the smaller id, not to the neighbour listed first: the
                 // order of `c`'s edges follows the edge list, which the result may not depend on.
                 let second = cy < cx || (cy == cx && y < x);
-                return Some(Partner::Neighbor(usize::from(second)));
+                return Some(Partner::Neighbor(if second { y } else { x }));
             }
         }
         // A loose end across `c`, the pair crossing `c`'s passage.
@@ -322,7 +322,7 @@ impl<'a> Ends<'a> {
     }
 
     /// The nearest candidate of the loose end `a` (ties as the module says).
-    fn target(&self, a: VertexId) -> Target {
+    pub(crate) fn target(&self, a: VertexId) -> Target {
         let pa = self.point(a);
         let mut best = Target::None;
         let mut best_key = (f64::INFINITY, VertexId::INFINITE);
@@ -365,7 +365,7 @@ impl<'a> Ends<'a> {
     }
 
     /// The unused points a straight walk from the loose end `a` passes, then the end it meets.
-    fn straight_walk(&self, a: VertexId) -> Walk {
+    pub(crate) fn straight_walk(&self, a: VertexId) -> Walk {
         let mut path = Walk::EMPTY;
         let (mut prev, mut here) = (self.along(a), a);
         for _ in 0..MIN_SAMPLES {
@@ -390,79 +390,17 @@ impl<'a> Ends<'a> {
         path
     }
 
-    /// Rule (4) of the module: runs of unused points between two loose ends other than the `joined`
-    /// ones, unless a point is in one of the `joins` made. The walks run in ranges on several
+    /// The straight walks ([`Ends::straight_walk`]) of the loose ends other than the `joined`
+    /// ones, by increasing end, those that pass a point. The walks run in ranges on several
     /// threads when `parallel` (each alone, the same list).
-    fn stranded_runs(&self, joined: &[VertexId], joins: &[Edge], parallel: bool) -> Vec<Edge> {
-        let walks: Vec<(VertexId, Walk)> = self.each_loose(parallel, |a| {
+    fn walks(&self, joined: &[VertexId], parallel: bool) -> Vec<(VertexId, Walk)> {
+        self.each_loose(parallel, |a| {
             if joined.binary_search(&a).is_ok() {
                 return None;
             }
             let walk = self.straight_walk(a);
             (!walk.is_empty()).then_some((a, walk))
-        });
-        if walks.is_empty() {
-            return Vec::new();
-        }
-        let walk_of = |v: VertexId| {
-            walks
-                .binary_search_by_key(&v, |(a, _)| *a)
-                .ok()
-                .map(|k| &walks[k].1)
-        };
-        // Walks by the point they end at, to find two that meet.
-        let mut by_last: Vec<(VertexId, usize)> = walks
-            .iter()
-            .enumerate()
-            .map(|(k, (_, walk))| (*walk.last().expect("non-empty"), k))
-            .collect();
-        by_last.sort_unstable();
-        let mut chains: Vec<Vec<VertexId>> = Vec::new();
-        for (a, walk) in &walks {
-            let last = *walk.last().expect("non-empty");
-            let chain: Vec<VertexId> = if self.is_loose(last) {
-                // Reached a loose end: it must reach `a` back, through the same points.
-                let inner = &walk[..walk.len() - 1];
-                match walk_of(last) {
-                    Some(back)
-                        if last > *a
-                            && back.last() == Some(a)
-                            && back[..back.len() - 1].iter().rev().eq(inner) =>
-                    {
-                        core::iter::once(*a).chain(walk.iter().copied()).collect()
-                    }
-                    _ => continue,
-                }
-            } else {
-                // Ended at an unused point: exactly one other walk must end there, from
-                // elsewhere (of three or more, which two meet would be a guess).
-                let mut others = listed_under(&by_last, last)
-                    .map(|k| &walks[k])
-                    .filter(|(b, _)| b != a);
-                match (others.next(), others.next()) {
-                    (Some((b, w)), None)
-                        if b > a && w.iter().all(|v| *v == last || !walk.contains(v)) =>
-                    {
-                        core::iter::once(*a)
-                            .chain(walk.iter().copied())
-                            .chain(w.iter().rev().skip(1).copied())
-                            .chain(core::iter::once(*b))
-                            .collect()
-                    }
-                    _ => continue,
-                }
-            };
-            chains.push(chain);
-        }
-        // Two runs through one point, or a run through a point a join took: neither is made
-        // (which would win depends on the ids, that is on the input's orientation).
-        let claimed: Vec<VertexId> = joins.iter().flatten().copied().collect();
-        super::alone(self.tri.num_points(), &mut chains, &claimed, Vec::clone);
-        let mut out = Vec::new();
-        for chain in &chains {
-            out.extend(chain.windows(2).map(|p| ordered(p[0], p[1])));
-        }
-        out
+        })
     }
 
     /// The outcome of a stage that adds `joins` to `edges`: unchanged when there is none;
@@ -477,6 +415,79 @@ impl<'a> Ends<'a> {
         out.extend_from_slice(joins);
         Outcome::changed(edges, out, graph)
     }
+}
+
+/// Rule (4) of the module: runs of unused points between two loose ends of `graph` (over `n`
+/// points) along their `walks` (by increasing end, as [`Ends::walks`] lists them), unless a point
+/// is in one of the `joins` made. Reads the graph alone.
+fn stranded_runs(
+    n: usize,
+    graph: &CurveGraph,
+    walks: Vec<(VertexId, Walk)>,
+    joins: &[Edge],
+) -> Vec<Edge> {
+    if walks.is_empty() {
+        return Vec::new();
+    }
+    let walk_of = |v: VertexId| {
+        walks
+            .binary_search_by_key(&v, |(a, _)| *a)
+            .ok()
+            .map(|k| &walks[k].1)
+    };
+    // Walks by the point they end at, to find two that meet.
+    let mut by_last: Vec<(VertexId, usize)> = walks
+        .iter()
+        .enumerate()
+        .map(|(k, (_, walk))| (*walk.last().expect("non-empty"), k))
+        .collect();
+    by_last.sort_unstable();
+    let mut chains: Vec<Vec<VertexId>> = Vec::new();
+    for (a, walk) in &walks {
+        let last = *walk.last().expect("non-empty");
+        let chain: Vec<VertexId> = if graph.degree(last) == 1 {
+            // Reached a loose end: it must reach `a` back, through the same points.
+            let inner = &walk[..walk.len() - 1];
+            match walk_of(last) {
+                Some(back)
+                    if last > *a
+                        && back.last() == Some(a)
+                        && back[..back.len() - 1].iter().rev().eq(inner) =>
+                {
+                    core::iter::once(*a).chain(walk.iter().copied()).collect()
+                }
+                _ => continue,
+            }
+        } else {
+            // Ended at an unused point: exactly one other walk must end there, from
+            // elsewhere (of three or more, which two meet would be a guess).
+            let mut others = listed_under(&by_last, last)
+                .map(|k| &walks[k])
+                .filter(|(b, _)| b != a);
+            match (others.next(), others.next()) {
+                (Some((b, w)), None)
+                    if b > a && w.iter().all(|v| *v == last || !walk.contains(v)) =>
+                {
+                    core::iter::once(*a)
+                        .chain(walk.iter().copied())
+                        .chain(w.iter().rev().skip(1).copied())
+                        .chain(core::iter::once(*b))
+                        .collect()
+                }
+                _ => continue,
+            }
+        };
+        chains.push(chain);
+    }
+    // Two runs through one point, or a run through a point a join took: neither is made
+    // (which would win depends on the ids, that is on the input's orientation).
+    let claimed: Vec<VertexId> = joins.iter().flatten().copied().collect();
+    super::alone(n, &mut chains, &claimed, Vec::clone);
+    let mut out = Vec::new();
+    for chain in &chains {
+        out.extend(chain.windows(2).map(|p| ordered(p[0], p[1])));
+    }
+    out
 }
 
 /// The indices listed under `v` in `sorted`, a list of (point, index) pairs sorted by point.
@@ -506,9 +517,25 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
     let targets: Vec<(VertexId, Target)> = ends.each_loose(parallel, |a| {
         Some((a, ends.target(a))).filter(|&(_, target)| target != Target::None)
     });
+    let walks = |joined: &[VertexId]| ends.walks(joined, parallel);
+    settle_joins(ends.tri.num_points(), &ends.graph, &targets, walks)
+}
+
+/// The joins from what the loose ends of `graph` (over `n` points) chose: `targets`, by
+/// increasing end, those other than [`Target::None`] ([`Ends::target`]), and `walks(joined)`,
+/// the straight walks of the ends not `joined` ([`Ends::walks`]). Agreement, the lone-edge fixed
+/// point and the stranded runs read the graph alone, so a run split in tiles settles them on the
+/// gathered edges ([`crate::tiled`]).
+pub(crate) fn settle_joins(
+    n: usize,
+    graph: &CurveGraph,
+    targets: &[(VertexId, Target)],
+    walks: impl FnOnce(&[VertexId]) -> Vec<(VertexId, Walk)>,
+) -> Vec<Edge> {
     if targets.is_empty() {
-        return ends.stranded_runs(&[], &[], parallel);
+        return stranded_runs(n, graph, walks(&[]), &[]);
     }
+    let along = |a: VertexId| graph.first_two(a)[0];
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
     let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
     // The ends lined up at each crossing (few), by crossing.
@@ -528,7 +555,9 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
         arms(c)
             .filter(|&k| counted(k))
             .fold(0u8, |bits, k| match targets[k].1 {
-                Target::Through(_, Partner::Neighbor(s)) => bits | 1 << s,
+                Target::Through(_, Partner::Neighbor(x)) => {
+                    bits | 1 << usize::from(graph.first_two(c)[0] != x)
+                }
                 _ => bits,
             })
     };
@@ -550,8 +579,8 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
     let holds = |made: &[bool], k: usize| {
         let (a, target) = targets[k];
         let is_made = |v: VertexId| slot(v).is_some_and(|j| made[j]);
-        let next = ends.along(a);
-        (ends.graph.degree(next) != 1 || is_made(next))
+        let next = along(a);
+        (graph.degree(next) != 1 || is_made(next))
             && match target {
                 Target::End(b) | Target::Through(_, Partner::End(b)) => is_made(b),
                 Target::Through(c, Partner::Neighbor(_)) => lined_up(c, &|j| made[j]) == 0b11,
@@ -566,8 +595,8 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
         }
         made[k] = false;
         let (a, target) = targets[k];
-        let next = ends.along(a);
-        if ends.graph.degree(next) == 1 {
+        let next = along(a);
+        if graph.degree(next) == 1 {
             queue.extend(slot(next));
         }
         match target {
@@ -590,7 +619,7 @@ pub(super) fn gap_joins(ends: &Ends<'_>, parallel: bool) -> Vec<Edge> {
             _ => {}
         }
     }
-    let runs = ends.stranded_runs(&joined_ends, &joins, parallel);
+    let runs = stranded_runs(n, graph, walks(&joined_ends), &joins);
     joins.extend(runs);
     joins
 }
