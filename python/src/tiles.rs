@@ -75,9 +75,14 @@ impl Flow {
 /// end to the other's branch ([`_tip_candidates_kept`], the split test and the settling on the
 /// driver, [`_gathered_tips`]); a loose end's gap choice six, its straight walk five
 /// ([`_gap_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
-/// driver, [`_gathered_gaps`]).
-const LATER_STAGES: [(Stage, usize); 5] = [
+/// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
+/// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
+/// clump tests and gap choices of their result; the given-back test one ring ([`_tests_kept`],
+/// the rule on the driver, [`_gathered_given_back`]).
+const LATER_STAGES: [(Stage, usize); 7] = [
+    (Stage::LocalOutliers, 6),
     (Stage::Clumps, 1),
+    (Stage::GivenBack, 1),
     (Stage::Gaps, 6),
     (Stage::Junctions, 8),
     (Stage::Crossings, 8),
@@ -102,7 +107,7 @@ struct Tiled {
 
 fn tiled_flow(params: &Params) -> Result<Tiled, String> {
     if params.method != Method::ConDT {
-        return Err(format!("method {:?}", params.method));
+        return Err(format!("the baseline {}", params.stages()[0].name()));
     }
     let stages = params.stages();
     let in_flow = [
@@ -144,9 +149,7 @@ fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Tiled)>
     match tiled_flow(&params) {
         Ok(tiled) => Ok((params, tiled)),
         Err(step) => Err(PyNotImplementedError::new_err(format!(
-            "condt.dask tiles only the proximity graph, the repair, Algorithm 3, repairing \
-             again, the clumps, gap closing, the junctions, the crossings, the tips and the smoothing passes, not yet {step}: use \
-             condt.reconstruct, or paper=True"
+            "condt.dask tiles ConDT's stages, not {step}: use condt.reconstruct"
         ))),
     }
 }
@@ -198,6 +201,7 @@ pub(crate) fn _tile_plan<'py>(
     let later: Vec<&str> = tiled.later.iter().map(|s| s.key()).collect();
     plan.set_item("later", later)?;
     plan.set_item("reach", tiled.reach)?;
+    plan.set_item("outliers", params.stages().contains(&Stage::Outliers))?;
     plan.set_item("smooth", params.smooth)?;
     plan.set_item("depth", depth.map(|d| PyArray1::from_vec(py, d)))?;
     let flat: Vec<f64> = hull.iter().flat_map(|p| [p.x, p.y]).collect();
@@ -507,20 +511,35 @@ pub(crate) fn _step_kept<'py>(
 /// [`_step_kept`]) with `labels`, each tile point's component in the driver's graph. The tile's
 /// owned points as positions of the whole set, and their tests.
 #[pyfunction]
-#[pyo3(signature = (state, given, labels, step, **params))]
+#[pyo3(signature = (state, given, labels, step, status=None, **params))]
 pub(crate) fn _tests_kept<'py>(
     py: Python<'py>,
     state: &Bound<'py, TileState>,
     given: PyReadonlyArray2<'py, i64>,
     labels: PyReadonlyArray1<'py, i64>,
     step: &str,
+    status: Option<PyReadonlyArray1<'py, u8>>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<OwnedTests<'py>> {
     let (_, tiled) = tiled_params(params)?;
-    if step != Stage::Clumps.key() || !tiled.later.contains(&Stage::Clumps) {
-        return Err(PyValueError::new_err(format!(
-            "no round of tests {step:?} for these parameters"
-        )));
+    // Rule 4 of the local outlier removal reads the clumps' two tests.
+    let stage = [Stage::Clumps, Stage::LocalOutliers, Stage::GivenBack]
+        .into_iter()
+        .find(|&s| s.key() == step && tiled.later.contains(&s))
+        .ok_or_else(|| {
+            PyValueError::new_err(format!("no round of tests {step:?} for these parameters"))
+        })?;
+    let status = status
+        .map(|s| s.as_slice().map(<[u8]>::to_vec))
+        .transpose()?;
+    if (stage == Stage::GivenBack) != status.is_some()
+        || status
+            .as_ref()
+            .is_some_and(|s| s.len() != state.get().points.len())
+    {
+        return Err(PyValueError::new_err(
+            "the given-back tests need each tile point's status, the others none",
+        ));
     }
     let state = state.get();
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
@@ -537,7 +556,11 @@ pub(crate) fn _tests_kept<'py>(
     }
     let tests = py.detach(|| {
         crate::within_call(|| {
-            condt::tiled::clump_tests(&state.tri.graph_from_edges(given), &labels)
+            let graph = state.tri.graph_from_edges(given);
+            match &status {
+                Some(status) => condt::tiled::given_back_tests(&graph, &labels, status),
+                None => condt::tiled::clump_tests(&graph, &labels),
+            }
         })
     });
     let owned = (0..state.points.len()).filter(|&i| state.owned[i]);
@@ -549,7 +572,8 @@ pub(crate) fn _tests_kept<'py>(
     ))
 }
 
-/// A tile's owned points, as positions of the whole set, and their tests.
+/// A tile's owned points, as positions of the whole set, and their tests (or the driver's labels
+/// and statuses of every point, for the given-back round).
 type OwnedTests<'py> = (Bound<'py, PyArray1<i64>>, Bound<'py, PyArray1<u8>>);
 
 /// A round of the tips stage's candidates on a tile's kept triangulation
@@ -584,6 +608,124 @@ pub(crate) fn _tip_candidates_kept<'py>(
     Ok(PyArray2::from_owned_array(py, rows))
 }
 
+/// A round of the local outlier removal's rules 1 to 3 on a tile's kept triangulation
+/// ([`condt::tiled::local_rules`]) on the driver's `given` edges and `before` (the IQR stage's
+/// input), both as for [`_step_kept`]; `give_back`: whether rule 1 runs (the driver's count).
+/// The edges of the result whose smaller end the tile owns, as for [`_step_kept`].
+#[pyfunction]
+#[pyo3(signature = (state, given, before, give_back, **params))]
+pub(crate) fn _local_rules_kept<'py>(
+    py: Python<'py>,
+    state: &Bound<'py, TileState>,
+    given: PyReadonlyArray2<'py, i64>,
+    before: PyReadonlyArray2<'py, i64>,
+    give_back: bool,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let (_, tiled) = tiled_params(params)?;
+    if !tiled.later.contains(&Stage::LocalOutliers) {
+        return Err(PyValueError::new_err(
+            "no local outliers round for these parameters",
+        ));
+    }
+    let state = state.get();
+    let given = tile_pairs(given.as_slice()?, state.points.len())?;
+    let before = tile_pairs(before.as_slice()?, state.points.len())?;
+    let edges = py.detach(|| {
+        crate::within_call(|| {
+            let graph = state.tri.graph_from_edges(given);
+            let before = state.tri.graph_from_edges(before);
+            condt::tiled::local_rules(&graph, &before, give_back).edges()
+        })
+    });
+    let owned: Vec<[i64; 2]> = edges
+        .into_iter()
+        .filter(|&[a, _]| state.owned[a])
+        .map(|[a, b]| [state.positions[a], state.positions[b]])
+        .collect();
+    index_array(py, owned)
+}
+
+/// Rule 4 of the local outlier removal on the gathered `edges` (after rules 1 to 3) over `n`
+/// points, with every point's clump `tests` and every loose end's gap `choices` on them
+/// ([`condt::tiled::remove_gathered_local_outliers`]): the edges kept, sorted by rows, or `None`.
+#[pyfunction]
+pub(crate) fn _gathered_local_outliers<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    tests: PyReadonlyArray1<'py, u8>,
+    choices: PyReadonlyArray2<'py, i64>,
+) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+    let edges = gathered_pairs(edges)?;
+    let rows = choice_rows(&choices)?;
+    let tests = tests.as_slice()?;
+    let kept = py
+        .detach(|| condt::tiled::remove_gathered_local_outliers(n, &edges, tests, &rows))
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    kept.map(|edges| sorted_rows(py, edges)).transpose()
+}
+
+/// For the given-back round, on the driver: each point's component label and status in the
+/// graph of the gathered `edges` over `n` points against `before_local`, the local outlier
+/// removal's input ([`condt::tiled::given_back_standing`]), or `None` when nothing was given back.
+#[pyfunction]
+pub(crate) fn _given_back_standing<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    before_local: &Bound<'py, PyArray2<i64>>,
+) -> PyResult<Option<OwnedTests<'py>>> {
+    let (edges, before) = (gathered_pairs(edges)?, gathered_pairs(before_local)?);
+    let standing = py
+        .detach(|| condt::tiled::given_back_standing(n, &edges, &before))
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    Ok(standing.map(|(labels, status)| {
+        let labels = labels.into_iter().map(i64::from).collect();
+        (
+            PyArray1::from_vec(py, labels),
+            PyArray1::from_vec(py, status),
+        )
+    }))
+}
+
+/// The given-back check on the gathered `edges` over `n` points against `before_local`, with
+/// every point's `tests` ([`condt::tiled::confirm_gathered_given_back`]): the edges kept, sorted
+/// by rows, or `None` when it drops none.
+#[pyfunction]
+pub(crate) fn _gathered_given_back<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    before_local: &Bound<'py, PyArray2<i64>>,
+    tests: PyReadonlyArray1<'py, u8>,
+) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+    let (edges, before) = (gathered_pairs(edges)?, gathered_pairs(before_local)?);
+    let tests = tests.as_slice()?;
+    let kept = py
+        .detach(|| condt::tiled::confirm_gathered_given_back(n, &edges, &before, tests))
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    kept.map(|edges| sorted_rows(py, edges)).transpose()
+}
+
+/// Rows of gap choices from an `(m, 10)` int64 array.
+fn choice_rows(
+    choices: &PyReadonlyArray2<'_, i64>,
+) -> PyResult<Vec<[usize; condt::tiled::GAP_ROW]>> {
+    choices
+        .as_slice()?
+        .chunks_exact(condt::tiled::GAP_ROW)
+        .map(|row| {
+            let mut out = [0usize; condt::tiled::GAP_ROW];
+            for (slot, &value) in out.iter_mut().zip(row) {
+                *slot = usize::try_from(value)?;
+            }
+            Ok(out)
+        })
+        .collect::<Result<_, std::num::TryFromIntError>>()
+        .map_err(|_| PyValueError::new_err("a gap choice names a negative position"))
+}
+
 /// A round of gap closing's choices on a tile's kept triangulation
 /// ([`condt::tiled::gap_choices`]) on the driver's `given` edges (as for [`_step_kept`]), at the
 /// loose ends the tile owns: an `(m, 10)` int64 array of positions of the whole set (the kind
@@ -597,7 +739,8 @@ pub(crate) fn _gap_choices_kept<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let (_, tiled) = tiled_params(params)?;
-    if !tiled.later.contains(&Stage::Gaps) {
+    // Rule 4 of the local outlier removal keeps pieces gap closing would join.
+    if !tiled.later.contains(&Stage::Gaps) && !tiled.later.contains(&Stage::LocalOutliers) {
         return Err(PyValueError::new_err("no gaps round for these parameters"));
     }
     let state = state.get();
@@ -633,19 +776,7 @@ pub(crate) fn _gathered_gaps<'py>(
     choices: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
-    let width = condt::tiled::GAP_ROW;
-    let rows: Vec<[usize; condt::tiled::GAP_ROW]> = choices
-        .as_slice()?
-        .chunks_exact(width)
-        .map(|row| {
-            let mut out = [0usize; condt::tiled::GAP_ROW];
-            for (slot, &value) in out.iter_mut().zip(row) {
-                *slot = usize::try_from(value)?;
-            }
-            Ok(out)
-        })
-        .collect::<Result<_, std::num::TryFromIntError>>()
-        .map_err(|_| PyValueError::new_err("a gap choice names a negative position"))?;
+    let rows = choice_rows(&choices)?;
     let after = py
         .detach(|| condt::tiled::close_gathered_gaps(n, &edges, &rows))
         .map_err(|err| PyValueError::new_err(err.to_string()))?;

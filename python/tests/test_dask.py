@@ -50,16 +50,17 @@ def one_machine(points, **params):
 
 
 def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
+    # The default pipeline, smoothing passes and all: every stage a tiled round.
     points = curves(1_000_000, np.random.default_rng(7))
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
     ) as cluster, distributed.Client(cluster) as client:
-        tiled = condt.dask.reconstruct(points, client, tiles=16, paper=True)
+        tiled = condt.dask.reconstruct(points, client, tiles=16)
         workers = set(client.scheduler_info()["workers"])
     assert tiled.whole is None
-    assert tiled.tiles == 16
+    assert tiled.tiles == 16 and tiled.passes > 0
     assert tiled.workers == workers and len(workers) == 2
-    expected = one_machine(points, paper=True)
+    expected = one_machine(points)
     assert len(expected) > 500_000  # most points keep edges: a real result, not an empty one
     np.testing.assert_array_equal(tiled.edges, expected)
 
@@ -82,6 +83,8 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
             "crossings": st.booleans(),
             "tips": st.booleans(),
             "close_gaps": st.booleans(),
+            "local_outliers": st.booleans(),
+            "confirm_given_back": st.booleans(),
         }
     ),
 )
@@ -107,6 +110,8 @@ def test_any_tiling_gives_the_one_machine_edges(
     halo = 1e-3 * np.ptp(points, axis=0).max() if narrow else None
     params = {"paper": True, "adaptive": adaptive, "smooth": smooth, **flow}
     params.update(later)
+    # The given-back check reads what the local outlier removal gave back: only with it.
+    params["confirm_given_back"] &= params["local_outliers"]
     tiled = condt.dask.reconstruct(points, client, tiles=tiles, halo=halo, **params)
     # Random floats are never cocircular (on the lines, almost never) nor all on one line.
     assert tiled.whole is None or (kind == "columns" and tiled.whole == "cocircular points")
@@ -247,7 +252,7 @@ def test_a_dask_array_is_computed_first(client):
     np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
 
 
-# The default's stages that are tiled so far, each a round on the kept tiles: all but these.
+# The default without its first later stage: the others' rounds alone.
 LATER = {"local_outliers": False}
 
 
@@ -262,6 +267,11 @@ LATER = {"local_outliers": False}
         (LATER, ["tips"]),
         ({"paper": True, "close_gaps": True}, ["close_gaps"]),
         (LATER, ["close_gaps"]),
+        ({}, ["local_outliers"]),
+        ({"smooth": False}, ["local_outliers"]),
+        ({"paper": True, "repair_again": True, "local_outliers": True}, ["local_outliers"]),
+        ({"outliers_first": True}, ["local_outliers"]),
+        ({}, ["confirm_given_back"]),
     ],
 )
 def test_the_later_stages_are_tiled_rounds_with_the_one_machine_edges(client, params, stages):
@@ -292,13 +302,10 @@ def test_clumps_are_a_round_of_tests_and_the_rule_on_the_driver(client):
     assert not np.array_equal(expected, one_machine(points, **{**params, "clumps": False}))
 
 
-def test_a_step_that_is_not_tiled_is_refused_by_name(client):
+def test_a_baseline_is_refused_by_name(client):
     points = curves(1_000, np.random.default_rng(1))
-    refused = r"not yet the local outliers step \(local_outliers=False leaves it out\)"
-    with pytest.raises(NotImplementedError, match=refused):
-        condt.dask.reconstruct(points, client)
-    with pytest.raises(NotImplementedError, match=r"the local outliers step \(local_outliers="):
-        condt.dask.reconstruct(points, client, paper=True, repair_again=True, local_outliers=True)
+    with pytest.raises(NotImplementedError, match=r"not the baseline NN-Crust"):
+        condt.dask.reconstruct(points, client, method="nn-crust")
 
 
 def test_bad_input_is_refused_as_condt_reconstruct_refuses_it(client):

@@ -16,7 +16,7 @@ use crate::stages::gaps::{self, Ends, Partner, Target, Walk};
 use crate::stages::local_outliers::{components, separated_at, smooth_and_regular, MIN_SAMPLES};
 use crate::stages::outliers::IqrRule;
 use crate::stages::tips::{self, Candidate};
-use crate::stages::{clumps, Step};
+use crate::stages::{clumps, given_back, local_outliers, Step};
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -419,14 +419,35 @@ pub fn close_gathered_gaps(
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     let listed = vertex_edges(n, edges)?;
     let graph = CurveGraph::new(n, &listed);
-    let mut targets = Vec::new();
-    let mut walks = Vec::new();
+    let (targets, mut walks) = read_choices(n, rows)?;
+    let not_joined = |joined: &[VertexId]| {
+        walks.retain(|(a, _)| joined.binary_search(a).is_err());
+        walks
+    };
+    let joins = gaps::settle_joins(n, &graph, &targets, not_joined);
+    if joins.is_empty() {
+        return Ok(None);
+    }
+    let mut out = edges.to_vec();
+    out.extend(joins.iter().map(|&[a, b]| [a.index(), b.index()]));
+    Ok(Some(out))
+}
+
+/// The loose ends' targets and straight walks in rows of [`gap_choices`], each by increasing end.
+type Choices = (Vec<(VertexId, Target)>, Vec<(VertexId, Walk)>);
+
+fn read_choices(n: usize, rows: &[[usize; GAP_ROW]]) -> Result<Choices, Error> {
+    let (mut targets, mut walks) = (Vec::new(), Vec::new());
     for row in rows {
-        let bad = row[1] > 3 || row[4] > GAP_ROW - 5;
-        if bad || [row[0], row[2], row[3]].iter().any(|&i| i >= n) {
+        let walk_len = row[4];
+        let mut named = [row[0], row[2], row[3]]
+            .into_iter()
+            .chain(row[5..].iter().copied().take(walk_len));
+        let bad = row[1] > 3 || walk_len > GAP_ROW - 5;
+        if let Some(at) = named.find(|&i| i >= n).or(bad.then_some(row[0])) {
             return Err(Error::InvalidParameter {
                 name: "choice",
-                value: row[0] as f64,
+                value: at as f64,
             });
         }
         let v = |i: usize| VertexId::new(row[i] as u32);
@@ -439,15 +460,9 @@ pub fn close_gathered_gaps(
         if target != Target::None {
             targets.push((v(0), target));
         }
-        if row[4] > 0 {
+        if walk_len > 0 {
             let mut walk = Walk::EMPTY;
-            for k in 0..row[4] {
-                if row[5 + k] >= n {
-                    return Err(Error::InvalidParameter {
-                        name: "choice",
-                        value: row[5 + k] as f64,
-                    });
-                }
+            for k in 0..walk_len {
                 walk.push(v(5 + k));
             }
             walks.push((v(0), walk));
@@ -455,17 +470,234 @@ pub fn close_gathered_gaps(
     }
     targets.sort_unstable_by_key(|&(a, _)| a);
     walks.sort_unstable_by_key(|&(a, _)| a);
-    let not_joined = |joined: &[VertexId]| {
-        walks.retain(|(a, _)| joined.binary_search(a).is_err());
-        walks
+    Ok((targets, walks))
+}
+
+/// The local outlier removal's local rules 1 to 3 ([`Graph::remove_local_outliers`] without
+/// rule 4, which judges whole components), for a tile of a split run: `before_outliers` is the
+/// IQR stage's input, and `give_back` says whether rule 1 runs (the stage runs it when the IQR
+/// stage's input has more edges than this graph, a count the driver takes on the whole set). The
+/// result is the whole set's at every point whose Delaunay neighbourhood (six hops) and graphs
+/// the tile holds.
+///
+/// # Panics
+/// If `before_outliers` lives on another triangulation.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point, Repair, Uniformity};
+/// let angles = (0..12).map(|k| k as f64 * std::f64::consts::TAU / 12.0);
+/// let mut pts: Vec<Point> = angles.map(|t| Point::new(t.cos(), t.sin())).collect();
+/// pts.extend([Point::new(6.0, 6.0), Point::new(6.3, 6.1)]);
+/// let tri = triangulate(&pts)?;
+/// let repaired = tri.proximity_graph(Uniformity::default())?.repair(Repair::Paper);
+/// let filtered = repaired.remove_outliers(1.7)?.graph;
+/// let give_back = repaired.num_edges() > filtered.num_edges();
+/// // The pair far away is a curve of two points for rules 1-3; rule 4 (on the driver) drops it.
+/// assert_eq!(tiled::local_rules(&filtered, &repaired, give_back).num_edges(), 13);
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn local_rules<'t>(
+    graph: &Graph<'t>,
+    before_outliers: &Graph<'t>,
+    give_back: bool,
+) -> Graph<'t> {
+    assert!(
+        core::ptr::eq(graph.triangulation(), before_outliers.triangulation()),
+        "local_rules: the two graphs live on different triangulations"
+    );
+    let tri = graph.triangulation();
+    let rules = local_outliers::Rules {
+        give_back,
+        ..local_outliers::Rules::LOCAL
     };
-    let joins = gaps::settle_joins(n, &graph, &targets, not_joined);
-    if joins.is_empty() {
+    let before = alloc::borrow::Cow::Borrowed(before_outliers.listed());
+    let outcome =
+        local_outliers::remove_local_outliers_with(tri, graph.listed(), before, &rules, false);
+    match outcome.edges {
+        Some(edges) => Graph::new(tri, alloc::borrow::Cow::Owned(edges)),
+        None => graph.clone(),
+    }
+}
+
+/// The local outlier removal's rule 4 on edges gathered from the tiles of a split run, after
+/// rules 1 to 3 ([`local_rules`]): the edges kept, or `None` when it drops none. `edges` are pairs
+/// of positions below `n`; `tests` each position's [`clump_tests`] on this graph (the separation
+/// and the smooth passage rule 4 reads too) and `choices` every loose end's [`gap_choices`] on
+/// it (rule 4 keeps pieces gap closing would join to a kept component), each from the tile that
+/// owns it. The rule is the stage's own code.
+///
+/// # Errors
+/// As [`remove_gathered_clumps`] and [`close_gathered_gaps`].
+pub fn remove_gathered_local_outliers(
+    n: usize,
+    edges: &[[usize; 2]],
+    tests: &[u8],
+    choices: &[[usize; GAP_ROW]],
+) -> Result<Option<Vec<[usize; 2]>>, Error> {
+    if tests.len() < n {
+        return Err(Error::InvalidParameter {
+            name: "tests",
+            value: tests.len() as f64,
+        });
+    }
+    let listed = vertex_edges(n, edges)?;
+    let profile = CurveGraph::new(n, &listed);
+    let root = components(n, &listed);
+    let (targets, mut walks) = read_choices(n, choices)?;
+    let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
+    let separated = exact_separated(&profile, &root, |v| test(v, 2));
+    let passing = |at: VertexId, _, _| test(at, 1);
+    let joins = || {
+        let not_joined = |joined: &[VertexId]| {
+            walks.retain(|(a, _)| joined.binary_search(a).is_err());
+            walks
+        };
+        gaps::settle_joins(n, &profile, &targets, not_joined)
+    };
+    let Some((root, kept)) =
+        local_outliers::separated_with(&listed, &profile, root, &separated, passing, joins)
+    else {
+        return Ok(None);
+    };
+    Ok(Some(
+        edges
+            .iter()
+            .zip(&listed)
+            .filter(|(_, &[a, _])| kept[root[a.index()] as usize])
+            .map(|(&edge, _)| edge)
+            .collect(),
+    ))
+}
+
+/// Per component root, its points with edges that are `apart`, counted up to [`MIN_SAMPLES`] as
+/// the stages count them.
+fn exact_separated(graph: &CurveGraph, root: &[u32], apart: impl Fn(VertexId) -> bool) -> Vec<u8> {
+    let mut separated = vec![0u8; root.len()];
+    for (i, &r) in root.iter().enumerate() {
+        let v = VertexId::new(i as u32);
+        if graph.degree(v) > 0 && apart(v) && usize::from(separated[r as usize]) < MIN_SAMPLES {
+            separated[r as usize] += 1;
+        }
+    }
+    separated
+}
+
+/// Each position's component label and status, as [`given_back_standing`] gives them.
+pub type GivenBackStanding = (Vec<u32>, Vec<u8>);
+
+/// For the given-back check of a split run, on the driver: each position's component in the graph
+/// of `edges` (pairs of positions below `n`) and its status (0 without edges, 1 on a component
+/// not all given back, 2 on a component made only of edges missing from `before_local`, the local
+/// outlier removal's input), for [`given_back_tests`]; `None` when no edge was given back (the
+/// check then changes nothing).
+///
+/// # Errors
+/// As [`component_labels`], for `edges` and `before_local`.
+pub fn given_back_standing(
+    n: usize,
+    edges: &[[usize; 2]],
+    before_local: &[[usize; 2]],
+) -> Result<Option<GivenBackStanding>, Error> {
+    let listed = vertex_edges(n, edges)?;
+    let before = vertex_edges(n, before_local)?;
+    let given = given_back::missing_from(&listed, &before);
+    if !given.contains(&true) {
         return Ok(None);
     }
-    let mut out = edges.to_vec();
-    out.extend(joins.iter().map(|&[a, b]| [a.index(), b.index()]));
-    Ok(Some(out))
+    let standing = given_back::Standing::of(n, &listed, &given);
+    let status = (0..n)
+        .map(|i| standing.status(VertexId::new(i as u32)) as u8)
+        .collect();
+    Ok(Some((standing.root, status)))
+}
+
+/// The given-back check's test at each input position of `graph`'s triangulation, for a tile of
+/// a split run: 1 where a point of two or more edges on a component only given back does not lie
+/// apart (its component goes), else 0. `labels` and `status` are each position's, from
+/// [`given_back_standing`] on the whole set; the tests are the whole set's at every point whose
+/// Delaunay star and graph the tile holds.
+///
+/// # Panics
+/// If `labels` or `status` is shorter than the triangulation's points.
+pub fn given_back_tests(graph: &Graph<'_>, labels: &[u32], status: &[u8]) -> Vec<u8> {
+    let tri = graph.triangulation();
+    let n = tri.num_points();
+    let curve = CurveGraph::new(n, graph.listed());
+    let of_vertex = |v: VertexId| tri.input_of(v);
+    // The whole set's component names, renumbered among the tile's own (the standing indexes
+    // its tallies by name).
+    let named: Vec<u32> = (0..n)
+        .map(|v| labels[of_vertex(VertexId::new(v as u32))])
+        .collect();
+    let mut names = named.clone();
+    names.sort_unstable();
+    names.dedup();
+    let local = |name: &u32| names.binary_search(name).unwrap_or(0) as u32;
+    let standing = given_back::Standing::from_parts(
+        named.iter().map(local).collect(),
+        (0..n)
+            .map(|v| status[of_vertex(VertexId::new(v as u32))])
+            .collect(),
+        (0..n)
+            .map(|v| curve.degree(VertexId::new(v as u32)).min(255) as u8)
+            .collect(),
+    );
+    let dropped_at = |v: VertexId| {
+        let p = tri.vertex_point(v);
+        let longest = (0..curve.degree(v))
+            .map(|k| p.dist2(tri.vertex_point(curve.neighbor(v, k))))
+            .fold(-1.0f64, f64::max);
+        !standing.apart(tri, v, longest)
+    };
+    (0..n)
+        .map(|position| {
+            let v = tri.vertex(position);
+            let judged = tri.input_of(v) == position
+                && curve.degree(v) >= 2
+                && standing.status(v) == given_back::Status::GivenBack;
+            u8::from(judged && dropped_at(v))
+        })
+        .collect()
+}
+
+/// The given-back check ([`Graph::confirm_given_back`]) on edges gathered from the tiles of a
+/// split run: the edges kept, or `None` when it drops none. `edges` and `before_local` as for
+/// [`given_back_standing`]; `tests` each position's [`given_back_tests`], from the tile that owns
+/// it. The rule is the stage's own code.
+///
+/// # Errors
+/// As [`given_back_standing`], and named `tests` when `tests` is shorter than `n`.
+pub fn confirm_gathered_given_back(
+    n: usize,
+    edges: &[[usize; 2]],
+    before_local: &[[usize; 2]],
+    tests: &[u8],
+) -> Result<Option<Vec<[usize; 2]>>, Error> {
+    if tests.len() < n {
+        return Err(Error::InvalidParameter {
+            name: "tests",
+            value: tests.len() as f64,
+        });
+    }
+    let listed = vertex_edges(n, edges)?;
+    let before = vertex_edges(n, before_local)?;
+    let given = given_back::missing_from(&listed, &before);
+    if !given.contains(&true) {
+        return Ok(None);
+    }
+    let standing = given_back::Standing::of(n, &listed, &given);
+    let dropped = standing.dropped(|v| tests[v.index()] != 0);
+    if !dropped.contains(&true) {
+        return Ok(None);
+    }
+    Ok(Some(
+        edges
+            .iter()
+            .zip(&listed)
+            .filter(|(_, &[a, _])| !dropped[standing.root[a.index()] as usize])
+            .map(|(&edge, _)| edge)
+            .collect(),
+    ))
 }
 
 /// `edges` (pairs of positions below `n`) as the stages' edges, a position standing for a vertex.
@@ -488,4 +720,55 @@ fn vertex_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
             Ok(ordered(VertexId::new(a as u32), VertexId::new(b as u32)))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{triangulate, Point};
+
+    /// Points on two noisy arcs with strays, the local outlier removal's input and output on
+    /// them.
+    fn scene() -> (Vec<Point>, Vec<[usize; 2]>, Vec<[usize; 2]>) {
+        let mut rng = crate::test_rng::Xorshift::new(5);
+        let mut pts: Vec<Point> = (0..400)
+            .map(|k| {
+                let t = (k % 200) as f64 * 0.03;
+                let r = if k < 200 { 10.0 } else { 14.0 };
+                let (dx, dy) = (0.3 * rng.unit() - 0.15, 0.3 * rng.unit() - 0.15);
+                Point::new(r * libm::cos(t) + dx, r * libm::sin(t) + dy)
+            })
+            .collect();
+        pts.extend((0..40).map(|_| Point::new(30.0 * rng.unit() - 15.0, 30.0 * rng.unit())));
+        let params = crate::Params::default();
+        let tri = triangulate(&pts).unwrap();
+        let repaired = tri
+            .proximity_graph(params.uniformity)
+            .unwrap()
+            .repair(params.repair);
+        let cut = repaired.remove_outliers(1.5).unwrap().graph;
+        let local = cut.remove_local_outliers(&repaired);
+        (pts, cut.edges(), local.edges())
+    }
+
+    #[test]
+    fn component_names_are_names_not_places() {
+        // A tile is sent the whole set's names, which run past its own points: the tests must
+        // read them only as equal or not.
+        let (pts, _, after) = scene();
+        // As if the outer arc's edges had all been given back.
+        let before: Vec<[usize; 2]> = after.iter().copied().filter(|e| e[0] < 200).collect();
+        let tri = triangulate(&pts).unwrap();
+        let graph = tri.graph_from_edges(after.iter().copied());
+        let labels = component_labels(pts.len(), &after).unwrap();
+        let far: Vec<u32> = labels.iter().map(|&l| 3 * l + 1_000_000).collect();
+        assert_eq!(clump_tests(&graph, &labels), clump_tests(&graph, &far));
+        let (names, status) = given_back_standing(pts.len(), &after, &before)
+            .unwrap()
+            .unwrap();
+        let far: Vec<u32> = names.iter().map(|&l| 3 * l + 1_000_000).collect();
+        assert!(status.contains(&2));
+        let tests = given_back_tests(&graph, &names, &status);
+        assert_eq!(tests, given_back_tests(&graph, &far, &status));
+    }
 }

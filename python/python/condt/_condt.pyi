@@ -31,6 +31,10 @@ __all__ = [
     "_gathered_tips",
     "_gap_choices_kept",
     "_gathered_gaps",
+    "_local_rules_kept",
+    "_gathered_local_outliers",
+    "_given_back_standing",
+    "_gathered_given_back",
     "_TileState",
 ]
 
@@ -187,6 +191,7 @@ def _tests_kept(
     given: npt.NDArray[np.int64],
     labels: npt.NDArray[np.int64],
     step: str,
+    status: npt.NDArray[np.uint8] | None = None,
     **params: Any,
 ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.uint8]]: ...
 def _component_labels(n: int, edges: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]: ...
@@ -204,6 +209,28 @@ def _gap_choices_kept(
 ) -> npt.NDArray[np.int64]: ...
 def _gathered_gaps(
     n: int, edges: npt.NDArray[np.int64], choices: npt.NDArray[np.int64]
+) -> npt.NDArray[np.int64] | None: ...
+def _local_rules_kept(
+    state: _TileState,
+    given: npt.NDArray[np.int64],
+    before: npt.NDArray[np.int64],
+    give_back: bool,
+    **params: Any,
+) -> npt.NDArray[np.int64]: ...
+def _gathered_local_outliers(
+    n: int,
+    edges: npt.NDArray[np.int64],
+    tests: npt.NDArray[np.uint8],
+    choices: npt.NDArray[np.int64],
+) -> npt.NDArray[np.int64] | None: ...
+def _given_back_standing(
+    n: int, edges: npt.NDArray[np.int64], before_local: npt.NDArray[np.int64]
+) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.uint8]] | None: ...
+def _gathered_given_back(
+    n: int,
+    edges: npt.NDArray[np.int64],
+    before_local: npt.NDArray[np.int64],
+    tests: npt.NDArray[np.uint8],
 ) -> npt.NDArray[np.int64] | None: ...
 def _gathered_outliers(
     points: _Points, edges: npt.NDArray[np.int64], **params: Any

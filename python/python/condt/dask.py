@@ -156,12 +156,16 @@ def _phases(run, plan, points, params):
     round on the kept tiles per later stage (``plan["later"]``)."""
     flow, later = plan["flow"], plan["later"]
     keep = bool(later)
+    n = len(points)
+    # Algorithm 3's input, which the local outlier removal's rule 1 reads.
     if flow == "outliers_first":
         (proximity,) = run.tiles("proximity", keep=True)
+        before_outliers = proximity
         kept = _condt._gathered_outliers(points, proximity, **params)
-        edges = run.on_kept(kept, "repair")
+        edges = _sorted(run.on_kept(kept, "repair"))
     elif flow == "repair_again":
         proximity, repaired = run.tiles("both", keep=True)
+        before_outliers = _sorted(repaired)
         short = _condt._gathered_repair_again(points, repaired, proximity, **params)
         if short is None:
             edges = _condt._gathered_outliers(points, repaired, **params)
@@ -169,9 +173,32 @@ def _phases(run, plan, points, params):
             edges = _sorted(run.on_kept(short, "repair"))
     else:
         (repaired,) = run.tiles("repaired", keep=keep)
+        before_outliers = _sorted(repaired)
         edges = _condt._gathered_outliers(points, repaired, **params)
+    if not plan["outliers"]:
+        before_outliers = edges  # Algorithm 3 does not run: the stage reads its own input
+    before_local = edges
     for step in later:
-        if step == "clumps":
+        if step == "local-outliers":
+            # Rules 1 to 3 on the tiles (rule 1 only where the IQR stage cut more than the steps
+            # since added: the driver counts); rule 4 on the driver, with the clump tests and the
+            # gap choices on their result.
+            before_local = edges
+            give_back = len(before_outliers) > len(edges)
+            edges = _sorted(run.on_kept(edges, step, before=before_outliers, give_back=give_back))
+            labels = _condt._component_labels(n, edges)
+            tests = run.tests_on_kept(edges, step, labels)
+            choices = run.on_kept(edges, "gaps", width=10)
+            kept = _condt._gathered_local_outliers(n, edges, tests, choices)
+            edges = edges if kept is None else kept
+        elif step == "given-back":
+            standing = _condt._given_back_standing(n, edges, before_local)
+            if standing is not None:
+                labels, status = standing
+                tests = run.tests_on_kept(edges, step, labels, status)
+                kept = _condt._gathered_given_back(n, edges, before_local, tests)
+                edges = edges if kept is None else kept
+        elif step == "clumps":
             # The tests at each point on the tiles, the rule (a component's tally) on the driver.
             labels = _condt._component_labels(len(points), edges)
             tests = run.tests_on_kept(edges, step, labels)
@@ -301,7 +328,7 @@ class _Run:
             for g in range(graphs)
         ]
 
-    def tests_on_kept(self, given, step, labels):
+    def tests_on_kept(self, given, step, labels, status=None):
         """The per-point tests of ``step`` on each kept tile, with the driver's edges ``given``
         and component ``labels`` (one per point), joined: one byte per point of the whole set,
         each from the tile owning it."""
@@ -316,6 +343,7 @@ class _Run:
                     state,
                     local,
                     np.ascontiguousarray(labels[positions]),
+                    None if status is None else np.ascontiguousarray(status[positions]),
                     step,
                     self.params,
                     pure=False,
@@ -329,7 +357,7 @@ class _Run:
             tests[owned] = bits
         return tests
 
-    def on_kept(self, given, step, width=2):
+    def on_kept(self, given, step, width=2, before=None, give_back=False):
         """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
         halo that certified it, on its worker), joined: the second phase of a two-phase flow
         (``"repair"``) or a later stage's round, which sends each tile only its given edges. The
@@ -340,8 +368,11 @@ class _Run:
         for k in sorted(self.kept):
             state, positions = self.kept[k]
             local = _local(given, positions, at)
+            earlier = None if before is None else _local(before, positions, at)
             futures.append(
-                self.client.submit(_tile_given, state, local, step, self.params, pure=False)
+                self.client.submit(
+                    _tile_given, state, local, step, earlier, give_back, self.params, pure=False
+                )
             )
         results = self.client.gather(futures)
         self.rounds += 1
@@ -401,21 +432,25 @@ def _report(result):
     return result[:3]
 
 
-def _tile_tests(result, given, labels, step, params):
+def _tile_tests(result, given, labels, status, step, params):
     """On a worker: ``step``'s per-point tests on a tile's kept triangulation."""
     from distributed import get_worker
 
-    state = result[3]
-    tests = _condt._tests_kept(state, np.require(given, requirements="CA"), labels, step, **params)
+    state, given = result[3], np.require(given, requirements="CA")
+    tests = _condt._tests_kept(state, given, labels, step, status, **params)
     return tests, get_worker().address
 
 
-def _tile_given(result, given, step, params):
-    """On a worker: ``step`` on the driver's ``given`` edges on a tile's kept triangulation."""
+def _tile_given(result, given, step, before, give_back, params):
+    """On a worker: ``step`` on the driver's ``given`` edges on a tile's kept triangulation
+    (``before`` and ``give_back``: the local outlier removal's rules 1 to 3 read them)."""
     from distributed import get_worker
 
     state, given = result[3], np.require(given, requirements="CA")
-    if step == "tips":
+    if step == "local-outliers":
+        before = np.require(before, requirements="CA")
+        rows = _condt._local_rules_kept(state, given, before, give_back, **params)
+    elif step == "tips":
         rows = _condt._tip_candidates_kept(state, given, **params)
     elif step == "gaps":
         rows = _condt._gap_choices_kept(state, given, **params)

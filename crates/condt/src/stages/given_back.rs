@@ -35,29 +35,17 @@ pub(crate) fn confirm_given_back(
     if !given.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    let root = components(n, edges);
-    // Components made only of given-back edges, and each vertex's degree (up to 255).
-    let mut only_given = vec![false; n];
-    for &[a, _] in edges {
-        only_given[root[a.index()] as usize] = true;
-    }
-    let mut degree = vec![0u8; n];
-    for (&[a, b], &back) in edges.iter().zip(&given) {
-        only_given[root[a.index()] as usize] &= back;
-        for v in [a, b] {
-            degree[v.index()] = degree[v.index()].saturating_add(1);
-        }
-    }
-    // The longest (squared) edge of those components' vertices only, few: a sorted list (memory).
-    let in_given = |v: VertexId| only_given[root[v.index()] as usize];
+    let standing = Standing::of(n, edges, &given);
+    // The longest (squared) edge of the given-back components' vertices only, few: a sorted
+    // list (memory).
     let members: Vec<VertexId> = (0..n as u32)
         .map(VertexId::new)
-        .filter(|&v| degree[v.index()] > 0 && in_given(v))
+        .filter(|&v| standing.status(v) == Status::GivenBack)
         .collect();
     let slot = |v: VertexId| members.binary_search(&v).unwrap_or(0);
     let mut longest = vec![-1.0f64; members.len()];
     for &[a, b] in edges {
-        if in_given(a) {
+        if standing.status(a) == Status::GivenBack {
             let l = tri.vertex_point(a).dist2(tri.vertex_point(b));
             for v in [a, b] {
                 let k = slot(v);
@@ -65,35 +53,130 @@ pub(crate) fn confirm_given_back(
             }
         }
     }
-    let mut dropped = vec![false; n];
-    for v in tri.vertices() {
-        let i = v.index();
-        let r = root[i] as usize;
-        if degree[i] < 2 || !only_given[r] || dropped[r] {
-            continue;
-        }
-        let p = tri.vertex_point(v);
-        let longest = longest[slot(v)];
-        // Only unused points and other given-back components count as near: an unused point
-        // is its own root with no edge, and a point of a kept curve tells nothing about a scatter.
-        let apart = tri.mesh().neighbors(v).all(|w| {
-            let j = w.index();
-            root[j] == root[i]
-                || (degree[j] > 0 && !only_given[root[j] as usize])
-                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
-        });
-        dropped[r] = !apart;
-    }
+    let dropped = standing.dropped(|v| !standing.apart(tri, v, longest[slot(v)]));
     if !dropped.contains(&true) {
         return Outcome::UNCHANGED;
     }
-    Outcome::from(Some(without_components(edges, &root, &dropped)))
+    Outcome::from(Some(without_components(edges, &standing.root, &dropped)))
+}
+
+/// What the rule reads of each point's component: whether it has edges, and whether they are
+/// all given back ([`Standing::status`]).
+pub(crate) struct Standing {
+    pub(crate) root: Vec<u32>,
+    only_given: Vec<bool>,
+    degree: Vec<u8>,
+}
+
+/// A point's part in the rule.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub(crate) enum Status {
+    /// No edge: an unused point, near which a given-back component is not apart.
+    Unused,
+    /// On a component not all given back: a kept curve, which tells nothing about a scatter.
+    Kept,
+    /// On a component made only of given-back edges: the rule judges it.
+    GivenBack,
+}
+
+impl Standing {
+    /// The components of `edges` over `n` points, and which are only `given` back (per edge).
+    pub(crate) fn of(n: usize, edges: &[Edge], given: &[bool]) -> Standing {
+        let root = components(n, edges);
+        // Components made only of given-back edges, and each vertex's degree (up to 255).
+        let mut only_given = vec![false; n];
+        for &[a, _] in edges {
+            only_given[root[a.index()] as usize] = true;
+        }
+        let mut degree = vec![0u8; n];
+        for (&[a, b], &back) in edges.iter().zip(given) {
+            only_given[root[a.index()] as usize] &= back;
+            for v in [a, b] {
+                degree[v.index()] = degree[v.index()].saturating_add(1);
+            }
+        }
+        Standing {
+            root,
+            only_given,
+            degree,
+        }
+    }
+
+    /// The standing a tile is sent: each vertex's component name (`root`), its [`Status`] as a
+    /// number (`status`, `Status as u8`) and its degree (up to 255).
+    pub(crate) fn from_parts(root: Vec<u32>, status: Vec<u8>, degree: Vec<u8>) -> Standing {
+        // Only the status's two questions are read: whether a point has edges (its degree) and
+        // whether its component is only given back, which holds for its root's entry.
+        let mut only_given = vec![false; root.len()];
+        for (v, &s) in status.iter().enumerate() {
+            if s == Status::GivenBack as u8 {
+                only_given[root[v] as usize] = true;
+            }
+        }
+        let degree = degree
+            .iter()
+            .zip(&status)
+            .map(|(&d, &s)| {
+                if s == Status::Unused as u8 {
+                    0
+                } else {
+                    d.max(1)
+                }
+            })
+            .collect();
+        Standing {
+            root,
+            only_given,
+            degree,
+        }
+    }
+
+    pub(crate) fn status(&self, v: VertexId) -> Status {
+        if self.degree[v.index()] == 0 {
+            Status::Unused
+        } else if self.only_given[self.root[v.index()] as usize] {
+            Status::GivenBack
+        } else {
+            Status::Kept
+        }
+    }
+
+    /// Whether `v`, of a given-back component, lies apart: every Delaunay neighbour is in its
+    /// component, on a kept curve, or beyond [`SEPARATION`] times `v`'s longest edge (`longest`,
+    /// squared). Only unused points and other given-back components count as near: an unused
+    /// point is its own root with no edge, and a point of a kept curve tells nothing about a
+    /// scatter.
+    pub(crate) fn apart(&self, tri: &Triangulation, v: VertexId, longest: f64) -> bool {
+        let p = tri.vertex_point(v);
+        tri.mesh().neighbors(v).all(|w| {
+            self.root[w.index()] == self.root[v.index()]
+                || self.status(w) == Status::Kept
+                || p.dist2(tri.vertex_point(w)) > SEPARATION * SEPARATION * longest
+        })
+    }
+
+    /// Which components go: a given-back one with a point of two or more edges that is not apart
+    /// (`near(v)`, asked only of such points, at most until its component goes).
+    pub(crate) fn dropped(&self, mut near: impl FnMut(VertexId) -> bool) -> Vec<bool> {
+        let n = self.root.len();
+        let mut dropped = vec![false; n];
+        for i in 0..n {
+            let v = VertexId::new(i as u32);
+            let r = self.root[i] as usize;
+            if self.degree[i] < 2 || !self.only_given[r] || dropped[r] {
+                continue;
+            }
+            dropped[r] = near(v);
+        }
+        dropped
+    }
 }
 
 /// Whether each of `edges` (distinct) is missing from `before`: a merge pass matches all but a
 /// short tail (the local stage keeps its input's order, then appends), and one pass over `before`
 /// (memory) looks up in the tail only edges whose smaller end starts one. Exact for any lists.
-fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
+pub(crate) fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
     let mut missing = vec![false; edges.len()];
     let mut at = 0;
     let mut tail = edges.len();

@@ -18,7 +18,7 @@
 //!    polygon of five or six is a clump however far apart ([`drop_short_cycles`]).
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
-//! curves) unless gap closing would join them to a kept component ([`keep_joined_pieces`]), or
+//! curves) unless gap closing would join them to a kept component ([`merged_along`]), or
 //! rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes none;
 //! docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter junction
 //! branches regardless. Deterministic, O(n); rule 4's separation test and its search for gap
@@ -71,6 +71,9 @@ pub(crate) struct Rules {
 impl Rules {
     pub(crate) const ALL: Rules = Rules::up_to(4);
 
+    /// The local rules: all but rule 4, which judges whole components.
+    pub(crate) const LOCAL: Rules = Rules::up_to(3);
+
     /// Rules 1 to `k` (rule 2 in both readings).
     const fn up_to(k: usize) -> Rules {
         Rules {
@@ -91,9 +94,27 @@ pub(crate) fn remove_local_outliers(
     rules: &Rules,
     parallel: bool,
 ) -> Outcome {
+    // Rule 1 gives back only where the IQR stage cut more than the steps between added: a count
+    // over the whole graph, which a run split in tiles takes on the driver.
+    let give_back = rules.give_back && before.len() > edges.len();
+    let rules = Rules {
+        give_back,
+        ..*rules
+    };
+    remove_local_outliers_with(tri, edges, before, &rules, parallel)
+}
+
+/// [`remove_local_outliers`] with rule 1 as `rules` say, whatever the counts.
+pub(crate) fn remove_local_outliers_with(
+    tri: &Triangulation,
+    edges: &[Edge],
+    before: Cow<'_, [Edge]>,
+    rules: &Rules,
+    parallel: bool,
+) -> Outcome {
     // The input is copied only once a rule changes it (on a clean curve none does).
     let mut graph = Cow::Borrowed(edges);
-    if rules.give_back && before.len() > edges.len() {
+    if rules.give_back {
         let given = given_back(tri, edges, &before);
         if !given.is_empty() {
             // One allocation of the final size (`to_mut` + `extend` would copy, then double).
@@ -527,9 +548,33 @@ fn separated_components(
     if smooth_cycles {
         return None;
     }
-    let n = tri.num_points();
-    let root = components(n, edges);
-    let mut kept: Vec<bool> = separated_counts(tri, profile, &root, parallel)
+    let root = components(tri.num_points(), edges);
+    let separated = separated_counts(tri, profile, &root, parallel);
+    let passing = |at, previous, next| smooth_and_regular(tri, at, previous, next);
+    let joins = || {
+        let ends = super::gaps::Ends {
+            tri,
+            graph: Cow::Borrowed(profile),
+        };
+        super::gaps::gap_joins(&ends, parallel)
+    };
+    separated_with(edges, profile, root, &separated, passing, joins)
+}
+
+/// Rule 4 on the graph of `edges` (`profile`, its components `root`) with what it reads of the
+/// triangulation given: `separated`, each root's separated points counted up to [`MIN_SAMPLES`]
+/// ([`separated_counts`]), `passing(at, previous, next)` ([`smooth_and_regular`]) and `joins`,
+/// gap closing's joins on this graph ([`merged_along`]). The rest reads the graph alone, so
+/// a run split in tiles runs it on the gathered edges ([`crate::tiled`]).
+pub(crate) fn separated_with(
+    edges: &[Edge],
+    profile: &CurveGraph,
+    root: Vec<u32>,
+    separated: &[u8],
+    passing: impl Fn(VertexId, VertexId, VertexId) -> bool,
+    joins: impl FnOnce() -> Vec<Edge>,
+) -> Option<(Vec<u32>, Vec<bool>)> {
+    let mut kept: Vec<bool> = separated
         .iter()
         .map(|&c| usize::from(c) >= MIN_SAMPLES)
         .collect();
@@ -538,33 +583,21 @@ fn separated_components(
     if edges.iter().all(|&[a, _]| kept[root[a.index()] as usize]) {
         return None;
     }
-    keep_regular_cycles(tri, profile, shapes, &mut kept);
+    keep_regular_cycles(profile, shapes, &mut kept, passing);
     // The guard judges the components as they are: the joined pieces kept below only lower the
     // share, and a guard that then let go of the rest would drop more than without them.
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
-    Some(keep_joined_pieces(tri, profile, root, kept, parallel))
+    // Rule 4's third exemption: pieces gap closing joins to a kept component.
+    Some(merged_along(root, kept, joins()))
 }
 
 /// Rule 4's third exemption: a piece that gap closing would join, directly or through other
 /// pieces, to a kept component is kept. Reason: noise breaks a curve into pieces lying along it,
 /// none apart from the curve; gap closing needs evidence from both sides of each join, which
 /// outliers beside a curve rarely give.
-fn keep_joined_pieces(
-    tri: &Triangulation,
-    profile: &CurveGraph,
-    root: Vec<u32>,
-    kept: Vec<bool>,
-    parallel: bool,
-) -> (Vec<u32>, Vec<bool>) {
-    let ends = super::gaps::Ends {
-        tri,
-        graph: Cow::Borrowed(profile),
-    };
-    merged_along(root, kept, super::gaps::gap_joins(&ends, parallel))
-}
-
+///
 /// The components `root` merged along `joins`, named as [`components`] would name them, and which
 /// are kept: those with a kept part (only merged names are to be read in `kept` afterwards). The
 /// union-find runs on the names the joins touch, renumbered in order, not on every vertex (memory:
@@ -742,7 +775,12 @@ impl Shapes {
 /// three quarters ([`CYCLE_PASSING`]) pass [`smooth_and_regular`]. Reason: a curve two or three
 /// spacings from another (concentric circles, an eye's rings) has no separated sample, and
 /// outliers rarely close into such a cycle. O(n): each cycle walked once from its root.
-fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, shapes: Shapes, kept: &mut [bool]) {
+fn keep_regular_cycles(
+    graph: &CurveGraph,
+    shapes: Shapes,
+    kept: &mut [bool],
+    passing: impl Fn(VertexId, VertexId, VertexId) -> bool,
+) {
     let Shapes { size, cycle } = shapes;
     for r in 0..kept.len() {
         // `size` saturates at 255, which is above the bound.
@@ -750,16 +788,16 @@ fn keep_regular_cycles(tri: &Triangulation, graph: &CurveGraph, shapes: Shapes, 
             continue;
         }
         let start = VertexId::new(r as u32);
-        let (mut passing, mut count) = (0, 0);
+        let (mut passing_count, mut count) = (0, 0);
         for [previous, at, next] in graph.passages(graph.first_two(start)[1], start) {
-            passing += usize::from(smooth_and_regular(tri, at, previous, next));
+            passing_count += usize::from(passing(at, previous, next));
             count += 1;
             if next == start {
                 break;
             }
         }
         let (share_passing, of) = CYCLE_PASSING;
-        kept[r] = of * passing >= share_passing * count;
+        kept[r] = of * passing_count >= share_passing * count;
     }
 }
 
