@@ -12,24 +12,22 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
   hull edges reach);
 - its vertices follow the whole set's insertion order, so the stages break ties as one machine
   does;
-- the one global step, Algorithm 3's threshold, runs once on the joined edges, in the library;
+- every global decision runs once on the driver, on the joined edges, with the library's own
+  code: Algorithm 3's threshold (exact quartiles), components and their tallies, the guards over
+  every point, walks along curves, which joins and moves stand; the tiles send what only the
+  triangulation shows (each point's tests, each loose end's choices), one round per stage on
+  the triangulations they keep;
 - where the triangulation is not unique (four cocircular points, as on integer grids), where all
   points are collinear, or where the coordinates span more than 200 binary orders of magnitude,
   the whole set runs in one piece on one worker instead.
 
-Tiled today: the proximity graph with a fixed or adaptive ``u``, the repair and Algorithm 3 in
-either order, which is the paper's pipeline (``paper=True``, with any of its ``u``,
-``adaptive``, ``iqr``, ``repair``, ``iqr_floor`` and ``outliers_first``), repairing again
-(``repair_again=True``), the clumps, gap closing, the junctions, the crossings and the tips
-(``clumps=True``, ``close_gaps=True``, ``junctions=True``, ``crossings=True``, ``tips=True``: one
-round each on the tiles' kept triangulations, with the driver's edges; the clumps' rule, gap
-closing's settling and the tips' split test and settling on the driver, on what the tiles send)
-and the smoothing passes (``smooth=True``: each pass is a tiled run of its own on the moved
-points; whether a pass follows, and where it moves the points, the library decides on the
-driver from the edges the tiles sent). Any other step (the default's local outlier removal) raises ``NotImplementedError`` naming it: ``docs/distributed.md``
-says what each needs. The points themselves stay on the machine that
-calls this (the driver), which computes their insertion order and hull once; the workers
-triangulate and run the stages.
+Every ConDT pipeline is tiled: the default, the paper's (``paper=True``) and every variant their
+keywords make, with the smoothing passes (each pass a tiled run of its own on the moved points;
+whether a pass follows, and where it moves the points, the library decides on the driver from
+the edges the tiles sent). A baseline (``method="nn-crust"`` or ``"crust"``) raises
+``NotImplementedError``. ``docs/distributed.md`` says what each stage's round carries. The points
+themselves stay on the machine that calls this (the driver), which computes their insertion
+order and hull once; the workers triangulate and run the stages.
 
 >>> import numpy as np, condt, condt.dask
 >>> from dask.distributed import Client, LocalCluster
@@ -37,8 +35,8 @@ triangulate and run the stages.
 >>> points = np.column_stack([np.cos(t), np.sin(3 * t) / 3])
 >>> with LocalCluster(n_workers=2, threads_per_worker=1, processes=False) as cluster:
 ...     with Client(cluster) as client:
-...         tiled = condt.dask.reconstruct(points, client, tiles=4, paper=True)
->>> np.array_equal(tiled.edges, condt.reconstruct(points, paper=True).edges)
+...         tiled = condt.dask.reconstruct(points, client, tiles=4)
+>>> np.array_equal(tiled.edges, condt.reconstruct(points).edges)
 True
 """
 
@@ -99,9 +97,9 @@ def reconstruct(
     ``tiles`` how many rectangles to cut the plane into (at least 1); ``halo`` the margin
     each tile's points are first sent with (``None``: a quarter of the tile's shorter side),
     doubled for a tile whose certificate needs more. ``params`` are
-    ``condt.reconstruct``'s keywords; see the module's text for those that can be tiled.
+    ``condt.reconstruct``'s keywords (every ConDT pipeline is tiled).
 
-    Raises ``NotImplementedError`` for a step that is not tiled yet, ``ValueError`` for a NaN or
+    Raises ``NotImplementedError`` for a baseline method, ``ValueError`` for a NaN or
     infinite point (named) or a refused parameter, as ``condt.reconstruct`` does.
     """
     if isinstance(tiles, bool) or not isinstance(tiles, int) or tiles < 1:
@@ -337,17 +335,15 @@ class _Run:
         for k in sorted(self.kept):
             state, positions = self.kept[k]
             local = _local(given, positions, at)
+            arrays = (
+                local,
+                np.ascontiguousarray(labels[positions]),
+                None if status is None else np.ascontiguousarray(status[positions]),
+            )
+            # Scattered, not put into the task graph (as the tiles' points are).
+            payload = self.client.scatter(arrays, hash=False)
             futures.append(
-                self.client.submit(
-                    _tile_tests,
-                    state,
-                    local,
-                    np.ascontiguousarray(labels[positions]),
-                    None if status is None else np.ascontiguousarray(status[positions]),
-                    step,
-                    self.params,
-                    pure=False,
-                )
+                self.client.submit(_tile_tests, state, payload, step, self.params, pure=False)
             )
         results = self.client.gather(futures)
         self.rounds += 1
@@ -369,9 +365,10 @@ class _Run:
             state, positions = self.kept[k]
             local = _local(given, positions, at)
             earlier = None if before is None else _local(before, positions, at)
+            payload = self.client.scatter((local, earlier), hash=False)
             futures.append(
                 self.client.submit(
-                    _tile_given, state, local, step, earlier, give_back, self.params, pure=False
+                    _tile_given, state, payload, step, give_back, self.params, pure=False
                 )
             )
         results = self.client.gather(futures)
@@ -432,20 +429,27 @@ def _report(result):
     return result[:3]
 
 
-def _tile_tests(result, given, labels, status, step, params):
-    """On a worker: ``step``'s per-point tests on a tile's kept triangulation."""
+def _tile_tests(result, payload, step, params):
+    """On a worker: ``step``'s per-point tests on a tile's kept triangulation, with the driver's
+    edges among the tile's points, their component labels and (for the given-back check) their
+    status."""
     from distributed import get_worker
 
-    state, given = result[3], np.require(given, requirements="CA")
+    # Arrays that crossed processes may arrive misaligned: the native module reads them in place.
+    given, labels = (np.require(a, requirements="CA") for a in payload[:2])
+    status = None if payload[2] is None else np.require(payload[2], requirements="CA")
+    state = result[3]
     tests = _condt._tests_kept(state, given, labels, step, status, **params)
     return tests, get_worker().address
 
 
-def _tile_given(result, given, step, before, give_back, params):
-    """On a worker: ``step`` on the driver's ``given`` edges on a tile's kept triangulation
-    (``before`` and ``give_back``: the local outlier removal's rules 1 to 3 read them)."""
+def _tile_given(result, payload, step, give_back, params):
+    """On a worker: ``step`` on the driver's edges among a tile's points, on its kept
+    triangulation (``payload``: those edges, and the IQR stage's input among them, which the
+    local outlier removal's rules 1 to 3 read with ``give_back``)."""
     from distributed import get_worker
 
+    given, before = payload
     state, given = result[3], np.require(given, requirements="CA")
     if step == "local-outliers":
         before = np.require(before, requirements="CA")
