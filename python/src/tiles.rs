@@ -1,12 +1,12 @@
 //! The native half of `condt.dask` (`python/python/condt/dask.py`): what the driver computes
-//! once for the whole set, what a worker computes for one tile, and the global step run on the
+//! once for the whole set, what a worker computes for one tile, and the global steps run on the
 //! edges the tiles send back.
 //!
 //! Owns: the tile's certificate (which of its triangles and hull edges are provably the whole
-//! set's) and the global facts it needs (insertion ranks, the convex hull's boundary). It may not
-//! implement a stage: the tile runs the library's own stages on the library's own triangulation
-//! ([`Triangulation::triangulate_in_order`]), and Algorithm 3 runs once, in the library
-//! ([`condt::remove_gathered_outliers`]).
+//! set's), the global facts it needs (insertion ranks, the convex hull's boundary) and the
+//! rounds' plumbing. It may not implement a stage: the tile runs the library's own stages and
+//! tests on the library's own triangulation ([`Triangulation::triangulate_in_order`]), and every
+//! global rule runs once, in the library ([`condt::tiled`]).
 //!
 //! Why a certified tile gives the whole set's edges: a point the tile does not hold lies inside
 //! the set's convex hull, outside the rectangle whose points the tile holds (its *known*
@@ -660,10 +660,10 @@ pub(crate) fn _gathered_local_outliers<'py>(
     let edges = gathered_pairs(edges)?;
     let rows = choice_rows(&choices)?;
     let tests = tests.as_slice()?;
-    let kept = py
-        .detach(|| condt::tiled::remove_gathered_local_outliers(n, &edges, tests, &rows))
-        .map_err(|err| PyValueError::new_err(err.to_string()))?;
-    kept.map(|edges| sorted_rows(py, edges)).transpose()
+    gathered_answer(
+        py,
+        py.detach(|| condt::tiled::remove_gathered_local_outliers(n, &edges, tests, &rows)),
+    )
 }
 
 /// For the given-back round, on the driver: each point's component label and status in the
@@ -702,10 +702,10 @@ pub(crate) fn _gathered_given_back<'py>(
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let (edges, before) = (gathered_pairs(edges)?, gathered_pairs(before_local)?);
     let tests = tests.as_slice()?;
-    let kept = py
-        .detach(|| condt::tiled::confirm_gathered_given_back(n, &edges, &before, tests))
-        .map_err(|err| PyValueError::new_err(err.to_string()))?;
-    kept.map(|edges| sorted_rows(py, edges)).transpose()
+    gathered_answer(
+        py,
+        py.detach(|| condt::tiled::confirm_gathered_given_back(n, &edges, &before, tests)),
+    )
 }
 
 /// Rows of gap choices from an `(m, 10)` int64 array.
@@ -777,10 +777,10 @@ pub(crate) fn _gathered_gaps<'py>(
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
     let rows = choice_rows(&choices)?;
-    let after = py
-        .detach(|| condt::tiled::close_gathered_gaps(n, &edges, &rows))
-        .map_err(|err| PyValueError::new_err(err.to_string()))?;
-    after.map(|edges| sorted_rows(py, edges)).transpose()
+    gathered_answer(
+        py,
+        py.detach(|| condt::tiled::close_gathered_gaps(n, &edges, &rows)),
+    )
 }
 
 /// The tips stage on the gathered `edges` over `n` points with every point's `candidates`
@@ -803,10 +803,10 @@ pub(crate) fn _gathered_tips<'py>(
         })
         .collect::<Result<_, std::num::TryFromIntError>>()
         .map_err(|_| PyValueError::new_err("a tip candidate names a negative position"))?;
-    let after = py
-        .detach(|| condt::tiled::repair_gathered_tips(n, &edges, &rows))
-        .map_err(|err| PyValueError::new_err(err.to_string()))?;
-    after.map(|edges| sorted_rows(py, edges)).transpose()
+    gathered_answer(
+        py,
+        py.detach(|| condt::tiled::repair_gathered_tips(n, &edges, &rows)),
+    )
 }
 
 /// Each position's component in the graph of the gathered `edges` over `n` points, named by its
@@ -839,10 +839,10 @@ pub(crate) fn _gathered_clumps<'py>(
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
     let tests = tests.as_slice()?;
-    let kept = py
-        .detach(|| condt::tiled::remove_gathered_clumps(n, &edges, tests))
-        .map_err(|err| PyValueError::new_err(err.to_string()))?;
-    kept.map(|edges| sorted_rows(py, edges)).transpose()
+    gathered_answer(
+        py,
+        py.detach(|| condt::tiled::remove_gathered_clumps(n, &edges, tests)),
+    )
 }
 
 /// A tile's owned edges, one list per graph its phase asks, in the whole set's positions.
@@ -1314,6 +1314,16 @@ pub(crate) fn _gathered_smoothing_pass<'py>(
                 .into_any(),
         ),
     })
+}
+
+/// A global rule's answer on the gathered edges: the edges after it, sorted by rows, or `None`
+/// when it changes nothing; a refused input as `ValueError`.
+fn gathered_answer(
+    py: Python<'_>,
+    answer: Result<Option<Vec<[usize; 2]>>, condt::Error>,
+) -> PyResult<Option<Bound<'_, PyArray2<i64>>>> {
+    let answer = answer.map_err(|err| PyValueError::new_err(err.to_string()))?;
+    answer.map(|edges| sorted_rows(py, edges)).transpose()
 }
 
 /// The rows of an `(m, 2)` array of positions, smaller end first.

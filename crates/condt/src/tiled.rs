@@ -215,38 +215,16 @@ pub fn remove_gathered_clumps(
     edges: &[[usize; 2]],
     tests: &[u8],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    if tests.len() < n {
-        return Err(Error::InvalidParameter {
-            name: "tests",
-            value: tests.len() as f64,
-        });
-    }
+    enough_tests(n, tests)?;
     let listed = vertex_edges(n, edges)?;
     let graph = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     // Every test is at hand: the counts are exact (capped as the stage caps them), which decides
     // as the stage's early stop does (docs/distributed.md).
-    let counts = |_: &[u32], _: f64| {
-        let mut separated = vec![0u8; n];
-        for (i, &r) in root.iter().enumerate() {
-            let v = VertexId::new(i as u32);
-            if graph.degree(v) > 0 && test(v, 2) && usize::from(separated[r as usize]) < MIN_SAMPLES
-            {
-                separated[r as usize] += 1;
-            }
-        }
-        Some(separated)
-    };
+    let counts = |_: &[u32], _: f64| Some(exact_separated(&graph, &root, |v| test(v, 2)));
     let clump = clumps::clumps_of(&graph, &root, |v| test(v, 1), counts, |v| test(v, 2));
-    Ok(clump.map(|clump| {
-        edges
-            .iter()
-            .zip(&listed)
-            .filter(|(_, &[a, _])| !clump[root[a.index()] as usize])
-            .map(|(&edge, _)| edge)
-            .collect()
-    }))
+    Ok(clump.map(|clump| keeping(edges, &listed, |a| !clump[root[a.index()] as usize])))
 }
 
 /// The tips stage's candidates at the points of `graph`'s triangulation that `at` selects (by
@@ -534,12 +512,7 @@ pub fn remove_gathered_local_outliers(
     tests: &[u8],
     choices: &[[usize; GAP_ROW]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    if tests.len() < n {
-        return Err(Error::InvalidParameter {
-            name: "tests",
-            value: tests.len() as f64,
-        });
-    }
+    enough_tests(n, tests)?;
     let listed = vertex_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
@@ -559,14 +532,9 @@ pub fn remove_gathered_local_outliers(
     else {
         return Ok(None);
     };
-    Ok(Some(
-        edges
-            .iter()
-            .zip(&listed)
-            .filter(|(_, &[a, _])| kept[root[a.index()] as usize])
-            .map(|(&edge, _)| edge)
-            .collect(),
-    ))
+    Ok(Some(keeping(edges, &listed, |a| {
+        kept[root[a.index()] as usize]
+    })))
 }
 
 /// Per component root, its points with edges that are `apart`, counted up to [`MIN_SAMPLES`] as
@@ -673,12 +641,7 @@ pub fn confirm_gathered_given_back(
     before_local: &[[usize; 2]],
     tests: &[u8],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    if tests.len() < n {
-        return Err(Error::InvalidParameter {
-            name: "tests",
-            value: tests.len() as f64,
-        });
-    }
+    enough_tests(n, tests)?;
     let listed = vertex_edges(n, edges)?;
     let before = vertex_edges(n, before_local)?;
     let given = given_back::missing_from(&listed, &before);
@@ -690,14 +653,32 @@ pub fn confirm_gathered_given_back(
     if !dropped.contains(&true) {
         return Ok(None);
     }
-    Ok(Some(
-        edges
-            .iter()
-            .zip(&listed)
-            .filter(|(_, &[a, _])| !dropped[standing.root[a.index()] as usize])
-            .map(|(&edge, _)| edge)
-            .collect(),
-    ))
+    let root = &standing.root;
+    Ok(Some(keeping(edges, &listed, |a| {
+        !dropped[root[a.index()] as usize]
+    })))
+}
+
+/// The rows of `edges` (as `listed`, the stages' edges) whose smaller end `keep` keeps: a rule
+/// that drops whole components asks it of any one point.
+fn keeping(
+    edges: &[[usize; 2]],
+    listed: &[Edge],
+    keep: impl Fn(VertexId) -> bool,
+) -> Vec<[usize; 2]> {
+    let kept = edges.iter().zip(listed).filter(|(_, &[a, _])| keep(a));
+    kept.map(|(&edge, _)| edge).collect()
+}
+
+/// `Ok` when `tests` holds one entry per point of `n`.
+fn enough_tests(n: usize, tests: &[u8]) -> Result<(), Error> {
+    if tests.len() < n {
+        return Err(Error::InvalidParameter {
+            name: "tests",
+            value: tests.len() as f64,
+        });
+    }
+    Ok(())
 }
 
 /// `edges` (pairs of positions below `n`) as the stages' edges, a position standing for a vertex.
