@@ -302,6 +302,20 @@ def test_clumps_are_a_round_of_tests_and_the_rule_on_the_driver(client):
     assert not np.array_equal(expected, one_machine(points, **{**params, "clumps": False}))
 
 
+def test_a_failure_on_a_worker_that_is_no_exception_reaches_the_driver_as_one(client):
+    # A Rust panic reaches Python as a BaseException, which Dask does not report (the call
+    # waited forever): the worker's calls raise it as a RuntimeError.
+    class Panic(BaseException):
+        pass
+
+    def panics():
+        raise Panic("index out of bounds")
+
+    future = client.submit(condt.dask._on_worker, panics, pure=False)
+    with pytest.raises(RuntimeError, match="condt failed on a worker: index out of bounds"):
+        future.result(timeout=60)
+
+
 def test_a_baseline_is_refused_by_name(client):
     points = curves(1_000, np.random.default_rng(1))
     with pytest.raises(NotImplementedError, match=r"not the baseline NN-Crust"):

@@ -405,7 +405,8 @@ def _tile(payload, boundary_len, hull, band, rect, known, bbox, reach, phase, ke
 
     # Arrays that crossed processes may arrive misaligned: the native module reads them in place.
     points, positions, ranks, boundary = (np.require(a, requirements="CA") for a in payload)
-    status, edges, state = _condt._run_tile(
+    status, edges, state = _on_worker(
+        _condt._run_tile,
         points,
         positions,
         ranks,
@@ -424,6 +425,21 @@ def _tile(payload, boundary_len, hull, band, rect, known, bbox, reach, phase, ke
     return status, edges, get_worker().address, state
 
 
+def _on_worker(call, *args, **kwargs):
+    """``call(*args, **kwargs)``, with a failure that is no ``Exception`` (a Rust panic reaches
+    Python as pyo3's ``PanicException``, a ``BaseException``) raised as ``RuntimeError``: Dask
+    reports an ``Exception`` to the driver, while the other kind left the call waiting for a
+    task that never finished."""
+    try:
+        return call(*args, **kwargs)
+    except Exception:
+        raise
+    except (KeyboardInterrupt, SystemExit, GeneratorExit):
+        raise
+    except BaseException as err:
+        raise RuntimeError(f"condt failed on a worker: {err}") from err
+
+
 def _report(result):
     """On a worker: what the driver reads of a tile's result (not its kept triangulation)."""
     return result[:3]
@@ -439,7 +455,7 @@ def _tile_tests(result, payload, step, params):
     given, labels = (np.require(a, requirements="CA") for a in payload[:2])
     status = None if payload[2] is None else np.require(payload[2], requirements="CA")
     state = result[3]
-    tests = _condt._tests_kept(state, given, labels, step, status, **params)
+    tests = _on_worker(_condt._tests_kept, state, given, labels, step, status, **params)
     return tests, get_worker().address
 
 
@@ -453,13 +469,13 @@ def _tile_given(result, payload, step, give_back, params):
     state, given = result[3], np.require(given, requirements="CA")
     if step == "local-outliers":
         before = np.require(before, requirements="CA")
-        rows = _condt._local_rules_kept(state, given, before, give_back, **params)
+        rows = _on_worker(_condt._local_rules_kept, state, given, before, give_back, **params)
     elif step == "tips":
-        rows = _condt._tip_candidates_kept(state, given, **params)
+        rows = _on_worker(_condt._tip_candidates_kept, state, given, **params)
     elif step == "gaps":
-        rows = _condt._gap_choices_kept(state, given, **params)
+        rows = _on_worker(_condt._gap_choices_kept, state, given, **params)
     else:
-        rows = _condt._step_kept(state, given, step, **params)
+        rows = _on_worker(_condt._step_kept, state, given, step, **params)
     return rows, get_worker().address
 
 
@@ -485,7 +501,7 @@ def _whole(points, params):
 
     from condt import reconstruct as one_machine
 
-    return np.array(one_machine(points, **params).edges), get_worker().address
+    return np.array(_on_worker(one_machine, points, **params).edges), get_worker().address
 
 
 def _cut(points, tiles, bbox):
