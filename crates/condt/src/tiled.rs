@@ -328,6 +328,10 @@ pub fn repair_gathered_tips(
 }
 
 /// The width of a row of [`gap_choices`].
+///
+/// ```
+/// assert_eq!(condt::tiled::GAP_ROW, 10); // the end, the target's kind and two points, a walk
+/// ```
 pub const GAP_ROW: usize = 10;
 
 /// Gap closing's choices at the loose ends of `graph` that `at` selects (by input position), for
@@ -506,6 +510,26 @@ pub fn local_rules<'t>(
 ///
 /// # Errors
 /// As [`remove_gathered_clumps`] and [`close_gathered_gaps`].
+///
+/// ```
+/// use condt::{tiled, triangulate, Point, Repair, Uniformity};
+/// let angles = (0..12).map(|k| k as f64 * std::f64::consts::TAU / 12.0);
+/// let mut pts: Vec<Point> = angles.map(|t| Point::new(t.cos(), t.sin())).collect();
+/// pts.extend([Point::new(6.0, 6.0), Point::new(6.3, 6.1)]);
+/// let tri = triangulate(&pts)?;
+/// let repaired = tri.proximity_graph(Uniformity::default())?.repair(Repair::Paper);
+/// let filtered = repaired.remove_outliers(1.7)?.graph;
+/// let give_back = repaired.num_edges() > filtered.num_edges();
+/// let local = tiled::local_rules(&filtered, &repaired, give_back);
+/// let edges = local.edges();
+/// let tests = tiled::clump_tests(&local, &tiled::component_labels(pts.len(), &edges)?);
+/// let choices = tiled::gap_choices(&local, |_| true);
+/// let kept = tiled::remove_gathered_local_outliers(pts.len(), &edges, &tests, &choices)?;
+/// // The far pair goes; the circle stays, as the stage decides.
+/// let stage = filtered.remove_local_outliers(&repaired).edges();
+/// assert_eq!(kept, Some(stage));
+/// # Ok::<(), condt::Error>(())
+/// ```
 pub fn remove_gathered_local_outliers(
     n: usize,
     edges: &[[usize; 2]],
@@ -551,6 +575,11 @@ fn exact_separated(graph: &CurveGraph, root: &[u32], apart: impl Fn(VertexId) ->
 }
 
 /// Each position's component label and status, as [`given_back_standing`] gives them.
+///
+/// ```
+/// let standing: condt::tiled::GivenBackStanding = (vec![0, 0, 2], vec![2, 2, 0]);
+/// assert_eq!(standing.1[2], 0); // the third point has no edge
+/// ```
 pub type GivenBackStanding = (Vec<u32>, Vec<u8>);
 
 /// For the given-back check of a split run, on the driver: each position's component in the graph
@@ -561,6 +590,19 @@ pub type GivenBackStanding = (Vec<u32>, Vec<u8>);
 ///
 /// # Errors
 /// As [`component_labels`], for `edges` and `before_local`.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// // A chain of 14 points 0.3 apart, all given back, and two stray points beside its middle.
+/// let wave = |k: f64| Point::new(0.3 * k, 0.01 * (1.7 * k).sin());
+/// let mut pts: Vec<Point> = (0..14).map(|k| wave(k as f64)).collect();
+/// pts.extend([Point::new(1.75, 0.45), Point::new(1.85, 0.46)]);
+/// let tri = triangulate(&pts)?;
+/// let edges: Vec<[usize; 2]> = (0..13).map(|k| [k, k + 1]).collect();
+/// let (labels, status) = tiled::given_back_standing(pts.len(), &edges, &[])?.unwrap();
+/// assert_eq!((labels[5], status[5], status[14]), (0, 2, 0));
+/// # Ok::<(), condt::Error>(())
+/// ```
 pub fn given_back_standing(
     n: usize,
     edges: &[[usize; 2]],
@@ -587,6 +629,22 @@ pub fn given_back_standing(
 ///
 /// # Panics
 /// If `labels` or `status` is shorter than the triangulation's points.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// // A chain of 14 points 0.3 apart, all given back, and two stray points beside its middle.
+/// let wave = |k: f64| Point::new(0.3 * k, 0.01 * (1.7 * k).sin());
+/// let mut pts: Vec<Point> = (0..14).map(|k| wave(k as f64)).collect();
+/// pts.extend([Point::new(1.75, 0.45), Point::new(1.85, 0.46)]);
+/// let tri = triangulate(&pts)?;
+/// let edges: Vec<[usize; 2]> = (0..13).map(|k| [k, k + 1]).collect();
+/// let (labels, status) = tiled::given_back_standing(pts.len(), &edges, &[])?.unwrap();
+/// let graph = tri.graph_from_edges(edges.iter().copied());
+/// let tests = tiled::given_back_tests(&graph, &labels, &status);
+/// assert!(tests.contains(&1)); // the strays are near the chain's middle
+/// assert_eq!((tests[0], tests[14]), (0, 0)); // an end has one edge; a stray none
+/// # Ok::<(), condt::Error>(())
+/// ```
 pub fn given_back_tests(graph: &Graph<'_>, labels: &[u32], status: &[u8]) -> Vec<u8> {
     let tri = graph.triangulation();
     let n = tri.num_points();
@@ -635,6 +693,24 @@ pub fn given_back_tests(graph: &Graph<'_>, labels: &[u32], status: &[u8]) -> Vec
 ///
 /// # Errors
 /// As [`given_back_standing`], and named `tests` when `tests` is shorter than `n`.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// // A chain of 14 points 0.3 apart, all given back, and two stray points beside its middle.
+/// let wave = |k: f64| Point::new(0.3 * k, 0.01 * (1.7 * k).sin());
+/// let mut pts: Vec<Point> = (0..14).map(|k| wave(k as f64)).collect();
+/// pts.extend([Point::new(1.75, 0.45), Point::new(1.85, 0.46)]);
+/// let tri = triangulate(&pts)?;
+/// let edges: Vec<[usize; 2]> = (0..13).map(|k| [k, k + 1]).collect();
+/// let (labels, status) = tiled::given_back_standing(pts.len(), &edges, &[])?.unwrap();
+/// let graph = tri.graph_from_edges(edges.iter().copied());
+/// let tests = tiled::given_back_tests(&graph, &labels, &status);
+/// let kept = tiled::confirm_gathered_given_back(pts.len(), &edges, &[], &tests)?;
+/// // The chain lies in a scatter and goes, as the stage decides.
+/// assert_eq!(kept, Some(vec![]));
+/// assert!(graph.confirm_given_back(&tri.graph_from_edges([])).edges().is_empty());
+/// # Ok::<(), condt::Error>(())
+/// ```
 pub fn confirm_gathered_given_back(
     n: usize,
     edges: &[[usize; 2]],
