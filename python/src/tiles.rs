@@ -554,15 +554,17 @@ pub(crate) fn _tests_kept<'py>(
             "a tile's labels differ in length from its points",
         ));
     }
-    let tests = py.detach(|| {
-        crate::within_call(|| {
-            let graph = state.tri.graph_from_edges(given);
-            match &status {
-                Some(status) => condt::tiled::given_back_tests(&graph, &labels, status),
-                None => condt::tiled::clump_tests(&graph, &labels),
-            }
+    let tests = py
+        .detach(|| {
+            crate::within_call(|| {
+                let graph = state.tri.graph_from_edges(given);
+                match &status {
+                    Some(status) => condt::tiled::given_back_tests(&graph, &labels, status),
+                    None => condt::tiled::clump_tests(&graph, &labels),
+                }
+            })
         })
-    });
+        .map_err(|err| PyValueError::new_err(err.to_string()))?;
     let owned = (0..state.points.len()).filter(|&i| state.owned[i]);
     let positions: Vec<i64> = owned.clone().map(|i| state.positions[i]).collect();
     let tests: Vec<u8> = owned.map(|i| tests[i]).collect();

@@ -148,8 +148,9 @@ pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Erro
 /// that are equal exactly within a component); the tests are the whole set's at every point
 /// whose Delaunay star and graph the tile holds.
 ///
-/// # Panics
-/// If `labels` is shorter than the triangulation's points.
+/// # Errors
+/// [`Error::InvalidParameter`] named `labels` when `labels` is shorter than the triangulation's
+/// points.
 ///
 /// ```
 /// use condt::{tiled, triangulate, Point};
@@ -161,19 +162,20 @@ pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Erro
 /// let tri = triangulate(&pts)?;
 /// let edges: Vec<[usize; 2]> = (0..29).chain(30..35).map(|i| [i, i + 1]).collect();
 /// let labels = tiled::component_labels(pts.len(), &edges)?;
-/// let tests = tiled::clump_tests(&tri.graph_from_edges(edges.iter().copied()), &labels);
+/// let tests = tiled::clump_tests(&tri.graph_from_edges(edges.iter().copied()), &labels)?;
 /// assert_eq!(tests[10], 0b11); // on the arc: smooth, and apart from the zig-zag
 /// assert_eq!(tests[32], 0b10); // in the zig-zag: bent
 /// # Ok::<(), condt::Error>(())
 /// ```
-pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Vec<u8> {
+pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> {
     let tri = graph.triangulation();
+    one_per_point(tri.num_points(), "labels", labels.len())?;
     let edges = graph.listed();
     let curve = CurveGraph::new(tri.num_points(), edges);
     let root: Vec<u32> = (0..tri.num_points())
         .map(|v| labels[tri.input_of(VertexId::new(v as u32))])
         .collect();
-    (0..tri.num_points())
+    Ok((0..tri.num_points())
         .map(|position| {
             let v = tri.vertex(position);
             if tri.input_of(v) != position || curve.degree(v) == 0 {
@@ -185,7 +187,7 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Vec<u8> {
             };
             u8::from(smooth) | u8::from(separated_at(tri, &curve, &root, v)) << 1
         })
-        .collect()
+        .collect())
 }
 
 /// The clump stage ([`Graph::remove_clumps`]) on edges gathered from the tiles of a split run:
@@ -205,7 +207,7 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Vec<u8> {
 /// let tri = triangulate(&pts)?;
 /// let edges: Vec<[usize; 2]> = (0..29).chain(30..35).map(|i| [i, i + 1]).collect();
 /// let graph = tri.graph_from_edges(edges.iter().copied());
-/// let tests = tiled::clump_tests(&graph, &tiled::component_labels(pts.len(), &edges)?);
+/// let tests = tiled::clump_tests(&graph, &tiled::component_labels(pts.len(), &edges)?)?;
 /// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests)?;
 /// assert_eq!(kept, Some(graph.remove_clumps().edges()));
 /// # Ok::<(), condt::Error>(())
@@ -522,7 +524,7 @@ pub fn local_rules<'t>(
 /// let give_back = repaired.num_edges() > filtered.num_edges();
 /// let local = tiled::local_rules(&filtered, &repaired, give_back);
 /// let edges = local.edges();
-/// let tests = tiled::clump_tests(&local, &tiled::component_labels(pts.len(), &edges)?);
+/// let tests = tiled::clump_tests(&local, &tiled::component_labels(pts.len(), &edges)?)?;
 /// let choices = tiled::gap_choices(&local, |_| true);
 /// let kept = tiled::remove_gathered_local_outliers(pts.len(), &edges, &tests, &choices)?;
 /// // The far pair goes; the circle stays, as the stage decides.
@@ -627,8 +629,9 @@ pub fn given_back_standing(
 /// [`given_back_standing`] on the whole set; the tests are the whole set's at every point whose
 /// Delaunay star and graph the tile holds.
 ///
-/// # Panics
-/// If `labels` or `status` is shorter than the triangulation's points.
+/// # Errors
+/// [`Error::InvalidParameter`] named `labels` or `status` when it is shorter than the
+/// triangulation's points.
 ///
 /// ```
 /// use condt::{tiled, triangulate, Point};
@@ -640,14 +643,20 @@ pub fn given_back_standing(
 /// let edges: Vec<[usize; 2]> = (0..13).map(|k| [k, k + 1]).collect();
 /// let (labels, status) = tiled::given_back_standing(pts.len(), &edges, &[])?.unwrap();
 /// let graph = tri.graph_from_edges(edges.iter().copied());
-/// let tests = tiled::given_back_tests(&graph, &labels, &status);
+/// let tests = tiled::given_back_tests(&graph, &labels, &status)?;
 /// assert!(tests.contains(&1)); // the strays are near the chain's middle
 /// assert_eq!((tests[0], tests[14]), (0, 0)); // an end has one edge; a stray none
 /// # Ok::<(), condt::Error>(())
 /// ```
-pub fn given_back_tests(graph: &Graph<'_>, labels: &[u32], status: &[u8]) -> Vec<u8> {
+pub fn given_back_tests(
+    graph: &Graph<'_>,
+    labels: &[u32],
+    status: &[u8],
+) -> Result<Vec<u8>, Error> {
     let tri = graph.triangulation();
     let n = tri.num_points();
+    one_per_point(n, "labels", labels.len())?;
+    one_per_point(n, "status", status.len())?;
     let curve = CurveGraph::new(n, graph.listed());
     let of_vertex = |v: VertexId| tri.input_of(v);
     // The whole set's component names, renumbered among the tile's own (the standing indexes
@@ -675,7 +684,7 @@ pub fn given_back_tests(graph: &Graph<'_>, labels: &[u32], status: &[u8]) -> Vec
             .fold(-1.0f64, f64::max);
         !standing.apart(tri, v, longest)
     };
-    (0..n)
+    Ok((0..n)
         .map(|position| {
             let v = tri.vertex(position);
             let judged = tri.input_of(v) == position
@@ -683,7 +692,7 @@ pub fn given_back_tests(graph: &Graph<'_>, labels: &[u32], status: &[u8]) -> Vec
                 && standing.status(v) == given_back::Status::GivenBack;
             u8::from(judged && dropped_at(v))
         })
-        .collect()
+        .collect())
 }
 
 /// The given-back check ([`Graph::confirm_given_back`]) on edges gathered from the tiles of a
@@ -704,7 +713,7 @@ pub fn given_back_tests(graph: &Graph<'_>, labels: &[u32], status: &[u8]) -> Vec
 /// let edges: Vec<[usize; 2]> = (0..13).map(|k| [k, k + 1]).collect();
 /// let (labels, status) = tiled::given_back_standing(pts.len(), &edges, &[])?.unwrap();
 /// let graph = tri.graph_from_edges(edges.iter().copied());
-/// let tests = tiled::given_back_tests(&graph, &labels, &status);
+/// let tests = tiled::given_back_tests(&graph, &labels, &status)?;
 /// let kept = tiled::confirm_gathered_given_back(pts.len(), &edges, &[], &tests)?;
 /// // The chain lies in a scatter and goes, as the stage decides.
 /// assert_eq!(kept, Some(vec![]));
@@ -748,10 +757,15 @@ fn keeping(
 
 /// `Ok` when `tests` holds one entry per point of `n`.
 fn enough_tests(n: usize, tests: &[u8]) -> Result<(), Error> {
-    if tests.len() < n {
+    one_per_point(n, "tests", tests.len())
+}
+
+/// `Ok` when an array `name` of `len` entries holds one per point of `n`.
+fn one_per_point(n: usize, name: &'static str, len: usize) -> Result<(), Error> {
+    if len < n {
         return Err(Error::InvalidParameter {
-            name: "tests",
-            value: tests.len() as f64,
+            name,
+            value: len as f64,
         });
     }
     Ok(())
@@ -819,13 +833,19 @@ mod tests {
         let graph = tri.graph_from_edges(after.iter().copied());
         let labels = component_labels(pts.len(), &after).unwrap();
         let far: Vec<u32> = labels.iter().map(|&l| 3 * l + 1_000_000).collect();
-        assert_eq!(clump_tests(&graph, &labels), clump_tests(&graph, &far));
+        assert_eq!(
+            clump_tests(&graph, &labels).unwrap(),
+            clump_tests(&graph, &far).unwrap()
+        );
         let (names, status) = given_back_standing(pts.len(), &after, &before)
             .unwrap()
             .unwrap();
         let far: Vec<u32> = names.iter().map(|&l| 3 * l + 1_000_000).collect();
         assert!(status.contains(&2));
-        let tests = given_back_tests(&graph, &names, &status);
-        assert_eq!(tests, given_back_tests(&graph, &far, &status));
+        let tests = given_back_tests(&graph, &names, &status).unwrap();
+        assert_eq!(tests, given_back_tests(&graph, &far, &status).unwrap());
+        // Too few labels or statuses are refused, not read past.
+        assert!(clump_tests(&graph, &names[1..]).is_err());
+        assert!(given_back_tests(&graph, &names, &status[1..]).is_err());
     }
 }
