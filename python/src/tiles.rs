@@ -1318,6 +1318,72 @@ pub(crate) fn _gathered_smoothing_pass<'py>(
     })
 }
 
+/// The rows of the driver's `edges` (positions below `n`) with both ends among each tile's
+/// points (`tiles`, each tile's positions of the whole set, increasing), in that tile's own
+/// positions: one `(m, 2)` int64 array per tile, rows in the order of `edges`. One pass over the
+/// edges for all tiles (each point lists the few tiles holding it), where a pass per tile cost
+/// the driver a tenth of a tiled run at 1M points and 16 tiles.
+#[pyfunction]
+pub(crate) fn _split_edges<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: PyReadonlyArray2<'py, i64>,
+    tiles: Vec<PyReadonlyArray1<'py, i64>>,
+) -> PyResult<Vec<Bound<'py, PyArray2<i64>>>> {
+    let tiles: Vec<&[i64]> = tiles
+        .iter()
+        .map(|t| t.as_slice())
+        .collect::<Result<_, _>>()?;
+    let flat = edges.as_slice()?;
+    let place = |i: i64| usize::try_from(i).ok().filter(|&i| i < n);
+    if tiles
+        .iter()
+        .flat_map(|t| t.iter())
+        .any(|&i| place(i).is_none())
+        || flat.iter().any(|&i| place(i).is_none())
+    {
+        return Err(PyValueError::new_err("a position is not among the points"));
+    }
+    let split = py.detach(|| {
+        // Each point's (tile, place in the tile), grouped by point (counts, then offsets).
+        let mut start = vec![0usize; n + 1];
+        for tile in &tiles {
+            for &i in tile.iter() {
+                start[i as usize + 1] += 1;
+            }
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut held = vec![(0u32, 0i64); start[n]];
+        for (k, tile) in tiles.iter().enumerate() {
+            for (local, &i) in tile.iter().enumerate() {
+                held[fill[i as usize]] = (k as u32, local as i64);
+                fill[i as usize] += 1;
+            }
+        }
+        let of = |i: i64| &held[start[i as usize]..start[i as usize + 1]];
+        let mut out: Vec<Vec<i64>> = vec![Vec::new(); tiles.len()];
+        for e in flat.chunks_exact(2) {
+            for &(k, a) in of(e[0]) {
+                if let Some(&(_, b)) = of(e[1]).iter().find(|&&(j, _)| j == k) {
+                    out[k as usize].extend([a, b]);
+                }
+            }
+        }
+        out
+    });
+    split
+        .into_iter()
+        .map(|rows| {
+            let rows = Array2::from_shape_vec((rows.len() / 2, 2), rows)
+                .map_err(|err| PyValueError::new_err(err.to_string()))?;
+            Ok(PyArray2::from_owned_array(py, rows))
+        })
+        .collect()
+}
+
 /// A global rule's answer on the gathered edges: the edges after it, sorted by rows, or `None`
 /// when it changes nothing; a refused input as `ValueError`.
 fn gathered_answer(

@@ -316,6 +316,26 @@ def test_a_failure_on_a_worker_that_is_no_exception_reaches_the_driver_as_one(cl
         future.result(timeout=60)
 
 
+def test_edges_are_split_among_the_tiles_holding_both_ends():
+    from condt import _condt
+
+    rng = np.random.default_rng(3)
+    n = 500
+    tiles = [np.flatnonzero(rng.random(n) < share) for share in (0.1, 0.5, 0.9, 0.0)]
+    pairs = rng.integers(0, n, (2_000, 2))
+    edges = np.sort(pairs[pairs[:, 0] != pairs[:, 1]], axis=1)
+    split = _condt._split_edges(n, edges, tiles)
+    for positions, local in zip(tiles, split):
+        # Each tile's rows, by hand: both ends among its points, in its own positions.
+        place = np.full(n, -1)
+        place[positions] = np.arange(len(positions))
+        a, b = place[edges[:, 0]], place[edges[:, 1]]
+        both = (a >= 0) & (b >= 0)
+        np.testing.assert_array_equal(local, np.column_stack((a[both], b[both])))
+    with pytest.raises(ValueError, match="not among the points"):
+        _condt._split_edges(n, edges, [np.array([n])])
+
+
 def test_a_baseline_is_refused_by_name(client):
     points = curves(1_000, np.random.default_rng(1))
     with pytest.raises(NotImplementedError, match=r"not the baseline NN-Crust"):

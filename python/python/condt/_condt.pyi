@@ -35,6 +35,7 @@ __all__ = [
     "_gathered_local_outliers",
     "_given_back_standing",
     "_gathered_given_back",
+    "_split_edges",
     "_TileState",
 ]
 
@@ -223,6 +224,9 @@ def _gathered_local_outliers(
     tests: npt.NDArray[np.uint8],
     choices: npt.NDArray[np.int64],
 ) -> npt.NDArray[np.int64] | None: ...
+def _split_edges(
+    n: int, edges: npt.NDArray[np.int64], tiles: list[npt.NDArray[np.int64]]
+) -> list[npt.NDArray[np.int64]]: ...
 def _given_back_standing(
     n: int, edges: npt.NDArray[np.int64], before_local: npt.NDArray[np.int64]
 ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.uint8]] | None: ...

@@ -330,11 +330,8 @@ class _Run:
         """The per-point tests of ``step`` on each kept tile, with the driver's edges ``given``
         and component ``labels`` (one per point), joined: one byte per point of the whole set,
         each from the tile owning it."""
-        at = np.full(len(self.points), -1, np.int64)
         futures = []
-        for k in sorted(self.kept):
-            state, positions = self.kept[k]
-            local = _local(given, positions, at)
+        for (state, positions), local in zip(*self._split(given)):
             arrays = (
                 local,
                 np.ascontiguousarray(labels[positions]),
@@ -353,19 +350,25 @@ class _Run:
             tests[owned] = bits
         return tests
 
+    def _split(self, given):
+        """The kept tiles (their state and positions, by tile) and, for each, the rows of
+        ``given`` with both ends among its points, in its own positions."""
+        kept = [self.kept[k] for k in sorted(self.kept)]
+        given = np.ascontiguousarray(given, dtype=np.int64).reshape(-1, 2)
+        locals_ = _condt._split_edges(len(self.points), given, [p for _, p in kept])
+        return kept, locals_
+
     def on_kept(self, given, step, width=2, before=None, give_back=False):
         """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
         halo that certified it, on its worker), joined: the second phase of a two-phase flow
         (``"repair"``) or a later stage's round, which sends each tile only its given edges. The
         tiles' rows (owned edges; for the tips, ``width`` 4, candidate moves; for gap closing,
         ``width`` 10, choices) in tile order."""
-        at = np.full(len(self.points), -1, np.int64)
+        kept, locals_ = self._split(given)
+        earlier = [None] * len(kept) if before is None else self._split(before)[1]
         futures = []
-        for k in sorted(self.kept):
-            state, positions = self.kept[k]
-            local = _local(given, positions, at)
-            earlier = None if before is None else _local(before, positions, at)
-            payload = self.client.scatter((local, earlier), hash=False)
+        for (state, _), local, local_before in zip(kept, locals_, earlier):
+            payload = self.client.scatter((local, local_before), hash=False)
             futures.append(
                 self.client.submit(
                     _tile_given, state, payload, step, give_back, self.params, pure=False
@@ -376,18 +379,6 @@ class _Run:
         for _, worker in results:
             self.workers.add(worker)
         return np.concatenate([rows for rows, _ in results] + [np.empty((0, width), np.int64)])
-
-
-def _local(given, positions, at):
-    """The rows of ``given`` with both ends among ``positions`` (a tile's points), in the tile's
-    own positions. ``at`` is scratch with one entry per point, all -1: each point's place among
-    the tile's points while its edges are cut out (reset after)."""
-    at[positions] = np.arange(len(positions))
-    a, b = at[given[:, 0]], at[given[:, 1]]
-    both = (a >= 0) & (b >= 0)
-    local = np.column_stack((a[both], b[both]))
-    at[positions] = -1
-    return local
 
 
 def _inside(points, rect, closed):
