@@ -610,13 +610,9 @@ pub fn given_back_standing(
     edges: &[[usize; 2]],
     before_local: &[[usize; 2]],
 ) -> Result<Option<GivenBackStanding>, Error> {
-    let listed = vertex_edges(n, edges)?;
-    let before = vertex_edges(n, before_local)?;
-    let given = given_back::missing_from(&listed, &before);
-    if !given.contains(&true) {
+    let Some((_, standing)) = standing_of(n, edges, before_local)? else {
         return Ok(None);
-    }
-    let standing = given_back::Standing::of(n, &listed, &given);
+    };
     let status = (0..n)
         .map(|i| standing.status(VertexId::new(i as u32)) as u8)
         .collect();
@@ -727,13 +723,9 @@ pub fn confirm_gathered_given_back(
     tests: &[u8],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     enough_tests(n, tests)?;
-    let listed = vertex_edges(n, edges)?;
-    let before = vertex_edges(n, before_local)?;
-    let given = given_back::missing_from(&listed, &before);
-    if !given.contains(&true) {
+    let Some((listed, standing)) = standing_of(n, edges, before_local)? else {
         return Ok(None);
-    }
-    let standing = given_back::Standing::of(n, &listed, &given);
+    };
     let dropped = standing.dropped(|v| tests[v.index()] != 0);
     if !dropped.contains(&true) {
         return Ok(None);
@@ -742,6 +734,23 @@ pub fn confirm_gathered_given_back(
     Ok(Some(keeping(edges, &listed, |a| {
         !dropped[root[a.index()] as usize]
     })))
+}
+
+/// The given-back check's reading of `edges` against `before_local` (pairs of positions below
+/// `n`): the edges as the stages' edges and each point's standing, or `None` when no edge was
+/// given back.
+fn standing_of(
+    n: usize,
+    edges: &[[usize; 2]],
+    before_local: &[[usize; 2]],
+) -> Result<Option<(Vec<Edge>, given_back::Standing)>, Error> {
+    let listed = vertex_edges(n, edges)?;
+    let given = given_back::missing_from(&listed, &vertex_edges(n, before_local)?);
+    if !given.contains(&true) {
+        return Ok(None);
+    }
+    let standing = given_back::Standing::of(n, &listed, &given);
+    Ok(Some((listed, standing)))
 }
 
 /// The rows of `edges` (as `listed`, the stages' edges) whose smaller end `keep` keeps: a rule
