@@ -446,9 +446,8 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tiles::_tests_kept, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_component_labels, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_clumps, m)?)?;
-    m.add_function(wrap_pyfunction!(tiles::_tip_candidates_kept, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_tips, m)?)?;
-    m.add_function(wrap_pyfunction!(tiles::_gap_choices_kept, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_choices_kept, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_gaps, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_local_rules_kept, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_local_outliers, m)?)?;

@@ -26,6 +26,7 @@ use crate::convert::{as_points, index_array, index_vector, library_error, points
 use crate::params;
 use condt::geometry::{binary_exponent, Scale};
 use condt::predicates::{is_cocircular, orient2d, Orientation};
+use condt::tiled::GAP_ROW;
 use condt::{GatheredPass, Method, Params, Point, Stage, Triangulation};
 use numpy::ndarray::Array2;
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
@@ -72,9 +73,9 @@ impl Flow {
 /// loose end and the other ends choosing its point two more; a crossing's arms and chord, read
 /// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
 /// rule itself on the driver, [`_gathered_clumps`]); a tip's candidate move eight, from the loose
-/// end to the other's branch ([`_tip_candidates_kept`], the split test and the settling on the
+/// end to the other's branch ([`_choices_kept`], the split test and the settling on the
 /// driver, [`_gathered_tips`]); a loose end's gap choice six, its straight walk five
-/// ([`_gap_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
+/// ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
 /// clump tests and gap choices of their result; the given-back test one ring ([`_tests_kept`],
@@ -339,11 +340,7 @@ pub(crate) fn _run_tile<'py>(
                     if let Err(failure) = tile.certify(&tri, points, owned, reach) {
                         return Ok(Err(failure));
                     }
-                    // The edges whose smaller end the tile owns, in the whole set's positions.
-                    let owned_edges = |edges: Vec<[usize; 2]>| -> Vec<[i64; 2]> {
-                        let edges = edges.into_iter().filter(|&[a, _]| owned[a]);
-                        edges.map(|[a, b]| [positions[a], positions[b]]).collect()
-                    };
+                    let owned_edges = |edges| owned_rows(owned, positions, edges);
                     // The proximity graph (with its repair).
                     let proximity = tri.proximity_graph(params.uniformity)?;
                     let repaired = (phase == Phase::Both
@@ -498,18 +495,15 @@ pub(crate) fn _step_kept<'py>(
             result.edges()
         })
     });
-    let owned: Vec<[i64; 2]> = edges
-        .into_iter()
-        .filter(|&[a, _]| state.owned[a])
-        .map(|[a, b]| [state.positions[a], state.positions[b]])
-        .collect();
-    index_array(py, owned)
+    index_array(py, owned_rows(&state.owned, &state.positions, edges))
 }
 
 /// A round of per-point tests on a tile's kept triangulation, for a stage whose rule runs on the
-/// driver: the clump tests ([`condt::tiled::clump_tests`]) on the driver's `given` edges (as for
-/// [`_step_kept`]) with `labels`, each tile point's component in the driver's graph. The tile's
-/// owned points as positions of the whole set, and their tests.
+/// driver, on the driver's `given` edges (as for [`_step_kept`]) with `labels`, each tile point's
+/// component in the driver's graph: the clump tests ([`condt::tiled::clump_tests`], which rule 4
+/// of the local outlier removal reads too) or, with each tile point's `status`, the given-back
+/// tests ([`condt::tiled::given_back_tests`]). The tile's owned points as positions of the whole
+/// set, and their tests.
 #[pyfunction]
 #[pyo3(signature = (state, given, labels, step, status=None, **params))]
 pub(crate) fn _tests_kept<'py>(
@@ -578,38 +572,6 @@ pub(crate) fn _tests_kept<'py>(
 /// and statuses of every point, for the given-back round).
 type OwnedTests<'py> = (Bound<'py, PyArray1<i64>>, Bound<'py, PyArray1<u8>>);
 
-/// A round of the tips stage's candidates on a tile's kept triangulation
-/// ([`condt::tiled::tip_candidates`]) on the driver's `given` edges (as for [`_step_kept`]), at
-/// the points the tile owns: an `(m, 4)` int64 array of positions of the whole set.
-#[pyfunction]
-#[pyo3(signature = (state, given, **params))]
-pub(crate) fn _tip_candidates_kept<'py>(
-    py: Python<'py>,
-    state: &Bound<'py, TileState>,
-    given: PyReadonlyArray2<'py, i64>,
-    params: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyArray2<i64>>> {
-    let (_, tiled) = tiled_params(params)?;
-    if !tiled.later.contains(&Stage::Tips) {
-        return Err(PyValueError::new_err("no tips round for these parameters"));
-    }
-    let state = state.get();
-    let given = tile_pairs(given.as_slice()?, state.points.len())?;
-    let rows = py.detach(|| {
-        crate::within_call(|| {
-            let graph = state.tri.graph_from_edges(given);
-            condt::tiled::tip_candidates(&graph, |i| state.owned[i])
-        })
-    });
-    let flat: Vec<i64> = rows
-        .iter()
-        .flat_map(|row| row.map(|i| state.positions[i]))
-        .collect();
-    let rows = Array2::from_shape_vec((flat.len() / 4, 4), flat)
-        .map_err(|err| PyValueError::new_err(err.to_string()))?;
-    Ok(PyArray2::from_owned_array(py, rows))
-}
-
 /// A round of the local outlier removal's rules 1 to 3 on a tile's kept triangulation
 /// ([`condt::tiled::local_rules`]) on the driver's `given` edges and `before` (the IQR stage's
 /// input), both as for [`_step_kept`]; `give_back`: whether rule 1 runs (the driver's count).
@@ -640,12 +602,7 @@ pub(crate) fn _local_rules_kept<'py>(
             condt::tiled::local_rules(&graph, &before, give_back).edges()
         })
     });
-    let owned: Vec<[i64; 2]> = edges
-        .into_iter()
-        .filter(|&[a, _]| state.owned[a])
-        .map(|[a, b]| [state.positions[a], state.positions[b]])
-        .collect();
-    index_array(py, owned)
+    index_array(py, owned_rows(&state.owned, &state.positions, edges))
 }
 
 /// Rule 4 of the local outlier removal on the gathered `edges` (after rules 1 to 3) over `n`
@@ -660,7 +617,7 @@ pub(crate) fn _gathered_local_outliers<'py>(
     choices: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
-    let rows = choice_rows(&choices)?;
+    let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
     let tests = tests.as_slice()?;
     gathered_answer(
         py,
@@ -710,58 +667,74 @@ pub(crate) fn _gathered_given_back<'py>(
     )
 }
 
-/// Rows of gap choices from an `(m, 10)` int64 array.
-fn choice_rows(
-    choices: &PyReadonlyArray2<'_, i64>,
-) -> PyResult<Vec<[usize; condt::tiled::GAP_ROW]>> {
-    choices
+/// The rows of an `(m, W)` int64 array of positions and small numbers, none negative (`what`
+/// names the rows in the error).
+fn rows_of<const W: usize>(
+    array: &PyReadonlyArray2<'_, i64>,
+    what: &str,
+) -> PyResult<Vec<[usize; W]>> {
+    array
         .as_slice()?
-        .chunks_exact(condt::tiled::GAP_ROW)
+        .chunks_exact(W)
         .map(|row| {
-            let mut out = [0usize; condt::tiled::GAP_ROW];
+            let mut out = [0usize; W];
             for (slot, &value) in out.iter_mut().zip(row) {
                 *slot = usize::try_from(value)?;
             }
             Ok(out)
         })
         .collect::<Result<_, std::num::TryFromIntError>>()
-        .map_err(|_| PyValueError::new_err("a gap choice names a negative position"))
+        .map_err(|_| PyValueError::new_err(format!("{what} names a negative position")))
 }
 
-/// A round of gap closing's choices on a tile's kept triangulation
-/// ([`condt::tiled::gap_choices`]) on the driver's `given` edges (as for [`_step_kept`]), at the
-/// loose ends the tile owns: an `(m, 10)` int64 array of positions of the whole set (the kind
-/// and the walk's length as they are).
+/// A round of choices on a tile's kept triangulation, at the points the tile owns, on the
+/// driver's `given` edges (as for [`_step_kept`]): for `"gaps"` each loose end's gap choice
+/// ([`condt::tiled::gap_choices`], an `(m, 10)` int64 array: positions of the whole set, the
+/// kind and the walk's length as they are), for `"tips"` the tips' candidate moves
+/// ([`condt::tiled::tip_candidates`], an `(m, 4)` array of positions).
 #[pyfunction]
-#[pyo3(signature = (state, given, **params))]
-pub(crate) fn _gap_choices_kept<'py>(
+#[pyo3(signature = (state, given, step, **params))]
+pub(crate) fn _choices_kept<'py>(
     py: Python<'py>,
     state: &Bound<'py, TileState>,
     given: PyReadonlyArray2<'py, i64>,
+    step: &str,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let (_, tiled) = tiled_params(params)?;
+    let has = |stage: Stage| tiled.later.contains(&stage);
     // Rule 4 of the local outlier removal keeps pieces gap closing would join.
-    if !tiled.later.contains(&Stage::Gaps) && !tiled.later.contains(&Stage::LocalOutliers) {
-        return Err(PyValueError::new_err("no gaps round for these parameters"));
+    let gaps = step == Stage::Gaps.key() && (has(Stage::Gaps) || has(Stage::LocalOutliers));
+    let tips = step == Stage::Tips.key() && has(Stage::Tips);
+    if !gaps && !tips {
+        return Err(PyValueError::new_err(format!(
+            "no round of choices {step:?} for these parameters"
+        )));
     }
     let state = state.get();
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
-    let rows = py.detach(|| {
+    let position = |i: usize| state.positions[i];
+    let flat: Vec<i64> = py.detach(|| {
         crate::within_call(|| {
             let graph = state.tri.graph_from_edges(given);
-            condt::tiled::gap_choices(&graph, |i| state.owned[i])
+            let owned = |i: usize| state.owned[i];
+            if gaps {
+                // The kind (slot 1) and the walk's length (slot 4) are numbers, not points.
+                let rows = condt::tiled::gap_choices(&graph, owned);
+                let at = |row: &[usize; GAP_ROW], k: usize| match k {
+                    1 | 4 => row[k] as i64,
+                    _ => position(row[k]),
+                };
+                rows.iter()
+                    .flat_map(|row| (0..GAP_ROW).map(move |k| at(row, k)))
+                    .collect()
+            } else {
+                let rows = condt::tiled::tip_candidates(&graph, owned);
+                rows.iter().flat_map(|row| row.map(position)).collect()
+            }
         })
     });
-    let width = condt::tiled::GAP_ROW;
-    let at = |row: &[usize; condt::tiled::GAP_ROW], k: usize| match k {
-        1 | 4 => row[k] as i64,
-        _ => state.positions[row[k]],
-    };
-    let flat: Vec<i64> = rows
-        .iter()
-        .flat_map(|row| (0..width).map(move |k| at(row, k)))
-        .collect();
+    let width = if gaps { GAP_ROW } else { 4 };
     let rows = Array2::from_shape_vec((flat.len() / width, width), flat)
         .map_err(|err| PyValueError::new_err(err.to_string()))?;
     Ok(PyArray2::from_owned_array(py, rows))
@@ -778,7 +751,7 @@ pub(crate) fn _gathered_gaps<'py>(
     choices: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
-    let rows = choice_rows(&choices)?;
+    let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
     gathered_answer(
         py,
         py.detach(|| condt::tiled::close_gathered_gaps(n, &edges, &rows)),
@@ -796,15 +769,7 @@ pub(crate) fn _gathered_tips<'py>(
     candidates: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
-    let rows: Vec<[usize; 4]> = candidates
-        .as_slice()?
-        .chunks_exact(4)
-        .map(|row| {
-            let at = |k: usize| usize::try_from(row[k]);
-            Ok([at(0)?, at(1)?, at(2)?, at(3)?])
-        })
-        .collect::<Result<_, std::num::TryFromIntError>>()
-        .map_err(|_| PyValueError::new_err("a tip candidate names a negative position"))?;
+    let rows: Vec<[usize; 4]> = rows_of(&candidates, "a tip candidate")?;
     gathered_answer(
         py,
         py.detach(|| condt::tiled::repair_gathered_tips(n, &edges, &rows)),
@@ -1382,6 +1347,13 @@ pub(crate) fn _split_edges<'py>(
             Ok(PyArray2::from_owned_array(py, rows))
         })
         .collect()
+}
+
+/// The `edges` (in a tile's positions) whose smaller end the tile owns, in the whole set's
+/// positions.
+fn owned_rows(owned: &[bool], positions: &[i64], edges: Vec<[usize; 2]>) -> Vec<[i64; 2]> {
+    let edges = edges.into_iter().filter(|&[a, _]| owned[a]);
+    edges.map(|[a, b]| [positions[a], positions[b]]).collect()
 }
 
 /// A global rule's answer on the gathered edges: the edges after it, sorted by rows, or `None`

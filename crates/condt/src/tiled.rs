@@ -403,12 +403,8 @@ pub fn close_gathered_gaps(
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     let listed = vertex_edges(n, edges)?;
     let graph = CurveGraph::new(n, &listed);
-    let (targets, mut walks) = read_choices(n, rows)?;
-    let not_joined = |joined: &[VertexId]| {
-        walks.retain(|(a, _)| joined.binary_search(a).is_err());
-        walks
-    };
-    let joins = gaps::settle_joins(n, &graph, &targets, not_joined);
+    let (targets, walks) = read_choices(n, rows)?;
+    let joins = gaps::settle_joins(n, &graph, &targets, |joined| not_joined(walks, joined));
     if joins.is_empty() {
         return Ok(None);
     }
@@ -419,6 +415,13 @@ pub fn close_gathered_gaps(
 
 /// The loose ends' targets and straight walks in rows of [`gap_choices`], each by increasing end.
 type Choices = (Vec<(VertexId, Target)>, Vec<(VertexId, Walk)>);
+
+/// The `walks` of the loose ends not `joined` (both by increasing end): those gap closing's
+/// stranded runs read.
+fn not_joined(mut walks: Vec<(VertexId, Walk)>, joined: &[VertexId]) -> Vec<(VertexId, Walk)> {
+    walks.retain(|(a, _)| joined.binary_search(a).is_err());
+    walks
+}
 
 fn read_choices(n: usize, rows: &[[usize; GAP_ROW]]) -> Result<Choices, Error> {
     let (mut targets, mut walks) = (Vec::new(), Vec::new());
@@ -542,17 +545,11 @@ pub fn remove_gathered_local_outliers(
     let listed = vertex_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
-    let (targets, mut walks) = read_choices(n, choices)?;
+    let (targets, walks) = read_choices(n, choices)?;
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     let separated = exact_separated(&profile, &root, |v| test(v, 2));
     let passing = |at: VertexId, _, _| test(at, 1);
-    let joins = || {
-        let not_joined = |joined: &[VertexId]| {
-            walks.retain(|(a, _)| joined.binary_search(a).is_err());
-            walks
-        };
-        gaps::settle_joins(n, &profile, &targets, not_joined)
-    };
+    let joins = || gaps::settle_joins(n, &profile, &targets, |j| not_joined(walks, j));
     let Some((root, kept)) =
         local_outliers::separated_with(&listed, &profile, root, &separated, passing, joins)
     else {

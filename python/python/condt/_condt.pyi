@@ -27,9 +27,8 @@ __all__ = [
     "_tests_kept",
     "_component_labels",
     "_gathered_clumps",
-    "_tip_candidates_kept",
     "_gathered_tips",
-    "_gap_choices_kept",
+    "_choices_kept",
     "_gathered_gaps",
     "_local_rules_kept",
     "_gathered_local_outliers",
@@ -199,14 +198,11 @@ def _component_labels(n: int, edges: npt.NDArray[np.int64]) -> npt.NDArray[np.in
 def _gathered_clumps(
     n: int, edges: npt.NDArray[np.int64], tests: npt.NDArray[np.uint8]
 ) -> npt.NDArray[np.int64] | None: ...
-def _tip_candidates_kept(
-    state: _TileState, given: npt.NDArray[np.int64], **params: Any
-) -> npt.NDArray[np.int64]: ...
 def _gathered_tips(
     n: int, edges: npt.NDArray[np.int64], candidates: npt.NDArray[np.int64]
 ) -> npt.NDArray[np.int64] | None: ...
-def _gap_choices_kept(
-    state: _TileState, given: npt.NDArray[np.int64], **params: Any
+def _choices_kept(
+    state: _TileState, given: npt.NDArray[np.int64], step: str, **params: Any
 ) -> npt.NDArray[np.int64]: ...
 def _gathered_gaps(
     n: int, edges: npt.NDArray[np.int64], choices: npt.NDArray[np.int64]

@@ -461,10 +461,8 @@ def _tile_given(result, payload, step, give_back, params):
     if step == "local-outliers":
         before = np.require(before, requirements="CA")
         rows = _on_worker(_condt._local_rules_kept, state, given, before, give_back, **params)
-    elif step == "tips":
-        rows = _on_worker(_condt._tip_candidates_kept, state, given, **params)
-    elif step == "gaps":
-        rows = _on_worker(_condt._gap_choices_kept, state, given, **params)
+    elif step in ("tips", "gaps"):
+        rows = _on_worker(_condt._choices_kept, state, given, step, **params)
     else:
         rows = _on_worker(_condt._step_kept, state, given, step, **params)
     return rows, get_worker().address
