@@ -79,8 +79,10 @@ impl Flow {
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
 /// clump tests and gap choices of their result; the given-back test one ring ([`_tests_kept`],
-/// the rule on the driver, [`_gathered_given_back`]).
-const LATER_STAGES: [(Stage, usize); 7] = [
+/// the rule on the driver, [`_gathered_given_back`]); an outlier tail ten, from an edge of the
+/// tail back to its loose end and on along the run it hangs from, one more for the degrees seen
+/// ([`_step_kept`]).
+const LATER_STAGES: [(Stage, usize); 8] = [
     (Stage::LocalOutliers, 6),
     (Stage::Clumps, 1),
     (Stage::GivenBack, 1),
@@ -88,6 +90,7 @@ const LATER_STAGES: [(Stage, usize); 7] = [
     (Stage::Junctions, 8),
     (Stage::Crossings, 8),
     (Stage::Tips, 8),
+    (Stage::Tails, 10),
 ];
 
 /// The hops the flow's stages read around an owned point: the proximity graph one ring, the
@@ -476,6 +479,7 @@ pub(crate) fn _step_kept<'py>(
         "repair" => Stage::Repair,
         _ if later(Stage::Junctions) => Stage::Junctions,
         _ if later(Stage::Crossings) => Stage::Crossings,
+        _ if later(Stage::Tails) => Stage::Tails,
         _ => {
             return Err(PyValueError::new_err(format!(
                 "no tiled round {step:?} for these parameters"
@@ -490,6 +494,7 @@ pub(crate) fn _step_kept<'py>(
             let result = match stage {
                 Stage::Junctions => graph.join_junctions(),
                 Stage::Crossings => graph.restore_crossings(),
+                Stage::Tails => graph.cut_tails(),
                 _ => graph.repair(params.repair),
             };
             result.edges()

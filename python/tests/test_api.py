@@ -503,11 +503,11 @@ def test_the_result_arrays():
     stages = r.stages
     assert list(stages) == [
         "proximity", "repair", "iqr-outliers", "repair-again", "local-outliers", "clumps",
-        "given-back", "gaps", "junctions", "crossings", "tips",
+        "given-back", "gaps", "junctions", "crossings", "tips", "tails",
     ]
-    assert np.array_equal(stages["tips"], r.edges)
+    assert np.array_equal(stages["tails"], r.edges)
     stages.clear()  # a copy: the result's stays
-    assert len(r.stages) == 11
+    assert len(r.stages) == 12
     assert "235 points" in repr(r)
 
 

@@ -652,6 +652,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "junctions",
                 "crossings",
                 "tips",
+                "tails",
                 "curves",
                 "other",
                 "write",

@@ -181,6 +181,7 @@ fn write_data(
                 Reason::RepairedAgain => (11, 0.0, 0.0),
                 Reason::Crossing { vertex } => (13, vertex as f64, 0.0),
                 Reason::Tip => (14, 0.0, 0.0),
+                Reason::Tail => (15, 0.0, 0.0),
             };
             let sep = if first { "" } else { "," };
             first = false;
@@ -239,6 +240,7 @@ const STAGE_COLORS: [&str; Stage::ALL.len()] = [
     "#e377c2", // junctions
     "#17becf", // crossings
     "#b5179e", // tips
+    "#7f7f7f", // outlier tails
     "#d62728", // NN-Crust
     "#d62728", // Crust
 ];

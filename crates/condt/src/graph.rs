@@ -356,6 +356,27 @@ impl<'t> Graph<'t> {
         self.step(Step::RepairTips).0
     }
 
+    /// Cuts outlier tails ([`Params::tails`](crate::Params::tails)): a chain of at most four
+    /// points at a loose end whose joint is longer than 1.5 times the edge it joins and bends more
+    /// than twice as sharply as the even run of five edges it hangs from (its rule:
+    /// `src/stages/tails.rs`).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // Eight unit-spaced samples of a straight line (1..=8) and point 0, two spacings beyond
+    /// // sample 1 and turned 60° off the line's way: an outlier hung on its end.
+    /// let mut pts = vec![Point::new(-1.0, 1.732)];
+    /// pts.extend((0..8).map(|k| Point::new(k as f64, 0.0)));
+    /// let tri = triangulate(&pts)?;
+    /// let edges: Vec<[usize; 2]> = (0..8).map(|i| [i, i + 1]).collect();
+    /// let cut = tri.graph_from_edges(edges).cut_tails().edges();
+    /// assert_eq!(cut, (1..8).map(|i| [i, i + 1]).collect::<Vec<_>>());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn cut_tails(&self) -> Graph<'t> {
+        self.step(Step::CutTails).0
+    }
+
     /// The curves through the graph in input positions, ordered as [`crate::curves_from_edges`]'s.
     pub fn curves(&self) -> Vec<Curve> {
         let tri = self.tri;

@@ -69,6 +69,9 @@ pub enum Reason {
     /// A chord at a tip gave way to two edges to loose ends beside it or to the tip's sample (or
     /// was that chord).
     Tip,
+    /// Part of an outlier tail cut at an open end: a joint longer than the edge it joins and bent
+    /// more sharply than the even run it hangs from (or an edge of the tail beyond it).
+    Tail,
     /// A baseline (NN-Crust, Crust) chose it (`added`) or not (every other edge of a baseline's
     /// run has this change, `added` false); the ends say how Algorithm 1 would have seen it
     /// (with the run's `u`, or the default 2.75 where that is not one Algorithm 1 accepts: a
@@ -263,6 +266,7 @@ impl<'a> Explainer<'a> {
             Stage::Gaps => Reason::GapClosed,
             Stage::Junctions => Reason::Junction,
             Stage::Tips => Reason::Tip,
+            Stage::Tails => Reason::Tail,
             Stage::Crossings => {
                 // The crossing is the point that gained arms: an added edge's end, or the removed
                 // chord's common neighbour after the stage.

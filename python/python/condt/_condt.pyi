@@ -133,6 +133,7 @@ def reconstruct(
     junctions: bool = ...,
     crossings: bool = ...,
     tips: bool = ...,
+    tails: bool = ...,
     smooth: bool = ...,
     repair: Literal["needs", "paper", "mutual", "crossing", "off"] = ...,
     manifold_fix: bool = ...,

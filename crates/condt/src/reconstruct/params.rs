@@ -80,6 +80,10 @@ pub struct Params {
     /// beside it, or both to the tip's sample if it has no edge, instead (beyond the paper;
     /// `src/stages/tips.rs`).
     pub tips: bool,
+    /// Last, cut a tail of at most four points at a loose end whose joint is long and bends
+    /// sharply against the even run it hangs from: outliers beyond an open end (beyond the paper;
+    /// `src/stages/tails.rs`).
+    pub tails: bool,
     /// Smoothing passes (beyond the paper; `smooth.rs`): where the curves show noise, points move
     /// towards their neighbours and the stages run again, up to three times. Edges stay between
     /// input positions, the [`triangulation`](Reconstruction::triangulation) is of the moved
@@ -99,7 +103,7 @@ impl Default for Params {
     /// let p = Params::default();
     /// assert!(p.repair == condt::Repair::Needs && p.smooth);
     /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
-    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions, Crossings, Tips]].concat());
+    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions, Crossings, Tips, Tails]].concat());
     /// ```
     fn default() -> Self {
         Params::paper()
@@ -113,6 +117,7 @@ impl Default for Params {
             .with_junctions(true)
             .with_crossings(true)
             .with_tips(true)
+            .with_tails(true)
             .with_smooth(true)
     }
 }
@@ -143,6 +148,7 @@ impl Params {
             junctions: false,
             crossings: false,
             tips: false,
+            tails: false,
             smooth: false,
             parallel: cfg!(feature = "parallel"),
         }
@@ -208,7 +214,7 @@ impl Params {
         // The local outlier removal reads three or more edges as a branch, which only a repaired
         // graph makes true; the given-back check reads what it added. Clumps go before a join can
         // reach one; a junction takes only an end no gap join or crossing claimed; tips re-pair
-        // the loose ends every join before left.
+        // the loose ends every join before left; a tail is judged on the finished curves.
         let steps = [
             first,
             second,
@@ -220,6 +226,7 @@ impl Params {
             self.junctions.then_some(Step::JoinJunctions),
             self.crossings.then_some(Step::RestoreCrossings),
             self.tips.then_some(Step::RepairTips),
+            self.tails.then_some(Step::CutTails),
         ];
         // A baseline is the whole method: no ConDT stage follows it.
         let condt = self.method == Method::ConDT;
@@ -251,6 +258,7 @@ impl Params {
             Stage::Junctions => &mut self.junctions,
             Stage::Crossings => &mut self.crossings,
             Stage::Tips => &mut self.tips,
+            Stage::Tails => &mut self.tails,
             _ => return false,
         };
         *field = on;
@@ -292,6 +300,7 @@ impl Params {
         with_junctions(junctions: bool),
         with_crossings(crossings: bool),
         with_tips(tips: bool),
+        with_tails(tails: bool),
         with_smooth(smooth: bool),
         with_parallel(parallel: bool),
     }

@@ -1,7 +1,7 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each: [`proximity`]
 //! (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3) and, not in the paper,
 //! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`],
-//! [`crossings`] and [`tips`].
+//! [`crossings`], [`tips`] and [`tails`].
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry to every stage
 //! after the first graph. Stages read the triangulation and may not modify it, nor decide when they
@@ -17,6 +17,7 @@ pub(crate) mod outliers;
 pub(crate) mod proximity;
 pub(crate) mod repair;
 pub(crate) mod repair_again;
+pub(crate) mod tails;
 pub(crate) mod tips;
 
 pub use proximity::Uniformity;
@@ -63,6 +64,8 @@ pub enum Stage {
     Crossings,
     /// Re-pairing loose ends across a chord at a tip ([`Params::tips`](crate::Params::tips)).
     Tips,
+    /// Cutting outlier tails at open ends ([`Params::tails`](crate::Params::tails)).
+    Tails,
     /// The NN-Crust baseline, the whole method ([`Method::NnCrust`](crate::Method::NnCrust)).
     NnCrust,
     /// The Crust baseline, the whole method ([`Method::Crust`](crate::Method::Crust)).
@@ -90,7 +93,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 13] = [
+const ROWS: [Row; 14] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -224,6 +227,19 @@ when both passages become smooth and no curve is split",
         }),
     },
     Row {
+        stage: Stage::Tails,
+        name: "outlier tails",
+        title: "after cutting outlier tails",
+        key: "tails",
+        switch: Some(Switch {
+            flag: "tails",
+            help: "(default on; off with --paper) last, cut a tail of at most 4
+points at a loose end whose joint is longer than 1.5 times the
+edge it joins and bends more than twice as sharply as the even
+run of 5 edges it hangs from (outliers beyond an open end)",
+        }),
+    },
+    Row {
         stage: Stage::NnCrust,
         name: "NN-Crust",
         title: "NN-Crust (baseline)",
@@ -246,8 +262,8 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 13] = {
-        let mut all = [Stage::Proximity; 13];
+    pub const ALL: [Stage; 14] = {
+        let mut all = [Stage::Proximity; 14];
         let mut k = 0;
         while k < all.len() {
             all[k] = ROWS[k].stage;
@@ -321,6 +337,7 @@ pub(crate) enum Step {
     JoinJunctions,
     RestoreCrossings,
     RepairTips,
+    CutTails,
 }
 
 /// The graphs of earlier stages a step may read ([`Step::run`]), handed over so it can free them.
@@ -347,6 +364,7 @@ impl Step {
             Step::JoinJunctions => Stage::Junctions,
             Step::RestoreCrossings => Stage::Crossings,
             Step::RepairTips => Stage::Tips,
+            Step::CutTails => Stage::Tails,
         }
     }
 
@@ -411,6 +429,7 @@ impl Step {
             Step::JoinJunctions => junctions::join_junctions(tri, edges, graph, parallel),
             Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph, parallel),
             Step::RepairTips => tips::repair_tips(tri, edges, graph, parallel),
+            Step::CutTails => tails::cut_tails(tri, edges, graph, parallel),
         }
     }
 }

@@ -1,0 +1,213 @@
+//! Outlier tails: a few outliers hung on an open end (not in the paper; on by default, off in
+//! `Params::paper`).
+//!
+//! Owns: removing every edge of a short chain at a loose end that joins an even, smooth run
+//! abruptly. It reads positions and the graph; it may not touch the triangulation, never adds an
+//! edge, and does not decide when it runs ([`Params::stages`](crate::Params::stages): last).
+//!
+//! Why: an outlier one to three spacings beyond an open end is the end's nearest unused point, so
+//! Algorithm 1 joins it, and it then looks like one more sample of the curve to every later stage
+//! (an edge no longer than a spacing or two, at a point of degree two). What gives it away is the
+//! joint: the curve before it is evenly and smoothly sampled, and the step to the outlier is both
+//! longer and bent more sharply than anything on that stretch.
+//!
+//! Rule (docs/condt.md, *Outlier tails*): from each loose end, the tail of its first `m` points
+//! (`m` = 1 to [`MAX_TAIL`], the local outlier removal's short branch) hangs by the joint `pq`
+//! (`q` the tail's last point) from `p`, which starts a run of [`RUN_EDGES`] edges through points
+//! of degree two. The tail is cut (all its edges) for the smallest `m` where
+//! - the joint is longer than [`FLOOR_RATIO`] times the run's first edge `ℓ` (the IQR stage's
+//!   floor: an edge beyond it is no longer one spacing),
+//! - the run is even: each of its edges within [`NEED_RATIO`] of the next (the repair's bound for
+//!   two edges of one sampling),
+//! - and the joint bends: the turn at `p` is more than twice the turn the run's sharpest bend `τ`
+//!   would give over the joint, `τ (ℓ + |pq|) / 2ℓ`, as a circle of that curvature would (a
+//!   curve's own end, sampled more sparsely, keeps bending as its run does).
+//!
+//! Every choice is made on the graph as it came in: the result depends neither on the order of
+//! the ends nor on `parallel`.
+
+use super::gaps::Ends;
+use super::outliers::FLOOR_RATIO;
+use super::repair::NEED_RATIO;
+use super::Outcome;
+use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::geometry::Point;
+use crate::mesh::VertexId;
+use crate::triangulate::Triangulation;
+use alloc::vec::Vec;
+
+/// Most points of a tail: fewer than the five of a branch the local outlier removal keeps.
+pub(crate) const MAX_TAIL: usize = 4;
+/// Edges of the run a tail hangs from: a branch of five points past the joint (as the junctions').
+pub(crate) const RUN_EDGES: usize = 5;
+/// Points of the chain read from a loose end: the longest tail, its joint's far end and the run.
+const CHAIN: usize = MAX_TAIL + RUN_EDGES + 1;
+
+/// The turn, in radians, from the direction `a -> p` to `p -> b` (0 straight on, π back).
+fn turn(a: Point, p: Point, b: Point) -> f64 {
+    let (ux, uy, wx, wy) = (p.x - a.x, p.y - a.y, b.x - p.x, b.y - p.y);
+    libm::atan2(libm::fabs(ux * wy - uy * wx), ux * wx + uy * wy)
+}
+
+fn dist(a: Point, b: Point) -> f64 {
+    libm::sqrt(a.dist2(b))
+}
+
+impl Ends<'_> {
+    /// The points of the tail the loose end `a` hangs, if the module's rule cuts one.
+    fn tail_of(&self, a: VertexId) -> Option<([VertexId; MAX_TAIL], usize)> {
+        let graph = &self.graph;
+        let mut chain = [VertexId::INFINITE; CHAIN];
+        chain[0] = a;
+        chain[1] = self.along(a);
+        let mut len = 2;
+        // Beyond a point of another degree the chain is no run (a walk from a loose end through
+        // points of degree two cannot come back).
+        while len < CHAIN && graph.degree(chain[len - 1]) == 2 {
+            chain[len] = graph.onward(chain[len - 1], chain[len - 2]);
+            len += 1;
+        }
+        let at = |k: usize| self.point(chain[k]);
+        // The tail `chain[..m]` hangs from `chain[m]`, whose run is `chain[m..=m + RUN_EDGES]`.
+        (1..=MAX_TAIL)
+            .take_while(|&m| m + RUN_EDGES < len)
+            .find(|&m| {
+                let edges = (m..m + RUN_EDGES).map(|k| dist(at(k), at(k + 1)));
+                let mut run = [0.0; RUN_EDGES];
+                run.iter_mut().zip(edges).for_each(|(slot, e)| *slot = e);
+                let first = run[0];
+                let joint = dist(at(m - 1), at(m));
+                let even = run
+                    .windows(2)
+                    .all(|w| w[0].max(w[1]) <= NEED_RATIO * w[0].min(w[1]));
+                if !(joint > FLOOR_RATIO * first && even) {
+                    return false;
+                }
+                let sharpest = (m + 1..m + RUN_EDGES)
+                    .map(|k| turn(at(k - 1), at(k), at(k + 1)))
+                    .fold(0.0, f64::max);
+                turn(at(m - 1), at(m), at(m + 1)) * first > sharpest * (first + joint)
+            })
+            .map(|m| {
+                let mut tail = [VertexId::INFINITE; MAX_TAIL];
+                tail[..m].copy_from_slice(&chain[..m]);
+                (tail, m)
+            })
+    }
+}
+
+/// Cuts the outlier tails of `edges` (each once, any order): the module's rule.
+pub(crate) fn cut_tails(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+    parallel: bool,
+) -> Outcome {
+    let ends = Ends::new(tri, edges, graph);
+    let tails = ends.each_loose(parallel, |a| ends.tail_of(a));
+    let removed: Vec<Edge> = tails
+        .iter()
+        .flat_map(|&(tail, m)| {
+            let graph = &ends.graph;
+            // The tail's own edges and the joint: each tail point's edges, listed from its side
+            // towards the run (the end's one edge, a middle point's onward one).
+            (0..m).map(move |k| {
+                let v = tail[k];
+                let next = if k == 0 {
+                    graph.first_two(v)[0]
+                } else {
+                    graph.onward(v, tail[k - 1])
+                };
+                ordered(v, next)
+            })
+        })
+        .collect();
+    let graph = ends.into_graph();
+    if removed.is_empty() {
+        return Outcome::unchanged_with(graph);
+    }
+    let mut removed = removed;
+    removed.sort_unstable();
+    // Two tails of one short chain can share no edge (each hangs from a run of five), but a
+    // duplicate would make the graph's bookkeeping wrong, so they are made unique regardless.
+    removed.dedup();
+    Outcome::replacing(edges, graph, removed, Vec::new())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{triangulate, Point};
+
+    /// The edges `cut_tails` leaves of the chain through `pts` in order, in input positions.
+    fn kept(pts: &[Point]) -> Vec<[usize; 2]> {
+        let tri = triangulate(pts).unwrap();
+        let listed: Vec<Edge> = (1..pts.len())
+            .map(|i| ordered(tri.vertex(i - 1), tri.vertex(i)))
+            .collect();
+        let out = cut_tails(&tri, &listed, None, false)
+            .edges
+            .unwrap_or_else(|| listed.clone());
+        crate::Graph::new(&tri, alloc::borrow::Cow::Owned(out)).edges()
+    }
+
+    /// The points of `extra` (the first beside the arc, each further out), listed from the last,
+    /// then samples of an arc of radius 10 at the angles `ts`: one chain from its loose end.
+    fn tail_then_arc(extra: &[Point], ts: &[f64]) -> Vec<Point> {
+        let mut pts: Vec<Point> = extra.iter().rev().copied().collect();
+        pts.extend(
+            ts.iter()
+                .map(|&t| Point::new(10.0 * libm::sin(t), 10.0 - 10.0 * libm::cos(t))),
+        );
+        pts
+    }
+
+    /// [`tail_then_arc`] on eight unit-spaced samples (a turn of 0.1 a sample).
+    fn arc_then(extra: &[Point]) -> Vec<Point> {
+        let ts: Vec<f64> = (0..8).map(|k| 0.1 * k as f64).collect();
+        tail_then_arc(extra, &ts)
+    }
+
+    fn chain_edges(n: usize) -> Vec<[usize; 2]> {
+        (1..n).map(|i| [i - 1, i]).collect()
+    }
+
+    #[test]
+    fn an_outlier_beyond_an_end_at_a_bend_is_cut() {
+        // Two spacings from the arc's first sample, turned 60° off its way.
+        let pts = arc_then(&[Point::new(-1.0, 1.732)]);
+        assert_eq!(kept(&pts), chain_edges(pts.len())[1..].to_vec());
+    }
+
+    #[test]
+    fn a_tail_of_two_outliers_goes_whole() {
+        let pts = arc_then(&[Point::new(-1.0, 1.732), Point::new(-1.5, 2.5)]);
+        assert_eq!(kept(&pts), chain_edges(pts.len())[2..].to_vec());
+    }
+
+    #[test]
+    fn an_end_that_goes_on_bending_as_its_curve_does_stays() {
+        // The arc continued at twice the spacing: longer, but bent as the arc bends.
+        let t = -0.2f64;
+        let pts = arc_then(&[Point::new(10.0 * libm::sin(t), 10.0 - 10.0 * libm::cos(t))]);
+        assert_eq!(kept(&pts), chain_edges(pts.len()));
+    }
+
+    #[test]
+    fn a_short_joint_or_an_uneven_run_is_no_tail() {
+        // Turned 60° off the arc but only 1.2 spacings away: one sampling.
+        let near = arc_then(&[Point::new(-0.6, 1.04)]);
+        assert_eq!(kept(&near), chain_edges(near.len()));
+        // The same outlier on a run whose spacing doubles after three edges: no even run.
+        let ts = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.1];
+        let uneven = tail_then_arc(&[Point::new(-1.0, 1.732)], &ts);
+        assert_eq!(kept(&uneven), chain_edges(uneven.len()));
+    }
+
+    #[test]
+    fn a_curve_too_short_for_a_run_is_left_alone() {
+        let mut pts = arc_then(&[Point::new(-1.0, 1.732)]);
+        pts.truncate(6);
+        assert_eq!(kept(&pts), chain_edges(pts.len()));
+    }
+}
