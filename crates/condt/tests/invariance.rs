@@ -40,6 +40,18 @@ fn evenly_spaced_junctions() -> Vec<Point> {
     points
 }
 
+/// An open arc of twelve unit-spaced samples (radius 10) with an outlier two spacings beyond one
+/// end, 60 degrees off the arc's way: a tail the outlier tails step cuts (a turn compared with
+/// the run's bends, which every map here keeps exactly).
+fn arc_with_an_outlier_tail() -> Vec<Point> {
+    let mut points = vec![Point::new(-1.0, 1.732)];
+    points.extend((0..12).map(|k| {
+        let t = 0.1 * k as f64;
+        Point::new(10.0 * t.sin(), 10.0 - 10.0 * t.cos())
+    }));
+    points
+}
+
 /// The edges of `points` shuffled by `rng`, mapped back to the positions of `points` and each
 /// end named by `name` (the same point for copies of it).
 fn edges_of_permuted(
@@ -128,6 +140,7 @@ fn categories() -> Vec<(&'static str, Vec<Point>)> {
             with(&[ellipse(0.0, 0.0, 5.0, 2.0)], 0.3, 0.0, 0.01),
         ),
         ("evenly spaced junctions", evenly_spaced_junctions()),
+        ("outlier tail", arc_with_an_outlier_tail()),
     ]
 }
 
@@ -143,6 +156,13 @@ fn permuting_scaling_turning_and_mirroring_keep_the_edges() {
     ];
     let mut rng = Rng::new(0x1234_5678);
     for (name, points) in categories() {
+        if name == "outlier tail" {
+            let kept = edges(&points, &Params::default());
+            assert!(
+                kept.iter().all(|e| !e.contains(&0)),
+                "{name}: the tail is cut"
+            );
+        }
         let presets = if name == "evenly spaced junctions" {
             vec![Params::default()]
         } else {
