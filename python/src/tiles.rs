@@ -79,9 +79,9 @@ impl Flow {
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
 /// clump tests and gap choices of their result; the given-back test one ring ([`_tests_kept`],
-/// the rule on the driver, [`_gathered_given_back`]); an outlier tail ten, from an edge of the
-/// tail back to its loose end and on along the run it hangs from, one more for the degrees seen
-/// ([`_step_kept`]).
+/// the rule on the driver, [`_gathered_given_back`]); an outlier tail nine: from an owned edge
+/// of a tail of four back to its loose end and on to the far end of the five edges it hangs
+/// from, whose last inner point's edges are read for its degree ([`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 8] = [
     (Stage::LocalOutliers, 6),
     (Stage::Clumps, 1),
@@ -90,7 +90,7 @@ const LATER_STAGES: [(Stage, usize); 8] = [
     (Stage::Junctions, 8),
     (Stage::Crossings, 8),
     (Stage::Tips, 8),
-    (Stage::Tails, 10),
+    (Stage::Tails, 9),
 ];
 
 /// The hops the flow's stages read around an owned point: the proximity graph one ring, the
