@@ -54,8 +54,9 @@ fn dist(a: Point, b: Point) -> f64 {
 }
 
 impl Ends<'_> {
-    /// The points of the tail the loose end `a` hangs, if the module's rule cuts one.
-    fn tail_of(&self, a: VertexId) -> Option<([VertexId; MAX_TAIL], usize)> {
+    /// The tail the loose end `a` hangs and the point it hangs from (`m + 1` points from `a`),
+    /// if the module's rule cuts one.
+    fn tail_of(&self, a: VertexId) -> Option<([VertexId; MAX_TAIL + 1], usize)> {
         let graph = &self.graph;
         let mut chain = [VertexId::INFINITE; CHAIN];
         chain[0] = a;
@@ -94,8 +95,8 @@ impl Ends<'_> {
                 turn(at(m - 1), at(m), at(m + 1)) * first > sharpest * (first + joint)
             })
             .map(|m| {
-                let mut tail = [VertexId::INFINITE; MAX_TAIL];
-                tail[..m].copy_from_slice(&chain[..m]);
+                let mut tail = [VertexId::INFINITE; MAX_TAIL + 1];
+                tail[..=m].copy_from_slice(&chain[..=m]);
                 (tail, m)
             })
     }
@@ -110,32 +111,18 @@ pub(crate) fn cut_tails(
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
     let tails = ends.each_loose(parallel, |a| ends.tail_of(a));
-    let removed: Vec<Edge> = tails
+    // Each tail's edges, the joint last. Two tails of one chain share no edge: tails of `m` and
+    // `m'` points from its two ends meet only on a chain of `m + m'` points or fewer, and each
+    // needs `m + 6` (its run) behind it.
+    let mut removed: Vec<Edge> = tails
         .iter()
-        .flat_map(|&(tail, m)| {
-            let graph = &ends.graph;
-            // The tail's own edges and the joint: each tail point's edges, listed from its side
-            // towards the run (the end's one edge, a middle point's onward one).
-            (0..m).map(move |k| {
-                let v = tail[k];
-                let next = if k == 0 {
-                    graph.first_two(v)[0]
-                } else {
-                    graph.onward(v, tail[k - 1])
-                };
-                ordered(v, next)
-            })
-        })
+        .flat_map(|(tail, m)| tail[..=*m].windows(2).map(|w| ordered(w[0], w[1])))
         .collect();
     let graph = ends.into_graph();
     if removed.is_empty() {
         return Outcome::unchanged_with(graph);
     }
-    let mut removed = removed;
     removed.sort_unstable();
-    // Two tails of one short chain can share no edge (each hangs from a run of five), but a
-    // duplicate would make the graph's bookkeeping wrong, so they are made unique regardless.
-    removed.dedup();
     Outcome::replacing(edges, graph, removed, Vec::new())
 }
 
