@@ -474,7 +474,11 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
             "crossing"
         }
         Reason::Tip => "tip",
-        Reason::Tail => "tail",
+        Reason::Tail { vertex, points } => {
+            dict.set_item("vertex", vertex)?;
+            dict.set_item("points", points)?;
+            "tail"
+        }
         Reason::Clump => "clump",
         Reason::RepairedAgain => "repaired-again",
         Reason::Baseline => "baseline",

@@ -181,7 +181,7 @@ fn write_data(
                 Reason::RepairedAgain => (11, 0.0, 0.0),
                 Reason::Crossing { vertex } => (13, vertex as f64, 0.0),
                 Reason::Tip => (14, 0.0, 0.0),
-                Reason::Tail => (15, 0.0, 0.0),
+                Reason::Tail { vertex, points } => (15, vertex as f64, points as f64),
             };
             let sep = if first { "" } else { "," };
             first = false;

@@ -117,7 +117,10 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,
             Reason::Tip if change.added => write!(f, "joined at a tip in place of a chord")?,
             Reason::Tip => write!(f, "a chord across a tip")?,
-            Reason::Tail => write!(f, "an outlier tail at an open end")?,
+            Reason::Tail { vertex, points } => write!(
+                f,
+                "part of an outlier tail of {points} points cut where it hung from {vertex}"
+            )?,
             Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
             // Only first (told above): a baseline is the whole method.
             Reason::Baseline => write!(f, "chosen by the baseline")?,

@@ -6,6 +6,7 @@
 
 use crate::adjacency::CurveGraph;
 use crate::geometry::Point;
+use crate::mesh::VertexId;
 use crate::reconstruct::{Reconstruction, StageReport};
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
 use crate::stages::outliers::{iqr_thresholds, IqrRule};
@@ -71,7 +72,12 @@ pub enum Reason {
     Tip,
     /// Part of an outlier tail cut at an open end: a joint longer than the edge it joins and bent
     /// more sharply than the even run it hangs from (or an edge of the tail beyond it).
-    Tail,
+    Tail {
+        /// The point the tail hung from, the run's first (input position).
+        vertex: usize,
+        /// The tail's points, which lost every edge.
+        points: usize,
+    },
     /// A baseline (NN-Crust, Crust) chose it (`added`) or not (every other edge of a baseline's
     /// run has this change, `added` false); the ends say how Algorithm 1 would have seen it
     /// (with the run's `u`, or the default 2.75 where that is not one Algorithm 1 accepts: a
@@ -188,6 +194,8 @@ struct Explainer<'a> {
     /// The output of the repair (its reason names the edges kept) or of the crossings (theirs
     /// names the point that gained arms), for O(degree) reasons.
     after: Option<CurveGraph>,
+    /// The input of the tails step (its reason names the point a tail hung from).
+    before: Option<CurveGraph>,
     /// The IQR rule's cut threshold in input units, and whether it is the spacing floor.
     threshold: (f64, bool),
     /// For local outliers: the rule behind each edge it changed, by edge in input positions.
@@ -252,8 +260,10 @@ impl<'a> Explainer<'a> {
             tri,
             stage,
             degrees_before: input.graph.degrees(),
-            after: matches!(stage, Stage::Repair | Stage::Crossings)
+            after: matches!(stage, Stage::Repair | Stage::Crossings | Stage::Tails)
                 .then(|| CurveGraph::new(tri.num_points(), output.graph.listed())),
+            before: (stage == Stage::Tails)
+                .then(|| CurveGraph::new(tri.num_points(), input.graph.listed())),
             threshold,
             local,
         }
@@ -266,7 +276,7 @@ impl<'a> Explainer<'a> {
             Stage::Gaps => Reason::GapClosed,
             Stage::Junctions => Reason::Junction,
             Stage::Tips => Reason::Tip,
-            Stage::Tails => Reason::Tail,
+            Stage::Tails => self.tail_of([a, b]),
             Stage::Crossings => {
                 // The crossing is the point that gained arms: an added edge's end, or the removed
                 // chord's common neighbour after the stage.
@@ -320,6 +330,38 @@ impl<'a> Explainer<'a> {
         }
     }
 
+    /// The tail the tails step cut with `edge`, read off its input and output: the chain through
+    /// the edge, along the input's points of degree two, from the end that lost every edge to
+    /// the point that kept one.
+    fn tail_of(&self, [a, b]: [usize; 2]) -> Reason {
+        let (Some(before), Some(after)) = (&self.before, &self.after) else {
+            return Reason::Tail {
+                vertex: a,
+                points: 0,
+            };
+        };
+        let (a, b) = (self.tri.vertex(a), self.tri.vertex(b));
+        // Walks from `here` away from `from` while the input goes on through points without edges
+        // in the output; returns the last point and how many points without edges it passed.
+        let walk = |mut from: VertexId, mut here: VertexId| {
+            let mut cut = 0;
+            while after.degree(here) == 0 {
+                cut += 1;
+                if before.degree(here) != 2 {
+                    break;
+                }
+                (from, here) = (here, before.onward(here, from));
+            }
+            (here, cut)
+        };
+        let ((x, cut_x), (y, cut_y)) = (walk(a, b), walk(b, a));
+        let hung_from = if after.degree(x) > 0 { x } else { y };
+        Reason::Tail {
+            vertex: self.tri.input_of(hung_from),
+            points: cut_x + cut_y,
+        }
+    }
+
     /// The input positions the stage's output joins to `vertex` (an input position); none when
     /// the stage's output is not kept ([`Explainer::after`]).
     fn after_of(&self, vertex: usize) -> Vec<usize> {
@@ -341,6 +383,36 @@ mod tests {
     use alloc::format;
     use alloc::string::{String, ToString};
     use alloc::vec;
+
+    /// The tails step's reason names the tail and the point it hung from, for each of its edges.
+    #[test]
+    fn an_outlier_tail_is_told_with_the_point_it_hung_from() {
+        // Twelve unit-spaced samples of an arc (1..=12) and, beyond sample 1, two outliers in a
+        // line turned 60° off the arc's way (0 the farther).
+        let mut points = vec![Point::new(-1.5, 2.598), Point::new(-1.0, 1.732)];
+        points.extend((0..12).map(|k| {
+            let t = 0.1 * k as f64;
+            Point::new(10.0 * libm::sin(t), 10.0 - 10.0 * libm::cos(t))
+        }));
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        let stories = result.provenance();
+        for edge in [[0, 1], [1, 2]] {
+            let story = stories.iter().find(|s| s.edge == edge).unwrap();
+            let tail = story.changes.last().unwrap();
+            assert!(
+                !story.kept && tail.stage == Stage::Tails && !tail.added,
+                "{story:?}"
+            );
+            assert_eq!(
+                tail.reason,
+                Reason::Tail {
+                    vertex: 2,
+                    points: 2
+                },
+                "{edge:?}"
+            );
+        }
+    }
 
     /// A baseline's run does not check `u`; its stories tell the ends with the default then
     /// (found by a stress run: `bound: NaN`, every second edge "dropped").

@@ -243,7 +243,7 @@
       () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,
       () => `restored the crossing at vertex ${c.x}`,
       () => (c.added ? "joined at a tip in place of a chord" : "a chord across a tip"),
-      () => "an outlier tail at an open end",
+      () => `part of an outlier tail of ${c.y} points cut where it hung from vertex ${c.x}`,
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }
