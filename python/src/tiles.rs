@@ -16,7 +16,7 @@
 //! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
 //! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the junctions
-//! and the crossings eight: [`LATER_STAGES`]), and break
+//! and the crossings eight, the outlier tails nine: [`LATER_STAGES`]), and break
 //! ties by vertex id, which follows the set's insertion order restricted to the tile: so an
 //! owned vertex whose every vertex within `reach` hops is certified gets the whole set's edges.
 //! Four cocircular points make the triangulation not unique; the tile reports them and the
