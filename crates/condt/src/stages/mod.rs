@@ -219,11 +219,11 @@ the edge that paired its neighbours",
         key: "tips",
         switch: Some(Switch {
             flag: "tips",
-            help: "(default on; off with --paper) last, where an edge pairs the
-samples on either side of a sharp tip, join each of the two to a
-loose end beside it, or both to the tip's sample if it has no
-edge and continues both sides evenly, in place of that edge,
-when both passages become smooth and no curve is split",
+            help: "(default on; off with --paper) after the crossings, where an edge
+pairs the samples on either side of a sharp tip, join each of the
+two to a loose end beside it, or both to the tip's sample if it
+has no edge and continues both sides evenly, in place of that
+edge, when both passages become smooth and no curve is split",
         }),
     },
     Row {

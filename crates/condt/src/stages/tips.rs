@@ -4,7 +4,7 @@
 //! Owns: replacing one edge between two points of degree two by two edges, to loose ends beside
 //! it or to the tip's sample. It reads positions, the graph and the Delaunay rings; it may not
 //! touch the triangulation, and does not decide when it runs
-//! ([`Params::stages`](crate::Params::stages): last).
+//! ([`Params::stages`](crate::Params::stages): after the crossings, before the outlier tails).
 //!
 //! Why: at a coarsely sampled sharp tip Algorithm 1 can pair the samples on either side (the
 //! chord `x y`), leaving the tip's sample or the far side's last one loose or without edges; gap
