@@ -95,7 +95,7 @@ fn cross_dot(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> (f64
 }
 
 /// The angle at `v` between the edges to `a` and to `b`, in `[0, π]`.
-fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
+pub(crate) fn angle_at(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> f64 {
     let (cross, dot) = cross_dot(tri, v, a, b);
     libm::atan2(cross, dot)
 }

@@ -27,61 +27,54 @@
 //! the ends nor on `parallel`.
 
 use super::gaps::Ends;
+use super::local_outliers::MIN_SAMPLES;
 use super::outliers::FLOOR_RATIO;
-use super::repair::NEED_RATIO;
+use super::repair::{angle_at, NEED_RATIO};
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
-use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
+use core::f64::consts::PI;
 
-/// Most points of a tail: fewer than the five of a branch the local outlier removal keeps.
-pub(crate) const MAX_TAIL: usize = 4;
-/// Edges of the run a tail hangs from: a branch of five points past the joint (as the junctions').
-pub(crate) const RUN_EDGES: usize = 5;
+/// Most points of a tail: fewer than a branch the local outlier removal keeps.
+const MAX_TAIL: usize = MIN_SAMPLES - 1;
+/// Edges of the run a tail hangs from: a branch past the joint (as the junctions').
+const RUN_EDGES: usize = MIN_SAMPLES;
 /// Points of the chain read from a loose end: the longest tail, its joint's far end and the run.
 const CHAIN: usize = MAX_TAIL + RUN_EDGES + 1;
-
-/// The turn, in radians, from the direction `a -> p` to `p -> b` (0 straight on, π back).
-fn turn(a: Point, p: Point, b: Point) -> f64 {
-    let (ux, uy, wx, wy) = (p.x - a.x, p.y - a.y, b.x - p.x, b.y - p.y);
-    libm::atan2(libm::fabs(ux * wy - uy * wx), ux * wx + uy * wy)
-}
-
-fn dist(a: Point, b: Point) -> f64 {
-    libm::sqrt(a.dist2(b))
-}
 
 impl Ends<'_> {
     /// The tail the loose end `a` hangs and the point it hangs from (`m + 1` points from `a`),
     /// if the module's rule cuts one.
     fn tail_of(&self, a: VertexId) -> Option<([VertexId; MAX_TAIL + 1], usize)> {
-        let graph = &self.graph;
         let mut chain = [VertexId::INFINITE; CHAIN];
         chain[0] = a;
         chain[1] = self.along(a);
         let mut len = 2;
         // Beyond a point of another degree the chain is no run (a walk from a loose end through
         // points of degree two cannot come back).
-        while len < CHAIN && graph.degree(chain[len - 1]) == 2 {
-            chain[len] = graph.onward(chain[len - 1], chain[len - 2]);
+        for [_, _, next] in self.graph.passages(a, chain[1]).take(CHAIN - 2) {
+            chain[len] = next;
             len += 1;
         }
-        let at = |k: usize| self.point(chain[k]);
+        let dist =
+            |j: usize, k: usize| libm::sqrt(self.point(chain[j]).dist2(self.point(chain[k])));
+        // The turn at `chain[k]` along the chain: π less the angle there (0 straight on).
+        let turn = |k: usize| PI - angle_at(self.tri, chain[k], chain[k - 1], chain[k + 1]);
         // The tail `chain[..m]` hangs from `chain[m]`, whose run is `chain[m..=m + RUN_EDGES]`.
         (1..=MAX_TAIL)
             .take_while(|&m| m + RUN_EDGES < len)
             .find(|&m| {
                 // The joint's length first: on scattered points it settles nearly every end.
-                let first = dist(at(m), at(m + 1));
-                let joint = dist(at(m - 1), at(m));
+                let first = dist(m, m + 1);
+                let joint = dist(m - 1, m);
                 if joint <= FLOOR_RATIO * first {
                     return false;
                 }
                 let mut previous = first;
                 let even = (m + 1..m + RUN_EDGES).all(|k| {
-                    let next = dist(at(k), at(k + 1));
+                    let next = dist(k, k + 1);
                     let pair_even = previous.max(next) <= NEED_RATIO * previous.min(next);
                     previous = next;
                     pair_even
@@ -89,10 +82,8 @@ impl Ends<'_> {
                 if !even {
                     return false;
                 }
-                let sharpest = (m + 1..m + RUN_EDGES)
-                    .map(|k| turn(at(k - 1), at(k), at(k + 1)))
-                    .fold(0.0, f64::max);
-                turn(at(m - 1), at(m), at(m + 1)) * first > sharpest * (first + joint)
+                let sharpest = (m + 1..m + RUN_EDGES).map(turn).fold(0.0, f64::max);
+                turn(m) * first > sharpest * (first + joint)
             })
             .map(|m| {
                 let mut tail = [VertexId::INFINITE; MAX_TAIL + 1];
@@ -114,7 +105,7 @@ pub(crate) fn cut_tails(
     // Each tail's edges, the joint last. Two tails of one chain share no edge: tails of `m` and
     // `m'` points from its two ends meet only on a chain of `m + m'` points or fewer, and each
     // needs `m + 6` (its run) behind it.
-    let mut removed: Vec<Edge> = tails
+    let removed: Vec<Edge> = tails
         .iter()
         .flat_map(|(tail, m)| tail[..=*m].windows(2).map(|w| ordered(w[0], w[1])))
         .collect();
@@ -122,7 +113,6 @@ pub(crate) fn cut_tails(
     if removed.is_empty() {
         return Outcome::unchanged_with(graph);
     }
-    removed.sort_unstable();
     Outcome::replacing(edges, graph, removed, Vec::new())
 }
 
