@@ -451,6 +451,8 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tiles::_gathered_gaps, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_local_rules_kept, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_local_outliers, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_last_edges_kept, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_gathered_last_edges, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_given_back_standing, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_given_back, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_split_edges, m)?)?;

@@ -369,9 +369,11 @@ impl Curve {
 ///   ``kept``, the uniformity test's numbers), ``"later"`` (with ``rank``) or ``"not-delaunay"``;
 /// - ``changes``: what each later stage did to it, dicts with ``stage`` (its name, as in
 ///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``kept``),
-///   ``"longer-than-threshold"`` (``length``, ``threshold``, ``floored``), ``"given-back"``, ``"long-at"``
-///   (``vertex``, ``ratio``), ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``,
-///   ``"gap-closed"``, ``"junction"``, ``"crossing"``, ``"baseline"`` or ``"not-confirmed"``;
+///   ``"longer-than-threshold"`` (``length``, ``threshold``, ``floored``), ``"given-back"``,
+///   ``"last-edge"`` (given back as a curve's last edge), ``"long-at"`` (``vertex``, ``ratio``),
+///   ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``, ``"gap-closed"``,
+///   ``"junction"``, ``"crossing"`` (``vertex``), ``"tip"``, ``"tail"`` (``vertex``,
+///   ``points``), ``"baseline"`` or ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
 #[pyclass(module = "condt", frozen, get_all)]
 pub(crate) struct EdgeStory {
@@ -460,6 +462,7 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
             "longer-than-threshold"
         }
         Reason::GivenBack => "given-back",
+        Reason::LastEdge => "last-edge",
         Reason::LongAt { vertex, ratio } => {
             dict.set_item("vertex", vertex)?;
             dict.set_item("ratio", ratio)?;

@@ -610,6 +610,57 @@ pub(crate) fn _local_rules_kept<'py>(
     index_array(py, owned_rows(&state.owned, &state.positions, edges))
 }
 
+/// Rule 1 of the local outlier removal at curves' last edges, on a tile's kept triangulation: the
+/// candidates ([`condt::tiled::last_edge_candidates`]) among the driver's `given` edges (the IQR
+/// stage's output) and `before` (its input), both as for [`_local_rules_kept`]; those whose
+/// smaller end the tile owns, as for [`_step_kept`]. The driver keeps those the curves behind
+/// them show ([`_gathered_last_edges`]).
+#[pyfunction]
+#[pyo3(signature = (state, given, before, **params))]
+pub(crate) fn _last_edges_kept<'py>(
+    py: Python<'py>,
+    state: &Bound<'py, TileState>,
+    given: PyReadonlyArray2<'py, i64>,
+    before: PyReadonlyArray2<'py, i64>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let (_, tiled) = tiled_params(params)?;
+    if !tiled.later.contains(&Stage::LocalOutliers) {
+        return Err(PyValueError::new_err(
+            "no local outliers round for these parameters",
+        ));
+    }
+    let state = state.get();
+    let given = tile_pairs(given.as_slice()?, state.points.len())?;
+    let before = tile_pairs(before.as_slice()?, state.points.len())?;
+    let edges = py.detach(|| {
+        crate::within_call(|| {
+            let graph = state.tri.graph_from_edges(given);
+            let before = state.tri.graph_from_edges(before);
+            condt::tiled::last_edge_candidates(&graph, &before)
+        })
+    });
+    index_array(py, owned_rows(&state.owned, &state.positions, edges))
+}
+
+/// Rule 1 of the local outlier removal at curves' last edges on the gathered `edges` (after rules
+/// 1 to 3) over `n` points, with the tiles' `candidates` ([`_last_edges_kept`];
+/// [`condt::tiled::give_back_gathered_last_edges`]): the edges after it, sorted by rows, or
+/// `None` when it gives back none.
+#[pyfunction]
+pub(crate) fn _gathered_last_edges<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    candidates: &Bound<'py, PyArray2<i64>>,
+) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+    let (edges, candidates) = (gathered_pairs(edges)?, gathered_pairs(candidates)?);
+    gathered_answer(
+        py,
+        py.detach(|| condt::tiled::give_back_gathered_last_edges(n, &edges, &candidates)),
+    )
+}
+
 /// Rule 4 of the local outlier removal on the gathered `edges` (after rules 1 to 3) over `n`
 /// points, with every point's clump `tests` and every loose end's gap `choices` on them
 /// ([`condt::tiled::remove_gathered_local_outliers`]): the edges kept, sorted by rows, or `None`.

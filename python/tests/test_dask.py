@@ -304,6 +304,27 @@ def test_clumps_are_a_round_of_tests_and_the_rule_on_the_driver(client):
     assert not np.array_equal(expected, one_machine(points, **{**params, "clumps": False}))
 
 
+def test_a_curves_last_edge_is_given_back_on_the_driver(client):
+    # Clean ellipses, and beside them 30 sparse open arcs whose last sample lies 1.4 spacings
+    # beyond the one before: the IQR stage cuts the arcs, rule 1 gives their passages back on
+    # the tiles and, where a curve stands behind, their last edges on the driver.
+    rng = np.random.default_rng(8)
+    dense = curves(20_000, rng, outliers=0.0, noisy_every=10**6)
+    t = 0.5 / 3.0 * np.concatenate([np.arange(12), [12.4]])
+    arcs = [
+        np.column_stack([105.0 + 10 * (k % 3) + 3 * np.cos(t), 5.0 + 10 * (k // 3) + 3 * np.sin(t)])
+        for k in range(30)
+    ]
+    points = np.concatenate([dense] + arcs)
+    tiled = condt.dask.reconstruct(points, client, tiles=9)
+    assert tiled.whole is None
+    expected = one_machine(points)
+    np.testing.assert_array_equal(tiled.edges, expected)
+    first = len(dense)
+    last = [[first + 13 * k + 11, first + 13 * k + 12] for k in range(30)]
+    assert all(edge in expected.tolist() for edge in last)
+
+
 def test_a_failure_on_a_worker_that_is_no_exception_reaches_the_driver_as_one(client):
     # A Rust panic reaches Python as a BaseException, which Dask does not report (the call
     # waited forever): the worker's calls raise it as a RuntimeError.

@@ -182,6 +182,7 @@ fn write_data(
                 Reason::Crossing { vertex } => (13, vertex as f64, 0.0),
                 Reason::Tip => (14, 0.0, 0.0),
                 Reason::Tail { vertex, points } => (15, vertex as f64, points as f64),
+                Reason::LastEdge => (16, 0.0, 0.0),
             };
             let sep = if first { "" } else { "," };
             first = false;

@@ -104,6 +104,7 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
                 }
             }
             Reason::GivenBack => write!(f, "given back between two regular passages")?,
+            Reason::LastEdge => write!(f, "given back as a curve's last edge, a curve behind it")?,
             Reason::LongAt { vertex, ratio } => write!(
                 f,
                 "{ratio:.2} times as long as the longest other edge at vertex {vertex}"

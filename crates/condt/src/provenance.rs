@@ -41,6 +41,9 @@ pub enum Reason {
     },
     /// Local outlier rule 1: an edge the IQR stage cut between two smooth, regular passages.
     GivenBack,
+    /// Local outlier rule 1 at a curve's last edge: an edge the IQR stage cut from a curve's end,
+    /// within 1.5 times the edge before it, with a curve of five points behind it.
+    LastEdge,
     /// Local outlier rule 2: too long at `vertex`, `ratio` times the longest other edge there.
     LongAt {
         /// The end where it is long (input position).
@@ -306,6 +309,7 @@ impl<'a> Explainer<'a> {
                     .map(|k| self.local[k].1);
                 match rule {
                     Ok(LocalRule::GaveBack) => Reason::GivenBack,
+                    Ok(LocalRule::GaveBackLast) => Reason::LastEdge,
                     Ok(LocalRule::Long { vertex, ratio }) => Reason::LongAt {
                         vertex: self.tri.input_of(vertex),
                         ratio,
@@ -412,6 +416,34 @@ mod tests {
                 "{edge:?}"
             );
         }
+    }
+
+    /// Rule 1's last edge is told as such: a sparse arc (spacing 1) beside a dense circle
+    /// (spacing about 0.1) loses every edge to the IQR stage; its passages come back as given
+    /// back, its last edge, 1.4 long, as a curve's last edge.
+    #[test]
+    fn a_curves_last_edge_given_back_is_told_apart_from_the_passages() {
+        let arc = |x: f64| Point::new(x, 0.005 * x * x);
+        let mut points: Vec<Point> = (0..12).map(|k| arc(k as f64)).collect();
+        points.push(arc(12.4));
+        points.extend((0..300).map(|k| {
+            let t = core::f64::consts::TAU * k as f64 / 300.0;
+            Point::new(5.0 + 5.0 * libm::cos(t), 30.0 + 5.0 * libm::sin(t))
+        }));
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        let stories = result.provenance();
+        let told = |edge: [usize; 2]| {
+            let story = stories.iter().find(|s| s.edge == edge).unwrap();
+            assert!(story.kept, "{story:?}");
+            let last = story.changes.last().unwrap();
+            assert!(
+                last.stage == Stage::LocalOutliers && last.added,
+                "{story:?}"
+            );
+            last.reason
+        };
+        assert_eq!(told([11, 12]), Reason::LastEdge);
+        assert_eq!(told([5, 6]), Reason::GivenBack);
     }
 
     /// A baseline's run does not check `u`; its stories tell the ends with the default then

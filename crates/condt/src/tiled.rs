@@ -506,6 +506,78 @@ pub fn local_rules<'t>(
     }
 }
 
+/// Rule 1 of the local outlier removal at curves' last edges, for a tile of a split run: the
+/// candidates a tile finds with the IQR stage's input `before_outliers` and output `graph` (each
+/// a cut edge whose end had it alone, continuing a passage at its other end within 1.5 times
+/// that end's other edge: one ring), as pairs of input positions, smaller first. The
+/// driver gives back those [`give_back_gathered_last_edges`] keeps, after rules 1 to 3.
+///
+/// # Panics
+/// If `before_outliers` lives on another triangulation.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// // 20 samples one apart along a gentle arc, then a last one 1.4 beyond, whose edge the IQR
+/// // filter cut; and an outlier 3 beyond the arc's other end, whose edge it cut too.
+/// let arc = |x: f64| Point::new(x, 0.005 * x * x);
+/// let mut pts: Vec<Point> = (0..20).map(|k| arc(k as f64)).collect();
+/// pts.extend([arc(20.4), arc(-3.0)]);
+/// let tri = triangulate(&pts)?;
+/// let mut chain: Vec<[usize; 2]> = (0..20).map(|k| [k, k + 1]).collect();
+/// chain.push([0, 21]);
+/// let before = tri.graph_from_edges(chain.iter().copied());
+/// let after = tri.graph_from_edges(chain[..19].iter().copied());
+/// // Only the last sample within 1.5 times the spacing is a candidate.
+/// assert_eq!(tiled::last_edge_candidates(&after, &before), vec![[19, 20]]);
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn last_edge_candidates(graph: &Graph<'_>, before_outliers: &Graph<'_>) -> Vec<[usize; 2]> {
+    assert!(
+        core::ptr::eq(graph.triangulation(), before_outliers.triangulation()),
+        "last_edge_candidates: the two graphs live on different triangulations"
+    );
+    let tri = graph.triangulation();
+    let candidates =
+        local_outliers::last_edge_candidates(tri, graph.listed(), before_outliers.listed());
+    Graph::new(tri, alloc::borrow::Cow::Owned(candidates)).edges()
+}
+
+/// Rule 1 of the local outlier removal at curves' last edges on edges gathered from the tiles of
+/// a split run, after rules 1 to 3 ([`local_rules`]): `edges` with the `candidates`
+/// ([`last_edge_candidates`], from the tiles that own them) the rule gives back, or `None` when
+/// it gives back none. It walks along the curves, so it runs here on the whole graph; the rule is
+/// the stage's own code.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] named `edge` (the position) for an end not below `n`, or `n` for
+/// more points than vertex ids.
+///
+/// ```
+/// use condt::tiled;
+/// // The chain 0-1-...-6 lost its edge to 7: five points of degree two behind 6 give it back.
+/// let edges: Vec<[usize; 2]> = (0..6).map(|k| [k, k + 1]).collect();
+/// let back = tiled::give_back_gathered_last_edges(8, &edges, &[[6, 7]])?;
+/// assert_eq!(back.map(|e| e.len()), Some(7));
+/// // Behind a chain of four points no curve shows: nothing comes back.
+/// assert_eq!(tiled::give_back_gathered_last_edges(8, &edges[3..], &[[6, 7]])?, None);
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn give_back_gathered_last_edges(
+    n: usize,
+    edges: &[[usize; 2]],
+    candidates: &[[usize; 2]],
+) -> Result<Option<Vec<[usize; 2]>>, Error> {
+    let listed = vertex_edges(n, edges)?;
+    let candidates = vertex_edges(n, candidates)?;
+    let back = local_outliers::last_edges(&CurveGraph::new(n, &listed), &candidates);
+    if back.is_empty() {
+        return Ok(None);
+    }
+    let mut out = edges.to_vec();
+    out.extend(back.iter().map(|&[a, b]| [a.index(), b.index()]));
+    Ok(Some(out))
+}
+
 /// The local outlier removal's rule 4 on edges gathered from the tiles of a split run, after
 /// rules 1 to 3 ([`local_rules`]): the edges kept, or `None` when it drops none. `edges` are pairs
 /// of positions below `n`; `tests` each position's [`clump_tests`] on this graph (the separation

@@ -32,6 +32,8 @@ __all__ = [
     "_gathered_gaps",
     "_local_rules_kept",
     "_gathered_local_outliers",
+    "_last_edges_kept",
+    "_gathered_last_edges",
     "_given_back_standing",
     "_gathered_given_back",
     "_split_edges",
@@ -220,6 +222,15 @@ def _gathered_local_outliers(
     edges: npt.NDArray[np.int64],
     tests: npt.NDArray[np.uint8],
     choices: npt.NDArray[np.int64],
+) -> npt.NDArray[np.int64] | None: ...
+def _last_edges_kept(
+    state: _TileState,
+    given: npt.NDArray[np.int64],
+    before: npt.NDArray[np.int64],
+    **params: Any,
+) -> npt.NDArray[np.int64]: ...
+def _gathered_last_edges(
+    n: int, edges: npt.NDArray[np.int64], candidates: npt.NDArray[np.int64]
 ) -> npt.NDArray[np.int64] | None: ...
 def _split_edges(
     n: int, edges: npt.NDArray[np.int64], tiles: list[npt.NDArray[np.int64]]

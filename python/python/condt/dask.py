@@ -183,7 +183,14 @@ def _phases(run, plan, points, params):
             # gap choices on their result.
             before_local = edges
             give_back = len(before_outliers) > len(edges)
+            if give_back:
+                # Rule 1's candidates at curves' last edges, read off the cut before rules 1 to 3
+                # run; the driver keeps those a curve stands behind once they have.
+                last = run.on_kept(edges, "last-edges", before=before_outliers)
             edges = _sorted(run.on_kept(edges, step, before=before_outliers, give_back=give_back))
+            if give_back and len(last):
+                back = _condt._gathered_last_edges(n, edges, last)
+                edges = edges if back is None else back
             labels = _condt._component_labels(n, edges)
             tests = run.tests_on_kept(edges, step, labels)
             choices = run.on_kept(edges, "gaps", width=10)
@@ -461,6 +468,9 @@ def _tile_given(result, payload, step, give_back, params):
     if step == "local-outliers":
         before = np.require(before, requirements="CA")
         rows = _on_worker(_condt._local_rules_kept, state, given, before, give_back, **params)
+    elif step == "last-edges":
+        before = np.require(before, requirements="CA")
+        rows = _on_worker(_condt._last_edges_kept, state, given, before, **params)
     elif step in ("tips", "gaps"):
         rows = _on_worker(_condt._choices_kept, state, given, step, **params)
     else:

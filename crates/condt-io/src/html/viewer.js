@@ -244,6 +244,7 @@
       () => `restored the crossing at vertex ${c.x}`,
       () => (c.added ? "joined at a tip in place of a chord" : "a chord across a tip"),
       () => `part of an outlier tail of ${c.y} points cut where it hung from vertex ${c.x}`,
+      () => "given back as a curve's last edge, a curve behind it",
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

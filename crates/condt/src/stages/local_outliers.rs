@@ -9,7 +9,9 @@
 //! their short edges pass it, and a sparse component beside a dense one loses every edge once it
 //! fires. The rules, in order, compare lengths by ratios only (scale-free):
 //! 1. **Give back** an edge the IQR stage cut along a smooth, regular passage ([`passage`]), which
-//!    an outlier (one edge, or two at a sharp angle or of unequal lengths) does not form.
+//!    an outlier (one edge, or two at a sharp angle or of unequal lengths) does not form; and,
+//!    once rules 2 and 3 have run, a curve's last edge, within [`FLOOR_RATIO`] of the edge before
+//!    it, where a curve stands behind it ([`last_edges`]), which a chain of outliers does not.
 //! 2. **Drop long edges** ([`LONG`]) at a point of degree >= 3 (an off-curve point that chose it,
 //!    kept by Algorithm 2's union) or at each end with others (an outlier at an open curve's end).
 //! 3. **Drop short spurs** ([`short_spurs`]): outliers hanging off a curve, unseen by rule 4.
@@ -25,6 +27,7 @@
 //! closing's joins run on rayon's threads when `parallel` (the same result); lengths recomputed,
 //! not kept (memory).
 
+use super::outliers::FLOOR_RATIO;
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
 use crate::geometry::Point;
@@ -65,6 +68,8 @@ pub(crate) struct Rules {
     /// Rule 2, at both ends.
     pub(crate) long_at_both_ends: bool,
     pub(crate) short_spurs: bool,
+    /// Rule 1 at curves' last edges ([`last_edges`]), after rule 3: it walks along the curve.
+    pub(crate) last_edges: bool,
     pub(crate) separated_components: bool,
 }
 
@@ -81,6 +86,7 @@ impl Rules {
             long_at_branches: k >= 2,
             long_at_both_ends: k >= 2,
             short_spurs: k >= 3,
+            last_edges: k >= 4,
             separated_components: k >= 4,
         }
     }
@@ -114,8 +120,10 @@ pub(crate) fn remove_local_outliers_with(
 ) -> Outcome {
     // The input is copied only once a rule changes it (on a clean curve none does).
     let mut graph = Cow::Borrowed(edges);
+    let mut last = Vec::new();
     if rules.give_back {
-        let given = given_back(tri, edges, &before);
+        let given;
+        (given, last) = given_back(tri, edges, &before);
         if !given.is_empty() {
             // One allocation of the final size (`to_mut` + `extend` would copy, then double).
             graph = Cow::Owned([edges, &given[..]].concat());
@@ -149,6 +157,15 @@ pub(crate) fn remove_local_outliers_with(
             update(&mut profile, &graph, &removed);
         }
     }
+    if rules.give_back && rules.last_edges && !last.is_empty() {
+        let back = last_edges(&profile, &last);
+        if !back.is_empty() {
+            graph.to_mut().extend_from_slice(&back);
+            profile.rebuild(&graph);
+            smooth_cycles = None;
+        }
+    }
+    drop(last);
     if rules.separated_components {
         // A `false` may be stale (rules 2 and 3 changed the graph): the full test then runs.
         let smooth_cycles = smooth_cycles.unwrap_or_else(|| only_smooth_cycles(tri, &profile));
@@ -181,6 +198,8 @@ pub(crate) fn remove_local_outliers_with(
 pub(crate) enum LocalRule {
     /// Rule 1 gave it back.
     GaveBack,
+    /// Rule 1 gave it back as a curve's last edge ([`last_edges`]).
+    GaveBackLast,
     /// Rule 2 dropped it: long at `vertex` (of two, the larger `ratio` to its next longest edge).
     Long { vertex: VertexId, ratio: f64 },
     /// Rule 3 dropped it with its short spur.
@@ -215,7 +234,17 @@ pub(crate) fn rule_evidence(
         evidence.extend(
             now.iter()
                 .filter(|e| missing_from(&previous, e))
-                .map(|&e| (e, LocalRule::GaveBack)),
+                // Rules 2 to 4 only remove: what the last run adds is rule 1's last edges.
+                .map(|&e| {
+                    (
+                        e,
+                        if k == 3 {
+                            LocalRule::GaveBackLast
+                        } else {
+                            LocalRule::GaveBack
+                        },
+                    )
+                }),
         );
         let profile = (k == 1).then(|| CurveGraph::new(tri.num_points(), &previous));
         for &edge in previous.iter().filter(|e| missing_from(&now, e)) {
@@ -244,16 +273,63 @@ fn length2(tri: &Triangulation, [a, b]: Edge) -> f64 {
     tri.vertex_point(a).dist2(tri.vertex_point(b))
 }
 
-/// Rule 1: the edges of `before` missing from `now` whose two ends pass [`passage`].
-fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> Vec<Edge> {
+/// Rule 1: the edges of `before` missing from `now` whose two ends pass [`passage`]; and the
+/// candidates for [`last_edges`]: those whose one end had that edge alone and has none now, while
+/// the other passes [`passage`] with the cut edge at most [`FLOOR_RATIO`] times its other edge.
+fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> (Vec<Edge>, Vec<Edge>) {
     let n = tri.num_points();
     let (now, was) = (CurveGraph::new(n, now), CurveGraph::new(n, before));
     let present = |a: VertexId, b: VertexId| (0..now.degree(a)).any(|k| now.neighbor(a, k) == b);
-    before
+    let cut = || before.iter().filter(|&&[a, b]| !present(a, b));
+    let given = cut()
+        .filter(|&&[a, b]| passage(tri, &now, &was, a, b) && passage(tri, &now, &was, b, a))
+        .copied()
+        .collect();
+    // `x y`, `y` the end: no passage at `y` tells a curve from an outlier beyond it. The bound
+    // is the one beyond which the tails step calls a joint long.
+    let last = |x: VertexId, y: VertexId| {
+        let p = tri.vertex_point(x);
+        let near = || {
+            let behind = tri.vertex_point(was.onward(x, y));
+            p.dist2(tri.vertex_point(y)) <= FLOOR_RATIO * FLOOR_RATIO * p.dist2(behind)
+        };
+        was.degree(y) == 1 && now.degree(y) == 0 && passage(tri, &now, &was, x, y) && near()
+    };
+    let candidates = cut()
+        .filter(|&&[a, b]| last(a, b) || last(b, a))
+        .copied()
+        .collect();
+    (given, candidates)
+}
+
+/// [`given_back`]'s candidates for [`last_edges`] (a tile of a split run finds them).
+pub(crate) fn last_edge_candidates(
+    tri: &Triangulation,
+    now: &[Edge],
+    before: &[Edge],
+) -> Vec<Edge> {
+    given_back(tri, now, before).1
+}
+
+/// Rule 1 at curves' last edges: of the `candidates` ([`given_back`]'s), those whose end still
+/// has no edge in `graph` while the other end has one, leading on through [`MIN_SAMPLES`] points
+/// of degree two (a branch, as gap closing reads one). Reason: the curve behind tells a curve's last sample from
+/// an outlier beyond it (a chain of outliers is shorter), and it is read after rules 1 to 3, as a
+/// sparse stretch loses all its edges to the IQR stage at once and rule 1 gives them back. It
+/// reads the graph alone, so a run split in tiles takes it on the gathered edges.
+pub(crate) fn last_edges(graph: &CurveGraph, candidates: &[Edge]) -> Vec<Edge> {
+    let ends_a_curve = |x: VertexId, y: VertexId| {
+        graph.degree(y) == 0
+            && graph.degree(x) == 1
+            && graph
+                .passages(x, graph.first_two(x)[0])
+                .take(MIN_SAMPLES)
+                .count()
+                == MIN_SAMPLES
+    };
+    candidates
         .iter()
-        .filter(|&&[a, b]| {
-            !present(a, b) && passage(tri, &now, &was, a, b) && passage(tri, &now, &was, b, a)
-        })
+        .filter(|&&[a, b]| ends_a_curve(a, b) || ends_a_curve(b, a))
         .copied()
         .collect()
 }
@@ -1095,6 +1171,56 @@ mod tests {
             .map(|e| crate::Graph::new(tri, alloc::borrow::Cow::Owned(e)).edges())
     }
 
+    /// Rule 1 at a curve's last edge: 20 samples one apart along a gentle arc, a last one `gap`
+    /// beyond whose edge the IQR stage cut, and far away a chain of three one apart with a fourth
+    /// point 1.2 beyond, cut the same way. The edges the stage gives back, with rule 1 alone
+    /// (`last_edges` on) or the whole stage, in input positions.
+    fn last_edge_back(gap: f64, rules: Rules) -> Vec<[usize; 2]> {
+        let arc = |x: f64| Point::new(x, 0.005 * x * x);
+        let mut pts: Vec<Point> = (0..20).map(|k| arc(k as f64)).collect();
+        pts.push(arc(19.0 + gap));
+        pts.extend((0..3).map(|k| Point::new(k as f64, 50.0)));
+        pts.push(Point::new(3.2, 50.0));
+        let tri = triangulate(&pts).unwrap();
+        let pairs = (0..20)
+            .map(|k| [k, k + 1])
+            .chain([[21, 22], [22, 23], [23, 24]]);
+        let listed = |pairs: &mut dyn Iterator<Item = [usize; 2]>| -> Vec<Edge> {
+            let mut edges: Vec<Edge> = pairs
+                .map(|[a, b]| crate::adjacency::ordered(tri.vertex(a), tri.vertex(b)))
+                .collect();
+            edges.sort_unstable();
+            edges
+        };
+        let before = listed(&mut pairs.clone());
+        let cut = listed(&mut pairs.filter(|e| *e != [19, 20] && *e != [23, 24]));
+        let out = remove_local_outliers(&tri, &cut, Cow::Borrowed(&before), &rules, false);
+        let kept = crate::Graph::new(&tri, Cow::Owned(out.edges.unwrap_or(cut))).edges();
+        [[19, 20], [23, 24]]
+            .into_iter()
+            .filter(|e| kept.contains(e))
+            .collect()
+    }
+
+    #[test]
+    fn a_curves_last_edge_comes_back_within_the_floor_and_an_outlier_chains_does_not() {
+        let rule_1 = Rules {
+            give_back: true,
+            last_edges: true,
+            ..NONE
+        };
+        // Within 1.5 times the edge before it, behind it a curve: back, in the stage too.
+        assert_eq!(last_edge_back(1.4, rule_1), vec![[19, 20]]);
+        assert_eq!(last_edge_back(1.4, Rules::ALL), vec![[19, 20]]);
+        // Farther (the tails step's long joint), or without rule 1 at last edges: stays cut.
+        assert_eq!(last_edge_back(1.6, rule_1), Vec::<[usize; 2]>::new());
+        let passages_only = Rules {
+            last_edges: false,
+            ..rule_1
+        };
+        assert_eq!(last_edge_back(1.4, passages_only), Vec::<[usize; 2]>::new());
+    }
+
     /// The square-root-free answer is the root's, near the bound (a few units in the last place
     /// either side), far from it, and from the smallest magnitudes to the largest.
     #[test]
@@ -1222,6 +1348,7 @@ mod tests {
         long_at_branches: false,
         long_at_both_ends: false,
         short_spurs: false,
+        last_edges: false,
         separated_components: false,
     };
 
