@@ -591,30 +591,15 @@ pub(crate) fn _local_rules_kept<'py>(
     give_back: bool,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
-    let (_, tiled) = tiled_params(params)?;
-    if !tiled.later.contains(&Stage::LocalOutliers) {
-        return Err(PyValueError::new_err(
-            "no local outliers round for these parameters",
-        ));
-    }
-    let state = state.get();
-    let given = tile_pairs(given.as_slice()?, state.points.len())?;
-    let before = tile_pairs(before.as_slice()?, state.points.len())?;
-    let edges = py.detach(|| {
-        crate::within_call(|| {
-            let graph = state.tri.graph_from_edges(given);
-            let before = state.tri.graph_from_edges(before);
-            condt::tiled::local_rules(&graph, &before, give_back).edges()
-        })
-    });
-    index_array(py, owned_rows(&state.owned, &state.positions, edges))
+    local_round(py, state, [given, before], params, |graph, before| {
+        condt::tiled::local_rules(graph, before, give_back).edges()
+    })
 }
 
 /// Rule 1 of the local outlier removal at curves' last edges, on a tile's kept triangulation: the
 /// candidates ([`condt::tiled::last_edge_candidates`]) among the driver's `given` edges (the IQR
-/// stage's output) and `before` (its input), both as for [`_local_rules_kept`]; those whose
-/// smaller end the tile owns, as for [`_step_kept`]. The driver keeps those the curves behind
-/// them show ([`_gathered_last_edges`]).
+/// stage's output) and `before` (its input), as for [`_local_rules_kept`]. The driver keeps
+/// those the curves behind them show ([`_gathered_last_edges`]).
 #[pyfunction]
 #[pyo3(signature = (state, given, before, **params))]
 pub(crate) fn _last_edges_kept<'py>(
@@ -624,6 +609,21 @@ pub(crate) fn _last_edges_kept<'py>(
     before: PyReadonlyArray2<'py, i64>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    local_round(py, state, [given, before], params, |graph, before| {
+        condt::tiled::last_edge_candidates(graph, before)
+    })
+}
+
+/// A local outlier removal round's `work` on a tile's kept triangulation, given the driver's
+/// edges among its points (`graphs`: the stage's input and the IQR stage's): the edges it gives
+/// whose smaller end the tile owns, as for [`_step_kept`].
+fn local_round<'py>(
+    py: Python<'py>,
+    state: &Bound<'py, TileState>,
+    graphs: [PyReadonlyArray2<'py, i64>; 2],
+    params: Option<&Bound<'py, PyDict>>,
+    work: impl for<'t> FnOnce(&condt::Graph<'t>, &condt::Graph<'t>) -> Vec<[usize; 2]> + Send,
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let (_, tiled) = tiled_params(params)?;
     if !tiled.later.contains(&Stage::LocalOutliers) {
         return Err(PyValueError::new_err(
@@ -631,13 +631,14 @@ pub(crate) fn _last_edges_kept<'py>(
         ));
     }
     let state = state.get();
+    let [given, before] = graphs;
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
     let before = tile_pairs(before.as_slice()?, state.points.len())?;
     let edges = py.detach(|| {
         crate::within_call(|| {
             let graph = state.tri.graph_from_edges(given);
             let before = state.tri.graph_from_edges(before);
-            condt::tiled::last_edge_candidates(&graph, &before)
+            work(&graph, &before)
         })
     });
     index_array(py, owned_rows(&state.owned, &state.positions, edges))
