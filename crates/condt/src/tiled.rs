@@ -568,7 +568,10 @@ pub fn give_back_gathered_last_edges(
     candidates: &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     let listed = vertex_edges(n, edges)?;
-    let candidates = vertex_edges(n, candidates)?;
+    // Each candidate once, whatever the tiles sent.
+    let mut candidates = vertex_edges(n, candidates)?;
+    candidates.sort_unstable();
+    candidates.dedup();
     let back = local_outliers::last_edges(&CurveGraph::new(n, &listed), &candidates);
     if back.is_empty() {
         return Ok(None);

@@ -231,20 +231,15 @@ pub(crate) fn rule_evidence(
         );
         let now = sorted(outcome.edges.unwrap_or_else(|| edges.to_vec()));
         let missing_from = |list: &[Edge], e: &Edge| list.binary_search(e).is_err();
+        // Rules 2 to 4 only remove: what the last run adds is rule 1's last edges.
+        let added = match k {
+            3 => LocalRule::GaveBackLast,
+            _ => LocalRule::GaveBack,
+        };
         evidence.extend(
             now.iter()
                 .filter(|e| missing_from(&previous, e))
-                // Rules 2 to 4 only remove: what the last run adds is rule 1's last edges.
-                .map(|&e| {
-                    (
-                        e,
-                        if k == 3 {
-                            LocalRule::GaveBackLast
-                        } else {
-                            LocalRule::GaveBack
-                        },
-                    )
-                }),
+                .map(|&e| (e, added)),
         );
         let profile = (k == 1).then(|| CurveGraph::new(tri.num_points(), &previous));
         for &edge in previous.iter().filter(|e| missing_from(&now, e)) {
@@ -313,10 +308,11 @@ pub(crate) fn last_edge_candidates(
 
 /// Rule 1 at curves' last edges: of the `candidates` ([`given_back`]'s), those whose end still
 /// has no edge in `graph` while the other end has one, leading on through [`MIN_SAMPLES`] points
-/// of degree two (a branch, as gap closing reads one). Reason: the curve behind tells a curve's last sample from
-/// an outlier beyond it (a chain of outliers is shorter), and it is read after rules 1 to 3, as a
-/// sparse stretch loses all its edges to the IQR stage at once and rule 1 gives them back. It
-/// reads the graph alone, so a run split in tiles takes it on the gathered edges.
+/// of degree two (a branch, as gap closing reads one). Reason: the curve behind tells a curve's
+/// last sample from an outlier beyond it (a chain of outliers is shorter), and it is read after
+/// rules 1 to 3, as a sparse stretch loses all its edges to the IQR stage at once and rule 1
+/// gives them back. It reads the graph alone, so a run split in tiles takes it on the gathered
+/// edges.
 pub(crate) fn last_edges(graph: &CurveGraph, candidates: &[Edge]) -> Vec<Edge> {
     let ends_a_curve = |x: VertexId, y: VertexId| {
         graph.degree(y) == 0
