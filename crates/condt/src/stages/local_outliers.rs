@@ -157,7 +157,8 @@ pub(crate) fn remove_local_outliers_with(
             update(&mut profile, &graph, &removed);
         }
     }
-    if rules.give_back && rules.last_edges && !last.is_empty() {
+    // `last` is empty unless rule 1 ran.
+    if rules.last_edges && !last.is_empty() {
         let back = last_edges(&profile, &last);
         if !back.is_empty() {
             graph.to_mut().extend_from_slice(&back);
@@ -1178,18 +1179,11 @@ mod tests {
         pts.extend((0..3).map(|k| Point::new(k as f64, 50.0)));
         pts.push(Point::new(3.2, 50.0));
         let tri = triangulate(&pts).unwrap();
-        let pairs = (0..20)
-            .map(|k| [k, k + 1])
-            .chain([[21, 22], [22, 23], [23, 24]]);
-        let listed = |pairs: &mut dyn Iterator<Item = [usize; 2]>| -> Vec<Edge> {
-            let mut edges: Vec<Edge> = pairs
-                .map(|[a, b]| crate::adjacency::ordered(tri.vertex(a), tri.vertex(b)))
-                .collect();
-            edges.sort_unstable();
-            edges
-        };
-        let before = listed(&mut pairs.clone());
-        let cut = listed(&mut pairs.filter(|e| *e != [19, 20] && *e != [23, 24]));
+        let mut pairs: Vec<[usize; 2]> = (0..20).map(|k| [k, k + 1]).collect();
+        pairs.extend([[21, 22], [22, 23], [23, 24]]);
+        let before = vertex_edges(&tri, &pairs);
+        pairs.retain(|e| *e != [19, 20] && *e != [23, 24]);
+        let cut = vertex_edges(&tri, &pairs);
         let out = remove_local_outliers(&tri, &cut, Cow::Borrowed(&before), &rules, false);
         let kept = crate::Graph::new(&tri, Cow::Owned(out.edges.unwrap_or(cut))).edges();
         [[19, 20], [23, 24]]
