@@ -209,9 +209,8 @@ threshold falls onto the spacing and cuts stretches a little wider",
 ends or branches the result, move each point with two edges
 meeting at a wide angle halfway to its neighbours' midpoint and
 run the stages again on the moved points, up to three times
-(once when one point in five or more ends or branches it, as
-scattered points do; edges stay between the input points;
-drawings show the moved ones); for noisy samples",
+(edges stay between the input points; drawings show the moved
+ones); for noisy samples",
     },
     Opt {
         id: ReconstructId::NoManifoldFix,

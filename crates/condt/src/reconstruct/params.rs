@@ -85,8 +85,7 @@ pub struct Params {
     /// `src/stages/tails.rs`).
     pub tails: bool,
     /// Smoothing passes (beyond the paper; `smooth.rs`): where the curves show noise, points move
-    /// towards their neighbours and the stages run again, up to three times (once where a fifth of
-    /// the points or more end or branch the first result, as scattered points do). Edges stay between
+    /// towards their neighbours and the stages run again, up to three times. Edges stay between
     /// input positions, the [`triangulation`](Reconstruction::triangulation) is of the moved
     /// points; [`reconstruct`] runs passes, [`reconstruct_triangulation`] none.
     pub smooth: bool,

@@ -13,7 +13,7 @@ use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::smooth::{
-    keep_apart, passes_for, repeats, smoothed_positions, unmoved, PassInput, MAX_PASSES,
+    keep_apart, repeats, shows_noise, smoothed_positions, unmoved, PassInput, MAX_PASSES,
 };
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
 use crate::threads::both;
@@ -45,11 +45,6 @@ pub struct Pipeline {
     state: State,
     /// What the passes did so far, their time included (`None` until one ran).
     smoothing: Option<Smoothing>,
-    /// How many passes the first run's noise pays for ([`passes_for`]; at most [`MAX_PASSES`]).
-    pass_limit: usize,
-    /// Tests only: [`MAX_PASSES`] whatever the first run's noise ([`Pipeline::with_every_pass`]).
-    #[cfg(test)]
-    every_pass: bool,
     /// Laps at the ends of triangulations and smoothings: what lies between is a run's cost.
     pass_clock: Stopwatch,
 }
@@ -112,7 +107,7 @@ struct Run {
 enum CurveAssembly {
     /// The final one: the curves are assembled beside the final tally.
     Now,
-    /// The first run when passes may follow: no curves if its degrees show noise ([`passes_for`]).
+    /// The first run when passes may follow: no curves if its degrees show noise ([`shows_noise`]).
     UnlessNoisy,
     /// A pass that another may follow: the curves wait until the fixed-point test says.
     Later,
@@ -216,19 +211,8 @@ impl Pipeline {
             params: *params,
             state: State::Stages(Run::new(tri, triangulation_time, may_smooth, None)),
             smoothing: None,
-            pass_limit: MAX_PASSES,
-            #[cfg(test)]
-            every_pass: false,
             pass_clock,
         })
-    }
-
-    /// Tests only: up to [`MAX_PASSES`] passes even where the first run's noise pays for fewer, so
-    /// that a test reaches a later pass on a small set (whose two curve ends may be a fifth of it).
-    #[cfg(test)]
-    pub(crate) fn with_every_pass(mut self) -> Pipeline {
-        self.every_pass = true;
-        self
     }
 
     /// The parameters it runs with.
@@ -337,10 +321,7 @@ impl Pipeline {
     /// What follows a run's last stage: its tally, then a smoothing pass or the result.
     fn end_of_run(&mut self, run: Run) -> State {
         let previous = run.previous;
-        let (mut result, waiting, limit) = run.finish(&self.params);
-        #[cfg(test)]
-        let limit = limit.filter(|_| !self.every_pass);
-        self.pass_limit = limit.unwrap_or(self.pass_limit);
+        let (mut result, waiting) = run.finish(&self.params);
         // Curves wait after a noisy first run (no `previous`) and after a pass another may follow,
         // which is final at a fixed point: the same final edges as the pass before.
         if let Some(pass) = waiting {
@@ -363,7 +344,7 @@ impl Pipeline {
         // Memory: of the previous run only its edge fingerprint (none for a last pass),
         // triangulation (whose arrays hold the next) and final curve graph are kept, each freed
         // once read.
-        let last_pass = smoothing.passes + 1 >= self.pass_limit;
+        let last_pass = smoothing.passes + 1 >= MAX_PASSES;
         let previous = (!last_pass).then(|| EdgesFingerprint::of(&result.edges));
         drop(core::mem::take(&mut result.edges));
         let (triangulation, triangulation_time) = result.into_last_triangulation();
@@ -533,13 +514,12 @@ impl Run {
     }
 
     /// The tally and the curves, or the pass that follows when they wait (not
-    /// [`CurveAssembly::Now`]); for a first run that passes may follow, how many its noise pays for.
-    fn finish(self, params: &Params) -> (Reconstruction, Option<PassInput>, Option<usize>) {
+    /// [`CurveAssembly::Now`]).
+    fn finish(self, params: &Params) -> (Reconstruction, Option<PassInput>) {
         let mut clock = Stopwatch::start();
         let tri = &self.tri;
         let n = tri.num_points();
         let in_parallel = params.parallel && n >= PARALLEL_FROM;
-        let mut limit = None;
         let (waiting, curves, tally) = on_worker(in_parallel, n, || {
             let last = self.current.as_slice();
             let graph = self
@@ -550,13 +530,12 @@ impl Run {
                 // Without duplicates the input positions name the ids one to one, so the count
                 // reads the records in memory order instead of the input's (speed).
                 CurveAssembly::UnlessNoisy => {
-                    let passes = if tri.num_vertices() == n {
-                        passes_for((0..n as u32).map(|v| graph.degree(VertexId::new(v))))
+                    let noisy = if tri.num_vertices() == n {
+                        shows_noise((0..n as u32).map(|v| graph.degree(VertexId::new(v))))
                     } else {
-                        passes_for(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
+                        shows_noise(tri.input_to_vertex().iter().map(|&v| graph.degree(v)))
                     };
-                    limit = Some(passes);
-                    if passes > 0 {
+                    if noisy {
                         PassInput::moving(tri, graph)
                     } else {
                         Err(graph)
@@ -595,7 +574,7 @@ impl Run {
             curves_time,
             smoothing: None,
         };
-        (result, waiting, limit)
+        (result, waiting)
     }
 }
 
