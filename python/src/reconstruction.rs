@@ -277,6 +277,19 @@ impl Reconstruction {
         shapely.getattr("MultiLineString")?.call1((lines,))
     }
 
+    /// How many smoothing passes ran (``smooth``; 0 where none did): the edges are the last
+    /// pass's. ``condt.dask.reconstruct``'s result says the same of a tiled run.
+    ///
+    /// >>> import condt
+    /// >>> condt.reconstruct([(0, 0), (1, 0), (1, 1), (0, 1)]).passes
+    /// 0
+    #[getter]
+    fn passes(&self) -> usize {
+        self.result
+            .smoothing()
+            .map_or(0, |smoothing| smoothing.passes)
+    }
+
     /// The number of input points.
     fn __len__(&self) -> usize {
         self.result.num_points()

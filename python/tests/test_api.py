@@ -566,6 +566,19 @@ def test_after_smoothing_passes_explain_speaks_of_the_moved_points():
     assert not any("neither a Delaunay edge" in message for message in refused)
 
 
+def test_passes_say_how_many_smoothing_passes_ran():
+    # The noisy circle above shows noise: passes run (three at most); the clean one and the
+    # paper's pipeline (no smoothing) run none.
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    clean = np.column_stack([np.cos(t), np.sin(t)])
+    noisy = clean + rng.normal(0, 0.006, (300, 2))
+    assert 1 <= condt.reconstruct(noisy).passes <= 3
+    assert condt.reconstruct(noisy, smooth=False).passes == 0
+    assert condt.reconstruct(noisy, paper=True).passes == 0
+    assert condt.reconstruct(clean).passes == 0
+
+
 def test_geojson_and_shapely_agree():
     points = condt.read_points(SHAPES)
     r = condt.reconstruct(points)

@@ -162,6 +162,7 @@ def test_the_smoothing_passes_are_tiled_runs_with_the_one_machine_edges(client, 
     params = {"paper": True, "smooth": True, **flow}
     tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
     assert tiled.whole is None and tiled.passes == 3
+    assert condt.reconstruct(points, **params).passes == tiled.passes
     expected = one_machine(points, **params)
     np.testing.assert_array_equal(tiled.edges, expected)
     # The passes mattered: without them the edges differ.
