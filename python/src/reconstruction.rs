@@ -290,6 +290,24 @@ impl Reconstruction {
             .map_or(0, |smoothing| smoothing.passes)
     }
 
+    /// Wall-clock seconds of each timed step, in the order they ran, by the words of ``condt
+    /// reconstruct --timings``: ``earlier-passes`` when smoothing passes ran (the first
+    /// reconstruction and every pass but the last), ``triangulation``, each stage (the keys of
+    /// ``stages``) and ``curves`` (their assembly and the tally).
+    ///
+    /// >>> import condt
+    /// >>> r = condt.reconstruct([(0, 0), (1, 0), (1, 1), (0, 1)], paper=True)
+    /// >>> list(r.timings)
+    /// ['triangulation', 'proximity', 'repair', 'iqr-outliers', 'curves']
+    #[getter]
+    fn timings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let timings = PyDict::new(py);
+        for (step, time) in self.result.timings() {
+            timings.set_item(step, time.as_secs_f64())?;
+        }
+        Ok(timings)
+    }
+
     /// The number of input points.
     fn __len__(&self) -> usize {
         self.result.num_points()

@@ -579,6 +579,16 @@ def test_passes_say_how_many_smoothing_passes_ran():
     assert condt.reconstruct(clean).passes == 0
 
 
+def test_timings_name_each_step_in_the_order_it_ran():
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    clean = np.column_stack([np.cos(t), np.sin(t)])
+    for points, first in [(clean, []), (clean + rng.normal(0, 0.006, (300, 2)), ["earlier-passes"])]:
+        r = condt.reconstruct(points)
+        assert list(r.timings) == first + ["triangulation", *r.stages, "curves"]
+        assert all(isinstance(s, float) and s >= 0 for s in r.timings.values())
+
+
 def test_geojson_and_shapely_agree():
     points = condt.read_points(SHAPES)
     r = condt.reconstruct(points)

@@ -55,23 +55,24 @@ impl Timings {
             counted += time;
             self.line(step, time, comment);
         };
-        if let Some(smoothing) = result.smoothing() {
-            // The stages below are the last pass's; the first reconstruction and every pass but
-            // the last (each a triangulation and all the stages) are in this one figure.
-            let comment = match smoothing.passes {
-                1 => "(the first reconstruction, before the one smoothing pass)".to_string(),
-                passes => format!(
-                    "(the first reconstruction and the first {} of {passes} smoothing passes)",
-                    passes - 1
-                ),
+        // The stages are the last pass's; the first reconstruction and every pass but the last
+        // (each a triangulation and all the stages) are in `earlier-passes`.
+        let comment = match result.smoothing().map(|smoothing| smoothing.passes) {
+            Some(1) => "(the first reconstruction, before the one smoothing pass)".to_string(),
+            Some(passes) => format!(
+                "(the first reconstruction and the first {} of {passes} smoothing passes)",
+                passes - 1
+            ),
+            None => String::new(),
+        };
+        for (step, time) in result.timings() {
+            let comment = if step == "earlier-passes" {
+                &comment[..]
+            } else {
+                ""
             };
-            show("earlier-passes", smoothing.earlier_passes, &comment);
+            show(step, time, comment);
         }
-        show("triangulation", result.triangulation_time(), "");
-        for (stage, time) in result.stage_times() {
-            show(stage.key(), time, "");
-        }
-        show("curves", result.curves_time(), "");
         // What the library did outside the steps it timed: the parameter check, starting its
         // worker thread, copying the input points when smoothing ran.
         self.line("other", call.saturating_sub(counted), "");

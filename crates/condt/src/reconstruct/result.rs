@@ -202,6 +202,29 @@ impl Reconstruction {
         self.curves_time
     }
 
+    /// Each timed step in the order it ran, named by the words of `condt reconstruct --timings`:
+    /// `earlier-passes` when smoothing passes ran (the first reconstruction and every pass but
+    /// the last), `triangulation`, each stage's [`Stage::key`], and `curves` (the assembly and
+    /// tally). Wall-clock times, zero without `std`.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// let steps: Vec<&str> = result.timings().map(|(step, _)| step).collect();
+    /// assert_eq!(steps, ["triangulation", "proximity", "repair", "iqr-outliers", "curves"]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn timings(&self) -> impl Iterator<Item = (&'static str, Duration)> + '_ {
+        let earlier = self.smoothing.map(|s| ("earlier-passes", s.earlier_passes));
+        let stages = self.stage_times().map(|(stage, time)| (stage.key(), time));
+        earlier
+            .into_iter()
+            .chain([("triangulation", self.triangulation_time)])
+            .chain(stages)
+            .chain([("curves", self.curves_time)])
+    }
+
     /// Assembles the curves of a run that waited, `graph` the curve graph of its final edges.
     pub(super) fn assemble_curves(&mut self, graph: CurveGraph) {
         debug_assert!(graph == CurveGraph::new(self.triangulation.num_points(), &self.final_edges));
