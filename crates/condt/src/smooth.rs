@@ -1108,6 +1108,21 @@ mod tests {
         let smoothing = smoothed.smoothing().unwrap();
         assert_eq!(smoothing.passes, 1);
         assert!(smoothing.moved > 0);
+        // The timed steps: the earlier run first where a pass ran, then the last run's.
+        let steps =
+            |r: &crate::Reconstruction| r.timings().map(|(step, _)| step).collect::<Vec<_>>();
+        let last_run: Vec<&str> = core::iter::once("triangulation")
+            .chain(
+                Params::default()
+                    .stages()
+                    .into_iter()
+                    .map(|stage| stage.key()),
+            )
+            .chain(["curves"])
+            .collect();
+        assert_eq!(steps(&plain), last_run);
+        assert_eq!(steps(&smoothed)[0], "earlier-passes");
+        assert_eq!(steps(&smoothed)[1..], last_run[..]);
         // The square's corners (right angles) stay where they were.
         for fixed in UNIT_SQUARE {
             let i = (0..clean.points.len())
