@@ -37,6 +37,17 @@ pub enum Error {
         /// The value given.
         value: f64,
     },
+    /// Two points too close together for the reconstruction's stages to measure beside the set's
+    /// largest coordinate: nearer than 2^-450 (about 1e-135) times its magnitude, where squared
+    /// lengths and their products leave the range of a double (`docs/predicates.md`, *Lengths
+    /// for the ConDT stages*). Only the reconstruction refuses such a set;
+    /// [`triangulate`](crate::triangulate()) takes any spread.
+    TooCloseToMeasure {
+        /// Input position of one of the two closest points (the smaller).
+        first: usize,
+        /// Input position of the other.
+        second: usize,
+    },
     /// [`Triangulation::validate`](crate::Triangulation::validate) or
     /// [`Mesh::check_topology`](crate::mesh::Mesh::check_topology) found a broken invariant.
     InvalidTriangulation(Violation),
@@ -66,6 +77,12 @@ impl fmt::Display for Error {
                     _ => Ok(()),
                 }
             }
+            Error::TooCloseToMeasure { first, second } => write!(
+                f,
+                "points {first} and {second} are closer than 2^-450 times the largest coordinate: \
+                 the reconstruction cannot measure lengths across that spread (the \
+                 triangulation can)"
+            ),
             Error::InvalidTriangulation(violation) => write!(f, "{violation}"),
         }
     }

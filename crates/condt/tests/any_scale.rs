@@ -258,11 +258,64 @@ fn wide_sets_reconstruct_the_same_times_a_power_of_two() {
             })
             .collect();
         for params in [Params::default(), Params::default().with_smooth(false)] {
-            let result = summary(&reconstruct(&points, &params).unwrap());
+            // Such sets have points too close to measure beside their largest coordinate: the
+            // same refusal, naming the same two points, at every scale.
+            let result = reconstruct(&points, &params).map(|r| summary(&r));
             for factor in [8.0, 2f64.powi(-5)] {
-                let again = summary(&reconstruct(&scaled(&points, factor), &params).unwrap());
+                let again = reconstruct(&scaled(&points, factor), &params).map(|r| summary(&r));
                 assert_eq!(result, again, "round {round}, {n} points, factor {factor}");
             }
         }
     }
+}
+
+/// The stages measure lengths down to 2^-450 times the largest coordinate (`docs/predicates.md`).
+/// A circle of radius 1 beside a point at 1e230 came out as 14 open pieces, silently: its edges'
+/// squares underflowed to zero in the stages' frame. Such a set is now refused, naming two points
+/// too close to measure (the same two at every power-of-two scale); at 1e130 it is still
+/// measured, and the circle comes out whole.
+#[test]
+fn points_too_close_to_measure_beside_the_largest_coordinate_are_refused_by_name() {
+    let circle: Vec<Point> = (0..40)
+        .map(|k| {
+            let t = core::f64::consts::TAU * k as f64 / 40.0;
+            Point::new(t.cos(), t.sin())
+        })
+        .collect();
+    let with = |points: &[Point], far: Point| {
+        let mut points = points.to_vec();
+        points.push(far);
+        points
+    };
+    for far in [1e230, -1e300, 1e140] {
+        let points = with(&circle, Point::new(far, 0.0));
+        for params in [Params::default(), Params::paper()] {
+            let err = reconstruct(&points, &params).map(|_| ()).unwrap_err();
+            let condt::Error::TooCloseToMeasure { first, second } = err else {
+                panic!("{far:e}: {err}");
+            };
+            // Two distinct circle points, nearer than 2^-450 times |far| (no underflow here).
+            assert!(first < second && second < 40, "{far:e}: {first} {second}");
+            let (p, q) = (points[first], points[second]);
+            let length = (p.x - q.x).hypot(p.y - q.y);
+            assert!(length > 0.0 && length < 2f64.powi(-450) * far.abs(), "{far:e}");
+            assert!(err.to_string().contains(&format!("points {first} and {second} ")));
+            let halved = reconstruct(&scaled(&points, 0.5), &params).map(|_| ());
+            assert_eq!(halved, Err(err), "{far:e}");
+        }
+        triangulate(&points).unwrap().validate().unwrap();
+    }
+    for far in [1e130, 1e100] {
+        let result = reconstruct(&with(&circle, Point::new(far, 0.0)), &Params::default()).unwrap();
+        assert_eq!(result.curves().len(), 1, "{far:e}");
+        assert!(result.curves()[0].is_closed());
+        assert_eq!(result.edges().count(), 40);
+        assert_eq!(result.unused(), &[40]);
+    }
+    // A circle of radius 1e-300 beside (1, 1): refused alike.
+    let tiny: Vec<Point> = circle.iter().map(|p| Point::new(p.x * 1e-300, p.y * 1e-300)).collect();
+    assert!(matches!(
+        reconstruct(&with(&tiny, Point::new(1.0, 1.0)), &Params::default()),
+        Err(condt::Error::TooCloseToMeasure { .. })
+    ));
 }

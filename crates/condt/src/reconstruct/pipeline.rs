@@ -117,8 +117,10 @@ impl Pipeline {
     /// Triangulates `points` and readies the stages; nothing else runs until `step` or `finish`.
     ///
     /// # Errors
-    /// [`Params::check`]'s error (checked first); as [`triangulate`](crate::triangulate()); for the
-    /// Crust, [`Error::TooManyPoints`] when its second triangulation would be too large.
+    /// [`Params::check`]'s error (checked first); as [`triangulate`](crate::triangulate());
+    /// [`Error::TooCloseToMeasure`] when two points are too close for the stages to measure
+    /// beside the largest coordinate; for the Crust, [`Error::TooManyPoints`] when its second
+    /// triangulation would be too large.
     pub fn new(points: &[Point], params: &Params) -> Result<Pipeline, Error> {
         Pipeline::of_input(Cow::Borrowed(points), params, None)
     }
@@ -164,7 +166,8 @@ impl Pipeline {
     /// The stages on a triangulation already built, which the result keeps (no smoothing passes).
     ///
     /// # Errors
-    /// [`Params::check`]'s error; for the Crust, [`Error::TooManyPoints`] (as [`Pipeline::new`]).
+    /// [`Params::check`]'s error; [`Error::TooCloseToMeasure`] and, for the Crust,
+    /// [`Error::TooManyPoints`] (as [`Pipeline::new`]).
     ///
     /// ```
     /// use condt::{triangulate, Params, Pipeline, Point};
@@ -204,6 +207,9 @@ impl Pipeline {
     ) -> Result<Pipeline, Error> {
         params.check()?;
         let params = &params.on_available_threads();
+        if let Some((first, second)) = tri.too_close_to_measure() {
+            return Err(Error::TooCloseToMeasure { first, second });
+        }
         if params.method == Method::Crust {
             crate::baselines::crust_fits(&tri)?;
         }

@@ -67,6 +67,9 @@ pub struct Triangulation {
     /// positions relative to the set's corner (so that exact translations give the same edges).
     offset: Option<Point>,
     mesh: Mesh,
+    /// Whether the set spans more than the fast predicates take: only such a set can hold two
+    /// points too close for the stages to measure ([`Triangulation::too_close_to_measure`]).
+    wide: bool,
     /// Vertex id -> input position; for a kept vertex, the smallest position of its duplicates.
     input_of_vertex: Vec<u32>,
     /// Input position -> the vertex that stands for it.
@@ -181,6 +184,7 @@ fn triangulate_in(
         stage_to_input,
         offset: None,
         mesh,
+        wide: frames.wide,
         input_of_vertex,
         vertex_of_input,
         num_vertices,
@@ -646,6 +650,31 @@ impl Triangulation {
     #[inline]
     pub(crate) fn vertex_point(&self, v: VertexId) -> Point {
         self.points[v.index()]
+    }
+    /// Two points nearer than the stages measure, as input positions `(smaller, larger)`: 2^-450
+    /// times the largest coordinate magnitude, below which squared lengths (and their products)
+    /// leave the normal doubles (`docs/predicates.md`). Of such pairs joined by a Delaunay edge
+    /// (the closest two points of a set are), the first by input positions: their lengths may
+    /// all read 0 here, so the closest cannot be told. A set that is not wide has its distinct
+    /// points at least 2^-252 of that magnitude apart, so only a wide one is searched.
+    pub(crate) fn too_close_to_measure(&self) -> Option<(usize, usize)> {
+        // In the stages' frame the largest magnitude is in [2^200, 2^201).
+        const LEAST_LENGTH_EXPONENT: i32 = scale::STAGE_EXPONENT - 450;
+        let least_squared = crate::geometry::pow2(2 * LEAST_LENGTH_EXPONENT);
+        if !self.wide {
+            return None;
+        }
+        let mesh = &self.mesh;
+        // A collinear set's chain of segments is its edges too (`collinear.rs`).
+        mesh.edges()
+            .map(|e| (mesh.origin(e), mesh.dest(e)))
+            .filter(|&(a, b)| self.vertex_point(a).dist2(self.vertex_point(b)) < least_squared)
+            .map(|(a, b)| {
+                let (i, j) = (self.input_of(a), self.input_of(b));
+                (i.min(j), i.max(j))
+            })
+            // By input positions: the same answer whatever the mesh's numbering (`parallel`).
+            .min()
     }
     /// Every [`Triangulation::vertex_point`], by vertex id (for a loop that prefetches them).
     #[inline]
