@@ -61,9 +61,10 @@
 //! `alloc`, and depends on `robust` and `libm` alone.
 //!
 //! ## Layout
-//! Public as modules: [`mesh`], [`predicates`] and [`geometry`] (points, exact power-of-two
-//! scaling); the rest is re-exported here. `docs/architecture.md` draws the modules in layers,
-//! each using only those below it, with what each owns and may not touch.
+//! Public as modules: [`mesh`], [`predicates`], [`geometry`] (points, exact power-of-two
+//! scaling) and [`tiled`] (the stages' rules on edges gathered from the tiles of a split run, for
+//! Python's `condt.dask`); the rest is re-exported here. `docs/architecture.md` draws the
+//! modules in layers, each using only those below it, with what each owns and may not touch.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![deny(unsafe_code)]
 #![warn(missing_docs)]

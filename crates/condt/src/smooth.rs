@@ -1,7 +1,12 @@
 //! Smoothing noisy positions before the reconstruction ([`Params::smooth`](crate::Params::smooth);
 //! not in the paper). Owns: moving points to smoothed positions read off a finished
-//! reconstruction's final graph, one per input position. It changes neither the triangulation nor
-//! the edges and does not decide how often it runs ([`reconstruct`](crate::reconstruct) does).
+//! reconstruction's final graph, one per input position; the limits on how often passes run
+//! ([`MAX_PASSES`], and for the first pass [`shows_noise`] with [`NOISE_SHARE`]), which the
+//! pipeline applies; and, public, [`gathered_smoothing_pass`] (with [`GatheredPass`]), the pass
+//! between the runs of a reconstruction split in tiles, with the pipeline's test whether a pass
+//! follows written again on the gathered edges. It changes neither the triangulation nor the
+//! edges and runs no reconstruction: the pipeline ([`reconstruct`](crate::reconstruct)), or a
+//! split run's driver, reconstructs the moved points.
 //!
 //! Rule: a point with exactly two edges meeting at more than 90° moves to `(a + 2p + b) / 4` (`a`,
 //! `b` its neighbours), one umbrella (Laplacian) step of weight [`WEIGHT`]; ends, branches and

@@ -8,8 +8,9 @@ what the ``condt`` command line computes:
 - ``triangulate(points)``: the Delaunay triangulation, as ``condt triangulate``;
 - ``read_points(path)``: the points of a file in any format the command line reads;
 - ``score(points, output, truth)``: the metrics of ``condt score``;
-- ``condt.dask.reconstruct(points, client, tiles)``: the paper's pipeline tiled across a Dask
-  cluster, with ``reconstruct``'s edges (``import condt.dask``; needs ``dask[distributed]``).
+- ``condt.dask.reconstruct(points, client, tiles, **params)``: any ConDT pipeline (the default,
+  ``paper=True`` and their variants) tiled across a Dask cluster, with ``reconstruct``'s edges
+  (``import condt.dask``; needs ``dask[distributed]``).
 
 >>> import condt
 >>> r = condt.reconstruct([(0, 0), (1, 0), (1, 1), (0, 1)])

@@ -3,9 +3,14 @@
 //! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`],
 //! [`crossings`], [`tips`] and [`tails`].
 //!
-//! Owns: each stage's rule, its parameter check, and [`Step::run`], the one entry to every stage
-//! after the first graph. Stages read the triangulation and may not modify it, nor decide when they
-//! run (`Params::steps`). What calls what, and adding a stage: `docs/architecture.md`.
+//! Owns: each stage's rule, its parameter check, and [`Step::run`], through which the pipeline and
+//! the public `Graph` methods run every stage after the first graph. A run split in tiles
+//! ([`crate::tiled`]) reads the rules through crate-private functions of the stage modules instead
+//! (`outliers::iqr_cut`, `local_outliers::remove_local_outliers_with` and `last_edges`,
+//! `clumps::clumps_of`, `gaps::settle_joins`, `tips::candidates` and `settle_candidates`,
+//! `given_back::missing_from`, ...), the code the stages themselves run, so each rule is still one
+//! piece of code. Stages read the triangulation and may not modify it, nor decide when they run
+//! (`Params::steps`). What calls what, and adding a stage: `docs/architecture.md`.
 
 pub(crate) mod clumps;
 pub(crate) mod crossings;

@@ -14,7 +14,7 @@
 //! `q x` and `p y` (`q`, `p` loose ends, Delaunay neighbours of `x`, `y`) when the passages at `x`
 //! and `y` become smooth ([`SMOOTH_COS`]) and straighter than along the chord, each new edge is
 //! within [`GAP_RATIO`] of the edge it continues, the passage at `q` or `p` is smooth too, both
-//! end a branch (`Ends::branch`), and no curve is split in two ([`Ends::splits`]). **The apex**:
+//! end a branch (`Ends::branch`), and no curve is split in two ([`splits`]). **The apex**:
 //! `a b` gives way to `u a` and `u b` (`u` without edges, a Delaunay neighbour of both) when at
 //! each end the chord turns sharply, `u` continues smoothly within [`NEED_RATIO`] of the end's
 //! other edge (a point with no edge shows no spacing of its own), and both ends have branches.
