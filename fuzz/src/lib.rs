@@ -145,7 +145,7 @@ fn finite(p: Point) -> bool {
 
 /// Checks an error the triangulation may return for `points`: it must be about the input, and
 /// true of it.
-fn check_input_error(points: &[Point], err: Error, context: &str) {
+fn check_input_error(points: &[Point], err: Error, context: &str, measuring: bool) {
     let fail = |why: &str| panic!("{context}: {why} ({err:?})\n{}", as_rust(points));
     assert!(!err.to_string().is_empty());
     match err {
@@ -159,12 +159,29 @@ fn check_input_error(points: &[Point], err: Error, context: &str) {
                 fail("TooManyPoints for an accepted size");
             }
         }
+        // The stages measure down to 2^-450 times the largest magnitude (its power of two within
+        // a factor 2): two distinct finite points nearer than that, named by position.
+        Error::TooCloseToMeasure { first, second } => {
+            let largest = points
+                .iter()
+                .map(|p| p.x.abs().max(p.y.abs()))
+                .fold(0.0, f64::max);
+            let near = match (points.get(first), points.get(second)) {
+                (Some(&p), Some(&q)) if first < second && p != q => {
+                    (p.x - q.x).hypot(p.y - q.y) < 2f64.powi(-449) * largest
+                }
+                _ => false,
+            };
+            if !measuring || !near {
+                fail("TooCloseToMeasure for points the stages measure, or from triangulate");
+            }
+        }
         Error::InvalidParameter { .. } | Error::InvalidTriangulation(_) => {
             fail("an error that is not about the points")
         }
         // Every finite set triangulates (exact integer predicates beyond the fast range), so
         // no other refusal is true of any input.
-        _ => fail("a refusal other than a non-finite point or too many points"),
+        _ => fail("a refusal other than a non-finite point, too many or too close points"),
     }
 }
 
@@ -175,7 +192,7 @@ pub fn triangulate(data: &[u8]) {
     let points = decode_points(&mut Bytes(data));
     let tri = match condt::triangulate(&points) {
         Ok(tri) => tri,
-        Err(err) => return check_input_error(&points, err, "triangulate"),
+        Err(err) => return check_input_error(&points, err, "triangulate", false),
     };
     let fail = |why: String| panic!("triangulate: {why}\n{}", as_rust(&points));
     if let Err(violation) = tri.validate() {
@@ -263,7 +280,7 @@ pub fn reconstruct(data: &[u8]) {
             match (params.check(), err) {
                 (Err(_), Error::InvalidParameter { .. }) => {}
                 (Err(_), _) => panic!("refused parameters gave {err:?}: {}", context()),
-                (Ok(()), _) => check_input_error(&points, err, &context()),
+                (Ok(()), _) => check_input_error(&points, err, &context(), true),
             }
             return;
         }
