@@ -577,7 +577,8 @@ mod tests {
         (8e-323, -1.3e-322),
     ];
 
-    /// A set spread from 1e-296 to 1e303 (wide).
+    /// A set spread from 1e-296 to 1e303 (wide), whose five smaller points lie within 1e147 of
+    /// each other: too close to measure beside 9e303 (`Error::TooCloseToMeasure`).
     const WIDE: [(f64, f64); 7] = [
         (4.5353473530375125e281, 3.1021273130014907e-242),
         (6.68268818201814e-206, 57854124.16365494),
@@ -586,6 +587,20 @@ mod tests {
         (8.998847905116815e303, -3.605607693502977e229),
         (-2.751219279671994e-236, -1.2528524338855696e-191),
         (1.363571677422622e146, -5.260769050249569e-63),
+    ];
+
+    /// A wide set the stages measure: a noisy arc near 1 and a point with a coordinate of 1e-250
+    /// (the set spans 2^830), each point at least 0.3 from the others.
+    const WIDE_APART: [(f64, f64); 9] = [
+        (0.0, 1.0),
+        (0.31, 1.02),
+        (0.6, 0.97),
+        (0.93, 1.04),
+        (1.2, 0.95),
+        (1.52, 1.03),
+        (1.8, 0.98),
+        (2.13, 1.01),
+        (1e-250, 3.0),
     ];
 
     /// The default's edges of `points` reversed, in the positions of `points`, sorted.
@@ -631,7 +646,12 @@ mod tests {
     /// that would meet stay where they were ([`super::keep_apart`]).
     #[test]
     fn a_pass_never_merges_two_input_points() {
-        for points in [&SUBNORMAL[..], &WIDE[..]] {
+        let wide: Vec<Point> = WIDE.iter().map(|&p| Point::from(p)).collect();
+        assert!(matches!(
+            reconstruct(&wide, &Params::default()),
+            Err(crate::Error::TooCloseToMeasure { .. })
+        ));
+        for points in [&SUBNORMAL[..], &WIDE_APART[..]] {
             let points: Vec<Point> = points.iter().map(|&p| Point::from(p)).collect();
             let r = reconstruct(&points, &Params::default()).unwrap();
             assert!(r.smoothing().is_some_and(|s| s.passes > 0), "a pass ran");
@@ -794,7 +814,7 @@ mod tests {
             (3.972577825795239, -6.654448150300074),
             (6.239608850211445, -7.118064330857665),
         ];
-        let sets: [&[(f64, f64)]; 3] = [&SUBNORMAL, &WIDE, &fuzzed];
+        let sets: [&[(f64, f64)]; 3] = [&SUBNORMAL, &WIDE_APART, &fuzzed];
         let mut endings = Vec::new();
         for set in sets {
             let points: Vec<Point> = set.iter().map(|&p| Point::from(p)).collect();
@@ -839,14 +859,18 @@ mod tests {
             (1.0, libm::ldexp(1.0, -700)),
         ];
         let points: Vec<Point> = tiny.iter().map(|&p| Point::from(p)).collect();
+        // The stages cannot measure 2^-700 beside 1; the gathered pass reads only positions.
         for params in [Params::default(), Params::paper().with_smooth(true)] {
-            reconstruct(&points, &params).unwrap();
+            let refused = reconstruct(&points, &params).map(|_| ());
+            assert_eq!(
+                refused,
+                Err(crate::Error::TooCloseToMeasure {
+                    first: 0,
+                    second: 1
+                })
+            );
         }
-        let edges: Vec<[usize; 2]> = reconstruct(&points, &Params::paper())
-            .unwrap()
-            .edges()
-            .collect();
-        gathered_smoothing_pass(&points, &edges, 0, None).unwrap();
+        gathered_smoothing_pass(&points, &[[0, 1], [1, 2]], 0, None).unwrap();
         // Empty, one point, all points alike: no pass.
         for set in [&[][..], &[Point::new(2.0, 3.0)], &[Point::new(2.0, 3.0); 4]] {
             assert_eq!(
