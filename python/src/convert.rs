@@ -15,7 +15,7 @@ use pyo3::exceptions::{
 };
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyDict, PyType};
+use pyo3::types::{PyBool, PyDict, PyType};
 
 /// `numpy.ascontiguousarray`, looked up once.
 fn ascontiguousarray(py: Python<'_>) -> PyResult<&Bound<'_, PyAny>> {
@@ -45,7 +45,9 @@ fn is_number_kind(kind: &str) -> bool {
 /// Fraction values, a list mixing them with ints; numpy makes one of those) is judged by what
 /// numpy makes of each element's type: `numpy.dtype(type)` is an integer or float kind (`int`,
 /// `numpy.float32`), or object (`Decimal`, `Fraction`: converted by their `__float__`); a str,
-/// bytes, bool, complex, date or duration among them is refused as its own array would be.
+/// bytes, bool, complex, date or duration among them is refused as its own array would be, and
+/// so is `None`, which numpy would convert to NaN: a missing value is a wrong type, not a point
+/// with a NaN coordinate.
 fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyResult<()> {
     let dtype = array.getattr("dtype")?;
     let kind: String = dtype.getattr("kind")?.extract()?;
@@ -62,7 +64,8 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
     // Few distinct types in practice: each is judged once.
     let mut judged: Vec<Bound<'_, PyType>> = Vec::new();
     for element in array.getattr("flat")?.try_iter()? {
-        let element_type = element?.get_type();
+        let element = element?;
+        let element_type = element.get_type();
         if judged.iter().any(|t| t.is(&element_type)) {
             continue;
         }
@@ -71,7 +74,7 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
             .call1((&element_type,))
             .and_then(|d| d.getattr("kind")?.extract::<String>())
             .unwrap_or_else(|_| "O".into());
-        if !is_number_kind(&kind) && kind != "O" {
+        if element.is_none() || (!is_number_kind(&kind) && kind != "O") {
             return Err(PyTypeError::new_err(format!(
                 "points must hold numbers (integers or floats), not {} (in an array of dtype \
                  object)",
@@ -120,9 +123,9 @@ fn overflowing_point(py: Python<'_>, given: &Bound<'_, PyAny>) -> PyResult<Optio
 ///
 /// # Errors
 /// `TypeError` for `None`, a scalar, or an array whose dtype is not an integer or a float (or an
-/// object array holding something else); `ValueError` for a masked array with masked entries,
-/// any other shape, or an int beyond float64 (naming its point); numpy's own error for what it
-/// cannot convert.
+/// object array holding something else, `None` among them); `ValueError` for a masked array
+/// with masked entries, any other shape, or an int beyond float64 (naming its point); numpy's
+/// own error for what it cannot convert.
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,
@@ -192,8 +195,8 @@ pub(crate) fn points_array<'py>(
     }
 }
 
-/// A shape as Python writes it: `(3,)`, `(4, 3)`.
-fn shape_text(shape: &[usize]) -> String {
+/// A shape as Python writes it: `(3,)`, `(4, 3)`, `()`.
+pub(crate) fn shape_text(shape: &[usize]) -> String {
     match shape {
         [one] => format!("({one},)"),
         _ => format!(
@@ -234,7 +237,8 @@ fn float_text(x: f64) -> String {
 }
 
 /// The library's refusal as a Python exception: `ValueError` for the input (a non-finite point
-/// is named by its index and row) and for a parameter, `RuntimeError` for a broken invariant,
+/// is named by its index and row; two points too close to measure, by their positions) and for
+/// a parameter, `RuntimeError` for a broken invariant,
 /// which would be a bug.
 pub(crate) fn library_error(err: Error, points: &[Point]) -> PyErr {
     match err {
@@ -247,7 +251,9 @@ pub(crate) fn library_error(err: Error, points: &[Point]) -> PyErr {
             )),
             None => PyValueError::new_err(err.to_string()),
         },
-        Error::TooManyPoints { .. } => PyValueError::new_err(err.to_string()),
+        Error::TooManyPoints { .. } | Error::TooCloseToMeasure { .. } => {
+            PyValueError::new_err(err.to_string())
+        }
         Error::InvalidParameter { name, .. } => {
             // The library names the IQR factor `k`; here it is the keyword `iqr`, as the
             // command line's option is `--iqr`: the text says `iqr` wherever it said `k`.
@@ -331,7 +337,8 @@ pub(crate) fn read_only(array: &Bound<'_, PyAny>) -> PyResult<()> {
 /// # Errors
 /// `IndexError` when it is no input position: negative, `n` or above, or beyond any integer the
 /// machine has (`2**70`: an `IndexError` as any other, not numpy's or Python's
-/// `OverflowError`); `TypeError` when it is not an integer (anything with `__index__` is).
+/// `OverflowError`); `TypeError` when it is not an integer (anything with `__index__` is) or is a
+/// bool.
 pub(crate) fn input_position(name: &str, value: &Bound<'_, PyAny>, n: usize) -> PyResult<usize> {
     let out_of_range = || {
         let shown = value.str().map_or_else(|_| "?".into(), |r| r.to_string());
@@ -341,13 +348,25 @@ pub(crate) fn input_position(name: &str, value: &Bound<'_, PyAny>, n: usize) -> 
             format!("{shown} is not an input position (0 to {})", n - 1)
         })
     };
+    // `True` would be read as 1 (a bool is an int to Python): a mistake, not a position. numpy
+    // reads `a[True]` as a mask, not as row 1, and `a.item(True)` is a `TypeError`.
+    if value.is_instance_of::<PyBool>() {
+        return Err(PyTypeError::new_err(format!(
+            "argument '{name}': an input position is an integer, not bool"
+        )));
+    }
     match value.extract::<i64>() {
         Ok(k) => usize::try_from(k)
             .ok()
             .filter(|&k| k < n)
             .ok_or_else(out_of_range),
         Err(err) if err.is_instance_of::<PyOverflowError>(value.py()) => Err(out_of_range()),
-        Err(err) => Err(PyTypeError::new_err(format!("argument '{name}': {err}"))),
+        // Python's own words (`'str' object cannot be interpreted as an integer`), without the
+        // `TypeError: ` that the error's `Display` puts first.
+        Err(err) => Err(PyTypeError::new_err(format!(
+            "argument '{name}': {}",
+            err.value(value.py())
+        ))),
     }
 }
 

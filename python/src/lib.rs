@@ -4,7 +4,8 @@
 //! Owns: the Python functions and classes, their arguments and their errors. It may not compute
 //! geometry nor decide a parameter's range: `condt`, `condt-io` and `condt-eval` do, so the
 //! package gives what the command line gives. Modules: `convert` (NumPy in and out, errors),
-//! `params` (the keywords), `reconstruction` and `triangulation` (the result classes).
+//! `params` (the keywords), `reconstruction` and `triangulation` (the result classes), `tiles`
+//! (`condt.dask`'s native half: the plan, a tile's certificate and its rounds).
 
 // The command line's allocator, which recycles the pipeline's large blocks instead of faulting
 // fresh pages in for each (a third of the page faults, a tenth of the time at 1M points along
@@ -33,7 +34,7 @@ mod tiles;
 mod triangulation;
 
 use condt_eval::score::{EdgeProblem, ScoreError};
-use convert::{as_points, io_error, library_error, points_array};
+use convert::{as_points, io_error, library_error, points_array, shape_text};
 use numpy::ndarray::Array2;
 use numpy::{PyArray2, PyArrayMethods, PyUntypedArray};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
@@ -250,6 +251,13 @@ fn is_integer(numpy_integer: &Bound<'_, PyAny>, value: &Bound<'_, PyAny>) -> PyR
 fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<EdgeRows> {
     let numpy = py.import("numpy")?;
     let mut array = numpy.call_method1("asarray", (edges,))?;
+    // None and scalars are the wrong type, not a wrong shape, as for the points.
+    if edges.is_none() || array.getattr("ndim")?.extract::<usize>()? == 0 {
+        return Err(PyTypeError::new_err(format!(
+            "{name} must be an array-like of shape (m, 2), not {}",
+            edges.get_type().name()?
+        )));
+    }
     let size: usize = array.getattr("size")?.extract()?;
     let mut read = EdgeRows {
         rows: Vec::new(),
@@ -274,7 +282,8 @@ fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<E
     let shape: Vec<usize> = array.getattr("shape")?.extract()?;
     if !matches!(shape.as_slice(), [_, 2]) {
         return Err(PyValueError::new_err(format!(
-            "{name} must be an array of shape (m, 2); got one of shape {shape:?}"
+            "{name} must be an array of shape (m, 2); got one of shape {}",
+            shape_text(&shape)
         )));
     }
     let mut put = |k: usize, value: Result<i64, String>| {
@@ -373,8 +382,9 @@ fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
 /// are counted once each. An index beyond int64 (a uint64 from ``2**63``, a Python int) is out
 /// of range as any other and named as given, never wrapped.
 ///
-/// Raises ``ValueError`` for a malformed truth or a NaN or infinite point, ``TypeError`` for
-/// edges that are not integers or points that are not numbers (as ``reconstruct`` refuses them).
+/// Raises ``ValueError`` for a malformed truth, an edge list of another shape or a NaN or
+/// infinite point, ``TypeError`` for edges that are not integers or not an array (``None``, a
+/// scalar) or points that are not numbers (as ``reconstruct`` refuses them).
 ///
 /// >>> import condt
 /// >>> square = [(0, 0), (1, 0), (1, 1), (0, 1)]

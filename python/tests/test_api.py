@@ -234,6 +234,18 @@ def test_points_that_are_not_numbers_are_a_type_error_naming_the_dtype(dtype):
                 function(points.tolist())
 
 
+@pytest.mark.parametrize(
+    "function",
+    [condt.reconstruct, condt.triangulate, lambda p: condt.score(p, [], [])],
+    ids=["reconstruct", "triangulate", "score"],
+)
+def test_none_among_the_points_is_a_type_error_not_a_nan(function):
+    # numpy converts None to NaN: a missing value would be told as a NaN point.
+    for points in ([[0, None], [1, 1], [2, 3]], np.array([[0.0, 1.0], [None, 1.0]], dtype=object)):
+        with pytest.raises(TypeError, match=r"^points must hold numbers \(integers or floats\), not NoneType"):
+            function(points)
+
+
 def test_numbers_of_any_kind_numpy_converts_to_float_are_read():
     expected = condt.reconstruct(SQUARE).edges.tolist()
     readable = [
@@ -348,7 +360,7 @@ def test_numbers_out_of_range_are_the_documented_errors_naming_the_parameter():
     with pytest.raises(TypeError, match="'i'"):
         tri.neighbors(1.0)
     assert tri.neighbors(np.int64(0)).tolist() == tri.neighbors(0).tolist()
-    assert r.explain(np.uint8(1), False).edge == (0, 1)
+    assert r.explain(np.uint8(1), np.int32(0)).edge == (0, 1)
 
 
 def test_explain_reads_a_duplicate_as_its_first_point():
@@ -443,6 +455,20 @@ def test_score_checks_its_edges():
         condt.score(square, [(0, 1, 2)], truth)
 
 
+def test_score_edges_that_are_no_array_are_a_type_error_and_shapes_are_written_as_python_does():
+    square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    truth = [(0, 1), (1, 2), (2, 3), (3, 0)]
+    for wrong in (None, 3, np.int64(3), 2.5):
+        name = type(wrong).__name__
+        with pytest.raises(TypeError, match=rf"^output must be an array-like of shape \(m, 2\), not {name}$"):
+            condt.score(square, wrong, truth)
+        with pytest.raises(TypeError, match=rf"^truth must be an array-like of shape \(m, 2\), not {name}$"):
+            condt.score(square, truth, wrong)
+    for edges, shown in (([(0, 1, 2)], "(1, 3)"), ([0, 1, 2], "(3,)"), ([[[0, 1]]], "(1, 1, 2)")):
+        with pytest.raises(ValueError, match=rf"got one of shape {re.escape(shown)}$"):
+            condt.score(square, edges, truth)
+
+
 def test_score_names_an_index_beyond_int64_as_given_and_never_wraps_it():
     square = [(0, 0), (1, 0), (1, 1), (0, 1)]
     truth = [(0, 1), (1, 2), (2, 3), (3, 0)]
@@ -509,6 +535,26 @@ def test_the_result_arrays():
     stages.clear()  # a copy: the result's stays
     assert len(r.stages) == 12
     assert "235 points" in repr(r)
+
+
+def test_a_bool_is_no_input_position():
+    points = condt.read_points(SHAPES)
+    r, tri = condt.reconstruct(points), condt.triangulate(points)
+    a, b = r.edges[0].tolist()
+    for call in (
+        lambda: r.explain(True, b),
+        lambda: r.explain(a, False),
+        lambda: tri.neighbors(True),
+    ):
+        with pytest.raises(TypeError, match=r"^argument '[ij]': an input position is an integer, not bool$"):
+            call()
+    with pytest.raises(TypeError, match=r"^argument 'i': 'numpy.bool' object cannot be interpreted"):
+        tri.neighbors(np.True_)
+    with pytest.raises(TypeError, match=r"^argument 'j': 'str' object cannot be interpreted"):
+        r.explain(a, "1")
+    # numpy's integers are positions.
+    assert r.explain(np.int64(a), np.uint8(b)).edge == (a, b)
+    assert tri.neighbors(np.int32(1)).tolist() == tri.neighbors(1).tolist()
 
 
 def test_explain_tells_why_with_numbers():
@@ -737,3 +783,20 @@ def test_mypy_stubtest_finds_no_difference_between_the_stubs_and_the_module(tmp_
         check=False,
     )
     assert done.returncode == 0, done.stdout + done.stderr
+
+
+def test_points_too_close_to_measure_beside_the_largest_coordinate_are_a_value_error():
+    # A circle of radius 1 beside a point at 1e230: its edges' squares underflow in the
+    # stages' frame, and the curves came out in pieces; the set is refused, by name.
+    t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    points = np.vstack([np.column_stack([np.cos(t), np.sin(t)]), [[1e230, 0.0]]])
+    with pytest.raises(ValueError, match=r"points (\d+) and (\d+) are closer than 2\^-450") as refused:
+        condt.reconstruct(points)
+    first, second = (int(k) for k in re.findall(r"points (\d+) and (\d+)", str(refused.value))[0])
+    assert first < second < 40
+    assert np.hypot(*(points[first] - points[second])) < 2.0**-450 * 1e230
+    assert len(condt.triangulate(points).edges) > 0
+    # At 1e100 the stages measure the circle, which comes out whole.
+    points[40] = (1e100, 0.0)
+    result = condt.reconstruct(points)
+    assert [c.closed for c in result.curves] == [True] and len(result.edges) == 40

@@ -236,7 +236,7 @@ def test_cocircular_points_run_in_one_piece_with_the_same_edges(client):
         (np.column_stack([np.arange(50.0), 2 * np.arange(50.0)]), "all points lie on one line"),
         (np.empty((0, 2)), "no points"),
         (np.array([[0.0, 0.0], [1.0, 1.0]]), "all points lie on one line"),
-        (np.array([[1e-250, 0.5], [1e250, 0.0], [0.0, 1.0]]), "the coordinates span"),
+        (np.array([[1e-250, 5e239], [1e250, 0.0], [0.0, 1e240]]), "the coordinates span"),
     ],
 )
 def test_sets_that_cannot_be_tiled_run_in_one_piece(client, points, why):
@@ -373,9 +373,92 @@ def test_bad_input_is_refused_as_condt_reconstruct_refuses_it(client):
         condt.dask.reconstruct(points, client, paper=True)
     with pytest.raises(ValueError, match="iqr"):
         condt.dask.reconstruct(points[:4], client, paper=True, iqr=-1.0)
-    for tiles in (0, -3, True, 2.5):
+    for tiles in (0, -3, np.int64(0)):
         with pytest.raises(ValueError, match="tiles must be a positive integer"):
             condt.dask.reconstruct(points[:4], client, tiles=tiles, paper=True)
+
+
+def test_a_masked_array_with_masked_entries_is_refused_as_condt_reconstruct_refuses_it(client):
+    points = np.ma.masked_array(curves(400, np.random.default_rng(3)))
+    points[7] = np.ma.masked
+    with pytest.raises(ValueError) as one_machine_error:
+        condt.reconstruct(points, paper=True)
+    with pytest.raises(ValueError) as tiled_error:
+        condt.dask.reconstruct(points, client, tiles=4, paper=True)
+    assert str(tiled_error.value) == str(one_machine_error.value)
+    assert "masked entries" in str(tiled_error.value)
+    # Nothing masked: read as its data, as condt.reconstruct reads it.
+    points[7] = points.data[7]
+    tiled = condt.dask.reconstruct(points, client, tiles=4, paper=True)
+    np.testing.assert_array_equal(tiled.edges, one_machine(points.data, paper=True))
+
+
+def test_none_among_the_points_is_a_type_error(client):
+    with pytest.raises(TypeError, match="not NoneType"):
+        condt.dask.reconstruct([[0, None], [1, 1], [2, 3]], client, tiles=4)
+
+
+def test_more_tiles_than_points_are_one_tile_per_point(client):
+    points = curves(300, np.random.default_rng(4))
+    points = points[:60]
+    expected = one_machine(points, paper=True)
+    # 2**63 tiles asked 16 GiB of cuts of numpy, 10**7 a minute of cutting: now one per point.
+    for tiles in (len(points) + 1, 10**7, 2**63):
+        tiled = condt.dask.reconstruct(points, client, tiles=tiles, paper=True)
+        assert tiled.whole is None and tiled.tiles == len(points), tiles
+        np.testing.assert_array_equal(tiled.edges, expected)
+
+
+def test_tiles_and_halo_are_read_as_condt_reconstruct_reads_its_keywords(client):
+    points = curves(1_000, np.random.default_rng(1))
+    expected = one_machine(points, paper=True)
+    # numpy's integers and floats are numbers too.
+    for tiles, halo in [(np.int64(4), np.float32(0.5)), (np.uint8(4), np.int64(1)), (4, 0.5)]:
+        tiled = condt.dask.reconstruct(points, client, tiles=tiles, halo=halo, paper=True)
+        assert tiled.tiles == 4 and type(tiled.tiles) is int
+        np.testing.assert_array_equal(tiled.edges, expected)
+    # A wrong type is a TypeError, a wrong value a ValueError (as for u=True, u=-1).
+    for tiles in ("4", 2.5, np.float64(4.0), True, np.True_, None):
+        with pytest.raises(TypeError, match=f"^tiles must be an integer, not {type(tiles).__name__}$"):
+            condt.dask.reconstruct(points, client, tiles=tiles, paper=True)
+    for halo in ("1", True, np.True_, [1.0], 1j):
+        with pytest.raises(TypeError, match=f"^halo must be a number or None, not {type(halo).__name__}$"):
+            condt.dask.reconstruct(points, client, tiles=4, halo=halo, paper=True)
+    for halo in (0, -1.0, np.float32(0.0), float("nan"), float("inf"), 2**2000, -(2**2000)):
+        with pytest.raises(ValueError, match="^halo must be a positive finite number or None"):
+            condt.dask.reconstruct(points, client, tiles=4, halo=halo, paper=True)
+    with pytest.raises(TypeError, match="u must be a number, not bool"):
+        condt.reconstruct(points, u=True)
+
+
+def test_the_edges_are_read_only_as_condt_reconstructs_are(client):
+    points = curves(1_000, np.random.default_rng(1))
+    line = np.column_stack([np.arange(50.0), np.zeros(50)])
+    for tiled in (
+        condt.dask.reconstruct(points, client, tiles=4),
+        condt.dask.reconstruct(line, client, tiles=4),  # in one piece
+    ):
+        assert not tiled.edges.flags.writeable
+        with pytest.raises(ValueError, match="read-only"):
+            tiled.edges[0, 0] = 5
+        assert tiled.edges.copy().flags.writeable
+
+
+def test_mypy_finds_no_error_in_the_package(tmp_path):
+    pytest.importorskip("mypy")
+    import pathlib
+    import subprocess
+    import sys
+
+    package = pathlib.Path(__file__).resolve().parents[1] / "python" / "condt"
+    done = subprocess.run(
+        [sys.executable, "-m", "mypy", "--cache-dir", str(tmp_path), str(package)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
 
 
 def test_the_modules_examples_run():

@@ -44,7 +44,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any
+import operator
+from typing import Any, SupportsFloat, SupportsIndex
 
 import numpy as np
 
@@ -62,15 +63,15 @@ REACH = 6
 class TiledReconstruction:
     """What ``condt.dask.reconstruct`` gives: the edges and how the tiles ran.
 
-    ``edges`` is an ``(m, 2)`` int64 array of input positions, ``i < j``, sorted by rows: the
-    same as ``condt.reconstruct(points, **params).edges``. ``tiles`` is the number of tiles,
-    ``rounds`` how many times the widest-halo tile was sent (1 when every first halo sufficed;
-    summed over the runs of the smoothing passes),
-    ``workers`` the addresses of the workers that ran a tile, ``sent`` how many points went to
-    workers in all (every tile and round, halos included: its ratio to the set's size is the
-    cost of tiling), ``whole`` why the set ran in one piece instead (``None`` when it was
-    tiled), and ``passes`` how many smoothing passes ran (each a tiled run of its own after the
-    first; ``None`` when the set ran in one piece).
+    ``edges`` is a read-only ``(m, 2)`` int64 array of input positions, ``i < j``, sorted by
+    rows: the same as ``condt.reconstruct(points, **params).edges``. ``tiles`` is the number of
+    tiles, ``rounds`` how many times the widest-halo tile was sent (1 when every first halo
+    sufficed; summed over the runs of the smoothing passes), ``workers`` the addresses of the
+    workers that ran a tile, ``sent`` how many points went to workers in all (every tile and
+    round, halos included: its ratio to the set's size is the cost of tiling), ``whole`` why the
+    set ran in one piece instead (``None`` when it was tiled), and ``passes`` how many smoothing
+    passes ran (each a tiled run of its own after the first; ``None`` when the set ran in one
+    piece).
     """
 
     edges: np.ndarray
@@ -85,35 +86,40 @@ class TiledReconstruction:
 def reconstruct(
     points: Any,
     client: Any = None,
-    tiles: int = 16,
+    tiles: SupportsIndex = 16,
     *,
-    halo: float | None = None,
+    halo: SupportsFloat | SupportsIndex | None = None,
     **params: Any,
 ) -> TiledReconstruction:
     """The reconstruction of ``points`` by tiles on ``client``'s cluster.
 
     ``points`` is an ``(n, 2)`` array-like or a Dask array (computed on the driver); ``client``
     a ``dask.distributed.Client`` (``None``: the current one, ``distributed.get_client()``);
-    ``tiles`` how many rectangles to cut the plane into (at least 1); ``halo`` the margin
-    each tile's points are first sent with (``None``: a quarter of the tile's shorter side),
-    doubled for a tile whose certificate needs more. ``params`` are
-    ``condt.reconstruct``'s keywords (every ConDT pipeline is tiled).
+    ``tiles`` how many rectangles to cut the plane into: an integer (numpy's too), at least 1;
+    more tiles than points are as many tiles as points (``.tiles`` says how many were cut), since
+    a tile beyond one per point would own nothing and only cost the driver a pass over the
+    points. ``halo`` is the margin each tile's points are first sent with, a positive finite
+    number (numpy's too; ``None``: a quarter of the tile's shorter side), doubled for a tile
+    whose certificate needs more. ``params`` are ``condt.reconstruct``'s keywords (every ConDT
+    pipeline is tiled).
 
-    Raises ``NotImplementedError`` for a baseline method, ``ValueError`` for a NaN or
-    infinite point (named) or a refused parameter, as ``condt.reconstruct`` does.
+    Raises ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``tiles`` or
+    ``halo`` of the wrong type (a bool, a str, a float for ``tiles``) or points that are not
+    numbers; ``ValueError`` for a NaN or infinite point (named), a masked array with masked
+    entries, ``tiles`` below 1, a ``halo`` not positive and finite or a refused parameter; as
+    ``condt.reconstruct`` does for its own.
     """
-    if isinstance(tiles, bool) or not isinstance(tiles, int) or tiles < 1:
-        raise ValueError(f"tiles must be a positive integer, not {tiles!r}")
-    number = isinstance(halo, (int, float)) and not isinstance(halo, bool)
-    if halo is not None and not (number and 0 < halo < math.inf):
-        raise ValueError(f"halo must be a positive finite number or None, not {halo!r}")
+    count = _tile_count(tiles)
+    width = _halo_width(halo)
     if client is None:
         from distributed import get_client
 
         client = get_client()
     if hasattr(points, "dask") and hasattr(points, "compute"):
         points = points.compute()
-    if isinstance(points, np.ndarray) and points.dtype == np.float64:
+    # A masked array goes to the library as it is, which refuses one with masked entries:
+    # ``ascontiguousarray`` would drop its mask.
+    if type(points) is np.ndarray and points.dtype == np.float64:
         points = np.ascontiguousarray(points)
     plan = _condt._tile_plan(points, **params)
     points = np.ascontiguousarray(np.asarray(points, dtype=np.float64)).reshape(-1, 2)
@@ -121,18 +127,19 @@ def reconstruct(
     whole = "no points" if n == 0 else plan["whole"]
     if whole is not None:
         return _in_one_piece(points, client, params, whole)
+    count = min(count, n)
 
     # One tiled run, or with the smoothing passes one per pass: the library says after each run
     # whether a pass follows and where it moves the points (``_gathered_smoothing_pass``).
     original, runs, previous, passes = points, [], None, 0
     while True:
         bbox = np.concatenate([points.min(axis=0), points.max(axis=0)])
-        rects = _cut(points, tiles, bbox)
-        runs.append(_Run(points, client, plan, params, bbox, rects, halo))
+        rects = _cut(points, count, bbox)
+        runs.append(_Run(points, client, plan, params, bbox, rects, width))
         try:
             edges = _phases(runs[-1], plan, points, params)
-        except _WholeSet as whole:
-            return _in_one_piece(original, client, params, whole.why, runs)
+        except _WholeSet as refused:
+            return _in_one_piece(original, client, params, refused.why, runs)
         if not plan["smooth"]:
             break
         moved = _condt._gathered_smoothing_pass(points, edges, passes, previous)
@@ -145,7 +152,49 @@ def reconstruct(
         if plan["whole"] is not None:
             return _in_one_piece(original, client, params, plan["whole"], runs)
     rounds, sent, workers = _spent(runs)
-    return TiledReconstruction(edges, len(rects), rounds, workers, sent, None, passes)
+    return TiledReconstruction(_read_only(edges), len(rects), rounds, workers, sent, None, passes)
+
+
+def _tile_count(tiles: Any) -> int:
+    """``tiles`` as an int: any integer (``operator.index``: numpy's too) but a bool, as
+    ``condt.reconstruct`` refuses a bool where it wants a number."""
+    if not isinstance(tiles, (bool, np.bool_)):
+        try:
+            count = operator.index(tiles)
+        except TypeError:
+            pass
+        else:
+            if count < 1:
+                raise ValueError(f"tiles must be a positive integer, not {tiles!r}")
+            return count
+    raise TypeError(f"tiles must be an integer, not {type(tiles).__name__}")
+
+
+def _halo_width(halo: Any) -> float | None:
+    """``halo`` as a float, or ``None``: any number Python converts by its ``__float__`` or
+    ``__index__`` (numpy's too), not a bool nor a str, as ``condt.reconstruct`` reads ``u``. An
+    int too large for a float is infinite, with its sign, and refused as ``inf`` is."""
+    if halo is None:
+        return None
+    kind = type(halo)
+    if isinstance(halo, (bool, np.bool_)) or not (
+        hasattr(kind, "__float__") or hasattr(kind, "__index__")
+    ):
+        raise TypeError(f"halo must be a number or None, not {kind.__name__}")
+    try:
+        width = float(halo)
+    except OverflowError:
+        width = -math.inf if halo < 0 else math.inf
+    if not 0 < width < math.inf:
+        raise ValueError(f"halo must be a positive finite number or None, not {width!r}")
+    return width
+
+
+def _read_only(edges):
+    """``edges`` made read-only, as ``Reconstruction.edges`` is: a result shared by whoever
+    holds it (``.copy()`` gives a writable one)."""
+    edges.setflags(write=False)
+    return edges
 
 
 def _phases(run, plan, points, params):
@@ -490,7 +539,7 @@ def _in_one_piece(points, client, params, why, runs=()):
     rounds, sent, workers = _spent(runs)
     edges, worker = client.submit(_whole, points, params, pure=False).result()
     return TiledReconstruction(
-        edges, 1, rounds + 1, workers | {worker}, sent + len(points), why, None
+        _read_only(edges), 1, rounds + 1, workers | {worker}, sent + len(points), why, None
     )
 
 
