@@ -32,7 +32,9 @@ Usage:
   condt help COMMAND                              a command's options, with an example
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
-ignored; `#` comments and blank lines are skipped); `-` reads standard input: a NumPy array or
+ignored; `#` comments and blank lines are skipped; a first line of names, such as `x y`, is a
+header, and with no point after it the file is empty only if it names x and y: `Error: file
+not found` alone is refused); `-` reads standard input: a NumPy array or
 a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text. By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
@@ -44,7 +46,10 @@ many): a duplicate shares that point's triangles, edges and curves, and is unuse
 
 OUTPUT (`-o`) is written whole or not at all; without it, or with `-`, the result goes to
 standard output. An existing file keeps its permissions, owner, hard links and symbolic links;
-a terminal, named pipe or device is written to, never replaced. OUTPUT may not be INPUT.
+a terminal, named pipe or device is written to, never replaced. `/dev/stdout`, `/dev/stderr`,
+`/dev/fd/N` and `/proc/self/fd/N` are written through that open descriptor, as `-` writes
+standard output, whatever file it has open (a regular file behind descriptor 3 or more only
+when opened to append: `3>>FILE`). OUTPUT may not be INPUT.
 
 An option's value is the next argument or joined to it: `--u 2.5` or `--u=2.5`, `-o out.svg` or
 `-oout.svg`; `--` ends the options (`condt reconstruct -- -file.txt`).
@@ -645,13 +650,32 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
     };
     let command = text(command, "command")?;
     if command.starts_with('-') {
-        return match options::lex(&args[..1], GLOBAL_OPTIONS, "")?.given.first() {
-            Some(given) if given.id == GlobalId::Version => {
+        // `--help` and `--version` take nothing after them (`condt -V x` was answered as
+        // `condt -V`, where every other extra argument is refused).
+        let lexed = options::lex(args, GLOBAL_OPTIONS, "")?;
+        let extra = lexed
+            .operands
+            .first()
+            .map(|extra| extra.to_string_lossy().into_owned())
+            .or_else(|| lexed.given.get(1).map(|second| second.flag.clone()));
+        return match (lexed.given.first(), extra) {
+            (Some(given), Some(extra)) => Err(usage(format!(
+                "{} takes no argument; unexpected {extra} (`condt help COMMAND` shows a \
+                 command's help)",
+                given.flag
+            ))),
+            (Some(given), None) if given.id == GlobalId::Version => {
                 Ok(format!("condt {}\n", env!("CARGO_PKG_VERSION")))
             }
-            Some(_) => Ok(global_help()),
-            None => Err(usage("no command given")),
+            (Some(_), None) => Ok(global_help()),
+            (None, _) => Err(usage("no command given")),
         };
+    }
+    if let ("help", [_, extra, ..]) = (command, rest) {
+        return Err(usage(format!(
+            "help takes one command; unexpected extra argument {}",
+            extra.to_string_lossy()
+        )));
     }
     match command {
         "help" => match rest.first().map(|c| c.to_str()) {
@@ -1107,13 +1131,6 @@ fn input_size(input: Option<&Path>) -> Option<u64> {
     meta.is_file().then_some(meta.len())
 }
 
-/// Whether the output goes to the terminal the progress bar is drawn on (standard output
-/// without `-o`, when it is a terminal): then the bar is taken away before writing.
-fn writes_to_terminal(output: Option<&Path>) -> bool {
-    use std::io::IsTerminal;
-    output.is_none() && io::stdout().is_terminal()
-}
-
 /// A note when rayon's threads cannot be started (a limit on processes or memory,
 /// `RAYON_NUM_THREADS` too large): the library then runs on this thread, with the same results.
 fn threads_note(quiet: bool) {
@@ -1195,7 +1212,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     let call = timings.quiet_lap();
     progress.writing(
         &shown_output(args.output.as_deref()),
-        writes_to_terminal(args.output.as_deref()),
+        destination.is_terminal(),
     );
     progress.suspend(|| timings.reconstruction(&result, call));
     destination.write(|out| {
@@ -1245,7 +1262,7 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     progress.writing(
         &shown_output(args.output.as_deref()),
-        writes_to_terminal(args.output.as_deref()),
+        destination.is_terminal(),
     );
     progress.suspend(|| timings.lap("triangulation"));
     let count = points.len();

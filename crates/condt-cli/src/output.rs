@@ -15,10 +15,23 @@
 //!   a directory where no file can be created: rewritten in place, so every name and the owner
 //!   stay; the result is fully formatted first, so only a failing disk can leave it incomplete,
 //!   and then the error says so;
-//! - anything else (a terminal, a named pipe, a character device), or a link through `/proc`
-//!   such as `/dev/stdout`: opened and written as it is (appended to, for a regular file behind
-//!   such a link), never created, truncated or replaced;
+//! - one of this process's open descriptors, named as `/dev/stdout`, `/dev/stderr`,
+//!   `/dev/fd/N` or `/proc/self/fd/N` (directly or through links): written through the
+//!   descriptor already open, as `-o -` writes standard output, so that whatever the shell
+//!   writes to the same descriptor before and after stays in place (opening the name would
+//!   follow its link to the file behind and replace it, or write it from an offset of its own);
+//!   standard input is refused. Descriptors from 3 on cannot be borrowed without `unsafe`
+//!   (which this crate does not use): a regular file behind one is reopened and appended to
+//!   only when the descriptor appends (`3>>FILE`), else refused, as the offsets would part;
+//! - anything else (a terminal, a named pipe, a character device), or another link through
+//!   `/proc`: opened and written as it is (appended to, for a regular file behind such a link),
+//!   never created, truncated or replaced;
 //! - a directory, or a file this user may not write: an error.
+//!
+//! The temporary file is made only once the result is ready to be written: before the work
+//! starts, one is created and removed at once to find out whether it can be, so that an output
+//! that cannot be written is still reported before the computation, and a run that dies during
+//! it (out of memory, which aborts the process) leaves nothing beside the output.
 //!
 //! The new content is sent to the disk (`sync_all`) before the rename, so that "the old content
 //! or the whole new one" holds across a power loss or a crash of the system too, not only of
@@ -34,8 +47,12 @@
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
 //! (the process then ends by that signal, as it would have), unless the caller left the signal
 //! ignored (`nohup`, a shell's `cmd &`): it then stays ignored; SIGKILL cannot be caught, so
-//! `kill -9` may leave a `.condt.XXXXXX.tmp` file beside the output. A file-size limit does
-//! not end the run (SIGXFSZ is caught): the write fails, and the run reports it as any error.
+//! `kill -9` while the output is being written may leave a `.condt.XXXXXX.tmp` file beside it,
+//! and so may running out of memory then: Rust aborts the process on a failed allocation, and
+//! a hook that removed the file would have to run inside the allocator without allocating
+//! (the stable language has no such hook, and a wrapping allocator needs `unsafe`). A
+//! file-size limit does not end the run (SIGXFSZ is caught): the write fails, and the run
+//! reports it as any error.
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
@@ -46,12 +63,18 @@ use crate::cli::CliError;
 /// Where the output goes, found and prepared before any work is done, so that an output that
 /// cannot be written is reported at once instead of after the computation.
 pub(crate) enum Destination {
-    /// Standard output.
+    /// Standard output (`-o -`, `/dev/stdout`, `/dev/fd/1`).
     Stdout,
-    /// A new or single-named regular file: written to `temp`, then renamed to `target`.
+    /// Standard error (`/dev/stderr`, `/dev/fd/2`).
+    Stderr,
+    /// A new or single-named regular file: written to a temporary file made beside `target`
+    /// when the result is ready, then renamed to it. `original`: the metadata of the file
+    /// replaced (`None`: a new file), whose permissions and owner the new one takes.
     Replace {
-        temp: signals::Temp,
         target: PathBuf,
+        original: Option<fs::Metadata>,
+        /// The path as given, rewritten in place should the owner not be kept after all.
+        path: PathBuf,
         shown: String,
     },
     /// A regular file rewritten where it is (hard links, or an owner a new file cannot keep).
@@ -67,14 +90,67 @@ fn file_error(shown: &str, error: io::Error) -> CliError {
     }
 }
 
-/// Follows `path` through symbolic links to the name of the file they finally lead to, which
-/// need not exist. A relative link is read from the directory holding it. `None` when a link
-/// leads through `/proc` (`/dev/stdout`, `/dev/fd/N`): those name an open stream, not a place
-/// to put a file.
-fn resolve_links(path: &Path) -> io::Result<Option<PathBuf>> {
+/// The descriptor of this process that `path` names as it is written, without following
+/// links: `/dev/stdin`, `/dev/stdout`, `/dev/stderr` (0, 1, 2), `/dev/fd/N`, and
+/// `/proc/self/fd/N` (or `thread-self`, or this process's own number, in place of `self`).
+/// Repeated slashes and `.` components do not matter.
+fn descriptor_named(path: &Path) -> Option<u32> {
+    use std::path::Component;
+    let mut components = path.components();
+    if components.next() != Some(Component::RootDir) {
+        return None;
+    }
+    let mut parts = Vec::new();
+    for component in components {
+        match component {
+            Component::Normal(part) => parts.push(part.to_str()?),
+            _ => return None,
+        }
+    }
+    let number = |text: &str| -> Option<u32> {
+        let canonical =
+            text.bytes().all(|b| b.is_ascii_digit()) && !(text.len() > 1 && text.starts_with('0'));
+        canonical.then(|| text.parse().ok()).flatten()
+    };
+    match parts[..] {
+        ["dev", "stdin"] => Some(0),
+        ["dev", "stdout"] => Some(1),
+        ["dev", "stderr"] => Some(2),
+        ["dev", "fd", n] => number(n),
+        ["proc", process, "fd", n]
+            if process == "self"
+                || process == "thread-self"
+                || number(process) == Some(std::process::id()) =>
+        {
+            number(n)
+        }
+        _ => None,
+    }
+}
+
+/// Where `path` finally leads, following symbolic links.
+enum Resolved {
+    /// The name of a file, which need not exist.
+    File(PathBuf),
+    /// One of this process's open descriptors ([`descriptor_named`]).
+    Descriptor(u32),
+    /// Another name under `/proc` (another process's descriptor): an open stream, not a place
+    /// to put a file.
+    Proc,
+}
+
+/// Follows `path` through symbolic links to the name of the file they finally lead to. A
+/// relative link is read from the directory holding it. A name of one of this process's
+/// descriptors met on the way (the path itself, or a link to `/dev/stdout`) is that
+/// descriptor: the link behind it leads to whatever file the descriptor has open, which is
+/// not the file to replace.
+fn resolve_links(path: &Path) -> io::Result<Resolved> {
     let mut current = path.to_path_buf();
     // The kernel gives up after 40 links; so do we.
     for _ in 0..40 {
+        if let Some(fd) = descriptor_named(&current) {
+            return Ok(Resolved::Descriptor(fd));
+        }
         match fs::symlink_metadata(&current) {
             Ok(meta) if meta.file_type().is_symlink() => {
                 let link = fs::read_link(&current)?;
@@ -82,14 +158,52 @@ fn resolve_links(path: &Path) -> io::Result<Option<PathBuf>> {
                     Some(dir) if link.is_relative() => dir.join(link),
                     _ => link,
                 };
-                if current.starts_with("/proc") {
-                    return Ok(None);
+                if descriptor_named(&current).is_none() && current.starts_with("/proc") {
+                    return Ok(Resolved::Proc);
                 }
             }
-            _ => return Ok(Some(current)),
+            _ => return Ok(Resolved::File(current)),
         }
     }
     Err(io::Error::other("too many levels of symbolic links"))
+}
+
+/// Whether descriptor `fd` of this process was opened for appending (`3>>FILE`), by the
+/// kernel's `/proc/self/fdinfo`; `None` where that cannot be read.
+fn descriptor_appends(fd: u32) -> Option<bool> {
+    let info = fs::read_to_string(format!("/proc/self/fdinfo/{fd}")).ok()?;
+    let flags = info.lines().find_map(|l| l.strip_prefix("flags:"))?;
+    let flags = u32::from_str_radix(flags.trim(), 8).ok()?;
+    // O_APPEND, 02000 on Linux.
+    Some(flags & 0o2000 != 0)
+}
+
+/// The destination for descriptor `fd` named by `path`.
+fn descriptor_destination(path: &Path, shown: String, fd: u32) -> Result<Destination, CliError> {
+    match fd {
+        0 => Err(CliError::Usage(format!(
+            "-o {shown} is standard input, which cannot be written; use -o - for standard output"
+        ))),
+        1 => Ok(Destination::Stdout),
+        2 => Ok(Destination::Stderr),
+        _ => {
+            let meta = fs::metadata(path).map_err(|e| file_error(&shown, e))?;
+            if meta.is_file() && descriptor_appends(fd) == Some(false) {
+                return Err(file_error(
+                    &shown,
+                    io::Error::other(format!(
+                        "descriptor {fd} holds a regular file not opened for appending, which \
+                         condt can only reopen, at an offset of its own that would overwrite \
+                         what is written to it after the run; use `-o - >&{fd}`, or `{fd}>>FILE`"
+                    )),
+                ));
+            }
+            Ok(Destination::Direct {
+                path: path.to_path_buf(),
+                shown,
+            })
+        }
+    }
 }
 
 /// The directory a file named `path` lives in (`.` for a bare name).
@@ -225,7 +339,8 @@ pub(crate) fn refuse_same_file(
 
 impl Destination {
     /// Finds out what `path` names (`None`: standard output) and, for a file to be replaced,
-    /// creates the temporary file now.
+    /// checks now that the temporary file can be made beside it (made and removed at once: the
+    /// one it is written through is made when the result is ready).
     pub(crate) fn prepare(path: Option<&Path>) -> Result<Destination, CliError> {
         let Some(path) = path else {
             return Ok(Destination::Stdout);
@@ -239,13 +354,19 @@ impl Destination {
                 io::Error::other("names a directory (it ends with a slash); -o needs a file name"),
             ));
         }
+        // One of this process's descriptors, whatever file it has open (`/dev/stdout` when
+        // standard output is a file, a link to it): written through, never opened by its name.
+        let resolved = resolve_links(path).map_err(|e| file_error(&shown, e));
+        if let Ok(Resolved::Descriptor(fd)) = resolved {
+            return descriptor_destination(path, shown, fd);
+        }
         match fs::metadata(path) {
             Ok(meta) if meta.is_dir() => Err(file_error(
                 &shown,
                 io::Error::other("is a directory; -o needs a file name"),
             )),
             Ok(meta) if meta.is_file() => {
-                let Some(target) = resolve_links(path).map_err(|e| file_error(&shown, e))? else {
+                let Resolved::File(target) = resolved? else {
                     return Ok(Destination::Direct {
                         path: path.to_path_buf(),
                         shown,
@@ -257,34 +378,29 @@ impl Destination {
                     .write(true)
                     .open(path)
                     .map_err(|e| file_error(&shown, e))?;
+                let in_place = Destination::InPlace {
+                    path: path.to_path_buf(),
+                    shown: shown.clone(),
+                };
                 if has_other_names(&meta) {
                     // Renaming would part this name from the others: write into the file.
-                    return Ok(Destination::InPlace {
-                        path: path.to_path_buf(),
-                        shown,
-                    });
+                    return Ok(in_place);
                 }
                 let temp = match temporary_beside(&target, false) {
                     Ok(temp) => temp,
                     // A writable file in a directory we may not add to: write it as `>` would.
-                    Err(e) if e.kind() == io::ErrorKind::PermissionDenied => {
-                        return Ok(Destination::InPlace {
-                            path: path.to_path_buf(),
-                            shown,
-                        })
-                    }
+                    Err(e) if e.kind() == io::ErrorKind::PermissionDenied => return Ok(in_place),
                     Err(e) => return Err(file_error(&shown, e)),
                 };
+                // The trial file goes when `temp` is dropped, whatever the answer.
                 match take_over_attributes(temp.as_file(), &meta) {
                     Ok(true) => Ok(Destination::Replace {
-                        temp,
                         target,
-                        shown,
-                    }),
-                    Ok(false) => Ok(Destination::InPlace {
+                        original: Some(meta),
                         path: path.to_path_buf(),
                         shown,
                     }),
+                    Ok(false) => Ok(in_place),
                     Err(e) => Err(file_error(&shown, e)),
                 }
             }
@@ -293,17 +409,30 @@ impl Destination {
                 shown,
             }),
             Err(e) if e.kind() == io::ErrorKind::NotFound => {
-                let Some(target) = resolve_links(path).map_err(|e| file_error(&shown, e))? else {
+                let Resolved::File(target) = resolved? else {
                     return Err(file_error(&shown, e));
                 };
-                let temp = temporary_beside(&target, true).map_err(|e| file_error(&shown, e))?;
+                // Made and removed: the directory takes a new file.
+                drop(temporary_beside(&target, true).map_err(|e| file_error(&shown, e))?);
                 Ok(Destination::Replace {
-                    temp,
                     target,
+                    original: None,
+                    path: path.to_path_buf(),
                     shown,
                 })
             }
             Err(e) => Err(file_error(&shown, e)),
+        }
+    }
+
+    /// Whether the output goes to a terminal the progress bar may be drawn on (standard output
+    /// or standard error, when they are one): the bar is then taken away before writing.
+    pub(crate) fn is_terminal(&self) -> bool {
+        use std::io::IsTerminal;
+        match self {
+            Destination::Stdout => io::stdout().is_terminal(),
+            Destination::Stderr => io::stderr().is_terminal(),
+            _ => false,
         }
     }
 
@@ -321,9 +450,16 @@ impl Destination {
                     .and_then(|()| out.flush())
                     .map_err(|e| stream_error("<stdout>", e))
             }
+            Destination::Stderr => {
+                let stderr = io::stderr();
+                let mut out = BufWriter::new(stderr.lock());
+                write(&mut out)
+                    .and_then(|()| out.flush())
+                    .map_err(|e| stream_error("<stderr>", e))
+            }
             Destination::Direct { path, shown } => {
                 // No create, no truncate: a device or a pipe is written, never made or cut; a
-                // regular file reached as a stream (`-o /dev/stdout >> log`) is appended to, as
+                // regular file reached as a stream (`-o /dev/fd/3 3>> log`) is appended to, as
                 // the stream would be.
                 let file = fs::OpenOptions::new()
                     .append(true)
@@ -334,35 +470,27 @@ impl Destination {
                     .and_then(|()| out.flush())
                     .map_err(|e| stream_error(&shown, e))
             }
-            Destination::InPlace { path, shown } => {
-                let mut bytes = Vec::new();
-                write(&mut bytes).map_err(|e| file_error(&shown, e))?;
-                let mut file = fs::OpenOptions::new()
-                    .write(true)
-                    .open(&path)
-                    .map_err(|e| file_error(&shown, e))?;
-                // Overwrite first and cut the tail after, so a failure before the first byte
-                // leaves the old content whole.
-                file.write_all(&bytes)
-                    .and_then(|()| file.set_len(bytes.len() as u64))
-                    .and_then(|()| file.sync_all())
-                    .map_err(|e| {
-                        file_error(
-                            &shown,
-                            io::Error::new(
-                                e.kind(),
-                                format!(
-                                    "{e} (it was being rewritten in place and may be incomplete)"
-                                ),
-                            ),
-                        )
-                    })
-            }
+            Destination::InPlace { path, shown } => write_in_place(&path, &shown, write),
             Destination::Replace {
-                temp,
                 target,
+                original,
+                path,
                 shown,
             } => {
+                // Made now, with the result ready: a run that died computing it left nothing.
+                let temp = temporary_beside(&target, original.is_none())
+                    .map_err(|e| file_error(&shown, e))?;
+                if let Some(original) = &original {
+                    match take_over_attributes(temp.as_file(), original) {
+                        Ok(true) => {}
+                        // The owner could be kept when the run started and no longer can.
+                        Ok(false) => {
+                            drop(temp);
+                            return write_in_place(&path, &shown, write);
+                        }
+                        Err(e) => return Err(file_error(&shown, e)),
+                    }
+                }
                 let result = (|| {
                     let mut out = BufWriter::new(temp.as_file());
                     write(&mut out)?;
@@ -377,6 +505,34 @@ impl Destination {
             }
         }
     }
+}
+
+/// Rewrites the regular file `path` with what `write` writes, formatted whole first.
+fn write_in_place(
+    path: &Path,
+    shown: &str,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), CliError> {
+    let mut bytes = Vec::new();
+    write(&mut bytes).map_err(|e| file_error(shown, e))?;
+    let mut file = fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .map_err(|e| file_error(shown, e))?;
+    // Overwrite first and cut the tail after, so a failure before the first byte leaves the old
+    // content whole.
+    file.write_all(&bytes)
+        .and_then(|()| file.set_len(bytes.len() as u64))
+        .and_then(|()| file.sync_all())
+        .map_err(|e| {
+            file_error(
+                shown,
+                io::Error::new(
+                    e.kind(),
+                    format!("{e} (it was being rewritten in place and may be incomplete)"),
+                ),
+            )
+        })
 }
 
 /// A write error on a stream: a reader that went away (`| head`) is not an error to report.

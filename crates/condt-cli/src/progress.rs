@@ -109,7 +109,7 @@ impl Progress {
         };
         self.phase(template, size, Cow::Owned(shown.to_string()));
         if let (Some(bar), Some(counter)) = (&self.bar, counter) {
-            self.watcher = Some(Watcher::start(bar.clone(), counter, size));
+            self.watcher = Watcher::start(bar.clone(), counter, size);
         }
     }
 
@@ -154,7 +154,9 @@ impl Progress {
         };
         let (stop, stopped) = mpsc::channel::<()>();
         std::thread::scope(|scope| {
-            scope.spawn(move || {
+            // A thread that cannot be started (a limit on threads or memory) leaves the bar
+            // where it is: the work runs all the same.
+            let _ = std::thread::Builder::new().spawn_scoped(scope, move || {
                 while let Err(mpsc::RecvTimeoutError::Timeout) = stopped.recv_timeout(TICK) {
                     bar.set_position(inserted.load(Ordering::Relaxed) as u64);
                 }
@@ -321,16 +323,20 @@ struct Watcher {
 }
 
 impl Watcher {
-    fn start(bar: ProgressBar, mut counter: ReadCounter, size: Option<u64>) -> Watcher {
+    /// `None` when the thread cannot be started (a limit on threads or memory): the bar then
+    /// stays still, and the run goes on.
+    fn start(bar: ProgressBar, mut counter: ReadCounter, size: Option<u64>) -> Option<Watcher> {
         let (stop, stopped) = mpsc::channel();
-        let thread = std::thread::spawn(move || {
-            while let Err(mpsc::RecvTimeoutError::Timeout) = stopped.recv_timeout(TICK) {
-                if let Some(read) = counter.read() {
-                    bar.set_position(size.map_or(read, |size| read.min(size)));
+        let thread = std::thread::Builder::new()
+            .spawn(move || {
+                while let Err(mpsc::RecvTimeoutError::Timeout) = stopped.recv_timeout(TICK) {
+                    if let Some(read) = counter.read() {
+                        bar.set_position(size.map_or(read, |size| read.min(size)));
+                    }
                 }
-            }
-        });
-        Watcher { stop, thread }
+            })
+            .ok()?;
+        Some(Watcher { stop, thread })
     }
 
     fn stop(self) {

@@ -7,7 +7,7 @@
 //! An edge file holds one edge `i j` per line (0-based point numbers); `#` lines and blank lines
 //! are skipped; its lines are split as point files' are ([`condt_io::text_lines`]: LF, CRLF or
 //! CR-only line ends, a byte-order mark at the start skipped). A name ending in `.npy` is a
-//! NumPy array of shape `(m, 2)`, uint32 or int64, as `condt reconstruct -o out.npy` writes it
+//! NumPy array of shape `(m, 2)` of any integer type, as `condt reconstruct -o out.npy` writes it
 //! ([`condt_io::parse_npy_edges`]), its problems told by row. `-` reads text from standard input,
 //! for one of the three files.
 //!
@@ -16,9 +16,11 @@
 //! problem is reported with its line; a malformed TRUTH is an error. A file that is not an edge
 //! list at all is an error whichever it is: bytes that are not text (not UTF-8, a NUL byte, a
 //! NumPy array under another name), an `.npy` array of another dtype or shape, or text of which
-//! no line is an edge. There this command parts from the suite's scorer, which reads any file
-//! (undecodable bytes replaced) and scores such an output 0: a user handing it a wrong file is
-//! told so. Messages quote a line escaped and cut short, never the file's raw bytes.
+//! no line is an edge though some line holds something (an empty file, or one of comments and
+//! blank lines only, is an empty edge list). There this command parts from the suite's scorer,
+//! which reads any file (undecodable bytes replaced) and scores such an output 0: a user handing
+//! it a wrong file is told so. Messages quote a line escaped and cut short, never the file's raw
+//! bytes.
 
 use crate::cli::{usage, CliError};
 use crate::options::{self, Opt};
@@ -51,7 +53,9 @@ truth (each output edge sampled at 0, 1/4, 1/2, 3/4 and 1 of its length), over t
 the points' bounding box. A malformed OUTPUT (a bad line among edges, a point that does not
 exist, a self-loop, a repeated edge) scores 0 and its first problem is printed with its line
 (row, for .npy); a malformed TRUTH is an error. A file that is not an edge list (not text, an
-array of another dtype or shape, text with no edge line) is an error, OUTPUT or TRUTH.
+array of another dtype or shape, text with lines but none of them an edge) is an error, OUTPUT
+or TRUTH; an empty file, or one of comments and blank lines only, is an empty edge list (an
+empty OUTPUT scores 0 against any edge of TRUTH).
 The metrics are those of the evaluation suite's score.py.
 ";
 
@@ -231,7 +235,10 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
             .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
     if npy {
         // A row with a negative number is a malformed output's problem (scored 0, told by its
-        // row), as a text line `-1 0` is; its edge is left out, as that line is.
+        // row), as a text line `-1 0` is; its edge is left out, as that line is. A number too
+        // large for any point is kept, as the same number in a text line is, for the library
+        // to find that the point does not exist (scored 0 likewise); only one beyond what a
+        // point number can hold here (on a 32-bit system) is the row's problem.
         let mut read = EdgeFile {
             name,
             edges: Vec::new(),
@@ -249,8 +256,14 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
                     rows.push(row);
                 }
                 _ if read.bad_line.is_none() => {
-                    let v = pair.into_iter().find(|&v| v < 0).unwrap_or(pair[0]);
-                    read.bad_line = Some((row, format!("point number {v} is negative")));
+                    let why = match pair.into_iter().find(|&v| v < 0) {
+                        Some(v) => format!("point number {v} is negative"),
+                        None => {
+                            let v = pair.into_iter().max().unwrap_or_default();
+                            format!("point number {v} is too large")
+                        }
+                    };
+                    read.bad_line = Some((row, why));
                 }
                 _ => {}
             }

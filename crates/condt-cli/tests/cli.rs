@@ -274,6 +274,72 @@ fn help_and_version() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+/// `help COMMAND`, `--help` and `--version` refuse an argument after them, as every command
+/// refuses an extra one (a reviewer's report: `condt help score extra` and `condt -V x`
+/// ignored it, exit 0).
+#[test]
+fn help_and_version_refuse_extra_arguments() {
+    for (args, said) in [
+        (
+            &["help", "score", "extra"][..],
+            "unexpected extra argument extra",
+        ),
+        (
+            &["help", "reconstruct", "-o"],
+            "unexpected extra argument -o",
+        ),
+        (&["-V", "x"], "-V takes no argument; unexpected x"),
+        (
+            &["--version", "x"],
+            "--version takes no argument; unexpected x",
+        ),
+        (
+            &["--version", "--help"],
+            "--version takes no argument; unexpected --help",
+        ),
+        (
+            &["--help", "score"],
+            "--help takes no argument; unexpected score",
+        ),
+        (&["-h", "x", "y"], "-h takes no argument; unexpected x"),
+    ] {
+        let out = condt(args, "");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+        assert!(stderr.contains(said), "{args:?}: {stderr}");
+        assert!(stderr.contains("condt --help"), "{args:?}: {stderr}");
+    }
+    for args in [&["help", "score"][..], &["-V"], &["--help"], &["help"]] {
+        assert!(condt(args, "").status.success(), "{args:?}");
+    }
+}
+
+/// A text whose only line with columns is words that name no x and y (an error message saved
+/// in place of the points) is refused, naming its file and line; a header that names x and y
+/// with no point after it is an empty point file (a reviewer's report: `Error: file not found`
+/// alone read as a header, 0 points, exit 0).
+#[test]
+fn a_lone_line_of_words_is_not_an_empty_point_file() {
+    for input in ["Error: file not found\n", "# points\na b\n", "Error\n"] {
+        let out = condt(&["reconstruct", "-"], input);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{input:?}: {stderr}");
+        assert!(out.stdout.is_empty(), "{input:?}");
+        assert!(stderr.contains("<stdin>:"), "{input:?}: {stderr}");
+        assert!(stderr.contains("no point: line"), "{input:?}: {stderr}");
+    }
+    for input in ["x y\n", "# none yet\nlon,lat\n", "X Y z\n# end\n", ""] {
+        let out = condt(&["triangulate", "-"], input);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{input:?}: {stderr}");
+        assert!(out.stdout.is_empty(), "{input:?}");
+    }
+    let help = String::from_utf8(condt(&["--help"], "").stdout).unwrap();
+    let flat = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(flat.contains("empty only if it names x and y"), "{help}");
+}
+
 /// Runs a command line expected to be refused, and returns what it said.
 fn refused(args: &[&str]) -> String {
     let out = condt(args, "0 0\n1 0\n0 1\n");

@@ -124,6 +124,35 @@ fn find_temporary(dir: &Path, except: &Path, patience: Duration) -> Option<PathB
     }
 }
 
+/// Waits (up to a minute) until the run `pid` has prepared its output and sleeps reading its
+/// input: it catches SIGTERM (it starts to while preparing the output, before reading) and its
+/// main thread is asleep (in the read).
+fn wait_until_reading(pid: u32) {
+    let start = Instant::now();
+    loop {
+        let status = fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
+        let field = |name: &str| {
+            status
+                .lines()
+                .find_map(|l| l.strip_prefix(name))
+                .map(|v| v.trim().to_string())
+                .unwrap_or_default()
+        };
+        let caught = u64::from_str_radix(&field("SigCgt:"), 16).unwrap_or(0);
+        let sleeping = field("State:").starts_with('S');
+        if caught & (1 << (libc::SIGTERM - 1)) != 0 && sleeping {
+            // Past the last steps of preparing, should the state have been read between them.
+            std::thread::sleep(Duration::from_millis(50));
+            return;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "the run never came to read its input"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
 /// `condt triangulate - -o OUT` with `stdin` as the input.
 fn triangulate_to(out: &Path, stdin: &str) -> Output {
     condt(
@@ -368,27 +397,15 @@ fn the_temporary_file_is_random_exclusive_and_cannot_be_hijacked() {
     // The name the tool once used, planted while it waits for its input.
     let planted = dir.path().join(format!(".out.txt.{}.partial", child.id()));
     std::os::unix::fs::symlink(&victim, &planted).unwrap();
-    // This tool prepares its output before it reads its input, so it has its own temporary
-    // file by now (a tool that reads first has none yet: the wait then ends empty-handed).
-    let temporary = find_temporary(dir.path(), &planted, Duration::from_secs(10));
-    if let Some(temporary) = &temporary {
-        let meta = fs::symlink_metadata(temporary).unwrap();
-        assert!(meta.is_file(), "a file of its own, not a link");
-        assert_eq!(
-            meta.permissions().mode() & 0o777,
-            0o600,
-            "the original's mode from the start"
-        );
-        let name = temporary
-            .file_name()
-            .unwrap()
-            .to_string_lossy()
-            .into_owned();
-        assert!(
-            !name.contains(&child.id().to_string()),
-            "{name} is not named by the process id"
-        );
-    }
+    // The tool checks its output before it reads its input, but makes its temporary file only
+    // once the result is ready: none while it reads (see
+    // `a_run_killed_before_its_result_is_ready_leaves_nothing_beside_the_output`).
+    wait_until_reading(child.id());
+    assert_eq!(
+        find_temporary(dir.path(), &planted, Duration::ZERO),
+        None,
+        "no temporary file while the run reads its input"
+    );
     child
         .stdin
         .take()
@@ -408,10 +425,14 @@ fn the_temporary_file_is_random_exclusive_and_cannot_be_hijacked() {
         "the output is a file, not a link to the victim"
     );
     assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
-    assert!(
-        temporary.is_some(),
-        "the temporary file exists while the run waits for input"
+    assert_eq!(
+        fs::metadata(&target).unwrap().permissions().mode() & 0o777,
+        0o600,
+        "the original's mode"
     );
+    let mut left = names(dir.path());
+    left.retain(|n| n.starts_with(".condt."));
+    assert!(left.is_empty(), "{left:?}");
 }
 
 /// A run that has prepared its output and waits for its input, then gets `signal`. The run starts
@@ -446,8 +467,7 @@ fn interrupted(signal: &str, number: i32) {
     let mut stdin = child.stdin.take().unwrap();
     stdin.write_all(b"0 0\n1 0\n").unwrap();
     stdin.flush().unwrap();
-    let temporary = find_temporary(dir.path(), &target, Duration::from_secs(60))
-        .expect("a temporary file while the run reads its input");
+    wait_until_reading(child.id());
     let status = Command::new("kill")
         .args([format!("-{signal}"), child.id().to_string()])
         .status()
@@ -461,9 +481,125 @@ fn interrupted(signal: &str, number: i32) {
         "ended by SIG{signal}: {:?}",
         out.status
     );
-    assert!(!temporary.exists(), "{} is removed", temporary.display());
     assert_eq!(names(dir.path()), ["out.txt"]);
     assert_eq!(fs::read_to_string(&target).unwrap(), "previous content\n");
+}
+
+/// A run that dies before its result is ready (here by SIGKILL, which cannot be caught, as
+/// running out of memory aborts a run) leaves nothing beside its output: the temporary file is
+/// made only when the result is written (a reviewer's report: under `ulimit -v`, an abort in
+/// the computation left an empty `.condt.XXXXXX.tmp`, made before the input was read).
+#[test]
+fn a_run_killed_before_its_result_is_ready_leaves_nothing_beside_the_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("out.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    let new_target = dir.path().join("new.txt");
+    for (out, old) in [(&target, Some("previous content\n")), (&new_target, None)] {
+        let mut child = spawn(
+            &[
+                "triangulate".as_ref(),
+                "-".as_ref(),
+                "-o".as_ref(),
+                out.as_os_str(),
+            ],
+            Stdio::piped(),
+        );
+        let mut stdin = child.stdin.take().unwrap();
+        stdin.write_all(b"0 0\n1 0\n").unwrap();
+        stdin.flush().unwrap();
+        wait_until_reading(child.id());
+        child.kill().unwrap();
+        let status = child.wait().unwrap();
+        drop(stdin);
+        assert_eq!(status.signal(), Some(libc::SIGKILL));
+        assert_eq!(names(dir.path()), ["out.txt"], "{}", out.display());
+        assert_eq!(
+            fs::read_to_string(&target).ok().as_deref(),
+            Some("previous content\n")
+        );
+        assert_eq!(fs::read_to_string(out).ok().as_deref(), old);
+    }
+    // An output that cannot be written is still told before the input is read: the run does
+    // not wait for an input that never comes.
+    let missing = dir.path().join("no/such/dir/out.txt");
+    let mut child = spawn(
+        &[
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            missing.as_os_str(),
+        ],
+        Stdio::piped(),
+    );
+    let _stdin = child.stdin.take().unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("cannot create the temporary file"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// `-o /dev/stdout`, `/dev/fd/1`, `/proc/self/fd/1` (and a link to one) write to standard
+/// output as `-o -` does, through the descriptor the run was given: when that is a regular
+/// file, what is written to it before and after the run stays (a reviewer's report: `{ echo a;
+/// condt … -o /dev/fd/1; echo b; } > all.txt` replaced all.txt by a new file, and `-o
+/// /dev/stdout` wrote from an offset of its own, over what came after). `/dev/stderr` writes
+/// to standard error alike; `/dev/stdin` is refused.
+#[test]
+fn a_name_of_an_open_descriptor_writes_through_that_descriptor() {
+    let dir = tempfile::tempdir().unwrap();
+    let link = dir.path().join("link");
+    std::os::unix::fs::symlink("/dev/stdout", &link).unwrap();
+    let expected = square_triangles();
+    for name in [
+        "/dev/stdout",
+        "/dev/fd/1",
+        "/proc/self/fd/1",
+        "//dev/./fd/1",
+        link.to_str().unwrap(),
+    ] {
+        let path = dir.path().join("all.txt");
+        let mut file = fs::File::create(&path).unwrap();
+        file.write_all(b"# a\n").unwrap();
+        let mut child = Command::new(binary())
+            .args(["triangulate", "-", "-q", "-o", name])
+            .stdin(Stdio::piped())
+            .stdout(file.try_clone().unwrap())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(SQUARE.as_bytes())
+            .unwrap();
+        let out = child.wait_with_output().unwrap();
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        // The same open file, its offset moved by the run's writes.
+        file.write_all(b"# b\n").unwrap();
+        assert_eq!(
+            fs::read_to_string(&path).unwrap(),
+            format!("# a\n{expected}# b\n"),
+            "{name}"
+        );
+        fs::remove_file(&path).unwrap();
+    }
+    assert_eq!(names(dir.path()), ["link"]);
+    let out = condt(&["triangulate", "-", "-q", "-o", "/dev/stderr"], SQUARE);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(out.stdout.is_empty());
+    assert_eq!(stderr(&out), expected);
+    let out = condt(&["triangulate", "-", "-o", "/dev/stdin"], SQUARE);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("is standard input"),
+        "{}",
+        stderr(&out)
+    );
 }
 
 #[test]
@@ -745,8 +881,7 @@ fn ignored_signal_is_left_ignored(signal: libc::c_int) {
     let mut pipe = fs::OpenOptions::new().write(true).open(&input).unwrap();
     pipe.write_all(b"0 0\n1 0\n").unwrap();
     pipe.flush().unwrap();
-    find_temporary(dir.path(), &target, Duration::from_secs(60))
-        .expect("a temporary file while the run reads its input");
+    wait_until_reading(child.id());
     // SAFETY: a plain system call on the child's id.
     assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
     std::thread::sleep(Duration::from_millis(200));

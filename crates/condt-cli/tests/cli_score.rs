@@ -5,8 +5,13 @@ use condt_eval::sample::{sample, Sampling, Shape};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// The binary under test: this build's, or `CONDT_TEST_BIN` (to show a test fails on another).
+fn binary() -> std::ffi::OsString {
+    std::env::var_os("CONDT_TEST_BIN").unwrap_or_else(|| env!("CARGO_BIN_EXE_condt").into())
+}
+
 fn condt(args: &[&Path]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_condt"))
+    Command::new(binary())
         .args(args)
         .output()
         .expect("the binary runs")
@@ -549,4 +554,108 @@ fn no_output_edges_read_as_no_distance() {
     let text =
         String::from_utf8(condt(&[Path::new("score"), &points, &output, &truth]).stdout).unwrap();
     assert!(text.contains("of the box diagonal"), "{text}");
+}
+
+/// A point number past every point is the OUTPUT's problem in an array as in text, even past
+/// 2^63: the same edges score the same, 0 with the line (row) told, exit 0 (a reviewer's
+/// report: `0 18446744073709551615` scored 0 in text and was a hard error in a uint64 array).
+/// In TRUTH it is an error either way.
+#[test]
+fn a_point_number_past_every_point_scores_alike_in_text_and_in_an_array() {
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0\n1 0\n1 1\n0 1\n");
+    let truth = write(dir.path(), "t.edges", "0 1\n1 2\n2 3\n3 0\n");
+    for far in [7u64, 1 << 40, i64::MAX as u64, 1 << 63, u64::MAX] {
+        let text = write(dir.path(), "o.edges", &format!("0 1\n0 {far}\n"));
+        let array = dir.path().join("o.npy");
+        let data: Vec<u8> = [0u64, 1, 0, far]
+            .iter()
+            .flat_map(|i| i.to_le_bytes())
+            .collect();
+        std::fs::write(&array, npy("<u8", "(2, 2)", &data)).unwrap();
+        let from_text = score_json(&points, &text, &truth);
+        let from_array = score_json(&points, &array, &truth);
+        assert_eq!(json_value(&from_text, "f1"), "0.0", "{far}");
+        let said = format!("point {far} does not exist\"");
+        assert_eq!(
+            json_value(&from_text, "malformed"),
+            format!("\"line 2: {said}")
+        );
+        assert_eq!(
+            json_value(&from_array, "malformed"),
+            format!("\"row 1: {said}")
+        );
+        // The rest of the score is the same.
+        let without = |json: &str| json.replace(&json_value(json, "malformed"), "");
+        assert_eq!(without(&from_text), without(&from_array), "{far}");
+        for file in [&text, &array] {
+            let out = condt(&[Path::new("score"), &points, &truth, file]);
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{far}: {stderr}");
+            assert!(
+                stderr.contains(&format!("point {far} does not exist")),
+                "{stderr}"
+            );
+        }
+    }
+}
+
+/// An edge array cut inside its first 8 bytes (the magic string and the version) is a damaged
+/// array, said so, as from 8 bytes on (a reviewer's report: 6 and 7 bytes were said not to
+/// start with the magic string they start with).
+#[test]
+fn an_edge_array_cut_inside_its_magic_string_ends_inside_its_header() {
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0\n1 0\n1 1\n0 1\n");
+    let truth = write(dir.path(), "t.edges", "0 1\n1 2\n2 3\n3 0\n");
+    let whole = npy("<u4", "(1, 2)", &[0, 0, 0, 0, 1, 0, 0, 0]);
+    for cut in [1, 4, 6, 7, 8, 9, 40] {
+        let file = dir.path().join(format!("cut{cut}.npy"));
+        std::fs::write(&file, &whole[..cut]).unwrap();
+        assert_refused_either_way(
+            &points,
+            &truth,
+            &file,
+            &[&format!("cut{cut}.npy: the file ends inside its header")],
+        );
+    }
+}
+
+/// What the help says of files with no edge is what happens: an empty file, or one of comments
+/// and blank lines only, is an empty edge list, as OUTPUT (scored 0 against a truth with edges)
+/// and as TRUTH; text with lines but none of them an edge is an error (a reviewer's report:
+/// the help called every text with no edge line an error).
+#[test]
+fn a_file_without_edges_is_an_empty_edge_list_as_the_help_says() {
+    let help = String::from_utf8(condt(&[Path::new("help"), Path::new("score")]).stdout).unwrap();
+    let flat = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        flat.contains(
+            "an empty file, or one of comments and blank lines only, is an empty edge list"
+        ),
+        "{help}"
+    );
+    assert!(
+        !flat.contains("text with no edge line) is an error"),
+        "{help}"
+    );
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0\n1 0\n1 1\n0 1\n");
+    let truth = write(dir.path(), "t.edges", "0 1\n1 2\n2 3\n3 0\n");
+    for (name, text) in [
+        ("empty.edges", ""),
+        ("comments.edges", "# none\n\n  # here\n"),
+    ] {
+        let none = write(dir.path(), name, text);
+        let json = score_json(&points, &none, &truth);
+        assert_eq!(json_value(&json, "f1"), "0.0", "{name}");
+        assert_eq!(json_value(&json, "n_out"), "0", "{name}");
+        assert_eq!(json_value(&json, "malformed"), "null", "{name}");
+        let json = score_json(&points, &truth, &none);
+        assert_eq!(json_value(&json, "n_gt"), "0", "{name}");
+        let json = score_json(&points, &none, &none);
+        assert_eq!(json_value(&json, "exact"), "true", "{name}");
+    }
+    let words = write(dir.path(), "words.edges", "# edges\nnone here\n");
+    assert_refused_either_way(&points, &truth, &words, &["words.edges:2"]);
 }

@@ -1,7 +1,7 @@
 //! NumPy `.npy` files: points in (float64 or float32, shape `(n, 2)`) and out (float64,
 //! `write_npy_points`), indices out (edges
 //! `(m, 2)`, triangles `(t, 3)`, as uint32 when every index fits, int64 otherwise), and edges
-//! in again (`(m, 2)`, uint32 or int64: what is written out, for `condt score`).
+//! in again (`(m, 2)`, any signed or unsigned integer type, for `condt score`).
 //!
 //! Owns the NPY format (versions 1.0, 2.0 and 3.0 of NumPy's `format` module): the magic
 //! string, the version, the header length, the header (a Python dictionary literal with
@@ -323,6 +323,12 @@ fn read_header_text(reader: &mut dyn Read, file: &str) -> Result<(Vec<u8>, usize
     let io_error = |err: io::Error| IoError::os(file, err);
     let mut start = [0u8; 8];
     let got = read_up_to(reader, &mut start).map_err(io_error)?;
+    // Cut within the magic and the version (a file of 1 to 7 bytes that starts as one does): a
+    // damaged array, not some other file.
+    let magic = got.min(NPY_MAGIC.len());
+    if got < 8 && got > 0 && start[..magic] == NPY_MAGIC[..magic] {
+        return Err(content(file, "the file ends inside its header".to_string()));
+    }
     if got < 8 || &start[..6] != NPY_MAGIC {
         return Err(content(
             file,
@@ -607,9 +613,9 @@ impl Index {
         Some((Index { size, signed }, big_endian && size > 1))
     }
 
-    /// The number in `bytes` (exactly `size` of them), or `None` for an unsigned 64-bit one
-    /// beyond `i64` (no point number can be that large).
-    fn value(self, bytes: &[u8], big_endian: bool) -> Option<i64> {
+    /// The number in `bytes` (exactly `size` of them): every signed and unsigned width up to
+    /// 64 bits fits in `i128`.
+    fn value(self, bytes: &[u8], big_endian: bool) -> i128 {
         let mut wide = [0u8; 8];
         if big_endian {
             wide[8 - self.size..].copy_from_slice(bytes);
@@ -621,9 +627,9 @@ impl Index {
         if self.signed {
             // Sign-extend from the type's width.
             let shift = 64 - 8 * self.size as u32;
-            Some(((raw << shift) as i64) >> shift)
+            i128::from(((raw << shift) as i64) >> shift)
         } else {
-            i64::try_from(raw).ok()
+            i128::from(raw)
         }
     }
 }
@@ -668,13 +674,13 @@ pub fn parse_npy_edges(bytes: &[u8], file: &str) -> Result<Vec<[usize; 2]>, IoEr
     Ok(edges)
 }
 
-/// [`parse_npy_edges`] without judging the numbers: each row's two entries as they are (uint32
-/// and int64 both fit in `i64`), for a caller that tells a negative one as a problem of its
-/// row rather than of the file (`condt score` scores such an output 0, as it does a text line
-/// `-1 0`).
+/// [`parse_npy_edges`] without judging the numbers: each row's two entries as they are (every
+/// integer type, int64 and uint64 among them, fits in `i128`), for a caller that tells a
+/// negative or too large one as a problem of its row rather than of the file (`condt score`
+/// scores such an output 0, as it does a text line `-1 0` or `0 18446744073709551615`).
 ///
 /// # Errors
-/// As [`parse_npy_edges`], but for the negative numbers.
+/// As [`parse_npy_edges`], but for the negative and too large numbers.
 ///
 /// ```
 /// use condt_io::{parse_npy_edges, parse_npy_index_rows};
@@ -689,7 +695,7 @@ pub fn parse_npy_edges(bytes: &[u8], file: &str) -> Result<Vec<[usize; 2]>, IoEr
 /// assert_eq!(err.to_string(), "out.npy: row 1: point number -1 is negative");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, IoError> {
+pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i128; 2]>, IoError> {
     let mut reader = bytes;
     let (text, header_length) = read_header_text(&mut reader, file)?;
     let Entries {
@@ -753,15 +759,9 @@ pub fn parse_npy_index_rows(bytes: &[u8], file: &str) -> Result<Vec<[i64; 2]>, I
             2 * row + column
         }
     };
-    (0..rows)
-        .map(|row| match (value(at(row, 0)), value(at(row, 1))) {
-            (Some(a), Some(b)) => Ok([a, b]),
-            _ => Err(content(
-                file,
-                format!("row {row}: a point number beyond 2^63 is too large"),
-            )),
-        })
-        .collect()
+    Ok((0..rows)
+        .map(|row| [value(at(row, 0)), value(at(row, 1))])
+        .collect())
 }
 
 /// A version 1.0 header (version 2.0 when the dictionary is over 65,535 bytes, which no shape
@@ -1025,7 +1025,7 @@ mod tests {
             (">u8", big(8)),
         ] {
             let read = parse_npy_index_rows(&index_file(descr, &data), "e.npy").unwrap();
-            assert_eq!(read, rows, "{descr}");
+            assert_eq!(read, rows.map(|r| r.map(i128::from)), "{descr}");
         }
         let bytes: Vec<u8> = [0u8, 1, 1, 255].to_vec();
         assert_eq!(
@@ -1047,14 +1047,23 @@ mod tests {
             err.unwrap_err().to_string(),
             "e.npy: row 1: point number -1 is negative"
         );
+        // uint64 beyond i64 is read as it is, for the caller to judge (`condt score` scores
+        // it as a point that does not exist, as it does the same number in a text line).
         let huge: Vec<u8> = [0u64, 1, 1, u64::MAX]
             .iter()
             .flat_map(|v| v.to_le_bytes())
             .collect();
-        let err = parse_npy_index_rows(&index_file("<u8", &huge), "e.npy").unwrap_err();
         assert_eq!(
-            err.to_string(),
-            "e.npy: row 1: a point number beyond 2^63 is too large"
+            parse_npy_index_rows(&index_file("<u8", &huge), "e.npy").unwrap(),
+            [[0, 1], [1, i128::from(u64::MAX)]]
+        );
+        let huge_i64: Vec<u8> = [0i64, 1, i64::MIN, i64::MAX]
+            .iter()
+            .flat_map(|v| v.to_be_bytes())
+            .collect();
+        assert_eq!(
+            parse_npy_index_rows(&index_file(">i8", &huge_i64), "e.npy").unwrap(),
+            [[0, 1], [i128::from(i64::MIN), i128::from(i64::MAX)]]
         );
         for descr in ["<f8", "|b1", "<c16", "<i3", "<U4"] {
             let err = parse_npy_index_rows(&index_file(descr, &[0; 32]), "e.npy").unwrap_err();

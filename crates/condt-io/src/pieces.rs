@@ -77,15 +77,30 @@ pub(super) fn write_pieces(
 ) -> io::Result<()> {
     let piece = piece.max(1);
     // Not from inside a rayon job: the calling thread waits on a channel for the batches, and
-    // were every worker of the pool waiting so, no thread would be left to format them.
+    // were every worker of the pool waiting so, no thread would be left to format them. (Asked
+    // first: inside a one-thread pool nothing below starts rayon's global pool.) When the
+    // formatting thread cannot be started (a limit on threads or memory), the pieces are
+    // formatted here, the same bytes.
     #[cfg(feature = "parallel")]
-    if condt::parallel_available()
-        && rayon::current_num_threads() >= 2
-        && rayon::current_thread_index().is_none()
+    if rayon::current_thread_index().is_none()
         && units > piece
+        && condt::parallel_available()
+        && rayon::current_num_threads() >= 2
     {
-        return parallel::write_pieces(out, units, piece, format);
+        if let Some(written) = parallel::write_pieces(out, units, piece, format) {
+            return written;
+        }
     }
+    sequentially(out, units, piece, format)
+}
+
+/// [`write_pieces`] on the calling thread alone.
+fn sequentially(
+    out: &mut dyn Write,
+    units: usize,
+    piece: usize,
+    format: &Format<'_>,
+) -> io::Result<()> {
     let mut buf = Vec::new();
     let mut start = 0;
     while start < units {
@@ -128,13 +143,14 @@ mod parallel {
     /// of their own that hands each batch to this one to write (the writer need not be
     /// `Send`: a locked standard output is not). Written buffers go back to be formatted into
     /// again, so the memory is touched once. A failed write ends the run: the formatting thread
-    /// finds the channel closed and stops.
+    /// finds the channel closed and stops. `None` when the formatting thread cannot be started
+    /// (nothing is written then).
     pub(super) fn write_pieces(
         out: &mut dyn Write,
         units: usize,
         piece: usize,
         format: &Format<'_>,
-    ) -> io::Result<()> {
+    ) -> Option<io::Result<()>> {
         let batch = 2 * rayon::current_num_threads();
         let ranges: Vec<core::ops::Range<usize>> = (0..units)
             .step_by(piece)
@@ -145,7 +161,7 @@ mod parallel {
             let (batches, formatted) = mpsc::sync_channel::<Vec<Formatted>>(1);
             let (recycle, recycled) = mpsc::channel::<Vec<Vec<u8>>>();
             let ranges = &ranges;
-            scope.spawn(move || {
+            let spawned = std::thread::Builder::new().spawn_scoped(scope, move || {
                 let mut spare: Vec<Vec<u8>> = Vec::new();
                 for group in ranges.chunks(batch) {
                     spare.extend(recycled.try_iter().flatten());
@@ -165,14 +181,19 @@ mod parallel {
                     }
                 }
             });
-            for done in formatted {
-                for (buf, used) in &done {
-                    out.write_all(&buf[..*used])?;
-                }
-                // The formatting thread may have finished: then the buffers are just freed.
-                let _ = recycle.send(done.into_iter().map(|(buf, _)| buf).collect());
+            if spawned.is_err() {
+                return None;
             }
-            Ok(())
+            Some((|| {
+                for done in formatted {
+                    for (buf, used) in &done {
+                        out.write_all(&buf[..*used])?;
+                    }
+                    // The formatting thread may have finished: then the buffers are just freed.
+                    let _ = recycle.send(done.into_iter().map(|(buf, _)| buf).collect());
+                }
+                Ok(())
+            })())
         })
     }
 }

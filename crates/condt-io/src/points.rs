@@ -411,6 +411,10 @@ struct Parsed {
     /// must know whether its first piece held the file's first line with columns, asks.
     #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
     seen_content: bool,
+    /// The line skipped as a header, if any: its number, and whether it names x and y over
+    /// the first two columns (`x y`, `lon lat`), which alone makes a file with no point after
+    /// it an empty point file rather than some other text ([`header_alone`]).
+    header: Option<(usize, bool)>,
 }
 
 /// Parses the lines of `text` (a whole file, or whole lines of one; numbered from 1) into
@@ -440,6 +444,7 @@ fn lines_by<const ONE_PASS: bool>(
         let _ = points.try_reserve_exact(expected_points.min(MAX_POINTS));
     }
     let mut seen_content = !may_hold_header;
+    let mut header = None;
     let mut first_data_line = None;
     let mut all_three_columns = true;
     let (mut start, mut number) = (0, 0);
@@ -479,6 +484,7 @@ fn lines_by<const ONE_PASS: bool>(
                 if !core::mem::replace(&mut seen_content, true) && fields.iter().all(|f| is_name(f))
                 {
                     check_header(&fields).map_err(|message| source.error(number, message))?;
+                    header = Some((number, names_x_and_y(&fields)));
                     continue; // a header
                 }
                 Row::from_columns(&fields)
@@ -529,7 +535,33 @@ fn lines_by<const ONE_PASS: bool>(
         all_three_columns,
         first_data_line,
         seen_content,
+        header,
     })
+}
+
+/// Whether a header's first two names are x and y (`x y`, `X Y z`, `lon lat`, `"lng","lat"`).
+fn names_x_and_y(fields: &[&str]) -> bool {
+    matches!(
+        fields,
+        [x, y, ..] if crate::csv::axis_named(x) == Some('x') && crate::csv::axis_named(y) == Some('y')
+    )
+}
+
+/// The refusal of a file whose only line with columns was taken for a header that does not
+/// name x and y (`Error: file not found`, a log line, a title): with no point after it, nothing
+/// says it is a point file at all, and reading it as an empty one would hide the mistake.
+fn header_alone(source: &Source<'_>, text: &str, line: usize) -> IoError {
+    let shown = numbered_lines(text)
+        .find(|&(number, _)| number == line)
+        .map_or("", |(_, l)| l.split('#').next().unwrap_or("").trim());
+    source.error(
+        line,
+        format!(
+            "no point: line {line} is not a point ({}), and no point follows it; a file \
+             without points may hold a header only when it names the x and y columns (`x y`)",
+            quoted(shown)
+        ),
+    )
 }
 
 /// The start of an index column, when the first of three columns counts 0, 1, 2, … or
@@ -607,13 +639,20 @@ fn expected_points(text: &str) -> usize {
 /// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
 /// it is skipped. A header that names x and y (`x`, `lon`, `lng`, `longitude`; `y`, `lat`,
 /// `latitude`) anywhere but in the first two columns, in that order, is refused: the points
-/// would be read from the wrong columns (`id x y`, `y x`).
+/// would be read from the wrong columns (`id x y`, `y x`). A file with no point after its header
+/// is an empty point file only when the header names x and y over the first two columns (`x y`,
+/// `lon lat`); any other line alone (`Error: file not found`) is refused, naming it: nothing
+/// then says the file holds points at all.
 ///
 /// ```
 /// use condt_io::parse_points;
 /// let err = parse_points("id x y\n7 0 0\n9 1 0\n", "ids.txt").unwrap_err();
 /// assert!(err.to_string().starts_with("ids.txt:1: the header `id x y` names x or y over"));
 /// assert!(parse_points("x y z\n0.5 0 5\n2.5 1 5\n", "xyz.txt").is_ok());
+/// assert!(parse_points("# none yet\nx y\n", "empty.txt")?.is_empty());
+/// let err = parse_points("Error: file not found\n", "err.txt").unwrap_err();
+/// assert!(err.to_string().starts_with("err.txt:1: no point: line 1 is not a point"));
+/// # Ok::<(), condt_io::IoError>(())
 /// ```
 ///
 /// With the `parallel` feature a large text is parsed in pieces on rayon's threads; the points,
@@ -648,6 +687,9 @@ pub fn parse_points(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 fn parse_points_sequentially(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     let source = Source { file };
     let parsed = parse_lines(text, &source, true, expected_points(text))?;
+    if let (true, Some((line, false))) = (parsed.points.is_empty(), parsed.header) {
+        return Err(header_alone(&source, text, line));
+    }
     if let Some(start) = node_index_column(core::slice::from_ref(&parsed)) {
         let line = parsed.first_data_line.unwrap_or(1);
         return Err(index_column_error(&source, line, start));
@@ -907,7 +949,9 @@ fn read_all(reader: impl Read, size: u64) -> io::Result<Vec<u8>> {
 
 /// The memory the system says is available (`MemAvailable` of `/proc/meminfo`), where it says,
 /// and no more than this process's cgroup (v2) has left under its limit (a container's or a CI
-/// job's, which `MemAvailable` does not see).
+/// job's, which `MemAvailable` does not see), nor than its address space has left under its
+/// limit (`ulimit -v`, RLIMIT_AS, read from `/proc/self/limits`, the address space taken from
+/// `VmSize` of `/proc/self/status`: no `getrlimit` call, which would need `unsafe`).
 fn memory_available() -> Option<usize> {
     let info = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
@@ -923,7 +967,28 @@ fn memory_available() -> Option<usize> {
     // `memory.max` reads `max` where there is no limit: no number, no bound.
     let left =
         read("memory.max").map(|max| max.saturating_sub(read("memory.current").unwrap_or(0)));
-    Some(left.map_or(system, |left| left.min(system)))
+    let available = left.map_or(system, |left| left.min(system));
+    let limits = std::fs::read_to_string("/proc/self/limits").ok();
+    let status = std::fs::read_to_string("/proc/self/status").ok();
+    Some(
+        match address_space_left(limits.as_deref(), status.as_deref()) {
+            Some(left) => left.min(available),
+            None => available,
+        },
+    )
+}
+
+/// What the address-space limit leaves, from the texts of `/proc/self/limits` and
+/// `/proc/self/status`: the soft limit of `Max address space` less `VmSize`; `None` without a
+/// limit (`unlimited`) or where either cannot be read.
+fn address_space_left(limits: Option<&str>, status: Option<&str>) -> Option<usize> {
+    let line = limits?
+        .lines()
+        .find_map(|l| l.strip_prefix("Max address space"))?;
+    let limit: usize = line.split_whitespace().next()?.parse().ok()?;
+    let line = status?.lines().find_map(|l| l.strip_prefix("VmSize:"))?;
+    let kib: usize = line.split_whitespace().next()?.parse().ok()?;
+    Some(limit.saturating_sub(kib.saturating_mul(1024)))
 }
 
 /// [`read_all`] with `available` bytes of memory: holding at most half of them.
@@ -1333,6 +1398,25 @@ mod tests {
         assert!(exact.capacity() < data.len() + 64, "{}", exact.capacity());
         assert_eq!(read_all(&data[..], 5).unwrap(), data);
         assert!(read_all(&b""[..], 0).unwrap().is_empty());
+    }
+
+    /// The address-space limit (`ulimit -v`) bounds the memory a read may take, as the
+    /// machine's available memory does (a reviewer's report: under `ulimit -v 30000` a file was
+    /// said not to fit in the machine's 24 GB, not in the limit in force).
+    #[test]
+    fn the_address_space_limit_is_read_from_proc() {
+        let limits = "Limit                     Soft Limit           Hard Limit           Units     \n\
+                      Max stack size            8388608              unlimited            bytes     \n\
+                      Max address space         30720000             unlimited            bytes     \n";
+        let status = "Name:\tcondt\nVmPeak:\t   20000 kB\nVmSize:\t   10000 kB\n";
+        assert_eq!(
+            address_space_left(Some(limits), Some(status)),
+            Some(30_720_000 - 10_240_000)
+        );
+        let unlimited = limits.replace("30720000    ", "unlimited   ");
+        assert_eq!(address_space_left(Some(&unlimited), Some(status)), None);
+        assert_eq!(address_space_left(None, Some(status)), None);
+        assert_eq!(address_space_left(Some(limits), None), None);
     }
 
     #[test]

@@ -392,3 +392,62 @@ fn a_byte_order_mark_inside_the_file_is_refused_on_every_path() {
     assert_eq!(err.line, Some(2), "{err}");
     assert!(err.to_string().contains("byte-order mark"), "{err}");
 }
+
+/// A text whose only line with columns is a "header" that names no x and y columns is not an
+/// empty point file: it is refused with its line (a reviewer's report: `Error: file not
+/// found` alone read as a header, 0 points). A header naming x and y over the first two
+/// columns, alone, is an empty point file; any header with points after it is skipped as before.
+#[test]
+fn a_header_alone_must_name_x_and_y() {
+    for (text, line) in [
+        ("Error: file not found\n", 1),
+        ("# saved by a script\n\nError file not found\n", 3),
+        ("a b\n# nothing else\n", 1),
+        ("name value\n", 1),
+        ("Error\n", 1),
+    ] {
+        let (at, message) = content_error(parse_points(text, "err.txt"));
+        assert_eq!(at, Some(line), "{text:?}: {message}");
+        assert!(
+            message.starts_with(&format!(
+                "err.txt:{line}: no point: line {line} is not a point"
+            )),
+            "{text:?}: {message}"
+        );
+    }
+    for text in [
+        "x y\n",
+        "X Y z\n",
+        "lon lat\n",
+        "\"lng\",\"lat\"\n",
+        "# c\nx y\n\n",
+        "",
+    ] {
+        assert_eq!(parse_points(text, "e.txt").unwrap(), [], "{text:?}");
+    }
+    // With points after it, a header of any names is skipped.
+    assert_eq!(
+        parse_points("a b\n1 2\n", "ab.txt").unwrap(),
+        points(&[(1.0, 2.0)])
+    );
+    // Read from a file, by every path of the reader, large or not.
+    let dir = tempfile::tempdir().unwrap();
+    let small = dir.path().join("err.txt");
+    std::fs::write(&small, "Error: file not found\n").unwrap();
+    let (at, message) = content_error(read_points(&small));
+    assert_eq!(at, Some(1), "{message}");
+    assert!(message.contains("err.txt:1: no point"), "{message}");
+    // Megabytes of comments after the lone line: the parallel reader must not take it for an
+    // empty file either.
+    let large = dir.path().join("large.txt");
+    let mut text = String::from("Error: file not found\n");
+    text.push_str(
+        &"# padding padding padding padding padding padding padding padding\n".repeat(80_000),
+    );
+    std::fs::write(&large, &text).unwrap();
+    let (at, message) = content_error(read_points(&large));
+    assert_eq!(at, Some(1), "{message}");
+    let large_header = dir.path().join("large_header.txt");
+    std::fs::write(&large_header, text.replace("Error: file not found", "x y")).unwrap();
+    assert_eq!(read_points(&large_header).unwrap(), []);
+}

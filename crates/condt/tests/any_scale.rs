@@ -298,8 +298,13 @@ fn points_too_close_to_measure_beside_the_largest_coordinate_are_refused_by_name
             assert!(first < second && second < 40, "{far:e}: {first} {second}");
             let (p, q) = (points[first], points[second]);
             let length = (p.x - q.x).hypot(p.y - q.y);
-            assert!(length > 0.0 && length < 2f64.powi(-450) * far.abs(), "{far:e}");
-            assert!(err.to_string().contains(&format!("points {first} and {second} ")));
+            assert!(
+                length > 0.0 && length < 2f64.powi(-450) * far.abs(),
+                "{far:e}"
+            );
+            assert!(err
+                .to_string()
+                .contains(&format!("points {first} and {second} ")));
             let halved = reconstruct(&scaled(&points, 0.5), &params).map(|_| ());
             assert_eq!(halved, Err(err), "{far:e}");
         }
@@ -313,7 +318,10 @@ fn points_too_close_to_measure_beside_the_largest_coordinate_are_refused_by_name
         assert_eq!(result.unused(), &[40]);
     }
     // A circle of radius 1e-300 beside (1, 1): refused alike.
-    let tiny: Vec<Point> = circle.iter().map(|p| Point::new(p.x * 1e-300, p.y * 1e-300)).collect();
+    let tiny: Vec<Point> = circle
+        .iter()
+        .map(|p| Point::new(p.x * 1e-300, p.y * 1e-300))
+        .collect();
     assert!(matches!(
         reconstruct(&with(&tiny, Point::new(1.0, 1.0)), &Params::default()),
         Err(condt::Error::TooCloseToMeasure { .. })

@@ -194,7 +194,10 @@ fn permuting_scaling_turning_and_mirroring_keep_the_edges() {
 fn a_point_lost_in_a_difference_from_the_corner_keeps_the_edges_independent_of_order() {
     lost_in_a_difference(2f64.powi(-100));
     let mut points = vec![Point::new(0.0, 0.0); 16];
-    points.extend([Point::new(-1.0, 0.0), Point::new(9.559214296344705e-206, 0.0)]);
+    points.extend([
+        Point::new(-1.0, 0.0),
+        Point::new(9.559214296344705e-206, 0.0),
+    ]);
     let mut rng = Rng::new(4584);
     for round in 0..20 {
         let mut order: Vec<usize> = (0..points.len()).collect();
@@ -208,9 +211,16 @@ fn a_point_lost_in_a_difference_from_the_corner_keeps_the_edges_independent_of_o
             panic!("round {round}: not refused");
         };
         // The tiny point and the first copy of the origin in this order.
-        let origin = permuted.iter().position(|&p| p == Point::new(0.0, 0.0)).unwrap();
+        let origin = permuted
+            .iter()
+            .position(|&p| p == Point::new(0.0, 0.0))
+            .unwrap();
         let tiny = order.iter().position(|&i| i == 17).unwrap();
-        assert_eq!((first, second), (origin.min(tiny), origin.max(tiny)), "round {round}");
+        assert_eq!(
+            (first, second),
+            (origin.min(tiny), origin.max(tiny)),
+            "round {round}"
+        );
     }
 }
 

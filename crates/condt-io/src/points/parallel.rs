@@ -76,7 +76,8 @@ fn accept(parsed: Vec<Parsed>) -> Option<Vec<Parsed>> {
     let total = parsed
         .iter()
         .try_fold(0usize, |sum, p| sum.checked_add(p.points.len()))?;
-    if total > MAX_POINTS || node_index_column(&parsed).is_some() {
+    // No point at all: whether its header may stand alone is the sequential parse's to say.
+    if total == 0 || total > MAX_POINTS || node_index_column(&parsed).is_some() {
         return None;
     }
     Some(parsed)
