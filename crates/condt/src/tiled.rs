@@ -879,6 +879,37 @@ mod tests {
     use super::*;
     use crate::{triangulate, Point};
 
+    /// Found by a review of the public API: a gathered tip candidate whose loose end lies on a
+    /// loop (or has no edge) sent the split test's walk round the loop forever. Such a row names
+    /// no move; the edges stay.
+    #[test]
+    fn a_tip_candidate_whose_end_is_no_loose_end_makes_no_move() {
+        // The loop 0-4-5; the chain 3-1-2-6 with its chord 1-2; the pieces 8-9 and 10-11, whose
+        // ends 8 and 10 are loose; 7 has no edge.
+        let edges = [
+            [0, 4],
+            [4, 5],
+            [0, 5],
+            [1, 2],
+            [1, 3],
+            [2, 6],
+            [8, 9],
+            [10, 11],
+        ];
+        for row in [[0, 1, 2, 10], [7, 1, 2, 10], [8, 1, 2, 5]] {
+            assert_eq!(
+                repair_gathered_tips(12, &edges, &[row]),
+                Ok(None),
+                "{row:?}"
+            );
+        }
+        // Loose ends on both sides move: the chord 1-2 gives way to 8-1 and 10-2.
+        let moved = repair_gathered_tips(12, &edges, &[[8, 1, 2, 10]])
+            .unwrap()
+            .unwrap();
+        assert!(moved.contains(&[1, 8]) && moved.contains(&[2, 10]) && !moved.contains(&[1, 2]));
+    }
+
     /// Points on two noisy arcs with strays, the local outlier removal's input and output on
     /// them.
     fn scene() -> (Vec<Point>, Vec<[usize; 2]>, Vec<[usize; 2]>) {

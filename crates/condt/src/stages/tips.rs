@@ -62,8 +62,14 @@ impl Move {
 
 /// Whether the chain from the loose end `q` reaches `x` before `y`: the move would cut it at
 /// `x y` and close both halves (walks only for candidates that passed every other test). It reads
-/// the graph alone, so a run split in tiles takes it on the gathered edges.
+/// the graph alone, so a run split in tiles takes it on the gathered edges; there a `q` that is
+/// no loose end counts as splitting (the move is not made).
 pub(crate) fn splits(graph: &CurveGraph, q: VertexId, x: VertexId, y: VertexId) -> bool {
+    // The stage's loose ends have one edge; a gathered candidate ([`crate::tiled`]) whose end
+    // has not names no move, and a walk from a point on a loop would never end.
+    if graph.degree(q) != 1 {
+        return true;
+    }
     let mut step = [q, graph.first_two(q)[0]];
     loop {
         if step[1] == x || step[1] == y {
