@@ -129,7 +129,8 @@ fn gathered_lengths(points: &[crate::Point], edges: &[[usize; 2]]) -> Result<Vec
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] named `edge` (the position) for an end not below `n`, or named
-/// `n` when `n` exceeds `u32::MAX`.
+/// `n` when `n` exceeds the curve graphs' 2^29 - 1 points (more than
+/// [`MAX_POINTS`](crate::MAX_POINTS)).
 ///
 /// ```
 /// let labels = condt::tiled::component_labels(5, &[[3, 4], [1, 3]])?;
@@ -403,7 +404,7 @@ pub fn close_gathered_gaps(
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     let listed = vertex_edges(n, edges)?;
     let graph = CurveGraph::new(n, &listed);
-    let (targets, walks) = read_choices(n, rows)?;
+    let (targets, walks) = loose_ends_only(&graph, read_choices(n, rows)?);
     let joins = gaps::settle_joins(n, &graph, &targets, |joined| not_joined(walks, joined));
     if joins.is_empty() {
         return Ok(None);
@@ -421,6 +422,22 @@ type Choices = (Vec<(VertexId, Target)>, Vec<(VertexId, Walk)>);
 fn not_joined(mut walks: Vec<(VertexId, Walk)>, joined: &[VertexId]) -> Vec<(VertexId, Walk)> {
     walks.retain(|(a, _)| joined.binary_search(a).is_err());
     walks
+}
+
+/// The choices whose loose ends (the row's end, and the end it joins) have one edge in `graph`,
+/// as every row [`gap_choices`] makes on it does: a row that no longer fits the gathered edges
+/// names no join (gap closing walks on from an end's one edge, which such an end has not).
+fn loose_ends_only(graph: &CurveGraph, (mut targets, mut walks): Choices) -> Choices {
+    let loose = |v: VertexId| graph.degree(v) == 1;
+    targets.retain(|&(a, target)| {
+        loose(a)
+            && match target {
+                Target::End(b) | Target::Through(_, Partner::End(b)) => loose(b),
+                _ => true,
+            }
+    });
+    walks.retain(|&(a, _)| loose(a));
+    (targets, walks)
 }
 
 fn read_choices(n: usize, rows: &[[usize; GAP_ROW]]) -> Result<Choices, Error> {
@@ -620,7 +637,7 @@ pub fn remove_gathered_local_outliers(
     let listed = vertex_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
-    let (targets, walks) = read_choices(n, choices)?;
+    let (targets, walks) = loose_ends_only(&profile, read_choices(n, choices)?);
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     let separated = exact_separated(&profile, &root, |v| test(v, 2));
     let passing = |at: VertexId, _, _| test(at, 1);
@@ -854,7 +871,7 @@ fn one_per_point(n: usize, name: &'static str, len: usize) -> Result<(), Error> 
 
 /// `edges` (pairs of positions below `n`) as the stages' edges, a position standing for a vertex.
 fn vertex_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
-    if u32::try_from(n).is_err() {
+    if n > CurveGraph::MAX_VERTICES {
         return Err(Error::InvalidParameter {
             name: "n",
             value: n as f64,
@@ -878,6 +895,28 @@ fn vertex_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
 mod tests {
     use super::*;
     use crate::{triangulate, Point};
+
+    /// Found by a review of the public API: gap-closing rows naming a point without an edge (a
+    /// stale row) read that point's missing edge as a position (a panic, index out of bounds);
+    /// and an `n` of 2^29 or more tripped the curve graph's assertion. Such rows name no join;
+    /// such an `n` is refused by name.
+    #[test]
+    fn gathered_gap_rows_that_fit_no_loose_end_join_nothing() {
+        let mut row = [0; GAP_ROW];
+        row[1] = 1; // point 0 joins the loose end 1, but 0 has no edge
+        assert_eq!(close_gathered_gaps(2, &[], &[row]), Ok(None));
+        assert_eq!(close_gathered_gaps(3, &[[1, 2]], &[row]), Ok(None));
+        let tests = [0u8; 2];
+        assert!(remove_gathered_local_outliers(2, &[], &tests, &[row]).is_ok());
+        for n in [1 << 29, u32::MAX as usize] {
+            let refused = Err(Error::InvalidParameter {
+                name: "n",
+                value: n as f64,
+            });
+            assert_eq!(close_gathered_gaps(n, &[], &[]), refused);
+            assert_eq!(repair_gathered_tips(n, &[], &[]), refused);
+        }
+    }
 
     /// Found by a review of the public API: a gathered tip candidate whose loose end lies on a
     /// loop (or has no edge) sent the split test's walk round the loop forever. Such a row names
