@@ -394,8 +394,9 @@ pub enum GatheredPass {
 /// written again here (a test chains runs and compares).
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a NaN or infinite point; [`Error::InvalidParameter`] named `edge` for
-/// an end not in `points`.
+/// [`Error::NonFinite`] for a NaN or infinite point, [`Error::TooManyPoints`] beyond
+/// [`MAX_POINTS`](crate::MAX_POINTS); [`Error::InvalidParameter`] named `edge` for an end not in
+/// `points`.
 ///
 /// ```
 /// use condt::{gathered_smoothing_pass, reconstruct, GatheredPass, Params, Point};

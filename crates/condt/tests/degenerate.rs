@@ -315,3 +315,18 @@ fn points_on_hull_edge_extensions_past_sharp_corners() {
     tri.validate().unwrap();
     assert_eq!(tri.hull().count(), curve.len());
 }
+
+/// Found by a review of the public API: a triangle range starting near `usize::MAX / 3` wrapped
+/// round (three times it overflows) and, in a release build, read the first triangles' corners.
+/// It panics, as any range past the triangles does.
+#[test]
+fn a_triangle_range_past_the_end_panics_rather_than_wrap_round() {
+    let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].map(Point::from)).unwrap();
+    let mesh = tri.mesh();
+    assert_eq!(mesh.corner_slice(0..1).len(), 3);
+    let start = usize::MAX / 3 + 1;
+    for range in [start..start + 1, start..start, 0..start] {
+        let caught = std::panic::catch_unwind(|| mesh.corner_slice(range.clone()).len());
+        assert!(caught.is_err(), "{range:?}");
+    }
+}

@@ -93,15 +93,17 @@ impl Mesh {
     /// The corners of `triangles` as one slice, three per triangle ([`Mesh::triangle_corners`]).
     ///
     /// # Panics
-    /// If the range goes past [`Mesh::num_triangles_with_ghosts`].
+    /// If the range goes past [`Mesh::num_triangles_with_ghosts`] or ends before it starts.
     #[inline]
     pub fn corner_slice(&self, triangles: core::ops::Range<usize>) -> &[VertexId] {
-        &self.origins[3 * triangles.start..3 * triangles.end]
+        // Saturating: a start near `usize::MAX / 3` wrapped round to the first triangles in release.
+        let corner = |t: usize| t.saturating_mul(3);
+        &self.origins[corner(triangles.start)..corner(triangles.end)]
     }
     /// [`Mesh::triangle_vertices`] of every triangle in `triangles` (ghosts included), in one pass.
     ///
     /// # Panics
-    /// If the range goes past [`Mesh::num_triangles_with_ghosts`].
+    /// As [`Mesh::corner_slice`].
     #[inline]
     pub fn triangle_corners(
         &self,

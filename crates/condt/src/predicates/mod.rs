@@ -39,7 +39,9 @@ fn coord(p: Point) -> Coord<f64> {
     Coord { x: p.x, y: p.y }
 }
 
-/// Exact orientation of the triangle `a, b, c`, for any finite coordinates.
+/// Exact orientation of the triangle `a, b, c`, for any finite coordinates (with a NaN or an
+/// infinity the answer is unspecified, though never a panic: check the points first, as
+/// [`triangulate`](crate::triangulate()) does).
 ///
 /// ```
 /// use condt::{predicates::{orient2d, Orientation}, Point};
@@ -63,7 +65,7 @@ pub fn orient2d(a: Point, b: Point, c: Point) -> Orientation {
 
 /// `true` when `d` lies strictly inside the circle through `a, b, c`, which must be
 /// counter-clockwise (the sign flips for a clockwise triangle). Cocircular points give `false`.
-/// Exact for any finite coordinates.
+/// Exact for any finite coordinates; unspecified, never a panic, with a NaN or an infinity.
 ///
 /// ```
 /// use condt::{predicates::in_circle, Point};
@@ -86,7 +88,7 @@ pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
 }
 
 /// `true` when `d` lies exactly on the circle through `a, b, c` (any orientation). Exact for any
-/// finite coordinates.
+/// finite coordinates; unspecified, never a panic, with a NaN or an infinity.
 ///
 /// ```
 /// use condt::{predicates::is_cocircular, Point};
