@@ -443,20 +443,8 @@ impl Destination {
         write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
     ) -> Result<(), CliError> {
         match self {
-            Destination::Stdout => {
-                let stdout = io::stdout();
-                let mut out = BufWriter::new(stdout.lock());
-                write(&mut out)
-                    .and_then(|()| out.flush())
-                    .map_err(|e| stream_error("<stdout>", e))
-            }
-            Destination::Stderr => {
-                let stderr = io::stderr();
-                let mut out = BufWriter::new(stderr.lock());
-                write(&mut out)
-                    .and_then(|()| out.flush())
-                    .map_err(|e| stream_error("<stderr>", e))
-            }
+            Destination::Stdout => write_stream(io::stdout().lock(), "<stdout>", write),
+            Destination::Stderr => write_stream(io::stderr().lock(), "<stderr>", write),
             Destination::Direct { path, shown } => {
                 // No create, no truncate: a device or a pipe is written, never made or cut; a
                 // regular file reached as a stream (`-o /dev/fd/3 3>> log`) is appended to, as
@@ -505,6 +493,18 @@ impl Destination {
             }
         }
     }
+}
+
+/// Writes what `write` writes to the standard stream `stream`, buffered.
+fn write_stream(
+    stream: impl Write,
+    shown: &str,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), CliError> {
+    let mut out = BufWriter::new(stream);
+    write(&mut out)
+        .and_then(|()| out.flush())
+        .map_err(|e| stream_error(shown, e))
 }
 
 /// Rewrites the regular file `path` with what `write` writes, formatted whole first.

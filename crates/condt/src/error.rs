@@ -43,7 +43,8 @@ pub enum Error {
     /// for the ConDT stages*). Only the reconstruction refuses such a set;
     /// [`triangulate`](crate::triangulate()) takes any spread.
     TooCloseToMeasure {
-        /// Input position of one of the two closest points (the smaller).
+        /// Input position of one of two such points, joined by a Delaunay edge (the smaller;
+        /// of several such pairs, the first by positions).
         first: usize,
         /// Input position of the other.
         second: usize,
