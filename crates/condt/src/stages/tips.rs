@@ -24,7 +24,7 @@
 //! `parallel`. The walk behind the split test ends: from a loose end, a chain of points of degree
 //! two cannot come back to itself.
 
-use super::gaps::{Ends, GAP_RATIO};
+use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
 use super::repair::NEED_RATIO;
 use super::{alone, Outcome};
@@ -42,13 +42,14 @@ struct Move {
     x: VertexId,
     y: VertexId,
     p: VertexId,
+    beside: Option<VertexId>,
 }
 
 impl Move {
     /// The move read from either end (an apex's, `q == p`, as given).
     fn new(q: VertexId, x: VertexId, y: VertexId, p: VertexId) -> Move {
         let (q, x, y, p) = if q <= p { (q, x, y, p) } else { (p, y, x, q) };
-        Move { q, x, y, p }
+        Move { q, x, y, p, beside: None }
     }
 
     /// The points the move joins, each once.
@@ -57,6 +58,7 @@ impl Move {
         [self.q, self.x, self.y]
             .into_iter()
             .chain((!apex).then_some(self.p))
+            .chain(self.beside)
     }
 }
 
@@ -166,6 +168,15 @@ impl Ends<'_> {
         let mesh = self.tri.mesh();
         let mut found = None;
         for a in mesh.neighbors(u) {
+            if self.graph.degree(a) == 1 {
+                if let Some(m) = self.apex_beside(u, a) {
+                    if found.is_some() {
+                        return Some(Found::Several(u));
+                    }
+                    found = Some(Found::One(m));
+                }
+                continue;
+            }
             if self.graph.degree(a) != 2 {
                 continue;
             }
@@ -189,6 +200,45 @@ impl Ends<'_> {
             }
         }
         found
+    }
+
+    /// EXPERIMENT: the apex `u` beside the loose end `x`, whose one edge is a chord to `y`.
+    fn apex_beside(&self, u: VertexId, x: VertexId) -> Option<Move> {
+        let mesh = self.tri.mesh();
+        let y = self.along(x);
+        if self.graph.degree(y) != 2 || !mesh.neighbors(u).any(|w| w == y) {
+            return None;
+        }
+        let y2 = self.graph.onward(y, x);
+        let (py, px, pu) = (self.point(y), self.point(x), self.point(u));
+        if self.cos_of(y, y2, u) >= SMOOTH_COS
+            || py.dist2(pu) > GAP_RATIO * GAP_RATIO * py.dist2(self.point(y2))
+            || !self.branch(x, y, &[])
+        {
+            return None;
+        }
+        let mut found = None;
+        for q in mesh.neighbors(x) {
+            if q == y || !self.is_loose(q) {
+                continue;
+            }
+            let q2 = self.along(q);
+            let pq = self.point(q);
+            let passes = self.cos_of(x, q, u) < STRAIGHT
+                && self.cos_of(x, q, y) >= SMOOTH_COS
+                && self.cos_of(q, q2, x) < STRAIGHT
+                && px.dist2(pq) <= GAP_RATIO * GAP_RATIO * pq.dist2(self.point(q2))
+                && px.dist2(pu) <= GAP_RATIO * GAP_RATIO * px.dist2(pq)
+                && px.dist2(pq) <= GAP_RATIO * GAP_RATIO * px.dist2(py)
+                && self.branch(q, q2, &[]);
+            if passes {
+                if found.is_some() {
+                    return None;
+                }
+                found = Some(q);
+            }
+        }
+        found.map(|q| Move { q: u, x: y, y: x, p: u, beside: Some(q) })
     }
 
     /// Whether the passage at `a` (degree two) along the chord to `b` turns sharply and through `u`
@@ -251,7 +301,11 @@ fn settle(n: usize, found: Vec<Found>) -> Option<(Vec<Edge>, Vec<Edge>)> {
     let chords = moves.iter().map(|m| ordered(m.x, m.y)).collect();
     let joins = moves
         .iter()
-        .flat_map(|m| [ordered(m.q, m.x), ordered(m.p, m.y)])
+        .flat_map(|m| {
+            [ordered(m.q, m.x), ordered(m.p, m.y)]
+                .into_iter()
+                .chain(m.beside.map(|b| ordered(b, m.y)))
+        })
         .collect();
     Some((chords, joins))
 }
