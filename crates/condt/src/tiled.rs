@@ -237,8 +237,10 @@ pub fn remove_gathered_clumps(
 /// input position), for a tile of a split run: rows of four input positions, `[q, x, y, p]` for a
 /// move of the loose end `q` (the chord `x y` given up for `q x` and `p y`) that passes every
 /// test but the split test (a walk along a curve), `[u, a, b, u]` for the move of the point
-/// without edges `u` onto the chord `a b`, `[u, u, u, u]` when `u` has several. A point's rows
-/// come together. They are the whole set's at every point whose Delaunay neighbourhood (eight
+/// without edges `u` onto the chord `a b`, `[u, y, x, q]` for its move as the apex beside the
+/// loose end `x` (the chord `x y` given up for `u x`, `u y` and `x q`; told from a loose end's
+/// row by `u`, which has no edge), `[u, u, u, u]` when `u` has several. A point's rows come
+/// together. They are the whole set's at every point whose Delaunay neighbourhood (eight
 /// hops) and graph the tile holds.
 ///
 /// ```
@@ -273,6 +275,7 @@ pub fn tip_candidates(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usi
         .map(|candidate| match candidate {
             Candidate::Tip(move_) => move_.map(position),
             Candidate::Apex([u, a, b]) => [u, a, b, u].map(position),
+            Candidate::ApexBeside(move_) => move_.map(position),
             Candidate::SeveralAt(u) => [position(u); 4],
         })
         .collect()
@@ -307,13 +310,18 @@ pub fn repair_gathered_tips(
             Candidate::SeveralAt(q)
         } else if q == p {
             Candidate::Apex([q, x, y])
+        } else if graph.degree(q) == 0 {
+            Candidate::ApexBeside([q, x, y, p])
         } else {
             Candidate::Tip([q, x, y, p])
         });
     }
     // A loose end's rows together, as one tile sends them.
     rows.sort_by_key(|c| match c {
-        Candidate::Tip([q, ..]) | Candidate::Apex([q, ..]) | Candidate::SeveralAt(q) => *q,
+        Candidate::Tip([q, ..])
+        | Candidate::Apex([q, ..])
+        | Candidate::ApexBeside([q, ..])
+        | Candidate::SeveralAt(q) => *q,
     });
     let Some((chords, joins)) = tips::settle_candidates(n, &graph, rows) else {
         return Ok(None);
@@ -967,6 +975,42 @@ mod tests {
             .unwrap()
             .unwrap();
         assert!(moved.contains(&[1, 8]) && moved.contains(&[2, 10]) && !moved.contains(&[1, 2]));
+    }
+
+    /// The tips stage's apex beside a loose end, split in tiles: the tile's row names the move,
+    /// and the gathered rule makes it as the stage does; a row that does not fit the gathered
+    /// graph makes none.
+    #[test]
+    fn the_apex_beside_a_loose_end_is_gathered_as_the_stage_makes_it() {
+        // A 40° tip whose sample 0 has no edge; point 1 (loose) is paired across to 2 on the other
+        // side, and 9 begins its own side beyond it (the stage's test has the reasons).
+        let t = 40f64.to_radians();
+        let mut pts = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)];
+        let along = |r: f64| Point::new(r * libm::cos(t), r * libm::sin(t));
+        pts.extend((0..7).map(|k| along(1.532 + k as f64)));
+        pts.extend((0..7).map(|k| Point::new(2.0 + k as f64, 0.0)));
+        let mut edges: Vec<[usize; 2]> = (2..8).chain(9..15).map(|i| [i, i + 1]).collect();
+        edges.push([1, 2]);
+        let tri = triangulate(&pts).unwrap();
+        let graph = tri.graph_from_edges(edges.iter().copied());
+        let rows = tip_candidates(&graph, |_| true);
+        assert!(rows.contains(&[0, 2, 1, 9]), "{rows:?}");
+        let mut gathered = repair_gathered_tips(pts.len(), &edges, &rows)
+            .unwrap()
+            .unwrap();
+        gathered.sort_unstable();
+        let mut expected = graph.repair_tips().edges();
+        expected.sort_unstable();
+        assert_eq!(gathered, expected);
+        assert!(gathered.contains(&[1, 9]) && !gathered.contains(&[1, 2]));
+        // Rows that do not fit: 3 has edges; 3 is no loose end; 2 is not 1's neighbour.
+        for row in [[3, 2, 1, 9], [0, 2, 3, 9], [0, 4, 1, 9]] {
+            assert_eq!(
+                repair_gathered_tips(pts.len(), &edges, &[row]),
+                Ok(None),
+                "{row:?}"
+            );
+        }
     }
 
     /// Points on two noisy arcs with strays, the local outlier removal's input and output on

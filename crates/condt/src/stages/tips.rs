@@ -1,8 +1,9 @@
 //! Tips: a chord across a sharp tip given up for the tip's own edges (not in the paper; on by
 //! default, off in `Params::paper`).
 //!
-//! Owns: replacing one edge between two points of degree two by two edges, to loose ends beside
-//! it or to the tip's sample. It reads positions, the graph and the Delaunay rings; it may not
+//! Owns: replacing one edge at a tip (a chord) by the tip's own edges: to loose ends beside it, to
+//! the tip's sample, or to the tip's sample and a loose end the chord's loose end continues to. It
+//! reads positions, the graph and the Delaunay rings; it may not
 //! touch the triangulation, and does not decide when it runs
 //! ([`Params::stages`](crate::Params::stages): after the crossings, before the outlier tails).
 //!
@@ -18,6 +19,13 @@
 //! `a b` gives way to `u a` and `u b` (`u` without edges, a Delaunay neighbour of both) when at
 //! each end the chord turns sharply, `u` continues smoothly within [`NEED_RATIO`] of the end's
 //! other edge (a point with no edge shows no spacing of its own), and both ends have branches.
+//! **The apex beside a loose end**: the loose end `x` whose one edge is a chord to `y` (degree
+//! two) gives it up for `u x`, `u y` and `x q` (`u` without edges, a Delaunay neighbour of both;
+//! `q` a loose end, a Delaunay neighbour of `x`) when `q x u` and the passage at `q` into `x` are
+//! straight ([`STRAIGHT`]: the tip's side runs on through `x`), the chord leaves that line at a
+//! sharp angle at `x` (not [`SMOOTH_COS`]), `u` continues `y`'s curve smoothly, each new edge is
+//! within [`GAP_RATIO`] of the edge it continues (`y u` of `y`'s other edge, `x q` of `q`'s, `x u`
+//! of `x q`), `x q` is within [`GAP_RATIO`] of the chord, and `y` and `q` have branches.
 //!
 //! All choices are made on the graph as it came in; a point in two moves, or a loose end or apex
 //! with two candidates, takes part in none: the result depends neither on the order nor on
@@ -29,13 +37,16 @@ use super::local_outliers::SMOOTH_COS;
 use super::repair::NEED_RATIO;
 use super::{alone, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
-/// A move: the chord `x y` replaced by `q x` and `p y` (`q < p`, so each move has one form; an
-/// apex move has `q == p`, the apex, and `x < y`).
+/// A move: the chord `x y` replaced by `q x` and `p y`, and by `beside y` too when `beside` is
+/// set. A loose-end move has `q < p` (so each move has one form); an apex move `q == p`, the apex,
+/// and `x < y`, or for the apex beside a loose end `y` that loose end and `beside` the loose end
+/// it continues to.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct Move {
     q: VertexId,
@@ -49,7 +60,21 @@ impl Move {
     /// The move read from either end (an apex's, `q == p`, as given).
     fn new(q: VertexId, x: VertexId, y: VertexId, p: VertexId) -> Move {
         let (q, x, y, p) = if q <= p { (q, x, y, p) } else { (p, y, x, q) };
-        Move { q, x, y, p, beside: None }
+        let beside = None;
+        Move { q, x, y, p, beside }
+    }
+
+    /// The move of the apex `u` beside the loose end `x`: its chord `x y` given up for `u x`,
+    /// `u y` and `x q`.
+    fn beside(u: VertexId, y: VertexId, x: VertexId, q: VertexId) -> Move {
+        let (p, beside) = (u, Some(q));
+        Move {
+            q: u,
+            x: y,
+            y: x,
+            p,
+            beside,
+        }
     }
 
     /// The points the move joins, each once.
@@ -168,13 +193,14 @@ impl Ends<'_> {
         let mesh = self.tri.mesh();
         let mut found = None;
         for a in mesh.neighbors(u) {
-            if self.graph.degree(a) == 1 {
-                if let Some(m) = self.apex_beside(u, a) {
-                    if found.is_some() {
-                        return Some(Found::Several(u));
-                    }
-                    found = Some(Found::One(m));
+            if self.is_loose(a) {
+                let Some(m) = self.apex_beside(u, a) else {
+                    continue;
+                };
+                if found.is_some() {
+                    return Some(Found::Several(u));
                 }
+                found = Some(Found::One(m));
                 continue;
             }
             if self.graph.degree(a) != 2 {
@@ -202,35 +228,40 @@ impl Ends<'_> {
         found
     }
 
-    /// EXPERIMENT: the apex `u` beside the loose end `x`, whose one edge is a chord to `y`.
+    /// The move of the point without edges `u` as the apex beside its Delaunay neighbour `x`, a
+    /// loose end, if exactly one loose end `q` passes the form's tests (the module's rule; more
+    /// than one: no move, as an apex with two candidates makes none).
     fn apex_beside(&self, u: VertexId, x: VertexId) -> Option<Move> {
         let mesh = self.tri.mesh();
         let y = self.along(x);
         if self.graph.degree(y) != 2 || !mesh.neighbors(u).any(|w| w == y) {
             return None;
         }
-        let y2 = self.graph.onward(y, x);
-        let (py, px, pu) = (self.point(y), self.point(x), self.point(u));
-        if self.cos_of(y, y2, u) >= SMOOTH_COS
-            || py.dist2(pu) > GAP_RATIO * GAP_RATIO * py.dist2(self.point(y2))
+        // `y`'s side: the tip's sample continues it as its chord did.
+        let beyond_y = self.graph.onward(y, x);
+        let (px, py, pu) = (self.point(x), self.point(y), self.point(u));
+        let within = |a: Point, b: Point, of: f64| a.dist2(b) <= GAP_RATIO * GAP_RATIO * of;
+        if self.cos_of(y, beyond_y, u) >= SMOOTH_COS
+            || !within(py, pu, py.dist2(self.point(beyond_y)))
             || !self.branch(x, y, &[])
         {
             return None;
         }
+        // `x`'s side: one straight run from `q`'s curve through `x` to the tip's sample, which the
+        // chord leaves sharply. Two straight passages in a row are rare among stray points.
         let mut found = None;
         for q in mesh.neighbors(x) {
             if q == y || !self.is_loose(q) {
                 continue;
             }
-            let q2 = self.along(q);
-            let pq = self.point(q);
+            let (beyond_q, pq) = (self.along(q), self.point(q));
             let passes = self.cos_of(x, q, u) < STRAIGHT
+                && self.cos_of(q, beyond_q, x) < STRAIGHT
                 && self.cos_of(x, q, y) >= SMOOTH_COS
-                && self.cos_of(q, q2, x) < STRAIGHT
-                && px.dist2(pq) <= GAP_RATIO * GAP_RATIO * pq.dist2(self.point(q2))
-                && px.dist2(pu) <= GAP_RATIO * GAP_RATIO * px.dist2(pq)
-                && px.dist2(pq) <= GAP_RATIO * GAP_RATIO * px.dist2(py)
-                && self.branch(q, q2, &[]);
+                && within(px, pq, pq.dist2(self.point(beyond_q)))
+                && within(px, pu, px.dist2(pq))
+                && within(px, pq, px.dist2(py))
+                && self.branch(q, beyond_q, &[]);
             if passes {
                 if found.is_some() {
                     return None;
@@ -238,7 +269,7 @@ impl Ends<'_> {
                 found = Some(q);
             }
         }
-        found.map(|q| Move { q: u, x: y, y: x, p: u, beside: Some(q) })
+        found.map(|q| Move::beside(u, y, x, q))
     }
 
     /// Whether the passage at `a` (degree two) along the chord to `b` turns sharply and through `u`
@@ -311,13 +342,16 @@ fn settle(n: usize, found: Vec<Found>) -> Option<(Vec<Edge>, Vec<Edge>)> {
 }
 
 /// What a point found, for a run split in tiles ([`crate::tiled`]): a loose end's moves before
-/// the split test, an apex's move, or an apex's several.
+/// the split test, an apex's move (either form), or an apex's several.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum Candidate {
     /// A move of the loose end `q`: the chord `x y`, the other loose end `p` (`[q, x, y, p]`).
     Tip([VertexId; 4]),
     /// The apex move of `u` on the chord `a b` (`[u, a, b]`).
     Apex([VertexId; 3]),
+    /// The move of the apex `u` beside the loose end `x`: the chord `x y` given up for `u x`,
+    /// `u y` and `x q` (`[u, y, x, q]`).
+    ApexBeside([VertexId; 4]),
     /// An apex with more than one move.
     SeveralAt(VertexId),
 }
@@ -337,7 +371,10 @@ pub(crate) fn candidates(
         }
         match ends.graph.degree(v) {
             0 => match ends.apex_at(v) {
-                Some(Found::One(m)) => out.push(Candidate::Apex([m.q, m.x, m.y])),
+                Some(Found::One(m)) => out.push(match m.beside {
+                    Some(q) => Candidate::ApexBeside([m.q, m.x, m.y, q]),
+                    None => Candidate::Apex([m.q, m.x, m.y]),
+                }),
                 Some(Found::Several(u)) => out.push(Candidate::SeveralAt(u)),
                 None => {}
             },
@@ -377,6 +414,18 @@ pub(crate) fn settle_candidates(
                 }
             }
             Candidate::Apex([u, a, b]) => found.push(Found::One(Move::new(u, a, b, u))),
+            Candidate::ApexBeside([u, y, x, q]) => {
+                // The stage's rows always fit; a gathered row that does not names no move.
+                let loose = |v| graph.degree(v) == 1;
+                let fits = graph.degree(u) == 0
+                    && loose(x)
+                    && graph.first_two(x)[0] == y
+                    && graph.degree(y) == 2
+                    && loose(q);
+                if fits {
+                    found.push(Found::One(Move::beside(u, y, x, q)));
+                }
+            }
             Candidate::SeveralAt(u) => found.push(Found::Several(u)),
         }
     }
@@ -513,6 +562,57 @@ mod tests {
         let t = 20f64.to_radians();
         let (pts, edges) =
             tip_without_its_apex(Point::new(-0.5 * libm::cos(t), -0.5 * libm::sin(t)));
+        assert_unchanged(&pts, edges);
+    }
+
+    /// A 40° tip at the origin, its sample (point 0) without an edge: side B's samples (2..=8)
+    /// unit-spaced from 1.53 out along 40°, side A's from `(1, 0)`: point 1 there, loose, whose one
+    /// edge is a chord to point 2 (its angle `0 1 2` is 100°), then points 9..=15 from `(q, 0)`
+    /// outwards, unit-spaced, the first bending `bend` radians away from the axis after it.
+    fn apex_beside_a_loose_end(
+        q: f64,
+        side_a_step: f64,
+        bend: f64,
+    ) -> (Vec<Point>, Vec<[usize; 2]>) {
+        let t = 40f64.to_radians();
+        let mut pts = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)];
+        let (c, s) = (libm::cos(t), libm::sin(t));
+        pts.extend((0..7).map(|k| Point::new((1.532 + k as f64) * c, (1.532 + k as f64) * s)));
+        pts.push(Point::new(q, 0.0));
+        let (bc, bs) = (libm::cos(bend), -libm::sin(bend));
+        pts.extend((1..7).map(|k| {
+            let d = side_a_step * k as f64;
+            Point::new(q + d * bc, d * bs)
+        }));
+        let mut edges: Vec<[usize; 2]> = (2..8).chain(9..15).map(|i| [i, i + 1]).collect();
+        edges.push([1, 2]);
+        (pts, edges)
+    }
+
+    #[test]
+    fn a_tips_sample_beside_a_loose_end_takes_the_chords_place_with_the_end_s_gap() {
+        let (pts, edges) = apex_beside_a_loose_end(2.0, 1.0, 0.0);
+        let out = tips(&pts, edges.clone());
+        assert!(!out.contains(&[1, 2]), "the chord goes: {out:?}");
+        assert!(
+            [[0, 1], [0, 2], [1, 9]].iter().all(|e| out.contains(e)),
+            "{out:?}"
+        );
+        assert_eq!(out.len(), edges.len() + 2);
+    }
+
+    #[test]
+    fn a_loose_end_whose_side_bends_at_its_partner_keeps_its_chord() {
+        // The passage at point 9 bends by 40°, no longer a straight run through point 1.
+        let (pts, edges) = apex_beside_a_loose_end(2.0, 1.0, 40f64.to_radians());
+        assert_unchanged(&pts, edges);
+    }
+
+    #[test]
+    fn a_chord_much_shorter_than_the_gap_it_would_give_way_to_stays() {
+        // Side A spaced 2 apart from 3.9: the gap 1-9 (2.9) is within 2.75 of 9's edge but not
+        // of the chord (1): point 1's nearest neighbour is its true one, as Algorithm 1 reads it.
+        let (pts, edges) = apex_beside_a_loose_end(3.9, 2.0, 0.0);
         assert_unchanged(&pts, edges);
     }
 
