@@ -331,7 +331,9 @@ impl<'t> Graph<'t> {
 
     /// Repairs sharp tips ([`Params::tips`](crate::Params::tips)): an edge pairing two samples of
     /// degree two gives way to edges to the loose ends beside it, or to a point without edges
-    /// beside it that continues both sides evenly (its rule: `src/stages/tips.rs`).
+    /// beside it that continues both sides evenly; an edge that is a loose end's only one gives
+    /// way to the tip's sample and the loose end that end's side runs straight on to (its rule:
+    /// `src/stages/tips.rs`).
     ///
     /// ```
     /// use condt::{triangulate, Point};

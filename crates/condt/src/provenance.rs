@@ -70,8 +70,8 @@ pub enum Reason {
         /// The crossing (input position).
         vertex: usize,
     },
-    /// A chord at a tip gave way to two edges to loose ends beside it or to the tip's sample (or
-    /// was that chord).
+    /// A chord at a tip gave way to two edges to loose ends beside it or to the tip's sample, and
+    /// beside a loose end also to that end's gap (or was that chord).
     Tip,
     /// Part of an outlier tail cut at an open end: a joint longer than the edge it joins and bent
     /// more sharply than the even run it hangs from (or an edge of the tail beyond it).

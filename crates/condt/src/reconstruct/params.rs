@@ -77,8 +77,9 @@ pub struct Params {
     /// `src/stages/crossings.rs`).
     pub crossings: bool,
     /// Where an edge pairs the samples on either side of a sharp tip, join each to a loose end
-    /// beside it, or both to the tip's sample if it has no edge, instead (beyond the paper;
-    /// `src/stages/tips.rs`).
+    /// beside it, or both to the tip's sample if it has no edge (and, where one of the two is a
+    /// loose end, that end on to the loose end its side runs straight to), instead (beyond the
+    /// paper; `src/stages/tips.rs`).
     pub tips: bool,
     /// Last, cut a tail of at most four points at a loose end whose joint is long and bends
     /// sharply against the even run it hangs from: outliers beyond an open end (beyond the paper;

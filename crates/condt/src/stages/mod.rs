@@ -227,8 +227,10 @@ the edge that paired its neighbours",
             help: "(default on; off with --paper) after the crossings, where an edge
 pairs the samples on either side of a sharp tip, join each of the
 two to a loose end beside it, or both to the tip's sample if it
-has no edge and continues both sides evenly, in place of that
-edge, when both passages become smooth and no curve is split",
+has no edge and continues both sides evenly (a loose end among
+the two also to the loose end its side runs straight on to), in
+place of that edge, when both passages become smooth and no curve
+is split",
         }),
     },
     Row {
