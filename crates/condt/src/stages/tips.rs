@@ -601,6 +601,43 @@ mod tests {
         assert_eq!(out.len(), edges.len() + 2);
     }
 
+    /// The move is the same whatever the presentation: turned, mirrored, scaled by a power of
+    /// two (exact maps) or with the points renumbered (other vertex ids, other ring orders).
+    #[test]
+    fn the_apex_beside_a_loose_end_moves_alike_in_every_presentation() {
+        let (pts, edges) = apex_beside_a_loose_end(2.0, 1.0, 0.0);
+        let expected = tips(&pts, edges.clone());
+        let maps: [fn(Point) -> Point; 4] = [
+            |p| Point::new(-p.y, p.x),
+            |p| Point::new(-p.x, p.y),
+            |p| Point::new(p.x / 64.0, p.y / 64.0),
+            |p| Point::new(-8.0 * p.x, -8.0 * p.y),
+        ];
+        for map in maps {
+            let moved: Vec<Point> = pts.iter().map(|&p| map(p)).collect();
+            assert_eq!(tips(&moved, edges.clone()), expected);
+        }
+        // Renumbered in reverse and by a stride coprime to the count (16 points).
+        for new_of in [|i: usize| 15 - i, |i: usize| (7 * i + 3) % 16] {
+            let mut renumbered = vec![Point::new(0.0, 0.0); pts.len()];
+            for (i, &p) in pts.iter().enumerate() {
+                renumbered[new_of(i)] = p;
+            }
+            let moved_edges: Vec<[usize; 2]> =
+                edges.iter().map(|&[a, b]| [new_of(a), new_of(b)]).collect();
+            let mut back: Vec<[usize; 2]> = tips(&renumbered, moved_edges)
+                .iter()
+                .map(|&[a, b]| {
+                    let old = |v: usize| (0..16).find(|&i| new_of(i) == v).unwrap();
+                    let (a, b) = (old(a), old(b));
+                    [a.min(b), a.max(b)]
+                })
+                .collect();
+            back.sort_unstable();
+            assert_eq!(back, expected);
+        }
+    }
+
     #[test]
     fn a_loose_end_whose_side_bends_at_its_partner_keeps_its_chord() {
         // The passage at point 9 bends by 40°, no longer a straight run through point 1.
