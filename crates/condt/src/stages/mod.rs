@@ -229,8 +229,8 @@ pairs the samples on either side of a sharp tip, join each of the
 two to a loose end beside it, or both to the tip's sample if it
 has no edge and continues both sides evenly (a loose end among
 the two also to the loose end its side runs straight on to), in
-place of that edge, when both passages become smooth and no curve
-is split",
+place of that edge, when the new passages are smooth (straight
+beside a loose end) and no curve is split",
         }),
     },
     Row {

@@ -43,10 +43,10 @@ use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
-/// A move: the chord `x y` replaced by `q x` and `p y`, and by `beside y` too when `beside` is
-/// set. A loose-end move has `q < p` (so each move has one form); an apex move `q == p`, the apex,
-/// and `x < y`, or for the apex beside a loose end `y` that loose end and `beside` the loose end
-/// it continues to.
+/// A move: the chord `x y` given up for [`Move::joins`]. A loose-end move has `q < p` (so each
+/// move has one form) and joins `q x`, `p y`; an apex move has `q == p`, the apex, and `x < y`;
+/// the apex beside a loose end also has `beside` set ([`Move::beside`] says which field holds
+/// which point).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct Move {
     q: VertexId,
@@ -65,7 +65,8 @@ impl Move {
     }
 
     /// The move of the apex `u` beside the loose end `x`: its chord `x y` given up for `u x`,
-    /// `u y` and `x q`.
+    /// `u y` and `x q`. Stored as an apex move on the chord with the loose end in the field `y`
+    /// (so `[u, y, x]` read as `[q, x, y]`) and `q` in `beside`, joined to it.
     fn beside(u: VertexId, y: VertexId, x: VertexId, q: VertexId) -> Move {
         let (p, beside) = (u, Some(q));
         Move {
@@ -75,6 +76,13 @@ impl Move {
             p,
             beside,
         }
+    }
+
+    /// The edges the move adds: `q x` and `p y`, and `beside y` for the apex beside a loose end.
+    fn joins(self) -> impl Iterator<Item = Edge> {
+        [ordered(self.q, self.x), ordered(self.p, self.y)]
+            .into_iter()
+            .chain(self.beside.map(|b| ordered(b, self.y)))
     }
 
     /// The points the move joins, each once.
@@ -194,13 +202,13 @@ impl Ends<'_> {
         let mut found = None;
         for a in mesh.neighbors(u) {
             if self.is_loose(a) {
-                let Some(m) = self.apex_beside(u, a) else {
+                let Some(beside) = self.apex_beside(u, a) else {
                     continue;
                 };
-                if found.is_some() {
+                if found.is_some() || matches!(beside, Found::Several(_)) {
                     return Some(Found::Several(u));
                 }
-                found = Some(Found::One(m));
+                found = Some(beside);
                 continue;
             }
             if self.graph.degree(a) != 2 {
@@ -229,9 +237,9 @@ impl Ends<'_> {
     }
 
     /// The move of the point without edges `u` as the apex beside its Delaunay neighbour `x`, a
-    /// loose end, if exactly one loose end `q` passes the form's tests (the module's rule; more
-    /// than one: no move, as an apex with two candidates makes none).
-    fn apex_beside(&self, u: VertexId, x: VertexId) -> Option<Move> {
+    /// loose end, if a loose end `q` passes the form's tests (the module's rule): one move, or
+    /// `u`'s several when more than one `q` passes (an apex with two candidates makes none).
+    fn apex_beside(&self, u: VertexId, x: VertexId) -> Option<Found> {
         let mesh = self.tri.mesh();
         let y = self.along(x);
         if self.graph.degree(y) != 2 || !mesh.neighbors(u).any(|w| w == y) {
@@ -264,12 +272,12 @@ impl Ends<'_> {
                 && self.branch(q, beyond_q, &[]);
             if passes {
                 if found.is_some() {
-                    return None;
+                    return Some(Found::Several(u));
                 }
                 found = Some(q);
             }
         }
-        found.map(|q| Move::beside(u, y, x, q))
+        found.map(|q| Found::One(Move::beside(u, y, x, q)))
     }
 
     /// Whether the passage at `a` (degree two) along the chord to `b` turns sharply and through `u`
@@ -284,7 +292,7 @@ impl Ends<'_> {
 }
 
 /// Replaces chords at tips in `edges` (each edge once, any order): the input edges in order
-/// without the chords, then each move's two edges by increasing move.
+/// without the chords, then each move's edges by increasing move.
 pub(crate) fn repair_tips(
     tri: &Triangulation,
     edges: &[Edge],
@@ -330,14 +338,7 @@ fn settle(n: usize, found: Vec<Found>) -> Option<(Vec<Edge>, Vec<Edge>)> {
         return None;
     }
     let chords = moves.iter().map(|m| ordered(m.x, m.y)).collect();
-    let joins = moves
-        .iter()
-        .flat_map(|m| {
-            [ordered(m.q, m.x), ordered(m.p, m.y)]
-                .into_iter()
-                .chain(m.beside.map(|b| ordered(b, m.y)))
-        })
-        .collect();
+    let joins = moves.iter().flat_map(|m| m.joins()).collect();
     Some((chords, joins))
 }
 
@@ -635,6 +636,33 @@ mod tests {
                 .collect();
             back.sort_unstable();
             assert_eq!(back, expected);
+        }
+    }
+
+    /// Found by review: with two loose ends passing beside `x`, the apex's candidate vanished
+    /// and `u` took another move. Here `u` (point 0) is also the apex of a second tip opening
+    /// the other way (sides along 160° and 200°, the chord between their first samples); with a
+    /// second side beside point 9 (0.35 below it) it has two candidates and makes no move.
+    #[test]
+    fn an_apex_with_two_loose_ends_beside_its_chord_takes_part_in_no_move() {
+        for second_side in [false, true] {
+            let (mut pts, mut edges) = apex_beside_a_loose_end(2.0, 1.0, 0.0);
+            if second_side {
+                let first = pts.len();
+                pts.extend((0..7).map(|k| Point::new(2.0 + k as f64, -0.35)));
+                edges.extend((first..first + 6).map(|i| [i, i + 1]));
+            }
+            let mut chord_ends = [0; 2];
+            for (end, angle) in chord_ends.iter_mut().zip([160f64, 200.0]) {
+                let (c, s) = (libm::cos(angle.to_radians()), libm::sin(angle.to_radians()));
+                *end = pts.len();
+                pts.extend((1..=7).map(|k| Point::new(k as f64 * c, k as f64 * s)));
+                edges.extend((*end..*end + 6).map(|i| [i, i + 1]));
+            }
+            edges.push(chord_ends);
+            // Alone, the beside move and the second tip's apex move both name point 0: neither
+            // is made. With the second side, point 1 has two partners: still neither.
+            assert_unchanged(&pts, edges);
         }
     }
 
