@@ -265,6 +265,15 @@ fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<E
         beyond: Vec::new(),
     };
     if size == 0 {
+        // No edges: an empty sequence (shape (0,)) or an empty (0, 2) array; any other empty
+        // shape, such as (0, 3) or (5, 0), is the wrong shape as it would be with rows.
+        let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+        if !matches!(shape.as_slice(), [0] | [0, 2]) {
+            return Err(PyValueError::new_err(format!(
+                "{name} must be an array of shape (m, 2); got one of shape {}",
+                shape_text(&shape)
+            )));
+        }
         return Ok(read);
     }
     let dtype = array.getattr("dtype")?.str()?.to_string();

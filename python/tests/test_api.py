@@ -467,6 +467,14 @@ def test_score_edges_that_are_no_array_are_a_type_error_and_shapes_are_written_a
     for edges, shown in (([(0, 1, 2)], "(1, 3)"), ([0, 1, 2], "(3,)"), ([[[0, 1]]], "(1, 1, 2)")):
         with pytest.raises(ValueError, match=rf"got one of shape {re.escape(shown)}$"):
             condt.score(square, edges, truth)
+    # No edges at all is an empty sequence or a (0, 2) array; an empty array of another shape
+    # is refused as its rows would be (it was scored as no edges).
+    assert condt.score(square, np.zeros((0, 2), int), truth)["n_out"] == 0
+    for empty, shown in ((np.zeros((0, 3), int), "(0, 3)"), (np.zeros((5, 0), int), "(5, 0)")):
+        with pytest.raises(ValueError, match=rf"^output must be an array of shape \(m, 2\); got one of shape {re.escape(shown)}$"):
+            condt.score(square, empty, truth)
+        with pytest.raises(ValueError, match=rf"^truth must be an array of shape \(m, 2\); got one of shape {re.escape(shown)}$"):
+            condt.score(square, truth, empty)
 
 
 def test_score_names_an_index_beyond_int64_as_given_and_never_wraps_it():

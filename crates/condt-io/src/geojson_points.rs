@@ -27,7 +27,7 @@ const MAX_DEPTH: usize = 64;
 ///
 /// Read: a FeatureCollection, a Feature, a GeometryCollection or a bare geometry; every Point
 /// gives one point and every MultiPoint its points, in the order they are written (a third
-/// coordinate is ignored). A Feature without a geometry (`null`) gives none. Any other geometry
+/// coordinate, a number, is ignored). A Feature without a geometry (`null`) gives none. Any other geometry
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
 /// coordinates that are not numbers. Members may come in any order; strings may hold escapes
 /// (`"Po\u0069nt"` is `"Point"`); numbers are read exactly as `str::parse` reads them.
@@ -280,8 +280,9 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 let (Some(x), Some(y)) = (x, y) else {
                     return Err(de::Error::custom(POSITION));
                 };
-                // A third coordinate, of any kind, is ignored; a fourth is refused.
-                if seq.next_element::<IgnoredAny>()?.is_some()
+                // A third coordinate (a number, as GeoJSON and the message ask) is ignored; a
+                // fourth is refused.
+                if seq.next_element_seed(Coordinate)?.is_some()
                     && seq.next_element::<IgnoredAny>()?.is_some()
                 {
                     return Err(de::Error::custom(POSITION));
@@ -464,7 +465,7 @@ mod tests {
     fn bare_geometries_and_collections_are_read_in_order() {
         let pts = parse_geojson(
             r#"{"type":"GeometryCollection","geometries":[
-                {"type":"MultiPoint","coordinates":[[1,2],[3,4]]},
+                {"type":"MultiPoint","coordinates":[[1,2],[3,4,-7.5]]},
                 {"type":"Point","coordinates":[-5e-1,6.25E2]}]}"#,
             "g.json",
         )
@@ -487,6 +488,10 @@ mod tests {
             ("{\"type\":\"Point\",\n\"coordinates\":[1]}", 2, "a position must be"),
             ("{\"type\":\"Point\",\n\"coordinates\":[1,2,3,4]}", 2, "a position must be"),
             ("{\"type\":\"Point\",\n\"coordinates\":[1,null]}", 2, "a position must be"),
+            // The ignored third coordinate must be a number too.
+            ("{\"type\":\"Point\",\n\"coordinates\":[1,2,\"x\"]}", 2, "a position must be"),
+            ("{\"type\":\"Point\",\n\"coordinates\":[1,2,null]}", 2, "a position must be"),
+            ("{\"type\":\"Point\",\n\"coordinates\":[1,2,[3]]}", 2, "a position must be"),
             ("{\"type\":\"Point\",\n\"coordinates\":7}", 2, "a position must be"),
             (
                 "{\"type\":\"Point\",\"coordinates\":[1,2]}\n,",

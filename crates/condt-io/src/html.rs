@@ -78,6 +78,10 @@ fn write_data(
     for p in &points {
         min = Point::new(min.x.min(p.x), min.y.min(p.y));
     }
+    if points.is_empty() {
+        // No corner: the origin is written as zero (JSON has no infinity).
+        min = Point::new(0.0, 0.0);
+    }
     for p in &points {
         span = span.max(p.x - min.x).max(p.y - min.y);
     }
@@ -393,6 +397,20 @@ mod tests {
             let (rx, ry) = (at(origin[0], x), at(origin[1], y));
             assert!((rx - p.x).abs() <= 1e-5 * 1e308 && (ry - p.y).abs() <= 1e-5 * 1e308);
         }
+    }
+
+    /// With no points there is no corner: the page's data must still be JSON (it had an origin of
+    /// `inf`, which the viewer's `JSON.parse` refused, leaving a blank page).
+    #[test]
+    fn no_points_give_valid_json() {
+        use condt::{reconstruct, Params};
+        let result = reconstruct(&[], &Params::default()).unwrap();
+        let mut page = Vec::new();
+        write_html(&mut page, &result, "empty").unwrap();
+        let page = String::from_utf8(page).unwrap();
+        let data = &page[page.find("{\"origin\"").unwrap()..page.find("</script>").unwrap()];
+        let value: serde_json::Value = serde_json::from_str(data.trim()).expect("valid JSON");
+        assert_eq!(value["origin"], serde_json::json!([0.0, 0.0]), "{data}");
     }
 
     #[test]

@@ -103,13 +103,24 @@ impl Source<'_> {
     /// Checks the ignored third column: any number, NaN and infinities among them (a common mark
     /// of a missing depth or height), but not a word.
     pub(super) fn third_column(&self, line: usize, field: &str) -> Result<(), IoError> {
+        self.ignored_number(line, field, "a third column")
+    }
+
+    /// Checks a field the reader ignores (`what`: a third column, a `.node` attribute): any
+    /// number, NaN and infinities among them, but not a word.
+    pub(super) fn ignored_number(
+        &self,
+        line: usize,
+        field: &str,
+        what: &str,
+    ) -> Result<(), IoError> {
         if decimal::parse(field.as_bytes()).is_some() || field.parse::<f64>().is_ok() {
             return Ok(());
         }
         Err(self.error(
             line,
             format!(
-                "cannot read {} as a number (a third column is ignored, but must be a number)",
+                "cannot read {} as a number ({what} is ignored, but must be a number)",
                 quoted(field)
             ),
         ))
@@ -764,7 +775,14 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
             format!("{markers} boundary markers per vertex, Triangle allows 0 or 1"),
         ));
     }
-    let columns = 3 + attributes + markers;
+    // Index, x, y, then the attributes and markers; a count no row could hold is refused here
+    // rather than wrapped around.
+    let Some(columns) = attributes.checked_add(3 + markers) else {
+        return Err(source.error(
+            header_line,
+            format!("{attributes} attributes per vertex is more than a row can hold"),
+        ));
+    };
     let mut points = Vec::new();
     let mut first_index = None;
     let mut last_line = header_line;
@@ -808,7 +826,7 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
             source.number(number, fields[2])?,
         );
         for field in &fields[3..] {
-            source.number(number, field)?;
+            source.ignored_number(number, field, "an attribute or marker")?;
         }
         source.push(&mut points, number, Point::new(x, y))?;
     }

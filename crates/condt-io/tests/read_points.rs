@@ -64,12 +64,33 @@ fn node_files_are_read_with_header_indices_attributes_and_markers() {
         zero.read().unwrap(),
         points(&[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])
     );
+    // An attribute of NaN or infinity (a missing value) is ignored as a plain file's third
+    // column is; the coordinates must still be finite.
+    let missing = TempFile::new("missing.node", b"2 2 1 0\n0 0 0 nan\n1 1 0 -inf\n");
+    assert_eq!(missing.read().unwrap(), points(&[(0.0, 0.0), (1.0, 0.0)]));
 }
 
 #[test]
 fn node_files_with_bad_rows_are_refused_by_line() {
-    let cases: [(&[u8], usize, &str); 6] = [
+    let cases: [(&[u8], usize, &str); 9] = [
         (b"3 2 0 0\n1 0 0\n2 1 0\n", 3, "the file ends after 2"),
+        // An attribute count no row can hold: refused at the header, not wrapped around to 0.
+        (
+            b"3 2 18446744073709551615 1\n0 0 0\n1 1 0\n2 0 1\n",
+            1,
+            "18446744073709551615 attributes per vertex is more than a row can hold",
+        ),
+        (
+            b"1 2 18446744073709551613 0\n0 0 0\n",
+            1,
+            "attributes per vertex is more than a row can hold",
+        ),
+        // Attributes are ignored, but must be numbers.
+        (
+            b"1 2 1 0\n0 0 0 deep\n",
+            2,
+            "cannot read \"deep\" as a number (an attribute or marker is ignored",
+        ),
         (
             b"2 2 0 0\n1 0 0\n2 1 0\n3 0 1\n",
             4,
