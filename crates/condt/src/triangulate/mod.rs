@@ -318,12 +318,39 @@ fn insertion_order(
     split_min: usize,
 ) -> (Vec<u32>, Option<usize>) {
     match halves::cut(points, split_min, parallel) {
-        Some(cut) => (
+        // As `construct` builds: a half without a triangle makes it build in one piece, in the
+        // one-piece order (the ids, and so the stages' ties, follow the order actually used).
+        Some(cut) if halves_have_triangles(points, frames, &cut) => (
             cut_order(points, frames, &cut, parallel, false, Default::default()).0,
             Some(cut.left_len()),
         ),
-        None => (spatial_order(points, frames, points.len()), None),
+        _ => (spatial_order(points, frames, points.len()), None),
     }
+}
+
+/// Whether each side of `cut` holds three points not on one line (in the predicates' frame, as
+/// the halves' builders see them): exactly when neither half's build returns `None` for want of a
+/// triangle ([`halves::build`]; its stitch does not fail with exact predicates).
+fn halves_have_triangles(points: &[Point], frames: &scale::Frames, cut: &halves::Cut) -> bool {
+    // Per side: its first point, then a second distinct one, then whether a third leaves their line.
+    let mut sides: [(Option<Point>, Option<Point>, bool); 2] = [(None, None, false); 2];
+    for &p in points {
+        let q = frames.predicates.apply(p);
+        let side = &mut sides[usize::from(cut.is_left(p))];
+        match *side {
+            (_, _, true) => {}
+            (None, _, _) => side.0 = Some(q),
+            (Some(a), None, _) => side.1 = (q != a).then_some(q),
+            (Some(a), Some(b), _) => {
+                side.2 = crate::predicates::orient2d(a, b, q)
+                    != crate::predicates::Orientation::Collinear
+            }
+        }
+        if sides[0].2 && sides[1].2 {
+            return true;
+        }
+    }
+    false
 }
 
 /// The spatial insertion order of `points` in one piece, a set of `whole` points or part of one.
@@ -1046,6 +1073,28 @@ mod tests {
                 assert_eq!(halves.triangles().count(), count);
                 assert_eq!(whole.triangles().count(), count);
             }
+        }
+    }
+
+    /// `Triangulation::insertion_order` names the order the triangulation inserts in, so a
+    /// set triangulated in it gets the same vertex ids (what `condt.dask`'s tiles build on), also
+    /// where the set is cut in two but a half has no triangle and the build falls back to one
+    /// piece: a line of 65,528 samples with a short curve rising from between two of them (the
+    /// order of the halves was given, and the stages' ties went the other way).
+    #[test]
+    fn the_insertion_order_is_the_one_the_triangulation_uses() {
+        let h = libm::ldexp(1.0, -15);
+        let mut line: Vec<Point> = (0..65_528).map(|k| Point::new(k as f64 * h, 0.0)).collect();
+        let x = (60_485.0 + 0.5) * h;
+        line.extend((0..8).map(|k| Point::new(x, h + k as f64 * h * 1.01)));
+        let mut rng = Xorshift::new(0x0de5);
+        let scattered = rng.unit_points(halves::SPLIT_MIN + 100);
+        for points in [line, scattered] {
+            assert!(halves::cut(&points, halves::SPLIT_MIN, false).is_some());
+            let order = Triangulation::insertion_order(&points).unwrap();
+            let whole = triangulate(&points).unwrap();
+            let in_order = Triangulation::triangulate_in_order(&points, &order).unwrap();
+            assert!((0..points.len()).all(|i| whole.vertex(i) == in_order.vertex(i)));
         }
     }
 
