@@ -100,14 +100,9 @@ impl Source<'_> {
         }
     }
 
-    /// Checks the ignored third column: any number, NaN and infinities among them (a common mark
-    /// of a missing depth or height), but not a word.
-    pub(super) fn third_column(&self, line: usize, field: &str) -> Result<(), IoError> {
-        self.ignored_number(line, field, "a third column")
-    }
-
-    /// Checks a field the reader ignores (`what`: a third column, a `.node` attribute): any
-    /// number, NaN and infinities among them, but not a word.
+    /// Checks a field the reader ignores (`what`: a text file's third column, a `.node`
+    /// attribute): any number, NaN and infinities among them (a common mark of a missing depth
+    /// or height), but not a word.
     pub(super) fn ignored_number(
         &self,
         line: usize,
@@ -536,7 +531,7 @@ fn lines_by<const ONE_PASS: bool>(
             source.number(number, second)?,
         );
         if row.count == 3 {
-            source.third_column(number, third)?;
+            source.ignored_number(number, third, "a third column")?;
         }
         all_three_columns &= row.count == 3;
         source.push(&mut points, number, Point::new(x, y))?;

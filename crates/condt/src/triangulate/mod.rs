@@ -204,7 +204,7 @@ fn construct(
     progress: Option<&AtomicUsize>,
     (spare_order, spare_points, mesh): (Vec<u32>, Vec<Point>, Mesh),
 ) -> (Vec<u32>, Vec<Point>, Built) {
-    if let Some(cut) = halves::cut(points, split_min, parallel) {
+    if let Some(cut) = cut_in_two(points, frames, split_min, parallel) {
         let buffers = (spare_order, spare_points);
         let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
         let built = if frames.wide {
@@ -317,20 +317,31 @@ fn insertion_order(
     parallel: bool,
     split_min: usize,
 ) -> (Vec<u32>, Option<usize>) {
-    match halves::cut(points, split_min, parallel) {
-        // As `construct` builds: a half without a triangle makes it build in one piece, in the
-        // one-piece order (the ids, and so the stages' ties, follow the order actually used).
-        Some(cut) if halves_have_triangles(points, frames, &cut) => (
+    // The decision `construct` builds by, so the ids (and the stages' ties) follow this order.
+    match cut_in_two(points, frames, split_min, parallel) {
+        Some(cut) => (
             cut_order(points, frames, &cut, parallel, false, Default::default()).0,
             Some(cut.left_len()),
         ),
-        _ => (spatial_order(points, frames, points.len()), None),
+        None => (spatial_order(points, frames, points.len()), None),
     }
+}
+
+/// Where a set is built in two halves: [`halves::cut`], when each side holds a triangle (a half
+/// without one cannot be built; the set is then built in one piece, in the one-piece order).
+fn cut_in_two(
+    points: &[Point],
+    frames: &scale::Frames,
+    split_min: usize,
+    parallel: bool,
+) -> Option<halves::Cut> {
+    halves::cut(points, split_min, parallel)
+        .filter(|cut| halves_have_triangles(points, frames, cut))
 }
 
 /// Whether each side of `cut` holds three points not on one line (in the predicates' frame, as
 /// the halves' builders see them): exactly when neither half's build returns `None` for want of a
-/// triangle ([`halves::build`]; its stitch does not fail with exact predicates).
+/// triangle ([`halves::build`]).
 fn halves_have_triangles(points: &[Point], frames: &scale::Frames, cut: &halves::Cut) -> bool {
     // Per side: its first point, then a second distinct one, then whether a third leaves their line.
     let mut sides: [(Option<Point>, Option<Point>, bool); 2] = [(None, None, false); 2];
