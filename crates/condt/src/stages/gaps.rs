@@ -28,10 +28,12 @@
 //! passage (the repair kept one curve whole).
 //!
 //! (4) Last, for the ends that agreed on none of these: each walks straight on (above
-//! [`STRAIGHT`], each step within [`GAP_RATIO`] of the one before, up to [`MIN_SAMPLES`] points)
-//! through unused points; two walks that reach each other's ends or end at the same point join
-//! along them (a run of samples the earlier stages dropped; a sharp tip's apex with its nearest
-//! samples, which lay nearer the other side than their own).
+//! [`STRAIGHT`], each step within [`GAP_RATIO`] of the longer of the two before, up to
+//! [`MIN_SAMPLES`] points) through unused points, where a step crowded under `1 / GAP_RATIO` of
+//! the one before (two samples noise pushed together) need only run ahead; two walks that reach
+//! each other's ends or end at the same point join along them (a run of samples the earlier
+//! stages dropped; a sharp tip's apex with its nearest samples, which lay nearer the other side
+//! than their own).
 //!
 //! Each end takes its nearest candidate (distances whose squares round alike compared exactly, as
 //! ids follow the orientation of the input; only an exact tie by id). Joins need evidence from
@@ -365,12 +367,26 @@ impl<'a> Ends<'a> {
     }
 
     /// The unused points a straight walk from the loose end `a` passes, then the end it meets.
+    ///
+    /// Each step is within [`GAP_RATIO`] of the longer of the two before it (the end's last two
+    /// edges at the start), as noise crowding a sample shortens one of them. A step under
+    /// `1 / GAP_RATIO` of the one before is *crowded* (two samples noise pushed together): its
+    /// direction is the noise's, so it need only run ahead ([`AHEAD`]), and the straightness of
+    /// the step after it is read from the point before it.
     pub(crate) fn straight_walk(&self, a: VertexId) -> Walk {
         let mut path = Walk::EMPTY;
-        let (mut prev, mut here) = (self.along(a), a);
+        let along = self.along(a);
+        let (mut from, mut here) = (along, a);
+        let mut last = self.point(along).dist2(self.point(a));
+        let mut before = if self.graph.degree(along) == 2 {
+            let beyond = self.graph.onward(along, a);
+            self.point(along).dist2(self.point(beyond))
+        } else {
+            0.0
+        };
         for _ in 0..MIN_SAMPLES {
-            let (pp, ph) = (self.point(prev), self.point(here));
-            let reach = GAP_RATIO * GAP_RATIO * pp.dist2(ph);
+            let (pf, ph) = (self.point(from), self.point(here));
+            let span = last.max(before);
             let next = self
                 .tri
                 .mesh()
@@ -378,14 +394,22 @@ impl<'a> Ends<'a> {
                 .filter(|&w| w != a && !path.contains(&w))
                 .filter(|&w| matches!(self.graph.degree(w), 0 | 1))
                 .map(|w| (ph.dist2(self.point(w)), w))
-                .filter(|&(d, w)| d <= reach && cos_at(ph, pp, self.point(w)) < STRAIGHT)
+                .filter(|&(d, w)| {
+                    let cos = cos_at(ph, pf, self.point(w));
+                    let crowded = GAP_RATIO * GAP_RATIO * d < last;
+                    d <= GAP_RATIO * GAP_RATIO * span
+                        && (cos < STRAIGHT || (crowded && cos < AHEAD))
+                })
                 .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-            let Some((_, w)) = next else { break };
+            let Some((d, w)) = next else { break };
             path.push(w);
             if self.graph.degree(w) == 1 {
                 break;
             }
-            (prev, here) = (here, w);
+            if GAP_RATIO * GAP_RATIO * d >= last {
+                from = here;
+            }
+            (before, last, here) = (last, d, w);
         }
         path
     }
@@ -838,6 +862,19 @@ mod tests {
         assert_eq!(joins(&pts, &sides), expected);
         pts.extend((0..4).map(|k| Point::new(-2.0 - k as f64, 5.0)));
         assert_eq!(joins(&pts, &sides), expected);
+    }
+
+    /// Two samples that noise pushed together between two loose ends: the short step between
+    /// them turns 45° off the line, and each end's nearest sample is another one of the two (no
+    /// agreement on a stranded point). The walks read the step after the crowded one from the
+    /// sample before it, pass both and meet.
+    #[test]
+    fn straight_walks_pass_two_crowded_samples() {
+        let mut pts: Vec<Point> = (0..=5).map(|k| Point::new(k as f64, 0.0)).collect();
+        pts.extend((8..=13).map(|k| Point::new(k as f64, 0.0)));
+        pts.extend([Point::new(6.4, 0.1), Point::new(6.65, -0.12)]);
+        let pieces: Vec<[usize; 2]> = (0..5).chain(6..11).map(|i| [i, i + 1]).collect();
+        assert_eq!(joins(&pts, &pieces), vec![[5, 12], [6, 13], [12, 13]]);
     }
 
     /// A turtle walk from the origin: each step turns by the given degrees, then goes the
