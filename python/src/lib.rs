@@ -313,8 +313,9 @@ fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<E
     };
     match kind.as_str() {
         "i" => {
-            // Every integer dtype numpy has fits int64.
-            let array = numpy.call_method1("ascontiguousarray", (array, "int64"))?;
+            // Every integer dtype numpy has fits int64. `require` copies what is not C-contiguous,
+            // aligned and native (`ascontiguousarray` passes an unaligned contiguous array as is).
+            let array = numpy.call_method1("require", (array, "int64", ("C", "A")))?;
             let array = array.cast_into::<PyArray2<i64>>()?;
             let readonly = array.try_readonly()?;
             for (k, &value) in readonly.as_slice()?.iter().enumerate() {
@@ -322,7 +323,7 @@ fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<E
             }
         }
         "u" => {
-            let array = numpy.call_method1("ascontiguousarray", (array, "uint64"))?;
+            let array = numpy.call_method1("require", (array, "uint64", ("C", "A")))?;
             let array = array.cast_into::<PyArray2<u64>>()?;
             let readonly = array.try_readonly()?;
             for (k, &value) in readonly.as_slice()?.iter().enumerate() {

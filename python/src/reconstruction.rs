@@ -128,7 +128,7 @@ impl Reconstruction {
 
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
     /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``, ``"given-back"``,
-    /// ``"gaps"``, ``"junctions"``, ``"crossings"``, or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
+    /// ``"gaps"``, ``"junctions"``, ``"crossings"``, ``"tips"``, ``"tails"``, or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
     /// the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
     /// the stages are the last pass's.
     #[getter]

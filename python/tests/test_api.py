@@ -477,6 +477,22 @@ def test_score_edges_that_are_no_array_are_a_type_error_and_shapes_are_written_a
             condt.score(square, truth, empty)
 
 
+def test_score_reads_unaligned_integer_edge_arrays():
+    """A contiguous int64 or uint64 array at an odd address (np.frombuffer at an offset) is read
+    as its aligned copy would be, output and truth alike."""
+    square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    truth = np.array([(0, 1), (1, 2), (2, 3), (0, 3)], np.int64)
+    for dtype in (np.int64, np.uint64, np.dtype(">i8")):
+        raw = bytearray(truth.nbytes + 1)
+        shifted = np.frombuffer(raw, dtype, offset=1, count=8).reshape(-1, 2)
+        shifted[:] = truth
+        assert not shifted.flags.aligned
+        assert condt.score(square, shifted, truth)["exact"]
+        assert condt.score(square, truth, shifted)["exact"]
+        shifted[0, 1] = 2
+        assert not condt.score(square, shifted, truth)["exact"]
+
+
 def test_score_names_an_index_beyond_int64_as_given_and_never_wraps_it():
     square = [(0, 0), (1, 0), (1, 1), (0, 1)]
     truth = [(0, 1), (1, 2), (2, 3), (3, 0)]
