@@ -1,4 +1,7 @@
 //! Topological invariants of a [`Mesh`], checked without looking at coordinates.
+//!
+//! Owns: the rules a mesh's arrays must obey and the [`Violation`] naming a broken one. It may
+//! not read coordinates (geometry is `triangulate::check`'s) nor change the mesh.
 
 use super::{HalfEdgeId, Mesh, TriangleId, VertexId};
 use alloc::vec;

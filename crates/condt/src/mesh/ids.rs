@@ -1,4 +1,7 @@
 //! Typed 32-bit handles for vertices, half-edges and triangles.
+//!
+//! Owns: the handle types and the index arithmetic of a triangle's three half-edges. It may not
+//! read a mesh: a handle says nothing of whether its element exists.
 
 /// A vertex, numbered in the (spatial) insertion order;
 /// [`Triangulation::input_of`](crate::Triangulation::input_of) gives its input position.

@@ -2,6 +2,9 @@
 //! floating-point expansions cannot take without underflow: integers below `2^2098` in units of
 //! the call's smallest exponent, determinants below `2^8400` in 64-bit limbs on the stack
 //! (`docs/predicates.md`, item 3). Microseconds at worst: [`super`] runs it only where needed.
+//!
+//! Owns: the big-integer reading of a call's coordinates and its determinants. It may not decide
+//! when it runs (the filters in [`super`] do) and uses no floating-point arithmetic for a sign.
 
 use core::cmp::Ordering;
 

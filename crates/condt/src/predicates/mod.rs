@@ -1,7 +1,9 @@
 //! Exact geometric predicates (y axis up: counter-clockwise is a left turn).
 //!
-//! Owns: every decision about a geometric sign. Nothing else in the crate may compute a sign with
-//! plain floating point, and this module may not depend on the mesh or the triangulator.
+//! Owns: every orientation, in-circle and exact distance comparison. Nothing else in the crate may
+//! decide one in plain floating point (a walk's guide or a stage's angle threshold may compare
+//! floats: neither is a predicate whose error would break the mesh), and this module may not
+//! depend on the mesh or the triangulator.
 //!
 //! In the fast range, where no product overflows or underflows (`docs/predicates.md`): Shewchuk's
 //! static filter inline, then machine integers on a common binary grid (`small.rs`), then his

@@ -5,6 +5,7 @@
 //!
 //! Owns: the fixed-point reading of a call's coordinates and the two determinants on it. A call
 //! it refuses (`None`) goes on to Shewchuk's adaptive stages: a wrong refusal costs time only.
+//! It may not answer a call outside its grid: a sign it gives must be exact.
 
 use core::cmp::Ordering;
 

@@ -2,7 +2,8 @@
 //! algorithms to the code), split along its seams: [`params`] (what runs and in which order),
 //! [`pipeline`] (running it step by step, with the smoothing passes), [`history`] (what each
 //! stage changed, to give its graph back) and [`result`] (the [`Reconstruction`]). None of them
-//! implements a stage ([`crate::stages`]) or modifies the triangulation.
+//! implements a stage ([`crate::stages`]) or edits a triangulation's mesh: a smoothing pass
+//! builds a new triangulation of the moved points (reusing the old one's storage).
 
 mod history;
 mod params;

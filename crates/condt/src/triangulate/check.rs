@@ -1,4 +1,7 @@
 //! The full check of a [`Triangulation`]: topology, duplicates map, and exact geometry.
+//!
+//! Owns: `validate`'s geometric rules (orientation, the empty circle, the hull), decided by the
+//! exact predicates only. It may not change the triangulation.
 
 use super::insert::{position_on_segment, Segment};
 use super::Triangulation;

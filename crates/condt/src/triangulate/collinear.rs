@@ -3,6 +3,9 @@
 //! The distinct points are chained along the line, each segment `q_s – q_{s+1}` covered by the
 //! ghosts `L_s = (q_s, q_{s+1}, ∞)` at half-edges `6s..6s+3` and `R_s = (q_{s+1}, q_s, ∞)` at
 //! `6s+3..6s+6` (`docs/half_edge.md`, *Collinear input*).
+//!
+//! Owns: building that chain's mesh. It may not be used for a set with a triangle (the insertion
+//! builds those) and decides no orientation itself: the caller has found the set collinear.
 
 use crate::geometry::Point;
 use crate::mesh::{HalfEdgeId, Mesh, MeshArrays, VertexId};

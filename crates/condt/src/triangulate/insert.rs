@@ -1,7 +1,8 @@
 //! Incremental Delaunay construction: walk to the new point, split, restore the empty-circle
 //! property by edge flips (`docs/triangulation.md`, step 4).
 //!
-//! Owns: the construction state; signs only by `predicates`, edits only by [`MeshBuilder`].
+//! Owns: the construction state; orientations and in-circle tests only by `predicates` (the walk's
+//! slide along an edge reads a float only as a guide), edits only by [`MeshBuilder`].
 
 use crate::geometry::Point;
 use crate::mesh::{wrap3, HalfEdgeId, MeshBuilder, VertexId};

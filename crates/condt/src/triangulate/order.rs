@@ -3,6 +3,9 @@
 //! Rounds keep insertion near O(n log n) even on curves; the Hilbert order keeps walks short
 //! (`docs/triangulation.md`). A point's round is a hash of its quantized bounding-box-relative
 //! position, so the order depends only on the set of points.
+//!
+//! Owns: the order in which points are inserted, and its scratch buffers. It may not read or
+//! build a mesh; the order changes no result, only the time the insertion takes.
 
 use crate::geometry::Point;
 use alloc::vec::Vec;

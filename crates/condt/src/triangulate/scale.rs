@@ -1,6 +1,9 @@
 //! Input checks and the exact power-of-two rescalings: into the frame the predicates decide in
 //! (largest magnitude in [1, 2)) and into the stages' positions (in [2^200, 2^201)).
 //! `docs/predicates.md` derives both ranges and when a set is *wide*, needing exact predicates.
+//!
+//! Owns: refusing input no frame can take, and choosing the two frames. It may not change a point
+//! other than by an exact power-of-two scaling (no rounding, no translation).
 
 use crate::error::Error;
 use crate::geometry::{binary_exponent, Point, Scale};

@@ -1,4 +1,7 @@
 //! [`Repair::Needs`](super::Repair::Needs). Rule and reasons: [`super`]; [`NEED_RATIO`]'s are here.
+//!
+//! Owns: the choice, at a vertex of three or more edges, of the pair it keeps. It reads positions
+//! and the triangulation; it may not edit the graph (the repair in [`super`] applies the choice).
 
 use super::{
     angle_above, angle_at, paper_choice, PAIR_ANGLE, PAIR_COS2, STRAIGHT_ANGLE, STRAIGHT_COS2,
