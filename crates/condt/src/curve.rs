@@ -28,6 +28,12 @@ pub struct Curve {
 
 impl Curve {
     /// The input positions of its points, in order along the curve.
+    ///
+    /// ```
+    /// use condt::curves_from_edges;
+    /// let curve = &curves_from_edges(3, &[[2, 1], [1, 0]])[0];
+    /// assert_eq!(curve.points().collect::<Vec<_>>(), vec![0, 1, 2]);
+    /// ```
     pub fn points(
         &self,
     ) -> impl ExactSizeIterator<Item = usize> + DoubleEndedIterator + Clone + '_ {
@@ -35,21 +41,43 @@ impl Curve {
     }
 
     /// `true` when the last point joins back to the first.
+    ///
+    /// ```
+    /// use condt::curves_from_edges;
+    /// assert!(curves_from_edges(3, &[[0, 1], [1, 2], [2, 0]])[0].is_closed());
+    /// assert!(!curves_from_edges(3, &[[0, 1], [1, 2]])[0].is_closed());
+    /// ```
     pub fn is_closed(&self) -> bool {
         self.closed
     }
 
     /// Number of points (a closed curve has as many edges, an open one one fewer).
+    ///
+    /// ```
+    /// use condt::curves_from_edges;
+    /// assert_eq!(curves_from_edges(4, &[[0, 1], [1, 2], [2, 3]])[0].len(), 4);
+    /// ```
     pub fn len(&self) -> usize {
         self.points.len()
     }
 
     /// `true` for a curve without points (never produced by this crate).
+    ///
+    /// ```
+    /// use condt::curves_from_edges;
+    /// assert!(!curves_from_edges(2, &[[0, 1]])[0].is_empty());
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.points.is_empty()
     }
 
     /// Its edges as input positions in the order of the curve, the closing edge last.
+    ///
+    /// ```
+    /// use condt::curves_from_edges;
+    /// let open = &curves_from_edges(3, &[[2, 1], [0, 1]])[0];
+    /// assert_eq!(open.edges().collect::<Vec<_>>(), vec![[0, 1], [1, 2]]);
+    /// ```
     pub fn edges(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
         let n = self.points.len();
         let steps = if self.closed { n } else { n.saturating_sub(1) };

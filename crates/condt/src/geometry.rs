@@ -3,6 +3,13 @@
 //! Owns: the [`Point`] type, arithmetic that measures (distances, bounding boxes) and exact
 //! rescaling by powers of two ([`Scale`], [`binary_exponent`]), shared with `condt-io`'s drawings.
 //! It may not decide an orientation or in-circle sign: that is [`crate::predicates`]'s alone.
+//!
+//! ```
+//! use condt::geometry::{binary_exponent, Scale};
+//! use condt::Point;
+//! let p = Point::new(6.0, -1.0);
+//! assert_eq!(Scale::power_of_two(-binary_exponent(p.x)).apply(p), Point::new(1.5, -0.25));
+//! ```
 
 /// A point of the plane, in double precision.
 ///
@@ -30,11 +37,22 @@ pub struct Point {
 
 impl Point {
     /// A point from its coordinates.
+    ///
+    /// ```
+    /// use condt::Point;
+    /// let p = Point::new(1.5, -2.0);
+    /// assert_eq!((p.x, p.y), (1.5, -2.0));
+    /// ```
     #[inline]
     pub const fn new(x: f64, y: f64) -> Self {
         Point { x, y }
     }
     /// Squared Euclidean distance to `other`.
+    ///
+    /// ```
+    /// use condt::Point;
+    /// assert_eq!(Point::new(1.0, 1.0).dist2(Point::new(4.0, 5.0)), 25.0);
+    /// ```
     #[inline]
     pub fn dist2(self, other: Point) -> f64 {
         let dx = self.x - other.x;
@@ -43,6 +61,13 @@ impl Point {
     }
 
     /// `true` when both coordinates are finite (neither NaN nor infinite).
+    ///
+    /// ```
+    /// use condt::Point;
+    /// assert!(Point::new(1.0, 2.0).is_finite());
+    /// assert!(!Point::new(f64::NAN, 0.0).is_finite());
+    /// assert!(!Point::new(0.0, f64::INFINITY).is_finite());
+    /// ```
     #[inline]
     pub fn is_finite(self) -> bool {
         self.x.is_finite() && self.y.is_finite()
@@ -137,6 +162,12 @@ pub struct Scale {
 
 impl Scale {
     /// Multiplication by one.
+    ///
+    /// ```
+    /// use condt::{geometry::Scale, Point};
+    /// let p = Point::new(0.1, -3.0e300);
+    /// assert_eq!(Scale::IDENTITY.apply(p), p);
+    /// ```
     pub const IDENTITY: Scale = Scale {
         first: 1.0,
         second: 1.0,
@@ -146,6 +177,14 @@ impl Scale {
     ///
     /// # Panics
     /// If `k` is outside `-2044..=2046`, where the two factors would leave the normal range.
+    ///
+    /// ```
+    /// use condt::{geometry::Scale, Point};
+    /// assert_eq!(Scale::power_of_two(3).apply(Point::new(1.0, -0.5)), Point::new(8.0, -4.0));
+    /// // Beyond one double's exponent range, in two exact steps:
+    /// let tiny = Point::new(2f64.powi(-1000), 0.0);
+    /// assert_eq!(Scale::power_of_two(2000).apply(tiny), Point::new(2f64.powi(1000), 0.0));
+    /// ```
     pub fn power_of_two(k: i32) -> Scale {
         assert!(
             (-2044..=2046).contains(&k),
@@ -159,11 +198,22 @@ impl Scale {
     }
 
     /// `p` multiplied by the scale (exact while `p` stays in the normal range).
+    ///
+    /// ```
+    /// use condt::{geometry::Scale, Point};
+    /// assert_eq!(Scale::power_of_two(-2).apply(Point::new(1.0, 3.0)), Point::new(0.25, 0.75));
+    /// ```
     #[inline]
     pub fn apply(self, p: Point) -> Point {
         p.scaled(self.first).scaled(self.second)
     }
     /// The scale that undoes this one, exactly (its factors are powers of two).
+    ///
+    /// ```
+    /// use condt::{geometry::Scale, Point};
+    /// let undo = Scale::power_of_two(11).inverse();
+    /// assert_eq!(undo.apply(Point::new(2048.0, -6144.0)), Point::new(1.0, -3.0));
+    /// ```
     pub fn inverse(self) -> Scale {
         Scale {
             first: 1.0 / self.second,

@@ -30,6 +30,16 @@ pub struct Graph<'t> {
 }
 
 /// What [`Graph::remove_outliers`] (or [`Graph::remove_outliers_floored`]) did.
+///
+/// ```
+/// use condt::{triangulate, Point, Uniformity};
+/// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+/// pts.push(Point::new(10.0, 6.0));
+/// let tri = triangulate(&pts)?;
+/// let removal = tri.proximity_graph(Uniformity::Fixed(2.75))?.remove_outliers(1.7)?;
+/// assert!(removal.fired && removal.graph.degrees()[21] == 0);
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct OutlierRemoval<'t> {
     /// The graph after the stage (the input itself when the rule did not fire).
@@ -119,16 +129,38 @@ impl<'t> Graph<'t> {
     }
 
     /// The triangulation the graph lives on.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let graph = tri.graph_from_edges([[0, 1]]);
+    /// assert!(std::ptr::eq(graph.triangulation(), &tri));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn triangulation(&self) -> &'t Triangulation {
         self.tri
     }
 
     /// Number of edges.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// assert_eq!(tri.graph_from_edges([[0, 1], [1, 0], [1, 2]]).num_edges(), 2);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn num_edges(&self) -> usize {
         self.edges.len()
     }
 
     /// The edges as input positions `[a, b]`, `a < b`, sorted. O(n) with a counting sort.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// assert_eq!(tri.graph_from_edges([[2, 1], [1, 0]]).edges(), vec![[0, 1], [1, 2]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn edges(&self) -> Vec<[usize; 2]> {
         let tri = self.tri;
         let pairs = self.edges.iter().map(|&[a, b]| {
@@ -142,6 +174,14 @@ impl<'t> Graph<'t> {
     }
 
     /// The degree of every input point (exact duplicates share their point's degree).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (0.0, 0.0)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// assert_eq!(tri.graph_from_edges([[0, 1], [0, 2]]).degrees(), vec![2, 1, 1, 2]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn degrees(&self) -> Vec<usize> {
         let by_vertex = degrees(self.tri.num_points(), &self.edges);
         (0..self.tri.num_points())
@@ -150,6 +190,15 @@ impl<'t> Graph<'t> {
     }
 
     /// Algorithm 2: the non-manifold repair, in the reading `repair` names.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point, Repair};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (-1.1, 0.0), (0.0, 1.2)].map(Point::from))?;
+    /// let star = tri.graph_from_edges([[0, 1], [0, 2], [0, 3]]);
+    /// assert_eq!(star.repair(Repair::Paper).edges(), vec![[0, 1], [0, 2]]);
+    /// assert_eq!(star.repair(Repair::Off).num_edges(), 3);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn repair(&self, repair: Repair) -> Graph<'t> {
         self.step(Step::Repair(repair)).0
     }
@@ -158,6 +207,15 @@ impl<'t> Graph<'t> {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] named `k` when `k` is NaN, infinite or negative.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&(0..6).map(|i| Point::new(i as f64, 0.0)).collect::<Vec<_>>())?;
+    /// let even = tri.graph_from_edges((0..5).map(|i| [i, i + 1]));
+    /// assert!(!even.remove_outliers(1.7)?.fired); // no edge stands out
+    /// assert!(even.remove_outliers(f64::NAN).is_err());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn remove_outliers(&self, k: f64) -> Result<OutlierRemoval<'t>, Error> {
         self.cut(k, false)
     }
@@ -380,6 +438,14 @@ impl<'t> Graph<'t> {
     }
 
     /// The curves through the graph in input positions, ordered as [`crate::curves_from_edges`]'s.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (3.0, 0.0)].map(Point::from))?;
+    /// let curves = tri.graph_from_edges([[0, 1], [1, 2], [2, 0]]).curves();
+    /// assert!(curves.len() == 1 && curves[0].is_closed() && curves[0].len() == 3);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn curves(&self) -> Vec<Curve> {
         let tri = self.tri;
         let graph = CurveGraph::new(tri.num_points(), &self.edges);

@@ -18,6 +18,16 @@ use alloc::vec::Vec;
 pub use crate::stages::proximity::EndChoice;
 
 /// Why a stage removed or added an edge.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point, Reason};
+/// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+/// pts.push(Point::new(10.0, 6.0));
+/// let stories = reconstruct(&pts, &Params::paper())?.provenance();
+/// let story = stories.iter().find(|s| s.edge == [10, 21]).unwrap();
+/// assert!(matches!(story.changes[0].reason, Reason::Repair { vertex: 10, degree: 3, .. }));
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum Reason {
     /// Algorithm 2 at a vertex with `degree` edges (3 or more) chose other edges.
@@ -91,6 +101,16 @@ pub enum Reason {
 }
 
 /// One change a stage made to an edge.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point, Stage};
+/// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+/// pts.push(Point::new(10.0, 6.0));
+/// let stories = reconstruct(&pts, &Params::paper())?.provenance();
+/// let story = stories.iter().find(|s| s.edge == [10, 21]).unwrap();
+/// assert!(story.changes[0].stage == Stage::Repair && !story.changes[0].added && !story.kept);
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Change {
     /// The stage.
@@ -130,6 +150,15 @@ impl Reconstruction {
     /// Every Delaunay or added edge's [`EdgeStory`], sorted by edge; O(n log n), on demand. The
     /// stories are the last run's: after smoothing passes, of the triangulation of the moved
     /// points ([`Reconstruction::triangulation`]), whose edges can differ from the input's.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let stories = reconstruct(&pts, &Params::paper())?.provenance();
+    /// assert_eq!(stories.iter().map(|s| s.edge).collect::<Vec<_>>(), [[0, 1], [0, 2], [1, 2]]);
+    /// assert!(stories.iter().all(|s| s.kept && s.changes.is_empty()));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn provenance(&self) -> Vec<EdgeStory> {
         let tri = self.triangulation();
         let reports: Vec<_> = self.stages().collect();

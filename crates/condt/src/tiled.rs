@@ -7,6 +7,13 @@
 //! graph (a quantile, a component's tally, a guard over every point) runs once on the gathered
 //! edges, here. It may not implement a rule: each function calls the stage's own code, which the
 //! one-machine run calls too, and reads positions in the stages' frame.
+//!
+//! ```
+//! // The driver names each point's component in the gathered edges, for the tiles' tests.
+//! let labels = condt::tiled::component_labels(4, &[[0, 1], [2, 3]])?;
+//! assert_eq!(labels, vec![0, 0, 2, 2]);
+//! # Ok::<(), condt::Error>(())
+//! ```
 
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::error::Error;
@@ -289,6 +296,15 @@ pub fn tip_candidates(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usi
 ///
 /// # Errors
 /// As [`component_labels`], for `edges` and for the positions in `candidates`.
+///
+/// ```
+/// use condt::tiled;
+/// // The whole round trip is in the example of `tip_candidates`.
+/// let edges = [[0, 1], [1, 2]];
+/// assert_eq!(tiled::repair_gathered_tips(3, &edges, &[])?, None); // no candidate, no change
+/// assert!(tiled::repair_gathered_tips(3, &edges, &[[0, 1, 2, 7]]).is_err()); // no point 7
+/// # Ok::<(), condt::Error>(())
+/// ```
 pub fn repair_gathered_tips(
     n: usize,
     edges: &[[usize; 2]],
@@ -408,6 +424,17 @@ pub fn gap_choices(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize;
 /// # Errors
 /// As [`component_labels`], for `edges` and for the positions in `rows` (named `choice`, also for
 /// a kind or a walk length out of range).
+///
+/// ```
+/// use condt::tiled;
+/// // The loose ends 2 and 3 chose each other (kind 1), walking nowhere: one join.
+/// let rows = [[2, 1, 3, 2, 0, 2, 2, 2, 2, 2], [3, 1, 2, 3, 0, 3, 3, 3, 3, 3]];
+/// let edges = [[0, 1], [1, 2], [3, 4], [4, 5]];
+/// let closed = tiled::close_gathered_gaps(6, &edges, &rows)?.unwrap();
+/// assert_eq!(closed, [&edges[..], &[[2, 3]]].concat());
+/// assert_eq!(tiled::close_gathered_gaps(6, &edges, &rows[..1])?, None); // 3 did not agree
+/// # Ok::<(), condt::Error>(())
+/// ```
 pub fn close_gathered_gaps(
     n: usize,
     edges: &[[usize; 2]],

@@ -39,6 +39,11 @@ macro_rules! rules {
         /// [`Mesh::check_topology`], or maps and exact geometry, by
         /// [`Triangulation::validate`](crate::Triangulation::validate). Each names the kind of
         /// [`Element`] it reports.
+        ///
+        /// ```
+        /// use condt::mesh::Rule;
+        /// assert_eq!(Rule::RepeatedCorner.to_string(), "triangle repeats a corner");
+        /// ```
         #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
         #[non_exhaustive]
         pub enum Rule {
@@ -47,6 +52,11 @@ macro_rules! rules {
 
         impl Rule {
             /// The invariant, in words.
+            ///
+            /// ```
+            /// use condt::mesh::Rule;
+            /// assert_eq!(Rule::HullNotConvex.description(), "hull is not convex");
+            /// ```
             pub fn description(&self) -> &'static str {
                 match self {
                     $(Rule::$rule => $words,)*
@@ -127,6 +137,12 @@ impl fmt::Display for Rule {
 }
 
 /// The element at which a [`Rule`] fails.
+///
+/// ```
+/// use condt::mesh::{Element, VertexId};
+/// assert_eq!(Element::Vertex(VertexId::new(4)).to_string(), "vertex 4");
+/// assert_eq!(Element::InputPoint(7).to_string(), "input point 7");
+/// ```
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Element {
     /// A half-edge.

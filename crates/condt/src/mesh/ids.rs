@@ -18,19 +18,50 @@ pub struct VertexId(u32);
 
 impl VertexId {
     /// The vertex at infinity, apex of every ghost triangle.
+    ///
+    /// ```
+    /// use condt::mesh::{TriangleId, VertexId};
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let corners = (0..4).map(|t| tri.mesh().triangle_vertices(TriangleId::new(t)));
+    /// assert_eq!(corners.filter(|c| c.contains(&VertexId::INFINITE)).count(), 3); // the ghosts
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub const INFINITE: VertexId = VertexId(u32::MAX);
 
     /// The vertex with this index.
+    ///
+    /// ```
+    /// use condt::mesh::VertexId;
+    /// assert!(VertexId::new(0) < VertexId::new(1) && !VertexId::new(0).is_infinite());
+    /// ```
     #[inline]
     pub const fn new(index: u32) -> Self {
         VertexId(index)
     }
     /// Position in the arrays indexed by vertex (not an input position in general).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// assert!((0..3).all(|i| tri.vertex(i).index() < tri.mesh().num_vertex_ids()));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub const fn index(self) -> usize {
         self.0 as usize
     }
     /// `true` for [`VertexId::INFINITE`].
+    ///
+    /// ```
+    /// use condt::mesh::HalfEdgeId;
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let origins = (0..12).map(|e| tri.mesh().origin(HalfEdgeId::new(e)));
+    /// let from_infinity = origins.filter(|v| v.is_infinite());
+    /// assert_eq!(from_infinity.count(), 3); // one in each ghost
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub const fn is_infinite(self) -> bool {
         self.0 == u32::MAX
@@ -54,20 +85,43 @@ pub struct HalfEdgeId(u32);
 
 impl HalfEdgeId {
     /// "No half-edge", used where a vertex has no incident edge.
+    ///
+    /// ```
+    /// use condt::mesh::HalfEdgeId;
+    /// assert!(HalfEdgeId::NONE.is_none());
+    /// assert_ne!(HalfEdgeId::NONE, HalfEdgeId::new(0));
+    /// ```
     pub const NONE: HalfEdgeId = HalfEdgeId(u32::MAX);
 
     /// The half-edge with this index.
+    ///
+    /// ```
+    /// use condt::mesh::{HalfEdgeId, TriangleId};
+    /// assert_eq!(HalfEdgeId::new(4).triangle(), TriangleId::new(1));
+    /// ```
     #[inline]
     pub const fn new(index: u32) -> Self {
         HalfEdgeId(index)
     }
     /// Position in the mesh arrays.
+    ///
+    /// ```
+    /// use condt::mesh::TriangleId;
+    /// assert_eq!(TriangleId::new(2).edge(2).index(), 8);
+    /// ```
     #[inline]
     pub const fn index(self) -> usize {
         self.0 as usize
     }
     /// The next half-edge counter-clockwise in the same triangle. [`HalfEdgeId::NONE`] has none
     /// (unchecked on this hot path: a debug build panics, a release build gives a meaningless id).
+    ///
+    /// ```
+    /// use condt::mesh::HalfEdgeId;
+    /// let e = HalfEdgeId::new(7);
+    /// assert_eq!(e.next(), HalfEdgeId::new(8));
+    /// assert_eq!(e.next().next().next(), e);
+    /// ```
     #[inline]
     pub const fn next(self) -> Self {
         HalfEdgeId(if self.0 % 3 == 2 {
@@ -78,6 +132,13 @@ impl HalfEdgeId {
     }
 
     /// The previous half-edge in the same triangle (unchecked, as [`HalfEdgeId::next`]).
+    ///
+    /// ```
+    /// use condt::mesh::HalfEdgeId;
+    /// let e = HalfEdgeId::new(6);
+    /// assert_eq!(e.prev(), HalfEdgeId::new(8));
+    /// assert_eq!(e.next().prev(), e);
+    /// ```
     #[inline]
     pub const fn prev(self) -> Self {
         HalfEdgeId(if self.0 % 3 == 0 {
@@ -88,6 +149,11 @@ impl HalfEdgeId {
     }
 
     /// The triangle that owns this half-edge.
+    ///
+    /// ```
+    /// use condt::mesh::{HalfEdgeId, TriangleId};
+    /// assert_eq!(HalfEdgeId::new(8).triangle(), TriangleId::new(2));
+    /// ```
     #[inline]
     pub const fn triangle(self) -> TriangleId {
         TriangleId(self.0 / 3)
@@ -107,6 +173,11 @@ impl HalfEdgeId {
         HalfEdgeId((base + corner) as u32)
     }
     /// `true` for [`HalfEdgeId::NONE`].
+    ///
+    /// ```
+    /// use condt::mesh::HalfEdgeId;
+    /// assert!(HalfEdgeId::NONE.is_none() && !HalfEdgeId::new(0).is_none());
+    /// ```
     #[inline]
     pub const fn is_none(self) -> bool {
         self.0 == u32::MAX
@@ -125,17 +196,34 @@ pub struct TriangleId(u32);
 
 impl TriangleId {
     /// The triangle with this index.
+    ///
+    /// ```
+    /// use condt::mesh::{HalfEdgeId, TriangleId};
+    /// assert_eq!(TriangleId::new(1).edge(0), HalfEdgeId::new(3));
+    /// ```
     #[inline]
     pub const fn new(index: u32) -> Self {
         TriangleId(index)
     }
     /// Position among the mesh's triangles.
+    ///
+    /// ```
+    /// use condt::mesh::HalfEdgeId;
+    /// assert_eq!(HalfEdgeId::new(7).triangle().index(), 2);
+    /// ```
     #[inline]
     pub const fn index(self) -> usize {
         self.0 as usize
     }
     /// Its `corner`-th half-edge (`corner` in `0..3`; for a triangle of a mesh, whose ids are
     /// below `u32::MAX / 3`: a larger one overflows as [`HalfEdgeId::next`] says).
+    ///
+    /// ```
+    /// use condt::mesh::{HalfEdgeId, TriangleId};
+    /// let t = TriangleId::new(2);
+    /// assert_eq!(t.edge(0), HalfEdgeId::new(6));
+    /// assert!((0..3).all(|corner| t.edge(corner).triangle() == t));
+    /// ```
     #[inline]
     pub const fn edge(self, corner: u32) -> HalfEdgeId {
         HalfEdgeId(self.0 * 3 + corner)

@@ -4,6 +4,16 @@
 //! Owns: connectivity only, in three flat arrays indexed by typed ids, private to this module
 //! (`build.rs` writes them while a mesh is built; others read a finished [`Mesh`] through its
 //! accessors). It may not look at a coordinate and knows nothing of why a triangle was made.
+//!
+//! ```
+//! use condt::{triangulate, Point};
+//! let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+//! let mesh = tri.mesh();
+//! let e = mesh.triangles().next().unwrap().edge(0);
+//! assert_eq!(mesh.dest(e), mesh.origin(e.next()));
+//! assert!(mesh.is_ghost(mesh.twin(e).triangle())); // a lone triangle: every edge on the hull
+//! # Ok::<(), condt::Error>(())
+//! ```
 
 mod build;
 mod check;
@@ -45,38 +55,94 @@ pub struct Mesh {
 
 impl Mesh {
     /// Number of half-edges, ghosts included.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// assert_eq!(tri.mesh().num_half_edges(), 12); // one triangle and three ghosts
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn num_half_edges(&self) -> usize {
         self.origins.len()
     }
     /// Number of triangles, ghosts included.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from))?;
+    /// assert_eq!(tri.mesh().num_triangles_with_ghosts(), 2 + 4); // one ghost per hull edge
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn num_triangles_with_ghosts(&self) -> usize {
         self.origins.len() / 3
     }
     /// Size of the vertex id space (for a [`Triangulation`](crate::Triangulation), the number of
     /// input points, duplicates included): not a count of vertices with edges.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (0.0, 0.0)].map(Point::from))?;
+    /// assert_eq!((tri.mesh().num_vertex_ids(), tri.num_vertices()), (4, 3));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn num_vertex_ids(&self) -> usize {
         self.vertex_edges.len()
     }
     /// Where `e` starts.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let v = tri.vertex(2);
+    /// assert_eq!(tri.mesh().origin(tri.mesh().vertex_edge(v).unwrap()), v);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn origin(&self, e: HalfEdgeId) -> VertexId {
         self.origins[e.index()]
     }
     /// Where `e` ends.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let mesh = tri.mesh();
+    /// let t = mesh.triangles().next().unwrap();
+    /// assert_eq!(mesh.dest(t.edge(0)), mesh.triangle_vertices(t)[1]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn dest(&self, e: HalfEdgeId) -> VertexId {
         self.origins[e.next().index()]
     }
     /// The half-edge running the other way along the same edge.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let mesh = tri.mesh();
+    /// assert!(mesh.edges().all(|e| mesh.twin(mesh.twin(e)) == e));
+    /// assert!(mesh.edges().all(|e| mesh.origin(mesh.twin(e)) == mesh.dest(e)));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn twin(&self, e: HalfEdgeId) -> HalfEdgeId {
         self.twins[e.index()]
     }
     /// One half-edge leaving `v` (on the hull: the one pointing to infinity), or `None` when `v`
     /// has no edge: it is a merged duplicate, or the only distinct point.
+    ///
+    /// ```
+    /// use condt::{mesh::VertexId, triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (1.0, 0.0)].map(Point::from))?;
+    /// let ids = (0..4).map(VertexId::new);
+    /// let without = ids.filter(|&v| tri.mesh().vertex_edge(v).is_none());
+    /// assert_eq!(without.count(), 1); // the id the duplicate left unused
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn vertex_edge(&self, v: VertexId) -> Option<HalfEdgeId> {
         let e = *self.vertex_edges.get(v.index())?;
@@ -84,6 +150,16 @@ impl Mesh {
     }
 
     /// The three corners of `t`, counter-clockwise.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let t = tri.mesh().triangles().next().unwrap();
+    /// let mut corners = tri.mesh().triangle_vertices(t).map(|v| tri.input_of(v));
+    /// corners.sort_unstable();
+    /// assert_eq!(corners, [0, 1, 2]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn triangle_vertices(&self, t: TriangleId) -> [VertexId; 3] {
         let i = t.index() * 3;
@@ -94,6 +170,15 @@ impl Mesh {
     ///
     /// # Panics
     /// If the range goes past [`Mesh::num_triangles_with_ghosts`] or ends before it starts.
+    ///
+    /// ```
+    /// use condt::{mesh::TriangleId, triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let mesh = tri.mesh();
+    /// assert_eq!(mesh.corner_slice(0..4).len(), 12);
+    /// assert_eq!(mesh.corner_slice(1..2), mesh.triangle_vertices(TriangleId::new(1)));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn corner_slice(&self, triangles: core::ops::Range<usize>) -> &[VertexId] {
         // Saturating: a start near `usize::MAX / 3` wrapped round to the first triangles in release.
@@ -104,6 +189,15 @@ impl Mesh {
     ///
     /// # Panics
     /// As [`Mesh::corner_slice`].
+    ///
+    /// ```
+    /// use condt::{mesh::TriangleId, triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let mesh = tri.mesh();
+    /// let each = (0..4).map(|t| mesh.triangle_vertices(TriangleId::new(t)));
+    /// assert!(mesh.triangle_corners(0..4).eq(each));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn triangle_corners(
         &self,
@@ -113,28 +207,72 @@ impl Mesh {
         corners.map(|c| [c[0], c[1], c[2]])
     }
     /// `true` when `t` is a ghost triangle (one corner is [`VertexId::INFINITE`]).
+    ///
+    /// ```
+    /// use condt::{mesh::TriangleId, triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let ghosts = (0..4).filter(|&t| tri.mesh().is_ghost(TriangleId::new(t)));
+    /// assert_eq!(ghosts.count(), 3);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn is_ghost(&self, t: TriangleId) -> bool {
         self.triangle_vertices(t).iter().any(|v| v.is_infinite())
     }
     /// `true` when both ends of `e` are finite vertices.
+    ///
+    /// ```
+    /// use condt::{mesh::HalfEdgeId, triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let finite = (0..12).filter(|&e| tri.mesh().is_finite_edge(HalfEdgeId::new(e)));
+    /// assert_eq!(finite.count(), 6); // three edges, each both ways
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn is_finite_edge(&self, e: HalfEdgeId) -> bool {
         !self.origin(e).is_infinite() && !self.dest(e).is_infinite()
     }
     /// `true` when `e` is finite with a ghost on one side: on the hull (or the collinear chain).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// let mesh = tri.mesh();
+    /// assert_eq!(mesh.edges().filter(|&e| mesh.is_hull_edge(e)).count(), 4);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn is_hull_edge(&self, e: HalfEdgeId) -> bool {
         self.is_finite_edge(e)
             && (self.is_ghost(e.triangle()) || self.is_ghost(self.twin(e).triangle()))
     }
     /// The real (non-ghost) triangles.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// assert_eq!(tri.mesh().triangles().count(), 4);
+    /// assert!(tri.mesh().triangles().all(|t| !tri.mesh().is_ghost(t)));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn triangles(&self) -> impl Iterator<Item = TriangleId> + '_ {
         (0..self.num_triangles_with_ghosts() as u32)
             .map(TriangleId::new)
             .filter(move |&t| !self.is_ghost(t))
     }
     /// Every finite undirected edge once, as the half-edge of the pair with the smaller id.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// let mesh = tri.mesh();
+    /// assert_eq!(mesh.edges().count(), 8);
+    /// assert!(mesh.edges().all(|e| e < mesh.twin(e) && mesh.is_finite_edge(e)));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn edges(&self) -> impl Iterator<Item = HalfEdgeId> + '_ {
         (0..self.num_half_edges() as u32)
             .map(HalfEdgeId::new)
@@ -164,11 +302,31 @@ impl Mesh {
         }
     }
     /// The finite neighbours of `v`, counter-clockwise (the destinations of [`Mesh::ring`]).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// let around = tri.mesh().neighbors(tri.vertex(4));
+    /// let mut around: Vec<usize> = around.map(|v| tri.input_of(v)).collect();
+    /// around.sort_unstable();
+    /// assert_eq!(around, vec![0, 1, 2, 3]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
         self.ring(v).map(move |e| self.dest(e))
     }
     /// The vertices of the convex hull, counter-clockwise, each hull edge once (points on a hull
     /// edge included). On a collinear chain the walk goes out and back: inner vertices twice.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// assert_eq!(tri.mesh().hull().count(), 4);
+    /// assert!(tri.mesh().hull().all(|v| v != tri.vertex(4)));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn hull(&self) -> Hull<'_> {
         // The finite half-edge of some ghost triangle, if there is one.
         let start = (0..self.num_half_edges() as u32)
@@ -233,6 +391,15 @@ impl Mesh {
 }
 
 /// Counter-clockwise walk around one vertex; see [`Mesh::ring`].
+///
+/// ```
+/// use condt::{mesh::Ring, triangulate, Point};
+/// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+/// let tri = triangulate(&pts)?;
+/// let ring: Ring<'_> = tri.mesh().ring(tri.vertex(0));
+/// assert_eq!(ring.count(), 3);
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct Ring<'a> {
     mesh: &'a Mesh,
@@ -264,6 +431,14 @@ impl Iterator for Ring<'_> {
 }
 
 /// Counter-clockwise walk along the convex hull; see [`Mesh::hull`].
+///
+/// ```
+/// use condt::{mesh::Hull, triangulate, Point};
+/// let tri = triangulate(&[(0.0, 0.0), (2.0, 0.0), (1.0, 2.0), (1.0, 0.5)].map(Point::from))?;
+/// let hull: Hull<'_> = tri.mesh().hull();
+/// assert_eq!(hull.count(), 3);
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct Hull<'a> {
     mesh: &'a Mesh,

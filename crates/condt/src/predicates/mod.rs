@@ -9,6 +9,14 @@
 //! static filter inline, then machine integers on a common binary grid (`small.rs`), then his
 //! adaptive stages (`robust`). A call outside it is rescaled by a power of two when that brings it
 //! in, else goes to big integers (`exact.rs`: exact for any finite input, far slower).
+//!
+//! ```
+//! use condt::predicates::{in_circle, orient2d, Orientation};
+//! use condt::Point;
+//! let [a, b, c] = [0.1, 0.2, 0.3].map(|t| Point::new(t, t)); // on the diagonal, exactly
+//! assert_eq!(orient2d(a, b, c), Orientation::Collinear);
+//! assert!(in_circle(Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0), b));
+//! ```
 
 mod exact;
 mod small;

@@ -159,6 +159,13 @@ impl Params {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] naming the first parameter NaN, infinite or out of range.
+    ///
+    /// ```
+    /// use condt::{Error, Params};
+    /// assert!(Params::default().check().is_ok());
+    /// let bad = Params::paper().with_outlier_factor(Some(-1.0));
+    /// assert!(matches!(bad.check(), Err(Error::InvalidParameter { name: "k", .. })));
+    /// ```
     pub fn check(&self) -> Result<(), Error> {
         if self.method != Method::ConDT {
             return Ok(());

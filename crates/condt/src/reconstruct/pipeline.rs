@@ -50,6 +50,15 @@ pub struct Pipeline {
 }
 
 /// What one [`Pipeline::step`] did.
+///
+/// ```
+/// use condt::{Params, Pipeline, Point, Stage, StepReport};
+/// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+/// let mut pipeline = Pipeline::new(&points, &Params::paper())?;
+/// let Some(StepReport::Stage(first)) = pipeline.step()? else { panic!("a stage is first") };
+/// assert_eq!((first.stage, first.graph.num_edges()), (Stage::Proximity, 3));
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub enum StepReport<'p> {
@@ -67,6 +76,19 @@ pub enum StepReport<'p> {
 }
 
 /// What [`Pipeline::step`] runs next ([`Pipeline::upcoming`]).
+///
+/// ```
+/// use condt::{Params, Pipeline, Point, Upcoming};
+/// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+/// let mut pipeline = Pipeline::new(&points, &Params::paper())?;
+/// let mut seen = Vec::new();
+/// while let Some(next) = pipeline.upcoming() {
+///     seen.push(next);
+///     pipeline.step()?;
+/// }
+/// assert!(seen.into_iter().eq(Params::paper().stages().into_iter().map(Upcoming::Stage)));
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Upcoming {
@@ -121,6 +143,15 @@ impl Pipeline {
     /// [`Error::TooCloseToMeasure`] when two points are too close for the stages to measure
     /// beside the largest coordinate; for the Crust, [`Error::TooManyPoints`] when its second
     /// triangulation would be too large.
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point};
+    /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let pipeline = Pipeline::new(&points, &Params::paper())?;
+    /// assert_eq!(pipeline.triangulation().map(|t| t.num_points()), Some(3));
+    /// assert!(Pipeline::new(&[Point::new(f64::NAN, 0.0)], &Params::paper()).is_err());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn new(points: &[Point], params: &Params) -> Result<Pipeline, Error> {
         Pipeline::of_input(Cow::Borrowed(points), params, None)
     }
@@ -222,11 +253,27 @@ impl Pipeline {
     }
 
     /// The parameters it runs with.
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point};
+    /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let pipeline = Pipeline::new(&points, &Params::paper())?;
+    /// assert_eq!(pipeline.params().stages(), Params::paper().stages());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn params(&self) -> &Params {
         &self.params
     }
 
     /// The triangulation the stages walk now (of the moved points after a pass); `None` on failure.
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point};
+    /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let pipeline = Pipeline::new(&points, &Params::paper())?;
+    /// assert_eq!(pipeline.triangulation().map(|t| t.triangles().count()), Some(1));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn triangulation(&self) -> Option<&Triangulation> {
         match &self.state {
             State::Stages(run) => Some(&run.tri),
@@ -258,6 +305,16 @@ impl Pipeline {
     }
 
     /// Whether every step has run: [`finish`](Pipeline::finish) returns at once.
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point};
+    /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let mut pipeline = Pipeline::new(&points, &Params::paper())?;
+    /// assert!(!pipeline.is_done());
+    /// while pipeline.step()?.is_some() {}
+    /// assert!(pipeline.is_done());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn is_done(&self) -> bool {
         matches!(self.state, State::Done(_) | State::Failed(_))
     }
@@ -267,6 +324,16 @@ impl Pipeline {
     /// # Errors
     /// As [`triangulate`](crate::triangulate()) when a pass triangulates the moved points (never
     /// in practice: they lie between input points); later steps and `finish` repeat the error.
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point, Stage, StepReport};
+    /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let mut pipeline = Pipeline::new(&points, &Params::paper())?;
+    /// pipeline.step()?; // the proximity graph
+    /// let Some(StepReport::Stage(repair)) = pipeline.step()? else { panic!("a stage is next") };
+    /// assert!(repair.stage == Stage::Repair && !repair.applied); // no point has three edges
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn step(&mut self) -> Result<Option<StepReport<'_>>, Error> {
         match core::mem::replace(&mut self.state, State::Moving) {
             State::Stages(mut run) => {
@@ -303,6 +370,14 @@ impl Pipeline {
     ///
     /// # Errors
     /// As [`step`](Pipeline::step).
+    ///
+    /// ```
+    /// use condt::{Params, Pipeline, Point};
+    /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = Pipeline::new(&points, &Params::paper())?.finish()?;
+    /// assert!(result.curves().len() == 1 && result.curves()[0].is_closed());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn finish(mut self) -> Result<Reconstruction, Error> {
         while self.step()?.is_some() {}
         match self.state {

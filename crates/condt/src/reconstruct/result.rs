@@ -75,6 +75,15 @@ pub struct Smoothing {
 }
 
 /// One stage of a [`Reconstruction`], as [`Reconstruction::stages`] reports it.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point, Stage};
+/// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+/// let result = reconstruct(&pts, &Params::paper())?;
+/// let report = result.stage(Stage::Repair).unwrap();
+/// assert!(!report.applied && report.graph.num_edges() == 3);
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct StageReport<'r> {
     /// Which stage.
@@ -89,27 +98,68 @@ pub struct StageReport<'r> {
 
 impl Reconstruction {
     /// The parameters it ran with.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// assert_eq!(result.params().outlier_factor, Some(1.7));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn params(&self) -> &Params {
         &self.params
     }
 
     /// What the smoothing pass did, or `None` when it did not run ([`Params::smooth`]).
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// assert!(reconstruct(&pts, &Params::paper())?.smoothing().is_none()); // smoothing is off
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn smoothing(&self) -> Option<Smoothing> {
         self.smoothing
     }
 
     /// The Delaunay triangulation the stages walked (of the moved points after smoothing passes).
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// assert_eq!(result.triangulation().triangles().count(), 1);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn triangulation(&self) -> &Triangulation {
         &self.triangulation
     }
 
     /// The stages in the order they ran ([`Params::stages`]), each graph rebuilt from the final one
     /// in O(edges) per later stage (only changes are kept); the proximity graph may be recomputed.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// assert!(result.stages().map(|r| r.stage).eq(Params::paper().stages()));
+    /// assert!(result.stages().all(|r| r.graph.num_edges() == 3));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn stages(&self) -> impl ExactSizeIterator<Item = StageReport<'_>> + '_ {
         (0..self.history.records.len()).map(move |k| self.report(k))
     }
 
     /// The report of `stage`, or `None` when it did not run. Only its graph is rebuilt.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point, Stage};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// assert_eq!(result.stage(Stage::Outliers).map(|r| r.graph.num_edges()), Some(3));
+    /// assert!(result.stage(Stage::Gaps).is_none()); // not in the paper's pipeline
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn stage(&self, stage: Stage) -> Option<StageReport<'_>> {
         Some(self.report(self.history.position(stage)?))
     }
@@ -138,11 +188,28 @@ impl Reconstruction {
     }
 
     /// The final graph, as the last stage left it.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// assert_eq!(result.graph().edges(), result.edges().collect::<Vec<_>>());
+    /// assert_eq!(result.graph().curves(), result.curves());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn graph(&self) -> Graph<'_> {
         Graph::new(&self.triangulation, Cow::Borrowed(&self.final_edges))
     }
 
     /// The final edges as input positions `[a, b]`, `a < b`, sorted.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// assert_eq!(result.edges().collect::<Vec<_>>(), vec![[0, 1], [0, 2], [1, 2]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn edges(&self) -> impl ExactSizeIterator<Item = [usize; 2]> + Clone + '_ {
         self.edges.iter().map(|&[a, b]| [a as usize, b as usize])
     }
@@ -161,11 +228,28 @@ impl Reconstruction {
     }
 
     /// The curves, in input positions, sorted; see [`Graph::curves`].
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 0.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// assert_eq!(result.curves().len(), 1);
+    /// assert_eq!(result.curves()[0].points().collect::<Vec<_>>(), vec![0, 1, 2, 3]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn curves(&self) -> &[Curve] {
         &self.curves
     }
 
     /// Input positions whose point ended with no edge (outliers), ascending.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+    /// pts.push(Point::new(10.0, 50.0));
+    /// assert_eq!(reconstruct(&pts, &Params::default())?.unused(), [21]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn unused(&self) -> &[usize] {
         &self.unused
     }
@@ -174,6 +258,15 @@ impl Reconstruction {
     ///
     /// # Panics
     /// If `index` is not an input position.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+    /// pts.push(Point::new(10.0, 50.0));
+    /// let result = reconstruct(&pts, &Params::default())?;
+    /// assert_eq!([0, 10, 21].map(|i| result.degree(i)), [1, 2, 0]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn degree(&self, index: usize) -> usize {
         self.degrees.get(index)
     }
@@ -183,21 +276,53 @@ impl Reconstruction {
     ///
     /// # Panics
     /// If `index` is not an input position.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?; // no smoothing: no point moves
+    /// assert!((0..3).all(|i| result.stage_point(i) == pts[i]));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn stage_point(&self, index: usize) -> Point {
         self.triangulation.point(index)
     }
 
     /// Number of input points.
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (0.0, 0.0)].map(Point::from);
+    /// assert_eq!(reconstruct(&pts, &Params::paper())?.num_points(), 4); // duplicates included
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn num_points(&self) -> usize {
         self.degrees.len()
     }
 
     /// Wall-clock time of the triangulation (zero without `std`).
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// let time = result.triangulation_time();
+    /// assert!(result.timings().any(|step| step == ("triangulation", time)));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn triangulation_time(&self) -> Duration {
         self.triangulation_time
     }
 
     /// Wall-clock time of the curve assembly and final tally (zero without `std`).
+    ///
+    /// ```
+    /// use condt::{reconstruct, Params, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
+    /// let result = reconstruct(&pts, &Params::paper())?;
+    /// assert_eq!(result.timings().last(), Some(("curves", result.curves_time())));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn curves_time(&self) -> Duration {
         self.curves_time
     }

@@ -79,6 +79,14 @@ pub enum Stage {
 
 /// A command-line switch that turns a stage on or off (`--NAME` and `--no-NAME`), with its
 /// help; [`Params::set_stage`](crate::Params::set_stage) does what it says.
+///
+/// ```
+/// use condt::{Params, Stage};
+/// let switch = Stage::Tails.switch().unwrap();
+/// assert_eq!(switch.flag, "tails"); // `--tails` and `--no-tails`
+/// let mut p = Params::paper();
+/// assert!(p.set_stage(Stage::Tails, true) && p.tails);
+/// ```
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct Switch {
     /// The flag without its dashes.

@@ -46,6 +46,13 @@ impl Uniformity {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] named `u` otherwise.
+    ///
+    /// ```
+    /// use condt::{Error, Uniformity};
+    /// assert!(Uniformity::Fixed(2.75).check().is_ok());
+    /// let zero = Uniformity::Fixed(0.0).check();
+    /// assert!(matches!(zero, Err(Error::InvalidParameter { name: "u", .. })));
+    /// ```
     pub fn check(self) -> Result<(), Error> {
         match self {
             Uniformity::Fixed(u) if !(u.is_finite() && u > 0.0) => Err(Error::InvalidParameter {
@@ -205,6 +212,16 @@ pub(crate) fn end_choice(
 }
 
 /// How one end of an edge saw it in Algorithm 1 ([`crate::EdgeStory::ends`]).
+///
+/// ```
+/// use condt::{reconstruct, EndChoice, Params, Point};
+/// let pts = [(0.0, 0.0), (1.0, 0.0), (3.0, 0.0)].map(Point::from);
+/// let stories = reconstruct(&pts, &Params::paper())?.provenance();
+/// assert_eq!(stories[0].ends, [EndChoice::Shortest, EndChoice::Shortest]); // [0, 1]
+/// let second = EndChoice::Second { ratio: 2.0, bound: 2.75, kept: true };
+/// assert_eq!(stories[1].ends, [second, EndChoice::Shortest]); // [1, 2], at 1 then at 2
+/// # Ok::<(), condt::Error>(())
+/// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum EndChoice {
     /// The end's shortest Delaunay edge: always kept.

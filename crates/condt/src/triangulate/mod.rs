@@ -28,6 +28,12 @@ pub(crate) use scale::choose_frames;
 
 /// The largest number of input points: half of what `u32` half-edge ids allow; beyond it
 /// [`triangulate`] returns [`Error::TooManyPoints`] before allocating (`docs/triangulation.md`).
+///
+/// ```
+/// use condt::MAX_POINTS;
+/// // Two triangles a point, ghosts included, of three half-edges: every id fits in a `u32`.
+/// assert!(2 * 3 * MAX_POINTS < u32::MAX as usize);
+/// ```
 pub const MAX_POINTS: usize = 350_000_000;
 
 /// A Delaunay triangulation of a point set.
@@ -552,6 +558,14 @@ impl Triangulation {
     }
 
     /// The half-edge topology, in vertex ids.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// assert_eq!(tri.mesh().triangles().count(), 1);
+    /// assert_eq!(tri.mesh().num_vertex_ids(), 3);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
@@ -560,6 +574,14 @@ impl Triangulation {
     ///
     /// # Panics
     /// If `index` is not an input position.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (0.0, 0.0)].map(Point::from))?;
+    /// assert_eq!(tri.point(2), Point::new(0.5, 1.0));
+    /// assert_eq!(tri.point(3), Point::new(0.0, 0.0)); // a merged duplicate keeps its coordinates
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn point(&self, index: usize) -> Point {
         self.input_point(self.vertex(index))
@@ -627,6 +649,15 @@ impl Triangulation {
     ///
     /// # Panics
     /// If `v` is not a vertex id of this triangulation (for example [`VertexId::INFINITE`]).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (0.5, 0.3)].map(Point::from))?;
+    /// let mut hull: Vec<usize> = tri.mesh().hull().map(|v| tri.input_of(v)).collect();
+    /// hull.sort_unstable();
+    /// assert_eq!(hull, vec![0, 1, 2]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn input_of(&self, v: VertexId) -> usize {
         self.input_of_vertex[v.index()] as usize
@@ -637,26 +668,66 @@ impl Triangulation {
         crate::prefetch::prefetch(&self.input_of_vertex, v.index());
     }
     /// Number of input points, duplicates included.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (1.0, 0.0)].map(Point::from))?;
+    /// assert_eq!(tri.num_points(), 4);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn num_points(&self) -> usize {
         self.vertex_of_input.len()
     }
     /// Number of distinct points, that is of mesh vertices.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (1.0, 0.0)].map(Point::from))?;
+    /// assert_eq!(tri.num_vertices(), 3); // point 3 repeats point 1
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     #[inline]
     pub fn num_vertices(&self) -> usize {
         self.num_vertices
     }
     /// The input position of every distinct point (the smallest of its duplicates), ascending.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// assert_eq!(tri.distinct_points().collect::<Vec<_>>(), vec![0, 2, 3]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn distinct_points(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.num_points()).filter(move |&i| self.input_of(self.vertex(i)) == i)
     }
     /// The real triangles as the input positions of their corners, counter-clockwise.
+    ///
+    /// ```
+    /// use condt::predicates::{orient2d, Orientation};
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from))?;
+    /// assert_eq!(tri.triangles().count(), 2);
+    /// let ccw = |[a, b, c]: [usize; 3]| orient2d(tri.point(a), tri.point(b), tri.point(c));
+    /// assert!(tri.triangles().all(|t| ccw(t) == Orientation::Ccw));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
         self.mesh
             .triangles()
             .map(|t| self.mesh.triangle_vertices(t).map(|v| self.input_of(v)))
     }
     /// Every edge once, as input positions `[a, b]` with `a < b`.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from))?;
+    /// let mut edges: Vec<[usize; 2]> = tri.edges().collect();
+    /// edges.sort_unstable();
+    /// assert_eq!(edges, vec![[0, 1], [0, 2], [1, 2]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn edges(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
         self.mesh.edges().map(|e| {
             let (a, b) = (
@@ -670,16 +741,43 @@ impl Triangulation {
     ///
     /// # Panics
     /// If `index` is not an input position.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// let mut around: Vec<usize> = tri.neighbors(0).collect();
+    /// around.sort_unstable();
+    /// assert_eq!(around, vec![1, 3, 4]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn neighbors(&self, index: usize) -> impl Iterator<Item = usize> + '_ {
         self.mesh
             .neighbors(self.vertex(index))
             .map(|w| self.input_of(w))
     }
     /// The convex hull as input positions, counter-clockwise from some hull point ([`Mesh::hull`]).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (2.0, 0.0), (1.0, 2.0), (1.0, 0.5)].map(Point::from))?;
+    /// let mut hull: Vec<usize> = tri.hull().collect();
+    /// hull.sort_unstable();
+    /// assert_eq!(hull, vec![0, 1, 2]); // not the inner point 3
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
         self.mesh.hull().map(|v| self.input_of(v))
     }
     /// `true` when there is no triangle: all points are collinear or fewer than three are distinct.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let line = triangulate(&[(0.0, 0.0), (1.0, 1.0), (2.0, 2.0)].map(Point::from))?;
+    /// let bent = triangulate(&[(0.0, 0.0), (1.0, 1.0), (2.0, 0.0)].map(Point::from))?;
+    /// assert!(line.is_degenerate() && !bent.is_degenerate());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
     pub fn is_degenerate(&self) -> bool {
         self.mesh.triangles().next().is_none()
     }
