@@ -276,8 +276,17 @@ impl Params {
 
 /// `with_FIELD(FIELD: TYPE)`: a chainable setter for each field listed.
 macro_rules! setters {
-    ($($setter:ident($field:ident: $type:ty),)*) => {$(
+    ($($setter:ident($field:ident: $type:ty = $value:expr),)*) => {$(
         #[doc = concat!("Sets [`Params::", stringify!($field), "`].")]
+        ///
+        /// ```
+        /// use condt::{Method, Params, Repair, Uniformity};
+        /// let paper = Params::paper();
+        #[doc = concat!("let value = ", stringify!($value), ";")]
+        #[doc = concat!("let set = paper.", stringify!($setter), "(value);")]
+        #[doc = concat!("assert!(set.", stringify!($field), " == value && paper.",
+            stringify!($field), " != value);")]
+        /// ```
         pub fn $setter(mut self, $field: $type) -> Params {
             self.$field = $field;
             self
@@ -294,22 +303,22 @@ macro_rules! setters {
 /// ```
 impl Params {
     setters! {
-        with_method(method: Method),
-        with_uniformity(uniformity: Uniformity),
-        with_repair(repair: Repair),
-        with_outlier_factor(outlier_factor: Option<f64>),
-        with_outliers_first(outliers_first: bool),
-        with_iqr_floor(iqr_floor: bool),
-        with_local_outliers(local_outliers: bool),
-        with_confirm_given_back(confirm_given_back: bool),
-        with_close_gaps(close_gaps: bool),
-        with_repair_again(repair_again: bool),
-        with_clumps(clumps: bool),
-        with_junctions(junctions: bool),
-        with_crossings(crossings: bool),
-        with_tips(tips: bool),
-        with_tails(tails: bool),
-        with_smooth(smooth: bool),
-        with_parallel(parallel: bool),
+        with_method(method: Method = Method::NnCrust),
+        with_uniformity(uniformity: Uniformity = Uniformity::Fixed(2.0)),
+        with_repair(repair: Repair = Repair::Needs),
+        with_outlier_factor(outlier_factor: Option<f64> = Some(3.0)),
+        with_outliers_first(outliers_first: bool = !paper.outliers_first),
+        with_iqr_floor(iqr_floor: bool = !paper.iqr_floor),
+        with_local_outliers(local_outliers: bool = !paper.local_outliers),
+        with_confirm_given_back(confirm_given_back: bool = !paper.confirm_given_back),
+        with_close_gaps(close_gaps: bool = !paper.close_gaps),
+        with_repair_again(repair_again: bool = !paper.repair_again),
+        with_clumps(clumps: bool = !paper.clumps),
+        with_junctions(junctions: bool = !paper.junctions),
+        with_crossings(crossings: bool = !paper.crossings),
+        with_tips(tips: bool = !paper.tips),
+        with_tails(tails: bool = !paper.tails),
+        with_smooth(smooth: bool = !paper.smooth),
+        with_parallel(parallel: bool = !paper.parallel),
     }
 }
