@@ -12,9 +12,9 @@ use condt::{
     triangulate, Error, Method, Params, Pipeline, Point, Repair, Stage, Uniformity, Upcoming,
 };
 use condt_io::{
-    read_points, write_edges, write_geojson, write_html, write_npy_edges, write_npy_triangles,
-    write_npy_triangulation_edges, write_polylines, write_svg, write_svg_stages, write_triangles,
-    write_triangulation_edges, IoError,
+    read_points_with_crs, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
+    write_npy_triangles, write_npy_triangulation_edges, write_polylines, write_svg,
+    write_svg_stages, write_triangles, write_triangulation_edges, IoError,
 };
 use std::ffi::{OsStr, OsString};
 use std::fmt;
@@ -39,7 +39,8 @@ a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else th
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
 and y columns (or lon, lat), or of two numeric columns without a header, `.geojson` or `.json` the Point and MultiPoint geometries of a
-GeoJSON document. Points are numbered from 0 in the order of their lines (rows, features);
+GeoJSON document. Points are numbered from 0 in the order of their lines (rows, GeoJSON
+positions: a MultiPoint gives several, a feature whose geometry is null none);
 every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
@@ -341,7 +342,7 @@ i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), ui
 point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
 default on standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points and curves; with --stages the Delaunay
 triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
-LineString per curve), `html` (.html: a self-contained page to explore every stage: layers, pan
+LineString per curve, on the input's coordinates; a GeoJSON input's `crs` member is carried on), `html` (.html: a self-contained page to explore every stage: layers, pan
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 
@@ -1090,14 +1091,19 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
 /// Reads the points of INPUT (`None`: standard input).
 /// With `parallel` false (`--sequential`) the reading, which otherwise splits a large text over
 /// rayon's threads, runs on this thread alone (a one-thread pool; same points either way).
-fn read_input(input: Option<&Path>, parallel: bool) -> Result<Vec<Point>, CliError> {
+/// A GeoJSON input's `"crs"` member comes with the points (`None` for other formats), for a
+/// GeoJSON output to carry on.
+fn read_input(
+    input: Option<&Path>,
+    parallel: bool,
+) -> Result<(Vec<Point>, Option<String>), CliError> {
     let path = input.unwrap_or(Path::new("-"));
     if !parallel {
         if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() {
-            return Ok(pool.install(|| read_points(path))?);
+            return Ok(pool.install(|| read_points_with_crs(path))?);
         }
     }
-    Ok(read_points(path)?)
+    Ok(read_points_with_crs(path)?)
 }
 
 fn shown_input(input: Option<&Path>) -> String {
@@ -1167,7 +1173,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let points = read_input(args.input.as_deref(), args.params.parallel)?;
+    let (points, crs) = read_input(args.input.as_deref(), args.params.parallel)?;
     progress.suspend(|| timings.lap("read"));
     let count = points.len();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
@@ -1222,7 +1228,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
             Format::Polylines => write_polylines(out, &result),
             Format::Svg if args.stages => write_svg_stages(out, &result),
             Format::Svg => write_svg(out, &result, &input),
-            Format::GeoJson => write_geojson(out, &result, &input),
+            Format::GeoJson => write_geojson_with_crs(out, &result, &input, crs.as_deref()),
             Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
         })
     })?;
@@ -1255,7 +1261,7 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let points = read_input(args.input.as_deref(), true)?;
+    let (points, _) = read_input(args.input.as_deref(), true)?;
     progress.computing("triangulating");
     progress.suspend(|| timings.lap("read"));
     let tri = triangulate(&points)

@@ -143,6 +143,42 @@ fn output_file_is_complete_and_temporary_files_are_gone() {
     assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
 }
 
+/// A GeoJSON output is on the input's coordinates, so it carries on a GeoJSON input's `crs`
+/// (projected coordinates read as longitudes in GIS tools without it); a nested `crs` or another
+/// format gives none.
+#[test]
+fn a_geojson_inputs_crs_is_carried_on_to_the_geojson_output() {
+    let crs = r#"{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}}"#;
+    let positions = "[[500000,4000000],[500010,4000001],[500020,4000000],[500010,4000012]]";
+    let with_crs = format!(
+        r#"{{"type":"FeatureCollection","crs":{crs},"features":[{{"type":"Feature","properties":{{}},"geometry":{{"type":"MultiPoint","coordinates":{positions}}}}}]}}"#
+    );
+    let args = ["reconstruct", "-", "--format", "geojson"];
+    let out = condt(&args, &with_crs);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with(&format!(
+        r#"{{"type":"FeatureCollection","crs":{crs},"features":["#
+    )));
+    let nested = format!(
+        r#"{{"type":"FeatureCollection","features":[{{"type":"Feature","crs":{crs},"properties":{{}},"geometry":{{"type":"MultiPoint","coordinates":{positions}}}}}]}}"#
+    );
+    let plain = "500000 4000000\n500010 4000001\n500020 4000000\n500010 4000012\n";
+    for input in [nested.as_str(), plain] {
+        let out = condt(&args, input);
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(
+            text.starts_with(r#"{"type":"FeatureCollection","features":["#),
+            "{text}"
+        );
+        assert_eq!(text.split("LineString").count(), 2, "{text}");
+    }
+}
+
 /// Standard input has no name to tell its format: a NumPy array and a GeoJSON document are
 /// read by their content, as their files are (a new user's report: both were refused as text).
 #[test]

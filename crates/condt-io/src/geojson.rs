@@ -29,8 +29,39 @@ pub fn write_geojson(
     result: &Reconstruction,
     input: &[Point],
 ) -> io::Result<()> {
+    write_geojson_with_crs(out, result, input, None)
+}
+
+/// [`write_geojson`] with the input document's `"crs"` member, as
+/// [`parse_geojson_with_crs`](crate::parse_geojson_with_crs) gave it (JSON text), written on:
+/// the coordinates are the input's, so is their reference system.
+///
+/// # Errors
+/// As [`write_geojson`].
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// let points = [(500000.0, 4e6), (500010.0, 4e6), (500005.0, 4000010.0)].map(Point::from);
+/// let r = reconstruct(&points, &Params::paper())?;
+/// let crs = r#"{"type":"name","properties":{"name":"EPSG:32632"}}"#;
+/// let mut out = Vec::new();
+/// condt_io::write_geojson_with_crs(&mut out, &r, &points, Some(crs))?;
+/// let text = String::from_utf8(out)?;
+/// assert!(text.starts_with(&format!(r#"{{"type":"FeatureCollection","crs":{crs},"#)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_geojson_with_crs(
+    out: &mut dyn Write,
+    result: &Reconstruction,
+    input: &[Point],
+    crs: Option<&str>,
+) -> io::Result<()> {
     super::check_input(result, input)?;
-    write!(out, r#"{{"type":"FeatureCollection","features":["#)?;
+    write!(out, r#"{{"type":"FeatureCollection","#)?;
+    if let Some(crs) = crs {
+        write!(out, r#""crs":{crs},"#)?;
+    }
+    write!(out, r#""features":["#)?;
     for (k, curve) in result.curves().iter().enumerate() {
         if k > 0 {
             write!(out, ",")?;

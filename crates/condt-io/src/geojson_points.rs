@@ -51,10 +51,31 @@ const MAX_DEPTH: usize = 64;
 /// # Ok::<(), condt_io::IoError>(())
 /// ```
 pub fn parse_geojson(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    parse_geojson_with_crs(text, file).map(|(points, _)| points)
+}
+
+/// [`parse_geojson`], and the document's top-level `"crs"` member as written (GeoJSON of 2008;
+/// RFC 7946 dropped it, but GDAL and QGIS still read it to place projected coordinates), so that
+/// a GeoJSON output can carry it on.
+///
+/// ```
+/// let text = r#"{"type": "FeatureCollection", "crs": {"type": "name",
+///   "properties": {"name": "EPSG:32632"}}, "features": []}"#;
+/// let (points, crs) = condt_io::parse_geojson_with_crs(text, "utm.geojson")?;
+/// assert!(points.is_empty());
+/// assert_eq!(crs.as_deref(), Some(r#"{"type": "name",
+///   "properties": {"name": "EPSG:32632"}}"#));
+/// # Ok::<(), condt_io::IoError>(())
+/// ```
+pub fn parse_geojson_with_crs(
+    text: &str,
+    file: &str,
+) -> Result<(Vec<Point>, Option<String>), IoError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut state = State {
         text,
         points: Vec::new(),
+        crs: None,
         failure: None,
     };
     let mut deserializer = serde_json::Deserializer::from_str(text);
@@ -62,7 +83,7 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
         .read(&mut state, 0, &mut deserializer)
         .and_then(|()| deserializer.end());
     match read {
-        Ok(()) => Ok(state.points),
+        Ok(()) => Ok((state.points, state.crs)),
         Err(err) => {
             let (at, message) = state
                 .failure
@@ -83,6 +104,8 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 struct State<'t> {
     text: &'t str,
     points: Vec<Point>,
+    /// The document's own `"crs"` member, as written.
+    crs: Option<String>,
     failure: Option<(usize, String)>,
 }
 
@@ -304,7 +327,12 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
         let mut seen = Vec::new();
         let mut later: Vec<(Key, &'de RawValue)> = Vec::new();
         while let Some(key) = map.next_key::<Key>()? {
-            if key == Key::Other || seen.contains(&key) {
+            if key == Key::Crs && self.depth == 0 && self.state.crs.is_none() {
+                let raw = map.next_value::<&'de RawValue>()?;
+                self.state.crs = Some(raw.get().to_string());
+                continue;
+            }
+            if matches!(key, Key::Other | Key::Crs) || seen.contains(&key) {
                 map.next_value::<IgnoredAny>()?;
                 continue;
             }
@@ -380,6 +408,8 @@ enum Key {
     Geometries,
     Geometry,
     Coordinates,
+    /// The document's coordinate reference system (kept, not applied).
+    Crs,
     Other,
 }
 
@@ -398,6 +428,7 @@ impl<'de> de::Deserialize<'de> for Key {
                     "geometries" => Key::Geometries,
                     "geometry" => Key::Geometry,
                     "coordinates" => Key::Coordinates,
+                    "crs" => Key::Crs,
                     _ => Key::Other,
                 })
             }

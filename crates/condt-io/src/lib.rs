@@ -40,14 +40,16 @@ mod geometry {
 }
 
 pub use csv::parse_csv;
-pub use geojson::write_geojson;
-pub use geojson_points::parse_geojson;
+pub use geojson::{write_geojson, write_geojson_with_crs};
+pub use geojson_points::{parse_geojson, parse_geojson_with_crs};
 pub use html::write_html;
 pub use npy::{
     parse_npy, parse_npy_edges, parse_npy_index_rows, write_npy_edges, write_npy_points,
     write_npy_triangles, write_npy_triangulation_edges, NPY_MAGIC,
 };
-pub use points::{parse_node, parse_points, read_points, text_lines, utf8_text};
+pub use points::{
+    parse_node, parse_points, read_points, read_points_with_crs, text_lines, utf8_text,
+};
 pub use story::story_text;
 pub use svg::{write_svg, write_svg_stages};
 pub use text::{write_edges, write_polylines, write_triangles, write_triangulation_edges};

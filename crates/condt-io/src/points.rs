@@ -854,6 +854,20 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// # Ok::<(), condt_io::IoError>(())
 /// ```
 pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoError> {
+    read_points_with_crs(path).map(|(points, _)| points)
+}
+
+/// [`read_points`], and a GeoJSON input's `"crs"` member as written
+/// ([`parse_geojson_with_crs`](super::parse_geojson_with_crs); `None` for the other formats).
+///
+/// ```no_run
+/// let (points, crs) = condt_io::read_points_with_crs("coast.geojson")?;
+/// # Ok::<(), condt_io::IoError>(())
+/// ```
+pub fn read_points_with_crs(
+    path: impl AsRef<std::path::Path>,
+) -> Result<(Vec<Point>, Option<String>), IoError> {
+    let without_crs = |points| (points, None);
     let path = path.as_ref();
     let stdin = path.as_os_str() == "-";
     // A name that is not UTF-8 is shown lossily; the file is still opened by its own bytes.
@@ -867,7 +881,7 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
                 .is_some_and(|e| e.eq_ignore_ascii_case(ending))
     };
     if extension("npy") {
-        return super::npy::read_npy_file(path, name);
+        return super::npy::read_npy_file(path, name).map(without_crs);
     }
     let other_format =
         extension("node") || extension("csv") || extension("geojson") || extension("json");
@@ -880,7 +894,7 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
         #[cfg(all(feature = "parallel", unix))]
         if !other_format && meta.is_some_and(|m| m.is_file()) {
             if let Some(points) = parallel::read_pieces(&file, size, name) {
-                return Ok(points);
+                return Ok((points, None));
             }
         }
         // `read_pieces` reads at offsets: the file is still at its start.
@@ -891,7 +905,7 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
     // told by their content (the magic bytes, which are not UTF-8; a `{`, which no point line
     // starts with), anything else is read as text.
     if stdin && bytes.starts_with(super::npy::NPY_MAGIC) {
-        return super::npy::parse_npy(&bytes, name);
+        return super::npy::parse_npy(&bytes, name).map(without_crs);
     }
     let text = utf8_text(bytes, name)?;
     if stdin
@@ -899,16 +913,16 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
             .trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n'])
             .starts_with('{')
     {
-        return super::parse_geojson(&text, name);
+        return super::parse_geojson_with_crs(&text, name);
     }
     if !other_format {
-        parse_owned_points(text, name)
+        parse_owned_points(text, name).map(without_crs)
     } else if extension("node") {
-        parse_node(&text, name)
+        parse_node(&text, name).map(without_crs)
     } else if extension("csv") {
-        super::parse_csv(&text, name)
+        super::parse_csv(&text, name).map(without_crs)
     } else {
-        super::parse_geojson(&text, name)
+        super::parse_geojson_with_crs(&text, name)
     }
 }
 

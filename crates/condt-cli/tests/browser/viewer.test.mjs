@@ -8,7 +8,7 @@
 // Chromium comes from Debian (`/usr/bin/chromium`, or $CHROMIUM), driven by playwright-core.
 import { chromium } from "playwright-core";
 import { execFileSync } from "node:child_process";
-import { mkdtempSync, readFileSync, rmSync } from "node:fs";
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve } from "node:path";
 import assert from "node:assert/strict";
@@ -77,6 +77,29 @@ try {
   assert.match(text, new RegExp(`final degree ${degree.get(chosen)}\\b`));
   assert.match(text, /Two shortest: to \d+ \(e1\) and \d+ \(e2\)\. Uniformity test: \|e2\| = [\d.]+ \|e1\|/);
   console.log(`point ${chosen}: ${text.slice(0, 120)}...`);
+  // Its coordinates, to the page's precision (7 digits over the box): shifted to UTM-like
+  // metres, neighbouring samples a few units apart must still read apart (6 significant digits
+  // showed 5.0000e+5 for both). Without smoothing passes the page shows the input positions.
+  const input = readFileSync(join(root, data), "utf8").split("\n")
+    .filter((l) => l.trim() && !l.startsWith("#")).map((l) => l.trim().split(/[\s,]+/).map(Number));
+  const shifted = input.map(([px, py]) => [px + 500000, py + 4000000]);
+  const shifted_file = join(dir, "shifted.txt");
+  writeFileSync(shifted_file, shifted.map((p) => p.join(" ")).join("\n") + "\n");
+  execFileSync(condt, ["reconstruct", shifted_file, "--no-smooth", "--format", "html", "-o", page_file]);
+  await page.goto("file://" + page_file);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+  const span = Math.max(...input.map((p) => p[0])) - Math.min(...input.map((p) => p[0]));
+  for (const i of [chosen]) {
+    [x, y] = await page.evaluate((i) => window.condtViewer.screenOf(i), i);
+    await page.mouse.click(x, y);
+    const shown = (await details()).match(new RegExp(`Point ${i} \\(([^,]+), ([^)]+)\\)`));
+    assert.ok(shown, `point ${i} shows its coordinates`);
+    assert.ok(Math.abs(Number(shown[1]) - shifted[i][0]) <= span * 1e-6, `x of ${i}: ${shown[1]}`);
+    assert.ok(Math.abs(Number(shown[2]) - shifted[i][1]) <= span * 1e-6, `y of ${i}: ${shown[2]}`);
+  }
+  execFileSync(condt, ["reconstruct", data, "--format", "html", "-o", page_file], { cwd: root });
+  await page.goto("file://" + page_file);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
 
   // An edge of the result and a Delaunay edge that is not: each panel ends with the verdict.
   const edges = await page.evaluate(() => {

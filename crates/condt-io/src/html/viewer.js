@@ -64,6 +64,14 @@
   const fmt = (x) => exponent(x) ? x.toExponential(4) : +x.toPrecision(6) + "";
   // `x` with `d` significant digits.
   const fmtDigits = (x, d) => exponent(x) ? x.toExponential(d - 1) : +x.toPrecision(d) + "";
+  // A coordinate with the digits the page's positions hold (7 over the box, POSITION_DIGITS):
+  // UTM metres or degrees to 1e-7 need more than 6 significant digits to tell samples apart.
+  const resolution = data.scale * data.parts * 1e-7;
+  const fmtCoordinate = (x) => {
+    const d = x === 0 || !(resolution > 0) ? 6
+      : Math.min(17, Math.max(6, Math.ceil(Math.log10(Math.abs(x) / resolution))));
+    return String(+x.toPrecision(d));
+  };
   // Two numbers with as many digits as tell them apart (a length just above its threshold).
   const apart = (a, b) => {
     for (let d = 6; ; d++) {
@@ -205,7 +213,7 @@
     // sum stays finite, as the point does.
     const at = (k, o) => { const t = P[k] * data.scale; for (let j = 0; j < data.parts; j++) o += t; return o; };
     const x = at(2 * i, data.origin[0]), y = at(2 * i + 1, data.origin[1]);
-    return `${i} (${fmt(x)}, ${fmt(y)})`;
+    return `${i} (${fmtCoordinate(x)}, ${fmtCoordinate(y)})`;
   }
   function endWords(k, end) {
     const code = data.ends[2 * k + end], at = E[2 * k + end];
