@@ -37,7 +37,7 @@ header, and with no point after it the file is empty only if it names x and y: `
 not found` alone is refused); `-` reads standard input: a NumPy array or
 a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text. By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
-float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
+float64 or float32, either byte order, C or Fortran order, `.csv` or `.tsv` CSV (tabs when its first line has no comma) whose header names the x
 and y columns (or lon, lat), or of two numeric columns without a header, `.geojson` or `.json` the Point and MultiPoint geometries of a
 GeoJSON document. Points are numbered from 0 in the order of their lines (rows, GeoJSON
 positions: a MultiPoint gives several, a feature whose geometry is null none);

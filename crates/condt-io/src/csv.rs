@@ -43,7 +43,9 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 /// coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the second the column
 /// named `y` (or `lat`, `latitude`), compared without case and blanks around them; a header
 /// that names one of them in two columns (`x,y,lon,lat`) is an error; other columns are ignored.
-/// Every following record that is not blank is a point. Fields are read as RFC 4180 has them: a
+/// Columns are separated by commas, or by tabs when the first line that is not blank has tabs
+/// and no comma (TSV). Every following record that is not blank is a point. Fields are read as
+/// RFC 4180 has them: a
 /// field may be quoted, `""` is a quote inside quotes, and a quoted field may hold commas and
 /// line ends; a quoted field must end at its closing quote. Lines end at LF, CRLF or a lone CR.
 /// A missing column, a field that is not a finite number, a record without the coordinate
@@ -79,7 +81,16 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     let source = Source { file };
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    // Tab-separated values (spreadsheets' and GIS tools' other export) are told by their first
+    // line with content: tabs and no comma.
+    let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("");
+    let delimiter = if first.contains('\t') && !first.contains(',') {
+        b'\t'
+    } else {
+        b','
+    };
     let mut reader = csv::ReaderBuilder::new()
+        .delimiter(delimiter)
         .has_headers(false)
         // Rows of any length: a short row gets this module's message, naming the column.
         .flexible(true)
@@ -337,6 +348,17 @@ mod tests {
         }
         let err = parse_csv("x;y\n1;2\n", "semi.csv").unwrap_err().to_string();
         assert!(err.contains("not semicolons"), "{err}");
+    }
+
+    /// A first line with tabs and no comma makes the file tab-separated (TSV); with a comma in
+    /// it, tabs are part of the fields as before.
+    #[test]
+    fn tabs_separate_columns_when_the_first_line_has_no_comma() {
+        let tsv = "\nid\tlon\t\"lat\"\r\n1\t8.5\t47.3\n2\t\"8.25\"\t47\n";
+        let expected = vec![Point::new(8.5, 47.3), Point::new(8.25, 47.0)];
+        assert_eq!(parse_csv(tsv, "p.tsv").unwrap(), expected);
+        let err = parse_csv("id,lon\tlat\n1,8.5\t47.3\n", "p.csv").unwrap_err();
+        assert!(err.to_string().contains("no x column"), "{err}");
     }
 
     #[test]

@@ -572,8 +572,16 @@ fn header_alone(source: &Source<'_>, text: &str, line: usize) -> IoError {
 
 /// The start of an index column, when the first of three columns counts 0, 1, 2, … or
 /// 1, 2, 3, … on every line (at least two): that is a Triangle `.node` file without its header.
-/// `pieces` are the parsed stretches of one file, in order.
+/// `pieces` are the parsed stretches of one file, in order. A header that names the first two
+/// columns x and y (`x y z` over a profile's stations 1, 2, 3, …) says what they are: no guess.
 fn node_index_column(pieces: &[Parsed]) -> Option<f64> {
+    if pieces
+        .first()?
+        .header
+        .is_some_and(|(_, names_x_and_y)| names_x_and_y)
+    {
+        return None;
+    }
     let start = pieces.iter().find_map(|p| p.points.first())?.x;
     let total: usize = pieces.iter().map(|p| p.points.len()).sum();
     let counts = pieces.iter().all(|p| p.all_three_columns)
@@ -639,7 +647,8 @@ fn expected_points(text: &str) -> usize {
 /// may be NaN or infinite, a missing depth's mark, but must be a number),
 /// except when the first column of every line counts 0, 1, 2, … or 1, 2, 3, …: that is the index
 /// column of a Triangle `.node` file without its header, and reading it as x would be wrong, so
-/// the file is refused (name it `*.node` for [`read_points`] to read it as one).
+/// the file is refused (name it `*.node` for [`read_points`] to read it as one), unless a header
+/// names the first two columns x and y (`x y z` over a profile's stations 1, 2, 3, …).
 ///
 /// The first line that is neither blank nor a comment may be a header: when every column is a
 /// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
@@ -839,8 +848,8 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 
 /// Reads a point file, its format chosen by the name's ending (any case): `.node` a Triangle
 /// node file ([`parse_node`]), `.npy` a NumPy array ([`parse_npy`](super::parse_npy), read in
-/// blocks straight into the points), `.csv` CSV with a header naming the columns
-/// ([`parse_csv`](super::parse_csv)), `.geojson` or `.json` the Point and MultiPoint geometries
+/// blocks straight into the points), `.csv` or `.tsv` CSV (or TSV) with a header naming the
+/// columns ([`parse_csv`](super::parse_csv)), `.geojson` or `.json` the Point and MultiPoint geometries
 /// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), anything else the plain
 /// format ([`parse_points`]); `-` reads standard input: a NumPy array or a GeoJSON document by
 /// its content (the `.npy` magic bytes, a leading `{`), the plain format otherwise.
@@ -883,8 +892,11 @@ pub fn read_points_with_crs(
     if extension("npy") {
         return super::npy::read_npy_file(path, name).map(without_crs);
     }
-    let other_format =
-        extension("node") || extension("csv") || extension("geojson") || extension("json");
+    let other_format = extension("node")
+        || extension("csv")
+        || extension("tsv")
+        || extension("geojson")
+        || extension("json");
     let bytes = if stdin {
         read_all(io::stdin().lock(), 0)
     } else {
@@ -919,7 +931,7 @@ pub fn read_points_with_crs(
         parse_owned_points(text, name).map(without_crs)
     } else if extension("node") {
         parse_node(&text, name).map(without_crs)
-    } else if extension("csv") {
+    } else if extension("csv") || extension("tsv") {
         super::parse_csv(&text, name).map(without_crs)
     } else {
         super::parse_geojson_with_crs(&text, name)

@@ -352,6 +352,40 @@ fn an_index_column_in_a_large_text_is_refused_and_a_break_in_it_is_not() {
     );
 }
 
+/// A header naming the first two columns x and y says what they are: a profile whose stations
+/// count 1, 2, 3, … is read as x, small or large (the parallel reader), and without the header
+/// the same rows are still refused as a `.node` file's index column.
+#[test]
+fn a_header_naming_x_and_y_overrules_the_index_column_guess() {
+    for rows in [4, 200_000] {
+        let body: String = (1..=rows)
+            .map(|i| format!("{i} {}.5 7\n", i % 13))
+            .collect();
+        let points = parse_points(&format!("x y z\n{body}"), "profile.txt").unwrap();
+        assert_eq!(points.len(), rows);
+        assert_eq!(points[2], Point::new(3.0, 3.5));
+        let err = parse_points(&body, "profile.txt").unwrap_err();
+        assert!(err.to_string().contains("counts 1, 2, 3"), "{err}");
+        let err = parse_points(&format!("id a b\n{body}"), "profile.txt").unwrap_err();
+        assert!(err.to_string().contains("counts 1, 2, 3"), "{err}");
+    }
+}
+
+/// A `.tsv` file is read by the CSV reader, its columns named by its header: the plain reader
+/// would take its id column for a `.node` file's index.
+#[test]
+fn a_tsv_file_is_read_by_its_header() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("stations.TSV");
+    std::fs::write(
+        &path,
+        "id\tlat\tlon\n1\t47.3\t8.5\n2\t47.3\t8.51\n3\t47.31\t8.52\n",
+    )
+    .unwrap();
+    let read = read_points(&path).unwrap();
+    assert_eq!(read, points(&[(8.5, 47.3), (8.51, 47.3), (8.52, 47.31)]));
+}
+
 /// Over 2 MiB of points, with a byte-order mark starting the first line after byte 1 MiB, where
 /// the parallel readers begin a piece; with the line of the mark.
 fn text_with_a_mark_after_a_piece_boundary() -> (String, usize) {
