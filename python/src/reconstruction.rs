@@ -127,9 +127,10 @@ impl Reconstruction {
     }
 
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
-    /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``, ``"given-back"``,
-    /// ``"gaps"``, ``"junctions"``, ``"crossings"``, ``"tips"``, ``"tails"``, or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct --timings``) to
-    /// the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
+    /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``,
+    /// ``"given-back"``, ``"gaps"``, ``"junctions"``, ``"crossings"``, ``"tips"``, ``"tails"``,
+    /// or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct
+    /// --timings``) to the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
     /// the stages are the last pass's.
     #[getter]
     fn stages<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -243,7 +244,8 @@ impl Reconstruction {
         EdgeStory::new(py, story)
     }
 
-    /// The curves as GeoJSON text, exactly what ``condt reconstruct -o out.geojson`` writes: a
+    /// The curves as GeoJSON text, what ``condt reconstruct -o out.geojson`` writes (which also
+    /// carries on a GeoJSON input's ``crs``): a
     /// FeatureCollection with one LineString per curve (a closed one repeats its first point)
     /// and a ``closed`` property, on the input coordinates.
     ///

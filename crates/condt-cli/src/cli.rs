@@ -37,9 +37,11 @@ header, and with no point after it the file is empty only if it names x and y: `
 not found` alone is refused); `-` reads standard input: a NumPy array or
 a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text. By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
-float64 or float32, either byte order, C or Fortran order, `.csv` or `.tsv` CSV (tabs when its first line has no comma) whose header names the x
-and y columns (or lon, lat), or of two numeric columns without a header, `.geojson` or `.json` the Point and MultiPoint geometries of a
-GeoJSON document. Points are numbered from 0 in the order of their lines (rows, GeoJSON
+float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
+and y columns (or lon, lat), or of two numeric columns without a header (tabs separate the
+columns when the first line with content has tabs and no comma; a `.tsv` with a header is read
+so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
+document. Points are numbered from 0 in the order of their lines (rows, GeoJSON
 positions: a MultiPoint gives several, a feature whose geometry is null none);
 every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
@@ -342,7 +344,8 @@ i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), ui
 point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
 default on standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points and curves; with --stages the Delaunay
 triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
-LineString per curve, on the input's coordinates; a GeoJSON input's `crs` member is carried on), `html` (.html: a self-contained page to explore every stage: layers, pan
+LineString per curve, on the input's coordinates; a GeoJSON input's `crs` member is carried
+on), `html` (.html: a self-contained page to explore every stage: layers, pan
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 

@@ -1,5 +1,6 @@
 //! CSV point files with a header line naming the columns (`x,y`, or `lon,lat`, among others),
-//! or of exactly two numeric columns without one (as `numpy.savetxt` writes them).
+//! or of exactly two numeric columns without one (as `numpy.savetxt` writes them); columns are
+//! separated by commas, or by tabs (TSV).
 //!
 //! Owns: [`parse_csv`]. A CSV file says which columns hold the coordinates in its header, so
 //! the reader follows the header instead of taking the first two columns as the plain reader
@@ -38,8 +39,8 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 
 /// Parses a CSV file with a header line; `file` names the source in error messages.
 ///
-/// The first record that is not blank is the header: comma-separated column names, quoted or
-/// not; when it is exactly two numbers there is no header and every record is `x,y`. The first
+/// The first record that is not blank is the header: column names separated as the records
+/// are, quoted or not; when it is exactly two numbers there is no header and every record is `x,y`. The first
 /// coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the second the column
 /// named `y` (or `lat`, `latitude`), compared without case and blanks around them; a header
 /// that names one of them in two columns (`x,y,lon,lat`) is an error; other columns are ignored.
@@ -79,16 +80,28 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 /// # Ok::<(), condt_io::IoError>(())
 /// ```
 pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
-    let source = Source { file };
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     // Tab-separated values (spreadsheets' and GIS tools' other export) are told by their first
     // line with content: tabs and no comma.
-    let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("");
-    let delimiter = if first.contains('\t') && !first.contains(',') {
-        b'\t'
-    } else {
-        b','
-    };
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let first = first_line_with_content(text);
+    let tabs = first.contains('\t') && !first.contains(',');
+    parse_separated(text, file, if tabs { b'\t' } else { b',' })
+}
+
+/// The first line of `text` that is not blank (lines end at LF, CR or CRLF).
+pub(crate) fn first_line_with_content(text: &str) -> &str {
+    let mut lines = text.split(['\r', '\n']);
+    lines.find(|l| !l.trim().is_empty()).unwrap_or("")
+}
+
+/// [`parse_csv`] with columns separated by `delimiter` (`,` or a tab).
+pub(crate) fn parse_separated(
+    text: &str,
+    file: &str,
+    delimiter: u8,
+) -> Result<Vec<Point>, IoError> {
+    let source = Source { file };
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut reader = csv::ReaderBuilder::new()
         .delimiter(delimiter)
         .has_headers(false)
@@ -119,7 +132,8 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
         }
         let end = reader.position().byte() as usize;
         let raw = text.get(start..end).unwrap_or_default();
-        if record.len() == 1 && record[0].trim().is_empty() && !raw.contains('"') {
+        // A blank line, or a spreadsheet's empty row (only separators), holds no point.
+        if record.iter().all(|field| field.trim().is_empty()) && !raw.contains('"') {
             continue;
         }
         let line = lines.line_at(start);
@@ -354,7 +368,7 @@ mod tests {
     /// it, tabs are part of the fields as before.
     #[test]
     fn tabs_separate_columns_when_the_first_line_has_no_comma() {
-        let tsv = "\nid\tlon\t\"lat\"\r\n1\t8.5\t47.3\n2\t\"8.25\"\t47\n";
+        let tsv = "\nid\tlon\t\"lat\"\r\n1\t8.5\t47.3\n\t\t\n2\t\"8.25\"\t47\n";
         let expected = vec![Point::new(8.5, 47.3), Point::new(8.25, 47.0)];
         assert_eq!(parse_csv(tsv, "p.tsv").unwrap(), expected);
         let err = parse_csv("id,lon\tlat\n1,8.5\t47.3\n", "p.csv").unwrap_err();

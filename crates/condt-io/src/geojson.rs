@@ -37,7 +37,8 @@ pub fn write_geojson(
 /// the coordinates are the input's, so is their reference system.
 ///
 /// # Errors
-/// As [`write_geojson`].
+/// As [`write_geojson`], and `InvalidInput` when `crs` is not one JSON value (`"EPSG:32632"`
+/// must be written as a JSON string or object, quotes included).
 ///
 /// ```
 /// use condt::{reconstruct, Params, Point};
@@ -48,6 +49,8 @@ pub fn write_geojson(
 /// condt_io::write_geojson_with_crs(&mut out, &r, &points, Some(crs))?;
 /// let text = String::from_utf8(out)?;
 /// assert!(text.starts_with(&format!(r#"{{"type":"FeatureCollection","crs":{crs},"#)));
+/// assert!(condt_io::write_geojson_with_crs(&mut Vec::new(), &r, &points, Some("EPSG:32632"))
+///     .is_err());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_geojson_with_crs(
@@ -57,6 +60,15 @@ pub fn write_geojson_with_crs(
     crs: Option<&str>,
 ) -> io::Result<()> {
     super::check_input(result, input)?;
+    if let Some(crs) = crs {
+        // Written as it is: it must not break the document.
+        if serde_json::from_str::<&serde_json::value::RawValue>(crs).is_err() {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!("the crs {crs:?} is not a JSON value"),
+            ));
+        }
+    }
     write!(out, r#"{{"type":"FeatureCollection","#)?;
     if let Some(crs) = crs {
         write!(out, r#""crs":{crs},"#)?;

@@ -54,7 +54,8 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     parse_geojson_with_crs(text, file).map(|(points, _)| points)
 }
 
-/// [`parse_geojson`], and the document's top-level `"crs"` member as written (GeoJSON of 2008;
+/// [`parse_geojson`], and the document's top-level `"crs"` member as written (the first, if
+/// written twice; GeoJSON of 2008;
 /// RFC 7946 dropped it, but GDAL and QGIS still read it to place projected coordinates), so that
 /// a GeoJSON output can carry it on.
 ///

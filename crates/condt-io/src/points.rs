@@ -647,8 +647,8 @@ fn expected_points(text: &str) -> usize {
 /// may be NaN or infinite, a missing depth's mark, but must be a number),
 /// except when the first column of every line counts 0, 1, 2, … or 1, 2, 3, …: that is the index
 /// column of a Triangle `.node` file without its header, and reading it as x would be wrong, so
-/// the file is refused (name it `*.node` for [`read_points`] to read it as one), unless a header
-/// names the first two columns x and y (`x y z` over a profile's stations 1, 2, 3, …).
+/// the file is refused (name it `*.node` for [`read_points`] to read it as one), unless a
+/// header names the first two columns x and y (`x y z` over a profile's stations 1, 2, 3, …).
 ///
 /// The first line that is neither blank nor a comment may be a header: when every column is a
 /// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
@@ -848,8 +848,9 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 
 /// Reads a point file, its format chosen by the name's ending (any case): `.node` a Triangle
 /// node file ([`parse_node`]), `.npy` a NumPy array ([`parse_npy`](super::parse_npy), read in
-/// blocks straight into the points), `.csv` or `.tsv` CSV (or TSV) with a header naming the
-/// columns ([`parse_csv`](super::parse_csv)), `.geojson` or `.json` the Point and MultiPoint geometries
+/// blocks straight into the points), `.csv` CSV with a header naming the columns
+/// ([`parse_csv`](super::parse_csv)), `.tsv` the same with tabs between columns (without a header,
+/// the plain format), `.geojson` or `.json` the Point and MultiPoint geometries
 /// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), anything else the plain
 /// format ([`parse_points`]); `-` reads standard input: a NumPy array or a GeoJSON document by
 /// its content (the `.npy` magic bytes, a leading `{`), the plain format otherwise.
@@ -931,8 +932,22 @@ pub fn read_points_with_crs(
         parse_owned_points(text, name).map(without_crs)
     } else if extension("node") {
         parse_node(&text, name).map(without_crs)
-    } else if extension("csv") || extension("tsv") {
+    } else if extension("csv") {
         super::parse_csv(&text, name).map(without_crs)
+    } else if extension("tsv") {
+        // Tabs by the name; a file without a header (numbers first, or a comment) is the plain
+        // format's, which takes tabs, comments and a third column too.
+        let first = crate::csv::first_line_with_content(&text).trim_start();
+        let numbers_first = first.starts_with('#')
+            || first
+                .split(['\t', ' '])
+                .next()
+                .is_some_and(|field| field.parse::<f64>().is_ok());
+        if numbers_first {
+            parse_owned_points(text, name).map(without_crs)
+        } else {
+            crate::csv::parse_separated(&text, name, b'\t').map(without_crs)
+        }
     } else {
         super::parse_geojson_with_crs(&text, name)
     }

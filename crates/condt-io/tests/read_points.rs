@@ -384,6 +384,12 @@ fn a_tsv_file_is_read_by_its_header() {
     .unwrap();
     let read = read_points(&path).unwrap();
     assert_eq!(read, points(&[(8.5, 47.3), (8.51, 47.3), (8.52, 47.31)]));
+    // Without a header, the plain format: a comment, and a third column ignored.
+    std::fs::write(&path, "# survey\n1.5\t2\t9\n3\t4\t9\n").unwrap();
+    assert_eq!(
+        read_points(&path).unwrap(),
+        points(&[(1.5, 2.0), (3.0, 4.0)])
+    );
 }
 
 /// Over 2 MiB of points, with a byte-order mark starting the first line after byte 1 MiB, where

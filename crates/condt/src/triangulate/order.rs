@@ -5,7 +5,8 @@
 //! position, so the order depends only on the set of points.
 //!
 //! Owns: the order in which points are inserted, and its scratch buffers. It may not read or
-//! build a mesh; the order changes no result, only the time the insertion takes.
+//! build a mesh; the order changes only the time the insertion takes and, among cocircular
+//! points, which diagonal is kept (`docs/triangulation.md`).
 
 use crate::geometry::Point;
 use alloc::vec::Vec;
