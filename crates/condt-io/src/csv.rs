@@ -40,14 +40,13 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 /// Parses a CSV file with a header line; `file` names the source in error messages.
 ///
 /// The first record that is not blank is the header: column names separated as the records
-/// are, quoted or not; when it is exactly two numbers there is no header and every record is `x,y`. The first
-/// coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the second the column
-/// named `y` (or `lat`, `latitude`), compared without case and blanks around them; a header
-/// that names one of them in two columns (`x,y,lon,lat`) is an error; other columns are ignored.
-/// Columns are separated by commas, or by tabs when the first line that is not blank has tabs
-/// and no comma (TSV). Every following record that is not blank is a point. Fields are read as
-/// RFC 4180 has them: a
-/// field may be quoted, `""` is a quote inside quotes, and a quoted field may hold commas and
+/// are, quoted or not; when it is exactly two numbers there is no header and every record is
+/// `x,y`. The first coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the
+/// second the column named `y` (or `lat`, `latitude`), compared without case and blanks around
+/// them; a header that names one of them in two columns (`x,y,lon,lat`) is an error; other
+/// columns are ignored. Columns are separated by commas, or by tabs when the first line that is
+/// not blank has tabs and no comma (TSV). Every following record that is not blank is a point.
+/// Fields are read as RFC 4180 has them: a field may be quoted, `""` is a quote inside quotes, and a quoted field may hold commas and
 /// line ends; a quoted field must end at its closing quote. Lines end at LF, CRLF or a lone CR.
 /// A missing column, a field that is not a finite number, a record without the coordinate
 /// columns or a malformed quoted field is an error naming the line (the line where its record
@@ -82,7 +81,6 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     // Tab-separated values (spreadsheets' and GIS tools' other export) are told by their first
     // line with content: tabs and no comma.
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let first = first_line_with_content(text);
     let tabs = first.contains('\t') && !first.contains(',');
     parse_separated(text, file, if tabs { b'\t' } else { b',' })

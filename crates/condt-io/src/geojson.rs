@@ -2,6 +2,7 @@
 
 use condt::Point;
 use condt::Reconstruction;
+use serde_json::value::RawValue;
 use std::io::{self, Write};
 
 /// A `FeatureCollection` with one `LineString` per curve and a boolean `closed` property; a
@@ -60,14 +61,12 @@ pub fn write_geojson_with_crs(
     crs: Option<&str>,
 ) -> io::Result<()> {
     super::check_input(result, input)?;
-    if let Some(crs) = crs {
-        // Written as it is: it must not break the document.
-        if serde_json::from_str::<&serde_json::value::RawValue>(crs).is_err() {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidInput,
-                format!("the crs {crs:?} is not a JSON value"),
-            ));
-        }
+    // Written as it is, so checked first: it must not break the document.
+    if let Some(crs) = crs.filter(|c| serde_json::from_str::<&RawValue>(c).is_err()) {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("the crs {crs:?} is not a JSON value"),
+        ));
     }
     write!(out, r#"{{"type":"FeatureCollection","#)?;
     if let Some(crs) = crs {

@@ -935,18 +935,16 @@ pub fn read_points_with_crs(
     } else if extension("csv") {
         super::parse_csv(&text, name).map(without_crs)
     } else if extension("tsv") {
-        // Tabs by the name; a file without a header (numbers first, or a comment) is the plain
-        // format's, which takes tabs, comments and a third column too.
-        let first = crate::csv::first_line_with_content(&text).trim_start();
-        let numbers_first = first.starts_with('#')
-            || first
-                .split(['\t', ' '])
-                .next()
-                .is_some_and(|field| field.parse::<f64>().is_ok());
-        if numbers_first {
-            parse_owned_points(text, name).map(without_crs)
-        } else {
+        // Tabs by the name, when the file starts with a header as the plain reader tells one;
+        // without (numbers or a comment first) it is the plain format's, which takes tabs,
+        // comments and a third column too.
+        let first = crate::csv::first_line_with_content(&text);
+        let content = first.split('#').next().unwrap_or("");
+        let fields: Vec<&str> = content.split_whitespace().collect();
+        if !fields.is_empty() && fields.iter().all(|f| is_name(f)) {
             crate::csv::parse_separated(&text, name, b'\t').map(without_crs)
+        } else {
+            parse_owned_points(text, name).map(without_crs)
         }
     } else {
         super::parse_geojson_with_crs(&text, name)

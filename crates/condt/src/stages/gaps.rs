@@ -865,7 +865,7 @@ mod tests {
     }
 
     /// Two samples that noise pushed together between two loose ends: the short step between
-    /// them turns 45° off the line, and each end's nearest sample is another one of the two (no
+    /// them turns 41° off the line, and each end's nearest sample is another one of the two (no
     /// agreement on a stranded point). The walks read the step after the crowded one from the
     /// sample before it, pass both and meet.
     #[test]
