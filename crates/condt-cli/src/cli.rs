@@ -42,7 +42,8 @@ and y columns (or lon, lat), or of two numeric columns without a header (tabs se
 columns when the first line with content has tabs and no comma; a `.tsv` with a header is read
 so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
 document. Points are numbered from 0 in the order of their lines (rows, GeoJSON
-positions: a MultiPoint gives several, a feature whose geometry is null none);
+positions: a MultiPoint gives several, a feature whose geometry is null none, nor an empty
+Point or MultiPoint, `\"coordinates\": []`);
 every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.

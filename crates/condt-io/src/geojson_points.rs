@@ -27,7 +27,9 @@ const MAX_DEPTH: usize = 64;
 ///
 /// Read: a FeatureCollection, a Feature, a GeometryCollection or a bare geometry; every Point
 /// gives one point and every MultiPoint its points, in the order they are written (a third
-/// coordinate, a number, is ignored). A Feature without a geometry (`null`) gives none. Any other geometry
+/// coordinate, a number, is ignored). A Feature without a geometry (`null`) gives none, and so
+/// does an empty Point or MultiPoint (`"coordinates": []`: RFC 7946, section 3.1, allows empty
+/// geometries), while a position inside a MultiPoint must hold two coordinates. Any other geometry
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
 /// coordinates that are not numbers. Members may come in any order; strings may hold escapes
 /// (`"Po\u0069nt"` is `"Point"`); numbers are read exactly as `str::parse` reads them.
@@ -183,7 +185,9 @@ enum Member {
     Geometry,
     /// An array of objects: `"features"` or `"geometries"`, named in the message.
     Objects(&'static str),
-    /// A Point's coordinates.
+    /// A Point's coordinates: a position, or `[]` for an empty Point.
+    Point,
+    /// A position of a MultiPoint.
     Position,
     /// A MultiPoint's coordinates.
     Positions,
@@ -217,7 +221,7 @@ impl Member {
             Member::Object | Member::Geometry => "a GeoJSON object needs a \"type\"",
             Member::Objects("features") => "a FeatureCollection needs a \"features\" array",
             Member::Objects(_) => "a GeometryCollection needs a \"geometries\" array",
-            Member::Position => POSITION,
+            Member::Point | Member::Position => POSITION,
             Member::Positions => "a MultiPoint needs a \"coordinates\" array",
         }
     }
@@ -298,8 +302,14 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 {}
                 Ok(())
             }
-            Member::Position => {
+            Member::Point | Member::Position => {
                 let x = seq.next_element_seed(Coordinate)?;
+                // An empty Point (`"coordinates": []`) holds no point, as an empty MultiPoint
+                // holds none (RFC 7946, 3.1: an empty geometry); a MultiPoint's position must
+                // hold two coordinates.
+                if x.is_none() && self.member == Member::Point {
+                    return Ok(());
+                }
                 let y = x.and(seq.next_element_seed(Coordinate)?);
                 let (Some(x), Some(y)) = (x, y) else {
                     return Err(de::Error::custom(POSITION));
@@ -372,7 +382,7 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
         if !seen.contains(&wanted) {
             return Err(de::Error::custom(match wanted {
                 Key::Geometry => "a Feature needs a \"geometry\"".to_string(),
-                Key::Coordinates if member == Member::Position => {
+                Key::Coordinates if member == Member::Point => {
                     "a Point needs \"coordinates\"".to_string()
                 }
                 _ => member.wanted().to_string(),
@@ -390,7 +400,7 @@ fn wanted_member<E: de::Error>(name: Option<&str>) -> Result<Option<(Key, Member
         Some("FeatureCollection") => (Key::Features, Member::Objects("features")),
         Some("Feature") => (Key::Geometry, Member::Geometry),
         Some("GeometryCollection") => (Key::Geometries, Member::Objects("geometries")),
-        Some("Point") => (Key::Coordinates, Member::Position),
+        Some("Point") => (Key::Coordinates, Member::Point),
         Some("MultiPoint") => (Key::Coordinates, Member::Positions),
         Some(other) => {
             return Err(E::custom(format_args!(
@@ -512,6 +522,33 @@ mod tests {
         );
         let feature = r#"{"type":"Feature","geometry":null,"properties":{"a":[1,{"b":"\"x\""}]}}"#;
         assert_eq!(parse_geojson(feature, "f.json").unwrap(), vec![]);
+    }
+
+    /// An empty Point is an empty geometry, as an empty MultiPoint is (RFC 7946, 3.1): no
+    /// point, no error (it was refused while the empty MultiPoint was read). A MultiPoint's
+    /// empty position is still refused: a position holds two coordinates.
+    #[test]
+    fn empty_points_and_multipoints_give_no_point() {
+        for text in [
+            r#"{"type":"Point","coordinates":[]}"#,
+            r#"{"coordinates":[],"type":"Point"}"#,
+            r#"{"type":"MultiPoint","coordinates":[]}"#,
+        ] {
+            assert_eq!(parse_geojson(text, "e.geojson").unwrap(), vec![], "{text}");
+        }
+        let text = r#"{"type":"GeometryCollection","geometries":[
+            {"type":"Point","coordinates":[]},{"type":"Point","coordinates":[1,2]}]}"#;
+        assert_eq!(
+            parse_geojson(text, "e.geojson").unwrap(),
+            vec![Point::new(1.0, 2.0)]
+        );
+        let err = parse_geojson(
+            "{\"type\":\"MultiPoint\",\n\"coordinates\":[[1,2],[]]}",
+            "m.geojson",
+        )
+        .unwrap_err();
+        assert_eq!(err.line, Some(2));
+        assert!(err.to_string().contains("a position must be"), "{err}");
     }
 
     #[test]
