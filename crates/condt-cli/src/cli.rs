@@ -8,13 +8,12 @@ use crate::options::{self, Opt};
 use crate::output::{refuse_same_file, Destination};
 use crate::progress::Progress;
 use crate::timings::Timings;
-use condt::{
-    triangulate, Error, Method, Params, Pipeline, Point, Repair, Stage, Uniformity, Upcoming,
-};
+use condt::{triangulate, Error, Method, Params, Pipeline, Repair, Stage, Uniformity, Upcoming};
 use condt_io::{
-    read_points_with_crs, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
+    read_points_with, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
     write_npy_triangles, write_npy_triangulation_edges, write_polylines, write_svg,
-    write_svg_stages, write_triangles, write_triangulation_edges, IoError,
+    write_svg_stages, write_triangles, write_triangulation_edges, InputFormat, IoError, PointFile,
+    ReadOptions,
 };
 use std::ffi::{OsStr, OsString};
 use std::fmt;
@@ -35,7 +34,8 @@ INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a t
 ignored; `#` comments and blank lines are skipped; a first line of names, such as `x y`, is a
 header, and with no point after it the file is empty only if it names x and y: `Error: file
 not found` alone is refused); `-` reads standard input: a NumPy array or
-a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text. By the
+a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text
+(`--input-format F` states the format instead, for a file too: `--input-format csv`). By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
 and y columns (or lon, lat), or of two numeric columns without a header (tabs separate the
@@ -97,6 +97,11 @@ fn global_help() -> String {
     format!("{USAGE}\nOptions:\n{}", options::help(GLOBAL_OPTIONS, 20))
 }
 
+/// `--input-format`, the same for every command that reads INPUT.
+const INPUT_FORMAT_HELP: &str = "read INPUT as F whatever its name: txt, node, csv, tsv, npy or
+geojson (standard input, which has no name, is otherwise told by its
+content: .npy, GeoJSON, else txt; `--input-format csv` reads CSV)";
+
 /// `--quiet`, the same for every command that computes.
 const QUIET_HELP: &str = "no progress bar and no notes on standard error (errors and
 --timings lines are still written); the output is the same";
@@ -118,6 +123,7 @@ enum ReconstructId {
     NoManifoldFix,
     Repair,
     Method,
+    InputFormat,
     Format,
     Stages,
     Sequential,
@@ -133,7 +139,8 @@ impl ReconstructId {
         match self {
             Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | IqrFloor
             | StageSwitch(_) | Smooth | NoManifoldFix | Repair => true,
-            Output | Method | Format | Stages | Sequential | Timings | Quiet | Help => false,
+            Output | Method | InputFormat | Format | Stages | Sequential | Timings | Quiet
+            | Help => false,
         }
     }
 }
@@ -249,6 +256,14 @@ triangulation: nn-crust (Dey and Kumar) or crust (Amenta, Bern
 and Eppstein); a baseline takes none of the ConDT options",
     },
     Opt {
+        id: ReconstructId::InputFormat,
+        short: None,
+        long: "input-format",
+        negatable: false,
+        value: Some("F"),
+        help: INPUT_FORMAT_HELP,
+    },
+    Opt {
         id: ReconstructId::Format,
         short: None,
         long: "format",
@@ -335,7 +350,8 @@ Usage:
                     [--[no-]junctions] [--[no-]crossings] [--[no-]tips] [--[no-]tails]
                     [--[no-]smooth]
                     [--method condt|nn-crust|crust]
-                    [--format F] [--stages] [--sequential] [--timings] [--quiet]
+                    [--input-format F] [--format F] [--stages] [--sequential]
+                    [--timings] [--quiet]
 
 Example:
   condt reconstruct data/shapes.txt -o shapes.svg --stages
@@ -369,6 +385,7 @@ fn reconstruct_help() -> String {
 enum TriangulateId {
     Output,
     Edges,
+    InputFormat,
     Timings,
     Quiet,
     Help,
@@ -391,6 +408,14 @@ const TRIANGULATE_OPTIONS: &[Opt<TriangulateId>] = &[
         value: None,
         help: "write edges instead of triangles (an OUTPUT ending in .edges gets
 edges without it)",
+    },
+    Opt {
+        id: TriangulateId::InputFormat,
+        short: None,
+        long: "input-format",
+        negatable: false,
+        value: Some("F"),
+        help: INPUT_FORMAT_HELP,
     },
     Opt {
         id: TriangulateId::Timings,
@@ -423,7 +448,7 @@ const TRIANGULATE_ABOUT: &str = "\
 condt triangulate: the Delaunay triangulation of planar points
 
 Usage:
-  condt triangulate INPUT [-o OUTPUT] [--edges] [--timings] [--quiet]
+  condt triangulate INPUT [-o OUTPUT] [--edges] [--input-format F] [--timings] [--quiet]
 
 Example:
   condt triangulate data/shapes.txt --edges -o shapes.edges
@@ -535,6 +560,8 @@ struct TriangulateArgs {
     edges: bool,
     /// A NumPy array instead of text: an OUTPUT ending in `.npy`.
     npy: bool,
+    /// How INPUT is read (`--input-format`).
+    read: ReadOptions,
     timings: bool,
     quiet: bool,
 }
@@ -622,10 +649,14 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
     let mut timings = false;
     let mut quiet = false;
     let mut paths = Paths::default();
+    let mut input_format = Setting::new();
     for given in lexed.given {
         match given.id {
             TriangulateId::Output => paths.output(&given.flag, given.value)?,
             TriangulateId::Edges => edges = true,
+            TriangulateId::InputFormat => {
+                input_format_option(&mut input_format, &given.flag, given.value.as_ref())?
+            }
             TriangulateId::Timings => timings = true,
             TriangulateId::Quiet => quiet = true,
             // Answered before the arguments are read (`run`).
@@ -639,6 +670,7 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
         output,
         edges: edges || edges_by_name,
         npy,
+        read: read_options(input_format),
         timings,
         quiet,
     })
@@ -796,6 +828,8 @@ struct ReconstructArgs {
     /// `None`: standard output.
     output: Option<PathBuf>,
     params: Params,
+    /// How INPUT is read (`--input-format`).
+    read: ReadOptions,
     format: Format,
     stages: bool,
     timings: bool,
@@ -867,6 +901,31 @@ impl<T: PartialEq> Setting<T> {
     }
 }
 
+/// `--input-format F` (`flag` as written), checked and set once.
+fn input_format_option(
+    setting: &mut Setting<InputFormat>,
+    flag: &str,
+    value: Option<&OsString>,
+) -> Result<(), CliError> {
+    let names = InputFormat::ALL.map(InputFormat::name).join(", ");
+    let value = value.ok_or_else(|| usage(format!("{flag} needs a format: {names}")))?;
+    let name = text(value, flag)?;
+    let chosen = InputFormat::named(name).ok_or_else(|| {
+        usage(format!(
+            "{flag} {name}: unknown input format; the formats are {names}"
+        ))
+    })?;
+    setting.set(chosen, format!("{flag} {name}"))
+}
+
+/// How INPUT is read, by the options given.
+fn read_options(input_format: Setting<InputFormat>) -> ReadOptions {
+    match input_format.get() {
+        Some(format) => ReadOptions::new().with_format(format),
+        None => ReadOptions::new(),
+    }
+}
+
 const REPAIR_MODES: &str = "needs, paper, mutual, crossing or off";
 
 fn repair_mode(value: Option<&OsString>) -> Result<Repair, CliError> {
@@ -904,6 +963,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     // As typed, when given: an option that needs a step the others turn off is refused.
     let (mut iqr_floor_said, mut outliers_first_said) = (None::<String>, None::<String>);
     let mut format = Setting::new();
+    let mut input_format = Setting::new();
     let mut method = Setting::new();
     // ConDT's own options, as written, to refuse them beside a baseline method.
     let condt_options: Vec<&str> = lexed
@@ -1000,6 +1060,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
             }
+            Id::InputFormat => input_format_option(&mut input_format, flag, value)?,
             Id::Stages => stages = true,
             Id::Timings => timings = true,
             Id::Quiet => quiet = true,
@@ -1085,6 +1146,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         input,
         output,
         params,
+        read: read_options(input_format),
         format,
         stages,
         timings,
@@ -1096,18 +1158,19 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
 /// With `parallel` false (`--sequential`) the reading, which otherwise splits a large text over
 /// rayon's threads, runs on this thread alone (a one-thread pool; same points either way).
 /// A GeoJSON input's `"crs"` member comes with the points (`None` for other formats), for a
-/// GeoJSON output to carry on.
+/// GeoJSON output to carry on. `options`: `--input-format`.
 fn read_input(
     input: Option<&Path>,
     parallel: bool,
-) -> Result<(Vec<Point>, Option<String>), CliError> {
+    options: &ReadOptions,
+) -> Result<PointFile, CliError> {
     let path = input.unwrap_or(Path::new("-"));
     if !parallel {
         if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() {
-            return Ok(pool.install(|| read_points_with_crs(path))?);
+            return Ok(pool.install(|| read_points_with(path, options))?);
         }
     }
-    Ok(read_points_with_crs(path)?)
+    Ok(read_points_with(path, options)?)
 }
 
 fn shown_input(input: Option<&Path>) -> String {
@@ -1177,7 +1240,8 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let (points, crs) = read_input(args.input.as_deref(), args.params.parallel)?;
+    let PointFile { points, crs, .. } =
+        read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
     progress.suspend(|| timings.lap("read"));
     let count = points.len();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
@@ -1265,7 +1329,7 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let (points, _) = read_input(args.input.as_deref(), true)?;
+    let points = read_input(args.input.as_deref(), true, &args.read)?.points;
     progress.computing("triangulating");
     progress.suspend(|| timings.lap("read"));
     let tri = triangulate(&points)
@@ -1336,6 +1400,7 @@ mod tests {
                 output: Some("out.txt".into()),
                 edges: true,
                 npy: false,
+                read: ReadOptions::new(),
                 timings: false,
                 quiet: false,
             }

@@ -167,3 +167,111 @@ fn a_byte_order_mark_inside_the_file_is_refused_on_every_path() {
         );
     }
 }
+
+/// `condt ARGS` with `input` on standard input.
+fn condt_with_stdin(args: &[&str], input: &[u8]) -> std::process::Output {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_condt"))
+        .args(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut pipe = child.stdin.take().unwrap();
+    // The run may stop reading at an error.
+    let _ = pipe.write_all(input);
+    drop(pipe);
+    child.wait_with_output().unwrap()
+}
+
+/// A CSV table on standard input, which has no name to say it is CSV, is read as CSV with
+/// `--input-format csv` (its header followed: `id,lat,lon`), giving what the same file named
+/// `.csv` gives; without the option it is read as plain text as before (a GIS review: only the
+/// plain reader's `x,y` worked), and its refusal says how to read it as CSV. The option also
+/// overrules a file's name.
+#[test]
+fn csv_on_standard_input_is_read_with_input_format() {
+    let points = circle();
+    let csv: String = "id,lat,lon\n".to_string()
+        + &points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| format!("{k},{:?},{:?}\n", p.y, p.x))
+            .collect::<String>();
+    let expected: String = reconstruct(&points, &Params::default())
+        .unwrap()
+        .edges()
+        .map(|[a, b]| format!("{a} {b}\n"))
+        .collect();
+    for args in [
+        &[
+            "reconstruct",
+            "-",
+            "--input-format",
+            "csv",
+            "--format",
+            "edges",
+        ][..],
+        &[
+            "reconstruct",
+            "--input-format=CSV",
+            "-",
+            "--format=edges",
+            "--sequential",
+        ],
+    ] {
+        let out = condt_with_stdin(args, csv.as_bytes());
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {said}");
+        assert_eq!(String::from_utf8(out.stdout).unwrap(), expected, "{args:?}");
+    }
+    let out = condt_with_stdin(&["reconstruct", "-", "--format", "edges"], csv.as_bytes());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("<stdin>:1: ") && said.contains("--input-format csv"),
+        "{said}"
+    );
+    // `x,y` on standard input was read before, by the plain reader, and still is.
+    let plain = "x,y\n0,0\n1,0\n0.5,2\n";
+    let out = condt_with_stdin(&["triangulate", "-"], plain.as_bytes());
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+    let out = condt_with_stdin(
+        &["triangulate", "-", "--input-format", "csv"],
+        plain.as_bytes(),
+    );
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+    // The option overrules a name: a `.txt` holding CSV, a `.csv` holding plain text.
+    let dir = scratch_dir();
+    for (name, text, format) in [
+        ("table.txt", csv.as_str(), "csv"),
+        ("plain.csv", "0 0\n1 0 # a comment\n0.5 2\n", "txt"),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let path = path.to_str().unwrap();
+        let refused = condt_with_stdin(&["triangulate", path], b"");
+        assert_eq!(refused.status.code(), Some(1), "{name}");
+        let out = condt_with_stdin(&["triangulate", path, "--input-format", format], b"");
+        assert!(out.status.success(), "{name}");
+        assert!(!out.stdout.is_empty(), "{name}");
+    }
+    // An unknown format, or two different ones, is a usage error naming the formats.
+    let out = condt_with_stdin(&["triangulate", "-", "--input-format", "xlsx"], b"");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{said}");
+    assert!(said.contains("txt, node, csv, tsv, npy, geojson"), "{said}");
+    let out = condt_with_stdin(
+        &[
+            "triangulate",
+            "-",
+            "--input-format",
+            "csv",
+            "--input-format",
+            "tsv",
+        ],
+        b"",
+    );
+    assert_eq!(out.status.code(), Some(2));
+}
