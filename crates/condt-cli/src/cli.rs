@@ -43,7 +43,7 @@ columns when the first line with content has tabs and no comma; a `.tsv` with a 
 so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
 document. Points are numbered from 0 in the order of their lines (rows, GeoJSON
 positions: a MultiPoint gives several, a feature whose geometry is null none, nor an empty
-Point or MultiPoint, `\"coordinates\": []`);
+Point or MultiPoint, `\"coordinates\": []`, and a note on standard error says how many);
 every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
@@ -1198,6 +1198,28 @@ fn note_duplicates(points: usize, distinct: usize) {
     }
 }
 
+/// One note for the GeoJSON features of `file` that gave no point: `null` geometries that
+/// many, and `empty` Points and MultiPoints (`"coordinates": []`); none when both are 0.
+pub(crate) fn note_skipped_geometries(file: &str, null: usize, empty: usize) {
+    let mut skipped = Vec::new();
+    if null > 0 {
+        skipped.push(format!("{} with a null geometry", Counted(null, "feature")));
+    }
+    if empty > 0 {
+        skipped.push(if empty == 1 {
+            "1 empty Point or MultiPoint".to_string()
+        } else {
+            format!("{empty} empty Points or MultiPoints")
+        });
+    }
+    if !skipped.is_empty() {
+        note(format_args!(
+            "{file}: skipped {}: they hold no point (the points are numbered without them)",
+            skipped.join(" and ")
+        ));
+    }
+}
+
 /// The size of INPUT when it is a regular file (`None`: standard input, a pipe, a device).
 fn input_size(input: Option<&Path>) -> Option<u64> {
     let meta = std::fs::metadata(input?).ok()?;
@@ -1240,8 +1262,13 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let PointFile { points, crs, .. } =
-        read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
+    let PointFile {
+        points,
+        crs,
+        null_geometries,
+        empty_geometries,
+        ..
+    } = read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
     progress.suspend(|| timings.lap("read"));
     let count = points.len();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
@@ -1303,6 +1330,11 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     progress.finish();
     timings.lap("write");
     if !args.quiet {
+        note_skipped_geometries(
+            &shown_input(args.input.as_deref()),
+            null_geometries,
+            empty_geometries,
+        );
         note_duplicates(count, result.triangulation().num_vertices());
         let curves = result.curves();
         let closed = curves.iter().filter(|c| c.is_closed()).count();
@@ -1329,7 +1361,12 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let points = read_input(args.input.as_deref(), true, &args.read)?.points;
+    let PointFile {
+        points,
+        null_geometries,
+        empty_geometries,
+        ..
+    } = read_input(args.input.as_deref(), true, &args.read)?;
     progress.computing("triangulating");
     progress.suspend(|| timings.lap("read"));
     let tri = triangulate(&points)
@@ -1354,6 +1391,11 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     progress.finish();
     timings.lap("write");
     if !args.quiet {
+        note_skipped_geometries(
+            &shown_input(args.input.as_deref()),
+            null_geometries,
+            empty_geometries,
+        );
         note_duplicates(count, tri.num_vertices());
         note_no_triangles(&tri, args.edges);
     }

@@ -275,3 +275,60 @@ fn csv_on_standard_input_is_read_with_input_format() {
     );
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// GeoJSON features with a null geometry (and empty Points) were skipped without a word: one
+/// note on standard error now says how many and why, not with `--quiet`, and the output is the
+/// same as for the document without them.
+#[test]
+fn null_geometries_are_noted_once_and_not_with_quiet() {
+    let points = circle();
+    let feature = |p: &Point| {
+        format!(
+            "{{\"type\":\"Feature\",\"properties\":{{}},\"geometry\":{{\"type\":\"Point\",\"coordinates\":[{:?},{:?}]}}}}",
+            p.x, p.y
+        )
+    };
+    let null = "{\"type\":\"Feature\",\"properties\":{\"id\":7},\"geometry\":null}";
+    let empty = "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[]}}";
+    let collection = |features: Vec<String>| {
+        format!(
+            "{{\"type\":\"FeatureCollection\",\"features\":[{}]}}",
+            features.join(",\n")
+        )
+    };
+    let plain = collection(points.iter().map(feature).collect());
+    let mut features: Vec<String> = points.iter().map(feature).collect();
+    features.insert(3, null.to_string());
+    features.insert(0, null.to_string());
+    features.push(empty.to_string());
+    let gappy = collection(features);
+    for command in [
+        &["reconstruct", "-", "--format", "edges"][..],
+        &["triangulate", "-"],
+    ] {
+        let reference = condt_with_stdin(command, plain.as_bytes());
+        assert!(reference.status.success());
+        assert!(
+            !String::from_utf8_lossy(&reference.stderr).contains("skipped"),
+            "{command:?}"
+        );
+        let out = condt_with_stdin(command, gappy.as_bytes());
+        assert!(out.status.success(), "{command:?}");
+        assert_eq!(out.stdout, reference.stdout, "{command:?}");
+        let said = String::from_utf8(out.stderr).unwrap();
+        let notes: Vec<&str> = said.lines().filter(|l| l.contains("skipped")).collect();
+        assert_eq!(
+            notes,
+            [
+                "condt: <stdin>: skipped 2 features with a null geometry and 1 empty Point or \
+              MultiPoint: they hold no point (the points are numbered without them)"
+            ],
+            "{command:?}: {said}"
+        );
+        let mut quiet = command.to_vec();
+        quiet.push("--quiet");
+        let out = condt_with_stdin(&quiet, gappy.as_bytes());
+        assert!(out.status.success() && out.stderr.is_empty(), "{quiet:?}");
+        assert_eq!(out.stdout, reference.stdout, "{quiet:?}");
+    }
+}

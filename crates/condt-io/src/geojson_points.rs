@@ -9,7 +9,7 @@
 
 use super::points::line_at;
 use super::points::quoted;
-use super::{IoError, IoErrorKind};
+use super::{IoError, IoErrorKind, PointFile};
 use condt::Point;
 use condt::MAX_POINTS;
 use core::fmt;
@@ -74,19 +74,32 @@ pub fn parse_geojson_with_crs(
     text: &str,
     file: &str,
 ) -> Result<(Vec<Point>, Option<String>), IoError> {
+    parse_geojson_file(text, file).map(|read| (read.points, read.crs))
+}
+
+/// [`parse_geojson_with_crs`], and how many features had a null geometry and how many Point
+/// and MultiPoint geometries were empty (neither gives a point), for the caller to tell.
+pub(crate) fn parse_geojson_file(text: &str, file: &str) -> Result<PointFile, IoError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut state = State {
         text,
         points: Vec::new(),
         crs: None,
         failure: None,
+        null_geometries: 0,
+        empty_geometries: 0,
     };
     let mut deserializer = serde_json::Deserializer::from_str(text);
     let read = Member::Object
         .read(&mut state, 0, &mut deserializer)
         .and_then(|()| deserializer.end());
     match read {
-        Ok(()) => Ok((state.points, state.crs)),
+        Ok(()) => Ok(PointFile {
+            points: state.points,
+            crs: state.crs,
+            null_geometries: state.null_geometries,
+            empty_geometries: state.empty_geometries,
+        }),
         Err(err) => {
             let (at, message) = state
                 .failure
@@ -110,6 +123,10 @@ struct State<'t> {
     /// The document's own `"crs"` member, as written.
     crs: Option<String>,
     failure: Option<(usize, String)>,
+    /// Features whose geometry is `null`.
+    null_geometries: usize,
+    /// Points and MultiPoints whose coordinates are `[]`.
+    empty_geometries: usize,
 }
 
 impl State<'_> {
@@ -271,6 +288,7 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
 
     fn visit_unit<E: de::Error>(self) -> Result<(), E> {
         if self.member == Member::Geometry {
+            self.state.null_geometries += 1;
             Ok(())
         } else {
             Err(E::custom(self.member.wanted()))
@@ -292,6 +310,7 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 Ok(())
             }
             Member::Positions => {
+                let before = self.state.points.len();
                 while seq
                     .next_element_seed(Reader {
                         member: Member::Position,
@@ -300,6 +319,9 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                     })?
                     .is_some()
                 {}
+                if self.state.points.len() == before {
+                    self.state.empty_geometries += 1;
+                }
                 Ok(())
             }
             Member::Point | Member::Position => {
@@ -308,6 +330,7 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 // holds none (RFC 7946, 3.1: an empty geometry); a MultiPoint's position must
                 // hold two coordinates.
                 if x.is_none() && self.member == Member::Point {
+                    self.state.empty_geometries += 1;
                     return Ok(());
                 }
                 let y = x.and(seq.next_element_seed(Coordinate)?);
@@ -549,6 +572,24 @@ mod tests {
         .unwrap_err();
         assert_eq!(err.line, Some(2));
         assert!(err.to_string().contains("a position must be"), "{err}");
+    }
+
+    /// Features with a null geometry and empty Points and MultiPoints are counted, for the
+    /// command line's note; a read later (sorted keys) counts alike.
+    #[test]
+    fn null_and_empty_geometries_are_counted() {
+        let text = r#"{"features": [
+            {"type": "Feature", "geometry": null},
+            {"geometry": null, "type": "Feature"},
+            {"type": "Feature", "geometry": {"coordinates": [], "type": "MultiPoint"}},
+            {"type": "Feature", "geometry": {"type": "Point", "coordinates": []}},
+            {"type": "Feature", "geometry": {"type": "Point", "coordinates": [1, 2]}}],
+            "type": "FeatureCollection"}"#;
+        let read = parse_geojson_file(text, "n.geojson").unwrap();
+        assert_eq!(read.points, vec![Point::new(1.0, 2.0)]);
+        assert_eq!((read.null_geometries, read.empty_geometries), (2, 2));
+        let read = parse_geojson_file(r#"{"type":"Point","coordinates":[3,4]}"#, "p.json").unwrap();
+        assert_eq!((read.null_geometries, read.empty_geometries), (0, 0));
     }
 
     #[test]

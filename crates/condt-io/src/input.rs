@@ -124,7 +124,21 @@ impl ReadOptions {
 }
 
 /// A point file as [`read_points_with`](crate::read_points_with) read it: its points, and what
-/// else it said that a caller may carry on.
+/// else it said that a caller may carry on or tell.
+///
+/// ```
+/// let dir = tempfile::tempdir()?;
+/// let path = dir.path().join("sites.geojson");
+/// std::fs::write(&path, r#"{"type": "FeatureCollection", "features": [
+///   {"type": "Feature", "properties": {}, "geometry": null},
+///   {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": []}},
+///   {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [1, 2]}}
+/// ]}"#)?;
+/// let read = condt_io::read_points_with(&path, &condt_io::ReadOptions::new())?;
+/// assert_eq!(read.points, vec![condt::Point::new(1.0, 2.0)]);
+/// assert_eq!((read.null_geometries, read.empty_geometries), (1, 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub struct PointFile {
@@ -133,4 +147,9 @@ pub struct PointFile {
     /// A GeoJSON input's top-level `"crs"` member as written
     /// ([`parse_geojson_with_crs`](crate::parse_geojson_with_crs)); `None` for other formats.
     pub crs: Option<String>,
+    /// GeoJSON features whose geometry is `null`: they give no point (0 for other formats).
+    pub null_geometries: usize,
+    /// GeoJSON Point and MultiPoint geometries whose coordinates are `[]` (empty geometries,
+    /// RFC 7946, section 3.1): they give no point either (0 for other formats).
+    pub empty_geometries: usize,
 }

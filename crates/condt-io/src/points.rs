@@ -988,14 +988,7 @@ pub fn read_points_with(
                 parse_owned_points(text, name).map(without_crs)
             }
         }
-        InputFormat::GeoJson => {
-            let (points, crs) = super::parse_geojson_with_crs(&text, name)?;
-            Ok(PointFile {
-                points,
-                crs,
-                ..PointFile::default()
-            })
-        }
+        InputFormat::GeoJson => super::geojson_points::parse_geojson_file(&text, name),
         // Read above from the bytes, which are these.
         InputFormat::Npy => super::npy::parse_npy(text.as_bytes(), name).map(without_crs),
     }
