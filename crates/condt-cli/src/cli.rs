@@ -41,7 +41,8 @@ float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose head
 and y columns (or lon, lat), or of two numeric columns without a header (tabs separate the
 columns when the first line with content has tabs and no comma; a `.tsv` with a header is read
 so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
-document. Points are numbered from 0 in the order of their lines (rows, GeoJSON
+document, `.geojsonl` or `.geojsons` those of GeoJSON lines (one object per line, or after
+each RS character). Points are numbered from 0 in the order of their lines (rows, GeoJSON
 positions: a MultiPoint gives several, a feature whose geometry is null none, nor an empty
 Point or MultiPoint, `\"coordinates\": []`, and a note on standard error says how many);
 every output speaks of points by that number.
@@ -98,9 +99,10 @@ fn global_help() -> String {
 }
 
 /// `--input-format`, the same for every command that reads INPUT.
-const INPUT_FORMAT_HELP: &str = "read INPUT as F whatever its name: txt, node, csv, tsv, npy or
-geojson (standard input, which has no name, is otherwise told by its
-content: .npy, GeoJSON, else txt; `--input-format csv` reads CSV)";
+const INPUT_FORMAT_HELP: &str = "read INPUT as F whatever its name: txt, node, csv, tsv, npy,
+geojson or geojsonl (standard input, which has no name, is otherwise
+told by its content: .npy, GeoJSON, else txt; `--input-format csv`
+reads CSV)";
 
 /// `--quiet`, the same for every command that computes.
 const QUIET_HELP: &str = "no progress bar and no notes on standard error (errors and

@@ -332,3 +332,24 @@ fn null_geometries_are_noted_once_and_not_with_quiet() {
         assert_eq!(out.stdout, reference.stdout, "{quiet:?}");
     }
 }
+
+/// GeoJSON lines on standard input: read one object per line with `--input-format geojsonl`;
+/// without it, read as one document as before, the refusal says how to read them.
+#[test]
+fn geojson_lines_on_standard_input() {
+    let lines = "{\"type\":\"Point\",\"coordinates\":[0,0]}\n\
+                 {\"type\":\"Point\",\"coordinates\":[1,0]}\n\
+                 {\"type\":\"Point\",\"coordinates\":[0.5,2]}\n";
+    let out = condt_with_stdin(
+        &["triangulate", "-", "--input-format", "geojsonl"],
+        lines.as_bytes(),
+    );
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+    let out = condt_with_stdin(&["triangulate", "-"], lines.as_bytes());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("<stdin>:2: trailing characters") && said.contains("--input-format geojsonl"),
+        "{said}"
+    );
+}

@@ -81,6 +81,61 @@ pub fn parse_geojson_with_crs(
 /// and MultiPoint geometries were empty (neither gives a point), for the caller to tell.
 pub(crate) fn parse_geojson_file(text: &str, file: &str) -> Result<PointFile, IoError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    read_records(text, file, core::iter::once(0..text.len()), "")
+}
+
+/// The points of a GeoJSON sequence: one GeoJSON text per line (GeoJSON lines, `.geojsonl`, as
+/// GDAL's GeoJSONSeq driver writes it), or, when the text holds a record separator (U+001E),
+/// one after each (RFC 8142, `.geojsons`; a record may then span lines). Each record is read as
+/// [`parse_geojson_file`] reads a document, blank lines and records skipped; the points are
+/// numbered across the records in order, an error names the line in the whole file, and the
+/// first top-level `"crs"` of a record is kept.
+pub(crate) fn parse_geojson_lines(text: &str, file: &str) -> Result<PointFile, IoError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let separator = '\u{1e}';
+    let mut starts: Vec<usize> = Vec::new();
+    if text.contains(separator) {
+        // The text before the first separator must be blank, as each record's rest is read.
+        starts.push(0);
+        starts.extend(text.match_indices(separator).map(|(at, _)| at + 1));
+    } else {
+        starts.push(0);
+        let bytes = text.as_bytes();
+        starts.extend(
+            (0..bytes.len())
+                .filter(|&i| {
+                    bytes[i] == b'\n' || (bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n'))
+                })
+                .map(|i| i + 1),
+        );
+    }
+    let ends = starts
+        .iter()
+        .skip(1)
+        .map(|&next| next - 1)
+        .chain([text.len()]);
+    let records = starts
+        .iter()
+        .zip(ends)
+        .map(|(&start, end)| start..end)
+        .filter(|range| !text[range.clone()].trim().is_empty());
+    read_records(
+        text,
+        file,
+        records,
+        "; a GeoJSON sequence holds one whole GeoJSON object per line (or after each record \
+         separator, U+001E)",
+    )
+}
+
+/// Reads the GeoJSON texts at `records` (byte ranges of `text`, in order) into one point list;
+/// `hint` is added to a message of JSON that ends early.
+fn read_records(
+    text: &str,
+    file: &str,
+    records: impl Iterator<Item = core::ops::Range<usize>>,
+    hint: &str,
+) -> Result<PointFile, IoError> {
     let mut state = State {
         text,
         points: Vec::new(),
@@ -89,29 +144,35 @@ pub(crate) fn parse_geojson_file(text: &str, file: &str) -> Result<PointFile, Io
         null_geometries: 0,
         empty_geometries: 0,
     };
-    let mut deserializer = serde_json::Deserializer::from_str(text);
-    let read = Member::Object
-        .read(&mut state, 0, &mut deserializer)
-        .and_then(|()| deserializer.end());
-    match read {
-        Ok(()) => Ok(PointFile {
-            points: state.points,
-            crs: state.crs,
-            null_geometries: state.null_geometries,
-            empty_geometries: state.empty_geometries,
-        }),
-        Err(err) => {
-            let (at, message) = state
+    for range in records {
+        let record = &text[range.clone()];
+        // Offsets of members read later are taken from the record's start.
+        state.text = record;
+        let mut deserializer = serde_json::Deserializer::from_str(record);
+        let read = Member::Object
+            .read(&mut state, 0, &mut deserializer)
+            .and_then(|()| deserializer.end());
+        if let Err(err) = read {
+            let (at, mut message) = state
                 .failure
                 .take()
-                .unwrap_or_else(|| (offset_of(text, &err), message_of(&err)));
-            Err(IoError {
+                .unwrap_or_else(|| (offset_of(record, &err), message_of(&err)));
+            if err.is_eof() {
+                message.push_str(hint);
+            }
+            return Err(IoError {
                 file: file.to_string(),
-                line: Some(line_at(text.as_bytes(), at.min(text.len()))),
+                line: Some(line_at(text.as_bytes(), range.start + at.min(record.len()))),
                 kind: IoErrorKind::Content(message),
-            })
+            });
         }
     }
+    Ok(PointFile {
+        points: state.points,
+        crs: state.crs,
+        null_geometries: state.null_geometries,
+        empty_geometries: state.empty_geometries,
+    })
 }
 
 /// What a read has gathered: the points, and the first error met in a member read after its

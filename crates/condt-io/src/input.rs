@@ -17,6 +17,7 @@ use std::path::Path;
 /// assert_eq!(InputFormat::named("xlsx"), None);
 /// assert_eq!(InputFormat::of_path("pts.TSV"), Some(InputFormat::Tsv));
 /// assert_eq!(InputFormat::of_path("pts.dat"), Some(InputFormat::Text));
+/// assert_eq!(InputFormat::of_path("sites.geojsonl"), Some(InputFormat::GeoJsonLines));
 /// assert_eq!(InputFormat::of_path("-"), None, "standard input: told by its content");
 /// assert_eq!(InputFormat::Npy.name(), "npy");
 /// ```
@@ -37,21 +38,27 @@ pub enum InputFormat {
     /// The Point and MultiPoint geometries of a GeoJSON document
     /// ([`parse_geojson`](crate::parse_geojson)).
     GeoJson,
+    /// A GeoJSON sequence: one GeoJSON object (a Feature, a geometry, a collection) per line,
+    /// as GDAL writes `.geojsonl`, or one after each record separator U+001E (RFC 8142,
+    /// `.geojsons`); each is read as a [`GeoJson`](InputFormat::GeoJson) document, and the
+    /// points are numbered across them in order.
+    GeoJsonLines,
 }
 
 impl InputFormat {
     /// Every format, in the order the help lists them.
-    pub const ALL: [InputFormat; 6] = [
+    pub const ALL: [InputFormat; 7] = [
         InputFormat::Text,
         InputFormat::Node,
         InputFormat::Csv,
         InputFormat::Tsv,
         InputFormat::Npy,
         InputFormat::GeoJson,
+        InputFormat::GeoJsonLines,
     ];
 
     /// The format of a name (any case): `txt` (or `text`), `node`, `csv`, `tsv`, `npy`,
-    /// `geojson` (or `json`); `None` for any other.
+    /// `geojson` (or `json`), `geojsonl` (or `geojsons`); `None` for any other.
     pub fn named(name: &str) -> Option<InputFormat> {
         let name = name.to_ascii_lowercase();
         Some(match name.as_str() {
@@ -61,6 +68,7 @@ impl InputFormat {
             "tsv" => InputFormat::Tsv,
             "npy" => InputFormat::Npy,
             "geojson" | "json" => InputFormat::GeoJson,
+            "geojsonl" | "geojsons" => InputFormat::GeoJsonLines,
             _ => return None,
         })
     }
@@ -74,6 +82,7 @@ impl InputFormat {
             InputFormat::Tsv => "tsv",
             InputFormat::Npy => "npy",
             InputFormat::GeoJson => "geojson",
+            InputFormat::GeoJsonLines => "geojsonl",
         }
     }
 

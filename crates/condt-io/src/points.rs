@@ -851,7 +851,9 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// blocks straight into the points), `.csv` CSV with a header naming the columns
 /// ([`parse_csv`](super::parse_csv)), `.tsv` the same with tabs between columns (without a header,
 /// the plain format), `.geojson` or `.json` the Point and MultiPoint geometries
-/// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), anything else the plain
+/// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), `.geojsonl` or `.geojsons`
+/// those of a GeoJSON sequence, one object per line
+/// ([`InputFormat::GeoJsonLines`](super::InputFormat::GeoJsonLines)), anything else the plain
 /// format ([`parse_points`]); `-` reads standard input: a NumPy array or a GeoJSON document by
 /// its content (the `.npy` magic bytes, a leading `{`), the plain format otherwise
 /// ([`read_points_with`] reads a file, or standard input, in a format stated instead).
@@ -988,7 +990,25 @@ pub fn read_points_with(
                 parse_owned_points(text, name).map(without_crs)
             }
         }
-        InputFormat::GeoJson => super::geojson_points::parse_geojson_file(&text, name),
+        InputFormat::GeoJson => {
+            super::geojson_points::parse_geojson_file(&text, name).map_err(|mut err| {
+                // GeoJSON lines on standard input read as one document: its second object is
+                // trailing characters.
+                if let (IoErrorKind::Content(message), true) =
+                    (&mut err.kind, stdin && options.format.is_none())
+                {
+                    if message.starts_with("trailing characters") {
+                        message.push_str(
+                            "; standard input is read as one GeoJSON document: state its format \
+                             to read one GeoJSON object per line (condt's --input-format \
+                             geojsonl)",
+                        );
+                    }
+                }
+                err
+            })
+        }
+        InputFormat::GeoJsonLines => super::geojson_points::parse_geojson_lines(&text, name),
         // Read above from the bytes, which are these.
         InputFormat::Npy => super::npy::parse_npy(text.as_bytes(), name).map(without_crs),
     }
