@@ -12,8 +12,8 @@ use condt::{triangulate, Error, Method, Params, Pipeline, Repair, Stage, Uniform
 use condt_io::{
     read_points_with, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
     write_npy_triangles, write_npy_triangulation_edges, write_polylines, write_svg,
-    write_svg_stages, write_triangles, write_triangulation_edges, InputFormat, IoError, PointFile,
-    ReadOptions,
+    write_svg_stages, write_triangles, write_triangulation_edges, Columns, InputFormat, IoError,
+    PointFile, ReadOptions,
 };
 use std::ffi::{OsStr, OsString};
 use std::fmt;
@@ -38,7 +38,8 @@ a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else th
 (`--input-format F` states the format instead, for a file too: `--input-format csv`). By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
-and y columns (or lon, lat), or of two numeric columns without a header (tabs separate the
+and y columns (or lon, lat; `--columns X,Y` chooses others, by name or number), or of two
+numeric columns without a header (tabs separate the
 columns when the first line with content has tabs and no comma; a `.tsv` with a header is read
 so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
 document, `.geojsonl` or `.geojsons` those of GeoJSON lines (one object per line, or after
@@ -104,6 +105,12 @@ geojson or geojsonl (standard input, which has no name, is otherwise
 told by its content: .npy, GeoJSON, else txt; `--input-format csv`
 reads CSV)";
 
+/// `--columns`, the same for every command that reads INPUT.
+const COLUMNS_HELP: &str = "read x and y from these columns of a CSV or TSV INPUT: header
+names or numbers from 1 (POINT_X,POINT_Y, easting,northing, 2,3)
+instead of the columns named x and y (lon, lat); standard input is
+then read as CSV";
+
 /// `--quiet`, the same for every command that computes.
 const QUIET_HELP: &str = "no progress bar and no notes on standard error (errors and
 --timings lines are still written); the output is the same";
@@ -126,6 +133,7 @@ enum ReconstructId {
     Repair,
     Method,
     InputFormat,
+    Columns,
     Format,
     Stages,
     Sequential,
@@ -141,8 +149,8 @@ impl ReconstructId {
         match self {
             Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | IqrFloor
             | StageSwitch(_) | Smooth | NoManifoldFix | Repair => true,
-            Output | Method | InputFormat | Format | Stages | Sequential | Timings | Quiet
-            | Help => false,
+            Output | Method | InputFormat | Columns | Format | Stages | Sequential | Timings
+            | Quiet | Help => false,
         }
     }
 }
@@ -266,6 +274,14 @@ and Eppstein); a baseline takes none of the ConDT options",
         help: INPUT_FORMAT_HELP,
     },
     Opt {
+        id: ReconstructId::Columns,
+        short: None,
+        long: "columns",
+        negatable: false,
+        value: Some("X,Y"),
+        help: COLUMNS_HELP,
+    },
+    Opt {
         id: ReconstructId::Format,
         short: None,
         long: "format",
@@ -352,8 +368,8 @@ Usage:
                     [--[no-]junctions] [--[no-]crossings] [--[no-]tips] [--[no-]tails]
                     [--[no-]smooth]
                     [--method condt|nn-crust|crust]
-                    [--input-format F] [--format F] [--stages] [--sequential]
-                    [--timings] [--quiet]
+                    [--input-format F] [--columns X,Y] [--format F] [--stages]
+                    [--sequential] [--timings] [--quiet]
 
 Example:
   condt reconstruct data/shapes.txt -o shapes.svg --stages
@@ -388,6 +404,7 @@ enum TriangulateId {
     Output,
     Edges,
     InputFormat,
+    Columns,
     Timings,
     Quiet,
     Help,
@@ -420,6 +437,14 @@ edges without it)",
         help: INPUT_FORMAT_HELP,
     },
     Opt {
+        id: TriangulateId::Columns,
+        short: None,
+        long: "columns",
+        negatable: false,
+        value: Some("X,Y"),
+        help: COLUMNS_HELP,
+    },
+    Opt {
         id: TriangulateId::Timings,
         short: None,
         long: "timings",
@@ -450,7 +475,8 @@ const TRIANGULATE_ABOUT: &str = "\
 condt triangulate: the Delaunay triangulation of planar points
 
 Usage:
-  condt triangulate INPUT [-o OUTPUT] [--edges] [--input-format F] [--timings] [--quiet]
+  condt triangulate INPUT [-o OUTPUT] [--edges] [--input-format F] [--columns X,Y]
+                    [--timings] [--quiet]
 
 Example:
   condt triangulate data/shapes.txt --edges -o shapes.edges
@@ -652,12 +678,16 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
     let mut quiet = false;
     let mut paths = Paths::default();
     let mut input_format = Setting::new();
+    let mut columns = Setting::new();
     for given in lexed.given {
         match given.id {
             TriangulateId::Output => paths.output(&given.flag, given.value)?,
             TriangulateId::Edges => edges = true,
             TriangulateId::InputFormat => {
                 input_format_option(&mut input_format, &given.flag, given.value.as_ref())?
+            }
+            TriangulateId::Columns => {
+                columns_option(&mut columns, &given.flag, given.value.as_ref())?
             }
             TriangulateId::Timings => timings = true,
             TriangulateId::Quiet => quiet = true,
@@ -666,13 +696,14 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
         }
     }
     let (input, output) = paths.finish("triangulate", lexed.operands)?;
+    let read = read_options(input_format, columns, input.as_deref())?;
     let (edges_by_name, npy) = triangulate_output(output.as_deref())?;
     Ok(TriangulateArgs {
         input,
         output,
         edges: edges || edges_by_name,
         npy,
-        read: read_options(input_format),
+        read,
         timings,
         quiet,
     })
@@ -920,12 +951,53 @@ fn input_format_option(
     setting.set(chosen, format!("{flag} {name}"))
 }
 
-/// How INPUT is read, by the options given.
-fn read_options(input_format: Setting<InputFormat>) -> ReadOptions {
-    match input_format.get() {
-        Some(format) => ReadOptions::new().with_format(format),
-        None => ReadOptions::new(),
+/// `--columns X,Y` (`flag` as written), checked and set once.
+fn columns_option(
+    setting: &mut Setting<Columns>,
+    flag: &str,
+    value: Option<&OsString>,
+) -> Result<(), CliError> {
+    let value = value.ok_or_else(|| {
+        usage(format!(
+            "{flag} needs the x and y columns, names or numbers from 1: POINT_X,POINT_Y or 2,3"
+        ))
+    })?;
+    let spec = text(value, flag)?;
+    let columns = Columns::parse(spec).map_err(|why| usage(format!("{flag} {why}")))?;
+    setting.set(columns, format!("{flag} {spec}"))
+}
+
+/// How INPUT (`None`: standard input) is read, by the options given. `--columns` with an INPUT
+/// that is read in another format than CSV or TSV (by its name or `--input-format`) is refused
+/// here, before anything is read.
+fn read_options(
+    input_format: Setting<InputFormat>,
+    columns: Setting<Columns>,
+    input: Option<&Path>,
+) -> Result<ReadOptions, CliError> {
+    let mut options = ReadOptions::new();
+    let stated = input_format.get();
+    if let Some(format) = stated {
+        options = options.with_format(format);
     }
+    if let Some(columns) = columns.get() {
+        let format = stated.or_else(|| input.and_then(InputFormat::of_path));
+        if let Some(format) = format.filter(|f| !matches!(f, InputFormat::Csv | InputFormat::Tsv)) {
+            let by = if stated.is_some() {
+                "--input-format"
+            } else {
+                "its name"
+            };
+            return Err(usage(format!(
+                "--columns {columns} chooses the columns of CSV or TSV input, but {} is read as \
+                 {} by {by}; --input-format csv reads it as CSV",
+                shown_input(input),
+                format.name()
+            )));
+        }
+        options = options.with_columns(columns);
+    }
+    Ok(options)
 }
 
 const REPAIR_MODES: &str = "needs, paper, mutual, crossing or off";
@@ -966,6 +1038,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let (mut iqr_floor_said, mut outliers_first_said) = (None::<String>, None::<String>);
     let mut format = Setting::new();
     let mut input_format = Setting::new();
+    let mut columns = Setting::new();
     let mut method = Setting::new();
     // ConDT's own options, as written, to refuse them beside a baseline method.
     let condt_options: Vec<&str> = lexed
@@ -1063,6 +1136,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 format.set(chosen, format!("--format {name}"))?;
             }
             Id::InputFormat => input_format_option(&mut input_format, flag, value)?,
+            Id::Columns => columns_option(&mut columns, flag, value)?,
             Id::Stages => stages = true,
             Id::Timings => timings = true,
             Id::Quiet => quiet = true,
@@ -1119,6 +1193,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     )?;
     params.check().map_err(refused)?;
     let (input, output) = paths.finish("reconstruct", lexed.operands)?;
+    let read = read_options(input_format, columns, input.as_deref())?;
     let format = match (format.get(), output.as_deref()) {
         (Some(f), _) => f,
         (None, None) => Format::Polylines,
@@ -1148,7 +1223,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         input,
         output,
         params,
-        read: read_options(input_format),
+        read,
         format,
         stages,
         timings,

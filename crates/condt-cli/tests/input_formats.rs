@@ -353,3 +353,106 @@ fn geojson_lines_on_standard_input() {
         "{said}"
     );
 }
+
+/// `--columns X,Y` reads x and y from a CSV's columns by header name or number (ArcGIS's
+/// `POINT_X,POINT_Y`, `easting,northing`), the same points as the plain file; a missing column
+/// is refused naming the file, the header line and its columns; a file read in another format
+/// is a usage error before anything is read.
+#[test]
+fn columns_choose_the_x_and_y_of_a_csv() {
+    let points = circle();
+    let expected: String = reconstruct(&points, &Params::default())
+        .unwrap()
+        .edges()
+        .map(|[a, b]| format!("{a} {b}\n"))
+        .collect();
+    let csv: String = "FID,Shape,POINT_Y,POINT_X\n".to_string()
+        + &points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| format!("{k},Point,{:?},{:?}\n", p.y, p.x))
+            .collect::<String>();
+    let dir = scratch_dir();
+    let path = dir.path().join("survey.csv");
+    std::fs::write(&path, &csv).unwrap();
+    let path = path.to_str().unwrap();
+    for columns in ["POINT_X,POINT_Y", "point_x,point_y", "4,3", "4,POINT_Y"] {
+        let out = condt_with_stdin(
+            &[
+                "reconstruct",
+                path,
+                "--columns",
+                columns,
+                "--format",
+                "edges",
+            ],
+            b"",
+        );
+        assert!(out.status.success(), "{columns}: {:?}", out);
+        assert_eq!(
+            String::from_utf8(out.stdout).unwrap(),
+            expected,
+            "{columns}"
+        );
+    }
+    // Standard input with --columns is read as CSV.
+    let out = condt_with_stdin(
+        &[
+            "reconstruct",
+            "-",
+            "--columns=POINT_X,POINT_Y",
+            "--format=edges",
+        ],
+        csv.as_bytes(),
+    );
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
+    // Without it, the header detection is as before: no x column.
+    let out = condt_with_stdin(&["triangulate", path], b"");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(said.contains("the header has no x column"), "{said}");
+    let out = condt_with_stdin(&["triangulate", path, "--columns", "easting,northing"], b"");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains(&format!(
+            "{path}:1: no column named \"easting\" (chosen for x) in the header \
+             \"FID,Shape,POINT_Y,POINT_X\"; its columns are \"FID\", \"Shape\", \"POINT_Y\", \
+             \"POINT_X\""
+        )),
+        "{said}"
+    );
+    for (args, words) in [
+        (
+            &["triangulate", "pts.txt", "--columns", "a,b"][..],
+            "pts.txt is read as txt by its name",
+        ),
+        (
+            &[
+                "triangulate",
+                path,
+                "--columns",
+                "a,b",
+                "--input-format",
+                "geojson",
+            ],
+            "is read as geojson by --input-format",
+        ),
+        (
+            &["triangulate", path, "--columns", "a"],
+            "expected two columns",
+        ),
+        (
+            &["triangulate", path, "--columns", "2,2"],
+            "the same column",
+        ),
+        (
+            &["triangulate", path, "--columns", "0,1"],
+            "numbered from 1",
+        ),
+    ] {
+        let out = condt_with_stdin(args, b"");
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {said}");
+        assert!(said.contains(words), "{args:?}: {said}");
+    }
+}

@@ -5,6 +5,7 @@
 //! and returns. The readers themselves are in their modules.
 
 use condt::Point;
+use std::fmt;
 use std::path::Path;
 
 /// A point file's format: what [`read_points`](crate::read_points) tells by a name's ending,
@@ -102,14 +103,104 @@ impl InputFormat {
     }
 }
 
+/// A column of a CSV or TSV file: by the name its header gives it (compared without case and
+/// blanks around it), or by its position, numbered from 1.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Column {
+    /// The column whose header names it so (`POINT_X`, `easting`).
+    Named(String),
+    /// The column at this position, the first being 1.
+    Number(usize),
+}
+
+impl fmt::Display for Column {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Column::Named(name) => write!(f, "{name}"),
+            Column::Number(number) => write!(f, "{number}"),
+        }
+    }
+}
+
+/// The columns of a CSV or TSV file that hold x and y ([`ReadOptions::with_columns`]), instead
+/// of those the header names `x` and `y` (or `lon`, `lat`, ...).
+///
+/// ```
+/// use condt_io::{Column, Columns};
+/// let columns = Columns::parse("POINT_X, POINT_Y")?;
+/// assert_eq!(columns.x, Column::Named("POINT_X".into()));
+/// assert_eq!(Columns::parse("2,3")?.y, Column::Number(3));
+/// assert_eq!(Columns::parse("easting,3")?.to_string(), "easting,3");
+/// assert!(Columns::parse("x").unwrap_err().contains("two columns"));
+/// assert!(Columns::parse("0,1").unwrap_err().contains("from 1"));
+/// assert!(Columns::parse("a,A").unwrap_err().contains("the same column"));
+/// # Ok::<(), String>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Columns {
+    /// The column of the first coordinate.
+    pub x: Column,
+    /// The column of the second coordinate.
+    pub y: Column,
+}
+
+impl Columns {
+    /// Reads `X,Y`: two column names or 1-based numbers (a field of digits alone is a
+    /// number), separated by a comma, blanks around each ignored. A name holding a comma cannot
+    /// be given: its number can. Refused, with why: anything but two nonempty columns, the
+    /// number 0, one column for both.
+    pub fn parse(spec: &str) -> Result<Columns, String> {
+        let parts: Vec<&str> = spec.split(',').map(str::trim).collect();
+        let [x, y] = parts[..] else {
+            return Err(format!(
+                "{spec:?}: expected two columns, x and y, separated by a comma (POINT_X,POINT_Y \
+                 or 2,3)"
+            ));
+        };
+        let column = |part: &str| -> Result<Column, String> {
+            if part.is_empty() {
+                return Err(format!("{spec:?}: an empty column name"));
+            }
+            if !part.bytes().all(|b| b.is_ascii_digit()) {
+                return Ok(Column::Named(part.to_string()));
+            }
+            match part.parse::<usize>() {
+                Ok(0) => Err(format!("{spec:?}: columns are numbered from 1")),
+                Ok(number) => Ok(Column::Number(number)),
+                Err(_) => Err(format!(
+                    "{spec:?}: column {part} is past any file's columns"
+                )),
+            }
+        };
+        let (x, y) = (column(x)?, column(y)?);
+        let same = match (&x, &y) {
+            (Column::Named(a), Column::Named(b)) => a.eq_ignore_ascii_case(b),
+            (a, b) => a == b,
+        };
+        if same {
+            return Err(format!("{spec:?}: the same column for x and y"));
+        }
+        Ok(Columns { x, y })
+    }
+}
+
+impl fmt::Display for Columns {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{},{}", self.x, self.y)
+    }
+}
+
 /// How [`read_points_with`](crate::read_points_with) reads a point file; the default reads it
 /// as [`read_points`](crate::read_points) does.
 ///
 /// ```
-/// use condt_io::{InputFormat, ReadOptions};
+/// use condt_io::{Columns, InputFormat, ReadOptions};
 /// let options = ReadOptions::new().with_format(InputFormat::Csv);
 /// assert_eq!(options.format, Some(InputFormat::Csv));
 /// assert_eq!(ReadOptions::default().format, None);
+/// let options = ReadOptions::new().with_columns(Columns::parse("easting,northing")?);
+/// assert_eq!(options.columns.map(|c| c.to_string()).as_deref(), Some("easting,northing"));
+/// # Ok::<(), String>(())
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
@@ -117,6 +208,10 @@ pub struct ReadOptions {
     /// The format to read the file in whatever its name (or its content, on standard input);
     /// `None`: by the name's ending, standard input by its content.
     pub format: Option<InputFormat>,
+    /// The x and y columns of a CSV or TSV file; `None`: those its header names x and y.
+    /// Another format is then refused; standard input without a format stated is read as CSV
+    /// (unless it is a NumPy array or GeoJSON, which are refused).
+    pub columns: Option<Columns>,
 }
 
 impl ReadOptions {
@@ -128,6 +223,12 @@ impl ReadOptions {
     /// These options, the file read as `format`.
     pub fn with_format(mut self, format: InputFormat) -> ReadOptions {
         self.format = Some(format);
+        self
+    }
+
+    /// These options, x and y read from `columns` of a CSV or TSV file.
+    pub fn with_columns(mut self, columns: Columns) -> ReadOptions {
+        self.columns = Some(columns);
         self
     }
 }

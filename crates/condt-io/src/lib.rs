@@ -45,7 +45,7 @@ pub use csv::parse_csv;
 pub use geojson::{write_geojson, write_geojson_with_crs};
 pub use geojson_points::{parse_geojson, parse_geojson_with_crs};
 pub use html::write_html;
-pub use input::{InputFormat, PointFile, ReadOptions};
+pub use input::{Column, Columns, InputFormat, PointFile, ReadOptions};
 pub use npy::{
     parse_npy, parse_npy_edges, parse_npy_index_rows, write_npy_edges, write_npy_points,
     write_npy_triangles, write_npy_triangulation_edges, NPY_MAGIC,

@@ -885,11 +885,14 @@ pub fn read_points_with_crs(
 
 /// [`read_points`] as `options` say: in the format they state whatever the name
 /// ([`ReadOptions::with_format`]; standard input, which has no name, is then read in that format
-/// instead of by its content). Gives the points and what else the file said ([`PointFile`]).
+/// instead of by its content), and from the x and y columns they choose
+/// ([`ReadOptions::with_columns`]: a CSV or TSV file only, refused before reading for a file
+/// whose name or stated format is another; standard input is then read as CSV). Gives the
+/// points and what else the file said ([`PointFile`]).
 ///
 /// ```
 /// use condt::Point;
-/// use condt_io::{read_points_with, InputFormat, ReadOptions};
+/// use condt_io::{read_points_with, Columns, InputFormat, ReadOptions};
 /// let dir = tempfile::tempdir()?;
 /// let path = dir.path().join("table.txt");
 /// std::fs::write(&path, "id,lat,lon\n7,47.5,8.25\n")?;
@@ -898,6 +901,16 @@ pub fn read_points_with_crs(
 /// let read = read_points_with(&path, &ReadOptions::new().with_format(InputFormat::Csv))?;
 /// assert_eq!(read.points, vec![Point::new(8.25, 47.5)]);
 /// assert_eq!(read.crs, None);
+///
+/// let path = dir.path().join("survey.csv");
+/// std::fs::write(&path, "FID,POINT_X,POINT_Y\n1,2600000.5,1200000\n")?;
+/// let columns = Columns::parse("POINT_X,POINT_Y")?;
+/// let read = read_points_with(&path, &ReadOptions::new().with_columns(columns))?;
+/// assert_eq!(read.points, vec![Point::new(2600000.5, 1200000.0)]);
+/// let columns = Columns::parse("easting,northing")?;
+/// let err = read_points_with(&path, &ReadOptions::new().with_columns(columns)).unwrap_err();
+/// assert!(err.to_string().ends_with(":1: no column named \"easting\" (chosen for x) in the \
+///     header \"FID,POINT_X,POINT_Y\"; its columns are \"FID\", \"POINT_X\", \"POINT_Y\""));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_points_with(
@@ -916,6 +929,22 @@ pub fn read_points_with(
     let io_error = |err: io::Error| IoError::os(name, err);
     // `None`: standard input, told by its content below.
     let format = options.format.or_else(|| InputFormat::of_path(path));
+    let columns_refused = |what: &str| IoError {
+        file: name.to_string(),
+        line: None,
+        kind: IoErrorKind::Content(format!(
+            "columns ({}) are chosen only in CSV and TSV input, and this is read as {what}",
+            options
+                .columns
+                .as_ref()
+                .map_or(String::new(), |c| c.to_string())
+        )),
+    };
+    if let (Some(format), Some(_)) = (format, &options.columns) {
+        if !matches!(format, InputFormat::Csv | InputFormat::Tsv) {
+            return Err(columns_refused(&format!("the {} format", format.name())));
+        }
+    }
     if !stdin && format == Some(InputFormat::Npy) {
         return super::npy::read_npy_file(path, name).map(without_crs);
     }
@@ -939,10 +968,28 @@ pub fn read_points_with(
     // told by their content (the magic bytes, which are not UTF-8; a `{`, which no point line
     // starts with), anything else is read as text.
     let npy = bytes.starts_with(super::npy::NPY_MAGIC);
+    if format.is_none() && npy && options.columns.is_some() {
+        return Err(columns_refused("a NumPy array (by its magic bytes)"));
+    }
     if format == Some(InputFormat::Npy) || (format.is_none() && npy) {
         return super::npy::parse_npy(&bytes, name).map(without_crs);
     }
     let text = utf8_text(bytes, name)?;
+    if let Some(columns) = &options.columns {
+        let starts_like_json = text
+            .trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n'])
+            .starts_with('{');
+        return match format {
+            Some(InputFormat::Tsv) => {
+                crate::csv::parse_separated(&text, name, b'\t', Some(columns))
+            }
+            None if starts_like_json => Err(columns_refused("GeoJSON (by its leading `{`)")),
+            // CSV, named or stated, or standard input that is neither .npy nor GeoJSON (the
+            // other formats are refused above).
+            _ => crate::csv::parse_csv_columns(&text, name, Some(columns)),
+        }
+        .map(without_crs);
+    }
     let format = format.unwrap_or_else(|| {
         let start = text.trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n']);
         if start.starts_with('{') {
@@ -985,7 +1032,7 @@ pub fn read_points_with(
             let content = first.split('#').next().unwrap_or("");
             let fields: Vec<&str> = content.split_whitespace().collect();
             if !fields.is_empty() && fields.iter().all(|f| is_name(f)) {
-                crate::csv::parse_separated(&text, name, b'\t').map(without_crs)
+                crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
             } else {
                 parse_owned_points(text, name).map(without_crs)
             }
