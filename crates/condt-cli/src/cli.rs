@@ -378,7 +378,8 @@ Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j`
 i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), uint32 when every
 point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
 default on standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points and curves; with --stages the Delaunay
-triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
+triangulation and the graph after every stage that ran, side by side; a panel is shaped like the
+points' bounding box, from 1:4 to 4:1), `geojson` (.geojson: one
 LineString per curve, on the input's coordinates; a GeoJSON input's `crs` member is carried
 on), `html` (.html: a self-contained page to explore every stage: layers, pan
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
