@@ -167,6 +167,40 @@ fn read_points<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    read_point_file(py, path).map(|(points, _)| points)
+}
+
+/// ``read_points(path)``, and the file's coordinate reference system: a tuple ``(points,
+/// crs)``, ``crs`` the top-level ``"crs"`` member of a GeoJSON input as written (JSON text, as
+/// GDAL and QGIS read it to place projected coordinates) and ``None`` for every other file.
+/// ``Reconstruction.to_geojson(crs=crs)`` carries it on, as ``condt reconstruct`` does from a
+/// GeoJSON input to a GeoJSON output.
+///
+/// Raises what ``read_points`` raises.
+///
+/// >>> import condt, json, tempfile, os
+/// >>> path = os.path.join(tempfile.mkdtemp(), "utm.geojson")
+/// >>> with open(path, "w") as f:
+/// ...     _ = f.write('{"type": "FeatureCollection", "crs": {"type": "name", '
+/// ...                 '"properties": {"name": "EPSG:32632"}}, "features": ['
+/// ...                 '{"type": "Feature", "properties": {}, "geometry": '
+/// ...                 '{"type": "MultiPoint", "coordinates": [[500000, 4e6], [500010, 4e6]]}}]}')
+/// >>> points, crs = condt.read_points_with_crs(path)
+/// >>> points.tolist(), json.loads(crs)["properties"]["name"]
+/// ([[500000.0, 4000000.0], [500010.0, 4000000.0]], 'EPSG:32632')
+#[pyfunction]
+fn read_points_with_crs<'py>(
+    py: Python<'py>,
+    path: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
+    read_point_file(py, path)
+}
+
+/// The points of the file at `path` (as `open` takes it) and its GeoJSON crs.
+fn read_point_file<'py>(
+    py: Python<'py>,
+    path: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
     // `os.fsdecode` takes what `open` takes (str, bytes, os.PathLike of either) and gives a str
     // whose undecodable bytes are escaped, which becomes the same bytes again as an `OsString`.
     let decoded = py
@@ -193,8 +227,8 @@ fn read_points<'py>(
     } else {
         given
     };
-    let points = py
-        .detach(|| within_call(|| condt_io::read_points(&path)))
+    let (points, crs) = py
+        .detach(|| within_call(|| condt_io::read_points_with_crs(&path)))
         .map_err(|mut err| {
             // Named as given, in the message and in `OSError.filename`.
             if stdin_name {
@@ -212,7 +246,7 @@ fn read_points<'py>(
         .into_flattened();
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
-    Ok(PyArray2::from_owned_array(py, array))
+    Ok((PyArray2::from_owned_array(py, array), crs))
 }
 
 /// An edge list as given: each end as `i64`, and the text of each end no `i64` holds (a uint64
@@ -456,6 +490,7 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reconstruct, m)?)?;
     m.add_function(wrap_pyfunction!(triangulate, m)?)?;
     m.add_function(wrap_pyfunction!(read_points, m)?)?;
+    m.add_function(wrap_pyfunction!(read_points_with_crs, m)?)?;
     m.add_function(wrap_pyfunction!(score, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_tile_plan, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_run_tile, m)?)?;

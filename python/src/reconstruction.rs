@@ -244,19 +244,45 @@ impl Reconstruction {
         EdgeStory::new(py, story)
     }
 
-    /// The curves as GeoJSON text, what ``condt reconstruct -o out.geojson`` writes (which also
-    /// carries on a GeoJSON input's ``crs``): a
+    /// The curves as GeoJSON text, what ``condt reconstruct -o out.geojson`` writes: a
     /// FeatureCollection with one LineString per curve (a closed one repeats its first point)
     /// and a ``closed`` property, on the input coordinates.
     ///
+    /// ``crs``: the document's ``"crs"`` member, as ``condt reconstruct`` carries on a GeoJSON
+    /// input's: JSON text (what ``read_points_with_crs`` gives) or a ``dict`` (written by
+    /// ``json.dumps``); ``None``, the default, writes none. ``ValueError`` when the text is not
+    /// one JSON value (``"EPSG:32632"`` alone is not: write ``'"EPSG:32632"'`` or the object).
+    ///
     /// >>> import condt, json
-    /// >>> doc = json.loads(condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True).to_geojson())
+    /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True)
+    /// >>> doc = json.loads(r.to_geojson())
     /// >>> doc["features"][0]["geometry"]["coordinates"]
     /// [[0, 0], [1, 0], [0.5, 2], [0, 0]]
-    fn to_geojson(&self) -> PyResult<String> {
+    /// >>> crs = {"type": "name", "properties": {"name": "EPSG:32632"}}
+    /// >>> json.loads(r.to_geojson(crs=crs))["crs"] == crs
+    /// True
+    #[pyo3(signature = (*, crs = None))]
+    fn to_geojson(&self, py: Python<'_>, crs: Option<&Bound<'_, PyAny>>) -> PyResult<String> {
+        let crs: Option<String> = match crs {
+            None => None,
+            Some(text) if text.is_instance_of::<pyo3::types::PyString>() => Some(text.extract()?),
+            Some(value) => Some(
+                py.import("json")?
+                    .call_method1("dumps", (value,))
+                    .map_err(|err| {
+                        pyo3::exceptions::PyTypeError::new_err(format!(
+                            "crs must be JSON text or a JSON-serializable object: {err}"
+                        ))
+                    })?
+                    .extract()?,
+            ),
+        };
         let mut out = Vec::new();
-        condt_io::write_geojson(&mut out, &self.result, &self.points)
-            .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
+        condt_io::write_geojson_with_crs(&mut out, &self.result, &self.points, crs.as_deref())
+            .map_err(|err| match err.kind() {
+                std::io::ErrorKind::InvalidInput => PyValueError::new_err(err.to_string()),
+                _ => PyRuntimeError::new_err(err.to_string()),
+            })?;
         String::from_utf8(out).map_err(|err| PyRuntimeError::new_err(err.to_string()))
     }
 

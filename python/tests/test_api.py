@@ -824,3 +824,42 @@ def test_points_too_close_to_measure_beside_the_largest_coordinate_are_a_value_e
     points[40] = (1e100, 0.0)
     result = condt.reconstruct(points)
     assert [c.closed for c in result.curves] == [True] and len(result.edges) == 40
+
+
+def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
+    # A GeoJSON input's crs, as the command line carries it from a GeoJSON input to a GeoJSON
+    # output (Python read the points alone, and to_geojson wrote no crs).
+    crs_text = '{"type": "name",\n  "properties": {"name": "EPSG:32632"}}'
+    coords = [[500000.0 + 10 * x, 4000000.0 + 10 * y] for x, y in SQUARE]
+    doc = (
+        '{"type": "FeatureCollection", "crs": ' + crs_text + ', "features": ['
+        '{"type": "Feature", "properties": {}, "geometry": null},'
+        '{"type": "Feature", "properties": {}, "geometry": {"type": "MultiPoint", "coordinates": '
+        + json.dumps(coords)
+        + "}}]}"
+    )
+    path = tmp_path / "utm.geojson"
+    path.write_text(doc)
+    points, crs = condt.read_points_with_crs(path)
+    assert points.tolist() == coords
+    assert crs == crs_text
+    assert condt.read_points(path).tolist() == coords
+    r = condt.reconstruct(points)
+    # The text as read, written on as it is; a dict is written by json.dumps.
+    written = r.to_geojson(crs=crs)
+    assert written.startswith('{"type":"FeatureCollection","crs":' + crs_text + ",")
+    assert json.loads(written)["crs"] == json.loads(crs_text)
+    as_dict = json.loads(r.to_geojson(crs=json.loads(crs_text)))
+    assert as_dict["crs"] == json.loads(crs_text)
+    assert as_dict["features"] == json.loads(written)["features"]
+    assert "crs" not in json.loads(r.to_geojson())
+    assert r.to_geojson(crs=None) == r.to_geojson()
+    with pytest.raises(ValueError, match="not a JSON value"):
+        r.to_geojson(crs="EPSG:32632")
+    with pytest.raises(TypeError, match="crs must be JSON text"):
+        r.to_geojson(crs=object())
+    # Other formats, and GeoJSON without one, have no crs.
+    (tmp_path / "pts.txt").write_text("0 0\n1 0\n")
+    assert condt.read_points_with_crs(tmp_path / "pts.txt")[1] is None
+    (tmp_path / "plain.geojson").write_text('{"type": "Point", "coordinates": [1, 2]}')
+    assert condt.read_points_with_crs(tmp_path / "plain.geojson")[1] is None

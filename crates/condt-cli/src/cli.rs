@@ -8,13 +8,12 @@ use crate::options::{self, Opt};
 use crate::output::{refuse_same_file, Destination};
 use crate::progress::Progress;
 use crate::timings::Timings;
-use condt::{
-    triangulate, Error, Method, Params, Pipeline, Point, Repair, Stage, Uniformity, Upcoming,
-};
+use condt::{triangulate, Error, Method, Params, Pipeline, Repair, Stage, Uniformity, Upcoming};
 use condt_io::{
-    read_points_with_crs, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
+    read_points_with, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
     write_npy_triangles, write_npy_triangulation_edges, write_polylines, write_svg,
-    write_svg_stages, write_triangles, write_triangulation_edges, IoError,
+    write_svg_stages, write_triangles, write_triangulation_edges, Columns, InputFormat, IoError,
+    PointFile, ReadOptions,
 };
 use std::ffi::{OsStr, OsString};
 use std::fmt;
@@ -35,14 +34,18 @@ INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a t
 ignored; `#` comments and blank lines are skipped; a first line of names, such as `x y`, is a
 header, and with no point after it the file is empty only if it names x and y: `Error: file
 not found` alone is refused); `-` reads standard input: a NumPy array or
-a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text. By the
+a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text
+(`--input-format F` states the format instead, for a file too: `--input-format csv`). By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
-and y columns (or lon, lat), or of two numeric columns without a header (tabs separate the
+and y columns (or lon, lat; `--columns X,Y` chooses others, by name or number), or of two
+numeric columns without a header (tabs separate the
 columns when the first line with content has tabs and no comma; a `.tsv` with a header is read
 so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
-document. Points are numbered from 0 in the order of their lines (rows, GeoJSON
-positions: a MultiPoint gives several, a feature whose geometry is null none);
+document, `.geojsonl` or `.geojsons` those of GeoJSON lines (one object per line, or after
+each RS character). Points are numbered from 0 in the order of their lines (rows, GeoJSON
+positions: a MultiPoint gives several, a feature whose geometry is null none, nor an empty
+Point or MultiPoint, `\"coordinates\": []`, and a note on standard error says how many);
 every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
@@ -96,6 +99,18 @@ fn global_help() -> String {
     format!("{USAGE}\nOptions:\n{}", options::help(GLOBAL_OPTIONS, 20))
 }
 
+/// `--input-format`, the same for every command that reads INPUT.
+const INPUT_FORMAT_HELP: &str = "read INPUT as F whatever its name: txt, node, csv, tsv, npy,
+geojson or geojsonl (standard input, which has no name, is otherwise
+told by its content: .npy, GeoJSON, else txt; `--input-format csv`
+reads CSV)";
+
+/// `--columns`, the same for every command that reads INPUT.
+const COLUMNS_HELP: &str = "read x and y from these columns of a CSV or TSV INPUT: header
+names or numbers from 1 (POINT_X,POINT_Y, easting,northing, 2,3)
+instead of the columns named x and y (lon, lat); standard input is
+then read as CSV";
+
 /// `--quiet`, the same for every command that computes.
 const QUIET_HELP: &str = "no progress bar and no notes on standard error (errors and
 --timings lines are still written); the output is the same";
@@ -117,6 +132,8 @@ enum ReconstructId {
     NoManifoldFix,
     Repair,
     Method,
+    InputFormat,
+    Columns,
     Format,
     Stages,
     Sequential,
@@ -132,7 +149,8 @@ impl ReconstructId {
         match self {
             Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | IqrFloor
             | StageSwitch(_) | Smooth | NoManifoldFix | Repair => true,
-            Output | Method | Format | Stages | Sequential | Timings | Quiet | Help => false,
+            Output | Method | InputFormat | Columns | Format | Stages | Sequential | Timings
+            | Quiet | Help => false,
         }
     }
 }
@@ -248,6 +266,22 @@ triangulation: nn-crust (Dey and Kumar) or crust (Amenta, Bern
 and Eppstein); a baseline takes none of the ConDT options",
     },
     Opt {
+        id: ReconstructId::InputFormat,
+        short: None,
+        long: "input-format",
+        negatable: false,
+        value: Some("F"),
+        help: INPUT_FORMAT_HELP,
+    },
+    Opt {
+        id: ReconstructId::Columns,
+        short: None,
+        long: "columns",
+        negatable: false,
+        value: Some("X,Y"),
+        help: COLUMNS_HELP,
+    },
+    Opt {
         id: ReconstructId::Format,
         short: None,
         long: "format",
@@ -334,7 +368,8 @@ Usage:
                     [--[no-]junctions] [--[no-]crossings] [--[no-]tips] [--[no-]tails]
                     [--[no-]smooth]
                     [--method condt|nn-crust|crust]
-                    [--format F] [--stages] [--sequential] [--timings] [--quiet]
+                    [--input-format F] [--columns X,Y] [--format F] [--stages]
+                    [--sequential] [--timings] [--quiet]
 
 Example:
   condt reconstruct data/shapes.txt -o shapes.svg --stages
@@ -343,7 +378,8 @@ Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j`
 i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), uint32 when every
 point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
 default on standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points and curves; with --stages the Delaunay
-triangulation and the graph after every stage that ran, side by side), `geojson` (.geojson: one
+triangulation and the graph after every stage that ran, side by side; a panel is shaped like the
+points' bounding box, from 1:4 to 4:1), `geojson` (.geojson: one
 LineString per curve, on the input's coordinates; a GeoJSON input's `crs` member is carried
 on), `html` (.html: a self-contained page to explore every stage: layers, pan
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
@@ -368,6 +404,8 @@ fn reconstruct_help() -> String {
 enum TriangulateId {
     Output,
     Edges,
+    InputFormat,
+    Columns,
     Timings,
     Quiet,
     Help,
@@ -390,6 +428,22 @@ const TRIANGULATE_OPTIONS: &[Opt<TriangulateId>] = &[
         value: None,
         help: "write edges instead of triangles (an OUTPUT ending in .edges gets
 edges without it)",
+    },
+    Opt {
+        id: TriangulateId::InputFormat,
+        short: None,
+        long: "input-format",
+        negatable: false,
+        value: Some("F"),
+        help: INPUT_FORMAT_HELP,
+    },
+    Opt {
+        id: TriangulateId::Columns,
+        short: None,
+        long: "columns",
+        negatable: false,
+        value: Some("X,Y"),
+        help: COLUMNS_HELP,
     },
     Opt {
         id: TriangulateId::Timings,
@@ -422,7 +476,8 @@ const TRIANGULATE_ABOUT: &str = "\
 condt triangulate: the Delaunay triangulation of planar points
 
 Usage:
-  condt triangulate INPUT [-o OUTPUT] [--edges] [--timings] [--quiet]
+  condt triangulate INPUT [-o OUTPUT] [--edges] [--input-format F] [--columns X,Y]
+                    [--timings] [--quiet]
 
 Example:
   condt triangulate data/shapes.txt --edges -o shapes.edges
@@ -534,6 +589,8 @@ struct TriangulateArgs {
     edges: bool,
     /// A NumPy array instead of text: an OUTPUT ending in `.npy`.
     npy: bool,
+    /// How INPUT is read (`--input-format`).
+    read: ReadOptions,
     timings: bool,
     quiet: bool,
 }
@@ -621,10 +678,18 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
     let mut timings = false;
     let mut quiet = false;
     let mut paths = Paths::default();
+    let mut input_format = Setting::new();
+    let mut columns = Setting::new();
     for given in lexed.given {
         match given.id {
             TriangulateId::Output => paths.output(&given.flag, given.value)?,
             TriangulateId::Edges => edges = true,
+            TriangulateId::InputFormat => {
+                input_format_option(&mut input_format, &given.flag, given.value.as_ref())?
+            }
+            TriangulateId::Columns => {
+                columns_option(&mut columns, &given.flag, given.value.as_ref())?
+            }
             TriangulateId::Timings => timings = true,
             TriangulateId::Quiet => quiet = true,
             // Answered before the arguments are read (`run`).
@@ -632,12 +697,14 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
         }
     }
     let (input, output) = paths.finish("triangulate", lexed.operands)?;
+    let read = read_options(input_format, columns, input.as_deref())?;
     let (edges_by_name, npy) = triangulate_output(output.as_deref())?;
     Ok(TriangulateArgs {
         input,
         output,
         edges: edges || edges_by_name,
         npy,
+        read,
         timings,
         quiet,
     })
@@ -795,6 +862,8 @@ struct ReconstructArgs {
     /// `None`: standard output.
     output: Option<PathBuf>,
     params: Params,
+    /// How INPUT is read (`--input-format`).
+    read: ReadOptions,
     format: Format,
     stages: bool,
     timings: bool,
@@ -866,6 +935,72 @@ impl<T: PartialEq> Setting<T> {
     }
 }
 
+/// `--input-format F` (`flag` as written), checked and set once.
+fn input_format_option(
+    setting: &mut Setting<InputFormat>,
+    flag: &str,
+    value: Option<&OsString>,
+) -> Result<(), CliError> {
+    let names = InputFormat::ALL.map(InputFormat::name).join(", ");
+    let value = value.ok_or_else(|| usage(format!("{flag} needs a format: {names}")))?;
+    let name = text(value, flag)?;
+    let chosen = InputFormat::named(name).ok_or_else(|| {
+        usage(format!(
+            "{flag} {name}: unknown input format; the formats are {names}"
+        ))
+    })?;
+    setting.set(chosen, format!("{flag} {name}"))
+}
+
+/// `--columns X,Y` (`flag` as written), checked and set once.
+fn columns_option(
+    setting: &mut Setting<Columns>,
+    flag: &str,
+    value: Option<&OsString>,
+) -> Result<(), CliError> {
+    let value = value.ok_or_else(|| {
+        usage(format!(
+            "{flag} needs the x and y columns, names or numbers from 1: POINT_X,POINT_Y or 2,3"
+        ))
+    })?;
+    let spec = text(value, flag)?;
+    let columns = Columns::parse(spec).map_err(|why| usage(format!("{flag} {why}")))?;
+    setting.set(columns, format!("{flag} {spec}"))
+}
+
+/// How INPUT (`None`: standard input) is read, by the options given. `--columns` with an INPUT
+/// that is read in another format than CSV or TSV (by its name or `--input-format`) is refused
+/// here, before anything is read.
+fn read_options(
+    input_format: Setting<InputFormat>,
+    columns: Setting<Columns>,
+    input: Option<&Path>,
+) -> Result<ReadOptions, CliError> {
+    let mut options = ReadOptions::new();
+    let stated = input_format.get();
+    if let Some(format) = stated {
+        options = options.with_format(format);
+    }
+    if let Some(columns) = columns.get() {
+        let format = stated.or_else(|| input.and_then(InputFormat::of_path));
+        if let Some(format) = format.filter(|f| !matches!(f, InputFormat::Csv | InputFormat::Tsv)) {
+            let by = if stated.is_some() {
+                "--input-format"
+            } else {
+                "its name"
+            };
+            return Err(usage(format!(
+                "--columns {columns} chooses the columns of CSV or TSV input, but {} is read as \
+                 {} by {by}; --input-format csv reads it as CSV",
+                shown_input(input),
+                format.name()
+            )));
+        }
+        options = options.with_columns(columns);
+    }
+    Ok(options)
+}
+
 const REPAIR_MODES: &str = "needs, paper, mutual, crossing or off";
 
 fn repair_mode(value: Option<&OsString>) -> Result<Repair, CliError> {
@@ -903,6 +1038,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     // As typed, when given: an option that needs a step the others turn off is refused.
     let (mut iqr_floor_said, mut outliers_first_said) = (None::<String>, None::<String>);
     let mut format = Setting::new();
+    let mut input_format = Setting::new();
+    let mut columns = Setting::new();
     let mut method = Setting::new();
     // ConDT's own options, as written, to refuse them beside a baseline method.
     let condt_options: Vec<&str> = lexed
@@ -999,6 +1136,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
             }
+            Id::InputFormat => input_format_option(&mut input_format, flag, value)?,
+            Id::Columns => columns_option(&mut columns, flag, value)?,
             Id::Stages => stages = true,
             Id::Timings => timings = true,
             Id::Quiet => quiet = true,
@@ -1055,6 +1194,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     )?;
     params.check().map_err(refused)?;
     let (input, output) = paths.finish("reconstruct", lexed.operands)?;
+    let read = read_options(input_format, columns, input.as_deref())?;
     let format = match (format.get(), output.as_deref()) {
         (Some(f), _) => f,
         (None, None) => Format::Polylines,
@@ -1084,6 +1224,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         input,
         output,
         params,
+        read,
         format,
         stages,
         timings,
@@ -1095,18 +1236,19 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
 /// With `parallel` false (`--sequential`) the reading, which otherwise splits a large text over
 /// rayon's threads, runs on this thread alone (a one-thread pool; same points either way).
 /// A GeoJSON input's `"crs"` member comes with the points (`None` for other formats), for a
-/// GeoJSON output to carry on.
+/// GeoJSON output to carry on. `options`: `--input-format`.
 fn read_input(
     input: Option<&Path>,
     parallel: bool,
-) -> Result<(Vec<Point>, Option<String>), CliError> {
+    options: &ReadOptions,
+) -> Result<PointFile, CliError> {
     let path = input.unwrap_or(Path::new("-"));
     if !parallel {
         if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() {
-            return Ok(pool.install(|| read_points_with_crs(path))?);
+            return Ok(pool.install(|| read_points_with(path, options))?);
         }
     }
-    Ok(read_points_with_crs(path)?)
+    Ok(read_points_with(path, options)?)
 }
 
 fn shown_input(input: Option<&Path>) -> String {
@@ -1130,6 +1272,28 @@ fn note_duplicates(points: usize, distinct: usize) {
         note(format_args!(
             "{} merged into the first point at the same position ({distinct} distinct of {points})",
             Counted(merged, "exact duplicate point"),
+        ));
+    }
+}
+
+/// One note for the GeoJSON features of `file` that gave no point: `null` geometries that
+/// many, and `empty` Points and MultiPoints (`"coordinates": []`); none when both are 0.
+pub(crate) fn note_skipped_geometries(file: &str, null: usize, empty: usize) {
+    let mut skipped = Vec::new();
+    if null > 0 {
+        skipped.push(format!("{} with a null geometry", Counted(null, "feature")));
+    }
+    if empty > 0 {
+        skipped.push(if empty == 1 {
+            "1 empty Point or MultiPoint".to_string()
+        } else {
+            format!("{empty} empty Points or MultiPoints")
+        });
+    }
+    if !skipped.is_empty() {
+        note(format_args!(
+            "{file}: skipped {}: they hold no point (the points are numbered without them)",
+            skipped.join(" and ")
         ));
     }
 }
@@ -1176,7 +1340,13 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let (points, crs) = read_input(args.input.as_deref(), args.params.parallel)?;
+    let PointFile {
+        points,
+        crs,
+        null_geometries,
+        empty_geometries,
+        ..
+    } = read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
     progress.suspend(|| timings.lap("read"));
     let count = points.len();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
@@ -1238,6 +1408,11 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     progress.finish();
     timings.lap("write");
     if !args.quiet {
+        note_skipped_geometries(
+            &shown_input(args.input.as_deref()),
+            null_geometries,
+            empty_geometries,
+        );
         note_duplicates(count, result.triangulation().num_vertices());
         let curves = result.curves();
         let closed = curves.iter().filter(|c| c.is_closed()).count();
@@ -1264,7 +1439,12 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let (points, _) = read_input(args.input.as_deref(), true)?;
+    let PointFile {
+        points,
+        null_geometries,
+        empty_geometries,
+        ..
+    } = read_input(args.input.as_deref(), true, &args.read)?;
     progress.computing("triangulating");
     progress.suspend(|| timings.lap("read"));
     let tri = triangulate(&points)
@@ -1289,6 +1469,11 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     progress.finish();
     timings.lap("write");
     if !args.quiet {
+        note_skipped_geometries(
+            &shown_input(args.input.as_deref()),
+            null_geometries,
+            empty_geometries,
+        );
         note_duplicates(count, tri.num_vertices());
         note_no_triangles(&tri, args.edges);
     }
@@ -1335,6 +1520,7 @@ mod tests {
                 output: Some("out.txt".into()),
                 edges: true,
                 npy: false,
+                read: ReadOptions::new(),
                 timings: false,
                 quiet: false,
             }

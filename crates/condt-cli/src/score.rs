@@ -26,7 +26,8 @@ use crate::cli::{usage, CliError};
 use crate::options::{self, Opt};
 use condt_eval::score::{score, EdgeProblem, Score};
 use condt_io::{
-    parse_npy_index_rows, read_points, text_lines, utf8_text, IoError, IoErrorKind, NPY_MAGIC,
+    parse_npy_index_rows, read_points_with, text_lines, utf8_text, IoError, IoErrorKind, PointFile,
+    ReadOptions, NPY_MAGIC,
 };
 use std::ffi::OsString;
 use std::fmt::Write as _;
@@ -37,7 +38,7 @@ const ABOUT: &str = "\
 condt score: compare an edge list with a ground truth
 
 Usage:
-  condt score POINTS OUTPUT TRUTH [--json]
+  condt score POINTS OUTPUT TRUTH [--json] [--quiet]
 
 Example:
   condt reconstruct case.pts -o case.edges && condt score case.pts case.edges case.gt
@@ -55,7 +56,8 @@ exist, a self-loop, a repeated edge) scores 0 and its first problem is printed w
 (row, for .npy); a malformed TRUTH is an error. A file that is not an edge list (not text, an
 array of another dtype or shape, text with lines but none of them an edge) is an error, OUTPUT
 or TRUTH; an empty file, or one of comments and blank lines only, is an empty edge list (an
-empty OUTPUT scores 0 against any edge of TRUTH).
+empty OUTPUT scores 0 against any edge of TRUTH). A note on standard error tells what POINTS
+skipped (GeoJSON features without a point); --quiet leaves it out.
 The metrics are those of the evaluation suite's score.py.
 ";
 
@@ -63,6 +65,7 @@ The metrics are those of the evaluation suite's score.py.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum ScoreId {
     Json,
+    Quiet,
     Help,
 }
 
@@ -74,6 +77,15 @@ pub(crate) const OPTIONS: &[Opt<ScoreId>] = &[
         negatable: false,
         value: None,
         help: "one JSON object (the keys of score.py --json)",
+    },
+    Opt {
+        id: ScoreId::Quiet,
+        short: Some('q'),
+        long: "quiet",
+        negatable: false,
+        value: None,
+        help: "no notes on standard error (errors are still written); the output is
+the same",
     },
     Opt {
         id: ScoreId::Help,
@@ -95,6 +107,7 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     let lexed = options::lex(args, OPTIONS, "score: ")?;
     // `--help` is answered before the arguments are read (`cli::run`).
     let json = lexed.given.iter().any(|g| g.id == ScoreId::Json);
+    let quiet = lexed.given.iter().any(|g| g.id == ScoreId::Quiet);
     let files: Vec<PathBuf> = lexed.operands.into_iter().map(PathBuf::from).collect();
     let [points, output, truth] = <[PathBuf; 3]>::try_from(files).map_err(|files| {
         usage(format!(
@@ -112,7 +125,21 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
              once: give - for one of POINTS, OUTPUT and TRUTH"
         )));
     }
-    let points = read_points(&points)?;
+    let PointFile {
+        points: read,
+        null_geometries,
+        empty_geometries,
+        ..
+    } = read_points_with(&points, &ReadOptions::new())?;
+    if !quiet {
+        let shown = if points.as_os_str() == "-" {
+            "<stdin>".to_string()
+        } else {
+            points.display().to_string()
+        };
+        crate::cli::note_skipped_geometries(&shown, null_geometries, empty_geometries);
+    }
+    let points = read;
     let truth = read_edges(&truth)?;
     if let Some((at, why)) = &truth.bad_line {
         let (line, why) = truth.tell(*at, why.clone());

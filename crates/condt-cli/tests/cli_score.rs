@@ -659,3 +659,51 @@ fn a_file_without_edges_is_an_empty_edge_list_as_the_help_says() {
     let words = write(dir.path(), "words.edges", "# edges\nnone here\n");
     assert_refused_either_way(&points, &truth, &words, &["words.edges:2"]);
 }
+
+/// `condt score` takes `-q`/`--quiet` as the other commands do (it was an unknown option, exit
+/// 2): the scores are the same, and the note on what POINTS skipped (a GeoJSON feature with a
+/// null geometry) is left out.
+#[test]
+fn score_takes_quiet_as_the_other_commands_do() {
+    let dir = scratch_dir();
+    let points = write(
+        dir.path(),
+        "points.geojson",
+        r#"{"type": "FeatureCollection", "features": [
+          {"type": "Feature", "properties": {}, "geometry": null},
+          {"type": "Feature", "properties": {}, "geometry":
+            {"type": "MultiPoint", "coordinates": [[0, 0], [1, 0], [0.5, 2]]}}]}"#,
+    );
+    let edges = write(dir.path(), "out.edges", "0 1\n1 2\n0 2\n");
+    let said = |args: &[&Path]| {
+        let out = condt(args);
+        assert!(out.status.success(), "{args:?}: {:?}", out);
+        (
+            String::from_utf8(out.stdout).unwrap(),
+            String::from_utf8(out.stderr).unwrap(),
+        )
+    };
+    let score = Path::new("score");
+    let (loud, note) = said(&[score, &points, &edges, &edges]);
+    assert!(loud.contains("exact"), "{loud}");
+    assert!(
+        note.contains("skipped 1 feature with a null geometry"),
+        "{note}"
+    );
+    for quiet in ["-q", "--quiet"] {
+        let (out, note) = said(&[score, &points, &edges, &edges, Path::new(quiet)]);
+        assert_eq!(out, loud, "{quiet}");
+        assert_eq!(note, "", "{quiet}");
+    }
+    let (json, note) = said(&[
+        score,
+        Path::new("-q"),
+        &points,
+        &edges,
+        &edges,
+        Path::new("--json"),
+    ]);
+    assert!(json.starts_with('{') && note.is_empty(), "{json}{note}");
+    let help = condt(&[score, Path::new("--help")]);
+    assert!(String::from_utf8_lossy(&help.stdout).contains("-q, --quiet"));
+}

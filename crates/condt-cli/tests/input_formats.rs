@@ -167,3 +167,292 @@ fn a_byte_order_mark_inside_the_file_is_refused_on_every_path() {
         );
     }
 }
+
+/// `condt ARGS` with `input` on standard input.
+fn condt_with_stdin(args: &[&str], input: &[u8]) -> std::process::Output {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_condt"))
+        .args(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut pipe = child.stdin.take().unwrap();
+    // The run may stop reading at an error.
+    let _ = pipe.write_all(input);
+    drop(pipe);
+    child.wait_with_output().unwrap()
+}
+
+/// A CSV table on standard input, which has no name to say it is CSV, is read as CSV with
+/// `--input-format csv` (its header followed: `id,lat,lon`), giving what the same file named
+/// `.csv` gives; without the option it is read as plain text as before (a GIS review: only the
+/// plain reader's `x,y` worked), and its refusal says how to read it as CSV. The option also
+/// overrules a file's name.
+#[test]
+fn csv_on_standard_input_is_read_with_input_format() {
+    let points = circle();
+    let csv: String = "id,lat,lon\n".to_string()
+        + &points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| format!("{k},{:?},{:?}\n", p.y, p.x))
+            .collect::<String>();
+    let expected: String = reconstruct(&points, &Params::default())
+        .unwrap()
+        .edges()
+        .map(|[a, b]| format!("{a} {b}\n"))
+        .collect();
+    for args in [
+        &[
+            "reconstruct",
+            "-",
+            "--input-format",
+            "csv",
+            "--format",
+            "edges",
+        ][..],
+        &[
+            "reconstruct",
+            "--input-format=CSV",
+            "-",
+            "--format=edges",
+            "--sequential",
+        ],
+    ] {
+        let out = condt_with_stdin(args, csv.as_bytes());
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {said}");
+        assert_eq!(String::from_utf8(out.stdout).unwrap(), expected, "{args:?}");
+    }
+    let out = condt_with_stdin(&["reconstruct", "-", "--format", "edges"], csv.as_bytes());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("<stdin>:1: ") && said.contains("--input-format csv"),
+        "{said}"
+    );
+    // `x,y` on standard input was read before, by the plain reader, and still is.
+    let plain = "x,y\n0,0\n1,0\n0.5,2\n";
+    let out = condt_with_stdin(&["triangulate", "-"], plain.as_bytes());
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+    let out = condt_with_stdin(
+        &["triangulate", "-", "--input-format", "csv"],
+        plain.as_bytes(),
+    );
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+    // The option overrules a name: a `.txt` holding CSV, a `.csv` holding plain text.
+    let dir = scratch_dir();
+    for (name, text, format) in [
+        ("table.txt", csv.as_str(), "csv"),
+        ("plain.csv", "0 0\n1 0 # a comment\n0.5 2\n", "txt"),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let path = path.to_str().unwrap();
+        let refused = condt_with_stdin(&["triangulate", path], b"");
+        assert_eq!(refused.status.code(), Some(1), "{name}");
+        let out = condt_with_stdin(&["triangulate", path, "--input-format", format], b"");
+        assert!(out.status.success(), "{name}");
+        assert!(!out.stdout.is_empty(), "{name}");
+    }
+    // An unknown format, or two different ones, is a usage error naming the formats.
+    let out = condt_with_stdin(&["triangulate", "-", "--input-format", "xlsx"], b"");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{said}");
+    assert!(said.contains("txt, node, csv, tsv, npy, geojson"), "{said}");
+    let out = condt_with_stdin(
+        &[
+            "triangulate",
+            "-",
+            "--input-format",
+            "csv",
+            "--input-format",
+            "tsv",
+        ],
+        b"",
+    );
+    assert_eq!(out.status.code(), Some(2));
+}
+
+/// GeoJSON features with a null geometry (and empty Points) were skipped without a word: one
+/// note on standard error now says how many and why, not with `--quiet`, and the output is the
+/// same as for the document without them.
+#[test]
+fn null_geometries_are_noted_once_and_not_with_quiet() {
+    let points = circle();
+    let feature = |p: &Point| {
+        format!(
+            "{{\"type\":\"Feature\",\"properties\":{{}},\"geometry\":{{\"type\":\"Point\",\"coordinates\":[{:?},{:?}]}}}}",
+            p.x, p.y
+        )
+    };
+    let null = "{\"type\":\"Feature\",\"properties\":{\"id\":7},\"geometry\":null}";
+    let empty = "{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[]}}";
+    let collection = |features: Vec<String>| {
+        format!(
+            "{{\"type\":\"FeatureCollection\",\"features\":[{}]}}",
+            features.join(",\n")
+        )
+    };
+    let plain = collection(points.iter().map(feature).collect());
+    let mut features: Vec<String> = points.iter().map(feature).collect();
+    features.insert(3, null.to_string());
+    features.insert(0, null.to_string());
+    features.push(empty.to_string());
+    let gappy = collection(features);
+    for command in [
+        &["reconstruct", "-", "--format", "edges"][..],
+        &["triangulate", "-"],
+    ] {
+        let reference = condt_with_stdin(command, plain.as_bytes());
+        assert!(reference.status.success());
+        assert!(
+            !String::from_utf8_lossy(&reference.stderr).contains("skipped"),
+            "{command:?}"
+        );
+        let out = condt_with_stdin(command, gappy.as_bytes());
+        assert!(out.status.success(), "{command:?}");
+        assert_eq!(out.stdout, reference.stdout, "{command:?}");
+        let said = String::from_utf8(out.stderr).unwrap();
+        let notes: Vec<&str> = said.lines().filter(|l| l.contains("skipped")).collect();
+        assert_eq!(
+            notes,
+            [
+                "condt: <stdin>: skipped 2 features with a null geometry and 1 empty Point or \
+              MultiPoint: they hold no point (the points are numbered without them)"
+            ],
+            "{command:?}: {said}"
+        );
+        let mut quiet = command.to_vec();
+        quiet.push("--quiet");
+        let out = condt_with_stdin(&quiet, gappy.as_bytes());
+        assert!(out.status.success() && out.stderr.is_empty(), "{quiet:?}");
+        assert_eq!(out.stdout, reference.stdout, "{quiet:?}");
+    }
+}
+
+/// GeoJSON lines on standard input: read one object per line with `--input-format geojsonl`;
+/// without it, read as one document as before, the refusal says how to read them.
+#[test]
+fn geojson_lines_on_standard_input() {
+    let lines = "{\"type\":\"Point\",\"coordinates\":[0,0]}\n\
+                 {\"type\":\"Point\",\"coordinates\":[1,0]}\n\
+                 {\"type\":\"Point\",\"coordinates\":[0.5,2]}\n";
+    let out = condt_with_stdin(
+        &["triangulate", "-", "--input-format", "geojsonl"],
+        lines.as_bytes(),
+    );
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+    let out = condt_with_stdin(&["triangulate", "-"], lines.as_bytes());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("<stdin>:2: trailing characters") && said.contains("--input-format geojsonl"),
+        "{said}"
+    );
+}
+
+/// `--columns X,Y` reads x and y from a CSV's columns by header name or number (ArcGIS's
+/// `POINT_X,POINT_Y`, `easting,northing`), the same points as the plain file; a missing column
+/// is refused naming the file, the header line and its columns; a file read in another format
+/// is a usage error before anything is read.
+#[test]
+fn columns_choose_the_x_and_y_of_a_csv() {
+    let points = circle();
+    let expected: String = reconstruct(&points, &Params::default())
+        .unwrap()
+        .edges()
+        .map(|[a, b]| format!("{a} {b}\n"))
+        .collect();
+    let csv: String = "FID,Shape,POINT_Y,POINT_X\n".to_string()
+        + &points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| format!("{k},Point,{:?},{:?}\n", p.y, p.x))
+            .collect::<String>();
+    let dir = scratch_dir();
+    let path = dir.path().join("survey.csv");
+    std::fs::write(&path, &csv).unwrap();
+    let path = path.to_str().unwrap();
+    for columns in ["POINT_X,POINT_Y", "point_x,point_y", "4,3", "4,POINT_Y"] {
+        let out = condt_with_stdin(
+            &[
+                "reconstruct",
+                path,
+                "--columns",
+                columns,
+                "--format",
+                "edges",
+            ],
+            b"",
+        );
+        assert!(out.status.success(), "{columns}: {:?}", out);
+        assert_eq!(
+            String::from_utf8(out.stdout).unwrap(),
+            expected,
+            "{columns}"
+        );
+    }
+    // Standard input with --columns is read as CSV.
+    let out = condt_with_stdin(
+        &[
+            "reconstruct",
+            "-",
+            "--columns=POINT_X,POINT_Y",
+            "--format=edges",
+        ],
+        csv.as_bytes(),
+    );
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
+    // Without it, the header detection is as before: no x column.
+    let out = condt_with_stdin(&["triangulate", path], b"");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(said.contains("the header has no x column"), "{said}");
+    let out = condt_with_stdin(&["triangulate", path, "--columns", "easting,northing"], b"");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains(&format!(
+            "{path}:1: no column named \"easting\" (chosen for x) in the header \
+             \"FID,Shape,POINT_Y,POINT_X\"; its columns are \"FID\", \"Shape\", \"POINT_Y\", \
+             \"POINT_X\""
+        )),
+        "{said}"
+    );
+    for (args, words) in [
+        (
+            &["triangulate", "pts.txt", "--columns", "a,b"][..],
+            "pts.txt is read as txt by its name",
+        ),
+        (
+            &[
+                "triangulate",
+                path,
+                "--columns",
+                "a,b",
+                "--input-format",
+                "geojson",
+            ],
+            "is read as geojson by --input-format",
+        ),
+        (
+            &["triangulate", path, "--columns", "a"],
+            "expected two columns",
+        ),
+        (
+            &["triangulate", path, "--columns", "2,2"],
+            "the same column",
+        ),
+        (
+            &["triangulate", path, "--columns", "0,1"],
+            "numbered from 1",
+        ),
+    ] {
+        let out = condt_with_stdin(args, b"");
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {said}");
+        assert!(said.contains(words), "{args:?}: {said}");
+    }
+}

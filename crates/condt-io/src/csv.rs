@@ -10,7 +10,7 @@
 //! numbers the lines.
 
 use super::points::{quoted, Source};
-use super::IoError;
+use super::{Column, Columns, IoError};
 use condt::Point;
 use condt::MAX_POINTS;
 use std::vec::Vec;
@@ -79,11 +79,21 @@ pub(crate) fn axis_named(name: &str) -> Option<char> {
 /// # Ok::<(), condt_io::IoError>(())
 /// ```
 pub fn parse_csv(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
+    parse_csv_columns(text, file, None)
+}
+
+/// [`parse_csv`], x and y read from `columns` when given instead of the columns the header
+/// names x and y.
+pub(crate) fn parse_csv_columns(
+    text: &str,
+    file: &str,
+    columns: Option<&Columns>,
+) -> Result<Vec<Point>, IoError> {
     // Tab-separated values (spreadsheets' and GIS tools' other export) are told by their first
     // line with content: tabs and no comma.
     let first = first_line_with_content(text);
     let tabs = first.contains('\t') && !first.contains(',');
-    parse_separated(text, file, if tabs { b'\t' } else { b',' })
+    parse_separated(text, file, if tabs { b'\t' } else { b',' }, columns)
 }
 
 /// The first line of `text` that is not blank (lines end at LF, CR or CRLF).
@@ -92,11 +102,18 @@ pub(crate) fn first_line_with_content(text: &str) -> &str {
     lines.find(|l| !l.trim().is_empty()).unwrap_or("")
 }
 
-/// [`parse_csv`] with columns separated by `delimiter` (`,` or a tab).
+/// [`parse_csv`] with columns separated by `delimiter` (`,` or a tab), x and y read from
+/// `chosen` when given.
+///
+/// With `chosen`, the first record is a header unless it is all numbers, or, when both columns
+/// are chosen by number, unless either of its chosen fields is a number (`a,1,2` is a point
+/// with a label, and `a,1,NA` a point with a bad y, not a header to skip). A column chosen by
+/// name needs a header that names it once.
 pub(crate) fn parse_separated(
     text: &str,
     file: &str,
     delimiter: u8,
+    chosen: Option<&Columns>,
 ) -> Result<Vec<Point>, IoError> {
     let source = Source { file };
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -136,14 +153,47 @@ pub(crate) fn parse_separated(
         }
         let line = lines.line_at(start);
         check_quotes(raw.as_bytes()).map_err(|m| source.error(line, m.to_string()))?;
-        let (x_column, y_column) = match columns {
-            Some(columns) => columns,
+        let (x_column, y_column) = match (columns, chosen) {
+            (Some(columns), _) => columns,
+            (None, Some(chosen)) => {
+                let numbered = match (&chosen.x, &chosen.y) {
+                    (Column::Number(x), Column::Number(y)) => Some((x - 1, y - 1)),
+                    _ => None,
+                };
+                let number = |k: usize| {
+                    record
+                        .get(k)
+                        .is_some_and(|f| f.trim().parse::<f64>().is_ok())
+                };
+                let is_point = match numbered {
+                    Some((x, y)) => number(x) || number(y),
+                    None => all_numbers(&record),
+                };
+                width = record.len();
+                if is_point {
+                    let Some(numbered) = numbered else {
+                        return Err(source.error(
+                            line,
+                            format!(
+                                "columns {chosen} are chosen by name, but the first line is \
+                                 numbers, not a header naming them: {}",
+                                quoted(raw.trim_end_matches(['\r', '\n']))
+                            ),
+                        ));
+                    };
+                    headerless = true;
+                    *columns.insert(numbered)
+                } else {
+                    columns = Some(chosen_columns(chosen, &record, raw, &source, line)?);
+                    continue;
+                }
+            }
             // `numpy.savetxt(..., delimiter=",")` writes no header: two numbers can only be x, y.
-            None if headerless_pair(&record) => {
+            (None, None) if headerless_pair(&record) => {
                 (width, headerless) = (2, true);
                 *columns.insert((0, 1))
             }
-            None => {
+            (None, None) => {
                 columns = Some(header_columns(&record, raw, &source, line)?);
                 width = record.len();
                 continue;
@@ -256,6 +306,75 @@ fn header_columns(
     let x_column = find(&|n| X_NAMES.contains(&n), "x")?;
     let y_column = find(&|n| Y_NAMES.contains(&n) || n == Y_LONG_NAME, "y")?;
     Ok((x_column, y_column))
+}
+
+/// The x and y columns `chosen` in the header `record` (its text `raw`, on `line`): a name must
+/// name one column (without case and blanks around it), a number be one of the header's.
+fn chosen_columns(
+    chosen: &Columns,
+    record: &csv::StringRecord,
+    raw: &str,
+    source: &Source<'_>,
+    line: usize,
+) -> Result<(usize, usize), IoError> {
+    let header = quoted(raw.trim_end_matches(['\r', '\n']));
+    let names = || {
+        record
+            .iter()
+            .map(|name| quoted(name.trim()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let find = |column: &Column, axis: &str| -> Result<usize, IoError> {
+        match column {
+            Column::Number(number) if *number <= record.len() => Ok(number - 1),
+            Column::Number(number) => Err(source.error(
+                line,
+                format!(
+                    "column {number} is chosen for {axis}, but the header has {} columns: {}",
+                    record.len(),
+                    names()
+                ),
+            )),
+            Column::Named(name) => {
+                let wanted = name.trim();
+                let mut named =
+                    (0..record.len()).filter(|&k| record[k].trim().eq_ignore_ascii_case(wanted));
+                match (named.next(), named.next()) {
+                    (Some(k), None) => Ok(k),
+                    (None, _) => Err(source.error(
+                        line,
+                        format!(
+                            "no column named {} (chosen for {axis}) in the header {header}; its \
+                             columns are {}",
+                            quoted(wanted),
+                            names()
+                        ),
+                    )),
+                    (Some(first), Some(second)) => Err(source.error(
+                        line,
+                        format!(
+                            "the header names two columns {} ({} and {}), chosen for {axis}: \
+                             {header}; choose one by its number",
+                            quoted(wanted),
+                            first + 1,
+                            second + 1
+                        ),
+                    )),
+                }
+            }
+        }
+    };
+    let (x, y) = (find(&chosen.x, "x")?, find(&chosen.y, "y")?);
+    if x == y {
+        return Err(source.error(
+            line,
+            format!(
+                "columns {chosen} are the same column of the header {header}, x and y need two"
+            ),
+        ));
+    }
+    Ok((x, y))
 }
 
 /// Refuses what the `csv` crate reads without complaint but RFC 4180 does not allow: text after
@@ -371,6 +490,99 @@ mod tests {
         assert_eq!(parse_csv(tsv, "p.tsv").unwrap(), expected);
         let err = parse_csv("id,lon\tlat\n1,8.5\t47.3\n", "p.csv").unwrap_err();
         assert!(err.to_string().contains("no x column"), "{err}");
+    }
+
+    /// `--columns`: x and y from the columns chosen by header name (any case) or number, even
+    /// where the header names no x and y (`POINT_X`, `easting`) or names them elsewhere; a
+    /// missing or doubled name is refused naming the header line and its columns.
+    #[test]
+    fn chosen_columns_by_name_or_number() {
+        let read = |text: &str, spec: &str| {
+            parse_csv_columns(text, "c.csv", Some(&Columns::parse(spec).unwrap()))
+        };
+        let arcgis =
+            "FID,Shape,POINT_X,POINT_Y\n1,Point,2600000.5,1200000\n2,Point,2600010,1200003\n";
+        let expected = vec![
+            Point::new(2_600_000.5, 1_200_000.0),
+            Point::new(2_600_010.0, 1_200_003.0),
+        ];
+        assert!(
+            parse_csv(arcgis, "c.csv").is_err(),
+            "no x column without the option"
+        );
+        assert_eq!(read(arcgis, "POINT_X,POINT_Y").unwrap(), expected);
+        assert_eq!(read(arcgis, " point_x , Point_Y ").unwrap(), expected);
+        assert_eq!(read(arcgis, "3,4").unwrap(), expected);
+        assert_eq!(read(arcgis, "POINT_X,4").unwrap(), expected);
+        // Over a header that names x and y, the chosen columns win; tabs as before.
+        let swapped = "x\ty\teasting\tnorthing\n0\t0\t5\t6\n";
+        assert_eq!(
+            read(swapped, "easting,northing").unwrap(),
+            vec![Point::new(5.0, 6.0)]
+        );
+        // Without a header, numbers choose among any number of columns; a labelled row is a
+        // point, and a bad value in one is refused, not skipped as a header.
+        assert_eq!(
+            read("7,1.5,2,9\n8,3,4,9\n", "2,3").unwrap(),
+            vec![Point::new(1.5, 2.0), Point::new(3.0, 4.0)]
+        );
+        assert_eq!(
+            read("a,1.5,2\n", "2,3").unwrap(),
+            vec![Point::new(1.5, 2.0)]
+        );
+        let err = read("a,1,NA\nb,2,3\n", "2,3").unwrap_err();
+        assert_eq!(
+            (err.line, err.to_string().contains("\"NA\"")),
+            (Some(1), true),
+            "{err}"
+        );
+        for (text, spec, line, message) in [
+            (
+                "\nFID,X,Y\n1,2,3\n",
+                "easting,northing",
+                2,
+                "c.csv:2: no column named \"easting\" (chosen for x) in the header \"FID,X,Y\"; \
+                 its columns are \"FID\", \"X\", \"Y\"",
+            ),
+            (
+                "FID,X,Y\n1,2,3\n",
+                "X,northing",
+                1,
+                "c.csv:1: no column named \"northing\" (chosen for y) in the header \"FID,X,Y\"; \
+                 its columns are \"FID\", \"X\", \"Y\"",
+            ),
+            (
+                "x,X,y\n1,2,3\n",
+                "x,y",
+                1,
+                "c.csv:1: the header names two columns \"x\" (1 and 2), chosen for x: \"x,X,y\"; \
+                 choose one by its number",
+            ),
+            (
+                "FID,X,Y\n1,2,3\n",
+                "2,5",
+                1,
+                "c.csv:1: column 5 is chosen for y, but the header has 3 columns: \"FID\", \"X\", \
+                 \"Y\"",
+            ),
+            (
+                "1,2,3\n",
+                "X,Y",
+                1,
+                "c.csv:1: columns X,Y are chosen by name, but the first line is numbers, not a \
+                 header naming them: \"1,2,3\"",
+            ),
+            (
+                "FID,X,Y\n1,2\n",
+                "2,3",
+                2,
+                "c.csv:2: 2 fields, but the y column is field 3",
+            ),
+        ] {
+            let err = read(text, spec).unwrap_err();
+            assert_eq!(err.line, Some(line), "{err}");
+            assert_eq!(err.to_string(), message);
+        }
     }
 
     #[test]

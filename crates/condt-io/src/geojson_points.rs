@@ -9,7 +9,7 @@
 
 use super::points::line_at;
 use super::points::quoted;
-use super::{IoError, IoErrorKind};
+use super::{IoError, IoErrorKind, PointFile};
 use condt::Point;
 use condt::MAX_POINTS;
 use core::fmt;
@@ -27,7 +27,9 @@ const MAX_DEPTH: usize = 64;
 ///
 /// Read: a FeatureCollection, a Feature, a GeometryCollection or a bare geometry; every Point
 /// gives one point and every MultiPoint its points, in the order they are written (a third
-/// coordinate, a number, is ignored). A Feature without a geometry (`null`) gives none. Any other geometry
+/// coordinate, a number, is ignored). A Feature without a geometry (`null`) gives none, and so
+/// does an empty Point or MultiPoint (`"coordinates": []`: RFC 7946, section 3.1, allows empty
+/// geometries), while a position inside a MultiPoint must hold two coordinates. Any other geometry
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
 /// coordinates that are not numbers. Members may come in any order; strings may hold escapes
 /// (`"Po\u0069nt"` is `"Point"`); numbers are read exactly as `str::parse` reads them.
@@ -72,31 +74,105 @@ pub fn parse_geojson_with_crs(
     text: &str,
     file: &str,
 ) -> Result<(Vec<Point>, Option<String>), IoError> {
+    parse_geojson_file(text, file).map(|read| (read.points, read.crs))
+}
+
+/// [`parse_geojson_with_crs`], and how many features had a null geometry and how many Point
+/// and MultiPoint geometries were empty (neither gives a point), for the caller to tell.
+pub(crate) fn parse_geojson_file(text: &str, file: &str) -> Result<PointFile, IoError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    read_records(text, file, core::iter::once(0..text.len()), "")
+}
+
+/// The points of a GeoJSON sequence: one GeoJSON text per line (GeoJSON lines, `.geojsonl`, as
+/// GDAL's GeoJSONSeq driver writes it), or, when the text holds a record separator (U+001E),
+/// one after each (RFC 8142, `.geojsons`; a record may then span lines). Each record is read as
+/// [`parse_geojson_file`] reads a document, blank lines and records skipped; the points are
+/// numbered across the records in order, an error names the line in the whole file, and the
+/// first top-level `"crs"` of a record is kept.
+pub(crate) fn parse_geojson_lines(text: &str, file: &str) -> Result<PointFile, IoError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let separator = '\u{1e}';
+    let mut starts: Vec<usize> = Vec::new();
+    if text.contains(separator) {
+        // The text before the first separator must be blank, as each record's rest is read.
+        starts.push(0);
+        starts.extend(text.match_indices(separator).map(|(at, _)| at + 1));
+    } else {
+        starts.push(0);
+        let bytes = text.as_bytes();
+        starts.extend(
+            (0..bytes.len())
+                .filter(|&i| {
+                    bytes[i] == b'\n' || (bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n'))
+                })
+                .map(|i| i + 1),
+        );
+    }
+    let ends = starts
+        .iter()
+        .skip(1)
+        .map(|&next| next - 1)
+        .chain([text.len()]);
+    let records = starts
+        .iter()
+        .zip(ends)
+        .map(|(&start, end)| start..end)
+        .filter(|range| !text[range.clone()].trim().is_empty());
+    read_records(
+        text,
+        file,
+        records,
+        "; a GeoJSON sequence holds one whole GeoJSON object per line (or after each record \
+         separator, U+001E)",
+    )
+}
+
+/// Reads the GeoJSON texts at `records` (byte ranges of `text`, in order) into one point list;
+/// `hint` is added to a message of JSON that ends early.
+fn read_records(
+    text: &str,
+    file: &str,
+    records: impl Iterator<Item = core::ops::Range<usize>>,
+    hint: &str,
+) -> Result<PointFile, IoError> {
     let mut state = State {
         text,
         points: Vec::new(),
         crs: None,
         failure: None,
+        null_geometries: 0,
+        empty_geometries: 0,
     };
-    let mut deserializer = serde_json::Deserializer::from_str(text);
-    let read = Member::Object
-        .read(&mut state, 0, &mut deserializer)
-        .and_then(|()| deserializer.end());
-    match read {
-        Ok(()) => Ok((state.points, state.crs)),
-        Err(err) => {
-            let (at, message) = state
+    for range in records {
+        let record = &text[range.clone()];
+        // Offsets of members read later are taken from the record's start.
+        state.text = record;
+        let mut deserializer = serde_json::Deserializer::from_str(record);
+        let read = Member::Object
+            .read(&mut state, 0, &mut deserializer)
+            .and_then(|()| deserializer.end());
+        if let Err(err) = read {
+            let (at, mut message) = state
                 .failure
                 .take()
-                .unwrap_or_else(|| (offset_of(text, &err), message_of(&err)));
-            Err(IoError {
+                .unwrap_or_else(|| (offset_of(record, &err), message_of(&err)));
+            if err.is_eof() {
+                message.push_str(hint);
+            }
+            return Err(IoError {
                 file: file.to_string(),
-                line: Some(line_at(text.as_bytes(), at.min(text.len()))),
+                line: Some(line_at(text.as_bytes(), range.start + at.min(record.len()))),
                 kind: IoErrorKind::Content(message),
-            })
+            });
         }
     }
+    Ok(PointFile {
+        points: state.points,
+        crs: state.crs,
+        null_geometries: state.null_geometries,
+        empty_geometries: state.empty_geometries,
+    })
 }
 
 /// What a read has gathered: the points, and the first error met in a member read after its
@@ -108,6 +184,10 @@ struct State<'t> {
     /// The document's own `"crs"` member, as written.
     crs: Option<String>,
     failure: Option<(usize, String)>,
+    /// Features whose geometry is `null`.
+    null_geometries: usize,
+    /// Points and MultiPoints whose coordinates are `[]`.
+    empty_geometries: usize,
 }
 
 impl State<'_> {
@@ -183,7 +263,9 @@ enum Member {
     Geometry,
     /// An array of objects: `"features"` or `"geometries"`, named in the message.
     Objects(&'static str),
-    /// A Point's coordinates.
+    /// A Point's coordinates: a position, or `[]` for an empty Point.
+    Point,
+    /// A position of a MultiPoint.
     Position,
     /// A MultiPoint's coordinates.
     Positions,
@@ -217,7 +299,7 @@ impl Member {
             Member::Object | Member::Geometry => "a GeoJSON object needs a \"type\"",
             Member::Objects("features") => "a FeatureCollection needs a \"features\" array",
             Member::Objects(_) => "a GeometryCollection needs a \"geometries\" array",
-            Member::Position => POSITION,
+            Member::Point | Member::Position => POSITION,
             Member::Positions => "a MultiPoint needs a \"coordinates\" array",
         }
     }
@@ -267,6 +349,7 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
 
     fn visit_unit<E: de::Error>(self) -> Result<(), E> {
         if self.member == Member::Geometry {
+            self.state.null_geometries += 1;
             Ok(())
         } else {
             Err(E::custom(self.member.wanted()))
@@ -288,6 +371,7 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 Ok(())
             }
             Member::Positions => {
+                let before = self.state.points.len();
                 while seq
                     .next_element_seed(Reader {
                         member: Member::Position,
@@ -296,10 +380,20 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                     })?
                     .is_some()
                 {}
+                if self.state.points.len() == before {
+                    self.state.empty_geometries += 1;
+                }
                 Ok(())
             }
-            Member::Position => {
+            Member::Point | Member::Position => {
                 let x = seq.next_element_seed(Coordinate)?;
+                // An empty Point (`"coordinates": []`) holds no point, as an empty MultiPoint
+                // holds none (RFC 7946, 3.1: an empty geometry); a MultiPoint's position must
+                // hold two coordinates.
+                if x.is_none() && self.member == Member::Point {
+                    self.state.empty_geometries += 1;
+                    return Ok(());
+                }
                 let y = x.and(seq.next_element_seed(Coordinate)?);
                 let (Some(x), Some(y)) = (x, y) else {
                     return Err(de::Error::custom(POSITION));
@@ -372,7 +466,7 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
         if !seen.contains(&wanted) {
             return Err(de::Error::custom(match wanted {
                 Key::Geometry => "a Feature needs a \"geometry\"".to_string(),
-                Key::Coordinates if member == Member::Position => {
+                Key::Coordinates if member == Member::Point => {
                     "a Point needs \"coordinates\"".to_string()
                 }
                 _ => member.wanted().to_string(),
@@ -390,7 +484,7 @@ fn wanted_member<E: de::Error>(name: Option<&str>) -> Result<Option<(Key, Member
         Some("FeatureCollection") => (Key::Features, Member::Objects("features")),
         Some("Feature") => (Key::Geometry, Member::Geometry),
         Some("GeometryCollection") => (Key::Geometries, Member::Objects("geometries")),
-        Some("Point") => (Key::Coordinates, Member::Position),
+        Some("Point") => (Key::Coordinates, Member::Point),
         Some("MultiPoint") => (Key::Coordinates, Member::Positions),
         Some(other) => {
             return Err(E::custom(format_args!(
@@ -512,6 +606,51 @@ mod tests {
         );
         let feature = r#"{"type":"Feature","geometry":null,"properties":{"a":[1,{"b":"\"x\""}]}}"#;
         assert_eq!(parse_geojson(feature, "f.json").unwrap(), vec![]);
+    }
+
+    /// An empty Point is an empty geometry, as an empty MultiPoint is (RFC 7946, 3.1): no
+    /// point, no error (it was refused while the empty MultiPoint was read). A MultiPoint's
+    /// empty position is still refused: a position holds two coordinates.
+    #[test]
+    fn empty_points_and_multipoints_give_no_point() {
+        for text in [
+            r#"{"type":"Point","coordinates":[]}"#,
+            r#"{"coordinates":[],"type":"Point"}"#,
+            r#"{"type":"MultiPoint","coordinates":[]}"#,
+        ] {
+            assert_eq!(parse_geojson(text, "e.geojson").unwrap(), vec![], "{text}");
+        }
+        let text = r#"{"type":"GeometryCollection","geometries":[
+            {"type":"Point","coordinates":[]},{"type":"Point","coordinates":[1,2]}]}"#;
+        assert_eq!(
+            parse_geojson(text, "e.geojson").unwrap(),
+            vec![Point::new(1.0, 2.0)]
+        );
+        let err = parse_geojson(
+            "{\"type\":\"MultiPoint\",\n\"coordinates\":[[1,2],[]]}",
+            "m.geojson",
+        )
+        .unwrap_err();
+        assert_eq!(err.line, Some(2));
+        assert!(err.to_string().contains("a position must be"), "{err}");
+    }
+
+    /// Features with a null geometry and empty Points and MultiPoints are counted, for the
+    /// command line's note; a read later (sorted keys) counts alike.
+    #[test]
+    fn null_and_empty_geometries_are_counted() {
+        let text = r#"{"features": [
+            {"type": "Feature", "geometry": null},
+            {"geometry": null, "type": "Feature"},
+            {"type": "Feature", "geometry": {"coordinates": [], "type": "MultiPoint"}},
+            {"type": "Feature", "geometry": {"type": "Point", "coordinates": []}},
+            {"type": "Feature", "geometry": {"type": "Point", "coordinates": [1, 2]}}],
+            "type": "FeatureCollection"}"#;
+        let read = parse_geojson_file(text, "n.geojson").unwrap();
+        assert_eq!(read.points, vec![Point::new(1.0, 2.0)]);
+        assert_eq!((read.null_geometries, read.empty_geometries), (2, 2));
+        let read = parse_geojson_file(r#"{"type":"Point","coordinates":[3,4]}"#, "p.json").unwrap();
+        assert_eq!((read.null_geometries, read.empty_geometries), (0, 0));
     }
 
     #[test]

@@ -9,7 +9,8 @@
 //! `.node` files ([`parse_node`]), NumPy `.npy` arrays of shape `(n, 2)` ([`parse_npy`]), CSV
 //! with a header naming the columns or of two numeric columns without one ([`parse_csv`]) or
 //! GeoJSON points ([`parse_geojson`]); [`read_points`] tells
-//! them apart by the file name. Results are written as text, one item per line, as `.npy` arrays
+//! them apart by the file name, [`read_points_with`] reads a file in the format its
+//! [`ReadOptions`] state (standard input has no name). Results are written as text, one item per line, as `.npy` arrays
 //! of indices ([`write_npy_edges`], [`write_npy_triangles`]), as GeoJSON ([`write_geojson`]), or
 //! drawn (SVG, the HTML viewer); an
 //! edge's story is told in a sentence ([`story_text`]). Edge arrays are read back by
@@ -20,6 +21,7 @@ mod decimal;
 mod geojson;
 mod geojson_points;
 mod html;
+mod input;
 mod npy;
 mod pieces;
 mod points;
@@ -43,12 +45,14 @@ pub use csv::parse_csv;
 pub use geojson::{write_geojson, write_geojson_with_crs};
 pub use geojson_points::{parse_geojson, parse_geojson_with_crs};
 pub use html::write_html;
+pub use input::{Column, Columns, InputFormat, PointFile, ReadOptions};
 pub use npy::{
     parse_npy, parse_npy_edges, parse_npy_index_rows, write_npy_edges, write_npy_points,
     write_npy_triangles, write_npy_triangulation_edges, NPY_MAGIC,
 };
 pub use points::{
-    parse_node, parse_points, read_points, read_points_with_crs, text_lines, utf8_text,
+    parse_node, parse_points, read_points, read_points_with, read_points_with_crs, text_lines,
+    utf8_text,
 };
 pub use story::story_text;
 pub use svg::{write_svg, write_svg_stages};

@@ -3,7 +3,7 @@
 //! Both refuse what they cannot read unambiguously, with the file and the line, rather than
 //! guess: a Triangle `.node` file under another name, a decimal comma, a fourth column.
 
-use super::{decimal, IoError, IoErrorKind};
+use super::{decimal, InputFormat, IoError, IoErrorKind, PointFile, ReadOptions};
 use condt::Point;
 use condt::MAX_POINTS;
 use std::fs::File;
@@ -851,9 +851,12 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// blocks straight into the points), `.csv` CSV with a header naming the columns
 /// ([`parse_csv`](super::parse_csv)), `.tsv` the same with tabs between columns (without a header,
 /// the plain format), `.geojson` or `.json` the Point and MultiPoint geometries
-/// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), anything else the plain
+/// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), `.geojsonl` or `.geojsons`
+/// those of a GeoJSON sequence, one object per line
+/// ([`InputFormat::GeoJsonLines`](super::InputFormat::GeoJsonLines)), anything else the plain
 /// format ([`parse_points`]); `-` reads standard input: a NumPy array or a GeoJSON document by
-/// its content (the `.npy` magic bytes, a leading `{`), the plain format otherwise.
+/// its content (the `.npy` magic bytes, a leading `{`), the plain format otherwise
+/// ([`read_points_with`] reads a file, or standard input, in a format stated instead).
 ///
 /// A text file that is not UTF-8 is refused with the line of the first bad byte. A file too
 /// large for memory is an error rather than an abort, and so is one with more than
@@ -877,27 +880,74 @@ pub fn read_points(path: impl AsRef<std::path::Path>) -> Result<Vec<Point>, IoEr
 pub fn read_points_with_crs(
     path: impl AsRef<std::path::Path>,
 ) -> Result<(Vec<Point>, Option<String>), IoError> {
-    let without_crs = |points| (points, None);
+    read_points_with(path, &ReadOptions::default()).map(|file| (file.points, file.crs))
+}
+
+/// [`read_points`] as `options` say: in the format they state whatever the name
+/// ([`ReadOptions::with_format`]; standard input, which has no name, is then read in that format
+/// instead of by its content), and from the x and y columns they choose
+/// ([`ReadOptions::with_columns`]: a CSV or TSV file only, refused before reading for a file
+/// whose name or stated format is another; standard input is then read as CSV). Gives the
+/// points and what else the file said ([`PointFile`]).
+///
+/// ```
+/// use condt::Point;
+/// use condt_io::{read_points_with, Columns, InputFormat, ReadOptions};
+/// let dir = tempfile::tempdir()?;
+/// let path = dir.path().join("table.txt");
+/// std::fs::write(&path, "id,lat,lon\n7,47.5,8.25\n")?;
+/// // By its name, the plain format: a header naming x and y elsewhere is refused.
+/// assert!(condt_io::read_points(&path).is_err());
+/// let read = read_points_with(&path, &ReadOptions::new().with_format(InputFormat::Csv))?;
+/// assert_eq!(read.points, vec![Point::new(8.25, 47.5)]);
+/// assert_eq!(read.crs, None);
+///
+/// let path = dir.path().join("survey.csv");
+/// std::fs::write(&path, "FID,POINT_X,POINT_Y\n1,2600000.5,1200000\n")?;
+/// let columns = Columns::parse("POINT_X,POINT_Y")?;
+/// let read = read_points_with(&path, &ReadOptions::new().with_columns(columns))?;
+/// assert_eq!(read.points, vec![Point::new(2600000.5, 1200000.0)]);
+/// let columns = Columns::parse("easting,northing")?;
+/// let err = read_points_with(&path, &ReadOptions::new().with_columns(columns)).unwrap_err();
+/// assert!(err.to_string().ends_with(":1: no column named \"easting\" (chosen for x) in the \
+///     header \"FID,POINT_X,POINT_Y\"; its columns are \"FID\", \"POINT_X\", \"POINT_Y\""));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn read_points_with(
+    path: impl AsRef<std::path::Path>,
+    options: &ReadOptions,
+) -> Result<PointFile, IoError> {
+    let without_crs = |points| PointFile {
+        points,
+        ..PointFile::default()
+    };
     let path = path.as_ref();
     let stdin = path.as_os_str() == "-";
     // A name that is not UTF-8 is shown lossily; the file is still opened by its own bytes.
     let shown = path.to_string_lossy();
     let name: &str = if stdin { "<stdin>" } else { &shown };
     let io_error = |err: io::Error| IoError::os(name, err);
-    let extension = |ending: &str| {
-        !stdin
-            && path
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case(ending))
+    // `None`: standard input, told by its content below.
+    let format = options.format.or_else(|| InputFormat::of_path(path));
+    let columns_refused = |what: &str| IoError {
+        file: name.to_string(),
+        line: None,
+        kind: IoErrorKind::Content(format!(
+            "columns ({}) are chosen only in CSV and TSV input, and this is read as {what}",
+            options
+                .columns
+                .as_ref()
+                .map_or(String::new(), |c| c.to_string())
+        )),
     };
-    if extension("npy") {
+    if let (Some(format), Some(_)) = (format, &options.columns) {
+        if !matches!(format, InputFormat::Csv | InputFormat::Tsv) {
+            return Err(columns_refused(&format!("the {} format", format.name())));
+        }
+    }
+    if !stdin && format == Some(InputFormat::Npy) {
         return super::npy::read_npy_file(path, name).map(without_crs);
     }
-    let other_format = extension("node")
-        || extension("csv")
-        || extension("tsv")
-        || extension("geojson")
-        || extension("json");
     let bytes = if stdin {
         read_all(io::stdin().lock(), 0)
     } else {
@@ -905,9 +955,9 @@ pub fn read_points_with_crs(
         let meta = file.metadata().ok();
         let size = meta.as_ref().map_or(0, |m| m.len());
         #[cfg(all(feature = "parallel", unix))]
-        if !other_format && meta.is_some_and(|m| m.is_file()) {
+        if format == Some(InputFormat::Text) && meta.is_some_and(|m| m.is_file()) {
             if let Some(points) = parallel::read_pieces(&file, size, name) {
-                return Ok((points, None));
+                return Ok(without_crs(points));
             }
         }
         // `read_pieces` reads at offsets: the file is still at its start.
@@ -917,37 +967,97 @@ pub fn read_points_with_crs(
     // Standard input has no name to tell its format: a NumPy array and a GeoJSON document are
     // told by their content (the magic bytes, which are not UTF-8; a `{`, which no point line
     // starts with), anything else is read as text.
-    if stdin && bytes.starts_with(super::npy::NPY_MAGIC) {
+    let npy = bytes.starts_with(super::npy::NPY_MAGIC);
+    if format.is_none() && npy && options.columns.is_some() {
+        return Err(columns_refused("a NumPy array (by its magic bytes)"));
+    }
+    if format == Some(InputFormat::Npy) || (format.is_none() && npy) {
         return super::npy::parse_npy(&bytes, name).map(without_crs);
     }
     let text = utf8_text(bytes, name)?;
-    if stdin
-        && text
+    if let Some(columns) = &options.columns {
+        let starts_like_json = text
             .trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n'])
-            .starts_with('{')
-    {
-        return super::parse_geojson_with_crs(&text, name);
-    }
-    if !other_format {
-        parse_owned_points(text, name).map(without_crs)
-    } else if extension("node") {
-        parse_node(&text, name).map(without_crs)
-    } else if extension("csv") {
-        super::parse_csv(&text, name).map(without_crs)
-    } else if extension("tsv") {
-        // Tabs by the name, when the file starts with a header as the plain reader tells one;
-        // without (numbers or a comment first) it is the plain format's, which takes tabs,
-        // comments and a third column too.
-        let first = crate::csv::first_line_with_content(&text);
-        let content = first.split('#').next().unwrap_or("");
-        let fields: Vec<&str> = content.split_whitespace().collect();
-        if !fields.is_empty() && fields.iter().all(|f| is_name(f)) {
-            crate::csv::parse_separated(&text, name, b'\t').map(without_crs)
-        } else {
-            parse_owned_points(text, name).map(without_crs)
+            .starts_with('{');
+        return match format {
+            Some(InputFormat::Tsv) => {
+                crate::csv::parse_separated(&text, name, b'\t', Some(columns))
+            }
+            None if starts_like_json => Err(columns_refused("GeoJSON (by its leading `{`)")),
+            // CSV, named or stated, or standard input that is neither .npy nor GeoJSON (the
+            // other formats are refused above).
+            _ => crate::csv::parse_csv_columns(&text, name, Some(columns)),
         }
-    } else {
-        super::parse_geojson_with_crs(&text, name)
+        .map(without_crs);
+    }
+    let format = format.unwrap_or_else(|| {
+        let start = text.trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n']);
+        if start.starts_with('{') {
+            InputFormat::GeoJson
+        } else {
+            InputFormat::Text
+        }
+    });
+    match format {
+        InputFormat::Text if stdin && options.format.is_none() => {
+            // A CSV table on standard input, which has no name to say so, is read as plain
+            // text; when that refuses its first line and the line has commas, say how to read
+            // it as CSV.
+            let first = text_lines(&text)
+                .find(|(_, line)| !line.split('#').next().unwrap_or("").trim().is_empty())
+                .filter(|(_, line)| line.contains(','))
+                .map(|(number, _)| number);
+            parse_owned_points(text, name)
+                .map(without_crs)
+                .map_err(|mut err| {
+                    if let (IoErrorKind::Content(message), true) =
+                        (&mut err.kind, first.is_some() && err.line == first)
+                    {
+                        message.push_str(
+                            "; standard input has no name ending in .csv: state its format to \
+                             read it as CSV (condt's --input-format csv)",
+                        );
+                    }
+                    err
+                })
+        }
+        InputFormat::Text => parse_owned_points(text, name).map(without_crs),
+        InputFormat::Node => parse_node(&text, name).map(without_crs),
+        InputFormat::Csv => super::parse_csv(&text, name).map(without_crs),
+        InputFormat::Tsv => {
+            // Tabs by the name, when the file starts with a header as the plain reader tells
+            // one; without (numbers or a comment first) it is the plain format's, which takes
+            // tabs, comments and a third column too.
+            let first = crate::csv::first_line_with_content(&text);
+            let content = first.split('#').next().unwrap_or("");
+            let fields: Vec<&str> = content.split_whitespace().collect();
+            if !fields.is_empty() && fields.iter().all(|f| is_name(f)) {
+                crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
+            } else {
+                parse_owned_points(text, name).map(without_crs)
+            }
+        }
+        InputFormat::GeoJson => {
+            super::geojson_points::parse_geojson_file(&text, name).map_err(|mut err| {
+                // GeoJSON lines on standard input read as one document: its second object is
+                // trailing characters.
+                if let (IoErrorKind::Content(message), true) =
+                    (&mut err.kind, stdin && options.format.is_none())
+                {
+                    if message.starts_with("trailing characters") {
+                        message.push_str(
+                            "; standard input is read as one GeoJSON document: state its format \
+                             to read one GeoJSON object per line (condt's --input-format \
+                             geojsonl)",
+                        );
+                    }
+                }
+                err
+            })
+        }
+        InputFormat::GeoJsonLines => super::geojson_points::parse_geojson_lines(&text, name),
+        // Read above from the bytes, which are these.
+        InputFormat::Npy => super::npy::parse_npy(text.as_bytes(), name).map(without_crs),
     }
 }
 

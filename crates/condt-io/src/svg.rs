@@ -1,23 +1,32 @@
 //! SVG drawings of a reconstruction, for looking at results and at each stage.
+//!
+//! A panel takes the shape of the points' bounding box, its sides' ratio kept between 1:4 and
+//! 4:1 (a river's long thin set fills a wide panel instead of a tenth of a square one; past
+//! those ratios the panel stays 4:1 and the data a band in it), and holds as much as a 600 by 600
+//! square does; stage panels go three to a row, or fewer when wide.
 
 use condt::geometry::{binary_exponent, Point, Scale};
 use condt::Reconstruction;
 use std::io::{self, Write};
 
-/// Maps data coordinates to one panel of the picture (y up in the data, down in SVG).
+/// Maps data coordinates to one panel of the picture (y up in the data, down in SVG), the
+/// centre of the points' bounding box at the panel's centre.
 struct Frame {
-    min: Point,
+    centre: Point,
     scale: f64,
     /// The panel's top left corner in the picture.
     left: f64,
     top: f64,
+    /// The panel's size.
+    width: f64,
+    height: f64,
 }
 
 impl Frame {
     fn map(&self, p: Point) -> (f64, f64) {
         (
-            self.left + (p.x - self.min.x) * self.scale,
-            self.top + PANEL - (p.y - self.min.y) * self.scale,
+            self.left + self.width / 2.0 + (p.x - self.centre.x) * self.scale,
+            self.top + self.height / 2.0 - (p.y - self.centre.y) * self.scale,
         )
     }
 }
@@ -25,22 +34,32 @@ impl Frame {
 /// A panel: its title, its edges and their colour.
 type Layer<'a> = (&'a str, &'a [[usize; 2]], &'a str);
 
-/// Side of a panel's drawing area, in SVG units.
+/// Side of a square panel, in SVG units; a panel of another shape has the same area.
 const PANEL: f64 = 600.0;
+/// The widest panel's sides' ratio (and the tallest's, inverted).
+const MAX_RATIO: f64 = 4.0;
 const MARGIN: f64 = 16.0;
 /// Height of the band above each panel that holds its title.
 const TITLE_BAND: f64 = 44.0;
-/// Height of the legend band at the bottom.
+/// Height of a line of the legend at the bottom.
 const LEGEND_BAND: f64 = 48.0;
-/// Panels per row: a picture of the six stages is then 1,800 units wide, so that shown at the
-/// width of a screen (about 1,200 pixels) its 26-unit titles are still 17 pixels high.
+/// Most panels per row: a picture of square stage panels is then 1,800 units wide, so that
+/// shown at the width of a screen (about 1,200 pixels) its 26-unit titles are still 17 pixels
+/// high. Wider panels go fewer to a row, so that a row is at most a quarter wider.
 const COLUMNS: usize = 3;
-const FONT: &str = r#"font-family="sans-serif" font-size="26""#;
+const ROW_WIDTH: f64 = 1.25 * PANEL * COLUMNS as f64;
+/// Size of the titles, and the smallest they are made to fit a narrow panel.
+const TITLE_SIZE: f64 = 26.0;
+const SMALLEST_TITLE: f64 = 14.0;
 const EDGE_COLOURS: [&str; 3] = ["#9aa5b1", "#1f6fd1", "#111111"];
 const POINT_COLOUR: &str = "#333333";
 const UNUSED_COLOUR: &str = "#d62728";
 
-fn frame(points: &[Point], panel: usize) -> Frame {
+/// The frame of the first panel for `points` (scaled so that their largest magnitude is below
+/// 2: their spans are finite): a panel of the bounding box's shape, its sides' ratio clamped to
+/// between 1:[`MAX_RATIO`] and [`MAX_RATIO`]:1, of the area of a [`PANEL`]-sided square (whole
+/// units), the box scaled to fill it within [`MARGIN`]. One point, or none, gets a square.
+fn frame(points: &[Point]) -> Frame {
     let (mut lo, mut hi) = (
         Point::new(f64::INFINITY, f64::INFINITY),
         Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
@@ -49,19 +68,59 @@ fn frame(points: &[Point], panel: usize) -> Frame {
         lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
         hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
     }
-    let span = (hi.x - lo.x).max(hi.y - lo.y);
-    let scale = if span > 0.0 && span.is_finite() {
-        (PANEL - 2.0 * MARGIN) / span
-    } else {
-        1.0
+    let (dx, dy) = (hi.x - lo.x, hi.y - lo.y);
+    let finite = dx.is_finite() && dy.is_finite();
+    let ratio = match (finite, dx > 0.0, dy > 0.0) {
+        (true, true, true) => (dx / dy).clamp(1.0 / MAX_RATIO, MAX_RATIO),
+        (true, true, false) => MAX_RATIO,
+        (true, false, true) => 1.0 / MAX_RATIO,
+        _ => 1.0,
     };
-    let min = Point::new(lo.x - MARGIN / scale, lo.y - MARGIN / scale);
+    let root = libm::sqrt(ratio);
+    let (width, height) = ((PANEL * root).round(), (PANEL / root).round());
+    // The scale that fits each span, the smaller of them; a zero span sets none.
+    let fit = |span: f64, side: f64| {
+        if span > 0.0 && finite {
+            (side - 2.0 * MARGIN) / span
+        } else {
+            f64::INFINITY
+        }
+    };
+    let scale = fit(dx, width).min(fit(dy, height));
+    let (scale, centre) = if scale.is_finite() {
+        (scale, Point::new(lo.x + dx / 2.0, lo.y + dy / 2.0))
+    } else {
+        (1.0, points.first().copied().unwrap_or(Point::new(0.0, 0.0)))
+    };
     Frame {
-        min,
+        centre,
         scale,
-        left: (panel % COLUMNS) as f64 * PANEL,
-        top: (panel / COLUMNS) as f64 * (PANEL + TITLE_BAND) + TITLE_BAND,
+        left: 0.0,
+        top: TITLE_BAND,
+        width,
+        height,
     }
+}
+
+/// How many panels of `width` go in a row: as many as [`ROW_WIDTH`] holds, one to
+/// [`COLUMNS`].
+fn columns_for(width: f64) -> usize {
+    let fit = (ROW_WIDTH / width).floor();
+    if fit >= COLUMNS as f64 {
+        COLUMNS
+    } else if fit >= 1.0 {
+        fit as usize
+    } else {
+        1
+    }
+}
+
+/// The size of a title of `chars` characters in a panel of `width`: [`TITLE_SIZE`], or smaller
+/// (not below [`SMALLEST_TITLE`]) where a bold character about 0.6 of the size wide would run
+/// past the panel.
+fn title_size(chars: usize, width: f64) -> f64 {
+    let fits = ((width - 24.0) / (0.6 * chars.max(1) as f64)).floor();
+    fits.clamp(SMALLEST_TITLE, TITLE_SIZE)
 }
 
 fn lines(
@@ -198,12 +257,23 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
         };
         layers.push((title, edges, colour));
     }
-    let columns = layers.len().min(COLUMNS);
-    let rows = layers.len().div_ceil(COLUMNS);
-    let (width, height) = (
-        PANEL * columns as f64,
-        (PANEL + TITLE_BAND) * rows as f64 + LEGEND_BAND,
+    let first = frame(pts);
+    let (panel_width, panel_height) = (first.width, first.height);
+    let per_row = columns_for(panel_width);
+    let columns = layers.len().min(per_row);
+    let rows = layers.len().div_ceil(per_row);
+    let panels_height = (panel_height + TITLE_BAND) * rows as f64;
+    let smoothing = result.smoothing().filter(|_| stages);
+    // The legend in lines as wide as the panels; an item wider than them makes the picture
+    // as wide as it.
+    let (legend, legend_width, legend_lines) = legend(
+        stages,
+        smoothing,
+        panels_height,
+        panel_width * columns as f64,
     );
+    let width = (panel_width * columns as f64).max(legend_width.ceil());
+    let height = panels_height + LEGEND_BAND * legend_lines as f64;
     writeln!(
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}">"#,
@@ -215,7 +285,11 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
         .map(|i| tri.input_of(tri.vertex(i)))
         .collect();
     for (panel, (title, edges, colour)) in layers.iter().enumerate() {
-        let f = frame(pts, panel);
+        let f = Frame {
+            left: (panel % per_row) as f64 * panel_width,
+            top: (panel / per_row) as f64 * (panel_height + TITLE_BAND) + TITLE_BAND,
+            ..first
+        };
         lines(
             out,
             &f,
@@ -255,9 +329,10 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
         } else {
             String::new()
         };
+        let size = title_size(number.chars().count() + title.chars().count(), panel_width);
         writeln!(
             out,
-            r#"<text class="title" x="{}" y="{}" {FONT} font-weight="bold">{number}{title}</text>"#,
+            r#"<text class="title" x="{}" y="{}" font-family="sans-serif" font-size="{size}" font-weight="bold">{number}{title}</text>"#,
             f.left + 12.0,
             f.top - 12.0,
         )?;
@@ -268,74 +343,93 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
         r##"<path fill="none" stroke="#c8c8c8" stroke-width="2" d=""##
     )?;
     for column in 1..columns {
-        let x = column as f64 * PANEL;
-        write!(out, "M{x} 0V{}", height - LEGEND_BAND)?;
+        let x = column as f64 * panel_width;
+        write!(out, "M{x} 0V{panels_height}")?;
     }
     for row in 1..=rows {
-        let y = row as f64 * (PANEL + TITLE_BAND);
+        let y = row as f64 * (panel_height + TITLE_BAND);
         write!(out, "M0 {y}H{width}")?;
     }
     writeln!(out, r#""/>"#)?;
-    let smoothing = result.smoothing().filter(|_| stages);
-    legend(out, stages, smoothing, height - LEGEND_BAND / 2.0)?;
+    out.write_all(legend.as_bytes())?;
     writeln!(out, "</svg>")
 }
 
-/// One line of swatches and labels, vertically centred on `y`.
+/// The legend's swatches and labels, laid out in lines of [`LEGEND_BAND`] from `top`, each no
+/// wider than `width` (an item wider than that alone on its line): the SVG, how far right it
+/// reaches, and how many lines it takes.
 fn legend(
-    out: &mut dyn Write,
     stages: bool,
     smoothing: Option<condt::Smoothing>,
-    y: f64,
-) -> io::Result<()> {
-    let mut items: Vec<(&str, &str, bool)> = Vec::new();
-    if stages {
-        items.push(("Delaunay edge", EDGE_COLOURS[0], false));
-        items.push(("stage edge", EDGE_COLOURS[1], false));
+    top: f64,
+    width: f64,
+) -> (String, f64, usize) {
+    use std::fmt::Write as _;
+    /// A swatch (a dot, a line, or none) and its label.
+    enum Swatch {
+        Dot,
+        Line,
+        None,
     }
-    items.push(("result curve", EDGE_COLOURS[2], false));
-    items.push(("point", POINT_COLOUR, true));
-    items.push((
-        if stages {
-            "point without an edge there"
-        } else {
-            "unused point (outlier)"
-        },
-        UNUSED_COLOUR,
-        true,
-    ));
-    let mut x = 16.0;
-    for (label, colour, is_point) in items {
-        if is_point {
-            writeln!(
-                out,
-                r#"<circle cx="{}" cy="{y}" r="6" fill="{colour}"/>"#,
-                x + 8.0
-            )?;
-            x += 24.0;
-        } else {
-            writeln!(
-                out,
-                r#"<path d="M{x} {y}h36" stroke="{colour}" stroke-width="4"/>"#
-            )?;
-            x += 46.0;
+    let mut items: Vec<(Swatch, &str, String)> = Vec::new();
+    if stages {
+        items.push((Swatch::Line, EDGE_COLOURS[0], "Delaunay edge".into()));
+        items.push((Swatch::Line, EDGE_COLOURS[1], "stage edge".into()));
+    }
+    items.push((Swatch::Line, EDGE_COLOURS[2], "result curve".into()));
+    items.push((Swatch::Dot, POINT_COLOUR, "point".into()));
+    let unused = if stages {
+        "point without an edge there"
+    } else {
+        "unused point (outlier)"
+    };
+    items.push((Swatch::Dot, UNUSED_COLOUR, unused.into()));
+    if let Some(s) = smoothing {
+        let note = format!(
+            "points as the stages saw them, after {} smoothing pass{}",
+            s.passes,
+            if s.passes > 1 { "es" } else { "" }
+        );
+        items.push((Swatch::None, "", note));
+    }
+    let mut out = String::new();
+    let (mut x, mut line, mut reach) = (16.0, 0, 0.0f64);
+    for (swatch, colour, label) in items {
+        let swatch_width = match swatch {
+            Swatch::Dot => 24.0,
+            Swatch::Line => 46.0,
+            Swatch::None => 0.0,
+        };
+        // About 10 units per character at size 20, and a gap.
+        let label_width = 10.0 * label.len() as f64 + 20.0;
+        if x > 16.0 && x + swatch_width + label_width > width {
+            (x, line) = (16.0, line + 1);
         }
-        writeln!(
+        let y = top + LEGEND_BAND * (line as f64 + 0.5);
+        match swatch {
+            Swatch::Dot => {
+                let _ = writeln!(
+                    out,
+                    r#"<circle cx="{}" cy="{y}" r="6" fill="{colour}"/>"#,
+                    x + 8.0
+                );
+            }
+            Swatch::Line => {
+                let _ = writeln!(
+                    out,
+                    r#"<path d="M{x} {y}h36" stroke="{colour}" stroke-width="4"/>"#
+                );
+            }
+            Swatch::None => {}
+        }
+        x += swatch_width;
+        let _ = writeln!(
             out,
             r#"<text x="{x}" y="{}" font-family="sans-serif" font-size="20">{label}</text>"#,
             y + 7.0
-        )?;
-        // About 10 units per character at size 20, and a gap.
-        x += 10.0 * label.len() as f64 + 20.0;
+        );
+        x += label_width;
+        reach = reach.max(x);
     }
-    if let Some(s) = smoothing {
-        writeln!(
-            out,
-            r#"<text x="{x}" y="{}" font-family="sans-serif" font-size="20">points as the stages saw them, after {} smoothing pass{}</text>"#,
-            y + 7.0,
-            s.passes,
-            if s.passes > 1 { "es" } else { "" }
-        )?;
-    }
-    Ok(())
+    (out, reach, line + 1)
 }

@@ -512,3 +512,70 @@ fn a_header_alone_must_name_x_and_y() {
     std::fs::write(&large_header, text.replace("Error: file not found", "x y")).unwrap();
     assert_eq!(read_points(&large_header).unwrap(), []);
 }
+
+/// A GeoJSON lines file (`.geojsonl`, one feature per line, as GDAL's GeoJSONSeq driver writes
+/// it) was read as plain text and refused as "a decimal comma?"; it is read one object per line
+/// (and `.geojsons`, RFC 8142, one after each record separator), its errors naming the file and
+/// the line in it.
+#[test]
+fn geojson_lines_are_read_one_object_per_line() {
+    let feature = |x: f64, y: f64| {
+        format!(
+            r#"{{"type": "Feature", "properties": {{"name": "a, b"}}, "geometry": {{"type": "Point", "coordinates": [{x}, {y}]}}}}"#
+        )
+    };
+    let expected = points(&[(0.0, 0.0), (1.5, 0.0), (0.5, 2.0), (3.0, 4.0)]);
+    let lines = format!(
+        "{}\r\n{}\n\n{}\n{{\"type\": \"MultiPoint\", \"coordinates\": [[3, 4]]}}\n\
+         {{\"type\": \"Feature\", \"properties\": {{}}, \"geometry\": null}}\n",
+        feature(0.0, 0.0),
+        feature(1.5, 0.0),
+        feature(0.5, 2.0)
+    );
+    let file = TempFile::new("sites.geojsonl", lines.as_bytes());
+    assert_eq!(file.read().unwrap(), expected);
+    let read = condt_io::read_points_with(&file.0, &condt_io::ReadOptions::new()).unwrap();
+    assert_eq!(read.null_geometries, 1);
+    // RFC 8142: a record separator before each text, which may span lines.
+    let sequence = format!(
+        "\u{1e}{}\n\u{1e}{{\"type\": \"FeatureCollection\",\n \"features\": [{}, {}]}}\n\u{1e}{}\n",
+        feature(0.0, 0.0),
+        feature(1.5, 0.0),
+        feature(0.5, 2.0),
+        feature(3.0, 4.0)
+    );
+    let file = TempFile::new("sites.GEOJSONS", sequence.as_bytes());
+    assert_eq!(file.read().unwrap(), expected);
+    // Errors name the file and the line in it, not in the record.
+    for (text, line, words) in [
+        (
+            format!(
+                "{}\n\n{{\"type\": \"Point\", \"coordinates\": [1, \"2\"]}}\n",
+                feature(0.0, 0.0)
+            ),
+            3,
+            "a position must be",
+        ),
+        (
+            format!(
+                "{}\n{{\"type\": \"LineString\", \"coordinates\": []}}\n",
+                feature(0.0, 0.0)
+            ),
+            2,
+            "only Point and MultiPoint",
+        ),
+        // A pretty-printed document is not GeoJSON lines: said so.
+        (
+            "{\"type\": \"FeatureCollection\",\n \"features\": []}\n".to_string(),
+            1,
+            "one whole GeoJSON object per line",
+        ),
+    ] {
+        let file = TempFile::new("bad.geojsonl", text.as_bytes());
+        let (at, message) = content_error(file.read());
+        assert_eq!(at, Some(line), "{message}");
+        assert!(message.contains("bad.geojsonl:"), "{message}");
+        assert!(message.contains(words), "{message}");
+        assert!(!message.contains("decimal comma"), "{message}");
+    }
+}

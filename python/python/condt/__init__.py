@@ -6,7 +6,9 @@ what the ``condt`` command line computes:
 
 - ``reconstruct(points, *, paper=False, **params)``: the curves, as ``condt reconstruct``;
 - ``triangulate(points)``: the Delaunay triangulation, as ``condt triangulate``;
-- ``read_points(path)``: the points of a file in any format the command line reads;
+- ``read_points(path)``: the points of a file in any format the command line reads
+  (``read_points_with_crs(path)``: and a GeoJSON input's ``crs``, for
+  ``Reconstruction.to_geojson(crs=...)`` to carry on);
 - ``score(points, output, truth)``: the metrics of ``condt score``;
 - ``condt.dask.reconstruct(points, client, tiles, **params)``: any ConDT pipeline (the default,
   ``paper=True`` and their variants) tiled across a Dask cluster, with ``reconstruct``'s edges
@@ -27,6 +29,7 @@ from ._condt import (
     Triangulation,
     __version__,
     read_points,
+    read_points_with_crs,
     reconstruct,
     score,
     triangulate,
@@ -39,6 +42,7 @@ __all__ = [
     "Triangulation",
     "__version__",
     "read_points",
+    "read_points_with_crs",
     "reconstruct",
     "score",
     "triangulate",

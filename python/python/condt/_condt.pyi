@@ -2,7 +2,7 @@
 # are the runtime's (`help(condt.reconstruct)`); tests/test_api.py checks that these signatures
 # match the module's, as `python -m mypy.stubtest condt._condt` does.
 import os
-from typing import Any, Literal, Optional, TypedDict, Union, final
+from typing import Any, Literal, Mapping, Optional, Tuple, TypedDict, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -11,6 +11,7 @@ __all__ = [
     "reconstruct",
     "triangulate",
     "read_points",
+    "read_points_with_crs",
     "score",
     "Reconstruction",
     "Curve",
@@ -86,7 +87,7 @@ class Reconstruction:
     def timings(self) -> dict[str, float]: ...
     # A duplicate point is its first point: explain(4, 1) tells of 0-1 when 4 repeats 0.
     def explain(self, i: int, j: int) -> EdgeStory: ...
-    def to_geojson(self) -> str: ...
+    def to_geojson(self, *, crs: Union[str, Mapping[str, Any], None] = None) -> str: ...
     def to_shapely(self) -> Any: ...
     def __len__(self) -> int: ...
 
@@ -149,6 +150,9 @@ def reconstruct(
 def triangulate(points: _Points) -> Triangulation: ...
 # A path is always a file: "-" is the file named "-", not standard input.
 def read_points(path: Union[str, bytes, os.PathLike[str], os.PathLike[bytes]]) -> _Coords: ...
+def read_points_with_crs(
+    path: Union[str, bytes, os.PathLike[str], os.PathLike[bytes]],
+) -> Tuple[_Coords, Optional[str]]: ...
 def score(points: _Points, output: _Edges, truth: _Edges) -> _Score: ...
 
 # condt.dask's native half (python/src/tiles.rs); not for direct use.

@@ -1,0 +1,265 @@
+//! How a point file is to be read when its name does not say it all, and what reading it gives.
+//!
+//! Owns: [`InputFormat`] (the formats by name, and a file's format by its name's ending),
+//! [`ReadOptions`] and [`PointFile`], which [`read_points_with`](crate::read_points_with) takes
+//! and returns. The readers themselves are in their modules.
+
+use condt::Point;
+use std::fmt;
+use std::path::Path;
+
+/// A point file's format: what [`read_points`](crate::read_points) tells by a name's ending,
+/// and what [`ReadOptions::with_format`] states whatever the name (standard input has none).
+///
+/// ```
+/// use condt_io::InputFormat;
+/// assert_eq!(InputFormat::named("CSV"), Some(InputFormat::Csv));
+/// assert_eq!(InputFormat::named("json"), Some(InputFormat::GeoJson));
+/// assert_eq!(InputFormat::named("xlsx"), None);
+/// assert_eq!(InputFormat::of_path("pts.TSV"), Some(InputFormat::Tsv));
+/// assert_eq!(InputFormat::of_path("pts.dat"), Some(InputFormat::Text));
+/// assert_eq!(InputFormat::of_path("sites.geojsonl"), Some(InputFormat::GeoJsonLines));
+/// assert_eq!(InputFormat::of_path("-"), None, "standard input: told by its content");
+/// assert_eq!(InputFormat::Npy.name(), "npy");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum InputFormat {
+    /// The plain format, one `x y` per line ([`parse_points`](crate::parse_points)).
+    Text,
+    /// A Triangle `.node` file ([`parse_node`](crate::parse_node)).
+    Node,
+    /// CSV with a header naming the columns ([`parse_csv`](crate::parse_csv)).
+    Csv,
+    /// CSV with tabs between the columns, as a name ending in `.tsv` is read: by the CSV reader
+    /// when its first line is a header, else as the plain format (which takes tabs too).
+    Tsv,
+    /// A NumPy array of shape `(n, 2)` ([`parse_npy`](crate::parse_npy)).
+    Npy,
+    /// The Point and MultiPoint geometries of a GeoJSON document
+    /// ([`parse_geojson`](crate::parse_geojson)).
+    GeoJson,
+    /// A GeoJSON sequence: one GeoJSON object (a Feature, a geometry, a collection) per line,
+    /// as GDAL writes `.geojsonl`, or one after each record separator U+001E (RFC 8142,
+    /// `.geojsons`); each is read as a [`GeoJson`](InputFormat::GeoJson) document, and the
+    /// points are numbered across them in order.
+    GeoJsonLines,
+}
+
+impl InputFormat {
+    /// Every format, in the order the help lists them.
+    pub const ALL: [InputFormat; 7] = [
+        InputFormat::Text,
+        InputFormat::Node,
+        InputFormat::Csv,
+        InputFormat::Tsv,
+        InputFormat::Npy,
+        InputFormat::GeoJson,
+        InputFormat::GeoJsonLines,
+    ];
+
+    /// The format of a name (any case): `txt` (or `text`), `node`, `csv`, `tsv`, `npy`,
+    /// `geojson` (or `json`), `geojsonl` (or `geojsons`); `None` for any other.
+    pub fn named(name: &str) -> Option<InputFormat> {
+        let name = name.to_ascii_lowercase();
+        Some(match name.as_str() {
+            "txt" | "text" => InputFormat::Text,
+            "node" => InputFormat::Node,
+            "csv" => InputFormat::Csv,
+            "tsv" => InputFormat::Tsv,
+            "npy" => InputFormat::Npy,
+            "geojson" | "json" => InputFormat::GeoJson,
+            "geojsonl" | "geojsons" => InputFormat::GeoJsonLines,
+            _ => return None,
+        })
+    }
+
+    /// The name [`named`](InputFormat::named) reads as this format (the one the help shows).
+    pub fn name(self) -> &'static str {
+        match self {
+            InputFormat::Text => "txt",
+            InputFormat::Node => "node",
+            InputFormat::Csv => "csv",
+            InputFormat::Tsv => "tsv",
+            InputFormat::Npy => "npy",
+            InputFormat::GeoJson => "geojson",
+            InputFormat::GeoJsonLines => "geojsonl",
+        }
+    }
+
+    /// The format [`read_points`](crate::read_points) reads `path` in by its name's ending
+    /// (any case; the plain format for any other ending, or none); `None` for `-`, standard
+    /// input, whose format is told by its content.
+    pub fn of_path(path: impl AsRef<Path>) -> Option<InputFormat> {
+        let path = path.as_ref();
+        if path.as_os_str() == "-" {
+            return None;
+        }
+        let by_name = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .and_then(InputFormat::named);
+        Some(by_name.unwrap_or(InputFormat::Text))
+    }
+}
+
+/// A column of a CSV or TSV file: by the name its header gives it (compared without case and
+/// blanks around it), or by its position, numbered from 1.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Column {
+    /// The column whose header names it so (`POINT_X`, `easting`).
+    Named(String),
+    /// The column at this position, the first being 1.
+    Number(usize),
+}
+
+impl fmt::Display for Column {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Column::Named(name) => write!(f, "{name}"),
+            Column::Number(number) => write!(f, "{number}"),
+        }
+    }
+}
+
+/// The columns of a CSV or TSV file that hold x and y ([`ReadOptions::with_columns`]), instead
+/// of those the header names `x` and `y` (or `lon`, `lat`, ...).
+///
+/// ```
+/// use condt_io::{Column, Columns};
+/// let columns = Columns::parse("POINT_X, POINT_Y")?;
+/// assert_eq!(columns.x, Column::Named("POINT_X".into()));
+/// assert_eq!(Columns::parse("2,3")?.y, Column::Number(3));
+/// assert_eq!(Columns::parse("easting,3")?.to_string(), "easting,3");
+/// assert!(Columns::parse("x").unwrap_err().contains("two columns"));
+/// assert!(Columns::parse("0,1").unwrap_err().contains("from 1"));
+/// assert!(Columns::parse("a,A").unwrap_err().contains("the same column"));
+/// # Ok::<(), String>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Columns {
+    /// The column of the first coordinate.
+    pub x: Column,
+    /// The column of the second coordinate.
+    pub y: Column,
+}
+
+impl Columns {
+    /// Reads `X,Y`: two column names or 1-based numbers (a field of digits alone is a
+    /// number), separated by a comma, blanks around each ignored. A name holding a comma cannot
+    /// be given: its number can. Refused, with why: anything but two nonempty columns, the
+    /// number 0, one column for both.
+    pub fn parse(spec: &str) -> Result<Columns, String> {
+        let parts: Vec<&str> = spec.split(',').map(str::trim).collect();
+        let [x, y] = parts[..] else {
+            return Err(format!(
+                "{spec:?}: expected two columns, x and y, separated by a comma (POINT_X,POINT_Y \
+                 or 2,3)"
+            ));
+        };
+        let column = |part: &str| -> Result<Column, String> {
+            if part.is_empty() {
+                return Err(format!("{spec:?}: an empty column name"));
+            }
+            if !part.bytes().all(|b| b.is_ascii_digit()) {
+                return Ok(Column::Named(part.to_string()));
+            }
+            match part.parse::<usize>() {
+                Ok(0) => Err(format!("{spec:?}: columns are numbered from 1")),
+                Ok(number) => Ok(Column::Number(number)),
+                Err(_) => Err(format!(
+                    "{spec:?}: column {part} is past any file's columns"
+                )),
+            }
+        };
+        let (x, y) = (column(x)?, column(y)?);
+        let same = match (&x, &y) {
+            (Column::Named(a), Column::Named(b)) => a.eq_ignore_ascii_case(b),
+            (a, b) => a == b,
+        };
+        if same {
+            return Err(format!("{spec:?}: the same column for x and y"));
+        }
+        Ok(Columns { x, y })
+    }
+}
+
+impl fmt::Display for Columns {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{},{}", self.x, self.y)
+    }
+}
+
+/// How [`read_points_with`](crate::read_points_with) reads a point file; the default reads it
+/// as [`read_points`](crate::read_points) does.
+///
+/// ```
+/// use condt_io::{Columns, InputFormat, ReadOptions};
+/// let options = ReadOptions::new().with_format(InputFormat::Csv);
+/// assert_eq!(options.format, Some(InputFormat::Csv));
+/// assert_eq!(ReadOptions::default().format, None);
+/// let options = ReadOptions::new().with_columns(Columns::parse("easting,northing")?);
+/// assert_eq!(options.columns.map(|c| c.to_string()).as_deref(), Some("easting,northing"));
+/// # Ok::<(), String>(())
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct ReadOptions {
+    /// The format to read the file in whatever its name (or its content, on standard input);
+    /// `None`: by the name's ending, standard input by its content.
+    pub format: Option<InputFormat>,
+    /// The x and y columns of a CSV or TSV file; `None`: those its header names x and y.
+    /// Another format is then refused; standard input without a format stated is read as CSV
+    /// (unless it is a NumPy array or GeoJSON, which are refused).
+    pub columns: Option<Columns>,
+}
+
+impl ReadOptions {
+    /// The default: the format told by the name or the content.
+    pub fn new() -> ReadOptions {
+        ReadOptions::default()
+    }
+
+    /// These options, the file read as `format`.
+    pub fn with_format(mut self, format: InputFormat) -> ReadOptions {
+        self.format = Some(format);
+        self
+    }
+
+    /// These options, x and y read from `columns` of a CSV or TSV file.
+    pub fn with_columns(mut self, columns: Columns) -> ReadOptions {
+        self.columns = Some(columns);
+        self
+    }
+}
+
+/// A point file as [`read_points_with`](crate::read_points_with) read it: its points, and what
+/// else it said that a caller may carry on or tell.
+///
+/// ```
+/// let dir = tempfile::tempdir()?;
+/// let path = dir.path().join("sites.geojson");
+/// std::fs::write(&path, r#"{"type": "FeatureCollection", "features": [
+///   {"type": "Feature", "properties": {}, "geometry": null},
+///   {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": []}},
+///   {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [1, 2]}}
+/// ]}"#)?;
+/// let read = condt_io::read_points_with(&path, &condt_io::ReadOptions::new())?;
+/// assert_eq!(read.points, vec![condt::Point::new(1.0, 2.0)]);
+/// assert_eq!((read.null_geometries, read.empty_geometries), (1, 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct PointFile {
+    /// The points, numbered from 0 in the file's order.
+    pub points: Vec<Point>,
+    /// A GeoJSON input's top-level `"crs"` member as written
+    /// ([`parse_geojson_with_crs`](crate::parse_geojson_with_crs)); `None` for other formats.
+    pub crs: Option<String>,
+    /// GeoJSON features whose geometry is `null`: they give no point (0 for other formats).
+    pub null_geometries: usize,
+    /// GeoJSON Point and MultiPoint geometries whose coordinates are `[]` (empty geometries,
+    /// RFC 7946, section 3.1): they give no point either (0 for other formats).
+    pub empty_geometries: usize,
+}
