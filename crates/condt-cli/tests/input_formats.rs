@@ -233,6 +233,18 @@ fn csv_on_standard_input_is_read_with_input_format() {
         said.contains("<stdin>:1: ") && said.contains("--input-format csv"),
         "{said}"
     );
+    // A header the plain reader takes as a title, over an index column it refuses on line 2:
+    // the hint still names the option, and the index column's names `--input-format node`.
+    let indexed = "FID,POINT_X,POINT_Y\n1,0,0\n2,1,0\n3,1,1\n";
+    let out = condt_with_stdin(&["reconstruct", "-", "-o", "-"], indexed.as_bytes());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("<stdin>:2: ")
+            && said.contains("--input-format csv")
+            && said.contains("--input-format node"),
+        "{said}"
+    );
     // `x,y` on standard input was read before, by the plain reader, and still is.
     let plain = "x,y\n0,0\n1,0\n0.5,2\n";
     let out = condt_with_stdin(&["triangulate", "-"], plain.as_bytes());

@@ -601,8 +601,8 @@ fn index_column_error(source: &Source<'_>, line: usize, start: f64) -> IoError {
         line,
         format!(
             "the first of three columns counts {start}, {}, {}, … like the index column of \
-             a Triangle .node file: name the file *.node to read it as one, or remove the \
-             column",
+             a Triangle .node file: name the file *.node (or state condt's --input-format node) \
+             to read it as one, or remove the column",
             start + 1.0,
             start + 2.0
         ),
@@ -1001,8 +1001,8 @@ pub fn read_points_with(
     match format {
         InputFormat::Text if stdin && options.format.is_none() => {
             // A CSV table on standard input, which has no name to say so, is read as plain
-            // text; when that refuses its first line and the line has commas, say how to read
-            // it as CSV.
+            // text; when that refuses it and its first line has commas, say how to read it as
+            // CSV (the refused line may be a later one: a header of names passes as a title).
             let first = text_lines(&text)
                 .find(|(_, line)| !line.split('#').next().unwrap_or("").trim().is_empty())
                 .filter(|(_, line)| line.contains(','))
@@ -1010,8 +1010,7 @@ pub fn read_points_with(
             parse_owned_points(text, name)
                 .map(without_crs)
                 .map_err(|mut err| {
-                    if let (IoErrorKind::Content(message), true) =
-                        (&mut err.kind, first.is_some() && err.line == first)
+                    if let (IoErrorKind::Content(message), true) = (&mut err.kind, first.is_some())
                     {
                         message.push_str(
                             "; standard input has no name ending in .csv: state its format to \
