@@ -9,7 +9,9 @@
 //!
 //! A loose end `a` (one edge, to `a'`) *faces* a Delaunay neighbour `w` **ahead** (the angle at `a`
 //! between `a'` and `w` above 90°, [`AHEAD`]: a half-plane, since at noisy ends and sharp corners
-//! the last edge is a poor guide) within a **short** gap (`|aw| <= GAP_RATIO · |aa'|`, the paper's
+//! the last edge is a poor guide; where that edge is *crowded*, under `1 / GAP_RATIO` of the edge
+//! before it, noise pushed `a` beside `a'` and every angle at `a` is read from the sample before
+//! `a'` instead, as on a straight walk (4)) within a **short** gap (`|aw| <= GAP_RATIO · |aa'|`, the paper's
 //! `u`: Algorithm 1's bound for one sampling; a longer gap is a real end).
 //!
 //! Candidates: (1) another loose end `b` facing `a`, or facing `a` while the join runs within 60°
@@ -199,9 +201,28 @@ impl<'a> Ends<'a> {
         cos_at(self.point(at), self.point(u), self.point(w))
     }
 
-    /// The cosine of the angle at the loose end `a` between its edge and `w`.
+    /// The cosine of the angle at the loose end `a` between its edge and `w`; where that edge
+    /// is crowded (under `1 / GAP_RATIO` of the edge before it: noise pushed the end beside its
+    /// neighbour, as in a straight walk), between the sample before it and `w`.
     pub(super) fn turn(&self, a: VertexId, w: VertexId) -> f64 {
-        self.cos_of(a, self.along(a), w)
+        self.cos_of(a, self.heading_from(a), w)
+    }
+
+    /// The sample a loose end's direction is read from: its neighbour, or where the edge to it
+    /// is crowded ([`Ends::turn`]), the sample before that.
+    pub(super) fn heading_from(&self, a: VertexId) -> VertexId {
+        let next = self.along(a);
+        if self.graph.degree(next) != 2 {
+            return next;
+        }
+        let beyond = self.graph.onward(next, a);
+        let (pa, pn) = (self.point(a), self.point(next));
+        let crowded = GAP_RATIO * GAP_RATIO * pa.dist2(pn) < pn.dist2(self.point(beyond));
+        if crowded {
+            beyond
+        } else {
+            next
+        }
     }
 
     /// The cosine of the angle at the loose end `a` between the point two edges back and `w` (`1`
@@ -875,6 +896,22 @@ mod tests {
         pts.extend([Point::new(6.4, 0.1), Point::new(6.65, -0.12)]);
         let pieces: Vec<[usize; 2]> = (0..5).chain(6..11).map(|i| [i, i + 1]).collect();
         assert_eq!(joins(&pts, &pieces), vec![[5, 12], [6, 13], [12, 13]]);
+    }
+
+    /// A loose end that noise pushed beside its neighbour (the edge to it a third of the
+    /// spacing, turned 100° off the curve, a little backwards): its edge points away from the
+    /// gap, so only the sample before it tells that the other curve's end lies ahead.
+    #[test]
+    fn a_crowded_loose_end_faces_the_gap_from_the_sample_before() {
+        let angle = 100f64.to_radians();
+        let mut pts: Vec<Point> = (0..4).map(|k| Point::new(k as f64, 0.0)).collect();
+        pts.push(Point::new(
+            3.0 + 0.35 * libm::cos(angle),
+            0.35 * libm::sin(angle),
+        ));
+        pts.extend((0..5).map(|k| Point::new(3.6 + k as f64, 0.35)));
+        let pieces: Vec<[usize; 2]> = (0..4).chain(5..9).map(|i| [i, i + 1]).collect();
+        assert_eq!(joins(&pts, &pieces), vec![[4, 5]]);
     }
 
     /// A turtle walk from the origin: each step turns by the given degrees, then goes the
