@@ -1,6 +1,6 @@
 //! (e) The memory of one reconstruction, step by step: after each step of a `Pipeline`, the
 //! bytes the global allocator holds (a counting wrapper around the system allocator), the most it
-//! held so far, and on Linux the process's resident set and its peak (`/proc/self/status`).
+//! held during the step and so far, and on Linux the process's resident set and its peak (`/proc/self/status`).
 //!
 //! `cargo run --release --example step_memory -- POINT_FILE [owned]` (default parameters; with
 //! `owned` the pipeline takes the points, as `reconstruct_owned` does). Run it with
@@ -17,10 +17,13 @@ struct Counting;
 
 static LIVE: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
+/// The peak since the last printed line (the step's own).
+static STEP_PEAK: AtomicUsize = AtomicUsize::new(0);
 
 fn grew(bytes: usize) {
     let now = LIVE.fetch_add(bytes, Relaxed) + bytes;
     PEAK.fetch_max(now, Relaxed);
+    STEP_PEAK.fetch_max(now, Relaxed);
 }
 
 // SAFETY: every call is passed on to `System` unchanged; the counters only observe sizes.
@@ -69,11 +72,13 @@ fn resident() -> String {
 fn line(step: &str) {
     let mb = |bytes: &AtomicUsize| bytes.load(Relaxed) as f64 / 1e6;
     println!(
-        "{step:>45}: live {:6.1} MB, peak {:6.1} MB{}",
+        "{step:>45}: live {:6.1} MB, step's peak {:6.1} MB, peak {:6.1} MB{}",
         mb(&LIVE),
+        mb(&STEP_PEAK),
         mb(&PEAK),
         resident()
     );
+    STEP_PEAK.store(LIVE.load(Relaxed), Relaxed);
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -468,6 +468,7 @@ impl<'t> Graph<'t> {
     fn step_with(&self, step: Step, [outliers, local, repair]: [&[Edge]; 3]) -> (Graph<'t>, bool) {
         let earlier = Earlier {
             before_outliers: Cow::Borrowed(outliers),
+            cut_by_outliers: None,
             before_local: Cow::Borrowed(local),
             before_repair: Cow::Borrowed(repair),
         };

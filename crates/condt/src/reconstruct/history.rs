@@ -36,6 +36,25 @@ impl History {
         }
     }
 
+    /// The edges the last record's stage removed, when it is `stage` and its output is its input
+    /// without them (the latest output is then `stage`'s): with that output, its input's edges in
+    /// another order, for what depends only on the multiset (memory: not rebuilt).
+    pub(super) fn removed_by_last(&self, stage: Stage) -> Option<&[(u32, Edge)]> {
+        match self.records.last()? {
+            StageRecord {
+                stage: last,
+                undo:
+                    Undo::Delta {
+                        appended: 0,
+                        inserted,
+                        removed,
+                    },
+                ..
+            } if *last == stage && inserted.is_empty() => Some(removed),
+            _ => None,
+        }
+    }
+
     /// The first graph a record holds ([`Undo::Held`]), handed over: the record becomes `First`.
     pub(super) fn take_held(&mut self) -> Option<Vec<Edge>> {
         let record = self

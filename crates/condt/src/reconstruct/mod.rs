@@ -354,6 +354,7 @@ mod tests {
                 }
                 let earlier = Earlier {
                     before_outliers: Cow::Borrowed(&before_outliers),
+                    cut_by_outliers: None,
                     before_local: Cow::Borrowed(
                         if step == Step::ConfirmGivenBack && before_local == current {
                             &current

@@ -548,11 +548,18 @@ impl Run {
         let before_repair = held
             .filter(|_| reads_first)
             .map_or_else(|| input_of(Stage::Repair, reads_first), Cow::Owned);
+        // Repairing again reads the lengths of the IQR stage's input: its output and cut edges.
+        let cut_by_outliers = match step {
+            Step::RepairAgain { .. } => history.removed_by_last(Stage::Outliers),
+            _ => None,
+        };
         let earlier = Earlier {
             before_outliers: input_of(
                 Stage::Outliers,
-                matches!(step, Step::LocalOutliers | Step::RepairAgain { .. }),
+                step == Step::LocalOutliers
+                    || matches!(step, Step::RepairAgain { .. }) && cut_by_outliers.is_none(),
             ),
+            cut_by_outliers,
             before_local: input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack),
             before_repair,
         };

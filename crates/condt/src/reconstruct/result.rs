@@ -516,6 +516,8 @@ pub(super) fn tally(
         }
     }
     edges.truncate(count);
+    // Grown by doubling: up to half of it was room, kept by the result (memory).
+    unused.shrink_to_fit();
     Tally {
         degrees,
         unused,

@@ -360,6 +360,10 @@ pub(crate) enum Step {
 pub(crate) struct Earlier<'a> {
     /// The IQR stage's input ([`Step::Outliers`]), or the step's input when it has not run.
     pub(crate) before_outliers: Cow<'a, [Edge]>,
+    /// For repairing again, the edges the IQR stage cut (with their input positions) when it is
+    /// the stage before and its output is its input without them: `before_outliers` is then not
+    /// rebuilt, only the lengths of its edges are read ([`repair_again::repair_again`]).
+    pub(crate) cut_by_outliers: Option<&'a [(u32, Edge)]>,
     /// The local outlier removal's input ([`Step::LocalOutliers`]), or the step's input likewise.
     pub(crate) before_local: Cow<'a, [Edge]>,
     /// The repair's input, the proximity graph ([`Step::Repair`]), or the step's input likewise.
@@ -423,7 +427,10 @@ impl Step {
             Step::RepairAgain { rule, mode } => repair_again::repair_again(
                 tri,
                 edges,
-                earlier.before_outliers,
+                match earlier.cut_by_outliers {
+                    Some(cut) => repair_again::IqrInput::Cut(cut),
+                    None => repair_again::IqrInput::Listed(earlier.before_outliers),
+                },
                 earlier.before_repair,
                 rule,
                 mode,

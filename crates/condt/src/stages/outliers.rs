@@ -97,12 +97,22 @@ fn total_order_key_value(key: i64) -> f64 {
 
 /// Algorithm 3 on `edges`; unchanged unless fired.
 pub(crate) fn remove_outliers(tri: &Triangulation, edges: &[Edge], rule: IqrRule) -> Outcome {
-    let lengths: Vec<f64> = edges
-        .iter()
-        .map(|&[a, b]| tri.vertex_point(a).dist2(tri.vertex_point(b)))
-        .collect();
+    let length2 = |k: usize| {
+        let [a, b] = edges[k];
+        tri.vertex_point(a).dist2(tri.vertex_point(b))
+    };
+    let lengths: Vec<f64> = (0..edges.len()).map(length2).collect();
     let ends = |[a, b]: Edge| [a.index(), b.index()];
-    Outcome::from(iqr_cut(edges, ends, &lengths, tri.num_points(), rule))
+    // The lengths are the thresholds' scratch space, then measured again as read (memory: one
+    // list of lengths beside the stage's input and output, not two).
+    Outcome::from(iqr_cut_of(
+        edges,
+        ends,
+        lengths,
+        length2,
+        tri.num_points(),
+        rule,
+    ))
 }
 
 /// The edges Algorithm 3 keeps of `edges` (ends by `ends`, below `vertex_count`; squared lengths
@@ -112,6 +122,20 @@ pub(crate) fn iqr_cut<E: Copy>(
     edges: &[E],
     ends: impl Fn(E) -> [usize; 2],
     lengths: &[f64],
+    vertex_count: usize,
+    rule: IqrRule,
+) -> Option<Vec<E>> {
+    let length2 = |k: usize| lengths[k];
+    iqr_cut_of(edges, ends, lengths.to_vec(), length2, vertex_count, rule)
+}
+
+/// [`iqr_cut`] of squared lengths the caller no longer needs (their list is the thresholds'
+/// scratch space, in any order after), reading the `k`-th edge's again as `length2(k)`.
+fn iqr_cut_of<E: Copy>(
+    edges: &[E],
+    ends: impl Fn(E) -> [usize; 2],
+    lengths: Vec<f64>,
+    length2: impl Fn(usize) -> f64,
     vertex_count: usize,
     rule: IqrRule,
 ) -> Option<Vec<E>> {
@@ -127,12 +151,12 @@ pub(crate) fn iqr_cut<E: Copy>(
     if below <= upper {
         return None;
     }
-    let Thresholds { fire, cut } = iqr_thresholds(lengths, rule);
+    let Thresholds { fire, cut } = iqr_thresholds_of(lengths, rule);
     // A vertex all of whose edges exceed the bound, |e| > 2 √T: a point tied in only by long
     // edges. Per vertex, bit 0 records an edge and bit 1 an edge within the bound.
     let mut seen = vec![0u8; vertex_count];
-    for (&edge, &length2) in edges.iter().zip(lengths) {
-        let mark = 1 | (u8::from(length2 <= 4.0 * fire) << 1);
+    for (k, &edge) in edges.iter().enumerate() {
+        let mark = 1 | (u8::from(length2(k) <= 4.0 * fire) << 1);
         let [a, b] = ends(edge);
         seen[a] |= mark;
         seen[b] |= mark;
@@ -146,9 +170,9 @@ pub(crate) fn iqr_cut<E: Copy>(
         edges.len(),
         edges
             .iter()
-            .zip(lengths)
-            .filter(|&(_, &length2)| length2 <= cut)
-            .map(|(&edge, _)| edge),
+            .enumerate()
+            .filter(|&(k, _)| length2(k) <= cut)
+            .map(|(_, &edge)| edge),
     ))
 }
 

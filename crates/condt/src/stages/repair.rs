@@ -180,6 +180,8 @@ struct Branches {
     before: Vec<u32>,
     starts: Vec<u32>,
     neighbors: Vec<VertexId>,
+    /// How many edges join two vertices of degree two or less.
+    between_manifold: usize,
 }
 
 impl Branches {
@@ -208,15 +210,19 @@ impl Branches {
             before,
             starts,
             neighbors: vec![VertexId::INFINITE; total as usize],
+            between_manifold: 0,
         };
         for &[a, b] in edges.iter().rev() {
+            let mut manifold = true;
             for (v, w) in [(a, b), (b, a)] {
                 if let Some(r) = branches.rank(v) {
                     let slot = &mut branches.starts[r + 1];
                     *slot -= 1;
                     branches.neighbors[*slot as usize] = w;
+                    manifold = false;
                 }
             }
+            branches.between_manifold += usize::from(manifold);
         }
         // Every list is full, so each end has come down to the start of the next: shifted back.
         branches.starts.rotate_left(1);
@@ -226,6 +232,12 @@ impl Branches {
 
     fn count(&self) -> usize {
         self.starts.len() - 1
+    }
+
+    /// Whether `v` has three or more edges.
+    #[inline]
+    fn is_branch(&self, v: VertexId) -> bool {
+        self.bits[v.index() / 64] >> (v.index() % 64) & 1 == 1
     }
 
     /// `v`'s rank among the vertices with three or more edges, `None` if it has two or fewer.
@@ -305,26 +317,28 @@ pub(crate) fn repair(
     }
     let vertex_count = tri.num_points();
     let degree = degrees(vertex_count, edges);
-    let manifold = |v: VertexId| degree[v.index()] <= 2;
     if degree.iter().all(|&d| d <= 2) {
         return None;
     }
     let mut graph = Branches::new(&degree, edges);
-    // Lines 6–12: up to four edges per non-manifold vertex, by rank. Each choice reads degrees and
-    // positions alone, so ranges of ranks are chosen on threads when `parallel` (the same list).
+    // From here on the branch bits tell the manifold vertices (memory: the stage's peak).
+    drop(degree);
+    // Lines 6–12: up to four edges per non-manifold vertex, by rank. Each choice reads the branch
+    // bits and positions alone, so ranges of ranks are chosen on threads when `parallel` (the
+    // same list).
     let prefetching = vertex_count >= PREFETCH_FROM;
     let choose = |pairs: &mut needs::Pairs, r: usize, v: VertexId| {
         if prefetching && r + PREFETCH_VERTICES < graph.count() {
-            // A choice reads its neighbours' points and degrees, misses on scattered points: the
-            // lists lie in rank order, so those of a vertex a few ranks on are asked for ahead.
+            // A choice reads its neighbours' points (and branch bits, cached), misses on scattered
+            // points: the lists lie in rank order, so those of a vertex a few ranks on are asked
+            // for ahead.
             for &w in graph.incident(r + PREFETCH_VERTICES) {
                 prefetch(tri.vertex_points(), w.index());
-                prefetch(&degree, w.index());
             }
         }
         let around = graph.incident(r);
         match repair {
-            Repair::Needs => needs::choice(tri, v, around, &degree, pairs),
+            Repair::Needs => needs::choice(tri, v, around, &graph, pairs),
             Repair::CrossingAware => {
                 crossing_choice(tri, v, around).unwrap_or_else(|| paper_choice(tri, v, around))
             }
@@ -334,16 +348,21 @@ pub(crate) fn repair(
     let selections: Vec<[VertexId; 4]> = chosen_by_rank(&graph, parallel, choose);
     // The lists are freed, the ranks kept (memory).
     (graph.starts, graph.neighbors) = (Vec::new(), Vec::new());
+    let manifold = |v: VertexId| !graph.is_branch(v);
     // Whether the non-manifold `w` selected `v`.
     let selected_by =
         |w: VertexId, v: VertexId| graph.rank(w).is_some_and(|r| selections[r].contains(&v));
-    // Algorithm 2, lines 3–5: edges between manifold vertices stay. Output edges are input edges,
-    // each once, so the input's length is room enough (memory).
-    let mut kept: Vec<Edge> = Vec::with_capacity(edges.len());
-    kept.extend(edges.iter().filter(|&&[a, b]| manifold(a) && manifold(b)));
+    // Which of its selected edges each non-manifold vertex lists (bit `k` for `chosen[k]`), so
+    // that the output can be counted before it is allocated at its exact length (memory: the
+    // stage's peak); each edge is listed by one end.
+    let mut count = graph.between_manifold;
+    let mut listed = Vec::with_capacity(selections.len());
     for (v, chosen) in graph.vertices().zip(&selections) {
-        for &w in chosen.iter().filter(|w| !w.is_infinite()) {
-            let keep = if manifold(w) {
+        let mut bits = 0u8;
+        for (k, &w) in chosen.iter().enumerate() {
+            let keep = if w.is_infinite() {
+                false
+            } else if manifold(w) {
                 true
             } else if repair == Repair::Mutual || repair == Repair::Needs {
                 // Both ends are non-manifold: both must select it; the smaller end lists it.
@@ -352,12 +371,22 @@ pub(crate) fn repair(
                 // A union: listed by the smaller end when both selected it.
                 !(w < v && selected_by(w, v))
             };
-            if keep {
+            bits |= u8::from(keep) << k;
+        }
+        count += bits.count_ones() as usize;
+        listed.push(bits);
+    }
+    // Algorithm 2, lines 3–5: edges between manifold vertices stay.
+    let mut kept: Vec<Edge> = Vec::with_capacity(count);
+    kept.extend(edges.iter().filter(|&&[a, b]| manifold(a) && manifold(b)));
+    for ((v, chosen), bits) in graph.vertices().zip(&selections).zip(listed) {
+        for (k, &w) in chosen.iter().enumerate() {
+            if bits >> k & 1 == 1 {
                 kept.push(ordered(v, w));
             }
         }
     }
-    kept.shrink_to_fit();
+    debug_assert_eq!(kept.len(), count);
     Some(kept)
 }
 

@@ -17,24 +17,46 @@ use crate::adjacency::{collect_exact, Edge};
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 
+/// The IQR stage's input, as repairing again reads it.
+pub(crate) enum IqrInput<'a> {
+    /// The list itself.
+    Listed(Cow<'a, [Edge]>),
+    /// The stage's output (the step's input) and these edges it cut, with their input positions:
+    /// the same lengths, which is all the thresholds read (memory: the list is not rebuilt).
+    Cut(&'a [(u32, Edge)]),
+}
+
 /// The rule on `edges`, the IQR stage's output; `repaired` is that stage's input, `proximity`
 /// the repair's. Each is freed once read, before the repair runs (memory: its peak).
 pub(crate) fn repair_again(
     tri: &Triangulation,
     edges: &[Edge],
-    repaired: Cow<'_, [Edge]>,
+    repaired: IqrInput<'_>,
     proximity: Cow<'_, [Edge]>,
     rule: IqrRule,
     mode: Repair,
     parallel: bool,
 ) -> Outcome {
     // The IQR stage only removes edges: it cut exactly when the lists differ.
-    if edges == &*repaired {
+    let unchanged = match &repaired {
+        IqrInput::Cut(cut) => cut.is_empty(),
+        IqrInput::Listed(repaired) => edges == &**repaired,
+    };
+    if unchanged {
         return Outcome::UNCHANGED;
     }
     let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
-    let threshold = iqr_thresholds_of(repaired.iter().map(length2).collect(), rule).cut;
+    // The thresholds are order statistics: of the lengths alone, in any order.
+    let lengths = match &repaired {
+        IqrInput::Cut(cut) => edges
+            .iter()
+            .chain(cut.iter().map(|(_, edge)| edge))
+            .map(length2)
+            .collect(),
+        IqrInput::Listed(repaired) => repaired.iter().map(length2).collect(),
+    };
     drop(repaired);
+    let threshold = iqr_thresholds_of(lengths, rule).cut;
     let short = collect_exact(
         proximity.len(),
         proximity
@@ -102,6 +124,7 @@ mod tests {
             floor: true,
         };
         let (same, also) = (Cow::Borrowed(&edges[..]), Cow::Borrowed(&edges[..]));
+        let same = IqrInput::Listed(same);
         let outcome = repair_again(&tri, &edges, same, also, rule, Repair::Needs, false);
         assert!(outcome.edges.is_none());
     }

@@ -4,7 +4,8 @@
 //! and the triangulation; it may not edit the graph (the repair in [`super`] applies the choice).
 
 use super::{
-    angle_above, angle_at, paper_choice, PAIR_ANGLE, PAIR_COS2, STRAIGHT_ANGLE, STRAIGHT_COS2,
+    angle_above, angle_at, paper_choice, Branches, PAIR_ANGLE, PAIR_COS2, STRAIGHT_ANGLE,
+    STRAIGHT_COS2,
 };
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
@@ -21,18 +22,18 @@ pub(crate) const NEED_RATIO: f64 = 1.3;
 pub(super) type Pairs = Vec<(f64, VertexId, VertexId)>;
 
 /// What the non-manifold vertex `v` keeps ([`VertexId::INFINITE`] in unused slots); `around` is
-/// its adjacency, `degree` every vertex's degree in the graph being repaired.
+/// its adjacency, `branches` the graph's vertices of degree three or more.
 pub(super) fn choice(
     tri: &Triangulation,
     v: VertexId,
     around: &[VertexId],
-    degree: &[u32],
+    branches: &Branches,
     pairs: &mut Pairs,
 ) -> [VertexId; 4] {
     if let Some(crossing) = crossing(tri, v, around, pairs) {
         return crossing;
     }
-    match needed_pair(tri, v, around, degree) {
+    match needed_pair(tri, v, around, branches) {
         Some([a, b]) => [a, b, VertexId::INFINITE, VertexId::INFINITE],
         None => paper_choice(tri, v, around),
     }
@@ -43,7 +44,7 @@ fn needed_pair(
     tri: &Triangulation,
     v: VertexId,
     around: &[VertexId],
-    degree: &[u32],
+    branches: &Branches,
 ) -> Option<[VertexId; 2]> {
     let p = tri.vertex_point(v);
     let length2 = |w: VertexId| p.dist2(tri.vertex_point(w));
@@ -59,7 +60,7 @@ fn needed_pair(
         }
     }
     let bound = NEED_RATIO * NEED_RATIO * second;
-    let needed = |w: VertexId| degree[w.index()] <= 2 && length2(w) <= bound;
+    let needed = |w: VertexId| !branches.is_branch(w) && length2(w) <= bound;
     let mut best: Option<((bool, u32, f64), [VertexId; 2])> = None;
     for (i, &a) in around.iter().enumerate() {
         for &b in &around[i + 1..] {
