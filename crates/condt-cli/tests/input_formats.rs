@@ -245,6 +245,13 @@ fn csv_on_standard_input_is_read_with_input_format() {
             && said.contains("--input-format node"),
         "{said}"
     );
+    // A decimal comma keeps its own advice: reading it as CSV would be wrong too.
+    let out = condt_with_stdin(&["reconstruct", "-", "-o", "-"], b"1,5 2,5\n3,5 4,5\n");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        said.contains("decimal comma") && !said.contains("--input-format"),
+        "{said}"
+    );
     // `x,y` on standard input was read before, by the plain reader, and still is.
     let plain = "x,y\n0,0\n1,0\n0.5,2\n";
     let out = condt_with_stdin(&["triangulate", "-"], plain.as_bytes());

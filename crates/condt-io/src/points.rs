@@ -1010,8 +1010,12 @@ pub fn read_points_with(
             parse_owned_points(text, name)
                 .map(without_crs)
                 .map_err(|mut err| {
+                    // A decimal comma's refusal is not a CSV table's: its own advice stands.
                     if let (IoErrorKind::Content(message), true) = (&mut err.kind, first.is_some())
                     {
+                        if message.contains("decimal comma") {
+                            return err;
+                        }
                         message.push_str(
                             "; standard input has no name ending in .csv: state its format to \
                              read it as CSV (condt's --input-format csv)",

@@ -8,7 +8,8 @@
 //! Why: at a junction of three curves (map borders, a T) the repair keeps two of the sample's three
 //! edges, so the third curve ends one sample short; gap closing leaves such ends alone on purpose.
 //! Rule (each test with its reason: docs/condt.md, *Junctions*): a loose end `a` joins the
-//! Delaunay neighbour `c` with two edges that it faces within 30° ([`STRAIGHT`]), within
+//! Delaunay neighbour `c` with two edges that it faces within 30° ([`STRAIGHT`]; a crowded end's
+//! angles read from the sample before its neighbour, as gap closing reads them), within
 //! [`GAP_RATIO`] times `c`'s shorter edge (its longer where the two are not one sampling), with
 //! three branches (`Ends::branch`), straightest ahead among those that pass (ties by id), and
 //! chosen by no other loose end. All choices are made on the graph as it came in: the result
