@@ -9,6 +9,7 @@
 //! closing quote with more of the field after it, `"1"5`, which it would read as `15`) and
 //! numbers the lines.
 
+use super::input::same_name;
 use super::points::{quoted, Source};
 use super::{Column, Columns, IoError};
 use condt::Point;
@@ -107,8 +108,9 @@ pub(crate) fn first_line_with_content(text: &str) -> &str {
 ///
 /// With `chosen`, the first record is a header unless it is all numbers, or, when both columns
 /// are chosen by number, unless either of its chosen fields is a number (`a,1,2` is a point
-/// with a label, and `a,1,NA` a point with a bad y, not a header to skip). A column chosen by
-/// name needs a header that names it once.
+/// with a label, and `a,1,NA` a point with a bad y, not a header to skip); a first record that
+/// is a point must hold both columns chosen (a number past its end is refused naming it). A
+/// column chosen by name needs a header that names it once.
 pub(crate) fn parse_separated(
     text: &str,
     file: &str,
@@ -165,8 +167,9 @@ pub(crate) fn parse_separated(
                         .get(k)
                         .is_some_and(|f| f.trim().parse::<f64>().is_ok())
                 };
+                // A row of numbers is never a header, whichever columns are chosen.
                 let is_point = match numbered {
-                    Some((x, y)) => number(x) || number(y),
+                    Some((x, y)) => number(x) || number(y) || all_numbers(&record),
                     None => all_numbers(&record),
                 };
                 width = record.len();
@@ -181,6 +184,24 @@ pub(crate) fn parse_separated(
                             ),
                         ));
                     };
+                    // A chosen column past the first row's end: said of the row, not of a
+                    // later field count.
+                    let (x, y) = numbered;
+                    if let Some((k, axis)) = [(x, "x"), (y, "y")]
+                        .into_iter()
+                        .find(|&(k, _)| k >= record.len())
+                    {
+                        return Err(source.error(
+                            line,
+                            format!(
+                                "column {} (chosen for {axis}) does not exist: the row has {} \
+                                 (numbers, not a header): {}",
+                                k + 1,
+                                counted(record.len(), "column"),
+                                quoted(raw.trim_end_matches(['\r', '\n']))
+                            ),
+                        ));
+                    }
                     headerless = true;
                     *columns.insert(numbered)
                 } else {
@@ -241,6 +262,11 @@ pub(crate) fn parse_separated(
     Ok(points)
 }
 
+/// A count and its noun, plural unless the count is one: "1 column", "3 columns".
+fn counted(n: usize, noun: &str) -> String {
+    format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
+}
+
 /// Whether the first record is a point rather than a header: exactly two fields, both numbers.
 /// With more columns, which two are x and y is a guess (`id,x,y`), so a header must say.
 fn headerless_pair(record: &csv::StringRecord) -> bool {
@@ -267,9 +293,12 @@ fn header_columns(
         match (named.next(), named.next()) {
             (Some(column), None) => Ok(column),
             (None, _) => {
-                // A semicolon-separated file reads as one column here: say so.
+                // A semicolon-separated file reads as one column here: say so. With columns
+                // to choose from, say how to choose them.
                 let hint = if raw.contains(';') && record.len() == 1 {
                     "; this reader splits columns at commas, not semicolons"
+                } else if record.len() >= 2 {
+                    "; choose the x and y columns by name or number with condt's --columns X,Y"
                 } else {
                     ""
                 };
@@ -331,15 +360,14 @@ fn chosen_columns(
             Column::Number(number) => Err(source.error(
                 line,
                 format!(
-                    "column {number} is chosen for {axis}, but the header has {} columns: {}",
-                    record.len(),
+                    "column {number} is chosen for {axis}, but the header has {}: {}",
+                    counted(record.len(), "column"),
                     names()
                 ),
             )),
             Column::Named(name) => {
                 let wanted = name.trim();
-                let mut named =
-                    (0..record.len()).filter(|&k| record[k].trim().eq_ignore_ascii_case(wanted));
+                let mut named = (0..record.len()).filter(|&k| same_name(&record[k], wanted));
                 match (named.next(), named.next()) {
                     (Some(k), None) => Ok(k),
                     (None, _) => Err(source.error(
@@ -479,6 +507,33 @@ mod tests {
         }
         let err = parse_csv("x;y\n1;2\n", "semi.csv").unwrap_err().to_string();
         assert!(err.contains("not semicolons"), "{err}");
+        assert!(
+            !err.contains("--columns"),
+            "one column, nothing to choose: {err}"
+        );
+    }
+
+    /// A header without x (or y) but with columns to choose from names the option that
+    /// chooses them.
+    #[test]
+    fn a_header_without_x_and_y_names_the_columns_option() {
+        for (text, axis) in [
+            ("FID,POINT_X,POINT_Y\n1,2,3\n", "x"),
+            ("easting\tlat\n1\t2\n", "x"),
+            ("x,northing\n1,2\n", "y"),
+        ] {
+            let err = parse_csv(text, "t.csv").unwrap_err();
+            assert_eq!(err.line, Some(1), "{err}");
+            let err = err.to_string();
+            assert!(
+                err.contains(&format!("the header has no {axis} column"))
+                    && err.ends_with(
+                        "; choose the x and y columns by name or number with condt's \
+                         --columns X,Y"
+                    ),
+                "{err}"
+            );
+        }
     }
 
     /// A first line with tabs and no comma makes the file tab-separated (TSV); with a comma in
@@ -577,6 +632,36 @@ mod tests {
                 "2,3",
                 2,
                 "c.csv:2: 2 fields, but the y column is field 3",
+            ),
+            // A first row of numbers is a point, not a header, whatever columns are chosen: a
+            // chosen column past its end does not exist (it once read as "the header has 1
+            // columns").
+            (
+                "\n5\n6\n",
+                "2,3",
+                2,
+                "c.csv:2: column 2 (chosen for x) does not exist: the row has 1 column (numbers, \
+                 not a header): \"5\"",
+            ),
+            (
+                "1.5,2\n3,4\n",
+                "2,3",
+                1,
+                "c.csv:1: column 3 (chosen for y) does not exist: the row has 2 columns \
+                 (numbers, not a header): \"1.5,2\"",
+            ),
+            (
+                "1\t2\n",
+                "4,3",
+                1,
+                "c.csv:1: column 4 (chosen for x) does not exist: the row has 2 columns \
+                 (numbers, not a header): \"1\\t2\"",
+            ),
+            (
+                "FID\n1\n",
+                "1,2",
+                1,
+                "c.csv:1: column 2 is chosen for y, but the header has 1 column: \"FID\"",
             ),
         ] {
             let err = read(text, spec).unwrap_err();

@@ -89,7 +89,9 @@ pub(crate) fn parse_geojson_file(text: &str, file: &str) -> Result<PointFile, Io
 /// one after each (RFC 8142, `.geojsons`; a record may then span lines). Each record is read as
 /// [`parse_geojson_file`] reads a document, blank lines and records skipped; the points are
 /// numbered across the records in order, an error names the line in the whole file, and the
-/// first top-level `"crs"` of a record is kept.
+/// first top-level `"crs"` of a record is kept; a later record's that differs from it (as JSON
+/// values: spacing and member order aside) is not, and the line of the first such is given
+/// ([`PointFile::crs_dropped_at`]) for the caller to tell.
 pub(crate) fn parse_geojson_lines(text: &str, file: &str) -> Result<PointFile, IoError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let separator = '\u{1e}';
@@ -140,14 +142,19 @@ fn read_records(
         text,
         points: Vec::new(),
         crs: None,
+        crs_record: 0,
+        record: 0,
+        crs_dropped: None,
         failure: None,
         null_geometries: 0,
         empty_geometries: 0,
     };
-    for range in records {
+    let mut crs_dropped_at = None;
+    for (number, range) in records.enumerate() {
         let record = &text[range.clone()];
         // Offsets of members read later are taken from the record's start.
         state.text = record;
+        state.record = number;
         let mut deserializer = serde_json::Deserializer::from_str(record);
         let read = Member::Object
             .read(&mut state, 0, &mut deserializer)
@@ -166,10 +173,14 @@ fn read_records(
                 kind: IoErrorKind::Content(message),
             });
         }
+        if let (None, Some(at)) = (crs_dropped_at, state.crs_dropped) {
+            crs_dropped_at = Some(line_at(text.as_bytes(), range.start + at));
+        }
     }
     Ok(PointFile {
         points: state.points,
         crs: state.crs,
+        crs_dropped_at,
         null_geometries: state.null_geometries,
         empty_geometries: state.empty_geometries,
     })
@@ -183,6 +194,12 @@ struct State<'t> {
     points: Vec<Point>,
     /// The document's own `"crs"` member, as written.
     crs: Option<String>,
+    /// The record (of a GeoJSON sequence; 0 for a document) `crs` was read from, and the one
+    /// being read.
+    crs_record: usize,
+    record: usize,
+    /// The offset in the first record that gave a different `"crs"` from `crs`, dropped.
+    crs_dropped: Option<usize>,
     failure: Option<(usize, String)>,
     /// Features whose geometry is `null`.
     null_geometries: usize,
@@ -227,6 +244,18 @@ impl State<'_> {
             return Err(E::custom("(reported above)"));
         }
         Ok(())
+    }
+}
+
+/// Whether two JSON texts hold the same value (spacing and the order of members aside; text
+/// that is not JSON compared as written).
+fn same_json(a: &str, b: &str) -> bool {
+    match (
+        serde_json::from_str::<serde_json::Value>(a),
+        serde_json::from_str::<serde_json::Value>(b),
+    ) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
     }
 }
 
@@ -425,6 +454,20 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
             if key == Key::Crs && self.depth == 0 && self.state.crs.is_none() {
                 let raw = map.next_value::<&'de RawValue>()?;
                 self.state.crs = Some(raw.get().to_string());
+                self.state.crs_record = self.state.record;
+                continue;
+            }
+            // A later record of a sequence with another crs: kept out, its place kept to tell.
+            if key == Key::Crs && self.depth == 0 && self.state.record != self.state.crs_record {
+                let raw = map.next_value::<&'de RawValue>()?;
+                let state = &mut *self.state;
+                let kept = state.crs.as_deref().unwrap_or_default();
+                if state.crs_dropped.is_none() && !same_json(kept, raw.get()) {
+                    // `raw` lies inside the record: its offset there, by address.
+                    let at =
+                        (raw.get().as_ptr() as usize).wrapping_sub(state.text.as_ptr() as usize);
+                    state.crs_dropped = Some(at.min(state.text.len()));
+                }
                 continue;
             }
             if matches!(key, Key::Other | Key::Crs) || seen.contains(&key) {

@@ -103,14 +103,49 @@ impl InputFormat {
     }
 }
 
-/// A column of a CSV or TSV file: by the name its header gives it (compared without case and
-/// blanks around it), or by its position, numbered from 1.
+/// A column of a CSV or TSV file: by the name its header gives it (compared without ASCII
+/// case and blanks around it), or by its position, numbered from 1.
+///
+/// ```
+/// use condt_io::{Column, Columns};
+/// // Digits alone are a number; anything else is a name, kept as written.
+/// let columns = Columns::parse("3, Easting")?;
+/// assert_eq!(columns.x, Column::Number(3));
+/// assert_eq!(columns.y, Column::Named("Easting".to_string()));
+/// assert_eq!(columns.y.to_string(), "Easting");
+/// // Names are one column when the header lookup would find the same one: case and blanks
+/// // around them aside (`==` compares them as written).
+/// assert!(columns.y.same(&Column::Named(" EASTING ".into())));
+/// assert!(!columns.y.same(&Column::Named("Eastings".into())));
+/// assert!(!columns.x.same(&Column::Named("3".into())), "a name, not a position");
+/// # Ok::<(), String>(())
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Column {
     /// The column whose header names it so (`POINT_X`, `easting`).
     Named(String),
     /// The column at this position, the first being 1.
     Number(usize),
+}
+
+impl Column {
+    /// Whether `self` and `other` choose one column in any header, compared as the header
+    /// lookup compares a name with a header's field: names equal without ASCII case and blanks
+    /// around them, or equal numbers (a name and a number are not compared: that needs the
+    /// header).
+    pub fn same(&self, other: &Column) -> bool {
+        match (self, other) {
+            (Column::Named(a), Column::Named(b)) => same_name(a, b),
+            (a, b) => a == b,
+        }
+    }
+}
+
+/// Whether a column name and a header's field (or two names) name one column: equal without
+/// ASCII case and blanks around them. The one comparison of the header lookup and of
+/// [`Column::same`].
+pub(crate) fn same_name(a: &str, b: &str) -> bool {
+    a.trim().eq_ignore_ascii_case(b.trim())
 }
 
 impl fmt::Display for Column {
@@ -148,7 +183,8 @@ impl Columns {
     /// Reads `X,Y`: two column names or 1-based numbers (a field of digits alone is a
     /// number), separated by a comma, blanks around each ignored. A name holding a comma cannot
     /// be given: its number can. Refused, with why: anything but two nonempty columns, the
-    /// number 0, one column for both.
+    /// number 0, one column for both ([`Column::same`]: two names that differ only in ASCII
+    /// case are one column, as the header lookup finds them).
     pub fn parse(spec: &str) -> Result<Columns, String> {
         let parts: Vec<&str> = spec.split(',').map(str::trim).collect();
         let [x, y] = parts[..] else {
@@ -173,14 +209,26 @@ impl Columns {
             }
         };
         let (x, y) = (column(x)?, column(y)?);
-        let same = match (&x, &y) {
-            (Column::Named(a), Column::Named(b)) => a.eq_ignore_ascii_case(b),
-            (a, b) => a == b,
-        };
-        if same {
+        if x.same(&y) {
             return Err(format!("{spec:?}: the same column for x and y"));
         }
         Ok(Columns { x, y })
+    }
+}
+
+impl Columns {
+    /// Whether `self` and `other` choose the same x and y columns in any header
+    /// ([`Column::same`]: `POINT_X,POINT_Y` and `point_x, point_y` do).
+    ///
+    /// ```
+    /// use condt_io::Columns;
+    /// let given = Columns::parse("POINT_X,POINT_Y")?;
+    /// assert!(given.same(&Columns::parse("point_x, Point_Y")?));
+    /// assert!(!given.same(&Columns::parse("POINT_Y,POINT_X")?));
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn same(&self, other: &Columns) -> bool {
+        self.x.same(&other.x) && self.y.same(&other.y)
     }
 }
 
@@ -257,6 +305,12 @@ pub struct PointFile {
     /// A GeoJSON input's top-level `"crs"` member as written
     /// ([`parse_geojson_with_crs`](crate::parse_geojson_with_crs)); `None` for other formats.
     pub crs: Option<String>,
+    /// In a GeoJSON sequence, the line of the first record whose top-level `"crs"` differs
+    /// from the one kept ([`crs`](PointFile::crs), the first record's to carry one): only the
+    /// first is carried on, as a document's first `"crs"` is, and this says one was left out
+    /// for the caller to tell (`condt` notes it on standard error). `None` for other formats
+    /// and when every record that carries one carries the same.
+    pub crs_dropped_at: Option<usize>,
     /// GeoJSON features whose geometry is `null`: they give no point (0 for other formats).
     pub null_geometries: usize,
     /// GeoJSON Point and MultiPoint geometries whose coordinates are `[]` (empty geometries,

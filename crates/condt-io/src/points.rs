@@ -514,7 +514,7 @@ fn lines_by<const ONE_PASS: bool>(
             n => {
                 let hint = if n == 4 && points.is_empty() {
                     " (a Triangle .node header `count 2 attributes markers`? Name the file \
-                     *.node to read it as one)"
+                     *.node, or state condt's --input-format node, to read it as one)"
                 } else {
                     ""
                 };
@@ -1042,17 +1042,26 @@ pub fn read_points_with(
         }
         InputFormat::GeoJson => {
             super::geojson_points::parse_geojson_file(&text, name).map_err(|mut err| {
-                // GeoJSON lines on standard input read as one document: its second object is
-                // trailing characters.
-                if let (IoErrorKind::Content(message), true) =
-                    (&mut err.kind, stdin && options.format.is_none())
-                {
+                // GeoJSON lines (NDJSON, a GeoJSON sequence) read as one document: its second
+                // object is trailing characters. Say how to read one object per line.
+                if let IoErrorKind::Content(message) = &mut err.kind {
                     if message.starts_with("trailing characters") {
-                        message.push_str(
-                            "; standard input is read as one GeoJSON document: state its format \
-                             to read one GeoJSON object per line (condt's --input-format \
-                             geojsonl)",
-                        );
+                        message.push_str(match (stdin, options.format.is_some()) {
+                            (true, false) => {
+                                "; standard input is read as one GeoJSON document: state its \
+                                 format to read one GeoJSON object per line (condt's \
+                                 --input-format geojsonl)"
+                            }
+                            (true, true) => {
+                                "; a GeoJSON document is one object: to read one GeoJSON \
+                                 object per line, state condt's --input-format geojsonl"
+                            }
+                            (false, _) => {
+                                "; a GeoJSON document is one object: to read one GeoJSON \
+                                 object per line, name the file *.geojsonl or state condt's \
+                                 --input-format geojsonl"
+                            }
+                        });
                     }
                 }
                 err

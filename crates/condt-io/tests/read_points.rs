@@ -120,7 +120,11 @@ fn node_rows_under_another_name_are_refused() {
     let whole = TempFile::new("whole.txt", b"2 2 0 0\n0 0.5 0.25\n1 3.5 1.0\n");
     let (line, text) = content_error(whole.read());
     assert_eq!(line, Some(1), "{text}");
-    assert!(text.contains(".node"), "{text}");
+    // The refusal names both ways to read it as one: the name and the stated format.
+    assert!(
+        text.contains("Name the file *.node, or state condt's --input-format node"),
+        "{text}"
+    );
     // A third column that is not an index is still ignored, as documented.
     let xyz = TempFile::new("xyz.txt", b"0.5 0.25 1\n3.5 1.0 1\n2.0 4.0 1\n");
     assert_eq!(
@@ -578,4 +582,82 @@ fn geojson_lines_are_read_one_object_per_line() {
         assert!(message.contains(words), "{message}");
         assert!(!message.contains("decimal comma"), "{message}");
     }
+}
+
+/// GeoJSON lines (NDJSON) in a file named `.json` or `.geojson` are read as one document and
+/// refused at their second object; the refusal says how to read one object per line.
+#[test]
+fn geojson_lines_under_a_document_name_are_told_how_to_be_read() {
+    let lines = "{\"type\": \"Point\", \"coordinates\": [0, 0]}\n\
+                 {\"type\": \"Point\", \"coordinates\": [1, 0]}\n";
+    for name in ["sites.json", "sites.GeoJSON"] {
+        let file = TempFile::new(name, lines.as_bytes());
+        let (line, message) = content_error(file.read());
+        assert_eq!(line, Some(2), "{message}");
+        assert!(
+            message.contains(&format!("{name}:2: trailing characters"))
+                && message.ends_with(
+                    "a GeoJSON document is one object: to read one GeoJSON object per line, \
+                     name the file *.geojsonl or state condt's --input-format geojsonl"
+                ),
+            "{message}"
+        );
+        let read = condt_io::read_points_with(
+            &file.0,
+            &condt_io::ReadOptions::new().with_format(condt_io::InputFormat::GeoJsonLines),
+        )
+        .unwrap();
+        assert_eq!(read.points, points(&[(0.0, 0.0), (1.0, 0.0)]));
+    }
+}
+
+/// A GeoJSON sequence keeps the first record's `crs`, as a document keeps its first; a later
+/// record's that differs is left out, and its line given for the caller to tell (the same crs
+/// written otherwise, or none, is no difference).
+#[test]
+fn a_later_crs_in_a_geojson_sequence_is_told_not_dropped_silently() {
+    let utm = r#"{"type": "name", "properties": {"name": "EPSG:32632"}}"#;
+    let utm_again = r#"{ "properties": {"name":"EPSG:32632"},"type":"name" }"#;
+    let other = r#"{"type": "name", "properties": {"name": "EPSG:2056"}}"#;
+    let record = |crs: Option<&str>, x: u32| match crs {
+        Some(crs) => format!(
+            "{{\"type\": \"FeatureCollection\", \"crs\": {crs}, \"features\": [{{\"type\": \
+             \"Feature\", \"properties\": {{}}, \"geometry\": {{\"type\": \"Point\", \
+             \"coordinates\": [{x}, 0]}}}}]}}\n"
+        ),
+        None => format!("{{\"type\": \"Point\", \"coordinates\": [{x}, 0]}}\n"),
+    };
+    let read = |text: String| {
+        let file = TempFile::new("crs.geojsonl", text.as_bytes());
+        condt_io::read_points_with(&file.0, &condt_io::ReadOptions::new()).unwrap()
+    };
+    let same = read(record(Some(utm), 0) + &record(None, 1) + &record(Some(utm_again), 2));
+    assert_eq!((same.points.len(), same.crs.as_deref()), (3, Some(utm)));
+    assert_eq!(same.crs_dropped_at, None);
+    let differs = read(
+        record(None, 0)
+            + &record(Some(utm), 1)
+            + "\n"
+            + &record(Some(other), 2)
+            + &record(Some(other), 3),
+    );
+    assert_eq!(
+        (differs.points.len(), differs.crs.as_deref()),
+        (4, Some(utm))
+    );
+    assert_eq!(
+        differs.crs_dropped_at,
+        Some(4),
+        "the first record that differs"
+    );
+    // A document's own second crs is not a sequence's record: as before, the first is kept.
+    let file = TempFile::new(
+        "two.geojson",
+        format!(
+        "{{\"type\": \"FeatureCollection\", \"crs\": {utm}, \"crs\": {other}, \"features\": []}}"
+    )
+        .as_bytes(),
+    );
+    let doc = condt_io::read_points_with(&file.0, &condt_io::ReadOptions::new()).unwrap();
+    assert_eq!((doc.crs.as_deref(), doc.crs_dropped_at), (Some(utm), None));
 }
