@@ -381,7 +381,7 @@ default on standard output and for a name without an extension, such as /dev/nul
 triangulation and the graph after every stage that ran, side by side; a panel is shaped like the
 points' bounding box, from 1:4 to 4:1), `geojson` (.geojson: one
 LineString per curve, on the input's coordinates; a GeoJSON input's `crs` member is carried
-on), `html` (.html: a self-contained page to explore every stage: layers, pan
+on, a GeoJSON sequence's first), `html` (.html: a self-contained page to explore every stage: layers, pan
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 
@@ -907,19 +907,29 @@ fn refused(err: Error) -> CliError {
 
 /// One setting that several options can make: the first option that set it is kept, so that a
 /// second one saying otherwise is reported instead of silently winning.
-struct Setting<T> {
+pub(crate) struct Setting<T> {
     value: Option<(T, String)>,
 }
 
 impl<T: PartialEq> Setting<T> {
-    fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Setting { value: None }
     }
 
     fn set(&mut self, value: T, said: impl Into<String>) -> Result<(), CliError> {
+        self.set_alike(value, said, T::eq)
+    }
+
+    /// [`set`](Setting::set), a second value that is `same` as the first being no contradiction.
+    fn set_alike(
+        &mut self,
+        value: T,
+        said: impl Into<String>,
+        same: impl Fn(&T, &T) -> bool,
+    ) -> Result<(), CliError> {
         let said = said.into();
         match &self.value {
-            Some((old, old_said)) if *old != value => Err(usage(format!(
+            Some((old, old_said)) if !same(old, &value) => Err(usage(format!(
                 "{old_said} and {said} contradict each other: give one of them"
             ))),
             Some(_) => Ok(()),
@@ -936,7 +946,7 @@ impl<T: PartialEq> Setting<T> {
 }
 
 /// `--input-format F` (`flag` as written), checked and set once.
-fn input_format_option(
+pub(crate) fn input_format_option(
     setting: &mut Setting<InputFormat>,
     flag: &str,
     value: Option<&OsString>,
@@ -953,7 +963,7 @@ fn input_format_option(
 }
 
 /// `--columns X,Y` (`flag` as written), checked and set once.
-fn columns_option(
+pub(crate) fn columns_option(
     setting: &mut Setting<Columns>,
     flag: &str,
     value: Option<&OsString>,
@@ -965,13 +975,15 @@ fn columns_option(
     })?;
     let spec = text(value, flag)?;
     let columns = Columns::parse(spec).map_err(|why| usage(format!("{flag} {why}")))?;
-    setting.set(columns, format!("{flag} {spec}"))
+    // Given twice, the same columns as the header lookup finds them (`POINT_X,POINT_Y` and
+    // `point_x,point_y`) are taken once, the first as written.
+    setting.set_alike(columns, format!("{flag} {spec}"), Columns::same)
 }
 
 /// How INPUT (`None`: standard input) is read, by the options given. `--columns` with an INPUT
 /// that is read in another format than CSV or TSV (by its name or `--input-format`) is refused
 /// here, before anything is read.
-fn read_options(
+pub(crate) fn read_options(
     input_format: Setting<InputFormat>,
     columns: Setting<Columns>,
     input: Option<&Path>,
@@ -989,9 +1001,14 @@ fn read_options(
             } else {
                 "its name"
             };
+            // Text can be a CSV table under another name; an array or GeoJSON cannot.
+            let advice = match format {
+                InputFormat::Text | InputFormat::Node => "; --input-format csv reads it as CSV",
+                _ => ": columns apply to CSV and TSV input only",
+            };
             return Err(usage(format!(
                 "--columns {columns} chooses the columns of CSV or TSV input, but {} is read as \
-                 {} by {by}; --input-format csv reads it as CSV",
+                 {} by {by}{advice}",
                 shown_input(input),
                 format.name()
             )));
@@ -1251,8 +1268,14 @@ fn read_input(
     Ok(read_points_with(path, options)?)
 }
 
-fn shown_input(input: Option<&Path>) -> String {
+/// INPUT as messages name it: `<stdin>` for standard input (`None`).
+pub(crate) fn shown_input(input: Option<&Path>) -> String {
     input.map_or("<stdin>".into(), |p| p.display().to_string())
+}
+
+/// A file operand as messages name it, `-` being standard input: [`shown_input`]'s names.
+pub(crate) fn shown_operand(path: &Path) -> String {
+    shown_input((path.as_os_str() != "-").then_some(path))
 }
 
 /// A count and its noun, plural unless the count is one: "1 point", "0 points", "2 points".
@@ -1294,6 +1317,18 @@ pub(crate) fn note_skipped_geometries(file: &str, null: usize, empty: usize) {
         note(format_args!(
             "{file}: skipped {}: they hold no point (the points are numbered without them)",
             skipped.join(" and ")
+        ));
+    }
+}
+
+/// A note when a GeoJSON sequence's record at `line` of `file` gave another `crs` than the one
+/// kept (the first read): it is left out, not carried on, and the points are read as given.
+pub(crate) fn note_dropped_crs(file: &str, line: Option<usize>) {
+    if let Some(line) = line {
+        note(format_args!(
+            "{file}:{line}: this record's crs differs from the first one read; only the first \
+             is kept (a GeoJSON output carries it on), and every point is read as given, \
+             without conversion"
         ));
     }
 }
@@ -1343,6 +1378,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     let PointFile {
         points,
         crs,
+        crs_dropped_at,
         null_geometries,
         empty_geometries,
         ..
@@ -1413,6 +1449,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
             null_geometries,
             empty_geometries,
         );
+        note_dropped_crs(&shown_input(args.input.as_deref()), crs_dropped_at);
         note_duplicates(count, result.triangulation().num_vertices());
         let curves = result.curves();
         let closed = curves.iter().filter(|c| c.is_closed()).count();
@@ -1441,6 +1478,7 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     )?;
     let PointFile {
         points,
+        crs_dropped_at,
         null_geometries,
         empty_geometries,
         ..
@@ -1474,6 +1512,7 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
             null_geometries,
             empty_geometries,
         );
+        note_dropped_crs(&shown_input(args.input.as_deref()), crs_dropped_at);
         note_duplicates(count, tri.num_vertices());
         note_no_triangles(&tri, args.edges);
     }

@@ -22,12 +22,14 @@
 //! it a wrong file is told so. Messages quote a line escaped and cut short, never the file's raw
 //! bytes.
 
-use crate::cli::{usage, CliError};
+use crate::cli::{
+    columns_option, input_format_option, read_options, shown_operand, usage, CliError, Setting,
+};
 use crate::options::{self, Opt};
 use condt_eval::score::{score, EdgeProblem, Score};
 use condt_io::{
     parse_npy_index_rows, read_points_with, text_lines, utf8_text, IoError, IoErrorKind, PointFile,
-    ReadOptions, NPY_MAGIC,
+    NPY_MAGIC,
 };
 use std::ffi::OsString;
 use std::fmt::Write as _;
@@ -38,11 +40,13 @@ const ABOUT: &str = "\
 condt score: compare an edge list with a ground truth
 
 Usage:
-  condt score POINTS OUTPUT TRUTH [--json] [--quiet]
+  condt score POINTS OUTPUT TRUTH [--json] [--quiet] [--input-format F] [--columns X,Y]
 
 Example:
   condt reconstruct case.pts -o case.edges && condt score case.pts case.edges case.gt
 
+POINTS is read as `condt reconstruct` reads its INPUT, with the same --input-format and
+--columns, so that it numbers the points as the reconstruction did.
 Edge files hold one edge `i j` per line, in point numbers of POINTS (`#` lines and blank lines
 are skipped); a name ending in .npy (any case) is a NumPy array of shape (m, 2) of integers
 (uint32 or int64 as `condt reconstruct -o out.npy` writes it, or any other width), either byte
@@ -56,8 +60,9 @@ exist, a self-loop, a repeated edge) scores 0 and its first problem is printed w
 (row, for .npy); a malformed TRUTH is an error. A file that is not an edge list (not text, an
 array of another dtype or shape, text with lines but none of them an edge) is an error, OUTPUT
 or TRUTH; an empty file, or one of comments and blank lines only, is an empty edge list (an
-empty OUTPUT scores 0 against any edge of TRUTH). A note on standard error tells what POINTS
-skipped (GeoJSON features without a point); --quiet leaves it out.
+empty OUTPUT scores 0 against any edge of TRUTH). Notes on standard error tell what POINTS
+skipped (GeoJSON features without a point, a GeoJSON sequence's later crs); --quiet leaves
+them out.
 The metrics are those of the evaluation suite's score.py.
 ";
 
@@ -66,6 +71,8 @@ The metrics are those of the evaluation suite's score.py.
 pub(crate) enum ScoreId {
     Json,
     Quiet,
+    InputFormat,
+    Columns,
     Help,
 }
 
@@ -88,6 +95,27 @@ pub(crate) const OPTIONS: &[Opt<ScoreId>] = &[
 the same",
     },
     Opt {
+        id: ScoreId::InputFormat,
+        short: None,
+        long: "input-format",
+        negatable: false,
+        value: Some("F"),
+        help: "read POINTS as F whatever its name: txt, node, csv, tsv, npy,
+geojson or geojsonl (standard input, which has no name, is otherwise
+told by its content: .npy, GeoJSON, else txt), as reconstruct's
+--input-format",
+    },
+    Opt {
+        id: ScoreId::Columns,
+        short: None,
+        long: "columns",
+        negatable: false,
+        value: Some("X,Y"),
+        help: "read x and y from these columns of a CSV or TSV POINTS: header
+names or numbers from 1 (POINT_X,POINT_Y, 2,3), as reconstruct's
+--columns; standard input is then read as CSV",
+    },
+    Opt {
         id: ScoreId::Help,
         short: Some('h'),
         long: "help",
@@ -105,9 +133,20 @@ pub(crate) fn help() -> String {
 /// Runs `condt score` on its arguments (after the command name); returns what to print.
 pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     let lexed = options::lex(args, OPTIONS, "score: ")?;
-    // `--help` is answered before the arguments are read (`cli::run`).
-    let json = lexed.given.iter().any(|g| g.id == ScoreId::Json);
-    let quiet = lexed.given.iter().any(|g| g.id == ScoreId::Quiet);
+    let (mut json, mut quiet) = (false, false);
+    let (mut input_format, mut columns) = (Setting::new(), Setting::new());
+    for given in &lexed.given {
+        match given.id {
+            ScoreId::Json => json = true,
+            ScoreId::Quiet => quiet = true,
+            ScoreId::InputFormat => {
+                input_format_option(&mut input_format, &given.flag, given.value.as_ref())?
+            }
+            ScoreId::Columns => columns_option(&mut columns, &given.flag, given.value.as_ref())?,
+            // Answered before the arguments are read (`cli::run`).
+            ScoreId::Help => {}
+        }
+    }
     let files: Vec<PathBuf> = lexed.operands.into_iter().map(PathBuf::from).collect();
     let [points, output, truth] = <[PathBuf; 3]>::try_from(files).map_err(|files| {
         usage(format!(
@@ -125,19 +164,19 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
              once: give - for one of POINTS, OUTPUT and TRUTH"
         )));
     }
+    let stdin = points.as_os_str() == "-";
+    let options = read_options(input_format, columns, (!stdin).then_some(points.as_path()))?;
     let PointFile {
         points: read,
+        crs_dropped_at,
         null_geometries,
         empty_geometries,
         ..
-    } = read_points_with(&points, &ReadOptions::new())?;
+    } = read_points_with(&points, &options)?;
     if !quiet {
-        let shown = if points.as_os_str() == "-" {
-            "<stdin>".to_string()
-        } else {
-            points.display().to_string()
-        };
+        let shown = shown_operand(&points);
         crate::cli::note_skipped_geometries(&shown, null_geometries, empty_geometries);
+        crate::cli::note_dropped_crs(&shown, crs_dropped_at);
     }
     let points = read;
     let truth = read_edges(&truth)?;
@@ -234,11 +273,7 @@ impl EdgeFile {
 
 fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
     let stdin = path.as_os_str() == "-";
-    let name = if stdin {
-        "<stdin>".to_string()
-    } else {
-        path.display().to_string()
-    };
+    let name = shown_operand(path);
     let os_error = |error| {
         CliError::Io(IoError {
             file: name.clone(),

@@ -707,3 +707,130 @@ fn score_takes_quiet_as_the_other_commands_do() {
     let help = condt(&[score, Path::new("--help")]);
     assert!(String::from_utf8_lossy(&help.stdout).contains("-q, --quiet"));
 }
+
+/// `condt score` reads POINTS as `reconstruct` reads INPUT: `--input-format F` and
+/// `--columns X,Y` (a CSV read with `--columns` was reconstructed but could not be scored);
+/// `--columns` on a POINTS it cannot apply to is a usage error, and the help shows both.
+#[test]
+fn score_reads_points_with_input_format_and_columns() {
+    let dir = scratch_dir();
+    let circle = sample(
+        &[Shape::circle(Point::new(3.0, -1.0), 2.0)],
+        &Sampling::new(0.3),
+    )
+    .unwrap();
+    let csv: String = "FID,POINT_Y,POINT_X\n".to_string()
+        + &circle
+            .points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| format!("{k},{:?},{:?}\n", p.y, p.x))
+            .collect::<String>();
+    let survey = write(dir.path(), "survey.csv", &csv);
+    let table = write(dir.path(), "survey.txt", &csv);
+    let truth = write(dir.path(), "circle.gt", &edges_text(&circle.edges));
+    let output = dir.path().join("circle.edges");
+    let run = Command::new(binary())
+        .args([Path::new("reconstruct"), &survey, Path::new("-o"), &output])
+        .args(["--columns", "POINT_X,POINT_Y"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{run:?}");
+    let score = |points: &Path, extra: &[&str]| {
+        Command::new(binary())
+            .args([Path::new("score"), points, &output, &truth])
+            .args(["--json"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    for (points, extra) in [
+        (&survey, &["--columns", "POINT_X,POINT_Y"][..]),
+        (&survey, &["--columns=3,2"][..]),
+        (
+            &table,
+            &["--input-format", "csv", "--columns", "point_x,point_y"][..],
+        ),
+    ] {
+        let out = score(points, extra);
+        assert!(out.status.success(), "{extra:?}: {out:?}");
+        let json = String::from_utf8(out.stdout).unwrap();
+        assert_eq!(json_value(&json, "exact"), "true", "{extra:?}");
+        assert_eq!(
+            json_value(&json, "n_points"),
+            circle.points.len().to_string()
+        );
+    }
+    // Without the option the header names no x: refused naming the file and line, and the
+    // option that helps.
+    let out = score(&survey, &[]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("survey.csv:1: the header has no x column") && said.contains("--columns X,Y"),
+        "{said}"
+    );
+    // A format the columns cannot apply to, by name or stated: a usage error before reading.
+    let npy = dir.path().join("points.npy");
+    for (points, extra, words) in [
+        (
+            &npy,
+            &["--columns", "1,2"][..],
+            "points.npy is read as npy by its name: columns apply to CSV and TSV input only",
+        ),
+        (
+            &survey,
+            &["--columns", "1,2", "--input-format", "geojson"][..],
+            "read as geojson by --input-format: columns apply to CSV and TSV input only",
+        ),
+        (
+            &survey,
+            &["--input-format", "xlsx"][..],
+            "unknown input format",
+        ),
+    ] {
+        let out = score(points, extra);
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {said}");
+        assert!(said.contains(words), "{extra:?}: {said}");
+        assert!(said.contains("condt help score"), "{said}");
+    }
+    let help = Command::new(binary())
+        .args(["score", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8(help.stdout).unwrap();
+    assert!(
+        help.contains("--input-format F") && help.contains("--columns X,Y"),
+        "{help}"
+    );
+}
+
+/// A GeoJSON sequence whose later record gives another crs than the first: a note names the
+/// file and line (only the first is kept), and `--quiet` leaves it out.
+#[test]
+fn score_notes_a_dropped_crs() {
+    let dir = scratch_dir();
+    let record = |name: &str, coordinates: &str| {
+        format!(
+            "{{\"type\": \"FeatureCollection\", \"crs\": {{\"type\": \"name\", \"properties\": \
+             {{\"name\": \"{name}\"}}}}, \"features\": [{{\"type\": \"Feature\", \"properties\": \
+             {{}}, \"geometry\": {{\"type\": \"MultiPoint\", \"coordinates\": {coordinates}}}}}]}}\n"
+        )
+    };
+    let points = write(
+        dir.path(),
+        "sites.geojsonl",
+        &(record("EPSG:32632", "[[0, 0], [1, 0]]") + &record("EPSG:2056", "[[0.5, 2]]")),
+    );
+    let edges = write(dir.path(), "out.edges", "0 1\n1 2\n0 2\n");
+    let out = condt(&[Path::new("score"), &points, &edges, &edges]);
+    assert!(out.status.success(), "{out:?}");
+    let note = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        note.contains("sites.geojsonl:2: this record's crs differs from the first one read"),
+        "{note}"
+    );
+    let out = condt(&[Path::new("score"), &points, &edges, &edges, Path::new("-q")]);
+    assert!(out.status.success() && out.stderr.is_empty(), "{out:?}");
+}

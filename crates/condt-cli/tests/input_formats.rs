@@ -475,3 +475,142 @@ fn columns_choose_the_x_and_y_of_a_csv() {
         assert!(said.contains(words), "{args:?}: {said}");
     }
 }
+
+/// `--columns` for an input read as a NumPy array or GeoJSON (by its name or
+/// `--input-format`) says that columns apply to CSV and TSV only: `--input-format csv`, which
+/// the refusal of a text file suggests, cannot help there.
+#[test]
+fn columns_for_an_array_or_geojson_say_they_apply_to_csv_only() {
+    for (args, words) in [
+        (
+            &["triangulate", "pts.npy", "--columns", "1,2"][..],
+            "pts.npy is read as npy by its name: columns apply to CSV and TSV input only",
+        ),
+        (
+            &["reconstruct", "sites.GeoJSON", "--columns", "1,2"][..],
+            "sites.GeoJSON is read as geojson by its name: columns apply to CSV and TSV input \
+             only",
+        ),
+        (
+            &["triangulate", "sites.geojsonl", "--columns", "1,2"][..],
+            "read as geojsonl by its name: columns apply to CSV and TSV input only",
+        ),
+        (
+            &[
+                "triangulate",
+                "-",
+                "--columns",
+                "1,2",
+                "--input-format",
+                "npy",
+            ][..],
+            "<stdin> is read as npy by --input-format: columns apply to CSV and TSV input only",
+        ),
+    ] {
+        let out = condt_with_stdin(args, b"");
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {said}");
+        assert!(said.contains(words), "{args:?}: {said}");
+        assert!(!said.contains("--input-format csv"), "{args:?}: {said}");
+    }
+    // A text file may be a CSV table under another name: there the advice stands.
+    let out = condt_with_stdin(&["triangulate", "pts.txt", "--columns", "1,2"], b"");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        said.contains("--input-format csv reads it as CSV"),
+        "{said}"
+    );
+}
+
+/// `--columns` given twice is taken once when both choose the same columns as the header
+/// lookup finds them (names without case and blanks around them), and refused otherwise.
+#[test]
+fn columns_given_twice_are_compared_as_the_header_lookup_compares() {
+    let csv = b"FID,POINT_X,POINT_Y\n0,0,0\n1,1,0\n2,0.5,2\n";
+    let out = condt_with_stdin(
+        &[
+            "triangulate",
+            "-",
+            "--columns",
+            "POINT_X,POINT_Y",
+            "--columns",
+            " point_x , Point_Y",
+        ],
+        csv,
+    );
+    assert!(out.status.success(), "{out:?}");
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+    let out = condt_with_stdin(
+        &[
+            "triangulate",
+            "-",
+            "--columns",
+            "POINT_X,POINT_Y",
+            "--columns",
+            "POINT_Y,POINT_X",
+        ],
+        csv,
+    );
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{said}");
+    assert!(
+        said.contains("--columns POINT_X,POINT_Y and --columns POINT_Y,POINT_X contradict"),
+        "{said}"
+    );
+}
+
+/// GeoJSON lines in a file named `.json` are read as one document; the refusal names
+/// `--input-format geojsonl`, which reads them.
+#[test]
+fn geojson_lines_in_a_json_file_are_told_of_geojsonl() {
+    let dir = scratch_dir();
+    let path = dir.path().join("sites.json");
+    std::fs::write(
+        &path,
+        "{\"type\":\"Point\",\"coordinates\":[0,0]}\n\
+         {\"type\":\"Point\",\"coordinates\":[1,0]}\n\
+         {\"type\":\"Point\",\"coordinates\":[0.5,2]}\n",
+    )
+    .unwrap();
+    let path = path.to_str().unwrap();
+    let out = condt_with_stdin(&["triangulate", path], b"");
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains(&format!("{path}:2: trailing characters"))
+            && said.contains("--input-format geojsonl"),
+        "{said}"
+    );
+    let out = condt_with_stdin(&["triangulate", path, "--input-format", "geojsonl"], b"");
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+}
+
+/// A GeoJSON sequence whose later record gives another crs: a note on standard error names
+/// the file and the line, and `--quiet` leaves it out; the points are read all the same.
+#[test]
+fn a_later_crs_of_a_geojson_sequence_is_noted() {
+    let lines = "{\"type\":\"FeatureCollection\",\"crs\":{\"type\":\"name\",\"properties\":\
+                 {\"name\":\"EPSG:32632\"}},\"features\":[]}\n\
+                 {\"type\":\"Point\",\"coordinates\":[0,0]}\n\
+                 {\"type\":\"Point\",\"coordinates\":[1,0]}\n\
+                 {\"type\":\"FeatureCollection\",\"crs\":{\"type\":\"name\",\"properties\":\
+                 {\"name\":\"EPSG:2056\"}},\"features\":[{\"type\":\"Feature\",\"properties\":{},\
+                 \"geometry\":{\"type\":\"Point\",\"coordinates\":[0.5,2]}}]}\n";
+    for command in ["triangulate", "reconstruct"] {
+        let out = condt_with_stdin(
+            &[command, "-", "--input-format", "geojsonl"],
+            lines.as_bytes(),
+        );
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{said}");
+        assert!(
+            said.contains("condt: <stdin>:4: this record's crs differs from the first one read"),
+            "{command}: {said}"
+        );
+        let out = condt_with_stdin(
+            &[command, "-", "--input-format", "geojsonl", "-q"],
+            lines.as_bytes(),
+        );
+        assert!(out.status.success() && out.stderr.is_empty(), "{out:?}");
+    }
+}
