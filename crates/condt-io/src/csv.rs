@@ -195,7 +195,7 @@ pub(crate) fn parse_separated(
                             line,
                             format!(
                                 "column {} (chosen for {axis}) does not exist: the row has {} \
-                                 (numbers, not a header): {}",
+                                 (a point, not a header): {}",
                                 k + 1,
                                 counted(record.len(), "column"),
                                 quoted(raw.trim_end_matches(['\r', '\n']))
@@ -640,7 +640,7 @@ mod tests {
                 "\n5\n6\n",
                 "2,3",
                 2,
-                "c.csv:2: column 2 (chosen for x) does not exist: the row has 1 column (numbers, \
+                "c.csv:2: column 2 (chosen for x) does not exist: the row has 1 column (a point, \
                  not a header): \"5\"",
             ),
             (
@@ -648,14 +648,22 @@ mod tests {
                 "2,3",
                 1,
                 "c.csv:1: column 3 (chosen for y) does not exist: the row has 2 columns \
-                 (numbers, not a header): \"1.5,2\"",
+                 (a point, not a header): \"1.5,2\"",
             ),
             (
                 "1\t2\n",
                 "4,3",
                 1,
                 "c.csv:1: column 4 (chosen for x) does not exist: the row has 2 columns \
-                 (numbers, not a header): \"1\\t2\"",
+                 (a point, not a header): \"1\\t2\"",
+            ),
+            // A labelled point (its chosen x a number) likewise.
+            (
+                "a,1.5\n",
+                "2,3",
+                1,
+                "c.csv:1: column 3 (chosen for y) does not exist: the row has 2 columns (a point, \
+                 not a header): \"a,1.5\"",
             ),
             (
                 "FID\n1\n",
