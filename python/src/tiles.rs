@@ -78,12 +78,12 @@ impl Flow {
 /// ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
-/// clump tests and gap choices of their result; the given-back test one ring ([`_tests_kept`],
+/// clump tests, gap choices and tip candidates (eight hops) of their result; the given-back test one ring ([`_tests_kept`],
 /// the rule on the driver, [`_gathered_given_back`]); an outlier tail nine: from an owned edge
 /// of a tail of four back to its loose end and on to the far end of the five edges it hangs
 /// from, whose last inner point's edges are read for its degree ([`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 8] = [
-    (Stage::LocalOutliers, 6),
+    (Stage::LocalOutliers, 8),
     (Stage::Clumps, 1),
     (Stage::GivenBack, 1),
     (Stage::Gaps, 6),
@@ -672,13 +672,15 @@ pub(crate) fn _gathered_local_outliers<'py>(
     edges: &Bound<'py, PyArray2<i64>>,
     tests: PyReadonlyArray1<'py, u8>,
     choices: PyReadonlyArray2<'py, i64>,
+    tips: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
     let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
+    let tips: Vec<[usize; 4]> = rows_of(&tips, "a tip candidate")?;
     let tests = tests.as_slice()?;
     gathered_answer(
         py,
-        py.detach(|| condt::tiled::remove_gathered_local_outliers(n, &edges, tests, &rows)),
+        py.detach(|| condt::tiled::remove_gathered_local_outliers(n, &edges, tests, &rows, &tips)),
     )
 }
 
@@ -760,9 +762,9 @@ pub(crate) fn _choices_kept<'py>(
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let (_, tiled) = tiled_params(params)?;
     let has = |stage: Stage| tiled.later.contains(&stage);
-    // Rule 4 of the local outlier removal keeps pieces gap closing would join.
+    // Rule 4 of the local outlier removal keeps pieces gap closing or a tip's move would join.
     let gaps = step == Stage::Gaps.key() && (has(Stage::Gaps) || has(Stage::LocalOutliers));
-    let tips = step == Stage::Tips.key() && has(Stage::Tips);
+    let tips = step == Stage::Tips.key() && (has(Stage::Tips) || has(Stage::LocalOutliers));
     if !gaps && !tips {
         return Err(PyValueError::new_err(format!(
             "no round of choices {step:?} for these parameters"

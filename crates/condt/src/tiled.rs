@@ -312,6 +312,32 @@ pub fn repair_gathered_tips(
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     let listed = vertex_edges(n, edges)?;
     let graph = CurveGraph::new(n, &listed);
+    let rows = candidate_rows(n, &graph, candidates)?;
+    let Some((chords, joins)) = tips::settle_candidates(n, &graph, rows) else {
+        return Ok(None);
+    };
+    let chords: Vec<Edge> = {
+        let mut chords = chords;
+        chords.sort_unstable();
+        chords
+    };
+    let mut out: Vec<[usize; 2]> = edges
+        .iter()
+        .zip(&listed)
+        .filter(|(_, e)| chords.binary_search(e).is_err())
+        .map(|(&edge, _)| edge)
+        .collect();
+    out.extend(joins.iter().map(|&[a, b]| [a.index(), b.index()]));
+    Ok(Some(out))
+}
+
+/// The rows of [`tip_candidates`] on the gathered `graph` (over `n` points) as the tips stage reads them, a loose
+/// end's rows together (as one tile sends them).
+fn candidate_rows(
+    n: usize,
+    graph: &CurveGraph,
+    candidates: &[[usize; 4]],
+) -> Result<Vec<Candidate>, Error> {
     let vertex = |i: usize| VertexId::new(i as u32);
     let mut rows = Vec::with_capacity(candidates.len());
     for &row in candidates {
@@ -332,29 +358,13 @@ pub fn repair_gathered_tips(
             Candidate::Tip([q, x, y, p])
         });
     }
-    // A loose end's rows together, as one tile sends them.
     rows.sort_by_key(|c| match c {
         Candidate::Tip([q, ..])
         | Candidate::Apex([q, ..])
         | Candidate::ApexBeside([q, ..])
         | Candidate::SeveralAt(q) => *q,
     });
-    let Some((chords, joins)) = tips::settle_candidates(n, &graph, rows) else {
-        return Ok(None);
-    };
-    let chords: Vec<Edge> = {
-        let mut chords = chords;
-        chords.sort_unstable();
-        chords
-    };
-    let mut out: Vec<[usize; 2]> = edges
-        .iter()
-        .zip(&listed)
-        .filter(|(_, e)| chords.binary_search(e).is_err())
-        .map(|(&edge, _)| edge)
-        .collect();
-    out.extend(joins.iter().map(|&[a, b]| [a.index(), b.index()]));
-    Ok(Some(out))
+    Ok(rows)
 }
 
 /// The width of a row of [`gap_choices`].
@@ -639,9 +649,9 @@ pub fn give_back_gathered_last_edges(
 /// The local outlier removal's rule 4 on edges gathered from the tiles of a split run, after
 /// rules 1 to 3 ([`local_rules`]): the edges kept, or `None` when it drops none. `edges` are pairs
 /// of positions below `n`; `tests` each position's [`clump_tests`] on this graph (the separation
-/// and the smooth passage rule 4 reads too) and `choices` every loose end's [`gap_choices`] on
-/// it (rule 4 keeps pieces gap closing would join to a kept component), each from the tile that
-/// owns it. The rule is the stage's own code.
+/// and the smooth passage rule 4 reads too), `choices` every loose end's [`gap_choices`] on it
+/// and `tips` every point's [`tip_candidates`] on it (rule 4 keeps pieces gap closing or a tip's
+/// move would join to a kept component), each from the tile that owns it. The rule is the stage's own code.
 ///
 /// # Errors
 /// As [`remove_gathered_clumps`] and [`close_gathered_gaps`].
@@ -659,7 +669,8 @@ pub fn give_back_gathered_last_edges(
 /// let edges = local.edges();
 /// let tests = tiled::clump_tests(&local, &tiled::component_labels(pts.len(), &edges)?)?;
 /// let choices = tiled::gap_choices(&local, |_| true);
-/// let kept = tiled::remove_gathered_local_outliers(pts.len(), &edges, &tests, &choices)?;
+/// let tips = tiled::tip_candidates(&local, |_| true);
+/// let kept = tiled::remove_gathered_local_outliers(pts.len(), &edges, &tests, &choices, &tips)?;
 /// // The far pair goes; the circle stays, as the stage decides.
 /// let stage = filtered.remove_local_outliers(&repaired).edges();
 /// assert_eq!(kept, Some(stage));
@@ -670,16 +681,27 @@ pub fn remove_gathered_local_outliers(
     edges: &[[usize; 2]],
     tests: &[u8],
     choices: &[[usize; GAP_ROW]],
+    tips: &[[usize; 4]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     enough_tests(n, tests)?;
     let listed = vertex_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
     let (targets, walks) = loose_ends_only(&profile, read_choices(n, choices)?);
+    // The loose ends' moves only, as the stage asks for them (a point without edges joins no
+    // piece).
+    let mut tip_moves = candidate_rows(n, &profile, tips)?;
+    tip_moves.retain(|c| matches!(c, Candidate::Tip(_)));
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     let separated = exact_separated(&profile, &root, |v| test(v, 2));
     let passing = |at: VertexId, _, _| test(at, 1);
-    let joins = || gaps::settle_joins(n, &profile, &targets, |j| not_joined(walks, j));
+    let joins = || {
+        let mut joins = gaps::settle_joins(n, &profile, &targets, |j| not_joined(walks, j));
+        if let Some((_, moved)) = tips::settle_candidates(n, &profile, tip_moves) {
+            joins.extend(moved);
+        }
+        joins
+    };
     let Some((root, kept)) =
         local_outliers::separated_with(&listed, &profile, root, &separated, passing, joins)
     else {
@@ -951,6 +973,47 @@ mod tests {
         assert!(remove_gathered_outliers(&pts, &[[0, 1], [2, 3]], 1.7, false).is_ok());
     }
 
+    /// Rule 4 on gathered edges keeps a piece that a tip's move joins to a kept curve, as the
+    /// stage does: an open curve whose two loose ends lie beside a piece of six samples on two
+    /// rows, joined by a chord across them (the stage's own test draws it). Gathered without the
+    /// tips' rows, the piece goes.
+    #[test]
+    fn gathered_rule_4_keeps_what_a_tip_s_move_joins_as_the_stage_does() {
+        let mut pts: Vec<Point> = (0..12).map(|k| Point::new(1.0 + k as f64, 0.0)).collect();
+        let (radius, from) = (12.0, libm::atan2(-0.4, 12.0));
+        let steps = libm::ceil(core::f64::consts::PI * radius) as usize;
+        pts.extend((1..steps).map(|k| {
+            let t = from - core::f64::consts::PI * k as f64 / steps as f64;
+            Point::new(radius * libm::cos(t), 0.4 + radius * libm::sin(t))
+        }));
+        pts.extend((0..12).rev().map(|k| Point::new(-0.2 - k as f64, 0.8)));
+        let curve_len = pts.len();
+        let mut edges: Vec<[usize; 2]> = (0..curve_len - 1).map(|k| [k, k + 1]).collect();
+        pts.extend((0..3).map(|k| Point::new(-(k as f64), 0.0)));
+        pts.extend((0..3).map(|k| Point::new(0.8 + k as f64, 0.8)));
+        let piece = curve_len;
+        edges.extend([
+            [piece, piece + 1],
+            [piece + 1, piece + 2],
+            [piece, piece + 3],
+        ]);
+        edges.extend([[piece + 3, piece + 4], [piece + 4, piece + 5]]);
+        let tri = crate::triangulate(&pts).unwrap();
+        let graph = tri.graph_from_edges(edges.iter().copied());
+        let local = local_rules(&graph, &graph, false);
+        let listed = local.edges();
+        let tests = clump_tests(&local, &component_labels(pts.len(), &listed).unwrap()).unwrap();
+        let choices = gap_choices(&local, |_| true);
+        let tips = tip_candidates(&local, |_| true);
+        let n = pts.len();
+        let gathered = remove_gathered_local_outliers(n, &listed, &tests, &choices, &tips);
+        let stage = graph.remove_local_outliers(&graph).edges();
+        assert_eq!(stage.len(), edges.len());
+        assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), stage);
+        let without = remove_gathered_local_outliers(n, &listed, &tests, &choices, &[]).unwrap();
+        assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
+    }
+
     /// Found by a review of the public API: gap-closing rows naming a point without an edge (a
     /// stale row) read that point's missing edge as a position (a panic, index out of bounds);
     /// and an `n` of 2^29 or more tripped the curve graph's assertion. Such rows name no join;
@@ -962,7 +1025,9 @@ mod tests {
         assert_eq!(close_gathered_gaps(2, &[], &[row]), Ok(None));
         assert_eq!(close_gathered_gaps(3, &[[1, 2]], &[row]), Ok(None));
         let tests = [0u8; 2];
-        assert!(remove_gathered_local_outliers(2, &[], &tests, &[row]).is_ok());
+        assert!(remove_gathered_local_outliers(2, &[], &tests, &[row], &[]).is_ok());
+        // A tip row whose loose end has no edge joins nothing either.
+        assert!(remove_gathered_local_outliers(2, &[], &tests, &[], &[[0, 1, 1, 1]]).is_ok());
         for n in [1 << 29, u32::MAX as usize] {
             let refused = Err(Error::InvalidParameter {
                 name: "n",

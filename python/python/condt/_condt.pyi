@@ -230,6 +230,7 @@ def _gathered_local_outliers(
     edges: npt.NDArray[np.int64],
     tests: npt.NDArray[np.uint8],
     choices: npt.NDArray[np.int64],
+    tips: npt.NDArray[np.int64],
 ) -> npt.NDArray[np.int64] | None: ...
 def _last_edges_kept(
     state: _TileState,

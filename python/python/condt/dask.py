@@ -228,8 +228,8 @@ def _phases(run, plan, points, params):
     for step in later:
         if step == "local-outliers":
             # Rules 1 to 3 on the tiles (rule 1 only where the IQR stage cut more than the steps
-            # since added: the driver counts); rule 4 on the driver, with the clump tests and the
-            # gap choices on their result.
+            # since added: the driver counts); rule 4 on the driver, with the clump tests, the gap
+            # choices and the tips' candidate moves on their result.
             before_local = edges
             give_back = len(before_outliers) > len(edges)
             if give_back:
@@ -243,7 +243,8 @@ def _phases(run, plan, points, params):
             labels = _condt._component_labels(n, edges)
             tests = run.tests_on_kept(edges, step, labels)
             choices = run.on_kept(edges, "gaps", width=10)
-            kept = _condt._gathered_local_outliers(n, edges, tests, choices)
+            tips = run.on_kept(edges, "tips", width=4)
+            kept = _condt._gathered_local_outliers(n, edges, tests, choices, tips)
             edges = edges if kept is None else kept
         elif step == "given-back":
             standing = _condt._given_back_standing(n, edges, before_local)

@@ -20,7 +20,8 @@
 //!    polygon of five or six is a clump however far apart ([`drop_short_cycles`]).
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
-//! curves) unless gap closing would join them to a kept component ([`merged_along`]), or
+//! curves) unless gap closing, or a loose-end move of the tips stage, would join them to a kept
+//! component ([`merged_along`]), or
 //! rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes none;
 //! docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter junction
 //! branches regardless. Deterministic, O(n); rule 4's separation test and its search for gap
@@ -629,7 +630,9 @@ fn separated_components(
             tri,
             graph: Cow::Borrowed(profile),
         };
-        super::gaps::gap_joins(&ends, parallel)
+        let mut joins = super::gaps::gap_joins(&ends, parallel);
+        joins.extend(super::tips::tip_joins(&ends, parallel));
+        joins
     };
     separated_with(edges, profile, root, &separated, passing, joins)
 }
@@ -637,7 +640,7 @@ fn separated_components(
 /// Rule 4 on the graph of `edges` (`profile`, its components `root`) with what it reads of the
 /// triangulation given: `separated`, each root's separated points counted up to [`MIN_SAMPLES`]
 /// ([`separated_counts`]), `passing(at, previous, next)` ([`smooth_and_regular`]) and `joins`,
-/// gap closing's joins on this graph ([`merged_along`]). The rest reads the graph alone, so
+/// the edges gap closing and the tips' loose-end moves would add to this graph ([`merged_along`]). The rest reads the graph alone, so
 /// a run split in tiles runs it on the gathered edges ([`crate::tiled`]).
 pub(crate) fn separated_with(
     edges: &[Edge],
@@ -662,14 +665,16 @@ pub(crate) fn separated_with(
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
-    // Rule 4's third exemption: pieces gap closing joins to a kept component.
+    // Rule 4's third exemption: pieces gap closing or a tip's move joins to a kept component.
     Some(merged_along(root, kept, joins()))
 }
 
 /// Rule 4's third exemption: a piece that gap closing would join, directly or through other
 /// pieces, to a kept component is kept. Reason: noise breaks a curve into pieces lying along it,
 /// none apart from the curve; gap closing needs evidence from both sides of each join, which
-/// outliers beside a curve rarely give.
+/// outliers beside a curve rarely give. The tips stage's loose-end moves join pieces too (a tip
+/// whose chord pairs its own samples, beside the two sides' loose ends) and need as much evidence
+/// (smooth passages on both sides, each end's own branch), so their joins count alike.
 ///
 /// The components `root` merged along `joins`, named as [`components`] would name them, and which
 /// are kept: those with a kept part (only merged names are to be read in `kept` afterwards). The
@@ -1390,6 +1395,41 @@ mod tests {
         let tri = triangulate(&pts).unwrap();
         let kept = apply(&tri, &vertex_edges(&tri, &pairs), RULE_4).expect("a piece goes");
         assert_eq!(kept, pairs[..38].to_vec());
+    }
+
+    /// Two rows 0.8 apart, one apart along each: an open curve runs along the bottom row from
+    /// (1, 0) to x = 12, around a half circle below and back along the top row to (-0.2, 0.8),
+    /// its two loose ends; between them a piece of six, the bottom row's three samples left of
+    /// its end and the top row's three right of its end, joined by a chord across the rows, as
+    /// Algorithm 1 pairs samples at a narrow tip. No sample of the piece is apart from the curve,
+    /// and gap closing joins none of its ends (each faces away from the curve's ends), so rule 4
+    /// would drop it; the tips stage gives the chord up for the two ends' edges, so rule 4 keeps
+    /// it. (Without the chord, gap closing joins both halves, end to end.)
+    #[test]
+    fn rule_4_keeps_a_piece_that_a_tip_s_move_joins_to_a_kept_curve() {
+        let mut pts: Vec<Point> = (0..12).map(|k| Point::new(1.0 + k as f64, 0.0)).collect();
+        let (radius, from) = (12.0, libm::atan2(-0.4, 12.0));
+        let steps = libm::ceil(core::f64::consts::PI * radius) as usize;
+        pts.extend((1..steps).map(|k| {
+            let t = from - core::f64::consts::PI * k as f64 / steps as f64;
+            Point::new(radius * libm::cos(t), 0.4 + radius * libm::sin(t))
+        }));
+        pts.extend((0..12).rev().map(|k| Point::new(-0.2 - k as f64, 0.8)));
+        let curve_len = pts.len();
+        let mut pairs: Vec<[usize; 2]> = (0..curve_len - 1).map(|k| [k, k + 1]).collect();
+        pts.extend((0..3).map(|k| Point::new(-(k as f64), 0.0)));
+        pts.extend((0..3).map(|k| Point::new(0.8 + k as f64, 0.8)));
+        let piece = curve_len;
+        pairs.extend([[piece, piece + 1], [piece + 1, piece + 2]]);
+        pairs.extend([[piece + 3, piece + 4], [piece + 4, piece + 5]]);
+        pairs.push([piece, piece + 3]);
+        let tri = triangulate(&pts).unwrap();
+        assert_eq!(apply(&tri, &vertex_edges(&tri, &pairs), RULE_4), None);
+        let tips = tri
+            .graph_from_edges(pairs.iter().copied())
+            .repair_tips()
+            .edges();
+        assert!(tips.contains(&[0, piece]) && tips.contains(&[curve_len - 1, piece + 3]));
     }
 
     /// An open arc of 21 samples, then two pairs of samples beyond its end, each a spacing from

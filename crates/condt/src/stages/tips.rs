@@ -315,6 +315,15 @@ pub(crate) fn repair_tips(
     }
 }
 
+/// The edges the stage's loose-end moves would add on the graph of `ends` (no apex move: a point
+/// without edges belongs to no piece), settled as the stage settles them. Rule 4 of the local
+/// outlier removal keeps the pieces they join to a kept component, as it keeps those gap closing
+/// joins.
+pub(crate) fn tip_joins(ends: &Ends, parallel: bool) -> Vec<Edge> {
+    let found = ends.each_loose(parallel, |q| ends.tip_at(q));
+    settle(ends.tri.num_points(), found).map_or_else(Vec::new, |(_, joins)| joins)
+}
+
 /// The chords to replace and the edges replacing them, from what every loose end and apex found
 /// (over `n` points), or `None` when no move stands.
 fn settle(n: usize, found: Vec<Found>) -> Option<(Vec<Edge>, Vec<Edge>)> {
