@@ -34,13 +34,15 @@ mod tiles;
 mod triangulation;
 
 use condt_eval::score::{EdgeProblem, ScoreError};
+use condt_io::ReadOptions;
 use convert::{as_points, io_error, library_error, points_array, shape_text};
 use numpy::ndarray::Array2;
 use numpy::{PyArray2, PyArrayMethods, PyUntypedArray};
-use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyInt};
 use reconstruction::{Curve, EdgeStory, Reconstruction};
+use std::ffi::CString;
 use std::path::PathBuf;
 use triangulation::Triangulation;
 
@@ -167,7 +169,7 @@ fn read_points<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    read_point_file(py, path).map(|(points, _)| points)
+    read_point_file(py, path).map(|file| file.points)
 }
 
 /// ``read_points(path)``, and the file's coordinate reference system: a tuple ``(points,
@@ -176,7 +178,9 @@ fn read_points<'py>(
 /// ``Reconstruction.to_geojson(crs=crs)`` carries it on, as ``condt reconstruct`` does from a
 /// GeoJSON input to a GeoJSON output.
 ///
-/// Raises what ``read_points`` raises.
+/// Raises what ``read_points`` raises. A GeoJSON sequence (``.geojsonl``) whose later record
+/// carries another ``crs`` than the first keeps the first and warns (``UserWarning``, naming the
+/// record's line): its points are read as given, without conversion.
 ///
 /// >>> import condt, json, tempfile, os
 /// >>> path = os.path.join(tempfile.mkdtemp(), "utm.geojson")
@@ -193,14 +197,32 @@ fn read_points_with_crs<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
-    read_point_file(py, path)
+    let file = read_point_file(py, path)?;
+    if let Some(line) = file.crs_dropped_at {
+        let message = format!(
+            "line {line}: this record's crs differs from the first one read; only the first is \
+             kept, and every point is read as given, without conversion"
+        );
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &CString::new(message)?,
+            1,
+        )?;
+    }
+    Ok((file.points, file.crs))
 }
 
-/// The points of the file at `path` (as `open` takes it) and its GeoJSON crs.
-fn read_point_file<'py>(
-    py: Python<'py>,
-    path: &Bound<'py, PyAny>,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
+/// A point file read for Python: [`condt_io::PointFile`] with the points as an array.
+struct PointArray<'py> {
+    points: Bound<'py, PyArray2<f64>>,
+    crs: Option<String>,
+    crs_dropped_at: Option<usize>,
+}
+
+/// The points of the file at `path` (as `open` takes it), its GeoJSON crs and the line of a
+/// GeoJSON sequence's later record whose different crs was left out.
+fn read_point_file<'py>(py: Python<'py>, path: &Bound<'py, PyAny>) -> PyResult<PointArray<'py>> {
     // `os.fsdecode` takes what `open` takes (str, bytes, os.PathLike of either) and gives a str
     // whose undecodable bytes are escaped, which becomes the same bytes again as an `OsString`.
     let decoded = py
@@ -227,8 +249,8 @@ fn read_point_file<'py>(
     } else {
         given
     };
-    let (points, crs) = py
-        .detach(|| within_call(|| condt_io::read_points_with_crs(&path)))
+    let file = py
+        .detach(|| within_call(|| condt_io::read_points_with(&path, &ReadOptions::default())))
         .map_err(|mut err| {
             // Named as given, in the message and in `OSError.filename`.
             if stdin_name {
@@ -236,6 +258,12 @@ fn read_point_file<'py>(
             }
             io_error(err)
         })?;
+    let condt_io::PointFile {
+        points,
+        crs,
+        crs_dropped_at,
+        ..
+    } = file;
     let n = points.len();
     // Into the points' own memory (same size and alignment: the collect reuses it), not a
     // second list beside them.
@@ -246,7 +274,11 @@ fn read_point_file<'py>(
         .into_flattened();
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
-    Ok((PyArray2::from_owned_array(py, array), crs))
+    Ok(PointArray {
+        points: PyArray2::from_owned_array(py, array),
+        crs,
+        crs_dropped_at,
+    })
 }
 
 /// An edge list as given: each end as `i64`, and the text of each end no `i64` holds (a uint64

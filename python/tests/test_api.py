@@ -863,3 +863,24 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
     assert condt.read_points_with_crs(tmp_path / "pts.txt")[1] is None
     (tmp_path / "plain.geojson").write_text('{"type": "Point", "coordinates": [1, 2]}')
     assert condt.read_points_with_crs(tmp_path / "plain.geojson")[1] is None
+
+
+def test_read_points_with_crs_warns_of_a_later_records_other_crs(tmp_path):
+    # A GeoJSON sequence keeps its first record's crs; a later record's other crs is told, not
+    # dropped without a word (as the command line's note tells it), and its points are read.
+    def record(name, x):
+        crs = {"type": "name", "properties": {"name": name}}
+        point = {"type": "Point", "coordinates": [x, 0.0]}
+        return json.dumps({"type": "Feature", "crs": crs, "properties": {}, "geometry": point})
+
+    path = tmp_path / "two.geojsonl"
+    path.write_text(record("EPSG:32632", 1.0) + "\n" + record("EPSG:4326", 2.0) + "\n")
+    with pytest.warns(UserWarning, match="line 2: this record's crs differs"):
+        points, crs = condt.read_points_with_crs(path)
+    assert points.tolist() == [[1.0, 0.0], [2.0, 0.0]]
+    assert json.loads(crs)["properties"]["name"] == "EPSG:32632"
+    same = tmp_path / "same.geojsonl"
+    same.write_text(record("EPSG:32632", 1.0) + "\n" + record("EPSG:32632", 2.0) + "\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        condt.read_points_with_crs(same)

@@ -27,7 +27,7 @@ condt: Delaunay triangulation and curve reconstruction of planar points
 Usage:
   condt reconstruct INPUT [-o OUTPUT] [options]   the curves through the points (ConDT)
   condt triangulate INPUT [-o OUTPUT] [--edges]   their Delaunay triangulation
-  condt score POINTS OUTPUT TRUTH [--json]        an edge list against a ground truth
+  condt score POINTS OUTPUT TRUTH [options]       an edge list against a ground truth
   condt help COMMAND                              a command's options, with an example
 
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is

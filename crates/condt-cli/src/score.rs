@@ -51,7 +51,8 @@ Edge files hold one edge `i j` per line, in point numbers of POINTS (`#` lines a
 are skipped); a name ending in .npy (any case) is a NumPy array of shape (m, 2) of integers
 (uint32 or int64 as `condt reconstruct -o out.npy` writes it, or any other width), either byte
 order. `-` reads standard input
-(as text) for one of POINTS, OUTPUT and TRUTH. Prints: exact (the edge sets are equal),
+for one of POINTS, OUTPUT and TRUTH (POINTS as INPUT's standard input is read, an edge list as
+text). Prints: exact (the edge sets are equal),
 precision, recall and F1 on the edge sets, the output edges touching a point the truth gives no
 edge (outlier edges), and the largest and the root-mean-square distance of the output to the
 truth (each output edge sampled at 0, 1/4, 1/2, 3/4 and 1 of its length), over the diagonal of
