@@ -974,30 +974,11 @@ mod tests {
     }
 
     /// Rule 4 on gathered edges keeps a piece that a tip's move joins to a kept curve, as the
-    /// stage does: an open curve whose two loose ends lie beside a piece of six samples on two
-    /// rows, joined by a chord across them (the stage's own test draws it). Gathered without the
-    /// tips' rows, the piece goes.
+    /// stage does (the stage's test's points and edges). Gathered without the tips' rows, the
+    /// piece goes.
     #[test]
     fn gathered_rule_4_keeps_what_a_tip_s_move_joins_as_the_stage_does() {
-        let mut pts: Vec<Point> = (0..12).map(|k| Point::new(1.0 + k as f64, 0.0)).collect();
-        let (radius, from) = (12.0, libm::atan2(-0.4, 12.0));
-        let steps = libm::ceil(core::f64::consts::PI * radius) as usize;
-        pts.extend((1..steps).map(|k| {
-            let t = from - core::f64::consts::PI * k as f64 / steps as f64;
-            Point::new(radius * libm::cos(t), 0.4 + radius * libm::sin(t))
-        }));
-        pts.extend((0..12).rev().map(|k| Point::new(-0.2 - k as f64, 0.8)));
-        let curve_len = pts.len();
-        let mut edges: Vec<[usize; 2]> = (0..curve_len - 1).map(|k| [k, k + 1]).collect();
-        pts.extend((0..3).map(|k| Point::new(-(k as f64), 0.0)));
-        pts.extend((0..3).map(|k| Point::new(0.8 + k as f64, 0.8)));
-        let piece = curve_len;
-        edges.extend([
-            [piece, piece + 1],
-            [piece + 1, piece + 2],
-            [piece, piece + 3],
-        ]);
-        edges.extend([[piece + 3, piece + 4], [piece + 4, piece + 5]]);
+        let (pts, edges, curve_len) = crate::stages::local_outliers::tip_piece_beside_a_curve();
         let tri = crate::triangulate(&pts).unwrap();
         let graph = tri.graph_from_edges(edges.iter().copied());
         let local = local_rules(&graph, &graph, false);
