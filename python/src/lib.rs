@@ -156,7 +156,9 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 ///
 /// Raises ``OSError`` (``FileNotFoundError``, ``PermissionError``, ...) when the file cannot be
 /// read, ``ValueError`` naming the file and line when its content is not a point file, and
-/// ``TypeError`` when ``path`` is not a path.
+/// ``TypeError`` when ``path`` is not a path. A GeoJSON sequence (``.geojsonl``) whose later
+/// record carries another ``crs`` than the first warns (``UserWarning``, naming the file and the
+/// record's line; ``read_points_with_crs`` gives the first), its points read as given.
 ///
 /// >>> import condt, tempfile, os
 /// >>> path = os.path.join(tempfile.mkdtemp(), "pts.txt")
@@ -169,7 +171,7 @@ fn read_points<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    read_point_file(py, path).map(|file| file.points)
+    read_point_file(py, path).map(|(points, _)| points)
 }
 
 /// ``read_points(path)``, and the file's coordinate reference system: a tuple ``(points,
@@ -178,9 +180,7 @@ fn read_points<'py>(
 /// ``Reconstruction.to_geojson(crs=crs)`` carries it on, as ``condt reconstruct`` does from a
 /// GeoJSON input to a GeoJSON output.
 ///
-/// Raises what ``read_points`` raises. A GeoJSON sequence (``.geojsonl``) whose later record
-/// carries another ``crs`` than the first keeps the first and warns (``UserWarning``, naming the
-/// record's line): its points are read as given, without conversion.
+/// Raises what ``read_points`` raises, and warns as it warns.
 ///
 /// >>> import condt, json, tempfile, os
 /// >>> path = os.path.join(tempfile.mkdtemp(), "utm.geojson")
@@ -197,32 +197,16 @@ fn read_points_with_crs<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
-    let file = read_point_file(py, path)?;
-    if let Some(line) = file.crs_dropped_at {
-        let message = format!(
-            "line {line}: this record's crs differs from the first one read; only the first is \
-             kept, and every point is read as given, without conversion"
-        );
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &CString::new(message)?,
-            1,
-        )?;
-    }
-    Ok((file.points, file.crs))
+    read_point_file(py, path)
 }
 
-/// A point file read for Python: [`condt_io::PointFile`] with the points as an array.
-struct PointArray<'py> {
-    points: Bound<'py, PyArray2<f64>>,
-    crs: Option<String>,
-    crs_dropped_at: Option<usize>,
-}
-
-/// The points of the file at `path` (as `open` takes it), its GeoJSON crs and the line of a
-/// GeoJSON sequence's later record whose different crs was left out.
-fn read_point_file<'py>(py: Python<'py>, path: &Bound<'py, PyAny>) -> PyResult<PointArray<'py>> {
+/// The points of the file at `path` (as `open` takes it) and its GeoJSON crs; a `UserWarning`
+/// naming the file and line of a GeoJSON sequence's later record whose different crs was left
+/// out (the command line's note).
+fn read_point_file<'py>(
+    py: Python<'py>,
+    path: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
     // `os.fsdecode` takes what `open` takes (str, bytes, os.PathLike of either) and gives a str
     // whose undecodable bytes are escaped, which becomes the same bytes again as an `OsString`.
     let decoded = py
@@ -264,6 +248,23 @@ fn read_point_file<'py>(py: Python<'py>, path: &Bound<'py, PyAny>) -> PyResult<P
         crs_dropped_at,
         ..
     } = file;
+    if let Some(line) = crs_dropped_at {
+        let shown = if stdin_name {
+            "-".into()
+        } else {
+            path.display().to_string()
+        };
+        let message = format!(
+            "{shown}:{line}: this record's crs differs from the first one read; only the first \
+             is kept, and every point is read as given, without conversion"
+        );
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &CString::new(message)?,
+            1,
+        )?;
+    }
     let n = points.len();
     // Into the points' own memory (same size and alignment: the collect reuses it), not a
     // second list beside them.
@@ -274,11 +275,7 @@ fn read_point_file<'py>(py: Python<'py>, path: &Bound<'py, PyAny>) -> PyResult<P
         .into_flattened();
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
-    Ok(PointArray {
-        points: PyArray2::from_owned_array(py, array),
-        crs,
-        crs_dropped_at,
-    })
+    Ok((PyArray2::from_owned_array(py, array), crs))
 }
 
 /// An edge list as given: each end as `i64`, and the text of each end no `i64` holds (a uint64

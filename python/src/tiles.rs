@@ -29,7 +29,9 @@ use condt::predicates::{is_cocircular, orient2d, Orientation};
 use condt::tiled::GAP_ROW;
 use condt::{GatheredPass, Method, Params, Point, Stage, Triangulation};
 use numpy::ndarray::Array2;
-use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{
+    PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyNotImplementedError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -78,8 +80,9 @@ impl Flow {
 /// ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
-/// clump tests, gap choices and tip candidates (eight hops) of their result; the given-back test one ring ([`_tests_kept`],
-/// the rule on the driver, [`_gathered_given_back`]); an outlier tail nine: from an owned edge
+/// clump tests, gap choices and tip candidates (eight hops) of their result; the given-back
+/// test one ring ([`_tests_kept`], the rule on the driver, [`_gathered_given_back`]); an
+/// outlier tail nine: from an owned edge
 /// of a tail of four back to its loose end and on to the far end of the five edges it hangs
 /// from, whose last inner point's edges are read for its degree ([`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 8] = [
@@ -663,8 +666,9 @@ pub(crate) fn _gathered_last_edges<'py>(
 }
 
 /// Rule 4 of the local outlier removal on the gathered `edges` (after rules 1 to 3) over `n`
-/// points, with every point's clump `tests` and every loose end's gap `choices` on them
-/// ([`condt::tiled::remove_gathered_local_outliers`]): the edges kept, sorted by rows, or `None`.
+/// points, with every point's clump `tests`, every loose end's gap `choices` and every point's
+/// tip candidates (`tips`) on them ([`condt::tiled::remove_gathered_local_outliers`]): the edges
+/// kept, sorted by rows, or `None`.
 #[pyfunction]
 pub(crate) fn _gathered_local_outliers<'py>(
     py: Python<'py>,
@@ -732,6 +736,13 @@ fn rows_of<const W: usize>(
     array: &PyReadonlyArray2<'_, i64>,
     what: &str,
 ) -> PyResult<Vec<[usize; W]>> {
+    // A row of another width would be read across rows: refused, not misread.
+    let width = array.shape()[1];
+    if width != W {
+        return Err(PyValueError::new_err(format!(
+            "{what} rows have {width} columns, not {W}"
+        )));
+    }
     array
         .as_slice()?
         .chunks_exact(W)

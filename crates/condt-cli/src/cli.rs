@@ -1327,8 +1327,7 @@ pub(crate) fn note_dropped_crs(file: &str, line: Option<usize>) {
     if let Some(line) = line {
         note(format_args!(
             "{file}:{line}: this record's crs differs from the first one read; only the first \
-             is kept (a GeoJSON output carries it on), and every point is read as given, \
-             without conversion"
+             is kept, and every point is read as given, without conversion"
         ));
     }
 }

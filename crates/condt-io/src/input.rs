@@ -208,11 +208,27 @@ impl Columns {
                 )),
             }
         };
-        let (x, y) = (column(x)?, column(y)?);
-        if x.same(&y) {
-            return Err(format!("{spec:?}: the same column for x and y"));
+        let columns = Columns {
+            x: column(x)?,
+            y: column(y)?,
+        };
+        match columns.problem() {
+            Some(why) => Err(format!("{spec:?}: {why}")),
+            None => Ok(columns),
         }
-        Ok(Columns { x, y })
+    }
+
+    /// Why these columns cannot be read from any file, or `None`: the number 0, or one column for
+    /// both. [`parse`](Columns::parse) never gives such columns; the fields are public, so the
+    /// reader asks again.
+    pub(crate) fn problem(&self) -> Option<&'static str> {
+        if [&self.x, &self.y].contains(&&Column::Number(0)) {
+            Some("columns are numbered from 1")
+        } else if self.x.same(&self.y) {
+            Some("the same column for x and y")
+        } else {
+            None
+        }
     }
 }
 

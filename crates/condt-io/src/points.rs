@@ -3,7 +3,7 @@
 //! Both refuse what they cannot read unambiguously, with the file and the line, rather than
 //! guess: a Triangle `.node` file under another name, a decimal comma, a fourth column.
 
-use super::{decimal, InputFormat, IoError, IoErrorKind, PointFile, ReadOptions};
+use super::{decimal, Columns, InputFormat, IoError, IoErrorKind, PointFile, ReadOptions};
 use condt::Point;
 use condt::MAX_POINTS;
 use std::fs::File;
@@ -940,6 +940,17 @@ pub fn read_points_with(
                 .map_or(String::new(), |c| c.to_string())
         )),
     };
+    if let Some(why) = options.columns.as_ref().and_then(Columns::problem) {
+        let columns = options
+            .columns
+            .as_ref()
+            .map_or(String::new(), |c| c.to_string());
+        return Err(IoError {
+            file: name.to_string(),
+            line: None,
+            kind: IoErrorKind::Content(format!("columns {columns}: {why}")),
+        });
+    }
     if let (Some(format), Some(_)) = (format, &options.columns) {
         if !matches!(format, InputFormat::Csv | InputFormat::Tsv) {
             return Err(columns_refused(&format!("the {} format", format.name())));
@@ -1044,8 +1055,16 @@ pub fn read_points_with(
             super::geojson_points::parse_geojson_file(&text, name).map_err(|mut err| {
                 // GeoJSON lines (NDJSON, a GeoJSON sequence) read as one document: its second
                 // object is trailing characters. Say how to read one object per line.
+                // Only where the trailing line starts an object: a stray `}` needs no such hint.
+                let starts_object = err
+                    .line
+                    .and_then(|line| text.lines().nth(line.checked_sub(1)?))
+                    .is_some_and(|line| {
+                        line.trim_start_matches(['\u{1e}', ' ', '\t', '\r'])
+                            .starts_with('{')
+                    });
                 if let IoErrorKind::Content(message) = &mut err.kind {
-                    if message.starts_with("trailing characters") {
+                    if starts_object && message.starts_with("trailing characters") {
                         message.push_str(match (stdin, options.format.is_some()) {
                             (true, false) => {
                                 "; standard input is read as one GeoJSON document: state its \

@@ -609,6 +609,14 @@ fn geojson_lines_under_a_document_name_are_told_how_to_be_read() {
         .unwrap();
         assert_eq!(read.points, points(&[(0.0, 0.0), (1.0, 0.0)]));
     }
+    // A stray brace after a document starts no object: no word of GeoJSON lines.
+    let stray = TempFile::new(
+        "stray.geojson",
+        b"{\"type\": \"Point\", \"coordinates\": [0, 0]}\n}\n",
+    );
+    let (line, message) = content_error(stray.read());
+    assert_eq!(line, Some(2), "{message}");
+    assert!(message.ends_with("trailing characters"), "{message}");
 }
 
 /// A GeoJSON sequence keeps the first record's `crs`, as a document keeps its first; a later
@@ -660,4 +668,38 @@ fn a_later_crs_in_a_geojson_sequence_is_told_not_dropped_silently() {
     );
     let doc = condt_io::read_points_with(&file.0, &condt_io::ReadOptions::new()).unwrap();
     assert_eq!((doc.crs.as_deref(), doc.crs_dropped_at), (Some(utm), None));
+}
+
+/// Found by a review: `Column` and `Columns` have public fields, so columns `Columns::parse`
+/// refuses can be built by hand. Column 0 panicked (a subtraction below zero) with and without a
+/// header, and one column for x and y was read for both without a word; both are refused naming
+/// the file, before anything is read.
+#[test]
+fn columns_built_by_hand_that_parse_refuses_are_refused_by_the_reader() {
+    use condt_io::{read_points_with, Column, Columns, ReadOptions};
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.csv");
+    for text in ["1,2\n3,4\n", "a,b\n1,2\n"] {
+        std::fs::write(&path, text).unwrap();
+        let read = |x: Column, y: Column| {
+            read_points_with(&path, &ReadOptions::new().with_columns(Columns { x, y }))
+        };
+        let err = read(Column::Number(0), Column::Number(2)).unwrap_err();
+        assert!(err.to_string().contains("t.csv"), "{err}");
+        assert!(
+            err.to_string().contains("columns are numbered from 1"),
+            "{err}"
+        );
+        let err = read(Column::Number(2), Column::Number(2)).unwrap_err();
+        assert!(
+            err.to_string().contains("the same column for x and y"),
+            "{err}"
+        );
+        let err = read(Column::Named("A".into()), Column::Named("a".into())).unwrap_err();
+        assert!(
+            err.to_string().contains("the same column for x and y"),
+            "{err}"
+        );
+        assert!(read(Column::Number(2), Column::Number(1)).is_ok());
+    }
 }

@@ -331,8 +331,8 @@ pub fn repair_gathered_tips(
     Ok(Some(out))
 }
 
-/// The rows of [`tip_candidates`] on the gathered `graph` (over `n` points) as the tips stage reads them, a loose
-/// end's rows together (as one tile sends them).
+/// The rows of [`tip_candidates`] on the gathered `graph` (over `n` points) as the tips stage
+/// reads them, a loose end's rows together (as one tile sends them).
 fn candidate_rows(
     n: usize,
     graph: &CurveGraph,
@@ -651,10 +651,11 @@ pub fn give_back_gathered_last_edges(
 /// of positions below `n`; `tests` each position's [`clump_tests`] on this graph (the separation
 /// and the smooth passage rule 4 reads too), `choices` every loose end's [`gap_choices`] on it
 /// and `tips` every point's [`tip_candidates`] on it (rule 4 keeps pieces gap closing or a tip's
-/// move would join to a kept component), each from the tile that owns it. The rule is the stage's own code.
+/// move would join to a kept component), each from the tile that owns it. The rule is the
+/// stage's own code.
 ///
 /// # Errors
-/// As [`remove_gathered_clumps`] and [`close_gathered_gaps`].
+/// As [`remove_gathered_clumps`], [`close_gathered_gaps`] and [`repair_gathered_tips`].
 ///
 /// ```
 /// use condt::{tiled, triangulate, Point, Repair, Uniformity};
@@ -688,10 +689,7 @@ pub fn remove_gathered_local_outliers(
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
     let (targets, walks) = loose_ends_only(&profile, read_choices(n, choices)?);
-    // The loose ends' moves only, as the stage asks for them (a point without edges joins no
-    // piece).
-    let mut tip_moves = candidate_rows(n, &profile, tips)?;
-    tip_moves.retain(|c| matches!(c, Candidate::Tip(_)));
+    let tip_moves = candidate_rows(n, &profile, tips)?;
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     let separated = exact_separated(&profile, &root, |v| test(v, 2));
     let passing = |at: VertexId, _, _| test(at, 1);

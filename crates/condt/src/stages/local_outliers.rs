@@ -2,8 +2,8 @@
 //! rule and the repair, in either order.
 //!
 //! Owns: four local rules on the graph those stages left. Besides its input it reads the IQR
-//! stage's (via `Step::run`) and asks gap closing which joins it would make (rule 4); it may not
-//! touch the triangulation and adds no edge absent from it.
+//! stage's (via `Step::run`) and asks gap closing and the tips stage which joins they would make
+//! (rule 4); it may not touch the triangulation and adds no edge absent from it.
 //!
 //! Why: Algorithm 3's threshold is global: nearby outliers are each other's nearest neighbours, so
 //! their short edges pass it, and a sparse component beside a dense one loses every edge once it
@@ -20,13 +20,12 @@
 //!    polygon of five or six is a clump however far apart ([`drop_short_cycles`]).
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
-//! curves) unless gap closing, or a loose-end move of the tips stage, would join them to a kept
-//! component ([`merged_along`]), or
-//! rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it removes none;
-//! docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter junction
-//! branches regardless. Deterministic, O(n); rule 4's separation test and its search for gap
-//! closing's joins run on rayon's threads when `parallel` (the same result); lengths recomputed,
-//! not kept (memory).
+//! curves) unless gap closing or a move of the tips stage would join them to a kept component
+//! ([`merged_along`]), or rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it
+//! removes none; docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter
+//! junction branches regardless. Deterministic, O(n); rule 4's separation test and its search for
+//! the joins of gap closing and the tips run on rayon's threads when `parallel` (the same result);
+//! lengths recomputed, not kept (memory).
 
 use super::outliers::FLOOR_RATIO;
 use super::Outcome;
@@ -640,8 +639,9 @@ fn separated_components(
 /// Rule 4 on the graph of `edges` (`profile`, its components `root`) with what it reads of the
 /// triangulation given: `separated`, each root's separated points counted up to [`MIN_SAMPLES`]
 /// ([`separated_counts`]), `passing(at, previous, next)` ([`smooth_and_regular`]) and `joins`,
-/// the edges gap closing and the tips' loose-end moves would add to this graph ([`merged_along`]). The rest reads the graph alone, so
-/// a run split in tiles runs it on the gathered edges ([`crate::tiled`]).
+/// the edges gap closing and the tips stage's moves would add to this graph ([`merged_along`]).
+/// The rest reads the graph alone, so a run split in tiles runs it on the gathered edges
+/// ([`crate::tiled`]).
 pub(crate) fn separated_with(
     edges: &[Edge],
     profile: &CurveGraph,
@@ -672,9 +672,9 @@ pub(crate) fn separated_with(
 /// Rule 4's third exemption: a piece that gap closing would join, directly or through other
 /// pieces, to a kept component is kept. Reason: noise breaks a curve into pieces lying along it,
 /// none apart from the curve; gap closing needs evidence from both sides of each join, which
-/// outliers beside a curve rarely give. The tips stage's loose-end moves join pieces too (a tip
-/// whose chord pairs its own samples, beside the two sides' loose ends) and need as much evidence
-/// (smooth passages on both sides, each end's own branch), so their joins count alike.
+/// outliers beside a curve rarely give. The tips stage's moves join pieces too (a tip whose chord
+/// pairs its own samples, beside the two sides' loose ends) and need as much evidence (smooth
+/// passages on both sides, each end on a branch of its own), so their joins count alike.
 ///
 /// The components `root` merged along `joins`, named as [`components`] would name them, and which
 /// are kept: those with a kept part (only merged names are to be read in `kept` afterwards). The

@@ -152,7 +152,7 @@ repair, remove outliers locally: give back edges the filter cut
 along regular passages; drop edges far longer than their
 neighbours, branches of fewer than 5 points and components of
 fewer than 5 points clearly apart from the rest, unless dense
-or gap closing would join them to a curve that stays (a
+or gap closing or the tips would join them to a curve that stays (a
 sparsely sampled curve of 3 or 4 points, or a closed one of 5
 or 6, is lost)",
         }),

@@ -300,28 +300,30 @@ pub(crate) fn repair_tips(
     parallel: bool,
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
+    match settle(tri.num_points(), found(&ends, parallel)) {
+        Some((chords, joins)) => Outcome::replacing(edges, ends.into_graph(), chords, joins),
+        None => Outcome::unchanged_with(ends.into_graph()),
+    }
+}
+
+/// What every loose end and every point without edges of the graph of `ends` found, in id order.
+fn found(ends: &Ends, parallel: bool) -> Vec<Found> {
     // One pass: a loose end may start a move with another, a point without edges an apex move.
-    let found = found_in_order(tri.num_points(), parallel, |i| {
+    found_in_order(ends.tri.num_points(), parallel, |i| {
         let v = VertexId::new(i as u32);
         match ends.graph.degree(v) {
             0 => ends.apex_at(v),
             1 => ends.tip_at(v),
             _ => None,
         }
-    });
-    match settle(tri.num_points(), found) {
-        Some((chords, joins)) => Outcome::replacing(edges, ends.into_graph(), chords, joins),
-        None => Outcome::unchanged_with(ends.into_graph()),
-    }
+    })
 }
 
-/// The edges the stage's loose-end moves would add on the graph of `ends` (no apex move: a point
-/// without edges belongs to no piece), settled as the stage settles them. Rule 4 of the local
-/// outlier removal keeps the pieces they join to a kept component, as it keeps those gap closing
-/// joins.
+/// The edges the stage's moves would add on the graph of `ends`, settled as the stage settles
+/// them. Rule 4 of the local outlier removal keeps the pieces they join to a kept component, as
+/// it keeps those gap closing joins.
 pub(crate) fn tip_joins(ends: &Ends, parallel: bool) -> Vec<Edge> {
-    let found = ends.each_loose(parallel, |q| ends.tip_at(q));
-    settle(ends.tri.num_points(), found).map_or_else(Vec::new, |(_, joins)| joins)
+    settle(ends.tri.num_points(), found(ends, parallel)).map_or_else(Vec::new, |(_, joins)| joins)
 }
 
 /// The chords to replace and the edges replacing them, from what every loose end and apex found
@@ -399,7 +401,7 @@ pub(crate) fn candidates(
 }
 
 /// The stage's rule on a graph of `n` points whose candidates were gathered (each point's from
-/// [`candidates_at`]): the split test on `graph`, then the moves settled as the stage settles
+/// [`candidates`]): the split test on `graph`, then the moves settled as the stage settles
 /// them. The chords to replace and the edges replacing them, or `None`.
 pub(crate) fn settle_candidates(
     n: usize,
