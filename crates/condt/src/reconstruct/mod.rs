@@ -22,7 +22,7 @@ mod tests {
     use super::pipeline::EdgesFingerprint;
     use super::result::Degrees;
     use super::*;
-    use crate::adjacency::{CurveGraph, Edge};
+    use crate::adjacency::{ordered, CurveGraph, Edge};
     use crate::mesh::VertexId;
     use crate::sample::{sample, Clumps, Sampling, Shape};
     use crate::stages::{proximity, Earlier, Stage, Step};
@@ -173,6 +173,38 @@ mod tests {
             alloc::format!("{values:?}"),
             "Debug shows the degrees as a list"
         );
+    }
+
+    /// The tally read from the final edges alone agrees with their curve graph: every input
+    /// position has its vertex's degree (one of 300 and one of exactly 255 too, counted past the
+    /// byte), copies of a point share it, each edge is listed once under its smaller position,
+    /// in order, and the points without edges are the unused ones.
+    #[test]
+    fn the_tally_of_the_final_edges_agrees_with_their_curve_graph() {
+        let mut points: Vec<Point> = (0..400)
+            .map(|k| Point::new(f64::from(k), f64::from((k * k) % 101)))
+            .collect();
+        points.extend([points[0], points[7], points[399]]);
+        let tri = triangulate(&points).unwrap();
+        let v = |i: usize| tri.vertex(i);
+        let mut last: Vec<Edge> = (1..301).map(|i| ordered(v(0), v(i))).collect();
+        last.extend((301..=350).map(|i| ordered(v(i), v(i + 1))));
+        last.extend((1..256).map(|i| ordered(v(360), v(i))));
+        last.sort_unstable();
+        let tally = super::result::tally(&tri, &last);
+        let graph = CurveGraph::new(points.len(), &last);
+        let degree = |i| graph.degree(v(i));
+        assert!(tally.degrees.iter().eq((0..points.len()).map(degree)));
+        assert_eq!((degree(0), degree(360), degree(400)), (300, 255, 300));
+        let unused: Vec<usize> = (0..points.len()).filter(|&i| degree(i) == 0).collect();
+        assert_eq!(tally.unused, unused);
+        let mut edges: Vec<[u32; 2]> = last
+            .iter()
+            .map(|e| e.map(|w| tri.input_of(w) as u32))
+            .map(|[i, j]| [i.min(j), i.max(j)])
+            .collect();
+        edges.sort_unstable();
+        assert_eq!(tally.edges, edges);
     }
 
     /// Every stage's graph as `stages()` rebuilds it is the graph the stage left: running the

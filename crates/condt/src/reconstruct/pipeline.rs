@@ -5,7 +5,7 @@
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
-use super::result::{tally, Reconstruction, Smoothing, StageReport, Tally};
+use super::result::{tally, Reconstruction, Smoothing, StageReport};
 use crate::adjacency::{CurveGraph, Edge};
 use crate::curve::curves_in_input_positions;
 use crate::error::Error;
@@ -16,7 +16,6 @@ use crate::smooth::{
     keep_apart, repeats, shows_noise, smoothed_positions, unmoved, PassInput, MAX_PASSES,
 };
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
-use crate::threads::both;
 use crate::triangulate::{choose_frames, splitmix64_finalizer, triangulate_with, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -127,7 +126,7 @@ struct Run {
 /// When a run's curves are assembled: only the final run's are read (others are dead memory).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum CurveAssembly {
-    /// The final one: the curves are assembled beside the final tally.
+    /// The final one: the curves are assembled, then the final tally.
     Now,
     /// The first run when passes may follow: no curves if its degrees show noise ([`shows_noise`]).
     UnlessNoisy,
@@ -632,19 +631,14 @@ impl Run {
                 // A pass that would move no point would give this result again.
                 CurveAssembly::Later => PassInput::moving(tri, graph),
             };
-            let room = Tally::with_room(n, last.len());
             match pass {
-                Ok(pass) => {
-                    let tally = tally(tri, pass.graph(), last.len(), room);
-                    (Some(pass), Vec::new(), tally)
-                }
+                Ok(pass) => (Some(pass), Vec::new(), tally(tri, last)),
+                // The curves first, then the tally without their graph (memory: the graph is not
+                // alive beside the tally's arrays, nor the curves' scratch beside them).
                 Err(graph) => {
-                    let (curves, tally) = both(
-                        in_parallel,
-                        || curves_in_input_positions(tri, &graph),
-                        || tally(tri, &graph, last.len(), room),
-                    );
-                    (None, curves, tally)
+                    let curves = curves_in_input_positions(tri, &graph);
+                    drop(graph);
+                    (None, curves, tally(tri, last))
                 }
             }
         });

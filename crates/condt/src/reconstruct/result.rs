@@ -9,7 +9,6 @@ use crate::curve::{curves_in_input_positions, Curve};
 use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::prefetch::PREFETCH_FROM;
 use crate::stages::Stage;
 use crate::triangulate::Triangulation;
 #[cfg(doc)]
@@ -429,93 +428,53 @@ pub(super) struct Tally {
     pub(super) edges: Vec<[u32; 2]>,
 }
 
-impl Tally {
-    /// Empty lists with room for the tally of `n` input positions and `edge_count` edges, taken
-    /// by the calling thread. Reason: memory; the tally runs beside the curves on another thread,
-    /// whose own malloc arena (glibc) would take these blocks from the system anew.
-    pub(super) fn with_room(n: usize, edge_count: usize) -> Tally {
-        Tally {
-            degrees: Degrees {
-                small: Vec::with_capacity(n),
-                large: Vec::new(),
-            },
-            unused: Vec::new(),
-            edges: Vec::with_capacity(edge_count + 2),
-        }
-    }
-}
-
-/// How far ahead [`tally`] prefetches neighbours' positions (twice as far for records).
-const TALLY_PREFETCH: usize = 16;
-
-/// One pass over the input positions writes into `room` ([`Tally::with_room`]) the degrees, the
-/// unused points and the final edges, sorted (each under its smaller position). At degree <= 2 (the
-/// common case) both candidates are written and the count keeps those that belong: no branch on a
-/// coin toss. Neighbours' positions come from the dense map: 16 to a cache line, records only 4.
-pub(super) fn tally(
-    tri: &Triangulation,
-    graph: &CurveGraph,
-    edge_count: usize,
-    room: Tally,
-) -> Tally {
+/// The tally of a run's final edges `last` (vertex ids), read from the list alone: the degrees
+/// and unused points by input position, and the edges in input positions, sorted (each under its
+/// smaller position). Why not from the curve graph: the last run frees its graph before this, so
+/// that its 8 bytes a point are not alive beside the result's arrays (memory: the run's peak).
+pub(super) fn tally(tri: &Triangulation, last: &[Edge]) -> Tally {
     let n = tri.num_points();
-    let has_duplicates = tri.num_vertices() < n;
-    let Tally {
-        mut degrees,
-        mut unused,
-        mut edges,
-    } = room;
-    // Room for the two candidates a vertex writes past the last edge it lists.
-    edges.resize(edge_count + 2, [0, 0]);
-    let mut count = 0;
-    let input_of = |w: VertexId| {
-        if w.is_infinite() {
-            0
-        } else {
-            tri.input_of(w) as u32
+    // Each vertex's degree in a byte, saturating; the saturated ones are counted exactly below.
+    let mut by_vertex = vec![0_u8; n];
+    let mut edges = Vec::with_capacity(last.len());
+    for &[a, b] in last {
+        for v in [a, b] {
+            let degree = &mut by_vertex[v.index()];
+            *degree = degree.saturating_add(1);
         }
-    };
-    let order = tri.input_to_vertex();
-    let prefetching = n >= PREFETCH_FROM;
-    for (i, &v) in order.iter().enumerate() {
-        if prefetching {
-            // On shuffled input each record and neighbour position misses: the record is
-            // fetched two distances ahead, its neighbours' positions one, once it has arrived.
-            if let Some(&later) = order.get(i + 2 * TALLY_PREFETCH) {
-                graph.prefetch(later);
+        let [i, j] = [a, b].map(|v| tri.input_of(v) as u32);
+        edges.push([i.min(j), i.max(j)]);
+    }
+    // As one 64-bit key, the order of the pairs (speed: one comparison).
+    edges.sort_unstable_by_key(|&[i, j]| (u64::from(i) << 32) | u64::from(j));
+    let mut saturated: Vec<(VertexId, u32)> = (0..n as u32)
+        .map(VertexId::new)
+        .filter(|v| by_vertex[v.index()] == u8::MAX)
+        .map(|v| (v, 0))
+        .collect();
+    let at = |saturated: &[(VertexId, u32)], v| saturated.binary_search_by_key(&v, |&(w, _)| w);
+    if !saturated.is_empty() {
+        for &v in last.as_flattened() {
+            if let Ok(k) = at(&saturated, v) {
+                saturated[k].1 += 1;
             }
-            if let Some(&soon) = order.get(i + TALLY_PREFETCH) {
-                for w in graph.first_two(soon) {
-                    tri.prefetch_input_of(w);
-                }
-            }
-        }
-        let degree = graph.degree(v);
-        degrees.push(degree);
-        let i = i as u32;
-        if degree == 0 {
-            unused.push(i as usize);
-        } else if degree <= 2 {
-            let [x, y] = graph.first_two(v).map(input_of);
-            // A duplicate input point lists nothing: its edges are under the first copy.
-            let listing = !has_duplicates || tri.input_of(v) as u32 == i;
-            for j in [x.min(y), x.max(y)] {
-                edges[count] = [i, j];
-                count += usize::from(listing & (j > i));
-            }
-        } else if !has_duplicates || tri.input_of(v) as u32 == i {
-            let first = count;
-            for k in 0..degree {
-                let j = input_of(graph.neighbor(v, k));
-                if j > i {
-                    edges[count] = [i, j];
-                    count += 1;
-                }
-            }
-            edges[first..count].sort_unstable();
         }
     }
-    edges.truncate(count);
+    let mut degrees = Degrees {
+        small: Vec::with_capacity(n),
+        large: Vec::new(),
+    };
+    let mut unused = Vec::new();
+    for (i, &v) in tri.input_to_vertex().iter().enumerate() {
+        let degree = match by_vertex[v.index()] {
+            u8::MAX => at(&saturated, v).map_or(0, |k| saturated[k].1 as usize),
+            degree => usize::from(degree),
+        };
+        degrees.push(degree);
+        if degree == 0 {
+            unused.push(i);
+        }
+    }
     // Grown by doubling: up to half of it was room, kept by the result (memory).
     unused.shrink_to_fit();
     Tally {
