@@ -116,6 +116,12 @@ impl CurveGraph {
         self.records.len()
     }
 
+    /// Asks the cache for the record of `v`, which a loop will read soon ([`crate::prefetch`]).
+    #[inline]
+    pub(crate) fn prefetch(&self, v: VertexId) {
+        crate::prefetch::prefetch(&self.records, v.index());
+    }
+
     /// For a loop over the ids at `i`: asks the cache for the elements of `slice` (by vertex id)
     /// at the neighbours of vertex `i + NEIGHBORS_AHEAD`, from [`PREFETCH_FROM`] vertices on.
     #[inline]

@@ -20,7 +20,7 @@ pub use result::{Reconstruction, Smoothing, StageReport};
 mod tests {
     use super::history::Undo;
     use super::pipeline::EdgesFingerprint;
-    use super::result::Degrees;
+    use super::result::{degrees_of, edges_in_input_positions, Degrees};
     use super::*;
     use crate::adjacency::{ordered, CurveGraph, Edge};
     use crate::mesh::VertexId;
@@ -175,12 +175,12 @@ mod tests {
         );
     }
 
-    /// The tally read from the final edges alone agrees with their curve graph: every input
-    /// position has its vertex's degree (one of 300 and one of exactly 255 too, counted past the
-    /// byte), copies of a point share it, each edge is listed once under its smaller position,
-    /// in order, and the points without edges are the unused ones.
+    /// The final tally gives every input position its vertex's degree (one of 300 and one of
+    /// exactly 255 too, past the byte), copies of a point share it, the points without edges are
+    /// the unused ones, and the edges, read from the list, are each listed once under the smaller
+    /// position, in order.
     #[test]
-    fn the_tally_of_the_final_edges_agrees_with_their_curve_graph() {
+    fn the_final_tally_reads_degrees_and_edges_in_input_positions() {
         let mut points: Vec<Point> = (0..400)
             .map(|k| Point::new(f64::from(k), f64::from((k * k) % 101)))
             .collect();
@@ -191,20 +191,30 @@ mod tests {
         last.extend((301..=350).map(|i| ordered(v(i), v(i + 1))));
         last.extend((1..256).map(|i| ordered(v(360), v(i))));
         last.sort_unstable();
-        let tally = super::result::tally(&tri, &last);
         let graph = CurveGraph::new(points.len(), &last);
-        let degree = |i| graph.degree(v(i));
-        assert!(tally.degrees.iter().eq((0..points.len()).map(degree)));
+        let (degrees, unused) = degrees_of(&tri, &graph, Degrees::with_room(points.len()));
+        let degree = |i| degrees.get(i);
         assert_eq!((degree(0), degree(360), degree(400)), (300, 255, 300));
-        let unused: Vec<usize> = (0..points.len()).filter(|&i| degree(i) == 0).collect();
-        assert_eq!(tally.unused, unused);
-        let mut edges: Vec<[u32; 2]> = last
-            .iter()
-            .map(|e| e.map(|w| tri.input_of(w) as u32))
-            .map(|[i, j]| [i.min(j), i.max(j)])
-            .collect();
+        assert_eq!(
+            (degree(7), degree(401), degree(351), degree(399)),
+            (2, 2, 1, 0)
+        );
+        let expected: Vec<usize> = (0..points.len()).filter(|&i| degree(i) == 0).collect();
+        assert_eq!(unused, expected);
+        let mut edges: Vec<[u32; 2]> = Vec::new();
+        for i in 0..points.len() {
+            for k in 0..graph.degree(v(i)) {
+                let j = tri.input_of(graph.neighbor(v(i), k)) as u32;
+                if j > i as u32 && tri.input_of(v(i)) == i {
+                    edges.push([i as u32, j]);
+                }
+            }
+        }
         edges.sort_unstable();
-        assert_eq!(tally.edges, edges);
+        assert_eq!(edges.len(), last.len());
+        for parallel in [false, true] {
+            assert_eq!(edges_in_input_positions(&tri, &last, parallel), edges);
+        }
     }
 
     /// Every stage's graph as `stages()` rebuilds it is the graph the stage left: running the

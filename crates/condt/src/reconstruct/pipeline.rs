@@ -5,7 +5,9 @@
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
-use super::result::{tally, Reconstruction, Smoothing, StageReport};
+use super::result::{
+    degrees_of, edges_in_input_positions, Degrees, Reconstruction, Smoothing, StageReport, Tally,
+};
 use crate::adjacency::{CurveGraph, Edge};
 use crate::curve::curves_in_input_positions;
 use crate::error::Error;
@@ -16,6 +18,7 @@ use crate::smooth::{
     keep_apart, repeats, shows_noise, smoothed_positions, unmoved, PassInput, MAX_PASSES,
 };
 use crate::stages::{proximity, Earlier, Stage, Step, PARALLEL_FROM};
+use crate::threads::both;
 use crate::triangulate::{choose_frames, splitmix64_finalizer, triangulate_with, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -126,7 +129,7 @@ struct Run {
 /// When a run's curves are assembled: only the final run's are read (others are dead memory).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum CurveAssembly {
-    /// The final one: the curves are assembled, then the final tally.
+    /// The final one: the curves are assembled beside the final degrees.
     Now,
     /// The first run when passes may follow: no curves if its degrees show noise ([`shows_noise`]).
     UnlessNoisy,
@@ -631,16 +634,30 @@ impl Run {
                 // A pass that would move no point would give this result again.
                 CurveAssembly::Later => PassInput::moving(tri, graph),
             };
-            match pass {
-                Ok(pass) => (Some(pass), Vec::new(), tally(tri, last)),
-                // The curves first, then the tally without their graph (memory: the graph is not
-                // alive beside the tally's arrays, nor the curves' scratch beside them).
-                Err(graph) => {
-                    let curves = curves_in_input_positions(tri, &graph);
-                    drop(graph);
-                    (None, curves, tally(tri, last))
+            let room = Degrees::with_room(n);
+            let (waiting, curves, (degrees, unused)) = match pass {
+                Ok(pass) => {
+                    let degrees = degrees_of(tri, pass.graph(), room);
+                    (Some(pass), Vec::new(), degrees)
                 }
-            }
+                Err(graph) => {
+                    let (curves, degrees) = both(
+                        in_parallel,
+                        || curves_in_input_positions(tri, &graph),
+                        || degrees_of(tri, &graph, room),
+                    );
+                    (None, curves, degrees)
+                }
+            };
+            // After the graph is freed (memory: it is not alive beside these nor beside the
+            // curves' scratch).
+            let edges = edges_in_input_positions(tri, last, in_parallel);
+            let tally = Tally {
+                degrees,
+                unused,
+                edges,
+            };
+            (waiting, curves, tally)
         });
         let curves_time = clock.lap();
         let result = Reconstruction {

@@ -8,8 +8,9 @@ use crate::adjacency::{CurveGraph, Edge};
 use crate::curve::{curves_in_input_positions, Curve};
 use crate::geometry::Point;
 use crate::graph::Graph;
-use crate::mesh::VertexId;
+use crate::prefetch::PREFETCH_FROM;
 use crate::stages::Stage;
+use crate::threads::{mapped, sort_unstable_by_key};
 use crate::triangulate::Triangulation;
 #[cfg(doc)]
 use crate::{reconstruct, reconstruct_owned};
@@ -428,58 +429,62 @@ pub(super) struct Tally {
     pub(super) edges: Vec<[u32; 2]>,
 }
 
-/// The tally of a run's final edges `last` (vertex ids), read from the list alone: the degrees
-/// and unused points by input position, and the edges in input positions, sorted (each under its
-/// smaller position). Why not from the curve graph: the last run frees its graph before this, so
-/// that its 8 bytes a point are not alive beside the result's arrays (memory: the run's peak).
-pub(super) fn tally(tri: &Triangulation, last: &[Edge]) -> Tally {
-    let n = tri.num_points();
-    // Each vertex's degree in a byte, saturating; the saturated ones are counted exactly below.
-    let mut by_vertex = vec![0_u8; n];
-    let mut edges = Vec::with_capacity(last.len());
-    for &[a, b] in last {
-        for v in [a, b] {
-            let degree = &mut by_vertex[v.index()];
-            *degree = degree.saturating_add(1);
-        }
-        let [i, j] = [a, b].map(|v| tri.input_of(v) as u32);
-        edges.push([i.min(j), i.max(j)]);
-    }
-    // As one 64-bit key, the order of the pairs (speed: one comparison).
-    edges.sort_unstable_by_key(|&[i, j]| (u64::from(i) << 32) | u64::from(j));
-    let mut saturated: Vec<(VertexId, u32)> = (0..n as u32)
-        .map(VertexId::new)
-        .filter(|v| by_vertex[v.index()] == u8::MAX)
-        .map(|v| (v, 0))
-        .collect();
-    let at = |saturated: &[(VertexId, u32)], v| saturated.binary_search_by_key(&v, |&(w, _)| w);
-    if !saturated.is_empty() {
-        for &v in last.as_flattened() {
-            if let Ok(k) = at(&saturated, v) {
-                saturated[k].1 += 1;
-            }
+impl Degrees {
+    /// Empty, with room for `n` input positions, taken by the calling thread. Reason: memory;
+    /// [`degrees_of`] may run beside the curves on another thread, whose own malloc arena (glibc)
+    /// would take the block from the system anew.
+    pub(super) fn with_room(n: usize) -> Degrees {
+        Degrees {
+            small: Vec::with_capacity(n),
+            large: Vec::new(),
         }
     }
-    let mut degrees = Degrees {
-        small: Vec::with_capacity(n),
-        large: Vec::new(),
-    };
+}
+
+/// How far ahead [`degrees_of`] prefetches records.
+const DEGREES_PREFETCH: usize = 32;
+
+/// Each input position's degree in a run's final curve graph, into `room`
+/// ([`Degrees::with_room`]), and the positions without edges.
+pub(super) fn degrees_of(
+    tri: &Triangulation,
+    graph: &CurveGraph,
+    mut room: Degrees,
+) -> (Degrees, Vec<usize>) {
     let mut unused = Vec::new();
-    for (i, &v) in tri.input_to_vertex().iter().enumerate() {
-        let degree = match by_vertex[v.index()] {
-            u8::MAX => at(&saturated, v).map_or(0, |k| saturated[k].1 as usize),
-            degree => usize::from(degree),
-        };
-        degrees.push(degree);
+    let order = tri.input_to_vertex();
+    let prefetching = order.len() >= PREFETCH_FROM;
+    for (i, &v) in order.iter().enumerate() {
+        // On shuffled input each record misses.
+        if let Some(&later) = order.get(i + DEGREES_PREFETCH).filter(|_| prefetching) {
+            graph.prefetch(later);
+        }
+        let degree = graph.degree(v);
+        room.push(degree);
         if degree == 0 {
             unused.push(i);
         }
     }
     // Grown by doubling: up to half of it was room, kept by the result (memory).
     unused.shrink_to_fit();
-    Tally {
-        degrees,
-        unused,
-        edges,
-    }
+    (room, unused)
+}
+
+/// A run's final edges `last` (vertex ids) in input positions, sorted, each under its smaller
+/// position. Read from the list, not from the curve graph: the last run frees its graph first, so
+/// that the graph's 8 bytes a point are not alive beside these (memory: the run's peak).
+pub(super) fn edges_in_input_positions(
+    tri: &Triangulation,
+    last: &[Edge],
+    parallel: bool,
+) -> Vec<[u32; 2]> {
+    let in_positions = |e: &Edge| {
+        let [i, j] = e.map(|v| tri.input_of(v) as u32);
+        [i.min(j), i.max(j)]
+    };
+    let mut edges = mapped(last, in_positions, parallel);
+    // As one 64-bit key, the order of the pairs (speed: one comparison).
+    let key = |&[i, j]: &[u32; 2]| (u64::from(i) << 32) | u64::from(j);
+    sort_unstable_by_key(&mut edges, key, parallel);
+    edges
 }
