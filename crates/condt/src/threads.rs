@@ -1,4 +1,4 @@
-//! Running two pieces of work, a buffer fill or a scan of the ids `0..n` on rayon's threads
+//! Running two pieces of work, a buffer fill, a map, a sort or a scan of the ids `0..n` on rayon's threads
 //! (feature `parallel`) or on the caller's. Owns: only the choice of how to run and whether rayon
 //! can run at all ([`parallel_available`]); it knows nothing of the work.
 
@@ -23,6 +23,43 @@ pub(crate) fn filled<T: Copy + Send + Sync>(
     let _ = parallel;
     buffer.resize(n, value);
     buffer
+}
+
+/// `f` of every element of `items`, in order, on rayon's threads when `parallel`; the list is
+/// allocated by the calling thread either way (glibc's malloc keeps a freed block in the arena of
+/// the thread that took it).
+pub(crate) fn mapped<T: Sync, U: Send>(
+    items: &[T],
+    f: impl Fn(&T) -> U + Sync + Send,
+    parallel: bool,
+) -> Vec<U> {
+    let mut list = Vec::with_capacity(items.len());
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::prelude::*;
+        items.par_iter().map(f).collect_into_vec(&mut list);
+        return list;
+    }
+    let _ = parallel;
+    list.extend(items.iter().map(f));
+    list
+}
+
+/// `slice` sorted by `key` (not stable), split on rayon's threads when `parallel`: in place
+/// either way, so no thread allocates.
+pub(crate) fn sort_unstable_by_key<T: Send, K: Ord>(
+    slice: &mut [T],
+    key: impl Fn(&T) -> K + Sync,
+    parallel: bool,
+) {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::slice::ParallelSliceMut;
+        slice.par_sort_unstable_by_key(key);
+        return;
+    }
+    let _ = parallel;
+    slice.sort_unstable_by_key(key);
 }
 
 /// How many threads work at once: rayon's when `parallel`, else one.

@@ -20,9 +20,9 @@ pub use result::{Reconstruction, Smoothing, StageReport};
 mod tests {
     use super::history::Undo;
     use super::pipeline::EdgesFingerprint;
-    use super::result::Degrees;
+    use super::result::{degrees_of, edges_in_input_positions, Degrees};
     use super::*;
-    use crate::adjacency::{CurveGraph, Edge};
+    use crate::adjacency::{ordered, CurveGraph, Edge};
     use crate::mesh::VertexId;
     use crate::sample::{sample, Clumps, Sampling, Shape};
     use crate::stages::{proximity, Earlier, Stage, Step};
@@ -173,6 +173,48 @@ mod tests {
             alloc::format!("{values:?}"),
             "Debug shows the degrees as a list"
         );
+    }
+
+    /// The final tally gives every input position its vertex's degree (one of 300 and one of
+    /// exactly 255 too, past the byte), copies of a point share it, the points without edges are
+    /// the unused ones, and the edges, read from the list, are each listed once under the smaller
+    /// position, in order.
+    #[test]
+    fn the_final_tally_reads_degrees_and_edges_in_input_positions() {
+        let mut points: Vec<Point> = (0..400)
+            .map(|k| Point::new(f64::from(k), f64::from((k * k) % 101)))
+            .collect();
+        points.extend([points[0], points[7], points[399]]);
+        let tri = triangulate(&points).unwrap();
+        let v = |i: usize| tri.vertex(i);
+        let mut last: Vec<Edge> = (1..301).map(|i| ordered(v(0), v(i))).collect();
+        last.extend((301..=350).map(|i| ordered(v(i), v(i + 1))));
+        last.extend((1..256).map(|i| ordered(v(360), v(i))));
+        last.sort_unstable();
+        let graph = CurveGraph::new(points.len(), &last);
+        let (degrees, unused) = degrees_of(&tri, &graph, Degrees::with_room(points.len()));
+        let degree = |i| degrees.get(i);
+        assert_eq!((degree(0), degree(360), degree(400)), (300, 255, 300));
+        assert_eq!(
+            (degree(7), degree(401), degree(351), degree(399)),
+            (2, 2, 1, 0)
+        );
+        let expected: Vec<usize> = (0..points.len()).filter(|&i| degree(i) == 0).collect();
+        assert_eq!(unused, expected);
+        let mut edges: Vec<[u32; 2]> = Vec::new();
+        for i in 0..points.len() {
+            for k in 0..graph.degree(v(i)) {
+                let j = tri.input_of(graph.neighbor(v(i), k)) as u32;
+                if j > i as u32 && tri.input_of(v(i)) == i {
+                    edges.push([i as u32, j]);
+                }
+            }
+        }
+        edges.sort_unstable();
+        assert_eq!(edges.len(), last.len());
+        for parallel in [false, true] {
+            assert_eq!(edges_in_input_positions(&tri, &last, parallel), edges);
+        }
     }
 
     /// Every stage's graph as `stages()` rebuilds it is the graph the stage left: running the

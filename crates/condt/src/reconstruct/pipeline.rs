@@ -5,7 +5,9 @@
 
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
-use super::result::{tally, Reconstruction, Smoothing, StageReport, Tally};
+use super::result::{
+    degrees_of, edges_in_input_positions, Degrees, Reconstruction, Smoothing, StageReport, Tally,
+};
 use crate::adjacency::{CurveGraph, Edge};
 use crate::curve::curves_in_input_positions;
 use crate::error::Error;
@@ -127,7 +129,7 @@ struct Run {
 /// When a run's curves are assembled: only the final run's are read (others are dead memory).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum CurveAssembly {
-    /// The final one: the curves are assembled beside the final tally.
+    /// The final one: the curves are assembled beside the final degrees.
     Now,
     /// The first run when passes may follow: no curves if its degrees show noise ([`shows_noise`]).
     UnlessNoisy,
@@ -632,21 +634,30 @@ impl Run {
                 // A pass that would move no point would give this result again.
                 CurveAssembly::Later => PassInput::moving(tri, graph),
             };
-            let room = Tally::with_room(n, last.len());
-            match pass {
+            let room = Degrees::with_room(n);
+            let (waiting, curves, (degrees, unused)) = match pass {
                 Ok(pass) => {
-                    let tally = tally(tri, pass.graph(), last.len(), room);
-                    (Some(pass), Vec::new(), tally)
+                    let degrees = degrees_of(tri, pass.graph(), room);
+                    (Some(pass), Vec::new(), degrees)
                 }
                 Err(graph) => {
-                    let (curves, tally) = both(
+                    let (curves, degrees) = both(
                         in_parallel,
                         || curves_in_input_positions(tri, &graph),
-                        || tally(tri, &graph, last.len(), room),
+                        || degrees_of(tri, &graph, room),
                     );
-                    (None, curves, tally)
+                    (None, curves, degrees)
                 }
-            }
+            };
+            // After the graph is freed (memory: it is not alive beside these nor beside the
+            // curves' scratch).
+            let edges = edges_in_input_positions(tri, last, in_parallel);
+            let tally = Tally {
+                degrees,
+                unused,
+                edges,
+            };
+            (waiting, curves, tally)
         });
         let curves_time = clock.lap();
         let result = Reconstruction {

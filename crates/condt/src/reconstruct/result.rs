@@ -8,9 +8,9 @@ use crate::adjacency::{CurveGraph, Edge};
 use crate::curve::{curves_in_input_positions, Curve};
 use crate::geometry::Point;
 use crate::graph::Graph;
-use crate::mesh::VertexId;
 use crate::prefetch::PREFETCH_FROM;
 use crate::stages::Stage;
+use crate::threads::{mapped, sort_unstable_by_key};
 use crate::triangulate::Triangulation;
 #[cfg(doc)]
 use crate::{reconstruct, reconstruct_owned};
@@ -429,98 +429,62 @@ pub(super) struct Tally {
     pub(super) edges: Vec<[u32; 2]>,
 }
 
-impl Tally {
-    /// Empty lists with room for the tally of `n` input positions and `edge_count` edges, taken
-    /// by the calling thread. Reason: memory; the tally runs beside the curves on another thread,
-    /// whose own malloc arena (glibc) would take these blocks from the system anew.
-    pub(super) fn with_room(n: usize, edge_count: usize) -> Tally {
-        Tally {
-            degrees: Degrees {
-                small: Vec::with_capacity(n),
-                large: Vec::new(),
-            },
-            unused: Vec::new(),
-            edges: Vec::with_capacity(edge_count + 2),
+impl Degrees {
+    /// Empty, with room for `n` input positions, taken by the calling thread. Reason: memory;
+    /// [`degrees_of`] may run beside the curves on another thread, whose own malloc arena (glibc)
+    /// would take the block from the system anew.
+    pub(super) fn with_room(n: usize) -> Degrees {
+        Degrees {
+            small: Vec::with_capacity(n),
+            large: Vec::new(),
         }
     }
 }
 
-/// How far ahead [`tally`] prefetches neighbours' positions (twice as far for records).
-const TALLY_PREFETCH: usize = 16;
+/// How far ahead [`degrees_of`] prefetches records.
+const DEGREES_PREFETCH: usize = 32;
 
-/// One pass over the input positions writes into `room` ([`Tally::with_room`]) the degrees, the
-/// unused points and the final edges, sorted (each under its smaller position). At degree <= 2 (the
-/// common case) both candidates are written and the count keeps those that belong: no branch on a
-/// coin toss. Neighbours' positions come from the dense map: 16 to a cache line, records only 4.
-pub(super) fn tally(
+/// Each input position's degree in a run's final curve graph, into `room`
+/// ([`Degrees::with_room`]), and the positions without edges.
+pub(super) fn degrees_of(
     tri: &Triangulation,
     graph: &CurveGraph,
-    edge_count: usize,
-    room: Tally,
-) -> Tally {
-    let n = tri.num_points();
-    let has_duplicates = tri.num_vertices() < n;
-    let Tally {
-        mut degrees,
-        mut unused,
-        mut edges,
-    } = room;
-    // Room for the two candidates a vertex writes past the last edge it lists.
-    edges.resize(edge_count + 2, [0, 0]);
-    let mut count = 0;
-    let input_of = |w: VertexId| {
-        if w.is_infinite() {
-            0
-        } else {
-            tri.input_of(w) as u32
-        }
-    };
+    mut room: Degrees,
+) -> (Degrees, Vec<usize>) {
+    let mut unused = Vec::new();
     let order = tri.input_to_vertex();
-    let prefetching = n >= PREFETCH_FROM;
+    let prefetching = order.len() >= PREFETCH_FROM;
     for (i, &v) in order.iter().enumerate() {
-        if prefetching {
-            // On shuffled input each record and neighbour position misses: the record is
-            // fetched two distances ahead, its neighbours' positions one, once it has arrived.
-            if let Some(&later) = order.get(i + 2 * TALLY_PREFETCH) {
-                graph.prefetch(later);
-            }
-            if let Some(&soon) = order.get(i + TALLY_PREFETCH) {
-                for w in graph.first_two(soon) {
-                    tri.prefetch_input_of(w);
-                }
-            }
+        // On shuffled input each record misses.
+        if let Some(&later) = order.get(i + DEGREES_PREFETCH).filter(|_| prefetching) {
+            graph.prefetch(later);
         }
         let degree = graph.degree(v);
-        degrees.push(degree);
-        let i = i as u32;
+        room.push(degree);
         if degree == 0 {
-            unused.push(i as usize);
-        } else if degree <= 2 {
-            let [x, y] = graph.first_two(v).map(input_of);
-            // A duplicate input point lists nothing: its edges are under the first copy.
-            let listing = !has_duplicates || tri.input_of(v) as u32 == i;
-            for j in [x.min(y), x.max(y)] {
-                edges[count] = [i, j];
-                count += usize::from(listing & (j > i));
-            }
-        } else if !has_duplicates || tri.input_of(v) as u32 == i {
-            let first = count;
-            for k in 0..degree {
-                let j = input_of(graph.neighbor(v, k));
-                if j > i {
-                    edges[count] = [i, j];
-                    count += 1;
-                }
-            }
-            edges[first..count].sort_unstable();
+            unused.push(i);
         }
     }
-    edges.truncate(count);
     // Grown by doubling: up to half of it was room, kept by the result (memory).
     unused.shrink_to_fit();
-    Tally {
-        degrees,
-        unused,
-        edges,
-    }
+    (room, unused)
+}
+
+/// A run's final edges `last` (vertex ids) in input positions, sorted, each under its smaller
+/// position. Read from the list, not from the curve graph: the last run frees its graph first, so
+/// that the graph's 8 bytes a point are not alive beside these (memory: the run's peak).
+pub(super) fn edges_in_input_positions(
+    tri: &Triangulation,
+    last: &[Edge],
+    parallel: bool,
+) -> Vec<[u32; 2]> {
+    let in_positions = |e: &Edge| {
+        let [i, j] = e.map(|v| tri.input_of(v) as u32);
+        [i.min(j), i.max(j)]
+    };
+    let mut edges = mapped(last, in_positions, parallel);
+    // As one 64-bit key, the order of the pairs (speed: one comparison).
+    let key = |&[i, j]: &[u32; 2]| (u64::from(i) << 32) | u64::from(j);
+    sort_unstable_by_key(&mut edges, key, parallel);
+    edges
 }

@@ -662,11 +662,6 @@ impl Triangulation {
     pub fn input_of(&self, v: VertexId) -> usize {
         self.input_of_vertex[v.index()] as usize
     }
-    /// Prefetches [`Triangulation::input_of`] of `v` ([`crate::prefetch`]); nothing if no id.
-    #[inline]
-    pub(crate) fn prefetch_input_of(&self, v: VertexId) {
-        crate::prefetch::prefetch(&self.input_of_vertex, v.index());
-    }
     /// Number of input points, duplicates included.
     ///
     /// ```
