@@ -1,6 +1,6 @@
-//! Running two pieces of work, a buffer fill, a map, a sort or a scan of the ids `0..n` on rayon's threads
-//! (feature `parallel`) or on the caller's. Owns: only the choice of how to run and whether rayon
-//! can run at all ([`parallel_available`]); it knows nothing of the work.
+//! Running two pieces of work, a buffer fill, a map, a sort or a scan of the ids `0..n` on
+//! rayon's threads (feature `parallel`) or on the caller's. Owns: only the choice of how to run
+//! and whether rayon can run at all ([`parallel_available`]); it knows nothing of the work.
 
 use alloc::vec::Vec;
 
