@@ -89,6 +89,8 @@ pub mod tiled;
 mod triangulate;
 
 #[cfg(test)]
+mod test_graphs;
+#[cfg(test)]
 mod test_rng;
 
 /// The unit tests sample curves with `condt_eval::sample`, compiled into this crate (a

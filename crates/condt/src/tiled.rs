@@ -976,7 +976,7 @@ mod tests {
     /// piece goes.
     #[test]
     fn gathered_rule_4_keeps_what_a_tip_s_move_joins_as_the_stage_does() {
-        let (pts, edges, curve_len) = crate::stages::local_outliers::tip_piece_beside_a_curve();
+        let (pts, edges, curve_len) = crate::test_graphs::tip_piece_beside_a_curve();
         let tri = crate::triangulate(&pts).unwrap();
         let graph = tri.graph_from_edges(edges.iter().copied());
         let local = local_rules(&graph, &graph, false);

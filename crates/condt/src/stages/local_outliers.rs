@@ -909,34 +909,6 @@ fn too_many_dropped(root: &[u32], profile: &CurveGraph, kept: &[bool]) -> bool {
     dropped as f64 >= OUTLIER_SHARE * with_edges as f64
 }
 
-/// Two rows 0.8 apart, one apart along each: an open curve along the bottom row from (1, 0) to
-/// x = 12, around a half circle below and back along the top row to (-0.2, 0.8), its two loose
-/// ends (positions 0 and `curve_len - 1`); then a piece of six from `curve_len` on: the bottom
-/// row's three samples left of its end and the top row's three right of its end, joined by a
-/// chord across the rows (`curve_len`, `curve_len + 3`), as Algorithm 1 pairs samples at a
-/// narrow tip. The points, the edges and `curve_len`; the tips stage's move gives the chord up
-/// for the two ends' edges. For rule 4's tests, the stage's and the tiled one.
-#[cfg(test)]
-pub(crate) fn tip_piece_beside_a_curve() -> (Vec<Point>, Vec<[usize; 2]>, usize) {
-    let mut pts: Vec<Point> = (0..12).map(|k| Point::new(1.0 + k as f64, 0.0)).collect();
-    let (radius, from) = (12.0, libm::atan2(-0.4, 12.0));
-    let steps = libm::ceil(core::f64::consts::PI * radius) as usize;
-    pts.extend((1..steps).map(|k| {
-        let t = from - core::f64::consts::PI * k as f64 / steps as f64;
-        Point::new(radius * libm::cos(t), 0.4 + radius * libm::sin(t))
-    }));
-    pts.extend((0..12).rev().map(|k| Point::new(-0.2 - k as f64, 0.8)));
-    let curve_len = pts.len();
-    let mut pairs: Vec<[usize; 2]> = (0..curve_len - 1).map(|k| [k, k + 1]).collect();
-    pts.extend((0..3).map(|k| Point::new(-(k as f64), 0.0)));
-    pts.extend((0..3).map(|k| Point::new(0.8 + k as f64, 0.8)));
-    let piece = curve_len;
-    pairs.extend([[piece, piece + 1], [piece + 1, piece + 2]]);
-    pairs.extend([[piece + 3, piece + 4], [piece + 4, piece + 5]]);
-    pairs.push([piece, piece + 3]);
-    (pts, pairs, curve_len)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1426,13 +1398,13 @@ mod tests {
     }
 
     /// A piece of six at a narrow tip beside an open curve's two loose ends
-    /// ([`tip_piece_beside_a_curve`]): no sample of the piece is apart from the curve, and gap
+    /// ([`tip_piece_beside_a_curve`](crate::test_graphs::tip_piece_beside_a_curve)): no sample of the piece is apart from the curve, and gap
     /// closing joins none of its ends (each faces away from the curve's ends), so rule 4 would
     /// drop it; the tips stage gives the chord up for the two ends' edges, so rule 4 keeps it.
     /// (Without the chord, gap closing joins both halves, end to end.)
     #[test]
     fn rule_4_keeps_a_piece_that_a_tip_s_move_joins_to_a_kept_curve() {
-        let (pts, pairs, curve_len) = tip_piece_beside_a_curve();
+        let (pts, pairs, curve_len) = crate::test_graphs::tip_piece_beside_a_curve();
         let piece = curve_len;
         let tri = triangulate(&pts).unwrap();
         assert_eq!(apply(&tri, &vertex_edges(&tri, &pairs), RULE_4), None);

@@ -1,0 +1,34 @@
+//! Points with hand-drawn graphs that the unit tests of more than one module read (test builds
+//! only).
+//!
+//! Owns: such fixtures, in one definition. Nothing in the library may use it.
+
+use crate::geometry::Point;
+use alloc::vec::Vec;
+
+/// Two rows 0.8 apart, one apart along each: an open curve along the bottom row from (1, 0) to
+/// x = 12, around a half circle below and back along the top row to (-0.2, 0.8), its two loose
+/// ends (positions 0 and `curve_len - 1`); then a piece of six from `curve_len` on: the bottom
+/// row's three samples left of its end and the top row's three right of its end, joined by a
+/// chord across the rows (`curve_len`, `curve_len + 3`), as Algorithm 1 pairs samples at a
+/// narrow tip. The points, the edges and `curve_len`; the tips stage's move gives the chord up
+/// for the two ends' edges. For rule 4's tests, the stage's and the tiled one.
+pub(crate) fn tip_piece_beside_a_curve() -> (Vec<Point>, Vec<[usize; 2]>, usize) {
+    let mut pts: Vec<Point> = (0..12).map(|k| Point::new(1.0 + k as f64, 0.0)).collect();
+    let (radius, from) = (12.0, libm::atan2(-0.4, 12.0));
+    let steps = libm::ceil(core::f64::consts::PI * radius) as usize;
+    pts.extend((1..steps).map(|k| {
+        let t = from - core::f64::consts::PI * k as f64 / steps as f64;
+        Point::new(radius * libm::cos(t), 0.4 + radius * libm::sin(t))
+    }));
+    pts.extend((0..12).rev().map(|k| Point::new(-0.2 - k as f64, 0.8)));
+    let curve_len = pts.len();
+    let mut pairs: Vec<[usize; 2]> = (0..curve_len - 1).map(|k| [k, k + 1]).collect();
+    pts.extend((0..3).map(|k| Point::new(-(k as f64), 0.0)));
+    pts.extend((0..3).map(|k| Point::new(0.8 + k as f64, 0.8)));
+    let piece = curve_len;
+    pairs.extend([[piece, piece + 1], [piece + 1, piece + 2]]);
+    pairs.extend([[piece + 3, piece + 4], [piece + 4, piece + 5]]);
+    pairs.push([piece, piece + 3]);
+    (pts, pairs, curve_len)
+}
