@@ -242,8 +242,8 @@ def _phases(run, plan, points, params):
                 edges = edges if back is None else back
             labels = _condt._component_labels(n, edges)
             tests = run.tests_on_kept(edges, step, labels)
-            choices = run.on_kept(edges, "gaps", width=10)
-            tips = run.on_kept(edges, "tips", width=4)
+            # Both in one round (one scatter of the edges to each tile).
+            choices, tips = run.on_kept(edges, "gaps+tips", width=(10, 4))
             kept = _condt._gathered_local_outliers(n, edges, tests, choices, tips)
             edges = edges if kept is None else kept
         elif step == "given-back":
@@ -420,7 +420,8 @@ class _Run:
         halo that certified it, on its worker), joined: the second phase of a two-phase flow
         (``"repair"``) or a later stage's round, which sends each tile only its given edges. The
         tiles' rows (owned edges; for the tips, ``width`` 4, candidate moves; for gap closing,
-        ``width`` 10, choices) in tile order."""
+        ``width`` 10, choices) in tile order; for ``"gaps+tips"`` (``width`` ``(10, 4)``) both
+        lists, from one round."""
         kept, locals_ = self._split(given)
         earlier = [None] * len(kept) if before is None else self._split(before)[1]
         futures = []
@@ -435,6 +436,11 @@ class _Run:
         self.rounds += 1
         for _, worker in results:
             self.workers.add(worker)
+        if isinstance(width, tuple):
+            return tuple(
+                np.concatenate([rows[k] for rows, _ in results] + [np.empty((0, w), np.int64)])
+                for k, w in enumerate(width)
+            )
         return np.concatenate([rows for rows, _ in results] + [np.empty((0, width), np.int64)])
 
 
@@ -523,6 +529,11 @@ def _tile_given(result, payload, step, give_back, params):
         rows = _on_worker(_condt._last_edges_kept, state, given, before, **params)
     elif step in ("tips", "gaps"):
         rows = _on_worker(_condt._choices_kept, state, given, step, **params)
+    elif step == "gaps+tips":
+        rows = tuple(
+            _on_worker(_condt._choices_kept, state, given, one, **params)
+            for one in ("gaps", "tips")
+        )
     else:
         rows = _on_worker(_condt._step_kept, state, given, step, **params)
     return rows, get_worker().address
