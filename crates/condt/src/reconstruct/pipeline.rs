@@ -649,8 +649,8 @@ impl Run {
                     (None, curves, degrees)
                 }
             };
-            // After the graph is freed (memory: it is not alive beside these nor beside the
-            // curves' scratch).
+            // After a final run's graph is freed (memory: it is not alive beside these nor
+            // beside the curves' scratch); a run a pass follows keeps it in the pass's input.
             let edges = edges_in_input_positions(tri, last, in_parallel);
             let tally = Tally {
                 degrees,

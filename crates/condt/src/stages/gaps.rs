@@ -11,8 +11,8 @@
 //! between `a'` and `w` above 90°, [`AHEAD`]: a half-plane, since at noisy ends and sharp corners
 //! the last edge is a poor guide; where that edge is *crowded*, under `1 / GAP_RATIO` of the edge
 //! before it, noise pushed `a` beside `a'` and every angle at `a` is read from the sample before
-//! `a'` instead, as on a straight walk (4)) within a **short** gap (`|aw| <= GAP_RATIO · |aa'|`, the paper's
-//! `u`: Algorithm 1's bound for one sampling; a longer gap is a real end).
+//! `a'` instead, as on a straight walk (4)) within a **short** gap (`|aw| <= GAP_RATIO · |aa'|`,
+//! the paper's `u`: Algorithm 1's bound for one sampling; a longer gap is a real end).
 //!
 //! Candidates: (1) another loose end `b` facing `a`, or facing `a` while the join runs within 60°
 //! of `a`'s edge ([`TIP`]: a sharp tip's apex left with one side); across a straight join
@@ -134,6 +134,13 @@ pub(crate) struct Ends<'a> {
     pub(super) graph: Cow<'a, CurveGraph>,
 }
 
+/// Whether a step of squared length `step` is *crowded* after one of squared length `before`:
+/// under `1 / GAP_RATIO` of it, two samples noise pushed together, whose direction is the noise's.
+/// The one test of a crowded loose end ([`Ends::heading_from`]) and a straight walk's crowded step.
+fn crowded(step: f64, before: f64) -> bool {
+    GAP_RATIO * GAP_RATIO * step < before
+}
+
 impl<'a> Ends<'a> {
     /// The loose ends of `edges`, with the previous stage's curve `graph` if any.
     pub(crate) fn new(tri: &'a Triangulation, edges: &[Edge], graph: Option<CurveGraph>) -> Self {
@@ -217,8 +224,7 @@ impl<'a> Ends<'a> {
         }
         let beyond = self.graph.onward(next, a);
         let (pa, pn) = (self.point(a), self.point(next));
-        let crowded = GAP_RATIO * GAP_RATIO * pa.dist2(pn) < pn.dist2(self.point(beyond));
-        if crowded {
+        if crowded(pa.dist2(pn), pn.dist2(self.point(beyond))) {
             beyond
         } else {
             next
@@ -417,9 +423,8 @@ impl<'a> Ends<'a> {
                 .map(|w| (ph.dist2(self.point(w)), w))
                 .filter(|&(d, w)| {
                     let cos = cos_at(ph, pf, self.point(w));
-                    let crowded = GAP_RATIO * GAP_RATIO * d < last;
                     d <= GAP_RATIO * GAP_RATIO * span
-                        && (cos < STRAIGHT || (crowded && cos < AHEAD))
+                        && (cos < STRAIGHT || (crowded(d, last) && cos < AHEAD))
                 })
                 .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
             let Some((d, w)) = next else { break };
@@ -427,7 +432,7 @@ impl<'a> Ends<'a> {
             if self.graph.degree(w) == 1 {
                 break;
             }
-            if GAP_RATIO * GAP_RATIO * d >= last {
+            if !crowded(d, last) {
                 from = here;
             }
             (before, last, here) = (last, d, w);
