@@ -531,6 +531,7 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tiles::_tests_kept, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_component_labels, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_clumps, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_gathered_clumps_found, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_tips, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_choices_kept, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_gaps, m)?)?;

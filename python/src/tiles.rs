@@ -864,21 +864,42 @@ pub(crate) fn _component_labels<'py>(
     ))
 }
 
+/// Whether the clump stage finds a clump on the gathered `edges` over `n` points with each
+/// point's `tests` ([`condt::tiled::gathered_clumps_found`]): only then does the driver ask the
+/// tiles for the gap choices and tip candidates [`_gathered_clumps`] reads.
+#[pyfunction]
+pub(crate) fn _gathered_clumps_found<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    tests: PyReadonlyArray1<'py, u8>,
+) -> PyResult<bool> {
+    let edges = gathered_pairs(edges)?;
+    let tests = tests.as_slice()?;
+    py.detach(|| condt::tiled::gathered_clumps_found(n, &edges, tests))
+        .map_err(|err| PyValueError::new_err(err.to_string()))
+}
+
 /// The clump stage on the gathered `edges` over `n` points with each point's `tests` from the
-/// tile owning it ([`condt::tiled::remove_gathered_clumps`]): the edges kept, sorted by rows, or
-/// `None` when it changes nothing.
+/// tile owning it, every loose end's gap `choices` and every point's tip candidates (`tips`) on
+/// them ([`condt::tiled::remove_gathered_clumps`]): the edges kept, sorted by rows, or `None`
+/// when it changes nothing.
 #[pyfunction]
 pub(crate) fn _gathered_clumps<'py>(
     py: Python<'py>,
     n: usize,
     edges: &Bound<'py, PyArray2<i64>>,
     tests: PyReadonlyArray1<'py, u8>,
+    choices: PyReadonlyArray2<'py, i64>,
+    tips: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
+    let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
+    let tips: Vec<[usize; 4]> = rows_of(&tips, "a tip candidate")?;
     let tests = tests.as_slice()?;
     gathered_answer(
         py,
-        py.detach(|| condt::tiled::remove_gathered_clumps(n, &edges, tests)),
+        py.detach(|| condt::tiled::remove_gathered_clumps(n, &edges, tests, &rows, &tips)),
     )
 }
 

@@ -305,6 +305,25 @@ def test_clumps_are_a_round_of_tests_and_the_rule_on_the_driver(client):
     assert not np.array_equal(expected, one_machine(points, **{**params, "clumps": False}))
 
 
+def test_a_clump_that_gap_closing_joins_stays_on_the_driver_too(client):
+    # Evenly spaced ellipses under Gaussian noise of 0.3 spacings: noise zig-zags stretches that
+    # the earlier stages cut off, which the clump stage keeps where gap closing or the tips would
+    # join them to a curve (on this set it keeps such pieces: the one-machine edges differ from
+    # those of a build without that exemption). The driver asks the tiles for those joins.
+    rng = np.random.default_rng(1)
+    parts = []
+    while sum(len(p) for p in parts) < 20_000:
+        centre, radius, m = rng.uniform(0, 100, 2), rng.uniform(1.0, 4.0), int(rng.integers(100, 300))
+        t = np.arange(m) * 2 * np.pi / m
+        flat = rng.uniform(0.3, 1)
+        ellipse = np.column_stack([centre[0] + radius * np.cos(t), centre[1] + radius * flat * np.sin(t)])
+        parts.append(ellipse + rng.normal(0, 0.3 * 2 * np.pi * radius / m, ellipse.shape))
+    points = np.concatenate(parts)
+    tiled = condt.dask.reconstruct(points, client, tiles=9)
+    assert tiled.whole is None
+    np.testing.assert_array_equal(tiled.edges, one_machine(points))
+
+
 def test_a_curves_last_edge_is_given_back_on_the_driver(client):
     # Clean ellipses, and beside them 30 sparse open arcs whose last sample lies 1.4 spacings
     # beyond the one before: the IQR stage cuts the arcs, rule 1 gives their passages back on

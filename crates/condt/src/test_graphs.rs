@@ -32,3 +32,23 @@ pub(crate) fn tip_piece_beside_a_curve() -> (Vec<Point>, Vec<[usize; 2]>, usize)
     pairs.push([piece, piece + 3]);
     (pts, pairs, curve_len)
 }
+
+/// A circle of radius 10 sampled at 60 angles whose samples 15 to 26 zig-zag across it (0.5 in
+/// and out, as noise at half a spacing leaves a stretch), the circle's edges missing at both
+/// ends of that stretch: an open curve of the other 48 samples (positions 0 to 47, its loose
+/// ends 0 and 47) and the stretch as a piece of its own (positions 48 to 59, in order along the
+/// circle). The points, the edges and 48. The piece passes smoothly nowhere and stands apart
+/// from the rest at its middle samples; gap closing joins its ends to the curve's. For the clump
+/// stage's tests, the stage's and the tiled one.
+pub(crate) fn zig_zag_piece_in_a_gap() -> (Vec<Point>, Vec<[usize; 2]>, usize) {
+    let at = |k: usize, r: f64| {
+        let t = core::f64::consts::TAU * k as f64 / 60.0;
+        Point::new(r * libm::cos(t), r * libm::sin(t))
+    };
+    let mut pts: Vec<Point> = (27..60).chain(0..15).map(|k| at(k, 10.0)).collect();
+    let curve_len = pts.len();
+    let mut pairs: Vec<[usize; 2]> = (0..curve_len - 1).map(|k| [k, k + 1]).collect();
+    pts.extend((15..27).map(|k| at(k, if k % 2 == 0 { 10.5 } else { 9.5 })));
+    pairs.extend((curve_len..pts.len() - 1).map(|k| [k, k + 1]));
+    (pts, pairs, curve_len)
+}

@@ -203,11 +203,15 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> 
 
 /// The clump stage ([`Graph::remove_clumps`]) on edges gathered from the tiles of a split run:
 /// the edges kept (in order), or `None` when it changes nothing. `edges` are pairs of positions
-/// below `n`; `tests` holds each position's [`clump_tests`], from the tile that owns it. The rule
-/// is the stage's own, on the same graph, with the tests read instead of measured.
+/// below `n`; `tests` holds each position's [`clump_tests`], from the tile that owns it; `choices`
+/// every loose end's [`gap_choices`] and `tips` every point's [`tip_candidates`] on this graph (a
+/// clump that gap closing or a tip's move would join to a component that stays, stays), needed
+/// only when [`gathered_clumps_found`] says so: without a clump they change nothing. The rule is
+/// the stage's own, on the same graph, with the tests read instead of measured.
 ///
 /// # Errors
-/// As [`component_labels`], and named `tests` when `tests` is shorter than `n`.
+/// As [`component_labels`], named `tests` when `tests` is shorter than `n`, and as
+/// [`close_gathered_gaps`] and [`repair_gathered_tips`] for the rows.
 ///
 /// ```
 /// use condt::{tiled, triangulate, Point};
@@ -219,7 +223,10 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> 
 /// let edges: Vec<[usize; 2]> = (0..29).chain(30..35).map(|i| [i, i + 1]).collect();
 /// let graph = tri.graph_from_edges(edges.iter().copied());
 /// let tests = tiled::clump_tests(&graph, &tiled::component_labels(pts.len(), &edges)?)?;
-/// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests)?;
+/// assert!(tiled::gathered_clumps_found(pts.len(), &edges, &tests)?);
+/// let choices = tiled::gap_choices(&graph, |_| true);
+/// let tips = tiled::tip_candidates(&graph, |_| true);
+/// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests, &choices, &tips)?;
 /// assert_eq!(kept, Some(graph.remove_clumps().edges()));
 /// # Ok::<(), condt::Error>(())
 /// ```
@@ -227,17 +234,107 @@ pub fn remove_gathered_clumps(
     n: usize,
     edges: &[[usize; 2]],
     tests: &[u8],
+    choices: &[[usize; GAP_ROW]],
+    tips: &[[usize; 4]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    enough_tests(n, tests)?;
-    let listed = vertex_edges(n, edges)?;
-    let graph = CurveGraph::new(n, &listed);
-    let root = components(n, &listed);
-    let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
-    // Every test is at hand: the counts are exact (capped as the stage caps them), which decides
-    // as the stage's early stop does (docs/distributed.md).
-    let counts = |_: &[u32], _: f64| Some(exact_separated(&graph, &root, |v| test(v, 2)));
-    let clump = clumps::clumps_of(&graph, &root, |v| test(v, 1), counts, |v| test(v, 2));
-    Ok(clump.map(|clump| keeping(edges, &listed, |a| !clump[root[a.index()] as usize])))
+    let gathered = GatheredClumps::new(n, edges, tests)?;
+    let gathered_joins = GatheredJoins::read(n, &gathered.graph, choices, tips)?;
+    let Some(clump) = gathered.clump else {
+        return Ok(None);
+    };
+    let joins = gathered_joins.joins(n, &gathered.graph);
+    let root = gathered.root;
+    let clump = clumps::unless_joined(&gathered.graph, &root, clump, joins);
+    Ok(clump.map(|clump| {
+        keeping(edges, &gathered.listed, |a| {
+            !clump[root[a.index()] as usize]
+        })
+    }))
+}
+
+/// Whether the clump stage finds a clump on edges gathered from the tiles of a split run, before
+/// asking which of them gap closing or the tips would join ([`remove_gathered_clumps`]): without
+/// one the stage changes nothing, and a driver need not ask the tiles for their choices.
+///
+/// # Errors
+/// As [`remove_gathered_clumps`] without the rows.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// let pts: Vec<Point> = (0..12).map(|k| Point::new(k as f64, 0.0)).collect();
+/// let edges: Vec<[usize; 2]> = (0..11).map(|i| [i, i + 1]).collect();
+/// let tri = triangulate(&pts)?;
+/// let graph = tri.graph_from_edges(edges.iter().copied());
+/// let tests = tiled::clump_tests(&graph, &tiled::component_labels(pts.len(), &edges)?)?;
+/// assert!(!tiled::gathered_clumps_found(pts.len(), &edges, &tests)?); // a straight line
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn gathered_clumps_found(n: usize, edges: &[[usize; 2]], tests: &[u8]) -> Result<bool, Error> {
+    Ok(GatheredClumps::new(n, edges, tests)?.clump.is_some())
+}
+
+/// The clump rule on gathered edges before its exemption for joined clumps.
+struct GatheredClumps {
+    listed: Vec<Edge>,
+    graph: CurveGraph,
+    root: Vec<u32>,
+    clump: Option<Vec<bool>>,
+}
+
+impl GatheredClumps {
+    fn new(n: usize, edges: &[[usize; 2]], tests: &[u8]) -> Result<GatheredClumps, Error> {
+        enough_tests(n, tests)?;
+        let listed = vertex_edges(n, edges)?;
+        let graph = CurveGraph::new(n, &listed);
+        let root = components(n, &listed);
+        let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
+        // Every test is at hand: the counts are exact (capped as the stage caps them), which
+        // decides as the stage's early stop does (docs/distributed.md).
+        let counts = |_: &[u32], _: f64| Some(exact_separated(&graph, &root, |v| test(v, 2)));
+        let clump = clumps::clumps_of(&graph, &root, |v| test(v, 1), counts, |v| test(v, 2));
+        Ok(GatheredClumps {
+            listed,
+            graph,
+            root,
+            clump,
+        })
+    }
+}
+
+/// Gap closing's choices and the tips stage's candidate moves, gathered from the tiles, as the
+/// joins they would add to a graph (what rule 4 and the clump stage ask of both stages).
+struct GatheredJoins {
+    targets: Vec<(VertexId, Target)>,
+    walks: Vec<(VertexId, Walk)>,
+    tip_moves: Vec<Candidate>,
+}
+
+impl GatheredJoins {
+    fn read(
+        n: usize,
+        graph: &CurveGraph,
+        choices: &[[usize; GAP_ROW]],
+        tips: &[[usize; 4]],
+    ) -> Result<GatheredJoins, Error> {
+        let (targets, walks) = loose_ends_only(graph, read_choices(n, choices)?);
+        let tip_moves = candidate_rows(n, graph, tips)?;
+        Ok(GatheredJoins {
+            targets,
+            walks,
+            tip_moves,
+        })
+    }
+
+    /// The joins on `graph` (over `n` points), as `gaps::gap_joins` and `tips::tip_joins` make
+    /// them on a triangulation.
+    fn joins(self, n: usize, graph: &CurveGraph) -> Vec<Edge> {
+        let walks = self.walks;
+        let mut joins = gaps::settle_joins(n, graph, &self.targets, |j| not_joined(walks, j));
+        if let Some((_, moved)) = tips::settle_candidates(n, graph, self.tip_moves) {
+            joins.extend(moved);
+        }
+        joins
+    }
 }
 
 /// The tips stage's candidates at the points of `graph`'s triangulation that `at` selects (by
@@ -688,18 +785,11 @@ pub fn remove_gathered_local_outliers(
     let listed = vertex_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
-    let (targets, walks) = loose_ends_only(&profile, read_choices(n, choices)?);
-    let tip_moves = candidate_rows(n, &profile, tips)?;
+    let gathered_joins = GatheredJoins::read(n, &profile, choices, tips)?;
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     let separated = exact_separated(&profile, &root, |v| test(v, 2));
     let passing = |at: VertexId, _, _| test(at, 1);
-    let joins = || {
-        let mut joins = gaps::settle_joins(n, &profile, &targets, |j| not_joined(walks, j));
-        if let Some((_, moved)) = tips::settle_candidates(n, &profile, tip_moves) {
-            joins.extend(moved);
-        }
-        joins
-    };
+    let joins = || gathered_joins.joins(n, &profile);
     let Some((root, kept)) =
         local_outliers::separated_with(&listed, &profile, root, &separated, passing, joins)
     else {
@@ -990,6 +1080,29 @@ mod tests {
         assert_eq!(stage.len(), edges.len());
         assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), stage);
         let without = remove_gathered_local_outliers(n, &listed, &tests, &choices, &[]).unwrap();
+        assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
+    }
+
+    /// The clump stage on gathered edges keeps a zig-zag piece that gap closing joins to a
+    /// curve, as the stage does; gathered without the rows, the piece goes.
+    #[test]
+    fn gathered_clumps_keep_what_gap_closing_joins_as_the_stage_does() {
+        let (pts, edges, curve_len) = crate::test_graphs::zig_zag_piece_in_a_gap();
+        let tri = crate::triangulate(&pts).unwrap();
+        let graph = tri.graph_from_edges(edges.iter().copied());
+        let listed = graph.edges();
+        let n = pts.len();
+        let tests = clump_tests(&graph, &component_labels(n, &listed).unwrap()).unwrap();
+        assert!(gathered_clumps_found(n, &listed, &tests).unwrap());
+        let choices = gap_choices(&graph, |_| true);
+        let tips = tip_candidates(&graph, |_| true);
+        let gathered = remove_gathered_clumps(n, &listed, &tests, &choices, &tips).unwrap();
+        assert_eq!(
+            gathered.unwrap_or(listed.clone()),
+            graph.remove_clumps().edges()
+        );
+        assert_eq!(graph.remove_clumps().num_edges(), edges.len());
+        let without = remove_gathered_clumps(n, &listed, &tests, &[], &[]).unwrap();
         assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
     }
 

@@ -28,6 +28,7 @@ __all__ = [
     "_tests_kept",
     "_component_labels",
     "_gathered_clumps",
+    "_gathered_clumps_found",
     "_gathered_tips",
     "_choices_kept",
     "_gathered_gaps",
@@ -206,8 +207,15 @@ def _tests_kept(
     **params: Any,
 ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.uint8]]: ...
 def _component_labels(n: int, edges: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]: ...
-def _gathered_clumps(
+def _gathered_clumps_found(
     n: int, edges: npt.NDArray[np.int64], tests: npt.NDArray[np.uint8]
+) -> bool: ...
+def _gathered_clumps(
+    n: int,
+    edges: npt.NDArray[np.int64],
+    tests: npt.NDArray[np.uint8],
+    choices: npt.NDArray[np.int64],
+    tips: npt.NDArray[np.int64],
 ) -> npt.NDArray[np.int64] | None: ...
 def _gathered_tips(
     n: int, edges: npt.NDArray[np.int64], candidates: npt.NDArray[np.int64]

@@ -254,11 +254,15 @@ def _phases(run, plan, points, params):
                 kept = _condt._gathered_given_back(n, edges, before_local, tests)
                 edges = edges if kept is None else kept
         elif step == "clumps":
-            # The tests at each point on the tiles, the rule (a component's tally) on the driver.
-            labels = _condt._component_labels(len(points), edges)
+            # The tests at each point on the tiles, the rule (a component's tally) on the driver;
+            # where it finds clumps, the gap choices and the tips' candidate moves too (a clump
+            # they would join to a component that stays, stays).
+            labels = _condt._component_labels(n, edges)
             tests = run.tests_on_kept(edges, step, labels)
-            kept = _condt._gathered_clumps(len(points), edges, tests)
-            edges = edges if kept is None else kept
+            if _condt._gathered_clumps_found(n, edges, tests):
+                choices, tips = run.on_kept(edges, "gaps+tips", width=(10, 4))
+                kept = _condt._gathered_clumps(n, edges, tests, choices, tips)
+                edges = edges if kept is None else kept
         elif step == "gaps":
             # Each loose end's choice and straight walk on the tiles; agreement, the joins along
             # lone edges (a fixed point along chains) and the stranded runs on the driver.

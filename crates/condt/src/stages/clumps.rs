@@ -10,18 +10,23 @@
 //! half of its points pass [`smooth_and_regular`], or exactly half and every point of it is apart
 //! (a tie shows no majority either; a piece of a noisy curve is not apart at its ends), unless the
 //! clumps and the components not apart would hold [`OUTLIER_SHARE`] or more of the points with
-//! edges. Why half: a curve's ends, corners and junctions are a minority at any sampling dense
+//! edges; and not one that gap closing or a tip's move would join to a component that stays
+//! ([`unless_joined`]: a stretch of a noisy curve cut off at both ends). Why half: a curve's ends, corners and junctions are a minority at any sampling dense
 //! enough for the proximity graph; a random zig-zag passes smoothly at most one time in three.
-//! Sequential; O(n) beyond the union-find.
+//! Sequential; O(n) beyond the union-find, and only where there are clumps, the joins (gap
+//! closing's and the tips' searches at the loose ends, on rayon's threads when `parallel`).
 
+use super::gaps::{gap_joins, Ends};
 use super::local_outliers::{
-    components, only_smooth_cycles, separated_at, separated_counts_until, smooth_and_regular,
-    without_components, MIN_SAMPLES, OUTLIER_SHARE,
+    components, merged_along, only_smooth_cycles, separated_at, separated_counts_until,
+    smooth_and_regular, without_components, MIN_SAMPLES, OUTLIER_SHARE,
 };
+use super::tips::tip_joins;
 use super::Outcome;
 use crate::adjacency::{CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
+use alloc::borrow::Cow;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -31,6 +36,7 @@ pub(crate) fn remove_clumps(
     tri: &Triangulation,
     edges: &[Edge],
     graph: Option<CurveGraph>,
+    parallel: bool,
 ) -> Outcome {
     let n = tri.num_points();
     let graph = graph.unwrap_or_else(|| CurveGraph::new(n, edges));
@@ -47,7 +53,18 @@ pub(crate) fn remove_clumps(
     let counts =
         |size: &[u32], guard| separated_counts_until(tri, &graph, &root, Some((size, guard)));
     let apart = |v| separated_at(tri, &graph, &root, v);
-    let Some(clump) = clumps_of(&graph, &root, smooth, counts, apart) else {
+    let joins = || {
+        let ends = Ends {
+            tri,
+            graph: Cow::Borrowed(&graph),
+        };
+        let mut joins = gap_joins(&ends, parallel);
+        joins.extend(tip_joins(&ends, parallel));
+        joins
+    };
+    let Some(clump) = clumps_of(&graph, &root, smooth, counts, apart)
+        .and_then(|clump| unless_joined(&graph, &root, clump, joins()))
+    else {
         return Outcome::unchanged_with(Some(graph));
     };
     let kept = without_components(edges, &root, &clump);
@@ -121,6 +138,36 @@ pub(crate) fn clumps_of(
     Some((0..n).map(is_clump).collect())
 }
 
+/// The clumps `clump` (per root of `root`, [`clumps_of`]) less those that `joins`, the edges gap
+/// closing and the tips stage's moves would add to `graph`, join to a component that stays,
+/// directly or through other clumps, between points with edges; `None` when none is left. Reason: a piece of a noisy curve
+/// can zig-zag and stand apart from the rest at its middle samples, yet its ends run on to the
+/// curve's loose ends, and those joins need evidence on both sides (rule 4's third exemption,
+/// [`merged_along`], which this reads); a clump of outliers lies apart whole.
+pub(crate) fn unless_joined(
+    graph: &CurveGraph,
+    root: &[u32],
+    mut clump: Vec<bool>,
+    mut joins: Vec<Edge>,
+) -> Option<Vec<bool>> {
+    // A point without edges (a tip's apex, a point gap closing runs through) is no piece of a
+    // curve yet: a join to it shows nothing on that side.
+    joins.retain(|&[a, b]| graph.degree(a) > 0 && graph.degree(b) > 0);
+    let mut stays = vec![false; root.len()];
+    for (i, &r) in root.iter().enumerate() {
+        if graph.degree(VertexId::new(i as u32)) > 0 && !clump[r as usize] {
+            stays[r as usize] = true;
+        }
+    }
+    let (joined_root, stays) = merged_along(root.to_vec(), stays, joins);
+    for (&r, &joined) in root.iter().zip(&joined_root) {
+        if stays[joined as usize] {
+            clump[r as usize] = false;
+        }
+    }
+    clump.iter().any(|&c| c).then_some(clump)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -145,7 +192,7 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
-        let out = remove_clumps(&tri, &edges, None)
+        let out = remove_clumps(&tri, &edges, None, false)
             .edges
             .unwrap_or_else(|| edges.clone());
         crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&out[..])).edges()
@@ -192,6 +239,58 @@ mod tests {
             })
             .collect();
         assert_eq!(kept(&arc).len(), 46);
+    }
+
+    /// Noise zig-zags a stretch of a circle, cut off from it at both ends: a clump by its shape,
+    /// but gap closing joins it to the circle's loose ends, so it stays.
+    #[test]
+    fn a_zig_zag_piece_that_gap_closing_joins_to_a_curve_stays() {
+        let (pts, pairs, curve_len) = crate::test_graphs::zig_zag_piece_in_a_gap();
+        let tri = triangulate(&pts).unwrap();
+        let edges: Vec<Edge> = pairs
+            .iter()
+            .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
+            .collect();
+        let graph = CurveGraph::new(pts.len(), &edges);
+        let root = components(pts.len(), &edges);
+        let smooth = |v| {
+            let [y, z] = graph.first_two(v);
+            smooth_and_regular(&tri, v, y, z)
+        };
+        let counts =
+            |size: &[u32], guard| separated_counts_until(&tri, &graph, &root, Some((size, guard)));
+        let apart = |v| separated_at(&tri, &graph, &root, v);
+        let clump = clumps_of(&graph, &root, smooth, counts, apart).expect("a clump by its shape");
+        let piece = root[tri.vertex(curve_len).index()] as usize;
+        assert!(clump[piece]);
+        let outcome = remove_clumps(&tri, &edges, None, false);
+        assert!(
+            outcome.edges.is_none(),
+            "the piece stays: gap closing joins it"
+        );
+        let closed = crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&edges[..]));
+        assert_eq!(closed.close_gaps().num_edges(), edges.len() + 2);
+    }
+
+    /// A join to a point without edges shows no curve on that side: a clump joined to the rest
+    /// only through such a point still goes.
+    #[test]
+    fn a_join_through_a_point_without_edges_keeps_no_clump() {
+        // Points 0-1-2 a curve that stays, 3-4 a clump, 5 without edges.
+        let v = |i: u32| VertexId::new(i);
+        let edges = [[v(0), v(1)], [v(1), v(2)], [v(3), v(4)]];
+        let graph = CurveGraph::new(6, &edges);
+        let root = components(6, &edges);
+        let clump: Vec<bool> = (0..6).map(|r| r == 3).collect();
+        let through_point = vec![[v(2), v(5)], [v(4), v(5)]];
+        assert_eq!(
+            unless_joined(&graph, &root, clump.clone(), through_point),
+            Some(clump.clone())
+        );
+        assert_eq!(
+            unless_joined(&graph, &root, clump, vec![[v(2), v(4)]]),
+            None
+        );
     }
 
     #[test]

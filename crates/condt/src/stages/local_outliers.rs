@@ -680,7 +680,11 @@ pub(crate) fn separated_with(
 /// are kept: those with a kept part (only merged names are to be read in `kept` afterwards). The
 /// union-find runs on the names the joins touch, renumbered in order, not on every vertex (memory:
 /// the stage's peak along curves); a bit per vertex marks the touched names (speed).
-fn merged_along(root: Vec<u32>, mut kept: Vec<bool>, joins: Vec<Edge>) -> (Vec<u32>, Vec<bool>) {
+pub(super) fn merged_along(
+    root: Vec<u32>,
+    mut kept: Vec<bool>,
+    joins: Vec<Edge>,
+) -> (Vec<u32>, Vec<bool>) {
     if joins.is_empty() {
         return (root, kept);
     }

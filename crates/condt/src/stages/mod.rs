@@ -7,10 +7,11 @@
 //! the public `Graph` methods run every stage after the first graph. A run split in tiles
 //! ([`crate::tiled`]) reads the rules through crate-private functions of the stage modules instead
 //! (`outliers::iqr_cut`, `local_outliers::remove_local_outliers_with` and `last_edges`,
-//! `clumps::clumps_of`, `gaps::settle_joins`, `tips::candidates` and `settle_candidates`,
-//! `given_back::missing_from`, ...), the code the stages themselves run, so each rule is still one
-//! piece of code. Stages read the triangulation and may not modify it, nor decide when they run
-//! (`Params::steps`). What calls what, and adding a stage: `docs/architecture.md`.
+//! `clumps::clumps_of` and `unless_joined`, `gaps::settle_joins`, `tips::candidates` and
+//! `settle_candidates`, `given_back::missing_from`, ...), the code the stages themselves run, so
+//! each rule is still one piece of code. Stages read the triangulation and may not modify it,
+//! nor decide when they run (`Params::steps`). What calls what, and adding a stage:
+//! `docs/architecture.md`.
 
 pub(crate) mod clumps;
 pub(crate) mod crossings;
@@ -184,7 +185,8 @@ the filter cut that passes near an unused point stays cut)",
 remove components fewer than half of whose points a curve passes
 smoothly and evenly, or half and every point apart (clumps of
 outliers), unless that would remove a quarter of the points with
-edges",
+edges; a component gap closing or the tips would join to one that
+stays, stays",
         }),
     },
     Row {
@@ -446,7 +448,7 @@ impl Step {
             Step::ConfirmGivenBack => {
                 given_back::confirm_given_back(tri, edges, &earlier.before_local, graph)
             }
-            Step::RemoveClumps => clumps::remove_clumps(tri, edges, graph),
+            Step::RemoveClumps => clumps::remove_clumps(tri, edges, graph, parallel),
             Step::CloseGaps => gaps::close_gaps(tri, edges, graph, parallel),
             Step::JoinJunctions => junctions::join_junctions(tri, edges, graph, parallel),
             Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph, parallel),
