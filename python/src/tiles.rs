@@ -74,9 +74,10 @@ impl Flow {
 /// (docs/distributed.md, *Later stages as rounds*): a junction's choice reads six hops from the
 /// loose end and the other ends choosing its point two more; a crossing's arms and chord, read
 /// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
-/// rule itself on the driver, [`_gathered_clumps`]); a tip's candidate move eight, from the loose
-/// end to the other's branch ([`_choices_kept`], the split test and the settling on the
-/// driver, [`_gathered_tips`]); a loose end's gap choice six, its straight walk five
+/// rule itself on the driver, [`_gathered_clumps`]), and where the driver finds clumps the gap
+/// choices and tip candidates (eight hops) on the same edges; a tip's candidate move eight,
+/// from the loose end to the other's branch ([`_choices_kept`], the split test and the settling
+/// on the driver, [`_gathered_tips`]); a loose end's gap choice six, its straight walk five
 /// ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
@@ -87,7 +88,7 @@ impl Flow {
 /// from, whose last inner point's edges are read for its degree ([`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 8] = [
     (Stage::LocalOutliers, 8),
-    (Stage::Clumps, 1),
+    (Stage::Clumps, 8),
     (Stage::GivenBack, 1),
     (Stage::Gaps, 6),
     (Stage::Junctions, 8),
@@ -678,14 +679,34 @@ pub(crate) fn _gathered_local_outliers<'py>(
     choices: PyReadonlyArray2<'py, i64>,
     tips: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+    let rule = condt::tiled::remove_gathered_local_outliers;
+    gathered_with_joins(py, n, edges, tests, (choices, tips), rule)
+}
+
+/// A driver's rule that reads every point's `tests` and the joins gap closing and the tips would
+/// make (the tiles' gap `choices` and tip candidates), on the gathered `edges` over `n` points.
+type RuleWithJoins = fn(
+    usize,
+    &[[usize; 2]],
+    &[u8],
+    &[[usize; GAP_ROW]],
+    &[[usize; 4]],
+) -> Result<Option<Vec<[usize; 2]>>, condt::Error>;
+
+/// `rule` on the arrays a driver gathered: the edges kept, sorted by rows, or `None`.
+fn gathered_with_joins<'py>(
+    py: Python<'py>,
+    n: usize,
+    edges: &Bound<'py, PyArray2<i64>>,
+    tests: PyReadonlyArray1<'py, u8>,
+    (choices, tips): (PyReadonlyArray2<'py, i64>, PyReadonlyArray2<'py, i64>),
+    rule: RuleWithJoins,
+) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
     let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
     let tips: Vec<[usize; 4]> = rows_of(&tips, "a tip candidate")?;
     let tests = tests.as_slice()?;
-    gathered_answer(
-        py,
-        py.detach(|| condt::tiled::remove_gathered_local_outliers(n, &edges, tests, &rows, &tips)),
-    )
+    gathered_answer(py, py.detach(|| rule(n, &edges, tests, &rows, &tips)))
 }
 
 /// For the given-back round, on the driver: each point's component label and status in the
@@ -773,9 +794,11 @@ pub(crate) fn _choices_kept<'py>(
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let (_, tiled) = tiled_params(params)?;
     let has = |stage: Stage| tiled.later.contains(&stage);
-    // Rule 4 of the local outlier removal keeps pieces gap closing or a tip's move would join.
-    let gaps = step == Stage::Gaps.key() && (has(Stage::Gaps) || has(Stage::LocalOutliers));
-    let tips = step == Stage::Tips.key() && (has(Stage::Tips) || has(Stage::LocalOutliers));
+    // Rule 4 of the local outlier removal and the clump stage keep pieces gap closing or a tip's
+    // move would join.
+    let joined = has(Stage::LocalOutliers) || has(Stage::Clumps);
+    let gaps = step == Stage::Gaps.key() && (has(Stage::Gaps) || joined);
+    let tips = step == Stage::Tips.key() && (has(Stage::Tips) || joined);
     if !gaps && !tips {
         return Err(PyValueError::new_err(format!(
             "no round of choices {step:?} for these parameters"
@@ -893,14 +916,8 @@ pub(crate) fn _gathered_clumps<'py>(
     choices: PyReadonlyArray2<'py, i64>,
     tips: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
-    let edges = gathered_pairs(edges)?;
-    let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
-    let tips: Vec<[usize; 4]> = rows_of(&tips, "a tip candidate")?;
-    let tests = tests.as_slice()?;
-    gathered_answer(
-        py,
-        py.detach(|| condt::tiled::remove_gathered_clumps(n, &edges, tests, &rows, &tips)),
-    )
+    let rule = condt::tiled::remove_gathered_clumps;
+    gathered_with_joins(py, n, edges, tests, (choices, tips), rule)
 }
 
 /// A tile's owned edges, one list per graph its phase asks, in the whole set's positions.
