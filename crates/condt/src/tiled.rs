@@ -1104,6 +1104,23 @@ mod tests {
         assert_eq!(graph.remove_clumps().num_edges(), edges.len());
         let without = remove_gathered_clumps(n, &listed, &tests, &[], &[]).unwrap();
         assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
+        // Rows naming a point beyond the set are refused by name, clumps or not.
+        let mut row = choices[0];
+        row[2] = n;
+        let refused = remove_gathered_clumps(n, &listed, &tests, &[row], &[]);
+        assert!(matches!(
+            refused,
+            Err(Error::InvalidParameter { name: "choice", .. })
+        ));
+        let line: Vec<[usize; 2]> = (0..3).map(|i| [i, i + 1]).collect();
+        let quiet = remove_gathered_clumps(n, &line, &tests, &[], &[[0, 1, 2, n]]);
+        assert!(matches!(
+            quiet,
+            Err(Error::InvalidParameter {
+                name: "candidate",
+                ..
+            })
+        ));
     }
 
     /// Found by a review of the public API: gap-closing rows naming a point without an edge (a
