@@ -16,17 +16,14 @@
 //! Sequential; O(n) beyond the union-find, and only where there are clumps, the joins (gap
 //! closing's and the tips' searches at the loose ends, on rayon's threads when `parallel`).
 
-use super::gaps::{gap_joins, Ends};
 use super::local_outliers::{
     components, merged_along, only_smooth_cycles, separated_at, separated_counts_until,
-    smooth_and_regular, without_components, MIN_SAMPLES, OUTLIER_SHARE,
+    smooth_and_regular, without_components, would_join, MIN_SAMPLES, OUTLIER_SHARE,
 };
-use super::tips::tip_joins;
 use super::Outcome;
 use crate::adjacency::{CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
-use alloc::borrow::Cow;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -53,15 +50,7 @@ pub(crate) fn remove_clumps(
     let counts =
         |size: &[u32], guard| separated_counts_until(tri, &graph, &root, Some((size, guard)));
     let apart = |v| separated_at(tri, &graph, &root, v);
-    let joins = || {
-        let ends = Ends {
-            tri,
-            graph: Cow::Borrowed(&graph),
-        };
-        let mut joins = gap_joins(&ends, parallel);
-        joins.extend(tip_joins(&ends, parallel));
-        joins
-    };
+    let joins = || would_join(tri, &graph, parallel);
     let Some(clump) = clumps_of(&graph, &root, smooth, counts, apart)
         .and_then(|clump| unless_joined(&graph, &root, clump, joins()))
     else {

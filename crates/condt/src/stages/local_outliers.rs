@@ -624,16 +624,20 @@ fn separated_components(
     let root = components(tri.num_points(), edges);
     let separated = separated_counts(tri, profile, &root, parallel);
     let passing = |at, previous, next| smooth_and_regular(tri, at, previous, next);
-    let joins = || {
-        let ends = super::gaps::Ends {
-            tri,
-            graph: Cow::Borrowed(profile),
-        };
-        let mut joins = super::gaps::gap_joins(&ends, parallel);
-        joins.extend(super::tips::tip_joins(&ends, parallel));
-        joins
-    };
+    let joins = || would_join(tri, profile, parallel);
     separated_with(edges, profile, root, &separated, passing, joins)
+}
+
+/// The edges gap closing and the tips stage's moves would add to `graph`: rule 4's third
+/// exemption ([`merged_along`]) and the clump stage's read them.
+pub(super) fn would_join(tri: &Triangulation, graph: &CurveGraph, parallel: bool) -> Vec<Edge> {
+    let ends = super::gaps::Ends {
+        tri,
+        graph: Cow::Borrowed(graph),
+    };
+    let mut joins = super::gaps::gap_joins(&ends, parallel);
+    joins.extend(super::tips::tip_joins(&ends, parallel));
+    joins
 }
 
 /// Rule 4 on the graph of `edges` (`profile`, its components `root`) with what it reads of the
