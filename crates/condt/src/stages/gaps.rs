@@ -244,6 +244,11 @@ impl<'a> Ends<'a> {
     /// Whether the gap from the loose end `a` to `w` is within [`GAP_RATIO`] of `a`'s edge, or with
     /// `two_edges` of the longer of its last two edges.
     fn short(&self, a: VertexId, w: VertexId, two_edges: bool) -> bool {
+        self.point(a).dist2(self.point(w)) <= self.longest_gap2(a, two_edges)
+    }
+
+    /// The squared length of the longest short gap from the loose end `a` ([`Ends::short`]).
+    fn longest_gap2(&self, a: VertexId, two_edges: bool) -> f64 {
         let next = self.along(a);
         let (p, back) = (self.point(a), self.point(next));
         let mut spacing = p.dist2(back);
@@ -251,7 +256,7 @@ impl<'a> Ends<'a> {
             let beyond = self.point(self.graph.onward(next, a));
             spacing = spacing.max(back.dist2(beyond));
         }
-        p.dist2(self.point(w)) <= GAP_RATIO * GAP_RATIO * spacing
+        GAP_RATIO * GAP_RATIO * spacing
     }
 
     /// The cosine of the sharpest of the first [`NEAR_END`] passages from the loose end `a`, or -1.
@@ -355,8 +360,14 @@ impl<'a> Ends<'a> {
         let pa = self.point(a);
         let mut best = Target::None;
         let mut best_key = (f64::INFINITY, VertexId::INFINITE);
+        // Every candidate is within a short gap, at most the longer of `a`'s last two edges
+        // ([`Ends::short`]): a farther neighbour is passed over untested (speed).
+        let longest_gap2 = self.longest_gap2(a, true);
         for w in self.tri.mesh().neighbors(a) {
             let key = (pa.dist2(self.point(w)), w);
+            if key.0 > longest_gap2 {
+                continue;
+            }
             let nearer = key
                 .0
                 .total_cmp(&best_key.0)
@@ -372,8 +383,10 @@ impl<'a> Ends<'a> {
             if nearer != core::cmp::Ordering::Less {
                 continue;
             }
-            let facing = self.faces(a, w);
-            let candidate = match self.graph.degree(w) {
+            // Facing is read for points of degree zero and two alone (speed: it measures an angle).
+            let degree = self.graph.degree(w);
+            let facing = matches!(degree, 0 | 2) && self.faces(a, w);
+            let candidate = match degree {
                 0 if facing || self.tip_toward(a, w) => {
                     match self.end_across(a, w, |d| self.reaches(d, w, facing, a), |_| true) {
                         Some(d) => Target::Through(w, Partner::End(d)),
