@@ -276,8 +276,15 @@ fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> (Vec<Edge>,
     let n = tri.num_points();
     let (now, was) = (CurveGraph::new(n, now), CurveGraph::new(n, before));
     let present = |a: VertexId, b: VertexId| (0..now.degree(a)).any(|k| now.neighbor(a, k) == b);
-    let cut = || before.iter().filter(|&&[a, b]| !present(a, b));
-    let given = cut()
+    // Listed once for both rules (speed: the test reads a scattered record for every edge of
+    // `before`; the cut are a few in a hundred of them).
+    let cut: Vec<Edge> = before
+        .iter()
+        .filter(|&&[a, b]| !present(a, b))
+        .copied()
+        .collect();
+    let given = cut
+        .iter()
         .filter(|&&[a, b]| passage(tri, &now, &was, a, b) && passage(tri, &now, &was, b, a))
         .copied()
         .collect();
@@ -291,7 +298,8 @@ fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> (Vec<Edge>,
         };
         was.degree(y) == 1 && now.degree(y) == 0 && passage(tri, &now, &was, x, y) && near()
     };
-    let candidates = cut()
+    let candidates = cut
+        .iter()
         .filter(|&&[a, b]| last(a, b) || last(b, a))
         .copied()
         .collect();
