@@ -83,9 +83,9 @@ impl Flow {
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
 /// clump tests, gap choices and tip candidates (eight hops) of their result; the given-back
 /// test one ring ([`_tests_kept`], the rule on the driver, [`_gathered_given_back`]); an
-/// outlier tail nine: from an owned edge
-/// of a tail of four back to its loose end and on to the far end of the five edges it hangs
-/// from, whose last inner point's edges are read for its degree ([`_step_kept`]).
+/// outlier tail nine: from an owned edge of a tail of four back to its loose end and on to the
+/// far end of the five edges it hangs from, whose last inner point's edges are read for its
+/// degree ([`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 8] = [
     (Stage::LocalOutliers, 8),
     (Stage::Clumps, 8),

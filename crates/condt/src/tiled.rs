@@ -325,8 +325,8 @@ impl GatheredJoins {
         })
     }
 
-    /// The joins on `graph` (over `n` points), as `gaps::gap_joins` and `tips::tip_joins` make
-    /// them on a triangulation.
+    /// The joins on `graph` (over `n` points), as `local_outliers::would_join` finds them on a
+    /// triangulation.
     fn joins(self, n: usize, graph: &CurveGraph) -> Vec<Edge> {
         let walks = self.walks;
         let mut joins = gaps::settle_joins(n, graph, &self.targets, |j| not_joined(walks, j));
@@ -1113,9 +1113,9 @@ mod tests {
             Err(Error::InvalidParameter { name: "choice", .. })
         ));
         let line: Vec<[usize; 2]> = (0..3).map(|i| [i, i + 1]).collect();
-        let quiet = remove_gathered_clumps(n, &line, &tests, &[], &[[0, 1, 2, n]]);
+        let refused_tip = remove_gathered_clumps(n, &line, &tests, &[], &[[0, 1, 2, n]]);
         assert!(matches!(
-            quiet,
+            refused_tip,
             Err(Error::InvalidParameter {
                 name: "candidate",
                 ..

@@ -1414,10 +1414,11 @@ mod tests {
     }
 
     /// A piece of six at a narrow tip beside an open curve's two loose ends
-    /// ([`tip_piece_beside_a_curve`](crate::test_graphs::tip_piece_beside_a_curve)): no sample of the piece is apart from the curve, and gap
-    /// closing joins none of its ends (each faces away from the curve's ends), so rule 4 would
-    /// drop it; the tips stage gives the chord up for the two ends' edges, so rule 4 keeps it.
-    /// (Without the chord, gap closing joins both halves, end to end.)
+    /// ([`tip_piece_beside_a_curve`](crate::test_graphs::tip_piece_beside_a_curve)): no sample
+    /// of the piece is apart from the curve, and gap closing joins none of its ends (each faces
+    /// away from the curve's ends), so rule 4 would drop it; the tips stage gives the chord up
+    /// for the two ends' edges, so rule 4 keeps it. (Without the chord, gap closing joins both
+    /// halves, end to end.)
     #[test]
     fn rule_4_keeps_a_piece_that_a_tip_s_move_joins_to_a_kept_curve() {
         let (pts, pairs, curve_len) = crate::test_graphs::tip_piece_beside_a_curve();

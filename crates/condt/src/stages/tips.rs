@@ -320,8 +320,8 @@ fn found(ends: &Ends, parallel: bool) -> Vec<Found> {
 }
 
 /// The edges the stage's moves would add on the graph of `ends`, settled as the stage settles
-/// them. Rule 4 of the local outlier removal keeps the pieces they join to a kept component, as
-/// it keeps those gap closing joins.
+/// them. Rule 4 of the local outlier removal and the clump stage keep the pieces they join to a
+/// component that stays, as they keep those gap closing joins (`local_outliers::would_join`).
 pub(crate) fn tip_joins(ends: &Ends, parallel: bool) -> Vec<Edge> {
     settle(ends.tri.num_points(), found(ends, parallel)).map_or_else(Vec::new, |(_, joins)| joins)
 }
