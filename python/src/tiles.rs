@@ -16,7 +16,7 @@
 //! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
 //! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the junctions
-//! and the crossings eight, the outlier tails nine: [`LATER_STAGES`]), and break
+//! the crossings and the hooks eight, the outlier tails nine: [`LATER_STAGES`]), and break
 //! ties by vertex id, which follows the set's insertion order restricted to the tile: so an
 //! owned vertex whose every vertex within `reach` hops is certified gets the whole set's edges.
 //! Four cocircular points make the triangulation not unique; the tile reports them and the
@@ -77,7 +77,9 @@ impl Flow {
 /// rule itself on the driver, [`_gathered_clumps`]), and where the driver finds clumps the gap
 /// choices and tip candidates (eight hops) on the same edges; a tip's candidate move eight,
 /// from the loose end to the other's branch ([`_choices_kept`], the split test and the settling
-/// on the driver, [`_gathered_tips`]); a loose end's gap choice six, its straight walk five
+/// on the driver, [`_gathered_tips`]); a hooked loose end's move eight: its points lie within
+/// two hops of the loose end, its tests read the stars there, and a move sharing a point is read
+/// from a loose end two hops beyond that point ([`_step_kept`]); a loose end's gap choice six, its straight walk five
 /// ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
@@ -86,7 +88,7 @@ impl Flow {
 /// outlier tail nine: from an owned edge of a tail of four back to its loose end and on to the
 /// far end of the five edges it hangs from, whose last inner point's edges are read for its
 /// degree ([`_step_kept`]).
-const LATER_STAGES: [(Stage, usize); 8] = [
+const LATER_STAGES: [(Stage, usize); 9] = [
     (Stage::LocalOutliers, 8),
     (Stage::Clumps, 8),
     (Stage::GivenBack, 1),
@@ -94,6 +96,7 @@ const LATER_STAGES: [(Stage, usize); 8] = [
     (Stage::Junctions, 8),
     (Stage::Crossings, 8),
     (Stage::Tips, 8),
+    (Stage::Hooks, 8),
     (Stage::Tails, 9),
 ];
 
@@ -483,6 +486,7 @@ pub(crate) fn _step_kept<'py>(
         "repair" => Stage::Repair,
         _ if later(Stage::Junctions) => Stage::Junctions,
         _ if later(Stage::Crossings) => Stage::Crossings,
+        _ if later(Stage::Hooks) => Stage::Hooks,
         _ if later(Stage::Tails) => Stage::Tails,
         _ => {
             return Err(PyValueError::new_err(format!(
@@ -498,6 +502,7 @@ pub(crate) fn _step_kept<'py>(
             let result = match stage {
                 Stage::Junctions => graph.join_junctions(),
                 Stage::Crossings => graph.restore_crossings(),
+                Stage::Hooks => graph.unhook(),
                 Stage::Tails => graph.cut_tails(),
                 _ => graph.repair(params.repair),
             };

@@ -553,11 +553,11 @@ def test_the_result_arrays():
     stages = r.stages
     assert list(stages) == [
         "proximity", "repair", "iqr-outliers", "repair-again", "local-outliers", "clumps",
-        "given-back", "gaps", "junctions", "crossings", "tips", "tails",
+        "given-back", "gaps", "junctions", "crossings", "tips", "hooks", "tails",
     ]
     assert np.array_equal(stages["tails"], r.edges)
     stages.clear()  # a copy: the result's stays
-    assert len(r.stages) == 12
+    assert len(r.stages) == 13
     assert "235 points" in repr(r)
 
 

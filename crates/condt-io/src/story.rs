@@ -118,6 +118,10 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,
             Reason::Tip if change.added => write!(f, "joined at a tip in place of a chord")?,
             Reason::Tip => write!(f, "a chord across a tip")?,
+            Reason::Hook if change.added => {
+                write!(f, "joined to put a hooked loose end back in line")?
+            }
+            Reason::Hook => write!(f, "passed a loose end that hooked back beside the curve")?,
             Reason::Tail { vertex, points } => write!(
                 f,
                 "part of an outlier tail of {points} points cut where it hung from {vertex}"

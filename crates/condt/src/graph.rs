@@ -416,6 +416,28 @@ impl<'t> Graph<'t> {
         self.step(Step::RepairTips).0
     }
 
+    /// Puts hooked loose ends back in line ([`Params::hooks`](crate::Params::hooks)): where a loose
+    /// end `c` hangs from `b`, which the curve reached from `a` first, and `b` has a loose end or
+    /// a point without edges beside it to run on to, `a b` gives way to `a c` and `b x` when no
+    /// passage it makes is as sharp as the hook `a b c` (its rule: `src/stages/hooks.rs`).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // A curve along y = 0 (0..=5) steps up to y = 0.5 (6..=10), but its edges run from 4 to 6
+    /// // and back to 5, a loose end; 7 starts the rest of the curve.
+    /// let mut pts: Vec<Point> = (0..6).map(|k| Point::new(k as f64, 0.0)).collect();
+    /// pts.extend((0..5).map(|k| Point::new(5.6 + k as f64, 0.5)));
+    /// let tri = triangulate(&pts)?;
+    /// let edges = vec![[0, 1], [1, 2], [2, 3], [3, 4], [4, 6], [5, 6], [7, 8], [8, 9], [9, 10]];
+    /// let unhooked = tri.graph_from_edges(edges).unhook().edges();
+    /// assert!(unhooked.contains(&[4, 5]) && unhooked.contains(&[6, 7]));
+    /// assert!(!unhooked.contains(&[4, 6]));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn unhook(&self) -> Graph<'t> {
+        self.step(Step::Unhook).0
+    }
+
     /// Cuts outlier tails ([`Params::tails`](crate::Params::tails)): a chain of at most four
     /// points at a loose end whose joint is longer than 1.5 times the edge it joins and bends more
     /// than twice as sharply as the even run of five edges it hangs from (its rule:

@@ -83,6 +83,9 @@ pub enum Reason {
     /// A chord at a tip gave way to two edges to loose ends beside it or to the tip's sample, and
     /// beside a loose end also to that end's gap (or was that chord).
     Tip,
+    /// A loose end hanging from a sample the curve reached first went back in line: the edge that
+    /// passed it by gave way to one to it and one on from that sample (or was that edge).
+    Hook,
     /// Part of an outlier tail cut at an open end: a joint longer than the edge it joins and bent
     /// more sharply than the even run it hangs from (or an edge of the tail beyond it).
     Tail {
@@ -308,6 +311,7 @@ impl<'a> Explainer<'a> {
             Stage::Gaps => Reason::GapClosed,
             Stage::Junctions => Reason::Junction,
             Stage::Tips => Reason::Tip,
+            Stage::Hooks => Reason::Hook,
             Stage::Tails => self.tail_of([a, b]),
             Stage::Crossings => {
                 // The crossing is the point that gained arms: an added edge's end, or the removed

@@ -141,6 +141,7 @@ def reconstruct(
     junctions: bool = ...,
     crossings: bool = ...,
     tips: bool = ...,
+    hooks: bool = ...,
     tails: bool = ...,
     smooth: bool = ...,
     repair: Literal["needs", "paper", "mutual", "crossing", "off"] = ...,

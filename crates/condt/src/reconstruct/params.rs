@@ -82,6 +82,11 @@ pub struct Params {
     /// loose end, that end on to the loose end its side runs straight to), instead (beyond the
     /// paper; `src/stages/tips.rs`).
     pub tips: bool,
+    /// Where a loose end hangs from a sample the curve reached first (noise swapped the two) and
+    /// the curve runs on from that sample to a loose end or a point without edges, put the loose
+    /// end back between the sample and the one before it and join the sample onward, when that
+    /// makes no passage as sharp as the hook (beyond the paper; `src/stages/hooks.rs`).
+    pub hooks: bool,
     /// Last, cut a tail of at most four points at a loose end whose joint is long and bends
     /// sharply against the even run it hangs from: outliers beyond an open end (beyond the paper;
     /// `src/stages/tails.rs`).
@@ -105,7 +110,7 @@ impl Default for Params {
     /// let p = Params::default();
     /// assert!(p.repair == condt::Repair::Needs && p.smooth);
     /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
-    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions, Crossings, Tips, Tails]].concat());
+    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions, Crossings, Tips, Hooks, Tails]].concat());
     /// ```
     fn default() -> Self {
         Params::paper()
@@ -119,6 +124,7 @@ impl Default for Params {
             .with_junctions(true)
             .with_crossings(true)
             .with_tips(true)
+            .with_hooks(true)
             .with_tails(true)
             .with_smooth(true)
     }
@@ -150,6 +156,7 @@ impl Params {
             junctions: false,
             crossings: false,
             tips: false,
+            hooks: false,
             tails: false,
             smooth: false,
             parallel: cfg!(feature = "parallel"),
@@ -223,7 +230,8 @@ impl Params {
         // The local outlier removal reads three or more edges as a branch, which only a repaired
         // graph makes true; the given-back check reads what it added. Clumps go before a join can
         // reach one; a junction takes only an end no gap join or crossing claimed; tips re-pair
-        // the loose ends every join before left; a tail is judged on the finished curves.
+        // the loose ends every join before left, hooks put back those still hanging; a tail is
+        // judged on the finished curves.
         let steps = [
             first,
             second,
@@ -235,6 +243,7 @@ impl Params {
             self.junctions.then_some(Step::JoinJunctions),
             self.crossings.then_some(Step::RestoreCrossings),
             self.tips.then_some(Step::RepairTips),
+            self.hooks.then_some(Step::Unhook),
             self.tails.then_some(Step::CutTails),
         ];
         // A baseline is the whole method: no ConDT stage follows it.
@@ -267,6 +276,7 @@ impl Params {
             Stage::Junctions => &mut self.junctions,
             Stage::Crossings => &mut self.crossings,
             Stage::Tips => &mut self.tips,
+            Stage::Hooks => &mut self.hooks,
             Stage::Tails => &mut self.tails,
             _ => return false,
         };
@@ -318,6 +328,7 @@ impl Params {
         with_junctions(junctions: bool = !paper.junctions),
         with_crossings(crossings: bool = !paper.crossings),
         with_tips(tips: bool = !paper.tips),
+        with_hooks(hooks: bool = !paper.hooks),
         with_tails(tails: bool = !paper.tails),
         with_smooth(smooth: bool = !paper.smooth),
         with_parallel(parallel: bool = !paper.parallel),

@@ -1,7 +1,7 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each: [`proximity`]
 //! (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3) and, not in the paper,
 //! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`],
-//! [`crossings`], [`tips`] and [`tails`].
+//! [`crossings`], [`tips`], [`hooks`] and [`tails`].
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], through which the pipeline and
 //! the public `Graph` methods run every stage after the first graph. A run split in tiles
@@ -17,6 +17,7 @@ pub(crate) mod clumps;
 pub(crate) mod crossings;
 pub(crate) mod gaps;
 pub(crate) mod given_back;
+pub(crate) mod hooks;
 pub(crate) mod junctions;
 pub(crate) mod local_outliers;
 pub(crate) mod outliers;
@@ -70,6 +71,9 @@ pub enum Stage {
     Crossings,
     /// Re-pairing loose ends across a chord at a tip ([`Params::tips`](crate::Params::tips)).
     Tips,
+    /// Putting loose ends that hook back beside their curve in line
+    /// ([`Params::hooks`](crate::Params::hooks)).
+    Hooks,
     /// Cutting outlier tails at open ends ([`Params::tails`](crate::Params::tails)).
     Tails,
     /// The NN-Crust baseline, the whole method ([`Method::NnCrust`](crate::Method::NnCrust)).
@@ -107,7 +111,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 14] = [
+const ROWS: [Row; 15] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -244,6 +248,21 @@ beside a loose end) and no curve is split",
         }),
     },
     Row {
+        stage: Stage::Hooks,
+        name: "hooks",
+        title: "after unhooking loose ends",
+        key: "hooks",
+        switch: Some(Switch {
+            flag: "hooks",
+            help: "(default on; off with --paper) after the tips, where a loose
+end hangs from a sample that the curve reached first (the two
+samples' order swapped by noise) and the curve runs on from that
+sample to a loose end or a point without edges, put the loose
+end between the sample and the one before, and join the sample
+onward, when that leaves no passage as sharp as the hook",
+        }),
+    },
+    Row {
         stage: Stage::Tails,
         name: "outlier tails",
         title: "after cutting outlier tails",
@@ -279,8 +298,8 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 14] = {
-        let mut all = [Stage::Proximity; 14];
+    pub const ALL: [Stage; 15] = {
+        let mut all = [Stage::Proximity; 15];
         let mut k = 0;
         while k < all.len() {
             all[k] = ROWS[k].stage;
@@ -354,6 +373,7 @@ pub(crate) enum Step {
     JoinJunctions,
     RestoreCrossings,
     RepairTips,
+    Unhook,
     CutTails,
 }
 
@@ -385,6 +405,7 @@ impl Step {
             Step::JoinJunctions => Stage::Junctions,
             Step::RestoreCrossings => Stage::Crossings,
             Step::RepairTips => Stage::Tips,
+            Step::Unhook => Stage::Hooks,
             Step::CutTails => Stage::Tails,
         }
     }
@@ -453,6 +474,7 @@ impl Step {
             Step::JoinJunctions => junctions::join_junctions(tri, edges, graph, parallel),
             Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph, parallel),
             Step::RepairTips => tips::repair_tips(tri, edges, graph, parallel),
+            Step::Unhook => hooks::unhook(tri, edges, graph, parallel),
             Step::CutTails => tails::cut_tails(tri, edges, graph, parallel),
         }
     }
