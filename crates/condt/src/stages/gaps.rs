@@ -243,7 +243,7 @@ impl<'a> Ends<'a> {
 
     /// Whether the gap from the loose end `a` to `w` is within [`GAP_RATIO`] of `a`'s edge, or with
     /// `two_edges` of the longer of its last two edges.
-    fn short(&self, a: VertexId, w: VertexId, two_edges: bool) -> bool {
+    pub(super) fn short(&self, a: VertexId, w: VertexId, two_edges: bool) -> bool {
         self.point(a).dist2(self.point(w)) <= self.longest_gap2(a, two_edges)
     }
 

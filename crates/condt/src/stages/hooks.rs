@@ -18,7 +18,8 @@
 //! loose end (its neighbour `x'` none of `a`, `b`, `c`) or has no edge: `a b` gives way to `a c`
 //! and `b x` when `a c` is within [`GAP_RATIO`] of `a a'` (the edge it continues), `b x` within
 //! [`GAP_RATIO`] of the longer of `a c` and `c b` (the end's last two edges, as gap closing
-//! measures a gap) and of `x x'`, and the sharpest passage the move makes (at `a`, `c`, `b`, and
+//! measures a gap) and, for a loose end `x`, of the longer of `x`'s last two edges (gap closing's
+//! own measure, `Ends::short`), and the sharpest passage the move makes (at `a`, `c`, `b`, and
 //! at `x` when it is a loose end) is wider than the hook's at `b`. A loose end with two moves, or
 //! a point in two moves, takes part in none: the result depends neither on the order nor on
 //! `parallel`.
@@ -86,7 +87,7 @@ impl Ends<'_> {
                     1 => {
                         let beyond = self.along(x);
                         ![a, b, c].contains(&beyond)
-                            && within(gap, px.dist2(self.point(beyond)))
+                            && self.short(x, b, true)
                             && self.cos_of(x, beyond, b) < hook
                     }
                     _ => false,
