@@ -180,6 +180,18 @@ mod tests {
     }
 
     #[test]
+    fn a_gap_to_a_crowded_loose_end_is_read_against_its_edge_before() {
+        // The curve's next samples crowd: 7 and 8 are 0.3 apart, 8 and 9 a spacing. The gap
+        // `6 7` (a spacing) is over 2.75 times `7 8`, within 2.75 times `8 9`.
+        let (mut pts, edges) = stepped_curve(4, false);
+        for (k, x) in [(8, 6.9), (9, 7.9), (10, 8.9)] {
+            pts[k] = Point::new(x, 0.5);
+        }
+        let out = unhooked(&pts, edges);
+        assert!(out.contains(&[4, 5]) && out.contains(&[6, 7]) && !out.contains(&[4, 6]));
+    }
+
+    #[test]
     fn a_hook_with_nothing_beside_it_stays() {
         let (pts, edges) = stepped_curve(0, false);
         assert_eq!(unhooked(&pts, edges.clone()), edges);
