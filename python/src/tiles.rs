@@ -75,15 +75,17 @@ impl Flow {
 /// loose end and the other ends choosing its point two more; a crossing's arms and chord, read
 /// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
 /// rule itself on the driver, [`_gathered_clumps`]), and where the driver finds clumps the gap
-/// choices and tip candidates (eight hops) on the same edges; a tip's candidate move eight,
-/// from the loose end to the other's branch ([`_choices_kept`], the split test and the settling
-/// on the driver, [`_gathered_tips`]); a hooked loose end's move eight: its points lie within
-/// two hops of the loose end, its tests read the stars there, and a move sharing a point is read
-/// from a loose end two hops beyond that point ([`_step_kept`]); a loose end's gap choice six, its straight walk five
-/// ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
-/// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
-/// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the
-/// clump tests, gap choices and tip candidates (eight hops) of their result; the given-back
+/// choices, tip candidates and hook joins (eight hops) on the same edges; a tip's candidate move
+/// eight, from the loose end to the other's branch ([`_choices_kept`], the split test and the
+/// settling on the driver, [`_gathered_tips`]); a hooked loose end's move eight: its points lie
+/// within two hops of the loose end, its tests read the stars there, and a move sharing a point
+/// is read from a loose end two hops beyond that point ([`_step_kept`], and its joins, settled
+/// on the tile, for rule 4 and the clumps: [`_choices_kept`]); a loose end's gap choice six, its
+/// straight walk five ([`_choices_kept`], agreement, the joins along lone edges and the
+/// stranded runs on the driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3
+/// six composed ([`_local_rules_kept`]), then rule 4 on the driver
+/// ([`_gathered_local_outliers`]) with the clump tests, gap choices, tip candidates and hook
+/// joins (eight hops) of their result; the given-back
 /// test one ring ([`_tests_kept`], the rule on the driver, [`_gathered_given_back`]); an
 /// outlier tail nine: from an owned edge of a tail of four back to its loose end and on to the
 /// far end of the five edges it hangs from, whose last inner point's edges are read for its
@@ -672,9 +674,9 @@ pub(crate) fn _gathered_last_edges<'py>(
 }
 
 /// Rule 4 of the local outlier removal on the gathered `edges` (after rules 1 to 3) over `n`
-/// points, with every point's clump `tests`, every loose end's gap `choices` and every point's
-/// tip candidates (`tips`) on them ([`condt::tiled::remove_gathered_local_outliers`]): the edges
-/// kept, sorted by rows, or `None`.
+/// points, with every point's clump `tests`, every loose end's gap `choices`, every point's tip
+/// candidates (`tips`) and the hook joins (`hooks`) on them
+/// ([`condt::tiled::remove_gathered_local_outliers`]): the edges kept, sorted by rows, or `None`.
 #[pyfunction]
 pub(crate) fn _gathered_local_outliers<'py>(
     py: Python<'py>,
@@ -683,20 +685,34 @@ pub(crate) fn _gathered_local_outliers<'py>(
     tests: PyReadonlyArray1<'py, u8>,
     choices: PyReadonlyArray2<'py, i64>,
     tips: PyReadonlyArray2<'py, i64>,
+    hooks: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let rule = condt::tiled::remove_gathered_local_outliers;
-    gathered_with_joins(py, n, edges, tests, (choices, tips), rule)
+    gathered_with_joins(py, n, edges, tests, (choices, tips, hooks), rule)
 }
 
-/// A driver's rule that reads every point's `tests` and the joins gap closing and the tips would
-/// make (the tiles' gap `choices` and tip candidates), on the gathered `edges` over `n` points.
+/// A driver's rule that reads every point's `tests` and the joins gap closing, the tips and the
+/// hooks would make (the tiles' gap `choices`, tip candidates and hook joins), on the gathered
+/// `edges` over `n` points.
 type RuleWithJoins = fn(
     usize,
     &[[usize; 2]],
     &[u8],
     &[[usize; GAP_ROW]],
     &[[usize; 4]],
+    &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, condt::Error>;
+
+/// The `_choices_kept` round of the hooks stage's joins, which rule 4 and the clump stage read
+/// (the hooks stage's own round is `_step_kept`'s, under its key).
+const HOOK_JOINS: &str = "hook-joins";
+
+/// The rows a driver gathered for a rule with joins: gap choices, tip candidates, hook joins.
+type JoinRows<'py> = (
+    PyReadonlyArray2<'py, i64>,
+    PyReadonlyArray2<'py, i64>,
+    PyReadonlyArray2<'py, i64>,
+);
 
 /// `rule` on the arrays a driver gathered: the edges kept, sorted by rows, or `None`.
 fn gathered_with_joins<'py>(
@@ -704,14 +720,18 @@ fn gathered_with_joins<'py>(
     n: usize,
     edges: &Bound<'py, PyArray2<i64>>,
     tests: PyReadonlyArray1<'py, u8>,
-    (choices, tips): (PyReadonlyArray2<'py, i64>, PyReadonlyArray2<'py, i64>),
+    (choices, tips, hooks): JoinRows<'py>,
     rule: RuleWithJoins,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
     let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
     let tips: Vec<[usize; 4]> = rows_of(&tips, "a tip candidate")?;
+    let hooks: Vec<[usize; 2]> = rows_of(&hooks, "a hook join")?;
     let tests = tests.as_slice()?;
-    gathered_answer(py, py.detach(|| rule(n, &edges, tests, &rows, &tips)))
+    gathered_answer(
+        py,
+        py.detach(|| rule(n, &edges, tests, &rows, &tips, &hooks)),
+    )
 }
 
 /// For the given-back round, on the driver: each point's component label and status in the
@@ -787,7 +807,9 @@ fn rows_of<const W: usize>(
 /// driver's `given` edges (as for [`_step_kept`]): for `"gaps"` each loose end's gap choice
 /// ([`condt::tiled::gap_choices`], an `(m, 10)` int64 array: positions of the whole set, the
 /// kind and the walk's length as they are), for `"tips"` the tips' candidate moves
-/// ([`condt::tiled::tip_candidates`], an `(m, 4)` array of positions).
+/// ([`condt::tiled::tip_candidates`], an `(m, 4)` array of positions), for `"hook-joins"`
+/// ([`HOOK_JOINS`]) the edges the hooks stage's moves would add, owned by their smaller end
+/// ([`condt::tiled::hook_joins`], an `(m, 2)` array of positions).
 #[pyfunction]
 #[pyo3(signature = (state, given, step, **params))]
 pub(crate) fn _choices_kept<'py>(
@@ -800,11 +822,12 @@ pub(crate) fn _choices_kept<'py>(
     let (_, tiled) = tiled_params(params)?;
     let has = |stage: Stage| tiled.later.contains(&stage);
     // Rule 4 of the local outlier removal and the clump stage keep pieces gap closing or a tip's
-    // move would join.
+    // or hook's move would join.
     let joined = has(Stage::LocalOutliers) || has(Stage::Clumps);
     let gaps = step == Stage::Gaps.key() && (has(Stage::Gaps) || joined);
     let tips = step == Stage::Tips.key() && (has(Stage::Tips) || joined);
-    if !gaps && !tips {
+    let hooks = step == HOOK_JOINS && joined;
+    if !gaps && !tips && !hooks {
         return Err(PyValueError::new_err(format!(
             "no round of choices {step:?} for these parameters"
         )));
@@ -826,13 +849,20 @@ pub(crate) fn _choices_kept<'py>(
                 rows.iter()
                     .flat_map(|row| (0..GAP_ROW).map(move |k| at(row, k)))
                     .collect()
-            } else {
+            } else if tips {
                 let rows = condt::tiled::tip_candidates(&graph, owned);
+                rows.iter().flat_map(|row| row.map(position)).collect()
+            } else {
+                let rows = condt::tiled::hook_joins(&graph, owned);
                 rows.iter().flat_map(|row| row.map(position)).collect()
             }
         })
     });
-    let width = if gaps { GAP_ROW } else { 4 };
+    let width = match (gaps, tips) {
+        (true, _) => GAP_ROW,
+        (_, true) => 4,
+        _ => 2,
+    };
     let rows = Array2::from_shape_vec((flat.len() / width, width), flat)
         .map_err(|err| PyValueError::new_err(err.to_string()))?;
     Ok(PyArray2::from_owned_array(py, rows))
@@ -909,9 +939,9 @@ pub(crate) fn _gathered_clumps_found<'py>(
 }
 
 /// The clump stage on the gathered `edges` over `n` points with each point's `tests` from the
-/// tile owning it, every loose end's gap `choices` and every point's tip candidates (`tips`) on
-/// them ([`condt::tiled::remove_gathered_clumps`]): the edges kept, sorted by rows, or `None`
-/// when it changes nothing.
+/// tile owning it, every loose end's gap `choices`, every point's tip candidates (`tips`) and the
+/// hook joins (`hooks`) on them ([`condt::tiled::remove_gathered_clumps`]): the edges kept,
+/// sorted by rows, or `None` when it changes nothing.
 #[pyfunction]
 pub(crate) fn _gathered_clumps<'py>(
     py: Python<'py>,
@@ -920,9 +950,10 @@ pub(crate) fn _gathered_clumps<'py>(
     tests: PyReadonlyArray1<'py, u8>,
     choices: PyReadonlyArray2<'py, i64>,
     tips: PyReadonlyArray2<'py, i64>,
+    hooks: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let rule = condt::tiled::remove_gathered_clumps;
-    gathered_with_joins(py, n, edges, tests, (choices, tips), rule)
+    gathered_with_joins(py, n, edges, tests, (choices, tips, hooks), rule)
 }
 
 /// A tile's owned edges, one list per graph its phase asks, in the whole set's positions.

@@ -33,6 +33,21 @@ pub(crate) fn tip_piece_beside_a_curve() -> (Vec<Point>, Vec<[usize; 2]>, usize)
     (pts, pairs, curve_len)
 }
 
+/// A straight open curve of twelve unit-spaced samples along `y = 0` (positions 0 to 11), then a
+/// hook: the loose end 12 at (12, 0) hangs from 13 at (12.6, 0.5), which 11 reached first; then a
+/// piece of four from (13.6, 0.5) on, a spacing apart (positions 14 to 17). The points, the edges
+/// and 14 (the curve's points). The hooks stage puts 12 back between 11 and 13 and joins 13 to
+/// 14; gap closing joins nothing (12 faces back, 14 sees no loose end ahead), and the piece is
+/// under a quarter of the points. For rule 4's tests, the stage's and the tiled one.
+pub(crate) fn hooked_piece_beside_a_curve() -> (Vec<Point>, Vec<[usize; 2]>, usize) {
+    let mut pts: Vec<Point> = (0..13).map(|k| Point::new(k as f64, 0.0)).collect();
+    pts.push(Point::new(12.6, 0.5));
+    pts.extend((0..4).map(|k| Point::new(13.6 + k as f64, 0.5)));
+    let mut pairs: Vec<[usize; 2]> = (0..11).map(|k| [k, k + 1]).collect();
+    pairs.extend([[11, 13], [12, 13], [14, 15], [15, 16], [16, 17]]);
+    (pts, pairs, 14)
+}
+
 /// A circle of radius 10 sampled at 60 angles whose samples 15 to 26 zig-zag across it (0.5 in
 /// and out, as noise at half a spacing leaves a stretch), the circle's edges missing at both
 /// ends of that stretch: an open curve of the other 48 samples (positions 0 to 47, its loose

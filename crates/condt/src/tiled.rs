@@ -20,6 +20,7 @@ use crate::error::Error;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::stages::gaps::{self, Ends, Partner, Target, Walk};
+use crate::stages::hooks;
 use crate::stages::local_outliers::{components, separated_at, smooth_and_regular, MIN_SAMPLES};
 use crate::stages::outliers::IqrRule;
 use crate::stages::tips::{self, Candidate};
@@ -204,14 +205,16 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> 
 /// The clump stage ([`Graph::remove_clumps`]) on edges gathered from the tiles of a split run:
 /// the edges kept (in order), or `None` when it changes nothing. `edges` are pairs of positions
 /// below `n`; `tests` holds each position's [`clump_tests`], from the tile that owns it; `choices`
-/// every loose end's [`gap_choices`] and `tips` every point's [`tip_candidates`] on this graph (a
-/// clump that gap closing or a tip's move would join to a component that stays, stays), needed
-/// only when [`gathered_clumps_found`] says so: without a clump they change nothing. The rule is
-/// the stage's own, on the same graph, with the tests read instead of measured.
+/// every loose end's [`gap_choices`], `tips` every point's [`tip_candidates`] and `hooks` the
+/// [`hook_joins`] on this graph (a clump that gap closing, a tip's move or a hook's would join to a
+/// component that stays, stays), needed only when [`gathered_clumps_found`] says so: without a
+/// clump they change nothing. The rule is the stage's own, on the same graph, with the tests read
+/// instead of measured.
 ///
 /// # Errors
-/// As [`component_labels`], named `tests` when `tests` is shorter than `n`, and as
-/// [`close_gathered_gaps`] and [`repair_gathered_tips`] for the rows.
+/// As [`component_labels`], named `tests` when `tests` is shorter than `n`, as
+/// [`close_gathered_gaps`] and [`repair_gathered_tips`] for the rows, and named `edge` for a hook
+/// join beyond `n`.
 ///
 /// ```
 /// use condt::{tiled, triangulate, Point};
@@ -226,7 +229,8 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> 
 /// assert!(tiled::gathered_clumps_found(pts.len(), &edges, &tests)?);
 /// let choices = tiled::gap_choices(&graph, |_| true);
 /// let tips = tiled::tip_candidates(&graph, |_| true);
-/// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests, &choices, &tips)?;
+/// let hooks = tiled::hook_joins(&graph, |_| true);
+/// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests, &choices, &tips, &hooks)?;
 /// assert_eq!(kept, Some(graph.remove_clumps().edges()));
 /// # Ok::<(), condt::Error>(())
 /// ```
@@ -236,9 +240,10 @@ pub fn remove_gathered_clumps(
     tests: &[u8],
     choices: &[[usize; GAP_ROW]],
     tips: &[[usize; 4]],
+    hooks: &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     let gathered = GatheredClumps::new(n, edges, tests)?;
-    let gathered_joins = GatheredJoins::read(n, &gathered.graph, choices, tips)?;
+    let gathered_joins = GatheredJoins::read(n, &gathered.graph, choices, tips, hooks)?;
     let Some(clump) = gathered.clump else {
         return Ok(None);
     };
@@ -301,12 +306,14 @@ impl GatheredClumps {
     }
 }
 
-/// Gap closing's choices and the tips stage's candidate moves, gathered from the tiles, as the
-/// joins they would add to a graph (what rule 4 and the clump stage ask of both stages).
+/// Gap closing's choices, the tips stage's candidate moves and the hooks stage's joins, gathered
+/// from the tiles, as the joins they would add to a graph (what rule 4 and the clump stage ask of
+/// the three stages).
 struct GatheredJoins {
     targets: Vec<(VertexId, Target)>,
     walks: Vec<(VertexId, Walk)>,
     tip_moves: Vec<Candidate>,
+    hook_joins: Vec<Edge>,
 }
 
 impl GatheredJoins {
@@ -315,13 +322,17 @@ impl GatheredJoins {
         graph: &CurveGraph,
         choices: &[[usize; GAP_ROW]],
         tips: &[[usize; 4]],
+        hooks: &[[usize; 2]],
     ) -> Result<GatheredJoins, Error> {
         let (targets, walks) = loose_ends_only(graph, read_choices(n, choices)?);
         let tip_moves = candidate_rows(n, graph, tips)?;
+        // A join is between two points below `n` (the stage's always are, and distinct).
+        let hook_joins = vertex_edges(n, hooks)?;
         Ok(GatheredJoins {
             targets,
             walks,
             tip_moves,
+            hook_joins,
         })
     }
 
@@ -333,6 +344,7 @@ impl GatheredJoins {
         if let Some((_, moved)) = tips::settle_candidates(n, graph, self.tip_moves) {
             joins.extend(moved);
         }
+        joins.extend(self.hook_joins);
         joins
     }
 }
@@ -382,6 +394,40 @@ pub fn tip_candidates(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usi
             Candidate::ApexBeside(move_) => move_.map(position),
             Candidate::SeveralAt(u) => [position(u); 4],
         })
+        .collect()
+}
+
+/// The edges the hooks stage's moves ([`Graph::unhook`]) would add to `graph`, found and settled as
+/// the stage does, whose smaller end (by input position) `at` selects, for a tile of a split run:
+/// rule 4 of the local outlier removal and the clump stage keep the pieces they join to a
+/// component that stays ([`remove_gathered_local_outliers`], [`remove_gathered_clumps`]). Each
+/// pair, smaller position first, is the whole set's at every point whose Delaunay neighbourhood
+/// (eight hops: a move's points lie within two of its loose end, its tests read the stars there,
+/// and a move sharing a point is found two hops beyond it) and graph the tile holds.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// // The curve of `Graph::unhook`'s example: the loose end 5 hangs from 6, which 4 reached first.
+/// let mut pts: Vec<Point> = (0..6).map(|k| Point::new(k as f64, 0.0)).collect();
+/// pts.extend((0..5).map(|k| Point::new(5.6 + k as f64, 0.5)));
+/// let tri = triangulate(&pts)?;
+/// let edges = vec![[0, 1], [1, 2], [2, 3], [3, 4], [4, 6], [5, 6], [7, 8], [8, 9], [9, 10]];
+/// let graph = tri.graph_from_edges(edges);
+/// assert_eq!(tiled::hook_joins(&graph, |_| true), vec![[4, 5], [6, 7]]);
+/// assert!(tiled::hook_joins(&graph, |i| i > 6).is_empty()); // both owned by 4 and 6
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn hook_joins(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize; 2]> {
+    let tri = graph.triangulation();
+    let ends = Ends::new(tri, graph.listed(), None);
+    let position = |v: VertexId| tri.input_of(v);
+    hooks::hook_joins(&ends, false)
+        .into_iter()
+        .map(|[a, b]| {
+            let (a, b) = (position(a), position(b));
+            [a.min(b), a.max(b)]
+        })
+        .filter(|&[a, _]| at(a))
         .collect()
 }
 
@@ -746,10 +792,10 @@ pub fn give_back_gathered_last_edges(
 /// The local outlier removal's rule 4 on edges gathered from the tiles of a split run, after
 /// rules 1 to 3 ([`local_rules`]): the edges kept, or `None` when it drops none. `edges` are pairs
 /// of positions below `n`; `tests` each position's [`clump_tests`] on this graph (the separation
-/// and the smooth passage rule 4 reads too), `choices` every loose end's [`gap_choices`] on it
-/// and `tips` every point's [`tip_candidates`] on it (rule 4 keeps pieces gap closing or a tip's
-/// move would join to a kept component), each from the tile that owns it. The rule is the
-/// stage's own code.
+/// and the smooth passage rule 4 reads too), `choices` every loose end's [`gap_choices`] on it,
+/// `tips` every point's [`tip_candidates`] on it and `hooks` its [`hook_joins`] (rule 4 keeps
+/// pieces gap closing, a tip's move or a hook's would join to a kept component), each from the
+/// tile that owns it. The rule is the stage's own code.
 ///
 /// # Errors
 /// As [`remove_gathered_clumps`], [`close_gathered_gaps`] and [`repair_gathered_tips`].
@@ -768,7 +814,9 @@ pub fn give_back_gathered_last_edges(
 /// let tests = tiled::clump_tests(&local, &tiled::component_labels(pts.len(), &edges)?)?;
 /// let choices = tiled::gap_choices(&local, |_| true);
 /// let tips = tiled::tip_candidates(&local, |_| true);
-/// let kept = tiled::remove_gathered_local_outliers(pts.len(), &edges, &tests, &choices, &tips)?;
+/// let hooks = tiled::hook_joins(&local, |_| true);
+/// let kept =
+///     tiled::remove_gathered_local_outliers(pts.len(), &edges, &tests, &choices, &tips, &hooks)?;
 /// // The far pair goes; the circle stays, as the stage decides.
 /// let stage = filtered.remove_local_outliers(&repaired).edges();
 /// assert_eq!(kept, Some(stage));
@@ -780,12 +828,13 @@ pub fn remove_gathered_local_outliers(
     tests: &[u8],
     choices: &[[usize; GAP_ROW]],
     tips: &[[usize; 4]],
+    hooks: &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     enough_tests(n, tests)?;
     let listed = vertex_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
-    let gathered_joins = GatheredJoins::read(n, &profile, choices, tips)?;
+    let gathered_joins = GatheredJoins::read(n, &profile, choices, tips, hooks)?;
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     let separated = exact_separated(&profile, &root, |v| test(v, 2));
     let passing = |at: VertexId, _, _| test(at, 1);
@@ -1074,13 +1123,45 @@ mod tests {
         let tests = clump_tests(&local, &component_labels(pts.len(), &listed).unwrap()).unwrap();
         let choices = gap_choices(&local, |_| true);
         let tips = tip_candidates(&local, |_| true);
+        let hooks = hook_joins(&local, |_| true);
         let n = pts.len();
-        let gathered = remove_gathered_local_outliers(n, &listed, &tests, &choices, &tips);
+        let gathered = remove_gathered_local_outliers(n, &listed, &tests, &choices, &tips, &hooks);
         let stage = graph.remove_local_outliers(&graph).edges();
         assert_eq!(stage.len(), edges.len());
         assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), stage);
-        let without = remove_gathered_local_outliers(n, &listed, &tests, &choices, &[]).unwrap();
+        let without =
+            remove_gathered_local_outliers(n, &listed, &tests, &choices, &[], &hooks).unwrap();
         assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
+    }
+
+    /// Rule 4 on gathered edges keeps a piece that a hook's move joins to a kept curve, as the
+    /// stage does; gathered without the hook joins, the piece goes. Joins naming a point beyond
+    /// the set are refused by name.
+    #[test]
+    fn gathered_rule_4_keeps_what_a_hook_joins_as_the_stage_does() {
+        let (pts, edges, curve_len) = crate::test_graphs::hooked_piece_beside_a_curve();
+        let tri = crate::triangulate(&pts).unwrap();
+        let graph = tri.graph_from_edges(edges.iter().copied());
+        let local = local_rules(&graph, &graph, false);
+        let listed = local.edges();
+        let tests = clump_tests(&local, &component_labels(pts.len(), &listed).unwrap()).unwrap();
+        let choices = gap_choices(&local, |_| true);
+        let tips = tip_candidates(&local, |_| true);
+        let hooks = hook_joins(&local, |_| true);
+        assert_eq!(hooks, vec![[11, 12], [13, curve_len]]);
+        let n = pts.len();
+        let gathered = remove_gathered_local_outliers(n, &listed, &tests, &choices, &tips, &hooks);
+        let stage = graph.remove_local_outliers(&graph).edges();
+        assert_eq!(stage.len(), edges.len());
+        assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), stage);
+        let without =
+            remove_gathered_local_outliers(n, &listed, &tests, &choices, &tips, &[]).unwrap();
+        assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
+        let beyond = remove_gathered_local_outliers(n, &listed, &tests, &[], &[], &[[0, n]]);
+        assert!(matches!(
+            beyond,
+            Err(Error::InvalidParameter { name: "edge", .. })
+        ));
     }
 
     /// The clump stage on gathered edges keeps a zig-zag piece that gap closing joins to a
@@ -1096,24 +1177,25 @@ mod tests {
         assert!(gathered_clumps_found(n, &listed, &tests).unwrap());
         let choices = gap_choices(&graph, |_| true);
         let tips = tip_candidates(&graph, |_| true);
-        let gathered = remove_gathered_clumps(n, &listed, &tests, &choices, &tips).unwrap();
+        let hooks = hook_joins(&graph, |_| true);
+        let gathered = remove_gathered_clumps(n, &listed, &tests, &choices, &tips, &hooks).unwrap();
         assert_eq!(
             gathered.unwrap_or(listed.clone()),
             graph.remove_clumps().edges()
         );
         assert_eq!(graph.remove_clumps().num_edges(), edges.len());
-        let without = remove_gathered_clumps(n, &listed, &tests, &[], &[]).unwrap();
+        let without = remove_gathered_clumps(n, &listed, &tests, &[], &[], &[]).unwrap();
         assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
         // Rows naming a point beyond the set are refused by name, clumps or not.
         let mut row = choices[0];
         row[2] = n;
-        let refused = remove_gathered_clumps(n, &listed, &tests, &[row], &[]);
+        let refused = remove_gathered_clumps(n, &listed, &tests, &[row], &[], &[]);
         assert!(matches!(
             refused,
             Err(Error::InvalidParameter { name: "choice", .. })
         ));
         let line: Vec<[usize; 2]> = (0..3).map(|i| [i, i + 1]).collect();
-        let refused_tip = remove_gathered_clumps(n, &line, &tests, &[], &[[0, 1, 2, n]]);
+        let refused_tip = remove_gathered_clumps(n, &line, &tests, &[], &[[0, 1, 2, n]], &[]);
         assert!(matches!(
             refused_tip,
             Err(Error::InvalidParameter {
@@ -1134,9 +1216,9 @@ mod tests {
         assert_eq!(close_gathered_gaps(2, &[], &[row]), Ok(None));
         assert_eq!(close_gathered_gaps(3, &[[1, 2]], &[row]), Ok(None));
         let tests = [0u8; 2];
-        assert!(remove_gathered_local_outliers(2, &[], &tests, &[row], &[]).is_ok());
+        assert!(remove_gathered_local_outliers(2, &[], &tests, &[row], &[], &[]).is_ok());
         // A tip row whose loose end has no edge joins nothing either.
-        assert!(remove_gathered_local_outliers(2, &[], &tests, &[], &[[0, 1, 1, 1]]).is_ok());
+        assert!(remove_gathered_local_outliers(2, &[], &tests, &[], &[[0, 1, 1, 1]], &[]).is_ok());
         for n in [1 << 29, u32::MAX as usize] {
             let refused = Err(Error::InvalidParameter {
                 name: "n",

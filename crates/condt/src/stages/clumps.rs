@@ -10,12 +10,13 @@
 //! half of its points pass [`smooth_and_regular`], or exactly half and every point of it is apart
 //! (a tie shows no majority either; a piece of a noisy curve is not apart at its ends), unless the
 //! clumps and the components not apart would hold [`OUTLIER_SHARE`] or more of the points with
-//! edges; and not one that gap closing or a tip's move would join to a component that stays
-//! ([`unless_joined`]: a stretch of a noisy curve cut off at both ends). Why half: a curve's
-//! ends, corners and junctions are a minority at any sampling dense enough for the proximity
-//! graph; a random zig-zag passes smoothly at most one time in three.
+//! edges; and not one that gap closing or a tip's or hook's move would join to a component that
+//! stays ([`unless_joined`]: a stretch of a noisy curve cut off at both ends). Why half: a
+//! curve's ends, corners and junctions are a minority at any sampling dense enough for the
+//! proximity graph; a random zig-zag passes smoothly at most one time in three.
 //! Sequential; O(n) beyond the union-find, and only where there are clumps, the joins (gap
-//! closing's and the tips' searches at the loose ends, on rayon's threads when `parallel`).
+//! closing's, the tips' and the hooks' searches at the loose ends, on rayon's threads when
+//! `parallel`).
 
 use super::local_outliers::{
     components, merged_along, only_smooth_cycles, separated_at, separated_counts_until,
@@ -129,8 +130,9 @@ pub(crate) fn clumps_of(
 }
 
 /// The clumps `clump` (per root of `root`, [`clumps_of`]) less those that `joins`, the edges gap
-/// closing and the tips stage's moves would add to `graph`, join to a component that stays,
-/// directly or through other clumps, between points with edges; `None` when none is left.
+/// closing and the moves of the tips and hooks stages would add to `graph`, join to a component
+/// that stays, directly or through other clumps, between points with edges; `None` when none is
+/// left.
 /// Reason: a piece of a noisy curve can zig-zag and stand apart from the rest at its middle
 /// samples, yet its ends run on to the curve's loose ends, and those joins need evidence on both
 /// sides (rule 4's third exemption, [`merged_along`], which this reads); a clump of outliers

@@ -112,6 +112,25 @@ pub(crate) fn unhook(
     parallel: bool,
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
+    let moves = settled(&ends, parallel);
+    if moves.is_empty() {
+        return Outcome::unchanged_with(ends.into_graph());
+    }
+    let replaced = moves.iter().map(|m| ordered(m.a, m.b)).collect();
+    Outcome::replacing(edges, ends.into_graph(), replaced, joins_of(&moves))
+}
+
+/// The edges the stage's moves would add on the graph of `ends`, found and settled as the stage
+/// finds and settles them: rule 4 of the local outlier removal and the clump stage keep the
+/// pieces they join to a component that stays, as they keep those gap closing joins
+/// (`local_outliers::would_join`).
+pub(crate) fn hook_joins(ends: &Ends, parallel: bool) -> Vec<Edge> {
+    joins_of(&settled(ends, parallel))
+}
+
+/// Every move of the rule on the graph of `ends`, settled: a point in two moves, or a loose end
+/// with two, takes part in none.
+fn settled(ends: &Ends, parallel: bool) -> Vec<Unhook> {
     let mut moves = Vec::new();
     let mut claimed = Vec::new();
     for found in ends.each_loose(parallel, |c| ends.unhook_at(c)) {
@@ -120,18 +139,18 @@ pub(crate) fn unhook(
             Found::Several(c) => claimed.push(c),
         }
     }
-    alone(tri.num_points(), &mut moves, &claimed, |m| {
+    alone(ends.tri.num_points(), &mut moves, &claimed, |m| {
         [m.a, m.b, m.c, m.x]
     });
-    if moves.is_empty() {
-        return Outcome::unchanged_with(ends.into_graph());
-    }
-    let replaced = moves.iter().map(|m| ordered(m.a, m.b)).collect();
-    let joins = moves
+    moves
+}
+
+/// The two edges each move adds, `a c` and `b x`, by increasing move.
+fn joins_of(moves: &[Unhook]) -> Vec<Edge> {
+    moves
         .iter()
         .flat_map(|m| [ordered(m.a, m.c), ordered(m.b, m.x)])
-        .collect();
-    Outcome::replacing(edges, ends.into_graph(), replaced, joins)
+        .collect()
 }
 
 #[cfg(test)]

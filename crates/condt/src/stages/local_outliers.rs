@@ -2,8 +2,8 @@
 //! rule and the repair, in either order.
 //!
 //! Owns: four local rules on the graph those stages left. Besides its input it reads the IQR
-//! stage's (via `Step::run`) and asks gap closing and the tips stage which joins they would make
-//! (rule 4); it may not touch the triangulation and adds no edge absent from it.
+//! stage's (via `Step::run`) and asks gap closing and the tips and hooks stages which joins they
+//! would make (rule 4); it may not touch the triangulation and adds no edge absent from it.
 //!
 //! Why: Algorithm 3's threshold is global: nearby outliers are each other's nearest neighbours, so
 //! their short edges pass it, and a sparse component beside a dense one loses every edge once it
@@ -20,12 +20,12 @@
 //!    polygon of five or six is a clump however far apart ([`drop_short_cycles`]).
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
-//! curves) unless gap closing or a move of the tips stage would join them to a kept component
-//! ([`merged_along`]), or rule 4 would remove [`OUTLIER_SHARE`] of the points with edges (then it
-//! removes none; docs/condt.md, *The local outlier removal and real data*); rule 3 drops shorter
-//! junction branches regardless. Deterministic, O(n); rule 4's separation test and its search for
-//! the joins of gap closing and the tips run on rayon's threads when `parallel` (the same result);
-//! lengths recomputed, not kept (memory).
+//! curves) unless gap closing or a move of the tips or hooks stage would join them to a kept
+//! component ([`merged_along`]), or rule 4 would remove [`OUTLIER_SHARE`] of the points with
+//! edges (then it removes none; docs/condt.md, *The local outlier removal and real data*); rule 3
+//! drops shorter junction branches regardless. Deterministic, O(n); rule 4's separation test and
+//! its search for the joins of gap closing, the tips and the hooks run on rayon's threads when
+//! `parallel` (the same result); lengths recomputed, not kept (memory).
 
 use super::outliers::FLOOR_RATIO;
 use super::Outcome;
@@ -636,8 +636,8 @@ fn separated_components(
     separated_with(edges, profile, root, &separated, passing, joins)
 }
 
-/// The edges gap closing and the tips stage's moves would add to `graph`: rule 4's third
-/// exemption ([`merged_along`]) and the clump stage's read them.
+/// The edges gap closing and the moves of the tips and hooks stages would add to `graph`: rule
+/// 4's third exemption ([`merged_along`]) and the clump stage's read them.
 pub(super) fn would_join(tri: &Triangulation, graph: &CurveGraph, parallel: bool) -> Vec<Edge> {
     let ends = super::gaps::Ends {
         tri,
@@ -645,13 +645,15 @@ pub(super) fn would_join(tri: &Triangulation, graph: &CurveGraph, parallel: bool
     };
     let mut joins = super::gaps::gap_joins(&ends, parallel);
     joins.extend(super::tips::tip_joins(&ends, parallel));
+    joins.extend(super::hooks::hook_joins(&ends, parallel));
     joins
 }
 
 /// Rule 4 on the graph of `edges` (`profile`, its components `root`) with what it reads of the
 /// triangulation given: `separated`, each root's separated points counted up to [`MIN_SAMPLES`]
 /// ([`separated_counts`]), `passing(at, previous, next)` ([`smooth_and_regular`]) and `joins`,
-/// the edges gap closing and the tips stage's moves would add to this graph ([`merged_along`]).
+/// the edges gap closing and the moves of the tips and hooks stages would add to this graph
+/// ([`merged_along`]).
 /// The rest reads the graph alone, so a run split in tiles runs it on the gathered edges
 /// ([`crate::tiled`]).
 pub(crate) fn separated_with(
@@ -677,7 +679,8 @@ pub(crate) fn separated_with(
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
-    // Rule 4's third exemption: pieces gap closing or a tip's move joins to a kept component.
+    // Rule 4's third exemption: pieces gap closing or a tip's or hook's move joins to a kept
+    // component.
     Some(merged_along(root, kept, joins()))
 }
 
@@ -686,7 +689,9 @@ pub(crate) fn separated_with(
 /// none apart from the curve; gap closing needs evidence from both sides of each join, which
 /// outliers beside a curve rarely give. The tips stage's moves join pieces too (a tip whose chord
 /// pairs its own samples, beside the two sides' loose ends) and need as much evidence (smooth
-/// passages on both sides, each end on a branch of its own), so their joins count alike.
+/// passages on both sides, each end on a branch of its own), so their joins count alike; so do the
+/// hooks stage's (a loose end put back in line joins the piece it hung from to the one its
+/// neighbour runs on to, when no passage is left as sharp as the hook).
 ///
 /// The components `root` merged along `joins`, named as [`components`] would name them, and which
 /// are kept: those with a kept part (only merged names are to be read in `kept` afterwards). The
@@ -1430,6 +1435,22 @@ mod tests {
             .repair_tips()
             .edges();
         assert!(tips.contains(&[0, piece]) && tips.contains(&[curve_len - 1, piece + 3]));
+    }
+
+    /// A piece of four beside a hook at a curve's end
+    /// ([`hooked_piece_beside_a_curve`](crate::test_graphs::hooked_piece_beside_a_curve)): rule 4
+    /// would drop it (two of its samples are apart, under five), gap closing and the tips join
+    /// nothing there, and the hooks stage joins it to the curve, so rule 4 keeps it.
+    #[test]
+    fn rule_4_keeps_a_piece_that_a_hook_s_move_joins_to_a_kept_curve() {
+        let (pts, pairs, curve_len) = crate::test_graphs::hooked_piece_beside_a_curve();
+        let tri = triangulate(&pts).unwrap();
+        assert_eq!(apply(&tri, &vertex_edges(&tri, &pairs), RULE_4), None);
+        let graph = tri.graph_from_edges(pairs.iter().copied());
+        assert_eq!(graph.close_gaps().edges(), graph.edges());
+        assert_eq!(graph.repair_tips().edges(), graph.edges());
+        let unhooked = graph.unhook().edges();
+        assert!(unhooked.contains(&[11, 12]) && unhooked.contains(&[13, curve_len]));
     }
 
     /// An open arc of 21 samples, then two pairs of samples beyond its end, each a spacing from
