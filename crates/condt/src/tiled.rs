@@ -1110,27 +1110,49 @@ mod tests {
         assert!(remove_gathered_outliers(&pts, &[[0, 1], [2, 3]], 1.7, false).is_ok());
     }
 
+    /// Rule 4's rows on the graph of `edges` after rules 1 to 3 (every point's, as the tiles
+    /// send them), and the stage's own result on that graph.
+    struct Rule4Rows {
+        n: usize,
+        listed: Vec<[usize; 2]>,
+        tests: Vec<u8>,
+        choices: Vec<[usize; GAP_ROW]>,
+        tips: Vec<[usize; 4]>,
+        hooks: Vec<[usize; 2]>,
+        stage: Vec<[usize; 2]>,
+    }
+
+    fn rule_4_rows(pts: &[crate::Point], edges: &[[usize; 2]]) -> Rule4Rows {
+        let tri = crate::triangulate(pts).unwrap();
+        let graph = tri.graph_from_edges(edges.iter().copied());
+        let local = local_rules(&graph, &graph, false);
+        let listed = local.edges();
+        let tests = clump_tests(&local, &component_labels(pts.len(), &listed).unwrap()).unwrap();
+        Rule4Rows {
+            n: pts.len(),
+            tests,
+            choices: gap_choices(&local, |_| true),
+            tips: tip_candidates(&local, |_| true),
+            hooks: hook_joins(&local, |_| true),
+            stage: graph.remove_local_outliers(&graph).edges(),
+            listed,
+        }
+    }
+
     /// Rule 4 on gathered edges keeps a piece that a tip's move joins to a kept curve, as the
     /// stage does (the stage's test's points and edges). Gathered without the tips' rows, the
     /// piece goes.
     #[test]
     fn gathered_rule_4_keeps_what_a_tip_s_move_joins_as_the_stage_does() {
         let (pts, edges, curve_len) = crate::test_graphs::tip_piece_beside_a_curve();
-        let tri = crate::triangulate(&pts).unwrap();
-        let graph = tri.graph_from_edges(edges.iter().copied());
-        let local = local_rules(&graph, &graph, false);
-        let listed = local.edges();
-        let tests = clump_tests(&local, &component_labels(pts.len(), &listed).unwrap()).unwrap();
-        let choices = gap_choices(&local, |_| true);
-        let tips = tip_candidates(&local, |_| true);
-        let hooks = hook_joins(&local, |_| true);
-        let n = pts.len();
-        let gathered = remove_gathered_local_outliers(n, &listed, &tests, &choices, &tips, &hooks);
-        let stage = graph.remove_local_outliers(&graph).edges();
-        assert_eq!(stage.len(), edges.len());
-        assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), stage);
+        let r = rule_4_rows(&pts, &edges);
+        let (n, listed, tests) = (r.n, &r.listed, &r.tests);
+        let gathered =
+            remove_gathered_local_outliers(n, listed, tests, &r.choices, &r.tips, &r.hooks);
+        assert_eq!(r.stage.len(), edges.len());
+        assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), r.stage);
         let without =
-            remove_gathered_local_outliers(n, &listed, &tests, &choices, &[], &hooks).unwrap();
+            remove_gathered_local_outliers(n, listed, tests, &r.choices, &[], &r.hooks).unwrap();
         assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
     }
 
@@ -1140,24 +1162,17 @@ mod tests {
     #[test]
     fn gathered_rule_4_keeps_what_a_hook_joins_as_the_stage_does() {
         let (pts, edges, curve_len) = crate::test_graphs::hooked_piece_beside_a_curve();
-        let tri = crate::triangulate(&pts).unwrap();
-        let graph = tri.graph_from_edges(edges.iter().copied());
-        let local = local_rules(&graph, &graph, false);
-        let listed = local.edges();
-        let tests = clump_tests(&local, &component_labels(pts.len(), &listed).unwrap()).unwrap();
-        let choices = gap_choices(&local, |_| true);
-        let tips = tip_candidates(&local, |_| true);
-        let hooks = hook_joins(&local, |_| true);
-        assert_eq!(hooks, vec![[11, 12], [13, curve_len]]);
-        let n = pts.len();
-        let gathered = remove_gathered_local_outliers(n, &listed, &tests, &choices, &tips, &hooks);
-        let stage = graph.remove_local_outliers(&graph).edges();
-        assert_eq!(stage.len(), edges.len());
-        assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), stage);
+        let r = rule_4_rows(&pts, &edges);
+        let (n, listed, tests) = (r.n, &r.listed, &r.tests);
+        assert_eq!(r.hooks, vec![[11, 12], [13, curve_len]]);
+        let gathered =
+            remove_gathered_local_outliers(n, listed, tests, &r.choices, &r.tips, &r.hooks);
+        assert_eq!(r.stage.len(), edges.len());
+        assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), r.stage);
         let without =
-            remove_gathered_local_outliers(n, &listed, &tests, &choices, &tips, &[]).unwrap();
+            remove_gathered_local_outliers(n, listed, tests, &r.choices, &r.tips, &[]).unwrap();
         assert_eq!(without.map(|kept| kept.len()), Some(curve_len - 1));
-        let beyond = remove_gathered_local_outliers(n, &listed, &tests, &[], &[], &[[0, n]]);
+        let beyond = remove_gathered_local_outliers(n, listed, tests, &[], &[], &[[0, n]]);
         assert!(matches!(
             beyond,
             Err(Error::InvalidParameter { name: "edge", .. })
