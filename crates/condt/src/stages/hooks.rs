@@ -32,7 +32,7 @@ use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
 /// A move: the loose end `c`, hanging from `b`, put between `a` and `b`; `b` joins `x`.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
 struct Unhook {
     c: VertexId,
     b: VertexId,
@@ -104,7 +104,7 @@ impl Ends<'_> {
 }
 
 /// Puts hooked loose ends in `edges` (each edge once, any order) back in line: the input edges in
-/// order without the replaced ones, then each move's two edges by increasing move.
+/// order without the replaced ones, then each move's two edges by increasing loose end.
 pub(crate) fn unhook(
     tri: &Triangulation,
     edges: &[Edge],
@@ -145,7 +145,7 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Unhook> {
     moves
 }
 
-/// The two edges each move adds, `a c` and `b x`, by increasing move.
+/// The two edges each move adds, `a c` and `b x`, in the moves' order.
 fn joins_of(moves: &[Unhook]) -> Vec<Edge> {
     moves
         .iter()
