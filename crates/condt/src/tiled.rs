@@ -258,8 +258,9 @@ pub fn remove_gathered_clumps(
 }
 
 /// Whether the clump stage finds a clump on edges gathered from the tiles of a split run, before
-/// asking which of them gap closing or the tips would join ([`remove_gathered_clumps`]): without
-/// one the stage changes nothing, and a driver need not ask the tiles for their choices.
+/// asking which of them gap closing, the tips or the hooks would join
+/// ([`remove_gathered_clumps`]): without one the stage changes nothing, and a driver need not ask
+/// the tiles for their choices.
 ///
 /// # Errors
 /// As [`remove_gathered_clumps`] without the rows.

@@ -68,8 +68,9 @@ pub struct Params {
     /// Close gaps at loose ends (beyond the paper; the joins it makes: `src/stages/gaps.rs`).
     pub close_gaps: bool,
     /// Remove components fewer than half of whose points a curve passes smoothly and evenly, or
-    /// half and every point apart: clumps of outliers; not one that gap closing or the tips would
-    /// join to a component that stays (beyond the paper; `src/stages/clumps.rs`).
+    /// half and every point apart: clumps of outliers; not one that gap closing, the tips or the
+    /// hooks would join to a component that stays, whether those steps run or not (beyond the
+    /// paper; `src/stages/clumps.rs`).
     pub clumps: bool,
     /// Join a loose end to the curve it meets where three curves of five points or more, sampled
     /// alike, meet, as on map borders or a T (beyond the paper; `src/stages/junctions.rs`).
