@@ -253,7 +253,9 @@
       () => (c.added ? "joined at a tip in place of a chord" : "a chord across a tip"),
       () => `part of an outlier tail of ${c.y} points cut where it hung from vertex ${c.x}`,
       () => "given back as a curve's last edge, a curve behind it",
-      () => (c.added ? "joined to put a hooked loose end back in line" : "passed a loose end that hooked back beside the curve"),
+      () => (c.added
+        ? "joined to put a hooked loose end back in line"
+        : "passed a loose end that hooked back beside the curve"),
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

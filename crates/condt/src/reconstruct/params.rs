@@ -111,7 +111,8 @@ impl Default for Params {
     /// let p = Params::default();
     /// assert!(p.repair == condt::Repair::Needs && p.smooth);
     /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
-    /// assert_eq!(p.stages(), [&all[..], &[Gaps, Junctions, Crossings, Tips, Hooks, Tails]].concat());
+    /// let later = [Gaps, Junctions, Crossings, Tips, Hooks, Tails];
+    /// assert_eq!(p.stages(), [&all[..], &later[..]].concat());
     /// ```
     fn default() -> Self {
         Params::paper()
