@@ -540,6 +540,44 @@ mod tests {
         }
     }
 
+    /// A noisy ellipse (Gaussian noise of about a tenth of a spacing, seeds whose last run makes
+    /// hook moves): each move is told as one edge removed and two added, each added edge sharing
+    /// one end with a removed one, as the hooks step gives `a b` up for `a c` and `b x`.
+    #[test]
+    fn a_hook_move_is_told_as_its_chord_removed_and_two_edges_added() {
+        for seed in [15, 17] {
+            let mut sampling = Sampling::new(0.3);
+            sampling.noise = 0.02;
+            sampling.gaussian_noise = true;
+            sampling.seed = seed;
+            let ellipse = Shape::Ellipse {
+                center: Point::new(0.0, 0.0),
+                radii: (3.0, 1.0),
+                rotation: 0.2,
+            };
+            let points = sample(&[ellipse], &sampling).unwrap().points;
+            let stories = reconstruct(&points, &Params::default())
+                .unwrap()
+                .provenance();
+            let hooked = |added: bool| -> Vec<[usize; 2]> {
+                let told = |c: &Change| c.stage == Stage::Hooks && c.added == added;
+                let hook = |s: &&EdgeStory| s.changes.iter().any(|c| told(c));
+                for story in &stories {
+                    for c in story.changes.iter().filter(|c| c.stage == Stage::Hooks) {
+                        assert_eq!(c.reason, Reason::Hook);
+                    }
+                }
+                stories.iter().filter(hook).map(|s| s.edge).collect()
+            };
+            let (removed, added) = (hooked(false), hooked(true));
+            assert!(!removed.is_empty(), "seed {seed}");
+            assert_eq!(added.len(), 2 * removed.len());
+            for [u, v] in added {
+                assert!(removed.iter().any(|r| r.contains(&u) || r.contains(&v)));
+            }
+        }
+    }
+
     fn noisy_scene() -> Vec<Point> {
         let mut sampling = Sampling::new(0.3);
         sampling.outlier_fraction = 0.1;
