@@ -561,7 +561,7 @@ mod tests {
                 .provenance();
             let hooked = |added: bool| -> Vec<[usize; 2]> {
                 let told = |c: &Change| c.stage == Stage::Hooks && c.added == added;
-                let hook = |s: &&EdgeStory| s.changes.iter().any(|c| told(c));
+                let hook = |s: &&EdgeStory| s.changes.iter().any(&told);
                 for story in &stories {
                     for c in story.changes.iter().filter(|c| c.stage == Stage::Hooks) {
                         assert_eq!(c.reason, Reason::Hook);
