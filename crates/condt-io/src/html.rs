@@ -188,6 +188,7 @@ fn write_data(
                 Reason::Tail { vertex, points } => (15, vertex as f64, points as f64),
                 Reason::LastEdge => (16, 0.0, 0.0),
                 Reason::Hook => (17, 0.0, 0.0),
+                Reason::Spike => (18, 0.0, 0.0),
             };
             let sep = if first { "" } else { "," };
             first = false;
@@ -246,6 +247,7 @@ const STAGE_COLORS: [&str; Stage::ALL.len()] = [
     "#e377c2", // junctions
     "#17becf", // crossings
     "#b5179e", // tips
+    "#7b2cbf", // spikes
     "#ff9896", // hooks
     "#7f7f7f", // outlier tails
     "#d62728", // NN-Crust

@@ -416,6 +416,31 @@ impl<'t> Graph<'t> {
         self.step(Step::RepairTips).0
     }
 
+    /// Puts back tips of several samples ([`Params::spikes`](crate::Params::spikes)): an edge
+    /// across a sharp tip whose two to four samples have no edges gives way to the shortest path
+    /// through them, when it is evenly spaced, smooth but at its apex, and one tip on one side of
+    /// the edge (its rule: `src/stages/spikes.rs`).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // A star's spike: 0..=3 run up to the tip's base at (0, 0), its samples 4, 5 (the apex)
+    /// // and 6 rise to (1, 3) and fall to 7 at (2, 0), and 8..=10 run down. The graph pairs 3
+    /// // with 7 across the base and leaves the tip's samples without edges.
+    /// let diagonal = |k: usize| Point::new(k as f64 - 3.0, k as f64 - 3.0);
+    /// let mut pts: Vec<Point> = (0..4).map(diagonal).collect();
+    /// pts.extend([(0.5, 1.5), (1.0, 3.0), (1.5, 1.5)].map(|(x, y)| Point::new(x, y)));
+    /// pts.extend((0..4).map(|k| Point::new(2.0 + k as f64, -(k as f64))));
+    /// let tri = triangulate(&pts)?;
+    /// let edges = vec![[0, 1], [1, 2], [2, 3], [3, 7], [7, 8], [8, 9], [9, 10]];
+    /// let spiked = tri.graph_from_edges(edges).repair_spikes().edges();
+    /// assert!([[3, 4], [4, 5], [5, 6], [6, 7]].iter().all(|e| spiked.contains(e)));
+    /// assert!(!spiked.contains(&[3, 7]));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn repair_spikes(&self) -> Graph<'t> {
+        self.step(Step::RepairSpikes).0
+    }
+
     /// Puts hooked loose ends back in line ([`Params::hooks`](crate::Params::hooks)): where a loose
     /// end `c` hangs from `b`, which the curve reached from `a` first, and `b` has a loose end or
     /// a point without edges beside it to run on to, `a b` gives way to `a c` and `b x` when no

@@ -83,6 +83,9 @@ pub enum Reason {
     /// A chord at a tip gave way to two edges to loose ends beside it or to the tip's sample, and
     /// beside a loose end also to that end's gap (or was that chord).
     Tip,
+    /// A chord across a sharp tip whose samples had no edges gave way to the path through them
+    /// (or was that chord).
+    Spike,
     /// A loose end hanging from a sample the curve reached first went back in line: the edge that
     /// passed it by gave way to one to it and one on from that sample (or was that edge).
     Hook,
@@ -311,6 +314,7 @@ impl<'a> Explainer<'a> {
             Stage::Gaps => Reason::GapClosed,
             Stage::Junctions => Reason::Junction,
             Stage::Tips => Reason::Tip,
+            Stage::Spikes => Reason::Spike,
             Stage::Hooks => Reason::Hook,
             Stage::Tails => self.tail_of([a, b]),
             Stage::Crossings => {

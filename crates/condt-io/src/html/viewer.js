@@ -256,6 +256,9 @@
       () => (c.added
         ? "joined to put a hooked loose end back in line"
         : "passed a loose end that hooked back beside the curve"),
+      () => (c.added
+        ? "joined through a tip's unused samples in place of a chord"
+        : "a chord across a tip whose samples had no edges"),
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

@@ -83,6 +83,11 @@ pub struct Params {
     /// loose end, that end on to the loose end its side runs straight to), instead (beyond the
     /// paper; `src/stages/tips.rs`).
     pub tips: bool,
+    /// Where an edge pairs the samples on either side of a sharp tip whose two to four samples
+    /// have no edges, join the two through them instead, along the shortest path, when that path
+    /// is evenly spaced, smooth but at its apex, and one tip on one side of the edge (beyond the
+    /// paper; `src/stages/spikes.rs`).
+    pub spikes: bool,
     /// Where a loose end hangs from a sample the curve reached first (noise swapped the two) and
     /// the curve runs on from that sample to a loose end or a point without edges, put the loose
     /// end back between the sample and the one before it and join the sample onward, when that
@@ -111,7 +116,7 @@ impl Default for Params {
     /// let p = Params::default();
     /// assert!(p.repair == condt::Repair::Needs && p.smooth);
     /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
-    /// let later = [Gaps, Junctions, Crossings, Tips, Hooks, Tails];
+    /// let later = [Gaps, Junctions, Crossings, Tips, Spikes, Hooks, Tails];
     /// assert_eq!(p.stages(), [&all[..], &later[..]].concat());
     /// ```
     fn default() -> Self {
@@ -126,6 +131,7 @@ impl Default for Params {
             .with_junctions(true)
             .with_crossings(true)
             .with_tips(true)
+            .with_spikes(true)
             .with_hooks(true)
             .with_tails(true)
             .with_smooth(true)
@@ -158,6 +164,7 @@ impl Params {
             junctions: false,
             crossings: false,
             tips: false,
+            spikes: false,
             hooks: false,
             tails: false,
             smooth: false,
@@ -245,6 +252,7 @@ impl Params {
             self.junctions.then_some(Step::JoinJunctions),
             self.crossings.then_some(Step::RestoreCrossings),
             self.tips.then_some(Step::RepairTips),
+            self.spikes.then_some(Step::RepairSpikes),
             self.hooks.then_some(Step::Unhook),
             self.tails.then_some(Step::CutTails),
         ];
@@ -278,6 +286,7 @@ impl Params {
             Stage::Junctions => &mut self.junctions,
             Stage::Crossings => &mut self.crossings,
             Stage::Tips => &mut self.tips,
+            Stage::Spikes => &mut self.spikes,
             Stage::Hooks => &mut self.hooks,
             Stage::Tails => &mut self.tails,
             _ => return false,
@@ -330,6 +339,7 @@ impl Params {
         with_junctions(junctions: bool = !paper.junctions),
         with_crossings(crossings: bool = !paper.crossings),
         with_tips(tips: bool = !paper.tips),
+        with_spikes(spikes: bool = !paper.spikes),
         with_hooks(hooks: bool = !paper.hooks),
         with_tails(tails: bool = !paper.tails),
         with_smooth(smooth: bool = !paper.smooth),

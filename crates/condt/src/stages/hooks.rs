@@ -25,6 +25,7 @@
 //! `parallel`.
 
 use super::gaps::{Ends, GAP_RATIO};
+use super::local_outliers::SMOOTH_COS;
 use super::{alone, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -63,11 +64,16 @@ impl Ends<'_> {
         let (pa, pb, pc) = (self.point(a), self.point(b), self.point(c));
         let within = |gap2: f64, of2: f64| gap2 <= GAP_RATIO * GAP_RATIO * of2;
         let hook = self.cos_of(b, a, c);
-        // The passages at `a` and `c` do not depend on `x`: tested once, before the ring.
-        let sharpest = self.cos_of(a, before_a, c).max(self.cos_of(c, a, b));
-        if sharpest >= hook || !within(pa.dist2(pc), pa.dist2(self.point(before_a))) {
+        // The passages at `a` and `c` do not depend on `x`: tested once, before the ring. Either
+        // every passage the move makes is wider than the hook, or `c` becomes a tip's apex: every
+        // passage but `c`'s smooth.
+        let at_a = self.cos_of(a, before_a, c);
+        let wider = at_a.max(self.cos_of(c, a, b)) < hook;
+        let apex = at_a < SMOOTH_COS;
+        if !(wider || apex) || !within(pa.dist2(pc), pa.dist2(self.point(before_a))) {
             return None;
         }
+        let bends_less = |rest: f64| (wider && rest < hook) || (apex && rest < SMOOTH_COS);
         let mesh = self.tri.mesh();
         if !mesh.neighbors(a).any(|w| w == c) {
             return None;
@@ -80,15 +86,15 @@ impl Ends<'_> {
             }
             let px = self.point(x);
             let gap = pb.dist2(px);
+            let at_b = self.cos_of(b, c, x);
             let passes = within(gap, last_two)
-                && self.cos_of(b, c, x) < hook
                 && match graph.degree(x) {
-                    0 => true,
+                    0 => bends_less(at_b),
                     1 => {
                         let beyond = self.along(x);
                         ![a, b, c].contains(&beyond)
                             && self.short(x, b, true)
-                            && self.cos_of(x, beyond, b) < hook
+                            && bends_less(at_b.max(self.cos_of(x, beyond, b)))
                     }
                     _ => false,
                 };

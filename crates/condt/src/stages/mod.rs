@@ -24,6 +24,7 @@ pub(crate) mod outliers;
 pub(crate) mod proximity;
 pub(crate) mod repair;
 pub(crate) mod repair_again;
+pub(crate) mod spikes;
 pub(crate) mod tails;
 pub(crate) mod tips;
 
@@ -71,6 +72,9 @@ pub enum Stage {
     Crossings,
     /// Re-pairing loose ends across a chord at a tip ([`Params::tips`](crate::Params::tips)).
     Tips,
+    /// Putting tips of several unused samples back in place of their chord
+    /// ([`Params::spikes`](crate::Params::spikes)).
+    Spikes,
     /// Putting loose ends that hook back beside their curve in line
     /// ([`Params::hooks`](crate::Params::hooks)).
     Hooks,
@@ -111,7 +115,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 15] = [
+const ROWS: [Row; 16] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -248,6 +252,20 @@ beside a loose end) and no curve is split",
         }),
     },
     Row {
+        stage: Stage::Spikes,
+        name: "spikes",
+        title: "after putting back tips of several samples",
+        key: "spikes",
+        switch: Some(Switch {
+            flag: "spikes",
+            help: "(default on; off with --paper) after the tips, where an edge
+pairs the samples on either side of a sharp tip whose 2 to 4
+samples have no edges, join the two through them instead, along
+the shortest path, when it is evenly spaced, smooth but at its
+apex, and rises to the apex and falls on one side of the edge",
+        }),
+    },
+    Row {
         stage: Stage::Hooks,
         name: "hooks",
         title: "after unhooking loose ends",
@@ -298,8 +316,8 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 15] = {
-        let mut all = [Stage::Proximity; 15];
+    pub const ALL: [Stage; 16] = {
+        let mut all = [Stage::Proximity; 16];
         let mut k = 0;
         while k < all.len() {
             all[k] = ROWS[k].stage;
@@ -373,6 +391,7 @@ pub(crate) enum Step {
     JoinJunctions,
     RestoreCrossings,
     RepairTips,
+    RepairSpikes,
     Unhook,
     CutTails,
 }
@@ -405,6 +424,7 @@ impl Step {
             Step::JoinJunctions => Stage::Junctions,
             Step::RestoreCrossings => Stage::Crossings,
             Step::RepairTips => Stage::Tips,
+            Step::RepairSpikes => Stage::Spikes,
             Step::Unhook => Stage::Hooks,
             Step::CutTails => Stage::Tails,
         }
@@ -474,6 +494,7 @@ impl Step {
             Step::JoinJunctions => junctions::join_junctions(tri, edges, graph, parallel),
             Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph, parallel),
             Step::RepairTips => tips::repair_tips(tri, edges, graph, parallel),
+            Step::RepairSpikes => spikes::repair_spikes(tri, edges, graph, parallel),
             Step::Unhook => hooks::unhook(tri, edges, graph, parallel),
             Step::CutTails => tails::cut_tails(tri, edges, graph, parallel),
         }

@@ -1,0 +1,387 @@
+//! Spikes: a chord across a sharp tip whose samples have no edges given up for a path through
+//! them (not in the paper; on by default, off in `Params::paper`).
+//!
+//! Owns: replacing one edge `a b` (the chord) by a path `a s1 … sk b` through two to
+//! [`MOST`] points without edges. It reads positions, the graph and the Delaunay rings; it may
+//! not touch the triangulation, and does not decide when it runs
+//! ([`Params::stages`](crate::Params::stages): after the tips, before the hooks).
+//!
+//! Why: at a sharp, thin tip the samples of its two sides lie nearer each other across the tip
+//! than along it, so Algorithm 1 pairs them across, the repair and the outlier rules drop those
+//! pairs, and what is left is the chord across the tip's base with the tip's samples unused. The
+//! tips step puts back a tip of one sample (its apex form); this step puts back a tip of several.
+//!
+//! Rule (each test with its reason: docs/condt.md, *Spikes*): for an edge `a b` whose ends have
+//! two edges each (`a'` and `b'` the others), the points without edges that are Delaunay
+//! neighbours of `a` or `b`, and those joined to them through Delaunay edges between points
+//! without edges, must number two to [`MOST`] (more is a scatter, not a tip). Of the paths from
+//! `a` to `b` through all of them along Delaunay edges, the shortest (the first in the order of
+//! the points' ids on a tie) replaces `a b` when, along `a' a s1 … sk b b'`:
+//! - each edge is within [`GAP_RATIO`] of the one before it and the one after it (even sampling,
+//!   Algorithm 1's bound);
+//! - every passage is smooth ([`SMOOTH_COS`]) but one, at an `si`: the tip's apex;
+//! - the path's points lie on the apex's side of the chord, each farther from its line than the
+//!   one before up to the apex and nearer after it (one tip, not a zig-zag or a box);
+//! - the chord is straight ([`STRAIGHT`]) at neither end: a chord across a tip's base turns at
+//!   both, while the curve's own edge runs straight on beside stray points.
+//!
+//! A point in two moves takes part in none: the result depends neither on the order nor on
+//! `parallel`.
+
+use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
+use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
+use super::{alone, Outcome};
+use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::mesh::VertexId;
+use crate::threads::found_in_order;
+use crate::triangulate::Triangulation;
+use alloc::vec::Vec;
+
+/// Most samples of a tip the step puts back: fewer than a curve of its own needs
+/// ([`MIN_SAMPLES`]), so that a run it joins is never one the outlier rules would keep alone.
+pub(crate) const MOST: usize = MIN_SAMPLES - 1;
+
+/// A move: the chord `a b` given up for the path `a run[0] … run[len - 1] b`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Spike {
+    a: VertexId,
+    b: VertexId,
+    run: [VertexId; MOST],
+    len: usize,
+}
+
+impl Spike {
+    /// The points of the move, each once.
+    fn points(&self) -> impl Iterator<Item = VertexId> + '_ {
+        [self.a, self.b]
+            .into_iter()
+            .chain(self.run[..self.len].iter().copied())
+    }
+
+    /// The edges the move adds, along the path from `a` to `b`.
+    fn joins(&self) -> impl Iterator<Item = Edge> + '_ {
+        let path = |k: usize| match k {
+            0 => self.a,
+            k if k <= self.len => self.run[k - 1],
+            _ => self.b,
+        };
+        (0..=self.len).map(move |k| ordered(path(k), path(k + 1)))
+    }
+}
+
+impl Ends<'_> {
+    /// The points without edges a tip at the chord `a b` would run through: those among the
+    /// Delaunay neighbours of `a` and `b`, and those joined to them through points without edges;
+    /// `None` when there are more than [`MOST`] or fewer than two.
+    fn tip_run(&self, a: VertexId, b: VertexId) -> Option<([VertexId; MOST], usize)> {
+        let mesh = self.tri.mesh();
+        let mut run = [VertexId::new(0); MOST];
+        let mut len = 0;
+        let add = |w: VertexId, run: &mut [VertexId; MOST], len: &mut usize| -> bool {
+            if self.graph.degree(w) != 0 || run[..*len].contains(&w) {
+                return true;
+            }
+            if *len == MOST {
+                return false;
+            }
+            run[*len] = w;
+            *len += 1;
+            true
+        };
+        for w in mesh.neighbors(a).chain(mesh.neighbors(b)) {
+            if !add(w, &mut run, &mut len) {
+                return None;
+            }
+        }
+        let mut next = 0;
+        while next < len {
+            let at = run[next];
+            for w in mesh.neighbors(at) {
+                if !add(w, &mut run, &mut len) {
+                    return None;
+                }
+            }
+            next += 1;
+        }
+        (len >= 2).then_some((run, len))
+    }
+
+    /// The move of the chord `a b` (both ends of degree two), if any (the module's rule).
+    fn spike_at(&self, a: VertexId, b: VertexId) -> Option<Spike> {
+        let before_a = self.graph.onward(a, b);
+        let after_b = self.graph.onward(b, a);
+        // The chord's own passages first: on curves nearly every edge runs straight on at an end
+        // (speed: the ring walks are skipped).
+        if before_a == b
+            || after_b == a
+            || before_a == after_b
+            || self.cos_of(a, before_a, b) < STRAIGHT
+            || self.cos_of(b, after_b, a) < STRAIGHT
+        {
+            return None;
+        }
+        if !self.leads_off(a, before_a) || !self.leads_off(b, after_b) {
+            return None;
+        }
+        let (mut run, len) = self.tip_run(a, b)?;
+        run[..len].sort_unstable();
+        let best = self.shortest_path(a, b, run, len)?;
+        self.is_tip(before_a, a, &best[..len], b, after_b)
+            .then_some(Spike {
+                a,
+                b,
+                run: best,
+                len,
+            })
+    }
+
+    /// Whether a point without edges continues the curve from `before` through `at` smoothly and
+    /// evenly: the path's first or last edge would need one (speed: tested before the run is
+    /// gathered).
+    fn leads_off(&self, at: VertexId, before: VertexId) -> bool {
+        let (p, behind) = (self.point(at), self.point(at).dist2(self.point(before)));
+        self.tri.mesh().neighbors(at).any(|w| {
+            let to_w = p.dist2(self.point(w));
+            self.graph.degree(w) == 0
+                && to_w.max(behind) <= GAP_RATIO * GAP_RATIO * to_w.min(behind)
+                && self.cos_of(at, before, w) < SMOOTH_COS
+        })
+    }
+
+    /// The shortest path from `a` to `b` through all of `run[..len]` (sorted) along Delaunay
+    /// edges: the first in the order of the permutations on a tie.
+    fn shortest_path(
+        &self,
+        a: VertexId,
+        b: VertexId,
+        mut run: [VertexId; MOST],
+        len: usize,
+    ) -> Option<[VertexId; MOST]> {
+        let mesh = self.tri.mesh();
+        let linked = |u: VertexId, w: VertexId| mesh.neighbors(u).any(|x| x == w);
+        let length = |u: VertexId, w: VertexId| libm::sqrt(self.point(u).dist2(self.point(w)));
+        let mut best: Option<(f64, [VertexId; MOST])> = None;
+        loop {
+            let path = &run[..len];
+            let stops = || core::iter::once(a).chain(path.iter().copied()).chain([b]);
+            let pairs = stops().zip(stops().skip(1));
+            let total: f64 = pairs.clone().map(|(u, w)| length(u, w)).sum();
+            if best.is_none_or(|(shortest, _)| total < shortest)
+                && pairs.clone().all(|(u, w)| linked(u, w))
+            {
+                best = Some((total, run));
+            }
+            if !next_permutation(&mut run[..len]) {
+                break;
+            }
+        }
+        best.map(|(_, run)| run)
+    }
+
+    /// Whether `before_a a run… b after_b` is a tip in place of the chord `a b` (the module's
+    /// tests of lengths, passages and side).
+    fn is_tip(
+        &self,
+        before_a: VertexId,
+        a: VertexId,
+        run: &[VertexId],
+        b: VertexId,
+        after_b: VertexId,
+    ) -> bool {
+        let mut path = [VertexId::new(0); MOST + 4];
+        path[0] = before_a;
+        path[1] = a;
+        path[2..2 + run.len()].copy_from_slice(run);
+        path[2 + run.len()] = b;
+        path[3 + run.len()] = after_b;
+        let path = &path[..run.len() + 4];
+        let length2 = |k: usize| self.point(path[k]).dist2(self.point(path[k + 1]));
+        let even = (0..path.len() - 2).all(|k| {
+            let (l, m) = (length2(k), length2(k + 1));
+            l.max(m) <= GAP_RATIO * GAP_RATIO * l.min(m)
+        });
+        if !even {
+            return false;
+        }
+        // The sharp passages, by their place in `path`: one, at a point of the run.
+        let mut apex = None;
+        for k in 1..path.len() - 1 {
+            if self.cos_of(path[k], path[k - 1], path[k + 1]) >= SMOOTH_COS {
+                if apex.is_some() || k < 2 || k > run.len() + 1 {
+                    return false;
+                }
+                apex = Some(k - 2);
+            }
+        }
+        let Some(apex) = apex else {
+            return false;
+        };
+        // Twice the area of `a b s`, of the apex's sign: the distance from the chord's line, times
+        // `|a b|`, on the apex's side. Rising from `a` (0) to the apex and falling to `b` (0), so
+        // every point lies on that side.
+        let (pa, pb) = (self.point(a), self.point(b));
+        let cross = |s: VertexId| {
+            let p = self.point(s);
+            (pb.x - pa.x) * (p.y - pa.y) - (pb.y - pa.y) * (p.x - pa.x)
+        };
+        let side = cross(run[apex]).signum();
+        let height = |k: usize| match k {
+            0 => 0.0,
+            k if k <= run.len() => side * cross(run[k - 1]),
+            _ => 0.0,
+        };
+        let apex = apex + 1;
+        (0..apex).all(|k| height(k) < height(k + 1))
+            && (apex..=run.len()).all(|k| height(k) > height(k + 1))
+    }
+}
+
+/// Rearranges `items` into the next permutation in lexicographic order; `false` (and the first
+/// order) after the last.
+fn next_permutation(items: &mut [VertexId]) -> bool {
+    let Some(i) = (1..items.len()).rev().find(|&i| items[i - 1] < items[i]) else {
+        items.reverse();
+        return false;
+    };
+    let j = (i..items.len())
+        .rev()
+        .find(|&j| items[j] > items[i - 1])
+        .expect("items[i] is larger");
+    items.swap(i - 1, j);
+    items[i..].reverse();
+    true
+}
+
+/// Puts tips of several unused samples back in `edges` (each edge once, any order): the input
+/// edges in order without the chords, then each move's path from `a` to `b` by increasing `a`.
+pub(crate) fn repair_spikes(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+    parallel: bool,
+) -> Outcome {
+    let ends = Ends::new(tri, edges, graph);
+    let moves = settled(&ends, parallel);
+    if moves.is_empty() {
+        return Outcome::unchanged_with(ends.into_graph());
+    }
+    let chords = moves.iter().map(|m| ordered(m.a, m.b)).collect();
+    let joins = moves.iter().flat_map(|m| m.joins()).collect();
+    Outcome::replacing(edges, ends.into_graph(), chords, joins)
+}
+
+/// Every move of the rule on the graph of `ends`, settled: a point in two moves takes part in
+/// none.
+fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
+    let (graph, mesh) = (&ends.graph, ends.tri.mesh());
+    // A tip's run has a point without edges beside a chord's end: the chords are sought from
+    // those points (speed: along clean curves there is none), each found from every such point
+    // beside it and listed once.
+    let found = found_in_order(ends.tri.num_points(), parallel, |i| {
+        let u = VertexId::new(i as u32);
+        if graph.degree(u) != 0 {
+            return None;
+        }
+        let mut found = Vec::new();
+        for a in mesh.neighbors(u) {
+            if graph.degree(a) != 2 {
+                continue;
+            }
+            for b in graph.first_two(a) {
+                if graph.degree(b) == 2 {
+                    // Each chord from its smaller end, whichever end `u` is beside.
+                    found.extend(ends.spike_at(a.min(b), a.max(b)));
+                }
+            }
+        }
+        (!found.is_empty()).then_some(found)
+    });
+    let mut moves: Vec<Spike> = found.into_iter().flatten().collect();
+    moves.sort_unstable();
+    moves.dedup();
+    // A chord with two moves cannot be: its run is found from its ends alone.
+    alone(ends.tri.num_points(), &mut moves, &[], |m| {
+        let mut points = [VertexId::new(0); MOST + 2];
+        for (slot, v) in points.iter_mut().zip(m.points()) {
+            *slot = v;
+        }
+        points.into_iter().take(m.len + 2)
+    });
+    moves
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{triangulate, Point};
+
+    /// A star's spike: points 0..=3 run up the diagonal to the tip's base `a` at (0, 0), the
+    /// tip's samples `run` (without edges) lead to `b` at (2, 0), 4 + run.len(), and three more
+    /// run down from it; `unused` are further points without edges. The graph pairs `a` with `b`.
+    fn spike(run: &[(f64, f64)], unused: &[(f64, f64)]) -> (Vec<Point>, Vec<[usize; 2]>, usize) {
+        let mut pts: Vec<Point> = (0..4)
+            .map(|k| Point::new(k as f64 - 3.0, k as f64 - 3.0))
+            .collect();
+        pts.extend(run.iter().map(|&(x, y)| Point::new(x, y)));
+        let b = pts.len();
+        pts.extend((0..4).map(|k| Point::new(2.0 + k as f64, -(k as f64))));
+        pts.extend(unused.iter().map(|&(x, y)| Point::new(x, y)));
+        let mut edges = vec![[0, 1], [1, 2], [2, 3], [3, b]];
+        edges.extend((b..b + 3).map(|i| [i, i + 1]));
+        (pts, edges, b)
+    }
+
+    fn spiked(pts: &[Point], edges: Vec<[usize; 2]>) -> Vec<[usize; 2]> {
+        let tri = triangulate(pts).unwrap();
+        tri.graph_from_edges(edges).repair_spikes().edges()
+    }
+
+    const TIP: [(f64, f64); 3] = [(0.5, 1.5), (1.0, 3.0), (1.5, 1.5)];
+
+    #[test]
+    fn a_tip_of_three_unused_samples_replaces_its_chord() {
+        let (pts, edges, b) = spike(&TIP, &[]);
+        let out = spiked(&pts, edges);
+        assert!(!out.contains(&[3, b]));
+        for e in [[3, 4], [4, 5], [5, 6], [6, b]] {
+            assert!(out.contains(&e), "{e:?} missing from {out:?}");
+        }
+    }
+
+    #[test]
+    fn a_tip_of_two_samples_is_put_back_along_the_shorter_path() {
+        // The apex is the second sample; `3 5 4 b` would be longer.
+        let (pts, edges, b) = spike(&[(0.5, 1.5), (1.0, 3.0)], &[]);
+        let out = spiked(&pts, edges);
+        assert!(out.contains(&[3, 4]) && out.contains(&[4, 5]) && out.contains(&[5, b]));
+        assert!(!out.contains(&[3, b]));
+    }
+
+    #[test]
+    fn a_run_that_is_not_one_tip_or_a_scatter_keeps_the_chord() {
+        // A corner at (0, 1), then level to (1, 1): the apex is not the farthest from the chord.
+        let level = [(0.0, 1.0), (1.0, 1.0)];
+        // Two sharp passages, at (0, 1.5) and (1.5, 2): a box, not a tip.
+        let twice = [(0.0, 1.5), (1.5, 2.0), (1.5, 1.0)];
+        for run in [&level[..], &twice[..]] {
+            let (pts, edges, b) = spike(run, &[]);
+            assert!(spiked(&pts, edges).contains(&[3, b]), "{run:?}");
+        }
+        // Five points without edges beside the chord: a scatter, not a tip's samples.
+        let (pts, edges, b) = spike(&TIP, &[(1.0, 4.5), (1.0, 6.0)]);
+        assert!(spiked(&pts, edges).contains(&[3, b]));
+    }
+
+    #[test]
+    fn an_uneven_run_or_a_chord_that_runs_straight_on_stays() {
+        // The apex three times as far from the sample before it as the tip's other edges.
+        let (pts, edges, b) = spike(&[(0.5, 1.5), (1.0, 6.0), (1.5, 1.5)], &[]);
+        assert!(spiked(&pts, edges).contains(&[3, b]));
+        // A low tip on a straight line, smooth where it leaves the line: the chord `3 7` is the
+        // line's own edge.
+        let mut pts: Vec<Point> = (0..4).map(|k| Point::new(k as f64 - 3.0, 0.0)).collect();
+        pts.extend([(1.0, 0.6), (2.0, 1.2), (3.0, 0.6)].map(|(x, y)| Point::new(x, y)));
+        pts.extend((0..4).map(|k| Point::new(4.0 + k as f64, 0.0)));
+        let edges = vec![[0, 1], [1, 2], [2, 3], [3, 7], [7, 8], [8, 9], [9, 10]];
+        assert!(spiked(&pts, edges).contains(&[3, 7]));
+    }
+}
