@@ -30,7 +30,7 @@ use std::sync::OnceLock;
 /// >>> r.unused.tolist()
 /// []
 /// >>> list(r.stages)
-/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions', 'crossings', 'tips', 'hooks', 'tails']
+/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions', 'crossings', 'tips', 'spikes', 'hooks', 'tails']
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Reconstruction {
     result: condt::Reconstruction,
@@ -431,7 +431,7 @@ impl Curve {
 ///   ``"longer-than-threshold"`` (``length``, ``threshold``, ``floored``), ``"given-back"``,
 ///   ``"last-edge"`` (given back as a curve's last edge), ``"long-at"`` (``vertex``, ``ratio``),
 ///   ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``, ``"gap-closed"``,
-///   ``"junction"``, ``"crossing"`` (``vertex``), ``"tip"``, ``"hook"``, ``"tail"``
+///   ``"junction"``, ``"crossing"`` (``vertex``), ``"tip"``, ``"spike"``, ``"hook"``, ``"tail"``
 ///   (``vertex``, ``points``), ``"baseline"`` or ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
 #[pyclass(module = "condt", frozen, get_all)]
@@ -536,6 +536,7 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
             "crossing"
         }
         Reason::Tip => "tip",
+        Reason::Spike => "spike",
         Reason::Hook => "hook",
         Reason::Tail { vertex, points } => {
             dict.set_item("vertex", vertex)?;

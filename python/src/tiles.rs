@@ -16,9 +16,10 @@
 //! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
 //! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the junctions
-//! the crossings and the hooks eight, the outlier tails nine: [`LATER_STAGES`]), and break
-//! ties by vertex id, which follows the set's insertion order restricted to the tile: so an
-//! owned vertex whose every vertex within `reach` hops is certified gets the whole set's edges.
+//! the crossings and the hooks eight, the outlier tails nine, the spikes twelve:
+//! [`LATER_STAGES`]), and break ties by vertex id, which follows the set's insertion order
+//! restricted to the tile: so an owned vertex whose every vertex within `reach` hops is certified
+//! gets the whole set's edges.
 //! Four cocircular points make the triangulation not unique; the tile reports them and the
 //! driver runs the whole set in one piece instead.
 
@@ -80,7 +81,10 @@ impl Flow {
 /// settling on the driver, [`_gathered_tips`]); a hooked loose end's move eight: its points lie
 /// within two hops of the loose end, its tests read the stars there, and a move sharing a point
 /// is read from a loose end two hops beyond that point ([`_step_kept`], and its joins, settled
-/// on the tile, for rule 4 and the clumps: [`_choices_kept`]); a loose end's gap choice six, its
+/// on the tile, for rule 4 and the clumps: [`_choices_kept`]); a spike's move twelve: its points
+/// lie within five hops of each other along its path, its tests read their stars and the degrees
+/// one hop beyond, and a move sharing one of its points spans as far again ([`_step_kept`]); a
+/// loose end's gap choice six, its
 /// straight walk five ([`_choices_kept`], agreement, the joins along lone edges and the
 /// stranded runs on the driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3
 /// six composed ([`_local_rules_kept`]), then rule 4 on the driver
@@ -90,7 +94,7 @@ impl Flow {
 /// outlier tail nine: from an owned edge of a tail of four back to its loose end and on to the
 /// far end of the five edges it hangs from, whose last inner point's edges are read for its
 /// degree ([`_step_kept`]).
-const LATER_STAGES: [(Stage, usize); 9] = [
+const LATER_STAGES: [(Stage, usize); 10] = [
     (Stage::LocalOutliers, 8),
     (Stage::Clumps, 8),
     (Stage::GivenBack, 1),
@@ -98,6 +102,7 @@ const LATER_STAGES: [(Stage, usize); 9] = [
     (Stage::Junctions, 8),
     (Stage::Crossings, 8),
     (Stage::Tips, 8),
+    (Stage::Spikes, 12),
     (Stage::Hooks, 8),
     (Stage::Tails, 9),
 ];
@@ -488,6 +493,7 @@ pub(crate) fn _step_kept<'py>(
         "repair" => Stage::Repair,
         _ if later(Stage::Junctions) => Stage::Junctions,
         _ if later(Stage::Crossings) => Stage::Crossings,
+        _ if later(Stage::Spikes) => Stage::Spikes,
         _ if later(Stage::Hooks) => Stage::Hooks,
         _ if later(Stage::Tails) => Stage::Tails,
         _ => {
@@ -504,6 +510,7 @@ pub(crate) fn _step_kept<'py>(
             let result = match stage {
                 Stage::Junctions => graph.join_junctions(),
                 Stage::Crossings => graph.restore_crossings(),
+                Stage::Spikes => graph.repair_spikes(),
                 Stage::Hooks => graph.unhook(),
                 Stage::Tails => graph.cut_tails(),
                 _ => graph.repair(params.repair),

@@ -553,7 +553,7 @@ def test_the_result_arrays():
     stages = r.stages
     assert list(stages) == [
         "proximity", "repair", "iqr-outliers", "repair-again", "local-outliers", "clumps",
-        "given-back", "gaps", "junctions", "crossings", "tips", "hooks", "tails",
+        "given-back", "gaps", "junctions", "crossings", "tips", "spikes", "hooks", "tails",
     ]
     assert np.array_equal(stages["tails"], r.edges)
     stages.clear()  # a copy: the result's stays

@@ -754,6 +754,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "junctions",
                 "crossings",
                 "tips",
+                "spikes",
                 "hooks",
                 "tails",
                 "curves",

@@ -98,6 +98,7 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::Junctions => "junctions",
         Stage::Crossings => "crossings",
         Stage::Tips => "tips",
+        Stage::Spikes => "spikes",
         Stage::Hooks => "hooks",
         Stage::Tails => "tails",
         _ => "other stage",

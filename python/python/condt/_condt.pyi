@@ -141,6 +141,7 @@ def reconstruct(
     junctions: bool = ...,
     crossings: bool = ...,
     tips: bool = ...,
+    spikes: bool = ...,
     hooks: bool = ...,
     tails: bool = ...,
     smooth: bool = ...,

@@ -91,7 +91,8 @@ pub struct Params {
     /// Where a loose end hangs from a sample the curve reached first (noise swapped the two) and
     /// the curve runs on from that sample to a loose end or a point without edges, put the loose
     /// end back between the sample and the one before it and join the sample onward, when that
-    /// makes no passage as sharp as the hook (beyond the paper; `src/stages/hooks.rs`).
+    /// makes no passage as sharp as the hook, or none sharp but at the loose end, which becomes a
+    /// tip's apex (beyond the paper; `src/stages/hooks.rs`).
     pub hooks: bool,
     /// Last, cut a tail of at most four points at a loose end whose joint is long and bends
     /// sharply against the even run it hangs from: outliers beyond an open end (beyond the paper;

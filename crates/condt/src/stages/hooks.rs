@@ -20,9 +20,10 @@
 //! [`GAP_RATIO`] of the longer of `a c` and `c b` (the end's last two edges, as gap closing
 //! measures a gap) and, for a loose end `x`, of the longer of `x`'s last two edges (gap closing's
 //! own measure, `Ends::short`), and the sharpest passage the move makes (at `a`, `c`, `b`, and
-//! at `x` when it is a loose end) is wider than the hook's at `b`. A loose end with two moves, or
-//! a point in two moves, takes part in none: the result depends neither on the order nor on
-//! `parallel`.
+//! at `x` when it is a loose end) is wider than the hook's at `b`, or every one of them but
+//! `c`'s is smooth ([`SMOOTH_COS`]: `c` becomes a tip's apex with smooth sides, a shape the tips
+//! and spikes steps accept too). A loose end with two moves, or a point in two moves, takes part
+//! in none: the result depends neither on the order nor on `parallel`.
 
 use super::gaps::{Ends, GAP_RATIO};
 use super::local_outliers::SMOOTH_COS;
@@ -248,5 +249,32 @@ mod tests {
         let left: Vec<[usize; 2]> = edges.iter().copied().filter(|e| e[1] < n).collect();
         let out = unhooked(&pts, left);
         assert!(out.contains(&[4, 5]) && out.contains(&[6, 2 * n]));
+    }
+
+    /// A tip with its apex `c` (point 5) at (0, 9): the left side runs up through 0..=2 to `x`
+    /// (point 2, a loose end), the right side down from `a` (point 4) through 6..=8. The curve
+    /// reaches the left side's last sample `b` (point 3) from `a` across the tip, and `c` hangs
+    /// from `b`: the move makes `c` an apex of 37°, sharper than the hook's 72°, with every other
+    /// passage smooth.
+    #[test]
+    fn a_hooked_end_at_a_tip_goes_back_as_its_apex() {
+        let pts: Vec<Point> = [
+            (-2.5, -3.0),
+            (-2.0, 0.0),
+            (-1.5, 3.0),
+            (-1.0, 6.0),
+            (1.0, 6.0),
+            (0.0, 9.0),
+            (1.5, 3.0),
+            (2.0, 0.0),
+            (2.5, -3.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Point::new(x, y))
+        .collect();
+        let edges = vec![[0, 1], [1, 2], [3, 4], [3, 5], [4, 6], [6, 7], [7, 8]];
+        let out = unhooked(&pts, edges);
+        assert!(out.contains(&[4, 5]) && out.contains(&[2, 3]), "{out:?}");
+        assert!(!out.contains(&[3, 4]));
     }
 }

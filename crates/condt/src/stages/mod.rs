@@ -254,7 +254,7 @@ beside a loose end) and no curve is split",
     Row {
         stage: Stage::Spikes,
         name: "spikes",
-        title: "after putting back tips of several samples",
+        title: "after putting back thin tips",
         key: "spikes",
         switch: Some(Switch {
             flag: "spikes",
@@ -277,7 +277,8 @@ end hangs from a sample that the curve reached first (the two
 samples' order swapped by noise) and the curve runs on from that
 sample to a loose end or a point without edges, put the loose
 end between the sample and the one before, and join the sample
-onward, when that leaves no passage as sharp as the hook",
+onward, when that leaves no passage as sharp as the hook, or none
+sharp but at the loose end (a tip's apex)",
         }),
     },
     Row {
