@@ -557,7 +557,7 @@ def test_the_result_arrays():
     ]
     assert np.array_equal(stages["tails"], r.edges)
     stages.clear()  # a copy: the result's stays
-    assert len(r.stages) == 13
+    assert len(r.stages) == 14
     assert "235 points" in repr(r)
 
 

@@ -71,14 +71,16 @@ impl Spike {
 
 impl Ends<'_> {
     /// The points without edges a tip at the chord `a b` would run through: those among the
-    /// Delaunay neighbours of `a` and `b`, and those joined to them through points without edges;
-    /// `None` when there are more than [`MOST`] or fewer than two.
-    fn tip_run(&self, a: VertexId, b: VertexId) -> Option<([VertexId; MOST], usize)> {
+    /// Delaunay neighbours of `a` and `b`, and those joined to them through points without edges,
+    /// each step at most `reach2` (a squared length) long; `None` when there are more than
+    /// [`MOST`] or fewer than two.
+    fn tip_run(&self, a: VertexId, b: VertexId, reach2: f64) -> Option<([VertexId; MOST], usize)> {
         let mesh = self.tri.mesh();
         let mut run = [VertexId::new(0); MOST];
         let mut len = 0;
-        let add = |w: VertexId, run: &mut [VertexId; MOST], len: &mut usize| -> bool {
-            if self.graph.degree(w) != 0 || run[..*len].contains(&w) {
+        let add = |from: VertexId, w: VertexId, run: &mut [VertexId; MOST], len: &mut usize| {
+            let near = self.point(from).dist2(self.point(w)) <= reach2;
+            if self.graph.degree(w) != 0 || !near || run[..*len].contains(&w) {
                 return true;
             }
             if *len == MOST {
@@ -88,16 +90,18 @@ impl Ends<'_> {
             *len += 1;
             true
         };
-        for w in mesh.neighbors(a).chain(mesh.neighbors(b)) {
-            if !add(w, &mut run, &mut len) {
-                return None;
+        for end in [a, b] {
+            for w in mesh.neighbors(end) {
+                if !add(end, w, &mut run, &mut len) {
+                    return None;
+                }
             }
         }
         let mut next = 0;
         while next < len {
             let at = run[next];
             for w in mesh.neighbors(at) {
-                if !add(w, &mut run, &mut len) {
+                if !add(at, w, &mut run, &mut len) {
                     return None;
                 }
             }
@@ -123,7 +127,14 @@ impl Ends<'_> {
         if !self.leads_off(a, before_a) || !self.leads_off(b, after_b) {
             return None;
         }
-        let (mut run, len) = self.tip_run(a, b)?;
+        // A tip's samples lie within the curve's spacing of each other (Algorithm 1's bound on
+        // the edges at the chord's ends): points farther off, such as another tip's across the
+        // space between two spikes, are not gathered.
+        let (pa, pb) = (self.point(a), self.point(b));
+        let spacing2 = pa
+            .dist2(self.point(before_a))
+            .max(pb.dist2(self.point(after_b)));
+        let (mut run, len) = self.tip_run(a, b, GAP_RATIO * GAP_RATIO * spacing2)?;
         run[..len].sort_unstable();
         let best = self.shortest_path(a, b, run, len)?;
         self.is_tip(before_a, a, &best[..len], b, after_b)
