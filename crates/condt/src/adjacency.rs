@@ -112,6 +112,10 @@ impl CurveGraph {
     pub(crate) fn has_loose_end(&self) -> bool {
         self.records.iter().any(|r| r[0] >> ID_BITS == 1)
     }
+    /// Whether some vertex has no neighbour: a scan of the records, stopping at the first.
+    pub(crate) fn has_unused(&self) -> bool {
+        self.records.iter().any(|r| r[0] >> ID_BITS == 0)
+    }
     pub(crate) fn vertex_count(&self) -> usize {
         self.records.len()
     }

@@ -285,6 +285,10 @@ pub(crate) fn repair_spikes(
 /// none.
 fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
     let (graph, mesh) = (&ends.graph, ends.tri.mesh());
+    // Along clean curves no point is left without edges: one tight scan (speed).
+    if !graph.has_unused() {
+        return Vec::new();
+    }
     // A tip's run has a point without edges beside a chord's end: the chords are sought from
     // those points (speed: along clean curves there is none), each found from every such point
     // beside it and listed once.
@@ -308,6 +312,9 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
         (!found.is_empty()).then_some(found)
     });
     let mut moves: Vec<Spike> = found.into_iter().flatten().collect();
+    if moves.is_empty() {
+        return moves;
+    }
     moves.sort_unstable();
     moves.dedup();
     // A chord with two moves cannot be: its run is found from its ends alone.
