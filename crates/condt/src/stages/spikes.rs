@@ -14,7 +14,8 @@
 //! Rule (each test with its reason: docs/condt.md, *Spikes*): for an edge `a b` whose ends have
 //! two edges each (`a'` and `b'` the others), the points without edges that are Delaunay
 //! neighbours of `a` or `b`, and those joined to them through Delaunay edges between points
-//! without edges, must number two to [`MOST`] (more is a scatter, not a tip). Of the paths from
+//! without edges, each step within [`GAP_RATIO`] of the longer of `a a'` and `b b'`, must number
+//! two to [`MOST`] (more is a scatter, not a tip). Of the paths from
 //! `a` to `b` through all of them along Delaunay edges, the shortest (the first in the order of
 //! the points' ids on a tie) replaces `a b` when, along `a' a s1 … sk b b'`:
 //! - each edge is within [`GAP_RATIO`] of the one before it and the one after it (even sampling,
@@ -39,7 +40,7 @@ use alloc::vec::Vec;
 
 /// Most samples of a tip the step puts back: fewer than a curve of its own needs
 /// ([`MIN_SAMPLES`]), so that a run it joins is never one the outlier rules would keep alone.
-pub(crate) const MOST: usize = MIN_SAMPLES - 1;
+const MOST: usize = MIN_SAMPLES - 1;
 
 /// A move: the chord `a b` given up for the path `a run[0] … run[len - 1] b`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
