@@ -16,7 +16,7 @@
 //! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
 //! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the junctions
-//! the crossings and the hooks eight, the outlier tails nine, the spikes twelve:
+//! the crossings and the hooks eight, the outlier tails nine, the spikes eighteen:
 //! [`LATER_STAGES`]), and break ties by vertex id, which follows the set's insertion order
 //! restricted to the tile: so an owned vertex whose every vertex within `reach` hops is certified
 //! gets the whole set's edges.
@@ -81,9 +81,10 @@ impl Flow {
 /// settling on the driver, [`_gathered_tips`]); a hooked loose end's move eight: its points lie
 /// within two hops of the loose end, its tests read the stars there, and a move sharing a point
 /// is read from a loose end two hops beyond that point ([`_step_kept`], and its joins, settled
-/// on the tile, for rule 4 and the clumps: [`_choices_kept`]); a spike's move twelve: its points
-/// lie within five hops of each other along its path, its tests read their stars and the degrees
-/// one hop beyond, and a move sharing one of its points spans as far again ([`_step_kept`]); a
+/// on the tile, for rule 4 and the clumps: [`_choices_kept`]); a spike's move eighteen: its
+/// points lie within six hops of each other along its path, its tests read their stars, the
+/// degrees one hop beyond and, between two loose ends, five points along each end's curve, and
+/// a move sharing one of its points spans as far again ([`_step_kept`]); a
 /// loose end's gap choice six, its
 /// straight walk five ([`_choices_kept`], agreement, the joins along lone edges and the
 /// stranded runs on the driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3
@@ -102,7 +103,7 @@ const LATER_STAGES: [(Stage, usize); 10] = [
     (Stage::Junctions, 8),
     (Stage::Crossings, 8),
     (Stage::Tips, 8),
-    (Stage::Spikes, 12),
+    (Stage::Spikes, 18),
     (Stage::Hooks, 8),
     (Stage::Tails, 9),
 ];

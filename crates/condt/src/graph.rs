@@ -417,9 +417,10 @@ impl<'t> Graph<'t> {
     }
 
     /// Puts back tips of several samples ([`Params::spikes`](crate::Params::spikes)): an edge
-    /// across a sharp tip whose two to four samples have no edges gives way to the shortest path
+    /// across a sharp tip whose two to five samples have no edges gives way to the shortest path
     /// through them, when it is evenly spaced, smooth but at its apex, and one tip on one side of
-    /// the edge (its rule: `src/stages/spikes.rs`).
+    /// the edge; two loose ends with such samples between them are joined the same way (its
+    /// rule: `src/stages/spikes.rs`).
     ///
     /// ```
     /// use condt::{triangulate, Point};

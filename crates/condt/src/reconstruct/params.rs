@@ -83,10 +83,11 @@ pub struct Params {
     /// loose end, that end on to the loose end its side runs straight to), instead (beyond the
     /// paper; `src/stages/tips.rs`).
     pub tips: bool,
-    /// Where an edge pairs the samples on either side of a sharp tip whose two to four samples
+    /// Where an edge pairs the samples on either side of a sharp tip whose two to five samples
     /// have no edges, join the two through them instead, along the shortest path, when that path
-    /// is evenly spaced, smooth but at its apex, and one tip on one side of the edge (beyond the
-    /// paper; `src/stages/spikes.rs`).
+    /// is evenly spaced, smooth but at its apex, and one tip on one side of the edge; likewise two
+    /// loose ends with such a tip's samples between them (beyond the paper;
+    /// `src/stages/spikes.rs`).
     pub spikes: bool,
     /// Where a loose end hangs from a sample the curve reached first (noise swapped the two) and
     /// the curve runs on from that sample to a loose end or a point without edges, put the loose

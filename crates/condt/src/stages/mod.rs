@@ -259,10 +259,11 @@ beside a loose end) and no curve is split",
         switch: Some(Switch {
             flag: "spikes",
             help: "(default on; off with --paper) after the tips, where an edge
-pairs the samples on either side of a sharp tip whose 2 to 4
+pairs the samples on either side of a sharp tip whose 2 to 5
 samples have no edges, join the two through them instead, along
 the shortest path, when it is evenly spaced, smooth but at its
-apex, and rises to the apex and falls on one side of the edge",
+apex, and rises to the apex and falls on one side of the edge;
+likewise two loose ends ending curves of 5 points",
         }),
     },
     Row {

@@ -2,7 +2,7 @@
 //! them (not in the paper; on by default, off in `Params::paper`).
 //!
 //! Owns: replacing one edge `a b` (the chord) by a path `a s1 … sk b` through two to
-//! [`MOST`] points without edges. It reads positions, the graph and the Delaunay rings; it may
+//! [`MOST`] points without edges, and joining two loose ends `a`, `b` by such a path. It reads positions, the graph and the Delaunay rings; it may
 //! not touch the triangulation, and does not decide when it runs
 //! ([`Params::stages`](crate::Params::stages): after the tips, before the hooks).
 //!
@@ -26,6 +26,11 @@
 //! - the chord is straight ([`STRAIGHT`]) at neither end: a chord across a tip's base turns at
 //!   both, while the curve's own edge runs straight on beside stray points.
 //!
+//! The same path joins two loose ends `a` and `b` (`a'`, `b'` their neighbours) when both end
+//! curves of [`MIN_SAMPLES`] points (as the tips step asks of the loose ends it joins) and the
+//! tests above but the chord's pass, the line `a b` in the chord's place: a tip whose samples and
+//! the edges to them the earlier stages all dropped.
+//!
 //! A point in two moves takes part in none: the result depends neither on the order nor on
 //! `parallel`.
 
@@ -38,17 +43,20 @@ use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
-/// Most samples of a tip the step puts back: fewer than a curve of its own needs
-/// ([`MIN_SAMPLES`]), so that a run it joins is never one the outlier rules would keep alone.
-const MOST: usize = MIN_SAMPLES - 1;
+/// Most samples of a tip the step puts back: as many as make a curve of its own
+/// ([`MIN_SAMPLES`]); more points without edges gathered beside a chord or between two loose
+/// ends are a scatter, not a tip's samples.
+const MOST: usize = MIN_SAMPLES;
 
-/// A move: the chord `a b` given up for the path `a run[0] … run[len - 1] b`.
+/// A move: the path `a run[0] … run[len - 1] b` joined, in place of the chord `a b` when
+/// `chord` (else `a` and `b` are loose ends).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct Spike {
     a: VertexId,
     b: VertexId,
     run: [VertexId; MOST],
     len: usize,
+    chord: bool,
 }
 
 impl Spike {
@@ -144,6 +152,60 @@ impl Ends<'_> {
                 b,
                 run: best,
                 len,
+                chord: true,
+            })
+    }
+
+    /// The moves of the loose end `x` through a tip's run to another loose end, each pair of
+    /// ends read by [`Ends::spike_between`] (so from either end alike), into `found`.
+    fn loose_spikes_at(&self, x: VertexId, found: &mut Vec<Spike>) {
+        let before = self.along(x);
+        if !self.leads_off(x, before) {
+            return;
+        }
+        let reach2 = GAP_RATIO * GAP_RATIO * self.point(x).dist2(self.point(before));
+        let Some((run, len)) = self.tip_run(x, x, reach2) else {
+            return;
+        };
+        let mesh = self.tri.mesh();
+        for &s in &run[..len] {
+            for y in mesh.neighbors(s) {
+                if y != x && self.is_loose(y) {
+                    found.extend(self.spike_between(x.min(y), x.max(y)));
+                }
+            }
+        }
+    }
+
+    /// The move joining the loose ends `a` and `b` through the points without edges between
+    /// them, if any (the module's rule for two loose ends).
+    fn spike_between(&self, a: VertexId, b: VertexId) -> Option<Spike> {
+        let (before_a, after_b) = (self.along(a), self.along(b));
+        if before_a == b || after_b == a || before_a == after_b {
+            return None;
+        }
+        if !self.leads_off(a, before_a) || !self.leads_off(b, after_b) {
+            return None;
+        }
+        // Each loose end ends a curve of its own, as the tips step asks of the loose ends it
+        // joins: short pieces near crossings and in noise are not a tip's two sides.
+        if !self.branch(a, before_a, &[]) || !self.branch(b, after_b, &[]) {
+            return None;
+        }
+        let (pa, pb) = (self.point(a), self.point(b));
+        let spacing2 = pa
+            .dist2(self.point(before_a))
+            .max(pb.dist2(self.point(after_b)));
+        let (mut run, len) = self.tip_run(a, b, GAP_RATIO * GAP_RATIO * spacing2)?;
+        run[..len].sort_unstable();
+        let best = self.shortest_path(a, b, run, len)?;
+        self.is_tip(before_a, a, &best[..len], b, after_b)
+            .then_some(Spike {
+                a,
+                b,
+                run: best,
+                len,
+                chord: false,
             })
     }
 
@@ -277,7 +339,11 @@ pub(crate) fn repair_spikes(
     if moves.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
-    let chords = moves.iter().map(|m| ordered(m.a, m.b)).collect();
+    let chords = moves
+        .iter()
+        .filter(|m| m.chord)
+        .map(|m| ordered(m.a, m.b))
+        .collect();
     let joins = moves.iter().flat_map(|m| m.joins()).collect();
     Outcome::replacing(edges, ends.into_graph(), chords, joins)
 }
@@ -313,6 +379,17 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
         (!found.is_empty()).then_some(found)
     });
     let mut moves: Vec<Spike> = found.into_iter().flatten().collect();
+    // Two loose ends with a tip's run between them (a tip whose samples and the edges to them
+    // the earlier stages all dropped).
+    moves.extend(
+        ends.each_loose(parallel, |x| {
+            let mut found = Vec::new();
+            ends.loose_spikes_at(x, &mut found);
+            (!found.is_empty()).then_some(found)
+        })
+        .into_iter()
+        .flatten(),
+    );
     if moves.is_empty() {
         return moves;
     }
@@ -402,5 +479,35 @@ mod tests {
         pts.extend((0..4).map(|k| Point::new(4.0 + k as f64, 0.0)));
         let edges = vec![[0, 1], [1, 2], [2, 3], [3, 7], [7, 8], [8, 9], [9, 10]];
         assert!(spiked(&pts, edges).contains(&[3, 7]));
+    }
+
+    /// Two curves of seven points run up the diagonal to `a` (point 6, at (0, 0)) and down from
+    /// `b` (at (2, 0)), both loose ends; the tip's samples `run` between them have no edges.
+    fn loose_tip(run: &[(f64, f64)]) -> (Vec<Point>, Vec<[usize; 2]>, usize) {
+        let mut pts: Vec<Point> = (0..7)
+            .map(|k| Point::new(k as f64 - 6.0, k as f64 - 6.0))
+            .collect();
+        pts.extend(run.iter().map(|&(x, y)| Point::new(x, y)));
+        let b = pts.len();
+        pts.extend((0..7).map(|k| Point::new(2.0 + k as f64, -(k as f64))));
+        let mut edges: Vec<[usize; 2]> = (0..6).map(|i| [i, i + 1]).collect();
+        edges.extend((b..b + 6).map(|i| [i, i + 1]));
+        (pts, edges, b)
+    }
+
+    #[test]
+    fn two_loose_ends_are_joined_through_a_tip_s_samples() {
+        let (pts, edges, b) = loose_tip(&TIP);
+        let out = spiked(&pts, edges);
+        for e in [[6, 7], [7, 8], [8, 9], [9, b]] {
+            assert!(out.contains(&e), "{e:?} missing from {out:?}");
+        }
+        // Short pieces (four points each side) are not a tip's two sides.
+        let (pts, edges, b) = loose_tip(&TIP);
+        let short: Vec<[usize; 2]> = edges
+            .into_iter()
+            .filter(|&[i, j]| (i >= 2 && j <= 6) || (i >= b && j <= b + 3))
+            .collect();
+        assert!(!spiked(&pts, short).contains(&[6, 7]));
     }
 }
