@@ -133,12 +133,20 @@ impl Ends<'_> {
         {
             return None;
         }
+        self.tip_through([before_a, a, b, after_b], true)
+    }
+
+    /// The move from `a` to `b` through the run of points without edges between them, given
+    /// `[a', a, b, b']` (`chord`: whether `a b` is an edge the move replaces), if the run and its
+    /// path pass the module's tests; the checks particular to a chord or to two loose ends are the
+    /// caller's.
+    fn tip_through(&self, [before_a, a, b, after_b]: [VertexId; 4], chord: bool) -> Option<Spike> {
         if !self.leads_off(a, before_a) || !self.leads_off(b, after_b) {
             return None;
         }
         // A tip's samples lie within the curve's spacing of each other (Algorithm 1's bound on
-        // the edges at the chord's ends): points farther off, such as another tip's across the
-        // space between two spikes, are not gathered.
+        // the edges at its ends): points farther off, such as another tip's across the space
+        // between two spikes, are not gathered.
         let (pa, pb) = (self.point(a), self.point(b));
         let spacing2 = pa
             .dist2(self.point(before_a))
@@ -152,7 +160,7 @@ impl Ends<'_> {
                 b,
                 run: best,
                 len,
-                chord: true,
+                chord,
             })
     }
 
@@ -184,29 +192,12 @@ impl Ends<'_> {
         if before_a == b || after_b == a || before_a == after_b {
             return None;
         }
-        if !self.leads_off(a, before_a) || !self.leads_off(b, after_b) {
-            return None;
-        }
         // Each loose end ends a curve of its own, as the tips step asks of the loose ends it
         // joins: short pieces near crossings and in noise are not a tip's two sides.
         if !self.branch(a, before_a, &[]) || !self.branch(b, after_b, &[]) {
             return None;
         }
-        let (pa, pb) = (self.point(a), self.point(b));
-        let spacing2 = pa
-            .dist2(self.point(before_a))
-            .max(pb.dist2(self.point(after_b)));
-        let (mut run, len) = self.tip_run(a, b, GAP_RATIO * GAP_RATIO * spacing2)?;
-        run[..len].sort_unstable();
-        let best = self.shortest_path(a, b, run, len)?;
-        self.is_tip(before_a, a, &best[..len], b, after_b)
-            .then_some(Spike {
-                a,
-                b,
-                run: best,
-                len,
-                chord: false,
-            })
+        self.tip_through([before_a, a, b, after_b], false)
     }
 
     /// Whether a point without edges continues the curve from `before` through `at` smoothly and
