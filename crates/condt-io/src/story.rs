@@ -118,10 +118,9 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,
             Reason::Tip if change.added => write!(f, "joined at a tip in place of a chord")?,
             Reason::Tip => write!(f, "a chord across a tip")?,
-            Reason::Spike if change.added => write!(
-                f,
-                "joined through a tip's unused samples in place of a chord"
-            )?,
+            Reason::Spike if change.added => {
+                write!(f, "joined through a tip's samples that had no edges")?
+            }
             Reason::Spike => write!(f, "a chord across a tip whose samples had no edges")?,
             Reason::Hook if change.added => {
                 write!(f, "joined to put a hooked loose end back in line")?

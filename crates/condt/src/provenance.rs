@@ -83,8 +83,9 @@ pub enum Reason {
     /// A chord at a tip gave way to two edges to loose ends beside it or to the tip's sample, and
     /// beside a loose end also to that end's gap (or was that chord).
     Tip,
-    /// A chord across a sharp tip whose samples had no edges gave way to the path through them
-    /// (or was that chord).
+    /// A tip whose samples had no edges was put back: the path through them joined the two
+    /// samples beside the tip, in place of the chord between them or between two loose ends (or
+    /// the edge was that chord).
     Spike,
     /// A loose end hanging from a sample the curve reached first went back in line: the edge that
     /// passed it by gave way to one to it and one on from that sample (or was that edge).

@@ -257,7 +257,7 @@
         ? "joined to put a hooked loose end back in line"
         : "passed a loose end that hooked back beside the curve"),
       () => (c.added
-        ? "joined through a tip's unused samples in place of a chord"
+        ? "joined through a tip's samples that had no edges"
         : "a chord across a tip whose samples had no edges"),
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;

@@ -241,7 +241,8 @@ impl Params {
         // The local outlier removal reads three or more edges as a branch, which only a repaired
         // graph makes true; the given-back check reads what it added. Clumps go before a join can
         // reach one; a junction takes only an end no gap join or crossing claimed; tips re-pair
-        // the loose ends every join before left, hooks put back those still hanging; a tail is
+        // the loose ends every join before left, spikes put back the tips of several samples
+        // they cannot, hooks put back the loose ends still hanging; a tail is
         // judged on the finished curves.
         let steps = [
             first,
