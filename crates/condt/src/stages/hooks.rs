@@ -120,9 +120,6 @@ pub(crate) fn unhook(
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
     let moves = settled(&ends, parallel);
-    if moves.is_empty() {
-        return Outcome::unchanged_with(ends.into_graph());
-    }
     let replaced = moves.iter().map(|m| ordered(m.a, m.b)).collect();
     Outcome::replacing(edges, ends.into_graph(), replaced, joins_of(&moves))
 }

@@ -537,13 +537,17 @@ impl Outcome {
 
     /// The outcome of a stage that replaces edges of `input`: the input in order without
     /// `removed`, then `added` in order, with `graph` (the input's, if the stage had it) made the
-    /// output's. The crossings and the tips step replace chords this way.
+    /// output's, or the input unchanged when neither list has an edge. The crossings, tips,
+    /// spikes and hooks steps replace edges this way.
     pub(crate) fn replacing(
         input: &[Edge],
         graph: Option<CurveGraph>,
         mut removed: Vec<Edge>,
         added: Vec<Edge>,
     ) -> Outcome {
+        if removed.is_empty() && added.is_empty() {
+            return Outcome::unchanged_with(graph);
+        }
         removed.sort_unstable();
         // A bit per point up to the largest first end removed: an edge whose first end has none
         // (almost every edge: few are replaced) is kept without the search (speed: a search per

@@ -60,11 +60,12 @@ struct Spike {
 }
 
 impl Spike {
-    /// The points of the move, each once.
-    fn points(&self) -> impl Iterator<Item = VertexId> + '_ {
-        [self.a, self.b]
-            .into_iter()
-            .chain(self.run[..self.len].iter().copied())
+    /// The points of the move, each once (owned, as the settling reads them).
+    fn points(&self) -> impl Iterator<Item = VertexId> {
+        let mut points = [self.a; MOST + 2];
+        points[1] = self.b;
+        points[2..2 + self.len].copy_from_slice(&self.run[..self.len]);
+        points.into_iter().take(self.len + 2)
     }
 
     /// The edges the move adds, along the path from `a` to `b`.
@@ -79,11 +80,11 @@ impl Spike {
 }
 
 impl Ends<'_> {
-    /// The points without edges a tip at the chord `a b` would run through: those among the
-    /// Delaunay neighbours of `a` and `b`, and those joined to them through points without edges,
-    /// each step at most `reach2` (a squared length) long; `None` when there are more than
-    /// [`MOST`] or fewer than two.
-    fn tip_run(&self, a: VertexId, b: VertexId, reach2: f64) -> Option<([VertexId; MOST], usize)> {
+    /// The points without edges a tip between the points `from` (a chord's two ends, two loose
+    /// ends, or one loose end alone) would run through: those among their Delaunay neighbours,
+    /// and those joined to them through points without edges, each step at most `reach2` (a
+    /// squared length) long; `None` when there are more than [`MOST`] or fewer than two.
+    fn tip_run(&self, from: &[VertexId], reach2: f64) -> Option<([VertexId; MOST], usize)> {
         let mesh = self.tri.mesh();
         let mut run = [VertexId::new(0); MOST];
         let mut len = 0;
@@ -99,7 +100,7 @@ impl Ends<'_> {
             *len += 1;
             true
         };
-        for end in [a, b] {
+        for &end in from {
             for w in mesh.neighbors(end) {
                 if !add(end, w, &mut run, &mut len) {
                     return None;
@@ -151,7 +152,7 @@ impl Ends<'_> {
         let spacing2 = pa
             .dist2(self.point(before_a))
             .max(pb.dist2(self.point(after_b)));
-        let (mut run, len) = self.tip_run(a, b, GAP_RATIO * GAP_RATIO * spacing2)?;
+        let (mut run, len) = self.tip_run(&[a, b], GAP_RATIO * GAP_RATIO * spacing2)?;
         run[..len].sort_unstable();
         let best = self.shortest_path(a, b, run, len)?;
         self.is_tip(before_a, a, &best[..len], b, after_b)
@@ -172,13 +173,16 @@ impl Ends<'_> {
             return;
         }
         let reach2 = GAP_RATIO * GAP_RATIO * self.point(x).dist2(self.point(before));
-        let Some((run, len)) = self.tip_run(x, x, reach2) else {
+        let Some((run, len)) = self.tip_run(&[x], reach2) else {
             return;
         };
         let mesh = self.tri.mesh();
+        // Each other loose end once, however many of the run's points it lies beside.
+        let mut tried = Vec::new();
         for &s in &run[..len] {
             for y in mesh.neighbors(s) {
-                if y != x && self.is_loose(y) {
+                if y != x && self.is_loose(y) && !tried.contains(&y) {
+                    tried.push(y);
                     found.extend(self.spike_between(x.min(y), x.max(y)));
                 }
             }
@@ -327,9 +331,6 @@ pub(crate) fn repair_spikes(
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
     let moves = settled(&ends, parallel);
-    if moves.is_empty() {
-        return Outcome::unchanged_with(ends.into_graph());
-    }
     let chords = moves
         .iter()
         .filter(|m| m.chord)
@@ -387,13 +388,7 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
     moves.sort_unstable();
     moves.dedup();
     // A chord with two moves cannot be: its run is found from its ends alone.
-    alone(ends.tri.num_points(), &mut moves, &[], |m| {
-        let mut points = [VertexId::new(0); MOST + 2];
-        for (slot, v) in points.iter_mut().zip(m.points()) {
-            *slot = v;
-        }
-        points.into_iter().take(m.len + 2)
-    });
+    alone(ends.tri.num_points(), &mut moves, &[], Spike::points);
     moves
 }
 
