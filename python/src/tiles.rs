@@ -15,8 +15,8 @@
 //! whole set inside it, so it is one of the whole set's Delaunay triangles; a hull edge of the
 //! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
-//! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the junctions
-//! the crossings and the hooks eight, the outlier tails nine, the spikes eighteen:
+//! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the crossings
+//! and the hooks eight, the junctions eleven, the outlier tails nine, the spikes eighteen:
 //! [`LATER_STAGES`]), and break ties by vertex id, which follows the set's insertion order
 //! restricted to the tile: so an owned vertex whose every vertex within `reach` hops is certified
 //! gets the whole set's edges.
@@ -72,8 +72,9 @@ impl Flow {
 
 /// The stages after the flow that tiles run one round each, on their kept triangulations and
 /// the driver's edges, with the Delaunay hops around an owned point each reads
-/// (docs/distributed.md, *Later stages as rounds*): a junction's choice reads six hops from the
-/// loose end and the other ends choosing its point two more; a crossing's arms and chord, read
+/// (docs/distributed.md, *Later stages as rounds*): a junction's choice reads seven hops from the
+/// loose end (its walk through a stranded sample, then the junction's branches), and the other
+/// ends choosing its point, up to two hops from it, four more; a crossing's arms and chord, read
 /// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
 /// rule itself on the driver, [`_gathered_clumps`]), and where the driver finds clumps the gap
 /// choices, tip candidates and hook joins (eight hops) on the same edges; a tip's candidate move
@@ -100,7 +101,7 @@ const LATER_STAGES: [(Stage, usize); 10] = [
     (Stage::Clumps, 8),
     (Stage::GivenBack, 1),
     (Stage::Gaps, 6),
-    (Stage::Junctions, 8),
+    (Stage::Junctions, 11),
     (Stage::Crossings, 8),
     (Stage::Tips, 8),
     (Stage::Spikes, 18),

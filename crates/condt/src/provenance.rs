@@ -72,7 +72,9 @@ pub enum Reason {
     Clump,
     /// Gap closing joined two loose ends.
     GapClosed,
-    /// A loose end joined to the curve it meets at a junction of three curves.
+    /// A loose end joined to the curve it meets at a junction of three curves (or four, where two
+    /// ends meet one point), directly or through its last sample, which the repair left without
+    /// edges.
     Junction,
     /// A crossing restored at `vertex`: an arm added there, or the chord between two of its
     /// arms removed.

@@ -245,7 +245,7 @@
       () => "gap closed",
       () => "a given-back component not clearly apart",
       () => "chosen by the baseline",
-      () => "joined at a junction of three curves",
+      () => "joined where three or four curves meet (a junction)",
       () => "a clump: at most half its points pass smoothly",
       () => "repaired again without the edges above √T",
       () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,

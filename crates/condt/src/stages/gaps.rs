@@ -260,7 +260,7 @@ impl<'a> Ends<'a> {
     }
 
     /// The cosine of the sharpest of the first [`NEAR_END`] passages from the loose end `a`, or -1.
-    fn sharpest_passage(&self, a: VertexId) -> f64 {
+    pub(super) fn sharpest_passage(&self, a: VertexId) -> f64 {
         let passages = self.graph.passages(a, self.along(a)).take(NEAR_END);
         passages
             .map(|[prev, here, next]| self.cos_of(here, prev, next))

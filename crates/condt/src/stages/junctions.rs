@@ -1,6 +1,6 @@
 //! Junctions: where three curves meet (not in the paper; on by default, off in `Params::paper`).
 //!
-//! Owns: adding one edge at a loose end that meets a curve at a junction. It reads positions, the
+//! Owns: adding edges at a loose end that meets a curve at a junction. It reads positions, the
 //! graph and the Delaunay rings; it may not touch the triangulation, never removes an edge, and
 //! does not decide when it runs ([`Params::stages`](crate::Params::stages): after gap closing,
 //! before the crossings).
@@ -11,25 +11,34 @@
 //! Delaunay neighbour `c` with two edges that it faces within 30° ([`STRAIGHT`]; a crowded end's
 //! angles read from the sample before its neighbour, as gap closing reads them), within
 //! [`GAP_RATIO`] times `c`'s shorter edge (its longer where the two are not one sampling), with
-//! three branches (`Ends::branch`), straightest ahead among those that pass (ties by id), and
-//! chosen by no other loose end. All choices are made on the graph as it came in: the result
-//! depends neither on the order of the ends nor on `parallel`.
+//! three branches (`Ends::branch`), straightest ahead among those that pass (ties by id). Where
+//! none passes and the end's curve runs on smoothly ([`SMOOTH_COS`] at its first passages), the
+//! end may reach `c` through one sample without edges that lies straight ahead (a gap closing
+//! walk, [`Ends::straight_walk`]) and meets `c` straight on: the repair can strand a branch's last
+//! sample that lies as near the junction's neighbours as the junction. A point two ends choose
+//! takes both (a junction of four), one three or more choose none, and a stranded sample two walks
+//! pass goes to neither. All choices are made on the graph as it came in: the result depends
+//! neither on the order of the ends nor on `parallel`.
 
-use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
-use super::{alone, Outcome};
+use super::gaps::{cos_at, Ends, Walk, GAP_RATIO, STRAIGHT};
+use super::local_outliers::SMOOTH_COS;
+use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
+use alloc::vec;
 use alloc::vec::Vec;
 
 impl Ends<'_> {
-    /// Whether the loose end `a` meets the degree-two point `c` at a junction (the module's rule).
-    fn meets_at_junction(&self, a: VertexId, c: VertexId) -> bool {
-        if self.graph.degree(c) != 2 || !self.faces(a, c) || self.turn(a, c) >= STRAIGHT {
+    /// Whether the degree-two point `c` has a junction's two branches and `|sc|` is within
+    /// [`GAP_RATIO`] of its sampling (its shorter edge, or its longer where the two are not one
+    /// sampling), for a join from `s`.
+    fn junction_at(&self, s: VertexId, c: VertexId, avoid: VertexId) -> bool {
+        if self.graph.degree(c) != 2 {
             return false;
         }
         let [x, y] = self.graph.first_two(c);
-        let (pa, pc) = (self.point(a), self.point(c));
+        let pc = self.point(c);
         let (e1, e2) = (pc.dist2(self.point(x)), pc.dist2(self.point(y)));
         let (shorter, longer) = (e1.min(e2), e1.max(e2));
         // Where `c`'s edges are no one sampling by Algorithm 1's own ratio, the shorter measures
@@ -40,26 +49,97 @@ impl Ends<'_> {
         } else {
             shorter
         };
-        pa.dist2(pc) <= GAP_RATIO * GAP_RATIO * spacing
-            && self.branch(a, self.along(a), &[c, x, y])
-            && self.branch(c, x, &[a, y])
-            && self.branch(c, y, &[a, x])
+        self.point(s).dist2(pc) <= GAP_RATIO * GAP_RATIO * spacing
+            && self.branch(c, x, &[avoid, y])
+            && self.branch(c, y, &[avoid, x])
     }
 
-    /// The junction the loose end `a` chooses, if any: the straightest ahead that passes.
-    fn junction_of(&self, a: VertexId) -> Option<VertexId> {
+    /// Whether the loose end `a` meets the degree-two point `c` at a junction (the module's rule).
+    fn meets_at_junction(&self, a: VertexId, c: VertexId) -> bool {
+        if self.graph.degree(c) != 2 || !self.faces(a, c) || self.turn(a, c) >= STRAIGHT {
+            return false;
+        }
+        let [x, y] = self.graph.first_two(c);
+        self.branch(a, self.along(a), &[c, x, y]) && self.junction_at(a, c, a)
+    }
+
+    /// The junction the loose end `a` chooses, if any: the straightest ahead that passes, else
+    /// one that a straight walk through samples without edges reaches straight on.
+    fn junction_of(&self, a: VertexId) -> Option<Junction> {
         // Every junction needs the end's own branch: without it (most ends on scattered points)
         // the ring is skipped (speed).
         if !self.branch(a, self.along(a), &[]) {
             return None;
         }
-        self.tri
+        let direct = self
+            .tri
             .mesh()
             .neighbors(a)
             .filter(|&c| self.meets_at_junction(a, c))
             .map(|c| (self.turn(a, c), c))
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        if let Some((_, c)) = direct {
+            return Some(Junction {
+                end: a,
+                walk: Walk::EMPTY,
+                at: c,
+            });
+        }
+        self.junction_beyond(a)
+    }
+
+    /// The junction a straight walk from the loose end `a` through samples without edges
+    /// ([`Ends::straight_walk`]) reaches: the repair can leave the branch's last sample without
+    /// edges where it lies as near the junction's neighbours as the junction (evenly spaced
+    /// borders). The walk's last point `s` must meet `c` straight on from the point before it,
+    /// within [`GAP_RATIO`] of the walk's last two steps, and `c` be a junction as above.
+    fn junction_beyond(&self, a: VertexId) -> Option<Junction> {
+        if self.sharpest_passage(a) >= SMOOTH_COS {
+            return None;
+        }
+        let walk = self.straight_walk(a);
+        let [s] = *walk else { return None };
+        if self.graph.degree(s) != 0 {
+            return None;
+        }
+        let [before, from] = [self.along(a), a];
+        let (ps, pf) = (self.point(s), self.point(from));
+        let span = ps.dist2(pf).max(pf.dist2(self.point(before)));
+        self.tri
+            .mesh()
+            .neighbors(s)
+            .filter(|&c| self.graph.degree(c) == 2)
+            .map(|c| (cos_at(ps, pf, self.point(c)), c))
+            .filter(|&(cos, c)| {
+                cos < STRAIGHT
+                    && ps.dist2(self.point(c)) <= GAP_RATIO * GAP_RATIO * span
+                    && self.junction_at(s, c, a)
+            })
             .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
-            .map(|(_, c)| c)
+            .map(|(_, c)| Junction {
+                end: a,
+                walk,
+                at: c,
+            })
+    }
+}
+
+/// A loose end's junction: the end, the samples without edges a walk passed on the way (none for
+/// a direct join) and the junction's point.
+#[derive(Copy, Clone, Debug)]
+struct Junction {
+    end: VertexId,
+    walk: Walk,
+    at: VertexId,
+}
+
+impl Junction {
+    /// The edges that join the end to the junction, in order.
+    fn edges(&self) -> impl Iterator<Item = Edge> + '_ {
+        let path = core::iter::once(self.end)
+            .chain(self.walk.iter().copied())
+            .chain(core::iter::once(self.at));
+        path.clone().zip(path.skip(1)).map(|(p, q)| ordered(p, q))
     }
 }
 
@@ -71,12 +151,20 @@ pub(crate) fn join_junctions(
     parallel: bool,
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
-    let mut choices: Vec<(VertexId, VertexId)> =
-        ends.each_loose(parallel, |a| ends.junction_of(a).map(|c| (a, c)));
-    // A point two loose ends chose goes to neither (each end chooses once, and a point of degree
-    // two is no loose end).
-    alone(tri.num_points(), &mut choices, &[], |&(a, c)| [a, c]);
-    let joins: Vec<Edge> = choices.iter().map(|&(a, c)| ordered(a, c)).collect();
+    let mut choices: Vec<Junction> = ends.each_loose(parallel, |a| ends.junction_of(a));
+    // Two loose ends at one point make a junction of four (each end chooses once, and a point of
+    // degree two is no loose end); three or more, none. A sample without edges two walks pass
+    // goes to neither.
+    let mut uses = vec![0u8; tri.num_points()];
+    for choice in &choices {
+        for v in choice.walk.iter().chain(core::iter::once(&choice.at)) {
+            uses[v.index()] = uses[v.index()].saturating_add(1);
+        }
+    }
+    choices.retain(|choice| {
+        uses[choice.at.index()] <= 2 && choice.walk.iter().all(|v| uses[v.index()] == 1)
+    });
+    let joins: Vec<Edge> = choices.iter().flat_map(Junction::edges).collect();
     ends.joined(edges, &joins)
 }
 
@@ -172,7 +260,48 @@ mod tests {
     }
 
     #[test]
-    fn two_ends_meeting_one_point_are_a_crossing_not_a_junction() {
-        assert_eq!(joins(7, 1.0, 7), Vec::<[usize; 2]>::new());
+    fn two_ends_meeting_one_point_make_a_junction_of_four_and_three_none() {
+        // Up and down from point 6: both join (gap closing, which runs first, takes such a pair
+        // where it lines up straight through the point; this is the pair it leaves).
+        assert_eq!(joins(7, 1.0, 7), vec![[6, 13], [6, 20]]);
+        let up: Vec<Point> = (1..8).map(|k| Point::new(6.0, k as f64)).collect();
+        let down: Vec<Point> = (1..8).map(|k| Point::new(6.0, -(k as f64))).collect();
+        let slanted: Vec<Point> = (1..8)
+            .map(|k| Point::new(6.0 + k as f64, -(k as f64)))
+            .collect();
+        assert_eq!(joins_of(&[up.clone(), slanted]), vec![[6, 13], [6, 20]]);
+        let slanted_again: Vec<Point> = (1..8)
+            .map(|k| Point::new(6.0 + k as f64, -(k as f64)))
+            .collect();
+        assert_eq!(
+            joins_of(&[up, down, slanted_again]),
+            Vec::<[usize; 2]>::new()
+        );
+    }
+
+    #[test]
+    fn a_branch_reaches_the_junction_through_its_stranded_last_sample() {
+        // The branch's last sample (6, 1) has no edge (a one-point arm): its end (6, 2) walks
+        // straight on through it to point 6.
+        let stranded = alloc::vec![Point::new(6.0, 1.0)];
+        let branch: Vec<Point> = (2..9).map(|k| Point::new(6.0, k as f64)).collect();
+        assert_eq!(
+            joins_of(&[stranded.clone(), branch]),
+            vec![[6, 13], [13, 14]]
+        );
+        // A branch that turns sharply one sample before its end is an outlier's tail, not a
+        // curve running into the junction: no walk.
+        let mut tail = alloc::vec![Point::new(6.0, 2.0), Point::new(6.0, 3.0)];
+        tail.extend((0..6).map(|k| Point::new(7.0 + k as f64, 2.2)));
+        assert_eq!(joins_of(&[stranded, tail]), Vec::<[usize; 2]>::new());
+        // Over the middle of an edge of the curve, the walk's last step would turn 40° to reach
+        // either end of it: no sample of the curve lies straight on.
+        let line: Vec<Point> = (0..=12).map(|i| Point::new(i as f64 + 0.5, 0.0)).collect();
+        let stranded = alloc::vec![Point::new(6.0, 0.6)];
+        let branch: Vec<Point> = (2..9).map(|k| Point::new(6.0, k as f64 - 0.4)).collect();
+        assert_eq!(
+            joins_along(&line, &[stranded, branch]),
+            Vec::<[usize; 2]>::new()
+        );
     }
 }
