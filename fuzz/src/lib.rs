@@ -161,7 +161,7 @@ fn check_input_error(points: &[Point], err: Error, context: &str, measuring: boo
         }
         // The stages measure down to 2^-450 times the largest magnitude (its power of two within
         // a factor 2): two distinct finite points nearer than that, named by position.
-        Error::TooCloseToMeasure { first, second } => {
+        Error::TooCloseToMeasure { first, second, .. } => {
             let largest = points
                 .iter()
                 .map(|p| p.x.abs().max(p.y.abs()))

@@ -346,7 +346,9 @@ fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<E
         ))
     };
     let mut kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
-    if kind != "i" && kind != "u" && kind != "O" && edges.cast::<PyUntypedArray>().is_err() {
+    // A sequence is read element by element, as Python objects: numpy would turn a bool among
+    // ints into 0 or 1 (`[(True, 2)]` is an int64 array), which is a mistake, not a position.
+    if kind != "O" && edges.cast::<PyUntypedArray>().is_err() {
         let kwargs = PyDict::new(py);
         kwargs.set_item("dtype", "object")?;
         array = numpy.getattr("asarray")?.call((edges,), Some(&kwargs))?;

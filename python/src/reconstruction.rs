@@ -40,7 +40,6 @@ pub(crate) struct Reconstruction {
     points: Vec<Point>,
     edges: PyOnceLock<Py<PyArray2<i64>>>,
     unused: PyOnceLock<Py<PyArray1<i64>>>,
-    curves: PyOnceLock<Vec<Py<Curve>>>,
     stages: PyOnceLock<Py<PyDict>>,
     /// Every edge's story, computed on the first `explain` (O(n log n)).
     stories: OnceLock<Vec<condt::EdgeStory>>,
@@ -53,7 +52,6 @@ impl Reconstruction {
             points,
             edges: PyOnceLock::new(),
             unused: PyOnceLock::new(),
-            curves: PyOnceLock::new(),
             stages: PyOnceLock::new(),
             stories: OnceLock::new(),
         }
@@ -94,26 +92,25 @@ impl Reconstruction {
         Ok(edges.bind(py).clone())
     }
 
-    /// The curves, a list of ``Curve``, sorted as ``condt reconstruct`` writes them (``.txt``).
+    /// The curves, a list of ``Curve``, sorted as ``condt reconstruct`` writes them (``.txt``);
+    /// each read makes new ``Curve`` objects. Each holds the result alive; the result does not
+    /// hold them (a cached list would be a reference cycle the garbage collector cannot see: the
+    /// whole result kept for good once ``curves`` was read).
     #[getter]
     fn curves(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<Curve>>> {
         let py = slf.py();
-        let this = slf.get();
-        let curves = this.curves.get_or_try_init(py, || {
-            (0..this.result.curves().len())
-                .map(|index| {
-                    Py::new(
-                        py,
-                        Curve {
-                            owner: slf.clone().unbind(),
-                            index,
-                            points: PyOnceLock::new(),
-                        },
-                    )
-                })
-                .collect::<PyResult<Vec<_>>>()
-        })?;
-        Ok(curves.iter().map(|c| c.clone_ref(py)).collect())
+        (0..slf.get().result.curves().len())
+            .map(|index| {
+                Py::new(
+                    py,
+                    Curve {
+                        owner: slf.clone().unbind(),
+                        index,
+                        points: PyOnceLock::new(),
+                    },
+                )
+            })
+            .collect()
     }
 
     /// The input positions whose point ended with no edge (outliers), ascending, int64.
@@ -128,7 +125,8 @@ impl Reconstruction {
 
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
     /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``,
-    /// ``"given-back"``, ``"gaps"``, ``"junctions"``, ``"crossings"``, ``"tips"``, ``"tails"``,
+    /// ``"given-back"``, ``"gaps"``, ``"junctions"``, ``"crossings"``, ``"tips"``, ``"spikes"``,
+    /// ``"hooks"``, ``"tails"``,
     /// or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct
     /// --timings``) to the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
     /// the stages are the last pass's.
@@ -249,9 +247,10 @@ impl Reconstruction {
     /// and a ``closed`` property, on the input coordinates.
     ///
     /// ``crs``: the document's ``"crs"`` member, as ``condt reconstruct`` carries on a GeoJSON
-    /// input's: JSON text (what ``read_points_with_crs`` gives) or a ``dict`` (written by
-    /// ``json.dumps``); ``None``, the default, writes none. ``ValueError`` when the text is not
-    /// one JSON value (``"EPSG:32632"`` alone is not: write ``'"EPSG:32632"'`` or the object).
+    /// input's: JSON text (what ``read_points_with_crs`` gives) or a ``dict`` (any mapping,
+    /// written by ``json.dumps``); ``None``, the default, writes none. ``TypeError`` for any
+    /// other type, ``ValueError`` when the text is not one JSON value (``"EPSG:32632"`` alone is
+    /// not: write ``'"EPSG:32632"'`` or the object).
     ///
     /// >>> import condt, json
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True)
@@ -266,6 +265,15 @@ impl Reconstruction {
         let crs: Option<String> = match crs {
             None => None,
             Some(text) if text.is_instance_of::<pyo3::types::PyString>() => Some(text.extract()?),
+            // GeoJSON's crs member is an object: a number or a list written there is a mistake.
+            Some(value)
+                if !value.is_instance(&py.import("collections.abc")?.getattr("Mapping")?)? =>
+            {
+                return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                    "crs must be JSON text, a dict or None, not {}",
+                    value.get_type().name()?
+                )));
+            }
             Some(value) => Some(
                 py.import("json")?
                     .call_method1("dumps", (value,))
@@ -344,11 +352,12 @@ impl Reconstruction {
     fn __repr__(&self) -> String {
         let curves = self.result.curves();
         let closed = curves.iter().filter(|c| c.is_closed()).count();
+        let counted = |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
         format!(
-            "<condt.Reconstruction: {} points, {} edges, {} curves ({closed} closed), {} unused>",
-            self.result.num_points(),
-            self.result.edge_list().len(),
-            curves.len(),
+            "<condt.Reconstruction: {}, {}, {} ({closed} closed), {} unused>",
+            counted(self.result.num_points(), "point"),
+            counted(self.result.edge_list().len(), "edge"),
+            counted(curves.len(), "curve"),
             self.result.unused().len()
         )
     }

@@ -78,7 +78,7 @@ impl Triangulation {
     }
 
     /// The Delaunay neighbours of input point ``i``, counter-clockwise (for a hull point, from
-    /// one hull neighbour through the interior to the other), as a new int64 array.
+    /// one hull neighbour through the interior to the other), as a new read-only int64 array.
     ///
     /// Raises ``IndexError`` when ``i`` is not an input position.
     fn neighbors<'py>(

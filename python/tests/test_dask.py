@@ -121,6 +121,18 @@ def test_any_tiling_gives_the_one_machine_edges(
     np.testing.assert_array_equal(tiled.edges, one_machine(points, **params))
 
 
+def test_a_halo_given_far_too_narrow_grows_to_the_planned_one_at_once(client):
+    # 1e-300 doubled would take a thousand rounds to reach the tiles' scale: the first resend
+    # uses at least the halo the plan gives (a quarter of the tile's shorter side).
+    rng = np.random.default_rng(5)
+    t = rng.uniform(0, 2 * np.pi, 600)
+    points = np.column_stack([np.cos(t), np.sin(t)]) * 10
+    tiled = condt.dask.reconstruct(points, client, tiles=4, halo=1e-300, paper=True)
+    planned = condt.dask.reconstruct(points, client, tiles=4, paper=True)
+    assert tiled.whole is None and tiled.rounds <= planned.rounds + 1
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+
+
 def test_tiles_whose_circles_reach_far_grow_their_halo(client):
     # Five small blobs far apart: the triangles between them have circles as wide as the set.
     rng = np.random.default_rng(11)

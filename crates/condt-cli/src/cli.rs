@@ -33,8 +33,9 @@ Usage:
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
 ignored; `#` comments and blank lines are skipped; a first line of names, such as `x y`, is a
 header, and with no point after it the file is empty only if it names x and y: `Error: file
-not found` alone is refused); `-` reads standard input: a NumPy array or
-a GeoJSON document by its content (the .npy magic bytes, a leading `{`), else that text
+not found` alone is refused); `-` reads standard input: a NumPy array, a
+GeoJSON document or a GeoJSON sequence by its content (the .npy magic bytes, a leading `{`, a
+leading record separator U+001E), else that text
 (`--input-format F` states the format instead, for a file too: `--input-format csv`). By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
@@ -609,10 +610,14 @@ fn triangulate_output(output: Option<&Path>) -> Result<(bool, bool), CliError> {
         "edges" => Ok((true, false)),
         "npy" => Ok((false, true)),
         _ => Err(usage(format!(
-            "{}: triangulate cannot write a .{} file; it writes text (.txt, or a name without \
-             an extension), edges (.edges, as --edges) or a NumPy array (.npy)",
+            "{}: triangulate cannot write {}; it writes text (.txt, or a name without an \
+             extension), edges (.edges, as --edges) or a NumPy array (.npy)",
             path.display(),
-            extension.to_string_lossy(),
+            if lower.is_empty() {
+                "a name ending in a dot".to_string()
+            } else {
+                format!("a .{} file", extension.to_string_lossy())
+            },
         ))),
     }
 }
@@ -1519,14 +1524,23 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// An output without triangles is explained: where the chain of edges is, or that there is none.
+/// An output without triangles (or, with `--edges`, without edges) is explained: where the
+/// chain of edges is, or that there is none.
 fn note_no_triangles(tri: &condt::Triangulation, edges: bool) {
-    if edges || tri.triangles().next().is_some() {
+    if tri.triangles().next().is_some() {
         return;
     }
     let distinct = tri.num_vertices();
     let chain = tri.edges().count();
-    if chain == 0 {
+    if edges {
+        // An empty edge list is explained too; a chain of edges needs no word.
+        if chain == 0 {
+            note(format_args!(
+                "no edges: {}",
+                Counted(distinct, "distinct point")
+            ));
+        }
+    } else if chain == 0 {
         note(format_args!(
             "no triangles and no edges: {}",
             Counted(distinct, "distinct point")

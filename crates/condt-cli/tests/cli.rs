@@ -503,6 +503,14 @@ fn counts_of_one_are_singular() {
         lone.contains("no triangles and no edges: 1 distinct point\n"),
         "{lone}"
     );
+    // With --edges: an empty edge list is told, a chain is not.
+    let out = condt(&["triangulate", "-", "--edges"], "0 0\n");
+    let lone = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && out.stdout.is_empty(), "{lone}");
+    assert!(lone.contains("no edges: 1 distinct point\n"), "{lone}");
+    let out = condt(&["triangulate", "-", "--edges"], "0 0\n1 1\n");
+    assert_eq!(String::from_utf8_lossy(&out.stdout), "0 1\n");
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("no "));
 }
 
 #[test]
@@ -858,6 +866,12 @@ fn triangulate_writes_what_the_output_name_says_or_refuses_it() {
             assert!(!target.exists(), "{name}: nothing is written");
         }
     }
+    let dotted = dir.join("t.");
+    let said = refused(&["triangulate", "-", "-o", dotted.to_str().unwrap()]);
+    assert!(
+        said.contains("cannot write a name ending in a dot;"),
+        "{said}"
+    );
     // The help says so.
     let help = String::from_utf8(condt(&["triangulate", "--help"], "").stdout).unwrap();
     assert!(help.contains(".edges"), "{help}");

@@ -614,3 +614,17 @@ fn a_later_crs_of_a_geojson_sequence_is_noted() {
         assert!(out.status.success() && out.stderr.is_empty(), "{out:?}");
     }
 }
+
+/// A GeoJSON sequence (RFC 8142: a record separator before each text) on standard input is told
+/// by its leading record separator, as a document is by its `{`; it was read as text and refused
+/// with the decimal comma's advice.
+#[test]
+fn a_geojson_sequence_on_standard_input_is_told_by_its_record_separator() {
+    let sequence = "\u{1e}{\"type\":\"Point\",\"coordinates\":[0,0]}\n\
+                    \u{1e}{\"type\":\"Point\",\"coordinates\":[1,0]}\n\
+                    \u{1e}{\"type\":\"Point\",\"coordinates\":[0.5,2]}\n";
+    let out = condt_with_stdin(&["triangulate", "-"], sequence.as_bytes());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{said}");
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
+}

@@ -690,6 +690,11 @@ mod tests {
             ("x,y\n1,2\n3\n", 3, "1 fields, but the y column is field 2"),
             ("x,y\n1,2\n3,abc\n", 3, "cannot read \"abc\""),
             ("x,y\n1,nan\n", 2, "\"nan\" is not finite"),
+            (
+                "x,y\n1,-1e400\n",
+                2,
+                "\"-1e400\" is beyond the range of a double",
+            ),
             ("x,y\n1,\"2\n", 2, "not closed"),
             ("x,y\n1,2\n\"1\"5,3\n", 3, "after the closing quote"),
             ("x,y\r\n1,2\r\n3,\"4\" \r\n", 3, "after the closing quote"),

@@ -169,7 +169,12 @@ fn read_records(
             }
             return Err(IoError {
                 file: file.to_string(),
-                line: Some(line_at(text.as_bytes(), range.start + at.min(record.len()))),
+                // An error at the record's end (JSON that ends early) is on its last line with
+                // content, not after the line break that ends the record.
+                line: Some(line_at(
+                    text.as_bytes(),
+                    range.start + at.min(record.trim_end().len()),
+                )),
                 kind: IoErrorKind::Content(message),
             });
         }

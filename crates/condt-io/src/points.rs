@@ -94,10 +94,22 @@ impl Source<'_> {
             })?,
         };
         if value.is_finite() {
-            Ok(value)
-        } else {
-            Err(self.error(line, format!("coordinate {} is not finite", quoted(field))))
+            return Ok(value);
         }
+        // A number too large for a double (`1e400`) reads as infinite: not the caller's NaN or
+        // infinity, and said so.
+        let named = field
+            .trim_start_matches(['+', '-'])
+            .get(..3)
+            .is_some_and(|word| {
+                word.eq_ignore_ascii_case("nan") || word.eq_ignore_ascii_case("inf")
+            });
+        let why = if named {
+            "is not finite"
+        } else {
+            "is beyond the range of a double (about 1.8e308)"
+        };
+        Err(self.error(line, format!("coordinate {} {why}", quoted(field))))
     }
 
     /// Checks a field the reader ignores (`what`: a text file's third column, a `.node`
@@ -854,8 +866,9 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), `.geojsonl` or `.geojsons`
 /// those of a GeoJSON sequence, one object per line
 /// ([`InputFormat::GeoJsonLines`](super::InputFormat::GeoJsonLines)), anything else the plain
-/// format ([`parse_points`]); `-` reads standard input: a NumPy array or a GeoJSON document by
-/// its content (the `.npy` magic bytes, a leading `{`), the plain format otherwise
+/// format ([`parse_points`]); `-` reads standard input: a NumPy array, a GeoJSON document or a
+/// GeoJSON sequence by its content (the `.npy` magic bytes, a leading `{`, a leading record
+/// separator U+001E), the plain format otherwise
 /// ([`read_points_with`] reads a file, or standard input, in a format stated instead).
 ///
 /// A text file that is not UTF-8 is refused with the line of the first bad byte. A file too
@@ -989,12 +1002,14 @@ pub fn read_points_with(
     if let Some(columns) = &options.columns {
         let starts_like_json = text
             .trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n'])
-            .starts_with('{');
+            .starts_with(['{', '\u{1e}']);
         return match format {
             Some(InputFormat::Tsv) => {
                 crate::csv::parse_separated(&text, name, b'\t', Some(columns))
             }
-            None if starts_like_json => Err(columns_refused("GeoJSON (by its leading `{`)")),
+            None if starts_like_json => Err(columns_refused(
+                "GeoJSON (by its leading `{` or record separator)",
+            )),
             // CSV, named or stated, or standard input that is neither .npy nor GeoJSON (the
             // other formats are refused above).
             _ => crate::csv::parse_csv_columns(&text, name, Some(columns)),
@@ -1005,6 +1020,9 @@ pub fn read_points_with(
         let start = text.trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n']);
         if start.starts_with('{') {
             InputFormat::GeoJson
+        } else if start.starts_with('\u{1e}') {
+            // RFC 8142's record separator, which no point line starts with: a GeoJSON sequence.
+            InputFormat::GeoJsonLines
         } else {
             InputFormat::Text
         }

@@ -582,6 +582,13 @@ fn geojson_lines_are_read_one_object_per_line() {
         assert!(message.contains(words), "{message}");
         assert!(!message.contains("decimal comma"), "{message}");
     }
+    // A record that ends early is told on its own last line, not on the next record's.
+    let truncated = "\u{1e}{\"type\":\"Point\",\"coordinates\":[0,0]}\n\
+                     \u{1e}{\"type\":\"Point\",\"coordinates\":[1,0\n\
+                     \u{1e}{\"type\":\"Point\",\"coordinates\":[1,1]}\n";
+    let file = TempFile::new("cut.geojsons", truncated.as_bytes());
+    let (at, message) = content_error(file.read());
+    assert_eq!(at, Some(2), "{message}");
 }
 
 /// GeoJSON lines (NDJSON) in a file named `.json` or `.geojson` are read as one document and

@@ -48,6 +48,10 @@ pub enum Error {
         first: usize,
         /// Input position of the other.
         second: usize,
+        /// Input position of a point with the largest coordinate magnitude (the first such),
+        /// which sets the scale the two are measured against: often a single stray point far
+        /// from the rest.
+        largest: usize,
     },
     /// [`Triangulation::validate`](crate::Triangulation::validate) or
     /// [`Mesh::check_topology`](crate::mesh::Mesh::check_topology) found a broken invariant.
@@ -78,11 +82,15 @@ impl fmt::Display for Error {
                     _ => Ok(()),
                 }
             }
-            Error::TooCloseToMeasure { first, second } => write!(
+            Error::TooCloseToMeasure {
+                first,
+                second,
+                largest,
+            } => write!(
                 f,
-                "points {first} and {second} are closer than 2^-450 times the largest coordinate: \
-                 the reconstruction cannot measure lengths across that spread (the \
-                 triangulation can)"
+                "points {first} and {second} are closer than 2^-450 times the largest coordinate \
+                 (point {largest}'s): the reconstruction cannot measure lengths across that \
+                 spread (the triangulation can)"
             ),
             Error::InvalidTriangulation(violation) => write!(f, "{violation}"),
         }

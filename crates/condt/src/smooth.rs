@@ -885,7 +885,8 @@ mod tests {
                 refused,
                 Err(crate::Error::TooCloseToMeasure {
                     first: 0,
-                    second: 1
+                    second: 1,
+                    largest: 0
                 })
             );
         }

@@ -291,11 +291,18 @@ fn points_too_close_to_measure_beside_the_largest_coordinate_are_refused_by_name
         let points = with(&circle, Point::new(far, 0.0));
         for params in [Params::default(), Params::paper()] {
             let err = reconstruct(&points, &params).map(|_| ()).unwrap_err();
-            let condt::Error::TooCloseToMeasure { first, second } = err else {
+            let condt::Error::TooCloseToMeasure {
+                first,
+                second,
+                largest,
+            } = err
+            else {
                 panic!("{far:e}: {err}");
             };
-            // Two distinct circle points, nearer than 2^-450 times |far| (no underflow here).
+            // Two distinct circle points, nearer than 2^-450 times |far| (no underflow here),
+            // and the far point that sets the scale.
             assert!(first < second && second < 40, "{far:e}: {first} {second}");
+            assert_eq!(largest, 40, "{far:e}");
             let (p, q) = (points[first], points[second]);
             let length = (p.x - q.x).hypot(p.y - q.y);
             assert!(
@@ -305,6 +312,7 @@ fn points_too_close_to_measure_beside_the_largest_coordinate_are_refused_by_name
             assert!(err
                 .to_string()
                 .contains(&format!("points {first} and {second} ")));
+            assert!(err.to_string().contains("(point 40's)"), "{err}");
             let halved = reconstruct(&scaled(&points, 0.5), &params).map(|_| ());
             assert_eq!(halved, Err(err), "{far:e}");
         }

@@ -205,7 +205,7 @@ fn a_point_lost_in_a_difference_from_the_corner_keeps_the_edges_independent_of_o
             rng.shuffle(&mut order);
         }
         let permuted: Vec<Point> = order.iter().map(|&i| points[i]).collect();
-        let Err(condt::Error::TooCloseToMeasure { first, second }) =
+        let Err(condt::Error::TooCloseToMeasure { first, second, .. }) =
             reconstruct(&permuted, &Params::default())
         else {
             panic!("round {round}: not refused");

@@ -65,8 +65,9 @@ class TiledReconstruction:
 
     ``edges`` is a read-only ``(m, 2)`` int64 array of input positions, ``i < j``, sorted by
     rows: the same as ``condt.reconstruct(points, **params).edges``. ``tiles`` is the number of
-    tiles, ``rounds`` how many times the widest-halo tile was sent (1 when every first halo
-    sufficed; summed over the runs of the smoothing passes), ``workers`` the addresses of the
+    tiles, ``rounds`` how many rounds of tasks went to the workers (the tiles' first sends and
+    their resends with wider halos, then one round per later stage; summed over the runs of the
+    smoothing passes), ``workers`` the addresses of the
     workers that ran a tile, ``sent`` how many points went to workers in all (every tile and
     round, halos included: its ratio to the set's size is the cost of tiling), ``whole`` why the
     set ran in one piece instead (``None`` when it was tiled), and ``passes`` how many smoothing
@@ -379,7 +380,9 @@ class _Run:
                     # The tile held every point: no wider halo can certify more.
                     raise _WholeSet("a tile held every point")
                 else:
-                    self.halo_of[k] *= 2.0
+                    # Twice as wide, and at least the first halo the plan would give: a halo the
+                    # caller gave far too narrow (1e-300) would otherwise double a thousand times.
+                    self.halo_of[k] = max(2.0 * self.halo_of[k], _first_halo(self.rects[k], bbox))
                     pending.append(k)
         graphs = len(next(iter(gathered.values()))) if gathered else 1
         return [

@@ -241,7 +241,12 @@ impl Pipeline {
         params.check()?;
         let params = &params.on_available_threads();
         if let Some((first, second)) = tri.too_close_to_measure() {
-            return Err(Error::TooCloseToMeasure { first, second });
+            let largest = tri.input_of_largest();
+            return Err(Error::TooCloseToMeasure {
+                first,
+                second,
+                largest,
+            });
         }
         if params.method == Method::Crust {
             crate::baselines::crust_fits(&tri)?;

@@ -807,6 +807,21 @@ impl Triangulation {
             // By input positions: the same answer whatever the mesh's numbering (`parallel`).
             .min()
     }
+    /// The input position of the first point (by input position) whose larger coordinate
+    /// magnitude is the set's largest: the point that sets the scale (an error names it).
+    pub(crate) fn input_of_largest(&self) -> usize {
+        let magnitude = |v: VertexId| {
+            let p = self.vertex_point(v);
+            p.x.abs().max(p.y.abs())
+        };
+        let vertices = (0..self.points.len() as u32).map(VertexId::new);
+        let largest = vertices.clone().map(magnitude).fold(0.0, f64::max);
+        vertices
+            .filter(|&v| self.is_vertex(v) && magnitude(v) == largest)
+            .map(|v| self.input_of(v))
+            .min()
+            .unwrap_or(0)
+    }
     /// Every [`Triangulation::vertex_point`], by vertex id (for a loop that prefetches them).
     #[inline]
     pub(crate) fn vertex_points(&self) -> &[Point] {
