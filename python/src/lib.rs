@@ -40,7 +40,7 @@ use numpy::ndarray::Array2;
 use numpy::{PyArray2, PyArrayMethods, PyUntypedArray};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyInt};
+use pyo3::types::{PyBool, PyDict, PyInt, PyList, PyTuple};
 use reconstruction::{Curve, EdgeStory, Reconstruction};
 use std::ffi::CString;
 use std::path::PathBuf;
@@ -346,9 +346,15 @@ fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<E
         ))
     };
     let mut kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
-    // A sequence is read element by element, as Python objects: numpy would turn a bool among
-    // ints into 0 or 1 (`[(True, 2)]` is an int64 array), which is a mistake, not a position.
-    if kind != "O" && edges.cast::<PyUntypedArray>().is_err() {
+    // A list or tuple is read element by element, as Python objects: numpy would turn a bool
+    // among ints into 0 or 1 (`[(True, 2)]` is an int64 array), which is a mistake, not a
+    // position. Other array-likes (pandas, torch) keep numpy's dtype: a bool array is refused
+    // by its dtype.
+    let sequence = edges.is_instance_of::<PyList>() || edges.is_instance_of::<PyTuple>();
+    if kind != "O"
+        && (sequence || (kind != "i" && kind != "u"))
+        && edges.cast::<PyUntypedArray>().is_err()
+    {
         let kwargs = PyDict::new(py);
         kwargs.set_item("dtype", "object")?;
         array = numpy.getattr("asarray")?.call((edges,), Some(&kwargs))?;
@@ -400,7 +406,13 @@ fn edge_rows(py: Python<'_>, name: &str, edges: &Bound<'_, PyAny>) -> PyResult<E
             for (k, value) in array.getattr("flat")?.try_iter()?.enumerate() {
                 let value = value?;
                 if !is_integer(&numpy_integer, &value)? {
-                    return Err(not_integers());
+                    // The first value that is no integer, by its row (the dtype numpy chose
+                    // first, int64 for a bool among ints, would say nothing).
+                    return Err(PyTypeError::new_err(format!(
+                        "{name} must be an (m, 2) array of integers (point indices); row {} holds {}",
+                        k / 2,
+                        value.repr()?
+                    )));
                 }
                 put(
                     k,

@@ -11,7 +11,8 @@ use pyo3::exceptions::{PyImportError, PyKeyError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PyTuple};
-use std::sync::OnceLock;
+use pyo3::PyTypeInfo;
+use std::sync::{Arc, OnceLock};
 
 /// The curves through a set of points, and every stage that found them: what
 /// ``condt.reconstruct`` returns.
@@ -33,30 +34,40 @@ use std::sync::OnceLock;
 /// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions', 'crossings', 'tips', 'spikes', 'hooks', 'tails']
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Reconstruction {
-    result: condt::Reconstruction,
-    /// A copy of the points as given: GeoJSON, shapely and `Curve.coords` read the input
-    /// coordinates from it, since the result keeps none. Not the caller's array, read in place
-    /// during the call: the caller may change that afterwards (`lib.rs`, `reconstruct`).
-    points: Vec<Point>,
+    /// Shared with its `Curve`s, which must not hold the `Reconstruction` itself: the result
+    /// caches them, and a cycle of Python references without `__traverse__` is never freed.
+    shared: Arc<Shared>,
     edges: PyOnceLock<Py<PyArray2<i64>>>,
     unused: PyOnceLock<Py<PyArray1<i64>>>,
+    curves: PyOnceLock<Vec<Py<Curve>>>,
     stages: PyOnceLock<Py<PyDict>>,
     /// Every edge's story, computed on the first `explain` (O(n log n)).
     stories: OnceLock<Vec<condt::EdgeStory>>,
 }
 
+/// What a result and its curves read: the library's result and the points as given.
+struct Shared {
+    result: condt::Reconstruction,
+    /// A copy of the points as given: GeoJSON, shapely and `Curve.coords` read the input
+    /// coordinates from it, since the result keeps none. Not the caller's array, read in place
+    /// during the call: the caller may change that afterwards (`lib.rs`, `reconstruct`).
+    points: Vec<Point>,
+}
+
 impl Reconstruction {
     pub(crate) fn new(result: condt::Reconstruction, points: Vec<Point>) -> Self {
         Reconstruction {
-            result,
-            points,
+            shared: Arc::new(Shared { result, points }),
             edges: PyOnceLock::new(),
             unused: PyOnceLock::new(),
+            curves: PyOnceLock::new(),
             stages: PyOnceLock::new(),
             stories: OnceLock::new(),
         }
     }
+}
 
+impl Shared {
     /// The input coordinates of input positions `indices`, as a new `(len, 2)` float64 array.
     fn coordinates<'py>(
         &self,
@@ -81,7 +92,7 @@ impl Reconstruction {
     #[getter]
     fn edges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
         let edges = self.edges.get_or_try_init(py, || {
-            let list = self.result.edge_list();
+            let list = self.shared.result.edge_list();
             let rows = py.detach(|| {
                 list.iter()
                     .map(|&[a, b]| [i64::from(a), i64::from(b)])
@@ -92,32 +103,35 @@ impl Reconstruction {
         Ok(edges.bind(py).clone())
     }
 
-    /// The curves, a list of ``Curve``, sorted as ``condt reconstruct`` writes them (``.txt``);
-    /// each read makes new ``Curve`` objects. Each holds the result alive; the result does not
-    /// hold them (a cached list would be a reference cycle the garbage collector cannot see: the
-    /// whole result kept for good once ``curves`` was read).
+    /// The curves, a list of ``Curve``, sorted as ``condt reconstruct`` writes them (``.txt``).
     #[getter]
-    fn curves(slf: &Bound<'_, Self>) -> PyResult<Vec<Py<Curve>>> {
-        let py = slf.py();
-        (0..slf.get().result.curves().len())
-            .map(|index| {
-                Py::new(
-                    py,
-                    Curve {
-                        owner: slf.clone().unbind(),
+    fn curves(&self, py: Python<'_>) -> PyResult<Vec<Py<Curve>>> {
+        let curves = self.curves.get_or_try_init(py, || {
+            (0..self.shared.result.curves().len())
+                .map(|index| {
+                    let curve = Curve {
+                        shared: Arc::clone(&self.shared),
                         index,
                         points: PyOnceLock::new(),
-                    },
-                )
-            })
-            .collect()
+                    };
+                    Py::new(py, curve)
+                })
+                .collect::<PyResult<Vec<_>>>()
+        })?;
+        Ok(curves.iter().map(|c| c.clone_ref(py)).collect())
     }
 
     /// The input positions whose point ended with no edge (outliers), ascending, int64.
     #[getter]
     fn unused<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
         let unused = self.unused.get_or_try_init(py, || {
-            let values = self.result.unused().iter().map(|&i| position(i)).collect();
+            let values = self
+                .shared
+                .result
+                .unused()
+                .iter()
+                .map(|&i| position(i))
+                .collect();
             index_vector(py, values).map(Bound::unbind)
         })?;
         Ok(unused.bind(py).clone())
@@ -133,7 +147,7 @@ impl Reconstruction {
     #[getter]
     fn stages<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let stages = self.stages.get_or_try_init(py, || {
-            let result = &self.result;
+            let result = &self.shared.result;
             let graphs: Vec<(&'static str, Vec<[i64; 2]>)> = py.detach(|| {
                 crate::within_call(|| {
                     result
@@ -196,7 +210,7 @@ impl Reconstruction {
         i: &Bound<'_, PyAny>,
         j: &Bound<'_, PyAny>,
     ) -> PyResult<EdgeStory> {
-        let n = self.result.num_points();
+        let n = self.shared.result.num_points();
         let (a, b) = (input_position("i", i, n)?, input_position("j", j, n)?);
         if a == b {
             return Err(PyValueError::new_err(format!(
@@ -205,7 +219,7 @@ impl Reconstruction {
         }
         // A duplicate is merged into its first point, whose edges the stories name (the
         // triangulation the stages walked says which that is).
-        let tri = self.result.triangulation();
+        let tri = self.shared.result.triangulation();
         let first = |k: usize| tri.input_of(tri.vertex(k));
         let (first_a, first_b) = (first(a), first(b));
         if first_a == first_b {
@@ -218,7 +232,7 @@ impl Reconstruction {
         let stories = match self.stories.get() {
             Some(stories) => stories,
             None => {
-                let result = &self.result;
+                let result = &self.shared.result;
                 let computed = py.detach(|| crate::within_call(|| result.provenance()));
                 self.stories.get_or_init(|| computed)
             }
@@ -227,7 +241,7 @@ impl Reconstruction {
             .binary_search_by_key(&edge, |s| s.edge)
             .map(|k| &stories[k])
             .map_err(|_| {
-                let walked = match self.result.smoothing() {
+                let walked = match self.shared.result.smoothing() {
                     Some(smoothing) => format!(
                         "an edge of the Delaunay triangulation of the points as {} smoothing \
                          pass(es) moved them, which the last run walked",
@@ -274,9 +288,10 @@ impl Reconstruction {
                     value.get_type().name()?
                 )));
             }
+            // Any mapping, as a dict: `json.dumps` takes dicts alone.
             Some(value) => Some(
                 py.import("json")?
-                    .call_method1("dumps", (value,))
+                    .call_method1("dumps", (PyDict::type_object(py).call1((value,))?,))
                     .map_err(|err| {
                         pyo3::exceptions::PyTypeError::new_err(format!(
                             "crs must be JSON text or a JSON-serializable object: {err}"
@@ -286,11 +301,16 @@ impl Reconstruction {
             ),
         };
         let mut out = Vec::new();
-        condt_io::write_geojson_with_crs(&mut out, &self.result, &self.points, crs.as_deref())
-            .map_err(|err| match err.kind() {
-                std::io::ErrorKind::InvalidInput => PyValueError::new_err(err.to_string()),
-                _ => PyRuntimeError::new_err(err.to_string()),
-            })?;
+        condt_io::write_geojson_with_crs(
+            &mut out,
+            &self.shared.result,
+            &self.shared.points,
+            crs.as_deref(),
+        )
+        .map_err(|err| match err.kind() {
+            std::io::ErrorKind::InvalidInput => PyValueError::new_err(err.to_string()),
+            _ => PyRuntimeError::new_err(err.to_string()),
+        })?;
         String::from_utf8(out).map_err(|err| PyRuntimeError::new_err(err.to_string()))
     }
 
@@ -306,9 +326,9 @@ impl Reconstruction {
         })?;
         let this = slf.get();
         let lines = PyList::empty(py);
-        for curve in this.result.curves() {
+        for curve in this.shared.result.curves() {
             let closing = curve.points().next().filter(|_| curve.is_closed());
-            lines.append(this.coordinates(py, curve.points().chain(closing))?)?;
+            lines.append(this.shared.coordinates(py, curve.points().chain(closing))?)?;
         }
         shapely.getattr("MultiLineString")?.call1((lines,))
     }
@@ -321,7 +341,8 @@ impl Reconstruction {
     /// 0
     #[getter]
     fn passes(&self) -> usize {
-        self.result
+        self.shared
+            .result
             .smoothing()
             .map_or(0, |smoothing| smoothing.passes)
     }
@@ -338,7 +359,7 @@ impl Reconstruction {
     #[getter]
     fn timings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let timings = PyDict::new(py);
-        for (step, time) in self.result.timings() {
+        for (step, time) in self.shared.result.timings() {
             timings.set_item(step, time.as_secs_f64())?;
         }
         Ok(timings)
@@ -346,19 +367,19 @@ impl Reconstruction {
 
     /// The number of input points.
     fn __len__(&self) -> usize {
-        self.result.num_points()
+        self.shared.result.num_points()
     }
 
     fn __repr__(&self) -> String {
-        let curves = self.result.curves();
+        let curves = self.shared.result.curves();
         let closed = curves.iter().filter(|c| c.is_closed()).count();
         let counted = |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
         format!(
             "<condt.Reconstruction: {}, {}, {} ({closed} closed), {} unused>",
-            counted(self.result.num_points(), "point"),
-            counted(self.result.edge_list().len(), "edge"),
+            counted(self.shared.result.num_points(), "point"),
+            counted(self.shared.result.edge_list().len(), "edge"),
             counted(curves.len(), "curve"),
-            self.result.unused().len()
+            self.shared.result.unused().len()
         )
     }
 }
@@ -377,14 +398,15 @@ impl Reconstruction {
 /// [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Curve {
-    owner: Py<Reconstruction>,
+    /// The result's data, not the `Reconstruction` (which caches its curves: no cycle).
+    shared: Arc<Shared>,
     index: usize,
     points: PyOnceLock<Py<PyArray1<i64>>>,
 }
 
 impl Curve {
-    fn curve<'a>(&self, owner: &'a Reconstruction) -> &'a condt::Curve {
-        &owner.result.curves()[self.index]
+    fn curve(&self) -> &condt::Curve {
+        &self.shared.result.curves()[self.index]
     }
 }
 
@@ -394,8 +416,7 @@ impl Curve {
     #[getter]
     fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
         let points = self.points.get_or_try_init(py, || {
-            let owner = self.owner.get();
-            let values = self.curve(owner).points().map(position).collect();
+            let values = self.curve().points().map(position).collect();
             index_vector(py, values).map(Bound::unbind)
         })?;
         Ok(points.bind(py).clone())
@@ -404,22 +425,21 @@ impl Curve {
     /// Whether the last point joins back to the first.
     #[getter]
     fn closed(&self) -> bool {
-        self.curve(self.owner.get()).is_closed()
+        self.curve().is_closed()
     }
 
     /// The coordinates of its points, a new ``(len, 2)`` float64 array.
     #[getter]
     fn coords<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let owner = self.owner.get();
-        owner.coordinates(py, self.curve(owner).points())
+        self.shared.coordinates(py, self.curve().points())
     }
 
     fn __len__(&self) -> usize {
-        self.curve(self.owner.get()).len()
+        self.curve().len()
     }
 
     fn __repr__(&self) -> String {
-        let curve = self.curve(self.owner.get());
+        let curve = self.curve();
         format!(
             "<condt.Curve: {} points, {}>",
             curve.len(),

@@ -988,9 +988,9 @@ pub fn read_points_with(
         read_all(file, size)
     }
     .map_err(io_error)?;
-    // Standard input has no name to tell its format: a NumPy array and a GeoJSON document are
-    // told by their content (the magic bytes, which are not UTF-8; a `{`, which no point line
-    // starts with), anything else is read as text.
+    // Standard input has no name to tell its format: a NumPy array, a GeoJSON document and a
+    // GeoJSON sequence are told by their content (the magic bytes, which are not UTF-8; a `{` or
+    // a record separator, which no point line starts with), anything else is read as text.
     let npy = bytes.starts_with(super::npy::NPY_MAGIC);
     if format.is_none() && npy && options.columns.is_some() {
         return Err(columns_refused("a NumPy array (by its magic bytes)"));

@@ -137,7 +137,7 @@ pub(crate) struct Ends<'a> {
 /// Whether a step of squared length `step` is *crowded* after one of squared length `before`:
 /// under `1 / GAP_RATIO` of it, two samples noise pushed together, whose direction is the noise's.
 /// The one test of a crowded loose end ([`Ends::heading_from`]) and a straight walk's crowded step.
-fn crowded(step: f64, before: f64) -> bool {
+pub(super) fn crowded(step: f64, before: f64) -> bool {
     GAP_RATIO * GAP_RATIO * step < before
 }
 

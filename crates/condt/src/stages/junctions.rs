@@ -12,15 +12,16 @@
 //! angles read from the sample before its neighbour, as gap closing reads them), within
 //! [`GAP_RATIO`] times `c`'s shorter edge (its longer where the two are not one sampling), with
 //! three branches (`Ends::branch`), straightest ahead among those that pass (ties by id). Where
-//! none passes and the end's curve runs on smoothly ([`SMOOTH_COS`] at its first passages), the
-//! end may reach `c` through one sample without edges that lies straight ahead (a gap closing
+//! the end's curve runs on smoothly ([`SMOOTH_COS`] at its first passages), the end may also
+//! reach `c` through one sample without edges that lies straight ahead (a gap closing
 //! walk, [`Ends::straight_walk`]) and meets `c` straight on: the repair can strand a branch's last
-//! sample that lies as near the junction's neighbours as the junction. A point two ends choose
-//! takes both (a junction of four), one three or more choose none, and a stranded sample two walks
-//! pass goes to neither. All choices are made on the graph as it came in: the result depends
-//! neither on the order of the ends nor on `parallel`.
+//! sample that lies as near the junction's neighbours as the junction. Of a direct join and such
+//! a walk, the end takes the straighter. A point two ends choose takes both (a junction of four),
+//! a point three or more choose takes none, and a stranded sample two walks pass goes to
+//! neither. All choices are made on the graph as it came in: the result depends neither on the
+//! order of the ends nor on `parallel`.
 
-use super::gaps::{cos_at, Ends, Walk, GAP_RATIO, STRAIGHT};
+use super::gaps::{cos_at, crowded, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
 use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
@@ -63,8 +64,8 @@ impl Ends<'_> {
         self.branch(a, self.along(a), &[c, x, y]) && self.junction_at(a, c, a)
     }
 
-    /// The junction the loose end `a` chooses, if any: the straightest ahead that passes, else
-    /// one that a straight walk through samples without edges reaches straight on.
+    /// The junction the loose end `a` chooses, if any: the straightest ahead of the direct joins
+    /// that pass and the join through a stranded sample, if any (a tie to the direct one).
     fn junction_of(&self, a: VertexId) -> Option<Junction> {
         // Every junction needs the end's own branch: without it (most ends on scattered points)
         // the ring is skipped (speed).
@@ -77,23 +78,39 @@ impl Ends<'_> {
             .neighbors(a)
             .filter(|&c| self.meets_at_junction(a, c))
             .map(|c| (self.turn(a, c), c))
-            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-        if let Some((_, c)) = direct {
-            return Some(Junction {
-                end: a,
-                walk: Walk::EMPTY,
-                at: c,
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+            .map(|(turn, c)| {
+                let junction = Junction {
+                    end: a,
+                    walk: Walk::EMPTY,
+                    at: c,
+                };
+                (turn, junction)
             });
+        // A direct join beside the junction must not hide a walk through the branch's stranded
+        // last sample that runs straighter (the junction's neighbours can lie within the turn
+        // and the gap a direct join allows).
+        match (direct, self.junction_beyond(a)) {
+            (Some((direct_turn, junction)), Some((walk_turn, walked))) => {
+                Some(if walk_turn < direct_turn {
+                    walked
+                } else {
+                    junction
+                })
+            }
+            (direct, walked) => direct.or(walked).map(|(_, junction)| junction),
         }
-        self.junction_beyond(a)
     }
 
     /// The junction a straight walk from the loose end `a` through samples without edges
-    /// ([`Ends::straight_walk`]) reaches: the repair can leave the branch's last sample without
-    /// edges where it lies as near the junction's neighbours as the junction (evenly spaced
-    /// borders). The walk's last point `s` must meet `c` straight on from the point before it,
-    /// within [`GAP_RATIO`] of the walk's last two steps, and `c` be a junction as above.
-    fn junction_beyond(&self, a: VertexId) -> Option<Junction> {
+    /// ([`Ends::straight_walk`]) reaches, with the cosine of the end's turn toward the walk: the
+    /// repair can leave the branch's last sample without edges where it lies as near the
+    /// junction's neighbours as the junction (evenly spaced borders). The end's curve must run
+    /// on smoothly, the walk pass exactly one sample `s`, and `s` meet `c` straight on (read from
+    /// the point before it, as the walk reads a step after a crowded one), within [`GAP_RATIO`]
+    /// of the walk's last two steps, `c` being a junction as above whose branches do not run
+    /// into the end's own curve.
+    fn junction_beyond(&self, a: VertexId) -> Option<(f64, Junction)> {
         if self.sharpest_passage(a) >= SMOOTH_COS {
             return None;
         }
@@ -102,24 +119,31 @@ impl Ends<'_> {
         if self.graph.degree(s) != 0 {
             return None;
         }
-        let [before, from] = [self.along(a), a];
-        let (ps, pf) = (self.point(s), self.point(from));
-        let span = ps.dist2(pf).max(pf.dist2(self.point(before)));
+        let along = self.along(a);
+        let (ps, pa, p_along) = (self.point(s), self.point(a), self.point(along));
+        let (step, last) = (ps.dist2(pa), pa.dist2(p_along));
+        let from = if crowded(step, last) { p_along } else { pa };
+        let span = step.max(last);
         self.tri
             .mesh()
             .neighbors(s)
             .filter(|&c| self.graph.degree(c) == 2)
-            .map(|c| (cos_at(ps, pf, self.point(c)), c))
+            .map(|c| (cos_at(ps, from, self.point(c)), c))
             .filter(|&(cos, c)| {
+                let [x, y] = self.graph.first_two(c);
                 cos < STRAIGHT
                     && ps.dist2(self.point(c)) <= GAP_RATIO * GAP_RATIO * span
                     && self.junction_at(s, c, a)
+                    && self.branch(a, along, &[c, x, y])
             })
             .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
-            .map(|(_, c)| Junction {
-                end: a,
-                walk,
-                at: c,
+            .map(|(_, c)| {
+                let junction = Junction {
+                    end: a,
+                    walk,
+                    at: c,
+                };
+                (self.turn(a, s), junction)
             })
     }
 }
@@ -261,22 +285,22 @@ mod tests {
 
     #[test]
     fn two_ends_meeting_one_point_make_a_junction_of_four_and_three_none() {
-        // Up and down from point 6: both join (gap closing, which runs first, takes such a pair
-        // where it lines up straight through the point; this is the pair it leaves).
+        // Up and down from point 6, straight through it: in the pipeline gap closing takes such
+        // a pair first (a crossing); the stage alone joins both.
         assert_eq!(joins(7, 1.0, 7), vec![[6, 13], [6, 20]]);
+        // Up, and two arms from below that run straight into point 6 at 27° each side.
         let up: Vec<Point> = (1..8).map(|k| Point::new(6.0, k as f64)).collect();
-        let down: Vec<Point> = (1..8).map(|k| Point::new(6.0, -(k as f64))).collect();
-        let slanted: Vec<Point> = (1..8)
-            .map(|k| Point::new(6.0 + k as f64, -(k as f64)))
+        let right: Vec<Point> = (1..8)
+            .map(|k| Point::new(6.0 + k as f64, -2.0 * k as f64))
             .collect();
-        assert_eq!(joins_of(&[up.clone(), slanted]), vec![[6, 13], [6, 20]]);
-        let slanted_again: Vec<Point> = (1..8)
-            .map(|k| Point::new(6.0 + k as f64, -(k as f64)))
+        let left: Vec<Point> = (1..8)
+            .map(|k| Point::new(6.0 - k as f64, -2.0 * k as f64))
             .collect();
-        assert_eq!(
-            joins_of(&[up, down, slanted_again]),
-            Vec::<[usize; 2]>::new()
-        );
+        for pair in [[&up, &right], [&up, &left], [&right, &left]] {
+            let arms = pair.map(|arm| arm.clone());
+            assert_eq!(joins_of(&arms), vec![[6, 13], [6, 20]]);
+        }
+        assert_eq!(joins_of(&[up, right, left]), Vec::<[usize; 2]>::new());
     }
 
     #[test]
@@ -302,6 +326,19 @@ mod tests {
         assert_eq!(
             joins_along(&line, &[stranded, branch]),
             Vec::<[usize; 2]>::new()
+        );
+    }
+
+    #[test]
+    fn a_join_beside_the_junction_does_not_hide_the_stranded_walk() {
+        // The end (10, 1.9) sees the junction's neighbours (9, 0) and (11, 0) within 30° and 2.75
+        // spacings, a direct join; the walk through the stranded (10, 1) runs straight on.
+        let line: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+        let stranded = alloc::vec![Point::new(10.0, 1.0)];
+        let branch: Vec<Point> = (0..7).map(|k| Point::new(10.0, 1.9 + k as f64)).collect();
+        assert_eq!(
+            joins_along(&line, &[stranded, branch]),
+            vec![[10, 21], [21, 22]]
         );
     }
 }

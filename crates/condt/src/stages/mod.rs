@@ -218,8 +218,8 @@ and meet, and a crossing's dropped arms",
         switch: Some(Switch {
             flag: "junctions",
             help: "(default on; off with --paper) after gap closing, join a loose
-end to the curve it meets where three curves meet (map borders, a
-T): three branches of at least 5 points each, evenly sampled",
+end to the curve it meets where three (or four) curves meet (map
+borders, a T): branches of at least 5 points each, evenly sampled",
         }),
     },
     Row {
