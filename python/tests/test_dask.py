@@ -335,6 +335,37 @@ def test_spikes_are_a_tiled_round_with_the_one_machine_edges(client):
     assert not np.array_equal(expected, one_machine(points, spikes=False))
 
 
+def stranded_junctions(rng, count=400):
+    """``count`` evenly spaced junctions, each of three curves of eight samples leaving the
+    junction's sample at 180°, 124° and 231° from a random direction: the first curve's first
+    sample lies nearer the other two curves' first samples than the junction's own, so Algorithm 1
+    joins it to them and the repair strands it. Returns the points and the junctions' positions."""
+    points, junctions = [], []
+    for k in range(count):
+        centre = np.array([(k % 20) * 25.0, (k // 20) * 25.0]) + rng.uniform(-3, 3, 2)
+        turn = rng.uniform(0, 2 * np.pi)
+        junctions.append(len(points))
+        points.append(centre)
+        for angle in (180.0, 180.0 + 55.7, 180.0 - 51.0):
+            direction = turn + np.radians(angle)
+            step = np.array([np.cos(direction), np.sin(direction)])
+            points.extend(centre + j * step for j in range(1, 9))
+    return np.array(points), np.array(junctions)
+
+
+def test_junctions_through_a_stranded_sample_are_a_tiled_round_with_the_one_machine_edges(client):
+    points, junctions = stranded_junctions(np.random.default_rng(1))
+    # Without the spikes step (eighteen hops) the junctions' eleven are the widest reach.
+    for params in ({}, {"spikes": False}):
+        tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
+        assert tiled.whole is None
+        np.testing.assert_array_equal(tiled.edges, one_machine(points, **params))
+    expected = one_machine(points)
+    # The branch reaches its junction through the stranded sample at most of them.
+    degree = np.bincount(expected.ravel(), minlength=len(points))
+    assert (degree[junctions] == 3).sum() >= 0.8 * len(junctions)
+
+
 def test_clumps_are_a_round_of_tests_and_the_rule_on_the_driver(client):
     # Clean ellipses (one noisy, so that the smoothing passes run) and 40 blobs of 6 to 15 random
     # points apart from them: the blobs are clumps.
