@@ -85,10 +85,9 @@ impl Flow {
 /// on the tile, for rule 4 and the clumps: [`_choices_kept`]); a spike's move eighteen: its
 /// points lie within six hops of each other along its path, its tests read their stars, the
 /// degrees one hop beyond and, between two loose ends, five points along each end's curve, and
-/// a move sharing one of its points spans as far again ([`_step_kept`]); a
-/// loose end's gap choice six, its
-/// straight walk five ([`_choices_kept`], agreement, the joins along lone edges and the
-/// stranded runs on the driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3
+/// a move sharing one of its points spans as far again ([`_step_kept`]); a loose end's gap
+/// choice six, its straight walk five ([`_choices_kept`], agreement, the joins along lone edges
+/// and the stranded runs on the driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3
 /// six composed ([`_local_rules_kept`]), then rule 4 on the driver
 /// ([`_gathered_local_outliers`]) with the clump tests, gap choices, tip candidates and hook
 /// joins (eight hops) of their result; the given-back

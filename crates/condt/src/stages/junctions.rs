@@ -23,11 +23,10 @@
 
 use super::gaps::{cos_at, crowded, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
-use super::Outcome;
+use super::{uses, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
-use alloc::vec;
 use alloc::vec::Vec;
 
 impl Ends<'_> {
@@ -179,12 +178,10 @@ pub(crate) fn join_junctions(
     // Two loose ends at one point make a junction of four (each end chooses once, and a point of
     // degree two is no loose end); three or more, none. A sample without edges two walks pass
     // goes to neither.
-    let mut uses = vec![0u8; tri.num_points()];
-    for choice in &choices {
-        for v in choice.walk.iter().chain(core::iter::once(&choice.at)) {
-            uses[v.index()] = uses[v.index()].saturating_add(1);
-        }
-    }
+    let uses = uses(tri.num_points(), &choices, |choice| {
+        let Junction { walk, at, .. } = *choice;
+        (0..=walk.len()).map(move |k| walk.get(k).copied().unwrap_or(at))
+    });
     choices.retain(|choice| {
         uses[choice.at.index()] <= 2 && choice.walk.iter().all(|v| uses[v.index()] == 1)
     });

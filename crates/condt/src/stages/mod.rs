@@ -592,16 +592,26 @@ pub(crate) fn alone<C, P>(
 ) where
     P: IntoIterator<Item = VertexId>,
 {
-    let mut uses = vec![0u8; n];
+    let mut uses = uses(n, choices, &points);
     for v in claimed {
-        uses[v.index()] = 1;
+        uses[v.index()] = uses[v.index()].saturating_add(1);
     }
-    for choice in choices.iter() {
+    choices.retain(|choice| points(choice).into_iter().all(|v| uses[v.index()] == 1));
+}
+
+/// How many of `choices` name each of the `n` points (`points` lists a choice's points, each
+/// once), saturating: the count [`alone`] and the junctions' settling read.
+pub(crate) fn uses<C, P>(n: usize, choices: &[C], points: impl Fn(&C) -> P) -> Vec<u8>
+where
+    P: IntoIterator<Item = VertexId>,
+{
+    let mut uses = vec![0u8; n];
+    for choice in choices {
         for v in points(choice) {
             uses[v.index()] = uses[v.index()].saturating_add(1);
         }
     }
-    choices.retain(|choice| points(choice).into_iter().all(|v| uses[v.index()] == 1));
+    uses
 }
 
 /// Fewest points for which stages use rayon: below it, waking the workers costs more than it saves.

@@ -396,19 +396,29 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
 mod tests {
     use crate::{triangulate, Point};
 
-    /// A star's spike: points 0..=3 run up the diagonal to the tip's base `a` at (0, 0), the
-    /// tip's samples `run` (without edges) lead to `b` at (2, 0), 4 + run.len(), and three more
-    /// run down from it; `unused` are further points without edges. The graph pairs `a` with `b`.
-    fn spike(run: &[(f64, f64)], unused: &[(f64, f64)]) -> (Vec<Point>, Vec<[usize; 2]>, usize) {
-        let mut pts: Vec<Point> = (0..4)
-            .map(|k| Point::new(k as f64 - 3.0, k as f64 - 3.0))
+    /// A tip between two curves of `arm` points: one runs up the diagonal to `a` (point
+    /// `arm - 1`, at (0, 0)), the tip's samples `run` (without edges) lead to `b` (at (2, 0),
+    /// `arm + run.len()`), and the other runs down from `b`. Returns the points, the curves'
+    /// edges and `b`.
+    fn between_arms(arm: usize, run: &[(f64, f64)]) -> (Vec<Point>, Vec<[usize; 2]>, usize) {
+        let top = (arm - 1) as f64;
+        let mut pts: Vec<Point> = (0..arm)
+            .map(|k| Point::new(k as f64 - top, k as f64 - top))
             .collect();
         pts.extend(run.iter().map(|&(x, y)| Point::new(x, y)));
         let b = pts.len();
-        pts.extend((0..4).map(|k| Point::new(2.0 + k as f64, -(k as f64))));
+        pts.extend((0..arm).map(|k| Point::new(2.0 + k as f64, -(k as f64))));
+        let mut edges: Vec<[usize; 2]> = (1..arm).map(|i| [i - 1, i]).collect();
+        edges.extend((b..b + arm - 1).map(|i| [i, i + 1]));
+        (pts, edges, b)
+    }
+
+    /// A star's spike: [`between_arms`] of four points each, the graph pairing `a` (point 3) with
+    /// `b`; `unused` are further points without edges.
+    fn spike(run: &[(f64, f64)], unused: &[(f64, f64)]) -> (Vec<Point>, Vec<[usize; 2]>, usize) {
+        let (mut pts, mut edges, b) = between_arms(4, run);
+        edges.insert(3, [3, b]);
         pts.extend(unused.iter().map(|&(x, y)| Point::new(x, y)));
-        let mut edges = vec![[0, 1], [1, 2], [2, 3], [3, b]];
-        edges.extend((b..b + 3).map(|i| [i, i + 1]));
         (pts, edges, b)
     }
 
@@ -467,18 +477,9 @@ mod tests {
         assert!(spiked(&pts, edges).contains(&[3, 7]));
     }
 
-    /// Two curves of seven points run up the diagonal to `a` (point 6, at (0, 0)) and down from
-    /// `b` (at (2, 0)), both loose ends; the tip's samples `run` between them have no edges.
+    /// Two curves of seven points ([`between_arms`]) whose ends `a` (point 6) and `b` are loose.
     fn loose_tip(run: &[(f64, f64)]) -> (Vec<Point>, Vec<[usize; 2]>, usize) {
-        let mut pts: Vec<Point> = (0..7)
-            .map(|k| Point::new(k as f64 - 6.0, k as f64 - 6.0))
-            .collect();
-        pts.extend(run.iter().map(|&(x, y)| Point::new(x, y)));
-        let b = pts.len();
-        pts.extend((0..7).map(|k| Point::new(2.0 + k as f64, -(k as f64))));
-        let mut edges: Vec<[usize; 2]> = (0..6).map(|i| [i, i + 1]).collect();
-        edges.extend((b..b + 6).map(|i| [i, i + 1]));
-        (pts, edges, b)
+        between_arms(7, run)
     }
 
     #[test]

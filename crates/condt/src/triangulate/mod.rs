@@ -814,10 +814,9 @@ impl Triangulation {
             let p = self.vertex_point(v);
             p.x.abs().max(p.y.abs())
         };
-        let vertices = (0..self.points.len() as u32).map(VertexId::new);
-        let largest = vertices.clone().map(magnitude).fold(0.0, f64::max);
-        vertices
-            .filter(|&v| self.is_vertex(v) && magnitude(v) == largest)
+        let largest = self.vertices().map(magnitude).fold(0.0, f64::max);
+        self.vertices()
+            .filter(|&v| magnitude(v) == largest)
             .map(|v| self.input_of(v))
             .min()
             .unwrap_or(0)
