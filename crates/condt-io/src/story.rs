@@ -114,7 +114,10 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::Spur => write!(f, "short spur")?,
             Reason::Clump => write!(f, "a clump: at most half its points pass smoothly")?,
             Reason::GapClosed => write!(f, "gap closed")?,
-            Reason::Junction => write!(f, "joined where three or four curves meet (a junction)")?,
+            Reason::Junction if change.added => {
+                write!(f, "joined where three or four curves meet (a junction)")?
+            }
+            Reason::Junction => write!(f, "a chord past a junction's sample")?,
             Reason::Crossing { vertex } => write!(f, "restored the crossing at {vertex}")?,
             Reason::Tip if change.added => write!(f, "joined at a tip in place of a chord")?,
             Reason::Tip => write!(f, "a chord across a tip")?,

@@ -74,7 +74,7 @@ pub enum Reason {
     GapClosed,
     /// A loose end joined to the curve it meets at a junction of three curves (or four, where two
     /// ends meet one point), directly or through its last sample, which the repair left without
-    /// edges.
+    /// edges; or, removed, a chord that ran past a loose end at a junction, which took its place.
     Junction,
     /// A crossing restored at `vertex`: an arm added there, or the chord between two of its
     /// arms removed.

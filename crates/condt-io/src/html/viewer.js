@@ -245,7 +245,9 @@
       () => "gap closed",
       () => "a given-back component not clearly apart",
       () => "chosen by the baseline",
-      () => "joined where three or four curves meet (a junction)",
+      () => (c.added
+        ? "joined where three or four curves meet (a junction)"
+        : "a chord past a junction's sample"),
       () => "a clump: at most half its points pass smoothly",
       () => "repaired again without the edges above √T",
       () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,

@@ -43,7 +43,7 @@ struct Crossing {
 impl Ends<'_> {
     /// Whether the passage at `c` (degree two) is straighter through `x` than along `d`, its
     /// neighbour that `x` replaces.
-    fn straighter(&self, c: VertexId, d: VertexId, x: VertexId) -> bool {
+    pub(super) fn straighter(&self, c: VertexId, d: VertexId, x: VertexId) -> bool {
         let other = self.graph.onward(c, d);
         self.cos_of(c, other, x) < self.cos_of(c, other, d)
     }
@@ -89,7 +89,7 @@ impl Ends<'_> {
                     && straight(to_other, arm(d))
                     && self.graph.degree(d) == 2
                     && mesh.neighbors(x).any(|w| w == d)
-                    && self.even([a, b, c, d].map(|w| px.dist2(self.point(w))))
+                    && even(&[a, b, c, d].map(|w| px.dist2(self.point(w))))
                     && self.straighter(c, d, x)
                     && self.straighter(d, c, x)
                     && self.branch(d, c, &[])
@@ -109,12 +109,13 @@ impl Ends<'_> {
         found
     }
 
-    /// Whether squared arm lengths are one sampling (within [`GAP_RATIO`] of each other).
-    fn even(&self, arms2: [f64; 4]) -> bool {
-        let longest = arms2.iter().copied().fold(0.0, f64::max);
-        let shortest = arms2.iter().copied().fold(f64::INFINITY, f64::min);
-        longest <= GAP_RATIO * GAP_RATIO * shortest
-    }
+}
+
+/// Whether squared lengths are one sampling (the longest within [`GAP_RATIO`] of the shortest).
+pub(super) fn even(lengths2: &[f64]) -> bool {
+    let longest = lengths2.iter().copied().fold(0.0, f64::max);
+    let shortest = lengths2.iter().copied().fold(f64::INFINITY, f64::min);
+    longest <= GAP_RATIO * GAP_RATIO * shortest
 }
 
 /// Restores crossings in `edges` (each edge once, any order): the input edges in order without

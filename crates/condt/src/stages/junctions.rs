@@ -1,8 +1,9 @@
 //! Junctions: where three curves meet (not in the paper; on by default, off in `Params::paper`).
 //!
-//! Owns: adding edges at a loose end that meets a curve at a junction. It reads positions, the
-//! graph and the Delaunay rings; it may not touch the triangulation, never removes an edge, and
-//! does not decide when it runs ([`Params::stages`](crate::Params::stages): after gap closing,
+//! Owns: adding edges at a loose end that meets a curve at a junction, and giving a loose end at a
+//! junction the place of the chord that runs past it. It reads positions, the graph and the
+//! Delaunay rings; it may not touch the triangulation, removes no edge but such a chord, and does
+//! not decide when it runs ([`Params::stages`](crate::Params::stages): after gap closing,
 //! before the crossings).
 //!
 //! Why: at a junction of three curves (map borders, a T) the repair keeps two of the sample's three
@@ -18,11 +19,15 @@
 //! sample that lies as near the junction's neighbours as the junction. Of a direct join and such
 //! a walk, the end takes the straighter. A point two ends choose takes both (a junction of four),
 //! a point three or more choose takes none, and a stranded sample two walks pass goes to
-//! neither. All choices are made on the graph as it came in: the result depends neither on the
+//! neither. An end that joins nothing may instead be the junction's own sample, cut short by a
+//! chord `c d` between two of its Delaunay neighbours whose curves both run straight on into it
+//! ([`Ends::chord_past`]): `c d` gives way to the end's edges to `c` and `d`, unless `c` or `d`
+//! takes part in another choice. All choices are made on the graph as it came in: the result depends neither on the
 //! order of the ends nor on `parallel`.
 
 use super::gaps::{cos_at, crowded, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
+use super::crossings::even;
 use super::{uses, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -101,6 +106,53 @@ impl Ends<'_> {
         }
     }
 
+    /// The chord that runs past the loose end `a` where it is a junction's sample, if exactly one
+    /// does: an edge `c d` of two Delaunay neighbours of `a` of degree two whose curves each run
+    /// straight on into `a` ([`STRAIGHT`]) and straighter through `a` than along the chord, every
+    /// edge there within [`GAP_RATIO`] of the others, each of the three curves a branch. Evenly
+    /// spaced borders meeting at a narrow angle put the branches' first samples nearer each other
+    /// than the junction's sample: Algorithm 1 pairs them and the repair leaves the junction's
+    /// sample a loose end. The end's curve must run on smoothly, as for a walk.
+    fn chord_past(&self, a: VertexId) -> Option<ChordPast> {
+        if self.sharpest_passage(a) >= SMOOTH_COS {
+            return None;
+        }
+        let along = self.along(a);
+        let mut found: Option<ChordPast> = None;
+        for c in self.tri.mesh().neighbors(a) {
+            if c == along || self.graph.degree(c) != 2 {
+                continue;
+            }
+            for d in self.graph.first_two(c) {
+                // Each chord is met from both its ends: tested from the smaller.
+                if d <= c || d == a || d == along || self.graph.degree(d) != 2 {
+                    continue;
+                }
+                let (c_on, d_on) = (self.graph.onward(c, d), self.graph.onward(d, c));
+                let sampling = [(a, along), (a, c), (a, d), (c, c_on), (d, d_on)]
+                    .map(|(u, w)| self.point(u).dist2(self.point(w)));
+                let passes = self.cos_of(c, c_on, a) < STRAIGHT
+                    && self.cos_of(d, d_on, a) < STRAIGHT
+                    && self.straighter(c, d, a)
+                    && self.straighter(d, c, a)
+                    && even(&sampling)
+                    && self.tri.mesh().neighbors(a).any(|w| w == d)
+                    && self.branch(c, c_on, &[a, d])
+                    && self.branch(d, d_on, &[a, c])
+                    && self.branch(a, along, &[c, d]);
+                if !passes {
+                    continue;
+                }
+                if found.is_some() {
+                    // Two chords pass: which the junction cut short would be a guess.
+                    return None;
+                }
+                found = Some(ChordPast { end: a, c, d });
+            }
+        }
+        found
+    }
+
     /// The junction a straight walk from the loose end `a` through samples without edges
     /// ([`Ends::straight_walk`]) reaches, with the cosine of the end's turn toward the walk: the
     /// repair can leave the branch's last sample without edges where it lies as near the
@@ -166,7 +218,24 @@ impl Junction {
     }
 }
 
-/// Joins loose ends in `edges` (each once, any order) to the junctions they meet.
+/// A chord past a loose end's junction: `end` takes the place of the edge `c d` (`c < d`).
+#[derive(Copy, Clone, Debug)]
+struct ChordPast {
+    end: VertexId,
+    c: VertexId,
+    d: VertexId,
+}
+
+/// What a loose end chooses: a join to the junction it meets, or else a chord it takes over.
+#[derive(Copy, Clone, Debug)]
+enum Choice {
+    Join(Junction),
+    Chord(ChordPast),
+}
+
+/// Joins loose ends in `edges` (each once, any order) to the junctions they meet, and replaces the
+/// chords that run past a loose end at a junction: the input edges in order without those chords,
+/// then the joins' edges and each chord's two new edges, by increasing end.
 pub(crate) fn join_junctions(
     tri: &Triangulation,
     edges: &[Edge],
@@ -174,19 +243,54 @@ pub(crate) fn join_junctions(
     parallel: bool,
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
-    let mut choices: Vec<Junction> = ends.each_loose(parallel, |a| ends.junction_of(a));
+    let found: Vec<Choice> = ends.each_loose(parallel, |a| {
+        match ends.junction_of(a) {
+            Some(junction) => Some(Choice::Join(junction)),
+            None => ends.chord_past(a).map(Choice::Chord),
+        }
+    });
+    if found.is_empty() {
+        return Outcome::unchanged_with(ends.into_graph());
+    }
+    let mut choices: Vec<Junction> = Vec::with_capacity(found.len());
+    let mut chords: Vec<ChordPast> = Vec::new();
+    for choice in found {
+        match choice {
+            Choice::Join(junction) => choices.push(junction),
+            Choice::Chord(chord) => chords.push(chord),
+        }
+    }
     // Two loose ends at one point make a junction of four (each end chooses once, and a point of
     // degree two is no loose end); three or more, none. A sample without edges two walks pass
     // goes to neither.
-    let uses = uses(tri.num_points(), &choices, |choice| {
+    let points = |choice: &Junction| {
         let Junction { walk, at, .. } = *choice;
         (0..=walk.len()).map(move |k| walk.get(k).copied().unwrap_or(at))
+    };
+    let uses_of_joins = uses(tri.num_points(), &choices, points);
+    // A chord's ends take part in nothing else: no other chord, no join at them.
+    let uses_of_chords = uses(tri.num_points(), &chords, |k| [k.c, k.d]);
+    chords.retain(|k| {
+        [k.c, k.d]
+            .iter()
+            .all(|v| uses_of_chords[v.index()] == 1 && uses_of_joins[v.index()] == 0)
     });
     choices.retain(|choice| {
-        uses[choice.at.index()] <= 2 && choice.walk.iter().all(|v| uses[v.index()] == 1)
+        uses_of_joins[choice.at.index()] <= 2
+            && choice.walk.iter().all(|v| uses_of_joins[v.index()] == 1)
     });
-    let joins: Vec<Edge> = choices.iter().flat_map(Junction::edges).collect();
-    ends.joined(edges, &joins)
+    if chords.is_empty() {
+        let joins: Vec<Edge> = choices.iter().flat_map(Junction::edges).collect();
+        return ends.joined(edges, &joins);
+    }
+    let mut added: Vec<Edge> = choices.iter().flat_map(Junction::edges).collect();
+    added.extend(
+        chords
+            .iter()
+            .flat_map(|k| [ordered(k.end, k.c), ordered(k.end, k.d)]),
+    );
+    let removed = chords.iter().map(|k| ordered(k.c, k.d)).collect();
+    Outcome::replacing(edges, ends.into_graph(), removed, added)
 }
 
 #[cfg(test)]
@@ -337,5 +441,65 @@ mod tests {
             joins_along(&line, &[stranded, branch]),
             vec![[10, 21], [21, 22]]
         );
+    }
+
+    /// Three curves of `arm` samples leaving point 0 at 180°, 235.7° and 129° (a narrow
+    /// junction as evenly spaced borders meet), the first two sampled `1.0` apart, the third
+    /// `third` apart; point 0 keeps an edge to the third curve only, and the first samples of the
+    /// other two are paired (points 1 and `1 + arm`): their distance, 0.93, is under the
+    /// junction's spacing. `bend` turns the first curve by that many degrees at its first sample.
+    /// Returns the stage's removed and added edges in input positions.
+    fn narrow_junction(arm: usize, third: f64, bend: f64) -> [Vec<[usize; 2]>; 2] {
+        let mut pts = alloc::vec![Point::new(0.0, 0.0)];
+        let mut edges = alloc::vec![[0, 1 + 2 * arm], [1, 1 + arm]];
+        for (k, (angle, spacing)) in [(180.0, 1.0), (235.7, 1.0), (129.0, third)]
+            .into_iter()
+            .enumerate()
+        {
+            let first = pts.len();
+            let direction = |degrees: f64| {
+                let t = f64::to_radians(degrees);
+                (libm::cos(t), libm::sin(t))
+            };
+            let (dx, dy) = direction(angle);
+            let start = Point::new(dx * spacing, dy * spacing);
+            let (bx, by) = direction(if k == 0 { angle + bend } else { angle });
+            pts.extend((0..arm).map(|j| {
+                let j = j as f64 * spacing;
+                Point::new(start.x + bx * j, start.y + by * j)
+            }));
+            edges.extend((first..first + arm - 1).map(|i| [i, i + 1]));
+        }
+        let tri = triangulate(&pts).unwrap();
+        let listed: Vec<Edge> = edges
+            .iter()
+            .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
+            .collect();
+        let out = join_junctions(&tri, &listed, None, false)
+            .edges
+            .unwrap_or_else(|| listed.clone());
+        let positions = |list: Vec<Edge>| {
+            crate::Graph::new(&tri, alloc::borrow::Cow::Owned(list)).edges()
+        };
+        let removed = listed.iter().filter(|e| !out.contains(e)).copied().collect();
+        let added = out.iter().filter(|e| !listed.contains(e)).copied().collect();
+        [positions(removed), positions(added)]
+    }
+
+    #[test]
+    fn a_chord_past_a_junction_sample_gives_way_to_it() {
+        let changed = narrow_junction(8, 1.0, 0.0);
+        assert_eq!(changed, [vec![[1, 9]], vec![[0, 1], [0, 9]]]);
+    }
+
+    #[test]
+    fn a_chord_stays_where_a_curve_does_not_run_into_the_loose_end() {
+        let nothing: [Vec<[usize; 2]>; 2] = [Vec::new(), Vec::new()];
+        // The first curve turns 40° at its first sample: it no longer heads for point 0.
+        assert_eq!(narrow_junction(8, 1.0, 40.0), nothing);
+        // A third curve sampled three times as sparsely: no one sampling at the junction.
+        assert_eq!(narrow_junction(8, 3.0, 0.0), nothing);
+        // Curves of four samples: no branches.
+        assert_eq!(narrow_junction(4, 1.0, 0.0), nothing);
     }
 }

@@ -219,7 +219,8 @@ and meet, and a crossing's dropped arms",
             flag: "junctions",
             help: "(default on; off with --paper) after gap closing, join a loose
 end to the curve it meets where three (or four) curves meet (map
-borders, a T): branches of at least 5 points each, evenly sampled",
+borders, a T), or put it in place of the edge that runs past it
+there: branches of at least 5 points each, evenly sampled",
         }),
     },
     Row {
