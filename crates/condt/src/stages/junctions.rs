@@ -68,14 +68,22 @@ impl Ends<'_> {
         self.branch(a, self.along(a), &[c, x, y]) && self.junction_at(a, c, a)
     }
 
-    /// The junction the loose end `a` chooses, if any: the straightest ahead of the direct joins
-    /// that pass and the join through a stranded sample, if any (a tie to the direct one).
-    fn junction_of(&self, a: VertexId) -> Option<Junction> {
-        // Every junction needs the end's own branch: without it (most ends on scattered points)
-        // the ring is skipped (speed).
+    /// What the loose end `a` chooses, if anything: its junction, or else the chord past it.
+    fn choice_of(&self, a: VertexId) -> Option<Choice> {
+        // Both need the end's own branch: without it (most ends on scattered points) the rings
+        // are skipped (speed).
         if !self.branch(a, self.along(a), &[]) {
             return None;
         }
+        match self.junction_of(a) {
+            Some(junction) => Some(Choice::Join(junction)),
+            None => self.chord_past(a).map(Choice::Chord),
+        }
+    }
+
+    /// The junction the loose end `a` chooses, if any: the straightest ahead of the direct joins
+    /// that pass and the join through a stranded sample, if any (a tie to the direct one).
+    fn junction_of(&self, a: VertexId) -> Option<Junction> {
         let direct = self
             .tri
             .mesh()
@@ -243,12 +251,7 @@ pub(crate) fn join_junctions(
     parallel: bool,
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
-    let found: Vec<Choice> = ends.each_loose(parallel, |a| {
-        match ends.junction_of(a) {
-            Some(junction) => Some(Choice::Join(junction)),
-            None => ends.chord_past(a).map(Choice::Chord),
-        }
-    });
+    let found: Vec<Choice> = ends.each_loose(parallel, |a| ends.choice_of(a));
     if found.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
