@@ -108,7 +108,6 @@ impl Ends<'_> {
         }
         found
     }
-
 }
 
 /// Whether squared lengths are one sampling (the longest within [`GAP_RATIO`] of the shortest).

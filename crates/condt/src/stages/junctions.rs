@@ -25,9 +25,9 @@
 //! takes part in another choice. All choices are made on the graph as it came in: the result depends neither on the
 //! order of the ends nor on `parallel`.
 
+use super::crossings::even;
 use super::gaps::{cos_at, crowded, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
-use super::crossings::even;
 use super::{uses, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -330,7 +330,18 @@ mod tests {
             pts.extend_from_slice(arm);
             edges.extend((first..first + arm.len().saturating_sub(1)).map(|i| [i, i + 1]));
         }
-        let tri = triangulate(&pts).unwrap();
+        let [removed, added] = changes(&pts, &edges);
+        assert_eq!(
+            removed,
+            Vec::<[usize; 2]>::new(),
+            "no chord passes these ends"
+        );
+        added
+    }
+
+    /// The edges the stage removes from `edges` over `pts` and those it adds, in input positions.
+    fn changes(pts: &[Point], edges: &[[usize; 2]]) -> [Vec<[usize; 2]>; 2] {
+        let tri = triangulate(pts).unwrap();
         let listed: Vec<Edge> = edges
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
@@ -338,8 +349,19 @@ mod tests {
         let out = join_junctions(&tri, &listed, None, false)
             .edges
             .unwrap_or_else(|| listed.clone());
-        assert_eq!(&out[..listed.len()], &listed[..], "never removes an edge");
-        crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&out[listed.len()..])).edges()
+        let positions =
+            |list: Vec<Edge>| crate::Graph::new(&tri, alloc::borrow::Cow::Owned(list)).edges();
+        let removed = listed
+            .iter()
+            .filter(|e| !out.contains(e))
+            .copied()
+            .collect();
+        let added = out
+            .iter()
+            .filter(|e| !listed.contains(e))
+            .copied()
+            .collect();
+        [positions(removed), positions(added)]
     }
 
     #[test]
@@ -473,20 +495,7 @@ mod tests {
             }));
             edges.extend((first..first + arm - 1).map(|i| [i, i + 1]));
         }
-        let tri = triangulate(&pts).unwrap();
-        let listed: Vec<Edge> = edges
-            .iter()
-            .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
-            .collect();
-        let out = join_junctions(&tri, &listed, None, false)
-            .edges
-            .unwrap_or_else(|| listed.clone());
-        let positions = |list: Vec<Edge>| {
-            crate::Graph::new(&tri, alloc::borrow::Cow::Owned(list)).edges()
-        };
-        let removed = listed.iter().filter(|e| !out.contains(e)).copied().collect();
-        let added = out.iter().filter(|e| !listed.contains(e)).copied().collect();
-        [positions(removed), positions(added)]
+        changes(&pts, &edges)
     }
 
     #[test]
