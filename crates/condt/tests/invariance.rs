@@ -6,7 +6,8 @@
 //! default pipeline and the paper's, and on evenly spaced junctions, where lengths tie exactly,
 //! with the default only: the paper's Algorithm 2 breaks an exact tie between a vertex's edges
 //! by the order of the points (a T junction keeps a different pair when turned), and the
-//! `Paper` preset stays as it is.
+//! `Paper` preset stays as it is. A narrow junction, where a chord runs past the junction's
+//! sample, likewise.
 
 mod common;
 
@@ -36,6 +37,19 @@ fn evenly_spaced_junctions() -> Vec<Point> {
         let (s, c) = angle.sin_cos();
         points
             .extend((1..=10).map(|k| Point::new(centre.x + k as f64 * c, centre.y + k as f64 * s)));
+    }
+    points
+}
+
+/// A narrow junction of three evenly spaced curves of eight samples leaving point 0 at 180°,
+/// 235.7° and 129°: the first two curves' first samples lie nearer each other (0.93) than the
+/// junction (1), so Algorithm 1 pairs them and the junctions step puts point 0 in place of that
+/// chord.
+fn narrow_junction() -> Vec<Point> {
+    let mut points = vec![Point::new(0.0, 0.0)];
+    for degrees in [180.0_f64, 235.7, 129.0] {
+        let (s, c) = degrees.to_radians().sin_cos();
+        points.extend((1..=8).map(|k| Point::new(k as f64 * c, k as f64 * s)));
     }
     points
 }
@@ -140,6 +154,7 @@ fn categories() -> Vec<(&'static str, Vec<Point>)> {
             with(&[ellipse(0.0, 0.0, 5.0, 2.0)], 0.3, 0.0, 0.01),
         ),
         ("evenly spaced junctions", evenly_spaced_junctions()),
+        ("narrow junction", narrow_junction()),
         ("outlier tail", arc_with_an_outlier_tail()),
     ]
 }
@@ -163,7 +178,12 @@ fn permuting_scaling_turning_and_mirroring_keep_the_edges() {
                 "{name}: the tail is cut"
             );
         }
-        let presets = if name == "evenly spaced junctions" {
+        if name == "narrow junction" {
+            let kept = edges(&points, &Params::default());
+            let at_junction = kept.iter().filter(|e| e.contains(&0)).count();
+            assert_eq!(at_junction, 3, "{name}: the junction keeps its three edges");
+        }
+        let presets = if name.ends_with("junctions") || name == "narrow junction" {
             vec![Params::default()]
         } else {
             vec![Params::default(), Params::paper()]
