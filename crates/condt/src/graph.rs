@@ -341,7 +341,8 @@ impl<'t> Graph<'t> {
         self.step(Step::CloseGaps).0
     }
 
-    /// Joins loose ends at junctions ([`Params::junctions`](crate::Params::junctions)); only adds.
+    /// Joins loose ends at junctions ([`Params::junctions`](crate::Params::junctions)); removes
+    /// only a chord that ran past a loose end at a junction, which takes its place.
     ///
     /// ```
     /// use condt::{triangulate, Point};

@@ -22,8 +22,8 @@
 //! neither. An end that joins nothing may instead be the junction's own sample, cut short by a
 //! chord `c d` between two of its Delaunay neighbours whose curves both run straight on into it
 //! ([`Ends::chord_past`]): `c d` gives way to the end's edges to `c` and `d`, unless `c` or `d`
-//! takes part in another choice. All choices are made on the graph as it came in: the result depends neither on the
-//! order of the ends nor on `parallel`.
+//! takes part in another choice. All choices are made on the graph as it came in: the result
+//! depends neither on the order of the ends nor on `parallel`.
 
 use super::crossings::even;
 use super::gaps::{cos_at, crowded, Ends, Walk, GAP_RATIO, STRAIGHT};
@@ -243,7 +243,7 @@ enum Choice {
 
 /// Joins loose ends in `edges` (each once, any order) to the junctions they meet, and replaces the
 /// chords that run past a loose end at a junction: the input edges in order without those chords,
-/// then the joins' edges and each chord's two new edges, by increasing end.
+/// then the joins' edges by increasing end, then each chord's two new edges by increasing end.
 pub(crate) fn join_junctions(
     tri: &Triangulation,
     edges: &[Edge],
