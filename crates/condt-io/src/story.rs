@@ -270,4 +270,33 @@ mod tests {
             assert!(text.contains("crossings: ") && text.contains("restored the crossing at 0"));
         }
     }
+
+    /// A narrow junction of three evenly spaced curves leaving point 0 (as in `condt`'s
+    /// invariance test), without the smoothing passes (the stories tell the last run): the chord
+    /// between the first two curves' first samples (1 and 9) gives way to point 0's edges to
+    /// them, and the stories say which is which.
+    #[test]
+    fn a_chord_past_a_junction_and_its_replacement_are_told_apart() {
+        let mut points = vec![Point::new(0.0, 0.0)];
+        for degrees in [180.0_f64, 235.7, 129.0] {
+            let (s, c) = degrees.to_radians().sin_cos();
+            points.extend((1..=8).map(|k| Point::new(k as f64 * c, k as f64 * s)));
+        }
+        let stories = reconstruct(&points, &Params::default().with_smooth(false))
+            .unwrap()
+            .provenance();
+        let text = |edge: [usize; 2]| story_text(stories.iter().find(|s| s.edge == edge).unwrap());
+        let chord = text([1, 9]);
+        assert!(
+            chord.contains("junctions: removed a chord past a junction's sample"),
+            "{chord}"
+        );
+        for edge in [[0, 1], [0, 9]] {
+            let joined = text(edge);
+            assert!(
+                joined.contains("junctions: added joined where three or four curves meet"),
+                "{joined}"
+            );
+        }
+    }
 }

@@ -183,7 +183,7 @@ fn permuting_scaling_turning_and_mirroring_keep_the_edges() {
             let at_junction = kept.iter().filter(|e| e.contains(&0)).count();
             assert_eq!(at_junction, 3, "{name}: the junction keeps its three edges");
         }
-        let presets = if name.ends_with("junctions") || name == "narrow junction" {
+        let presets = if name.contains("junction") {
             vec![Params::default()]
         } else {
             vec![Params::default(), Params::paper()]

@@ -271,7 +271,8 @@ pub(crate) fn join_junctions(
         (0..=walk.len()).map(move |k| walk.get(k).copied().unwrap_or(at))
     };
     let uses_of_joins = uses(tri.num_points(), &choices, points);
-    // A chord's ends take part in nothing else: no other chord, no join at them.
+    // A chord's ends take part in nothing else: no other chord, no join chose them (counted before
+    // the joins settle, so even a join dropped below keeps the chord out).
     let uses_of_chords = uses(tri.num_points(), &chords, |k| [k.c, k.d]);
     chords.retain(|k| {
         [k.c, k.d]
