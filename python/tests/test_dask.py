@@ -422,6 +422,28 @@ def test_a_curves_last_edge_is_given_back_on_the_driver(client):
     assert all(edge in expected.tolist() for edge in last)
 
 
+def test_a_last_edge_that_grows_as_its_curve_does_is_given_back_on_the_driver_too(client):
+    # Clean ellipses, and beside them 30 sparse open arcs whose spacing grows toward the end
+    # (a density change): the last two steps 1.7 times the one before each, so the last edge is
+    # over 1.5 times the edge before it but grows as that edge did.
+    rng = np.random.default_rng(9)
+    dense = curves(20_000, rng, outliers=0.0, noisy_every=10**6)
+    steps = np.concatenate([[0.0], np.full(8, 0.5), [0.85, 1.445]])
+    t = np.cumsum(steps) / 3.0
+    arcs = [
+        np.column_stack([105.0 + 10 * (k % 3) + 3 * np.cos(t), 5.0 + 10 * (k // 3) + 3 * np.sin(t)])
+        for k in range(30)
+    ]
+    points = np.concatenate([dense] + arcs)
+    tiled = condt.dask.reconstruct(points, client, tiles=9)
+    assert tiled.whole is None
+    expected = one_machine(points)
+    np.testing.assert_array_equal(tiled.edges, expected)
+    first, size = len(dense), len(t)
+    last = [[first + size * k + size - 2, first + size * k + size - 1] for k in range(30)]
+    assert all(edge in expected.tolist() for edge in last)
+
+
 def test_a_failure_on_a_worker_that_is_no_exception_reaches_the_driver_as_one(client):
     # A Rust panic reaches Python as a BaseException, which Dask does not report (the call
     # waited forever): the worker's calls raise it as a RuntimeError.

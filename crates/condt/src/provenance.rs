@@ -52,7 +52,8 @@ pub enum Reason {
     /// Local outlier rule 1: an edge the IQR stage cut between two smooth, regular passages.
     GivenBack,
     /// Local outlier rule 1 at a curve's last edge: an edge the IQR stage cut from a curve's end,
-    /// within 1.5 times the edge before it, with a curve of five points behind it.
+    /// within 1.5 times the edge before it (or, where the spacing grows toward the end, growing at
+    /// most 1.5 times as much as that edge grew), with a curve of five points behind it.
     LastEdge,
     /// Local outlier rule 2: too long at `vertex`, `ratio` times the longest other edge there.
     LongAt {

@@ -718,7 +718,8 @@ pub fn local_rules<'t>(
 /// Rule 1 of the local outlier removal at curves' last edges, for a tile of a split run: the
 /// candidates a tile finds with the IQR stage's input `before_outliers` and output `graph` (each
 /// a cut edge whose end had it alone, continuing a passage at its other end within 1.5 times
-/// that end's other edge: one ring), as pairs of input positions, smaller first. The
+/// that end's other edge, or growing at most 1.5 times as much as that edge grew on the edge
+/// before it: two hops along the curve), as pairs of input positions, smaller first. The
 /// driver gives back those [`give_back_gathered_last_edges`] keeps, after rules 1 to 3.
 ///
 /// # Panics

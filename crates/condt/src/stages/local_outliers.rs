@@ -11,7 +11,8 @@
 //! 1. **Give back** an edge the IQR stage cut along a smooth, regular passage ([`passage`]), which
 //!    an outlier (one edge, or two at a sharp angle or of unequal lengths) does not form; and,
 //!    once rules 2 and 3 have run, a curve's last edge, within [`FLOOR_RATIO`] of the edge before
-//!    it, where a curve stands behind it ([`last_edges`]), which a chain of outliers does not.
+//!    it (or of that edge's own growth, where the spacing grows toward the end), where a curve
+//!    stands behind it ([`last_edges`]), which a chain of outliers does not.
 //! 2. **Drop long edges** ([`LONG`]) at a point of degree >= 3 (an off-curve point that chose it,
 //!    kept by Algorithm 2's union) or at each end with others (an outlier at an open curve's end).
 //! 3. **Drop short spurs** ([`short_spurs`]): outliers hanging off a curve, unseen by rule 4.
@@ -271,7 +272,8 @@ fn length2(tri: &Triangulation, [a, b]: Edge) -> f64 {
 
 /// Rule 1: the edges of `before` missing from `now` whose two ends pass [`passage`]; and the
 /// candidates for [`last_edges`]: those whose one end had that edge alone and has none now, while
-/// the other passes [`passage`] with the cut edge at most [`FLOOR_RATIO`] times its other edge.
+/// the other passes [`passage`] with the cut edge at most [`FLOOR_RATIO`] times its other edge, or
+/// growing from it at most [`FLOOR_RATIO`] times as much as that edge grew from the one before.
 fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> (Vec<Edge>, Vec<Edge>) {
     let n = tri.num_points();
     let (now, was) = (CurveGraph::new(n, now), CurveGraph::new(n, before));
@@ -293,8 +295,19 @@ fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> (Vec<Edge>,
     let last = |x: VertexId, y: VertexId| {
         let p = tri.vertex_point(x);
         let near = || {
-            let behind = tri.vertex_point(was.onward(x, y));
-            p.dist2(tri.vertex_point(y)) <= FLOOR_RATIO * FLOOR_RATIO * p.dist2(behind)
+            let z = was.onward(x, y);
+            let behind = tri.vertex_point(z);
+            let (last2, before2) = (p.dist2(tri.vertex_point(y)), p.dist2(behind));
+            if last2 <= FLOOR_RATIO * FLOOR_RATIO * before2 {
+                return true;
+            }
+            // A curve whose spacing grows toward its end (a density change) shows it in the edges
+            // behind: the last edge may grow as the edge before it grew, up to FLOOR_RATIO more.
+            if was.degree(z) != 2 {
+                return false;
+            }
+            let further2 = behind.dist2(tri.vertex_point(was.onward(z, x)));
+            last2 * further2 <= FLOOR_RATIO * FLOOR_RATIO * before2 * before2
         };
         was.degree(y) == 1 && now.degree(y) == 0 && passage(tri, &now, &was, x, y) && near()
     };
@@ -1199,20 +1212,28 @@ mod tests {
     /// point 1.2 beyond, cut the same way. The edges the stage gives back, with rule 1 alone
     /// (`last_edges` on) or the whole stage, in input positions.
     fn last_edge_back(gap: f64, rules: Rules) -> Vec<[usize; 2]> {
+        let mut along: Vec<f64> = (0..20).map(|k| k as f64).collect();
+        along.push(19.0 + gap);
+        last_edge_back_along(&along, rules)
+    }
+
+    /// [`last_edge_back`] with the arc's samples at `along` (their `x`), the last one the cut end.
+    fn last_edge_back_along(along: &[f64], rules: Rules) -> Vec<[usize; 2]> {
         let arc = |x: f64| Point::new(x, 0.005 * x * x);
-        let mut pts: Vec<Point> = (0..20).map(|k| arc(k as f64)).collect();
-        pts.push(arc(19.0 + gap));
+        let mut pts: Vec<Point> = along.iter().map(|&x| arc(x)).collect();
+        let (end, far) = (pts.len() - 1, pts.len());
         pts.extend((0..3).map(|k| Point::new(k as f64, 50.0)));
         pts.push(Point::new(3.2, 50.0));
         let tri = triangulate(&pts).unwrap();
-        let mut pairs: Vec<[usize; 2]> = (0..20).map(|k| [k, k + 1]).collect();
-        pairs.extend([[21, 22], [22, 23], [23, 24]]);
+        let mut pairs: Vec<[usize; 2]> = (0..end).map(|k| [k, k + 1]).collect();
+        pairs.extend([[far, far + 1], [far + 1, far + 2], [far + 2, far + 3]]);
         let before = vertex_edges(&tri, &pairs);
-        pairs.retain(|e| *e != [19, 20] && *e != [23, 24]);
+        let (last, outlier) = ([end - 1, end], [far + 2, far + 3]);
+        pairs.retain(|e| *e != last && *e != outlier);
         let cut = vertex_edges(&tri, &pairs);
         let out = remove_local_outliers(&tri, &cut, Cow::Borrowed(&before), &rules, false);
         let kept = crate::Graph::new(&tri, Cow::Owned(out.edges.unwrap_or(cut))).edges();
-        [[19, 20], [23, 24]]
+        [last, outlier]
             .into_iter()
             .filter(|e| kept.contains(e))
             .collect()
@@ -1235,6 +1256,26 @@ mod tests {
             ..rule_1
         };
         assert_eq!(last_edge_back(1.4, passages_only), Vec::<[usize; 2]>::new());
+    }
+
+    #[test]
+    fn a_last_edge_may_grow_as_the_edge_before_it_grew() {
+        let rule_1 = Rules {
+            give_back: true,
+            last_edges: true,
+            ..NONE
+        };
+        // Sixteen samples one apart, then steps of 1.7 and 2.89: a density change.
+        let growing = |last: f64| {
+            let mut along: Vec<f64> = (0..16).map(|k| k as f64).collect();
+            along.extend([16.7, 19.59, 19.59 + last]);
+            last_edge_back_along(&along, rule_1)
+        };
+        // 1.7 and 2.2 times the edge before it (over the floor's 1.5), which grew 1.7 times:
+        // back. 2.6 times is more than 1.5 times that growth: cut.
+        assert_eq!(growing(1.7 * 2.89), vec![[17, 18]]);
+        assert_eq!(growing(2.2 * 2.89), vec![[17, 18]]);
+        assert_eq!(growing(2.6 * 2.89), Vec::<[usize; 2]>::new());
     }
 
     /// The square-root-free answer is the root's, near the bound (a few units in the last place
