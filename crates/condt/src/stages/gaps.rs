@@ -27,7 +27,8 @@
 //! on straight into `c`, the first sample of the tip's other side); (3) a crossing `c` of degree
 //! two where `a` lines up (above [`STRAIGHT`]) with one of `c`'s neighbours while `c`'s passage is
 //! bent (the repair paired an arm of each curve), or with a loose end facing `c` across `c`'s
-//! passage (the repair kept one curve whole).
+//! passage (the repair kept one curve whole); never a `c` on `a`'s own curve within
+//! [`MIN_SAMPLES`] points of it (a loop that short is no sampled crossing).
 //!
 //! (4) Last, for the ends that agreed on none of these: each walks straight on (above
 //! [`STRAIGHT`], each step within [`GAP_RATIO`] of the longer of the two before, up to
@@ -355,6 +356,15 @@ impl<'a> Ends<'a> {
         .map(Partner::End)
     }
 
+    /// Whether `c` lies on the loose end `a`'s own curve within [`MIN_SAMPLES`] points of it. Such
+    /// a point is no crossing `a` was dropped at: a curve that crossed itself there would close a
+    /// loop of fewer than [`MIN_SAMPLES`] samples. A noisy tip bends its own passages that far
+    /// back below [`STRAIGHT`] and may lie as near as the end across the gap.
+    fn close_behind(&self, a: VertexId, c: VertexId) -> bool {
+        let mut behind = self.graph.passages(a, self.along(a)).take(MIN_SAMPLES);
+        self.along(a) == c || behind.any(|[_, here, next]| here == c || next == c)
+    }
+
     /// The nearest candidate of the loose end `a` (ties as the module says).
     pub(crate) fn target(&self, a: VertexId) -> Target {
         let pa = self.point(a);
@@ -394,7 +404,7 @@ impl<'a> Ends<'a> {
                     }
                 }
                 1 if self.ends_meet(a, w) => Target::End(w),
-                2 if facing => match self.crossing_partner(a, w) {
+                2 if facing && !self.close_behind(a, w) => match self.crossing_partner(a, w) {
                     Some(partner) => Target::Through(w, partner),
                     None => continue,
                 },
@@ -769,6 +779,35 @@ mod tests {
             .map(|p| Point::new(1e6 + 1e-5 * p.x, -1e6 + 1e-5 * p.y))
             .collect();
         assert_eq!(joins(&moved, &chain(pts.len(), &[6])), vec![[6, 7]]);
+    }
+
+    /// A gap beside a noisy tip: the loose end `a` (2) turned back through the apex 1, and the
+    /// sample 4, three edges behind `a`, lies nearer `a` than the straight end `b` (0) across the
+    /// gap, its passage bent below [`STRAIGHT`] and lined up with `a` across it (through 5). It is no
+    /// crossing `a` was dropped at (that would be a loop of four samples): `a` still chooses `b`.
+    #[test]
+    fn a_point_on_the_ends_own_curve_is_no_crossing_it_was_dropped_at() {
+        let polar = |from: Point, length: f64, degrees: f64| {
+            let t = degrees.to_radians();
+            Point::new(
+                from.x + length * libm::cos(t),
+                from.y + length * libm::sin(t),
+            )
+        };
+        let (b, a) = (Point::new(-0.2, 0.0), Point::new(1.6, 0.0));
+        let apex = polar(a, 1.0, -38.4);
+        let back = polar(apex, 1.2, 209.6);
+        let near = polar(back, 0.88, 180.8);
+        let mut pts = vec![b, apex, a, back, near];
+        for k in 1..=5 {
+            pts.push(polar(near, 1.2 * k as f64, 212.0));
+        }
+        pts.extend((1..=5).map(|k| Point::new(-0.2 - k as f64, 0.0)));
+        assert!(pts[4].dist2(a) < b.dist2(a), "4 is nearer a than b is");
+        let mut pairs = vec![[2, 1], [1, 3], [3, 4], [4, 5]];
+        pairs.extend((5..9).map(|i| [i, i + 1]));
+        pairs.extend([[0, 10], [10, 11], [11, 12], [12, 13], [13, 14]]);
+        assert_eq!(joins(&pts, &pairs), vec![[0, 2]]);
     }
 
     #[test]
