@@ -15,7 +15,9 @@
 //! the paper's `u`: Algorithm 1's bound for one sampling; a longer gap is a real end).
 //!
 //! Candidates: (1) another loose end `b` facing `a`, or facing `a` while the join runs within 60°
-//! of `a`'s edge ([`TIP`]: a sharp tip's apex left with one side); across a straight join
+//! of `a`'s edge ([`TIP`]: a sharp tip's apex left with one side, unless `a`'s side turns back at
+//! once, under 90° at `a`'s neighbour: a hook, which the hooks step puts back in line); across a
+//! straight join
 //! ([`STRAIGHT`] at both ends, from the end's edge or the chord over its last two edges, which
 //! noise moving the end sample bends less), or a smooth one ([`SMOOTH_COS`] at both ends) that
 //! bends no more than the curve's sharpest passage near either end ([`NEAR_END`]: noise bends both
@@ -268,6 +270,12 @@ impl<'a> Ends<'a> {
             .fold(-1.0, f64::max)
     }
 
+    /// Whether the loose end `a`'s curve turns back at once: its first passage under 90°.
+    fn hooked(&self, a: VertexId) -> bool {
+        let next = self.along(a);
+        self.graph.degree(next) == 2 && self.cos_of(next, a, self.graph.onward(next, a)) > AHEAD
+    }
+
     /// Whether the loose ends `a` and `b` may join (the module's rule (1)).
     fn ends_meet(&self, a: VertexId, b: VertexId) -> bool {
         let (at_a, at_b) = (self.turn(a, b), self.turn(b, a));
@@ -277,8 +285,12 @@ impl<'a> Ends<'a> {
             || (line_a < SMOOTH_COS
                 && line_b < SMOOTH_COS
                 && line_a.max(line_b) <= self.sharpest_passage(a).max(self.sharpest_passage(b)));
-        let (ahead, tip) = (|c: f64| c < AHEAD, |c: f64| c > TIP);
-        let ahead_or_tip = |here: f64, there: f64| ahead(here) && (ahead(there) || tip(there));
+        // A tip's apex whose side turns back at once (under 90°) is a hook, not a tip: the
+        // hooks step puts such an end back in line.
+        let ahead = |c: f64| c < AHEAD;
+        let (tip_a, tip_b) = (at_a > TIP && !self.hooked(a), at_b > TIP && !self.hooked(b));
+        let ahead_or_tip =
+            |here: f64, there: f64, tip_there: bool| ahead(here) && (ahead(there) || tip_there);
         // A tip's join between two curves (branches of MIN_SAMPLES behind both ends) is measured
         // as a straight one is: a sharp tip's apex often lies nearer its neighbour than the
         // spacing, and an outlier pair at a sharp angle has no such branches. The longer measure
@@ -287,9 +299,9 @@ impl<'a> Ends<'a> {
         let short = |two_edges: bool| self.short(a, b, two_edges) && self.short(b, a, two_edges);
         b != self.along(a)
             && a != self.along(b)
-            && (ahead_or_tip(at_a, at_b) || ahead_or_tip(at_b, at_a))
+            && (ahead_or_tip(at_a, at_b, tip_b) || ahead_or_tip(at_b, at_a, tip_a))
             && (short(straight)
-                || (!straight && (tip(at_a) || tip(at_b)) && short(true) && sided(a) && sided(b)))
+                || (!straight && (tip_a || tip_b) && short(true) && sided(a) && sided(b)))
     }
 
     /// Whether `w` is within [`TIP`] of the loose end `a`'s edge at a short gap (a tip's apex).
@@ -808,6 +820,44 @@ mod tests {
         pairs.extend((5..9).map(|i| [i, i + 1]));
         pairs.extend([[0, 10], [10, 11], [11, 12], [12, 13], [13, 14]]);
         assert_eq!(joins(&pts, &pairs), vec![[0, 2]]);
+    }
+
+    /// Noise carried the sample 9 past 8 along a curve (the x of each sample falls from left to
+    /// right in the list), so 9 hangs from 8, which joined 10: a hook. The loose ends 7 and 9 see
+    /// each other as a tip's join would (the join within 60° of 9's edge, 9 the apex), but 9's
+    /// side turns back at once, at 8 (36°): gap closing leaves it to the hooks step.
+    #[test]
+    fn an_end_that_hooks_back_is_no_tips_apex() {
+        let pts: Vec<Point> = [
+            (8.05, -1.12),
+            (6.7, -0.72),
+            (5.18, -0.79),
+            (4.42, -0.78),
+            (2.69, -0.46),
+            (1.68, -0.35),
+            (0.33, -0.36),
+            (0.0, 0.0),
+            (-2.27, -0.41),
+            (-3.03, 0.04),
+            (-4.44, -0.6),
+            (-4.97, -0.05),
+            (-6.72, 0.08),
+            (-8.19, 0.06),
+            (-9.59, -0.13),
+            (-10.37, 0.4),
+            (-11.5, 0.04),
+        ]
+        .iter()
+        .map(|&(x, y)| Point::new(x, y))
+        .collect();
+        let mut pairs: Vec<[usize; 2]> = (0..7).map(|i| [i, i + 1]).collect();
+        pairs.extend([[9, 8], [8, 10]]);
+        pairs.extend((10..16).map(|i| [i, i + 1]));
+        assert_eq!(joins(&pts, &pairs), NONE);
+        // The whole default pipeline puts 9 back between 8 and 10.
+        let chain: Vec<[usize; 2]> = (0..16).map(|i| [i, i + 1]).collect();
+        let result = crate::reconstruct(&pts, &crate::Params::default()).unwrap();
+        assert_eq!(result.edges().collect::<Vec<_>>(), chain);
     }
 
     #[test]
