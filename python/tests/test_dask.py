@@ -401,35 +401,11 @@ def test_a_clump_that_gap_closing_joins_stays_on_the_driver_too(client):
     np.testing.assert_array_equal(tiled.edges, one_machine(points))
 
 
-def test_a_curves_last_edge_is_given_back_on_the_driver(client):
-    # Clean ellipses, and beside them 30 sparse open arcs whose last sample lies 1.4 spacings
-    # beyond the one before: the IQR stage cuts the arcs, rule 1 gives their passages back on
-    # the tiles and, where a curve stands behind, their last edges on the driver.
-    rng = np.random.default_rng(8)
+def last_edges_given_back_on_the_driver(client, seed, t):
+    """Clean ellipses, and beside them 30 sparse open arcs sampled at the angles ``t``: the
+    tiled run equals one machine's, and one machine gives every arc's last edge back."""
+    rng = np.random.default_rng(seed)
     dense = curves(20_000, rng, outliers=0.0, noisy_every=10**6)
-    t = 0.5 / 3.0 * np.concatenate([np.arange(12), [12.4]])
-    arcs = [
-        np.column_stack([105.0 + 10 * (k % 3) + 3 * np.cos(t), 5.0 + 10 * (k // 3) + 3 * np.sin(t)])
-        for k in range(30)
-    ]
-    points = np.concatenate([dense] + arcs)
-    tiled = condt.dask.reconstruct(points, client, tiles=9)
-    assert tiled.whole is None
-    expected = one_machine(points)
-    np.testing.assert_array_equal(tiled.edges, expected)
-    first = len(dense)
-    last = [[first + 13 * k + 11, first + 13 * k + 12] for k in range(30)]
-    assert all(edge in expected.tolist() for edge in last)
-
-
-def test_a_last_edge_that_grows_as_its_curve_does_is_given_back_on_the_driver_too(client):
-    # Clean ellipses, and beside them 30 sparse open arcs whose spacing grows toward the end
-    # (a density change): the last two steps 1.7 times the one before each, so the last edge is
-    # over 1.5 times the edge before it but grows as that edge did.
-    rng = np.random.default_rng(9)
-    dense = curves(20_000, rng, outliers=0.0, noisy_every=10**6)
-    steps = np.concatenate([[0.0], np.full(8, 0.5), [0.85, 1.445]])
-    t = np.cumsum(steps) / 3.0
     arcs = [
         np.column_stack([105.0 + 10 * (k % 3) + 3 * np.cos(t), 5.0 + 10 * (k // 3) + 3 * np.sin(t)])
         for k in range(30)
@@ -442,6 +418,22 @@ def test_a_last_edge_that_grows_as_its_curve_does_is_given_back_on_the_driver_to
     first, size = len(dense), len(t)
     last = [[first + size * k + size - 2, first + size * k + size - 1] for k in range(30)]
     assert all(edge in expected.tolist() for edge in last)
+
+
+def test_a_curves_last_edge_is_given_back_on_the_driver(client):
+    # The arcs' last sample lies 1.4 spacings beyond the one before: the IQR stage cuts the
+    # arcs, rule 1 gives their passages back on the tiles and, where a curve stands behind,
+    # their last edges on the driver.
+    t = 0.5 / 3.0 * np.concatenate([np.arange(12), [12.4]])
+    last_edges_given_back_on_the_driver(client, 8, t)
+
+
+def test_a_last_edge_that_grows_as_its_curve_does_is_given_back_on_the_driver_too(client):
+    # The arcs' spacing grows toward the end (a density change): the last two steps 1.7 times
+    # the one before each, so the last edge is over 1.5 times the edge before it but grows as
+    # that edge did.
+    steps = np.concatenate([[0.0], np.full(8, 0.5), [0.85, 1.445]])
+    last_edges_given_back_on_the_driver(client, 9, np.cumsum(steps) / 3.0)
 
 
 def test_a_failure_on_a_worker_that_is_no_exception_reaches_the_driver_as_one(client):
