@@ -89,7 +89,7 @@ impl Ends<'_> {
                     && straight(to_other, arm(d))
                     && self.graph.degree(d) == 2
                     && mesh.neighbors(x).any(|w| w == d)
-                    && even(&[a, b, c, d].map(|w| px.dist2(self.point(w))))
+                    && one_sampling(&[a, b, c, d].map(|w| px.dist2(self.point(w))))
                     && self.straighter(c, d, x)
                     && self.straighter(d, c, x)
                     && self.branch(d, c, &[])
@@ -110,8 +110,9 @@ impl Ends<'_> {
     }
 }
 
-/// Whether squared lengths are one sampling (the longest within [`GAP_RATIO`] of the shortest).
-pub(super) fn even(lengths2: &[f64]) -> bool {
+/// Whether squared lengths are one sampling (the longest within [`GAP_RATIO`] of the shortest;
+/// no lengths are).
+pub(super) fn one_sampling(lengths2: &[f64]) -> bool {
     let longest = lengths2.iter().copied().fold(0.0, f64::max);
     let shortest = lengths2.iter().copied().fold(f64::INFINITY, f64::min);
     longest <= GAP_RATIO * GAP_RATIO * shortest

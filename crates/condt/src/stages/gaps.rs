@@ -16,10 +16,10 @@
 //!
 //! Candidates: (1) another loose end `b` facing `a`, or facing `a` while the join runs within 60°
 //! of `a`'s edge ([`TIP`]: a sharp tip's apex left with one side, unless `a`'s side turns back at
-//! once, under 90° at `a`'s neighbour: a hook, which the hooks step puts back in line); across a
-//! straight join
-//! ([`STRAIGHT`] at both ends, from the end's edge or the chord over its last two edges, which
-//! noise moving the end sample bends less), or a smooth one ([`SMOOTH_COS`] at both ends) that
+//! once, under 90° at `a`'s neighbour: a hook, which the hooks step puts back in line and which
+//! stays open with that step off); across a straight join ([`STRAIGHT`] at both ends, from the
+//! end's edge or the chord over its last two edges, which noise moving the end sample bends
+//! less), or a smooth one ([`SMOOTH_COS`] at both ends) that
 //! bends no more than the curve's sharpest passage near either end ([`NEAR_END`]: noise bends both
 //! alike), or a tip's join with a curve of [`MIN_SAMPLES`] behind both ends (a sharp tip's apex
 //! often lies nearer its neighbour), a gap is measured against the longer of the end's last two
@@ -270,10 +270,13 @@ impl<'a> Ends<'a> {
             .fold(-1.0, f64::max)
     }
 
-    /// Whether the loose end `a`'s curve turns back at once: its first passage under 90°.
+    /// Whether the loose end `a`'s curve turns back at once: its first passage under 90°. A
+    /// crowded end ([`Ends::heading_from`]) is not: its edge points where noise put it.
     fn hooked(&self, a: VertexId) -> bool {
         let next = self.along(a);
-        self.graph.degree(next) == 2 && self.cos_of(next, a, self.graph.onward(next, a)) > AHEAD
+        self.heading_from(a) == next
+            && self.graph.degree(next) == 2
+            && self.cos_of(next, a, self.graph.onward(next, a)) > AHEAD
     }
 
     /// Whether the loose ends `a` and `b` may join (the module's rule (1)).
@@ -286,7 +289,7 @@ impl<'a> Ends<'a> {
                 && line_b < SMOOTH_COS
                 && line_a.max(line_b) <= self.sharpest_passage(a).max(self.sharpest_passage(b)));
         // A tip's apex whose side turns back at once (under 90°) is a hook, not a tip: the
-        // hooks step puts such an end back in line.
+        // hooks step puts such an end back in line (with that step off, it stays open).
         let ahead = |c: f64| c < AHEAD;
         let (tip_a, tip_b) = (at_a > TIP && !self.hooked(a), at_b > TIP && !self.hooked(b));
         let ahead_or_tip =
@@ -368,13 +371,14 @@ impl<'a> Ends<'a> {
         .map(Partner::End)
     }
 
-    /// Whether `c` lies on the loose end `a`'s own curve within [`MIN_SAMPLES`] points of it. Such
-    /// a point is no crossing `a` was dropped at: a curve that crossed itself there would close a
-    /// loop of fewer than [`MIN_SAMPLES`] samples. A noisy tip bends its own passages that far
-    /// back below [`STRAIGHT`] and may lie as near as the end across the gap.
+    /// Whether `c` is one of the [`MIN_SAMPLES`] points of degree two behind the loose end `a` on
+    /// its own curve. Such a point is no crossing `a` was dropped at: the curve would cross itself
+    /// there in a loop of at most `MIN_SAMPLES + 1` samples (`a` and those behind it up to `c`),
+    /// which is no sampled crossing. A noisy tip bends its own passages that far back below
+    /// [`STRAIGHT`], and such a point may lie as near as the end across the gap.
     fn close_behind(&self, a: VertexId, c: VertexId) -> bool {
         let mut behind = self.graph.passages(a, self.along(a)).take(MIN_SAMPLES);
-        self.along(a) == c || behind.any(|[_, here, next]| here == c || next == c)
+        behind.any(|[_, here, _]| here == c)
     }
 
     /// The nearest candidate of the loose end `a` (ties as the module says).
@@ -795,8 +799,9 @@ mod tests {
 
     /// A gap beside a noisy tip: the loose end `a` (2) turned back through the apex 1, and the
     /// sample 4, three edges behind `a`, lies nearer `a` than the straight end `b` (0) across the
-    /// gap, its passage bent below [`STRAIGHT`] and lined up with `a` across it (through 5). It is no
-    /// crossing `a` was dropped at (that would be a loop of four samples): `a` still chooses `b`.
+    /// gap, its passage bent below [`STRAIGHT`] and lined up with `a` across it (through 5). It is
+    /// no crossing `a` was dropped at (that would be a loop of four samples): `a` still chooses
+    /// `b`.
     #[test]
     fn a_point_on_the_ends_own_curve_is_no_crossing_it_was_dropped_at() {
         let polar = |from: Point, length: f64, degrees: f64| {
@@ -820,6 +825,22 @@ mod tests {
         pairs.extend((5..9).map(|i| [i, i + 1]));
         pairs.extend([[0, 10], [10, 11], [11, 12], [12, 13], [13, 14]]);
         assert_eq!(joins(&pts, &pairs), vec![[0, 2]]);
+    }
+
+    /// [`Ends::close_behind`] covers the [`MIN_SAMPLES`] points behind a loose end, no farther.
+    #[test]
+    fn the_points_close_behind_a_loose_end_are_the_next_five_along_its_curve() {
+        let pts: Vec<Point> = (0..9).map(|k| Point::new(k as f64, 0.0)).collect();
+        let tri = triangulate(&pts).unwrap();
+        let edges: Vec<Edge> = (0..8)
+            .map(|i| ordered(tri.vertex(i), tri.vertex(i + 1)))
+            .collect();
+        let ends = Ends::new(&tri, &edges, None);
+        let end = tri.vertex(0);
+        let behind: Vec<usize> = (1..9)
+            .filter(|&k| ends.close_behind(end, tri.vertex(k)))
+            .collect();
+        assert_eq!(behind, vec![1, 2, 3, 4, 5]);
     }
 
     /// Noise carried the sample 9 past 8 along a curve (the x of each sample falls from left to

@@ -25,7 +25,7 @@
 //! takes part in another choice. All choices are made on the graph as it came in: the result
 //! depends neither on the order of the ends nor on `parallel`.
 
-use super::crossings::even;
+use super::crossings::one_sampling;
 use super::gaps::{cos_at, crowded, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
 use super::{uses, Outcome};
@@ -143,7 +143,7 @@ impl Ends<'_> {
                     && self.cos_of(d, d_on, a) < STRAIGHT
                     && self.straighter(c, d, a)
                     && self.straighter(d, c, a)
-                    && even(&sampling)
+                    && one_sampling(&sampling)
                     && self.tri.mesh().neighbors(a).any(|w| w == d)
                     && self.branch(c, c_on, &[a, d])
                     && self.branch(d, d_on, &[a, c])
@@ -255,45 +255,48 @@ pub(crate) fn join_junctions(
     if found.is_empty() {
         return Outcome::unchanged_with(ends.into_graph());
     }
-    let mut choices: Vec<Junction> = Vec::with_capacity(found.len());
+    let mut joins: Vec<Junction> = Vec::with_capacity(found.len());
     let mut chords: Vec<ChordPast> = Vec::new();
     for choice in found {
         match choice {
-            Choice::Join(junction) => choices.push(junction),
+            Choice::Join(junction) => joins.push(junction),
             Choice::Chord(chord) => chords.push(chord),
         }
     }
     // Two loose ends at one point make a junction of four (each end chooses once, and a point of
     // degree two is no loose end); three or more, none. A sample without edges two walks pass
     // goes to neither.
-    let points = |choice: &Junction| {
-        let Junction { walk, at, .. } = *choice;
+    let points = |join: &Junction| {
+        let Junction { walk, at, .. } = *join;
         (0..=walk.len()).map(move |k| walk.get(k).copied().unwrap_or(at))
     };
-    let uses_of_joins = uses(tri.num_points(), &choices, points);
+    let uses_of_joins = uses(tri.num_points(), &joins, points);
     // A chord's ends take part in nothing else: no other chord, no join chose them (counted before
     // the joins settle, so even a join dropped below keeps the chord out).
-    let uses_of_chords = uses(tri.num_points(), &chords, |k| [k.c, k.d]);
-    chords.retain(|k| {
-        [k.c, k.d]
+    let uses_of_chords = uses(tri.num_points(), &chords, |chord| [chord.c, chord.d]);
+    chords.retain(|chord| {
+        [chord.c, chord.d]
             .iter()
             .all(|v| uses_of_chords[v.index()] == 1 && uses_of_joins[v.index()] == 0)
     });
-    choices.retain(|choice| {
-        uses_of_joins[choice.at.index()] <= 2
-            && choice.walk.iter().all(|v| uses_of_joins[v.index()] == 1)
+    joins.retain(|join| {
+        uses_of_joins[join.at.index()] <= 2
+            && join.walk.iter().all(|v| uses_of_joins[v.index()] == 1)
     });
     if chords.is_empty() {
-        let joins: Vec<Edge> = choices.iter().flat_map(Junction::edges).collect();
-        return ends.joined(edges, &joins);
+        let joined: Vec<Edge> = joins.iter().flat_map(Junction::edges).collect();
+        return ends.joined(edges, &joined);
     }
-    let mut added: Vec<Edge> = choices.iter().flat_map(Junction::edges).collect();
+    let mut added: Vec<Edge> = joins.iter().flat_map(Junction::edges).collect();
     added.extend(
         chords
             .iter()
-            .flat_map(|k| [ordered(k.end, k.c), ordered(k.end, k.d)]),
+            .flat_map(|chord| [ordered(chord.end, chord.c), ordered(chord.end, chord.d)]),
     );
-    let removed = chords.iter().map(|k| ordered(k.c, k.d)).collect();
+    let removed = chords
+        .iter()
+        .map(|chord| ordered(chord.c, chord.d))
+        .collect();
     Outcome::replacing(edges, ends.into_graph(), removed, added)
 }
 
@@ -469,15 +472,15 @@ mod tests {
         );
     }
 
-    /// Three curves of `arm` samples leaving point 0 at 180°, 235.7° and 129° (a narrow
+    /// Three curves of `arms` samples leaving point 0 at 180°, 235.7° and 129° (a narrow
     /// junction as evenly spaced borders meet), the first two sampled `1.0` apart, the third
     /// `third` apart; point 0 keeps an edge to the third curve only, and the first samples of the
-    /// other two are paired (points 1 and `1 + arm`): their distance, 0.93, is under the
+    /// other two are paired (points 1 and `1 + arms[0]`): their distance, 0.93, is under the
     /// junction's spacing. `bend` turns the first curve by that many degrees at its first sample.
     /// Returns the stage's removed and added edges in input positions.
-    fn narrow_junction(arm: usize, third: f64, bend: f64) -> [Vec<[usize; 2]>; 2] {
+    fn narrow_junction(arms: [usize; 3], third: f64, bend: f64) -> [Vec<[usize; 2]>; 2] {
         let mut pts = alloc::vec![Point::new(0.0, 0.0)];
-        let mut edges = alloc::vec![[0, 1 + 2 * arm], [1, 1 + arm]];
+        let mut edges = alloc::vec![[0, 1 + arms[0] + arms[1]], [1, 1 + arms[0]]];
         for (k, (angle, spacing)) in [(180.0, 1.0), (235.7, 1.0), (129.0, third)]
             .into_iter()
             .enumerate()
@@ -490,18 +493,18 @@ mod tests {
             let (dx, dy) = direction(angle);
             let start = Point::new(dx * spacing, dy * spacing);
             let (bx, by) = direction(if k == 0 { angle + bend } else { angle });
-            pts.extend((0..arm).map(|j| {
+            pts.extend((0..arms[k]).map(|j| {
                 let j = j as f64 * spacing;
                 Point::new(start.x + bx * j, start.y + by * j)
             }));
-            edges.extend((first..first + arm - 1).map(|i| [i, i + 1]));
+            edges.extend((first..first + arms[k] - 1).map(|i| [i, i + 1]));
         }
         changes(&pts, &edges)
     }
 
     #[test]
     fn a_chord_past_a_junction_sample_gives_way_to_it() {
-        let changed = narrow_junction(8, 1.0, 0.0);
+        let changed = narrow_junction([8; 3], 1.0, 0.0);
         assert_eq!(changed, [vec![[1, 9]], vec![[0, 1], [0, 9]]]);
     }
 
@@ -509,10 +512,14 @@ mod tests {
     fn a_chord_stays_where_a_curve_does_not_run_into_the_loose_end() {
         let nothing: [Vec<[usize; 2]>; 2] = [Vec::new(), Vec::new()];
         // The first curve turns 40° at its first sample: it no longer heads for point 0.
-        assert_eq!(narrow_junction(8, 1.0, 40.0), nothing);
+        assert_eq!(narrow_junction([8; 3], 1.0, 40.0), nothing);
         // A third curve sampled three times as sparsely: no one sampling at the junction.
-        assert_eq!(narrow_junction(8, 3.0, 0.0), nothing);
-        // Curves of four samples: no branches.
-        assert_eq!(narrow_junction(4, 1.0, 0.0), nothing);
+        assert_eq!(narrow_junction([8; 3], 3.0, 0.0), nothing);
+        // Curves of four samples: no branches (the end's own curve is read first).
+        assert_eq!(narrow_junction([4; 3], 1.0, 0.0), nothing);
+        // The first or the second curve alone of four samples: the chord's own curves must be
+        // branches too.
+        assert_eq!(narrow_junction([4, 8, 8], 1.0, 0.0), nothing);
+        assert_eq!(narrow_junction([8, 4, 8], 1.0, 0.0), nothing);
     }
 }
