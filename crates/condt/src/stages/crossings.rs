@@ -10,13 +10,13 @@
 //!
 //! Rule, each test with its reason: docs/condt.md, *Crossings read as two bends*. `c d` gives way
 //! to `x c` and `x d` when `a x b` bends (below [`STRAIGHT`]), `c`, `d` are Delaunay neighbours of
-//! `x` of degree two with `a x c` and `b x d` straight, the four arms are within [`GAP_RATIO`] of
-//! each other, the passages at `c` and `d` are straighter through `x` than along the chord, and
+//! `x` of degree two with `a x c` and `b x d` straight, the four arms are within
+//! [`GAP_RATIO`](super::gaps::GAP_RATIO) of each other, the passages at `c` and `d` are straighter through `x` than along the chord, and
 //! each arm is a branch (`Ends::branch`). All choices are made on the graph as it came in; a point
 //! in two choices, or where two chords pass, takes part in none: the result depends neither on
 //! the order nor on `parallel`.
 
-use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
+use super::gaps::{one_sampling, Ends, STRAIGHT};
 use super::{alone, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -108,14 +108,6 @@ impl Ends<'_> {
         }
         found
     }
-}
-
-/// Whether squared lengths are one sampling (the longest within [`GAP_RATIO`] of the shortest;
-/// no lengths are).
-pub(super) fn one_sampling(lengths2: &[f64]) -> bool {
-    let longest = lengths2.iter().copied().fold(0.0, f64::max);
-    let shortest = lengths2.iter().copied().fold(f64::INFINITY, f64::min);
-    longest <= GAP_RATIO * GAP_RATIO * shortest
 }
 
 /// Restores crossings in `edges` (each edge once, any order): the input edges in order without

@@ -144,6 +144,14 @@ pub(super) fn crowded(step: f64, before: f64) -> bool {
     GAP_RATIO * GAP_RATIO * step < before
 }
 
+/// Whether squared lengths are one sampling (the longest within [`GAP_RATIO`] of the shortest;
+/// no lengths are): the crossings' four arms, a junction's edges around a chord past it.
+pub(super) fn one_sampling(lengths2: &[f64]) -> bool {
+    let longest = lengths2.iter().copied().fold(0.0, f64::max);
+    let shortest = lengths2.iter().copied().fold(f64::INFINITY, f64::min);
+    longest <= GAP_RATIO * GAP_RATIO * shortest
+}
+
 impl<'a> Ends<'a> {
     /// The loose ends of `edges`, with the previous stage's curve `graph` if any.
     pub(crate) fn new(tri: &'a Triangulation, edges: &[Edge], graph: Option<CurveGraph>) -> Self {

@@ -25,8 +25,7 @@
 //! takes part in another choice. All choices are made on the graph as it came in: the result
 //! depends neither on the order of the ends nor on `parallel`.
 
-use super::crossings::one_sampling;
-use super::gaps::{cos_at, crowded, Ends, Walk, GAP_RATIO, STRAIGHT};
+use super::gaps::{cos_at, crowded, one_sampling, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
 use super::{uses, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
@@ -283,10 +282,6 @@ pub(crate) fn join_junctions(
         uses_of_joins[join.at.index()] <= 2
             && join.walk.iter().all(|v| uses_of_joins[v.index()] == 1)
     });
-    if chords.is_empty() {
-        let joined: Vec<Edge> = joins.iter().flat_map(Junction::edges).collect();
-        return ends.joined(edges, &joined);
-    }
     let mut added: Vec<Edge> = joins.iter().flat_map(Junction::edges).collect();
     added.extend(
         chords
