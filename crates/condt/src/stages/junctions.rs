@@ -517,4 +517,95 @@ mod tests {
         assert_eq!(narrow_junction([4, 8, 8], 1.0, 0.0), nothing);
         assert_eq!(narrow_junction([8, 4, 8], 1.0, 0.0), nothing);
     }
+
+    /// Point 0 and curves of eight samples one spacing apart leaving it at `degrees` (in order:
+    /// curve `k` holds points `1 + 8k ..= 8 + 8k`); point 0 keeps an edge to curve `own` only,
+    /// and each pair in `chords` joins the first samples of those two curves. Returns the
+    /// stage's removed and added edges in input positions.
+    fn star(degrees: &[f64], own: usize, chords: &[[usize; 2]]) -> [Vec<[usize; 2]>; 2] {
+        changes(
+            &star_points(degrees),
+            &star_edges(degrees.len(), own, chords),
+        )
+    }
+
+    /// The points of [`star`].
+    fn star_points(degrees: &[f64]) -> Vec<Point> {
+        let mut pts = alloc::vec![Point::new(0.0, 0.0)];
+        for &angle in degrees {
+            let t = f64::to_radians(angle);
+            let (dx, dy) = (libm::cos(t), libm::sin(t));
+            pts.extend((1..=8).map(|j| Point::new(dx * j as f64, dy * j as f64)));
+        }
+        pts
+    }
+
+    /// The edges of [`star`] with `curves` curves.
+    fn star_edges(curves: usize, own: usize, chords: &[[usize; 2]]) -> Vec<[usize; 2]> {
+        let first = |k: usize| 1 + 8 * k;
+        let mut edges = alloc::vec![[0, first(own)]];
+        edges.extend(chords.iter().map(|&[k, l]| [first(k), first(l)]));
+        edges.extend((0..curves).flat_map(|k| (first(k)..first(k) + 7).map(|i| [i, i + 1])));
+        edges
+    }
+
+    #[test]
+    fn a_chord_stays_where_its_curve_runs_straighter_along_it() {
+        // A right-angled junction: each chord curve runs straight into point 0.
+        let replaced = [vec![[1, 9]], vec![[0, 1], [0, 9]]];
+        assert_eq!(star(&[180.0, 270.0, 45.0], 2, &[[0, 1]]), replaced);
+        // The first curve turned 25° toward the second beyond its first sample: it still
+        // heads within 30° of point 0, but runs on straighter along the chord, which it keeps.
+        let mut turned = star_points(&[180.0, 270.0, 45.0]);
+        for (j, p) in turned[2..9].iter_mut().enumerate() {
+            let t = f64::to_radians(155.0);
+            let j = (j + 1) as f64;
+            *p = Point::new(-1.0 + j * libm::cos(t), j * libm::sin(t));
+        }
+        let nothing: [Vec<[usize; 2]>; 2] = [Vec::new(), Vec::new()];
+        assert_eq!(changes(&turned, &star_edges(3, 2, &[[0, 1]])), nothing);
+    }
+
+    #[test]
+    fn two_chords_past_one_end_are_a_guess_and_stay() {
+        // The narrow junction of `narrow_junction` and its mirror image across the end's own
+        // curve (129°): each chord alone gives way to point 0.
+        let one = star(&[180.0, 235.7, 129.0], 2, &[[0, 1]]);
+        assert_eq!(one, [vec![[1, 9]], vec![[0, 1], [0, 9]]]);
+        let mirrored = star(&[129.0, 78.0, 22.3], 0, &[[1, 2]]);
+        assert_eq!(mirrored, [vec![[9, 17]], vec![[0, 9], [0, 17]]]);
+        // Both chords at once: which one the junction cut short would be a guess.
+        let both = star(&[180.0, 235.7, 129.0, 78.0, 22.3], 2, &[[0, 1], [3, 4]]);
+        let nothing: [Vec<[usize; 2]>; 2] = [Vec::new(), Vec::new()];
+        assert_eq!(both, nothing);
+    }
+
+    #[test]
+    fn a_chord_whose_end_a_join_takes_stays() {
+        // A fourth curve ends one spacing above the chord's first sample (point 1 at (-1, 0))
+        // and heads straight down at it: a junction join to point 1, which the chord then
+        // gives way to: point 1 would take three edges at once.
+        let mut pts = star_points(&[180.0, 235.7, 129.0]);
+        pts.extend((0..8).map(|j| Point::new(-1.0, 1.0 + j as f64)));
+        let mut edges = star_edges(3, 2, &[[0, 1]]);
+        edges.extend((25..32).map(|i| [i, i + 1]));
+        let [removed, added] = changes(&pts, &edges);
+        assert_eq!(removed, Vec::<[usize; 2]>::new());
+        assert_eq!(added, vec![[1, 25]]);
+    }
+
+    #[test]
+    fn a_chord_stays_where_the_end_s_own_curve_bends_sharply() {
+        // The end's own curve (points 17 to 24) turns by 80° at its first sample: the end's
+        // passages are not smooth, so nothing says the end continues its curve into a junction.
+        let mut pts = star_points(&[180.0, 235.7, 129.0]);
+        let start = pts[17];
+        let t = f64::to_radians(129.0 - 80.0);
+        for (j, p) in pts[18..25].iter_mut().enumerate() {
+            let j = (j + 1) as f64;
+            *p = Point::new(start.x + j * libm::cos(t), start.y + j * libm::sin(t));
+        }
+        let nothing: [Vec<[usize; 2]>; 2] = [Vec::new(), Vec::new()];
+        assert_eq!(changes(&pts, &star_edges(3, 2, &[[0, 1]])), nothing);
+    }
 }
