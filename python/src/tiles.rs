@@ -77,7 +77,8 @@ impl Flow {
 /// one of its points, up to three hops from the end, four more; a crossing's arms and chord, read
 /// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
 /// rule itself on the driver, [`_gathered_clumps`]), and where the driver finds clumps the gap
-/// choices, tip candidates and hook joins (eight hops) on the same edges; a tip's candidate move
+/// choices, tip candidates and the hooks' and junctions' joins (eleven hops) on the same edges; a
+/// tip's candidate move
 /// eight, from the loose end to the other's branch ([`_choices_kept`], the split test and the
 /// settling on the driver, [`_gathered_tips`]); a hooked loose end's move eight: its points lie
 /// within two hops of the loose end, its tests read the stars there, and a move sharing a point is
@@ -89,14 +90,15 @@ impl Flow {
 /// walk five ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the clump
-/// tests, gap choices, tip candidates and hook joins (eight hops) of their result; the given-back
+/// tests, gap choices, tip candidates and the hooks' and junctions' joins (eleven hops: a
+/// junction's choice) of their result; the given-back
 /// test one ring ([`_tests_kept`], the rule on the driver, [`_gathered_given_back`]); an outlier
 /// tail nine: from an owned edge of a tail of four back to its loose end and on to the far end of
 /// the five edges it hangs from, whose last inner point's edges are read for its degree
 /// ([`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 10] = [
-    (Stage::LocalOutliers, 8),
-    (Stage::Clumps, 8),
+    (Stage::LocalOutliers, 11),
+    (Stage::Clumps, 11),
     (Stage::GivenBack, 1),
     (Stage::Gaps, 6),
     (Stage::Junctions, 11),
@@ -682,7 +684,7 @@ pub(crate) fn _gathered_last_edges<'py>(
 
 /// Rule 4 of the local outlier removal on the gathered `edges` (after rules 1 to 3) over `n`
 /// points, with every point's clump `tests`, every loose end's gap `choices`, every point's tip
-/// candidates (`tips`) and the hook joins (`hooks`) on them
+/// candidates (`tips`) and the hooks' and junctions' joins (`joins`) on them
 /// ([`condt::tiled::remove_gathered_local_outliers`]): the edges kept, sorted by rows, or `None`.
 #[pyfunction]
 pub(crate) fn _gathered_local_outliers<'py>(
@@ -692,15 +694,15 @@ pub(crate) fn _gathered_local_outliers<'py>(
     tests: PyReadonlyArray1<'py, u8>,
     choices: PyReadonlyArray2<'py, i64>,
     tips: PyReadonlyArray2<'py, i64>,
-    hooks: PyReadonlyArray2<'py, i64>,
+    joins: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let rule = condt::tiled::remove_gathered_local_outliers;
-    gathered_with_joins(py, n, edges, tests, (choices, tips, hooks), rule)
+    gathered_with_joins(py, n, edges, tests, (choices, tips, joins), rule)
 }
 
-/// A driver's rule that reads every point's `tests` and the joins gap closing, the tips and the
-/// hooks would make (the tiles' gap `choices`, tip candidates and hook joins), on the gathered
-/// `edges` over `n` points.
+/// A driver's rule that reads every point's `tests` and the joins gap closing, the tips, the hooks
+/// and the junctions would make (the tiles' gap `choices`, tip candidates and end joins), on the
+/// gathered `edges` over `n` points.
 type RuleWithJoins = fn(
     usize,
     &[[usize; 2]],
@@ -710,11 +712,12 @@ type RuleWithJoins = fn(
     &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, condt::Error>;
 
-/// The `_choices_kept` round of the hooks stage's joins, which rule 4 and the clump stage read
-/// (the hooks stage's own round is `_step_kept`'s, under its key).
-const HOOK_JOINS: &str = "hook-joins";
+/// The `_choices_kept` round of the hooks' and junctions' joins, which rule 4 and the clump stage
+/// read (those stages' own rounds are `_step_kept`'s, under their keys).
+const END_JOINS: &str = "end-joins";
 
-/// The rows a driver gathered for a rule with joins: gap choices, tip candidates, hook joins.
+/// The rows a driver gathered for a rule with joins: gap choices, tip candidates, and the hooks'
+/// and junctions' joins in one list.
 type JoinRows<'py> = (
     PyReadonlyArray2<'py, i64>,
     PyReadonlyArray2<'py, i64>,
@@ -727,17 +730,17 @@ fn gathered_with_joins<'py>(
     n: usize,
     edges: &Bound<'py, PyArray2<i64>>,
     tests: PyReadonlyArray1<'py, u8>,
-    (choices, tips, hooks): JoinRows<'py>,
+    (choices, tips, joins): JoinRows<'py>,
     rule: RuleWithJoins,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let edges = gathered_pairs(edges)?;
     let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
     let tips: Vec<[usize; 4]> = rows_of(&tips, "a tip candidate")?;
-    let hooks: Vec<[usize; 2]> = rows_of(&hooks, "a hook join")?;
+    let joins: Vec<[usize; 2]> = rows_of(&joins, "a join")?;
     let tests = tests.as_slice()?;
     gathered_answer(
         py,
-        py.detach(|| rule(n, &edges, tests, &rows, &tips, &hooks)),
+        py.detach(|| rule(n, &edges, tests, &rows, &tips, &joins)),
     )
 }
 
@@ -814,9 +817,10 @@ fn rows_of<const W: usize>(
 /// driver's `given` edges (as for [`_step_kept`]): for `"gaps"` each loose end's gap choice
 /// ([`condt::tiled::gap_choices`], an `(m, 10)` int64 array: positions of the whole set, the
 /// kind and the walk's length as they are), for `"tips"` the tips' candidate moves
-/// ([`condt::tiled::tip_candidates`], an `(m, 4)` array of positions), for `"hook-joins"`
-/// ([`HOOK_JOINS`]) the edges the hooks stage's moves would add, owned by their smaller end
-/// ([`condt::tiled::hook_joins`], an `(m, 2)` array of positions).
+/// ([`condt::tiled::tip_candidates`], an `(m, 4)` array of positions), for `"end-joins"`
+/// ([`END_JOINS`]) the edges the hooks stage's moves would add, owned by their smaller end
+/// ([`condt::tiled::hook_joins`]), then those the junctions stage would join, owned by their loose
+/// end ([`condt::tiled::junction_joins`]): an `(m, 2)` array of positions.
 #[pyfunction]
 #[pyo3(signature = (state, given, step, **params))]
 pub(crate) fn _choices_kept<'py>(
@@ -828,13 +832,13 @@ pub(crate) fn _choices_kept<'py>(
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let (_, tiled) = tiled_params(params)?;
     let has = |stage: Stage| tiled.later.contains(&stage);
-    // Rule 4 of the local outlier removal and the clump stage keep pieces gap closing or a tip's
-    // or hook's move would join.
+    // Rule 4 of the local outlier removal and the clump stage keep pieces gap closing, a tip's or
+    // hook's move or a junction would join.
     let joined = has(Stage::LocalOutliers) || has(Stage::Clumps);
     let gaps = step == Stage::Gaps.key() && (has(Stage::Gaps) || joined);
     let tips = step == Stage::Tips.key() && (has(Stage::Tips) || joined);
-    let hooks = step == HOOK_JOINS && joined;
-    if !gaps && !tips && !hooks {
+    let end_joins = step == END_JOINS && joined;
+    if !gaps && !tips && !end_joins {
         return Err(PyValueError::new_err(format!(
             "no round of choices {step:?} for these parameters"
         )));
@@ -860,7 +864,8 @@ pub(crate) fn _choices_kept<'py>(
                 let rows = condt::tiled::tip_candidates(&graph, owned);
                 rows.iter().flat_map(|row| row.map(position)).collect()
             } else {
-                let rows = condt::tiled::hook_joins(&graph, owned);
+                let mut rows = condt::tiled::hook_joins(&graph, owned);
+                rows.extend(condt::tiled::junction_joins(&graph, owned));
                 rows.iter().flat_map(|row| row.map(position)).collect()
             }
         })
@@ -947,8 +952,8 @@ pub(crate) fn _gathered_clumps_found<'py>(
 
 /// The clump stage on the gathered `edges` over `n` points with each point's `tests` from the
 /// tile owning it, every loose end's gap `choices`, every point's tip candidates (`tips`) and the
-/// hook joins (`hooks`) on them ([`condt::tiled::remove_gathered_clumps`]): the edges kept,
-/// sorted by rows, or `None` when it changes nothing.
+/// hooks' and junctions' joins (`joins`) on them ([`condt::tiled::remove_gathered_clumps`]): the
+/// edges kept, sorted by rows, or `None` when it changes nothing.
 #[pyfunction]
 pub(crate) fn _gathered_clumps<'py>(
     py: Python<'py>,
@@ -957,10 +962,10 @@ pub(crate) fn _gathered_clumps<'py>(
     tests: PyReadonlyArray1<'py, u8>,
     choices: PyReadonlyArray2<'py, i64>,
     tips: PyReadonlyArray2<'py, i64>,
-    hooks: PyReadonlyArray2<'py, i64>,
+    joins: PyReadonlyArray2<'py, i64>,
 ) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
     let rule = condt::tiled::remove_gathered_clumps;
-    gathered_with_joins(py, n, edges, tests, (choices, tips, hooks), rule)
+    gathered_with_joins(py, n, edges, tests, (choices, tips, joins), rule)
 }
 
 /// A tile's owned edges, one list per graph its phase asks, in the whole set's positions.

@@ -401,6 +401,37 @@ def test_a_clump_that_gap_closing_joins_stays_on_the_driver_too(client):
     np.testing.assert_array_equal(tiled.edges, one_machine(points))
 
 
+def test_a_tooth_that_a_junction_joins_stays_on_the_driver_too(client):
+    # Combs of evenly spaced samples, each a line with a short tooth between two long ones 1.8
+    # spacings away, turned and scaled at random: no sample of a short tooth lies apart, and the
+    # local outlier removal keeps it only for the junction its end makes with the line. The
+    # tiles send those joins; tile borders cut through many combs. The long teeth are offset by
+    # half a spacing: on a grid of whole spacings, turned, distances that tie exactly (two ends
+    # side by side at 90°, a sample as near the next tooth's end as the line) are settled by
+    # rounding, not by the rule under test.
+    rng = np.random.default_rng(3)
+    line = [(x, 0) for x in range(31)]
+    shape = ((15, 1, 8), (13.2, 1.5, 20), (16.8, 1.5, 20))
+    teeth = [[(x, y) for y in np.arange(low, low + length)] for x, low, length in shape]
+    comb = np.array(line + [p for tooth in teeth for p in tooth], dtype=float)
+    parts, short = [], []
+    for k in range(36):
+        angle, size = rng.uniform(0, 2 * np.pi), rng.uniform(0.05, 0.2)
+        turn = np.array([[np.cos(angle), np.sin(angle)], [-np.sin(angle), np.cos(angle)]])
+        first = sum(len(p) for p in parts)
+        parts.append(comb @ turn * size + [10.0 * (k % 6), 10.0 * (k // 6)])
+        short.append(first + 31)
+    points = np.concatenate(parts)
+    expected = one_machine(points)
+    # Every short tooth keeps its eight samples and its junction with the line.
+    joined = {tuple(e) for e in expected.tolist()}
+    assert all((end - 16, end) in joined for end in short)
+    assert all((end + k, end + k + 1) in joined for end in short for k in range(7))
+    tiled = condt.dask.reconstruct(points, client, tiles=9)
+    assert tiled.whole is None
+    np.testing.assert_array_equal(tiled.edges, expected)
+
+
 def last_edges_given_back_on_the_driver(client, seed, t):
     """Clean ellipses, and beside them 30 sparse open arcs sampled at the angles ``t``: the
     tiled run equals one machine's, and one machine gives every arc's last edge back."""

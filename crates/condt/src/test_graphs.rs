@@ -48,6 +48,24 @@ pub(crate) fn hooked_piece_beside_a_curve() -> (Vec<Point>, Vec<[usize; 2]>, usi
     (pts, pairs, 14)
 }
 
+/// A comb: a straight curve of 31 unit-spaced samples along `y = 0` (positions 0 to 30), a short
+/// tooth of eight samples at `x = 15` from `y = 1` up (positions 31 to 38) and two long teeth of
+/// twenty at `x = 13` and `x = 17` (39 to 58, 59 to 78), each tooth a curve whose loose end lies one
+/// spacing above the straight curve, facing it. The points, the edges and 31 (the short tooth's
+/// end). The short tooth lies two spacings from the long ones along its whole length, so none of
+/// its samples is apart and rule 4 alone would drop it; the junctions stage joins each tooth to the
+/// straight curve. For rule 4's tests, the stage's and the tiled one.
+pub(crate) fn comb_with_a_short_tooth() -> (Vec<Point>, Vec<[usize; 2]>, usize) {
+    let mut pts: Vec<Point> = (0..=30).map(|x| Point::new(x as f64, 0.0)).collect();
+    let mut pairs: Vec<[usize; 2]> = (0..30).map(|k| [k, k + 1]).collect();
+    for (x, len) in [(15.0, 8), (13.0, 20), (17.0, 20)] {
+        let first = pts.len();
+        pts.extend((1..=len).map(|y| Point::new(x, y as f64)));
+        pairs.extend((first..first + len - 1).map(|k| [k, k + 1]));
+    }
+    (pts, pairs, 31)
+}
+
 /// A circle of radius 10 sampled at 60 angles whose samples 15 to 26 zig-zag across it (0.5 in
 /// and out, as noise at half a spacing leaves a stretch), the circle's edges missing at both
 /// ends of that stretch: an open curve of the other 48 samples (positions 0 to 47, its loose

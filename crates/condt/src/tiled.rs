@@ -24,7 +24,7 @@ use crate::stages::hooks;
 use crate::stages::local_outliers::{components, separated_at, smooth_and_regular, MIN_SAMPLES};
 use crate::stages::outliers::IqrRule;
 use crate::stages::tips::{self, Candidate};
-use crate::stages::{clumps, given_back, local_outliers, Step};
+use crate::stages::{clumps, given_back, junctions, local_outliers, Step};
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -205,15 +205,16 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> 
 /// The clump stage ([`Graph::remove_clumps`]) on edges gathered from the tiles of a split run:
 /// the edges kept (in order), or `None` when it changes nothing. `edges` are pairs of positions
 /// below `n`; `tests` holds each position's [`clump_tests`], from the tile that owns it; `choices`
-/// every loose end's [`gap_choices`], `tips` every point's [`tip_candidates`] and `hooks` the
-/// [`hook_joins`] on this graph (a clump that gap closing, a tip's move or a hook's would join to a
+/// every loose end's [`gap_choices`], `tips` every point's [`tip_candidates`] and `joins` the
+/// [`hook_joins`] and [`junction_joins`] on this graph, in one list (a clump that gap closing, a
+/// tip's move, a hook's or a junction's would join to a
 /// component that stays, stays), needed only when [`gathered_clumps_found`] says so: without a
 /// clump they change nothing. The rule is the stage's own, on the same graph, with the tests read
 /// instead of measured.
 ///
 /// # Errors
 /// As [`component_labels`], named `tests` when `tests` is shorter than `n`, as
-/// [`close_gathered_gaps`] and [`repair_gathered_tips`] for the rows, and named `edge` for a hook
+/// [`close_gathered_gaps`] and [`repair_gathered_tips`] for the rows, and named `edge` for a join
 /// join beyond `n`.
 ///
 /// ```
@@ -229,8 +230,9 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> 
 /// assert!(tiled::gathered_clumps_found(pts.len(), &edges, &tests)?);
 /// let choices = tiled::gap_choices(&graph, |_| true);
 /// let tips = tiled::tip_candidates(&graph, |_| true);
-/// let hooks = tiled::hook_joins(&graph, |_| true);
-/// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests, &choices, &tips, &hooks)?;
+/// let mut joins = tiled::hook_joins(&graph, |_| true);
+/// joins.extend(tiled::junction_joins(&graph, |_| true));
+/// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests, &choices, &tips, &joins)?;
 /// assert_eq!(kept, Some(graph.remove_clumps().edges()));
 /// # Ok::<(), condt::Error>(())
 /// ```
@@ -240,10 +242,10 @@ pub fn remove_gathered_clumps(
     tests: &[u8],
     choices: &[[usize; GAP_ROW]],
     tips: &[[usize; 4]],
-    hooks: &[[usize; 2]],
+    joins: &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     let gathered = GatheredClumps::new(n, edges, tests)?;
-    let gathered_joins = GatheredJoins::read(n, &gathered.graph, choices, tips, hooks)?;
+    let gathered_joins = GatheredJoins::read(n, &gathered.graph, choices, tips, joins)?;
     let Some(clump) = gathered.clump else {
         return Ok(None);
     };
@@ -258,7 +260,7 @@ pub fn remove_gathered_clumps(
 }
 
 /// Whether the clump stage finds a clump on edges gathered from the tiles of a split run, before
-/// asking which of them gap closing, the tips or the hooks would join
+/// asking which of them gap closing, the tips, the hooks or the junctions would join
 /// ([`remove_gathered_clumps`]): without one the stage changes nothing, and a driver need not ask
 /// the tiles for their choices.
 ///
@@ -307,14 +309,14 @@ impl GatheredClumps {
     }
 }
 
-/// Gap closing's choices, the tips stage's candidate moves and the hooks stage's joins, gathered
-/// from the tiles, as the joins they would add to a graph (what rule 4 and the clump stage ask of
-/// the three stages).
+/// Gap closing's choices, the tips stage's candidate moves and the hooks' and junctions' joins,
+/// gathered from the tiles, as the joins they would add to a graph (what rule 4 and the clump
+/// stage ask of the four stages).
 struct GatheredJoins {
     targets: Vec<(VertexId, Target)>,
     walks: Vec<(VertexId, Walk)>,
     tip_moves: Vec<Candidate>,
-    hook_joins: Vec<Edge>,
+    end_joins: Vec<Edge>,
 }
 
 impl GatheredJoins {
@@ -323,17 +325,17 @@ impl GatheredJoins {
         graph: &CurveGraph,
         choices: &[[usize; GAP_ROW]],
         tips: &[[usize; 4]],
-        hooks: &[[usize; 2]],
+        joins: &[[usize; 2]],
     ) -> Result<GatheredJoins, Error> {
         let (targets, walks) = loose_ends_only(graph, read_choices(n, choices)?);
         let tip_moves = candidate_rows(n, graph, tips)?;
         // A join is between two points below `n` (the stage's always are, and distinct).
-        let hook_joins = vertex_edges(n, hooks)?;
+        let end_joins = vertex_edges(n, joins)?;
         Ok(GatheredJoins {
             targets,
             walks,
             tip_moves,
-            hook_joins,
+            end_joins,
         })
     }
 
@@ -345,7 +347,7 @@ impl GatheredJoins {
         if let Some((_, moved)) = tips::settle_candidates(n, graph, self.tip_moves) {
             joins.extend(moved);
         }
-        joins.extend(self.hook_joins);
+        joins.extend(self.end_joins);
         joins
     }
 }
@@ -791,12 +793,48 @@ pub fn give_back_gathered_last_edges(
     Ok(Some(out))
 }
 
+/// The edges the junctions stage would join ([`Graph::join_junctions`]) at the loose ends of
+/// `graph` that `at` selects (by input position), each end's own choice, for a tile of a split
+/// run: rule 4 of the local outlier removal and the clump stage keep the pieces they join to a
+/// component that stays ([`remove_gathered_local_outliers`], [`remove_gathered_clumps`]). Each
+/// pair, smaller position first, is the whole set's at every loose end whose Delaunay
+/// neighbourhood (eleven hops, the junctions stage's reach) and graph the tile holds.
+///
+/// ```
+/// use condt::{tiled, triangulate, Point};
+/// // A straight curve 0..=12 and, one spacing above point 6, the end 13 of a branch heading down.
+/// let mut pts: Vec<Point> = (0..=12).map(|k| Point::new(k as f64, 0.0)).collect();
+/// pts.extend((1..=7).map(|k| Point::new(6.0, k as f64)));
+/// let tri = triangulate(&pts)?;
+/// let edges: Vec<[usize; 2]> = (0..12).chain(13..19).map(|i| [i, i + 1]).collect();
+/// let graph = tri.graph_from_edges(edges);
+/// assert_eq!(tiled::junction_joins(&graph, |_| true), vec![[6, 13]]);
+/// assert!(tiled::junction_joins(&graph, |i| i != 13).is_empty()); // owned by the end 13
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn junction_joins(
+    graph: &Graph<'_>,
+    at: impl Fn(usize) -> bool + Sync + Send,
+) -> Vec<[usize; 2]> {
+    let tri = graph.triangulation();
+    let ends = Ends::new(tri, graph.listed(), None);
+    let position = |v: VertexId| tri.input_of(v);
+    junctions::junction_joins(&ends, false, |v| at(position(v)))
+        .into_iter()
+        .map(|[a, b]| {
+            let (a, b) = (position(a), position(b));
+            [a.min(b), a.max(b)]
+        })
+        .collect()
+}
+
 /// The local outlier removal's rule 4 on edges gathered from the tiles of a split run, after
 /// rules 1 to 3 ([`local_rules`]): the edges kept, or `None` when it drops none. `edges` are pairs
 /// of positions below `n`; `tests` each position's [`clump_tests`] on this graph (the separation
 /// and the smooth passage rule 4 reads too), `choices` every loose end's [`gap_choices`] on it,
-/// `tips` every point's [`tip_candidates`] on it and `hooks` its [`hook_joins`] (rule 4 keeps
-/// pieces gap closing, a tip's move or a hook's would join to a kept component), each from the
+/// `tips` every point's [`tip_candidates`] on it and `joins` its [`hook_joins`] and
+/// [`junction_joins`] in one list (rule 4 keeps pieces gap closing, a tip's move, a hook's or a
+/// junction's would join to a kept component), each from the
 /// tile that owns it. The rule is the stage's own code.
 ///
 /// # Errors
@@ -816,9 +854,10 @@ pub fn give_back_gathered_last_edges(
 /// let tests = tiled::clump_tests(&local, &tiled::component_labels(pts.len(), &edges)?)?;
 /// let choices = tiled::gap_choices(&local, |_| true);
 /// let tips = tiled::tip_candidates(&local, |_| true);
-/// let hooks = tiled::hook_joins(&local, |_| true);
+/// let mut joins = tiled::hook_joins(&local, |_| true);
+/// joins.extend(tiled::junction_joins(&local, |_| true));
 /// let kept =
-///     tiled::remove_gathered_local_outliers(pts.len(), &edges, &tests, &choices, &tips, &hooks)?;
+///     tiled::remove_gathered_local_outliers(pts.len(), &edges, &tests, &choices, &tips, &joins)?;
 /// // The far pair goes; the circle stays, as the stage decides.
 /// let stage = filtered.remove_local_outliers(&repaired).edges();
 /// assert_eq!(kept, Some(stage));
@@ -830,13 +869,13 @@ pub fn remove_gathered_local_outliers(
     tests: &[u8],
     choices: &[[usize; GAP_ROW]],
     tips: &[[usize; 4]],
-    hooks: &[[usize; 2]],
+    joins: &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     enough_tests(n, tests)?;
     let listed = vertex_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
-    let gathered_joins = GatheredJoins::read(n, &profile, choices, tips, hooks)?;
+    let gathered_joins = GatheredJoins::read(n, &profile, choices, tips, joins)?;
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     let separated = exact_separated(&profile, &root, |v| test(v, 2));
     let passing = |at: VertexId, _, _| test(at, 1);
@@ -1121,6 +1160,7 @@ mod tests {
         choices: Vec<[usize; GAP_ROW]>,
         tips: Vec<[usize; 4]>,
         hooks: Vec<[usize; 2]>,
+        junctions: Vec<[usize; 2]>,
         stage: Vec<[usize; 2]>,
     }
 
@@ -1136,6 +1176,7 @@ mod tests {
             choices: gap_choices(&local, |_| true),
             tips: tip_candidates(&local, |_| true),
             hooks: hook_joins(&local, |_| true),
+            junctions: junction_joins(&local, |_| true),
             stage: graph.remove_local_outliers(&graph).edges(),
             listed,
         }
@@ -1179,6 +1220,34 @@ mod tests {
             beyond,
             Err(Error::InvalidParameter { name: "edge", .. })
         ));
+    }
+
+    /// Rule 4 on gathered edges keeps a piece that a junction joins to a kept curve, as the stage
+    /// does (the stage's test's comb); gathered without the junction joins, the short tooth goes.
+    /// A join is owned by its loose end.
+    #[test]
+    fn gathered_rule_4_keeps_what_a_junction_joins_as_the_stage_does() {
+        let (pts, edges, end) = crate::test_graphs::comb_with_a_short_tooth();
+        let r = rule_4_rows(&pts, &edges);
+        let (n, listed, tests) = (r.n, &r.listed, &r.tests);
+        assert!(r.hooks.is_empty());
+        assert_eq!(r.junctions, vec![[13, 39], [15, end], [17, 59]]);
+        let tri = crate::triangulate(&pts).unwrap();
+        let graph = tri.graph_from_edges(edges.iter().copied());
+        assert_eq!(
+            junction_joins(&graph, |i| i != end),
+            vec![[13, 39], [17, 59]]
+        );
+        let gathered =
+            remove_gathered_local_outliers(n, listed, tests, &r.choices, &r.tips, &r.junctions);
+        assert_eq!(r.stage.len(), edges.len());
+        assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), r.stage);
+        let without =
+            remove_gathered_local_outliers(n, listed, tests, &r.choices, &r.tips, &r.hooks);
+        assert_eq!(
+            without.unwrap().map(|kept| kept.len()),
+            Some(edges.len() - 7)
+        );
     }
 
     /// The clump stage on gathered edges keeps a zig-zag piece that gap closing joins to a

@@ -744,3 +744,23 @@ fn paper_preset_reproduces_the_pinned_outputs() {
     assert_eq!(r.edges().len(), 225);
     assert_eq!(edge_hash(r.edges()), 0x4a4f_d6f9_473b_811a);
 }
+
+/// A comb drawn with evenly spaced samples: a straight line of 31 samples, a short tooth of eight
+/// between two long teeth of twenty, two spacings to each side, every tooth meeting the line at a
+/// T. No sample of the short tooth lies apart from the long ones, so the local outlier removal
+/// would drop it as a noisy piece; the junction its end makes with the line keeps it, and the
+/// result is the drawing: the line, the three teeth and their three junction edges.
+#[test]
+fn a_short_tooth_between_long_ones_keeps_its_junction() {
+    let mut points: Vec<Point> = (0..=30).map(|x| Point::new(x as f64, 0.0)).collect();
+    let mut drawn: BTreeSet<[usize; 2]> = (0..30).map(|k| [k, k + 1]).collect();
+    for (x, len) in [(15, 8), (13, 20), (17, 20)] {
+        let first = points.len();
+        points.extend((1..=len).map(|y| Point::new(x as f64, y as f64)));
+        drawn.extend((first..first + len - 1).map(|k| [k, k + 1]));
+        drawn.insert([x, first]);
+    }
+    let r = run(&points, Params::default());
+    assert_eq!(edges(&r), drawn);
+    assert!(r.unused().is_empty());
+}

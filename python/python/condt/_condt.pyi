@@ -218,7 +218,7 @@ def _gathered_clumps(
     tests: npt.NDArray[np.uint8],
     choices: npt.NDArray[np.int64],
     tips: npt.NDArray[np.int64],
-    hooks: npt.NDArray[np.int64],
+    joins: npt.NDArray[np.int64],
 ) -> npt.NDArray[np.int64] | None: ...
 def _gathered_tips(
     n: int, edges: npt.NDArray[np.int64], candidates: npt.NDArray[np.int64]
@@ -242,7 +242,7 @@ def _gathered_local_outliers(
     tests: npt.NDArray[np.uint8],
     choices: npt.NDArray[np.int64],
     tips: npt.NDArray[np.int64],
-    hooks: npt.NDArray[np.int64],
+    joins: npt.NDArray[np.int64],
 ) -> npt.NDArray[np.int64] | None: ...
 def _last_edges_kept(
     state: _TileState,

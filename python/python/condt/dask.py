@@ -230,7 +230,7 @@ def _phases(run, plan, points, params):
         if step == "local-outliers":
             # Rules 1 to 3 on the tiles (rule 1 only where the IQR stage cut more than the steps
             # since added: the driver counts); rule 4 on the driver, with the clump tests, the gap
-            # choices, the tips' candidate moves and the hooks' joins on their result.
+            # choices, the tips' candidate moves and the hooks' and junctions' joins on their result.
             before_local = edges
             give_back = len(before_outliers) > len(edges)
             if give_back:
@@ -244,8 +244,8 @@ def _phases(run, plan, points, params):
             labels = _condt._component_labels(n, edges)
             tests = run.tests_on_kept(edges, step, labels)
             # All three in one round (one scatter of the edges to each tile).
-            choices, tips, hooks = run.on_kept(edges, "joins", width=(10, 4, 2))
-            kept = _condt._gathered_local_outliers(n, edges, tests, choices, tips, hooks)
+            choices, tips, joins = run.on_kept(edges, "joins", width=(10, 4, 2))
+            kept = _condt._gathered_local_outliers(n, edges, tests, choices, tips, joins)
             edges = edges if kept is None else kept
         elif step == "given-back":
             standing = _condt._given_back_standing(n, edges, before_local)
@@ -256,13 +256,13 @@ def _phases(run, plan, points, params):
                 edges = edges if kept is None else kept
         elif step == "clumps":
             # The tests at each point on the tiles, the rule (a component's tally) on the driver;
-            # where it finds clumps, the gap choices, the tips' candidate moves and the hooks'
-            # joins too (a clump they would join to a component that stays, stays).
+            # where it finds clumps, the gap choices, the tips' candidate moves and the hooks' and
+            # junctions' joins too (a clump they would join to a component that stays, stays).
             labels = _condt._component_labels(n, edges)
             tests = run.tests_on_kept(edges, step, labels)
             if _condt._gathered_clumps_found(n, edges, tests):
-                choices, tips, hooks = run.on_kept(edges, "joins", width=(10, 4, 2))
-                kept = _condt._gathered_clumps(n, edges, tests, choices, tips, hooks)
+                choices, tips, joins = run.on_kept(edges, "joins", width=(10, 4, 2))
+                kept = _condt._gathered_clumps(n, edges, tests, choices, tips, joins)
                 edges = edges if kept is None else kept
         elif step == "gaps":
             # Each loose end's choice and straight walk on the tiles; agreement, the joins along
@@ -428,7 +428,8 @@ class _Run:
         (``"repair"``) or a later stage's round, which sends each tile only its given edges. The
         tiles' rows (owned edges; for the tips, ``width`` 4, candidate moves; for gap closing,
         ``width`` 10, choices) in tile order; for ``"joins"`` (``width`` ``(10, 4, 2)``) the gap
-        choices, the tip candidates and the hook joins, three lists from one round."""
+        choices, the tip candidates and the hooks' and junctions' joins, three lists from one
+        round."""
         kept, locals_ = self._split(given)
         earlier = [None] * len(kept) if before is None else self._split(before)[1]
         futures = []
@@ -539,7 +540,7 @@ def _tile_given(result, payload, step, give_back, params):
     elif step == "joins":
         rows = tuple(
             _on_worker(_condt._choices_kept, state, given, one, **params)
-            for one in ("gaps", "tips", "hook-joins")
+            for one in ("gaps", "tips", "end-joins")
         )
     else:
         rows = _on_worker(_condt._step_kept, state, given, step, **params)

@@ -68,8 +68,9 @@ pub struct Params {
     /// Close gaps at loose ends (beyond the paper; the joins it makes: `src/stages/gaps.rs`).
     pub close_gaps: bool,
     /// Remove components fewer than half of whose points a curve passes smoothly and evenly, or
-    /// half and every point apart: clumps of outliers; not one that gap closing, the tips or the
-    /// hooks would join to a component that stays, whether those steps run or not (beyond the
+    /// half and every point apart: clumps of outliers; not one that gap closing, the tips, the
+    /// hooks or the junctions would join to a component that stays, whether those steps run or
+    /// not (beyond the
     /// paper; `src/stages/clumps.rs`).
     pub clumps: bool,
     /// Join a loose end to the curve it meets where three curves of five points or more, sampled

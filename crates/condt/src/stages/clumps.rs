@@ -10,12 +10,14 @@
 //! half of its points pass [`smooth_and_regular`], or exactly half and every point of it is apart
 //! (a tie shows no majority either; a piece of a noisy curve is not apart at its ends), unless the
 //! clumps and the components not apart would hold [`OUTLIER_SHARE`] or more of the points with
-//! edges; and not one that gap closing or a tip's or hook's move would join to a component that
-//! stays ([`unless_joined`]: a stretch of a noisy curve cut off at both ends). Why half: a
+//! edges; and not one that gap closing, a tip's or hook's move or a junction join would join to a
+//! component that stays ([`unless_joined`]: a stretch of a noisy curve cut off at both ends).
+//! Why half: a
 //! curve's ends, corners and junctions are a minority at any sampling dense enough for the
 //! proximity graph; a random zig-zag passes smoothly at most one time in three.
 //! Sequential; O(n) beyond the union-find, and only where there are clumps, the joins (gap
-//! closing's, the tips' and the hooks' searches at the loose ends, on rayon's threads when
+//! closing's, the tips', the hooks' and the junctions' searches at the loose ends, on rayon's
+//! threads when
 //! `parallel`).
 
 use super::local_outliers::{
@@ -130,7 +132,8 @@ pub(crate) fn clumps_of(
 }
 
 /// The clumps `clump` (per root of `root`, [`clumps_of`]) less those that `joins`, the edges gap
-/// closing and the moves of the tips and hooks stages would add to `graph`, join to a component
+/// closing, the moves of the tips and hooks stages and the junction joins would add to `graph`,
+/// join to a component
 /// that stays, directly or through other clumps, between points with edges; `None` when none is
 /// left.
 /// Reason: a piece of a noisy curve can zig-zag and stand apart from the rest at its middle

@@ -23,7 +23,9 @@
 //! chord `c d` between two of its Delaunay neighbours whose curves both run straight on into it
 //! ([`Ends::chord_past`]): `c d` gives way to the end's edges to `c` and `d`, unless `c` or `d`
 //! takes part in another choice. All choices are made on the graph as it came in: the result
-//! depends neither on the order of the ends nor on `parallel`.
+//! depends neither on the order of the ends nor on `parallel`. Rule 4 of the local outlier
+//! removal and the clump stage ask earlier which pieces the joins would tie to a kept curve
+//! ([`junction_joins`]), and keep them.
 
 use super::gaps::{cos_at, crowded, one_sampling, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
@@ -204,6 +206,22 @@ impl Ends<'_> {
                 (self.turn(a, s), junction)
             })
     }
+}
+
+/// The edges the junctions stage would join at the loose ends of `ends` that `at` selects (each
+/// end's own choice, before the ends that share a point are settled): rule 4 of the local outlier
+/// removal and the clump stage keep the pieces they join to a component that stays
+/// (`local_outliers::would_join`), as they keep those gap closing joins.
+pub(crate) fn junction_joins(
+    ends: &Ends<'_>,
+    parallel: bool,
+    at: impl Fn(VertexId) -> bool + Sync + Send,
+) -> Vec<Edge> {
+    let found = ends.each_loose(parallel, |a| match ends.choice_of(a) {
+        Some(Choice::Join(junction)) if at(a) => Some(junction),
+        _ => None,
+    });
+    found.iter().flat_map(Junction::edges).collect()
 }
 
 /// A loose end's junction: the end, the samples without edges a walk passed on the way (none for

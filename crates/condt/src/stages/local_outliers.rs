@@ -21,11 +21,12 @@
 //!    polygon of five or six is a clump however far apart ([`drop_short_cycles`]).
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
-//! curves) unless gap closing or a move of the tips or hooks stage would join them to a kept
-//! component ([`merged_along`]), or rule 4 would remove [`OUTLIER_SHARE`] of the points with
-//! edges (then it removes none; docs/condt.md, *The local outlier removal and real data*); rule 3
-//! drops shorter junction branches regardless. Deterministic, O(n); rule 4's separation test and
-//! its search for the joins of gap closing, the tips and the hooks run on rayon's threads when
+//! curves) unless gap closing, a move of the tips or hooks stage or a junction join would join
+//! them to a kept component ([`merged_along`]), or rule 4 would remove [`OUTLIER_SHARE`] of the
+//! points with edges (then it removes none; docs/condt.md, *The local outlier removal and real
+//! data*); rule 3 drops shorter junction branches regardless. Deterministic, O(n); rule 4's
+//! separation test and its search for the joins of gap closing, the tips, the hooks and the
+//! junctions run on rayon's threads when
 //! `parallel` (the same result); lengths recomputed, not kept (memory).
 
 use super::outliers::FLOOR_RATIO;
@@ -649,8 +650,9 @@ fn separated_components(
     separated_with(edges, profile, root, &separated, passing, joins)
 }
 
-/// The edges gap closing and the moves of the tips and hooks stages would add to `graph`: rule
-/// 4's third exemption ([`merged_along`]) and the clump stage's read them.
+/// The edges gap closing, the moves of the tips and hooks stages and the junctions stage's joins
+/// would add to `graph`: rule 4's third exemption ([`merged_along`]) and the clump stage's read
+/// them.
 pub(super) fn would_join(tri: &Triangulation, graph: &CurveGraph, parallel: bool) -> Vec<Edge> {
     let ends = super::gaps::Ends {
         tri,
@@ -659,14 +661,15 @@ pub(super) fn would_join(tri: &Triangulation, graph: &CurveGraph, parallel: bool
     let mut joins = super::gaps::gap_joins(&ends, parallel);
     joins.extend(super::tips::tip_joins(&ends, parallel));
     joins.extend(super::hooks::hook_joins(&ends, parallel));
+    joins.extend(super::junctions::junction_joins(&ends, parallel, |_| true));
     joins
 }
 
 /// Rule 4 on the graph of `edges` (`profile`, its components `root`) with what it reads of the
 /// triangulation given: `separated`, each root's separated points counted up to [`MIN_SAMPLES`]
 /// ([`separated_counts`]), `passing(at, previous, next)` ([`smooth_and_regular`]) and `joins`,
-/// the edges gap closing and the moves of the tips and hooks stages would add to this graph
-/// ([`merged_along`]).
+/// the edges gap closing, the moves of the tips and hooks stages and the junction joins would add
+/// to this graph ([`merged_along`]).
 /// The rest reads the graph alone, so a run split in tiles runs it on the gathered edges
 /// ([`crate::tiled`]).
 pub(crate) fn separated_with(
@@ -692,8 +695,8 @@ pub(crate) fn separated_with(
     if too_many_dropped(&root, profile, &kept) {
         return None;
     }
-    // Rule 4's third exemption: pieces gap closing or a tip's or hook's move joins to a kept
-    // component.
+    // Rule 4's third exemption: pieces gap closing, a tip's or hook's move or a junction join
+    // ties to a kept component.
     Some(merged_along(root, kept, joins()))
 }
 
@@ -1492,6 +1495,22 @@ mod tests {
         assert_eq!(graph.repair_tips().edges(), graph.edges());
         let unhooked = graph.unhook().edges();
         assert!(unhooked.contains(&[11, 12]) && unhooked.contains(&[13, curve_len]));
+    }
+
+    /// The comb of [`comb_with_a_short_tooth`](crate::test_graphs::comb_with_a_short_tooth): rule
+    /// 4 would drop its short tooth (no sample of it is apart), gap closing, the tips and the hooks
+    /// join nothing there, and the junctions stage joins the tooth's end to the straight curve, so
+    /// rule 4 keeps it.
+    #[test]
+    fn rule_4_keeps_a_piece_that_a_junction_joins_to_a_kept_curve() {
+        let (pts, pairs, end) = crate::test_graphs::comb_with_a_short_tooth();
+        let tri = triangulate(&pts).unwrap();
+        assert_eq!(apply(&tri, &vertex_edges(&tri, &pairs), RULE_4), None);
+        let graph = tri.graph_from_edges(pairs.iter().copied());
+        assert_eq!(graph.close_gaps().edges(), graph.edges());
+        assert_eq!(graph.repair_tips().edges(), graph.edges());
+        assert_eq!(graph.unhook().edges(), graph.edges());
+        assert!(graph.join_junctions().edges().contains(&[15, end]));
     }
 
     /// An open arc of 21 samples, then two pairs of samples beyond its end, each a spacing from

@@ -161,8 +161,8 @@ repair, remove outliers locally: give back edges the filter cut
 along regular passages; drop edges far longer than their
 neighbours, branches of fewer than 5 points and components of
 fewer than 5 points clearly apart from the rest, unless dense
-or gap closing, the tips or the hooks would join them to a curve
-that stays, whether those steps run or not (a sparsely sampled
+or gap closing, the tips, the hooks or the junctions would join
+them to a curve that stays, whether those steps run or not (a sparsely sampled
 curve of 3 or 4 points, or a closed one of 5 or 6, is lost)",
         }),
     },
@@ -193,8 +193,8 @@ the filter cut that passes near an unused point stays cut)",
 remove components fewer than half of whose points a curve passes
 smoothly and evenly, or half and every point apart (clumps of
 outliers), unless that would remove a quarter of the points with
-edges; a component gap closing, the tips or the hooks would join to
-one that stays, stays",
+edges; a component gap closing, the tips, the hooks or the
+junctions would join to one that stays, stays",
         }),
     },
     Row {
