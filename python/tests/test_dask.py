@@ -432,6 +432,37 @@ def test_a_tooth_that_a_junction_joins_stays_on_the_driver_too(client):
     np.testing.assert_array_equal(tiled.edges, expected)
 
 
+def test_a_convex_pupil_stays_on_the_driver_too(client):
+    # Eyes sampled about one spacing apart: a pupil of eight samples, three pushed out to corners
+    # of 100 degrees, in an iris 1.2 spacings away. Under three quarters of the pupil passes
+    # smoothly, but it turns one way at every sample: rule 4 keeps it, reading each sample's turn
+    # from the tile that owns it, whichever way the driver walks the cycle.
+    rng = np.random.default_rng(5)
+    t = 2 * np.pi * np.arange(8) / 8
+    radii = np.array([1.95, 1.5, 1.5, 1.95, 1.5, 1.95, 1.5, 1.5])
+    pupil = np.column_stack([radii * np.cos(t), radii * np.sin(t)])
+
+    def circle(r, m):
+        a = 2 * np.pi * np.arange(m) / m
+        return np.column_stack([r * np.cos(a), r * np.sin(a)])
+
+    eye = np.concatenate([circle(10.0, 50), circle(3.4, 18), pupil])
+    parts, pupils = [], []
+    for k in range(36):
+        angle, size = rng.uniform(0, 2 * np.pi), rng.uniform(0.2, 0.4)
+        turn = np.array([[np.cos(angle), np.sin(angle)], [-np.sin(angle), np.cos(angle)]])
+        first = sum(len(p) for p in parts)
+        parts.append(eye @ turn * size + [10.0 * (k % 6), 10.0 * (k // 6)])
+        pupils.append(first + 68)
+    points = np.concatenate(parts)
+    expected = one_machine(points)
+    kept = {tuple(e) for e in expected.tolist()}
+    assert all((p + k, p + k + 1) in kept for p in pupils for k in range(7))
+    tiled = condt.dask.reconstruct(points, client, tiles=9)
+    assert tiled.whole is None
+    np.testing.assert_array_equal(tiled.edges, expected)
+
+
 def last_edges_given_back_on_the_driver(client, seed, t):
     """Clean ellipses, and beside them 30 sparse open arcs sampled at the angles ``t``: the
     tiled run equals one machine's, and one machine gives every arc's last edge back."""

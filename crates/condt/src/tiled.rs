@@ -19,9 +19,12 @@ use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::error::Error;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
+use crate::predicates::{orient2d, Orientation};
 use crate::stages::gaps::{self, Ends, Partner, Target, Walk};
 use crate::stages::hooks;
-use crate::stages::local_outliers::{components, separated_at, smooth_and_regular, MIN_SAMPLES};
+use crate::stages::local_outliers::{
+    components, separated_at, smooth_and_regular, Passage, MIN_SAMPLES,
+};
 use crate::stages::outliers::IqrRule;
 use crate::stages::tips::{self, Candidate};
 use crate::stages::{clumps, given_back, junctions, local_outliers, Step};
@@ -155,7 +158,9 @@ pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Erro
 
 /// The clump rule's tests at each input position of `graph`'s triangulation, for a tile of a split
 /// run: bit 0 when the point has two edges and passes smoothly, bit 1 when it has edges and lies
-/// apart from everything outside its component (rule 4's separation); 0 without edges. `labels`
+/// apart from everything outside its component (rule 4's separation), bits 2 and 3 when it has two
+/// edges and turns counter-clockwise (bit 2) or clockwise (bit 3) from its neighbour of smaller
+/// position to the other (rule 4's convex cycles); 0 without edges. `labels`
 /// names each position's component in the whole set's graph ([`component_labels`], any names
 /// that are equal exactly within a component); the tests are the whole set's at every point
 /// whose Delaunay star and graph the tile holds.
@@ -175,8 +180,8 @@ pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Erro
 /// let edges: Vec<[usize; 2]> = (0..29).chain(30..35).map(|i| [i, i + 1]).collect();
 /// let labels = tiled::component_labels(pts.len(), &edges)?;
 /// let tests = tiled::clump_tests(&tri.graph_from_edges(edges.iter().copied()), &labels)?;
-/// assert_eq!(tests[10], 0b11); // on the arc: smooth, and apart from the zig-zag
-/// assert_eq!(tests[32], 0b10); // in the zig-zag: bent
+/// assert_eq!(tests[10], 0b111); // on the arc: smooth, apart from the zig-zag, turning left
+/// assert_eq!(tests[32] & 0b11, 0b10); // in the zig-zag: bent
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> {
@@ -193,13 +198,43 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> 
             if tri.input_of(v) != position || curve.degree(v) == 0 {
                 return 0; // a merged duplicate is tested at its vertex's own position
             }
-            let smooth = curve.degree(v) == 2 && {
+            let (smooth, turn) = if curve.degree(v) == 2 {
                 let [y, z] = curve.first_two(v);
-                smooth_and_regular(tri, v, y, z)
+                let (low, high) = if tri.input_of(y) < tri.input_of(z) {
+                    (y, z)
+                } else {
+                    (z, y)
+                };
+                let at = |u: VertexId| tri.vertex_point(u);
+                let turn = match orient2d(at(low), at(v), at(high)) {
+                    Orientation::Ccw => 0b100,
+                    Orientation::Cw => 0b1000,
+                    Orientation::Collinear => 0,
+                };
+                (smooth_and_regular(tri, v, y, z), turn)
+            } else {
+                (false, 0)
             };
-            u8::from(smooth) | u8::from(separated_at(tri, &curve, &root, v)) << 1
+            u8::from(smooth) | u8::from(separated_at(tri, &curve, &root, v)) << 1 | turn
         })
         .collect())
+}
+
+/// The turn of the passage `previous, at, next` (positions) from `at`'s [`clump_tests`] row,
+/// which reads it from the neighbour of smaller position: the other way round when `previous`
+/// is the larger.
+fn turn_read(tests: u8, previous: VertexId, next: VertexId) -> Orientation {
+    let (left, right) = (Orientation::Ccw, Orientation::Cw);
+    let (from_low, from_high) = if previous < next {
+        (left, right)
+    } else {
+        (right, left)
+    };
+    match tests & 0b1100 {
+        0b100 => from_low,
+        0b1000 => from_high,
+        _ => Orientation::Collinear,
+    }
 }
 
 /// The clump stage ([`Graph::remove_clumps`]) on edges gathered from the tiles of a split run:
@@ -878,7 +913,10 @@ pub fn remove_gathered_local_outliers(
     let gathered_joins = GatheredJoins::read(n, &profile, choices, tips, joins)?;
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
     let separated = exact_separated(&profile, &root, |v| test(v, 2));
-    let passing = |at: VertexId, _, _| test(at, 1);
+    let passing = |at: VertexId, previous: VertexId, next: VertexId| Passage {
+        smooth: test(at, 1),
+        turn: turn_read(tests[at.index()], previous, next),
+    };
     let joins = || gathered_joins.joins(n, &profile);
     let Some((root, kept)) =
         local_outliers::separated_with(&listed, &profile, root, &separated, passing, joins)
@@ -1248,6 +1286,46 @@ mod tests {
             without.unwrap().map(|kept| kept.len()),
             Some(edges.len() - 7)
         );
+    }
+
+    /// Rule 4 on gathered edges keeps a convex pupil whose corners leave it under three quarters
+    /// passing, and drops one that turns back at a sample, as the stage does: the turns read
+    /// from the tiles' rows, whichever way a cycle is walked.
+    #[test]
+    fn gathered_rule_4_keeps_a_convex_ring_as_the_stage_does() {
+        let ring = |radius: f64, count: usize, at: &dyn Fn(usize) -> f64| -> Vec<crate::Point> {
+            (0..count)
+                .map(|k| {
+                    let t = core::f64::consts::TAU * k as f64 / count as f64;
+                    let r = radius * at(k);
+                    crate::Point::new(r * libm::cos(t), r * libm::sin(t))
+                })
+                .collect()
+        };
+        for (pupil, kept) in [
+            ([1.3, 1.0, 1.0, 1.3, 1.0, 1.3, 1.0, 1.0], true),
+            ([1.3, 1.0, 1.0, 1.3, 1.0, 1.0, 0.67, 1.0], false),
+        ] {
+            let mut pts = ring(10.0, 50, &|_| 1.0);
+            pts.extend(ring(3.4, 18, &|_| 1.0));
+            pts.extend(ring(1.5, 8, &|k| pupil[k]));
+            let mut edges: Vec<[usize; 2]> = Vec::new();
+            for (first, count) in [(0, 50), (50, 18), (68, 8)] {
+                edges.extend((0..count).map(|k| [first + k, first + (k + 1) % count]));
+            }
+            // The cycles listed backwards too: a walk then starts the other way round, and the
+            // rows' turns must not depend on it.
+            let backwards: Vec<[usize; 2]> = edges.iter().rev().map(|&[a, b]| [b, a]).collect();
+            for edges in [edges, backwards] {
+                let r = rule_4_rows(&pts, &edges);
+                let (n, listed, tests) = (r.n, &r.listed, &r.tests);
+                let gathered =
+                    remove_gathered_local_outliers(n, listed, tests, &r.choices, &r.tips, &r.hooks);
+                assert_eq!(gathered.unwrap().unwrap_or(listed.clone()), r.stage);
+                let pupil_edges = r.stage.iter().filter(|&&[a, _]| a >= 68).count();
+                assert_eq!(pupil_edges, if kept { 8 } else { 0 });
+            }
+        }
     }
 
     /// The clump stage on gathered edges keeps a zig-zag piece that gap closing joins to a

@@ -18,7 +18,9 @@
 //! 3. **Drop short spurs** ([`short_spurs`]): outliers hanging off a curve, unseen by rule 4.
 //! 4. **Keep separated components** ([`separated_components`]): a clump's points are about as far
 //!    from the rest as from each other, a curve's samples much closer to each other; a closed
-//!    polygon of five or six is a clump however far apart ([`drop_short_cycles`]).
+//!    polygon of five or six is a clump however far apart ([`drop_short_cycles`]); a cycle of
+//!    seven or more that is not apart stays when three quarters of its samples pass smoothly, or
+//!    half and it turns one way at every sample (convex; [`keep_regular_cycles`]).
 //!
 //! It loses curves of fewer than [`MIN_SAMPLES`] points and pieces not clearly apart (noisy
 //! curves) unless gap closing, a move of the tips or hooks stage or a junction join would join
@@ -34,6 +36,7 @@ use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
+use crate::predicates::{orient2d, Orientation};
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 use alloc::vec;
@@ -645,7 +648,14 @@ fn separated_components(
     }
     let root = components(tri.num_points(), edges);
     let separated = separated_counts(tri, profile, &root, parallel);
-    let passing = |at, previous, next| smooth_and_regular(tri, at, previous, next);
+    let passing = |at, previous, next| Passage {
+        smooth: smooth_and_regular(tri, at, previous, next),
+        turn: orient2d(
+            tri.vertex_point(previous),
+            tri.vertex_point(at),
+            tri.vertex_point(next),
+        ),
+    };
     let joins = || would_join(tri, profile, parallel);
     separated_with(edges, profile, root, &separated, passing, joins)
 }
@@ -665,9 +675,17 @@ pub(super) fn would_join(tri: &Triangulation, graph: &CurveGraph, parallel: bool
     joins
 }
 
+/// What rule 4's cycle exemptions read of a cycle's passage `previous, at, next`: whether it
+/// passes [`smooth_and_regular`], and which way it turns (`orient2d(previous, at, next)`).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Passage {
+    pub(crate) smooth: bool,
+    pub(crate) turn: Orientation,
+}
+
 /// Rule 4 on the graph of `edges` (`profile`, its components `root`) with what it reads of the
 /// triangulation given: `separated`, each root's separated points counted up to [`MIN_SAMPLES`]
-/// ([`separated_counts`]), `passing(at, previous, next)` ([`smooth_and_regular`]) and `joins`,
+/// ([`separated_counts`]), `passing(at, previous, next)` (the [`Passage`]) and `joins`,
 /// the edges gap closing, the moves of the tips and hooks stages and the junction joins would add
 /// to this graph ([`merged_along`]).
 /// The rest reads the graph alone, so a run split in tiles runs it on the gathered edges
@@ -677,7 +695,7 @@ pub(crate) fn separated_with(
     profile: &CurveGraph,
     root: Vec<u32>,
     separated: &[u8],
-    passing: impl Fn(VertexId, VertexId, VertexId) -> bool,
+    passing: impl Fn(VertexId, VertexId, VertexId) -> Passage,
     joins: impl FnOnce() -> Vec<Edge>,
 ) -> Option<(Vec<u32>, Vec<bool>)> {
     let mut kept: Vec<bool> = separated
@@ -689,11 +707,15 @@ pub(crate) fn separated_with(
     if edges.iter().all(|&[a, _]| kept[root[a.index()] as usize]) {
         return None;
     }
-    keep_regular_cycles(profile, shapes, &mut kept, passing);
-    // The guard judges the components as they are: the joined pieces kept below only lower the
-    // share, and a guard that then let go of the rest would drop more than without them.
+    let convex = keep_regular_cycles(profile, shapes, &mut kept, passing);
+    // The guard judges the components as they are: the convex cycles and the joined pieces kept
+    // below only lower the share, and a guard that then let go of the rest would drop more than
+    // without them.
     if too_many_dropped(&root, profile, &kept) {
         return None;
+    }
+    for r in convex {
+        kept[r as usize] = true;
     }
     // Rule 4's third exemption: pieces gap closing, a tip's or hook's move or a junction join
     // ties to a kept component.
@@ -886,16 +908,23 @@ impl Shapes {
     }
 }
 
-/// Rule 4's exemption: keeps every cycle of at least [`CLOSED_MIN`] points of which at least
-/// three quarters ([`CYCLE_PASSING`]) pass [`smooth_and_regular`]. Reason: a curve two or three
-/// spacings from another (concentric circles, an eye's rings) has no separated sample, and
-/// outliers rarely close into such a cycle. O(n): each cycle walked once from its root.
+/// Rule 4's exemptions for cycles of at least [`CLOSED_MIN`] points: keeps every one of which at
+/// least three quarters ([`CYCLE_PASSING`]) pass [`smooth_and_regular`], and returns the roots of
+/// the convex ones (every passage turning the same way) of which at least half pass, for the
+/// caller to keep after the quarter guard. Reason: a curve two or three spacings from another
+/// (concentric circles, an eye's rings) has no separated sample, and outliers rarely close into
+/// such a cycle; a small drawn ring (a pupil) has corners at a third of its samples, but turns
+/// one way at every sample, as a cycle of outliers does by chance about twice in `2^k` for `k`
+/// samples. After the guard, as the joined pieces: a cycle kept only lowers the share dropped,
+/// and a guard that then let go of the rest would drop more. O(n): each cycle walked once from
+/// its root.
 fn keep_regular_cycles(
     graph: &CurveGraph,
     shapes: Shapes,
     kept: &mut [bool],
-    passing: impl Fn(VertexId, VertexId, VertexId) -> bool,
-) {
+    passing: impl Fn(VertexId, VertexId, VertexId) -> Passage,
+) -> Vec<u32> {
+    let mut convex_cycles = Vec::new();
     let Shapes { size, cycle } = shapes;
     for r in 0..kept.len() {
         // `size` saturates at 255, which is above the bound.
@@ -903,9 +932,15 @@ fn keep_regular_cycles(
             continue;
         }
         let start = VertexId::new(r as u32);
-        let (mut passing_count, mut count) = (0, 0);
+        let (mut passing_count, mut count, mut turns) = (0, 0, [0usize; 2]);
         for [previous, at, next] in graph.passages(graph.first_two(start)[1], start) {
-            passing_count += usize::from(passing(at, previous, next));
+            let passage = passing(at, previous, next);
+            passing_count += usize::from(passage.smooth);
+            match passage.turn {
+                Orientation::Ccw => turns[0] += 1,
+                Orientation::Cw => turns[1] += 1,
+                Orientation::Collinear => {}
+            }
             count += 1;
             if next == start {
                 break;
@@ -913,7 +948,11 @@ fn keep_regular_cycles(
         }
         let (share_passing, of) = CYCLE_PASSING;
         kept[r] = of * passing_count >= share_passing * count;
+        if !kept[r] && turns.contains(&count) && 2 * passing_count >= count {
+            convex_cycles.push(r as u32);
+        }
     }
+    convex_cycles
 }
 
 /// The share of a cycle's samples, as a fraction `(3, 4)` compared in integers, that must pass
@@ -978,6 +1017,49 @@ mod tests {
         let many = reconstruct(&eye(20), &params).unwrap();
         assert_eq!((ring(&one), others(&one)), (40, 286));
         assert_eq!((ring(&many), others(&many)), (0, 286));
+    }
+
+    /// A pupil of eight samples in an iris of eighteen (1.2 spacings apart), in a large circle,
+    /// all sampled about one spacing apart: no sample of the pupil lies apart. Three of its samples pushed out make corners of 100°,
+    /// so five of eight pass smoothly, under the three quarters a cycle needs; the pupil is
+    /// convex, turning left at every sample, and stays. Pull a fourth sample in past its
+    /// neighbours' chord instead of pushing the third out, and the same share passes, but one
+    /// sample turns right: a cycle that could be outliers closed up, which rule 4 drops.
+    #[test]
+    fn a_convex_ring_with_corners_at_three_of_eight_samples_stays() {
+        let eye = |radii: [f64; 8]| -> Vec<Point> {
+            let mut points = circle(Point::new(0.0, 0.0), 10.0, 50, 0.0);
+            points.extend(circle(Point::new(0.0, 0.0), 3.4, 18, 0.0));
+            points.extend(radii.iter().enumerate().map(|(k, r)| {
+                let t = TAU * k as f64 / 8.0;
+                Point::new(r * libm::cos(t), r * libm::sin(t))
+            }));
+            points
+        };
+        let (o, i, p) = (1.95, 1.0, 1.5);
+        let convex = eye([o, p, p, o, p, o, p, p]);
+        let reflex = eye([o, p, p, o, p, p, i, p]);
+        let params = Params::default().with_smooth(false);
+        let pupil = |r: &Reconstruction| r.edges().filter(|&[a, b]| a >= 68 && b >= 68).count();
+        let others = |r: &Reconstruction| r.edges().filter(|&[a, b]| a < 68 && b < 68).count();
+        let kept = reconstruct(&convex, &params).unwrap();
+        let dropped = reconstruct(&reflex, &params).unwrap();
+        assert_eq!((pupil(&kept), others(&kept)), (8, 68));
+        assert_eq!((pupil(&dropped), others(&dropped)), (0, 68));
+        // Both pupils reach rule 4 as cycles, five of their eight samples passing smoothly.
+        for (points, stage) in [(&convex, &kept), (&reflex, &dropped)] {
+            let before = stage.stage(Stage::RepairAgain).unwrap().graph.edges();
+            assert_eq!(
+                before.iter().filter(|&&[a, b]| a >= 68 && b >= 68).count(),
+                8
+            );
+            let tri = triangulate(points).unwrap();
+            let v = |k: usize| tri.vertex(68 + k);
+            let smooth = (0..8)
+                .filter(|&k| smooth_and_regular(&tri, v(k), v((k + 7) % 8), v((k + 1) % 8)))
+                .count();
+            assert_eq!(smooth, 5);
+        }
     }
 
     /// The merge over the touched names only equals merging every vertex's component along the
