@@ -16,7 +16,7 @@
 //! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
 //! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the crossings
-//! and the hooks eight, the junctions eleven, the outlier tails nine, the spikes eighteen:
+//! and the hooks eight, the junctions sixteen, the outlier tails nine, the spikes eighteen:
 //! [`LATER_STAGES`]), and break ties by vertex id, which follows the set's insertion order
 //! restricted to the tile: so an owned vertex whose every vertex within `reach` hops is certified
 //! gets the whole set's edges.
@@ -73,11 +73,12 @@ impl Flow {
 /// The stages after the flow that tiles run one round each, on their kept triangulations and the
 /// driver's edges, with the Delaunay hops around an owned point each reads (docs/distributed.md,
 /// *Later stages as rounds*): a junction's choice reads seven hops from the loose end (its walk
-/// through a stranded sample or the chord past it, then the branches), and the other ends choosing
-/// one of its points, up to three hops from the end, four more; a crossing's arms and chord, read
+/// through a stranded sample or the chord past it, then the branches), twelve where the end's piece
+/// is too short for a branch (five along the piece to its other end, whose own junction reads
+/// seven), and the other ends choosing one of its points, up to three hops from the end, four more; a crossing's arms and chord, read
 /// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
 /// rule itself on the driver, [`_gathered_clumps`]), and where the driver finds clumps the gap
-/// choices, tip candidates and the hooks' and junctions' joins (eleven hops) on the same edges; a
+/// choices, tip candidates and the hooks' and junctions' joins (twelve hops) on the same edges; a
 /// tip's candidate move
 /// eight, from the loose end to the other's branch ([`_choices_kept`], the split test and the
 /// settling on the driver, [`_gathered_tips`]); a hooked loose end's move eight: its points lie
@@ -90,18 +91,18 @@ impl Flow {
 /// walk five ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
 /// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
 /// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the clump
-/// tests, gap choices, tip candidates and the hooks' and junctions' joins (eleven hops: a
+/// tests, gap choices, tip candidates and the hooks' and junctions' joins (twelve hops: a
 /// junction's choice) of their result; the given-back
 /// test one ring ([`_tests_kept`], the rule on the driver, [`_gathered_given_back`]); an outlier
 /// tail nine: from an owned edge of a tail of four back to its loose end and on to the far end of
 /// the five edges it hangs from, whose last inner point's edges are read for its degree
 /// ([`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 10] = [
-    (Stage::LocalOutliers, 11),
-    (Stage::Clumps, 11),
+    (Stage::LocalOutliers, 12),
+    (Stage::Clumps, 12),
     (Stage::GivenBack, 1),
     (Stage::Gaps, 6),
-    (Stage::Junctions, 11),
+    (Stage::Junctions, 16),
     (Stage::Crossings, 8),
     (Stage::Tips, 8),
     (Stage::Spikes, 18),

@@ -833,7 +833,7 @@ pub fn give_back_gathered_last_edges(
 /// run: rule 4 of the local outlier removal and the clump stage keep the pieces they join to a
 /// component that stays ([`remove_gathered_local_outliers`], [`remove_gathered_clumps`]). Each
 /// pair, smaller position first, is the whole set's at every loose end whose Delaunay
-/// neighbourhood (eleven hops, the junctions stage's reach) and graph the tile holds.
+/// neighbourhood (twelve hops, a junction choice's reach) and graph the tile holds.
 ///
 /// ```
 /// use condt::{tiled, triangulate, Point};

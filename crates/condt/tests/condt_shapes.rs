@@ -764,3 +764,19 @@ fn a_short_tooth_between_long_ones_keeps_its_junction() {
     assert_eq!(edges(&r), drawn);
     assert!(r.unused().is_empty());
 }
+
+/// A ladder's rung drawn with evenly spaced samples: two straight curves seven spacings apart and,
+/// between them, a stroke of six samples, each end one spacing from a curve. The stroke is too
+/// short for a branch and lies apart from nothing; it meets a curve at both ends, so it is kept
+/// and joined at both: the result is the drawing.
+#[test]
+fn a_short_rung_between_two_curves_is_joined_at_both_ends() {
+    let mut points: Vec<Point> = (0..=12).map(|x| Point::new(x as f64, 0.0)).collect();
+    points.extend((0..=12).map(|x| Point::new(x as f64, 7.0)));
+    points.extend((1..=6).map(|y| Point::new(6.0, y as f64)));
+    let mut drawn: BTreeSet<[usize; 2]> = (0..12).chain(13..25).map(|k| [k, k + 1]).collect();
+    drawn.extend((26..31).map(|k| [k, k + 1]));
+    drawn.extend([[6, 26], [19, 31]]);
+    let r = run(&points, Params::default());
+    assert_eq!(edges(&r), drawn);
+}

@@ -12,7 +12,9 @@
 //! Delaunay neighbour `c` with two edges that it faces within 30° ([`STRAIGHT`]; a crowded end's
 //! angles read from the sample before its neighbour, as gap closing reads them), within
 //! [`GAP_RATIO`] times `c`'s shorter edge (its longer where the two are not one sampling), with
-//! three branches (`Ends::branch`), straightest ahead among those that pass (ties by id). Where
+//! three branches (`Ends::branch`), straightest ahead among those that pass (ties by id). A piece
+//! of five or six points, too short for a branch, counts as the end's branch where its other end
+//! meets a junction at another point (`Ends::bridges_to`: a stroke between two curves). Where
 //! the end's curve runs on smoothly ([`SMOOTH_COS`] at its first passages), the end may also
 //! reach `c` through one sample without edges that lies straight ahead (a gap closing
 //! walk, [`Ends::straight_walk`]) and meets `c` straight on: the repair can strand a branch's last
@@ -28,7 +30,7 @@
 //! ([`junction_joins`]), and keep them.
 
 use super::gaps::{cos_at, crowded, one_sampling, Ends, Walk, GAP_RATIO, STRAIGHT};
-use super::local_outliers::SMOOTH_COS;
+use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::{uses, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
@@ -66,14 +68,46 @@ impl Ends<'_> {
             return false;
         }
         let [x, y] = self.graph.first_two(c);
-        self.branch(a, self.along(a), &[c, x, y]) && self.junction_at(a, c, a)
+        (self.branch(a, self.along(a), &[c, x, y]) || self.bridges_to(a, c))
+            && self.junction_at(a, c, a)
+    }
+
+    /// The other end of the piece the loose end `a` ends, where the piece is a path of
+    /// [`MIN_SAMPLES`] points or one more: enough samples to show a curve, too few for a branch.
+    fn short_piece_end(&self, a: VertexId) -> Option<VertexId> {
+        let mut points = 2;
+        let mut last = self.along(a);
+        for [_, _, next] in self.graph.passages(a, last) {
+            points += 1;
+            last = next;
+            if points > MIN_SAMPLES + 1 {
+                return None;
+            }
+        }
+        (points >= MIN_SAMPLES && last != a && self.graph.degree(last) == 1).then_some(last)
+    }
+
+    /// Whether the loose end `a`, meeting `c`, ends a short piece ([`Ends::short_piece_end`])
+    /// whose other end meets a junction at a point other than `c`: a stroke too short for a
+    /// branch counts as one where both its ends meet curves.
+    fn bridges_to(&self, a: VertexId, c: VertexId) -> bool {
+        let Some(other) = self.short_piece_end(a) else {
+            return false;
+        };
+        self.tri.mesh().neighbors(other).any(|w| {
+            w != c
+                && self.graph.degree(w) == 2
+                && self.faces(other, w)
+                && self.turn(other, w) < STRAIGHT
+                && self.junction_at(other, w, other)
+        })
     }
 
     /// What the loose end `a` chooses, if anything: its junction, or else the chord past it.
     fn choice_of(&self, a: VertexId) -> Option<Choice> {
         // Both need the end's own branch: without it (most ends on scattered points) the rings
         // are skipped (speed).
-        if !self.branch(a, self.along(a), &[]) {
+        if !self.branch(a, self.along(a), &[]) && self.short_piece_end(a).is_none() {
             return None;
         }
         match self.junction_of(a) {
@@ -625,5 +659,31 @@ mod tests {
         }
         let nothing: [Vec<[usize; 2]>; 2] = [Vec::new(), Vec::new()];
         assert_eq!(changes(&pts, &star_edges(3, 2, &[[0, 1]])), nothing);
+    }
+
+    /// Two straight curves of 13 samples along `y = 0` and `y = top`, and a stroke of `len`
+    /// samples at `x = 6` from `y = 1` up; the stage's added edges, in input positions.
+    fn rung(len: usize, top: f64) -> Vec<[usize; 2]> {
+        let mut pts: Vec<Point> = (0..=12).map(|x| Point::new(x as f64, 0.0)).collect();
+        pts.extend((0..=12).map(|x| Point::new(x as f64, top)));
+        pts.extend((1..=len).map(|y| Point::new(6.0, y as f64)));
+        let mut edges: Vec<[usize; 2]> = (0..12).chain(13..25).map(|i| [i, i + 1]).collect();
+        edges.extend((26..25 + len).map(|i| [i, i + 1]));
+        let [removed, added] = changes(&pts, &edges);
+        assert!(removed.is_empty());
+        added
+    }
+
+    #[test]
+    fn a_stroke_too_short_for_a_branch_joins_where_both_its_ends_meet_curves() {
+        // Six samples between two curves, each end one spacing from a curve: both join.
+        assert_eq!(rung(6, 7.0), vec![[6, 26], [19, 31]]);
+        // Five: still a curve's worth of samples.
+        assert_eq!(rung(5, 6.0), vec![[6, 26], [19, 30]]);
+        // Four: too few to show a curve.
+        assert_eq!(rung(4, 5.0), Vec::<[usize; 2]>::new());
+        // Six, the far curve three spacings beyond the stroke's end: that end meets nothing, and
+        // neither end joins.
+        assert_eq!(rung(6, 9.0), Vec::<[usize; 2]>::new());
     }
 }

@@ -220,7 +220,8 @@ and meet, and a crossing's dropped arms",
             help: "(default on; off with --paper) after gap closing, join a loose
 end to the curve it meets where three (or four) curves meet (map
 borders, a T), or put it in place of the edge that runs past it
-there: branches of at least 5 points each, evenly sampled",
+there: branches of at least 5 points each, evenly sampled; a
+stroke of 5 or 6 points is joined where both its ends meet curves",
         }),
     },
     Row {
