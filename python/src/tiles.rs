@@ -542,7 +542,7 @@ pub(crate) fn _tests_kept<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<OwnedTests<'py>> {
     let (_, tiled) = tiled_params(params)?;
-    // Rule 4 of the local outlier removal reads the clumps' two tests.
+    // Rule 4 of the local outlier removal reads the clumps' tests (smooth, apart, the turn).
     let stage = [Stage::Clumps, Stage::LocalOutliers, Stage::GivenBack]
         .into_iter()
         .find(|&s| s.key() == step && tiled.later.contains(&s))

@@ -355,7 +355,7 @@ def stranded_junctions(rng, count=400):
 
 def test_junctions_through_a_stranded_sample_are_a_tiled_round_with_the_one_machine_edges(client):
     points, junctions = stranded_junctions(np.random.default_rng(1))
-    # Without the spikes step (eighteen hops) the junctions' eleven are the widest reach.
+    # Without the spikes step (eighteen hops) the junctions' sixteen are the widest reach.
     for params in ({}, {"spikes": False}):
         tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
         assert tiled.whole is None
@@ -430,6 +430,34 @@ def test_a_tooth_that_a_junction_joins_stays_on_the_driver_too(client):
     tiled = condt.dask.reconstruct(points, client, tiles=9)
     assert tiled.whole is None
     np.testing.assert_array_equal(tiled.edges, expected)
+
+
+def test_short_rungs_joined_at_both_ends_are_a_tiled_round_with_the_one_machine_edges(client):
+    # Ladders of evenly spaced samples, turned and scaled at random: two lines seven spacings
+    # apart and a rung of six samples between them, too short for a branch, joined to both lines
+    # where both its ends meet them. Without the spikes step the junctions' sixteen hops are the
+    # widest reach. A jitter of a thousandth of a spacing breaks the grid's exact ties and its
+    # cocircular points (which send a split run whole to one worker).
+    rng = np.random.default_rng(11)
+    lines = [(x, y) for y in (0, 7) for x in range(13)]
+    ladder = np.array(lines + [(6, y) for y in range(1, 7)], dtype=float)
+    parts, rungs = [], []
+    for k in range(36):
+        angle, size = rng.uniform(0, 2 * np.pi), rng.uniform(0.1, 0.5)
+        turn = np.array([[np.cos(angle), np.sin(angle)], [-np.sin(angle), np.cos(angle)]])
+        first = sum(len(p) for p in parts)
+        jittered = ladder + rng.normal(0, 1e-3, ladder.shape)
+        parts.append(jittered @ turn * size + [10.0 * (k % 6), 10.0 * (k // 6)])
+        rungs.append(first)
+    points = np.concatenate(parts)
+    for params in ({}, {"spikes": False}):
+        expected = one_machine(points, **params)
+        kept = {tuple(e) for e in expected.tolist()}
+        joined = sum((f + 6, f + 26) in kept and (f + 19, f + 31) in kept for f in rungs)
+        assert joined >= 30, joined  # 35 of 36 at this seed; 1 without the rule
+        tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
+        assert tiled.whole is None
+        np.testing.assert_array_equal(tiled.edges, expected)
 
 
 def test_a_convex_pupil_stays_on_the_driver_too(client):

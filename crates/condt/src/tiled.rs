@@ -19,11 +19,11 @@ use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::error::Error;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::predicates::{orient2d, Orientation};
+use crate::predicates::Orientation;
 use crate::stages::gaps::{self, Ends, Partner, Target, Walk};
 use crate::stages::hooks;
 use crate::stages::local_outliers::{
-    components, separated_at, smooth_and_regular, Passage, MIN_SAMPLES,
+    components, separated_at, smooth_and_regular, turn_at, Passage, MIN_SAMPLES,
 };
 use crate::stages::outliers::IqrRule;
 use crate::stages::tips::{self, Candidate};
@@ -205,8 +205,7 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32]) -> Result<Vec<u8>, Error> 
                 } else {
                     (z, y)
                 };
-                let at = |u: VertexId| tri.vertex_point(u);
-                let turn = match orient2d(at(low), at(v), at(high)) {
+                let turn = match turn_at(tri, low, v, high) {
                     Orientation::Ccw => 0b100,
                     Orientation::Cw => 0b1000,
                     Orientation::Collinear => 0,

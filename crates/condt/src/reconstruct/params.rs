@@ -74,9 +74,10 @@ pub struct Params {
     /// paper; `src/stages/clumps.rs`).
     pub clumps: bool,
     /// Join a loose end to the curve it meets where three curves of five points or more, sampled
-    /// alike, meet, as on map borders or a T, or four where two ends meet one point (a stroke of
-    /// five or six points where both its ends meet curves); or put a loose end at a junction in
-    /// place of the chord that runs past it (beyond the paper; `src/stages/junctions.rs`).
+    /// alike, meet, as on map borders or a T, or four where two ends meet one point; join a
+    /// stroke of five or six points so where both its ends meet curves; or put a loose end at a
+    /// junction in place of the chord that runs past it (beyond the paper;
+    /// `src/stages/junctions.rs`).
     pub junctions: bool,
     /// Restore a crossing that Algorithm 1 read as two bends (beyond the paper;
     /// `src/stages/crossings.rs`).

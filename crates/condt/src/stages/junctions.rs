@@ -64,16 +64,24 @@ impl Ends<'_> {
 
     /// Whether the loose end `a` meets the degree-two point `c` at a junction (the module's rule).
     fn meets_at_junction(&self, a: VertexId, c: VertexId) -> bool {
-        if self.graph.degree(c) != 2 || !self.faces(a, c) || self.turn(a, c) >= STRAIGHT {
-            return false;
+        self.meets_directly(a, c) && {
+            let [x, y] = self.graph.first_two(c);
+            self.branch(a, self.along(a), &[c, x, y]) || self.bridges_to(a, c)
         }
-        let [x, y] = self.graph.first_two(c);
-        (self.branch(a, self.along(a), &[c, x, y]) || self.bridges_to(a, c))
+    }
+
+    /// Whether the loose end `a` faces the point `c` of degree two straight on, near enough,
+    /// with `c`'s two branches: the module's rule but for the end's own branch.
+    fn meets_directly(&self, a: VertexId, c: VertexId) -> bool {
+        self.graph.degree(c) == 2
+            && self.faces(a, c)
+            && self.turn(a, c) < STRAIGHT
             && self.junction_at(a, c, a)
     }
 
     /// The other end of the piece the loose end `a` ends, where the piece is a path of
-    /// [`MIN_SAMPLES`] points or one more: enough samples to show a curve, too few for a branch.
+    /// [`MIN_SAMPLES`] points or one more, ending at a loose end: enough samples to show a curve,
+    /// too few for a branch.
     fn short_piece_end(&self, a: VertexId) -> Option<VertexId> {
         let mut points = 2;
         let mut last = self.along(a);
@@ -84,29 +92,42 @@ impl Ends<'_> {
                 return None;
             }
         }
-        (points >= MIN_SAMPLES && last != a && self.graph.degree(last) == 1).then_some(last)
+        (points >= MIN_SAMPLES && self.graph.degree(last) == 1).then_some(last)
     }
 
     /// Whether the loose end `a`, meeting `c`, ends a short piece ([`Ends::short_piece_end`])
-    /// whose other end meets a junction at a point other than `c`: a stroke too short for a
-    /// branch counts as one where both its ends meet curves.
+    /// whose other end meets a junction directly at a point other than `c` and more than
+    /// [`MIN_SAMPLES`] passages from it along `c`'s curve: a stroke too short for a branch counts
+    /// as one where its two ends meet curves at two junctions, not where it would close a small
+    /// loop with one curve.
     fn bridges_to(&self, a: VertexId, c: VertexId) -> bool {
         let Some(other) = self.short_piece_end(a) else {
             return false;
         };
-        self.tri.mesh().neighbors(other).any(|w| {
-            w != c
-                && self.graph.degree(w) == 2
-                && self.faces(other, w)
-                && self.turn(other, w) < STRAIGHT
-                && self.junction_at(other, w, other)
-        })
+        self.tri
+            .mesh()
+            .neighbors(other)
+            .any(|w| !self.near_along(c, w) && self.meets_directly(other, w))
+    }
+
+    /// Whether `w` is `c` (of degree two) or lies within [`MIN_SAMPLES`] passages of it along
+    /// its curve, either way.
+    fn near_along(&self, c: VertexId, w: VertexId) -> bool {
+        w == c
+            || self.graph.first_two(c).into_iter().any(|x| {
+                x == w
+                    || self
+                        .graph
+                        .passages(c, x)
+                        .take(MIN_SAMPLES)
+                        .any(|[_, _, next]| next == w)
+            })
     }
 
     /// What the loose end `a` chooses, if anything: its junction, or else the chord past it.
     fn choice_of(&self, a: VertexId) -> Option<Choice> {
-        // Both need the end's own branch: without it (most ends on scattered points) the rings
-        // are skipped (speed).
+        // Both need the end's own branch, or a short piece that may bridge two junctions: without
+        // either (most ends on scattered points) the rings are skipped (speed).
         if !self.branch(a, self.along(a), &[]) && self.short_piece_end(a).is_none() {
             return None;
         }
@@ -685,5 +706,32 @@ mod tests {
         // Six, the far curve three spacings beyond the stroke's end: that end meets nothing, and
         // neither end joins.
         assert_eq!(rung(6, 9.0), Vec::<[usize; 2]>::new());
+    }
+
+    /// A straight curve of 21 samples along `y = 0` and a path through `piece` from position 21
+    /// on; the stage's added edges.
+    fn over_a_line(piece: &[(f64, f64)]) -> Vec<[usize; 2]> {
+        let mut pts: Vec<Point> = (0..=20).map(|x| Point::new(x as f64, 0.0)).collect();
+        pts.extend(piece.iter().map(|&(x, y)| Point::new(x, y)));
+        let mut edges: Vec<[usize; 2]> = (0..20).map(|i| [i, i + 1]).collect();
+        edges.extend((21..20 + piece.len()).map(|i| [i, i + 1]));
+        let [removed, added] = changes(&pts, &edges);
+        assert!(removed.is_empty());
+        added
+    }
+
+    #[test]
+    fn a_short_arch_over_one_curve_is_no_bridge() {
+        // Six samples, both ends one spacing above the line, three samples apart along it:
+        // joined at both ends they would close a loop of nine with the line.
+        let arch = [
+            (8.0, 1.0),
+            (8.0, 2.0),
+            (9.0, 2.0),
+            (10.0, 2.0),
+            (11.0, 2.0),
+            (11.0, 1.0),
+        ];
+        assert_eq!(over_a_line(&arch), Vec::<[usize; 2]>::new());
     }
 }

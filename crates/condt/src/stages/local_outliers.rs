@@ -650,11 +650,7 @@ fn separated_components(
     let separated = separated_counts(tri, profile, &root, parallel);
     let passing = |at, previous, next| Passage {
         smooth: smooth_and_regular(tri, at, previous, next),
-        turn: orient2d(
-            tri.vertex_point(previous),
-            tri.vertex_point(at),
-            tri.vertex_point(next),
-        ),
+        turn: turn_at(tri, previous, at, next),
     };
     let joins = || would_join(tri, profile, parallel);
     separated_with(edges, profile, root, &separated, passing, joins)
@@ -673,6 +669,18 @@ pub(super) fn would_join(tri: &Triangulation, graph: &CurveGraph, parallel: bool
     joins.extend(super::hooks::hook_joins(&ends, parallel));
     joins.extend(super::junctions::junction_joins(&ends, parallel, |_| true));
     joins
+}
+
+/// The way the passage `previous, at, next` turns (`orient2d`, exact): what rule 4's convex
+/// cycles read, the one place it is measured (the tiles' rows too, [`crate::tiled`]).
+pub(crate) fn turn_at(
+    tri: &Triangulation,
+    previous: VertexId,
+    at: VertexId,
+    next: VertexId,
+) -> Orientation {
+    let point = |v: VertexId| tri.vertex_point(v);
+    orient2d(point(previous), point(at), point(next))
 }
 
 /// What rule 4's cycle exemptions read of a cycle's passage `previous, at, next`: whether it
@@ -1060,6 +1068,79 @@ mod tests {
                 .count();
             assert_eq!(smooth, 5);
         }
+    }
+
+    /// Rule 4 on a graph of cycles and a piece, its tests given: a large cycle of `big` points
+    /// with five separated samples (kept on its own), an 8-cycle (points `big..big + 8`) whose
+    /// first `smooth` samples pass and whose samples turn as `turns` says, and a path of three
+    /// points after it, nothing separated there. The kept flags per point's root, or `None`
+    /// when rule 4 drops nothing.
+    fn rule_4_on_cycles(
+        big: usize,
+        smooth: usize,
+        turns: impl Fn(usize) -> Orientation,
+    ) -> Option<Vec<bool>> {
+        let n = big + 11;
+        use crate::adjacency::ordered;
+        let v = |i: usize| VertexId::new(i as u32);
+        let mut edges: Vec<Edge> = (0..big).map(|k| ordered(v(k), v((k + 1) % big))).collect();
+        edges.extend((0..8).map(|k| ordered(v(big + k), v(big + (k + 1) % 8))));
+        edges.extend([
+            ordered(v(big + 8), v(big + 9)),
+            ordered(v(big + 9), v(big + 10)),
+        ]);
+        let profile = CurveGraph::new(n, &edges);
+        let root = components(n, &edges);
+        let mut separated = vec![0u8; n];
+        separated[root[0] as usize] = MIN_SAMPLES as u8;
+        let passing = |at: VertexId, _, _| {
+            let k = at.index();
+            let ring = big..big + 8;
+            Passage {
+                smooth: !ring.contains(&k) || k - big < smooth,
+                turn: if ring.contains(&k) {
+                    turns(k - big)
+                } else {
+                    Orientation::Ccw
+                },
+            }
+        };
+        let outcome = separated_with(&edges, &profile, root, &separated, passing, Vec::new);
+        outcome.map(|(root, kept)| root.iter().map(|&r| kept[r as usize]).collect())
+    }
+
+    #[test]
+    fn a_convex_cycle_needs_half_its_samples_passing_and_one_turn() {
+        let left = |_| Orientation::Ccw;
+        // 100 points in the large cycle: the 8-cycle and the path are under a quarter.
+        let kept = |smooth, turns: &dyn Fn(usize) -> Orientation| {
+            rule_4_on_cycles(100, smooth, turns).expect("the path goes")[100]
+        };
+        assert!(kept(4, &left), "half passing, convex");
+        assert!(!kept(3, &left), "under half passing");
+        let one_back = |k| {
+            if k == 5 {
+                Orientation::Cw
+            } else {
+                Orientation::Ccw
+            }
+        };
+        assert!(!kept(5, &one_back), "one sample turning back");
+        assert!(
+            kept(6, &one_back),
+            "three quarters passing: kept whatever its turns"
+        );
+    }
+
+    #[test]
+    fn a_convex_cycle_is_kept_after_the_quarter_guard() {
+        // 20 points in the large cycle: the 8-cycle and the path hold 11 of 31 points with
+        // edges, over a quarter, so the guard keeps everything. Judged before the guard, the
+        // convex cycle would leave 3 of 31 dropped, and the path would go.
+        assert_eq!(rule_4_on_cycles(20, 5, |_| Orientation::Ccw), None);
+        // With 100 the guard does not hold: the convex cycle stays and the path goes.
+        let kept = rule_4_on_cycles(100, 5, |_| Orientation::Ccw).unwrap();
+        assert!(kept[..108].iter().all(|&k| k) && kept[108..].iter().all(|&k| !k));
     }
 
     /// The merge over the touched names only equals merging every vertex's component along the
