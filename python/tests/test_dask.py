@@ -401,6 +401,20 @@ def test_a_clump_that_gap_closing_joins_stays_on_the_driver_too(client):
     np.testing.assert_array_equal(tiled.edges, one_machine(points))
 
 
+def turned_copies(shape, rng, sizes, jitter=0.0):
+    """36 copies of the points ``shape`` on a 6 x 6 grid of cells 10 apart, each jittered by
+    Gaussian noise of ``jitter`` (if any), turned by a random angle and scaled by a random
+    factor in ``sizes``: the points, and each copy's first position."""
+    parts, firsts = [], []
+    for k in range(36):
+        angle, size = rng.uniform(0, 2 * np.pi), rng.uniform(*sizes)
+        turn = np.array([[np.cos(angle), np.sin(angle)], [-np.sin(angle), np.cos(angle)]])
+        firsts.append(sum(len(p) for p in parts))
+        copy = shape + rng.normal(0, jitter, shape.shape) if jitter else shape
+        parts.append(copy @ turn * size + [10.0 * (k % 6), 10.0 * (k // 6)])
+    return np.concatenate(parts), firsts
+
+
 def test_a_tooth_that_a_junction_joins_stays_on_the_driver_too(client):
     # Combs of evenly spaced samples, each a line with a short tooth between two long ones 1.8
     # spacings away, turned and scaled at random: no sample of a short tooth lies apart, and the
@@ -414,14 +428,8 @@ def test_a_tooth_that_a_junction_joins_stays_on_the_driver_too(client):
     shape = ((15, 1, 8), (13.2, 1.5, 20), (16.8, 1.5, 20))
     teeth = [[(x, y) for y in np.arange(low, low + length)] for x, low, length in shape]
     comb = np.array(line + [p for tooth in teeth for p in tooth], dtype=float)
-    parts, short = [], []
-    for k in range(36):
-        angle, size = rng.uniform(0, 2 * np.pi), rng.uniform(0.05, 0.2)
-        turn = np.array([[np.cos(angle), np.sin(angle)], [-np.sin(angle), np.cos(angle)]])
-        first = sum(len(p) for p in parts)
-        parts.append(comb @ turn * size + [10.0 * (k % 6), 10.0 * (k // 6)])
-        short.append(first + 31)
-    points = np.concatenate(parts)
+    points, firsts = turned_copies(comb, rng, (0.05, 0.2))
+    short = [first + 31 for first in firsts]
     expected = one_machine(points)
     # Every short tooth keeps its eight samples and its junction with the line.
     joined = {tuple(e) for e in expected.tolist()}
@@ -441,15 +449,7 @@ def test_short_rungs_joined_at_both_ends_are_a_tiled_round_with_the_one_machine_
     rng = np.random.default_rng(11)
     lines = [(x, y) for y in (0, 7) for x in range(13)]
     ladder = np.array(lines + [(6, y) for y in range(1, 7)], dtype=float)
-    parts, rungs = [], []
-    for k in range(36):
-        angle, size = rng.uniform(0, 2 * np.pi), rng.uniform(0.1, 0.5)
-        turn = np.array([[np.cos(angle), np.sin(angle)], [-np.sin(angle), np.cos(angle)]])
-        first = sum(len(p) for p in parts)
-        jittered = ladder + rng.normal(0, 1e-3, ladder.shape)
-        parts.append(jittered @ turn * size + [10.0 * (k % 6), 10.0 * (k // 6)])
-        rungs.append(first)
-    points = np.concatenate(parts)
+    points, rungs = turned_copies(ladder, rng, (0.1, 0.5), jitter=1e-3)
     for params in ({}, {"spikes": False}):
         expected = one_machine(points, **params)
         kept = {tuple(e) for e in expected.tolist()}
@@ -475,14 +475,8 @@ def test_a_convex_pupil_stays_on_the_driver_too(client):
         return np.column_stack([r * np.cos(a), r * np.sin(a)])
 
     eye = np.concatenate([circle(10.0, 50), circle(3.4, 18), pupil])
-    parts, pupils = [], []
-    for k in range(36):
-        angle, size = rng.uniform(0, 2 * np.pi), rng.uniform(0.2, 0.4)
-        turn = np.array([[np.cos(angle), np.sin(angle)], [-np.sin(angle), np.cos(angle)]])
-        first = sum(len(p) for p in parts)
-        parts.append(eye @ turn * size + [10.0 * (k % 6), 10.0 * (k // 6)])
-        pupils.append(first + 68)
-    points = np.concatenate(parts)
+    points, firsts = turned_copies(eye, rng, (0.2, 0.4))
+    pupils = [first + 68 for first in firsts]
     expected = one_machine(points)
     kept = {tuple(e) for e in expected.tolist()}
     assert all((p + k, p + k + 1) in kept for p in pupils for k in range(7))
