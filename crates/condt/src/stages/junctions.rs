@@ -14,7 +14,8 @@
 //! [`GAP_RATIO`] times `c`'s shorter edge (its longer where the two are not one sampling), with
 //! three branches (`Ends::branch`), straightest ahead among those that pass (ties by id). A piece
 //! of five or six points, too short for a branch, counts as the end's branch where its other end
-//! meets a junction at another point (`Ends::bridges_to`: a stroke between two curves). Where
+//! meets a junction too, more than five passages from the first along its curve
+//! (`Ends::bridges_to`: a stroke between two curves, not an arch over one). Where
 //! the end's curve runs on smoothly ([`SMOOTH_COS`] at its first passages), the end may also
 //! reach `c` through one sample without edges that lies straight ahead (a gap closing
 //! walk, [`Ends::straight_walk`]) and meets `c` straight on: the repair can strand a branch's last
@@ -272,9 +273,12 @@ pub(crate) fn junction_joins(
     parallel: bool,
     at: impl Fn(VertexId) -> bool + Sync + Send,
 ) -> Vec<Edge> {
-    let found = ends.each_loose(parallel, |a| match ends.choice_of(a) {
-        Some(Choice::Join(junction)) if at(a) => Some(junction),
-        _ => None,
+    // An end `at` does not select is not asked (a tile's ends it does not own).
+    let found = ends.each_loose(parallel, |a| {
+        match at(a).then(|| ends.choice_of(a)).flatten() {
+            Some(Choice::Join(junction)) => Some(junction),
+            _ => None,
+        }
     });
     found.iter().flat_map(Junction::edges).collect()
 }
