@@ -75,27 +75,26 @@ impl Flow {
 /// *Later stages as rounds*): a junction's choice reads seven hops from the loose end (its walk
 /// through a stranded sample or the chord past it, then the branches), twelve where the end's piece
 /// is too short for a branch (five along the piece to its other end, whose own junction reads
-/// seven), and the other ends choosing one of its points, up to three hops from the end, four more; a crossing's arms and chord, read
-/// from the chord's ends, eight ([`_step_kept`]); the clump tests one ring ([`_tests_kept`], the
-/// rule itself on the driver, [`_gathered_clumps`]), and where the driver finds clumps the gap
-/// choices, tip candidates and the hooks' and junctions' joins (twelve hops) on the same edges; a
-/// tip's candidate move
-/// eight, from the loose end to the other's branch ([`_choices_kept`], the split test and the
-/// settling on the driver, [`_gathered_tips`]); a hooked loose end's move eight: its points lie
-/// within two hops of the loose end, its tests read the stars there, and a move sharing a point is
-/// read from a loose end two hops beyond that point ([`_step_kept`], and its joins, settled on the
-/// tile, for rule 4 and the clumps: [`_choices_kept`]); a spike's move eighteen: its points lie
-/// within six hops of each other along its path, its tests read their stars, the degrees one hop
-/// beyond and, between two loose ends, five points along each end's curve, and a move sharing one
-/// of its points spans as far again ([`_step_kept`]); a loose end's gap choice six, its straight
-/// walk five ([`_choices_kept`], agreement, the joins along lone edges and the stranded runs on the
-/// driver, [`_gathered_gaps`]); the local outlier removal's rules 1 to 3 six composed
-/// ([`_local_rules_kept`]), then rule 4 on the driver ([`_gathered_local_outliers`]) with the clump
-/// tests, gap choices, tip candidates and the hooks' and junctions' joins (twelve hops: a
-/// junction's choice) of their result; the given-back
-/// test one ring ([`_tests_kept`], the rule on the driver, [`_gathered_given_back`]); an outlier
-/// tail nine: from an owned edge of a tail of four back to its loose end and on to the far end of
-/// the five edges it hangs from, whose last inner point's edges are read for its degree
+/// seven), and the other ends choosing one of its points, up to three hops from the end, four more;
+/// a crossing's arms and chord, read from the chord's ends, eight ([`_step_kept`]); the clump tests
+/// one ring ([`_tests_kept`], the rule itself on the driver, [`_gathered_clumps`]), and where the
+/// driver finds clumps the gap choices, tip candidates and the hooks' and junctions' joins (twelve
+/// hops) on the same edges; a tip's candidate move eight, from the loose end to the other's branch
+/// ([`_choices_kept`], the split test and the settling on the driver, [`_gathered_tips`]); a hooked
+/// loose end's move eight: its points lie within two hops of the loose end, its tests read the
+/// stars there, and a move sharing a point is read from a loose end two hops beyond that point
+/// ([`_step_kept`], and its joins, settled on the tile, for rule 4 and the clumps:
+/// [`_choices_kept`]); a spike's move eighteen: its points lie within six hops of each other along
+/// its path, its tests read their stars, the degrees one hop beyond and, between two loose ends,
+/// five points along each end's curve, and a move sharing one of its points spans as far again
+/// ([`_step_kept`]); a loose end's gap choice six, its straight walk five ([`_choices_kept`],
+/// agreement, the joins along lone edges and the stranded runs on the driver, [`_gathered_gaps`]);
+/// the local outlier removal's rules 1 to 3 six composed ([`_local_rules_kept`]), then rule 4 on
+/// the driver ([`_gathered_local_outliers`]) with the clump tests, gap choices, tip candidates and
+/// the hooks' and junctions' joins (twelve hops: a junction's choice) of their result; the
+/// given-back test one ring ([`_tests_kept`], the rule on the driver, [`_gathered_given_back`]); an
+/// outlier tail nine: from an owned edge of a tail of four back to its loose end and on to the far
+/// end of the five edges it hangs from, whose last inner point's edges are read for its degree
 /// ([`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 10] = [
     (Stage::LocalOutliers, 12),

@@ -50,8 +50,8 @@ pub(crate) fn hooked_piece_beside_a_curve() -> (Vec<Point>, Vec<[usize; 2]>, usi
 
 /// A comb: a straight curve of 31 unit-spaced samples along `y = 0` (positions 0 to 30), a short
 /// tooth of eight samples at `x = 15` from `y = 1` up (positions 31 to 38) and two long teeth of
-/// twenty at `x = 13` and `x = 17` (39 to 58, 59 to 78), each tooth a curve whose loose end lies one
-/// spacing above the straight curve, facing it. The points, the edges and 31 (the short tooth's
+/// twenty at `x = 13` and `x = 17` (39 to 58, 59 to 78), each tooth a curve whose loose end lies
+/// one spacing above the straight curve, facing it. The points, the edges and 31 (the short tooth's
 /// end). The short tooth lies two spacings from the long ones along its whole length, so none of
 /// its samples is apart and rule 4 alone would drop it; the junctions stage joins each tooth to the
 /// straight curve. For rule 4's tests, the stage's and the tiled one.

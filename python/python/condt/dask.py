@@ -230,7 +230,8 @@ def _phases(run, plan, points, params):
         if step == "local-outliers":
             # Rules 1 to 3 on the tiles (rule 1 only where the IQR stage cut more than the steps
             # since added: the driver counts); rule 4 on the driver, with the clump tests, the gap
-            # choices, the tips' candidate moves and the hooks' and junctions' joins on their result.
+            # choices, the tips' candidate moves and the hooks' and junctions' joins on their
+            # result.
             before_local = edges
             give_back = len(before_outliers) > len(edges)
             if give_back:

@@ -11,8 +11,8 @@
 //! Rule, each test with its reason: docs/condt.md, *Crossings read as two bends*. `c d` gives way
 //! to `x c` and `x d` when `a x b` bends (below [`STRAIGHT`]), `c`, `d` are Delaunay neighbours of
 //! `x` of degree two with `a x c` and `b x d` straight, the four arms are within
-//! [`GAP_RATIO`](super::gaps::GAP_RATIO) of each other, the passages at `c` and `d` are straighter through `x` than along the chord, and
-//! each arm is a branch (`Ends::branch`). All choices are made on the graph as it came in; a point
+//! [`GAP_RATIO`](super::gaps::GAP_RATIO) of each other, the passages at `c` and `d` are
+//! straighter through `x` than along the chord, and each arm is a branch (`Ends::branch`). All choices are made on the graph as it came in; a point
 //! in two choices, or where two chords pass, takes part in none: the result depends neither on
 //! the order nor on `parallel`.
 

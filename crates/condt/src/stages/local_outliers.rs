@@ -28,8 +28,8 @@
 //! points with edges (then it removes none; docs/condt.md, *The local outlier removal and real
 //! data*); rule 3 drops shorter junction branches regardless. Deterministic, O(n); rule 4's
 //! separation test and its search for the joins of gap closing, the tips, the hooks and the
-//! junctions run on rayon's threads when
-//! `parallel` (the same result); lengths recomputed, not kept (memory).
+//! junctions run on rayon's threads when `parallel` (the same result); lengths recomputed, not
+//! kept (memory).
 
 use super::outliers::FLOOR_RATIO;
 use super::Outcome;
@@ -1028,8 +1028,9 @@ mod tests {
     }
 
     /// A pupil of eight samples in an iris of eighteen (1.2 spacings apart), in a large circle,
-    /// all sampled about one spacing apart: no sample of the pupil lies apart. Three of its samples pushed out make corners of 100°,
-    /// so five of eight pass smoothly, under the three quarters a cycle needs; the pupil is
+    /// all sampled about one spacing apart: no sample of the pupil lies apart. Three of its
+    /// samples pushed out make corners of 100°, so five of eight pass smoothly, under the three
+    /// quarters a cycle needs; the pupil is
     /// convex, turning left at every sample, and stays. Pull a fourth sample in past its
     /// neighbours' chord instead of pushing the third out, and the same share passes, but one
     /// sample turns right: a cycle that could be outliers closed up, which rule 4 drops.
