@@ -65,7 +65,7 @@ use triangulation::Triangulation;
 /// from the paper's pipeline instead of the default, and the keywords adjust it: ``u`` (a
 /// number) or ``adaptive=True``; ``iqr`` (a number, or ``None`` to skip the outlier removal,
 /// as ``outlier_filter=False`` does); ``outliers_first``; ``iqr_floor``, ``repair_again``, ``local_outliers``, ``clumps``,
-/// ``confirm_given_back``, ``close_gaps``, ``junctions``, ``crossings``, ``tips``, ``spikes``, ``hooks``, ``tails``, ``smooth`` (True or False); ``repair`` (``"needs"``,
+/// ``confirm_given_back``, ``close_gaps``, ``junctions``, ``crossings``, ``tips``, ``spikes``, ``hooks``, ``tails``, ``detours``, ``smooth`` (True or False); ``repair`` (``"needs"``,
 /// ``"paper"``, ``"mutual"``, ``"crossing"`` or ``"off"``; ``manifold_fix=False`` is ``"off"``);
 /// ``method`` (``"condt"``, ``"nn-crust"`` or ``"crust"``, a baseline taking none of the
 /// others); ``sequential=True`` runs on one thread (same result).

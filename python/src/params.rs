@@ -16,7 +16,7 @@
 //! | `outlier_filter=False` / `True` | `--no-outlier-filter` / none | `outlier_factor = None` / kept |
 //! | `outliers_first=B` | `--outliers-first` | `outliers_first` |
 //! | `iqr_floor=B` | `--[no-]iqr-floor` | `iqr_floor` |
-//! | `repair_again=B`, `local_outliers=B`, `clumps=B`, `confirm_given_back=B`, `close_gaps=B`, `junctions=B`, `crossings=B`, `tips=B`, `spikes=B`, `hooks=B`, `tails=B` | `--[no-]FLAG` (`Stage::switch`) | `set_stage` |
+//! | `repair_again=B`, `local_outliers=B`, `clumps=B`, `confirm_given_back=B`, `close_gaps=B`, `junctions=B`, `crossings=B`, `tips=B`, `spikes=B`, `hooks=B`, `tails=B`, `detours=B` | `--[no-]FLAG` (`Stage::switch`) | `set_stage` |
 //! | `smooth=B` | `--[no-]smooth` | `smooth` |
 //! | `repair=MODE` | `--repair MODE` | `repair` |
 //! | `manifold_fix=False` / `True` | `--no-manifold-fix` / none | `repair = Off` / kept |

@@ -31,7 +31,7 @@ use std::sync::{Arc, OnceLock};
 /// >>> r.unused.tolist()
 /// []
 /// >>> list(r.stages)
-/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions', 'crossings', 'tips', 'spikes', 'hooks', 'tails']
+/// ['proximity', 'repair', 'iqr-outliers', 'repair-again', 'local-outliers', 'clumps', 'given-back', 'gaps', 'junctions', 'crossings', 'tips', 'spikes', 'hooks', 'tails', 'detours']
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct Reconstruction {
     /// Shared with its `Curve`s, which must not hold the `Reconstruction` itself: the result
@@ -140,7 +140,7 @@ impl Reconstruction {
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
     /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``,
     /// ``"given-back"``, ``"gaps"``, ``"junctions"``, ``"crossings"``, ``"tips"``, ``"spikes"``,
-    /// ``"hooks"``, ``"tails"``,
+    /// ``"hooks"``, ``"tails"``, ``"detours"``,
     /// or a baseline's ``"nn-crust"``, ``"crust"``: the words of ``condt reconstruct
     /// --timings``) to the ``(m, 2)`` edges it left, as ``edges`` gives the final ones. With smoothing passes,
     /// the stages are the last pass's.
@@ -461,7 +461,8 @@ impl Curve {
 ///   ``"last-edge"`` (given back as a curve's last edge), ``"long-at"`` (``vertex``, ``ratio``),
 ///   ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``, ``"gap-closed"``,
 ///   ``"junction"``, ``"crossing"`` (``vertex``), ``"tip"``, ``"spike"``, ``"hook"``, ``"tail"``
-///   (``vertex``, ``points``), ``"baseline"`` or ``"not-confirmed"``;
+///   (``vertex``, ``points``), ``"detour"`` (``from``, ``to``, ``points``), ``"baseline"`` or
+///   ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
 #[pyclass(module = "condt", frozen, get_all)]
 pub(crate) struct EdgeStory {
@@ -571,6 +572,12 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
             dict.set_item("vertex", vertex)?;
             dict.set_item("points", points)?;
             "tail"
+        }
+        Reason::Detour { from, to, points } => {
+            dict.set_item("from", from)?;
+            dict.set_item("to", to)?;
+            dict.set_item("points", points)?;
+            "detour"
         }
         Reason::Clump => "clump",
         Reason::RepairedAgain => "repaired-again",

@@ -16,7 +16,8 @@
 //! tile is one of the set's when its ends are neighbours on the set's hull boundary. A vertex all of whose
 //! triangles and hull edges are certified has the whole set's star. The stages read a bounded
 //! number of Delaunay hops around a vertex (proximity one ring, the repair two more, the crossings
-//! and the hooks eight, the junctions sixteen, the outlier tails nine, the spikes eighteen:
+//! and the hooks eight, the junctions sixteen, the outlier tails nine, the spikes eighteen, the
+//! detours six:
 //! [`LATER_STAGES`]), and break ties by vertex id, which follows the set's insertion order
 //! restricted to the tile: so an owned vertex whose every vertex within `reach` hops is certified
 //! gets the whole set's edges.
@@ -95,8 +96,10 @@ impl Flow {
 /// given-back test one ring ([`_tests_kept`], the rule on the driver, [`_gathered_given_back`]); an
 /// outlier tail nine: from an owned edge of a tail of four back to its loose end and on to the far
 /// end of the five edges it hangs from, whose last inner point's edges are read for its degree
-/// ([`_step_kept`]).
-const LATER_STAGES: [(Stage, usize); 10] = [
+/// ([`_step_kept`]); a detour six: its two routes make a cycle of at most ten edges, so its points
+/// lie within five hops of an owned end of an edge it removes, and their edges are read; its ends'
+/// third neighbours one more ([`_step_kept`]).
+const LATER_STAGES: [(Stage, usize); 11] = [
     (Stage::LocalOutliers, 12),
     (Stage::Clumps, 12),
     (Stage::GivenBack, 1),
@@ -107,6 +110,7 @@ const LATER_STAGES: [(Stage, usize); 10] = [
     (Stage::Spikes, 18),
     (Stage::Hooks, 8),
     (Stage::Tails, 9),
+    (Stage::Detours, 6),
 ];
 
 /// The hops the flow's stages read around an owned point: the proximity graph one ring, the
@@ -498,6 +502,7 @@ pub(crate) fn _step_kept<'py>(
         _ if later(Stage::Spikes) => Stage::Spikes,
         _ if later(Stage::Hooks) => Stage::Hooks,
         _ if later(Stage::Tails) => Stage::Tails,
+        _ if later(Stage::Detours) => Stage::Detours,
         _ => {
             return Err(PyValueError::new_err(format!(
                 "no tiled round {step:?} for these parameters"
@@ -515,6 +520,7 @@ pub(crate) fn _step_kept<'py>(
                 Stage::Spikes => graph.repair_spikes(),
                 Stage::Hooks => graph.unhook(),
                 Stage::Tails => graph.cut_tails(),
+                Stage::Detours => graph.cut_detours(),
                 _ => graph.repair(params.repair),
             };
             result.edges()

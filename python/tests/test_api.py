@@ -555,10 +555,11 @@ def test_the_result_arrays():
     assert list(stages) == [
         "proximity", "repair", "iqr-outliers", "repair-again", "local-outliers", "clumps",
         "given-back", "gaps", "junctions", "crossings", "tips", "spikes", "hooks", "tails",
+        "detours",
     ]
-    assert np.array_equal(stages["tails"], r.edges)
+    assert np.array_equal(stages["detours"], r.edges)
     stages.clear()  # a copy: the result's stays
-    assert len(r.stages) == 14
+    assert len(r.stages) == 15
     assert "235 points" in repr(r)
 
 

@@ -85,6 +85,7 @@ def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
             "spikes": st.booleans(),
             "hooks": st.booleans(),
             "tails": st.booleans(),
+            "detours": st.booleans(),
             "close_gaps": st.booleans(),
             "local_outliers": st.booleans(),
             "confirm_given_back": st.booleans(),
@@ -413,6 +414,28 @@ def turned_copies(shape, rng, sizes, jitter=0.0):
         copy = shape + rng.normal(0, jitter, shape.shape) if jitter else shape
         parts.append(copy @ turn * size + [10.0 * (k % 6), 10.0 * (k // 6)])
     return np.concatenate(parts), firsts
+
+
+def test_detours_are_a_tiled_round_with_the_one_machine_edges(client):
+    # Circles of 40 unit-spaced samples, each with four outliers 1.2 spacings outside it between
+    # two neighbouring samples, jittered, turned and scaled at random. Without the repair,
+    # Algorithm 1 joins each outlier to its two samples: an ear the detours step cuts (tile borders
+    # cut through many circles).
+    rng = np.random.default_rng(5)
+    t = 2 * np.pi * np.arange(40) / 40
+    radius = 40 / (2 * np.pi)
+    circle = np.column_stack([np.cos(t), np.sin(t)]) * radius
+    mid = 2 * np.pi * (np.array([3, 13, 23, 33]) + 0.5) / 40
+    ears = np.column_stack([np.cos(mid), np.sin(mid)]) * (radius + 1.2)
+    points, _ = turned_copies(np.concatenate([circle, ears]), rng, (0.1, 0.12), jitter=0.01)
+    params = {"repair": "off", "smooth": False}
+    tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
+    assert tiled.whole is None
+    expected = one_machine(points, **params)
+    np.testing.assert_array_equal(tiled.edges, expected)
+    # The step mattered: every copy had its four ears, and each loses its two edges.
+    kept = one_machine(points, **params, detours=False)
+    assert len(kept) - len(expected) == 36 * 4 * 2
 
 
 def test_a_tooth_that_a_junction_joins_stays_on_the_driver_too(client):

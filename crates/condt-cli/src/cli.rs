@@ -367,7 +367,7 @@ Usage:
                     [--outliers-first] [--[no-]repair-again] [--[no-]local-outliers]
                     [--[no-]confirm-given-back] [--[no-]clumps] [--[no-]close-gaps]
                     [--[no-]junctions] [--[no-]crossings] [--[no-]tips] [--[no-]spikes]
-                    [--[no-]hooks] [--[no-]tails] [--[no-]smooth]
+                    [--[no-]hooks] [--[no-]tails] [--[no-]detours] [--[no-]smooth]
                     [--method condt|nn-crust|crust]
                     [--input-format F] [--columns X,Y] [--format F] [--stages]
                     [--sequential] [--timings] [--quiet]

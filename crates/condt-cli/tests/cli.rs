@@ -765,6 +765,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "spikes",
                 "hooks",
                 "tails",
+                "detours",
                 "curves",
                 "other",
                 "write",

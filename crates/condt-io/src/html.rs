@@ -189,6 +189,7 @@ fn write_data(
                 Reason::LastEdge => (16, 0.0, 0.0),
                 Reason::Hook => (17, 0.0, 0.0),
                 Reason::Spike => (18, 0.0, 0.0),
+                Reason::Detour { from, to, .. } => (19, from as f64, to as f64),
             };
             let sep = if first { "" } else { "," };
             first = false;
@@ -250,6 +251,7 @@ const STAGE_COLORS: [&str; Stage::ALL.len()] = [
     "#7b2cbf", // spikes
     "#ff9896", // hooks
     "#7f7f7f", // outlier tails
+    "#2ca02c", // detours
     "#d62728", // NN-Crust
     "#d62728", // Crust
 ];

@@ -133,6 +133,23 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
                 f,
                 "part of an outlier tail of {points} points cut where it hung from {vertex}"
             )?,
+            Reason::Detour { from, to, points } => {
+                match points {
+                    0 => write!(f, "the edge between {from} and {to} past a route")?,
+                    1 => write!(
+                        f,
+                        "part of a detour through 1 point between {from} and {to}"
+                    )?,
+                    _ => write!(
+                        f,
+                        "part of a detour through {points} points between {from} and {to}"
+                    )?,
+                }
+                write!(
+                    f,
+                    ", beside the route the curve runs into straighter at both"
+                )?
+            }
             Reason::NotConfirmed => write!(f, "a given-back component not clearly apart")?,
             // Only first (told above): a baseline is the whole method.
             Reason::Baseline => write!(f, "chosen by the baseline")?,

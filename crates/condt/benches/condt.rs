@@ -101,6 +101,7 @@ fn stage_name(stage: Stage) -> &'static str {
         Stage::Spikes => "spikes",
         Stage::Hooks => "hooks",
         Stage::Tails => "tails",
+        Stage::Detours => "detours",
         _ => "other stage",
     }
 }

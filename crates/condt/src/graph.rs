@@ -486,6 +486,28 @@ impl<'t> Graph<'t> {
         self.step(Step::CutTails).0
     }
 
+    /// Cuts detours ([`Params::detours`](crate::Params::detours)): where two routes of at most
+    /// four points between them join the same two points of three edges each, the route the curve
+    /// runs into less straightly at both of those points goes, unless they disagree (its rule:
+    /// `src/stages/detours.rs`).
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// // Six unit-spaced samples of a line (0..=5) and point 6, two spacings off it above samples
+    /// // 2 and 3 and joined to both: an outlier hung on the line (an ear).
+    /// let mut pts: Vec<Point> = (0..6).map(|k| Point::new(k as f64, 0.0)).collect();
+    /// pts.push(Point::new(2.5, 2.0));
+    /// let tri = triangulate(&pts)?;
+    /// let mut edges: Vec<[usize; 2]> = (0..5).map(|i| [i, i + 1]).collect();
+    /// edges.extend([[2, 6], [3, 6]]);
+    /// let cut = tri.graph_from_edges(edges).cut_detours().edges();
+    /// assert_eq!(cut, (0..5).map(|i| [i, i + 1]).collect::<Vec<_>>());
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn cut_detours(&self) -> Graph<'t> {
+        self.step(Step::CutDetours).0
+    }
+
     /// The curves through the graph in input positions, ordered as [`crate::curves_from_edges`]'s.
     ///
     /// ```

@@ -4,10 +4,11 @@
 //! reconstruction and implements no rule: it reads each stage's own evidence; its tests check each
 //! against the stages.
 
-use crate::adjacency::CurveGraph;
+use crate::adjacency::{ordered, CurveGraph};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::reconstruct::{Reconstruction, StageReport};
+use crate::stages::detours;
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
 use crate::stages::outliers::{iqr_thresholds, IqrRule};
 use crate::stages::proximity::{end_choice, Uniformity};
@@ -99,6 +100,16 @@ pub enum Reason {
         /// The point the tail hung from, the run's first (input position).
         vertex: usize,
         /// The tail's points, which lost every edge.
+        points: usize,
+    },
+    /// Part of a detour cut between two points of three edges each, `from` and `to`, which a
+    /// second short route also joins and the curve runs into straighter at both.
+    Detour {
+        /// The detour's end with the smaller input position.
+        from: usize,
+        /// Its other end (input position).
+        to: usize,
+        /// The detour's points between its ends, which lost every edge (0: an edge past a route).
         points: usize,
     },
     /// A baseline (NN-Crust, Crust) chose it (`added`) or not (every other edge of a baseline's
@@ -236,7 +247,8 @@ struct Explainer<'a> {
     /// The output of the repair (its reason names the edges kept) or of the crossings (theirs
     /// names the point that gained arms), for O(degree) reasons.
     after: Option<CurveGraph>,
-    /// The input of the tails step (its reason names the point a tail hung from).
+    /// The input of the tails step (its reason names the point a tail hung from) or of the detours
+    /// step (its reason names the detour's ends).
     before: Option<CurveGraph>,
     /// The IQR rule's cut threshold in input units, and whether it is the spacing floor.
     threshold: (f64, bool),
@@ -304,7 +316,7 @@ impl<'a> Explainer<'a> {
             degrees_before: input.graph.degrees(),
             after: matches!(stage, Stage::Repair | Stage::Crossings | Stage::Tails)
                 .then(|| CurveGraph::new(tri.num_points(), output.graph.listed())),
-            before: (stage == Stage::Tails)
+            before: matches!(stage, Stage::Tails | Stage::Detours)
                 .then(|| CurveGraph::new(tri.num_points(), input.graph.listed())),
             threshold,
             local,
@@ -321,6 +333,7 @@ impl<'a> Explainer<'a> {
             Stage::Spikes => Reason::Spike,
             Stage::Hooks => Reason::Hook,
             Stage::Tails => self.tail_of([a, b]),
+            Stage::Detours => self.detour_of([a, b]),
             Stage::Crossings => {
                 // The crossing is the point that gained arms: an added edge's end, or the removed
                 // chord's common neighbour after the stage.
@@ -407,6 +420,41 @@ impl<'a> Explainer<'a> {
         }
     }
 
+    /// The detour the detours step cut `edge` (input positions) on, read off its input by the
+    /// step's own test ([`detours::detour_at`]) at the ends of the route through the edge.
+    fn detour_of(&self, [a, b]: [usize; 2]) -> Reason {
+        let (a, b) = (self.tri.vertex(a), self.tri.vertex(b));
+        let edge = ordered(a, b);
+        let found = self.before.as_ref().and_then(|before| {
+            // From each end of the edge along points of two edges to the route's end there.
+            let end = |from: VertexId, next: VertexId| {
+                let last = before
+                    .passages(from, next)
+                    .take(detours::MAX_INNER + 1)
+                    .last();
+                last.map_or(next, |[_, _, onward]| onward)
+            };
+            [end(a, b), end(b, a)]
+                .into_iter()
+                .filter_map(|p| detours::detour_at(self.tri, before, p))
+                .find(|detour| detour.removed().any(|e| e == edge))
+        });
+        let Some(detour) = found else {
+            let (from, to) = (self.tri.input_of(a), self.tri.input_of(b));
+            return Reason::Detour {
+                from: from.min(to),
+                to: from.max(to),
+                points: 0,
+            };
+        };
+        let (from, to) = (self.tri.input_of(detour.p), self.tri.input_of(detour.q));
+        Reason::Detour {
+            from: from.min(to),
+            to: from.max(to),
+            points: detour.inner().len(),
+        }
+    }
+
     /// The input positions the stage's output joins to `vertex` (an input position); none when
     /// the stage's output is not kept ([`Explainer::after`]).
     fn after_of(&self, vertex: usize) -> Vec<usize> {
@@ -428,6 +476,33 @@ mod tests {
     use alloc::format;
     use alloc::string::{String, ToString};
     use alloc::vec;
+
+    /// The detours step's reason names the detour's ends and its points, for each of its edges.
+    #[test]
+    fn a_detour_is_told_with_its_ends() {
+        // Twelve unit-spaced samples of a line and point 12 above samples 5 and 6, which Algorithm 1
+        // joins to both; without the repair the detour through it stays until the last step.
+        let mut points: Vec<Point> = (0..12).map(|i| Point::new(i as f64, 0.0)).collect();
+        points.push(Point::new(5.5, 1.2));
+        let params = Params::default()
+            .with_repair(crate::Repair::Off)
+            .with_smooth(false);
+        let result = reconstruct(&points, &params).unwrap();
+        let line: Vec<[usize; 2]> = (0..11).map(|i| [i, i + 1]).collect();
+        assert_eq!(result.edges().collect::<Vec<_>>(), line);
+        for edge in [[5, 12], [6, 12]] {
+            let stories = result.provenance();
+            let story = stories.iter().find(|s| s.edge == edge).unwrap();
+            let change = story.changes.last().unwrap();
+            assert!(!story.kept && change.stage == Stage::Detours && !change.added);
+            let detour = Reason::Detour {
+                from: 5,
+                to: 6,
+                points: 1,
+            };
+            assert_eq!(change.reason, detour, "{edge:?}");
+        }
+    }
 
     /// The tails step's reason names the tail and the point it hung from, for each of its edges.
     #[test]

@@ -66,6 +66,19 @@ fn arc_with_an_outlier_tail() -> Vec<Point> {
     points
 }
 
+/// Point 0, 1.2 spacings outside an open arc of sixteen unit-spaced samples (radius 10) between
+/// samples 7 and 8 (positions 8 and 9): without the repair, Algorithm 1 joins it to both, an ear
+/// the detours step cuts.
+fn arc_with_an_ear() -> Vec<Point> {
+    let t = 0.75_f64;
+    let mut points = vec![Point::new(11.2 * t.sin(), 10.0 - 11.2 * t.cos())];
+    points.extend((0..16).map(|k| {
+        let t = 0.1 * k as f64;
+        Point::new(10.0 * t.sin(), 10.0 - 10.0 * t.cos())
+    }));
+    points
+}
+
 /// The edges of `points` shuffled by `rng`, mapped back to the positions of `points` and each
 /// end named by `name` (the same point for copies of it).
 fn edges_of_permuted(
@@ -156,6 +169,7 @@ fn categories() -> Vec<(&'static str, Vec<Point>)> {
         ("evenly spaced junctions", evenly_spaced_junctions()),
         ("narrow junction", narrow_junction()),
         ("outlier tail", arc_with_an_outlier_tail()),
+        ("detour", arc_with_an_ear()),
     ]
 }
 
@@ -183,7 +197,20 @@ fn permuting_scaling_turning_and_mirroring_keep_the_edges() {
             let at_junction = kept.iter().filter(|e| e.contains(&0)).count();
             assert_eq!(at_junction, 3, "{name}: the junction keeps its three edges");
         }
-        let presets = if name.contains("junction") {
+        let without_repair = Params::default().with_repair(condt::Repair::Off);
+        if name == "detour" {
+            let kept = edges(&points, &without_repair);
+            let arc: BTreeSet<[usize; 2]> = (1..16).map(|k| [k, k + 1]).collect();
+            assert_eq!(kept, arc, "{name}: the ear is cut");
+            let with = edges(&points, &without_repair.with_detours(false));
+            assert!(
+                with.contains(&[0, 8]) && with.contains(&[0, 9]),
+                "{name}: {with:?}"
+            );
+        }
+        let presets = if name == "detour" {
+            vec![without_repair]
+        } else if name.contains("junction") {
             vec![Params::default()]
         } else {
             vec![Params::default(), Params::paper()]

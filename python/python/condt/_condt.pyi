@@ -144,6 +144,7 @@ def reconstruct(
     spikes: bool = ...,
     hooks: bool = ...,
     tails: bool = ...,
+    detours: bool = ...,
     smooth: bool = ...,
     repair: Literal["needs", "paper", "mutual", "crossing", "off"] = ...,
     manifold_fix: bool = ...,

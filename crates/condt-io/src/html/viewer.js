@@ -261,6 +261,7 @@
       () => (c.added
         ? "joined through a tip's samples that had no edges"
         : "a chord across a tip whose samples had no edges"),
+      () => `part of a short detour between vertices ${c.x} and ${c.y}, beside the route the curve runs into straighter at both`,
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

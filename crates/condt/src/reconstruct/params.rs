@@ -103,6 +103,11 @@ pub struct Params {
     /// sharply against the even run it hangs from: outliers beyond an open end (beyond the paper;
     /// `src/stages/tails.rs`).
     pub tails: bool,
+    /// Last, where two routes of at most four points between them join the same two points of
+    /// three edges each (one or two outliers hung on a curve's samples, a chord past a sample),
+    /// remove the route the curve runs into less straightly at both ends (beyond the paper;
+    /// `src/stages/detours.rs`).
+    pub detours: bool,
     /// Smoothing passes (beyond the paper; `smooth.rs`): where the curves show noise, points move
     /// towards their neighbours and the stages run again, up to three times. Edges stay between
     /// input positions, the [`triangulation`](Reconstruction::triangulation) is of the moved
@@ -122,7 +127,7 @@ impl Default for Params {
     /// let p = Params::default();
     /// assert!(p.repair == condt::Repair::Needs && p.smooth);
     /// let all = [Proximity, Repair, Outliers, RepairAgain, LocalOutliers, Clumps, GivenBack];
-    /// let later = [Gaps, Junctions, Crossings, Tips, Spikes, Hooks, Tails];
+    /// let later = [Gaps, Junctions, Crossings, Tips, Spikes, Hooks, Tails, Detours];
     /// assert_eq!(p.stages(), [&all[..], &later[..]].concat());
     /// ```
     fn default() -> Self {
@@ -140,6 +145,7 @@ impl Default for Params {
             .with_spikes(true)
             .with_hooks(true)
             .with_tails(true)
+            .with_detours(true)
             .with_smooth(true)
     }
 }
@@ -173,6 +179,7 @@ impl Params {
             spikes: false,
             hooks: false,
             tails: false,
+            detours: false,
             smooth: false,
             parallel: cfg!(feature = "parallel"),
         }
@@ -246,7 +253,7 @@ impl Params {
         // graph makes true; the given-back check reads what it added. Clumps go before a join can
         // reach one; a junction takes only an end no gap join or crossing claimed; tips re-pair
         // the loose ends every join before left, spikes put back the tips of several samples
-        // they cannot, hooks put back the loose ends still hanging; a tail is
+        // they cannot, hooks put back the loose ends still hanging; a tail and a detour are
         // judged on the finished curves.
         let steps = [
             first,
@@ -262,6 +269,7 @@ impl Params {
             self.spikes.then_some(Step::RepairSpikes),
             self.hooks.then_some(Step::Unhook),
             self.tails.then_some(Step::CutTails),
+            self.detours.then_some(Step::CutDetours),
         ];
         // A baseline is the whole method: no ConDT stage follows it.
         let condt = self.method == Method::ConDT;
@@ -296,6 +304,7 @@ impl Params {
             Stage::Spikes => &mut self.spikes,
             Stage::Hooks => &mut self.hooks,
             Stage::Tails => &mut self.tails,
+            Stage::Detours => &mut self.detours,
             _ => return false,
         };
         *field = on;
@@ -349,6 +358,7 @@ impl Params {
         with_spikes(spikes: bool = !paper.spikes),
         with_hooks(hooks: bool = !paper.hooks),
         with_tails(tails: bool = !paper.tails),
+        with_detours(detours: bool = !paper.detours),
         with_smooth(smooth: bool = !paper.smooth),
         with_parallel(parallel: bool = !paper.parallel),
     }

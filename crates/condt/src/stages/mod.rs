@@ -1,7 +1,7 @@
 //! The ConDT stages that run on the finished triangulation, one submodule each: [`proximity`]
 //! (Algorithm 1), [`repair`] (Algorithm 2), [`outliers`] (Algorithm 3) and, not in the paper,
 //! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`],
-//! [`crossings`], [`tips`], [`hooks`] and [`tails`].
+//! [`crossings`], [`tips`], [`spikes`], [`hooks`], [`tails`] and [`detours`].
 //!
 //! Owns: each stage's rule, its parameter check, and [`Step::run`], through which the pipeline and
 //! the public `Graph` methods run every stage after the first graph. A run split in tiles
@@ -15,6 +15,7 @@
 
 pub(crate) mod clumps;
 pub(crate) mod crossings;
+pub(crate) mod detours;
 pub(crate) mod gaps;
 pub(crate) mod given_back;
 pub(crate) mod hooks;
@@ -80,6 +81,8 @@ pub enum Stage {
     Hooks,
     /// Cutting outlier tails at open ends ([`Params::tails`](crate::Params::tails)).
     Tails,
+    /// Cutting short detours beside curves ([`Params::detours`](crate::Params::detours)).
+    Detours,
     /// The NN-Crust baseline, the whole method ([`Method::NnCrust`](crate::Method::NnCrust)).
     NnCrust,
     /// The Crust baseline, the whole method ([`Method::Crust`](crate::Method::Crust)).
@@ -115,7 +118,7 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 16] = [
+const ROWS: [Row; 17] = [
     Row {
         stage: Stage::Proximity,
         name: "proximity",
@@ -298,6 +301,19 @@ run of 5 edges it hangs from (outliers beyond an open end)",
         }),
     },
     Row {
+        stage: Stage::Detours,
+        name: "detours",
+        title: "after cutting detours",
+        key: "detours",
+        switch: Some(Switch {
+            flag: "detours",
+            help: "(default on; off with --paper) last, where two routes of at most
+4 points between them join the same two points of three edges
+each (an outlier hung on two samples, a chord past one), remove
+the route the curve runs into less straightly at both ends",
+        }),
+    },
+    Row {
         stage: Stage::NnCrust,
         name: "NN-Crust",
         title: "NN-Crust (baseline)",
@@ -320,8 +336,8 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 16] = {
-        let mut all = [Stage::Proximity; 16];
+    pub const ALL: [Stage; 17] = {
+        let mut all = [Stage::Proximity; 17];
         let mut k = 0;
         while k < all.len() {
             all[k] = ROWS[k].stage;
@@ -398,6 +414,7 @@ pub(crate) enum Step {
     RepairSpikes,
     Unhook,
     CutTails,
+    CutDetours,
 }
 
 /// The graphs of earlier stages a step may read ([`Step::run`]), handed over so it can free them.
@@ -431,6 +448,7 @@ impl Step {
             Step::RepairSpikes => Stage::Spikes,
             Step::Unhook => Stage::Hooks,
             Step::CutTails => Stage::Tails,
+            Step::CutDetours => Stage::Detours,
         }
     }
 
@@ -501,6 +519,7 @@ impl Step {
             Step::RepairSpikes => spikes::repair_spikes(tri, edges, graph, parallel),
             Step::Unhook => hooks::unhook(tri, edges, graph, parallel),
             Step::CutTails => tails::cut_tails(tri, edges, graph, parallel),
+            Step::CutDetours => detours::cut_detours(tri, edges, graph, parallel),
         }
     }
 }

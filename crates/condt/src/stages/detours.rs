@@ -1,0 +1,315 @@
+//! Detours: two short routes between two branch points (not in the paper; on by default, off in
+//! `Params::paper`).
+//!
+//! Owns: removing the edges of one of two short routes that join the same two points of three
+//! edges each. It reads positions and the graph; it may not touch the triangulation, never adds
+//! an edge, and does not decide when it runs ([`Params::stages`](crate::Params::stages): last).
+//!
+//! Why: where two points `p` and `q` with three edges each are joined by two routes through
+//! points of two edges, a curve runs along one of them and the other is a detour beside it: one
+//! or two outliers near a curve that a repair made among edges later removed left hung on two of
+//! its samples (an *ear*: an outlier joined to two neighbouring samples, whose edge stays), or
+//! a chord that skipped a sample the curve also passes. Whatever the truth, one of the two
+//! routes is wrong, and each leaves two branch points.
+//!
+//! Rule (docs/condt.md, *Detours*): both routes have at most [`MAX_INNER`] points between `p`
+//! and `q` (fewer than a branch the local outlier removal keeps), and `p'` and `q'`, the third
+//! neighbours of `p` and `q`, are two different points. The route the curve runs on straighter
+//! at both ends stays: the other's edges go where the passage from `p'` into it at `p` and the
+//! passage from `q'` into it at `q` both turn more sharply than into the route that stays. Where
+//! `p` and `q` disagree, both routes stay (either choice would be a guess). No constant but the
+//! branch's: the curve's own passages decide.
+//!
+//! A detour's points have no other edges, and `p` and `q` have none but `p p'` and `q q'`, so two
+//! detours share no edge that either removes: every choice is made on the graph as it came in,
+//! and the result depends neither on the order nor on `parallel`.
+
+use super::gaps::cos_at;
+use super::local_outliers::MIN_SAMPLES;
+use super::Outcome;
+use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::mesh::VertexId;
+use crate::threads::found_in_order;
+use crate::triangulate::Triangulation;
+use alloc::vec::Vec;
+use core::cmp::Ordering;
+
+/// Most points of a route between its two ends: fewer than a branch of the local outlier removal
+/// ([`MIN_SAMPLES`] points), which shows a curve of its own.
+pub(crate) const MAX_INNER: usize = MIN_SAMPLES - 1;
+
+/// A route from a point of three edges through points of two edges to the next point that has
+/// another number of edges.
+#[derive(Copy, Clone, Debug)]
+struct Route {
+    /// The points from the start's neighbour to the point before the end (`len` of them).
+    inner: [VertexId; MAX_INNER],
+    len: usize,
+    /// The point the route ends at.
+    end: VertexId,
+}
+
+impl Route {
+    /// The route from `start` through its neighbour `next`, if it has at most [`MAX_INNER`] points
+    /// between its ends.
+    fn from(graph: &CurveGraph, start: VertexId, next: VertexId) -> Option<Route> {
+        let mut route = Route {
+            inner: [VertexId::INFINITE; MAX_INNER],
+            len: 0,
+            end: next,
+        };
+        for [_, here, onward] in graph.passages(start, next) {
+            if route.len == MAX_INNER {
+                return None;
+            }
+            route.inner[route.len] = here;
+            route.len += 1;
+            route.end = onward;
+        }
+        Some(route)
+    }
+
+    /// The route's first step from `start`, and its last step's start (the point before `end`).
+    fn first_and_last(&self, start: VertexId) -> (VertexId, VertexId) {
+        match self.len {
+            0 => (self.end, start),
+            n => (self.inner[0], self.inner[n - 1]),
+        }
+    }
+}
+
+/// A detour: the two ends `p < q` and the route between them whose edges go.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Detour {
+    pub(crate) p: VertexId,
+    pub(crate) q: VertexId,
+    route: Route,
+}
+
+impl Detour {
+    /// The points between the detour's ends, which lose their edges.
+    pub(crate) fn inner(&self) -> &[VertexId] {
+        &self.route.inner[..self.route.len]
+    }
+
+    /// The edges the detour loses, from `p` to `q`.
+    pub(crate) fn removed(&self) -> impl Iterator<Item = Edge> + '_ {
+        let path = core::iter::once(self.p)
+            .chain(self.inner().iter().copied())
+            .chain(core::iter::once(self.q));
+        path.clone().zip(path.skip(1)).map(|(a, b)| ordered(a, b))
+    }
+}
+
+/// The detour at the point `p` of three edges, as the smaller end of the two, if the module's rule
+/// removes one.
+pub(crate) fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) -> Option<Detour> {
+    if graph.degree(p) != 3 {
+        return None;
+    }
+    let around = [0, 1, 2].map(|k| graph.neighbor(p, k));
+    let routes = around.map(|next| Route::from(graph, p, next));
+    // The two routes that end at one point `q > p` of three edges, and `p`'s third neighbour.
+    let (i, j, k) = [(0, 1, 2), (0, 2, 1), (1, 2, 0)]
+        .into_iter()
+        .find(|&(i, j, _)| match (routes[i], routes[j]) {
+            (Some(a), Some(b)) => a.end == b.end && a.end > p && graph.degree(a.end) == 3,
+            _ => false,
+        })?;
+    let (a, b) = (routes[i]?, routes[j]?);
+    let (q, p_third) = (a.end, around[k]);
+    let ((a_first, a_last), (b_first, b_last)) = (a.first_and_last(p), b.first_and_last(p));
+    let at_q = [0, 1, 2].map(|m| graph.neighbor(q, m));
+    let mut others = at_q.into_iter().filter(|&w| w != a_last && w != b_last);
+    let (Some(q_third), None) = (others.next(), others.next()) else {
+        return None;
+    };
+    // Two routes and a third edge between `p` and `q`, or a third route: no curve runs on beyond
+    // them to tell which route it takes.
+    if q_third == p_third || p_third == q || q_third == p {
+        return None;
+    }
+    let point = |v: VertexId| tri.vertex_point(v);
+    // `Less`: the passage into route `a` is the straighter (a smaller cosine: -1 straight on).
+    let straighter = |at: VertexId, from: VertexId, into_a: VertexId, into_b: VertexId| {
+        let (pa, pf) = (point(at), point(from));
+        cos_at(pa, pf, point(into_a)).total_cmp(&cos_at(pa, pf, point(into_b)))
+    };
+    let cut = match (
+        straighter(p, p_third, a_first, b_first),
+        straighter(q, q_third, a_last, b_last),
+    ) {
+        (Ordering::Less, Ordering::Less) => b,
+        (Ordering::Greater, Ordering::Greater) => a,
+        _ => return None,
+    };
+    Some(Detour { p, q, route: cut })
+}
+
+/// The detours of `graph` whose smaller end `at` selects, by increasing end (on threads if
+/// `parallel`).
+pub(crate) fn detours(
+    tri: &Triangulation,
+    graph: &CurveGraph,
+    parallel: bool,
+    at: impl Fn(VertexId) -> bool + Sync + Send,
+) -> Vec<Detour> {
+    // A detour's ends have three edges: a graph without branches has none (one check).
+    if !graph.has_branch() {
+        return Vec::new();
+    }
+    found_in_order(tri.num_points(), parallel, |i| {
+        let p = VertexId::new(i as u32);
+        at(p).then(|| detour_at(tri, graph, p)).flatten()
+    })
+}
+
+/// Cuts the detours of `edges` (each once, any order): the module's rule.
+pub(crate) fn cut_detours(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+    parallel: bool,
+) -> Outcome {
+    let graph = graph.unwrap_or_else(|| CurveGraph::new(tri.num_points(), edges));
+    let found = detours(tri, &graph, parallel, |_| true);
+    let removed: Vec<Edge> = found.iter().flat_map(Detour::removed).collect();
+    Outcome::replacing(edges, Some(graph), removed, Vec::new())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{triangulate, Point};
+
+    /// The edges `cut_detours` leaves of `listed` (input positions) on `pts`, in input positions.
+    fn kept(pts: &[Point], listed: &[[usize; 2]]) -> Vec<[usize; 2]> {
+        let tri = triangulate(pts).unwrap();
+        let edges: Vec<Edge> = listed
+            .iter()
+            .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
+            .collect();
+        let out = cut_detours(&tri, &edges, None, false)
+            .edges
+            .unwrap_or_else(|| edges.clone());
+        crate::Graph::new(&tri, alloc::borrow::Cow::Owned(out)).edges()
+    }
+
+    /// Points 0 to `n - 1` at unit spacing on the x axis, then `extra`.
+    fn line_and(n: usize, extra: &[(f64, f64)]) -> Vec<Point> {
+        let line = (0..n).map(|i| Point::new(i as f64, 0.0));
+        line.chain(extra.iter().map(|&p| Point::from(p))).collect()
+    }
+
+    /// The line's edges `i, i + 1` for `i < n - 1`, then `extra`, sorted.
+    fn line_edges(n: usize, extra: &[[usize; 2]]) -> Vec<[usize; 2]> {
+        let mut edges: Vec<[usize; 2]> = (1..n).map(|i| [i - 1, i]).collect();
+        edges.extend_from_slice(extra);
+        edges.sort_unstable();
+        edges
+    }
+
+    #[test]
+    fn an_outlier_hung_on_two_samples_loses_both_edges() {
+        // Point 6, two spacings off the line above samples 2 and 3 and joined to both (an ear):
+        // the line runs straight on through the edge between them.
+        let pts = line_and(6, &[(2.4, 2.0)]);
+        assert_eq!(
+            kept(&pts, &line_edges(6, &[[2, 6], [3, 6]])),
+            line_edges(6, &[])
+        );
+    }
+
+    #[test]
+    fn two_outliers_beside_a_curve_lose_their_edges() {
+        // Points 8 and 9 beside samples 2 to 5, joined to 2 and 5 and to each other.
+        let pts = line_and(8, &[(2.0, 2.0), (5.0, 2.2)]);
+        let with = line_edges(8, &[[2, 8], [8, 9], [5, 9]]);
+        assert_eq!(kept(&pts, &with), line_edges(8, &[]));
+    }
+
+    #[test]
+    fn a_chord_past_a_sample_of_a_bending_curve_goes() {
+        // Seven samples of an arc and the chord 2 4 past sample 3: through the sample the arc turns
+        // by one sample's angle at 2 and at 4, into the chord by one and a half.
+        let pts: Vec<Point> = (0..7)
+            .map(|k| {
+                let t = 0.15 * k as f64;
+                Point::new(10.0 * libm::sin(t), 10.0 - 10.0 * libm::cos(t))
+            })
+            .collect();
+        let arc = line_edges(7, &[]);
+        assert_eq!(kept(&pts, &line_edges(7, &[[2, 4]])), arc);
+        // On a straight line the chord runs straight on: a sample just off it is the detour.
+        let pts = line_and(6, &[(2.5, 0.1)]);
+        assert_eq!(
+            kept(&pts, &line_edges(6, &[[2, 6], [3, 6]])),
+            line_edges(6, &[])
+        );
+    }
+
+    #[test]
+    fn a_detour_whose_two_ends_disagree_stays() {
+        // The line turns a right angle at sample 3: at 2 the edge 2 3 runs straight on, at 3 the
+        // path through point 6 does.
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, 0.0),
+            (3.0, 1.0),
+            (3.0, 2.0),
+            (2.9, -0.9),
+        ]
+        .map(Point::from);
+        let edges = line_edges(6, &[[2, 6], [3, 6]]);
+        assert_eq!(kept(&pts, &edges), edges);
+    }
+
+    #[test]
+    fn routes_of_a_branch_or_more_or_one_shared_neighbour_stay() {
+        // Five points beside the line between samples 1 and 7: a branch's worth, a curve.
+        let beside = [(1.5, 1.5), (2.5, 2.0), (4.0, 2.0), (5.5, 2.0), (6.5, 1.5)];
+        let pts = line_and(9, &beside);
+        let long = line_edges(9, &[[1, 9], [9, 10], [10, 11], [11, 12], [12, 13], [7, 13]]);
+        assert_eq!(kept(&pts, &long), long);
+        // Samples 2 and 3 of a line cut in two, sharing their third neighbour 6 (two ears on one
+        // edge): no curve runs on beyond them.
+        let pts = line_and(4, &[(2.4, 2.0), (2.5, -1.5)]);
+        let twin = vec![[0, 1], [2, 3], [2, 4], [3, 4], [2, 5], [3, 5]];
+        let mut sorted = twin.clone();
+        sorted.sort_unstable();
+        assert_eq!(kept(&pts, &twin), sorted);
+    }
+
+    #[test]
+    fn parallel_and_sequential_find_the_same_detours() {
+        // Many lines with an ear each, enough points for the threads to split the scan.
+        let rows = 12_000;
+        let mut pts = Vec::new();
+        let mut edges = Vec::new();
+        for row in 0..rows {
+            let y = 10.0 * row as f64;
+            let base = pts.len();
+            let ear = (2.4 + 0.001 * (row % 7) as f64, 2.0);
+            pts.extend(line_and(6, &[ear]).iter().map(|p| Point::new(p.x, p.y + y)));
+            let listed = line_edges(6, &[[2, 6], [3, 6]]);
+            edges.extend(listed.iter().map(|&[a, b]| [a + base, b + base]));
+        }
+        let tri = triangulate(&pts).unwrap();
+        let listed: Vec<Edge> = edges
+            .iter()
+            .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
+            .collect();
+        let graph = CurveGraph::new(tri.num_points(), &listed);
+        let found = |parallel| -> Vec<Edge> {
+            detours(&tri, &graph, parallel, |_| true)
+                .iter()
+                .flat_map(|d| d.removed().collect::<Vec<_>>())
+                .collect()
+        };
+        let sequential = found(false);
+        assert_eq!(sequential.len(), 2 * rows);
+        assert_eq!(found(true), sequential);
+    }
+}
