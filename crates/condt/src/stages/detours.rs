@@ -13,8 +13,9 @@
 //! routes is wrong, and each leaves two branch points.
 //!
 //! Rule (docs/condt.md, *Detours*): both routes have at most [`MAX_INNER`] points between `p`
-//! and `q` (fewer than a branch the local outlier removal keeps), and `p'` and `q'`, the third
-//! neighbours of `p` and `q`, are two different points. The route the curve runs on straighter
+//! and `q` (fewer than a branch the local outlier removal keeps), `p'` and `q'`, the third
+//! neighbours of `p` and `q`, are two different points, and no third route or edge joins `p` and
+//! `q` (which two routes were the pair would depend on the order of the edges). The route the curve runs on straighter
 //! at both ends stays: the other's edges go where the passage from `p'` into it at `p` and the
 //! passage from `q'` into it at `q` both turn more sharply than into the route that stays. Where
 //! `p` and `q` disagree, both routes stay (either choice would be a guess). No constant but the
@@ -109,6 +110,13 @@ pub(crate) fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) ->
     }
     let around = [0, 1, 2].map(|k| graph.neighbor(p, k));
     let routes = around.map(|next| Route::from(graph, p, next));
+    // Three routes to one point: no curve runs on beyond them, and which two were paired would
+    // depend on the order of `p`'s neighbours.
+    if let [Some(a), Some(b), Some(c)] = routes {
+        if a.end == b.end && b.end == c.end {
+            return None;
+        }
+    }
     // The two routes that end at one point `q > p` of three edges, and `p`'s third neighbour.
     let (i, j, k) = [(0, 1, 2), (0, 2, 1), (1, 2, 0)]
         .into_iter()
@@ -280,6 +288,44 @@ mod tests {
         let mut sorted = twin.clone();
         sorted.sort_unstable();
         assert_eq!(kept(&pts, &twin), sorted);
+    }
+
+    #[test]
+    fn three_routes_between_two_points_stay_in_any_order() {
+        // Points 0 and 1 joined by three routes of two, two and three points: which two form the
+        // detour would be read off the order of the edges.
+        let pts = [
+            (0.0, 0.0),
+            (4.0, 0.0),
+            (1.0, 1.0),
+            (3.0, 1.0),
+            (1.0, -1.0),
+            (3.0, -1.0),
+            (1.0, 0.2),
+            (2.0, 0.3),
+            (3.0, 0.2),
+        ]
+        .map(Point::from);
+        let routes = [
+            [0, 2],
+            [2, 3],
+            [1, 3],
+            [0, 4],
+            [4, 5],
+            [1, 5],
+            [0, 6],
+            [6, 7],
+            [7, 8],
+        ];
+        let mut edges = routes.to_vec();
+        edges.push([1, 8]);
+        let mut sorted = edges.clone();
+        sorted.sort_unstable();
+        assert_eq!(kept(&pts, &edges), sorted);
+        edges.reverse();
+        assert_eq!(kept(&pts, &edges), sorted);
+        edges.rotate_left(4);
+        assert_eq!(kept(&pts, &edges), sorted);
     }
 
     #[test]
