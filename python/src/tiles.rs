@@ -98,7 +98,9 @@ impl Flow {
 /// end of the five edges it hangs from, whose last inner point's edges are read for its degree
 /// ([`_step_kept`]); a detour six: its two routes make a cycle of at most ten edges, so its points
 /// lie within five hops of an owned end of an edge it removes, and their edges are read; its ends'
-/// third neighbours one more ([`_step_kept`]).
+/// third neighbours one more (a third route, read up to five points, decides only where it
+/// reaches the other end within them: a path the tile finds is one of the whole set's;
+/// [`_step_kept`]).
 const LATER_STAGES: [(Stage, usize); 11] = [
     (Stage::LocalOutliers, 12),
     (Stage::Clumps, 12),

@@ -606,6 +606,24 @@ def test_a_bool_is_no_input_position():
     assert tri.neighbors(np.int32(1)).tolist() == tri.neighbors(1).tolist()
 
 
+def test_a_detour_is_explained_with_its_ends():
+    # A line of twelve samples and point 12 above samples 5 and 6: without the repair Algorithm
+    # 1's ear through it stays until the detours step cuts it.
+    points = np.array([(i, 0.0) for i in range(12)] + [(5.5, 1.2)])
+    r = condt.reconstruct(points, repair="off", smooth=False)
+    assert r.edges.tolist() == [[i, i + 1] for i in range(11)]
+    for edge in [(5, 12), (6, 12)]:
+        story = r.explain(*edge)
+        assert not story.kept
+        change = story.changes[-1]
+        assert change == {
+            "stage": "detours", "added": False, "reason": "detour", "from": 5, "to": 6, "points": 1,
+        }
+        assert "detour through 1 point between 5 and 6" in story.text
+    kept = condt.reconstruct(points, repair="off", smooth=False, detours=False)
+    assert [5, 12] in kept.edges.tolist() and [6, 12] in kept.edges.tolist()
+
+
 def test_explain_tells_why_with_numbers():
     points = condt.read_points(SHAPES)
     r = condt.reconstruct(points)

@@ -416,7 +416,15 @@ def turned_copies(shape, rng, sizes, jitter=0.0):
     return np.concatenate(parts), firsts
 
 
-def test_detours_are_a_tiled_round_with_the_one_machine_edges(client):
+@pytest.mark.parametrize(
+    "params",
+    [
+        {"repair": "off", "smooth": False},
+        # Alone after the proximity graph: the tiles certify the step's own six hops.
+        {"paper": True, "repair": "off", "iqr": None, "detours": True},
+    ],
+)
+def test_detours_are_a_tiled_round_with_the_one_machine_edges(client, params):
     # Circles of 40 unit-spaced samples, each with four outliers 1.2 spacings outside it between
     # two neighbouring samples, jittered, turned and scaled at random. Without the repair,
     # Algorithm 1 joins each outlier to its two samples: an ear the detours step cuts (tile borders
@@ -428,13 +436,12 @@ def test_detours_are_a_tiled_round_with_the_one_machine_edges(client):
     mid = 2 * np.pi * (np.array([3, 13, 23, 33]) + 0.5) / 40
     ears = np.column_stack([np.cos(mid), np.sin(mid)]) * (radius + 1.2)
     points, _ = turned_copies(np.concatenate([circle, ears]), rng, (0.1, 0.12), jitter=0.01)
-    params = {"repair": "off", "smooth": False}
     tiled = condt.dask.reconstruct(points, client, tiles=9, **params)
     assert tiled.whole is None
     expected = one_machine(points, **params)
     np.testing.assert_array_equal(tiled.edges, expected)
     # The step mattered: every copy had its four ears, and each loses its two edges.
-    kept = one_machine(points, **params, detours=False)
+    kept = one_machine(points, **{**params, "detours": False})
     assert len(kept) - len(expected) == 36 * 4 * 2
 
 

@@ -29,7 +29,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Every stage of `Params::default()`, one at a time and in its order (`Params::stages`):
     // `Repair::Needs` (`Repair::Paper` would be Algorithm 2), the IQR rule with k = 1.7 and the
     // spacing floor, the repair run again without the cut edges, the local outlier removal,
-    // clumps, the check of the components it gave back, gap closing, junctions, crossings. Not
+    // clumps, the check of the components it gave back, gap closing, junctions, crossings, tips,
+    // spikes, hooks, outlier tails and detours. Not
     // run here: the default's smoothing passes, which only `reconstruct` and `Pipeline` run (so
     // on noisy input the default's result can differ from this one; the check below is
     // against the default without them).
@@ -46,14 +47,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let local = again.remove_local_outliers(&repaired);
     let clumps = local.remove_clumps();
     let confirmed = clumps.confirm_given_back(&again);
-    let closed = confirmed.close_gaps().join_junctions().restore_crossings();
+    let joined = confirmed.close_gaps().join_junctions().restore_crossings();
+    let closed = joined
+        .repair_tips()
+        .repair_spikes()
+        .unhook()
+        .cut_tails()
+        .cut_detours();
     println!(
         "repaired again: {} edges; after local outlier removal: {}; after clumps: {}; after \
-         confirming given-back components: {}; after gaps, junctions and crossings: {}",
+         confirming given-back components: {}; after gaps, junctions and crossings: {}; after \
+         tips, spikes, hooks, tails and detours: {}",
         again.num_edges(),
         local.num_edges(),
         clumps.num_edges(),
         confirmed.num_edges(),
+        joined.num_edges(),
         closed.num_edges()
     );
     let pipeline = reconstruct(&points, &Params::default().with_smooth(false))?;

@@ -439,6 +439,8 @@ impl<'a> Explainer<'a> {
                 .filter_map(|p| detours::detour_at(self.tri, before, p))
                 .find(|detour| detour.removed().any(|e| e == edge))
         });
+        // The stage's input and rule are the same as here: every edge it removed has its detour.
+        debug_assert!(found.is_some(), "a detour for {edge:?}");
         let Some(detour) = found else {
             let (from, to) = (self.tri.input_of(a), self.tri.input_of(b));
             return Reason::Detour {
@@ -480,8 +482,9 @@ mod tests {
     /// The detours step's reason names the detour's ends and its points, for each of its edges.
     #[test]
     fn a_detour_is_told_with_its_ends() {
-        // Twelve unit-spaced samples of a line and point 12 above samples 5 and 6, which Algorithm 1
-        // joins to both; without the repair the detour through it stays until the last step.
+        // Twelve unit-spaced samples of a line and point 12 above samples 5 and 6, which
+        // Algorithm 1 joins to both; without the repair the detour through it stays until the
+        // last step.
         let mut points: Vec<Point> = (0..12).map(|i| Point::new(i as f64, 0.0)).collect();
         points.push(Point::new(5.5, 1.2));
         let params = Params::default()

@@ -99,14 +99,14 @@ pub struct Params {
     /// makes no passage as sharp as the hook, or none sharp but at the loose end, which becomes a
     /// tip's apex (beyond the paper; `src/stages/hooks.rs`).
     pub hooks: bool,
-    /// Last, cut a tail of at most four points at a loose end whose joint is long and bends
+    /// After the hooks, cut a tail of at most four points at a loose end whose joint is long and bends
     /// sharply against the even run it hangs from: outliers beyond an open end (beyond the paper;
     /// `src/stages/tails.rs`).
     pub tails: bool,
     /// Last, where two routes of at most four points between them join the same two points of
     /// three edges each (one or two outliers hung on a curve's samples, a chord past a sample),
-    /// remove the route the curve runs into less straightly at both ends (beyond the paper;
-    /// `src/stages/detours.rs`).
+    /// remove the route the curve runs into less straightly at both ends, none where the ends
+    /// disagree or share their third neighbour (beyond the paper; `src/stages/detours.rs`).
     pub detours: bool,
     /// Smoothing passes (beyond the paper; `smooth.rs`): where the curves show noise, points move
     /// towards their neighbours and the stages run again, up to three times. Edges stay between

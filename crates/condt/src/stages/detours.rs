@@ -14,16 +14,18 @@
 //!
 //! Rule (docs/condt.md, *Detours*): both routes have at most [`MAX_INNER`] points between `p`
 //! and `q` (fewer than a branch the local outlier removal keeps), `p'` and `q'`, the third
-//! neighbours of `p` and `q`, are two different points, and no third route or edge joins `p` and
-//! `q` (which two routes were the pair would depend on the order of the edges). The route the curve runs on straighter
+//! neighbours of `p` and `q`, are two different points, and no third route of at most
+//! [`MAX_INNER`] points (nor an edge) joins `p` and `q`. The route the curve runs on straighter
 //! at both ends stays: the other's edges go where the passage from `p'` into it at `p` and the
 //! passage from `q'` into it at `q` both turn more sharply than into the route that stays. Where
 //! `p` and `q` disagree, both routes stay (either choice would be a guess). No constant but the
 //! branch's: the curve's own passages decide.
 //!
-//! A detour's points have no other edges, and `p` and `q` have none but `p p'` and `q q'`, so two
-//! detours share no edge that either removes: every choice is made on the graph as it came in,
-//! and the result depends neither on the order nor on `parallel`.
+//! Order: the routes from `p` share no point, so once three routes to one point are set aside, at
+//! most one pair of them ends at one point, and the comparison of the two is symmetric; a
+//! detour's points have no other edges, and `p` and `q` none but `p p'` and `q q'`, so two
+//! detours share no edge that either removes. Every choice is made on the graph as it came in:
+//! the result depends neither on the order of the edges nor on `parallel`.
 
 use super::gaps::cos_at;
 use super::local_outliers::MIN_SAMPLES;
@@ -132,9 +134,8 @@ pub(crate) fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) ->
     let (Some(q_third), None) = (others.next(), others.next()) else {
         return None;
     };
-    // Two routes and a third edge between `p` and `q`, or a third route: no curve runs on beyond
-    // them to tell which route it takes.
-    if q_third == p_third || p_third == q || q_third == p {
+    // One point beyond both ends: no curve runs on beyond them to tell which route it takes.
+    if q_third == p_third {
         return None;
     }
     let point = |v: VertexId| tri.vertex_point(v);
@@ -154,21 +155,15 @@ pub(crate) fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) ->
     Some(Detour { p, q, route: cut })
 }
 
-/// The detours of `graph` whose smaller end `at` selects, by increasing end (on threads if
-/// `parallel`).
-pub(crate) fn detours(
-    tri: &Triangulation,
-    graph: &CurveGraph,
-    parallel: bool,
-    at: impl Fn(VertexId) -> bool + Sync + Send,
-) -> Vec<Detour> {
+/// The detours of `graph`, by increasing smaller end (on threads if `parallel`).
+pub(crate) fn detours(tri: &Triangulation, graph: &CurveGraph, parallel: bool) -> Vec<Detour> {
     // A detour's ends have three edges: a graph without branches has none (one check).
     if !graph.has_branch() {
         return Vec::new();
     }
     found_in_order(tri.num_points(), parallel, |i| {
         let p = VertexId::new(i as u32);
-        at(p).then(|| detour_at(tri, graph, p)).flatten()
+        detour_at(tri, graph, p)
     })
 }
 
@@ -180,7 +175,7 @@ pub(crate) fn cut_detours(
     parallel: bool,
 ) -> Outcome {
     let graph = graph.unwrap_or_else(|| CurveGraph::new(tri.num_points(), edges));
-    let found = detours(tri, &graph, parallel, |_| true);
+    let found = detours(tri, &graph, parallel);
     let removed: Vec<Edge> = found.iter().flat_map(Detour::removed).collect();
     Outcome::replacing(edges, Some(graph), removed, Vec::new())
 }
@@ -281,13 +276,31 @@ mod tests {
         let pts = line_and(9, &beside);
         let long = line_edges(9, &[[1, 9], [9, 10], [10, 11], [11, 12], [12, 13], [7, 13]]);
         assert_eq!(kept(&pts, &long), long);
-        // Samples 2 and 3 of a line cut in two, sharing their third neighbour 6 (two ears on one
-        // edge): no curve runs on beyond them.
+        // Samples 2 and 3 of a line cut in two, with two ears 4 and 5 on their edge: three routes
+        // between them, no curve runs on beyond.
         let pts = line_and(4, &[(2.4, 2.0), (2.5, -1.5)]);
         let twin = vec![[0, 1], [2, 3], [2, 4], [3, 4], [2, 5], [3, 5]];
         let mut sorted = twin.clone();
         sorted.sort_unstable();
         assert_eq!(kept(&pts, &twin), sorted);
+    }
+
+    #[test]
+    fn routes_whose_ends_share_their_third_neighbour_stay() {
+        // An ear 2 on the edge 0 1, whose ends' third neighbour 3 goes on to 4: one point beyond
+        // both ends, no curve that runs on to tell which route it takes.
+        let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.5), (0.5, -1.0), (0.5, -2.0)].map(Point::from);
+        let edges = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [3, 4]];
+        assert_eq!(kept(&pts, &edges), edges.to_vec());
+    }
+
+    #[test]
+    fn a_route_of_four_points_beside_the_curve_goes() {
+        // Four points beside samples 2 to 7, joined to 2 and 7 and along: the most a detour has.
+        let beside = [(2.5, 2.0), (3.8, 2.2), (5.2, 2.2), (6.5, 2.0)];
+        let pts = line_and(10, &beside);
+        let route = [[2, 10], [10, 11], [11, 12], [12, 13], [7, 13]];
+        assert_eq!(kept(&pts, &line_edges(10, &route)), line_edges(10, &[]));
     }
 
     #[test]
@@ -349,7 +362,7 @@ mod tests {
             .collect();
         let graph = CurveGraph::new(tri.num_points(), &listed);
         let found = |parallel| -> Vec<Edge> {
-            detours(&tri, &graph, parallel, |_| true)
+            detours(&tri, &graph, parallel)
                 .iter()
                 .flat_map(|d| d.removed().collect::<Vec<_>>())
                 .collect()

@@ -294,7 +294,7 @@ sharp but at the loose end (a tip's apex)",
         key: "tails",
         switch: Some(Switch {
             flag: "tails",
-            help: "(default on; off with --paper) last, cut a tail of at most 4
+            help: "(default on; off with --paper) after the hooks, cut a tail of at most 4
 points at a loose end whose joint is longer than 1.5 times the
 edge it joins and bends more than twice as sharply as the even
 run of 5 edges it hangs from (outliers beyond an open end)",
@@ -310,7 +310,8 @@ run of 5 edges it hangs from (outliers beyond an open end)",
             help: "(default on; off with --paper) last, where two routes of at most
 4 points between them join the same two points of three edges
 each (an outlier hung on two samples, a chord past one), remove
-the route the curve runs into less straightly at both ends",
+the route the curve runs into less straightly at both ends
+(none where the two ends disagree)",
         }),
     },
     Row {
@@ -559,7 +560,8 @@ impl Outcome {
     /// The outcome of a stage that replaces edges of `input`: the input in order without
     /// `removed`, then `added` in order, with `graph` (the input's, if the stage had it) made the
     /// output's, or the input unchanged when neither list has an edge. The crossings, tips,
-    /// spikes and hooks steps replace edges this way.
+    /// spikes and hooks steps replace edges this way, and the outlier tails and the detours remove
+    /// them so.
     pub(crate) fn replacing(
         input: &[Edge],
         graph: Option<CurveGraph>,

@@ -3,7 +3,8 @@
 //!
 //! Owns: removing every edge of a short chain at a loose end that joins an even, smooth run
 //! abruptly. It reads positions and the graph; it may not touch the triangulation, never adds an
-//! edge, and does not decide when it runs ([`Params::stages`](crate::Params::stages): last).
+//! edge, and does not decide when it runs ([`Params::stages`](crate::Params::stages): after the
+//! hooks, before the detours).
 //!
 //! Why: an outlier one to three spacings beyond an open end is the end's nearest unused point, so
 //! Algorithm 1 joins it, and it then looks like one more sample of the curve to every later stage
