@@ -6,11 +6,11 @@
 //! an edge, and does not decide when it runs ([`Params::stages`](crate::Params::stages): last).
 //!
 //! Why: where two points `p` and `q` with three edges each are joined by two routes through
-//! points of two edges, a curve runs along one of them and the other is a detour beside it: one
-//! or two outliers near a curve that a repair made among edges later removed left hung on two of
-//! its samples (an *ear*: an outlier joined to two neighbouring samples, whose edge stays), or
-//! a chord that skipped a sample the curve also passes. Whatever the truth, one of the two
-//! routes is wrong, and each leaves two branch points.
+//! points of two edges, a curve runs along one of them and the other is a detour beside it. One
+//! or two outliers near a curve stay hung on two of its samples where the repair chose among
+//! edges that a later step removed (an *ear*: an outlier joined to two neighbouring samples,
+//! whose edge stays), or a chord skips a sample the curve also passes. Whatever the truth, one
+//! of the two routes is wrong, and either leaves two branch points.
 //!
 //! Rule (docs/condt.md, *Detours*): both routes have at most [`MAX_INNER`] points between `p`
 //! and `q` (fewer than a branch the local outlier removal keeps), `p'` and `q'`, the third
