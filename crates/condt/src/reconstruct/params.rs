@@ -99,9 +99,9 @@ pub struct Params {
     /// makes no passage as sharp as the hook, or none sharp but at the loose end, which becomes a
     /// tip's apex (beyond the paper; `src/stages/hooks.rs`).
     pub hooks: bool,
-    /// After the hooks, cut a tail of at most four points at a loose end whose joint is long and bends
-    /// sharply against the even run it hangs from: outliers beyond an open end (beyond the paper;
-    /// `src/stages/tails.rs`).
+    /// After the hooks, cut a tail of at most four points at a loose end whose joint is long and
+    /// bends sharply against the even run it hangs from: outliers beyond an open end (beyond the
+    /// paper; `src/stages/tails.rs`).
     pub tails: bool,
     /// Last, where two routes of at most four points between them join the same two points of
     /// three edges each (one or two outliers hung on a curve's samples, a chord past a sample),
