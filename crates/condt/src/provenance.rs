@@ -4,7 +4,7 @@
 //! reconstruction and implements no rule: it reads each stage's own evidence; its tests check each
 //! against the stages.
 
-use crate::adjacency::{ordered, CurveGraph};
+use crate::adjacency::CurveGraph;
 use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::reconstruct::{Reconstruction, StageReport};
@@ -247,13 +247,14 @@ struct Explainer<'a> {
     /// The output of the repair (its reason names the edges kept) or of the crossings (theirs
     /// names the point that gained arms), for O(degree) reasons.
     after: Option<CurveGraph>,
-    /// The input of the tails step (its reason names the point a tail hung from) or of the detours
-    /// step (its reason names the detour's ends).
+    /// The input of the tails step (its reason names the point a tail hung from).
     before: Option<CurveGraph>,
     /// The IQR rule's cut threshold in input units, and whether it is the spacing floor.
     threshold: (f64, bool),
     /// For local outliers: the rule behind each edge it changed, by edge in input positions.
     local: Vec<([usize; 2], LocalRule)>,
+    /// For the detours step: the reason of each edge it removed, by edge in input positions.
+    detour_reasons: Vec<([usize; 2], Reason)>,
 }
 
 /// The squared length of the edge between input positions `a` and `b` in the stages' frame.
@@ -310,16 +311,35 @@ impl<'a> Explainer<'a> {
                 .collect();
             local.sort_unstable_by_key(|&(edge, _)| edge);
         }
+        let mut detour_reasons = Vec::new();
+        if stage == Stage::Detours {
+            // The step's own search, on its input: each detour's edges with its ends and points.
+            let graph = CurveGraph::new(tri.num_points(), input.graph.listed());
+            for detour in detours::detours(tri, &graph, false) {
+                let (p, q) = (tri.input_of(detour.p), tri.input_of(detour.q));
+                let reason = Reason::Detour {
+                    from: p.min(q),
+                    to: p.max(q),
+                    points: detour.inner().len(),
+                };
+                detour_reasons.extend(detour.removed().map(|[v, w]| {
+                    let (a, b) = (tri.input_of(v), tri.input_of(w));
+                    ([a.min(b), a.max(b)], reason)
+                }));
+            }
+            detour_reasons.sort_unstable_by_key(|&(edge, _)| edge);
+        }
         Explainer {
             tri,
             stage,
             degrees_before: input.graph.degrees(),
             after: matches!(stage, Stage::Repair | Stage::Crossings | Stage::Tails)
                 .then(|| CurveGraph::new(tri.num_points(), output.graph.listed())),
-            before: matches!(stage, Stage::Tails | Stage::Detours)
+            before: (stage == Stage::Tails)
                 .then(|| CurveGraph::new(tri.num_points(), input.graph.listed())),
             threshold,
             local,
+            detour_reasons,
         }
     }
 
@@ -333,7 +353,20 @@ impl<'a> Explainer<'a> {
             Stage::Spikes => Reason::Spike,
             Stage::Hooks => Reason::Hook,
             Stage::Tails => self.tail_of([a, b]),
-            Stage::Detours => self.detour_of([a, b]),
+            Stage::Detours => {
+                let reasons = &self.detour_reasons;
+                let found = reasons.binary_search_by_key(&[a, b], |&(edge, _)| edge);
+                // The same input and the same rule: every edge the step removed has its detour.
+                debug_assert!(found.is_ok(), "a detour for {a}-{b}");
+                found.map_or(
+                    Reason::Detour {
+                        from: a,
+                        to: b,
+                        points: 0,
+                    },
+                    |k| reasons[k].1,
+                )
+            }
             Stage::Crossings => {
                 // The crossing is the point that gained arms: an added edge's end, or the removed
                 // chord's common neighbour after the stage.
@@ -417,43 +450,6 @@ impl<'a> Explainer<'a> {
         Reason::Tail {
             vertex: self.tri.input_of(hung_from),
             points: cut_x + cut_y,
-        }
-    }
-
-    /// The detour the detours step cut `edge` (input positions) on, read off its input by the
-    /// step's own test ([`detours::detour_at`]) at the ends of the route through the edge.
-    fn detour_of(&self, [a, b]: [usize; 2]) -> Reason {
-        let (a, b) = (self.tri.vertex(a), self.tri.vertex(b));
-        let edge = ordered(a, b);
-        let found = self.before.as_ref().and_then(|before| {
-            // From each end of the edge along points of two edges to the route's end there.
-            let end = |from: VertexId, next: VertexId| {
-                let last = before
-                    .passages(from, next)
-                    .take(detours::MAX_INNER + 1)
-                    .last();
-                last.map_or(next, |[_, _, onward]| onward)
-            };
-            [end(a, b), end(b, a)]
-                .into_iter()
-                .filter_map(|p| detours::detour_at(self.tri, before, p))
-                .find(|detour| detour.removed().any(|e| e == edge))
-        });
-        // The stage's input and rule are the same as here: every edge it removed has its detour.
-        debug_assert!(found.is_some(), "a detour for {edge:?}");
-        let Some(detour) = found else {
-            let (from, to) = (self.tri.input_of(a), self.tri.input_of(b));
-            return Reason::Detour {
-                from: from.min(to),
-                to: from.max(to),
-                points: 0,
-            };
-        };
-        let (from, to) = (self.tri.input_of(detour.p), self.tri.input_of(detour.q));
-        Reason::Detour {
-            from: from.min(to),
-            to: from.max(to),
-            points: detour.inner().len(),
         }
     }
 

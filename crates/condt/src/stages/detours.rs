@@ -39,7 +39,7 @@ use core::cmp::Ordering;
 
 /// Most points of a route between its two ends: fewer than a branch of the local outlier removal
 /// ([`MIN_SAMPLES`] points), which shows a curve of its own.
-pub(crate) const MAX_INNER: usize = MIN_SAMPLES - 1;
+const MAX_INNER: usize = MIN_SAMPLES - 1;
 
 /// A route from a point of three edges through points of two edges to the next point that has
 /// another number of edges.
@@ -106,7 +106,7 @@ impl Detour {
 
 /// The detour at the point `p` of three edges, as the smaller end of the two, if the module's rule
 /// removes one.
-pub(crate) fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) -> Option<Detour> {
+fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) -> Option<Detour> {
     if graph.degree(p) != 3 {
         return None;
     }
@@ -188,14 +188,9 @@ mod tests {
     /// The edges `cut_detours` leaves of `listed` (input positions) on `pts`, in input positions.
     fn kept(pts: &[Point], listed: &[[usize; 2]]) -> Vec<[usize; 2]> {
         let tri = triangulate(pts).unwrap();
-        let edges: Vec<Edge> = listed
-            .iter()
-            .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
-            .collect();
-        let out = cut_detours(&tri, &edges, None, false)
-            .edges
-            .unwrap_or_else(|| edges.clone());
-        crate::Graph::new(&tri, alloc::borrow::Cow::Owned(out)).edges()
+        tri.graph_from_edges(listed.iter().copied())
+            .cut_detours()
+            .edges()
     }
 
     /// Points 0 to `n - 1` at unit spacing on the x axis, then `extra`.
