@@ -555,8 +555,10 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tiles::_gathered_last_edges, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_given_back_standing, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_given_back, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_tile_index, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_split_edges, m)?)?;
     m.add_class::<tiles::TileState>()?;
+    m.add_class::<tiles::TileIndex>()?;
     m.add_class::<Reconstruction>()?;
     m.add_class::<Curve>()?;
     m.add_class::<EdgeStory>()?;

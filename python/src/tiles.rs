@@ -415,6 +415,20 @@ pub(crate) struct TileState {
 
 #[pymethods]
 impl TileState {
+    /// About the bytes the state holds: what Dask's scheduler (`dask.sizeof`, which falls back
+    /// on `sys.getsizeof`) weighs when it would move the state to another worker instead of
+    /// running a round where it is. Without it the scheduler took a state for a few bytes.
+    fn __sizeof__(&self) -> usize {
+        let n = self.points.len();
+        let vertices = self.tri.num_vertices();
+        // Per tile point its position, ownership, point and order; per vertex its point and
+        // first edge; per point the input and vertex maps; per half-edge its origin and twin.
+        n * (8 + 1 + 16 + 4)
+            + vertices * (16 + 4)
+            + self.tri.num_points() * 8
+            + self.tri.mesh().num_half_edges() * 8
+    }
+
     /// Pickling: the points, their insertion order, positions and ownership; the triangulation
     /// is built again from them ([`_tile_state`]).
     #[allow(clippy::type_complexity)]
@@ -585,9 +599,12 @@ pub(crate) fn _tests_kept<'py>(
         .detach(|| {
             crate::within_call(|| {
                 let graph = state.tri.graph_from_edges(given);
+                // Only the owned points' tests are sent, so only they are run.
                 match &status {
-                    Some(status) => condt::tiled::given_back_tests(&graph, &labels, status),
-                    None => condt::tiled::clump_tests(&graph, &labels),
+                    Some(status) => {
+                        condt::tiled::given_back_tests(&graph, &labels, status, &state.owned)
+                    }
+                    None => condt::tiled::clump_tests(&graph, &labels, &state.owned),
                 }
             })
         })
@@ -1447,57 +1464,100 @@ pub(crate) fn _gathered_smoothing_pass<'py>(
     })
 }
 
-/// The rows of the driver's `edges` (positions below `n`) with both ends among each tile's
-/// points (`tiles`, each tile's positions of the whole set, increasing), in that tile's own
-/// positions: one `(m, 2)` int64 array per tile, rows in the order of `edges`. One pass over the
-/// edges for all tiles (each point lists the few tiles holding it), where a pass per tile cost
-/// the driver a tenth of a tiled run at 1M points and 16 tiles.
+/// Which tiles hold each point of the whole set, and where: built once per tiled run
+/// ([`_tile_index`]) for the kept tiles, whose points stay the same through the run's rounds,
+/// and read by every round's [`_split_edges`]. Building it scatters a write per tile point (about
+/// 3.5 per point at 1M points and 16 tiles), which every round of a 1M run paid again before.
+#[pyclass(module = "condt._condt", name = "_TileIndex", frozen)]
+pub(crate) struct TileIndex {
+    /// The points' runs in `held`: point `i`'s holders are `held[start[i]..start[i + 1]]`.
+    start: Vec<usize>,
+    /// (tile, the point's place among that tile's points), grouped by point.
+    held: Vec<(u32, u32)>,
+    tiles: usize,
+}
+
+impl TileIndex {
+    fn holders(&self, i: usize) -> &[(u32, u32)] {
+        &self.held[self.start[i]..self.start[i + 1]]
+    }
+}
+
+/// The index of `tiles` (each tile's positions of the whole set of `n` points, increasing) for
+/// [`_split_edges`].
 #[pyfunction]
-pub(crate) fn _split_edges<'py>(
+pub(crate) fn _tile_index<'py>(
     py: Python<'py>,
     n: usize,
-    edges: PyReadonlyArray2<'py, i64>,
     tiles: Vec<PyReadonlyArray1<'py, i64>>,
-) -> PyResult<Vec<Bound<'py, PyArray2<i64>>>> {
+) -> PyResult<TileIndex> {
     let tiles: Vec<&[i64]> = tiles
         .iter()
         .map(|t| t.as_slice())
         .collect::<Result<_, _>>()?;
-    let flat = edges.as_slice()?;
     let place = |i: i64| usize::try_from(i).ok().filter(|&i| i < n);
     if tiles
         .iter()
         .flat_map(|t| t.iter())
         .any(|&i| place(i).is_none())
-        || flat.iter().any(|&i| place(i).is_none())
     {
         return Err(PyValueError::new_err("a position is not among the points"));
     }
-    let split = py.detach(|| {
-        // Each point's (tile, place in the tile), grouped by point (counts, then offsets).
+    if tiles.len() > u32::MAX as usize || tiles.iter().any(|t| t.len() > u32::MAX as usize) {
+        return Err(PyValueError::new_err("too many tiles or tile points"));
+    }
+    Ok(py.detach(|| {
+        // Counts per point, then offsets, then each holder in its point's run.
         let mut start = vec![0usize; n + 1];
-        for tile in &tiles {
-            for &i in tile.iter() {
-                start[i as usize + 1] += 1;
-            }
+        for &i in tiles.iter().flat_map(|t| t.iter()) {
+            start[i as usize + 1] += 1;
         }
         for i in 0..n {
             start[i + 1] += start[i];
         }
         let mut fill = start.clone();
-        let mut held = vec![(0u32, 0i64); start[n]];
+        let mut held = vec![(0u32, 0u32); start[n]];
         for (k, tile) in tiles.iter().enumerate() {
             for (local, &i) in tile.iter().enumerate() {
-                held[fill[i as usize]] = (k as u32, local as i64);
+                held[fill[i as usize]] = (k as u32, local as u32);
                 fill[i as usize] += 1;
             }
         }
-        let of = |i: i64| &held[start[i as usize]..start[i as usize + 1]];
-        let mut out: Vec<Vec<i64>> = vec![Vec::new(); tiles.len()];
+        TileIndex {
+            start,
+            held,
+            tiles: tiles.len(),
+        }
+    }))
+}
+
+/// The rows of the driver's `edges` (positions among the indexed points) with both ends among
+/// each tile's points, in that tile's own positions: one `(m, 2)` int64 array per tile of
+/// `index`, rows in the order of `edges`. One pass over the edges for all tiles (each point lists
+/// the few tiles holding it), where a pass per tile cost the driver a tenth of a tiled run at 1M
+/// points and 16 tiles.
+#[pyfunction]
+pub(crate) fn _split_edges<'py>(
+    py: Python<'py>,
+    index: &Bound<'py, TileIndex>,
+    edges: PyReadonlyArray2<'py, i64>,
+) -> PyResult<Vec<Bound<'py, PyArray2<i64>>>> {
+    let index = index.get();
+    let flat = edges.as_slice()?;
+    let n = index.start.len() - 1;
+    if flat
+        .iter()
+        .any(|&i| usize::try_from(i).map_or(true, |i| i >= n))
+    {
+        return Err(PyValueError::new_err("a position is not among the points"));
+    }
+    let split = py.detach(|| {
+        let mut out: Vec<Vec<i64>> = vec![Vec::new(); index.tiles];
         for e in flat.chunks_exact(2) {
-            for &(k, a) in of(e[0]) {
-                if let Some(&(_, b)) = of(e[1]).iter().find(|&&(j, _)| j == k) {
-                    out[k as usize].extend([a, b]);
+            let to = index.holders(e[1] as usize);
+            for &(k, a) in index.holders(e[0] as usize) {
+                if let Some(&(_, b)) = to.iter().find(|&&(j, _)| j == k) {
+                    out[k as usize].extend([i64::from(a), i64::from(b)]);
                 }
             }
         }

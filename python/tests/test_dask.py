@@ -227,6 +227,12 @@ def test_a_kept_tile_pickles_to_the_same_repair():
     # The tile holds every point: its repair of the proximity graph is the whole set's.
     expected = one_machine(points, paper=True, iqr=None)
     np.testing.assert_array_equal(np.unique(repaired, axis=0), expected)
+    # Dask weighs a move by the state's size (``sys.getsizeof``): its arrays, not a few bytes.
+    import sys
+
+    from dask.sizeof import sizeof
+
+    assert sizeof(state) == sys.getsizeof(state) >= 50 * n
 
 
 @pytest.mark.parametrize("scale", [1e-300, 1e299])
@@ -572,7 +578,7 @@ def test_edges_are_split_among_the_tiles_holding_both_ends():
     tiles = [np.flatnonzero(rng.random(n) < share) for share in (0.1, 0.5, 0.9, 0.0)]
     pairs = rng.integers(0, n, (2_000, 2))
     edges = np.sort(pairs[pairs[:, 0] != pairs[:, 1]], axis=1)
-    split = _condt._split_edges(n, edges, tiles)
+    split = _condt._split_edges(_condt._tile_index(n, tiles), edges)
     for positions, local in zip(tiles, split):
         # Each tile's rows, by hand: both ends among its points, in its own positions.
         place = np.full(n, -1)
@@ -581,7 +587,9 @@ def test_edges_are_split_among_the_tiles_holding_both_ends():
         both = (a >= 0) & (b >= 0)
         np.testing.assert_array_equal(local, np.column_stack((a[both], b[both])))
     with pytest.raises(ValueError, match="not among the points"):
-        _condt._split_edges(n, edges, [np.array([n])])
+        _condt._tile_index(n, [np.array([n])])
+    with pytest.raises(ValueError, match="not among the points"):
+        _condt._split_edges(_condt._tile_index(n, tiles), np.array([[0, n]]))
 
 
 def test_a_baseline_is_refused_by_name(client):

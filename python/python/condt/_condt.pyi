@@ -38,8 +38,10 @@ __all__ = [
     "_gathered_last_edges",
     "_given_back_standing",
     "_gathered_given_back",
+    "_tile_index",
     "_split_edges",
     "_TileState",
+    "_TileIndex",
 ]
 
 __version__: str
@@ -180,6 +182,7 @@ def _run_tile(
 @final
 class _TileState:
     """A certified tile's triangulation, kept on its worker between two phases."""
+    def __sizeof__(self) -> int: ...
     def __reduce__(
         self,
     ) -> tuple[
@@ -254,9 +257,12 @@ def _last_edges_kept(
 def _gathered_last_edges(
     n: int, edges: npt.NDArray[np.int64], candidates: npt.NDArray[np.int64]
 ) -> npt.NDArray[np.int64] | None: ...
-def _split_edges(
-    n: int, edges: npt.NDArray[np.int64], tiles: list[npt.NDArray[np.int64]]
-) -> list[npt.NDArray[np.int64]]: ...
+@final
+class _TileIndex:
+    """Which kept tiles hold each point, and where: built once per tiled run."""
+
+def _tile_index(n: int, tiles: list[npt.NDArray[np.int64]]) -> _TileIndex: ...
+def _split_edges(index: _TileIndex, edges: npt.NDArray[np.int64]) -> list[npt.NDArray[np.int64]]: ...
 def _given_back_standing(
     n: int, edges: npt.NDArray[np.int64], before_local: npt.NDArray[np.int64]
 ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.uint8]] | None: ...

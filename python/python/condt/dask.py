@@ -58,6 +58,12 @@ __all__ = ["TiledReconstruction", "reconstruct"]
 # that, for margin. Later stages read farther: the plan says how far (``plan["reach"]``).
 REACH = 6
 
+# How much wider a tile's halo is sent again when its certificate needs more: by half the first
+# time (a halo just short of what the tile needs: every later round pays for the tile's area, so
+# the square of the overshoot, and a failed try only one triangulation), twice after that (a halo
+# far short, as a tiny tile's: fewer round trips). docs/distributed.md, "Measured on one machine".
+HALO_GROWTH = (1.5, 2.0)
+
 
 @dataclasses.dataclass(frozen=True)
 class TiledReconstruction:
@@ -100,9 +106,9 @@ def reconstruct(
     more tiles than points are as many tiles as points (``.tiles`` says how many were cut), since
     a tile beyond one per point would own nothing and only cost the driver a pass over the
     points. ``halo`` is the margin each tile's points are first sent with, a positive finite
-    number (numpy's too; ``None``: a quarter of the tile's shorter side), doubled for a tile
-    whose certificate needs more. ``params`` are ``condt.reconstruct``'s keywords (every ConDT
-    pipeline is tiled).
+    number (numpy's too; ``None``: a quarter of the tile's shorter side), grown for a tile whose
+    certificate needs more (by half, then doubled). ``params`` are ``condt.reconstruct``'s
+    keywords (every ConDT pipeline is tiled).
 
     Raises ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``tiles`` or
     ``halo`` of the wrong type (a bool, a str, a float for ``tiles``) or points that are not
@@ -279,7 +285,7 @@ def _phases(run, plan, points, params):
             edges = edges if after is None else after
         else:
             edges = _sorted(run.on_kept(edges, step))
-    run.kept.clear()
+    run.release()
     return _sorted(edges)
 
 
@@ -299,22 +305,30 @@ class _WholeSet(Exception):
 
 
 class _Run:
-    """The tiles of one call: their halos (doubled where a certificate needs more, and kept for
+    """The tiles of one call: their halos (grown where a certificate needs more, and kept for
     the next phase) and what they cost."""
 
     def __init__(self, points, client, plan, params, bbox, rects, halo):
         self.points, self.client, self.plan, self.params = points, client, plan, params
         self.bbox, self.rects = bbox, rects
         self.halo_of = [float(halo) if halo is not None else _first_halo(r, bbox) for r in rects]
+        self.grown = [0] * len(rects)
         self.workers: set = set()
         self.rounds = self.sent = 0
         # With ``keep``: per certified tile, the future holding its triangulation on its worker
-        # (``python/src/tiles.rs``'s ``TileState``) and the positions of its points.
+        # (``python/src/tiles.rs``'s ``TileState``), the positions of its points and that worker.
         self.kept: dict = {}
+        # Which kept tiles hold each point (``_split``), built once the tiles are kept.
+        self._index = None
         # A tile that owns no point has nothing to send back.
         self.owning = [
             k for k in range(len(rects)) if _inside(points, rects[k], closed=False).any()
         ]
+
+    def release(self):
+        """Lets the kept tiles' triangulations go (on their workers) and the index of them."""
+        self.kept.clear()
+        self._index = None
 
     def tiles(self, phase, keep=False):
         """Every owning tile's edges for ``phase`` (one joined ``(m, 2)`` array per graph it
@@ -374,16 +388,21 @@ class _Run:
                 if status == "ok":
                     gathered[k] = lists
                     if keep:
-                        self.kept[k] = (futures[k], sent_positions[k])
+                        self.kept[k] = (futures[k], sent_positions[k], worker)
+                        self._index = None
                 elif status == "cocircular":
                     raise _WholeSet("cocircular points")
                 elif all(math.isinf(side) for side in _known(self.rects[k], self.halo_of[k], bbox)):
                     # The tile held every point: no wider halo can certify more.
                     raise _WholeSet("a tile held every point")
                 else:
-                    # Twice as wide, and at least the first halo the plan would give: a halo the
-                    # caller gave far too narrow (1e-300) would otherwise double a thousand times.
-                    self.halo_of[k] = max(2.0 * self.halo_of[k], _first_halo(self.rects[k], bbox))
+                    # Wider (``HALO_GROWTH``), and at least the first halo the plan would give: a
+                    # halo the caller gave far too narrow (1e-300) would otherwise grow a thousand
+                    # times.
+                    growth = HALO_GROWTH[min(self.grown[k], 1)]
+                    self.grown[k] += 1
+                    first = _first_halo(self.rects[k], bbox)
+                    self.halo_of[k] = max(growth * self.halo_of[k], first)
                     pending.append(k)
         graphs = len(next(iter(gathered.values()))) if gathered else 1
         return [
@@ -396,17 +415,13 @@ class _Run:
         and component ``labels`` (one per point), joined: one byte per point of the whole set,
         each from the tile owning it."""
         futures = []
-        for (state, positions), local in zip(*self._split(given)):
+        for (state, positions, worker), local in zip(*self._split(given)):
             arrays = (
                 local,
                 np.ascontiguousarray(labels[positions]),
                 None if status is None else np.ascontiguousarray(status[positions]),
             )
-            # Scattered, not put into the task graph (as the tiles' points are).
-            payload = self.client.scatter(arrays, hash=False)
-            futures.append(
-                self.client.submit(_tile_tests, state, payload, step, self.params, pure=False)
-            )
+            futures.append(self._beside(state, worker, _tile_tests, arrays, step, self.params))
         results = self.client.gather(futures)
         self.rounds += 1
         tests = np.zeros(len(self.points), np.uint8)
@@ -419,9 +434,25 @@ class _Run:
         """The kept tiles (their state and positions, by tile) and, for each, the rows of
         ``given`` with both ends among its points, in its own positions."""
         kept = [self.kept[k] for k in sorted(self.kept)]
+        if self._index is None:
+            # The kept tiles stay the same through the run's rounds: one index for all of them.
+            self._index = _condt._tile_index(len(self.points), [p for _, p, _ in kept])
         given = np.ascontiguousarray(given, dtype=np.int64).reshape(-1, 2)
-        locals_ = _condt._split_edges(len(self.points), given, [p for _, p in kept])
-        return kept, locals_
+        return kept, _condt._split_edges(self._index, given)
+
+    def _beside(self, state, worker, call, arrays, *args):
+        """``call(state, arrays, *args)`` on the worker that holds the kept tile ``state``.
+
+        The arrays are scattered to that worker and the task asks for it: otherwise the scheduler
+        sees a small state (its size is unknown to Dask) beside megabytes of arrays, moves the
+        state to where the arrays landed, and the tile is pickled and triangulated again there
+        (on 1M points, 16 tiles and two worker processes most rounds moved most tiles). The
+        request is loose (``allow_other_workers``): a lost worker fails the call as before."""
+        # Scattered, not put into the task graph (as the tiles' points are).
+        payload = self.client.scatter(arrays, workers=[worker], hash=False)
+        return self.client.submit(
+            call, state, payload, *args, workers=[worker], allow_other_workers=True, pure=False
+        )
 
     def on_kept(self, given, step, width=2, before=None, give_back=False):
         """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
@@ -434,11 +465,10 @@ class _Run:
         kept, locals_ = self._split(given)
         earlier = [None] * len(kept) if before is None else self._split(before)[1]
         futures = []
-        for (state, _), local, local_before in zip(kept, locals_, earlier):
-            payload = self.client.scatter((local, local_before), hash=False)
+        for (state, _, worker), local, local_before in zip(kept, locals_, earlier):
             futures.append(
-                self.client.submit(
-                    _tile_given, state, payload, step, give_back, self.params, pure=False
+                self._beside(
+                    state, worker, _tile_given, (local, local_before), step, give_back, self.params
                 )
             )
         results = self.client.gather(futures)
