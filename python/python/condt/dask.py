@@ -414,15 +414,19 @@ class _Run:
         """The per-point tests of ``step`` on each kept tile, with the driver's edges ``given``
         and component ``labels`` (one per point), joined: one byte per point of the whole set,
         each from the tile owning it."""
-        futures = []
-        for (state, positions, worker), local in zip(*self._split(given)):
-            arrays = (
-                local,
-                np.ascontiguousarray(labels[positions]),
-                None if status is None else np.ascontiguousarray(status[positions]),
+        tasks = [
+            (
+                state,
+                worker,
+                (
+                    local,
+                    np.ascontiguousarray(labels[positions]),
+                    None if status is None else np.ascontiguousarray(status[positions]),
+                ),
             )
-            futures.append(self._beside(state, worker, _tile_tests, arrays, step, self.params))
-        results = self.client.gather(futures)
+            for (state, positions, worker), local in zip(*self._split(given))
+        ]
+        results = self.client.gather(self._beside(_tile_tests, tasks, step, self.params))
         self.rounds += 1
         tests = np.zeros(len(self.points), np.uint8)
         for (owned, bits), worker in results:
@@ -440,19 +444,32 @@ class _Run:
         given = np.ascontiguousarray(given, dtype=np.int64).reshape(-1, 2)
         return kept, _condt._split_edges(self._index, given)
 
-    def _beside(self, state, worker, call, arrays, *args):
-        """``call(state, arrays, *args)`` on the worker that holds the kept tile ``state``.
+    def _beside(self, call, tasks, *args):
+        """``call(state, arrays, *args)`` for each ``(state, worker, arrays)`` of ``tasks``, on the
+        worker that holds the kept tile ``state``: the futures, in the order of ``tasks``.
 
         The arrays are scattered to that worker and the task asks for it: otherwise the scheduler
         sees a small state (its size is unknown to Dask) beside megabytes of arrays, moves the
         state to where the arrays landed, and the tile is pickled and triangulated again there
         (on 1M points, 16 tiles and two worker processes most rounds moved most tiles). The
-        request is loose (``allow_other_workers``): a lost worker fails the call as before."""
-        # Scattered, not put into the task graph (as the tiles' points are).
-        payload = self.client.scatter(arrays, workers=[worker], hash=False)
-        return self.client.submit(
-            call, state, payload, *args, workers=[worker], allow_other_workers=True, pure=False
-        )
+        request is loose (``allow_other_workers``): a lost worker fails the call as before. One
+        scatter per worker, not per tile: each is a round trip, which small sets' rounds wait on.
+        """
+        payloads = [None] * len(tasks)
+        for worker in {worker for _, worker, _ in tasks}:
+            mine = [k for k, (_, w, _) in enumerate(tasks) if w == worker]
+            # Scattered, not put into the task graph (as the tiles' points are).
+            scattered = self.client.scatter(
+                [tasks[k][2] for k in mine], workers=[worker], hash=False
+            )
+            for k, payload in zip(mine, scattered):
+                payloads[k] = payload
+        return [
+            self.client.submit(
+                call, state, payload, *args, workers=[worker], allow_other_workers=True, pure=False
+            )
+            for (state, worker, _), payload in zip(tasks, payloads)
+        ]
 
     def on_kept(self, given, step, width=2, before=None, give_back=False):
         """``step`` run on the driver's edges ``given`` on each kept tile (the triangulation and
@@ -464,14 +481,13 @@ class _Run:
         round."""
         kept, locals_ = self._split(given)
         earlier = [None] * len(kept) if before is None else self._split(before)[1]
-        futures = []
-        for (state, _, worker), local, local_before in zip(kept, locals_, earlier):
-            futures.append(
-                self._beside(
-                    state, worker, _tile_given, (local, local_before), step, give_back, self.params
-                )
-            )
-        results = self.client.gather(futures)
+        tasks = [
+            (state, worker, (local, local_before))
+            for (state, _, worker), local, local_before in zip(kept, locals_, earlier)
+        ]
+        results = self.client.gather(
+            self._beside(_tile_given, tasks, step, give_back, self.params)
+        )
         self.rounds += 1
         for _, worker in results:
             self.workers.add(worker)
