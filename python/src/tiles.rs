@@ -600,11 +600,10 @@ pub(crate) fn _tests_kept<'py>(
             crate::within_call(|| {
                 let graph = state.tri.graph_from_edges(given);
                 // Only the owned points' tests are sent, so only they are run.
+                let owned = |i: usize| state.owned[i];
                 match &status {
-                    Some(status) => {
-                        condt::tiled::given_back_tests(&graph, &labels, status, &state.owned)
-                    }
-                    None => condt::tiled::clump_tests(&graph, &labels, &state.owned),
+                    Some(status) => condt::tiled::given_back_tests(&graph, &labels, status, owned),
+                    None => condt::tiled::clump_tests(&graph, &labels, owned),
                 }
             })
         })

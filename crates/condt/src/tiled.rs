@@ -163,12 +163,12 @@ pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Erro
 /// position to the other (rule 4's convex cycles); 0 without edges. `labels`
 /// names each position's component in the whole set's graph ([`component_labels`], any names
 /// that are equal exactly within a component); the tests are the whole set's at every point
-/// whose Delaunay star and graph the tile holds. Only the positions `asked` are tested (a tile
-/// asks for the points it owns, whose tests are its to send); the others get 0.
+/// whose Delaunay star and graph the tile holds. Only the positions that `at` selects are tested
+/// (a tile selects the points it owns, whose tests are its to send); the others get 0.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] named `labels` or `asked` when it is shorter than the
-/// triangulation's points.
+/// [`Error::InvalidParameter`] named `labels` when `labels` is shorter than the triangulation's
+/// points.
 ///
 /// ```
 /// use condt::{tiled, triangulate, Point};
@@ -181,15 +181,18 @@ pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Erro
 /// let edges: Vec<[usize; 2]> = (0..29).chain(30..35).map(|i| [i, i + 1]).collect();
 /// let labels = tiled::component_labels(pts.len(), &edges)?;
 /// let graph = tri.graph_from_edges(edges.iter().copied());
-/// let tests = tiled::clump_tests(&graph, &labels, &vec![true; pts.len()])?;
+/// let tests = tiled::clump_tests(&graph, &labels, |_| true)?;
 /// assert_eq!(tests[10], 0b111); // on the arc: smooth, apart from the zig-zag, turning left
 /// assert_eq!(tests[32] & 0b11, 0b10); // in the zig-zag: bent
 /// # Ok::<(), condt::Error>(())
 /// ```
-pub fn clump_tests(graph: &Graph<'_>, labels: &[u32], asked: &[bool]) -> Result<Vec<u8>, Error> {
+pub fn clump_tests(
+    graph: &Graph<'_>,
+    labels: &[u32],
+    at: impl Fn(usize) -> bool,
+) -> Result<Vec<u8>, Error> {
     let tri = graph.triangulation();
     one_per_point(tri.num_points(), "labels", labels.len())?;
-    one_per_point(tri.num_points(), "asked", asked.len())?;
     let edges = graph.listed();
     let curve = CurveGraph::new(tri.num_points(), edges);
     let root: Vec<u32> = (0..tri.num_points())
@@ -198,7 +201,7 @@ pub fn clump_tests(graph: &Graph<'_>, labels: &[u32], asked: &[bool]) -> Result<
     Ok((0..tri.num_points())
         .map(|position| {
             let v = tri.vertex(position);
-            if !asked[position] || tri.input_of(v) != position || curve.degree(v) == 0 {
+            if !at(position) || tri.input_of(v) != position || curve.degree(v) == 0 {
                 return 0; // a merged duplicate is tested at its vertex's own position
             }
             let (smooth, turn) = if curve.degree(v) == 2 {
@@ -264,7 +267,7 @@ fn turn_read(tests: u8, previous: VertexId, next: VertexId) -> Orientation {
 /// let edges: Vec<[usize; 2]> = (0..29).chain(30..35).map(|i| [i, i + 1]).collect();
 /// let graph = tri.graph_from_edges(edges.iter().copied());
 /// let labels = tiled::component_labels(pts.len(), &edges)?;
-/// let tests = tiled::clump_tests(&graph, &labels, &vec![true; pts.len()])?;
+/// let tests = tiled::clump_tests(&graph, &labels, |_| true)?;
 /// assert!(tiled::gathered_clumps_found(pts.len(), &edges, &tests)?);
 /// let choices = tiled::gap_choices(&graph, |_| true);
 /// let tips = tiled::tip_candidates(&graph, |_| true);
@@ -312,7 +315,7 @@ pub fn remove_gathered_clumps(
 /// let tri = triangulate(&pts)?;
 /// let graph = tri.graph_from_edges(edges.iter().copied());
 /// let labels = tiled::component_labels(pts.len(), &edges)?;
-/// let tests = tiled::clump_tests(&graph, &labels, &vec![true; pts.len()])?;
+/// let tests = tiled::clump_tests(&graph, &labels, |_| true)?;
 /// assert!(!tiled::gathered_clumps_found(pts.len(), &edges, &tests)?); // a straight line
 /// # Ok::<(), condt::Error>(())
 /// ```
@@ -891,7 +894,7 @@ pub fn junction_joins(
 /// let local = tiled::local_rules(&filtered, &repaired, give_back);
 /// let edges = local.edges();
 /// let labels = tiled::component_labels(pts.len(), &edges)?;
-/// let tests = tiled::clump_tests(&local, &labels, &vec![true; pts.len()])?;
+/// let tests = tiled::clump_tests(&local, &labels, |_| true)?;
 /// let choices = tiled::gap_choices(&local, |_| true);
 /// let tips = tiled::tip_candidates(&local, |_| true);
 /// let mut joins = tiled::hook_joins(&local, |_| true);
@@ -993,11 +996,11 @@ pub fn given_back_standing(
 /// a split run: 1 where a point of two or more edges on a component only given back does not lie
 /// apart (its component goes), else 0. `labels` and `status` are each position's, from
 /// [`given_back_standing`] on the whole set; the tests are the whole set's at every point whose
-/// Delaunay star and graph the tile holds. Only the positions `asked` are tested, as for
-/// [`clump_tests`].
+/// Delaunay star and graph the tile holds. Only the positions that `at` selects are tested, as
+/// for [`clump_tests`].
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] named `labels`, `status` or `asked` when it is shorter than the
+/// [`Error::InvalidParameter`] named `labels` or `status` when it is shorter than the
 /// triangulation's points.
 ///
 /// ```
@@ -1010,7 +1013,7 @@ pub fn given_back_standing(
 /// let edges: Vec<[usize; 2]> = (0..13).map(|k| [k, k + 1]).collect();
 /// let (labels, status) = tiled::given_back_standing(pts.len(), &edges, &[])?.unwrap();
 /// let graph = tri.graph_from_edges(edges.iter().copied());
-/// let tests = tiled::given_back_tests(&graph, &labels, &status, &vec![true; pts.len()])?;
+/// let tests = tiled::given_back_tests(&graph, &labels, &status, |_| true)?;
 /// assert!(tests.contains(&1)); // the strays are near the chain's middle
 /// assert_eq!((tests[0], tests[14]), (0, 0)); // an end has one edge; a stray none
 /// # Ok::<(), condt::Error>(())
@@ -1019,13 +1022,12 @@ pub fn given_back_tests(
     graph: &Graph<'_>,
     labels: &[u32],
     status: &[u8],
-    asked: &[bool],
+    at: impl Fn(usize) -> bool,
 ) -> Result<Vec<u8>, Error> {
     let tri = graph.triangulation();
     let n = tri.num_points();
     one_per_point(n, "labels", labels.len())?;
     one_per_point(n, "status", status.len())?;
-    one_per_point(n, "asked", asked.len())?;
     let curve = CurveGraph::new(n, graph.listed());
     let of_vertex = |v: VertexId| tri.input_of(v);
     // The whole set's component names, renumbered among the tile's own (the standing indexes
@@ -1056,7 +1058,7 @@ pub fn given_back_tests(
     Ok((0..n)
         .map(|position| {
             let v = tri.vertex(position);
-            let judged = asked[position]
+            let judged = at(position)
                 && tri.input_of(v) == position
                 && curve.degree(v) >= 2
                 && standing.status(v) == given_back::Status::GivenBack;
@@ -1083,7 +1085,7 @@ pub fn given_back_tests(
 /// let edges: Vec<[usize; 2]> = (0..13).map(|k| [k, k + 1]).collect();
 /// let (labels, status) = tiled::given_back_standing(pts.len(), &edges, &[])?.unwrap();
 /// let graph = tri.graph_from_edges(edges.iter().copied());
-/// let tests = tiled::given_back_tests(&graph, &labels, &status, &vec![true; pts.len()])?;
+/// let tests = tiled::given_back_tests(&graph, &labels, &status, |_| true)?;
 /// let kept = tiled::confirm_gathered_given_back(pts.len(), &edges, &[], &tests)?;
 /// // The chain lies in a scatter and goes, as the stage decides.
 /// assert_eq!(kept, Some(vec![]));
@@ -1217,7 +1219,7 @@ mod tests {
         let local = local_rules(&graph, &graph, false);
         let listed = local.edges();
         let labels = component_labels(pts.len(), &listed).unwrap();
-        let tests = clump_tests(&local, &labels, &vec![true; pts.len()]).unwrap();
+        let tests = clump_tests(&local, &labels, |_| true).unwrap();
         Rule4Rows {
             n: pts.len(),
             tests,
@@ -1348,7 +1350,7 @@ mod tests {
         let listed = graph.edges();
         let n = pts.len();
         let labels = component_labels(n, &listed).unwrap();
-        let tests = clump_tests(&graph, &labels, &vec![true; n]).unwrap();
+        let tests = clump_tests(&graph, &labels, |_| true).unwrap();
         assert!(gathered_clumps_found(n, &listed, &tests).unwrap());
         let choices = gap_choices(&graph, |_| true);
         let tips = tip_candidates(&graph, |_| true);
@@ -1506,35 +1508,30 @@ mod tests {
         let graph = tri.graph_from_edges(after.iter().copied());
         let labels = component_labels(pts.len(), &after).unwrap();
         let far: Vec<u32> = labels.iter().map(|&l| 3 * l + 1_000_000).collect();
-        let all = vec![true; pts.len()];
-        let tests = clump_tests(&graph, &labels, &all).unwrap();
-        assert_eq!(tests, clump_tests(&graph, &far, &all).unwrap());
+        let all = |_| true;
+        let tests = clump_tests(&graph, &labels, all).unwrap();
+        assert_eq!(tests, clump_tests(&graph, &far, all).unwrap());
         // A tile asks only for its own points: theirs are the same, the others 0.
-        let some: Vec<bool> = (0..pts.len()).map(|i| i % 3 == 0).collect();
-        let asked = clump_tests(&graph, &labels, &some).unwrap();
+        let some = |i: usize| i % 3 == 0;
+        let asked = clump_tests(&graph, &labels, some).unwrap();
         assert!(tests.iter().filter(|&&t| t != 0).count() > pts.len() / 2);
         for (i, (&t, &a)) in tests.iter().zip(&asked).enumerate() {
-            assert_eq!(a, if some[i] { t } else { 0 });
+            assert_eq!(a, if some(i) { t } else { 0 });
         }
         let (names, status) = given_back_standing(pts.len(), &after, &before)
             .unwrap()
             .unwrap();
         let far: Vec<u32> = names.iter().map(|&l| 3 * l + 1_000_000).collect();
         assert!(status.contains(&2));
-        let tests = given_back_tests(&graph, &names, &status, &all).unwrap();
-        assert_eq!(
-            tests,
-            given_back_tests(&graph, &far, &status, &all).unwrap()
-        );
+        let tests = given_back_tests(&graph, &names, &status, all).unwrap();
+        assert_eq!(tests, given_back_tests(&graph, &far, &status, all).unwrap());
         assert!(tests.contains(&1));
-        let asked = given_back_tests(&graph, &names, &status, &some).unwrap();
+        let asked = given_back_tests(&graph, &names, &status, some).unwrap();
         for (i, (&t, &a)) in tests.iter().zip(&asked).enumerate() {
-            assert_eq!(a, if some[i] { t } else { 0 });
+            assert_eq!(a, if some(i) { t } else { 0 });
         }
-        // Too few labels, statuses or asked positions are refused, not read past.
-        assert!(clump_tests(&graph, &names[1..], &all).is_err());
-        assert!(clump_tests(&graph, &names, &all[1..]).is_err());
-        assert!(given_back_tests(&graph, &names, &status[1..], &all).is_err());
-        assert!(given_back_tests(&graph, &names, &status, &all[1..]).is_err());
+        // Too few labels or statuses are refused, not read past.
+        assert!(clump_tests(&graph, &names[1..], all).is_err());
+        assert!(given_back_tests(&graph, &names, &status[1..], all).is_err());
     }
 }

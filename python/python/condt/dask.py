@@ -435,8 +435,8 @@ class _Run:
         return tests
 
     def _split(self, given):
-        """The kept tiles (their state and positions, by tile) and, for each, the rows of
-        ``given`` with both ends among its points, in its own positions."""
+        """The kept tiles (their state, positions and worker, by tile) and, for each, the rows
+        of ``given`` with both ends among its points, in its own positions."""
         kept = [self.kept[k] for k in sorted(self.kept)]
         if self._index is None:
             # The kept tiles stay the same through the run's rounds: one index for all of them.
@@ -448,12 +448,13 @@ class _Run:
         """``call(state, arrays, *args)`` for each ``(state, worker, arrays)`` of ``tasks``, on the
         worker that holds the kept tile ``state``: the futures, in the order of ``tasks``.
 
-        The arrays are scattered to that worker and the task asks for it: otherwise the scheduler
-        sees a small state (its size is unknown to Dask) beside megabytes of arrays, moves the
-        state to where the arrays landed, and the tile is pickled and triangulated again there
-        (on 1M points, 16 tiles and two worker processes most rounds moved most tiles). The
-        request is loose (``allow_other_workers``): a lost worker fails the call as before. One
-        scatter per worker, not per tile: each is a round trip, which small sets' rounds wait on.
+        The arrays are scattered to that worker and the task asks for it, so that the tile stays
+        where it is: left to itself, the scheduler moved a state it took for a few bytes (before
+        the state said its size, ``__sizeof__``) to wherever the scatter had put megabytes of
+        arrays, and the tile was pickled and triangulated again there (on 1M points, 16 tiles and
+        two worker processes, in most rounds). The request is loose (``allow_other_workers``): a
+        lost worker fails the call as before. One scatter per worker, not per tile: each is a
+        round trip, which small sets' rounds wait on.
         """
         payloads = [None] * len(tasks)
         for worker in {worker for _, worker, _ in tasks}:
