@@ -339,7 +339,7 @@ class _Run:
         pending = list(self.owning)
         while pending:
             self.rounds += 1
-            futures, sent_positions = {}, {}
+            futures, sent_positions, batch = {}, {}, []
             for k in pending:
                 # Each tile gets only its points (the driver cuts them out): a worker never
                 # holds the whole set.
@@ -354,31 +354,19 @@ class _Run:
                 positions = np.flatnonzero(inside)
                 sent_positions[k] = positions
                 self.sent += len(positions)
-                # Scattered, not put into the task graph: the arrays go to a worker directly.
-                payload = self.client.scatter(
-                    (
-                        np.ascontiguousarray(points[positions]),
-                        positions.astype(np.int64),
-                        np.ascontiguousarray(plan["ranks"][positions]),
-                        np.ascontiguousarray(plan["boundary"][positions]),
-                    ),
-                    hash=False,
+                arrays = (
+                    np.ascontiguousarray(points[positions]),
+                    positions.astype(np.int64),
+                    np.ascontiguousarray(plan["ranks"][positions]),
+                    np.ascontiguousarray(plan["boundary"][positions]),
                 )
-                futures[k] = self.client.submit(
-                    _tile,
-                    payload,
-                    plan["boundary_len"],
-                    plan["hull"],
-                    band,
-                    self.rects[k],
-                    known,
-                    tuple(float(b) for b in bbox),
-                    plan["reach"],
-                    phase,
-                    keep,
-                    self.params,
-                    pure=False,
-                )
+                batch.append((k, arrays, band, known))
+                # A batch goes once it holds the points' own bytes: the driver holds at most about
+                # one more copy of the points at a time.
+                if sum(a.nbytes for _, tile, _, _ in batch for a in tile) >= points.nbytes:
+                    futures.update(self._send(batch, phase, keep))
+                    batch = []
+            futures.update(self._send(batch, phase, keep))
             # Only the reports come back: a kept triangulation stays in its task's result.
             reports = [self.client.submit(_report, f, pure=False) for f in futures.values()]
             results = self.client.gather(reports)
@@ -409,6 +397,34 @@ class _Run:
             np.concatenate([gathered[k][g] for k in sorted(gathered)] + [np.empty((0, 2), np.int64)])
             for g in range(graphs)
         ]
+
+    def _send(self, batch, phase, keep):
+        """The ``_tile`` tasks of the tiles of ``batch`` (``(tile, arrays, band, known)`` each),
+        by tile. Their arrays are scattered, not put into the task graph (they go to a worker
+        directly), in one call: each call is a round trip, which small sets' tiles waited on one
+        by one."""
+        if not batch:
+            return {}
+        plan, bbox = self.plan, tuple(float(b) for b in self.bbox)
+        payloads = self.client.scatter([arrays for _, arrays, _, _ in batch], hash=False)
+        return {
+            k: self.client.submit(
+                _tile,
+                payload,
+                plan["boundary_len"],
+                plan["hull"],
+                band,
+                self.rects[k],
+                known,
+                bbox,
+                plan["reach"],
+                phase,
+                keep,
+                self.params,
+                pure=False,
+            )
+            for (k, _, band, known), payload in zip(batch, payloads)
+        }
 
     def tests_on_kept(self, given, step, labels, status=None):
         """The per-point tests of ``step`` on each kept tile, with the driver's edges ``given``
