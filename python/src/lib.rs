@@ -34,13 +34,13 @@ mod tiles;
 mod triangulation;
 
 use condt_eval::score::{EdgeProblem, ScoreError};
-use condt_io::ReadOptions;
+use condt_io::{Column, Columns, InputFormat, IoErrorKind, ReadOptions};
 use convert::{as_points, io_error, library_error, points_array, shape_text};
 use numpy::ndarray::Array2;
 use numpy::{PyArray2, PyArrayMethods, PyUntypedArray};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyInt, PyList, PyTuple};
+use pyo3::types::{PyBool, PyDict, PyInt, PyList, PyString, PyTuple};
 use reconstruction::{Curve, EdgeStory, Reconstruction};
 use std::ffi::CString;
 use std::path::PathBuf;
@@ -154,11 +154,23 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 /// it. A path is always a file: ``"-"`` is the file named ``-`` (the command line reads its
 /// standard input for ``-``; this function never does).
 ///
+/// ``input_format`` reads the file in that format whatever its name, as the command line's
+/// ``--input-format``: ``"txt"``, ``"node"``, ``"csv"``, ``"tsv"``, ``"npy"``, ``"geojson"`` or
+/// ``"geojsonl"``. ``columns`` chooses the x and y columns of a CSV or TSV file, as
+/// ``--columns``: a pair of header names, ``("POINT_X", "POINT_Y")``, or the command line's
+/// text, ``"POINT_X,POINT_Y"`` or ``"2,3"`` (numbers count from 1 there, as every message
+/// about a column counts; a pair of ints is refused, as its count would be a guess). Without
+/// it, the columns the header names ``x`` and ``y`` (or ``lon`` and ``lat``, ...) are read.
+///
 /// Raises ``OSError`` (``FileNotFoundError``, ``PermissionError``, ...) when the file cannot be
-/// read, ``ValueError`` naming the file and line when its content is not a point file, and
-/// ``TypeError`` when ``path`` is not a path. A GeoJSON sequence (``.geojsonl``) whose later
-/// record carries another ``crs`` than the first warns (``UserWarning``, naming the file and the
-/// record's line; ``read_points_with_crs`` gives the first), its points read as given.
+/// read, ``ValueError`` naming the file and line when its content is not a point file (or the
+/// columns are not in it, or the file is read in another format than CSV or TSV), and
+/// ``TypeError`` when ``path`` is not a path or ``columns`` not columns. A GeoJSON sequence
+/// (``.geojsonl``) whose later record carries another ``crs`` than the first warns
+/// (``UserWarning``, naming the file and the record's line; ``read_points_with_crs`` gives the
+/// first), its points read as given. GeoJSON features whose geometry is ``null``, and empty
+/// Points or MultiPoints, give no row, and a ``UserWarning`` says how many: row ``i`` is then
+/// not the ``i``-th feature.
 ///
 /// >>> import condt, tempfile, os
 /// >>> path = os.path.join(tempfile.mkdtemp(), "pts.txt")
@@ -166,12 +178,101 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 /// ...     _ = f.write("# x y\n0 0\n1.5 2\n")
 /// >>> condt.read_points(path).tolist()
 /// [[0.0, 0.0], [1.5, 2.0]]
+/// >>> path = os.path.join(tempfile.mkdtemp(), "survey.txt")
+/// >>> with open(path, "w") as f:
+/// ...     _ = f.write("FID,POINT_X,POINT_Y\n1,2600000.5,1200000\n")
+/// >>> condt.read_points(path, input_format="csv", columns=("POINT_X", "POINT_Y")).tolist()
+/// [[2600000.5, 1200000.0]]
 #[pyfunction]
+#[pyo3(signature = (path, *, columns = None, input_format = None))]
 fn read_points<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
+    columns: Option<&Bound<'py, PyAny>>,
+    input_format: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    read_point_file(py, path).map(|(points, _)| points)
+    let options = read_options(columns, input_format)?;
+    read_point_file(py, path, &options).map(|(points, _)| points)
+}
+
+/// The reading options of ``read_points``' keywords, checked: a known format name, and columns
+/// as a pair of names or the command line's ``X,Y`` text.
+fn read_options(
+    columns: Option<&Bound<'_, PyAny>>,
+    input_format: Option<&Bound<'_, PyAny>>,
+) -> PyResult<ReadOptions> {
+    let mut options = ReadOptions::new();
+    if let Some(given) = input_format {
+        let names = InputFormat::ALL.map(InputFormat::name).join(", ");
+        let name: String = given.extract().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "input_format must be a str, one of {names}, not {}",
+                type_name(given)
+            ))
+        })?;
+        let format = InputFormat::named(&name).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "input_format {name:?}: unknown input format; the formats are {names}"
+            ))
+        })?;
+        options = options.with_format(format);
+    }
+    if let Some(given) = columns {
+        let chosen = if let Ok(text) = given.extract::<String>() {
+            Columns::parse(&text).map_err(|why| PyValueError::new_err(format!("columns {why}")))?
+        } else {
+            let pair: Vec<Bound<'_, PyAny>> = match given.extract() {
+                Ok(items) if !given.is_instance_of::<PyDict>() => items,
+                _ => {
+                    return Err(PyTypeError::new_err(format!(
+                        "columns must be a pair of header names, (\"POINT_X\", \"POINT_Y\"), or \
+                         the command line's text, \"POINT_X,POINT_Y\" or \"2,3\", not {}",
+                        type_name(given)
+                    )))
+                }
+            };
+            let name = |item: &Bound<'_, PyAny>| -> PyResult<Column> {
+                // An int, a numpy integer: anything with `__index__` that is not a name.
+                if !item.is_instance_of::<PyString>() && item.hasattr("__index__")? {
+                    return Err(PyTypeError::new_err(format!(
+                        "columns: {item} is a number, and whether it counts from 0 or from 1 \
+                         would be a guess; give the command line's text, \"2,3\" for the \
+                         second and third columns (counted from 1), or header names"
+                    )));
+                }
+                let text: String = item.extract().map_err(|_| {
+                    PyTypeError::new_err(format!(
+                        "columns: a column is a header name (str), not {}",
+                        type_name(item)
+                    ))
+                })?;
+                if text.trim().is_empty() {
+                    return Err(PyValueError::new_err("columns: an empty column name"));
+                }
+                Ok(Column::Named(text))
+            };
+            let [x, y] = &pair[..] else {
+                return Err(PyValueError::new_err(format!(
+                    "columns must be two, x and y, not {}",
+                    pair.len()
+                )));
+            };
+            Columns {
+                x: name(x)?,
+                y: name(y)?,
+            }
+        };
+        options = options.with_columns(chosen);
+    }
+    Ok(options)
+}
+
+/// The name of `value`'s type, for messages.
+fn type_name(value: &Bound<'_, PyAny>) -> String {
+    value
+        .get_type()
+        .name()
+        .map_or_else(|_| "?".into(), |n| n.to_string())
 }
 
 /// ``read_points(path)``, and the file's coordinate reference system: a tuple ``(points,
@@ -180,7 +281,7 @@ fn read_points<'py>(
 /// ``Reconstruction.to_geojson(crs=crs)`` carries it on, as ``condt reconstruct`` does from a
 /// GeoJSON input to a GeoJSON output.
 ///
-/// Raises what ``read_points`` raises, and warns as it warns.
+/// Takes ``read_points``' keywords, raises what it raises, and warns as it warns.
 ///
 /// >>> import condt, json, tempfile, os
 /// >>> path = os.path.join(tempfile.mkdtemp(), "utm.geojson")
@@ -193,19 +294,25 @@ fn read_points<'py>(
 /// >>> points.tolist(), json.loads(crs)["properties"]["name"]
 /// ([[500000.0, 4000000.0], [500010.0, 4000000.0]], 'EPSG:32632')
 #[pyfunction]
+#[pyo3(signature = (path, *, columns = None, input_format = None))]
 fn read_points_with_crs<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
+    columns: Option<&Bound<'py, PyAny>>,
+    input_format: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
-    read_point_file(py, path)
+    let options = read_options(columns, input_format)?;
+    read_point_file(py, path, &options)
 }
 
-/// The points of the file at `path` (as `open` takes it) and its GeoJSON crs; a `UserWarning`
-/// naming the file and line of a GeoJSON sequence's later record whose different crs was left
-/// out (the command line's note).
+/// The points of the file at `path` (as `open` takes it) read with `options`, and its GeoJSON
+/// crs; a `UserWarning` naming the file and line of a GeoJSON sequence's later record whose
+/// different crs was left out, and one for the features that gave no point (the command line's
+/// notes).
 fn read_point_file<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
+    options: &ReadOptions,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
     // `os.fsdecode` takes what `open` takes (str, bytes, os.PathLike of either) and gives a str
     // whose undecodable bytes are escaped, which becomes the same bytes again as an `OsString`.
@@ -216,9 +323,7 @@ fn read_point_file<'py>(
             if err.is_instance_of::<PyTypeError>(py) {
                 PyTypeError::new_err(format!(
                     "path must be a str, bytes or os.PathLike, not {}",
-                    path.get_type()
-                        .name()
-                        .map_or_else(|_| "?".into(), |n| n.to_string())
+                    type_name(path)
                 ))
             } else {
                 err
@@ -234,11 +339,14 @@ fn read_point_file<'py>(
         given
     };
     let file = py
-        .detach(|| within_call(|| condt_io::read_points_with(&path, &ReadOptions::default())))
+        .detach(|| within_call(|| condt_io::read_points_with(&path, options)))
         .map_err(|mut err| {
             // Named as given, in the message and in `OSError.filename`.
             if stdin_name {
                 err.file = "-".into();
+            }
+            if let IoErrorKind::Content(message) = &mut err.kind {
+                *message = keyword_advice(message);
             }
             io_error(err)
         })?;
@@ -246,14 +354,27 @@ fn read_point_file<'py>(
         points,
         crs,
         crs_dropped_at,
+        null_geometries,
+        empty_geometries,
         ..
     } = file;
+    let shown = if stdin_name {
+        "-".into()
+    } else {
+        path.display().to_string()
+    };
+    if let Some(skipped) = skipped_geometries(null_geometries, empty_geometries) {
+        let message = format!(
+            "{shown}: skipped {skipped}: they hold no point, so row i is not the i-th feature"
+        );
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &CString::new(message)?,
+            1,
+        )?;
+    }
     if let Some(line) = crs_dropped_at {
-        let shown = if stdin_name {
-            "-".into()
-        } else {
-            path.display().to_string()
-        };
         let message = format!(
             "{shown}:{line}: this record's crs differs from the first one read; only the first \
              is kept, and every point is read as given, without conversion"
@@ -276,6 +397,45 @@ fn read_point_file<'py>(
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
     Ok((PyArray2::from_owned_array(py, array), crs))
+}
+
+/// A reader's message with its advice in this function's keywords: the readers advise the
+/// command line's options (`condt's --columns X,Y`, `condt's --input-format csv`).
+fn keyword_advice(message: &str) -> String {
+    let message = message.replace(
+        "condt's --columns X,Y",
+        "columns=(\"X\", \"Y\") (or \"2,3\", counted from 1)",
+    );
+    let option = "condt's --input-format ";
+    let mut advised = String::with_capacity(message.len());
+    let mut rest = message.as_str();
+    while let Some(at) = rest.find(option) {
+        advised.push_str(&rest[..at]);
+        let after = &rest[at + option.len()..];
+        let name_len = after
+            .find(|c: char| !c.is_ascii_alphanumeric())
+            .unwrap_or(after.len());
+        advised.push_str(&format!("input_format=\"{}\"", &after[..name_len]));
+        rest = &after[name_len..];
+    }
+    advised.push_str(rest);
+    advised
+}
+
+/// The GeoJSON features that gave no point, in words (the command line's note), or `None`.
+fn skipped_geometries(null: usize, empty: usize) -> Option<String> {
+    let mut skipped = Vec::new();
+    match null {
+        0 => {}
+        1 => skipped.push("1 feature with a null geometry".to_string()),
+        n => skipped.push(format!("{n} features with a null geometry")),
+    }
+    match empty {
+        0 => {}
+        1 => skipped.push("1 empty Point or MultiPoint".to_string()),
+        n => skipped.push(format!("{n} empty Points or MultiPoints")),
+    }
+    (!skipped.is_empty()).then(|| skipped.join(" and "))
 }
 
 /// An edge list as given: each end as `i64`, and the text of each end no `i64` holds (a uint64

@@ -4,7 +4,7 @@
 //! the explanation of an edge as text and numbers, and the GeoJSON and shapely outputs. It may
 //! not run a stage: every number comes from the result or its `provenance`.
 
-use crate::convert::{index_array, index_vector, input_position, position};
+use crate::convert::{index_array, index_vector, input_position, position, read_only};
 use condt::{Change, EndChoice, Point, Reason};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyImportError, PyKeyError, PyRuntimeError, PyValueError};
@@ -113,6 +113,7 @@ impl Reconstruction {
                         shared: Arc::clone(&self.shared),
                         index,
                         points: PyOnceLock::new(),
+                        coords: PyOnceLock::new(),
                     };
                     Py::new(py, curve)
                 })
@@ -402,6 +403,7 @@ pub(crate) struct Curve {
     shared: Arc<Shared>,
     index: usize,
     points: PyOnceLock<Py<PyArray1<i64>>>,
+    coords: PyOnceLock<Py<PyArray2<f64>>>,
 }
 
 impl Curve {
@@ -428,10 +430,16 @@ impl Curve {
         self.curve().is_closed()
     }
 
-    /// The coordinates of its points, a new ``(len, 2)`` float64 array.
+    /// The coordinates of its points, in order along it: a ``(len, 2)`` float64 array
+    /// (read-only, as every result array).
     #[getter]
     fn coords<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.shared.coordinates(py, self.curve().points())
+        let coords = self.coords.get_or_try_init(py, || {
+            let array = self.shared.coordinates(py, self.curve().points())?;
+            read_only(array.as_any())?;
+            Ok::<_, PyErr>(array.unbind())
+        })?;
+        Ok(coords.bind(py).clone())
     }
 
     fn __len__(&self) -> usize {

@@ -883,10 +883,12 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
     )
     path = tmp_path / "utm.geojson"
     path.write_text(doc)
-    points, crs = condt.read_points_with_crs(path)
+    with pytest.warns(UserWarning, match="skipped 1 feature with a null geometry"):
+        points, crs = condt.read_points_with_crs(path)
     assert points.tolist() == coords
     assert crs == crs_text
-    assert condt.read_points(path).tolist() == coords
+    with pytest.warns(UserWarning, match="skipped 1 feature with a null geometry"):
+        assert condt.read_points(path).tolist() == coords
     r = condt.reconstruct(points)
     # The text as read, written on as it is; a dict is written by json.dumps.
     written = r.to_geojson(crs=crs)
@@ -936,3 +938,104 @@ def test_read_points_with_crs_warns_of_a_later_records_other_crs(tmp_path):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         condt.read_points_with_crs(same)
+
+
+def test_read_points_takes_the_command_lines_columns_and_input_format(tmp_path):
+    # An ESRI or QGIS export names its columns POINT_X and POINT_Y; the command line's
+    # --columns and --input-format choose them, and so do these keywords.
+    path = tmp_path / "survey.txt"
+    path.write_text("FID,POINT_X,POINT_Y\n1,2600000.5,1200000\n2,2600001,1200002.5\n")
+    expected = [[2600000.5, 1200000.0], [2600001.0, 1200002.5]]
+    for columns in [("POINT_X", "POINT_Y"), ["point_x", "Point_Y"], "POINT_X,POINT_Y", "2,3"]:
+        got = condt.read_points(path, input_format="csv", columns=columns)
+        assert got.tolist() == expected, columns
+        points, crs = condt.read_points_with_crs(path, input_format="csv", columns=columns)
+        assert points.tolist() == expected and crs is None
+    # Swapped columns swap the coordinates: the pair is (x, y).
+    swapped = condt.read_points(path, input_format="csv", columns=("POINT_Y", "POINT_X"))
+    assert swapped.tolist() == [[y, x] for x, y in expected]
+    # By its name the file is plain text, whose header does not name x and y first.
+    with pytest.raises(ValueError, match="survey.txt:"):
+        condt.read_points(path)
+    # Columns apply to CSV and TSV alone, as on the command line.
+    with pytest.raises(ValueError, match="chosen only in CSV and TSV input"):
+        condt.read_points(path, columns=("POINT_X", "POINT_Y"))
+    with pytest.raises(ValueError, match="no column named \"easting\""):
+        condt.read_points(path, input_format="csv", columns=("easting", "northing"))
+    with pytest.raises(ValueError, match="unknown input format; the formats are txt, node"):
+        condt.read_points(path, input_format="xlsx")
+    with pytest.raises(TypeError, match="input_format must be a str"):
+        condt.read_points(path, input_format=1)
+
+
+def test_read_points_refuses_columns_it_would_have_to_guess(tmp_path):
+    path = tmp_path / "survey.csv"
+    path.write_text("FID,POINT_X,POINT_Y\n1,2,3\n")
+    # Ints: Python counts from 0, the command line and every message from 1.
+    for columns in [(1, 2), ("POINT_X", 2), np.array([1, 2])]:
+        with pytest.raises(TypeError, match="would be a guess"):
+            condt.read_points(path, columns=columns)
+    for columns, error in [
+        (("POINT_X",), ValueError),
+        (("POINT_X", "POINT_Y", "FID"), ValueError),
+        (("POINT_X", " "), ValueError),
+        (("POINT_X", "point_x"), ValueError),
+        ("POINT_X", ValueError),
+        ("0,1", ValueError),
+        (("POINT_X", 2.0), TypeError),
+        ({"x": "POINT_X", "y": "POINT_Y"}, TypeError),
+        (3, TypeError),
+    ]:
+        with pytest.raises(error):
+            condt.read_points(path, columns=columns)
+    # Without columns, the reader's advice names this function's keywords, not the command
+    # line's options.
+    with pytest.raises(ValueError, match=r"with columns=\(\"X\", \"Y\"\)") as raised:
+        condt.read_points(path)
+    assert "--columns" not in str(raised.value)
+    lines = tmp_path / "two.json"
+    lines.write_text('{"type": "Point", "coordinates": [0, 0]}\n'
+                     '{"type": "Point", "coordinates": [1, 0]}\n')
+    with pytest.raises(ValueError, match='input_format="geojsonl"') as raised:
+        condt.read_points(lines)
+    assert "--input-format" not in str(raised.value)
+    assert condt.read_points(lines, input_format="geojsonl").tolist() == [[0, 0], [1, 0]]
+
+
+def test_read_points_warns_of_features_that_give_no_point(tmp_path):
+    # Row i is no longer the i-th feature: as the command line's note, a warning says so.
+    def feature(geometry):
+        return {"type": "Feature", "properties": {}, "geometry": geometry}
+
+    path = tmp_path / "holes.geojson"
+    features = [
+        feature(None),
+        feature({"type": "Point", "coordinates": [0, 0]}),
+        feature({"type": "Point", "coordinates": []}),
+        feature({"type": "MultiPoint", "coordinates": []}),
+        feature({"type": "Point", "coordinates": [1, 0]}),
+        feature(None),
+    ]
+    path.write_text(json.dumps({"type": "FeatureCollection", "features": features}))
+    with pytest.warns(UserWarning) as warned:
+        points = condt.read_points(path)
+    assert points.tolist() == [[0, 0], [1, 0]]
+    assert [str(w.message) for w in warned] == [
+        f"{path}: skipped 2 features with a null geometry and 2 empty Points or MultiPoints: "
+        "they hold no point, so row i is not the i-th feature"
+    ]
+    whole = tmp_path / "whole.geojson"
+    whole.write_text(json.dumps({"type": "FeatureCollection", "features": features[1:2]}))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert condt.read_points(whole).tolist() == [[0, 0]]
+
+
+def test_curve_coordinates_are_read_only_as_every_result_array():
+    square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+    curve = condt.reconstruct(square).curves[0]
+    assert not curve.coords.flags.writeable and not curve.points.flags.writeable
+    with pytest.raises(ValueError):
+        curve.coords[0, 0] = 5.0
+    # Each row the coordinates of the point at that place along the curve.
+    assert curve.coords.tolist() == [square[i] for i in curve.points.tolist()]

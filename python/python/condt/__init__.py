@@ -6,7 +6,8 @@ what the ``condt`` command line computes:
 
 - ``reconstruct(points, *, paper=False, **params)``: the curves, as ``condt reconstruct``;
 - ``triangulate(points)``: the Delaunay triangulation, as ``condt triangulate``;
-- ``read_points(path)``: the points of a file in any format the command line reads
+- ``read_points(path, *, columns=None, input_format=None)``: the points of a file in any
+  format the command line reads, with its ``--columns`` and ``--input-format``
   (``read_points_with_crs(path)``: and a GeoJSON input's ``crs``, for
   ``Reconstruction.to_geojson(crs=...)`` to carry on);
 - ``score(points, output, truth)``: the metrics of ``condt score``;

@@ -2,7 +2,7 @@
 # are the runtime's (`help(condt.reconstruct)`); tests/test_api.py checks that these signatures
 # match the module's, as `python -m mypy.stubtest condt._condt` does.
 import os
-from typing import Any, Literal, Mapping, Optional, Tuple, TypedDict, Union, final
+from typing import Any, Literal, Mapping, Optional, Sequence, Tuple, TypedDict, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -50,6 +50,7 @@ _Points = npt.ArrayLike
 _Edges = npt.ArrayLike
 _Index = npt.NDArray[np.int64]
 _Coords = npt.NDArray[np.float64]
+_InputFormat = Literal["txt", "text", "node", "csv", "tsv", "npy", "geojson", "json", "geojsonl", "geojsons"]
 
 @final
 class Curve:
@@ -155,9 +156,17 @@ def reconstruct(
 ) -> Reconstruction: ...
 def triangulate(points: _Points) -> Triangulation: ...
 # A path is always a file: "-" is the file named "-", not standard input.
-def read_points(path: Union[str, bytes, os.PathLike[str], os.PathLike[bytes]]) -> _Coords: ...
+def read_points(
+    path: Union[str, bytes, os.PathLike[str], os.PathLike[bytes]],
+    *,
+    columns: Union[str, Tuple[str, str], Sequence[str], None] = ...,
+    input_format: Optional[_InputFormat] = ...,
+) -> _Coords: ...
 def read_points_with_crs(
     path: Union[str, bytes, os.PathLike[str], os.PathLike[bytes]],
+    *,
+    columns: Union[str, Tuple[str, str], Sequence[str], None] = ...,
+    input_format: Optional[_InputFormat] = ...,
 ) -> Tuple[_Coords, Optional[str]]: ...
 def score(points: _Points, output: _Edges, truth: _Edges) -> _Score: ...
 
