@@ -610,9 +610,9 @@ fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
             } else {
                 usize::from(b > a)
             };
-            format!("edge {row}: point {} does not exist", given.text(row, end))
+            format!("row {row}: point {} does not exist", given.text(row, end))
         }
-        other => format!("edge {row}: {other}"),
+        other => format!("row {row}: {other}"),
     }
 }
 
@@ -624,8 +624,8 @@ fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
 /// ``precision``, ``recall``, ``f1``, ``tp``, ``fp``, ``fn``, ``outlier_edges`` (output edges
 /// touching a point the truth leaves without an edge), ``max_dist`` and ``rms_dist`` (of the
 /// output to the truth, over the bounding-box diagonal; ``None`` without output edges, or when
-/// not finite), ``malformed`` (``None``, or the output's first problem: ``"edge K: ..."``, K its
-/// row), ``n_points``, ``n_gt``, ``n_out``. A malformed output (an index out of range or
+/// not finite), ``malformed`` (``None``, or the output's first problem: ``"row K: ..."``, as
+/// ``condt score --json`` names it for the same array saved as ``.npy``), ``n_points``, ``n_gt``, ``n_out``. A malformed output (an index out of range or
 /// negative, a self-loop, a repeated edge) scores precision, recall and F1 0; its valid edges
 /// are counted once each. An index beyond int64 (a uint64 from ``2**63``, a Python int) is out
 /// of range as any other and named as given, never wrapped.
@@ -640,7 +640,7 @@ fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
 /// >>> s["exact"], s["tp"], s["fp"], s["fn"], s["f1"]
 /// (False, 3, 1, 1, 0.75)
 /// >>> condt.score(square, [(0, 1), (1, 0)], [(0, 1)])["malformed"]
-/// 'edge 1: edge 0 1 repeated'
+/// 'row 1: edge 0 1 repeated'
 #[pyfunction]
 fn score<'py>(
     py: Python<'py>,

@@ -440,15 +440,15 @@ def test_score_checks_its_edges():
     s = condt.score(square, truth, truth)
     assert s["exact"] and s["f1"] == 1.0 and s["max_dist"] == 0.0 and s["malformed"] is None
     bad = condt.score(square, [(0, 1), (1, -1), (2, 2)], truth)
-    assert bad["malformed"] == "edge 1: point -1 does not exist"
+    assert bad["malformed"] == "row 1: point -1 does not exist"
     assert (bad["f1"], bad["exact"], bad["n_out"]) == (0.0, False, 3)
-    assert condt.score(square, [(0, 1), (1, 9)], truth)["malformed"] == "edge 1: point 9 does not exist"
-    assert condt.score(square, [(2, 2)], truth)["malformed"] == "edge 0: self-loop at point 2"
+    assert condt.score(square, [(0, 1), (1, 9)], truth)["malformed"] == "row 1: point 9 does not exist"
+    assert condt.score(square, [(2, 2)], truth)["malformed"] == "row 0: self-loop at point 2"
     assert condt.score(square, [], truth)["max_dist"] is None
     assert condt.score(square, [(0, 1)], [])["max_dist"] is None  # infinite: null in JSON
-    with pytest.raises(ValueError, match="ground truth: edge 1: point 7 does not exist"):
+    with pytest.raises(ValueError, match="ground truth: row 1: point 7 does not exist"):
         condt.score(square, [], [(0, 1), (7, 1)])
-    with pytest.raises(ValueError, match="ground truth: edge 0: point -2 does not exist"):
+    with pytest.raises(ValueError, match="ground truth: row 0: point -2 does not exist"):
         condt.score(square, [], [(-2, 1)])
     with pytest.raises(TypeError, match="integers"):
         condt.score(square, [(0.5, 1)], truth)
@@ -507,9 +507,9 @@ def test_score_names_an_index_beyond_int64_as_given_and_never_wraps_it():
     ]
     for edges, value in beyond:
         s = condt.score(square, edges, truth)
-        assert s["malformed"] == f"edge 0: point {value} does not exist", edges
+        assert s["malformed"] == f"row 0: point {value} does not exist", edges
         assert (s["f1"], s["n_out"]) == (0.0, 1)
-        with pytest.raises(ValueError, match=f"^ground truth: edge 0: point {value} does not exist$"):
+        with pytest.raises(ValueError, match=f"^ground truth: row 0: point {value} does not exist$"):
             condt.score(square, [], edges)
     # Unsigned and object arrays of indices in range are read as they are.
     for edges in (np.array(truth, dtype=np.uint64), np.array(truth, dtype=object), np.array(truth, np.uint8)):

@@ -116,6 +116,29 @@ def test_score_is_the_command_lines(cli):
         assert condt.score(points, output, truth) == json.loads(printed)
 
 
+def test_a_malformed_output_scores_as_on_the_command_line(cli):
+    # The same rows, given to Python or saved as .npy for the command line: the same metrics,
+    # the same count of output edges and the same first problem (a negative point number is a
+    # point that does not exist, in both).
+    square = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)])
+    np.savetxt(cli.tmp / "sq.txt", square)
+    truth = np.array([(0, 1), (1, 2), (2, 3), (0, 3)])
+    np.save(cli.tmp / "gt.npy", truth)
+    for output in [
+        [(0, 1), (0, -1)],
+        [(0, -1)],
+        [(0, 1), (1, 2), (1, 2)],
+        [(0, 1), (3, 3), (2, 9)],
+        [(-5, 7), (0, 1)],
+        [(0, 1), (1, 2), (2, 3), (3, 0)],
+    ]:
+        output = np.array(output, dtype=np.int64)
+        np.save(cli.tmp / "out.npy", output)
+        printed = cli.run("score", cli.tmp / "sq.txt", cli.tmp / "out.npy", cli.tmp / "gt.npy",
+                          "--json").stdout
+        assert condt.score(square, output, truth) == json.loads(printed), output.tolist()
+
+
 # Points drawn on a small grid (duplicates, collinear and cocircular sets) or anywhere.
 coordinate = st.one_of(
     st.integers(-4, 4).map(float),

@@ -4,15 +4,15 @@
 //! printing [`condt_eval::score::Score`] as text or JSON. It may not compute a metric: the library's
 //! `score` does, so benches, tests and this command agree by construction.
 //!
-//! An edge file holds one edge `i j` per line (0-based point numbers); `#` lines and blank lines
-//! are skipped; its lines are split as point files' are ([`condt_io::text_lines`]: LF, CRLF or
+//! An edge file holds one edge `i j` per line (0-based point numbers); `#` starts a comment (a
+//! line of its own or after an edge), and blank lines are skipped; its lines are split as point files' are ([`condt_io::text_lines`]: LF, CRLF or
 //! CR-only line ends, a byte-order mark at the start skipped). A name ending in `.npy` is a
 //! NumPy array of shape `(m, 2)` of any integer type, as `condt reconstruct -o out.npy` writes it
 //! ([`condt_io::parse_npy_edges`]), its problems told by row. `-` reads text from standard input,
 //! for one of the three files.
 //!
-//! A malformed OUTPUT (a line that is not two numbers, a point that does not exist, a self-loop,
-//! a repeated edge) is scored as a failure, as the evaluation suite's scorer does, and the first
+//! A malformed OUTPUT (a line that is not two integers, a point that does not exist, negative
+//! numbers included, a self-loop, a repeated edge) is scored as a failure, as the evaluation suite's scorer does, and the first
 //! problem is reported with its line; a malformed TRUTH is an error. A file that is not an edge
 //! list at all is an error whichever it is: bytes that are not text (not UTF-8, a NUL byte, a
 //! NumPy array under another name), an `.npy` array of another dtype or shape, or text of which
@@ -47,8 +47,8 @@ Example:
 
 POINTS is read as `condt reconstruct` reads its INPUT, with the same --input-format and
 --columns, so that it numbers the points as the reconstruction did.
-Edge files hold one edge `i j` per line, in point numbers of POINTS (`#` lines and blank lines
-are skipped); a name ending in .npy (any case) is a NumPy array of shape (m, 2) of integers
+Edge files hold one edge `i j` per line, in point numbers of POINTS (`#` starts a comment, on a
+line of its own or after an edge; blank lines are skipped); a name ending in .npy (any case) is a NumPy array of shape (m, 2) of integers
 (uint32 or int64 as `condt reconstruct -o out.npy` writes it, or any other width), either byte
 order. `-` reads standard input
 for one of POINTS, OUTPUT and TRUTH (POINTS as INPUT's standard input is read, an edge list as
@@ -57,7 +57,7 @@ precision, recall and F1 on the edge sets, the output edges touching a point the
 edge (outlier edges), and the largest and the root-mean-square distance of the output to the
 truth (each output edge sampled at 0, 1/4, 1/2, 3/4 and 1 of its length), over the diagonal of
 the points' bounding box. A malformed OUTPUT (a bad line among edges, a point that does not
-exist, a self-loop, a repeated edge) scores 0 and its first problem is printed with its line
+exist, such as -1, a self-loop, a repeated edge) scores 0 and its first problem is printed with its line
 (row, for .npy); a malformed TRUTH is an error. A file that is not an edge list (not text, an
 array of another dtype or shape, text with lines but none of them an edge) is an error, OUTPUT
 or TRUTH; an empty file, or one of comments and blank lines only, is an empty edge list (an
@@ -198,7 +198,7 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     }
     let result = score(&points, &output.edges, &truth.edges).map_err(|err| match err {
         condt_eval::score::ScoreError::Truth(problem) => {
-            let (line, why) = truth.place(problem.position(), problem.to_string());
+            let (line, why) = truth.place(problem.position(), truth.problem_text(problem));
             content(&truth.name, line, why)
         }
         other => CliError::Input(format!("{}: {other}", truth.name)),
@@ -213,7 +213,7 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
         output.bad_line.clone(),
         result
             .malformed
-            .map(|p: EdgeProblem| (places[p.position()], p.to_string())),
+            .map(|p: EdgeProblem| (places[p.position()], output.problem_text(p))),
     ]
     .into_iter()
     .flatten()
@@ -248,12 +248,48 @@ enum Places {
 struct EdgeFile {
     /// The file as messages name it (`<stdin>` for standard input).
     name: String,
+    /// Each end that no point can have (negative, or beyond `usize`) is `usize::MAX` here, out
+    /// of range as any index no point has; `beyond` keeps it as given.
     edges: Vec<[usize; 2]>,
     places: Places,
     bad_line: Option<(usize, String)>,
+    /// `(edge, end, number as given)` for the ends no point can have, in edge order.
+    beyond: Vec<(usize, usize, String)>,
 }
 
 impl EdgeFile {
+    /// An edge whose ends are given as `ends`: those no point can have as `usize::MAX`, kept
+    /// as given in `beyond`.
+    fn push(&mut self, ends: [Result<usize, String>; 2]) {
+        let position = self.edges.len();
+        let edge = [0, 1].map(|end| match &ends[end] {
+            Ok(index) => *index,
+            Err(given) => {
+                self.beyond.push((position, end, given.clone()));
+                usize::MAX
+            }
+        });
+        self.edges.push(edge);
+    }
+
+    /// The library's words for `problem`, its point number as given: of an end no point can
+    /// have, a negative one first (as `condt.score` in Python names it).
+    fn problem_text(&self, problem: EdgeProblem) -> String {
+        let EdgeProblem::OutOfRange { position, .. } = problem else {
+            return problem.to_string();
+        };
+        let given: Vec<&str> = self
+            .beyond
+            .iter()
+            .filter(|(at, _, _)| *at == position)
+            .map(|(_, _, text)| text.as_str())
+            .collect();
+        match given.iter().find(|t| t.starts_with('-')).or(given.first()) {
+            Some(text) => format!("point {text} does not exist"),
+            None => problem.to_string(),
+        }
+    }
+
     /// A problem of the edge at `position`, placed: its line, or (in an array, which has no
     /// lines) its row at the start of the message.
     fn place(&self, position: usize, why: String) -> (Option<usize>, String) {
@@ -297,41 +333,22 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
     if npy {
-        // A row with a negative number is a malformed output's problem (scored 0, told by its
-        // row), as a text line `-1 0` is; its edge is left out, as that line is. A number too
-        // large for any point is kept, as the same number in a text line is, for the library
-        // to find that the point does not exist (scored 0 likewise); only one beyond what a
-        // point number can hold here (on a 32-bit system) is the row's problem.
+        // Every row is an edge: a number no point can have (negative, or beyond what a point
+        // number holds here) is one whose point does not exist, a malformed output's problem
+        // (scored 0, told by its row, as a text line `-1 0` is by its line, and as
+        // `condt.score` in Python tells it for the same array).
         let mut read = EdgeFile {
             name,
             edges: Vec::new(),
             places: Places::Rows(Vec::new()),
             bad_line: None,
+            beyond: Vec::new(),
         };
-        let mut rows = Vec::new();
-        for (row, pair) in parse_npy_index_rows(&bytes, &read.name)?
-            .into_iter()
-            .enumerate()
-        {
-            match pair.map(usize::try_from) {
-                [Ok(a), Ok(b)] => {
-                    read.edges.push([a, b]);
-                    rows.push(row);
-                }
-                _ if read.bad_line.is_none() => {
-                    let why = match pair.into_iter().find(|&v| v < 0) {
-                        Some(v) => format!("point number {v} is negative"),
-                        None => {
-                            let v = pair.into_iter().max().unwrap_or_default();
-                            format!("point number {v} is too large")
-                        }
-                    };
-                    read.bad_line = Some((row, why));
-                }
-                _ => {}
-            }
+        let rows = parse_npy_index_rows(&bytes, &read.name)?;
+        for pair in &rows {
+            read.push(pair.map(|v| usize::try_from(v).map_err(|_| v.to_string())));
         }
-        read.places = Places::Rows(rows);
+        read.places = Places::Rows((0..rows.len()).collect());
         return Ok(read);
     }
     // Text is read as text: an array under another name (or piped in) is told as one, and
@@ -352,6 +369,7 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
         edges: Vec::new(),
         places: Places::Lines(Vec::new()),
         bad_line: None,
+        beyond: Vec::new(),
     };
     // The line ends and the byte-order mark of point files, by the same reader.
     for (number, line) in text_lines(&text) {
@@ -362,15 +380,15 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
                 "a NUL byte: binary data, not a text edge list".to_string(),
             ));
         }
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
+        // A comment runs from `#` to the line's end, as in point files.
+        let line = line.split('#').next().unwrap_or_default().trim();
+        if line.is_empty() {
             continue;
         }
         let fields: Vec<&str> = line.split_whitespace().collect();
-        let parsed: Option<Vec<usize>> = fields.iter().map(|f| f.parse().ok()).collect();
-        match parsed.as_deref() {
-            Some(&[a, b]) if fields.iter().all(|f| f.bytes().all(|c| c.is_ascii_digit())) => {
-                read.edges.push([a, b]);
+        match fields[..] {
+            [a, b] if is_integer(a) && is_integer(b) => {
+                read.push([a, b].map(point_number));
                 lines.push(number);
             }
             _ => {
@@ -383,6 +401,24 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
     }
     read.places = Places::Lines(lines);
     Ok(read)
+}
+
+/// Whether `field` is an integer as an edge line writes one: digits, a `-` before them allowed
+/// (a negative number is an edge to a point that does not exist, not a line that is no edge).
+fn is_integer(field: &str) -> bool {
+    let digits = field.strip_prefix('-').unwrap_or(field);
+    !digits.is_empty() && digits.bytes().all(|c| c.is_ascii_digit())
+}
+
+/// An integer field ([`is_integer`]) as a point number, or as given where no point can have it
+/// (negative, or beyond `usize`); `-0` is 0.
+fn point_number(field: &str) -> Result<usize, String> {
+    let digits = field.strip_prefix('-').unwrap_or(field);
+    match digits.parse::<usize>() {
+        Ok(0) => Ok(0),
+        Ok(index) if digits.len() == field.len() => Ok(index),
+        _ => Err(field.to_string()),
+    }
 }
 
 /// A content error of `file`, at `line` when it has lines.

@@ -147,6 +147,16 @@ fn a_malformed_output_scores_nothing_and_names_its_line() {
         ("0 1\n1 1\n", "line 2: self-loop at point 1"),
         ("0 1\n+1 2\n", "line 2: not an edge `i j`: \\\"+1 2\\\""),
         ("0 1\n1 7\n", "line 2: point 7 does not exist"),
+        // A negative number is an edge to a point that does not exist (`-0` is 0), one too
+        // large for any integer likewise, named as written; each counts as an output edge.
+        ("0 1\n1 -1\n", "line 2: point -1 does not exist"),
+        ("0 1\n-0 -1\n", "line 2: point -1 does not exist"),
+        (
+            "0 1\n1 99999999999999999999999\n",
+            "line 2: point 99999999999999999999999 does not exist",
+        ),
+        ("0 1\n1 2 3\n", "line 2: not an edge `i j`: \\\"1 2 3\\\""),
+        ("0 1\n1 -\n", "line 2: not an edge `i j`: \\\"1 -\\\""),
     ] {
         let output = write(dir.path(), "o.edges", output);
         let json = score_json(&points, &output, &truth);
@@ -154,6 +164,38 @@ fn a_malformed_output_scores_nothing_and_names_its_line() {
         assert_eq!(json_value(&json, "f1"), "0.0");
         assert_eq!(json_value(&json, "exact"), "false");
     }
+    // A single line with a point that does not exist is a malformed edge list, scored 0, not
+    // a file that is no edge list.
+    let output = write(dir.path(), "o.edges", "0 -1\n");
+    let json = score_json(&points, &output, &truth);
+    assert_eq!(
+        json_value(&json, "malformed"),
+        "\"line 1: point -1 does not exist\""
+    );
+    assert_eq!(json_value(&json, "n_out"), "1");
+}
+
+#[test]
+fn an_edge_line_may_end_in_a_comment_as_a_point_line_may() {
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0 # first\n1 0\n2 0\n");
+    let truth = write(
+        dir.path(),
+        "t.edges",
+        "# truth\n0 1 # checked\n1 2#by hand\n",
+    );
+    let output = write(dir.path(), "o.edges", "0 1\t# kept\n  # a note\n1 2\n");
+    let json = score_json(&points, &output, &truth);
+    assert_eq!(json_value(&json, "malformed"), "null");
+    assert_eq!(json_value(&json, "exact"), "true");
+    assert_eq!(json_value(&json, "n_gt"), "2");
+    // What stands before the `#` must still be an edge.
+    let output = write(dir.path(), "o.edges", "0 1\n1 # 2\n1 2\n");
+    let json = score_json(&points, &output, &truth);
+    assert_eq!(
+        json_value(&json, "malformed"),
+        "\"line 2: not an edge `i j`: \\\"1\\\"\""
+    );
 }
 
 #[test]
@@ -404,9 +446,10 @@ fn npy_edge_arrays_are_read() {
         "\"row 2: edge 1 2 repeated\""
     );
     assert_eq!(json_value(&json, "f1"), "0.0");
-    // A negative point number is the output's problem, as a text line `-1 0` is: it scores 0,
-    // told by its row (found by a fuzzer: the array was refused, the text line scored); in the
-    // truth it is an error.
+    // A negative point number is a point that does not exist, the output's problem as a text
+    // line `0 -1` is: it scores 0, told by its row, and its row counts as an output edge (as
+    // `condt.score` in Python counts and tells the same array; found by a fuzzer: the array
+    // was refused, the text line scored); in the truth it is an error.
     let negative_row = dir.path().join("negative_row.npy");
     let data: Vec<u8> = [0i64, 1, 1, 2, 0, -1]
         .iter()
@@ -416,9 +459,11 @@ fn npy_edge_arrays_are_read() {
     let json = score_json(&points, &negative_row, &truth);
     assert_eq!(
         json_value(&json, "malformed"),
-        "\"row 2: point number -1 is negative\""
+        "\"row 2: point -1 does not exist\""
     );
     assert_eq!(json_value(&json, "f1"), "0.0");
+    assert_eq!(json_value(&json, "n_out"), "3");
+    assert_eq!(json_value(&json, "tp"), "2");
     let run = Command::new(env!("CARGO_BIN_EXE_condt"))
         .args([Path::new("score"), &points, &truth, &negative_row])
         .output()
@@ -426,7 +471,7 @@ fn npy_edge_arrays_are_read() {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(1), "{stderr}");
     assert!(
-        stderr.contains("row 2: point number -1 is negative"),
+        stderr.contains("row 2: point -1 does not exist"),
         "{stderr}"
     );
     // What is not an edge array is an error naming the file, in words.
