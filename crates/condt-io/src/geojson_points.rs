@@ -339,7 +339,7 @@ impl Member {
     }
 }
 
-const POSITION: &str = "a position must be [x, y] or [x, y, z], numbers";
+const POSITION: &str = "a position must be an array of two or more numbers, [x, y] or [x, y, z]";
 
 /// A [`Member`] read into the state: the visitor of every level.
 struct Reader<'s, 't> {
@@ -432,13 +432,9 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 let (Some(x), Some(y)) = (x, y) else {
                     return Err(de::Error::custom(POSITION));
                 };
-                // A third coordinate (a number, as GeoJSON and the message ask) is ignored; a
-                // fourth is refused.
-                if seq.next_element_seed(Coordinate)?.is_some()
-                    && seq.next_element::<IgnoredAny>()?.is_some()
-                {
-                    return Err(de::Error::custom(POSITION));
-                }
+                // Further coordinates (numbers, as a position's are) are ignored: z, and an M
+                // measure or a time after it, which RFC 7946 (3.1.1) lets a parser ignore.
+                while seq.next_element_seed(Coordinate)?.is_some() {}
                 self.state.push(Point::new(x, y))
             }
             Member::Object | Member::Geometry => Err(de::Error::custom(self.member.wanted())),
@@ -683,6 +679,26 @@ mod tests {
         assert!(err.to_string().contains("a position must be"), "{err}");
     }
 
+    /// A position's coordinates past x and y (z, an M measure, a time: RFC 7946 3.1.1 lets a
+    /// parser ignore them) are ignored, as long as they are numbers.
+    #[test]
+    fn coordinates_past_z_are_ignored() {
+        let text = r#"{"type":"MultiPoint","coordinates":[[0,0,1,2],[1,0,1,2,3.5],[0,1,7]]}"#;
+        assert_eq!(
+            parse_geojson(text, "zm.geojson").unwrap(),
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 0.0),
+                Point::new(0.0, 1.0)
+            ]
+        );
+        let text = r#"{"type":"Point","coordinates":[5,6,1,2]}"#;
+        assert_eq!(
+            parse_geojson(text, "zm.geojson").unwrap(),
+            vec![Point::new(5.0, 6.0)]
+        );
+    }
+
     /// Features with a null geometry and empty Points and MultiPoints are counted, for the
     /// command line's note; a read later (sorted keys) counts alike.
     #[test]
@@ -705,7 +721,7 @@ mod tests {
     fn bad_documents_are_refused_with_their_line() {
         for (text, line, words) in [
             ("{\"type\":\"Point\",\n\"coordinates\":[1]}", 2, "a position must be"),
-            ("{\"type\":\"Point\",\n\"coordinates\":[1,2,3,4]}", 2, "a position must be"),
+            ("{\"type\":\"Point\",\n\"coordinates\":[1,2,3,\"m\"]}", 2, "a position must be"),
             ("{\"type\":\"Point\",\n\"coordinates\":[1,null]}", 2, "a position must be"),
             // The ignored third coordinate must be a number too.
             ("{\"type\":\"Point\",\n\"coordinates\":[1,2,\"x\"]}", 2, "a position must be"),
