@@ -998,116 +998,153 @@ pub fn read_points_with(
     if format == Some(InputFormat::Npy) || (format.is_none() && npy) {
         return super::npy::parse_npy(&bytes, name).map(without_crs);
     }
-    let text = utf8_text(bytes, name)?;
-    if let Some(columns) = &options.columns {
-        let starts_like_json = text
-            .trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n'])
-            .starts_with(['{', '\u{1e}']);
-        return match format {
-            Some(InputFormat::Tsv) => {
-                crate::csv::parse_separated(&text, name, b'\t', Some(columns))
+    // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
+    // property: a Latin-1 or CP1252 export) do not matter; where a line they are on is read
+    // and found wrong, the file is refused as not UTF-8 text, at that line.
+    let (text, not_utf8) = lossy_text(bytes);
+    let read = (|| -> Result<PointFile, IoError> {
+        if let Some(columns) = &options.columns {
+            let starts_like_json = text
+                .trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n'])
+                .starts_with(['{', '\u{1e}']);
+            return match format {
+                Some(InputFormat::Tsv) => {
+                    crate::csv::parse_separated(&text, name, b'\t', Some(columns))
+                }
+                None if starts_like_json => Err(columns_refused(
+                    "GeoJSON (by its leading `{` or record separator)",
+                )),
+                // CSV, named or stated, or standard input that is neither .npy nor GeoJSON (the
+                // other formats are refused above).
+                _ => crate::csv::parse_csv_columns(&text, name, Some(columns)),
             }
-            None if starts_like_json => Err(columns_refused(
-                "GeoJSON (by its leading `{` or record separator)",
-            )),
-            // CSV, named or stated, or standard input that is neither .npy nor GeoJSON (the
-            // other formats are refused above).
-            _ => crate::csv::parse_csv_columns(&text, name, Some(columns)),
+            .map(without_crs);
         }
-        .map(without_crs);
-    }
-    let format = format.unwrap_or_else(|| {
-        let start = text.trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n']);
-        if start.starts_with('{') {
-            InputFormat::GeoJson
-        } else if start.starts_with('\u{1e}') {
-            // RFC 8142's record separator, which no point line starts with: a GeoJSON sequence.
-            InputFormat::GeoJsonLines
-        } else {
-            InputFormat::Text
-        }
-    });
-    match format {
-        InputFormat::Text if stdin && options.format.is_none() => {
-            // A CSV table on standard input, which has no name to say so, is read as plain
-            // text; when that refuses it and its first line has commas, say how to read it as
-            // CSV (the refused line may be a later one: a header of names passes as a title).
-            let first = text_lines(&text)
-                .find(|(_, line)| !line.split('#').next().unwrap_or("").trim().is_empty())
-                .filter(|(_, line)| line.contains(','))
-                .map(|(number, _)| number);
-            parse_owned_points(text, name)
-                .map(without_crs)
-                .map_err(|mut err| {
-                    // A decimal comma's refusal is not a CSV table's: its own advice stands.
-                    if let (IoErrorKind::Content(message), true) = (&mut err.kind, first.is_some())
-                    {
-                        if message.contains("decimal comma") {
-                            return err;
+        let format = format.unwrap_or_else(|| {
+            let start = text.trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n']);
+            if start.starts_with('{') {
+                InputFormat::GeoJson
+            } else if start.starts_with('\u{1e}') {
+                // RFC 8142's record separator, which no point line starts with: a GeoJSON sequence.
+                InputFormat::GeoJsonLines
+            } else {
+                InputFormat::Text
+            }
+        });
+        match format {
+            InputFormat::Text if stdin && options.format.is_none() => {
+                // A CSV table on standard input, which has no name to say so, is read as plain
+                // text; when that refuses it and its first line has commas, say how to read it as
+                // CSV (the refused line may be a later one: a header of names passes as a title).
+                let first = text_lines(&text)
+                    .find(|(_, line)| !line.split('#').next().unwrap_or("").trim().is_empty())
+                    .filter(|(_, line)| line.contains(','))
+                    .map(|(number, _)| number);
+                parse_owned_points(text, name)
+                    .map(without_crs)
+                    .map_err(|mut err| {
+                        // A decimal comma's refusal is not a CSV table's: its own advice stands.
+                        if let (IoErrorKind::Content(message), true) =
+                            (&mut err.kind, first.is_some())
+                        {
+                            if message.contains("decimal comma") {
+                                return err;
+                            }
+                            message.push_str(
+                                "; standard input has no name ending in .csv: state its format to \
+                                 read it as CSV (condt's --input-format csv)",
+                            );
                         }
-                        message.push_str(
-                            "; standard input has no name ending in .csv: state its format to \
-                             read it as CSV (condt's --input-format csv)",
-                        );
+                        err
+                    })
+            }
+            InputFormat::Text => parse_owned_points(text, name).map(without_crs),
+            InputFormat::Node => parse_node(&text, name).map(without_crs),
+            InputFormat::Csv => super::parse_csv(&text, name).map(without_crs),
+            InputFormat::Tsv => {
+                // Tabs by the name, when the file starts with a header as the plain reader tells
+                // one; without (numbers or a comment first) it is the plain format's, which takes
+                // tabs, comments and a third column too.
+                let first = crate::csv::first_line_with_content(&text);
+                let content = first.split('#').next().unwrap_or("");
+                let fields: Vec<&str> = content.split_whitespace().collect();
+                if !fields.is_empty() && fields.iter().all(|f| is_name(f)) {
+                    crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
+                } else {
+                    parse_owned_points(text, name).map(without_crs)
+                }
+            }
+            InputFormat::GeoJson => {
+                super::geojson_points::parse_geojson_file(&text, name).map_err(|mut err| {
+                    // GeoJSON lines (NDJSON, a GeoJSON sequence) read as one document: its second
+                    // object is trailing characters. Say how to read one object per line.
+                    // Only where the trailing line starts an object: a stray `}` needs no such hint.
+                    let starts_object = err
+                        .line
+                        .and_then(|line| text.lines().nth(line.checked_sub(1)?))
+                        .is_some_and(|line| {
+                            line.trim_start_matches(['\u{1e}', ' ', '\t', '\r'])
+                                .starts_with('{')
+                        });
+                    if let IoErrorKind::Content(message) = &mut err.kind {
+                        if starts_object && message.starts_with("trailing characters") {
+                            message.push_str(match (stdin, options.format.is_some()) {
+                                (true, false) => {
+                                    "; standard input is read as one GeoJSON document: state its \
+                                     format to read one GeoJSON object per line (condt's \
+                                     --input-format geojsonl)"
+                                }
+                                (true, true) => {
+                                    "; a GeoJSON document is one object: to read one GeoJSON \
+                                     object per line, state condt's --input-format geojsonl"
+                                }
+                                (false, _) => {
+                                    "; a GeoJSON document is one object: to read one GeoJSON \
+                                     object per line, name the file *.geojsonl or state condt's \
+                                     --input-format geojsonl"
+                                }
+                            });
+                        }
                     }
                     err
                 })
+            }
+            InputFormat::GeoJsonLines => super::geojson_points::parse_geojson_lines(&text, name),
+            // Read above from the bytes, which are these.
+            InputFormat::Npy => super::npy::parse_npy(text.as_bytes(), name).map(without_crs),
         }
-        InputFormat::Text => parse_owned_points(text, name).map(without_crs),
-        InputFormat::Node => parse_node(&text, name).map(without_crs),
-        InputFormat::Csv => super::parse_csv(&text, name).map(without_crs),
-        InputFormat::Tsv => {
-            // Tabs by the name, when the file starts with a header as the plain reader tells
-            // one; without (numbers or a comment first) it is the plain format's, which takes
-            // tabs, comments and a third column too.
-            let first = crate::csv::first_line_with_content(&text);
-            let content = first.split('#').next().unwrap_or("");
-            let fields: Vec<&str> = content.split_whitespace().collect();
-            if !fields.is_empty() && fields.iter().all(|f| is_name(f)) {
-                crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
-            } else {
-                parse_owned_points(text, name).map(without_crs)
+    })();
+    read.map_err(|err| match err.line {
+        Some(line) if not_utf8.binary_search(&line).is_ok() => IoError {
+            kind: IoErrorKind::Content("not UTF-8 text".to_string()),
+            ..err
+        },
+        _ => err,
+    })
+}
+
+/// `bytes` as text, each sequence that is not UTF-8 replaced by U+FFFD, and the lines (numbered
+/// as the readers number them, [`line_at`]) that held one, in order.
+fn lossy_text(bytes: Vec<u8>) -> (String, Vec<usize>) {
+    let bytes = match String::from_utf8(bytes) {
+        Ok(text) => return (text, Vec::new()),
+        Err(err) => err.into_bytes(),
+    };
+    let mut lines = Vec::new();
+    let (mut line, mut counted) = (1, 0);
+    let mut offset = 0;
+    for chunk in bytes.utf8_chunks() {
+        offset += chunk.valid().len();
+        if !chunk.invalid().is_empty() {
+            line += line_at(&bytes[counted..], offset - counted) - 1;
+            counted = offset;
+            if lines.last() != Some(&line) {
+                lines.push(line);
             }
         }
-        InputFormat::GeoJson => {
-            super::geojson_points::parse_geojson_file(&text, name).map_err(|mut err| {
-                // GeoJSON lines (NDJSON, a GeoJSON sequence) read as one document: its second
-                // object is trailing characters. Say how to read one object per line.
-                // Only where the trailing line starts an object: a stray `}` needs no such hint.
-                let starts_object = err
-                    .line
-                    .and_then(|line| text.lines().nth(line.checked_sub(1)?))
-                    .is_some_and(|line| {
-                        line.trim_start_matches(['\u{1e}', ' ', '\t', '\r'])
-                            .starts_with('{')
-                    });
-                if let IoErrorKind::Content(message) = &mut err.kind {
-                    if starts_object && message.starts_with("trailing characters") {
-                        message.push_str(match (stdin, options.format.is_some()) {
-                            (true, false) => {
-                                "; standard input is read as one GeoJSON document: state its \
-                                 format to read one GeoJSON object per line (condt's \
-                                 --input-format geojsonl)"
-                            }
-                            (true, true) => {
-                                "; a GeoJSON document is one object: to read one GeoJSON \
-                                 object per line, state condt's --input-format geojsonl"
-                            }
-                            (false, _) => {
-                                "; a GeoJSON document is one object: to read one GeoJSON \
-                                 object per line, name the file *.geojsonl or state condt's \
-                                 --input-format geojsonl"
-                            }
-                        });
-                    }
-                }
-                err
-            })
-        }
-        InputFormat::GeoJsonLines => super::geojson_points::parse_geojson_lines(&text, name),
-        // Read above from the bytes, which are these.
-        InputFormat::Npy => super::npy::parse_npy(text.as_bytes(), name).map(without_crs),
+        offset += chunk.invalid().len();
     }
+    (String::from_utf8_lossy(&bytes).into_owned(), lines)
 }
 
 /// A file's bytes as text, refused as [`read_points`] refuses a text file that is not UTF-8:

@@ -190,6 +190,49 @@ fn bad_bytes_in_a_cr_only_file_are_reported_on_their_line() {
     assert_eq!(content_error(file.read()).0, Some(3));
 }
 
+/// Bytes that are not UTF-8 where nothing is read (a Latin-1 comment, a CP1252 column that is
+/// not chosen, a GeoJSON property) do not refuse the file; in a field that is read they do, at
+/// their line.
+#[test]
+fn bytes_that_are_not_utf8_matter_only_where_they_are_read() {
+    let square = vec![
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(0.0, 1.0),
+    ];
+    for (name, bytes) in [
+        (
+            "comment.txt",
+            &b"0 0 # M\xfcnchen\n1 0\n# \xe9t\xe9\n0 1\n"[..],
+        ),
+        (
+            "latin1.csv",
+            b"x,y,name\n0,0,M\xfcnchen\n1,0,a\n0,1,\xff\xfe\n",
+        ),
+        ("header.csv", b"x,y,Stra\xdfe\n0,0,1\n1,0,2\n0,1,3\n"),
+        (
+            "props.geojson",
+            b"{\"type\":\"MultiPoint\",\"name\":\"\xe9\",\"coordinates\":[[0,0],[1,0],[0,1]]}",
+        ),
+    ] {
+        let file = TempFile::new(name, bytes);
+        assert_eq!(file.read().expect(name), square, "{name}");
+    }
+    for (name, bytes, line) in [
+        ("field.txt", &b"0 0\n1 \xe9\n0 1\n"[..], 2),
+        ("field.csv", b"x,y,n\n0,0,a\n1,0,b\n0,\xe91,c\n", 4),
+        ("name.txt", b"0 0\n1 0\n\xff\xfe\n", 3),
+    ] {
+        let file = TempFile::new(name, bytes);
+        let (at, text) = content_error(file.read());
+        assert_eq!(at, Some(line), "{text}");
+        assert!(
+            text.ends_with(&format!("{name}:{line}: not UTF-8 text")),
+            "{text}"
+        );
+    }
+}
+
 /// Issue 11, item 6: a file whose first number is 100 MB long put 100 MB on stderr. 10 MB here,
 /// which the old message would have copied whole just the same (100 MB takes 20 s in a debug
 /// build).
