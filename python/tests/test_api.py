@@ -970,20 +970,20 @@ def test_read_points_takes_the_command_lines_columns_and_input_format(tmp_path):
 
 def test_read_points_refuses_columns_it_would_have_to_guess(tmp_path):
     path = tmp_path / "survey.csv"
-    path.write_text("FID,POINT_X,POINT_Y\n1,2,3\n")
+    path.write_text("FID,Shape_X,Shape_Y\n1,2,3\n")
     # Ints: Python counts from 0, the command line and every message from 1.
-    for columns in [(1, 2), ("POINT_X", 2), np.array([1, 2])]:
+    for columns in [(1, 2), ("Shape_X", 2), np.array([1, 2])]:
         with pytest.raises(TypeError, match="would be a guess"):
             condt.read_points(path, columns=columns)
     for columns, error in [
-        (("POINT_X",), ValueError),
-        (("POINT_X", "POINT_Y", "FID"), ValueError),
-        (("POINT_X", " "), ValueError),
-        (("POINT_X", "point_x"), ValueError),
-        ("POINT_X", ValueError),
+        (("Shape_X",), ValueError),
+        (("Shape_X", "Shape_Y", "FID"), ValueError),
+        (("Shape_X", " "), ValueError),
+        (("Shape_X", "shape_x"), ValueError),
+        ("Shape_X", ValueError),
         ("0,1", ValueError),
-        (("POINT_X", 2.0), TypeError),
-        ({"x": "POINT_X", "y": "POINT_Y"}, TypeError),
+        (("Shape_X", 2.0), TypeError),
+        ({"x": "Shape_X", "y": "Shape_Y"}, TypeError),
         (3, TypeError),
     ]:
         with pytest.raises(error):
@@ -993,6 +993,7 @@ def test_read_points_refuses_columns_it_would_have_to_guess(tmp_path):
     with pytest.raises(ValueError, match=r"with columns=\(\"X\", \"Y\"\)") as raised:
         condt.read_points(path)
     assert "--columns" not in str(raised.value)
+    assert condt.read_points(path, columns=("Shape_X", "Shape_Y")).tolist() == [[2, 3]]
     lines = tmp_path / "two.json"
     lines.write_text('{"type": "Point", "coordinates": [0, 0]}\n'
                      '{"type": "Point", "coordinates": [1, 0]}\n')

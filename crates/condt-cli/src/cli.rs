@@ -39,7 +39,8 @@ leading record separator U+001E), else that text
 (`--input-format F` states the format instead, for a file too: `--input-format csv`). By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
-and y columns (or lon, lat; `--columns X,Y` chooses others, by name or number), or of two
+and y columns (or lon, lat; where none is named so, easting, northing or POINT_X, POINT_Y;
+`--columns X,Y` chooses others, by name or number), or of two
 numeric columns without a header (tabs separate the
 columns when the first line with content has tabs and no comma; a `.tsv` with a header is read
 so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
@@ -108,8 +109,8 @@ reads CSV)";
 
 /// `--columns`, the same for every command that reads INPUT.
 const COLUMNS_HELP: &str = "read x and y from these columns of a CSV or TSV INPUT: header
-names or numbers from 1 (POINT_X,POINT_Y, easting,northing, 2,3)
-instead of the columns named x and y (lon, lat); standard input is
+names or numbers from 1 (Shape_X,Shape_Y, 2,3) instead of the columns
+named x and y (lon, lat; easting, northing); standard input is
 then read as CSV";
 
 /// `--quiet`, the same for every command that computes.

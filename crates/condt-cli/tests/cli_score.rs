@@ -764,7 +764,7 @@ fn score_reads_points_with_input_format_and_columns() {
         &Sampling::new(0.3),
     )
     .unwrap();
-    let csv: String = "FID,POINT_Y,POINT_X\n".to_string()
+    let csv: String = "FID,Shape_Y,Shape_X\n".to_string()
         + &circle
             .points
             .iter()
@@ -777,7 +777,7 @@ fn score_reads_points_with_input_format_and_columns() {
     let output = dir.path().join("circle.edges");
     let run = Command::new(binary())
         .args([Path::new("reconstruct"), &survey, Path::new("-o"), &output])
-        .args(["--columns", "POINT_X,POINT_Y"])
+        .args(["--columns", "Shape_X,Shape_Y"])
         .output()
         .unwrap();
     assert!(run.status.success(), "{run:?}");
@@ -790,11 +790,11 @@ fn score_reads_points_with_input_format_and_columns() {
             .unwrap()
     };
     for (points, extra) in [
-        (&survey, &["--columns", "POINT_X,POINT_Y"][..]),
+        (&survey, &["--columns", "Shape_X,Shape_Y"][..]),
         (&survey, &["--columns=3,2"][..]),
         (
             &table,
-            &["--input-format", "csv", "--columns", "point_x,point_y"][..],
+            &["--input-format", "csv", "--columns", "shape_x,shape_y"][..],
         ),
     ] {
         let out = score(points, extra);

@@ -235,7 +235,7 @@ fn csv_on_standard_input_is_read_with_input_format() {
     );
     // A header the plain reader takes as a title, over an index column it refuses on line 2:
     // the hint still names the option, and the index column's names `--input-format node`.
-    let indexed = "FID,POINT_X,POINT_Y\n1,0,0\n2,1,0\n3,1,1\n";
+    let indexed = "FID,Shape_X,Shape_Y\n1,0,0\n2,1,0\n3,1,1\n";
     let out = condt_with_stdin(&["reconstruct", "-", "-o", "-"], indexed.as_bytes());
     let said = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{said}");
@@ -425,10 +425,24 @@ fn columns_choose_the_x_and_y_of_a_csv() {
         csv.as_bytes(),
     );
     assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
-    // Without it, the header detection is as before: no x column.
-    let out = condt_with_stdin(&["triangulate", path], b"");
+    // Without it, ArcGIS's names are read as x and y (no column is named x, y, lon or lat),
+    // in whichever order they stand.
+    let out = condt_with_stdin(&["reconstruct", path, "--format", "edges"], b"");
+    assert!(out.status.success(), "{out:?}");
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
+    // Names that are neither: no x column, the option named.
+    let unnamed = dir.path().join("unnamed.csv");
+    std::fs::write(
+        &unnamed,
+        csv.replacen("POINT_Y,POINT_X", "Shape_Y,Shape_X", 1),
+    )
+    .unwrap();
+    let out = condt_with_stdin(&["triangulate", unnamed.to_str().unwrap()], b"");
     let said = String::from_utf8_lossy(&out.stderr);
-    assert!(said.contains("the header has no x column"), "{said}");
+    assert!(
+        said.contains("the header has no x column") && said.contains("--columns X,Y"),
+        "{said}"
+    );
     let out = condt_with_stdin(&["triangulate", path, "--columns", "easting,northing"], b"");
     let said = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{said}");

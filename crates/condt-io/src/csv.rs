@@ -21,20 +21,53 @@ const X_NAMES: [&str; 4] = ["x", "lon", "lng", "longitude"];
 const Y_NAMES: [&str; 2] = ["y", "lat"];
 const Y_LONG_NAME: &str = "latitude";
 
-/// The coordinate a header's column `name` names, `'x'` or `'y'` (case, blanks and quotes
-/// around it aside), or `None`: the names this reader follows, for the plain reader's check.
-pub(crate) fn axis_named(name: &str) -> Option<char> {
-    let name = name
-        .trim()
-        .trim_matches(['"', '\''])
-        .trim()
-        .to_ascii_lowercase();
-    if X_NAMES.contains(&name.as_str()) {
-        Some('x')
-    } else if Y_NAMES.contains(&name.as_str()) || name == Y_LONG_NAME {
-        Some('y')
+/// Names of a projected pair, read where no column of the header has a name above: survey and
+/// GIS exports (`easting`, `northing`; ArcGIS's `POINT_X`, `POINT_Y`; QGIS's `xcoord`,
+/// `ycoord`; `x_coord`, `y_coord`). Second in rank, so that a table with `x,y` beside them reads as it did before
+/// they were known.
+const PROJECTED_X_NAMES: [&str; 4] = ["easting", "point_x", "xcoord", "x_coord"];
+const PROJECTED_Y_NAMES: [&str; 4] = ["northing", "point_y", "ycoord", "y_coord"];
+
+/// The names of both ranks, for messages.
+const NAMES_READ: &str = "x, lon, lng, longitude and y, lat, latitude are read, or where none \
+                          is there easting and northing, POINT_X and POINT_Y, xcoord and ycoord, x_coord \
+                          and y_coord";
+
+/// The coordinate each of a header's column names stands for, `'x'` or `'y'` (case, blanks and
+/// quotes around a name aside), or `None`: by the names `x`, `lon`, ... where any column has one
+/// of them, else by the projected names. The one lookup of the CSV reader and of the plain
+/// reader's check.
+pub(crate) fn header_axes<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<Option<char>> {
+    let names: Vec<String> = names
+        .into_iter()
+        .map(|name| {
+            name.trim()
+                .trim_matches(['"', '\''])
+                .trim()
+                .to_ascii_lowercase()
+        })
+        .collect();
+    let by = |x: &[&str], y: &[&str]| -> Vec<Option<char>> {
+        names
+            .iter()
+            .map(|name| {
+                if x.contains(&name.as_str()) {
+                    Some('x')
+                } else if y.contains(&name.as_str()) {
+                    Some('y')
+                } else {
+                    None
+                }
+            })
+            .collect()
+    };
+    let mut y_names = Y_NAMES.to_vec();
+    y_names.push(Y_LONG_NAME);
+    let first = by(&X_NAMES, &y_names);
+    if first.iter().any(Option::is_some) {
+        first
     } else {
-        None
+        by(&PROJECTED_X_NAMES, &PROJECTED_Y_NAMES)
     }
 }
 
@@ -287,9 +320,9 @@ fn header_columns(
     line: usize,
 ) -> Result<(usize, usize), IoError> {
     let header = quoted(raw.trim_end_matches(['\r', '\n']));
-    let find = |wanted: &dyn Fn(&str) -> bool, axis: &str| {
-        let mut named =
-            (0..record.len()).filter(|&k| wanted(&record[k].trim().to_ascii_lowercase()));
+    let axes = header_axes(record.iter());
+    let find = |wanted: char, axis: &str| {
+        let mut named = (0..record.len()).filter(|&k| axes[k] == Some(wanted));
         match (named.next(), named.next()) {
             (Some(column), None) => Ok(column),
             (None, _) => {
@@ -304,10 +337,7 @@ fn header_columns(
                 };
                 Err(source.error(
                     line,
-                    format!(
-                        "the header has no {axis} column (x, lon, lng, longitude and y, lat, \
-                         latitude are read): {header}{hint}"
-                    ),
+                    format!("the header has no {axis} column ({NAMES_READ}): {header}{hint}"),
                 ))
             }
             // Two columns for one axis (`x,y,x`, `x,y,lon,lat`): which to read would be a guess.
@@ -332,8 +362,8 @@ fn header_columns(
             ),
         ));
     }
-    let x_column = find(&|n| X_NAMES.contains(&n), "x")?;
-    let y_column = find(&|n| Y_NAMES.contains(&n) || n == Y_LONG_NAME, "y")?;
+    let x_column = find('x', "x")?;
+    let y_column = find('y', "y")?;
     Ok((x_column, y_column))
 }
 
@@ -518,7 +548,7 @@ mod tests {
     #[test]
     fn a_header_without_x_and_y_names_the_columns_option() {
         for (text, axis) in [
-            ("FID,POINT_X,POINT_Y\n1,2,3\n", "x"),
+            ("FID,E,N\n1,2,3\n", "x"),
             ("easting\tlat\n1\t2\n", "x"),
             ("x,northing\n1,2\n", "y"),
         ] {
@@ -534,6 +564,42 @@ mod tests {
                 "{err}"
             );
         }
+    }
+
+    /// Survey and GIS exports' names (`easting`, `northing`, `POINT_X`, `POINT_Y`, `xcoord`,
+    /// `ycoord`) are read where no column is named x, y, lon or lat, in either order; beside
+    /// such a column they are other columns, as before they were known.
+    #[test]
+    fn projected_names_are_read_where_no_column_is_named_x_or_y() {
+        let expected = vec![
+            Point::new(500000.0, 4000000.0),
+            Point::new(500010.0, 4000002.5),
+        ];
+        for text in [
+            "id,Easting,Northing\n1,500000,4000000\n2,500010,4000002.5\n",
+            "Northing,Easting\n4000000,500000\n4000002.5,500010\n",
+            "FID;x\tPOINT_Y\tPOINT_X\n1\t4000000\t500000\n2\t4000002.5\t500010\n",
+            "xcoord,ycoord,z\n500000,4000000,7\n500010,4000002.5,7\n",
+        ] {
+            assert_eq!(parse_csv(text, "p.csv").unwrap(), expected, "{text}");
+        }
+        let beside = "x,y,easting,northing\n0,1,500000,4000000\n";
+        assert_eq!(
+            parse_csv(beside, "p.csv").unwrap(),
+            vec![Point::new(0.0, 1.0)]
+        );
+        // Only one rank is read: x beside northing has no y column, as before.
+        let err = parse_csv("x,northing\n1,2\n", "p.csv").unwrap_err();
+        assert!(
+            err.to_string().contains("the header has no y column"),
+            "{err}"
+        );
+        let err = parse_csv("easting,northing,POINT_X\n1,2,3\n", "p.csv").unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("x coordinate in two columns (1 and 3)"),
+            "{err}"
+        );
     }
 
     /// A first line with tabs and no comma makes the file tab-separated (TSV); with a comma in
@@ -561,10 +627,9 @@ mod tests {
             Point::new(2_600_000.5, 1_200_000.0),
             Point::new(2_600_010.0, 1_200_003.0),
         ];
-        assert!(
-            parse_csv(arcgis, "c.csv").is_err(),
-            "no x column without the option"
-        );
+        // ArcGIS's names are read without the option too (where no column is named x, y,
+        // lon or lat).
+        assert_eq!(parse_csv(arcgis, "c.csv").unwrap(), expected);
         assert_eq!(read(arcgis, "POINT_X,POINT_Y").unwrap(), expected);
         assert_eq!(read(arcgis, " point_x , Point_Y ").unwrap(), expected);
         assert_eq!(read(arcgis, "3,4").unwrap(), expected);

@@ -198,14 +198,14 @@ fn is_name(token: &str) -> bool {
 /// first read as x, the second as y (`x y`, `x y z`, `lon lat`, `long lat`, `x_m y`, `a b`).
 /// Else (`id x y`, `y x`, `lat lon`) skipping it would read the wrong columns without a word.
 fn check_header(fields: &[&str]) -> Result<(), String> {
-    let contradicts =
-        |(column, field): (usize, &&str)| match (column, crate::csv::axis_named(field)) {
-            (_, None) => false,
-            (0, Some(axis)) => axis != 'x',
-            (1, Some(axis)) => axis != 'y',
-            (_, Some(_)) => true,
-        };
-    if !fields.iter().enumerate().any(contradicts) {
+    let contradicts = |(column, axis): (usize, Option<char>)| match (column, axis) {
+        (_, None) => false,
+        (0, Some(axis)) => axis != 'x',
+        (1, Some(axis)) => axis != 'y',
+        (_, Some(_)) => true,
+    };
+    let axes = crate::csv::header_axes(fields.iter().copied());
+    if !axes.into_iter().enumerate().any(contradicts) {
         return Ok(());
     }
     Err(format!(
@@ -560,8 +560,8 @@ fn lines_by<const ONE_PASS: bool>(
 /// Whether a header's first two names are x and y (`x y`, `X Y z`, `lon lat`, `"lng","lat"`).
 fn names_x_and_y(fields: &[&str]) -> bool {
     matches!(
-        fields,
-        [x, y, ..] if crate::csv::axis_named(x) == Some('x') && crate::csv::axis_named(y) == Some('y')
+        crate::csv::header_axes(fields.iter().copied())[..],
+        [Some('x'), Some('y'), ..]
     )
 }
 

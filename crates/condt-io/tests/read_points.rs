@@ -190,6 +190,35 @@ fn bad_bytes_in_a_cr_only_file_are_reported_on_their_line() {
     assert_eq!(content_error(file.read()).0, Some(3));
 }
 
+/// A plain header of projected names is read as the CSV reader reads it: `easting northing`
+/// over the first two columns is skipped, `northing easting` is refused (x would be read from
+/// the northing), and beside x and y those names are other columns, as before.
+#[test]
+fn a_plain_header_of_projected_names_says_which_column_is_x() {
+    let expected = vec![
+        Point::new(500000.0, 4000000.0),
+        Point::new(500010.0, 4000010.0),
+    ];
+    for text in [
+        "easting northing\n500000 4000000\n500010 4000010\n",
+        "POINT_X,POINT_Y\n500000,4000000\n500010,4000010\n",
+        "x y northing\n500000 4000000 9\n500010 4000010 9\n",
+    ] {
+        assert_eq!(parse_points(text, "p.txt").unwrap(), expected, "{text}");
+    }
+    for text in [
+        "northing easting\n4000000 500000\n",
+        "ycoord xcoord\n4000000 500000\n",
+    ] {
+        let err = parse_points(text, "p.txt").unwrap_err();
+        assert_eq!(err.line, Some(1), "{err}");
+        assert!(
+            err.to_string().contains("names x or y over another column"),
+            "{err}"
+        );
+    }
+}
+
 /// Bytes that are not UTF-8 where nothing is read (a Latin-1 comment, a CP1252 column that is
 /// not chosen, a GeoJSON property) do not refuse the file; in a field that is read they do, at
 /// their line.
