@@ -243,15 +243,20 @@ impl Reconstruction {
             .map(|k| &stories[k])
             .map_err(|_| {
                 let walked = match self.shared.result.smoothing() {
-                    Some(smoothing) => format!(
-                        "an edge of the Delaunay triangulation of the points as {} smoothing \
-                         pass(es) moved them, which the last run walked",
-                        smoothing.passes
-                    ),
+                    Some(smoothing) => {
+                        let passes = match smoothing.passes {
+                            1 => "1 smoothing pass".to_string(),
+                            n => format!("{n} smoothing passes"),
+                        };
+                        format!(
+                            "an edge of the last run's Delaunay triangulation (of the points \
+                             where {passes} moved them)"
+                        )
+                    }
                     None => "a Delaunay edge".to_string(),
                 };
                 PyKeyError::new_err(format!(
-                    "{a}-{b} is neither {walked} nor an edge a stage added"
+                    "{a}-{b} is not {walked}, nor an edge a stage added: no stage saw it"
                 ))
             })?;
         EdgeStory::new(py, story)

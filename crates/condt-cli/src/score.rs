@@ -190,10 +190,19 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     // not an edge list scored 0.
     let text = matches!(output.places, Places::Lines(_));
     if let (true, true, Some((line, why))) = (text, output.edges.is_empty(), &output.bad_line) {
+        // `condt reconstruct`'s default text output: a curve per line.
+        let curves = why.starts_with("not an edge `i j`: \"closed ")
+            || why.starts_with("not an edge `i j`: \"open ");
+        let advice = if curves {
+            "; it is a list of curves, as `condt reconstruct` writes .txt: write the edges with \
+             -o out.edges"
+        } else {
+            ""
+        };
         return Err(content(
             &output.name,
             Some(*line),
-            format!("{why}; no line of the file is an edge `i j`: it is not an edge list"),
+            format!("{why}; no line of the file is an edge `i j`: it is not an edge list{advice}"),
         ));
     }
     let result = score(&points, &output.edges, &truth.edges).map_err(|err| match err {

@@ -176,6 +176,21 @@ fn a_malformed_output_scores_nothing_and_names_its_line() {
 }
 
 #[test]
+fn a_list_of_curves_given_as_output_is_told_to_be_one() {
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0\n1 0\n1 1\n");
+    let truth = write(dir.path(), "t.edges", "0 1\n1 2\n");
+    let curves = write(dir.path(), "out.txt", "open 0 1 2\n");
+    let out = condt(&[Path::new("score"), &points, &curves, &truth]);
+    assert_eq!(out.status.code(), Some(1));
+    let said = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        said.contains("out.txt:1: ") && said.contains("write the edges with -o out.edges"),
+        "{said}"
+    );
+}
+
+#[test]
 fn an_edge_line_may_end_in_a_comment_as_a_point_line_may() {
     let dir = scratch_dir();
     let points = write(dir.path(), "p.txt", "0 0 # first\n1 0\n2 0\n");
@@ -488,7 +503,7 @@ fn npy_edge_arrays_are_read() {
             npy("|b1", "(1, 2)", &[0, 1]),
             "\"|b1\" is not supported",
         ),
-        ("shape.npy", npy("<u4", "(2,)", &small), "shape (2)"),
+        ("shape.npy", npy("<u4", "(2,)", &small), "shape (2,)"),
         ("three.npy", npy("<u4", "(1, 3)", &small), "shape (1, 3)"),
         (
             "short.npy",

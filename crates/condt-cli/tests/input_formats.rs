@@ -642,3 +642,69 @@ fn a_geojson_sequence_on_standard_input_is_told_by_its_record_separator() {
     assert!(out.status.success(), "{said}");
     assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
 }
+
+/// A file the reader cannot read as its name says is told what it is and how to read it, where
+/// that can be known: an array under a name without a format's ending is read by its magic
+/// bytes (a shell's `<(...)`, `/dev/stdin`); under a text name it is refused naming `.npy`; a
+/// JSON array, a TSV header of commas, a CSV header of spaces and a header naming x twice each
+/// get their advice.
+#[test]
+fn files_read_in_another_format_than_they_hold_are_told_what_they_are() {
+    let dir = scratch_dir();
+    let mut npy = b"\x93NUMPY\x01\x00".to_vec();
+    let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }";
+    let padded = format!("{header:<117}\n");
+    npy.extend_from_slice(&(padded.len() as u16).to_le_bytes());
+    npy.extend_from_slice(padded.as_bytes());
+    for v in [0.0f64, 0.0, 1.0, 0.0, 0.0, 1.0] {
+        npy.extend_from_slice(&v.to_le_bytes());
+    }
+    let unnamed = dir.path().join("points");
+    std::fs::write(&unnamed, &npy).unwrap();
+    let out = condt_with_stdin(&["reconstruct", unnamed.to_str().unwrap(), "-q"], b"");
+    assert!(out.status.success(), "{out:?}");
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), "closed 0 1 2\n");
+    let texty = dir.path().join("points.txt");
+    std::fs::write(&texty, &npy).unwrap();
+    let refused = |path: &std::path::Path, content: &[u8], extra: &[&str]| {
+        std::fs::write(path, content).unwrap();
+        let mut args = vec!["reconstruct", path.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let out = condt_with_stdin(&args, b"");
+        assert_eq!(out.status.code(), Some(1), "{out:?}");
+        String::from_utf8(out.stderr).unwrap()
+    };
+    let said = refused(&texty, &npy, &[]);
+    assert!(
+        said.contains(
+            "a NumPy .npy array (by its magic bytes), but read as txt by its name: name it *.npy"
+        ),
+        "{said}"
+    );
+    let said = refused(&texty, &npy, &["--input-format", "csv"]);
+    assert!(said.contains("state condt's --input-format npy"), "{said}");
+    let said = refused(
+        &dir.path().join("a.txt"),
+        b"\n[{\"type\": \"Point\"}]\n",
+        &[],
+    );
+    assert!(
+        said.contains("a.txt:2: a JSON array, which is no point file"),
+        "{said}"
+    );
+    let said = refused(&dir.path().join("t.tsv"), b"x,y\n0,0\n1,0\n", &[]);
+    assert!(
+        said.contains("t.tsv:1: ") && said.contains("split at tabs"),
+        "{said}"
+    );
+    let said = refused(&dir.path().join("s.csv"), b"x y\n0 0\n1 0\n", &[]);
+    assert!(
+        said.contains("s.csv:1: ") && said.contains("name the file *.txt"),
+        "{said}"
+    );
+    let said = refused(&dir.path().join("d.csv"), b"X,Y,lon,lat\n0,0,5,5\n", &[]);
+    assert!(
+        said.contains("two columns (1 and 3)") && said.contains("--columns X,Y"),
+        "{said}"
+    );
+}

@@ -248,7 +248,7 @@ pub(crate) fn parse_separated(
                 *columns.insert((0, 1))
             }
             (None, None) => {
-                columns = Some(header_columns(&record, raw, &source, line)?);
+                columns = Some(header_columns(&record, raw, delimiter, &source, line)?);
                 width = record.len();
                 continue;
             }
@@ -264,7 +264,7 @@ pub(crate) fn parse_separated(
             };
             return Err(source.error(
                 line,
-                format!("{} fields, but {first} has {width}", record.len()),
+                format!("{}, but {first} has {width}", fields(record.len())),
             ));
         }
         let coordinate = |column: usize, axis: &str| -> Result<f64, IoError> {
@@ -272,8 +272,8 @@ pub(crate) fn parse_separated(
                 source.error(
                     line,
                     format!(
-                        "{} fields, but the {axis} column is field {}",
-                        record.len(),
+                        "{}, but the {axis} column is field {}",
+                        fields(record.len()),
                         column + 1
                     ),
                 )
@@ -300,6 +300,15 @@ fn counted(n: usize, noun: &str) -> String {
     format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
 }
 
+/// `n fields`, or `1 field`.
+fn fields(n: usize) -> String {
+    if n == 1 {
+        "1 field".to_string()
+    } else {
+        format!("{n} fields")
+    }
+}
+
 /// Whether the first record is a point rather than a header: exactly two fields, both numbers.
 /// With more columns, which two are x and y is a guess (`id,x,y`), so a header must say.
 fn headerless_pair(record: &csv::StringRecord) -> bool {
@@ -316,6 +325,7 @@ fn all_numbers(record: &csv::StringRecord) -> bool {
 fn header_columns(
     record: &csv::StringRecord,
     raw: &str,
+    delimiter: u8,
     source: &Source<'_>,
     line: usize,
 ) -> Result<(usize, usize), IoError> {
@@ -328,8 +338,15 @@ fn header_columns(
             (None, _) => {
                 // A semicolon-separated file reads as one column here: say so. With columns
                 // to choose from, say how to choose them.
-                let hint = if raw.contains(';') && record.len() == 1 {
+                let one_field = record.len() == 1;
+                let hint = if raw.contains(';') && one_field {
                     "; this reader splits columns at commas, not semicolons"
+                } else if one_field && delimiter == b'\t' && raw.contains(',') {
+                    "; its columns are split at tabs (a .tsv, or a first line with tabs), and \
+                     this header has none: name the file *.csv to split it at commas"
+                } else if one_field && raw.trim().contains(char::is_whitespace) {
+                    "; this reader splits columns at commas, and this header has none: columns \
+                     separated by spaces are the plain format's (name the file *.txt)"
                 } else if record.len() >= 2 {
                     "; choose the x and y columns by name or number with condt's --columns X,Y"
                 } else {
@@ -345,7 +362,7 @@ fn header_columns(
                 line,
                 format!(
                     "the header names the {axis} coordinate in two columns ({} and {}): {header}; \
-                     keep one",
+                     keep one, or choose the x and y columns with condt's --columns X,Y",
                     first + 1,
                     second + 1
                 ),
@@ -752,7 +769,7 @@ mod tests {
     #[test]
     fn bad_rows_are_refused_by_line() {
         for (text, line, words) in [
-            ("x,y\n1,2\n3\n", 3, "1 fields, but the y column is field 2"),
+            ("x,y\n1,2\n3\n", 3, "1 field, but the y column is field 2"),
             ("x,y\n1,2\n3,abc\n", 3, "cannot read \"abc\""),
             ("x,y\n1,nan\n", 2, "\"nan\" is not finite"),
             (

@@ -252,7 +252,11 @@ fn entries(text: &[u8]) -> Result<Entries, String> {
 /// The shape as NumPy prints it, without the trailing comma of a 1-tuple: `(2)`, `(1, 3)`.
 fn shown_shape(shape: &[u64]) -> String {
     let shown: Vec<String> = shape.iter().map(u64::to_string).collect();
-    format!("({})", shown.join(", "))
+    match &shown[..] {
+        // Python's spelling of a one-element tuple, as numpy prints the shape.
+        [one] => format!("({one},)"),
+        _ => format!("({})", shown.join(", ")),
+    }
 }
 
 /// The meaning of a header dictionary for a point file.
@@ -1219,7 +1223,7 @@ mod tests {
             ),
             (
                 "{'descr': '<f8', 'fortran_order': False, 'shape': (5,), }",
-                "shape (5)",
+                "shape (5,)",
             ),
             (
                 "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 3), }",

@@ -730,7 +730,8 @@ mod parallel;
 /// Parses a Triangle `.node` file; `file` names the source in error messages.
 ///
 /// The first line that is neither blank nor a comment is the header `count 2 attributes
-/// markers` (`markers` 0 or 1); then `count` rows `index x y`, followed by that many attributes
+/// markers` (`markers` 0 or 1; as Triangle reads it, the fields after `count` may be left
+/// out, dimension 2, 0 attributes and 0 markers); then `count` rows `index x y`, followed by that many attributes
 /// and markers, whose indices count up by one from the first (0 or 1, as Triangle allows).
 /// Attributes and markers are read and dropped. `#` starts a comment, columns are separated by
 /// whitespace. The points are returned in row order: point `i` is the `i`-th row, whatever
@@ -744,6 +745,8 @@ mod parallel;
 /// let pts = parse_node(text, "tri.node")?;
 /// assert_eq!(pts, vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)]);
 ///
+/// // Triangle's defaults for the fields after the count: dimension 2, no attributes or markers.
+/// assert_eq!(parse_node("2\n0 0 0\n1 1 1\n", "short.node")?.len(), 2);
 /// let err = parse_node("2 2 0 0\n0 0 0\n2 1 1\n", "gap.node").unwrap_err();
 /// assert_eq!(err.to_string(), "gap.node:3: vertex index 2, expected 1");
 /// # Ok::<(), condt_io::IoError>(())
@@ -766,7 +769,7 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
             )
         })
     };
-    if header.len() != 4 {
+    if header.len() > 4 {
         return Err(source.error(
             header_line,
             format!(
@@ -775,10 +778,15 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
             ),
         ));
     }
+    // Fields left out take Triangle's defaults: dimension 2, no attributes, no markers.
+    let field = |k: usize, default: usize, what: &str| match header.get(k) {
+        Some(field) => count(field, what),
+        None => Ok(default),
+    };
     let n = count(header[0], "number of vertices")?;
-    let dimension = count(header[1], "dimension")?;
-    let attributes = count(header[2], "number of attributes")?;
-    let markers = count(header[3], "number of boundary markers")?;
+    let dimension = field(1, 2, "dimension")?;
+    let attributes = field(2, 0, "number of attributes")?;
+    let markers = field(3, 0, "number of boundary markers")?;
     if dimension != 2 {
         return Err(source.error(
             header_line,
@@ -991,12 +999,35 @@ pub fn read_points_with(
     // Standard input has no name to tell its format: a NumPy array, a GeoJSON document and a
     // GeoJSON sequence are told by their content (the magic bytes, which are not UTF-8; a `{` or
     // a record separator, which no point line starts with), anything else is read as text.
-    let npy = bytes.starts_with(super::npy::NPY_MAGIC);
-    if format.is_none() && npy && options.columns.is_some() {
+    // A name with no ending of a format (`/dev/stdin`, `/dev/fd/63` of a shell's `<(...)`) says
+    // nothing either: an array there is told by its magic bytes too, which no text starts with.
+    let unnamed = options.format.is_none()
+        && path
+            .extension()
+            .and_then(|e| e.to_str())
+            .and_then(InputFormat::named)
+            .is_none();
+    let npy = bytes.starts_with(super::npy::NPY_MAGIC) && (format.is_none() || unnamed);
+    if npy && options.columns.is_some() {
         return Err(columns_refused("a NumPy array (by its magic bytes)"));
     }
-    if format == Some(InputFormat::Npy) || (format.is_none() && npy) {
+    if format == Some(InputFormat::Npy) || npy {
         return super::npy::parse_npy(&bytes, name).map(without_crs);
+    }
+    if let Some(format) = format.filter(|_| bytes.starts_with(super::npy::NPY_MAGIC)) {
+        let advice = if options.format.is_some() {
+            "as its stated format: state condt's --input-format npy"
+        } else {
+            "by its name: name it *.npy or state condt's --input-format npy"
+        };
+        return Err(IoError {
+            file: name.to_string(),
+            line: None,
+            kind: IoErrorKind::Content(format!(
+                "a NumPy .npy array (by its magic bytes), but read as {} {advice}",
+                format.name()
+            )),
+        });
     }
     // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
     // property: a Latin-1 or CP1252 export) do not matter; where a line they are on is read
@@ -1020,8 +1051,25 @@ pub fn read_points_with(
             }
             .map(without_crs);
         }
+        let start = text.trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n']);
+        // A JSON array is no point line, nor GeoJSON (one object): say what is read instead of
+        // refusing its first bracket as a number.
+        if start.starts_with('[') && matches!(format, None | Some(InputFormat::Text)) {
+            let line = text_lines(&text)
+                .find(|(_, line)| !line.trim_start_matches('\u{feff}').trim().is_empty())
+                .map_or(1, |(number, _)| number);
+            return Err(IoError {
+                file: name.to_string(),
+                line: Some(line),
+                kind: IoErrorKind::Content(
+                    "a JSON array, which is no point file: GeoJSON is one object (a \
+                     FeatureCollection, or a MultiPoint, for many points), or one object per \
+                     line in a GeoJSON sequence (condt's --input-format geojsonl)"
+                        .to_string(),
+                ),
+            });
+        }
         let format = format.unwrap_or_else(|| {
-            let start = text.trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n']);
             if start.starts_with('{') {
                 InputFormat::GeoJson
             } else if start.starts_with('\u{1e}') {

@@ -184,7 +184,7 @@ fn bad_files_are_refused_with_a_message() {
         ),
         (
             npy_file(1, &dict("<f8", "(4,)"), &two),
-            "shape (4) is not (n, 2)",
+            "shape (4,) is not (n, 2)",
         ),
         (
             npy_file(1, &dict("<f8", "(1, 2, 2)"), &two),

@@ -68,11 +68,32 @@ fn node_files_are_read_with_header_indices_attributes_and_markers() {
     // column is; the coordinates must still be finite.
     let missing = TempFile::new("missing.node", b"2 2 1 0\n0 0 0 nan\n1 1 0 -inf\n");
     assert_eq!(missing.read().unwrap(), points(&[(0.0, 0.0), (1.0, 0.0)]));
+    // A header may leave out the fields after the count, as Triangle reads it: dimension 2,
+    // no attributes, no markers.
+    for header in ["3", "3 2", "3 2 0"] {
+        let short = TempFile::new(
+            "short.node",
+            format!("{header}\n0 0 0\n1 1 0\n2 0 1\n").as_bytes(),
+        );
+        assert_eq!(
+            short.read().unwrap(),
+            points(&[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)]),
+            "{header}"
+        );
+    }
+    let attributes = TempFile::new("attr.node", b"2 2 1\n0 0 0 7\n1 1 0 7\n");
+    assert_eq!(
+        attributes.read().unwrap(),
+        points(&[(0.0, 0.0), (1.0, 0.0)])
+    );
 }
 
 #[test]
 fn node_files_with_bad_rows_are_refused_by_line() {
-    let cases: [(&[u8], usize, &str); 9] = [
+    let cases: [(&[u8], usize, &str); 11] = [
+        // A short header's defaults hold the rows to three columns.
+        (b"2\n0 0 0 7\n1 1 0 7\n", 2, "expected 3 columns"),
+        (b"2 2 0 0 0\n0 0 0\n1 1 0\n", 1, "found 5 columns"),
         (b"3 2 0 0\n1 0 0\n2 1 0\n", 3, "the file ends after 2"),
         // An attribute count no row can hold: refused at the header, not wrapped around to 0.
         (
