@@ -647,13 +647,52 @@ fn separated_components(
         return None;
     }
     let root = components(tri.num_points(), edges);
-    let separated = separated_counts(tri, profile, &root, parallel);
     let passing = |at, previous, next| Passage {
         smooth: smooth_and_regular(tri, at, previous, next),
         turn: turn_at(tri, previous, at, next),
     };
     let joins = || would_join(tri, profile, parallel);
+    if short_components_hold_the_guard(profile, &root) {
+        debug_assert!(
+            separated_with(
+                edges,
+                profile,
+                root.clone(),
+                &separated_counts(tri, profile, &root, parallel),
+                passing,
+                joins
+            )
+            .is_none(),
+            "the guard holds whatever the separation tests find"
+        );
+        return None;
+    }
+    let separated = separated_counts(tri, profile, &root, parallel);
     separated_with(edges, profile, root, &separated, passing, joins)
+}
+
+/// Whether rule 4's guard ([`too_many_dropped`]) holds before any separation test: components
+/// of fewer than [`MIN_SAMPLES`] points with edges can never count that many separated points,
+/// so they are dropped whatever the tests find, and where they alone hold [`OUTLIER_SHARE`] of
+/// the points with edges, rule 4 removes nothing (speed: on scattered points the tests are the
+/// stage's main cost, and the result is the same without them).
+fn short_components_hold_the_guard(profile: &CurveGraph, root: &[u32]) -> bool {
+    // Per root, its points with edges, counted up to the bound (a byte per point: memory).
+    let mut size = vec![0u8; root.len()];
+    let mut with_edges = 0usize;
+    for (i, &r) in root.iter().enumerate() {
+        if profile.degree(VertexId::new(i as u32)) > 0 {
+            with_edges += 1;
+            let count = &mut size[r as usize];
+            *count = (*count + 1).min(MIN_SAMPLES as u8);
+        }
+    }
+    let short: usize = size
+        .iter()
+        .filter(|&&s| usize::from(s) < MIN_SAMPLES)
+        .map(|&s| usize::from(s))
+        .sum();
+    short as f64 >= OUTLIER_SHARE * with_edges as f64
 }
 
 /// The edges gap closing, the moves of the tips and hooks stages and the junctions stage's joins
