@@ -14,6 +14,9 @@ use core::fmt;
 /// assert_eq!(err, Error::InvalidParameter { name: "u", value: -1.0 });
 /// let words = "parameter u = -1 is not accepted (u is a finite number greater than 0)";
 /// assert_eq!(err.to_string(), words);
+/// // An error in every build, `std` or not.
+/// let boxed: Box<dyn core::error::Error> = Box::new(err);
+/// assert!(boxed.source().is_none());
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 #[non_exhaustive]
@@ -75,10 +78,30 @@ impl fmt::Display for Error {
             }
             Error::InvalidParameter { name, value } => {
                 write!(f, "parameter {name} = {value} is not accepted")?;
-                // The ranges of the two a caller sets (`Params::check`'s rules).
+                // The ranges of the two a caller sets (`Params::check`'s rules), and what the
+                // value of each list's refusal is.
                 match name {
                     "u" => write!(f, " (u is a finite number greater than 0)"),
                     "k" => write!(f, " (k is a finite number, 0 or more)"),
+                    "order" => write!(
+                        f,
+                        " (an insertion order lists each position of the points once; the value \
+                         is the first entry that repeats one or is past them, or the order's \
+                         length where that is not the number of points)"
+                    ),
+                    "edge" => write!(
+                        f,
+                        " (an edge joins two different points of the set; the value is its \
+                         larger end, past the points, or the point of a loop)"
+                    ),
+                    "candidate" | "choice" => {
+                        write!(f, " (the value is a position past the points)")
+                    }
+                    "labels" | "status" | "tests" => write!(
+                        f,
+                        " (one entry per point is needed; the value is the list's length)"
+                    ),
+                    "n" => write!(f, " (more points than a curve graph holds)"),
                     _ => Ok(()),
                 }
             }
@@ -97,9 +120,10 @@ impl fmt::Display for Error {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for Error {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+// `core::error::Error` (Rust 1.81, under the crate's 1.86): an embedded caller without `std`
+// can box the error or send it on with `?` as well.
+impl core::error::Error for Error {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
         match self {
             Error::InvalidTriangulation(violation) => Some(violation),
             _ => None,

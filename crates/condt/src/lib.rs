@@ -55,7 +55,8 @@
 //! ```
 //!
 //! ## Features
-//! `std` (default): `std::error::Error` for [`Error`], and stage timings. `parallel` (default,
+//! `std` (default): stage timings (the error types implement `core::error::Error`, which is
+//! `std::error::Error`, in every build). `parallel` (default,
 //! implies `std`): multi-threaded stages and the two halves of a large triangulation built at
 //! once, on rayon (same results). Without default features the crate is `#![no_std]`, needs only
 //! `alloc`, and depends on `robust` and `libm` alone.

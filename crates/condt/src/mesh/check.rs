@@ -29,8 +29,7 @@ impl fmt::Display for Violation {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for Violation {}
+impl core::error::Error for Violation {}
 
 /// Declares [`Rule`] and its [`Rule::description`], each variant's words beside its documentation.
 macro_rules! rules {

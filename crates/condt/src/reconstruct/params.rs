@@ -282,7 +282,11 @@ impl Params {
         self.with_parallel(self.parallel && crate::threads::parallel_available())
     }
 
-    /// Turns a switchable `stage` ([`Stage::switch`]) on or off; `false` for any other, left as is.
+    /// Turns a switchable `stage` ([`Stage::switch`]) on or off: `true` when it has a switch,
+    /// which is then set; `false` for any other, left as is. A stage switched on runs only where
+    /// what it needs runs too ([`Params::stages`] lists the stages that run): repair again
+    /// needs the outlier filter after the repair (not `outliers_first`), the given-back check
+    /// needs local outlier removal.
     ///
     /// ```
     /// use condt::{Params, Stage};
@@ -290,6 +294,10 @@ impl Params {
     /// assert!(p.set_stage(Stage::Gaps, false));
     /// assert!(!p.close_gaps && !p.stages().contains(&Stage::Gaps));
     /// assert!(!p.set_stage(Stage::Proximity, false));
+    /// // Switched on, but the paper's pipeline has no local outlier removal to confirm.
+    /// let mut paper = Params::paper();
+    /// assert!(paper.set_stage(Stage::GivenBack, true) && paper.confirm_given_back);
+    /// assert!(!paper.stages().contains(&Stage::GivenBack));
     /// ```
     pub fn set_stage(&mut self, stage: Stage, on: bool) -> bool {
         let field = match stage {

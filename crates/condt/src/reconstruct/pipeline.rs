@@ -239,7 +239,11 @@ impl Pipeline {
         pass_clock: Stopwatch,
     ) -> Result<Pipeline, Error> {
         params.check()?;
-        let params = &params.on_available_threads();
+        // The parameters it runs with: smoothing off where no pass can run (a triangulation
+        // given, a baseline method), as `parallel` is off where no thread can start.
+        let params = &params
+            .on_available_threads()
+            .with_smooth(params.smooth && may_smooth);
         if let Some((first, second)) = tri.too_close_to_measure() {
             let largest = tri.input_of_largest();
             return Err(Error::TooCloseToMeasure {

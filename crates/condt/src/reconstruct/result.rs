@@ -97,13 +97,19 @@ pub struct StageReport<'r> {
 }
 
 impl Reconstruction {
-    /// The parameters it ran with.
+    /// The parameters it ran with: those given, but for what could not run (smoothing passes
+    /// on a triangulation given or with a baseline method, threads where none can start).
     ///
     /// ```
-    /// use condt::{reconstruct, Params, Point};
+    /// use condt::{reconstruct, reconstruct_triangulation, triangulate, Method, Params, Point};
     /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
     /// let result = reconstruct(&pts, &Params::paper())?;
     /// assert_eq!(result.params().outlier_factor, Some(1.7));
+    /// assert!(reconstruct(&pts, &Params::default())?.params().smooth);
+    /// let given = reconstruct_triangulation(triangulate(&pts)?, &Params::default())?;
+    /// assert!(!given.params().smooth && given.smoothing().is_none());
+    /// let baseline = Params::default().with_method(Method::NnCrust);
+    /// assert!(!reconstruct(&pts, &baseline)?.params().smooth);
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn params(&self) -> &Params {

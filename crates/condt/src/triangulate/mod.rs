@@ -751,7 +751,9 @@ impl Triangulation {
             .neighbors(self.vertex(index))
             .map(|w| self.input_of(w))
     }
-    /// The convex hull as input positions, counter-clockwise from some hull point ([`Mesh::hull`]).
+    /// The convex hull as input positions, counter-clockwise from some hull point ([`Mesh::hull`]),
+    /// each hull edge once (points on a hull edge included). On a collinear set the walk goes out
+    /// and back along the line, so its inner points come twice.
     ///
     /// ```
     /// use condt::{triangulate, Point};
@@ -759,6 +761,10 @@ impl Triangulation {
     /// let mut hull: Vec<usize> = tri.hull().collect();
     /// hull.sort_unstable();
     /// assert_eq!(hull, vec![0, 1, 2]); // not the inner point 3
+    /// let line = triangulate(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0)].map(Point::from))?;
+    /// let mut walked: Vec<usize> = line.hull().collect();
+    /// walked.sort_unstable();
+    /// assert_eq!(walked, vec![0, 1, 1, 2]); // out and back: the middle point twice
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
