@@ -2,7 +2,8 @@
 //! built by maturin; `python/pyproject.toml`). The package `python/python/condt` re-exports it.
 //!
 //! Owns: the Python functions and classes, their arguments and their errors. It may not compute
-//! geometry nor decide a parameter's range: `condt`, `condt-io` and `condt-eval` do, so the
+//! geometry (but `tiles`' certificate, which tests circles against a tile and the hull) nor
+//! decide a parameter's range: `condt`, `condt-io` and `condt-eval` do, so the
 //! package gives what the command line gives. Modules: `convert` (NumPy in and out, errors),
 //! `params` (the keywords), `reconstruction` and `triangulation` (the result classes), `tiles`
 //! (`condt.dask`'s native half: the plan, a tile's certificate and its rounds).

@@ -278,7 +278,7 @@ likewise two loose ends ending curves of 5 points",
         key: "hooks",
         switch: Some(Switch {
             flag: "hooks",
-            help: "(default on; off with --paper) after the tips, where a loose
+            help: "(default on; off with --paper) after the spikes, where a loose
 end hangs from a sample that the curve reached first (the two
 samples' order swapped by noise) and the curve runs on from that
 sample to a loose end or a point without edges, put the loose
