@@ -41,12 +41,11 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
          <meta name=\"viewport\" content=\"width=device-width\">\
          <title>condt: {title}</title><style>{STYLE}</style></head><body>\
          <header><h1>condt: {title}</h1><span id=\"status\"></span></header>\
-         <main><div id=\"view\"><canvas id=\"canvas\"></canvas></div>\
-         <aside><section id=\"layers\"><h2>Layers</h2></section>\
-         <section><h2>Legend</h2><div id=\"legend\"></div></section>\
-         <section id=\"info\"><h2>Details</h2><p id=\"details\">Click a point or an edge.</p>\
-         </section><p class=\"hint\">Drag to pan, wheel to zoom, double-click to reset.</p>\
-         </aside></main>\n<script id=\"data\" type=\"application/json\">"
+         <main><div id=\"view\"><canvas id=\"canvas\" tabindex=\"0\"></canvas></div>\
+         <aside><section id=\"info\"><h2>Details</h2><p id=\"details\">Click a point or an \
+         edge.</p></section><section id=\"layers\"><h2>Layers</h2></section>\
+         <p class=\"hint\">Drag or arrow keys to pan, wheel or + and - to zoom, double-click or 0 \
+         to see everything.</p></aside></main>\n<script id=\"data\" type=\"application/json\">"
     )?;
     write_data(&mut out, result, &stories)?;
     write!(out, "</script>\n<script>{SCRIPT}</script></body></html>\n")?;
@@ -120,6 +119,17 @@ fn write_data(
     write_list(out, result.unused().iter().copied())?;
     write!(out, ",\"degree\":")?;
     write_list(out, (0..n).map(|i| result.degree(i)))?;
+    // Exact duplicates: each later point and the first at its position, which carries their
+    // edges (a duplicate shares its point's fate), for the details panel to say so.
+    let tri = result.triangulation();
+    write!(out, ",\"merged\":")?;
+    write_list(
+        out,
+        (0..n)
+            .map(|i| (i, tri.input_of(tri.vertex(i))))
+            .filter(|&(i, first)| first != i)
+            .flat_map(|(i, first)| [i, first]),
+    )?;
     write!(out, ",\"edges\":")?;
     write_list(out, stories.iter().flat_map(|s| s.edge))?;
     // Per edge and end: 0 not Delaunay, 1 shortest, 2 second, k >= 3 the rank.
@@ -265,8 +275,10 @@ fn stage_color(stage: Stage) -> &'static str {
 /// Significant digits of positions (relative to the box, over its longer side): a ten-millionth
 /// of the view, below a pixel at any zoom a page needs to tell samples apart.
 const POSITION_DIGITS: usize = 7;
-/// Of the uniformity ratios and bounds, shown with three decimals.
-const RATIO_DIGITS: usize = 5;
+/// Of the uniformity ratios and bounds, shown with three decimals: enough digits that the page
+/// rounds the value itself to those, as the Python package and `story_text` do (five rounded
+/// twice, 1.0705 from 1.07049..., showed 1.071 where they say 1.070).
+const RATIO_DIGITS: usize = 9;
 /// Of lengths and thresholds, shown with six significant digits.
 const LENGTH_DIGITS: usize = 6;
 

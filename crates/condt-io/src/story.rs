@@ -131,7 +131,8 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::Hook => write!(f, "passed a loose end that hooked back beside the curve")?,
             Reason::Tail { vertex, points } => write!(
                 f,
-                "part of an outlier tail of {points} points cut where it hung from {vertex}"
+                "part of an outlier tail of {points} point{} cut where it hung from {vertex}",
+                if points == 1 { "" } else { "s" }
             )?,
             Reason::Detour { from, to, points } => {
                 match points {

@@ -117,7 +117,27 @@ fn columns_for(width: f64) -> usize {
 
 /// The size of a title of `chars` characters in a panel of `width`: [`TITLE_SIZE`], or smaller
 /// (not below [`SMALLEST_TITLE`]) where a bold character about 0.6 of the size wide would run
-/// past the panel.
+/// past the panel; the drawing uses the smallest of its titles' for all.
+/// A title as one line, or where it is longer than `fit` characters two, cut at the space
+/// nearest its middle (a title without a space stays one line).
+fn title_lines(title: &str, fit: f64) -> Vec<String> {
+    let chars: Vec<char> = title.chars().collect();
+    if chars.len() as f64 <= fit {
+        return vec![title.to_string()];
+    }
+    let middle = chars.len() / 2;
+    let cut = (0..chars.len())
+        .filter(|&k| chars[k] == ' ')
+        .min_by_key(|&k| k.abs_diff(middle));
+    match cut {
+        Some(k) => vec![chars[..k].iter().collect(), chars[k + 1..].iter().collect()],
+        None => vec![title.to_string()],
+    }
+}
+
+/// The largest title size at which two lines fit the band above a panel.
+const TWO_LINE_TITLE: f64 = 15.0;
+
 fn title_size(chars: usize, width: f64) -> f64 {
     let fits = ((width - 24.0) / (0.6 * chars.max(1) as f64)).floor();
     fits.clamp(SMALLEST_TITLE, TITLE_SIZE)
@@ -284,7 +304,47 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
     let representative: Vec<usize> = (0..pts.len())
         .map(|i| tri.input_of(tri.vertex(i)))
         .collect();
-    for (panel, (title, edges, colour)) in layers.iter().enumerate() {
+    // One title size for every panel (the largest at which every title fits, not below
+    // SMALLEST_TITLE); a title too long for its panel even then goes on two lines, not into
+    // the next panel.
+    let number = |panel: usize| {
+        if stages {
+            format!("{}. ", panel + 1)
+        } else {
+            String::new()
+        }
+    };
+    let changed = |panel: usize| panel < 2 || layers[panel].1 != layers[panel - 1].1;
+    let titles: Vec<String> = layers
+        .iter()
+        .enumerate()
+        .map(|(panel, (title, _, _))| {
+            let unchanged = if stages && !changed(panel) {
+                " (no change)"
+            } else {
+                ""
+            };
+            format!("{}{title}{unchanged}", number(panel))
+        })
+        .collect();
+    let room = panel_width - 24.0;
+    let wrapped: Vec<Vec<String>> = titles
+        .iter()
+        .map(|t| title_lines(t, room / (0.6 * SMALLEST_TITLE)))
+        .collect();
+    let two_lines = wrapped.iter().any(|lines| lines.len() > 1);
+    let size = wrapped
+        .iter()
+        .flatten()
+        .map(|line| title_size(line.chars().count(), panel_width))
+        .fold(TITLE_SIZE, f64::min)
+        // Two lines share the band above the panel.
+        .min(if two_lines {
+            TWO_LINE_TITLE
+        } else {
+            TITLE_SIZE
+        });
+    for (panel, (_, edges, colour)) in layers.iter().enumerate() {
         let f = Frame {
             left: (panel % per_row) as f64 * panel_width,
             top: (panel / per_row) as f64 * (panel_height + TITLE_BAND) + TITLE_BAND,
@@ -324,18 +384,25 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
             UNUSED_COLOUR,
             4.0,
         )?;
-        let number = if stages {
-            format!("{}. ", panel + 1)
-        } else {
-            String::new()
-        };
-        let size = title_size(number.chars().count() + title.chars().count(), panel_width);
-        writeln!(
+        let lines = &wrapped[panel];
+        let (x, last) = (f.left + 12.0, f.top - 12.0);
+        let first = last - 1.15 * size * (lines.len() - 1) as f64;
+        write!(
             out,
-            r#"<text class="title" x="{}" y="{}" font-family="sans-serif" font-size="{size}" font-weight="bold">{number}{title}</text>"#,
-            f.left + 12.0,
-            f.top - 12.0,
+            r#"<text class="title" x="{x}" y="{first:.1}" font-family="sans-serif" font-size="{size}" font-weight="bold">"#
         )?;
+        for (k, line) in lines.iter().enumerate() {
+            if k == 0 {
+                write!(out, "{line}")?;
+            } else {
+                write!(
+                    out,
+                    r#"<tspan x="{x}" dy="{:.1}">{line}</tspan>"#,
+                    1.15 * size
+                )?;
+            }
+        }
+        writeln!(out, "</text>")?;
     }
     // Separators between panels and above the legend.
     write!(

@@ -128,3 +128,47 @@ fn a_tall_river_gets_a_tall_panel_and_a_square_set_a_square_one() {
     );
     assert_eq!(attribute(&stages, "width"), 1698.0);
 }
+
+/// A viewer review: in the narrow panels of a tall set, "5. after repairing again without the
+/// cut edges" ran into the next panel, and the titles' sizes jumped from panel to panel. Now
+/// every title has one size, a title too long for its panel goes on two lines, and a stage that
+/// changed nothing says so.
+#[test]
+fn stage_titles_share_a_size_fit_their_panels_and_tell_a_stage_that_changed_nothing() {
+    let (_, stages) = drawings(&river(1000.0, true));
+    let titles: Vec<&str> = stages
+        .split("<text class=\"title\"")
+        .skip(1)
+        .map(|t| &t[..t.find("</text>").unwrap()])
+        .collect();
+    assert_eq!(titles.len(), 16);
+    let size = |t: &str| attribute(t, "font-size");
+    assert!(
+        titles.iter().all(|t| size(t) == size(titles[0])),
+        "{titles:?}"
+    );
+    let panel = 300.0;
+    for title in &titles {
+        let text = &title[title.find('>').unwrap() + 1..];
+        // Each line as a bold character about 0.6 of the size wide estimates it.
+        for line in text
+            .split("<tspan")
+            .map(|l| &l[l.find('>').map_or(0, |k| k + 1)..])
+        {
+            let line = line.trim_end_matches("</tspan>");
+            let width = 0.6 * size(title) * line.chars().count() as f64;
+            assert!(width <= panel - 24.0, "{line:?} is {width} wide");
+        }
+    }
+    assert!(
+        titles.iter().any(|t| t.contains("<tspan")),
+        "a long title on two lines"
+    );
+    // On a clean river the repair changes nothing; the proximity graph is never "no change".
+    let repair = titles
+        .iter()
+        .find(|t| t.contains("3. after non-manifold"))
+        .unwrap();
+    assert!(repair.contains("(no change)"), "{repair}");
+    assert!(!titles[1].contains("(no change)"), "{}", titles[1]);
+}

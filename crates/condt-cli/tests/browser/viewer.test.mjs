@@ -56,9 +56,9 @@ try {
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
   const details = () => page.innerText("#details");
 
-  // Every edge layer has a colour swatch in the legend, each stage its own (the page draws a
+  // Every edge layer has a colour swatch beside its switch, each stage its own (the page draws a
   // layer in its swatch's colour).
-  const swatches = await page.$$eval("#legend .swatch", (marks) =>
+  const swatches = await page.$$eval("#layers .swatch", (marks) =>
     marks.map((m) => [m.parentElement.textContent, getComputedStyle(m).backgroundColor]));
   const layerCount = await page.evaluate(() => window.condtViewer.edgeLayers);
   assert.equal(swatches.length, layerCount, "a swatch per edge layer");
@@ -74,6 +74,32 @@ try {
   await page.mouse.click(x, y);
   let text = await details();
   assert.match(text, new RegExp(`Point ${chosen} \\(`));
+  // The details are on screen without scrolling the side panel.
+  const box = await page.$eval("#details", (e) => { const r = e.getBoundingClientRect(); return [r.top, r.bottom]; });
+  assert.ok(box[0] >= 0 && box[0] < 850 / 2, `details start on screen: ${box}`);
+  // A drag (here from the selected point) pans and keeps the selection; so does a double
+  // click on empty canvas, which shows everything again.
+  const before = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  await page.mouse.move(x + 60, y + 40, { steps: 5 });
+  await page.mouse.up();
+  const after = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);
+  assert.ok(Math.abs(after[0] - before[0] - 60) < 1 && Math.abs(after[1] - before[1] - 40) < 1, "the drag panned");
+  assert.equal(await details(), text, "a drag keeps the selection");
+  const corner = await page.$eval("#canvas", (c) => { const r = c.getBoundingClientRect(); return [r.left + 3, r.top + 3]; });
+  await page.mouse.dblclick(corner[0], corner[1]);
+  assert.equal(await details(), text, "a double click keeps the selection");
+  const fitted = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);
+  assert.ok(Math.abs(fitted[0] - before[0]) < 1 && Math.abs(fitted[1] - before[1]) < 1, "the double click showed everything again");
+  // Keys on the focused canvas: + zooms in about the centre, 0 shows everything again.
+  await page.keyboard.press("+");
+  const zoomed = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);
+  assert.ok(Math.abs(zoomed[0] - before[0]) + Math.abs(zoomed[1] - before[1]) > 1, "+ zoomed");
+  await page.keyboard.press("0");
+  const reset = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);
+  assert.ok(Math.abs(reset[0] - before[0]) < 1 && Math.abs(reset[1] - before[1]) < 1, "0 showed everything");
+  [x, y] = before;
   assert.match(text, new RegExp(`final degree ${degree.get(chosen)}\\b`));
   assert.match(text, /Two shortest: to \d+ \(e1\) and \d+ \(e2\)\. Uniformity test: \|e2\| = [\d.]+ \|e1\|/);
   console.log(`point ${chosen}: ${text.slice(0, 120)}...`);
@@ -100,6 +126,17 @@ try {
   execFileSync(condt, ["reconstruct", data, "--format", "html", "-o", page_file], { cwd: root });
   await page.goto("file://" + page_file);
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+
+  // The shipped data repeats a point: a click there picks the first, which carries the edges,
+  // and says which duplicates were merged into it.
+  const merged = await page.evaluate(() => JSON.parse(document.getElementById("data").textContent).merged);
+  assert.ok(merged.length >= 2, `a duplicate in ${data}: ${merged}`);
+  const [copy, first] = merged;
+  [x, y] = await page.evaluate((i) => window.condtViewer.screenOf(i), first);
+  await page.mouse.click(x, y);
+  text = await details();
+  assert.match(text, new RegExp(`Point ${first} \\(`), text);
+  assert.match(text, new RegExp(`exact duplicates merged into it: ${copy}\\b`), text);
 
   // An edge of the result and a Delaunay edge that is not: each panel ends with the verdict.
   const edges = await page.evaluate(() => {

@@ -27,6 +27,14 @@
   ];
   const unused = new Uint8Array(n);
   for (const i of data.unused) unused[i] = 1;
+  // Exact duplicates: each later point to the first at its position, which carries the edges.
+  const mergedInto = new Map(), copies = new Map();
+  for (let k = 0; k < data.merged.length; k += 2) {
+    const i = data.merged[k], first = data.merged[k + 1];
+    mergedInto.set(i, first);
+    if (!copies.has(first)) copies.set(first, []);
+    copies.get(first).push(i);
+  }
   const stageNames = data.stageNames;
 
   // Per edge: its second-shortest numbers and its changes, looked up on click.
@@ -64,12 +72,15 @@
   const fmt = (x) => exponent(x) ? x.toExponential(4) : +x.toPrecision(6) + "";
   // `x` with `d` significant digits.
   const fmtDigits = (x, d) => exponent(x) ? x.toExponential(d - 1) : +x.toPrecision(d) + "";
-  // A coordinate with the digits the page's positions hold (7 over the box, POSITION_DIGITS):
-  // UTM metres or degrees to 1e-7 need more than 6 significant digits to tell samples apart.
+  // A coordinate with the digits the page's positions hold (7 over the box, POSITION_DIGITS),
+  // and no more: UTM metres or degrees to 1e-7 need more than 6 significant digits to tell
+  // samples apart, while a digit finer than the positions' resolution is the writing's rounding
+  // (700 read back as 700.0001). A coordinate within the resolution of 0 is 0.
   const resolution = data.scale * data.parts * 1e-7;
   const fmtCoordinate = (x) => {
-    const d = x === 0 || !(resolution > 0) ? 6
-      : Math.min(17, Math.max(6, Math.ceil(Math.log10(Math.abs(x) / resolution))));
+    if (!(resolution > 0)) return String(+x.toPrecision(6));
+    if (Math.abs(x) < resolution) return "0";
+    const d = Math.min(17, Math.max(1, Math.floor(Math.log10(Math.abs(x) / resolution))));
     return String(+x.toPrecision(d));
   };
   // Two numbers with as many digits as tell them apart (a length just above its threshold).
@@ -187,7 +198,8 @@
     for (let cx = cx0; cx <= cx1; cx++) for (let cy = cy0; cy <= cy1; cy++) {
       for (const i of grid.get(cx * cells + cy) || []) {
         const d = (sx(i) - mx) ** 2 + (sy(i) - my) ** 2;
-        if (d <= bestD) { bestD = d; best = i; }
+        // Strictly nearer: of exact duplicates the first, which carries their edges.
+        if (d < bestD || (d === bestD && best >= 0 && i < best)) { bestD = d; best = i; }
       }
     }
     return best;
@@ -253,7 +265,7 @@
       () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,
       () => `restored the crossing at vertex ${c.x}`,
       () => (c.added ? "joined at a tip in place of a chord" : "a chord across a tip"),
-      () => `part of an outlier tail of ${c.y} points cut where it hung from vertex ${c.x}`,
+      () => `part of an outlier tail of ${c.y} point${c.y === 1 ? "" : "s"} cut where it hung from ${c.x}`,
       () => "given back as a curve's last edge, a curve behind it",
       () => (c.added
         ? "joined to put a hooked loose end back in line"
@@ -281,6 +293,12 @@
     return parts;
   }
   function showPoint(i) {
+    if (mergedInto.has(i)) {
+      const first = mergedInto.get(i);
+      showPoint(first);
+      details.innerHTML = `<b>Point ${i}</b> is an exact duplicate of point ${first}, merged into it: its edges and fate are ${first}'s.<br>` + details.innerHTML;
+      return;
+    }
     const ring = [];
     for (let s = start[i]; s < start[i + 1]; s++) {
       const k = incident[s], end = E[2 * k] === i ? 0 : 1;
@@ -288,7 +306,11 @@
       ring.push({ k, other: E[2 * k + 1 - end], rank: data.ends[2 * k + end], end });
     }
     ring.sort((p, q) => p.rank - q.rank);
-    let html = `<b>Point ${point(i)}</b><br>final degree ${data.degree[i]}${unused[i] ? " (unused)" : ""}`;
+    const [passes] = data.smoothing;
+    let html = `<b>Point ${point(i)}</b>`;
+    if (passes > 0) html += ` where the stages saw it, after ${passes} smoothing pass${passes > 1 ? "es" : ""} (its input position may differ)`;
+    html += `<br>final degree ${data.degree[i]}${unused[i] ? " (unused)" : ""}`;
+    if (copies.has(i)) html += `<br>exact duplicates merged into it: ${copies.get(i).join(", ")}`;
     html += `<table><tr><th>rank</th><th>neighbour</th><th>length</th><th>in result</th></tr>`;
     for (const r of ring) {
       html += `<tr class="${r.rank <= 2 ? "chosen" : ""}"><td>${r.rank}</td><td>${r.other}</td><td>${fmt(length(r.k))}</td><td>${resultEdges[r.k] ? "yes" : "no"}</td></tr>`;
@@ -308,16 +330,32 @@
       story(k).map((s) => `<div class="story">${s}</div>`).join("");
   }
 
+  function show(selection) {
+    selected = selection;
+    if (selected === null) details.textContent = n === 0 ? "No points." : "Click a point or an edge.";
+    else if (selected.point !== undefined) showPoint(selected.point);
+    else showEdge(selected.edge);
+    request();
+  }
+  // A click selects, unless it ends a drag (the view moved) or is the second of a double
+  // click, which restores what the first click replaced and shows everything.
+  let beforeClick = null, pressed = null;
   canvas.addEventListener("click", (ev) => {
+    if (ev.detail > 1) return;
+    if (pressed && Math.hypot(ev.clientX - pressed.x, ev.clientY - pressed.y) > 3) return;
+    beforeClick = selected;
     const r = canvas.getBoundingClientRect(), mx = ev.clientX - r.left, my = ev.clientY - r.top;
     const i = pointLayers[0].on ? pickPoint(mx, my, 6) : -1;
     if (i >= 0) { selected = { point: i }; showPoint(i); request(); return; }
     const k = pickEdge(mx, my, 5);
     if (k >= 0) { selected = { edge: k }; showEdge(k); request(); return; }
-    selected = null; details.textContent = "Click a point or an edge."; request();
+    show(null);
   });
   let drag = null;
-  canvas.addEventListener("mousedown", (ev) => { drag = { x: ev.clientX, y: ev.clientY, ox: view.ox, oy: view.oy }; });
+  canvas.addEventListener("mousedown", (ev) => {
+    drag = { x: ev.clientX, y: ev.clientY, ox: view.ox, oy: view.oy };
+    pressed = { x: ev.clientX, y: ev.clientY };
+  });
   window.addEventListener("mouseup", () => { drag = null; });
   window.addEventListener("mousemove", (ev) => {
     if (!drag) return;
@@ -329,32 +367,46 @@
     const f = Math.exp(-ev.deltaY * 0.0015);
     view.ox = mx - (mx - view.ox) * f; view.oy = my - (my - view.oy) * f; view.k *= f; request();
   }, { passive: false });
-  canvas.addEventListener("dblclick", () => { fit(); request(); });
+  canvas.addEventListener("dblclick", () => { show(beforeClick); fit(); request(); });
+  // Keys, where the canvas has the focus (a click gives it): arrows pan, + and - zoom about
+  // the centre, 0 shows everything.
+  canvas.addEventListener("keydown", (ev) => {
+    const w = canvas.clientWidth, h = canvas.clientHeight, step = 40;
+    const zoom = (f) => { view.ox = w / 2 - (w / 2 - view.ox) * f; view.oy = h / 2 - (h / 2 - view.oy) * f; view.k *= f; };
+    const moves = {
+      ArrowLeft: () => { view.ox += step; }, ArrowRight: () => { view.ox -= step; },
+      ArrowUp: () => { view.oy += step; }, ArrowDown: () => { view.oy -= step; },
+      "+": () => zoom(1.25), "=": () => zoom(1.25), "-": () => zoom(0.8), "0": () => fit(),
+    };
+    if (!(ev.key in moves) || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+    ev.preventDefault();
+    moves[ev.key]();
+    request();
+  });
   window.addEventListener("resize", () => { resize(); request(); });
 
-  const layerBox = document.getElementById("layers"), legend = document.getElementById("legend");
+  // Each layer's switch beside its colour: the list is the legend too.
+  const layerBox = document.getElementById("layers");
   for (const layer of [...layers, ...pointLayers]) {
     const label = document.createElement("label");
     const box = document.createElement("input");
     box.type = "checkbox"; box.checked = layer.on; box.dataset.layer = layer.name;
     box.addEventListener("change", () => { layer.on = box.checked; request(); });
-    label.append(box, " " + layer.name);
-    layerBox.append(label);
-    const item = document.createElement("div");
     const mark = document.createElement("span");
     const isPoint = layer.kind === "points" || layer.kind === "unused";
     mark.className = isPoint ? "dot" : "swatch";
     if (layer.kind === "unused") mark.style.border = `2px solid ${layer.color}`;
     else mark.style.background = layer.color;
     if (!isPoint) mark.style.height = `${Math.max(2, layer.width * 2)}px`;
-    item.append(mark, layer.name);
-    legend.append(item);
+    label.append(box, " ", mark, layer.name);
+    layerBox.append(label);
   }
 
   for (const layer of [...layers, ...pointLayers]) layer.initially = layer.on;
   resize();
   fit();
   draw();
+  if (n === 0) show(null);
   // For tests and scripts: where things are on screen, and how long the page took.
   window.condtViewer = {
     points: n, edges: m, edgeLayers: layers.length,
