@@ -162,6 +162,27 @@ fn lines(
     writeln!(out, r#""/>"#)
 }
 
+/// The radii of the points and of the unused points: 2.5 and 4 units, or smaller where the
+/// points stand closer (a third of the median length on the page of `edges`, the first panel's:
+/// the Delaunay edges, or the result's), so that dense points do not cover the edges between
+/// them; not below 0.6 and 1.
+fn dot_radii(f: &Frame, pts: &[Point], edges: &[[usize; 2]]) -> (f64, f64) {
+    let mut lengths: Vec<f64> = edges
+        .iter()
+        .map(|&[a, b]| {
+            let ((ax, ay), (bx, by)) = (f.map(pts[a]), f.map(pts[b]));
+            (ax - bx).hypot(ay - by)
+        })
+        .collect();
+    if lengths.is_empty() {
+        return (2.5, 4.0);
+    }
+    let middle = lengths.len() / 2;
+    let (_, &mut median, _) = lengths.select_nth_unstable_by(middle, f64::total_cmp);
+    let point = (median / 3.0).clamp(0.6, 2.5);
+    (point, (1.6 * point).max(1.0))
+}
+
 fn dots(
     out: &mut dyn Write,
     f: &Frame,
@@ -173,7 +194,7 @@ fn dots(
     write!(out, r#"<g fill="{color}">"#)?;
     for i in which {
         let (x, y) = f.map(pts[i]);
-        write!(out, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{radius}"/>"#)?;
+        write!(out, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{radius:.2}"/>"#)?;
     }
     writeln!(out, "</g>")
 }
@@ -344,6 +365,7 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
         } else {
             TITLE_SIZE
         });
+    let (point_radius, unused_radius) = dot_radii(&first, pts, layers[0].1);
     for (panel, (_, edges, colour)) in layers.iter().enumerate() {
         let f = Frame {
             left: (panel % per_row) as f64 * panel_width,
@@ -374,7 +396,7 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
             pts,
             (0..pts.len()).filter(|i| !unused(i)),
             POINT_COLOUR,
-            2.5,
+            point_radius,
         )?;
         dots(
             out,
@@ -382,7 +404,7 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
             pts,
             (0..pts.len()).filter(unused),
             UNUSED_COLOUR,
-            4.0,
+            unused_radius,
         )?;
         let lines = &wrapped[panel];
         let (x, last) = (f.left + 12.0, f.top - 12.0);

@@ -172,3 +172,29 @@ fn stage_titles_share_a_size_fit_their_panels_and_tell_a_stage_that_changed_noth
     assert!(repair.contains("(no change)"), "{repair}");
     assert!(!titles[1].contains("(no change)"), "{}", titles[1]);
 }
+
+/// Dense points are drawn smaller (a viewer review: at 1,559 points the dots of 2.5 units
+/// covered the edges between them); sparse ones keep their size.
+#[test]
+fn dots_shrink_where_the_points_stand_close() {
+    let radius = |svg: &str| -> f64 {
+        let at = svg.find("<circle ").unwrap();
+        attribute(&svg[at..], "r")
+    };
+    let sparse: Vec<Point> = (0..12)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / 12.0;
+            Point::new(t.cos(), t.sin())
+        })
+        .collect();
+    let dense: Vec<Point> = (0..2000)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / 2000.0;
+            Point::new(t.cos(), t.sin())
+        })
+        .collect();
+    let ((sparse_alone, _), (dense_alone, _)) = (drawings(&sparse), drawings(&dense));
+    assert_eq!(radius(&sparse_alone), 2.5);
+    let small = radius(&dense_alone);
+    assert!((0.6..1.0).contains(&small), "{small}");
+}
