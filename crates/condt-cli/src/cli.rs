@@ -1456,6 +1456,15 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         );
         note_dropped_crs(&shown_input(args.input.as_deref()), crs_dropped_at);
         note_duplicates(count, result.triangulation().num_vertices());
+        // Every panel draws every point: past a million dots a drawing is slow to open.
+        let panels = 1 + result.stages().count();
+        if args.format == Format::Svg && args.stages && count.saturating_mul(panels) > 1_000_000 {
+            note(format_args!(
+                "the drawing has {panels} panels of {} each, slow to open: the HTML viewer \
+                 (-o out.html) shows the same stages as layers of one picture",
+                Counted(count, "point")
+            ));
+        }
         let curves = result.curves();
         let closed = curves.iter().filter(|c| c.is_closed()).count();
         note(format_args!(

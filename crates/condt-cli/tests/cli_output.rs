@@ -1006,3 +1006,38 @@ fn a_temporary_file_that_cannot_be_made_is_named_as_such() {
         "{said}"
     );
 }
+
+/// A viewer review: `--stages` on 100,000 points wrote a 120 MB drawing without a word. Past a
+/// million dots (points times panels) a note says so and names the HTML viewer; below, none.
+#[test]
+fn a_stage_drawing_of_many_points_says_it_is_slow_to_open() {
+    let circle = |n: usize| -> String {
+        (0..n)
+            .map(|k| {
+                let t = k as f64 * std::f64::consts::TAU / n as f64;
+                format!("{} {}\n", t.cos(), t.sin())
+            })
+            .collect()
+    };
+    let args = [
+        "reconstruct",
+        "-",
+        "-o",
+        "/dev/null",
+        "--format",
+        "svg",
+        "--stages",
+    ];
+    let out = condt(&args, &circle(70_000));
+    assert!(out.status.success(), "{}", stderr(&out));
+    let said = stderr(&out);
+    assert!(
+        said.contains("slow to open") && said.contains("-o out.html"),
+        "{said}"
+    );
+    let out = condt(&args, &circle(500));
+    assert!(out.status.success());
+    assert!(!stderr(&out).contains("slow to open"));
+    let quiet = condt(&[&args[..], &["-q"]].concat(), &circle(70_000));
+    assert!(!stderr(&quiet).contains("slow to open"));
+}
