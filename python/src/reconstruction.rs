@@ -267,10 +267,11 @@ impl Reconstruction {
     /// and a ``closed`` property, on the input coordinates.
     ///
     /// ``crs``: the document's ``"crs"`` member, as ``condt reconstruct`` carries on a GeoJSON
-    /// input's: JSON text (what ``read_points_with_crs`` gives) or a ``dict`` (any mapping,
-    /// written by ``json.dumps``); ``None``, the default, writes none. ``TypeError`` for any
-    /// other type, ``ValueError`` when the text is not one JSON value (``"EPSG:32632"`` alone is
-    /// not: write ``'"EPSG:32632"'`` or the object).
+    /// input's or writes ``--crs``: JSON text (what ``read_points_with_crs`` gives), a ``dict``
+    /// (any mapping, written by ``json.dumps``), or a name such as ``"EPSG:32632"``, written as
+    /// ``--crs`` writes it (a named crs, ``urn:ogc:def:crs:EPSG::32632``); ``None``, the
+    /// default, writes none. ``TypeError`` for any other type, ``ValueError`` for text that
+    /// starts as JSON (``{``) and is not one JSON value.
     ///
     /// >>> import condt, json
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True)
@@ -280,11 +281,22 @@ impl Reconstruction {
     /// >>> crs = {"type": "name", "properties": {"name": "EPSG:32632"}}
     /// >>> json.loads(r.to_geojson(crs=crs))["crs"] == crs
     /// True
+    /// >>> json.loads(r.to_geojson(crs="EPSG:32632"))["crs"]["properties"]["name"]
+    /// 'urn:ogc:def:crs:EPSG::32632'
     #[pyo3(signature = (*, crs = None))]
     fn to_geojson(&self, py: Python<'_>, crs: Option<&Bound<'_, PyAny>>) -> PyResult<String> {
         let crs: Option<String> = match crs {
             None => None,
-            Some(text) if text.is_instance_of::<pyo3::types::PyString>() => Some(text.extract()?),
+            Some(text) if text.is_instance_of::<pyo3::types::PyString>() => {
+                let text: String = text.extract()?;
+                // JSON as it is; else a name, as the command line's --crs takes it.
+                let json = py.import("json")?.call_method1("loads", (&text,)).is_ok();
+                if json || text.trim_start().starts_with('{') {
+                    Some(text)
+                } else {
+                    Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
+                }
+            }
             // GeoJSON's crs member is an object: a number or a list written there is a mistake.
             Some(value)
                 if !value.is_instance(&py.import("collections.abc")?.getattr("Mapping")?)? =>

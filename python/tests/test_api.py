@@ -900,8 +900,13 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
     assert as_dict["features"] == json.loads(written)["features"]
     assert "crs" not in json.loads(r.to_geojson())
     assert r.to_geojson(crs=None) == r.to_geojson()
+    # A name, as the command line's --crs takes it; text that starts as JSON must be JSON.
+    named = json.loads(r.to_geojson(crs="EPSG:32632"))["crs"]
+    assert named == {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}}
     with pytest.raises(ValueError, match="not a JSON value"):
-        r.to_geojson(crs="EPSG:32632")
+        r.to_geojson(crs='{"type": ')
+    with pytest.raises(ValueError, match="not a name"):
+        r.to_geojson(crs=" ")
     with pytest.raises(TypeError, match="crs must be JSON text"):
         r.to_geojson(crs=object())
     # Any mapping is written as its dict.

@@ -138,6 +138,7 @@ enum ReconstructId {
     Columns,
     Format,
     Stages,
+    Crs,
     Sequential,
     Timings,
     Quiet,
@@ -151,8 +152,8 @@ impl ReconstructId {
         match self {
             Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | IqrFloor
             | StageSwitch(_) | Smooth | NoManifoldFix | Repair => true,
-            Output | Method | InputFormat | Columns | Format | Stages | Sequential | Timings
-            | Quiet | Help => false,
+            Output | Method | InputFormat | Columns | Format | Stages | Crs | Sequential
+            | Timings | Quiet | Help => false,
         }
     }
 }
@@ -300,6 +301,18 @@ and Eppstein); a baseline takes none of the ConDT options",
         help: "draw every stage (SVG output only)",
     },
     Opt {
+        id: ReconstructId::Crs,
+        short: None,
+        long: "crs",
+        negatable: false,
+        value: Some("CRS"),
+        help: "the coordinate reference system a GeoJSON output names (GeoJSON
+output only): EPSG:32632 (written as a named crs,
+urn:ogc:def:crs:EPSG::32632), another name, or a crs member's
+JSON object; instead of a GeoJSON input's own. Without it, a
+GIS reads an output from other inputs as longitude and latitude",
+    },
+    Opt {
         id: ReconstructId::Sequential,
         short: None,
         long: "sequential",
@@ -371,7 +384,7 @@ Usage:
                     [--[no-]hooks] [--[no-]tails] [--[no-]detours] [--[no-]smooth]
                     [--method condt|nn-crust|crust]
                     [--input-format F] [--columns X,Y] [--format F] [--stages]
-                    [--sequential] [--timings] [--quiet]
+                    [--crs CRS] [--sequential] [--timings] [--quiet]
 
 Example:
   condt reconstruct data/shapes.txt -o shapes.svg --stages
@@ -382,8 +395,8 @@ point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` o
 default on standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points and curves; with --stages the Delaunay
 triangulation and the graph after every stage that ran, side by side; a panel is shaped like the
 points' bounding box, from 1:4 to 4:1), `geojson` (.geojson: one
-LineString per curve, on the input's coordinates; a GeoJSON input's `crs` member is carried
-on, a GeoJSON sequence's first), `html` (.html: a self-contained page to explore every stage: layers, pan
+LineString per curve, in the order of the txt lines, on the input's coordinates; a GeoJSON
+input's `crs` member is carried on, a GeoJSON sequence's first, or --crs names one), `html` (.html: a self-contained page to explore every stage: layers, pan
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 
@@ -872,6 +885,8 @@ struct ReconstructArgs {
     read: ReadOptions,
     format: Format,
     stages: bool,
+    /// `--crs`, as the `"crs"` member's JSON text.
+    crs: Option<String>,
     timings: bool,
     quiet: bool,
 }
@@ -1072,6 +1087,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         .map(|g| g.flag.as_str())
         .collect();
     let mut stages = false;
+    let mut crs = Setting::new();
     let mut timings = false;
     let mut quiet = false;
     for given in &lexed.given {
@@ -1162,6 +1178,15 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             Id::InputFormat => input_format_option(&mut input_format, flag, value)?,
             Id::Columns => columns_option(&mut columns, flag, value)?,
             Id::Stages => stages = true,
+            Id::Crs => {
+                let value = value.ok_or_else(|| {
+                    usage("--crs needs a reference system: a name such as EPSG:32632, or JSON")
+                })?;
+                let given = text(value, flag)?;
+                let member =
+                    condt_io::crs_member(given).map_err(|why| usage(format!("--crs {why}")))?;
+                crs.set(member, format!("--crs {given}"))?;
+            }
             Id::Timings => timings = true,
             Id::Quiet => quiet = true,
             // The starting point, chosen above.
@@ -1243,6 +1268,14 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             format.name()
         )));
     }
+    let crs = crs.get();
+    if crs.is_some() && format != Format::GeoJson {
+        return Err(usage(format!(
+            "--crs names the reference system of a GeoJSON output, but the output format is {}; \
+             use a .geojson file or --format geojson",
+            format.name()
+        )));
+    }
     Ok(ReconstructArgs {
         input,
         output,
@@ -1250,6 +1283,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         read,
         format,
         stages,
+        crs,
         timings,
         quiet,
     })
@@ -1442,7 +1476,9 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
             Format::Polylines => write_polylines(out, &result),
             Format::Svg if args.stages => write_svg_stages(out, &result),
             Format::Svg => write_svg(out, &result, &input),
-            Format::GeoJson => write_geojson_with_crs(out, &result, &input, crs.as_deref()),
+            Format::GeoJson => {
+                write_geojson_with_crs(out, &result, &input, args.crs.as_deref().or(crs.as_deref()))
+            }
             Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
         })
     })?;

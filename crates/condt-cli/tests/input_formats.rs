@@ -708,3 +708,83 @@ fn files_read_in_another_format_than_they_hold_are_told_what_they_are() {
         "{said}"
     );
 }
+
+/// A GIS review: a CSV of UTM metres gave a GeoJSON output without a crs, which GDAL reads as
+/// longitude and latitude, and no option could name one. `--crs` names it for any input, in
+/// place of a GeoJSON input's own; it is refused for another output format.
+#[test]
+fn crs_names_the_reference_system_of_a_geojson_output() {
+    let dir = scratch_dir();
+    let csv = dir.path().join("utm.csv");
+    std::fs::write(
+        &csv,
+        "easting,northing\n500000,4000000\n500010,4000000\n500005,4000010\n",
+    )
+    .unwrap();
+    let out = dir.path().join("utm.geojson");
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "reconstruct",
+            csv.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        condt_with_stdin(&args, b"")
+    };
+    let done = run(&["--crs", "EPSG:32632"]);
+    assert!(done.status.success(), "{done:?}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        text.starts_with(
+            r#"{"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}},"#
+        ),
+        "{text}"
+    );
+    let object = r#"{"type":"name","properties":{"name":"EPSG:2056"}}"#;
+    assert!(run(&["--crs", object]).status.success());
+    assert!(std::fs::read_to_string(&out).unwrap().contains(object));
+    // Instead of a GeoJSON input's own.
+    let geojson = dir.path().join("in.geojson");
+    std::fs::write(
+        &geojson,
+        r#"{"type":"MultiPoint","crs":{"type":"name","properties":{"name":"EPSG:4326"}},"coordinates":[[0,0],[1,0],[0.5,1]]}"#,
+    )
+    .unwrap();
+    let done = condt_with_stdin(
+        &[
+            "reconstruct",
+            geojson.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--crs",
+            "EPSG:3857",
+        ],
+        b"",
+    );
+    assert!(done.status.success(), "{done:?}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        text.contains("EPSG::3857") && !text.contains("EPSG:4326"),
+        "{text}"
+    );
+    // Refused, with its reason, before anything is read or written.
+    for (extra, words) in [
+        (&["--crs", "{\"type\":"][..], "is not one JSON object"),
+        (
+            &["--crs", "EPSG:32632", "--format", "txt"][..],
+            "GeoJSON output",
+        ),
+        (
+            &["--crs", "EPSG:32632", "--crs", "EPSG:2056"][..],
+            "contradict",
+        ),
+    ] {
+        let refused = run(extra);
+        assert_eq!(refused.status.code(), Some(2), "{extra:?}");
+        assert!(
+            String::from_utf8_lossy(&refused.stderr).contains(words),
+            "{extra:?}"
+        );
+    }
+}

@@ -94,6 +94,58 @@ pub fn write_geojson_with_crs(
     writeln!(out, "]}}")
 }
 
+/// The `"crs"` member a GeoJSON output carries for `given` (`condt reconstruct --crs`): a JSON
+/// object as written (one JSON object, checked), or a name as a named crs (the 2008 GeoJSON
+/// form GDAL and QGIS read), `EPSG:n` in the OGC URN form GDAL writes itself.
+///
+/// # Errors
+/// Why `given` is neither: JSON text (a leading `{`) that is not one object, an empty name, or
+/// one with a control character.
+///
+/// ```
+/// use condt_io::crs_member;
+/// assert_eq!(
+///     crs_member("EPSG:32632")?,
+///     r#"{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}}"#
+/// );
+/// assert_eq!(
+///     crs_member("OGC:CRS84")?,
+///     r#"{"type":"name","properties":{"name":"OGC:CRS84"}}"#
+/// );
+/// let written = r#"{"type": "name", "properties": {"name": "EPSG:2056"}}"#;
+/// assert_eq!(crs_member(written)?, written);
+/// assert!(crs_member("{\"type\": ").is_err() && crs_member(" ").is_err());
+/// # Ok::<(), String>(())
+/// ```
+pub fn crs_member(given: &str) -> Result<String, String> {
+    let trimmed = given.trim();
+    if trimmed.starts_with('{') {
+        return match serde_json::from_str::<serde_json::Value>(trimmed) {
+            Ok(serde_json::Value::Object(_)) => Ok(trimmed.to_string()),
+            _ => Err(format!("{given:?} is not one JSON object")),
+        };
+    }
+    if trimmed.is_empty() || trimmed.chars().any(char::is_control) {
+        return Err(format!(
+            "{given:?} is not a name such as EPSG:32632, nor a JSON object"
+        ));
+    }
+    let name = match trimmed.split_once(':') {
+        Some((authority, code))
+            if authority.eq_ignore_ascii_case("EPSG")
+                && !code.is_empty()
+                && code.bytes().all(|b| b.is_ascii_digit()) =>
+        {
+            format!("urn:ogc:def:crs:EPSG::{code}")
+        }
+        _ => trimmed.to_string(),
+    };
+    let quoted = serde_json::to_string(&name).map_err(|e| e.to_string())?;
+    Ok(format!(
+        r#"{{"type":"name","properties":{{"name":{quoted}}}}}"#
+    ))
+}
+
 /// A coordinate as a JSON number that reads back as the same double: in positional notation,
 /// or with an exponent beyond 10^16 and below 10^-5, where positional notation runs to hundreds
 /// of digits (`9.05e299`, not a 300-digit integer).
