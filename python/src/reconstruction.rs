@@ -122,6 +122,59 @@ impl Reconstruction {
         Ok(curves.iter().map(|c| c.clone_ref(py)).collect())
     }
 
+    /// Exact duplicates, a ``(k, 2)`` int64 array of rows ``[i, first]``: point ``i`` repeats
+    /// the earlier point ``first`` and was merged into it (ascending by ``i``). The edges and
+    /// curves name ``first`` only; ``i`` shares its fate (it is in ``unused`` exactly when
+    /// ``first`` is).
+    ///
+    /// >>> import condt
+    /// >>> condt.reconstruct([(0, 0), (1, 0), (0, 1), (1, 0)]).merged.tolist()
+    /// [[3, 1]]
+    #[getter]
+    fn merged<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let tri = self.shared.result.triangulation();
+        let rows: Vec<[i64; 2]> = (0..tri.num_points())
+            .map(|i| (i, tri.input_of(tri.vertex(i))))
+            .filter(|&(i, first)| first != i)
+            .map(|(i, first)| [position(i), position(first)])
+            .collect();
+        index_array(py, rows)
+    }
+
+    /// Where the last run's stages saw each point, a ``(n, 2)`` float64 array (read-only): the
+    /// input positions, or after smoothing passes the moved ones, on which the stages' lengths,
+    /// ratios and rings (``stages``, ``explain``) were measured.
+    ///
+    /// >>> import condt
+    /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0, 1)], paper=True)
+    /// >>> r.stage_points.tolist()
+    /// [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+    #[getter]
+    fn stage_points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let result = &self.shared.result;
+        let flat: Vec<f64> = (0..result.num_points())
+            .flat_map(|i| {
+                let p = result.stage_point(i);
+                [p.x, p.y]
+            })
+            .collect();
+        let array = numpy::ndarray::Array2::from_shape_vec((result.num_points(), 2), flat)
+            .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
+        let array = PyArray2::from_owned_array(py, array);
+        read_only(array.as_any())?;
+        Ok(array)
+    }
+
+    /// The result itself: it never changes, so a copy is the same object.
+    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    /// The result itself, as ``__copy__``.
+    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyAny>) -> PyRef<'py, Self> {
+        slf
+    }
+
     /// The input positions whose point ended with no edge (outliers), ascending, int64.
     #[getter]
     fn unused<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
@@ -302,7 +355,7 @@ impl Reconstruction {
                 if !value.is_instance(&py.import("collections.abc")?.getattr("Mapping")?)? =>
             {
                 return Err(pyo3::exceptions::PyTypeError::new_err(format!(
-                    "crs must be JSON text, a dict or None, not {}",
+                    "crs must be JSON text, a name, a dict or None, not {}",
                     value.get_type().name()?
                 )));
             }
@@ -463,6 +516,16 @@ impl Curve {
         self.curve().len()
     }
 
+    /// The object itself: it never changes, so a copy is the same object.
+    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    /// The object itself, as ``__copy__``.
+    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyAny>) -> PyRef<'py, Self> {
+        slf
+    }
+
     fn __repr__(&self) -> String {
         let curve = self.curve();
         format!(
@@ -523,6 +586,16 @@ impl EdgeStory {
 impl EdgeStory {
     fn __str__(&self) -> &str {
         &self.text
+    }
+
+    /// The object itself: it never changes, so a copy is the same object.
+    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    /// The object itself, as ``__copy__``.
+    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyAny>) -> PyRef<'py, Self> {
+        slf
     }
 
     fn __repr__(&self) -> String {

@@ -118,6 +118,16 @@ impl Triangulation {
         self.tri.num_points()
     }
 
+    /// The object itself: it never changes, so a copy is the same object.
+    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    /// The object itself, as ``__copy__``.
+    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyAny>) -> PyRef<'py, Self> {
+        slf
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<condt.Triangulation: {} points, {} distinct>",

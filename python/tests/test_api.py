@@ -914,7 +914,7 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
     assert json.loads(r.to_geojson(crs=proxy))["crs"] == json.loads(crs_text)
     # GeoJSON's crs is an object: a number or a list is a mistake, not written.
     for wrong in (5, [1], 1.5):
-        with pytest.raises(TypeError, match=f"^crs must be JSON text, a dict or None, not {type(wrong).__name__}$"):
+        with pytest.raises(TypeError, match=f"^crs must be JSON text, a name, a dict or None, not {type(wrong).__name__}$"):
             r.to_geojson(crs=wrong)
     # Other formats, and GeoJSON without one, have no crs.
     (tmp_path / "pts.txt").write_text("0 0\n1 0\n")
@@ -1046,3 +1046,36 @@ def test_curve_coordinates_are_read_only_as_every_result_array():
         curve.coords[0, 0] = 5.0
     # Each row the coordinates of the point at that place along the curve.
     assert curve.coords.tolist() == [square[i] for i in curve.points.tolist()]
+
+
+def test_merged_duplicates_and_stage_points_account_for_every_point():
+    # A researcher's review: duplicates were in no edge, curve or `unused`, and after smoothing
+    # passes the stages' numbers were measured on positions no attribute gave.
+    rng = np.random.default_rng(5)
+    t = np.linspace(0, 2 * np.pi, 80, endpoint=False)
+    circle = np.column_stack([np.cos(t), np.sin(t)]) + rng.normal(0, 0.03, (80, 2))
+    points = np.concatenate([circle, circle[[3, 3, 40]], [[5.0, 5.0], [5.0, 5.0]]])
+    r = condt.reconstruct(points)
+    assert r.merged.tolist() == [[80, 3], [81, 3], [82, 40], [84, 83]]
+    assert not r.merged.flags.writeable
+    used = set(np.unique(r.edges).tolist())
+    duplicates = dict(r.merged.tolist())
+    # Every position is on an edge, unused, or a duplicate of one that is on an edge.
+    for i in range(len(points)):
+        first = duplicates.get(i, i)
+        assert (first in used) != (i in set(r.unused.tolist())), i
+    assert r.passes > 0
+    moved = r.stage_points
+    assert moved.shape == points.shape and not moved.flags.writeable
+    assert not np.array_equal(moved, points), "the passes moved the noisy circle"
+    assert np.array_equal(condt.reconstruct(points, smooth=False).stage_points, points)
+
+
+def test_results_copy_as_themselves():
+    import copy
+
+    r = condt.reconstruct([(0, 0), (1, 0), (0, 1)])
+    tri = condt.triangulate([(0, 0), (1, 0), (0, 1)])
+    for value in (r, r.curves[0], r.explain(0, 1), tri):
+        assert copy.copy(value) is value and copy.deepcopy(value) is value
+    assert copy.deepcopy({"result": r})["result"] is r

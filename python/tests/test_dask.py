@@ -700,3 +700,14 @@ def test_the_modules_examples_run():
     results = doctest.testmod(condt.dask, optionflags=flags)
     assert results.failed == 0
     assert results.attempted >= 4, results
+
+
+def test_tiled_results_compare_and_hash_by_identity(client):
+    # A dataclass's generated == compared the edge arrays and raised ("truth value of an
+    # array is ambiguous"), and its hash raised on the array: identity, as other results.
+    points = curves(400, np.random.default_rng(4))
+    a = condt.dask.reconstruct(points, client, tiles=2)
+    b = condt.dask.reconstruct(points, client, tiles=2)
+    assert a == a and a != b and a in [a] and b not in [a]
+    assert len({a, b, a}) == 2
+    np.testing.assert_array_equal(a.edges, b.edges)

@@ -2,7 +2,19 @@
 # are the runtime's (`help(condt.reconstruct)`); tests/test_api.py checks that these signatures
 # match the module's, as `python -m mypy.stubtest condt._condt` does.
 import os
-from typing import Any, Literal, Mapping, Optional, Sequence, Tuple, TypedDict, Union, final
+from typing import (
+    Any,
+    Literal,
+    Mapping,
+    Optional,
+    Sequence,
+    SupportsFloat,
+    SupportsIndex,
+    Tuple,
+    TypedDict,
+    Union,
+    final,
+)
 
 import numpy as np
 import numpy.typing as npt
@@ -50,6 +62,9 @@ _Points = npt.ArrayLike
 _Edges = npt.ArrayLike
 _Index = npt.NDArray[np.int64]
 _Coords = npt.NDArray[np.float64]
+# What the keywords take: Python's and numpy's numbers and booleans (a bool is no number).
+_Bool = Union[bool, np.bool_]
+_Number = SupportsFloat
 _InputFormat = Literal["txt", "text", "node", "csv", "tsv", "npy", "geojson", "json", "geojsonl", "geojsons"]
 
 @final
@@ -61,6 +76,8 @@ class Curve:
     @property
     def coords(self) -> _Coords: ...
     def __len__(self) -> int: ...
+    def __copy__(self) -> Curve: ...
+    def __deepcopy__(self, memo: Any) -> Curve: ...
 
 @final
 class EdgeStory:
@@ -74,6 +91,8 @@ class EdgeStory:
     def changes(self) -> list[dict[str, Any]]: ...
     @property
     def text(self) -> str: ...
+    def __copy__(self) -> EdgeStory: ...
+    def __deepcopy__(self, memo: Any) -> EdgeStory: ...
 
 @final
 class Reconstruction:
@@ -89,11 +108,19 @@ class Reconstruction:
     def passes(self) -> int: ...
     @property
     def timings(self) -> dict[str, float]: ...
+    # Rows [i, first]: point i repeats point first, merged into it.
+    @property
+    def merged(self) -> _Index: ...
+    # Where the last run's stages saw the points (moved by smoothing passes).
+    @property
+    def stage_points(self) -> _Coords: ...
     # A duplicate point is its first point: explain(4, 1) tells of 0-1 when 4 repeats 0.
-    def explain(self, i: int, j: int) -> EdgeStory: ...
+    def explain(self, i: SupportsIndex, j: SupportsIndex) -> EdgeStory: ...
     def to_geojson(self, *, crs: Union[str, Mapping[str, Any], None] = None) -> str: ...
     def to_shapely(self) -> Any: ...
     def __len__(self) -> int: ...
+    def __copy__(self) -> Reconstruction: ...
+    def __deepcopy__(self, memo: Any) -> Reconstruction: ...
 
 @final
 class Triangulation:
@@ -106,8 +133,10 @@ class Triangulation:
     def hull(self) -> _Index: ...
     @property
     def num_vertices(self) -> int: ...
-    def neighbors(self, i: int) -> _Index: ...
+    def neighbors(self, i: SupportsIndex) -> _Index: ...
     def __len__(self) -> int: ...
+    def __copy__(self) -> Triangulation: ...
+    def __deepcopy__(self, memo: Any) -> Triangulation: ...
 
 # What `score` returns: a plain dict at run time, typed here for type checkers only.
 class _Score(TypedDict):
@@ -129,30 +158,30 @@ class _Score(TypedDict):
 def reconstruct(
     points: _Points,
     *,
-    paper: bool = False,
-    u: float = ...,
-    adaptive: bool = ...,
-    iqr: Optional[float] = ...,
-    outlier_filter: bool = ...,
-    outliers_first: bool = ...,
-    iqr_floor: bool = ...,
-    repair_again: bool = ...,
-    local_outliers: bool = ...,
-    clumps: bool = ...,
-    confirm_given_back: bool = ...,
-    close_gaps: bool = ...,
-    junctions: bool = ...,
-    crossings: bool = ...,
-    tips: bool = ...,
-    spikes: bool = ...,
-    hooks: bool = ...,
-    tails: bool = ...,
-    detours: bool = ...,
-    smooth: bool = ...,
+    paper: _Bool = False,
+    u: _Number = ...,
+    adaptive: _Bool = ...,
+    iqr: Optional[_Number] = ...,
+    outlier_filter: _Bool = ...,
+    outliers_first: _Bool = ...,
+    iqr_floor: _Bool = ...,
+    repair_again: _Bool = ...,
+    local_outliers: _Bool = ...,
+    clumps: _Bool = ...,
+    confirm_given_back: _Bool = ...,
+    close_gaps: _Bool = ...,
+    junctions: _Bool = ...,
+    crossings: _Bool = ...,
+    tips: _Bool = ...,
+    spikes: _Bool = ...,
+    hooks: _Bool = ...,
+    tails: _Bool = ...,
+    detours: _Bool = ...,
+    smooth: _Bool = ...,
     repair: Literal["needs", "paper", "mutual", "crossing", "off"] = ...,
-    manifold_fix: bool = ...,
+    manifold_fix: _Bool = ...,
     method: Literal["condt", "nn-crust", "crust"] = ...,
-    sequential: bool = ...,
+    sequential: _Bool = ...,
 ) -> Reconstruction: ...
 def triangulate(points: _Points) -> Triangulation: ...
 # A path is always a file: "-" is the file named "-", not standard input.

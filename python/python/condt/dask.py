@@ -65,7 +65,8 @@ REACH = 6
 HALO_GROWTH = (1.5, 2.0)
 
 
-@dataclasses.dataclass(frozen=True)
+# Compared and hashed by identity (`eq=False`): an ndarray field has no truth value for `==`.
+@dataclasses.dataclass(frozen=True, eq=False)
 class TiledReconstruction:
     """What ``condt.dask.reconstruct`` gives: the edges and how the tiles ran.
 
