@@ -53,6 +53,17 @@ const TITLE_SIZE: f64 = 26.0;
 const SMALLEST_TITLE: f64 = 14.0;
 const EDGE_COLOURS: [&str; 3] = ["#9aa5b1", "#1f6fd1", "#111111"];
 const POINT_COLOUR: &str = "#333333";
+/// A stage panel's edges the stage removed (drawn under its edges) and added (over them).
+const REMOVED_COLOUR: &str = "#f2a7a7";
+const ADDED_COLOUR: &str = "#2ca02c";
+
+/// The edges of `a` not in `b`, both sorted (a stage graph's edges are).
+fn difference(a: &[[usize; 2]], b: &[[usize; 2]]) -> Vec<[usize; 2]> {
+    a.iter()
+        .filter(|e| b.binary_search(e).is_err())
+        .copied()
+        .collect()
+}
 const UNUSED_COLOUR: &str = "#d62728";
 
 /// The frame of the first panel for `points` (scaled so that their largest magnitude is below
@@ -372,6 +383,20 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
             top: (panel / per_row) as f64 * (panel_height + TITLE_BAND) + TITLE_BAND,
             ..first
         };
+        // What the stage changed, against the panel before (from the second stage on: the
+        // proximity graph is a choice among the Delaunay edges, not a change of them): the
+        // edges it removed under its own, those it added over them.
+        let (removed, added) = if stages && panel >= 2 {
+            (
+                difference(layers[panel - 1].1, edges),
+                difference(edges, layers[panel - 1].1),
+            )
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        if !removed.is_empty() {
+            lines(out, &f, pts, &removed, REMOVED_COLOUR, 2.0)?;
+        }
         lines(
             out,
             &f,
@@ -380,6 +405,9 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
             colour,
             if *colour == EDGE_COLOURS[2] { 2.0 } else { 1.2 },
         )?;
+        if !added.is_empty() {
+            lines(out, &f, pts, &added, ADDED_COLOUR, 2.4)?;
+        }
         // Red where this panel's graph leaves a point without an edge; the triangulation leaves
         // none.
         let is_delaunay = stages && panel == 0;
@@ -464,6 +492,8 @@ fn legend(
     if stages {
         items.push((Swatch::Line, EDGE_COLOURS[0], "Delaunay edge".into()));
         items.push((Swatch::Line, EDGE_COLOURS[1], "stage edge".into()));
+        items.push((Swatch::Line, ADDED_COLOUR, "added by the stage".into()));
+        items.push((Swatch::Line, REMOVED_COLOUR, "removed by the stage".into()));
     }
     items.push((Swatch::Line, EDGE_COLOURS[2], "result curve".into()));
     items.push((Swatch::Dot, POINT_COLOUR, "point".into()));

@@ -198,3 +198,42 @@ fn dots_shrink_where_the_points_stand_close() {
     let small = radius(&dense_alone);
     assert!((0.6..1.0).contains(&small), "{small}");
 }
+
+/// A viewer review: the stage panels of a dense set looked alike, with nothing to say what each
+/// stage did. Each panel from the second stage on draws the edges its stage removed (light red,
+/// under its own) and added (green, over them): as many as the stage's graph differs from the
+/// one before.
+#[test]
+fn stage_panels_draw_what_their_stage_removed_and_added() {
+    let mut points: Vec<Point> = (0..60)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / 60.0;
+            Point::new(t.cos(), t.sin())
+        })
+        .collect();
+    // Outliers inside the circle, which the stages cut away.
+    points.extend([(0.1, 0.2), (0.15, 0.25), (-0.3, 0.1), (0.9, 0.05)].map(Point::from));
+    let r = reconstruct(&points, &Params::default()).unwrap();
+    let graphs: Vec<Vec<[usize; 2]>> = r.stages().map(|s| s.graph.edges()).collect();
+    let (mut removed, mut added) = (0, 0);
+    for pair in graphs.windows(2) {
+        removed += pair[0].iter().filter(|e| !pair[1].contains(e)).count();
+        added += pair[1].iter().filter(|e| !pair[0].contains(e)).count();
+    }
+    assert!(removed > 0, "the stages cut something");
+    let mut out = Vec::new();
+    write_svg_stages(&mut out, &r).unwrap();
+    let svg = String::from_utf8(out).unwrap();
+    let segments = |colour: &str| -> usize {
+        svg.split(&format!("fill=\"none\" stroke=\"{colour}\" stroke-width="))
+            .skip(1)
+            .map(|path| {
+                let d = &path[path.find(" d=\"").unwrap() + 4..];
+                d[..d.find('"').unwrap()].matches('M').count()
+            })
+            .sum()
+    };
+    assert_eq!(segments("#f2a7a7"), removed);
+    assert_eq!(segments("#2ca02c"), added);
+    assert!(svg.contains("removed by the stage") && svg.contains("added by the stage"));
+}
