@@ -53,9 +53,13 @@ const TITLE_SIZE: f64 = 26.0;
 const SMALLEST_TITLE: f64 = 14.0;
 const EDGE_COLOURS: [&str; 3] = ["#9aa5b1", "#1f6fd1", "#111111"];
 const POINT_COLOUR: &str = "#333333";
-/// A stage panel's edges the stage removed (drawn under its edges) and added (over them).
-const REMOVED_COLOUR: &str = "#f2a7a7";
+/// A stage panel's edges the stage removed and added, drawn as wide translucent halos under
+/// the panel's own edges (no stage's line colour: detours are green, hooks pink).
+const REMOVED_COLOUR: &str = "#d62728";
 const ADDED_COLOUR: &str = "#2ca02c";
+/// Their width and opacity.
+const CHANGE_WIDTH: f64 = 6.0;
+const CHANGE_OPACITY: f64 = 0.35;
 
 /// The edges of `a` not in `b`, both sorted (a stage graph's edges are).
 fn difference(a: &[[usize; 2]], b: &[[usize; 2]]) -> Vec<[usize; 2]> {
@@ -394,8 +398,12 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
         } else {
             (Vec::new(), Vec::new())
         };
-        if !removed.is_empty() {
-            lines(out, &f, pts, &removed, REMOVED_COLOUR, 2.0)?;
+        for (changed, halo) in [(&removed, REMOVED_COLOUR), (&added, ADDED_COLOUR)] {
+            if !changed.is_empty() {
+                write!(out, r#"<g stroke-opacity="{CHANGE_OPACITY}">"#)?;
+                lines(out, &f, pts, changed, halo, CHANGE_WIDTH)?;
+                writeln!(out, "</g>")?;
+            }
         }
         lines(
             out,
@@ -405,9 +413,6 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
             colour,
             if *colour == EDGE_COLOURS[2] { 2.0 } else { 1.2 },
         )?;
-        if !added.is_empty() {
-            lines(out, &f, pts, &added, ADDED_COLOUR, 2.4)?;
-        }
         // Red where this panel's graph leaves a point without an edge; the triangulation leaves
         // none.
         let is_delaunay = stages && panel == 0;
@@ -486,14 +491,15 @@ fn legend(
     enum Swatch {
         Dot,
         Line,
+        Halo,
         None,
     }
     let mut items: Vec<(Swatch, &str, String)> = Vec::new();
     if stages {
         items.push((Swatch::Line, EDGE_COLOURS[0], "Delaunay edge".into()));
         items.push((Swatch::Line, EDGE_COLOURS[1], "stage edge".into()));
-        items.push((Swatch::Line, ADDED_COLOUR, "added by the stage".into()));
-        items.push((Swatch::Line, REMOVED_COLOUR, "removed by the stage".into()));
+        items.push((Swatch::Halo, ADDED_COLOUR, "added by the stage".into()));
+        items.push((Swatch::Halo, REMOVED_COLOUR, "removed by the stage".into()));
     }
     items.push((Swatch::Line, EDGE_COLOURS[2], "result curve".into()));
     items.push((Swatch::Dot, POINT_COLOUR, "point".into()));
@@ -516,7 +522,7 @@ fn legend(
     for (swatch, colour, label) in items {
         let swatch_width = match swatch {
             Swatch::Dot => 24.0,
-            Swatch::Line => 46.0,
+            Swatch::Line | Swatch::Halo => 46.0,
             Swatch::None => 0.0,
         };
         // About 10 units per character at size 20, and a gap.
@@ -537,6 +543,12 @@ fn legend(
                 let _ = writeln!(
                     out,
                     r#"<path d="M{x} {y}h36" stroke="{colour}" stroke-width="4"/>"#
+                );
+            }
+            Swatch::Halo => {
+                let _ = writeln!(
+                    out,
+                    r#"<path d="M{x} {y}h36" stroke="{colour}" stroke-width="{CHANGE_WIDTH}" stroke-opacity="{CHANGE_OPACITY}"/>"#
                 );
             }
             Swatch::None => {}

@@ -200,9 +200,9 @@ fn dots_shrink_where_the_points_stand_close() {
 }
 
 /// A viewer review: the stage panels of a dense set looked alike, with nothing to say what each
-/// stage did. Each panel from the second stage on draws the edges its stage removed (light red,
-/// under its own) and added (green, over them): as many as the stage's graph differs from the
-/// one before.
+/// stage did. Each panel from the second stage on marks the edges its stage removed (red) and
+/// added (green) with translucent halos under its own: as many as the stage's graph differs
+/// from the one before.
 #[test]
 fn stage_panels_draw_what_their_stage_removed_and_added() {
     let mut points: Vec<Point> = (0..60)
@@ -233,7 +233,7 @@ fn stage_panels_draw_what_their_stage_removed_and_added() {
             })
             .sum()
     };
-    assert_eq!(segments("#f2a7a7"), removed);
+    assert_eq!(segments("#d62728"), removed);
     assert_eq!(segments("#2ca02c"), added);
     assert!(svg.contains("removed by the stage") && svg.contains("added by the stage"));
 }

@@ -58,7 +58,7 @@ try {
 
   // Every edge layer has a colour swatch beside its switch, each stage its own (the page draws a
   // layer in its swatch's colour).
-  const swatches = await page.$$eval("#layers .swatch", (marks) =>
+  const swatches = await page.$$eval("#layers .swatch:not(.change)", (marks) =>
     marks.map((m) => [m.parentElement.textContent, getComputedStyle(m).backgroundColor]));
   const layerCount = await page.evaluate(() => window.condtViewer.edgeLayers);
   assert.equal(swatches.length, layerCount, "a swatch per edge layer");
@@ -66,6 +66,9 @@ try {
     assert.ok(color && color !== "rgba(0, 0, 0, 0)", `layer "${name}" has a colour`);
   }
   const stageColors = swatches.slice(1, -1).map(([, color]) => color);
+  // Two switches more: what a shown stage added and removed, in the SVG's colours.
+  const changes = await page.$$eval("#layers .swatch.change", (marks) => marks.map((m) => m.parentElement.textContent));
+  assert.deepEqual(changes, [" edges a shown stage added", " edges a shown stage removed"]);
   assert.equal(new Set(stageColors).size, stageColors.length, `stage colours differ: ${swatches}`);
 
   // A point of the result: the panel shows its ring, the test and the degree the edge list has.

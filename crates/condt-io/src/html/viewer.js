@@ -25,6 +25,13 @@
     { name: "points", color: "#222222", on: true, kind: "points" },
     { name: "unused points (in the result)", color: "#d62728", on: true, kind: "unused" },
   ];
+  // What each stage layer shown changed against the stage before it (from the second stage on:
+  // the proximity graph is a choice among the Delaunay edges), as the SVG's stage panels draw it.
+  // Wide and translucent, under the layers: a halo, told apart from any stage's own line.
+  const changeLayers = [
+    { name: "edges a shown stage added", color: "rgba(44,160,44,0.45)", width: 8, on: true, kind: "added" },
+    { name: "edges a shown stage removed", color: "rgba(214,39,40,0.3)", width: 8, on: true, kind: "removed" },
+  ];
   const unused = new Uint8Array(n);
   for (const i of data.unused) unused[i] = 1;
   // Exact duplicates: each later point to the first at its position, which carries the edges.
@@ -118,6 +125,24 @@
     const w = canvas.clientWidth, h = canvas.clientHeight;
     ctx.clearRect(0, 0, w, h);
     const notes = [];
+    for (const change of changeLayers) {
+      if (!change.on) continue;
+      ctx.strokeStyle = change.color;
+      ctx.lineWidth = change.width;
+      ctx.beginPath();
+      for (let k = 2; k < layers.length; k++) {
+        if (!layers[k].on) continue;
+        const now = 1 << k, before = 1 << (k - 1);
+        for (let e = 0; e < m; e++) {
+          const bits = data.member[e];
+          const shown = change.kind === "added" ? (bits & now) && !(bits & before) : (bits & before) && !(bits & now);
+          if (!shown) continue;
+          ctx.moveTo(sx(E[2 * e]), sy(E[2 * e]));
+          ctx.lineTo(sx(E[2 * e + 1]), sy(E[2 * e + 1]));
+        }
+      }
+      ctx.stroke();
+    }
     for (const layer of layers) {
       if (!layer.on) continue;
       ctx.strokeStyle = layer.color;
@@ -387,14 +412,14 @@
 
   // Each layer's switch beside its colour: the list is the legend too.
   const layerBox = document.getElementById("layers");
-  for (const layer of [...layers, ...pointLayers]) {
+  for (const layer of [...layers, ...changeLayers, ...pointLayers]) {
     const label = document.createElement("label");
     const box = document.createElement("input");
     box.type = "checkbox"; box.checked = layer.on; box.dataset.layer = layer.name;
     box.addEventListener("change", () => { layer.on = box.checked; request(); });
     const mark = document.createElement("span");
     const isPoint = layer.kind === "points" || layer.kind === "unused";
-    mark.className = isPoint ? "dot" : "swatch";
+    mark.className = isPoint ? "dot" : changeLayers.includes(layer) ? "swatch change" : "swatch";
     if (layer.kind === "unused") mark.style.border = `2px solid ${layer.color}`;
     else mark.style.background = layer.color;
     if (!isPoint) mark.style.height = `${Math.max(2, layer.width * 2)}px`;
@@ -402,7 +427,7 @@
     layerBox.append(label);
   }
 
-  for (const layer of [...layers, ...pointLayers]) layer.initially = layer.on;
+  for (const layer of [...layers, ...changeLayers, ...pointLayers]) layer.initially = layer.on;
   resize();
   fit();
   draw();
@@ -418,8 +443,9 @@
     isDelaunay: (k) => (data.member[k] & 1) === 1,
     // Shows only the edge layer called `name` (no points), or with null the first view's layers.
     only: (name) => {
-      for (const layer of [...layers, ...pointLayers]) layer.on = name === null ? layer.initially : layer.name === name;
-      for (const box of layerBox.querySelectorAll("input")) box.checked = [...layers, ...pointLayers].find((l) => l.name === box.dataset.layer).on;
+      const all = [...layers, ...changeLayers, ...pointLayers];
+      for (const layer of all) layer.on = name === null ? layer.initially : layer.name === name;
+      for (const box of layerBox.querySelectorAll("input")) box.checked = all.find((l) => l.name === box.dataset.layer).on;
       draw();
     },
     loadMs: performance.now() - started,
