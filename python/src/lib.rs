@@ -603,15 +603,15 @@ fn as_positions(edges: &EdgeRows) -> Vec<[usize; 2]> {
 fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
     let row = problem.position();
     match problem {
-        EdgeProblem::OutOfRange { .. } => {
-            let [a, b] = given.rows[row];
-            // The negative end if there is one, else the larger one.
-            let end = if a < 0 || b < 0 {
-                usize::from(b < a)
-            } else {
-                usize::from(b > a)
-            };
-            format!("row {row}: point {} does not exist", given.text(row, end))
+        EdgeProblem::OutOfRange { index, .. } => {
+            // The library names the first end out of range (as `as_positions` maps them: a
+            // negative end to `usize::MAX`); that end as given, as `condt score` names it.
+            let [a, _] = given.rows[row];
+            let first = usize::try_from(a).unwrap_or(usize::MAX) == index;
+            format!(
+                "row {row}: point {} does not exist",
+                given.text(row, usize::from(!first))
+            )
         }
         other => format!("row {row}: {other}"),
     }

@@ -320,11 +320,11 @@ impl Reconstruction {
     /// and a ``closed`` property, on the input coordinates.
     ///
     /// ``crs``: the document's ``"crs"`` member, as ``condt reconstruct`` carries on a GeoJSON
-    /// input's or writes ``--crs``: JSON text (what ``read_points_with_crs`` gives), a ``dict``
-    /// (any mapping, written by ``json.dumps``), or a name such as ``"EPSG:32632"``, written as
-    /// ``--crs`` writes it (a named crs, ``urn:ogc:def:crs:EPSG::32632``); ``None``, the
-    /// default, writes none. ``TypeError`` for any other type, ``ValueError`` for text that
-    /// starts as JSON (``{``) and is not one JSON value.
+    /// input's or writes ``--crs``: a JSON object's text (what ``read_points_with_crs`` gives), a
+    /// ``dict`` (any mapping, written by ``json.dumps``), or a name such as ``"EPSG:32632"``,
+    /// written as ``--crs`` writes it (a named crs, ``urn:ogc:def:crs:EPSG::32632``); ``None``,
+    /// the default, writes none. ``TypeError`` for any other type, ``ValueError`` for text that
+    /// starts as JSON (``{``) and is not one JSON object.
     ///
     /// >>> import condt, json
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True)
@@ -341,14 +341,9 @@ impl Reconstruction {
         let crs: Option<String> = match crs {
             None => None,
             Some(text) if text.is_instance_of::<pyo3::types::PyString>() => {
+                // As the command line's --crs takes it: a JSON object, or a name.
                 let text: String = text.extract()?;
-                // JSON as it is; else a name, as the command line's --crs takes it.
-                let json = py.import("json")?.call_method1("loads", (&text,)).is_ok();
-                if json || text.trim_start().starts_with('{') {
-                    Some(text)
-                } else {
-                    Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
-                }
+                Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
             }
             // GeoJSON's crs member is an object: a number or a list written there is a mistake.
             Some(value)

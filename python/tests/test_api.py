@@ -903,7 +903,7 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
     # A name, as the command line's --crs takes it; text that starts as JSON must be JSON.
     named = json.loads(r.to_geojson(crs="EPSG:32632"))["crs"]
     assert named == {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}}
-    with pytest.raises(ValueError, match="not a JSON value"):
+    with pytest.raises(ValueError, match="not one JSON object"):
         r.to_geojson(crs='{"type": ')
     with pytest.raises(ValueError, match="not a name"):
         r.to_geojson(crs=" ")

@@ -130,6 +130,10 @@ def test_a_malformed_output_scores_as_on_the_command_line(cli):
         [(0, 1), (1, 2), (1, 2)],
         [(0, 1), (3, 3), (2, 9)],
         [(-5, 7), (0, 1)],
+        # Two ends out of range: both name the first.
+        [(7, 9)],
+        [(-1, -5)],
+        [(9, -1)],
         [(0, 1), (1, 2), (2, 3), (3, 0)],
     ]:
         output = np.array(output, dtype=np.int64)

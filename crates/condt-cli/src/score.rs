@@ -281,21 +281,21 @@ impl EdgeFile {
         self.edges.push(edge);
     }
 
-    /// The library's words for `problem`, its point number as given: of an end no point can
-    /// have, a negative one first (as `condt.score` in Python names it).
+    /// The library's words for `problem`, its point number as given: the library names the
+    /// first end out of range, which is one no point number holds where it reads `usize::MAX`
+    /// (as `condt.score` in Python names it).
     fn problem_text(&self, problem: EdgeProblem) -> String {
-        let EdgeProblem::OutOfRange { position, .. } = problem else {
+        let EdgeProblem::OutOfRange { position, index } = problem else {
             return problem.to_string();
         };
-        let given: Vec<&str> = self
+        let given = self
             .beyond
             .iter()
-            .filter(|(at, _, _)| *at == position)
-            .map(|(_, _, text)| text.as_str())
-            .collect();
-        match given.iter().find(|t| t.starts_with('-')).or(given.first()) {
-            Some(text) => format!("point {text} does not exist"),
-            None => problem.to_string(),
+            .find(|(at, _, _)| *at == position)
+            .map(|(_, _, text)| text.as_str());
+        match given {
+            Some(text) if index == usize::MAX => format!("point {text} does not exist"),
+            _ => problem.to_string(),
         }
     }
 

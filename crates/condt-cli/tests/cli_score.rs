@@ -155,6 +155,10 @@ fn a_malformed_output_scores_nothing_and_names_its_line() {
             "0 1\n1 99999999999999999999999\n",
             "line 2: point 99999999999999999999999 does not exist",
         ),
+        // Two ends out of range: the first is named, as the library reports it.
+        ("0 1\n7 9\n", "line 2: point 7 does not exist"),
+        ("0 1\n-1 -5\n", "line 2: point -1 does not exist"),
+        ("0 1\n9 -1\n", "line 2: point 9 does not exist"),
         ("0 1\n1 2 3\n", "line 2: not an edge `i j`: \\\"1 2 3\\\""),
         ("0 1\n1 -\n", "line 2: not an edge `i j`: \\\"1 -\\\""),
     ] {

@@ -697,6 +697,12 @@ fn files_read_in_another_format_than_they_hold_are_told_what_they_are() {
         said.contains("t.tsv:1: ") && said.contains("split at tabs"),
         "{said}"
     );
+    // A .tsv header of spaces is told of tabs too, not of commas.
+    let said = refused(&dir.path().join("sp.tsv"), b"x y\n0 0\n1 0\n", &[]);
+    assert!(
+        said.contains("split at tabs") && !said.contains("at commas"),
+        "{said}"
+    );
     let said = refused(&dir.path().join("s.csv"), b"x y\n0 0\n1 0\n", &[]);
     assert!(
         said.contains("s.csv:1: ") && said.contains("name the file *.txt"),

@@ -339,11 +339,12 @@ fn header_columns(
                 // A semicolon-separated file reads as one column here: say so. With columns
                 // to choose from, say how to choose them.
                 let one_field = record.len() == 1;
-                let hint = if raw.contains(';') && one_field {
-                    "; this reader splits columns at commas, not semicolons"
-                } else if one_field && delimiter == b'\t' && raw.contains(',') {
+                let tabs = delimiter == b'\t';
+                let hint = if one_field && tabs {
                     "; its columns are split at tabs (a .tsv, or a first line with tabs), and \
-                     this header has none: name the file *.csv to split it at commas"
+                     this header has none: a header of commas is a .csv's, of spaces a .txt's"
+                } else if raw.contains(';') && one_field {
+                    "; this reader splits columns at commas, not semicolons"
                 } else if one_field && raw.trim().contains(char::is_whitespace) {
                     "; this reader splits columns at commas, and this header has none: columns \
                      separated by spaces are the plain format's (name the file *.txt)"

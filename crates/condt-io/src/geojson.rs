@@ -96,7 +96,8 @@ pub fn write_geojson_with_crs(
 
 /// The `"crs"` member a GeoJSON output carries for `given` (`condt reconstruct --crs`): a JSON
 /// object as written (one JSON object, checked), or a name as a named crs (the 2008 GeoJSON
-/// form GDAL and QGIS read), `EPSG:n` in the OGC URN form GDAL writes itself.
+/// form GDAL and QGIS read), `EPSG:n` in the OGC URN form GDAL writes itself; a JSON string is
+/// the name it holds.
 ///
 /// # Errors
 /// Why `given` is neither: JSON text (a leading `{`) that is not one object, an empty name, or
@@ -114,6 +115,7 @@ pub fn write_geojson_with_crs(
 /// );
 /// let written = r#"{"type": "name", "properties": {"name": "EPSG:2056"}}"#;
 /// assert_eq!(crs_member(written)?, written);
+/// assert_eq!(crs_member("\"EPSG:32632\"")?, crs_member("EPSG:32632")?);
 /// assert!(crs_member("{\"type\": ").is_err() && crs_member(" ").is_err());
 /// # Ok::<(), String>(())
 /// ```
@@ -125,6 +127,15 @@ pub fn crs_member(given: &str) -> Result<String, String> {
             _ => Err(format!("{given:?} is not one JSON object")),
         };
     }
+    // A JSON string (`"EPSG:32632"`, quotes and all) is the name it holds.
+    let unquoted;
+    let trimmed = match serde_json::from_str::<String>(trimmed) {
+        Ok(name) if trimmed.starts_with('"') => {
+            unquoted = name;
+            unquoted.trim()
+        }
+        _ => trimmed,
+    };
     if trimmed.is_empty() || trimmed.chars().any(char::is_control) {
         return Err(format!(
             "{given:?} is not a name such as EPSG:32632, nor a JSON object"

@@ -249,7 +249,7 @@ fn entries(text: &[u8]) -> Result<Entries, String> {
     })
 }
 
-/// The shape as NumPy prints it, without the trailing comma of a 1-tuple: `(2)`, `(1, 3)`.
+/// The shape as NumPy prints it: `(2,)`, `(1, 3)`.
 fn shown_shape(shape: &[u64]) -> String {
     let shown: Vec<String> = shape.iter().map(u64::to_string).collect();
     match &shown[..] {

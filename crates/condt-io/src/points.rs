@@ -1030,8 +1030,8 @@ pub fn read_points_with(
         });
     }
     // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
-    // property: a Latin-1 or CP1252 export) do not matter; where a line they are on is read
-    // and found wrong, the file is refused as not UTF-8 text, at that line.
+    // property: a Latin-1 or CP1252 export) do not matter; where a field that is read holds
+    // them, the file is refused as not UTF-8 text, at that line.
     let (text, not_utf8) = lossy_text(bytes);
     let read = (|| -> Result<PointFile, IoError> {
         if let Some(columns) = &options.columns {
@@ -1162,12 +1162,17 @@ pub fn read_points_with(
             InputFormat::Npy => super::npy::parse_npy(text.as_bytes(), name).map(without_crs),
         }
     })();
-    read.map_err(|err| match err.line {
-        Some(line) if not_utf8.binary_search(&line).is_ok() => IoError {
-            kind: IoErrorKind::Content("not UTF-8 text".to_string()),
-            ..err
-        },
-        _ => err,
+    // Where the reader quotes the replaced bytes (U+FFFD), the line's problem is them; where it
+    // names another problem on such a line, that stands, with a word on the bytes.
+    read.map_err(|mut err| {
+        if let (Some(line), IoErrorKind::Content(message)) = (err.line, &mut err.kind) {
+            if message.contains('\u{fffd}') {
+                *message = "not UTF-8 text".to_string();
+            } else if not_utf8.binary_search(&line).is_ok() {
+                message.push_str(" (the line also holds bytes that are not UTF-8)");
+            }
+        }
+        err
     })
 }
 

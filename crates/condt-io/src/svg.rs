@@ -60,6 +60,7 @@ const ADDED_COLOUR: &str = "#2ca02c";
 /// Their width and opacity.
 const CHANGE_WIDTH: f64 = 6.0;
 const CHANGE_OPACITY: f64 = 0.35;
+const UNUSED_COLOUR: &str = "#d62728";
 
 /// The edges of `a` not in `b`, both sorted (a stage graph's edges are).
 fn difference(a: &[[usize; 2]], b: &[[usize; 2]]) -> Vec<[usize; 2]> {
@@ -68,7 +69,6 @@ fn difference(a: &[[usize; 2]], b: &[[usize; 2]]) -> Vec<[usize; 2]> {
         .copied()
         .collect()
 }
-const UNUSED_COLOUR: &str = "#d62728";
 
 /// The frame of the first panel for `points` (scaled so that their largest magnitude is below
 /// 2: their spans are finite): a panel of the bounding box's shape, its sides' ratio clamped to
@@ -130,9 +130,6 @@ fn columns_for(width: f64) -> usize {
     }
 }
 
-/// The size of a title of `chars` characters in a panel of `width`: [`TITLE_SIZE`], or smaller
-/// (not below [`SMALLEST_TITLE`]) where a bold character about 0.6 of the size wide would run
-/// past the panel; the drawing uses the smallest of its titles' for all.
 /// A title as one line, or where it is longer than `fit` characters two, cut at the space
 /// nearest its middle (a title without a space stays one line).
 fn title_lines(title: &str, fit: f64) -> Vec<String> {
@@ -153,6 +150,9 @@ fn title_lines(title: &str, fit: f64) -> Vec<String> {
 /// The largest title size at which two lines fit the band above a panel.
 const TWO_LINE_TITLE: f64 = 15.0;
 
+/// The size of a title of `chars` characters in a panel of `width`: [`TITLE_SIZE`], or smaller
+/// (not below [`SMALLEST_TITLE`]) where a bold character about 0.6 of the size wide would run
+/// past the panel; the drawing uses the smallest of its titles' for all.
 fn title_size(chars: usize, width: f64) -> f64 {
     let fits = ((width - 24.0) / (0.6 * chars.max(1) as f64)).floor();
     fits.clamp(SMALLEST_TITLE, TITLE_SIZE)
@@ -389,7 +389,7 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
         };
         // What the stage changed, against the panel before (from the second stage on: the
         // proximity graph is a choice among the Delaunay edges, not a change of them): the
-        // edges it removed under its own, those it added over them.
+        // edges it removed and those it added, as halos under the panel's own edges.
         let (removed, added) = if stages && panel >= 2 {
             (
                 difference(layers[panel - 1].1, edges),

@@ -271,7 +271,6 @@ fn bytes_that_are_not_utf8_matter_only_where_they_are_read() {
     for (name, bytes, line) in [
         ("field.txt", &b"0 0\n1 \xe9\n0 1\n"[..], 2),
         ("field.csv", b"x,y,n\n0,0,a\n1,0,b\n0,\xe91,c\n", 4),
-        ("name.txt", b"0 0\n1 0\n\xff\xfe\n", 3),
     ] {
         let file = TempFile::new(name, bytes);
         let (at, text) = content_error(file.read());
@@ -280,6 +279,24 @@ fn bytes_that_are_not_utf8_matter_only_where_they_are_read() {
             text.ends_with(&format!("{name}:{line}: not UTF-8 text")),
             "{text}"
         );
+    }
+    // A line wrong for another reason keeps its reason (a review: four columns beside a Latin-1
+    // comment were told "not UTF-8 text"), with a word on the bytes.
+    for (name, bytes, line, reason) in [
+        (
+            "four.txt",
+            &b"0 0\n1 0 5 6 # caf\xe9\n0 1\n"[..],
+            2,
+            "found 4",
+        ),
+        ("word.csv", b"x,y\n0,0\n1,abc,caf\xe9\n", 3, "3 fields"),
+        ("alone.txt", b"0 0\n1 0\n\xff\xfe\n", 3, "found one"),
+    ] {
+        let file = TempFile::new(name, bytes);
+        let (at, text) = content_error(file.read());
+        assert_eq!(at, Some(line), "{text}");
+        let note = "(the line also holds bytes that are not UTF-8)";
+        assert!(text.contains(reason) && text.ends_with(note), "{text}");
     }
 }
 

@@ -157,8 +157,11 @@ pub(crate) struct Smoothed {
     /// Where `positions`' zero lies in the caller's coordinates: the starting positions' corner,
     /// or the input frame's zero in `own_frame` (display only).
     pub(crate) corner: Point,
-    /// How many points moved.
+    /// How many of `positions` differ from where their point stood ([`unmoved`]).
     pub(crate) moved: usize,
+    /// How many of `in_run_frame` differ from their point's input-frame position (0 unless
+    /// `wanted`).
+    pub(crate) moved_in_run_frame: usize,
     /// Whether `positions` are in the run's own input frame ([`PassFrame`]), not the corner's.
     pub(crate) own_frame: bool,
 }
@@ -181,7 +184,7 @@ pub(crate) fn smoothed_positions(
     let relative = |p: Point| Point::new(p.x - corner.x, p.y - corner.y);
     let offset = tri.offset();
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
-    let mut moved = 0;
+    let (mut moved, mut moved_in_run_frame) = (0, 0);
     let mut in_run_frame = Vec::with_capacity(if wanted { n } else { 0 });
     // The position handed on: `relative`, or the input frame's in `own_frame`; the
     // latter is computed only then or when `wanted`, and kept in `in_run_frame`.
@@ -222,12 +225,22 @@ pub(crate) fn smoothed_positions(
                 let mid = Point::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
                 Point::new(q.x + WEIGHT * (mid.x - q.x), q.y + WEIGHT * (mid.y - q.y))
             };
-            let to = step(q, a, b);
-            // Counted where the position changes: on a straight, evenly spaced run the midpoint
-            // is the point itself.
-            moved += usize::from(to != q);
-            emit(tri.stage_to_input(to), &|| {
-                tri.stage_to_input(step(at(v), at(x), at(y)))
+            let to = tri.stage_to_input(step(q, a, b));
+            let framed =
+                (wanted || own_frame).then(|| tri.stage_to_input(step(at(v), at(x), at(y))));
+            // Counted where the position handed on changes, in the frame it is handed on in (and
+            // in the run's own frame too when `wanted`), as `keep_apart` compares them: on a
+            // straight, evenly spaced run the midpoint is the point itself.
+            let unmoved_framed = || tri.frame_point(i);
+            moved += usize::from(match framed {
+                Some(framed) if own_frame => framed != unmoved_framed(),
+                _ => to != tri.stage_to_input(q),
+            });
+            if let Some(framed) = framed.filter(|_| wanted) {
+                moved_in_run_frame += usize::from(framed != unmoved_framed());
+            }
+            emit(to, &|| {
+                framed.expect("computed where the framed position is read")
             })
         })
         .collect();
@@ -241,6 +254,7 @@ pub(crate) fn smoothed_positions(
         in_run_frame,
         corner,
         moved,
+        moved_in_run_frame,
         own_frame,
     }
 }
@@ -1065,6 +1079,28 @@ mod tests {
             .smoothing()
             .expect("a pass");
         assert_eq!(smoothing.moved, 3);
+        // A far point makes the pass work in the run's own frame (the extent is over 2^26
+        // spacings): the count is taken there too (a review found 1 counted, none moved). With
+        // one pass, the moved points are those whose stage position left their input position.
+        let mut far: Vec<Point> = (0..12)
+            .map(|k| Point::new(0.0, 0.5 + k as f64 * libm::exp2(-27.0)))
+            .collect();
+        far.push(Point::new(-1e9 - 0.3, -1e9 - 0.7));
+        let mut checked = 0;
+        for points in [&line, &bent, &far] {
+            let result = reconstruct(points, &Params::default()).unwrap();
+            let Some(smoothing) = result.smoothing().filter(|s| s.passes == 1) else {
+                continue;
+            };
+            checked += 1;
+            let left = (0..points.len())
+                .filter(|&i| result.stage_point(i) != points[i])
+                .count();
+            assert_eq!(smoothing.moved, left, "{points:?}");
+        }
+        assert!(checked >= 2, "the line and the far set take one pass");
+        let far_result = reconstruct(&far, &Params::default()).unwrap();
+        assert_eq!(far_result.smoothing().map(|s| s.passes), Some(1));
     }
 
     /// A result of short straight pieces (every point an end, or a sample whose two edges meet at

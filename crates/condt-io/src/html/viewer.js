@@ -224,7 +224,7 @@
       for (const i of grid.get(cx * cells + cy) || []) {
         const d = (sx(i) - mx) ** 2 + (sy(i) - my) ** 2;
         // Strictly nearer: of exact duplicates the first, which carries their edges.
-        if (d < bestD || (d === bestD && best >= 0 && i < best)) { bestD = d; best = i; }
+        if (d < bestD || (d === bestD && (best < 0 || i < best))) { bestD = d; best = i; }
       }
     }
     return best;

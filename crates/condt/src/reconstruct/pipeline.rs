@@ -473,15 +473,11 @@ impl Pipeline {
         );
         let (tri, moved) = if merges_more && relative_merges {
             let framed = triangulate_with(&smoothed.in_run_frame, parallel, None, Some(relative))?;
-            // Counted in the corner's frame, where a point whose step rounds to itself did
-            // not move: in the run's own frame it may have, and have gone back.
-            let moved = smoothed.moved.saturating_sub(back_in_run_frame);
+            // `keep_apart` puts back only points that moved, counted in the same frame.
+            let moved = smoothed.moved_in_run_frame - back_in_run_frame;
             (framed.with_frame_offset(run_offset), moved)
         } else {
-            (
-                relative.with_offset(smoothed.corner),
-                smoothed.moved.saturating_sub(back),
-            )
+            (relative.with_offset(smoothed.corner), smoothed.moved - back)
         };
         drop(smoothed);
         let triangulation_time = self.pass_clock.lap();
