@@ -39,6 +39,7 @@ use condt_io::{Column, Columns, InputFormat, IoErrorKind, ReadOptions};
 use convert::{as_points, io_error, library_error, points_array, shape_text};
 use numpy::ndarray::Array2;
 use numpy::{PyArray2, PyArrayMethods, PyUntypedArray};
+use params::type_name;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyInt, PyList, PyString, PyTuple};
@@ -266,14 +267,6 @@ fn read_options(
         options = options.with_columns(chosen);
     }
     Ok(options)
-}
-
-/// The name of `value`'s type, for messages.
-fn type_name(value: &Bound<'_, PyAny>) -> String {
-    value
-        .get_type()
-        .name()
-        .map_or_else(|_| "?".into(), |n| n.to_string())
 }
 
 /// ``read_points(path)``, and the file's coordinate reference system: a tuple ``(points,

@@ -396,7 +396,8 @@ default on standard output and for a name without an extension, such as /dev/nul
 triangulation and the graph after every stage that ran, side by side; a panel is shaped like the
 points' bounding box, from 1:4 to 4:1), `geojson` (.geojson: one
 LineString per curve, in the order of the txt lines, on the input's coordinates; a GeoJSON
-input's `crs` member is carried on, a GeoJSON sequence's first, or --crs names one), `html` (.html: a self-contained page to explore every stage: layers, pan
+input's `crs` member is carried on, a GeoJSON sequence's first, or --crs names one), `html`
+(.html: a self-contained page to explore every stage: layers, pan
 and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
 (those with no edge in the result: outliers).
 

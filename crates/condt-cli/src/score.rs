@@ -5,15 +5,17 @@
 //! `score` does, so benches, tests and this command agree by construction.
 //!
 //! An edge file holds one edge `i j` per line (0-based point numbers); `#` starts a comment (a
-//! line of its own or after an edge), and blank lines are skipped; its lines are split as point files' are ([`condt_io::text_lines`]: LF, CRLF or
-//! CR-only line ends, a byte-order mark at the start skipped). A name ending in `.npy` is a
+//! line of its own or after an edge), and blank lines are skipped; its lines are split as point
+//! files' are ([`condt_io::text_lines`]: LF, CRLF or CR-only line ends, a byte-order mark at the
+//! start skipped). A name ending in `.npy` is a
 //! NumPy array of shape `(m, 2)` of any integer type, as `condt reconstruct -o out.npy` writes it
 //! ([`condt_io::parse_npy_edges`]), its problems told by row. `-` reads text from standard input,
 //! for one of the three files.
 //!
 //! A malformed OUTPUT (a line that is not two integers, a point that does not exist, negative
-//! numbers included, a self-loop, a repeated edge) is scored as a failure, as the evaluation suite's scorer does, and the first
-//! problem is reported with its line; a malformed TRUTH is an error. A file that is not an edge
+//! numbers included, a self-loop, a repeated edge) is scored as a failure, as the evaluation
+//! suite's scorer does, and the first problem is reported with its line; a malformed TRUTH is
+//! an error. A file that is not an edge
 //! list at all is an error whichever it is: bytes that are not text (not UTF-8, a NUL byte, a
 //! NumPy array under another name), an `.npy` array of another dtype or shape, or text of which
 //! no line is an edge though some line holds something (an empty file, or one of comments and
@@ -48,7 +50,8 @@ Example:
 POINTS is read as `condt reconstruct` reads its INPUT, with the same --input-format and
 --columns, so that it numbers the points as the reconstruction did.
 Edge files hold one edge `i j` per line, in point numbers of POINTS (`#` starts a comment, on a
-line of its own or after an edge; blank lines are skipped); a name ending in .npy (any case) is a NumPy array of shape (m, 2) of integers
+line of its own or after an edge; blank lines are skipped); a name ending in .npy (any case)
+is a NumPy array of shape (m, 2) of integers
 (uint32 or int64 as `condt reconstruct -o out.npy` writes it, or any other width), either byte
 order. `-` reads standard input
 for one of POINTS, OUTPUT and TRUTH (POINTS as INPUT's standard input is read, an edge list as
@@ -57,7 +60,8 @@ precision, recall and F1 on the edge sets, the output edges touching a point the
 edge (outlier edges), and the largest and the root-mean-square distance of the output to the
 truth (each output edge sampled at 0, 1/4, 1/2, 3/4 and 1 of its length), over the diagonal of
 the points' bounding box. A malformed OUTPUT (a bad line among edges, a point that does not
-exist, such as -1, a self-loop, a repeated edge) scores 0 and its first problem is printed with its line
+exist, such as -1, a self-loop, a repeated edge) scores 0 and its first problem is printed
+with its line
 (row, for .npy); a malformed TRUTH is an error. A file that is not an edge list (not text, an
 array of another dtype or shape, text with lines but none of them an edge) is an error, OUTPUT
 or TRUTH; an empty file, or one of comments and blank lines only, is an empty edge list (an

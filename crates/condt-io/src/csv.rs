@@ -18,13 +18,12 @@ use std::vec::Vec;
 
 /// Names accepted for the first coordinate and for the second, compared without case.
 const X_NAMES: [&str; 4] = ["x", "lon", "lng", "longitude"];
-const Y_NAMES: [&str; 2] = ["y", "lat"];
-const Y_LONG_NAME: &str = "latitude";
+const Y_NAMES: [&str; 3] = ["y", "lat", "latitude"];
 
 /// Names of a projected pair, read where no column of the header has a name above: survey and
 /// GIS exports (`easting`, `northing`; ArcGIS's `POINT_X`, `POINT_Y`; QGIS's `xcoord`,
-/// `ycoord`; `x_coord`, `y_coord`). Second in rank, so that a table with `x,y` beside them reads as it did before
-/// they were known.
+/// `ycoord`; `x_coord`, `y_coord`). Second in rank, so that a table with `x,y` beside them
+/// reads as it did before they were known.
 const PROJECTED_X_NAMES: [&str; 4] = ["easting", "point_x", "xcoord", "x_coord"];
 const PROJECTED_Y_NAMES: [&str; 4] = ["northing", "point_y", "ycoord", "y_coord"];
 
@@ -61,9 +60,7 @@ pub(crate) fn header_axes<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<O
             })
             .collect()
     };
-    let mut y_names = Y_NAMES.to_vec();
-    y_names.push(Y_LONG_NAME);
-    let first = by(&X_NAMES, &y_names);
+    let first = by(&X_NAMES, &Y_NAMES);
     if first.iter().any(Option::is_some) {
         first
     } else {

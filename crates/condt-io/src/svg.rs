@@ -350,12 +350,25 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
             String::new()
         }
     };
-    let changed = |panel: usize| panel < 2 || layers[panel].1 != layers[panel - 1].1;
+    // What each stage changed, against the panel before (from the second stage on: the
+    // proximity graph is a choice among the Delaunay edges, not a change of them): the edges it
+    // removed and those it added, drawn as halos under the panel's own edges.
+    let changes: Vec<[Vec<[usize; 2]>; 2]> = (0..layers.len())
+        .map(|panel| {
+            if stages && panel >= 2 {
+                let (before, after) = (layers[panel - 1].1, layers[panel].1);
+                [difference(before, after), difference(after, before)]
+            } else {
+                [Vec::new(), Vec::new()]
+            }
+        })
+        .collect();
     let titles: Vec<String> = layers
         .iter()
         .enumerate()
         .map(|(panel, (title, _, _))| {
-            let unchanged = if stages && !changed(panel) {
+            let [removed, added] = &changes[panel];
+            let unchanged = if panel >= 2 && stages && removed.is_empty() && added.is_empty() {
                 " (no change)"
             } else {
                 ""
@@ -387,18 +400,8 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
             top: (panel / per_row) as f64 * (panel_height + TITLE_BAND) + TITLE_BAND,
             ..first
         };
-        // What the stage changed, against the panel before (from the second stage on: the
-        // proximity graph is a choice among the Delaunay edges, not a change of them): the
-        // edges it removed and those it added, as halos under the panel's own edges.
-        let (removed, added) = if stages && panel >= 2 {
-            (
-                difference(layers[panel - 1].1, edges),
-                difference(edges, layers[panel - 1].1),
-            )
-        } else {
-            (Vec::new(), Vec::new())
-        };
-        for (changed, halo) in [(&removed, REMOVED_COLOUR), (&added, ADDED_COLOUR)] {
+        let [removed, added] = &changes[panel];
+        for (changed, halo) in [(removed, REMOVED_COLOUR), (added, ADDED_COLOUR)] {
             if !changed.is_empty() {
                 write!(out, r#"<g stroke-opacity="{CHANGE_OPACITY}">"#)?;
                 lines(out, &f, pts, changed, halo, CHANGE_WIDTH)?;

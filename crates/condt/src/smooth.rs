@@ -229,15 +229,18 @@ pub(crate) fn smoothed_positions(
             let framed =
                 (wanted || own_frame).then(|| tri.stage_to_input(step(at(v), at(x), at(y))));
             // Counted where the position handed on changes, in the frame it is handed on in (and
-            // in the run's own frame too when `wanted`), as `keep_apart` compares them: on a
-            // straight, evenly spaced run the midpoint is the point itself.
-            let unmoved_framed = || tri.frame_point(i);
-            moved += usize::from(match framed {
-                Some(framed) if own_frame => framed != unmoved_framed(),
-                _ => to != tri.stage_to_input(q),
-            });
+            // in the run's own frame too when `wanted`), against where the point stood there
+            // ([`unmoved`]'s positions, which `keep_apart` compares with): on a straight, evenly
+            // spaced run the midpoint is the point itself.
+            let handed_on = framed.filter(|_| own_frame).unwrap_or(to);
+            let stood = if own_frame {
+                tri.frame_point(i)
+            } else {
+                tri.stage_to_input(q)
+            };
+            moved += usize::from(handed_on != stood);
             if let Some(framed) = framed.filter(|_| wanted) {
-                moved_in_run_frame += usize::from(framed != unmoved_framed());
+                moved_in_run_frame += usize::from(framed != tri.frame_point(i));
             }
             emit(to, &|| {
                 framed.expect("computed where the framed position is read")

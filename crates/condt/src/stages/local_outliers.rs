@@ -677,17 +677,11 @@ fn separated_components(
 /// the points with edges, rule 4 removes nothing (speed: on scattered points the tests are the
 /// stage's main cost, and the result is the same without them).
 fn short_components_hold_the_guard(profile: &CurveGraph, root: &[u32]) -> bool {
-    // Per root, its points with edges, counted up to the bound (a byte per point: memory).
-    let mut size = vec![0u8; root.len()];
-    let mut with_edges = 0usize;
-    for (i, &r) in root.iter().enumerate() {
-        if profile.degree(VertexId::new(i as u32)) > 0 {
-            with_edges += 1;
-            let count = &mut size[r as usize];
-            *count = (*count + 1).min(MIN_SAMPLES as u8);
-        }
-    }
-    let short: usize = size
+    let with_edges = (0..root.len())
+        .filter(|&i| profile.degree(VertexId::new(i as u32)) > 0)
+        .count();
+    let short: usize = Shapes::of(profile, root)
+        .size
         .iter()
         .filter(|&&s| usize::from(s) < MIN_SAMPLES)
         .map(|&s| usize::from(s))
