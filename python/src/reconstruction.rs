@@ -133,11 +133,7 @@ impl Reconstruction {
     #[getter]
     fn merged<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
         let tri = self.shared.result.triangulation();
-        let rows: Vec<[i64; 2]> = (0..tri.num_points())
-            .map(|i| (i, tri.input_of(tri.vertex(i))))
-            .filter(|&(i, first)| first != i)
-            .map(|(i, first)| [position(i), position(first)])
-            .collect();
+        let rows: Vec<[i64; 2]> = tri.merged().map(|pair| pair.map(position)).collect();
         index_array(py, rows)
     }
 
@@ -274,8 +270,7 @@ impl Reconstruction {
         // A duplicate is merged into its first point, whose edges the stories name (the
         // triangulation the stages walked says which that is).
         let tri = self.shared.result.triangulation();
-        let first = |k: usize| tri.input_of(tri.vertex(k));
-        let (first_a, first_b) = (first(a), first(b));
+        let (first_a, first_b) = (tri.first_at(a), tri.first_at(b));
         if first_a == first_b {
             return Err(PyValueError::new_err(format!(
                 "explain({a}, {b}): {a} and {b} are the same point (duplicates: the first is \

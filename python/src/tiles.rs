@@ -1131,7 +1131,7 @@ impl<'a> Tile<'a> {
         let mut hops = vec![usize::MAX; points.len()];
         let mut queue = VecDeque::new();
         for i in (0..points.len()).filter(|&i| owned[i]) {
-            let v = tri.input_of(tri.vertex(i));
+            let v = tri.first_at(i);
             if hops[v] == usize::MAX {
                 hops[v] = 0;
                 queue.push_back(v);

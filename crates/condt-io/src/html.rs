@@ -123,13 +123,7 @@ fn write_data(
     // edges (a duplicate shares its point's fate), for the details panel to say so.
     let tri = result.triangulation();
     write!(out, ",\"merged\":")?;
-    write_list(
-        out,
-        (0..n)
-            .map(|i| (i, tri.input_of(tri.vertex(i))))
-            .filter(|&(i, first)| first != i)
-            .flat_map(|(i, first)| [i, first]),
-    )?;
+    write_list(out, tri.merged().flatten())?;
     write!(out, ",\"edges\":")?;
     write_list(out, stories.iter().flat_map(|s| s.edge))?;
     // Per edge and end: 0 not Delaunay, 1 shortest, 2 second, k >= 3 the rank.

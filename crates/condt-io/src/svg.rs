@@ -337,9 +337,7 @@ fn draw(out: &mut dyn Write, result: &Reconstruction, input: Option<&[Point]>) -
     writeln!(out, r#"<rect width="100%" height="100%" fill="white"/>"#)?;
     let mut degree = vec![0u32; pts.len()];
     let tri = result.triangulation();
-    let representative: Vec<usize> = (0..pts.len())
-        .map(|i| tri.input_of(tri.vertex(i)))
-        .collect();
+    let representative: Vec<usize> = (0..pts.len()).map(|i| tri.first_at(i)).collect();
     // One title size for every panel (the largest at which every title fits, not below
     // SMALLEST_TITLE); a title too long for its panel even then goes on two lines, not into
     // the next panel.

@@ -127,6 +127,10 @@ fn exact_duplicates_merge_into_the_smallest_index() {
     }
     let kept: Vec<usize> = tri.distinct_points().collect();
     assert_eq!(kept, vec![0, 1, 2, 6]);
+    let first: Vec<usize> = (0..p.len()).map(|i| tri.first_at(i)).collect();
+    assert_eq!(first, map);
+    let merged: Vec<[usize; 2]> = tri.merged().collect();
+    assert_eq!(merged, vec![[3, 1], [4, 0], [5, 1]]);
 }
 
 #[test]

@@ -695,7 +695,38 @@ impl Triangulation {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn distinct_points(&self) -> impl Iterator<Item = usize> + '_ {
-        (0..self.num_points()).filter(move |&i| self.input_of(self.vertex(i)) == i)
+        (0..self.num_points()).filter(move |&i| self.first_at(i) == i)
+    }
+    /// The first input position at the same point as `index`: `index` itself unless it repeats
+    /// an earlier point. Edges and curves name a merged duplicate by this position.
+    ///
+    /// # Panics
+    /// If `index` is not an input position.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (1.0, 0.0)].map(Point::from))?;
+    /// assert_eq!((tri.first_at(1), tri.first_at(3)), (1, 1));
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    #[inline]
+    pub fn first_at(&self, index: usize) -> usize {
+        self.input_of(self.vertex(index))
+    }
+    /// Every exact duplicate as `[duplicate, first]`, its position and the first position at its
+    /// point ([`Triangulation::first_at`]), by increasing duplicate.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.0, 0.0), (0.5, 1.0), (1.0, 0.0)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// assert_eq!(tri.merged().collect::<Vec<_>>(), vec![[2, 0], [4, 1]]);
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn merged(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
+        (0..self.num_points())
+            .map(move |i| [i, self.first_at(i)])
+            .filter(|&[i, first]| first != i)
     }
     /// The real triangles as the input positions of their corners, counter-clockwise.
     ///
@@ -1269,7 +1300,7 @@ mod tests {
             assert_eq!(one.point(i).y.to_bits(), two.point(i).y.to_bits());
             assert_eq!(one.point(i), points[i]);
             // Every input maps to a vertex that maps back to it or to the first copy of it.
-            let back = one.input_of(one.vertex(i));
+            let back = one.first_at(i);
             assert!(back <= i && points[back] == points[i]);
         }
     }
