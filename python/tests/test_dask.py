@@ -244,6 +244,22 @@ def test_huge_and_tiny_coordinates_are_tiled(client, scale):
     np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
 
 
+@pytest.mark.parametrize("tiles", [9, 16])
+def test_coordinates_of_both_signs_near_the_largest_double_are_tiled_exactly(client, tiles):
+    # Curves at -1e308 and 1e308: a cut interpolated between a point on each side overflowed
+    # (``b - a`` beyond the largest double), and the rectangles missed points or overlapped.
+    rng = np.random.default_rng(1)
+    t = np.linspace(0, 2 * np.pi, 100, endpoint=False) + 1e-7 * rng.standard_normal(100)
+    circle = np.column_stack([1.7e308 * np.cos(t), 1.7e308 * np.sin(t)])
+    ring = np.column_stack([np.cos(t[:60]), np.sin(t[:60])]) * 1e306
+    rings = np.concatenate([ring + [0, -1e308], ring + [0, 1e308]])
+    for points in (circle, rings):
+        with np.errstate(all="raise"):  # no overflow on the driver either
+            tiled = condt.dask.reconstruct(points, client, tiles=tiles)
+        assert tiled.whole is None
+        np.testing.assert_array_equal(tiled.edges, one_machine(points))
+
+
 def test_cocircular_points_run_in_one_piece_with_the_same_edges(client):
     grid = np.array([(x, y) for x in range(60) for y in range(40)], dtype=float)
     tiled = condt.dask.reconstruct(grid, client, tiles=4, paper=True)

@@ -11,7 +11,7 @@ use crate::reconstruct::{Reconstruction, StageReport};
 use crate::stages::detours;
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
 use crate::stages::outliers::{iqr_thresholds, IqrRule};
-use crate::stages::proximity::{end_choice, Uniformity};
+use crate::stages::proximity::{end_choices, Uniformity};
 use crate::stages::Stage;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
@@ -196,15 +196,14 @@ impl Reconstruction {
             given if given.check().is_ok() => given,
             _ => Uniformity::default(),
         };
-        let choice = |at: usize, other: usize| {
-            end_choice(tri, tri.vertex(at), tri.vertex(other), uniformity)
-        };
+        let ends = ends_of(tri, &all, uniformity);
         let last = graphs.last().map(Vec::as_slice).unwrap_or(&[]);
         let mut stories: Vec<EdgeStory> = all
             .iter()
-            .map(|&edge| EdgeStory {
+            .zip(ends)
+            .map(|(&edge, ends)| EdgeStory {
                 edge,
-                ends: [choice(edge[0], edge[1]), choice(edge[1], edge[0])],
+                ends,
                 changes: Vec::new(),
                 kept: last.binary_search(&edge).is_ok(),
             })
@@ -243,6 +242,48 @@ impl Reconstruction {
         }
         stories
     }
+}
+
+/// How each end of each of `edges` saw it in Algorithm 1 ([`EndChoice`]), the edges at one point
+/// answered together ([`end_choices`] sorts a ring once): the ends listed point by point by a
+/// counting sort, O(n + edges), then each point's ring read once.
+fn ends_of(
+    tri: &Triangulation,
+    edges: &[[usize; 2]],
+    uniformity: Uniformity,
+) -> Vec<[EndChoice; 2]> {
+    let mut start = alloc::vec![0usize; tri.num_points() + 1];
+    for &[a, b] in edges {
+        start[a + 1] += 1;
+        start[b + 1] += 1;
+    }
+    for k in 1..start.len() {
+        start[k] += start[k - 1];
+    }
+    // Per point, the ends there: the other point and where the answer goes (edge, side).
+    let mut at_point = alloc::vec![(0usize, 0usize); 2 * edges.len()];
+    let mut next = start.clone();
+    for (k, &edge) in edges.iter().enumerate() {
+        for side in 0..2 {
+            let point = edge[side];
+            at_point[next[point]] = (edge[1 - side], 2 * k + side);
+            next[point] += 1;
+        }
+    }
+    drop(next);
+    let mut ends = alloc::vec![[EndChoice::NotDelaunay; 2]; edges.len()];
+    for point in 0..tri.num_points() {
+        let here = &at_point[start[point]..start[point + 1]];
+        if here.is_empty() {
+            continue;
+        }
+        let others = here.iter().map(|&(other, _)| tri.vertex(other));
+        let choices = end_choices(tri, tri.vertex(point), others, uniformity);
+        for (&(_, slot), choice) in here.iter().zip(choices) {
+            ends[slot / 2][slot % 2] = choice;
+        }
+    }
+    ends
 }
 
 /// The numbers one stage's reasons need, computed once per stage by the stage's own code.

@@ -646,7 +646,7 @@ def _cut(points, tiles, bbox):
         columns -= 1
     rows = tiles // columns
     top = (np.nextafter(bbox[2], np.inf), np.nextafter(bbox[3], np.inf))
-    xs = np.quantile(points[:, 0], np.linspace(0, 1, columns + 1)[1:-1])
+    xs = _inner_cuts(points[:, 0], columns)
     x_cuts = np.concatenate([[bbox[0]], xs, [top[0]]])
     rects = []
     for c in range(columns):
@@ -654,7 +654,7 @@ def _cut(points, tiles, bbox):
         inside = (points[:, 0] >= x0) & (points[:, 0] < x1)
         column = points[inside, 1]
         if len(column):
-            ys = np.quantile(column, np.linspace(0, 1, rows + 1)[1:-1])
+            ys = _inner_cuts(column, rows)
         else:
             ys = np.linspace(bbox[1], bbox[3], rows + 1)[1:-1]
         y_cuts = np.concatenate([[bbox[1]], ys, [top[1]]])
@@ -663,18 +663,32 @@ def _cut(points, tiles, bbox):
     return rects
 
 
+def _inner_cuts(values, parts):
+    """The ``parts - 1`` cuts between ``parts`` runs of about as many of ``values`` each: values
+    of the set itself, so always finite and in order. (``np.quantile`` interpolates, ``a + (b -
+    a) * t``, which overflows to infinity or NaN for values of opposite signs near 1e308: the
+    rectangles then overlapped or missed points, and edges came twice or not at all.)"""
+    ordered = np.sort(values)
+    at = (np.arange(1, parts) * (len(ordered) - 1)) // parts
+    return ordered[at]
+
+
 def _first_halo(rect, bbox):
     """A quarter of the tile's shorter side (within the bounding box): each tile is first sent
     with about twice its own points, whatever the set's scale."""
-    width = min(rect[2], bbox[2]) - max(rect[0], bbox[0])
-    height = min(rect[3], bbox[3]) - max(rect[1], bbox[1])
+    # Quarters first: a side from -1e308 to 1e308 would overflow.
+    box = [float(b) for b in bbox]
+    width = 0.25 * min(rect[2], box[2]) - 0.25 * max(rect[0], box[0])
+    height = 0.25 * min(rect[3], box[3]) - 0.25 * max(rect[1], box[1])
     side = min(width, height) if min(width, height) > 0 else max(width, height)
-    return 0.25 * side if side > 0 else 1.0
+    return side if side > 0 else 1.0
 
 
 def _known(rect, halo, bbox):
     """The rectangle whose points a tile holds: its own widened by ``halo``, a side that reaches
-    the bounding box made infinite (nothing lies beyond it)."""
+    the bounding box made infinite (nothing lies beyond it). In Python's floats, so that a side
+    beyond the largest double is an infinite one without numpy's overflow warning."""
+    halo = float(halo)
     x0, y0, x1, y1 = rect[0] - halo, rect[1] - halo, rect[2] + halo, rect[3] + halo
     return (
         -math.inf if x0 <= bbox[0] else x0,
