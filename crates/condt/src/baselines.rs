@@ -2,13 +2,16 @@
 //! Delaunay edges: [`Triangulation::nn_crust`] and [`Triangulation::crust`]. They read the finished
 //! triangulation (the Crust also triangulates a second set through the public entry), may not
 //! change a triangulation, and share no rule with the stages (or they would not be baselines).
-//! Ties between equal lengths go to the smaller vertex id; duplicates are merged as everywhere.
+//! Lengths whose rounded squares tie are ordered exactly, and only exact ties go to the smaller
+//! vertex id (which follows the insertion order, so an orientation could change them);
+//! duplicates are merged as everywhere.
 
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
 use crate::geometry::{lower_left, Point};
 use crate::graph::Graph;
 use crate::mesh::VertexId;
+use crate::predicates::compare_tied_distances;
 use crate::triangulate::{triangulate, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -69,6 +72,15 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
                 .filter(|&w| tri.is_vertex(w))
                 .map(|w| (p.dist2(tri.vertex_point(w)), w))
         };
+        // Rounded squared lengths first; a rounded tie by exact lengths, then by id (which
+        // follows the insertion order, so that only an exact tie depends on the orientation).
+        let closer = |a: &(f64, VertexId), b: &(f64, VertexId)| {
+            a.0.total_cmp(&b.0)
+                .then_with(|| {
+                    compare_tied_distances(p, tri.vertex_point(a.1), tri.vertex_point(b.1))
+                })
+                .then(a.1.cmp(&b.1))
+        };
         let Some((_, nearest)) = neighbours().min_by(closer) else {
             continue;
         };
@@ -123,10 +135,6 @@ pub(crate) fn crust_fits(tri: &Triangulation) -> Result<(), Error> {
         return Err(Error::TooManyPoints { count, limit });
     }
     Ok(())
-}
-
-fn closer(a: &(f64, VertexId), b: &(f64, VertexId)) -> core::cmp::Ordering {
-    a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
 }
 
 fn difference(a: Point, b: Point) -> Point {

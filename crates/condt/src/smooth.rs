@@ -15,7 +15,7 @@
 
 use crate::adjacency::{CurveGraph, Edge};
 use crate::error::Error;
-use crate::geometry::{lower_left, Point, Scale};
+use crate::geometry::{nearest_corner, Point, Scale};
 use crate::mesh::VertexId;
 use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::triangulate::{choose_frames, splitmix64_finalizer, Triangulation};
@@ -167,7 +167,7 @@ pub(crate) struct Smoothed {
 }
 
 /// The smoothed position of every input position for a reconstruction on `tri` followed by the
-/// pass `input`, relative to the lower left corner of `tri`'s box. Why relative: sums round by the
+/// pass `input`, relative to a corner of `tri`'s box ([`corner`]). Why relative: sums round by the
 /// magnitude of the coordinates, so after an exact translation absolute positions could change the
 /// next triangulation; differences from the corner do not (`(q + t) - (c + t)` rounds as `q - c`).
 /// Why above 90°: the suite's and the paper's sharp corners are under 60° and noise tilts edges by
@@ -276,7 +276,7 @@ pub(crate) fn unmoved(tri: &impl RunPositions, own_frame: bool) -> impl Fn(usize
     }
 }
 
-/// The frame a pass measures and moves points in: relative to the lower left corner of the box
+/// The frame a pass measures and moves points in: relative to a corner of the box ([`corner`])
 /// (exact translations give the same result), or the run's own input frame where the corner's
 /// cannot hold the set: its extent overflows (a width beyond `f64::MAX`), or it is over 2^26
 /// times the final edges' root mean square length, so that its grid (the extent times 2^-52)
@@ -309,10 +309,9 @@ impl PassFrame {
             .iter()
             .any(|&p| !tri.stage_to_input(relative(p)).is_finite());
         let at = |v: VertexId| tri.vertex_points()[v.index()];
-        let extent = tri
-            .vertex_points()
-            .iter()
-            .fold(0.0f64, |e, p| e.max(p.x - corner.x).max(p.y - corner.y));
+        let extent = tri.vertex_points().iter().fold(0.0f64, |e, p| {
+            e.max((p.x - corner.x).abs()).max((p.y - corner.y).abs())
+        });
         // Each edge's squared length over the squared extent (each difference divided first, so
         // that no quotient overflows where the extent is tiny: at most 2) in units of 2^-60,
         // summed exactly, so that neither the order of the vertices nor their ids can change
@@ -357,9 +356,12 @@ fn moving(
     (dot < 0.0).then_some([x, y])
 }
 
-/// The lower left corner of `tri`'s box (in the stages' frame), which a pass moves points from.
+/// The corner of `tri`'s box (in the stages' frame) a pass moves points from: the one nearest to a
+/// point ([`nearest_corner`]), so that a turned or mirrored set moves its points alike.
 fn corner(tri: &impl RunPositions) -> Point {
-    lower_left(tri.vertex_points().iter().copied()).unwrap_or_default()
+    let points = tri.vertex_points();
+    let in_input_order = (0..tri.len()).map(|i| points[tri.vertex(i).index()]);
+    nearest_corner(points.iter().copied(), in_input_order).unwrap_or_default()
 }
 
 /// What a smoothing pass reads of the run before it: the final curve graph and the frame the pass
@@ -766,7 +768,9 @@ mod tests {
     /// together, and put them back where the run before had them in the caller's frame, which
     /// adding the corner had already rounded together: the triangulation merged them, and which
     /// of the two kept the edges depended on the input order. Merging points now stay where they
-    /// were relative to the corner, or in the run's own frame.
+    /// were relative to the corner, or in the run's own frame. The last point, at the box's
+    /// lower left corner, was not in the fuzzer's set: the frame's corner, the lower left one
+    /// then, is now the one nearest to a point, and without it the passes stop after one.
     #[test]
     fn points_a_unit_in_the_last_place_apart_stay_apart_through_every_pass() {
         let points: Vec<Point> = [
@@ -780,6 +784,7 @@ mod tests {
             (-3.1460872992103663, -7.3780373924016995),
             (-3.039808305125197, -7.356327999125309),
             (-2.928227057701847, -7.333535525377933),
+            (-4.2310948137285935, -7.3780373924017),
         ]
         .iter()
         .map(|&p| Point::from(p))
@@ -791,8 +796,20 @@ mod tests {
         );
         let tri = result.triangulation();
         assert_eq!(tri.num_vertices(), points.len(), "no two points merged");
-        let back = edges_of_reversed(&points);
-        assert_eq!(back, result.edges().collect::<Vec<_>>());
+        let edges: Vec<[usize; 2]> = result.edges().collect();
+        assert_eq!(edges_of_reversed(&points), edges);
+        // Turned and mirrored alike: the pass's corner turns with the set, and the two corners
+        // on points (lower left and upper left) are told apart by their sums of distances.
+        let maps: [fn(Point) -> Point; 3] = [
+            |p| Point::new(-p.y, p.x),
+            |p| Point::new(-p.x, -p.y),
+            |p| Point::new(p.y, p.x),
+        ];
+        for map in maps {
+            let turned: Vec<Point> = points.iter().map(|&p| map(p)).collect();
+            let again = reconstruct(&turned, &Params::default()).unwrap();
+            assert_eq!(again.edges().collect::<Vec<_>>(), edges);
+        }
     }
 
     /// Found by a fuzzer: one point far from a fine curve put the curve's samples on the corner

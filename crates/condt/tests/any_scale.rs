@@ -199,6 +199,41 @@ fn input_points_come_back_exactly_from_the_widest_sets() {
     }
 }
 
+/// A smoothing pass hands on positions relative to a corner of the set's box, and the stages'
+/// positions add the corner back: next to `f64::MAX` that sum rounded past the largest double,
+/// and `stage_point` of a curve's end, which no pass moves, read as infinite. (Found by a
+/// fuzzer.)
+#[test]
+fn stage_points_next_to_the_largest_double_stay_finite() {
+    let points = [
+        (8.988465674311579e307, 1.7976931348623157e308),
+        (4.332386899878474e307, 1.1263929698464622e308),
+        (1.7976931348623157e308, 8.089602798306176e307),
+        (8.988465674311579e307, 8.988465674311579e307),
+    ]
+    .map(Point::from);
+    let result = reconstruct(&points, &Params::default()).unwrap();
+    assert!(result.smoothing().is_some(), "a pass ran");
+    let slack = 1e-12 * f64::MAX;
+    let within = |v: f64, of: fn(&Point) -> f64| {
+        let lowest = points.iter().map(of).fold(f64::INFINITY, f64::min);
+        let highest = points.iter().map(of).fold(f64::NEG_INFINITY, f64::max);
+        v >= lowest - slack && v <= highest
+    };
+    for (i, given) in points.iter().enumerate() {
+        let p = result.stage_point(i);
+        assert!(
+            within(p.x, |p| p.x) && within(p.y, |p| p.y),
+            "point {i}: {p:?}"
+        );
+        if result.degree(i) == 1 {
+            // A curve's end does not move: within rounding of where it was.
+            assert!((p.x - given.x).abs() <= slack, "point {i}: {p:?}");
+            assert!((p.y - given.y).abs() <= slack, "point {i}: {p:?}");
+        }
+    }
+}
+
 /// From 65,536 points crowded grid cells are ordered again, each on a grid of its own. A set
 /// narrower than about 2^-1000 made the grid's step overflow (and a set wider than `f64::MAX`
 /// made it zero): every point fell in one cell, which was ordered again the same way until the

@@ -486,3 +486,41 @@ fn gap_closings_walks_do_not_depend_on_the_orientation() {
         }
     }
 }
+
+/// A smoothing pass moves points relative to a corner of the set's box (so that an exact
+/// translation moves nothing else). It was the lower left corner, which is another corner of the
+/// set once the set is turned or mirrored: on a set spanning thirteen binary orders (four samples
+/// near 1e-9, two points near 1e5) the differences from it rounded otherwise, and turned by 90
+/// degrees the set kept another edge after three passes instead of one. The pass now measures
+/// from the corner nearest to a point, which turns with the set. (Found by a fuzzer.)
+#[test]
+fn smoothing_passes_move_a_turned_or_mirrored_wide_set_alike() {
+    let points = [
+        (-5.3360222273322554e-9, 2.269759513724122e-9),
+        (-4.648487053230975e-9, 2.7839868987332463e-10),
+        (-3.6383175721793823e-9, 2.056397070218186e-9),
+        (-7.532482263970764e-9, 5.537168895032592e-9),
+        (-82929.80549825566, -170126.21782443108),
+        (-148354.3034495399, 96581.37682343475),
+    ]
+    .map(Point::from);
+    let params = Params::default();
+    assert!(reconstruct(&points, &params).unwrap().smoothing().is_some());
+    assert_same_in_every_presentation(&points, &params, "a wide set with smoothing passes");
+}
+
+/// NN-Crust's nearest neighbour of the far point: its squared distances to two samples 6.4 apart
+/// round to the same double at 9e20, and the tie went by vertex id, so turned by 90 degrees the
+/// far point chose the other sample and gained a second edge. Rounded ties now go by the exact
+/// lengths, as in the ConDT stages. (Found by a fuzzer.)
+#[test]
+fn nn_crusts_nearest_neighbour_is_the_same_in_every_orientation() {
+    let points = [
+        (145.41952528103934, 75.62834272628928),
+        (145.27058650047377, 69.20768225501574),
+        (8.995350280335719e20, -5.9842117245093626e19),
+    ]
+    .map(Point::from);
+    let params = Params::default().with_method(condt::Method::NnCrust);
+    assert_same_in_every_presentation(&points, &params, "NN-Crust beside a far point");
+}

@@ -590,8 +590,19 @@ impl Triangulation {
     #[inline]
     pub(crate) fn input_point(&self, v: VertexId) -> Point {
         let p = self.frame_point(v);
+        // A position a smoothing pass moved, relative to the set's corner, lies within rounding
+        // of the input's range: where adding the corner back rounds past the largest double, it
+        // is the largest double (an infinite coordinate would be no position at all).
+        let shifted = |a: f64, b: f64| {
+            let sum = a + b;
+            if sum.is_finite() {
+                sum
+            } else {
+                f64::MAX.copysign(sum)
+            }
+        };
         match self.offset {
-            Some(offset) => Point::new(p.x + offset.x, p.y + offset.y),
+            Some(offset) => Point::new(shifted(p.x, offset.x), shifted(p.y, offset.y)),
             None => p,
         }
     }
