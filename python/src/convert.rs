@@ -15,7 +15,7 @@ use pyo3::exceptions::{
 };
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyBool, PyDict, PyType};
+use pyo3::types::{PyBool, PyDict, PyList, PyTuple, PyType};
 
 /// `numpy.ascontiguousarray`, looked up once.
 fn ascontiguousarray(py: Python<'_>) -> PyResult<&Bound<'_, PyAny>> {
@@ -82,6 +82,33 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
             )));
         }
         judged.push(element_type);
+    }
+    Ok(())
+}
+
+/// Refuses a bool among the numbers of a list's (or tuple's) rows: numpy makes `[[True, 0.5]]` a
+/// float64 array, reading `True` as 1, where an array of bools alone is refused by its dtype
+/// ([`check_numbers`]) and `score`'s edges refuse a bool among ints too.
+fn check_no_bools_in_rows(numpy: &Bound<'_, PyModule>, obj: &Bound<'_, PyAny>) -> PyResult<()> {
+    if !(obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>()) {
+        return Ok(());
+    }
+    let numpy_bool = numpy.getattr("bool_")?;
+    for (k, row) in obj.try_iter()?.enumerate() {
+        let row = row?;
+        if !(row.is_instance_of::<PyList>() || row.is_instance_of::<PyTuple>()) {
+            continue;
+        }
+        for value in row.try_iter()? {
+            let value = value?;
+            if value.is_instance_of::<PyBool>() || value.is_instance(&numpy_bool)? {
+                return Err(PyTypeError::new_err(format!(
+                    "points must hold numbers (integers or floats), not bool: row {k} holds {} \
+                     (numpy would read it as a number)",
+                    value.repr()?
+                )));
+            }
+        }
     }
     Ok(())
 }
@@ -165,6 +192,7 @@ pub(crate) fn points_array<'py>(
         numpy.getattr("asarray")?.call1((obj,))?
     };
     check_numbers(&numpy, &given)?;
+    check_no_bools_in_rows(&numpy, obj)?;
     let converted = match ascontiguousarray(py)?.call1((given.clone(), "float64")) {
         Ok(converted) => converted,
         // A Python int beyond float64 (`10**400`): a bad point, named, as a NaN is.

@@ -59,7 +59,8 @@ use triangulation::Triangulation;
 ///
 /// An array whose dtype is not an integer or a float (complex, bool, str, bytes, datetime64,
 /// timedelta64) is refused: numpy would convert it quietly into other numbers. What numpy makes
-/// of a list decides (``numpy.asarray``): a list of Python numbers is fine, of bools it is not.
+/// of a list decides (``numpy.asarray``): a list of Python numbers is fine, of bools it is not,
+/// and a bool among a list's numbers is refused too (numpy would read it as a number).
 /// An object array (``Decimal`` or ``Fraction`` values, which numpy leaves as objects) is
 /// converted by each value's ``float()``, unless it holds a value of one of the refused kinds.
 ///

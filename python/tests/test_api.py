@@ -256,13 +256,29 @@ def test_numbers_of_any_kind_numpy_converts_to_float_are_read():
         [[0, 0.0], [1, 0], [np.float32(1), 1], [np.int8(0), 1]],
         np.array(SQUARE, dtype=np.uint8),
         np.array(SQUARE, dtype=np.float16),
-        [[False, 0], [1, 0], [1, 1], [0, 1]],  # numpy: int64 (a bool among ints is an int)
     ]
     for points in readable:
         assert condt.reconstruct(points).edges.tolist() == expected
     for refused in ([[True, False]], np.array([[0, "1"]], dtype=object)):
         with pytest.raises(TypeError, match="numbers"):
             condt.reconstruct(refused)
+
+
+@pytest.mark.parametrize(
+    "function",
+    [condt.reconstruct, condt.triangulate, lambda p: condt.score(p, [], [])],
+    ids=["reconstruct", "triangulate", "score"],
+)
+def test_a_bool_among_a_lists_numbers_is_a_type_error(function):
+    # numpy makes an int64 or float64 array of these, reading True as 1: a mistake, not a
+    # coordinate, as a bool among score's edge positions is.
+    for points in (
+        [[False, 0], [1, 0], [1, 1], [0, 1]],
+        [(0.0, 0.0), (1.0, 0.0), [np.True_, 0.5]],
+        ([1, 0], (0.5, True), [0, 1]),
+    ):
+        with pytest.raises(TypeError, match=r"^points must hold numbers \(integers or floats\), not bool: row \d"):
+            function(points)
 
 
 @pytest.mark.parametrize(

@@ -31,7 +31,9 @@ const MAX_DEPTH: usize = 64;
 /// does an empty Point or MultiPoint (`"coordinates": []`: RFC 7946, section 3.1, allows empty
 /// geometries), while a position inside a MultiPoint must hold two coordinates. Any other geometry
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
-/// coordinates that are not numbers. Members may come in any order; strings may hold escapes
+/// coordinates that are not numbers, and an object giving a member read here (`type`,
+/// `features`, `geometries`, `geometry`, `coordinates`) twice, since JSON leaves open which one
+/// counts and readers differ. Members may come in any order; strings may hold escapes
 /// (`"Po\u0069nt"` is `"Point"`); numbers are read exactly as `str::parse` reads them.
 ///
 /// ```
@@ -471,9 +473,17 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 }
                 continue;
             }
-            if matches!(key, Key::Other | Key::Crs) || seen.contains(&key) {
+            if matches!(key, Key::Other | Key::Crs) {
                 map.next_value::<IgnoredAny>()?;
                 continue;
+            }
+            if seen.contains(&key) {
+                // JSON leaves open which of two equal names counts (RFC 8259, section 4):
+                // reading the first, as before, could read other points than the writer meant.
+                return Err(de::Error::custom(format_args!(
+                    "the member \"{}\" is given twice in one object",
+                    key.name()
+                )));
             }
             seen.push(key);
             if key == Key::Type {
@@ -550,6 +560,21 @@ enum Key {
     /// The document's coordinate reference system (kept, not applied).
     Crs,
     Other,
+}
+
+impl Key {
+    /// The member's name in a document (the members read here; `Other` has none of its own).
+    fn name(self) -> &'static str {
+        match self {
+            Key::Type => "type",
+            Key::Features => "features",
+            Key::Geometries => "geometries",
+            Key::Geometry => "geometry",
+            Key::Coordinates => "coordinates",
+            Key::Crs => "crs",
+            Key::Other => "(other)",
+        }
+    }
 }
 
 impl<'de> de::Deserialize<'de> for Key {
@@ -677,6 +702,35 @@ mod tests {
         .unwrap_err();
         assert_eq!(err.line, Some(2));
         assert!(err.to_string().contains("a position must be"), "{err}");
+    }
+
+    /// JSON leaves open which of two members of one name counts; Python's and JavaScript's
+    /// readers take the last, and this one read the first: such an object is refused, on the
+    /// line of the second.
+    #[test]
+    fn a_member_given_twice_is_refused() {
+        let texts = [
+            r#"{"type":"Feature","geometry":{"type":"Point","coordinates":[0,0]},
+                "geometry":{"type":"Point","coordinates":[1,1]}}"#,
+            r#"{"type":"Point","coordinates":[0,0],
+                "coordinates":[1,1]}"#,
+            r#"{"coordinates":[0,0],"type":"Point",
+                "type":"MultiPoint"}"#,
+        ];
+        for text in texts {
+            let err = parse_geojson(text, "twice.geojson").unwrap_err();
+            assert!(
+                err.to_string().contains("is given twice in one object"),
+                "{err}"
+            );
+            assert_eq!(err.line, Some(2), "{err}");
+        }
+        // Members not read here may repeat, as before (their values are passed over).
+        let text = r#"{"type":"Point","coordinates":[2,3],"bbox":[0,0,1,1],"bbox":[0,0,1,1]}"#;
+        assert_eq!(
+            parse_geojson(text, "ok.geojson").unwrap(),
+            vec![Point::new(2.0, 3.0)]
+        );
     }
 
     /// A position's coordinates past x and y (z, an M measure, a time: RFC 7946 3.1.1 lets a
@@ -807,9 +861,9 @@ mod tests {
             parse_geojson(text, "sorted.json").unwrap(),
             vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0)]
         );
-        // The first of two members of one name counts, as before; members of other types'
-        // names are skipped whatever they hold.
-        let text = r#"{"type":"Point","coordinates":[1,2],"coordinates":[3,4],"features":7}"#;
+        // Members of other types' names are skipped whatever they hold (two of one name are
+        // refused: `a_member_given_twice_is_refused`).
+        let text = r#"{"type":"Point","coordinates":[1,2],"features":7}"#;
         assert_eq!(
             parse_geojson(text, "d.json").unwrap(),
             vec![Point::new(1.0, 2.0)]

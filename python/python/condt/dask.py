@@ -106,9 +106,10 @@ def reconstruct(
     ``tiles`` how many rectangles to cut the plane into: an integer (numpy's too), at least 1;
     more tiles than points are as many tiles as points (``.tiles`` says how many were cut), since
     a tile beyond one per point would own nothing and only cost the driver a pass over the
-    points. ``halo`` is the margin each tile's points are first sent with, a positive finite
-    number (numpy's too; ``None``: a quarter of the tile's shorter side), grown for a tile whose
-    certificate needs more (by half, then doubled). ``params`` are ``condt.reconstruct``'s
+    points (each round sends a task per tile, and the default takes dozens of rounds: give
+    each tile tens of thousands of points). ``halo`` is the margin each tile's points are first
+    sent with, a positive finite number (numpy's too; ``None``: a quarter of the tile's shorter
+    side), grown for a tile whose certificate needs more (by half, then doubled). ``params`` are ``condt.reconstruct``'s
     keywords (every ConDT pipeline is tiled).
 
     Raises ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``tiles`` or
