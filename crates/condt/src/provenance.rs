@@ -223,9 +223,8 @@ impl Reconstruction {
             let (before, after) = (&graphs[k - 1], &graphs[k]);
             let explain = Explainer::new(self, &reports[..=k], before);
             // `all` holds every graph's edges, all three sorted: one walk along each tells which
-            // edges a stage changed, in place of two binary searches per edge and stage (the
-            // first `explain` in Python on 300,000 points along curves: 4.35-4.40 s -> 3.56-3.79 s
-            // with the default pipeline; the rest is each end's choice and the stage graphs).
+            // edges a stage changed, in place of two binary searches per edge and stage (speed:
+            // docs/perf-log.md).
             let (mut in_before, mut in_after) = (before.iter().peekable(), after.iter().peekable());
             for (story, &edge) in stories.iter_mut().zip(&all) {
                 let was = in_before.next_if_eq(&&edge).is_some();
