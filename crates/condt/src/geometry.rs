@@ -99,18 +99,15 @@ pub(crate) fn lower_left(points: impl Iterator<Item = Point>) -> Option<Point> {
 
 /// The corner of the bounding box of `points` nearest to one of them (rounded squared distances),
 /// `None` for no point. Corners tied at that (two corners on points, say) go by the sum of the
-/// squared distances to every point, added in the order of `in_order` (the same points in an
-/// order that does not follow their positions, such as the input's), then lower left, lower
-/// right, upper right and upper left. Why: differences from a corner do not change when the set
-/// moves by an exact translation, as the corner moves with it; from this corner they do not
-/// change either when the set is turned by 90 degrees or mirrored, as the box, the corners and
-/// every distance turn with it (each is the same two squares), where the lower left corner would
-/// be another corner of the set, whose differences round otherwise. Only a set that turning or
-/// mirroring maps onto itself can tie to the end.
-pub(crate) fn nearest_corner(
-    points: impl Iterator<Item = Point> + Clone,
-    in_order: impl Iterator<Item = Point> + Clone,
-) -> Option<Point> {
+/// squared distances to every point (each over the box's squared diagonal, in units of 2^-60,
+/// summed exactly: no order of the points can change it), then lower left, lower right, upper
+/// right and upper left. Why: differences from a corner do not change when the set moves by an
+/// exact translation, as the corner moves with it; from this corner they do not change either
+/// when the set is turned by 90 degrees or mirrored, as the box, the corners and every distance
+/// turn with it (each is the same two squares), where the lower left corner would be another
+/// corner of the set, whose differences round otherwise. Only a set that turning or mirroring
+/// maps onto itself, or nearly, can tie to the end.
+pub(crate) fn nearest_corner(points: impl Iterator<Item = Point> + Clone) -> Option<Point> {
     let lower = lower_left(points.clone())?;
     let upper = points
         .clone()
@@ -122,21 +119,24 @@ pub(crate) fn nearest_corner(
         Point::new(lower.x, upper.y),
     ];
     let mut nearest = [f64::INFINITY; 4];
-    for p in points {
+    for p in points.clone() {
         for (corner, best) in corners.iter().zip(&mut nearest) {
             *best = best.min(corner.dist2(p));
         }
     }
     let least = nearest.iter().copied().fold(f64::INFINITY, f64::min);
     let tied = nearest.map(|d| d == least);
-    if tied.iter().filter(|&&t| t).count() == 1 {
+    let diagonal2 = lower.dist2(upper);
+    if tied.iter().filter(|&&t| t).count() == 1 || diagonal2 <= 0.0 {
         return tied.iter().position(|&t| t).map(|k| corners[k]);
     }
-    let sums = core::array::from_fn::<f64, 4, _>(|k| match tied[k] {
-        true => in_order
+    let unit = (1u64 << 60) as f64;
+    let sums = core::array::from_fn::<u128, 4, _>(|k| match tied[k] {
+        true => points
             .clone()
-            .fold(0.0, |sum, p| sum + corners[k].dist2(p)),
-        false => f64::INFINITY,
+            .map(|p| ((corners[k].dist2(p) / diagonal2).min(1.0) * unit) as u128)
+            .sum(),
+        false => u128::MAX,
     });
     let first_least = (0..4).fold(0, |k, j| if sums[j] < sums[k] { j } else { k });
     Some(corners[first_least])

@@ -359,9 +359,7 @@ fn moving(
 /// The corner of `tri`'s box (in the stages' frame) a pass moves points from: the one nearest to a
 /// point ([`nearest_corner`]), so that a turned or mirrored set moves its points alike.
 fn corner(tri: &impl RunPositions) -> Point {
-    let points = tri.vertex_points();
-    let in_input_order = (0..tri.len()).map(|i| points[tri.vertex(i).index()]);
-    nearest_corner(points.iter().copied(), in_input_order).unwrap_or_default()
+    nearest_corner(tri.vertex_points().iter().copied()).unwrap_or_default()
 }
 
 /// What a smoothing pass reads of the run before it: the final curve graph and the frame the pass
