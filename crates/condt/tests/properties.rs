@@ -82,6 +82,31 @@ fn every_triangulation_validates() {
     quickcheck().quickcheck(prop as fn(PointSet) -> bool);
 }
 
+/// `Mesh::adjacent` (the two rings walked in turn, for speed at hubs) answers as a walk of one
+/// ring does, for every pair of vertices, on sets full of ties and duplicates and on a fan.
+#[test]
+fn adjacency_is_what_either_ring_says() {
+    fn check(points: &[Point]) {
+        let tri = triangulate(points).expect("finite input");
+        let mesh = tri.mesh();
+        let vertices: Vec<_> = tri.distinct_points().map(|i| tri.vertex(i)).collect();
+        for &a in &vertices {
+            for &b in &vertices {
+                let on_ring = mesh.neighbors(a).any(|w| w == b);
+                assert_eq!(mesh.adjacent(a, b), on_ring, "{a:?} {b:?} of {points:?}");
+            }
+        }
+    }
+    fn prop(set: PointSet) -> bool {
+        check(&set.0);
+        true
+    }
+    quickcheck().quickcheck(prop as fn(PointSet) -> bool);
+    let mut fan: Vec<Point> = (0..200).map(|k| Point::new(k as f64, 0.0)).collect();
+    fan.push(Point::new(100.5, 3.0));
+    check(&fan);
+}
+
 #[test]
 fn counts_follow_euler_with_the_hull_size() {
     fn prop(set: PointSet) -> bool {

@@ -316,6 +316,35 @@ impl Mesh {
     pub fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
         self.ring(v).map(move |e| self.dest(e))
     }
+    /// Whether an edge joins the finite vertices `a` and `b`. The two rings are walked in turn,
+    /// so the answer costs at most twice the smaller degree: a point beside thousands of samples
+    /// (a fan's hub) answers for each of them at the cost of theirs, where a walk of its own ring
+    /// for each made the stages asking quadratic there.
+    ///
+    /// ```
+    /// use condt::{triangulate, Point};
+    /// let pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)].map(Point::from);
+    /// let tri = triangulate(&pts)?;
+    /// let [a, c, e] = [0, 2, 4].map(|i| tri.vertex(i));
+    /// assert!(tri.mesh().adjacent(a, e) && tri.mesh().adjacent(e, a));
+    /// assert!(!tri.mesh().adjacent(a, c)); // the square's diagonal runs through 4
+    /// # Ok::<(), condt::Error>(())
+    /// ```
+    pub fn adjacent(&self, a: VertexId, b: VertexId) -> bool {
+        let (mut around_a, mut around_b) = (self.neighbors(a), self.neighbors(b));
+        loop {
+            match around_a.next() {
+                Some(w) if w == b => return true,
+                None => return false,
+                _ => {}
+            }
+            match around_b.next() {
+                Some(w) if w == a => return true,
+                None => return false,
+                _ => {}
+            }
+        }
+    }
     /// The vertices of the convex hull, counter-clockwise, each hull edge once (points on a hull
     /// edge included). On a collinear chain the walk goes out and back: inner vertices twice.
     ///

@@ -88,7 +88,7 @@ impl Ends<'_> {
                     && d != other
                     && straight(to_other, arm(d))
                     && self.graph.degree(d) == 2
-                    && mesh.neighbors(x).any(|w| w == d)
+                    && mesh.adjacent(x, d)
                     && one_sampling(&[a, b, c, d].map(|w| px.dist2(self.point(w))))
                     && self.straighter(c, d, x)
                     && self.straighter(d, c, x)

@@ -76,7 +76,7 @@ impl Ends<'_> {
         }
         let bends_less = |rest: f64| (wider && rest < hook) || (apex && rest < SMOOTH_COS);
         let mesh = self.tri.mesh();
-        if !mesh.neighbors(a).any(|w| w == c) {
+        if !mesh.adjacent(a, c) {
             return None;
         }
         let last_two = pa.dist2(pc).max(pc.dist2(pb));

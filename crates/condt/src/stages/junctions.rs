@@ -201,7 +201,7 @@ impl Ends<'_> {
                     && self.straighter(c, d, a)
                     && self.straighter(d, c, a)
                     && one_sampling(&sampling)
-                    && self.tri.mesh().neighbors(a).any(|w| w == d)
+                    && self.tri.mesh().adjacent(a, d)
                     && self.branch(c, c_on, &[a, d])
                     && self.branch(d, d_on, &[a, c])
                     && self.branch(a, along, &[c, d]);

@@ -227,7 +227,7 @@ impl Ends<'_> {
         len: usize,
     ) -> Option<[VertexId; MOST]> {
         let mesh = self.tri.mesh();
-        let linked = |u: VertexId, w: VertexId| mesh.neighbors(u).any(|x| x == w);
+        let linked = |u: VertexId, w: VertexId| mesh.adjacent(u, w);
         let length = |u: VertexId, w: VertexId| libm::sqrt(self.point(u).dist2(self.point(w)));
         let mut best: Option<(f64, [VertexId; MOST])> = None;
         loop {

@@ -221,7 +221,7 @@ impl Ends<'_> {
                 }
                 let passes = self.bends_into(a, b, u)
                     && self.bends_into(b, a, u)
-                    && mesh.neighbors(u).any(|w| w == b)
+                    && mesh.adjacent(u, b)
                     && self.branch(b, a, &[])
                     && self.branch(a, b, &[]);
                 if !passes {
@@ -242,7 +242,7 @@ impl Ends<'_> {
     fn apex_beside(&self, u: VertexId, x: VertexId) -> Option<Found> {
         let mesh = self.tri.mesh();
         let y = self.along(x);
-        if self.graph.degree(y) != 2 || !mesh.neighbors(u).any(|w| w == y) {
+        if self.graph.degree(y) != 2 || !mesh.adjacent(u, y) {
             return None;
         }
         // `y`'s side: the tip's sample continues it as its chord did.
