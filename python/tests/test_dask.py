@@ -258,6 +258,14 @@ def test_coordinates_of_both_signs_near_the_largest_double_are_tiled_exactly(cli
             tiled = condt.dask.reconstruct(points, client, tiles=tiles)
         assert tiled.whole is None
         np.testing.assert_array_equal(tiled.edges, one_machine(points))
+    # Two lines at x = -1e308 and 1e308: a column between them holds no point, and its rows were
+    # cut evenly from -1e308 to 1e308, which overflowed. Every point is owned once.
+    lines = np.column_stack([np.repeat([-1e308, 1e308], 50), np.tile(t[:50] - 1.5, 2) * 1e308])
+    bbox = np.concatenate([lines.min(axis=0), lines.max(axis=0)])
+    with np.errstate(all="raise"):
+        rects = condt.dask._cut(lines, tiles, bbox)
+        owned = sum(condt.dask._inside(lines, rect, False).astype(int) for rect in rects)
+    assert np.isfinite(rects).all() and (owned == 1).all()
 
 
 def test_cocircular_points_run_in_one_piece_with_the_same_edges(client):
@@ -655,6 +663,11 @@ def test_more_tiles_than_points_are_one_tile_per_point(client):
         tiled = condt.dask.reconstruct(points, client, tiles=tiles, paper=True)
         assert tiled.whole is None and tiled.tiles == len(points), tiles
         np.testing.assert_array_equal(tiled.edges, expected)
+    # Each tile owns one point (the cuts once rounded down, leaving every other tile empty).
+    bbox = np.concatenate([points.min(axis=0), points.max(axis=0)])
+    rects = condt.dask._cut(points, len(points), bbox)
+    owned = [int(condt.dask._inside(points, rect, False).sum()) for rect in rects]
+    assert owned == [1] * len(points)
 
 
 def test_tiles_and_halo_are_read_as_condt_reconstruct_reads_its_keywords(client):

@@ -31,9 +31,10 @@ const MAX_DEPTH: usize = 64;
 /// does an empty Point or MultiPoint (`"coordinates": []`: RFC 7946, section 3.1, allows empty
 /// geometries), while a position inside a MultiPoint must hold two coordinates. Any other geometry
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
-/// coordinates that are not numbers, and an object giving a member read here (`type`,
-/// `features`, `geometries`, `geometry`, `coordinates`) twice, since JSON leaves open which one
-/// counts and readers differ. Members may come in any order; strings may hold escapes
+/// coordinates that are not numbers, and an object giving one of the members `type`,
+/// `features`, `geometries`, `geometry` or `coordinates` twice, whether or not its type reads it,
+/// since JSON leaves open which one counts and readers differ (a second top-level `crs` is
+/// passed over, as [`parse_geojson_with_crs`] says). Members may come in any order; strings may hold escapes
 /// (`"Po\u0069nt"` is `"Point"`); numbers are read exactly as `str::parse` reads them.
 ///
 /// ```

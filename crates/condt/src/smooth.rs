@@ -412,7 +412,11 @@ impl PassInput {
 pub enum GatheredPass {
     /// No pass follows: the run's edges are the reconstruction's.
     Done,
-    /// A pass follows: the next run reconstructs these points, one per input position.
+    /// A pass follows: the next run reconstructs these points, one per input position. They are
+    /// the moved positions relative to a corner of the set's box (the one nearest to a point,
+    /// so that they turn with the set; the lower left one before 2026-12-06), or in the run's
+    /// own frame where that corner cannot hold the set: a translation of where the points
+    /// moved, so they may be negative. The edges, in input positions, are what counts.
     Next(Vec<Point>),
     /// The moved points (or those the pass would move) span more binary orders of magnitude than
     /// the fast predicates take (a *wide* set, `docs/predicates.md`), where the pipeline lets its

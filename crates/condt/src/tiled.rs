@@ -201,7 +201,7 @@ pub fn clump_tests(
     Ok((0..tri.num_points())
         .map(|position| {
             let v = tri.vertex(position);
-            if !at(position) || tri.input_of(v) != position || curve.degree(v) == 0 {
+            if !at(position) || tri.first_at(position) != position || curve.degree(v) == 0 {
                 return 0; // a merged duplicate is tested at its vertex's own position
             }
             let (smooth, turn) = if curve.degree(v) == 2 {

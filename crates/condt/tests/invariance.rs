@@ -489,7 +489,7 @@ fn gap_closings_walks_do_not_depend_on_the_orientation() {
 
 /// A smoothing pass moves points relative to a corner of the set's box (so that an exact
 /// translation moves nothing else). It was the lower left corner, which is another corner of the
-/// set once the set is turned or mirrored: on a set spanning thirteen binary orders (four samples
+/// set once the set is turned or mirrored: on a set spanning thirteen decimal orders (four samples
 /// near 1e-9, two points near 1e5) the differences from it rounded otherwise, and turned by 90
 /// degrees the set kept another edge after three passes instead of one. The pass now measures
 /// from the corner nearest to a point, which turns with the set. (Found by a fuzzer.)

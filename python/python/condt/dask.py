@@ -646,7 +646,8 @@ def _cut(points, tiles, bbox):
     while tiles % columns:
         columns -= 1
     rows = tiles // columns
-    top = (np.nextafter(bbox[2], np.inf), np.nextafter(bbox[3], np.inf))
+    # Python's `nextafter`: numpy's warns of an overflow above the largest double.
+    top = (math.nextafter(float(bbox[2]), math.inf), math.nextafter(float(bbox[3]), math.inf))
     xs = _inner_cuts(points[:, 0], columns)
     x_cuts = np.concatenate([[bbox[0]], xs, [top[0]]])
     rects = []
@@ -657,7 +658,7 @@ def _cut(points, tiles, bbox):
         if len(column):
             ys = _inner_cuts(column, rows)
         else:
-            ys = np.linspace(bbox[1], bbox[3], rows + 1)[1:-1]
+            ys = np.full(rows - 1, bbox[1])  # no point to share: empty rows, no overflow
         y_cuts = np.concatenate([[bbox[1]], ys, [top[1]]])
         for r in range(rows):
             rects.append((float(x0), float(y_cuts[r]), float(x1), float(y_cuts[r + 1])))
@@ -670,7 +671,8 @@ def _inner_cuts(values, parts):
     a) * t``, which overflows to infinity or NaN for values of opposite signs near 1e308: the
     rectangles then overlapped or missed points, and edges came twice or not at all.)"""
     ordered = np.sort(values)
-    at = (np.arange(1, parts) * (len(ordered) - 1)) // parts
+    # Run k begins at value k * len / parts: as many runs as values own one each.
+    at = (np.arange(1, parts) * len(ordered)) // parts
     return ordered[at]
 
 

@@ -319,7 +319,8 @@ impl Mesh {
     /// Whether an edge joins the finite vertices `a` and `b`. The two rings are walked in turn,
     /// so the answer costs at most twice the smaller degree: a point beside thousands of samples
     /// (a fan's hub) answers for each of them at the cost of theirs, where a walk of its own ring
-    /// for each made the stages asking quadratic there.
+    /// for each made the stages asking quadratic there. `false`, not a panic, for the infinite
+    /// vertex or an id beyond the mesh, as [`Mesh::neighbors`] has no neighbour for them.
     ///
     /// ```
     /// use condt::{triangulate, Point};

@@ -166,7 +166,7 @@ fn keep(
 /// [`kept_neighbors`] reads it (evidence for [`crate::Reconstruction::provenance`]). The ring is
 /// sorted once for all of `others`: O((d + k) log d) for `k` edges at a vertex of degree `d`,
 /// where a walk of the ring per edge was quadratic at the hub of a fan (a point beside a long
-/// line of samples: 7 s for 40,000).
+/// line of samples: docs/perf-log.md).
 pub(crate) fn end_choices(
     tri: &Triangulation,
     v: VertexId,
