@@ -108,10 +108,13 @@ pub(crate) fn lower_left(points: impl Iterator<Item = Point>) -> Option<Point> {
 /// corner of the set, whose differences round otherwise. Only a set that turning or mirroring
 /// maps onto itself, or nearly, can tie to the end.
 pub(crate) fn nearest_corner(points: impl Iterator<Item = Point> + Clone) -> Option<Point> {
-    let lower = lower_left(points.clone())?;
-    let upper = points
-        .clone()
-        .reduce(|c, p| Point::new(c.x.max(p.x), c.y.max(p.y)))?;
+    let [lower, upper] = points.clone().fold(None, |box_, p: Point| {
+        let [lower, upper] = box_.unwrap_or([p, p]);
+        Some([
+            Point::new(lower.x.min(p.x), lower.y.min(p.y)),
+            Point::new(upper.x.max(p.x), upper.y.max(p.y)),
+        ])
+    })?;
     let corners = [
         lower,
         Point::new(upper.x, lower.y),

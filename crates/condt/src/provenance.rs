@@ -271,13 +271,14 @@ fn ends_of(
     }
     drop(next);
     let mut ends = alloc::vec![[EndChoice::NotDelaunay; 2]; edges.len()];
+    let mut ring = Vec::new();
     for point in 0..tri.num_points() {
         let here = &at_point[start[point]..start[point + 1]];
         if here.is_empty() {
             continue;
         }
         let others = here.iter().map(|&(other, _)| tri.vertex(other));
-        let choices = end_choices(tri, tri.vertex(point), others, uniformity);
+        let choices = end_choices(tri, tri.vertex(point), others, uniformity, &mut ring);
         for (&(_, slot), choice) in here.iter().zip(choices) {
             ends[slot / 2][slot % 2] = choice;
         }

@@ -164,27 +164,34 @@ fn keep(
 
 /// How vertex `v` saw its edge to each of `others` in Algorithm 1, read off its ring as
 /// [`kept_neighbors`] reads it (evidence for [`crate::Reconstruction::provenance`]). The ring is
-/// sorted once for all of `others`: O((d + k) log d) for `k` edges at a vertex of degree `d`,
-/// where a walk of the ring per edge was quadratic at the hub of a fan (a point beside a long
-/// line of samples: docs/perf-log.md).
-pub(crate) fn end_choices(
-    tri: &Triangulation,
+/// sorted once for all of `others`, into `ring` (the caller's buffer, kept from vertex to
+/// vertex), and each edge's rank found there by a binary search: O((d + k) log d) for `k` edges
+/// at a vertex of degree `d`, where a walk of the ring per edge was quadratic at the hub of a
+/// fan (a point beside a long line of samples: docs/perf-log.md).
+pub(crate) fn end_choices<'a>(
+    tri: &'a Triangulation,
     v: VertexId,
-    others: impl IntoIterator<Item = VertexId>,
+    others: impl IntoIterator<Item = VertexId> + 'a,
     uniformity: Uniformity,
-) -> impl Iterator<Item = EndChoice> {
+    ring: &'a mut Vec<(f64, VertexId)>,
+) -> impl Iterator<Item = EndChoice> + 'a {
     let p = tri.vertex_point(v);
-    let mut ring: Vec<(f64, VertexId)> = tri
-        .mesh()
-        .neighbors(v)
-        .map(|u| (p.dist2(tri.vertex_point(u)), u))
-        .collect();
+    let key = move |u: VertexId| (p.dist2(tri.vertex_point(u)), u);
+    ring.clear();
+    ring.extend(tri.mesh().neighbors(v).map(key));
     // The stage's order ([`TwoBest::offer`]): squared length, exact length on a tie, then id.
-    ring.sort_unstable_by(|a, b| {
+    // A vertex is itself first: the search below meets its own entry, whose tie the exact
+    // comparison would otherwise settle at length (big integers, where the square rounds).
+    let order = move |a: &(f64, VertexId), b: &(f64, VertexId)| {
+        if a.1 == b.1 {
+            return Ordering::Equal;
+        }
         a.0.partial_cmp(&b.0)
             .filter(|order| order.is_ne())
             .unwrap_or_else(|| closer(tri, v, a.1, b.1).then(a.1.cmp(&b.1)))
-    });
+    };
+    ring.sort_unstable_by(order);
+    let ring = &*ring;
     let second = ring.get(1).map(|&(length2, w)| {
         let (l1, l2) = (libm::sqrt(ring[0].0), libm::sqrt(length2));
         let bound = match uniformity {
@@ -205,16 +212,11 @@ pub(crate) fn end_choices(
         };
         EndChoice::Second { ratio, bound, kept }
     });
-    let mut rank_of: Vec<(VertexId, usize)> = ring
-        .iter()
-        .enumerate()
-        .map(|(k, &(_, w))| (w, k + 1))
-        .collect();
-    rank_of.sort_unstable();
+    // The order is total (ids differ), so only `w` itself matches its key.
     others.into_iter().map(
-        move |w| match rank_of.binary_search_by_key(&w, |&(u, _)| u) {
+        move |w| match ring.binary_search_by(|probe| order(probe, &key(w))) {
             Err(_) => EndChoice::NotDelaunay,
-            Ok(at) => match (rank_of[at].1, second) {
+            Ok(at) => match (at + 1, second) {
                 (1, _) => EndChoice::Shortest,
                 (2, Some(second)) => second,
                 (rank, _) => EndChoice::Later { rank },
@@ -646,8 +648,10 @@ mod tests {
                     .map(VertexId::new)
                     .find(|&u| u != v && !ring.contains(&u));
                 let asked: Vec<VertexId> = ring.iter().copied().chain(off).collect();
+                let mut buffer = Vec::new();
+                let fixed = Uniformity::Fixed(2.75);
                 let choices: Vec<EndChoice> =
-                    end_choices(&tri, v, asked.iter().copied(), Uniformity::Fixed(2.75)).collect();
+                    end_choices(&tri, v, asked.iter().copied(), fixed, &mut buffer).collect();
                 assert_eq!(choices.len(), asked.len());
                 for (&w, choice) in asked.iter().zip(choices) {
                     if !ring.contains(&w) {
