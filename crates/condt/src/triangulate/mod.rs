@@ -222,7 +222,7 @@ fn construct(
             return (order, sorted, built);
         }
     }
-    let order = spatial_order(points, frames, points.len());
+    let order = spatial_order(points, frames);
     construct_in_order(points, frames, order, progress)
 }
 
@@ -281,7 +281,7 @@ fn cut_order(
         for (slot, &i) in gathered.iter_mut().zip(&members) {
             *slot = points[i as usize];
         }
-        spatial_order_into(gathered, frames, n, order, &mut scratch);
+        spatial_order_into(gathered, frames, order, &mut scratch);
         for slot in order.iter_mut() {
             *slot = members[*slot as usize];
         }
@@ -329,7 +329,7 @@ fn insertion_order(
             cut_order(points, frames, &cut, parallel, false, Default::default()).0,
             Some(cut.left_len()),
         ),
-        None => (spatial_order(points, frames, points.len()), None),
+        None => (spatial_order(points, frames), None),
     }
 }
 
@@ -370,11 +370,11 @@ fn halves_have_triangles(points: &[Point], frames: &scale::Frames, cut: &halves:
     false
 }
 
-/// The spatial insertion order of `points` in one piece, a set of `whole` points or part of one.
-fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<u32> {
+/// The spatial insertion order of `points` in one piece (a whole set or a half of one).
+fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
     let mut scratch = order::Scratch::default();
     let mut order = alloc::vec![0; points.len()];
-    spatial_order_into(points, frames, whole, &mut order, &mut scratch);
+    spatial_order_into(points, frames, &mut order, &mut scratch);
     order
 }
 
@@ -382,11 +382,9 @@ fn spatial_order(points: &[Point], frames: &scale::Frames, whole: usize) -> Vec<
 fn spatial_order_into(
     points: &[Point],
     frames: &scale::Frames,
-    whole: usize,
     order: &mut [u32],
     scratch: &mut order::Scratch,
 ) {
-    let reorder_crowded = whole >= order::REORDER_FROM;
     if frames.wide {
         // Wide sets: a logarithmic grid (on a linear one, most points share one cell).
         let smallest = order::smallest_magnitude(points);
@@ -399,9 +397,9 @@ fn spatial_order_into(
                 )
             })
             .collect();
-        order::insertion_order_into(&warped, reorder_crowded, order, scratch);
+        order::insertion_order_into(&warped, order, scratch);
     } else {
-        order::insertion_order_into(points, reorder_crowded, order, scratch);
+        order::insertion_order_into(points, order, scratch);
     }
 }
 

@@ -141,14 +141,9 @@ impl Scratch {
 }
 
 /// Writes into `order` (as long as `points`) the order in which to insert `points`, as indices
-/// into it, sorting in `scratch`; with `reorder_crowded`, a grid cell of [`CROWDED_CELL`] points
-/// or more gets an order of its own (see there).
-pub(crate) fn insertion_order_into(
-    points: &[Point],
-    reorder_crowded: bool,
-    order: &mut [u32],
-    scratch: &mut Scratch,
-) {
+/// into it, sorting in `scratch`; a grid cell of [`CROWDED_CELL`] points or more gets an order of
+/// its own (see there).
+pub(crate) fn insertion_order_into(points: &[Point], order: &mut [u32], scratch: &mut Scratch) {
     let n = points.len();
     debug_assert_eq!(order.len(), n);
     let (mut min_x, mut min_y) = (f64::INFINITY, f64::INFINITY);
@@ -174,7 +169,7 @@ pub(crate) fn insertion_order_into(
         // every point would land in one cell, and a crowded cell would be ordered again, the same
         // way, without end. The same grid on a copy brought into range by a power of two.
         let copy = within_range(points, span, (min_x, min_y));
-        return insertion_order_into(&copy, reorder_crowded, order, scratch);
+        return insertion_order_into(&copy, order, scratch);
     }
     let size_bits = usize::BITS - n.leading_zeros();
     // Round r (0 = first) holds about n / g^(rounds - r) points, g = 2^ROUND_GROWTH_BITS: a point
@@ -211,7 +206,7 @@ pub(crate) fn insertion_order_into(
         for_each_run(
             packed,
             |w| w >> index_bits,
-            |run| order_cell(points, &mut order[run], reorder_crowded),
+            |run| order_cell(points, &mut order[run]),
         );
     } else {
         let mut keyed: Vec<(u64, u32)> = points
@@ -226,7 +221,7 @@ pub(crate) fn insertion_order_into(
         for_each_run(
             &keyed,
             |&(key, _)| key,
-            |run| order_cell(points, &mut order[run], reorder_crowded),
+            |run| order_cell(points, &mut order[run]),
         );
     }
 }
@@ -251,26 +246,23 @@ fn within_range(points: &[Point], span: f64, min: (f64, f64)) -> Vec<Point> {
     }
 }
 
-/// The sets (whole, before a cut) from which crowded cells are reordered: below it a crowded
-/// cell costs little, and smaller sets (every shipped data set) keep their cocircular choices.
-pub(crate) const REORDER_FROM: usize = 1 << 16;
-
-/// In a set of [`REORDER_FROM`] points or more, a grid cell this full (a dense cluster, far points
-/// having stretched the box) is ordered like a set of its own instead of by coordinates, which
-/// would make each walk cross much of it (`docs/triangulation.md`, "Crowded cells").
+/// A grid cell this full (a dense cluster, far points having stretched the box) is ordered like a
+/// set of its own instead of by coordinates, which would make each walk cross much of it
+/// (`docs/triangulation.md`, "Crowded cells"): a circle of 64,000 points and one point at 1e4
+/// took 2.0 s to triangulate that way, against 0.05 s.
 const CROWDED_CELL: usize = 1 << 10;
 
-/// Orders the points `run` sharing one grid cell: a crowded one (with `reorder_crowded`) by
-/// [`insertion_order_into`] on them alone, any other by coordinates, never by input position.
-fn order_cell(points: &[Point], run: &mut [u32], reorder_crowded: bool) {
+/// Orders the points `run` sharing one grid cell: a crowded one by [`insertion_order_into`] on
+/// them alone, any other by coordinates, never by input position.
+fn order_cell(points: &[Point], run: &mut [u32]) {
     let position = |i: &u32| points[*i as usize];
-    if reorder_crowded && run.len() >= CROWDED_CELL {
+    if run.len() >= CROWDED_CELL {
         let cell: Vec<Point> = run.iter().map(position).collect();
         // Each call's grid spans its own points, whose extremes along the wider axis land in
         // different cells: every level of this recursion splits its set.
         if cell.iter().any(|p| p.lexicographic_cmp(cell[0]).is_ne()) {
             let mut local = alloc::vec![0; cell.len()];
-            insertion_order_into(&cell, true, &mut local, &mut Scratch::default());
+            insertion_order_into(&cell, &mut local, &mut Scratch::default());
             let ordered: Vec<u32> = local.iter().map(|&k| run[k as usize]).collect();
             run.copy_from_slice(&ordered);
             return;
@@ -341,9 +333,9 @@ mod tests {
     use super::*;
 
     /// [`insertion_order_into`] into a new list.
-    fn insertion_order(points: &[Point], reorder_crowded: bool) -> Vec<u32> {
+    fn insertion_order(points: &[Point]) -> Vec<u32> {
         let mut order = alloc::vec![0; points.len()];
-        insertion_order_into(points, reorder_crowded, &mut order, &mut Scratch::default());
+        insertion_order_into(points, &mut order, &mut Scratch::default());
         order
     }
 
@@ -428,12 +420,12 @@ mod tests {
         let pts: Vec<Point> = (0..200)
             .map(|i| Point::new((i * 37 % 101) as f64, (i * 53 % 97) as f64))
             .collect();
-        let order = insertion_order(&pts, false);
+        let order = insertion_order(&pts);
         let mut seen = order.clone();
         seen.sort_unstable();
         assert!(seen.iter().enumerate().all(|(i, &j)| i as u32 == j));
         let reversed: Vec<Point> = pts.iter().rev().copied().collect();
-        let order_rev = insertion_order(&reversed, false);
+        let order_rev = insertion_order(&reversed);
         let a: Vec<Point> = order.iter().map(|&i| pts[i as usize]).collect();
         let b: Vec<Point> = order_rev.iter().map(|&i| reversed[i as usize]).collect();
         assert_eq!(a, b);
@@ -448,13 +440,12 @@ mod tests {
             .sum()
     }
 
-    /// A large set whose box one far point stretches: its cluster shares one grid cell, and is
-    /// ordered as a set of its own (a short path through it), not by coordinates (where every
-    /// step jumps across the cluster in y). Below `REORDER_FROM` points the coordinate order
-    /// stays, so smaller sets keep the order they had.
+    /// A set whose box one far point stretches: its cluster shares one grid cell, and is ordered
+    /// as a set of its own (a short path through it), not by coordinates (where every step jumps
+    /// across the cluster in y). Sets of any size: a small one paid the coordinate order too.
     #[test]
-    fn a_crowded_cell_of_a_large_set_gets_a_spatial_order() {
-        let n = REORDER_FROM + 1000;
+    fn a_crowded_cell_gets_a_spatial_order() {
+        let n = 4 * CROWDED_CELL;
         let mut points: Vec<Point> = (0..n as u64)
             .map(|k| {
                 let (a, b) = (mix(2 * k), mix(2 * k + 1));
@@ -465,7 +456,7 @@ mod tests {
             })
             .collect();
         points.push(Point::new(1e7, 1e7));
-        let order = insertion_order(&points, true);
+        let order = insertion_order(&points);
         let mut seen = order.clone();
         seen.sort_unstable();
         assert!(seen.iter().enumerate().all(|(i, &j)| i as u32 == j));
@@ -478,19 +469,9 @@ mod tests {
         // rounds a little more); the coordinate order about n / 3.
         let length = path_length(&points, &cluster);
         assert!(length < 4.0 * libm::sqrt(n as f64), "path {length}");
-        // The same set below the size keeps coordinate order in the crowded cell (split only
-        // between the BRIO rounds of the few finest cells it covers): a long path.
-        let unordered = insertion_order(&points, false);
-        let cluster: Vec<u32> = unordered
-            .iter()
-            .copied()
-            .filter(|&i| (i as usize) < n)
-            .collect();
-        let length = path_length(&points, &cluster);
-        assert!(length > n as f64 / 20.0, "path {length}");
         // Input order does not matter.
         let reversed: Vec<Point> = points.iter().rev().copied().collect();
-        let order_rev = insertion_order(&reversed, true);
+        let order_rev = insertion_order(&reversed);
         let a: Vec<Point> = order.iter().map(|&i| points[i as usize]).collect();
         let b: Vec<Point> = order_rev.iter().map(|&i| reversed[i as usize]).collect();
         assert_eq!(a, b);
