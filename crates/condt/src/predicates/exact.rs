@@ -12,29 +12,34 @@ use core::cmp::Ordering;
 /// addition's carry never needs a check against the end.
 const LIMBS: usize = 134;
 
-/// A signed integer of at most `64 · LIMBS` bits, as sign and magnitude.
+/// Limbs for [`compare_distances`] when its coordinates span at most 191 bits in units of their
+/// smallest exponent (every set whose magnitudes lie within about 2^138 of each other): a value
+/// of 80 bytes instead of about 1 KB, copied by every operation.
+const SMALL_LIMBS: usize = 8;
+
+/// A signed integer of at most `64 · L` bits, as sign and magnitude.
 #[derive(Clone, Copy)]
-struct Int {
+struct Int<const L: usize = LIMBS> {
     negative: bool,
     /// Limbs in use, least significant first; `limbs[len - 1] != 0` unless `len == 0` (zero).
     len: usize,
-    limbs: [u64; LIMBS],
+    limbs: [u64; L],
 }
 
-impl Int {
-    const ZERO: Int = Int {
+impl<const L: usize> Int<L> {
+    const ZERO: Int<L> = Int {
         negative: false,
         len: 0,
-        limbs: [0; LIMBS],
+        limbs: [0; L],
     };
 
     /// `x / 2^e0` as an integer; `e0` must be at most the exponent of `x`'s last set bit.
-    fn from_f64(x: f64, e0: i32) -> Int {
+    fn from_f64(x: f64, e0: i32) -> Int<L> {
         let Some((negative, mantissa, exponent)) = decompose(x) else {
             return Int::ZERO;
         };
         let shift = (exponent - e0) as usize;
-        debug_assert!(exponent >= e0 && shift + 53 <= 64 * (LIMBS - 1));
+        debug_assert!(exponent >= e0 && shift + 53 <= 64 * (L - 1));
         let mut out = Int::ZERO;
         let (word, bit) = (shift / 64, shift % 64);
         out.limbs[word] = mantissa << bit;
@@ -67,14 +72,14 @@ impl Int {
         }
     }
 
-    fn negated(mut self) -> Int {
+    fn negated(mut self) -> Int<L> {
         self.negative = !self.negative && self.len > 0;
         self
     }
 
-    fn add(&self, other: &Int) -> Int {
+    fn add(&self, other: &Int<L>) -> Int<L> {
         if self.negative == other.negative {
-            let mut sum = add_magnitudes(self.magnitude(), other.magnitude());
+            let mut sum = add_magnitudes::<L>(self.magnitude(), other.magnitude());
             sum.negative = self.negative && sum.len > 0;
             return sum;
         }
@@ -83,20 +88,20 @@ impl Int {
             Ordering::Greater => (self, other),
             Ordering::Less => (other, self),
         };
-        let mut difference = subtract_magnitudes(large.magnitude(), small.magnitude());
+        let mut difference = subtract_magnitudes::<L>(large.magnitude(), small.magnitude());
         difference.negative = large.negative;
         difference
     }
 
-    fn sub(&self, other: &Int) -> Int {
+    fn sub(&self, other: &Int<L>) -> Int<L> {
         self.add(&other.negated())
     }
-    fn mul(&self, other: &Int) -> Int {
+    fn mul(&self, other: &Int<L>) -> Int<L> {
         let (a, b) = (self.magnitude(), other.magnitude());
         if a.is_empty() || b.is_empty() {
             return Int::ZERO;
         }
-        debug_assert!(a.len() + b.len() <= LIMBS);
+        debug_assert!(a.len() + b.len() <= L);
         let mut out = Int::ZERO;
         for (i, &x) in a.iter().enumerate() {
             let mut carry = 0u64;
@@ -135,7 +140,7 @@ fn decompose(x: f64) -> Option<(bool, u64, i32)> {
 
 /// The points' coordinates as integers in units of `2^e0`, `e0` the exponent of the last set bit
 /// of the least precise one (zero when all are zero): each is an integer multiple of `2^e0`.
-fn integers<const N: usize>(points: [[f64; 2]; N]) -> [[Int; 2]; N] {
+fn integers<const N: usize, const L: usize>(points: [[f64; 2]; N]) -> [[Int<L>; 2]; N] {
     let exponents = points.as_flattened().iter().filter_map(|&c| decompose(c));
     let e0 = exponents.map(|(_, _, e)| e).min().unwrap_or(0);
     points.map(|p| p.map(|c| Int::from_f64(c, e0)))
@@ -147,7 +152,7 @@ fn compare_magnitudes(a: &[u64], b: &[u64]) -> Ordering {
         .then_with(|| a.iter().rev().cmp(b.iter().rev()))
 }
 
-fn add_magnitudes(a: &[u64], b: &[u64]) -> Int {
+fn add_magnitudes<const L: usize>(a: &[u64], b: &[u64]) -> Int<L> {
     let (long, short) = if a.len() >= b.len() { (a, b) } else { (b, a) };
     let mut out = Int::ZERO;
     let mut carry = false;
@@ -165,7 +170,7 @@ fn add_magnitudes(a: &[u64], b: &[u64]) -> Int {
 }
 
 /// `a - b` for `a >= b`.
-fn subtract_magnitudes(a: &[u64], b: &[u64]) -> Int {
+fn subtract_magnitudes<const L: usize>(a: &[u64], b: &[u64]) -> Int<L> {
     let mut out = Int::ZERO;
     let mut borrow = false;
     for (i, &x) in a.iter().enumerate() {
@@ -183,7 +188,7 @@ fn subtract_magnitudes(a: &[u64], b: &[u64]) -> Int {
 
 /// The exact orientation sign: `Greater` when `a, b, c` turn counter-clockwise.
 pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
-    let [[ax, ay], [bx, by], [cx, cy]] = integers([a, b, c]);
+    let [[ax, ay], [bx, by], [cx, cy]] = integers::<3, LIMBS>([a, b, c]);
     let (acx, acy) = (ax.sub(&cx), ay.sub(&cy));
     let (bcx, bcy) = (bx.sub(&cx), by.sub(&cy));
     acx.mul(&bcy).sub(&acy.mul(&bcx)).signum()
@@ -192,7 +197,7 @@ pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
 /// The exact in-circle sign: `Greater` when `d` is strictly inside the circle through the
 /// counter-clockwise `a, b, c`, `Equal` when the four are cocircular.
 pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
-    let [a, b, c, [dx, dy]] = integers([a, b, c, d]);
+    let [a, b, c, [dx, dy]] = integers::<4, LIMBS>([a, b, c, d]);
     let relative = |[x, y]: [Int; 2]| (x.sub(&dx), y.sub(&dy));
     let ((adx, ady), (bdx, bdy), (cdx, cdy)) = (relative(a), relative(b), relative(c));
     let lift = |x: &Int, y: &Int| x.mul(x).add(&y.mul(y));
@@ -209,19 +214,42 @@ pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2])
 
 /// The exact sign of the dot product `(a - b) · (c - d)`.
 pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
-    let [[ax, ay], [bx, by], [cx, cy], [dx, dy]] = integers([a, b, c, d]);
+    let [[ax, ay], [bx, by], [cx, cy], [dx, dy]] = integers::<4, LIMBS>([a, b, c, d]);
     let (ux, uy, vx, vy) = (ax.sub(&bx), ay.sub(&by), cx.sub(&dx), cy.sub(&dy));
     ux.mul(&vx).add(&uy.mul(&vy)).signum()
 }
 
-/// The exact order of `|a - p|` and `|b - p|`.
+/// The exact order of `|a - p|` and `|b - p|`. Evenly spaced samples whose coordinates are not
+/// dyadic (0.1 apart) tie when rounded at almost every point, so this runs once per point there:
+/// in [`SMALL_LIMBS`] when the coordinates allow.
 pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
-    let [[px, py], a, b] = integers([p, a, b]);
-    let squared = |[x, y]: [Int; 2]| {
+    // A difference has one bit more than the widest coordinate, its square twice as many limbs,
+    // the sums one limb more, and an addition's carry a spare one.
+    if 2 * (integer_bits(&[p, a, b]) + 1).div_ceil(64) + 2 <= SMALL_LIMBS {
+        compare_distances_in::<SMALL_LIMBS>(p, a, b)
+    } else {
+        compare_distances_in::<LIMBS>(p, a, b)
+    }
+}
+
+/// [`compare_distances`] in integers of `L` limbs.
+fn compare_distances_in<const L: usize>(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
+    let [[px, py], a, b] = integers::<3, L>([p, a, b]);
+    let squared = |[x, y]: [Int<L>; 2]| {
         let (dx, dy) = (x.sub(&px), y.sub(&py));
         dx.mul(&dx).add(&dy.mul(&dy))
     };
     squared(a).sub(&squared(b)).signum()
+}
+
+/// The most bits a coordinate of `points` takes as an integer in [`integers`]' unit.
+fn integer_bits(points: &[[f64; 2]]) -> usize {
+    let parts = || points.as_flattened().iter().filter_map(|&c| decompose(c));
+    let e0 = parts().map(|(_, _, e)| e).min().unwrap_or(0);
+    parts()
+        .map(|(_, mantissa, e)| (e - e0) as usize + (u64::BITS - mantissa.leading_zeros()) as usize)
+        .max()
+        .unwrap_or(0)
 }
 
 #[cfg(test)]
@@ -244,7 +272,7 @@ mod tests {
         for _ in 0..10_000 {
             let mut draw = || (rng.next_u64() >> 12) as i64 - (1i64 << 51);
             let (x, y) = (draw() as f64, draw() as f64);
-            let (a, b) = (Int::from_f64(x, 0), Int::from_f64(y, 0));
+            let (a, b) = (Int::<LIMBS>::from_f64(x, 0), Int::<LIMBS>::from_f64(y, 0));
             let (xi, yi) = (x as i128, y as i128);
             assert_eq!(value(&a.add(&b)), xi + yi);
             assert_eq!(value(&a.sub(&b)), xi - yi);
@@ -295,10 +323,11 @@ mod tests {
     #[test]
     fn carries_cross_limbs() {
         // 2^64 - 1 plus 1 is 2^64, then squared 2^128: three limbs, the lowest two zero.
-        let all_ones = Int::from_f64(2f64.powi(64), 0).sub(&Int::from_f64(1.0, 0));
+        let all_ones =
+            Int::<LIMBS>::from_f64(2f64.powi(64), 0).sub(&Int::<LIMBS>::from_f64(1.0, 0));
         assert_eq!(all_ones.len, 1);
         assert_eq!(all_ones.limbs[0], u64::MAX);
-        let power = all_ones.add(&Int::from_f64(1.0, 0));
+        let power = all_ones.add(&Int::<LIMBS>::from_f64(1.0, 0));
         assert_eq!((power.len, power.limbs[1]), (2, 1));
         let square = power.mul(&power);
         assert_eq!((square.len, square.limbs[2]), (3, 1));
@@ -336,5 +365,44 @@ mod tests {
         assert_eq!(compare_distances(mirror(p), mirror(a), mirror(b)), order);
         assert_eq!(compare_distances(p, b, a), order.reverse());
         assert_eq!(compare_distances(p, a, a), Ordering::Equal);
+    }
+
+    /// Distances compared in [`SMALL_LIMBS`] give the order of the full width, from a spread of a
+    /// few bits to past the small integers' bound (which then take the full width).
+    #[test]
+    fn small_and_full_width_distance_orders_agree() {
+        let mut rng = crate::test_rng::Xorshift::new(0x1405_7b7e_f767_814f);
+        let mut small = 0;
+        for k in 0..6_000 {
+            // Exponents within a window that grows from 0 to 250 binary orders.
+            let window = (k % 251) as i32;
+            let mut draw = || {
+                let mantissa = (rng.next_u64() >> 11) as f64 / 2f64.powi(53) + 0.5;
+                let exponent = (rng.next_u64() % (window as u64 + 1)) as i32 - window / 2;
+                let sign = if rng.next_u64() & 1 == 0 { 1.0 } else { -1.0 };
+                sign * libm::ldexp(mantissa, exponent)
+            };
+            let (p, a) = ([draw(), draw()], [draw(), draw()]);
+            // `b` on `a`'s mirror image about `p` half the time: a tie in exact arithmetic.
+            let b = if k % 2 == 0 {
+                [2.0 * p[0] - a[0], a[1]]
+            } else {
+                [draw(), draw()]
+            };
+            let full = compare_distances_in::<LIMBS>(p, a, b);
+            assert_eq!(compare_distances(p, a, b), full, "{p:?} {a:?} {b:?}");
+            if 2 * (integer_bits(&[p, a, b]) + 1).div_ceil(64) + 2 <= SMALL_LIMBS {
+                small += 1;
+            }
+        }
+        assert!(small > 1_000 && small < 5_000, "{small}");
+        // The bound itself: 191 bits fit, 192 do not.
+        let top = libm::ldexp(1.0, 190);
+        assert_eq!(integer_bits(&[[top, 1.0], [0.0, 0.0], [0.0, 0.0]]), 191);
+        let (p, a, b) = ([top, 1.0], [-top, 0.0], [0.0, top]);
+        assert_eq!(
+            compare_distances(p, a, b),
+            compare_distances_in::<LIMBS>(p, a, b)
+        );
     }
 }

@@ -141,25 +141,45 @@ pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
 }
 
 /// Which of `a` and `b` is nearer to `p`, for two whose rounded squared distances
-/// ([`Point::dist2`]) are equal: `Equal` when both are known exact ([`exactly_squared`]), else
-/// by big integers (slow). Why: a rounded tie broken by vertex id would depend on the input's
-/// orientation (ids follow the insertion order); only an exact tie is left to the caller's id.
+/// ([`Point::dist2`]) are equal: `Equal` when both are known exact ([`exactly_squared`]) or the
+/// two offsets from `p` are exactly the same up to signs and the order of the axes
+/// ([`same_legs`]), else by big integers (slow). Why: a rounded tie broken by vertex id would
+/// depend on the input's orientation (ids follow the insertion order); only an exact tie is left
+/// to the caller's id.
 pub(crate) fn compare_tied_distances(p: Point, a: Point, b: Point) -> Ordering {
-    if exactly_squared(p, a) && exactly_squared(p, b) {
+    if (exactly_squared(p, a) && exactly_squared(p, b)) || same_legs(p, a, b) {
         return Ordering::Equal;
     }
     exact::compare_distances(p.into(), a.into(), b.into())
+}
+
+/// Whether `a + b` rounds to nothing but itself (Knuth's two-sum leaves no error). False on an
+/// overflow (the error reads NaN).
+fn exact_sum(a: f64, b: f64) -> bool {
+    let s = a + b;
+    let b_part = s - a;
+    (a - (s - b_part)) + (b - b_part) == 0.0
+}
+
+/// Whether `a - p` and `b - p` are computed exactly and have the same legs (absolute offsets
+/// along x and y, in either order): then `|a - p| = |b - p|` exactly. Evenly spaced samples
+/// whose coordinates are not dyadic (0.1 apart, a zigzag) tie like this at almost every point,
+/// and would each pay the big-integer comparison.
+fn same_legs(p: Point, a: Point, b: Point) -> bool {
+    let legs = |q: Point| {
+        let exact = exact_sum(q.x, -p.x) && exact_sum(q.y, -p.y);
+        exact.then(|| ((q.x - p.x).abs(), (q.y - p.y).abs()))
+    };
+    match (legs(a), legs(b)) {
+        (Some((ax, ay)), Some((bx, by))) => (ax == bx && ay == by) || (ax == by && ay == bx),
+        _ => false,
+    }
 }
 
 /// Whether `p.dist2(q)` is known to be the exact squared distance: each difference and the sum
 /// checked by Knuth's two-sum, each square by its mantissa (26 significant bits or fewer, far
 /// above the subnormal range: exact). A square it cannot vouch for goes to the exact comparison.
 fn exactly_squared(p: Point, q: Point) -> bool {
-    let exact_sum = |a: f64, b: f64| {
-        let s = a + b;
-        let b_part = s - a;
-        (a - (s - b_part)) + (b - b_part) == 0.0
-    };
     let exact_square = |d: f64| {
         let bits = d.to_bits();
         d == 0.0 || ((bits >> 52) & 0x7ff > 600 && bits & ((1 << 27) - 1) == 0)
@@ -353,6 +373,47 @@ mod tests {
             origin,
             Point::new(1.0 + f64::EPSILON, 0.0)
         ));
+    }
+
+    /// The same-legs shortcut agrees with the big integers on offsets that are mirrored or
+    /// swapped copies (evenly spaced, non-dyadic samples), and stays out of the way when a
+    /// difference rounds (a leg absorbed by a large coordinate) or the legs differ by one ulp.
+    #[test]
+    fn tied_distances_with_the_same_legs_are_equal_and_no_others() {
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut unit = || (rng.next_u64() >> 11) as f64 / 2f64.powi(53);
+        let mut shortcut = 0;
+        for k in 0..20_000 {
+            let p = Point::new(unit() * 100.0 - 50.0, unit() * 1e6);
+            let (dx, dy) = (unit() * 0.3, unit() * 0.3);
+            let a = Point::new(p.x + dx, p.y - dy);
+            // Mirrored and swapped offsets of `a`'s, as rounded; every fourth nudged by an ulp.
+            let (ex, ey) = (a.x - p.x, a.y - p.y);
+            let mut b = match k % 3 {
+                0 => Point::new(p.x - ex, p.y + ey),
+                1 => Point::new(p.x + ey, p.y + ex),
+                _ => Point::new(p.x - ey, p.y - ex),
+            };
+            if k % 4 == 0 {
+                b.x = libm::nextafter(b.x, f64::INFINITY);
+            }
+            let exact = exact::compare_distances(p.into(), a.into(), b.into());
+            shortcut += usize::from(same_legs(p, a, b));
+            assert!(
+                !same_legs(p, a, b) || exact == Ordering::Equal,
+                "{p:?} {a:?} {b:?}"
+            );
+            if p.dist2(a) == p.dist2(b) {
+                assert_eq!(compare_tied_distances(p, a, b), exact, "{p:?} {a:?} {b:?}");
+            }
+        }
+        // The shortcut does take most mirrored pairs.
+        assert!(shortcut > 4_000, "{shortcut}");
+        // 2^-60 - 1 rounds to -1: the offsets look alike but are not.
+        let p = Point::new(1.0, 0.0);
+        let (a, b) = (Point::new(2f64.powi(-60), 0.0), Point::new(2.0, 0.0));
+        assert!(!same_legs(p, a, b));
+        assert_eq!(compare_tied_distances(p, a, b), Ordering::Less);
     }
 
     #[test]
