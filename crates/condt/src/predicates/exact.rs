@@ -375,7 +375,7 @@ mod tests {
         let mut small = 0;
         for k in 0..6_000 {
             // Exponents within a window that grows from 0 to 250 binary orders.
-            let window = (k % 251) as i32;
+            let window = k % 251;
             let mut draw = || {
                 let mantissa = (rng.next_u64() >> 11) as f64 / 2f64.powi(53) + 0.5;
                 let exponent = (rng.next_u64() % (window as u64 + 1)) as i32 - window / 2;
