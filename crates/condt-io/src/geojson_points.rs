@@ -33,8 +33,7 @@ const MAX_DEPTH: usize = 64;
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
 /// coordinates that are not numbers, and an object giving one of the members `type`,
 /// `features`, `geometries`, `geometry` or `coordinates` twice, whether or not its type reads it,
-/// since JSON leaves open which one counts and readers differ (a second top-level `crs` is
-/// passed over, as [`parse_geojson_with_crs`] says). Members may come in any order; strings may hold escapes
+/// since JSON leaves open which one counts and readers differ (a top-level `crs` too). Members may come in any order; strings may hold escapes
 /// (`"Po\u0069nt"` is `"Point"`); numbers are read exactly as `str::parse` reads them.
 ///
 /// ```
@@ -59,8 +58,8 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     parse_geojson_with_crs(text, file).map(|(points, _)| points)
 }
 
-/// [`parse_geojson`], and the document's top-level `"crs"` member as written (the first, if
-/// written twice; GeoJSON of 2008;
+/// [`parse_geojson`], and the document's top-level `"crs"` member as written (refused when given
+/// twice; GeoJSON of 2008;
 /// RFC 7946 dropped it, but GDAL and QGIS still read it to place projected coordinates), so that
 /// a GeoJSON output can carry it on.
 ///
@@ -474,11 +473,13 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 }
                 continue;
             }
-            if matches!(key, Key::Other | Key::Crs) {
+            // The document's second `crs`: the one carried on to the outputs would be a guess.
+            let second_crs = key == Key::Crs && self.depth == 0;
+            if key == Key::Other || (key == Key::Crs && !second_crs) {
                 map.next_value::<IgnoredAny>()?;
                 continue;
             }
-            if seen.contains(&key) {
+            if seen.contains(&key) || second_crs {
                 // JSON leaves open which of two equal names counts (RFC 8259, section 4):
                 // reading the first, as before, could read other points than the writer meant.
                 return Err(de::Error::custom(format_args!(
@@ -726,6 +727,22 @@ mod tests {
             );
             assert_eq!(err.line, Some(2), "{err}");
         }
+        // A second top-level crs: which one to carry on to the outputs would be a guess. A crs
+        // inside a feature is passed over, however often.
+        let text = r#"{"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"A"}},
+            "features":[],"crs":{"type":"name","properties":{"name":"B"}}}"#;
+        let err = parse_geojson_with_crs(text, "crs.geojson").unwrap_err();
+        assert!(err.to_string().contains("\"crs\" is given twice"), "{err}");
+        assert_eq!(err.line, Some(2), "{err}");
+        let text = r#"{"type":"Feature","crs":1,"crs":2,"geometry":{"type":"Point","coordinates":[0,0],"crs":3,"crs":4}}"#;
+        assert!(parse_geojson_with_crs(text, "crs.geojson").is_err());
+        let text = r#"{"type":"FeatureCollection","crs":1,"features":[{"type":"Feature","crs":2,"crs":3,
+            "geometry":{"type":"Point","coordinates":[0,0]}}]}"#;
+        let (points, crs) = parse_geojson_with_crs(text, "crs.geojson").unwrap();
+        assert_eq!(
+            (points, crs.as_deref()),
+            (vec![Point::new(0.0, 0.0)], Some("1"))
+        );
         // Members not read here may repeat, as before (their values are passed over).
         let text = r#"{"type":"Point","coordinates":[2,3],"bbox":[0,0,1,1],"bbox":[0,0,1,1]}"#;
         assert_eq!(
