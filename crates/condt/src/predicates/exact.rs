@@ -223,13 +223,46 @@ pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Or
 /// dyadic (0.1 apart) tie when rounded at almost every point, so this runs once per point there:
 /// in [`SMALL_LIMBS`] when the coordinates allow.
 pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
+    let bits = integer_bits(&[p, a, b]);
+    if bits <= 62 {
+        return compare_distances_u128(p, a, b);
+    }
     // A difference has one bit more than the widest coordinate, its square twice as many limbs,
     // the sums one limb more, and an addition's carry a spare one.
-    if 2 * (integer_bits(&[p, a, b]) + 1).div_ceil(64) + 2 <= SMALL_LIMBS {
+    if 2 * (bits + 1).div_ceil(64) + 2 <= SMALL_LIMBS {
         compare_distances_in::<SMALL_LIMBS>(p, a, b)
     } else {
         compare_distances_in::<LIMBS>(p, a, b)
     }
+}
+
+/// [`compare_distances`] for coordinates of at most 62 bits in [`integers`]' unit: each difference
+/// is under 2^63, its square under 2^126, a sum of two under 2^127, all in machine integers.
+fn compare_distances_u128(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
+    let e0 = [p, a, b]
+        .as_flattened()
+        .iter()
+        .filter_map(|&c| decompose(c))
+        .map(|(_, _, e)| e)
+        .min()
+        .unwrap_or(0);
+    let integer = |c: f64| match decompose(c) {
+        None => 0i128,
+        Some((negative, mantissa, e)) => {
+            let magnitude = i128::from(mantissa) << (e - e0);
+            if negative {
+                -magnitude
+            } else {
+                magnitude
+            }
+        }
+    };
+    let squared = |q: [f64; 2]| {
+        let leg = |k: usize| (integer(q[k]) - integer(p[k])).unsigned_abs();
+        let (dx, dy) = (leg(0), leg(1));
+        dx * dx + dy * dy
+    };
+    squared(a).cmp(&squared(b))
 }
 
 /// [`compare_distances`] in integers of `L` limbs.
@@ -367,12 +400,13 @@ mod tests {
         assert_eq!(compare_distances(p, a, a), Ordering::Equal);
     }
 
-    /// Distances compared in [`SMALL_LIMBS`] give the order of the full width, from a spread of a
-    /// few bits to past the small integers' bound (which then take the full width).
+    /// Distances compared in machine integers or in [`SMALL_LIMBS`] give the order of the full
+    /// width, from a spread of a few bits to past the small integers' bound (which then take the
+    /// full width).
     #[test]
     fn small_and_full_width_distance_orders_agree() {
         let mut rng = crate::test_rng::Xorshift::new(0x1405_7b7e_f767_814f);
-        let mut small = 0;
+        let (mut machine, mut small) = (0, 0);
         for k in 0..6_000 {
             // Exponents within a window that grows from 0 to 250 binary orders.
             let window = k % 251;
@@ -391,11 +425,29 @@ mod tests {
             };
             let full = compare_distances_in::<LIMBS>(p, a, b);
             assert_eq!(compare_distances(p, a, b), full, "{p:?} {a:?} {b:?}");
-            if 2 * (integer_bits(&[p, a, b]) + 1).div_ceil(64) + 2 <= SMALL_LIMBS {
+            let bits = integer_bits(&[p, a, b]);
+            if bits <= 62 {
+                machine += 1;
+                assert_eq!(compare_distances_u128(p, a, b), full, "{p:?} {a:?} {b:?}");
+            } else if 2 * (bits + 1).div_ceil(64) + 2 <= SMALL_LIMBS {
                 small += 1;
+                assert_eq!(compare_distances_in::<SMALL_LIMBS>(p, a, b), full);
             }
         }
-        assert!(small > 1_000 && small < 5_000, "{small}");
+        assert!(
+            machine > 100 && small > 1_000 && machine + small < 5_000,
+            "{machine} {small}"
+        );
+        // The machine integers' bound: 62 bits with the largest differences and squares.
+        let top = libm::ldexp(1.0, 61) + 1.0;
+        assert_eq!(integer_bits(&[[top, 1.0], [0.0, 0.0], [0.0, 0.0]]), 62);
+        let (p, a, b) = ([top, -top], [-top, top], [top, top]);
+        assert_eq!(compare_distances_u128(p, a, b), Ordering::Greater);
+        assert_eq!(
+            compare_distances_u128(p, a, [-top, -top + 2.0]),
+            Ordering::Greater
+        );
+        assert_eq!(compare_distances_u128(p, b, [-top, -top]), Ordering::Equal);
         // The bound itself: 191 bits fit, 192 do not.
         let top = libm::ldexp(1.0, 190);
         assert_eq!(integer_bits(&[[top, 1.0], [0.0, 0.0], [0.0, 0.0]]), 191);
