@@ -775,7 +775,8 @@ fn a_later_crs_in_a_geojson_sequence_is_told_not_dropped_silently() {
         Some(4),
         "the first record that differs"
     );
-    // A document's own second crs is not a sequence's record: as before, the first is kept.
+    // A document's own second crs is not a sequence's record: refused, as which one the writer
+    // meant is a guess (other readers take the last), naming the file.
     let file = TempFile::new(
         "two.geojson",
         format!(
@@ -783,8 +784,12 @@ fn a_later_crs_in_a_geojson_sequence_is_told_not_dropped_silently() {
     )
         .as_bytes(),
     );
-    let doc = condt_io::read_points_with(&file.0, &condt_io::ReadOptions::new()).unwrap();
-    assert_eq!((doc.crs.as_deref(), doc.crs_dropped_at), (Some(utm), None));
+    let err = condt_io::read_points_with(&file.0, &condt_io::ReadOptions::new()).unwrap_err();
+    let text = err.to_string();
+    assert!(
+        text.contains("two.geojson") && text.contains("\"crs\" is given twice"),
+        "{text}"
+    );
 }
 
 /// Found by a review: `Column` and `Columns` have public fields, so columns `Columns::parse`
