@@ -304,7 +304,7 @@ fn extend_chain(chain: &mut Vec<usize>, points: &[Point], ordered: impl Iterator
 
 /// What a tile sends back: `("ok", edges, state)` with the edges it owns after the repair, in
 /// input positions of the whole set, and with `keep` its certified triangulation ([`TileState`],
-/// else `None`) for a second phase on the same worker ([`_repair_kept`]); `("grow", None)` when a vertex within `reach` hops of an owned one
+/// else `None`) for a second phase on the same worker ([`_step_kept`]); `("grow", None)` when a vertex within `reach` hops of an owned one
 /// has an uncertified star (the known region is too small); `("cocircular", None, None)` when four
 /// points there are cocircular.
 ///
@@ -398,7 +398,7 @@ pub(crate) fn _run_tile<'py>(
 }
 
 /// A certified tile's triangulation, kept on its worker between two phases so that the second
-/// ([`_repair_kept`]) neither receives the tile's points again nor triangulates them again. When
+/// ([`_step_kept`]) neither receives the tile's points again nor triangulates them again. When
 /// pickled (Dask moving it to another worker) it carries the points and their insertion order,
 /// and is triangulated again on arrival: the same triangulation, which its first phase certified.
 #[pyclass(module = "condt._condt", name = "_TileState", frozen)]

@@ -1,7 +1,7 @@
 //! ConDT pipeline benchmarks: the triangulation, the stages after it, and the whole, on a
 //! 10,000-point closed curve and on about 1M points along 200 closed curves (in curve order and
 //! shuffled). Before the criterion
-//! groups, a per-stage breakdown (median of 11 runs of `StageTimes`) is printed for each input.
+//! groups, a per-step breakdown (the median of 11 runs of `step_times`) is printed for each input.
 //!
 //! The curves carry noise of 1e-9 (measurement precision). Without it, a centred ellipse sampled
 //! uniformly in arc length has its samples at exact antipodes, and every pair of neighbours with
