@@ -1,7 +1,8 @@
 //! Exact signs by integer arithmetic, for coordinates whose spread of magnitudes Shewchuk's
 //! floating-point expansions cannot take without underflow: integers below `2^2098` in units of
-//! the call's smallest exponent, determinants below `2^8400` in 64-bit limbs on the stack
-//! (`docs/predicates.md`, item 3). Microseconds at worst: [`super`] runs it only where needed.
+//! the call's smallest exponent, determinants below `2^8400` in 64-bit limbs on the stack, as
+//! few as the call's spread needs (`docs/predicates.md`, item 3). Microseconds at worst:
+//! [`super`] runs it only where needed.
 //!
 //! Owns: the big-integer reading of a call's coordinates and its determinants. It may not decide
 //! when it runs (the filters in [`super`] do) and uses no floating-point arithmetic for a sign.
@@ -12,10 +13,20 @@ use core::cmp::Ordering;
 /// addition's carry never needs a check against the end.
 const LIMBS: usize = 134;
 
-/// Limbs for [`compare_distances`] when its coordinates span at most 191 bits in units of their
-/// smallest exponent (every set whose magnitudes lie within about 2^138 of each other): a value
-/// of 80 bytes instead of about 1 KB, copied by every operation.
-const SMALL_LIMBS: usize = 8;
+/// Calls `$function::<L>(..)` with the narrowest `L` of 8, 16, 32 or 64 limbs that is at least
+/// `$limbs`, else with the full width: every operation copies its `Int` (about 1 KB at full
+/// width), which made the copies most of the time on sets spanning many binary orders.
+macro_rules! in_width {
+    ($limbs:expr, $function:ident($($arg:expr),*)) => {
+        match $limbs {
+            0..=8 => $function::<8>($($arg),*),
+            9..=16 => $function::<16>($($arg),*),
+            17..=32 => $function::<32>($($arg),*),
+            33..=64 => $function::<64>($($arg),*),
+            _ => $function::<LIMBS>($($arg),*),
+        }
+    };
+}
 
 /// A signed integer of at most `64 · L` bits, as sign and magnitude.
 #[derive(Clone, Copy)]
@@ -188,7 +199,13 @@ fn subtract_magnitudes<const L: usize>(a: &[u64], b: &[u64]) -> Int<L> {
 
 /// The exact orientation sign: `Greater` when `a, b, c` turn counter-clockwise.
 pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
-    let [[ax, ay], [bx, by], [cx, cy]] = integers::<3, LIMBS>([a, b, c]);
+    // Two products of two differences, their difference, and a spare limb for a carry.
+    in_width!(2 * difference_limbs(&[a, b, c]) + 2, orient2d_in(a, b, c))
+}
+
+/// [`orient2d_sign`] in integers of `L` limbs.
+fn orient2d_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
+    let [[ax, ay], [bx, by], [cx, cy]] = integers::<3, L>([a, b, c]);
     let (acx, acy) = (ax.sub(&cx), ay.sub(&cy));
     let (bcx, bcy) = (bx.sub(&cx), by.sub(&cy));
     acx.mul(&bcy).sub(&acy.mul(&bcx)).signum()
@@ -197,10 +214,20 @@ pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
 /// The exact in-circle sign: `Greater` when `d` is strictly inside the circle through the
 /// counter-clockwise `a, b, c`, `Equal` when the four are cocircular.
 pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
-    let [a, b, c, [dx, dy]] = integers::<4, LIMBS>([a, b, c, d]);
-    let relative = |[x, y]: [Int; 2]| (x.sub(&dx), y.sub(&dy));
+    // A lift (a sum of two squares, one limb over them) times a 2x2 determinant (one over its
+    // products), a sum of three such, and a spare limb for a carry.
+    in_width!(
+        4 * difference_limbs(&[a, b, c, d]) + 4,
+        in_circle_in(a, b, c, d)
+    )
+}
+
+/// [`in_circle_sign`] in integers of `L` limbs.
+fn in_circle_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
+    let [a, b, c, [dx, dy]] = integers::<4, L>([a, b, c, d]);
+    let relative = |[x, y]: [Int<L>; 2]| (x.sub(&dx), y.sub(&dy));
     let ((adx, ady), (bdx, bdy), (cdx, cdy)) = (relative(a), relative(b), relative(c));
-    let lift = |x: &Int, y: &Int| x.mul(x).add(&y.mul(y));
+    let lift = |x: &Int<L>, y: &Int<L>| x.mul(x).add(&y.mul(y));
     let (alift, blift, clift) = (lift(&adx, &ady), lift(&bdx, &bdy), lift(&cdx, &cdy));
     let bc = bdx.mul(&cdy).sub(&bdy.mul(&cdx));
     let ca = cdx.mul(&ady).sub(&cdy.mul(&adx));
@@ -214,26 +241,29 @@ pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2])
 
 /// The exact sign of the dot product `(a - b) · (c - d)`.
 pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
-    let [[ax, ay], [bx, by], [cx, cy], [dx, dy]] = integers::<4, LIMBS>([a, b, c, d]);
+    // As [`orient2d_sign`]: two products of two differences, their sum, a spare limb.
+    in_width!(2 * difference_limbs(&[a, b, c, d]) + 2, dot_in(a, b, c, d))
+}
+
+/// [`dot_sign`] in integers of `L` limbs.
+fn dot_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
+    let [[ax, ay], [bx, by], [cx, cy], [dx, dy]] = integers::<4, L>([a, b, c, d]);
     let (ux, uy, vx, vy) = (ax.sub(&bx), ay.sub(&by), cx.sub(&dx), cy.sub(&dy));
     ux.mul(&vx).add(&uy.mul(&vy)).signum()
 }
 
 /// The exact order of `|a - p|` and `|b - p|`. Evenly spaced samples whose coordinates are not
 /// dyadic (0.1 apart) tie when rounded at almost every point, so this runs once per point there:
-/// in [`SMALL_LIMBS`] when the coordinates allow.
+/// in machine integers, or in as few limbs as the coordinates allow.
 pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
-    let bits = integer_bits(&[p, a, b]);
-    if bits <= 62 {
+    if integer_bits(&[p, a, b]) <= 62 {
         return compare_distances_u128(p, a, b);
     }
-    // A difference has one bit more than the widest coordinate, its square twice as many limbs,
-    // the sums one limb more, and an addition's carry a spare one.
-    if 2 * (bits + 1).div_ceil(64) + 2 <= SMALL_LIMBS {
-        compare_distances_in::<SMALL_LIMBS>(p, a, b)
-    } else {
-        compare_distances_in::<LIMBS>(p, a, b)
-    }
+    // Two squares of differences, each sum one limb over them, and a spare limb for a carry.
+    in_width!(
+        2 * difference_limbs(&[p, a, b]) + 2,
+        compare_distances_in(p, a, b)
+    )
 }
 
 /// [`compare_distances`] for coordinates of at most 62 bits in [`integers`]' unit: each difference
@@ -273,6 +303,12 @@ fn compare_distances_in<const L: usize>(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -
         dx.mul(&dx).add(&dy.mul(&dy))
     };
     squared(a).sub(&squared(b)).signum()
+}
+
+/// The limbs that a difference of two coordinates of `points` takes in [`integers`]' unit (one
+/// bit over the widest coordinate).
+fn difference_limbs(points: &[[f64; 2]]) -> usize {
+    (integer_bits(points) + 1).div_ceil(64)
 }
 
 /// The most bits a coordinate of `points` takes as an integer in [`integers`]' unit.
@@ -400,43 +436,54 @@ mod tests {
         assert_eq!(compare_distances(p, a, a), Ordering::Equal);
     }
 
-    /// Distances compared in machine integers or in [`SMALL_LIMBS`] give the order of the full
-    /// width, from a spread of a few bits to past the small integers' bound (which then take the
-    /// full width).
+    /// Random points whose exponents lie within a window of `window` binary orders, a third of
+    /// the time with ties built in (a mirror image, a point on a line through two others).
+    fn spread_points(rng: &mut crate::test_rng::Xorshift, window: i32) -> [[f64; 2]; 4] {
+        let mut draw = || {
+            let mantissa = (rng.next_u64() >> 11) as f64 / 2f64.powi(53) + 0.5;
+            let exponent = (rng.next_u64() % (window as u64 + 1)) as i32 - window / 2;
+            let sign = if rng.next_u64() & 1 == 0 { 1.0 } else { -1.0 };
+            sign * libm::ldexp(mantissa, exponent)
+        };
+        let (p, a, c) = ([draw(), draw()], [draw(), draw()], [draw(), draw()]);
+        let choice = draw().to_bits() % 3;
+        let b = match choice {
+            0 => [2.0 * p[0] - a[0], a[1]],
+            1 => [a[0] + (a[0] - p[0]), a[1] + (a[1] - p[1])],
+            _ => [draw(), draw()],
+        };
+        [p, a, b, c]
+    }
+
+    /// Each predicate in the narrow widths [`in_width`] picks gives the full width's sign, and
+    /// the distances in machine integers too: exponent windows from 0 to 1,500 binary orders,
+    /// which reach every width, ties included.
     #[test]
-    fn small_and_full_width_distance_orders_agree() {
+    fn narrow_and_full_width_signs_agree() {
         let mut rng = crate::test_rng::Xorshift::new(0x1405_7b7e_f767_814f);
-        let (mut machine, mut small) = (0, 0);
-        for k in 0..6_000 {
-            // Exponents within a window that grows from 0 to 250 binary orders.
-            let window = k % 251;
-            let mut draw = || {
-                let mantissa = (rng.next_u64() >> 11) as f64 / 2f64.powi(53) + 0.5;
-                let exponent = (rng.next_u64() % (window as u64 + 1)) as i32 - window / 2;
-                let sign = if rng.next_u64() & 1 == 0 { 1.0 } else { -1.0 };
-                sign * libm::ldexp(mantissa, exponent)
-            };
-            let (p, a) = ([draw(), draw()], [draw(), draw()]);
-            // `b` on `a`'s mirror image about `p` half the time: a tie in exact arithmetic.
-            let b = if k % 2 == 0 {
-                [2.0 * p[0] - a[0], a[1]]
-            } else {
-                [draw(), draw()]
-            };
+        let (mut machine, mut widths) = (0, [0usize; 5]);
+        for k in 0..12_000 {
+            let window = (k % 301) * 5;
+            let [p, a, b, c] = spread_points(&mut rng, window);
             let full = compare_distances_in::<LIMBS>(p, a, b);
             assert_eq!(compare_distances(p, a, b), full, "{p:?} {a:?} {b:?}");
-            let bits = integer_bits(&[p, a, b]);
-            if bits <= 62 {
+            if integer_bits(&[p, a, b]) <= 62 {
                 machine += 1;
                 assert_eq!(compare_distances_u128(p, a, b), full, "{p:?} {a:?} {b:?}");
-            } else if 2 * (bits + 1).div_ceil(64) + 2 <= SMALL_LIMBS {
-                small += 1;
-                assert_eq!(compare_distances_in::<SMALL_LIMBS>(p, a, b), full);
             }
+            let full = orient2d_in::<LIMBS>(p, a, b);
+            assert_eq!(orient2d_sign(p, a, b), full, "{p:?} {a:?} {b:?}");
+            let full = dot_in::<LIMBS>(p, a, b, c);
+            assert_eq!(dot_sign(p, a, b, c), full, "{p:?} {a:?} {b:?} {c:?}");
+            let full = in_circle_in::<LIMBS>(p, a, b, c);
+            assert_eq!(in_circle_sign(p, a, b, c), full, "{p:?} {a:?} {b:?} {c:?}");
+            let limbs = 4 * difference_limbs(&[p, a, b, c]) + 4;
+            widths[[8, 16, 32, 64].iter().take_while(|&&w| w < limbs).count()] += 1;
         }
+        // Every width took part, in-circle's the widest.
         assert!(
-            machine > 100 && small > 1_000 && machine + small < 5_000,
-            "{machine} {small}"
+            machine > 100 && widths.iter().all(|&w| w > 100),
+            "{machine} {widths:?}"
         );
         // The machine integers' bound: 62 bits with the largest differences and squares.
         let top = libm::ldexp(1.0, 61) + 1.0;
@@ -448,13 +495,21 @@ mod tests {
             Ordering::Greater
         );
         assert_eq!(compare_distances_u128(p, b, [-top, -top]), Ordering::Equal);
-        // The bound itself: 191 bits fit, 192 do not.
-        let top = libm::ldexp(1.0, 190);
-        assert_eq!(integer_bits(&[[top, 1.0], [0.0, 0.0], [0.0, 0.0]]), 191);
-        let (p, a, b) = ([top, 1.0], [-top, 0.0], [0.0, top]);
-        assert_eq!(
-            compare_distances(p, a, b),
-            compare_distances_in::<LIMBS>(p, a, b)
-        );
+        // At each width's bound, the largest differences: 63 bits a limb.
+        for bits in [63, 127, 191, 255, 447, 511, 1023, 2047] {
+            let (top, small) = (libm::ldexp(1.0, 1000), libm::ldexp(1.0, 1001 - bits));
+            let (p, a, b, c) = ([top, small], [-top, 0.0], [0.0, top], [-top, -top]);
+            assert_eq!(integer_bits(&[p, a, b, c]), bits as usize);
+            assert_eq!(orient2d_sign(p, a, b), orient2d_in::<LIMBS>(p, a, b));
+            assert_eq!(
+                in_circle_sign(p, a, b, c),
+                in_circle_in::<LIMBS>(p, a, b, c)
+            );
+            assert_eq!(dot_sign(p, a, b, c), dot_in::<LIMBS>(p, a, b, c));
+            assert_eq!(
+                compare_distances(p, a, b),
+                compare_distances_in::<LIMBS>(p, a, b)
+            );
+        }
     }
 }
