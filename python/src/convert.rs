@@ -86,7 +86,8 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
     Ok(())
 }
 
-/// Refuses a bool among the numbers of a list's (or tuple's) rows: numpy makes `[[True, 0.5]]` a
+/// Refuses a bool among the numbers of a list's (or tuple's) rows, and a row that is a numpy
+/// array of bools: numpy makes `[[True, 0.5]]` or `[np.array([True, False]), (0.5, 1.0)]` a
 /// float64 array, reading `True` as 1, where an array of bools alone is refused by its dtype
 /// ([`check_numbers`]) and `score`'s edges refuse a bool among ints too.
 fn check_no_bools_in_rows(numpy: &Bound<'_, PyModule>, obj: &Bound<'_, PyAny>) -> PyResult<()> {
@@ -94,8 +95,18 @@ fn check_no_bools_in_rows(numpy: &Bound<'_, PyModule>, obj: &Bound<'_, PyAny>) -
         return Ok(());
     }
     let numpy_bool = numpy.getattr("bool_")?;
+    let ndarray = numpy.getattr("ndarray")?;
     for (k, row) in obj.try_iter()?.enumerate() {
         let row = row?;
+        if row.is_instance(&ndarray)? {
+            if row.getattr("dtype")?.getattr("kind")?.extract::<String>()? == "b" {
+                return Err(PyTypeError::new_err(format!(
+                    "points must hold numbers (integers or floats), not bool: row {k} is an \
+                     array of bool (numpy would read it as numbers)"
+                )));
+            }
+            continue;
+        }
         if !(row.is_instance_of::<PyList>() || row.is_instance_of::<PyTuple>()) {
             continue;
         }

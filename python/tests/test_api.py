@@ -276,6 +276,7 @@ def test_a_bool_among_a_lists_numbers_is_a_type_error(function):
         [[False, 0], [1, 0], [1, 1], [0, 1]],
         [(0.0, 0.0), (1.0, 0.0), [np.True_, 0.5]],
         ([1, 0], (0.5, True), [0, 1]),
+        [np.array([0.0, 0.0]), np.array([True, False]), (0.5, 1.0)],
     ):
         with pytest.raises(TypeError, match=r"^points must hold numbers \(integers or floats\), not bool: row \d"):
             function(points)
