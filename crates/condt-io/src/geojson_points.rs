@@ -33,8 +33,9 @@ const MAX_DEPTH: usize = 64;
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
 /// coordinates that are not numbers, and an object giving one of the members `type`,
 /// `features`, `geometries`, `geometry` or `coordinates` twice, whether or not its type reads it,
-/// since JSON leaves open which one counts and readers differ (a top-level `crs` too). Members may come in any order; strings may hold escapes
-/// (`"Po\u0069nt"` is `"Point"`); numbers are read exactly as `str::parse` reads them.
+/// since JSON leaves open which one counts and readers differ (a top-level `crs` too). Members
+/// may come in any order; strings may hold escapes (`"Po\u0069nt"` is `"Point"`); numbers are
+/// read exactly as `str::parse` reads them.
 ///
 /// ```
 /// use condt::Point;
@@ -91,7 +92,8 @@ pub(crate) fn parse_geojson_file(text: &str, file: &str) -> Result<PointFile, Io
 /// one after each (RFC 8142, `.geojsons`; a record may then span lines). Each record is read as
 /// [`parse_geojson_file`] reads a document, blank lines and records skipped; the points are
 /// numbered across the records in order, an error names the line in the whole file, and the
-/// first top-level `"crs"` of a record is kept; a later record's that differs from it (as JSON
+/// first top-level `"crs"` met is kept (a record giving it twice is refused); a later
+/// record's that differs from it (as JSON
 /// values: spacing and member order aside) is not, and the line of the first such is given
 /// ([`PointFile::crs_dropped_at`]) for the caller to tell.
 pub(crate) fn parse_geojson_lines(text: &str, file: &str) -> Result<PointFile, IoError> {
@@ -144,19 +146,16 @@ fn read_records(
         text,
         points: Vec::new(),
         crs: None,
-        crs_record: 0,
-        record: 0,
         crs_dropped: None,
         failure: None,
         null_geometries: 0,
         empty_geometries: 0,
     };
     let mut crs_dropped_at = None;
-    for (number, range) in records.enumerate() {
+    for range in records {
         let record = &text[range.clone()];
         // Offsets of members read later are taken from the record's start.
         state.text = record;
-        state.record = number;
         let mut deserializer = serde_json::Deserializer::from_str(record);
         let read = Member::Object
             .read(&mut state, 0, &mut deserializer)
@@ -201,10 +200,6 @@ struct State<'t> {
     points: Vec<Point>,
     /// The document's own `"crs"` member, as written.
     crs: Option<String>,
-    /// The record (of a GeoJSON sequence; 0 for a document) `crs` was read from, and the one
-    /// being read.
-    crs_record: usize,
-    record: usize,
     /// The offset in the first record that gave a different `"crs"` from `crs`, dropped.
     crs_dropped: Option<usize>,
     failure: Option<(usize, String)>,
@@ -454,38 +449,35 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
         let mut seen = Vec::new();
         let mut later: Vec<(Key, &'de RawValue)> = Vec::new();
         while let Some(key) = map.next_key::<Key>()? {
-            if key == Key::Crs && self.depth == 0 && self.state.crs.is_none() {
-                let raw = map.next_value::<&'de RawValue>()?;
-                self.state.crs = Some(raw.get().to_string());
-                self.state.crs_record = self.state.record;
-                continue;
+            if seen.contains(&key) {
+                // JSON leaves open which of two equal names counts (RFC 8259, section 4):
+                // reading the first, as before, could read other points than the writer meant
+                // (or carry on another crs).
+                return Err(de::Error::custom(format_args!(
+                    "the member \"{}\" is given twice in one object",
+                    key.name()
+                )));
             }
-            // A later record of a sequence with another crs: kept out, its place kept to tell.
-            if key == Key::Crs && self.depth == 0 && self.state.record != self.state.crs_record {
+            if key == Key::Crs && self.depth == 0 {
+                seen.push(key);
                 let raw = map.next_value::<&'de RawValue>()?;
                 let state = &mut *self.state;
-                let kept = state.crs.as_deref().unwrap_or_default();
-                if state.crs_dropped.is_none() && !same_json(kept, raw.get()) {
-                    // `raw` lies inside the record: its offset there, by address.
+                if state.crs.is_none() {
+                    state.crs = Some(raw.get().to_string());
+                } else if state.crs_dropped.is_none()
+                    && !same_json(state.crs.as_deref().unwrap_or_default(), raw.get())
+                {
+                    // A later record of a sequence with another crs: kept out, its place kept
+                    // to tell. `raw` lies inside the record: its offset there, by address.
                     let at =
                         (raw.get().as_ptr() as usize).wrapping_sub(state.text.as_ptr() as usize);
                     state.crs_dropped = Some(at.min(state.text.len()));
                 }
                 continue;
             }
-            // The document's second `crs`: the one carried on to the outputs would be a guess.
-            let second_crs = key == Key::Crs && self.depth == 0;
-            if key == Key::Other || (key == Key::Crs && !second_crs) {
+            if matches!(key, Key::Other | Key::Crs) {
                 map.next_value::<IgnoredAny>()?;
                 continue;
-            }
-            if seen.contains(&key) || second_crs {
-                // JSON leaves open which of two equal names counts (RFC 8259, section 4):
-                // reading the first, as before, could read other points than the writer meant.
-                return Err(de::Error::custom(format_args!(
-                    "the member \"{}\" is given twice in one object",
-                    key.name()
-                )));
             }
             seen.push(key);
             if key == Key::Type {

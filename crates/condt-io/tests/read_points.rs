@@ -790,6 +790,12 @@ fn a_later_crs_in_a_geojson_sequence_is_told_not_dropped_silently() {
         text.contains("two.geojson") && text.contains("\"crs\" is given twice"),
         "{text}"
     );
+    // So is a later record of a sequence giving its crs twice, on that record's line.
+    let twice = record(Some(utm), 1).replacen("\"crs\"", &format!("\"crs\": {other}, \"crs\""), 1);
+    let file = TempFile::new("twice.geojsonl", (record(None, 0) + &twice).as_bytes());
+    let err = condt_io::read_points_with(&file.0, &condt_io::ReadOptions::new()).unwrap_err();
+    assert!(err.to_string().contains("\"crs\" is given twice"), "{err}");
+    assert_eq!(err.line, Some(2), "{err}");
 }
 
 /// Found by a review: `Column` and `Columns` have public fields, so columns `Columns::parse`

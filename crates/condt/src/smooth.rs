@@ -378,7 +378,9 @@ impl PassInput {
     /// any point's position in the frame it moves points in; else the graph back. Where none
     /// changes (no point has two edges wide apart, or each such is its neighbours' midpoint, as
     /// on evenly spaced straight runs), a pass would triangulate the same points again: no pass
-    /// runs, and the result is the run's (reconstruct's rule).
+    /// runs, and the result is the run's (reconstruct's rule). Compared in the stages' frame:
+    /// where a step changes a position there that the input frame cannot tell apart (beyond
+    /// `f64`'s range, scaled by a power of two), a pass runs and reports no point moved.
     pub(crate) fn moving(
         tri: &impl RunPositions,
         graph: CurveGraph,
@@ -772,6 +774,30 @@ mod tests {
         }
         // Runs that end without a pass, after one or two (a fixed point), and after the last.
         assert!(endings.iter().all(|&count| count > 0), "{endings:?}");
+        // Evenly spaced straight dashes, where a pass would move a point only where the midpoint
+        // rounds off it (spacing 1/3, or one dash bent), and none with spacing 1 or 0.1.
+        for (spacing, bent) in [(1.0, false), (0.1, false), (1.0 / 3.0, false), (1.0, true)] {
+            let mut points: Vec<Point> = (0..30)
+                .map(|k| Point::new((k % 10) as f64 * spacing, (k / 10) as f64 * 4.0 * spacing))
+                .collect();
+            if bent {
+                points[15].y += spacing / 4.0;
+            }
+            for params in [Params::default(), Params::paper().with_smooth(true)] {
+                let (edges, _, passes) = chained(&points, &params);
+                let whole = reconstruct(&points, &params).unwrap();
+                let whole_passes = whole.smoothing().map_or(0, |s| s.passes);
+                assert_eq!(whole_passes, passes, "spacing {spacing}");
+                assert_eq!(
+                    edges,
+                    whole.edges().collect::<Vec<_>>(),
+                    "spacing {spacing}"
+                );
+                if spacing == 1.0 {
+                    assert_eq!(passes, usize::from(bent), "spacing 1, bent {bent}");
+                }
+            }
+        }
     }
 
     /// Found by a fuzzer: points 2 and 8 (and 0 and 7, 4 and 9) differ by one unit in the last

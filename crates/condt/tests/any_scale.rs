@@ -234,7 +234,8 @@ fn stage_points_next_to_the_largest_double_stay_finite() {
     }
 }
 
-/// From 65,536 points crowded grid cells are ordered again, each on a grid of its own. A set
+/// Crowded grid cells (1,024 points or more; until 2026-12-06 only in sets of 65,536 points or
+/// more) are ordered again, each on a grid of its own. A set
 /// narrower than about 2^-1000 made the grid's step overflow (and a set wider than `f64::MAX`
 /// made it zero): every point fell in one cell, which was ordered again the same way until the
 /// stack overflowed (an abort, not a panic). Such sets now reconstruct, as their rescaled copies.

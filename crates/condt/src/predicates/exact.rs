@@ -152,9 +152,15 @@ fn decompose(x: f64) -> Option<(bool, u64, i32)> {
 /// The points' coordinates as integers in units of `2^e0`, `e0` the exponent of the last set bit
 /// of the least precise one (zero when all are zero): each is an integer multiple of `2^e0`.
 fn integers<const N: usize, const L: usize>(points: [[f64; 2]; N]) -> [[Int<L>; 2]; N] {
-    let exponents = points.as_flattened().iter().filter_map(|&c| decompose(c));
-    let e0 = exponents.map(|(_, _, e)| e).min().unwrap_or(0);
+    let e0 = least_exponent(&points);
     points.map(|p| p.map(|c| Int::from_f64(c, e0)))
+}
+
+/// [`integers`]' unit: the exponent of the last set bit of the least precise coordinate (zero
+/// when all are zero).
+fn least_exponent(points: &[[f64; 2]]) -> i32 {
+    let exponents = points.as_flattened().iter().filter_map(|&c| decompose(c));
+    exponents.map(|(_, _, e)| e).min().unwrap_or(0)
 }
 
 fn compare_magnitudes(a: &[u64], b: &[u64]) -> Ordering {
@@ -256,26 +262,20 @@ fn dot_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) ->
 /// dyadic (0.1 apart) tie when rounded at almost every point, so this runs once per point there:
 /// in machine integers, or in as few limbs as the coordinates allow.
 pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
-    if integer_bits(&[p, a, b]) <= 62 {
+    let bits = integer_bits(&[p, a, b]);
+    if bits <= 62 {
         return compare_distances_u128(p, a, b);
     }
     // Two squares of differences, each sum one limb over them, and a spare limb for a carry.
-    in_width!(
-        2 * difference_limbs(&[p, a, b]) + 2,
-        compare_distances_in(p, a, b)
-    )
+    let difference_limbs = (bits + 1).div_ceil(64);
+    in_width!(2 * difference_limbs + 2, compare_distances_in(p, a, b))
 }
 
 /// [`compare_distances`] for coordinates of at most 62 bits in [`integers`]' unit: each difference
 /// is under 2^63, its square under 2^126, a sum of two under 2^127, all in machine integers.
 fn compare_distances_u128(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
-    let e0 = [p, a, b]
-        .as_flattened()
-        .iter()
-        .filter_map(|&c| decompose(c))
-        .map(|(_, _, e)| e)
-        .min()
-        .unwrap_or(0);
+    let e0 = least_exponent(&[p, a, b]);
+    // `Int::from_f64` in machine integers.
     let integer = |c: f64| match decompose(c) {
         None => 0i128,
         Some((negative, mantissa, e)) => {
@@ -313,9 +313,9 @@ fn difference_limbs(points: &[[f64; 2]]) -> usize {
 
 /// The most bits a coordinate of `points` takes as an integer in [`integers`]' unit.
 fn integer_bits(points: &[[f64; 2]]) -> usize {
-    let parts = || points.as_flattened().iter().filter_map(|&c| decompose(c));
-    let e0 = parts().map(|(_, _, e)| e).min().unwrap_or(0);
-    parts()
+    let e0 = least_exponent(points);
+    let parts = points.as_flattened().iter().filter_map(|&c| decompose(c));
+    parts
         .map(|(_, mantissa, e)| (e - e0) as usize + (u64::BITS - mantissa.leading_zeros()) as usize)
         .max()
         .unwrap_or(0)
@@ -495,9 +495,13 @@ mod tests {
             Ordering::Greater
         );
         assert_eq!(compare_distances_u128(p, b, [-top, -top]), Ordering::Equal);
-        // At each width's bound, the largest differences: 63 bits a limb.
-        for bits in [63, 127, 191, 255, 447, 511, 1023, 2047] {
-            let (top, small) = (libm::ldexp(1.0, 1000), libm::ldexp(1.0, 1001 - bits));
+        // On each side of every width's switch (a difference of 63 bits a limb; in-circle's
+        // switches at 63, 191, 447, 959 and 1983 bits, the others' at 191, 447, 959, 1983) and at
+        // the widest spread of doubles, with full mantissas: the largest differences.
+        let switches = [63, 64, 191, 192, 447, 448, 959, 960, 1983, 1984, 2098];
+        for bits in switches {
+            let full = ((1u64 << 53) - 1) as f64;
+            let (top, small) = (libm::ldexp(full, bits - 1127), f64::from_bits(1));
             let (p, a, b, c) = ([top, small], [-top, 0.0], [0.0, top], [-top, -top]);
             assert_eq!(integer_bits(&[p, a, b, c]), bits as usize);
             assert_eq!(orient2d_sign(p, a, b), orient2d_in::<LIMBS>(p, a, b));
