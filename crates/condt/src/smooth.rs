@@ -387,9 +387,10 @@ pub(crate) struct PassInput {
 impl PassInput {
     /// The pass after the reconstruction on `tri` with final graph `graph`, if it would change
     /// any point's position in the frame it moves points in; else the graph back. Where none
-    /// changes (no point has two edges wide apart, or each such is its neighbours' midpoint, as
-    /// on evenly spaced straight runs), a pass would triangulate the same points again: no pass
-    /// runs, and the result is the run's (reconstruct's rule). Compared in the stages' frame:
+    /// changes (no point has two edges wide apart, or each such steps back onto itself within
+    /// rounding, as on evenly spaced straight runs: [`umbrella_step`]), a pass would triangulate
+    /// the same points again: no pass runs, and the result is the run's (reconstruct's rule).
+    /// Compared in the stages' frame:
     /// where a step changes a position there that the input frame cannot tell apart (beyond
     /// `f64`'s range, scaled by a power of two), a pass runs and reports no point moved.
     pub(crate) fn moving(

@@ -109,8 +109,8 @@ def reconstruct(
     points (each round sends a task per tile, and the default takes dozens of rounds: give
     each tile tens of thousands of points). ``halo`` is the margin each tile's points are first
     sent with, a positive finite number (numpy's too; ``None``: a quarter of the tile's shorter
-    side), grown for a tile whose certificate needs more (by half, then doubled). ``params`` are ``condt.reconstruct``'s
-    keywords (every ConDT pipeline is tiled).
+    side), grown for a tile whose certificate needs more (by half, then doubled). ``params`` are
+    ``condt.reconstruct``'s keywords (every ConDT pipeline is tiled).
 
     Raises ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``tiles`` or
     ``halo`` of the wrong type (a bool, a str, a float for ``tiles``) or points that are not

@@ -206,7 +206,8 @@ fn subtract_magnitudes<const L: usize>(a: &[u64], b: &[u64]) -> Int<L> {
 /// The exact orientation sign: `Greater` when `a, b, c` turn counter-clockwise.
 pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
     // Two products of two differences, their difference, and a spare limb for a carry.
-    in_width!(2 * difference_limbs(&[a, b, c]) + 2, orient2d_in(a, b, c))
+    let limbs = difference_limbs(integer_bits(&[a, b, c]));
+    in_width!(2 * limbs + 2, orient2d_in(a, b, c))
 }
 
 /// [`orient2d_sign`] in integers of `L` limbs.
@@ -222,10 +223,8 @@ fn orient2d_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Orderin
 pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
     // A lift (a sum of two squares, one limb over them) times a 2x2 determinant (one over its
     // products), a sum of three such, and a spare limb for a carry.
-    in_width!(
-        4 * difference_limbs(&[a, b, c, d]) + 4,
-        in_circle_in(a, b, c, d)
-    )
+    let limbs = difference_limbs(integer_bits(&[a, b, c, d]));
+    in_width!(4 * limbs + 4, in_circle_in(a, b, c, d))
 }
 
 /// [`in_circle_sign`] in integers of `L` limbs.
@@ -248,7 +247,8 @@ fn in_circle_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 
 /// The exact sign of the dot product `(a - b) · (c - d)`.
 pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
     // As [`orient2d_sign`]: two products of two differences, their sum, a spare limb.
-    in_width!(2 * difference_limbs(&[a, b, c, d]) + 2, dot_in(a, b, c, d))
+    let limbs = difference_limbs(integer_bits(&[a, b, c, d]));
+    in_width!(2 * limbs + 2, dot_in(a, b, c, d))
 }
 
 /// [`dot_sign`] in integers of `L` limbs.
@@ -267,8 +267,10 @@ pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Orderi
         return compare_distances_u128(p, a, b);
     }
     // Two squares of differences, each sum one limb over them, and a spare limb for a carry.
-    let difference_limbs = (bits + 1).div_ceil(64);
-    in_width!(2 * difference_limbs + 2, compare_distances_in(p, a, b))
+    in_width!(
+        2 * difference_limbs(bits) + 2,
+        compare_distances_in(p, a, b)
+    )
 }
 
 /// [`compare_distances`] for coordinates of at most 62 bits in [`integers`]' unit: each difference
@@ -305,10 +307,10 @@ fn compare_distances_in<const L: usize>(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -
     squared(a).sub(&squared(b)).signum()
 }
 
-/// The limbs that a difference of two coordinates of `points` takes in [`integers`]' unit (one
-/// bit over the widest coordinate).
-fn difference_limbs(points: &[[f64; 2]]) -> usize {
-    (integer_bits(points) + 1).div_ceil(64)
+/// The limbs that a difference of two coordinates of `bits` bits ([`integer_bits`]) takes: one
+/// bit more.
+fn difference_limbs(bits: usize) -> usize {
+    (bits + 1).div_ceil(64)
 }
 
 /// The most bits a coordinate of `points` takes as an integer in [`integers`]' unit.
@@ -477,7 +479,7 @@ mod tests {
             assert_eq!(dot_sign(p, a, b, c), full, "{p:?} {a:?} {b:?} {c:?}");
             let full = in_circle_in::<LIMBS>(p, a, b, c);
             assert_eq!(in_circle_sign(p, a, b, c), full, "{p:?} {a:?} {b:?} {c:?}");
-            let limbs = 4 * difference_limbs(&[p, a, b, c]) + 4;
+            let limbs = 4 * difference_limbs(integer_bits(&[p, a, b, c])) + 4;
             widths[[8, 16, 32, 64].iter().take_while(|&&w| w < limbs).count()] += 1;
         }
         // Every width took part, in-circle's the widest.

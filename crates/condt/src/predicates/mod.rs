@@ -153,7 +153,7 @@ pub(crate) fn compare_tied_distances(p: Point, a: Point, b: Point) -> Ordering {
     exact::compare_distances(p.into(), a.into(), b.into())
 }
 
-/// Whether `a + b` rounds to nothing but itself (Knuth's two-sum leaves no error). False on an
+/// Whether `a + b` is computed without rounding (Knuth's two-sum leaves no error). False on an
 /// overflow (the error reads NaN).
 fn exact_sum(a: f64, b: f64) -> bool {
     let s = a + b;
