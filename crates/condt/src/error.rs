@@ -61,6 +61,13 @@ pub enum Error {
     InvalidTriangulation(Violation),
 }
 
+impl Error {
+    /// [`Error::InvalidParameter`] named `name`, with `value`.
+    pub(crate) fn invalid(name: &'static str, value: f64) -> Error {
+        Error::InvalidParameter { name, value }
+    }
+}
+
 impl From<Violation> for Error {
     fn from(violation: Violation) -> Self {
         Error::InvalidTriangulation(violation)

@@ -351,10 +351,7 @@ impl<'a> Explainer<'a> {
             let evidence = rule_evidence(tri, input.graph.listed(), before_outliers);
             local = evidence
                 .into_iter()
-                .map(|([v, w], rule)| {
-                    let (a, b) = (tri.input_of(v), tri.input_of(w));
-                    ([a.min(b), a.max(b)], rule)
-                })
+                .map(|(edge, rule)| (tri.input_edge(edge), rule))
                 .collect();
             local.sort_unstable_by_key(|&(edge, _)| edge);
         }
@@ -369,10 +366,7 @@ impl<'a> Explainer<'a> {
                     to: p.max(q),
                     points: detour.inner().len(),
                 };
-                detour_reasons.extend(detour.removed().map(|[v, w]| {
-                    let (a, b) = (tri.input_of(v), tri.input_of(w));
-                    ([a.min(b), a.max(b)], reason)
-                }));
+                detour_reasons.extend(detour.removed().map(|e| (tri.input_edge(e), reason)));
             }
             detour_reasons.sort_unstable_by_key(|&(edge, _)| edge);
         }

@@ -501,11 +501,7 @@ pub fn gathered_smoothing_pass(
     let mut listed: Vec<Edge> = Vec::with_capacity(edges.len());
     for &[a, b] in edges {
         if a >= n || b >= n {
-            let value = a.max(b) as f64;
-            return Err(Error::InvalidParameter {
-                name: "edge",
-                value,
-            });
+            return Err(Error::invalid("edge", a.max(b) as f64));
         }
         let [a, b] = [run.vertex(a), run.vertex(b)];
         if a != b {

@@ -127,11 +127,7 @@ fn gathered_lengths(points: &[crate::Point], edges: &[[usize; 2]]) -> Result<Vec
     for &[a, b] in edges {
         // A loop is no edge of a graph (`Graph` drops them): refused, not measured as length 0.
         let (Some(&p), Some(&q), true) = (points.get(a), points.get(b), a != b) else {
-            let value = a.max(b) as f64;
-            return Err(Error::InvalidParameter {
-                name: "edge",
-                value,
-            });
+            return Err(Error::invalid("edge", a.max(b) as f64));
         };
         lengths.push(stages.apply(p).dist2(stages.apply(q)));
     }
@@ -465,13 +461,9 @@ pub fn tip_candidates(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usi
 pub fn hook_joins(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize; 2]> {
     let tri = graph.triangulation();
     let ends = Ends::new(tri, graph.listed(), None);
-    let position = |v: VertexId| tri.input_of(v);
-    hooks::hook_joins(&ends, false)
-        .into_iter()
-        .map(|[a, b]| {
-            let (a, b) = (position(a), position(b));
-            [a.min(b), a.max(b)]
-        })
+    let joins = hooks::hook_joins(&ends, false).into_iter();
+    joins
+        .map(|e| tri.input_edge(e))
         .filter(|&[a, _]| at(a))
         .collect()
 }
@@ -530,10 +522,7 @@ fn candidate_rows(
     let mut rows = Vec::with_capacity(candidates.len());
     for &row in candidates {
         if let Some(&end) = row.iter().find(|&&i| i >= n) {
-            return Err(Error::InvalidParameter {
-                name: "candidate",
-                value: end as f64,
-            });
+            return Err(Error::invalid("candidate", end as f64));
         }
         let [q, x, y, p] = row.map(vertex);
         rows.push(if row.iter().all(|&i| i == row[0]) {
@@ -642,12 +631,7 @@ pub fn close_gathered_gaps(
     let graph = CurveGraph::new(n, &listed);
     let (targets, walks) = loose_ends_only(&graph, read_choices(n, rows)?);
     let joins = gaps::settle_joins(n, &graph, &targets, |joined| not_joined(walks, joined));
-    if joins.is_empty() {
-        return Ok(None);
-    }
-    let mut out = edges.to_vec();
-    out.extend(joins.iter().map(|&[a, b]| [a.index(), b.index()]));
-    Ok(Some(out))
+    Ok(with_added(edges, &joins))
 }
 
 /// The loose ends' targets and straight walks in rows of [`gap_choices`], each by increasing end.
@@ -685,10 +669,7 @@ fn read_choices(n: usize, rows: &[[usize; GAP_ROW]]) -> Result<Choices, Error> {
             .chain(row[5..].iter().copied().take(walk_len));
         let bad = row[1] > 3 || walk_len > GAP_ROW - 5;
         if let Some(at) = named.find(|&i| i >= n).or(bad.then_some(row[0])) {
-            return Err(Error::InvalidParameter {
-                name: "choice",
-                value: at as f64,
-            });
+            return Err(Error::invalid("choice", at as f64));
         }
         let v = |i: usize| VertexId::new(row[i] as u32);
         let target = match row[1] {
@@ -827,12 +808,7 @@ pub fn give_back_gathered_last_edges(
     candidates.sort_unstable();
     candidates.dedup();
     let back = local_outliers::last_edges(&CurveGraph::new(n, &listed), &candidates);
-    if back.is_empty() {
-        return Ok(None);
-    }
-    let mut out = edges.to_vec();
-    out.extend(back.iter().map(|&[a, b]| [a.index(), b.index()]));
-    Ok(Some(out))
+    Ok(with_added(edges, &back))
 }
 
 /// The edges the junctions stage would join ([`Graph::join_junctions`]) at the loose ends of
@@ -861,13 +837,8 @@ pub fn junction_joins(
     let tri = graph.triangulation();
     let ends = Ends::new(tri, graph.listed(), None);
     let position = |v: VertexId| tri.input_of(v);
-    junctions::junction_joins(&ends, false, |v| at(position(v)))
-        .into_iter()
-        .map(|[a, b]| {
-            let (a, b) = (position(a), position(b));
-            [a.min(b), a.max(b)]
-        })
-        .collect()
+    let joins = junctions::junction_joins(&ends, false, |v| at(position(v)));
+    joins.into_iter().map(|e| tri.input_edge(e)).collect()
 }
 
 /// The local outlier removal's rule 4 on edges gathered from the tiles of a split run, after
@@ -1140,6 +1111,12 @@ fn keeping(
     kept.map(|(&edge, _)| edge).collect()
 }
 
+/// `edges` with `added` after them, or `None` when `added` is empty.
+fn with_added(edges: &[[usize; 2]], added: &[Edge]) -> Option<Vec<[usize; 2]>> {
+    let positions = added.iter().map(|&[a, b]| [a.index(), b.index()]);
+    (!added.is_empty()).then(|| edges.iter().copied().chain(positions).collect())
+}
+
 /// `Ok` when `tests` holds one entry per point of `n`.
 fn enough_tests(n: usize, tests: &[u8]) -> Result<(), Error> {
     one_per_point(n, "tests", tests.len())
@@ -1148,10 +1125,7 @@ fn enough_tests(n: usize, tests: &[u8]) -> Result<(), Error> {
 /// `Ok` when an array `name` of `len` entries holds one per point of `n`.
 fn one_per_point(n: usize, name: &'static str, len: usize) -> Result<(), Error> {
     if len < n {
-        return Err(Error::InvalidParameter {
-            name,
-            value: len as f64,
-        });
+        return Err(Error::invalid(name, len as f64));
     }
     Ok(())
 }
@@ -1159,19 +1133,13 @@ fn one_per_point(n: usize, name: &'static str, len: usize) -> Result<(), Error> 
 /// `edges` (pairs of positions below `n`) as the stages' edges, a position standing for a vertex.
 fn vertex_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
     if n > CurveGraph::MAX_VERTICES {
-        return Err(Error::InvalidParameter {
-            name: "n",
-            value: n as f64,
-        });
+        return Err(Error::invalid("n", n as f64));
     }
     edges
         .iter()
         .map(|&[a, b]| {
             if a.max(b) >= n {
-                return Err(Error::InvalidParameter {
-                    name: "edge",
-                    value: a.max(b) as f64,
-                });
+                return Err(Error::invalid("edge", a.max(b) as f64));
             }
             Ok(ordered(VertexId::new(a as u32), VertexId::new(b as u32)))
         })

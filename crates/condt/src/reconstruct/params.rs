@@ -131,22 +131,14 @@ impl Default for Params {
     /// assert_eq!(p.stages(), [&all[..], &later[..]].concat());
     /// ```
     fn default() -> Self {
-        Params::paper()
+        let mut params = Params::paper()
             .with_repair(Repair::Needs)
             .with_iqr_floor(true)
-            .with_repair_again(true)
-            .with_local_outliers(true)
-            .with_confirm_given_back(true)
-            .with_clumps(true)
-            .with_close_gaps(true)
-            .with_junctions(true)
-            .with_crossings(true)
-            .with_tips(true)
-            .with_spikes(true)
-            .with_hooks(true)
-            .with_tails(true)
-            .with_detours(true)
-            .with_smooth(true)
+            .with_smooth(true);
+        for stage in Stage::ALL {
+            params.set_stage(stage, true); // every stage with a switch
+        }
+        params
     }
 }
 

@@ -131,9 +131,6 @@ pub(crate) fn restore_crossings(
     // A point in two crossings (a crossing's and a chord's end, say) takes part in none.
     let mut restored = found;
     alone(n, &mut restored, &[], |k| [k.x, k.c, k.d]);
-    if restored.is_empty() {
-        return Outcome::unchanged_with(ends.into_graph());
-    }
     let chords = restored.iter().map(|k| ordered(k.c, k.d)).collect();
     let arms = restored
         .iter()

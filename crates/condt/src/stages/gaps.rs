@@ -499,19 +499,6 @@ impl<'a> Ends<'a> {
             (!walk.is_empty()).then_some((a, walk))
         })
     }
-
-    /// The outcome of a stage that adds `joins` to `edges`: unchanged when there is none;
-    /// otherwise `edges` in order, then `joins`; the curve graph follows and is handed on.
-    pub(super) fn joined(self, edges: &[Edge], joins: &[Edge]) -> Outcome {
-        let graph = self.into_graph();
-        if joins.is_empty() {
-            return Outcome::unchanged_with(graph);
-        }
-        let mut out = Vec::with_capacity(edges.len() + joins.len());
-        out.extend_from_slice(edges);
-        out.extend_from_slice(joins);
-        Outcome::changed(edges, out, graph)
-    }
 }
 
 /// Rule (4) of the module: runs of unused points between two loose ends of `graph` (over `n`
@@ -595,7 +582,7 @@ fn listed_under(sorted: &[(VertexId, usize)], v: VertexId) -> impl Iterator<Item
 }
 
 /// Closes gaps in `edges` (each edge once, any order): the input edges in order, then the joins
-/// ([`Ends::joined`]).
+/// ([`Outcome::replacing`]).
 pub(crate) fn close_gaps(
     tri: &Triangulation,
     edges: &[Edge],
@@ -604,7 +591,7 @@ pub(crate) fn close_gaps(
 ) -> Outcome {
     let ends = Ends::new(tri, edges, graph);
     let joins = gap_joins(&ends, parallel);
-    ends.joined(edges, &joins)
+    Outcome::replacing(edges, ends.into_graph(), Vec::new(), joins)
 }
 
 /// The joins [`close_gaps`] adds to the graph of `ends`, by increasing loose end.

@@ -118,217 +118,108 @@ struct Row {
     switch: Option<Switch>,
 }
 
-const ROWS: [Row; 17] = [
-    Row {
-        stage: Stage::Proximity,
-        name: "proximity",
-        title: "ConDT proximity graph",
-        key: "proximity",
-        switch: None,
-    },
-    Row {
-        stage: Stage::Repair,
-        name: "repair",
-        title: "after non-manifold repair",
-        key: "repair",
-        switch: None,
-    },
-    Row {
-        stage: Stage::Outliers,
-        name: "IQR outliers",
-        title: "after outlier removal",
-        key: "iqr-outliers",
-        switch: None,
-    },
-    Row {
-        stage: Stage::RepairAgain,
-        name: "repair again",
-        title: "after repairing again without the cut edges",
-        key: "repair-again",
-        switch: Some(Switch {
-            flag: "repair-again",
-            help: "(default on; off with --paper) when the outlier filter cut
+/// The rows in order: `Variant: name, title, key` and, for a stage with a switch, its
+/// `flag => help`.
+macro_rules! rows {
+    ($($stage:ident: $name:literal, $title:literal, $key:literal
+        $(, $flag:literal => $help:literal)?;)*) => {
+        [$(Row {
+            stage: Stage::$stage,
+            name: $name,
+            title: $title,
+            key: $key,
+            switch: rows!(@switch $($flag, $help)?),
+        },)*]
+    };
+    (@switch) => { None };
+    (@switch $flag:literal, $help:literal) => { Some(Switch { flag: $flag, help: $help }) };
+}
+
+const ROWS: [Row; 17] = rows! {
+    Proximity: "proximity", "ConDT proximity graph", "proximity";
+    Repair: "repair", "after non-manifold repair", "repair";
+    Outliers: "IQR outliers", "after outlier removal", "iqr-outliers";
+    RepairAgain: "repair again", "after repairing again without the cut edges", "repair-again",
+        "repair-again" => "(default on; off with --paper) when the outlier filter cut
 edges, repair again without them: a curve edge the repair
-dropped for an outlier's pair comes back",
-        }),
-    },
-    Row {
-        stage: Stage::LocalOutliers,
-        name: "local outliers",
-        title: "after local outlier removal",
-        key: "local-outliers",
-        switch: Some(Switch {
-            flag: "local-outliers",
-            help: "(default on; off with --paper) after the outlier filter and the
+dropped for an outlier's pair comes back";
+    LocalOutliers: "local outliers", "after local outlier removal", "local-outliers",
+        "local-outliers" => "(default on; off with --paper) after the outlier filter and the
 repair, remove outliers locally: give back edges the filter cut
 along regular passages; drop edges far longer than their
 neighbours, branches of fewer than 5 points and components of
 fewer than 5 points clearly apart from the rest, unless dense
 or gap closing, the tips, the hooks or the junctions would join
 them to a curve that stays, whether those steps run or not (a sparsely sampled
-curve of 3 or 4 points, or a closed one of 5 or 6, is lost)",
-        }),
-    },
-    Row {
-        stage: Stage::GivenBack,
-        name: "given-back check",
-        title: "after confirming given-back components",
-        key: "given-back",
-        switch: Some(Switch {
-            flag: "confirm-given-back",
-            help: "(default on; off with --paper; needs the local outlier removal)
+curve of 3 or 4 points, or a closed one of 5 or 6, is lost)";
+    GivenBack: "given-back check", "after confirming given-back components", "given-back",
+        "confirm-given-back" => "(default on; off with --paper; needs the local outlier removal)
 after it and the clumps, drop a component rebuilt only from edges
 the outlier filter cut unless every point of it with two edges or
 more is apart from every unused point or other such component by
 twice its longest edge
 (a chance chain of outliers in a large scatter; a sparse curve
-the filter cut that passes near an unused point stays cut)",
-        }),
-    },
-    Row {
-        stage: Stage::Clumps,
-        name: "clumps",
-        title: "after removing clumps",
-        key: "clumps",
-        switch: Some(Switch {
-            flag: "clumps",
-            help: "(default on; off with --paper) after the local outlier removal,
+the filter cut that passes near an unused point stays cut)";
+    Clumps: "clumps", "after removing clumps", "clumps",
+        "clumps" => "(default on; off with --paper) after the local outlier removal,
 remove components fewer than half of whose points a curve passes
 smoothly and evenly, or half and every point apart (clumps of
 outliers), unless that would remove a quarter of the points with
 edges; a component gap closing, the tips, the hooks or the
-junctions would join to one that stays, stays",
-        }),
-    },
-    Row {
-        stage: Stage::Gaps,
-        name: "gaps",
-        title: "after closing gaps",
-        key: "gaps",
-        switch: Some(Switch {
-            flag: "close-gaps",
-            help: "(default on; off with --paper) after the removals, join loose
+junctions would join to one that stays, stays";
+    Gaps: "gaps", "after closing gaps", "gaps",
+        "close-gaps" => "(default on; off with --paper) after the removals, join loose
 ends that face each other across a short gap or line up through a
 stranded point, two that walk straight on through unused points
-and meet, and a crossing's dropped arms",
-        }),
-    },
-    Row {
-        stage: Stage::Junctions,
-        name: "junctions",
-        title: "after joining junctions",
-        key: "junctions",
-        switch: Some(Switch {
-            flag: "junctions",
-            help: "(default on; off with --paper) after gap closing, join a loose
+and meet, and a crossing's dropped arms";
+    Junctions: "junctions", "after joining junctions", "junctions",
+        "junctions" => "(default on; off with --paper) after gap closing, join a loose
 end to the curve it meets where three (or four) curves meet (map
 borders, a T), or put it in place of the edge that runs past it
 there: branches of at least 5 points each, evenly sampled; a
-stroke of 5 or 6 points is joined where both its ends meet curves",
-        }),
-    },
-    Row {
-        stage: Stage::Crossings,
-        name: "crossings",
-        title: "after restoring crossings",
-        key: "crossings",
-        switch: Some(Switch {
-            flag: "crossings",
-            help: "(default on; off with --paper) after the junctions, where two
+stroke of 5 or 6 points is joined where both its ends meet curves";
+    Crossings: "crossings", "after restoring crossings", "crossings",
+        "crossings" => "(default on; off with --paper) after the junctions, where two
 curves cross at a sample at a narrow angle and the sample kept
 an arm of each (two V shapes), give it all four arms in place of
-the edge that paired its neighbours",
-        }),
-    },
-    Row {
-        stage: Stage::Tips,
-        name: "tips",
-        title: "after re-pairing loose ends at tips",
-        key: "tips",
-        switch: Some(Switch {
-            flag: "tips",
-            help: "(default on; off with --paper) after the crossings, where an edge
+the edge that paired its neighbours";
+    Tips: "tips", "after re-pairing loose ends at tips", "tips",
+        "tips" => "(default on; off with --paper) after the crossings, where an edge
 pairs the samples on either side of a sharp tip, join each of the
 two to a loose end beside it, or both to the tip's sample if it
 has no edge and continues both sides evenly (a loose end among
 the two also to the loose end its side runs straight on to), in
 place of that edge, when the new passages are smooth (straight
-beside a loose end) and no curve is split",
-        }),
-    },
-    Row {
-        stage: Stage::Spikes,
-        name: "spikes",
-        title: "after putting back thin tips",
-        key: "spikes",
-        switch: Some(Switch {
-            flag: "spikes",
-            help: "(default on; off with --paper) after the tips, where an edge
+beside a loose end) and no curve is split";
+    Spikes: "spikes", "after putting back thin tips", "spikes",
+        "spikes" => "(default on; off with --paper) after the tips, where an edge
 pairs the samples on either side of a sharp tip whose 2 to 5
 samples have no edges, join the two through them instead, along
 the shortest path, when it is evenly spaced, smooth but at its
 apex, and rises to the apex and falls on one side of the edge;
-likewise two loose ends ending curves of 5 points",
-        }),
-    },
-    Row {
-        stage: Stage::Hooks,
-        name: "hooks",
-        title: "after unhooking loose ends",
-        key: "hooks",
-        switch: Some(Switch {
-            flag: "hooks",
-            help: "(default on; off with --paper) after the spikes, where a loose
+likewise two loose ends ending curves of 5 points";
+    Hooks: "hooks", "after unhooking loose ends", "hooks",
+        "hooks" => "(default on; off with --paper) after the spikes, where a loose
 end hangs from a sample that the curve reached first (the two
 samples' order swapped by noise) and the curve runs on from that
 sample to a loose end or a point without edges, put the loose
 end between the sample and the one before, and join the sample
 onward, when that leaves no passage as sharp as the hook, or none
-sharp but at the loose end (a tip's apex)",
-        }),
-    },
-    Row {
-        stage: Stage::Tails,
-        name: "outlier tails",
-        title: "after cutting outlier tails",
-        key: "tails",
-        switch: Some(Switch {
-            flag: "tails",
-            help: "(default on; off with --paper) after the hooks, cut a tail of at most 4
+sharp but at the loose end (a tip's apex)";
+    Tails: "outlier tails", "after cutting outlier tails", "tails",
+        "tails" => "(default on; off with --paper) after the hooks, cut a tail of at most 4
 points at a loose end whose joint is longer than 1.5 times the
 edge it joins and bends more than twice as sharply as the even
-run of 5 edges it hangs from (outliers beyond an open end)",
-        }),
-    },
-    Row {
-        stage: Stage::Detours,
-        name: "detours",
-        title: "after cutting detours",
-        key: "detours",
-        switch: Some(Switch {
-            flag: "detours",
-            help: "(default on; off with --paper) last, where two routes of at most
+run of 5 edges it hangs from (outliers beyond an open end)";
+    Detours: "detours", "after cutting detours", "detours",
+        "detours" => "(default on; off with --paper) last, where two routes of at most
 4 points between them join the same two points of three edges
 each (an outlier hung on two samples, a chord past one), remove
 the route the curve runs into less straightly at both ends
-(none where the two ends disagree)",
-        }),
-    },
-    Row {
-        stage: Stage::NnCrust,
-        name: "NN-Crust",
-        title: "NN-Crust (baseline)",
-        key: "nn-crust",
-        switch: None,
-    },
-    Row {
-        stage: Stage::Crust,
-        name: "Crust",
-        title: "Crust (baseline)",
-        key: "crust",
-        switch: None,
-    },
-];
+(none where the two ends disagree)";
+    NnCrust: "NN-Crust", "NN-Crust (baseline)", "nn-crust";
+    Crust: "Crust", "Crust (baseline)", "crust";
+};
 
 impl Stage {
     /// Every stage, in the order of the table that names them.
@@ -459,10 +350,7 @@ impl Step {
             Step::Outliers(rule) | Step::RepairAgain { rule, .. }
                 if !(rule.factor.is_finite() && rule.factor >= 0.0) =>
             {
-                Err(Error::InvalidParameter {
-                    name: "k",
-                    value: rule.factor,
-                })
+                Err(Error::invalid("k", rule.factor))
             }
             _ => Ok(()),
         }
@@ -560,8 +448,8 @@ impl Outcome {
     /// The outcome of a stage that replaces edges of `input`: the input in order without
     /// `removed`, then `added` in order, with `graph` (the input's, if the stage had it) made the
     /// output's, or the input unchanged when neither list has an edge. The crossings, tips,
-    /// spikes and hooks steps replace edges this way, and the outlier tails and the detours remove
-    /// them so.
+    /// spikes and hooks steps replace edges this way, the outlier tails and the detours remove
+    /// them so, and gap closing adds them so.
     pub(crate) fn replacing(
         input: &[Edge],
         graph: Option<CurveGraph>,

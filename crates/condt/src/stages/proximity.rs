@@ -55,10 +55,7 @@ impl Uniformity {
     /// ```
     pub fn check(self) -> Result<(), Error> {
         match self {
-            Uniformity::Fixed(u) if !(u.is_finite() && u > 0.0) => Err(Error::InvalidParameter {
-                name: "u",
-                value: u,
-            }),
+            Uniformity::Fixed(u) if !(u.is_finite() && u > 0.0) => Err(Error::invalid("u", u)),
             _ => Ok(()),
         }
     }

@@ -110,11 +110,7 @@ pub(crate) fn cut_tails(
         .iter()
         .flat_map(|(tail, m)| tail[..=*m].windows(2).map(|w| ordered(w[0], w[1])))
         .collect();
-    let graph = ends.into_graph();
-    if removed.is_empty() {
-        return Outcome::unchanged_with(graph);
-    }
-    Outcome::replacing(edges, graph, removed, Vec::new())
+    Outcome::replacing(edges, ends.into_graph(), removed, Vec::new())
 }
 
 #[cfg(test)]

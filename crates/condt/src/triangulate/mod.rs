@@ -549,8 +549,7 @@ impl Triangulation {
             }
         }
         if let Some(position) = misfit {
-            let (name, value) = ("order", position as f64);
-            return Err(Error::InvalidParameter { name, value });
+            return Err(Error::invalid("order", position as f64));
         }
         triangulate_in(points, false, usize::MAX, None, None, Some(order.to_vec()))
     }
@@ -764,13 +763,15 @@ impl Triangulation {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn edges(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
-        self.mesh.edges().map(|e| {
-            let (a, b) = (
-                self.input_of(self.mesh.origin(e)),
-                self.input_of(self.mesh.dest(e)),
-            );
-            [a.min(b), a.max(b)]
-        })
+        let mesh = &self.mesh;
+        mesh.edges()
+            .map(|e| self.input_edge([mesh.origin(e), mesh.dest(e)]))
+    }
+
+    /// The edge `[v, w]` as input positions, smaller first.
+    pub(crate) fn input_edge(&self, [v, w]: [VertexId; 2]) -> [usize; 2] {
+        let (a, b) = (self.input_of(v), self.input_of(w));
+        [a.min(b), a.max(b)]
     }
     /// The Delaunay neighbours of input point `index`, counter-clockwise ([`Mesh::ring`]).
     ///
