@@ -318,8 +318,10 @@ impl Reconstruction {
     /// input's or writes ``--crs``: a JSON object's text (what ``read_points_with_crs`` gives), a
     /// ``dict`` (any mapping, written by ``json.dumps``), or a name such as ``"EPSG:32632"``,
     /// written as ``--crs`` writes it (a named crs, ``urn:ogc:def:crs:EPSG::32632``); ``None``,
-    /// the default, writes none. ``TypeError`` for any other type, ``ValueError`` for text that
-    /// starts as JSON (``{``) and is not one JSON object.
+    /// the default, writes none. ``TypeError`` for any other type; ``ValueError`` for text that
+    /// starts as JSON (``{``) and is not one JSON object, an object or ``dict`` without a
+    /// ``"type"`` string and a ``"properties"`` object, or other JSON than a string (``[1, 2]``,
+    /// ``null``, ``4326``).
     ///
     /// >>> import condt, json
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True)
@@ -349,17 +351,19 @@ impl Reconstruction {
                     value.get_type().name()?
                 )));
             }
-            // Any mapping, as a dict: `json.dumps` takes dicts alone.
-            Some(value) => Some(
-                py.import("json")?
+            // Any mapping, as a dict (`json.dumps` takes dicts alone), checked as JSON text is.
+            Some(value) => {
+                let text: String = py
+                    .import("json")?
                     .call_method1("dumps", (PyDict::type_object(py).call1((value,))?,))
                     .map_err(|err| {
                         pyo3::exceptions::PyTypeError::new_err(format!(
                             "crs must be JSON text or a JSON-serializable object: {err}"
                         ))
                     })?
-                    .extract()?,
-            ),
+                    .extract()?;
+                Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
+            }
         };
         let mut out = Vec::new();
         condt_io::write_geojson_with_crs(

@@ -926,6 +926,13 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
         r.to_geojson(crs=" ")
     with pytest.raises(TypeError, match="crs must be JSON text"):
         r.to_geojson(crs=object())
+    # JSON that names no crs, as text or as a dict, is refused rather than written.
+    for text in ("[1, 2]", "null", "4326"):
+        with pytest.raises(ValueError, match="is JSON but neither"):
+            r.to_geojson(crs=text)
+    for empty in ("{}", {}, {"type": "name"}):
+        with pytest.raises(ValueError, match="is not a crs object"):
+            r.to_geojson(crs=empty)
     # Any mapping is written as its dict.
     proxy = types.MappingProxyType(json.loads(crs_text))
     assert json.loads(r.to_geojson(crs=proxy))["crs"] == json.loads(crs_text)

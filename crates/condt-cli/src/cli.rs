@@ -809,8 +809,9 @@ enum Format {
 }
 
 impl Format {
+    /// The format of a name in any case, as `--input-format` takes its names.
     fn named(name: &str) -> Option<Format> {
-        match name {
+        match name.to_ascii_lowercase().as_str() {
             "edges" => Some(Format::Edges),
             "npy" => Some(Format::Npy),
             "txt" => Some(Format::Polylines),
@@ -1044,7 +1045,8 @@ const REPAIR_MODES: &str = "needs, paper, mutual, crossing or off";
 
 fn repair_mode(value: Option<&OsString>) -> Result<Repair, CliError> {
     let value = value.ok_or_else(|| usage(format!("--repair needs a mode: {REPAIR_MODES}")))?;
-    match value.to_str() {
+    // Any case, as `--input-format` takes its names.
+    match value.to_str().map(str::to_ascii_lowercase).as_deref() {
         Some("paper") => Ok(Repair::Paper),
         Some("mutual") => Ok(Repair::Mutual),
         Some("crossing") => Ok(Repair::CrossingAware),
@@ -1100,7 +1102,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 let name = value
                     .ok_or_else(|| usage("--method needs a name: condt, nn-crust or crust"))?
                     .to_string_lossy();
-                let chosen = match &*name {
+                let chosen = match name.to_ascii_lowercase().as_str() {
                     "condt" => Method::ConDT,
                     "nn-crust" => Method::NnCrust,
                     "crust" => Method::Crust,
@@ -1253,7 +1255,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             None => Format::Polylines,
             Some(extension) => {
                 let extension = extension.to_str().unwrap_or("");
-                Format::named(&extension.to_ascii_lowercase()).ok_or_else(|| {
+                Format::named(extension).ok_or_else(|| {
                     usage(format!(
                         "cannot tell the format of {} from its extension; use --format",
                         path.display()

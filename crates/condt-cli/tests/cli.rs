@@ -931,3 +931,26 @@ fn the_usage_of_reconstruct_names_method() {
         );
     }
 }
+
+/// A user review: `--input-format CSV` was taken, `--format SVG`, `--repair MUTUAL` and
+/// `--method NN-Crust` refused. Every named value takes any case, with the same output.
+#[test]
+fn option_values_take_any_case() {
+    let input = data("rectangle_crlf_commas.txt");
+    for (lower, upper) in [
+        (&["--format", "svg"][..], &["--format", "SVG"][..]),
+        (&["--repair", "mutual"], &["--repair", "MUTUAL"]),
+        (&["--method", "nn-crust"], &["--method", "NN-Crust"]),
+        (&["--input-format", "txt"], &["--input-format", "TXT"]),
+    ] {
+        let run = |extra: &[&str]| {
+            let mut args = vec!["reconstruct", input.as_str(), "-q"];
+            args.extend_from_slice(extra);
+            condt(&args, "")
+        };
+        let (a, b) = (run(lower), run(upper));
+        assert!(a.status.success() && b.status.success(), "{upper:?}: {b:?}");
+        assert!(!a.stdout.is_empty());
+        assert_eq!(a.stdout, b.stdout, "{upper:?}");
+    }
+}

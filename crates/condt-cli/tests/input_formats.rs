@@ -777,6 +777,9 @@ fn crs_names_the_reference_system_of_a_geojson_output() {
     // Refused, with its reason, before anything is read or written.
     for (extra, words) in [
         (&["--crs", "{\"type\":"][..], "is not one JSON object"),
+        (&["--crs", "{}"][..], "is not a crs object"),
+        (&["--crs", "[1,2]"][..], "is JSON but neither"),
+        (&["--crs", "null"][..], "is JSON but neither"),
         (
             &["--crs", "EPSG:32632", "--format", "txt"][..],
             "GeoJSON output",

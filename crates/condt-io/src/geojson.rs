@@ -100,8 +100,9 @@ pub fn write_geojson_with_crs(
 /// the name it holds.
 ///
 /// # Errors
-/// Why `given` is neither: JSON text (a leading `{`) that is not one object, an empty name, or
-/// one with a control character.
+/// Why `given` is neither: JSON text (a leading `{`) that is not one object with a `"type"`
+/// string and a `"properties"` object, other JSON than a string or an object (`[1, 2]`, `null`,
+/// `4326`), an empty name, or one with a control character.
 ///
 /// ```
 /// use condt_io::crs_member;
@@ -117,15 +118,35 @@ pub fn write_geojson_with_crs(
 /// assert_eq!(crs_member(written)?, written);
 /// assert_eq!(crs_member("\"EPSG:32632\"")?, crs_member("EPSG:32632")?);
 /// assert!(crs_member("{\"type\": ").is_err() && crs_member(" ").is_err());
+/// assert!(crs_member("{}").is_err() && crs_member("[1, 2]").is_err() && crs_member("4326").is_err());
 /// # Ok::<(), String>(())
 /// ```
 pub fn crs_member(given: &str) -> Result<String, String> {
+    use serde_json::Value;
     let trimmed = given.trim();
     if trimmed.starts_with('{') {
-        return match serde_json::from_str::<serde_json::Value>(trimmed) {
-            Ok(serde_json::Value::Object(_)) => Ok(trimmed.to_string()),
+        // The 2008 form: a "type" string and a "properties" object; `{}` names no crs at all.
+        return match serde_json::from_str::<Value>(trimmed) {
+            Ok(Value::Object(crs))
+                if crs.get("type").is_some_and(Value::is_string)
+                    && crs.get("properties").is_some_and(Value::is_object) =>
+            {
+                Ok(trimmed.to_string())
+            }
+            Ok(Value::Object(_)) => Err(format!(
+                "{given:?} is not a crs object: it needs a \"type\" string and a \"properties\" object"
+            )),
             _ => Err(format!("{given:?} is not one JSON object")),
         };
+    }
+    // Other JSON than a string (`[1, 2]`, `null`, `4326`) names nothing: refused, not taken for a
+    // name the output would then carry.
+    if let Ok(value) = serde_json::from_str::<Value>(trimmed) {
+        if !value.is_string() {
+            return Err(format!(
+                "{given:?} is JSON but neither a name such as EPSG:32632 nor a crs object"
+            ));
+        }
     }
     // A JSON string (`"EPSG:32632"`, quotes and all) is the name it holds.
     let unquoted;

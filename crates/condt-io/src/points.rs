@@ -512,10 +512,16 @@ fn lines_by<const ONE_PASS: bool>(
             0 => continue,
             1 => {
                 // Found by a fuzzer: `1;0` said only "found one".
+                let control = line
+                    .chars()
+                    .find(|c| c.is_control() && !matches!(c, '\t' | '\r'));
                 let hint = if line.contains(';') {
-                    " (a semicolon does not separate columns: spaces, tabs or one comma do)"
+                    " (a semicolon does not separate columns: spaces, tabs or one comma do)".into()
+                } else if let Some(c) = control {
+                    // A NUL or Ctrl-Z line shows as nothing in a terminal: name what is there.
+                    format!(" (the line holds the control character U+{:04X})", c as u32)
                 } else {
-                    ""
+                    String::new()
                 };
                 return Err(source.error(
                     number,
@@ -1434,6 +1440,17 @@ mod tests {
             err.contains("found one (a semicolon does not separate columns"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn a_line_of_a_control_character_names_it() {
+        for (text, code) in [("0 0\n\u{0}\n", "U+0000"), ("0 0\n\u{1a}\n", "U+001A")] {
+            let err = parse_points(text, "c.txt").unwrap_err().to_string();
+            assert!(
+                err.contains("c.txt:2:") && err.contains(&format!("control character {code}")),
+                "{err}"
+            );
+        }
     }
 
     #[test]

@@ -172,6 +172,25 @@ try {
     await page.mouse.click(x, y);
     await page.screenshot({ path: screenshot });
   }
+  // A set without extent on one side (one point; points on a vertical line) is drawn centred on
+  // both axes, not from the canvas's corner.
+  for (const [name, text] of [["one", "5 7\n"], ["vertical", "3 0\n3 1e-9\n3 2e-9\n3 3e-9\n"]]) {
+    const input = join(dir, `${name}.txt`);
+    const page_of = join(dir, `${name}.html`);
+    writeFileSync(input, text);
+    execFileSync(condt, ["reconstruct", input, "--format", "html", "-o", page_of, "-q"]);
+    await page.goto("file://" + page_of);
+    await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    const [[x0, y0], [x1, y1], box] = await page.evaluate((last) => {
+      const v = window.condtViewer;
+      const r = document.querySelector("canvas").getBoundingClientRect();
+      return [v.screenOf(0), v.screenOf(last), [r.left + r.width / 2, r.top + r.height / 2]];
+    }, text.trim().split("\n").length - 1);
+    const [cx, cy] = box;
+    assert.ok(Math.abs(x0 - cx) < 1 && Math.abs(x1 - cx) < 1, `${name}: x ${x0}, ${x1} at the centre ${cx}`);
+    assert.ok(Math.abs((y0 + y1) / 2 - cy) < 1, `${name}: y ${y0}, ${y1} around the centre ${cy}`);
+  }
+  assert.deepEqual(problems, [], "the pages raised no error and fetched nothing");
   console.log("viewer test passed");
 } catch (e) {
   failed = true;

@@ -104,10 +104,12 @@
     const w = canvas.clientWidth, h = canvas.clientHeight;
     let maxX = 0, maxY = 0;
     for (let i = 0; i < n; i++) { maxX = Math.max(maxX, P[2 * i]); maxY = Math.max(maxY, P[2 * i + 1]); }
-    const spanX = maxX || 1, spanY = maxY || 1;
-    view.k = 0.92 * Math.min(w / spanX, h / spanY);
-    view.ox = (w - spanX * view.k) / 2;
-    view.oy = h - (h - spanY * view.k) / 2;
+    // A side without extent (one point, or points on one vertical or horizontal line) takes the
+    // other side's, so that the drawing is scaled by what it has and centred on both axes.
+    const span = Math.max(maxX, maxY) || 1;
+    view.k = 0.92 * Math.min(w / (maxX || span), h / (maxY || span));
+    view.ox = (w - maxX * view.k) / 2;
+    view.oy = h - (h - maxY * view.k) / 2;
   }
 
   function resize() {
