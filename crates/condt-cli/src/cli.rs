@@ -33,9 +33,9 @@ Usage:
 INPUT is a text file with one point `x y` per line (spaces, tabs or a comma; a third column is
 ignored; `#` comments and blank lines are skipped; a first line of names, such as `x y`, is a
 header, and with no point after it the file is empty only if it names x and y: `Error: file
-not found` alone is refused); `-` reads standard input: a NumPy array, a
-GeoJSON document or a GeoJSON sequence by its content (the .npy magic bytes, a leading `{`, a
-leading record separator U+001E), else that text
+not found` alone is refused); `-` reads standard input. Standard input, and a name without an
+ending below, is told by its content: a NumPy array, a GeoJSON document or a GeoJSON sequence
+(the .npy magic bytes, a leading `{`, a leading record separator U+001E), else that text
 (`--input-format F` states the format instead, for a file too: `--input-format csv`). By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
@@ -103,9 +103,9 @@ fn global_help() -> String {
 
 /// `--input-format`, the same for every command that reads INPUT.
 const INPUT_FORMAT_HELP: &str = "read INPUT as F whatever its name: txt, node, csv, tsv, npy,
-geojson or geojsonl (standard input, which has no name, is otherwise
-told by its content: .npy, GeoJSON, else txt; `--input-format csv`
-reads CSV)";
+geojson or geojsonl (standard input, and a name without a format's
+ending, is otherwise told by its content: .npy, GeoJSON, else txt;
+`--input-format csv` reads CSV)";
 
 /// `--columns`, the same for every command that reads INPUT.
 const COLUMNS_HELP: &str = "read x and y from these columns of a CSV or TSV INPUT: header

@@ -644,8 +644,8 @@ fn a_geojson_sequence_on_standard_input_is_told_by_its_record_separator() {
 }
 
 /// A file the reader cannot read as its name says is told what it is and how to read it, where
-/// that can be known: an array under a name without a format's ending is read by its magic
-/// bytes (a shell's `<(...)`, `/dev/stdin`); under a text name it is refused naming `.npy`; a
+/// that can be known: an array or GeoJSON under a name without a format's ending is read by its
+/// content (a shell's `<(...)`, `/dev/stdin`); an array under a text name is refused naming `.npy`; a
 /// JSON array, a TSV header of commas, a CSV header of spaces and a header naming x twice each
 /// get their advice.
 #[test]
@@ -664,6 +664,21 @@ fn files_read_in_another_format_than_they_hold_are_told_what_they_are() {
     let out = condt_with_stdin(&["reconstruct", unnamed.to_str().unwrap(), "-q"], b"");
     assert!(out.status.success(), "{out:?}");
     assert_eq!(String::from_utf8(out.stdout).unwrap(), "closed 0 1 2\n");
+    // GeoJSON so too (a user review: it was read as text and refused at its first line), a
+    // document or a sequence, under no ending or one of no format.
+    let document = r#"{"type":"MultiPoint","coordinates":[[0,0],[1,0],[0,1]]}"#;
+    let sequence = "\u{1e}{\"type\":\"Point\",\"coordinates\":[0,0]}\n\u{1e}{\"type\":\"Point\",\"coordinates\":[1,0]}\n\u{1e}{\"type\":\"Point\",\"coordinates\":[0,1]}\n";
+    for (name, content) in [("doc", document), ("seq", sequence), ("doc.dat", document)] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, content).unwrap();
+        let out = condt_with_stdin(&["reconstruct", path.to_str().unwrap(), "-q"], b"");
+        assert!(out.status.success(), "{name}: {out:?}");
+        assert_eq!(
+            String::from_utf8(out.stdout).unwrap(),
+            "closed 0 1 2\n",
+            "{name}"
+        );
+    }
     let texty = dir.path().join("points.txt");
     std::fs::write(&texty, &npy).unwrap();
     let refused = |path: &std::path::Path, content: &[u8], extra: &[&str]| {

@@ -88,8 +88,9 @@ impl InputFormat {
     }
 
     /// The format [`read_points`](crate::read_points) reads `path` in by its name's ending
-    /// (any case; the plain format for any other ending, or none); `None` for `-`, standard
-    /// input, whose format is told by its content.
+    /// (any case; the plain format for any other ending, or none, where the reader still tells
+    /// a NumPy array or GeoJSON by the content); `None` for `-`, standard input, whose format is
+    /// told by its content.
     pub fn of_path(path: impl AsRef<Path>) -> Option<InputFormat> {
         let path = path.as_ref();
         if path.as_os_str() == "-" {

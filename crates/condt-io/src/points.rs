@@ -879,10 +879,10 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// the plain format), `.geojson` or `.json` the Point and MultiPoint geometries
 /// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), `.geojsonl` or `.geojsons`
 /// those of a GeoJSON sequence, one object per line
-/// ([`InputFormat::GeoJsonLines`](super::InputFormat::GeoJsonLines)), anything else the plain
-/// format ([`parse_points`]); `-` reads standard input: a NumPy array, a GeoJSON document or a
-/// GeoJSON sequence by its content (the `.npy` magic bytes, a leading `{`, a leading record
-/// separator U+001E), the plain format otherwise
+/// ([`InputFormat::GeoJsonLines`](super::InputFormat::GeoJsonLines)); `-` reads standard input.
+/// Standard input and a name with any other ending, or none, are told by their content: a NumPy
+/// array, a GeoJSON document or a GeoJSON sequence (the `.npy` magic bytes, a leading `{`, a
+/// leading record separator U+001E), the plain format ([`parse_points`]) otherwise
 /// ([`read_points_with`] reads a file, or standard input, in a format stated instead).
 ///
 /// A text file that is not UTF-8 is refused with the line of the first bad byte. A file too
@@ -1075,7 +1075,9 @@ pub fn read_points_with(
                 ),
             });
         }
-        let format = format.unwrap_or_else(|| {
+        // A name with no ending of a format says no more for GeoJSON than for an array: a `{` or
+        // a record separator, which no point line starts with, tells it there too.
+        let format = format.filter(|_| !unnamed).unwrap_or_else(|| {
             if start.starts_with('{') {
                 InputFormat::GeoJson
             } else if start.starts_with('\u{1e}') {
