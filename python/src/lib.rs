@@ -28,6 +28,45 @@ pub(crate) fn within_call<T>(work: impl FnOnce() -> T) -> T {
 pub(crate) fn within_call<T>(work: impl FnOnce() -> T) -> T {
     work()
 }
+
+/// `work` without the GIL, on threads that exist ([`on_live_threads`]): every call that may
+/// reach the library's parallel code runs so.
+pub(crate) fn detached<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> T {
+    py.detach(|| on_live_threads(work))
+}
+
+/// The process that loaded the module, whose rayon threads the calls use.
+static LOADED_IN: OnceLock<u32> = OnceLock::new();
+
+/// Runs `work` where rayon's threads run. `fork` copies only the calling thread, so a child
+/// forked after its parent started rayon's global pool (`multiprocessing`'s default on Linux
+/// before Python 3.14) holds that pool without its threads, and its first parallel step would
+/// wait forever: a user review found `multiprocessing.Pool` workers hanging in `triangulate`.
+/// In such a child, `work` runs in a pool of the child's own, started at its first call (the
+/// result is the same: the parallel paths give the sequential results). Where no thread can
+/// be started there, it runs as it is, as in the parent.
+pub(crate) fn on_live_threads<T: Send>(work: impl FnOnce() -> T + Send) -> T {
+    let pid = std::process::id();
+    if *LOADED_IN.get_or_init(|| pid) == pid {
+        return work();
+    }
+    static CHILDS_POOL: Mutex<Option<(u32, Arc<rayon::ThreadPool>)>> = Mutex::new(None);
+    let pool = {
+        let mut kept = CHILDS_POOL.lock().unwrap_or_else(PoisonError::into_inner);
+        match &*kept {
+            Some((owner, pool)) if *owner == pid => Some(Arc::clone(pool)),
+            _ => {
+                let built = rayon::ThreadPoolBuilder::new().build().ok().map(Arc::new);
+                *kept = built.as_ref().map(|pool| (pid, Arc::clone(pool)));
+                built
+            }
+        }
+    };
+    match pool {
+        Some(pool) => pool.install(work),
+        None => work(),
+    }
+}
 mod convert;
 mod params;
 mod reconstruction;
@@ -42,10 +81,11 @@ use numpy::{PyArray2, PyArrayMethods, PyUntypedArray};
 use params::type_name;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyInt, PyList, PyString, PyTuple};
+use pyo3::types::{PyBool, PyByteArray, PyBytes, PyDict, PyInt, PyList, PyString, PyTuple};
 use reconstruction::{Curve, EdgeStory, Reconstruction};
 use std::ffi::CString;
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use triangulation::Triangulation;
 
 /// The curves through the points: ConDT's reconstruction, as ``condt reconstruct`` runs it.
@@ -116,13 +156,10 @@ fn reconstruct(
     // afterwards, and a result that kept reading it would change with it. Copied once the work is
     // done, still without the GIL and within the call's allocator scope (it may reuse a freed
     // block of the pipeline).
-    let (result, owned) = py
-        .detach(|| {
-            within_call(|| {
-                condt::reconstruct(points, &params).map(|result| (result, points.to_vec()))
-            })
-        })
-        .map_err(|err| library_error(err, points))?;
+    let (result, owned) = crate::detached(py, || {
+        within_call(|| condt::reconstruct(points, &params).map(|result| (result, points.to_vec())))
+    })
+    .map_err(|err| library_error(err, points))?;
     Ok(Reconstruction::new(result, owned))
 }
 
@@ -142,8 +179,7 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    let tri = py
-        .detach(|| within_call(|| condt::triangulate(points)))
+    let tri = crate::detached(py, || within_call(|| condt::triangulate(points)))
         .map_err(|err| library_error(err, points))?;
     Ok(Triangulation::new(tri))
 }
@@ -224,8 +260,13 @@ fn read_options(
         let chosen = if let Ok(text) = given.extract::<String>() {
             Columns::parse(&text).map_err(|why| PyValueError::new_err(format!("columns {why}")))?
         } else {
+            // A dict's keys, or bytes' numbers, are no pair of columns (a user review: b"x,y"
+            // was read as seven numbers).
+            let not_a_pair = given.is_instance_of::<PyDict>()
+                || given.is_instance_of::<PyBytes>()
+                || given.is_instance_of::<PyByteArray>();
             let pair: Vec<Bound<'_, PyAny>> = match given.extract() {
-                Ok(items) if !given.is_instance_of::<PyDict>() => items,
+                Ok(items) if !not_a_pair => items,
                 _ => {
                     return Err(PyTypeError::new_err(format!(
                         "columns must be a pair of header names, (\"POINT_X\", \"POINT_Y\"), or \
@@ -333,18 +374,19 @@ fn read_point_file<'py>(
     } else {
         given
     };
-    let file = py
-        .detach(|| within_call(|| condt_io::read_points_with(&path, options)))
-        .map_err(|mut err| {
-            // Named as given, in the message and in `OSError.filename`.
-            if stdin_name {
-                err.file = "-".into();
-            }
-            if let IoErrorKind::Content(message) = &mut err.kind {
-                *message = keyword_advice(message);
-            }
-            io_error(err)
-        })?;
+    let file = crate::detached(py, || {
+        within_call(|| condt_io::read_points_with(&path, options))
+    })
+    .map_err(|mut err| {
+        // Named as given, in the message and in `OSError.filename`.
+        if stdin_name {
+            err.file = "-".into();
+        }
+        if let IoErrorKind::Content(message) = &mut err.kind {
+            *message = keyword_advice(message);
+        }
+        io_error(err)
+    })?;
     let condt_io::PointFile {
         points,
         crs,
@@ -649,16 +691,15 @@ fn score<'py>(
     let output = edge_rows(py, "output", output)?;
     let truth = edge_rows(py, "truth", truth)?;
     let (output_positions, truth_positions) = (as_positions(&output), as_positions(&truth));
-    let result = py
-        .detach(|| condt_eval::score::score(points, &output_positions, &truth_positions))
-        .map_err(|err| match err {
-            ScoreError::NonFinite { index } => {
-                library_error(condt::Error::NonFinite { index }, points)
-            }
-            ScoreError::Truth(problem) => {
-                PyValueError::new_err(format!("ground truth: {}", problem_text(problem, &truth)))
-            }
-        })?;
+    let result = crate::detached(py, || {
+        condt_eval::score::score(points, &output_positions, &truth_positions)
+    })
+    .map_err(|err| match err {
+        ScoreError::NonFinite { index } => library_error(condt::Error::NonFinite { index }, points),
+        ScoreError::Truth(problem) => {
+            PyValueError::new_err(format!("ground truth: {}", problem_text(problem, &truth)))
+        }
+    })?;
     // JSON has no infinity: `condt score --json` writes null, and so does this.
     let finite = |x: Option<f64>| x.filter(|x| x.is_finite());
     let dict = PyDict::new(py);
@@ -685,6 +726,7 @@ fn score<'py>(
 /// Curves through unorganized planar points (ConDT) and their exact Delaunay triangulation.
 #[pymodule]
 fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    LOADED_IN.get_or_init(std::process::id);
     m.add_function(wrap_pyfunction!(reconstruct, m)?)?;
     m.add_function(wrap_pyfunction!(triangulate, m)?)?;
     m.add_function(wrap_pyfunction!(read_points, m)?)?;

@@ -93,7 +93,7 @@ impl Reconstruction {
     fn edges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
         let edges = self.edges.get_or_try_init(py, || {
             let list = self.shared.result.edge_list();
-            let rows = py.detach(|| {
+            let rows = crate::detached(py, || {
                 list.iter()
                     .map(|&[a, b]| [i64::from(a), i64::from(b)])
                     .collect::<Vec<_>>()
@@ -198,7 +198,7 @@ impl Reconstruction {
     fn stages<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let stages = self.stages.get_or_try_init(py, || {
             let result = &self.shared.result;
-            let graphs: Vec<(&'static str, Vec<[i64; 2]>)> = py.detach(|| {
+            let graphs: Vec<(&'static str, Vec<[i64; 2]>)> = crate::detached(py, || {
                 crate::within_call(|| {
                     result
                         .stages()
@@ -282,7 +282,7 @@ impl Reconstruction {
             Some(stories) => stories,
             None => {
                 let result = &self.shared.result;
-                let computed = py.detach(|| crate::within_call(|| result.provenance()));
+                let computed = crate::detached(py, || crate::within_call(|| result.provenance()));
                 self.stories.get_or_init(|| computed)
             }
         };
@@ -318,10 +318,10 @@ impl Reconstruction {
     /// input's or writes ``--crs``: a JSON object's text (what ``read_points_with_crs`` gives), a
     /// ``dict`` (any mapping, written by ``json.dumps``), or a name such as ``"EPSG:32632"``,
     /// written as ``--crs`` writes it (a named crs, ``urn:ogc:def:crs:EPSG::32632``); ``None``,
-    /// the default, writes none. ``TypeError`` for any other type; ``ValueError`` for text that
-    /// starts as JSON (``{``) and is not one JSON object, an object or ``dict`` without a
-    /// ``"type"`` string and a ``"properties"`` object, or other JSON than a string (``[1, 2]``,
-    /// ``null``, ``4326``).
+    /// the default, writes none; the text ``"null"`` writes ``"crs": null`` (GeoJSON 2008: no
+    /// crs can be assumed). ``TypeError`` for any other type; ``ValueError`` for text that starts
+    /// as JSON (``{``) and is not one JSON object, or other JSON than an object, a string or
+    /// ``null`` (``[1, 2]``, ``4326``).
     ///
     /// >>> import condt, json
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True)
@@ -366,12 +366,14 @@ impl Reconstruction {
             }
         };
         let mut out = Vec::new();
-        condt_io::write_geojson_with_crs(
-            &mut out,
-            &self.shared.result,
-            &self.shared.points,
-            crs.as_deref(),
-        )
+        crate::on_live_threads(|| {
+            condt_io::write_geojson_with_crs(
+                &mut out,
+                &self.shared.result,
+                &self.shared.points,
+                crs.as_deref(),
+            )
+        })
         .map_err(|err| match err.kind() {
             std::io::ErrorKind::InvalidInput => PyValueError::new_err(err.to_string()),
             _ => PyRuntimeError::new_err(err.to_string()),
@@ -546,31 +548,19 @@ impl Curve {
 ///   (``vertex``, ``points``), ``"detour"`` (``from``, ``to``, ``points``), ``"baseline"`` or
 ///   ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
-#[pyclass(module = "condt", frozen, get_all)]
+///
+/// ``ends`` and ``changes`` are new dicts and lists at each read, so the story never changes
+/// (a copy is the story itself): what a caller changes in them is the caller's.
+#[pyclass(module = "condt", frozen)]
 pub(crate) struct EdgeStory {
-    edge: Py<PyTuple>,
-    kept: bool,
-    ends: Py<PyTuple>,
-    changes: Py<PyList>,
+    story: condt::EdgeStory,
     text: String,
 }
 
 impl EdgeStory {
-    fn new(py: Python<'_>, story: &condt::EdgeStory) -> PyResult<EdgeStory> {
-        let [a, b] = story.edge;
-        let ends = [(a, story.ends[0]), (b, story.ends[1])]
-            .into_iter()
-            .map(|(at, choice)| end_dict(py, at, choice))
-            .collect::<PyResult<Vec<_>>>()?;
-        let changes = PyList::empty(py);
-        for change in &story.changes {
-            changes.append(change_dict(py, change)?)?;
-        }
+    fn new(_py: Python<'_>, story: &condt::EdgeStory) -> PyResult<EdgeStory> {
         Ok(EdgeStory {
-            edge: PyTuple::new(py, [a, b])?.unbind(),
-            kept: story.kept,
-            ends: PyTuple::new(py, ends)?.unbind(),
-            changes: changes.unbind(),
+            story: story.clone(),
             text: condt_io::story_text(story),
         })
     }
@@ -578,6 +568,46 @@ impl EdgeStory {
 
 #[pymethods]
 impl EdgeStory {
+    /// The two input positions, smaller first.
+    #[getter]
+    fn edge(&self) -> (usize, usize) {
+        let [a, b] = self.story.edge;
+        (a, b)
+    }
+
+    /// Whether the edge is in the result.
+    #[getter]
+    fn kept(&self) -> bool {
+        self.story.kept
+    }
+
+    /// How each end saw the edge in Algorithm 1 (see the class).
+    #[getter]
+    fn ends<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        let [a, b] = self.story.edge;
+        let ends = [(a, self.story.ends[0]), (b, self.story.ends[1])]
+            .into_iter()
+            .map(|(at, choice)| end_dict(py, at, choice))
+            .collect::<PyResult<Vec<_>>>()?;
+        PyTuple::new(py, ends)
+    }
+
+    /// What each later stage did to the edge (see the class).
+    #[getter]
+    fn changes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let changes = PyList::empty(py);
+        for change in &self.story.changes {
+            changes.append(change_dict(py, change)?)?;
+        }
+        Ok(changes)
+    }
+
+    /// All of it in a sentence, as the HTML viewer shows it.
+    #[getter]
+    fn text(&self) -> &str {
+        &self.text
+    }
+
     fn __str__(&self) -> &str {
         &self.text
     }

@@ -197,23 +197,22 @@ pub(crate) fn _tile_plan<'py>(
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    let (order, boundary, hull, depth, whole) = py
-        .detach(|| {
-            let order = Triangulation::insertion_order(points)?;
-            let (boundary, len, hull) = hull_boundary(points);
-            let whole = if len < 3 {
-                Some("all points lie on one line")
-            } else if spread(points) > MAX_TILED_SPREAD {
-                Some("the coordinates span too many orders of magnitude")
-            } else {
-                None
-            };
-            // The band along the hull's boundary (see `_run_tile`) needs each point's depth:
-            // one pass per corner, so only for hulls of few corners.
-            let depth = (hull.len() <= MAX_BAND_CORNERS).then(|| depths(points, &hull));
-            Ok((order, (boundary, len), hull, depth, whole))
-        })
-        .map_err(|err| library_error(err, points))?;
+    let (order, boundary, hull, depth, whole) = crate::detached(py, || {
+        let order = Triangulation::insertion_order(points)?;
+        let (boundary, len, hull) = hull_boundary(points);
+        let whole = if len < 3 {
+            Some("all points lie on one line")
+        } else if spread(points) > MAX_TILED_SPREAD {
+            Some("the coordinates span too many orders of magnitude")
+        } else {
+            None
+        };
+        // The band along the hull's boundary (see `_run_tile`) needs each point's depth:
+        // one pass per corner, so only for hulls of few corners.
+        let depth = (hull.len() <= MAX_BAND_CORNERS).then(|| depths(points, &hull));
+        Ok((order, (boundary, len), hull, depth, whole))
+    })
+    .map_err(|err| library_error(err, points))?;
     let mut ranks = vec![0i64; points.len()];
     for (rank, &i) in order.iter().enumerate() {
         ranks[i as usize] = rank as i64;
@@ -354,38 +353,37 @@ pub(crate) fn _run_tile<'py>(
     if [positions.len(), ranks.len(), owned.len(), boundary.len()] != [n; 4] {
         return Err(PyValueError::new_err("a tile's arrays differ in length"));
     }
-    let outcome = py
-        .detach(|| {
-            crate::within_call(
-                || -> Result<Result<(OwnedLists, Option<TileState>), Failure>, condt::Error> {
-                    let tile = Tile::new(known, bbox, boundary, boundary_len, hull, band);
-                    let mut order: Vec<u32> = (0..n as u32).collect();
-                    order.sort_unstable_by_key(|&i| ranks[i as usize]);
-                    let tri = Triangulation::triangulate_in_order(points, &order)?;
-                    if let Err(failure) = tile.certify(&tri, points, owned, reach) {
-                        return Ok(Err(failure));
-                    }
-                    let owned_edges = |edges| owned_rows(owned, positions, edges);
-                    // The proximity graph (with its repair).
-                    let proximity = tri.proximity_graph(params.uniformity)?;
-                    let repaired = (phase == Phase::Both
-                        || (phase == Phase::Repaired && params.stages().contains(&Stage::Repair)))
-                    .then(|| owned_edges(proximity.repair(params.repair).edges()));
-                    let proximity = (phase != Phase::Repaired || repaired.is_none())
-                        .then(|| owned_edges(proximity.edges()));
-                    let lists = proximity.into_iter().chain(repaired).collect();
-                    let state = keep.then(|| TileState {
-                        positions: positions.to_vec(),
-                        owned: owned.to_vec(),
-                        points: points.to_vec(),
-                        order,
-                        tri,
-                    });
-                    Ok(Ok((lists, state)))
-                },
-            )
-        })
-        .map_err(|err| library_error(err, points))?;
+    let outcome = crate::detached(py, || {
+        crate::within_call(
+            || -> Result<Result<(OwnedLists, Option<TileState>), Failure>, condt::Error> {
+                let tile = Tile::new(known, bbox, boundary, boundary_len, hull, band);
+                let mut order: Vec<u32> = (0..n as u32).collect();
+                order.sort_unstable_by_key(|&i| ranks[i as usize]);
+                let tri = Triangulation::triangulate_in_order(points, &order)?;
+                if let Err(failure) = tile.certify(&tri, points, owned, reach) {
+                    return Ok(Err(failure));
+                }
+                let owned_edges = |edges| owned_rows(owned, positions, edges);
+                // The proximity graph (with its repair).
+                let proximity = tri.proximity_graph(params.uniformity)?;
+                let repaired = (phase == Phase::Both
+                    || (phase == Phase::Repaired && params.stages().contains(&Stage::Repair)))
+                .then(|| owned_edges(proximity.repair(params.repair).edges()));
+                let proximity = (phase != Phase::Repaired || repaired.is_none())
+                    .then(|| owned_edges(proximity.edges()));
+                let lists = proximity.into_iter().chain(repaired).collect();
+                let state = keep.then(|| TileState {
+                    positions: positions.to_vec(),
+                    owned: owned.to_vec(),
+                    points: points.to_vec(),
+                    order,
+                    tri,
+                });
+                Ok(Ok((lists, state)))
+            },
+        )
+    })
+    .map_err(|err| library_error(err, points))?;
     match outcome {
         Ok((lists, state)) => {
             let arrays = lists.into_iter().map(|edges| index_array(py, edges));
@@ -482,9 +480,10 @@ pub(crate) fn _tile_state<'py>(
         ));
     }
     let order: Vec<u32> = order.iter().map(|&i| i as u32).collect();
-    let tri = py
-        .detach(|| crate::within_call(|| Triangulation::triangulate_in_order(&points, &order)))
-        .map_err(|err| library_error(err, &points))?;
+    let tri = crate::detached(py, || {
+        crate::within_call(|| Triangulation::triangulate_in_order(&points, &order))
+    })
+    .map_err(|err| library_error(err, &points))?;
     Ok(TileState {
         positions: positions.to_vec(),
         owned: owned.to_vec(),
@@ -527,7 +526,7 @@ pub(crate) fn _step_kept<'py>(
     };
     let state = state.get();
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
-    let edges = py.detach(|| {
+    let edges = crate::detached(py, || {
         crate::within_call(|| {
             let graph = state.tri.graph_from_edges(given);
             let result = match stage {
@@ -595,19 +594,18 @@ pub(crate) fn _tests_kept<'py>(
             "a tile's labels differ in length from its points",
         ));
     }
-    let tests = py
-        .detach(|| {
-            crate::within_call(|| {
-                let graph = state.tri.graph_from_edges(given);
-                // Only the owned points' tests are sent, so only they are run.
-                let owned = |i: usize| state.owned[i];
-                match &status {
-                    Some(status) => condt::tiled::given_back_tests(&graph, &labels, status, owned),
-                    None => condt::tiled::clump_tests(&graph, &labels, owned),
-                }
-            })
+    let tests = crate::detached(py, || {
+        crate::within_call(|| {
+            let graph = state.tri.graph_from_edges(given);
+            // Only the owned points' tests are sent, so only they are run.
+            let owned = |i: usize| state.owned[i];
+            match &status {
+                Some(status) => condt::tiled::given_back_tests(&graph, &labels, status, owned),
+                None => condt::tiled::clump_tests(&graph, &labels, owned),
+            }
         })
-        .map_err(|err| PyValueError::new_err(err.to_string()))?;
+    })
+    .map_err(|err| PyValueError::new_err(err.to_string()))?;
     let owned = (0..state.points.len()).filter(|&i| state.owned[i]);
     let positions: Vec<i64> = owned.clone().map(|i| state.positions[i]).collect();
     let tests: Vec<u8> = owned.map(|i| tests[i]).collect();
@@ -678,7 +676,7 @@ fn local_round<'py>(
     let [given, before] = graphs;
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
     let before = tile_pairs(before.as_slice()?, state.points.len())?;
-    let edges = py.detach(|| {
+    let edges = crate::detached(py, || {
         crate::within_call(|| {
             let graph = state.tri.graph_from_edges(given);
             let before = state.tri.graph_from_edges(before);
@@ -702,7 +700,9 @@ pub(crate) fn _gathered_last_edges<'py>(
     let (edges, candidates) = (gathered_pairs(edges)?, gathered_pairs(candidates)?);
     gathered_answer(
         py,
-        py.detach(|| condt::tiled::give_back_gathered_last_edges(n, &edges, &candidates)),
+        crate::detached(py, || {
+            condt::tiled::give_back_gathered_last_edges(n, &edges, &candidates)
+        }),
     )
 }
 
@@ -764,7 +764,7 @@ fn gathered_with_joins<'py>(
     let tests = tests.as_slice()?;
     gathered_answer(
         py,
-        py.detach(|| rule(n, &edges, tests, &rows, &tips, &joins)),
+        crate::detached(py, || rule(n, &edges, tests, &rows, &tips, &joins)),
     )
 }
 
@@ -779,8 +779,7 @@ pub(crate) fn _given_back_standing<'py>(
     before_local: &Bound<'py, PyArray2<i64>>,
 ) -> PyResult<Option<OwnedTests<'py>>> {
     let (edges, before) = (gathered_pairs(edges)?, gathered_pairs(before_local)?);
-    let standing = py
-        .detach(|| condt::tiled::given_back_standing(n, &edges, &before))
+    let standing = crate::detached(py, || condt::tiled::given_back_standing(n, &edges, &before))
         .map_err(|err| PyValueError::new_err(err.to_string()))?;
     Ok(standing.map(|(labels, status)| {
         let labels = labels.into_iter().map(i64::from).collect();
@@ -806,7 +805,9 @@ pub(crate) fn _gathered_given_back<'py>(
     let tests = tests.as_slice()?;
     gathered_answer(
         py,
-        py.detach(|| condt::tiled::confirm_gathered_given_back(n, &edges, &before, tests)),
+        crate::detached(py, || {
+            condt::tiled::confirm_gathered_given_back(n, &edges, &before, tests)
+        }),
     )
 }
 
@@ -870,7 +871,7 @@ pub(crate) fn _choices_kept<'py>(
     let state = state.get();
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
     let position = |i: usize| state.positions[i];
-    let flat: Vec<i64> = py.detach(|| {
+    let flat: Vec<i64> = crate::detached(py, || {
         crate::within_call(|| {
             let graph = state.tri.graph_from_edges(given);
             let owned = |i: usize| state.owned[i];
@@ -918,7 +919,7 @@ pub(crate) fn _gathered_gaps<'py>(
     let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
     gathered_answer(
         py,
-        py.detach(|| condt::tiled::close_gathered_gaps(n, &edges, &rows)),
+        crate::detached(py, || condt::tiled::close_gathered_gaps(n, &edges, &rows)),
     )
 }
 
@@ -936,7 +937,7 @@ pub(crate) fn _gathered_tips<'py>(
     let rows: Vec<[usize; 4]> = rows_of(&candidates, "a tip candidate")?;
     gathered_answer(
         py,
-        py.detach(|| condt::tiled::repair_gathered_tips(n, &edges, &rows)),
+        crate::detached(py, || condt::tiled::repair_gathered_tips(n, &edges, &rows)),
     )
 }
 
@@ -949,8 +950,7 @@ pub(crate) fn _component_labels<'py>(
     edges: &Bound<'py, PyArray2<i64>>,
 ) -> PyResult<Bound<'py, PyArray1<i64>>> {
     let edges = gathered_pairs(edges)?;
-    let labels = py
-        .detach(|| condt::tiled::component_labels(n, &edges))
+    let labels = crate::detached(py, || condt::tiled::component_labels(n, &edges))
         .map_err(|err| PyValueError::new_err(err.to_string()))?;
     Ok(PyArray1::from_vec(
         py,
@@ -970,7 +970,7 @@ pub(crate) fn _gathered_clumps_found<'py>(
 ) -> PyResult<bool> {
     let edges = gathered_pairs(edges)?;
     let tests = tests.as_slice()?;
-    py.detach(|| condt::tiled::gathered_clumps_found(n, &edges, tests))
+    crate::detached(py, || condt::tiled::gathered_clumps_found(n, &edges, tests))
         .map_err(|err| PyValueError::new_err(err.to_string()))
 }
 
@@ -1376,13 +1376,12 @@ pub(crate) fn _gathered_outliers<'py>(
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
     let edges = gathered_pairs(edges)?;
-    let kept = py
-        .detach(|| match params.outlier_factor {
-            Some(k) => condt::remove_gathered_outliers(points, &edges, k, params.iqr_floor)
-                .map(|(_, kept)| kept),
-            None => Ok(edges),
-        })
-        .map_err(|err| library_error(err, points))?;
+    let kept = crate::detached(py, || match params.outlier_factor {
+        Some(k) => condt::remove_gathered_outliers(points, &edges, k, params.iqr_floor)
+            .map(|(_, kept)| kept),
+        None => Ok(edges),
+    })
+    .map_err(|err| library_error(err, points))?;
     sorted_rows(py, kept)
 }
 
@@ -1406,11 +1405,10 @@ pub(crate) fn _gathered_repair_again<'py>(
     let Some(k) = params.outlier_factor else {
         return Ok(None);
     };
-    let short = py
-        .detach(|| {
-            condt::gathered_repair_again_input(points, &repaired, &proximity, k, params.iqr_floor)
-        })
-        .map_err(|err| library_error(err, points))?;
+    let short = crate::detached(py, || {
+        condt::gathered_repair_again_input(points, &repaired, &proximity, k, params.iqr_floor)
+    })
+    .map_err(|err| library_error(err, points))?;
     short.map(|edges| sorted_rows(py, edges)).transpose()
 }
 
@@ -1434,13 +1432,12 @@ pub(crate) fn _gathered_smoothing_pass<'py>(
     let points = as_points(borrowed.as_slice()?);
     let edges = gathered_pairs(edges)?;
     let previous = previous.map(gathered_pairs).transpose()?;
-    let pass = py
-        .detach(|| {
-            crate::within_call(|| {
-                condt::gathered_smoothing_pass(points, &edges, passes, previous.as_deref())
-            })
+    let pass = crate::detached(py, || {
+        crate::within_call(|| {
+            condt::gathered_smoothing_pass(points, &edges, passes, previous.as_deref())
         })
-        .map_err(|err| library_error(err, points))?;
+    })
+    .map_err(|err| library_error(err, points))?;
     Ok(match pass {
         GatheredPass::Next(moved) => {
             let flat: Vec<f64> = moved.iter().flat_map(|p| [p.x, p.y]).collect();
@@ -1505,7 +1502,7 @@ pub(crate) fn _tile_index<'py>(
     if tiles.len() > u32::MAX as usize || tiles.iter().any(|t| t.len() > u32::MAX as usize) {
         return Err(PyValueError::new_err("too many tiles or tile points"));
     }
-    Ok(py.detach(|| {
+    Ok(crate::detached(py, || {
         // Counts per point, then offsets, then each holder in its point's run.
         let mut start = vec![0usize; n + 1];
         for &i in tiles.iter().flat_map(|t| t.iter()) {
@@ -1550,7 +1547,7 @@ pub(crate) fn _split_edges<'py>(
     {
         return Err(PyValueError::new_err("a position is not among the points"));
     }
-    let split = py.detach(|| {
+    let split = crate::detached(py, || {
         let mut out: Vec<Vec<i64>> = vec![Vec::new(); index.tiles];
         for e in flat.chunks_exact(2) {
             let to = index.holders(e[1] as usize);

@@ -49,7 +49,7 @@ impl Triangulation {
     fn triangles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
         let triangles = self.triangles.get_or_try_init(py, || {
             let tri = &self.tri;
-            let rows = py.detach(|| {
+            let rows = crate::detached(py, || {
                 tri.triangles()
                     .map(|t| t.map(position))
                     .collect::<Vec<[i64; 3]>>()
@@ -65,7 +65,7 @@ impl Triangulation {
     fn edges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
         let edges = self.edges.get_or_try_init(py, || {
             let tri = &self.tri;
-            let rows = py.detach(|| {
+            let rows = crate::detached(py, || {
                 crate::within_call(|| {
                     let mut rows: Vec<[i64; 2]> = tri.edges().map(|e| e.map(position)).collect();
                     rows.sort_unstable();

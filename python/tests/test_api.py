@@ -7,6 +7,7 @@ import json
 import os
 import pathlib
 import re
+import signal
 import sys
 import threading
 import time
@@ -926,13 +927,23 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
         r.to_geojson(crs=" ")
     with pytest.raises(TypeError, match="crs must be JSON text"):
         r.to_geojson(crs=object())
-    # JSON that names no crs, as text or as a dict, is refused rather than written.
-    for text in ("[1, 2]", "null", "4326"):
+    # JSON that names no crs is refused rather than written; null is written (GeoJSON 2008: no
+    # crs can be assumed).
+    for text in ("[1, 2]", "4326", "true"):
         with pytest.raises(ValueError, match="is JSON but neither"):
             r.to_geojson(crs=text)
-    for empty in ("{}", {}, {"type": "name"}):
-        with pytest.raises(ValueError, match="is not a crs object"):
-            r.to_geojson(crs=empty)
+    assert json.loads(r.to_geojson(crs="null"))["crs"] is None
+    # A crs member read from a file goes on as the command line carries it (a user review: a
+    # string member became a name in Python but stayed a string on the command line).
+    for member, expected in [
+        ("null", None),
+        ('"EPSG:3857"', {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::3857"}}),
+        ("{}", {}),
+    ]:
+        path = tmp_path / "member.geojson"
+        path.write_text('{"type": "MultiPoint", "crs": %s, "coordinates": [[0, 0], [1, 0], [0, 1]]}' % member)
+        points, crs = condt.read_points_with_crs(path)
+        assert json.loads(condt.reconstruct(points).to_geojson(crs=crs))["crs"] == expected
     # Any mapping is written as its dict.
     proxy = types.MappingProxyType(json.loads(crs_text))
     assert json.loads(r.to_geojson(crs=proxy))["crs"] == json.loads(crs_text)
@@ -1017,6 +1028,10 @@ def test_read_points_refuses_columns_it_would_have_to_guess(tmp_path):
         (3, TypeError),
     ]:
         with pytest.raises(error):
+            condt.read_points(path, columns=columns)
+    # Bytes are no pair of names (they were read as numbers, one per byte).
+    for columns in (b"Shape_X,Shape_Y", bytearray(b"xy")):
+        with pytest.raises(TypeError, match=f"not {type(columns).__name__}$"):
             condt.read_points(path, columns=columns)
     # Without columns, the reader's advice names this function's keywords, not the command
     # line's options.
@@ -1103,3 +1118,43 @@ def test_results_copy_as_themselves():
     for value in (r, r.curves[0], r.explain(0, 1), tri):
         assert copy.copy(value) is value and copy.deepcopy(value) is value
     assert copy.deepcopy({"result": r})["result"] is r
+    # A story's dicts and lists are the caller's (a user review changed a "deep copy" of one,
+    # which was the story itself, and so the story): each read gives new ones.
+    story = condt.reconstruct([(0, 0), (1, 0), (2, 0), (2, 9)]).explain(3, 0)
+    told = (story.ends, story.changes, story.text)
+    story.ends[0]["choice"] = "edited"
+    story.changes.append("edited")
+    assert (story.ends, story.changes, story.text) == told
+    assert story.ends[0]["choice"] != "edited" and "edited" not in story.changes
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform")
+@pytest.mark.filterwarnings("ignore:.*fork")
+def test_a_forked_child_and_its_own_child_run_the_parallel_paths():
+    # A user review: after one parallel call in the parent, a child forked from it (as
+    # `multiprocessing.Pool` forks on Linux) waited forever in `triangulate`, since fork copies
+    # rayon's pool without its threads. Each child now starts threads of its own.
+    t = np.linspace(0, 2 * np.pi, 20000, endpoint=False)
+    points = np.column_stack([np.cos(t), np.sin(3 * t) / 3])
+    triangles = condt.triangulate(points).triangles
+    result = condt.reconstruct(points)
+    geojson = result.to_geojson()
+
+    def same_in_a_child(depth):
+        pid = os.fork()
+        if pid == 0:
+            status = 3
+            try:
+                signal.alarm(120)  # a hang ends the child (status from the signal), not the test
+                same = (
+                    np.array_equal(condt.triangulate(points).triangles, triangles)
+                    and np.array_equal(condt.reconstruct(points).edges, result.edges)
+                    and condt.reconstruct(points).to_geojson() == geojson
+                )
+                status = 0 if same and (depth == 0 or same_in_a_child(depth - 1)) else 1
+            finally:
+                os._exit(status)
+        _, status = os.waitpid(pid, 0)
+        return os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0
+
+    assert same_in_a_child(1)

@@ -308,8 +308,8 @@ and Eppstein); a baseline takes none of the ConDT options",
         value: Some("CRS"),
         help: "the coordinate reference system a GeoJSON output names (GeoJSON
 output only): EPSG:32632 (written as a named crs,
-urn:ogc:def:crs:EPSG::32632), another name, or a crs member's
-JSON object; instead of a GeoJSON input's own. Without it, a
+urn:ogc:def:crs:EPSG::32632), another name, a crs member's JSON
+object, or null; instead of a GeoJSON input's own. Without it, a
 GIS reads an output from other inputs as longitude and latitude",
     },
     Opt {
@@ -1426,6 +1426,17 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         ..
     } = read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
     progress.suspend(|| timings.lap("read"));
+    // The input's crs member goes on as `--crs` would take it (a string member is a name, as in
+    // Python's `to_geojson`); a member that is no crs (`[1, 2]`, `4326`) is noted and left out.
+    let mut crs_not_carried = None;
+    let crs = match crs {
+        Some(raw) if args.crs.is_none() && args.format == Format::GeoJson => {
+            condt_io::crs_member(&raw)
+                .map_err(|why| crs_not_carried = Some(why))
+                .ok()
+        }
+        _ => None,
+    };
     let count = points.len();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
     // result does not keep (`Reconstruction::stage_point`), so for them the points stay (16
@@ -1494,6 +1505,12 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
             empty_geometries,
         );
         note_dropped_crs(&shown_input(args.input.as_deref()), crs_dropped_at);
+        if let Some(why) = crs_not_carried {
+            note(format_args!(
+                "{}: its crs member {why}; the output carries none",
+                shown_input(args.input.as_deref())
+            ));
+        }
         note_duplicates(count, result.triangulation().num_vertices());
         // Every panel draws every point: past a million dots a drawing is slow to open.
         let panels = 1 + result.stages().count();

@@ -792,9 +792,8 @@ fn crs_names_the_reference_system_of_a_geojson_output() {
     // Refused, with its reason, before anything is read or written.
     for (extra, words) in [
         (&["--crs", "{\"type\":"][..], "is not one JSON object"),
-        (&["--crs", "{}"][..], "is not a crs object"),
         (&["--crs", "[1,2]"][..], "is JSON but neither"),
-        (&["--crs", "null"][..], "is JSON but neither"),
+        (&["--crs", "4326"][..], "is JSON but neither"),
         (
             &["--crs", "EPSG:32632", "--format", "txt"][..],
             "GeoJSON output",
@@ -810,5 +809,50 @@ fn crs_names_the_reference_system_of_a_geojson_output() {
             String::from_utf8_lossy(&refused.stderr).contains(words),
             "{extra:?}"
         );
+    }
+}
+
+/// A user review: an input's crs member went on as written whatever it held, while Python's
+/// `to_geojson(crs=...)` took the same text as `--crs` does. Both now read it as `--crs`: an
+/// object and `null` as written, a string as the name it holds, anything else left out (noted).
+#[test]
+fn a_geojson_inputs_crs_member_goes_on_as_crs_would_take_it() {
+    let dir = scratch_dir();
+    let input = dir.path().join("in.geojson");
+    let out = dir.path().join("out.geojson");
+    for (member, carried, noted) in [
+        ("null", Some("\"crs\":null,"), false),
+        (
+            "\"EPSG:3857\"",
+            Some(r#""crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::3857"}},"#),
+            false,
+        ),
+        ("{}", Some("\"crs\":{},"), false),
+        ("[1,2]", None, true),
+    ] {
+        std::fs::write(
+            &input,
+            format!(
+                r#"{{"type":"MultiPoint","crs":{member},"coordinates":[[0,0],[1,0],[0.5,1]]}}"#
+            ),
+        )
+        .unwrap();
+        let done = condt_with_stdin(
+            &[
+                "reconstruct",
+                input.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            b"",
+        );
+        assert!(done.status.success(), "{member}: {done:?}");
+        let text = std::fs::read_to_string(&out).unwrap();
+        match carried {
+            Some(written) => assert!(text.contains(written), "{member}: {text}"),
+            None => assert!(!text.contains("\"crs\""), "{member}: {text}"),
+        }
+        let said = String::from_utf8_lossy(&done.stderr);
+        assert_eq!(said.contains("its crs member"), noted, "{member}: {said}");
     }
 }

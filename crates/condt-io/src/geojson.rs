@@ -94,15 +94,15 @@ pub fn write_geojson_with_crs(
     writeln!(out, "]}}")
 }
 
-/// The `"crs"` member a GeoJSON output carries for `given` (`condt reconstruct --crs`): a JSON
-/// object as written (one JSON object, checked), or a name as a named crs (the 2008 GeoJSON
-/// form GDAL and QGIS read), `EPSG:n` in the OGC URN form GDAL writes itself; a JSON string is
-/// the name it holds.
+/// The `"crs"` member a GeoJSON output carries for `given` (`condt reconstruct --crs`, and a
+/// GeoJSON input's own member carried on): a JSON object as written (one JSON object, checked);
+/// `null` as written (in the 2008 GeoJSON form, no crs can be assumed: coordinates of a
+/// drawing, not of the earth); or a name as a named crs (the 2008 form GDAL and QGIS read),
+/// `EPSG:n` in the OGC URN form GDAL writes itself; a JSON string is the name it holds.
 ///
 /// # Errors
-/// Why `given` is neither: JSON text (a leading `{`) that is not one object with a `"type"`
-/// string and a `"properties"` object, other JSON than a string or an object (`[1, 2]`, `null`,
-/// `4326`), an empty name, or one with a control character.
+/// Why `given` is none of these: JSON text (a leading `{`) that is not one object, other JSON
+/// (`[1, 2]`, `4326`, `true`), an empty name, or one with a control character.
 ///
 /// ```
 /// use condt_io::crs_member;
@@ -117,36 +117,30 @@ pub fn write_geojson_with_crs(
 /// let written = r#"{"type": "name", "properties": {"name": "EPSG:2056"}}"#;
 /// assert_eq!(crs_member(written)?, written);
 /// assert_eq!(crs_member("\"EPSG:32632\"")?, crs_member("EPSG:32632")?);
+/// assert_eq!(crs_member(" null ")?, "null");
 /// assert!(crs_member("{\"type\": ").is_err() && crs_member(" ").is_err());
-/// assert!(crs_member("{}").is_err() && crs_member("[1, 2]").is_err() && crs_member("4326").is_err());
+/// assert!(crs_member("[1, 2]").is_err() && crs_member("4326").is_err());
 /// # Ok::<(), String>(())
 /// ```
 pub fn crs_member(given: &str) -> Result<String, String> {
     use serde_json::Value;
     let trimmed = given.trim();
     if trimmed.starts_with('{') {
-        // The 2008 form: a "type" string and a "properties" object; `{}` names no crs at all.
         return match serde_json::from_str::<Value>(trimmed) {
-            Ok(Value::Object(crs))
-                if crs.get("type").is_some_and(Value::is_string)
-                    && crs.get("properties").is_some_and(Value::is_object) =>
-            {
-                Ok(trimmed.to_string())
-            }
-            Ok(Value::Object(_)) => Err(format!(
-                "{given:?} is not a crs object: it needs a \"type\" string and a \"properties\" object"
-            )),
+            Ok(Value::Object(_)) => Ok(trimmed.to_string()),
             _ => Err(format!("{given:?} is not one JSON object")),
         };
     }
-    // Other JSON than a string (`[1, 2]`, `null`, `4326`) names nothing: refused, not taken for a
-    // name the output would then carry.
-    if let Ok(value) = serde_json::from_str::<Value>(trimmed) {
-        if !value.is_string() {
+    // Other JSON than a string or `null` (`[1, 2]`, `4326`) names nothing: refused, not taken for
+    // a name the output would then carry.
+    match serde_json::from_str::<Value>(trimmed) {
+        Ok(Value::Null) => return Ok("null".to_string()),
+        Ok(value) if !value.is_string() => {
             return Err(format!(
-                "{given:?} is JSON but neither a name such as EPSG:32632 nor a crs object"
-            ));
+                "{given:?} is JSON but neither a name such as EPSG:32632, a crs object nor null"
+            ))
         }
+        _ => {}
     }
     // A JSON string (`"EPSG:32632"`, quotes and all) is the name it holds.
     let unquoted;
