@@ -185,8 +185,9 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 }
 
 /// The points of a file, as an ``(n, 2)`` float64 array: every format ``condt`` reads, told
-/// apart by the name's ending (any case): ``.npy``, ``.csv`` or ``.tsv``, ``.geojson`` or
-/// ``.json``, ``.node`` (Triangle), anything else plain text (one ``x y`` per line). Row ``i`` is point
+/// apart by the name's ending (any case): ``.npy`` (float64, float32 or integers up to 2^53),
+/// ``.csv`` or ``.tsv``, ``.geojson`` or ``.json``, ``.node`` (Triangle); any other name by its
+/// content, a NumPy array or GeoJSON, else plain text (one ``x y`` per line). Row ``i`` is point
 /// ``i``, as the command line numbers them.
 ///
 /// ``path`` is a ``str``, ``bytes`` or ``os.PathLike`` (``pathlib.Path``), as ``open`` takes

@@ -38,8 +38,8 @@ ending below, is told by its content: a NumPy array, a GeoJSON document or a Geo
 (the .npy magic bytes, a leading `{`, a leading record separator U+001E), else that text
 (`--input-format F` states the format instead, for a file too: `--input-format csv`). By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
-float64 or float32, either byte order, C or Fortran order, `.csv` CSV whose header names the x
-and y columns (or lon, lat; where none is named so, easting, northing or POINT_X, POINT_Y;
+float64, float32 or integers, either byte order, C or Fortran order, `.csv` CSV whose header
+names the x and y columns (or lon, lat; where none is named so, easting, northing or POINT_X, POINT_Y;
 `--columns X,Y` chooses others, by name or number), or of two
 numeric columns without a header (tabs separate the
 columns when the first line with content has tabs and no comma; a `.tsv` with a header is read

@@ -1,4 +1,5 @@
-//! NumPy `.npy` files: points in (float64 or float32, shape `(n, 2)`) and out (float64,
+//! NumPy `.npy` files: points in (float64, float32 or an integer type up to 2^53, shape
+//! `(n, 2)`) and out (float64,
 //! `write_npy_points`), indices out (edges
 //! `(m, 2)`, triangles `(t, 3)`, as uint32 when every index fits, int64 otherwise), and edges
 //! in again (`(m, 2)`, any signed or unsigned integer type, for `condt score`).
@@ -40,7 +41,13 @@ const BLOCK: usize = 1 << 20;
 enum Float {
     F64,
     F32,
+    /// An integer type (`numpy.argwhere` of an image's mask gives int64 pixel places): exact
+    /// as a double up to 2^53, and refused beyond.
+    Int(Index),
 }
+
+/// The largest magnitude an integer coordinate may have: every integer up to 2^53 is a double.
+const EXACT_INTEGERS: i128 = 1 << 53;
 
 /// What the header of a point file says.
 #[derive(Debug, PartialEq)]
@@ -184,7 +191,7 @@ impl Literal<'_> {
                     }
                     _ if raw.starts_with('[') => Err(format!(
                         "cannot read {raw:?} in the header (a structured element type? \
-                         points are float64 or float32, edges uint32 or int64)"
+                         points are float64, float32 or integers, edges integers)"
                     )),
                     _ => Err(format!("cannot read {raw:?} in the header")),
                 }
@@ -271,12 +278,15 @@ fn point_header(text: &[u8]) -> Result<Header, String> {
         ">f8" => (Float::F64, true),
         "<f4" => (Float::F32, false),
         ">f4" => (Float::F32, true),
-        other => {
-            return Err(format!(
-                "element type {other:?} is not supported: points are float64 ('<f8', '>f8') \
-                 or float32 ('<f4', '>f4')"
-            ))
-        }
+        other => match Index::of(other) {
+            Some((index, big_endian)) => (Float::Int(index), big_endian),
+            None => {
+                return Err(format!(
+                    "element type {other:?} is not supported: points are float64 ('<f8', \
+                     '>f8'), float32 ('<f4', '>f4') or integers ('<i8', '<u2', ...)"
+                ))
+            }
+        },
     };
     let rows = match shape[..] {
         [rows, 2] => usize::try_from(rows).unwrap_or(usize::MAX),
@@ -387,6 +397,7 @@ fn read_npy_from(
     let size = match header.float {
         Float::F64 => 8,
         Float::F32 => 4,
+        Float::Int(index) => index.size,
     };
     let n = header.rows;
     let mut points: Vec<Point> = Vec::new();
@@ -417,10 +428,15 @@ fn read_npy_from(
         .position(|p| !(p.x.is_finite() && p.y.is_finite()))
     {
         let p = points[row];
-        return Err(content(
-            file,
-            format!("row {row}: the point ({}, {}) is not finite", p.x, p.y),
-        ));
+        let message = if let Float::Int(_) = header.float {
+            format!(
+                "row {row}: a coordinate beyond 2^53, which a double (condt's coordinates) \
+                 cannot hold exactly; convert the array to float64 to accept the rounding"
+            )
+        } else {
+            format!("row {row}: the point ({}, {}) is not finite", p.x, p.y)
+        };
+        return Err(content(file, message));
     }
     Ok(points)
 }
@@ -555,12 +571,23 @@ fn decode(bytes: &[u8], float: Float, big_endian: bool) -> f64 {
                 f32::from_le_bytes(raw)
             })
         }
+        // Beyond 2^53 the double would be another number: NaN, which the reader refuses (and
+        // tells as such, `read_npy_from`), rather than a rounded place.
+        Float::Int(index) => {
+            let value = index.value(bytes, big_endian);
+            if value.abs() <= EXACT_INTEGERS {
+                value as f64
+            } else {
+                f64::NAN
+            }
+        }
     }
 }
 
-/// Parses the bytes of a NumPy `.npy` file of points: float64 or float32 (either byte order),
-/// shape `(n, 2)`, C or Fortran order, NPY version 1.0, 2.0 or 3.0. `file` names the source in
-/// error messages; float32 values are widened exactly.
+/// Parses the bytes of a NumPy `.npy` file of points: float64, float32 or any integer type
+/// (either byte order), shape `(n, 2)`, C or Fortran order, NPY version 1.0, 2.0 or 3.0. `file`
+/// names the source in error messages; float32 values are widened exactly, and integers are
+/// read exactly up to 2^53 in magnitude (beyond, a double would be another number: refused).
 ///
 /// ```
 /// use condt::Point;
@@ -1198,6 +1225,72 @@ mod tests {
         }
     }
 
+    /// A user review: `numpy.save` of `numpy.argwhere(mask)` (int64 pixel places) was refused,
+    /// though Python's `reconstruct` takes integer arrays. Every integer width and byte order
+    /// reads as its doubles, up to 2^53 either way; beyond, refused with the row.
+    #[test]
+    fn integer_points_read_exactly_up_to_two_to_the_53() {
+        let file = |descr: &str, fortran: bool, data: &[u8]| {
+            let dict = format!(
+                "{{'descr': '{descr}', 'fortran_order': {}, 'shape': (2, 2), }}",
+                if fortran { "True" } else { "False" }
+            );
+            let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+            let padded = format!("{dict:<117}\n");
+            bytes.extend_from_slice(&(padded.len() as u16).to_le_bytes());
+            bytes.extend_from_slice(padded.as_bytes());
+            bytes.extend_from_slice(data);
+            bytes
+        };
+        let limit = 1i64 << 53;
+        let wide: Vec<u8> = [limit, -limit, 7, -3]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        let expected = vec![
+            Point::new(limit as f64, -limit as f64),
+            Point::new(7.0, -3.0),
+        ];
+        assert_eq!(
+            parse_npy(&file("<i8", false, &wide), "w.npy").unwrap(),
+            expected
+        );
+        let columns = [limit, 7, -limit, -3];
+        let fortran: Vec<u8> = columns.iter().flat_map(|v| v.to_le_bytes()).collect();
+        assert_eq!(
+            parse_npy(&file("<i8", true, &fortran), "f.npy").unwrap(),
+            expected
+        );
+        let big: Vec<u8> = [1i16, -2, 300, 4]
+            .iter()
+            .flat_map(|v| v.to_be_bytes())
+            .collect();
+        assert_eq!(
+            parse_npy(&file(">i2", false, &big), "b.npy").unwrap(),
+            vec![Point::new(1.0, -2.0), Point::new(300.0, 4.0)]
+        );
+        let bytes = parse_npy(&file("|u1", false, &[0, 255, 9, 1]), "u.npy").unwrap();
+        assert_eq!(bytes, vec![Point::new(0.0, 255.0), Point::new(9.0, 1.0)]);
+        for beyond in [limit + 1, -limit - 1, i64::MAX] {
+            let data: Vec<u8> = [0, 0, 0, beyond]
+                .iter()
+                .flat_map(|v| v.to_le_bytes())
+                .collect();
+            let err = parse_npy(&file("<i8", false, &data), "x.npy")
+                .unwrap_err()
+                .to_string();
+            assert!(
+                err.starts_with("x.npy: row 1: a coordinate beyond 2^53"),
+                "{err}"
+            );
+        }
+        let data: Vec<u8> = [0, 0, 0, u64::MAX]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        assert!(parse_npy(&file("<u8", false, &data), "u8.npy").is_err());
+    }
+
     #[test]
     fn dictionaries_in_both_quotes_and_with_or_without_trailing_commas_are_read() {
         for text in [
@@ -1218,8 +1311,8 @@ mod tests {
         }
         for (text, says) in [
             (
-                "{'descr': '<i4', 'fortran_order': False, 'shape': (5, 2), }",
-                "\"<i4\"",
+                "{'descr': '<c16', 'fortran_order': False, 'shape': (5, 2), }",
+                "\"<c16\"",
             ),
             (
                 "{'descr': '<f8', 'fortran_order': False, 'shape': (5,), }",
