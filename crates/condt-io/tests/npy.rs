@@ -179,8 +179,8 @@ fn bad_files_are_refused_with_a_message() {
         ([good.clone(), vec![0]].concat(), "bytes after the 2 points"),
         (version_4, "version 4.0 is not supported"),
         (
-            npy_file(1, &dict("<i4", "(2, 2)"), &[0; 16]),
-            "element type \"<i4\" is not supported",
+            npy_file(1, &dict("<c8", "(2, 2)"), &[0; 32]),
+            "element type \"<c8\" is not supported",
         ),
         (
             npy_file(1, &dict("<f8", "(4,)"), &two),
