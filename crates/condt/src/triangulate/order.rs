@@ -82,8 +82,10 @@ fn hilbert_steps<const STEPS: u32>(x: u32, y: u32) -> u64 {
     index
 }
 
-/// A strictly increasing map of the finite doubles of one set (zero, and magnitudes from
-/// `smallest` up), growing like the log of the magnitude (the ordered bit pattern): a grid on it
+/// A nondecreasing map of the finite doubles of one set (zero, and magnitudes from `smallest`
+/// up; strictly increasing up to 2^53 bit patterns above `smallest`, the rest rounded, whose
+/// ties [`order_warped_ties`] settles), growing like the log of the magnitude (the ordered bit
+/// pattern): a grid on it
 /// has as many cells in [1e-300, 1e-299] as in [1, 10]. Counting from `smallest`, the bit pattern
 /// of the set's smallest nonzero magnitude, the set times a power of two gets the same order.
 pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
@@ -101,6 +103,30 @@ pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
         -magnitude
     } else {
         magnitude
+    }
+}
+
+/// Orders by their own coordinates the points of `order` (an [`insertion_order_into`] of
+/// `warped`, the [`logarithmic`] map of `points`) that share a warped place. The map rounds where
+/// a magnitude's bit pattern lies more than 2^53 above the set's smallest (one unit in the last
+/// place beside 1, when the set reaches down to 1e-70), and the grid sort leaves points of one
+/// place in input order: cocircular ones then met the triangulation in an order that the input
+/// decided, and so did its diagonal (a review's repro, test `wide_ties_do_not_follow_the_input_order`).
+/// Such points are adjacent in `order`, as the cell sort compares their equal places.
+pub(crate) fn order_warped_ties(points: &[Point], warped: &[Point], order: &mut [u32]) {
+    let mut start = 0;
+    while start < order.len() {
+        let place = warped[order[start] as usize];
+        let end = start
+            + order[start..]
+                .iter()
+                .take_while(|&&i| warped[i as usize] == place)
+                .count();
+        if end - start > 1 {
+            let own = |i: &u32| points[*i as usize];
+            order[start..end].sort_unstable_by(|i, j| own(i).lexicographic_cmp(own(j)));
+        }
+        start = end;
     }
 }
 
