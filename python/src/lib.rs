@@ -67,6 +67,7 @@ pub(crate) fn on_live_threads<T: Send>(work: impl FnOnce() -> T + Send) -> T {
         None => work(),
     }
 }
+
 mod convert;
 mod params;
 mod reconstruction;
