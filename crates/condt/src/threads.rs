@@ -103,6 +103,34 @@ pub(crate) fn found_in_order<T: Send>(
     (0..n).filter_map(find).collect()
 }
 
+/// Adds `by` to the progress counter `counter` (a caller's count of points inserted), or takes
+/// it away with `up` false. A target without atomic read-modify-write (Cortex-M0, an embedded
+/// review: the crate did not build there) loads and stores instead; it has no threads, so no
+/// other writer comes between.
+pub(crate) fn count(counter: &core::sync::atomic::AtomicUsize, by: usize, up: bool) {
+    use core::sync::atomic::Ordering::Relaxed;
+    #[cfg(target_has_atomic = "ptr")]
+    {
+        if up {
+            counter.fetch_add(by, Relaxed);
+        } else {
+            counter.fetch_sub(by, Relaxed);
+        }
+    }
+    #[cfg(not(target_has_atomic = "ptr"))]
+    {
+        let now = counter.load(Relaxed);
+        counter.store(
+            if up {
+                now.wrapping_add(by)
+            } else {
+                now.wrapping_sub(by)
+            },
+            Relaxed,
+        );
+    }
+}
+
 /// Whether rayon's global pool can run work: `false` without the `parallel` feature, or when the
 /// pool could not start (a limit on processes or address space, `RAYON_NUM_THREADS` beyond what
 /// the system gives), where rayon would panic at first use; every parallel path then runs on the

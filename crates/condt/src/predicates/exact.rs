@@ -16,16 +16,29 @@ const LIMBS: usize = 134;
 /// Calls `$function::<L>(..)` with the narrowest `L` of 8, 16, 32 or 64 limbs that is at least
 /// `$limbs`, else with the full width: every operation copies its `Int` (about 1 KB at full
 /// width), which made the copies most of the time on sets spanning many binary orders.
+///
+/// Stack: the widths of 32 limbs and more run in frames of their own ([`apart`]), and the signs
+/// are never inlined into the predicates of [`super`], so a call holds the integers of the
+/// width it uses, only while it runs (an embedded review measured 30 KB of stack on every
+/// `reconstruct` when the full width's frame was part of `in_circle`'s; 64 KB on a wide set).
 macro_rules! in_width {
     ($limbs:expr, $function:ident($($arg:expr),*)) => {
         match $limbs {
             0..=8 => $function::<8>($($arg),*),
             9..=16 => $function::<16>($($arg),*),
-            17..=32 => $function::<32>($($arg),*),
-            33..=64 => $function::<64>($($arg),*),
-            _ => $function::<LIMBS>($($arg),*),
+            17..=32 => apart(|| $function::<32>($($arg),*)),
+            33..=64 => apart(|| $function::<64>($($arg),*)),
+            _ => apart(|| $function::<LIMBS>($($arg),*)),
         }
     };
+}
+
+/// `work()` in a frame of its own: the integers of 32 limbs and more (8 to 32 KB of stack for a
+/// predicate's temporaries) are held only while such a call runs, not by every caller of the
+/// width switch (see [`in_width`]).
+#[inline(never)]
+fn apart<R>(work: impl FnOnce() -> R) -> R {
+    work()
 }
 
 /// A signed integer of at most `64 · L` bits, as sign and magnitude.
@@ -204,6 +217,7 @@ fn subtract_magnitudes<const L: usize>(a: &[u64], b: &[u64]) -> Int<L> {
 }
 
 /// The exact orientation sign: `Greater` when `a, b, c` turn counter-clockwise.
+#[inline(never)]
 pub(crate) fn orient2d_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
     // Two products of two differences, their difference, and a spare limb for a carry.
     let limbs = difference_limbs(integer_bits(&[a, b, c]));
@@ -220,6 +234,7 @@ fn orient2d_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Orderin
 
 /// The exact in-circle sign: `Greater` when `d` is strictly inside the circle through the
 /// counter-clockwise `a, b, c`, `Equal` when the four are cocircular.
+#[inline(never)]
 pub(crate) fn in_circle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
     // A lift (a sum of two squares, one limb over them) times a 2x2 determinant (one over its
     // products), a sum of three such, and a spare limb for a carry.
@@ -245,6 +260,7 @@ fn in_circle_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 
 }
 
 /// The exact sign of the dot product `(a - b) · (c - d)`.
+#[inline(never)]
 pub(crate) fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Ordering {
     // As [`orient2d_sign`]: two products of two differences, their sum, a spare limb.
     let limbs = difference_limbs(integer_bits(&[a, b, c, d]));
@@ -261,6 +277,7 @@ fn dot_in<const L: usize>(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) ->
 /// The exact order of `|a - p|` and `|b - p|`. Evenly spaced samples whose coordinates are not
 /// dyadic (0.1 apart) tie when rounded at almost every point, so this runs once per point there:
 /// in machine integers, or in as few limbs as the coordinates allow.
+#[inline(never)]
 pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {
     let bits = integer_bits(&[p, a, b]);
     if bits <= 62 {

@@ -12,7 +12,7 @@ use crate::mesh::{wrap3, HalfEdgeId, Mesh, MeshArrays, MeshBuilder, VertexId};
 use crate::predicates::Orientation;
 use crate::threads::both;
 use alloc::vec::Vec;
-use core::sync::atomic::{AtomicUsize, Ordering};
+use core::sync::atomic::AtomicUsize;
 
 /// Smaller sets are built in one piece (a second thread gains little); the same bound on one
 /// thread or two, so both give one result.
@@ -128,7 +128,7 @@ pub(crate) fn build<K: Kernel>(
     };
     let take_back = |count: usize| {
         if let Some(counter) = progress {
-            counter.fetch_sub(count, Ordering::Relaxed);
+            crate::threads::count(counter, count, false);
         }
     };
     let ((left_len, mut merged), (right_len, right_merged)) = match (left_built, right_built) {

@@ -9,7 +9,7 @@ use crate::mesh::{wrap3, HalfEdgeId, MeshBuilder, VertexId};
 use crate::predicates::{self, Orientation};
 use alloc::vec::Vec;
 use core::marker::PhantomData;
-use core::sync::atomic::{AtomicUsize, Ordering};
+use core::sync::atomic::AtomicUsize;
 
 /// The predicates a construction decides with, chosen once per point set.
 pub(crate) trait Kernel {
@@ -171,7 +171,7 @@ pub(crate) fn build_into<'m, K: Kernel>(
         }
         if let Some(counter) = progress {
             let inserted = to - builder.merged.len();
-            counter.fetch_add(inserted - reported, Ordering::Relaxed);
+            crate::threads::count(counter, inserted - reported, true);
             reported = inserted;
         }
         from = to;

@@ -21,7 +21,7 @@ use crate::geometry::{Point, Scale};
 use crate::mesh::{Mesh, MeshArrays, VertexId};
 use crate::threads::{both, filled};
 use alloc::vec::Vec;
-use core::sync::atomic::{AtomicUsize, Ordering};
+use core::sync::atomic::AtomicUsize;
 use insert::{Exact, Fast, Kernel};
 pub(crate) use order::mix as splitmix64_finalizer;
 pub(crate) use scale::choose_frames;
@@ -146,7 +146,7 @@ fn triangulate_in(
             // No triangle: the chain in line order is the vertex order instead.
             let (mesh, merged, line_order) = collinear::chain(points);
             if let Some(counter) = progress {
-                counter.fetch_add(points.len() - merged.len(), Ordering::Relaxed);
+                crate::threads::count(counter, points.len() - merged.len(), true);
             }
             for (slot, &i) in sorted.iter_mut().zip(&line_order) {
                 *slot = scale.apply(points[i as usize]);

@@ -326,7 +326,9 @@ fn radix_sort(values: &mut Vec<u64>, buffer: &mut Vec<u64>, low: u32, bits: u32)
     let passes = (bits.div_ceil(DIGIT_BITS) as usize).min(MAX_PASSES);
     let digit =
         |v: u64, pass: usize| ((v >> (low + pass as u32 * DIGIT_BITS)) as usize) & (DIGITS - 1);
-    let mut counts = [[0u32; DIGITS]; MAX_PASSES];
+    // On the heap, and only the passes used: 16 KB of stack at every level of a crowded cell's
+    // recursion was too much for an embedded caller's stack.
+    let mut counts = alloc::vec![[0u32; DIGITS]; passes];
     for &v in values.iter() {
         for (pass, count) in counts.iter_mut().enumerate().take(passes) {
             count[digit(v, pass)] += 1;
