@@ -103,6 +103,76 @@ fn bad_csv_and_geojson_files_are_refused_by_file_and_line() {
     }
 }
 
+/// A `.tsv` file reads as its `.csv` twin, commas for its tabs: quoted names, a byte-order mark,
+/// a name with blanks (`elevation (m)`) and one of digits (`2020`) beside x and y; a malformed
+/// quote in a later column is refused with the file and line, as in the `.csv` (a user's
+/// report: the first four were refused, and `"1"5` read as 15).
+#[test]
+fn a_tsv_file_reads_as_its_csv_twin() {
+    let dir = scratch_dir();
+    let condt = |args: &[&str], path: &std::path::Path| {
+        Command::new(env!("CARGO_BIN_EXE_condt"))
+            .args(args)
+            .arg(path)
+            .output()
+            .unwrap()
+    };
+    for (name, tsv) in [
+        (
+            "quoted",
+            "\"name\"\t\"lon\"\t\"lat\"\n\"a\"\t1\t2\n\"b\"\t3\t4\n\"c\"\t5\t1\n",
+        ),
+        ("bom", "\u{feff}id\tlon\tlat\n1\t1\t2\n2\t3\t4\n3\t5\t1\n"),
+        (
+            "unit",
+            "id\tlon\tlat\televation (m)\n1\t1\t2\t5\n2\t3\t4\t5\n3\t5\t1\t5\n",
+        ),
+        (
+            "year",
+            "id\tlon\tlat\t2020\n1\t1\t2\t5\n2\t3\t4\t5\n3\t5\t1\t5\n",
+        ),
+    ] {
+        let tsv_path = dir.path().join(format!("{name}.tsv"));
+        let csv_path = dir.path().join(format!("{name}.csv"));
+        std::fs::write(&tsv_path, tsv).unwrap();
+        std::fs::write(&csv_path, tsv.replace('\t', ",")).unwrap();
+        for (args, expected) in [
+            (&["triangulate"][..], "1 0 2\n"),
+            (&["triangulate", "--edges"][..], "0 1\n0 2\n1 2\n"),
+        ] {
+            let (out, twin) = (condt(args, &tsv_path), condt(args, &csv_path));
+            assert!(out.status.success(), "{name}: {out:?}");
+            assert_eq!(String::from_utf8(out.stdout).unwrap(), expected, "{name}");
+            assert_eq!(String::from_utf8(twin.stdout).unwrap(), expected, "{name}");
+        }
+    }
+    for (name, tsv, message) in [
+        (
+            "bad",
+            "id\tlon\tlat\na\t\"1\"5\t\"2\"0\nb\t0\t0\nc\t100\t0\n",
+            ":2: text after the closing quote of a field",
+        ),
+        (
+            "open",
+            "id\tlon\tlat\na\t\"1\t2\nb\t0\t0\nc\t100\t0\n",
+            ":2: a quoted field is not closed",
+        ),
+    ] {
+        let args = ["reconstruct", "--paper", "--format", "geojson", "-q"];
+        for (ending, text) in [("tsv", tsv.to_string()), ("csv", tsv.replace('\t', ","))] {
+            let path = dir.path().join(format!("{name}.{ending}"));
+            std::fs::write(&path, text).unwrap();
+            let out = condt(&args, &path);
+            assert_eq!(out.status.code(), Some(1), "{name}.{ending}: {out:?}");
+            let said = String::from_utf8(out.stderr).unwrap();
+            assert!(
+                said.contains(&format!("{name}.{ending}{message}")),
+                "{said}"
+            );
+        }
+    }
+}
+
 /// A byte-order mark after the first line that the parallel reader starts a piece at (past
 /// byte 1 MiB) is refused with its line from standard input with `--sequential`, from
 /// standard input, and from the file: one answer on every path.

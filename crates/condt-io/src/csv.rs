@@ -68,6 +68,14 @@ pub(crate) fn header_axes<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<O
     }
 }
 
+/// Whether the fields `names` of a first line name an x and a y column as a header does for
+/// [`header_axes`], whatever the other fields hold (`id lon lat 2020`, `elevation (m)`): such a
+/// line is a header this reader follows, not a point.
+pub(crate) fn names_x_and_y_columns<'a>(names: impl IntoIterator<Item = &'a str>) -> bool {
+    let axes = header_axes(names);
+    axes.contains(&Some('x')) && axes.contains(&Some('y'))
+}
+
 /// Parses a CSV file with a header line; `file` names the source in error messages.
 ///
 /// The first record that is not blank is the header: column names separated as the records
@@ -127,8 +135,10 @@ pub(crate) fn parse_csv_columns(
     parse_separated(text, file, if tabs { b'\t' } else { b',' }, columns)
 }
 
-/// The first line of `text` that is not blank (lines end at LF, CR or CRLF).
+/// The first line of `text` that is not blank (lines end at LF, CR or CRLF), without the
+/// byte-order mark that may start the text: no reader takes it for part of the first name.
 pub(crate) fn first_line_with_content(text: &str) -> &str {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut lines = text.split(['\r', '\n']);
     lines.find(|l| !l.trim().is_empty()).unwrap_or("")
 }
@@ -184,7 +194,7 @@ pub(crate) fn parse_separated(
             continue;
         }
         let line = lines.line_at(start);
-        check_quotes(raw.as_bytes()).map_err(|m| source.error(line, m.to_string()))?;
+        check_quotes(raw.as_bytes(), delimiter).map_err(|m| source.error(line, m.to_string()))?;
         let (x_column, y_column) = match (columns, chosen) {
             (Some(columns), _) => columns,
             (None, Some(chosen)) => {
@@ -453,8 +463,10 @@ fn chosen_columns(
 /// Refuses what the `csv` crate reads without complaint but RFC 4180 does not allow: text after
 /// the closing quote of a field (`"1"5`, which the crate reads as `15`) and a quoted field that
 /// is never closed (which it ends at the end of the file). `raw` is one record as written, its
-/// line end included.
-fn check_quotes(raw: &[u8]) -> Result<(), &'static str> {
+/// line end included; `delimiter` separates its fields, as the crate was told: a field starts
+/// after it and a quoted one ends before it (with a comma there, a TSV's `"a"\t"b"` was refused
+/// and its `"1"5` read as `15`).
+fn check_quotes(raw: &[u8], delimiter: u8) -> Result<(), &'static str> {
     let mut at = 0;
     let mut field_start = true;
     while let Some(&byte) = raw.get(at) {
@@ -469,13 +481,16 @@ fn check_quotes(raw: &[u8]) -> Result<(), &'static str> {
                 }
             }
             at += 1;
-            if !matches!(raw.get(at), None | Some(b',' | b'\r' | b'\n')) {
+            if raw
+                .get(at)
+                .is_some_and(|&b| b != delimiter && b != b'\r' && b != b'\n')
+            {
                 return Err("text after the closing quote of a field");
             }
             field_start = false;
             continue;
         }
-        field_start = byte == b',';
+        field_start = byte == delimiter;
         at += 1;
     }
     Ok(())
@@ -626,6 +641,38 @@ mod tests {
         assert_eq!(parse_csv(tsv, "p.tsv").unwrap(), expected);
         let err = parse_csv("id,lon\tlat\n1,8.5\t47.3\n", "p.csv").unwrap_err();
         assert!(err.to_string().contains("no x column"), "{err}");
+    }
+
+    /// A TSV's quotes follow the rules of a CSV's, its tab in place of the comma: a quoted field
+    /// ends at a tab, a comma is text, and text after a closing quote or a quote left open in a
+    /// later column is refused naming its line (both were checked as if commas separated the
+    /// fields: a quoted first field was refused, and `"1"5` read as `15`).
+    #[test]
+    fn quotes_in_a_tsv_end_at_its_tabs() {
+        let tsv = "\"name\"\t\"lon\"\t\"lat\"\n\"a\"\t1\t2\na,\"b\"\t\"3\"\t\"4\"\r\n";
+        let expected = vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0)];
+        assert_eq!(parse_csv(tsv, "q.tsv").unwrap(), expected);
+        assert_eq!(
+            parse_separated(tsv, "q.tsv", b'\t', None).unwrap(),
+            expected
+        );
+        for (text, message) in [
+            (
+                "id\tlon\tlat\na\t\"1\"5\t\"2\"0\n",
+                "bad.tsv:2: text after the closing quote of a field",
+            ),
+            (
+                "id\tlon\tlat\nb\t0\t0\na\t\"1\"\t\"2\" \n",
+                "bad.tsv:3: text after the closing quote of a field",
+            ),
+            (
+                "id\tlon\tlat\na\t\"1\t2\nb\t0\t0\n",
+                "bad.tsv:2: a quoted field is not closed",
+            ),
+        ] {
+            let err = parse_separated(text, "bad.tsv", b'\t', None).unwrap_err();
+            assert_eq!(err.to_string(), message, "{text:?}");
+        }
     }
 
     /// `--columns`: x and y from the columns chosen by header name (any case) or number, even

@@ -1118,13 +1118,23 @@ pub fn read_points_with(
             InputFormat::Node => parse_node(&text, name).map(without_crs),
             InputFormat::Csv => super::parse_csv(&text, name).map(without_crs),
             InputFormat::Tsv => {
-                // Tabs by the name, when the file starts with a header as the plain reader tells
-                // one; without (numbers or a comment first) it is the plain format's, which takes
-                // tabs, comments and a third column too.
+                // Tabs by the name, when the file starts with a header: names only, as the plain
+                // reader tells one, or x and y columns named as the CSV reader's header names them
+                // among any others (`id lon lat 2020`); without (numbers or a comment first) it is
+                // the plain format's, which takes tabs, comments and a third column too. The line
+                // is split at tabs, as the CSV reader splits it: a name may hold blanks
+                // (`elevation (m)`), which are no columns.
                 let first = crate::csv::first_line_with_content(&text);
                 let content = first.split('#').next().unwrap_or("");
-                let fields: Vec<&str> = content.split_whitespace().collect();
-                if !fields.is_empty() && fields.iter().all(|f| is_name(f)) {
+                let fields: Vec<&str> = content
+                    .split('\t')
+                    .map(str::trim)
+                    .filter(|f| !f.is_empty())
+                    .collect();
+                if !fields.is_empty()
+                    && (fields.iter().all(|f| is_name(f))
+                        || crate::csv::names_x_and_y_columns(fields.iter().copied()))
+                {
                     crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
                 } else {
                     parse_owned_points(text, name).map(without_crs)

@@ -506,6 +506,48 @@ fn a_tsv_file_is_read_by_its_header() {
     );
 }
 
+/// A `.tsv` header is told as the README has it: after a byte-order mark, with a name of blanks
+/// (`elevation (m)`, one field between tabs), or naming x and y beside a column named by a
+/// number (`2020`), in any position; each was read as the plain format and refused. A first line
+/// of numbers is still a point.
+#[test]
+fn a_tsv_header_is_told_after_a_mark_and_among_any_names() {
+    let expected = points(&[(1.0, 2.0), (3.0, 4.0), (5.0, 1.0)]);
+    for (name, text) in [
+        ("bom.tsv", "\u{feff}id\tlon\tlat\n1\t1\t2\n2\t3\t4\n3\t5\t1\n"),
+        (
+            "unit.tsv",
+            "id\tlon\tlat\televation (m)\n1\t1\t2\t5\n2\t3\t4\t5\n3\t5\t1\t5\n",
+        ),
+        (
+            "year.tsv",
+            "id\tlon\tlat\t2020\n1\t1\t2\t5\n2\t3\t4\t5\n3\t5\t1\t5\n",
+        ),
+        (
+            "moved.tsv",
+            "\u{feff}2020\tLat\tstation name\t\"X\"\r\n5\t2\ta b\t1\r\n5\t4\tc\t3\r\n5\t1\td\t5\r\n",
+        ),
+    ] {
+        let file = TempFile::new(name, text.as_bytes());
+        assert_eq!(file.read().unwrap(), expected, "{name}");
+    }
+    let numbers = TempFile::new("numbers.tsv", b"1\t2\t2020\n3\t4\t2020\n5\t1\t2020\n");
+    assert_eq!(numbers.read().unwrap(), expected);
+    // Names without x and y after a mark are a header too, refused as the CSV reader refuses
+    // it (the mark made its first name no name: the plain reader called the `FID` column a
+    // `.node` index).
+    let fid = TempFile::new(
+        "fid.tsv",
+        "\u{feff}FID\tE\tN\n1\t2\t3\n2\t4\t5\n".as_bytes(),
+    );
+    let (line, message) = content_error(fid.read());
+    assert_eq!(line, Some(1), "{message}");
+    assert!(
+        message.contains("the header has no x column") && message.contains("--columns X,Y"),
+        "{message}"
+    );
+}
+
 /// Over 2 MiB of points, with a byte-order mark starting the first line after byte 1 MiB, where
 /// the parallel readers begin a piece; with the line of the mark.
 fn text_with_a_mark_after_a_piece_boundary() -> (String, usize) {
