@@ -59,7 +59,17 @@
 //! `std::error::Error`, in every build). `parallel` (default,
 //! implies `std`): multi-threaded stages and the two halves of a large triangulation built at
 //! once, on rayon (same results). Without default features the crate is `#![no_std]`, needs only
-//! `alloc`, and depends on `robust` and `libm` alone.
+//! `alloc`, and depends on `robust` and `libm` alone; it builds for Cortex-M0 too (no atomic
+//! read-modify-write needed).
+//!
+//! ## Stack and heap on small targets
+//! Measured under QEMU on a Cortex-M4 (`thumbv7em-none-eabihf`, opt-level "z", stack painted):
+//! a `reconstruct` call writes up to about 31 KB of stack, 24.7 KB of it `robust`'s adaptive
+//! in-circle test when its fast filter cannot decide (near-cocircular doubles such as samples of
+//! an ellipse; an integer grid, decided by exact small integers, needs 7.6 KB); a set spanning
+//! more than 2^200 takes the big-integer predicates, up to about 57 KB at the widest spread.
+//! The heap: 12 KB for 32 points, 830 KB for 4,000 (a bump allocator that never frees). A
+//! refused allocation ends in the allocation error handler, as everywhere in `alloc`.
 //!
 //! ## Layout
 //! Public as modules: [`mesh`], [`predicates`], [`geometry`] (points, exact power-of-two
