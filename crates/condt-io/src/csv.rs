@@ -17,7 +17,7 @@ use condt::MAX_POINTS;
 use std::vec::Vec;
 
 /// Names accepted for the first coordinate and for the second, compared without case.
-const X_NAMES: [&str; 4] = ["x", "lon", "lng", "longitude"];
+const X_NAMES: [&str; 5] = ["x", "lon", "lng", "long", "longitude"];
 const Y_NAMES: [&str; 3] = ["y", "lat", "latitude"];
 
 /// Names of a projected pair, read where no column of the header has a name above: survey and
@@ -28,7 +28,7 @@ const PROJECTED_X_NAMES: [&str; 4] = ["easting", "point_x", "xcoord", "x_coord"]
 const PROJECTED_Y_NAMES: [&str; 4] = ["northing", "point_y", "ycoord", "y_coord"];
 
 /// The names of both ranks, for messages.
-const NAMES_READ: &str = "x, lon, lng, longitude and y, lat, latitude are read, or where none \
+const NAMES_READ: &str = "x, lon, lng, long, longitude and y, lat, latitude are read, or where none \
                           is there easting and northing, POINT_X and POINT_Y, xcoord and ycoord, x_coord \
                           and y_coord";
 
@@ -80,7 +80,7 @@ pub(crate) fn names_x_and_y_columns<'a>(names: impl IntoIterator<Item = &'a str>
 ///
 /// The first record that is not blank is the header: column names separated as the records
 /// are, quoted or not; when it is exactly two numbers there is no header and every record is
-/// `x,y`. The first coordinate is the column named `x` (or `lon`, `lng`, `longitude`), the
+/// `x,y`. The first coordinate is the column named `x` (or `lon`, `lng`, `long`, `longitude`), the
 /// second the column named `y` (or `lat`, `latitude`), compared without case and blanks around
 /// them; a header that names one of them in two columns (`x,y,lon,lat`) is an error; other
 /// columns are ignored. Columns are separated by commas, or by tabs when the first line that is
@@ -545,6 +545,9 @@ mod tests {
     fn the_header_chooses_the_columns_in_any_order_and_case() {
         let pts = parse_csv("Latitude,Longitude\r\n1,2\r\n\r\n3,4\r\n", "geo.csv").unwrap();
         assert_eq!(pts, vec![Point::new(2.0, 1.0), Point::new(4.0, 3.0)]);
+        // `long`, as many GIS exports name longitude (a GIS review: refused as "no x column").
+        let pts = parse_csv("id,lat,long\n7,47.3,8.5\n", "geo.csv").unwrap();
+        assert_eq!(pts, vec![Point::new(8.5, 47.3)]);
     }
 
     /// A header naming one coordinate twice is refused, not resolved by column order (a new

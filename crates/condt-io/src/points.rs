@@ -670,7 +670,7 @@ fn expected_points(text: &str) -> usize {
 ///
 /// The first line that is neither blank nor a comment may be a header: when every column is a
 /// name (starts with a letter, `_` or a quote, and is not a number), as in `x y` or `"lon","lat"`,
-/// it is skipped. A header that names x and y (`x`, `lon`, `lng`, `longitude`; `y`, `lat`,
+/// it is skipped. A header that names x and y (`x`, `lon`, `lng`, `long`, `longitude`; `y`, `lat`,
 /// `latitude`) anywhere but in the first two columns, in that order, is refused: the points
 /// would be read from the wrong columns (`id x y`, `y x`). A file with no point after its header
 /// is an empty point file only when the header names x and y over the first two columns (`x y`,
