@@ -31,40 +31,65 @@ pub(crate) fn within_call<T>(work: impl FnOnce() -> T) -> T {
 
 /// `work` without the GIL, on threads that exist ([`on_live_threads`]): every call that may
 /// reach the library's parallel code runs so.
-pub(crate) fn detached<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> T {
+///
+/// # Errors
+/// `RuntimeError` in a forked child that cannot start threads of its own.
+pub(crate) fn detached<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
     py.detach(|| on_live_threads(work))
 }
 
-/// The process that loaded the module, whose rayon threads the calls use.
+/// The process that imported the module, whose rayon threads the calls use.
 static LOADED_IN: OnceLock<u32> = OnceLock::new();
 
 /// Runs `work` where rayon's threads run. `fork` copies only the calling thread, so a child
-/// forked after its parent started rayon's global pool (`multiprocessing`'s default on Linux
+/// forked after its parent started rayon's global pool (on Linux, `multiprocessing`'s default
 /// before Python 3.14) holds that pool without its threads, and its first parallel step would
 /// wait forever: a user review found `multiprocessing.Pool` workers hanging in `triangulate`.
 /// In such a child, `work` runs in a pool of the child's own, started at its first call (the
-/// result is the same: the parallel paths give the sequential results). Where no thread can
-/// be started there, it runs as it is, as in the parent.
-pub(crate) fn on_live_threads<T: Send>(work: impl FnOnce() -> T + Send) -> T {
+/// result is the same: the parallel paths give the sequential results). Where the child cannot
+/// start a thread, an error instead of the wait.
+pub(crate) fn on_live_threads<T: Send>(work: impl FnOnce() -> T + Send) -> PyResult<T> {
     let pid = std::process::id();
     if *LOADED_IN.get_or_init(|| pid) == pid {
-        return work();
+        return Ok(work());
     }
+    match childs_pool(pid) {
+        Some(pool) => Ok(pool.install(work)),
+        None => Err(PyRuntimeError::new_err(
+            "this process was forked from one that had started condt's threads, and cannot \
+             start threads of its own: use the spawn start method of multiprocessing",
+        )),
+    }
+}
+
+/// The pool of the forked child `pid`, started at its first call. It is built outside the lock,
+/// so that a fork from another thread meanwhile leaves its child no lock held; a pool inherited
+/// from the parent (a child that forks again) is forgotten, not dropped: its threads are not in
+/// this process, and dropping it would wait on their state as the fork copied it.
+fn childs_pool(pid: u32) -> Option<Arc<rayon::ThreadPool>> {
     static CHILDS_POOL: Mutex<Option<(u32, Arc<rayon::ThreadPool>)>> = Mutex::new(None);
-    let pool = {
-        let mut kept = CHILDS_POOL.lock().unwrap_or_else(PoisonError::into_inner);
-        match &*kept {
+    let kept = |lock: &Mutex<Option<(u32, Arc<rayon::ThreadPool>)>>| {
+        let held = lock.lock().unwrap_or_else(PoisonError::into_inner);
+        match &*held {
             Some((owner, pool)) if *owner == pid => Some(Arc::clone(pool)),
-            _ => {
-                let built = rayon::ThreadPoolBuilder::new().build().ok().map(Arc::new);
-                *kept = built.as_ref().map(|pool| (pid, Arc::clone(pool)));
-                built
-            }
+            _ => None,
         }
     };
-    match pool {
-        Some(pool) => pool.install(work),
-        None => work(),
+    if let Some(pool) = kept(&CHILDS_POOL) {
+        return Some(pool);
+    }
+    let built = Arc::new(rayon::ThreadPoolBuilder::new().build().ok()?);
+    let mut held = CHILDS_POOL.lock().unwrap_or_else(PoisonError::into_inner);
+    match &*held {
+        // Another thread of this child built one first: that one serves (this one is dropped,
+        // its threads being this process's own).
+        Some((owner, pool)) if *owner == pid => Some(Arc::clone(pool)),
+        _ => {
+            if let Some(inherited) = held.replace((pid, Arc::clone(&built))) {
+                core::mem::forget(inherited);
+            }
+            Some(built)
+        }
     }
 }
 
@@ -159,7 +184,7 @@ fn reconstruct(
     // block of the pipeline).
     let (result, owned) = crate::detached(py, || {
         within_call(|| condt::reconstruct(points, &params).map(|result| (result, points.to_vec())))
-    })
+    })?
     .map_err(|err| library_error(err, points))?;
     Ok(Reconstruction::new(result, owned))
 }
@@ -180,7 +205,7 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    let tri = crate::detached(py, || within_call(|| condt::triangulate(points)))
+    let tri = crate::detached(py, || within_call(|| condt::triangulate(points)))?
         .map_err(|err| library_error(err, points))?;
     Ok(Triangulation::new(tri))
 }
@@ -378,7 +403,7 @@ fn read_point_file<'py>(
     };
     let file = crate::detached(py, || {
         within_call(|| condt_io::read_points_with(&path, options))
-    })
+    })?
     .map_err(|mut err| {
         // Named as given, in the message and in `OSError.filename`.
         if stdin_name {
@@ -695,7 +720,7 @@ fn score<'py>(
     let (output_positions, truth_positions) = (as_positions(&output), as_positions(&truth));
     let result = crate::detached(py, || {
         condt_eval::score::score(points, &output_positions, &truth_positions)
-    })
+    })?
     .map_err(|err| match err {
         ScoreError::NonFinite { index } => library_error(condt::Error::NonFinite { index }, points),
         ScoreError::Truth(problem) => {

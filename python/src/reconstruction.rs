@@ -97,7 +97,7 @@ impl Reconstruction {
                 list.iter()
                     .map(|&[a, b]| [i64::from(a), i64::from(b)])
                     .collect::<Vec<_>>()
-            });
+            })?;
             index_array(py, rows).map(Bound::unbind)
         })?;
         Ok(edges.bind(py).clone())
@@ -212,7 +212,7 @@ impl Reconstruction {
                         })
                         .collect()
                 })
-            });
+            })?;
             let dict = PyDict::new(py);
             for (name, rows) in graphs {
                 dict.set_item(name, index_array(py, rows)?)?;
@@ -282,7 +282,7 @@ impl Reconstruction {
             Some(stories) => stories,
             None => {
                 let result = &self.shared.result;
-                let computed = crate::detached(py, || crate::within_call(|| result.provenance()));
+                let computed = crate::detached(py, || crate::within_call(|| result.provenance()))?;
                 self.stories.get_or_init(|| computed)
             }
         };
@@ -307,7 +307,7 @@ impl Reconstruction {
                     "{a}-{b} is not {walked}, nor an edge a stage added: no stage saw it"
                 ))
             })?;
-        EdgeStory::new(py, story)
+        Ok(EdgeStory::new(story))
     }
 
     /// The curves as GeoJSON text, what ``condt reconstruct -o out.geojson`` writes: a
@@ -366,14 +366,12 @@ impl Reconstruction {
             }
         };
         let mut out = Vec::new();
-        crate::on_live_threads(|| {
-            condt_io::write_geojson_with_crs(
-                &mut out,
-                &self.shared.result,
-                &self.shared.points,
-                crs.as_deref(),
-            )
-        })
+        condt_io::write_geojson_with_crs(
+            &mut out,
+            &self.shared.result,
+            &self.shared.points,
+            crs.as_deref(),
+        )
         .map_err(|err| match err.kind() {
             std::io::ErrorKind::InvalidInput => PyValueError::new_err(err.to_string()),
             _ => PyRuntimeError::new_err(err.to_string()),
@@ -558,11 +556,11 @@ pub(crate) struct EdgeStory {
 }
 
 impl EdgeStory {
-    fn new(_py: Python<'_>, story: &condt::EdgeStory) -> PyResult<EdgeStory> {
-        Ok(EdgeStory {
+    fn new(story: &condt::EdgeStory) -> EdgeStory {
+        EdgeStory {
             story: story.clone(),
             text: condt_io::story_text(story),
-        })
+        }
     }
 }
 

@@ -211,7 +211,7 @@ pub(crate) fn _tile_plan<'py>(
         // one pass per corner, so only for hulls of few corners.
         let depth = (hull.len() <= MAX_BAND_CORNERS).then(|| depths(points, &hull));
         Ok((order, (boundary, len), hull, depth, whole))
-    })
+    })?
     .map_err(|err| library_error(err, points))?;
     let mut ranks = vec![0i64; points.len()];
     for (rank, &i) in order.iter().enumerate() {
@@ -382,7 +382,7 @@ pub(crate) fn _run_tile<'py>(
                 Ok(Ok((lists, state)))
             },
         )
-    })
+    })?
     .map_err(|err| library_error(err, points))?;
     match outcome {
         Ok((lists, state)) => {
@@ -482,7 +482,7 @@ pub(crate) fn _tile_state<'py>(
     let order: Vec<u32> = order.iter().map(|&i| i as u32).collect();
     let tri = crate::detached(py, || {
         crate::within_call(|| Triangulation::triangulate_in_order(&points, &order))
-    })
+    })?
     .map_err(|err| library_error(err, &points))?;
     Ok(TileState {
         positions: positions.to_vec(),
@@ -540,7 +540,7 @@ pub(crate) fn _step_kept<'py>(
             };
             result.edges()
         })
-    });
+    })?;
     index_array(py, owned_rows(&state.owned, &state.positions, edges))
 }
 
@@ -604,7 +604,7 @@ pub(crate) fn _tests_kept<'py>(
                 None => condt::tiled::clump_tests(&graph, &labels, owned),
             }
         })
-    })
+    })?
     .map_err(|err| PyValueError::new_err(err.to_string()))?;
     let owned = (0..state.points.len()).filter(|&i| state.owned[i]);
     let positions: Vec<i64> = owned.clone().map(|i| state.positions[i]).collect();
@@ -682,7 +682,7 @@ fn local_round<'py>(
             let before = state.tri.graph_from_edges(before);
             work(&graph, &before)
         })
-    });
+    })?;
     index_array(py, owned_rows(&state.owned, &state.positions, edges))
 }
 
@@ -702,7 +702,7 @@ pub(crate) fn _gathered_last_edges<'py>(
         py,
         crate::detached(py, || {
             condt::tiled::give_back_gathered_last_edges(n, &edges, &candidates)
-        }),
+        })?,
     )
 }
 
@@ -764,7 +764,7 @@ fn gathered_with_joins<'py>(
     let tests = tests.as_slice()?;
     gathered_answer(
         py,
-        crate::detached(py, || rule(n, &edges, tests, &rows, &tips, &joins)),
+        crate::detached(py, || rule(n, &edges, tests, &rows, &tips, &joins))?,
     )
 }
 
@@ -779,7 +779,7 @@ pub(crate) fn _given_back_standing<'py>(
     before_local: &Bound<'py, PyArray2<i64>>,
 ) -> PyResult<Option<OwnedTests<'py>>> {
     let (edges, before) = (gathered_pairs(edges)?, gathered_pairs(before_local)?);
-    let standing = crate::detached(py, || condt::tiled::given_back_standing(n, &edges, &before))
+    let standing = crate::detached(py, || condt::tiled::given_back_standing(n, &edges, &before))?
         .map_err(|err| PyValueError::new_err(err.to_string()))?;
     Ok(standing.map(|(labels, status)| {
         let labels = labels.into_iter().map(i64::from).collect();
@@ -807,7 +807,7 @@ pub(crate) fn _gathered_given_back<'py>(
         py,
         crate::detached(py, || {
             condt::tiled::confirm_gathered_given_back(n, &edges, &before, tests)
-        }),
+        })?,
     )
 }
 
@@ -894,7 +894,7 @@ pub(crate) fn _choices_kept<'py>(
                 rows.iter().flat_map(|row| row.map(position)).collect()
             }
         })
-    });
+    })?;
     let width = match (gaps, tips) {
         (true, _) => GAP_ROW,
         (_, true) => 4,
@@ -919,7 +919,7 @@ pub(crate) fn _gathered_gaps<'py>(
     let rows: Vec<[usize; GAP_ROW]> = rows_of(&choices, "a gap choice")?;
     gathered_answer(
         py,
-        crate::detached(py, || condt::tiled::close_gathered_gaps(n, &edges, &rows)),
+        crate::detached(py, || condt::tiled::close_gathered_gaps(n, &edges, &rows))?,
     )
 }
 
@@ -937,7 +937,7 @@ pub(crate) fn _gathered_tips<'py>(
     let rows: Vec<[usize; 4]> = rows_of(&candidates, "a tip candidate")?;
     gathered_answer(
         py,
-        crate::detached(py, || condt::tiled::repair_gathered_tips(n, &edges, &rows)),
+        crate::detached(py, || condt::tiled::repair_gathered_tips(n, &edges, &rows))?,
     )
 }
 
@@ -950,7 +950,7 @@ pub(crate) fn _component_labels<'py>(
     edges: &Bound<'py, PyArray2<i64>>,
 ) -> PyResult<Bound<'py, PyArray1<i64>>> {
     let edges = gathered_pairs(edges)?;
-    let labels = crate::detached(py, || condt::tiled::component_labels(n, &edges))
+    let labels = crate::detached(py, || condt::tiled::component_labels(n, &edges))?
         .map_err(|err| PyValueError::new_err(err.to_string()))?;
     Ok(PyArray1::from_vec(
         py,
@@ -970,7 +970,7 @@ pub(crate) fn _gathered_clumps_found<'py>(
 ) -> PyResult<bool> {
     let edges = gathered_pairs(edges)?;
     let tests = tests.as_slice()?;
-    crate::detached(py, || condt::tiled::gathered_clumps_found(n, &edges, tests))
+    crate::detached(py, || condt::tiled::gathered_clumps_found(n, &edges, tests))?
         .map_err(|err| PyValueError::new_err(err.to_string()))
 }
 
@@ -1380,7 +1380,7 @@ pub(crate) fn _gathered_outliers<'py>(
         Some(k) => condt::remove_gathered_outliers(points, &edges, k, params.iqr_floor)
             .map(|(_, kept)| kept),
         None => Ok(edges),
-    })
+    })?
     .map_err(|err| library_error(err, points))?;
     sorted_rows(py, kept)
 }
@@ -1407,7 +1407,7 @@ pub(crate) fn _gathered_repair_again<'py>(
     };
     let short = crate::detached(py, || {
         condt::gathered_repair_again_input(points, &repaired, &proximity, k, params.iqr_floor)
-    })
+    })?
     .map_err(|err| library_error(err, points))?;
     short.map(|edges| sorted_rows(py, edges)).transpose()
 }
@@ -1436,7 +1436,7 @@ pub(crate) fn _gathered_smoothing_pass<'py>(
         crate::within_call(|| {
             condt::gathered_smoothing_pass(points, &edges, passes, previous.as_deref())
         })
-    })
+    })?
     .map_err(|err| library_error(err, points))?;
     Ok(match pass {
         GatheredPass::Next(moved) => {
@@ -1502,7 +1502,7 @@ pub(crate) fn _tile_index<'py>(
     if tiles.len() > u32::MAX as usize || tiles.iter().any(|t| t.len() > u32::MAX as usize) {
         return Err(PyValueError::new_err("too many tiles or tile points"));
     }
-    Ok(crate::detached(py, || {
+    crate::detached(py, || {
         // Counts per point, then offsets, then each holder in its point's run.
         let mut start = vec![0usize; n + 1];
         for &i in tiles.iter().flat_map(|t| t.iter()) {
@@ -1524,7 +1524,7 @@ pub(crate) fn _tile_index<'py>(
             held,
             tiles: tiles.len(),
         }
-    }))
+    })
 }
 
 /// The rows of the driver's `edges` (positions among the indexed points) with both ends among
@@ -1558,7 +1558,7 @@ pub(crate) fn _split_edges<'py>(
             }
         }
         out
-    });
+    })?;
     split
         .into_iter()
         .map(|rows| {

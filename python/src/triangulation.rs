@@ -53,7 +53,7 @@ impl Triangulation {
                 tri.triangles()
                     .map(|t| t.map(position))
                     .collect::<Vec<[i64; 3]>>()
-            });
+            })?;
             index_array(py, rows).map(Bound::unbind)
         })?;
         Ok(triangles.bind(py).clone())
@@ -71,7 +71,7 @@ impl Triangulation {
                     rows.sort_unstable();
                     rows
                 })
-            });
+            })?;
             index_array(py, rows).map(Bound::unbind)
         })?;
         Ok(edges.bind(py).clone())

@@ -153,7 +153,7 @@ pub fn crs_member(given: &str) -> Result<String, String> {
     };
     if trimmed.is_empty() || trimmed.chars().any(char::is_control) {
         return Err(format!(
-            "{given:?} is not a name such as EPSG:32632, nor a JSON object"
+            "{given:?} is not a name such as EPSG:32632, a crs object nor null"
         ));
     }
     let name = match trimmed.split_once(':') {
