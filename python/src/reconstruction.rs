@@ -552,14 +552,12 @@ impl Curve {
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct EdgeStory {
     story: condt::EdgeStory,
-    text: String,
 }
 
 impl EdgeStory {
     fn new(story: &condt::EdgeStory) -> EdgeStory {
         EdgeStory {
             story: story.clone(),
-            text: condt_io::story_text(story),
         }
     }
 }
@@ -602,12 +600,12 @@ impl EdgeStory {
 
     /// All of it in a sentence, as the HTML viewer shows it.
     #[getter]
-    fn text(&self) -> &str {
-        &self.text
+    fn text(&self) -> String {
+        condt_io::story_text(&self.story)
     }
 
-    fn __str__(&self) -> &str {
-        &self.text
+    fn __str__(&self) -> String {
+        self.text()
     }
 
     /// The object itself: it never changes, so a copy is the same object.
@@ -621,7 +619,7 @@ impl EdgeStory {
     }
 
     fn __repr__(&self) -> String {
-        format!("<condt.EdgeStory {}>", self.text)
+        format!("<condt.EdgeStory {}>", self.text())
     }
 }
 

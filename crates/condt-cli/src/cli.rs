@@ -39,8 +39,8 @@ ending below, is told by its content: a NumPy array, a GeoJSON document or a Geo
 (`--input-format F` states the format instead, for a file too: `--input-format csv`). By the
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64, float32 or integers, either byte order, C or Fortran order, `.csv` CSV whose header
-names the x and y columns (or lon, lat; where none is named so, easting, northing or POINT_X, POINT_Y;
-`--columns X,Y` chooses others, by name or number), or of two
+names the x and y columns (or lon, lat; where none is named so, easting, northing or POINT_X,
+POINT_Y; `--columns X,Y` chooses others, by name or number), or of two
 numeric columns without a header (tabs separate the
 columns when the first line with content has tabs and no comma; a `.tsv` with a header is read
 so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
@@ -1428,14 +1428,14 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     progress.suspend(|| timings.lap("read"));
     // The input's crs member goes on as `--crs` would take it (a string member is a name, as in
     // Python's `to_geojson`); a member that is no crs (`[1, 2]`, `4326`) is noted and left out.
-    let mut crs_not_carried = None;
-    let crs = match crs {
+    let (crs, crs_not_carried) = match crs {
         Some(raw) if args.crs.is_none() && args.format == Format::GeoJson => {
-            condt_io::crs_member(&raw)
-                .map_err(|why| crs_not_carried = Some(why))
-                .ok()
+            match condt_io::crs_member(&raw) {
+                Ok(member) => (Some(member), None),
+                Err(why) => (None, Some(why)),
+            }
         }
-        _ => None,
+        _ => (None, None),
     };
     let count = points.len();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the

@@ -111,8 +111,9 @@ pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
 /// a magnitude's bit pattern lies more than 2^53 above the set's smallest (one unit in the last
 /// place beside 1, when the set reaches down to 1e-70), and the grid sort leaves points of one
 /// place in input order: cocircular ones then met the triangulation in an order that the input
-/// decided, and so did its diagonal (a review's repro, test `wide_ties_do_not_follow_the_input_order`).
-/// Such points are adjacent in `order`, as the cell sort compares their equal places.
+/// decided, and so did its diagonal (a review's repro, test
+/// `wide_ties_do_not_follow_the_input_order`). Such points are adjacent in `order`, as the cell
+/// sort compares their equal places.
 pub(crate) fn order_warped_ties(points: &[Point], warped: &[Point], order: &mut [u32]) {
     let mut start = 0;
     while start < order.len() {
