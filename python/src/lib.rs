@@ -754,6 +754,8 @@ fn score<'py>(
 #[pymodule]
 fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     LOADED_IN.get_or_init(std::process::id);
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    ALLOCATOR.guard_forks();
     m.add_function(wrap_pyfunction!(reconstruct, m)?)?;
     m.add_function(wrap_pyfunction!(triangulate, m)?)?;
     m.add_function(wrap_pyfunction!(read_points, m)?)?;

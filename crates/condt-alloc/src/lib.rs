@@ -52,7 +52,9 @@
 //! [`Recycling::scoped`]: a process that lives on between calls must not hold freed pages, so
 //! runs are kept only while a call runs ([`Recycling::within_call`]) and unmapped when the last
 //! one ends; a block freed between calls is unmapped at once, as glibc would. The binary keeps
-//! them for its whole run ([`Recycling::new`]), since it exits.
+//! them for its whole run ([`Recycling::new`]), since it exits. The package also guards forks
+//! ([`Recycling::guard_forks`]), as glibc guards its own locks: a child forked while another
+//! thread held the allocator's lock would otherwise wait for it forever.
 //!
 //! A crate of its own so that the binary and the Python package share it (and a source
 //! distribution of the package carries it). Each declares the global allocator itself, on Linux
@@ -65,8 +67,9 @@ pub use linux::Recycling;
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 mod linux {
     use std::alloc::{GlobalAlloc, Layout, System};
+    use std::cell::UnsafeCell;
     use std::ptr;
-    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::atomic::{AtomicPtr, AtomicUsize, Ordering};
     use std::sync::{Mutex, MutexGuard};
 
     /// Blocks of this many bytes or more are page runs of their own (glibc's default mmap
@@ -230,6 +233,33 @@ mod linux {
             work()
         }
 
+        /// Makes `fork` safe for this allocator, the process's guarded one (the first given;
+        /// later calls, for any allocator, change nothing). `fork` copies only the calling
+        /// thread: a child forked while another thread held the kept runs' lock would wait
+        /// for it at its first large block, forever. With the guard a fork first takes the lock
+        /// (waiting for that thread to let go), and parent and child each let it go after. The
+        /// child runs no call of the parent's threads, so it counts none. For the Python
+        /// package (`multiprocessing`'s fork); the binary does not fork.
+        #[cfg_attr(not(test), allow(dead_code))] // the binary never forks
+        pub fn guard_forks(&'static self) {
+            if GUARDED
+                .compare_exchange(
+                    ptr::null_mut(),
+                    ptr::from_ref(self).cast_mut(),
+                    Ordering::SeqCst,
+                    Ordering::SeqCst,
+                )
+                .is_ok()
+            {
+                // SAFETY: the three handlers are `extern "C"` functions without arguments that
+                // live as long as the process, as `pthread_atfork` asks. If the system refuses
+                // (no memory for the entry), forks stay as they were without the guard.
+                unsafe {
+                    libc::pthread_atfork(Some(fork_prepare), Some(fork_parent), Some(fork_child))
+                };
+            }
+        }
+
         fn kept(&self) -> MutexGuard<'_, Kept> {
             // Nothing panics while the lock is held; a poisoned lock still holds valid runs.
             self.kept
@@ -370,6 +400,48 @@ mod linux {
             }
             block
         }
+    }
+
+    /// The allocator [`Recycling::guard_forks`] guards, null before.
+    static GUARDED: AtomicPtr<Recycling> = AtomicPtr::new(ptr::null_mut());
+
+    /// The kept runs' lock, held by the forking thread from [`fork_prepare`] until
+    /// [`fork_parent`] or [`fork_child`] (in the parent, and in the child's copy of it).
+    struct HeldForFork(UnsafeCell<Option<MutexGuard<'static, Kept>>>);
+
+    // SAFETY: the cell is read and written only by the fork handlers, while the lock it holds is
+    // held: the write after taking the lock, the read before letting it go, so the lock orders
+    // the handlers of two threads forking at once.
+    unsafe impl Sync for HeldForFork {}
+
+    static HELD_FOR_FORK: HeldForFork = HeldForFork(UnsafeCell::new(None));
+
+    /// The guarded allocator, if any.
+    fn guarded() -> Option<&'static Recycling> {
+        // SAFETY: only `guard_forks` stores a pointer, from a `&'static Recycling`.
+        unsafe { GUARDED.load(Ordering::SeqCst).as_ref() }
+    }
+
+    extern "C" fn fork_prepare() {
+        if let Some(heap) = guarded() {
+            let lock = heap.kept();
+            // SAFETY: the lock is held (see `HeldForFork`).
+            unsafe { *HELD_FOR_FORK.0.get() = Some(lock) };
+        }
+    }
+
+    extern "C" fn fork_parent() {
+        // SAFETY: the lock `fork_prepare` took is still held (see `HeldForFork`).
+        drop(unsafe { (*HELD_FOR_FORK.0.get()).take() });
+    }
+
+    extern "C" fn fork_child() {
+        if let Some(heap) = guarded() {
+            // Calls that ran on the parent's other threads do not run here.
+            heap.calls.store(0, Ordering::SeqCst);
+        }
+        // SAFETY: the child's copy of the lock `fork_prepare` took is held by its one thread.
+        drop(unsafe { (*HELD_FOR_FORK.0.get()).take() });
     }
 
     /// Whether a block of this layout is a page run of its own.
@@ -827,6 +899,59 @@ mod linux {
             for worker in workers {
                 worker.join().unwrap();
             }
+        }
+
+        /// A fork while another thread holds the kept runs' lock: the guarded fork waits for
+        /// it, and the child takes a large block and ends. Without the guard the child
+        /// inherits the lock held and waits for it forever (the parent then kills it).
+        #[test]
+        fn a_child_forked_while_another_thread_holds_the_lock_takes_large_blocks() {
+            static HEAP: Recycling = Recycling::scoped();
+            HEAP.guard_forks();
+            let (locked, holding) = std::sync::mpsc::channel();
+            let holder = std::thread::spawn(move || {
+                let lock = HEAP.kept();
+                locked.send(()).unwrap();
+                std::thread::sleep(std::time::Duration::from_millis(300));
+                drop(lock);
+            });
+            holding.recv().unwrap();
+            let big = layout(4 * unit());
+            // SAFETY: the child uses only this allocator and `_exit`, and the parent waits for it.
+            let child = unsafe { libc::fork() };
+            if child == 0 {
+                // SAFETY: a block of `big`'s layout, used within it and freed with it.
+                let ok = unsafe {
+                    let block = HEAP.alloc(big);
+                    let ok = !block.is_null();
+                    if ok {
+                        block.write(1);
+                        HEAP.dealloc(block, big);
+                    }
+                    ok
+                };
+                // SAFETY: ends the child at once, running nothing of the parent's.
+                unsafe { libc::_exit(if ok { 0 } else { 1 }) };
+            }
+            assert!(child > 0, "fork failed");
+            let mut status = 0;
+            let mut waited = 0;
+            // SAFETY: `child` is this process's child; `status` is a valid place to write.
+            while unsafe { libc::waitpid(child, &mut status, libc::WNOHANG) } == 0 {
+                if waited == 200 {
+                    // SAFETY: as above; the child is stuck, so it is stopped and reaped.
+                    unsafe {
+                        libc::kill(child, libc::SIGKILL);
+                        libc::waitpid(child, &mut status, 0);
+                    }
+                    panic!("the forked child waited 10 s for the lock");
+                }
+                std::thread::sleep(std::time::Duration::from_millis(50));
+                waited += 1;
+            }
+            assert!(libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0);
+            holder.join().unwrap();
+            unmap_all(&HEAP);
         }
     }
 }
