@@ -215,7 +215,10 @@ pub(crate) fn points_array<'py>(
     let converted = converted.cast_into::<numpy::PyUntypedArray>()?;
     let shape = converted.shape().to_vec();
     let converted = match shape.as_slice() {
-        [_, 2] => converted.into_any(),
+        [_, 2] => {
+            check_exact_integers(&numpy, &given)?;
+            converted.into_any()
+        }
         [0] => converted.call_method1("reshape", ((0, 2),))?,
         _ => {
             return Err(PyValueError::new_err(format!(
@@ -232,6 +235,45 @@ pub(crate) fn points_array<'py>(
         let copy = array.call_method0("copy")?.cast_into::<PyArray2<f64>>()?;
         Ok(copy)
     }
+}
+
+/// Refuses integers that float64 cannot hold: beyond 2^53 numpy's conversion rounds, and two
+/// points a unit apart may become one (a silently wrong result). As the command line and
+/// `read_points` refuse them in a `.npy` file; a float64 array states that the rounding is
+/// accepted. `given` is what numpy made of the points before the conversion, of shape (n, 2).
+///
+/// # Errors
+/// `ValueError` naming the first such row and its value.
+fn check_exact_integers(numpy: &Bound<'_, PyModule>, given: &Bound<'_, PyAny>) -> PyResult<()> {
+    let dtype = given.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    let itemsize: usize = dtype.getattr("itemsize")?.extract()?;
+    // Integers of four bytes or fewer are all doubles.
+    if !matches!(kind.as_str(), "i" | "u") || itemsize < 8 {
+        return Ok(());
+    }
+    const EXACT: i64 = 1 << 53;
+    let beyond = given.call_method1("__gt__", (EXACT,))?;
+    let beyond = if kind == "i" {
+        numpy
+            .getattr("logical_or")?
+            .call1((beyond, given.call_method1("__lt__", (-EXACT,))?))?
+    } else {
+        beyond
+    };
+    let rows = beyond.call_method1("any", (1,))?;
+    if !rows.call_method0("any")?.is_truthy()? {
+        return Ok(());
+    }
+    let row: usize = rows.call_method0("argmax")?.extract()?;
+    let value = given
+        .get_item(row)?
+        .get_item(beyond.get_item(row)?.call_method0("argmax")?)?;
+    Err(PyValueError::new_err(format!(
+        "points row {row} has the integer coordinate {value}, beyond 2^53, which float64 \
+         (condt's coordinates) cannot hold exactly; convert the array to float64 first to \
+         accept the rounding"
+    )))
 }
 
 /// A shape as Python writes it: `(3,)`, `(4, 3)`, `()`.

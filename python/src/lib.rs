@@ -140,7 +140,7 @@ use triangulation::Triangulation;
 /// others); ``sequential=True`` runs on one thread (same result).
 ///
 /// Raises ``ValueError`` for a point with a NaN or infinite coordinate (named by its index and
-/// row), two points nearer than 2^-450 times the largest coordinate (too close for the stages
+/// row), an integer coordinate beyond 2^53 (float64 would round it; named by its row), two points nearer than 2^-450 times the largest coordinate (too close for the stages
 /// to measure; named by their positions), a value the library refuses (an int too large for a float is infinite, and refused as
 /// such) or two keywords that contradict each other (``u=2, adaptive=True``; ``iqr=1.5`` or
 /// ``iqr=None`` against ``outlier_filter=False`` or ``True``; a ``repair`` mode or ``"off"``
@@ -193,8 +193,8 @@ fn reconstruct(
 ///
 /// ``points`` as for ``reconstruct`` (read without a copy when it is a C-contiguous float64
 /// array; the GIL is released while it runs; the result holds input positions only, so it does
-/// not depend on the array afterwards). Raises ``ValueError`` for a NaN or infinite coordinate,
-/// ``TypeError`` for points that are not numbers.
+/// not depend on the array afterwards). Raises ``ValueError`` for a NaN or infinite coordinate
+/// or an integer one beyond 2^53, ``TypeError`` for points that are not numbers.
 ///
 /// >>> import condt
 /// >>> t = condt.triangulate([(0, 0), (1, 0), (0, 1), (1, 1)])

@@ -76,6 +76,26 @@ def test_integer_and_empty_inputs():
     assert one.unused.tolist() == [0]
 
 
+def test_integers_beyond_two_to_the_53_are_refused_not_rounded():
+    # 2**53 + 1 and 2**53 are one double: rounded, two points would become one.
+    edge = 2**53
+    for dtype, big, row in ((np.int64, edge + 1, 2), (np.int64, -edge - 1, 1), (np.uint64, 2**64 - 1, 3)):
+        points = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=dtype)
+        points[row, 1] = big
+        for call in (condt.reconstruct, condt.triangulate):
+            with pytest.raises(ValueError, match=rf"^points row {row} has the integer coordinate {big}, beyond 2\^53"):
+                call(points)
+    # A list of Python ints is an int64 array to numpy, refused alike.
+    with pytest.raises(ValueError, match=r"^points row 0 has the integer coordinate"):
+        condt.reconstruct([[edge + 1, 0], [0, 1], [1, 1]])
+    # 2**53 itself, and its negative, are doubles: taken, and exactly.
+    exact = np.array([[edge, 0], [0, -edge], [-edge, 0]], dtype=np.int64)
+    assert condt.triangulate(exact).triangles.shape == (1, 3)
+    assert np.array_equal(
+        condt.reconstruct(exact).edges, condt.reconstruct(exact.astype(np.float64)).edges
+    )
+
+
 def test_a_float64_c_array_is_read_without_a_copy_during_the_call():
     # numpy's allocations are traced by tracemalloc, the Rust side's are not: a conversion of
     # the points would show as an allocation of their size.
