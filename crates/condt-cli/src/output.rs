@@ -443,8 +443,8 @@ impl Destination {
         write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
     ) -> Result<(), CliError> {
         match self {
-            Destination::Stdout => write_stream(io::stdout().lock(), "<stdout>", write),
-            Destination::Stderr => write_stream(io::stderr().lock(), "<stderr>", write),
+            Destination::Stdout => write_stream(standard_stream(1)?, "<stdout>", write),
+            Destination::Stderr => write_stream(standard_stream(2)?, "<stderr>", write),
             Destination::Direct { path, shown } => {
                 // No create, no truncate: a device or a pipe is written, never made or cut; a
                 // regular file reached as a stream (`-o /dev/fd/3 3>> log`) is appended to, as
@@ -492,6 +492,34 @@ impl Destination {
                 }
             }
         }
+    }
+}
+
+/// Standard output (`fd` 1) or standard error (2), to write the output to. On Unix a file of
+/// its own, on a duplicate of the descriptor: std's streams take a write that the system
+/// refuses as not open for writing (`EBADF`: `condt ... 1<file`) as done, and the output would
+/// be lost while the run reports success; a file reports the error.
+fn standard_stream(fd: i32) -> Result<Box<dyn Write>, CliError> {
+    let shown = if fd == 1 { "<stdout>" } else { "<stderr>" };
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        let stream = if fd == 1 {
+            io::stdout().as_fd().try_clone_to_owned()
+        } else {
+            io::stderr().as_fd().try_clone_to_owned()
+        };
+        let file = stream.map(File::from).map_err(|e| stream_error(shown, e))?;
+        Ok(Box::new(file))
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = shown;
+        Ok(if fd == 1 {
+            Box::new(io::stdout().lock())
+        } else {
+            Box::new(io::stderr().lock())
+        })
     }
 }
 

@@ -731,6 +731,35 @@ fn a_reader_that_goes_away_ends_the_run_silently() {
     );
 }
 
+/// Found by a hostile-input review: standard output open for reading only (`1<file`) refused
+/// every write, and std's stream took that as done: exit 0, the output lost.
+#[test]
+fn a_standard_stream_that_refuses_writes_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("square.txt");
+    let kept = dir.path().join("kept.txt");
+    fs::write(&input, SQUARE).unwrap();
+    fs::write(&kept, "kept\n").unwrap();
+    for (args, shown) in [
+        (vec!["reconstruct", "-q"], "<stdout>"),
+        (vec!["reconstruct", "-q", "-o", "-"], "<stdout>"),
+        (vec!["reconstruct", "-q", "-o", "/dev/stdout"], "<stdout>"),
+        (vec!["triangulate", "-q"], "<stdout>"),
+    ] {
+        let mut args: Vec<&OsStr> = args.iter().map(OsStr::new).collect();
+        args.push(input.as_os_str());
+        let out = Command::new(binary())
+            .args(&args)
+            .stdout(fs::File::open(&kept).unwrap())
+            .stderr(Stdio::piped())
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {}", stderr(&out));
+        assert!(stderr(&out).contains(shown), "{args:?}: {}", stderr(&out));
+        assert_eq!(fs::read_to_string(&kept).unwrap(), "kept\n");
+    }
+}
+
 #[test]
 fn a_directory_is_not_an_output() {
     let dir = tempfile::tempdir().unwrap();
