@@ -547,6 +547,29 @@ fn write_in_place(
         .write(true)
         .open(path)
         .map_err(|e| file_error(shown, e))?;
+    // The room first, so that what stops a write midway refuses the result before its first
+    // byte, with the old content whole: a file-size limit (`ulimit -f`) below it, then a disk
+    // too full for its blocks (`KEEP_SIZE`: the file stays as it is until written). A file system
+    // that cannot reserve blocks (`EOPNOTSUPP`) goes on as without.
+    #[cfg(target_os = "linux")]
+    if let Some(limit) = rustix::process::getrlimit(rustix::process::Resource::Fsize).current {
+        if bytes.len() as u64 > limit {
+            return Err(file_error(shown, io::Error::from(rustix::io::Errno::FBIG)));
+        }
+    }
+    #[cfg(target_os = "linux")]
+    match rustix::fs::fallocate(
+        &file,
+        rustix::fs::FallocateFlags::KEEP_SIZE,
+        0,
+        bytes.len() as u64,
+    ) {
+        Ok(()) => {}
+        Err(e) if e == rustix::io::Errno::NOSPC || e == rustix::io::Errno::DQUOT => {
+            return Err(file_error(shown, io::Error::from(e)));
+        }
+        Err(_) => {}
+    }
     // Overwrite first and cut the tail after, so a failure before the first byte leaves the old
     // content whole.
     file.write_all(&bytes)

@@ -958,6 +958,66 @@ fn an_output_name_of_255_bytes_is_written() {
     assert_eq!(names(dir.path()), [name]);
 }
 
+/// Found by a hostile-input review: a hard-linked output (rewritten in place, so that every
+/// name sees the result) past a file-size limit kept the first 4 kB of the result and lost its
+/// old content. The room is checked first: refused, the old content whole.
+#[test]
+fn a_hard_linked_output_past_a_file_size_limit_keeps_its_old_content() {
+    use std::os::unix::process::CommandExt;
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("out.txt");
+    fs::write(&target, "previous content\n").unwrap();
+    fs::hard_link(&target, dir.path().join("other name.txt")).unwrap();
+    // 2,000 points: some 40 kB of triangles, past a limit of 4 kB.
+    let input: String = (0..2000)
+        .map(|i| format!("{} {}\n", i % 50, (i / 50) as f64 + 0.01 * (i % 7) as f64))
+        .collect();
+    let mut command = Command::new(binary());
+    command
+        .args([
+            "triangulate".as_ref(),
+            "-".as_ref(),
+            "-o".as_ref(),
+            target.as_os_str(),
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    // SAFETY: `setrlimit` is async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(|| {
+            let limit = libc::rlimit {
+                rlim_cur: 4096,
+                rlim_max: 4096,
+            };
+            if libc::setrlimit(libc::RLIMIT_FSIZE, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let mut child = command.spawn().unwrap();
+    let stdin = child.stdin.take().unwrap();
+    std::io::BufWriter::new(stdin)
+        .write_all(input.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{:?} {}",
+        out.status,
+        stderr(&out)
+    );
+    let said = stderr(&out);
+    assert!(
+        said.contains("out.txt") && said.contains("File too large"),
+        "{said}"
+    );
+    assert_eq!(fs::read_to_string(&target).unwrap(), "previous content\n");
+    assert_eq!(names(dir.path()), ["other name.txt", "out.txt"]);
+}
+
 /// A file-size limit (`ulimit -f`) that the output passes: the write fails (EFBIG) instead of
 /// SIGXFSZ ending the run, so the run reports it, exits 1, removes its temporary file and
 /// leaves the old output as it was.
