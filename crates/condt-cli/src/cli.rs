@@ -40,15 +40,15 @@ ending below, is told by its content: a NumPy array, a GeoJSON document or a Geo
 name's ending (any case): `.node` a Triangle node file, `.npy` a NumPy array of shape (n, 2),
 float64, float32 or integers, either byte order, C or Fortran order, `.csv` CSV whose header
 names the x and y columns (or lon, lat; where none is named so, easting, northing or POINT_X,
-POINT_Y; `--columns X,Y` chooses others, by name or number), or of two
-numeric columns without a header (tabs separate the
-columns when the first line with content has tabs and no comma; a `.tsv` with a header is read
-so, with tabs), `.geojson` or `.json` the Point and MultiPoint geometries of a GeoJSON
-document, `.geojsonl` or `.geojsons` those of GeoJSON lines (one object per line, or after
-each RS character). Points are numbered from 0 in the order of their lines (rows, GeoJSON
-positions: a MultiPoint gives several, a feature whose geometry is null none, nor an empty
-Point or MultiPoint, `\"coordinates\": []`, and a note on standard error says how many);
-every output speaks of points by that number.
+POINT_Y; `--columns X,Y` chooses others, by name or number), or of two numeric columns without
+a header (tabs separate the columns when the first line with content has tabs and no comma; a
+`.tsv` with a header is read so, with tabs; a row of empty fields only, `,,`, as spreadsheets
+leave them, is skipped as a blank line is and takes no number), `.geojson` or `.json` the
+Point and MultiPoint geometries of a GeoJSON document, `.geojsonl` or `.geojsons` those of
+GeoJSON lines (one object per line, or after each RS character). Points are numbered from 0
+in the order of their lines (rows, GeoJSON positions: a MultiPoint gives several, a feature
+whose geometry is null none, nor an empty Point or MultiPoint, `\"coordinates\": []`, and a
+note on standard error says how many); every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
 

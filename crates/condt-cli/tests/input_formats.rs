@@ -777,6 +777,17 @@ fn files_read_in_another_format_than_they_hold_are_told_what_they_are() {
         said.contains("a.txt:2: a JSON array, which is no point file"),
         "{said}"
     );
+    // GeoJSON under a text name is told by what it looks like (a hostile-input review: the
+    // refusal spoke of separators and decimal commas).
+    for (file, content) in [("g.txt", document), ("g.TXT", sequence)] {
+        let said = refused(&dir.path().join(file), content.as_bytes(), &[]);
+        assert!(
+            said.contains(&format!("{file}:1: "))
+                && said.contains("the file starts as GeoJSON does")
+                && said.contains("--input-format geojson"),
+            "{said}"
+        );
+    }
     let said = refused(&dir.path().join("t.tsv"), b"x,y\n0,0\n1,0\n", &[]);
     assert!(
         said.contains("t.tsv:1: ") && said.contains("split at tabs"),

@@ -1114,7 +1114,24 @@ pub fn read_points_with(
                         err
                     })
             }
-            InputFormat::Text => parse_owned_points(text, name).map(without_crs),
+            InputFormat::Text => {
+                // GeoJSON under a text name (`.txt`): the text reader's refusal of its first
+                // line would talk of separators; say what it looks like instead.
+                let like_geojson = start.starts_with(['{', '\u{1e}']);
+                parse_owned_points(text, name)
+                    .map(without_crs)
+                    .map_err(|mut err| {
+                        if let (IoErrorKind::Content(message), true) = (&mut err.kind, like_geojson)
+                        {
+                            *message = format!(
+                                "{message}; the file starts as GeoJSON does (a `{{` or a record \
+                                 separator): name it *.geojson (*.geojsonl for a sequence) or \
+                                 state condt's --input-format geojson"
+                            );
+                        }
+                        err
+                    })
+            }
             InputFormat::Node => parse_node(&text, name).map(without_crs),
             InputFormat::Csv => super::parse_csv(&text, name).map(without_crs),
             InputFormat::Tsv => {
