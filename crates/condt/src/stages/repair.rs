@@ -5,7 +5,7 @@
 //!
 //! At a vertex `v` of degree >= 3 the paper keeps its shortest edge `e1` and the edge with the best
 //! score `(θ/π)(Lmin/Le)` among those at an angle `θ > 2π/3` to it; edges between vertices of
-//! degree <= 2 stay. Open readings: `docs/condt.md`, notes 2 to 4.
+//! degree <= 2 stay. Open readings: `docs/condt.md`, *Readings* 2 to 4.
 //!
 //! Needs before score ([`Repair::Needs`]) keeps the sharp tips and sampled crossings Algorithm 2
 //! cuts (`docs/condt.md`, *Needs before score*), deciding at each `v` of degree >= 3, in order:
