@@ -138,9 +138,9 @@ fn gathered_lengths(points: &[crate::Point], edges: &[[usize; 2]]) -> Result<Vec
 /// smallest position: what the driver of a split run sends each tile for [`clump_tests`].
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] named `edge` (the position) for an end not below `n`, or named
-/// `n` when `n` exceeds the curve graphs' 2^29 - 1 points (more than
-/// [`MAX_POINTS`](crate::MAX_POINTS)).
+/// [`Error::InvalidParameter`] named `edge` (the larger end) for an end not below `n`, a loop
+/// or an edge listed twice (either way round), or named `n` when `n` exceeds the curve graphs'
+/// 2^29 - 1 points (more than [`MAX_POINTS`](crate::MAX_POINTS)).
 ///
 /// ```
 /// let labels = condt::tiled::component_labels(5, &[[3, 4], [1, 3]])?;
@@ -148,7 +148,7 @@ fn gathered_lengths(points: &[crate::Point], edges: &[[usize; 2]]) -> Result<Vec
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Error> {
-    let edges = vertex_edges(n, edges)?;
+    let edges = graph_edges(n, edges)?;
     Ok(components(n, &edges))
 }
 
@@ -330,7 +330,7 @@ struct GatheredClumps {
 impl GatheredClumps {
     fn new(n: usize, edges: &[[usize; 2]], tests: &[u8]) -> Result<GatheredClumps, Error> {
         enough_tests(n, tests)?;
-        let listed = vertex_edges(n, edges)?;
+        let listed = graph_edges(n, edges)?;
         let graph = CurveGraph::new(n, &listed);
         let root = components(n, &listed);
         let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
@@ -490,7 +490,7 @@ pub fn repair_gathered_tips(
     edges: &[[usize; 2]],
     candidates: &[[usize; 4]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    let listed = vertex_edges(n, edges)?;
+    let listed = graph_edges(n, edges)?;
     let graph = CurveGraph::new(n, &listed);
     let rows = candidate_rows(n, &graph, candidates)?;
     let Some((chords, joins)) = tips::settle_candidates(n, &graph, rows) else {
@@ -610,7 +610,7 @@ pub fn gap_choices(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize;
 ///
 /// # Errors
 /// As [`component_labels`], for `edges` and for the positions in `rows` (named `choice`, also for
-/// a kind or a walk length out of range).
+/// a kind or a walk length out of range, or a second row for one loose end).
 ///
 /// ```
 /// use condt::tiled;
@@ -627,7 +627,7 @@ pub fn close_gathered_gaps(
     edges: &[[usize; 2]],
     rows: &[[usize; GAP_ROW]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    let listed = vertex_edges(n, edges)?;
+    let listed = graph_edges(n, edges)?;
     let graph = CurveGraph::new(n, &listed);
     let (targets, walks) = loose_ends_only(&graph, read_choices(n, rows)?);
     let joins = gaps::settle_joins(n, &graph, &targets, |joined| not_joined(walks, joined));
@@ -691,6 +691,14 @@ fn read_choices(n: usize, rows: &[[usize; GAP_ROW]]) -> Result<Choices, Error> {
     }
     targets.sort_unstable_by_key(|&(a, _)| a);
     walks.sort_unstable_by_key(|&(a, _)| a);
+    // A loose end chooses once: a second row for it would join it twice.
+    let twice =
+        |a: VertexId, b: VertexId| (a == b).then(|| Error::invalid("choice", a.index() as f64));
+    if let Some(err) = (targets.windows(2).find_map(|w| twice(w[0].0, w[1].0)))
+        .or_else(|| walks.windows(2).find_map(|w| twice(w[0].0, w[1].0)))
+    {
+        return Err(err);
+    }
     Ok((targets, walks))
 }
 
@@ -784,8 +792,7 @@ pub fn last_edge_candidates(graph: &Graph<'_>, before_outliers: &Graph<'_>) -> V
 /// the stage's own code.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] named `edge` (the position) for an end not below `n`, or `n` for
-/// more points than vertex ids.
+/// As [`component_labels`], for `edges` and the candidates (a candidate may repeat).
 ///
 /// ```
 /// use condt::tiled;
@@ -802,7 +809,7 @@ pub fn give_back_gathered_last_edges(
     edges: &[[usize; 2]],
     candidates: &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    let listed = vertex_edges(n, edges)?;
+    let listed = graph_edges(n, edges)?;
     // Each candidate once, whatever the tiles sent.
     let mut candidates = vertex_edges(n, candidates)?;
     candidates.sort_unstable();
@@ -886,7 +893,7 @@ pub fn remove_gathered_local_outliers(
     joins: &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
     enough_tests(n, tests)?;
-    let listed = vertex_edges(n, edges)?;
+    let listed = graph_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
     let gathered_joins = GatheredJoins::read(n, &profile, choices, tips, joins)?;
@@ -1091,8 +1098,8 @@ fn standing_of(
     edges: &[[usize; 2]],
     before_local: &[[usize; 2]],
 ) -> Result<Option<(Vec<Edge>, given_back::Standing)>, Error> {
-    let listed = vertex_edges(n, edges)?;
-    let given = given_back::missing_from(&listed, &vertex_edges(n, before_local)?);
+    let listed = graph_edges(n, edges)?;
+    let given = given_back::missing_from(&listed, &graph_edges(n, before_local)?);
     if !given.contains(&true) {
         return Ok(None);
     }
@@ -1130,7 +1137,8 @@ fn one_per_point(n: usize, name: &'static str, len: usize) -> Result<(), Error> 
     Ok(())
 }
 
-/// `edges` (pairs of positions below `n`) as the stages' edges, a position standing for a vertex.
+/// `edges` (pairs of distinct positions below `n`) as the stages' edges, a position standing for
+/// a vertex. A loop is no edge (`Graph` drops them): refused, as [`gathered_lengths`] refuses it.
 fn vertex_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
     if n > CurveGraph::MAX_VERTICES {
         return Err(Error::invalid("n", n as f64));
@@ -1138,12 +1146,25 @@ fn vertex_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
     edges
         .iter()
         .map(|&[a, b]| {
-            if a.max(b) >= n {
+            if a.max(b) >= n || a == b {
                 return Err(Error::invalid("edge", a.max(b) as f64));
             }
             Ok(ordered(VertexId::new(a as u32), VertexId::new(b as u32)))
         })
         .collect()
+}
+
+/// [`vertex_edges`] of a graph's edges, each listed once: a repeat (in either direction) would
+/// count twice in a degree or a component's tally, a wrong answer rather than an error, so it
+/// is refused by name (`edge`, its larger end).
+fn graph_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
+    let listed = vertex_edges(n, edges)?;
+    let mut sorted = listed.clone();
+    sorted.sort_unstable();
+    match sorted.windows(2).find(|pair| pair[0] == pair[1]) {
+        Some(pair) => Err(Error::invalid("edge", pair[0][1].index() as f64)),
+        None => Ok(listed),
+    }
 }
 
 #[cfg(test)]
@@ -1166,6 +1187,42 @@ mod tests {
         let again = gathered_repair_again_input(&pts, &edges, &[[0, 1]], 1.7, false);
         assert_eq!(again.unwrap_err(), refused);
         assert!(remove_gathered_outliers(&pts, &[[0, 1], [2, 3]], 1.7, false).is_ok());
+    }
+
+    /// Found by a review of the public API: a loop or an edge listed twice counted in the other
+    /// gathered rules' degrees and tallies (gap closing lost its join, a loop's point counted as
+    /// given back), and a loose end's second row was joined twice. Each is refused by name.
+    #[test]
+    fn gathered_loops_repeats_and_second_rows_are_refused() {
+        let edges = [[0, 1], [1, 2], [3, 4], [4, 5]];
+        // The loose ends 2 and 3 choose each other (kind 1), walking nowhere.
+        let rows = [
+            [2, 1, 3, 2, 0, 2, 2, 2, 2, 2],
+            [3, 1, 2, 3, 0, 3, 3, 3, 3, 3],
+        ];
+        let joined = close_gathered_gaps(6, &edges, &rows).unwrap().unwrap();
+        assert!(joined.contains(&[2, 3]));
+        let edge = |value: f64| Error::InvalidParameter {
+            name: "edge",
+            value,
+        };
+        for (wrong, larger) in [([2, 2], 2.0), ([2, 1], 2.0), ([4, 5], 5.0)] {
+            let mut given = edges.to_vec();
+            given.push(wrong);
+            assert_eq!(close_gathered_gaps(6, &given, &rows), Err(edge(larger)));
+            assert_eq!(component_labels(6, &given), Err(edge(larger)));
+            assert_eq!(repair_gathered_tips(6, &given, &[]), Err(edge(larger)));
+            assert_eq!(
+                given_back_standing(6, &edges, &given).err(),
+                Some(edge(larger))
+            );
+            assert_eq!(
+                given_back_standing(6, &given, &edges).err(),
+                Some(edge(larger))
+            );
+        }
+        let twice = close_gathered_gaps(6, &edges, &[rows[0], rows[1], rows[0]]);
+        assert_eq!(twice, Err(Error::invalid("choice", 2.0)));
     }
 
     /// Rule 4's rows on the graph of `edges` after rules 1 to 3 (every point's, as the tiles
