@@ -57,7 +57,7 @@ pub const MAX_POINTS: usize = 350_000_000;
 /// tri.validate()?;
 /// # Ok::<(), condt::Error>(())
 /// ```
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Triangulation {
     /// Positions as the stages measure them ([`Triangulation::vertex_point`]), by vertex id.
     points: Vec<Point>,
@@ -81,6 +81,26 @@ pub struct Triangulation {
     /// Input position -> the vertex that stands for it.
     vertex_of_input: Vec<VertexId>,
     num_vertices: usize,
+}
+
+/// Counts, not the arrays: the stored coordinates are in the predicates' rescaled frame
+/// (`(1, 0)` may be kept as `1.6e60`), which a log would mistake for the input's.
+///
+/// ```
+/// use condt::{triangulate, Point};
+/// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+/// let tri = triangulate(&square)?;
+/// assert_eq!(format!("{tri:?}"), "Triangulation { points: 4, vertices: 4, triangles: 2, .. }");
+/// # Ok::<(), condt::Error>(())
+/// ```
+impl core::fmt::Debug for Triangulation {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Triangulation")
+            .field("points", &self.num_points())
+            .field("vertices", &self.num_vertices())
+            .field("triangles", &self.triangles().count())
+            .finish_non_exhaustive()
+    }
 }
 
 /// Triangulates `points`.
