@@ -740,3 +740,25 @@ def test_tiled_results_compare_and_hash_by_identity(client):
     assert a == a and a != b and a in [a] and b not in [a]
     assert len({a, b, a}) == 2
     np.testing.assert_array_equal(a.edges, b.edges)
+
+
+def test_a_closed_client_is_said_before_any_work():
+    # A user review: a tiled set met the closed client as an AttributeError inside a scatter,
+    # a collinear one (run in one piece) as Dask's own error.
+    from distributed import Client, LocalCluster
+    from distributed.client import ClosedClientError
+
+    rng = np.random.default_rng(0)
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+        closed = Client(cluster)
+        closed.close()
+        for points in (rng.uniform(0, 1, (500, 2)), np.c_[np.arange(10.0), np.arange(10.0)]):
+            with pytest.raises(ClosedClientError, match="client given to condt.dask.reconstruct is closed"):
+                condt.dask.reconstruct(points, closed, tiles=4)
+
+
+def test_the_module_examples_run():
+    import doctest
+
+    results = doctest.testmod(condt.dask, optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert results.attempted > 0 and results.failed == 0, results

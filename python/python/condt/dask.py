@@ -31,13 +31,15 @@ order and hull once; the workers triangulate and run the stages.
 
 >>> import numpy as np, condt, condt.dask
 >>> from dask.distributed import Client, LocalCluster
->>> t = np.linspace(0, 2 * np.pi, 2000, endpoint=False)
+>>> # Irregular samples: an evenly sampled symmetric curve has cocircular points (by its
+>>> # symmetry), and would run in one piece.
+>>> t = np.sort(np.random.default_rng(1).uniform(0, 2 * np.pi, 2000))
 >>> points = np.column_stack([np.cos(t), np.sin(3 * t) / 3])
 >>> with LocalCluster(n_workers=2, threads_per_worker=1, processes=False) as cluster:
 ...     with Client(cluster) as client:
 ...         tiled = condt.dask.reconstruct(points, client, tiles=4)
->>> np.array_equal(tiled.edges, condt.reconstruct(points).edges)
-True
+>>> np.array_equal(tiled.edges, condt.reconstruct(points).edges), tiled.whole, tiled.tiles
+(True, None, 4)
 """
 
 from __future__ import annotations
@@ -124,6 +126,12 @@ def reconstruct(
         from distributed import get_client
 
         client = get_client()
+    if getattr(client, "status", None) in ("closing", "closed"):
+        # Said before any work, whatever the points: a tiled set would otherwise meet it as an
+        # AttributeError deep in a scatter, a set run in one piece as Dask's own error.
+        from distributed.client import ClosedClientError
+
+        raise ClosedClientError("the Dask client given to condt.dask.reconstruct is closed")
     if hasattr(points, "dask") and hasattr(points, "compute"):
         points = points.compute()
     # A masked array goes to the library as it is, which refuses one with masked entries:
