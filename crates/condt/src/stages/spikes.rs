@@ -41,6 +41,7 @@ use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
+use alloc::vec;
 use alloc::vec::Vec;
 
 /// Most samples of a tip the step puts back: as many as make a curve of its own
@@ -343,31 +344,27 @@ pub(crate) fn repair_spikes(
 /// Every move of the rule on the graph of `ends`, settled: a point in two moves takes part in
 /// none.
 fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
-    let (graph, mesh) = (&ends.graph, ends.tri.mesh());
+    let graph = &ends.graph;
     // Along clean curves no point is left without edges: one tight scan (speed).
     if !graph.has_unused() {
         return Vec::new();
     }
-    // A tip's run has a point without edges beside a chord's end: the chords are sought from
-    // those points (speed: along clean curves there is none), each found from every such point
-    // beside it and listed once.
+    // Each end of a move leads off to a point without edges beside it (`Ends::leads_off`): the
+    // chords and loose ends are sought among the points beside one (speed: on scattered points
+    // the others' ring walks are skipped), each chord once, from its smaller end.
+    let marks = beside_unused(ends, parallel);
+    let beside = |v: VertexId| marks[v.index() / 64] >> (v.index() % 64) & 1 == 1;
     let found = found_in_order(ends.tri.num_points(), parallel, |i| {
-        let u = VertexId::new(i as u32);
-        if graph.degree(u) != 0 {
+        let a = VertexId::new(i as u32);
+        if graph.degree(a) != 2 || !beside(a) {
             return None;
         }
-        let mut found = Vec::new();
-        for a in mesh.neighbors(u) {
-            if graph.degree(a) != 2 {
-                continue;
-            }
-            for b in graph.first_two(a) {
-                if graph.degree(b) == 2 {
-                    // Each chord from its smaller end, whichever end `u` is beside.
-                    found.extend(ends.spike_at(a.min(b), a.max(b)));
-                }
-            }
-        }
+        let found: Vec<Spike> = graph
+            .first_two(a)
+            .into_iter()
+            .filter(|&b| a < b && graph.degree(b) == 2 && beside(b))
+            .filter_map(|b| ends.spike_at(a, b))
+            .collect();
         (!found.is_empty()).then_some(found)
     });
     let mut moves: Vec<Spike> = found.into_iter().flatten().collect();
@@ -375,6 +372,9 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
     // the earlier stages all dropped).
     moves.extend(
         ends.each_loose(parallel, |x| {
+            if !beside(x) {
+                return None;
+            }
             let mut found = Vec::new();
             ends.loose_spikes_at(x, &mut found);
             (!found.is_empty()).then_some(found)
@@ -390,6 +390,21 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
     // A chord with two moves cannot be: its run is found from its ends alone.
     alone(ends.tri.num_points(), &mut moves, &[], Spike::points);
     moves
+}
+
+/// Bit `v % 64` of word `v / 64`: whether the point `v` has a point without edges among its
+/// Delaunay neighbours (marked from those points' rings: the Delaunay edges join both ways).
+fn beside_unused(ends: &Ends, parallel: bool) -> Vec<u64> {
+    let (graph, mesh, n) = (&ends.graph, ends.tri.mesh(), ends.tri.num_points());
+    let unused = found_in_order(n, parallel, |i| {
+        let u = VertexId::new(i as u32);
+        (graph.degree(u) == 0).then_some(u)
+    });
+    let mut marks = vec![0u64; n.div_ceil(64)];
+    for w in unused.into_iter().flat_map(|u| mesh.neighbors(u)) {
+        marks[w.index() / 64] |= 1 << (w.index() % 64);
+    }
+    marks
 }
 
 #[cfg(test)]
