@@ -499,6 +499,22 @@ pub(crate) fn _tile_state<'py>(
 /// result whose smaller end the tile owns, in positions of the whole set, as an `(m, 2)` int64
 /// array. The tile holds every edge of the whole set's graph at each vertex it certified (every
 /// stage adds only Delaunay edges), so those are the whole set's.
+/// A tile's step on a graph of its kept triangulation.
+type KeptStep = for<'t> fn(&condt::Graph<'t>, &Params) -> condt::Graph<'t>;
+
+/// The stages a round of [`_step_kept`] runs on a tile, each with its step (the repair for the
+/// second phase of `outliers_first` and repairing again; the later stages whose rule reads only
+/// a point's neighbourhood).
+const KEPT_STEPS: [(Stage, KeptStep); 7] = [
+    (Stage::Repair, |graph, params| graph.repair(params.repair)),
+    (Stage::Junctions, |graph, _| graph.join_junctions()),
+    (Stage::Crossings, |graph, _| graph.restore_crossings()),
+    (Stage::Spikes, |graph, _| graph.repair_spikes()),
+    (Stage::Hooks, |graph, _| graph.unhook()),
+    (Stage::Tails, |graph, _| graph.cut_tails()),
+    (Stage::Detours, |graph, _| graph.cut_detours()),
+];
+
 #[pyfunction]
 #[pyo3(signature = (state, given, step, **params))]
 pub(crate) fn _step_kept<'py>(
@@ -509,37 +525,21 @@ pub(crate) fn _step_kept<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let (params, tiled) = tiled_params(params)?;
-    let later = |stage: Stage| tiled.later.contains(&stage) && step == stage.key();
-    let stage = match step {
-        "repair" => Stage::Repair,
-        _ if later(Stage::Junctions) => Stage::Junctions,
-        _ if later(Stage::Crossings) => Stage::Crossings,
-        _ if later(Stage::Spikes) => Stage::Spikes,
-        _ if later(Stage::Hooks) => Stage::Hooks,
-        _ if later(Stage::Tails) => Stage::Tails,
-        _ if later(Stage::Detours) => Stage::Detours,
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "no tiled round {step:?} for these parameters"
-            )))
-        }
-    };
+    // One lookup for the stage and its step, so that a stage without a row is an error here,
+    // never another stage's step.
+    let run = KEPT_STEPS
+        .iter()
+        .find(|(stage, _)| {
+            step == stage.key() && (*stage == Stage::Repair || tiled.later.contains(stage))
+        })
+        .map(|&(_, run)| run)
+        .ok_or_else(|| {
+            PyValueError::new_err(format!("no tiled round {step:?} for these parameters"))
+        })?;
     let state = state.get();
     let given = tile_pairs(given.as_slice()?, state.points.len())?;
     let edges = crate::detached(py, || {
-        crate::within_call(|| {
-            let graph = state.tri.graph_from_edges(given);
-            let result = match stage {
-                Stage::Junctions => graph.join_junctions(),
-                Stage::Crossings => graph.restore_crossings(),
-                Stage::Spikes => graph.repair_spikes(),
-                Stage::Hooks => graph.unhook(),
-                Stage::Tails => graph.cut_tails(),
-                Stage::Detours => graph.cut_detours(),
-                _ => graph.repair(params.repair),
-            };
-            result.edges()
-        })
+        crate::within_call(|| run(&state.tri.graph_from_edges(given), &params).edges())
     })?;
     index_array(py, owned_rows(&state.owned, &state.positions, edges))
 }

@@ -349,7 +349,8 @@ stage of the last pass, curves, other, write, total",
 ];
 
 /// The options of `condt reconstruct`: the fixed ones, and a `--[no-]FLAG` for every stage
-/// the library's table gives a switch, so a new stage needs no change here.
+/// the library's table gives a switch, so a new stage needs no change here (but its usage line
+/// in `RECONSTRUCT_ABOUT`, which is written by hand).
 fn reconstruct_options() -> Vec<Opt<ReconstructId>> {
     let switches = Stage::ALL.into_iter().filter_map(|stage| {
         stage.switch().map(|switch| Opt {

@@ -10,7 +10,7 @@
 //!
 //! `cargo bench --bench condt`
 
-use condt::{reconstruct, reconstruct_triangulation, triangulate, Params, Point, Stage};
+use condt::{reconstruct, reconstruct_triangulation, triangulate, Params, Point};
 use condt_eval::sample::{sample, Sampling, Shape};
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, SamplingMode};
 use std::time::Duration;
@@ -73,7 +73,7 @@ fn step_times(points: &[Point], params: &Params) -> Vec<(String, Duration)> {
     times.extend(
         result
             .stage_times()
-            .map(|(stage, time)| (stage_name(stage).to_string(), time)),
+            .map(|(stage, time)| (stage.key().to_string(), time)),
     );
     times.push(("curves".to_string(), result.curves_time()));
     // With smoothing passes, everything before the last pass (the first reconstruction
@@ -83,27 +83,6 @@ fn step_times(points: &[Point], params: &Params) -> Vec<(String, Duration)> {
         .map_or((0, Duration::ZERO), |s| (s.passes, s.earlier_passes));
     times.push((format!("smoothing passes ({passes})"), earlier));
     times
-}
-
-fn stage_name(stage: Stage) -> &'static str {
-    match stage {
-        Stage::Proximity => "proximity",
-        Stage::Repair => "repair",
-        Stage::Outliers => "outliers",
-        Stage::RepairAgain => "repair again",
-        Stage::LocalOutliers => "local outliers",
-        Stage::GivenBack => "given back",
-        Stage::Clumps => "clumps",
-        Stage::Gaps => "gaps",
-        Stage::Junctions => "junctions",
-        Stage::Crossings => "crossings",
-        Stage::Tips => "tips",
-        Stage::Spikes => "spikes",
-        Stage::Hooks => "hooks",
-        Stage::Tails => "tails",
-        Stage::Detours => "detours",
-        _ => "other stage",
-    }
 }
 
 fn breakdown(name: &str, points: &[Point], params: &Params) {

@@ -1,5 +1,6 @@
 "use strict";
-// The condt stage viewer. Reads the JSON block written by src/io/html.rs; draws on one canvas.
+// The condt stage viewer. Reads the JSON block written by crates/condt-io/src/html.rs; draws on
+// one canvas.
 (function () {
   const started = performance.now();
   const data = JSON.parse(document.getElementById("data").textContent);

@@ -3,7 +3,8 @@
 //! [`repair_again`], [`local_outliers`], [`given_back`], [`clumps`], [`gaps`], [`junctions`],
 //! [`crossings`], [`tips`], [`spikes`], [`hooks`], [`tails`] and [`detours`].
 //!
-//! Owns: each stage's rule, its parameter check, and [`Step::run`], through which the pipeline and
+//! Owns: the stage table (`ROWS`, [`Stage`] and its [`Switch`]: every name of a stage), each
+//! stage's rule, its parameter check, and [`Step::run`], through which the pipeline and
 //! the public `Graph` methods run every stage after the first graph. A run split in tiles
 //! ([`crate::tiled`]) reads the rules through crate-private functions of the stage modules instead
 //! (`outliers::iqr_cut`, `local_outliers::remove_local_outliers_with` and `last_edges`,
