@@ -216,7 +216,7 @@ pub(crate) fn points_array<'py>(
     let shape = converted.shape().to_vec();
     let converted = match shape.as_slice() {
         [_, 2] => {
-            check_exact_integers(&numpy, &given)?;
+            check_exact_integers(&numpy, obj, &given)?;
             converted.into_any()
         }
         [0] => converted.call_method1("reshape", ((0, 2),))?,
@@ -240,40 +240,77 @@ pub(crate) fn points_array<'py>(
 /// Refuses integers that float64 cannot hold: beyond 2^53 numpy's conversion rounds, and two
 /// points a unit apart may become one (a silently wrong result). As the command line and
 /// `read_points` refuse them in a `.npy` file; a float64 array states that the rounding is
-/// accepted. `given` is what numpy made of the points before the conversion, of shape (n, 2).
+/// accepted. `given` is what numpy made of `obj` before the conversion, of shape (n, 2): an
+/// int64 or uint64 array is compared whole; an object array, or a sequence numpy made floats of
+/// (its ints beyond int64 beside others), is read element by element where it can hold such an
+/// int.
 ///
 /// # Errors
 /// `ValueError` naming the first such row and its value.
-fn check_exact_integers(numpy: &Bound<'_, PyModule>, given: &Bound<'_, PyAny>) -> PyResult<()> {
+fn check_exact_integers(
+    numpy: &Bound<'_, PyModule>,
+    obj: &Bound<'_, PyAny>,
+    given: &Bound<'_, PyAny>,
+) -> PyResult<()> {
+    const EXACT: i64 = 1 << 53;
+    // A plain array: an `np.matrix`'s rows would be matrices.
+    let given = numpy.getattr("asarray")?.call1((given,))?;
     let dtype = given.getattr("dtype")?;
     let kind: String = dtype.getattr("kind")?.extract()?;
     let itemsize: usize = dtype.getattr("itemsize")?.extract()?;
-    // Integers of four bytes or fewer are all doubles.
-    if !matches!(kind.as_str(), "i" | "u") || itemsize < 8 {
-        return Ok(());
-    }
-    const EXACT: i64 = 1 << 53;
-    let beyond = given.call_method1("__gt__", (EXACT,))?;
-    let beyond = if kind == "i" {
-        numpy
-            .getattr("logical_or")?
-            .call1((beyond, given.call_method1("__lt__", (-EXACT,))?))?
-    } else {
-        beyond
+    let refused = |row: usize, value: Bound<'_, PyAny>| {
+        PyValueError::new_err(format!(
+            "points row {row} has the integer coordinate {value}, beyond 2^53, which float64 \
+             (condt's coordinates) cannot hold exactly; convert the array to float64 first to \
+             accept the rounding"
+        ))
     };
-    let rows = beyond.call_method1("any", (1,))?;
-    if !rows.call_method0("any")?.is_truthy()? {
-        return Ok(());
+    let elementwise = match kind.as_str() {
+        // Integers of four bytes or fewer are all doubles.
+        "i" | "u" if itemsize >= 8 => {
+            let beyond = given.call_method1("__gt__", (EXACT,))?;
+            let beyond = if kind == "i" {
+                numpy
+                    .getattr("logical_or")?
+                    .call1((beyond, given.call_method1("__lt__", (-EXACT,))?))?
+            } else {
+                beyond
+            };
+            let rows = beyond.call_method1("any", (1,))?;
+            if !rows.call_method0("any")?.is_truthy()? {
+                return Ok(());
+            }
+            let row: usize = rows.call_method0("argmax")?.extract()?;
+            let column = beyond.get_item(row)?.call_method0("argmax")?;
+            return Err(refused(row, given.get_item(row)?.get_item(column)?));
+        }
+        "O" => given,
+        // Floats numpy made of a sequence: an int beyond int64 among them was rounded already;
+        // only a magnitude of 2^53 or more can be one.
+        "f" if !obj.is_instance_of::<numpy::PyUntypedArray>()
+            && numpy
+                .getattr("any")?
+                .call1((numpy
+                    .getattr("abs")?
+                    .call1((&given,))?
+                    .call_method1("__ge__", (EXACT as f64,))?,))?
+                .is_truthy()? =>
+        {
+            numpy.getattr("asarray")?.call1((obj, "object"))?
+        }
+        _ => return Ok(()),
+    };
+    let integer = numpy.getattr("integer")?;
+    for (k, value) in elementwise.call_method0("ravel")?.try_iter()?.enumerate() {
+        let value = value?;
+        let is_int = (value.is_instance_of::<pyo3::types::PyInt>()
+            && !value.is_instance_of::<PyBool>())
+            || value.is_instance(&integer)?;
+        if is_int && (value.gt(EXACT)? || value.lt(-EXACT)?) {
+            return Err(refused(k / 2, value));
+        }
     }
-    let row: usize = rows.call_method0("argmax")?.extract()?;
-    let value = given
-        .get_item(row)?
-        .get_item(beyond.get_item(row)?.call_method0("argmax")?)?;
-    Err(PyValueError::new_err(format!(
-        "points row {row} has the integer coordinate {value}, beyond 2^53, which float64 \
-         (condt's coordinates) cannot hold exactly; convert the array to float64 first to \
-         accept the rounding"
-    )))
+    Ok(())
 }
 
 /// A shape as Python writes it: `(3,)`, `(4, 3)`, `()`.

@@ -140,9 +140,10 @@ use triangulation::Triangulation;
 /// others); ``sequential=True`` runs on one thread (same result).
 ///
 /// Raises ``ValueError`` for a point with a NaN or infinite coordinate (named by its index and
-/// row), an integer coordinate beyond 2^53 (float64 would round it; named by its row), two points nearer than 2^-450 times the largest coordinate (too close for the stages
-/// to measure; named by their positions), a value the library refuses (an int too large for a float is infinite, and refused as
-/// such) or two keywords that contradict each other (``u=2, adaptive=True``; ``iqr=1.5`` or
+/// row), an integer coordinate beyond 2^53 (float64 would round it; named by its row), two
+/// points nearer than 2^-450 times the largest coordinate (too close for the stages to measure;
+/// named by their positions), a value the library refuses (an int too large for a float is
+/// infinite, and refused as such) or two keywords that contradict each other (``u=2, adaptive=True``; ``iqr=1.5`` or
 /// ``iqr=None`` against ``outlier_filter=False`` or ``True``; a ``repair`` mode or ``"off"``
 /// against ``manifold_fix=False`` or ``True``), and ``TypeError`` for points that are not
 /// numbers, an unknown keyword or a value of the wrong type.

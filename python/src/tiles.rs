@@ -493,12 +493,6 @@ pub(crate) fn _tile_state<'py>(
     })
 }
 
-/// A round on a tile's kept triangulation: `step` (`"repair"`, the repair of the second phase of
-/// a two-phase flow, or the key of a stage of [`LATER_STAGES`]) run on the driver's `given` edges
-/// (rows of positions among the tile's points, both ends in the tile), and the edges of its
-/// result whose smaller end the tile owns, in positions of the whole set, as an `(m, 2)` int64
-/// array. The tile holds every edge of the whole set's graph at each vertex it certified (every
-/// stage adds only Delaunay edges), so those are the whole set's.
 /// A tile's step on a graph of its kept triangulation.
 type KeptStep = for<'t> fn(&condt::Graph<'t>, &Params) -> condt::Graph<'t>;
 
@@ -515,6 +509,12 @@ const KEPT_STEPS: [(Stage, KeptStep); 7] = [
     (Stage::Detours, |graph, _| graph.cut_detours()),
 ];
 
+/// A round on a tile's kept triangulation: `step` (`"repair"`, the repair of the second phase of
+/// a two-phase flow, or the key of a stage of [`LATER_STAGES`]) run on the driver's `given` edges
+/// (rows of positions among the tile's points, both ends in the tile), and the edges of its
+/// result whose smaller end the tile owns, in positions of the whole set, as an `(m, 2)` int64
+/// array. The tile holds every edge of the whole set's graph at each vertex it certified (every
+/// stage adds only Delaunay edges), so those are the whole set's.
 #[pyfunction]
 #[pyo3(signature = (state, given, step, **params))]
 pub(crate) fn _step_kept<'py>(

@@ -76,6 +76,7 @@ def test_integer_and_empty_inputs():
     assert one.unused.tolist() == [0]
 
 
+@pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")  # np.matrix
 def test_integers_beyond_two_to_the_53_are_refused_not_rounded():
     # 2**53 + 1 and 2**53 are one double: rounded, two points would become one.
     edge = 2**53
@@ -85,9 +86,18 @@ def test_integers_beyond_two_to_the_53_are_refused_not_rounded():
         for call in (condt.reconstruct, condt.triangulate):
             with pytest.raises(ValueError, match=rf"^points row {row} has the integer coordinate {big}, beyond 2\^53"):
                 call(points)
-    # A list of Python ints is an int64 array to numpy, refused alike.
-    with pytest.raises(ValueError, match=r"^points row 0 has the integer coordinate"):
-        condt.reconstruct([[edge + 1, 0], [0, 1], [1, 1]])
+    # A list of Python ints is an int64 array to numpy, refused alike; so are ints numpy keeps as
+    # objects or makes floats of (beyond int64, beside others), and an np.matrix (a review).
+    for big in (edge + 1, 2**63 + 1, 2**64 + 1, -(2**63) - 1):
+        listed = [[0, 0], [big, 1], [1, 1]]
+        for points in (listed, np.array(listed, dtype=object)):
+            with pytest.raises(ValueError, match=rf"^points row 1 has the integer coordinate {big},"):
+                condt.reconstruct(points)
+    matrix = np.matrix([[0, 0], [1, edge + 1], [1, 1]], dtype=np.int64)
+    with pytest.raises(ValueError, match=rf"^points row 1 has the integer coordinate {edge + 1},"):
+        condt.reconstruct(matrix)
+    # Floats as large are taken: the rounding was the caller's, before.
+    assert condt.triangulate([[0.0, 0.0], [1e300, 1.0], [1.0, 1e300]]).triangles.shape == (1, 3)
     # 2**53 itself, and its negative, are doubles: taken, and exactly.
     exact = np.array([[edge, 0], [0, -edge], [-edge, 0]], dtype=np.int64)
     assert condt.triangulate(exact).triangles.shape == (1, 3)

@@ -550,7 +550,8 @@ fn write_in_place(
     // The room first, so that what stops a write midway refuses the result before its first
     // byte, with the old content whole: a file-size limit (`ulimit -f`) below it, then a disk
     // too full for its blocks (`KEEP_SIZE`: the file stays as it is until written). A file system
-    // that cannot reserve blocks (`EOPNOTSUPP`) goes on as without.
+    // that cannot reserve blocks (`EOPNOTSUPP`) goes on as without; one that copies on write
+    // (btrfs) may still need room for the blocks it rewrites.
     #[cfg(target_os = "linux")]
     if let Some(limit) = rustix::process::getrlimit(rustix::process::Resource::Fsize).current {
         if bytes.len() as u64 > limit {
@@ -566,6 +567,11 @@ fn write_in_place(
     ) {
         Ok(()) => {}
         Err(e) if e == rustix::io::Errno::NOSPC || e == rustix::io::Errno::DQUOT => {
+            // The blocks reserved before it failed lie past the end: a cut at the same length
+            // gives them back.
+            if let Ok(meta) = file.metadata() {
+                let _ = file.set_len(meta.len());
+            }
             return Err(file_error(shown, io::Error::from(e)));
         }
         Err(_) => {}
