@@ -43,9 +43,12 @@ pub enum Reason {
     /// Algorithm 3: the edge is longer than the cut threshold: `√T`, or the spacing floor
     /// ([`Params::iqr_floor`](crate::Params::iqr_floor)) where that is larger.
     LongerThanThreshold {
-        /// The edge's length, in input units.
+        /// The edge's length, in input units: infinite for an edge longer than the largest
+        /// double (between points near `-f64::MAX` and `f64::MAX`), which the stage measured in
+        /// its own frame.
         length: f64,
-        /// The cut threshold in input units.
+        /// The cut threshold in input units (infinite likewise where it exceeds the largest
+        /// double).
         threshold: f64,
         /// Whether the threshold is the floor (1.5 times the median edge) rather than `√T`.
         floored: bool,
