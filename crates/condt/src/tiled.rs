@@ -693,12 +693,10 @@ fn read_choices(n: usize, rows: &[[usize; GAP_ROW]]) -> Result<Choices, Error> {
     targets.sort_unstable_by_key(|&(a, _)| a);
     walks.sort_unstable_by_key(|&(a, _)| a);
     // A loose end chooses once: a second row for it would join it twice.
-    let twice =
-        |a: VertexId, b: VertexId| (a == b).then(|| Error::invalid("choice", a.index() as f64));
-    if let Some(err) = (targets.windows(2).find_map(|w| twice(w[0].0, w[1].0)))
-        .or_else(|| walks.windows(2).find_map(|w| twice(w[0].0, w[1].0)))
-    {
-        return Err(err);
+    let pairs = targets.windows(2).map(|w| (w[0].0, w[1].0));
+    let mut pairs = pairs.chain(walks.windows(2).map(|w| (w[0].0, w[1].0)));
+    if let Some((twice, _)) = pairs.find(|(a, b)| a == b) {
+        return Err(Error::invalid("choice", twice.index() as f64));
     }
     Ok((targets, walks))
 }
