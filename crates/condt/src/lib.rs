@@ -84,6 +84,7 @@ extern crate alloc;
 
 mod adjacency;
 mod baselines;
+mod bits;
 mod curve;
 mod error;
 pub mod geometry;

@@ -108,7 +108,8 @@ enum State {
     Done(Reconstruction),
     /// A step failed (its error was returned), leaving nothing to go on with.
     Failed(Error),
-    /// Only while a step moves the state from one variant to the next.
+    /// Only while a step moves the state from one variant to the next, and after a step that
+    /// panicked (a caller that caught the panic gets a second one, saying so, at the next step).
     Moving,
 }
 
@@ -336,6 +337,10 @@ impl Pipeline {
     /// As [`triangulate`](crate::triangulate()) when a pass triangulates the moved points (never
     /// in practice: they lie between input points); later steps and `finish` repeat the error.
     ///
+    /// # Panics
+    /// Only when a step panicked before (a bug) and the caller caught it: the pipeline's state
+    /// went with the unwinding, and this says so instead of running on half a state.
+    ///
     /// ```
     /// use condt::{Params, Pipeline, Point, Stage, StepReport};
     /// let points = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
@@ -373,7 +378,9 @@ impl Pipeline {
                 self.state = State::Failed(error);
                 Err(error)
             }
-            State::Moving => unreachable!("a step leaves a state"),
+            State::Moving => {
+                panic!("a step of this Pipeline panicked earlier, leaving nothing to go on with")
+            }
         }
     }
 

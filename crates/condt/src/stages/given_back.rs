@@ -12,6 +12,7 @@
 use super::local_outliers::{components, without_components, SEPARATION};
 use super::Outcome;
 use crate::adjacency::{CurveGraph, Edge};
+use crate::bits::IdBits;
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -195,16 +196,8 @@ pub(crate) fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
         unmatched.sort_unstable();
         missing[tail..].fill(true);
         // A bit per unmatched edge's smaller end: most edges of `before` skip the search (speed).
-        let bound = unmatched.iter().map(|(e, _)| e[0].index() + 1).max();
-        let mut ends = vec![0u64; bound.unwrap_or(0).div_ceil(64)];
-        for (e, _) in &unmatched {
-            ends[e[0].index() / 64] |= 1 << (e[0].index() % 64);
-        }
-        let maybe = |a: VertexId| {
-            ends.get(a.index() / 64)
-                .is_some_and(|w| w >> (a.index() % 64) & 1 == 1)
-        };
-        for b in before.iter().filter(|b| maybe(b[0])) {
+        let ends = IdBits::of(unmatched.iter().map(|(e, _)| e[0].index()));
+        for b in before.iter().filter(|b| ends.contains(b[0].index())) {
             let first = unmatched.partition_point(|&(e, _)| e < *b);
             if let Some(&(e, k)) = unmatched.get(first) {
                 if e == *b {

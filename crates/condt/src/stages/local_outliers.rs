@@ -34,6 +34,7 @@
 use super::outliers::FLOOR_RATIO;
 use super::Outcome;
 use crate::adjacency::{collect_exact, CurveGraph, Edge};
+use crate::bits::IdBits;
 use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::predicates::{orient2d, Orientation};
@@ -145,7 +146,7 @@ pub(crate) fn remove_local_outliers_with(
         smooth_cycles = Some(only_smooth);
         if let Some(long) = long {
             // Only an edge with an end where it is long can go: the full test runs on those.
-            let candidate = |v: VertexId| long[v.index() / 64] >> (v.index() % 64) & 1 == 1;
+            let candidate = |v: VertexId| long.contains(v.index());
             let mut dropped = long_edges(tri, &profile, rules);
             let removed = drop_edges(&mut graph, move |e| {
                 (candidate(e[0]) || candidate(e[1])) && dropped(e)
@@ -443,9 +444,9 @@ const NONE: f64 = -1.0;
 /// their second, as a bit set by vertex id (speed), or `None` (the common case): rule 2 tests only
 /// edges at these. And whether the graph is only smooth, regular cycles ([`only_smooth_cycles`]),
 /// from the same reads of the positions; then the set is `None`: a regular pair is not long.
-fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> (Option<Vec<u64>>, bool) {
+fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> (Option<IdBits>, bool) {
     let n = graph.vertex_count();
-    let mut long = alloc::vec![0u64; n.div_ceil(64)];
+    let mut long = IdBits::new(n);
     let mut any = false;
     let mut smooth_cycles = true;
     for i in 0..n {
@@ -469,7 +470,7 @@ fn long_vertices(tri: &Triangulation, graph: &CurveGraph) -> (Option<Vec<u64>>, 
                 top[0] > LONG * LONG * top[1]
             }
         };
-        long[i / 64] |= u64::from(is_long) << (i % 64);
+        long.insert_if(i, is_long);
         any |= is_long;
     }
     (any.then_some(long), smooth_cycles)
@@ -799,13 +800,10 @@ pub(super) fn merged_along(
     drop(joins);
     let merged = components(touched.len(), &numbered_joins);
     drop(numbered_joins);
-    let mut is_touched = vec![0u64; root.len().div_ceil(64)];
-    for &r in &touched {
-        is_touched[r as usize / 64] |= 1 << (r % 64);
-    }
-    let merged_root = |r: u32| match is_touched[r as usize / 64] >> (r % 64) & 1 {
-        1 => touched[merged[number(r).expect("touched")] as usize],
-        _ => r,
+    let is_touched = IdBits::of(touched.iter().map(|&r| r as usize));
+    let merged_root = |r: u32| match is_touched.contains(r as usize) {
+        true => touched[merged[number(r).expect("touched")] as usize],
+        false => r,
     };
     // A merged component is kept when one of its parts was; only the merged roots are read on.
     for &r in &touched {

@@ -34,6 +34,7 @@ pub use proximity::Uniformity;
 pub use repair::Repair;
 
 use crate::adjacency::{CurveGraph, Edge};
+use crate::bits::IdBits;
 use crate::error::Error;
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
@@ -464,17 +465,8 @@ impl Outcome {
         // A bit per point up to the largest first end removed: an edge whose first end has none
         // (almost every edge: few are replaced) is kept without the search (speed: a search per
         // edge was 4% of a reconstruction's instructions on 1M uniform points, docs/perf-log.md).
-        let len = removed.iter().map(|e| e[0].index() + 1).max().unwrap_or(0);
-        let mut firsts = vec![0u64; len.div_ceil(64)];
-        for e in &removed {
-            firsts[e[0].index() / 64] |= 1 << (e[0].index() % 64);
-        }
-        let may_be_removed = |e: &Edge| {
-            let i = e[0].index();
-            firsts
-                .get(i / 64)
-                .is_some_and(|word| word >> (i % 64) & 1 == 1)
-        };
+        let firsts = IdBits::of(removed.iter().map(|e| e[0].index()));
+        let may_be_removed = |e: &Edge| firsts.contains(e[0].index());
         let mut out: Vec<Edge> =
             Vec::with_capacity(input.len().saturating_sub(removed.len()) + added.len());
         out.extend(

@@ -31,6 +31,7 @@
 //! Measured: `docs/perf-log.md`, *`stages/repair.rs`*.
 
 use crate::adjacency::{degrees, ordered, Edge};
+use crate::bits::IdBits;
 use crate::mesh::VertexId;
 use crate::predicates::compare_tied_distances;
 use crate::prefetch::{prefetch, PREFETCH_FROM};
@@ -174,9 +175,9 @@ fn crossing_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> Opt
 /// a bit set by vertex id: O(1) where a search over the vertices would cost a cache miss per step
 /// at every edge end (speed).
 struct Branches {
-    /// Bit `v % 64` of word `v / 64`: whether `v` has three or more edges.
-    bits: Vec<u64>,
-    /// Per word of `bits`, the bits set in the words before it.
+    /// The vertices with three or more edges.
+    bits: IdBits,
+    /// [`IdBits::word_ranks`] of `bits`.
     before: Vec<u32>,
     starts: Vec<u32>,
     neighbors: Vec<VertexId>,
@@ -187,16 +188,11 @@ struct Branches {
 impl Branches {
     /// `degree` must be the degrees of `edges` ([`degrees`]).
     fn new(degree: &[u32], edges: &[Edge]) -> Branches {
-        let mut bits = vec![0u64; degree.len().div_ceil(64)];
+        let mut bits = IdBits::new(degree.len());
         for (v, &d) in degree.iter().enumerate() {
-            bits[v / 64] |= u64::from(d > 2) << (v % 64);
+            bits.insert_if(v, d > 2);
         }
-        let mut before = Vec::with_capacity(bits.len());
-        let mut count = 0u32;
-        for word in &bits {
-            before.push(count);
-            count += word.count_ones();
-        }
+        let (before, count) = bits.word_ranks();
         // Each list's end first, filled backwards from it, so `starts` ends up at the starts.
         let mut starts = Vec::with_capacity(count as usize + 1);
         let mut total = 0u32;
@@ -237,16 +233,13 @@ impl Branches {
     /// Whether `v` has three or more edges.
     #[inline]
     fn is_branch(&self, v: VertexId) -> bool {
-        self.bits[v.index() / 64] >> (v.index() % 64) & 1 == 1
+        self.bits.contains(v.index())
     }
 
     /// `v`'s rank among the vertices with three or more edges, `None` if it has two or fewer.
     #[inline]
     fn rank(&self, v: VertexId) -> Option<usize> {
-        let (word, bit) = (v.index() / 64, v.index() % 64);
-        let bits = self.bits[word];
-        (bits >> bit & 1 == 1)
-            .then(|| (self.before[word] + (bits & ((1u64 << bit) - 1)).count_ones()) as usize)
+        self.bits.rank(v.index(), &self.before)
     }
 
     /// The neighbours of the vertex of rank `r`, in the order of the edges.
@@ -257,16 +250,7 @@ impl Branches {
 
     /// The vertices with three or more edges, ascending (so the `k`-th has rank `k`).
     fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
-        self.bits.iter().enumerate().flat_map(|(word, &bits)| {
-            let mut rest = bits;
-            core::iter::from_fn(move || {
-                (rest != 0).then(|| {
-                    let bit = rest.trailing_zeros();
-                    rest &= rest - 1;
-                    VertexId::new(word as u32 * 64 + bit)
-                })
-            })
-        })
+        self.bits.iter().map(|v| VertexId::new(v as u32))
     }
 }
 

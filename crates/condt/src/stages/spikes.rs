@@ -38,10 +38,10 @@ use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::{alone, Outcome};
 use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::bits::IdBits;
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
-use alloc::vec;
 use alloc::vec::Vec;
 
 /// Most samples of a tip the step puts back: as many as make a curve of its own
@@ -353,7 +353,7 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
     // chords and loose ends are sought among the points beside one (speed: on scattered points
     // the others' ring walks are skipped), each chord once, from its smaller end.
     let marks = beside_unused(ends, parallel);
-    let beside = |v: VertexId| marks[v.index() / 64] >> (v.index() % 64) & 1 == 1;
+    let beside = |v: VertexId| marks.contains(v.index());
     let found = found_in_order(ends.tri.num_points(), parallel, |i| {
         let a = VertexId::new(i as u32);
         if graph.degree(a) != 2 || !beside(a) {
@@ -392,17 +392,17 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
     moves
 }
 
-/// Bit `v % 64` of word `v / 64`: whether the point `v` has a point without edges among its
-/// Delaunay neighbours (marked from those points' rings: the Delaunay edges join both ways).
-fn beside_unused(ends: &Ends, parallel: bool) -> Vec<u64> {
+/// The points with a point without edges among their Delaunay neighbours (marked from those
+/// points' rings: the Delaunay edges join both ways).
+fn beside_unused(ends: &Ends, parallel: bool) -> IdBits {
     let (graph, mesh, n) = (&ends.graph, ends.tri.mesh(), ends.tri.num_points());
     let unused = found_in_order(n, parallel, |i| {
         let u = VertexId::new(i as u32);
         (graph.degree(u) == 0).then_some(u)
     });
-    let mut marks = vec![0u64; n.div_ceil(64)];
+    let mut marks = IdBits::new(n);
     for w in unused.into_iter().flat_map(|u| mesh.neighbors(u)) {
-        marks[w.index() / 64] |= 1 << (w.index() % 64);
+        marks.insert(w.index());
     }
     marks
 }
