@@ -1195,3 +1195,47 @@ def test_a_forked_child_and_its_own_child_run_the_parallel_paths():
         return os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0
 
     assert same_in_a_child(1)
+
+
+
+def test_signal_handlers_run_while_a_long_reconstruction_runs():
+    """Ctrl-C's handler (and any other) runs between the steps of a long call, so that its
+    KeyboardInterrupt ends the call from inside. Signals that arrive while no handler can run
+    count as one: a call that ran handlers only while it read its arguments and once it had
+    returned (as before: a user review waited out 16 s for Ctrl-C) ran this one at most three
+    times (before, after, and once more before the sender stops); at its steps, it runs about
+    every 50 ms of the run's second."""
+    points = np.random.default_rng(5).random((200_000, 2))
+    calls = []
+    done = threading.Event()
+
+    def send():
+        while not done.wait(0.005):
+            os.kill(os.getpid(), signal.SIGUSR1)
+
+    previous = signal.signal(signal.SIGUSR1, lambda signum, frame: calls.append(signum))
+    sender = threading.Thread(target=send)
+    try:
+        sender.start()
+        condt.reconstruct(points)
+    finally:
+        done.set()
+        sender.join()
+        signal.signal(signal.SIGUSR1, previous)
+    assert len(calls) >= 5, calls
+
+    # And the handler's exception is the call's: a KeyboardInterrupt is not lost or delayed.
+    def stop(signum, frame):
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGUSR1, stop)
+    sender = threading.Thread(target=send)
+    done.clear()
+    try:
+        sender.start()
+        with pytest.raises(KeyboardInterrupt):
+            condt.reconstruct(points)
+    finally:
+        done.set()
+        sender.join()
+        signal.signal(signal.SIGUSR1, previous)
