@@ -483,8 +483,18 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
             if key == Key::Type {
                 let raw = map.next_value::<&'de RawValue>()?;
                 let name = serde_json::from_str::<String>(raw.get()).ok();
-                // An unknown type is refused at once, on the line of the type.
-                wanted_member::<A::Error>(name.as_deref())?;
+                // An unknown type is refused at once, on the line of the type: the error's own
+                // place would be after the spacing that follows it (a pretty-printed document
+                // with sorted keys put the type's line off by one; a GIS user's review).
+                if let Err(refused) = wanted_member::<serde_json::Error>(name.as_deref()) {
+                    let state = &mut *self.state;
+                    if state.failure.is_none() {
+                        let at = (raw.get().as_ptr() as usize)
+                            .wrapping_sub(state.text.as_ptr() as usize);
+                        state.failure = Some((at.min(state.text.len()), refused.to_string()));
+                    }
+                    return Err(de::Error::custom("(reported above)"));
+                }
                 kind = Some(name);
                 continue;
             }

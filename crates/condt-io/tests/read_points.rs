@@ -873,3 +873,27 @@ fn columns_built_by_hand_that_parse_refuses_are_refused_by_the_reader() {
         assert!(read(Column::Number(2), Column::Number(1)).is_ok());
     }
 }
+
+/// A refused geometry type is told on the line of its `"type"`, also where that member comes
+/// last and spacing and line breaks follow it (a pretty-printed file with sorted keys), not on
+/// the line where the spacing ends.
+#[test]
+fn a_refused_type_is_told_on_its_own_line() {
+    for (text, line) in [
+        (
+            "{\"type\": \"Feature\", \"properties\": {},\n \"geometry\": {\"coordinates\": \
+             [[0, 0], [1, 1]],\n   \"type\": \"LineString\"\n }\n}\n",
+            3,
+        ),
+        (
+            "{\"features\": [\n  {\"geometry\": {\"coordinates\": [], \"type\": \"Polygon\"  \n\n\n  \
+             }, \"type\": \"Feature\"}],\n \"type\": \"FeatureCollection\"}\n",
+            2,
+        ),
+    ] {
+        let file = TempFile::new("lines.geojson", text.as_bytes());
+        let (at, message) = content_error(file.read());
+        assert_eq!(at, Some(line), "{message}");
+        assert!(message.contains("only Point and MultiPoint"), "{message}");
+    }
+}
