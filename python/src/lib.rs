@@ -295,7 +295,7 @@ fn read_points<'py>(
     input_format: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let options = read_options(columns, input_format)?;
-    read_point_file(py, path, &options).map(|(points, _)| points)
+    read_point_file(py, path, &options).map(|(points, _, _)| points)
 }
 
 /// The reading options of ``read_points``' keywords, checked: a known format name, and columns
@@ -379,7 +379,9 @@ fn read_options(
 /// crs)``, ``crs`` the top-level ``"crs"`` member of a GeoJSON input as written (JSON text, as
 /// GDAL and QGIS read it to place projected coordinates) and ``None`` for every other file.
 /// ``Reconstruction.to_geojson(crs=crs)`` carries it on, as ``condt reconstruct`` does from a
-/// GeoJSON input to a GeoJSON output.
+/// GeoJSON input to a GeoJSON output. A member that no GeoJSON output can carry (``4326``,
+/// ``[1, 2]``: neither an object, a name nor ``null``) gives ``None`` and a ``UserWarning``
+/// saying why, as the command line notes it and writes its output without one.
 ///
 /// Takes ``read_points``' keywords, raises what it raises, and warns as it warns.
 ///
@@ -402,18 +404,34 @@ fn read_points_with_crs<'py>(
     input_format: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
     let options = read_options(columns, input_format)?;
-    read_point_file(py, path, &options)
+    let (points, crs, shown) = read_point_file(py, path, &options)?;
+    // As the command line takes it to a GeoJSON output: what `to_geojson` would refuse is left
+    // out with a warning here, not handed on to fail there (a GIS user's review).
+    let Some(raw) = crs else {
+        return Ok((points, None));
+    };
+    if let Err(why) = condt_io::crs_member(&raw) {
+        let message = format!("{shown}: its crs member {why}; None is returned for it");
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &CString::new(message)?,
+            1,
+        )?;
+        return Ok((points, None));
+    }
+    Ok((points, Some(raw)))
 }
 
-/// The points of the file at `path` (as `open` takes it) read with `options`, and its GeoJSON
-/// crs; a `UserWarning` naming the file and line of a GeoJSON sequence's later record whose
+/// The points of the file at `path` (as `open` takes it) read with `options`, its GeoJSON crs
+/// as written, and the file's name as messages show it; a `UserWarning` naming the file and line of a GeoJSON sequence's later record whose
 /// different crs was left out, and one for the features that gave no point (the command line's
 /// notes).
 fn read_point_file<'py>(
     py: Python<'py>,
     path: &Bound<'py, PyAny>,
     options: &ReadOptions,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>)> {
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<String>, String)> {
     // `os.fsdecode` takes what `open` takes (str, bytes, os.PathLike of either) and gives a str
     // whose undecodable bytes are escaped, which becomes the same bytes again as an `OsString`.
     let decoded = py
@@ -497,7 +515,7 @@ fn read_point_file<'py>(
         .into_flattened();
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
-    Ok((PyArray2::from_owned_array(py, array), crs))
+    Ok((PyArray2::from_owned_array(py, array), crs, shown))
 }
 
 /// A reader's message with its advice in this function's keywords: the readers advise the

@@ -981,6 +981,15 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
         path.write_text('{"type": "MultiPoint", "crs": %s, "coordinates": [[0, 0], [1, 0], [0, 1]]}' % member)
         points, crs = condt.read_points_with_crs(path)
         assert json.loads(condt.reconstruct(points).to_geojson(crs=crs))["crs"] == expected
+    # A member no output can carry is left out with a warning, as the command line notes it,
+    # not handed on for to_geojson to refuse (a GIS user's review).
+    for member in ("4326", "[1]"):
+        path = tmp_path / "member.geojson"
+        path.write_text('{"type": "MultiPoint", "crs": %s, "coordinates": [[0, 0], [1, 0], [0, 1]]}' % member)
+        with pytest.warns(UserWarning, match=r"member\.geojson: its crs member .*is JSON but neither"):
+            points, crs = condt.read_points_with_crs(path)
+        assert crs is None and points.shape == (3, 2)
+        assert "crs" not in json.loads(condt.reconstruct(points).to_geojson(crs=crs))
     # Any mapping is written as its dict.
     proxy = types.MappingProxyType(json.loads(crs_text))
     assert json.loads(r.to_geojson(crs=proxy))["crs"] == json.loads(crs_text)

@@ -3,7 +3,7 @@
 mod common;
 
 use common::*;
-use condt::{triangulate, Error, Point};
+use condt::{reconstruct, triangulate, Error, Params, Point};
 
 /// `points` moved by `f`, point by point.
 fn moved(points: &[Point], f: impl Fn(Point) -> Point) -> Vec<Point> {
@@ -332,5 +332,42 @@ fn a_triangle_range_past_the_end_panics_rather_than_wrap_round() {
     for range in [start..start + 1, start..start, 0..start] {
         let caught = std::panic::catch_unwind(|| mesh.corner_slice(range.clone()).len());
         assert!(caught.is_err(), "{range:?}");
+    }
+}
+
+/// Repeats do not change a triangulation: a 4 x 4 grid (cocircular squares, where the two-halves
+/// construction and the one-piece one may choose other diagonals) given 4,097 times over, past the
+/// 65,536 points from which a set is built in two halves, gives the grid's own triangles and
+/// reconstruction. (The size that decided the cut counted the repeats: the triangles changed.)
+#[test]
+fn repeats_past_the_halves_bound_give_the_triangulation_of_the_distinct_points() {
+    let grid = |copies: usize| -> Vec<Point> {
+        (0..16 * copies)
+            .map(|i| Point::new((i % 4) as f64, (i / 4 % 4) as f64))
+            .collect()
+    };
+    let sorted = |points: &[Point]| {
+        let tri = triangulate(points).unwrap();
+        let mut triangles: Vec<[usize; 3]> = tri
+            .triangles()
+            .map(|mut t| {
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        triangles.sort_unstable();
+        triangles
+    };
+    let (once, repeated) = (grid(1), grid(4097));
+    assert!(repeated.len() >= 1 << 16);
+    assert_eq!(sorted(&repeated), sorted(&once));
+    for params in [Params::default(), Params::paper()] {
+        let edges = |points: &[Point]| {
+            reconstruct(points, &params)
+                .unwrap()
+                .edges()
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(edges(&repeated), edges(&once));
     }
 }

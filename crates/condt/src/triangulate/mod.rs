@@ -21,7 +21,7 @@ use crate::geometry::{Point, Scale};
 use crate::mesh::{Mesh, MeshArrays, VertexId};
 use crate::threads::{both, filled};
 use alloc::vec::Vec;
-use core::sync::atomic::AtomicUsize;
+use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
 pub(crate) use order::mix as splitmix64_finalizer;
 pub(crate) use scale::choose_frames;
@@ -108,9 +108,12 @@ impl core::fmt::Debug for Triangulation {
 /// Every finite input is accepted at any scale: fewer than three points, collinear points (a
 /// chain of segments, no triangle), exact duplicates (merged, see [`Triangulation::vertex`]),
 /// cocircular sets, and sets spanning more than 2^200 in magnitude (slower exact integer
-/// arithmetic, `docs/predicates.md`). The result depends only on the set of points, not on their
-/// order nor on the number of threads: 65,536 points or more are built in two halves, at once
-/// with `parallel` (`docs/triangulation.md`); for one thread, use a one-thread rayon pool.
+/// arithmetic, `docs/predicates.md`). The result depends only on the points, not on their order
+/// nor on the number of threads: 65,536 distinct points or more are built in two halves, at once
+/// with `parallel` (`docs/triangulation.md`); for one thread, use a one-thread rayon pool. Where
+/// the Delaunay triangulation is not unique (four or more points on a circle, as in a grid),
+/// which diagonal is chosen can depend, in such large sets, on how often points repeat: the cut
+/// between the halves falls near the median counted with repeats.
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a NaN or infinite coordinate, naming the first such input index;
@@ -233,13 +236,24 @@ fn construct(
     if let Some(cut) = cut_in_two(points, frames, split_min, parallel) {
         let buffers = (spare_order, spare_points);
         let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
+        let counted = progress.map(|inserted| inserted.load(Ordering::Relaxed));
         let built = if frames.wide {
             halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
         } else {
             halves::build::<Fast>(&sorted, cut.left_len(), parallel, progress, mesh)
         };
-        if built.is_some() {
-            return (order, sorted, built);
+        match &built {
+            // Fewer distinct points than the bound are built in one piece, as they would be
+            // without their repeats: on a cocircular set the two constructions may choose
+            // other diagonals, and the triangulation would change with how often a point
+            // repeats (an embedded developer's review: a grid given 4,097 times over).
+            Some((_, merged)) if points.len() - merged.len() < split_min => {}
+            Some(_) => return (order, sorted, built),
+            None => {}
+        }
+        if let (Some(inserted), Some(counted)) = (progress, counted) {
+            let now = inserted.load(Ordering::Relaxed);
+            inserted.fetch_sub(now.saturating_sub(counted), Ordering::Relaxed);
         }
     }
     let order = spatial_order(points, frames);
