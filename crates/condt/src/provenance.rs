@@ -72,8 +72,8 @@ pub enum Reason {
     Component,
     /// Local outlier rule 3: part of a short chain hanging off a junction.
     Spur,
-    /// Its component is a clump: fewer than half of its points pass smoothly and evenly, or half
-    /// and every point is apart.
+    /// Its component is a clump: fewer than half of its points pass smoothly and evenly (or as a
+    /// pixel chain's even step), or half and every point is apart.
     Clump,
     /// Gap closing joined two loose ends.
     GapClosed,

@@ -156,7 +156,8 @@ pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Erro
 /// run: bit 0 when the point has two edges and passes smoothly, bit 1 when it has edges and lies
 /// apart from everything outside its component (rule 4's separation), bits 2 and 3 when it has two
 /// edges and turns counter-clockwise (bit 2) or clockwise (bit 3) from its neighbour of smaller
-/// position to the other (rule 4's convex cycles); 0 without edges. `labels`
+/// position to the other (rule 4's convex cycles), bit 4 when it has two edges and its passage
+/// counts as a curve's in the clump rule (smooth, or a pixel chain's step); 0 without edges. `labels`
 /// names each position's component in the whole set's graph ([`component_labels`], any names
 /// that are equal exactly within a component); the tests are the whole set's at every point
 /// whose Delaunay star and graph the tile holds. Only the positions that `at` selects are tested
@@ -178,8 +179,8 @@ pub fn component_labels(n: usize, edges: &[[usize; 2]]) -> Result<Vec<u32>, Erro
 /// let labels = tiled::component_labels(pts.len(), &edges)?;
 /// let graph = tri.graph_from_edges(edges.iter().copied());
 /// let tests = tiled::clump_tests(&graph, &labels, |_| true)?;
-/// assert_eq!(tests[10], 0b111); // on the arc: smooth, apart from the zig-zag, turning left
-/// assert_eq!(tests[32] & 0b11, 0b10); // in the zig-zag: bent
+/// assert_eq!(tests[10], 0b10111); // on the arc: smooth, apart from the zig-zag, turning left
+/// assert_eq!(tests[32] & 0b10011, 0b10); // in the zig-zag: bent
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn clump_tests(
@@ -200,7 +201,7 @@ pub fn clump_tests(
             if !at(position) || tri.first_at(position) != position || curve.degree(v) == 0 {
                 return 0; // a merged duplicate is tested at its vertex's own position
             }
-            let (smooth, turn) = if curve.degree(v) == 2 {
+            let (smooth, step, turn) = if curve.degree(v) == 2 {
                 let [y, z] = curve.first_two(v);
                 let (low, high) = if tri.input_of(y) < tri.input_of(z) {
                     (y, z)
@@ -212,11 +213,15 @@ pub fn clump_tests(
                     Orientation::Cw => 0b1000,
                     Orientation::Collinear => 0,
                 };
-                (smooth_and_regular(tri, v, y, z), turn)
+                let smooth = smooth_and_regular(tri, v, y, z);
+                (smooth, smooth || clumps::passes(tri, v, y, z), turn)
             } else {
-                (false, 0)
+                (false, false, 0)
             };
-            u8::from(smooth) | u8::from(separated_at(tri, &curve, &root, v)) << 1 | turn
+            u8::from(smooth)
+                | u8::from(separated_at(tri, &curve, &root, v)) << 1
+                | turn
+                | u8::from(step) << 4
         })
         .collect())
 }
@@ -337,7 +342,8 @@ impl GatheredClumps {
         // Every test is at hand: the counts are exact (capped as the stage caps them), which
         // decides as the stage's early stop does (docs/distributed.md).
         let counts = |_: &[u32], _: f64| Some(exact_separated(&graph, &root, |v| test(v, 2)));
-        let clump = clumps::clumps_of(&graph, &root, |v| test(v, 1), counts, |v| test(v, 2));
+        let passes = |v| test(v, 0b10000);
+        let clump = clumps::clumps_of(&graph, &root, passes, counts, |v| test(v, 2));
         Ok(GatheredClumps {
             listed,
             graph,

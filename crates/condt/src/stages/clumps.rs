@@ -7,8 +7,9 @@
 //!
 //! Rule (docs/condt.md, *Clumps*, with measurements and losses): a component apart from the rest
 //! (rule 4's test; one that is not is a piece of a noisy band, rule 4's to judge) goes when under
-//! half of its points pass [`smooth_and_regular`], or exactly half and every point of it is apart
-//! (a tie shows no majority either; a piece of a noisy curve is not apart at its ends), unless the
+//! half of its points pass ([`passes`]: smoothly and evenly, or as a pixel chain's step), or
+//! exactly half and every point of it is apart (a tie shows no majority either; a piece of a
+//! noisy curve is not apart at its ends), unless the
 //! clumps and the components not apart would hold [`OUTLIER_SHARE`] or more of the points with
 //! edges; and not one that gap closing, a tip's or hook's move or a junction join would join to a
 //! component that stays ([`unless_joined`]: a stretch of a noisy curve cut off at both ends).
@@ -26,6 +27,7 @@ use super::local_outliers::{
 };
 use super::Outcome;
 use crate::adjacency::{CurveGraph, Edge};
+use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -49,7 +51,7 @@ pub(crate) fn remove_clumps(
     let root = components(n, edges);
     let smooth = |v| {
         let [y, z] = graph.first_two(v);
-        smooth_and_regular(tri, v, y, z)
+        passes(tri, v, y, z)
     };
     let counts =
         |size: &[u32], guard| separated_counts_until(tri, &graph, &root, Some((size, guard)));
@@ -65,8 +67,46 @@ pub(crate) fn remove_clumps(
     Outcome::changed(edges, kept, Some(graph))
 }
 
+/// Whether the rule counts the passage of a point `v` of two edges, `y` and `z`, as a curve's:
+/// [`smooth_and_regular`], or a step of a pixel chain ([`grid_step`]).
+pub(crate) fn passes(tri: &Triangulation, v: VertexId, y: VertexId, z: VertexId) -> bool {
+    smooth_and_regular(tri, v, y, z)
+        || grid_step(
+            tri.vertex_point(v),
+            tri.vertex_point(y),
+            tri.vertex_point(z),
+        )
+}
+
+/// How many units in the last place of the largest coordinate the two lengths of a [`grid_step`]
+/// may differ by, and its angle fall short of a right one: the rounding of coordinates that
+/// went through a few operations (a pixel's centre, an affine map to map units).
+const ROUNDING_ULPS: f64 = 64.0;
+
+/// Whether the passage at `p` between `q` and `r` is a step of a chain along a pixel grid: two
+/// edges equal in length and at a right angle or wider, up to the rounding of the coordinates
+/// ([`ROUNDING_ULPS`]). Reason: a 4-connected boundary (a staircase, the edges of a mask, Canny's
+/// output) turns by a right angle at nearly every sample, so no passage is smooth and a short
+/// chain of it was taken for a clump (an image user's review: 870 of the 5,180 edge pixels of
+/// `skimage.feature.canny(camera(), sigma=3)` dropped); every turn of an 8-connected chain by a
+/// right angle is such a step, and its wider ones are smooth. Random points are never this even:
+/// two of their distances agree to rounding with a probability of about that rounding.
+fn grid_step(p: Point, q: Point, r: Point) -> bool {
+    let (to_q, to_r) = (p.dist2(q), p.dist2(r));
+    let dot = (q.x - p.x) * (r.x - p.x) + (q.y - p.y) * (r.y - p.y);
+    let largest = [p, q, r]
+        .iter()
+        .map(|a| a.x.abs().max(a.y.abs()))
+        .fold(0.0, f64::max);
+    // Moving each point by `moved` changes a length `step` by up to `2 moved`, its square and
+    // the dot product by up to about `4 step moved`.
+    let moved = ROUNDING_ULPS * f64::EPSILON * largest;
+    let slack = 4.0 * libm::sqrt(to_q.max(to_r)) * moved;
+    (to_q - to_r).abs() <= slack && dot <= slack
+}
+
 /// The rule on `graph` with its components `root` ([`components`]), the tests at a point given:
-/// `smooth(v)` for a point of two edges ([`smooth_and_regular`]), `apart(v)` for a point with
+/// `smooth(v)` for a point of two edges ([`passes`]), `apart(v)` for a point with
 /// edges ([`separated_at`]) and `counts(size, guard)`, the separated points per root as
 /// [`separated_counts_until`] counts them with that limit. Which roots are clumps, or `None`
 /// when none goes (no clump, or the quarter guard holds). The stage reads the triangulation for
@@ -222,6 +262,40 @@ mod tests {
         ];
         let out = kept(&chain);
         assert_eq!(out.len(), 40, "the circle stays, the chain goes: {out:?}");
+    }
+
+    /// A 4-connected pixel staircase turns by a right angle at every sample, so none of its
+    /// passages is smooth; its steps are even, so it is a curve, not a clump: kept as it is
+    /// given, scaled, turned by a quarter, mirrored, and turned by 30° (where its lengths and
+    /// angles are equal only up to rounding). A zig-zag whose steps differ by 1 % still goes.
+    #[test]
+    fn a_pixel_staircase_apart_from_the_curve_stays() {
+        let staircase: Vec<(f64, f64)> = (0..12)
+            .map(|k| (40.0 + ((k + 1) / 2) as f64, (k / 2) as f64))
+            .collect();
+        let (sin, cos) = (0.5, libm::sqrt(0.75));
+        let moves: [&dyn Fn((f64, f64)) -> (f64, f64); 5] = [
+            &|p| p,
+            &|(x, y)| (x * 0.375, y * 0.375),
+            &|(x, y)| (-y, x),
+            &|(x, y)| (-x, y),
+            &|(x, y)| (x * cos - y * sin + 1e6, x * sin + y * cos + 1e6),
+        ];
+        for (m, moved) in moves.iter().enumerate() {
+            let chain: Vec<(f64, f64)> = staircase.iter().map(|&p| moved(p)).collect();
+            let out = kept(&chain);
+            assert_eq!(
+                out.len(),
+                51,
+                "move {m}: the circle and the staircase stay: {out:?}"
+            );
+        }
+        let uneven: Vec<(f64, f64)> = staircase
+            .iter()
+            .enumerate()
+            .map(|(k, &(x, y))| (x + 0.01 * (k % 3) as f64, y))
+            .collect();
+        assert_eq!(kept(&uneven).len(), 40, "an uneven zig-zag goes");
     }
 
     #[test]
