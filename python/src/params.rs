@@ -183,8 +183,9 @@ fn choice<T: Copy>(name: &str, value: &Bound<'_, PyAny>, choices: &[(&str, T)]) 
 /// library refuses (`Params::check`).
 pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
     // `paper=True` chooses the starting point wherever it stands; the other keywords adjust it.
-    let paper = match kwargs.map(|d| d.get_item("paper")).transpose()?.flatten() {
-        Some(value) => boolean("paper", &value)?,
+    let paper_given = kwargs.map(|d| d.get_item("paper")).transpose()?.flatten();
+    let paper = match &paper_given {
+        Some(value) => boolean("paper", value)?,
         None => false,
     };
     let mut params = if paper {
@@ -204,8 +205,17 @@ pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
     let mut method = None;
     // ConDT's own keywords as given, to refuse them beside a baseline method.
     let mut condt_keywords: Vec<String> = Vec::new();
-    if paper {
-        condt_keywords.push("paper=True".into());
+    // Whatever its value, as every ConDT keyword (`paper=False` passed beside a baseline while
+    // `smooth=True` was refused: a researcher's review).
+    if let Some(value) = &paper_given {
+        condt_keywords.push(format!(
+            "paper={}",
+            if boolean("paper", value)? {
+                "True"
+            } else {
+                "False"
+            }
+        ));
     }
     // As given, when they turn something on: a step the other keywords leave no way to run is
     // refused, as the command line refuses it (`refuse_steps_that_cannot_run` there).

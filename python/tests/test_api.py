@@ -330,6 +330,9 @@ def test_a_bool_among_a_lists_numbers_is_a_type_error(function):
         ({"method": "delaunay"}, ValueError, "'condt', 'nn-crust', 'crust'"),
         ({"method": "crust", "u": 2}, ValueError, "baseline"),
         ({"method": "nn-crust", "paper": True}, ValueError, "paper=True sets a ConDT stage"),
+        # Whatever the value, as smooth=True (the default) is refused too.
+        ({"method": "nn-crust", "paper": False}, ValueError, "paper=False sets a ConDT stage"),
+        ({"method": "crust", "smooth": True}, ValueError, "smooth=True sets a ConDT stage"),
         ({"method": "crust", "smooth": False}, ValueError, "baseline"),
         # A step the other keywords leave no way to run, as the command line refuses it.
         ({"confirm_given_back": True, "local_outliers": False}, ValueError, "confirm_given_back=True needs the local outlier removal"),

@@ -274,7 +274,8 @@ mod tests {
             .map(|k| (40.0 + ((k + 1) / 2) as f64, (k / 2) as f64))
             .collect();
         let (sin, cos) = (0.5, libm::sqrt(0.75));
-        let moves: [&dyn Fn((f64, f64)) -> (f64, f64); 5] = [
+        type Move<'a> = &'a dyn Fn((f64, f64)) -> (f64, f64);
+        let moves: [Move; 5] = [
             &|p| p,
             &|(x, y)| (x * 0.375, y * 0.375),
             &|(x, y)| (-y, x),

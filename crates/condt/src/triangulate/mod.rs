@@ -553,6 +553,11 @@ impl Triangulation {
     /// set's [`insertion_order`](Triangulation::insertion_order) restricted to the tile, orders
     /// its vertices as the whole set does: what `condt.dask` in Python builds on.
     ///
+    /// The cost is the order's: each point is found by a walk from the one inserted before, so
+    /// a spatial order ([`insertion_order`](Triangulation::insertion_order)) keeps it near
+    /// `triangulate`'s, while an order that jumps about can make it quadratic (a triangulator
+    /// tester's review: points on a circle in a random order, where each walk crosses a fan).
+    ///
     /// # Errors
     /// Those of [`triangulate`]; [`Error::InvalidParameter`] named `order` when `order` is not a
     /// permutation of `0..points.len()`: its value is `order`'s length if that differs from the
@@ -604,7 +609,9 @@ impl Triangulation {
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
     }
-    /// The coordinates of input point `index`.
+    /// The coordinates of input point `index`: those of its vertex, so of the first of its
+    /// duplicates, which are equal by value (`-0.0` and `0.0` are one point, given back as the
+    /// first of them wrote it).
     ///
     /// # Panics
     /// If `index` is not an input position.
@@ -613,7 +620,7 @@ impl Triangulation {
     /// use condt::{triangulate, Point};
     /// let tri = triangulate(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1.0), (0.0, 0.0)].map(Point::from))?;
     /// assert_eq!(tri.point(2), Point::new(0.5, 1.0));
-    /// assert_eq!(tri.point(3), Point::new(0.0, 0.0)); // a merged duplicate keeps its coordinates
+    /// assert_eq!(tri.point(3), Point::new(0.0, 0.0)); // a merged duplicate: the same coordinates
     /// # Ok::<(), condt::Error>(())
     /// ```
     #[inline]
