@@ -245,7 +245,9 @@ pub(crate) fn parse_separated(
                     headerless = true;
                     *columns.insert(numbered)
                 } else {
-                    columns = Some(chosen_columns(chosen, &record, raw, &source, line)?);
+                    columns = Some(chosen_columns(
+                        chosen, &record, raw, delimiter, &source, line,
+                    )?);
                     continue;
                 }
             }
@@ -392,16 +394,26 @@ fn header_columns(
     Ok((x_column, y_column))
 }
 
-/// The x and y columns `chosen` in the header `record` (its text `raw`, on `line`): a name must
-/// name one column (without case and blanks around it), a number be one of the header's.
+/// The x and y columns `chosen` in the header `record` (its text `raw`, on `line`, its fields
+/// split at `delimiter`): a name must name one column (without case and blanks around it), a
+/// number be one of the header's.
 fn chosen_columns(
     chosen: &Columns,
     record: &csv::StringRecord,
     raw: &str,
+    delimiter: u8,
     source: &Source<'_>,
     line: usize,
 ) -> Result<(usize, usize), IoError> {
     let header = quoted(raw.trim_end_matches(['\r', '\n']));
+    // A header of one field that holds semicolons is a semicolon-separated file: said so, as
+    // without chosen columns (a GIS user's review: the hint was missing here).
+    let split_at = if delimiter == b'\t' { "tabs" } else { "commas" };
+    let semicolons = if record.len() == 1 && raw.contains(';') {
+        format!("; this reader splits columns at {split_at}, not semicolons")
+    } else {
+        String::new()
+    };
     let names = || {
         record
             .iter()
@@ -415,7 +427,7 @@ fn chosen_columns(
             Column::Number(number) => Err(source.error(
                 line,
                 format!(
-                    "column {number} is chosen for {axis}, but the header has {}: {}",
+                    "column {number} is chosen for {axis}, but the header has {}: {}{semicolons}",
                     counted(record.len(), "column"),
                     names()
                 ),
@@ -429,7 +441,7 @@ fn chosen_columns(
                         line,
                         format!(
                             "no column named {} (chosen for {axis}) in the header {header}; its \
-                             columns are {}",
+                             columns are {}{semicolons}",
                             quoted(wanted),
                             names()
                         ),
@@ -574,6 +586,15 @@ mod tests {
             !err.contains("--columns"),
             "one column, nothing to choose: {err}"
         );
+        // And with the columns chosen, by name or number, as the header's one field is no
+        // column of either (a GIS user's review).
+        for spec in ["Shape_X,Shape_Y", "2,1"] {
+            let chosen = Columns::parse(spec).unwrap();
+            let err = parse_csv_columns("Shape_X;Shape_Y\n1;2\n", "semi.csv", Some(&chosen))
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains("at commas, not semicolons"), "{spec}: {err}");
+        }
     }
 
     /// A header without x (or y) but with columns to choose from names the option that

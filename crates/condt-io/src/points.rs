@@ -1038,6 +1038,9 @@ pub fn read_points_with(
     // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
     // property: a Latin-1 or CP1252 export) do not matter; where a field that is read holds
     // them, the file is refused as not UTF-8 text, at that line.
+    // A UTF-16 byte order mark (Windows tools' "Unicode" text): no reader can make sense of the
+    // bytes after it, so the error says what the file is (a GIS user's review).
+    let utf16 = bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]);
     let (text, not_utf8) = lossy_text(bytes);
     let read = (|| -> Result<PointFile, IoError> {
         if let Some(columns) = &options.columns {
@@ -1200,7 +1203,12 @@ pub fn read_points_with(
     // Where the reader quotes the replaced bytes (U+FFFD), the line's problem is them; where it
     // names another problem on such a line, that stands, with a word on the bytes.
     read.map_err(|mut err| {
-        if let (Some(line), IoErrorKind::Content(message)) = (err.line, &mut err.kind) {
+        if let (true, IoErrorKind::Content(message)) = (utf16, &mut err.kind) {
+            *message = "UTF-16 text (the file starts with its byte order mark): condt reads \
+                        UTF-8; save the file as UTF-8"
+                .to_string();
+            err.line = Some(1);
+        } else if let (Some(line), IoErrorKind::Content(message)) = (err.line, &mut err.kind) {
             if message.contains('\u{fffd}') {
                 *message = "not UTF-8 text".to_string();
             } else if not_utf8.binary_search(&line).is_ok() {

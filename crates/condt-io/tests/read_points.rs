@@ -897,3 +897,40 @@ fn a_refused_type_is_told_on_its_own_line() {
         assert!(message.contains("only Point and MultiPoint"), "{message}");
     }
 }
+
+/// UTF-16 text (a byte order mark, then two bytes a character) is told as such, at line 1, in
+/// every text format, instead of as a first field no number reader makes sense of.
+#[test]
+fn utf16_text_is_told_as_such() {
+    let utf16 = |text: &str, big_endian: bool| -> Vec<u8> {
+        let mut bytes = if big_endian {
+            vec![0xfe, 0xff]
+        } else {
+            vec![0xff, 0xfe]
+        };
+        for unit in text.encode_utf16() {
+            let pair = if big_endian {
+                unit.to_be_bytes()
+            } else {
+                unit.to_le_bytes()
+            };
+            bytes.extend(pair);
+        }
+        bytes
+    };
+    for (name, text) in [
+        ("points.txt", "0 0\n1 0\n0 1\n"),
+        ("points.csv", "x,y\n0,0\n1,0\n0,1\n"),
+        (
+            "points.geojson",
+            "{\"type\": \"MultiPoint\", \"coordinates\": [[0, 0], [1, 0]]}\n",
+        ),
+    ] {
+        for big_endian in [false, true] {
+            let file = TempFile::new(name, &utf16(text, big_endian));
+            let (at, message) = content_error(file.read());
+            assert_eq!(at, Some(1), "{message}");
+            assert!(message.contains("UTF-16 text"), "{name}: {message}");
+        }
+    }
+}
