@@ -327,8 +327,9 @@ GIS reads an output from other inputs as longitude and latitude",
         negatable: false,
         value: None,
         help: "on standard error, one line `condt: time STEP SECONDS s` per step:
-read, earlier-passes (when smoothing ran), triangulation, each
-stage of the last pass, curves, other, write, total",
+read, earlier-passes (when smoothing ran; its line ends in a note in
+parentheses), triangulation, each stage of the last pass, curves,
+other, write, total",
     },
     Opt {
         id: ReconstructId::Quiet,

@@ -41,7 +41,7 @@ pub enum Error {
         value: f64,
     },
     /// Two points too close together for the reconstruction's stages to measure beside the set's
-    /// largest coordinate: nearer than 2^-450 (about 1e-135) times its magnitude, where squared
+    /// largest coordinate: nearer than 2^-450 (about 3.4e-136) times its magnitude, where squared
     /// lengths and their products leave the range of a double (`docs/predicates.md`, *Lengths
     /// for the ConDT stages*). Only the reconstruction refuses such a set;
     /// [`triangulate`](crate::triangulate()) takes any spread.
