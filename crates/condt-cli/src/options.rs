@@ -60,6 +60,37 @@ fn find<'t, Id>(table: &'t [Opt<Id>], arg: &Arg<'_>) -> Option<(&'t Opt<Id>, boo
     })
 }
 
+/// The long option of `table` (or its `no-` form) nearest `name` in edits, when one is within
+/// a third of the name's length, rounded up: a typo's likely meaning (`--quite`).
+fn nearest<Id>(table: &[Opt<Id>], name: &str) -> Option<String> {
+    let names = table.iter().flat_map(|opt| {
+        let negated = opt.negatable.then(|| format!("no-{}", opt.long));
+        core::iter::once(opt.long.to_string()).chain(negated)
+    });
+    let limit = (name.chars().count() + 2) / 3;
+    names
+        .map(|known| (edits(name, &known), known))
+        .filter(|(distance, _)| *distance <= limit)
+        .min_by_key(|(distance, _)| *distance)
+        .map(|(_, known)| known)
+}
+
+/// Levenshtein distance between `a` and `b`, by characters (one row of the table at a time).
+fn edits(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substitution = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitution.min(row[j] + 1).min(diagonal + 1);
+        }
+    }
+    row[b.len()]
+}
+
 fn written(arg: &Arg<'_>) -> String {
     match arg {
         Arg::Short(c) => format!("-{c}"),
@@ -91,7 +122,13 @@ pub(crate) fn lex<Id: Copy>(
         }
         let flag = written(&arg);
         let Some((opt, on)) = find(table, &arg) else {
-            return Err(usage(format!("{context}unknown option {flag}")));
+            let hint = match arg {
+                Arg::Long(name) => nearest(table, name)
+                    .map(|near| format!(" (did you mean --{near}?)"))
+                    .unwrap_or_default(),
+                _ => String::new(),
+            };
+            return Err(usage(format!("{context}unknown option {flag}{hint}")));
         };
         // A value is taken as it is, even when it starts with `-` (`--u -1`, `-o -`).
         let value = match opt.value {
@@ -287,6 +324,27 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(said.starts_with("score: unknown option --frob"), "{said}");
+        assert!(!said.contains("did you mean"), "{said}");
+    }
+
+    /// A typo of a long option is answered with the option it likely means (a power user's
+    /// review: `--quite`), the nearest within a third of its length, and none when nothing is
+    /// that near.
+    #[test]
+    fn a_mistyped_option_gets_the_nearest_one() {
+        for (typed, meant) in [
+            ("--outptu", "--output"),
+            ("--no-smoth", "--no-smooth"),
+            ("--smoth", "--smooth"),
+        ] {
+            let said = lex(&args(&[typed]), TABLE, "").unwrap_err().to_string();
+            assert!(
+                said.contains(&format!("(did you mean {meant}?)")),
+                "{typed}: {said}"
+            );
+        }
+        assert_eq!(edits("kitten", "sitting"), 3);
+        assert_eq!(edits("", "abc"), 3);
     }
 
     #[test]

@@ -285,7 +285,7 @@ impl EdgeFile {
         self.edges.push(edge);
     }
 
-    /// The library's words for `problem`, its point number as given: the library names the
+    /// The library's words for `problem`, its point number as given (cut, [`shortened`]): the library names the
     /// first end out of range, which is one no point number holds where it reads `usize::MAX`
     /// (as `condt.score` in Python names it).
     fn problem_text(&self, problem: EdgeProblem) -> String {
@@ -298,7 +298,9 @@ impl EdgeFile {
             .find(|(at, _, _)| *at == position)
             .map(|(_, _, text)| text.as_str());
         match given {
-            Some(text) if index == usize::MAX => format!("point {text} does not exist"),
+            Some(text) if index == usize::MAX => {
+                format!("point {} does not exist", shortened(text))
+            }
             _ => problem.to_string(),
         }
     }
@@ -498,4 +500,13 @@ fn as_text(s: &Score, problem: Option<&str>, [n, n_gt, n_out]: [usize; 3]) -> St
         let _ = writeln!(text, "malformed      {problem}");
     }
     text
+}
+
+/// A point number as given, cut after 40 characters: a number megabytes long must not fill the
+/// terminal (or the `malformed` field of the JSON), as the point readers cut a token.
+fn shortened(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        None => text.to_string(),
+        Some((cut, _)) => format!("{}… ({} characters)", &text[..cut], text.chars().count()),
+    }
 }

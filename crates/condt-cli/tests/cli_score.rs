@@ -898,3 +898,28 @@ fn score_notes_a_dropped_crs() {
     let out = condt(&[Path::new("score"), &points, &edges, &edges, Path::new("-q")]);
     assert!(out.status.success() && out.stderr.is_empty(), "{out:?}");
 }
+
+/// A point number megabytes long is cut in the messages, as the point readers cut a token: in
+/// the `malformed` field of an output's score and in a ground truth's error (a power user's
+/// review: a 5 MB token gave a 5 MB message).
+#[test]
+fn a_huge_point_number_is_cut_in_messages() {
+    let dir = scratch_dir();
+    let points = write(dir.path(), "p.txt", "0 0\n1 0\n0 1\n");
+    let truth = write(dir.path(), "t.edges", "0 1\n1 2\n");
+    let huge = format!("0 1\n{} 2\n", "9".repeat(100_000));
+    let output = write(dir.path(), "o.edges", &huge);
+    let json = score_json(&points, &output, &truth);
+    assert!(json.len() < 1_000, "{} bytes", json.len());
+    assert!(
+        json.contains("(100000 characters) does not exist"),
+        "{json}"
+    );
+    let refused = condt(&[Path::new("score"), &points, &truth, &output]);
+    assert!(!refused.status.success());
+    let message = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        message.len() < 1_000 && message.contains("(100000 characters)"),
+        "{message}"
+    );
+}
