@@ -67,7 +67,7 @@ fn nearest<Id>(table: &[Opt<Id>], name: &str) -> Option<String> {
         let negated = opt.negatable.then(|| format!("no-{}", opt.long));
         core::iter::once(opt.long.to_string()).chain(negated)
     });
-    let limit = (name.chars().count() + 2) / 3;
+    let limit = name.chars().count().div_ceil(3);
     names
         .map(|known| (edits(name, &known), known))
         .filter(|(distance, _)| *distance <= limit)
