@@ -105,27 +105,26 @@ fn write_data(
         libm::ldexp(scale, exponent - parts.trailing_zeros() as i32)
     )?;
     for (k, p) in points.iter().enumerate() {
-        let sep = if k == 0 { "" } else { "," };
-        write!(
-            out,
-            "{sep}{},{}",
-            Short((p.x - min.x) / scale, POSITION_DIGITS),
-            Short((p.y - min.y) / scale, POSITION_DIGITS)
-        )?;
+        if k > 0 {
+            out.write_all(b",")?;
+        }
+        Short((p.x - min.x) / scale, POSITION_DIGITS).write_to(out)?;
+        out.write_all(b",")?;
+        Short((p.y - min.y) / scale, POSITION_DIGITS).write_to(out)?;
     }
     // The smoothing passes that ran (0 when none): the positions above are the moved ones.
     let (passes, moved) = result.smoothing().map_or((0, 0), |s| (s.passes, s.moved));
     write!(out, "],\"smoothing\":[{passes},{moved}],\"unused\":")?;
-    write_list(out, result.unused().iter().copied())?;
+    write_list(out, result.unused().iter().map(|&i| i as u64))?;
     write!(out, ",\"degree\":")?;
-    write_list(out, (0..n).map(|i| result.degree(i)))?;
+    write_list(out, (0..n).map(|i| result.degree(i) as u64))?;
     // Exact duplicates: each later point and the first at its position, which carries their
     // edges (a duplicate shares its point's fate), for the details panel to say so.
     let tri = result.triangulation();
     write!(out, ",\"merged\":")?;
-    write_list(out, tri.merged().flatten())?;
+    write_list(out, tri.merged().flatten().map(|i| i as u64))?;
     write!(out, ",\"edges\":")?;
-    write_list(out, stories.iter().flat_map(|s| s.edge))?;
+    write_list(out, stories.iter().flat_map(|s| s.edge).map(|i| i as u64))?;
     // Per edge and end: 0 not Delaunay, 1 shortest, 2 second, k >= 3 the rank.
     write!(out, ",\"ends\":")?;
     write_list(
@@ -137,7 +136,7 @@ fn write_data(
                 EndChoice::NotDelaunay => 0,
                 EndChoice::Shortest => 1,
                 EndChoice::Second { .. } => 2,
-                EndChoice::Later { rank } => rank,
+                EndChoice::Later { rank } => rank as u64,
             }),
     )?;
     // Per second-shortest end: edge index, end (0 or 1), ratio, bound, kept (0 or 1).
@@ -146,15 +145,16 @@ fn write_data(
     for (k, story) in stories.iter().enumerate() {
         for (side, choice) in story.ends.iter().enumerate() {
             if let EndChoice::Second { ratio, bound, kept } = *choice {
-                let sep = if first { "" } else { "," };
+                if !first {
+                    out.write_all(b",")?;
+                }
                 first = false;
-                write!(
-                    out,
-                    "{sep}{k},{side},{},{},{}",
-                    Short(ratio, RATIO_DIGITS),
-                    Short(bound, RATIO_DIGITS),
-                    u8::from(kept)
-                )?;
+                write_integer(out, k as u64)?;
+                out.write_all(if side == 0 { b",0," } else { b",1," })?;
+                Short(ratio, RATIO_DIGITS).write_to(out)?;
+                out.write_all(b",")?;
+                Short(bound, RATIO_DIGITS).write_to(out)?;
+                out.write_all(if kept { b",1" } else { b",0" })?;
             }
         }
     }
@@ -195,15 +195,19 @@ fn write_data(
                 Reason::Spike => (18, 0.0, 0.0),
                 Reason::Detour { from, to, .. } => (19, from as f64, to as f64),
             };
-            let sep = if first { "" } else { "," };
+            if !first {
+                out.write_all(b",")?;
+            }
             first = false;
-            write!(
-                out,
-                "{sep}{k},{stage},{},{code},{},{}",
-                u8::from(change.added),
-                Short(x, LENGTH_DIGITS),
-                Short(y, LENGTH_DIGITS)
-            )?;
+            write_integer(out, k as u64)?;
+            out.write_all(b",")?;
+            write_integer(out, stage as u64)?;
+            out.write_all(if change.added { b",1," } else { b",0," })?;
+            write_integer(out, code)?;
+            out.write_all(b",")?;
+            Short(x, LENGTH_DIGITS).write_to(out)?;
+            out.write_all(b",")?;
+            Short(y, LENGTH_DIGITS).write_to(out)?;
         }
     }
     // Layers: their names, and per edge one number whose bit 0 says it is a Delaunay edge and
@@ -212,18 +216,8 @@ fn write_data(
     for stage in &stages {
         write!(out, ",\"{}\"", stage.title())?;
     }
-    let graphs: Vec<Vec<[usize; 2]>> = result.stages().map(|r| r.graph.edges()).collect();
-    let membership = stories.iter().map(|story| {
-        let delaunay = u64::from(!story.ends.contains(&EndChoice::NotDelaunay));
-        graphs
-            .iter()
-            .enumerate()
-            .fold(delaunay, |bits, (k, edges)| {
-                bits | u64::from(edges.binary_search(&story.edge).is_ok()) << (k + 1)
-            })
-    });
     write!(out, "],\"member\":")?;
-    write_list(out, membership)?;
+    write_list(out, membership(result, stories, &stages))?;
     write!(out, ",\"stageNames\":[")?;
     for (k, stage) in stages.iter().enumerate() {
         let sep = if k == 0 { "" } else { "," };
@@ -276,34 +270,149 @@ const RATIO_DIGITS: usize = 9;
 /// Of lengths and thresholds, shown with six significant digits.
 const LENGTH_DIGITS: usize = 6;
 
-fn write_list<T: core::fmt::Display>(
-    out: &mut impl Write,
-    items: impl IntoIterator<Item = T>,
-) -> io::Result<()> {
+/// Per story, the layers that have its edge (bit 0 the triangulation, bit `k + 1` stage `k`'s
+/// graph). Only the first stage's graph is rebuilt and searched: a later stage's graph differs
+/// from the one before it by exactly the edges whose stories list a change by that stage
+/// ([`Reconstruction::provenance`] compares the two graphs to list them), so its bit is the one
+/// before, flipped where the story has such a change. Searching every stage's graph for every
+/// edge took most of the page's time beside the stories themselves at a million points.
+fn membership<'s>(
+    result: &Reconstruction,
+    stories: &'s [EdgeStory],
+    stages: &'s [Stage],
+) -> impl Iterator<Item = u64> + 's {
+    let first: Vec<[usize; 2]> = result
+        .stages()
+        .next()
+        .map_or_else(Vec::new, |r| r.graph.edges());
+    // Both sorted by edge: one walk along the first graph.
+    let mut in_first = first.into_iter().peekable();
+    stories.iter().map(move |story| {
+        let mut bits = u64::from(!story.ends.contains(&EndChoice::NotDelaunay));
+        if stages.is_empty() {
+            return bits;
+        }
+        let mut member = in_first.next_if_eq(&story.edge).is_some();
+        bits |= u64::from(member) << 1;
+        for (k, stage) in stages.iter().enumerate().skip(1) {
+            member ^= story.changes.iter().any(|c| c.stage == *stage);
+            bits |= u64::from(member) << (k + 1);
+        }
+        bits
+    })
+}
+
+/// The integers `items` as a JSON list.
+fn write_list(out: &mut impl Write, items: impl IntoIterator<Item = u64>) -> io::Result<()> {
     out.write_all(b"[")?;
     for (k, item) in items.into_iter().enumerate() {
         if k > 0 {
             out.write_all(b",")?;
         }
-        write!(out, "{item}")?;
+        write_integer(out, item)?;
     }
     out.write_all(b"]")
+}
+
+/// `value` in decimal, as `write!(out, "{value}")` writes it, without the formatting machinery's
+/// cost per call (tens of millions of numbers at a million points).
+fn write_integer(out: &mut impl Write, mut value: u64) -> io::Result<()> {
+    let mut digits = [0u8; 20];
+    let mut at = digits.len();
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (value % 10) as u8;
+        value /= 10;
+        if value == 0 {
+            break;
+        }
+    }
+    out.write_all(&digits[at..])
 }
 
 /// A number with the given number of significant digits, as JSON (which has no NaN or infinity: those become 0,
 /// and cannot occur for finite input).
 struct Short(f64, usize);
 
+impl Short {
+    /// The number written as [`Display`](core::fmt::Display) writes it.
+    fn write_to(&self, out: &mut impl Write) -> io::Result<()> {
+        let mut text = Text::default();
+        match self.spell(&mut text) {
+            Some(spelled) => out.write_all(spelled.as_bytes()),
+            None => write!(out, "{self}"),
+        }
+    }
+
+    /// The number's text in `text`'s buffer, without allocating; `None` where a spelling is
+    /// longer than the buffer (numbers far from 1, which the `Display` below spells).
+    fn spell<'t>(&self, text: &'t mut Text) -> Option<&'t str> {
+        use core::fmt::Write as _;
+        let (x, digits) = (self.0, self.1);
+        if !x.is_finite() {
+            return Some("0");
+        }
+        if x == x.trunc() && x.abs() < 1e15 {
+            write!(text, "{}", x as i64).ok()?;
+            return text.as_str(0..text.len);
+        }
+        // Shortest of the two spellings that keep `digits` significant digits, both in `text`.
+        write!(text, "{:.*}", digits_after_point(x, digits), x).ok()?;
+        let plain_end = text.len;
+        let plain = text.as_str(0..plain_end)?;
+        let plain_len = plain.trim_end_matches('0').trim_end_matches('.').len();
+        // The exponent spelling has a sign, `digits` digits, a point past the first, an `e` and
+        // at least one exponent digit: a plain spelling no longer needs no comparison.
+        let sign = usize::from(x.is_sign_negative());
+        let shortest_exp = sign + digits + usize::from(digits > 1) + 2;
+        if plain_len > shortest_exp {
+            write!(text, "{:.*e}", digits - 1, x).ok()?;
+            if text.len - plain_end < plain_len {
+                return text.as_str(plain_end..text.len);
+            }
+        }
+        text.as_str(0..plain_len)
+    }
+}
+
+/// A stack buffer `write!` fills (an error once full), for [`Short`]'s spellings.
+struct Text {
+    bytes: [u8; 96],
+    len: usize,
+}
+
+impl Default for Text {
+    fn default() -> Self {
+        Text {
+            bytes: [0; 96],
+            len: 0,
+        }
+    }
+}
+
+impl Text {
+    fn as_str(&self, range: core::ops::Range<usize>) -> Option<&str> {
+        core::str::from_utf8(&self.bytes[range]).ok()
+    }
+}
+
+impl core::fmt::Write for Text {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        let end = self.len + s.len();
+        let room = self.bytes.get_mut(self.len..end).ok_or(core::fmt::Error)?;
+        room.copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
+    }
+}
+
 impl core::fmt::Display for Short {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         let (x, digits) = (self.0, self.1);
-        if !x.is_finite() {
-            return f.write_str("0");
+        if let Some(spelled) = self.spell(&mut Text::default()) {
+            return f.write_str(spelled);
         }
-        if x == x.trunc() && x.abs() < 1e15 {
-            return write!(f, "{}", x as i64);
-        }
-        // Shortest of the two spellings that keep `digits` significant digits.
+        // Too long for the buffer: the same spellings, allocated.
         let plain = format!("{:.*}", digits_after_point(x, digits), x);
         let plain = plain.trim_end_matches('0').trim_end_matches('.');
         let exp = format!("{:.*e}", digits - 1, x);
@@ -357,6 +466,49 @@ mod tests {
         let x = 1.0 / 3.0;
         let back: f64 = Short(x, 9).to_string().parse().unwrap();
         assert!((back - x).abs() < 1e-9);
+    }
+
+    /// The stack-buffer spelling writes what the allocating one wrote before it (which picked
+    /// the shorter of the two spellings after making both), over numbers of every magnitude.
+    #[test]
+    fn the_buffered_spelling_is_the_allocating_one() {
+        fn reference(x: f64, digits: usize) -> String {
+            if !x.is_finite() {
+                return "0".into();
+            }
+            if x == x.trunc() && x.abs() < 1e15 {
+                return (x as i64).to_string();
+            }
+            let plain = format!("{:.*}", digits_after_point(x, digits), x);
+            let plain = plain.trim_end_matches('0').trim_end_matches('.');
+            let exp = format!("{:.*e}", digits - 1, x);
+            if plain.len() <= exp.len() {
+                plain.to_string()
+            } else {
+                exp
+            }
+        }
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for k in 0..40_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            // Random bit patterns (every magnitude), and numbers near 1 as positions are.
+            let x = if k % 2 == 0 {
+                f64::from_bits(state)
+            } else {
+                (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 0.5
+            };
+            for digits in [POSITION_DIGITS, RATIO_DIGITS, LENGTH_DIGITS, 1] {
+                let mut written = Vec::new();
+                Short(x, digits).write_to(&mut written).unwrap();
+                assert_eq!(
+                    String::from_utf8(written).unwrap(),
+                    reference(x, digits),
+                    "{x:e}"
+                );
+            }
+        }
     }
 
     #[test]

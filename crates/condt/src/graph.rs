@@ -162,15 +162,21 @@ impl<'t> Graph<'t> {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn edges(&self) -> Vec<[usize; 2]> {
+        self.edges_u32()
+            .into_iter()
+            .map(|[a, b]| [a as usize, b as usize])
+            .collect()
+    }
+
+    /// [`Graph::edges`] as 32-bit input positions: half the memory, for lists held at once
+    /// (the provenance holds every stage's).
+    pub(crate) fn edges_u32(&self) -> Vec<[u32; 2]> {
         let tri = self.tri;
         let pairs = self.edges.iter().map(|&[a, b]| {
             let (a, b) = (tri.input_of(a) as u32, tri.input_of(b) as u32);
             [a.min(b), a.max(b)]
         });
         sort_pairs(tri.num_points(), pairs, self.edges.len(), |a| a as usize)
-            .into_iter()
-            .map(|[a, b]| [a as usize, b as usize])
-            .collect()
     }
 
     /// The degree of every input point (exact duplicates share their point's degree).

@@ -13,6 +13,7 @@ use crate::stages::local_outliers::{rule_evidence, LocalRule};
 use crate::stages::outliers::{iqr_thresholds, IqrRule};
 use crate::stages::proximity::{end_choices, Uniformity};
 use crate::stages::Stage;
+use crate::threads;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
@@ -185,74 +186,176 @@ impl Reconstruction {
     /// ```
     pub fn provenance(&self) -> Vec<EdgeStory> {
         let tri = self.triangulation();
-        let reports: Vec<_> = self.stages().collect();
-        let graphs: Vec<Vec<[usize; 2]>> = reports.iter().map(|r| r.graph.edges()).collect();
-        let mut all: Vec<[usize; 2]> = tri
-            .edges()
-            .chain(graphs.iter().flatten().copied())
-            .collect();
-        all.sort_unstable();
-        all.dedup();
+        let parallel = self.params().parallel;
+        // Each stage's graph is rebuilt from the final one on its own (walking back through the
+        // later stages' records), so the reports and their sorted edge lists are independent
+        // pieces of work, made on rayon's threads when `parallel` (the same lists either way).
+        let ks: Vec<usize> = (0..self.stage_times().len()).collect();
+        let reports: Vec<StageReport<'_>> = threads::mapped(&ks, |&k| self.report(k), parallel);
+        // 32-bit positions, as the graphs hold them: every stage's list is held at once.
+        let graphs: Vec<Vec<[u32; 2]>> =
+            threads::mapped(&reports, |r| r.graph.edges_u32(), parallel);
+        let all = all_edges(tri, &graphs, parallel);
         // A baseline's run does not check `u` (it reads none): where its `u` is not one Algorithm 1
         // accepts, the ends are told with the default.
         let uniformity = match self.params().uniformity {
             given if given.check().is_ok() => given,
             _ => Uniformity::default(),
         };
-        let ends = ends_of(tri, &all, uniformity);
+        // The ends (Algorithm 1's view) and the later stages' changes read the same lists and
+        // write nothing shared: both at once on rayon's threads, each stage's changes apart.
+        let later = ks.get(1..).unwrap_or(&[]);
+        let (ends, staged) = threads::both(
+            parallel,
+            || ends_of(tri, &all, uniformity, parallel),
+            || {
+                threads::mapped(
+                    later,
+                    |&k| stage_changes(self, &reports, &graphs, &all, k),
+                    parallel,
+                )
+            },
+        );
+        // What the stories need of the graphs, read before the stories are made: the graphs and
+        // reports are gone before the largest list comes (peak memory).
         let last = graphs.last().map(Vec::as_slice).unwrap_or(&[]);
+        let kept: Vec<bool> = all.iter().map(|&e| contains(last, e)).collect();
+        let baseline = reports
+            .first()
+            .filter(|r| r.stage != Stage::Proximity)
+            .map(|first| {
+                let chosen = all.iter().map(|&e| contains(&graphs[0], e));
+                (first.stage, chosen.collect::<Vec<bool>>())
+            });
+        drop((graphs, reports));
         let mut stories: Vec<EdgeStory> = all
             .iter()
             .zip(ends)
-            .map(|(&edge, ends)| EdgeStory {
+            .zip(kept)
+            .map(|((&edge, ends), kept)| EdgeStory {
                 edge,
                 ends,
                 changes: Vec::new(),
-                kept: last.binary_search(&edge).is_ok(),
+                kept,
             })
             .collect();
-        if let Some(first) = reports.first().filter(|r| r.stage != Stage::Proximity) {
-            for (story, edge) in stories.iter_mut().zip(&all) {
+        if let Some((stage, chosen)) = baseline {
+            for (story, added) in stories.iter_mut().zip(chosen) {
                 // Chosen or not, the baseline decided every edge: a change either way, so that
                 // no story reads as if Algorithm 1's ends had decided it.
                 story.changes.push(Change {
-                    stage: first.stage,
-                    added: graphs[0].binary_search(edge).is_ok(),
+                    stage,
+                    added,
                     reason: Reason::Baseline,
                 });
             }
         }
-        for k in 1..reports.len() {
-            let (before, after) = (&graphs[k - 1], &graphs[k]);
-            let explain = Explainer::new(self, &reports[..=k], before);
-            // `all` holds every graph's edges, all three sorted: one walk along each tells which
-            // edges a stage changed, in place of two binary searches per edge and stage (speed:
-            // docs/perf-log.md).
-            let (mut in_before, mut in_after) = (before.iter().peekable(), after.iter().peekable());
-            for (story, &edge) in stories.iter_mut().zip(&all) {
-                let was = in_before.next_if_eq(&&edge).is_some();
-                let is = in_after.next_if_eq(&&edge).is_some();
-                if was != is {
-                    story.changes.push(Change {
-                        stage: reports[k].stage,
-                        added: is,
-                        reason: explain.reason(edge, is),
-                    });
-                }
+        // In the order the stages ran, as each story lists its changes.
+        for changes in staged {
+            for (position, change) in changes {
+                stories[position].changes.push(change);
             }
-            debug_assert!(in_before.next().is_none() && in_after.next().is_none());
         }
         stories
     }
 }
 
+/// The edge `[a, b]` (input positions) as the graphs list it, 32-bit.
+fn narrow([a, b]: [usize; 2]) -> [u32; 2] {
+    // `Graph::edges_u32` gives every input position as 32 bits: each fits.
+    [a as u32, b as u32]
+}
+
+/// Whether the sorted `graph` has `edge`.
+fn contains(graph: &[[u32; 2]], edge: [usize; 2]) -> bool {
+    graph.binary_search(&narrow(edge)).is_ok()
+}
+
+/// Every edge of the triangulation or of a stage's graph (each sorted), once, sorted. The graphs'
+/// edges are nearly all Delaunay edges: only the few others (a stage's additions) are sorted in
+/// with the triangulation's, in place of sorting every graph's edges with them (a list six times
+/// longer at a million points; speed: docs/perf-log.md).
+fn all_edges(tri: &Triangulation, graphs: &[Vec<[u32; 2]>], parallel: bool) -> Vec<[usize; 2]> {
+    let mut delaunay: Vec<[usize; 2]> = tri.edges().collect();
+    threads::sort_unstable_by_key(&mut delaunay, |&edge| edge, parallel);
+    delaunay.dedup();
+    let mut others = Vec::new();
+    for graph in graphs {
+        // Both sorted: one walk along each finds the graph's edges the triangulation lacks.
+        let mut at = delaunay.iter().peekable();
+        for &[a, b] in graph {
+            let edge = [a as usize, b as usize];
+            while at.next_if(|&&e| e < edge).is_some() {}
+            if at.peek() != Some(&&edge) {
+                others.push(edge);
+            }
+        }
+    }
+    if others.is_empty() {
+        return delaunay;
+    }
+    others.sort_unstable();
+    others.dedup();
+    // The two sorted lists, disjoint, merged.
+    let mut all = Vec::with_capacity(delaunay.len() + others.len());
+    let mut others = others.into_iter().peekable();
+    for edge in delaunay {
+        while let Some(other) = others.next_if(|&o| o < edge) {
+            all.push(other);
+        }
+        all.push(edge);
+    }
+    all.extend(others);
+    all
+}
+
+/// The changes the `k`-th stage (`k` at least 1) made, as `(position in all, change)` in the
+/// order of `all`: the edges in one of `graphs[k - 1]` and `graphs[k]` but not the other.
+fn stage_changes(
+    result: &Reconstruction,
+    reports: &[StageReport<'_>],
+    graphs: &[Vec<[u32; 2]>],
+    all: &[[usize; 2]],
+    k: usize,
+) -> Vec<(usize, Change)> {
+    let (before, after) = (&graphs[k - 1], &graphs[k]);
+    let explain = Explainer::new(result, &reports[..=k], before);
+    // `all` holds every graph's edges, all three sorted: one walk along each tells which edges a
+    // stage changed, in place of two binary searches per edge and stage (speed:
+    // docs/perf-log.md).
+    let (mut in_before, mut in_after) = (before.iter().peekable(), after.iter().peekable());
+    let mut changes = Vec::new();
+    for (position, &edge) in all.iter().enumerate() {
+        let narrow = narrow(edge);
+        let was = in_before.next_if_eq(&&narrow).is_some();
+        let is = in_after.next_if_eq(&&narrow).is_some();
+        if was != is {
+            let change = Change {
+                stage: reports[k].stage,
+                added: is,
+                reason: explain.reason(edge, is),
+            };
+            changes.push((position, change));
+        }
+    }
+    debug_assert!(in_before.next().is_none() && in_after.next().is_none());
+    changes
+}
+
+/// Points a piece of [`ends_of`]'s work covers (their rings read on one thread).
+const ENDS_CHUNK: usize = 1 << 12;
+/// Ranges of [`ENDS_CHUNK`] points answered at once (a few per thread).
+const ENDS_WAVE: usize = 16;
+
 /// How each end of each of `edges` saw it in Algorithm 1 ([`EndChoice`]), the edges at one point
 /// answered together ([`end_choices`] sorts a ring once): the ends listed point by point by a
-/// counting sort, O(n + edges), then each point's ring read once.
+/// counting sort, O(n + edges), then each point's ring read once, ranges of points on rayon's
+/// threads when `parallel` (each point's answers are its own: the same either way).
 fn ends_of(
     tri: &Triangulation,
     edges: &[[usize; 2]],
     uniformity: Uniformity,
+    parallel: bool,
 ) -> Vec<[EndChoice; 2]> {
     let mut start = alloc::vec![0usize; tri.num_points() + 1];
     for &[a, b] in edges {
@@ -273,16 +376,35 @@ fn ends_of(
         }
     }
     drop(next);
-    let mut ends = alloc::vec![[EndChoice::NotDelaunay; 2]; edges.len()];
-    let mut ring = Vec::new();
-    for point in 0..tri.num_points() {
-        let here = &at_point[start[point]..start[point + 1]];
-        if here.is_empty() {
-            continue;
+    // The answers in the order of `at_point`, one list per range of points, a wave of ranges at
+    // a time (all answers at once would add 48 bytes per edge to the peak).
+    let ranges: Vec<usize> = (0..tri.num_points()).step_by(ENDS_CHUNK).collect();
+    let answer = |&first: &usize| {
+        let points = first..(first + ENDS_CHUNK).min(tri.num_points());
+        let mut answers = Vec::with_capacity(start[points.end] - start[points.start]);
+        let mut ring = Vec::new();
+        for point in points {
+            let here = &at_point[start[point]..start[point + 1]];
+            if here.is_empty() {
+                continue;
+            }
+            let others = here.iter().map(|&(other, _)| tri.vertex(other));
+            answers.extend(end_choices(
+                tri,
+                tri.vertex(point),
+                others,
+                uniformity,
+                &mut ring,
+            ));
         }
-        let others = here.iter().map(|&(other, _)| tri.vertex(other));
-        let choices = end_choices(tri, tri.vertex(point), others, uniformity, &mut ring);
-        for (&(_, slot), choice) in here.iter().zip(choices) {
+        answers
+    };
+    let mut ends = alloc::vec![[EndChoice::NotDelaunay; 2]; edges.len()];
+    let mut slots = at_point.iter().map(|&(_, slot)| slot);
+    for wave in ranges.chunks(ENDS_WAVE) {
+        let answers = threads::mapped(wave, answer, parallel);
+        // The answers first: `zip` asks its first iterator first, so no slot is skipped.
+        for (choice, slot) in answers.into_iter().flatten().zip(slots.by_ref()) {
             ends[slot / 2][slot % 2] = choice;
         }
     }
@@ -320,7 +442,7 @@ fn in_input_units(tri: &Triangulation, length: f64) -> f64 {
 
 impl<'a> Explainer<'a> {
     /// For the last of `reports` (the stages up to it), `before` its input in input positions.
-    fn new(result: &'a Reconstruction, reports: &[StageReport<'_>], before: &[[usize; 2]]) -> Self {
+    fn new(result: &'a Reconstruction, reports: &[StageReport<'_>], before: &[[u32; 2]]) -> Self {
         let tri = result.triangulation();
         let [.., input, output] = reports else {
             unreachable!("a stage after the first")
@@ -332,7 +454,7 @@ impl<'a> Explainer<'a> {
             Stage::Outliers if !before.is_empty() => {
                 let lengths: Vec<f64> = before
                     .iter()
-                    .map(|&[a, b]| stage_length2(tri, a, b))
+                    .map(|&[a, b]| stage_length2(tri, a as usize, b as usize))
                     .collect();
                 let rule = IqrRule {
                     factor: result.params().outlier_factor.unwrap_or(0.0),
@@ -518,6 +640,30 @@ mod tests {
     use alloc::format;
     use alloc::string::{String, ToString};
     use alloc::vec;
+
+    /// The stories are the same on one thread and on rayon's: uniform points, enough for the
+    /// rings to be read in several waves of ranges ([`ENDS_CHUNK`], [`ENDS_WAVE`]), and the noisy
+    /// scene, whose stages change edges for many reasons.
+    #[test]
+    fn the_stories_are_the_same_sequentially_and_in_parallel() {
+        let uniform = crate::test_rng::Xorshift::new(7).unit_points(ENDS_CHUNK * ENDS_WAVE + 5000);
+        for (points, params) in [
+            (uniform, Params::default()),
+            (noisy_scene(), Params::default()),
+            (
+                noisy_scene(),
+                Params::default().with_method(crate::Method::Crust),
+            ),
+        ] {
+            let told = |parallel: bool| {
+                let params = params.with_parallel(parallel);
+                reconstruct(&points, &params).unwrap().provenance()
+            };
+            let sequential = told(false);
+            assert!(sequential.iter().any(|s| !s.changes.is_empty()));
+            assert_eq!(sequential, told(true));
+        }
+    }
 
     /// The detours step's reason names the detour's ends and its points, for each of its edges.
     #[test]

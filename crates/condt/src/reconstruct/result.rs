@@ -187,7 +187,7 @@ impl Reconstruction {
     }
 
     /// The report of the `k`-th stage that ran, its graph rebuilt from the final one.
-    pub(super) fn report(&self, k: usize) -> StageReport<'_> {
+    pub(crate) fn report(&self, k: usize) -> StageReport<'_> {
         let first = || first_graph(&self.triangulation, &self.params);
         let edges = self.history.output_of(&self.final_edges, k, &first);
         self.history.records[k].report(k, Graph::new(&self.triangulation, edges))
