@@ -122,9 +122,9 @@ use triangulation::Triangulation;
 /// no points). A C-contiguous float64 ndarray is read where it lies, without a copy (do not
 /// change it from another thread during the call); anything else is converted first. The work
 /// runs without the GIL, so other Python threads run meanwhile; Ctrl-C (``KeyboardInterrupt``,
-/// or an exception from another signal handler) stops it at the end of the step it is in: the
-/// triangulation, or a stage of one of its runs (on a million scattered points the first takes
-/// about 0.3 s, each later one less). The result keeps its own copy of
+/// or an exception from another signal handler) stops it at the end of the stage it is in, or
+/// after the first stage when it comes during the triangulation (about 0.3 s on a million
+/// scattered points); in a forked child the call runs to its end. The result keeps its own copy of
 /// the coordinates, made once the work is done: changing the array afterwards changes nothing
 /// in it.
 ///
@@ -190,7 +190,7 @@ fn reconstruct(
     // block of the pipeline).
     let (result, owned) = crate::detached(py, || {
         within_call(|| {
-            let result = interruptible(Pipeline::new(points, &params), points)?;
+            let result = interruptible(points, &params)?;
             Ok::<_, PyErr>((result, points.to_vec()))
         })
     })??;
@@ -201,13 +201,16 @@ fn reconstruct(
 /// run between its steps once [`SIGNALS_EVERY`] has passed since the last time: Ctrl-C
 /// (`KeyboardInterrupt`) stops a long call at the next step, not after the whole run (a user
 /// review waited 16 s for one on 1M scattered points). The triangulation, the pipeline's first
-/// step, runs to its end.
+/// step, runs to its end; the clock starts before it, so a signal during it is acted on at the
+/// end of the first stage. Handlers run on the main thread only: in a forked child whose work
+/// runs on its own pool's thread ([`on_live_threads`]) the checks find none, and the call runs
+/// to its end as before.
 fn interruptible(
-    pipeline: Result<Pipeline, condt::Error>,
     points: &[condt::Point],
+    params: &condt::Params,
 ) -> PyResult<condt::Reconstruction> {
-    let mut pipeline = pipeline.map_err(|err| library_error(err, points))?;
     let mut checked = Instant::now();
+    let mut pipeline = Pipeline::new(points, params).map_err(|err| library_error(err, points))?;
     while pipeline
         .step()
         .map_err(|err| library_error(err, points))?

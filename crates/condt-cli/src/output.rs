@@ -566,7 +566,7 @@ fn write_in_place(
     write(&mut bytes).map_err(|e| file_error(shown, e))?;
     // A signal that would end the run waits until the file is rewritten whole: the old content
     // or the new, never the new one's start on the old one's rest (a power user's review:
-    // SIGTERM midway left 2 MiB of triangles before 98 MB of the old file).
+    // SIGTERM midway left 2 MiB of triangles before the rest of the old file).
     let _deferred = signals::defer();
     let mut file = fs::OpenOptions::new()
         .write(true)

@@ -360,7 +360,7 @@ impl Short {
         write!(text, "{:.*}", digits_after_point(x, digits), x).ok()?;
         let plain_end = text.len;
         let plain = text.as_str(0..plain_end)?;
-        let plain_len = plain.trim_end_matches('0').trim_end_matches('.').len();
+        let plain_len = without_trailing_zeros(plain).len();
         // The exponent spelling has a sign, `digits` digits, a point past the first, an `e` and
         // at least one exponent digit: a plain spelling no longer needs no comparison.
         let sign = usize::from(x.is_sign_negative());
@@ -414,13 +414,23 @@ impl core::fmt::Display for Short {
         }
         // Too long for the buffer: the same spellings, allocated.
         let plain = format!("{:.*}", digits_after_point(x, digits), x);
-        let plain = plain.trim_end_matches('0').trim_end_matches('.');
+        let plain = without_trailing_zeros(&plain);
         let exp = format!("{:.*e}", digits - 1, x);
         if plain.len() <= exp.len() {
             f.write_str(plain)
         } else {
             f.write_str(&exp)
         }
+    }
+}
+
+/// `plain` without the zeros after its decimal point's last significant digit (and the point,
+/// if none is left); a number without a point keeps its zeros (123450, not 12345).
+fn without_trailing_zeros(plain: &str) -> &str {
+    if plain.contains('.') {
+        plain.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        plain
     }
 }
 
@@ -460,6 +470,10 @@ mod tests {
             (1.25e-12, "1.250000e-12"),
             (f64::NAN, "0"),
             (2.75, "2.75"),
+            // Large numbers keep the zeros before their point (a reviewer's probe: 12345).
+            (1234500.3, "1234500"),
+            (20000000.5, "20000000"),
+            (-3000000.25, "-3000000"),
         ] {
             assert_eq!(Short(x, 7).to_string(), text);
         }
@@ -480,7 +494,12 @@ mod tests {
                 return (x as i64).to_string();
             }
             let plain = format!("{:.*}", digits_after_point(x, digits), x);
-            let plain = plain.trim_end_matches('0').trim_end_matches('.');
+            // Zeros are cut only after a point (before 2026-12-06 they were cut from a number
+            // without one too: 123450.3 with six digits read 12345).
+            let plain = match plain.contains('.') {
+                true => plain.trim_end_matches('0').trim_end_matches('.'),
+                false => &plain,
+            };
             let exp = format!("{:.*e}", digits - 1, x);
             if plain.len() <= exp.len() {
                 plain.to_string()

@@ -326,7 +326,7 @@ mod tests {
         let root = components(pts.len(), &edges);
         let smooth = |v| {
             let [y, z] = graph.first_two(v);
-            smooth_and_regular(&tri, v, y, z)
+            passes(&tri, v, y, z)
         };
         let counts =
             |size: &[u32], guard| separated_counts_until(&tri, &graph, &root, Some((size, guard)));

@@ -19,7 +19,7 @@ mod scale;
 use crate::error::Error;
 use crate::geometry::{Point, Scale};
 use crate::mesh::{Mesh, MeshArrays, VertexId};
-use crate::threads::{both, filled};
+use crate::threads::{both, count, filled};
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
@@ -252,8 +252,9 @@ fn construct(
             None => {}
         }
         if let (Some(inserted), Some(counted)) = (progress, counted) {
+            // The halves' count taken back (`threads::count`: Cortex-M0 has no `fetch_sub`).
             let now = inserted.load(Ordering::Relaxed);
-            inserted.fetch_sub(now.saturating_sub(counted), Ordering::Relaxed);
+            count(inserted, now.saturating_sub(counted), false);
         }
     }
     let order = spatial_order(points, frames);
