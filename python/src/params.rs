@@ -207,15 +207,8 @@ pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
     let mut condt_keywords: Vec<String> = Vec::new();
     // Whatever its value, as every ConDT keyword (`paper=False` passed beside a baseline while
     // `smooth=True` was refused: a researcher's review).
-    if let Some(value) = &paper_given {
-        condt_keywords.push(format!(
-            "paper={}",
-            if boolean("paper", value)? {
-                "True"
-            } else {
-                "False"
-            }
-        ));
+    if paper_given.is_some() {
+        condt_keywords.push(if paper { "paper=True" } else { "paper=False" }.into());
     }
     // As given, when they turn something on: a step the other keywords leave no way to run is
     // refused, as the command line refuses it (`refuse_steps_that_cannot_run` there).

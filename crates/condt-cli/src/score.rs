@@ -285,9 +285,9 @@ impl EdgeFile {
         self.edges.push(edge);
     }
 
-    /// The library's words for `problem`, its point number as given (cut, [`shortened`]): the library names the
-    /// first end out of range, which is one no point number holds where it reads `usize::MAX`
-    /// (as `condt.score` in Python names it).
+    /// The library's words for `problem`, its point number as given (cut, [`shortened`]): the
+    /// library names the first end out of range, which is one no point number holds where it
+    /// reads `usize::MAX` (as `condt.score` in Python names it).
     fn problem_text(&self, problem: EdgeProblem) -> String {
         let EdgeProblem::OutOfRange { position, index } = problem else {
             return problem.to_string();

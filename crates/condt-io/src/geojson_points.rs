@@ -239,13 +239,19 @@ impl State<'_> {
         let mut deserializer = serde_json::Deserializer::from_str(text);
         if let Err(err) = member.read(self, depth, &mut deserializer) {
             if self.failure.is_none() {
-                // `raw` lies inside the document: its offset there, by address.
-                let start = (text.as_ptr() as usize).wrapping_sub(self.text.as_ptr() as usize);
+                let start = self.offset_in_text(text);
                 self.failure = Some((start + offset_of(text, &err), message_of(&err)));
             }
             return Err(E::custom("(reported above)"));
         }
         Ok(())
+    }
+
+    /// Where `part`, a slice of the record being read (a member kept as raw JSON), starts in
+    /// it: its offset there, by address.
+    fn offset_in_text(&self, part: &str) -> usize {
+        let at = (part.as_ptr() as usize).wrapping_sub(self.text.as_ptr() as usize);
+        at.min(self.text.len())
     }
 }
 
@@ -468,10 +474,8 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                     && !same_json(state.crs.as_deref().unwrap_or_default(), raw.get())
                 {
                     // A later record of a sequence with another crs: kept out, its place kept
-                    // to tell. `raw` lies inside the record: its offset there, by address.
-                    let at =
-                        (raw.get().as_ptr() as usize).wrapping_sub(state.text.as_ptr() as usize);
-                    state.crs_dropped = Some(at.min(state.text.len()));
+                    // to tell.
+                    state.crs_dropped = Some(state.offset_in_text(raw.get()));
                 }
                 continue;
             }
@@ -489,9 +493,8 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                 if let Err(refused) = wanted_member::<serde_json::Error>(name.as_deref()) {
                     let state = &mut *self.state;
                     if state.failure.is_none() {
-                        let at = (raw.get().as_ptr() as usize)
-                            .wrapping_sub(state.text.as_ptr() as usize);
-                        state.failure = Some((at.min(state.text.len()), refused.to_string()));
+                        state.failure =
+                            Some((state.offset_in_text(raw.get()), refused.to_string()));
                     }
                     return Err(de::Error::custom("(reported above)"));
                 }

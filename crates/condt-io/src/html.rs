@@ -335,17 +335,17 @@ fn write_integer(out: &mut impl Write, mut value: u64) -> io::Result<()> {
 struct Short(f64, usize);
 
 impl Short {
-    /// The number written as [`Display`](core::fmt::Display) writes it.
+    /// The number written as [`Display`](core::fmt::Display) writes it, without allocating.
     fn write_to(&self, out: &mut impl Write) -> io::Result<()> {
         let mut text = Text::default();
-        match self.spell(&mut text) {
-            Some(spelled) => out.write_all(spelled.as_bytes()),
-            None => write!(out, "{self}"),
-        }
+        let spelled = self
+            .spell(&mut text)
+            .ok_or_else(|| io::Error::other(LONGER))?;
+        out.write_all(spelled.as_bytes())
     }
 
-    /// The number's text in `text`'s buffer, without allocating; `None` where a spelling is
-    /// longer than the buffer (numbers far from 1, which the `Display` below spells).
+    /// The number's text in `text`'s buffer; `None` only for a spelling longer than the buffer,
+    /// which holds the longest ([`Text`]).
     fn spell<'t>(&self, text: &'t mut Text) -> Option<&'t str> {
         use core::fmt::Write as _;
         let (x, digits) = (self.0, self.1);
@@ -375,16 +375,25 @@ impl Short {
     }
 }
 
-/// A stack buffer `write!` fills (an error once full), for [`Short`]'s spellings.
+/// A stack buffer `write!` fills (an error once full), for [`Short`]'s two spellings at once:
+/// the plain one is at most a sign, 309 digits before the point (the largest double) or 40
+/// after it ([`digits_after_point`]), and the point; the exponent one a sign, the digits asked
+/// for (at most [`RATIO_DIGITS`] here), a point, `e` and four more: under [`TEXT_BYTES`] together.
 struct Text {
-    bytes: [u8; 96],
+    bytes: [u8; TEXT_BYTES],
     len: usize,
 }
+
+/// [`Text`]'s size.
+const TEXT_BYTES: usize = 512;
+
+/// The error for a spelling [`Text`] cannot hold (none can, for the digits used here).
+const LONGER: &str = "a number longer than its spelling buffer";
 
 impl Default for Text {
     fn default() -> Self {
         Text {
-            bytes: [0; 96],
+            bytes: [0; TEXT_BYTES],
             len: 0,
         }
     }
@@ -408,19 +417,7 @@ impl core::fmt::Write for Text {
 
 impl core::fmt::Display for Short {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        let (x, digits) = (self.0, self.1);
-        if let Some(spelled) = self.spell(&mut Text::default()) {
-            return f.write_str(spelled);
-        }
-        // Too long for the buffer: the same spellings, allocated.
-        let plain = format!("{:.*}", digits_after_point(x, digits), x);
-        let plain = without_trailing_zeros(&plain);
-        let exp = format!("{:.*e}", digits - 1, x);
-        if plain.len() <= exp.len() {
-            f.write_str(plain)
-        } else {
-            f.write_str(&exp)
-        }
+        f.write_str(self.spell(&mut Text::default()).ok_or(core::fmt::Error)?)
     }
 }
 
@@ -517,6 +514,13 @@ mod tests {
                 f64::from_bits(state)
             } else {
                 (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 0.5
+            };
+            // The longest spellings too: the buffer holds them ([`TEXT_BYTES`]).
+            let x = match k {
+                0 => -f64::MAX,
+                2 => f64::MIN_POSITIVE,
+                4 => -5e-324,
+                _ => x,
             };
             for digits in [POSITION_DIGITS, RATIO_DIGITS, LENGTH_DIGITS, 1] {
                 let mut written = Vec::new();

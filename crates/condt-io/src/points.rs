@@ -1035,12 +1035,12 @@ pub fn read_points_with(
             )),
         });
     }
-    // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
-    // property: a Latin-1 or CP1252 export) do not matter; where a field that is read holds
-    // them, the file is refused as not UTF-8 text, at that line.
     // A UTF-16 byte order mark (Windows tools' "Unicode" text): no reader can make sense of the
     // bytes after it, so the error says what the file is (a GIS user's review).
     let utf16 = bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]);
+    // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
+    // property: a Latin-1 or CP1252 export) do not matter; where a field that is read holds
+    // them, the file is refused as not UTF-8 text, at that line.
     let (text, not_utf8) = lossy_text(bytes);
     let read = (|| -> Result<PointFile, IoError> {
         if let Some(columns) = &options.columns {
