@@ -263,7 +263,7 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 ///
 /// ``input_format`` reads the file in that format whatever its name, as the command line's
 /// ``--input-format``: ``"txt"``, ``"node"``, ``"csv"``, ``"tsv"``, ``"npy"``, ``"geojson"`` or
-/// ``"geojsonl"``. ``columns`` chooses the x and y columns of a CSV or TSV file, as
+/// ``"geojsonl"``. ``columns`` chooses the x and y columns of a CSV, TSV or plain text file, as
 /// ``--columns``: a pair of header names, ``("POINT_X", "POINT_Y")``, or the command line's
 /// text, ``"POINT_X,POINT_Y"`` or ``"2,3"`` (numbers count from 1 there, as every message
 /// about a column counts; a pair of ints is refused, as its count would be a guess). Without
@@ -271,7 +271,7 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 ///
 /// Raises ``OSError`` (``FileNotFoundError``, ``PermissionError``, ...) when the file cannot be
 /// read, ``ValueError`` naming the file and line when its content is not a point file (or the
-/// columns are not in it, or the file is read in another format than CSV or TSV), and
+/// columns are not in it, or the file is read in another format than CSV, TSV or plain text), and
 /// ``TypeError`` when ``path`` is not a path or ``columns`` not columns. A GeoJSON sequence
 /// (``.geojsonl``) whose later record carries another ``crs`` than the first warns
 /// (``UserWarning``, naming the file and the record's line; ``read_points_with_crs`` gives the

@@ -1047,9 +1047,10 @@ def test_read_points_takes_the_command_lines_columns_and_input_format(tmp_path):
     # By its name the file is plain text, whose header does not name x and y first.
     with pytest.raises(ValueError, match="survey.txt:"):
         condt.read_points(path)
-    # Columns apply to CSV and TSV alone, as on the command line.
-    with pytest.raises(ValueError, match="chosen only in CSV and TSV input"):
-        condt.read_points(path, columns=("POINT_X", "POINT_Y"))
+    # Columns apply to CSV, TSV and plain text, as on the command line: a .txt whose first
+    # line has commas is read as CSV.
+    got = condt.read_points(path, columns=("POINT_X", "POINT_Y"))
+    assert got.tolist() == expected
     with pytest.raises(ValueError, match="no column named \"easting\""):
         condt.read_points(path, input_format="csv", columns=("easting", "northing"))
     with pytest.raises(ValueError, match="unknown input format; the formats are txt, node"):

@@ -108,10 +108,10 @@ ending, is otherwise told by its content: .npy, GeoJSON, else txt;
 `--input-format csv` reads CSV)";
 
 /// `--columns`, the same for every command that reads INPUT.
-const COLUMNS_HELP: &str = "read x and y from these columns of a CSV or TSV INPUT: header
-names or numbers from 1 (Shape_X,Shape_Y, 2,3) instead of the columns
-named x and y (lon, lat; easting, northing); standard input is
-then read as CSV";
+const COLUMNS_HELP: &str = "read x and y from these columns of a CSV, TSV or plain text
+INPUT (a scanner's x y z intensity): header names or numbers from 1
+(Shape_X,Shape_Y, 2,3) instead of the columns named x and y (lon,
+lat; easting, northing); standard input is then read as CSV";
 
 /// `--quiet`, the same for every command that computes.
 const QUIET_HELP: &str = "no progress bar and no notes on standard error (errors and
@@ -1007,8 +1007,8 @@ pub(crate) fn columns_option(
 }
 
 /// How INPUT (`None`: standard input) is read, by the options given. `--columns` with an INPUT
-/// that is read in another format than CSV or TSV (by its name or `--input-format`) is refused
-/// here, before anything is read.
+/// that is read in another format than CSV, TSV or plain text (by its name or `--input-format`)
+/// is refused here, before anything is read.
 pub(crate) fn read_options(
     input_format: Setting<InputFormat>,
     columns: Setting<Columns>,
@@ -1021,20 +1021,22 @@ pub(crate) fn read_options(
     }
     if let Some(columns) = columns.get() {
         let format = stated.or_else(|| input.and_then(InputFormat::of_path));
-        if let Some(format) = format.filter(|f| !matches!(f, InputFormat::Csv | InputFormat::Tsv)) {
+        let chosen_in =
+            |f: &InputFormat| matches!(f, InputFormat::Csv | InputFormat::Tsv | InputFormat::Text);
+        if let Some(format) = format.filter(|f| !chosen_in(f)) {
             let by = if stated.is_some() {
                 "--input-format"
             } else {
                 "its name"
             };
-            // Text can be a CSV table under another name; an array or GeoJSON cannot.
+            // A .node file can be a table under another name; an array or GeoJSON cannot.
             let advice = match format {
-                InputFormat::Text | InputFormat::Node => "; --input-format csv reads it as CSV",
-                _ => ": columns apply to CSV and TSV input only",
+                InputFormat::Node => "; --input-format csv reads it as CSV",
+                _ => ": columns apply to CSV, TSV and plain text input only",
             };
             return Err(usage(format!(
-                "--columns {columns} chooses the columns of CSV or TSV input, but {} is read as \
-                 {} by {by}{advice}",
+                "--columns {columns} chooses the columns of CSV, TSV or plain text input, but {} \
+                 is read as {} by {by}{advice}",
                 shown_input(input),
                 format.name()
             )));
@@ -1378,6 +1380,23 @@ pub(crate) fn note_dropped_crs(file: &str, line: Option<usize>) {
     }
 }
 
+/// A note when a GeoJSON output names no reference system but its coordinates cannot be
+/// longitudes and latitudes (RFC 7946's, which GIS readers then assume): projected metres,
+/// a scan's UTM coordinates, which a map would place nowhere near where they are.
+fn note_projected_without_crs(output: &str, points: &[condt::Point]) {
+    let beyond = points
+        .iter()
+        .find(|p| p.x.abs() > 180.0 || p.y.abs() > 90.0);
+    if let Some(p) = beyond {
+        note(format_args!(
+            "{output}: coordinates such as ({}, {}) are no longitude and latitude, which GeoJSON \
+             readers take them for without a crs member: --crs names the input's system \
+             (EPSG:32632, for instance)",
+            p.x, p.y
+        ));
+    }
+}
+
 /// The size of INPUT when it is a regular file (`None`: standard input, a pipe, a device).
 fn input_size(input: Option<&Path>) -> Option<u64> {
     let meta = std::fs::metadata(input?).ok()?;
@@ -1513,6 +1532,9 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
                 "{}: its crs member {why}; the output carries none",
                 shown_input(args.input.as_deref())
             ));
+        }
+        if args.format == Format::GeoJson && args.crs.is_none() && crs.is_none() {
+            note_projected_without_crs(&shown_output(args.output.as_deref()), &input);
         }
         note_duplicates(count, result.triangulation().num_vertices());
         // Every panel draws every point: past a million dots a drawing is slow to open.

@@ -116,7 +116,7 @@ told by its content: .npy, GeoJSON, else txt), as reconstruct's
         long: "columns",
         negatable: false,
         value: Some("X,Y"),
-        help: "read x and y from these columns of a CSV or TSV POINTS: header
+        help: "read x and y from these columns of a CSV, TSV or plain text POINTS: header
 names or numbers from 1 (POINT_X,POINT_Y, 2,3), as reconstruct's
 --columns; standard input is then read as CSV",
     },

@@ -840,12 +840,12 @@ fn score_reads_points_with_input_format_and_columns() {
         (
             &npy,
             &["--columns", "1,2"][..],
-            "points.npy is read as npy by its name: columns apply to CSV and TSV input only",
+            "points.npy is read as npy by its name: columns apply to CSV, TSV and plain text input only",
         ),
         (
             &survey,
             &["--columns", "1,2", "--input-format", "geojson"][..],
-            "read as geojson by --input-format: columns apply to CSV and TSV input only",
+            "read as geojson by --input-format: columns apply to CSV, TSV and plain text input only",
         ),
         (
             &survey,

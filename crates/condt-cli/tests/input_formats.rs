@@ -6,6 +6,11 @@ use condt_eval::sample::{sample, Sampling, Shape};
 use condt_io::read_points;
 use std::process::Command;
 
+/// The binary under test: this build's, or `CONDT_TEST_BIN` (to show a test fails on another).
+fn binary() -> std::ffi::OsString {
+    std::env::var_os("CONDT_TEST_BIN").unwrap_or_else(|| env!("CARGO_BIN_EXE_condt").into())
+}
+
 fn scratch_dir() -> tempfile::TempDir {
     tempfile::Builder::new()
         .prefix("condt-formats-")
@@ -53,7 +58,7 @@ fn csv_geojson_and_plain_files_read_the_same_points() {
         let path = dir.path().join(name);
         std::fs::write(&path, text).unwrap();
         assert_eq!(read_points(&path).unwrap(), points, "{name}");
-        let out = Command::new(env!("CARGO_BIN_EXE_condt"))
+        let out = Command::new(binary())
             .arg("reconstruct")
             .arg(&path)
             .arg("--format")
@@ -92,7 +97,7 @@ fn bad_csv_and_geojson_files_are_refused_by_file_and_line() {
     ] {
         let path = dir.path().join(name);
         std::fs::write(&path, text).unwrap();
-        let out = Command::new(env!("CARGO_BIN_EXE_condt"))
+        let out = Command::new(binary())
             .arg("reconstruct")
             .arg(&path)
             .output()
@@ -111,7 +116,7 @@ fn bad_csv_and_geojson_files_are_refused_by_file_and_line() {
 fn a_tsv_file_reads_as_its_csv_twin() {
     let dir = scratch_dir();
     let condt = |args: &[&str], path: &std::path::Path| {
-        Command::new(env!("CARGO_BIN_EXE_condt"))
+        Command::new(binary())
             .args(args)
             .arg(path)
             .output()
@@ -208,7 +213,7 @@ fn a_byte_order_mark_inside_the_file_is_refused_on_every_path() {
                 }
             })
             .collect();
-        let mut child = Command::new(env!("CARGO_BIN_EXE_condt"))
+        let mut child = Command::new(binary())
             .args(&args)
             .stdin(std::process::Stdio::piped())
             .stdout(std::process::Stdio::piped())
@@ -241,7 +246,7 @@ fn a_byte_order_mark_inside_the_file_is_refused_on_every_path() {
 /// `condt ARGS` with `input` on standard input.
 fn condt_with_stdin(args: &[&str], input: &[u8]) -> std::process::Output {
     use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_condt"))
+    let mut child = Command::new(binary())
         .args(args)
         .stdin(std::process::Stdio::piped())
         .stdout(std::process::Stdio::piped())
@@ -495,6 +500,29 @@ fn columns_choose_the_x_and_y_of_a_csv() {
         csv.as_bytes(),
     );
     assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
+    // A plain text file of four blank-separated columns (a scanner's `y x z intensity`): the
+    // columns by number, or by the names of its first line.
+    let scan: String = "Y X Z I\n".to_string()
+        + &points
+            .iter()
+            .map(|p| format!("{:?} {:?} 1.5 80\n", p.y, p.x))
+            .collect::<String>();
+    let scan_path = dir.path().join("scan.txt");
+    std::fs::write(&scan_path, &scan).unwrap();
+    for columns in ["2,1", "x,y"] {
+        let out = condt_with_stdin(
+            &[
+                "reconstruct",
+                scan_path.to_str().unwrap(),
+                "--columns",
+                columns,
+                "--format=edges",
+            ],
+            b"",
+        );
+        assert!(out.status.success(), "{columns}: {out:?}");
+        assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
+    }
     // Without it, ArcGIS's names are read as x and y (no column is named x, y, lon or lat),
     // in whichever order they stand.
     let out = condt_with_stdin(&["reconstruct", path, "--format", "edges"], b"");
@@ -526,8 +554,8 @@ fn columns_choose_the_x_and_y_of_a_csv() {
     );
     for (args, words) in [
         (
-            &["triangulate", "pts.txt", "--columns", "a,b"][..],
-            "pts.txt is read as txt by its name",
+            &["triangulate", "pts.node", "--columns", "a,b"][..],
+            "pts.node is read as node by its name",
         ),
         (
             &[
@@ -561,23 +589,23 @@ fn columns_choose_the_x_and_y_of_a_csv() {
 }
 
 /// `--columns` for an input read as a NumPy array or GeoJSON (by its name or
-/// `--input-format`) says that columns apply to CSV and TSV only: `--input-format csv`, which
+/// `--input-format`) says that columns apply to CSV, TSV and plain text only: `--input-format csv`, which
 /// the refusal of a text file suggests, cannot help there.
 #[test]
-fn columns_for_an_array_or_geojson_say_they_apply_to_csv_only() {
+fn columns_for_an_array_or_geojson_say_they_apply_to_tables_only() {
     for (args, words) in [
         (
             &["triangulate", "pts.npy", "--columns", "1,2"][..],
-            "pts.npy is read as npy by its name: columns apply to CSV and TSV input only",
+            "pts.npy is read as npy by its name: columns apply to CSV, TSV and plain text input only",
         ),
         (
             &["reconstruct", "sites.GeoJSON", "--columns", "1,2"][..],
-            "sites.GeoJSON is read as geojson by its name: columns apply to CSV and TSV input \
-             only",
+            "sites.GeoJSON is read as geojson by its name: columns apply to CSV, TSV and plain \
+             text input only",
         ),
         (
             &["triangulate", "sites.geojsonl", "--columns", "1,2"][..],
-            "read as geojsonl by its name: columns apply to CSV and TSV input only",
+            "read as geojsonl by its name: columns apply to CSV, TSV and plain text input only",
         ),
         (
             &[
@@ -588,7 +616,7 @@ fn columns_for_an_array_or_geojson_say_they_apply_to_csv_only() {
                 "--input-format",
                 "npy",
             ][..],
-            "<stdin> is read as npy by --input-format: columns apply to CSV and TSV input only",
+            "<stdin> is read as npy by --input-format: columns apply to CSV, TSV and plain text input only",
         ),
     ] {
         let out = condt_with_stdin(args, b"");
@@ -597,8 +625,8 @@ fn columns_for_an_array_or_geojson_say_they_apply_to_csv_only() {
         assert!(said.contains(words), "{args:?}: {said}");
         assert!(!said.contains("--input-format csv"), "{args:?}: {said}");
     }
-    // A text file may be a CSV table under another name: there the advice stands.
-    let out = condt_with_stdin(&["triangulate", "pts.txt", "--columns", "1,2"], b"");
+    // A .node file may be a CSV table under another name: there the advice stands.
+    let out = condt_with_stdin(&["triangulate", "pts.node", "--columns", "1,2"], b"");
     let said = String::from_utf8_lossy(&out.stderr);
     assert!(
         said.contains("--input-format csv reads it as CSV"),
@@ -834,8 +862,37 @@ fn crs_names_the_reference_system_of_a_geojson_output() {
         args.extend_from_slice(extra);
         condt_with_stdin(&args, b"")
     };
+    // Without `--crs`, metres that no longitude and latitude can be get a note (a scan
+    // user's review: the output went out silently); not with `--crs` or `--quiet`.
+    let note = "are no longitude and latitude, which GeoJSON readers take them for";
+    let done = run(&[]);
+    assert!(done.status.success(), "{done:?}");
+    let said = String::from_utf8_lossy(&done.stderr);
+    assert!(
+        said.contains(note) && said.contains("(500000, 4000000)"),
+        "{said}"
+    );
+    let quiet = run(&["-q"]);
+    assert!(
+        quiet.status.success() && quiet.stderr.is_empty(),
+        "{quiet:?}"
+    );
     let done = run(&["--crs", "EPSG:32632"]);
     assert!(done.status.success(), "{done:?}");
+    assert!(!String::from_utf8_lossy(&done.stderr).contains(note));
+    let degrees = dir.path().join("degrees.csv");
+    std::fs::write(&degrees, "lon,lat\n-179.5,-89.5\n180,-89.5\n0.5,90\n").unwrap();
+    let plain = condt_with_stdin(
+        &[
+            "reconstruct",
+            degrees.to_str().unwrap(),
+            "-o",
+            dir.path().join("degrees.geojson").to_str().unwrap(),
+        ],
+        b"",
+    );
+    assert!(plain.status.success(), "{plain:?}");
+    assert!(!String::from_utf8_lossy(&plain.stderr).contains(note));
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(
         text.starts_with(

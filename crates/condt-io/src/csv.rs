@@ -135,6 +135,40 @@ pub(crate) fn parse_csv_columns(
     parse_separated(text, file, if tabs { b'\t' } else { b',' }, columns)
 }
 
+/// Plain text (columns separated by blanks, `#` starting a comment) read from the columns
+/// `chosen`: a scanner's `x y z intensity` export, which the plain reader refuses beyond three
+/// columns. Each line's fields are joined by tabs and read as TSV, so that a header and
+/// columns by name or number mean what they mean there, on the same line numbers. A text whose
+/// first line with content separates its columns by commas is read as CSV.
+pub(crate) fn parse_plain_columns(
+    text: &str,
+    file: &str,
+    chosen: &Columns,
+) -> Result<Vec<Point>, IoError> {
+    fn uncommented(line: &str) -> &str {
+        line.split('#').next().unwrap_or("")
+    }
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let commas = crate::text_lines(text)
+        .map(|(_, line)| uncommented(line))
+        .find(|content| !content.trim().is_empty())
+        .is_some_and(|content| content.contains(','));
+    if commas {
+        return parse_csv_columns(text, file, Some(chosen));
+    }
+    let mut tabbed = String::with_capacity(text.len());
+    for (_, line) in crate::text_lines(text) {
+        for (k, field) in uncommented(line).split_whitespace().enumerate() {
+            if k > 0 {
+                tabbed.push('\t');
+            }
+            tabbed.push_str(field);
+        }
+        tabbed.push('\n');
+    }
+    parse_separated(&tabbed, file, b'\t', Some(chosen))
+}
+
 /// The first line of `text` that is not blank (lines end at LF, CR or CRLF), without the
 /// byte-order mark that may start the text: no reader takes it for part of the first name.
 pub(crate) fn first_line_with_content(text: &str) -> &str {
@@ -262,18 +296,29 @@ pub(crate) fn parse_separated(
                 continue;
             }
         };
+        let first = if headerless {
+            "the first line"
+        } else {
+            "the header"
+        };
         // More fields than the first line has: a decimal comma (`1,5,2,5`) or a shifted row,
         // which read silently would be wrong coordinates. Empty ones (a trailing comma, which
         // some exporters write) hold nothing to misread.
         if record.len() > width && record.iter().skip(width).any(|f| !f.trim().is_empty()) {
-            let first = if headerless {
-                "the first line"
-            } else {
-                "the header"
-            };
             return Err(source.error(
                 line,
                 format!("{}, but {first} has {width}", fields(record.len())),
+            ));
+        }
+        // Fewer: a row cut short (a file cut off mid-line, a field lost), whose chosen columns
+        // can still be there with a wrong number in them (`500000.03,50` of a scanner's export).
+        if record.len() < width {
+            return Err(source.error(
+                line,
+                format!(
+                    "{}, but {first} has {width}: a row cut short?",
+                    fields(record.len())
+                ),
             ));
         }
         let coordinate = |column: usize, axis: &str| -> Result<f64, IoError> {
@@ -352,8 +397,9 @@ fn header_columns(
                 let hint = if one_field && tabs {
                     "; its columns are split at tabs (a .tsv, or a first line with tabs), and \
                      this header has none: a header of commas is a .csv's, of spaces a .txt's"
-                } else if raw.contains(';') && one_field {
-                    "; this reader splits columns at commas, not semicolons"
+                } else if raw.contains(';') {
+                    "; this reader splits columns at commas, not semicolons (and a comma is no \
+                     decimal point here: 1.5, not 1,5)"
                 } else if one_field && raw.trim().contains(char::is_whitespace) {
                     "; this reader splits columns at commas, and this header has none: columns \
                      separated by spaces are the plain format's (name the file *.txt)"
@@ -782,7 +828,7 @@ mod tests {
                 "FID,X,Y\n1,2\n",
                 "2,3",
                 2,
-                "c.csv:2: 2 fields, but the y column is field 3",
+                "c.csv:2: 2 fields, but the header has 3: a row cut short?",
             ),
             // A first row of numbers is a point, not a header, whatever columns are chosen: a
             // chosen column past its end does not exist (it once read as "the header has 1
@@ -838,7 +884,18 @@ mod tests {
     #[test]
     fn bad_rows_are_refused_by_line() {
         for (text, line, words) in [
-            ("x,y\n1,2\n3\n", 3, "1 field, but the y column is field 2"),
+            (
+                "x,y\n1,2\n3\n",
+                3,
+                "1 field, but the header has 2: a row cut short?",
+            ),
+            // A row cut short that still holds x and y: a scanner's export cut off mid-line
+            // read 500000.03,50 as a point; so does a row that lost a field.
+            (
+                "x,y,z,i\n1,2,3,4\n5,6",
+                3,
+                "2 fields, but the header has 4: a row cut short?",
+            ),
             ("x,y\n1,2\n3,abc\n", 3, "cannot read \"abc\""),
             ("x,y\n1,nan\n", 2, "\"nan\" is not finite"),
             (

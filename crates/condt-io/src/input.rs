@@ -104,7 +104,7 @@ impl InputFormat {
     }
 }
 
-/// A column of a CSV or TSV file: by the name its header gives it (compared without ASCII
+/// A column of a CSV, TSV or plain text file: by the name its header gives it (compared without ASCII
 /// case and blanks around it), or by its position, numbered from 1.
 ///
 /// ```
@@ -158,7 +158,7 @@ impl fmt::Display for Column {
     }
 }
 
-/// The columns of a CSV or TSV file that hold x and y ([`ReadOptions::with_columns`]), instead
+/// The columns of a CSV, TSV or plain text file that hold x and y ([`ReadOptions::with_columns`]), instead
 /// of those the header names `x` and `y` (or `lon`, `lat`, ...).
 ///
 /// ```
@@ -273,7 +273,7 @@ pub struct ReadOptions {
     /// The format to read the file in whatever its name (or its content, on standard input);
     /// `None`: by the name's ending, standard input by its content.
     pub format: Option<InputFormat>,
-    /// The x and y columns of a CSV or TSV file; `None`: those its header names x and y.
+    /// The x and y columns of a CSV, TSV or plain text file; `None`: those its header names x and y.
     /// Another format is then refused; standard input without a format stated is read as CSV
     /// (unless it is a NumPy array or GeoJSON, which are refused).
     pub columns: Option<Columns>,
@@ -291,7 +291,7 @@ impl ReadOptions {
         self
     }
 
-    /// These options, x and y read from `columns` of a CSV or TSV file.
+    /// These options, x and y read from `columns` of a CSV, TSV or plain text file.
     pub fn with_columns(mut self, columns: Columns) -> ReadOptions {
         self.columns = Some(columns);
         self

@@ -90,7 +90,17 @@ impl Source<'_> {
         let value = match decimal::parse(field.as_bytes()) {
             Some(value) => value,
             None => field.parse().map_err(|_| {
-                self.error(line, format!("cannot read {} as a number", quoted(field)))
+                // `1,5;2,5` split at its comma: a semicolon-separated export with decimal commas.
+                let hint = if field.contains(';') {
+                    " (a semicolon does not separate columns, and a comma is no decimal point: \
+                     write 1.5 2.5 or 1.5,2.5)"
+                } else {
+                    ""
+                };
+                self.error(
+                    line,
+                    format!("cannot read {} as a number{hint}", quoted(field)),
+                )
             })?,
         };
         if value.is_finite() {
@@ -530,11 +540,25 @@ fn lines_by<const ONE_PASS: bool>(
             }
             2 | 3 => {}
             n => {
-                let hint = if n == 4 && points.is_empty() {
+                // A `.node` header is four whole numbers, the second 2; other rows of four or
+                // more columns are an export with more than coordinates (`x y z intensity`).
+                let node_header = n == 4
+                    && may_hold_header
+                    && points.is_empty()
+                    && header.is_none()
+                    && row.fields[1] == "2"
+                    && line
+                        .split('#')
+                        .next()
+                        .unwrap_or("")
+                        .split_whitespace()
+                        .all(|f| f.parse::<u64>().is_ok());
+                let hint = if node_header {
                     " (a Triangle .node header `count 2 attributes markers`? Name the file \
                      *.node, or state condt's --input-format node, to read it as one)"
                 } else {
-                    ""
+                    " (choose the x and y columns by number or by the header's names with \
+                     condt's --columns 1,2)"
                 };
                 return Err(source.error(
                     number,
@@ -913,7 +937,7 @@ pub fn read_points_with_crs(
 /// [`read_points`] as `options` say: in the format they state whatever the name
 /// ([`ReadOptions::with_format`]; standard input, which has no name, is then read in that format
 /// instead of by its content), and from the x and y columns they choose
-/// ([`ReadOptions::with_columns`]: a CSV or TSV file only, refused before reading for a file
+/// ([`ReadOptions::with_columns`]: a CSV, TSV or plain text file only, refused before reading for a file
 /// whose name or stated format is another; standard input is then read as CSV). Gives the
 /// points and what else the file said ([`PointFile`]).
 ///
@@ -960,7 +984,8 @@ pub fn read_points_with(
         file: name.to_string(),
         line: None,
         kind: IoErrorKind::Content(format!(
-            "columns ({}) are chosen only in CSV and TSV input, and this is read as {what}",
+            "columns ({}) are chosen only in CSV, TSV and plain text input, and this is read as \
+             {what}",
             options
                 .columns
                 .as_ref()
@@ -979,7 +1004,10 @@ pub fn read_points_with(
         });
     }
     if let (Some(format), Some(_)) = (format, &options.columns) {
-        if !matches!(format, InputFormat::Csv | InputFormat::Tsv) {
+        if !matches!(
+            format,
+            InputFormat::Csv | InputFormat::Tsv | InputFormat::Text
+        ) {
             return Err(columns_refused(&format!("the {} format", format.name())));
         }
     }
@@ -993,7 +1021,10 @@ pub fn read_points_with(
         let meta = file.metadata().ok();
         let size = meta.as_ref().map_or(0, |m| m.len());
         #[cfg(all(feature = "parallel", unix))]
-        if format == Some(InputFormat::Text) && meta.is_some_and(|m| m.is_file()) {
+        if format == Some(InputFormat::Text)
+            && options.columns.is_none()
+            && meta.is_some_and(|m| m.is_file())
+        {
             if let Some(points) = parallel::read_pieces(&file, size, name) {
                 return Ok(without_crs(points));
             }
@@ -1051,6 +1082,7 @@ pub fn read_points_with(
                 Some(InputFormat::Tsv) => {
                     crate::csv::parse_separated(&text, name, b'\t', Some(columns))
                 }
+                Some(InputFormat::Text) => crate::csv::parse_plain_columns(&text, name, columns),
                 None if starts_like_json => Err(columns_refused(
                     "GeoJSON (by its leading `{` or record separator)",
                 )),

@@ -3,7 +3,7 @@
 //! line for bad bytes in CR-only files, and error messages of bounded length.
 
 use condt::Point;
-use condt_io::{parse_points, read_points, IoError};
+use condt_io::{parse_points, read_points, read_points_with, Columns, IoError, ReadOptions};
 use std::path::PathBuf;
 
 /// A file in a fresh temporary directory, removed on drop.
@@ -152,6 +152,78 @@ fn node_rows_under_another_name_are_refused() {
         xyz.read().unwrap(),
         points(&[(0.5, 0.25), (3.5, 1.0), (2.0, 4.0)])
     );
+}
+
+/// A scanner's export, `x y z intensity` separated by blanks, could not be read at all (a
+/// review: the plain reader refuses a fourth column, and `--columns` took CSV and TSV only); its
+/// refusal suggested a Triangle `.node` header even under a header line or with fractions.
+#[test]
+fn columns_choose_x_and_y_of_plain_text() {
+    let scan = b"# scan 7\nX Y Z Intensity\n500000.25 5000000.5 1.2 80\n\
+                 500001  5000002\t1.5 81 # a comment\n\n500002.5 5000001 1.25 79\r\n";
+    let file = TempFile::new("scan.txt", scan);
+    let with = |spec: &str| {
+        let options = ReadOptions::new().with_columns(Columns::parse(spec).unwrap());
+        read_points_with(&file.0, &options).map(|read| read.points)
+    };
+    let expected = points(&[
+        (500000.25, 5000000.5),
+        (500001.0, 5000002.0),
+        (500002.5, 5000001.0),
+    ]);
+    assert_eq!(with("1,2").unwrap(), expected);
+    assert_eq!(with("x,y").unwrap(), expected);
+    assert_eq!(with("X, Y").unwrap(), expected);
+    let swapped: Vec<Point> = expected.iter().map(|p| Point::new(p.y, p.x)).collect();
+    assert_eq!(with("Y,X").unwrap(), swapped);
+    // Other columns, and the lines errors name are the file's.
+    assert_eq!(
+        with("z,intensity").unwrap(),
+        points(&[(1.2, 80.0), (1.5, 81.0), (1.25, 79.0)])
+    );
+    let err = with("x,w").unwrap_err();
+    assert_eq!(err.line, Some(2), "{err}");
+    assert!(err.to_string().contains("no column named \"w\""), "{err}");
+    let short = TempFile::new("short.txt", b"x y z\n1 2 3\n\n4 5\n");
+    let options = ReadOptions::new().with_columns(Columns::parse("1,2").unwrap());
+    let err = read_points_with(&short.0, &options).unwrap_err();
+    assert_eq!(err.line, Some(4), "{err}");
+    assert!(err.to_string().contains("a row cut short"), "{err}");
+    // Without them, the refusal names the option; a `.node` header (whole numbers, 2 second)
+    // still gets its own hint.
+    let (line, text) = content_error(file.read());
+    assert_eq!(line, Some(3), "{text}");
+    assert!(
+        text.contains("--columns 1,2") && !text.contains(".node"),
+        "{text}"
+    );
+    let fractions = TempFile::new("xyzi.txt", b"0.5 2.5 1.2 80\n1.5 2.5 1.2 80\n");
+    let (line, text) = content_error(fractions.read());
+    assert_eq!(line, Some(1), "{text}");
+    assert!(
+        text.contains("--columns 1,2") && !text.contains(".node"),
+        "{text}"
+    );
+    let header = TempFile::new("node.txt", b"3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n");
+    let (_, text) = content_error(header.read());
+    assert!(text.contains("Triangle .node"), "{text}");
+}
+
+/// A semicolon-separated export with decimal commas split at its commas: the number refused
+/// says why (a review found only "cannot read "00;5000000" as a number").
+#[test]
+fn a_semicolon_in_a_number_says_that_it_separates_nothing() {
+    let err = parse_points("500000,00;5000000,00\n", "eu.txt").unwrap_err();
+    assert_eq!(err.line, Some(1));
+    assert!(
+        err.to_string()
+            .contains("a semicolon does not separate columns"),
+        "{err}"
+    );
+    // In a CSV the same row reads as a header of three columns, not as one with a semicolon.
+    let err = condt_io::parse_csv("500000,00;5000000,00\n1,2\n", "eu.csv").unwrap_err();
+    assert_eq!(err.line, Some(1));
+    assert!(err.to_string().contains("not semicolons"), "{err}");
 }
 
 /// Issue 11, item 9: `1,5 2` was read as the point (1, 5).
