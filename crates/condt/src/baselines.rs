@@ -11,7 +11,7 @@ use crate::error::Error;
 use crate::geometry::{lower_left, Point};
 use crate::graph::Graph;
 use crate::mesh::VertexId;
-use crate::predicates::compare_tied_distances;
+use crate::predicates::distance_order;
 use crate::triangulate::{triangulate, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -72,14 +72,11 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
                 .filter(|&w| tri.is_vertex(w))
                 .map(|w| (p.dist2(tri.vertex_point(w)), w))
         };
-        // Rounded squared lengths first; a rounded tie by exact lengths, then by id (which
-        // follows the insertion order, so that only an exact tie depends on the orientation).
+        // Exact lengths, then id (which follows the insertion order, so that only an exact tie
+        // depends on the orientation).
         let closer = |a: &(f64, VertexId), b: &(f64, VertexId)| {
-            a.0.total_cmp(&b.0)
-                .then_with(|| {
-                    compare_tied_distances(p, tri.vertex_point(a.1), tri.vertex_point(b.1))
-                })
-                .then(a.1.cmp(&b.1))
+            let at = |(length2, w): (f64, VertexId)| (tri.vertex_point(w), length2);
+            distance_order(p, at(*a), at(*b)).then(a.1.cmp(&b.1))
         };
         let Some((_, nearest)) = neighbours().min_by(closer) else {
             continue;

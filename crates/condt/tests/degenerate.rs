@@ -371,3 +371,30 @@ fn repeats_past_the_halves_bound_give_the_triangulation_of_the_distinct_points()
         assert_eq!(edges(&repeated), edges(&once));
     }
 }
+
+/// Lengths whose rounded squares come out one ulp apart in the wrong order (a reviewer of the
+/// paper's preset found them): Algorithm 2's "shortest edge" is the exactly shortest. Point 0's
+/// squared distances to 1 and 2 differ by 6.4e-18 in truth (1 nearer) and by one ulp the other
+/// way as `dist2` rounds them. (Algorithm 1's ranking: `proximity.rs`'s unit tests.)
+#[test]
+fn the_shortest_edge_is_the_exactly_shortest_where_rounding_swaps_two() {
+    let points = pts(&[
+        (0.9497985626218988, 0.6303992934263946),
+        (0.788009549780357, 0.1066306096972589),
+        (0.4476113389882713, 0.8502112838881093),
+        (1.0005471995840087, 1.210975474746823),
+    ]);
+    let [p, a, b] = [points[0], points[1], points[2]];
+    assert!(
+        p.dist2(a) > p.dist2(b),
+        "the rounded order is the wrong one"
+    );
+    // Point 0 has degree 3 in the proximity graph. Its shortest edge is 0-1, whose partner
+    // beyond 120 degrees is 0-3 (168 degrees; 0-2 and 0-3 meet at 71): with 0-2 taken for the
+    // shortest, no partner qualified and 0-2 was kept alone.
+    let edges: Vec<[usize; 2]> = reconstruct(&points, &Params::paper())
+        .unwrap()
+        .edges()
+        .collect();
+    assert_eq!(edges, [[0, 1], [0, 2], [0, 3]]);
+}

@@ -140,17 +140,38 @@ pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
     exact::dot_sign(a.into(), b.into(), c.into(), d.into())
 }
 
-/// Which of `a` and `b` is nearer to `p`, for two whose rounded squared distances
-/// ([`Point::dist2`]) are equal: `Equal` when both are known exact ([`exactly_squared`]) or the
-/// two offsets from `p` are exactly the same up to signs and the order of the axes
-/// ([`same_legs`]), else by big integers (slow). Why: a rounded tie broken by vertex id would
-/// depend on the input's orientation (ids follow the insertion order); only an exact tie is left
-/// to the caller's id.
-pub(crate) fn compare_tied_distances(p: Point, a: Point, b: Point) -> Ordering {
-    if (exactly_squared(p, a) && exactly_squared(p, b)) || same_legs(p, a, b) {
+/// The relative gap between two rounded squared distances beyond which their order is the
+/// exact one. [`Point::dist2`] rounds four times (two differences, two squares and their sum:
+/// each at most 2^-53 of its value), so it is within about 4 x 2^-53 of the exact square, and
+/// two that differ by more than 2^-49 of the larger (twice what both errors can span) are in
+/// their exact order. The squares lie far above the subnormal range in the stages' frame
+/// ([`crate::Error::TooCloseToMeasure`]), where every error is relative.
+const ROUNDING_GAP: f64 = 1.0 / (1u64 << 49) as f64;
+
+/// Which of `a` and `b` is nearer to `p`, exactly, given their rounded squared distances `da`
+/// and `db` ([`Point::dist2`]): those decide where they differ by more than their rounding can
+/// ([`ROUNDING_GAP`]); closer than that (a paper reviewer's points whose squares differ by
+/// 6e-18 came out one ulp apart in the wrong order), the two are equal when both squares are
+/// known exact ([`exactly_squared`]) and equal, or the two offsets from `p` are the same up to
+/// signs and the order of the axes ([`same_legs`]), else big integers decide (slow). Why: a
+/// rounded order is not the paper's "shortest edge", and a rounded tie broken by vertex id
+/// would depend on the input's orientation (ids follow the insertion order); only an exact tie
+/// is left to the caller's id.
+pub(crate) fn distance_order(p: Point, (a, da): (Point, f64), (b, db): (Point, f64)) -> Ordering {
+    if (da - db).abs() > ROUNDING_GAP * da.max(db)
+        || (exactly_squared(p, a) && exactly_squared(p, b))
+    {
+        return da.total_cmp(&db);
+    }
+    if same_legs(p, a, b) {
         return Ordering::Equal;
     }
     exact::compare_distances(p.into(), a.into(), b.into())
+}
+
+/// [`distance_order`], the squared distances measured here.
+pub(crate) fn compare_distances(p: Point, a: Point, b: Point) -> Ordering {
+    distance_order(p, (a, p.dist2(a)), (b, p.dist2(b)))
 }
 
 /// Whether `a + b` is computed without rounding (Knuth's two-sum leaves no error). False on an
@@ -403,9 +424,7 @@ mod tests {
                 !same_legs(p, a, b) || exact == Ordering::Equal,
                 "{p:?} {a:?} {b:?}"
             );
-            if p.dist2(a) == p.dist2(b) {
-                assert_eq!(compare_tied_distances(p, a, b), exact, "{p:?} {a:?} {b:?}");
-            }
+            assert_eq!(compare_distances(p, a, b), exact, "{p:?} {a:?} {b:?}");
         }
         // The shortcut does take most mirrored pairs.
         assert!(shortcut > 4_000, "{shortcut}");
@@ -413,7 +432,7 @@ mod tests {
         let p = Point::new(1.0, 0.0);
         let (a, b) = (Point::new(2f64.powi(-60), 0.0), Point::new(2.0, 0.0));
         assert!(!same_legs(p, a, b));
-        assert_eq!(compare_tied_distances(p, a, b), Ordering::Less);
+        assert_eq!(compare_distances(p, a, b), Ordering::Less);
     }
 
     #[test]

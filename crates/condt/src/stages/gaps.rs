@@ -54,7 +54,7 @@ use super::Outcome;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
-use crate::predicates::{compare_tied_distances, orient2d, Orientation};
+use crate::predicates::{distance_order, orient2d, Orientation};
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
@@ -402,18 +402,13 @@ impl<'a> Ends<'a> {
             if key.0 > longest_gap2 {
                 continue;
             }
-            let nearer = key
-                .0
-                .total_cmp(&best_key.0)
-                .then_with(|| {
-                    // No candidate yet: only an infinite length ties with the start.
-                    if best_key.1.is_infinite() {
-                        core::cmp::Ordering::Equal
-                    } else {
-                        compare_tied_distances(pa, self.point(w), self.point(best_key.1))
-                    }
-                })
-                .then(key.1.cmp(&best_key.1));
+            // The first candidate is the nearest yet; then exact lengths, then ids.
+            let nearer = if best_key.1.is_infinite() {
+                core::cmp::Ordering::Less
+            } else {
+                let at = |(length2, u): (f64, VertexId)| (self.point(u), length2);
+                distance_order(pa, at(key), at(best_key)).then(key.1.cmp(&best_key.1))
+            };
             if nearer != core::cmp::Ordering::Less {
                 continue;
             }

@@ -33,7 +33,7 @@
 use crate::adjacency::{degrees, ordered, Edge};
 use crate::bits::IdBits;
 use crate::mesh::VertexId;
-use crate::predicates::compare_tied_distances;
+use crate::predicates::compare_distances;
 use crate::prefetch::{prefetch, PREFETCH_FROM};
 use crate::triangulate::Triangulation;
 use alloc::vec;
@@ -128,10 +128,7 @@ fn paper_choice(tri: &Triangulation, v: VertexId, around: &[VertexId]) -> [Verte
     let neighbours = || around.iter().copied();
     let shortest = neighbours()
         .min_by(|&a, &b| {
-            length2(a)
-                .total_cmp(&length2(b))
-                .then_with(|| compare_tied_distances(p, tri.vertex_point(a), tri.vertex_point(b)))
-                .then(a.cmp(&b))
+            compare_distances(p, tri.vertex_point(a), tri.vertex_point(b)).then(a.cmp(&b))
         })
         .expect("degree >= 3");
     let qualified = || {
