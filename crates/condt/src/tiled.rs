@@ -23,12 +23,11 @@ use crate::predicates::Orientation;
 use crate::stages::gaps::{self, Ends, Partner, Target, Walk};
 use crate::stages::hooks;
 use crate::stages::local_outliers::{
-    components, separated_at, smooth_and_regular, turn_at, Passage, MIN_SAMPLES,
+    components, separated_at, separated_counts_until, smooth_and_regular, turn_at, Passage,
 };
 use crate::stages::outliers::IqrRule;
 use crate::stages::tips::{self, Candidate};
 use crate::stages::{clumps, given_back, junctions, local_outliers, Step};
-use alloc::vec;
 use alloc::vec::Vec;
 
 /// Algorithm 3 on edges gathered from elsewhere, without their triangulation: which of `edges`
@@ -123,15 +122,13 @@ pub fn gathered_repair_again_input(
 /// The squared length of each of `edges` (pairs of positions in `points`) in the stages' frame.
 fn gathered_lengths(points: &[crate::Point], edges: &[[usize; 2]]) -> Result<Vec<f64>, Error> {
     let stages = crate::triangulate::choose_frames(points)?.stages;
-    let mut lengths = Vec::with_capacity(edges.len());
-    for &[a, b] in edges {
-        // A loop is no edge of a graph (`Graph` drops them): refused, not measured as length 0.
-        let (Some(&p), Some(&q), true) = (points.get(a), points.get(b), a != b) else {
-            return Err(Error::invalid("edge", a.max(b) as f64));
-        };
-        lengths.push(stages.apply(p).dist2(stages.apply(q)));
-    }
-    Ok(lengths)
+    // Checked as the other gathered edges: a loop is refused, not measured as length 0.
+    let point = |v: VertexId| stages.apply(points[v.index()]);
+    let edges = vertex_edges(points.len(), edges)?;
+    Ok(edges
+        .iter()
+        .map(|&[a, b]| point(a).dist2(point(b)))
+        .collect())
 }
 
 /// Each position's component in the graph of `edges` (pairs of positions below `n`), named by its
@@ -335,14 +332,15 @@ struct GatheredClumps {
 
 impl GatheredClumps {
     fn new(n: usize, edges: &[[usize; 2]], tests: &[u8]) -> Result<GatheredClumps, Error> {
-        enough_tests(n, tests)?;
+        one_per_point(n, "tests", tests.len())?;
         let listed = graph_edges(n, edges)?;
         let graph = CurveGraph::new(n, &listed);
         let root = components(n, &listed);
         let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
         // Every test is at hand: the counts are exact (capped as the stage caps them), which
         // decides as the stage's early stop does (docs/distributed.md).
-        let counts = |_: &[u32], _: f64| Some(exact_separated(&graph, &root, |v| test(v, 2)));
+        let counts =
+            |_: &[u32], _: f64| separated_counts_until(&graph, &root, None, |v| test(v, 2));
         let passes = |v| test(v, 0b10000);
         let clump = clumps::clumps_of(&graph, &root, passes, counts, |v| test(v, 2));
         Ok(GatheredClumps {
@@ -500,14 +498,10 @@ pub fn repair_gathered_tips(
     let listed = graph_edges(n, edges)?;
     let graph = CurveGraph::new(n, &listed);
     let rows = candidate_rows(n, &graph, candidates)?;
-    let Some((chords, joins)) = tips::settle_candidates(n, &graph, rows) else {
+    let Some((mut chords, joins)) = tips::settle_candidates(n, &graph, rows) else {
         return Ok(None);
     };
-    let chords: Vec<Edge> = {
-        let mut chords = chords;
-        chords.sort_unstable();
-        chords
-    };
+    chords.sort_unstable();
     let mut out: Vec<[usize; 2]> = edges
         .iter()
         .zip(&listed)
@@ -898,13 +892,14 @@ pub fn remove_gathered_local_outliers(
     tips: &[[usize; 4]],
     joins: &[[usize; 2]],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    enough_tests(n, tests)?;
+    one_per_point(n, "tests", tests.len())?;
     let listed = graph_edges(n, edges)?;
     let profile = CurveGraph::new(n, &listed);
     let root = components(n, &listed);
     let gathered_joins = GatheredJoins::read(n, &profile, choices, tips, joins)?;
     let test = |v: VertexId, bit: u8| tests[v.index()] & bit != 0;
-    let separated = exact_separated(&profile, &root, |v| test(v, 2));
+    let separated = separated_counts_until(&profile, &root, None, |v| test(v, 2));
+    let separated = separated.expect("no limit to reach");
     let passing = |at: VertexId, previous: VertexId, next: VertexId| Passage {
         smooth: test(at, 1),
         turn: turn_read(tests[at.index()], previous, next),
@@ -918,19 +913,6 @@ pub fn remove_gathered_local_outliers(
     Ok(Some(keeping(edges, &listed, |a| {
         kept[root[a.index()] as usize]
     })))
-}
-
-/// Per component root, its points with edges that are `apart`, counted up to [`MIN_SAMPLES`] as
-/// the stages count them.
-fn exact_separated(graph: &CurveGraph, root: &[u32], apart: impl Fn(VertexId) -> bool) -> Vec<u8> {
-    let mut separated = vec![0u8; root.len()];
-    for (i, &r) in root.iter().enumerate() {
-        let v = VertexId::new(i as u32);
-        if graph.degree(v) > 0 && apart(v) && usize::from(separated[r as usize]) < MIN_SAMPLES {
-            separated[r as usize] += 1;
-        }
-    }
-    separated
 }
 
 /// Each position's component label and status, as [`given_back_standing`] gives them.
@@ -1082,7 +1064,7 @@ pub fn confirm_gathered_given_back(
     before_local: &[[usize; 2]],
     tests: &[u8],
 ) -> Result<Option<Vec<[usize; 2]>>, Error> {
-    enough_tests(n, tests)?;
+    one_per_point(n, "tests", tests.len())?;
     let Some((listed, standing)) = standing_of(n, edges, before_local)? else {
         return Ok(None);
     };
@@ -1130,11 +1112,6 @@ fn with_added(edges: &[[usize; 2]], added: &[Edge]) -> Option<Vec<[usize; 2]>> {
     (!added.is_empty()).then(|| edges.iter().copied().chain(positions).collect())
 }
 
-/// `Ok` when `tests` holds one entry per point of `n`.
-fn enough_tests(n: usize, tests: &[u8]) -> Result<(), Error> {
-    one_per_point(n, "tests", tests.len())
-}
-
 /// `Ok` when an array `name` of `len` entries holds one per point of `n`.
 fn one_per_point(n: usize, name: &'static str, len: usize) -> Result<(), Error> {
     if len < n {
@@ -1144,7 +1121,7 @@ fn one_per_point(n: usize, name: &'static str, len: usize) -> Result<(), Error> 
 }
 
 /// `edges` (pairs of distinct positions below `n`) as the stages' edges, a position standing for
-/// a vertex. A loop is no edge (`Graph` drops them): refused, as [`gathered_lengths`] refuses it.
+/// a vertex. A loop is no edge (`Graph` drops them): refused, also by [`gathered_lengths`].
 fn vertex_edges(n: usize, edges: &[[usize; 2]]) -> Result<Vec<Edge>, Error> {
     if n > CurveGraph::MAX_VERTICES {
         return Err(Error::invalid("n", n as f64));

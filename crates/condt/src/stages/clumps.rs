@@ -53,9 +53,9 @@ pub(crate) fn remove_clumps(
         let [y, z] = graph.first_two(v);
         passes(tri, v, y, z)
     };
-    let counts =
-        |size: &[u32], guard| separated_counts_until(tri, &graph, &root, Some((size, guard)));
     let apart = |v| separated_at(tri, &graph, &root, v);
+    let counts =
+        |size: &[u32], guard| separated_counts_until(&graph, &root, Some((size, guard)), apart);
     let joins = || would_join(tri, &graph, parallel);
     let Some(clump) = clumps_of(&graph, &root, smooth, counts, apart)
         .and_then(|clump| unless_joined(&graph, &root, clump, joins()))
@@ -331,9 +331,9 @@ mod tests {
             let [y, z] = graph.first_two(v);
             passes(&tri, v, y, z)
         };
-        let counts =
-            |size: &[u32], guard| separated_counts_until(&tri, &graph, &root, Some((size, guard)));
         let apart = |v| separated_at(&tri, &graph, &root, v);
+        let counts =
+            |size: &[u32], guard| separated_counts_until(&graph, &root, Some((size, guard)), apart);
         let clump = clumps_of(&graph, &root, smooth, counts, apart).expect("a clump by its shape");
         let piece = root[tri.vertex(curve_len).index()] as usize;
         assert!(clump[piece]);

@@ -864,18 +864,20 @@ fn separated_counts(
         return counts.into_iter().map(AtomicU8::into_inner).collect();
     }
     let _ = parallel;
-    separated_counts_until(tri, graph, root, None).expect("no limit to reach")
+    let apart = |v| separated_at(tri, graph, root, v);
+    separated_counts_until(graph, root, None, apart).expect("no limit to reach")
 }
 
-/// Per component root, how many of its vertices are separated (rule 4), counted up to
-/// [`MIN_SAMPLES`] (a byte), shared with the clump stage; with `limit` (each root's vertices with
+/// Per component root, how many of its vertices with edges are `apart` (rule 4's separation,
+/// [`separated_at`], or the tiles' record of it), counted up to [`MIN_SAMPLES`] (a byte), shared
+/// with the clump stage and the gathered rules ([`crate::tiled`]); with `limit` (each root's vertices with
 /// edges, a point count), counts below it inexact, and `None` once the components that cannot
 /// reach it hold `limit.1` points or more (speed: the test walks a Delaunay ring, a miss a step).
-pub(super) fn separated_counts_until(
-    tri: &Triangulation,
+pub(crate) fn separated_counts_until(
     graph: &CurveGraph,
     root: &[u32],
     limit: Option<(&[u32], f64)>,
+    apart: impl Fn(VertexId) -> bool,
 ) -> Option<Vec<u8>> {
     let mut separated = vec![0u8; root.len()];
     // With a limit: per root, its vertices with edges not yet judged (saturating: a large
@@ -909,7 +911,7 @@ pub(super) fn separated_counts_until(
             // No edge, already kept (a long curve stops after a few samples) or never to be kept.
             continue;
         }
-        separated[r] += u8::from(separated_at(tri, graph, root, v));
+        separated[r] += u8::from(apart(v));
         if let (Some((size, limit)), Some(left)) = (limit, unjudged.get_mut(r)) {
             if *left != u8::MAX {
                 *left -= 1;
