@@ -291,22 +291,13 @@ fn all_edges(tri: &Triangulation, graphs: &[Vec<[u32; 2]>], parallel: bool) -> V
             }
         }
     }
-    if others.is_empty() {
-        return delaunay;
+    if !others.is_empty() {
+        // The few added edges (each graph's once or more) among the sorted Delaunay ones.
+        delaunay.extend(others);
+        threads::sort_unstable_by_key(&mut delaunay, |&edge| edge, parallel);
+        delaunay.dedup();
     }
-    others.sort_unstable();
-    others.dedup();
-    // The two sorted lists, disjoint, merged.
-    let mut all = Vec::with_capacity(delaunay.len() + others.len());
-    let mut others = others.into_iter().peekable();
-    for edge in delaunay {
-        while let Some(other) = others.next_if(|&o| o < edge) {
-            all.push(other);
-        }
-        all.push(edge);
-    }
-    all.extend(others);
-    all
+    delaunay
 }
 
 /// The changes the `k`-th stage (`k` at least 1) made, as `(position in all, change)` in the

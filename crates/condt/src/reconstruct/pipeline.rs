@@ -6,7 +6,7 @@
 use super::history::{History, StageRecord, Undo, FIRST_KEPT_UP_TO};
 use super::params::{Method, Params};
 use super::result::{
-    degrees_of, edges_in_input_positions, Degrees, Reconstruction, Smoothing, StageReport, Tally,
+    degrees_of, edges_in_input_positions, Degrees, Reconstruction, Smoothing, StageReport,
 };
 use crate::adjacency::{CurveGraph, Edge};
 use crate::curve::curves_in_input_positions;
@@ -627,7 +627,7 @@ impl Run {
         let tri = &self.tri;
         let n = tri.num_points();
         let in_parallel = params.parallel && n >= PARALLEL_FROM;
-        let (waiting, curves, tally) = on_worker(in_parallel, n, || {
+        let (waiting, curves, degrees, unused, edges) = on_worker(in_parallel, n, || {
             let last = self.current.as_slice();
             let graph = self
                 .current_graph
@@ -669,12 +669,7 @@ impl Run {
             // After a final run's graph is freed (memory: it is not alive beside these nor
             // beside the curves' scratch); a run a pass follows keeps it in the pass's input.
             let edges = edges_in_input_positions(tri, last, in_parallel);
-            let tally = Tally {
-                degrees,
-                unused,
-                edges,
-            };
-            (waiting, curves, tally)
+            (waiting, curves, degrees, unused, edges)
         });
         let curves_time = clock.lap();
         let result = Reconstruction {
@@ -682,10 +677,10 @@ impl Run {
             triangulation: self.tri,
             history: self.history,
             final_edges: self.current,
-            edges: tally.edges,
-            degrees: tally.degrees,
+            edges,
+            degrees,
             curves,
-            unused: tally.unused,
+            unused,
             triangulation_time: self.triangulation_time,
             curves_time,
             smoothing: None,

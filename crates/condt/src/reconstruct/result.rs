@@ -385,6 +385,16 @@ pub(super) struct Degrees {
 }
 
 impl Degrees {
+    /// Empty, with room for `n` input positions, taken by the calling thread. Reason: memory;
+    /// [`degrees_of`] may run beside the curves on another thread, whose own malloc arena (glibc)
+    /// would take the block from the system anew.
+    pub(super) fn with_room(n: usize) -> Degrees {
+        Degrees {
+            small: Vec::with_capacity(n),
+            large: Vec::new(),
+        }
+    }
+
     const LARGE: u8 = u8::MAX;
 
     /// Appends the degree of the next input position.
@@ -426,24 +436,6 @@ impl Degrees {
 impl core::fmt::Debug for Degrees {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_list().entries(self.iter()).finish()
-    }
-}
-
-pub(super) struct Tally {
-    pub(super) degrees: Degrees,
-    pub(super) unused: Vec<usize>,
-    pub(super) edges: Vec<[u32; 2]>,
-}
-
-impl Degrees {
-    /// Empty, with room for `n` input positions, taken by the calling thread. Reason: memory;
-    /// [`degrees_of`] may run beside the curves on another thread, whose own malloc arena (glibc)
-    /// would take the block from the system anew.
-    pub(super) fn with_room(n: usize) -> Degrees {
-        Degrees {
-            small: Vec::with_capacity(n),
-            large: Vec::new(),
-        }
     }
 }
 
