@@ -530,7 +530,7 @@ impl<'t> Graph<'t> {
     }
 
     /// Panics with "`which` live on different triangulations" unless `others` live on this one's.
-    fn assert_beside(&self, others: &[&Graph<'t>], which: &str) {
+    pub(crate) fn assert_beside(&self, others: &[&Graph<'t>], which: &str) {
         let beside = others.iter().all(|g| core::ptr::eq(self.tri, g.tri));
         assert!(beside, "{which} live on different triangulations");
     }
@@ -550,11 +550,20 @@ impl<'t> Graph<'t> {
             before_repair: Cow::Borrowed(repair),
         };
         let parallel = crate::threads::parallel_available();
-        let outcome = step.run(self.tri, &self.edges, earlier, None, parallel);
-        match outcome.edges {
-            Some(edges) => (Graph::new(self.tri, Cow::Owned(edges)), true),
-            None => (self.clone(), false),
-        }
+        let edges = step
+            .run(self.tri, &self.edges, earlier, None, parallel)
+            .edges;
+        let applied = edges.is_some();
+        (self.changed_to(edges), applied)
+    }
+
+    /// The graph a stage's output `edges` make on this one's triangulation, or this graph when
+    /// the stage changed nothing (`None`).
+    pub(crate) fn changed_to(&self, edges: Option<Vec<Edge>>) -> Graph<'t> {
+        edges.map_or_else(
+            || self.clone(),
+            |edges| Graph::new(self.tri, Cow::Owned(edges)),
+        )
     }
 }
 

@@ -730,10 +730,7 @@ pub fn local_rules<'t>(
     before_outliers: &Graph<'t>,
     give_back: bool,
 ) -> Graph<'t> {
-    assert!(
-        core::ptr::eq(graph.triangulation(), before_outliers.triangulation()),
-        "local_rules: the two graphs live on different triangulations"
-    );
+    graph.assert_beside(&[before_outliers], "local_rules: the two graphs");
     let tri = graph.triangulation();
     let rules = local_outliers::Rules {
         give_back,
@@ -742,10 +739,7 @@ pub fn local_rules<'t>(
     let before = alloc::borrow::Cow::Borrowed(before_outliers.listed());
     let outcome =
         local_outliers::remove_local_outliers_with(tri, graph.listed(), before, &rules, false);
-    match outcome.edges {
-        Some(edges) => Graph::new(tri, alloc::borrow::Cow::Owned(edges)),
-        None => graph.clone(),
-    }
+    graph.changed_to(outcome.edges)
 }
 
 /// Rule 1 of the local outlier removal at curves' last edges, for a tile of a split run: the
@@ -775,10 +769,7 @@ pub fn local_rules<'t>(
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn last_edge_candidates(graph: &Graph<'_>, before_outliers: &Graph<'_>) -> Vec<[usize; 2]> {
-    assert!(
-        core::ptr::eq(graph.triangulation(), before_outliers.triangulation()),
-        "last_edge_candidates: the two graphs live on different triangulations"
-    );
+    graph.assert_beside(&[before_outliers], "last_edge_candidates: the two graphs");
     let tri = graph.triangulation();
     let candidates =
         local_outliers::last_edge_candidates(tri, graph.listed(), before_outliers.listed());
