@@ -126,7 +126,7 @@ pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> 
         .collect();
     once.sort_unstable();
     once.dedup();
-    let mut curves = if count <= CurveGraph::MAX_VERTICES {
+    if count <= CurveGraph::MAX_VERTICES {
         curves_of(&CurveGraph::new(count, &once), |v| v.index() as u32)
     } else {
         // Positions beyond what a curve graph holds: the points with edges, renumbered in
@@ -139,17 +139,13 @@ pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> 
         curves_of(&CurveGraph::new(ends.len(), &renumbered), |v| {
             ends[v.index()].index() as u32
         })
-    };
-    canonical(&mut curves);
-    curves
+    }
 }
 
 /// The curves of `graph` (over `tri`'s vertex ids) in input positions, canonical and sorted; the
 /// positions are read from the triangulation's map, not copied into the graph (memory).
 pub(crate) fn curves_in_input_positions(tri: &Triangulation, graph: &CurveGraph) -> Vec<Curve> {
-    let mut curves = curves_of(graph, |v| tri.input_of(v) as u32);
-    canonical(&mut curves);
-    curves
+    curves_of(graph, |v| tri.input_of(v) as u32)
 }
 
 fn canonical(curves: &mut [Curve]) {
@@ -165,8 +161,9 @@ fn canonical(curves: &mut [Curve]) {
     });
 }
 
-/// The curves of a graph already built, as walked, each vertex given as the point `name(v)`.
-pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> Vec<Curve> {
+/// The curves of a graph already built, each vertex given as the point `name(v)`: canonical
+/// ([`Curve::make_canonical`]) and sorted.
+fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> Vec<Curve> {
     let vertex_count = graph.vertex_count();
     // Degree-two vertices already on a curve. A path between two ends or branch points is met
     // from both of them; it is walked from the first and recognised as taken from the second.
@@ -204,6 +201,7 @@ pub(crate) fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> V
     }
     // Grown by doubling: up to half of it was room (memory).
     curves.shrink_to_fit();
+    canonical(&mut curves);
     curves
 }
 

@@ -892,10 +892,7 @@ impl Triangulation {
         mesh.edges()
             .map(|e| (mesh.origin(e), mesh.dest(e)))
             .filter(|&(a, b)| self.vertex_point(a).dist2(self.vertex_point(b)) < least_squared)
-            .map(|(a, b)| {
-                let (i, j) = (self.input_of(a), self.input_of(b));
-                (i.min(j), i.max(j))
-            })
+            .map(|(a, b)| self.input_edge([a, b]).into())
             // By input positions: the same answer whatever the mesh's numbering (`parallel`).
             .min()
     }
