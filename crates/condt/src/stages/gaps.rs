@@ -562,11 +562,8 @@ fn stranded_runs(
     // (which would win depends on the ids, that is on the input's orientation).
     let claimed: Vec<VertexId> = joins.iter().flatten().copied().collect();
     super::alone(n, &mut chains, &claimed, Vec::clone);
-    let mut out = Vec::new();
-    for chain in &chains {
-        out.extend(chain.windows(2).map(|p| ordered(p[0], p[1])));
-    }
-    out
+    let edges = chains.iter().flat_map(|chain| chain.windows(2));
+    edges.map(|p| ordered(p[0], p[1])).collect()
 }
 
 /// The indices listed under `v` in `sorted`, a list of (point, index) pairs sorted by point.

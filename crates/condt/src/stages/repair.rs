@@ -86,11 +86,7 @@ const STRAIGHT_COS2: f64 = 0.75;
 /// The absolute cross product and the dot product of the edges at `v` to `a` and to `b`.
 #[inline]
 fn cross_dot(tri: &Triangulation, v: VertexId, a: VertexId, b: VertexId) -> (f64, f64) {
-    let (p, q, r) = (
-        tri.vertex_point(v),
-        tri.vertex_point(a),
-        tri.vertex_point(b),
-    );
+    let [p, q, r] = [v, a, b].map(|u| tri.vertex_point(u));
     let (ux, uy, wx, wy) = (q.x - p.x, q.y - p.y, r.x - p.x, r.y - p.y);
     ((ux * wy - uy * wx).abs(), ux * wx + uy * wy)
 }
