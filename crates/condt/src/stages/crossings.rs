@@ -17,11 +17,10 @@
 //! the order nor on `parallel`.
 
 use super::gaps::{one_sampling, Ends, STRAIGHT};
-use super::{alone, Outcome};
-use crate::adjacency::{ordered, CurveGraph, Edge};
+use super::{alone, Replaced};
+use crate::adjacency::ordered;
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
-use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
 /// Whether the vectors `u` and `w` from one point make a straight passage ([`STRAIGHT`]), without
@@ -112,22 +111,13 @@ impl Ends<'_> {
 
 /// Restores crossings in `edges` (each edge once, any order): the input edges in order without
 /// the chords, then each crossing's two arms by increasing `x`.
-pub(crate) fn restore_crossings(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let n = tri.num_points();
-    let ends = Ends::new(tri, edges, graph);
+pub(crate) fn restore_crossings(ends: &Ends<'_>, parallel: bool) -> Replaced {
+    let (tri, n) = (ends.tri, ends.tri.num_points());
     // Most of the stage's cost: each point judged alone, in ranges on threads when `parallel`.
     let found: Vec<Crossing> = found_in_order(n, parallel, |i| {
         ends.graph.prefetch_ahead(i, tri.vertex_points());
         ends.crossing_at(VertexId::new(i as u32))
     });
-    if found.is_empty() {
-        return Outcome::unchanged_with(ends.into_graph());
-    }
     // A point in two crossings (a crossing's and a chord's end, say) takes part in none.
     let mut restored = found;
     alone(n, &mut restored, &[], |k| [k.x, k.c, k.d]);
@@ -136,12 +126,13 @@ pub(crate) fn restore_crossings(
         .iter()
         .flat_map(|k| [ordered(k.x, k.c), ordered(k.x, k.d)])
         .collect();
-    Outcome::replacing(edges, ends.into_graph(), chords, arms)
+    (chords, arms)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::adjacency::Edge;
     use crate::{triangulate, Point};
 
     /// Two straight curves crossing at point 0 at `angle` degrees, unit spacing, `arm` samples on
@@ -177,7 +168,7 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
-        let out = restore_crossings(&tri, &edges, None, false).edges?;
+        let out = crate::stages::with_ends(&tri, &edges, None, false, restore_crossings).edges?;
         Some(crate::Graph::new(&tri, alloc::borrow::Cow::Owned(out)).edges())
     }
 

@@ -28,8 +28,9 @@
 //! the result depends neither on the order of the edges nor on `parallel`.
 
 use super::gaps::cos_at;
+use super::gaps::Ends;
 use super::local_outliers::MIN_SAMPLES;
-use super::Outcome;
+use super::Replaced;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
@@ -168,16 +169,9 @@ pub(crate) fn detours(tri: &Triangulation, graph: &CurveGraph, parallel: bool) -
 }
 
 /// Cuts the detours of `edges` (each once, any order): the module's rule.
-pub(crate) fn cut_detours(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let graph = graph.unwrap_or_else(|| CurveGraph::new(tri.num_points(), edges));
-    let found = detours(tri, &graph, parallel);
-    let removed: Vec<Edge> = found.iter().flat_map(Detour::removed).collect();
-    Outcome::replacing(edges, Some(graph), removed, Vec::new())
+pub(crate) fn cut_detours(ends: &Ends<'_>, parallel: bool) -> Replaced {
+    let found = detours(ends.tri, &ends.graph, parallel);
+    (found.iter().flat_map(Detour::removed).collect(), Vec::new())
 }
 
 #[cfg(test)]

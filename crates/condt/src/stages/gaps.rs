@@ -50,7 +50,7 @@
 //! of the ends, nor on `parallel`.
 
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
-use super::Outcome;
+use super::Replaced;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
@@ -575,15 +575,8 @@ fn listed_under(sorted: &[(VertexId, usize)], v: VertexId) -> impl Iterator<Item
 
 /// Closes gaps in `edges` (each edge once, any order): the input edges in order, then the joins
 /// ([`Outcome::replacing`]).
-pub(crate) fn close_gaps(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let ends = Ends::new(tri, edges, graph);
-    let joins = gap_joins(&ends, parallel);
-    Outcome::replacing(edges, ends.into_graph(), Vec::new(), joins)
+pub(crate) fn close_gaps(ends: &Ends<'_>, parallel: bool) -> Replaced {
+    (Vec::new(), gap_joins(ends, parallel))
 }
 
 /// The joins [`close_gaps`] adds to the graph of `ends`, by increasing loose end.
@@ -716,7 +709,7 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
-        let outcome = close_gaps(&tri, &edges, None, false);
+        let outcome = crate::stages::with_ends(&tri, &edges, None, false, close_gaps);
         let out = outcome.edges.unwrap_or_else(|| edges.clone());
         assert_eq!(&out[..edges.len()], &edges[..], "never removes an edge");
         crate::Graph::new(&tri, alloc::borrow::Cow::Borrowed(&out[edges.len()..])).edges()

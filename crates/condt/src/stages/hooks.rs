@@ -27,10 +27,9 @@
 
 use super::gaps::{Ends, GAP_RATIO};
 use super::local_outliers::SMOOTH_COS;
-use super::{alone, Outcome};
-use crate::adjacency::{ordered, CurveGraph, Edge};
+use super::{alone, Replaced};
+use crate::adjacency::{ordered, Edge};
 use crate::mesh::VertexId;
-use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
 /// A move: the loose end `c`, hanging from `b`, put between `a` and `b`; `b` joins `x`.
@@ -112,16 +111,10 @@ impl Ends<'_> {
 
 /// Puts hooked loose ends in `edges` (each edge once, any order) back in line: the input edges in
 /// order without the replaced ones, then each move's two edges by increasing loose end.
-pub(crate) fn unhook(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let ends = Ends::new(tri, edges, graph);
-    let moves = settled(&ends, parallel);
+pub(crate) fn unhook(ends: &Ends<'_>, parallel: bool) -> Replaced {
+    let moves = settled(ends, parallel);
     let replaced = moves.iter().map(|m| ordered(m.a, m.b)).collect();
-    Outcome::replacing(edges, ends.into_graph(), replaced, joins_of(&moves))
+    (replaced, joins_of(&moves))
 }
 
 /// The edges the stage's moves would add on the graph of `ends`, found and settled as the stage

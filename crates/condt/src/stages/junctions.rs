@@ -32,10 +32,9 @@
 
 use super::gaps::{cos_at, crowded, one_sampling, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
-use super::{uses, Outcome};
-use crate::adjacency::{ordered, CurveGraph, Edge};
+use super::{uses, Replaced};
+use crate::adjacency::{ordered, Edge};
 use crate::mesh::VertexId;
-use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
 impl Ends<'_> {
@@ -320,16 +319,10 @@ enum Choice {
 /// Joins loose ends in `edges` (each once, any order) to the junctions they meet, and replaces the
 /// chords that run past a loose end at a junction: the input edges in order without those chords,
 /// then the joins' edges by increasing end, then each chord's two new edges by increasing end.
-pub(crate) fn join_junctions(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let ends = Ends::new(tri, edges, graph);
+pub(crate) fn join_junctions(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let found: Vec<Choice> = ends.each_loose(parallel, |a| ends.choice_of(a));
     if found.is_empty() {
-        return Outcome::unchanged_with(ends.into_graph());
+        return Replaced::default();
     }
     let mut joins: Vec<Junction> = Vec::with_capacity(found.len());
     let mut chords: Vec<ChordPast> = Vec::new();
@@ -346,10 +339,10 @@ pub(crate) fn join_junctions(
         let Junction { walk, at, .. } = *join;
         (0..=walk.len()).map(move |k| walk.get(k).copied().unwrap_or(at))
     };
-    let uses_of_joins = uses(tri.num_points(), &joins, points);
+    let uses_of_joins = uses(ends.tri.num_points(), &joins, points);
     // A chord's ends take part in nothing else: no other chord, no join chose them (counted before
     // the joins settle, so even a join dropped below keeps the chord out).
-    let uses_of_chords = uses(tri.num_points(), &chords, |chord| [chord.c, chord.d]);
+    let uses_of_chords = uses(ends.tri.num_points(), &chords, |chord| [chord.c, chord.d]);
     chords.retain(|chord| {
         [chord.c, chord.d]
             .iter()
@@ -369,7 +362,7 @@ pub(crate) fn join_junctions(
         .iter()
         .map(|chord| ordered(chord.c, chord.d))
         .collect();
-    Outcome::replacing(edges, ends.into_graph(), removed, added)
+    (removed, added)
 }
 
 #[cfg(test)]
@@ -422,7 +415,7 @@ mod tests {
             .iter()
             .map(|&[a, b]| ordered(tri.vertex(a), tri.vertex(b)))
             .collect();
-        let out = join_junctions(&tri, &listed, None, false)
+        let out = crate::stages::with_ends(&tri, &listed, None, false, join_junctions)
             .edges
             .unwrap_or_else(|| listed.clone());
         let positions =

@@ -403,14 +403,18 @@ impl Step {
                 given_back::confirm_given_back(tri, edges, &earlier.before_local, graph)
             }
             Step::RemoveClumps => clumps::remove_clumps(tri, edges, graph, parallel),
-            Step::CloseGaps => gaps::close_gaps(tri, edges, graph, parallel),
-            Step::JoinJunctions => junctions::join_junctions(tri, edges, graph, parallel),
-            Step::RestoreCrossings => crossings::restore_crossings(tri, edges, graph, parallel),
-            Step::RepairTips => tips::repair_tips(tri, edges, graph, parallel),
-            Step::RepairSpikes => spikes::repair_spikes(tri, edges, graph, parallel),
-            Step::Unhook => hooks::unhook(tri, edges, graph, parallel),
-            Step::CutTails => tails::cut_tails(tri, edges, graph, parallel),
-            Step::CutDetours => detours::cut_detours(tri, edges, graph, parallel),
+            Step::CloseGaps => with_ends(tri, edges, graph, parallel, gaps::close_gaps),
+            Step::JoinJunctions => {
+                with_ends(tri, edges, graph, parallel, junctions::join_junctions)
+            }
+            Step::RestoreCrossings => {
+                with_ends(tri, edges, graph, parallel, crossings::restore_crossings)
+            }
+            Step::RepairTips => with_ends(tri, edges, graph, parallel, tips::repair_tips),
+            Step::RepairSpikes => with_ends(tri, edges, graph, parallel, spikes::repair_spikes),
+            Step::Unhook => with_ends(tri, edges, graph, parallel, hooks::unhook),
+            Step::CutTails => with_ends(tri, edges, graph, parallel, tails::cut_tails),
+            Step::CutDetours => with_ends(tri, edges, graph, parallel, detours::cut_detours),
         }
     }
 }
@@ -477,6 +481,25 @@ impl Outcome {
         out.extend(added);
         Outcome::changed(input, out, graph)
     }
+}
+
+/// What a stage that reads the graph's loose ends and points ([`gaps::Ends`]) changes: the edges
+/// it removes and those it adds, in the order [`Outcome::replacing`] lists them.
+pub(crate) type Replaced = (Vec<Edge>, Vec<Edge>);
+
+/// Runs such a stage, `stage(ends, parallel)`, on `edges` (`graph`, their curve graph if at
+/// hand): the input edges in order without the removed ones, then the added ones, with the
+/// output's curve graph.
+pub(crate) fn with_ends(
+    tri: &Triangulation,
+    edges: &[Edge],
+    graph: Option<CurveGraph>,
+    parallel: bool,
+    stage: impl FnOnce(&gaps::Ends<'_>, bool) -> Replaced,
+) -> Outcome {
+    let ends = gaps::Ends::new(tri, edges, graph);
+    let (removed, added) = stage(&ends, parallel);
+    Outcome::replacing(edges, ends.into_graph(), removed, added)
 }
 
 impl From<Option<Vec<Edge>>> for Outcome {

@@ -36,12 +36,11 @@
 
 use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
-use super::{alone, Outcome};
-use crate::adjacency::{ordered, CurveGraph, Edge};
+use super::{alone, Replaced};
+use crate::adjacency::{ordered, Edge};
 use crate::bits::IdBits;
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
-use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
 /// Most samples of a tip the step puts back: as many as make a curve of its own
@@ -324,21 +323,15 @@ fn next_permutation(items: &mut [VertexId]) -> bool {
 
 /// Puts tips of several unused samples back in `edges` (each edge once, any order): the input
 /// edges in order without the chords, then each move's path from `a` to `b` by increasing `a`.
-pub(crate) fn repair_spikes(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let ends = Ends::new(tri, edges, graph);
-    let moves = settled(&ends, parallel);
+pub(crate) fn repair_spikes(ends: &Ends<'_>, parallel: bool) -> Replaced {
+    let moves = settled(ends, parallel);
     let chords = moves
         .iter()
         .filter(|m| m.chord)
         .map(|m| ordered(m.a, m.b))
         .collect();
     let joins = moves.iter().flat_map(|m| m.joins()).collect();
-    Outcome::replacing(edges, ends.into_graph(), chords, joins)
+    (chords, joins)
 }
 
 /// Every move of the rule on the graph of `ends`, settled: a point in two moves takes part in

@@ -31,10 +31,9 @@ use super::gaps::Ends;
 use super::local_outliers::MIN_SAMPLES;
 use super::outliers::FLOOR_RATIO;
 use super::repair::{angle_at, NEED_RATIO};
-use super::Outcome;
-use crate::adjacency::{ordered, CurveGraph, Edge};
+use super::Replaced;
+use crate::adjacency::ordered;
 use crate::mesh::VertexId;
-use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 use core::f64::consts::PI;
 
@@ -95,27 +94,22 @@ impl Ends<'_> {
 }
 
 /// Cuts the outlier tails of `edges` (each once, any order): the module's rule.
-pub(crate) fn cut_tails(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let ends = Ends::new(tri, edges, graph);
+pub(crate) fn cut_tails(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let tails = ends.each_loose(parallel, |a| ends.tail_of(a));
     // Each tail's edges, the joint last. Two tails of one chain share no edge: tails of `m` and
     // `m'` points from its two ends meet only on a chain of `m + m'` points or fewer, and each
     // needs `m + 6` (its run) behind it.
-    let removed: Vec<Edge> = tails
+    let removed = tails
         .iter()
         .flat_map(|(tail, m)| tail[..=*m].windows(2).map(|w| ordered(w[0], w[1])))
         .collect();
-    Outcome::replacing(edges, ends.into_graph(), removed, Vec::new())
+    (removed, Vec::new())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::adjacency::Edge;
     use crate::{triangulate, Point};
 
     /// The edges `cut_tails` leaves of the chain through `pts` in order, in input positions.
@@ -124,7 +118,7 @@ mod tests {
         let listed: Vec<Edge> = (1..pts.len())
             .map(|i| ordered(tri.vertex(i - 1), tri.vertex(i)))
             .collect();
-        let out = cut_tails(&tri, &listed, None, false)
+        let out = crate::stages::with_ends(&tri, &listed, None, false, cut_tails)
             .edges
             .unwrap_or_else(|| listed.clone());
         crate::Graph::new(&tri, alloc::borrow::Cow::Owned(out)).edges()

@@ -35,7 +35,7 @@
 use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
 use super::repair::NEED_RATIO;
-use super::{alone, Outcome};
+use super::{alone, Replaced};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
@@ -293,17 +293,8 @@ impl Ends<'_> {
 
 /// Replaces chords at tips in `edges` (each edge once, any order): the input edges in order
 /// without the chords, then each move's edges by increasing move.
-pub(crate) fn repair_tips(
-    tri: &Triangulation,
-    edges: &[Edge],
-    graph: Option<CurveGraph>,
-    parallel: bool,
-) -> Outcome {
-    let ends = Ends::new(tri, edges, graph);
-    match settle(tri.num_points(), found(&ends, parallel)) {
-        Some((chords, joins)) => Outcome::replacing(edges, ends.into_graph(), chords, joins),
-        None => Outcome::unchanged_with(ends.into_graph()),
-    }
+pub(crate) fn repair_tips(ends: &Ends<'_>, parallel: bool) -> Replaced {
+    settle(ends.tri.num_points(), found(ends, parallel)).unwrap_or_default()
 }
 
 /// What every loose end and every point without edges of the graph of `ends` found, in id order.
@@ -538,7 +529,9 @@ mod tests {
             .map(|&[a, b]| ordered(tri.input_to_vertex()[a], tri.input_to_vertex()[b]))
             .collect();
         let [one, many] = [false, true].map(|parallel| {
-            let mut out = repair_tips(&tri, &ids, None, parallel).edges.unwrap();
+            let mut out = crate::stages::with_ends(&tri, &ids, None, parallel, repair_tips)
+                .edges
+                .unwrap();
             out.sort_unstable();
             out
         });
