@@ -10,7 +10,7 @@ use crate::mesh::VertexId;
 use crate::reconstruct::{Reconstruction, StageReport};
 use crate::stages::detours;
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
-use crate::stages::outliers::{iqr_thresholds, IqrRule};
+use crate::stages::outliers::{iqr_thresholds_of, IqrRule};
 use crate::stages::proximity::{end_choices, Uniformity};
 use crate::stages::Stage;
 use crate::threads;
@@ -451,7 +451,7 @@ impl<'a> Explainer<'a> {
                     factor: result.params().outlier_factor.unwrap_or(0.0),
                     floor: result.params().iqr_floor,
                 };
-                let thresholds = iqr_thresholds(&lengths, rule);
+                let thresholds = iqr_thresholds_of(lengths, rule);
                 let cut = in_input_units(tri, libm::sqrt(thresholds.cut));
                 (cut, thresholds.cut > thresholds.fire)
             }

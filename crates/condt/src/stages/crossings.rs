@@ -109,8 +109,8 @@ impl Ends<'_> {
     }
 }
 
-/// Restores crossings in `edges` (each edge once, any order): the input edges in order without
-/// the chords, then each crossing's two arms by increasing `x`.
+/// Restores crossings in the graph of `ends` ([`super::with_ends`]): the chords, and each
+/// crossing's two arms by increasing `x`.
 pub(crate) fn restore_crossings(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let (tri, n) = (ends.tri, ends.tri.num_points());
     // Most of the stage's cost: each point judged alone, in ranges on threads when `parallel`.

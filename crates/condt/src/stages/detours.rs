@@ -168,7 +168,7 @@ pub(crate) fn detours(tri: &Triangulation, graph: &CurveGraph, parallel: bool) -
     })
 }
 
-/// Cuts the detours of `edges` (each once, any order): the module's rule.
+/// Cuts the detours of the graph of `ends` ([`super::with_ends`]): the module's rule.
 pub(crate) fn cut_detours(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let found = detours(ends.tri, &ends.graph, parallel);
     (found.iter().flat_map(Detour::removed).collect(), Vec::new())

@@ -573,8 +573,7 @@ fn listed_under(sorted: &[(VertexId, usize)], v: VertexId) -> impl Iterator<Item
     run.map(|&(_, k)| k)
 }
 
-/// Closes gaps in `edges` (each edge once, any order): the input edges in order, then the joins
-/// ([`Outcome::replacing`]).
+/// Closes gaps in the graph of `ends` ([`super::with_ends`]): no edge removed, the joins added.
 pub(crate) fn close_gaps(ends: &Ends<'_>, parallel: bool) -> Replaced {
     (Vec::new(), gap_joins(ends, parallel))
 }

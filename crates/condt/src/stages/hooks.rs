@@ -109,8 +109,8 @@ impl Ends<'_> {
     }
 }
 
-/// Puts hooked loose ends in `edges` (each edge once, any order) back in line: the input edges in
-/// order without the replaced ones, then each move's two edges by increasing loose end.
+/// Puts hooked loose ends in the graph of `ends` back in line ([`super::with_ends`]): the replaced
+/// edges, and each move's two edges by increasing loose end.
 pub(crate) fn unhook(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let moves = settled(ends, parallel);
     let replaced = moves.iter().map(|m| ordered(m.a, m.b)).collect();

@@ -316,9 +316,9 @@ enum Choice {
     Chord(ChordPast),
 }
 
-/// Joins loose ends in `edges` (each once, any order) to the junctions they meet, and replaces the
-/// chords that run past a loose end at a junction: the input edges in order without those chords,
-/// then the joins' edges by increasing end, then each chord's two new edges by increasing end.
+/// Joins loose ends in the graph of `ends` ([`super::with_ends`]) to the junctions they meet, and
+/// replaces the chords that run past a loose end at a junction: those chords, and the joins'
+/// edges by increasing end, then each chord's two new edges by increasing end.
 pub(crate) fn join_junctions(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let found: Vec<Choice> = ends.each_loose(parallel, |a| ends.choice_of(a));
     if found.is_empty() {

@@ -45,12 +45,8 @@ pub(crate) struct Thresholds {
 }
 
 /// The thresholds on the squared lengths `lengths2` (not empty), `Q3 = s[min(3n/4, n - 1)]`, the
-/// median `s[n/2]`: the one place they are computed (for repairing again and explanations too).
-pub(crate) fn iqr_thresholds(lengths2: &[f64], rule: IqrRule) -> Thresholds {
-    iqr_thresholds_of(lengths2.to_vec(), rule)
-}
-
-/// [`iqr_thresholds`] of lengths the caller no longer needs: their list is the scratch space.
+/// median `s[n/2]`: the one place they are computed (for repairing again and explanations too);
+/// the list, no longer needed, is the scratch space.
 pub(crate) fn iqr_thresholds_of(lengths2: Vec<f64>, rule: IqrRule) -> Thresholds {
     let n = lengths2.len();
     let upper = (3 * n / 4).min(n - 1);

@@ -321,8 +321,8 @@ fn next_permutation(items: &mut [VertexId]) -> bool {
     true
 }
 
-/// Puts tips of several unused samples back in `edges` (each edge once, any order): the input
-/// edges in order without the chords, then each move's path from `a` to `b` by increasing `a`.
+/// Puts tips of several unused samples back in the graph of `ends` ([`super::with_ends`]): the
+/// chords, and each move's path from `a` to `b` by increasing `a`.
 pub(crate) fn repair_spikes(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let moves = settled(ends, parallel);
     let chords = moves

@@ -93,7 +93,7 @@ impl Ends<'_> {
     }
 }
 
-/// Cuts the outlier tails of `edges` (each once, any order): the module's rule.
+/// Cuts the outlier tails of the graph of `ends` ([`super::with_ends`]): the module's rule.
 pub(crate) fn cut_tails(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let tails = ends.each_loose(parallel, |a| ends.tail_of(a));
     // Each tail's edges, the joint last. Two tails of one chain share no edge: tails of `m` and

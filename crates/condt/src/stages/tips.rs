@@ -291,8 +291,8 @@ impl Ends<'_> {
     }
 }
 
-/// Replaces chords at tips in `edges` (each edge once, any order): the input edges in order
-/// without the chords, then each move's edges by increasing move.
+/// Replaces chords at tips in the graph of `ends` ([`super::with_ends`]): the chords, and each
+/// move's edges by increasing move.
 pub(crate) fn repair_tips(ends: &Ends<'_>, parallel: bool) -> Replaced {
     settle(ends.tri.num_points(), found(ends, parallel)).unwrap_or_default()
 }
