@@ -426,21 +426,15 @@ pub(crate) fn sort_pairs<T: Copy + Ord>(
         sorted[*slot as usize] = pair;
         *slot += 1;
     }
-    // Each `ends[a]` has moved to the end of bucket `a`.
-    let mut out = Vec::with_capacity(count);
+    // Each `ends[a]` has moved to the end of bucket `a`: each bucket sorted, then the repeats
+    // (next to each other, in one bucket) dropped in place.
     let mut begin = 0;
     for &end in &ends[..bound] {
-        let bucket = &mut sorted[begin..end as usize];
-        bucket.sort_unstable();
-        let before = out.len();
-        for pair in bucket.iter() {
-            if out.len() == before || out.last() != Some(pair) {
-                out.push(*pair);
-            }
-        }
+        sorted[begin..end as usize].sort_unstable();
         begin = end as usize;
     }
-    out
+    sorted.dedup();
+    sorted
 }
 
 /// `edges` (at most `room`) in one list of exact length, allocated once (collecting would double).
