@@ -115,19 +115,9 @@ pub(crate) fn logarithmic(x: f64, smallest: u64) -> f64 {
 /// `wide_ties_do_not_follow_the_input_order`). Such points are adjacent in `order`, as the cell
 /// sort compares their equal places.
 pub(crate) fn order_warped_ties(points: &[Point], warped: &[Point], order: &mut [u32]) {
-    let mut start = 0;
-    while start < order.len() {
-        let place = warped[order[start] as usize];
-        let end = start
-            + order[start..]
-                .iter()
-                .take_while(|&&i| warped[i as usize] == place)
-                .count();
-        if end - start > 1 {
-            let own = |i: &u32| points[*i as usize];
-            order[start..end].sort_unstable_by(|i, j| own(i).lexicographic_cmp(own(j)));
-        }
-        start = end;
+    let own = |i: &u32| points[*i as usize];
+    for run in order.chunk_by_mut(|&i, &j| warped[i as usize] == warped[j as usize]) {
+        run.sort_unstable_by(|i, j| own(i).lexicographic_cmp(own(j)));
     }
 }
 
@@ -305,16 +295,11 @@ fn for_each_run<T, K: PartialEq>(
     mut sort: impl FnMut(core::ops::Range<usize>),
 ) {
     let mut start = 0;
-    while start < items.len() {
-        let first = key(&items[start]);
-        let mut end = start + 1;
-        while end < items.len() && key(&items[end]) == first {
-            end += 1;
+    for run in items.chunk_by(|a, b| key(a) == key(b)) {
+        if run.len() > 1 {
+            sort(start..start + run.len());
         }
-        if end - start > 1 {
-            sort(start..end);
-        }
-        start = end;
+        start += run.len();
     }
 }
 
