@@ -135,35 +135,37 @@ pub(crate) fn parse_csv_columns(
     parse_separated(text, file, if tabs { b'\t' } else { b',' }, columns)
 }
 
-/// Plain text (columns separated by blanks, `#` starting a comment) read from the columns
-/// `chosen`: a scanner's `x y z intensity` export, which the plain reader refuses beyond three
-/// columns. Each line's fields are joined by tabs and read as TSV, so that a header and
-/// columns by name or number mean what they mean there, on the same line numbers. A text whose
-/// first line with content separates its columns by commas is read as CSV.
+/// Plain text read from the columns `chosen`: a scanner's `x y z intensity` export, which the
+/// plain reader refuses beyond three columns. Each line is split as the plain reader splits it
+/// (`#` starts a comment; blanks, or commas alone, separate the columns; a decimal comma and an
+/// empty column refused), its fields joined by tabs and read as TSV, so that a header and
+/// columns by name or number mean what they mean there, on the same line numbers. Quotes mean
+/// nothing in plain text, and a quote in a TSV would join lines: a line holding one is refused.
+/// The joined copy costs the text's size again, and the read is sequential.
 pub(crate) fn parse_plain_columns(
     text: &str,
     file: &str,
     chosen: &Columns,
 ) -> Result<Vec<Point>, IoError> {
-    fn uncommented(line: &str) -> &str {
-        line.split('#').next().unwrap_or("")
-    }
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let commas = crate::text_lines(text)
-        .map(|(_, line)| uncommented(line))
-        .find(|content| !content.trim().is_empty())
-        .is_some_and(|content| content.contains(','));
-    if commas {
-        return parse_csv_columns(text, file, Some(chosen));
-    }
+    let source = Source { file };
     let mut tabbed = String::with_capacity(text.len());
-    for (_, line) in crate::text_lines(text) {
-        for (k, field) in uncommented(line).split_whitespace().enumerate() {
-            if k > 0 {
-                tabbed.push('\t');
-            }
-            tabbed.push_str(field);
+    for (number, line) in crate::text_lines(text) {
+        let content = line.split('#').next().unwrap_or("");
+        if content.contains('\u{feff}') {
+            return Err(source.error(number, crate::points::BOM_INSIDE.to_string()));
         }
+        if content.contains('"') {
+            return Err(source.error(
+                number,
+                format!(
+                    "a quote in plain text, where quotes mean nothing: {} (a CSV file: condt's \
+                     --input-format csv)",
+                    quoted(content.trim())
+                ),
+            ));
+        }
+        let fields = crate::points::columns(content).map_err(|m| source.error(number, m))?;
+        tabbed.push_str(&fields.join("\t"));
         tabbed.push('\n');
     }
     parse_separated(&tabbed, file, b'\t', Some(chosen))

@@ -177,7 +177,7 @@ impl Source<'_> {
 /// The refusal of a byte-order mark anywhere but at the very start of the file (where every
 /// reader skips it), on every path: it is not whitespace, and a reader that skipped it at the
 /// start of a line would read a file in pieces differently from one read whole.
-const BOM_INSIDE: &str =
+pub(super) const BOM_INSIDE: &str =
     "a byte-order mark (U+FEFF) inside the file; it is allowed only at the very start";
 
 /// `true` for a token that names a column (`x`, `lat`, `"y"`) rather than holds a number: it
@@ -229,7 +229,7 @@ fn check_header(fields: &[&str]) -> Result<(), String> {
 /// The columns of a plain line (comment already removed): separated by whitespace, or by commas
 /// alone. A comma next to a field that also holds whitespace is refused: `1,5 2` is either a
 /// decimal comma or a typo, and reading it as three columns would be a guess.
-fn columns(content: &str) -> Result<Vec<&str>, String> {
+pub(super) fn columns(content: &str) -> Result<Vec<&str>, String> {
     if !content.contains(',') {
         return Ok(content.split_whitespace().collect());
     }

@@ -204,6 +204,27 @@ fn columns_choose_x_and_y_of_plain_text() {
         text.contains("--columns 1,2") && !text.contains(".node"),
         "{text}"
     );
+    // Split as the plain reader splits: commas alone separate too, comments go (a review: the
+    // comma form kept them and misread the header), a decimal comma is refused as there; a
+    // quote, which in the TSV read would join lines and drop points silently, is refused.
+    let commas = TempFile::new("commas.txt", b"# scan, exported\nx,y,z\n0,0,1 # c\n1,0,1\n");
+    let options = ReadOptions::new().with_columns(Columns::parse("x,y").unwrap());
+    let read = read_points_with(&commas.0, &options).unwrap();
+    assert_eq!(read.points, points(&[(0.0, 0.0), (1.0, 0.0)]));
+    for (text, line, words) in [
+        (
+            &b"x y note\n0 0 \"a\n1 0 b\"\n0 1 c\n"[..],
+            2,
+            "a quote in plain text",
+        ),
+        (b"x y\n1,5 2,5 3 4\n", 2, "decimal comma"),
+        (b"x y\n0 0\n\xef\xbb\xbf1 1\n", 3, "byte-order mark"),
+    ] {
+        let file = TempFile::new("refused.txt", text);
+        let err = read_points_with(&file.0, &options).unwrap_err();
+        assert_eq!(err.line, Some(line), "{err}");
+        assert!(err.to_string().contains(words), "{err}");
+    }
     let header = TempFile::new("node.txt", b"3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n");
     let (_, text) = content_error(header.read());
     assert!(text.contains("Triangle .node"), "{text}");

@@ -141,11 +141,12 @@ pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
 }
 
 /// The relative gap between two rounded squared distances beyond which their order is the
-/// exact one. [`Point::dist2`] rounds four times (two differences, two squares and their sum:
-/// each at most 2^-53 of its value), so it is within about 4 x 2^-53 of the exact square, and
-/// two that differ by more than 2^-49 of the larger (twice what both errors can span) are in
-/// their exact order. The squares lie far above the subnormal range in the stages' frame
-/// ([`crate::Error::TooCloseToMeasure`]), where every error is relative.
+/// exact one. In [`Point::dist2`] each term carries the rounding of its difference (doubled by
+/// the square), of its square and of the sum, each at most 2^-53 of its value: the result is
+/// within about 4 x 2^-53 of the exact square, and two that differ by more than 2^-49 of the
+/// larger (twice what both errors can span) are in their exact order. The squares lie far
+/// above the subnormal range in the stages' frame ([`crate::Error::TooCloseToMeasure`]), where
+/// every error is relative.
 const ROUNDING_GAP: f64 = 1.0 / (1u64 << 49) as f64;
 
 /// Which of `a` and `b` is nearer to `p`, exactly, given their rounded squared distances `da`

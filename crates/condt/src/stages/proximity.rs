@@ -174,7 +174,9 @@ pub(crate) fn end_choices<'a>(
     let key = move |u: VertexId| (p.dist2(tri.vertex_point(u)), u);
     ring.clear();
     ring.extend(tri.mesh().neighbors(v).map(key));
-    // The stage's order ([`TwoBest::offer`]): squared length, exact length on a tie, then id.
+    // The stage's order ([`TwoBest::offer`]): exact length, then id; the stage compares a
+    // 32-bit key first, so the two can differ where two squares within the rounding gap fall on
+    // either side of a key's step (docs/condt.md, *Readings*, item 1).
     // A vertex is itself first: the search below meets its own entry, whose tie the exact
     // comparison would otherwise settle at length (big integers, where the square rounds).
     let order = move |a: &(f64, VertexId), b: &(f64, VertexId)| {
