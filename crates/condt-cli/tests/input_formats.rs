@@ -523,6 +523,24 @@ fn columns_choose_the_x_and_y_of_a_csv() {
         assert!(out.status.success(), "{columns}: {out:?}");
         assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
     }
+    // Piped in, with columns, it is read as CSV unless stated: the refusal says how.
+    let piped = condt_with_stdin(
+        &["reconstruct", "-", "--columns", "x,y", "--format=edges"],
+        scan.as_bytes(),
+    );
+    let said = String::from_utf8_lossy(&piped.stderr);
+    assert!(said.contains("condt's --input-format txt"), "{said}");
+    let stated = condt_with_stdin(
+        &[
+            "reconstruct",
+            "-",
+            "--columns=x,y",
+            "--input-format=txt",
+            "--format=edges",
+        ],
+        scan.as_bytes(),
+    );
+    assert_eq!(String::from_utf8(stated.stdout).unwrap(), expected);
     // Without it, ArcGIS's names are read as x and y (no column is named x, y, lon or lat),
     // in whichever order they stand.
     let out = condt_with_stdin(&["reconstruct", path, "--format", "edges"], b"");

@@ -459,6 +459,12 @@ fn chosen_columns(
     let split_at = if delimiter == b'\t' { "tabs" } else { "commas" };
     let semicolons = if record.len() == 1 && raw.contains(';') {
         format!("; this reader splits columns at {split_at}, not semicolons")
+    } else if record.len() == 1 && raw.trim().contains(char::is_whitespace) {
+        // Standard input with columns is read as CSV: a scan's `x y z i` piped in.
+        format!(
+            "; this reader splits columns at {split_at}, and columns separated by blanks are \
+             plain text's (condt's --input-format txt)"
+        )
     } else {
         String::new()
     };
