@@ -79,3 +79,10 @@ def shipped_point_files():
     """Every point file shipped in data/ (the command line's formats)."""
     suffixes = {".txt", ".npy", ".csv", ".geojson", ".json", ".node"}
     return sorted(p for p in DATA.iterdir() if p.suffix.lower() in suffixes)
+
+
+def pytest_collection_modifyitems(items):
+    """Tests marked ``first`` go first, the rest in their order: pytest-xdist hands tests out in
+    this order, so on CI's two processes the 1M-point Dask test starts at once and runs beside
+    the others instead of alone at the end."""
+    items.sort(key=lambda item: item.get_closest_marker("first") is None)

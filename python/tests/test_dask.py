@@ -63,6 +63,7 @@ def one_machine(points, **params):
     return condt.reconstruct(points, **params).edges
 
 
+@pytest.mark.first
 def test_a_million_points_on_two_worker_processes_give_the_one_machine_edges():
     # The default pipeline, smoothing passes and all: every stage a tiled round. Eight tiles,
     # four a worker: 59 s here against 92 s at sixteen (a third of CI's Python tests); the
