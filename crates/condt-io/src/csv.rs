@@ -165,7 +165,12 @@ pub(crate) fn parse_plain_columns(
             ));
         }
         let fields = crate::points::columns(content).map_err(|m| source.error(number, m))?;
-        tabbed.push_str(&fields.join("\t"));
+        for (k, field) in fields.iter().enumerate() {
+            if k > 0 {
+                tabbed.push('\t');
+            }
+            tabbed.push_str(field);
+        }
         tabbed.push('\n');
     }
     parse_separated(&tabbed, file, b'\t', Some(chosen))
