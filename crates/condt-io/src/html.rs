@@ -280,7 +280,7 @@ fn membership<'s>(
     result: &Reconstruction,
     stories: &'s [EdgeStory],
     stages: &'s [Stage],
-) -> impl Iterator<Item = u64> + 's {
+) -> impl Iterator<Item = u64> + use<'s> {
     let first: Vec<[usize; 2]> = result
         .stages()
         .next()

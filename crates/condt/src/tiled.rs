@@ -1093,7 +1093,7 @@ fn keeping(
     listed: &[Edge],
     keep: impl Fn(VertexId) -> bool,
 ) -> Vec<[usize; 2]> {
-    let kept = edges.iter().zip(listed).filter(|(_, &[a, _])| keep(a));
+    let kept = edges.iter().zip(listed).filter(|&(_, &[a, _])| keep(a));
     kept.map(|(&edge, _)| edge).collect()
 }
 

@@ -410,9 +410,7 @@ fn gap_closing_takes_the_same_end_in_every_orientation() {
 /// tie test is about must have decided something.
 fn changed_by(points: &[Point], params: &Params, stage: Stage) -> bool {
     let result = reconstruct(points, params).unwrap();
-    // Bound first: the reports borrow the result, which a tail expression would drop too soon.
-    let applied = result.stages().any(|s| s.stage == stage && s.applied);
-    applied
+    result.stages().any(|s| s.stage == stage && s.applied)
 }
 
 /// Found by a randomized stress harness: clustered points where gap closing's last rule (straight

@@ -222,7 +222,7 @@ impl Params {
     }
 
     /// The steps after the proximity graph, in order: the one place the order is decided.
-    pub(crate) fn steps(&self) -> impl Iterator<Item = Step> {
+    pub(crate) fn steps(&self) -> impl Iterator<Item = Step> + use<> {
         let repair = (self.repair != Repair::Off).then_some(Step::Repair(self.repair));
         let floor = self.iqr_floor;
         let outliers = self

@@ -61,7 +61,7 @@ struct Spike {
 
 impl Spike {
     /// The points of the move, each once (owned, as the settling reads them).
-    fn points(&self) -> impl Iterator<Item = VertexId> {
+    fn points(&self) -> impl Iterator<Item = VertexId> + use<> {
         let mut points = [self.a; MOST + 2];
         points[1] = self.b;
         points[2..2 + self.len].copy_from_slice(&self.run[..self.len]);
