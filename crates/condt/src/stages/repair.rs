@@ -13,7 +13,12 @@
 //!    `v` keeps the four, paired so that the less straight pair is straightest
 //!    ([`Repair::CrossingAware`] takes the straightest pair first). Why 150°: chords of an
 //!    `ε`-sampled curve turn by at most about `ε` radians, so with `ε <= 1/2` a passage is
-//!    straighter than 180° − 28.6°.
+//!    straighter than 180° − 28.6°. A pair counts only if its curve goes on beyond `v` on at
+//!    least one side: not if both its ends close a loop (every other edge of the end, and of
+//!    each neighbour of `v` it leads to, leads to another neighbour of `v`). Why: such a curve
+//!    meets nothing beyond `v` but `v`'s own neighbours, a closed loop of a few samples, which
+//!    the same bound rules out (its turns add up to 360°, more than 12 samples' worth at
+//!    28.6°): a 5-point staircase's middle point offered its ends' second edges is no crossing.
 //! 2. **Needs.** A neighbour `w` of degree <= 2 needs `vw` (without it `w` is an end or alone, and
 //!    nothing restores it later) if `vw` is at most `NEED_RATIO` times `v`'s second shortest edge.
 //!    `v` keeps the best pair holding a needed edge, among pairs straight enough for Algorithm 2
@@ -176,11 +181,15 @@ struct Branches {
     neighbors: Vec<VertexId>,
     /// How many edges join two vertices of degree two or less.
     between_manifold: usize,
+    /// Per vertex of degree two or less, by id, the exclusive or of its neighbours' ids plus one
+    /// (0 for none), so that [`Branches::onward`] finds the other neighbour of one it knows; the
+    /// degrees' buffer, reused (memory: the stage's peak).
+    links: Vec<u32>,
 }
 
 impl Branches {
-    /// `degree` must be the degrees of `edges` ([`degrees`]).
-    fn new(degree: &[u32], edges: &[Edge]) -> Branches {
+    /// `degree` must be the degrees of `edges` ([`degrees`]); its buffer is kept for the links.
+    fn new(mut degree: Vec<u32>, edges: &[Edge]) -> Branches {
         let mut bits = IdBits::new(degree.len());
         for (v, &d) in degree.iter().enumerate() {
             bits.insert_if(v, d > 2);
@@ -200,7 +209,9 @@ impl Branches {
             starts,
             neighbors: vec![VertexId::INFINITE; total as usize],
             between_manifold: 0,
+            links: Vec::new(),
         };
+        degree.fill(0);
         for &[a, b] in edges.iter().rev() {
             let mut manifold = true;
             for (v, w) in [(a, b), (b, a)] {
@@ -209,6 +220,8 @@ impl Branches {
                     *slot -= 1;
                     branches.neighbors[*slot as usize] = w;
                     manifold = false;
+                } else {
+                    degree[v.index()] ^= link(w);
                 }
             }
             branches.between_manifold += usize::from(manifold);
@@ -216,7 +229,25 @@ impl Branches {
         // Every list is full, so each end has come down to the start of the next: shifted back.
         branches.starts.rotate_left(1);
         *branches.starts.last_mut().expect("not empty") = total;
+        branches.links = degree;
         branches
+    }
+
+    /// The neighbours of `w` other than `v`, a neighbour of it: a branch's listed ones, else the
+    /// one left in its link, if any.
+    fn onward(&self, w: VertexId, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
+        let (listed, linked) = match self.rank(w) {
+            Some(r) => (self.incident(r), None),
+            None => {
+                let other = self.links[w.index()] ^ link(v);
+                (&[][..], (other != 0).then(|| VertexId::new(other - 1)))
+            }
+        };
+        listed
+            .iter()
+            .copied()
+            .filter(move |&u| u != v)
+            .chain(linked)
     }
 
     fn count(&self) -> usize {
@@ -245,6 +276,12 @@ impl Branches {
     fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
         self.bits.iter().map(|v| VertexId::new(v as u32))
     }
+}
+
+/// `w`'s id plus one, as [`Branches::links`] holds it (never 0).
+#[inline]
+fn link(w: VertexId) -> u32 {
+    w.index() as u32 + 1
 }
 
 /// `choose(pairs, r, v)` for every non-manifold vertex `v` of rank `r`, in rank order; on rayon's
@@ -297,9 +334,9 @@ pub(crate) fn repair(
     if degree.iter().all(|&d| d <= 2) {
         return None;
     }
-    let mut graph = Branches::new(&degree, edges);
-    // From here on the branch bits tell the manifold vertices (memory: the stage's peak).
-    drop(degree);
+    // From here on the branch bits tell the manifold vertices, and the degrees' buffer holds
+    // their links (memory: the stage's peak).
+    let mut graph = Branches::new(degree, edges);
     // Lines 6–12: up to four edges per non-manifold vertex, by rank. Each choice reads the branch
     // bits and positions alone, so ranges of ranks are chosen on threads when `parallel` (the
     // same list).
@@ -324,7 +361,7 @@ pub(crate) fn repair(
     };
     let selections: Vec<[VertexId; 4]> = chosen_by_rank(&graph, parallel, choose);
     // The lists are freed, the ranks kept (memory).
-    (graph.starts, graph.neighbors) = (Vec::new(), Vec::new());
+    (graph.starts, graph.neighbors, graph.links) = (Vec::new(), Vec::new(), Vec::new());
     let manifold = |v: VertexId| !graph.is_branch(v);
     // Whether the non-manifold `w` selected `v`.
     let selected_by =
@@ -390,7 +427,8 @@ mod tests {
     }
 
     /// On random graphs, the branch lists give each vertex with three or more edges, by rank in
-    /// increasing id, the full adjacency's neighbours in edge order, and no other vertex a rank.
+    /// increasing id, the full adjacency's neighbours in edge order, and no other vertex a rank;
+    /// `onward` gives every vertex's other neighbours.
     #[test]
     fn branches_list_the_neighbours_of_the_full_adjacency() {
         use crate::adjacency::tests::{random_graph, Adjacency};
@@ -399,7 +437,7 @@ mod tests {
         for _ in 0..500 {
             let (n, edges) = random_graph(&mut rng, 30, 3);
             let (full, degree) = (Adjacency::new(n, &edges), degrees(n, &edges));
-            let branches = Branches::new(&degree, &edges);
+            let branches = Branches::new(degree, &edges);
             let expected: Vec<VertexId> = (0..n as u32)
                 .map(VertexId::new)
                 .filter(|&v| full.incident(v).len() > 2)
@@ -412,6 +450,19 @@ mod tests {
                 if let Some(r) = rank {
                     let listed = full.incident(v).iter().map(|&(w, _)| w);
                     assert!(listed.eq(branches.incident(r).iter().copied()), "{edges:?}");
+                }
+                // Every vertex's other neighbours, seen from each of its neighbours.
+                for &(w, _) in full.incident(v) {
+                    let mut expected: Vec<VertexId> = full
+                        .incident(v)
+                        .iter()
+                        .map(|&(u, _)| u)
+                        .filter(|&u| u != w)
+                        .collect();
+                    let mut onward: Vec<VertexId> = branches.onward(v, w).collect();
+                    expected.sort_unstable();
+                    onward.sort_unstable();
+                    assert_eq!(onward, expected, "{edges:?}");
                 }
             }
             branch_vertices += expected.len();

@@ -30,7 +30,7 @@ pub(super) fn choice(
     branches: &Branches,
     pairs: &mut Pairs,
 ) -> [VertexId; 4] {
-    if let Some(crossing) = crossing(tri, v, around, pairs) {
+    if let Some(crossing) = crossing(tri, v, around, branches, pairs) {
         return crossing;
     }
     match needed_pair(tri, v, around, branches) {
@@ -96,22 +96,46 @@ fn needed_pair(
     best.map(|(_, pair)| pair)
 }
 
-/// Step 1 ([`super`]): the pairing of two disjoint pairs above [`STRAIGHT_ANGLE`] whose less
-/// straight pair is straightest (ties: the straighter other pair, then smaller ids), or `None`.
+/// Whether the neighbour `w` of `v` turns back: it has edges besides `vw`, and every one of them
+/// leads to another neighbour of `v`.
+fn turns_back(v: VertexId, w: VertexId, around: &[VertexId], branches: &Branches) -> bool {
+    let mut onward = branches.onward(w, v).peekable();
+    onward.peek().is_some() && onward.all(|u| around.contains(&u))
+}
+
+/// Whether the neighbour `w` of `v` closes a loop around `v` (step 1 of [`super`]): it
+/// [`turns_back`], and so does every neighbour of `v` it leads to, so that beyond `v` its curve
+/// meets nothing but `v`'s neighbours.
+fn closes_a_loop(v: VertexId, w: VertexId, around: &[VertexId], branches: &Branches) -> bool {
+    turns_back(v, w, around, branches)
+        && branches
+            .onward(w, v)
+            .all(|u| turns_back(v, u, around, branches))
+}
+
+/// Step 1 ([`super`]): the pairing of two disjoint pairs above [`STRAIGHT_ANGLE`], not both ends of
+/// either [`closes_a_loop`], whose less straight pair is straightest (ties: the straighter other
+/// pair, then smaller ids), or `None`.
 fn crossing(
     tri: &Triangulation,
     v: VertexId,
     around: &[VertexId],
+    branches: &Branches,
     pairs: &mut Pairs,
 ) -> Option<[VertexId; 4]> {
     if around.len() < 4 {
         return None;
     }
     pairs.clear();
+    // A passage whose curve goes on beyond `v` on neither side is no curve through `v`. Asked only
+    // of straight pairs (speed: the rings of most vertices have none).
+    let goes_on = |w: VertexId| !closes_a_loop(v, w, around, branches);
     for (i, &a) in around.iter().enumerate() {
         for &b in &around[i + 1..] {
             if let Some(theta) = angle_above(tri, v, a, b, STRAIGHT_ANGLE, STRAIGHT_COS2) {
-                pairs.push((theta, a.min(b), a.max(b)));
+                if goes_on(a) || goes_on(b) {
+                    pairs.push((theta, a.min(b), a.max(b)));
+                }
             }
         }
     }
@@ -248,6 +272,84 @@ mod tests {
         let plus = tri.graph_from_edges([[0, 1], [0, 2], [0, 3], [0, 4]]);
         assert_eq!(plus.repair(Repair::Needs).edges(), plus.edges());
         assert_eq!(plus.repair(Repair::Paper).num_edges(), 2);
+        Ok(())
+    }
+
+    #[test]
+    fn a_staircase_whose_arms_turn_back_is_no_crossing() -> Result<(), Error> {
+        // 0 and 4 offer their second shortest edges (2.24 long, within u = 2.75 of 1 and 1.41) to
+        // 2, which gets four: 1-2-4 (162 degrees) and 0-2-3 (153) pass the crossing's angles. But
+        // each of the four turns back: its one other edge leads to another of 2's neighbours
+        // (0-1, 3-4), so neither passage goes on beyond 2, and keeping all four would close two
+        // loops of three samples. (With a sixth point 5 2, 4 keeps 4-5 instead and 2 has three.)
+        let pts = [(0.0, 0.0), (1.0, 0.0), (2.0, 1.0), (3.0, 1.0), (4.0, 2.0)].map(Point::from);
+        let tri = triangulate(&pts)?;
+        let proximity = tri.proximity_graph(Uniformity::default())?;
+        let path = [[0, 1], [1, 2], [2, 3], [3, 4]];
+        assert_eq!(
+            proximity.edges(),
+            [[0, 1], [0, 2], [1, 2], [2, 3], [2, 4], [3, 4]]
+        );
+        assert_eq!(proximity.repair(Repair::Needs).edges(), path);
+        let r = crate::reconstruct(&pts, &crate::Params::default())?;
+        assert!(r.edges().eq(path));
+        assert_eq!(r.curves().len(), 1);
+        Ok(())
+    }
+
+    #[test]
+    fn a_narrow_crossing_whose_arms_go_on_keeps_them_past_its_chords() -> Result<(), Error> {
+        // Two lines crossing at 0 at 40 degrees, sampled 1 apart: the arms on one side are 0.68
+        // apart and joined by a chord (1-3, 2-4), but each arm runs on along its line.
+        let at = |line: f64, t: f64| {
+            let angle = line * 40f64.to_radians();
+            (t * libm::cos(angle), t * libm::sin(angle))
+        };
+        let pts = [
+            (0.0, 0.0),
+            at(0.0, 1.0),
+            at(0.0, -1.0),
+            at(1.0, 1.0),
+            at(1.0, -1.0),
+            at(0.0, 2.0),
+            at(0.0, -2.0),
+            at(1.0, 2.0),
+            at(1.0, -2.0),
+        ]
+        .map(Point::from);
+        let tri = triangulate(&pts)?;
+        let lines = [
+            [0, 1],
+            [0, 2],
+            [0, 3],
+            [0, 4],
+            [1, 5],
+            [2, 6],
+            [3, 7],
+            [4, 8],
+        ];
+        let chords = [[1, 3], [2, 4]];
+        let graph = tri.graph_from_edges(lines.iter().chain(&chords).copied());
+        assert_eq!(graph.repair(Repair::Needs).edges(), lines);
+        // Without the lines' next samples, every arm turns back into a chord: each passage
+        // closes two loops of three samples around 0, and neither is a curve through it.
+        let short = tri.graph_from_edges([[0, 1], [0, 2], [0, 3], [0, 4], [1, 3], [2, 4]]);
+        assert_eq!(short.repair(Repair::Needs).degrees()[0], 2);
+        // With them on one side only, each passage goes on beyond 0 there: still a crossing (the
+        // rule asks each curve through 0 to go on, not each arm), and the chord there goes.
+        let half = [
+            [0, 1],
+            [0, 2],
+            [0, 3],
+            [0, 4],
+            [1, 3],
+            [2, 4],
+            [2, 6],
+            [4, 8],
+        ];
+        let kept = tri.graph_from_edges(half).repair(Repair::Needs);
+        assert_eq!(kept.degrees()[0], 4);
+        assert!(!kept.edges().contains(&[2, 4]));
         Ok(())
     }
 
