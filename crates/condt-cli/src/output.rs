@@ -44,9 +44,9 @@
 //! systems. Flushing from a second thread while the output is still being formatted (the final
 //! `sync_all` then has little left) showed no gain on two busy cores and was not kept.
 //!
-//! The temporary file is removed when the run fails and when SIGINT, SIGTERM or SIGHUP arrive
-//! (the process then ends by that signal, as it would have), unless the caller left the signal
-//! ignored (`nohup`, a shell's `cmd &`): it then stays ignored; SIGKILL cannot be caught, so
+//! The temporary file is removed when the run fails and when SIGINT, SIGTERM, SIGHUP or SIGQUIT
+//! arrive (the process then ends by that signal, as it would have, SIGQUIT with its core dump
+//! where dumps are on), unless the caller left the signal ignored (`nohup`, a shell's `cmd &`): it then stays ignored; SIGKILL cannot be caught, so
 //! `kill -9` while the output is being written may leave a `.condt.XXXXXX.tmp` file beside it,
 //! and so may running out of memory then: Rust aborts the process on a failed allocation, and
 //! a hook that removed the file would have to run inside the allocator without allocating
@@ -714,18 +714,18 @@ mod signals {
             .unwrap_or(0)
     }
 
-    /// Starts, once, the thread that waits for SIGINT, SIGTERM and SIGHUP, removes the pending
-    /// temporary file and then ends the process by the same signal, as if it had not been
-    /// caught (so a shell sees an interrupted run). A signal the caller left ignored stays
+    /// Starts, once, the thread that waits for SIGINT, SIGTERM, SIGHUP and SIGQUIT (`Ctrl-\`),
+    /// removes the pending temporary file and then ends the process by the same signal, as if it
+    /// had not been caught (so a shell sees an interrupted run). A signal the caller left ignored stays
     /// ignored: catching it would turn it back on, and a run under `nohup` would end at the
     /// hangup it was meant to survive.
     #[cfg(unix)]
     fn install() {
-        use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+        use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
         static ONCE: Once = Once::new();
         ONCE.call_once(|| {
             let ignored = ignored_signals();
-            let caught: Vec<i32> = [SIGINT, SIGTERM, SIGHUP]
+            let caught: Vec<i32> = [SIGINT, SIGTERM, SIGHUP, SIGQUIT]
                 .into_iter()
                 .filter(|&signal| ignored & (1u64 << (signal - 1)) == 0)
                 .collect();
