@@ -210,6 +210,18 @@ pub(crate) fn points_array<'py>(
         Err(err) if err.is_instance_of::<PyOverflowError>(py) => {
             return Err(overflowing_point(py, &given)?.unwrap_or(err));
         }
+        // A 1-d array of row objects (a Python user's review): numpy's own message ("setting an
+        // array element with a sequence") named neither the points nor the shape they need.
+        Err(err)
+            if err.is_instance_of::<PyValueError>(py)
+                && given.getattr("ndim")?.extract::<usize>()? == 1 =>
+        {
+            return Err(PyValueError::new_err(format!(
+                "points must be an array of shape (n, 2); got a 1-d array of {} objects, each \
+                 row one object (numpy.stack(points) makes it (n, 2))",
+                given.len()?
+            )));
+        }
         Err(err) => return Err(err),
     };
     let converted = converted.cast_into::<numpy::PyUntypedArray>()?;

@@ -217,6 +217,17 @@ def test_a_wrong_shape_is_a_value_error(shape):
         condt.triangulate(np.zeros(shape))
 
 
+def test_rows_held_as_objects_are_named_with_the_shape_they_need():
+    # A user review: numpy's "setting an array element with a sequence" named neither.
+    for row in ([0, 0], np.zeros(2)):
+        rows = np.empty(3, dtype=object)
+        for i in range(3):
+            rows[i] = row
+        for function in (condt.reconstruct, condt.triangulate):
+            with pytest.raises(ValueError, match=r"shape \(n, 2\); got a 1-d array of 3 objects"):
+                function(rows)
+
+
 @pytest.mark.parametrize("points", [None, 3.0, np.float64(2)], ids=["None", "float", "numpy"])
 def test_none_or_a_scalar_is_a_type_error(points):
     name = type(points).__name__

@@ -765,3 +765,11 @@ def test_the_module_examples_run():
 
     results = doctest.testmod(condt.dask, optionflags=doctest.NORMALIZE_WHITESPACE)
     assert results.attempted > 0 and results.failed == 0, results
+
+
+def test_a_client_of_the_wrong_type_is_said_at_once():
+    # A user review: an address given as the client failed as an AttributeError in a scatter.
+    points = np.random.default_rng(0).uniform(0, 1, (500, 2))
+    for wrong in ("tcp://127.0.0.1:8786", 42):
+        with pytest.raises(TypeError, match="client must be a dask.distributed.Client"):
+            condt.dask.reconstruct(points, wrong, tiles=4)

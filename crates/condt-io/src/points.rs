@@ -1069,6 +1069,9 @@ pub fn read_points_with(
     // A UTF-16 byte order mark (Windows tools' "Unicode" text): no reader can make sense of the
     // bytes after it, so the error says what the file is (a GIS user's review).
     let utf16 = bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]);
+    // A zip archive, NumPy's `.npz` above all: "not UTF-8 text" alone sent a Python user looking
+    // for an encoding.
+    let zip = bytes.starts_with(b"PK\x03\x04");
     // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
     // property: a Latin-1 or CP1252 export) do not matter; where a field that is read holds
     // them, the file is refused as not UTF-8 text, at that line.
@@ -1240,6 +1243,11 @@ pub fn read_points_with(
                         UTF-8; save the file as UTF-8"
                 .to_string();
             err.line = Some(1);
+        } else if let (true, IoErrorKind::Content(message)) = (zip, &mut err.kind) {
+            *message = "a zip archive (such as NumPy's .npz), not points: save the array as \
+                        .npy (numpy.save) or as text"
+                .to_string();
+            err.line = None;
         } else if let (Some(line), IoErrorKind::Content(message)) = (err.line, &mut err.kind) {
             if message.contains('\u{fffd}') {
                 *message = "not UTF-8 text".to_string();

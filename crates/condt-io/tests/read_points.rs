@@ -991,6 +991,23 @@ fn a_refused_type_is_told_on_its_own_line() {
     }
 }
 
+/// A zip archive, such as NumPy's `.npz` (a Python user's review: "not UTF-8 text" sent them
+/// looking for an encoding), is told as such, by any name.
+#[test]
+fn a_zip_archive_is_told_as_such() {
+    // A zip's local file header (stored, the member `a.npy`), then the start of that member.
+    let mut zip = b"PK\x03\x04\x14\x00\x00\x00\x00\x00\x00\x00\x21\x00".to_vec();
+    zip.extend([
+        0x9a, 0xbc, 0xde, 0xf0, 0x90, 0, 0, 0, 0x90, 0, 0, 0, 5, 0, 0, 0,
+    ]);
+    zip.extend(b"a.npy\x93NUMPY\x01\x00v\x00{'descr': '<f8', 'fortran_order': False, ");
+    for name in ["points.npz", "points.txt", "points"] {
+        let file = TempFile::new(name, &zip);
+        let (_, message) = content_error(file.read());
+        assert!(message.contains("a zip archive"), "{name}: {message}");
+    }
+}
+
 /// UTF-16 text (a byte order mark, then two bytes a character) is told as such, at line 1, in
 /// every text format, instead of as a first field no number reader makes sense of.
 #[test]

@@ -114,18 +114,27 @@ def reconstruct(
     side), grown for a tile whose certificate needs more (by half, then doubled). ``params`` are
     ``condt.reconstruct``'s keywords (every ConDT pipeline is tiled).
 
-    Raises ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``tiles`` or
-    ``halo`` of the wrong type (a bool, a str, a float for ``tiles``) or points that are not
-    numbers; ``ValueError`` for a NaN or infinite point (named), a masked array with masked
+    Raises ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``client`` that
+    is no ``Client`` (an address: ``Client(address)``), a ``tiles`` or ``halo`` of the wrong
+    type (a bool, a str, a float for ``tiles``) or points that are not numbers; ``ValueError`` for a NaN or infinite point (named), a masked array with masked
     entries, ``tiles`` below 1, a ``halo`` not positive and finite or a refused parameter; as
     ``condt.reconstruct`` does for its own.
     """
     count = _tile_count(tiles)
     width = _halo_width(halo)
+    from distributed import Client
+
     if client is None:
         from distributed import get_client
 
         client = get_client()
+    if not isinstance(client, Client):
+        # Said at once: an address or a cluster given here failed as an AttributeError deep in a
+        # scatter (a Python user's review).
+        raise TypeError(
+            "client must be a dask.distributed.Client (None: the current one), "
+            f"not {type(client).__name__}"
+        )
     if getattr(client, "status", None) in ("closing", "closed"):
         # Said before any work, whatever the points: a tiled set would otherwise meet it as an
         # AttributeError deep in a scatter, a set run in one piece as Dask's own error.
