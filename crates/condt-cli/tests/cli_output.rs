@@ -440,7 +440,6 @@ fn the_temporary_file_is_random_exclusive_and_cannot_be_hijacked() {
 /// job of a script, the test process has SIGINT ignored, which the run would keep (see
 /// `ignored_signal_is_left_ignored`) and wait for its input forever.
 fn interrupted(signal: &str, number: i32) {
-    use std::os::unix::process::CommandExt;
     let dir = tempfile::tempdir().unwrap();
     let target = dir.path().join("out.txt");
     fs::write(&target, "previous content\n").unwrap();
@@ -455,19 +454,7 @@ fn interrupted(signal: &str, number: i32) {
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
-    // SAFETY: `signal` is async-signal-safe, as `pre_exec` requires.
-    unsafe {
-        command.pre_exec(move || {
-            libc::signal(number, libc::SIG_DFL);
-            // No core file from SIGQUIT's default action, wherever dumps are on.
-            let none = libc::rlimit {
-                rlim_cur: 0,
-                rlim_max: 0,
-            };
-            libc::setrlimit(libc::RLIMIT_CORE, &none);
-            Ok(())
-        });
-    }
+    with_default_action(&mut command, number);
     let mut child = command.spawn().expect("the binary runs");
     // Half an input: the run is still reading.
     let mut stdin = child.stdin.take().unwrap();
@@ -618,15 +605,27 @@ fn sigint_removes_the_temporary_file() {
     interrupted("INT", 2);
 }
 
-/// Each signal the run catches, sent while the output is being written (once its temporary file
-/// holds bytes), removes that file: the run ends by the signal with nothing beside the output, or
-/// finishes first. SIGQUIT (`Ctrl-\`) left the `.condt.XXXXXX.tmp` behind until 2026-12-06 (a
-/// reviewer's report).
-#[test]
-fn a_signal_while_the_output_is_written_removes_the_temporary_file() {
+/// Starts `command` with `signal`'s default action, whatever the test process left it (a test
+/// run as a background job has SIGINT and SIGQUIT ignored, which the run would keep), and no core
+/// file from SIGQUIT's, wherever dumps are on.
+fn with_default_action(command: &mut Command, signal: libc::c_int) {
     use std::os::unix::process::CommandExt;
-    let dir = tempfile::tempdir().unwrap();
-    // 200,000 points from a fixed generator: an output of about 8 MB.
+    // SAFETY: `signal` and `setrlimit` are async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(move || {
+            libc::signal(signal, libc::SIG_DFL);
+            let none = libc::rlimit {
+                rlim_cur: 0,
+                rlim_max: 0,
+            };
+            libc::setrlimit(libc::RLIMIT_CORE, &none);
+            Ok(())
+        });
+    }
+}
+
+/// `points.txt` in `dir`: `count` points in the unit square from a fixed generator.
+fn random_points(dir: &Path, count: usize) -> PathBuf {
     let mut state = 0x2545_f491_4f6c_dd1du64;
     let mut next = || {
         state ^= state << 13;
@@ -635,11 +634,23 @@ fn a_signal_while_the_output_is_written_removes_the_temporary_file() {
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     let mut points = String::new();
-    for _ in 0..200_000 {
+    for _ in 0..count {
         points.push_str(&format!("{} {}\n", next(), next()));
     }
-    let input = dir.path().join("points.txt");
+    let input = dir.join("points.txt");
     fs::write(&input, points).unwrap();
+    input
+}
+
+/// Each signal the run catches, sent while the output is being written (once its temporary file
+/// holds bytes), removes that file: the run ends by the signal with nothing beside the output, or
+/// finishes first. SIGQUIT (`Ctrl-\`) left the `.condt.XXXXXX.tmp` behind until 2026-12-06 (a
+/// reviewer's report).
+#[test]
+fn a_signal_while_the_output_is_written_removes_the_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    // An output of about 8 MB.
+    let input = random_points(dir.path(), 200_000);
     for signal in [libc::SIGQUIT, libc::SIGTERM, libc::SIGINT, libc::SIGHUP] {
         let out_dir = tempfile::tempdir().unwrap();
         let target = out_dir.path().join("out.txt");
@@ -653,18 +664,7 @@ fn a_signal_while_the_output_is_written_removes_the_temporary_file() {
                 target.as_os_str(),
             ])
             .stderr(Stdio::piped());
-        // SAFETY: `signal` and `setrlimit` are async-signal-safe, as `pre_exec` requires.
-        unsafe {
-            command.pre_exec(move || {
-                libc::signal(signal, libc::SIG_DFL);
-                let none = libc::rlimit {
-                    rlim_cur: 0,
-                    rlim_max: 0,
-                };
-                libc::setrlimit(libc::RLIMIT_CORE, &none);
-                Ok(())
-            });
-        }
+        with_default_action(&mut command, signal);
         let mut child = command.spawn().expect("the binary runs");
         let deadline = Instant::now() + Duration::from_secs(120);
         while child.try_wait().unwrap().is_none() && Instant::now() < deadline {
@@ -1178,20 +1178,8 @@ fn a_stage_drawing_of_many_points_says_it_is_slow_to_open() {
 fn a_signal_during_an_in_place_rewrite_waits_for_it() {
     use std::os::unix::fs::MetadataExt;
     let dir = tempfile::tempdir().unwrap();
-    // 300,000 points from a fixed generator: an output of about 12 MB, written in one go.
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut points = String::new();
-    for _ in 0..300_000 {
-        points.push_str(&format!("{} {}\n", next(), next()));
-    }
-    let input = dir.path().join("points.txt");
-    fs::write(&input, points).unwrap();
+    // An output of about 12 MB, written in one go.
+    let input = random_points(dir.path(), 300_000);
     let target = dir.path().join("out.txt");
     let old = vec![b'Z'; 40_000_000];
     fs::write(&target, &old).unwrap();
