@@ -353,13 +353,25 @@ impl Reconstruction {
             }
             // Any mapping, as a dict (`json.dumps` takes dicts alone), checked as JSON text is.
             Some(value) => {
+                // NaN and infinities refused here: `json.dumps` writes them as `NaN` and
+                // `Infinity`, which no JSON reader takes, and the object was then said to be "not
+                // one JSON object" (a Python user's review).
+                let strict = PyDict::new(py);
+                strict.set_item("allow_nan", false)?;
                 let text: String = py
                     .import("json")?
-                    .call_method1("dumps", (PyDict::type_object(py).call1((value,))?,))
+                    .getattr("dumps")?
+                    .call((PyDict::type_object(py).call1((value,))?,), Some(&strict))
                     .map_err(|err| {
-                        pyo3::exceptions::PyTypeError::new_err(format!(
-                            "crs must be JSON text or a JSON-serializable object: {err}"
-                        ))
+                        if err.is_instance_of::<PyValueError>(py) {
+                            PyValueError::new_err(format!(
+                                "crs holds a number JSON cannot write (NaN or infinite): {err}"
+                            ))
+                        } else {
+                            pyo3::exceptions::PyTypeError::new_err(format!(
+                                "crs must be JSON text or a JSON-serializable object: {err}"
+                            ))
+                        }
                     })?
                     .extract()?;
                 Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)

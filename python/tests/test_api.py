@@ -978,6 +978,10 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
         r.to_geojson(crs=" ")
     with pytest.raises(TypeError, match="crs must be JSON text"):
         r.to_geojson(crs=object())
+    # A number JSON cannot write is named as such (it was "not one JSON object": a review).
+    for number in (float("inf"), float("nan")):
+        with pytest.raises(ValueError, match=r"crs holds a number JSON cannot write"):
+            r.to_geojson(crs={"type": "name", "properties": {"scale": number}})
     # JSON that names no crs is refused rather than written; null is written (GeoJSON 2008: no
     # crs can be assumed).
     for text in ("[1, 2]", "4326", "true"):
