@@ -164,6 +164,20 @@ fn overflowing_point(py: Python<'_>, given: &Bound<'_, PyAny>) -> PyResult<Optio
 /// object array holding something else, `None` among them); `ValueError` for a masked array
 /// with masked entries, any other shape, or an int beyond float64 (naming its point); numpy's
 /// own error for what it cannot convert.
+/// Whether `given` is a 1-d array whose every element is a sequence of two (a row held as one
+/// object), which `numpy.stack` makes an `(n, 2)` array.
+fn rows_of_pairs(given: &Bound<'_, PyAny>) -> PyResult<bool> {
+    if given.getattr("ndim")?.extract::<usize>()? != 1 {
+        return Ok(false);
+    }
+    for element in given.try_iter()? {
+        if !element?.len().is_ok_and(|length| length == 2) {
+            return Ok(false);
+        }
+    }
+    Ok(true)
+}
+
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,
@@ -210,12 +224,10 @@ pub(crate) fn points_array<'py>(
         Err(err) if err.is_instance_of::<PyOverflowError>(py) => {
             return Err(overflowing_point(py, &given)?.unwrap_or(err));
         }
-        // A 1-d array of row objects (a Python user's review): numpy's own message ("setting an
-        // array element with a sequence") named neither the points nor the shape they need.
-        Err(err)
-            if err.is_instance_of::<PyValueError>(py)
-                && given.getattr("ndim")?.extract::<usize>()? == 1 =>
-        {
+        // A 1-d array of rows held as objects, each a pair (a Python user's review): numpy's own
+        // message ("setting an array element with a sequence") named neither the points nor the
+        // shape they need. Other contents (rows of other lengths, a Decimal NaN) keep numpy's.
+        Err(err) if err.is_instance_of::<PyValueError>(py) && rows_of_pairs(&given)? => {
             return Err(PyValueError::new_err(format!(
                 "points must be an array of shape (n, 2); got a 1-d array of {} objects, each \
                  row one object (numpy.stack(points) makes it (n, 2))",

@@ -226,6 +226,12 @@ def test_rows_held_as_objects_are_named_with_the_shape_they_need():
         for function in (condt.reconstruct, condt.triangulate):
             with pytest.raises(ValueError, match=r"shape \(n, 2\); got a 1-d array of 3 objects"):
                 function(rows)
+    # Rows of three are no pairs: numpy.stack would not make them (n, 2), and it is not said.
+    rows = np.empty(2, dtype=object)
+    rows[0], rows[1] = [0, 0, 0], [1, 1, 1]
+    with pytest.raises(ValueError) as refused:
+        condt.reconstruct(rows)
+    assert "numpy.stack" not in str(refused.value)
 
 
 @pytest.mark.parametrize("points", [None, 3.0, np.float64(2)], ids=["None", "float", "numpy"])

@@ -46,7 +46,8 @@
 //!
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM, SIGHUP or SIGQUIT
 //! arrive (the process then ends by that signal, as it would have, SIGQUIT with its core dump
-//! where dumps are on), unless the caller left the signal ignored (`nohup`, a shell's `cmd &`): it then stays ignored; SIGKILL cannot be caught, so
+//! where dumps are on), unless the caller left the signal ignored (`nohup`, a shell's `cmd &`):
+//! it then stays ignored; SIGKILL cannot be caught, so
 //! `kill -9` while the output is being written may leave a `.condt.XXXXXX.tmp` file beside it,
 //! and so may running out of memory then: Rust aborts the process on a failed allocation, and
 //! a hook that removed the file would have to run inside the allocator without allocating
@@ -716,9 +717,9 @@ mod signals {
 
     /// Starts, once, the thread that waits for SIGINT, SIGTERM, SIGHUP and SIGQUIT (`Ctrl-\`),
     /// removes the pending temporary file and then ends the process by the same signal, as if it
-    /// had not been caught (so a shell sees an interrupted run). A signal the caller left ignored stays
-    /// ignored: catching it would turn it back on, and a run under `nohup` would end at the
-    /// hangup it was meant to survive.
+    /// had not been caught (so a shell sees an interrupted run). A signal the caller left ignored
+    /// stays ignored: catching it would turn it back on, and a run under `nohup` would end at
+    /// the hangup it was meant to survive.
     #[cfg(unix)]
     fn install() {
         use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};

@@ -1001,10 +1001,15 @@ fn a_zip_archive_is_told_as_such() {
         0x9a, 0xbc, 0xde, 0xf0, 0x90, 0, 0, 0, 0x90, 0, 0, 0, 5, 0, 0, 0,
     ]);
     zip.extend(b"a.npy\x93NUMPY\x01\x00v\x00{'descr': '<f8', 'fortran_order': False, ");
+    // An empty archive is its end record alone.
+    let empty =
+        b"PK\x05\x06\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00";
     for name in ["points.npz", "points.txt", "points"] {
-        let file = TempFile::new(name, &zip);
-        let (_, message) = content_error(file.read());
-        assert!(message.contains("a zip archive"), "{name}: {message}");
+        for bytes in [&zip[..], &empty[..]] {
+            let file = TempFile::new(name, bytes);
+            let (_, message) = content_error(file.read());
+            assert!(message.contains("a zip archive"), "{name}: {message}");
+        }
     }
 }
 

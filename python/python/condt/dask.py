@@ -135,7 +135,7 @@ def reconstruct(
             "client must be a dask.distributed.Client (None: the current one), "
             f"not {type(client).__name__}"
         )
-    if getattr(client, "status", None) in ("closing", "closed"):
+    if client.status in ("closing", "closed"):
         # Said before any work, whatever the points: a tiled set would otherwise meet it as an
         # AttributeError deep in a scatter, a set run in one piece as Dask's own error.
         from distributed.client import ClosedClientError

@@ -18,7 +18,9 @@
 //!    each neighbour of `v` it leads to, leads to another neighbour of `v`). Why: such a curve
 //!    meets nothing beyond `v` but `v`'s own neighbours, a closed loop of a few samples, which
 //!    the same bound rules out (its turns add up to 360°, more than 12 samples' worth at
-//!    28.6°): a 5-point staircase's middle point offered its ends' second edges is no crossing.
+//!    28.6°): a 5-point staircase's middle point offered its ends' second edges is no crossing
+//!    ([`Repair::CrossingAware`] keeps its test without this rule). The bound says nothing of a
+//!    curve that ends one sample past `v`: two 3-sample strokes crossing read as loops too.
 //! 2. **Needs.** A neighbour `w` of degree <= 2 needs `vw` (without it `w` is an end or alone, and
 //!    nothing restores it later) if `vw` is at most `NEED_RATIO` times `v`'s second shortest edge.
 //!    `v` keeps the best pair holding a needed edge, among pairs straight enough for Algorithm 2
@@ -240,11 +242,12 @@ impl Branches {
     }
 
     /// The neighbours of `w` other than `v`, a neighbour of it: a branch's listed ones, else the
-    /// one left in its link, if any.
+    /// one left in its link, if any. Only with the links kept ([`Branches::new`]).
     fn onward(&self, w: VertexId, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
         let (listed, linked) = match self.rank(w) {
             Some(r) => (self.incident(r), None),
             None => {
+                debug_assert!(!self.links.is_empty(), "onward without the links kept");
                 let other = self.links[w.index()] ^ link(v);
                 (&[][..], (other != 0).then(|| VertexId::new(other - 1)))
             }
