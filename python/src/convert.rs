@@ -154,16 +154,6 @@ fn overflowing_point(py: Python<'_>, given: &Bound<'_, PyAny>) -> PyResult<Optio
     Ok(None)
 }
 
-/// The points `obj` holds, as a C-contiguous, aligned, native float64 array of shape `(n, 2)`:
-/// `obj` itself when it is one (no copy), otherwise `numpy.ascontiguousarray(obj, "float64")`
-/// of what `numpy.asarray(obj)` gives, when that holds numbers (`check_numbers`). An empty
-/// sequence (`[]`, shape `(0,)`) is no points.
-///
-/// # Errors
-/// `TypeError` for `None`, a scalar, or an array whose dtype is not an integer or a float (or an
-/// object array holding something else, `None` among them); `ValueError` for a masked array
-/// with masked entries, any other shape, or an int beyond float64 (naming its point); numpy's
-/// own error for what it cannot convert.
 /// Whether `given` is a 1-d array whose every element is a sequence of two (a row held as one
 /// object), which `numpy.stack` makes an `(n, 2)` array.
 fn rows_of_pairs(given: &Bound<'_, PyAny>) -> PyResult<bool> {
@@ -178,6 +168,16 @@ fn rows_of_pairs(given: &Bound<'_, PyAny>) -> PyResult<bool> {
     Ok(true)
 }
 
+/// The points `obj` holds, as a C-contiguous, aligned, native float64 array of shape `(n, 2)`:
+/// `obj` itself when it is one (no copy), otherwise `numpy.ascontiguousarray(obj, "float64")`
+/// of what `numpy.asarray(obj)` gives, when that holds numbers (`check_numbers`). An empty
+/// sequence (`[]`, shape `(0,)`) is no points.
+///
+/// # Errors
+/// `TypeError` for `None`, a scalar, or an array whose dtype is not an integer or a float (or an
+/// object array holding something else, `None` among them); `ValueError` for a masked array
+/// with masked entries, any other shape, or an int beyond float64 (naming its point); numpy's
+/// own error for what it cannot convert.
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,

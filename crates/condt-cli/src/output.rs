@@ -45,15 +45,14 @@
 //! `sync_all` then has little left) showed no gain on two busy cores and was not kept.
 //!
 //! The temporary file is removed when the run fails and when SIGINT, SIGTERM, SIGHUP or SIGQUIT
-//! arrive (the process then ends by that signal, as it would have, SIGQUIT with its core dump
-//! where dumps are on), unless the caller left the signal ignored (`nohup`, a shell's `cmd &`):
-//! it then stays ignored; SIGKILL cannot be caught, so
-//! `kill -9` while the output is being written may leave a `.condt.XXXXXX.tmp` file beside it,
-//! and so may running out of memory then: Rust aborts the process on a failed allocation, and
-//! a hook that removed the file would have to run inside the allocator without allocating
-//! (the stable language has no such hook, and a wrapping allocator needs `unsafe`). A
-//! file-size limit does not end the run (SIGXFSZ is caught): the write fails, and the run
-//! reports it as any error.
+//! arrive (the process then ends by that signal, as it would have, SIGQUIT with its core dump where
+//! dumps are on), unless the caller left the signal ignored (`nohup`, a shell's `cmd &`): it then
+//! stays ignored; SIGKILL cannot be caught, so `kill -9` while the output is being written may
+//! leave a `.condt.XXXXXX.tmp` file beside it, and so may running out of memory then: Rust aborts
+//! the process on a failed allocation, and a hook that removed the file would have to run inside
+//! the allocator without allocating (the stable language has no such hook, and a wrapping allocator
+//! needs `unsafe`). A file-size limit does not end the run (SIGXFSZ is caught): the write fails,
+//! and the run reports it as any error.
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};

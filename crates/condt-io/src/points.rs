@@ -1070,8 +1070,7 @@ pub fn read_points_with(
     // bytes after it, so the error says what the file is (a GIS user's review).
     let utf16 = bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]);
     // A zip archive, NumPy's `.npz` above all: "not UTF-8 text" alone sent a Python user looking
-    // for an encoding.
-    // An empty archive starts with its end record (`numpy.savez()` of nothing).
+    // for an encoding. An empty archive starts with its end record (`numpy.savez()` of nothing).
     let zip = bytes.starts_with(b"PK\x03\x04") || bytes.starts_with(b"PK\x05\x06");
     // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
     // property: a Latin-1 or CP1252 export) do not matter; where a field that is read holds

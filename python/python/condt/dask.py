@@ -116,9 +116,10 @@ def reconstruct(
 
     Raises ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``client`` that
     is no ``Client`` (an address: ``Client(address)``), a ``tiles`` or ``halo`` of the wrong
-    type (a bool, a str, a float for ``tiles``) or points that are not numbers; ``ValueError`` for a NaN or infinite point (named), a masked array with masked
-    entries, ``tiles`` below 1, a ``halo`` not positive and finite or a refused parameter; as
-    ``condt.reconstruct`` does for its own.
+    type (a bool, a str, a float for ``tiles``) or points that are not numbers; ``ValueError``
+    for a NaN or infinite point (named), a masked array with masked entries, ``tiles`` below 1,
+    a ``halo`` not positive and finite or a refused parameter; as ``condt.reconstruct`` does
+    for its own.
     """
     count = _tile_count(tiles)
     width = _halo_width(halo)
