@@ -295,6 +295,20 @@ def test_sets_that_cannot_be_tiled_run_in_one_piece(client, points, why):
     )
 
 
+def test_a_set_run_in_one_piece_says_how_many_passes_ran(client):
+    # A user review: `passes` was None there, though the one-piece run made its passes. The
+    # shipped shapes hold cocircular points, which run in one piece.
+    from conftest import DATA
+
+    points = condt.read_points(DATA / "shapes.txt")
+    tiled = condt.dask.reconstruct(points, client, tiles=4)
+    assert tiled.whole == "cocircular points"
+    expected = condt.reconstruct(points)
+    assert expected.passes > 0
+    assert tiled.passes == expected.passes
+    np.testing.assert_array_equal(tiled.edges, expected.edges)
+
+
 def test_a_dask_array_is_computed_first(client):
     da = pytest.importorskip("dask.array")
     points = curves(5_000, np.random.default_rng(5))

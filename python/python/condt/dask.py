@@ -80,8 +80,8 @@ class TiledReconstruction:
     workers that ran a tile, ``sent`` how many points went to workers in all (every tile and
     round, halos included: its ratio to the set's size is the cost of tiling), ``whole`` why the
     set ran in one piece instead (``None`` when it was tiled), and ``passes`` how many smoothing
-    passes ran (each a tiled run of its own after the first; ``None`` when the set ran in one
-    piece).
+    passes ran (each a tiled run of its own after the first; those of the one-piece run when the
+    set ran in one piece, as ``condt.reconstruct(...).passes`` says).
     """
 
     edges: np.ndarray
@@ -90,7 +90,7 @@ class TiledReconstruction:
     workers: frozenset
     sent: int
     whole: str | None
-    passes: int | None = 0
+    passes: int = 0
 
 
 def reconstruct(
@@ -641,19 +641,20 @@ def _in_one_piece(points, client, params, why, runs=()):
     """The whole set on one worker, when tiles cannot give the one-machine result (after the
     tiled ``runs`` that found it out)."""
     rounds, sent, workers = _spent(runs)
-    edges, worker = client.submit(_whole, points, params, pure=False).result()
+    edges, passes, worker = client.submit(_whole, points, params, pure=False).result()
     return TiledReconstruction(
-        _read_only(edges), 1, rounds + 1, workers | {worker}, sent + len(points), why, None
+        _read_only(edges), 1, rounds + 1, workers | {worker}, sent + len(points), why, passes
     )
 
 
 def _whole(points, params):
-    """On a worker: ``condt.reconstruct`` of the whole set."""
+    """On a worker: ``condt.reconstruct`` of the whole set: its edges and smoothing passes."""
     from distributed import get_worker
 
     from condt import reconstruct as one_machine
 
-    return np.array(_on_worker(one_machine, points, **params).edges), get_worker().address
+    result = _on_worker(one_machine, points, **params)
+    return np.array(result.edges), result.passes, get_worker().address
 
 
 def _cut(points, tiles, bbox):
