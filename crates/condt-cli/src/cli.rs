@@ -391,7 +391,8 @@ Usage:
 Example:
   condt reconstruct data/shapes.txt -o shapes.svg --stages
 
-Output format by OUTPUT's extension or --format: `edges` (.edges: one edge `i j` per line,
+Output format by OUTPUT's extension or --format (which wins; a note says so where the
+extension names another): `edges` (.edges: one edge `i j` per line,
 i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), uint32 when every
 point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
 default on standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points and curves; with --stages the Delaunay
@@ -1397,6 +1398,25 @@ fn note_projected_without_crs(output: &str, points: &[condt::Point]) {
     }
 }
 
+/// A note where `--format` writes one format to a file whose name ends as another's (`-o
+/// out.edges --format svg`): the file is written as asked, and whatever opens it by its name
+/// would misread it (it was silent: a reviewer's report).
+fn note_format_against_name(format: Format, output: Option<&Path>) {
+    let named = output
+        .and_then(Path::extension)
+        .and_then(OsStr::to_str)
+        .and_then(Format::named);
+    if let (Some(path), Some(named)) = (output, named.filter(|&named| named != format)) {
+        note(format_args!(
+            "{}: written in the {} format (--format {}), not the {} format its name's ending says",
+            path.display(),
+            format.name(),
+            format.name(),
+            named.name()
+        ));
+    }
+}
+
 /// The size of INPUT when it is a regular file (`None`: standard input, a pipe, a device).
 fn input_size(input: Option<&Path>) -> Option<u64> {
     let meta = std::fs::metadata(input?).ok()?;
@@ -1537,6 +1557,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
             note_projected_without_crs(&shown_output(args.output.as_deref()), &input);
         }
         note_duplicates(count, result.triangulation().num_vertices());
+        note_format_against_name(args.format, args.output.as_deref());
         // Every panel draws every point: past a million dots a drawing is slow to open.
         let panels = 1 + result.stages().count();
         if args.format == Format::Svg && args.stages && count.saturating_mul(panels) > 1_000_000 {

@@ -704,6 +704,48 @@ fn a_signal_while_the_output_is_written_removes_the_temporary_file() {
     );
 }
 
+/// `--format` over a name whose ending says another format writes what `--format` says, with a
+/// note naming both (it was silent: a reviewer's report); a name that agrees, or ends in no
+/// known format, gets none, nor does `--quiet`.
+#[test]
+fn a_format_against_the_names_ending_is_noted() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("square.txt");
+    fs::write(&input, SQUARE).unwrap();
+    let run = |name: &str, format: &str, quiet: bool| {
+        let target = dir.path().join(name);
+        let mut args = vec![
+            OsStr::new("reconstruct"),
+            input.as_os_str(),
+            OsStr::new("-o"),
+            target.as_os_str(),
+            OsStr::new("--format"),
+            OsStr::new(format),
+        ];
+        if quiet {
+            args.push(OsStr::new("-q"));
+        }
+        let out = condt(&args, "");
+        assert!(out.status.success(), "{}", stderr(&out));
+        (fs::read_to_string(&target).unwrap(), stderr(&out))
+    };
+    let (written, said) = run("out.edges", "svg", false);
+    assert!(written.starts_with("<svg"), "{written}");
+    assert!(
+        said.contains("out.edges: written in the svg format (--format svg), not the edges format"),
+        "{said}"
+    );
+    for (name, format, quiet) in [
+        ("out.svg", "svg", false),
+        ("out.json", "geojson", false),
+        ("out.result", "txt", false),
+        ("quiet.edges", "svg", true),
+    ] {
+        let (_, said) = run(name, format, quiet);
+        assert!(!said.contains("format its name"), "{name}: {said}");
+    }
+}
+
 #[test]
 fn an_error_removes_the_temporary_file_and_keeps_the_old_content() {
     let dir = tempfile::tempdir().unwrap();
