@@ -251,6 +251,37 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
     Ok(Triangulation::new(tri))
 }
 
+/// The points with each one within ``distance`` of an earlier point that stays moved onto the
+/// nearest such point, as ``condt reconstruct --snap`` does before it runs: a new ``(n, 2)``
+/// float64 array (the points given are not changed). The points moved become exact duplicates,
+/// which ``reconstruct`` and ``triangulate`` merge into the first of them: use it on data
+/// exported piece by piece (parcels ring by ring, a font's contours), whose shared borders
+/// repeat with rounding differences, before ``reconstruct`` or ``condt.dask.reconstruct``. A
+/// point moves at most ``distance``; NaN and infinite points are left as they are.
+///
+/// ``points`` as for ``reconstruct``. Raises ``ValueError`` for a NaN, negative or infinite
+/// ``distance``, ``TypeError`` for one that is not a number.
+///
+/// >>> import condt
+/// >>> condt.snap([(0, 0), (1, 0), (1 + 1e-9, 0)], 1e-6).tolist()
+/// [[0.0, 0.0], [1.0, 0.0], [1.0, 0.0]]
+#[pyfunction]
+fn snap<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    distance: f64,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let array = points_array(py, points)?;
+    let mut snapped = as_points(array.try_readonly()?.as_slice()?).to_vec();
+    crate::detached(py, || within_call(|| condt::snap(&mut snapped, distance)))?
+        .map_err(|err| library_error(err, &[]))?;
+    let n = snapped.len();
+    let flat: Vec<f64> = snapped.iter().flat_map(|p| [p.x, p.y]).collect();
+    let array = Array2::from_shape_vec((n, 2), flat)
+        .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, array))
+}
+
 /// The points of a file, as an ``(n, 2)`` float64 array: every format ``condt`` reads, told
 /// apart by the name's ending (any case): ``.npy`` (float64, float32 or integers up to 2^53),
 /// ``.csv`` or ``.tsv``, ``.geojson`` or ``.json``, ``.node`` (Triangle); any other name by its
@@ -820,6 +851,7 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_points, m)?)?;
     m.add_function(wrap_pyfunction!(read_points_with_crs, m)?)?;
     m.add_function(wrap_pyfunction!(score, m)?)?;
+    m.add_function(wrap_pyfunction!(snap, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_tile_plan, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_run_tile, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_outliers, m)?)?;

@@ -844,6 +844,43 @@ def test_no_points_collinear_hulls_and_baselines_are_told_as_they_are():
     assert "Algorithm 1 would have seen" in condt.Reconstruction.explain.__doc__
 
 
+# --- snapping ----------------------------------------------------------------------------------
+
+
+def squares_exported_ring_by_ring():
+    """Two 30 by 30 squares sampled every unit, written ring by ring; the second's side on the
+    shared border is 1e-9 off the first's (a reprojection's rounding)."""
+    rows = []
+    for x0, wobble in ((0.0, 0.0), (30.0, 1e-9)):
+        corners = [(0, 0), (30, 0), (30, 30), (0, 30), (0, 0)]
+        for (ax, ay), (bx, by) in zip(corners, corners[1:]):
+            for i in range(30):
+                t = i / 30
+                x, y = x0 + ax + t * (bx - ax), ay + t * (by - ay)
+                rows.append((x, y + wobble if x == 30 else y))
+    return np.array(rows)
+
+
+def test_snap_makes_a_shared_border_exported_twice_one():
+    points = squares_exported_ring_by_ring()
+    given = points.copy()
+    assert len(condt.reconstruct(points).unused) > 0, "the twins break the border"
+    snapped = condt.snap(points, 1e-6)
+    np.testing.assert_array_equal(points, given)  # a new array: the input is not changed
+    moved = np.flatnonzero((snapped != points).any(axis=1))
+    assert len(moved) == 31 and moved.min() >= 120, "only the second ring's twins move"
+    assert np.abs(snapped - points).max() <= 1e-6
+    r = condt.reconstruct(snapped)
+    assert len(r.unused) == 0 and len(r.curves) == 3
+    assert condt.snap(points, 0).tolist() == points.tolist()
+
+
+@pytest.mark.parametrize("distance", [float("nan"), -1.0, float("inf")])
+def test_snap_refuses_a_distance_that_is_no_length(distance):
+    with pytest.raises(ValueError, match="distance"):
+        condt.snap([(0, 0), (1, 0)], distance)
+
+
 # --- stubs and docs ----------------------------------------------------------------------------
 
 STUB = pathlib.Path(condt.__file__).with_name("_condt.pyi")

@@ -65,6 +65,15 @@ def test_reconstruct_on_the_shipped_data_is_the_command_lines(cli, path, params,
         assert result.to_geojson() == geojson.read_text()
 
 
+def test_snap_is_the_command_lines(cli):
+    from test_api import squares_exported_ring_by_ring
+
+    points = squares_exported_ring_by_ring()
+    result = condt.reconstruct(condt.snap(points, 1e-6))
+    assert len(result.curves) == 3
+    assert curves_text(result) == cli.reconstruct_text(points, "txt", "--snap", "1e-6")
+
+
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
 def test_triangulate_on_the_shipped_data_is_the_command_lines(cli, path):
     tri = condt.triangulate(condt.read_points(path))

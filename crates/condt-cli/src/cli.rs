@@ -136,6 +136,7 @@ enum ReconstructId {
     Method,
     InputFormat,
     Columns,
+    Snap,
     Format,
     Stages,
     Crs,
@@ -152,7 +153,7 @@ impl ReconstructId {
         match self {
             Paper | U | Adaptive | Iqr | NoOutlierFilter | OutliersFirst | IqrFloor
             | StageSwitch(_) | Smooth | NoManifoldFix | Repair => true,
-            Output | Method | InputFormat | Columns | Format | Stages | Crs | Sequential
+            Output | Method | InputFormat | Columns | Snap | Format | Stages | Crs | Sequential
             | Timings | Quiet | Help => false,
         }
     }
@@ -285,6 +286,14 @@ and Eppstein); a baseline takes none of the ConDT options",
         help: COLUMNS_HELP,
     },
     Opt {
+        id: ReconstructId::Snap,
+        short: None,
+        long: "snap",
+        negatable: false,
+        value: Some("D"),
+        help: SNAP_HELP,
+    },
+    Opt {
         id: ReconstructId::Format,
         short: None,
         long: "format",
@@ -327,7 +336,7 @@ GIS reads an output from other inputs as longitude and latitude",
         negatable: false,
         value: None,
         help: "on standard error, one line `condt: time STEP SECONDS s` per step:
-read, earlier-passes (when smoothing ran; its line ends in a note in
+read, snap (with --snap), earlier-passes (when smoothing ran; its line ends in a note in
 parentheses), triangulation, each stage of the last pass, curves,
 other, write, total",
     },
@@ -385,7 +394,7 @@ Usage:
                     [--[no-]junctions] [--[no-]crossings] [--[no-]tips] [--[no-]spikes]
                     [--[no-]hooks] [--[no-]tails] [--[no-]detours] [--[no-]smooth]
                     [--method condt|nn-crust|crust]
-                    [--input-format F] [--columns X,Y] [--format F] [--stages]
+                    [--input-format F] [--columns X,Y] [--snap D] [--format F] [--stages]
                     [--crs CRS] [--sequential] [--timings] [--quiet]
 
 Example:
@@ -419,6 +428,14 @@ fn reconstruct_help() -> String {
     )
 }
 
+/// `--snap`'s help, the same for both commands.
+const SNAP_HELP: &str = "move each point within distance D of an earlier point that stays
+onto the nearest such point, before anything else (`condt::snap`):
+layers exported piece by piece repeat shared borders with rounding
+differences, and a curve cannot run along both copies. The points
+moved become exact duplicates, merged as those are. Off by default:
+only you know how far apart two samples may be and still be one";
+
 /// The options of `condt triangulate`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum TriangulateId {
@@ -426,6 +443,7 @@ enum TriangulateId {
     Edges,
     InputFormat,
     Columns,
+    Snap,
     Timings,
     Quiet,
     Help,
@@ -466,13 +484,21 @@ edges without it)",
         help: COLUMNS_HELP,
     },
     Opt {
+        id: TriangulateId::Snap,
+        short: None,
+        long: "snap",
+        negatable: false,
+        value: Some("D"),
+        help: SNAP_HELP,
+    },
+    Opt {
         id: TriangulateId::Timings,
         short: None,
         long: "timings",
         negatable: false,
         value: None,
         help: "on standard error, one line `condt: time STEP SECONDS s` per step:
-read, triangulation, write, total",
+read, snap (with --snap), triangulation, write, total",
     },
     Opt {
         id: TriangulateId::Quiet,
@@ -496,7 +522,7 @@ const TRIANGULATE_ABOUT: &str = "\
 condt triangulate: the Delaunay triangulation of planar points
 
 Usage:
-  condt triangulate INPUT [-o OUTPUT] [--edges] [--input-format F] [--columns X,Y]
+  condt triangulate INPUT [-o OUTPUT] [--edges] [--input-format F] [--columns X,Y] [--snap D]
                     [--timings] [--quiet]
 
 Example:
@@ -611,6 +637,8 @@ struct TriangulateArgs {
     npy: bool,
     /// How INPUT is read (`--input-format`).
     read: ReadOptions,
+    /// `--snap D`: the distance, and D as typed.
+    snap: Option<(f64, String)>,
     timings: bool,
     quiet: bool,
 }
@@ -704,6 +732,7 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
     let mut paths = Paths::default();
     let mut input_format = Setting::new();
     let mut columns = Setting::new();
+    let mut snap = Setting::new();
     for given in lexed.given {
         match given.id {
             TriangulateId::Output => paths.output(&given.flag, given.value)?,
@@ -714,6 +743,7 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
             TriangulateId::Columns => {
                 columns_option(&mut columns, &given.flag, given.value.as_ref())?
             }
+            TriangulateId::Snap => snap_option(&mut snap, &given.flag, given.value.as_ref())?,
             TriangulateId::Timings => timings = true,
             TriangulateId::Quiet => quiet = true,
             // Answered before the arguments are read (`run`).
@@ -729,6 +759,7 @@ fn parse_triangulate(args: &[OsString]) -> Result<TriangulateArgs, CliError> {
         edges: edges || edges_by_name,
         npy,
         read,
+        snap: snap.get(),
         timings,
         quiet,
     })
@@ -889,6 +920,8 @@ struct ReconstructArgs {
     params: Params,
     /// How INPUT is read (`--input-format`).
     read: ReadOptions,
+    /// `--snap D`: the distance, and D as typed.
+    snap: Option<(f64, String)>,
     format: Format,
     stages: bool,
     /// `--crs`, as the `"crs"` member's JSON text.
@@ -989,6 +1022,24 @@ pub(crate) fn input_format_option(
     setting.set(chosen, format!("{flag} {name}"))
 }
 
+/// `--snap D` (`flag` as written), checked and set once: D a finite length, 0 or more, kept
+/// with its text for the note.
+fn snap_option(
+    setting: &mut Setting<(f64, String)>,
+    flag: &str,
+    value: Option<&OsString>,
+) -> Result<(), CliError> {
+    let (distance, typed) = number(flag, value)?;
+    if !(distance.is_finite() && distance >= 0.0) {
+        return Err(out_of_range(flag, typed, "a finite distance, 0 or more"));
+    }
+    setting.set_alike(
+        (distance, typed.to_string()),
+        format!("{flag} {typed}"),
+        |a, b| a.0 == b.0,
+    )
+}
+
 /// `--columns X,Y` (`flag` as written), checked and set once.
 pub(crate) fn columns_option(
     setting: &mut Setting<Columns>,
@@ -1087,6 +1138,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let mut format = Setting::new();
     let mut input_format = Setting::new();
     let mut columns = Setting::new();
+    let mut snap = Setting::new();
     let mut method = Setting::new();
     // ConDT's own options, as written, to refuse them beside a baseline method.
     let condt_options: Vec<&str> = lexed
@@ -1186,6 +1238,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             }
             Id::InputFormat => input_format_option(&mut input_format, flag, value)?,
             Id::Columns => columns_option(&mut columns, flag, value)?,
+            Id::Snap => snap_option(&mut snap, flag, value)?,
             Id::Stages => stages = true,
             Id::Crs => {
                 let value = value.ok_or_else(|| {
@@ -1290,6 +1343,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         output,
         params,
         read,
+        snap: snap.get(),
         format,
         stages,
         crs,
@@ -1334,6 +1388,30 @@ impl fmt::Display for Counted {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let Counted(n, noun) = *self;
         write!(f, "{n} {noun}{}", if n == 1 { "" } else { "s" })
+    }
+}
+
+/// `--snap D` on the points read (nothing without it): how many points moved, and D as typed.
+fn snap_points(
+    points: &mut [condt::Point],
+    snap: &Option<(f64, String)>,
+    input: Option<&Path>,
+) -> Result<Option<(usize, String)>, CliError> {
+    let Some((distance, typed)) = snap else {
+        return Ok(None);
+    };
+    let moved = condt::snap(points, *distance)
+        .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(input))))?;
+    Ok(Some((moved, typed.clone())))
+}
+
+/// What `--snap` did, told before the merged duplicates it made.
+fn note_snapped(snapped: Option<(usize, String)>) {
+    if let Some((moved, typed)) = snapped {
+        note(format_args!(
+            "--snap {typed}: moved {} onto an earlier point within that distance",
+            Counted(moved, "point")
+        ));
     }
 }
 
@@ -1468,6 +1546,11 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         ..
     } = read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
     progress.suspend(|| timings.lap("read"));
+    let mut points = points;
+    let snapped = snap_points(&mut points, &args.snap, args.input.as_deref())?;
+    if snapped.is_some() {
+        progress.suspend(|| timings.lap("snap"));
+    }
     // The input's crs member goes on as `--crs` would take it (a string member is a name, as in
     // Python's `to_geojson`); a member that is no crs (`[1, 2]`, `4326`) is noted and left out.
     let (crs, crs_not_carried) = match crs {
@@ -1556,6 +1639,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         if args.format == Format::GeoJson && args.crs.is_none() && crs.is_none() {
             note_projected_without_crs(&shown_output(args.output.as_deref()), &input);
         }
+        note_snapped(snapped);
         note_duplicates(count, result.triangulation().num_vertices());
         note_format_against_name(args.format, args.output.as_deref());
         // Every panel draws every point: past a million dots a drawing is slow to open.
@@ -1599,8 +1683,13 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         empty_geometries,
         ..
     } = read_input(args.input.as_deref(), true, &args.read)?;
-    progress.computing("triangulating");
     progress.suspend(|| timings.lap("read"));
+    let mut points = points;
+    let snapped = snap_points(&mut points, &args.snap, args.input.as_deref())?;
+    if snapped.is_some() {
+        progress.suspend(|| timings.lap("snap"));
+    }
+    progress.computing("triangulating");
     let tri = triangulate(&points)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     progress.writing(
@@ -1629,6 +1718,7 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
             empty_geometries,
         );
         note_dropped_crs(&shown_input(args.input.as_deref()), crs_dropped_at);
+        note_snapped(snapped);
         note_duplicates(count, tri.num_vertices());
         note_no_triangles(&tri, args.edges);
     }
@@ -1685,6 +1775,7 @@ mod tests {
                 edges: true,
                 npy: false,
                 read: ReadOptions::new(),
+                snap: None,
                 timings: false,
                 quiet: false,
             }

@@ -277,3 +277,112 @@ fn the_progress_bar_changes_no_output() {
         String::from_utf8_lossy(&out.stdout)
     );
 }
+
+/// Two 30-by-30 squares written ring by ring, the second's shared side 1e-9 off the first's
+/// (a reprojection's rounding), in `dir/squares.txt`.
+fn squares_exported_ring_by_ring(dir: &Path) -> std::path::PathBuf {
+    let mut text = String::new();
+    for (x0, wobble) in [(0.0, 0.0), (30.0, 1e-9)] {
+        let corners = [
+            (0.0, 0.0),
+            (30.0, 0.0),
+            (30.0, 30.0),
+            (0.0, 30.0),
+            (0.0, 0.0),
+        ];
+        for pair in corners.windows(2) {
+            let ((ax, ay), (bx, by)) = (pair[0], pair[1]);
+            for i in 0..30 {
+                let t = i as f64 / 30.0;
+                let (x, mut y) = (x0 + ax + t * (bx - ax), ay + t * (by - ay));
+                if x == 30.0 {
+                    y += wobble;
+                }
+                text.push_str(&format!("{x:?} {y:?}\n"));
+            }
+        }
+    }
+    let path = dir.join("squares.txt");
+    fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn snap_joins_a_shared_border_exported_twice() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = squares_exported_ring_by_ring(dir.path());
+    let plain = condt(&[
+        OsStr::new("reconstruct"),
+        input.as_os_str(),
+        OsStr::new("-o"),
+        OsStr::new("/dev/null"),
+    ]);
+    ok(&plain);
+    assert!(!stderr(&plain).contains(" 0 unused"), "{}", stderr(&plain));
+    let output = dir.path().join("out.txt");
+    let snapped = condt(&[
+        OsStr::new("reconstruct"),
+        input.as_os_str(),
+        OsStr::new("--snap=1e-6"),
+        OsStr::new("-o"),
+        output.as_os_str(),
+    ]);
+    ok(&snapped);
+    let notes = stderr(&snapped);
+    assert!(notes.contains("--snap 1e-6: moved 31 points"), "{notes}");
+    assert!(
+        notes.contains("240 points, 3 curves (0 closed, 3 open), 0 unused"),
+        "{notes}"
+    );
+    // The shared side, x = 30 from y = 0 to 30, is one curve through the first ring's samples
+    // (positions 30 to 59 and 60, the corner that starts the top side).
+    let curves = fs::read_to_string(&output).unwrap();
+    let border: Vec<usize> = (30..=60).collect();
+    let on_border = |line: &&str| {
+        let ids: Vec<usize> = line
+            .split(' ')
+            .skip(1)
+            .map(|t| t.parse().unwrap())
+            .collect();
+        ids == border || ids.iter().rev().copied().eq(border.iter().copied())
+    };
+    assert!(curves.lines().any(|l| on_border(&l)), "{curves}");
+    let triangulated = condt(&[
+        OsStr::new("triangulate"),
+        input.as_os_str(),
+        OsStr::new("--snap"),
+        OsStr::new("1e-6"),
+        OsStr::new("-o"),
+        OsStr::new("/dev/null"),
+    ]);
+    ok(&triangulated);
+    assert!(
+        stderr(&triangulated).contains("(209 distinct of 240)"),
+        "{}",
+        stderr(&triangulated)
+    );
+}
+
+#[test]
+fn snap_refuses_a_distance_that_is_no_length() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = points(dir.path(), "in.txt");
+    let output = dir.path().join("out.edges");
+    for bad in ["-1", "nan", "inf", "x"] {
+        let out = condt(&[
+            OsStr::new("reconstruct"),
+            input.as_os_str(),
+            OsStr::new("--snap"),
+            OsStr::new(bad),
+            OsStr::new("-o"),
+            output.as_os_str(),
+        ]);
+        assert_eq!(out.status.code(), Some(2), "{bad}: {}", stderr(&out));
+        assert!(
+            stderr(&out).contains(&format!("--snap {bad}")),
+            "{}",
+            stderr(&out)
+        );
+        assert!(!output.exists());
+    }
+}

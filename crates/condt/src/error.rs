@@ -109,6 +109,7 @@ impl fmt::Display for Error {
                         " (one entry per point is needed; the value is the list's length)"
                     ),
                     "n" => write!(f, " (more points than a curve graph holds)"),
+                    "distance" => write!(f, " (a snapping distance is finite, 0 or more)"),
                     _ => Ok(()),
                 }
             }

@@ -100,6 +100,7 @@ mod prefetch;
 mod provenance;
 mod reconstruct;
 mod smooth;
+mod snap;
 mod stages;
 mod threads;
 pub mod tiled;
@@ -127,6 +128,7 @@ pub use reconstruct::{
     Reconstruction, Smoothing, StageReport, StepReport, Upcoming,
 };
 pub use smooth::{gathered_smoothing_pass, GatheredPass};
+pub use snap::snap;
 pub use stages::{Repair, Stage, Switch, Uniformity};
 pub use threads::parallel_available;
 pub use tiled::{gathered_repair_again_input, remove_gathered_outliers};

@@ -11,6 +11,8 @@ what the ``condt`` command line computes:
   (``read_points_with_crs(path)``: and a GeoJSON input's ``crs``, for
   ``Reconstruction.to_geojson(crs=...)`` to carry on);
 - ``score(points, output, truth)``: the metrics of ``condt score``;
+- ``snap(points, distance)``: near-duplicate points moved onto earlier ones, as ``condt
+  reconstruct --snap`` does first (shared borders exported twice with rounding differences);
 - ``condt.dask.reconstruct(points, client, tiles, **params)``: any ConDT pipeline (the default,
   ``paper=True`` and their variants) tiled across a Dask cluster, with ``reconstruct``'s edges
   (``import condt.dask``; needs ``dask[distributed]``).
@@ -33,6 +35,7 @@ from ._condt import (
     read_points_with_crs,
     reconstruct,
     score,
+    snap,
     triangulate,
 )
 
@@ -46,5 +49,6 @@ __all__ = [
     "read_points_with_crs",
     "reconstruct",
     "score",
+    "snap",
     "triangulate",
 ]

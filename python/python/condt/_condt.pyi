@@ -25,6 +25,7 @@ __all__ = [
     "read_points",
     "read_points_with_crs",
     "score",
+    "snap",
     "Reconstruction",
     "Curve",
     "EdgeStory",
@@ -198,6 +199,7 @@ def read_points_with_crs(
     input_format: Optional[_InputFormat] = ...,
 ) -> Tuple[_Coords, Optional[str]]: ...
 def score(points: _Points, output: _Edges, truth: _Edges) -> _Score: ...
+def snap(points: _Points, distance: float) -> _Coords: ...
 
 # condt.dask's native half (python/src/tiles.rs); not for direct use.
 def _tile_plan(points: _Points, **params: Any) -> dict[str, Any]: ...
