@@ -336,9 +336,9 @@ GIS reads an output from other inputs as longitude and latitude",
         negatable: false,
         value: None,
         help: "on standard error, one line `condt: time STEP SECONDS s` per step:
-read, snap (with --snap), earlier-passes (when smoothing ran; its line ends in a note in
-parentheses), triangulation, each stage of the last pass, curves,
-other, write, total",
+read, snap (with --snap), earlier-passes (when smoothing ran; its
+line ends in a note in parentheses), triangulation, each stage of
+the last pass, curves, other, write, total",
     },
     Opt {
         id: ReconstructId::Quiet,
@@ -400,24 +400,27 @@ Usage:
 Example:
   condt reconstruct data/shapes.txt -o shapes.svg --stages
 
-Output format by OUTPUT's extension or --format (which wins; a note says so where the
-extension names another): `edges` (.edges: one edge `i j` per line,
-i < j, sorted), `npy` (.npy: the same edges as a NumPy array of shape (m, 2), uint32 when every
-point number fits, int64 otherwise), `txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the
-default on standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points and curves; with --stages the Delaunay
-triangulation and the graph after every stage that ran, side by side; a panel is shaped like the
-points' bounding box, from 1:4 to 4:1; y grows upwards, as in a plot, so image rows, which
-count down, show upside down), `geojson` (.geojson: one
+Output format by OUTPUT's extension or --format (which wins; a note says so where the extension
+names another): `edges` (.edges: one edge `i j` per line, i < j, sorted), `npy` (.npy: the same
+edges as a NumPy array of shape (m, 2), uint32 when every point number fits, int64 otherwise),
+`txt` (.txt: one curve per line, `closed` or `open` then its point numbers; the default on
+standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points
+and curves; with --stages the Delaunay triangulation and the graph after every stage that ran,
+side by side; a panel is shaped like the points' bounding box, from 1:4 to 4:1; y grows upwards,
+as in a plot, so image rows, which count down, show upside down), `geojson` (.geojson: one
 LineString per curve, in the order of the txt lines, on the input's coordinates; a GeoJSON
 input's `crs` member is carried on, a GeoJSON sequence's first, or --crs names one), `html`
-(.html: a self-contained page to explore every stage: layers, pan
-and zoom, and a click on a point or an edge tells why it was kept or dropped). A summary goes to standard error: points, curves, and the unused points
-(those with no edge in the result: outliers).
+(.html: a self-contained page to explore every stage: layers, pan and zoom, and a click on a
+point or an edge tells why it was kept or dropped). A summary goes to standard error: points,
+curves, and the unused points (those with no edge in the result: outliers).
 
-The default pipeline is the paper's (Algorithms 1-3) with the outlier filter's spacing floor, the repair `needs` (run again without
-the edges the outlier filter cut), local outlier removal, clumps, confirming given-back components, gap closing, junctions, crossings, tips, spikes, hooks, outlier tails, detours and smoothing passes; --no-local-outliers keeps sparsely sampled curves of 3 or 4 points
-and closed ones of 5 or 6, which the local removal takes for outliers; --paper runs the paper's pipeline alone. Options that contradict each other are an error; an option
-given twice with the same value (`--u 2 --u 2.0`) is taken once.
+The default pipeline is the paper's (Algorithms 1-3) with the outlier filter's spacing floor,
+the repair `needs` (run again without the edges the outlier filter cut), local outlier removal,
+clumps, confirming given-back components, gap closing, junctions, crossings, tips, spikes,
+hooks, outlier tails, detours and smoothing passes; --no-local-outliers keeps sparsely sampled
+curves of 3 or 4 points and closed ones of 5 or 6, which the local removal takes for outliers;
+--paper runs the paper's pipeline alone. Options that contradict each other are an error; an
+option given twice with the same value (`--u 2 --u 2.0`) is taken once.
 ";
 
 /// `condt reconstruct --help`.

@@ -386,3 +386,22 @@ fn snap_refuses_a_distance_that_is_no_length() {
         assert!(!output.exists());
     }
 }
+
+/// Every help fits a terminal of 96 columns: the option tables' help lines at most 70 columns
+/// beside the 26 of their names, the paragraphs at most 96 (a student's review found lines of
+/// 104 to 267 columns, which a terminal wraps mid-word).
+#[test]
+fn the_helps_fit_96_columns() {
+    let mut helps = vec![condt(&["--help"])];
+    for command in ["reconstruct", "triangulate", "score"] {
+        helps.push(condt(&["help", command]));
+    }
+    for out in helps {
+        ok(&out);
+        let text = String::from_utf8(out.stdout).unwrap();
+        for line in text.lines() {
+            let columns = line.chars().count();
+            assert!(columns <= 96, "{columns} columns: {line}");
+        }
+    }
+}

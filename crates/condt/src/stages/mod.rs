@@ -152,8 +152,9 @@ along regular passages; drop edges far longer than their
 neighbours, branches of fewer than 5 points and components of
 fewer than 5 points clearly apart from the rest, unless dense
 or gap closing, the tips, the hooks or the junctions would join
-them to a curve that stays, whether those steps run or not (a sparsely sampled
-curve of 3 or 4 points, or a closed one of 5 or 6, is lost)";
+them to a curve that stays, whether those steps run or not (a
+sparsely sampled curve of 3 or 4 points, or a closed one of 5 or 6,
+is lost)";
     GivenBack: "given-back check", "after confirming given-back components", "given-back",
         "confirm-given-back" => "(default on; off with --paper; needs the local outlier removal)
 after it and the clumps, drop a component rebuilt only from edges
@@ -209,9 +210,9 @@ end between the sample and the one before, and join the sample
 onward, when that leaves no passage as sharp as the hook, or none
 sharp but at the loose end (a tip's apex)";
     Tails: "outlier tails", "after cutting outlier tails", "tails",
-        "tails" => "(default on; off with --paper) after the hooks, cut a tail of at most 4
-points at a loose end whose joint is longer than 1.5 times the
-edge it joins and bends more than twice as sharply as the even
+        "tails" => "(default on; off with --paper) after the hooks, cut a tail of at
+most 4 points at a loose end whose joint is longer than 1.5 times
+the edge it joins and bends more than twice as sharply as the even
 run of 5 edges it hangs from (outliers beyond an open end)";
     Detours: "detours", "after cutting detours", "detours",
         "detours" => "(default on; off with --paper) last, where two routes of at most
