@@ -197,7 +197,14 @@ fn main() {
             "mutual" => Repair::Mutual,
             "crossing" => Repair::CrossingAware,
             "needs" => Repair::Needs,
-            _ => Repair::Paper,
+            "paper" => Repair::Paper,
+            other => {
+                // A typo was read as `paper` and the table headed so: a wrong figure, unsaid.
+                eprintln!(
+                    "--repair {other}: unknown; the modes are paper, mutual, crossing, needs, off"
+                );
+                std::process::exit(2);
+            }
         };
     }
     if args.iter().any(|a| a == "--adaptive") {
