@@ -260,7 +260,7 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 /// point moves at most ``distance``; NaN and infinite points are left as they are.
 ///
 /// ``points`` as for ``reconstruct``. Raises ``ValueError`` for a NaN, negative or infinite
-/// ``distance``, ``TypeError`` for one that is not a number.
+/// ``distance``, ``TypeError`` for one that is not a number (a bool included).
 ///
 /// >>> import condt
 /// >>> condt.snap([(0, 0), (1, 0), (1 + 1e-9, 0)], 1e-6).tolist()
@@ -269,8 +269,10 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 fn snap<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
-    distance: f64,
+    distance: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    // As the keywords' numbers are read: a bool is no distance, and a message names it.
+    let distance = params::number("distance", distance)?;
     let array = points_array(py, points)?;
     let mut snapped = as_points(array.try_readonly()?.as_slice()?).to_vec();
     crate::detached(py, || within_call(|| condt::snap(&mut snapped, distance)))?

@@ -129,7 +129,7 @@ fn boolean(name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
 /// `Params::check`'s to say. A number too large for a float (`2**2000`, whose `float()` raises
 /// `OverflowError`) is infinite, with its sign: a number all the same, which the check refuses
 /// as it refuses `float("inf")`, naming the keyword.
-fn number(name: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
+pub(crate) fn number(name: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
     if !is_bool(value) {
         match value.extract::<f64>() {
             Ok(x) => return Ok(x),

@@ -881,6 +881,12 @@ def test_snap_refuses_a_distance_that_is_no_length(distance):
         condt.snap([(0, 0), (1, 0)], distance)
 
 
+@pytest.mark.parametrize("distance", ["1e-6", True, None])
+def test_snap_refuses_a_distance_that_is_no_number(distance):
+    with pytest.raises(TypeError, match="distance must be a number"):
+        condt.snap([(0, 0), (1, 0)], distance)
+
+
 # --- stubs and docs ----------------------------------------------------------------------------
 
 STUB = pathlib.Path(condt.__file__).with_name("_condt.pyi")
