@@ -94,7 +94,8 @@ impl Triangulation {
     /// once (points on a hull edge included, as the Rust ``Mesh::hull`` gives them).
     ///
     /// On points all on one line (no triangle) the walk goes out along the line and back: the
-    /// inner points appear twice, the two ends once.
+    /// inner points appear twice, the two ends once. One distinct point has no hull edge: the
+    /// array is empty.
     ///
     /// >>> import condt
     /// >>> condt.triangulate([(0, 0), (1, 0), (2, 0), (3, 0)]).hull.tolist()

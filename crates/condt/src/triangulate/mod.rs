@@ -839,7 +839,8 @@ impl Triangulation {
     }
     /// The convex hull as input positions, counter-clockwise from some hull point ([`Mesh::hull`]),
     /// each hull edge once (points on a hull edge included). On a collinear set the walk goes out
-    /// and back along the line, so its inner points come twice.
+    /// and back along the line, so its inner points come twice; a set of one distinct point has
+    /// no hull edge, and the walk is empty.
     ///
     /// ```
     /// use condt::{triangulate, Point};
@@ -851,6 +852,8 @@ impl Triangulation {
     /// let mut walked: Vec<usize> = line.hull().collect();
     /// walked.sort_unstable();
     /// assert_eq!(walked, vec![0, 1, 1, 2]); // out and back: the middle point twice
+    /// let lone = triangulate(&[(1.0, 1.0), (1.0, 1.0)].map(Point::from))?;
+    /// assert_eq!(lone.hull().count(), 0);
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn hull(&self) -> impl Iterator<Item = usize> + '_ {
