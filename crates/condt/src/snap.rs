@@ -23,7 +23,8 @@ use core::cmp::Ordering;
 /// are left as they are (the triangulation refuses them).
 ///
 /// `distance` 0 changes nothing (exact duplicates are merged by the triangulation anyway).
-/// O(n log n) time, and up to about 50 bytes a point besides `points`.
+/// O(n log n) time; at its peak about 50 bytes a point besides `points` (where every point
+/// is a cell of its own), 32 once the grid is built.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] named `distance` when it is NaN, negative or infinite;
@@ -56,7 +57,7 @@ pub fn snap(points: &mut [Point], distance: f64) -> Result<usize, Error> {
     }
     let grid = Grid::of(points, distance);
     // The points that stay, by cell: a list through `next`, the latest first.
-    let mut head = vec![NONE; grid.cells.len()];
+    let mut head = vec![NONE; grid.crowded.len()];
     let mut next = vec![NONE; points.len()];
     let mut moved = 0;
     for i in 0..points.len() {
@@ -111,18 +112,20 @@ fn apart(p: Point, q: Point) -> f64 {
 
 /// A grid of square cells twice the snapping distance wide, over the finite points: two points
 /// within the distance lie in the same or neighbouring cells, whatever the rounding of the
-/// division (their quotients differ by at most a half and a rounding).
+/// division (their quotients differ by at most a half and a rounding). The cells are numbered in
+/// sorted order (x index, then y index); their indices are needed only while it is built.
 struct Grid {
-    /// The occupied cells, sorted (x index, then y index).
-    cells: Vec<(i64, i64)>,
     /// Per cell, whether it holds two points or more or a neighbour cell is occupied: the point
     /// of a cell that is not neither moves nor is moved onto (speed: most points, where the
     /// distance is below the spacing, as it is meant to be).
     crowded: Vec<bool>,
-    /// Per cell, its occupied neighbours and itself, as three runs of `cells` (the rows below,
-    /// at and above it: start and length), so that no point searches for them.
-    runs: Vec<[(u32, u8); 3]>,
-    /// Each point's cell, an index into `cells`; [`NONE`] for a point off the grid.
+    /// Per cell, its occupied neighbours and itself as three runs of cell numbers, the rows
+    /// below, at and above it: where each starts, and ([`Grid::lengths`]) how long it is, so that
+    /// no point searches for them.
+    starts: Vec<[u32; 3]>,
+    /// The runs' lengths, at most 3 each (apart from `starts`: 15 bytes a cell, not 24).
+    lengths: Vec<[u8; 3]>,
+    /// Each point's cell; [`NONE`] for a point off the grid.
     cell_of: Vec<u32>,
     /// Each point's first equal position (itself when none comes before it; `-0.0` equals
     /// `0.0`, as for the triangulation); a point off the grid is its own.
@@ -140,9 +143,13 @@ impl Grid {
             let (x, y) = (libm::floor(p.x / side), libm::floor(p.y / side));
             (x.abs() < REACH && y.abs() < REACH).then_some((x as i64, y as i64))
         };
-        let mut entries: Vec<((i64, i64), u32)> = (0..points.len())
-            .filter_map(|i| Some((key(points[i])?, i as u32)))
-            .collect();
+        // Sized once (memory: a collected iterator of unknown length grows by doubling).
+        let mut entries: Vec<((i64, i64), u32)> = Vec::with_capacity(points.len());
+        for (i, &p) in points.iter().enumerate() {
+            if let Some(k) = key(p) {
+                entries.push((k, i as u32));
+            }
+        }
         // By cell, then by coordinates, then by position: equal points in a run, the first
         // leading (coordinates are read only where cells tie).
         entries.sort_unstable_by(|(ka, a), (kb, b)| {
@@ -152,8 +159,9 @@ impl Grid {
                 by(p.x, q.x).then(by(p.y, q.y)).then(a.cmp(b))
             })
         });
-        let mut cells: Vec<(i64, i64)> = Vec::new();
-        let mut crowded: Vec<bool> = Vec::new();
+        let count = 1 + entries.windows(2).filter(|w| w[0].0 != w[1].0).count();
+        let mut cells: Vec<(i64, i64)> = Vec::with_capacity(count);
+        let mut crowded: Vec<bool> = Vec::with_capacity(count);
         let mut cell_of = vec![NONE; points.len()];
         let mut first: Vec<u32> = (0..points.len() as u32).collect();
         for (k, &(cell, i)) in entries.iter().enumerate() {
@@ -172,35 +180,33 @@ impl Grid {
         drop(entries);
         // A row's three cells around a cell lie together in the sorted cells, and where they
         // start only grows from one cell to the next: one sweep with a pointer per row.
-        let mut starts = [0usize; 3];
-        let mut runs = Vec::with_capacity(cells.len());
+        let mut row_starts = [0usize; 3];
+        let mut starts = Vec::with_capacity(cells.len());
+        let mut lengths = Vec::with_capacity(cells.len());
         for c in 0..cells.len() {
             let (x, y) = cells[c];
-            let mut run = [(0u32, 0u8); 3];
-            for (k, start) in starts.iter_mut().enumerate() {
+            let (mut start, mut length) = ([0u32; 3], [0u8; 3]);
+            for (k, at) in row_starts.iter_mut().enumerate() {
                 let row = x + k as i64 - 1;
-                while *start < cells.len() && cells[*start] < (row, y - 1) {
-                    *start += 1;
+                while *at < cells.len() && cells[*at] < (row, y - 1) {
+                    *at += 1;
                 }
-                let length = cells[*start..]
+                let run = cells[*at..]
                     .iter()
                     .take(3)
                     .take_while(|&&(r, v)| r == row && v <= y + 1)
                     .count();
-                run[k] = (*start as u32, length as u8);
+                (start[k], length[k]) = (*at as u32, run as u8);
             }
             // Itself counts once; any other cell in the runs is an occupied neighbour.
-            crowded[c] |= run
-                .iter()
-                .map(|&(_, length)| usize::from(length))
-                .sum::<usize>()
-                > 1;
-            runs.push(run);
+            crowded[c] |= length.iter().map(|&l| usize::from(l)).sum::<usize>() > 1;
+            starts.push(start);
+            lengths.push(length);
         }
         Grid {
-            cells,
             crowded,
-            runs,
+            starts,
+            lengths,
             cell_of,
             first,
         }
@@ -208,9 +214,11 @@ impl Grid {
 
     /// The occupied cells among `cell` and its eight neighbours.
     fn around(&self, cell: usize) -> impl Iterator<Item = usize> + '_ {
-        self.runs[cell]
-            .iter()
-            .flat_map(|&(start, length)| start as usize..start as usize + usize::from(length))
+        let (starts, lengths) = (self.starts[cell], self.lengths[cell]);
+        (0..3).flat_map(move |k| {
+            let start = starts[k] as usize;
+            start..start + usize::from(lengths[k])
+        })
     }
 }
 
