@@ -135,14 +135,26 @@ struct Grid {
 impl Grid {
     fn of(points: &[Point], distance: f64) -> Grid {
         let side = 2.0 * distance;
-        // Off the grid: non-finite, or so far out that no other point is within the distance
-        // (the distance is below a rounding of the coordinate there), where the index would
-        // saturate. Within it, a neighbour's index cannot overflow.
+        // A coordinate 2^62 cells out or more is over 2^10 times the distance from any other
+        // double (its spacing there), so only a point with that very coordinate can be within
+        // the distance: it gets an index of its own, from its bits, beyond 2^62 (the index would
+        // saturate otherwise; within the range a neighbour's index cannot overflow, nor beyond
+        // it, below 2^62 + 2^61 + 1).
         const REACH: f64 = 4_611_686_018_427_387_904.0; // 2^62
-        let key = |p: Point| {
-            let (x, y) = (libm::floor(p.x / side), libm::floor(p.y / side));
-            (x.abs() < REACH && y.abs() < REACH).then_some((x as i64, y as i64))
+        let index = |v: f64| -> i64 {
+            let cell = libm::floor(v / side);
+            if cell.abs() < REACH {
+                return cell as i64;
+            }
+            let own = (1i64 << 62) + (v.abs().to_bits() >> 2) as i64;
+            if v < 0.0 {
+                -own
+            } else {
+                own
+            }
         };
+        // Off the grid: non-finite points, which no distance reaches.
+        let key = |p: Point| (p.x.is_finite() && p.y.is_finite()).then(|| (index(p.x), index(p.y)));
         // Sized once (memory: a collected iterator of unknown length grows by doubling).
         let mut entries: Vec<((i64, i64), u32)> = Vec::with_capacity(points.len());
         for (i, &p) in points.iter().enumerate() {
@@ -274,7 +286,18 @@ mod tests {
                 points.push(Point::new(-0.0, 0.0));
                 points.push(Point::new(0.0, -0.0));
             }
-            let distance = [0.05, 0.1, 0.15, 0.3, 1.0][round % 5];
+            let mut distance = [0.05, 0.1, 0.15, 0.3, 1.0][round % 5];
+            if round % 4 == 1 {
+                // The distance far below the coordinates' spacing, or far above: the cells'
+                // indices beyond 2^62, where a coordinate gets one of its own.
+                let scale = [1e-300, 1e-200, 2f64.powi(60), 1e250][round / 4 % 4];
+                distance *= scale;
+            }
+            if round % 4 == 3 {
+                for p in &mut points[..n / 2] {
+                    p.x += 1e300; // far out in x only (the sum rounds to 1e300): y decides
+                }
+            }
             let expected = snapped_by_brute_force(&points, distance);
             let mut snapped = points.clone();
             let moved = snap(&mut snapped, distance).expect("valid");
@@ -291,7 +314,7 @@ mod tests {
     }
 
     #[test]
-    fn refuses_a_distance_that_is_no_length_and_leaves_odd_points() {
+    fn refuses_a_distance_that_is_no_length_and_takes_odd_points() {
         for bad in [f64::NAN, -1.0, f64::INFINITY] {
             let err = snap(&mut [Point::new(0.0, 0.0)], bad).unwrap_err();
             assert!(matches!(
@@ -309,13 +332,10 @@ mod tests {
             Point::new(0.0, 0.0),
             Point::new(1e-300, 0.0),
         ];
-        assert_eq!(snap(&mut points, 1e-200).expect("valid"), 1);
+        assert_eq!(snap(&mut points, 1e-200).expect("valid"), 2);
         assert!(points[0].x.is_nan());
-        assert_eq!(
-            points[2],
-            Point::new(f64::MAX, 1e-300),
-            "off the grid: left alone"
-        );
+        // Far beyond the grid's cells in x, and near in y: the rule holds there too.
+        assert_eq!(points[2], Point::new(f64::MAX, 0.0));
         assert_eq!(points[4], Point::new(0.0, 0.0));
         assert_eq!(snap(&mut points, 0.0), Ok(0));
     }
