@@ -137,13 +137,29 @@ def test_a_halo_given_far_too_narrow_grows_to_the_planned_one_at_once(client):
     np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
 
 
-def test_tiles_whose_circles_reach_far_grow_their_halo(client):
-    # Five small blobs far apart: the triangles between them have circles as wide as the set.
+def five_blobs():
+    """Five small blobs far apart: the triangles between them have circles as wide as the set."""
     rng = np.random.default_rng(11)
     centres = rng.uniform(0, 1000, (5, 2))
-    points = centres[rng.integers(0, 5, 20_000)] + rng.normal(0, 1, (20_000, 2))
-    tiled = condt.dask.reconstruct(points, client, tiles=16, paper=True)
+    return centres[rng.integers(0, 5, 20_000)] + rng.normal(0, 1, (20_000, 2))
+
+
+def test_tiles_whose_circles_reach_far_grow_their_halo(client):
+    # A first halo of a blob's size: with the plan's (a quarter of a tile) a tile's band along
+    # the hull already holds every point, and that tile runs for all (the test below).
+    points = five_blobs()
+    tiled = condt.dask.reconstruct(points, client, tiles=16, halo=1.0, paper=True)
     assert tiled.whole is None and tiled.rounds > 1
+    np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+
+
+def test_a_tile_whose_halo_reaches_every_point_runs_for_every_tile(client):
+    # Each of the 16 tiles was sent again and again until each held every point: 13 rounds and
+    # 102 points sent per point, where one tile holding every point certifies every tile's.
+    points = five_blobs()
+    tiled = condt.dask.reconstruct(points, client, tiles=16, paper=True)
+    assert tiled.whole is None and tiled.tiles == 16
+    assert tiled.rounds == 1 and tiled.sent == len(points)
     np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
 
 
