@@ -70,10 +70,11 @@
 //! more than 2^200 takes the big-integer predicates, up to about 57 KB at the widest spread.
 //! The heap: 12 KB for 32 points, 830 KB for 4,000 (a bump allocator that never frees). It
 //! depends on the points: scattered or noisy ones run smoothing passes, each a reconstruction
-//! again. On a 64-bit host (a scratch harness's counting allocator, `Params::default()`, no
-//! default features, 2026-12-07), 4,000 uniform random points allocate 5.7-5.8 MB in all (two
-//! sets) with 0.62 MB live at the peak, 1.46 MB without the passes and 0.96 MB with
-//! `Params::paper()`; 4,000 samples of an ellipse allocate 0.68 MB. Under a bump allocator, turn the passes off (`Params::with_smooth(false)`). A refused
+//! again. On a 64-bit host (a scratch harness's counting allocator, a realloc counted at its
+//! new size, `Params::default()`, no default features, 2026-12-07), 4,000 uniform random points
+//! allocate 5.7-5.8 MB in all (two sets) with 0.62 MB live at the peak, 1.46 MB without the
+//! passes and 0.96 MB with `Params::paper()`; 4,000 samples of an ellipse allocate 0.68 MB.
+//! Under a bump allocator, turn the passes off (`Params::with_smooth(false)`). A refused
 //! allocation ends in the allocation error handler, as everywhere in `alloc`.
 //!
 //! ## Layout

@@ -115,9 +115,10 @@ fn apart(p: Point, q: Point) -> f64 {
 /// division (their quotients differ by at most a half and a rounding). The cells are numbered in
 /// sorted order (x index, then y index); their indices are needed only while it is built.
 struct Grid {
-    /// Per cell, whether it holds two points or more or a neighbour cell is occupied: the point
-    /// of a cell that is not neither moves nor is moved onto (speed: most points, where the
-    /// distance is below the spacing, as it is meant to be).
+    /// Per cell, whether it holds two points or more or a neighbour cell is occupied. The lone
+    /// point of an uncrowded cell has no other point within the distance: it neither moves nor
+    /// is moved onto, and is passed over (speed: that is most points where the distance is below
+    /// the spacing, as it is meant to be).
     crowded: Vec<bool>,
     /// Per cell, its occupied neighbours and itself as three runs of cell numbers, the rows
     /// below, at and above it: where each starts, and ([`Grid::lengths`]) how long it is, so that

@@ -7,10 +7,10 @@ The result equals ``condt.reconstruct(points, **params).edges``, as a set of edg
 
 - every tile proves that the part of the Delaunay triangulation its stages read is the whole
   set's (the certificate in ``python/src/tiles.rs``); a tile that cannot, because its halo is
-  too narrow, is sent again with a halo twice as wide (near the convex hull a tile also gets
-  the points within its halo of the hull's boundary, where the circles of triangles on long
-  hull edges reach); once a tile's halo reaches every point, that one tile runs for every tile
-  still waiting;
+  too narrow, is sent again with a wider halo (half as wide again, then twice; near the convex
+  hull a tile also gets the points within its halo of the hull's boundary, where the circles of
+  triangles on long hull edges reach); once a tile's halo reaches every point, that one tile
+  runs for every tile still waiting;
 - its vertices follow the whole set's insertion order, so the stages break ties as one machine
   does;
 - every global decision runs once on the driver, on the joined edges, with the library's own
@@ -355,6 +355,9 @@ class _Run:
         # For each task holding every point, by its first tile, the tiles it runs for
         # (``_whole_tiles``).
         self.owners: dict = {}
+        # The deepest point's distance from the hull's boundary (``_holds_every_point``).
+        depth = plan["depth"]
+        self.deepest = float(depth.max()) if depth is not None and len(depth) else None
         # A tile that owns no point has nothing to send back.
         self.owning = [
             k for k in range(len(rects)) if _inside(points, rects[k], closed=False).any()
@@ -375,17 +378,7 @@ class _Run:
         while pending:
             self.rounds += 1
             futures, sent_positions, batch = {}, {}, []
-            # Which points each tile is sent: the masks kept up to the points' own bytes, for the
-            # loop below (a tile's mask takes a pass over the points).
-            held, whole = {}, False
-            for k in pending:
-                held[k] = self._held(k)
-                if held[k][0].all():
-                    whole = True
-                    break
-                if len(held) * len(points) >= points.nbytes:
-                    del held[k]
-            if whole:
+            if any(self._holds_every_point(k) for k in pending):
                 # A tile of this round holds every point: it owns the points of every tile still
                 # pending, in one task (``_whole_tiles``).
                 k, arrays, band, known = self._whole_tiles(pending)
@@ -394,9 +387,9 @@ class _Run:
                 batch.append((k, arrays, band, known))
                 pending = []
             for k in pending:
-                # Each tile gets only its points (the driver cuts them out): a worker never
-                # holds the whole set.
-                inside, band, known = held.pop(k) if k in held else self._held(k)
+                # Each tile gets only its points (the driver cuts them out): a worker holds the
+                # whole set only once a tile's halo reaches every point (above).
+                inside, band, known = self._held(k)
                 positions = np.flatnonzero(inside)
                 sent_positions[k] = positions
                 self.sent += len(positions)
@@ -459,6 +452,17 @@ class _Run:
             band = self.halo_of[k]
             inside |= depth <= band
         return inside, band, known
+
+    def _holds_every_point(self, k):
+        """Whether tile ``k`` is sent every point (``_held``), told without a pass over them:
+        its known rectangle reaches the bounding box on every side, or near the hull its band
+        (the points within its halo of the hull's boundary) reaches the deepest point; an
+        owning tile holds a point of its own, so the band applies once it reaches. (A tile whose
+        rectangle and band hold every point between them, neither alone, is sent as any other:
+        it may still certify.)"""
+        if all(math.isinf(side) for side in _known(self.rects[k], self.halo_of[k], self.bbox)):
+            return True
+        return self.deepest is not None and self.deepest <= self.halo_of[k]
 
     def _whole_tiles(self, tiles):
         """One task for ``tiles``, once the halo of one of them reaches every point, as a batch
