@@ -1550,6 +1550,11 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     } = read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
     progress.suspend(|| timings.lap("read"));
     let mut points = points;
+    if args.snap.is_some() {
+        // Up to a second a million points where the distance merges many (the bar would
+        // otherwise still say "reading").
+        progress.computing("snapping near duplicates");
+    }
     let snapped = snap_points(&mut points, &args.snap, args.input.as_deref())?;
     if snapped.is_some() {
         progress.suspend(|| timings.lap("snap"));
@@ -1688,6 +1693,11 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     } = read_input(args.input.as_deref(), true, &args.read)?;
     progress.suspend(|| timings.lap("read"));
     let mut points = points;
+    if args.snap.is_some() {
+        // Up to a second a million points where the distance merges many (the bar would
+        // otherwise still say "reading").
+        progress.computing("snapping near duplicates");
+    }
     let snapped = snap_points(&mut points, &args.snap, args.input.as_deref())?;
     if snapped.is_some() {
         progress.suspend(|| timings.lap("snap"));
