@@ -163,6 +163,19 @@ def test_a_tile_whose_halo_reaches_every_point_runs_for_every_tile(client):
     np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
 
 
+def test_the_default_runs_each_pass_from_the_halos_the_run_before_reached(client):
+    # The default keeps the whole tile's triangulation for its later stages, and each smoothing
+    # pass starts from the halos the run before grew to. From a narrow first halo the first run
+    # grows them until one tile holds every point; every pass then sends each point once (a
+    # pass that started from the first halo again grew it again: 125,512 points for 60,000).
+    points = five_blobs()
+    first = condt.dask.reconstruct(points, client, tiles=16, halo=0.05, smooth=False)
+    tiled = condt.dask.reconstruct(points, client, tiles=16, halo=0.05)
+    assert tiled.whole is None and tiled.passes >= 1
+    assert tiled.sent - first.sent == tiled.passes * len(points)
+    np.testing.assert_array_equal(tiled.edges, one_machine(points))
+
+
 @pytest.mark.parametrize(
     "params",
     [
