@@ -555,8 +555,8 @@ impl Curve {
 ///   ``"last-edge"`` (given back as a curve's last edge), ``"long-at"`` (``vertex``, ``ratio``),
 ///   ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``, ``"gap-closed"``,
 ///   ``"junction"``, ``"crossing"`` (``vertex``), ``"tip"``, ``"spike"``, ``"hook"``, ``"tail"``
-///   (``vertex``, ``points``), ``"detour"`` (``from``, ``to``, ``points``), ``"baseline"`` or
-///   ``"not-confirmed"``;
+///   (``vertex``, ``points``), ``"detour"`` (``from``, ``to``, ``points``; ``from == to``: the
+///   edge that closed a loop hung on that point), ``"baseline"`` or ``"not-confirmed"``;
 /// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
 ///
 /// ``ends`` and ``changes`` are new dicts and lists at each read, so the story never changes

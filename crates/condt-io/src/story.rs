@@ -134,6 +134,11 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
                 "part of an outlier tail of {points} point{} cut where it hung from {vertex}",
                 if points == 1 { "" } else { "s" }
             )?,
+            Reason::Detour { from, to, .. } if from == to => write!(
+                f,
+                "the edge that closed a loop hung on {from}, which the curve runs into less \
+                 straightly than into the loop's other edge"
+            )?,
             Reason::Detour { from, to, points } => {
                 match points {
                     0 => write!(f, "the edge between {from} and {to} past a route")?,

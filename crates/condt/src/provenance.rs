@@ -107,7 +107,9 @@ pub enum Reason {
         points: usize,
     },
     /// Part of a detour cut between two points of three edges each, `from` and `to`, which a
-    /// second short route also joins and the curve runs into straighter at both.
+    /// second short route also joins and the curve runs into straighter at both; or, where
+    /// `from == to`, the edge that closed a loop of at most five points hung on that point,
+    /// which the curve runs into less straightly than into the loop's other edge.
     Detour {
         /// The detour's end with the smaller input position.
         from: usize,

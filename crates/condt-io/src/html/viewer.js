@@ -301,7 +301,9 @@
       () => (c.added
         ? "joined through a tip's samples that had no edges"
         : "a chord across a tip whose samples had no edges"),
-      () => `part of a short detour between vertices ${c.x} and ${c.y}, beside the route the curve runs into straighter at both`,
+      () => (c.x === c.y
+        ? `the edge that closed a loop hung on vertex ${c.x}, which the curve runs into less straightly than into the loop's other edge`
+        : `part of a short detour between vertices ${c.x} and ${c.y}, beside the route the curve runs into straighter at both`),
     ][c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }

@@ -106,7 +106,9 @@ pub struct Params {
     /// Last, where two routes of at most four points between them join the same two points of
     /// three edges each (one or two outliers hung on a curve's samples, a chord past a sample),
     /// remove the route the curve runs into less straightly at both ends, none where the ends
-    /// disagree or share their third neighbour (beyond the paper; `src/stages/detours.rs`).
+    /// disagree or share their third neighbour; and open a loop of at most five points hung on a
+    /// curve (a stroke's end folded back) at its sharper edge (beyond the paper;
+    /// `src/stages/detours.rs`).
     pub detours: bool,
     /// Smoothing passes (beyond the paper; `smooth.rs`): where the curves show noise, points move
     /// towards their neighbours and the stages run again, up to three times. Edges stay between

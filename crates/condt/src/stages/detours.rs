@@ -12,6 +12,11 @@
 //! whose edge stays), or a chord skips a sample the curve also passes. Whatever the truth, one
 //! of the two routes is wrong, and either leaves two branch points.
 //!
+//! A route from `p` back to `p`, a loop of at most [`MAX_INNER`] points besides it, is one too
+//! (no sampled closed curve is that short, [`MIN_SAMPLES`]): a curve's end folded back, which
+//! opens at its edge at `p` that the curve from `p`'s third neighbour turns into more sharply
+//! ([`lasso_at`]; docs/condt.md, *A loop hung on a curve*).
+//!
 //! Rule (docs/condt.md, *Detours*): both routes have at most [`MAX_INNER`] points between `p`
 //! and `q` (fewer than a branch the local outlier removal keeps), `p'` and `q'`, the third
 //! neighbours of `p` and `q`, are two different points, and no third route of at most
@@ -82,7 +87,9 @@ impl Route {
     }
 }
 
-/// A detour: the two ends `p < q` and the route between them whose edges go.
+/// A detour: the two ends `p < q` and the route between them whose edges go; or a loop's edge
+/// ([`lasso_at`]): `p == q`, the loop's point, and a route of no inner point to the loop's edge's
+/// other end.
 #[derive(Copy, Clone, Debug)]
 pub(crate) struct Detour {
     pub(crate) p: VertexId,
@@ -96,11 +103,11 @@ impl Detour {
         &self.route.inner[..self.route.len]
     }
 
-    /// The edges the detour loses, from `p` to `q`.
+    /// The edges the detour loses, from `p` to its route's end (`q`, or a loop's edge's end).
     pub(crate) fn removed(&self) -> impl Iterator<Item = Edge> + '_ {
         let path = core::iter::once(self.p)
             .chain(self.inner().iter().copied())
-            .chain(core::iter::once(self.q));
+            .chain(core::iter::once(self.route.end));
         path.clone().zip(path.skip(1)).map(|(a, b)| ordered(a, b))
     }
 }
@@ -119,6 +126,9 @@ fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) -> Option<Det
         if a.end == b.end && b.end == c.end {
             return None;
         }
+    }
+    if let Some(lasso) = lasso_at(tri, p, &around, &routes) {
+        return Some(lasso);
     }
     // The two routes that end at one point `q > p` of three edges, and `p`'s third neighbour.
     let (i, j, k) = [(0, 1, 2), (0, 2, 1), (1, 2, 0)]
@@ -154,6 +164,37 @@ fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) -> Option<Det
         _ => return None,
     };
     Some(Detour { p, q, route: cut })
+}
+
+/// A loop of at most [`MAX_INNER`] points hung on `p` (routes from `p` back to `p` through two of
+/// its neighbours, `around`, with `routes` from each): the loop's edge at `p` into which the
+/// curve from `p`'s third neighbour turns more sharply, as a detour of no inner point; `None`
+/// where the two turn alike. Why: no sampled closed curve is that short (over six samples, as
+/// [`MIN_SAMPLES`] says), so the loop is a curve's end folded back (a stroke's last pixels in an
+/// L, an end sample joined to the one two before it), which runs on straighter.
+fn lasso_at(
+    tri: &Triangulation,
+    p: VertexId,
+    around: &[VertexId; 3],
+    routes: &[Option<Route>; 3],
+) -> Option<Detour> {
+    let (i, j, k) = [(0, 1, 2), (0, 2, 1), (1, 2, 0)]
+        .into_iter()
+        .find(|&(i, j, _)| matches!((routes[i], routes[j]), (Some(a), Some(b)) if a.end == p && b.end == p))?;
+    let point = |v: VertexId| tri.vertex_point(v);
+    let (at, from) = (point(p), point(around[k]));
+    let cut =
+        match cos_at(at, from, point(around[i])).total_cmp(&cos_at(at, from, point(around[j]))) {
+            Ordering::Less => around[j],
+            Ordering::Greater => around[i],
+            Ordering::Equal => return None,
+        };
+    let route = Route {
+        inner: [VertexId::INFINITE; MAX_INNER],
+        len: 0,
+        end: cut,
+    };
+    Some(Detour { p, q: p, route })
 }
 
 /// The detours of `graph`, by increasing smaller end (on threads if `parallel`).
@@ -199,6 +240,85 @@ mod tests {
         edges.extend_from_slice(extra);
         edges.sort_unstable();
         edges
+    }
+
+    #[test]
+    fn a_loop_hung_on_a_curve_loses_its_edge_off_the_straight_run() {
+        // A stroke along the x axis whose last three samples fold back into a triangle (pixels
+        // 5 (5, 0), 6 (6, 0), 7 (6, 1), the end sample 7 joined to 5 too): the stroke runs on
+        // straight through 5 into 6, so the edge 5 7 goes and 7 is the end.
+        let pts = line_and(7, &[(6.0, 1.0)]);
+        let with = line_edges(7, &[[5, 7], [6, 7]]);
+        assert_eq!(kept(&pts, &with), line_edges(7, &[[6, 7]]));
+        // Both loop points off the line (5 (5, 0), 6 (6, 1), 7 (5, 1)): the stroke turns less
+        // into 6 than into 7, so 5 7 goes.
+        let pts = line_and(6, &[(6.0, 1.0), (5.0, 1.0)]);
+        let with = line_edges(6, &[[5, 6], [6, 7], [5, 7]]);
+        assert_eq!(kept(&pts, &with), line_edges(6, &[[5, 6], [6, 7]]));
+        // A loop of six points (five besides the branch point 5) is a closed curve's: it stays.
+        let ring: Vec<(f64, f64)> = (1..6)
+            .map(|k| {
+                let t = core::f64::consts::PI + k as f64 * core::f64::consts::TAU / 6.0;
+                (8.0 + 3.0 * libm::cos(t), 3.0 * libm::sin(t))
+            })
+            .collect();
+        let pts = line_and(6, &ring);
+        let with = line_edges(6, &[[5, 6], [6, 7], [7, 8], [8, 9], [9, 10], [5, 10]]);
+        assert_eq!(kept(&pts, &with), with);
+    }
+
+    /// 22 Canny edge pixels (row, column) of scikit-image's astronaut at 2048 pixels (an image
+    /// user's review): the end of the stroke 0 5 6 7 ... folds back, 0 joined to 5 and to 6,
+    /// and the default gave `closed 0 5 6`. The detour step opens the loop at 6 0, the edge
+    /// the stroke from 7 turns into at 6 more sharply, and tells why.
+    #[test]
+    fn canny_pixels_whose_end_folds_back_come_back_open() {
+        let pixels = [
+            (62, 957),
+            (63, 951),
+            (63, 952),
+            (63, 953),
+            (63, 954),
+            (63, 957),
+            (63, 958),
+            (63, 959),
+            (63, 960),
+            (63, 961),
+            (63, 962),
+            (63, 963),
+            (64, 952),
+            (64, 959),
+            (66, 957),
+            (66, 958),
+            (66, 959),
+            (67, 959),
+            (67, 960),
+            (67, 961),
+            (67, 962),
+            (68, 963),
+        ];
+        let pts: Vec<Point> = pixels
+            .iter()
+            .map(|&(r, c)| Point::new(f64::from(r), f64::from(c)))
+            .collect();
+        let result = crate::reconstruct(&pts, &crate::Params::default()).unwrap();
+        assert!(result.curves().iter().all(|c| !c.is_closed()));
+        let stories = result.provenance();
+        let story = stories
+            .iter()
+            .find(|s| s.edge == [0, 6])
+            .expect("a Delaunay edge");
+        assert!(!story.kept);
+        let last = story.changes.last().expect("a change");
+        assert_eq!(last.stage, crate::Stage::Detours);
+        assert_eq!(
+            last.reason,
+            crate::Reason::Detour {
+                from: 6,
+                to: 6,
+                points: 0
+            }
+        );
     }
 
     #[test]

@@ -219,7 +219,8 @@ run of 5 edges it hangs from (outliers beyond an open end)";
 4 points between them join the same two points of three edges
 each (an outlier hung on two samples, a chord past one), remove
 the route the curve runs into less straightly at both ends
-(none where the two ends disagree)";
+(none where the two ends disagree); and open a loop of at most 5
+points hung on a curve at the edge the curve turns into sharper";
     NnCrust: "NN-Crust", "NN-Crust (baseline)", "nn-crust";
     Crust: "Crust", "Crust (baseline)", "crust";
 };
