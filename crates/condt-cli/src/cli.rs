@@ -1394,17 +1394,24 @@ impl fmt::Display for Counted {
     }
 }
 
-/// `--snap D` on the points read (nothing without it): how many points moved, and D as typed.
+/// `--snap D` on the points read (nothing without it): how many points moved, and D as typed;
+/// its own step on the bar and in `--timings`.
 fn snap_points(
     points: &mut [condt::Point],
     snap: &Option<(f64, String)>,
     input: Option<&Path>,
+    progress: &mut Progress,
+    timings: &mut Timings,
 ) -> Result<Option<(usize, String)>, CliError> {
     let Some((distance, typed)) = snap else {
         return Ok(None);
     };
+    // Up to a second a million points where the distance merges many (the bar would otherwise
+    // still say "reading").
+    progress.computing("snapping near duplicates");
     let moved = condt::snap(points, *distance)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(input))))?;
+    progress.suspend(|| timings.lap("snap"));
     Ok(Some((moved, typed.clone())))
 }
 
@@ -1550,15 +1557,13 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
     } = read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
     progress.suspend(|| timings.lap("read"));
     let mut points = points;
-    if args.snap.is_some() {
-        // Up to a second a million points where the distance merges many (the bar would
-        // otherwise still say "reading").
-        progress.computing("snapping near duplicates");
-    }
-    let snapped = snap_points(&mut points, &args.snap, args.input.as_deref())?;
-    if snapped.is_some() {
-        progress.suspend(|| timings.lap("snap"));
-    }
+    let snapped = snap_points(
+        &mut points,
+        &args.snap,
+        args.input.as_deref(),
+        &mut progress,
+        &mut timings,
+    )?;
     // The input's crs member goes on as `--crs` would take it (a string member is a name, as in
     // Python's `to_geojson`); a member that is no crs (`[1, 2]`, `4326`) is noted and left out.
     let (crs, crs_not_carried) = match crs {
@@ -1693,15 +1698,13 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
     } = read_input(args.input.as_deref(), true, &args.read)?;
     progress.suspend(|| timings.lap("read"));
     let mut points = points;
-    if args.snap.is_some() {
-        // Up to a second a million points where the distance merges many (the bar would
-        // otherwise still say "reading").
-        progress.computing("snapping near duplicates");
-    }
-    let snapped = snap_points(&mut points, &args.snap, args.input.as_deref())?;
-    if snapped.is_some() {
-        progress.suspend(|| timings.lap("snap"));
-    }
+    let snapped = snap_points(
+        &mut points,
+        &args.snap,
+        args.input.as_deref(),
+        &mut progress,
+        &mut timings,
+    )?;
     progress.computing("triangulating");
     let tri = triangulate(&points)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
