@@ -1025,17 +1025,18 @@ pub(crate) fn input_format_option(
     setting.set(chosen, format!("{flag} {name}"))
 }
 
-/// `--snap D` (`flag` as written), checked and set once: D a finite length, 0 or more, kept
-/// with its text for the note.
+/// What `--snap` accepts, as the library's `condt::snap` decides it.
+const SNAP_RANGE: &str = "a finite distance, 0 or more";
+
+/// `--snap D` (`flag` as written), checked by the library (`condt::snap` of no points) and set
+/// once, kept with its text for the note.
 fn snap_option(
     setting: &mut Setting<(f64, String)>,
     flag: &str,
     value: Option<&OsString>,
 ) -> Result<(), CliError> {
     let (distance, typed) = number(flag, value)?;
-    if !(distance.is_finite() && distance >= 0.0) {
-        return Err(out_of_range(flag, typed, "a finite distance, 0 or more"));
-    }
+    condt::snap(&mut [], distance).map_err(|_| out_of_range(flag, typed, SNAP_RANGE))?;
     setting.set_alike(
         (distance, typed.to_string()),
         format!("{flag} {typed}"),
@@ -1548,7 +1549,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         args.timings,
     )?;
     let PointFile {
-        points,
+        mut points,
         crs,
         crs_dropped_at,
         null_geometries,
@@ -1556,7 +1557,6 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         ..
     } = read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
     progress.suspend(|| timings.lap("read"));
-    let mut points = points;
     let snapped = snap_points(
         &mut points,
         &args.snap,
@@ -1690,14 +1690,13 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         args.timings,
     )?;
     let PointFile {
-        points,
+        mut points,
         crs_dropped_at,
         null_geometries,
         empty_geometries,
         ..
     } = read_input(args.input.as_deref(), true, &args.read)?;
     progress.suspend(|| timings.lap("read"));
-    let mut points = points;
     let snapped = snap_points(
         &mut points,
         &args.snap,

@@ -72,7 +72,7 @@
 //! depends on the points: scattered or noisy ones run smoothing passes, each a reconstruction
 //! again. On a 64-bit host (a scratch harness's counting allocator, a realloc counted at its
 //! new size, `Params::default()`, no default features, 2026-12-07), 4,000 uniform random points
-//! allocate 5.7-5.8 MB in all (two sets) with 0.62 MB live at the peak, 1.46 MB without the
+//! allocate 5.7-5.8 MB in all (two sets) with 0.62 MB live at the peak, 1.48-1.49 MB without the
 //! passes and 0.96 MB with `Params::paper()`; 4,000 samples of an ellipse allocate 0.68 MB.
 //! Under a bump allocator, turn the passes off (`Params::with_smooth(false)`). A refused
 //! allocation ends in the allocation error handler, as everywhere in `alloc`.
