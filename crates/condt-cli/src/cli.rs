@@ -57,7 +57,8 @@ standard output. An existing file keeps its permissions, owner, hard links and s
 a terminal, named pipe or device is written to, never replaced. `/dev/stdout`, `/dev/stderr`,
 `/dev/fd/N` and `/proc/self/fd/N` are written through that open descriptor, as `-` writes
 standard output, whatever file it has open (a regular file behind descriptor 3 or more only
-when opened to append: `3>>FILE`). OUTPUT may not be INPUT.
+when opened to append: `3>>FILE`). OUTPUT may not be INPUT, nor may standard output be
+opened on it (`>> INPUT`).
 
 An option's value is the next argument or joined to it: `--u 2.5` or `--u=2.5`, `-o out.svg` or
 `-oout.svg`; `--` ends the options (`condt reconstruct -- -file.txt`).

@@ -328,15 +328,32 @@ fn stdin_metadata() -> Option<fs::Metadata> {
     None
 }
 
+/// The metadata of the file standard output writes, when it is one (`> FILE`, `>> FILE`).
+fn stdout_metadata() -> Option<fs::Metadata> {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        let fd = io::stdout().as_fd().try_clone_to_owned().ok()?;
+        File::from(fd).metadata().ok()
+    }
+    #[cfg(not(unix))]
+    None
+}
+
 /// Refuses an output that is the input file itself (by device and inode, so another path, a
 /// symbolic or a hard link to it count too): it would be replaced before it could be compared.
-/// `input` of `None` is standard input.
+/// `input` of `None` is standard input, `output` of `None` standard output, which the shell may
+/// have opened on the input (`>> INPUT` would append the result to the points, `> INPUT` has
+/// already emptied them).
 pub(crate) fn refuse_same_file(
     input: Option<&Path>,
     output: Option<&Path>,
 ) -> Result<(), CliError> {
-    let Some(output) = output else { return Ok(()) };
-    let Ok(out_meta) = fs::metadata(output) else {
+    let out_meta = match output {
+        Some(path) => fs::metadata(path).ok(),
+        None => stdout_metadata(),
+    };
+    let Some(out_meta) = out_meta else {
         return Ok(());
     };
     if !out_meta.is_file() {
@@ -349,9 +366,9 @@ pub(crate) fn refuse_same_file(
     match in_meta {
         Some(in_meta) if in_meta.is_file() && same_file(&in_meta, &out_meta) => {
             let input_name = input.map_or("<stdin>".into(), |p| p.display().to_string());
+            let output_name = output.map_or("<stdout>".into(), |p| p.display().to_string());
             Err(CliError::Usage(format!(
-                "the output {} is the input file {input_name}; write to another file",
-                output.display()
+                "the output {output_name} is the input file {input_name}; write to another file"
             )))
         }
         _ => Ok(()),

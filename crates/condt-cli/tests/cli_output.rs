@@ -817,6 +817,49 @@ fn the_input_cannot_be_the_output() {
     assert_eq!(names(dir.path()), ["hard.txt", "points.txt", "soft.txt"]);
 }
 
+/// Standard output the shell opened on the input (`>> points.txt`, `1<> points.txt`, and
+/// `< points.txt >> points.txt` for standard input) is refused as `-o points.txt` is: appended
+/// to or written over, the point file would no longer read as points.
+#[test]
+fn standard_output_cannot_be_the_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("points.txt");
+    fs::write(&input, SQUARE).unwrap();
+    for command in ["triangulate", "reconstruct"] {
+        for (name, from_stdin) in [(input.as_os_str(), false), ("-".as_ref(), true)] {
+            let appending = fs::OpenOptions::new().append(true).open(&input).unwrap();
+            let stdin = if from_stdin {
+                Stdio::from(fs::File::open(&input).unwrap())
+            } else {
+                Stdio::null()
+            };
+            let out = Command::new(binary())
+                .args([command.as_ref(), name, "-q".as_ref()])
+                .stdin(stdin)
+                .stdout(appending)
+                .output()
+                .unwrap();
+            assert_eq!(out.status.code(), Some(2), "{command}: {}", stderr(&out));
+            assert!(
+                stderr(&out).contains("the output <stdout> is the input"),
+                "{}",
+                stderr(&out)
+            );
+            assert_eq!(fs::read_to_string(&input).unwrap(), SQUARE, "{command}");
+        }
+    }
+    // Another file on standard output is written as before.
+    let other = fs::File::create(dir.path().join("out.txt")).unwrap();
+    let out = Command::new(binary())
+        .args(["triangulate".as_ref(), input.as_os_str()])
+        .stdout(other)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let written = fs::read_to_string(dir.path().join("out.txt")).unwrap();
+    assert_eq!(written.lines().count(), 2, "{written}");
+}
+
 #[test]
 fn file_names_need_not_be_utf8() {
     let dir = tempfile::tempdir().unwrap();
