@@ -168,14 +168,15 @@ fn read_records(
             if err.is_eof() {
                 message.push_str(hint);
             }
+            // An error at the record's end (JSON that ends early) is on its last line with
+            // content, not after the line break that ends the record.
+            let offset = range.start + at.min(record.trim_end().len());
+            if let Some(place) = place_in_long_line(text, offset) {
+                message.push_str(&place);
+            }
             return Err(IoError {
                 file: file.to_string(),
-                // An error at the record's end (JSON that ends early) is on its last line with
-                // content, not after the line break that ends the record.
-                line: Some(line_at(
-                    text.as_bytes(),
-                    range.start + at.min(record.trim_end().len()),
-                )),
+                line: Some(line_at(text.as_bytes(), offset)),
                 kind: IoErrorKind::Content(message),
             });
         }
@@ -190,6 +191,47 @@ fn read_records(
         null_geometries: state.null_geometries,
         empty_geometries: state.empty_geometries,
     })
+}
+
+/// Lines longer than this many bytes get the column of an error on them and the text around it:
+/// a minified GeoJSON file is one line, which a line number does not narrow down.
+const LONG_LINE: usize = 200;
+
+/// Characters of context on each side of an error in a long line.
+const CONTEXT_CHARS: usize = 30;
+
+/// Where the byte `offset` of `text` lies in its line, when that line is longer than
+/// [`LONG_LINE`]: `", at column C: "…text around it…""` (C counts characters from 1).
+fn place_in_long_line(text: &str, offset: usize) -> Option<String> {
+    let offset = (0..=offset.min(text.len()))
+        .rev()
+        .find(|&k| text.is_char_boundary(k))?;
+    let start = text[..offset].rfind(['\n', '\r']).map_or(0, |k| k + 1);
+    let end = text[offset..]
+        .find(['\n', '\r'])
+        .map_or(text.len(), |k| offset + k);
+    if end - start <= LONG_LINE {
+        return None;
+    }
+    let line = &text[start..end];
+    let at = offset - start;
+    let column = line[..at].chars().count() + 1;
+    let before = line[..at]
+        .char_indices()
+        .rev()
+        .nth(CONTEXT_CHARS - 1)
+        .map_or(0, |(k, _)| k);
+    let after = line[at..]
+        .char_indices()
+        .nth(CONTEXT_CHARS)
+        .map_or(line.len(), |(k, _)| at + k);
+    let ellipsis = |cut: bool| if cut { "…" } else { "" };
+    Some(format!(
+        ", at column {column}: \"{}{}{}\"",
+        ellipsis(before > 0),
+        &line[before..after],
+        ellipsis(after < line.len())
+    ))
 }
 
 /// What a read has gathered: the points, and the first error met in a member read after its
@@ -860,6 +902,50 @@ mod tests {
             assert!(err.to_string().contains(words), "{err}");
             assert!(!err.to_string().contains(" column "), "{err}");
         }
+    }
+
+    /// A minified file is one line: the error also gives the column and the text around it
+    /// (a CLI user's review: a bad position among 1,000 features was reported as line 1 only).
+    #[test]
+    fn errors_in_a_long_line_name_their_column() {
+        let features: Vec<String> = (0..1000)
+            .map(|k| {
+                let y = if k == 700 {
+                    "null".to_string()
+                } else {
+                    k.to_string()
+                };
+                format!(
+                    r#"{{"type":"Feature","geometry":{{"type":"Point","coordinates":[{k},{y}]}}}}"#
+                )
+            })
+            .collect();
+        let text = format!(
+            r#"{{"type":"FeatureCollection","features":[{}]}}"#,
+            features.join(",")
+        );
+        let err = parse_geojson(&text, "min.geojson").unwrap_err();
+        assert_eq!(err.line, Some(1), "{err}");
+        let shown = err.to_string();
+        // A column within the position that is wrong (the line is ASCII: bytes count).
+        let bracket = text.find("[700,null]").unwrap();
+        let column: usize = shown
+            .split("at column ")
+            .nth(1)
+            .unwrap()
+            .split(':')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(
+            (bracket + 1..=bracket + "[700,null]".len()).contains(&column),
+            "{shown}"
+        );
+        assert!(shown.contains("[700,null]"), "{shown}");
+        // Short lines keep the line alone.
+        let err = parse_geojson(r#"{"type":"Point","coordinates":[1,null]}"#, "p.json");
+        assert!(!err.unwrap_err().to_string().contains("column"));
     }
 
     #[test]
