@@ -11,7 +11,7 @@
 
 use super::input::same_name;
 use super::points::{quoted, Source};
-use super::{Column, Columns, IoError};
+use super::{Column, Columns, IoError, IoErrorKind};
 use condt::Point;
 use condt::MAX_POINTS;
 use std::vec::Vec;
@@ -21,16 +21,18 @@ const X_NAMES: [&str; 5] = ["x", "lon", "lng", "long", "longitude"];
 const Y_NAMES: [&str; 3] = ["y", "lat", "latitude"];
 
 /// Names of a projected pair, read where no column of the header has a name above: survey and
-/// GIS exports (`easting`, `northing`; ArcGIS's `POINT_X`, `POINT_Y`; QGIS's `xcoord`,
-/// `ycoord`; `x_coord`, `y_coord`). Second in rank, so that a table with `x,y` beside them
-/// reads as it did before they were known.
-const PROJECTED_X_NAMES: [&str; 4] = ["easting", "point_x", "xcoord", "x_coord"];
-const PROJECTED_Y_NAMES: [&str; 4] = ["northing", "point_y", "ycoord", "y_coord"];
+/// GIS exports (`easting`, `northing`, and surveyors' `E`, `N`, `east`, `north`; ArcGIS's
+/// `POINT_X`, `POINT_Y`; QGIS's `xcoord`, `ycoord`; `x_coord`, `y_coord`). Second in rank, so
+/// that a table with `x,y` beside them reads as it did before they were known. A survey's
+/// `N E` read by position would put northings on x (a CLI user's review).
+const PROJECTED_X_NAMES: [&str; 6] = ["easting", "e", "east", "point_x", "xcoord", "x_coord"];
+const PROJECTED_Y_NAMES: [&str; 6] = ["northing", "n", "north", "point_y", "ycoord", "y_coord"];
 
 /// The names of both ranks, for messages.
-const NAMES_READ: &str = "x, lon, lng, long, longitude and y, lat, latitude are read, or where none \
-                          is there easting and northing, POINT_X and POINT_Y, xcoord and ycoord, x_coord \
-                          and y_coord";
+const NAMES_READ: &str =
+    "x, lon, lng, long, longitude and y, lat, latitude are read, or where none \
+                          is there easting and northing (E and N, east and north), POINT_X and \
+                          POINT_Y, xcoord and ycoord, x_coord and y_coord";
 
 /// The coordinate each of a header's column names stands for, `'x'` or `'y'` (case, blanks and
 /// quotes around a name aside), or `None`: by the names `x`, `lon`, ... where any column has one
@@ -173,7 +175,19 @@ pub(crate) fn parse_plain_columns(
         }
         tabbed.push('\n');
     }
-    parse_separated(&tabbed, file, b'\t', Some(chosen))
+    parse_separated(&tabbed, file, b'\t', Some(chosen)).map_err(|mut err| {
+        // A message quotes the line it read, which has tabs for the file's blanks: quote the
+        // file's own line instead (a CLI user's review: "1\t2\t3" of a line `1 2  3`).
+        if let (Some(line), IoErrorKind::Content(message)) = (err.line, &mut err.kind) {
+            let read = tabbed.split('\n').nth(line - 1).unwrap_or_default();
+            let own = crate::text_lines(text).find(|&(number, _)| number == line);
+            if let Some((_, own)) = own {
+                let own = own.split('#').next().unwrap_or("").trim();
+                *message = message.replace(&quoted(read), &quoted(own));
+            }
+        }
+        err
+    })
 }
 
 /// The first line of `text` that is not blank (lines end at LF, CR or CRLF), without the
@@ -370,16 +384,26 @@ fn fields(n: usize) -> String {
     }
 }
 
-/// Whether the first record is a point rather than a header: exactly two fields, both numbers.
+/// Whether the first record is a point rather than a header: exactly two fields, both numbers,
+/// and maybe empty fields after them (a separator at every line's end, as some exports write).
 /// With more columns, which two are x and y is a guess (`id,x,y`), so a header must say.
 fn headerless_pair(record: &csv::StringRecord) -> bool {
-    record.len() == 2 && all_numbers(record)
+    filled(record) == 2 && all_numbers(record)
+}
+
+/// How many fields `record` has before the empty ones that end it.
+fn filled(record: &csv::StringRecord) -> usize {
+    let empty_at_end = record.iter().rev().take_while(|f| f.trim().is_empty());
+    record.len() - empty_at_end.count()
 }
 
 /// Whether every field of `record` reads as a number (a finite one or not: a point's check names
-/// the line of a non-finite one).
+/// the line of a non-finite one), but the empty fields that end it.
 fn all_numbers(record: &csv::StringRecord) -> bool {
-    record.iter().all(|f| f.trim().parse::<f64>().is_ok())
+    record
+        .iter()
+        .take(filled(record))
+        .all(|f| f.trim().parse::<f64>().is_ok())
 }
 
 /// The x and y columns named by the header `record` (its text `raw`, on `line`).
@@ -432,13 +456,13 @@ fn header_columns(
             )),
         }
     };
-    if record.len() > 2 && all_numbers(record) {
+    if filled(record) > 2 && all_numbers(record) {
         return Err(source.error(
             line,
             format!(
                 "{} numbers and no header: a CSV of two columns is read as x, y without one, \
                  with more a header line must name the x and y columns",
-                record.len()
+                filled(record)
             ),
         ));
     }
@@ -661,7 +685,7 @@ mod tests {
     #[test]
     fn a_header_without_x_and_y_names_the_columns_option() {
         for (text, axis) in [
-            ("FID,E,N\n1,2,3\n", "x"),
+            ("FID,A,B\n1,2,3\n", "x"),
             ("easting\tlat\n1\t2\n", "x"),
             ("x,northing\n1,2\n", "y"),
         ] {
@@ -693,6 +717,8 @@ mod tests {
             "Northing,Easting\n4000000,500000\n4000002.5,500010\n",
             "FID;x\tPOINT_Y\tPOINT_X\n1\t4000000\t500000\n2\t4000002.5\t500010\n",
             "xcoord,ycoord,z\n500000,4000000,7\n500010,4000002.5,7\n",
+            "N,E\n4000000,500000\n4000002.5,500010\n",
+            "id,east,north\n1,500000,4000000\n2,500010,4000002.5\n",
         ] {
             assert_eq!(parse_csv(text, "p.csv").unwrap(), expected, "{text}");
         }
@@ -886,6 +912,41 @@ mod tests {
             assert_eq!(err.line, Some(line), "{err}");
             assert_eq!(err.to_string(), message);
         }
+    }
+
+    /// The plain reader's chosen columns: a message quotes the file's line as written, not the
+    /// tab-separated line read from it.
+    #[test]
+    fn plain_columns_quote_the_line_as_written() {
+        let chosen = Columns::parse("4,5").unwrap();
+        let err =
+            parse_plain_columns("# survey\n1 2  3 # first\n4 5 6\n", "s.txt", &chosen).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "s.txt:2: column 4 (chosen for x) does not exist: the row has 3 columns (a point, \
+             not a header): \"1 2  3\""
+        );
+    }
+
+    /// A separator at the end of every line (some exports write one) leaves two numbers and an
+    /// empty field: a point, not a header (a CLI user's review: "the header has no x column").
+    #[test]
+    fn a_separator_ending_each_line_is_no_column() {
+        let points = parse_csv("0,0,\n1,0,\n0,1,\n", "t.csv").unwrap();
+        assert_eq!(
+            points,
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 0.0),
+                Point::new(0.0, 1.0)
+            ]
+        );
+        let err = parse_csv("0,0,5,\n1,0,5,\n", "t.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("3 numbers and no header"), "{err}");
+        let err = parse_csv("0,0,\n1,0,7\n", "t.csv").unwrap_err().to_string();
+        assert!(err.starts_with("t.csv:2:"), "{err}");
     }
 
     #[test]

@@ -1447,7 +1447,15 @@ mod tests {
     /// a fuzzer: `id x y` read the ids as x, `y x` swapped the axes, both without a word.
     #[test]
     fn a_header_naming_other_columns_is_refused_not_skipped() {
-        for header in ["id x y", "y x", "lat lon", "n,x,y", "\"y\",\"x\""] {
+        for header in [
+            "id x y",
+            "y x",
+            "lat lon",
+            "n,x,y",
+            "\"y\",\"x\"",
+            "N E",
+            "north east",
+        ] {
             let text = format!("{header}\n7.5 0 1\n9.5 1 1\n");
             let err = parse_points(&text, "h.txt").unwrap_err().to_string();
             assert!(err.starts_with("h.txt:1: the header"), "{header}: {err}");

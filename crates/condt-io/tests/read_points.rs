@@ -631,7 +631,7 @@ fn a_tsv_header_is_told_after_a_mark_and_among_any_names() {
     // `.node` index).
     let fid = TempFile::new(
         "fid.tsv",
-        "\u{feff}FID\tE\tN\n1\t2\t3\n2\t4\t5\n".as_bytes(),
+        "\u{feff}FID\tA\tB\n1\t2\t3\n2\t4\t5\n".as_bytes(),
     );
     let (line, message) = content_error(fid.read());
     assert_eq!(line, Some(1), "{message}");
