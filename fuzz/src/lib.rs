@@ -5,7 +5,7 @@
 //! file and replay every saved corpus entry and crash on stable Rust, without libFuzzer. A
 //! failing check prints its points as Rust source, ready to paste into a test.
 
-use condt::{Error, Params, Point, Repair, Uniformity, MAX_POINTS};
+use condt::{Error, Method, Params, Point, Repair, Stage, Uniformity, MAX_POINTS};
 use condt_io::parse_points as parse;
 use condt_io::{parse_csv, parse_geojson, parse_node, parse_npy};
 use condt_io::{write_edges, write_geojson, write_polylines, write_svg, write_svg_stages};
@@ -233,7 +233,9 @@ pub fn triangulate(data: &[u8]) {
 }
 
 /// Decodes arbitrary parameters, nonsense values included, over the default (so fields added
-/// later keep their defaults).
+/// later keep their defaults): every field of [`Params`] is varied, each stage switched by a bit
+/// of its own. A bit set switches a step off and the zeros read past the data's end leave the
+/// default, so that short inputs still run the whole default pipeline.
 fn decode_params(bytes: &mut Bytes) -> Params {
     let uniformity = match bytes.byte() % 4 {
         0 => Uniformity::Adaptive,
@@ -251,17 +253,25 @@ fn decode_params(bytes: &mut Bytes) -> Params {
         _ => Some(bytes.nasty_f64()),
     };
     let flags = bytes.byte();
-    // Today every field is set; the update keeps this compiling, with defaults, when a field is
-    // added.
-    #[allow(clippy::needless_update)]
-    Params::default()
+    let method = match bytes.byte() % 8 {
+        6 => Method::NnCrust,
+        7 => Method::Crust,
+        _ => Method::ConDT,
+    };
+    let stages_off = u32::from_le_bytes([bytes.byte(), bytes.byte(), bytes.byte(), 0]);
+    let mut params = Params::default()
+        .with_method(method)
         .with_uniformity(uniformity)
         .with_repair(repair)
         .with_outlier_factor(outlier_factor)
         .with_outliers_first(flags & 1 != 0)
-        .with_local_outliers(flags & 2 != 0)
-        .with_close_gaps(flags & 4 != 0)
-        .with_parallel(flags & 8 != 0)
+        .with_iqr_floor(flags & 2 == 0)
+        .with_smooth(flags & 4 == 0)
+        .with_parallel(flags & 8 != 0);
+    for (bit, stage) in Stage::ALL.into_iter().enumerate() {
+        params.set_stage(stage, stages_off >> bit & 1 == 0);
+    }
+    params
 }
 
 /// Target `reconstruct`: the whole pipeline with arbitrary parameters returns a consistent

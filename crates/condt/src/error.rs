@@ -35,7 +35,8 @@ pub enum Error {
     },
     /// A parameter is NaN, infinite or out of range (see [`Params`](crate::Params)).
     InvalidParameter {
-        /// The parameter's name as the documentation and the command line spell it (`u`, `k`).
+        /// The parameter's name as the library spells it: the field or argument (`u`, `k`,
+        /// `distance`); the command line names its own option (`--u`, `--iqr`, `--snap`).
         name: &'static str,
         /// The value given.
         value: f64,

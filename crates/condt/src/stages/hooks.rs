@@ -3,8 +3,8 @@
 //!
 //! Owns: replacing one edge `a b` by `a c` and `b x`, where the loose end `c` hangs from `b`. It
 //! reads positions, the graph and the Delaunay rings; it may not touch the triangulation, and does
-//! not decide when it runs ([`Params::stages`](crate::Params::stages): after the tips, before the
-//! outlier tails).
+//! not decide when it runs ([`Params::stages`](crate::Params::stages): after the spikes, before
+//! the outlier tails).
 //!
 //! Why: noise of a fraction of a spacing can put a sample `b` nearer the sample `a` before it than
 //! the sample `c` that lies between them along the curve. Algorithm 1 then joins `a b`, `c` hangs

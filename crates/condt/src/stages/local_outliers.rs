@@ -2,8 +2,8 @@
 //! rule and the repair, in either order.
 //!
 //! Owns: four local rules on the graph those stages left. Besides its input it reads the IQR
-//! stage's (via `Step::run`) and asks gap closing and the tips and hooks stages which joins they
-//! would make (rule 4); it may not touch the triangulation and adds no edge absent from it.
+//! stage's (via `Step::run`) and asks gap closing, the junctions and the tips and hooks stages
+//! which joins they would make (rule 4); it may not touch the triangulation and adds no edge absent from it.
 //!
 //! Why: Algorithm 3's threshold is global: nearby outliers are each other's nearest neighbours, so
 //! their short edges pass it, and a sparse component beside a dense one loses every edge once it

@@ -455,9 +455,9 @@ impl Outcome {
 
     /// The outcome of a stage that replaces edges of `input`: the input in order without
     /// `removed`, then `added` in order, with `graph` (the input's, if the stage had it) made the
-    /// output's, or the input unchanged when neither list has an edge. The crossings, tips,
-    /// spikes and hooks steps replace edges this way, the outlier tails and the detours remove
-    /// them so, and gap closing adds them so.
+    /// output's, or the input unchanged when neither list has an edge. The junctions, crossings,
+    /// tips, spikes and hooks steps replace edges this way, the outlier tails and the detours
+    /// remove them so, and gap closing adds them so.
     pub(crate) fn replacing(
         input: &[Edge],
         graph: Option<CurveGraph>,

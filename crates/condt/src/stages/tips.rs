@@ -5,7 +5,7 @@
 //! the tip's sample, or to the tip's sample and a loose end the chord's loose end continues to. It
 //! reads positions, the graph and the Delaunay rings; it may not
 //! touch the triangulation, and does not decide when it runs
-//! ([`Params::stages`](crate::Params::stages): after the crossings, before the outlier tails).
+//! ([`Params::stages`](crate::Params::stages): after the crossings, before the spikes).
 //!
 //! Why: at a coarsely sampled sharp tip Algorithm 1 can pair the samples on either side (the
 //! chord `x y`), leaving the tip's sample or the far side's last one loose or without edges; gap
