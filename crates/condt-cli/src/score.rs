@@ -33,6 +33,7 @@ use condt_io::{
     parse_npy_index_rows, read_points_with, text_lines, utf8_text, IoError, IoErrorKind, PointFile,
     NPY_MAGIC,
 };
+use std::collections::HashMap;
 use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::io::Read;
@@ -65,9 +66,11 @@ with its line
 (row, for .npy); a malformed TRUTH is an error. A file that is not an edge list (not text, an
 array of another dtype or shape, text with lines but none of them an edge) is an error, OUTPUT
 or TRUTH; an empty file, or one of comments and blank lines only, is an empty edge list (an
-empty OUTPUT scores 0 against any edge of TRUTH). Notes on standard error tell what POINTS
-skipped (GeoJSON features without a point, a GeoJSON sequence's later crs); --quiet leaves
-them out.
+empty OUTPUT scores 0 against any edge of TRUTH). Edges are compared by point number: where
+POINTS repeats a point exactly, an edge to one copy is no edge to another, and `condt
+reconstruct` gives a duplicate's edges to its first copy. Notes on standard error tell what
+POINTS skipped (GeoJSON features without a point, a GeoJSON sequence's later crs) and which
+points of TRUTH repeat an earlier one; --quiet leaves them out.
 The metrics are those of the evaluation suite's score.py.
 ";
 
@@ -188,6 +191,9 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     if let Some((at, why)) = &truth.bad_line {
         let (line, why) = truth.tell(*at, why.clone());
         return Err(content(&truth.name, line, why));
+    }
+    if !quiet {
+        note_later_copies(&truth.name, &points, &truth.edges);
     }
     let output = read_edges(&output)?;
     // A text of which no line is an edge is some other file (a drawing, GeoJSON, curves),
@@ -420,6 +426,48 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
 
 /// Whether `field` is an integer as an edge line writes one: digits, a `-` before them allowed
 /// (a negative number is an edge to a point that does not exist, not a line that is no edge).
+/// Notes how many points of `truth` repeat an earlier point exactly: edges are compared by point
+/// number, and `condt reconstruct` gives a duplicate's edges to its first copy, so such a truth
+/// edge is never matched by its output (a Python researcher's review: a ring exported with its
+/// first point again at its end scored one false positive and one false negative).
+fn note_later_copies(name: &str, points: &[condt::Point], truth: &[[usize; 2]]) {
+    // `+ 0.0` makes -0.0 the same key as 0.0, as the triangulation merges them.
+    let key = |p: condt::Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+    let mut first: HashMap<(u64, u64), usize> = HashMap::with_capacity(points.len());
+    let first_copy: Vec<usize> = points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| *first.entry(key(p)).or_insert(i))
+        .collect();
+    let mut named: Vec<usize> = truth
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|&i| first_copy.get(i).is_some_and(|&f| f != i))
+        .collect();
+    named.sort_unstable();
+    named.dedup();
+    if named.is_empty() {
+        return;
+    }
+    let shown: Vec<String> = named
+        .iter()
+        .take(3)
+        .map(|&i| format!("{i} = {}", first_copy[i]))
+        .collect();
+    let more = if named.len() > 3 { ", ..." } else { "" };
+    let (count, verb) = match named.len() {
+        1 => ("1 point".to_string(), "repeats"),
+        n => (format!("{n} points"), "repeat"),
+    };
+    eprintln!(
+        "condt: note: {name} names {count} that {verb} an earlier point exactly ({}{more}); \
+         edges are compared by point number, and condt reconstruct gives a duplicate's edges to \
+         its first copy",
+        shown.join(", ")
+    );
+}
+
 fn is_integer(field: &str) -> bool {
     let digits = field.strip_prefix('-').unwrap_or(field);
     !digits.is_empty() && digits.bytes().all(|c| c.is_ascii_digit())

@@ -114,6 +114,45 @@ fn a_reconstruction_of_a_sampled_circle_scores_exact_against_its_truth() {
     assert_eq!(json_value(&json, "malformed"), "null");
 }
 
+/// A truth written on a later copy of a duplicate point (a ring exported with its first point
+/// again at the end) is never matched, as edges are compared by point number and the
+/// reconstruction gives a duplicate's edges to its first copy: a note says so, unless --quiet.
+#[test]
+fn a_truth_on_a_later_copy_of_a_point_is_noted() {
+    let dir = scratch_dir();
+    let mut ring: Vec<Point> = (0..12)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / 12.0;
+            Point::new(t.cos(), t.sin())
+        })
+        .collect();
+    ring.push(ring[0]);
+    let points = write(dir.path(), "ring.txt", &points_text(&ring));
+    let polyline: Vec<[usize; 2]> = (0..12).map(|k| [k, k + 1]).collect();
+    let truth = write(dir.path(), "ring.gt", &edges_text(&polyline));
+    let mut closed = polyline.clone();
+    closed[11] = [0, 11];
+    let output = write(dir.path(), "ring.edges", &edges_text(&closed));
+    let scored = condt(&[Path::new("score"), &points, &output, &truth]);
+    assert!(scored.status.success());
+    let notes = String::from_utf8_lossy(&scored.stderr);
+    assert!(
+        notes.contains("ring.gt names 1 point that repeats an earlier point exactly (12 = 0)"),
+        "{notes}"
+    );
+    let quiet = condt(&[
+        Path::new("score"),
+        &points,
+        &output,
+        &truth,
+        Path::new("-q"),
+    ]);
+    assert!(quiet.status.success() && quiet.stderr.is_empty());
+    // No note where the truth names first copies only.
+    let scored = condt(&[Path::new("score"), &points, &output, &output]);
+    assert!(scored.status.success() && scored.stderr.is_empty());
+}
+
 #[test]
 fn a_wrong_edge_is_counted_and_measured() {
     // A unit square; the output swaps one side for a diagonal, whose midpoint is half a side

@@ -183,6 +183,13 @@ pub struct Score {
 /// Scores `output` against `truth`, both edge lists in positions of `points` (either direction,
 /// any order).
 ///
+/// Edges are compared by position, as the evaluation suite's scorer compares them: where
+/// `points` holds exact duplicates, an edge to one copy is not an edge to another. condt's
+/// reconstruction gives a duplicate's edges to its first copy
+/// ([`Triangulation::first_at`](condt::Triangulation::first_at)), so a truth written on a later
+/// copy (a closed ring exported with its first point again at the end) needs its ends mapped to
+/// first copies before it is compared.
+///
 /// # Errors
 /// [`ScoreError::NonFinite`] for a point with a NaN or infinite coordinate;
 /// [`ScoreError::Truth`] when the truth has an end out of range, a self-loop or a repeated
