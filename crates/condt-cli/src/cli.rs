@@ -1377,6 +1377,35 @@ fn read_input(
     Ok(read_points_with(path, options)?)
 }
 
+/// The reconstruction's refusal of INPUT's `count` points, read with `read`: two points too close
+/// to measure are named by their lines where the file's lines say them (the library names input
+/// positions, which a reader of the file would count by hand).
+fn reconstruction_error(
+    err: Error,
+    input: Option<&Path>,
+    read: &ReadOptions,
+    count: usize,
+) -> CliError {
+    let shown = shown_input(input);
+    if let Error::TooCloseToMeasure {
+        first,
+        second,
+        largest,
+    } = err
+    {
+        let lines = input
+            .and_then(|path| condt_io::point_lines(path, read, count, &[first, second, largest]));
+        if let Some(&[first, second, largest]) = lines.as_deref() {
+            return CliError::Input(format!(
+                "{shown}:{first}: this point and line {second}'s are closer than 2^-450 times \
+                 the largest coordinate (line {largest}'s): the reconstruction cannot measure \
+                 lengths across that spread (the triangulation can)"
+            ));
+        }
+    }
+    CliError::Input(format!("{shown}: {err}"))
+}
+
 /// INPUT as messages name it: `<stdin>` for standard input (`None`).
 pub(crate) fn shown_input(input: Option<&Path>) -> String {
     input.map_or("<stdin>".into(), |p| p.display().to_string())
@@ -1587,8 +1616,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         Format::GeoJson => true,
         _ => false,
     };
-    let failed =
-        |err: Error| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref())));
+    let failed = |err: Error| reconstruction_error(err, args.input.as_deref(), &args.read, count);
     let inserted = AtomicUsize::new(0);
     let (pipeline, input) = if keeps_input {
         progress.computing("triangulating");

@@ -112,6 +112,49 @@ fn bad_csv_and_geojson_files_are_refused_by_file_and_line() {
 /// a name with blanks (`elevation (m)`) and one of digits (`2020`) beside x and y; a malformed
 /// quote in a later column is refused with the file and line, as in the `.csv` (a user's
 /// report: the first four were refused, and `"1"5` read as 15).
+/// Two points too close for the stages to measure beside a far one are named by their lines,
+/// as every other error about the file's content is (the library names input positions).
+#[test]
+fn points_too_close_to_measure_are_named_by_their_lines() {
+    let dir = scratch_dir();
+    let text = "# survey\nx y\n0 0\n1e-300 0\n\n0 1e-300\n1e10 1e10\n1e10 0\n";
+    for (name, content) in [
+        ("spread.txt", text.to_string()),
+        (
+            "spread.csv",
+            text.replace("# survey\n", "")
+                .replace(' ', ",")
+                .replace("\n\n", "\n"),
+        ),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, &content).unwrap();
+        let out = Command::new(binary())
+            .args([
+                "reconstruct".as_ref(),
+                path.as_os_str(),
+                "-o".as_ref(),
+                "/dev/null".as_ref(),
+            ])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1));
+        let message = String::from_utf8_lossy(&out.stderr);
+        let (first, second, largest) = if name.ends_with(".txt") {
+            (3, 4, 7)
+        } else {
+            (2, 3, 5)
+        };
+        assert!(
+            message.contains(&format!(
+                "{name}:{first}: this point and line {second}'s are closer than 2^-450 times the \
+                 largest coordinate (line {largest}'s)"
+            )),
+            "{message}"
+        );
+    }
+}
+
 #[test]
 fn a_tsv_file_reads_as_its_csv_twin() {
     let dir = scratch_dir();

@@ -22,6 +22,7 @@ mod geojson;
 mod geojson_points;
 mod html;
 mod input;
+mod located;
 mod npy;
 mod pieces;
 mod points;
@@ -46,6 +47,7 @@ pub use geojson::{crs_member, write_geojson, write_geojson_with_crs};
 pub use geojson_points::{parse_geojson, parse_geojson_with_crs};
 pub use html::write_html;
 pub use input::{Column, Columns, InputFormat, PointFile, ReadOptions};
+pub use located::point_lines;
 pub use npy::{
     parse_npy, parse_npy_edges, parse_npy_index_rows, write_npy_edges, write_npy_points,
     write_npy_triangles, write_npy_triangulation_edges, NPY_MAGIC,
