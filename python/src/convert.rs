@@ -124,34 +124,110 @@ fn check_no_bools_in_rows(numpy: &Bound<'_, PyModule>, obj: &Bound<'_, PyAny>) -
     Ok(())
 }
 
+/// The `ValueError` naming point `point` for a coordinate no float64 holds, `shown` as Python
+/// writes it.
+fn too_large(point: usize, shown: String) -> PyErr {
+    // Shortened with a mark, so that a cut integer is not read as a smaller one.
+    let shown = match shown.char_indices().nth(40) {
+        Some((cut, _)) => format!(
+            "{}... ({} characters)",
+            &shown[..cut],
+            shown.chars().count()
+        ),
+        None => shown,
+    };
+    PyValueError::new_err(format!(
+        "point {point} has a coordinate too large for a float64: {shown}"
+    ))
+}
+
 /// The `ValueError` naming the first point of `given` (an array numpy made of the caller's
-/// points) whose coordinate no float64 holds, if one is found.
+/// points) whose coordinate no float64 holds, if one is found: a value whose `float()` raises
+/// `OverflowError` (an int), or gives an infinity while the value itself is finite (a
+/// `Decimal`'s does, and numpy's conversion then reads it as an infinite point).
 fn overflowing_point(py: Python<'_>, given: &Bound<'_, PyAny>) -> PyResult<Option<PyErr>> {
     let float = py.import("builtins")?.getattr("float")?;
     let shape: Vec<usize> = given.getattr("shape")?.extract()?;
     let columns = if shape.len() == 2 { shape[1].max(1) } else { 1 };
     for (k, item) in given.call_method0("ravel")?.try_iter()?.enumerate() {
         let item = item?;
-        if let Err(err) = float.call1((&item,)) {
-            if err.is_instance_of::<PyOverflowError>(py) {
-                let shown = item.repr().map_or_else(|_| "?".into(), |r| r.to_string());
-                // Shortened with a mark, so that a cut integer is not read as a smaller one.
-                let shown = match shown.char_indices().nth(40) {
-                    Some((cut, _)) => format!(
-                        "{}... ({} characters)",
-                        &shown[..cut],
-                        shown.chars().count()
-                    ),
-                    None => shown,
-                };
-                return Ok(Some(PyValueError::new_err(format!(
-                    "point {} has a coordinate too large for a float64: {shown}",
-                    k / columns
-                ))));
+        let overflows = match float.call1((&item,)) {
+            Err(err) => err.is_instance_of::<PyOverflowError>(py),
+            // An infinite value equals the infinity it converts to; a value that cannot be
+            // compared is left to be named as the infinite point it became.
+            Ok(converted) => {
+                converted.extract::<f64>().is_ok_and(f64::is_infinite)
+                    && !item.eq(&converted).unwrap_or(true)
             }
+        };
+        if overflows {
+            let shown = item.repr().map_or_else(|_| "?".into(), |r| r.to_string());
+            return Ok(Some(too_large(k / columns, shown)));
         }
     }
     Ok(None)
+}
+
+/// Refuses a float array of shape (n, 2) wider than float64 (numpy's `longdouble`: 80-bit on
+/// x86, a quad on some other platforms) whose values float64 does not hold: numpy's conversion
+/// would round them, and two points closer than a float64's step would become one, as integers
+/// beyond 2^53 would ([`check_exact_integers`]). An array whose values are all float64s (one
+/// made from doubles) loses nothing, and is taken. `given` is what numpy made of the caller's
+/// points, before any conversion.
+///
+/// # Errors
+/// `ValueError` naming the first point with a finite coordinate beyond float64's range, as an
+/// int beyond it is named ([`overflowing_point`]); then the first row with a coordinate float64
+/// would round, its value and what it would become.
+fn check_long_doubles(numpy: &Bound<'_, PyModule>, given: &Bound<'_, PyAny>) -> PyResult<()> {
+    // A plain array: an `np.matrix`'s ravel would be a matrix, its items rows.
+    let given = numpy.getattr("asarray")?.call1((given,))?;
+    let dtype = given.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    let itemsize: usize = dtype.getattr("itemsize")?.extract()?;
+    let shape: Vec<usize> = given.getattr("shape")?.extract()?;
+    // Another shape is refused by its shape, after the conversion.
+    if kind != "f" || itemsize <= 8 || !matches!(shape.as_slice(), [_, 2]) {
+        return Ok(());
+    }
+    let first = |mask: Bound<'_, PyAny>| -> PyResult<Option<usize>> {
+        if mask.call_method0("any")?.is_truthy()? {
+            Ok(Some(mask.call_method0("argmax")?.extract()?))
+        } else {
+            Ok(None)
+        }
+    };
+    let flat = given.call_method0("ravel")?;
+    let finite = numpy.getattr("isfinite")?.call1((&flat,))?;
+    // Compared in the array's own precision (numpy casts a Python float to it exactly), before
+    // any conversion: converting such a value to float64 gives an infinity, with a warning.
+    let beyond = numpy
+        .getattr("abs")?
+        .call1((&flat,))?
+        .call_method1("__gt__", (f64::MAX,))?;
+    let beyond = numpy.getattr("logical_and")?.call1((&finite, beyond))?;
+    if let Some(k) = first(beyond)? {
+        return Err(too_large(k / 2, flat.get_item(k)?.str()?.to_string()));
+    }
+    let rounded = flat.call_method1("astype", ("float64",))?;
+    // NaN and the infinities convert as themselves: only finite values can be rounded.
+    let inexact = rounded
+        .call_method1("astype", (&dtype,))?
+        .call_method1("__ne__", (&flat,))?;
+    let inexact = numpy.getattr("logical_and")?.call1((&finite, inexact))?;
+    if let Some(k) = first(inexact)? {
+        return Err(PyValueError::new_err(format!(
+            "points row {} has the coordinate {} (dtype {}), which float64 (condt's \
+             coordinates) cannot hold exactly: it would become {}, and two points might become \
+             one; convert the points to float64 first (points.astype(float)) to accept the \
+             rounding",
+            k / 2,
+            flat.get_item(k)?.str()?,
+            dtype.str()?,
+            float_text(rounded.get_item(k)?.extract()?)
+        )));
+    }
+    Ok(())
 }
 
 /// Whether `given` is a 1-d array whose every element is a sequence of two (a row held as one
@@ -176,7 +252,8 @@ fn rows_of_pairs(given: &Bound<'_, PyAny>) -> PyResult<bool> {
 /// # Errors
 /// `TypeError` for `None`, a scalar, or an array whose dtype is not an integer or a float (or an
 /// object array holding something else, `None` among them); `ValueError` for a masked array
-/// with masked entries, any other shape, or an int beyond float64 (naming its point); numpy's
+/// with masked entries, any other shape, a finite value beyond float64 (an int, a long double, a
+/// `Decimal`; naming its point), or a long double float64 would round (naming its row); numpy's
 /// own error for what it cannot convert.
 pub(crate) fn points_array<'py>(
     py: Python<'py>,
@@ -218,6 +295,7 @@ pub(crate) fn points_array<'py>(
     };
     check_numbers(&numpy, &given)?;
     check_no_bools_in_rows(&numpy, obj)?;
+    check_long_doubles(&numpy, &given)?;
     let converted = match ascontiguousarray(py)?.call1((given.clone(), "float64")) {
         Ok(converted) => converted,
         // A Python int beyond float64 (`10**400`): a bad point, named, as a NaN is.
@@ -236,6 +314,23 @@ pub(crate) fn points_array<'py>(
         }
         Err(err) => return Err(err),
     };
+    // A finite value beyond float64 in an object array (a `Decimal`'s `float()` gives an
+    // infinity, where an int's raises): named as too large, not as the infinite point it became.
+    if given
+        .getattr("dtype")?
+        .getattr("kind")?
+        .extract::<String>()?
+        == "O"
+        && !numpy
+            .getattr("isfinite")?
+            .call1((&converted,))?
+            .call_method0("all")?
+            .is_truthy()?
+    {
+        if let Some(err) = overflowing_point(py, &given)? {
+            return Err(err);
+        }
+    }
     let converted = converted.cast_into::<numpy::PyUntypedArray>()?;
     let shape = converted.shape().to_vec();
     let converted = match shape.as_slice() {

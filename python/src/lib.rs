@@ -134,6 +134,10 @@ use triangulation::Triangulation;
 /// and a bool among a list's numbers is refused too (numpy would read it as a number).
 /// An object array (``Decimal`` or ``Fraction`` values, which numpy leaves as objects) is
 /// converted by each value's ``float()``, unless it holds a value of one of the refused kinds.
+/// A float array wider than float64 (``numpy.longdouble``) is taken when float64 holds all its
+/// values exactly (an array made from doubles), and refused when it would round one, since two
+/// points might become one (``points.astype(float)`` accepts the rounding), as integers beyond
+/// 2^53 are.
 ///
 /// The parameters are the command line's options, ``-`` written ``_``: ``paper=True`` starts
 /// from the paper's pipeline instead of the default, and the keywords adjust it: ``u`` (a
@@ -145,7 +149,9 @@ use triangulation::Triangulation;
 /// others); ``sequential=True`` runs on one thread (same result).
 ///
 /// Raises ``ValueError`` for a point with a NaN or infinite coordinate (named by its index and
-/// row), an integer coordinate beyond 2^53 (float64 would round it; named by its row), two
+/// row), a finite one beyond float64's range (an int, a long double or a ``Decimal``; named by
+/// its index), an integer coordinate beyond 2^53 or a long-double one that is no float64
+/// (float64 would round it; named by its row), two
 /// points nearer than 2^-450 times the largest coordinate (too close for the stages to measure;
 /// named by their positions), a value the library refuses (an int too large for a float is
 /// infinite, and refused as such) or two keywords that contradict each other (``u=2, adaptive=True``; ``iqr=1.5`` or
@@ -234,8 +240,9 @@ const SIGNALS_EVERY: Duration = Duration::from_millis(50);
 ///
 /// ``points`` as for ``reconstruct`` (read without a copy when it is a C-contiguous float64
 /// array; the GIL is released while it runs; the result holds input positions only, so it does
-/// not depend on the array afterwards). Raises ``ValueError`` for a NaN or infinite coordinate
-/// or an integer one beyond 2^53, ``TypeError`` for points that are not numbers.
+/// not depend on the array afterwards). Raises ``ValueError`` for a NaN or infinite coordinate,
+/// a finite one beyond float64's range, an integer one beyond 2^53 or a long-double one that is
+/// no float64 (as ``reconstruct`` does), ``TypeError`` for points that are not numbers.
 ///
 /// >>> import condt
 /// >>> t = condt.triangulate([(0, 0), (1, 0), (0, 1), (1, 1)])

@@ -106,6 +106,65 @@ def test_integers_beyond_two_to_the_53_are_refused_not_rounded():
     )
 
 
+LONG_DOUBLE_IS_WIDER = np.finfo(np.longdouble).nmant > np.finfo(np.float64).nmant
+
+
+@pytest.mark.skipif(not LONG_DOUBLE_IS_WIDER, reason="numpy's longdouble is float64 here")
+@pytest.mark.parametrize("function", [condt.reconstruct, condt.triangulate, condt.snap])
+def test_long_doubles_float64_would_round_are_refused_not_rounded(function):
+    # A review's find: rounded silently to float64, 1 + 4 eps became 1 (points 2 and 1 merged),
+    # and a triangle 1e-4000 wide one point, where ints beyond 2^53 are refused for that reason.
+    eps = np.finfo(np.longdouble).eps
+    near = np.array([[0, 0], [1, 0], [1 + 4 * eps, 0], [0, 1]], dtype=np.longdouble)
+    tiny = np.array([[0, 0], [np.longdouble("1e-4000"), 0], [0, 1]], dtype=np.longdouble)
+    args = (1e-9,) if function is condt.snap else ()
+    for points, row, value, rounded in ((near, 2, r"1\.00000000000000000\d+", r"1\.0"), (tiny, 1, "1e-4000", r"0\.0")):
+        with pytest.raises(ValueError) as refused:
+            function(points, *args)
+        message = str(refused.value)
+        assert re.match(
+            rf"^points row {row} has the coordinate {value} \(dtype float\d+\), which float64 "
+            rf"\(condt's coordinates\) cannot hold exactly: it would become {rounded},",
+            message,
+        ), message
+        assert message.endswith("convert the points to float64 first (points.astype(float)) to accept the rounding")
+        # As the message says: converted, the rounding is accepted.
+        function(points.astype(float), *args)
+
+
+@pytest.mark.parametrize("function", [condt.reconstruct, condt.triangulate])
+def test_long_doubles_float64_holds_are_taken_as_float64(function):
+    points = circle(40)
+    wide = points.astype(np.longdouble)
+    expected = function(points)
+    got = function(wide)
+    np.testing.assert_array_equal(got.edges, expected.edges)
+    # NaN and the infinities are float64s too: named as non-finite points, as in float64.
+    for bad in (np.nan, np.inf, -np.inf):
+        wide[3, 0] = bad
+        with pytest.raises(ValueError, match="^point 3 has a NaN or infinite coordinate"):
+            function(wide)
+
+
+@pytest.mark.parametrize("function", [condt.reconstruct, condt.triangulate])
+def test_a_finite_value_beyond_float64_is_named_too_large_not_infinite(function):
+    # A review's find: long double 1e400 and Decimal("1e400") were named as a NaN or infinite
+    # coordinate, "[inf, 0.0]", where an int beyond float64 was named too large.
+    wide = [np.array([[0, 0], [0, 1], [sign * np.longdouble("1e400"), 0]]) for sign in (1, -1)]
+    if not np.finfo(np.longdouble).max > np.finfo(np.float64).max:
+        wide = []
+    decimals = [
+        np.array([[0, 0], [0, 1], [Decimal(text), 0]], dtype=object) for text in ("1e400", "-1e400")
+    ]
+    for points in wide + decimals + [[[0, 0], [0, 1], [Decimal("1e400"), 0]]]:
+        with pytest.raises(ValueError, match="^point 2 has a coordinate too large for a float64: ") as refused:
+            function(points)
+        assert "e+400" in str(refused.value) or "E+400" in str(refused.value), str(refused.value)
+    # An infinite Decimal is an infinite point, named as one.
+    with pytest.raises(ValueError, match="^point 2 has a NaN or infinite coordinate"):
+        function(np.array([[0, 0], [0, 1], [Decimal("-Infinity"), 0]], dtype=object))
+
+
 def test_a_float64_c_array_is_read_without_a_copy_during_the_call():
     # numpy's allocations are traced by tracemalloc, the Rust side's are not: a conversion of
     # the points would show as an allocation of their size.
