@@ -861,6 +861,7 @@ fn _condt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_points_with_crs, m)?)?;
     m.add_function(wrap_pyfunction!(score, m)?)?;
     m.add_function(wrap_pyfunction!(snap, m)?)?;
+    m.add_function(wrap_pyfunction!(tiles::_tile_params, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_tile_plan, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_run_tile, m)?)?;
     m.add_function(wrap_pyfunction!(tiles::_gathered_outliers, m)?)?;

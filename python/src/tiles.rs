@@ -180,6 +180,15 @@ fn tiled_params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(Params, Tiled)>
     }
 }
 
+/// For the driver, before it looks for a client: checks the parameters alone, as
+/// [`_tile_plan`] does, so that a call refused for them says why without a cluster (Dask's "No
+/// global client found" came first, a review's find).
+#[pyfunction]
+#[pyo3(signature = (**params))]
+pub(crate) fn _tile_params(params: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+    tiled_params(params).map(|_| ())
+}
+
 /// For the driver, once: checks the points and the parameters, and returns the facts every tile
 /// needs as a dict: `ranks` (each point's place in the whole set's insertion order), `boundary`
 /// (each point's place along the convex hull's boundary, counter-clockwise, `-1` inside),

@@ -816,3 +816,24 @@ def test_a_client_of_the_wrong_type_is_said_at_once():
     for wrong in ("tcp://127.0.0.1:8786", 42):
         with pytest.raises(TypeError, match="client must be a dask.distributed.Client"):
             condt.dask.reconstruct(points, wrong, tiles=4)
+
+
+def test_the_arguments_are_checked_before_the_client_is_looked_for(monkeypatch):
+    # A review's find: with no client, a baseline, u=-1 or an unknown keyword met Dask's "No
+    # global client found", not the error the docstring promises. No cluster: Dask's own lookup
+    # is replaced by one that finds none (the module's fixture may hold a current client).
+    def no_client(*args, **kwargs):
+        raise ValueError("No global client found and no address provided")
+
+    monkeypatch.setattr(distributed, "get_client", no_client)
+    points = np.random.default_rng(0).uniform(0, 1, (50, 2))
+    for method in ("crust", "nn-crust"):
+        with pytest.raises(NotImplementedError, match="baseline"):
+            condt.dask.reconstruct(points, method=method)
+    with pytest.raises(ValueError, match="^u: parameter u = -1 is not accepted"):
+        condt.dask.reconstruct(points, u=-1)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'bogus'"):
+        condt.dask.reconstruct(points, bogus=1)
+    # Arguments that are fine: the missing client is said.
+    with pytest.raises(ValueError, match="No global client found"):
+        condt.dask.reconstruct(points, paper=True)

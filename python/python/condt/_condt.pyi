@@ -31,6 +31,7 @@ __all__ = [
     "EdgeStory",
     "Triangulation",
     "__version__",
+    "_tile_params",
     "_tile_plan",
     "_run_tile",
     "_gathered_outliers",
@@ -202,6 +203,7 @@ def score(points: _Points, output: _Edges, truth: _Edges) -> _Score: ...
 def snap(points: _Points, distance: float) -> _Coords: ...
 
 # condt.dask's native half (python/src/tiles.rs); not for direct use.
+def _tile_params(**params: Any) -> None: ...
 def _tile_plan(points: _Points, **params: Any) -> dict[str, Any]: ...
 def _run_tile(
     points: _Points,

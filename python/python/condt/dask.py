@@ -125,6 +125,9 @@ def reconstruct(
     """
     count = _tile_count(tiles)
     width = _halo_width(halo)
+    # Before the client is looked for: without one, a baseline or a refused parameter met Dask's
+    # "No global client found" instead of the error promised above (a review's find).
+    _condt._tile_params(**params)
     from distributed import Client
 
     if client is None:
