@@ -259,7 +259,9 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 }
 
 /// The points with each one within ``distance`` of an earlier point that stays moved onto the
-/// nearest such point, as ``condt reconstruct --snap`` does before it runs: a new ``(n, 2)``
+/// nearest such point (the earliest of equally near ones), but for an exact duplicate of an
+/// earlier point, which goes where its first copy went even when a point that stays is nearer,
+/// as ``condt reconstruct --snap`` does before it runs: a new ``(n, 2)``
 /// float64 array (the points given are not changed). The points moved become exact duplicates,
 /// which ``reconstruct`` and ``triangulate`` merge into the first of them: use it on data
 /// exported piece by piece (parcels ring by ring, a font's contours), whose shared borders
@@ -272,6 +274,9 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
 /// >>> import condt
 /// >>> condt.snap([(0, 0), (1, 0), (1 + 1e-9, 0)], 1e-6).tolist()
 /// [[0.0, 0.0], [1.0, 0.0], [1.0, 0.0]]
+/// >>> # Point 3 repeats point 1, which moved onto point 0: it does too, though 2 is nearer.
+/// >>> condt.snap([(0, 0), (0.2, 0), (0.3, 0), (0.2, 0)], 0.25).tolist()
+/// [[0.0, 0.0], [0.0, 0.0], [0.3, 0.0], [0.0, 0.0]]
 #[pyfunction]
 fn snap<'py>(
     py: Python<'py>,

@@ -934,6 +934,20 @@ def test_snap_makes_a_shared_border_exported_twice_one():
     assert condt.snap(points, 0).tolist() == points.tolist()
 
 
+def test_snap_moves_an_exact_duplicate_where_its_first_copy_went_as_its_docs_say():
+    # A review's find: the docs said every point moves "onto the nearest such point", but point
+    # 3, an exact duplicate of point 1, follows it onto point 0 (0.2 away), not onto point 2,
+    # which stays 0.1 away (crates/condt/src/snap.rs says so).
+    points = [(0.0, 0.0), (0.2, 0.0), (0.3, 0.0), (0.2, 0.0)]
+    assert condt.snap(points, 0.25).tolist() == [[0.0, 0.0], [0.0, 0.0], [0.3, 0.0], [0.0, 0.0]]
+    said = "an exact duplicate of an earlier point, which goes where its first copy went"
+    assert said in " ".join(condt.snap.__doc__.split())
+    readme = pathlib.Path(__file__).resolve().parents[2] / "README.md"
+    if readme.exists():
+        text = " ".join(readme.read_text().split())
+        assert "an exact duplicate of an earlier point goes where its first copy went" in text
+
+
 @pytest.mark.parametrize("distance", [float("nan"), -1.0, float("inf")])
 def test_snap_refuses_a_distance_that_is_no_length(distance):
     with pytest.raises(ValueError, match="distance"):
