@@ -435,7 +435,8 @@ fn reconstruct_help() -> String {
 
 /// `--snap`'s help, the same for both commands.
 const SNAP_HELP: &str = "move each point within distance D of an earlier point that stays
-onto the nearest such point, before anything else (`condt::snap`):
+onto the nearest such point (an exact duplicate where its first copy
+went), before anything else (`condt::snap`):
 layers exported piece by piece repeat shared borders with rounding
 differences, and a curve cannot run along both copies. The points
 moved become exact duplicates, merged as those are. Off by default:
