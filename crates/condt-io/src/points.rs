@@ -207,7 +207,7 @@ fn is_name(token: &str) -> bool {
 /// A header this format may skip: none of its names contradicts the column it stands over, the
 /// first read as x, the second as y (`x y`, `x y z`, `lon lat`, `long lat`, `x_m y`, `a b`).
 /// Else (`id x y`, `y x`, `lat lon`) skipping it would read the wrong columns without a word.
-fn check_header(fields: &[&str]) -> Result<(), String> {
+fn check_header(fields: &[&str], line: &str) -> Result<(), String> {
     let contradicts = |(column, axis): (usize, Option<char>)| match (column, axis) {
         (_, None) => false,
         (0, Some(axis)) => axis != 'x',
@@ -219,10 +219,10 @@ fn check_header(fields: &[&str]) -> Result<(), String> {
         return Ok(());
     }
     Err(format!(
-        "the header `{}` names x or y over another column than this format reads them from \
+        "the header {} names x or y over another column than this format reads them from \
          (x the first, y the second); name the file *.csv, whose reader follows the header, or \
          put x and y first",
-        fields.join(" ")
+        quoted(line)
     ))
 }
 
@@ -511,7 +511,8 @@ fn lines_by<const ONE_PASS: bool>(
                 }
                 if !core::mem::replace(&mut seen_content, true) && fields.iter().all(|f| is_name(f))
                 {
-                    check_header(&fields).map_err(|message| source.error(number, message))?;
+                    check_header(&fields, content.trim())
+                        .map_err(|message| source.error(number, message))?;
                     header = Some((number, names_x_and_y(&fields)));
                     continue; // a header
                 }
@@ -704,7 +705,7 @@ fn expected_points(text: &str) -> usize {
 /// ```
 /// use condt_io::parse_points;
 /// let err = parse_points("id x y\n7 0 0\n9 1 0\n", "ids.txt").unwrap_err();
-/// assert!(err.to_string().starts_with("ids.txt:1: the header `id x y` names x or y over"));
+/// assert!(err.to_string().starts_with("ids.txt:1: the header \"id x y\" names x or y over"));
 /// assert!(parse_points("x y z\n0.5 0 5\n2.5 1 5\n", "xyz.txt").is_ok());
 /// assert!(parse_points("# none yet\nx y\n", "empty.txt")?.is_empty());
 /// let err = parse_points("Error: file not found\n", "err.txt").unwrap_err();
