@@ -425,7 +425,8 @@ fn read_options(
 }
 
 /// ``read_points(path)``, and the file's coordinate reference system: a tuple ``(points,
-/// crs)``, ``crs`` the top-level ``"crs"`` member of a GeoJSON input as written (JSON text, as
+/// crs)``, ``crs`` the top-level ``"crs"`` member of a GeoJSON input as written (or, where it
+/// has none, its first feature's; JSON text, as
 /// GDAL and QGIS read it to place projected coordinates) and ``None`` for every other file.
 /// ``Reconstruction.to_geojson(crs=crs)`` carries it on, as ``condt reconstruct`` does from a
 /// GeoJSON input to a GeoJSON output. A member that no GeoJSON output can carry (``4326``,
@@ -544,7 +545,7 @@ fn read_point_file<'py>(
     }
     if let Some(line) = crs_dropped_at {
         let message = format!(
-            "{shown}:{line}: this record's crs differs from the first one read; only the first \
+            "{shown}:{line}: this crs differs from the first one read; only the first \
              is kept, and every point is read as given, without conversion"
         );
         PyErr::warn(

@@ -1154,7 +1154,7 @@ def test_read_points_with_crs_warns_of_a_later_records_other_crs(tmp_path):
 
     path = tmp_path / "two.geojsonl"
     path.write_text(record("EPSG:32632", 1.0) + "\n" + record("EPSG:4326", 2.0) + "\n")
-    with pytest.warns(UserWarning, match="two.geojsonl:2: this record's crs differs"):
+    with pytest.warns(UserWarning, match="two.geojsonl:2: this crs differs"):
         points, crs = condt.read_points_with_crs(path)
     with pytest.warns(UserWarning, match="two.geojsonl:2: "):
         assert condt.read_points(path).tolist() == [[1.0, 0.0], [2.0, 0.0]]

@@ -1496,8 +1496,8 @@ pub(crate) fn note_skipped_geometries(file: &str, null: usize, empty: usize) {
 pub(crate) fn note_dropped_crs(file: &str, line: Option<usize>) {
     if let Some(line) = line {
         note(format_args!(
-            "{file}:{line}: this record's crs differs from the first one read; only the first \
-             is kept, and every point is read as given, without conversion"
+            "{file}:{line}: this crs differs from the first one read; only the first is kept, \
+             and every point is read as given, without conversion"
         ));
     }
 }

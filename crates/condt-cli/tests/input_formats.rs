@@ -777,7 +777,7 @@ fn a_later_crs_of_a_geojson_sequence_is_noted() {
         let said = String::from_utf8_lossy(&out.stderr);
         assert!(out.status.success(), "{said}");
         assert!(
-            said.contains("condt: <stdin>:4: this record's crs differs from the first one read"),
+            said.contains("condt: <stdin>:4: this crs differs from the first one read"),
             "{command}: {said}"
         );
         let out = condt_with_stdin(

@@ -33,7 +33,7 @@ const MAX_DEPTH: usize = 64;
 /// (LineString, Polygon, …) is an error naming its line, as are JSON syntax errors and
 /// coordinates that are not numbers, and an object giving one of the members `type`,
 /// `features`, `geometries`, `geometry` or `coordinates` twice, whether or not its type reads it,
-/// since JSON leaves open which one counts and readers differ (a top-level `crs` too). Members
+/// since JSON leaves open which one counts and readers differ (a `crs` too). Members
 /// may come in any order; strings may hold escapes (`"Po\u0069nt"` is `"Point"`); numbers are
 /// read exactly as `str::parse` reads them.
 ///
@@ -59,8 +59,9 @@ pub fn parse_geojson(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
     parse_geojson_with_crs(text, file).map(|(points, _)| points)
 }
 
-/// [`parse_geojson`], and the document's top-level `"crs"` member as written (refused when given
-/// twice; GeoJSON of 2008;
+/// [`parse_geojson`], and the document's top-level `"crs"` member as written (or, where it has
+/// none, the first feature's or geometry's: some writers repeat it on every feature; refused
+/// when an object gives it twice; GeoJSON of 2008;
 /// RFC 7946 dropped it, but GDAL and QGIS still read it to place projected coordinates), so that
 /// a GeoJSON output can carry it on.
 ///
@@ -147,6 +148,8 @@ fn read_records(
         points: Vec::new(),
         crs: None,
         crs_dropped: None,
+        nested_crs: None,
+        nested_crs_dropped: None,
         failure: None,
         null_geometries: 0,
         empty_geometries: 0,
@@ -181,6 +184,21 @@ fn read_records(
             });
         }
         if let (None, Some(at)) = (crs_dropped_at, state.crs_dropped) {
+            crs_dropped_at = Some(line_at(text.as_bytes(), range.start + at));
+        }
+        // The features' own crs stands in for the document's where it has none; where it has
+        // one, a feature's that differs is left out and told, as a later record's is.
+        let nested_dropped = match (&state.crs, state.nested_crs.take()) {
+            (None, Some((nested, _))) => {
+                state.crs = Some(nested);
+                state.nested_crs_dropped
+            }
+            (Some(kept), Some((nested, at))) if !same_json(kept, &nested) => Some(at),
+            (Some(_), Some(_)) => state.nested_crs_dropped,
+            (_, None) => None,
+        };
+        state.nested_crs_dropped = None;
+        if let (None, Some(at)) = (crs_dropped_at, nested_dropped) {
             crs_dropped_at = Some(line_at(text.as_bytes(), range.start + at));
         }
     }
@@ -244,6 +262,11 @@ struct State<'t> {
     crs: Option<String>,
     /// The offset in the first record that gave a different `"crs"` from `crs`, dropped.
     crs_dropped: Option<usize>,
+    /// The first `"crs"` of a feature or geometry inside the document (GeoJSON 2008 puts it on
+    /// the top object, but some writers put it on each feature), carried where the document
+    /// has none; and the offset of the first that differs from it, as for `crs_dropped`.
+    nested_crs: Option<(String, usize)>,
+    nested_crs_dropped: Option<usize>,
     failure: Option<(usize, String)>,
     /// Features whose geometry is `null`.
     null_geometries: usize,
@@ -506,18 +529,27 @@ impl<'de> Visitor<'de> for Reader<'_, '_> {
                     key.name()
                 )));
             }
-            if key == Key::Crs && self.depth == 0 {
+            if key == Key::Crs {
                 seen.push(key);
                 let raw = map.next_value::<&'de RawValue>()?;
                 let state = &mut *self.state;
-                if state.crs.is_none() {
-                    state.crs = Some(raw.get().to_string());
-                } else if state.crs_dropped.is_none()
-                    && !same_json(state.crs.as_deref().unwrap_or_default(), raw.get())
-                {
-                    // A later record of a sequence with another crs: kept out, its place kept
-                    // to tell.
-                    state.crs_dropped = Some(state.offset_in_text(raw.get()));
+                let at = state.offset_in_text(raw.get());
+                let (first, dropped) = if self.depth == 0 {
+                    (state.crs.as_deref(), &mut state.crs_dropped)
+                } else {
+                    let first = state.nested_crs.as_ref().map(|(crs, _)| crs.as_str());
+                    (first, &mut state.nested_crs_dropped)
+                };
+                match first {
+                    // A later record of a sequence, or a later feature, with another crs: kept
+                    // out, its place kept to tell.
+                    Some(first) => {
+                        if dropped.is_none() && !same_json(first, raw.get()) {
+                            *dropped = Some(at);
+                        }
+                    }
+                    None if self.depth == 0 => state.crs = Some(raw.get().to_string()),
+                    None => state.nested_crs = Some((raw.get().to_string(), at)),
                 }
                 continue;
             }
@@ -774,8 +806,8 @@ mod tests {
             );
             assert_eq!(err.line, Some(2), "{err}");
         }
-        // A second top-level crs: which one to carry on to the outputs would be a guess. A crs
-        // inside a feature is passed over, however often.
+        // A second crs in one object: which one to carry on to the outputs would be a guess,
+        // at the top as in a feature (whose crs is read where the document has none).
         let text = r#"{"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"A"}},
             "features":[],"crs":{"type":"name","properties":{"name":"B"}}}"#;
         let err = parse_geojson_with_crs(text, "crs.geojson").unwrap_err();
@@ -785,11 +817,8 @@ mod tests {
         assert!(parse_geojson_with_crs(text, "crs.geojson").is_err());
         let text = r#"{"type":"FeatureCollection","crs":1,"features":[{"type":"Feature","crs":2,"crs":3,
             "geometry":{"type":"Point","coordinates":[0,0]}}]}"#;
-        let (points, crs) = parse_geojson_with_crs(text, "crs.geojson").unwrap();
-        assert_eq!(
-            (points, crs.as_deref()),
-            (vec![Point::new(0.0, 0.0)], Some("1"))
-        );
+        let err = parse_geojson_with_crs(text, "crs.geojson").unwrap_err();
+        assert!(err.to_string().contains("\"crs\" is given twice"), "{err}");
         // Members not read here may repeat, as before (their values are passed over).
         let text = r#"{"type":"Point","coordinates":[2,3],"bbox":[0,0,1,1],"bbox":[0,0,1,1]}"#;
         assert_eq!(
@@ -902,6 +931,52 @@ mod tests {
             assert!(err.to_string().contains(words), "{err}");
             assert!(!err.to_string().contains(" column "), "{err}");
         }
+    }
+
+    /// A crs on each feature (GeoJSON 2008 puts it on the top object; some writers repeat it on
+    /// every feature) is carried where the document has none, the first one met; one that
+    /// differs from the crs carried is left out, and its line told, as a sequence's later
+    /// record's (a CLI user's review: the features' crs was dropped without a word).
+    #[test]
+    fn a_crs_on_the_features_stands_in_for_the_documents() {
+        let feature = |crs: &str, x: u32| {
+            format!(
+                r#"{{"type":"Feature","crs":{crs},"geometry":{{"type":"Point","coordinates":[{x},0]}}}}"#
+            )
+        };
+        let utm = r#"{"type":"name","properties":{"name":"EPSG:32632"}}"#;
+        let wgs = r#"{"type":"name","properties":{"name":"EPSG:4326"}}"#;
+        let collection = |top: &str, features: &[String]| {
+            format!(
+                "{{\"type\":\"FeatureCollection\",{top}\"features\":[\n{}]}}",
+                features.join(",\n")
+            )
+        };
+        let same = collection("", &[feature(utm, 0), feature(utm, 1)]);
+        let read = parse_geojson_file(&same, "f.geojson").unwrap();
+        assert_eq!(
+            (read.crs.as_deref(), read.crs_dropped_at),
+            (Some(utm), None)
+        );
+        let differing = collection("", &[feature(utm, 0), feature(wgs, 1)]);
+        let read = parse_geojson_file(&differing, "f.geojson").unwrap();
+        assert_eq!(
+            (read.crs.as_deref(), read.crs_dropped_at),
+            (Some(utm), Some(3))
+        );
+        // The document's own crs comes first, wherever it is written; a feature's that differs
+        // is told.
+        let top = format!("\"crs\":{wgs},");
+        let read = parse_geojson_file(&collection(&top, &[feature(utm, 0)]), "f.geojson").unwrap();
+        assert_eq!(
+            (read.crs.as_deref(), read.crs_dropped_at),
+            (Some(wgs), Some(2))
+        );
+        let read = parse_geojson_file(&collection(&top, &[feature(wgs, 0)]), "f.geojson").unwrap();
+        assert_eq!(
+            (read.crs.as_deref(), read.crs_dropped_at),
+            (Some(wgs), None)
+        );
     }
 
     /// A minified file is one line: the error also gives the column and the text around it

@@ -319,14 +319,15 @@ impl ReadOptions {
 pub struct PointFile {
     /// The points, numbered from 0 in the file's order.
     pub points: Vec<Point>,
-    /// A GeoJSON input's top-level `"crs"` member as written
-    /// ([`parse_geojson_with_crs`](crate::parse_geojson_with_crs)); `None` for other formats.
+    /// A GeoJSON input's top-level `"crs"` member as written, or where it has none its first
+    /// feature's ([`parse_geojson_with_crs`](crate::parse_geojson_with_crs)); `None` for other
+    /// formats.
     pub crs: Option<String>,
-    /// In a GeoJSON sequence, the line of the first record whose top-level `"crs"` differs
-    /// from the one kept ([`crs`](PointFile::crs), the first record's to carry one): only the
-    /// first is carried on, as a document's first `"crs"` is, and this says one was left out
-    /// for the caller to tell (`condt` notes it on standard error). `None` for other formats
-    /// and when every record that carries one carries the same.
+    /// The line of the first `"crs"` that differs from the one kept ([`crs`](PointFile::crs)):
+    /// a later record's in a GeoJSON sequence (the first record's to carry one is kept), or a
+    /// feature's in a document; only the one kept is carried on, and this says another was left
+    /// out for the caller to tell (`condt` notes it on standard error). `None` for other formats
+    /// and when every `"crs"` read is the same.
     pub crs_dropped_at: Option<usize>,
     /// GeoJSON features whose geometry is `null`: they give no point (0 for other formats).
     pub null_geometries: usize,
