@@ -439,9 +439,24 @@ fn header_columns(
                 } else {
                     ""
                 };
+                // A first line of number-like fields, one of them not a number (`1O,20`, a
+                // letter O), is a mistyped point rather than a header: say which field.
+                let number_like = |f: &str| {
+                    let f = f.trim().trim_start_matches(['-', '+', '.']);
+                    f.starts_with(|c: char| c.is_ascii_digit())
+                };
+                let not_number = (record.len() == 2 && record.iter().all(number_like))
+                    .then(|| record.iter().find(|f| f.trim().parse::<f64>().is_err()))
+                    .flatten();
+                let typo = not_number.map_or(String::new(), |field| {
+                    format!(
+                        "; if it is a point, {} is not a number",
+                        quoted(field.trim())
+                    )
+                });
                 Err(source.error(
                     line,
-                    format!("the header has no {axis} column ({NAMES_READ}): {header}{hint}"),
+                    format!("the header has no {axis} column ({NAMES_READ}): {header}{typo}{hint}"),
                 ))
             }
             // Two columns for one axis (`x,y,x`, `x,y,lon,lat`): which to read would be a guess.
@@ -926,6 +941,22 @@ mod tests {
             "s.txt:2: column 4 (chosen for x) does not exist: the row has 3 columns (a point, \
              not a header): \"1 2  3\""
         );
+    }
+
+    /// A first line of two number-like fields, one mistyped (a letter O for a zero), is read
+    /// as a header, as any non-number is, but the message names the field that is no number.
+    #[test]
+    fn a_mistyped_first_point_is_named_as_well_as_a_missing_header() {
+        let err = parse_csv("1O,20\n3,4\n", "t.csv").unwrap_err().to_string();
+        assert!(
+            err.contains("the header has no x column")
+                && err.contains("if it is a point, \"1O\" is not a number"),
+            "{err}"
+        );
+        let err = parse_csv("id,name\n1,2\n", "t.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(!err.contains("is not a number"), "{err}");
     }
 
     /// A separator at the end of every line (some exports write one) leaves two numbers and an
