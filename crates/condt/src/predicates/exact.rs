@@ -290,6 +290,63 @@ pub(crate) fn compare_distances(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Orderi
     )
 }
 
+/// The exact order of `scale · |a - p|` against `|b - p|` (`scale` positive and finite), from
+/// `scale² |a - p|²` against `|b - p|²` in integers: Algorithm 1's uniformity test where the
+/// rounded lengths cannot tell (a ratio of exactly `u`, as on a grid).
+#[inline(never)]
+pub(crate) fn compare_scaled_distances(
+    p: [f64; 2],
+    a: [f64; 2],
+    scale: f64,
+    b: [f64; 2],
+) -> Ordering {
+    let Some((_, _, scale_exponent)) = decompose(scale) else {
+        return if b == p {
+            Ordering::Equal
+        } else {
+            Ordering::Less
+        };
+    };
+    let bits = integer_bits(&[p, a, b]);
+    // The squares' limbs, the scale's square (two mantissas), and the power of two moved to the
+    // side that needs it, with a spare limb for the carries.
+    let shift_limbs = (2 * scale_exponent.unsigned_abs() as usize).div_ceil(64) + 1;
+    in_width!(
+        2 * difference_limbs(bits) + 4 + shift_limbs,
+        compare_scaled_distances_in(p, a, scale, b)
+    )
+}
+
+/// [`compare_scaled_distances`] in integers of `L` limbs.
+fn compare_scaled_distances_in<const L: usize>(
+    p: [f64; 2],
+    a: [f64; 2],
+    scale: f64,
+    b: [f64; 2],
+) -> Ordering {
+    let [[px, py], a, b] = integers::<3, L>([p, a, b]);
+    let squared = |[x, y]: [Int<L>; 2]| {
+        let (dx, dy) = (x.sub(&px), y.sub(&py));
+        dx.mul(&dx).add(&dy.mul(&dy))
+    };
+    // Zero is answered before this: `e` is then never read for it.
+    let e = decompose(scale).map_or(0, |(_, _, e)| e);
+    // `scale = m · 2^e` with `m` odd: compare `m² A 2^2e` with `B`, the power of two on the side
+    // where it is a whole number.
+    let m = Int::<L>::from_f64(scale, e);
+    let mut power = Int::<L>::ZERO;
+    let shift = 2 * e.unsigned_abs() as usize;
+    power.limbs[shift / 64] = 1 << (shift % 64);
+    power.len = shift / 64 + 1;
+    let (mut left, mut right) = (m.mul(&m).mul(&squared(a)), squared(b));
+    if e >= 0 {
+        left = left.mul(&power);
+    } else {
+        right = right.mul(&power);
+    }
+    left.sub(&right).signum()
+}
+
 /// [`compare_distances`] for coordinates of at most 62 bits in [`integers`]' unit: each difference
 /// is under 2^63, its square under 2^126, a sum of two under 2^127, all in machine integers.
 fn compare_distances_u128(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> Ordering {

@@ -175,6 +175,24 @@ pub(crate) fn compare_distances(p: Point, a: Point, b: Point) -> Ordering {
     distance_order(p, (a, p.dist2(a)), (b, p.dist2(b)))
 }
 
+/// Whether `|b - p| < scale · |a - p|`, exactly (`scale` positive and finite): Algorithm 1's
+/// uniformity test, `|e2| < u |e1|`. The rounded lengths decide where they differ by more than
+/// [`SCALED_GAP`] of their size; a ratio that close to `scale` (exactly `u` on a grid: the
+/// paper drops the edge there, rounding could keep it) is decided in integers.
+pub(crate) fn shorter_than_scaled(p: Point, a: Point, scale: f64, b: Point) -> bool {
+    let near = scale * libm::sqrt(p.dist2(a));
+    let far = libm::sqrt(p.dist2(b));
+    if (near - far).abs() > SCALED_GAP * near.max(far) {
+        return far < near;
+    }
+    exact::compare_scaled_distances(p.into(), a.into(), scale, b.into()) == Ordering::Greater
+}
+
+/// Relative error bound of [`shorter_than_scaled`]'s rounded lengths: a squared length within
+/// 4 units in the last place of its value (two differences, two squares and a sum, each rounded
+/// to half a unit), its square root and the product by `scale` within 3, so well under 2^-48.
+const SCALED_GAP: f64 = 1.0 / (1u64 << 48) as f64;
+
 /// Whether `a + b` is computed without rounding (Knuth's two-sum leaves no error). False on an
 /// overflow (the error reads NaN).
 fn exact_sum(a: f64, b: f64) -> bool {
@@ -606,5 +624,66 @@ mod tests {
             Orientation::Collinear
         );
         assert_eq!(orient2d(a, b, Point::new(far, -tiny)), Orientation::Cw);
+    }
+
+    /// `|b - p| < scale |a - p|` against integer arithmetic, on integer points (coordinates
+    /// below 2^10 around a far origin, so the differences round) and dyadic scales `m / 2^k`
+    /// (`m` odd below 2^20): `|b - p|² 4^k < m² |a - p|²` in `u128`. Half of the `b` are placed
+    /// on the ratio exactly or one unit off it, where the rounded lengths cannot tell (a
+    /// paper-fidelity review: a ratio of exactly 2.75 kept the second edge).
+    #[test]
+    fn the_scaled_distance_test_is_exact() {
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let mut ties = 0;
+        for round in 0..20_000 {
+            let small = |rng: &mut crate::test_rng::Xorshift| rng.below(1 << 10) as i64 - 512;
+            let step = |rng: &mut crate::test_rng::Xorshift| rng.below(3) as i64 - 1;
+            let (k, m, (ax, ay), (bx, by));
+            if round % 2 == 0 {
+                k = rng.below(19) as u32;
+                m = 2 * rng.below(1 << 19) + 1;
+                (ax, ay) = (small(&mut rng), small(&mut rng));
+                (bx, by) = (small(&mut rng), small(&mut rng));
+            } else {
+                // `a = 2^k a'` and `b = m (a' turned a quarter)`: the ratio is the scale
+                // exactly, or `b` one unit off it.
+                k = rng.below(4) as u32;
+                m = 2 * rng.below(16) + 1;
+                let a_ = (rng.below(32) as i64 - 16, rng.below(32) as i64 - 16);
+                (ax, ay) = (a_.0 << k, a_.1 << k);
+                let m_ = m as i64;
+                (bx, by) = (-a_.1 * m_ + step(&mut rng), a_.0 * m_ + step(&mut rng));
+            }
+            let scale = m as f64 / f64::from(1u32 << k);
+            let origin = 1e6;
+            let at = |x: i64, y: i64| Point::new(origin + x as f64, origin * 0.5 + y as f64);
+            let (p, a, b) = (at(0, 0), at(ax, ay), at(bx, by));
+            let squared = |x: i64, y: i64| (x * x + y * y) as u128;
+            let left = squared(bx, by) << (2 * k);
+            let right = u128::from(m * m) * squared(ax, ay);
+            ties += usize::from(left == right);
+            assert_eq!(
+                shorter_than_scaled(p, a, scale, b),
+                left < right,
+                "p {p:?} a {a:?} b {b:?} scale {scale}"
+            );
+        }
+        assert!(ties > 20, "only {ties} exact ratios");
+        // The paper's u on a grid: |e2| = 2.75 |e1| exactly (11 (a, b) against 4 (a, b)).
+        for (x, y) in [(1.0, 1.0), (2.0, 1.0), (3.0, 7.0)] {
+            let (p, a) = (Point::new(0.0, 0.0), Point::new(4.0 * x, 4.0 * y));
+            assert!(!shorter_than_scaled(
+                p,
+                a,
+                2.75,
+                Point::new(-11.0 * y, 11.0 * x)
+            ));
+            assert!(shorter_than_scaled(
+                p,
+                a,
+                2.75,
+                Point::new(-11.0 * y + 1.0, 11.0 * x)
+            ));
+        }
     }
 }

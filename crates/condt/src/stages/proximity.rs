@@ -149,9 +149,14 @@ fn keep(
 ) -> [VertexId; 2] {
     let [w1, w2] = best.kept();
     let length = |w: VertexId| libm::sqrt(tri.vertex_point(v).dist2(tri.vertex_point(w)));
+    let point = |w: VertexId| tri.vertex_point(w);
+    // Fixed `u`: exactly, as the paper states it (a ratio of exactly `u` drops the edge). The
+    // adaptive bound is a mean of square roots, which no integer holds: rounded.
     let keep_second = !w2.is_infinite()
         && match (uniformity, ring) {
-            (Uniformity::Fixed(u), _) => length(w2) < u * length(w1),
+            (Uniformity::Fixed(u), _) => {
+                crate::predicates::shorter_than_scaled(point(v), point(w1), u, point(w2))
+            }
             (Uniformity::Adaptive, (sum, count)) => length(w2) < sum / count as f64,
         };
     [w1, if keep_second { w2 } else { VertexId::INFINITE }]
@@ -619,6 +624,21 @@ mod tests {
     use crate::sample::{sample, Sampling, Shape};
     use crate::triangulate;
     use alloc::vec;
+
+    /// Algorithm 1 keeps the second edge only when `|e2| < u |e1|`: at a ratio of exactly
+    /// `u` it drops it, although rounded square roots can read the ratio as a hair under `u`
+    /// (a paper-fidelity review: point 0's edges to 1 and 2 are `sqrt 2` and `2.75 sqrt 2`).
+    #[test]
+    fn a_second_edge_of_exactly_u_times_the_first_is_dropped() {
+        let points = [(0.0, 0.0), (1.0, 1.0), (-2.75, -2.75), (-2.75, -3.75)].map(Point::from);
+        let result = crate::reconstruct(&points, &crate::Params::paper()).unwrap();
+        assert_eq!(result.edges().collect::<Vec<_>>(), vec![[0, 1], [2, 3]]);
+        // A hair under the ratio, the edge stays.
+        let mut nearer = points;
+        nearer[2] = Point::new(-2.75, -2.75 + 1e-9);
+        let result = crate::reconstruct(&nearer, &crate::Params::paper()).unwrap();
+        assert!(result.edges().any(|e| e == [0, 2]));
+    }
 
     /// Each end's choice, all edges of a vertex answered together, against one count per edge of
     /// the ring members before it in the stage's order (the reading `end_choices` replaced); on
