@@ -50,8 +50,9 @@ pub struct Params {
     pub repair: Repair,
     /// The IQR factor `k` of the outlier removal (finite, `>= 0`), or `None` to skip the stage.
     pub outlier_factor: Option<f64>,
-    /// Remove outliers before the repair, not after (the paper's order): outlier edges can make a
-    /// curve vertex non-manifold, and the repair cuts a corner there (`docs/condt.md`, note 8).
+    /// Remove outliers before the repair, not after it as the paper orders them: outlier edges
+    /// can make a curve vertex non-manifold, and the repair cuts a corner there
+    /// (`docs/condt.md`, note 8).
     pub outliers_first: bool,
     /// The IQR stage cuts no edge up to 1.5 times the median edge (beyond the paper; why:
     /// `src/stages/outliers.rs`).
