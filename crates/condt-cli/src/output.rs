@@ -316,27 +316,15 @@ fn same_file(_a: &fs::Metadata, _b: &fs::Metadata) -> bool {
     false
 }
 
-/// The metadata of the file standard input reads, when it is one.
-fn stdin_metadata() -> Option<fs::Metadata> {
-    #[cfg(unix)]
-    {
-        use std::os::fd::AsFd;
-        let fd = io::stdin().as_fd().try_clone_to_owned().ok()?;
-        File::from(fd).metadata().ok()
-    }
-    #[cfg(not(unix))]
-    None
+/// The metadata of what a standard stream has open (`< FILE`, `> FILE`, `>> FILE`: a file).
+#[cfg(unix)]
+fn stream_metadata(stream: impl std::os::fd::AsFd) -> Option<fs::Metadata> {
+    let fd = stream.as_fd().try_clone_to_owned().ok()?;
+    File::from(fd).metadata().ok()
 }
 
-/// The metadata of the file standard output writes, when it is one (`> FILE`, `>> FILE`).
-fn stdout_metadata() -> Option<fs::Metadata> {
-    #[cfg(unix)]
-    {
-        use std::os::fd::AsFd;
-        let fd = io::stdout().as_fd().try_clone_to_owned().ok()?;
-        File::from(fd).metadata().ok()
-    }
-    #[cfg(not(unix))]
+#[cfg(not(unix))]
+fn stream_metadata<S>(_stream: S) -> Option<fs::Metadata> {
     None
 }
 
@@ -351,7 +339,7 @@ pub(crate) fn refuse_same_file(
 ) -> Result<(), CliError> {
     let out_meta = match output {
         Some(path) => fs::metadata(path).ok(),
-        None => stdout_metadata(),
+        None => stream_metadata(io::stdout()),
     };
     let Some(out_meta) = out_meta else {
         return Ok(());
@@ -361,7 +349,7 @@ pub(crate) fn refuse_same_file(
     }
     let in_meta = match input {
         Some(path) => fs::metadata(path).ok(),
-        None => stdin_metadata(),
+        None => stream_metadata(io::stdin()),
     };
     match in_meta {
         Some(in_meta) if in_meta.is_file() && same_file(&in_meta, &out_meta) => {
