@@ -626,11 +626,12 @@ mod tests {
         assert_eq!(orient2d(a, b, Point::new(far, -tiny)), Orientation::Cw);
     }
 
-    /// `|b - p| < scale |a - p|` against integer arithmetic, on integer points (coordinates
-    /// below 2^10 around a far origin, so the differences round) and dyadic scales `m / 2^k`
-    /// (`m` odd below 2^20): `|b - p|² 4^k < m² |a - p|²` in `u128`. Half of the `b` are placed
-    /// on the ratio exactly or one unit off it, where the rounded lengths cannot tell (a
-    /// paper-fidelity review: a ratio of exactly 2.75 kept the second edge).
+    /// `|b - p| < scale |a - p|` against integer arithmetic, on points of integer offsets
+    /// below 2^10 from a far origin, in a unit of `2^-40` to `2^40` (the exact path's integers
+    /// then start at other exponents), and dyadic scales `m / 2^k` (`m` odd below 2^20):
+    /// `|b - p|² 4^k < m² |a - p|²` in `u128`. Half of the `b` are placed on the ratio exactly
+    /// or one unit off it, where the rounded lengths cannot tell (a paper-fidelity review: a
+    /// ratio of exactly 2.75 kept the second edge).
     #[test]
     fn the_scaled_distance_test_is_exact() {
         let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
@@ -656,7 +657,10 @@ mod tests {
             }
             let scale = m as f64 / f64::from(1u32 << k);
             let origin = 1e6;
-            let at = |x: i64, y: i64| Point::new(origin + x as f64, origin * 0.5 + y as f64);
+            let unit = libm::ldexp(1.0, rng.below(81) as i32 - 40);
+            let at = |x: i64, y: i64| {
+                Point::new((origin + x as f64) * unit, (origin * 0.5 + y as f64) * unit)
+            };
             let (p, a, b) = (at(0, 0), at(ax, ay), at(bx, by));
             let squared = |x: i64, y: i64| (x * x + y * y) as u128;
             let left = squared(bx, by) << (2 * k);
