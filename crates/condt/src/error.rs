@@ -99,8 +99,9 @@ impl fmt::Display for Error {
                     ),
                     "edge" => write!(
                         f,
-                        " (an edge joins two different points of the set; the value is its \
-                         larger end, past the points, or the point of a loop)"
+                        " (an edge joins two different points of the set, and a graph lists \
+                         it once; the value is its larger end, past the points, the point of a \
+                         loop, or the larger end of an edge listed twice)"
                     ),
                     "candidate" | "choice" => {
                         write!(f, " (the value is a position past the points)")

@@ -1189,6 +1189,9 @@ mod tests {
             given.push(wrong);
             assert_eq!(close_gathered_gaps(6, &given, &rows), Err(edge(larger)));
             assert_eq!(component_labels(6, &given), Err(edge(larger)));
+            // The message names each cause (a repeat was told of as a loop or past the points).
+            let told = edge(larger).to_string();
+            assert!(told.contains("a loop") && told.contains("listed twice"), "{told}");
             assert_eq!(repair_gathered_tips(6, &given, &[]), Err(edge(larger)));
             assert_eq!(
                 given_back_standing(6, &edges, &given).err(),

@@ -89,7 +89,9 @@ impl core::fmt::Debug for Reconstruction {
 pub struct Smoothing {
     /// How many passes ran (at least one); the result is the last one's.
     pub passes: usize,
-    /// How many points the last pass moved (from the positions the pass before it saw).
+    /// How many points the last pass moved (from the positions the pass before it saw, both
+    /// relative to the set's corner: see [`Reconstruction::stage_point`] for the points it did
+    /// not move).
     pub moved: usize,
     /// Wall-clock time of the first reconstruction, every pass but the last, and every smoothing
     /// (zero without `std`); the result's stage and triangulation times are the last pass's.
@@ -301,6 +303,11 @@ impl Reconstruction {
 
     /// Input point `index` as the stages saw it, moved if smoothing passes ran. The input stays the
     /// caller's ([`reconstruct`], [`reconstruct_owned`]): a copy would cost a tenth of the peak.
+    /// A pass places every point relative to the set's lower-left corner (so that a translated
+    /// set is smoothed alike: docs/condt.md, *Smoothing passes*), and `(p - corner) + corner`
+    /// can round: after a pass, a point the pass did not move (an end, a branch, an unused
+    /// point) may read a unit in the last place off its input, which
+    /// [`Smoothing::moved`] does not count.
     ///
     /// # Panics
     /// If `index` is not an input position.
