@@ -139,7 +139,9 @@ impl Reconstruction {
 
     /// Where the last run's stages saw each point, a ``(n, 2)`` float64 array (read-only): the
     /// input positions, or after smoothing passes the moved ones, on which the stages' lengths,
-    /// ratios and rings (``stages``, ``explain``) were measured.
+    /// ratios and rings (``stages``, ``explain``) were measured. A pass places points relative
+    /// to the set's lower-left corner, so a point it did not move may read a unit in the last
+    /// place off its input.
     ///
     /// >>> import condt
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0, 1)], paper=True)
