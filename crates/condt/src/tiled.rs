@@ -1191,7 +1191,10 @@ mod tests {
             assert_eq!(component_labels(6, &given), Err(edge(larger)));
             // The message names each cause (a repeat was told of as a loop or past the points).
             let told = edge(larger).to_string();
-            assert!(told.contains("a loop") && told.contains("listed twice"), "{told}");
+            assert!(
+                told.contains("a loop") && told.contains("listed twice"),
+                "{told}"
+            );
             assert_eq!(repair_gathered_tips(6, &given, &[]), Err(edge(larger)));
             assert_eq!(
                 given_back_standing(6, &edges, &given).err(),
