@@ -193,7 +193,18 @@ fn write_data(
                 Reason::LastEdge => (16, 0.0, 0.0),
                 Reason::Hook => (17, 0.0, 0.0),
                 Reason::Spike => (18, 0.0, 0.0),
-                Reason::Detour { from, to, .. } => (19, from as f64, to as f64),
+                // A loop's one end; else the route's points in the code (20 + points), which
+                // the page's words need beside the two ends.
+                Reason::Detour { from, to, .. } if from == to => (19, from as f64, to as f64),
+                Reason::Detour { from, to, points } => (20 + points as u64, from as f64, to as f64),
+            };
+            // A length and its threshold with every digit, so that the page can tell apart a
+            // length just above its threshold (as `story_text` does); other numbers are ids,
+            // counts and ratios shown with fewer.
+            let digits = if matches!(code, 1 | 12) {
+                17
+            } else {
+                LENGTH_DIGITS
             };
             if !first {
                 out.write_all(b",")?;
@@ -205,9 +216,9 @@ fn write_data(
             out.write_all(if change.added { b",1," } else { b",0," })?;
             write_integer(out, code)?;
             out.write_all(b",")?;
-            Short(x, LENGTH_DIGITS).write_to(out)?;
+            Short(x, digits).write_to(out)?;
             out.write_all(b",")?;
-            Short(y, LENGTH_DIGITS).write_to(out)?;
+            Short(y, digits).write_to(out)?;
         }
     }
     // Layers: their names, and per edge one number whose bit 0 says it is a Delaunay edge and
@@ -267,7 +278,8 @@ const POSITION_DIGITS: usize = 7;
 /// rounds the value itself to those, as the Python package and `story_text` do (five rounded
 /// twice, 1.0705 from 1.07049..., showed 1.071 where they say 1.070).
 const RATIO_DIGITS: usize = 9;
-/// Of lengths and thresholds, shown with six significant digits.
+/// Of the changes' other numbers (vertex ids, counts, the long-edge ratio shown with two
+/// decimals).
 const LENGTH_DIGITS: usize = 6;
 
 /// Per story, the layers that have its edge (bit 0 the triangulation, bit `k + 1` stage `k`'s

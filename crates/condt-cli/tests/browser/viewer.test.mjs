@@ -172,6 +172,61 @@ try {
     await page.mouse.click(x, y);
     await page.screenshot({ path: screenshot });
   }
+  // A length just above its threshold reads apart from it, with the library's seven digits at
+  // least (the page kept six, and showed "3.14146 above √T = 3.14146"): a regular 200-gon
+  // whose point 199 sits 1e-6 further out, and a far point whose long edges make the IQR rule
+  // (at k = 0) fire, which then cuts 199's two edges, a hair above the others.
+  const gon = [];
+  for (let k = 0; k < 200; k++) {
+    const r = k === 199 ? 100 + 1e-6 : 100, t = (2 * Math.PI * k) / 200;
+    gon.push(`${r * Math.cos(t)} ${r * Math.sin(t)}`);
+  }
+  const gon_file = join(dir, "gon.txt"), gon_page = join(dir, "gon.html");
+  gon.push("1000 0");
+  writeFileSync(gon_file, gon.join("\n") + "\n");
+  execFileSync(condt, ["reconstruct", gon_file, "--paper", "--outliers-first", "--iqr", "0",
+    "--format", "html", "-o", gon_page, "-q"]);
+  await page.goto("file://" + gon_page);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+  const cut = await page.evaluate(() => {
+    const v = window.condtViewer;
+    for (let k = 0; k < v.edges; k++) {
+      const [a, b] = v.edgeEnds(k);
+      if (a === 0 && b === 199) return k;
+    }
+    return -1;
+  });
+  assert.ok(cut >= 0, "edge 0-199 is on the page");
+  // The proximity graph alone: the polygon's sides, no chord of its triangulation beside them.
+  await page.evaluate(() => window.condtViewer.only("ConDT proximity graph"));
+  [x, y] = await page.evaluate((k) => window.condtViewer.edgeMidpoint(k), cut);
+  await page.mouse.click(x, y);
+  text = await details();
+  const told = text.match(/length ([\d.]+) above √T = ([\d.]+)/);
+  assert.ok(told, `the cut is told: ${text}`);
+  assert.ok(told[1] !== told[2] && Number(told[1]) > Number(told[2]), `apart: ${told[0]}`);
+  assert.ok(told[2].replace(/[.]/, "").length >= 7, `seven digits at least: ${told[0]}`);
+  // Zooming stops short of a scale no zoom comes back from (the page's scale reached infinity
+  // after enough notches, every position then NaN).
+  await page.evaluate(() => window.condtViewer.only(null));
+  await page.locator("#canvas").focus();
+  for (let i = 0; i < 200; i++) await page.keyboard.press("+");
+  for (let i = 0; i < 400; i++) await page.keyboard.press("-");
+  const far = await page.evaluate(() => window.condtViewer.screenOf(0));
+  assert.ok(far.every(Number.isFinite), `positions after zooming: ${far}`);
+  // Coordinates of a set spanning the doubles read as themselves, not 0 (the resolution of the
+  // page's positions overflowed to infinity).
+  const wide_file = join(dir, "wide.txt"), wide_page = join(dir, "wide.html");
+  writeFileSync(wide_file, "1.7e308 0\n-1.7e308 0\n0 1e308\n");
+  execFileSync(condt, ["reconstruct", wide_file, "--format", "html", "-o", wide_page, "-q"]);
+  await page.goto("file://" + wide_page);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+  [x, y] = await page.evaluate(() => window.condtViewer.screenOf(0));
+  await page.mouse.click(x, y);
+  text = await details();
+  const at = text.match(/Point 0 \(([^,]+), ([^)]+)\)/);
+  assert.ok(at && Math.abs(Number(at[1]) / 1.7e308 - 1) < 1e-6, `point 0's x: ${text.slice(0, 80)}`);
+
   // A set without extent on one side (one point; points on a vertical line) is drawn centred on
   // both axes, not from the canvas's corner.
   for (const [name, text] of [["one", "5 7\n"], ["vertical", "3 0\n3 1e-9\n3 2e-9\n3 3e-9\n"]]) {

@@ -68,7 +68,7 @@
 
   const canvas = document.getElementById("canvas");
   const ctx = canvas.getContext("2d");
-  const view = { k: 1, ox: 0, oy: 0 };
+  const view = { k: 1, ox: 0, oy: 0, fitted: 1 };
   let selected = null, pending = false;
   const status = document.getElementById("status");
 
@@ -84,19 +84,35 @@
   // and no more: UTM metres or degrees to 1e-7 need more than 6 significant digits to tell
   // samples apart, while a digit finer than the positions' resolution is the writing's rounding
   // (700 read back as 700.0001). A coordinate within the resolution of 0 is 0.
-  const resolution = data.scale * data.parts * 1e-7;
+  // (The factor first: the scale of a set spanning the doubles times `parts` overflows.)
+  const resolution = data.scale * 1e-7 * data.parts;
   const fmtCoordinate = (x) => {
     if (!(resolution > 0)) return String(+x.toPrecision(6));
     if (Math.abs(x) < resolution) return "0";
     const d = Math.min(17, Math.max(1, Math.floor(Math.log10(Math.abs(x) / resolution))));
     return String(+x.toPrecision(d));
   };
-  // Two numbers with as many digits as tell them apart (a length just above its threshold).
+  // A length measured on the page's positions: no more digits than their resolution holds
+  // (at most 6), where a length of 0.62 in a box 1000 wide is good to four.
+  const fmtLength = (x) => {
+    if (!(resolution > 0) || x === 0) return fmt(x);
+    const d = Math.min(6, Math.max(1, Math.floor(Math.log10(x / resolution))));
+    return fmtDigits(x, d);
+  };
+  // Two numbers with as many digits as tell them apart (a length just above its threshold),
+  // seven at least, as the library's explanations (`story_text`) give them.
   const apart = (a, b) => {
-    for (let d = 6; ; d++) {
+    for (let d = 7; ; d++) {
       const [x, y] = [fmtDigits(a, d), fmtDigits(b, d)];
       if (x !== y || a === b || d === 17) return [x, y];
     }
+  };
+  // A zoom by `f`, held to a thousandth of the fitted view out and 10^9 times it in (the
+  // positions hold 7 digits of the box: beyond, a pixel is finer than any of them), so that the
+  // scale never reaches 0 or infinity, from which no zoom comes back.
+  const zoomFactor = (f) => {
+    const k = Math.min(view.fitted * 1e9, Math.max(view.fitted * 1e-3, view.k * f));
+    return k / view.k;
   };
   const sx = (i) => view.ox + P[2 * i] * view.k;
   const sy = (i) => view.oy - P[2 * i + 1] * view.k;
@@ -109,6 +125,7 @@
     // other side's, so that the drawing is scaled by what it has and centred on both axes.
     const span = Math.max(maxX, maxY) || 1;
     view.k = 0.92 * Math.min(w / (maxX || span), h / (maxY || span));
+    view.fitted = view.k;
     view.ox = (w - maxX * view.k) / 2;
     view.oy = h - (h - maxY * view.k) / 2;
   }
@@ -266,7 +283,7 @@
   }
   function changeWords(c) {
     const verb = c.added ? "added" : "removed";
-    const why = [
+    const words = [
       () => {
         // The repair's kept edges at the vertex: its edges in that stage's layer.
         const kept = [];
@@ -290,8 +307,8 @@
         : "a chord past a junction's sample"),
       () => "a clump: at most half its points pass smoothly",
       () => "repaired again without the edges above √T",
-      () => `length ${fmt(c.x)} above the spacing floor ${fmt(c.y)} (1.5 median edges)`,
-      () => `restored the crossing at vertex ${c.x}`,
+      () => { const [l, t] = apart(c.x, c.y); return `length ${l} above the spacing floor ${t} (1.5 median edges)`; },
+      () => `restored the crossing at ${c.x}`,
       () => (c.added ? "joined at a tip in place of a chord" : "a chord across a tip"),
       () => `part of an outlier tail of ${c.y} point${c.y === 1 ? "" : "s"} cut where it hung from ${c.x}`,
       () => "given back as a curve's last edge, a curve behind it",
@@ -301,11 +318,18 @@
       () => (c.added
         ? "joined through a tip's samples that had no edges"
         : "a chord across a tip whose samples had no edges"),
-      () => (c.x === c.y
-        ? `the edge that closed a loop hung on vertex ${c.x}, which the curve runs into less straightly than into the loop's other edge`
-        : `part of a short detour between vertices ${c.x} and ${c.y}, beside the route the curve runs into straighter at both`),
-    ][c.code]();
+      () => `the edge that closed a loop hung on ${c.x}, which the curve runs into less straightly than into the loop's other edge`,
+    ];
+    const why = c.code >= 20 ? detourWords(c) : words[c.code]();
     return `${c.stage}: ${verb} ${why}`;
+  }
+  // Codes from 20: a detour through `code - 20` points between its two ends (as `story_text`).
+  function detourWords(c) {
+    const points = c.code - 20;
+    const route = points === 0
+      ? `the edge between ${c.x} and ${c.y} past a route`
+      : `part of a detour through ${points} point${points === 1 ? "" : "s"} between ${c.x} and ${c.y}`;
+    return `${route}, beside the route the curve runs into straighter at both`;
   }
   function story(k) {
     const a = data.ends[2 * k], b = data.ends[2 * k + 1];
@@ -343,7 +367,7 @@
     if (copies.has(i)) html += `<br>exact duplicates merged into it: ${copies.get(i).join(", ")}`;
     html += `<table><tr><th>rank</th><th>neighbour</th><th>length</th><th>in result</th></tr>`;
     for (const r of ring) {
-      html += `<tr class="${r.rank <= 2 ? "chosen" : ""}"><td>${r.rank}</td><td>${r.other}</td><td>${fmt(length(r.k))}</td><td>${resultEdges[r.k] ? "yes" : "no"}</td></tr>`;
+      html += `<tr class="${r.rank <= 2 ? "chosen" : ""}"><td>${r.rank}</td><td>${r.other}</td><td>${fmtLength(length(r.k))}</td><td>${resultEdges[r.k] ? "yes" : "no"}</td></tr>`;
     }
     html += "</table>";
     const second = ring.find((r) => r.rank === 2);
@@ -356,7 +380,7 @@
     details.innerHTML = html;
   }
   function showEdge(k) {
-    details.innerHTML = `<b>Edge ${E[2 * k]}–${E[2 * k + 1]}</b>, length ${fmt(length(k))}` +
+    details.innerHTML = `<b>Edge ${E[2 * k]}–${E[2 * k + 1]}</b>, length ${fmtLength(length(k))}` +
       story(k).map((s) => `<div class="story">${s}</div>`).join("");
   }
 
@@ -394,7 +418,7 @@
   canvas.addEventListener("wheel", (ev) => {
     ev.preventDefault();
     const r = canvas.getBoundingClientRect(), mx = ev.clientX - r.left, my = ev.clientY - r.top;
-    const f = Math.exp(-ev.deltaY * 0.0015);
+    const f = zoomFactor(Math.exp(-ev.deltaY * 0.0015));
     view.ox = mx - (mx - view.ox) * f; view.oy = my - (my - view.oy) * f; view.k *= f; request();
   }, { passive: false });
   canvas.addEventListener("dblclick", () => { show(beforeClick); fit(); request(); });
@@ -402,7 +426,10 @@
   // the centre, 0 shows everything.
   canvas.addEventListener("keydown", (ev) => {
     const w = canvas.clientWidth, h = canvas.clientHeight, step = 40;
-    const zoom = (f) => { view.ox = w / 2 - (w / 2 - view.ox) * f; view.oy = h / 2 - (h / 2 - view.oy) * f; view.k *= f; };
+    const zoom = (g) => {
+      const f = zoomFactor(g);
+      view.ox = w / 2 - (w / 2 - view.ox) * f; view.oy = h / 2 - (h / 2 - view.oy) * f; view.k *= f;
+    };
     const moves = {
       ArrowLeft: () => { view.ox += step; }, ArrowRight: () => { view.ox -= step; },
       ArrowUp: () => { view.oy += step; }, ArrowDown: () => { view.oy -= step; },
