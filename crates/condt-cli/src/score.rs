@@ -424,8 +424,6 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
     Ok(read)
 }
 
-/// Whether `field` is an integer as an edge line writes one: digits, a `-` before them allowed
-/// (a negative number is an edge to a point that does not exist, not a line that is no edge).
 /// Notes how many points of `truth` repeat an earlier point exactly: edges are compared by point
 /// number, and `condt reconstruct` gives a duplicate's edges to its first copy, so such a truth
 /// edge is never matched by its output (a Python researcher's review: a ring exported with its
@@ -433,17 +431,24 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
 fn note_later_copies(name: &str, points: &[condt::Point], truth: &[[usize; 2]]) {
     // `+ 0.0` makes -0.0 the same key as 0.0, as the triangulation merges them.
     let key = |p: condt::Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
-    let mut first: HashMap<(u64, u64), usize> = HashMap::with_capacity(points.len());
-    let first_copy: Vec<usize> = points
+    // Only the truth's ends are keyed (a truth names few of many points): each key's first
+    // position among all the points, found in one pass over them.
+    let mut first: HashMap<(u64, u64), usize> = truth
         .iter()
-        .enumerate()
-        .map(|(i, &p)| *first.entry(key(p)).or_insert(i))
+        .flatten()
+        .filter_map(|&i| points.get(i).map(|&p| (key(p), usize::MAX)))
         .collect();
+    for (i, &p) in points.iter().enumerate() {
+        if let Some(slot) = first.get_mut(&key(p)) {
+            *slot = (*slot).min(i);
+        }
+    }
+    let first_copy = |i: usize| first[&key(points[i])];
     let mut named: Vec<usize> = truth
         .iter()
         .flatten()
         .copied()
-        .filter(|&i| first_copy.get(i).is_some_and(|&f| f != i))
+        .filter(|&i| i < points.len() && first_copy(i) != i)
         .collect();
     named.sort_unstable();
     named.dedup();
@@ -453,7 +458,7 @@ fn note_later_copies(name: &str, points: &[condt::Point], truth: &[[usize; 2]]) 
     let shown: Vec<String> = named
         .iter()
         .take(3)
-        .map(|&i| format!("{i} = {}", first_copy[i]))
+        .map(|&i| format!("{i} = {}", first_copy(i)))
         .collect();
     let more = if named.len() > 3 { ", ..." } else { "" };
     let (count, verb) = match named.len() {
@@ -468,6 +473,8 @@ fn note_later_copies(name: &str, points: &[condt::Point], truth: &[[usize; 2]]) 
     );
 }
 
+/// Whether `field` is an integer as an edge line writes one: digits, a `-` before them allowed
+/// (a negative number is an edge to a point that does not exist, not a line that is no edge).
 fn is_integer(field: &str) -> bool {
     let digits = field.strip_prefix('-').unwrap_or(field);
     !digits.is_empty() && digits.bytes().all(|c| c.is_ascii_digit())

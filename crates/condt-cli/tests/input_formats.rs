@@ -108,10 +108,6 @@ fn bad_csv_and_geojson_files_are_refused_by_file_and_line() {
     }
 }
 
-/// A `.tsv` file reads as its `.csv` twin, commas for its tabs: quoted names, a byte-order mark,
-/// a name with blanks (`elevation (m)`) and one of digits (`2020`) beside x and y; a malformed
-/// quote in a later column is refused with the file and line, as in the `.csv` (a user's
-/// report: the first four were refused, and `"1"5` read as 15).
 /// Two points too close for the stages to measure beside a far one are named by their lines,
 /// as every other error about the file's content is (the library names input positions).
 #[test]
@@ -155,6 +151,10 @@ fn points_too_close_to_measure_are_named_by_their_lines() {
     }
 }
 
+/// A `.tsv` file reads as its `.csv` twin, commas for its tabs: quoted names, a byte-order mark,
+/// a name with blanks (`elevation (m)`) and one of digits (`2020`) beside x and y; a malformed
+/// quote in a later column is refused with the file and line, as in the `.csv` (a user's
+/// report: the first four were refused, and `"1"5` read as 15).
 #[test]
 fn a_tsv_file_reads_as_its_csv_twin() {
     let dir = scratch_dir();

@@ -208,7 +208,8 @@ fn plain_columns_in_general(
 /// the lines, without the tab-joined copy and the CSV reader: a scanner's `x y z intensity`
 /// export of 1M points read in 0.22 s instead of 0.31-0.42 (docs/performance.md, *Chosen columns
 /// of plain text*). `None` wherever a line needs the general reading (a
-/// comma, a quote, a character beyond ASCII, a row of another width than the first, a header without
+/// comma, a quote, a vertical tab, a character beyond ASCII, a row of another width than the
+/// first, a header without
 /// the chosen columns, a field that is no finite number, too many points): that reading then
 /// reads the whole text and gives its own message, so the two agree by construction on every
 /// text this one reads.
@@ -223,10 +224,11 @@ fn plain_numbered_columns(
     for (number, line) in crate::text_lines(text) {
         let content = line.split('#').next().unwrap_or("");
         // ASCII only (a byte-order mark, or any other character beyond it, goes the general
-        // way), where ASCII blanks split as the plain reader's Unicode ones do.
+        // way), where ASCII blanks split as the plain reader's Unicode ones do but for the
+        // vertical tab, which only the plain reader's split (Unicode's) takes for a blank.
         if content
             .bytes()
-            .any(|b| b == b',' || b == b'"' || !b.is_ascii())
+            .any(|b| b == b',' || b == b'"' || b == 0x0b || !b.is_ascii())
         {
             return None;
         }
@@ -523,8 +525,9 @@ fn header_columns(
                     let f = f.trim().trim_start_matches(['-', '+', '.']);
                     f.starts_with(|c: char| c.is_ascii_digit())
                 };
-                let not_number = (record.len() == 2 && record.iter().all(number_like))
-                    .then(|| record.iter().find(|f| f.trim().parse::<f64>().is_err()))
+                let pair = || record.iter().take(2);
+                let not_number = (filled(record) == 2 && pair().all(number_like))
+                    .then(|| pair().find(|f| f.trim().parse::<f64>().is_err()))
                     .flatten();
                 let typo = not_number.map_or(String::new(), |field| {
                     format!(
@@ -1042,6 +1045,8 @@ mod tests {
                     4 => fields[0] = "1e400".to_string(),
                     5 => fields.clear(),
                     6 => fields.push("# note".to_string()),
+                    // A vertical tab: a blank to the plain reader, not to an ASCII split.
+                    7 => fields[0] = format!("{}\u{b}5", fields[0]),
                     _ => {}
                 }
                 text.push_str(&fields.join(if rng.below(2) == 0 { " " } else { "\t  " }));
@@ -1100,6 +1105,13 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(!err.contains("is not a number"), "{err}");
+        let err = parse_csv("1O,20,\n3,4,\n", "t.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("if it is a point, \"1O\" is not a number"),
+            "{err}"
+        );
     }
 
     /// A separator at the end of every line (some exports write one) leaves two numbers and an

@@ -10,9 +10,10 @@ use std::string::String;
 use std::vec::Vec;
 
 /// The lines (from 1) of the points at `positions` in the file at `path`, read with `options` into
-/// `count` points; `None` where no line says it: standard input (read once), `.npy` and GeoJSON
-/// (no line a point), text that is not UTF-8, or a file whose point lines do not number `count`
-/// or `count` and one header.
+/// `count` points; `None` where no line says it: standard input or a named pipe (read once),
+/// `.npy` and GeoJSON (no line a point, also where the content, not the name, says so), a `.tsv`
+/// (read as CSV or as plain text by its first line), text that is not UTF-8, or a file whose
+/// point lines do not number `count` or `count` and one header.
 ///
 /// ```
 /// use condt_io::{point_lines, ReadOptions};
@@ -33,9 +34,19 @@ pub fn point_lines(
 ) -> Option<Vec<usize>> {
     let path = path.as_ref();
     let format = options.format.or_else(|| InputFormat::of_path(path))?;
+    // A regular file only: a named pipe (or a terminal behind `/dev/stdin`) was read once, and a
+    // second open would wait for a writer.
+    if !std::fs::metadata(path).is_ok_and(|meta| meta.is_file()) {
+        return None;
+    }
     let text = String::from_utf8(std::fs::read(path).ok()?).ok()?;
+    // A name without a format's ending is read by its content: GeoJSON there has no point lines.
+    let start = text.trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n']);
+    if options.format.is_none() && start.starts_with(['{', '[', '\u{1e}']) {
+        return None;
+    }
     let lines: Vec<usize> = match format {
-        InputFormat::Text | InputFormat::Node | InputFormat::Tsv => text_lines(&text)
+        InputFormat::Text | InputFormat::Node => text_lines(&text)
             .filter(|(_, line)| !line.split('#').next().unwrap_or("").trim().is_empty())
             .map(|(number, _)| number)
             .collect(),
@@ -54,7 +65,11 @@ pub fn point_lines(
             }
             lines
         }
-        InputFormat::Npy | InputFormat::GeoJson | InputFormat::GeoJsonLines => return None,
+        // A `.tsv` is read as CSV or as plain text by its first line, with or without comments:
+        // no count here would follow both.
+        InputFormat::Tsv | InputFormat::Npy | InputFormat::GeoJson | InputFormat::GeoJsonLines => {
+            return None;
+        }
     };
     // A header line (names, or a `.node` file's counts) holds no point.
     let skipped = lines.len().checked_sub(count).filter(|&extra| extra <= 1)?;
@@ -101,5 +116,23 @@ mod tests {
         assert_eq!(lines_of("p.txt", "0 0\n1 0\n", 2, &[2]), None);
         let geojson = r#"{"type":"MultiPoint","coordinates":[[0,0],[1,0]]}"#;
         assert_eq!(lines_of("p.geojson", geojson, 2, &[0]), None);
+        // GeoJSON told by its content, under a name of no format, whose lines happen to number
+        // its points; and a `.tsv`, whose reading depends on its first line.
+        let pretty = "{\"type\": \"MultiPoint\",\n\"coordinates\": [[0, 0],\n[1, 0]]\n}\n";
+        assert_eq!(lines_of("p.dat", pretty, 3, &[0]), None);
+        assert_eq!(lines_of("p.tsv", "name\tx\ty\n#1\t0\t0\n", 1, &[0]), None);
+    }
+
+    /// A named pipe was read once: no second open (which would wait for a writer).
+    #[cfg(unix)]
+    #[test]
+    fn a_named_pipe_is_not_opened_again() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("points.txt");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !made.is_ok_and(|status| status.success()) {
+            return; // no mkfifo here: nothing to test
+        }
+        assert_eq!(point_lines(&fifo, &ReadOptions::new(), 1, &[0]), None);
     }
 }

@@ -180,9 +180,13 @@ pub(crate) fn compare_distances(p: Point, a: Point, b: Point) -> Ordering {
 /// [`SCALED_GAP`] of their size; a ratio that close to `scale` (exactly `u` on a grid: the
 /// paper drops the edge there, rounding could keep it) is decided in integers.
 pub(crate) fn shorter_than_scaled(p: Point, a: Point, scale: f64, b: Point) -> bool {
-    let near = scale * libm::sqrt(p.dist2(a));
-    let far = libm::sqrt(p.dist2(b));
-    if (near - far).abs() > SCALED_GAP * near.max(far) {
+    let (near2, far2) = (p.dist2(a), p.dist2(b));
+    let near = scale * libm::sqrt(near2);
+    let far = libm::sqrt(far2);
+    // Squares near the subnormal range have lost digits the bound counts on (a diff review:
+    // squares of 1.2 and 1.4 units of 2^-1074 rounded to 1 and 2): decided exactly.
+    let tiny = near2.min(far2) < TINY_SQUARE;
+    if !tiny && (near - far).abs() > SCALED_GAP * near.max(far) {
         return far < near;
     }
     exact::compare_scaled_distances(p.into(), a.into(), scale, b.into()) == Ordering::Greater
@@ -192,6 +196,11 @@ pub(crate) fn shorter_than_scaled(p: Point, a: Point, scale: f64, b: Point) -> b
 /// 4 units in the last place of its value (two differences, two squares and a sum, each rounded
 /// to half a unit), its square root and the product by `scale` within 3, so well under 2^-48.
 const SCALED_GAP: f64 = 1.0 / (1u64 << 48) as f64;
+
+/// Squared lengths below `2^-960` may sum squares that underflowed; above it, what underflowed is
+/// at most `2^-1073`, far below [`SCALED_GAP`] of the sum. The stages' frame keeps every nonzero
+/// square far above it; below, the test is decided in integers, so it is exact for any points.
+const TINY_SQUARE: f64 = f64::from_bits((1023 - 960) << 52); // 2^-960
 
 /// Whether `a + b` is computed without rounding (Knuth's two-sum leaves no error). False on an
 /// overflow (the error reads NaN).
@@ -673,6 +682,19 @@ mod tests {
             );
         }
         assert!(ties > 20, "only {ties} exact ratios");
+        // Squares near the subnormal range (1.2 and 1.4 units of 2^-1074, rounded to 1 and 2):
+        // `b` is the farther, though its rounded square says otherwise at a scale of 1.
+        let tiny = libm::ldexp(1.0, -537);
+        let (p, a) = (
+            Point::new(0.0, 0.0),
+            Point::new(0.6f64.sqrt() * tiny, 0.6f64.sqrt() * tiny),
+        );
+        let b = Point::new(1.4f64.sqrt() * tiny, 0.0);
+        assert_eq!(
+            shorter_than_scaled(p, a, 1.0, b),
+            exact::compare_scaled_distances(p.into(), a.into(), 1.0, b.into()) == Ordering::Greater
+        );
+        assert!(!shorter_than_scaled(p, a, 1.0, b));
         // The paper's u on a grid: |e2| = 2.75 |e1| exactly (11 (a, b) against 4 (a, b)).
         for (x, y) in [(1.0, 1.0), (2.0, 1.0), (3.0, 7.0)] {
             let (p, a) = (Point::new(0.0, 0.0), Point::new(4.0 * x, 4.0 * y));
