@@ -834,6 +834,11 @@ def test_the_arguments_are_checked_before_the_client_is_looked_for(monkeypatch):
         condt.dask.reconstruct(points, u=-1)
     with pytest.raises(TypeError, match="unexpected keyword argument 'bogus'"):
         condt.dask.reconstruct(points, bogus=1)
+    # Points on the driver too: a NaN is named (it met the missing client first).
+    bad = points.copy()
+    bad[7, 1] = np.nan
+    with pytest.raises(ValueError, match="point 7"):
+        condt.dask.reconstruct(bad)
     # Arguments that are fine: the missing client is said.
     with pytest.raises(ValueError, match="No global client found"):
         condt.dask.reconstruct(points, paper=True)

@@ -128,6 +128,12 @@ def reconstruct(
     # Before the client is looked for: without one, a baseline or a refused parameter met Dask's
     # "No global client found" instead of the error promised above (a review's find).
     _condt._tile_params(**params)
+    # Points already on the driver are checked then too (a NaN named as condt.reconstruct names
+    # it); a Dask array is computed only once a client is known to be open.
+    lazy = hasattr(points, "dask") and hasattr(points, "compute")
+    plan = None
+    if not lazy:
+        points, plan = _planned(points, params)
     from distributed import Client
 
     if client is None:
@@ -147,14 +153,8 @@ def reconstruct(
         from distributed.client import ClosedClientError
 
         raise ClosedClientError("the Dask client given to condt.dask.reconstruct is closed")
-    if hasattr(points, "dask") and hasattr(points, "compute"):
-        points = points.compute()
-    # A masked array goes to the library as it is, which refuses one with masked entries:
-    # ``ascontiguousarray`` would drop its mask.
-    if type(points) is np.ndarray and points.dtype == np.float64:
-        points = np.ascontiguousarray(points)
-    plan = _condt._tile_plan(points, **params)
-    points = np.ascontiguousarray(np.asarray(points, dtype=np.float64)).reshape(-1, 2)
+    if plan is None:
+        points, plan = _planned(points.compute(), params)
     n = len(points)
     whole = "no points" if n == 0 else plan["whole"]
     if whole is not None:
@@ -190,6 +190,17 @@ def reconstruct(
             return _in_one_piece(original, client, params, plan["whole"], runs)
     rounds, sent, workers = _spent(runs)
     return TiledReconstruction(_read_only(edges), len(rects), rounds, workers, sent, None, passes)
+
+
+def _planned(points: Any, params: dict) -> tuple[np.ndarray, dict]:
+    """``points`` checked and planned by the library (``_tile_plan``), and as the ``(n, 2)``
+    float64 array the tiles are cut from."""
+    # A masked array goes to the library as it is, which refuses one with masked entries:
+    # ``ascontiguousarray`` would drop its mask.
+    if type(points) is np.ndarray and points.dtype == np.float64:
+        points = np.ascontiguousarray(points)
+    plan = _condt._tile_plan(points, **params)
+    return np.ascontiguousarray(np.asarray(points, dtype=np.float64)).reshape(-1, 2), plan
 
 
 def _tile_count(tiles: Any) -> int:
