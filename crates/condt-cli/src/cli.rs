@@ -1359,7 +1359,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     })
 }
 
-/// Reads the points of INPUT (`None`: standard input).
+/// Reads the points of INPUT (`None`: standard input), and with `--snap` (`snap`) snaps them,
+/// each step a lap of `timings`; returns the points and what `--snap` did ([`note_snapped`]).
 /// With `parallel` false (`--sequential`) the reading, which otherwise splits a large text over
 /// rayon's threads, runs on this thread alone (a one-thread pool; same points either way).
 /// A GeoJSON input's `"crs"` member comes with the points (`None` for other formats), for a
@@ -1368,14 +1369,21 @@ fn read_input(
     input: Option<&Path>,
     parallel: bool,
     options: &ReadOptions,
-) -> Result<PointFile, CliError> {
+    snap: &Option<(f64, String)>,
+    progress: &mut Progress,
+    timings: &mut Timings,
+) -> Result<(PointFile, Option<(usize, String)>), CliError> {
     let path = input.unwrap_or(Path::new("-"));
-    if !parallel {
-        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() {
-            return Ok(pool.install(|| read_points_with(path, options))?);
-        }
-    }
-    Ok(read_points_with(path, options)?)
+    let pool = (!parallel)
+        .then(|| rayon::ThreadPoolBuilder::new().num_threads(1).build().ok())
+        .flatten();
+    let mut read = match pool {
+        Some(pool) => pool.install(|| read_points_with(path, options))?,
+        None => read_points_with(path, options)?,
+    };
+    progress.suspend(|| timings.lap("read"));
+    let snapped = snap_points(&mut read.points, snap, input, progress, timings)?;
+    Ok((read, snapped))
 }
 
 /// The reconstruction's refusal of INPUT's `count` points, read with `read`: two points too close
@@ -1580,19 +1588,21 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let PointFile {
-        mut points,
-        crs,
-        crs_dropped_at,
-        null_geometries,
-        empty_geometries,
-        ..
-    } = read_input(args.input.as_deref(), args.params.parallel, &args.read)?;
-    progress.suspend(|| timings.lap("read"));
-    let snapped = snap_points(
-        &mut points,
-        &args.snap,
+    let (
+        PointFile {
+            points,
+            crs,
+            crs_dropped_at,
+            null_geometries,
+            empty_geometries,
+            ..
+        },
+        snapped,
+    ) = read_input(
         args.input.as_deref(),
+        args.params.parallel,
+        &args.read,
+        &args.snap,
         &mut progress,
         &mut timings,
     )?;
@@ -1720,18 +1730,20 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
-    let PointFile {
-        mut points,
-        crs_dropped_at,
-        null_geometries,
-        empty_geometries,
-        ..
-    } = read_input(args.input.as_deref(), true, &args.read)?;
-    progress.suspend(|| timings.lap("read"));
-    let snapped = snap_points(
-        &mut points,
-        &args.snap,
+    let (
+        PointFile {
+            points,
+            crs_dropped_at,
+            null_geometries,
+            empty_geometries,
+            ..
+        },
+        snapped,
+    ) = read_input(
         args.input.as_deref(),
+        true,
+        &args.read,
+        &args.snap,
         &mut progress,
         &mut timings,
     )?;
