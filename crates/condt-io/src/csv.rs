@@ -206,8 +206,8 @@ fn plain_columns_in_general(
 
 /// [`parse_plain_columns`] for columns chosen by number (0-based `x` and `y`), read straight from
 /// the lines, without the tab-joined copy and the CSV reader: a scanner's `x y z intensity`
-/// export of 1M points read in 0.22 s instead of 0.31-0.42 (docs/performance.md, *Chosen columns
-/// of plain text*). `None` wherever a line needs the general reading (a
+/// export of 1M points read in 0.23-0.25 s instead of 0.47-0.59 (docs/performance.md, *Chosen
+/// columns of plain text*). `None` wherever a line needs the general reading (a
 /// comma, a quote, a vertical tab, a character beyond ASCII, a row of another width than the
 /// first, a header without
 /// the chosen columns, a field that is no finite number, too many points): that reading then
