@@ -797,7 +797,10 @@ fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
 /// ``condt score --json`` names it for the same array saved as ``.npy``), ``n_points``, ``n_gt``, ``n_out``. A malformed output (an index out of range or
 /// negative, a self-loop, a repeated edge) scores precision, recall and F1 0; its valid edges
 /// are counted once each. An index beyond int64 (a uint64 from ``2**63``, a Python int) is out
-/// of range as any other and named as given, never wrapped.
+/// of range as any other and named as given, never wrapped. Edges are compared by point index:
+/// where ``points`` repeats a point exactly, ``reconstruct`` gives the duplicate's edges to its
+/// first copy, so a truth edge at a later copy is never matched; a ``UserWarning`` names such
+/// points of the truth.
 ///
 /// Raises ``ValueError`` for a malformed truth, an edge list of another shape or a NaN or
 /// infinite point, ``TypeError`` for edges that are not integers or not an array (``None``, a
@@ -823,6 +826,37 @@ fn score<'py>(
     let output = edge_rows(py, "output", output)?;
     let truth = edge_rows(py, "truth", truth)?;
     let (output_positions, truth_positions) = (as_positions(&output), as_positions(&truth));
+    // As `condt score` notes them: a truth edge at a later copy of a point is never matched.
+    let later = condt_eval::score::later_copies(points, &truth_positions);
+    if !later.is_empty() {
+        let shown: Vec<String> = later
+            .iter()
+            .take(3)
+            .map(|[i, first]| format!("{i} = {first}"))
+            .collect();
+        let more = if later.len() > 3 { ", ..." } else { "" };
+        let message = format!(
+            "the truth names {} that {} an earlier point exactly ({}{more}); edges \
+             are compared by point number, and condt.reconstruct gives a duplicate's edges to \
+             its first copy",
+            match later.len() {
+                1 => "1 point".to_string(),
+                n => format!("{n} points"),
+            },
+            if later.len() == 1 {
+                "repeats"
+            } else {
+                "repeat"
+            },
+            shown.join(", ")
+        );
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &CString::new(message)?,
+            1,
+        )?;
+    }
     let result = crate::detached(py, || {
         condt_eval::score::score(points, &output_positions, &truth_positions)
     })?

@@ -1374,3 +1374,19 @@ def test_signal_handlers_run_while_a_long_reconstruction_runs():
         sender.join()
         signal.signal(signal.SIGUSR1, previous)
     assert len(calls) >= 5, calls
+
+
+def test_score_warns_of_a_truth_at_a_later_copy_of_a_point():
+    # A Python researcher's review: a ring exported with its first point again at its end,
+    # scored against its truth as a polyline, lost an edge without a word.
+    t = np.linspace(0, 2 * np.pi, 13)[:12]
+    ring = np.vstack([np.c_[np.cos(t), np.sin(t)], [[1.0, 0.0]]])
+    truth = np.c_[np.arange(12), np.arange(1, 13)]
+    output = condt.reconstruct(ring).edges
+    with pytest.warns(UserWarning, match=r"the truth names 1 point that repeats an earlier point exactly \(12 = 0\)"):
+        s = condt.score(ring, output, truth)
+    assert (s["fp"], s["fn"]) == (1, 1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        condt.score(ring, output, output)
+

@@ -33,7 +33,6 @@ use condt_io::{
     parse_npy_index_rows, read_points_with, text_lines, utf8_text, IoError, IoErrorKind, PointFile,
     NPY_MAGIC,
 };
-use std::collections::HashMap;
 use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::io::Read;
@@ -429,36 +428,14 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
 /// edge is never matched by its output (a Python researcher's review: a ring exported with its
 /// first point again at its end scored one false positive and one false negative).
 fn note_later_copies(name: &str, points: &[condt::Point], truth: &[[usize; 2]]) {
-    // `+ 0.0` makes -0.0 the same key as 0.0, as the triangulation merges them.
-    let key = |p: condt::Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
-    // Only the truth's ends are keyed (a truth names few of many points): each key's first
-    // position among all the points, found in one pass over them.
-    let mut first: HashMap<(u64, u64), usize> = truth
-        .iter()
-        .flatten()
-        .filter_map(|&i| points.get(i).map(|&p| (key(p), usize::MAX)))
-        .collect();
-    for (i, &p) in points.iter().enumerate() {
-        if let Some(slot) = first.get_mut(&key(p)) {
-            *slot = (*slot).min(i);
-        }
-    }
-    let first_copy = |i: usize| first[&key(points[i])];
-    let mut named: Vec<usize> = truth
-        .iter()
-        .flatten()
-        .copied()
-        .filter(|&i| i < points.len() && first_copy(i) != i)
-        .collect();
-    named.sort_unstable();
-    named.dedup();
+    let named = condt_eval::score::later_copies(points, truth);
     if named.is_empty() {
         return;
     }
     let shown: Vec<String> = named
         .iter()
         .take(3)
-        .map(|&i| format!("{i} = {}", first_copy(i)))
+        .map(|[i, first]| format!("{i} = {first}"))
         .collect();
     let more = if named.len() > 3 { ", ..." } else { "" };
     let (count, verb) = match named.len() {

@@ -214,6 +214,50 @@ pub fn score(
     score_with::<Index>(points, output, truth)
 }
 
+/// The points `truth` names that repeat an earlier point of `points` exactly, each as `[later,
+/// first]`, by increasing `later`: [`score`] compares edges by position, and condt's
+/// reconstruction gives a duplicate's edges to its first copy, so a truth edge at a later copy
+/// is never matched (a ring exported with its first point again at its end scores a false
+/// positive and a false negative). For a caller to tell; ends past the points are left out
+/// (`score` refuses them). `-0.0` is `0.0`, as for the triangulation. Only the truth's ends are
+/// sorted: `O(n log m)` for `m` ends.
+///
+/// ```
+/// use condt::Point;
+/// use condt_eval::score::later_copies;
+/// let ring = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (1.0, 0.0)].map(Point::from);
+/// assert_eq!(later_copies(&ring, &[[0, 1], [1, 2], [2, 3]]), vec![[3, 0]]);
+/// ```
+pub fn later_copies(points: &[Point], truth: &[[usize; 2]]) -> Vec<[usize; 2]> {
+    let key = |p: Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+    let mut ends: Vec<usize> = truth
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|&i| i < points.len())
+        .collect();
+    ends.sort_unstable();
+    ends.dedup();
+    // Each end's key with the first position holding it, found in one pass over the points.
+    let mut firsts: Vec<((u64, u64), usize)> =
+        ends.iter().map(|&i| (key(points[i]), usize::MAX)).collect();
+    firsts.sort_unstable();
+    firsts.dedup();
+    for (i, &p) in points.iter().enumerate() {
+        if let Ok(at) = firsts.binary_search_by(|(k, _)| k.cmp(&key(p))) {
+            firsts[at].1 = firsts[at].1.min(i);
+        }
+    }
+    let first_of = |i: usize| {
+        let at = firsts.binary_search_by(|(k, _)| k.cmp(&key(points[i])));
+        at.map_or(i, |at| firsts[at].1)
+    };
+    ends.into_iter()
+        .map(|i| [i, first_of(i)])
+        .filter(|&[i, first]| first != i)
+        .collect()
+}
+
 /// A nearest-segment search over the truth, on the scaled points.
 trait Nearest {
     /// The search over `segments` of `points`, whose coordinates lie in `[0, size]`.
