@@ -133,6 +133,19 @@ mod tests {
         if !made.is_ok_and(|status| status.success()) {
             return; // no mkfifo here: nothing to test
         }
-        assert_eq!(point_lines(&fifo, &ReadOptions::new(), 1, &[0]), None);
+        // On another thread, so that a regression fails here instead of hanging the test run.
+        let (sender, receiver) = std::sync::mpsc::channel();
+        let path = fifo.clone();
+        std::thread::spawn(move || {
+            let _ = sender.send(point_lines(&path, &ReadOptions::new(), 1, &[0]));
+        });
+        match receiver.recv_timeout(std::time::Duration::from_secs(20)) {
+            Ok(lines) => assert_eq!(lines, None),
+            Err(_) => {
+                // Wake the blocked open with a writer that closes at once, then fail.
+                let _ = std::fs::OpenOptions::new().write(true).open(&fifo);
+                panic!("point_lines waited on a named pipe for a writer");
+            }
+        }
     }
 }
