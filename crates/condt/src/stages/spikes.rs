@@ -120,6 +120,12 @@ impl Ends<'_> {
         (len >= 2).then_some((run, len))
     }
 
+    /// Whether the spikes step would put back a tip of two to five samples on the chord `a b`
+    /// (the tips step leaves such a chord to it).
+    pub(super) fn spike_puts_back(&self, a: VertexId, b: VertexId) -> bool {
+        self.spike_at(a, b).is_some()
+    }
+
     /// The move of the chord `a b` (both ends of degree two), if any (the module's rule).
     fn spike_at(&self, a: VertexId, b: VertexId) -> Option<Spike> {
         let before_a = self.graph.onward(a, b);

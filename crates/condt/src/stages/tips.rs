@@ -18,7 +18,8 @@
 //! end a branch (`Ends::branch`), and no curve is split in two ([`splits`]). **The apex**:
 //! `a b` gives way to `u a` and `u b` (`u` without edges, a Delaunay neighbour of both) when at
 //! each end the chord turns sharply, `u` continues smoothly within [`NEED_RATIO`] of the end's
-//! other edge (a point with no edge shows no spacing of its own), and both ends have branches.
+//! other edge (a point with no edge shows no spacing of its own), both ends have branches, and
+//! the spikes step would not put back a tip of two to five samples there (`u` is one of them).
 //! **The apex beside a loose end**: the loose end `x` whose one edge is a chord to `y` (degree
 //! two) gives it up for `u x`, `u y` and `x q` (`u` without edges, a Delaunay neighbour of both;
 //! `q` a loose end, a Delaunay neighbour of `x`) when `q x u` and the passage at `q` into `x` are
@@ -223,7 +224,10 @@ impl Ends<'_> {
                     && self.bends_into(b, a, u)
                     && mesh.adjacent(u, b)
                     && self.branch(b, a, &[])
-                    && self.branch(a, b, &[]);
+                    && self.branch(a, b, &[])
+                    // A tip of two to five samples is the spikes step's: taking one of them
+                    // here would leave the others cut off.
+                    && !self.spike_puts_back(a, b);
                 if !passes {
                     continue;
                 }
