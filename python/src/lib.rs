@@ -545,8 +545,8 @@ fn read_point_file<'py>(
     }
     if let Some(line) = crs_dropped_at {
         let message = format!(
-            "{shown}:{line}: this crs differs from the first one read; only the first \
-             is kept, and every point is read as given, without conversion"
+            "{shown}:{line}: this crs differs from the one kept (the document's own, else \
+             the first one read), and every point is read as given, without conversion"
         );
         PyErr::warn(
             py,

@@ -1499,13 +1499,14 @@ pub(crate) fn note_skipped_geometries(file: &str, null: usize, empty: usize) {
     }
 }
 
-/// A note when a GeoJSON sequence's record at `line` of `file` gave another `crs` than the one
-/// kept (the first read): it is left out, not carried on, and the points are read as given.
+/// A note when the GeoJSON at `line` of `file` gave another `crs` than the one kept (the
+/// document's own, else the first read; a document's `crs` may follow its features): it is left
+/// out, not carried on, and the points are read as given.
 pub(crate) fn note_dropped_crs(file: &str, line: Option<usize>) {
     if let Some(line) = line {
         note(format_args!(
-            "{file}:{line}: this crs differs from the first one read; only the first is kept, \
-             and every point is read as given, without conversion"
+            "{file}:{line}: this crs differs from the one kept (the document's own, else the \
+             first one read), and every point is read as given, without conversion"
         ));
     }
 }

@@ -931,7 +931,7 @@ fn score_notes_a_dropped_crs() {
     assert!(out.status.success(), "{out:?}");
     let note = String::from_utf8(out.stderr).unwrap();
     assert!(
-        note.contains("sites.geojsonl:2: this crs differs from the first one read"),
+        note.contains("sites.geojsonl:2: this crs differs from the one kept"),
         "{note}"
     );
     let out = condt(&[Path::new("score"), &points, &edges, &edges, Path::new("-q")]);

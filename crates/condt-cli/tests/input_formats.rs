@@ -758,6 +758,43 @@ fn geojson_lines_in_a_json_file_are_told_of_geojsonl() {
     assert_eq!(String::from_utf8(out.stdout).unwrap(), "0 1 2\n");
 }
 
+/// A document whose own `crs` follows its features: the output carries the document's, and
+/// the note on a feature's other crs says so (a GIS user's review: it said the first one read,
+/// the feature's, was kept).
+#[test]
+fn a_document_crs_after_its_features_is_the_one_kept_and_noted_so() {
+    let dir = scratch_dir();
+    let input = dir.path().join("crs_after.geojson");
+    let output = dir.path().join("out.geojson");
+    std::fs::write(
+        &input,
+        "{\"type\":\"FeatureCollection\",\"features\":[\n\
+         {\"type\":\"Feature\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":\"EPSG:32633\"}},\
+         \"properties\":{},\"geometry\":{\"type\":\"MultiPoint\",\"coordinates\":\
+         [[500000,4500000],[500010,4500000],[500020,4500000]]}}],\n\
+         \"crs\":{\"type\":\"name\",\"properties\":{\"name\":\"EPSG:32634\"}}}\n",
+    )
+    .unwrap();
+    let out = Command::new(binary())
+        .arg("reconstruct")
+        .arg(&input)
+        .arg("-o")
+        .arg(&output)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{said}");
+    assert!(
+        said.contains(":2: this crs differs from the one kept (the document's own"),
+        "{said}"
+    );
+    let written = std::fs::read_to_string(&output).unwrap();
+    assert!(
+        written.contains("EPSG:32634") && !written.contains("EPSG:32633"),
+        "{written}"
+    );
+}
+
 /// A GeoJSON sequence whose later record gives another crs: a note on standard error names
 /// the file and the line, and `--quiet` leaves it out; the points are read all the same.
 #[test]
@@ -777,7 +814,7 @@ fn a_later_crs_of_a_geojson_sequence_is_noted() {
         let said = String::from_utf8_lossy(&out.stderr);
         assert!(out.status.success(), "{said}");
         assert!(
-            said.contains("condt: <stdin>:4: this crs differs from the first one read"),
+            said.contains("condt: <stdin>:4: this crs differs from the one kept"),
             "{command}: {said}"
         );
         let out = condt_with_stdin(
