@@ -8,7 +8,7 @@
 
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
-use crate::geometry::{lower_left, Point};
+use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::predicates::distance_order;
@@ -100,16 +100,16 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
 /// # Errors
 /// [`Error::TooManyPoints`] past the kernel's limit ([`crust_fits`] tells beforehand).
 pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
-    // In the stages' frame (samples exact, no ordinary circumcentre overflows) and relative to the
-    // corner of the samples' box: an exact translation leaves these differences as they were, so
-    // the edges do not depend on where the set lies.
+    // In the stages' frame (an exact power-of-two scaling: no ordinary circumcentre overflows).
+    // The samples keep their positions exactly: shifted to a corner, differences such as
+    // `-0.1 - (-4.9)` round, and samples on one line no longer are (an embedded review: the
+    // second triangulation then had edges passing through samples). Only the circumcentres,
+    // which no edge between samples keeps, are rounded.
     let samples: Vec<VertexId> = tri.vertices().collect();
-    let corner = lower_left(samples.iter().map(|&v| tri.vertex_point(v))).unwrap_or_default();
-    let relative = |v: VertexId| difference(tri.vertex_point(v), corner);
-    let mut points: Vec<Point> = samples.iter().map(|&v| relative(v)).collect();
+    let mut points: Vec<Point> = samples.iter().map(|&v| tri.vertex_point(v)).collect();
     let mesh = tri.mesh();
     points.extend(mesh.triangles().filter_map(|t| {
-        let [a, b, c] = mesh.triangle_vertices(t).map(relative);
+        let [a, b, c] = mesh.triangle_vertices(t).map(|v| tri.vertex_point(v));
         circumcentre(a, b, c)
     }));
     let with_centres = triangulate(&points)?;
@@ -206,6 +206,36 @@ mod tests {
         let tri = triangulate(&points).unwrap();
         assert_eq!(tri.crust().unwrap().edges(), vec![[0, 2], [1, 2]]);
         assert_eq!(tri.nn_crust().edges(), vec![[0, 2], [1, 2]]);
+    }
+
+    /// Samples on one line whose differences round (an embedded review: shifted to the box's
+    /// corner, `-0.1 * k - (-4.9)` rounds, the samples left the line, and the second
+    /// triangulation gave edges through samples), and a square turned 45 degrees sampled every
+    /// 0.1 (decimal coordinates, collinear runs): the chain, and one closed curve.
+    #[test]
+    fn crust_of_rounded_collinear_runs_passes_through_no_sample() {
+        let line: Vec<Point> = (0..50)
+            .map(|k| Point::new(0.1 * k as f64, -0.1 * k as f64))
+            .collect();
+        let tri = triangulate(&line).unwrap();
+        let chain: Vec<[usize; 2]> = (0..49).map(|k| [k, k + 1]).collect();
+        assert_eq!(tri.crust().unwrap().edges(), chain);
+        let corners = [(3.0, 0.0), (0.0, 3.0), (-3.0, 0.0), (0.0, -3.0)];
+        let mut diamond = Vec::new();
+        for side in 0..4 {
+            let ((x0, y0), (x1, y1)) = (corners[side], corners[(side + 1) % 4]);
+            for k in 0..30 {
+                let t = k as f64 / 30.0;
+                diamond.push(Point::new(x0 + (x1 - x0) * t, y0 + (y1 - y0) * t));
+            }
+        }
+        let tri = triangulate(&diamond).unwrap();
+        let crust = tri.crust().unwrap();
+        assert!(crust.degrees().iter().all(|&d| d == 2));
+        assert_eq!(
+            crate::curves_from_edges(diamond.len(), &crust.edges()).len(),
+            1
+        );
     }
 
     #[test]
