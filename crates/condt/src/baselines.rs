@@ -12,7 +12,7 @@ use crate::geometry::Point;
 use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::predicates::distance_order;
-use crate::triangulate::{triangulate, Triangulation};
+use crate::triangulate::{triangulate_with, Triangulation};
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
 
@@ -57,7 +57,10 @@ impl Triangulation {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn crust(&self) -> Result<Graph<'_>, Error> {
-        Ok(Graph::new(self, Cow::Owned(crust_edges(self)?)))
+        Ok(Graph::new(
+            self,
+            Cow::Owned(crust_edges(self, cfg!(feature = "parallel"))?),
+        ))
     }
 }
 
@@ -95,11 +98,12 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
     edges
 }
 
-/// [`Triangulation::crust`]'s edges in vertex ids, sorted.
+/// [`Triangulation::crust`]'s edges in vertex ids, sorted; the second triangulation on rayon's
+/// threads only when `parallel` (the same edges).
 ///
 /// # Errors
 /// [`Error::TooManyPoints`] past the kernel's limit ([`crust_fits`] tells beforehand).
-pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
+pub(crate) fn crust_edges(tri: &Triangulation, parallel: bool) -> Result<Vec<Edge>, Error> {
     // In the stages' frame (an exact power-of-two scaling: no ordinary circumcentre overflows).
     // The samples keep their positions exactly: shifted to a corner, differences such as
     // `-0.1 - (-4.9)` round, and samples on one line no longer are (an embedded review: the
@@ -112,7 +116,7 @@ pub(crate) fn crust_edges(tri: &Triangulation) -> Result<Vec<Edge>, Error> {
         let [a, b, c] = mesh.triangle_vertices(t).map(|v| tri.vertex_point(v));
         circumcentre(a, b, c)
     }));
-    let with_centres = triangulate(&points)?;
+    let with_centres = triangulate_with(&points, parallel, None, None)?;
     let num_samples = samples.len();
     let mut edges: Vec<Edge> = with_centres
         .edges()

@@ -549,7 +549,7 @@ impl<'t> Graph<'t> {
             before_local: Cow::Borrowed(local),
             before_repair: Cow::Borrowed(repair),
         };
-        let parallel = crate::threads::parallel_available();
+        let parallel = crate::stages::worth_threads(self.tri.num_points());
         let edges = step
             .run(self.tri, &self.edges, earlier, None, parallel)
             .edges;
@@ -583,7 +583,7 @@ impl Triangulation {
     /// ```
     pub fn proximity_graph(&self, uniformity: Uniformity) -> Result<Graph<'_>, Error> {
         uniformity.check()?;
-        let parallel = crate::threads::parallel_available();
+        let parallel = crate::stages::worth_threads(self.num_points());
         let edges = proximity::proximity_graph(self, uniformity, parallel);
         Ok(Graph::new(self, Cow::Owned(edges)))
     }

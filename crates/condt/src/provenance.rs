@@ -188,7 +188,7 @@ impl Reconstruction {
     /// ```
     pub fn provenance(&self) -> Vec<EdgeStory> {
         let tri = self.triangulation();
-        let parallel = self.params().parallel;
+        let parallel = self.params().parallel && tri.num_points() >= crate::stages::PARALLEL_FROM;
         // Each stage's graph is rebuilt from the final one on its own (walking back through the
         // later stages' records), so the reports and their sorted edge lists are independent
         // pieces of work, made on rayon's threads when `parallel` (the same lists either way).

@@ -136,6 +136,9 @@ pub(crate) fn count(counter: &core::sync::atomic::AtomicUsize, by: usize, up: bo
 /// the system gives), where rayon would panic at first use; every parallel path then runs on the
 /// caller's thread, with the same results. Asked once per process: the first call starts the
 /// global pool as rayon's first use would (with the caller's settings if it built it first).
+/// Called from a thread of a rayon pool (the caller's `install`), it is `true` and starts
+/// nothing: the work runs in that pool. The library asks only for sets large enough to use
+/// threads (65,536 points), so a smaller run starts no pool.
 ///
 /// ```
 /// // With the default features, on a machine that can start threads:
@@ -144,6 +147,9 @@ pub(crate) fn count(counter: &core::sync::atomic::AtomicUsize, by: usize, up: bo
 pub fn parallel_available() -> bool {
     #[cfg(feature = "parallel")]
     {
+        if rayon::current_thread_index().is_some() {
+            return true;
+        }
         static AVAILABLE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
         *AVAILABLE.get_or_init(|| match rayon::ThreadPoolBuilder::new().build_global() {
             Ok(()) => true,

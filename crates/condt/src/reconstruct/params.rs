@@ -272,9 +272,12 @@ impl Params {
     }
 
     /// These parameters with `parallel` off when rayon's threads cannot run
-    /// ([`parallel_available`](crate::parallel_available)): what a run uses and its result reports.
-    pub(crate) fn on_available_threads(self) -> Params {
-        self.with_parallel(self.parallel && crate::threads::parallel_available())
+    /// ([`parallel_available`](crate::parallel_available)): what a run on `n` points uses and its
+    /// result reports. Below [`PARALLEL_FROM`](crate::stages::PARALLEL_FROM) points no step uses
+    /// threads, and the pool is not asked (asking starts it).
+    pub(crate) fn on_available_threads(self, n: usize) -> Params {
+        let available = n < crate::stages::PARALLEL_FROM || crate::threads::parallel_available();
+        self.with_parallel(self.parallel && available)
     }
 
     /// Turns a switchable `stage` ([`Stage::switch`]) on or off: `true` when it has a switch,

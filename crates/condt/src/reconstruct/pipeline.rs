@@ -220,7 +220,7 @@ impl Pipeline {
         inserted: Option<&AtomicUsize>,
     ) -> Result<Pipeline, Error> {
         params.check()?;
-        let params = &params.on_available_threads();
+        let params = &params.on_available_threads(points.len());
         let mut clock = Stopwatch::start();
         // On the stages' worker: their allocations reuse what it freed (`on_worker`).
         let tri = on_worker(params.parallel, points.len(), || {
@@ -243,7 +243,7 @@ impl Pipeline {
         // The parameters it runs with: smoothing off where no pass can run (a triangulation
         // given, a baseline method), as `parallel` is off where no thread can start.
         let params = &params
-            .on_available_threads()
+            .on_available_threads(tri.num_points())
             .with_smooth(params.smooth && may_smooth);
         if let Some((first, second)) = tri.too_close_to_measure() {
             let largest = tri.input_of_largest();
@@ -753,7 +753,7 @@ pub(super) fn first_graph(tri: &Triangulation, params: &Params) -> Vec<Edge> {
         Method::ConDT => proximity::proximity_graph(tri, params.uniformity, params.parallel),
         Method::NnCrust => crate::baselines::nn_crust_edges(tri),
         // The pipeline checked that it fits (`crust_fits`), the one way it fails.
-        Method::Crust => crate::baselines::crust_edges(tri).unwrap_or_default(),
+        Method::Crust => crate::baselines::crust_edges(tri, params.parallel).unwrap_or_default(),
     }
 }
 

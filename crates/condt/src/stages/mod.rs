@@ -546,6 +546,13 @@ where
 /// Fewest points for which stages use rayon: below it, waking the workers costs more than it saves.
 pub(crate) const PARALLEL_FROM: usize = 1 << 16;
 
+/// Whether a step on `n` points runs on rayon's threads: from [`PARALLEL_FROM`] points on,
+/// where rayon can run ([`parallel_available`](crate::parallel_available), asked only then:
+/// asking starts the global pool).
+pub(crate) fn worth_threads(n: usize) -> bool {
+    n >= PARALLEL_FROM && crate::threads::parallel_available()
+}
+
 #[cfg(test)]
 mod table_tests {
     use super::*;

@@ -139,7 +139,9 @@ pub(crate) fn triangulate_with(
     inserted: Option<&AtomicUsize>,
     spent: Option<Triangulation>,
 ) -> Result<Triangulation, Error> {
-    let parallel = parallel && crate::threads::parallel_available();
+    // Smaller sets use no thread either way: the pool is not started for them.
+    let large = points.len() >= halves::SPLIT_MIN.min(PARALLEL_MIN);
+    let parallel = parallel && large && crate::threads::parallel_available();
     triangulate_in(points, parallel, halves::SPLIT_MIN, inserted, spent, None)
 }
 
@@ -515,7 +517,7 @@ impl Triangulation {
     /// ```
     pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
         let frames = scale::choose_frames(points)?;
-        let parallel = crate::threads::parallel_available();
+        let parallel = points.len() >= PARALLEL_MIN && crate::threads::parallel_available();
         Ok(insertion_order(points, &frames, parallel, halves::SPLIT_MIN).0)
     }
 
