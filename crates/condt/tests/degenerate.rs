@@ -372,6 +372,47 @@ fn repeats_past_the_halves_bound_give_the_triangulation_of_the_distinct_points()
     }
 }
 
+/// Repeats do not change a small triangulation either (a triangulator tester's review): a 16 x
+/// 16 grid and two points far off, whose grid shares one cell of the insertion order's grid,
+/// given once to eight times over (up to 2,064 points, and past the 1,024 from which a cell was
+/// ordered as a set of its own), copies interleaved or in blocks: the triangles of the distinct
+/// points, and the same reconstruction. Before, six copies took other diagonals in 196 of 496
+/// triangles.
+#[test]
+fn repeats_of_a_small_cocircular_set_give_the_triangulation_of_the_distinct_points() {
+    let mut distinct: Vec<Point> = (0..256)
+        .map(|i| Point::new((i % 16) as f64, (i / 16) as f64))
+        .collect();
+    distinct.push(Point::new(1e5, 1e5));
+    distinct.push(Point::new(-1e5, 3e5));
+    let sorted = |points: &[Point]| {
+        let tri = triangulate(points).unwrap();
+        let mut triangles: Vec<[usize; 3]> = tri
+            .triangles()
+            .map(|mut t| {
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        triangles.sort_unstable();
+        triangles
+    };
+    let once = sorted(&distinct);
+    let edges = |points: &[Point]| {
+        reconstruct(points, &Params::default())
+            .unwrap()
+            .edges()
+            .collect::<Vec<_>>()
+    };
+    let edges_once = edges(&distinct);
+    for copies in 2..=8 {
+        // In blocks: position i of every block is point i (the first copy is kept).
+        let blocks: Vec<Point> = (0..copies).flat_map(|_| distinct.iter().copied()).collect();
+        assert_eq!(sorted(&blocks), once, "{copies} blocks");
+        assert_eq!(edges(&blocks), edges_once, "{copies} blocks");
+    }
+}
+
 /// Lengths whose rounded squares come out one ulp apart in the wrong order (a reviewer of the
 /// paper's preset found them): Algorithm 2's "shortest edge" is the exactly shortest. Point 0's
 /// squared distances to 1 and 2 differ by 6.4e-18 in truth (1 nearer) and by one ulp the other

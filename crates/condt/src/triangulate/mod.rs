@@ -407,12 +407,40 @@ fn halves_have_triangles(points: &[Point], frames: &scale::Frames, cut: &halves:
     false
 }
 
-/// The spatial insertion order of `points` in one piece (a whole set or a half of one).
+/// The spatial insertion order of `points` built in one piece, decided by its distinct points
+/// alone, each followed by its repeats. The order's grid and its crowded cells count points, so
+/// an order of every copy changed with how often a point repeats, and on a cocircular set so did
+/// the diagonals (a triangulator tester's review: a 16 x 16 grid and two far points, given six
+/// times over, took other diagonals in 196 of its 496 triangles). Repeats end up side by side in
+/// the order (equal points share every cell and sort together), so one scan finds them; a set
+/// without repeats keeps its order.
 fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
     let mut scratch = order::Scratch::default();
     let mut order = alloc::vec![0; points.len()];
     spatial_order_into(points, frames, &mut order, &mut scratch);
-    order
+    let same = |i: u32, j: u32| points[i as usize] == points[j as usize];
+    if !order.windows(2).any(|pair| same(pair[0], pair[1])) {
+        return order;
+    }
+    // Each group of equal points by its smallest position, as the triangulation keeps it.
+    let mut firsts: Vec<u32> = order
+        .chunk_by(|&i, &j| same(i, j))
+        .map(|group| group.iter().copied().min().unwrap_or_default())
+        .collect();
+    firsts.sort_unstable();
+    let distinct: Vec<Point> = firsts.iter().map(|&i| points[i as usize]).collect();
+    let mut distinct_order = alloc::vec![0; distinct.len()];
+    spatial_order_into(&distinct, frames, &mut distinct_order, &mut scratch);
+    let mut groups: Vec<&[u32]> = order.chunk_by(|&i, &j| same(i, j)).collect();
+    groups.sort_unstable_by_key(|group| group.iter().copied().min().unwrap_or_default());
+    let mut repeated = Vec::with_capacity(points.len());
+    for k in distinct_order {
+        let group = groups[k as usize];
+        let first = firsts[k as usize];
+        repeated.push(first);
+        repeated.extend(group.iter().copied().filter(|&i| i != first));
+    }
+    repeated
 }
 
 /// [`spatial_order`] written into `order`, sorting in `scratch`.
