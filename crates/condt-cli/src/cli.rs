@@ -1466,6 +1466,55 @@ fn note_snapped(snapped: Option<(usize, String)>) {
     }
 }
 
+/// How many times a curve of two points must be shorter than the way from either point to any
+/// other for [`note_twins`] to take it for one point given twice: Algorithm 1 already cuts a
+/// second edge 2.75 times (`u`) the first; sixteen is far past what noise makes (at most one such
+/// pair in any case of the three suites, seeds 1 and 2, or set of `../shared/data`), where twins
+/// are tens to thousands of times closer.
+const TWIN_RATIO: f64 = 16.0;
+
+/// A note when three or more curves of two points are pairs of points given twice a little
+/// apart (a shared border exported from both sides, a contour of a grey image's level): each a
+/// curve of its own beside the curve they were meant to be, which the summary alone would not
+/// tell (a GIS user's review: 462 such pairs and "0 unused"). `--snap` merges them.
+fn note_twins(result: &condt::Reconstruction) {
+    // The triangulation's points: moved by smoothing passes, a little, where they ran.
+    let tri = result.triangulation();
+    let length = |a: usize, b: usize| {
+        let (p, q) = (tri.point(a), tri.point(b));
+        (p.x - q.x).hypot(p.y - q.y)
+    };
+    let twins = result
+        .curves()
+        .iter()
+        .filter(|curve| !curve.is_closed() && curve.len() == 2)
+        .filter(|curve| {
+            let ends: Vec<usize> = curve.points().collect();
+            let (a, b) = (ends[0], ends[1]);
+            let gap = length(a, b);
+            let nearest_other = [a, b]
+                .into_iter()
+                .flat_map(|end| tri.neighbors(end).map(move |w| (end, w)))
+                .filter(|&(_, w)| w != a && w != b)
+                .map(|(end, w)| length(end, w))
+                .fold(f64::INFINITY, f64::min);
+            gap > 0.0 && nearest_other >= TWIN_RATIO * gap
+        })
+        .map(|curve| curve.points().next().unwrap_or_default())
+        .collect::<Vec<usize>>();
+    // One pair can be a noisy sample's accident (at most one in any case of the three suites
+    // or set of `../shared/data`); three are a pattern.
+    if let (Some(&first), true) = (twins.first(), twins.len() >= 3) {
+        note(format_args!(
+            "{} of two points that lie {TWIN_RATIO} times nearer each other than any other \
+             point (the first at point {first}): points given twice, a little apart (a shared \
+             border exported from both sides, a grey image's contour)? --snap D merges points \
+             within D",
+            Counted(twins.len(), "curve"),
+        ));
+    }
+}
+
 /// The one rule for merged duplicates, told the same way by both commands.
 fn note_duplicates(points: usize, distinct: usize) {
     let merged = points - distinct;
@@ -1696,6 +1745,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         }
         note_snapped(snapped);
         note_duplicates(count, result.triangulation().num_vertices());
+        note_twins(&result);
         note_format_against_name(args.format, args.output.as_deref());
         // Every panel draws every point: past a million dots a drawing is slow to open.
         let panels = 1 + result.stages().count();
