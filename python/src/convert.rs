@@ -379,9 +379,9 @@ fn check_exact_integers(
     let itemsize: usize = dtype.getattr("itemsize")?.extract()?;
     let refused = |row: usize, value: Bound<'_, PyAny>| {
         PyValueError::new_err(format!(
-            "points row {row} has the integer coordinate {value}, beyond 2^53, which float64 \
-             (condt's coordinates) cannot hold exactly; convert the array to float64 first to \
-             accept the rounding"
+            "points row {row} has the integer coordinate {value}, beyond 2^53, past which \
+             float64 (condt's coordinates) holds only some integers exactly; convert the array \
+             to float64 first to accept the rounding"
         ))
     };
     let elementwise = match kind.as_str() {

@@ -430,8 +430,9 @@ fn read_npy_from(
         let p = points[row];
         let message = if let Float::Int(_) = header.float {
             format!(
-                "row {row}: a coordinate beyond 2^53, which a double (condt's coordinates) \
-                 cannot hold exactly; convert the array to float64 to accept the rounding"
+                "row {row}: a coordinate beyond 2^53, past which a double (condt's \
+                 coordinates) holds only some integers exactly; convert the array to float64 \
+                 to accept the rounding"
             )
         } else {
             format!("row {row}: the point ({}, {}) is not finite", p.x, p.y)
