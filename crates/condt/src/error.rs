@@ -17,6 +17,12 @@ use core::fmt;
 /// // An error in every build, `std` or not.
 /// let boxed: Box<dyn core::error::Error> = Box::new(err);
 /// assert!(boxed.source().is_none());
+/// // A broken mesh is told once: in the message, not again as a source.
+/// use condt::mesh::{Element, Rule, TriangleId, Violation};
+/// let broken = Violation { rule: Rule::TriangleNotCcw, element: Element::Triangle(TriangleId::new(3)) };
+/// let boxed: Box<dyn core::error::Error> = Box::new(Error::InvalidTriangulation(broken));
+/// assert_eq!(boxed.to_string(), broken.to_string());
+/// assert!(boxed.source().is_none());
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq)]
 #[non_exhaustive]
@@ -131,12 +137,7 @@ impl fmt::Display for Error {
 }
 
 // `core::error::Error` (Rust 1.81, under the crate's 1.86): an embedded caller without `std`
-// can box the error or send it on with `?` as well.
-impl core::error::Error for Error {
-    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
-        match self {
-            Error::InvalidTriangulation(violation) => Some(violation),
-            _ => None,
-        }
-    }
-}
+// can box the error or send it on with `?` as well. No `source`: the one error with a cause,
+// `InvalidTriangulation`, says it in its own message (a reporter printing the chain showed
+// the violation twice; an embedded review), and the variant holds it for a caller to match.
+impl core::error::Error for Error {}
