@@ -340,10 +340,18 @@ pub(crate) fn points_array<'py>(
         }
         [0] => converted.call_method1("reshape", ((0, 2),))?,
         _ => {
+            // The shapes other tools hand over (an image user's review): rows and columns from
+            // `np.nonzero`, OpenCV's contours, a point per column.
+            let hint = match shape.as_slice() {
+                [2, _] => "; points by column? pass points.T",
+                [_, 1, 2] => "; OpenCV's contour layout? pass points.reshape(-1, 2)",
+                [_, 3] | [_, 4] => "; pass the two coordinate columns, such as points[:, :2]",
+                _ => "",
+            };
             return Err(PyValueError::new_err(format!(
-                "points must be an array of shape (n, 2); got one of shape {}",
+                "points must be an array of shape (n, 2); got one of shape {}{hint}",
                 shape_text(&shape)
-            )))
+            )));
         }
     };
     let array = converted.cast_into::<PyArray2<f64>>()?;

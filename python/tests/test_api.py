@@ -276,6 +276,18 @@ def test_a_wrong_shape_is_a_value_error(shape):
         condt.triangulate(np.zeros(shape))
 
 
+def test_shapes_other_tools_hand_over_are_named_with_the_fix():
+    """An image user's review: np.nonzero's (2, n), OpenCV's (n, 1, 2) contours and (n, 3)
+    points got the bare shape; the message now says how to pass them."""
+    for shape, hint in (
+        ((2, 64), "points.T"),
+        ((64, 1, 2), "points.reshape(-1, 2)"),
+        ((64, 3), "points[:, :2]"),
+    ):
+        with pytest.raises(ValueError, match=re.escape(hint)):
+            condt.reconstruct(np.zeros(shape))
+
+
 def test_rows_held_as_objects_are_named_with_the_shape_they_need():
     # A user review: numpy's "setting an array element with a sequence" named neither.
     for row in ([0, 0], np.zeros(2)):
