@@ -409,8 +409,8 @@ edges as a NumPy array of shape (m, 2), uint32 when every point number fits, int
 standard output and for a name without an extension, such as /dev/null), `svg` (.svg: the points
 and curves; with --stages the Delaunay triangulation and the graph after every stage that ran,
 side by side; a panel is shaped like the points' bounding box, from 1:4 to 4:1; y grows upwards,
-as in a plot, so image rows, which count down, show upside down), `geojson` (.geojson: one
-LineString per curve, in the order of the txt lines, on the input's coordinates; a GeoJSON
+as in a plot, so image rows, which count down, show upside down), `geojson` (.geojson or .json:
+one LineString per curve, in the order of the txt lines, on the input's coordinates; a GeoJSON
 input's `crs` member is carried on, a GeoJSON sequence's first, or --crs names one), `html`
 (.html: a self-contained page to explore every stage: layers, pan and zoom, and a click on a
 point or an edge tells why it was kept or dropped). A summary goes to standard error: points,
