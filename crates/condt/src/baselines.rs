@@ -8,7 +8,7 @@
 
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
-use crate::geometry::Point;
+use crate::geometry::{lower_left, Point};
 use crate::graph::Graph;
 use crate::mesh::VertexId;
 use crate::predicates::distance_order;
@@ -104,17 +104,31 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
 /// # Errors
 /// [`Error::TooManyPoints`] past the kernel's limit ([`crust_fits`] tells beforehand).
 pub(crate) fn crust_edges(tri: &Triangulation, parallel: bool) -> Result<Vec<Edge>, Error> {
-    // In the stages' frame (an exact power-of-two scaling: no ordinary circumcentre overflows).
-    // The samples keep their positions exactly: shifted to a corner, differences such as
-    // `-0.1 - (-4.9)` round, and samples on one line no longer are (an embedded review: the
-    // second triangulation then had edges passing through samples). Only the circumcentres,
-    // which no edge between samples keeps, are rounded.
+    // In the stages' frame (an exact power-of-two scaling: no ordinary circumcentre overflows),
+    // relative to the corner of the samples' box: an exact translation leaves these differences
+    // as they were, so the edges do not depend on where the set lies. But the differences round
+    // (`-0.1 - (-4.9)`), and samples on one line may no longer be (an embedded review: the second
+    // triangulation had edges through samples). So where the samples' triangulation in that
+    // frame is not theirs, they stay where they are and only the circumcentres, computed from
+    // the corner and added back, round (then the edges can depend on where the set lies).
     let samples: Vec<VertexId> = tri.vertices().collect();
-    let mut points: Vec<Point> = samples.iter().map(|&v| tri.vertex_point(v)).collect();
+    let corner = lower_left(samples.iter().map(|&v| tri.vertex_point(v))).unwrap_or_default();
+    let relative = |v: VertexId| difference(tri.vertex_point(v), corner);
+    let moved: Vec<Point> = samples.iter().map(|&v| relative(v)).collect();
+    // The samples, and what takes a centre from the corner's frame into theirs.
+    let (mut points, back) =
+        if same_triangles(tri, &triangulate_with(&moved, parallel, None, None)?) {
+            (moved, Point::new(0.0, 0.0))
+        } else {
+            let own = samples.iter().map(|&v| tri.vertex_point(v)).collect();
+            (own, corner)
+        };
     let mesh = tri.mesh();
     points.extend(mesh.triangles().filter_map(|t| {
-        let [a, b, c] = mesh.triangle_vertices(t).map(|v| tri.vertex_point(v));
-        circumcentre(a, b, c)
+        let [a, b, c] = mesh.triangle_vertices(t).map(relative);
+        let centre = circumcentre(a, b, c)?;
+        let placed = Point::new(centre.x + back.x, centre.y + back.y);
+        (placed.x.is_finite() && placed.y.is_finite()).then_some(placed)
     }));
     let with_centres = triangulate_with(&points, parallel, None, None)?;
     let num_samples = samples.len();
@@ -140,6 +154,25 @@ pub(crate) fn crust_fits(tri: &Triangulation) -> Result<(), Error> {
 
 fn difference(a: Point, b: Point) -> Point {
     Point::new(a.x - b.x, a.y - b.y)
+}
+
+/// Whether `moved` (the vertices of `tri` in id order, moved) has the triangles of `tri`.
+fn same_triangles(tri: &Triangulation, moved: &Triangulation) -> bool {
+    let sorted = |triangles: &mut dyn Iterator<Item = [usize; 3]>| {
+        let mut list: Vec<[usize; 3]> = triangles
+            .map(|mut t| {
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        list.sort_unstable();
+        list
+    };
+    let mesh = tri.mesh();
+    let mut own = mesh
+        .triangles()
+        .map(|t| mesh.triangle_vertices(t).map(|v| v.index()));
+    sorted(&mut own) == sorted(&mut moved.triangles())
 }
 
 fn dot(a: Point, b: Point) -> f64 {

@@ -93,7 +93,6 @@ impl Point {
 }
 
 /// The lower left corner of the bounding box of `points`, `None` for no point.
-#[cfg(test)]
 pub(crate) fn lower_left(points: impl Iterator<Item = Point>) -> Option<Point> {
     points.reduce(|c, p| Point::new(c.x.min(p.x), c.y.min(p.y)))
 }
