@@ -100,15 +100,17 @@ impl Flow {
 /// lie within five hops of an owned end of an edge it removes, and their edges are read; its ends'
 /// third neighbours one more (a third route, read up to five points, decides only where it
 /// reaches the other end within them: a path the tile finds is one of the whole set's;
-/// [`_step_kept`]).
+/// [`_step_kept`]). A tip's apex move also reads the spikes step's test on its chord, whose
+/// ends are one hop from the apex: nineteen, for the tips and for the tip candidates that rule 4
+/// and the clumps read.
 const LATER_STAGES: [(Stage, usize); 11] = [
-    (Stage::LocalOutliers, 12),
-    (Stage::Clumps, 12),
+    (Stage::LocalOutliers, 19),
+    (Stage::Clumps, 19),
     (Stage::GivenBack, 1),
     (Stage::Gaps, 6),
     (Stage::Junctions, 16),
     (Stage::Crossings, 8),
-    (Stage::Tips, 8),
+    (Stage::Tips, 19),
     (Stage::Spikes, 18),
     (Stage::Hooks, 8),
     (Stage::Tails, 9),

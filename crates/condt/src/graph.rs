@@ -420,7 +420,10 @@ impl<'t> Graph<'t> {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn repair_tips(&self) -> Graph<'t> {
-        self.step(Step::RepairTips).0
+        self.step(Step::RepairTips {
+            spikes_follow: true,
+        })
+        .0
     }
 
     /// Puts back tips of several samples ([`Params::spikes`](crate::Params::spikes)): an edge

@@ -260,7 +260,9 @@ impl Params {
             self.close_gaps.then_some(Step::CloseGaps),
             self.junctions.then_some(Step::JoinJunctions),
             self.crossings.then_some(Step::RestoreCrossings),
-            self.tips.then_some(Step::RepairTips),
+            self.tips.then_some(Step::RepairTips {
+                spikes_follow: self.spikes,
+            }),
             self.spikes.then_some(Step::RepairSpikes),
             self.hooks.then_some(Step::Unhook),
             self.tails.then_some(Step::CutTails),

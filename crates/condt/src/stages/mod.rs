@@ -306,7 +306,11 @@ pub(crate) enum Step {
     CloseGaps,
     JoinJunctions,
     RestoreCrossings,
-    RepairTips,
+    /// The tips step; `spikes_follow` when the spikes step runs after it (the apex form leaves
+    /// it the tips of two to five samples).
+    RepairTips {
+        spikes_follow: bool,
+    },
     RepairSpikes,
     Unhook,
     CutTails,
@@ -340,7 +344,7 @@ impl Step {
             Step::CloseGaps => Stage::Gaps,
             Step::JoinJunctions => Stage::Junctions,
             Step::RestoreCrossings => Stage::Crossings,
-            Step::RepairTips => Stage::Tips,
+            Step::RepairTips { .. } => Stage::Tips,
             Step::RepairSpikes => Stage::Spikes,
             Step::Unhook => Stage::Hooks,
             Step::CutTails => Stage::Tails,
@@ -412,7 +416,11 @@ impl Step {
             Step::RestoreCrossings => {
                 with_ends(tri, edges, graph, parallel, crossings::restore_crossings)
             }
-            Step::RepairTips => with_ends(tri, edges, graph, parallel, tips::repair_tips),
+            Step::RepairTips { spikes_follow } => {
+                with_ends(tri, edges, graph, parallel, |ends, parallel| {
+                    tips::repair_tips(ends, parallel, spikes_follow)
+                })
+            }
             Step::RepairSpikes => with_ends(tri, edges, graph, parallel, spikes::repair_spikes),
             Step::Unhook => with_ends(tri, edges, graph, parallel, hooks::unhook),
             Step::CutTails => with_ends(tri, edges, graph, parallel, tails::cut_tails),

@@ -198,7 +198,7 @@ impl Ends<'_> {
     }
 
     /// The apex move the point without edges `u` takes part in, if any (the module's rule).
-    fn apex_at(&self, u: VertexId) -> Option<Found> {
+    fn apex_at(&self, u: VertexId, spikes_follow: bool) -> Option<Found> {
         let mesh = self.tri.mesh();
         let mut found = None;
         for a in mesh.neighbors(u) {
@@ -227,7 +227,7 @@ impl Ends<'_> {
                     && self.branch(a, b, &[])
                     // A tip of two to five samples is the spikes step's: taking one of them
                     // here would leave the others cut off.
-                    && !self.spike_puts_back(a, b);
+                    && !(spikes_follow && self.spike_puts_back(a, b));
                 if !passes {
                     continue;
                 }
@@ -297,17 +297,17 @@ impl Ends<'_> {
 
 /// Replaces chords at tips in the graph of `ends` ([`super::with_ends`]): the chords, and each
 /// move's edges by increasing move.
-pub(crate) fn repair_tips(ends: &Ends<'_>, parallel: bool) -> Replaced {
-    settle(ends.tri.num_points(), found(ends, parallel)).unwrap_or_default()
+pub(crate) fn repair_tips(ends: &Ends<'_>, parallel: bool, spikes_follow: bool) -> Replaced {
+    settle(ends.tri.num_points(), found(ends, parallel, spikes_follow)).unwrap_or_default()
 }
 
 /// What every loose end and every point without edges of the graph of `ends` found, in id order.
-fn found(ends: &Ends, parallel: bool) -> Vec<Found> {
+fn found(ends: &Ends, parallel: bool, spikes_follow: bool) -> Vec<Found> {
     // One pass: a loose end may start a move with another, a point without edges an apex move.
     found_in_order(ends.tri.num_points(), parallel, |i| {
         let v = VertexId::new(i as u32);
         match ends.graph.degree(v) {
-            0 => ends.apex_at(v),
+            0 => ends.apex_at(v, spikes_follow),
             1 => ends.tip_at(v),
             _ => None,
         }
@@ -318,7 +318,8 @@ fn found(ends: &Ends, parallel: bool) -> Vec<Found> {
 /// them. Rule 4 of the local outlier removal and the clump stage keep the pieces they join to a
 /// component that stays, as they keep those gap closing joins (`local_outliers::would_join`).
 pub(crate) fn tip_joins(ends: &Ends, parallel: bool) -> Vec<Edge> {
-    settle(ends.tri.num_points(), found(ends, parallel)).map_or_else(Vec::new, |(_, joins)| joins)
+    settle(ends.tri.num_points(), found(ends, parallel, true))
+        .map_or_else(Vec::new, |(_, joins)| joins)
 }
 
 /// The chords to replace and the edges replacing them, from what every loose end and apex found
@@ -377,7 +378,7 @@ pub(crate) fn candidates(
             continue;
         }
         match ends.graph.degree(v) {
-            0 => match ends.apex_at(v) {
+            0 => match ends.apex_at(v, true) {
                 Some(Found::One(m)) => out.push(match m.beside {
                     Some(q) => Candidate::ApexBeside([m.q, m.x, m.y, q]),
                     None => Candidate::Apex([m.q, m.x, m.y]),
@@ -533,9 +534,11 @@ mod tests {
             .map(|&[a, b]| ordered(tri.input_to_vertex()[a], tri.input_to_vertex()[b]))
             .collect();
         let [one, many] = [false, true].map(|parallel| {
-            let mut out = crate::stages::with_ends(&tri, &ids, None, parallel, repair_tips)
-                .edges
-                .unwrap();
+            let mut out = crate::stages::with_ends(&tri, &ids, None, parallel, |e, p| {
+                repair_tips(e, p, true)
+            })
+            .edges
+            .unwrap();
             out.sort_unstable();
             out
         });
