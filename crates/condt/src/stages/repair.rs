@@ -27,7 +27,11 @@
 //!    (`θ > 2π/3`) or with both edges needed (if bent, a corner whose apex has a third edge),
 //!    ranked by: straight enough (a needy stray point beside a curve must not bend it), the number
 //!    of needed edges, `θ` over the path length through `v` (Algorithm 2's preference for short,
-//!    straight edges), smaller ids.
+//!    straight edges), smaller ids. A pair that reaches an *ear* (a triangle `v`-`u`-`w` whose `u`
+//!    and `w` have no other edges) by the edge it does not need, leaving out the needed one, is
+//!    no candidate unless it runs through `v` above 150°: both stay on the curve either way, the
+//!    needed edge gives the shorter path, and a turn of over 30° is no sampled curve's passage
+//!    (a 4-connected staircase's end: `needs::passes_an_ear_by_its_far_side`).
 //! 3. **Score.** Otherwise Algorithm 2's own choice.
 //! 4. **Consent.** An edge between two vertices of degree >= 3 survives only if both keep it (as
 //!    [`Repair::Mutual`]); an edge to a vertex of degree <= 2, if `v` keeps it.

@@ -64,6 +64,9 @@ fn needed_pair(
     let mut best: Option<((bool, u32, f64), [VertexId; 2])> = None;
     for (i, &a) in around.iter().enumerate() {
         for &b in &around[i + 1..] {
+            if passes_an_ear_by_its_far_side(tri, v, a, b, around, branches, needed) {
+                continue;
+            }
             let count = u32::from(needed(a)) + u32::from(needed(b));
             // A pair with one needed edge must be straight: its angle only if so.
             let theta = match count {
@@ -94,6 +97,43 @@ fn needed_pair(
         }
     }
     best.map(|(_, pair)| pair)
+}
+
+/// The other end of the ear `v`-`a`-`b` hanging on `v` at its neighbour `a`, if any: `a` and `b`
+/// have two edges or fewer, those of `a` lead to `v` and `b`, so those of `b` to `a` and `v`.
+fn ear(v: VertexId, a: VertexId, around: &[VertexId], branches: &Branches) -> Option<VertexId> {
+    if branches.is_branch(a) {
+        return None;
+    }
+    let mut onward = branches.onward(a, v);
+    let b = onward.next()?;
+    (onward.next().is_none() && !branches.is_branch(b) && around.contains(&b)).then_some(b)
+}
+
+/// Whether the pair `a`, `b` of `v` reaches an ear by the edge `v` does not need and leaves out
+/// the one it needs, through `v` at no more than [`STRAIGHT_ANGLE`] (step 2 of [`super`]). An
+/// ear `v`-`u`-`w` is a triangle whose `u` and `w` have no other edges: whichever edge to `v`
+/// stays, both stay on the curve, as a path ending at `u` or at `w`, so their needs are one, and
+/// the needed (shorter) edge meets it with the shorter path (Algorithm 1's preference); `u`'s
+/// edge, beyond [`NEED_RATIO`], counts for nothing. Such a pair wins only by being straight
+/// enough (a needy stray point beside a curve must not bend it), but the ear's `w` is no stray,
+/// and a pair that turns by over 30° is no passage of a sampled curve through `v` (step 1's
+/// bound): a 4-connected staircase's end, `u` its last pixel and `w` the corner, turns by 45°.
+/// Where both edges are needed nothing is decided here: an apex and the sample beside it look
+/// alike once the edge from that sample on is missing (gap closing restores it), and a straight
+/// passage is left to the ranking (a noisy wiggle whose edge onward is missing).
+fn passes_an_ear_by_its_far_side(
+    tri: &Triangulation,
+    v: VertexId,
+    a: VertexId,
+    b: VertexId,
+    around: &[VertexId],
+    branches: &Branches,
+    needed: impl Fn(VertexId) -> bool,
+) -> bool {
+    [(a, b), (b, a)].into_iter().any(|(u, other)| {
+        !needed(u) && ear(v, u, around, branches).is_some_and(|w| w != other && needed(w))
+    }) && angle_above(tri, v, a, b, STRAIGHT_ANGLE, STRAIGHT_COS2).is_none()
 }
 
 /// Whether the neighbour `w` of `v` turns back: it has edges besides `vw`, and every one of them
@@ -294,6 +334,29 @@ mod tests {
         let r = crate::reconstruct(&pts, &crate::Params::default())?;
         assert!(r.edges().eq(path));
         assert_eq!(r.curves().len(), 1);
+        Ok(())
+    }
+
+    #[test]
+    fn an_ear_at_a_staircase_end_keeps_its_shorter_edge() -> Result<(), Error> {
+        // A 4-connected staircase: each end hangs on the first corner as an ear, 0-1-2 and
+        // 4-5-6, whose tips 0 and 6 offer their second edge (1.41, within u = 2.75 of 1) to 2
+        // and 4. At 2, 0-2 is beyond 1.3 times 2's second shortest edge (not needed) and 1-2
+        // is needed; the pair 0-2-3 (135 degrees, straight enough) used to beat the corner
+        // 1-2-3, leaving 1 an end (1-0-2-3). 0 and 1 stay on either way, 1-2 gives the shorter
+        // path, and 0-2-3 turns by 45 degrees, more than a sampled curve's passage.
+        let pts = [(0, 0), (1, 0), (1, 1), (2, 1), (2, 2), (3, 2), (3, 3)]
+            .map(|(x, y)| Point::new(f64::from(x), f64::from(y)));
+        let tri = triangulate(&pts)?;
+        let proximity = tri.proximity_graph(Uniformity::default())?;
+        assert_eq!(
+            proximity.edges(),
+            [[0, 1], [0, 2], [1, 2], [2, 3], [3, 4], [4, 5], [4, 6], [5, 6]]
+        );
+        let path = [[0, 1], [1, 2], [2, 3], [3, 4], [4, 5], [5, 6]];
+        assert_eq!(proximity.repair(Repair::Needs).edges(), path);
+        let r = crate::reconstruct(&pts, &crate::Params::default())?;
+        assert!(r.edges().eq(path));
         Ok(())
     }
 
