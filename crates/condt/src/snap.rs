@@ -82,7 +82,7 @@ pub fn snap(points: &mut [Point], distance: f64) -> Result<usize, Error> {
                     None => true,
                     Some((best, k)) => gap < best || (gap == best && j < k),
                 };
-                if gap <= distance + rounding(p, q, distance) && nearer {
+                if within(gap, distance, rounding(p, q, distance)) && nearer {
                     nearest = Some((gap, j));
                 }
                 j = next[j as usize];
@@ -120,7 +120,16 @@ const NONE: u32 = u32::MAX;
 /// so that the grid still finds every such pair in neighbouring cells.
 fn rounding(p: Point, q: Point, distance: f64) -> f64 {
     let largest = p.x.abs().max(p.y.abs()).max(q.x.abs()).max(q.y.abs());
-    (2.0 * f64::EPSILON * (largest + distance)).min(distance / 4.0)
+    // Each term alone: their sum could overflow (the diff review: near f64::MAX the slack
+    // became a quarter of `distance`).
+    (2.0 * f64::EPSILON * largest + 2.0 * f64::EPSILON * distance).min(distance / 4.0)
+}
+
+/// Whether `gap` is at most `distance` give or take `slack`; where their sum overflows, at most
+/// `distance` (a gap beyond the doubles is never within).
+fn within(gap: f64, distance: f64, slack: f64) -> bool {
+    let limit = distance + slack;
+    gap <= if limit.is_finite() { limit } else { distance }
 }
 
 /// The distance from `p` to `q`, without overflow where its square would leave the range.
@@ -271,7 +280,7 @@ mod tests {
             let nearest = stays
                 .iter()
                 .map(|&j| (apart(out[i], out[j]), j, rounding(out[i], out[j], distance)))
-                .filter(|&(gap, _, slack)| gap <= distance + slack)
+                .filter(|&(gap, _, slack)| within(gap, distance, slack))
                 .map(|(gap, j, _)| (gap, j))
                 .min_by(|a, b| a.partial_cmp(b).expect("finite"));
             match nearest {
@@ -350,7 +359,7 @@ mod tests {
             assert_eq!(moved, changed);
             for (p, q) in points.iter().zip(&snapped) {
                 assert!(
-                    apart(*p, *q) <= distance + rounding(*p, *q, distance),
+                    within(apart(*p, *q), distance, rounding(*p, *q, distance)),
                     "a point moves at most the distance"
                 );
             }

@@ -374,9 +374,9 @@ fn repeats_past_the_halves_bound_give_the_triangulation_of_the_distinct_points()
 
 /// Repeats do not change a small triangulation either (a triangulator tester's review): a 16 x
 /// 16 grid and two points far off, whose grid shares one cell of the insertion order's grid,
-/// given once to eight times over (up to 2,064 points, and past the 1,024 from which a cell was
-/// ordered as a set of its own), copies interleaved or in blocks: the triangles of the distinct
-/// points, and the same reconstruction. Before, six copies took other diagonals in 196 of 496
+/// given once to eight times over in blocks (up to 2,064 points, and past the 1,024 from which a
+/// cell was ordered as a set of its own): the triangles of the distinct points, and the same
+/// reconstruction. Before, six copies took other diagonals in 196 of 496
 /// triangles.
 #[test]
 fn repeats_of_a_small_cocircular_set_give_the_triangulation_of_the_distinct_points() {

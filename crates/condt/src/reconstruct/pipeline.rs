@@ -241,7 +241,8 @@ impl Pipeline {
     ) -> Result<Pipeline, Error> {
         params.check()?;
         // The parameters it runs with: smoothing off where no pass can run (a triangulation
-        // given, a baseline method), as `parallel` is off where no thread can start.
+        // given, a baseline method), as `parallel` is off where no thread can start (asked only
+        // of sets large enough to use threads).
         let params = &params
             .on_available_threads(tri.num_points())
             .with_smooth(params.smooth && may_smooth);

@@ -122,7 +122,8 @@ pub struct StageReport<'r> {
 
 impl Reconstruction {
     /// The parameters it ran with: those given, but for what could not run (smoothing passes
-    /// on a triangulation given or with a baseline method, threads where none can start).
+    /// on a triangulation given or with a baseline method, threads where none can start on a
+    /// set of 65,536 points or more; below that no step uses threads and none is asked for).
     ///
     /// ```
     /// use condt::{reconstruct, reconstruct_triangulation, triangulate, Method, Params, Point};

@@ -422,21 +422,19 @@ fn spatial_order(points: &[Point], frames: &scale::Frames) -> Vec<u32> {
     if !order.windows(2).any(|pair| same(pair[0], pair[1])) {
         return order;
     }
-    // Each group of equal points by its smallest position, as the triangulation keeps it.
-    let mut firsts: Vec<u32> = order
+    // Each group of equal points by its smallest position, as the triangulation keeps it
+    // (keyed once: a key read at every comparison costs a group's length each time).
+    let mut groups: Vec<(u32, &[u32])> = order
         .chunk_by(|&i, &j| same(i, j))
-        .map(|group| group.iter().copied().min().unwrap_or_default())
+        .map(|group| (group.iter().copied().min().unwrap_or_default(), group))
         .collect();
-    firsts.sort_unstable();
-    let distinct: Vec<Point> = firsts.iter().map(|&i| points[i as usize]).collect();
+    groups.sort_unstable_by_key(|&(first, _)| first);
+    let distinct: Vec<Point> = groups.iter().map(|&(i, _)| points[i as usize]).collect();
     let mut distinct_order = alloc::vec![0; distinct.len()];
     spatial_order_into(&distinct, frames, &mut distinct_order, &mut scratch);
-    let mut groups: Vec<&[u32]> = order.chunk_by(|&i, &j| same(i, j)).collect();
-    groups.sort_unstable_by_key(|group| group.iter().copied().min().unwrap_or_default());
     let mut repeated = Vec::with_capacity(points.len());
     for k in distinct_order {
-        let group = groups[k as usize];
-        let first = firsts[k as usize];
+        let (first, group) = groups[k as usize];
         repeated.push(first);
         repeated.extend(group.iter().copied().filter(|&i| i != first));
     }

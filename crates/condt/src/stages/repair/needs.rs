@@ -351,7 +351,16 @@ mod tests {
         let proximity = tri.proximity_graph(Uniformity::default())?;
         assert_eq!(
             proximity.edges(),
-            [[0, 1], [0, 2], [1, 2], [2, 3], [3, 4], [4, 5], [4, 6], [5, 6]]
+            [
+                [0, 1],
+                [0, 2],
+                [1, 2],
+                [2, 3],
+                [3, 4],
+                [4, 5],
+                [4, 6],
+                [5, 6]
+            ]
         );
         let path = [[0, 1], [1, 2], [2, 3], [3, 4], [4, 5], [5, 6]];
         assert_eq!(proximity.repair(Repair::Needs).edges(), path);
