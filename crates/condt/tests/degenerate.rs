@@ -335,6 +335,21 @@ fn a_triangle_range_past_the_end_panics_rather_than_wrap_round() {
     }
 }
 
+/// The triangles of `points`' triangulation, each and the list sorted: comparable whatever the
+/// insertion order.
+fn sorted_triangles(points: &[Point]) -> Vec<[usize; 3]> {
+    let tri = triangulate(points).unwrap();
+    let mut triangles: Vec<[usize; 3]> = tri
+        .triangles()
+        .map(|mut t| {
+            t.sort_unstable();
+            t
+        })
+        .collect();
+    triangles.sort_unstable();
+    triangles
+}
+
 /// Repeats do not change a triangulation: a 4 x 4 grid (cocircular squares, where the two-halves
 /// construction and the one-piece one may choose other diagonals) given 4,097 times over, past the
 /// 65,536 points from which a set is built in two halves, gives the grid's own triangles and
@@ -346,18 +361,7 @@ fn repeats_past_the_halves_bound_give_the_triangulation_of_the_distinct_points()
             .map(|i| Point::new((i % 4) as f64, (i / 4 % 4) as f64))
             .collect()
     };
-    let sorted = |points: &[Point]| {
-        let tri = triangulate(points).unwrap();
-        let mut triangles: Vec<[usize; 3]> = tri
-            .triangles()
-            .map(|mut t| {
-                t.sort_unstable();
-                t
-            })
-            .collect();
-        triangles.sort_unstable();
-        triangles
-    };
+    let sorted = sorted_triangles;
     let (once, repeated) = (grid(1), grid(4097));
     assert!(repeated.len() >= 1 << 16);
     assert_eq!(sorted(&repeated), sorted(&once));
@@ -385,18 +389,7 @@ fn repeats_of_a_small_cocircular_set_give_the_triangulation_of_the_distinct_poin
         .collect();
     distinct.push(Point::new(1e5, 1e5));
     distinct.push(Point::new(-1e5, 3e5));
-    let sorted = |points: &[Point]| {
-        let tri = triangulate(points).unwrap();
-        let mut triangles: Vec<[usize; 3]> = tri
-            .triangles()
-            .map(|mut t| {
-                t.sort_unstable();
-                t
-            })
-            .collect();
-        triangles.sort_unstable();
-        triangles
-    };
+    let sorted = sorted_triangles;
     let once = sorted(&distinct);
     let edges = |points: &[Point]| {
         reconstruct(points, &Params::default())
