@@ -398,7 +398,8 @@ impl<'t> Graph<'t> {
     /// degree two gives way to edges to the loose ends beside it, or to a point without edges
     /// beside it that continues both sides evenly; an edge that is a loose end's only one gives
     /// way to the tip's sample and the loose end that end's side runs straight on to (its rule:
-    /// `src/stages/tips.rs`).
+    /// `src/stages/tips.rs`). As in the default pipeline, a tip of two to five samples without
+    /// edges is left to [`Graph::repair_spikes`], to be called next.
     ///
     /// ```
     /// use condt::{triangulate, Point};
