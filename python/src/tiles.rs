@@ -751,6 +751,10 @@ type RuleWithJoins = fn(
 /// read (those stages' own rounds are `_step_kept`'s, under their keys).
 const END_JOINS: &str = "end-joins";
 
+/// The round of choices for the tips' candidate moves that rule 4 and the clumps read (the
+/// library's stages read them as if the spikes step followed, whatever the run's parameters).
+const TIP_JOINS: &str = "tip-joins";
+
 /// The rows a driver gathered for a rule with joins: gap choices, tip candidates, and the hooks'
 /// and junctions' joins in one list.
 type JoinRows<'py> = (
@@ -853,7 +857,8 @@ fn rows_of<const W: usize>(
 /// driver's `given` edges (as for [`_step_kept`]): for `"gaps"` each loose end's gap choice
 /// ([`condt::tiled::gap_choices`], an `(m, 10)` int64 array: positions of the whole set, the
 /// kind and the walk's length as they are), for `"tips"` the tips' candidate moves
-/// ([`condt::tiled::tip_candidates`], an `(m, 4)` array of positions), for `"end-joins"`
+/// ([`condt::tiled::tip_candidates`], an `(m, 4)` array of positions), for `"tip-joins"` those
+/// that rule 4 and the clumps read ([`TIP_JOINS`]), for `"end-joins"`
 /// ([`END_JOINS`]) the edges the hooks stage's moves would add, owned by their smaller end
 /// ([`condt::tiled::hook_joins`]), then those the junctions stage would join, owned by their loose
 /// end ([`condt::tiled::junction_joins`]): an `(m, 2)` array of positions.
@@ -872,7 +877,10 @@ pub(crate) fn _choices_kept<'py>(
     // hook's move or a junction would join.
     let joined = has(Stage::LocalOutliers) || has(Stage::Clumps);
     let gaps = step == Stage::Gaps.key() && (has(Stage::Gaps) || joined);
-    let tips = step == Stage::Tips.key() && (has(Stage::Tips) || joined);
+    let tip_joins = step == TIP_JOINS && joined;
+    let tips = (step == Stage::Tips.key() && has(Stage::Tips)) || tip_joins;
+    // The tips stage's apex form leaves tips to the spikes step where that runs.
+    let spikes_follow = tip_joins || has(Stage::Spikes);
     let end_joins = step == END_JOINS && joined;
     if !gaps && !tips && !end_joins {
         return Err(PyValueError::new_err(format!(
@@ -897,7 +905,7 @@ pub(crate) fn _choices_kept<'py>(
                     .flat_map(|row| (0..GAP_ROW).map(move |k| at(row, k)))
                     .collect()
             } else if tips {
-                let rows = condt::tiled::tip_candidates(&graph, owned);
+                let rows = condt::tiled::tip_candidates(&graph, spikes_follow, owned);
                 rows.iter().flat_map(|row| row.map(position)).collect()
             } else {
                 let mut rows = condt::tiled::hook_joins(&graph, owned);

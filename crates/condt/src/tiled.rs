@@ -269,7 +269,7 @@ fn turn_read(tests: u8, previous: VertexId, next: VertexId) -> Orientation {
 /// let tests = tiled::clump_tests(&graph, &labels, |_| true)?;
 /// assert!(tiled::gathered_clumps_found(pts.len(), &edges, &tests)?);
 /// let choices = tiled::gap_choices(&graph, |_| true);
-/// let tips = tiled::tip_candidates(&graph, |_| true);
+/// let tips = tiled::tip_candidates(&graph, true, |_| true);
 /// let mut joins = tiled::hook_joins(&graph, |_| true);
 /// joins.extend(tiled::junction_joins(&graph, |_| true));
 /// let kept = tiled::remove_gathered_clumps(pts.len(), &edges, &tests, &choices, &tips, &joins)?;
@@ -402,8 +402,10 @@ impl GatheredJoins {
 /// without edges `u` onto the chord `a b`, `[u, y, x, q]` for its move as the apex beside the
 /// loose end `x` (the chord `x y` given up for `u x`, `u y` and `x q`; told from a loose end's
 /// row by `u`, which has no edge), `[u, u, u, u]` when `u` has several. A point's rows come
-/// together. They are the whole set's at every point whose Delaunay neighbourhood (eight
-/// hops) and graph the tile holds.
+/// together. `spikes_follow` as the run's spikes step runs after the tips (the apex form then
+/// leaves it the tips of two to five samples; `true` for the moves rule 4 and the clumps read,
+/// as the one-machine stages do). They are the whole set's at every point whose Delaunay
+/// neighbourhood (eight hops, nineteen when `spikes_follow`) and graph the tile holds.
 ///
 /// ```
 /// use condt::{tiled, triangulate, Point};
@@ -419,7 +421,7 @@ impl GatheredJoins {
 ///     .collect();
 /// edges.push([0, 16]);
 /// let graph = tri.graph_from_edges(edges.iter().copied());
-/// let candidates = tiled::tip_candidates(&graph, |_| true);
+/// let candidates = tiled::tip_candidates(&graph, true, |_| true);
 /// assert!(candidates.contains(&[8, 0, 16, 24]));
 /// let kept = tiled::repair_gathered_tips(pts.len(), &edges, &candidates)?.unwrap();
 /// let mut expected = graph.repair_tips().edges();
@@ -429,10 +431,14 @@ impl GatheredJoins {
 /// assert_eq!(kept, expected);
 /// # Ok::<(), condt::Error>(())
 /// ```
-pub fn tip_candidates(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize; 4]> {
+pub fn tip_candidates(
+    graph: &Graph<'_>,
+    spikes_follow: bool,
+    at: impl Fn(usize) -> bool,
+) -> Vec<[usize; 4]> {
     let tri = graph.triangulation();
     let position = |v: VertexId| tri.input_of(v);
-    tips::candidates(tri, graph.listed(), |v| at(position(v)))
+    tips::candidates(tri, graph.listed(), spikes_follow, |v| at(position(v)))
         .into_iter()
         .map(|candidate| match candidate {
             Candidate::Tip(move_) => move_.map(position),
@@ -865,7 +871,7 @@ pub fn junction_joins(
 /// let labels = tiled::component_labels(pts.len(), &edges)?;
 /// let tests = tiled::clump_tests(&local, &labels, |_| true)?;
 /// let choices = tiled::gap_choices(&local, |_| true);
-/// let tips = tiled::tip_candidates(&local, |_| true);
+/// let tips = tiled::tip_candidates(&local, true, |_| true);
 /// let mut joins = tiled::hook_joins(&local, |_| true);
 /// joins.extend(tiled::junction_joins(&local, |_| true));
 /// let kept =
@@ -1233,7 +1239,7 @@ mod tests {
             n: pts.len(),
             tests,
             choices: gap_choices(&local, |_| true),
-            tips: tip_candidates(&local, |_| true),
+            tips: tip_candidates(&local, true, |_| true),
             hooks: hook_joins(&local, |_| true),
             junctions: junction_joins(&local, |_| true),
             stage: graph.remove_local_outliers(&graph).edges(),
@@ -1362,7 +1368,7 @@ mod tests {
         let tests = clump_tests(&graph, &labels, |_| true).unwrap();
         assert!(gathered_clumps_found(n, &listed, &tests).unwrap());
         let choices = gap_choices(&graph, |_| true);
-        let tips = tip_candidates(&graph, |_| true);
+        let tips = tip_candidates(&graph, true, |_| true);
         let hooks = hook_joins(&graph, |_| true);
         let gathered = remove_gathered_clumps(n, &listed, &tests, &choices, &tips, &hooks).unwrap();
         assert_eq!(
@@ -1462,7 +1468,7 @@ mod tests {
         edges.push([1, 2]);
         let tri = triangulate(&pts).unwrap();
         let graph = tri.graph_from_edges(edges.iter().copied());
-        let rows = tip_candidates(&graph, |_| true);
+        let rows = tip_candidates(&graph, true, |_| true);
         assert!(rows.contains(&[0, 2, 1, 9]), "{rows:?}");
         let mut gathered = repair_gathered_tips(pts.len(), &edges, &rows)
             .unwrap()

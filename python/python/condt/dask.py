@@ -705,7 +705,7 @@ def _tile_given(result, payload, step, give_back, params):
     elif step == "joins":
         rows = tuple(
             _on_worker(_condt._choices_kept, state, given, one, **params)
-            for one in ("gaps", "tips", "end-joins")
+            for one in ("gaps", "tip-joins", "end-joins")
         )
     else:
         rows = _on_worker(_condt._step_kept, state, given, step, **params)

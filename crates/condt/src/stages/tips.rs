@@ -369,6 +369,7 @@ pub(crate) enum Candidate {
 pub(crate) fn candidates(
     tri: &Triangulation,
     edges: &[Edge],
+    spikes_follow: bool,
     at: impl Fn(VertexId) -> bool,
 ) -> Vec<Candidate> {
     let ends = Ends::new(tri, edges, None);
@@ -378,7 +379,7 @@ pub(crate) fn candidates(
             continue;
         }
         match ends.graph.degree(v) {
-            0 => match ends.apex_at(v, true) {
+            0 => match ends.apex_at(v, spikes_follow) {
                 Some(Found::One(m)) => out.push(match m.beside {
                     Some(q) => Candidate::ApexBeside([m.q, m.x, m.y, q]),
                     None => Candidate::Apex([m.q, m.x, m.y]),
