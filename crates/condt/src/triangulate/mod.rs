@@ -407,6 +407,14 @@ fn halves_have_triangles(points: &[Point], frames: &scale::Frames, cut: &halves:
     false
 }
 
+/// How many distinct points `points` holds (`-0.0` and `0.0` one), by a sort of a copy.
+fn distinct_count(points: &[Point]) -> usize {
+    let mut sorted = points.to_vec();
+    sorted.sort_unstable_by(|p, q| p.lexicographic_cmp(*q));
+    sorted.dedup_by(|p, q| p == q);
+    sorted.len()
+}
+
 /// The spatial insertion order of `points` built in one piece, decided by its distinct points
 /// alone, each followed by its repeats. The order's grid and its crowded cells count points, so
 /// an order of every copy changed with how often a point repeats, and on a cocircular set so did
@@ -544,7 +552,14 @@ impl Triangulation {
     pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
         let frames = scale::choose_frames(points)?;
         let parallel = points.len() >= PARALLEL_MIN && crate::threads::parallel_available();
-        Ok(insertion_order(points, &frames, parallel, halves::SPLIT_MIN).0)
+        let (order, cut) = insertion_order(points, &frames, parallel, halves::SPLIT_MIN);
+        // A set cut in two whose distinct points are fewer than the bound is built again in one
+        // piece (`construct`), in that order (a review: with repeats past the bound, this order
+        // was the halves' while the ids followed the one piece's).
+        if cut.is_some() && distinct_count(points) < halves::SPLIT_MIN {
+            return Ok(spatial_order(points, &frames));
+        }
+        Ok(order)
     }
 
     /// [`triangulate`], adding to `inserted` (`Relaxed`) every 65,536 points or so the points
@@ -1366,7 +1381,15 @@ mod tests {
         line.extend((0..8).map(|k| Point::new(x, h + k as f64 * h * 1.01)));
         let mut rng = Xorshift::new(0x0de5);
         let scattered = rng.unit_points(halves::SPLIT_MIN + 100);
-        for points in [line, scattered] {
+        // Past the bound only with its repeats: built again in one piece (a review found the
+        // order then the halves', 0 of 80,000 ids as built).
+        let mut twice: Vec<Point> = rng
+            .unit_points(40_000)
+            .iter()
+            .map(|p| Point::new((p.x * 1e6).floor(), (p.y * 1e6).floor()))
+            .collect();
+        twice.extend_from_slice(&twice.clone());
+        for points in [line, scattered, twice] {
             assert!(halves::cut(&points, halves::SPLIT_MIN, false).is_some());
             let order = Triangulation::insertion_order(&points).unwrap();
             let whole = triangulate(&points).unwrap();
