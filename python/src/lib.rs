@@ -828,27 +828,10 @@ fn score<'py>(
     let (output_positions, truth_positions) = (as_positions(&output), as_positions(&truth));
     // As `condt score` notes them: a truth edge at a later copy of a point is never matched.
     let later = condt_eval::score::later_copies(points, &truth_positions);
-    if !later.is_empty() {
-        let shown: Vec<String> = later
-            .iter()
-            .take(3)
-            .map(|[i, first]| format!("{i} = {first}"))
-            .collect();
-        let more = if later.len() > 3 { ", ..." } else { "" };
+    if let Some(words) = condt_eval::score::later_copies_named(&later) {
         let message = format!(
-            "the truth names {} that {} an earlier point exactly ({}{more}); edges \
-             are compared by point number, and condt.reconstruct gives a duplicate's edges to \
-             its first copy",
-            match later.len() {
-                1 => "1 point".to_string(),
-                n => format!("{n} points"),
-            },
-            if later.len() == 1 {
-                "repeats"
-            } else {
-                "repeat"
-            },
-            shown.join(", ")
+            "the truth names {words}; edges are compared by point number, and \
+             condt.reconstruct gives a duplicate's edges to its first copy"
         );
         PyErr::warn(
             py,

@@ -1489,8 +1489,10 @@ fn note_twins(result: &condt::Reconstruction) {
         .iter()
         .filter(|curve| !curve.is_closed() && curve.len() == 2)
         .filter(|curve| {
-            let ends: Vec<usize> = curve.points().collect();
-            let (a, b) = (ends[0], ends[1]);
+            let mut ends = curve.points();
+            let (Some(a), Some(b)) = (ends.next(), ends.next()) else {
+                return false;
+            };
             let gap = length(a, b);
             let nearest_other = [a, b]
                 .into_iter()

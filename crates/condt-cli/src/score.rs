@@ -429,25 +429,12 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
 /// first point again at its end scored one false positive and one false negative).
 fn note_later_copies(name: &str, points: &[condt::Point], truth: &[[usize; 2]]) {
     let named = condt_eval::score::later_copies(points, truth);
-    if named.is_empty() {
-        return;
+    if let Some(words) = condt_eval::score::later_copies_named(&named) {
+        eprintln!(
+            "condt: note: {name} names {words}; edges are compared by point number, and condt \
+             reconstruct gives a duplicate's edges to its first copy"
+        );
     }
-    let shown: Vec<String> = named
-        .iter()
-        .take(3)
-        .map(|[i, first]| format!("{i} = {first}"))
-        .collect();
-    let more = if named.len() > 3 { ", ..." } else { "" };
-    let (count, verb) = match named.len() {
-        1 => ("1 point".to_string(), "repeats"),
-        n => (format!("{n} points"), "repeat"),
-    };
-    eprintln!(
-        "condt: note: {name} names {count} that {verb} an earlier point exactly ({}{more}); \
-         edges are compared by point number, and condt reconstruct gives a duplicate's edges to \
-         its first copy",
-        shown.join(", ")
-    );
 }
 
 /// Whether `field` is an integer as an edge line writes one: digits, a `-` before them allowed

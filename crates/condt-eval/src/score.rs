@@ -258,6 +258,35 @@ pub fn later_copies(points: &[Point], truth: &[[usize; 2]]) -> Vec<[usize; 2]> {
         .collect()
 }
 
+/// The words `condt score` and Python's `condt.score` say of [`later_copies`]' pairs
+/// `[i, first]` (at most three named): `None` for none.
+///
+/// ```
+/// use condt_eval::score::later_copies_named;
+/// assert_eq!(
+///     later_copies_named(&[[3, 0]]).unwrap(),
+///     "1 point that repeats an earlier point exactly (3 = 0)"
+/// );
+/// assert!(later_copies_named(&[]).is_none());
+/// ```
+pub fn later_copies_named(named: &[[usize; 2]]) -> Option<String> {
+    let shown: Vec<String> = named
+        .iter()
+        .take(3)
+        .map(|[i, first]| format!("{i} = {first}"))
+        .collect();
+    let more = if named.len() > 3 { ", ..." } else { "" };
+    let count = match named.len() {
+        0 => return None,
+        1 => "1 point that repeats".to_string(),
+        n => format!("{n} points that repeat"),
+    };
+    Some(format!(
+        "{count} an earlier point exactly ({}{more})",
+        shown.join(", ")
+    ))
+}
+
 /// A nearest-segment search over the truth, on the scaled points.
 trait Nearest {
     /// The search over `segments` of `points`, whose coordinates lie in `[0, size]`.

@@ -313,15 +313,16 @@ pub(crate) fn compare_scaled_distances(
     let shift_limbs = (2 * scale_exponent.unsigned_abs() as usize).div_ceil(64) + 1;
     in_width!(
         2 * difference_limbs(bits) + 4 + shift_limbs,
-        compare_scaled_distances_in(p, a, scale, b)
+        compare_scaled_distances_in(p, a, scale, scale_exponent, b)
     )
 }
 
-/// [`compare_scaled_distances`] in integers of `L` limbs.
+/// [`compare_scaled_distances`] in integers of `L` limbs, `e` the exponent of `scale`.
 fn compare_scaled_distances_in<const L: usize>(
     p: [f64; 2],
     a: [f64; 2],
     scale: f64,
+    e: i32,
     b: [f64; 2],
 ) -> Ordering {
     let [[px, py], a, b] = integers::<3, L>([p, a, b]);
@@ -329,8 +330,7 @@ fn compare_scaled_distances_in<const L: usize>(
         let (dx, dy) = (x.sub(&px), y.sub(&py));
         dx.mul(&dx).add(&dy.mul(&dy))
     };
-    // Zero is answered before this: `e` is then never read for it.
-    let e = decompose(scale).map_or(0, |(_, _, e)| e);
+    // `e`: `scale`'s exponent, as the caller decomposed it (zero is answered there).
     // `scale = m · 2^e` with `m` odd: compare `m² A 2^2e` with `B`, the power of two on the side
     // where it is a whole number.
     let m = Int::<L>::from_f64(scale, e);
