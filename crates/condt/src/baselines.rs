@@ -116,13 +116,16 @@ pub(crate) fn crust_edges(tri: &Triangulation, parallel: bool) -> Result<Vec<Edg
     let relative = |v: VertexId| difference(tri.vertex_point(v), corner);
     let moved: Vec<Point> = samples.iter().map(|&v| relative(v)).collect();
     // The samples, and what takes a centre from the corner's frame into theirs.
-    let (mut points, back) =
-        if same_triangles(tri, &triangulate_with(&moved, parallel, None, None)?) {
-            (moved, Point::new(0.0, 0.0))
-        } else {
-            let own = samples.iter().map(|&v| tri.vertex_point(v)).collect();
-            (own, corner)
-        };
+    let (mut points, back) = if same_triangles(
+        tri,
+        &samples,
+        &triangulate_with(&moved, parallel, None, None)?,
+    ) {
+        (moved, Point::new(0.0, 0.0))
+    } else {
+        let own = samples.iter().map(|&v| tri.vertex_point(v)).collect();
+        (own, corner)
+    };
     let mesh = tri.mesh();
     points.extend(mesh.triangles().filter_map(|t| {
         let [a, b, c] = mesh.triangle_vertices(t).map(relative);
@@ -156,8 +159,9 @@ fn difference(a: Point, b: Point) -> Point {
     Point::new(a.x - b.x, a.y - b.y)
 }
 
-/// Whether `moved` (the vertices of `tri` in id order, moved) has the triangles of `tri`.
-fn same_triangles(tri: &Triangulation, moved: &Triangulation) -> bool {
+/// Whether `moved` (the `samples` of `tri`, its vertices in id order, moved) has the triangles of
+/// `tri`. Ids skip where a duplicate was merged, so a vertex is named by its place in `samples`.
+fn same_triangles(tri: &Triangulation, samples: &[VertexId], moved: &Triangulation) -> bool {
     let sorted = |triangles: &mut dyn Iterator<Item = [usize; 3]>| {
         let mut list: Vec<[usize; 3]> = triangles
             .map(|mut t| {
@@ -169,9 +173,10 @@ fn same_triangles(tri: &Triangulation, moved: &Triangulation) -> bool {
         list
     };
     let mesh = tri.mesh();
-    let mut own = mesh
-        .triangles()
-        .map(|t| mesh.triangle_vertices(t).map(|v| v.index()));
+    let mut own = mesh.triangles().map(|t| {
+        mesh.triangle_vertices(t)
+            .map(|v| samples.binary_search(&v).unwrap_or(usize::MAX))
+    });
     sorted(&mut own) == sorted(&mut moved.triangles())
 }
 

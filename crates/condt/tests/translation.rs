@@ -84,6 +84,16 @@ fn an_exact_translation_keeps_the_crust_of_four_points() {
             expected,
             "{points:?} + {offset:?}"
         );
+        // With each point given again first (vertex ids then skip the merged copies' slots).
+        for repeated in 0..points.len() {
+            let mut with_copy = vec![points[repeated]];
+            with_copy.extend_from_slice(&points);
+            assert_eq!(
+                crust(&translated(&with_copy, offset)),
+                crust(&with_copy),
+                "{with_copy:?} + {offset:?}"
+            );
+        }
     }
 }
 
