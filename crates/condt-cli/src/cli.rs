@@ -1473,6 +1473,13 @@ fn note_snapped(snapped: Option<(usize, String)>) {
 /// are tens to thousands of times closer.
 const TWIN_RATIO: f64 = 16.0;
 
+/// One pair of twins in this many points is what chance makes in a uniform scatter, at most:
+/// of the `n/2 · λ · 2πr dr` pairs at distance `r` (density `λ`), a share of at most
+/// `exp(-λ · π (16r)²)` has no other point within `16r`, which integrates to `n / 2 / 16²`
+/// (1M uniform random points gave 445 such curves). Twins from a curve given twice are
+/// hundreds of times more frequent: about one in two points.
+const TWINS_BY_CHANCE: usize = 2 * 16 * 16;
+
 /// A note when three or more curves of two points are pairs of points given twice a little
 /// apart (a shared border exported from both sides, a contour of a grey image's level): each a
 /// curve of its own beside the curve they were meant to be, which the summary alone would not
@@ -1505,8 +1512,13 @@ fn note_twins(result: &condt::Reconstruction) {
         .map(|curve| curve.points().next().unwrap_or_default())
         .collect::<Vec<usize>>();
     // One pair can be a noisy sample's accident (at most one in any case of the three suites
-    // or set of `../shared/data`); three are a pattern.
-    if let (Some(&first), true) = (twins.first(), twins.len() >= 3) {
+    // or set of `../shared/data`); three are a pattern, unless the points are so many that
+    // chance makes them (`TWINS_BY_CHANCE`).
+    let points = tri.num_points();
+    if let (Some(&first), true) = (
+        twins.first(),
+        twins.len() >= 3 && twins.len() * TWINS_BY_CHANCE > points,
+    ) {
         note(format_args!(
             "{} of two points that lie {TWIN_RATIO} times nearer each other than any other \
              point (the first at point {first}): points given twice, a little apart (a shared \
