@@ -160,44 +160,12 @@ fn write_data(
     }
     // Per change: edge index, stage index, added (0 or 1), reason code, two numbers.
     let stages: Vec<Stage> = result.stage_times().map(|(stage, _)| stage).collect();
-    write!(out, "],\"changes\":[")?;
+    write!(out, "],\"detourCode\":{DETOUR_CODE},\"changes\":[")?;
     let mut first = true;
     for (k, story) in stories.iter().enumerate() {
         for change in &story.changes {
             let stage = stages.iter().position(|&s| s == change.stage).unwrap_or(0);
-            let (code, x, y) = match change.reason {
-                Reason::Repair { vertex, degree, .. } => (0, vertex as f64, degree as f64),
-                Reason::LongerThanThreshold {
-                    length,
-                    threshold,
-                    floored: false,
-                } => (1, length, threshold),
-                Reason::LongerThanThreshold {
-                    length,
-                    threshold,
-                    floored: true,
-                } => (12, length, threshold),
-                Reason::GivenBack => (2, 0.0, 0.0),
-                Reason::LongAt { vertex, ratio } => (3, vertex as f64, ratio),
-                Reason::Component => (4, 0.0, 0.0),
-                Reason::Spur => (5, 0.0, 0.0),
-                Reason::GapClosed => (6, 0.0, 0.0),
-                Reason::NotConfirmed => (7, 0.0, 0.0),
-                Reason::Baseline => (8, 0.0, 0.0),
-                Reason::Junction => (9, 0.0, 0.0),
-                Reason::Clump => (10, 0.0, 0.0),
-                Reason::RepairedAgain => (11, 0.0, 0.0),
-                Reason::Crossing { vertex } => (13, vertex as f64, 0.0),
-                Reason::Tip => (14, 0.0, 0.0),
-                Reason::Tail { vertex, points } => (15, vertex as f64, points as f64),
-                Reason::LastEdge => (16, 0.0, 0.0),
-                Reason::Hook => (17, 0.0, 0.0),
-                Reason::Spike => (18, 0.0, 0.0),
-                // A loop's one end; else the route's points in the code (20 + points), which
-                // the page's words need beside the two ends.
-                Reason::Detour { from, to, .. } if from == to => (19, from as f64, to as f64),
-                Reason::Detour { from, to, points } => (20 + points as u64, from as f64, to as f64),
-            };
+            let (code, x, y) = reason_code(change.reason);
             // A length and its threshold with every digit, so that the page can tell apart a
             // length just above its threshold (as `story_text` does); other numbers are ids,
             // counts and ratios shown with fewer.
@@ -270,6 +238,51 @@ fn stage_color(stage: Stage) -> &'static str {
     let k = Stage::ALL.iter().position(|&s| s == stage);
     STAGE_COLORS[k.expect("Stage::ALL holds every stage")]
 }
+
+/// A change's reason as the page stores it: a code (an index into the page's list of words in
+/// `viewer.js`, or from [`DETOUR_CODE`] a detour) and two numbers.
+fn reason_code(reason: Reason) -> (u64, f64, f64) {
+    match reason {
+        Reason::Repair { vertex, degree, .. } => (0, vertex as f64, degree as f64),
+        Reason::LongerThanThreshold {
+            length,
+            threshold,
+            floored: false,
+        } => (1, length, threshold),
+        Reason::LongerThanThreshold {
+            length,
+            threshold,
+            floored: true,
+        } => (12, length, threshold),
+        Reason::GivenBack => (2, 0.0, 0.0),
+        Reason::LongAt { vertex, ratio } => (3, vertex as f64, ratio),
+        Reason::Component => (4, 0.0, 0.0),
+        Reason::Spur => (5, 0.0, 0.0),
+        Reason::GapClosed => (6, 0.0, 0.0),
+        Reason::NotConfirmed => (7, 0.0, 0.0),
+        Reason::Baseline => (8, 0.0, 0.0),
+        Reason::Junction => (9, 0.0, 0.0),
+        Reason::Clump => (10, 0.0, 0.0),
+        Reason::RepairedAgain => (11, 0.0, 0.0),
+        Reason::Crossing { vertex } => (13, vertex as f64, 0.0),
+        Reason::Tip => (14, 0.0, 0.0),
+        Reason::Tail { vertex, points } => (15, vertex as f64, points as f64),
+        Reason::LastEdge => (16, 0.0, 0.0),
+        Reason::Hook => (17, 0.0, 0.0),
+        Reason::Spike => (18, 0.0, 0.0),
+        // A loop's one end; else the route's points in the code (`DETOUR_CODE` +
+        // points), which the page's words need beside the two ends.
+        Reason::Detour { from, to, .. } if from == to => (19, from as f64, to as f64),
+        Reason::Detour { from, to, points } => {
+            (DETOUR_CODE + points as u64, from as f64, to as f64)
+        }
+    }
+}
+
+/// A change's reason code from this one up is a detour through `code - DETOUR_CODE` points
+/// (the page reads it as `data.detourCode`); below it, a reason's index in the page's list of
+/// words (`viewer.js`), so that a new reason takes the next free index.
+const DETOUR_CODE: u64 = 1000;
 
 /// Significant digits of positions (relative to the box, over its longer side): a ten-millionth
 /// of the view, below a pixel at any zoom a page needs to tell samples apart.
@@ -600,6 +613,104 @@ mod tests {
 
     /// With no points there is no corner: the page's data must still be JSON (it had an origin of
     /// `inf`, which the viewer's `JSON.parse` refused, leaving a blank page).
+    /// Every reason's code below [`DETOUR_CODE`] has its words in the page's list (a new reason
+    /// took code 20, which the page read as a detour's, before `DETOUR_CODE`).
+    #[test]
+    fn every_reason_has_its_words_on_the_page() {
+        let list = SCRIPT.split("const words = [").nth(1).unwrap();
+        let list = list.split("\n    ];").next().unwrap();
+        let words = list
+            .lines()
+            .filter(|l| l.starts_with("      () =>"))
+            .count() as u64;
+        assert!((20..DETOUR_CODE).contains(&words), "{words}");
+        let reasons = [
+            Reason::Repair {
+                vertex: 1,
+                degree: 3,
+                kept: [Some(2), None],
+            },
+            Reason::LongerThanThreshold {
+                length: 2.0,
+                threshold: 1.0,
+                floored: false,
+            },
+            Reason::LongerThanThreshold {
+                length: 2.0,
+                threshold: 1.0,
+                floored: true,
+            },
+            Reason::GivenBack,
+            Reason::LastEdge,
+            Reason::LongAt {
+                vertex: 1,
+                ratio: 3.0,
+            },
+            Reason::RepairedAgain,
+            Reason::Component,
+            Reason::Spur,
+            Reason::Clump,
+            Reason::GapClosed,
+            Reason::Junction,
+            Reason::Crossing { vertex: 1 },
+            Reason::Tip,
+            Reason::Spike,
+            Reason::Hook,
+            Reason::Tail {
+                vertex: 1,
+                points: 2,
+            },
+            Reason::Detour {
+                from: 1,
+                to: 1,
+                points: 2,
+            },
+            Reason::Detour {
+                from: 1,
+                to: 2,
+                points: 0,
+            },
+            Reason::Baseline,
+            Reason::NotConfirmed,
+        ];
+        let mut codes = Vec::new();
+        for reason in reasons {
+            // Names every variant, so that a new one must join the list above.
+            match reason {
+                Reason::Repair { .. }
+                | Reason::LongerThanThreshold { .. }
+                | Reason::GivenBack
+                | Reason::LastEdge
+                | Reason::LongAt { .. }
+                | Reason::RepairedAgain
+                | Reason::Component
+                | Reason::Spur
+                | Reason::Clump
+                | Reason::GapClosed
+                | Reason::Junction
+                | Reason::Crossing { .. }
+                | Reason::Tip
+                | Reason::Spike
+                | Reason::Hook
+                | Reason::Tail { .. }
+                | Reason::Detour { .. }
+                | Reason::Baseline
+                | Reason::NotConfirmed => {}
+            }
+            let (code, _, _) = reason_code(reason);
+            assert!(code < words || code >= DETOUR_CODE, "{reason:?}: {code}");
+            codes.push(code);
+        }
+        // Each reason's own words (the two readings of a detour share theirs).
+        codes.sort_unstable();
+        codes.dedup();
+        assert_eq!(codes.len(), reasons.len());
+        assert_eq!(
+            codes.iter().filter(|&&c| c < DETOUR_CODE).count() as u64,
+            words
+        );
+    }
+
     #[test]
     fn no_points_give_valid_json() {
         use condt::{reconstruct, Params};

@@ -320,12 +320,13 @@
         : "a chord across a tip whose samples had no edges"),
       () => `the edge that closed a loop hung on ${c.x}, which the curve runs into less straightly than into the loop's other edge`,
     ];
-    const why = c.code >= 20 ? detourWords(c) : words[c.code]();
+    const why = c.code >= data.detourCode ? detourWords(c) : words[c.code]();
     return `${c.stage}: ${verb} ${why}`;
   }
-  // Codes from 20: a detour through `code - 20` points between its two ends (as `story_text`).
+  // Codes from `data.detourCode`: a detour through `code - data.detourCode` points between its
+  // two ends (as `story_text`).
   function detourWords(c) {
-    const points = c.code - 20;
+    const points = c.code - data.detourCode;
     const route = points === 0
       ? `the edge between ${c.x} and ${c.y} past a route`
       : `part of a detour through ${points} point${points === 1 ? "" : "s"} between ${c.x} and ${c.y}`;

@@ -564,7 +564,8 @@ impl Run {
             .records
             .iter()
             .any(|r| r.stage == Stage::Outliers && !matches!(r.undo, Undo::Unchanged));
-        let reads_first = matches!(step, Step::RepairAgain { .. }) && cut;
+        let reads = step.reads();
+        let reads_first = reads.before_repair && cut;
         let before_repair = held
             .filter(|_| reads_first)
             .map_or_else(|| input_of(Stage::Repair, reads_first), Cow::Owned);
@@ -576,11 +577,10 @@ impl Run {
         let earlier = Earlier {
             before_outliers: input_of(
                 Stage::Outliers,
-                step == Step::LocalOutliers
-                    || matches!(step, Step::RepairAgain { .. }) && cut_by_outliers.is_none(),
+                reads.before_outliers && cut_by_outliers.is_none(),
             ),
             cut_by_outliers,
-            before_local: input_of(Stage::LocalOutliers, step == Step::ConfirmGivenBack),
+            before_local: input_of(Stage::LocalOutliers, reads.before_local),
             before_repair,
         };
         let graph = self.current_graph.take();

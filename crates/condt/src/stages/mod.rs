@@ -232,8 +232,8 @@ impl Stage {
     /// assert_eq!(condt::Stage::ALL[0], condt::Stage::Proximity);
     /// assert!(condt::Stage::ALL.iter().all(|s| !s.key().contains(' ')));
     /// ```
-    pub const ALL: [Stage; 17] = {
-        let mut all = [Stage::Proximity; 17];
+    pub const ALL: [Stage; ROWS.len()] = {
+        let mut all = [Stage::Proximity; ROWS.len()];
         let mut k = 0;
         while k < all.len() {
             all[k] = ROWS[k].stage;
@@ -332,7 +332,37 @@ pub(crate) struct Earlier<'a> {
     pub(crate) before_repair: Cow<'a, [Edge]>,
 }
 
+/// Which of the graphs in [`Earlier`] a step reads ([`Step::reads`]): the pipeline rebuilds only
+/// those, and hands the step its own input in the others' place.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Reads {
+    pub(crate) before_outliers: bool,
+    pub(crate) before_local: bool,
+    pub(crate) before_repair: bool,
+}
+
 impl Step {
+    /// The earlier graphs [`Step::run`] reads for this step: a new stage that reads one says so
+    /// here, beside the arm of `run` that reads it.
+    pub(crate) fn reads(self) -> Reads {
+        match self {
+            Step::RepairAgain { .. } => Reads {
+                before_outliers: true,
+                before_repair: true,
+                ..Reads::default()
+            },
+            Step::LocalOutliers => Reads {
+                before_outliers: true,
+                ..Reads::default()
+            },
+            Step::ConfirmGivenBack => Reads {
+                before_local: true,
+                ..Reads::default()
+            },
+            _ => Reads::default(),
+        }
+    }
+
     pub(crate) fn stage(self) -> Stage {
         match self {
             Step::Repair(_) => Stage::Repair,
