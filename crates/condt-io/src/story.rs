@@ -59,12 +59,15 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
                 first = false;
                 match choice {
                     EndChoice::Shortest => write!(f, "shortest at {end}")?,
-                    EndChoice::Second { ratio, bound, kept } => write!(
-                        f,
-                        "second shortest at {end}, {} by the uniformity test: |e2| = {ratio:.3} |e1| {} {bound:.3} |e1|",
-                        if kept { "kept" } else { "dropped" },
-                        if kept { "<" } else { ">=" }
-                    )?,
+                    EndChoice::Second { ratio, bound, kept } => {
+                        let (ratio, bound) = decimals_apart(ratio, bound);
+                        write!(
+                            f,
+                            "second shortest at {end}, {} by the uniformity test: |e2| = {ratio} |e1| {} {bound} |e1|",
+                            if kept { "kept" } else { "dropped" },
+                            if kept { "<" } else { ">=" }
+                        )?
+                    }
                     EndChoice::Later { rank } => write!(f, "rank {rank} at {end}")?,
                     EndChoice::NotDelaunay => {}
                 }
@@ -109,7 +112,9 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
                 f,
                 "{ratio:.2} times as long as the longest other edge at vertex {vertex}"
             )?,
-            Reason::RepairedAgain => write!(f, "repaired again without the edges above √T")?,
+            Reason::RepairedAgain => {
+                write!(f, "repaired again without the edges the outlier filter cut")?
+            }
             Reason::Component => write!(f, "isolated component")?,
             Reason::Spur => write!(f, "short spur")?,
             Reason::Clump => write!(f, "a clump: at most half its points pass smoothly")?,
@@ -178,6 +183,19 @@ fn told_apart(a: f64, b: f64) -> (String, String) {
     }
 }
 
+/// A ratio and its bound with three decimals, or as many more as tell them apart (a ratio of
+/// 2.7496 read "2.750 |e1| < 2.750 |e1|").
+fn decimals_apart(a: f64, b: f64) -> (String, String) {
+    let mut decimals = 3;
+    loop {
+        let (x, y) = (format!("{a:.decimals$}"), format!("{b:.decimals$}"));
+        if x != y || a == b || decimals == 17 {
+            return (x, y);
+        }
+        decimals += 1;
+    }
+}
+
 /// The fewest significant digits a length is told with.
 const SIGNIFICANT: usize = 7;
 
@@ -239,6 +257,28 @@ mod tests {
             }
         }
         assert!(chosen > 0 && not_chosen > 0, "{chosen} {not_chosen}");
+    }
+
+    /// A ratio just under its bound reads under it (a student's review: "|e2| = 2.750 |e1| <
+    /// 2.750 |e1|" for a second edge 2.7496 times the first, u = 2.75).
+    #[test]
+    fn a_ratio_near_its_bound_is_told_apart_from_it() {
+        let points = [(0.0, 0.0), (1.0, 0.0), (-2.7496, 0.0)].map(Point::from);
+        let stories = reconstruct(&points, &Params::paper()).unwrap().provenance();
+        let story = stories.iter().find(|s| s.edge == [0, 2]).unwrap();
+        let text = story_text(story);
+        assert!(
+            text.contains("kept by the uniformity test: |e2| = 2.7496 |e1| < 2.7500 |e1|"),
+            "{text}"
+        );
+        assert_eq!(
+            super::decimals_apart(1.5, 2.75),
+            ("1.500".into(), "2.750".into())
+        );
+        assert_eq!(
+            super::decimals_apart(2.75, 2.75),
+            ("2.750".into(), "2.750".into())
+        );
     }
 
     #[test]

@@ -107,6 +107,14 @@
       if (x !== y || a === b || d === 17) return [x, y];
     }
   };
+  // A ratio and its bound with three decimals, or as many more as tell them apart (the page
+  // holds nine significant digits), as `story_text` gives them.
+  const ratiosApart = (a, b) => {
+    for (let d = 3; ; d++) {
+      const [x, y] = [a.toFixed(d), b.toFixed(d)];
+      if (x !== y || a === b || d === 12) return [x, y];
+    }
+  };
   // A zoom by `f`, held to a thousandth of the fitted view out and 10^9 times it in (the
   // positions hold 7 digits of the box: beyond, a pixel is finer than any of them), so that the
   // scale never reaches 0 or infinity, from which no zoom comes back.
@@ -277,7 +285,8 @@
     if (code === 1) return `shortest at ${at}`;
     if (code === 2) {
       const s = seconds.get(2 * k + end);
-      return `second shortest at ${at}, ${s.kept ? "kept" : "dropped"} by the uniformity test: |e2| = ${s.ratio.toFixed(3)} |e1| ${s.kept ? "<" : "≥"} ${s.bound.toFixed(3)} |e1|`;
+      const [ratio, bound] = ratiosApart(s.ratio, s.bound);
+      return `second shortest at ${at}, ${s.kept ? "kept" : "dropped"} by the uniformity test: |e2| = ${ratio} |e1| ${s.kept ? "<" : "≥"} ${bound} |e1|`;
     }
     return `rank ${code} at ${at}`;
   }
@@ -306,7 +315,7 @@
         ? "joined where three or four curves meet (a junction)"
         : "a chord past a junction's sample"),
       () => "a clump: at most half its points pass smoothly",
-      () => "repaired again without the edges above √T",
+      () => "repaired again without the edges the outlier filter cut",
       () => { const [l, t] = apart(c.x, c.y); return `length ${l} above the spacing floor ${t} (1.5 median edges)`; },
       () => `restored the crossing at ${c.x}`,
       () => (c.added ? "joined at a tip in place of a chord" : "a chord across a tip"),
@@ -374,7 +383,8 @@
     const second = ring.find((r) => r.rank === 2);
     if (second) {
       const s = seconds.get(2 * second.k + second.end);
-      html += `<p>Two shortest: to ${ring[0].other} (e1) and ${second.other} (e2). Uniformity test: |e2| = ${s.ratio.toFixed(3)} |e1| ${s.kept ? "<" : "≥"} u |e1| with u = ${s.bound.toFixed(3)}: e2 ${s.kept ? "kept" : "dropped"}.</p>`;
+      const [ratio, bound] = ratiosApart(s.ratio, s.bound);
+      html += `<p>Two shortest: to ${ring[0].other} (e1) and ${second.other} (e2). Uniformity test: |e2| = ${ratio} |e1| ${s.kept ? "<" : "≥"} u |e1| with u = ${bound}: e2 ${s.kept ? "kept" : "dropped"}.</p>`;
     } else if (ring.length) {
       html += `<p>One Delaunay neighbour: ${ring[0].other}.</p>`;
     }

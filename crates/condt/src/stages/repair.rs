@@ -339,40 +339,7 @@ pub(crate) fn repair(
     repair: Repair,
     parallel: bool,
 ) -> Option<Vec<Edge>> {
-    if repair == Repair::Off {
-        return None;
-    }
-    let vertex_count = tri.num_points();
-    let degree = degrees(vertex_count, edges);
-    if degree.iter().all(|&d| d <= 2) {
-        return None;
-    }
-    // From here on the branch bits tell the manifold vertices, and the degrees' buffer holds
-    // their links where the needs repair reads them, else it is freed (memory: the stage's peak).
-    let mut graph = Branches::new(degree, edges, repair == Repair::Needs);
-    // Lines 6–12: up to four edges per non-manifold vertex, by rank. Each choice reads the branch
-    // bits and positions alone, so ranges of ranks are chosen on threads when `parallel` (the
-    // same list).
-    let prefetching = vertex_count >= PREFETCH_FROM;
-    let choose = |pairs: &mut needs::Pairs, r: usize, v: VertexId| {
-        if prefetching && r + PREFETCH_VERTICES < graph.count() {
-            // A choice reads its neighbours' points (and branch bits, cached), misses on scattered
-            // points: the lists lie in rank order, so those of a vertex a few ranks on are asked
-            // for ahead.
-            for &w in graph.incident(r + PREFETCH_VERTICES) {
-                prefetch(tri.vertex_points(), w.index());
-            }
-        }
-        let around = graph.incident(r);
-        match repair {
-            Repair::Needs => needs::choice(tri, v, around, &graph, pairs),
-            Repair::CrossingAware => {
-                crossing_choice(tri, v, around).unwrap_or_else(|| paper_choice(tri, v, around))
-            }
-            _ => paper_choice(tri, v, around),
-        }
-    };
-    let selections: Vec<[VertexId; 4]> = chosen_by_rank(&graph, parallel, choose);
+    let (mut graph, selections) = select(tri, edges, repair, parallel)?;
     // The lists are freed, the ranks kept (memory).
     (graph.starts, graph.neighbors, graph.links) = (Vec::new(), Vec::new(), Vec::new());
     let manifold = |v: VertexId| !graph.is_branch(v);
@@ -415,6 +382,65 @@ pub(crate) fn repair(
     }
     debug_assert_eq!(kept.len(), count);
     Some(kept)
+}
+
+/// Each vertex of degree three or more with the neighbours it selected (lines 6–12, up to four,
+/// infinite ids for none), by increasing id: the stage's evidence for the provenance, which
+/// names the end that did not select an edge the repair removed (with [`Repair::Mutual`] and
+/// [`Repair::Needs`] the other end may have).
+pub(crate) fn selections(
+    tri: &Triangulation,
+    edges: &[Edge],
+    repair: Repair,
+) -> Vec<(VertexId, [VertexId; 4])> {
+    select(tri, edges, repair, false).map_or_else(Vec::new, |(graph, selections)| {
+        graph.vertices().zip(selections).collect()
+    })
+}
+
+/// The branches of the proximity graph `edges` and what each selects by rank ([`repair`]):
+/// `None` if the repair is off or no vertex has three or more edges.
+fn select(
+    tri: &Triangulation,
+    edges: &[Edge],
+    repair: Repair,
+    parallel: bool,
+) -> Option<(Branches, Vec<[VertexId; 4]>)> {
+    if repair == Repair::Off {
+        return None;
+    }
+    let vertex_count = tri.num_points();
+    let degree = degrees(vertex_count, edges);
+    if degree.iter().all(|&d| d <= 2) {
+        return None;
+    }
+    // From here on the branch bits tell the manifold vertices, and the degrees' buffer holds
+    // their links where the needs repair reads them, else it is freed (memory: the stage's peak).
+    let graph = Branches::new(degree, edges, repair == Repair::Needs);
+    // Lines 6–12: up to four edges per non-manifold vertex, by rank. Each choice reads the branch
+    // bits and positions alone, so ranges of ranks are chosen on threads when `parallel` (the
+    // same list).
+    let prefetching = vertex_count >= PREFETCH_FROM;
+    let choose = |pairs: &mut needs::Pairs, r: usize, v: VertexId| {
+        if prefetching && r + PREFETCH_VERTICES < graph.count() {
+            // A choice reads its neighbours' points (and branch bits, cached), misses on scattered
+            // points: the lists lie in rank order, so those of a vertex a few ranks on are asked
+            // for ahead.
+            for &w in graph.incident(r + PREFETCH_VERTICES) {
+                prefetch(tri.vertex_points(), w.index());
+            }
+        }
+        let around = graph.incident(r);
+        match repair {
+            Repair::Needs => needs::choice(tri, v, around, &graph, pairs),
+            Repair::CrossingAware => {
+                crossing_choice(tri, v, around).unwrap_or_else(|| paper_choice(tri, v, around))
+            }
+            _ => paper_choice(tri, v, around),
+        }
+    };
+    let selections: Vec<[VertexId; 4]> = chosen_by_rank(&graph, parallel, choose);
+    Some((graph, selections))
 }
 
 #[cfg(test)]
