@@ -777,6 +777,11 @@ pub(crate) type Printed = String;
 /// Runs the tool on `args` (without the program name); `Ok` holds what to print to stdout for
 /// informational commands such as `--help`.
 pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
+    // `--` ends the options before the command too: what follows is the command and its words.
+    let args = match args.split_first() {
+        Some((first, after)) if first == "--" => after,
+        _ => args,
+    };
     let Some((command, rest)) = args.split_first() else {
         return Err(usage("no command given"));
     };
@@ -811,7 +816,7 @@ pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
     }
     match command {
         "help" => match rest.first().map(|c| c.to_str()) {
-            None | Some(Some("help")) => Ok(global_help()),
+            None | Some(Some("help" | "--help" | "-h")) => Ok(global_help()),
             Some(Some("reconstruct")) => Ok(reconstruct_help()),
             Some(Some("triangulate")) => Ok(triangulate_help()),
             Some(Some("score")) => Ok(crate::score::help()),

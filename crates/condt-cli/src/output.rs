@@ -328,6 +328,30 @@ fn stream_metadata<S>(_stream: S) -> Option<fs::Metadata> {
     None
 }
 
+/// Whether reading `path` reads standard input's own stream: `/dev/stdin`, `/dev/fd/0` and the
+/// like, or any name of the very pipe, FIFO or socket standard input is, which a second reader
+/// would find drained (`score` reads each file once; a file can be read by two names).
+pub(crate) fn names_standard_input(path: &Path) -> bool {
+    if descriptor_named(path) == Some(0) {
+        return true;
+    }
+    let (Some(stdin), Ok(named)) = (stream_metadata(io::stdin()), fs::metadata(path)) else {
+        return false;
+    };
+    is_stream(&stdin) && same_file(&stdin, &named)
+}
+
+#[cfg(unix)]
+fn is_stream(meta: &fs::Metadata) -> bool {
+    use std::os::unix::fs::FileTypeExt;
+    meta.file_type().is_fifo() || meta.file_type().is_socket()
+}
+
+#[cfg(not(unix))]
+fn is_stream(_meta: &fs::Metadata) -> bool {
+    false
+}
+
 /// Refuses an output that is the input file itself (by device and inode, so another path, a
 /// symbolic or a hard link to it count too): it would be replaced before it could be compared.
 /// `input` of `None` is standard input, `output` of `None` standard output, which the shell may

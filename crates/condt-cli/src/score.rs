@@ -161,14 +161,15 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
             files.len()
         ))
     })?;
+    // `/dev/stdin`, `/dev/fd/0` or a name of the pipe that standard input is read it too.
     let dashes = [&points, &output, &truth]
         .iter()
-        .filter(|p| p.as_os_str() == "-")
+        .filter(|p| p.as_os_str() == "-" || crate::output::names_standard_input(p))
         .count();
     if dashes > 1 {
         return Err(usage(format!(
-            "score: - (standard input) is given {dashes} times; standard input can be read \
-             once: give - for one of POINTS, OUTPUT and TRUTH"
+            "score: standard input (-, /dev/stdin) is given {dashes} times; it can be read \
+             once: give it for one of POINTS, OUTPUT and TRUTH"
         )));
     }
     let stdin = points.as_os_str() == "-";
@@ -496,11 +497,12 @@ fn as_json(s: &Score, problem: Option<&str>, [n, n_gt, n_out]: [usize; 3]) -> St
 
 fn as_text(s: &Score, problem: Option<&str>, [n, n_gt, n_out]: [usize; 3]) -> String {
     let mut text = String::new();
-    // A distance is a fraction of the diagonal; with no output edge there is none.
-    let distance = |d: Option<f64>| {
-        d.map_or("none (no output edges)".into(), |d| {
-            format!("{d:.6e} of the box diagonal")
-        })
+    // A distance is a fraction of the diagonal; with no output edge there is none, and with no
+    // truth edge to measure from none either (the JSON's `null` for both).
+    let distance = |d: Option<f64>| match d {
+        None => "none (no output edges)".into(),
+        Some(d) if !d.is_finite() => "none (no truth edges)".into(),
+        Some(d) => format!("{d:.6e} of the box diagonal"),
     };
     let _ = writeln!(text, "exact          {}", s.exact);
     let _ = writeln!(text, "precision      {:.6}", s.precision);

@@ -148,6 +148,29 @@ fn a_double_dash_ends_the_options() {
         "{}",
         stderr(&out)
     );
+    // Before the command it ends no option and leaves the command as it is (it read as "no
+    // command given": a tester's review).
+    let before = condt(&[
+        OsStr::new("--"),
+        OsStr::new("triangulate"),
+        dashed.as_os_str(),
+        OsStr::new("--edges"),
+    ]);
+    ok(&before);
+    assert_eq!(before.stdout, plain.stdout);
+}
+
+/// `help --help` and `help -h` ask for the help as `help help` does (they read as unknown
+/// commands: a tester's review).
+#[test]
+fn help_asked_of_help_is_the_global_help() {
+    let global = condt(&["--help"]);
+    ok(&global);
+    for flag in ["--help", "-h", "help"] {
+        let out = condt(&["help", flag]);
+        ok(&out);
+        assert_eq!(out.stdout, global.stdout, "help {flag}");
+    }
 }
 
 #[cfg(unix)]

@@ -101,7 +101,7 @@ fn a_reconstruction_of_a_sampled_circle_scores_exact_against_its_truth() {
     let dir = scratch_dir();
     let (points, truth, true_edges) = sampled_circle(dir.path());
     let output = dir.path().join("circle.edges");
-    let run = Command::new(env!("CARGO_BIN_EXE_condt"))
+    let run = Command::new(binary())
         .args([Path::new("reconstruct"), &points, Path::new("-o"), &output])
         .output()
         .unwrap();
@@ -330,7 +330,7 @@ fn edge_files_accept_what_point_files_accept() {
 fn score_with_stdin(args: &[&Path], input: &[u8]) -> (Option<i32>, String, String) {
     use std::io::Write;
     use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_condt"))
+    let mut child = Command::new(binary())
         .arg("score")
         .args(args)
         .stdin(Stdio::piped())
@@ -384,6 +384,24 @@ fn a_dash_reads_standard_input_for_one_file() {
         assert!(stderr.contains("standard input"), "{args:?}: {stderr}");
         assert!(!stderr.contains("No such file"), "{args:?}: {stderr}");
     }
+    // Its other names read the same pipe, which the second reader found drained: the truth
+    // read first, the output then empty, scored "0 output ... exact false" with exit 0 (a
+    // tester's review).
+    let (stdin, fd0) = (Path::new("/dev/stdin"), Path::new("/dev/fd/0"));
+    for args in [
+        [&points, stdin, stdin],
+        [&points, fd0, dash],
+        [&points, dash, stdin],
+    ] {
+        let (code, _, stderr) = score_with_stdin(&args, truth_text.as_bytes());
+        assert_eq!(code, Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("standard input"), "{args:?}: {stderr}");
+    }
+    // Once, it reads as `-` does.
+    let (code, stdout, stderr) =
+        score_with_stdin(&[&points, &output, stdin, json], truth_text.as_bytes());
+    assert_eq!(code, Some(0), "{stderr}");
+    assert_eq!(stdout, expected);
 }
 
 /// A NumPy `.npy` array of shape `(rows, 2)` with dtype `descr`, the values given as bytes.
@@ -418,7 +436,7 @@ fn npy_edge_arrays_are_read() {
     let edges = dir.path().join("circle.edges");
     let array = dir.path().join("circle.NPY");
     for output in [&edges, &array] {
-        let run = Command::new(env!("CARGO_BIN_EXE_condt"))
+        let run = Command::new(binary())
             .args([Path::new("reconstruct"), &points, Path::new("-o"), output])
             .output()
             .unwrap();
@@ -522,7 +540,7 @@ fn npy_edge_arrays_are_read() {
     assert_eq!(json_value(&json, "f1"), "0.0");
     assert_eq!(json_value(&json, "n_out"), "3");
     assert_eq!(json_value(&json, "tp"), "2");
-    let run = Command::new(env!("CARGO_BIN_EXE_condt"))
+    let run = Command::new(binary())
         .args([Path::new("score"), &points, &truth, &negative_row])
         .output()
         .unwrap();
@@ -657,6 +675,23 @@ fn no_output_edges_read_as_no_distance() {
     let text =
         String::from_utf8(condt(&[Path::new("score"), &points, &output, &truth]).stdout).unwrap();
     assert!(text.contains("of the box diagonal"), "{text}");
+    // Nor without truth edges to measure from, as the JSON's `null` says (the text said "inf of
+    // the box diagonal": a tester's review).
+    let no_truth = write(dir.path(), "none.edges", "");
+    let out = condt(&[Path::new("score"), &points, &output, &no_truth]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let distances: Vec<&str> = text.lines().filter(|l| l.contains("distance")).collect();
+    assert_eq!(
+        distances,
+        [
+            "max distance   none (no truth edges)",
+            "rms distance   none (no truth edges)"
+        ],
+        "{text}"
+    );
+    let json = score_json(&points, &output, &no_truth);
+    assert_eq!(json_value(&json, "max_dist"), "null");
 }
 
 /// A point number past every point is the OUTPUT's problem in an array as in text, even past
