@@ -9,7 +9,7 @@ use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::reconstruct::{Reconstruction, StageReport};
 use crate::stages::local_outliers::{rule_evidence, LocalRule};
-use crate::stages::outliers::{iqr_thresholds_of, IqrRule};
+use crate::stages::outliers::iqr_thresholds_of;
 use crate::stages::proximity::{end_choices, Uniformity};
 use crate::stages::Stage;
 use crate::stages::{detours, repair};
@@ -447,16 +447,12 @@ impl<'a> Explainer<'a> {
         let stage = output.stage;
         // The stage's own threshold, on the stages' squared lengths (which neither overflow nor
         // underflow at any scale), shown in input units.
-        let threshold = match stage {
-            Stage::Outliers if !before.is_empty() => {
+        let threshold = match (stage, result.params().iqr_rule()) {
+            (Stage::Outliers, Some(rule)) if !before.is_empty() => {
                 let lengths: Vec<f64> = before
                     .iter()
                     .map(|&[a, b]| stage_length2(tri, a as usize, b as usize))
                     .collect();
-                let rule = IqrRule {
-                    factor: result.params().outlier_factor.unwrap_or(0.0),
-                    floor: result.params().iqr_floor,
-                };
                 let thresholds = iqr_thresholds_of(lengths, rule);
                 let cut = in_input_units(tri, libm::sqrt(thresholds.cut));
                 (cut, thresholds.cut > thresholds.fire)

@@ -224,13 +224,16 @@ impl Params {
         }
     }
 
+    /// Algorithm 3's rule as these parameters set it: `None` when it is off.
+    pub(crate) fn iqr_rule(&self) -> Option<IqrRule> {
+        let floor = self.iqr_floor;
+        self.outlier_factor.map(|factor| IqrRule { factor, floor })
+    }
+
     /// The steps after the proximity graph, in order: the one place the order is decided.
     pub(crate) fn steps(&self) -> impl Iterator<Item = Step> + use<> {
         let repair = (self.repair != Repair::Off).then_some(Step::Repair(self.repair));
-        let floor = self.iqr_floor;
-        let outliers = self
-            .outlier_factor
-            .map(|factor| Step::Outliers(IqrRule { factor, floor }));
+        let outliers = self.iqr_rule().map(Step::Outliers);
         let (first, second) = if self.outliers_first {
             (outliers, repair)
         } else {

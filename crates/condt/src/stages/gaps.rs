@@ -70,7 +70,7 @@ pub(super) const STRAIGHT: f64 = -0.866_025_403_784_438_6;
 /// Passages read from a loose end to see how much its curve bends (noise included) near it.
 const NEAR_END: usize = 3;
 /// Longest gap, as a multiple of the loose end's own edge: the paper's `u = 2.75`.
-pub(super) const GAP_RATIO: f64 = 2.75;
+pub(super) const GAP_RATIO: f64 = super::proximity::PAPER_U;
 
 /// The cosine of the angle at `p` between `a` and `b` (`1` if either is at `p`: it passes no test).
 pub(super) fn cos_at(p: Point, a: Point, b: Point) -> f64 {

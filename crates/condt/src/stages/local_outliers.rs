@@ -45,7 +45,7 @@ use alloc::vec::Vec;
 
 /// Long: over `LONG` times the longest other edge at an end; regular: two edges, the longer under
 /// `LONG` times the shorter. Reason: Algorithm 1's uniformity bound `u = 2.75`, not tuned here.
-pub(crate) const LONG: f64 = 2.75;
+pub(crate) const LONG: f64 = super::proximity::PAPER_U;
 
 /// Cosine of Algorithm 2's straight-passage angle `2π/3`: two edges continue each other above it.
 pub(crate) const SMOOTH_COS: f64 = -0.5;

@@ -35,9 +35,14 @@ pub enum Uniformity {
     Adaptive,
 }
 
+/// The paper's uniformity bound `u`: Algorithm 1's default, and the ratio of lengths the later
+/// stages read as one sampling ([`LONG`](super::local_outliers::LONG),
+/// [`GAP_RATIO`](super::gaps::GAP_RATIO)), fixed there whatever `u` the caller gives.
+pub(crate) const PAPER_U: f64 = 2.75;
+
 impl Default for Uniformity {
     fn default() -> Self {
-        Uniformity::Fixed(2.75)
+        Uniformity::Fixed(PAPER_U)
     }
 }
 

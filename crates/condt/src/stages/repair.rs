@@ -90,7 +90,9 @@ const PAIR_ANGLE: f64 = 2.0 * PI / 3.0;
 /// Smallest angle for two edges through a vertex to count as one nearly straight passage.
 const STRAIGHT_ANGLE: f64 = 5.0 * PI / 6.0;
 
-/// Squared cosines of [`PAIR_ANGLE`] and [`STRAIGHT_ANGLE`], for [`angle_above`].
+/// Squared cosines of [`PAIR_ANGLE`] and [`STRAIGHT_ANGLE`], for [`angle_above`]. The other
+/// stages read the same two angles as cosines ([`SMOOTH_COS`](super::local_outliers::SMOOTH_COS),
+/// [`STRAIGHT`](super::gaps::STRAIGHT)); a test ties the four forms together.
 const PAIR_COS2: f64 = 0.25;
 const STRAIGHT_COS2: f64 = 0.75;
 
@@ -447,6 +449,21 @@ fn select(
 mod tests {
     use super::*;
     use crate::{triangulate, Point};
+
+    /// Algorithm 2's `2π/3` and the straight passage's `5π/6`, as the repair reads them (angles,
+    /// squared cosines) and as the other stages do (cosines): one angle each.
+    #[test]
+    fn the_stages_read_the_same_two_angles() {
+        use super::super::{gaps::STRAIGHT, local_outliers::SMOOTH_COS};
+        for (angle, cos2, cos) in [
+            (PAIR_ANGLE, PAIR_COS2, SMOOTH_COS),
+            (STRAIGHT_ANGLE, STRAIGHT_COS2, STRAIGHT),
+        ] {
+            let exact = libm::cos(angle);
+            assert!((exact * exact - cos2).abs() < 1e-15, "{angle}");
+            assert!((exact - cos).abs() < 1e-15, "{angle}");
+        }
+    }
 
     /// Edges given as input positions, in the triangulation's vertex ids, sorted.
     fn edges(tri: &Triangulation, pairs: &[(usize, usize)]) -> Vec<Edge> {

@@ -40,6 +40,7 @@ use super::{alone, Replaced};
 use crate::adjacency::{ordered, Edge};
 use crate::bits::IdBits;
 use crate::mesh::VertexId;
+use crate::predicates::{orient2d, Orientation};
 use crate::threads::found_in_order;
 use alloc::vec::Vec;
 
@@ -299,7 +300,12 @@ impl Ends<'_> {
             let p = self.point(s);
             (pb.x - pa.x) * (p.y - pa.y) - (pb.y - pa.y) * (p.x - pa.x)
         };
-        let side = cross(run[apex]).signum();
+        // The apex's side of the chord, exactly (an apex on the chord's line is no tip).
+        let side = match orient2d(pa, pb, self.point(run[apex])) {
+            Orientation::Ccw => 1.0,
+            Orientation::Cw => -1.0,
+            Orientation::Collinear => return false,
+        };
         let height = |k: usize| match k {
             0 => 0.0,
             k if k <= run.len() => side * cross(run[k - 1]),
