@@ -150,8 +150,9 @@ use triangulation::Triangulation;
 ///
 /// Raises ``ValueError`` for a point with a NaN or infinite coordinate (named by its index and
 /// row), a finite one beyond float64's range (an int, a long double or a ``Decimal``; named by
-/// its index), an integer coordinate beyond 2^53 or a long-double one that is no float64
-/// (float64 would round it; named by its row), two
+/// its index), an integer coordinate beyond 2^53 (where float64 holds only some integers; any
+/// is refused, even one it holds) or a long-double one that is no float64 (float64 would round
+/// it; both named by their row), two
 /// points nearer than 2^-450 times the largest coordinate (too close for the stages to measure;
 /// named by their positions), a value the library refuses (an int too large for a float is
 /// infinite, and refused as such) or two keywords that contradict each other (``u=2, adaptive=True``; ``iqr=1.5`` or
