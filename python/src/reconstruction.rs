@@ -141,7 +141,10 @@ impl Reconstruction {
     /// input positions, or after smoothing passes the moved ones, on which the stages' lengths,
     /// ratios and rings (``stages``, ``explain``) were measured. A pass places points relative
     /// to the set's lower-left corner, so a point it did not move may read a unit in the last
-    /// place off its input.
+    /// place off its input. ``condt.triangulate(r.stage_points)`` is the triangulation the
+    /// stages walked except where four or more points lie on one circle (evenly spaced samples
+    /// of an arc, moved or not): there the run chose its diagonals in its own frame and order,
+    /// so ``explain`` may not know an edge of that triangulation.
     ///
     /// >>> import condt
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0, 1)], paper=True)
