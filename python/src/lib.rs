@@ -158,7 +158,9 @@ use triangulation::Triangulation;
 /// infinite, and refused as such) or two keywords that contradict each other (``u=2, adaptive=True``; ``iqr=1.5`` or
 /// ``iqr=None`` against ``outlier_filter=False`` or ``True``; a ``repair`` mode or ``"off"``
 /// against ``manifold_fix=False`` or ``True``), and ``TypeError`` for points that are not
-/// numbers, an unknown keyword or a value of the wrong type.
+/// numbers, an unknown keyword or a value of the wrong type. Warns (``UserWarning``) of curves
+/// of two points that look like points given twice a little apart
+/// (``Reconstruction.twin_curves``), which ``condt.snap`` would merge.
 ///
 /// >>> import condt, numpy as np
 /// >>> t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
@@ -201,6 +203,24 @@ fn reconstruct(
             Ok::<_, PyErr>((result, points.to_vec()))
         })
     })??;
+    // Points given twice a little apart (`Reconstruction.twin_curves`): a result that reads as
+    // success, with a curve of two points in place of each sample (a GIS user's review).
+    let twins = result.twin_curves();
+    if let Some(first) = twins.first() {
+        let message = format!(
+            "{} curves of two points that lie 16 times nearer each other than any other point \
+             (the first at point {first}): points given twice, a little apart (a shared border \
+             exported from both sides, a grey image's contour)? condt.snap(points, d) merges \
+             points within d",
+            twins.len()
+        );
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &CString::new(message)?,
+            1,
+        )?;
+    }
     Ok(Reconstruction::new(result, owned))
 }
 

@@ -192,6 +192,29 @@ impl Reconstruction {
         Ok(unused.bind(py).clone())
     }
 
+    /// Curves of two points that look like one point given twice a little apart (a border
+    /// exported from both sides with a small disagreement, a grey image's contour at a level):
+    /// each pair 16 times nearer each other than either lies to any other point, three or more
+    /// and more than chance makes among points sampled at random (one in 33 points). The first
+    /// point of each, int64, in the order of ``curves``; empty when they are fewer. ``reconstruct``
+    /// warns of them (``UserWarning``), as the command line notes them; ``condt.snap`` merges
+    /// points within a distance.
+    ///
+    /// >>> import condt
+    /// >>> condt.reconstruct([(0, 0), (1, 0), (2, 0), (3, 1)]).twin_curves.tolist()
+    /// []
+    #[getter]
+    fn twin_curves<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
+        let values = self
+            .shared
+            .result
+            .twin_curves()
+            .into_iter()
+            .map(position)
+            .collect();
+        index_vector(py, values)
+    }
+
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
     /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``,
     /// ``"given-back"``, ``"gaps"``, ``"junctions"``, ``"crossings"``, ``"tips"``, ``"spikes"``,

@@ -946,6 +946,25 @@ def test_snap_makes_a_shared_border_exported_twice_one():
     assert condt.snap(points, 0).tolist() == points.tolist()
 
 
+def test_points_given_twice_a_little_apart_are_warned_of_and_listed():
+    # A wavy ring given twice, the second copy a millionth off: each sample and its twin make a
+    # curve of two points, a result that reads as success; the command line notes it, Python
+    # warns (a contributor's review: only the command line told).
+    t = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    ring = np.column_stack([10 * np.cos(t) + 0.3 * np.sin(5 * t), 10 * np.sin(t)])
+    twice = np.vstack([ring, ring + [1e-6, 0]])
+    with pytest.warns(UserWarning, match="16 times nearer each other.*condt.snap"):
+        r = condt.reconstruct(twice)
+    twins = r.twin_curves
+    assert len(twins) >= 3 and twins.dtype == np.int64
+    firsts = [c.points[0] for c in r.curves if len(c.points) == 2 and not c.closed]
+    assert set(twins.tolist()) <= set(firsts)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert len(condt.reconstruct(ring).twin_curves) == 0
+        assert len(condt.reconstruct(condt.snap(twice, 1e-5)).twin_curves) == 0
+
+
 def test_snap_moves_an_exact_duplicate_where_its_first_copy_went_as_its_docs_say():
     # A review's find: the docs said every point moves "onto the nearest such point", but point
     # 3, an exact duplicate of point 1, follows it onto point 0 (0.2 away), not onto point 2,

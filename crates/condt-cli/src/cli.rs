@@ -1471,64 +1471,17 @@ fn note_snapped(snapped: Option<(usize, String)>) {
     }
 }
 
-/// How many times a curve of two points must be shorter than the way from either point to any
-/// other for [`note_twins`] to take it for one point given twice: Algorithm 1 already cuts a
-/// second edge 2.75 times (`u`) the first; sixteen is far past what noise makes (at most one such
-/// pair in any case of the three suites, seeds 1 and 2, or set of `../shared/data`), where twins
-/// are tens to thousands of times closer.
-const TWIN_RATIO: f64 = 16.0;
-
-/// One pair of twins in this many points is what chance makes in a uniform scatter, at most:
-/// of the `n/2 · λ · 2πr dr` pairs at distance `r` (density `λ`), a share of at most
-/// `exp(-λ · π (16r)²)` has no other point within `16r`, which integrates to `n / 2 / 16²`
-/// (1M uniform random points gave 445 such curves). Twins from a curve given twice are
-/// hundreds of times more frequent: about one in two points.
-const TWINS_BY_CHANCE: usize = 2 * 16 * 16;
-
-/// A note when three or more curves of two points are pairs of points given twice a little
-/// apart (a shared border exported from both sides, a contour of a grey image's level): each a
-/// curve of its own beside the curve they were meant to be, which the summary alone would not
-/// tell (a GIS user's review: 462 such pairs and "0 unused"). `--snap` merges them.
+/// A note when the result holds curves of two points that are pairs of points given twice a
+/// little apart ([`condt::Reconstruction::twin_curves`]): each a curve of its own beside the
+/// curve they were meant to be, which the summary alone would not tell (a GIS user's review:
+/// 462 such pairs and "0 unused"). `--snap` merges them.
 fn note_twins(result: &condt::Reconstruction) {
-    // The triangulation's points: moved by smoothing passes, a little, where they ran.
-    let tri = result.triangulation();
-    let length = |a: usize, b: usize| {
-        let (p, q) = (tri.point(a), tri.point(b));
-        (p.x - q.x).hypot(p.y - q.y)
-    };
-    let twins = result
-        .curves()
-        .iter()
-        .filter(|curve| !curve.is_closed() && curve.len() == 2)
-        .filter(|curve| {
-            let mut ends = curve.points();
-            let (Some(a), Some(b)) = (ends.next(), ends.next()) else {
-                return false;
-            };
-            let gap = length(a, b);
-            let nearest_other = [a, b]
-                .into_iter()
-                .flat_map(|end| tri.neighbors(end).map(move |w| (end, w)))
-                .filter(|&(_, w)| w != a && w != b)
-                .map(|(end, w)| length(end, w))
-                .fold(f64::INFINITY, f64::min);
-            gap > 0.0 && nearest_other >= TWIN_RATIO * gap
-        })
-        .map(|curve| curve.points().next().unwrap_or_default())
-        .collect::<Vec<usize>>();
-    // One pair can be a noisy sample's accident (at most one in any case of the three suites
-    // or set of `../shared/data`); three are a pattern, unless the points are so many that
-    // chance makes them (`TWINS_BY_CHANCE`).
-    let points = tri.num_points();
-    if let (Some(&first), true) = (
-        twins.first(),
-        twins.len() >= 3 && twins.len() * TWINS_BY_CHANCE > points,
-    ) {
+    let twins = result.twin_curves();
+    if let Some(&first) = twins.first() {
         note(format_args!(
-            "{} of two points that lie {TWIN_RATIO} times nearer each other than any other \
-             point (the first at point {first}): points given twice, a little apart (a shared \
-             border exported from both sides, a grey image's contour)? --snap D merges points \
-             within D",
+            "{} of two points that lie 16 times nearer each other than any other point (the \
+             first at point {first}): points given twice, a little apart (a shared border \
+             exported from both sides, a grey image's contour)? --snap D merges points within D",
             Counted(twins.len(), "curve"),
         ));
     }
