@@ -68,8 +68,10 @@ When standard error is a terminal, a progress bar follows the reading, the compu
 writing, and is cleared at the end; `--quiet` (`-q`) shows neither it nor the notes on standard
 error. The output is the same either way.
 
-Exit codes: 0 success; 1 the input or output failed (the message names the file and line);
-2 a wrong command line. A reader that stops early (`| head`) ends the run silently, by SIGPIPE.
+Exit codes: 0 success; 1 the input or output failed (the message names the file and line; of
+points too close to measure, it names their lines where the file can be read again, else
+their numbers: standard input, a pipe, .npy, GeoJSON, .tsv); 2 a wrong command line. A reader
+that stops early (`| head`) ends the run silently, by SIGPIPE.
 ";
 
 /// The options before a command.
