@@ -676,7 +676,6 @@ mod tests {
         }
     }
 
-    /// The detours step's reason names the detour's ends and its points, for each of its edges.
     /// A repair's edge between two points of degree three or more is told at the end that did
     /// not select it: with the needs repair (and the mutual one) both must, and the end with
     /// more edges may well have (a student's review: one in six such explanations blamed it).
@@ -721,6 +720,7 @@ mod tests {
         assert!(told > 100 && not_the_busier > 0, "{told} {not_the_busier}");
     }
 
+    /// The detours step's reason names the detour's ends and its points, for each of its edges.
     #[test]
     fn a_detour_is_told_with_its_ends() {
         // Twelve unit-spaced samples of a line and point 12 above samples 5 and 6, which

@@ -185,9 +185,9 @@ impl Ends<'_> {
     /// ([`Ends::leads_off`] from the one neighbour), each asked once: a loose end is paired with
     /// every other beside its tip's run, and each pairing asked it again, walking its whole ring
     /// (a performance review: a point above 200,000 on a line, a loose end beside them all, made
-    /// the step 1.7 s instead of milliseconds).
-    /// Only those `beside` a point without edges can (speed: the others' rings are not walked);
-    /// on rayon's threads when `parallel` (the same set).
+    /// the step 1.7 s instead of milliseconds). Only those `beside` a point without edges can
+    /// (speed: the others' rings are not walked); on rayon's threads when `parallel` (the same
+    /// set).
     fn loose_ends_leading_off(
         &self,
         beside: impl Fn(VertexId) -> bool + Sync + Send,
@@ -214,14 +214,14 @@ impl Ends<'_> {
         let mesh = self.tri.mesh();
         // Each other loose end once, however many of the run's points it lies beside (the
         // moves are sorted afterwards: the order here is free).
-        let mut beside: Vec<VertexId> = run[..len]
+        let mut loose_beside: Vec<VertexId> = run[..len]
             .iter()
             .flat_map(|&s| mesh.neighbors(s))
             .filter(|&y| y != x && self.is_loose(y))
             .collect();
-        beside.sort_unstable();
-        beside.dedup();
-        for y in beside {
+        loose_beside.sort_unstable();
+        loose_beside.dedup();
+        for y in loose_beside {
             found.extend(self.spike_between(x.min(y), x.max(y), leading));
         }
     }
