@@ -780,15 +780,15 @@ pub(crate) type Printed = String;
 /// informational commands such as `--help`.
 pub(crate) fn run(args: &[OsString]) -> Result<Printed, CliError> {
     // `--` ends the options before the command too: what follows is the command and its words.
-    let args = match args.split_first() {
-        Some((first, after)) if first == "--" => after,
-        _ => args,
+    let (args, dashed) = match args.split_first() {
+        Some((first, after)) if first == "--" => (after, true),
+        _ => (args, false),
     };
     let Some((command, rest)) = args.split_first() else {
         return Err(usage("no command given"));
     };
     let command = text(command, "command")?;
-    if command.starts_with('-') {
+    if command.starts_with('-') && !dashed {
         // `--help` and `--version` take nothing after them (`condt -V x` was answered as
         // `condt -V`, where every other extra argument is refused).
         let lexed = options::lex(args, GLOBAL_OPTIONS, "")?;

@@ -158,6 +158,14 @@ fn a_double_dash_ends_the_options() {
     ]);
     ok(&before);
     assert_eq!(before.stdout, plain.stdout);
+    // After it, a word is no option: `--help` is an unknown command.
+    let out = condt(&[OsStr::new("--"), OsStr::new("--help")]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("unknown command --help"),
+        "{}",
+        stderr(&out)
+    );
 }
 
 /// `help --help` and `help -h` ask for the help as `help help` does (they read as unknown
