@@ -378,6 +378,36 @@ fn twins_a_little_apart_are_noted() {
     assert!(!said(&once, &[]).contains(noted));
     assert!(!said(&twice, &["--snap", "1e-5"]).contains(noted));
     assert!(said(&twice, &["-q"]).is_empty());
+    // At any scale: the rule once squared lengths in the input's units, where twins 1e-170
+    // apart squared to 0 and pairs 1e160 apart to infinity (a diff review).
+    let scaled = |text: &str, factor: f64| -> String {
+        text.lines()
+            .map(|line| {
+                let [x, y] = [0, 1].map(|k| {
+                    line.split_whitespace()
+                        .nth(k)
+                        .unwrap()
+                        .parse::<f64>()
+                        .unwrap()
+                        * factor
+                });
+                format!("{x:e} {y:e}\n")
+            })
+            .collect()
+    };
+    let tiny = dir.path().join("tiny.txt");
+    fs::write(&tiny, scaled(&(ring(0.0) + &ring(1e-6)), 1e-170)).unwrap();
+    assert!(said(&tiny, &[]).contains(noted));
+    // Pairs a tenth of a unit apart, a unit from the next pair: 10 times nearer, no twins.
+    let pairs: String = (0..15)
+        .flat_map(|i| (0..15).map(move |j| (i, j)))
+        .map(|(i, j)| format!("{i} {j}\n{} {j}\n", i as f64 + 0.1))
+        .collect();
+    for factor in [1.0, 1e160] {
+        let path = dir.path().join("pairs.txt");
+        fs::write(&path, scaled(&pairs, factor)).unwrap();
+        assert!(!said(&path, &[]).contains(noted), "{factor}");
+    }
 }
 
 /// Uniform random points make close pairs by chance, about one in 2,000 points as two-point

@@ -151,9 +151,16 @@ fn write_data(
                 first = false;
                 write_integer(out, k as u64)?;
                 out.write_all(if side == 0 { b",0," } else { b",1," })?;
-                Short(ratio, RATIO_DIGITS).write_to(out)?;
+                // Every digit where the usual ones would read a ratio as its bound, so that
+                // the page tells them apart as `story_text` does (2.7499999996 against 2.75).
+                let digits = if ratio_digits_meet(ratio, bound) {
+                    17
+                } else {
+                    RATIO_DIGITS
+                };
+                Short(ratio, digits).write_to(out)?;
                 out.write_all(b",")?;
-                Short(bound, RATIO_DIGITS).write_to(out)?;
+                Short(bound, digits).write_to(out)?;
                 out.write_all(if kept { b",1" } else { b",0" })?;
             }
         }
@@ -291,6 +298,13 @@ const POSITION_DIGITS: usize = 7;
 /// rounds the value itself to those, as the Python package and `story_text` do (five rounded
 /// twice, 1.0705 from 1.07049..., showed 1.071 where they say 1.070).
 const RATIO_DIGITS: usize = 9;
+/// Whether a ratio and its bound, different, read alike with [`RATIO_DIGITS`].
+fn ratio_digits_meet(ratio: f64, bound: f64) -> bool {
+    let (mut a, mut b) = (Text::default(), Text::default());
+    ratio != bound
+        && Short(ratio, RATIO_DIGITS).spell(&mut a) == Short(bound, RATIO_DIGITS).spell(&mut b)
+}
+
 /// Of the changes' other numbers (vertex ids, counts, the long-edge ratio shown with two
 /// decimals).
 const LENGTH_DIGITS: usize = 6;
@@ -611,8 +625,6 @@ mod tests {
         }
     }
 
-    /// With no points there is no corner: the page's data must still be JSON (it had an origin of
-    /// `inf`, which the viewer's `JSON.parse` refused, leaving a blank page).
     /// Every reason's code below [`DETOUR_CODE`] has its words in the page's list (a new reason
     /// took code 20, which the page read as a detour's, before `DETOUR_CODE`).
     #[test]
@@ -711,6 +723,26 @@ mod tests {
         );
     }
 
+    /// A ratio that nine digits would read as its bound is written with every digit, so that
+    /// the page tells them apart as `story_text` does (a diff review: "2.750 |e1| < 2.750 |e1|").
+    #[test]
+    fn a_ratio_a_hair_under_its_bound_keeps_its_digits() {
+        use condt::{reconstruct, Params, Point};
+        let points = [(0.0, 0.0), (1.0, 0.0), (-2.749_999_999_6, 0.0)].map(Point::from);
+        let result = reconstruct(&points, &Params::paper()).unwrap();
+        let mut page = Vec::new();
+        write_html(&mut page, &result, "a hair").unwrap();
+        let page = String::from_utf8(page).unwrap();
+        assert!(
+            page.contains("\"seconds\":[1,0,2.7499999996,2.75,1]"),
+            "{page}"
+        );
+        assert!(ratio_digits_meet(2.749_999_999_6, 2.75));
+        assert!(!ratio_digits_meet(2.7496, 2.75) && !ratio_digits_meet(2.75, 2.75));
+    }
+
+    /// With no points there is no corner: the page's data must still be JSON (it had an origin of
+    /// `inf`, which the viewer's `JSON.parse` refused, leaving a blank page).
     #[test]
     fn no_points_give_valid_json() {
         use condt::{reconstruct, Params};

@@ -108,11 +108,11 @@
     }
   };
   // A ratio and its bound with three decimals, or as many more as tell them apart (the page
-  // holds nine significant digits), as `story_text` gives them.
+  // holds every digit where nine would read them alike), as `story_text` gives them.
   const ratiosApart = (a, b) => {
     for (let d = 3; ; d++) {
       const [x, y] = [a.toFixed(d), b.toFixed(d)];
-      if (x !== y || a === b || d === 12) return [x, y];
+      if (x !== y || a === b || d === 17) return [x, y];
     }
   };
   // A zoom by `f`, held to a thousandth of the fitted view out and 10^9 times it in (the

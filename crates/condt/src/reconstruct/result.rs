@@ -313,7 +313,11 @@ impl Reconstruction {
     /// ```
     pub fn twin_curves(&self) -> Vec<usize> {
         let tri = &self.triangulation;
-        let length2 = |a: usize, b: usize| tri.point(a).dist2(tri.point(b));
+        // In the stages' frame, whose squared lengths neither overflow nor underflow at any
+        // scale (a diff review: in the input's units twins 1e-170 apart squared to 0, and pairs
+        // 1e160 apart to infinity, all "16 times nearer").
+        let point = |i: usize| tri.vertex_point(tri.vertex(i));
+        let length2 = |a: usize, b: usize| point(a).dist2(point(b));
         let twins: Vec<usize> = self
             .curves
             .iter()
