@@ -330,12 +330,17 @@ fn stream_metadata<S>(_stream: S) -> Option<fs::Metadata> {
 
 /// Whether reading `path` reads standard input's own stream: `/dev/stdin`, `/dev/fd/0` and the
 /// like, or any name of the very pipe, FIFO or socket standard input is, which a second reader
-/// would find drained (`score` reads each file once; a file can be read by two names).
+/// would find drained (`score` reads each file once). A regular file behind standard input is
+/// not: any name opens it again from its start.
 pub(crate) fn names_standard_input(path: &Path) -> bool {
+    let stdin = stream_metadata(io::stdin());
+    if stdin.as_ref().is_some_and(fs::Metadata::is_file) {
+        return false;
+    }
     if descriptor_named(path) == Some(0) {
         return true;
     }
-    let (Some(stdin), Ok(named)) = (stream_metadata(io::stdin()), fs::metadata(path)) else {
+    let (Some(stdin), Ok(named)) = (stdin, fs::metadata(path)) else {
         return false;
     };
     is_stream(&stdin) && same_file(&stdin, &named)

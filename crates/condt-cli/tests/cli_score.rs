@@ -402,6 +402,21 @@ fn a_dash_reads_standard_input_for_one_file() {
         score_with_stdin(&[&points, &output, stdin, json], truth_text.as_bytes());
     assert_eq!(code, Some(0), "{stderr}");
     assert_eq!(stdout, expected);
+    // A regular file behind standard input opens again by any name: twice is fine there.
+    let run = Command::new(binary())
+        .args([Path::new("score"), &points, stdin, stdin, json])
+        .stdin(std::fs::File::open(&truth).unwrap())
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_eq!(
+        String::from_utf8(run.stdout).unwrap(),
+        score_json(&points, &truth, &truth)
+    );
 }
 
 /// A NumPy `.npy` array of shape `(rows, 2)` with dtype `descr`, the values given as bytes.
