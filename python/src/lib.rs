@@ -160,7 +160,8 @@ use triangulation::Triangulation;
 /// against ``manifold_fix=False`` or ``True``), and ``TypeError`` for points that are not
 /// numbers, an unknown keyword or a value of the wrong type. Warns (``UserWarning``) of curves
 /// of two points that look like points given twice a little apart
-/// (``Reconstruction.twin_curves``), which ``condt.snap`` would merge.
+/// (``Reconstruction.twin_curves``), which ``condt.snap`` would merge (``condt.dask`` does
+/// not: its result has edges only).
 ///
 /// >>> import condt, numpy as np
 /// >>> t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
