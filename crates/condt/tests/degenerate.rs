@@ -361,10 +361,9 @@ fn repeats_past_the_halves_bound_give_the_triangulation_of_the_distinct_points()
             .map(|i| Point::new((i % 4) as f64, (i / 4 % 4) as f64))
             .collect()
     };
-    let sorted = sorted_triangles;
     let (once, repeated) = (grid(1), grid(4097));
     assert!(repeated.len() >= 1 << 16);
-    assert_eq!(sorted(&repeated), sorted(&once));
+    assert_eq!(sorted_triangles(&repeated), sorted_triangles(&once));
     for params in [Params::default(), Params::paper()] {
         let edges = |points: &[Point]| {
             reconstruct(points, &params)
@@ -389,8 +388,7 @@ fn repeats_of_a_small_cocircular_set_give_the_triangulation_of_the_distinct_poin
         .collect();
     distinct.push(Point::new(1e5, 1e5));
     distinct.push(Point::new(-1e5, 3e5));
-    let sorted = sorted_triangles;
-    let once = sorted(&distinct);
+    let once = sorted_triangles(&distinct);
     let edges = |points: &[Point]| {
         reconstruct(points, &Params::default())
             .unwrap()
@@ -401,7 +399,7 @@ fn repeats_of_a_small_cocircular_set_give_the_triangulation_of_the_distinct_poin
     for copies in 2..=8 {
         // In blocks: position i of every block is point i (the first copy is kept).
         let blocks: Vec<Point> = (0..copies).flat_map(|_| distinct.iter().copied()).collect();
-        assert_eq!(sorted(&blocks), once, "{copies} blocks");
+        assert_eq!(sorted_triangles(&blocks), once, "{copies} blocks");
         assert_eq!(edges(&blocks), edges_once, "{copies} blocks");
     }
 }

@@ -360,13 +360,16 @@ fn insertion_order(
     parallel: bool,
     split_min: usize,
 ) -> (Vec<u32>, Option<usize>) {
-    // The decision `construct` builds by, so the ids (and the stages' ties) follow this order.
+    // The decision `construct` builds by, so the ids (and the stages' ties) follow this order:
+    // a set cut in two whose distinct points are fewer than the bound is built again in one
+    // piece, in that order (a review: with repeats past the bound, this order was the halves'
+    // while the ids followed the one piece's).
     match cut_in_two(points, frames, split_min, parallel) {
-        Some(cut) => (
+        Some(cut) if distinct_count(points) >= split_min => (
             cut_order(points, frames, &cut, parallel, false, Default::default()).0,
             Some(cut.left_len()),
         ),
-        None => (spatial_order(points, frames), None),
+        _ => (spatial_order(points, frames), None),
     }
 }
 
@@ -552,14 +555,7 @@ impl Triangulation {
     pub fn insertion_order(points: &[Point]) -> Result<Vec<u32>, Error> {
         let frames = scale::choose_frames(points)?;
         let parallel = points.len() >= PARALLEL_MIN && crate::threads::parallel_available();
-        let (order, cut) = insertion_order(points, &frames, parallel, halves::SPLIT_MIN);
-        // A set cut in two whose distinct points are fewer than the bound is built again in one
-        // piece (`construct`), in that order (a review: with repeats past the bound, this order
-        // was the halves' while the ids followed the one piece's).
-        if cut.is_some() && distinct_count(points) < halves::SPLIT_MIN {
-            return Ok(spatial_order(points, &frames));
-        }
-        Ok(order)
+        Ok(insertion_order(points, &frames, parallel, halves::SPLIT_MIN).0)
     }
 
     /// [`triangulate`], adding to `inserted` (`Relaxed`) every 65,536 points or so the points
