@@ -184,12 +184,14 @@ impl Reconstruction {
 
     /// The stages in the order they ran ([`Params::stages`]), each graph rebuilt from the final one
     /// in O(edges) per later stage (only changes are kept); the proximity graph may be recomputed.
+    /// `len()` counts them without rebuilding any (`count()` would rebuild each).
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
     /// let pts = [(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)].map(Point::from);
     /// let result = reconstruct(&pts, &Params::paper())?;
     /// assert!(result.stages().map(|r| r.stage).eq(Params::paper().stages()));
+    /// assert_eq!(result.stages().len(), 3);
     /// assert!(result.stages().all(|r| r.graph.num_edges() == 3));
     /// # Ok::<(), condt::Error>(())
     /// ```
