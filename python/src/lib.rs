@@ -158,9 +158,9 @@ use triangulation::Triangulation;
 /// infinite, and refused as such) or two keywords that contradict each other (``u=2, adaptive=True``; ``iqr=1.5`` or
 /// ``iqr=None`` against ``outlier_filter=False`` or ``True``; a ``repair`` mode or ``"off"``
 /// against ``manifold_fix=False`` or ``True``), and ``TypeError`` for points that are not
-/// numbers, an unknown keyword or a value of the wrong type. Warns (``UserWarning``) of curves
-/// of two points that look like points given twice a little apart
-/// (``Reconstruction.twin_curves``), which ``condt.snap`` would merge (``condt.dask`` does
+/// numbers, an unknown keyword or a value of the wrong type. Warns (``UserWarning``) of pairs
+/// of points that look like points given twice a little apart
+/// (``Reconstruction.twin_pairs``), which ``condt.snap`` would merge (``condt.dask`` does
 /// not: its result has edges only).
 ///
 /// >>> import condt, numpy as np
@@ -204,13 +204,14 @@ fn reconstruct(
             Ok::<_, PyErr>((result, points.to_vec()))
         })
     })??;
-    // Points given twice a little apart (`Reconstruction.twin_curves`): a result that reads as
-    // success, with a curve of two points in place of each sample (a GIS user's review).
-    let twins = result.twin_curves();
-    if let Some(first) = twins.first() {
+    // Points given twice a little apart (`Reconstruction.twin_pairs`): a result that reads as
+    // success, with a curve of two points or unused points in place of each sample (GIS users'
+    // reviews).
+    let twins = result.twin_pairs();
+    if let Some([a, b]) = twins.first() {
         let message = format!(
-            "{} curves of two points that lie 16 times nearer each other than any other point \
-             (the first at point {first}): points given twice, a little apart (a shared border \
+            "{} pairs of points that lie 16 times nearer each other than any other point (the \
+             first: points {a} and {b}): points given twice, a little apart (a shared border \
              exported from both sides, a grey image's contour)? condt.snap(points, d) merges \
              points within d",
             twins.len()

@@ -192,27 +192,28 @@ impl Reconstruction {
         Ok(unused.bind(py).clone())
     }
 
-    /// Curves of two points that look like one point given twice a little apart (a border
-    /// exported from both sides with a small disagreement, a grey image's contour at a level):
-    /// each pair 16 times nearer each other than either lies to any other point, three or more
-    /// and more than chance makes among points sampled at random (one in 33 points). The first
-    /// point of each, int64, in the order of ``curves``; empty when they are fewer. ``reconstruct``
+    /// Pairs of points that look like one point given twice a little apart (a border exported
+    /// from both sides with a small disagreement, a grey image's contour at a level): the two lie
+    /// 16 times nearer each other than either lies to any other point, whatever the stages made
+    /// of them (a curve of two points, unused points), three pairs or more and more than chance
+    /// makes among points sampled at random (one in 33 points). An ``(m, 2)`` int64 array of
+    /// input positions, the lower first, ascending; empty when they are fewer. ``reconstruct``
     /// warns of them (``UserWarning``), as the command line notes them; ``condt.snap`` merges
     /// points within a distance.
     ///
     /// >>> import condt
-    /// >>> condt.reconstruct([(0, 0), (1, 0), (2, 0), (3, 1)]).twin_curves.tolist()
-    /// []
+    /// >>> condt.reconstruct([(0, 0), (1, 0), (2, 0), (3, 1)]).twin_pairs.shape
+    /// (0, 2)
     #[getter]
-    fn twin_curves<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
-        let values = self
+    fn twin_pairs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let rows = self
             .shared
             .result
-            .twin_curves()
+            .twin_pairs()
             .into_iter()
-            .map(position)
+            .map(|pair| pair.map(position))
             .collect();
-        index_vector(py, values)
+        index_array(py, rows)
     }
 
     /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,

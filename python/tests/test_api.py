@@ -955,14 +955,14 @@ def test_points_given_twice_a_little_apart_are_warned_of_and_listed():
     twice = np.vstack([ring, ring + [1e-6, 0]])
     with pytest.warns(UserWarning, match="16 times nearer each other.*condt.snap"):
         r = condt.reconstruct(twice)
-    twins = r.twin_curves
-    assert len(twins) >= 3 and twins.dtype == np.int64
-    firsts = [c.points[0] for c in r.curves if len(c.points) == 2 and not c.closed]
-    assert set(twins.tolist()) <= set(firsts)
+    twins = r.twin_pairs
+    assert twins.dtype == np.int64 and twins.shape[1] == 2
+    # Each sample k and its copy 60 + k: every pair, the lower position first.
+    assert twins.tolist() == [[k, 60 + k] for k in range(60)]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert len(condt.reconstruct(ring).twin_curves) == 0
-        assert len(condt.reconstruct(condt.snap(twice, 1e-5)).twin_curves) == 0
+        assert condt.reconstruct(ring).twin_pairs.shape == (0, 2)
+        assert condt.reconstruct(condt.snap(twice, 1e-5)).twin_pairs.shape == (0, 2)
 
 
 def test_snap_moves_an_exact_duplicate_where_its_first_copy_went_as_its_docs_say():

@@ -1473,18 +1473,19 @@ fn note_snapped(snapped: Option<(usize, String)>) {
     }
 }
 
-/// A note when the result holds curves of two points that are pairs of points given twice a
-/// little apart ([`condt::Reconstruction::twin_curves`]): each a curve of its own beside the
-/// curve they were meant to be, which the summary alone would not tell (a GIS user's review:
-/// 462 such pairs and "0 unused"). `--snap` merges them.
+/// A note when the result has pairs of points given twice a little apart
+/// ([`condt::Reconstruction::twin_pairs`]): each a curve of its own beside the curve it was meant
+/// to be, or points left unused, which the summary alone would not tell (a GIS user's review:
+/// 462 such pairs and "0 unused"; another's: a shared side given twice left unused, no hint).
+/// `--snap` merges them.
 fn note_twins(result: &condt::Reconstruction) {
-    let twins = result.twin_curves();
-    if let Some(&first) = twins.first() {
+    let twins = result.twin_pairs();
+    if let Some([a, b]) = twins.first() {
         note(format_args!(
-            "{} of two points that lie 16 times nearer each other than any other point (the \
-             first at point {first}): points given twice, a little apart (a shared border \
+            "{} pairs of points that lie 16 times nearer each other than any other point (the \
+             first: points {a} and {b}): points given twice, a little apart (a shared border \
              exported from both sides, a grey image's contour)? --snap D merges points within D",
-            Counted(twins.len(), "curve"),
+            twins.len(),
         ));
     }
 }

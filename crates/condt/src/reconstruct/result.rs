@@ -120,8 +120,8 @@ pub struct StageReport<'r> {
     pub time: Duration,
 }
 
-/// How many times a curve of two points must be shorter than the way from either point to any
-/// other for [`Reconstruction::twin_curves`] to take it for one point given twice: Algorithm 1
+/// How many times two points must lie nearer each other than either lies to any other point
+/// for [`Reconstruction::twin_pairs`] to take them for one point given twice: Algorithm 1
 /// already cuts a second edge 2.75 times (`u`) the first; sixteen is far past what noise makes
 /// (at most one such pair in any case of the evaluation suites, seeds 1 and 2, or set of
 /// `../shared/data`), where twins are tens to thousands of times closer.
@@ -131,9 +131,9 @@ const TWIN_RATIO: f64 = 16.0;
 /// at random along curves: a gap `d` between neighbours (density `λ` along the curve) has no
 /// other sample within `16d` on either side with probability `exp(-2 · 16 λd)`, which over the
 /// gaps' exponential law gives one gap in `2 · 16 + 1`. (Scattered in the plane, chance makes
-/// fewer: one in `2 · 16²` points; 1M uniform random points gave 445 such curves, and 1M along
-/// randomly sampled noisy ellipses 6,576.) Twins from a curve given twice are about one in two
-/// points.
+/// fewer: one in `2 · 16²` points; `scripts/scale.py`'s 1M uniform random points have 1,253
+/// such pairs, counted without this bound.) Twins from a curve given twice are about one in
+/// two points.
 const TWINS_BY_CHANCE: usize = 2 * 16 + 1;
 
 impl Reconstruction {
@@ -290,13 +290,14 @@ impl Reconstruction {
         &self.curves
     }
 
-    /// Curves of two points that look like one point given twice a little apart (a border
-    /// exported from both sides with a small disagreement, a grey image's contour at a level):
-    /// each curve's two points lie 16 times nearer each other than either lies to any other point
-    /// (the last run's positions), and such curves number at least three and more than chance
-    /// makes among points sampled at random (one in 33 points, by a bound). The first point of
-    /// each (an input position), in the order of [`curves`](Self::curves); empty when they are
-    /// fewer. [`snap`](crate::snap) merges points within a distance.
+    /// Pairs of points that look like one point given twice a little apart (a border exported
+    /// from both sides with a small disagreement, a grey image's contour at a level): the two lie
+    /// 16 times nearer each other than either lies to any other point (the last run's
+    /// positions), and such pairs number at least three and more than chance makes among points
+    /// sampled at random (one in 33 points, by a bound). Whatever the stages made of a pair (a
+    /// curve of two points, two unused points, a spur), it is one. Each pair's two input
+    /// positions, the lower first, ascending; empty when they are fewer. [`snap`](crate::snap)
+    /// merges points within a distance.
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
@@ -308,33 +309,37 @@ impl Reconstruction {
     ///     })
     /// };
     /// let twice: Vec<Point> = ring(0.0).chain(ring(1e-6)).collect();
-    /// assert!(reconstruct(&twice, &Params::default())?.twin_curves().len() >= 3);
+    /// assert_eq!(reconstruct(&twice, &Params::default())?.twin_pairs()[0], [0, 60]);
     /// let once: Vec<Point> = ring(0.0).collect();
-    /// assert!(reconstruct(&once, &Params::default())?.twin_curves().is_empty());
+    /// assert!(reconstruct(&once, &Params::default())?.twin_pairs().is_empty());
     /// # Ok::<(), condt::Error>(())
     /// ```
-    pub fn twin_curves(&self) -> Vec<usize> {
+    pub fn twin_pairs(&self) -> Vec<[usize; 2]> {
         let tri = &self.triangulation;
         // In the stages' frame, whose squared lengths neither overflow nor underflow at any
         // scale (a diff review: in the input's units twins 1e-170 apart squared to 0, and pairs
         // 1e160 apart to infinity, all "16 times nearer").
         let point = |i: usize| tri.vertex_point(tri.vertex(i));
-        let length2 = |a: usize, b: usize| point(a).dist2(point(b));
-        let twins: Vec<usize> = self
-            .curves
-            .iter()
-            .filter(|curve| !curve.is_closed() && curve.len() == 2)
-            .filter_map(|curve| {
-                let mut ends = curve.points();
-                let (a, b) = (ends.next()?, ends.next()?);
-                let gap2 = length2(a, b);
-                let nearest_other2 = [a, b]
-                    .into_iter()
-                    .flat_map(|end| tri.neighbors(end).map(move |w| (end, w)))
-                    .filter(|&(_, w)| w != a && w != b)
-                    .map(|(end, w)| length2(end, w))
-                    .fold(f64::INFINITY, f64::min);
-                (gap2 > 0.0 && nearest_other2 >= TWIN_RATIO * TWIN_RATIO * gap2).then_some(a)
+        // The nearest neighbour of `a` when every other lies 16 times farther. The nearest
+        // point is a Delaunay neighbour; the second nearest is taken among them too.
+        let alone_with = |a: usize| -> Option<usize> {
+            let at = point(a);
+            let (mut nearest, mut first, mut second) = (a, f64::INFINITY, f64::INFINITY);
+            for w in tri.neighbors(a) {
+                let d2 = at.dist2(point(w));
+                if d2 < first {
+                    (nearest, first, second) = (w, d2, first);
+                } else if d2 < second {
+                    second = d2;
+                }
+            }
+            (first > 0.0 && second >= TWIN_RATIO * TWIN_RATIO * first).then_some(nearest)
+        };
+        let twins: Vec<[usize; 2]> = tri
+            .distinct_points()
+            .filter_map(|a| {
+                let b = alone_with(a).filter(|&b| a < b)?;
+                (alone_with(b) == Some(a)).then_some([a, b])
             })
             .collect();
         // One pair can be a noisy sample's accident (at most one in any case of the three
