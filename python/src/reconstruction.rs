@@ -406,6 +406,24 @@ impl Reconstruction {
                 Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
             }
         };
+        // As the command line notes it: without a crs member, readers take the coordinates for
+        // longitudes and latitudes (a GIS user's review: Python said nothing).
+        if crs.is_none() {
+            if let Some(p) = condt_io::not_longitude_latitude(&self.shared.points) {
+                let message = format!(
+                    "coordinates such as ({}, {}) are no longitude and latitude, which GeoJSON \
+                     readers take them for without a crs member: crs= names the input's system \
+                     (\"EPSG:32632\", for instance)",
+                    p.x, p.y
+                );
+                PyErr::warn(
+                    py,
+                    &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+                    &std::ffi::CString::new(message)?,
+                    1,
+                )?;
+            }
+        }
         let mut out = Vec::new();
         condt_io::write_geojson_with_crs(
             &mut out,

@@ -1120,8 +1120,16 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
     as_dict = json.loads(r.to_geojson(crs=json.loads(crs_text)))
     assert as_dict["crs"] == json.loads(crs_text)
     assert as_dict["features"] == json.loads(written)["features"]
-    assert "crs" not in json.loads(r.to_geojson())
-    assert r.to_geojson(crs=None) == r.to_geojson()
+    # Without a crs such coordinates read as degrees: warned of, as the command line notes it
+    # (a GIS user's review: Python said nothing).
+    with pytest.warns(UserWarning, match=r"\(500000.0, 4000000.0\) are no longitude and latitude"):
+        assert "crs" not in json.loads(r.to_geojson())
+    with pytest.warns(UserWarning, match="crs= names the input's system"):
+        assert r.to_geojson(crs=None) == r.to_geojson()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r.to_geojson(crs="null")
+        condt.reconstruct(points / 1e5).to_geojson()
     # A name, as the command line's --crs takes it; text that starts as JSON must be JSON.
     named = json.loads(r.to_geojson(crs="EPSG:32632"))["crs"]
     assert named == {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}}

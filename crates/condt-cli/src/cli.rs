@@ -1539,10 +1539,7 @@ pub(crate) fn note_dropped_crs(file: &str, line: Option<usize>) {
 /// longitudes and latitudes (RFC 7946's, which GIS readers then assume): projected metres,
 /// a scan's UTM coordinates, which a map would place nowhere near where they are.
 fn note_projected_without_crs(output: &str, points: &[condt::Point]) {
-    let beyond = points
-        .iter()
-        .find(|p| p.x.abs() > 180.0 || p.y.abs() > 90.0);
-    if let Some(p) = beyond {
+    if let Some(p) = condt_io::not_longitude_latitude(points) {
         note(format_args!(
             "{output}: coordinates such as ({}, {}) are no longitude and latitude, which GeoJSON \
              readers take them for without a crs member: --crs names the input's system \
@@ -1723,15 +1720,25 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         note_twins(&result);
         note_format_against_name(args.format, args.output.as_deref());
         // Every panel draws every point: past a million dots a drawing is slow to open. (`len`,
-        // not `count`, which would rebuild every stage's graph: at 1M points 0.3 s and 5-18 MB
-        // of peak.)
-        let panels = 1 + result.stages().len();
-        if args.format == Format::Svg && args.stages && count.saturating_mul(panels) > 1_000_000 {
-            note(format_args!(
-                "the drawing has {panels} panels of {} each, slow to open: the HTML viewer \
-                 (-o out.html) shows the same stages as layers of one picture",
-                Counted(count, "point")
-            ));
+        // not `count`, which would rebuild every stage's graph: 18 MB more peak on 1M uniform
+        // points.)
+        if args.format == Format::Svg {
+            let panels = if args.stages {
+                1 + result.stages().len()
+            } else {
+                1
+            };
+            if count.saturating_mul(panels) > 1_000_000 {
+                let drawn = Counted(count, "point");
+                if args.stages {
+                    note(format_args!(
+                        "the drawing has {panels} panels of {drawn} each, slow to open: the HTML \
+                         viewer (-o out.html) shows the same stages as layers of one picture"
+                    ));
+                } else {
+                    note(format_args!("the drawing has {drawn}, slow to open"));
+                }
+            }
         }
         let curves = result.curves();
         let closed = curves.iter().filter(|c| c.is_closed()).count();

@@ -454,16 +454,18 @@ fn twins_left_unused_are_noted_too() {
     ]);
     ok(&out);
     let notes = stderr(&out);
-    // 31 points of the shared side, corners included, each with its twin.
+    // The shared side's 29 points between its corners, each with its twin, both unused (the
+    // corners' pairs lie on the outline, a curve through both points, and are not counted).
     assert!(
-        notes.contains("31 pairs of points that lie 16 times nearer each other")
-            && notes.contains("--snap D"),
+        notes.contains("29 pairs of points that lie 16 times nearer each other")
+            && notes.contains("--snap D")
+            && notes.contains("58 unused"),
         "{notes}"
     );
 }
 
 /// Uniform random points make close pairs by chance, 16 times nearer each other than any other
-/// point (1,253 in 1M): that is no curve given twice, and gets no note.
+/// point (509 in 1M): that is no curve given twice, and gets no note.
 #[test]
 fn twins_that_chance_makes_are_not_noted() {
     let dir = tempfile::tempdir().unwrap();

@@ -1264,6 +1264,26 @@ fn a_stage_drawing_of_many_points_says_it_is_slow_to_open() {
     assert!(!stderr(&out).contains("slow to open"));
     let quiet = condt(&[&args[..], &["-q"]].concat(), &circle(70_000));
     assert!(!stderr(&quiet).contains("slow to open"));
+    // One panel too (a GIS review: 2.6M points, a 183 MB drawing, no word). A million and one
+    // points, three of them distinct: the rest merge as duplicates, each still drawn.
+    let many: String = circle(3)
+        .lines()
+        .cycle()
+        .take(1_000_001)
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let out = condt(&args[..6], &many);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("the drawing has 1000001 points, slow to open"),
+        "{}",
+        stderr(&out)
+    );
+    let out = condt(
+        &args[..6],
+        &many[..many.len() - many.lines().last().unwrap().len() - 1],
+    );
+    assert!(!stderr(&out).contains("slow to open"), "{}", stderr(&out));
 }
 
 /// SIGTERM while a file is rewritten in place (here, one with a second name) leaves it whole:

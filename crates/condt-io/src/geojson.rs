@@ -94,6 +94,25 @@ pub fn write_geojson_with_crs(
     writeln!(out, "]}}")
 }
 
+/// The first point that cannot be a longitude and latitude (|x| > 180 or |y| > 90), which
+/// GeoJSON readers take coordinates for when the document has no crs member: the command line
+/// notes it and Python's `to_geojson` warns, naming the crs to give. `None` when every point
+/// could be one.
+///
+/// ```
+/// use condt::Point;
+/// use condt_io::not_longitude_latitude;
+/// let utm = [Point::new(500_000.0, 5_000_000.0)];
+/// assert_eq!(not_longitude_latitude(&utm), Some(utm[0]));
+/// assert_eq!(not_longitude_latitude(&[Point::new(-179.5, 89.9)]), None);
+/// ```
+pub fn not_longitude_latitude(points: &[Point]) -> Option<Point> {
+    points
+        .iter()
+        .copied()
+        .find(|p| p.x.abs() > 180.0 || p.y.abs() > 90.0)
+}
+
 /// The `"crs"` member a GeoJSON output carries for `given` (`condt reconstruct --crs`, and a
 /// GeoJSON input's own member carried on): a JSON object as written (one JSON object, checked);
 /// `null` as written (in the 2008 GeoJSON form, no crs can be assumed: coordinates of a

@@ -43,7 +43,7 @@ mod geometry {
 }
 
 pub use csv::parse_csv;
-pub use geojson::{crs_member, write_geojson, write_geojson_with_crs};
+pub use geojson::{crs_member, not_longitude_latitude, write_geojson, write_geojson_with_crs};
 pub use geojson_points::{parse_geojson, parse_geojson_with_crs};
 pub use html::write_html;
 pub use input::{Column, Columns, InputFormat, PointFile, ReadOptions};

@@ -460,8 +460,9 @@ pub enum GatheredPass {
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a NaN or infinite point, [`Error::TooManyPoints`] beyond
-/// [`MAX_POINTS`](crate::MAX_POINTS); [`Error::InvalidParameter`] named `edge` for an end not in
-/// `points`.
+/// [`MAX_POINTS`](crate::MAX_POINTS); [`Error::InvalidParameter`] named `edge` (the larger
+/// end) for an edge of `edges` or `previous` with an end not in `points`, or from a position to
+/// itself.
 ///
 /// ```
 /// use condt::{gathered_smoothing_pass, reconstruct, GatheredPass, Params, Point};
@@ -498,11 +499,18 @@ pub fn gathered_smoothing_pass(
     let n = points.len();
     // Each edge once, between vertices (a duplicate's position stands for its group's smallest,
     // as a triangulation's edges do), smaller end first: what the pass's graph takes.
+    // Both lists checked as the other gathered edges are: a wrong `previous` would otherwise
+    // decide the fixed point in silence (an API fuzzer's review).
+    let refused = |&[a, b]: &[usize; 2]| a.max(b) >= n || a == b;
+    if let Some(&[a, b]) = edges
+        .iter()
+        .chain(previous.unwrap_or(&[]))
+        .find(|e| refused(e))
+    {
+        return Err(Error::invalid("edge", a.max(b) as f64));
+    }
     let mut listed: Vec<Edge> = Vec::with_capacity(edges.len());
     for &[a, b] in edges {
-        if a >= n || b >= n {
-            return Err(Error::invalid("edge", a.max(b) as f64));
-        }
         let [a, b] = [run.vertex(a), run.vertex(b)];
         if a != b {
             listed.push([a.min(b), a.max(b)]);
@@ -935,13 +943,22 @@ mod tests {
                 GatheredPass::Done
             ]
         );
-        // An edge naming no point is refused, by name.
+        // An edge naming no point, or a point and itself, is refused by name, in `previous`
+        // too (an API fuzzer's review: there it decided the fixed point in silence).
         let points = [Point::new(0.0, 0.0), Point::new(1.0, 0.0)];
-        let error = gathered_smoothing_pass(&points, &[[0, 2]], 0, None).unwrap_err();
-        assert!(matches!(
-            error,
-            crate::Error::InvalidParameter { name: "edge", .. }
-        ));
+        let chain: &[[usize; 2]] = &[[0, 1]];
+        for (edges, previous) in [
+            (&[[0, 2]][..], None),
+            (&[[1, 1]][..], None),
+            (chain, Some(&[[0, 9]][..])),
+            (chain, Some(&[[0, 1], [0, 0]][..])),
+        ] {
+            let error = gathered_smoothing_pass(&points, edges, 1, previous).unwrap_err();
+            assert!(matches!(
+                error,
+                crate::Error::InvalidParameter { name: "edge", .. }
+            ));
+        }
     }
 
     /// Found in review: a set whose box is tiny in the stages' frame (three points on a line,
@@ -995,7 +1012,6 @@ mod tests {
         assert!(matches!(expected, GatheredPass::Next(_)));
         let mut odd: Vec<[usize; 2]> = edges.iter().map(|&[a, b]| [b, a]).collect();
         odd.extend_from_slice(&edges);
-        odd.push([7, 7]);
         for end in odd.iter_mut().flatten() {
             if *end == 1 {
                 *end = 40;

@@ -25,8 +25,9 @@ use core::cmp::Ordering;
 ///
 /// "Within" allows for decimal input: points whose decimals lie `distance` apart can be read a
 /// few units in the last place farther apart (`500000.001` and `500000.002` at `distance`
-/// 0.001), so the test allows two units in the last place of the larger coordinate and of
-/// `distance` (at most a quarter of `distance`).
+/// 0.001), so the test allows twice the machine epsilon times the larger coordinate and
+/// `distance` each (two to four units in their last place, at most a quarter of `distance`),
+/// on any input: `1e15` and `1e15 + 2` are within `1.7`.
 ///
 /// `distance` 0 changes nothing (exact duplicates are merged by the triangulation anyway).
 /// O(n log n) time; at its peak about 50 bytes a point besides `points` (where every point
@@ -43,6 +44,12 @@ use core::cmp::Ordering;
 /// assert_eq!(snap(&mut points, 1e-6)?, 1);
 /// assert_eq!(points[2], points[1]); // now an exact duplicate: the triangulation merges it
 /// assert!(snap(&mut points, f64::NAN).is_err());
+/// // The slack for rounding: 2 apart is within 1.7 at 1e15 (a unit in the last place is 0.125
+/// // there), not at the origin.
+/// let mut far = vec![Point::new(1e15, 0.0), Point::new(1e15 + 2.0, 0.0)];
+/// assert_eq!(snap(&mut far, 1.7)?, 1);
+/// let mut near = vec![Point::new(0.0, 0.0), Point::new(2.0, 0.0)];
+/// assert_eq!(snap(&mut near, 1.7)?, 0);
 /// # Ok::<(), condt::Error>(())
 /// ```
 pub fn snap(points: &mut [Point], distance: f64) -> Result<usize, Error> {

@@ -97,13 +97,19 @@ pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
     }
 }
 
-/// `true` when `d` lies exactly on the circle through `a, b, c` (any orientation). Exact for any
+/// `true` when `d` lies exactly on the circle through `a, b, c` (any orientation): the in-circle
+/// determinant is zero. Where `a, b, c` make no circle the determinant still decides: `true`
+/// for `d` on their common line, and for any `d` when two of them coincide. Exact for any
 /// finite coordinates; unspecified, never a panic, with a NaN or an infinity.
 ///
 /// ```
 /// use condt::{predicates::is_cocircular, Point};
 /// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
 /// assert!(is_cocircular(square[0], square[1], square[2], square[3]));
+/// let line = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0)].map(Point::from);
+/// assert!(is_cocircular(line[0], line[1], line[2], Point::new(7.0, 0.0)));
+/// assert!(!is_cocircular(line[0], line[1], line[2], Point::new(7.0, 3.0)));
+/// assert!(is_cocircular(line[0], line[0], line[1], Point::new(7.0, 3.0)));
 /// ```
 #[inline]
 pub fn is_cocircular(a: Point, b: Point, c: Point, d: Point) -> bool {

@@ -179,8 +179,9 @@ and meet, and a crossing's dropped arms";
         "junctions" => "(default on; off with --paper) after gap closing, join a loose
 end to the curve it meets where three (or four) curves meet (map
 borders, a T), or put it in place of the edge that runs past it
-there: branches of at least 5 points each, evenly sampled; a
-stroke of 5 or 6 points is joined where both its ends meet curves";
+there: each branch runs on evenly through 5 samples of degree two
+(one that ends free: 7 samples besides the junction's); a stroke
+of 5 or 6 points is joined where both its ends meet curves";
     Crossings: "crossings", "after restoring crossings", "crossings",
         "crossings" => "(default on; off with --paper) after the junctions, where two
 curves cross at a sample at a narrow angle and the sample kept
