@@ -337,7 +337,12 @@ impl Reconstruction {
                     "{a}-{b} is not {walked}, nor an edge a stage added: no stage saw it"
                 ))
             })?;
-        Ok(EdgeStory::new(story))
+        let passes = self
+            .shared
+            .result
+            .smoothing()
+            .map_or(0, |smoothing| smoothing.passes);
+        Ok(EdgeStory::new(story, passes))
     }
 
     /// The curves as GeoJSON text, what ``condt reconstruct -o out.geojson`` writes: a
@@ -605,19 +610,24 @@ impl Curve {
 ///   ``"junction"``, ``"crossing"`` (``vertex``), ``"tip"``, ``"spike"``, ``"hook"``, ``"tail"``
 ///   (``vertex``, ``points``), ``"detour"`` (``from``, ``to``, ``points``; ``from == to``: the
 ///   edge that closed a loop hung on that point), ``"baseline"`` or ``"not-confirmed"``;
-/// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it.
+/// - ``text`` (and ``str()``): all of it in a sentence, as the HTML viewer shows it; after
+///   smoothing passes it ends by saying that its lengths are between the points where the
+///   stages saw them, as the viewer does.
 ///
 /// ``ends`` and ``changes`` are new dicts and lists at each read, so the story never changes
 /// (a copy is the story itself): what a caller changes in them is the caller's.
 #[pyclass(module = "condt", frozen)]
 pub(crate) struct EdgeStory {
     story: condt::EdgeStory,
+    /// The smoothing passes that moved the points the story measured (0: none).
+    passes: usize,
 }
 
 impl EdgeStory {
-    fn new(story: &condt::EdgeStory) -> EdgeStory {
+    fn new(story: &condt::EdgeStory, passes: usize) -> EdgeStory {
         EdgeStory {
             story: story.clone(),
+            passes,
         }
     }
 }
@@ -661,7 +671,18 @@ impl EdgeStory {
     /// All of it in a sentence, as the HTML viewer shows it.
     #[getter]
     fn text(&self) -> String {
-        condt_io::story_text(&self.story)
+        let text = condt_io::story_text(&self.story);
+        // Its lengths are the moved points' (an image user's review: pixels 1 apart read
+        // "|e2| = 1.250 |e1|", and only the viewer said why).
+        match self.passes {
+            0 => text,
+            1 => {
+                format!("{text} (lengths where the stages saw the points, after 1 smoothing pass)")
+            }
+            n => format!(
+                "{text} (lengths where the stages saw the points, after {n} smoothing passes)"
+            ),
+        }
     }
 
     fn __str__(&self) -> String {

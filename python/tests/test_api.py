@@ -769,7 +769,9 @@ def test_explain_tells_why_with_numbers():
     for a, b in r.edges[:20].tolist():
         story = r.explain(b, a)
         assert story.kept and story.edge == (a, b)
-        assert str(story).startswith(f"{a}-{b}: ") and str(story).endswith("; kept")
+        # The verdict closes the story, before the word on the smoothing passes that ran.
+        verdict = str(story).split(" (lengths where the stages saw the points")[0]
+        assert str(story).startswith(f"{a}-{b}: ") and verdict.endswith("; kept")
         assert story.text == str(story)
     dropped = [
         r.explain(*e)
@@ -817,6 +819,12 @@ def test_after_smoothing_passes_explain_speaks_of_the_moved_points():
     assert all("smoothing pass" in message for message in refused), refused[:1]
     assert all("last run's Delaunay triangulation" in message for message in refused)
     assert not any("not a Delaunay edge" in message for message in refused)
+    # And a story's text says its lengths are the moved points', as the viewer does (an image
+    # user's review: pixels 1 apart read "|e2| = 1.250 |e1|" with no word of the passes).
+    passes = r.passes
+    said = f"(lengths where the stages saw the points, after {passes} smoothing pass"
+    assert passes > 0 and r.explain(0, 1).text.endswith(said + ("es)" if passes > 1 else ")"))
+    assert "smoothing" not in condt.reconstruct(points, smooth=False).explain(0, 1).text
 
 
 def test_passes_say_how_many_smoothing_passes_ran():

@@ -4,7 +4,8 @@
 //! change a triangulation, and share no rule with the stages (or they would not be baselines).
 //! Lengths whose rounded squares tie are ordered exactly, and only exact ties go to the smaller
 //! vertex id (which follows the insertion order, so an orientation could change them);
-//! duplicates are merged as everywhere.
+//! NN-Crust's right angle is decided exactly too; the Crust's circumcentres are rounded
+//! ([`Triangulation::crust`] says where that shows). Duplicates are merged as everywhere.
 
 use crate::adjacency::{ordered, Edge};
 use crate::error::Error;
@@ -40,7 +41,11 @@ impl Triangulation {
     /// The Crust (N. Amenta, M. Bern and D. Eppstein, "The crust and the beta-skeleton:
     /// combinatorial curve reconstruction", 1998): the Delaunay edges between points once the
     /// circumcentres of the Delaunay triangles (Voronoi vertices) join the set. Exact for smooth
-    /// curves sampled below 0.252 of the local feature size.
+    /// curves sampled below 0.252 of the local feature size. The circumcentres are rounded to
+    /// doubles: where one lies on or within rounding of a Delaunay edge (a right angle, a
+    /// straight run, a grid, written in decimals) the answer can differ from the exact Crust of
+    /// the same points by that edge (the triangle `(0.9, 0.1)`, `(0.9, 1.4)`, `(2.0, 1.4)`
+    /// keeps its hypotenuse, whose exact Voronoi vertex lies on it).
     ///
     /// # Errors
     /// [`Error::TooManyPoints`] when the points and the circumcentres together exceed
@@ -85,9 +90,9 @@ pub(crate) fn nn_crust_edges(tri: &Triangulation) -> Vec<Edge> {
             continue;
         };
         edges.push(ordered(v, nearest));
-        let towards = difference(tri.vertex_point(nearest), p);
+        let towards = tri.vertex_point(nearest);
         let half = neighbours()
-            .filter(|&(_, w)| dot(difference(tri.vertex_point(w), p), towards) <= 0.0)
+            .filter(|&(_, w)| at_least_right_angle(p, towards, tri.vertex_point(w)))
             .min_by(closer);
         if let Some((_, w)) = half {
             edges.push(ordered(v, w));
@@ -184,6 +189,24 @@ fn dot(a: Point, b: Point) -> f64 {
     a.x * b.x + a.y * b.y
 }
 
+/// Whether the angle at `p` between `q` and `w` is at least 90 degrees, NN-Crust's half-neighbour
+/// test, exactly: `(w - p) · (q - p) <= 0`. The rounded product decides where it lies beyond its
+/// error (two differences, two products and a sum, each within 2^-53 of its value: under 2^-50
+/// of the products' magnitudes together, in the stages' frame where nothing underflows); nearer
+/// zero, big integers (a methods review: on a square's corners written as `cos` and `sin` of
+/// multiples of 90 degrees, the rounded product read a right angle where the doubles make one
+/// a hair under it, and the square closed).
+fn at_least_right_angle(p: Point, q: Point, w: Point) -> bool {
+    let (u, v) = (difference(w, p), difference(q, p));
+    let rounded = dot(u, v);
+    let error = (u.x * v.x).abs() + (u.y * v.y).abs();
+    if rounded.abs() > error / (1u64 << 50) as f64 {
+        rounded < 0.0
+    } else {
+        crate::predicates::dot_sign(w, p, q, p) != core::cmp::Ordering::Greater
+    }
+}
+
 /// The circumcentre of a triangle, relative to its first corner; `None` when not finite (a sliver
 /// whose centre lies beyond the range of doubles, where it would change no edge between samples).
 fn circumcentre(a: Point, b: Point, c: Point) -> Option<Point> {
@@ -231,6 +254,24 @@ mod tests {
         let truth = ellipse_and_circle();
         let tri = triangulate(&truth.points).unwrap();
         assert_eq!(tri.crust().unwrap().edges(), truth.edges);
+    }
+
+    /// A methods review: a square's corners written as `cos` and `sin` of multiples of 90
+    /// degrees. At corners 0 and 3 the angle to the other corner is a hair under 90 degrees in
+    /// these doubles (the exact dot products with the nearest neighbour's edge are +1.2e-16, by
+    /// fractions), so neither takes the other as its half neighbour; the rounded product read
+    /// 0 there and closed the square.
+    #[test]
+    fn nn_crust_decides_the_right_angle_exactly() {
+        let points = [
+            (1.0, 0.0),
+            (6.123233995736766e-17, 1.0),
+            (-1.0, 1.2246467991473532e-16),
+            (-1.8369701987210297e-16, -1.0),
+        ]
+        .map(Point::from);
+        let tri = triangulate(&points).unwrap();
+        assert_eq!(tri.nn_crust().edges(), vec![[0, 1], [1, 2], [2, 3]]);
     }
 
     #[test]
