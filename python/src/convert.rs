@@ -279,8 +279,22 @@ pub(crate) fn points_array<'py>(
             return Ok(array.clone());
         }
     }
+    // A list of arrays of different lengths (skimage's `find_contours` gives one per contour):
+    // numpy's own message says "inhomogeneous shape" and nothing of the fix (an image user's
+    // review).
+    let ragged = |err: PyErr| {
+        if err.is_instance_of::<PyValueError>(py) && err.to_string().contains("inhomogeneous") {
+            PyValueError::new_err(format!(
+                "points holds rows or arrays of different lengths (a list of contours?): \
+                 numpy.vstack(contours) makes one (n, 2) array of them ({err})"
+            ))
+        } else {
+            err
+        }
+    };
     // None and scalars are the wrong type, not a wrong shape: numpy would make them one point.
-    if obj.is_none() || numpy.getattr("ndim")?.call1((obj,))?.extract::<usize>()? == 0 {
+    let ndim = numpy.getattr("ndim")?.call1((obj,)).map_err(ragged)?;
+    if obj.is_none() || ndim.extract::<usize>()? == 0 {
         return Err(PyTypeError::new_err(format!(
             "points must be an array-like of shape (n, 2), not {}",
             obj.get_type().name()?
@@ -291,7 +305,7 @@ pub(crate) fn points_array<'py>(
     let given = if obj.cast::<numpy::PyUntypedArray>().is_ok() {
         obj.clone()
     } else {
-        numpy.getattr("asarray")?.call1((obj,))?
+        numpy.getattr("asarray")?.call1((obj,)).map_err(ragged)?
     };
     check_numbers(&numpy, &given)?;
     check_no_bools_in_rows(&numpy, obj)?;

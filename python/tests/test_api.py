@@ -286,6 +286,13 @@ def test_shapes_other_tools_hand_over_are_named_with_the_fix():
     ):
         with pytest.raises(ValueError, match=re.escape(hint)):
             condt.reconstruct(np.zeros(shape))
+    # skimage's find_contours gives a list of arrays of different lengths, which numpy calls
+    # "inhomogeneous" and nothing more (another image user's review).
+    contours = [np.zeros((3, 2)), np.ones((4, 2))]
+    with pytest.raises(ValueError, match=re.escape("numpy.vstack(contours)")):
+        condt.reconstruct(contours)
+    with pytest.raises(ValueError, match=re.escape("numpy.vstack(contours)")):
+        condt.triangulate(contours)
 
 
 def test_rows_held_as_objects_are_named_with_the_shape_they_need():
