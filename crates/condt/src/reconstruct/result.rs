@@ -351,9 +351,10 @@ impl Reconstruction {
         };
         // Only points that end with other than two edges are asked, which keeps the walk off
         // the curves' points (walking every point's ring took 0.1 s of a 0.45 s run on 1M
-        // points along curves). Algorithm 1 keeps no second edge at a twin (16 is far beyond
-        // `u`): a pair starts as a piece of its own, and is missed only where later steps give
-        // both points two edges, a curve running through both, which reads them, not loses them.
+        // points along curves). Algorithm 1 keeps no second edge at a twin where `u` is fixed
+        // below 16 (the default's 2.75): a pair starts as a piece of its own, and is missed only
+        // where later steps (or an adaptive `u`) give both points two edges, a curve running
+        // through both, which reads them, not loses them.
         let mut twins: Vec<[usize; 2]> = (0..self.num_points())
             .filter(|&i| self.degrees.get(i) != 2 && tri.first_at(i) == i)
             .filter_map(|i| {
