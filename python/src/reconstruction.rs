@@ -195,10 +195,10 @@ impl Reconstruction {
     /// Pairs of points that look like one point given twice a little apart (a border exported
     /// from both sides with a small disagreement, a grey image's contour at a level): the two lie
     /// 16 times nearer each other than either lies to any other point, whatever the stages made
-    /// of them (a curve of two points, unused points), three pairs or more and more than chance
-    /// makes among points sampled at random (one in 33 points; one in 256 counting only pairs
-    /// beside another pair, as a curve given twice has). An ``(m, 2)`` int64 array of
-    /// input positions, the lower first, ascending; empty when they are fewer. ``reconstruct``
+    /// of them (a curve of two points, unused points), when at least three pairs, and more than
+    /// one in 64 points, lie beside other pairs, as a curve given twice has them (chance makes
+    /// pairs, but apart). An ``(m, 2)`` int64 array of input positions, the lower first,
+    /// ascending; empty without that pattern. ``reconstruct``
     /// warns of them (``UserWarning``), as the command line notes them; ``condt.snap`` merges
     /// points within a distance.
     ///

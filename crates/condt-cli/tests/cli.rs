@@ -749,7 +749,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
         (
             "triangulate",
             &[][..],
-            &["read", "triangulation", "write", "total"][..],
+            &["read", "triangulation", "write", "notes", "total"][..],
         ),
         (
             "reconstruct",
@@ -776,6 +776,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "curves",
                 "other",
                 "write",
+                "notes",
                 "total",
             ],
         ),
@@ -791,6 +792,7 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
                 "curves",
                 "other",
                 "write",
+                "notes",
                 "total",
             ],
         ),
@@ -810,11 +812,17 @@ fn timings_print_one_parsable_line_per_step_and_change_no_output() {
             "{args:?}: the result is the same"
         );
         assert!(timing_lines(&plain.stderr).is_empty(), "{args:?}");
-        let steps: Vec<String> = timing_lines(&timed.stderr)
-            .into_iter()
-            .map(|(step, _)| step)
-            .collect();
+        let lines = timing_lines(&timed.stderr);
+        let steps: Vec<&str> = lines.iter().map(|(step, _)| step.as_str()).collect();
         assert_eq!(steps, expected, "{args:?}");
+        // The steps cover the run: their sum is the total, up to each line's rounding to the
+        // microsecond (a diff review: the closing notes were in no step).
+        let total = lines.last().unwrap().1;
+        let sum: f64 = lines[..lines.len() - 1].iter().map(|(_, s)| s).sum();
+        assert!(
+            (sum - total).abs() <= 1e-6 * lines.len() as f64,
+            "{sum} against {total}"
+        );
         // The other messages are still there, the same.
         let other = |err: &[u8]| -> Vec<String> {
             String::from_utf8_lossy(err)

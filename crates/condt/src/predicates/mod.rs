@@ -141,7 +141,8 @@ pub(crate) mod integers {
     }
 }
 
-/// The exact sign of `(a - b) · (c - d)`, for the hull walk of sets beyond the fast range.
+/// The exact sign of `(a - b) · (c - d)`, for the hull walk of sets beyond the fast range and
+/// NN-Crust's right angle where the rounded product cannot tell.
 pub(crate) fn dot_sign(a: Point, b: Point, c: Point, d: Point) -> Ordering {
     exact::dot_sign(a.into(), b.into(), c.into(), d.into())
 }

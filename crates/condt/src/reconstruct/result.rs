@@ -125,27 +125,24 @@ pub struct StageReport<'r> {
 /// How many times two points must lie nearer each other than either lies to any other point
 /// for [`Reconstruction::twin_pairs`] to take them for one point given twice: Algorithm 1
 /// already cuts a second edge 2.75 times (`u`) the first; sixteen is far past what noise makes
-/// (at most one such pair in any case of the evaluation suites, seeds 1 and 2, or set of
-/// `../shared/data`), where twins are tens to thousands of times closer.
+/// where twins are tens to thousands of times closer. Chance makes such pairs too: along curves
+/// sampled at random, a gap `d` has no other sample within `16d` on either side with
+/// probability `exp(-2 · 16 λd)` (density `λ`), which over the gaps' exponential law is one gap
+/// in `2 · 16 + 1`; scattered in the plane, one point in `2 · 16²`. So pairs alone prove
+/// nothing (the outlier cases of the evaluation suites have up to 25).
 const TWIN_RATIO: f64 = 16.0;
 
-/// One pair of twins in this many points is what chance makes, at most, among points sampled
-/// at random along curves: a gap `d` between neighbours (density `λ` along the curve) has no
-/// other sample within `16d` on either side with probability `exp(-2 · 16 λd)`, which over the
-/// gaps' exponential law gives one gap in `2 · 16 + 1`. (Scattered in the plane, chance makes
-/// fewer: one in `2 · 16²` points; `scripts/scale.py`'s 1M uniform random points have 509
-/// such pairs, counted without this bound.) Twins from a curve given twice are about one in
-/// two points.
-const TWINS_BY_CHANCE: usize = 2 * 16 + 1;
-
-/// One pair of twins with another among its Delaunay neighbours in this many points is what
-/// chance makes, at most, along curves sampled at random: that needs two twin gaps with one
-/// gap between them, each 16 times shorter than the gaps on either side, which the exponential
-/// law of the gaps gives once in 825 gaps, two such pairs each time (one in about 412 points);
-/// 256 leaves room for neighbours across the curve. A curve given twice makes nearly every pair
-/// one: within a large set, its pairs can be fewer than one in 33 points and still be told (a
-/// GIS user's review: 2,000 pairs among 104,000 points, all left unused, and no note).
-const TWINS_BESIDE_BY_CHANCE: usize = 256;
+/// Pairs that lie beside pairs, in at most one in this many points, are what chance makes: a
+/// curve given twice makes every pair one (each sample's neighbours along the curve have their
+/// twins too), where pairs that chance makes lie apart. A pair counts when each of its two
+/// points has a point of another pair among its Delaunay neighbours. Measured: one such pair
+/// in 425 to 667 points along sines sampled at random (20,000 points, three seeds, `--paper`
+/// and `--no-smooth`; fewer with the smoothing passes), none in the evaluation
+/// suites or `../shared/data`, 3 in `scripts/scale.py`'s 1M uniform random points; against
+/// every pair of a circle given twice and 29 of 29 for two squares sharing a side given
+/// twice. (Counting a pair with one such point, against one in 256 points, fired on randomly
+/// sampled curves without the smoothing passes: a diff review.)
+const TWINS_BESIDE_BY_CHANCE: usize = 64;
 
 impl Reconstruction {
     /// The parameters it ran with: those given, but for what could not run (smoothing passes
@@ -304,13 +301,13 @@ impl Reconstruction {
     /// Pairs of points that look like one point given twice a little apart (a border exported
     /// from both sides with a small disagreement, a grey image's contour at a level): the two lie
     /// 16 times nearer each other than either lies to any other point (the last run's
-    /// positions), and such pairs number at least three and more than chance makes among points
-    /// sampled at random (one in 33 points, by a bound; one in 256 counting only the pairs with
-    /// another pair among their neighbours, as a curve given twice has). Whatever the stages made of a pair (a
-    /// curve of two points, two unused points, a spur), it is one, unless a curve runs through
-    /// both of its points (each with two edges). Each pair's two input
-    /// positions, the lower first, ascending; empty when they are fewer. [`snap`](crate::snap)
-    /// merges points within a distance.
+    /// positions), and at least three pairs, and more than one in 64 points, lie beside other
+    /// pairs, as a curve given twice has them (each point with a point of another pair among its
+    /// Delaunay neighbours): chance makes pairs, but apart. Whatever the stages made of a pair
+    /// (a curve of two points, two unused points, a spur), it is one, unless a curve runs
+    /// through both of its points (each with two edges or more). Each pair's two input positions, the
+    /// lower first, ascending; empty when the pattern is missing. [`snap`](crate::snap) merges
+    /// points within a distance.
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
@@ -349,27 +346,30 @@ impl Reconstruction {
             }
             (first > 0.0 && second >= TWIN_RATIO * TWIN_RATIO * first).then_some(nearest)
         };
-        // Only points that end with other than two edges are asked, which keeps the walk off
-        // the curves' points (walking every point's ring took 0.1 s of a 0.45 s run on 1M
-        // points along curves). Algorithm 1 keeps no second edge at a twin where `u` is fixed
-        // below 16 (the default's 2.75): a pair starts as a piece of its own, and is missed only
-        // where later steps (or an adaptive `u`) give both points two edges, a curve running
-        // through both, which reads them, not loses them.
-        let mut twins: Vec<[usize; 2]> = (0..self.num_points())
-            .filter(|&i| self.degrees.get(i) != 2 && tri.first_at(i) == i)
-            .filter_map(|i| {
-                let a = tri.vertex(i);
+        // Only points with at most one edge are asked, which keeps the walk off the curves'
+        // points, and in vertex order, the triangulation's spatial one, which keeps the walks
+        // in cache: 2 ms on 1M points along curves, 85 ms on 1M uniform points (every point's
+        // ring by input positions took 0.1 s of a 0.45 s run along curves; those with at most
+        // one edge, by input positions, 0.2 s of 5 s on uniform points). Algorithm 1 keeps no second edge at a twin where `u` is fixed
+        // below 16 (the default's 2.75): a pair starts as a piece of its own, unused or a curve
+        // of two points, or a spur once a later step joins one of its points; it is missed only
+        // where later steps (or an adaptive `u`) give both points two edges or more, a curve
+        // running through both, which reads them.
+        let asked = |v: VertexId| self.degrees.get(tri.input_of(v)) <= 1;
+        let mut twins: Vec<[usize; 2]> = (0..points.len())
+            .map(|v| VertexId::new(v as u32))
+            .filter(|&a| asked(a) && tri.is_vertex(a))
+            .filter_map(|a| {
                 let b = alone_with(a)?;
-                let j = tri.input_of(b);
-                // A pair both of whose points qualify is listed once, from its lower position.
-                let listed_from_j = j < i && self.degrees.get(j) != 2;
-                (!listed_from_j && alone_with(b) == Some(a)).then_some([i.min(j), i.max(j)])
+                // A pair both of whose points are asked is listed once, from its lower id.
+                let listed_from_b = b < a && asked(b);
+                let [i, j] = [tri.input_of(a), tri.input_of(b)];
+                (!listed_from_b && alone_with(b) == Some(a)).then_some([i.min(j), i.max(j)])
             })
             .collect();
         twins.sort_unstable();
-        // One pair can be a noisy sample's accident (at most one in any case of the three
-        // evaluation suites or set of `../shared/data`); three are a pattern, unless the points
-        // are so many that chance makes them. Pairs beside pairs are rarer by chance still.
+        // Three pairs beside pairs are a pattern, unless the points are so many that chance
+        // makes them.
         let n = self.num_points();
         let beside = {
             let twin = IdBits::of(twins.iter().flatten().copied());
@@ -377,12 +377,10 @@ impl Reconstruction {
                 |a: usize, b: usize| tri.neighbors(a).any(|w| w != b && twin.contains(w));
             twins
                 .iter()
-                .filter(|&&[a, b]| beside_a_twin(a, b) || beside_a_twin(b, a))
+                .filter(|&&[a, b]| beside_a_twin(a, b) && beside_a_twin(b, a))
                 .count()
         };
-        let many = twins.len() * TWINS_BY_CHANCE > n;
-        let many_beside = beside >= 3 && beside * TWINS_BESIDE_BY_CHANCE > n;
-        if twins.len() >= 3 && (many || many_beside) {
+        if beside >= 3 && beside * TWINS_BESIDE_BY_CHANCE > n {
             twins
         } else {
             Vec::new()
