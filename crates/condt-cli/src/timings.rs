@@ -78,9 +78,11 @@ impl Timings {
         self.line("other", call.saturating_sub(counted), "");
     }
 
-    /// The time since the command started, printed as `total`.
+    /// The time from the command's start to the end of its last step, printed as `total`: the
+    /// steps' lines add up to it (up to their rounding), where the time since the start would
+    /// also hold the printing of the last line.
     pub(crate) fn total(&self) {
-        self.line("total", self.start.elapsed(), "");
+        self.line("total", self.lap - self.start, "");
     }
 
     fn line(&self, step: &str, time: Duration, comment: &str) {
