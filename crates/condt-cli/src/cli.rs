@@ -342,7 +342,8 @@ GIS reads an output from other inputs as longitude and latitude",
         help: "on standard error, one line `condt: time STEP SECONDS s` per step:
 read, snap (with --snap), earlier-passes (when smoothing ran; its
 line ends in a note in parentheses), triangulation, each stage of
-the last pass, curves, other, write, notes (without --quiet), total",
+the last pass, curves, other, write, notes (without --quiet),
+total",
     },
     Opt {
         id: ReconstructId::Quiet,
@@ -506,7 +507,8 @@ edges without it)",
         negatable: false,
         value: None,
         help: "on standard error, one line `condt: time STEP SECONDS s` per step:
-read, snap (with --snap), triangulation, write, notes (without --quiet), total",
+read, snap (with --snap), triangulation, write, notes (without
+--quiet), total",
     },
     Opt {
         id: TriangulateId::Quiet,
