@@ -44,6 +44,35 @@ fn ok(out: &Output) {
     assert!(out.status.success(), "{}", stderr(out));
 }
 
+/// The notes `reconstruct` writes of the point file `input` with `extra` options, on a
+/// successful run.
+fn notes_of(input: &Path, extra: &[&str]) -> String {
+    let mut args = vec![OsStr::new("reconstruct"), input.as_os_str()];
+    args.extend(extra.iter().map(OsStr::new));
+    args.extend([OsStr::new("-o"), OsStr::new("/dev/null")]);
+    let out = condt(&args);
+    ok(&out);
+    stderr(&out)
+}
+
+/// [`notes_of`] `text`, written in `dir` as `name`.
+fn reconstruct_notes(dir: &Path, name: &str, text: &str, extra: &[&str]) -> String {
+    let input = dir.join(name);
+    fs::write(&input, text).unwrap();
+    notes_of(&input, extra)
+}
+
+/// Numbers in [0, 1) from a linear congruential generator started at `state`: the same on
+/// every machine.
+fn uniform_numbers(mut state: u64) -> impl FnMut() -> f64 {
+    move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 #[test]
 fn a_value_is_joined_to_its_option_or_follows_it() {
     let dir = tempfile::tempdir().unwrap();
@@ -361,14 +390,7 @@ fn twins_a_little_apart_are_noted() {
     let twice = dir.path().join("twice.txt");
     fs::write(&once, ring(0.0)).unwrap();
     fs::write(&twice, ring(0.0) + &ring(1e-6)).unwrap();
-    let said = |input: &Path, extra: &[&str]| {
-        let mut args = vec![OsStr::new("reconstruct"), input.as_os_str()];
-        args.extend(extra.iter().map(OsStr::new));
-        args.extend([OsStr::new("-o"), OsStr::new("/dev/null")]);
-        let out = condt(&args);
-        ok(&out);
-        stderr(&out)
-    };
+    let said = notes_of;
     let noted = "pairs of points that lie 16 times nearer each other than any other point";
     let notes = said(&twice, &[]);
     assert!(
@@ -444,16 +466,7 @@ fn twins_left_unused_are_noted_too() {
         let x = if x == 30.0 { x + 1e-9 } else { x };
         text += &format!("{x} {y}\n");
     }
-    let input = dir.path().join("squares.txt");
-    fs::write(&input, text).unwrap();
-    let out = condt(&[
-        OsStr::new("reconstruct"),
-        input.as_os_str(),
-        OsStr::new("-o"),
-        OsStr::new("/dev/null"),
-    ]);
-    ok(&out);
-    let notes = stderr(&out);
+    let notes = reconstruct_notes(dir.path(), "squares.txt", &text, &[]);
     // The shared side's 29 points between its corners, each with its twin, both unused (the
     // corners' pairs lie on the outline, a curve through both points, and are not counted).
     assert!(
@@ -485,16 +498,7 @@ fn a_curve_given_twice_within_a_large_set_is_noted() {
         .collect();
     text += &circle(0.0, 40.0, 10.0, 200, 0.0);
     text += &circle(0.0, 40.0, 10.0, 200, 1e-6);
-    let input = dir.path().join("large.txt");
-    fs::write(&input, text).unwrap();
-    let out = condt(&[
-        OsStr::new("reconstruct"),
-        input.as_os_str(),
-        OsStr::new("-o"),
-        OsStr::new("/dev/null"),
-    ]);
-    ok(&out);
-    let notes = stderr(&out);
+    let notes = reconstruct_notes(dir.path(), "large.txt", &text, &[]);
     // 200 pairs, one in 52 points.
     assert!(
         notes.contains("200 pairs of points that lie 16 times nearer each other")
@@ -510,13 +514,7 @@ fn a_curve_given_twice_within_a_large_set_is_noted() {
 #[test]
 fn twins_that_chance_makes_along_a_curve_are_not_noted() {
     let dir = tempfile::tempdir().unwrap();
-    let mut state = 0x2545_F491_4F6C_DD1D_u64;
-    let mut unit = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut unit = uniform_numbers(0x2545_F491_4F6C_DD1D);
     for (n, extra) in [
         (2_000, "--paper"),
         (2_000, "--no-smooth"),
@@ -528,17 +526,7 @@ fn twins_that_chance_makes_along_a_curve_are_not_noted() {
                 format!("{x} {}\n", 20.0 * (x / 40.0).sin())
             })
             .collect();
-        let sine = dir.path().join("sine.txt");
-        fs::write(&sine, text).unwrap();
-        let out = condt(&[
-            OsStr::new("reconstruct"),
-            sine.as_os_str(),
-            OsStr::new(extra),
-            OsStr::new("-o"),
-            OsStr::new("/dev/null"),
-        ]);
-        ok(&out);
-        let notes = stderr(&out);
+        let notes = reconstruct_notes(dir.path(), "sine.txt", &text, &[extra]);
         assert!(notes.contains(&format!("{n} points")), "{notes}");
         assert!(!notes.contains("16 times nearer"), "{n} {extra}: {notes}");
     }
@@ -549,13 +537,7 @@ fn twins_that_chance_makes_along_a_curve_are_not_noted() {
 #[test]
 fn twins_that_chance_makes_are_not_noted() {
     let dir = tempfile::tempdir().unwrap();
-    let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-    let mut unit = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut unit = uniform_numbers(0x9E37_79B9_7F4A_7C15);
     let text: String = (0..50_000)
         .map(|_| format!("{} {}\n", unit(), unit()))
         .collect();
