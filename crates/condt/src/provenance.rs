@@ -682,17 +682,11 @@ mod tests {
     #[test]
     fn a_repaired_edge_is_told_at_the_end_that_did_not_select_it() {
         use crate::Repair;
-        let mut state = 0x2545_F491_4F6C_DD1D_u64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_F491_4F6C_DD1D);
         let (mut told, mut not_the_busier) = (0, 0);
         for mode in [Repair::Needs, Repair::Mutual, Repair::Paper] {
             for _ in 0..30 {
-                let points: Vec<Point> = (0..40).map(|_| Point::new(unit(), unit())).collect();
+                let points = rng.unit_points(40);
                 let params = Params::default().with_repair(mode).with_smooth(false);
                 let result = reconstruct(&points, &params).unwrap();
                 let tri = result.triangulation();
