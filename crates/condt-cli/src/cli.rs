@@ -8,7 +8,9 @@ use crate::options::{self, Opt};
 use crate::output::{refuse_same_file, Destination};
 use crate::progress::Progress;
 use crate::timings::Timings;
-use condt::{triangulate, Error, Method, Params, Pipeline, Repair, Stage, Uniformity, Upcoming};
+use condt::{
+    triangulate_owned, Error, Method, Params, Pipeline, Repair, Stage, Uniformity, Upcoming,
+};
 use condt_io::{
     read_points_with, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
     write_npy_triangles, write_npy_triangulation_edges, write_polylines, write_svg,
@@ -1788,17 +1790,16 @@ fn triangulate_command(args: TriangulateArgs) -> Result<(), CliError> {
         &mut timings,
     )?;
     progress.computing("triangulating");
-    let tri = triangulate(&points)
+    let count = points.len();
+    // The output reads only the triangulation: the points are handed over (16 bytes per point
+    // of the peak).
+    let tri = triangulate_owned(points)
         .map_err(|err| CliError::Input(format!("{}: {err}", shown_input(args.input.as_deref()))))?;
     progress.writing(
         &shown_output(args.output.as_deref()),
         destination.is_terminal(),
     );
     progress.suspend(|| timings.lap("triangulation"));
-    let count = points.len();
-    // The output reads only the triangulation: the points need not stay while it is written
-    // (16 bytes per point of the peak).
-    drop(points);
     destination.write(|out| {
         progress.count_written(out, |out| match (args.edges, args.npy) {
             (true, false) => write_triangulation_edges(out, &tri),

@@ -133,7 +133,7 @@ pub use snap::snap;
 pub use stages::{Repair, Stage, Switch, Uniformity};
 pub use threads::parallel_available;
 pub use tiled::{gathered_repair_again_input, remove_gathered_outliers};
-pub use triangulate::{triangulate, Triangulation, MAX_POINTS};
+pub use triangulate::{triangulate, triangulate_owned, Triangulation, MAX_POINTS};
 
 /// The README's code examples, compiled and run as doctests so they cannot go stale.
 #[cfg(doctest)]

@@ -223,11 +223,11 @@ impl Pipeline {
         let params = &params.on_available_threads(points.len());
         let mut clock = Stopwatch::start();
         // On the stages' worker: their allocations reuse what it freed (`on_worker`).
+        // Points handed over are freed by the triangulator once it no longer reads them.
         let tri = on_worker(params.parallel, points.len(), || {
-            triangulate_with(&points, params.parallel, inserted, None)
+            triangulate_with(points, params.parallel, inserted, None)
         })?;
         let triangulation_time = clock.lap();
-        drop(points);
         let may_smooth = params.smooth && params.method == Method::ConDT;
         Pipeline::start(tri, triangulation_time, params, may_smooth, clock)
     }

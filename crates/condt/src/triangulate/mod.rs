@@ -20,6 +20,7 @@ use crate::error::Error;
 use crate::geometry::{Point, Scale};
 use crate::mesh::{Mesh, MeshArrays, VertexId};
 use crate::threads::{both, count, filled};
+use alloc::borrow::Cow;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use insert::{Exact, Fast, Kernel};
@@ -131,14 +132,35 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
     triangulate_with(points, cfg!(feature = "parallel"), None, None)
 }
 
+/// [`triangulate`] on points handed over: the same triangulation, with a lower peak. A set of
+/// 65,536 points or more is freed once its halves are ordered, before the mesh is allocated (16
+/// bytes a point less at the peak), unless it spans more than 2^200 (its inputs are kept then).
+///
+/// # Errors
+/// As [`triangulate`].
+///
+/// ```
+/// use condt::{triangulate, triangulate_owned, Point};
+/// let points = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.5, 1.0)];
+/// let borrowed = triangulate(&points)?;
+/// let owned = triangulate_owned(points)?;
+/// assert!(owned.triangles().eq(borrowed.triangles()));
+/// # Ok::<(), condt::Error>(())
+/// ```
+pub fn triangulate_owned(points: Vec<Point>) -> Result<Triangulation, Error> {
+    triangulate_with(points, cfg!(feature = "parallel"), None, None)
+}
+
 /// [`triangulate`], on one thread unless `parallel` (the same result), counting into `inserted`,
 /// in the arrays of `spent` (a triangulation no longer needed) as [`MeshArrays::reusing`] does.
-pub(crate) fn triangulate_with(
-    points: &[Point],
+/// Points handed over are freed as [`triangulate_owned`] says.
+pub(crate) fn triangulate_with<'a>(
+    points: impl Into<Cow<'a, [Point]>>,
     parallel: bool,
     inserted: Option<&AtomicUsize>,
     spent: Option<Triangulation>,
 ) -> Result<Triangulation, Error> {
+    let points = points.into();
     // Smaller sets use no thread either way: the pool is not started for them.
     let large = points.len() >= halves::SPLIT_MIN.min(PARALLEL_MIN);
     let parallel = parallel && large && crate::threads::parallel_available();
@@ -148,14 +170,14 @@ pub(crate) fn triangulate_with(
 /// [`triangulate_with`] cutting sets of `split_min` points and more in two, or inserting them in
 /// the `given` order (a permutation of the input positions) on one thread.
 fn triangulate_in(
-    points: &[Point],
+    mut points: Cow<'_, [Point]>,
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
     spent: Option<Triangulation>,
     given: Option<Vec<u32>>,
 ) -> Result<Triangulation, Error> {
-    let frames = scale::choose_frames(points)?;
+    let frames = scale::choose_frames(&points)?;
     let scale = frames.predicates;
     // The rest of `spent` is freed before the cut's scratch is allocated (memory: 8 bytes a point).
     let spare = match spent {
@@ -163,9 +185,11 @@ fn triangulate_in(
         None => Default::default(),
     };
     let (order, mut sorted, built) = match given {
-        Some(order) => construct_in_order(points, &frames, order, progress),
-        None => construct(points, &frames, parallel, split_min, progress, spare),
+        Some(order) => construct_in_order(&points, &frames, order, progress),
+        None => construct(&mut points, &frames, parallel, split_min, progress, spare),
     };
+    // Read below only without a triangle or for a wide set, neither of which `construct` frees.
+    let points = &*points;
     let (mesh, merged, order) = match built {
         None => {
             // No triangle: the chain in line order is the vertex order instead.
@@ -228,16 +252,23 @@ type Built = Option<(Mesh, Vec<(u32, u32)>)>;
 /// The insertion order (input positions), its points in the predicates' frame, and their mesh,
 /// in the `spare` arrays for these three if large enough.
 fn construct(
-    points: &[Point],
+    input: &mut Cow<'_, [Point]>,
     frames: &scale::Frames,
     parallel: bool,
     split_min: usize,
     progress: Option<&AtomicUsize>,
     (spare_order, spare_points, mesh): (Vec<u32>, Vec<Point>, Mesh),
 ) -> (Vec<u32>, Vec<Point>, Built) {
-    if let Some(cut) = cut_in_two(points, frames, split_min, parallel) {
+    if let Some(cut) = cut_in_two(input, frames, split_min, parallel) {
         let buffers = (spare_order, spare_points);
-        let (order, sorted) = cut_order(points, frames, &cut, parallel, true, buffers);
+        let (order, sorted) = cut_order(input, frames, &cut, parallel, true, buffers);
+        // The halves read only `sorted`, which holds an unwide input exactly (a power-of-two
+        // scaling within the normal range): points handed over are freed before the mesh is
+        // allocated, and read back from `sorted` in the rare case they are needed again.
+        let freed = matches!(input, Cow::Owned(_)) && !frames.wide;
+        if freed {
+            *input = Cow::Owned(Vec::new());
+        }
         let counted = progress.map(|inserted| inserted.load(Ordering::Relaxed));
         let built = if frames.wide {
             halves::build::<Exact>(&sorted, cut.left_len(), parallel, progress, mesh)
@@ -249,7 +280,7 @@ fn construct(
             // without their repeats: on a cocircular set the two constructions may choose
             // other diagonals, and the triangulation would change with how often a point
             // repeats (an embedded developer's review: a grid given 4,097 times over).
-            Some((_, merged)) if points.len() - merged.len() < split_min => {}
+            Some((_, merged)) if order.len() - merged.len() < split_min => {}
             Some(_) => return (order, sorted, built),
             None => {}
         }
@@ -258,9 +289,17 @@ fn construct(
             let now = inserted.load(Ordering::Relaxed);
             count(inserted, now.saturating_sub(counted), false);
         }
+        if freed {
+            let to_input = frames.predicates.inverse();
+            let mut points = alloc::vec![Point::default(); order.len()];
+            for (&i, &p) in order.iter().zip(&sorted) {
+                points[i as usize] = to_input.apply(p);
+            }
+            *input = Cow::Owned(points);
+        }
     }
-    let order = spatial_order(points, frames);
-    construct_in_order(points, frames, order, progress)
+    let order = spatial_order(input, frames);
+    construct_in_order(input, frames, order, progress)
 }
 
 /// The insertion order of a set cut in two (left half first) and, with `with_points`, its points in
@@ -633,7 +672,14 @@ impl Triangulation {
         if let Some(position) = misfit {
             return Err(Error::invalid("order", position as f64));
         }
-        triangulate_in(points, false, usize::MAX, None, None, Some(order.to_vec()))
+        triangulate_in(
+            points.into(),
+            false,
+            usize::MAX,
+            None,
+            None,
+            Some(order.to_vec()),
+        )
     }
 
     /// The half-edge topology, in vertex ids.
@@ -996,7 +1042,7 @@ mod tests {
         split_min: usize,
         progress: Option<&AtomicUsize>,
     ) -> Result<Triangulation, Error> {
-        triangulate_in(points, parallel, split_min, progress, None, None)
+        triangulate_in(points.into(), parallel, split_min, progress, None, None)
     }
 
     /// The input positions of the two halves of [`halves::cut`], each in input order.
@@ -1225,7 +1271,7 @@ mod tests {
                     let spent = triangulate(&other).unwrap();
                     for parallel in [false, true] {
                         let tri = triangulate_in(
-                            points,
+                            points.into(),
                             parallel,
                             split_min,
                             None,
@@ -1322,6 +1368,48 @@ mod tests {
         let nan = [Point::new(0.0, 0.0), Point::new(f64::NAN, 0.0)];
         assert!(Triangulation::triangulate_observed(&nan, &inserted).is_err());
         assert_eq!(inserted.into_inner(), 0);
+    }
+
+    /// Points handed over ([`triangulate_owned`]) give what borrowed points give on every path:
+    /// freed after the halves' order, freed and read back for halves that fall back to one piece
+    /// (repeats), kept for a wide set, and the one-piece path (a line, a small set).
+    #[test]
+    fn owned_points_build_what_borrowed_points_build() {
+        let mut rng = Xorshift::new(0x0a4e_d5e7);
+        let random = rng.unit_points(halves::SPLIT_MIN + 3000);
+        // Every fifth point repeated four more times: cut in two, too few distinct to stay so.
+        let repeated: Vec<Point> = (0..halves::SPLIT_MIN + 5).map(|k| random[k / 5]).collect();
+        let wide: Vec<Point> = random
+            .iter()
+            .enumerate()
+            .map(|(k, &p)| if k % 2 == 0 { p.scaled(1e-210) } else { p })
+            .collect();
+        let line: Vec<Point> = (0..halves::SPLIT_MIN + 7)
+            .map(|k| Point::new(k as f64 * 0.75, 3.0))
+            .collect();
+        let small = rng.unit_points(500);
+        let cases = [
+            ("random", &random, true),
+            ("repeated", &repeated, true),
+            ("wide", &wide, true),
+            ("line", &line, false),
+            ("small", &small, false),
+        ];
+        for (name, points, cut) in cases {
+            let frames = choose_frames(points).unwrap();
+            let halves = cut_in_two(points, &frames, halves::SPLIT_MIN, false);
+            assert_eq!(halves.is_some(), cut, "{name}");
+            let borrowed = triangulate(points).unwrap();
+            for parallel in [false, true] {
+                let owned = triangulate_with(points.clone(), parallel, None, None).unwrap();
+                assert_same(&owned, &borrowed, name);
+                for i in 0..points.len() {
+                    assert_eq!(owned.point(i), points[i], "{name}");
+                }
+            }
+        }
+        assert!(distinct_count(&repeated) < halves::SPLIT_MIN);
+        assert!(choose_frames(&wide).unwrap().wide);
     }
 
     /// The triangles in input positions, each from its smallest corner, sorted.
