@@ -44,9 +44,9 @@ float64, float32 or integers, either byte order, C or Fortran order, `.csv` CSV 
 names the x and y columns (or lon, lat; where none is named so, easting, northing, E, N or
 POINT_X, POINT_Y; `--columns X,Y` chooses others, by name or number), or of two numeric
 columns without a header (tabs separate the columns when the first line with content has tabs
-and no comma; a `.tsv` with a header is read so, with tabs; a row of empty fields only, `,,`,
-as spreadsheets leave them, is skipped as a blank line is and takes no number; empty fields
-ending every row, `1,2,`, are no column), `.geojson` or `.json` the
+and no comma; a `.tsv` is read so, with tabs, unless a `#` comment comes first; a row of empty
+fields only, `,,`, as spreadsheets leave them, is skipped as a blank line is and takes no
+number; empty fields ending every row, `1,2,`, are no column), `.geojson` or `.json` the
 Point and MultiPoint geometries of a GeoJSON document, `.geojsonl` or `.geojsons` those of
 GeoJSON lines (one object per line, or after each RS character). Points are numbered from 0
 in the order of their lines (rows, GeoJSON positions: a MultiPoint gives several, a feature

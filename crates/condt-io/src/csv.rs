@@ -557,7 +557,8 @@ fn header_columns(
             line,
             format!(
                 "{} numbers and no header: a CSV of two columns is read as x, y without one, \
-                 with more a header line must name the x and y columns",
+                 with more a header line must name the x and y columns (or --columns X,Y their \
+                 numbers from 1)",
                 filled(record)
             ),
         ));

@@ -900,8 +900,8 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// Reads a point file, its format chosen by the name's ending (any case): `.node` a Triangle
 /// node file ([`parse_node`]), `.npy` a NumPy array ([`parse_npy`](super::parse_npy), read in
 /// blocks straight into the points), `.csv` CSV with a header naming the columns
-/// ([`parse_csv`](super::parse_csv)), `.tsv` the same with tabs between columns (without a header,
-/// the plain format), `.geojson` or `.json` the Point and MultiPoint geometries
+/// ([`parse_csv`](super::parse_csv)), `.tsv` the same with tabs between columns (the plain format
+/// when a `#` comment comes first), `.geojson` or `.json` the Point and MultiPoint geometries
 /// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), `.geojsonl` or `.geojsons`
 /// those of a GeoJSON sequence, one object per line
 /// ([`InputFormat::GeoJsonLines`](super::InputFormat::GeoJsonLines)); `-` reads standard input.
@@ -1174,10 +1174,12 @@ pub fn read_points_with(
             InputFormat::Node => parse_node(&text, name).map(without_crs),
             InputFormat::Csv => super::parse_csv(&text, name).map(without_crs),
             InputFormat::Tsv => {
-                // Tabs by the name, when the file starts with a header: names only, as the plain
-                // reader tells one, or x and y columns named as the CSV reader's header names them
-                // among any others (`id lon lat 2020`); without (numbers or a comment first) it is
-                // the plain format's, which takes tabs, comments and a third column too. The line
+                // Tabs by the name, read by the CSV reader when the file starts with a header
+                // (names only, as the plain reader tells one, or x and y columns named as the CSV
+                // reader's header names them among any others: `id lon lat 2020`) or with
+                // numbers, whose rule then holds: two columns, or a header must name them (`id x
+                // y` read as `x y z` came back as wrong points, a newcomer's review). A comment
+                // first is the plain format's, which takes comments and a third column. The line
                 // is split at tabs, as the CSV reader splits it: a name may hold blanks
                 // (`elevation (m)`), which are no columns.
                 let first = crate::csv::first_line_with_content(&text);
@@ -1187,10 +1189,11 @@ pub fn read_points_with(
                     .map(str::trim)
                     .filter(|f| !f.is_empty())
                     .collect();
-                if !fields.is_empty()
-                    && (fields.iter().all(|f| is_name(f))
-                        || crate::csv::names_x_and_y_columns(fields.iter().copied()))
-                {
+                let header = fields.iter().all(|f| is_name(f))
+                    || crate::csv::names_x_and_y_columns(fields.iter().copied());
+                let numbers =
+                    !first.contains('#') && fields.iter().all(|f| f.parse::<f64>().is_ok());
+                if !fields.is_empty() && (header || numbers) {
                     crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
                 } else {
                     parse_owned_points(text, name).map(without_crs)

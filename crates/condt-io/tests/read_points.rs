@@ -591,12 +591,34 @@ fn a_tsv_file_is_read_by_its_header() {
     .unwrap();
     let read = read_points(&path).unwrap();
     assert_eq!(read, points(&[(8.5, 47.3), (8.51, 47.3), (8.52, 47.31)]));
-    // Without a header, the plain format: a comment, and a third column ignored.
+    // A comment first: the plain format, whose third column is ignored.
     std::fs::write(&path, "# survey\n1.5\t2\t9\n3\t4\t9\n").unwrap();
     assert_eq!(
         read_points(&path).unwrap(),
         points(&[(1.5, 2.0), (3.0, 4.0)])
     );
+}
+
+/// A `.tsv` of numbers follows the CSV reader's rule, as the README says: two columns are x and
+/// y; more need a header or `--columns` (an `id x y` survey export had been read as `x y z`: its
+/// ids as x, its x as y, with no word), and a row longer than the first is refused.
+#[test]
+fn a_tsv_of_numbers_follows_the_csv_rule() {
+    let two = TempFile::new("two.tsv", b"1\t2\n3\t4\n5\t1\n");
+    assert_eq!(
+        two.read().unwrap(),
+        points(&[(1.0, 2.0), (3.0, 4.0), (5.0, 1.0)])
+    );
+    let ids = TempFile::new(
+        "ids.tsv",
+        b"1000\t10.0\t0.0\n1007\t9.87\t0.78\n1013\t9.5\t1.5\n",
+    );
+    let (line, message) = content_error(ids.read());
+    assert_eq!(line, Some(1), "{message}");
+    assert!(message.contains("3 numbers and no header"), "{message}");
+    let ragged = TempFile::new("ragged.tsv", b"0\t0\n1\t0\n0\t1\t9\n");
+    let (line, message) = content_error(ragged.read());
+    assert_eq!(line, Some(3), "{message}");
 }
 
 /// A `.tsv` header is told as the README has it: after a byte-order mark, with a name of blanks
@@ -624,7 +646,7 @@ fn a_tsv_header_is_told_after_a_mark_and_among_any_names() {
         let file = TempFile::new(name, text.as_bytes());
         assert_eq!(file.read().unwrap(), expected, "{name}");
     }
-    let numbers = TempFile::new("numbers.tsv", b"1\t2\t2020\n3\t4\t2020\n5\t1\t2020\n");
+    let numbers = TempFile::new("numbers.tsv", b"1\t2\n3\t4\n5\t1\n");
     assert_eq!(numbers.read().unwrap(), expected);
     // Names without x and y after a mark are a header too, refused as the CSV reader refuses
     // it (the mark made its first name no name: the plain reader called the `FID` column a
