@@ -1377,8 +1377,10 @@ def test_results_copy_as_themselves():
 def test_a_forked_child_and_its_own_child_run_the_parallel_paths():
     # A user review: after one parallel call in the parent, a child forked from it (as
     # `multiprocessing.Pool` forks on Linux) waited forever in `triangulate`, since fork copies
-    # rayon's pool without its threads. Each child now starts threads of its own.
-    t = np.linspace(0, 2 * np.pi, 20000, endpoint=False)
+    # rayon's pool without its threads. Each child now starts threads of its own. The pool
+    # starts at 65,536 points: with fewer (20,000, as this test had) the parent has none to pass
+    # on, and a child that kept the copied pool passed (a tests audit).
+    t = np.linspace(0, 2 * np.pi, 70_000, endpoint=False)
     points = np.column_stack([np.cos(t), np.sin(3 * t) / 3])
     triangles = condt.triangulate(points).triangles
     result = condt.reconstruct(points)
