@@ -318,7 +318,8 @@ impl<'t> Graph<'t> {
     ///
     /// ```
     /// use condt::{triangulate, Point};
-    /// // A smooth arc of 30 samples and, far away, a zig-zag of 6 (a fifth: under the quarter).
+    /// // A smooth arc of 30 samples and, far away, a zig-zag of 6 (a sixth of the points
+    /// // with edges: under the quarter).
     /// let on_arc = |k: f64| Point::new(10.0 * (0.1 * k).cos(), 10.0 * (0.1 * k).sin());
     /// let mut pts: Vec<Point> = (0..30).map(|k| on_arc(k as f64)).collect();
     /// pts.extend([(40.0, 0.0), (41.0, 1.0), (40.2, 1.1), (41.3, 2.0), (40.1, 2.2), (41.0, 3.1)]
@@ -498,8 +499,9 @@ impl<'t> Graph<'t> {
 
     /// Cuts detours ([`Params::detours`](crate::Params::detours)): where two routes of at most
     /// four points between them join the same two points of three edges each, the route the curve
-    /// runs into less straightly at both of those points goes, unless they disagree (its rule:
-    /// `src/stages/detours.rs`).
+    /// runs into less straightly at both of those points goes, unless they disagree; and a loop of
+    /// at most five points hung on a curve is opened at the edge the curve turns into more
+    /// sharply (its rules: `src/stages/detours.rs`).
     ///
     /// ```
     /// use condt::{triangulate, Point};
