@@ -1,5 +1,5 @@
 //! Parses a plain point file `TIMES` times on one thread and prints the number of points: the
-//! single-core parse figures of docs/performance.md ("The readers and writers") come from it,
+//! single-core parse figures of docs/performance.md ("Parsing alone, one thread") come from it,
 //! by instruction counts or by processor time less that of `TIMES` = 0 (which only reads the
 //! file).
 //!
