@@ -46,7 +46,8 @@ POINT_X, POINT_Y; `--columns X,Y` chooses others, by name or number), or of two 
 columns without a header (tabs separate the columns when the first line with content has tabs
 and no comma; a `.tsv` is read so, with tabs, unless a `#` comment comes first; a row of empty
 fields only, `,,`, as spreadsheets leave them, is skipped as a blank line is and takes no
-number; empty fields ending every row, `1,2,`, are no column), `.geojson` or `.json` the
+number; empty fields past the first line's, as a trailing comma leaves them, `1,2,`, are no
+column), `.geojson` or `.json` the
 Point and MultiPoint geometries of a GeoJSON document, `.geojsonl` or `.geojsons` those of
 GeoJSON lines (one object per line, or after each RS character). Points are numbered from 0
 in the order of their lines (rows, GeoJSON positions: a MultiPoint gives several, a feature
@@ -1308,7 +1309,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         if chosen != Method::ConDT {
             if let Some(option) = condt_options.first() {
                 return Err(usage(format!(
-                    "{option} sets a ConDT stage, but --method chooses a baseline, which has none"
+                    "{option} sets a ConDT stage or parameter, but --method chooses a baseline, which has none"
                 )));
             }
         }

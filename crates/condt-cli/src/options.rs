@@ -62,6 +62,20 @@ fn find<'t, Id>(table: &'t [Opt<Id>], arg: &Arg<'_>) -> Option<(&'t Opt<Id>, boo
 
 /// The long option of `table` (or its `no-` form) nearest `name` in edits, when one is within
 /// a third of the name's length, rounded up: a typo's likely meaning (`--quite`).
+/// Values written as options (`--crust`, `--svg`: a newcomer's review, where `--crust` was
+/// answered with `--crs`), by the option of `table` that takes them.
+fn value_as_option<Id>(table: &[Opt<Id>], name: &str) -> Option<String> {
+    const VALUES: [(&str, &[&str]); 2] = [
+        ("method", &["condt", "crust", "nn-crust"]),
+        ("format", &["edges", "npy", "txt", "svg", "geojson", "html"]),
+    ];
+    let (option, _) = VALUES
+        .iter()
+        .find(|(_, values)| values.contains(&name.to_ascii_lowercase().as_str()))?;
+    let takes = table.iter().any(|opt| opt.long == *option);
+    takes.then(|| format!("--{option} {}", name.to_ascii_lowercase()))
+}
+
 fn nearest<Id>(table: &[Opt<Id>], name: &str) -> Option<String> {
     let names = table.iter().flat_map(|opt| {
         let negated = opt.negatable.then(|| format!("no-{}", opt.long));
@@ -123,8 +137,9 @@ pub(crate) fn lex<Id: Copy>(
         let flag = written(&arg);
         let Some((opt, on)) = find(table, &arg) else {
             let hint = match arg {
-                Arg::Long(name) => nearest(table, name)
-                    .map(|near| format!(" (did you mean --{near}?)"))
+                Arg::Long(name) => value_as_option(table, name)
+                    .or_else(|| nearest(table, name).map(|near| format!("--{near}")))
+                    .map(|meant| format!(" (did you mean {meant}?)"))
                     .unwrap_or_default(),
                 _ => String::new(),
             };

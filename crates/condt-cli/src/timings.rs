@@ -59,6 +59,7 @@ impl Timings {
         // (each a triangulation and all the stages) are in `earlier-passes`.
         let comment = match result.smoothing().map(|smoothing| smoothing.passes) {
             Some(1) => "(the first reconstruction, before the one smoothing pass)".to_string(),
+            Some(2) => "(the first reconstruction and the first of 2 smoothing passes)".to_string(),
             Some(passes) => format!(
                 "(the first reconstruction and the first {} of {passes} smoothing passes)",
                 passes - 1

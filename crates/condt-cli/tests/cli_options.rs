@@ -197,6 +197,29 @@ fn a_double_dash_ends_the_options() {
     );
 }
 
+/// A value written as an option is answered with the option that takes it (a newcomer's
+/// review: `--crust` was answered with `--crs`, `--svg` with nothing), where the command has it.
+#[test]
+fn a_value_written_as_an_option_names_its_option() {
+    for (typed, meant) in [
+        ("--crust", "--method crust"),
+        ("--nn-crust", "--method nn-crust"),
+        ("--svg", "--format svg"),
+        ("--GeoJSON", "--format geojson"),
+    ] {
+        let out = condt(&["reconstruct", typed]);
+        assert_eq!(out.status.code(), Some(2), "{typed}");
+        let said = stderr(&out);
+        assert!(said.contains(&format!("(did you mean {meant}?)")), "{said}");
+    }
+    // `triangulate` has no --format: no such answer there.
+    let said = stderr(&condt(&["triangulate", "--svg"]));
+    assert!(
+        said.contains("unknown option --svg") && !said.contains("--format"),
+        "{said}"
+    );
+}
+
 /// `help --help` and `help -h` ask for the help as `help help` does (they read as unknown
 /// commands: a tester's review).
 #[test]

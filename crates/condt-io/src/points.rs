@@ -236,7 +236,7 @@ pub(super) fn columns(content: &str) -> Result<Vec<&str>, String> {
     let fields: Vec<&str> = content.split(',').map(str::trim).collect();
     if fields.iter().any(|f| f.contains(char::is_whitespace)) {
         return Err(format!(
-            "both commas and spaces separate numbers in {}: a decimal comma? Write 1.5, not 1,5, \
+            "both commas and blanks separate numbers in {}: a decimal comma? Write 1.5, not 1,5, \
              and separate columns by spaces or by commas",
             quoted(content.trim())
         ));
@@ -682,7 +682,7 @@ fn expected_points(text: &str) -> usize {
 /// byte-order mark at the very start is skipped. Refused, with the line:
 /// - a byte-order mark anywhere else (outside a comment);
 /// - a single number, or four or more columns (a Triangle `.node` header `n 2 a m` among them);
-/// - a line where both commas and spaces separate numbers (`1,5 2`: a decimal comma?);
+/// - a line where both commas and blanks (spaces or tabs) separate numbers (`1,5 2`: a decimal comma?);
 /// - a word where a number should be, NaN and infinities;
 /// - more than [`MAX_POINTS`](condt::MAX_POINTS) points.
 ///
@@ -724,7 +724,7 @@ fn expected_points(text: &str) -> usize {
 ///
 /// let err = parse_points("0 0\n1,5 2\n", "euro.txt").unwrap_err();
 /// assert_eq!(err.line, Some(2));
-/// assert!(err.to_string().starts_with("euro.txt:2: both commas and spaces"));
+/// assert!(err.to_string().starts_with("euro.txt:2: both commas and blanks"));
 ///
 /// let err = parse_points("1 0.0 0.0\n2 1.0 0.0\n3 0.0 1.0\n", "nodes.txt").unwrap_err();
 /// assert_eq!(err.line, Some(1));
