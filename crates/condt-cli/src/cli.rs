@@ -1591,6 +1591,18 @@ fn threads_note(quiet: bool) {
 
 /// What both commands do before reading: the note on threads, the clock, the output checked
 /// against the input and made ready, and the progress bar through the reading.
+/// A NumPy array is bytes, not text: it is not written where standard output is a terminal (a
+/// newcomer's review: `--format npy` without `-o` filled the terminal with them).
+fn refuse_binary_to_a_terminal(binary: bool, destination: &Destination) -> Result<(), CliError> {
+    if binary && destination.is_terminal() {
+        return Err(usage(
+            "a .npy array is binary and standard output is a terminal: name a file with -o, \
+             or redirect the output",
+        ));
+    }
+    Ok(())
+}
+
 fn start_command(
     input: Option<&Path>,
     output: Option<&Path>,
@@ -1615,6 +1627,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         args.quiet,
         args.timings,
     )?;
+    refuse_binary_to_a_terminal(args.format == Format::Npy, &destination)?;
     let (
         PointFile {
             points,

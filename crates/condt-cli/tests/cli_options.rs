@@ -313,6 +313,29 @@ fn on_a_terminal(dir: &Path, args: &[&str]) -> Option<Output> {
         .ok()
 }
 
+/// A NumPy array is not written to a terminal (a newcomer's review: its bytes filled the
+/// screen); to a file, or through a pipe, it is.
+#[test]
+fn a_binary_output_is_refused_on_a_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = points(dir.path(), "in.txt");
+    let input = input.to_str().unwrap();
+    // (`triangulate` writes an array only to a file named `.npy`.)
+    for args in [&["reconstruct", input, "--format", "npy"][..]] {
+        let Some(out) = on_a_terminal(dir.path(), args) else {
+            eprintln!("no `script` here: the terminal is not tested");
+            return;
+        };
+        let screen = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(2), "{screen}");
+        assert!(screen.contains("standard output is a terminal"), "{screen}");
+        assert!(!screen.contains("NUMPY"), "{screen}");
+        let piped = condt(args);
+        ok(&piped);
+        assert!(piped.stdout.starts_with(b"\x93NUMPY"));
+    }
+}
+
 #[test]
 fn the_progress_bar_changes_no_output() {
     let dir = tempfile::tempdir().unwrap();
