@@ -1076,6 +1076,8 @@ pub fn read_points_with(
     // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
     // property: a Latin-1 or CP1252 export) do not matter; where a field that is read holds
     // them, the file is refused as not UTF-8 text, at that line.
+    let mut bytes = bytes;
+    blank_cloudcompare_header_mark(&mut bytes);
     let (text, not_utf8) = lossy_text(bytes);
     let read = (|| -> Result<PointFile, IoError> {
         if let Some(columns) = &options.columns {
@@ -1265,6 +1267,25 @@ pub fn read_points_with(
 
 /// `bytes` as text, each sequence that is not UTF-8 replaced by U+FFFD, and the lines (numbered
 /// as the readers number them, [`line_at`]) that held one, in order.
+/// CloudCompare's ASCII export starts its header with `//` (`//X,Y,Z,R,G,B`, `//X Y Z`), which
+/// the README sends scan users to: the mark is blanked (two spaces, so lines and columns keep
+/// their numbers) where the first line with content starts with it and a letter follows.
+fn blank_cloudcompare_header_mark(bytes: &mut [u8]) {
+    let start = bytes.strip_prefix("\u{feff}".as_bytes()).map_or(0, |_| 3);
+    let Some(first) = bytes[start..]
+        .iter()
+        .position(|b| !b.is_ascii_whitespace())
+        .map(|at| start + at)
+    else {
+        return;
+    };
+    if bytes[first..].starts_with(b"//")
+        && bytes.get(first + 2).is_some_and(u8::is_ascii_alphabetic)
+    {
+        bytes[first..first + 2].copy_from_slice(b"  ");
+    }
+}
+
 fn lossy_text(bytes: Vec<u8>) -> (String, Vec<usize>) {
     let bytes = match String::from_utf8(bytes) {
         Ok(text) => return (text, Vec::new()),

@@ -1071,3 +1071,30 @@ fn utf16_text_is_told_as_such() {
         }
     }
 }
+
+/// CloudCompare's ASCII export marks its header with `//` (`//X,Y,Z`), which the README's scan
+/// users meet: read as a header in `.csv`, `.txt` and `.tsv` (a newcomer's review: refused as a
+/// header without an x column); lines keep their numbers; `//` before anything else is no mark.
+#[test]
+fn a_cloudcompare_header_is_read() {
+    let expected = points(&[(0.0, 0.0), (1.0, 0.5), (0.25, 1.0)]);
+    for (name, text) in [
+        (
+            "cc.csv",
+            "//X,Y,Z,R,G,B\n0,0,1,9,9,9\n1,0.5,1,9,9,9\n0.25,1,1,9,9,9\n",
+        ),
+        ("cc.txt", "//X Y Z\n0 0 1\n1 0.5 1\n0.25 1 1\n"),
+        (
+            "cc.tsv",
+            "\u{feff}\n//X\tY\tZ\n0\t0\t1\n1\t0.5\t1\n0.25\t1\t1\n",
+        ),
+    ] {
+        let file = TempFile::new(name, text.as_bytes());
+        assert_eq!(file.read().unwrap(), expected, "{name}");
+    }
+    let bad = TempFile::new("ccbad.csv", b"//X,Y,Z\n0,0,1\n1,oops,1\n");
+    let (line, message) = content_error(bad.read());
+    assert_eq!(line, Some(3), "{message}");
+    let comment = TempFile::new("comment.txt", b"// 0 0\n1 1\n2 0\n");
+    assert!(comment.read().is_err());
+}
