@@ -1218,6 +1218,12 @@ impl<'a> Tile<'a> {
     /// hold a point the tile does not: whether it meets a part of the hull outside the known
     /// region (and deeper than the band). If not, no point of the whole set lies inside it.
     fn uncertain_circle(&self, [a, b, c]: [Point; 3]) -> bool {
+        // Nowhere to be (a tile that holds every point): certain, even where the circle cannot
+        // be computed (a dask user's review: a sliver on a straight side of the hull, whose
+        // rounded determinant is zero, kept a tile of every point from certifying).
+        if self.hull_parts.iter().all(Vec::is_empty) {
+            return false;
+        }
         let Some((o, reach)) = circumcircle(a, b, c) else {
             return true;
         };

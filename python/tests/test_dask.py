@@ -153,6 +153,18 @@ def test_tiles_whose_circles_reach_far_grow_their_halo(client):
     np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
 
 
+def test_a_tile_of_every_point_certifies_beside_slivers_of_a_straight_side(client):
+    # A dask user's review: points on a line up to rounding make Delaunay slivers whose rounded
+    # circumcircle is none (a zero determinant); a tile holding every point was then refused as
+    # uncertain, and the set sent whole to one worker ("a tile held every point").
+    x = np.sort(np.random.default_rng(0).uniform(0, 10, 200))
+    points = np.column_stack([x, 2 * x + 1])
+    for tiles in (1, 2):
+        tiled = condt.dask.reconstruct(points, client, tiles=tiles, paper=True)
+        assert tiled.whole is None, tiled.whole
+        np.testing.assert_array_equal(tiled.edges, one_machine(points, paper=True))
+
+
 def test_a_tile_whose_halo_reaches_every_point_runs_for_every_tile(client):
     # Each of the 16 tiles was sent again and again until each held every point: 13 rounds and
     # 102 points sent per point, where one tile holding every point certifies every tile's.
