@@ -1073,6 +1073,16 @@ pub fn read_points_with(
     // A zip archive, NumPy's `.npz` above all: "not UTF-8 text" alone sent a Python user looking
     // for an encoding. An empty archive starts with its end record (`numpy.savez()` of nothing).
     let zip = bytes.starts_with(b"PK\x03\x04") || bytes.starts_with(b"PK\x05\x06");
+    // A compressed file, by its magic bytes: said so, with how to read it (a newcomer's review:
+    // a gzip file was only "not UTF-8 text").
+    let compressed = [
+        (&b"\x1f\x8b"[..], "gzip", "gunzip -c"),
+        (b"BZh", "bzip2", "bunzip2 -c"),
+        (b"\xfd7zXZ\x00", "xz", "xz -dc"),
+        (b"\x28\xb5\x2f\xfd", "zstd", "zstd -dc"),
+    ]
+    .into_iter()
+    .find(|(magic, _, _)| bytes.starts_with(magic));
     // Bytes that are not UTF-8 where nothing is read (a comment, a column not chosen, a GeoJSON
     // property: a Latin-1 or CP1252 export) do not matter; where a field that is read holds
     // them, the file is refused as not UTF-8 text, at that line.
@@ -1249,6 +1259,14 @@ pub fn read_points_with(
                         UTF-8; save the file as UTF-8"
                 .to_string();
             err.line = Some(1);
+        } else if let (Some((_, kind, tool)), IoErrorKind::Content(message)) =
+            (compressed, &mut err.kind)
+        {
+            *message = format!(
+                "a {kind}-compressed file, not points: decompress it first (`{tool} FILE | condt \
+                 COMMAND -`, or to a file)"
+            );
+            err.line = None;
         } else if let (true, IoErrorKind::Content(message)) = (zip, &mut err.kind) {
             *message = "a zip archive (such as NumPy's .npz), not points: save the array as \
                         .npy (numpy.save) or as text"

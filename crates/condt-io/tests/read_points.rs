@@ -1035,6 +1035,29 @@ fn a_zip_archive_is_told_as_such() {
     }
 }
 
+/// A compressed file is told as such, with the tool that reads it (a newcomer's review: a gzip
+/// file was "not UTF-8 text"), by any name; real gzip bytes of `0 0\n1 0\n0 1\n`.
+#[test]
+fn a_compressed_file_is_told_as_such() {
+    let gzip = b"\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03\x33\x50\x30\xe0\x32\x04\x62\x03\x05\x43\x2e\x00\x84\x52\x43\x32\x0c\x00\x00\x00";
+    for (bytes, kind) in [
+        (&gzip[..], "gzip"),
+        (b"BZh91AY&SY\x00\x01", "bzip2"),
+        (b"\xfd7zXZ\x00\x00\x04", "xz"),
+        (b"\x28\xb5\x2f\xfd\x24\x0c", "zstd"),
+    ] {
+        for name in ["points.txt.gz", "points.csv", "points"] {
+            let file = TempFile::new(name, bytes);
+            let (line, message) = content_error(file.read());
+            assert!(
+                message.contains(&format!("a {kind}-compressed file")),
+                "{name}: {message}"
+            );
+            assert_eq!(line, None, "{message}");
+        }
+    }
+}
+
 /// UTF-16 text (a byte order mark, then two bytes a character) is told as such, at line 1, in
 /// every text format, instead of as a first field no number reader makes sense of.
 #[test]
