@@ -603,8 +603,8 @@ impl Curve {
 ///   ``choice``: ``"shortest"``, ``"second"`` (with ``ratio`` = ``|e2| / |e1|``, ``bound`` and
 ///   ``kept``, the uniformity test's numbers), ``"later"`` (with ``rank``) or ``"not-delaunay"``;
 /// - ``changes``: what each later stage did to it, dicts with ``stage`` (its name, as in
-///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``kept``),
-///   ``"longer-than-threshold"`` (``length``, ``threshold``, ``floored``), ``"given-back"``,
+///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``selected``:
+///   the neighbours Algorithm 2 selected there), ``"longer-than-threshold"`` (``length``, ``threshold``, ``floored``), ``"given-back"``,
 ///   ``"last-edge"`` (given back as a curve's last edge), ``"long-at"`` (``vertex``, ``ratio``),
 ///   ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``, ``"gap-closed"``,
 ///   ``"junction"``, ``"crossing"`` (``vertex``), ``"tip"``, ``"spike"``, ``"hook"``, ``"tail"``
@@ -732,11 +732,14 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
         Reason::Repair {
             vertex,
             degree,
-            kept,
+            selected,
         } => {
             dict.set_item("vertex", vertex)?;
             dict.set_item("degree", degree)?;
-            dict.set_item("kept", kept.iter().flatten().copied().collect::<Vec<_>>())?;
+            dict.set_item(
+                "selected",
+                selected.iter().flatten().copied().collect::<Vec<_>>(),
+            )?;
             "repair"
         }
         Reason::LongerThanThreshold {

@@ -196,6 +196,29 @@ fn write_data(
             Short(y, digits).write_to(out)?;
         }
     }
+    // Per repair change, in the order above: the neighbours its vertex selected, four numbers,
+    // -1 for none.
+    write!(out, "],\"repairSelected\":[")?;
+    let mut first = true;
+    let repairs = stories
+        .iter()
+        .flat_map(|s| &s.changes)
+        .filter_map(|c| match c.reason {
+            Reason::Repair { selected, .. } => Some(selected),
+            _ => None,
+        });
+    for selected in repairs {
+        for w in selected {
+            if !first {
+                out.write_all(b",")?;
+            }
+            first = false;
+            match w {
+                Some(w) => write_integer(out, w as u64)?,
+                None => out.write_all(b"-1")?,
+            }
+        }
+    }
     // Layers: their names, and per edge one number whose bit 0 says it is a Delaunay edge and
     // bit k + 1 that stage k's graph has it (a list of edges per layer would be 3 times larger).
     write!(out, "],\"layers\":[\"Delaunay triangulation\"")?;
@@ -640,7 +663,7 @@ mod tests {
             Reason::Repair {
                 vertex: 1,
                 degree: 3,
-                kept: [Some(2), None],
+                selected: [Some(2), Some(4), None, None],
             },
             Reason::LongerThanThreshold {
                 length: 2.0,

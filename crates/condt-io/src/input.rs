@@ -49,6 +49,13 @@ pub enum InputFormat {
 
 impl InputFormat {
     /// Every format, in the order the help lists them.
+    ///
+    /// ```
+    /// use condt_io::InputFormat;
+    /// // The help's list: each format by the name `named` reads it by.
+    /// let names: Vec<&str> = InputFormat::ALL.iter().map(|f| f.name()).collect();
+    /// assert_eq!(names, ["txt", "node", "csv", "tsv", "npy", "geojson", "geojsonl"]);
+    /// ```
     pub const ALL: [InputFormat; 7] = [
         InputFormat::Text,
         InputFormat::Node,
@@ -61,6 +68,15 @@ impl InputFormat {
 
     /// The format of a name (any case): `txt` (or `text`), `node`, `csv`, `tsv`, `npy`,
     /// `geojson` (or `json`), `geojsonl` (or `geojsons`); `None` for any other.
+    ///
+    /// ```
+    /// use condt_io::InputFormat;
+    /// // As `--input-format` gives it: any case, the aliases too.
+    /// assert_eq!(InputFormat::named("Text"), Some(InputFormat::Text));
+    /// assert_eq!(InputFormat::named("geojsons"), Some(InputFormat::GeoJsonLines));
+    /// // A name, not a file's ending: `of_path` reads those.
+    /// assert_eq!(InputFormat::named(".csv"), None);
+    /// ```
     pub fn named(name: &str) -> Option<InputFormat> {
         let name = name.to_ascii_lowercase();
         Some(match name.as_str() {
@@ -76,6 +92,15 @@ impl InputFormat {
     }
 
     /// The name [`named`](InputFormat::named) reads as this format (the one the help shows).
+    ///
+    /// ```
+    /// use condt_io::InputFormat;
+    /// assert_eq!(InputFormat::GeoJsonLines.name(), "geojsonl");
+    /// // Every name shown reads back as its format (the aliases, `text` or `json`, are not shown).
+    /// for format in InputFormat::ALL {
+    ///     assert_eq!(InputFormat::named(format.name()), Some(format));
+    /// }
+    /// ```
     pub fn name(self) -> &'static str {
         match self {
             InputFormat::Text => "txt",
@@ -92,6 +117,15 @@ impl InputFormat {
     /// (any case; the plain format for any other ending, or none, where the reader still tells
     /// a NumPy array or GeoJSON by the content); `None` for `-`, standard input, whose format is
     /// told by its content.
+    ///
+    /// ```
+    /// use condt_io::InputFormat;
+    /// assert_eq!(InputFormat::of_path("data/survey.Csv"), Some(InputFormat::Csv));
+    /// // Only the last ending counts; an unknown one, or none, is the plain format.
+    /// assert_eq!(InputFormat::of_path("survey.csv.bak"), Some(InputFormat::Text));
+    /// assert_eq!(InputFormat::of_path("points"), Some(InputFormat::Text));
+    /// assert_eq!(InputFormat::of_path("-"), None);
+    /// ```
     pub fn of_path(path: impl AsRef<Path>) -> Option<InputFormat> {
         let path = path.as_ref();
         if path.as_os_str() == "-" {
@@ -135,6 +169,16 @@ impl Column {
     /// lookup compares a name with a header's field: names equal without ASCII case and blanks
     /// around them, or equal numbers (a name and a number are not compared: that needs the
     /// header).
+    ///
+    /// ```
+    /// use condt_io::Column;
+    /// let x = Column::Named("POINT_X".into());
+    /// assert!(x.same(&Column::Named(" point_x".into())));
+    /// assert_ne!(x, Column::Named(" point_x".into()), "`==` compares them as written");
+    /// assert!(Column::Number(2).same(&Column::Number(2)));
+    /// // Whether a name is the column at a position only the header can say.
+    /// assert!(!Column::Named("2".into()).same(&Column::Number(2)));
+    /// ```
     pub fn same(&self, other: &Column) -> bool {
         match (self, other) {
             (Column::Named(a), Column::Named(b)) => same_name(a, b),
@@ -187,6 +231,19 @@ impl Columns {
     /// be given: its number can. Refused, with why: anything but two nonempty columns, the
     /// number 0, one column for both ([`Column::same`]: two names that differ only in ASCII
     /// case are one column, as the header lookup finds them).
+    ///
+    /// ```
+    /// use condt_io::{Column, Columns};
+    /// // As `--columns` gives it: blanks around each column are ignored.
+    /// let columns = Columns::parse(" lon , lat ")?;
+    /// assert_eq!(columns.x, Column::Named("lon".into()));
+    /// assert_eq!(Columns::parse("2, 3")?, Columns { x: Column::Number(2), y: Column::Number(3) });
+    /// // Digits alone are a number: `x1` is a name.
+    /// assert_eq!(Columns::parse("x1,y1")?.x, Column::Named("x1".into()));
+    /// assert!(Columns::parse("lon,").unwrap_err().contains("an empty column name"));
+    /// assert!(Columns::parse("x,y,z").unwrap_err().contains("expected two columns"));
+    /// # Ok::<(), String>(())
+    /// ```
     pub fn parse(spec: &str) -> Result<Columns, String> {
         let parts: Vec<&str> = spec.split(',').map(str::trim).collect();
         let [x, y] = parts[..] else {
@@ -282,17 +339,57 @@ pub struct ReadOptions {
 
 impl ReadOptions {
     /// The default: the format told by the name or the content.
+    ///
+    /// ```
+    /// use condt_io::{read_points_with, ReadOptions};
+    /// let dir = tempfile::tempdir()?;
+    /// let path = dir.path().join("pts.txt");
+    /// std::fs::write(&path, "0 0\n1 2\n")?;
+    /// // Nothing stated: the file is read as `read_points` reads it.
+    /// let options = ReadOptions::new();
+    /// assert_eq!((options.format, &options.columns), (None, &None));
+    /// assert_eq!(read_points_with(&path, &options)?.points, condt_io::read_points(&path)?);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new() -> ReadOptions {
         ReadOptions::default()
     }
 
     /// These options, the file read as `format`.
+    ///
+    /// ```
+    /// use condt::Point;
+    /// use condt_io::{read_points_with, InputFormat, ReadOptions};
+    /// let dir = tempfile::tempdir()?;
+    /// // A CSV export under a name that does not say so: by its name, the plain format.
+    /// let path = dir.path().join("export.out");
+    /// std::fs::write(&path, "name,x,y\nA,1,2\n")?;
+    /// assert!(condt_io::read_points(&path).is_err());
+    /// let options = ReadOptions::new().with_format(InputFormat::Csv);
+    /// assert_eq!(read_points_with(&path, &options)?.points, vec![Point::new(1.0, 2.0)]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn with_format(mut self, format: InputFormat) -> ReadOptions {
         self.format = Some(format);
         self
     }
 
     /// These options, x and y read from `columns` of a CSV, TSV or plain text file.
+    ///
+    /// ```
+    /// use condt::Point;
+    /// use condt_io::{read_points_with, Columns, ReadOptions};
+    /// let dir = tempfile::tempdir()?;
+    /// let path = dir.path().join("wells.csv");
+    /// // A header naming neither x nor y: the columns are chosen by position.
+    /// std::fs::write(&path, "id,north,east\n1,200,100\n")?;
+    /// let options = ReadOptions::new().with_columns(Columns::parse("3,2")?);
+    /// assert_eq!(read_points_with(&path, &options)?.points, vec![Point::new(100.0, 200.0)]);
+    /// // Other formats have no columns: refused before the file is even opened.
+    /// let err = read_points_with(dir.path().join("none.npy"), &options).unwrap_err();
+    /// assert!(err.to_string().contains("chosen only in CSV, TSV and plain text input"));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn with_columns(mut self, columns: Columns) -> ReadOptions {
         self.columns = Some(columns);
         self

@@ -106,6 +106,20 @@ pub struct IoError {
 }
 
 /// What went wrong in an [`IoError`].
+///
+/// ```
+/// use condt_io::{parse_points, IoErrorKind};
+/// let err = parse_points("1 2\n3\n", "pts.txt").unwrap_err();
+/// // Non-exhaustive: a match needs an arm for the kinds added later.
+/// let message = match &err.kind {
+///     IoErrorKind::Content(message) => message.as_str(),
+///     IoErrorKind::Io(cause) => panic!("not read: {cause}"),
+///     _ => panic!("another kind"),
+/// };
+/// // The message alone: the file and the line are the error's.
+/// assert_eq!(message, "expected two coordinates `x y`, found one");
+/// assert_eq!(err.to_string(), format!("pts.txt:2: {message}"));
+/// ```
 #[derive(Debug)]
 #[non_exhaustive]
 pub enum IoErrorKind {

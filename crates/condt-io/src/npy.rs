@@ -27,6 +27,17 @@ use std::string::String;
 use std::vec::Vec;
 
 /// The first six bytes of every `.npy` file (the first is not UTF-8: no text file starts so).
+///
+/// ```
+/// use condt::Point;
+/// use condt_io::{write_npy_points, NPY_MAGIC};
+/// let mut bytes = Vec::new();
+/// write_npy_points(&mut bytes, &[Point::new(1.0, 2.0)])?;
+/// // How a NumPy array is told from a text file by its content (standard input has no name).
+/// assert!(bytes.starts_with(NPY_MAGIC));
+/// assert!(std::str::from_utf8(NPY_MAGIC).is_err());
+/// # Ok::<(), std::io::Error>(())
+/// ```
 pub const NPY_MAGIC: &[u8; 6] = b"\x93NUMPY";
 
 /// Longest header read: NumPy's own writer needs about 128 bytes; this bounds what a damaged

@@ -82,13 +82,17 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             Reason::Repair {
                 vertex,
                 degree,
-                kept,
+                selected,
             } => {
-                write!(f, "at vertex {vertex} (degree {degree}), which kept ")?;
-                match kept {
-                    [Some(x), Some(y)] => write!(f, "its edges to {x} and {y}")?,
-                    [Some(x), None] | [None, Some(x)] => write!(f, "its edge to {x} only")?,
-                    [None, None] => write!(f, "none")?,
+                write!(f, "at vertex {vertex} (degree {degree}), which selected ")?;
+                let named: Vec<usize> = selected.iter().flatten().copied().collect();
+                match named[..] {
+                    [] => write!(f, "none")?,
+                    [x] => write!(f, "its edge to {x} only")?,
+                    [ref first @ .., last] => {
+                        let first: Vec<String> = first.iter().map(usize::to_string).collect();
+                        write!(f, "its edges to {} and {last}", first.join(", "))?;
+                    }
                 }
             }
             Reason::LongerThanThreshold {

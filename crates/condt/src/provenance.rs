@@ -38,8 +38,11 @@ pub enum Reason {
         vertex: usize,
         /// Its number of edges before the repair.
         degree: usize,
-        /// The neighbours it kept (input positions), at most two shown.
-        kept: [Option<usize>; 2],
+        /// The neighbours it selected (input positions, in the order chosen: two, or up to four
+        /// at a crossing), the edges it asked to keep. What it is left with can differ: an edge
+        /// its other end selected stays too where the repair keeps what either end selects
+        /// (the paper's), and goes where both must (`Repair::Mutual`).
+        selected: [Option<usize>; 4],
     },
     /// Algorithm 3: the edge is longer than the cut threshold: `√T`, or the spacing floor
     /// ([`Params::iqr_floor`](crate::Params::iqr_floor)) where that is larger.
@@ -586,13 +589,22 @@ impl<'a> Explainer<'a> {
                     _ if degree[a] >= degree[b] => a,
                     _ => b,
                 };
-                // The two smallest input positions it kept edges to.
-                let mut kept = self.after_of(vertex);
-                kept.sort_unstable();
+                // Its own choice, not what it is left with (a student's review: the two smallest
+                // neighbours left were named as "kept", one of them an edge only the other end
+                // had chosen, and the vertex's own second choice went unnamed).
+                let v = self.tri.vertex(vertex);
+                let mut selected = [None; 4];
+                if let Ok(k) = self.repair_selections.binary_search_by_key(&v, |&(u, _)| u) {
+                    let chosen = self.repair_selections[k].1;
+                    let known = chosen.iter().filter(|w| !w.is_infinite());
+                    for (slot, &w) in selected.iter_mut().zip(known) {
+                        *slot = Some(self.tri.input_of(w));
+                    }
+                }
                 Reason::Repair {
                     vertex,
                     degree: degree[vertex],
-                    kept: [kept.first().copied(), kept.get(1).copied()],
+                    selected,
                 }
             }
         }
@@ -1011,6 +1023,40 @@ mod tests {
         }
     }
 
+    /// A student's case: Algorithm 2 at vertex 1, whose proximity edges go to 0, 2, 4 and 5,
+    /// selects its shortest, to 2 (√2), and then the best score (θ/π)(Lmin/Le) among the rest:
+    /// to 5 (θ 174.9°, |e| 3.905: 0.352) before 4 (98.1°, 2.5: 0.308) and 0 (78.7°, 5.41:
+    /// 0.114). Edge 1-4 stays, selected by vertex 4, under the paper's union; the story of the
+    /// dropped 0-1 names what vertex 1 selected, not what it was left with (2 and 4, as it did).
+    #[test]
+    fn a_repair_names_what_its_vertex_selected() {
+        let points = [
+            (10.0, 9.0),
+            (7.0, 4.5),
+            (6.0, 5.5),
+            (0.0, 7.0),
+            (5.5, 2.5),
+            (9.5, 1.5),
+        ];
+        let points = points.map(Point::from);
+        let result = reconstruct(&points, &Params::paper()).unwrap();
+        let repaired = result
+            .stages()
+            .find(|r| r.stage == Stage::Repair)
+            .unwrap()
+            .graph
+            .edges();
+        assert!(repaired.contains(&[1, 4]) && repaired.contains(&[1, 5]));
+        let stories = result.provenance();
+        let story = stories.iter().find(|s| s.edge == [0, 1]).unwrap();
+        let expected = Reason::Repair {
+            vertex: 1,
+            degree: 4,
+            selected: [Some(2), Some(5), None, None],
+        };
+        assert_eq!(story.changes[0].reason, expected, "{story:?}");
+    }
+
     #[test]
     fn the_end_choices_agree_with_the_proximity_graph_and_the_changes_with_every_stage() {
         let points = noisy_scene();
@@ -1041,19 +1087,35 @@ mod tests {
                 }
                 replay.sort_unstable();
                 assert_eq!(replay, graphs[k], "{:?}", report.stage);
-                // A repair names the neighbours its vertex kept: its edges in the stage's graph.
-                for change in stories.iter().flat_map(|s| &s.changes) {
-                    if let (true, Reason::Repair { vertex, kept, .. }) =
-                        (change.stage == report.stage, change.reason)
+                // A repair names the neighbours its vertex selected: one or more of its edges in
+                // the stage's input; the paper's repair, which keeps what either end selects,
+                // keeps them all.
+                for (story, change) in stories
+                    .iter()
+                    .flat_map(|s| s.changes.iter().map(move |c| (s, c)))
+                {
+                    if let (
+                        true,
+                        Reason::Repair {
+                            vertex, selected, ..
+                        },
+                    ) = (change.stage == report.stage, change.reason)
                     {
-                        let neighbours: Vec<usize> = graphs[k]
+                        let before: Vec<usize> = graphs[k - 1]
                             .iter()
                             .filter(|e| e.contains(&vertex))
                             .map(|&[x, y]| if x == vertex { y } else { x })
                             .collect();
-                        let named: Vec<usize> = kept.iter().flatten().copied().collect();
-                        assert_eq!(named.len(), neighbours.len().min(2));
-                        assert!(named.iter().all(|w| neighbours.contains(w)));
+                        let named: Vec<usize> = selected.iter().flatten().copied().collect();
+                        assert!(!named.is_empty(), "{story:?}");
+                        assert!(named.iter().all(|w| before.contains(w)), "{story:?}");
+                        let other = story.edge[0] + story.edge[1] - vertex;
+                        assert!(!named.contains(&other), "{story:?}");
+                        if params.repair == crate::Repair::Paper {
+                            let after =
+                                |w: &usize| graphs[k].contains(&[vertex.min(*w), vertex.max(*w)]);
+                            assert!(named.iter().all(after), "{story:?}");
+                        }
                     }
                 }
             }

@@ -52,10 +52,16 @@
     seconds.set(s[k] * 2 + s[k + 1], { ratio: s[k + 2], bound: s[k + 3], kept: s[k + 4] === 1 });
   }
   const changes = new Map();
+  let repairs = 0;
   for (let k = 0; k < data.changes.length; k += 6) {
     const c = data.changes, e = c[k];
     if (!changes.has(e)) changes.set(e, []);
-    changes.get(e).push({ stage: stageNames[c[k + 1]], stageIndex: c[k + 1], added: c[k + 2] === 1, code: c[k + 3], x: c[k + 4], y: c[k + 5] });
+    const change = { stage: stageNames[c[k + 1]], stageIndex: c[k + 1], added: c[k + 2] === 1, code: c[k + 3], x: c[k + 4], y: c[k + 5] };
+    if (change.code === 0) {
+      change.selected = data.repairSelected.slice(4 * repairs, 4 * repairs + 4).filter((w) => w >= 0);
+      repairs += 1;
+    }
+    changes.get(e).push(change);
   }
   const resultEdges = new Uint8Array(m);
   for (const k of layers[layers.length - 1].edges) resultEdges[k] = 1;
@@ -294,14 +300,10 @@
     const verb = c.added ? "added" : "removed";
     const words = [
       () => {
-        // The repair's kept edges at the vertex: its edges in that stage's layer.
-        const kept = [];
-        for (let s = start[c.x]; s < start[c.x + 1]; s++) {
-          const k = incident[s];
-          if ((data.member[k] >> (c.stageIndex + 1)) & 1) kept.push(E[2 * k] === c.x ? E[2 * k + 1] : E[2 * k]);
-        }
-        const which = kept.length === 0 ? "none" : kept.length === 1 ? `its edge to ${kept[0]} only` : `its edges to ${kept.slice(0, 2).join(" and ")}`;
-        return `at vertex ${c.x} (degree ${c.y}), which kept ${which}`;
+        // The neighbours Algorithm 2 selected at the vertex (not what it was left with).
+        const s = c.selected;
+        const which = s.length === 0 ? "none" : s.length === 1 ? `its edge to ${s[0]} only` : `its edges to ${s.slice(0, -1).join(", ")} and ${s[s.length - 1]}`;
+        return `at vertex ${c.x} (degree ${c.y}), which selected ${which}`;
       },
       () => { const [l, t] = apart(c.x, c.y); return `length ${l} above √T = ${t}`; },
       () => "given back between two regular passages",
