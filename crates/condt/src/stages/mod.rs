@@ -152,9 +152,10 @@ along regular passages; drop edges far longer than their
 neighbours, branches of fewer than 5 points and components of
 fewer than 5 points clearly apart from the rest, unless dense
 or gap closing, the tips, the hooks or the junctions would join
-them to a curve that stays, whether those steps run or not (a
-sparsely sampled curve of 3 or 4 points, or a closed one of 5 or 6,
-is lost)";
+them to a curve that stays, whether those steps run or not, and
+unless they hold a quarter of the points with edges (so beside
+other curves a sparsely sampled curve of 3 or 4 points, or a
+closed one of 5 or 6, is lost; alone it stays)";
     GivenBack: "given-back check", "after confirming given-back components", "given-back",
         "confirm-given-back" => "(default on; off with --paper; needs the local outlier removal)
 after it and the clumps, drop a component rebuilt only from edges
