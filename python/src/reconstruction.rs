@@ -604,7 +604,8 @@ impl Curve {
 ///   ``kept``, the uniformity test's numbers), ``"later"`` (with ``rank``) or ``"not-delaunay"``;
 /// - ``changes``: what each later stage did to it, dicts with ``stage`` (its name, as in
 ///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``selected``:
-///   the neighbours Algorithm 2 selected there), ``"longer-than-threshold"`` (``length``, ``threshold``, ``floored``), ``"given-back"``,
+///   the neighbours Algorithm 2 selected there), ``"longer-than-threshold"`` (``length``,
+///   ``threshold``, ``floored``), ``"given-back"``,
 ///   ``"last-edge"`` (given back as a curve's last edge), ``"long-at"`` (``vertex``, ``ratio``),
 ///   ``"repaired-again"``, ``"component"``, ``"spur"``, ``"clump"``, ``"gap-closed"``,
 ///   ``"junction"``, ``"crossing"`` (``vertex``), ``"tip"``, ``"spike"``, ``"hook"``, ``"tail"``

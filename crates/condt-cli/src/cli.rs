@@ -44,8 +44,8 @@ float64, float32 or integers, either byte order, C or Fortran order, `.csv` CSV 
 names the x and y columns (or lon, lat; where none is named so, easting, northing, E, N or
 POINT_X, POINT_Y; `--columns X,Y` chooses others, by name or number), or of two numeric
 columns without a header (tabs separate the columns when the first line with content has tabs
-and no comma; a `.tsv` is read so, with tabs, unless a `#` comment comes first; a row of empty
-fields only, `,,`, as spreadsheets leave them, is skipped as a blank line is and takes no
+and no comma; a `.tsv` is read so, with tabs, but two numbers a line as plain text; a row of
+empty fields only, `,,`, as spreadsheets leave them, is skipped as a blank line is and takes no
 number; empty fields past the first line's, as a trailing comma leaves them, `1,2,`, are no
 column), `.geojson` or `.json` the
 Point and MultiPoint geometries of a GeoJSON document, `.geojsonl` or `.geojsons` those of
@@ -1589,8 +1589,6 @@ fn threads_note(quiet: bool) {
     }
 }
 
-/// What both commands do before reading: the note on threads, the clock, the output checked
-/// against the input and made ready, and the progress bar through the reading.
 /// A NumPy array is bytes, not text: it is not written where standard output is a terminal (a
 /// newcomer's review: `--format npy` without `-o` filled the terminal with them).
 fn refuse_binary_to_a_terminal(binary: bool, destination: &Destination) -> Result<(), CliError> {
@@ -1603,6 +1601,8 @@ fn refuse_binary_to_a_terminal(binary: bool, destination: &Destination) -> Resul
     Ok(())
 }
 
+/// What both commands do before reading: the note on threads, the clock, the output checked
+/// against the input and made ready, and the progress bar through the reading.
 fn start_command(
     input: Option<&Path>,
     output: Option<&Path>,

@@ -60,8 +60,6 @@ fn find<'t, Id>(table: &'t [Opt<Id>], arg: &Arg<'_>) -> Option<(&'t Opt<Id>, boo
     })
 }
 
-/// The long option of `table` (or its `no-` form) nearest `name` in edits, when one is within
-/// a third of the name's length, rounded up: a typo's likely meaning (`--quite`).
 /// Values written as options (`--crust`, `--svg`: a newcomer's review, where `--crust` was
 /// answered with `--crs`), by the option of `table` that takes them.
 fn value_as_option<Id>(table: &[Opt<Id>], name: &str) -> Option<String> {
@@ -76,6 +74,8 @@ fn value_as_option<Id>(table: &[Opt<Id>], name: &str) -> Option<String> {
     takes.then(|| format!("--{option} {}", name.to_ascii_lowercase()))
 }
 
+/// The long option of `table` (or its `no-` form) nearest `name` in edits, when one is within
+/// a third of the name's length, rounded up: a typo's likely meaning (`--quite`).
 fn nearest<Id>(table: &[Opt<Id>], name: &str) -> Option<String> {
     let names = table.iter().flat_map(|opt| {
         let negated = opt.negatable.then(|| format!("no-{}", opt.long));

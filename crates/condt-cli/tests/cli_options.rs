@@ -321,19 +321,18 @@ fn a_binary_output_is_refused_on_a_terminal() {
     let input = points(dir.path(), "in.txt");
     let input = input.to_str().unwrap();
     // (`triangulate` writes an array only to a file named `.npy`.)
-    for args in [&["reconstruct", input, "--format", "npy"][..]] {
-        let Some(out) = on_a_terminal(dir.path(), args) else {
-            eprintln!("no `script` here: the terminal is not tested");
-            return;
-        };
-        let screen = String::from_utf8_lossy(&out.stdout);
-        assert_eq!(out.status.code(), Some(2), "{screen}");
-        assert!(screen.contains("standard output is a terminal"), "{screen}");
-        assert!(!screen.contains("NUMPY"), "{screen}");
-        let piped = condt(args);
-        ok(&piped);
-        assert!(piped.stdout.starts_with(b"\x93NUMPY"));
-    }
+    let args = ["reconstruct", input, "--format", "npy"];
+    let Some(out) = on_a_terminal(dir.path(), &args) else {
+        eprintln!("no `script` here: the terminal is not tested");
+        return;
+    };
+    let screen = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(2), "{screen}");
+    assert!(screen.contains("standard output is a terminal"), "{screen}");
+    assert!(!screen.contains("NUMPY"), "{screen}");
+    let piped = condt(&args);
+    ok(&piped);
+    assert!(piped.stdout.starts_with(b"\x93NUMPY"));
 }
 
 #[test]

@@ -296,6 +296,9 @@ pub(crate) fn parse_separated(
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut reader = csv::ReaderBuilder::new()
         .delimiter(delimiter)
+        // A `.tsv` may hold `#` comment lines, as the plain format it was read as before does
+        // (a diff review's find: numbers first, then a comment, was "a row cut short").
+        .comment((delimiter == b'\t').then_some(b'#'))
         .has_headers(false)
         // Rows of any length: a short row gets this module's message, naming the column.
         .flexible(true)
@@ -318,9 +321,18 @@ pub(crate) fn parse_separated(
         // Where this record starts and where the next one does. The crate may place a record
         // at the line end before it (the `\n` of a CRLF, empty lines it skipped), which a
         // record cannot start with.
+        // So may the comment lines it skipped (a `.tsv`'s).
         let mut start = record.position().map_or(start, |p| p.byte() as usize);
-        while matches!(text.as_bytes().get(start), Some(b'\r' | b'\n')) {
-            start += 1;
+        loop {
+            while matches!(text.as_bytes().get(start), Some(b'\r' | b'\n')) {
+                start += 1;
+            }
+            if delimiter != b'\t' || text.as_bytes().get(start) != Some(&b'#') {
+                break;
+            }
+            start = text[start..]
+                .find(['\r', '\n'])
+                .map_or(text.len(), |at| start + at);
         }
         let end = reader.position().byte() as usize;
         let raw = text.get(start..end).unwrap_or_default();

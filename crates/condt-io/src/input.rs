@@ -32,8 +32,8 @@ pub enum InputFormat {
     /// CSV with a header naming the columns ([`parse_csv`](crate::parse_csv)).
     Csv,
     /// CSV with tabs between the columns, as a name ending in `.tsv` is read: by the CSV reader
-    /// (two columns of numbers, or a header naming x and y), or as the plain format (which takes
-    /// tabs too) when its first line is a `#` comment.
+    /// where its first line (comments aside) is a header, or three numbers or more (refused
+    /// without a header), else as the plain format (which takes tabs and comments too).
     Tsv,
     /// A NumPy array of shape `(n, 2)` ([`parse_npy`](crate::parse_npy)).
     Npy,

@@ -900,8 +900,8 @@ pub fn parse_node(text: &str, file: &str) -> Result<Vec<Point>, IoError> {
 /// Reads a point file, its format chosen by the name's ending (any case): `.node` a Triangle
 /// node file ([`parse_node`]), `.npy` a NumPy array ([`parse_npy`](super::parse_npy), read in
 /// blocks straight into the points), `.csv` CSV with a header naming the columns
-/// ([`parse_csv`](super::parse_csv)), `.tsv` the same with tabs between columns (the plain format
-/// when a `#` comment comes first), `.geojson` or `.json` the Point and MultiPoint geometries
+/// ([`parse_csv`](super::parse_csv)), `.tsv` the same with tabs between columns (two numbers a
+/// line: the plain format), `.geojson` or `.json` the Point and MultiPoint geometries
 /// of a GeoJSON document ([`parse_geojson`](super::parse_geojson)), `.geojsonl` or `.geojsons`
 /// those of a GeoJSON sequence, one object per line
 /// ([`InputFormat::GeoJsonLines`](super::InputFormat::GeoJsonLines)); `-` reads standard input.
@@ -1186,26 +1186,30 @@ pub fn read_points_with(
             InputFormat::Node => parse_node(&text, name).map(without_crs),
             InputFormat::Csv => super::parse_csv(&text, name).map(without_crs),
             InputFormat::Tsv => {
-                // Tabs by the name, read by the CSV reader when the file starts with a header
+                // Tabs by the name. The first line with content (comments aside) decides: a header
                 // (names only, as the plain reader tells one, or x and y columns named as the CSV
-                // reader's header names them among any others: `id lon lat 2020`) or with
-                // numbers, whose rule then holds: two columns, or a header must name them (`id x
-                // y` read as `x y z` came back as wrong points, a newcomer's review). A comment
-                // first is the plain format's, which takes comments and a third column. The line
-                // is split at tabs, as the CSV reader splits it: a name may hold blanks
-                // (`elevation (m)`), which are no columns.
-                let first = crate::csv::first_line_with_content(&text);
-                let content = first.split('#').next().unwrap_or("");
-                let fields: Vec<&str> = content
+                // reader's header names them among any others: `id lon lat 2020`) goes to the CSV
+                // reader, and so do three numbers or more, which it refuses without a header, as
+                // the README says (an `id x y` export read as `x y z` came back as wrong points, a
+                // newcomer's review); two numbers are the plain format's, which takes comments,
+                // blanks and empty fields as it always did. The line is split at tabs, as the CSV
+                // reader splits it: a name may hold blanks (`elevation (m)`), which are no columns.
+                let text_start = text.strip_prefix('\u{feff}').unwrap_or(&text);
+                let first = text_start
+                    .split(['\r', '\n'])
+                    .map(|line| line.split('#').next().unwrap_or(""))
+                    .find(|content| !content.trim().is_empty())
+                    .unwrap_or("");
+                let fields: Vec<&str> = first
                     .split('\t')
                     .map(str::trim)
                     .filter(|f| !f.is_empty())
                     .collect();
                 let header = fields.iter().all(|f| is_name(f))
                     || crate::csv::names_x_and_y_columns(fields.iter().copied());
-                let numbers =
-                    !first.contains('#') && fields.iter().all(|f| f.parse::<f64>().is_ok());
-                if !fields.is_empty() && (header || numbers) {
+                let wide_numbers =
+                    fields.len() > 2 && fields.iter().all(|f| f.parse::<f64>().is_ok());
+                if !fields.is_empty() && (header || wide_numbers) {
                     crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
                 } else {
                     parse_owned_points(text, name).map(without_crs)
@@ -1263,7 +1267,7 @@ pub fn read_points_with(
             (compressed, &mut err.kind)
         {
             *message = format!(
-                "a {kind}-compressed file, not points: decompress it first (`{tool} FILE | condt \
+                "{kind}-compressed data, not points: decompress it first (`{tool} FILE | condt \
                  COMMAND -`, or to a file)"
             );
             err.line = None;
@@ -1283,8 +1287,6 @@ pub fn read_points_with(
     })
 }
 
-/// `bytes` as text, each sequence that is not UTF-8 replaced by U+FFFD, and the lines (numbered
-/// as the readers number them, [`line_at`]) that held one, in order.
 /// CloudCompare's ASCII export starts its header with `//` (`//X,Y,Z,R,G,B`, `//X Y Z`), which
 /// the README sends scan users to: the mark is blanked (two spaces, so lines and columns keep
 /// their numbers) where the first line with content starts with it and a letter follows.
@@ -1304,6 +1306,8 @@ fn blank_cloudcompare_header_mark(bytes: &mut [u8]) {
     }
 }
 
+/// `bytes` as text, each sequence that is not UTF-8 replaced by U+FFFD, and the lines (numbered
+/// as the readers number them, [`line_at`]) that held one, in order.
 fn lossy_text(bytes: Vec<u8>) -> (String, Vec<usize>) {
     let bytes = match String::from_utf8(bytes) {
         Ok(text) => return (text, Vec::new()),

@@ -591,34 +591,43 @@ fn a_tsv_file_is_read_by_its_header() {
     .unwrap();
     let read = read_points(&path).unwrap();
     assert_eq!(read, points(&[(8.5, 47.3), (8.51, 47.3), (8.52, 47.31)]));
-    // A comment first: the plain format, whose third column is ignored.
-    std::fs::write(&path, "# survey\n1.5\t2\t9\n3\t4\t9\n").unwrap();
+    // Two numbers first: the plain format, with its comments.
+    std::fs::write(&path, "# survey\n1.5\t2\n3\t4 # last\n").unwrap();
     assert_eq!(
         read_points(&path).unwrap(),
         points(&[(1.5, 2.0), (3.0, 4.0)])
     );
 }
 
-/// A `.tsv` of numbers follows the CSV reader's rule, as the README says: two columns are x and
-/// y; more need a header or `--columns` (an `id x y` survey export had been read as `x y z`: its
-/// ids as x, its x as y, with no word), and a row longer than the first is refused.
+/// A `.tsv` of three numbers or more a line follows the CSV reader's rule, as the README says: a
+/// header or `--columns` must name x and y (an `id x y` survey export had been read as `x y z`:
+/// its ids as x, its x as y, with no word), after comments too; two numbers are the plain
+/// format's, with its comments, blanks and empty fields (a diff review: the CSV reader had
+/// refused those).
 #[test]
 fn a_tsv_of_numbers_follows_the_csv_rule() {
-    let two = TempFile::new("two.tsv", b"1\t2\n3\t4\n5\t1\n");
-    assert_eq!(
-        two.read().unwrap(),
-        points(&[(1.0, 2.0), (3.0, 4.0), (5.0, 1.0)])
-    );
-    let ids = TempFile::new(
-        "ids.tsv",
-        b"1000\t10.0\t0.0\n1007\t9.87\t0.78\n1013\t9.5\t1.5\n",
-    );
-    let (line, message) = content_error(ids.read());
-    assert_eq!(line, Some(1), "{message}");
-    assert!(message.contains("3 numbers and no header"), "{message}");
-    let ragged = TempFile::new("ragged.tsv", b"0\t0\n1\t0\n0\t1\t9\n");
-    let (line, message) = content_error(ragged.read());
-    assert_eq!(line, Some(3), "{message}");
+    let expected = points(&[(1.0, 2.0), (3.0, 4.0), (5.0, 1.0)]);
+    for (name, text) in [
+        ("two.tsv", &b"1\t2\n3\t4\n5\t1\n"[..]),
+        ("commented.tsv", b"1\t2\n# c\n3\t4 # d\n5 1\n"),
+        ("leading.tsv", b"\t1\t2\n\t3\t4\n\t5\t1\n"),
+    ] {
+        let file = TempFile::new(name, text);
+        assert_eq!(file.read().unwrap(), expected, "{name}");
+    }
+    for (name, text, at) in [
+        (
+            "ids.tsv",
+            &b"1000\t10.0\t0.0\n1007\t9.87\t0.78\n1013\t9.5\t1.5\n"[..],
+            1,
+        ),
+        ("noted.tsv", b"# survey\n17\t0\t0\n23\t1\t0\n5\t0\t1\n", 2),
+    ] {
+        let file = TempFile::new(name, text);
+        let (line, message) = content_error(file.read());
+        assert_eq!(line, Some(at), "{name}: {message}");
+        assert!(message.contains("3 numbers and no header"), "{message}");
+    }
 }
 
 /// A `.tsv` header is told as the README has it: after a byte-order mark, with a name of blanks
@@ -1050,7 +1059,7 @@ fn a_compressed_file_is_told_as_such() {
             let file = TempFile::new(name, bytes);
             let (line, message) = content_error(file.read());
             assert!(
-                message.contains(&format!("a {kind}-compressed file")),
+                message.contains(&format!("{kind}-compressed data")),
                 "{name}: {message}"
             );
             assert_eq!(line, None, "{message}");

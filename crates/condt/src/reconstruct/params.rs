@@ -123,7 +123,8 @@ pub struct Params {
 
 impl Default for Params {
     /// The best pipeline measured (`docs/condt.md`): the paper's, [`Repair::Needs`], all beyond it;
-    /// it loses a lone curve of three or four sparse points (`local_outliers: false` keeps it).
+    /// beside other curves it loses a curve of three or four sparse points (`local_outliers:
+    /// false` keeps it; alone, it stays).
     ///
     /// ```
     /// use condt::{Params, Stage::*};

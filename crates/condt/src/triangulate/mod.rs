@@ -133,8 +133,9 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
 }
 
 /// [`triangulate`] on points handed over: the same triangulation, with a lower peak. A set of
-/// 65,536 points or more is freed once its halves are ordered, before the mesh is allocated (16
-/// bytes a point less at the peak), unless it spans more than 2^200 (its inputs are kept then).
+/// 65,536 points or more that is cut in two (each side holding a triangle) is freed once its
+/// halves are ordered, before the mesh is allocated (16 bytes a point less at the peak), unless
+/// it spans more than 2^200 (its inputs are kept then); other sets are freed when it returns.
 ///
 /// # Errors
 /// As [`triangulate`].
@@ -290,6 +291,7 @@ fn construct(
             count(inserted, now.saturating_sub(counted), false);
         }
         if freed {
+            drop(built);
             let to_input = frames.predicates.inverse();
             let mut points = alloc::vec![Point::default(); order.len()];
             for (&i, &p) in order.iter().zip(&sorted) {
