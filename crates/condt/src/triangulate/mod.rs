@@ -1405,8 +1405,8 @@ mod tests {
             for parallel in [false, true] {
                 let owned = triangulate_with(points.clone(), parallel, None, None).unwrap();
                 assert_same(&owned, &borrowed, name);
-                for i in 0..points.len() {
-                    assert_eq!(owned.point(i), points[i], "{name}");
+                for (i, &p) in points.iter().enumerate() {
+                    assert_eq!(owned.point(i), p, "{name}");
                 }
             }
         }
