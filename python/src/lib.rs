@@ -817,7 +817,8 @@ fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
 /// touching a point the truth leaves without an edge), ``max_dist`` and ``rms_dist`` (of the
 /// output to the truth, over the bounding-box diagonal; ``None`` without output edges, or when
 /// not finite), ``malformed`` (``None``, or the output's first problem: ``"row K: ..."``, as
-/// ``condt score --json`` names it for the same array saved as ``.npy``), ``n_points``, ``n_gt``, ``n_out``. A malformed output (an index out of range or
+/// ``condt score --json`` names it for the same array saved as ``.npy``), ``n_points``, ``n_gt``,
+/// ``n_out`` (the output's valid edges, each once: ``tp + fp``). A malformed output (an index out of range or
 /// negative, a self-loop, a repeated edge) scores precision, recall and F1 0; its valid edges
 /// are counted once each. An index beyond int64 (a uint64 from ``2**63``, a Python int) is out
 /// of range as any other and named as given, never wrapped. Edges are compared by point index:
@@ -885,7 +886,8 @@ fn score<'py>(
     )?;
     dict.set_item("max_dist", finite(result.max_distance))?;
     dict.set_item("n_gt", truth.rows.len())?;
-    dict.set_item("n_out", output.rows.len())?;
+    // Valid edges, each once, as `condt score` and the evaluation's `score.py` count them.
+    dict.set_item("n_out", result.true_positives + result.false_positives)?;
     dict.set_item("n_points", points.len())?;
     dict.set_item("outlier_edges", result.outlier_edges)?;
     dict.set_item("precision", result.precision)?;

@@ -356,7 +356,9 @@ impl Reconstruction {
     /// the default, writes none; the text ``"null"`` writes ``"crs": null`` (GeoJSON 2008: no
     /// crs can be assumed). ``TypeError`` for any other type; ``ValueError`` for text that starts
     /// as JSON (``{``) and is not one JSON object, or other JSON than an object, a string or
-    /// ``null`` (``[1, 2]``, ``4326``).
+    /// ``null`` (``[1, 2]``, ``4326``). Without a ``crs``, coordinates that cannot be a longitude
+    /// and latitude (beyond 180 and 90: pixels, metres) get a ``UserWarning``, as the command line
+    /// notes them; ``crs="null"`` says the frame is none and silences it.
     ///
     /// >>> import condt, json
     /// >>> r = condt.reconstruct([(0, 0), (1, 0), (0.5, 2)], paper=True)
@@ -571,6 +573,7 @@ impl Curve {
         Ok(coords.bind(py).clone())
     }
 
+    /// The number of points along the curve (a closed curve counts its first point once).
     fn __len__(&self) -> usize {
         self.curve().len()
     }

@@ -587,7 +587,10 @@ def test_score_checks_its_edges():
     assert s["exact"] and s["f1"] == 1.0 and s["max_dist"] == 0.0 and s["malformed"] is None
     bad = condt.score(square, [(0, 1), (1, -1), (2, 2)], truth)
     assert bad["malformed"] == "row 1: point -1 does not exist"
-    assert (bad["f1"], bad["exact"], bad["n_out"]) == (0.0, False, 3)
+    assert (bad["f1"], bad["exact"], bad["n_out"]) == (0.0, False, 1)
+    # n_out counts valid edges once each, as the evaluation's score.py (a researcher's review).
+    twice = condt.score(square, truth + [(1, 0)], truth)
+    assert (twice["n_out"], twice["tp"] + twice["fp"]) == (4, 4)
     assert condt.score(square, [(0, 1), (1, 9)], truth)["malformed"] == "row 1: point 9 does not exist"
     assert condt.score(square, [(2, 2)], truth)["malformed"] == "row 0: self-loop at point 2"
     assert condt.score(square, [], truth)["max_dist"] is None
@@ -654,7 +657,7 @@ def test_score_names_an_index_beyond_int64_as_given_and_never_wraps_it():
     for edges, value in beyond:
         s = condt.score(square, edges, truth)
         assert s["malformed"] == f"row 0: point {value} does not exist", edges
-        assert (s["f1"], s["n_out"]) == (0.0, 1)
+        assert (s["f1"], s["n_out"]) == (0.0, 0)
         with pytest.raises(ValueError, match=f"^ground truth: row 0: point {value} does not exist$"):
             condt.score(square, [], edges)
     # Unsigned and object arrays of indices in range are read as they are.

@@ -249,7 +249,10 @@ pub(crate) fn command(args: &[OsString]) -> Result<String, CliError> {
     } else {
         result
     };
-    let counts = [points.len(), truth.edges.len(), output.edges.len()];
+    // The output's valid edges, each once, as `score.py` counts `n_out` (a Python researcher's
+    // review: rows were counted, so a repeated edge made `tp + fp` fall short of it).
+    let distinct = result.true_positives + result.false_positives;
+    let counts = [points.len(), truth.edges.len(), distinct];
     Ok(if json {
         as_json(&result, problem.as_deref(), counts)
     } else {

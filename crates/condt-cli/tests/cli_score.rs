@@ -187,7 +187,7 @@ fn a_malformed_output_scores_nothing_and_names_its_line() {
         ("0 1\n+1 2\n", "line 2: not an edge `i j`: \\\"+1 2\\\""),
         ("0 1\n1 7\n", "line 2: point 7 does not exist"),
         // A negative number is an edge to a point that does not exist (`-0` is 0), one too
-        // large for any integer likewise, named as written; each counts as an output edge.
+        // large for any integer likewise, named as written.
         ("0 1\n1 -1\n", "line 2: point -1 does not exist"),
         ("0 1\n-0 -1\n", "line 2: point -1 does not exist"),
         (
@@ -215,7 +215,11 @@ fn a_malformed_output_scores_nothing_and_names_its_line() {
         json_value(&json, "malformed"),
         "\"line 1: point -1 does not exist\""
     );
-    assert_eq!(json_value(&json, "n_out"), "1");
+    // `n_out` counts valid edges, each once, as `score.py` does (a Python researcher's review).
+    assert_eq!(json_value(&json, "n_out"), "0");
+    let output = write(dir.path(), "twice.edges", "0 1\n1 2\n1 0\n");
+    let json = score_json(&points, &output, &truth);
+    assert_eq!(json_value(&json, "n_out"), "2");
 }
 
 #[test]
@@ -538,9 +542,9 @@ fn npy_edge_arrays_are_read() {
     );
     assert_eq!(json_value(&json, "f1"), "0.0");
     // A negative point number is a point that does not exist, the output's problem as a text
-    // line `0 -1` is: it scores 0, told by its row, and its row counts as an output edge (as
-    // `condt.score` in Python counts and tells the same array; found by a fuzzer: the array
-    // was refused, the text line scored); in the truth it is an error.
+    // line `0 -1` is: it scores 0, told by its row, and counts as no output edge (as `condt.score`
+    // in Python counts and tells the same array; found by a fuzzer: the array was refused, the
+    // text line scored); in the truth it is an error.
     let negative_row = dir.path().join("negative_row.npy");
     let data: Vec<u8> = [0i64, 1, 1, 2, 0, -1]
         .iter()
@@ -553,7 +557,7 @@ fn npy_edge_arrays_are_read() {
         "\"row 2: point -1 does not exist\""
     );
     assert_eq!(json_value(&json, "f1"), "0.0");
-    assert_eq!(json_value(&json, "n_out"), "3");
+    assert_eq!(json_value(&json, "n_out"), "2");
     assert_eq!(json_value(&json, "tp"), "2");
     let run = Command::new(binary())
         .args([Path::new("score"), &points, &truth, &negative_row])
