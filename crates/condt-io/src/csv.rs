@@ -270,6 +270,15 @@ fn plain_numbered_columns(
     Some(points)
 }
 
+/// The refusal of a first row of `count` numbers, more than two, without a header: which two
+/// are x and y would be a guess (an `id x y` export).
+pub(crate) fn numbers_without_header(count: usize) -> String {
+    format!(
+        "{count} numbers and no header: a CSV of two columns is read as x, y without one, with \
+         more a header line must name the x and y columns (or --columns X,Y their numbers from 1)"
+    )
+}
+
 /// The first line of `text` that is not blank (lines end at LF, CR or CRLF), without the
 /// byte-order mark that may start the text: no reader takes it for part of the first name.
 pub(crate) fn first_line_with_content(text: &str) -> &str {
@@ -296,9 +305,6 @@ pub(crate) fn parse_separated(
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut reader = csv::ReaderBuilder::new()
         .delimiter(delimiter)
-        // A `.tsv` may hold `#` comment lines, as the plain format it was read as before does
-        // (a diff review's find: numbers first, then a comment, was "a row cut short").
-        .comment((delimiter == b'\t').then_some(b'#'))
         .has_headers(false)
         // Rows of any length: a short row gets this module's message, naming the column.
         .flexible(true)
@@ -321,18 +327,9 @@ pub(crate) fn parse_separated(
         // Where this record starts and where the next one does. The crate may place a record
         // at the line end before it (the `\n` of a CRLF, empty lines it skipped), which a
         // record cannot start with.
-        // So may the comment lines it skipped (a `.tsv`'s).
         let mut start = record.position().map_or(start, |p| p.byte() as usize);
-        loop {
-            while matches!(text.as_bytes().get(start), Some(b'\r' | b'\n')) {
-                start += 1;
-            }
-            if delimiter != b'\t' || text.as_bytes().get(start) != Some(&b'#') {
-                break;
-            }
-            start = text[start..]
-                .find(['\r', '\n'])
-                .map_or(text.len(), |at| start + at);
+        while matches!(text.as_bytes().get(start), Some(b'\r' | b'\n')) {
+            start += 1;
         }
         let end = reader.position().byte() as usize;
         let raw = text.get(start..end).unwrap_or_default();
@@ -565,15 +562,7 @@ fn header_columns(
         }
     };
     if filled(record) > 2 && all_numbers(record) {
-        return Err(source.error(
-            line,
-            format!(
-                "{} numbers and no header: a CSV of two columns is read as x, y without one, \
-                 with more a header line must name the x and y columns (or --columns X,Y their \
-                 numbers from 1)",
-                filled(record)
-            ),
-        ));
+        return Err(source.error(line, numbers_without_header(filled(record))));
     }
     let x_column = find('x', "x")?;
     let y_column = find('y', "y")?;

@@ -32,8 +32,9 @@ pub enum InputFormat {
     /// CSV with a header naming the columns ([`parse_csv`](crate::parse_csv)).
     Csv,
     /// CSV with tabs between the columns, as a name ending in `.tsv` is read: by the CSV reader
-    /// where its first line (comments aside) is a header, or three numbers or more (refused
-    /// without a header), else as the plain format (which takes tabs and comments too).
+    /// where its first line with content is a header, else as the plain format (which takes tabs
+    /// and comments too), but three numbers or more on its first line of numbers are refused
+    /// without a header, as CSV refuses them.
     Tsv,
     /// A NumPy array of shape `(n, 2)` ([`parse_npy`](crate::parse_npy)).
     Npy,

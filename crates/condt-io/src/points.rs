@@ -1186,30 +1186,37 @@ pub fn read_points_with(
             InputFormat::Node => parse_node(&text, name).map(without_crs),
             InputFormat::Csv => super::parse_csv(&text, name).map(without_crs),
             InputFormat::Tsv => {
-                // Tabs by the name. The first line with content (comments aside) decides: a header
-                // (names only, as the plain reader tells one, or x and y columns named as the CSV
-                // reader's header names them among any others: `id lon lat 2020`) goes to the CSV
-                // reader, and so do three numbers or more, which it refuses without a header, as
-                // the README says (an `id x y` export read as `x y z` came back as wrong points, a
-                // newcomer's review); two numbers are the plain format's, which takes comments,
-                // blanks and empty fields as it always did. The line is split at tabs, as the CSV
-                // reader splits it: a name may hold blanks (`elevation (m)`), which are no columns.
-                let text_start = text.strip_prefix('\u{feff}').unwrap_or(&text);
-                let first = text_start
+                // Tabs by the name. A header on the first line with content (names only, as the
+                // plain reader tells one, or x and y columns named as the CSV reader's header
+                // names them among any others: `id lon lat 2020`) goes to the CSV reader; else the
+                // plain format reads it, which takes comments, blanks and empty fields, but three
+                // numbers or more on the first line of numbers are refused, as the README says of
+                // CSV (an `id x y` export read as `x y z` came back as wrong points, a newcomer's
+                // review). The line is split at tabs, as the CSV reader splits it: a name may
+                // hold blanks (`elevation (m)`), which are no columns.
+                let fields = |line: &'_ str| -> Vec<String> {
+                    let line = line.strip_prefix('\u{feff}').unwrap_or(line);
+                    let content = line.split('#').next().unwrap_or("");
+                    let fields = content.split('\t').map(str::trim).filter(|f| !f.is_empty());
+                    fields.map(str::to_string).collect()
+                };
+                let first = fields(crate::csv::first_line_with_content(&text));
+                let header = !first.is_empty()
+                    && (first.iter().all(|f| is_name(f))
+                        || crate::csv::names_x_and_y_columns(first.iter().map(String::as_str)));
+                // Where the line starts, numbered as the readers number lines (a lone CR ends one).
+                let numbers = text
                     .split(['\r', '\n'])
-                    .map(|line| line.split('#').next().unwrap_or(""))
-                    .find(|content| !content.trim().is_empty())
-                    .unwrap_or("");
-                let fields: Vec<&str> = first
-                    .split('\t')
-                    .map(str::trim)
-                    .filter(|f| !f.is_empty())
-                    .collect();
-                let header = fields.iter().all(|f| is_name(f))
-                    || crate::csv::names_x_and_y_columns(fields.iter().copied());
-                let wide_numbers =
-                    fields.len() > 2 && fields.iter().all(|f| f.parse::<f64>().is_ok());
-                if !fields.is_empty() && (header || wide_numbers) {
+                    .map(|line| (line.as_ptr() as usize - text.as_ptr() as usize, fields(line)))
+                    .find(|(_, fields)| !fields.is_empty())
+                    .map(|(at, fields)| (line_at(text.as_bytes(), at), fields));
+                if let Some((line, numbers)) = numbers.filter(|(_, f)| !header && f.len() > 2) {
+                    if numbers.iter().all(|f| f.parse::<f64>().is_ok()) {
+                        return Err(Source { file: name }
+                            .error(line, crate::csv::numbers_without_header(numbers.len())));
+                    }
+                }
+                if header {
                     crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
                 } else {
                     parse_owned_points(text, name).map(without_crs)
