@@ -1207,7 +1207,12 @@ pub fn read_points_with(
                 // Where the line starts, numbered as the readers number lines (a lone CR ends one).
                 let numbers = text
                     .split(['\r', '\n'])
-                    .map(|line| (line.as_ptr() as usize - text.as_ptr() as usize, fields(line)))
+                    .map(|line| {
+                        (
+                            line.as_ptr() as usize - text.as_ptr() as usize,
+                            fields(line),
+                        )
+                    })
                     .find(|(_, fields)| !fields.is_empty())
                     .map(|(at, fields)| (line_at(text.as_bytes(), at), fields));
                 if let Some((line, numbers)) = numbers.filter(|(_, f)| !header && f.len() > 2) {
