@@ -307,7 +307,8 @@ pub(crate) fn params(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
         if chosen != Method::ConDT {
             if let Some(keyword) = condt_keywords.first() {
                 return Err(PyValueError::new_err(format!(
-                    "{keyword} sets a ConDT stage or parameter, but {said} chooses a baseline, which has none"
+                    "{keyword} sets a ConDT stage or parameter, but {said} chooses a baseline, \
+                     which has none"
                 )));
             }
         }

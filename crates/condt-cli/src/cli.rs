@@ -1309,7 +1309,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
         if chosen != Method::ConDT {
             if let Some(option) = condt_options.first() {
                 return Err(usage(format!(
-                    "{option} sets a ConDT stage or parameter, but --method chooses a baseline, which has none"
+                    "{option} sets a ConDT stage or parameter, but --method chooses a baseline, \
+                     which has none"
                 )));
             }
         }

@@ -1194,23 +1194,17 @@ pub fn read_points_with(
                 // CSV (an `id x y` export read as `x y z` came back as wrong points, a newcomer's
                 // review). The line is split at tabs, as the CSV reader splits it: a name may
                 // hold blanks (`elevation (m)`), which are no columns.
-                let fields = |line: &'_ str| -> Vec<String> {
-                    let line = line.strip_prefix('\u{feff}').unwrap_or(line);
-                    let content = line.split('#').next().unwrap_or("");
-                    let fields = content.split('\t').map(str::trim).filter(|f| !f.is_empty());
-                    fields.map(str::to_string).collect()
-                };
-                let first = fields(crate::csv::first_line_with_content(&text));
+                let first = tab_fields(crate::csv::first_line_with_content(&text));
                 let header = !first.is_empty()
                     && (first.iter().all(|f| is_name(f))
-                        || crate::csv::names_x_and_y_columns(first.iter().map(String::as_str)));
+                        || crate::csv::names_x_and_y_columns(first.iter().copied()));
                 // Where the line starts, numbered as the readers number lines (a lone CR ends one).
                 let numbers = text
                     .split(['\r', '\n'])
                     .map(|line| {
                         (
                             line.as_ptr() as usize - text.as_ptr() as usize,
-                            fields(line),
+                            tab_fields(line),
                         )
                     })
                     .find(|(_, fields)| !fields.is_empty())
@@ -1297,6 +1291,18 @@ pub fn read_points_with(
         }
         err
     })
+}
+
+/// The fields of a `.tsv` line split at tabs, a byte-order mark, a comment and blank fields left
+/// out.
+fn tab_fields(line: &str) -> Vec<&str> {
+    let line = line.strip_prefix('\u{feff}').unwrap_or(line);
+    let content = line.split('#').next().unwrap_or("");
+    content
+        .split('\t')
+        .map(str::trim)
+        .filter(|f| !f.is_empty())
+        .collect()
 }
 
 /// CloudCompare's ASCII export starts its header with `//` (`//X,Y,Z,R,G,B`, `//X Y Z`), which

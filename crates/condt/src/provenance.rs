@@ -413,8 +413,8 @@ struct Explainer<'a> {
     tri: &'a Triangulation,
     stage: Stage,
     degrees_before: Vec<usize>,
-    /// The output of the repair (its reason names the edges kept) or of the crossings (theirs
-    /// names the point that gained arms), for O(degree) reasons.
+    /// The output of the crossings (their reason names the point that gained arms) or of the
+    /// tails step, for O(degree) reasons.
     after: Option<CurveGraph>,
     /// The input of the tails step (its reason names the point a tail hung from).
     before: Option<CurveGraph>,
@@ -499,7 +499,7 @@ impl<'a> Explainer<'a> {
             tri,
             stage,
             degrees_before: input.graph.degrees(),
-            after: matches!(stage, Stage::Repair | Stage::Crossings | Stage::Tails)
+            after: matches!(stage, Stage::Crossings | Stage::Tails)
                 .then(|| CurveGraph::new(tri.num_points(), output.graph.listed())),
             before: (stage == Stage::Tails)
                 .then(|| CurveGraph::new(tri.num_points(), input.graph.listed())),
