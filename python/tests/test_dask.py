@@ -845,6 +845,19 @@ def test_a_closed_client_is_said_before_any_work():
                 condt.dask.reconstruct(points, closed, tiles=4)
 
 
+def test_workers_of_another_version_are_refused_before_any_work(client, monkeypatch):
+    # Workers importing another release would run other rules than the driver's: the result
+    # would not be one machine's, and nothing said so.
+    calls = []
+    monkeypatch.setattr(condt.dask, "_worker_version", lambda: "0.0.0")
+    monkeypatch.setattr(condt.dask, "_tile", lambda *args: calls.append(args))
+    rng = np.random.default_rng(1)
+    for points in (rng.uniform(0, 1, (500, 2)), np.c_[np.arange(10.0), np.arange(10.0)]):
+        with pytest.raises(RuntimeError, match=r"must run the driver's condt .*: .* has 0\.0\.0"):
+            condt.dask.reconstruct(points, client, tiles=4)
+    assert calls == []
+
+
 def test_the_module_examples_run():
     import doctest
 

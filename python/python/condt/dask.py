@@ -121,7 +121,8 @@ def reconstruct(
     ``condt.reconstruct`` it does not warn of points given twice a little apart (its result has
     edges only): ``condt.snap`` them first where the data may hold such pairs.
 
-    Raises ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``client`` that
+    Raises ``RuntimeError`` when a worker imports another condt version than the driver;
+    ``NotImplementedError`` for a baseline method; ``TypeError`` for a ``client`` that
     is no ``Client`` (an address: ``Client(address)``), a ``tiles`` or ``halo`` of the wrong
     type (a bool, a str, a float for ``tiles``) or points that are not numbers; ``ValueError``
     for a NaN or infinite point (named), a masked array with masked entries, ``tiles`` below 1,
@@ -158,6 +159,7 @@ def reconstruct(
         from distributed.client import ClosedClientError
 
         raise ClosedClientError("the Dask client given to condt.dask.reconstruct is closed")
+    _same_version(client)
     if plan is None:
         points, plan = _planned(points.compute(), params)
     n = len(points)
@@ -195,6 +197,25 @@ def reconstruct(
             return _in_one_piece(original, client, params, plan["whole"], runs)
     rounds, sent, workers = _spent(runs)
     return TiledReconstruction(_read_only(edges), len(rects), rounds, workers, sent, None, passes)
+
+
+def _same_version(client) -> None:
+    """Refuses a cluster whose workers import another condt than the driver: the tiles' rules
+    and the driver's must be the same code for the result to be one machine's, and a worker of
+    another release would otherwise give other edges without a word, or fail deep in a task (a
+    review's find). Workers that join after this check are not asked."""
+    theirs = client.run(_worker_version)
+    other = {worker: version for worker, version in theirs.items() if version != _condt.__version__}
+    if other:
+        listed = ", ".join(f"{worker} has {version}" for worker, version in sorted(other.items()))
+        raise RuntimeError(
+            f"the Dask workers must run the driver's condt {_condt.__version__}: {listed}"
+        )
+
+
+def _worker_version() -> str:
+    """On a worker: the version of the condt it imports."""
+    return _condt.__version__
 
 
 def _planned(points: Any, params: dict) -> tuple[np.ndarray, dict]:
