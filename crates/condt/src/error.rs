@@ -110,7 +110,12 @@ impl fmt::Display for Error {
                          loop, or the larger end of an edge listed twice)"
                     ),
                     "candidate" | "choice" => {
-                        write!(f, " (the value is a position past the points)")
+                        write!(
+                            f,
+                            " (the value is a position past the points, a loose end given two \
+                             rows, or the larger end of a join that is a loop, named twice or \
+                             already an edge)"
+                        )
                     }
                     "labels" | "status" | "tests" => write!(
                         f,

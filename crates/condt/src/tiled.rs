@@ -38,7 +38,8 @@ use alloc::vec::Vec;
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] named `k` as [`Graph::remove_outliers`], or named `edge` (the
-/// position) for an end not in `points` or an edge from a point to itself;
+/// position) for an end not in `points`, an edge from a point to itself or an edge listed twice
+/// (either way round: it would count twice in the quartiles);
 /// [`Error::NonFinite`] for a NaN or infinite point, [`Error::TooManyPoints`] beyond
 /// [`MAX_POINTS`](crate::MAX_POINTS).
 ///
@@ -124,7 +125,8 @@ fn gathered_lengths(points: &[crate::Point], edges: &[[usize; 2]]) -> Result<Vec
     let stages = crate::triangulate::choose_frames(points)?.stages;
     // Checked as the other gathered edges: a loop is refused, not measured as length 0.
     let point = |v: VertexId| stages.apply(points[v.index()]);
-    let edges = vertex_edges(points.len(), edges)?;
+    // A repeat would count twice in the quartiles: refused, as by the other gathered calls.
+    let edges = graph_edges(points.len(), edges)?;
     Ok(edges
         .iter()
         .map(|&[a, b]| point(a).dist2(point(b)))
@@ -486,7 +488,8 @@ pub fn hook_joins(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize; 
 /// share a point are the stage's own, on the gathered graph.
 ///
 /// # Errors
-/// As [`component_labels`], for `edges` and for the positions in `candidates`.
+/// As [`component_labels`], for `edges` and for the positions in `candidates` (named
+/// `candidate`, also for a join that is a loop, named twice or an edge `edges` keeps).
 ///
 /// ```
 /// use condt::tiled;
@@ -508,6 +511,7 @@ pub fn repair_gathered_tips(
         return Ok(None);
     };
     chords.sort_unstable();
+    new_edges(&graph, &chords, &joins, "candidate")?;
     let mut out: Vec<[usize; 2]> = edges
         .iter()
         .zip(&listed)
@@ -617,8 +621,8 @@ pub fn gap_choices(graph: &Graph<'_>, at: impl Fn(usize) -> bool) -> Vec<[usize;
 ///
 /// # Errors
 /// As [`component_labels`], for `edges` and for the positions in `rows` (named `choice`, also for
-/// a kind or a walk length out of range, or a second target or a second walk for one loose
-/// end).
+/// a kind or a walk length out of range, a second target or a second walk for one loose end, or
+/// a join that is a loop, named twice or already one of `edges`).
 ///
 /// ```
 /// use condt::tiled;
@@ -639,6 +643,7 @@ pub fn close_gathered_gaps(
     let graph = CurveGraph::new(n, &listed);
     let (targets, walks) = loose_ends_only(&graph, read_choices(n, rows)?);
     let joins = gaps::settle_joins(n, &graph, &targets, |joined| not_joined(walks, joined));
+    new_edges(&graph, &[], &joins, "choice")?;
     Ok(with_added(edges, &joins))
 }
 
@@ -1109,6 +1114,32 @@ fn with_added(edges: &[[usize; 2]], added: &[Edge]) -> Option<Vec<[usize; 2]>> {
     (!added.is_empty()).then(|| edges.iter().copied().chain(positions).collect())
 }
 
+/// `Ok` when the `joins` a gathered stage settled on are new edges: no loop, none twice, none an
+/// edge of `graph` outside the sorted `removed`. Rows no tile sends (a gap's target that is its
+/// own end, a tip's apex beside a chord that is no edge) can name such a join: refused by `name`
+/// with the join's larger end, not returned as edges the next gathered call refuses.
+fn new_edges(
+    graph: &CurveGraph,
+    removed: &[Edge],
+    joins: &[Edge],
+    name: &'static str,
+) -> Result<(), Error> {
+    let mut added: Vec<Edge> = joins.iter().map(|&[a, b]| ordered(a, b)).collect();
+    added.sort_unstable();
+    let in_graph = |[a, b]: Edge| {
+        (0..graph.degree(a)).any(|k| graph.neighbor(a, k) == b)
+            && removed.binary_search(&[a, b]).is_err()
+    };
+    let wrong = (0..added.len()).find(|&i| {
+        let [a, b] = added[i];
+        a == b || (i > 0 && added[i - 1] == added[i]) || in_graph(added[i])
+    });
+    match wrong {
+        Some(i) => Err(Error::invalid(name, added[i][1].index() as f64)),
+        None => Ok(()),
+    }
+}
+
 /// `Ok` when an array `name` of `len` entries holds one per point of `n`.
 fn one_per_point(n: usize, name: &'static str, len: usize) -> Result<(), Error> {
     if len < n {
@@ -1213,6 +1244,50 @@ mod tests {
         }
         let twice = close_gathered_gaps(6, &edges, &[rows[0], rows[1], rows[0]]);
         assert_eq!(twice, Err(Error::invalid("choice", 2.0)));
+    }
+
+    /// Found by an embedded user's review: rows no tile sends settled on joins that were loops or
+    /// edges the graph had, returned as edges the next gathered call refuses; and a repeated
+    /// edge counted twice in Algorithm 3's quartiles, changing its answer.
+    #[test]
+    fn joins_that_are_no_new_edges_and_repeats_in_the_quartiles_are_refused() {
+        // A gap's target that is its own end; an end choosing its own neighbour.
+        let own_end = [[0, 3, 0, 0, 0, 0, 0, 0, 0, 0]];
+        assert_eq!(
+            close_gathered_gaps(3, &[[0, 1], [2, 1]], &own_end),
+            Err(Error::invalid("choice", 0.0))
+        );
+        let neighbours = [
+            [0, 1, 1, 0, 0, 0, 0, 0, 0, 0],
+            [1, 1, 0, 1, 0, 1, 1, 1, 1, 1],
+        ];
+        assert_eq!(
+            close_gathered_gaps(2, &[[0, 1]], &neighbours),
+            Err(Error::invalid("choice", 1.0))
+        );
+        // A tip's apex joined to the end it already has an edge to.
+        assert_eq!(
+            repair_gathered_tips(3, &[[1, 0]], &[[0, 2, 1, 0]]),
+            Err(Error::invalid("candidate", 1.0))
+        );
+        let told = Error::invalid("candidate", 1.0).to_string();
+        assert!(told.contains("already an edge"), "{told}");
+        // Twenty points on a line and one apart: Algorithm 3 cuts the long edge to the lone
+        // point; listed many times over, that edge moved the quartiles and was kept.
+        let mut points: Vec<Point> = (0..20).map(|i| Point::new(i as f64, 0.0)).collect();
+        points.push(Point::new(19.0, 30.0));
+        let line: Vec<[usize; 2]> = (0..19).map(|i| [i, i + 1]).chain([[19, 20]]).collect();
+        let (fired, kept) = remove_gathered_outliers(&points, &line, 1.5, false).unwrap();
+        assert!(fired && kept.len() == 19);
+        let repeated: Vec<[usize; 2]> = line.iter().copied().chain([[20, 19]; 20]).collect();
+        assert_eq!(
+            remove_gathered_outliers(&points, &repeated, 1.5, false),
+            Err(Error::invalid("edge", 20.0))
+        );
+        assert_eq!(
+            gathered_repair_again_input(&points, &line, &repeated, 1.5, false),
+            Err(Error::invalid("edge", 20.0))
+        );
     }
 
     /// Rule 4's rows on the graph of `edges` after rules 1 to 3 (every point's, as the tiles
