@@ -811,9 +811,18 @@ pub(super) fn merged_along(
             kept[merged_root(r) as usize] = true;
         }
     }
+    // Neighbouring vertices mostly share a component (ids follow space): the last touched name
+    // and its merged root are kept, so most vertices skip the binary search (speed).
     let mut joined_root = root;
+    let mut last = (u32::MAX, u32::MAX);
     for r in joined_root.iter_mut() {
-        *r = merged_root(*r);
+        if !is_touched.contains(*r as usize) {
+            continue;
+        }
+        if last.0 != *r {
+            last = (*r, merged_root(*r));
+        }
+        *r = last.1;
     }
     (joined_root, kept)
 }
