@@ -217,7 +217,7 @@ impl Reconstruction {
         index_array(py, rows)
     }
 
-    /// Every stage that ran, in order: a dict from the stage's name (``"proximity"``,
+    /// Every stage that ran, in order: a dict from the stage's key (``"proximity"``,
     /// ``"repair"``, ``"iqr-outliers"``, ``"repair-again"``, ``"local-outliers"``, ``"clumps"``,
     /// ``"given-back"``, ``"gaps"``, ``"junctions"``, ``"crossings"``, ``"tips"``, ``"spikes"``,
     /// ``"hooks"``, ``"tails"``, ``"detours"``,
@@ -605,7 +605,7 @@ impl Curve {
 /// - ``ends``: how each end saw it in Algorithm 1, two dicts with ``at`` (the end) and
 ///   ``choice``: ``"shortest"``, ``"second"`` (with ``ratio`` = ``|e2| / |e1|``, ``bound`` and
 ///   ``kept``, the uniformity test's numbers), ``"later"`` (with ``rank``) or ``"not-delaunay"``;
-/// - ``changes``: what each later stage did to it, dicts with ``stage`` (its name, as in
+/// - ``changes``: what each later stage did to it, dicts with ``stage`` (its key, as in
 ///   ``stages``), ``added`` and ``reason``: ``"repair"`` (``vertex``, ``degree``, ``selected``:
 ///   the neighbours Algorithm 2 selected there), ``"longer-than-threshold"`` (``length``,
 ///   ``threshold``, ``floored``), ``"given-back"``,

@@ -1049,6 +1049,8 @@ def test_the_stubs_name_what_the_module_has():
     with pytest.raises(TypeError, match="the parameters are ") as refused:
         condt.reconstruct(circle(), no_such_keyword=True)
     accepted = str(refused.value).split("the parameters are ")[1].split(", ")
+    missing, extra = set(accepted) - set(keywords), set(keywords) - set(accepted)
+    assert not missing and not extra, f"add {missing} to / remove {extra} from _condt.pyi"
     assert sorted(accepted) == sorted(keywords)
     for params in keywords:
         # Every keyword the stub names is accepted (with a value of its type).

@@ -959,6 +959,43 @@ fn the_usage_of_reconstruct_names_method() {
     }
 }
 
+/// The lists of stages written by hand name every stage of the table: README's `--timings` keys
+/// and docs/condt.md's table of switches (a contributor's review: a stage left out of them
+/// passed every test).
+#[test]
+fn the_hand_written_stage_lists_name_every_stage() {
+    let read = |path: &str| {
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(path)).unwrap()
+    };
+    let readme = read("../../README.md");
+    let start = readme
+        .find("`reconstruct` adds the library's own record of each")
+        .unwrap();
+    let keys: String = readme[start..]
+        .split("the\ncurve assembly")
+        .next()
+        .unwrap()
+        .into();
+    let condt_md = read("../../docs/condt.md");
+    for stage in condt::Stage::ALL {
+        if matches!(stage, condt::Stage::NnCrust | condt::Stage::Crust) {
+            continue; // baselines, not steps of the pipeline
+        }
+        let key = stage.key();
+        assert!(
+            keys.contains(&format!("`{key}`")),
+            "README's --timings keys lack `{key}`"
+        );
+        if let Some(switch) = stage.switch() {
+            let flag = format!("`--[no-]{}`", switch.flag);
+            assert!(
+                condt_md.contains(&flag),
+                "docs/condt.md's table lacks {flag}"
+            );
+        }
+    }
+}
+
 /// A user review: `--input-format CSV` was taken, `--format SVG`, `--repair MUTUAL` and
 /// `--method NN-Crust` refused. Every named value takes any case, with the same output.
 #[test]

@@ -240,33 +240,35 @@ fn write_data(
     write!(out, "]}}")
 }
 
-/// Each stage's layer colour in the viewer, in the order of [`Stage::ALL`]: the array's length is
-/// the number of stages, so a stage added to the table does not build until it has its colour.
-/// The NN-Crust and the Crust share one: each replaces the proximity graph, never beside the other.
-const STAGE_COLORS: [&str; Stage::ALL.len()] = [
-    "#3b6fd8", // proximity
-    "#9b4dca", // repair
-    "#e08a00", // IQR outliers
-    "#6a3d9a", // repair again
-    "#1a9e8f", // local outliers
-    "#8c564b", // given-back check
-    "#bcbd22", // clumps
-    "#5fae2e", // gaps
-    "#e377c2", // junctions
-    "#17becf", // crossings
-    "#b5179e", // tips
-    "#7b2cbf", // spikes
-    "#ff9896", // hooks
-    "#7f7f7f", // outlier tails
-    "#2ca02c", // detours
-    "#d62728", // NN-Crust
-    "#d62728", // Crust
+/// Each stage's layer colour in the viewer, named by its stage: the array's length is the number
+/// of stages, so a stage added to the table does not build until it has a colour, and a test
+/// checks that each stage has its own entry (by position, a misplaced entry gave a stage its
+/// neighbour's colour without a failing test: a contributor's review). The NN-Crust and the Crust
+/// share one: each replaces the proximity graph, never beside the other.
+const STAGE_COLORS: [(Stage, &str); Stage::ALL.len()] = [
+    (Stage::Proximity, "#3b6fd8"),
+    (Stage::Repair, "#9b4dca"),
+    (Stage::Outliers, "#e08a00"),
+    (Stage::RepairAgain, "#6a3d9a"),
+    (Stage::LocalOutliers, "#1a9e8f"),
+    (Stage::GivenBack, "#8c564b"),
+    (Stage::Clumps, "#bcbd22"),
+    (Stage::Gaps, "#5fae2e"),
+    (Stage::Junctions, "#e377c2"),
+    (Stage::Crossings, "#17becf"),
+    (Stage::Tips, "#b5179e"),
+    (Stage::Spikes, "#7b2cbf"),
+    (Stage::Hooks, "#ff9896"),
+    (Stage::Tails, "#7f7f7f"),
+    (Stage::Detours, "#2ca02c"),
+    (Stage::NnCrust, "#d62728"),
+    (Stage::Crust, "#d62728"),
 ];
 
 /// The viewer's layer colour of `stage`.
 fn stage_color(stage: Stage) -> &'static str {
-    let k = Stage::ALL.iter().position(|&s| s == stage);
-    STAGE_COLORS[k.expect("Stage::ALL holds every stage")]
+    let entry = STAGE_COLORS.iter().find(|&&(named, _)| named == stage);
+    entry.expect("STAGE_COLORS names every stage").1
 }
 
 /// A change's reason as the page stores it: a code (an index into the page's list of words in
@@ -648,6 +650,20 @@ mod tests {
         }
     }
 
+    /// Each stage has one colour entry of its own: an entry placed by position gave a stage its
+    /// neighbour's colour and no test failed (a contributor's review).
+    #[test]
+    fn each_stage_has_its_own_colour_entry() {
+        for stage in Stage::ALL {
+            let named = STAGE_COLORS.iter().filter(|&&(s, _)| s == stage).count();
+            assert_eq!(named, 1, "{stage:?} has {named} entries in STAGE_COLORS");
+        }
+        let colours: std::collections::BTreeSet<&str> = STAGE_COLORS.iter().map(|e| e.1).collect();
+        // Only the NN-Crust and the Crust share theirs (one replaces the other).
+        assert_eq!(colours.len(), Stage::ALL.len() - 1);
+        assert_eq!(stage_color(Stage::NnCrust), stage_color(Stage::Crust));
+    }
+
     /// Every reason's code below [`DETOUR_CODE`] has its words in the page's list (a new reason
     /// took code 20, which the page read as a detour's, before `DETOUR_CODE`).
     #[test]
@@ -733,7 +749,10 @@ mod tests {
                 | Reason::NotConfirmed => {}
             }
             let (code, _, _) = reason_code(reason);
-            assert!(code < words || code >= DETOUR_CODE, "{reason:?}: {code}");
+            assert!(
+                code < words || code >= DETOUR_CODE,
+                "no words for reason code {code} ({reason:?}) in viewer.js's list"
+            );
             codes.push(code);
         }
         // Each reason's own words (the two readings of a detour share theirs).
