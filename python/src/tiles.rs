@@ -545,7 +545,11 @@ pub(crate) fn _step_kept<'py>(
         })
         .map(|&(_, run)| run)
         .ok_or_else(|| {
-            PyValueError::new_err(format!("no tiled round {step:?} for these parameters"))
+            // Said for a contributor too: a stage tiled as a kept round needs its row there.
+            PyValueError::new_err(format!(
+                "no tiled round {step:?} for these parameters (a stage a tile runs on its \
+                 kept triangulation needs its row in KEPT_STEPS, python/src/tiles.rs)"
+            ))
         })?;
     let state = state.get();
     let given = tile_pairs(given.as_slice()?, state.points.len())?;

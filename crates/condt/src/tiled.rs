@@ -659,7 +659,8 @@ fn not_joined(mut walks: Vec<(VertexId, Walk)>, joined: &[VertexId]) -> Vec<(Ver
 
 /// The choices whose loose ends (the row's end, and the end it joins) have one edge in `graph`,
 /// as every row [`gap_choices`] makes on it does: a row that no longer fits the gathered edges
-/// names no join (gap closing walks on from an end's one edge, which such an end has not).
+/// names no join (gap closing walks on from an end's one edge, which such an end has not); one
+/// whose join would be a loop or an edge the graph has is refused after settling ([`new_edges`]).
 fn loose_ends_only(graph: &CurveGraph, (mut targets, mut walks): Choices) -> Choices {
     let loose = |v: VertexId| graph.degree(v) == 1;
     targets.retain(|&(a, target)| {
@@ -1116,8 +1117,8 @@ fn with_added(edges: &[[usize; 2]], added: &[Edge]) -> Option<Vec<[usize; 2]>> {
 
 /// `Ok` when the `joins` a gathered stage settled on are new edges: no loop, none twice, none an
 /// edge of `graph` outside the sorted `removed`. Rows no tile sends (a gap's target that is its
-/// own end, a tip's apex beside a chord that is no edge) can name such a join: refused by `name`
-/// with the join's larger end, not returned as edges the next gathered call refuses.
+/// own end, a tip's apex row joining an end to its own neighbour) can name such a join: refused
+/// by `name` with the join's larger end, not returned as edges the next gathered call refuses.
 fn new_edges(
     graph: &CurveGraph,
     removed: &[Edge],
