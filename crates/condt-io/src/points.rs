@@ -1218,6 +1218,7 @@ pub fn read_points_with(
                 if header {
                     crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
                 } else {
+                    tab_separated_lines(&text, name)?;
                     parse_owned_points(text, name).map(without_crs)
                 }
             }
@@ -1290,6 +1291,44 @@ pub fn read_points_with(
             }
         }
         err
+    })
+}
+
+/// `Ok` when every line of a `.tsv` without a header that has a tab between its values has at
+/// most two fields between tabs, each without a blank: the plain reader, which reads such a file,
+/// splits at any blank and leaves a third value unread, so `10<TAB>2 345.5` came back as the
+/// point (10, 2) and `1<TAB>0 7` as (1, 0), with exit 0 (a hostile-input review). A line without
+/// a tab is the plain format's, as the README says of a `.tsv` of two numbers a line.
+fn tab_separated_lines(text: &str, name: &str) -> Result<(), IoError> {
+    let mut lines = text.split(['\r', '\n']);
+    let start = text.as_ptr() as usize;
+    lines.try_for_each(|line| {
+        let content = line.split('#').next().unwrap_or("").trim_end();
+        if !content.contains('\t') {
+            return Ok(());
+        }
+        let at = || line_at(text.as_bytes(), line.as_ptr() as usize - start);
+        let content = content.strip_prefix('\u{feff}').unwrap_or(content);
+        let fields = content.split('\t').map(str::trim).filter(|f| !f.is_empty());
+        let mut count = 0;
+        for field in fields {
+            if field.contains(char::is_whitespace) {
+                let message = format!(
+                    "cannot read {field:?} as a number: a .tsv's columns are separated by tabs, \
+                     and a blank within one is no separator (nor a thousands separator)"
+                );
+                return Err(Source { file: name }.error(at(), message));
+            }
+            count += 1;
+        }
+        if count > 2 {
+            let message = format!(
+                "{count} values between tabs where a .tsv without a header has x and y: a \
+                 header line must name the x and y columns (or --columns X,Y their numbers from 1)"
+            );
+            return Err(Source { file: name }.error(at(), message));
+        }
+        Ok(())
     })
 }
 

@@ -630,6 +630,39 @@ fn a_tsv_of_numbers_follows_the_csv_rule() {
     }
 }
 
+/// A `.tsv` without a header whose lines separate values by tabs is read at tabs only: a blank
+/// within a field (a thousands separator: `10<TAB>2 345.5`) and a third value on a later line
+/// (`1<TAB>0 7`) were read as the plain format reads them, (10, 2) and (1, 0) with exit 0 (a
+/// hostile-input review). Each is refused at its line; lines without a tab stay plain.
+#[test]
+fn a_tsv_without_a_header_is_split_at_tabs_only() {
+    for (name, text, at, said) in [
+        (
+            "thousands.tsv",
+            &b"10\t2 345.5\n11\t2 346.5\n"[..],
+            1,
+            "\"2 345.5\"",
+        ),
+        ("third.tsv", b"0\t0\n1\t0 7\n0\t1 9\n", 2, "\"0 7\""),
+        (
+            "later.tsv",
+            b"0\t0\r\n1\t0\r\n# c\r\n2\t1\t5\r\n",
+            4,
+            "3 values between tabs",
+        ),
+    ] {
+        let file = TempFile::new(name, text);
+        let (line, message) = content_error(file.read());
+        assert_eq!(line, Some(at), "{name}: {message}");
+        assert!(message.contains(said), "{name}: {message}");
+    }
+    let plain = TempFile::new("plain.tsv", b"1 2\n3\t4 # note\n5 1 9\n");
+    assert_eq!(
+        plain.read().unwrap(),
+        points(&[(1.0, 2.0), (3.0, 4.0), (5.0, 1.0)])
+    );
+}
+
 /// A `.tsv` header is told as the README has it: after a byte-order mark, with a name of blanks
 /// (`elevation (m)`, one field between tabs), or naming x and y beside a column named by a
 /// number (`2020`), in any position; each was read as the plain format and refused. A first line
