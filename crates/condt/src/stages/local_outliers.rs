@@ -127,17 +127,24 @@ pub(crate) fn remove_local_outliers_with(
     // The input is copied only once a rule changes it (on a clean curve none does).
     let mut graph = Cow::Borrowed(edges);
     let mut last = Vec::new();
+    // Rule 1's curve graph of `edges`, then the later rules' (speed: built once, not twice).
+    let mut built = None;
     if rules.give_back {
-        let given;
-        (given, last) = given_back(tri, edges, &before);
+        let (given, candidates, mut now) = given_back(tri, edges, &before);
+        last = candidates;
+        // Read by rule 1 only: freed before the copy below and the later rules (memory).
+        drop(before);
         if !given.is_empty() {
             // One allocation of the final size (`to_mut` + `extend` would copy, then double).
             graph = Cow::Owned([edges, &given[..]].concat());
+            // What `CurveGraph::new` of `edges` followed by `given` builds.
+            now.add_edges(&given);
         }
+        built = Some(now);
+    } else {
+        drop(before);
     }
-    // Read by rule 1 only: freed before the later rules' curve graph and components (memory).
-    drop(before);
-    let mut profile = CurveGraph::new(tri.num_points(), &graph);
+    let mut profile = built.unwrap_or_else(|| CurveGraph::new(tri.num_points(), &graph));
     // Whether rule 2's pass found only smooth, regular cycles; then rules 2 and 3 change nothing
     // (nothing is long, and there is no branch), so it still holds at rule 4.
     let mut smooth_cycles = None;
@@ -278,8 +285,13 @@ fn length2(tri: &Triangulation, [a, b]: Edge) -> f64 {
 /// Rule 1: the edges of `before` missing from `now` whose two ends pass [`passage`]; and the
 /// candidates for [`last_edges`]: those whose one end had that edge alone and has none now, while
 /// the other passes [`passage`] with the cut edge at most [`FLOOR_RATIO`] times its other edge, or
-/// growing from it at most [`FLOOR_RATIO`] times as much as that edge grew from the one before.
-fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> (Vec<Edge>, Vec<Edge>) {
+/// growing from it at most [`FLOOR_RATIO`] times as much as that edge grew from the one before;
+/// and the curve graph of `now` it read, which the later rules read on.
+fn given_back(
+    tri: &Triangulation,
+    now: &[Edge],
+    before: &[Edge],
+) -> (Vec<Edge>, Vec<Edge>, CurveGraph) {
     let n = tri.num_points();
     let (now, was) = (CurveGraph::new(n, now), CurveGraph::new(n, before));
     let present = |a: VertexId, b: VertexId| (0..now.degree(a)).any(|k| now.neighbor(a, k) == b);
@@ -321,7 +333,8 @@ fn given_back(tri: &Triangulation, now: &[Edge], before: &[Edge]) -> (Vec<Edge>,
         .filter(|&&[a, b]| last(a, b) || last(b, a))
         .copied()
         .collect();
-    (given, candidates)
+    drop(was);
+    (given, candidates, now)
 }
 
 /// [`given_back`]'s candidates for [`last_edges`] (a tile of a split run finds them).
