@@ -1300,24 +1300,30 @@ pub fn read_points_with(
 /// point (10, 2) and `1<TAB>0 7` as (1, 0), with exit 0 (a hostile-input review). A line without
 /// a tab is the plain format's, as the README says of a `.tsv` of two numbers a line.
 fn tab_separated_lines(text: &str, name: &str) -> Result<(), IoError> {
-    let mut lines = text.split(['\r', '\n']);
-    let start = text.as_ptr() as usize;
-    lines.try_for_each(|line| {
-        let content = line.split('#').next().unwrap_or("").trim_end();
-        if !content.contains('\t') {
-            return Ok(());
+    // Bytes, not chars: this pass runs before the (parallel) reader over the whole file, and
+    // every byte it looks for is ASCII. Its cost: `condt triangulate` of a `.tsv` of 1M random
+    // points (25 MB) took 0.26-0.27 s against 0.22-0.23 s without it (three alternated runs).
+    let bytes = text.as_bytes();
+    let at = |line: &[u8]| line_at(bytes, line.as_ptr() as usize - bytes.as_ptr() as usize);
+    for line in bytes.split(|&b| b == b'\n' || b == b'\r') {
+        let content = line
+            .split(|&b| b == b'#')
+            .next()
+            .unwrap_or(line)
+            .trim_ascii_end();
+        if !content.contains(&b'\t') {
+            continue;
         }
-        let at = || line_at(text.as_bytes(), line.as_ptr() as usize - start);
-        let content = content.strip_prefix('\u{feff}').unwrap_or(content);
-        let fields = content.split('\t').map(str::trim).filter(|f| !f.is_empty());
+        let fields = content.split(|&b| b == b'\t').map(<[u8]>::trim_ascii);
         let mut count = 0;
-        for field in fields {
-            if field.contains(char::is_whitespace) {
+        for field in fields.filter(|f| !f.is_empty()) {
+            if field.iter().any(u8::is_ascii_whitespace) {
                 let message = format!(
-                    "cannot read {field:?} as a number: a .tsv's columns are separated by tabs, \
-                     and a blank within one is no separator (nor a thousands separator)"
+                    "cannot read {:?} as a number: a .tsv's columns are separated by tabs, and \
+                     a blank within one is no separator (nor a thousands separator)",
+                    String::from_utf8_lossy(field)
                 );
-                return Err(Source { file: name }.error(at(), message));
+                return Err(Source { file: name }.error(at(line), message));
             }
             count += 1;
         }
@@ -1326,10 +1332,10 @@ fn tab_separated_lines(text: &str, name: &str) -> Result<(), IoError> {
                 "{count} values between tabs where a .tsv without a header has x and y: a \
                  header line must name the x and y columns (or --columns X,Y their numbers from 1)"
             );
-            return Err(Source { file: name }.error(at(), message));
+            return Err(Source { file: name }.error(at(line), message));
         }
-        Ok(())
-    })
+    }
+    Ok(())
 }
 
 /// The fields of a `.tsv` line split at tabs, a byte-order mark, a comment and blank fields left
