@@ -56,6 +56,14 @@ fn layers() -> (Vec<Layer>, BTreeSet<String>) {
                 });
             }
         }
+        // A word of the middle column that runs into the uses column would be read as a module
+        // used (a contributor's stage name gave "stages lists es"): said as what it is.
+        let before: Vec<char> = line.chars().take(USES_COLUMN).collect();
+        assert!(
+            before.len() < USES_COLUMN || before[USES_COLUMN - 2..] == [' ', ' '],
+            "architecture.md's layer picture: the middle column reaches column {USES_COLUMN}, \
+             where the uses list starts (wrap it): {line:?}"
+        );
         let uses: String = line.chars().skip(USES_COLUMN).collect();
         if let Some(layer) = layers.last_mut() {
             for used in uses.split(',') {
