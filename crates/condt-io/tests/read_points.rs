@@ -656,11 +656,13 @@ fn a_tsv_without_a_header_is_split_at_tabs_only() {
         assert_eq!(line, Some(at), "{name}: {message}");
         assert!(message.contains(said), "{name}: {message}");
     }
+    // A tab that indents or ends a line separates nothing (the diff review: `<TAB>1 2` had
+    // been refused).
+    let expected = points(&[(1.0, 2.0), (3.0, 4.0), (5.0, 1.0)]);
     let plain = TempFile::new("plain.tsv", b"1 2\n3\t4 # note\n5 1 9\n");
-    assert_eq!(
-        plain.read().unwrap(),
-        points(&[(1.0, 2.0), (3.0, 4.0), (5.0, 1.0)])
-    );
+    assert_eq!(plain.read().unwrap(), expected);
+    let indented = TempFile::new("indent.tsv", b"\t1 2\n\t3 4\t\n\t5 1\n");
+    assert_eq!(indented.read().unwrap(), expected);
 }
 
 /// A `.tsv` header is told as the README has it: after a byte-order mark, with a name of blanks

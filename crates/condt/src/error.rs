@@ -109,14 +109,17 @@ impl fmt::Display for Error {
                          it once; the value is its larger end, past the points, the point of a \
                          loop, or the larger end of an edge listed twice)"
                     ),
-                    "candidate" | "choice" => {
-                        write!(
-                            f,
-                            " (the value is a position past the points, a loose end given two \
-                             rows, or the larger end of a join that is a loop, named twice or \
-                             already an edge)"
-                        )
-                    }
+                    "candidate" => write!(
+                        f,
+                        " (the value is a position past the points, or the larger end of a join \
+                         that is a loop, named twice or already an edge)"
+                    ),
+                    "choice" => write!(
+                        f,
+                        " (the value is a position past the points, a loose end given two rows, \
+                         or the larger end of a join that is a loop, named twice or already an \
+                         edge)"
+                    ),
                     "labels" | "status" | "tests" => write!(
                         f,
                         " (one entry per point is needed; the value is the list's length)"
