@@ -25,7 +25,11 @@
 //! [`reconstruct`] is a [`Pipeline`] run to its end: [`Pipeline::step`] runs one stage (or
 //! smoothing pass) at a time and reports it ([`StepReport`]). [`Params`] start from a preset
 //! ([`Params::default`], [`Params::paper`]) and change through their `with_*` setters. The stages
-//! can also be run one by one, each a method on the graph the previous one left:
+//! can also be run one by one, each a method on the graph the previous one left; the paper's
+//! three algorithms are the first three: Algorithm 1 is
+//! [`Triangulation::proximity_graph`], Algorithm 2 [`Graph::repair`] with [`Repair::Paper`],
+//! Algorithm 3 [`Graph::remove_outliers`] (the repository's `docs/condt.md` maps each line of
+//! them to the code, and says where the paper is ambiguous and what was chosen):
 //!
 //! ```
 //! use condt::{triangulate, Point, Repair, Uniformity};
