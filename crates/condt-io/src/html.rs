@@ -199,24 +199,21 @@ fn write_data(
     // Per repair change, in the order above: the neighbours its vertex selected, four numbers,
     // -1 for none.
     write!(out, "],\"repairSelected\":[")?;
-    let mut first = true;
-    let repairs = stories
+    let selected = stories
         .iter()
         .flat_map(|s| &s.changes)
         .filter_map(|c| match c.reason {
             Reason::Repair { selected, .. } => Some(selected),
             _ => None,
-        });
-    for selected in repairs {
-        for w in selected {
-            if !first {
-                out.write_all(b",")?;
-            }
-            first = false;
-            match w {
-                Some(w) => write_integer(out, w as u64)?,
-                None => out.write_all(b"-1")?,
-            }
+        })
+        .flatten();
+    for (k, w) in selected.enumerate() {
+        if k > 0 {
+            out.write_all(b",")?;
+        }
+        match w {
+            Some(w) => write_integer(out, w as u64)?,
+            None => out.write_all(b"-1")?,
         }
     }
     // Layers: their names, and per edge one number whose bit 0 says it is a Delaunay edge and

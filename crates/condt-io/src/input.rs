@@ -33,8 +33,9 @@ pub enum InputFormat {
     Csv,
     /// CSV with tabs between the columns, as a name ending in `.tsv` is read: by the CSV reader
     /// where its first line with content is a header, else as the plain format (which takes tabs
-    /// and comments too), but three numbers or more on its first line of numbers are refused
-    /// without a header, as CSV refuses them.
+    /// and comments too), but a line with tabs between its values is split at tabs only: a blank
+    /// within a field or a third value is refused (on the first line of numbers, as CSV refuses
+    /// three numbers without a header).
     Tsv,
     /// A NumPy array of shape `(n, 2)` ([`parse_npy`](crate::parse_npy)).
     Npy,

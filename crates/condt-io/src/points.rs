@@ -1189,32 +1189,16 @@ pub fn read_points_with(
                 // Tabs by the name. A header on the first line with content (names only, as the
                 // plain reader tells one, or x and y columns named as the CSV reader's header
                 // names them among any others: `id lon lat 2020`) goes to the CSV reader; else the
-                // plain format reads it, which takes comments, blanks and empty fields, but three
-                // numbers or more on the first line of numbers are refused, as the README says of
-                // CSV (an `id x y` export read as `x y z` came back as wrong points, a newcomer's
-                // review). The line is split at tabs, as the CSV reader splits it: a name may
-                // hold blanks (`elevation (m)`), which are no columns.
+                // plain format reads it, which takes comments, blanks and empty fields, but its
+                // lines with tabs between values are split at tabs ([`tab_separated_lines`]):
+                // three numbers or more are refused, as the README says of CSV (an `id x y`
+                // export read as `x y z` came back as wrong points, a newcomer's review). The
+                // header line is split at tabs, as the CSV reader splits it: a name may hold
+                // blanks (`elevation (m)`), which are no columns.
                 let first = tab_fields(crate::csv::first_line_with_content(&text));
                 let header = !first.is_empty()
                     && (first.iter().all(|f| is_name(f))
                         || crate::csv::names_x_and_y_columns(first.iter().copied()));
-                // Where the line starts, numbered as the readers number lines (a lone CR ends one).
-                let numbers = text
-                    .split(['\r', '\n'])
-                    .map(|line| {
-                        (
-                            line.as_ptr() as usize - text.as_ptr() as usize,
-                            tab_fields(line),
-                        )
-                    })
-                    .find(|(_, fields)| !fields.is_empty())
-                    .map(|(at, fields)| (line_at(text.as_bytes(), at), fields));
-                if let Some((line, numbers)) = numbers.filter(|(_, f)| !header && f.len() > 2) {
-                    if numbers.iter().all(|f| f.parse::<f64>().is_ok()) {
-                        return Err(Source { file: name }
-                            .error(line, crate::csv::numbers_without_header(numbers.len())));
-                    }
-                }
                 if header {
                     crate::csv::parse_separated(&text, name, b'\t', None).map(without_crs)
                 } else {
@@ -1332,10 +1316,18 @@ fn tab_separated_lines(text: &str, name: &str) -> Result<(), IoError> {
         return Ok(());
     }
     let at = |line: &[u8]| line_at(bytes, line.as_ptr() as usize - bytes.as_ptr() as usize);
+    let mut first = true;
     for line in bytes.split(|&b| b == b'\n' || b == b'\r') {
         // A tab that only indents the line or ends it separates nothing: `<TAB>1 2` is plain.
         let content = line.split(|&b| b == b'#').next().unwrap_or(line);
+        let content = content
+            .strip_prefix("\u{feff}".as_bytes())
+            .unwrap_or(content);
         let content = content.trim_ascii();
+        if content.is_empty() {
+            continue;
+        }
+        let first_line = core::mem::replace(&mut first, false);
         if !content.contains(&b'\t') {
             continue;
         }
@@ -1353,10 +1345,19 @@ fn tab_separated_lines(text: &str, name: &str) -> Result<(), IoError> {
             count += 1;
         }
         if count > 2 {
-            let message = format!(
-                "{count} values between tabs where a .tsv without a header has x and y: a \
-                 header line must name the x and y columns (or --columns X,Y their numbers from 1)"
-            );
+            let numbers = content.split(|&b| b == b'\t').map(<[u8]>::trim_ascii);
+            let numbers = numbers
+                .filter(|f| !f.is_empty())
+                .all(|f| core::str::from_utf8(f).is_ok_and(|f| f.trim().parse::<f64>().is_ok()));
+            let message = match numbers && first_line {
+                // The first line of numbers is refused as CSV's is, as the README says.
+                true => crate::csv::numbers_without_header(count),
+                false => format!(
+                    "{count} values between tabs where a .tsv without a header has x and y: a \
+                     header line must name the x and y columns (or --columns X,Y their numbers \
+                     from 1)"
+                ),
+            };
             return Err(Source { file: name }.error(at(line), message));
         }
     }

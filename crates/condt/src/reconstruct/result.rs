@@ -306,8 +306,8 @@ impl Reconstruction {
     /// Delaunay neighbours): chance makes pairs, but apart. Whatever the stages made of a pair
     /// (a curve of two points, two unused points, a spur), it is one, unless a curve runs
     /// through both of its points (each with two edges or more). Each pair's two input
-    /// positions, the lower first, ascending; empty when the pattern is missing. [`snap`](crate::snap) merges
-    /// points within a distance.
+    /// positions, the lower first, ascending; empty when the pattern is missing.
+    /// [`snap`](crate::snap) merges points within a distance.
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
@@ -351,10 +351,10 @@ impl Reconstruction {
         // in cache: 2 ms on 1M points along curves, 85 ms on 1M uniform points (every point's
         // ring by input positions took 0.1 s of a 0.45 s run along curves; those with at most
         // one edge, by input positions, 0.2 s of 5 s on uniform points). Algorithm 1 keeps no
-        // second edge at a twin where `u` is fixed below 16 (the default's 2.75): a pair starts as a piece of its own, unused or a curve
-        // of two points, or a spur once a later step joins one of its points; it is missed only
-        // where later steps (or an adaptive `u`) give both points two edges or more, a curve
-        // running through both, which reads them.
+        // second edge at a twin where `u` is fixed below 16 (the default's 2.75): a pair starts
+        // as a piece of its own, unused or a curve of two points, or a spur once a later step
+        // joins one of its points; it is missed only where later steps (or an adaptive `u`)
+        // give both points two edges or more, a curve running through both, which reads them.
         let asked = |v: VertexId| self.degrees.get(tri.input_of(v)) <= 1;
         let mut twins: Vec<[usize; 2]> = (0..points.len())
             .map(|v| VertexId::new(v as u32))
