@@ -428,4 +428,33 @@ mod tests {
         }
         assert_eq!(clean_reaching_the_end, clean_seeds);
     }
+
+    /// Every field of `Params` has its chainable setter (a field added without one would leave
+    /// callers of the builder style nothing to set it with, and no other test notices).
+    #[test]
+    fn every_parameter_has_its_setter() {
+        let source = include_str!("params.rs");
+        let body = source
+            .split("pub struct Params {")
+            .nth(1)
+            .expect("the struct");
+        let body = body.split("\n}").next().expect("its end");
+        let fields: Vec<&str> = body
+            .lines()
+            .filter_map(|line| line.trim().strip_prefix("pub "))
+            .filter_map(|field| field.split(':').next())
+            .collect();
+        assert!(fields.len() >= 20, "the fields were not found: {fields:?}");
+        let setters = source
+            .split("setters! {")
+            .nth(1)
+            .expect("the setters' list");
+        for field in fields {
+            let setter = alloc::format!("with_{field}({field}:");
+            assert!(
+                setters.contains(&setter),
+                "Params::{field} has no `{setter}` setter"
+            );
+        }
+    }
 }
