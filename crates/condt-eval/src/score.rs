@@ -30,6 +30,8 @@
 //! cells of direction classes took 60 s on a quiet machine.
 
 use crate::geometry::Point;
+use alloc::format;
+use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use condt::geometry::{binary_exponent, Scale};
