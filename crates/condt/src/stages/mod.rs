@@ -336,7 +336,7 @@ pub(crate) struct Earlier<'a> {
 
 /// Which of the graphs in [`Earlier`] a step reads ([`Step::reads`]): the pipeline rebuilds only
 /// those, and hands the step its own input in the others' place.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) struct Reads {
     pub(crate) before_outliers: bool,
     pub(crate) before_local: bool,
@@ -347,21 +347,10 @@ impl Step {
     /// The earlier graphs [`Step::run`] reads for this step: a new stage that reads one says so
     /// here, beside the arm of `run` that reads it.
     pub(crate) fn reads(self) -> Reads {
-        match self {
-            Step::RepairAgain { .. } => Reads {
-                before_outliers: true,
-                before_repair: true,
-                ..Reads::default()
-            },
-            Step::LocalOutliers => Reads {
-                before_outliers: true,
-                ..Reads::default()
-            },
-            Step::ConfirmGivenBack => Reads {
-                before_local: true,
-                ..Reads::default()
-            },
-            _ => Reads::default(),
+        Reads {
+            before_outliers: matches!(self, Step::RepairAgain { .. } | Step::LocalOutliers),
+            before_local: matches!(self, Step::ConfirmGivenBack),
+            before_repair: matches!(self, Step::RepairAgain { .. }),
         }
     }
 
