@@ -163,12 +163,10 @@ impl Standing {
         let n = self.root.len();
         let mut dropped = vec![false; n];
         for i in 0..n {
-            let v = VertexId::new(i as u32);
             let r = self.root[i] as usize;
-            if self.degree[i] < 2 || !self.only_given[r] || dropped[r] {
-                continue;
+            if self.degree[i] >= 2 && self.only_given[r] && !dropped[r] {
+                dropped[r] = near(VertexId::new(i as u32));
             }
-            dropped[r] = near(v);
         }
         dropped
     }
@@ -198,11 +196,8 @@ pub(crate) fn missing_from(edges: &[Edge], before: &[Edge]) -> Vec<bool> {
         // A bit per unmatched edge's smaller end: most edges of `before` skip the search (speed).
         let ends = IdBits::of(unmatched.iter().map(|(e, _)| e[0].index()));
         for b in before.iter().filter(|b| ends.contains(b[0].index())) {
-            let first = unmatched.partition_point(|&(e, _)| e < *b);
-            if let Some(&(e, k)) = unmatched.get(first) {
-                if e == *b {
-                    missing[k] = false;
-                }
+            if let Ok(at) = unmatched.binary_search_by(|(e, _)| e.cmp(b)) {
+                missing[unmatched[at].1] = false;
             }
         }
     }
