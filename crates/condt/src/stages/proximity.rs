@@ -68,14 +68,8 @@ impl Uniformity {
 
 /// The (at most two) neighbours vertex `v` keeps, from a walk of its ring. No allocation.
 fn kept_neighbors(tri: &Triangulation, v: VertexId, uniformity: Uniformity) -> [VertexId; 2] {
-    let p = tri.vertex_point(v);
     let mut best = TwoBest::EMPTY;
-    if let Uniformity::Fixed(_) = uniformity {
-        for w in tri.mesh().neighbors(v) {
-            best.offer(p.dist2(tri.vertex_point(w)), w, |x, y| closer(tri, v, x, y));
-        }
-        return keep(tri, v, uniformity, &best, (0.0, 0));
-    }
+    // The ring's lengths, which a fixed `u` does not read, come with the walk.
     let ring = offer_ring(tri, v, &mut best);
     keep(tri, v, uniformity, &best, ring)
 }
