@@ -126,12 +126,10 @@ pub(crate) fn remove_local_outliers_with(
 ) -> Outcome {
     // The input is copied only once a rule changes it (on a clean curve none does).
     let mut graph = Cow::Borrowed(edges);
-    let mut last = Vec::new();
-    // Rule 1's curve graph of `edges`, then the later rules' (speed: built once, not twice).
-    let mut built = None;
-    if rules.give_back {
-        let (given, candidates, mut now) = given_back(tri, edges, &before);
-        last = candidates;
+    // Rule 1's curve graph of `edges`, then the later rules' (speed: built once, not twice), and
+    // its candidates for the last edges (none unless rule 1 runs).
+    let (mut profile, last) = if rules.give_back {
+        let (given, last, mut now) = given_back(tri, edges, &before);
         // Read by rule 1 only: freed before the copy below and the later rules (memory).
         drop(before);
         if !given.is_empty() {
@@ -140,11 +138,11 @@ pub(crate) fn remove_local_outliers_with(
             // What `CurveGraph::new` of `edges` followed by `given` builds.
             now.add_edges(&given);
         }
-        built = Some(now);
+        (now, last)
     } else {
         drop(before);
-    }
-    let mut profile = built.unwrap_or_else(|| CurveGraph::new(tri.num_points(), &graph));
+        (CurveGraph::new(tri.num_points(), edges), Vec::new())
+    };
     // Whether rule 2's pass found only smooth, regular cycles; then rules 2 and 3 change nothing
     // (nothing is long, and there is no branch), so it still holds at rule 4.
     let mut smooth_cycles = None;
@@ -170,7 +168,6 @@ pub(crate) fn remove_local_outliers_with(
             update(&mut profile, &graph, &removed);
         }
     }
-    // `last` is empty unless rule 1 ran.
     if rules.last_edges && !last.is_empty() {
         let back = last_edges(&profile, &last);
         if !back.is_empty() {
@@ -999,11 +996,8 @@ fn keep_regular_cycles(
         for [previous, at, next] in graph.passages(graph.first_two(start)[1], start) {
             let passage = passing(at, previous, next);
             passing_count += usize::from(passage.smooth);
-            match passage.turn {
-                Orientation::Ccw => turns[0] += 1,
-                Orientation::Cw => turns[1] += 1,
-                Orientation::Collinear => {}
-            }
+            turns[0] += usize::from(passage.turn == Orientation::Ccw);
+            turns[1] += usize::from(passage.turn == Orientation::Cw);
             count += 1;
             if next == start {
                 break;
