@@ -335,9 +335,8 @@ fn list_kept<T: Send + Sync>(
         let decided = &*records;
         let size = decided.len().div_ceil(workers(true)).max(1);
         let pieces: Vec<Vec<Edge>> = (0..decided.len())
-            .step_by(size)
-            .collect::<Vec<usize>>()
             .into_par_iter()
+            .step_by(size)
             .map(|first| list_decided(decided, first..(first + size).min(decided.len()), &read))
             .collect();
         drop(records);
