@@ -407,18 +407,9 @@ impl Step {
         match self {
             Step::Repair(mode) => Outcome::from(repair::repair(tri, edges, mode, parallel)),
             Step::Outliers(rule) => outliers::remove_outliers(tri, edges, rule),
-            Step::RepairAgain { rule, mode } => repair_again::repair_again(
-                tri,
-                edges,
-                match earlier.cut_by_outliers {
-                    Some(cut) => repair_again::IqrInput::Cut(cut),
-                    None => repair_again::IqrInput::Listed(earlier.before_outliers),
-                },
-                earlier.before_repair,
-                rule,
-                mode,
-                parallel,
-            ),
+            Step::RepairAgain { rule, mode } => {
+                repair_again::repair_again(tri, edges, earlier, rule, mode, parallel)
+            }
             Step::LocalOutliers => local_outliers::remove_local_outliers(
                 tri,
                 edges,

@@ -12,51 +12,43 @@
 
 use super::outliers::{iqr_thresholds_of, IqrRule};
 use super::repair::repair;
-use super::{Outcome, Repair};
+use super::{Earlier, Outcome, Repair};
 use crate::adjacency::{collect_exact, Edge};
 use crate::triangulate::Triangulation;
-use alloc::borrow::Cow;
 
-/// The IQR stage's input, as repairing again reads it.
-pub(crate) enum IqrInput<'a> {
-    /// The list itself.
-    Listed(Cow<'a, [Edge]>),
-    /// The stage's output (the step's input) and these edges it cut, with their input positions:
-    /// the same lengths, which is all the thresholds read (memory: the list is not rebuilt).
-    Cut(&'a [(u32, Edge)]),
-}
-
-/// The rule on `edges`, the IQR stage's output; `repaired` is that stage's input, `proximity`
-/// the repair's. Each is freed once read, before the repair runs (memory: its peak).
+/// The rule on `edges`, the IQR stage's output, reading from `earlier` that stage's input (the
+/// list, or the edges it cut: the same lengths, which is all the thresholds read) and the
+/// repair's, the proximity graph. Each is freed once read, before the repair runs (memory: its
+/// peak).
 pub(crate) fn repair_again(
     tri: &Triangulation,
     edges: &[Edge],
-    repaired: IqrInput<'_>,
-    proximity: Cow<'_, [Edge]>,
+    earlier: Earlier<'_>,
     rule: IqrRule,
     mode: Repair,
     parallel: bool,
 ) -> Outcome {
     // The IQR stage only removes edges: it cut exactly when the lists differ.
-    let unchanged = match &repaired {
-        IqrInput::Cut(cut) => cut.is_empty(),
-        IqrInput::Listed(repaired) => edges == &**repaired,
+    let unchanged = match earlier.cut_by_outliers {
+        Some(cut) => cut.is_empty(),
+        None => edges == &*earlier.before_outliers,
     };
     if unchanged {
         return Outcome::UNCHANGED;
     }
     let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
     // The thresholds are order statistics: of the lengths alone, in any order.
-    let lengths = match &repaired {
-        IqrInput::Cut(cut) => edges
+    let lengths = match earlier.cut_by_outliers {
+        Some(cut) => edges
             .iter()
             .chain(cut.iter().map(|(_, edge)| edge))
             .map(length2)
             .collect(),
-        IqrInput::Listed(repaired) => repaired.iter().map(length2).collect(),
+        None => earlier.before_outliers.iter().map(length2).collect(),
     };
-    drop(repaired);
+    drop(earlier.before_outliers);
     let threshold = iqr_thresholds_of(lengths, rule).cut;
+    let proximity = earlier.before_repair;
     let short = collect_exact(
         proximity.len(),
         proximity
@@ -74,6 +66,7 @@ mod tests {
     use crate::geometry::Point;
     use crate::triangulate;
     use crate::Params;
+    use alloc::borrow::Cow;
 
     /// An evenly spaced square outline, 10 points a side, and one outlier just outside a corner,
     /// nearer to the corner's two neighbours than they are to each other across the corner.
@@ -123,9 +116,13 @@ mod tests {
             factor: 1.7,
             floor: true,
         };
-        let (same, also) = (Cow::Borrowed(&edges[..]), Cow::Borrowed(&edges[..]));
-        let same = IqrInput::Listed(same);
-        let outcome = repair_again(&tri, &edges, same, also, rule, Repair::Needs, false);
+        let same = Earlier {
+            before_outliers: Cow::Borrowed(&edges[..]),
+            cut_by_outliers: None,
+            before_local: Cow::Borrowed(&edges[..]),
+            before_repair: Cow::Borrowed(&edges[..]),
+        };
+        let outcome = repair_again(&tri, &edges, same, rule, Repair::Needs, false);
         assert!(outcome.edges.is_none());
     }
 }
