@@ -127,10 +127,7 @@ pub(crate) fn clumps_of(
     for (i, &r) in root.iter().enumerate() {
         let v = VertexId::new(i as u32);
         let degree = graph.degree(v);
-        if degree == 0 {
-            continue;
-        }
-        size[r as usize] += 1;
+        size[r as usize] += u32::from(degree > 0);
         if degree == 2 {
             smooth_count[r as usize] += u32::from(smooth(v));
         }
