@@ -65,6 +65,7 @@ pub(crate) fn confirm_given_back(
 /// all given back ([`Standing::status`]).
 pub(crate) struct Standing {
     pub(crate) root: Vec<u32>,
+    /// Per root, whether its component is only given back; read only for points with edges.
     only_given: Vec<bool>,
     degree: Vec<u8>,
 }
@@ -85,11 +86,9 @@ impl Standing {
     /// The components of `edges` over `n` points, and which are only `given` back (per edge).
     pub(crate) fn of(n: usize, edges: &[Edge], given: &[bool]) -> Standing {
         let root = components(n, edges);
-        // Components made only of given-back edges, and each vertex's degree (up to 255).
-        let mut only_given = vec![false; n];
-        for &[a, _] in edges {
-            only_given[root[a.index()] as usize] = true;
-        }
+        // Components made only of given-back edges (read only at the roots of points with
+        // edges), and each vertex's degree (up to 255).
+        let mut only_given = vec![true; n];
         let mut degree = vec![0u8; n];
         for (&[a, b], &back) in edges.iter().zip(given) {
             only_given[root[a.index()] as usize] &= back;
