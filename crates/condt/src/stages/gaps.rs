@@ -199,6 +199,12 @@ impl<'a> Ends<'a> {
         self.graph.first_two(a)[0]
     }
 
+    /// The sample beyond the loose end `a`'s neighbour, where that neighbour has two edges.
+    pub(super) fn beyond(&self, a: VertexId) -> Option<VertexId> {
+        let next = self.along(a);
+        (self.graph.degree(next) == 2).then(|| self.graph.onward(next, a))
+    }
+
     /// Whether the chain from `next` away from `from` runs through at least [`MIN_SAMPLES`]
     /// points of degree two, none of them in `avoid`.
     pub(super) fn branch(&self, from: VertexId, next: VertexId, avoid: &[VertexId]) -> bool {
@@ -230,26 +236,18 @@ impl<'a> Ends<'a> {
     /// is crowded ([`Ends::turn`]), the sample before that.
     pub(super) fn heading_from(&self, a: VertexId) -> VertexId {
         let next = self.along(a);
-        if self.graph.degree(next) != 2 {
-            return next;
-        }
-        let beyond = self.graph.onward(next, a);
         let (pa, pn) = (self.point(a), self.point(next));
-        if crowded(pa.dist2(pn), pn.dist2(self.point(beyond))) {
-            beyond
-        } else {
-            next
+        match self.beyond(a) {
+            Some(beyond) if crowded(pa.dist2(pn), pn.dist2(self.point(beyond))) => beyond,
+            _ => next,
         }
     }
 
     /// The cosine of the angle at the loose end `a` between the point two edges back and `w` (`1`
     /// where the curve ends sooner): the chord of the module's rule (1).
     fn chord_turn(&self, a: VertexId, w: VertexId) -> f64 {
-        let next = self.along(a);
-        if self.graph.degree(next) != 2 {
-            return 1.0;
-        }
-        self.cos_of(a, self.graph.onward(next, a), w)
+        self.beyond(a)
+            .map_or(1.0, |beyond| self.cos_of(a, beyond, w))
     }
 
     /// Whether the gap from the loose end `a` to `w` is within [`GAP_RATIO`] of `a`'s edge, or with
@@ -283,8 +281,9 @@ impl<'a> Ends<'a> {
     fn hooked(&self, a: VertexId) -> bool {
         let next = self.along(a);
         self.heading_from(a) == next
-            && self.graph.degree(next) == 2
-            && self.cos_of(next, a, self.graph.onward(next, a)) > AHEAD
+            && self
+                .beyond(a)
+                .is_some_and(|beyond| self.cos_of(next, a, beyond) > AHEAD)
     }
 
     /// Whether the loose ends `a` and `b` may join (the module's rule (1)).
@@ -447,12 +446,9 @@ impl<'a> Ends<'a> {
         let along = self.along(a);
         let (mut from, mut here) = (along, a);
         let mut last = self.point(along).dist2(self.point(a));
-        let mut before = if self.graph.degree(along) == 2 {
-            let beyond = self.graph.onward(along, a);
-            self.point(along).dist2(self.point(beyond))
-        } else {
-            0.0
-        };
+        let mut before = self
+            .beyond(a)
+            .map_or(0.0, |beyond| self.point(along).dist2(self.point(beyond)));
         for _ in 0..MIN_SAMPLES {
             let (pf, ph) = (self.point(from), self.point(here));
             let span = last.max(before);

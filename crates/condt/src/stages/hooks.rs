@@ -52,11 +52,7 @@ impl Ends<'_> {
     /// The move the loose end `c` starts, if any (the module's rule).
     fn unhook_at(&self, c: VertexId) -> Option<Found> {
         let graph = &*self.graph;
-        let b = self.along(c);
-        if graph.degree(b) != 2 {
-            return None;
-        }
-        let a = graph.onward(b, c);
+        let (b, a) = (self.along(c), self.beyond(c)?);
         if graph.degree(a) != 2 {
             return None;
         }

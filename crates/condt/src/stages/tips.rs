@@ -245,12 +245,11 @@ impl Ends<'_> {
     /// `u`'s several when more than one `q` passes (an apex with two candidates makes none).
     fn apex_beside(&self, u: VertexId, x: VertexId) -> Option<Found> {
         let mesh = self.tri.mesh();
-        let y = self.along(x);
-        if self.graph.degree(y) != 2 || !mesh.adjacent(u, y) {
+        let (y, beyond_y) = (self.along(x), self.beyond(x)?);
+        if !mesh.adjacent(u, y) {
             return None;
         }
         // `y`'s side: the tip's sample continues it as its chord did.
-        let beyond_y = self.graph.onward(y, x);
         let (px, py, pu) = (self.point(x), self.point(y), self.point(u));
         let within = |a: Point, b: Point, of: f64| a.dist2(b) <= GAP_RATIO * GAP_RATIO * of;
         if self.cos_of(y, beyond_y, u) >= SMOOTH_COS
