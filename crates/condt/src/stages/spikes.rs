@@ -138,6 +138,8 @@ impl Ends<'_> {
             || before_a == after_b
             || self.cos_of(a, before_a, b) < STRAIGHT
             || self.cos_of(b, after_b, a) < STRAIGHT
+            || !self.leads_off(a, before_a)
+            || !self.leads_off(b, after_b)
         {
             return None;
         }
@@ -146,21 +148,10 @@ impl Ends<'_> {
 
     /// The move from `a` to `b` through the run of points without edges between them, given
     /// `[a', a, b, b']` (`chord`: whether `a b` is an edge the move replaces), if the run and its
-    /// path pass the module's tests; the checks particular to a chord or to two loose ends are the
+    /// path pass the module's tests; the checks particular to a chord or to two loose ends
+    /// (that a point without edges continues each end's curve, [`Ends::leads_off`]) are the
     /// caller's.
     fn tip_through(&self, [before_a, a, b, after_b]: [VertexId; 4], chord: bool) -> Option<Spike> {
-        if !self.leads_off(a, before_a) || !self.leads_off(b, after_b) {
-            return None;
-        }
-        self.tip_run_between([before_a, a, b, after_b], chord)
-    }
-
-    /// [`Ends::tip_through`] once both ends are known to lead off.
-    fn tip_run_between(
-        &self,
-        [before_a, a, b, after_b]: [VertexId; 4],
-        chord: bool,
-    ) -> Option<Spike> {
         // A tip's samples lie within the curve's spacing of each other (Algorithm 1's bound on
         // the edges at its ends): points farther off, such as another tip's across the space
         // between two spikes, are not gathered.
@@ -241,7 +232,7 @@ impl Ends<'_> {
         if !leading.contains(a.index()) || !leading.contains(b.index()) {
             return None;
         }
-        self.tip_run_between([before_a, a, b, after_b], false)
+        self.tip_through([before_a, a, b, after_b], false)
     }
 
     /// Whether a point without edges continues the curve from `before` through `at` smoothly and
