@@ -146,27 +146,18 @@ impl Ends<'_> {
             .neighbors(a)
             .filter(|&c| self.meets_at_junction(a, c))
             .map(|c| (self.turn(a, c), c))
-            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
-            .map(|(turn, c)| {
-                let junction = Junction {
-                    end: a,
-                    walk: Walk::EMPTY,
-                    at: c,
-                };
-                (turn, junction)
-            });
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
         // A direct join beside the junction must not hide a walk through the branch's stranded
         // last sample that runs straighter (the junction's neighbours can lie within the turn
         // and the gap a direct join allows).
-        match (direct, self.junction_beyond(a)) {
-            (Some((direct_turn, junction)), Some((walk_turn, walked))) => {
-                Some(if walk_turn < direct_turn {
-                    walked
-                } else {
-                    junction
-                })
-            }
-            (direct, walked) => direct.or(walked).map(|(_, junction)| junction),
+        let straighter = |&(turn, _): &(f64, Junction)| direct.is_none_or(|(d, _)| turn < d);
+        match self.junction_beyond(a).filter(straighter) {
+            Some((_, walked)) => Some(walked),
+            None => direct.map(|(_, c)| Junction {
+                end: a,
+                walk: Walk::EMPTY,
+                at: c,
+            }),
         }
     }
 
