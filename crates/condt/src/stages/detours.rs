@@ -122,10 +122,8 @@ fn detour_at(tri: &Triangulation, graph: &CurveGraph, p: VertexId) -> Option<Det
     let routes = around.map(|next| Route::from(graph, p, next));
     // Three routes to one point: no curve runs on beyond them, and which two were paired would
     // depend on the order of `p`'s neighbours.
-    if let [Some(a), Some(b), Some(c)] = routes {
-        if a.end == b.end && b.end == c.end {
-            return None;
-        }
+    if matches!(routes, [Some(a), Some(b), Some(c)] if a.end == b.end && b.end == c.end) {
+        return None;
     }
     if let Some(lasso) = lasso_at(tri, p, &around, &routes) {
         return Some(lasso);
