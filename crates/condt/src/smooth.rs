@@ -13,7 +13,7 @@
 //! unused points have no two-sided neighbourhood to average, and a sharp corner would be rounded
 //! off. Why, costs and measurements: docs/condt.md, *Smoothing passes*.
 
-use crate::adjacency::{CurveGraph, Edge};
+use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::error::Error;
 use crate::geometry::{nearest_corner, Point, Scale};
 use crate::mesh::VertexId;
@@ -186,15 +186,7 @@ pub(crate) fn smoothed_positions(
     let shown = |p: Point| Point::new(p.x + offset.x, p.y + offset.y);
     let (mut moved, mut moved_in_run_frame) = (0, 0);
     let mut in_run_frame = Vec::with_capacity(if wanted { n } else { 0 });
-    // The position handed on: `relative`, or the input frame's in `own_frame`; the
-    // latter is computed only then or when `wanted`, and kept in `in_run_frame`.
-    let mut emit = |relative: Point, framed: &dyn Fn() -> Point| {
-        let framed = (wanted || own_frame).then(framed);
-        if wanted {
-            in_run_frame.extend(framed);
-        }
-        framed.filter(|_| own_frame).unwrap_or(relative)
-    };
+    let at = |u: VertexId| tri.vertex_points()[u.index()];
     // Input positions follow no spatial order, so each point's reads (its position, its graph
     // record, then its neighbours' positions) are cache misses. Asked for ahead, in two steps
     // (the record `2 * PREFETCH_POINTS` positions ahead, then the neighbours it names), they
@@ -212,35 +204,38 @@ pub(crate) fn smoothed_positions(
                 }
             }
             let v = tri.vertex(i);
-            let q = relative(tri.vertex_points()[v.index()]);
-            let Some([x, y]) = moving(tri, graph, v, frame) else {
-                return emit(tri.stage_to_input(q), &|| tri.frame_point(i));
+            let q = relative(at(v));
+            // The new position relative to the corner, and in the input frame (`framed`: computed
+            // only in `own_frame`, where it is handed on, or when `wanted`, kept in
+            // `in_run_frame`). In the stages' frame, where these sums and products neither
+            // overflow nor underflow at any scale; it differs from the input's by a power of two,
+            // so in the fast range the moved position is bit for bit the input frame's.
+            let (to, framed) = match moving(tri, graph, v, frame) {
+                None => (q, (wanted || own_frame).then(|| tri.frame_point(i))),
+                Some([x, y]) => {
+                    let framed = (wanted || own_frame)
+                        .then(|| tri.stage_to_input(umbrella_step(at(v), at(x), at(y))));
+                    (umbrella_step(q, relative(at(x)), relative(at(y))), framed)
+                }
             };
-            // In the stages' frame, where these sums and products neither overflow nor underflow at
-            // any scale; it differs from the input's by a power of two, so in the fast range the
-            // moved position is bit for bit the input frame's.
-            let at = |u: VertexId| tri.vertex_points()[u.index()];
-            let (a, b) = (relative(at(x)), relative(at(y)));
-            let to = tri.stage_to_input(umbrella_step(q, a, b));
-            let framed = (wanted || own_frame)
-                .then(|| tri.stage_to_input(umbrella_step(at(v), at(x), at(y))));
+            let handed_on = framed
+                .filter(|_| own_frame)
+                .unwrap_or(tri.stage_to_input(to));
             // Counted where the position handed on changes, in the frame it is handed on in (and
             // in the run's own frame too when `wanted`), against where the point stood there
             // ([`unmoved`]'s positions, which `keep_apart` compares with): on a straight, evenly
             // spaced run the midpoint is the point itself.
-            let handed_on = framed.filter(|_| own_frame).unwrap_or(to);
             let stood = if own_frame {
                 tri.frame_point(i)
             } else {
                 tri.stage_to_input(q)
             };
             moved += usize::from(handed_on != stood);
-            if let Some(framed) = framed.filter(|_| wanted) {
-                moved_in_run_frame += usize::from(framed != tri.frame_point(i));
+            if wanted {
+                in_run_frame.extend(framed);
+                moved_in_run_frame += usize::from(framed != Some(tri.frame_point(i)));
             }
-            emit(to, &|| {
-                framed.expect("computed where the framed position is read")
-            })
+            handed_on
         })
         .collect();
     let corner = if own_frame {
@@ -510,20 +505,17 @@ pub fn gathered_smoothing_pass(
         return Err(Error::invalid("edge", a.max(b) as f64));
     }
     let mut listed: Vec<Edge> = Vec::with_capacity(edges.len());
-    for &[a, b] in edges {
-        let [a, b] = [run.vertex(a), run.vertex(b)];
-        if a != b {
-            listed.push([a.min(b), a.max(b)]);
-        }
-    }
+    let pairs = edges
+        .iter()
+        .map(|&[a, b]| ordered(run.vertex(a), run.vertex(b)));
+    listed.extend(pairs.filter(|&[a, b]| a != b));
     listed.sort_unstable();
     listed.dedup();
     if passes >= MAX_PASSES {
         return Ok(GatheredPass::Done);
     }
-    let input = match PassInput::moving(&run, CurveGraph::new(n, &listed)) {
-        Ok(input) => input,
-        Err(_) => return Ok(GatheredPass::Done),
+    let Ok(input) = PassInput::moving(&run, CurveGraph::new(n, &listed)) else {
+        return Ok(GatheredPass::Done);
     };
     let graph = input.graph();
     let follows = if passes == 0 {
