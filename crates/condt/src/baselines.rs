@@ -62,10 +62,8 @@ impl Triangulation {
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn crust(&self) -> Result<Graph<'_>, Error> {
-        Ok(Graph::new(
-            self,
-            Cow::Owned(crust_edges(self, cfg!(feature = "parallel"))?),
-        ))
+        let edges = crust_edges(self, cfg!(feature = "parallel"))?;
+        Ok(Graph::new(self, Cow::Owned(edges)))
     }
 }
 

@@ -614,12 +614,7 @@ impl Triangulation {
             .collect();
         // A counting sort by the first end (a tile of a split run builds a graph of its 100,000s
         // of edges every round, where a comparison sort was a tenth of the tiles' work).
-        let sorted = sort_pairs(
-            self.num_points(),
-            listed.iter().copied(),
-            listed.len(),
-            |v| v.index(),
-        );
+        let sorted = sort_pairs(n, listed.iter().copied(), listed.len(), |v| v.index());
         Graph::new(self, Cow::Owned(sorted))
     }
 }
