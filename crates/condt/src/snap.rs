@@ -54,16 +54,11 @@ use core::cmp::Ordering;
 /// ```
 pub fn snap(points: &mut [Point], distance: f64) -> Result<usize, Error> {
     if !(distance.is_finite() && distance >= 0.0) {
-        return Err(Error::InvalidParameter {
-            name: "distance",
-            value: distance,
-        });
+        return Err(Error::invalid("distance", distance));
     }
-    if points.len() > crate::triangulate::MAX_POINTS {
-        return Err(Error::TooManyPoints {
-            count: points.len(),
-            limit: crate::triangulate::MAX_POINTS,
-        });
+    let (count, limit) = (points.len(), crate::triangulate::MAX_POINTS);
+    if count > limit {
+        return Err(Error::TooManyPoints { count, limit });
     }
     if distance == 0.0 {
         return Ok(0);
@@ -85,10 +80,7 @@ pub fn snap(points: &mut [Point], distance: f64) -> Result<usize, Error> {
             while j != NONE {
                 let q = points[j as usize];
                 let gap = apart(p, q);
-                let nearer = match nearest {
-                    None => true,
-                    Some((best, k)) => gap < best || (gap == best && j < k),
-                };
+                let nearer = nearest.is_none_or(|(best, k)| gap < best || (gap == best && j < k));
                 if within(gap, distance, rounding(p, q, distance)) && nearer {
                     nearest = Some((gap, j));
                 }
