@@ -191,17 +191,15 @@ impl Ends<'_> {
     }
 
     /// The moves of the loose end `x` through a tip's run to another loose end, each pair of
-    /// ends read by [`Ends::spike_between`] (so from either end alike), into `found`; `leading`:
+    /// ends read by [`Ends::spike_between`] (so from either end alike), if any; `leading`:
     /// [`Ends::loose_ends_leading_off`].
-    fn loose_spikes_at(&self, x: VertexId, leading: &IdBits, found: &mut Vec<Spike>) {
+    fn loose_spikes_at(&self, x: VertexId, leading: &IdBits) -> Option<Vec<Spike>> {
         if !leading.contains(x.index()) {
-            return;
+            return None;
         }
         let before = self.along(x);
         let reach2 = GAP_RATIO * GAP_RATIO * self.point(x).dist2(self.point(before));
-        let Some((run, len)) = self.tip_run(&[x], reach2) else {
-            return;
-        };
+        let (run, len) = self.tip_run(&[x], reach2)?;
         let mesh = self.tri.mesh();
         // Each other loose end once, however many of the run's points it lies beside (the
         // moves are sorted afterwards: the order here is free).
@@ -212,9 +210,11 @@ impl Ends<'_> {
             .collect();
         loose_beside.sort_unstable();
         loose_beside.dedup();
-        for y in loose_beside {
-            found.extend(self.spike_between(x.min(y), x.max(y), leading));
-        }
+        let found: Vec<Spike> = loose_beside
+            .into_iter()
+            .filter_map(|y| self.spike_between(x.min(y), x.max(y), leading))
+            .collect();
+        (!found.is_empty()).then_some(found)
     }
 
     /// The move joining the loose ends `a` and `b` through the points without edges between
@@ -398,20 +398,10 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
     });
     let mut moves: Vec<Spike> = found.into_iter().flatten().collect();
     // Two loose ends with a tip's run between them (a tip whose samples and the edges to them
-    // the earlier stages all dropped).
+    // the earlier stages all dropped); only ends `beside` a point without edges lead off.
     let leading = ends.loose_ends_leading_off(beside, parallel);
-    moves.extend(
-        ends.each_loose(parallel, |x| {
-            if !beside(x) {
-                return None;
-            }
-            let mut found = Vec::new();
-            ends.loose_spikes_at(x, &leading, &mut found);
-            (!found.is_empty()).then_some(found)
-        })
-        .into_iter()
-        .flatten(),
-    );
+    let loose = ends.each_loose(parallel, |x| ends.loose_spikes_at(x, &leading));
+    moves.extend(loose.into_iter().flatten());
     if moves.is_empty() {
         return moves;
     }
