@@ -69,13 +69,9 @@ impl Move {
     /// `u y` and `x q`. Stored as an apex move on the chord with the loose end in the field `y`
     /// (so `[u, y, x]` read as `[q, x, y]`) and `q` in `beside`, joined to it.
     fn beside(u: VertexId, y: VertexId, x: VertexId, q: VertexId) -> Move {
-        let (p, beside) = (u, Some(q));
         Move {
-            q: u,
-            x: y,
-            y: x,
-            p,
-            beside,
+            beside: Some(q),
+            ..Move::new(u, y, x, u)
         }
     }
 
@@ -141,20 +137,17 @@ impl Ends<'_> {
     /// The move the loose end `q` takes part in, if any (the module's rule).
     fn tip_at(&self, q: VertexId) -> Option<Found> {
         let mut found = None;
-        let mut several = false;
         self.tip_candidates(q, |x, y, p| {
             if splits(&self.graph, q, x, y) || splits(&self.graph, p, y, x) {
                 return true;
             }
-            several = found.is_some();
-            found = Some(Found::One(Move::new(q, x, y, p)));
-            !several
+            found = Some(match found {
+                None => Found::One(Move::new(q, x, y, p)),
+                Some(_) => Found::Several(q),
+            });
+            matches!(found, Some(Found::One(_)))
         });
-        if several {
-            Some(Found::Several(q))
-        } else {
-            found
-        }
+        found
     }
 
     /// Calls `each(x, y, p)` for every move of the loose end `q` (the chord `x y`, the other loose
