@@ -596,9 +596,6 @@ pub(crate) fn settle_joins(
     targets: &[(VertexId, Target)],
     walks: impl FnOnce(&[VertexId]) -> Vec<(VertexId, Walk)>,
 ) -> Vec<Edge> {
-    if targets.is_empty() {
-        return stranded_runs(n, graph, walks(&[]), &[]);
-    }
     let along = |a: VertexId| graph.first_two(a)[0];
     let slot = |a: VertexId| targets.binary_search_by_key(&a, |&(v, _)| v).ok();
     let target_of = |a: VertexId| slot(a).map_or(Target::None, |k| targets[k].1);
