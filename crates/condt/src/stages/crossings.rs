@@ -114,12 +114,11 @@ impl Ends<'_> {
 pub(crate) fn restore_crossings(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let (tri, n) = (ends.tri, ends.tri.num_points());
     // Most of the stage's cost: each point judged alone, in ranges on threads when `parallel`.
-    let found: Vec<Crossing> = found_in_order(n, parallel, |i| {
+    let mut restored: Vec<Crossing> = found_in_order(n, parallel, |i| {
         ends.graph.prefetch_ahead(i, tri.vertex_points());
         ends.crossing_at(VertexId::new(i as u32))
     });
     // A point in two crossings (a crossing's and a chord's end, say) takes part in none.
-    let mut restored = found;
     alone(n, &mut restored, &[], |k| [k.x, k.c, k.d]);
     let chords = restored.iter().map(|k| ordered(k.c, k.d)).collect();
     let arms = restored
