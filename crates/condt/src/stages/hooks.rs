@@ -80,10 +80,8 @@ impl Ends<'_> {
             if x == a || x == c {
                 continue;
             }
-            let px = self.point(x);
-            let gap = pb.dist2(px);
             let at_b = self.cos_of(b, c, x);
-            let passes = within(gap, last_two)
+            let passes = within(pb.dist2(self.point(x)), last_two)
                 && match graph.degree(x) {
                     0 => bends_less(at_b),
                     1 => {
