@@ -402,34 +402,27 @@ impl<'a> Ends<'a> {
                 continue;
             }
             // The first candidate is the nearest yet; then exact lengths, then ids.
-            let nearer = if best_key.1.is_infinite() {
-                core::cmp::Ordering::Less
-            } else {
-                let at = |(length2, u): (f64, VertexId)| (self.point(u), length2);
-                distance_order(pa, at(key), at(best_key)).then(key.1.cmp(&best_key.1))
-            };
-            if nearer != core::cmp::Ordering::Less {
+            let at = |(length2, u): (f64, VertexId)| (self.point(u), length2);
+            let order = || distance_order(pa, at(key), at(best_key)).then(key.1.cmp(&best_key.1));
+            if !best_key.1.is_infinite() && order().is_ge() {
                 continue;
             }
             // Facing is read for points of degree zero and two alone (speed: it measures an angle).
             let degree = self.graph.degree(w);
             let facing = matches!(degree, 0 | 2) && self.faces(a, w);
             let candidate = match degree {
-                0 if facing || self.tip_toward(a, w) => {
-                    match self.end_across(a, w, |d| self.reaches(d, w, facing, a), |_| true) {
-                        Some(d) => Target::Through(w, Partner::End(d)),
-                        None => continue,
-                    }
-                }
-                1 if self.ends_meet(a, w) => Target::End(w),
-                2 if facing && !self.close_behind(a, w) => match self.crossing_partner(a, w) {
-                    Some(partner) => Target::Through(w, partner),
-                    None => continue,
-                },
-                _ => continue,
+                0 if facing || self.tip_toward(a, w) => self
+                    .end_across(a, w, |d| self.reaches(d, w, facing, a), |_| true)
+                    .map(|d| Target::Through(w, Partner::End(d))),
+                1 if self.ends_meet(a, w) => Some(Target::End(w)),
+                2 if facing && !self.close_behind(a, w) => self
+                    .crossing_partner(a, w)
+                    .map(|partner| Target::Through(w, partner)),
+                _ => None,
             };
-            best = candidate;
-            best_key = key;
+            if let Some(candidate) = candidate {
+                (best, best_key) = (candidate, key);
+            }
         }
         best
     }
