@@ -568,11 +568,10 @@ fn position_key(p: Point) -> (u64, u64) {
 /// goes back by the set of positions alone. O(n log n) a round, run only where `repeats` saw more
 /// merges than the input had.
 pub(crate) fn keep_apart(positions: &mut [Point], original: impl Fn(usize) -> Point) -> usize {
-    let key = position_key;
     let mut order: Vec<usize> = (0..positions.len()).collect();
     let mut back = 0;
     loop {
-        order.sort_unstable_by_key(|&i| key(positions[i]));
+        order.sort_unstable_by_key(|&i| position_key(positions[i]));
         let mut going: Vec<usize> = Vec::new();
         for run in order.chunk_by(|&i, &j| positions[i] == positions[j]) {
             let first = original(run[0]);
