@@ -102,19 +102,15 @@ impl Ends<'_> {
             true
         };
         for &end in from {
-            for w in mesh.neighbors(end) {
-                if !add(end, w, &mut run, &mut len) {
-                    return None;
-                }
+            if !mesh.neighbors(end).all(|w| add(end, w, &mut run, &mut len)) {
+                return None;
             }
         }
         let mut next = 0;
         while next < len {
             let at = run[next];
-            for w in mesh.neighbors(at) {
-                if !add(at, w, &mut run, &mut len) {
-                    return None;
-                }
+            if !mesh.neighbors(at).all(|w| add(at, w, &mut run, &mut len)) {
+                return None;
             }
             next += 1;
         }
