@@ -184,11 +184,8 @@ impl Grid {
         let key = |p: Point| (p.x.is_finite() && p.y.is_finite()).then(|| (index(p.x), index(p.y)));
         // Sized once (memory: a collected iterator of unknown length grows by doubling).
         let mut entries: Vec<((i64, i64), u32)> = Vec::with_capacity(points.len());
-        for (i, &p) in points.iter().enumerate() {
-            if let Some(k) = key(p) {
-                entries.push((k, i as u32));
-            }
-        }
+        let indexed = points.iter().enumerate();
+        entries.extend(indexed.filter_map(|(i, &p)| key(p).map(|k| (k, i as u32))));
         // By cell, then by coordinates, then by position: equal points in a run, the first
         // leading (coordinates are read only where cells tie).
         entries.sort_unstable_by(|(ka, a), (kb, b)| {
