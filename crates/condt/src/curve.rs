@@ -148,19 +148,6 @@ pub(crate) fn curves_in_input_positions(tri: &Triangulation, graph: &CurveGraph)
     curves_of(graph, |v| tri.input_of(v) as u32)
 }
 
-fn canonical(curves: &mut [Curve]) {
-    for curve in curves.iter_mut() {
-        curve.make_canonical();
-    }
-    // By their first two points, the order of the whole lists: no two curves share them (they
-    // would share an edge). Keys computed once spare the sort a cache miss per comparison.
-    curves.sort_by_cached_key(|curve| {
-        let p = &curve.points;
-        let at = |k: usize| u64::from(p.get(k).copied().unwrap_or(0));
-        (at(0) << 32) | at(1)
-    });
-}
-
 /// The curves of a graph already built, each vertex given as the point `name(v)`: canonical
 /// ([`Curve::make_canonical`]) and sorted.
 fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> Vec<Curve> {
@@ -201,7 +188,14 @@ fn curves_of(graph: &CurveGraph, name: impl Fn(VertexId) -> u32) -> Vec<Curve> {
     }
     // Grown by doubling: up to half of it was room (memory).
     curves.shrink_to_fit();
-    canonical(&mut curves);
+    curves.iter_mut().for_each(Curve::make_canonical);
+    // By their first two points, the order of the whole lists: no two curves share them (they
+    // would share an edge). Keys computed once spare the sort a cache miss per comparison.
+    curves.sort_by_cached_key(|curve| {
+        let p = &curve.points;
+        let at = |k: usize| u64::from(p.get(k).copied().unwrap_or(0));
+        (at(0) << 32) | at(1)
+    });
     curves
 }
 
