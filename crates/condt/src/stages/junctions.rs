@@ -48,14 +48,13 @@ impl Ends<'_> {
         let [x, y] = self.graph.first_two(c);
         let pc = self.point(c);
         let (e1, e2) = (pc.dist2(self.point(x)), pc.dist2(self.point(y)));
-        let (shorter, longer) = (e1.min(e2), e1.max(e2));
         // Where `c`'s edges are no one sampling by Algorithm 1's own ratio, the shorter measures
         // none: a second sample right beside the junction, as where outlines digitised apart
         // meet (a Natural Earth junction has one 1/2000 of a spacing away).
-        let spacing = if longer > GAP_RATIO * GAP_RATIO * shorter {
-            longer
+        let spacing = if one_sampling(&[e1, e2]) {
+            e1.min(e2)
         } else {
-            shorter
+            e1.max(e2)
         };
         self.point(s).dist2(pc) <= GAP_RATIO * GAP_RATIO * spacing
             && self.branch(c, x, &[avoid, y])
