@@ -23,6 +23,17 @@ pub(crate) fn ordered(a: VertexId, b: VertexId) -> Edge {
     }
 }
 
+/// The edges along the path `first`, `inner`…, `last`, in order.
+pub(crate) fn path_edges(
+    first: VertexId,
+    inner: &[VertexId],
+    last: VertexId,
+) -> impl Iterator<Item = Edge> + '_ {
+    let inner = inner.iter().copied();
+    let path = core::iter::once(first).chain(inner).chain([last]);
+    path.clone().zip(path.skip(1)).map(|(a, b)| ordered(a, b))
+}
+
 /// The neighbours of every vertex of a union of curves, where almost every vertex has at most two:
 /// one 8-byte record per vertex (its first two neighbours and its degree; packed for memory), so
 /// following a curve costs one read per vertex; vertices with three or more list them all in a

@@ -36,7 +36,7 @@ use super::gaps::cos_at;
 use super::gaps::Ends;
 use super::local_outliers::MIN_SAMPLES;
 use super::Replaced;
-use crate::adjacency::{ordered, CurveGraph, Edge};
+use crate::adjacency::{path_edges, CurveGraph, Edge};
 use crate::mesh::VertexId;
 use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
@@ -105,10 +105,7 @@ impl Detour {
 
     /// The edges the detour loses, from `p` to its route's end (`q`, or a loop's edge's end).
     pub(crate) fn removed(&self) -> impl Iterator<Item = Edge> + '_ {
-        let path = core::iter::once(self.p)
-            .chain(self.inner().iter().copied())
-            .chain(core::iter::once(self.route.end));
-        path.clone().zip(path.skip(1)).map(|(a, b)| ordered(a, b))
+        path_edges(self.p, self.inner(), self.route.end)
     }
 }
 
@@ -216,6 +213,7 @@ pub(crate) fn cut_detours(ends: &Ends<'_>, parallel: bool) -> Replaced {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::adjacency::ordered;
     use crate::{triangulate, Point};
 
     /// The edges `cut_detours` leaves of `listed` (input positions) on `pts`, in input positions.

@@ -33,7 +33,7 @@
 use super::gaps::{cos_at, crowded, one_sampling, Ends, Walk, GAP_RATIO, STRAIGHT};
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::{uses, Replaced};
-use crate::adjacency::{ordered, Edge};
+use crate::adjacency::{ordered, path_edges, Edge};
 use crate::mesh::VertexId;
 use alloc::vec::Vec;
 
@@ -284,10 +284,7 @@ struct Junction {
 impl Junction {
     /// The edges that join the end to the junction, in order.
     fn edges(&self) -> impl Iterator<Item = Edge> + '_ {
-        let path = core::iter::once(self.end)
-            .chain(self.walk.iter().copied())
-            .chain(core::iter::once(self.at));
-        path.clone().zip(path.skip(1)).map(|(p, q)| ordered(p, q))
+        path_edges(self.end, &self.walk, self.at)
     }
 }
 

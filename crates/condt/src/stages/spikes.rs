@@ -37,7 +37,7 @@
 use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::{alone, Replaced};
-use crate::adjacency::{ordered, Edge};
+use crate::adjacency::{ordered, path_edges, Edge};
 use crate::bits::IdBits;
 use crate::mesh::VertexId;
 use crate::predicates::{orient2d, Orientation};
@@ -71,12 +71,7 @@ impl Spike {
 
     /// The edges the move adds, along the path from `a` to `b`.
     fn joins(&self) -> impl Iterator<Item = Edge> + '_ {
-        let path = |k: usize| match k {
-            0 => self.a,
-            k if k <= self.len => self.run[k - 1],
-            _ => self.b,
-        };
-        (0..=self.len).map(move |k| ordered(path(k), path(k + 1)))
+        path_edges(self.a, &self.run[..self.len], self.b)
     }
 }
 
