@@ -130,7 +130,8 @@ impl core::ops::Deref for Walk {
     }
 }
 
-/// The loose ends of a graph and the tests on them (shared with [`super::junctions`]).
+/// The loose ends of a graph and the tests on them (shared with the later steps: junctions,
+/// crossings, tips, spikes, hooks, tails and detours read them too).
 pub(crate) struct Ends<'a> {
     pub(super) tri: &'a Triangulation,
     /// Borrowed from a caller that goes on using it (rule 4), else owned and handed on.
