@@ -16,11 +16,11 @@
 //! in two choices, or where two chords pass, takes part in none: the result depends neither on
 //! the order nor on `parallel`.
 
+use super::found_at_vertices;
 use super::gaps::{one_sampling, Ends, STRAIGHT};
 use super::{alone, Replaced};
 use crate::adjacency::ordered;
 use crate::mesh::VertexId;
-use crate::threads::found_in_order;
 use alloc::vec::Vec;
 
 /// Whether the vectors `u` and `w` from one point make a straight passage ([`STRAIGHT`]), without
@@ -114,9 +114,9 @@ impl Ends<'_> {
 pub(crate) fn restore_crossings(ends: &Ends<'_>, parallel: bool) -> Replaced {
     let (tri, n) = (ends.tri, ends.tri.num_points());
     // Most of the stage's cost: each point judged alone, in ranges on threads when `parallel`.
-    let mut restored: Vec<Crossing> = found_in_order(n, parallel, |i| {
-        ends.graph.prefetch_ahead(i, tri.vertex_points());
-        ends.crossing_at(VertexId::new(i as u32))
+    let mut restored: Vec<Crossing> = found_at_vertices(n, parallel, |v| {
+        ends.graph.prefetch_ahead(v.index(), tri.vertex_points());
+        ends.crossing_at(v)
     });
     // A point in two crossings (a crossing's and a chord's end, say) takes part in none.
     alone(n, &mut restored, &[], |k| [k.x, k.c, k.d]);

@@ -32,13 +32,13 @@
 //! detours share no edge that either removes. Every choice is made on the graph as it came in:
 //! the result depends neither on the order of the edges nor on `parallel`.
 
+use super::found_at_vertices;
 use super::gaps::cos_at;
 use super::gaps::Ends;
 use super::local_outliers::MIN_SAMPLES;
 use super::Replaced;
 use crate::adjacency::{path_edges, CurveGraph, Edge};
 use crate::mesh::VertexId;
-use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 use core::cmp::Ordering;
@@ -198,10 +198,7 @@ pub(crate) fn detours(tri: &Triangulation, graph: &CurveGraph, parallel: bool) -
     if !graph.has_branch() {
         return Vec::new();
     }
-    found_in_order(tri.num_points(), parallel, |i| {
-        let p = VertexId::new(i as u32);
-        detour_at(tri, graph, p)
-    })
+    found_at_vertices(tri.num_points(), parallel, |p| detour_at(tri, graph, p))
 }
 
 /// Cuts the detours of the graph of `ends` ([`super::with_ends`]): the module's rule.

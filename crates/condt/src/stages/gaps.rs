@@ -49,13 +49,13 @@
 //! choices are made at once on the graph as it came in: the result does not depend on the order
 //! of the ends, nor on `parallel`.
 
+use super::found_at_vertices;
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::Replaced;
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
 use crate::predicates::{distance_order, orient2d, Orientation};
-use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::borrow::Cow;
 use alloc::vec::Vec;
@@ -181,8 +181,7 @@ impl<'a> Ends<'a> {
         if !self.graph.has_loose_end() {
             return Vec::new();
         }
-        found_in_order(self.tri.num_points(), parallel, |i| {
-            let a = VertexId::new(i as u32);
+        found_at_vertices(self.tri.num_points(), parallel, |a| {
             self.is_loose(a).then(|| find(a)).flatten()
         })
     }

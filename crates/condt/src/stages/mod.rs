@@ -530,6 +530,16 @@ impl From<Option<Vec<Edge>>> for Outcome {
     }
 }
 
+/// [`crate::threads::found_in_order`] with the vertex of each id `0..n` for the id: the values
+/// `find` gives, in increasing id.
+pub(crate) fn found_at_vertices<T: Send>(
+    n: usize,
+    parallel: bool,
+    find: impl Fn(VertexId) -> Option<T> + Sync + Send,
+) -> Vec<T> {
+    crate::threads::found_in_order(n, parallel, |i| find(VertexId::new(i as u32)))
+}
+
 /// Keeps the `choices` none of whose points another choice names, or `claimed` holds (points that
 /// had two candidates): where two choices meet, either would be a guess, so neither is made, and
 /// the outcome depends on no order. `points` lists a choice's points, each once.

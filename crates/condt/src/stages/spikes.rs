@@ -34,6 +34,7 @@
 //! A point in two moves takes part in none: the result depends neither on the order nor on
 //! `parallel`.
 
+use super::found_at_vertices;
 use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::local_outliers::{MIN_SAMPLES, SMOOTH_COS};
 use super::{alone, Replaced};
@@ -41,7 +42,6 @@ use crate::adjacency::{ordered, path_edges, Edge};
 use crate::bits::IdBits;
 use crate::mesh::VertexId;
 use crate::predicates::{orient2d, Orientation};
-use crate::threads::found_in_order;
 use alloc::vec::Vec;
 
 /// Most samples of a tip the step puts back: as many as make a curve of its own
@@ -374,8 +374,7 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
     // the others' ring walks are skipped), each chord once, from its smaller end.
     let marks = beside_unused(ends, parallel);
     let beside = |v: VertexId| marks.contains(v.index());
-    let found = found_in_order(ends.tri.num_points(), parallel, |i| {
-        let a = VertexId::new(i as u32);
+    let found = found_at_vertices(ends.tri.num_points(), parallel, |a| {
         if graph.degree(a) != 2 || !beside(a) {
             return None;
         }
@@ -407,10 +406,7 @@ fn settled(ends: &Ends, parallel: bool) -> Vec<Spike> {
 /// points' rings: the Delaunay edges join both ways).
 fn beside_unused(ends: &Ends, parallel: bool) -> IdBits {
     let (graph, mesh, n) = (&ends.graph, ends.tri.mesh(), ends.tri.num_points());
-    let unused = found_in_order(n, parallel, |i| {
-        let u = VertexId::new(i as u32);
-        (graph.degree(u) == 0).then_some(u)
-    });
+    let unused = found_at_vertices(n, parallel, |u| (graph.degree(u) == 0).then_some(u));
     let mut marks = IdBits::new(n);
     for w in unused.into_iter().flat_map(|u| mesh.neighbors(u)) {
         marks.insert(w.index());

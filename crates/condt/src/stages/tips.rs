@@ -33,6 +33,7 @@
 //! `parallel`. The walk behind the split test ends: from a loose end, a chain of points of degree
 //! two cannot come back to itself.
 
+use super::found_at_vertices;
 use super::gaps::{Ends, GAP_RATIO, STRAIGHT};
 use super::local_outliers::SMOOTH_COS;
 use super::repair::NEED_RATIO;
@@ -40,7 +41,6 @@ use super::{alone, Replaced};
 use crate::adjacency::{ordered, CurveGraph, Edge};
 use crate::geometry::Point;
 use crate::mesh::VertexId;
-use crate::threads::found_in_order;
 use crate::triangulate::Triangulation;
 use alloc::vec::Vec;
 
@@ -296,8 +296,7 @@ pub(crate) fn repair_tips(ends: &Ends<'_>, parallel: bool, spikes_follow: bool) 
 /// What every loose end and every point without edges of the graph of `ends` found, in id order.
 fn found(ends: &Ends, parallel: bool, spikes_follow: bool) -> Vec<Found> {
     // One pass: a loose end may start a move with another, a point without edges an apex move.
-    found_in_order(ends.tri.num_points(), parallel, |i| {
-        let v = VertexId::new(i as u32);
+    found_at_vertices(ends.tri.num_points(), parallel, |v| {
         match ends.graph.degree(v) {
             0 => ends.apex_at(v, spikes_follow),
             1 => ends.tip_at(v),
