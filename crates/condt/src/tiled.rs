@@ -191,9 +191,7 @@ pub fn clump_tests(
     one_per_point(tri.num_points(), "labels", labels.len())?;
     let edges = graph.listed();
     let curve = CurveGraph::new(tri.num_points(), edges);
-    let root: Vec<u32> = (0..tri.num_points())
-        .map(|v| labels[tri.input_of(VertexId::new(v as u32))])
-        .collect();
+    let root = by_vertex(tri, labels);
     Ok((0..tri.num_points())
         .map(|position| {
             let v = tri.vertex(position);
@@ -998,21 +996,16 @@ pub fn given_back_tests(
     one_per_point(n, "labels", labels.len())?;
     one_per_point(n, "status", status.len())?;
     let curve = CurveGraph::new(n, graph.listed());
-    let of_vertex = |v: VertexId| tri.input_of(v);
     // The whole set's component names, renumbered among the tile's own (the standing indexes
     // its tallies by name).
-    let named: Vec<u32> = (0..n)
-        .map(|v| labels[of_vertex(VertexId::new(v as u32))])
-        .collect();
+    let named = by_vertex(tri, labels);
     let mut names = named.clone();
     names.sort_unstable();
     names.dedup();
     let local = |name: &u32| names.binary_search(name).unwrap_or(0) as u32;
     let standing = given_back::Standing::from_parts(
         named.iter().map(local).collect(),
-        (0..n)
-            .map(|v| status[of_vertex(VertexId::new(v as u32))])
-            .collect(),
+        by_vertex(tri, status),
         (0..n)
             .map(|v| curve.degree(VertexId::new(v as u32)).min(255) as u8)
             .collect(),
@@ -1096,6 +1089,12 @@ fn standing_of(
     }
     let standing = given_back::Standing::of(n, &listed, &given);
     Ok(Some((listed, standing)))
+}
+
+/// `values`, one per input position of `tri`, listed by vertex id instead.
+fn by_vertex<T: Copy>(tri: &crate::Triangulation, values: &[T]) -> Vec<T> {
+    let vertices = (0..tri.num_points() as u32).map(VertexId::new);
+    vertices.map(|v| values[tri.input_of(v)]).collect()
 }
 
 /// The rows of `edges` (as `listed`, the stages' edges) whose smaller end `keep` keeps: a rule
