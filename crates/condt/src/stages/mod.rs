@@ -530,8 +530,8 @@ impl From<Option<Vec<Edge>>> for Outcome {
     }
 }
 
-/// [`crate::threads::found_in_order`] with the vertex of each id `0..n` for the id: the values
-/// `find` gives, in increasing id.
+/// [`crate::threads::found_in_order`] over the vertices of ids `0..n`: the values `find` gives
+/// them, in increasing id.
 pub(crate) fn found_at_vertices<T: Send>(
     n: usize,
     parallel: bool,
