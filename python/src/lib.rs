@@ -820,11 +820,11 @@ fn problem_text(problem: EdgeProblem, given: &EdgeRows) -> String {
 /// ``condt score --json`` names it for the same array saved as ``.npy``), ``n_points``, ``n_gt``,
 /// ``n_out`` (the output's valid edges, each once: ``tp + fp``). A malformed output (an index
 /// out of range or negative, a self-loop, a repeated edge) scores precision, recall and F1 0;
-/// its valid edges are counted once each. An index beyond int64 (a uint64 from ``2**63``, a Python int) is out
-/// of range as any other and named as given, never wrapped. Edges are compared by point index:
-/// where ``points`` repeats a point exactly, ``reconstruct`` gives the duplicate's edges to its
-/// first copy, so a truth edge at a later copy is never matched; a ``UserWarning`` names such
-/// points of the truth.
+/// its valid edges are counted once each. An index beyond int64 (a uint64 from ``2**63``, a
+/// Python int) is out of range as any other and named as given, never wrapped. Edges are
+/// compared by point index: where ``points`` repeats a point exactly, ``reconstruct`` gives the
+/// duplicate's edges to its first copy, so a truth edge at a later copy is never matched; a
+/// ``UserWarning`` names such points of the truth.
 ///
 /// Raises ``ValueError`` for a malformed truth, an edge list of another shape or a NaN or
 /// infinite point, ``TypeError`` for edges that are not integers or not an array (``None``, a

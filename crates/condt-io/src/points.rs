@@ -1310,7 +1310,8 @@ fn may_refuse(bytes: &[u8]) -> bool {
 /// point (10, 2) and `1<TAB>0 7` as (1, 0), with exit 0 (a hostile-input review). A line without
 /// a tab is the plain format's, as the README says of a `.tsv` of two numbers a line.
 fn tab_separated_lines(text: &str, name: &str) -> Result<(), IoError> {
-    // Bytes, not chars: every byte this looks for is ASCII.
+    // Bytes, not chars: every byte this looks for is ASCII (speed: splitting with `tab_fields`
+    // instead read 1M `x<TAB>y<SPACE>` lines, `condt triangulate --timings`, in 0.17 s, not 0.07).
     let bytes = text.as_bytes();
     if !may_refuse(bytes) {
         return Ok(());

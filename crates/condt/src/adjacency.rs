@@ -169,6 +169,11 @@ impl CurveGraph {
             vertex_of(record[k])
         }
     }
+    /// Whether `a` and `b` are joined.
+    #[inline]
+    pub(crate) fn has_edge(&self, a: VertexId, b: VertexId) -> bool {
+        (0..self.degree(a)).any(|k| self.neighbor(a, k) == b)
+    }
 
     /// Takes `removed` (edges of this graph, each once) out, as [`CurveGraph::new`] of the rest
     /// would build: records patched in place, the side table rewritten in one pass (cheap).
