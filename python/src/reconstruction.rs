@@ -432,14 +432,20 @@ impl Reconstruction {
                 )?;
             }
         }
-        let mut out = Vec::new();
-        condt_io::write_geojson_with_crs(
-            &mut out,
-            &self.shared.result,
-            &self.shared.points,
-            crs.as_deref(),
-        )
-        .map_err(|err| match err.kind() {
+        // Without the GIL, as the other calls that take time on large results (a million
+        // points: tens of milliseconds).
+        let shared = &self.shared;
+        let written = py.detach(|| {
+            let mut out = Vec::new();
+            condt_io::write_geojson_with_crs(
+                &mut out,
+                &shared.result,
+                &shared.points,
+                crs.as_deref(),
+            )
+            .map(|()| out)
+        });
+        let out = written.map_err(|err| match err.kind() {
             std::io::ErrorKind::InvalidInput => PyValueError::new_err(err.to_string()),
             _ => PyRuntimeError::new_err(err.to_string()),
         })?;
