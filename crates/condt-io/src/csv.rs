@@ -778,6 +778,30 @@ mod tests {
         }
     }
 
+    /// A decimal comma in a field the CSV reader did not split there (quoted, as a
+    /// comma-separated export quotes it, or in a tab-separated table) is named as one, as the
+    /// plain format's reader names it (a CAD user's review: a European locale's probe export).
+    #[test]
+    fn a_decimal_comma_in_a_field_is_named() {
+        for (text, name) in [
+            ("x,y\n\"1,5\",\"2,5\"\n", "q.csv"),
+            ("x\ty\n1,5\t2,5\n", "t.csv"),
+            ("x\ty\n0.5\t-0,25\n", "t.tsv"),
+        ] {
+            let err = parse_csv(text, name).unwrap_err().to_string();
+            assert!(
+                err.contains(":2: cannot read")
+                    && err.ends_with("(a decimal comma? Write 1.5, not 1,5)"),
+                "{name}: {err}"
+            );
+        }
+        // A word with a comma is no decimal comma.
+        let err = parse_csv("x,y\n\"a,b\",1\n", "w.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(!err.contains("decimal comma"), "{err}");
+    }
+
     /// A header without x (or y) but with columns to choose from names the option that
     /// chooses them.
     #[test]

@@ -72,6 +72,12 @@ pub(super) fn line_at(bytes: &[u8], offset: usize) -> usize {
     1 + ends
 }
 
+/// Whether `field` reads as a number once its one comma is a decimal point (`1,5`, `-0,25`):
+/// a decimal comma, which no reader here takes.
+fn is_decimal_comma(field: &str) -> bool {
+    field.matches(',').count() == 1 && field.replacen(',', ".", 1).parse::<f64>().is_ok()
+}
+
 /// Builds content errors for one file.
 pub(super) struct Source<'a> {
     pub(super) file: &'a str,
@@ -94,6 +100,10 @@ impl Source<'_> {
                 let hint = if field.contains(';') {
                     " (a semicolon does not separate columns, and a comma is no decimal point: \
                      write 1.5 2.5 or 1.5,2.5)"
+                } else if is_decimal_comma(field) {
+                    // `"1,5"` quoted in a CSV, or `1,5` in a tab-separated column: a European
+                    // locale's export, told as the plain format's reader tells it.
+                    " (a decimal comma? Write 1.5, not 1,5)"
                 } else {
                     ""
                 };
