@@ -426,7 +426,8 @@ The default pipeline is the paper's (Algorithms 1-3) with the outlier filter's s
 the repair `needs` (run again without the edges the outlier filter cut), local outlier removal,
 clumps, confirming given-back components, gap closing, junctions, crossings, tips, spikes,
 hooks, outlier tails, detours and smoothing passes; --no-local-outliers keeps sparsely sampled
-curves of 3 or 4 points and closed ones of 5 or 6, which the local removal takes for outliers;
+curves of 3 or 4 points and closed ones of 6, which the local removal takes for outliers (closed
+ones of 5, which turn too sharply at every point for the clumps, with --no-clumps too);
 --paper runs the paper's pipeline alone. Options that contradict each other are an error; an
 option given twice with the same value (`--u 2 --u 2.0`) is taken once.
 ";

@@ -929,6 +929,69 @@ fn a_refused_number_is_told_as_typed() {
     assert!(said.contains("--u 2 and --u 3 contradict"), "{said}");
 }
 
+/// `reconstruct --help` says which switches keep small closed curves beside a large one: a
+/// closed curve of 6 points needs --no-local-outliers, one of 5 (a regular pentagon turns by
+/// 72 degrees at each point, sharper than a curve's passage) --no-clumps too, where its
+/// coordinates are written in decimals (a CAD user's review: holes of 5 samples in a part
+/// drawn in millimetres with 3 decimals were dropped with --no-local-outliers, which the help
+/// said kept them).
+#[test]
+fn small_closed_curves_are_kept_by_the_switches_the_help_names() {
+    let mut text = String::new();
+    // A 10 x 6 outline sampled every 0.05, then four rings of 5 and four of 6 points, spaced
+    // 0.05 along them, every coordinate written with 3 decimals.
+    let side = |from: (f64, f64), step: (f64, f64), count: usize, text: &mut String| {
+        for k in 0..count {
+            let (x, y) = (from.0 + step.0 * k as f64, from.1 + step.1 * k as f64);
+            text.push_str(&format!("{x:.3} {y:.3}\n"));
+        }
+    };
+    side((0.0, 0.0), (0.05, 0.0), 200, &mut text);
+    side((10.0, 0.0), (0.0, 0.05), 120, &mut text);
+    side((10.0, 6.0), (-0.05, 0.0), 200, &mut text);
+    side((0.0, 6.0), (0.0, -0.05), 120, &mut text);
+    for (j, n) in [5, 5, 5, 5, 6, 6, 6, 6].into_iter().enumerate() {
+        let r = n as f64 * 0.05 / std::f64::consts::TAU;
+        let (cx, cy) = (1.0 + 1.1 * j as f64, 3.0);
+        for k in 0..n {
+            let t = std::f64::consts::TAU * k as f64 / n as f64;
+            text.push_str(&format!(
+                "{:.3} {:.3}\n",
+                cx + r * t.cos(),
+                cy + r * t.sin()
+            ));
+        }
+    }
+    let sizes = |args: &[&str]| {
+        let out = condt(&[&["reconstruct", "-", "-q"][..], args].concat(), &text);
+        assert!(out.status.success(), "{args:?}");
+        let mut sizes: Vec<usize> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .map(|l| {
+                assert!(l.starts_with("closed "), "{l}");
+                l.split(' ').count() - 1
+            })
+            .collect();
+        sizes.sort_unstable();
+        sizes
+    };
+    assert_eq!(sizes(&[]), [640]);
+    assert_eq!(sizes(&["--no-local-outliers"]), [6, 6, 6, 6, 640]);
+    assert_eq!(
+        sizes(&["--no-local-outliers", "--no-clumps"]),
+        [5, 5, 5, 5, 6, 6, 6, 6, 640]
+    );
+    let help = String::from_utf8(condt(&["reconstruct", "--help"], "").stdout).unwrap();
+    let said: String = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    for words in [
+        "--no-local-outliers keeps sparsely sampled curves of 3 or 4 points and closed ones of 6,",
+        "(closed ones of 5, which turn too sharply at every point for the clumps, with --no-clumps",
+    ] {
+        assert!(said.contains(words), "{words}: {help}");
+    }
+}
+
 /// The usage lines of `reconstruct --help` name every option, `--method` among them, as the
 /// README's do (found by a stress run).
 #[test]
