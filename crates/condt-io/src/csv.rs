@@ -495,6 +495,27 @@ fn all_numbers(record: &csv::StringRecord) -> bool {
         .all(|f| f.trim().parse::<f64>().is_ok())
 }
 
+/// How a first line that is no header for this reader writes a point: with semicolons between
+/// its columns or decimal commas (`1,5;2,5`, `1.5;2.5`, `1,5<TAB>2,5`), as spreadsheets in many
+/// European locales export it; `None` for anything else. Taken for a header, such a line was
+/// said to lack an x column (a CAD user's review).
+fn point_of_another_locale(raw: &str) -> Option<&'static str> {
+    let line = raw.trim_end_matches(['\r', '\n']);
+    let separator = if line.contains(';') { ';' } else { '\t' };
+    let fields: Vec<&str> = line.split(separator).map(str::trim).collect();
+    let decimal =
+        |f: &str| f.matches(',').count() <= 1 && f.replacen(',', ".", 1).parse::<f64>().is_ok();
+    if fields.len() < 2 || !fields.iter().all(|f| decimal(f)) {
+        return None;
+    }
+    match (separator == ';', line.contains(',')) {
+        (true, true) => Some("semicolons between its columns and decimal commas"),
+        (true, false) => Some("semicolons between its columns"),
+        (false, true) => Some("decimal commas"),
+        (false, false) => None,
+    }
+}
+
 /// The x and y columns named by the header `record` (its text `raw`, on `line`).
 fn header_columns(
     record: &csv::StringRecord,
@@ -563,6 +584,16 @@ fn header_columns(
     };
     if filled(record) > 2 && all_numbers(record) {
         return Err(source.error(line, numbers_without_header(filled(record))));
+    }
+    if let Some(written) = point_of_another_locale(raw) {
+        return Err(source.error(
+            line,
+            format!(
+                "{header} is a point with {written}, which this reader does not take: \
+                 write 1.5,2.5 in a .csv or 1.5 2.5 in a .txt (`tr ';,' ' .' < in.csv > \
+                 in.txt` turns one into the other)"
+            ),
+        ));
     }
     let x_column = find('x', "x")?;
     let y_column = find('y', "y")?;
@@ -741,6 +772,29 @@ mod tests {
         // `long`, as many GIS exports name longitude (a GIS review: refused as "no x column").
         let pts = parse_csv("id,lat,long\n7,47.3,8.5\n", "geo.csv").unwrap();
         assert_eq!(pts, vec![Point::new(8.5, 47.3)]);
+    }
+
+    /// A first line that is a point written with semicolons between its columns or with decimal
+    /// commas is told as one, not taken for a header without an x column (a CAD user's review).
+    #[test]
+    fn a_point_of_another_locale_is_not_taken_for_a_header() {
+        for (text, written) in [
+            ("1.5;2.5\n3;4\n", "semicolons between its columns"),
+            (
+                "1,5;-2,5\n3;4\n",
+                "semicolons between its columns and decimal commas",
+            ),
+            ("1,5\t2,5\n3\t4\n", "decimal commas"),
+        ] {
+            let err = parse_csv(text, "locale.csv").unwrap_err();
+            assert_eq!(err.line, Some(1), "{text}");
+            let message = err.to_string();
+            assert!(
+                message.contains(&format!("is a point with {written}, which this reader"))
+                    && !message.contains("header"),
+                "{message}"
+            );
+        }
     }
 
     /// A header naming one coordinate twice is refused, not resolved by column order (a new

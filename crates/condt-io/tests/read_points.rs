@@ -241,10 +241,15 @@ fn a_semicolon_in_a_number_says_that_it_separates_nothing() {
             .contains("a semicolon does not separate columns"),
         "{err}"
     );
-    // In a CSV the same row reads as a header of three columns, not as one with a semicolon.
+    // In a CSV the same row, split at its commas, is no header either: it is told as a point
+    // written in another locale.
     let err = condt_io::parse_csv("500000,00;5000000,00\n1,2\n", "eu.csv").unwrap_err();
     assert_eq!(err.line, Some(1));
-    assert!(err.to_string().contains("not semicolons"), "{err}");
+    let said = err.to_string();
+    assert!(
+        said.contains("is a point with semicolons between its columns and decimal commas"),
+        "{said}"
+    );
 }
 
 /// Issue 11, item 9: `1,5 2` was read as the point (1, 5).
