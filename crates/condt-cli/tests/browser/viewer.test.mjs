@@ -206,6 +206,20 @@ try {
   assert.ok(told, `the cut is told: ${text}`);
   assert.ok(told[1] !== told[2] && Number(told[1]) > Number(told[2]), `apart: ${told[0]}`);
   assert.ok(told[2].replace(/[.]/, "").length >= 7, `seven digits at least: ${told[0]}`);
+  // The layer of the stage that cut it, with the halos of what a shown stage removed: a click
+  // on the cut edge's halo tells its story, though that layer no longer has the edge (it fell
+  // through to a neighbouring side, or to nothing: a student's review).
+  await page.evaluate(() => window.condtViewer.only("after outlier removal"));
+  await page.check('input[data-layer="edges a shown stage removed"]');
+  [x, y] = await page.evaluate((k) => window.condtViewer.edgeMidpoint(k), cut);
+  await page.mouse.click(x, y);
+  text = await details();
+  assert.match(text, /^Edge 0–199\b/, `the halo of the cut edge: ${text}`);
+  assert.match(text, /IQR outliers: removed length [\d.]+ above √T/, `the halo of the cut edge: ${text}`);
+  // Without the halos' switch there is nothing drawn there to click.
+  await page.uncheck('input[data-layer="edges a shown stage removed"]');
+  await page.mouse.click(x, y);
+  assert.doesNotMatch(await details(), /^Edge 0–199\b/, "no halo, no edge 0-199");
   // Zooming stops short of a scale no zoom comes back from (the page's scale reached infinity
   // after enough notches, every position then NaN).
   await page.evaluate(() => window.condtViewer.only(null));

@@ -265,15 +265,21 @@
   }
   function pickEdge(mx, my, radius) {
     let best = -1, bestD = radius * radius;
-    for (const layer of layers) {
-      if (!layer.on) continue;
-      for (const k of layer.edges) {
-        const ax = sx(E[2 * k]), ay = sy(E[2 * k]), bx = sx(E[2 * k + 1]), by = sy(E[2 * k + 1]);
-        const dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
-        const t = l2 > 0 ? Math.max(0, Math.min(1, ((mx - ax) * dx + (my - ay) * dy) / l2)) : 0;
-        const d = (ax + t * dx - mx) ** 2 + (ay + t * dy - my) ** 2;
-        if (d < bestD) { bestD = d; best = k; }
-      }
+    // Every edge drawn: those of the layers shown, and with their switch on the halos of the
+    // edges a shown stage removed, which its layer no longer has (a click on such a halo gave
+    // nothing: a student's review).
+    let shown = 0;
+    for (let k = 0; k < layers.length; k++) if (layers[k].on) shown |= 1 << k;
+    const halos = [];
+    if (changeLayers[1].on) for (let k = 2; k < layers.length; k++) if (layers[k].on) halos.push(k);
+    const drawn = (bits) => (bits & shown) !== 0 || halos.some((k) => ((bits >> (k - 1)) & 3) === 1);
+    for (let k = 0; k < m; k++) {
+      if (!drawn(data.member[k])) continue;
+      const ax = sx(E[2 * k]), ay = sy(E[2 * k]), bx = sx(E[2 * k + 1]), by = sy(E[2 * k + 1]);
+      const dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+      const t = l2 > 0 ? Math.max(0, Math.min(1, ((mx - ax) * dx + (my - ay) * dy) / l2)) : 0;
+      const d = (ax + t * dx - mx) ** 2 + (ay + t * dy - my) ** 2;
+      if (d < bestD) { bestD = d; best = k; }
     }
     return best;
   }
