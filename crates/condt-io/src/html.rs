@@ -35,17 +35,32 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
     let stories = result.provenance();
     let mut out = io::BufWriter::with_capacity(1 << 16, out);
     let title = escape(title);
+    // Without JavaScript the page says so, with the result's counts, in place of the details'
+    // and layers' panels, which only the script fills (it read "Click a point or an edge." over
+    // an empty canvas: a teacher's review).
+    let curves = result.curves();
+    let closed = curves.iter().filter(|c| c.is_closed()).count();
+    let (points, unused) = (result.num_points(), result.unused().len());
     write!(
         out,
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <meta name=\"viewport\" content=\"width=device-width\">\
-         <title>condt: {title}</title><style>{STYLE}</style></head><body>\
+         <title>condt: {title}</title><style>{STYLE}</style>\
+         <noscript><style>#info, #layers, .hint {{ display: none; }}</style></noscript></head><body>\
          <header><h1>condt: {title}</h1><span id=\"status\"></span></header>\
-         <main><div id=\"view\"><canvas id=\"canvas\" tabindex=\"0\"></canvas></div>\
+         <main><div id=\"view\"><noscript><p id=\"noscript\">The result: {points} point{}, \
+         {} curve{} ({closed} closed, {} open), {unused} unused. This page draws the stages with \
+         JavaScript, which is off: turn it on to explore them, or draw them without it with \
+         <code>condt reconstruct INPUT -o stages.svg --stages</code>.</p></noscript>\
+         <canvas id=\"canvas\" tabindex=\"0\"></canvas></div>\
          <aside><section id=\"info\"><h2>Details</h2><p id=\"details\">Click a point or an \
          edge.</p></section><section id=\"layers\"><h2>Layers</h2></section>\
          <p class=\"hint\">Drag or arrow keys to pan, wheel or + and - to zoom, double-click or 0 \
-         to see everything.</p></aside></main>\n<script id=\"data\" type=\"application/json\">"
+         to see everything.</p></aside></main>\n<script id=\"data\" type=\"application/json\">",
+        if points == 1 { "" } else { "s" },
+        curves.len(),
+        if curves.len() == 1 { "" } else { "s" },
+        curves.len() - closed,
     )?;
     write_data(&mut out, result, &stories)?;
     write!(out, "</script>\n<script>{SCRIPT}</script></body></html>\n")?;
@@ -792,6 +807,38 @@ mod tests {
         let data = &page[page.find("{\"origin\"").unwrap()..page.find("</script>").unwrap()];
         let value: serde_json::Value = serde_json::from_str(data.trim()).expect("valid JSON");
         assert_eq!(value["origin"], serde_json::json!([0.0, 0.0]), "{data}");
+    }
+
+    /// Without JavaScript the page says so, with the result's counts, and hides the panels only
+    /// the script fills (it read "Click a point or an edge." over an empty canvas: a teacher's
+    /// review).
+    #[test]
+    fn without_javascript_the_page_says_so_with_the_counts() {
+        use condt::{reconstruct, Params};
+        let mut points: Vec<Point> = (0..40)
+            .map(|k| {
+                let t = core::f64::consts::TAU * k as f64 / 40.0;
+                Point::new(10.0 * t.cos(), 10.0 * t.sin())
+            })
+            .collect();
+        points.push(Point::new(30.0, 30.0));
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        assert_eq!(result.unused(), &[40]);
+        let mut page = Vec::new();
+        write_html(&mut page, &result, "circle").unwrap();
+        let page = String::from_utf8(page).unwrap();
+        let at = page.find("<noscript><p").expect("a noscript paragraph");
+        let text = &page[at..at + page[at..].find("</noscript>").unwrap()];
+        assert!(
+            text.contains("41 points, 1 curve (1 closed, 0 open), 1 unused."),
+            "{text}"
+        );
+        assert!(text.contains("--stages"), "{text}");
+        let head = &page[..page.find("</head>").unwrap()];
+        assert!(
+            head.contains("<noscript><style>#info, #layers, .hint { display: none; }"),
+            "{head}"
+        );
     }
 
     #[test]

@@ -259,6 +259,16 @@ try {
     assert.ok(Math.abs(x0 - cx) < 1 && Math.abs(x1 - cx) < 1, `${name}: x ${x0}, ${x1} at the centre ${cx}`);
     assert.ok(Math.abs((y0 + y1) / 2 - cy) < 1, `${name}: y ${y0}, ${y1} around the centre ${cy}`);
   }
+  // Without JavaScript the page says so, with the result's counts, and shows no panel the
+  // script would fill ("Click a point or an edge." over an empty canvas).
+  const noScript = await browser.newContext({ javaScriptEnabled: false });
+  const still = await noScript.newPage();
+  await still.goto("file://" + gon_page);
+  const shown = await still.innerText("body");
+  assert.match(shown, /The result: 201 points, \d+ curves? \(\d+ closed, \d+ open\), \d+ unused\./, shown);
+  assert.match(shown, /JavaScript, which is off/, shown);
+  assert.doesNotMatch(shown, /Click a point|Layers|Drag or arrow keys/, shown);
+  await noScript.close();
   assert.deepEqual(problems, [], "the pages raised no error and fetched nothing");
   console.log("viewer test passed");
 } catch (e) {
