@@ -259,6 +259,13 @@ try {
     assert.ok(Math.abs(x0 - cx) < 1 && Math.abs(x1 - cx) < 1, `${name}: x ${x0}, ${x1} at the centre ${cx}`);
     assert.ok(Math.abs((y0 + y1) / 2 - cy) < 1, `${name}: y ${y0}, ${y1} around the centre ${cy}`);
   }
+  // Printed, the canvas keeps its picture's shape (the screen's bitmap was stretched to the
+  // page's box: circles printed as ellipses) and the legend its colours.
+  await page.emulateMedia({ media: "print" });
+  const printed = await page.evaluate(() => [getComputedStyle(document.querySelector("canvas")).objectFit,
+    getComputedStyle(document.querySelector("#layers .swatch")).printColorAdjust]);
+  assert.deepEqual(printed, ["contain", "exact"], "print styles");
+  await page.emulateMedia({ media: "screen" });
   // Without JavaScript the page says so, with the result's counts, and shows no panel the
   // script would fill ("Click a point or an edge." over an empty canvas).
   const noScript = await browser.newContext({ javaScriptEnabled: false });
