@@ -7,7 +7,8 @@
 //! Delaunay triangulation, each stage that ran, the result) the list of its edges. The script
 //! draws on one canvas (no element per edge, so 100,000 points stay responsive), switches the
 //! layers, pans and zooms, and on a click shows a point's ring (its two shortest edges, the
-//! uniformity test with its numbers, its final degree) or an edge's story. It may not decide
+//! uniformity test with its numbers, its final degree, the stage that last changed each of its
+//! edges) or an edge's story. It may not decide
 //! anything: every verdict and ratio comes from the library; the script computes only lengths
 //! and positions for display.
 

@@ -141,6 +141,26 @@ try {
   assert.match(text, new RegExp(`Point ${first} \\(`), text);
   assert.match(text, new RegExp(`exact duplicates merged into it: ${copy}\\b`), text);
 
+  // An unused point whose edges a stage removed says which stage, edge by edge (its rows said
+  // "no" and no more), as the removed edge's story does.
+  const outlier = await page.evaluate(() => {
+    const data = JSON.parse(document.getElementById("data").textContent), v = window.condtViewer;
+    for (const i of data.unused) {
+      for (let k = 0; k < v.edges; k++) {
+        if ((data.member[k] & 2) && v.edgeEnds(k).includes(i)) return [i, v.edgeEnds(k).find((j) => j !== i)];
+      }
+    }
+    return null;
+  });
+  assert.ok(outlier, `an unused point of ${data} had an edge in the proximity graph`);
+  [x, y] = await page.evaluate((i) => window.condtViewer.screenOf(i), outlier[0]);
+  await page.mouse.click(x, y);
+  text = await details();
+  assert.match(text, new RegExp(`Point ${outlier[0]} \\(`), text);
+  const removal = text.match(new RegExp(`Last changes of its edges: (?:.*; )?to ${outlier[1]} removed by ([^;.]+)`));
+  assert.ok(removal, `the unused point ${outlier[0]} says which stage removed its edge to ${outlier[1]}: ${text}`);
+  console.log(`unused point ${outlier[0]}: ${removal[0]}`);
+
   // An edge of the result and a Delaunay edge that is not: each panel ends with the verdict.
   const edges = await page.evaluate(() => {
     const found = { kept: null, dropped: null };

@@ -396,6 +396,14 @@
     } else if (ring.length) {
       html += `<p>One Delaunay neighbour: ${ring[0].other}.</p>`;
     }
+    // Each of its edges that a stage added or removed, with the last such stage: why an edge of
+    // the proximity graph is not in the result (an unused point's rows said "no" and no more: a
+    // student's review); a click on the edge tells its whole story.
+    const changed = ring.filter((r) => changes.has(r.k)).map((r) => {
+      const all = changes.get(r.k), c = all[all.length - 1];
+      return `to ${r.other} ${c.added ? "added" : "removed"} by ${c.stage}`;
+    });
+    if (changed.length) html += `<p>Last changes of its edges: ${changed.join("; ")}.</p>`;
     details.innerHTML = html;
   }
   function showEdge(k) {
