@@ -116,9 +116,10 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
                 f,
                 "{ratio:.2} times as long as the longest other edge at vertex {vertex}"
             )?,
-            Reason::RepairedAgain => {
-                write!(f, "repaired again without the edges the outlier filter cut")?
-            }
+            Reason::RepairedAgain => write!(
+                f,
+                "by the repair run again without the edges the outlier filter cut"
+            )?,
             Reason::Component => write!(f, "isolated component")?,
             Reason::Spur => write!(f, "short spur")?,
             Reason::Clump => write!(f, "a clump: at most half its points pass smoothly")?,

@@ -323,7 +323,7 @@
         ? "joined where three or four curves meet (a junction)"
         : "a chord past a junction's sample"),
       () => "a clump: at most half its points pass smoothly",
-      () => "repaired again without the edges the outlier filter cut",
+      () => "by the repair run again without the edges the outlier filter cut",
       () => { const [l, t] = apart(c.x, c.y); return `length ${l} above the spacing floor ${t} (1.5 median edges)`; },
       () => `restored the crossing at ${c.x}`,
       () => (c.added ? "joined at a tip in place of a chord" : "a chord across a tip"),
