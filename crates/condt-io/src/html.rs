@@ -53,9 +53,11 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
          {} curve{} ({closed} closed, {} open), {unused} unused. This page draws the stages with \
          JavaScript, which is off: turn it on to explore them, or draw them without it with \
          <code>condt reconstruct INPUT -o stages.svg --stages</code>.</p></noscript>\
-         <canvas id=\"canvas\" tabindex=\"0\"></canvas></div>\
-         <aside><section id=\"info\"><h2>Details</h2><p id=\"details\">Click a point or an \
-         edge.</p></section><section id=\"layers\"><h2>Layers</h2></section>\
+         <canvas id=\"canvas\" tabindex=\"0\" role=\"img\" aria-label=\"The points, their \
+         Delaunay triangulation and the graph after each stage, as the layers switch them; a \
+         click on a point or an edge tells its story in Details\"></canvas></div>\
+         <aside><section id=\"info\"><h2>Details</h2><p id=\"details\" aria-live=\"polite\">\
+         Click a point or an edge.</p></section><section id=\"layers\"><h2>Layers</h2></section>\
          <p class=\"hint\">Drag or arrow keys to pan, wheel or + and - to zoom, double-click or 0 \
          to see everything.</p></aside></main>\n<script id=\"data\" type=\"application/json\">",
         if points == 1 { "" } else { "s" },
@@ -835,6 +837,12 @@ mod tests {
             "{text}"
         );
         assert!(text.contains("--stages"), "{text}");
+        // A screen reader is told what the canvas shows and hears the details a click gives (a
+        // teacher's review: neither was said).
+        assert!(page.contains(
+            "<canvas id=\"canvas\" tabindex=\"0\" role=\"img\" aria-label=\"The points,"
+        ));
+        assert!(page.contains("<p id=\"details\" aria-live=\"polite\">Click a point or an edge."));
         let head = &page[..page.find("</head>").unwrap()];
         assert!(
             head.contains("<noscript><style>#info, #layers, .hint { display: none; }"),
