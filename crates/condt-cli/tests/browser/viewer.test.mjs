@@ -56,6 +56,26 @@ try {
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
   const details = () => page.innerText("#details");
 
+  // The drawing is fitted to the canvas as it is: after the first drawing writes the status line
+  // (which wraps in a narrow window and takes height from the canvas), and after the window
+  // changes size, unless the view was panned or zoomed. Pressing 0 fits it again: nothing moves.
+  const frames = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const fittedAsIs = async (size) => {
+    await frames();
+    const shown = await page.evaluate(() => window.condtViewer.screenOf(0));
+    await page.focus("#canvas");
+    await page.keyboard.press("0");
+    await frames();
+    const fitted = await page.evaluate(() => window.condtViewer.screenOf(0));
+    assert.ok(Math.abs(shown[0] - fitted[0]) < 1 && Math.abs(shown[1] - fitted[1]) < 1,
+      `fitted to the canvas as it is (${size}): ${shown} against ${fitted}`);
+  };
+  await fittedAsIs("on loading");
+  for (const [width, height] of [[640, 500], [1400, 850]]) {
+    await page.setViewportSize({ width, height });
+    await fittedAsIs(`${width} x ${height}`);
+  }
+
   // Every edge layer has a colour swatch beside its switch, each stage its own (the page draws a
   // layer in its swatch's colour).
   const swatches = await page.$$eval("#layers .swatch:not(.change)", (marks) =>

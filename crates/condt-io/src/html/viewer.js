@@ -74,7 +74,7 @@
 
   const canvas = document.getElementById("canvas");
   const ctx = canvas.getContext("2d");
-  const view = { k: 1, ox: 0, oy: 0, fitted: 1 };
+  const view = { k: 1, ox: 0, oy: 0, fitted: 1, fit: [] };
   let selected = null, pending = false;
   const status = document.getElementById("status");
 
@@ -142,7 +142,10 @@
     view.fitted = view.k;
     view.ox = (w - maxX * view.k) / 2;
     view.oy = h - (h - maxY * view.k) / 2;
+    view.fit = [view.k, view.ox, view.oy];
   }
+  // Whether the view is still the last fit's: no pan or zoom since.
+  const untouched = () => view.fit.every((value, k) => value === [view.k, view.ox, view.oy][k]);
 
   function resize() {
     const ratio = window.devicePixelRatio || 1;
@@ -467,7 +470,16 @@
     moves[ev.key]();
     request();
   });
-  window.addEventListener("resize", () => { resize(); request(); });
+  // The canvas changes size with the window, and with the status line above it, which each
+  // drawing writes: a long one wraps and takes height from the canvas after the first fit (the
+  // drawing was then fitted to a size the canvas no longer had, and a double click fitted it
+  // elsewhere). A view not panned or zoomed since its fit is fitted again.
+  new ResizeObserver(() => {
+    const refit = untouched();
+    resize();
+    if (refit) fit();
+    request();
+  }).observe(canvas);
 
   // Each layer's switch beside its colour: the list is the legend too.
   const layerBox = document.getElementById("layers");
