@@ -1739,16 +1739,18 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         note_duplicates(count, result.triangulation().num_vertices());
         note_twins(&result);
         note_format_against_name(args.format, args.output.as_deref());
-        // Every panel draws every point: past a million dots a drawing is slow to open. (`len`,
-        // not `count`, which would rebuild every stage's graph: 18 MB more peak on 1M uniform
-        // points.)
+        // Every panel draws every point: past 200,000 dots a drawing takes seconds to open
+        // (Chromium, to the first screenshot: 80,000 dots, 6 MB, 2.5 s; 240,000, 18 MB, 6.8 s;
+        // 800,000, 61 MB, 30 s; ellipses of 500 points with `--stages`, 2026-12-07, on a loaded
+        // machine; a million was the bound before: a teacher's review). (`len`, not `count`,
+        // which would rebuild every stage's graph: 18 MB more peak on 1M uniform points.)
         if args.format == Format::Svg {
             let panels = if args.stages {
                 1 + result.stages().len()
             } else {
                 1
             };
-            if count.saturating_mul(panels) > 1_000_000 {
+            if count.saturating_mul(panels) > 200_000 {
                 let drawn = Counted(count, "point");
                 if args.stages {
                     note(format_args!(

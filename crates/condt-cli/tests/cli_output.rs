@@ -1231,8 +1231,8 @@ fn a_temporary_file_that_cannot_be_made_is_named_as_such() {
     );
 }
 
-/// A viewer review: `--stages` on 100,000 points wrote a 120 MB drawing without a word. Past a
-/// million dots (points times panels) a note says so and names the HTML viewer; below, none.
+/// A viewer review: `--stages` on 100,000 points wrote a 120 MB drawing without a word. Past
+/// 200,000 dots (points times panels) a note says so and names the HTML viewer; below, none.
 #[test]
 fn a_stage_drawing_of_many_points_says_it_is_slow_to_open() {
     let circle = |n: usize| -> String {
@@ -1264,18 +1264,18 @@ fn a_stage_drawing_of_many_points_says_it_is_slow_to_open() {
     assert!(!stderr(&out).contains("slow to open"));
     let quiet = condt(&[&args[..], &["-q"]].concat(), &circle(70_000));
     assert!(!stderr(&quiet).contains("slow to open"));
-    // One panel too (a GIS review: 2.6M points, a 183 MB drawing, no word). A million and one
-    // points, three of them distinct: the rest merge as duplicates, each still drawn.
+    // One panel too (a GIS review: 2.6M points, a 183 MB drawing, no word). 200,001 points,
+    // three of them distinct: the rest merge as duplicates, each still drawn.
     let many: String = circle(3)
         .lines()
         .cycle()
-        .take(1_000_001)
+        .take(200_001)
         .map(|l| format!("{l}\n"))
         .collect();
     let out = condt(&args[..6], &many);
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(
-        stderr(&out).contains("the drawing has 1000001 points, slow to open"),
+        stderr(&out).contains("the drawing has 200001 points, slow to open"),
         "{}",
         stderr(&out)
     );
