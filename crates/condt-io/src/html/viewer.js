@@ -221,7 +221,7 @@
     }
     if (selected) drawSelection();
     const [passes, moved] = data.smoothing;
-    if (passes > 0) notes.push(`points where the stages saw them, after ${passes} smoothing pass${passes > 1 ? "es" : ""} (the last moved ${moved.toLocaleString("en")}), each drawn for its input point: the output's edges join the input points`);
+    if (passes > 0) notes.push(`points where the stages saw them, after ${passes} smoothing pass${passes > 1 ? "es" : ""} (the last moved ${moved.toLocaleString("en")}); each stands for its input point`);
     status.textContent = notes.join("; ");
   }
 
