@@ -228,10 +228,18 @@ fn check_header(fields: &[&str], line: &str) -> Result<(), String> {
     if !axes.into_iter().enumerate().any(contradicts) {
         return Ok(());
     }
+    // The CSV reader splits at commas only: advising `*.csv` for a header of blanks
+    // (`angle range x y intensity`, a scanner's export) sent the user to a refusal that
+    // advised `*.txt` back. `--columns` follows the names in either (a robotics user's review).
+    let csv = if line.contains(',') {
+        " (or name the file *.csv, whose reader follows the header)"
+    } else {
+        ""
+    };
     Err(format!(
         "the header {} names x or y over another column than this format reads them from \
-         (x the first, y the second); name the file *.csv, whose reader follows the header, or \
-         put x and y first",
+         (x the first, y the second); choose the x and y columns by the header's names with \
+         condt's --columns X,Y{csv}, or put x and y first",
         quoted(line)
     ))
 }

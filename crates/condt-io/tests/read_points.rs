@@ -338,6 +338,38 @@ fn a_plain_header_of_projected_names_says_which_column_is_x() {
     }
 }
 
+/// A scanner's export `angle range x y intensity` separated by blanks is refused for its header,
+/// and the refusal's advice works: it named `*.csv`, whose reader (commas only) refused the file
+/// again with "name the file *.txt" (a robotics user's review). `--columns x,y` reads it.
+#[test]
+fn a_header_over_other_columns_advises_what_reads_it() {
+    let scan =
+        b"angle range x y intensity\n-135.0 2.83 1.68 -0.005 185\n-134.75 2.84 1.69 -0.014 185\n";
+    let file = TempFile::new("scan_blanks.txt", scan);
+    let (line, text) = content_error(file.read());
+    assert_eq!(line, Some(1), "{text}");
+    assert!(text.contains("--columns X,Y"), "{text}");
+    assert!(!text.contains("*.csv"), "{text}");
+    let renamed = TempFile::new("scan_blanks.csv", scan);
+    assert!(
+        renamed.read().is_err(),
+        "the CSV reader splits at commas only"
+    );
+    let options = ReadOptions::new().with_columns(Columns::parse("x,y").unwrap());
+    let read = read_points_with(&file.0, &options).unwrap();
+    assert_eq!(read.points, points(&[(1.68, -0.005), (1.69, -0.014)]));
+    // A header of commas may also be read as a CSV.
+    let commas = b"angle,range,x,y\n-135.0,2.83,1.68,-0.005\n";
+    let file = TempFile::new("scan_commas.txt", commas);
+    let (_, text) = content_error(file.read());
+    assert!(
+        text.contains("--columns X,Y") && text.contains("*.csv"),
+        "{text}"
+    );
+    let renamed = TempFile::new("scan_commas.csv", commas);
+    assert_eq!(renamed.read().unwrap(), points(&[(1.68, -0.005)]));
+}
+
 /// Bytes that are not UTF-8 where nothing is read (a Latin-1 comment, a CP1252 column that is
 /// not chosen, a GeoJSON property) do not refuse the file; in a field that is read they do, at
 /// their line.
