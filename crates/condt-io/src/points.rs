@@ -104,6 +104,8 @@ impl Source<'_> {
                     // `"1,5"` quoted in a CSV, or `1,5` in a tab-separated column: a European
                     // locale's export, told as the plain format's reader tells it.
                     " (a decimal comma? Write 1.5, not 1,5)"
+                } else if field.trim().is_empty() {
+                    MISSING_HINT
                 } else {
                     ""
                 };
@@ -125,7 +127,10 @@ impl Source<'_> {
                 word.eq_ignore_ascii_case("nan") || word.eq_ignore_ascii_case("inf")
             });
         let why = if named {
-            "is not finite"
+            // A laser scan exported with its rays that had no return (range inf or NaN, so x
+            // and y NaN) is a common layout: say what to do (a robotics user's review).
+            "is not finite (leave rows without a point out, as a scanner's rays without a \
+             return)"
         } else {
             "is beyond the range of a double (about 1.8e308)"
         };
@@ -183,6 +188,11 @@ impl Source<'_> {
             .map_err(|_| self.error(line, format!("out of memory after {} points", points.len())))
     }
 }
+
+/// The advice on an empty or NaN coordinate: a row without a point, which a laser scan's rays
+/// without a return leave in an export, is the user's to drop.
+const MISSING_HINT: &str =
+    " (an empty field: leave rows without a point out, as a scanner's rays without a return)";
 
 /// The refusal of a byte-order mark anywhere but at the very start of the file (where every
 /// reader skips it), on every path: it is not whitespace, and a reader that skipped it at the

@@ -370,6 +370,38 @@ fn a_header_over_other_columns_advises_what_reads_it() {
     assert_eq!(renamed.read().unwrap(), points(&[(1.68, -0.005)]));
 }
 
+/// A laser scan exported with its rays that had no return (`angle,range,x,y` rows of `inf,nan,nan`
+/// or of empty fields) is refused at that row, and the message says what to do with such rows
+/// (a robotics user's review: it said only that "nan" is not finite).
+#[test]
+fn a_scan_row_without_a_return_is_refused_with_advice() {
+    for (text, words) in [
+        (
+            &b"angle,range,x,y\n0,1,1,0\n0.5,inf,nan,nan\n"[..],
+            "\"nan\" is not finite",
+        ),
+        (
+            b"angle,range,x,y\n0,1,1,0\n0.5,inf,inf,-inf\n",
+            "\"inf\" is not finite",
+        ),
+        (
+            b"angle,range,x,y\n0,1,1,0\n0.5,,,2\n",
+            "cannot read \"\" as a number",
+        ),
+    ] {
+        let file = TempFile::new("no_return.csv", text);
+        let (line, said) = content_error(file.read());
+        assert_eq!(line, Some(3), "{said}");
+        assert!(said.contains(words), "{said}");
+        assert!(said.contains("leave rows without a point out"), "{said}");
+    }
+    // A number beyond a double is told as such, without that advice.
+    let file = TempFile::new("beyond.csv", b"x,y\n1e400,0\n");
+    let (_, said) = content_error(file.read());
+    assert!(said.contains("beyond the range of a double"), "{said}");
+    assert!(!said.contains("without a return"), "{said}");
+}
+
 /// Bytes that are not UTF-8 where nothing is read (a Latin-1 comment, a CP1252 column that is
 /// not chosen, a GeoJSON property) do not refuse the file; in a field that is read they do, at
 /// their line.
