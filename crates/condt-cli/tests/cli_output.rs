@@ -1231,6 +1231,49 @@ fn a_temporary_file_that_cannot_be_made_is_named_as_such() {
     );
 }
 
+/// A result in many short pieces says that the set may be noisy and names the README's advice on
+/// scans (a robotics user's review: a raw scan's 23,120 curves read as success); a clean set of
+/// as many points says nothing, nor does `-q`.
+#[test]
+fn a_result_in_many_short_pieces_says_the_set_may_be_noisy() {
+    // 3,000 points scattered at random (a fixed xorshift): pieces of a few points.
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let scattered: String = (0..3000)
+        .map(|_| format!("{} {}\n", next(), next()))
+        .collect();
+    let out = condt(&["reconstruct", "-", "-o", "/dev/null"], &scattered);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let said = stderr(&out);
+    assert!(
+        said.contains("points on average: a noisy set") && said.contains("*Scans*"),
+        "{said}"
+    );
+    let quiet = condt(&["reconstruct", "-", "-o", "/dev/null", "-q"], &scattered);
+    assert!(stderr(&quiet).is_empty(), "{}", stderr(&quiet));
+    // 100 ellipses of 30 points each: 100 curves, 30 points each.
+    let clean: String = (0..100)
+        .flat_map(|e| {
+            (0..30).map(move |k| {
+                let t = k as f64 * std::f64::consts::TAU / 30.0;
+                format!("{} {}\n", 10.0 * e as f64 + 2.0 * t.cos(), t.sin())
+            })
+        })
+        .collect();
+    let out = condt(&["reconstruct", "-", "-o", "/dev/null"], &clean);
+    let said = stderr(&out);
+    assert!(
+        said.contains("3000 points, 100 curves (100 closed"),
+        "{said}"
+    );
+    assert!(!said.contains("on average"), "{said}");
+}
+
 /// A viewer review: `--stages` on 100,000 points wrote a 120 MB drawing without a word. Past
 /// 200,000 dots (points times panels) a note says so and names the HTML viewer; below, none.
 #[test]
