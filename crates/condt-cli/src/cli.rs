@@ -1502,7 +1502,7 @@ fn note_twins(result: &condt::Reconstruction) {
 /// robotics user's review). Noise breaks curves into pieces of a few points, where a drawing's
 /// run for tens: the note needs 1,000 points or more, 100 curves or more, and fewer than 10
 /// points a curve on average (of the evaluation suites' 1,429 cases none of 500 points or more
-/// has that; of `../shared/data`'s 190 sets, the noisy ones of 1,000 points or more).
+/// has that; of `../shared/data`'s 190 sets, five noisy ones get it).
 fn note_pieces(points: usize, curves: &[condt::Curve]) {
     let on_curves: usize = curves.iter().map(|c| c.len()).sum();
     if points >= 1000 && curves.len() >= 100 && on_curves < 10 * curves.len() {
