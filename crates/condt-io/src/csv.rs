@@ -199,10 +199,24 @@ fn plain_columns_in_general(
                 let own = own.split('#').next().unwrap_or("").trim();
                 *message = message.replace(&quoted(read), &quoted(own));
             }
+            // Names chosen over a first line of numbers: a header written as a comment above it
+            // is named (`numpy.savetxt(header=...)` writes `# angle range x y intensity`).
+            if message.contains(NUMBERS_NOT_A_HEADER) {
+                let above = crate::text_lines(text).take_while(|&(number, _)| number < line);
+                if let Some(header) = commented_header(above.map(|(_, l)| l), chosen) {
+                    message.push_str(&format!(
+                        "; the comment {} above names them: without its `#` it is the header",
+                        quoted(header)
+                    ));
+                }
+            }
         }
         err
     })
 }
+
+/// What the refusal of columns chosen by name over a first line of numbers says of that line.
+const NUMBERS_NOT_A_HEADER: &str = "numbers, not a header naming them";
 
 /// [`parse_plain_columns`] for columns chosen by number (0-based `x` and `y`), read straight from
 /// the lines, without the tab-joined copy and the CSV reader: a scanner's `x y z intensity`
@@ -363,7 +377,7 @@ pub(crate) fn parse_separated(
                             line,
                             format!(
                                 "columns {chosen} are chosen by name, but the first line is \
-                                 numbers, not a header naming them: {}",
+                                 {NUMBERS_NOT_A_HEADER}: {}",
                                 quoted(raw.trim_end_matches(['\r', '\n']))
                             ),
                         ));
@@ -471,6 +485,34 @@ fn fields(n: usize) -> String {
     } else {
         format!("{n} fields")
     }
+}
+
+/// The last comment line of `before` (the text above the first point) that names both chosen
+/// columns, as `numpy.savetxt(header=...)` writes a header (`# angle range x y intensity`): a
+/// header made a comment, which the refusal of names without a header points at (a robotics
+/// user's review).
+fn commented_header<'t>(
+    before: impl Iterator<Item = &'t str>,
+    chosen: &Columns,
+) -> Option<&'t str> {
+    let names = |line: &str| -> Vec<String> {
+        let line = line.trim_start().trim_start_matches('#');
+        line.split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+            .map(str::to_string)
+            .collect()
+    };
+    let named = |column: &Column, fields: &[String]| match column {
+        Column::Named(name) => fields.iter().any(|f| same_name(f, name)),
+        Column::Number(_) => false,
+    };
+    before
+        .map(str::trim)
+        .filter(|line| {
+            let fields = names(line);
+            line.starts_with('#') && named(&chosen.x, &fields) && named(&chosen.y, &fields)
+        })
+        .last()
 }
 
 /// Whether the first record is a point rather than a header: exactly two fields, both numbers,
@@ -772,6 +814,28 @@ mod tests {
         // `long`, as many GIS exports name longitude (a GIS review: refused as "no x column").
         let pts = parse_csv("id,lat,long\n7,47.3,8.5\n", "geo.csv").unwrap();
         assert_eq!(pts, vec![Point::new(8.5, 47.3)]);
+    }
+
+    /// Columns chosen by name over a plain file whose header is a comment (as
+    /// `numpy.savetxt(header=...)` writes it) name that comment (a robotics user's review: the
+    /// refusal said only that the first line is numbers).
+    #[test]
+    fn a_header_written_as_a_comment_is_named() {
+        let chosen = Columns::parse("x,y").unwrap();
+        let text = "# scan 7\n# angle range x y intensity\n0 1 1 0 5\n0.5 1 0.9 0.4 5\n";
+        let err = parse_plain_columns(text, "scan.txt", &chosen).unwrap_err();
+        assert_eq!(err.line, Some(3));
+        let said = err.to_string();
+        assert!(
+            said.ends_with(
+                "; the comment \"# angle range x y intensity\" above names them: without its `#` \
+                 it is the header"
+            ),
+            "{said}"
+        );
+        // A comment that does not name both is no header.
+        let err = parse_plain_columns("# x only\n1 2 3\n", "scan.txt", &chosen).unwrap_err();
+        assert!(!err.to_string().contains("above names them"), "{err}");
     }
 
     /// A first line that is a point written with semicolons between its columns or with decimal
