@@ -587,7 +587,7 @@ fn lines_by<const ONE_PASS: bool>(
                      *.node, or state condt's --input-format node, to read it as one)"
                 } else {
                     " (choose the x and y columns by number or by the header's names with \
-                     condt's --columns 1,2)"
+                     condt's --columns X,Y)"
                 };
                 return Err(source.error(
                     number,

@@ -194,14 +194,14 @@ fn columns_choose_x_and_y_of_plain_text() {
     let (line, text) = content_error(file.read());
     assert_eq!(line, Some(3), "{text}");
     assert!(
-        text.contains("--columns 1,2") && !text.contains(".node"),
+        text.contains("--columns X,Y") && !text.contains(".node"),
         "{text}"
     );
     let fractions = TempFile::new("xyzi.txt", b"0.5 2.5 1.2 80\n1.5 2.5 1.2 80\n");
     let (line, text) = content_error(fractions.read());
     assert_eq!(line, Some(1), "{text}");
     assert!(
-        text.contains("--columns 1,2") && !text.contains(".node"),
+        text.contains("--columns X,Y") && !text.contains(".node"),
         "{text}"
     );
     // Split as the plain reader splits: commas alone separate too, comments go (a review: the
