@@ -120,7 +120,10 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
                 f,
                 "by the repair run again without the edges the outlier filter cut"
             )?,
-            Reason::Component => write!(f, "isolated component")?,
+            Reason::Component => write!(
+                f,
+                "with its component (outliers: fewer than 5 of its points clearly apart from other curves, or a closed polygon of 5 or 6)"
+            )?,
             Reason::Spur => write!(f, "short spur")?,
             Reason::Clump => write!(f, "a clump: at most half its points pass smoothly")?,
             Reason::GapClosed => write!(f, "gap closed")?,
@@ -366,5 +369,36 @@ mod tests {
                 "{joined}"
             );
         }
+    }
+
+    /// A T sampled as a pen draws it (the stem's end slow and dense, the bar fast): the local
+    /// outlier removal drops the bar's right half, six points against the stem, because too few
+    /// of them lie apart from it. Its story said "isolated component", the opposite of why (a
+    /// sketching app developer's review).
+    #[test]
+    fn a_component_dropped_beside_a_curve_is_not_told_isolated() {
+        let bar = [
+            0.0, 2.0, 4.8, 8.72, 14.208, 21.8912, 29.8912, 37.8912, 45.8912, 53.8912, 61.8912,
+            67.13472, 70.0,
+        ];
+        let stem = [
+            100.0, 98.0, 95.2, 91.28, 85.792, 78.1088, 70.1088, 62.1088, 54.1088, 46.1088, 38.1088,
+            30.1088, 22.1088, 14.1088, 6.46528, 1.879168, 0.0,
+        ];
+        let points: Vec<Point> = bar
+            .iter()
+            .map(|&x| Point::new(x, 100.0))
+            .chain(stem.iter().map(|&y| Point::new(35.0, y)))
+            .collect();
+        let result = reconstruct(&points, &Params::default()).unwrap();
+        assert_eq!(result.unused(), &[7, 8, 9, 10, 11, 12]);
+        let stories = result.provenance();
+        let story = stories.iter().find(|s| s.edge == [7, 8]).unwrap();
+        let text = story_text(story);
+        assert!(!text.contains("isolated"), "{text}");
+        assert!(
+            text.contains("fewer than 5 of its points clearly apart from other curves"),
+            "{text}"
+        );
     }
 }

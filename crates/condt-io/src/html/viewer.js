@@ -317,7 +317,7 @@
       () => { const [l, t] = apart(c.x, c.y); return `length ${l} above √T = ${t}`; },
       () => "given back between two regular passages",
       () => `${c.y.toFixed(2)} times as long as the longest other edge at vertex ${c.x}`,
-      () => "isolated component",
+      () => "with its component (outliers: fewer than 5 of its points clearly apart from other curves, or a closed polygon of 5 or 6)",
       () => "short spur",
       () => "gap closed",
       () => "a given-back component not clearly apart",
