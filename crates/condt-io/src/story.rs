@@ -122,7 +122,8 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
             )?,
             Reason::Component => write!(
                 f,
-                "with its component (outliers: fewer than 5 of its points clearly apart from other curves, or a closed polygon of 5 or 6)"
+                "with its component (outliers: fewer than 5 of its points clearly apart from \
+                 other curves, or a closed polygon of 5 or 6)"
             )?,
             Reason::Spur => write!(f, "short spur")?,
             Reason::Clump => write!(f, "a clump: at most half its points pass smoothly")?,
