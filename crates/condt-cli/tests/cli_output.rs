@@ -1236,17 +1236,9 @@ fn a_temporary_file_that_cannot_be_made_is_named_as_such() {
 /// as many points says nothing, nor does `-q`.
 #[test]
 fn a_result_in_many_short_pieces_says_the_set_may_be_noisy() {
-    // 3,000 points scattered at random (a fixed xorshift): pieces of a few points.
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let scattered: String = (0..3000)
-        .map(|_| format!("{} {}\n", next(), next()))
-        .collect();
+    // 3,000 points scattered at random: pieces of a few points.
+    let dir = tempfile::tempdir().unwrap();
+    let scattered = fs::read_to_string(random_points(dir.path(), 3000)).unwrap();
     let out = condt(&["reconstruct", "-", "-o", "/dev/null"], &scattered);
     assert!(out.status.success(), "{}", stderr(&out));
     let said = stderr(&out);
