@@ -626,8 +626,73 @@ pub(super) fn edges_in_input_positions(
         [i.min(j), i.max(j)]
     };
     let mut edges = mapped(last, in_positions, parallel);
+    let n = tri.num_points();
+    if n < COUNTED_BELOW {
+        return counted(&edges, n);
+    }
     // As one 64-bit key, the order of the pairs (speed: one comparison).
     let key = |&[i, j]: &[u32; 2]| (u64::from(i) << 32) | u64::from(j);
     sort_unstable_by_key(&mut edges, key, parallel);
     edges
+}
+
+/// Fewest points whose final edges [`edges_in_input_positions`] sorts by comparisons: below it
+/// the counts and the pairs fit the second-level cache and [`counted`] takes about a tenth of
+/// the sort's instructions; at 1M its scattered writes miss the cache and gain nothing
+/// (docs/perf-log.md, *a bucketed sort of the final edges dropped*), and it would hold a second
+/// list of the edges.
+const COUNTED_BELOW: usize = 1 << 16;
+
+/// `edges` (pairs of positions below `n`, distinct) sorted: a count per smaller position, each
+/// pair written into its position's range, each range (a point's few edges) sorted.
+fn counted(edges: &[[u32; 2]], n: usize) -> Vec<[u32; 2]> {
+    // `ends[i + 1]` counts the pairs under `i`, then (summed) ends `i`'s range.
+    let mut ends = alloc::vec![0u32; n + 1];
+    for &[i, _] in edges {
+        ends[i as usize + 1] += 1;
+    }
+    for i in 1..=n {
+        ends[i] += ends[i - 1];
+    }
+    let mut sorted = alloc::vec![[0u32; 2]; edges.len()];
+    // `ends[i]` walks from the start of `i`'s range (the end of `i - 1`'s) to its end.
+    for &pair in edges {
+        let at = &mut ends[pair[0] as usize];
+        sorted[*at as usize] = pair;
+        *at += 1;
+    }
+    let mut start = 0;
+    for &end in &ends[..n] {
+        sorted[start..end as usize].sort_unstable();
+        start = end as usize;
+    }
+    sorted
+}
+
+#[cfg(test)]
+mod tests {
+    use super::counted;
+    use alloc::vec::Vec;
+
+    /// The counting sort gives the comparison sort's order: distinct pairs in a scrambled order,
+    /// with one position holding many (a hub) and many holding none.
+    #[test]
+    fn counted_pairs_are_sorted_as_by_comparison() {
+        let n = 500u32;
+        let mut pairs: Vec<[u32; 2]> = (1..n).map(|j| [7, j]).filter(|p| p[0] < p[1]).collect();
+        pairs.extend((0..n - 1).step_by(3).map(|i| [i, i + 1]));
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut scrambled = pairs.clone();
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        for k in (1..scrambled.len()).rev() {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            scrambled.swap(k, (state % (k as u64 + 1)) as usize);
+        }
+        assert_ne!(scrambled, pairs);
+        assert_eq!(counted(&scrambled, n as usize), pairs);
+        assert_eq!(counted(&[], 0), Vec::<[u32; 2]>::new());
+    }
 }
