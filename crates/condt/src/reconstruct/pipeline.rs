@@ -789,28 +789,34 @@ fn murmur3_finalizer(mut z: u64) -> u64 {
     z ^ (z >> 33)
 }
 
-/// A clock that reads zero without `std`.
+/// A clock that reads zero without `std`, and on WebAssembly without an operating system.
 #[derive(Debug)]
 pub(super) struct Stopwatch {
     #[cfg(feature = "std")]
-    start: std::time::Instant,
+    start: Option<std::time::Instant>,
+}
+
+/// Now, where `std` has a clock: on `wasm32-unknown-unknown` its `Instant::now` panics, and
+/// every `reconstruct` trapped there with the default features (a web developer's check).
+#[cfg(feature = "std")]
+fn now() -> Option<std::time::Instant> {
+    let no_clock = cfg!(all(target_family = "wasm", target_os = "unknown"));
+    (!no_clock).then(std::time::Instant::now)
 }
 
 impl Stopwatch {
     pub(super) fn start() -> Self {
         Stopwatch {
             #[cfg(feature = "std")]
-            start: std::time::Instant::now(),
+            start: now(),
         }
     }
 
     pub(super) fn lap(&mut self) -> Duration {
         #[cfg(feature = "std")]
-        {
-            let now = std::time::Instant::now();
-            now - core::mem::replace(&mut self.start, now)
+        if let (Some(now), Some(start)) = (now(), self.start.as_mut()) {
+            return now - core::mem::replace(start, now);
         }
-        #[cfg(not(feature = "std"))]
         Duration::ZERO
     }
 }
