@@ -72,7 +72,8 @@ pub enum StepReport<'p> {
         pass: usize,
         /// How many points it moved.
         moved: usize,
-        /// The wall-clock time of the triangulation of the moved points (zero without `std`).
+        /// The wall-clock time of the triangulation of the moved points (zero without `std` and
+        /// on `wasm32-unknown-unknown`).
         time: Duration,
     },
 }

@@ -96,7 +96,8 @@ pub struct Smoothing {
     /// not move).
     pub moved: usize,
     /// Wall-clock time of the first reconstruction, every pass but the last, and every smoothing
-    /// (zero without `std`); the result's stage and triangulation times are the last pass's.
+    /// (zero without `std` and on `wasm32-unknown-unknown`); the result's stage and triangulation
+    /// times are the last pass's.
     pub earlier_passes: Duration,
 }
 
@@ -118,7 +119,7 @@ pub struct StageReport<'r> {
     pub graph: Graph<'r>,
     /// Whether its rule applied (a vertex needed repair, an outlier rule fired); always at first.
     pub applied: bool,
-    /// Its wall-clock time (zero without `std`).
+    /// Its wall-clock time (zero without `std` and on `wasm32-unknown-unknown`).
     pub time: Duration,
 }
 
@@ -221,7 +222,8 @@ impl Reconstruction {
         Some(self.report(self.history.position(stage)?))
     }
 
-    /// Each stage that ran and its wall-clock time (zero without `std`), graphs not rebuilt.
+    /// Each stage that ran and its wall-clock time (zero without `std` and on
+    /// `wasm32-unknown-unknown`), graphs not rebuilt.
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
@@ -451,7 +453,7 @@ impl Reconstruction {
         self.degrees.len()
     }
 
-    /// Wall-clock time of the triangulation (zero without `std`).
+    /// Wall-clock time of the triangulation (zero without `std` and on `wasm32-unknown-unknown`).
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
@@ -465,7 +467,8 @@ impl Reconstruction {
         self.triangulation_time
     }
 
-    /// Wall-clock time of the curve assembly and final tally (zero without `std`).
+    /// Wall-clock time of the curve assembly and final tally (zero without `std` and on
+    /// `wasm32-unknown-unknown`).
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
@@ -481,7 +484,7 @@ impl Reconstruction {
     /// Each timed step in the order it ran, named by the words of `condt reconstruct --timings`:
     /// `earlier-passes` when smoothing passes ran (the first reconstruction and every pass but
     /// the last), `triangulation`, each stage's [`Stage::key`], and `curves` (the assembly and
-    /// tally). Wall-clock times, zero without `std`.
+    /// tally). Wall-clock times, zero without `std` and on `wasm32-unknown-unknown`.
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
