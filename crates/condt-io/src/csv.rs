@@ -203,7 +203,8 @@ fn plain_columns_in_general(
             // is named (`numpy.savetxt(header=...)` writes `# angle range x y intensity`).
             if message.contains(NUMBERS_NOT_A_HEADER) {
                 let above = crate::text_lines(text).take_while(|&(number, _)| number < line);
-                if let Some(header) = commented_header(above.map(|(_, l)| l), chosen) {
+                let columns = read.split('\t').count();
+                if let Some(header) = commented_header(above.map(|(_, l)| l), chosen, columns) {
                     message.push_str(&format!(
                         "; the comment {} above names them: without its `#` it is the header",
                         quoted(header)
@@ -488,12 +489,15 @@ fn fields(n: usize) -> String {
 }
 
 /// The last comment line of `before` (the text above the first point) that names both chosen
-/// columns, as `numpy.savetxt(header=...)` writes a header (`# angle range x y intensity`): a
-/// header made a comment, which the refusal of names without a header points at (a robotics
-/// user's review).
+/// columns, one name for each of the first point's `columns`, as `numpy.savetxt(header=...)`
+/// writes a header (`# angle range x y intensity`): a header made a comment, which the refusal of
+/// names without a header points at (a robotics user's review). A comment of another count is no
+/// such header: without its `#`, `# x y` over `1 2 3` is refused for its count, and a sentence
+/// (`# x and y in metres`) was named as the header.
 fn commented_header<'t>(
     before: impl Iterator<Item = &'t str>,
     chosen: &Columns,
+    columns: usize,
 ) -> Option<&'t str> {
     let names = |line: &str| -> Vec<String> {
         let line = line.trim_start().trim_start_matches('#');
@@ -510,7 +514,10 @@ fn commented_header<'t>(
         .map(str::trim)
         .filter(|line| {
             let fields = names(line);
-            line.starts_with('#') && named(&chosen.x, &fields) && named(&chosen.y, &fields)
+            line.starts_with('#')
+                && fields.len() == columns
+                && named(&chosen.x, &fields)
+                && named(&chosen.y, &fields)
         })
         .last()
 }
@@ -540,14 +547,19 @@ fn all_numbers(record: &csv::StringRecord) -> bool {
 /// How a first line that is no header for this reader writes a point: with semicolons between
 /// its columns or decimal commas (`1,5;2,5`, `1.5;2.5`, `1,5<TAB>2,5`), as spreadsheets in many
 /// European locales export it; `None` for anything else. Taken for a header, such a line was
-/// said to lack an x column (a CAD user's review).
+/// said to lack an x column (a CAD user's review). A point as [`headerless_pair`] takes one: two
+/// numbers, maybe a separator at the end (`1,5;2,5;`); more numbers are no point (`id;x;y`, whose
+/// first two a .txt would read as x and y), and the refusal of a header without x says the rest.
 fn point_of_another_locale(raw: &str) -> Option<&'static str> {
     let line = raw.trim_end_matches(['\r', '\n']);
     let separator = if line.contains(';') { ';' } else { '\t' };
-    let fields: Vec<&str> = line.split(separator).map(str::trim).collect();
+    let mut fields: Vec<&str> = line.split(separator).map(str::trim).collect();
+    while fields.len() > 2 && fields.last() == Some(&"") {
+        fields.pop();
+    }
     let decimal =
         |f: &str| f.matches(',').count() <= 1 && f.replacen(',', ".", 1).parse::<f64>().is_ok();
-    if fields.len() < 2 || !fields.iter().all(|f| decimal(f)) {
+    if fields.len() != 2 || !fields.iter().all(|f| decimal(f)) {
         return None;
     }
     match (separator == ';', line.contains(',')) {
@@ -833,9 +845,20 @@ mod tests {
             ),
             "{said}"
         );
-        // A comment that does not name both is no header.
-        let err = parse_plain_columns("# x only\n1 2 3\n", "scan.txt", &chosen).unwrap_err();
-        assert!(!err.to_string().contains("above names them"), "{err}");
+        // A comment that does not name both is no header, nor one of another count of names
+        // than the columns: a sentence, or names that would be refused for their count.
+        for text in [
+            "# x only\n1 2 3\n",
+            "# x and y in metres\n1 2 3\n",
+            "# x y\n1 2 3\n",
+        ] {
+            let err = parse_plain_columns(text, "scan.txt", &chosen).unwrap_err();
+            assert!(!err.to_string().contains("above names them"), "{err}");
+        }
+        // Without its `#`, the header the refusal names reads the file.
+        let header = "angle range x y intensity\n0 1 1 0 5\n0.5 1 0.9 0.4 5\n";
+        let read = parse_plain_columns(header, "scan.txt", &chosen).unwrap();
+        assert_eq!(read, vec![Point::new(1.0, 0.0), Point::new(0.9, 0.4)]);
     }
 
     /// A first line that is a point written with semicolons between its columns or with decimal
@@ -849,6 +872,11 @@ mod tests {
                 "semicolons between its columns and decimal commas",
             ),
             ("1,5\t2,5\n3\t4\n", "decimal commas"),
+            // A separator at every line's end, as some exports write.
+            (
+                "1,5;2,5;\n3;4;\n",
+                "semicolons between its columns and decimal commas",
+            ),
         ] {
             let err = parse_csv(text, "locale.csv").unwrap_err();
             assert_eq!(err.line, Some(1), "{text}");
@@ -856,6 +884,15 @@ mod tests {
             assert!(
                 message.contains(&format!("is a point with {written}, which this reader"))
                     && !message.contains("header"),
+                "{message}"
+            );
+        }
+        // More numbers than a point's are no point: told as a first line without an x column
+        // (`tr` to a .txt would read `id;x;y`'s id and x as the point).
+        for text in ["1;2;3\n4;5;6\n", "5;-3;2,5;0,25\n"] {
+            let message = parse_csv(text, "locale.csv").unwrap_err().to_string();
+            assert!(
+                !message.contains("is a point") && message.contains("not semicolons"),
                 "{message}"
             );
         }
