@@ -562,13 +562,20 @@ fn point_of_another_locale(raw: &str) -> Option<&'static str> {
     if fields.len() != 2 || !fields.iter().all(|f| decimal(f)) {
         return None;
     }
+    // Without semicolons, a comma before exactly three digits may as well group thousands (an
+    // English spreadsheet's `1,000`), which `tr`'s decimal point would read as 1.
+    let thousands = |f: &str| f.split_once(',').is_some_and(|(_, after)| after.len() == 3);
     match (separator == ';', line.contains(',')) {
         (true, true) => Some("semicolons between its columns and decimal commas"),
         (true, false) => Some("semicolons between its columns"),
+        (false, true) if fields.iter().any(|f| thousands(f)) => Some(THOUSANDS_OR_DECIMALS),
         (false, true) => Some("decimal commas"),
         (false, false) => None,
     }
 }
+
+/// How [`point_of_another_locale`] reads a tab-separated point whose comma may group thousands.
+const THOUSANDS_OR_DECIMALS: &str = "commas in its numbers (decimal commas, or thousands grouped)";
 
 /// The x and y columns named by the header `record` (its text `raw`, on `line`).
 fn header_columns(
@@ -640,12 +647,17 @@ fn header_columns(
         return Err(source.error(line, numbers_without_header(filled(record))));
     }
     if let Some(written) = point_of_another_locale(raw) {
+        // `tr` makes every comma a decimal point: no advice where a comma may group thousands.
+        let convert = if written == THOUSANDS_OR_DECIMALS {
+            ""
+        } else {
+            " (`tr ';,' ' .' < in.csv > in.txt` turns one into the other)"
+        };
         return Err(source.error(
             line,
             format!(
                 "{header} is a point with {written}, which this reader does not take: \
-                 write 1.5,2.5 in a .csv or 1.5 2.5 in a .txt (`tr ';,' ' .' < in.csv > \
-                 in.txt` turns one into the other)"
+                 write 1.5,2.5 in a .csv or 1.5 2.5 in a .txt{convert}"
             ),
         ));
     }
@@ -887,6 +899,16 @@ mod tests {
                 "{message}"
             );
         }
+        // A comma before three digits of a tab-separated point may group thousands: said so,
+        // without the `tr` line that would read `1,000` as 1.
+        let message = parse_csv("1,000\t2,5\n3\t4\n", "locale.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains("is a point with commas in its numbers (decimal commas, or thousands")
+                && !message.contains("tr "),
+            "{message}"
+        );
         // More numbers than a point's are no point: told as a first line without an x column
         // (`tr` to a .txt would read `id;x;y`'s id and x as the point).
         for text in ["1;2;3\n4;5;6\n", "5;-3;2,5;0,25\n"] {
@@ -950,6 +972,14 @@ mod tests {
                 "{name}: {err}"
             );
         }
+        // Before three digits the comma may group thousands.
+        let err = parse_csv("x,y\n\"1,000\",2\n", "q.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.ends_with("(a decimal comma, or thousands grouped? Write 1.5 or 1000)"),
+            "{err}"
+        );
         // A word with a comma is no decimal comma.
         let err = parse_csv("x,y\n\"a,b\",1\n", "w.csv")
             .unwrap_err()

@@ -102,8 +102,16 @@ impl Source<'_> {
                      write 1.5 2.5 or 1.5,2.5)"
                 } else if is_decimal_comma(field) {
                     // `"1,5"` quoted in a CSV, or `1,5` in a tab-separated column: a European
-                    // locale's export, told as the plain format's reader tells it.
-                    " (a decimal comma? Write 1.5, not 1,5)"
+                    // locale's export, told as the plain format's reader tells it; before three
+                    // digits the comma may group thousands (`"1,000"`, an English export).
+                    let grouped = field
+                        .split_once(',')
+                        .is_some_and(|(_, after)| after.len() == 3);
+                    if grouped {
+                        " (a decimal comma, or thousands grouped? Write 1.5 or 1000)"
+                    } else {
+                        " (a decimal comma? Write 1.5, not 1,5)"
+                    }
                 } else if field.trim().is_empty() {
                     MISSING_HINT
                 } else {
