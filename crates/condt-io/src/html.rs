@@ -8,9 +8,8 @@
 //! draws on one canvas (no element per edge, so 100,000 points stay responsive), switches the
 //! layers, pans and zooms, and on a click shows a point's ring (its two shortest edges, the
 //! uniformity test with its numbers, its final degree, the stage that last changed each of its
-//! edges) or an edge's story. It may not decide
-//! anything: every verdict and ratio comes from the library; the script computes only lengths
-//! and positions for display.
+//! edges) or an edge's story. It may not decide anything: every verdict and ratio comes from the
+//! library; the script computes only lengths and positions for display.
 
 use condt::geometry::{binary_exponent, Point, Scale};
 use condt::{EdgeStory, EndChoice, Reason};
@@ -47,7 +46,8 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <meta name=\"viewport\" content=\"width=device-width\">\
          <title>condt: {title}</title><style>{STYLE}</style>\
-         <noscript><style>#info, #layers, .hint {{ display: none; }}</style></noscript></head><body>\
+         <noscript><style>#info, #layers, .hint {{ display: none; }}</style></noscript>\
+         </head><body>\
          <header><h1>condt: {title}</h1><span id=\"status\"></span></header>\
          <main><div id=\"view\"><noscript><p id=\"noscript\">The result: {points} point{}, \
          {} curve{} ({closed} closed, {} open), {unused} unused. This page draws the stages with \
