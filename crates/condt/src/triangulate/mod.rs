@@ -136,6 +136,9 @@ pub fn triangulate(points: &[Point]) -> Result<Triangulation, Error> {
 /// 65,536 points or more that is cut in two (each side holding a triangle) is freed once its
 /// halves are ordered, before the mesh is allocated (16 bytes a point less at the peak), unless
 /// it spans more than 2^200 (its inputs are kept then); other sets are freed when it returns.
+/// The peak is the allocator's: in a WebAssembly module, whose memory only grows, the freed
+/// input leaves a hole the mesh's larger arrays do not fit, and the module grows as much as with
+/// [`triangulate`] (README, *Features*).
 ///
 /// # Errors
 /// As [`triangulate`].
