@@ -642,8 +642,8 @@ pub(super) fn edges_in_input_positions(
 /// Fewest points whose final edges [`edges_in_input_positions`] sorts by comparisons: below it
 /// the counts and the pairs fit the second-level cache and [`counted`] takes about a tenth of
 /// the sort's instructions; at 1M its scattered writes miss the cache and gain nothing
-/// (docs/perf-log.md, *a bucketed sort of the final edges dropped*), and it would hold a second
-/// list of the edges.
+/// (docs/perf-log.md, *Rule 1's cut edges listed once; a bucketed sort of the final edges
+/// dropped*), and it would hold a second list of the edges.
 const COUNTED_BELOW: usize = 1 << 16;
 
 /// `edges` (pairs of positions below `n`, distinct) sorted: a count per smaller position, each
@@ -687,12 +687,9 @@ mod tests {
         pairs.sort_unstable();
         pairs.dedup();
         let mut scrambled = pairs.clone();
-        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
         for k in (1..scrambled.len()).rev() {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            scrambled.swap(k, (state % (k as u64 + 1)) as usize);
+            scrambled.swap(k, rng.below(k as u64 + 1) as usize);
         }
         assert_ne!(scrambled, pairs);
         assert_eq!(counted(&scrambled, n as usize), pairs);
