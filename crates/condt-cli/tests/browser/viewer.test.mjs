@@ -122,6 +122,16 @@ try {
   await page.keyboard.press("0");
   const reset = await page.evaluate((i) => window.condtViewer.screenOf(i), chosen);
   assert.ok(Math.abs(reset[0] - before[0]) < 1 && Math.abs(reset[1] - before[1]) < 1, "0 showed everything");
+  // n and p step through the points by index from the one selected, without a pointer (a
+  // teacher's review: no point could be picked by keyboard), and wrap around.
+  const count = await page.evaluate(() => JSON.parse(document.getElementById("data").textContent).points.length / 2);
+  await page.keyboard.press("n");
+  assert.match(await details(), new RegExp(`^Point ${(chosen + 1) % count} \\(`), "n selected the next point");
+  await page.keyboard.press("p");
+  await page.keyboard.press("p");
+  assert.match(await details(), new RegExp(`^Point ${(chosen - 1 + count) % count} \\(`), "p the previous, wrapping");
+  await page.keyboard.press("n");
+  assert.equal(await details(), text, "back to the point chosen");
   [x, y] = before;
   assert.match(text, new RegExp(`final degree ${degree.get(chosen)}\\b`));
   assert.match(text, /Two shortest: to \d+ \(e1\) and \d+ \(e2\)\. Uniformity test: \|e2\| = [\d.]+ \|e1\|/);

@@ -452,8 +452,17 @@
     view.ox = mx - (mx - view.ox) * f; view.oy = my - (my - view.oy) * f; view.k *= f; request();
   }, { passive: false });
   canvas.addEventListener("dblclick", () => { show(beforeClick); fit(); request(); });
-  // Keys, where the canvas has the focus (a click gives it): arrows pan, + and - zoom about
-  // the centre, 0 shows everything.
+  // Keys, where the canvas has the focus (a click or Tab gives it): arrows pan, + and - zoom
+  // about the centre, 0 shows everything, n and p select the next and the previous point by its
+  // index (without a pointer no point could be picked: a teacher's review), its details then
+  // announced.
+  const stepPoint = (by) => {
+    if (n === 0) return;
+    const at = selected && selected.point !== undefined ? selected.point : by > 0 ? -1 : n;
+    const i = (at + by + n) % n;
+    selected = { point: i };
+    showPoint(i);
+  };
   canvas.addEventListener("keydown", (ev) => {
     const w = canvas.clientWidth, h = canvas.clientHeight, step = 40;
     const zoom = (g) => {
@@ -464,6 +473,7 @@
       ArrowLeft: () => { view.ox += step; }, ArrowRight: () => { view.ox -= step; },
       ArrowUp: () => { view.oy += step; }, ArrowDown: () => { view.oy -= step; },
       "+": () => zoom(1.25), "=": () => zoom(1.25), "-": () => zoom(0.8), "0": () => fit(),
+      n: () => stepPoint(1), p: () => stepPoint(-1),
     };
     if (!(ev.key in moves) || ev.ctrlKey || ev.metaKey || ev.altKey) return;
     ev.preventDefault();
