@@ -10,7 +10,7 @@
 //! numbers the lines.
 
 use super::input::same_name;
-use super::points::{quoted, Source};
+use super::points::{columns, is_decimal_comma, may_group_thousands, quoted, Source};
 use super::{Column, Columns, IoError, IoErrorKind};
 use condt::Point;
 use condt::MAX_POINTS;
@@ -203,8 +203,8 @@ fn plain_columns_in_general(
             // is named (`numpy.savetxt(header=...)` writes `# angle range x y intensity`).
             if message.contains(NUMBERS_NOT_A_HEADER) {
                 let above = crate::text_lines(text).take_while(|&(number, _)| number < line);
-                let columns = read.split('\t').count();
-                if let Some(header) = commented_header(above.map(|(_, l)| l), chosen, columns) {
+                let width = read.split('\t').count();
+                if let Some(header) = commented_header(above.map(|(_, l)| l), chosen, width) {
                     message.push_str(&format!(
                         "; the comment {} above names them: without its `#` it is the header",
                         quoted(header)
@@ -489,35 +489,30 @@ fn fields(n: usize) -> String {
 }
 
 /// The last comment line of `before` (the text above the first point) that names both chosen
-/// columns, one name for each of the first point's `columns`, as `numpy.savetxt(header=...)`
-/// writes a header (`# angle range x y intensity`): a header made a comment, which the refusal of
-/// names without a header points at (a robotics user's review). A comment of another count is no
-/// such header: without its `#`, `# x y` over `1 2 3` is refused for its count, and a sentence
-/// (`# x and y in metres`) was named as the header.
+/// columns, one name for each of the first point's `width` columns, as
+/// `numpy.savetxt(header=...)` writes a header (`# angle range x y intensity`): a header made a
+/// comment, which the refusal of names without a header points at (a robotics user's review). A
+/// comment of another count is no such header: without its `#`, `# x y` over `1 2 3` is refused
+/// for its count, and a sentence (`# x and y in metres`) was named as the header.
 fn commented_header<'t>(
     before: impl Iterator<Item = &'t str>,
     chosen: &Columns,
-    columns: usize,
+    width: usize,
 ) -> Option<&'t str> {
-    let names = |line: &str| -> Vec<String> {
-        let line = line.trim_start().trim_start_matches('#');
-        line.split(|c: char| c == ',' || c == ';' || c.is_whitespace())
-            .filter(|f| !f.is_empty())
-            .map(str::to_string)
-            .collect()
-    };
-    let named = |column: &Column, fields: &[String]| match column {
+    let named = |column: &Column, fields: &[&str]| match column {
         Column::Named(name) => fields.iter().any(|f| same_name(f, name)),
         Column::Number(_) => false,
     };
+    // Split as the line would be without its `#`: the plain reader's columns.
     before
         .map(str::trim)
         .filter(|line| {
-            let fields = names(line);
-            line.starts_with('#')
-                && fields.len() == columns
-                && named(&chosen.x, &fields)
-                && named(&chosen.y, &fields)
+            let fields = line
+                .strip_prefix('#')
+                .map(|rest| columns(rest).unwrap_or_default());
+            fields.is_some_and(|fields| {
+                fields.len() == width && named(&chosen.x, &fields) && named(&chosen.y, &fields)
+            })
         })
         .last()
 }
@@ -557,18 +552,18 @@ fn point_of_another_locale(raw: &str) -> Option<&'static str> {
     while fields.len() > 2 && fields.last() == Some(&"") {
         fields.pop();
     }
-    let decimal =
-        |f: &str| f.matches(',').count() <= 1 && f.replacen(',', ".", 1).parse::<f64>().is_ok();
-    if fields.len() != 2 || !fields.iter().all(|f| decimal(f)) {
+    let number = |f: &str| f.parse::<f64>().is_ok() || is_decimal_comma(f);
+    if fields.len() != 2 || !fields.iter().all(|f| number(f)) {
         return None;
     }
     // Without semicolons, a comma before exactly three digits may as well group thousands (an
     // English spreadsheet's `1,000`), which `tr`'s decimal point would read as 1.
-    let thousands = |f: &str| f.split_once(',').is_some_and(|(_, after)| after.len() == 3);
     match (separator == ';', line.contains(',')) {
         (true, true) => Some("semicolons between its columns and decimal commas"),
         (true, false) => Some("semicolons between its columns"),
-        (false, true) if fields.iter().any(|f| thousands(f)) => Some(THOUSANDS_OR_DECIMALS),
+        (false, true) if fields.iter().any(|f| may_group_thousands(f)) => {
+            Some(THOUSANDS_OR_DECIMALS)
+        }
         (false, true) => Some("decimal commas"),
         (false, false) => None,
     }

@@ -74,8 +74,16 @@ pub(super) fn line_at(bytes: &[u8], offset: usize) -> usize {
 
 /// Whether `field` reads as a number once its one comma is a decimal point (`1,5`, `-0,25`):
 /// a decimal comma, which no reader here takes.
-fn is_decimal_comma(field: &str) -> bool {
+pub(super) fn is_decimal_comma(field: &str) -> bool {
     field.matches(',').count() == 1 && field.replacen(',', ".", 1).parse::<f64>().is_ok()
+}
+
+/// Whether the comma of `field` stands before exactly three digits' place (`1,000`): it may
+/// group thousands (an English export) as well as be a decimal comma.
+pub(super) fn may_group_thousands(field: &str) -> bool {
+    field
+        .split_once(',')
+        .is_some_and(|(_, after)| after.len() == 3)
 }
 
 /// Builds content errors for one file.
@@ -104,10 +112,7 @@ impl Source<'_> {
                     // `"1,5"` quoted in a CSV, or `1,5` in a tab-separated column: a European
                     // locale's export, told as the plain format's reader tells it; before three
                     // digits the comma may group thousands (`"1,000"`, an English export).
-                    let grouped = field
-                        .split_once(',')
-                        .is_some_and(|(_, after)| after.len() == 3);
-                    if grouped {
+                    if may_group_thousands(field) {
                         " (a decimal comma, or thousands grouped? Write 1.5 or 1000)"
                     } else {
                         " (a decimal comma? Write 1.5, not 1,5)"
