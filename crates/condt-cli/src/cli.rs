@@ -14,8 +14,8 @@ use condt::{
 use condt_io::{
     read_points_with, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
     write_npy_triangles, write_npy_triangulation_edges, write_polylines, write_svg,
-    write_svg_stages, write_triangles, write_triangulation_edges, Columns, InputFormat, IoError,
-    PointFile, ReadOptions,
+    write_svg_stages, write_triangles, write_triangulation_edges, write_unused, Columns,
+    InputFormat, IoError, PointFile, ReadOptions,
 };
 use std::ffi::{OsStr, OsString};
 use std::fmt;
@@ -306,7 +306,7 @@ and Eppstein); a baseline takes none of the ConDT options",
         long: "format",
         negatable: false,
         value: Some("F"),
-        help: "edges, npy, txt, svg, geojson or html",
+        help: "edges, npy, txt, svg, geojson, html or unused",
     },
     Opt {
         id: ReconstructId::Stages,
@@ -419,8 +419,9 @@ as in a plot, so image rows, which count down, show upside down), `geojson` (.ge
 one LineString per curve, in the order of the txt lines, on the input's coordinates; a GeoJSON
 input's `crs` member is carried on, a GeoJSON sequence's first, or --crs names one), `html`
 (.html: a self-contained page to explore every stage: layers, pan and zoom, and a click on a
-point or an edge tells why it was kept or dropped). A summary goes to standard error: points,
-curves, and the unused points (those with no edge in the result: outliers).
+point or an edge tells why it was kept or dropped), `unused` (by --format only: the numbers of
+the points with no edge in the result, the outliers, one per line, ascending). A summary goes to
+standard error: points, curves, and how many points are unused.
 
 The default pipeline is the paper's (Algorithms 1-3) with the outlier filter's spacing floor,
 the repair `needs` (run again without the edges the outlier filter cut), local outlier removal,
@@ -860,9 +861,16 @@ enum Format {
     Svg,
     GeoJson,
     Html,
+    /// The unused points' numbers; no extension names it (a list of numbers is any `.txt`).
+    Unused,
 }
 
 impl Format {
+    /// The format an OUTPUT's extension names (any case); none names `unused`.
+    fn of_extension(extension: &str) -> Option<Format> {
+        Format::named(extension).filter(|&format| format != Format::Unused)
+    }
+
     /// The format of a name in any case, as `--input-format` takes its names.
     fn named(name: &str) -> Option<Format> {
         match name.to_ascii_lowercase().as_str() {
@@ -872,6 +880,7 @@ impl Format {
             "svg" => Some(Format::Svg),
             "geojson" | "json" => Some(Format::GeoJson),
             "html" | "htm" => Some(Format::Html),
+            "unused" => Some(Format::Unused),
             _ => None,
         }
     }
@@ -884,6 +893,7 @@ impl Format {
             Format::Svg => "svg",
             Format::GeoJson => "geojson",
             Format::Html => "html",
+            Format::Unused => "unused",
         }
     }
 }
@@ -1246,12 +1256,13 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             }
             Id::Format => {
                 let value = value.ok_or_else(|| {
-                    usage("--format needs a name: edges, npy, txt, svg, geojson or html")
+                    usage("--format needs a name: edges, npy, txt, svg, geojson, html or unused")
                 })?;
                 let name = text(value, flag)?;
                 let chosen = Format::named(name).ok_or_else(|| {
                     usage(format!(
-                        "--format {name}: unknown format; the formats are edges, npy, txt, svg, geojson and html"
+                        "--format {name}: unknown format; the formats are edges, npy, txt, svg, geojson, html \
+                         and unused"
                     ))
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
@@ -1335,7 +1346,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             None => Format::Polylines,
             Some(extension) => {
                 let extension = extension.to_str().unwrap_or("");
-                Format::named(extension).ok_or_else(|| {
+                Format::of_extension(extension).ok_or_else(|| {
                     usage(format!(
                         "cannot tell the format of {} from its extension; use --format",
                         path.display()
@@ -1580,8 +1591,12 @@ fn note_format_against_name(format: Format, output: Option<&Path>) {
     let named = output
         .and_then(Path::extension)
         .and_then(OsStr::to_str)
-        .and_then(Format::named);
-    if let (Some(path), Some(named)) = (output, named.filter(|&named| named != format)) {
+        .and_then(Format::of_extension);
+    // A list of point numbers is text: `-o outliers.txt --format unused` is what it says.
+    let text_list = format == Format::Unused && named == Some(Format::Polylines);
+    if let (Some(path), Some(named), false) =
+        (output, named.filter(|&named| named != format), text_list)
+    {
         note(format_args!(
             "{}: written in the {} format (--format {}), not the {} format its name's ending says",
             path.display(),
@@ -1732,6 +1747,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
                 write_geojson_with_crs(out, &result, &input, args.crs.as_deref().or(crs.as_deref()))
             }
             Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
+            Format::Unused => write_unused(out, &result),
         })
     })?;
     progress.finish();

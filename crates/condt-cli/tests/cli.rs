@@ -407,7 +407,62 @@ fn a_wrong_value_is_answered_with_the_choices() {
     );
     let said = refused(&["reconstruct", "-", "--format", "png"]);
     assert!(
-        said.contains("edges, npy, txt, svg, geojson and html"),
+        said.contains("edges, npy, txt, svg, geojson, html and unused"),
+        "{said}"
+    );
+}
+
+/// `--format unused` lists the points the curves leave out by their input numbers: here three
+/// far points, one of them given twice (the duplicate is listed with it), around a circle whose
+/// every point is on the curve. `-o NAME.txt` takes the list without a note; no ending names
+/// the format.
+#[test]
+fn the_unused_points_are_listed_by_their_numbers() {
+    let mut text = String::new();
+    for k in 0..30 {
+        let t = k as f64 * std::f64::consts::TAU / 30.0;
+        text += &format!("{} {}\n", 10.0 * t.cos(), 10.0 * t.sin());
+        if k == 12 {
+            text += "40 40\n"; // 13
+        }
+        if k == 20 {
+            text += "-45 3\n40 40\n"; // 22 and 23, a duplicate of 13
+        }
+    }
+    let listed = condt(&["reconstruct", "-", "--format", "unused"], &text);
+    assert!(
+        listed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&listed.stderr)
+    );
+    assert_eq!(lines(&listed.stdout), [[13], [22], [23]]);
+    // The curves use every other point.
+    let curves = condt(&["reconstruct", "-"], &text);
+    let curves = String::from_utf8(curves.stdout).unwrap();
+    let on_curves: Vec<usize> = curves
+        .split_whitespace()
+        .filter_map(|t| t.parse().ok())
+        .collect();
+    for i in 0..33 {
+        assert_eq!(
+            on_curves.contains(&i),
+            ![13, 22, 23].contains(&i),
+            "{i}: {curves}"
+        );
+    }
+    let dir = scratch_dir();
+    let target = dir.path().join("outliers.txt");
+    let target = target.to_str().unwrap();
+    let out = condt(
+        &["reconstruct", "-", "--format", "unused", "-o", target],
+        &text,
+    );
+    assert!(out.status.success());
+    assert_eq!(std::fs::read_to_string(target).unwrap(), "13\n22\n23\n");
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("format its name"));
+    let said = refused(&["reconstruct", "-", "-o", "out.unused"]);
+    assert!(
+        said.contains("cannot tell the format of out.unused"),
         "{said}"
     );
 }

@@ -215,6 +215,29 @@ pub fn write_polylines(out: &mut dyn Write, result: &Reconstruction) -> io::Resu
     lines.finish()
 }
 
+/// The points left out, one input index per line, ascending ([`Reconstruction::unused`]: the
+/// points with no edge in the result, the outliers; an exact duplicate of such a point is left
+/// out with it).
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
+/// pts.push(Point::new(10.0, 50.0));
+/// let r = reconstruct(&pts, &Params::default())?;
+/// let mut out = Vec::new();
+/// condt_io::write_unused(&mut out, &r)?;
+/// assert_eq!(String::from_utf8(out)?, "21\n");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_unused(out: &mut dyn Write, result: &Reconstruction) -> io::Result<()> {
+    let mut lines = Lines::new(out);
+    for &i in result.unused() {
+        lines.number(i);
+        lines.end()?;
+    }
+    lines.finish()
+}
+
 /// One triangle `i j k` per line, counter-clockwise, in input indices, in the order of
 /// [`Triangulation::triangles`].
 ///
