@@ -107,7 +107,13 @@ fn write_story(f: &mut String, story: &EdgeStory) -> fmt::Result {
                         "length {length} above the spacing floor {threshold} (1.5 median edges)"
                     )?
                 } else {
-                    write!(f, "length {length} above √T = {threshold}")?
+                    // T, the paper's name, is read by a learner in the viewer, who is told
+                    // what it is (a viewer review: "√T unexplained").
+                    write!(
+                        f,
+                        "length {length} above √T = {threshold} (the outlier threshold: T = \
+                         Q3 + k IQR of the squared lengths)"
+                    )?
                 }
             }
             Reason::GivenBack => write!(f, "given back between two regular passages")?,
@@ -401,5 +407,31 @@ mod tests {
             text.contains("fewer than 5 of its points clearly apart from other curves"),
             "{text}"
         );
+    }
+
+    /// An edge Algorithm 3 cut says what its threshold is: `√T` alone, the paper's name, left a
+    /// learner in the viewer guessing (a viewer review).
+    #[test]
+    fn an_edge_the_outlier_filter_cut_names_its_threshold() {
+        let mut points: Vec<Point> = (0..=20).map(|i| Point::new(f64::from(i), 0.0)).collect();
+        // 2.5 from the line's end: Algorithm 1 keeps the edge (under u = 2.75), the filter cuts it.
+        points.push(Point::new(21.5, 2.0));
+        let result = reconstruct(&points, &Params::paper()).unwrap();
+        assert_eq!(result.unused(), &[21]);
+        let stories = result.provenance();
+        let cut: Vec<String> = stories
+            .iter()
+            .filter(|s| s.edge[1] == 21)
+            .map(story_text)
+            .filter(|text| text.contains("IQR"))
+            .collect();
+        assert!(!cut.is_empty(), "no edge to 21 cut by the filter");
+        for text in cut {
+            assert!(
+                text.contains("above √T = ")
+                    && text.contains("(the outlier threshold: T = Q3 + k IQR of the squared"),
+                "{text}"
+            );
+        }
     }
 }

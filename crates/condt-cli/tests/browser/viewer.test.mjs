@@ -254,6 +254,8 @@ try {
   text = await details();
   const told = text.match(/length ([\d.]+) above √T = ([\d.]+)/);
   assert.ok(told, `the cut is told: ${text}`);
+  // And what T is, for a learner who has not read Algorithm 3 (a viewer review).
+  assert.match(text, /√T = [\d.]+ \(the outlier threshold: T = Q3 \+ k IQR of the squared lengths\)/);
   assert.ok(told[1] !== told[2] && Number(told[1]) > Number(told[2]), `apart: ${told[0]}`);
   assert.ok(told[2].replace(/[.]/, "").length >= 7, `seven digits at least: ${told[0]}`);
   // The layer of the stage that cut it, with the halos of what a shown stage removed: a click

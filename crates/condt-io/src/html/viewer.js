@@ -314,7 +314,7 @@
         const which = s.length === 0 ? "none" : s.length === 1 ? `its edge to ${s[0]} only` : `its edges to ${s.slice(0, -1).join(", ")} and ${s[s.length - 1]}`;
         return `at vertex ${c.x} (degree ${c.y}), which selected ${which}`;
       },
-      () => { const [l, t] = apart(c.x, c.y); return `length ${l} above √T = ${t}`; },
+      () => { const [l, t] = apart(c.x, c.y); return `length ${l} above √T = ${t} (the outlier threshold: T = Q3 + k IQR of the squared lengths)`; },
       () => "given back between two regular passages",
       () => `${c.y.toFixed(2)} times as long as the longest other edge at vertex ${c.x}`,
       () => "with its component (outliers: fewer than 5 of its points clearly apart from other curves, or a closed polygon of 5 or 6)",
