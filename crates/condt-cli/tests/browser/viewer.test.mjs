@@ -132,6 +132,33 @@ try {
   assert.match(await details(), new RegExp(`^Point ${(chosen - 1 + count) % count} \\(`), "p the previous, wrapping");
   await page.keyboard.press("n");
   assert.equal(await details(), text, "back to the point chosen");
+  // e and E step through that point's Delaunay edges by their rank there, each with its story
+  // (no edge could be picked without a pointer either), and n goes on from the point.
+  const ring = await page.evaluate((i) => {
+    const d = JSON.parse(document.getElementById("data").textContent);
+    const ranked = [];
+    for (let k = 0; k < d.edges.length / 2; k++) {
+      for (const end of [0, 1]) {
+        if (d.edges[2 * k + end] === i && d.ends[2 * k + end] > 0) ranked.push([d.ends[2 * k + end], d.edges[2 * k + 1 - end]]);
+      }
+    }
+    return ranked.sort((a, b) => a[0] - b[0]).map((r) => r[1]);
+  }, chosen);
+  const edgeTold = (other) => new RegExp(`^Edge (${chosen}–${other}|${other}–${chosen})\\b`);
+  await page.keyboard.press("e");
+  let stepped = await details();
+  assert.match(stepped, edgeTold(ring[0]), `e: the shortest edge at ${chosen}: ${stepped}`);
+  assert.match(stepped, new RegExp(`Edge 1 of ${ring.length} at point ${chosen}, rank 1 there`), stepped);
+  assert.match(stepped, /(kept|dropped)\s*Edge 1 of/, `its story: ${stepped}`);
+  await page.keyboard.press("e");
+  assert.match(await details(), edgeTold(ring[1]), "e again: the second shortest");
+  await page.keyboard.press("E");
+  await page.keyboard.press("E");
+  assert.match(await details(), edgeTold(ring[ring.length - 1]), "E wraps to the longest");
+  await page.keyboard.press("n");
+  assert.match(await details(), new RegExp(`^Point ${(chosen + 1) % count} \\(`), "n goes on from the point");
+  await page.keyboard.press("p");
+  assert.equal(await details(), text, "and p comes back to it");
   [x, y] = before;
   assert.match(text, new RegExp(`final degree ${degree.get(chosen)}\\b`));
   assert.match(text, /Two shortest: to \d+ \(e1\) and \d+ \(e2\)\. Uniformity test: \|e2\| = [\d.]+ \|e1\|/);

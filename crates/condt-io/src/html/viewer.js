@@ -367,13 +367,8 @@
     parts.push(resultEdges[k] ? "kept" : "dropped");
     return parts;
   }
-  function showPoint(i) {
-    if (mergedInto.has(i)) {
-      const first = mergedInto.get(i);
-      showPoint(first);
-      details.innerHTML = `<b>Point ${i}</b> is an exact duplicate of point ${first}, merged into it: its edges and fate are ${first}'s.<br>` + details.innerHTML;
-      return;
-    }
+  // Point i's Delaunay edges, by their rank at i (shortest first).
+  function ringOf(i) {
     const ring = [];
     for (let s = start[i]; s < start[i + 1]; s++) {
       const k = incident[s], end = E[2 * k] === i ? 0 : 1;
@@ -381,6 +376,16 @@
       ring.push({ k, other: E[2 * k + 1 - end], rank: data.ends[2 * k + end], end });
     }
     ring.sort((p, q) => p.rank - q.rank);
+    return ring;
+  }
+  function showPoint(i) {
+    if (mergedInto.has(i)) {
+      const first = mergedInto.get(i);
+      showPoint(first);
+      details.innerHTML = `<b>Point ${i}</b> is an exact duplicate of point ${first}, merged into it: its edges and fate are ${first}'s.<br>` + details.innerHTML;
+      return;
+    }
+    const ring = ringOf(i);
     const [passes] = data.smoothing;
     let html = `<b>Point ${point(i)}</b>`;
     if (passes > 0) html += ` where the stages saw it, after ${passes} smoothing pass${passes > 1 ? "es" : ""} (its input position may differ)`;
@@ -454,14 +459,33 @@
   canvas.addEventListener("dblclick", () => { show(beforeClick); fit(); request(); });
   // Keys, where the canvas has the focus (a click or Tab gives it): arrows pan, + and - zoom
   // about the centre, 0 shows everything, n and p select the next and the previous point by its
-  // index (without a pointer no point could be picked: a teacher's review), its details then
-  // announced.
+  // index (without a pointer no point could be picked: a teacher's review), e and E the next and
+  // the previous edge of the point last selected so, by rank (no edge could be picked either),
+  // their details then announced.
+  let edgesOf = null;
+  // The edge shown was reached by e or E (not clicked since).
+  const steppedEdge = () => edgesOf && selected && selected.edge !== undefined &&
+    (ringOf(edgesOf.point)[edgesOf.at] || {}).k === selected.edge;
   const stepPoint = (by) => {
     if (n === 0) return;
-    const at = selected && selected.point !== undefined ? selected.point : by > 0 ? -1 : n;
+    const from = selected && selected.point !== undefined ? selected.point : steppedEdge() ? edgesOf.point : null;
+    const at = from !== null ? from : by > 0 ? -1 : n;
     const i = (at + by + n) % n;
     selected = { point: i };
     showPoint(i);
+  };
+  const stepEdge = (by) => {
+    if (selected && selected.point !== undefined) {
+      const i = mergedInto.has(selected.point) ? mergedInto.get(selected.point) : selected.point;
+      edgesOf = { point: i, at: by > 0 ? -1 : 0 };
+    } else if (!steppedEdge()) return;
+    const ring = ringOf(edgesOf.point);
+    if (ring.length === 0) return;
+    edgesOf.at = (edgesOf.at + by + ring.length) % ring.length;
+    const r = ring[edgesOf.at];
+    selected = { edge: r.k };
+    showEdge(r.k);
+    details.innerHTML += `<p>Edge ${edgesOf.at + 1} of ${ring.length} at point ${edgesOf.point}, rank ${r.rank} there (e and E for the others, n and p for the points).</p>`;
   };
   canvas.addEventListener("keydown", (ev) => {
     const w = canvas.clientWidth, h = canvas.clientHeight, step = 40;
@@ -473,7 +497,7 @@
       ArrowLeft: () => { view.ox += step; }, ArrowRight: () => { view.ox -= step; },
       ArrowUp: () => { view.oy += step; }, ArrowDown: () => { view.oy -= step; },
       "+": () => zoom(1.25), "=": () => zoom(1.25), "-": () => zoom(0.8), "0": () => fit(),
-      n: () => stepPoint(1), p: () => stepPoint(-1),
+      n: () => stepPoint(1), p: () => stepPoint(-1), e: () => stepEdge(1), E: () => stepEdge(-1),
     };
     if (!(ev.key in moves) || ev.ctrlKey || ev.metaKey || ev.altKey) return;
     ev.preventDefault();
