@@ -59,7 +59,8 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
          <aside><section id=\"info\"><h2>Details</h2><p id=\"details\" aria-live=\"polite\">\
          Click a point or an edge.</p></section><section id=\"layers\"><h2>Layers</h2></section>\
          <p class=\"hint\">Drag or arrow keys to pan, wheel or + and - to zoom, double-click or 0 \
-         to see everything; n and p step through the points, e and E through a point's edges.</p></aside></main>\n<script id=\"data\" type=\"application/json\">",
+         to see everything; n and p step through the points, e and E through a point's edges.\
+         </p></aside></main>\n<script id=\"data\" type=\"application/json\">",
         if points == 1 { "" } else { "s" },
         curves.len(),
         if curves.len() == 1 { "" } else { "s" },
