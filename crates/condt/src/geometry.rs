@@ -159,6 +159,40 @@ impl From<(f64, f64)> for Point {
     }
 }
 
+/// Widens `f32` coordinates (a renderer's or a game engine's) to a [`Point`]: exact, as every
+/// `f32` is an `f64`, so the result is the one the same values given as `f64` have.
+///
+/// ```
+/// use condt::Point;
+/// let p = Point::from([0.1f32, -3.5]);
+/// assert_eq!(p, Point::new(f64::from(0.1f32), -3.5));
+/// assert_eq!(p.x as f32, 0.1f32); // and back without loss
+/// // Untyped literals still read as `f64`.
+/// assert_eq!(Point::from([0.1, 2.0]).x, 0.1f64);
+/// ```
+impl From<[f32; 2]> for Point {
+    #[inline]
+    fn from([x, y]: [f32; 2]) -> Self {
+        Point::new(f64::from(x), f64::from(y))
+    }
+}
+
+/// Widens `f32` coordinates to a [`Point`], exactly, as `From<[f32; 2]>` does.
+///
+/// ```
+/// use condt::Point;
+/// let points: Vec<Point> = [(1.5f32, 0.25f32), (0.1, 2.0)].map(Point::from).to_vec();
+/// assert_eq!(points[1], Point::new(f64::from(0.1f32), 2.0));
+/// // Untyped literals still read as `f64`.
+/// assert_eq!([(0.1, 2.0)].map(Point::from)[0].x, 0.1f64);
+/// ```
+impl From<(f32, f32)> for Point {
+    #[inline]
+    fn from((x, y): (f32, f32)) -> Self {
+        Point::new(f64::from(x), f64::from(y))
+    }
+}
+
 impl From<Point> for [f64; 2] {
     #[inline]
     fn from(p: Point) -> Self {
