@@ -106,8 +106,11 @@ impl Curve {
 /// Splits the edges between `num_points` points into curves, each edge on exactly one. Edges are
 /// input positions, either way round, repeats allowed; loops and positions past `num_points` are
 /// ignored, as are positions from `u32::MAX` on (the library's limit on points,
-/// [`MAX_POINTS`](crate::MAX_POINTS), is far below). Each curve starts at its smallest position
-/// (an open one at its smaller end); sorted.
+/// [`MAX_POINTS`](crate::MAX_POINTS), is far below). A curve runs from a point whose degree is
+/// not two (an end or a branch point) to the next such point, or around a cycle of points of
+/// degree two; a branch point is on each curve that meets it, and a curve that comes back to
+/// the point it started from is closed, which lists that point once. Each curve starts at its
+/// smallest position (an open one at its smaller end); sorted.
 ///
 /// ```
 /// use condt::curves_from_edges;
@@ -115,6 +118,15 @@ impl Curve {
 /// let curves = curves_from_edges(5, &[[0, 1], [1, 2], [2, 0], [0, 3], [3, 4], [4, 0]]);
 /// assert_eq!(curves.len(), 2);
 /// assert!(curves.iter().all(|c| c.is_closed() && c.len() == 3));
+/// // A T: three open curves from the junction, point 0.
+/// let t = curves_from_edges(7, &[[0, 1], [1, 2], [0, 3], [3, 4], [0, 5], [5, 6]]);
+/// let arms: Vec<Vec<usize>> = t.iter().map(|c| c.points().collect()).collect();
+/// assert_eq!(arms, [[0, 1, 2], [0, 3, 4], [0, 5, 6]]);
+/// assert!(t.iter().all(|c| !c.is_closed()));
+/// // A P: the loop through the branch point 0 is closed, its tail open.
+/// let p = curves_from_edges(6, &[[0, 1], [1, 2], [2, 3], [3, 0], [0, 4], [4, 5]]);
+/// assert!(p[0].is_closed() && p[0].points().eq([0, 1, 2, 3]));
+/// assert!(!p[1].is_closed() && p[1].points().eq([0, 4, 5]));
 /// ```
 pub fn curves_from_edges(num_points: usize, edges: &[[usize; 2]]) -> Vec<Curve> {
     // Positions are 32-bit inside, as in the kernel; larger ones cannot name a point here.

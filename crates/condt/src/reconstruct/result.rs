@@ -286,7 +286,9 @@ impl Reconstruction {
         &self.edges
     }
 
-    /// The curves, in input positions, sorted; see [`Graph::curves`].
+    /// The curves, in input positions, sorted; see [`Graph::curves`] and, for where a curve
+    /// starts and ends, [`curves_from_edges`](crate::curves_from_edges). An exact duplicate is
+    /// on them under its point's first position only ([`Reconstruction::unused`] says more).
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
@@ -389,13 +391,25 @@ impl Reconstruction {
         }
     }
 
-    /// Input positions whose point ended with no edge (outliers), ascending.
+    /// Input positions whose point ended with no edge (outliers), ascending, exact duplicates of
+    /// such a point included. The curves and edges name a point by its first position
+    /// ([`Triangulation::first_at`]), so a duplicate of a point with edges is in none of them:
+    /// every input position is on a curve, unused, or such a duplicate
+    /// ([`Triangulation::merged`] lists them).
     ///
     /// ```
     /// use condt::{reconstruct, Params, Point};
     /// let mut pts: Vec<Point> = (0..=20).map(|i| Point::new(i as f64, 0.0)).collect();
     /// pts.push(Point::new(10.0, 50.0));
     /// assert_eq!(reconstruct(&pts, &Params::default())?.unused(), [21]);
+    /// // Point 22 repeats point 5 (on the line), point 23 repeats the outlier 21.
+    /// pts.extend([pts[5], pts[21]]);
+    /// let result = reconstruct(&pts, &Params::default())?;
+    /// assert_eq!(result.unused(), [21, 23]);
+    /// let on_curves = |i| result.curves().iter().any(|c| c.points().any(|p| p == i));
+    /// assert!(on_curves(5) && !on_curves(22));
+    /// let merged: Vec<[usize; 2]> = result.triangulation().merged().collect();
+    /// assert_eq!(merged, [[22, 5], [23, 21]]);
     /// # Ok::<(), condt::Error>(())
     /// ```
     pub fn unused(&self) -> &[usize] {
