@@ -1092,3 +1092,98 @@ fn a_geojson_inputs_crs_member_goes_on_as_crs_would_take_it() {
         assert_eq!(said.contains("its crs member"), noted, "{member}: {said}");
     }
 }
+
+/// A GIS user's review: a shapefile's parts and a GPX track, fed by mistake, were refused as
+/// "not UTF-8 text", a control character, `--columns` advice or `cannot read "<?xml" as a
+/// number`. By their names' endings the refusal now says what the file is and how to export
+/// its points; a file so named that reads as points is read, and a stated format keeps the
+/// reader's own message.
+#[test]
+fn gis_files_condt_does_not_read_are_named_with_an_export() {
+    let dir = scratch_dir();
+    // A dBase header (version 3, a date, 2 records), a shapefile's header (file code 9994,
+    // big-endian), a projection's WKT and a GPX document.
+    let mut dbf = vec![3u8, 124, 5, 7, 2, 0, 0, 0, 97, 0, 39, 0];
+    dbf.extend([0u8; 20]);
+    dbf.extend(b"LON\0\0\0\0\0\0\0\0N\0\0\0\0\x13\x0b");
+    let mut shp = vec![0u8, 0, 0x27, 0x0a];
+    shp.extend([0u8; 20]);
+    shp.extend([0u8, 0, 0, 50, 0xe8, 3, 0, 0, 1, 0, 0, 0]);
+    let cases: [(&str, &[u8], &str); 5] = [
+        ("parcels.dbf", &dbf, "a part of a shapefile"),
+        (
+            "parcels.shp",
+            &shp,
+            "a shapefile, which condt does not read",
+        ),
+        (
+            "parcels.PRJ",
+            br#"GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984"],UNIT["Degree",0.0174532925199433]]"#,
+            "a part of a shapefile",
+        ),
+        (
+            "ride.gpx",
+            b"<?xml version=\"1.0\"?>\n<gpx><trk><trkseg><trkpt lat=\"65\" lon=\"25\"/>\
+              </trkseg></trk></gpx>\n",
+            "GPX, which condt does not read",
+        ),
+        (
+            "coast.kml",
+            b"<?xml version=\"1.0\"?>\n<kml></kml>\n",
+            "KML, which condt does not read",
+        ),
+    ];
+    for (name, bytes, what) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, bytes).unwrap();
+        let run = condt_with_stdin(&["reconstruct", path.to_str().unwrap()], b"");
+        let said = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(1), "{name}: {said}");
+        assert!(
+            said.contains(&format!("{name}: {what}")) && said.contains("ogr2ogr -f"),
+            "{name}: {said}"
+        );
+        // Stated as text, the text reader's own refusal stands.
+        let run = condt_with_stdin(
+            &[
+                "reconstruct",
+                path.to_str().unwrap(),
+                "--input-format",
+                "txt",
+            ],
+            b"",
+        );
+        let said = String::from_utf8_lossy(&run.stderr);
+        assert!(
+            run.status.code() == Some(1) && !said.contains("ogr2ogr"),
+            "{name}: {said}"
+        );
+    }
+    // Points in a file so named are read as points.
+    let path = dir.path().join("points.prj");
+    std::fs::write(&path, "0 0\n1 0\n0.5 1\n").unwrap();
+    let run = condt_with_stdin(&["reconstruct", path.to_str().unwrap()], b"");
+    assert!(run.status.success(), "{run:?}");
+}
+
+/// A FeatureCollection of LineStrings (a GIS user's review) is refused, as before, and the
+/// message now says how to read their vertices.
+#[test]
+fn geojson_lines_are_refused_with_how_to_read_their_vertices() {
+    let dir = scratch_dir();
+    let path = dir.path().join("roads.geojson");
+    std::fs::write(
+        &path,
+        r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{},
+"geometry":{"type":"LineString","coordinates":[[0,0],[1,0],[2,1]]}}]}"#,
+    )
+    .unwrap();
+    let run = condt_with_stdin(&["reconstruct", path.to_str().unwrap()], b"");
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        run.status.code() == Some(1)
+            && said.contains("roads.geojson:2: a \"LineString\": only Point and MultiPoint")
+            && said.contains("QGIS's Extract vertices"),
+        "{said}"
+    );
+}

@@ -622,10 +622,18 @@ fn wanted_member<E: de::Error>(name: Option<&str>) -> Result<Option<(Key, Member
         Some("Point") => (Key::Coordinates, Member::Point),
         Some("MultiPoint") => (Key::Coordinates, Member::Positions),
         Some(other) => {
+            // A GIS user's lines or outlines: what would read them (a GIS user's review).
+            let vertices = match other {
+                "LineString" | "MultiLineString" | "Polygon" | "MultiPolygon" => {
+                    " (write its vertices as Points first: QGIS's Extract vertices, or \
+                     shapely.get_coordinates)"
+                }
+                _ => "",
+            };
             return Err(E::custom(format_args!(
-                "a {}: only Point and MultiPoint geometries are read as points",
+                "a {}: only Point and MultiPoint geometries are read as points{vertices}",
                 quoted(other)
-            )))
+            )));
         }
     }))
 }

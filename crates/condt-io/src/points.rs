@@ -1289,8 +1289,21 @@ pub fn read_points_with(
     })();
     // Where the reader quotes the replaced bytes (U+FFFD), the line's problem is them; where it
     // names another problem on such a line, that stands, with a word on the bytes.
+    // A GIS file condt has no reader for, by its name's ending where no format was stated: a
+    // shapefile's .dbf was "not UTF-8 text", its .shp "found one coordinate (U+0000)", its .prj
+    // sent the user to --columns, and a GPX track to `cannot read "<?xml" as a number` (a GIS
+    // user's review).
+    let gis = options
+        .format
+        .is_none()
+        .then(|| path.extension().and_then(|e| e.to_str()))
+        .flatten()
+        .and_then(gis_file);
     read.map_err(|mut err| {
-        if let (true, IoErrorKind::Content(message)) = (utf16, &mut err.kind) {
+        if let (Some(what), IoErrorKind::Content(message)) = (gis, &mut err.kind) {
+            *message = what.to_string();
+            err.line = None;
+        } else if let (true, IoErrorKind::Content(message)) = (utf16, &mut err.kind) {
             *message = "UTF-16 text (the file starts with its byte order mark): condt reads \
                         UTF-8; save the file as UTF-8"
                 .to_string();
@@ -1316,6 +1329,41 @@ pub fn read_points_with(
             }
         }
         err
+    })
+}
+
+/// What a file whose name ends in `extension` (any case) is, when a GIS format condt does not
+/// read, and how to get points from it; `None` for any other ending.
+fn gis_file(extension: &str) -> Option<&'static str> {
+    Some(match extension.to_ascii_lowercase().as_str() {
+        "shp" => {
+            "a shapefile, which condt does not read: export its points as CSV with x and y (or \
+             lon and lat) columns, or as GeoJSON Points (GDAL, for a layer of points: \
+             `ogr2ogr -f CSV points.csv FILE.shp -lco GEOMETRY=AS_XY`; of lines or polygons, \
+             their vertices: QGIS's Extract vertices)"
+        }
+        "dbf" | "shx" | "prj" | "cpg" | "sbn" | "sbx" | "qix" => {
+            "a part of a shapefile (its attribute table, index, projection or code page), which \
+             holds no coordinates: the points are in the .shp, which condt does not read either: \
+             export them as CSV with x and y (or lon and lat) columns, or as GeoJSON Points \
+             (GDAL: `ogr2ogr -f CSV points.csv FILE.shp -lco GEOMETRY=AS_XY`)"
+        }
+        "gpx" => {
+            "GPX, which condt does not read: export the track's points as CSV (GDAL: `ogr2ogr \
+             -f CSV points.csv FILE.gpx track_points -lco GEOMETRY=AS_XY`, whose X and Y \
+             columns are longitude and latitude)"
+        }
+        "kml" | "kmz" => {
+            "KML, which condt does not read: export its points as CSV with x and y (or lon and \
+             lat) columns, or as GeoJSON Points (GDAL: `ogr2ogr -f GeoJSON points.geojson \
+             FILE.kml`, whose lines' vertices condt reads only as Points)"
+        }
+        "gpkg" => {
+            "a GeoPackage, which condt does not read: export its points as CSV with x and y \
+             columns, or as GeoJSON Points (GDAL: `ogr2ogr -f CSV points.csv FILE.gpkg \
+             -lco GEOMETRY=AS_XY`)"
+        }
+        _ => return None,
     })
 }
 
