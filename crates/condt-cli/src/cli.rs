@@ -55,6 +55,11 @@ whose geometry is null none, nor an empty Point or MultiPoint, `\"coordinates\":
 note on standard error says how many); every output speaks of points by that number.
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
+Longitudes and latitudes (lon and lat columns, GeoJSON) are plane coordinates here, in degrees:
+an east-west gap counts 1/cos(latitude) times as long as on the ground (2.4 at 65 degrees), and
+no edge crosses the antimeridian; project such points first (a UTM zone): `reconstruct` notes
+both. GPS tracks: thin the fixes to a minimum distance of 3 times the jitter or more, which
+also merges stops and drives of one road (README.md, *GPS tracks*).
 
 OUTPUT (`-o`) is written whole or not at all; without it, or with `-`, the result goes to
 standard output. An existing file keeps its permissions, owner, hard links and symbolic links;
@@ -446,7 +451,8 @@ const SNAP_HELP: &str = "move each point within distance D of an earlier point t
 onto the nearest such point (an exact duplicate where its first copy
 went), before anything else (`condt::snap`):
 layers exported piece by piece repeat shared borders with rounding
-differences, and a curve cannot run along both copies. The points
+differences, and a curve cannot run along both copies (a GPS stop's
+pile of fixes, snapped at its spread, becomes one point). The points
 moved become exact duplicates, merged as those are. Off by default:
 only you know how far apart two samples may be and still be one";
 
@@ -1584,6 +1590,86 @@ fn note_projected_without_crs(output: &str, points: &[condt::Point]) {
     }
 }
 
+/// Where an input in degrees (a header naming `lon` and `lat`, GeoJSON without a projected crs)
+/// lies: ConDT measures lengths in the plane, so in degrees an east-west gap counts `1 / cos`
+/// of its latitude times a north-south one as long, and a line across the antimeridian has no
+/// edge across. Neither was said where a GIS user would look: a fjord 200 m wide sampled every
+/// 100 m came back whole in metres and cut off by a chord (62 edges) in degrees at 60 to 70
+/// degrees north; two GPS drives of one road, 97 and 119 edges of 487 changed at 60 (a GIS user's
+/// review).
+struct Degrees {
+    /// The largest absolute latitude.
+    farthest: f64,
+    /// Whether points lie within a degree of both 180 and -180 in longitude.
+    both_sides: bool,
+}
+
+impl Degrees {
+    /// `None` when any point is no longitude and latitude (projected coordinates under such
+    /// names, or the columns swapped, which [`swapped_degrees`] tells).
+    fn of(points: &[condt::Point]) -> Option<Degrees> {
+        if points.is_empty() || condt_io::not_longitude_latitude(points).is_some() {
+            return None;
+        }
+        let (mut west, mut east, mut farthest) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+        for p in points {
+            west = west.min(p.x);
+            east = east.max(p.x);
+            farthest = farthest.max(p.y.abs());
+        }
+        Some(Degrees {
+            farthest,
+            both_sides: west <= -179.0 && east >= 179.0,
+        })
+    }
+
+    /// The notes: the stretch where it exceeds 5 % (beyond 18.2 degrees of latitude; noisy
+    /// tracks changed from 15 on, in that review), and the antimeridian.
+    fn note(&self, input: &str) {
+        let shrink = self.farthest.to_radians().cos();
+        if shrink < 0.95 {
+            note(format_args!(
+                "{input}: longitudes and latitudes are read as plane coordinates: at latitude \
+                 {farthest:.0}, the points' farthest from the equator, a degree of longitude is \
+                 {shrink:.2} of one of latitude on the ground, so an east-west gap counts \
+                 {stretch:.1} times as long as a north-south one of the same metres, and curves \
+                 may break or join otherwise than on the ground; project the points \
+                 ({projection}) first where that matters (README.md, *Longitude and latitude*)",
+                farthest = self.farthest,
+                stretch = 1.0 / shrink.max(f64::MIN_POSITIVE),
+                // UTM's zones end at 84 degrees north and 80 south.
+                projection = if self.farthest > 80.0 {
+                    "a polar stereographic projection"
+                } else {
+                    "a UTM zone"
+                },
+            ));
+        }
+        if self.both_sides {
+            note(format_args!(
+                "{input}: points lie on both sides of the antimeridian (longitudes near 180 and \
+                 -180): no edge joins across it, so a curve that crosses it comes out cut in two \
+                 there; add 360 to the negative longitudes first to reconstruct it whole, or \
+                 project"
+            ));
+        }
+    }
+}
+
+/// The first point of an input in degrees whose latitude is beyond 90 while every point would
+/// be a longitude and latitude the other way round: the columns swapped (`lat,lon` values under a
+/// `lon,lat` header; GeoJSON written latitude first), which reads as a mirror image and was
+/// silent unless a GeoJSON output's note spoke of projected metres. Swaps of longitudes within
+/// 90 cannot be told.
+fn swapped_degrees(points: &[condt::Point]) -> Option<condt::Point> {
+    let swapped = points
+        .iter()
+        .all(|p| p.x.abs() <= 90.0 && p.y.abs() <= 180.0);
+    swapped
+        .then(|| points.iter().copied().find(|p| p.y.abs() > 90.0))
+        .flatten()
+}
+
 /// A note where `--format` writes one format to a file whose name ends as another's (`-o
 /// out.edges --format svg`): the file is written as asked, and whatever opens it by its name
 /// would misread it (it was silent: a reviewer's report).
@@ -1669,6 +1755,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
             crs_dropped_at,
             null_geometries,
             empty_geometries,
+            degrees,
             ..
         },
         snapped,
@@ -1692,6 +1779,13 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         _ => (None, None),
     };
     let count = points.len();
+    // Before the points are handed over: one pass, and only for an input in degrees.
+    let swapped = if degrees {
+        swapped_degrees(&points)
+    } else {
+        None
+    };
+    let degrees = degrees.then(|| Degrees::of(&points)).flatten();
     // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
     // result does not keep (`Reconstruction::stage_point`), so for them the points stay (16
     // bytes per point through the stages). Every other output reads the result alone: the
@@ -1771,6 +1865,19 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         note_snapped(snapped);
         note_duplicates(count, result.triangulation().num_vertices());
         note_twins(&result);
+        if let Some(degrees) = degrees {
+            degrees.note(&shown_input(args.input.as_deref()));
+        }
+        if let Some(p) = swapped {
+            note(format_args!(
+                "{}: its coordinates are named longitude and latitude, but points such as ({}, \
+                 {}) have a latitude beyond 90, and every point would fit the other way round: \
+                 are the columns swapped (latitude first)? The result is read as given",
+                shown_input(args.input.as_deref()),
+                p.x,
+                p.y
+            ));
+        }
         note_format_against_name(args.format, args.output.as_deref());
         // Every panel draws every point: past 200,000 dots a drawing takes seconds to open
         // (Chromium, to the first screenshot: 80,000 dots, 6 MB, 2.5 s; 240,000, 18 MB, 6.8 s;

@@ -1093,6 +1093,168 @@ fn a_geojson_inputs_crs_member_goes_on_as_crs_would_take_it() {
     }
 }
 
+/// A ring of 40 points 1 km around (`lon`, `lat`), as longitudes and latitudes: its metres
+/// turned into degrees on a sphere, so that on the ground it is a circle.
+fn ring_in_degrees(lon: f64, lat: f64) -> Vec<(f64, f64)> {
+    let metres_per_degree = 6_371_008.8_f64.to_radians();
+    (0..40)
+        .map(|k| {
+            let t = f64::from(k) * std::f64::consts::TAU / 40.0;
+            let (east, north) = (1000.0 * t.cos(), 1000.0 * t.sin());
+            let y = lat + north / metres_per_degree;
+            let x = lon + east / (metres_per_degree * y.to_radians().cos());
+            // Wrapped into [-180, 180), as a GIS writes them.
+            ((x + 180.0).rem_euclid(360.0) - 180.0, y)
+        })
+        .collect()
+}
+
+/// A GIS user's review: longitudes and latitudes read as plane coordinates without a word,
+/// though at 60 to 70 degrees north a fjord 2 spacings wide came back cut off by a chord in
+/// degrees and whole in metres, and a coast across the antimeridian came back in two pieces.
+/// An input that says it is in degrees (a header naming lon and lat, `--columns` choosing
+/// them, GeoJSON without a projected crs) gets a note giving the stretch where it exceeds 5 %,
+/// and one where points lie on both sides of the antimeridian; coordinates named otherwise, or
+/// near the equator, get none, and `--quiet` silences both.
+#[test]
+fn longitudes_and_latitudes_are_noted_as_degrees_where_it_matters() {
+    let dir = scratch_dir();
+    let stretch = "longitudes and latitudes are read as plane coordinates";
+    let antimeridian = "on both sides of the antimeridian";
+    let write_csv = |name: &str, header: &str, ring: &[(f64, f64)]| {
+        let path = dir.path().join(name);
+        let rows: String = ring.iter().map(|(x, y)| format!("{x},{y}\n")).collect();
+        std::fs::write(&path, format!("{header}\n{rows}")).unwrap();
+        path
+    };
+    let stderr_of = |path: &std::path::Path, extra: &[&str]| {
+        let mut args = vec!["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"];
+        args.extend_from_slice(extra);
+        let run = condt_with_stdin(&args, b"");
+        assert!(run.status.success(), "{run:?}");
+        String::from_utf8(run.stderr).unwrap()
+    };
+    let north = ring_in_degrees(25.0, 65.0);
+    let said = stderr_of(&write_csv("north.csv", "lon,lat", &north), &[]);
+    // cos(65.009 degrees) = 0.4225: 2.37 times.
+    assert!(
+        said.contains(&format!("{stretch}: at latitude 65,"))
+            && said.contains("a degree of longitude is 0.42 of one of latitude")
+            && said.contains("counts 2.4 times as long")
+            && said.contains("(a UTM zone)")
+            && !said.contains(antimeridian),
+        "{said}"
+    );
+    let quiet = stderr_of(&write_csv("north_q.csv", "lon,lat", &north), &["-q"]);
+    assert!(quiet.is_empty(), "{quiet}");
+    // The same numbers under x and y: nothing says they are degrees.
+    let said = stderr_of(&write_csv("plane.csv", "x,y", &north), &[]);
+    assert!(!said.contains(stretch), "{said}");
+    // Chosen by name among other columns; a plain file's header names them too.
+    let both: Vec<String> = north
+        .iter()
+        .map(|(x, y)| format!("{x},{y},{x},{y}"))
+        .collect();
+    let path = dir.path().join("both.csv");
+    std::fs::write(
+        &path,
+        format!("X,Y,Longitude,Latitude\n{}\n", both.join("\n")),
+    )
+    .unwrap();
+    let said = stderr_of(&path, &["--columns", "Longitude,Latitude"]);
+    assert!(said.contains(stretch), "{said}");
+    let said = stderr_of(&path, &["--columns", "X,Y"]);
+    assert!(!said.contains(stretch), "{said}");
+    let plain = dir.path().join("north.txt");
+    let rows: String = north.iter().map(|(x, y)| format!("{x} {y}\n")).collect();
+    std::fs::write(&plain, format!("lon lat\n{rows}")).unwrap();
+    assert!(stderr_of(&plain, &[]).contains(stretch));
+    // Near the equator the stretch is under 5 %: no note.
+    let said = stderr_of(
+        &write_csv("equator.csv", "lon,lat", &ring_in_degrees(25.0, 10.0)),
+        &[],
+    );
+    assert!(!said.contains(stretch), "{said}");
+    // GeoJSON: degrees without a crs or with CRS84, not with a projected one.
+    let coordinates: Vec<String> = north.iter().map(|(x, y)| format!("[{x},{y}]")).collect();
+    for (crs, noted) in [
+        ("", true),
+        (
+            r#""crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:OGC:1.3:CRS84"}},"#,
+            true,
+        ),
+        (
+            r#""crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32635"}},"#,
+            false,
+        ),
+    ] {
+        let path = dir.path().join("north.geojson");
+        std::fs::write(
+            &path,
+            format!(
+                r#"{{"type":"MultiPoint",{crs}"coordinates":[{}]}}"#,
+                coordinates.join(",")
+            ),
+        )
+        .unwrap();
+        let said = stderr_of(&path, &[]);
+        assert_eq!(said.contains(stretch), noted, "{crs}: {said}");
+    }
+    // A ring around the antimeridian comes out in two pieces, and the note says why.
+    let across = ring_in_degrees(180.0, 65.0);
+    assert!(across.iter().any(|p| p.0 > 179.9) && across.iter().any(|p| p.0 < -179.9));
+    let said = stderr_of(&write_csv("across.csv", "lon,lat", &across), &[]);
+    assert!(
+        said.contains(antimeridian)
+            && said.contains("add 360 to the negative longitudes")
+            && said.contains("2 curves (0 closed, 2 open)"),
+        "{said}"
+    );
+    // As it says: shifted, the ring is whole (and the note gone).
+    let shifted: Vec<(f64, f64)> = across
+        .iter()
+        .map(|&(x, y)| (if x < 0.0 { x + 360.0 } else { x }, y))
+        .collect();
+    let said = stderr_of(&write_csv("shifted.csv", "lon,lat", &shifted), &[]);
+    assert!(
+        !said.contains(antimeridian) && said.contains("1 curve (1 closed, 0 open)"),
+        "{said}"
+    );
+}
+
+/// Longitudes beyond 90 under a `lat` name, with every latitude within 90: the columns were
+/// swapped (a GIS user's review: a lat,lon export under a lon,lat header read as its mirror
+/// image, silently but for a GeoJSON output's note about projected metres).
+#[test]
+fn swapped_longitude_and_latitude_columns_are_noted() {
+    let dir = scratch_dir();
+    let ring = ring_in_degrees(120.0, 65.0);
+    let rows: String = ring.iter().map(|(x, y)| format!("{y},{x}\n")).collect();
+    let path = dir.path().join("ring.csv");
+    std::fs::write(&path, format!("lon,lat\n{rows}")).unwrap();
+    let run = condt_with_stdin(
+        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
+        b"",
+    );
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        run.status.success() && said.contains("are the columns swapped (latitude first)?"),
+        "{said}"
+    );
+    // The right way round, no such note.
+    let rows: String = ring.iter().map(|(x, y)| format!("{y},{x}\n")).collect();
+    std::fs::write(&path, format!("lat,lon\n{rows}")).unwrap();
+    let run = condt_with_stdin(
+        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
+        b"",
+    );
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        run.status.success() && !said.contains("columns swapped"),
+        "{said}"
+    );
+}
+
 /// A GIS user's review: a shapefile's parts and a GPX track, fed by mistake, were refused as
 /// "not UTF-8 text", a control character, `--columns` advice or `cannot read "<?xml" as a
 /// number`. By their names' endings the refusal now says what the file is and how to export

@@ -70,6 +70,29 @@ pub(crate) fn header_axes<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<O
     }
 }
 
+/// Whether `first_line`, a file's first line with content, names a longitude and a latitude
+/// column as [`header_axes`] reads them (`lon,lat`, `id longitude latitude`, `# lon lat`), so the
+/// points are in degrees; split at commas, tabs, semicolons and blanks alike, since only whole
+/// names count here.
+pub(crate) fn names_degrees(first_line: &str) -> bool {
+    let names: Vec<String> = first_line
+        .split([',', '\t', ';', ' '])
+        .map(|name| name.trim().trim_matches(['"', '\'']).to_ascii_lowercase())
+        .collect();
+    let has = |wanted: &[&str]| names.iter().any(|n| wanted.contains(&n.as_str()));
+    has(&X_NAMES[1..]) && has(&Y_NAMES[1..])
+}
+
+/// Whether `--columns` chose a longitude and a latitude column by name (`Lon,Lat`), as
+/// [`names_degrees`] tells of a header.
+pub(crate) fn columns_degrees(columns: &crate::Columns) -> bool {
+    let named = |column: &crate::Column, wanted: &[&str]| match column {
+        crate::Column::Named(name) => wanted.contains(&name.trim().to_ascii_lowercase().as_str()),
+        _ => false,
+    };
+    named(&columns.x, &X_NAMES[1..]) && named(&columns.y, &Y_NAMES[1..])
+}
+
 /// Whether the fields `names` of a first line name an x and a y column as a header does for
 /// [`header_axes`], whatever the other fields hold (`id lon lat 2020`, `elevation (m)`): such a
 /// line is a header this reader follows, not a point.

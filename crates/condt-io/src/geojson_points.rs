@@ -203,11 +203,23 @@ fn read_records(
         }
     }
     Ok(PointFile {
-        points: state.points,
-        crs: state.crs,
         crs_dropped_at,
         null_geometries: state.null_geometries,
         empty_geometries: state.empty_geometries,
+        degrees: crs_is_degrees(state.crs.as_deref()),
+        points: state.points,
+        crs: state.crs,
+    })
+}
+
+/// Whether a GeoJSON input's coordinates are longitudes and latitudes: without a `crs`, as RFC
+/// 7946 has them (WGS 84), or with one that names CRS84 or EPSG 4326 (`urn:ogc:def:crs:OGC:1.3:
+/// CRS84`, `EPSG:4326`, GDAL's URN of it), whose coordinates 2008 GeoJSON writes in that order.
+/// A `null` crs (no system: a drawing's coordinates) is not.
+fn crs_is_degrees(crs: Option<&str>) -> bool {
+    crs.is_none_or(|crs| {
+        let crs = crs.to_ascii_uppercase();
+        crs.contains("CRS84") || crs.contains("EPSG::4326\"") || crs.contains("EPSG:4326\"")
     })
 }
 

@@ -434,4 +434,10 @@ pub struct PointFile {
     /// GeoJSON Point and MultiPoint geometries whose coordinates are `[]` (empty geometries,
     /// RFC 7946, section 3.1): they give no point either (0 for other formats).
     pub empty_geometries: usize,
+    /// Whether the file says its coordinates are longitudes and latitudes in degrees: a header
+    /// naming the columns read `lon` (`lng`, `long`, `longitude`) and `lat` (`latitude`), or
+    /// chosen by those names, or GeoJSON without a `crs` (RFC 7946's WGS 84) or with one naming
+    /// CRS84 or EPSG 4326. They are read as plane coordinates all the same; this lets a caller
+    /// say what that means (`condt reconstruct` notes it where the latitude distorts them).
+    pub degrees: bool,
 }

@@ -1068,7 +1068,15 @@ pub fn read_points_with(
             && meta.is_some_and(|m| m.is_file())
         {
             if let Some(points) = parallel::read_pieces(&file, size, name) {
-                return Ok(without_crs(points));
+                // A header is on the first line: its first kilobytes say whether it names
+                // longitude and latitude.
+                let mut head = [0u8; 4096];
+                let got = std::os::unix::fs::FileExt::read_at(&file, &mut head, 0).unwrap_or(0);
+                let head = String::from_utf8_lossy(&head[..got]);
+                return Ok(PointFile {
+                    degrees: crate::csv::names_degrees(crate::csv::first_line_with_content(&head)),
+                    ..without_crs(points)
+                });
             }
         }
         // `read_pieces` reads at offsets: the file is still at its start.
@@ -1130,6 +1138,11 @@ pub fn read_points_with(
     let mut bytes = bytes;
     blank_cloudcompare_header_mark(&mut bytes);
     let (text, not_utf8) = lossy_text(bytes);
+    // Told before the readers take the text; GeoJSON tells its own by its crs.
+    let named_degrees = options.columns.as_ref().map_or_else(
+        || crate::csv::names_degrees(crate::csv::first_line_with_content(&text)),
+        crate::csv::columns_degrees,
+    );
     let read = (|| -> Result<PointFile, IoError> {
         if let Some(columns) = &options.columns {
             let starts_like_json = text
@@ -1329,6 +1342,10 @@ pub fn read_points_with(
             }
         }
         err
+    })
+    .map(|file| PointFile {
+        degrees: file.degrees || named_degrees,
+        ..file
     })
 }
 

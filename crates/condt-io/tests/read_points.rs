@@ -1234,3 +1234,66 @@ fn a_cloudcompare_header_is_read() {
     let comment = TempFile::new("comment.txt", b"// 0 0\n1 1\n2 0\n");
     assert!(comment.read().is_err());
 }
+
+/// `PointFile::degrees` says where the file names its coordinates longitude and latitude (a GIS
+/// user's review: nothing told a caller so, to warn that they are read as plane coordinates):
+/// CSV, TSV and plain headers naming lon and lat, `--columns` choosing them by name, GeoJSON
+/// without a crs or with CRS84 or EPSG 4326; not x and y, projected names, a projected or null
+/// crs, a header-less file or an array.
+#[test]
+fn point_files_say_whether_they_are_in_degrees() {
+    let csv_rows = "1,2\n3,4\n5,7\n";
+    let cases: [(&str, String, bool); 12] = [
+        ("a.csv", format!("lon,lat\n{csv_rows}"), true),
+        ("b.csv", format!("id,\"Latitude\",\"Longitude\"\n{}", "0,1,2\n1,3,4\n2,5,7\n"), true),
+        ("c.csv", format!("x,y\n{csv_rows}"), false),
+        ("d.csv", format!("easting,northing\n{csv_rows}"), false),
+        ("e.csv", csv_rows.to_string(), false),
+        ("f.tsv", "lng\tlat\n1\t2\n3\t4\n".to_string(), true),
+        ("g.txt", "long lat\n1 2\n3 4\n".to_string(), true),
+        ("h.geojson", r#"{"type":"MultiPoint","coordinates":[[1,2],[3,4]]}"#.to_string(), true),
+        (
+            "i.geojson",
+            r#"{"type":"MultiPoint","crs":{"type":"name","properties":{"name":"EPSG:4326"}},"coordinates":[[1,2]]}"#
+                .to_string(),
+            true,
+        ),
+        (
+            "j.geojson",
+            r#"{"type":"MultiPoint","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}},"coordinates":[[1,2]]}"#
+                .to_string(),
+            false,
+        ),
+        (
+            "k.geojson",
+            r#"{"type":"MultiPoint","crs":null,"coordinates":[[1,2]]}"#.to_string(),
+            false,
+        ),
+        ("l.txt", "1 2\n3 4\n".to_string(), false),
+    ];
+    for (name, text, degrees) in cases {
+        let file = TempFile::new(name, text.as_bytes());
+        let read = read_points_with(&file.0, &ReadOptions::new()).unwrap();
+        assert_eq!(read.degrees, degrees, "{name}");
+    }
+    let file = TempFile::new("m.csv", b"a,Lon,Lat,b\n9,1,2,9\n");
+    let chosen = |spec: &str| {
+        let options = ReadOptions::new().with_columns(Columns::parse(spec).unwrap());
+        read_points_with(&file.0, &options).unwrap().degrees
+    };
+    assert!(chosen("LON,LAT"));
+    assert!(!chosen("2,3"), "by number: nothing names them");
+    let mut npy = b"\x93NUMPY\x01\x00".to_vec();
+    let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2), }";
+    let padded = format!("{header:<117}\n");
+    npy.extend((padded.len() as u16).to_le_bytes());
+    npy.extend(padded.as_bytes());
+    npy.extend(1f64.to_le_bytes());
+    npy.extend(2f64.to_le_bytes());
+    let file = TempFile::new("n.npy", &npy);
+    assert!(
+        !read_points_with(&file.0, &ReadOptions::new())
+            .unwrap()
+            .degrees
+    );
+}
