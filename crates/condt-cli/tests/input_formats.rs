@@ -1295,6 +1295,14 @@ fn gis_files_condt_does_not_read_are_named_with_an_export() {
             "KML, which condt does not read",
         ),
     ];
+    // A GPX track's fixes are longitudes and latitudes: the export projects them.
+    let gpx = dir.path().join("ride.gpx");
+    std::fs::write(&gpx, cases[3].1).unwrap();
+    let run = condt_with_stdin(&["reconstruct", gpx.to_str().unwrap()], b"");
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("-t_srs EPSG:326NN"),
+        "{run:?}"
+    );
     for (name, bytes, what) in cases {
         let path = dir.path().join(name);
         std::fs::write(&path, bytes).unwrap();

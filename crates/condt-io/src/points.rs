@@ -1366,9 +1366,10 @@ fn gis_file(extension: &str) -> Option<&'static str> {
              (GDAL: `ogr2ogr -f CSV points.csv FILE.shp -lco GEOMETRY=AS_XY`)"
         }
         "gpx" => {
-            "GPX, which condt does not read: export the track's points as CSV (GDAL: `ogr2ogr \
-             -f CSV points.csv FILE.gpx track_points -lco GEOMETRY=AS_XY`, whose X and Y \
-             columns are longitude and latitude)"
+            "GPX, which condt does not read: export the track's points as CSV, projected to \
+             metres (GDAL: `ogr2ogr -f CSV points.csv FILE.gpx track_points -t_srs EPSG:326NN \
+             -lco GEOMETRY=AS_XY`, NN the UTM zone; without -t_srs, X and Y are longitude and \
+             latitude, which condt reads as plane degrees)"
         }
         "kml" | "kmz" => {
             "KML, which condt does not read: export its points as CSV with x and y (or lon and \
