@@ -316,6 +316,34 @@ fn same_file(_a: &fs::Metadata, _b: &fs::Metadata) -> bool {
     false
 }
 
+/// Whether INPUT and OUTPUT (`None`: standard input, standard output) are one file. On Unix by
+/// device and inode; on Windows by volume serial number and file index, which std gives only on
+/// nightly and `same-file` reads from a handle, so that any name of the file counts there too:
+/// another case (`-o POINTS.TXT`), an 8.3 short name, a hard link (a Windows user's review:
+/// without it `condt reconstruct points.txt -o points.txt` replaced the points by the result).
+#[cfg(windows)]
+fn same_input_and_output(
+    input: Option<&Path>,
+    output: Option<&Path>,
+    _in_meta: &fs::Metadata,
+    _out_meta: &fs::Metadata,
+) -> bool {
+    use same_file::Handle;
+    let input = input.map_or_else(Handle::stdin, Handle::from_path);
+    let output = output.map_or_else(Handle::stdout, Handle::from_path);
+    matches!((input, output), (Ok(input), Ok(output)) if input == output)
+}
+
+#[cfg(not(windows))]
+fn same_input_and_output(
+    _input: Option<&Path>,
+    _output: Option<&Path>,
+    in_meta: &fs::Metadata,
+    out_meta: &fs::Metadata,
+) -> bool {
+    same_file(in_meta, out_meta)
+}
+
 /// The metadata of what a standard stream has open (`< FILE`, `> FILE`, `>> FILE`: a file).
 #[cfg(unix)]
 fn stream_metadata(stream: impl std::os::fd::AsFd) -> Option<fs::Metadata> {
@@ -323,7 +351,14 @@ fn stream_metadata(stream: impl std::os::fd::AsFd) -> Option<fs::Metadata> {
     File::from(fd).metadata().ok()
 }
 
-#[cfg(not(unix))]
+/// The metadata of what a standard stream has open (`< FILE`, `>> FILE`: a file).
+#[cfg(windows)]
+fn stream_metadata(stream: impl std::os::windows::io::AsHandle) -> Option<fs::Metadata> {
+    let handle = stream.as_handle().try_clone_to_owned().ok()?;
+    File::from(handle).metadata().ok()
+}
+
+#[cfg(not(any(unix, windows)))]
 fn stream_metadata<S>(_stream: S) -> Option<fs::Metadata> {
     None
 }
@@ -357,8 +392,9 @@ fn is_stream(_meta: &fs::Metadata) -> bool {
     false
 }
 
-/// Refuses an output that is the input file itself (by device and inode, so another path, a
-/// symbolic or a hard link to it count too): it would be replaced before it could be compared.
+/// Refuses an output that is the input file itself (by device and inode, or volume and file
+/// index, so another path, a symbolic or a hard link to it count too): it would be replaced
+/// before it could be compared.
 /// `input` of `None` is standard input, `output` of `None` standard output, which the shell may
 /// have opened on the input (`>> INPUT` would append the result to the points, `> INPUT` has
 /// already emptied them).
@@ -381,7 +417,9 @@ pub(crate) fn refuse_same_file(
         None => stream_metadata(io::stdin()),
     };
     match in_meta {
-        Some(in_meta) if in_meta.is_file() && same_file(&in_meta, &out_meta) => {
+        Some(in_meta)
+            if in_meta.is_file() && same_input_and_output(input, output, &in_meta, &out_meta) =>
+        {
             let input_name = input.map_or("<stdin>".into(), |p| p.display().to_string());
             let output_name = output.map_or("<stdout>".into(), |p| p.display().to_string());
             Err(CliError::Usage(format!(
