@@ -305,6 +305,22 @@ fn has_other_names(_meta: &fs::Metadata) -> bool {
     false
 }
 
+/// Whether `path` opens on a Windows character device or pipe (`NUL`, `CON`, `COM1`), by the
+/// type of the handle (`GetFileType`), as std's metadata cannot be read of them.
+#[cfg(windows)]
+fn is_windows_device(path: &Path) -> bool {
+    fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .and_then(winapi_util::file::typ)
+        .is_ok_and(|typ| typ.is_char() || typ.is_pipe())
+}
+
+#[cfg(not(windows))]
+fn is_windows_device(_path: &Path) -> bool {
+    false
+}
+
 #[cfg(unix)]
 fn same_file(a: &fs::Metadata, b: &fs::Metadata) -> bool {
     use std::os::unix::fs::MetadataExt;
@@ -514,6 +530,13 @@ impl Destination {
                     shown,
                 })
             }
+            // Windows's devices (`NUL`, `CON`, `COM1`) give no metadata (std's query of a file's
+            // information fails on them: "Invalid parameter" under Wine), and a Windows user's
+            // `-o NUL` was refused so; they are written as they are, as a device is on Unix.
+            Err(_) if is_windows_device(path) => Ok(Destination::Direct {
+                path: path.to_path_buf(),
+                shown,
+            }),
             Err(e) => Err(file_error(&shown, e)),
         }
     }

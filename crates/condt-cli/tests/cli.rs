@@ -198,6 +198,22 @@ fn the_input_cannot_be_the_output_on_any_system() {
     assert_eq!(std::fs::read_to_string(&input).unwrap(), points);
 }
 
+/// `-o NUL`, Windows's null device, takes the output and discards it, as `-o /dev/null` does on
+/// Unix (a Windows user's review: it was refused, "Incorrect function", as the device has no
+/// metadata to read).
+#[cfg(windows)]
+#[test]
+fn the_null_device_takes_the_output_on_windows() {
+    for name in ["NUL", "nul"] {
+        for command in ["triangulate", "reconstruct"] {
+            let out = condt(&[command, "-", "-q", "-o", name], "0 0\n1 0\n0 1\n");
+            let message = String::from_utf8_lossy(&out.stderr);
+            assert!(out.status.success(), "{command} -o {name}: {message}");
+            assert!(out.stdout.is_empty() && message.is_empty(), "{message}");
+        }
+    }
+}
+
 /// A GeoJSON output is on the input's coordinates, so it carries on a GeoJSON input's `crs`
 /// (projected coordinates read as longitudes in GIS tools without it); a nested `crs` or another
 /// format gives none.
