@@ -295,13 +295,22 @@ fn take_over_attributes(temp: &File, original: &fs::Metadata) -> io::Result<bool
 }
 
 #[cfg(unix)]
-fn has_other_names(meta: &fs::Metadata) -> bool {
+fn has_other_names(_path: &Path, meta: &fs::Metadata) -> bool {
     use std::os::unix::fs::MetadataExt;
     meta.nlink() > 1
 }
 
-#[cfg(not(unix))]
-fn has_other_names(_meta: &fs::Metadata) -> bool {
+/// On Windows the count of links comes from the file's handle (std gives it only on nightly);
+/// without it a hard-linked output was parted from its other names, which kept the old content.
+#[cfg(windows)]
+fn has_other_names(path: &Path, _meta: &fs::Metadata) -> bool {
+    winapi_util::Handle::from_path_any(path)
+        .and_then(|handle| winapi_util::file::information(&handle))
+        .is_ok_and(|info| info.number_of_links() > 1)
+}
+
+#[cfg(not(any(unix, windows)))]
+fn has_other_names(_path: &Path, _meta: &fs::Metadata) -> bool {
     false
 }
 
@@ -491,7 +500,7 @@ impl Destination {
                     path: path.to_path_buf(),
                     shown: shown.clone(),
                 };
-                if has_other_names(&meta) {
+                if has_other_names(path, &meta) {
                     // Renaming would part this name from the others: write into the file.
                     return Ok(in_place);
                 }

@@ -214,6 +214,41 @@ fn the_null_device_takes_the_output_on_windows() {
     }
 }
 
+/// An output with another hard link is rewritten in place on every system, so both names hold
+/// the result (on Windows the count of links was not read, and the file renamed over one name
+/// left the other with the old content).
+#[test]
+fn a_hard_linked_output_keeps_its_other_name_on_any_system() {
+    let scratch = scratch_dir();
+    let target = scratch.path().join("edges.txt");
+    std::fs::write(&target, "previous content\n").unwrap();
+    let other = scratch.path().join("other name.txt");
+    std::fs::hard_link(&target, &other).unwrap();
+    let out = condt(
+        &[
+            "triangulate",
+            "-",
+            "--edges",
+            "-o",
+            target.to_str().unwrap(),
+        ],
+        "0 0\n1 0\n0 1\n",
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for name in [&target, &other] {
+        assert_eq!(
+            std::fs::read_to_string(name).unwrap(),
+            "0 1\n0 2\n1 2\n",
+            "{name:?}"
+        );
+    }
+    assert_eq!(std::fs::read_dir(scratch.path()).unwrap().count(), 2);
+}
+
 /// A GeoJSON output is on the input's coordinates, so it carries on a GeoJSON input's `crs`
 /// (projected coordinates read as longitudes in GIS tools without it); a nested `crs` or another
 /// format gives none.
