@@ -12,9 +12,10 @@
 //! - a symbolic link: the file it finally points to is the one replaced, as above; the link
 //!   itself stays (a dangling link gets its file created);
 //! - a regular file with several hard links, or one whose owner a new file could not keep, or in
-//!   a directory where no file can be created: rewritten in place, so every name and the owner
-//!   stay; the result is fully formatted first, so only a failing disk can leave it incomplete,
-//!   and then the error says so;
+//!   a directory where no file can be created, or (on Windows) one another program holds open
+//!   without sharing its deletion: rewritten in place, so every name and the owner stay; the
+//!   result is fully formatted first, so only a failing disk can leave it incomplete, and then
+//!   the error says so;
 //! - one of this process's open descriptors, named as `/dev/stdout`, `/dev/stderr`,
 //!   `/dev/fd/N` or `/proc/self/fd/N` (directly or through links): written through the
 //!   descriptor already open, as `-o -` writes standard output, so that whatever the shell
@@ -330,6 +331,29 @@ fn is_windows_device(_path: &Path) -> bool {
     false
 }
 
+/// Whether Windows would refuse to rename a file over `path` because another program has it
+/// open without sharing its deletion, as most do (Python's `open`, C's `fopen`): asked by
+/// opening it for deletion alone, which changes nothing. Such a file was refused only after the
+/// whole computation ("Access denied" from the rename, in a Windows user's review); the
+/// program shares writing, so the file is rewritten in place instead, as on Unix it would be
+/// replaced. A program that shares no writing (a spreadsheet) has the file refused at once,
+/// as the open for writing before this fails.
+#[cfg(windows)]
+fn held_against_replacing(path: &Path) -> bool {
+    use std::os::windows::fs::OpenOptionsExt;
+    /// The `DELETE` access right (winnt.h).
+    const DELETE: u32 = 0x0001_0000;
+    fs::OpenOptions::new()
+        .access_mode(DELETE)
+        .open(path)
+        .is_err()
+}
+
+#[cfg(not(windows))]
+fn held_against_replacing(_path: &Path) -> bool {
+    false
+}
+
 #[cfg(unix)]
 fn same_file(a: &fs::Metadata, b: &fs::Metadata) -> bool {
     use std::os::unix::fs::MetadataExt;
@@ -502,6 +526,9 @@ impl Destination {
                 };
                 if has_other_names(path, &meta) {
                     // Renaming would part this name from the others: write into the file.
+                    return Ok(in_place);
+                }
+                if held_against_replacing(path) {
                     return Ok(in_place);
                 }
                 let temp = match temporary_beside(&target, false) {

@@ -249,6 +249,43 @@ fn a_hard_linked_output_keeps_its_other_name_on_any_system() {
     assert_eq!(std::fs::read_dir(scratch.path()).unwrap().count(), 2);
 }
 
+/// An output another program holds open, sharing reading and writing but not deletion (as
+/// Python's `open` and C's `fopen` do), is written on Windows, in place, as it is replaced on
+/// Unix (a Windows user's review: the rename over it failed, "Access denied", after the run).
+#[cfg(windows)]
+#[test]
+fn an_output_another_program_holds_open_is_written_on_windows() {
+    use std::os::windows::fs::OpenOptionsExt;
+    const FILE_SHARE_READ: u32 = 1;
+    const FILE_SHARE_WRITE: u32 = 2;
+    let scratch = scratch_dir();
+    let target = scratch.path().join("edges.txt");
+    std::fs::write(&target, "previous content, longer than the edges\n").unwrap();
+    let held = std::fs::OpenOptions::new()
+        .read(true)
+        .share_mode(FILE_SHARE_READ | FILE_SHARE_WRITE)
+        .open(&target)
+        .unwrap();
+    let out = condt(
+        &[
+            "triangulate",
+            "-",
+            "--edges",
+            "-o",
+            target.to_str().unwrap(),
+        ],
+        "0 0\n1 0\n0 1\n",
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "0 1\n0 2\n1 2\n");
+    drop(held);
+    assert_eq!(std::fs::read_dir(scratch.path()).unwrap().count(), 1);
+}
+
 /// A GeoJSON output is on the input's coordinates, so it carries on a GeoJSON input's `crs`
 /// (projected coordinates read as longitudes in GIS tools without it); a nested `crs` or another
 /// format gives none.
