@@ -295,6 +295,11 @@ struct ReadCounter {
 
 impl ReadCounter {
     fn start() -> Option<ReadCounter> {
+        // Elsewhere a `/proc/self/io` may be another process's: under Wine, Windows builds see
+        // the Unix files, opened by the wineserver, whose count the bar then showed.
+        if !cfg!(target_os = "linux") {
+            return None;
+        }
         let mut counter = ReadCounter { start: 0, own: 0 };
         counter.start = counter.rchar()?;
         Some(counter)
@@ -435,7 +440,6 @@ mod tests {
         let drawn = screen.0.lock().unwrap().clone();
         for seen in [
             "reading points.txt",
-            "1000 B",
             "triangulating and reconstructing",
             "10/40 points",
             "stage repair",
@@ -443,6 +447,13 @@ mod tests {
         ] {
             assert!(drawn.contains(seen), "{seen:?} not in {drawn:?}");
         }
+        // The size read is drawn where the bytes read can be counted (Linux): elsewhere the
+        // reading is a spinner, and this test failed on Windows.
+        assert_eq!(
+            drawn.contains("1000 B"),
+            ReadCounter::start().is_some(),
+            "{drawn:?}"
+        );
     }
 
     #[test]
