@@ -295,6 +295,20 @@ fn take_over_attributes(temp: &File, original: &fs::Metadata) -> io::Result<bool
     Ok(true)
 }
 
+/// Gives a replaced file's attributes (hidden, system, archive) back to the file renamed over it:
+/// on Windows the rename (tempfile's `persist`) sets the new file's to `FILE_ATTRIBUTE_NORMAL`,
+/// to drop its temporary mark, and a hidden output came back visible (a Windows user's review).
+/// The result is in place by then: an attribute that cannot be set is not worth failing for.
+#[cfg(windows)]
+fn restore_attributes(target: &Path, original: Option<&fs::Metadata>) {
+    if let Some(original) = original {
+        let _ = fs::set_permissions(target, original.permissions());
+    }
+}
+
+#[cfg(not(windows))]
+fn restore_attributes(_target: &Path, _original: Option<&fs::Metadata>) {}
+
 #[cfg(unix)]
 fn has_other_names(_path: &Path, meta: &fs::Metadata) -> bool {
     use std::os::unix::fs::MetadataExt;
@@ -639,7 +653,11 @@ impl Destination {
                     temp.as_file().sync_all()
                 })();
                 match result {
-                    Ok(()) => temp.persist(&target).map_err(|e| file_error(&shown, e)),
+                    Ok(()) => {
+                        temp.persist(&target).map_err(|e| file_error(&shown, e))?;
+                        restore_attributes(&target, original.as_ref());
+                        Ok(())
+                    }
                     Err(e) => Err(file_error(&shown, e)),
                 }
             }

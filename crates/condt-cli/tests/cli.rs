@@ -286,6 +286,45 @@ fn an_output_another_program_holds_open_is_written_on_windows() {
     assert_eq!(std::fs::read_dir(scratch.path()).unwrap().count(), 1);
 }
 
+/// A hidden output stays hidden when it is replaced on Windows (the rename cleared its
+/// attributes, and it came back visible).
+#[cfg(windows)]
+#[test]
+fn a_replaced_output_keeps_its_attributes_on_windows() {
+    use std::os::windows::fs::MetadataExt;
+    const FILE_ATTRIBUTE_HIDDEN: u32 = 2;
+    let scratch = scratch_dir();
+    let target = scratch.path().join("edges.txt");
+    std::fs::write(&target, "previous content\n").unwrap();
+    let status = Command::new("attrib")
+        .arg("+H")
+        .arg(&target)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let hidden = |path: &Path| {
+        std::fs::metadata(path).unwrap().file_attributes() & FILE_ATTRIBUTE_HIDDEN != 0
+    };
+    assert!(hidden(&target), "attrib +H hides it");
+    let out = condt(
+        &[
+            "triangulate",
+            "-",
+            "--edges",
+            "-o",
+            target.to_str().unwrap(),
+        ],
+        "0 0\n1 0\n0 1\n",
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "0 1\n0 2\n1 2\n");
+    assert!(hidden(&target), "still hidden");
+}
+
 /// A GeoJSON output is on the input's coordinates, so it carries on a GeoJSON input's `crs`
 /// (projected coordinates read as longitudes in GIS tools without it); a nested `crs` or another
 /// format gives none.
