@@ -1643,15 +1643,21 @@ impl Degrees {
     fn note(&self, input: &str) {
         let shrink = self.farthest.to_radians().cos();
         if shrink < 0.95 {
+            // Within 0.6 degrees of a pole the ratio is no measure: at the pole itself, a fix
+            // at latitude 90, it was "0.00" and "16331239353195370.0 times".
+            let (shrink, stretch) = if shrink < 0.01 {
+                ("under 0.01".to_string(), "over 100".to_string())
+            } else {
+                (format!("{shrink:.2}"), format!("{:.1}", 1.0 / shrink))
+            };
             note(format_args!(
                 "{input}: longitudes and latitudes are read as plane coordinates: at latitude \
                  {farthest:.0}, the points' farthest from the equator, a degree of longitude is \
-                 {shrink:.2} of one of latitude on the ground, so an east-west gap counts \
-                 {stretch:.1} times as long as a north-south one of the same metres, and curves \
+                 {shrink} of one of latitude on the ground, so an east-west gap counts \
+                 {stretch} times as long as a north-south one of the same metres, and curves \
                  may break or join otherwise than on the ground; project the points \
                  ({projection}) first where that matters (README.md, *Longitude and latitude*)",
                 farthest = self.farthest,
-                stretch = 1.0 / shrink.max(f64::MIN_POSITIVE),
                 // UTM's zones end at 84 degrees north and 80 south.
                 projection = if self.farthest > 80.0 {
                     "a polar stereographic projection"

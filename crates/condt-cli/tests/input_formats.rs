@@ -1255,6 +1255,48 @@ fn swapped_longitude_and_latitude_columns_are_noted() {
     );
 }
 
+/// At a pole a degree of longitude is no length at all: a track that reaches latitude 90 (the
+/// pole itself, or within 0.6 degrees of it) is told the stretch is over 100 times, not given
+/// the ratio of a cosine of nearly zero ("0.00", "16331239353195370.0 times": this review).
+#[test]
+fn the_stretch_at_a_pole_is_said_in_words() {
+    let dir = scratch_dir();
+    // A ring of 36 fixes at latitude 89.9 (11 km around the pole) and the pole itself.
+    let mut rows: String = (0..36)
+        .map(|k| format!("{},89.9\n", f64::from(k * 10 - 180)))
+        .collect();
+    rows += "0,90\n";
+    let path = dir.path().join("pole.csv");
+    std::fs::write(&path, format!("lon,lat\n{rows}")).unwrap();
+    let run = condt_with_stdin(
+        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
+        b"",
+    );
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        run.status.success()
+            && said.contains("at latitude 90, the points' farthest")
+            && said.contains("a degree of longitude is under 0.01 of one of latitude")
+            && said.contains("counts over 100 times as long")
+            && said.contains("(a polar stereographic projection)"),
+        "{said}"
+    );
+    // 10 degrees away, still a number: 1 / cos(80 degrees) = 5.76.
+    let rows: String = (0..36)
+        .map(|k| format!("{},80\n", f64::from(k * 10 - 180)))
+        .collect();
+    std::fs::write(&path, format!("lon,lat\n{rows}")).unwrap();
+    let run = condt_with_stdin(
+        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
+        b"",
+    );
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        said.contains("is 0.17 of one of latitude") && said.contains("counts 5.8 times"),
+        "{said}"
+    );
+}
+
 /// A GIS user's review: a shapefile's parts and a GPX track, fed by mistake, were refused as
 /// "not UTF-8 text", a control character, `--columns` advice or `cannot read "<?xml" as a
 /// number`. By their names' endings the refusal now says what the file is and how to export
