@@ -1891,9 +1891,10 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         }
         if let Some(p) = swapped {
             note(format_args!(
-                "{}: its coordinates are named longitude and latitude, but points such as ({}, \
-                 {}) have a latitude beyond 90, and every point would fit the other way round: \
-                 are the columns swapped (latitude first)? The result is read as given",
+                "{}: its coordinates are taken for longitudes and latitudes (by its header's \
+                 names, or as GeoJSON's are, longitude first), but points such as ({}, {}) have \
+                 a latitude beyond 90, and every point would fit the other way round: are they \
+                 written latitude first (swapped columns)? The result is read as given",
                 shown_input(args.input.as_deref()),
                 p.x,
                 p.y

@@ -1238,7 +1238,33 @@ fn swapped_longitude_and_latitude_columns_are_noted() {
     );
     let said = String::from_utf8_lossy(&run.stderr);
     assert!(
-        run.status.success() && said.contains("are the columns swapped (latitude first)?"),
+        run.status.success()
+            && said.contains("are they written latitude first (swapped columns)?")
+            && said.contains("by its header's names"),
+        "{said}"
+    );
+    // GeoJSON written latitude first has neither names nor columns: the note said it had
+    // ("its coordinates are named longitude and latitude", "are the columns swapped").
+    let positions: Vec<String> = ring.iter().map(|(x, y)| format!("[{y},{x}]")).collect();
+    let json = dir.path().join("ring.geojson");
+    std::fs::write(
+        &json,
+        format!(
+            r#"{{"type":"MultiPoint","coordinates":[{}]}}"#,
+            positions.join(",")
+        ),
+    )
+    .unwrap();
+    let run = condt_with_stdin(
+        &["reconstruct", json.to_str().unwrap(), "-o", "/dev/null"],
+        b"",
+    );
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        run.status.success()
+            && said.contains("or as GeoJSON's are, longitude first")
+            && said.contains("written latitude first")
+            && !said.contains("are named longitude"),
         "{said}"
     );
     // The right way round, no such note.
