@@ -56,10 +56,10 @@ note on standard error says how many); every output speaks of points by that num
 Exact duplicate points are merged into the first of them (a note on standard error says how
 many): a duplicate shares that point's triangles, edges and curves, and is unused when it is.
 Longitudes and latitudes (lon and lat columns, GeoJSON) are plane coordinates here, in degrees:
-an east-west gap counts 1/cos(latitude) times as long as on the ground (2.4 at 65 degrees), and
-no edge crosses the antimeridian; project such points first (a UTM zone): `reconstruct` notes
-both. GPS tracks: thin the fixes to a minimum distance of 3 times the jitter or more, which
-also merges stops and drives of one road (README.md, *GPS tracks*).
+an east-west gap counts 1/cos(latitude) times as long as a north-south one of the same metres
+(2.4 at 65 degrees), and no edge crosses the antimeridian; project such points first (a UTM
+zone): `reconstruct` notes both. GPS tracks: thin the fixes to a minimum distance of 3 times
+the jitter or more, which also merges stops and drives of one road (README.md, *GPS tracks*).
 
 OUTPUT (`-o`) is written whole or not at all; without it, or with `-`, the result goes to
 standard output. An existing file keeps its permissions, owner, hard links and symbolic links;

@@ -1281,6 +1281,25 @@ fn swapped_longitude_and_latitude_columns_are_noted() {
     );
 }
 
+/// The help says what the stretch compares as the note and README.md do: an east-west gap in
+/// degrees against a north-south one of the same metres (it said "as long as on the ground",
+/// a length that a gap in degrees does not have: this review).
+#[test]
+fn the_help_compares_the_stretch_as_the_note_does() {
+    let out = condt_with_stdin(&["--help"], b"");
+    let help = String::from_utf8_lossy(&out.stdout)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(
+        help.contains(
+            "an east-west gap counts 1/cos(latitude) times as long as a north-south one of the \
+             same metres (2.4 at 65 degrees)"
+        ),
+        "{help}"
+    );
+}
+
 /// At a pole a degree of longitude is no length at all: a track that reaches latitude 90 (the
 /// pole itself, or within 0.6 degrees of it) is told the stretch is over 100 times, not given
 /// the ratio of a cosine of nearly zero ("0.00", "16331239353195370.0 times": this review).
