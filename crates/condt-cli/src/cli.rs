@@ -1621,9 +1621,12 @@ struct Degrees {
 
 impl Degrees {
     /// `None` when any point is no longitude and latitude (projected coordinates under such
-    /// names, or the columns swapped, which [`swapped_degrees`] tells).
+    /// names, or the columns swapped, which [`swapped_degrees`] tells). Longitudes from 180 to
+    /// 360 are: climate data's 0 to 360, and points shifted across the antimeridian as the note
+    /// below advises, which then lost the note on the stretch they still have.
     fn of(points: &[condt::Point]) -> Option<Degrees> {
-        if points.is_empty() || condt_io::not_longitude_latitude(points).is_some() {
+        let degrees = |p: &condt::Point| (-180.0..=360.0).contains(&p.x) && p.y.abs() <= 90.0;
+        if points.is_empty() || !points.iter().all(degrees) {
             return None;
         }
         let (mut west, mut east, mut farthest) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);

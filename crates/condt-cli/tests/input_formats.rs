@@ -1220,6 +1220,12 @@ fn longitudes_and_latitudes_are_noted_as_degrees_where_it_matters() {
         !said.contains(antimeridian) && said.contains("1 curve (1 closed, 0 open)"),
         "{said}"
     );
+    // Past 180 the longitudes are still degrees, stretched as before the shift (the note on
+    // the stretch went with the shift: this review).
+    assert!(
+        said.contains(&format!("{stretch}: at latitude 65,")) && said.contains("2.4 times"),
+        "{said}"
+    );
 }
 
 /// Longitudes beyond 90 under a `lat` name, with every latitude within 90: the columns were
