@@ -1642,10 +1642,11 @@ impl Degrees {
     }
 
     /// The notes: the stretch where it exceeds 5 % (beyond 18.2 degrees of latitude; noisy
-    /// tracks changed from 15 on, in that review), and the antimeridian.
-    fn note(&self, input: &str) {
+    /// tracks changed from 15 on, in that review), and the antimeridian; whether any was given.
+    fn note(&self, input: &str) -> bool {
         let shrink = self.farthest.to_radians().cos();
-        if shrink < 0.95 {
+        let stretched = shrink < 0.95;
+        if stretched {
             // Within 0.6 degrees of a pole the ratio is no measure: at the pole itself, a fix
             // at latitude 90, it was "0.00" and "16331239353195370.0 times".
             let (shrink, stretch) = if shrink < 0.01 {
@@ -1677,6 +1678,7 @@ impl Degrees {
                  project"
             ));
         }
+        stretched || self.both_sides
     }
 }
 
@@ -1791,6 +1793,15 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         &mut progress,
         &mut timings,
     )?;
+    // RFC 7946's default, the one way a file in degrees says nothing of them: a drawing's
+    // coordinates in GeoJSON without a crs got the notes below with no word on how to say so.
+    let geojson_without_crs = crs.is_none()
+        && matches!(
+            args.read
+                .format
+                .or_else(|| args.input.as_deref().and_then(InputFormat::of_path)),
+            Some(InputFormat::GeoJson | InputFormat::GeoJsonLines)
+        );
     // The input's crs member goes on as `--crs` would take it (a string member is a name, as in
     // Python's `to_geojson`); a member that is no crs (`[1, 2]`, `4326`) is noted and left out.
     let (crs, crs_not_carried) = match crs {
@@ -1889,9 +1900,8 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         note_snapped(snapped);
         note_duplicates(count, result.triangulation().num_vertices());
         note_twins(&result);
-        if let Some(degrees) = degrees {
-            degrees.note(&shown_input(args.input.as_deref()));
-        }
+        let noted =
+            degrees.is_some_and(|degrees| degrees.note(&shown_input(args.input.as_deref())));
         if let Some(p) = swapped {
             note(format_args!(
                 "{}: its coordinates are taken for longitudes and latitudes (by its header's \
@@ -1901,6 +1911,14 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
                 shown_input(args.input.as_deref()),
                 p.x,
                 p.y
+            ));
+        }
+        if geojson_without_crs && (noted || swapped.is_some()) {
+            note(format_args!(
+                "{}: GeoJSON without a crs member is in longitude and latitude (RFC 7946); \
+                 where its coordinates are a drawing's or another plane's, `\"crs\": null` \
+                 in the file says so, and the notes above go",
+                shown_input(args.input.as_deref())
             ));
         }
         note_format_against_name(args.format, args.output.as_deref());

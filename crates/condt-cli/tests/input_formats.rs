@@ -1306,6 +1306,83 @@ fn the_help_compares_the_stretch_as_the_note_does() {
     );
 }
 
+/// GeoJSON without a crs member is taken for longitudes and latitudes (RFC 7946), so a drawing's
+/// coordinates in it were told of latitudes and swapped columns with no word on why or how to
+/// say otherwise (this review). The notes now say both; with `"crs": null` they go; a CSV's
+/// header, which says degrees itself, gets no such line.
+#[test]
+fn geojson_drawings_are_told_how_to_say_so() {
+    let dir = scratch_dir();
+    let hint = "GeoJSON without a crs member is in longitude and latitude (RFC 7946)";
+    // A ring drawn in a box of 100 by 80, and one in 80 by 160 (past 90 on y: "swapped").
+    let ring = |cx: f64, cy: f64, r: f64| -> Vec<String> {
+        (0..60)
+            .map(|k| {
+                let t = f64::from(k) * std::f64::consts::TAU / 60.0;
+                format!("[{},{}]", cx + r * t.cos(), cy + r * t.sin())
+            })
+            .collect()
+    };
+    for (name, positions, crs, noted) in [
+        ("wide.geojson", ring(50.0, 40.0, 38.0), "", true),
+        ("tall.geojson", ring(40.0, 80.0, 38.0), "", true),
+        (
+            "wide_null.geojson",
+            ring(50.0, 40.0, 38.0),
+            r#""crs":null,"#,
+            false,
+        ),
+        (
+            "tall_null.geojson",
+            ring(40.0, 80.0, 38.0),
+            r#""crs":null,"#,
+            false,
+        ),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(
+            &path,
+            format!(
+                r#"{{"type":"MultiPoint",{crs}"coordinates":[{}]}}"#,
+                positions.join(",")
+            ),
+        )
+        .unwrap();
+        let run = condt_with_stdin(
+            &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
+            b"",
+        );
+        let said = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success(), "{name}: {said}");
+        assert_eq!(said.contains(hint), noted, "{name}: {said}");
+        assert_eq!(
+            said.contains("`\"crs\": null` in the file"),
+            noted,
+            "{name}: {said}"
+        );
+        assert_eq!(
+            said.contains("latitude beyond 90") || said.contains("read as plane coordinates"),
+            noted,
+            "{name}: {said}"
+        );
+    }
+    let path = dir.path().join("wide.csv");
+    let rows: String = ring(50.0, 40.0, 38.0)
+        .iter()
+        .map(|p| format!("{}\n", p.trim_matches(['[', ']'])))
+        .collect();
+    std::fs::write(&path, format!("lon,lat\n{rows}")).unwrap();
+    let run = condt_with_stdin(
+        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
+        b"",
+    );
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        said.contains("read as plane coordinates") && !said.contains(hint),
+        "{said}"
+    );
+}
+
 /// At a pole a degree of longitude is no length at all: a track that reaches latitude 90 (the
 /// pole itself, or within 0.6 degrees of it) is told the stretch is over 100 times, not given
 /// the ratio of a cosine of nearly zero ("0.00", "16331239353195370.0 times": this review).
