@@ -1267,8 +1267,8 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
                 let name = text(value, flag)?;
                 let chosen = Format::named(name).ok_or_else(|| {
                     usage(format!(
-                        "--format {name}: unknown format; the formats are edges, npy, txt, svg, geojson, html \
-                         and unused"
+                        "--format {name}: unknown format; the formats are edges, npy, txt, svg, \
+                         geojson, html and unused"
                     ))
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
@@ -1363,7 +1363,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     };
     if stages && format != Format::Svg {
         return Err(usage(format!(
-            "--stages draws the stages in an SVG picture, but the output format is {}; \
+            "--stages draws the stages in an SVG picture, but the output format is `{}`; \
              use an .svg file or --format svg",
             format.name()
         )));
@@ -1371,7 +1371,7 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
     let crs = crs.get();
     if crs.is_some() && format != Format::GeoJson {
         return Err(usage(format!(
-            "--crs names the reference system of a GeoJSON output, but the output format is {}; \
+            "--crs names the reference system of a GeoJSON output, but the output format is `{}`; \
              use a .geojson file or --format geojson",
             format.name()
         )));
