@@ -47,6 +47,26 @@ fn scratch_dir() -> tempfile::TempDir {
         .unwrap()
 }
 
+/// Writes the edges of a triangle's three points to `target` (`condt triangulate - --edges -o
+/// target`), which must succeed: what the output-file tests write.
+fn triangle_edges_to(target: &Path) {
+    let out = condt(
+        &[
+            "triangulate",
+            "-",
+            "--edges",
+            "-o",
+            target.to_str().unwrap(),
+        ],
+        "0 0\n1 0\n0 1\n",
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 fn lines(out: &[u8]) -> Vec<Vec<usize>> {
     String::from_utf8_lossy(out)
         .lines()
@@ -128,17 +148,7 @@ fn output_file_is_complete_and_temporary_files_are_gone() {
     let scratch = scratch_dir();
     let dir = scratch.path();
     let target = dir.join("edges.txt");
-    let out = condt(
-        &[
-            "triangulate",
-            "-",
-            "--edges",
-            "-o",
-            target.to_str().unwrap(),
-        ],
-        "0 0\n1 0\n0 1\n",
-    );
-    assert!(out.status.success());
+    triangle_edges_to(&target);
     assert_eq!(std::fs::read_to_string(&target).unwrap(), "0 1\n0 2\n1 2\n");
     assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
 }
@@ -224,21 +234,7 @@ fn a_hard_linked_output_keeps_its_other_name_on_any_system() {
     std::fs::write(&target, "previous content\n").unwrap();
     let other = scratch.path().join("other name.txt");
     std::fs::hard_link(&target, &other).unwrap();
-    let out = condt(
-        &[
-            "triangulate",
-            "-",
-            "--edges",
-            "-o",
-            target.to_str().unwrap(),
-        ],
-        "0 0\n1 0\n0 1\n",
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    triangle_edges_to(&target);
     for name in [&target, &other] {
         assert_eq!(
             std::fs::read_to_string(name).unwrap(),
@@ -266,21 +262,7 @@ fn an_output_another_program_holds_open_is_written_on_windows() {
         .share_mode(FILE_SHARE_READ | FILE_SHARE_WRITE)
         .open(&target)
         .unwrap();
-    let out = condt(
-        &[
-            "triangulate",
-            "-",
-            "--edges",
-            "-o",
-            target.to_str().unwrap(),
-        ],
-        "0 0\n1 0\n0 1\n",
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    triangle_edges_to(&target);
     assert_eq!(std::fs::read_to_string(&target).unwrap(), "0 1\n0 2\n1 2\n");
     drop(held);
     assert_eq!(std::fs::read_dir(scratch.path()).unwrap().count(), 1);
@@ -306,21 +288,7 @@ fn a_replaced_output_keeps_its_attributes_on_windows() {
         std::fs::metadata(path).unwrap().file_attributes() & FILE_ATTRIBUTE_HIDDEN != 0
     };
     assert!(hidden(&target), "attrib +H hides it");
-    let out = condt(
-        &[
-            "triangulate",
-            "-",
-            "--edges",
-            "-o",
-            target.to_str().unwrap(),
-        ],
-        "0 0\n1 0\n0 1\n",
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    triangle_edges_to(&target);
     assert_eq!(std::fs::read_to_string(&target).unwrap(), "0 1\n0 2\n1 2\n");
     assert!(hidden(&target), "still hidden");
 }
