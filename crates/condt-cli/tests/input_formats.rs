@@ -1210,6 +1210,23 @@ fn longitudes_and_latitudes_are_noted_as_degrees_where_it_matters() {
             && said.contains("2 curves (0 closed, 2 open)"),
         "{said}"
     );
+    // Sampled coarsely, no point within a degree of either side (a low-resolution coast, fixes
+    // hours apart): the same (it was silent: a diff review). Away from it, no note.
+    let coarse = |lon: f64| -> Vec<(f64, f64)> {
+        (0..12)
+            .map(|k| {
+                let t = f64::from(k) * std::f64::consts::TAU / 12.0;
+                let x = lon + 10.0 * t.cos() + 1.5;
+                (((x + 180.0).rem_euclid(360.0)) - 180.0, 10.0 * t.sin())
+            })
+            .collect()
+    };
+    let sparse = coarse(180.0);
+    assert!(sparse.iter().all(|p| p.0.abs() < 179.0), "{sparse:?}");
+    let said = stderr_of(&write_csv("sparse.csv", "lon,lat", &sparse), &[]);
+    assert!(said.contains(antimeridian), "{said}");
+    let said = stderr_of(&write_csv("pacific.csv", "lon,lat", &coarse(150.0)), &[]);
+    assert!(!said.contains(antimeridian), "{said}");
     // As it says: shifted, the ring is whole (and the note gone).
     let shifted: Vec<(f64, f64)> = across
         .iter()
