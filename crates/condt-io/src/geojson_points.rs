@@ -213,15 +213,36 @@ fn read_records(
 }
 
 /// Whether a GeoJSON input's coordinates are longitudes and latitudes: without a `crs`, as RFC
-/// 7946 has them (WGS 84), or with one that names CRS84 or EPSG 4326 (`urn:ogc:def:crs:OGC:1.3:
-/// CRS84`, `EPSG:4326`, GDAL's URN of it), whose coordinates 2008 GeoJSON writes in that order.
-/// A `null` crs (no system: a drawing's coordinates) is not.
+/// 7946 has them (WGS 84), or with one that names a geographic system: OGC's CRS84, CRS83 or
+/// CRS27, or an EPSG code of one in use by national mapping (`EPSG:4326`, GDAL's
+/// `urn:ogc:def:crs:EPSG::4326`; [`GEOGRAPHIC_EPSG`]). A `null` crs (no system: a drawing's
+/// coordinates) is not.
 fn crs_is_degrees(crs: Option<&str>) -> bool {
     crs.is_none_or(|crs| {
         let crs = crs.to_ascii_uppercase();
-        crs.contains("CRS84") || crs.contains("EPSG::4326\"") || crs.contains("EPSG:4326\"")
+        let ogc = ["CRS84", "CRS83", "CRS27"]
+            .iter()
+            .any(|name| crs.contains(name));
+        // The code after each `EPSG:` or `EPSG::`, to its last digit.
+        let epsg = crs.split("EPSG:").skip(1).any(|rest| {
+            let digits: String = rest
+                .trim_start_matches(':')
+                .chars()
+                .take_while(char::is_ascii_digit)
+                .collect();
+            digits
+                .parse()
+                .is_ok_and(|code: u32| GEOGRAPHIC_EPSG.contains(&code))
+        });
+        ogc || epsg
     })
 }
+
+/// Geographic 2D systems (longitude and latitude in degrees) a GeoJSON `crs` names most: WGS 84
+/// (4326), ETRS89 (4258, Europe's INSPIRE data), NAD83 and NAD27 (4269, 4267), GDA94 and GDA2020
+/// (4283, 7844), CGCS2000 (4490), JGD2011 (6668). Only 4326 was known, and ETRS89 data got no
+/// note (a diff review).
+const GEOGRAPHIC_EPSG: [u32; 8] = [4326, 4258, 4269, 4267, 4283, 7844, 4490, 6668];
 
 /// Lines longer than this many bytes get the column of an error on them and the text around it:
 /// a minified GeoJSON file is one line, which a line number does not narrow down.

@@ -437,7 +437,8 @@ pub struct PointFile {
     /// Whether the file says its coordinates are longitudes and latitudes in degrees: a header
     /// naming the columns read `lon` (`lng`, `long`, `longitude`) and `lat` (`latitude`), or
     /// chosen by those names, or GeoJSON without a `crs` (RFC 7946's WGS 84) or with one naming
-    /// CRS84 or EPSG 4326. They are read as plane coordinates all the same; this lets a caller
-    /// say what that means (`condt reconstruct` notes it where the latitude distorts them).
+    /// a geographic system (OGC's CRS84, EPSG 4326, ETRS89's 4258, NAD83's 4269 and a few
+    /// more). They are read as plane coordinates all the same; this lets a caller say what that
+    /// means (`condt reconstruct` notes it where the latitude distorts them).
     pub degrees: bool,
 }

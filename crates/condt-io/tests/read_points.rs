@@ -1243,7 +1243,7 @@ fn a_cloudcompare_header_is_read() {
 #[test]
 fn point_files_say_whether_they_are_in_degrees() {
     let csv_rows = "1,2\n3,4\n5,7\n";
-    let cases: [(&str, String, bool); 12] = [
+    let cases: [(&str, String, bool); 15] = [
         ("a.csv", format!("lon,lat\n{csv_rows}"), true),
         ("b.csv", format!("id,\"Latitude\",\"Longitude\"\n{}", "0,1,2\n1,3,4\n2,5,7\n"), true),
         ("c.csv", format!("x,y\n{csv_rows}"), false),
@@ -1270,6 +1270,26 @@ fn point_files_say_whether_they_are_in_degrees() {
             false,
         ),
         ("l.txt", "1 2\n3 4\n".to_string(), false),
+        // ETRS89 by GDAL's URN, NAD83 by OGC's name: geographic too; a code that only begins
+        // like one (43260) is not.
+        (
+            "n.geojson",
+            r#"{"type":"MultiPoint","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::4258"}},"coordinates":[[1,2]]}"#
+                .to_string(),
+            true,
+        ),
+        (
+            "o.geojson",
+            r#"{"type":"MultiPoint","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:OGC:1.3:CRS83"}},"coordinates":[[1,2]]}"#
+                .to_string(),
+            true,
+        ),
+        (
+            "p.geojson",
+            r#"{"type":"MultiPoint","crs":{"type":"name","properties":{"name":"EPSG:43260"}},"coordinates":[[1,2]]}"#
+                .to_string(),
+            false,
+        ),
     ];
     for (name, text, degrees) in cases {
         let file = TempFile::new(name, text.as_bytes());
