@@ -1526,7 +1526,7 @@ fn note_twins(result: &condt::Reconstruction) {
 /// counted: a README reader's review).
 fn note_pieces(result: &condt::Reconstruction) {
     let loose_end = |c: &condt::Curve| {
-        [c.points().next(), c.points().last()]
+        [c.points().next(), c.points().next_back()]
             .into_iter()
             .flatten()
             .any(|end| result.degree(end) == 1)

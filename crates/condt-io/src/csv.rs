@@ -39,15 +39,7 @@ const NAMES_READ: &str =
 /// of them, else by the projected names. The one lookup of the CSV reader and of the plain
 /// reader's check.
 pub(crate) fn header_axes<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<Option<char>> {
-    let names: Vec<String> = names
-        .into_iter()
-        .map(|name| {
-            name.trim()
-                .trim_matches(['"', '\''])
-                .trim()
-                .to_ascii_lowercase()
-        })
-        .collect();
+    let names: Vec<String> = names.into_iter().map(column_name).collect();
     let by = |x: &[&str], y: &[&str]| -> Vec<Option<char>> {
         names
             .iter()
@@ -70,6 +62,15 @@ pub(crate) fn header_axes<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<O
     }
 }
 
+/// A header's column name as the lookups compare it: case, and blanks and quotes around it,
+/// aside.
+fn column_name(name: &str) -> String {
+    name.trim()
+        .trim_matches(['"', '\''])
+        .trim()
+        .to_ascii_lowercase()
+}
+
 /// Whether `first_line`, a file's first line with content, names a longitude and a latitude
 /// column as [`header_axes`] reads them (`lon,lat`, `id longitude latitude`, `# lon lat`), so the
 /// points are in degrees; split at commas, tabs, semicolons and blanks alike, since only whole
@@ -77,7 +78,7 @@ pub(crate) fn header_axes<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<O
 pub(crate) fn names_degrees(first_line: &str) -> bool {
     let names: Vec<String> = first_line
         .split([',', '\t', ';', ' '])
-        .map(|name| name.trim().trim_matches(['"', '\'']).to_ascii_lowercase())
+        .map(column_name)
         .collect();
     let has = |wanted: &[&str]| names.iter().any(|n| wanted.contains(&n.as_str()));
     has(&X_NAMES[1..]) && has(&Y_NAMES[1..])
