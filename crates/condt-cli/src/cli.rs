@@ -1787,7 +1787,7 @@ fn start_command(
     threads_note(quiet);
     let timings = Timings::new(timings);
     refuse_same_file(input, output)?;
-    let destination = Destination::prepare(output)?;
+    let destination = Destination::prepare(output, quiet)?;
     let mut progress = Progress::new(quiet);
     if progress.is_shown() {
         progress.reading(&shown_input(input), input_size(input));
