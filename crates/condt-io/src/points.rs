@@ -1065,13 +1065,14 @@ pub fn read_points_with(
         #[cfg(all(feature = "parallel", unix))]
         if format == Some(InputFormat::Text)
             && options.columns.is_none()
-            && meta.is_some_and(|m| m.is_file())
+            && meta.as_ref().is_some_and(|m| m.is_file())
         {
             if let Some(points) = parallel::read_pieces(&file, size, name) {
                 // A header is on the first line: its first kilobytes say whether it names
                 // longitude and latitude.
                 let mut head = [0u8; 4096];
                 let got = std::os::unix::fs::FileExt::read_at(&file, &mut head, 0).unwrap_or(0);
+                unchanged_since_opened(&file, meta.as_ref()).map_err(io_error)?;
                 let head = String::from_utf8_lossy(&head[..got]);
                 return Ok(PointFile {
                     degrees: crate::csv::names_degrees(crate::csv::first_line_with_content(&head)),
@@ -1080,7 +1081,8 @@ pub fn read_points_with(
             }
         }
         // `read_pieces` reads at offsets: the file is still at its start.
-        read_all(file, size)
+        read_all(&file, size)
+            .and_then(|bytes| unchanged_since_opened(&file, meta.as_ref()).map(|()| bytes))
     }
     .map_err(io_error)?;
     // Standard input has no name to tell its format: a NumPy array, a GeoJSON document and a
@@ -1565,6 +1567,34 @@ fn parse_owned_points(text: String, file: &str) -> Result<Vec<Point>, IoError> {
     parse_points_sequentially(text.strip_prefix('\u{feff}').unwrap_or(&text), file)
 }
 
+/// An error when the file read has changed since it was opened (`opened`, its metadata then):
+/// its size or its time of last change differ, so what was read may be the start of a file
+/// still being written (a batch job picking up another's output), or part old and part new.
+/// Without it such a file was reconstructed as if whole (an operations review: a file rewritten
+/// by `cp` while read gave a cut-short set of points, or none, and status 0). A file whose
+/// metadata cannot be read is taken as unchanged.
+fn unchanged_since_opened(file: &File, opened: Option<&std::fs::Metadata>) -> io::Result<()> {
+    let (Some(opened), Ok(now)) = (opened, file.metadata()) else {
+        return Ok(());
+    };
+    if !opened.is_file() {
+        return Ok(());
+    }
+    let size_then = opened.len();
+    let size_now = now.len();
+    if size_then == size_now && opened.modified().ok() == now.modified().ok() {
+        return Ok(());
+    }
+    let sizes = if size_then == size_now {
+        format!("{size_now} bytes, rewritten")
+    } else {
+        format!("{size_then} bytes when opened, {size_now} after")
+    };
+    Err(io::Error::other(format!(
+        "changed while it was read ({sizes}): read it once it is complete"
+    )))
+}
+
 /// Everything `reader` holds, growing the buffer with `try_reserve` so that a file larger than
 /// the memory the system gives is an `OutOfMemory` error instead of an abort. `size` is a hint.
 /// On Linux the buffer also stops at half the memory available when the read starts (the points
@@ -2034,6 +2064,46 @@ mod tests {
             numbered,
             [(1, "a"), (2, "b"), (3, "c"), (4, "d"), (5, ""), (6, "e")]
         );
+    }
+
+    /// A file that grows or is rewritten between its opening and the end of its reading is an
+    /// error, not a cut-short set of points. The change is made before the read here (the
+    /// metadata of the opening kept from before it), as a writer racing the read would.
+    #[test]
+    fn a_file_changed_while_it_is_read_is_an_error() {
+        use std::io::Write;
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("growing.txt");
+        std::fs::write(&path, "0 0\n1 0\n").unwrap();
+        let file = File::open(&path).unwrap();
+        let opened = file.metadata().unwrap();
+        assert!(unchanged_since_opened(&file, Some(&opened)).is_ok());
+        std::fs::OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .unwrap()
+            .write_all(b"1 1\n0 1")
+            .unwrap();
+        let err = unchanged_since_opened(&file, Some(&opened)).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "changed while it was read (8 bytes when opened, 15 after): read it once it is \
+             complete"
+        );
+        // The same size, its time of change moved: rewritten meanwhile.
+        let file = File::open(&path).unwrap();
+        let opened = file.metadata().unwrap();
+        let stamp = opened.modified().unwrap() + std::time::Duration::from_secs(1);
+        std::fs::File::options()
+            .write(true)
+            .open(&path)
+            .unwrap()
+            .set_modified(stamp)
+            .unwrap();
+        let err = unchanged_since_opened(&file, Some(&opened)).unwrap_err();
+        assert!(err.to_string().contains("(15 bytes, rewritten)"), "{err}");
+        // Standard input's metadata is not asked: no file, nothing to compare.
+        assert!(unchanged_since_opened(&file, None).is_ok());
     }
 
     #[test]
