@@ -434,10 +434,12 @@ fn read_edges(path: &Path) -> Result<EdgeFile, CliError> {
 fn note_later_copies(name: &str, points: &[condt::Point], truth: &[[usize; 2]]) {
     let named = condt_eval::score::later_copies(points, truth);
     if let Some(words) = condt_eval::score::later_copies_named(&named) {
-        eprintln!(
-            "condt: note: {name} names {words}; edges are compared by point number, and condt \
+        // Through `note`, which drops a failed write: `eprintln!` panicked on a standard error
+        // that refuses writes, and the score was lost with exit 101.
+        crate::cli::note(format_args!(
+            "note: {name} names {words}; edges are compared by point number, and condt \
              reconstruct gives a duplicate's edges to its first copy"
-        );
+        ));
     }
 }
 

@@ -1512,3 +1512,41 @@ fn an_in_place_rewrite_waits_for_a_lock_on_the_file() {
     assert_eq!(fs::read_to_string(&target).unwrap(), expected);
     assert_eq!(names(dir.path()), ["out.txt", "second name.txt"]);
 }
+
+/// A standard error that refuses writes (its reader gone, as in `condt score ... 2>&1 >x |
+/// true`, or `2>/dev/full`) loses `score`'s notes, not its result: the note on a truth that
+/// repeats a point went out by `eprintln!`, which panics when it cannot write (an operations
+/// review: exit 101 and no score on standard output). The points come on standard input, so
+/// the run cannot write its note before the reader of its standard error is gone.
+#[test]
+fn score_scores_when_its_standard_error_refuses_writes() {
+    let dir = tempfile::tempdir().unwrap();
+    // A closed ring written with its first point again at its end: a note to write.
+    let ring = "0 0\n1 0\n1 1\n0 1\n0 0\n";
+    let truth = dir.path().join("ring.edges");
+    fs::write(&truth, "0 1\n1 2\n2 3\n3 4\n").unwrap();
+    let args = [
+        "score".as_ref(),
+        "-".as_ref(),
+        truth.as_os_str(),
+        truth.as_os_str(),
+    ];
+    // With its standard error read, the run says it (what is lost below).
+    let said = condt(&args, ring);
+    assert!(
+        stderr(&said).contains("repeats an earlier point"),
+        "{}",
+        stderr(&said)
+    );
+    let mut child = spawn(&args, Stdio::piped());
+    drop(child.stderr.take());
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(ring.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{:?}", out.status);
+    assert_eq!(out.stdout, said.stdout, "the same score");
+}
