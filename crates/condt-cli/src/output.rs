@@ -620,8 +620,8 @@ impl Destination {
         write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
     ) -> Result<(), CliError> {
         match self {
-            Destination::Stdout => write_stream(standard_stream(1)?, "<stdout>", write),
-            Destination::Stderr => write_stream(standard_stream(2)?, "<stderr>", write),
+            Destination::Stdout => write_stream(standard_stream(1)?, &standard_name(1), write),
+            Destination::Stderr => write_stream(standard_stream(2)?, &standard_name(2), write),
             Destination::Direct { path, shown } => {
                 // No create, no truncate: a device or a pipe is written, never made or cut; a
                 // regular file reached as a stream (`-o /dev/fd/3 3>> log`) is appended to, as
@@ -705,6 +705,29 @@ fn standard_stream(fd: i32) -> Result<Box<dyn Write>, CliError> {
             Box::new(io::stderr().lock())
         })
     }
+}
+
+/// How standard output (`fd` 1) or standard error (2) is named in a message: `<stdout>`, with
+/// the file behind it where that is a regular file (`> out.txt`, `>> log`), as `/proc/self/fd`
+/// names it: "No space left on device" said of `<stdout>` alone left a batch job's log without
+/// the file that filled its disk (an operations review).
+fn standard_name(fd: i32) -> String {
+    let stream = if fd == 1 { "<stdout>" } else { "<stderr>" };
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::fd::AsFd;
+        let meta = if fd == 1 {
+            stream_metadata(io::stdout().as_fd())
+        } else {
+            stream_metadata(io::stderr().as_fd())
+        };
+        if meta.is_some_and(|m| m.is_file()) {
+            if let Ok(file) = fs::read_link(format!("/proc/self/fd/{fd}")) {
+                return format!("{stream} ({})", file.display());
+            }
+        }
+    }
+    stream.to_string()
 }
 
 /// Writes what `write` writes to the standard stream `stream`, buffered.

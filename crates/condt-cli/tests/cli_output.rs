@@ -1550,3 +1550,48 @@ fn score_scores_when_its_standard_error_refuses_writes() {
     assert_eq!(out.status.code(), Some(0), "{:?}", out.status);
     assert_eq!(out.stdout, said.stdout, "the same score");
 }
+
+/// A write to standard output that fails names the file behind it where that is a regular file
+/// (`condt ... > out.txt` past a file-size limit or on a full disk), not `<stdout>` alone, which
+/// left a batch job's log without the file (an operations review). Linux only (read from
+/// `/proc/self/fd`).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_failed_write_to_standard_output_names_its_file() {
+    use std::os::unix::process::CommandExt;
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("redirected.txt");
+    let input: String = (0..2000)
+        .map(|i| format!("{} {}\n", i % 50, (i / 50) as f64 + 0.01 * (i % 7) as f64))
+        .collect();
+    let mut command = Command::new(binary());
+    command
+        .args(["triangulate", "-"])
+        .stdin(Stdio::piped())
+        .stdout(fs::File::create(&target).unwrap())
+        .stderr(Stdio::piped());
+    // SAFETY: `setrlimit` is async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(|| {
+            let limit = libc::rlimit {
+                rlim_cur: 4096,
+                rlim_max: 4096,
+            };
+            if libc::setrlimit(libc::RLIMIT_FSIZE, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let mut child = command.spawn().unwrap();
+    std::io::BufWriter::new(child.stdin.take().unwrap())
+        .write_all(input.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let said = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains(&format!("<stdout> ({})", target.display())) && said.contains("too large"),
+        "{said}"
+    );
+}
