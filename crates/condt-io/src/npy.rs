@@ -277,6 +277,19 @@ fn shown_shape(shape: &[u64]) -> String {
     }
 }
 
+/// How to save the layouts other tools hand over as (n, 2), as Python's `condt.reconstruct`
+/// says of the same arrays: an image user saved OpenCV's contours, (n, 1, 2), and got the bare
+/// shape. Empty for other shapes.
+fn shape_hint(shape: &[u64]) -> &'static str {
+    match shape {
+        [2, _] => "; points by column? save points.T",
+        [_, 1, 2] => "; OpenCV's contour layout? save points.reshape(-1, 2)",
+        [_, _, 1, 2] => "; OpenCV's contours stacked? save numpy.vstack(contours).reshape(-1, 2)",
+        [_, 3] | [_, 4] => "; save the two coordinate columns, such as points[:, :2]",
+        _ => "",
+    }
+}
+
 /// The meaning of a header dictionary for a point file.
 fn point_header(text: &[u8]) -> Result<Header, String> {
     let Entries {
@@ -303,8 +316,9 @@ fn point_header(text: &[u8]) -> Result<Header, String> {
         [rows, 2] => usize::try_from(rows).unwrap_or(usize::MAX),
         _ => {
             return Err(format!(
-                "shape {} is not (n, 2): one row `x y` per point",
-                shown_shape(&shape)
+                "shape {} is not (n, 2): one row `x y` per point{}",
+                shown_shape(&shape),
+                shape_hint(&shape)
             ));
         }
     };

@@ -216,6 +216,49 @@ fn bad_files_are_refused_with_a_message() {
     }
 }
 
+/// The layouts image tools hand over are refused with the way to save them as (n, 2), as
+/// Python's `condt.reconstruct` names them: an image user's review saved OpenCV's contours,
+/// `numpy.save("c.npy", contour)` of shape (n, 1, 2), and the message gave only the shape. The
+/// data are read by no one: the shape alone decides.
+#[test]
+fn shapes_other_tools_hand_over_are_refused_with_the_fix() {
+    let data = [0u8; 8 * 24];
+    for (shape, says) in [
+        (
+            "(12, 1, 2)",
+            "OpenCV's contour layout? save points.reshape(-1, 2)",
+        ),
+        (
+            "(2, 6, 1, 2)",
+            "OpenCV's contours stacked? save numpy.vstack(contours).reshape(-1, 2)",
+        ),
+        ("(2, 12)", "points by column? save points.T"),
+        (
+            "(8, 3)",
+            "save the two coordinate columns, such as points[:, :2]",
+        ),
+        (
+            "(6, 4)",
+            "save the two coordinate columns, such as points[:, :2]",
+        ),
+    ] {
+        let dict = format!("{{'descr': '<i4', 'fortran_order': False, 'shape': {shape}, }}");
+        let file = npy_file(1, &dict, &data[..4 * 24]);
+        let text = parse_npy(&file, "c.npy").unwrap_err().to_string();
+        assert!(
+            text.starts_with(&format!("c.npy: shape {shape} is not (n, 2)")),
+            "{text}"
+        );
+        assert!(text.ends_with(says), "{says:?} not at the end of {text:?}");
+    }
+    // Other shapes keep the bare message.
+    let dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2, 2), }";
+    let text = parse_npy(&npy_file(1, dict, &data[..64]), "c.npy")
+        .unwrap_err()
+        .to_string();
+    assert!(text.ends_with("one row `x y` per point"), "{text}");
+}
+
 /// The index writers: version 1.0 headers byte by byte, uint32 data, the same rows as the text
 /// writers.
 #[test]
