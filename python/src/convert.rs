@@ -281,12 +281,12 @@ pub(crate) fn points_array<'py>(
     }
     // A list of arrays of different lengths (skimage's `find_contours` gives one per contour):
     // numpy's own message says "inhomogeneous shape" and nothing of the fix (an image user's
-    // review).
+    // review). The reshape is for OpenCV's contours, (n, 1, 2) each, which `vstack` keeps so.
     let ragged = |err: PyErr| {
         if err.is_instance_of::<PyValueError>(py) && err.to_string().contains("inhomogeneous") {
             PyValueError::new_err(format!(
                 "points holds rows or arrays of different lengths (a list of contours?): \
-                 numpy.vstack(contours) makes one (n, 2) array of them ({err})"
+                 numpy.vstack(contours).reshape(-1, 2) makes one (n, 2) array of them ({err})"
             ))
         } else {
             err
@@ -355,10 +355,15 @@ pub(crate) fn points_array<'py>(
         [0] => converted.call_method1("reshape", ((0, 2),))?,
         _ => {
             // The shapes other tools hand over (an image user's review): rows and columns from
-            // `np.nonzero`, OpenCV's contours, a point per column.
+            // `np.nonzero`, OpenCV's contours, a point per column; and lists of contours of one
+            // length, which numpy stacks (`findContours` of a single blob gives a tuple of one).
             let hint = match shape.as_slice() {
                 [2, _] => "; points by column? pass points.T",
                 [_, 1, 2] => "; OpenCV's contour layout? pass points.reshape(-1, 2)",
+                [_, _, 1, 2] => {
+                    "; a list of OpenCV's contours? pass numpy.vstack(contours).reshape(-1, 2)"
+                }
+                [_, _, 2] => "; a list of contours? pass numpy.vstack(contours)",
                 [_, 3] | [_, 4] => "; pass the two coordinate columns, such as points[:, :2]",
                 _ => "",
             };

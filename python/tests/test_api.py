@@ -295,6 +295,27 @@ def test_shapes_other_tools_hand_over_are_named_with_the_fix():
         condt.triangulate(contours)
 
 
+def test_lists_of_contours_are_named_with_the_fix_that_makes_them_n_by_2():
+    """An image user's review: OpenCV's contours are (n, 1, 2) each, so the fix given for a list
+    of them, numpy.vstack(contours), gave (n, 1, 2) and a second refusal; and contours of one
+    length (findContours of one blob gives a tuple of one) stack into a 3-d or 4-d array that
+    got the bare shape."""
+    opencv = [np.zeros((3, 1, 2), np.int32), np.ones((4, 1, 2), np.int32)]
+    fix = "numpy.vstack(contours).reshape(-1, 2)"
+    for contours in (opencv, tuple(opencv), (opencv[1],), [opencv[0], opencv[0] + 1]):
+        with pytest.raises(ValueError, match=re.escape(fix)):
+            condt.reconstruct(contours)
+        # The fix named works.
+        stacked = np.vstack(contours).reshape(-1, 2)
+        assert condt.triangulate(stacked).edges.shape[1] == 2
+    # skimage's find_contours: (n, 2) each; a list of one, or of equal lengths, is (k, n, 2).
+    skimage = [np.array([[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]])]
+    for contours in (skimage, skimage * 2):
+        with pytest.raises(ValueError, match=re.escape("list of contours? pass numpy.vstack")):
+            condt.reconstruct(contours)
+        condt.reconstruct(np.vstack(contours))
+
+
 def test_rows_held_as_objects_are_named_with_the_shape_they_need():
     # A user review: numpy's "setting an array element with a sequence" named neither.
     for row in ([0, 0], np.zeros(2)):
