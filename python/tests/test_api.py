@@ -1021,6 +1021,22 @@ def test_snap_moves_an_exact_duplicate_where_its_first_copy_went_as_its_docs_say
         assert "an exact duplicate of an earlier point goes where its first copy went" in text
 
 
+def test_the_readmes_image_boundaries_run_as_written():
+    """python/README.md's *Image boundaries* block (an image user's review: the Python docs
+    said nothing of OpenCV's or scikit-image's layouts, rows and columns, or duplicates) runs,
+    and its own asserts check the curves it promises."""
+    for module in ("cv2", "scipy", "skimage"):
+        pytest.importorskip(module)
+    readme = pathlib.Path(__file__).resolve().parents[1] / "README.md"
+    if not readme.exists():
+        pytest.skip("no python/README.md beside the tests")
+    section = readme.read_text().split("## Image boundaries", 1)[1]
+    block = section.split("```python\n", 1)[1].split("```", 1)[0]
+    names = {}
+    exec(compile(block, str(readme), "exec"), names)
+    assert names["xy"].shape[1] == 2
+
+
 @pytest.mark.parametrize("distance", [float("nan"), -1.0, float("inf")])
 def test_snap_refuses_a_distance_that_is_no_length(distance):
     with pytest.raises(ValueError, match="distance"):
