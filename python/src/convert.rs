@@ -55,8 +55,15 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
         return Ok(());
     }
     if kind != "O" {
+        // A boolean mask passed whole (an image user's review): its pixels' places are wanted.
+        let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+        let hint = if kind == "b" && is_image(&shape) {
+            format!("; a mask? {IMAGE_FIX}")
+        } else {
+            String::new()
+        };
         return Err(PyTypeError::new_err(format!(
-            "points must hold numbers (integers or floats), not dtype {}",
+            "points must hold numbers (integers or floats), not dtype {}{hint}",
             dtype.str()?
         )));
     }
@@ -84,6 +91,18 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
         judged.push(element_type);
     }
     Ok(())
+}
+
+/// What to pass instead of an image or a mask: the places of its edge pixels, of a filled
+/// mask's boundary for a segmentation (its every pixel would be read as a point).
+const IMAGE_FIX: &str = "condt takes points: numpy.argwhere(edges)[:, ::-1] gives an edge \
+                         image's pixels as (x, y), and mask & ~scipy.ndimage.binary_erosion(mask) \
+                         a filled mask's boundary";
+
+/// Whether an array of this shape reads as an image rather than as points: two axes of 5 or
+/// more (a table of 5 columns or more reads so too; the hints name both).
+fn is_image(shape: &[usize]) -> bool {
+    matches!(shape, [h, w] if *h >= 5 && *w >= 5)
 }
 
 /// Refuses a bool among the numbers of a list's (or tuple's) rows, and a row that is a numpy
@@ -365,6 +384,11 @@ pub(crate) fn points_array<'py>(
                 }
                 [_, _, 2] => "; a list of contours? pass numpy.vstack(contours)",
                 [_, 3] | [_, 4] => "; pass the two coordinate columns, such as points[:, :2]",
+                // An image or a mask passed whole (an image user's review).
+                shape if is_image(shape) => &format!(
+                    "; an image or a mask? {IMAGE_FIX}; a table? pass the two coordinate \
+                     columns, such as points[:, :2]"
+                ),
                 _ => "",
             };
             return Err(PyValueError::new_err(format!(

@@ -316,6 +316,39 @@ def test_lists_of_contours_are_named_with_the_fix_that_makes_them_n_by_2():
         condt.reconstruct(np.vstack(contours))
 
 
+def test_an_image_or_a_mask_passed_whole_is_named_with_its_pixels_places():
+    """An image user's review: a mask or an edge image passed as points got the bare shape (or,
+    as bools, the dtype alone), where the places of its edge or boundary pixels are meant."""
+    mask = np.zeros((40, 60), bool)
+    mask[10:30, 20:40] = True
+    fix = "numpy.argwhere(edges)[:, ::-1] gives an edge image's pixels as (x, y), and mask & "
+    fix += "~scipy.ndimage.binary_erosion(mask) a filled mask's boundary"
+    for image in (mask.astype(np.uint8) * 255, mask.astype(float)):
+        for function in (condt.reconstruct, condt.triangulate):
+            said = "an image or a mask? condt takes points: " + fix
+            with pytest.raises(ValueError, match=re.escape(said)):
+                function(image)
+    with pytest.raises(TypeError, match=re.escape("a mask? condt takes points: " + fix)):
+        condt.reconstruct(mask)
+    # The fix named works: the square's boundary (erosion by a cross, written out in numpy),
+    # (x, y), comes back as one closed curve through its 76 pixels.
+    eroded = np.zeros_like(mask)
+    eroded[1:-1, 1:-1] = (
+        mask[1:-1, 1:-1] & mask[:-2, 1:-1] & mask[2:, 1:-1] & mask[1:-1, :-2] & mask[1:-1, 2:]
+    )
+    points = np.argwhere(mask & ~eroded)[:, ::-1]
+    r = condt.reconstruct(points)
+    assert points[:, 0].max() == 39 and len(points) == 76
+    assert [(c.closed, len(c.points)) for c in r.curves] == [(True, 76)]
+    # Points, or a short table, get no image hint: bools of shape (n, 2) keep the bare message.
+    with pytest.raises(TypeError) as refused:
+        condt.reconstruct(np.zeros((10, 2), bool))
+    assert "argwhere" not in str(refused.value)
+    with pytest.raises(ValueError) as refused:
+        condt.reconstruct(np.zeros((3, 7)))
+    assert "argwhere" not in str(refused.value)
+
+
 def test_rows_held_as_objects_are_named_with_the_shape_they_need():
     # A user review: numpy's "setting an array element with a sequence" named neither.
     for row in ([0, 0], np.zeros(2)):
