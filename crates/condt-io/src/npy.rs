@@ -278,14 +278,21 @@ fn shown_shape(shape: &[u64]) -> String {
 }
 
 /// How to save the layouts other tools hand over as (n, 2), as Python's `condt.reconstruct`
-/// says of the same arrays: an image user saved OpenCV's contours, (n, 1, 2), and got the bare
-/// shape. Empty for other shapes.
+/// says of the same arrays: an image user saved OpenCV's contours, (n, 1, 2), or a mask, and
+/// got the bare shape. Empty for other shapes.
 fn shape_hint(shape: &[u64]) -> &'static str {
     match shape {
         [2, _] => "; points by column? save points.T",
         [_, 1, 2] => "; OpenCV's contour layout? save points.reshape(-1, 2)",
         [_, _, 1, 2] => "; OpenCV's contours stacked? save numpy.vstack(contours).reshape(-1, 2)",
         [_, 3] | [_, 4] => "; save the two coordinate columns, such as points[:, :2]",
+        // An image or a mask saved whole (every pixel of a filled mask would be a point); a table
+        // of 5 columns or more reads so too.
+        [h, w] if *h >= 5 && *w >= 5 => {
+            "; an image or a mask? save points: numpy.argwhere(edges)[:, ::-1] gives an edge \
+             image's pixels as (x, y), and mask & ~scipy.ndimage.binary_erosion(mask) a filled \
+             mask's boundary; a table? save the two coordinate columns, such as points[:, :2]"
+        }
         _ => "",
     }
 }
@@ -305,10 +312,12 @@ fn point_header(text: &[u8]) -> Result<Header, String> {
         other => match Index::of(other) {
             Some((index, big_endian)) => (Float::Int(index), big_endian),
             None => {
+                // A mask saved whole is bools: its shape says more of the fix than its type.
                 return Err(format!(
                     "element type {other:?} is not supported: points are float64 ('<f8', \
-                     '>f8'), float32 ('<f4', '>f4') or integers ('<i8', '<u2', ...)"
-                ))
+                     '>f8'), float32 ('<f4', '>f4') or integers ('<i8', '<u2', ...){}",
+                    shape_hint(&shape)
+                ));
             }
         },
     };

@@ -241,6 +241,12 @@ fn shapes_other_tools_hand_over_are_refused_with_the_fix() {
             "(6, 4)",
             "save the two coordinate columns, such as points[:, :2]",
         ),
+        (
+            "(6, 8)",
+            "an image or a mask? save points: numpy.argwhere(edges)[:, ::-1] gives an edge \
+             image's pixels as (x, y), and mask & ~scipy.ndimage.binary_erosion(mask) a filled \
+             mask's boundary; a table? save the two coordinate columns, such as points[:, :2]",
+        ),
     ] {
         let dict = format!("{{'descr': '<i4', 'fortran_order': False, 'shape': {shape}, }}");
         let file = npy_file(1, &dict, &data[..4 * 24]);
@@ -251,12 +257,27 @@ fn shapes_other_tools_hand_over_are_refused_with_the_fix() {
         );
         assert!(text.ends_with(says), "{says:?} not at the end of {text:?}");
     }
-    // Other shapes keep the bare message.
-    let dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2, 2), }";
-    let text = parse_npy(&npy_file(1, dict, &data[..64]), "c.npy")
+    // A boolean mask saved whole: its type is refused, and the fix its shape calls for named.
+    let dict = "{'descr': '|b1', 'fortran_order': False, 'shape': (8, 12), }";
+    let text = parse_npy(&npy_file(1, dict, &data[..96]), "mask.npy")
         .unwrap_err()
         .to_string();
-    assert!(text.ends_with("one row `x y` per point"), "{text}");
+    assert!(
+        text.contains("element type \"|b1\" is not supported"),
+        "{text}"
+    );
+    assert!(
+        text.contains("save points: numpy.argwhere(edges)[:, ::-1]"),
+        "{text}"
+    );
+    // Other shapes keep the bare message.
+    for (shape, bytes) in [("(2, 2, 2)", 64), ("(3, 7)", 168)] {
+        let dict = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
+        let text = parse_npy(&npy_file(1, &dict, &data[..bytes]), "c.npy")
+            .unwrap_err()
+            .to_string();
+        assert!(text.ends_with("one row `x y` per point"), "{text}");
+    }
 }
 
 /// The index writers: version 1.0 headers byte by byte, uint32 data, the same rows as the text
