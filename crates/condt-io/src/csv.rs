@@ -454,9 +454,17 @@ pub(crate) fn parse_separated(
         // which read silently would be wrong coordinates. Empty ones (a trailing comma, which
         // some exporters write) hold nothing to misread.
         if record.len() > width && record.iter().skip(width).any(|f| !f.trim().is_empty()) {
+            // One more on the first row under a header: R's `write.table`, whose row names
+            // are a first column the header does not name (an R user's review).
+            let r = if !headerless && points.is_empty() && record.len() == width + 1 {
+                ": which column has no name? R's write.table writes row names so, as a first \
+                 column without a name; write the file with row.names = FALSE"
+            } else {
+                ""
+            };
             return Err(source.error(
                 line,
-                format!("{}, but {first} has {width}", fields(record.len())),
+                format!("{}, but {first} has {width}{r}", fields(record.len())),
             ));
         }
         // Fewer: a row cut short (a file cut off mid-line, a field lost), whose chosen columns
@@ -848,6 +856,25 @@ mod tests {
         assert_eq!(pts, vec![Point::new(1.0, 2.0), Point::new(3.0, 4.0)]);
         let err = parse_csv("x,y\r1,2\r3,z\r", "mac.csv").unwrap_err();
         assert_eq!(err.line, Some(3));
+    }
+
+    /// R's `write.table(df, sep = ",")` or `sep = "\t"` writes its row names as a first
+    /// column the header does not name: the refusal says so (an R user's review), on the
+    /// first row only (a later row with a field too many is a shifted row).
+    #[test]
+    fn a_first_row_one_field_longer_than_the_header_names_r_row_names() {
+        for (text, name) in [
+            ("\"x\",\"y\"\n\"1\",1100,2000.5\n", "r.csv"),
+            ("x\ty\n1\t1100\t2000.5\n", "r.tsv"),
+        ] {
+            let err = parse_csv(text, name).unwrap_err().to_string();
+            assert!(err.contains(":2: 3 fields, but the header has 2"), "{err}");
+            assert!(err.contains("row.names = FALSE"), "{err}");
+        }
+        let err = parse_csv("x,y\n1,2\n1,2,3\n", "s.csv")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(err, "s.csv:3: 3 fields, but the header has 2");
     }
 
     #[test]

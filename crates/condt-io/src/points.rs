@@ -514,11 +514,14 @@ fn lines_by<const ONE_PASS: bool>(
     }
     let mut seen_content = !may_hold_header;
     let mut header = None;
+    // The header's number of names until the first row after it has been compared with it
+    // ([`row_names_error`]); the one-pass reader leaves that row to the general path.
+    let mut header_names: Option<usize> = None;
     let mut first_data_line = None;
     let mut all_three_columns = true;
     let (mut start, mut number) = (0, 0);
     while start < text.len() {
-        if ONE_PASS {
+        if ONE_PASS && header_names.is_none() {
             // What the general path below does with the common lines, in one pass over their
             // bytes, up to the first line it leaves to the general path (or the end, or a full
             // vector, which `Source::push` grows or refuses).
@@ -555,11 +558,21 @@ fn lines_by<const ONE_PASS: bool>(
                     check_header(&fields, content.trim())
                         .map_err(|message| source.error(number, message))?;
                     header = Some((number, names_x_and_y(&fields)));
+                    header_names = Some(fields.len());
                     continue; // a header
                 }
                 Row::from_columns(&fields)
             }
         };
+        if row.count > 0 {
+            if let (Some(names), Some((header_line, _))) = (header_names.take(), header) {
+                // A single word over two columns is a title more likely than R's output (a
+                // data frame of one column is no point file): read on, as before.
+                if names >= 2 && row.count == names + 1 {
+                    return Err(row_names_error(source, number, row.count, header_line));
+                }
+            }
+        }
         match row.count {
             0 => continue,
             1 => {
@@ -627,6 +640,23 @@ fn lines_by<const ONE_PASS: bool>(
         seen_content,
         header,
     })
+}
+
+/// The refusal of a first row after the header with one column more than the header names:
+/// R's `write.table` writes its row names so (`x y` over `1 1100 2000.5`, quoted or not), and
+/// reading on would take the row names for x and x for y (an R user's review: a circle and a
+/// square came back as 98 edges on the points (row number, x), with exit 0). A header one name
+/// short of its rows says nothing of which column lacks its name: refused, never guessed.
+fn row_names_error(source: &Source<'_>, line: usize, count: usize, header: usize) -> IoError {
+    source.error(
+        line,
+        format!(
+            "{count} columns, but the header on line {header} names {}: which column has no \
+             name? R's write.table writes row names so, as a first column without a name; \
+             write the file with row.names = FALSE (or name every column in the header)",
+            count - 1
+        ),
+    )
 }
 
 /// Whether a header's first two names are x and y (`x y`, `X Y z`, `lon lat`, `"lng","lat"`).
@@ -1790,6 +1820,53 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("not finite"), "{err}");
+    }
+
+    /// R's `write.table` writes row names as a first column its header does not name: read
+    /// on, the row numbers were x and x was y, with exit 0 (an R user's review). Refused at
+    /// the first row, quoted (the default) or not, blank- or tab-separated, as every path
+    /// reads it: sequentially and in pieces, with the header in the first piece and its first
+    /// row in a later one.
+    #[test]
+    fn a_header_one_name_short_of_its_rows_is_refused() {
+        for text in [
+            "x y\n1 1100 2000.5\n2 1099.5 2010.9\n3 1097.8 2021.3\n",
+            "\"x\" \"y\"\n\"1\" 1100 2000.5\n\"2\" 1099.5 2010.9\n",
+            "x\ty\r\n1\t1100\t2000.5\r\n2\t1099.5\t2010.9\r\n",
+            "lon lat\np1 11 20.005\np2 10.99 20.11\n",
+            "# written by R\nx y\n\n1 1100 2000.5\n",
+        ] {
+            let err = parse_points(text, "r.txt").unwrap_err().to_string();
+            assert!(err.contains("but the header on line"), "{text:?}: {err}");
+            assert!(err.contains("row.names = FALSE"), "{text:?}: {err}");
+        }
+        let err = parse_points("x y\n1 1100 2000.5\n", "r.txt").unwrap_err();
+        assert_eq!(err.line, Some(2));
+        // A single word over two columns is a title, read on as before.
+        let points = parse_points("points\n1 2\n4 5\n", "r.txt").unwrap();
+        assert_eq!(points, vec![Point::new(1.0, 2.0), Point::new(4.0, 5.0)]);
+        // A header naming all its columns, or none at all, reads as before.
+        let points = parse_points("x y z\n1 2 3\n4 5 6\n", "r.txt").unwrap();
+        assert_eq!(points, vec![Point::new(1.0, 2.0), Point::new(4.0, 5.0)]);
+        let points = parse_points("0.5 2 3\n4 5 6\n", "r.txt").unwrap();
+        assert_eq!(points, vec![Point::new(0.5, 2.0), Point::new(4.0, 5.0)]);
+        #[cfg(feature = "parallel")]
+        {
+            let mut text = String::from("x y\n");
+            text.push_str(&"#\n".repeat(3 << 20));
+            for i in 0..200_000 {
+                text.push_str(&format!("{} {i}.5 7\n", i + 1));
+            }
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(2)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let err = parse_points(&text, "big.txt").unwrap_err();
+                assert_eq!(err.line, Some((3 << 20) + 2), "{err}");
+                assert!(err.to_string().contains("row.names = FALSE"), "{err}");
+            });
+        }
     }
 
     #[test]

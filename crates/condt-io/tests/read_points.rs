@@ -525,7 +525,9 @@ impl Xorshift {
 /// the `parallel` feature) in every layout the plain format allows, with its points.
 fn large_text(lines: usize, seed: u64) -> (String, Vec<Point>) {
     let mut rng = Xorshift(seed);
-    let mut text = String::from("# generated\nx y\n");
+    // The header names the third column some rows have: `x y` over a first row of three
+    // columns is R's row names, refused.
+    let mut text = String::from("# generated\nx y z\n");
     let mut expected = Vec::new();
     for k in 0..lines {
         let (x, xv) = rng.coordinate();

@@ -73,6 +73,11 @@ fn accept(parsed: Vec<Parsed>) -> Option<Vec<Parsed>> {
     if !parsed.first()?.seen_content {
         return None;
     }
+    // A header whose first row lies in a later piece: that row's width against the header's
+    // is the sequential parse's to check.
+    if parsed[0].header.is_some() && parsed[0].first_data_line.is_none() {
+        return None;
+    }
     let total = parsed
         .iter()
         .try_fold(0usize, |sum, p| sum.checked_add(p.points.len()))?;
