@@ -591,7 +591,10 @@ fn point_of_another_locale(raw: &str) -> Option<&'static str> {
     // Without semicolons, a comma before exactly three digits may as well group thousands (an
     // English spreadsheet's `1,000`), which `tr`'s decimal point would read as 1.
     match (separator == ';', line.contains(',')) {
-        (true, true) => Some("semicolons between its columns and decimal commas"),
+        (true, true) => Some(SEMICOLONS_AND_COMMAS),
+        (true, false) if fields.iter().any(|f| may_group_thousands_by_dots(f)) => {
+            Some(SEMICOLONS_THOUSANDS_OR_DECIMALS)
+        }
         (true, false) => Some("semicolons between its columns"),
         (false, true) if fields.iter().any(|f| may_group_thousands(f)) => {
             Some(THOUSANDS_OR_DECIMALS)
@@ -603,6 +606,22 @@ fn point_of_another_locale(raw: &str) -> Option<&'static str> {
 
 /// How [`point_of_another_locale`] reads a tab-separated point whose comma may group thousands.
 const THOUSANDS_OR_DECIMALS: &str = "commas in its numbers (decimal commas, or thousands grouped)";
+
+/// How [`point_of_another_locale`] reads a point of semicolons and decimal commas.
+const SEMICOLONS_AND_COMMAS: &str = "semicolons between its columns and decimal commas";
+
+/// How [`point_of_another_locale`] reads a point of semicolons whose dot may group thousands.
+const SEMICOLONS_THOUSANDS_OR_DECIMALS: &str =
+    "semicolons between its columns and dots in its numbers (decimal points, or thousands grouped)";
+
+/// Whether `field` has one dot, before exactly three digits (`1.100`): in a semicolon-separated
+/// export it may group thousands (a German spreadsheet's `1.100`) as well as be a decimal point.
+fn may_group_thousands_by_dots(field: &str) -> bool {
+    field.matches('.').count() == 1
+        && field
+            .split_once('.')
+            .is_some_and(|(_, after)| after.len() == 3 && after.bytes().all(|b| b.is_ascii_digit()))
+}
 
 /// The x and y columns named by the header `record` (its text `raw`, on `line`).
 fn header_columns(
@@ -675,10 +694,16 @@ fn header_columns(
     }
     if let Some(written) = point_of_another_locale(raw) {
         // `tr` makes every comma a decimal point: no advice where a comma may group thousands.
-        let convert = if written == THOUSANDS_OR_DECIMALS {
-            ""
-        } else {
-            " (`tr ';,' ' .' < in.csv > in.txt` turns one into the other)"
+        // With decimal commas, a dot can only group thousands (`1.234,5`): `tr` alone made
+        // `1.100;2.000,5` the point (1.1, 2.0), so the advice drops the dots first. Without a
+        // comma, a dot before three digits may group thousands as well (`1.100;2.000`).
+        let convert = match written {
+            THOUSANDS_OR_DECIMALS | SEMICOLONS_THOUSANDS_OR_DECIMALS => "",
+            SEMICOLONS_AND_COMMAS => {
+                " (`tr -d . < in.csv | tr ';,' ' .' > in.txt` turns one into the other, dropping \
+                 the dots that group thousands)"
+            }
+            _ => " (`tr ';' ' ' < in.csv > in.txt` turns one into the other)",
         };
         return Err(source.error(
             line,
@@ -798,11 +823,26 @@ fn check_quotes(raw: &[u8], delimiter: u8) -> Result<(), &'static str> {
                 }
             }
             at += 1;
-            if raw
-                .get(at)
-                .is_some_and(|&b| b != delimiter && b != b'\r' && b != b'\n')
-            {
-                return Err("text after the closing quote of a field");
+            match raw.get(at) {
+                Some(&b) if b == delimiter || b == b'\r' || b == b'\n' => {}
+                None => {}
+                // R's write.csv2 and readr's write_excel_csv2 quote their names: the refusal
+                // of `"";"x";"y"` said nothing of semicolons (an R user's review).
+                Some(b';') => {
+                    return Err(
+                        "text after the closing quote of a field: a semicolon, which \
+                                separates no columns here (R's write.csv2 and spreadsheets in \
+                                many European locales write semicolons between columns and \
+                                decimal commas; write commas and decimal points: R's write.csv)",
+                    )
+                }
+                // R's write.table under a `.csv` name: its columns are the plain format's.
+                Some(b' ') if delimiter == b',' => {
+                    return Err("text after the closing quote of a field: a blank, which \
+                                separates no columns in a CSV (R's write.table writes blanks \
+                                between columns: write.csv writes commas)")
+                }
+                Some(_) => return Err("text after the closing quote of a field"),
             }
             field_start = false;
             continue;
@@ -964,6 +1004,60 @@ mod tests {
                 "{message}"
             );
         }
+    }
+
+    /// The `tr` advice for a point of semicolons and decimal commas drops the dots that group
+    /// thousands first (an R and Excel user's review: `tr ';,' ' .'` made `1.100;2.000,5` the
+    /// point (1.1, 2.0) without a word), and a semicolon point whose dot stands before three
+    /// digits gets no advice: `1.100` may be 1100 (a German spreadsheet) or 1.1.
+    #[test]
+    fn the_tr_advice_keeps_thousands_apart_from_decimals() {
+        let message = parse_csv("1100;2000,5\n1.099,45;2.010,95\n", "de.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains("`tr -d . < in.csv | tr ';,' ' .' > in.txt`"),
+            "{message}"
+        );
+        let message = parse_csv("1.100;2.000\n1.099;2.010\n", "de.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains("(decimal points, or thousands grouped)") && !message.contains("tr "),
+            "{message}"
+        );
+        let message = parse_csv("1.5;2.25\n3;4\n", "de.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains("`tr ';' ' ' < in.csv > in.txt`"),
+            "{message}"
+        );
+    }
+
+    /// A quoted field followed by a semicolon (R's write.csv2, `"";"x";"y"`) or a blank (R's
+    /// write.table under a `.csv` name, `"x" "y"`) says which separator it met and what
+    /// writes commas (an R user's review: "text after the closing quote" alone).
+    #[test]
+    fn a_quoted_field_before_a_semicolon_or_a_blank_names_it() {
+        let err = parse_csv("\"\";\"x\";\"y\"\n\"1\";1100;2000,5\n", "r2.csv").unwrap_err();
+        assert_eq!(err.line, Some(1));
+        let message = err.to_string();
+        assert!(
+            message.contains("a semicolon") && message.contains("R's write.csv)"),
+            "{message}"
+        );
+        let message = parse_csv("\"x\" \"y\"\n\"1\" 1100 2000.5\n", "r.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains("a blank") && message.contains("write.csv writes commas"),
+            "{message}"
+        );
+        let message = parse_csv("x,y\n\"1\"5,2\n", "q.csv")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(message, "q.csv:2: text after the closing quote of a field");
     }
 
     /// A header naming one coordinate twice is refused, not resolved by column order (a new

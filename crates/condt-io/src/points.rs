@@ -119,6 +119,26 @@ impl Source<'_> {
                     }
                 } else if field.trim().is_empty() {
                     MISSING_HINT
+                } else if field.contains(',')
+                    && field.contains('.')
+                    && field.replace(',', "").parse::<f64>().is_ok()
+                {
+                    // Excel's `"1,100.00"` (a number format grouping thousands, quoted in a
+                    // CSV): "cannot read" alone did not say what to change.
+                    " (thousands grouped by commas? Write 1100.5, not 1,100.5: format the cells \
+                     without a thousands separator)"
+                } else if is_missing_mark(field) {
+                    // R's `NA` (write.csv, readr), Excel's `#N/A` (`#NV` in German): said as
+                    // the empty field is (an R user's review: "cannot read" alone).
+                    " (a missing value: leave rows without a point out, as R's na.omit does)"
+                } else if field.len() > 2
+                    && field.starts_with('"')
+                    && field.ends_with('"')
+                    && field[1..field.len() - 1].parse::<f64>().is_ok()
+                {
+                    // A plain file keeps its quotes: R's write.table quotes its row names.
+                    " (quotes are no part of a number in a plain file; R's write.table quotes \
+                     its row names there: write the file with row.names = FALSE)"
                 } else {
                     ""
                 };
@@ -200,6 +220,15 @@ impl Source<'_> {
             .try_reserve_exact(more)
             .map_err(|_| self.error(line, format!("out of memory after {} points", points.len())))
     }
+}
+
+/// Whether `field` is a missing value's mark that spreadsheets and R write (`NA`, `#N/A`,
+/// German Excel's `#NV`, `NULL`), quotes aside.
+fn is_missing_mark(field: &str) -> bool {
+    let bare = field.trim().trim_matches('"');
+    ["na", "#n/a", "n/a", "#nv", "null", "missing", "none"]
+        .iter()
+        .any(|mark| bare.eq_ignore_ascii_case(mark))
 }
 
 /// The advice on an empty or NaN coordinate: a row without a point, which a laser scan's rays
@@ -1867,6 +1896,43 @@ mod tests {
                 assert!(err.to_string().contains("row.names = FALSE"), "{err}");
             });
         }
+    }
+
+    /// R's `NA` and Excel's `#N/A` are told as missing values, and a quoted number in a plain
+    /// file as R's quoted row names (an R user's review: "cannot read" alone).
+    #[test]
+    fn missing_values_and_quoted_numbers_say_what_they_are() {
+        // `#` starts a comment in a plain file: Excel's marks reach the CSV reader only.
+        for (mark, read) in [("NA", true), ("#N/A", false), ("#NV", false)] {
+            let text = format!("x,y\n1100,2000.5\n{mark},2010.9\n");
+            let err = crate::csv::parse_csv(&text, "na.csv")
+                .unwrap_err()
+                .to_string();
+            assert!(
+                err.contains("(a missing value: leave rows"),
+                "{mark}: {err}"
+            );
+            if !read {
+                continue;
+            }
+            let text = format!("1100 2000.5\n{mark} 2010.9\n");
+            let err = parse_points(&text, "na.txt").unwrap_err().to_string();
+            assert!(
+                err.contains("(a missing value: leave rows"),
+                "{mark}: {err}"
+            );
+        }
+        let err = parse_points("\"1\" 1100 2000.5\n", "q.txt")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("row.names = FALSE"), "{err}");
+        let err = parse_points("x,y\n1,2\n3,NA\n", "na.csv").unwrap_err();
+        assert_eq!(err.line, Some(3));
+        // Excel's thousands separator in an English locale, quoted in its CSV.
+        let err = crate::csv::parse_csv("x,y\r\n\"1,100.00\",\"2,000.50\"\r\n", "en.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("(thousands grouped by commas?"), "{err}");
     }
 
     #[test]
