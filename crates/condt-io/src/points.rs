@@ -1183,6 +1183,19 @@ pub fn read_points_with(
     // A zip archive, NumPy's `.npz` above all: "not UTF-8 text" alone sent a Python user looking
     // for an encoding. An empty archive starts with its end record (`numpy.savez()` of nothing).
     let zip = bytes.starts_with(b"PK\x03\x04") || bytes.starts_with(b"PK\x05\x06");
+    // A workspace MATLAB or Octave saves without -ascii (a MAT-file's text header, or Octave's
+    // own binary format), a legacy Excel workbook (an OLE2 compound file): a MAT-file was
+    // refused for "both commas and blanks" in its header, a decimal comma? (an R and MATLAB
+    // user's review).
+    let workspace = [
+        (&b"MATLAB 5.0 MAT-file"[..], MAT_FILE),
+        (b"MATLAB 7.3 MAT-file", MAT_FILE),
+        (b"Octave-1-L\0", MAT_FILE),
+        (b"Octave-1-B\0", MAT_FILE),
+        (b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1", XLS_FILE),
+    ]
+    .into_iter()
+    .find_map(|(magic, what)| bytes.starts_with(magic).then_some(what));
     // A compressed file, by its magic bytes: said so, with how to read it (a newcomer's review:
     // a gzip file was only "not UTF-8 text").
     let compressed = [
@@ -1391,9 +1404,13 @@ pub fn read_points_with(
             );
             err.line = None;
         } else if let (true, IoErrorKind::Content(message)) = (zip, &mut err.kind) {
-            *message = "a zip archive (such as NumPy's .npz), not points: save the array as \
-                        .npy (numpy.save) or as text"
+            *message = "a zip archive (such as NumPy's .npz, or an Excel .xlsx or OpenDocument \
+                        .ods workbook), not points: save the array as .npy (numpy.save) or as \
+                        text, a sheet as CSV (Excel: CSV UTF-8)"
                 .to_string();
+            err.line = None;
+        } else if let (Some(what), IoErrorKind::Content(message)) = (workspace, &mut err.kind) {
+            *message = what.to_string();
             err.line = None;
         } else if let (Some(line), IoErrorKind::Content(message)) = (err.line, &mut err.kind) {
             if message.contains('\u{fffd}') {
@@ -1409,6 +1426,15 @@ pub fn read_points_with(
         ..file
     })
 }
+
+/// The refusal of a MATLAB or Octave workspace file (`save` without `-ascii`).
+const MAT_FILE: &str = "a MATLAB or Octave workspace (.mat, binary), not points: write the n-by-2 \
+                        matrix as text (MATLAB: writematrix(P, 'points.csv'); Octave: \
+                        dlmwrite('points.csv', P), or save -ascii)";
+
+/// The refusal of a legacy Excel workbook (an OLE2 compound file).
+const XLS_FILE: &str = "an Excel .xls workbook (an OLE2 compound file), not points: save the \
+                        sheet as CSV (CSV UTF-8) with x and y columns";
 
 /// What a file whose name ends in `extension` (any case) is, when a GIS format condt does not
 /// read, and how to get points from it; `None` for any other ending.

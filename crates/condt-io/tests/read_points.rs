@@ -1128,6 +1128,44 @@ fn a_refused_type_is_told_on_its_own_line() {
     }
 }
 
+/// A MATLAB MAT-file (versions 5 and 7.3 start with a text header), Octave's binary workspace
+/// and a legacy Excel `.xls` are told as such, by any name (an R and MATLAB user's review: a
+/// MAT-file was refused for "both commas and blanks" in its header, "a decimal comma?").
+#[test]
+fn a_matlab_workspace_or_an_xls_workbook_is_told_as_such() {
+    let mut mat5 =
+        b"MATLAB 5.0 MAT-file, written by Octave 7.3.0, 2026-12-07 23:01:24 UTC".to_vec();
+    mat5.resize(116, b' ');
+    mat5.extend([
+        0, 0, 0, 0, 0, 0, 0, 0, 0, 1, b'I', b'M', 14, 0, 0, 0, 0xf0, 0, 0, 0,
+    ]);
+    let mut mat73 = b"MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Mon Dec  7 23:01:24 \
+                      2026 HDF5 schema 1.00 ."
+        .to_vec();
+    mat73.resize(128, b' ');
+    mat73.extend(b"\x89HDF\r\n\x1a\n\x00\x00\x00\x00");
+    let octave = b"Octave-1-L\0\x00\x01\x00\x00\x00M\xff\x06\x00\x00\x00matrix".to_vec();
+    let xls = b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1\0\0\0\0\0\0\0\0>\0\x03\0\xfe\xff".to_vec();
+    for name in ["points.mat", "points.txt", "points.csv", "points"] {
+        for bytes in [&mat5, &mat73, &octave] {
+            let file = TempFile::new(name, bytes);
+            let (line, message) = content_error(file.read());
+            assert_eq!(line, None, "{name}: {message}");
+            assert!(
+                message.contains(": a MATLAB or Octave workspace")
+                    && message.contains("writematrix"),
+                "{name}: {message}"
+            );
+        }
+        let file = TempFile::new(name, &xls);
+        let (_, message) = content_error(file.read());
+        assert!(
+            message.contains(": an Excel .xls workbook"),
+            "{name}: {message}"
+        );
+    }
+}
+
 /// A zip archive, such as NumPy's `.npz` (a Python user's review: "not UTF-8 text" sent them
 /// looking for an encoding), is told as such, by any name.
 #[test]
@@ -1146,6 +1184,8 @@ fn a_zip_archive_is_told_as_such() {
             let file = TempFile::new(name, bytes);
             let (_, message) = content_error(file.read());
             assert!(message.contains("a zip archive"), "{name}: {message}");
+            // An Excel `.xlsx` is a zip archive too: the message says what to save it as.
+            assert!(message.contains("a sheet as CSV"), "{name}: {message}");
         }
     }
 }
