@@ -428,6 +428,11 @@ point or an edge tells why it was kept or dropped), `unused` (by --format only: 
 the points with no edge in the result, the outliers, one per line, ascending). A summary goes to
 standard error: points, curves, and how many points are unused.
 
+Point numbers count from 0: the input's first point (its first row after any header) is 0, in
+every output and message. R, MATLAB, Octave and Julia count from 1: add 1 before indexing the
+points there (R: pts[e$V1 + 1, ]; MATLAB: P(E(:, 1) + 1, :)), or read each curve's coordinates
+from the GeoJSON output (jsondecode in MATLAB and Octave, sf or jsonlite in R).
+
 The default pipeline is the paper's (Algorithms 1-3) with the outlier filter's spacing floor,
 the repair `needs` (run again without the edges the outlier filter cut), local outlier removal,
 clumps, confirming given-back components, gap closing, junctions, crossings, tips, spikes,
@@ -549,7 +554,8 @@ Usage:
 Example:
   condt triangulate data/shapes.txt --edges -o shapes.edges
 
-Writes one triangle `i j k` per line, counter-clockwise, in point numbers; with --edges one
+Writes one triangle `i j k` per line, counter-clockwise, in point numbers, which count from 0
+(the input's first point: add 1 in R, MATLAB or Julia, which count from 1); with --edges one
 edge `i j` (i < j) per line instead, sorted. What is written follows OUTPUT's extension (any
 case): .txt, or a name without one (standard output, /dev/null), gets that text; .edges gets
 the edges, with or without --edges; .npy gets the same as a NumPy array, of shape (t, 3) or

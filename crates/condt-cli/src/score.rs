@@ -49,7 +49,8 @@ Example:
 
 POINTS is read as `condt reconstruct` reads its INPUT, with the same --input-format and
 --columns, so that it numbers the points as the reconstruction did.
-Edge files hold one edge `i j` per line, in point numbers of POINTS (`#` starts a comment, on a
+Edge files hold one edge `i j` per line, in point numbers of POINTS counted from 0 (a truth
+written from 1, as R and MATLAB count, needs 1 taken off; `#` starts a comment, on a
 line of its own or after an edge; blank lines are skipped); a name ending in .npy (any case)
 is a NumPy array of shape (m, 2) of integers
 (uint32 or int64 as `condt reconstruct -o out.npy` writes it, or any other width), either byte

@@ -680,6 +680,27 @@ fn snap_refuses_a_distance_that_is_no_length() {
     }
 }
 
+/// Each command's help says that point numbers count from 0, where users of R, MATLAB and
+/// Julia, which count from 1, look for it (an R and MATLAB user's review: only `condt --help`
+/// said so, and in R `pts$x[e$V1]` drops the zeros without a word, 98 of 100 edges' ends).
+#[test]
+fn every_help_says_point_numbers_count_from_0() {
+    for (command, said) in [
+        ("reconstruct", "Point numbers count from 0"),
+        ("triangulate", "in point numbers, which count from 0"),
+        ("score", "in point numbers of POINTS counted from 0"),
+    ] {
+        let out = condt(&["help", command]);
+        ok(&out);
+        let text = String::from_utf8(out.stdout).unwrap().replace('\n', " ");
+        assert!(text.contains(said), "{command}");
+        assert!(
+            text.contains("R, MATLAB") || text.contains("R and MATLAB"),
+            "{command}"
+        );
+    }
+}
+
 /// Every help fits a terminal of 96 columns: the option tables' help lines at most 70 columns
 /// beside the 26 of their names, the paragraphs at most 96 (a student's review found lines of
 /// 104 to 267 columns, which a terminal wraps mid-word).
