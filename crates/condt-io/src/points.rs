@@ -509,6 +509,10 @@ struct Parsed {
     /// must know whether its first piece held the file's first line with columns, asks.
     #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
     seen_content: bool,
+    /// Whether the stretch starts with Octave's text workspace header (`# Created by Octave`):
+    /// its variables' names are comments only this stretch's parse counts, so the file is
+    /// read whole ([`OCTAVE_VARIABLES`]).
+    octave: bool,
     /// The line skipped as a header, if any: its number, and whether it names x and y over
     /// the first two columns (`x y`, `lon lat`), which alone makes a file with no point after
     /// it an empty point file rather than some other text ([`header_alone`]).
@@ -546,6 +550,11 @@ fn lines_by<const ONE_PASS: bool>(
     // The header's number of names until the first row after it has been compared with it
     // ([`row_names_error`]); the one-pass reader leaves that row to the general path.
     let mut header_names: Option<usize> = None;
+    // Octave's `save` writes a text workspace by default (`# name: M`, `# type: matrix`, then
+    // the rows): one n-by-2 matrix reads right, but a second variable's rows joined the
+    // first's points without a word (an R and MATLAB user's review).
+    let octave = may_hold_header && text.starts_with("# Created by Octave");
+    let mut octave_names = 0;
     let mut first_data_line = None;
     let mut all_three_columns = true;
     let (mut start, mut number) = (0, 0);
@@ -570,6 +579,15 @@ fn lines_by<const ONE_PASS: bool>(
         let (end, next, simple) = scan_line(text, start);
         let line = &text[start..end];
         start = next;
+        if octave && line.starts_with("# name:") {
+            octave_names += 1;
+            if octave_names == 2 {
+                return Err(source.error(
+                    number,
+                    format!("{OCTAVE_VARIABLES} ({})", quoted(line.trim())),
+                ));
+            }
+        }
         let row = match simple {
             // The first line with columns may be a header, which needs all of them.
             Some(row) if seen_content || row.count == 0 => row,
@@ -609,7 +627,12 @@ fn lines_by<const ONE_PASS: bool>(
                 let control = line
                     .chars()
                     .find(|c| c.is_control() && !matches!(c, '\t' | '\r'));
-                let hint = if line.contains(';') {
+                let hint = if octave {
+                    // `save('w.mat', 'x', 'y')` of two column vectors: one number a row.
+                    " (an Octave text workspace of one column: save the points as one n-by-2 \
+                     matrix, [x y], alone)"
+                        .into()
+                } else if line.contains(';') {
                     " (a semicolon does not separate columns: spaces, tabs or one comma do)".into()
                 } else if let Some(c) = control {
                     // A NUL or Ctrl-Z line shows as nothing in a terminal: name what is there.
@@ -667,6 +690,7 @@ fn lines_by<const ONE_PASS: bool>(
         all_three_columns,
         first_data_line,
         seen_content,
+        octave,
         header,
     })
 }
@@ -1427,6 +1451,11 @@ pub fn read_points_with(
     })
 }
 
+/// The refusal of an Octave text workspace's second variable.
+const OCTAVE_VARIABLES: &str = "a second variable in an Octave text workspace, whose rows would \
+                                join the first's points: save the n-by-2 matrix alone (save \
+                                -ascii FILE P, or dlmwrite('points.csv', P))";
+
 /// The refusal of a MATLAB or Octave workspace file (`save` without `-ascii`).
 const MAT_FILE: &str = "a MATLAB or Octave workspace (.mat, binary), not points: write the n-by-2 \
                         matrix as text (MATLAB: writematrix(P, 'points.csv'); Octave: \
@@ -1920,6 +1949,52 @@ mod tests {
                 let err = parse_points(&text, "big.txt").unwrap_err();
                 assert_eq!(err.line, Some((3 << 20) + 2), "{err}");
                 assert!(err.to_string().contains("row.names = FALSE"), "{err}");
+            });
+        }
+    }
+
+    /// Octave's default `save` writes a text workspace: one n-by-2 matrix reads as its rows,
+    /// a second variable is refused at its name (an R and MATLAB user's review: `save('w.mat',
+    /// 'M', 'N')` gave M's and N's rows as one set of points, exit 0), read whole or in pieces.
+    #[test]
+    fn an_octave_text_workspace_of_two_variables_is_refused() {
+        let head = "# Created by Octave 7.3.0, Mon Dec 07 23:01:24 2026 UTC <root@vm>\n";
+        let m = "# name: M\n# type: matrix\n# rows: 2\n# columns: 2\n 1100 2000.5\n 1099.5 2010\n";
+        let n = "\n\n# name: N\n# type: matrix\n# rows: 1\n# columns: 2\n 5 6\n";
+        let points = parse_points(&format!("{head}{m}"), "w.mat").unwrap();
+        assert_eq!(
+            points,
+            vec![Point::new(1100.0, 2000.5), Point::new(1099.5, 2010.0)]
+        );
+        let err = parse_points(&format!("{head}{m}{n}"), "w.mat").unwrap_err();
+        assert_eq!(err.line, Some(10), "{err}");
+        assert!(err
+            .to_string()
+            .contains("a second variable in an Octave text workspace"));
+        // Two column vectors, x and y, as MATLAB users often keep them: said at the first row.
+        let x = "# name: x\n# type: matrix\n# rows: 2\n# columns: 1\n 1100\n 1099.5\n";
+        let err = parse_points(&format!("{head}{x}"), "xy.mat").unwrap_err();
+        assert_eq!(err.line, Some(6), "{err}");
+        assert!(
+            err.to_string().contains("one n-by-2 matrix, [x y]"),
+            "{err}"
+        );
+        // The same comments in a file Octave did not write are comments.
+        assert_eq!(parse_points(&format!("{m}{n}"), "c.txt").unwrap().len(), 3);
+        #[cfg(feature = "parallel")]
+        {
+            let mut text = format!("{head}# name: M\n# type: matrix\n");
+            for i in 0..400_000 {
+                text.push_str(&format!(" {i}.5 {}\n", i % 7));
+            }
+            text.push_str(n);
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(2)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let err = parse_points(&text, "big.mat").unwrap_err();
+                assert_eq!(err.line, Some(400_006), "{err}");
             });
         }
     }

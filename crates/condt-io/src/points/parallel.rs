@@ -78,6 +78,10 @@ fn accept(parsed: Vec<Parsed>) -> Option<Vec<Parsed>> {
     if parsed[0].header.is_some() && parsed[0].first_data_line.is_none() {
         return None;
     }
+    // An Octave text workspace's variables are counted by the sequential parse.
+    if parsed[0].octave {
+        return None;
+    }
     let total = parsed
         .iter()
         .try_fold(0usize, |sum, p| sum.checked_add(p.points.len()))?;
