@@ -12,9 +12,9 @@ use condt::{
     triangulate_owned, Error, Method, Params, Pipeline, Repair, Stage, Uniformity, Upcoming,
 };
 use condt_io::{
-    read_points_with, write_edges, write_geojson_with_crs, write_html, write_npy_edges,
-    write_npy_triangles, write_npy_triangulation_edges, write_polylines, write_svg,
-    write_svg_stages, write_triangles, write_triangulation_edges, write_unused, Columns,
+    read_points_with, write_curves_csv, write_edges, write_geojson_with_crs, write_html,
+    write_npy_edges, write_npy_triangles, write_npy_triangulation_edges, write_polylines,
+    write_svg, write_svg_stages, write_triangles, write_triangulation_edges, write_unused, Columns,
     InputFormat, IoError, PointFile, ReadOptions,
 };
 use std::ffi::{OsStr, OsString};
@@ -311,7 +311,7 @@ and Eppstein); a baseline takes none of the ConDT options",
         long: "format",
         negatable: false,
         value: Some("F"),
-        help: "edges, npy, txt, svg, geojson, html or unused",
+        help: "edges, npy, txt, svg, geojson, html, csv or unused",
     },
     Opt {
         id: ReconstructId::Stages,
@@ -424,14 +424,17 @@ as in a plot, so image rows, which count down, show upside down), `geojson` (.ge
 one LineString per curve, in the order of the txt lines, on the input's coordinates; a GeoJSON
 input's `crs` member is carried on, a GeoJSON sequence's first, or --crs names one), `html`
 (.html: a self-contained page to explore every stage: layers, pan and zoom, and a click on a
-point or an edge tells why it was kept or dropped), `unused` (by --format only: the numbers of
-the points with no edge in the result, the outliers, one per line, ascending). A summary goes to
-standard error: points, curves, and how many points are unused.
+point or an edge tells why it was kept or dropped), `csv` (.csv: the curves' coordinates, a
+header `curve,closed,point,x,y` and one row per point of each curve in the order of the txt
+lines, a closed curve's first point again at its end; every field a number, for R, MATLAB,
+Julia and spreadsheets), `unused` (by --format only: the numbers of the points with no edge in
+the result, the outliers, one per line, ascending). A summary goes to standard error: points,
+curves, and how many points are unused.
 
 Point numbers count from 0: the input's first point (its first row after any header) is 0, in
 every output and message. R, MATLAB, Octave and Julia count from 1: add 1 before indexing the
 points there (R: pts[e$V1 + 1, ]; MATLAB: P(E(:, 1) + 1, :)), or read each curve's coordinates
-from the GeoJSON output (jsondecode in MATLAB and Octave, sf or jsonlite in R).
+from the csv output (read.csv, readmatrix, CSV.read) or the GeoJSON one (jsondecode).
 
 The default pipeline is the paper's (Algorithms 1-3) with the outlier filter's spacing floor,
 the repair `needs` (run again without the edges the outlier filter cut), local outlier removal,
@@ -873,6 +876,8 @@ enum Format {
     Svg,
     GeoJson,
     Html,
+    /// The curves' coordinates, one row per point (`condt_io::write_curves_csv`).
+    Csv,
     /// The unused points' numbers; no extension names it (a list of numbers is any `.txt`).
     Unused,
 }
@@ -892,6 +897,7 @@ impl Format {
             "svg" => Some(Format::Svg),
             "geojson" | "json" => Some(Format::GeoJson),
             "html" | "htm" => Some(Format::Html),
+            "csv" => Some(Format::Csv),
             "unused" => Some(Format::Unused),
             _ => None,
         }
@@ -905,6 +911,7 @@ impl Format {
             Format::Svg => "svg",
             Format::GeoJson => "geojson",
             Format::Html => "html",
+            Format::Csv => "csv",
             Format::Unused => "unused",
         }
     }
@@ -1268,13 +1275,15 @@ fn parse_reconstruct(args: &[OsString]) -> Result<ReconstructArgs, CliError> {
             }
             Id::Format => {
                 let value = value.ok_or_else(|| {
-                    usage("--format needs a name: edges, npy, txt, svg, geojson, html or unused")
+                    usage(
+                        "--format needs a name: edges, npy, txt, svg, geojson, html, csv or unused",
+                    )
                 })?;
                 let name = text(value, flag)?;
                 let chosen = Format::named(name).ok_or_else(|| {
                     usage(format!(
                         "--format {name}: unknown format; the formats are edges, npy, txt, svg, \
-                         geojson, html and unused"
+                         geojson, html, csv and unused"
                     ))
                 })?;
                 format.set(chosen, format!("--format {name}"))?;
@@ -1856,13 +1865,13 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
         None
     };
     let degrees = degrees.then(|| Degrees::of(&points)).flatten();
-    // The SVG drawing of the result and GeoJSON are written on the input coordinates, which the
-    // result does not keep (`Reconstruction::stage_point`), so for them the points stay (16
+    // The SVG drawing of the result, GeoJSON and CSV are written on the input coordinates, which
+    // the result does not keep (`Reconstruction::stage_point`), so for them the points stay (16
     // bytes per point through the stages). Every other output reads the result alone: the
     // points are handed over, freed once triangulated, and the stages' peak does not hold them.
     let keeps_input = match args.format {
         Format::Svg => !args.stages,
-        Format::GeoJson => true,
+        Format::GeoJson | Format::Csv => true,
         _ => false,
     };
     let failed = |err: Error| reconstruction_error(err, args.input.as_deref(), &args.read, count);
@@ -1911,6 +1920,7 @@ fn reconstruct_command(args: ReconstructArgs) -> Result<(), CliError> {
                 write_geojson_with_crs(out, &result, &input, args.crs.as_deref().or(crs.as_deref()))
             }
             Format::Html => write_html(out, &result, &shown_input(args.input.as_deref())),
+            Format::Csv => write_curves_csv(out, &result, &input),
             Format::Unused => write_unused(out, &result),
         })
     })?;

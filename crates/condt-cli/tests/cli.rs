@@ -557,7 +557,7 @@ fn a_wrong_value_is_answered_with_the_choices() {
     );
     let said = refused(&["reconstruct", "-", "--format", "png"]);
     assert!(
-        said.contains("edges, npy, txt, svg, geojson, html and unused"),
+        said.contains("edges, npy, txt, svg, geojson, html, csv and unused"),
         "{said}"
     );
 }
@@ -615,6 +615,68 @@ fn the_unused_points_are_listed_by_their_numbers() {
         said.contains("cannot tell the format of out.unused"),
         "{said}"
     );
+}
+
+/// `-o NAME.csv` writes the curves' coordinates, one row per point, for R, MATLAB, Julia and
+/// spreadsheets (an R and MATLAB user's review: `.csv` was refused, and the edge lists need 1
+/// added to every number there): each row's coordinates are those of the input point it names,
+/// the curves' rows follow the txt output's lines, and a closed curve ends at its first point.
+#[test]
+fn a_csv_output_gives_each_curves_coordinates() {
+    let mut text = String::from("x,y\n");
+    let mut points = Vec::new();
+    for k in 0..30 {
+        let t = k as f64 * std::f64::consts::TAU / 30.0;
+        points.push((1000.0 + 10.0 * t.cos(), 2000.5 + 10.0 * t.sin()));
+    }
+    for k in 0..12 {
+        points.push((1100.0 + 3.0 * k as f64, 2000.0 + 0.1 * (k % 2) as f64));
+    }
+    for (x, y) in &points {
+        text += &format!("{x},{y}\n");
+    }
+    let dir = scratch_dir();
+    let (input, target) = (dir.path().join("pts.csv"), dir.path().join("curves.csv"));
+    std::fs::write(&input, &text).unwrap();
+    let (input_name, target_name) = (input.to_str().unwrap(), target.to_str().unwrap());
+    let out = condt(&["reconstruct", input_name, "-o", target_name, "-q"], "");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let written = std::fs::read_to_string(&target).unwrap();
+    let mut rows = written.lines();
+    assert_eq!(rows.next(), Some("curve,closed,point,x,y"));
+    let mut curves: Vec<(bool, Vec<usize>)> = Vec::new();
+    for row in rows {
+        let f: Vec<&str> = row.split(',').collect();
+        assert_eq!(f.len(), 5, "{row}");
+        let (curve, point): (usize, usize) = (f[0].parse().unwrap(), f[2].parse().unwrap());
+        let (x, y): (f64, f64) = (f[3].parse().unwrap(), f[4].parse().unwrap());
+        assert_eq!((x, y), points[point], "{row}");
+        if curves.len() == curve {
+            curves.push((f[1] == "1", Vec::new()));
+        }
+        curves[curve].1.push(point);
+    }
+    let txt = condt(&["reconstruct", input_name, "-q"], "");
+    let txt = String::from_utf8(txt.stdout).unwrap();
+    assert_eq!(curves.len(), txt.lines().count(), "{txt}");
+    assert_eq!(curves.len(), 2, "{txt}");
+    for ((closed, mut rows), line) in curves.into_iter().zip(txt.lines()) {
+        let mut words = line.split_whitespace();
+        assert_eq!(closed, words.next() == Some("closed"), "{line}");
+        let numbers: Vec<usize> = words.map(|w| w.parse().unwrap()).collect();
+        if closed {
+            assert_eq!(
+                rows.pop(),
+                Some(numbers[0]),
+                "a closed curve ends at its start"
+            );
+        }
+        assert_eq!(rows, numbers, "{line}");
+    }
 }
 
 #[test]

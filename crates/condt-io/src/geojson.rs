@@ -194,7 +194,7 @@ pub fn crs_member(given: &str) -> Result<String, String> {
 /// A coordinate as a JSON number that reads back as the same double: in positional notation,
 /// or with an exponent beyond 10^16 and below 10^-5, where positional notation runs to hundreds
 /// of digits (`9.05e299`, not a 300-digit integer).
-struct Coordinate(f64);
+pub(crate) struct Coordinate(pub(crate) f64);
 
 impl std::fmt::Display for Coordinate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

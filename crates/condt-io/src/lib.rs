@@ -59,7 +59,8 @@ pub use points::{
 pub use story::story_text;
 pub use svg::{write_svg, write_svg_stages};
 pub use text::{
-    write_edges, write_polylines, write_triangles, write_triangulation_edges, write_unused,
+    write_curves_csv, write_edges, write_polylines, write_triangles, write_triangulation_edges,
+    write_unused,
 };
 
 use condt::Reconstruction;

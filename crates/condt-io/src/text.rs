@@ -238,6 +238,52 @@ pub fn write_unused(out: &mut dyn Write, result: &Reconstruction) -> io::Result<
     lines.finish()
 }
 
+/// The curves' coordinates as CSV, for tools that index from 1 or plot lines from coordinates
+/// (R, MATLAB, Octave, Julia, spreadsheets): a header `curve,closed,point,x,y`, then one row
+/// per point of each curve, in the order of [`write_polylines`]'s lines and points: `curve` the
+/// curve's number and `point` the point's input number, both from 0 as every output counts,
+/// `closed` 1 or 0, and the input coordinates (shortest decimals that read back as the same
+/// doubles). A closed curve's first point is written again at its end, as a ring is, so that a
+/// line drawn through a curve's rows closes. Every field is a number: `csvread(FILE, 1, 0)`,
+/// `read.csv` and `readdlm(FILE, ',', header = true)` read it as it is.
+///
+/// # Errors
+/// `InvalidInput` when `input` is not the input of `result` (another number of points); the
+/// writer's errors.
+///
+/// ```
+/// use condt::{reconstruct, Params, Point};
+/// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(Point::from);
+/// let r = reconstruct(&square, &Params::paper())?;
+/// let mut out = Vec::new();
+/// condt_io::write_curves_csv(&mut out, &r, &square)?;
+/// assert_eq!(
+///     String::from_utf8(out)?,
+///     "curve,closed,point,x,y\n0,1,0,0,0\n0,1,1,1,0\n0,1,2,1,1\n0,1,3,0,1\n0,1,0,0,0\n"
+/// );
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_curves_csv(
+    out: &mut dyn Write,
+    result: &Reconstruction,
+    input: &[condt::Point],
+) -> io::Result<()> {
+    use crate::geojson::Coordinate;
+    crate::check_input(result, input)?;
+    let mut out = io::BufWriter::new(out);
+    writeln!(out, "curve,closed,point,x,y")?;
+    for (k, curve) in result.curves().iter().enumerate() {
+        let closed = u8::from(curve.is_closed());
+        let closing = curve.points().next().filter(|_| curve.is_closed());
+        for i in curve.points().chain(closing) {
+            let p = input[i];
+            let (x, y) = (Coordinate(p.x), Coordinate(p.y));
+            writeln!(out, "{k},{closed},{i},{x},{y}")?;
+        }
+    }
+    out.flush()
+}
+
 /// One triangle `i j k` per line, counter-clockwise, in input indices, in the order of
 /// [`Triangulation::triangles`].
 ///
