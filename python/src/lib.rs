@@ -119,14 +119,13 @@ use triangulation::Triangulation;
 /// The curves through the points: ConDT's reconstruction, as ``condt reconstruct`` runs it.
 ///
 /// ``points`` is any ``(n, 2)`` array-like of numbers, integers or floats (an empty sequence is
-/// no points). A C-contiguous float64 ndarray is read where it lies, without a copy (do not
-/// change it from another thread during the call); anything else is converted first. The work
-/// runs without the GIL, so other Python threads run meanwhile; Ctrl-C (``KeyboardInterrupt``,
-/// or an exception from another signal handler) stops it at the end of the stage it is in, or
-/// after the first stage when it comes during the triangulation (about 0.3 s on a million
-/// scattered points); in a forked child the call runs to its end. The result keeps its own copy of
-/// the coordinates, made once the work is done: changing the array afterwards changes nothing
-/// in it.
+/// no points). A C-contiguous float64 ndarray is copied once, without the GIL, as the work
+/// starts (16 bytes a point, which the result keeps); anything else is converted first. The work
+/// runs on that copy without the GIL, so other Python threads run meanwhile, and changing the
+/// array, during the call or afterwards, changes nothing in the result; Ctrl-C
+/// (``KeyboardInterrupt``, or an exception from another signal handler) stops it at the end of
+/// the stage it is in, or after the first stage when it comes during the triangulation (about
+/// 0.3 s on a million scattered points); in a forked child the call runs to its end.
 ///
 /// An array whose dtype is not an integer or a float (complex, bool, str, bytes, datetime64,
 /// timedelta64) is refused: numpy would convert it quietly into other numbers. What numpy makes
@@ -193,15 +192,18 @@ fn reconstruct(
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    // The result keeps its own copy of the points (GeoJSON, shapely and `Curve.coords` read
-    // them later): the caller's array, read in place during the call, is the caller's to change
-    // afterwards, and a result that kept reading it would change with it. Copied once the work is
-    // done, still without the GIL and within the call's allocator scope (it may reuse a freed
-    // block of the pipeline).
+    // The work runs on a copy of the points, made first (without the GIL, within the call's
+    // allocator scope), which the result then keeps (GeoJSON, shapely and `Curve.coords` read
+    // it later). Reading the caller's array during the work instead let another thread's write
+    // meanwhile change the points under the triangulation: a NaN written and put back made the
+    // point location walk forever, where Ctrl-C is not checked (a Python user's review: a call on
+    // 300,000 points still running after a SIGINT at 40 s). The result kept a copy anyway,
+    // made after the work: copied first, the call copies no more than it did.
     let (result, owned) = crate::detached(py, || {
         within_call(|| {
-            let result = interruptible(points, &params)?;
-            Ok::<_, PyErr>((result, points.to_vec()))
+            let owned = points.to_vec();
+            let result = interruptible(&owned, &params)?;
+            Ok::<_, PyErr>((result, owned))
         })
     })??;
     // Points given twice a little apart (`Reconstruction.twin_pairs`): a result that reads as
@@ -261,9 +263,9 @@ const SIGNALS_EVERY: Duration = Duration::from_millis(50);
 
 /// The Delaunay triangulation of the points, as ``condt triangulate`` computes it.
 ///
-/// ``points`` as for ``reconstruct`` (read without a copy when it is a C-contiguous float64
-/// array; the GIL is released while it runs; the result holds input positions only, so it does
-/// not depend on the array afterwards). Raises ``ValueError`` for a NaN or infinite coordinate,
+/// ``points`` as for ``reconstruct`` (copied as the work starts; the GIL is released while it
+/// runs; the result holds input positions only, so it does not depend on the array afterwards).
+/// Raises ``ValueError`` for a NaN or infinite coordinate,
 /// a finite one beyond float64's range, an integer one beyond 2^53 or a long-double one that is
 /// no float64 (as ``reconstruct`` does), ``TypeError`` for points that are not numbers.
 ///
@@ -276,8 +278,15 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    let tri = crate::detached(py, || within_call(|| condt::triangulate(points)))?
-        .map_err(|err| library_error(err, points))?;
+    // On a copy, as `reconstruct` runs: a write to the caller's array from another thread during
+    // the work could make the point location walk forever (16 bytes a point while it runs).
+    let (tri, owned) = crate::detached(py, || {
+        within_call(|| {
+            let owned = points.to_vec();
+            (condt::triangulate(&owned), owned)
+        })
+    })?;
+    let tri = tri.map_err(|err| library_error(err, &owned))?;
     Ok(Triangulation::new(tri))
 }
 

@@ -49,8 +49,8 @@ pub(crate) struct Reconstruction {
 struct Shared {
     result: condt::Reconstruction,
     /// A copy of the points as given: GeoJSON, shapely and `Curve.coords` read the input
-    /// coordinates from it, since the result keeps none. Not the caller's array, read in place
-    /// during the call: the caller may change that afterwards (`lib.rs`, `reconstruct`).
+    /// coordinates from it, since the result keeps none. The copy the work ran on, not the
+    /// caller's array, which the caller may change (`lib.rs`, `reconstruct`).
     points: Vec<Point>,
 }
 

@@ -1,5 +1,5 @@
 """The Python interface: inputs it takes, errors it raises, what the result classes hold, the
-GIL released, the input read without a copy, and the stubs matching the module."""
+GIL released, the input read without a conversion, and the stubs matching the module."""
 
 import ast
 import inspect
@@ -184,8 +184,8 @@ def test_a_float64_c_array_is_read_without_a_copy_during_the_call():
 
 
 def test_the_result_does_not_change_with_the_callers_array_afterwards():
-    # The array is read in place during the call; the result keeps its own copy of what it
-    # needs, so changing the array afterwards (even to NaN) changes nothing in it.
+    # The work runs on a copy of the array, which the result keeps: changing the array
+    # afterwards (even to NaN) changes nothing in it.
     points = np.array([(0, 0), (1, 0), (1, 1), (0, 1)], float)
     r = condt.reconstruct(points)
     tri = condt.triangulate(points)
@@ -215,6 +215,47 @@ def test_the_result_does_not_change_with_the_callers_array_afterwards():
     points[1] = np.nan
     assert seen() == before
     assert before[0] == [[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]]
+
+
+def test_a_write_to_the_array_during_the_call_changes_nothing_in_the_result():
+    """A Python user's review: another thread writing to the array during a call (a NaN written
+    and put back) made the triangulation walk forever, past Ctrl-C, as the work read the array in
+    place. The work now runs on a copy made as it starts. The write here comes from a signal
+    handler, which the call runs between its steps on the calling thread (so it lands inside the
+    call, after the triangulation): every point moved by 1 in x. The result is the unmoved
+    points', coordinates included (read in place, the stages after the write saw moved points
+    and the result kept the moved coordinates)."""
+    points = np.random.default_rng(5).random((200_000, 2))
+    expected = condt.reconstruct(points.copy())
+    inside = False
+    moved = []
+    done = threading.Event()
+
+    def move(signum, frame):
+        if inside and not moved:
+            points[:, 0] += 1.0
+            moved.append(signum)
+
+    def send():
+        while not done.wait(0.005):
+            os.kill(os.getpid(), signal.SIGUSR1)
+
+    previous = signal.signal(signal.SIGUSR1, move)
+    sender = threading.Thread(target=send)
+    try:
+        sender.start()
+        inside = True
+        r = condt.reconstruct(points)
+        inside = False
+    finally:
+        done.set()
+        sender.join()
+        signal.signal(signal.SIGUSR1, previous)
+    assert moved, "the handler never ran during the call"
+    assert np.array_equal(r.edges, expected.edges)
+    assert [c.coords.tolist() for c in r.curves[:20]] == [
+        c.coords.tolist() for c in expected.curves[:20]
+    ]
 
 
 def test_the_gil_is_released_while_the_work_runs():
