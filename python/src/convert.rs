@@ -280,14 +280,23 @@ pub(crate) fn points_array<'py>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let numpy = py.import("numpy")?;
     // A masked array's mask would be dropped by reading its data, and its masked entries read as
-    // points: a silently wrong result. Refused unless nothing is masked.
-    if obj.is_instance(&numpy.getattr("ma")?.getattr("MaskedArray")?)?
-        && numpy
-            .getattr("ma")?
-            .getattr("is_masked")?
-            .call1((obj,))?
-            .is_truthy()?
-    {
+    // points: a silently wrong result. Refused unless nothing is masked. NumPy 2 imports
+    // `numpy.ma` on first use only (about 1 MB of Python objects), and no masked array exists
+    // before it is imported: looked up where imported modules are, never imported here (the
+    // first call imported it, which `tracemalloc` counted as a copy of the points).
+    let ma = py
+        .import("sys")?
+        .getattr("modules")?
+        .cast_into::<PyDict>()?
+        .get_item("numpy.ma")?;
+    let masked = match ma {
+        Some(ma) => {
+            obj.is_instance(&ma.getattr("MaskedArray")?)?
+                && ma.getattr("is_masked")?.call1((obj,))?.is_truthy()?
+        }
+        None => false,
+    };
+    if masked {
         return Err(PyValueError::new_err(
             "points is a masked array with masked entries: drop those rows first \
              (numpy.ma.compress_rows) or fill them",
