@@ -646,8 +646,10 @@ pub(crate) fn input_position(name: &str, value: &Bound<'_, PyAny>, n: usize) -> 
         })
     };
     // `True` would be read as 1 (a bool is an int to Python): a mistake, not a position. numpy
-    // reads `a[True]` as a mask, not as row 1, and `a.item(True)` is a `TypeError`.
-    if value.is_instance_of::<PyBool>() {
+    // reads `a[True]` as a mask, not as row 1, and `a.item(True)` is a `TypeError`. numpy's bool
+    // too: NumPy 1 gives it an `__index__` (deprecated, with a warning), so `numpy.True_` was
+    // point 1 there and a `TypeError` with NumPy 2.
+    if crate::params::is_bool(value) {
         return Err(PyTypeError::new_err(format!(
             "argument '{name}': an input position is an integer, not bool"
         )));

@@ -102,7 +102,7 @@ pub(crate) fn type_name(value: &Bound<'_, PyAny>) -> String {
 }
 
 /// Whether `value` is a bool: Python's, or numpy's (`numpy.bool`, `numpy.bool_` before numpy 2).
-fn is_bool(value: &Bound<'_, PyAny>) -> bool {
+pub(crate) fn is_bool(value: &Bound<'_, PyAny>) -> bool {
     if value.is_instance_of::<PyBool>() {
         return true;
     }
