@@ -1236,6 +1236,33 @@ def test_mypy_stubtest_finds_no_difference_between_the_stubs_and_the_module(tmp_
     assert done.returncode == 0, done.stdout + done.stderr
 
 
+def test_the_tiled_results_fields_are_typed_for_a_strict_checker(tmp_path):
+    """A typed client's review: ``condt.dask.TiledReconstruction``'s ``workers`` was a bare
+    ``frozenset`` (pyright's strict mode: "partially unknown" at every use) and ``edges`` an
+    ndarray of any dtype, where ``condt.reconstruct``'s edges are int64."""
+    pytest.importorskip("mypy")
+    import subprocess
+
+    client = tmp_path / "client.py"
+    client.write_text(
+        "import condt.dask\n"
+        "def f(t: condt.dask.TiledReconstruction) -> None:\n"
+        "    reveal_type(t.workers)\n"
+        "    reveal_type(t.edges)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-m", "mypy", "--strict", "--no-incremental", str(client)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    revealed = re.findall(r'Revealed type is "(.*)"', done.stdout)
+    assert len(revealed) == 2, done.stdout + done.stderr
+    assert revealed[0].replace("builtins.", "") == "frozenset[str]", revealed
+    assert "signedinteger" in revealed[1] and "_64Bit" in revealed[1], revealed
+
+
 def test_points_too_close_to_measure_beside_the_largest_coordinate_are_a_value_error():
     # A circle of radius 1 beside a point at 1e230: its edges' squares underflow in the
     # stages' frame, and the curves came out in pieces; the set is refused, by name.

@@ -51,6 +51,7 @@ import operator
 from typing import Any, SupportsFloat, SupportsIndex
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _condt
 
@@ -85,10 +86,10 @@ class TiledReconstruction:
     set ran in one piece, as ``condt.reconstruct(...).passes`` says).
     """
 
-    edges: np.ndarray
+    edges: npt.NDArray[np.int64]
     tiles: int
     rounds: int
-    workers: frozenset
+    workers: frozenset[str]
     sent: int
     whole: str | None
     passes: int = 0
