@@ -125,7 +125,9 @@ use triangulation::Triangulation;
 /// array, during the call or afterwards, changes nothing in the result; Ctrl-C
 /// (``KeyboardInterrupt``, or an exception from another signal handler) stops it at the end of
 /// the stage it is in, or after the first stage when it comes during the triangulation (about
-/// 0.3 s on a million scattered points); in a forked child the call runs to its end.
+/// 0.3 s on a million scattered points). Python runs signal handlers on its main thread only:
+/// a call made on another thread runs to its end (a ``ThreadPoolExecutor``'s shutdown waits for
+/// it after the main thread's ``KeyboardInterrupt``), and so does one in a forked child.
 ///
 /// An array whose dtype is not an integer or a float (complex, bool, str, bytes, datetime64,
 /// timedelta64) is refused: numpy would convert it quietly into other numbers. What numpy makes

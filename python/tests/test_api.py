@@ -1605,6 +1605,21 @@ def test_signal_handlers_run_while_a_long_reconstruction_runs():
     assert len(calls) >= 5, calls
 
 
+def test_the_docs_say_a_call_off_the_main_thread_runs_to_its_end():
+    """A Python user's review: Ctrl-C during a call made on a ``ThreadPoolExecutor``'s thread
+    (2M scattered points) raised ``KeyboardInterrupt`` in the main thread, whose executor
+    shutdown then waited 16 s for the call; the docs said only a forked child's call runs to its
+    end. Python runs signal handlers on its main thread only, so no check in a call elsewhere
+    finds Ctrl-C."""
+    said = "a call made on another thread runs to its end"
+    assert said in " ".join(condt.reconstruct.__doc__.split())
+    readme = pathlib.Path(__file__).resolve().parents[1] / "README.md"
+    if readme.exists():
+        assert "a call made on another thread than the main one" in " ".join(
+            readme.read_text().split()
+        )
+
+
 def test_score_warns_of_a_truth_at_a_later_copy_of_a_point():
     # A Python researcher's review: a ring exported with its first point again at its end,
     # scored against its truth as a polyline, lost an edge without a word.
