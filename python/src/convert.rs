@@ -99,6 +99,14 @@ const IMAGE_FIX: &str = "condt takes points: numpy.argwhere(edges)[:, ::-1] give
                          image's pixels as (x, y), and mask & ~scipy.ndimage.binary_erosion(mask) \
                          a filled mask's boundary";
 
+/// What to pass instead of a label image (regions numbered): neither of a mask's fixes gives
+/// the borders between its regions (a label-image user's review), the subpixel boundaries do,
+/// with the pixel corners where three regions meet as points of their own.
+const LABELS_FIX: &str = "a label image (regions numbered)? b = \
+                          skimage.segmentation.find_boundaries(labels, mode='subpixel'), then \
+                          numpy.argwhere(b)[:, ::-1] / 2 gives the borders between regions, \
+                          junctions included";
+
 /// Whether an array of this shape reads as an image rather than as points: two axes of 5 or
 /// more (a table of 5 columns or more reads so too; the hints name both).
 fn is_image(shape: &[usize]) -> bool {
@@ -395,8 +403,8 @@ pub(crate) fn points_array<'py>(
                 [_, 3] | [_, 4] => "; pass the two coordinate columns, such as points[:, :2]",
                 // An image or a mask passed whole (an image user's review).
                 shape if is_image(shape) => &format!(
-                    "; an image or a mask? {IMAGE_FIX}; a table? pass the two coordinate \
-                     columns, such as points[:, :2]"
+                    "; an image or a mask? {IMAGE_FIX}; {LABELS_FIX}; a table? pass the two \
+                     coordinate columns, such as points[:, :2]"
                 ),
                 _ => "",
             };

@@ -380,6 +380,34 @@ def test_lists_of_contours_are_named_with_the_fix_that_makes_them_n_by_2():
         condt.reconstruct(np.vstack(contours))
 
 
+def test_a_label_image_passed_whole_is_named_with_the_borders_between_its_regions():
+    """A label-image user's review: a segmentation (regions numbered) passed as points was told
+    the fixes of an edge image and a mask, which give every labelled pixel or the outline of
+    all regions together, not the borders between them."""
+    labels = np.ones((40, 40), np.int32)
+    labels[:20, 20:] = 2
+    labels[20:, 20:] = 3
+    said = (
+        "a label image (regions numbered)? b = skimage.segmentation.find_boundaries(labels, "
+        "mode='subpixel'), then numpy.argwhere(b)[:, ::-1] / 2 gives the borders between "
+        "regions, junctions included"
+    )
+    for function in (condt.reconstruct, condt.triangulate):
+        with pytest.raises(ValueError, match=re.escape(said)):
+            function(labels)
+    # The fix named works: the three borders of a T meet at the pixel corner (19.5, 19.5),
+    # a point of its own with an edge along each border.
+    segmentation = pytest.importorskip("skimage.segmentation")
+    b = segmentation.find_boundaries(labels, mode="subpixel")
+    xy = np.argwhere(b)[:, ::-1] / 2
+    r = condt.reconstruct(xy)
+    corner = int(np.nonzero((xy == (19.5, 19.5)).all(axis=1))[0][0])
+    ends = sorted(tuple(xy[j]) for i, j in r.edges.tolist() + [e[::-1] for e in r.edges.tolist()]
+                  if i == corner)
+    assert ends == [(19.5, 19.0), (19.5, 20.0), (20.0, 19.5)]
+    assert [c.closed for c in r.curves] == [False, False, False] and len(r.unused) == 0
+
+
 def test_an_image_or_a_mask_passed_whole_is_named_with_its_pixels_places():
     """An image user's review: a mask or an edge image passed as points got the bare shape (or,
     as bools, the dtype alone), where the places of its edge or boundary pixels are meant."""

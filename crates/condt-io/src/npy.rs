@@ -287,11 +287,16 @@ fn shape_hint(shape: &[u64]) -> &'static str {
         [_, _, 1, 2] => "; OpenCV's contours stacked? save numpy.vstack(contours).reshape(-1, 2)",
         [_, 3] | [_, 4] => "; save the two coordinate columns, such as points[:, :2]",
         // An image or a mask saved whole (every pixel of a filled mask would be a point); a table
-        // of 5 columns or more reads so too.
+        // of 5 columns or more reads so too. A label image's regions each hold many values, so
+        // neither of a mask's fixes gives its borders (a label-image user's review): the
+        // subpixel boundaries do, with the pixel corners where three regions meet.
         [h, w] if *h >= 5 && *w >= 5 => {
             "; an image or a mask? save points: numpy.argwhere(edges)[:, ::-1] gives an edge \
              image's pixels as (x, y), and mask & ~scipy.ndimage.binary_erosion(mask) a filled \
-             mask's boundary; a table? save the two coordinate columns, such as points[:, :2]"
+             mask's boundary; a label image (regions numbered)? b = \
+             skimage.segmentation.find_boundaries(labels, mode='subpixel'), then \
+             numpy.argwhere(b)[:, ::-1] / 2 gives the borders between regions, junctions included; \
+             a table? save the two coordinate columns, such as points[:, :2]"
         }
         _ => "",
     }

@@ -245,7 +245,10 @@ fn shapes_other_tools_hand_over_are_refused_with_the_fix() {
             "(6, 8)",
             "an image or a mask? save points: numpy.argwhere(edges)[:, ::-1] gives an edge \
              image's pixels as (x, y), and mask & ~scipy.ndimage.binary_erosion(mask) a filled \
-             mask's boundary; a table? save the two coordinate columns, such as points[:, :2]",
+             mask's boundary; a label image (regions numbered)? b = \
+             skimage.segmentation.find_boundaries(labels, mode='subpixel'), then \
+             numpy.argwhere(b)[:, ::-1] / 2 gives the borders between regions, junctions included; \
+             a table? save the two coordinate columns, such as points[:, :2]",
         ),
     ] {
         let dict = format!("{{'descr': '<i4', 'fortran_order': False, 'shape': {shape}, }}");
