@@ -1166,6 +1166,21 @@ def test_the_readmes_image_boundaries_run_as_written():
     assert names["xy"].shape[1] == 2
 
 
+def test_the_readmes_label_images_run_as_written():
+    """python/README.md's *Label images* block (a label-image user's review: nothing said which
+    of scikit-image's boundaries gives a segmentation's borders with their junctions) runs,
+    and its asserts check the three borders and the junction's three edges."""
+    pytest.importorskip("skimage")
+    readme = pathlib.Path(__file__).resolve().parents[1] / "README.md"
+    if not readme.exists():
+        pytest.skip("no python/README.md beside the tests")
+    section = readme.read_text().split("### Label images", 1)[1]
+    block = section.split("```python\n", 1)[1].split("```", 1)[0]
+    names = {}
+    exec(compile(block, str(readme), "exec"), names)
+    assert len(names["r"].curves) == 3
+
+
 @pytest.mark.parametrize("distance", [float("nan"), -1.0, float("inf")])
 def test_snap_refuses_a_distance_that_is_no_length(distance):
     with pytest.raises(ValueError, match="distance"):
