@@ -456,7 +456,11 @@ pub(crate) fn parse_separated(
         if record.len() > width && record.iter().skip(width).any(|f| !f.trim().is_empty()) {
             // One more on the first row under a header: R's `write.table`, whose row names
             // are a first column the header does not name (an R user's review).
-            let r = if !headerless && points.is_empty() && record.len() == width + 1 {
+            let r = if !headerless
+                && points.is_empty()
+                && record.len() == width + 1
+                && crate::points::may_be_row_name(&record[0])
+            {
                 ": which column has no name? R's write.table writes row names so, as a first \
                  column without a name; write the file with row.names = FALSE"
             } else {
@@ -915,6 +919,11 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert_eq!(err, "s.csv:3: 3 fields, but the header has 2");
+        // A coordinate first is no row name: the plain refusal, without R's advice.
+        let err = parse_csv("x,y\n10.5,0,0.5\n", "h.csv")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(err, "h.csv:2: 3 fields, but the header has 2");
     }
 
     #[test]

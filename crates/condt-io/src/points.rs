@@ -614,8 +614,9 @@ fn lines_by<const ONE_PASS: bool>(
         if row.count > 0 {
             if let (Some(names), Some((header_line, _))) = (header_names.take(), header) {
                 // A single word over two columns is a title more likely than R's output (a
-                // data frame of one column is no point file): read on, as before.
-                if names >= 2 && row.count == names + 1 {
+                // data frame of one column is no point file), and a coordinate under `x y` is
+                // a third column the header leaves unnamed (`x y` over `x y z`): read on.
+                if names >= 2 && row.count == names + 1 && may_be_row_name(row.fields[0]) {
                     return Err(row_names_error(source, number, row.count, header_line));
                 }
             }
@@ -710,6 +711,16 @@ fn row_names_error(source: &Source<'_>, line: usize, count: usize, header: usize
             count - 1
         ),
     )
+}
+
+/// Whether `field`, the first of a row one column wider than the header names, may be the row
+/// name R's `write.table` writes there: quoted (its default), not a number (names of its own),
+/// or the first row's number, `1`. Any other number is a coordinate: an `x y` header over rows
+/// of `x y z` (a height, an intensity: a third column the plain reader ignores) was read as
+/// its first two columns, and is still.
+pub(crate) fn may_be_row_name(field: &str) -> bool {
+    let field = field.trim();
+    field == "1" || field.starts_with('"') || field.parse::<f64>().is_err()
 }
 
 /// Whether a header's first two names are x and y (`x y`, `X Y z`, `lon lat`, `"lng","lat"`).
@@ -1934,6 +1945,20 @@ mod tests {
         assert_eq!(points, vec![Point::new(1.0, 2.0), Point::new(4.0, 5.0)]);
         let points = parse_points("0.5 2 3\n4 5 6\n", "r.txt").unwrap();
         assert_eq!(points, vec![Point::new(0.5, 2.0), Point::new(4.0, 5.0)]);
+        // A header naming x and y over rows with a third column, a height or an intensity, as
+        // surveys and scanners export: read as before, unless its first field may be the row
+        // name R writes first (`1`, quoted or not, or a word).
+        for (text, first) in [
+            ("x y\n10.5 0 0.5\n4 5 0.5\n", 10.5),
+            (
+                "Easting Northing\n512000 180000 12.3\n512001 180002 12.4\n",
+                512000.0,
+            ),
+            ("x y\n2 7 0.5\n4 5 0.5\n", 2.0),
+        ] {
+            let points = parse_points(text, "h.txt").unwrap_or_else(|e| panic!("{text:?}: {e}"));
+            assert_eq!(points[0].x, first, "{text:?}");
+        }
         #[cfg(feature = "parallel")]
         {
             let mut text = String::from("x y\n");

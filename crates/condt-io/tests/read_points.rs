@@ -526,7 +526,7 @@ impl Xorshift {
 fn large_text(lines: usize, seed: u64) -> (String, Vec<Point>) {
     let mut rng = Xorshift(seed);
     // The header names the third column some rows have: `x y` over a first row of three
-    // columns is R's row names, refused.
+    // columns whose first field is `1` is R's row names, refused.
     let mut text = String::from("# generated\nx y z\n");
     let mut expected = Vec::new();
     for k in 0..lines {
