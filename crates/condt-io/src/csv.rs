@@ -461,8 +461,7 @@ pub(crate) fn parse_separated(
                 && record.len() == width + 1
                 && crate::points::may_be_row_name(&record[0])
             {
-                ": which column has no name? R's write.table writes row names so, as a first \
-                 column without a name; write the file with row.names = FALSE"
+                crate::points::ROW_NAMES
             } else {
                 ""
             };

@@ -705,13 +705,17 @@ fn row_names_error(source: &Source<'_>, line: usize, count: usize, header: usize
     source.error(
         line,
         format!(
-            "{count} columns, but the header on line {header} names {}: which column has no \
-             name? R's write.table writes row names so, as a first column without a name; \
-             write the file with row.names = FALSE (or name every column in the header)",
+            "{count} columns, but the header on line {header} names {}{ROW_NAMES} (or name every \
+             column in the header)",
             count - 1
         ),
     )
 }
+
+/// What a first row one column wider than its header may be, said by the plain and CSV readers.
+pub(crate) const ROW_NAMES: &str = ": which column has no name? R's write.table writes row \
+                                    names so, as a first column without a name; write the file \
+                                    with row.names = FALSE";
 
 /// Whether `field`, the first of a row one column wider than the header names, may be the row
 /// name R's `write.table` writes there: quoted (its default), not a number (names of its own),
