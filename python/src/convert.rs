@@ -107,6 +107,12 @@ const LABELS_FIX: &str = "a label image (regions numbered)? b = \
                           numpy.argwhere(b)[:, ::-1] / 2 gives the borders between regions, \
                           junctions included";
 
+/// What to pass instead of a colour image: an edge image's or a mask's pixels, as for a grey one.
+const COLOUR_FIX: &str = "; a colour image? make an edge image or a mask of it first \
+                          (skimage.color.rgb2gray, then a threshold or skimage.feature.canny), \
+                          then pass points: numpy.argwhere(edges)[:, ::-1] gives its pixels as \
+                          (x, y)";
+
 /// Whether an array of this shape reads as an image rather than as points: two axes of 5 or
 /// more (a table of 5 columns or more reads so too; the hints name both).
 fn is_image(shape: &[usize]) -> bool {
@@ -401,6 +407,8 @@ pub(crate) fn points_array<'py>(
                 }
                 [_, _, 2] => "; a list of contours? pass numpy.vstack(contours)",
                 [_, 3] | [_, 4] => "; pass the two coordinate columns, such as points[:, :2]",
+                // A colour image passed whole (a diff review: told its shape alone).
+                [h, w, 3 | 4] if *h >= 5 && *w >= 5 => COLOUR_FIX,
                 // An image or a mask passed whole (an image user's review).
                 shape if is_image(shape) => &format!(
                     "; an image or a mask? {IMAGE_FIX}; {LABELS_FIX}; a table? pass the two \

@@ -422,6 +422,13 @@ def test_an_image_or_a_mask_passed_whole_is_named_with_its_pixels_places():
                 function(image)
     with pytest.raises(TypeError, match=re.escape("a mask? condt takes points: " + fix)):
         condt.reconstruct(mask)
+    # A colour image (a diff review: told its shape alone): an edge image or a mask first.
+    colour = "a colour image? make an edge image or a mask of it first (skimage.color.rgb2gray, "
+    colour += "then a threshold or skimage.feature.canny), then pass points: "
+    colour += "numpy.argwhere(edges)[:, ::-1] gives its pixels as (x, y)"
+    for channels in (3, 4):
+        with pytest.raises(ValueError, match=re.escape(colour)):
+            condt.reconstruct(np.zeros((40, 60, channels), np.uint8))
     # The fix named works: the square's boundary (erosion by a cross, written out in numpy),
     # (x, y), comes back as one closed curve through its 76 pixels.
     eroded = np.zeros_like(mask)

@@ -285,7 +285,15 @@ fn shape_hint(shape: &[u64]) -> &'static str {
         [2, _] => "; points by column? save points.T",
         [_, 1, 2] => "; OpenCV's contour layout? save points.reshape(-1, 2)",
         [_, _, 1, 2] => "; OpenCV's contours stacked? save numpy.vstack(contours).reshape(-1, 2)",
+        [_, _, 2] => "; contours stacked? save numpy.vstack(contours)",
         [_, 3] | [_, 4] => "; save the two coordinate columns, such as points[:, :2]",
+        // A colour image saved whole: its pixels are no points until an edge image or a mask
+        // picks them (a diff review: `(48, 64, 3)` was told its shape alone).
+        [h, w, 3 | 4] if *h >= 5 && *w >= 5 => {
+            "; a colour image? make an edge image or a mask of it first (skimage.color.rgb2gray, \
+             then a threshold or skimage.feature.canny), then save points: \
+             numpy.argwhere(edges)[:, ::-1] gives its pixels as (x, y)"
+        }
         // An image or a mask saved whole (every pixel of a filled mask would be a point); a table
         // of 5 columns or more reads so too. A label image's regions each hold many values, so
         // neither of a mask's fixes gives its borders (a label-image user's review): the

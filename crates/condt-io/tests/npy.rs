@@ -233,6 +233,13 @@ fn shapes_other_tools_hand_over_are_refused_with_the_fix() {
             "OpenCV's contours stacked? save numpy.vstack(contours).reshape(-1, 2)",
         ),
         ("(2, 12)", "points by column? save points.T"),
+        ("(2, 6, 2)", "contours stacked? save numpy.vstack(contours)"),
+        (
+            "(8, 6, 4)",
+            "a colour image? make an edge image or a mask of it first (skimage.color.rgb2gray, \
+             then a threshold or skimage.feature.canny), then save points: \
+             numpy.argwhere(edges)[:, ::-1] gives its pixels as (x, y)",
+        ),
         (
             "(8, 3)",
             "save the two coordinate columns, such as points[:, :2]",
@@ -274,7 +281,7 @@ fn shapes_other_tools_hand_over_are_refused_with_the_fix() {
         "{text}"
     );
     // Other shapes keep the bare message.
-    for (shape, bytes) in [("(2, 2, 2)", 64), ("(3, 7)", 168)] {
+    for (shape, bytes) in [("(2, 3, 3)", 144), ("(3, 7)", 168)] {
         let dict = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
         let text = parse_npy(&npy_file(1, &dict, &data[..bytes]), "c.npy")
             .unwrap_err()
