@@ -1163,14 +1163,19 @@ def test_the_readmes_image_boundaries_run_as_written():
     and its own asserts check the curves it promises."""
     for module in ("cv2", "scipy", "skimage"):
         pytest.importorskip(module)
+    assert run_the_readmes_first_block_under("## Image boundaries")["xy"].shape[1] == 2
+
+
+def run_the_readmes_first_block_under(heading):
+    """Runs python/README.md's first Python block after `heading` and returns its names."""
     readme = pathlib.Path(__file__).resolve().parents[1] / "README.md"
     if not readme.exists():
         pytest.skip("no python/README.md beside the tests")
-    section = readme.read_text().split("## Image boundaries", 1)[1]
+    section = readme.read_text().split(heading, 1)[1]
     block = section.split("```python\n", 1)[1].split("```", 1)[0]
     names = {}
     exec(compile(block, str(readme), "exec"), names)
-    assert names["xy"].shape[1] == 2
+    return names
 
 
 def test_the_readmes_label_images_run_as_written():
@@ -1178,14 +1183,7 @@ def test_the_readmes_label_images_run_as_written():
     of scikit-image's boundaries gives a segmentation's borders with their junctions) runs,
     and its asserts check the three borders and the junction's three edges."""
     pytest.importorskip("skimage")
-    readme = pathlib.Path(__file__).resolve().parents[1] / "README.md"
-    if not readme.exists():
-        pytest.skip("no python/README.md beside the tests")
-    section = readme.read_text().split("### Label images", 1)[1]
-    block = section.split("```python\n", 1)[1].split("```", 1)[0]
-    names = {}
-    exec(compile(block, str(readme), "exec"), names)
-    assert len(names["r"].curves) == 3
+    assert len(run_the_readmes_first_block_under("### Label images")["r"].curves) == 3
 
 
 @pytest.mark.parametrize("distance", [float("nan"), -1.0, float("inf")])

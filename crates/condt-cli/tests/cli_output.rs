@@ -1135,23 +1135,19 @@ fn an_output_name_of_255_bytes_is_written() {
     assert_eq!(names(dir.path()), [name]);
 }
 
-/// `triangulate` of 2,000 points (some 40 kB of triangles) into `target`, under a file-size
-/// limit (`ulimit -f`) of 4 kB.
-fn triangulate_past_a_file_size_limit(target: &Path) -> Output {
+/// `triangulate -` of 2,000 points (some 40 kB of triangles) with the further `args` and
+/// standard output `stdout`, under a file-size limit (`ulimit -f`) of 4 kB.
+fn triangulate_under_a_file_size_limit(args: &[&OsStr], stdout: Stdio) -> Output {
     use std::os::unix::process::CommandExt;
     let input: String = (0..2000)
         .map(|i| format!("{} {}\n", i % 50, (i / 50) as f64 + 0.01 * (i % 7) as f64))
         .collect();
     let mut command = Command::new(binary());
     command
-        .args([
-            "triangulate".as_ref(),
-            "-".as_ref(),
-            "-o".as_ref(),
-            target.as_os_str(),
-        ])
+        .args(["triangulate", "-"])
+        .args(args)
         .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
+        .stdout(stdout)
         .stderr(Stdio::piped());
     // SAFETY: `setrlimit` is async-signal-safe, as `pre_exec` requires.
     unsafe {
@@ -1167,11 +1163,17 @@ fn triangulate_past_a_file_size_limit(target: &Path) -> Output {
         });
     }
     let mut child = command.spawn().unwrap();
-    let stdin = child.stdin.take().unwrap();
-    std::io::BufWriter::new(stdin)
+    std::io::BufWriter::new(child.stdin.take().unwrap())
         .write_all(input.as_bytes())
         .unwrap();
-    let out = child.wait_with_output().unwrap();
+    child.wait_with_output().unwrap()
+}
+
+/// `triangulate` of 2,000 points (some 40 kB of triangles) into `target`, under a file-size
+/// limit (`ulimit -f`) of 4 kB.
+fn triangulate_past_a_file_size_limit(target: &Path) -> Output {
+    let out =
+        triangulate_under_a_file_size_limit(&["-o".as_ref(), target.as_os_str()], Stdio::piped());
     assert_eq!(
         out.status.code(),
         Some(1),
@@ -1558,36 +1560,9 @@ fn score_scores_when_its_standard_error_refuses_writes() {
 #[cfg(target_os = "linux")]
 #[test]
 fn a_failed_write_to_standard_output_names_its_file() {
-    use std::os::unix::process::CommandExt;
     let dir = tempfile::tempdir().unwrap();
     let target = dir.path().join("redirected.txt");
-    let input: String = (0..2000)
-        .map(|i| format!("{} {}\n", i % 50, (i / 50) as f64 + 0.01 * (i % 7) as f64))
-        .collect();
-    let mut command = Command::new(binary());
-    command
-        .args(["triangulate", "-"])
-        .stdin(Stdio::piped())
-        .stdout(fs::File::create(&target).unwrap())
-        .stderr(Stdio::piped());
-    // SAFETY: `setrlimit` is async-signal-safe, as `pre_exec` requires.
-    unsafe {
-        command.pre_exec(|| {
-            let limit = libc::rlimit {
-                rlim_cur: 4096,
-                rlim_max: 4096,
-            };
-            if libc::setrlimit(libc::RLIMIT_FSIZE, &limit) != 0 {
-                return Err(std::io::Error::last_os_error());
-            }
-            Ok(())
-        });
-    }
-    let mut child = command.spawn().unwrap();
-    std::io::BufWriter::new(child.stdin.take().unwrap())
-        .write_all(input.as_bytes())
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
+    let out = triangulate_under_a_file_size_limit(&[], fs::File::create(&target).unwrap().into());
     let said = stderr(&out);
     assert_eq!(out.status.code(), Some(1), "{said}");
     assert!(
