@@ -303,6 +303,18 @@ fn condt_with_stdin(args: &[&str], input: &[u8]) -> std::process::Output {
     child.wait_with_output().unwrap()
 }
 
+/// `condt reconstruct PATH -o /dev/null`: its exit status and what it said on standard error.
+fn reconstruct_to_nowhere(path: &std::path::Path) -> (std::process::ExitStatus, String) {
+    let run = condt_with_stdin(
+        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
+        b"",
+    );
+    (
+        run.status,
+        String::from_utf8_lossy(&run.stderr).into_owned(),
+    )
+}
+
 /// A CSV table on standard input, which has no name to say it is CSV, is read as CSV with
 /// `--input-format csv` (its header followed: `id,lat,lon`), giving what the same file named
 /// `.csv` gives; without the option it is read as plain text as before (a GIS review: only the
@@ -1255,13 +1267,9 @@ fn swapped_longitude_and_latitude_columns_are_noted() {
     let rows: String = ring.iter().map(|(x, y)| format!("{y},{x}\n")).collect();
     let path = dir.path().join("ring.csv");
     std::fs::write(&path, format!("lon,lat\n{rows}")).unwrap();
-    let run = condt_with_stdin(
-        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
-        b"",
-    );
-    let said = String::from_utf8_lossy(&run.stderr);
+    let (status, said) = reconstruct_to_nowhere(&path);
     assert!(
-        run.status.success()
+        status.success()
             && said.contains("are they written latitude first (swapped columns)?")
             && said.contains("by its header's names"),
         "{said}"
@@ -1284,7 +1292,7 @@ fn swapped_longitude_and_latitude_columns_are_noted() {
     );
     let said = String::from_utf8_lossy(&run.stderr);
     assert!(
-        run.status.success()
+        status.success()
             && said.contains("or as GeoJSON's are, longitude first")
             && said.contains("written latitude first")
             && !said.contains("are named longitude"),
@@ -1293,13 +1301,9 @@ fn swapped_longitude_and_latitude_columns_are_noted() {
     // The right way round, no such note.
     let rows: String = ring.iter().map(|(x, y)| format!("{y},{x}\n")).collect();
     std::fs::write(&path, format!("lat,lon\n{rows}")).unwrap();
-    let run = condt_with_stdin(
-        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
-        b"",
-    );
-    let said = String::from_utf8_lossy(&run.stderr);
+    let (status, said) = reconstruct_to_nowhere(&path);
     assert!(
-        run.status.success() && !said.contains("columns swapped"),
+        status.success() && !said.contains("columns swapped"),
         "{said}"
     );
 }
@@ -1365,12 +1369,8 @@ fn geojson_drawings_are_told_how_to_say_so() {
             ),
         )
         .unwrap();
-        let run = condt_with_stdin(
-            &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
-            b"",
-        );
-        let said = String::from_utf8_lossy(&run.stderr);
-        assert!(run.status.success(), "{name}: {said}");
+        let (status, said) = reconstruct_to_nowhere(&path);
+        assert!(status.success(), "{name}: {said}");
         assert_eq!(said.contains(hint), noted, "{name}: {said}");
         assert_eq!(
             said.contains("`\"crs\": null` in the file"),
@@ -1389,11 +1389,7 @@ fn geojson_drawings_are_told_how_to_say_so() {
         .map(|p| format!("{}\n", p.trim_matches(['[', ']'])))
         .collect();
     std::fs::write(&path, format!("lon,lat\n{rows}")).unwrap();
-    let run = condt_with_stdin(
-        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
-        b"",
-    );
-    let said = String::from_utf8_lossy(&run.stderr);
+    let (_, said) = reconstruct_to_nowhere(&path);
     assert!(
         said.contains("read as plane coordinates") && !said.contains(hint),
         "{said}"
@@ -1413,13 +1409,9 @@ fn the_stretch_at_a_pole_is_said_in_words() {
     rows += "0,90\n";
     let path = dir.path().join("pole.csv");
     std::fs::write(&path, format!("lon,lat\n{rows}")).unwrap();
-    let run = condt_with_stdin(
-        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
-        b"",
-    );
-    let said = String::from_utf8_lossy(&run.stderr);
+    let (status, said) = reconstruct_to_nowhere(&path);
     assert!(
-        run.status.success()
+        status.success()
             && said.contains("at latitude 90, the points' farthest")
             && said.contains("a degree of longitude is under 0.01 of one of latitude")
             && said.contains("counts over 100 times as long")
@@ -1431,11 +1423,7 @@ fn the_stretch_at_a_pole_is_said_in_words() {
         .map(|k| format!("{},80\n", f64::from(k * 10 - 180)))
         .collect();
     std::fs::write(&path, format!("lon,lat\n{rows}")).unwrap();
-    let run = condt_with_stdin(
-        &["reconstruct", path.to_str().unwrap(), "-o", "/dev/null"],
-        b"",
-    );
-    let said = String::from_utf8_lossy(&run.stderr);
+    let (_, said) = reconstruct_to_nowhere(&path);
     assert!(
         said.contains("is 0.17 of one of latitude") && said.contains("counts 5.8 times"),
         "{said}"
