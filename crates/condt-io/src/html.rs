@@ -35,12 +35,20 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
     let stories = result.provenance();
     let mut out = io::BufWriter::with_capacity(1 << 16, out);
     let title = escape(title);
-    // Without JavaScript the page says so, with the result's counts, in place of the details'
-    // and layers' panels, which only the script fills (it read "Click a point or an edge." over
-    // an empty canvas: a teacher's review).
+    // The result's counts head the side panel: the drawing's text alternative (the canvas is
+    // described by it), and with JavaScript off the one thing the page can say (it read "Click a
+    // point or an edge." over an empty canvas: a teacher's review); the panels only the script
+    // fills are hidden then. The canvas is an application to a screen reader, which then hands
+    // it the keys (as an image they stayed in the reader's browse mode, where NVDA's n and e
+    // move to the next text and the next edit field).
     let curves = result.curves();
     let closed = curves.iter().filter(|c| c.is_closed()).count();
-    let (points, unused) = (result.num_points(), result.unused().len());
+    let (points, unused, edges) = (
+        result.num_points(),
+        result.unused().len(),
+        result.edges().len(),
+    );
+    let plural = |count: usize| if count == 1 { "" } else { "s" };
     write!(
         out,
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
@@ -48,22 +56,31 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
          <title>condt: {title}</title><style>{STYLE}</style>\
          <noscript><style>#info, #layers, .hint {{ display: none; }}</style></noscript>\
          </head><body>\
-         <header><h1>condt: {title}</h1><span id=\"status\"></span></header>\
-         <main><div id=\"view\"><noscript><p id=\"noscript\">The result: {points} point{}, \
-         {} curve{} ({closed} closed, {} open), {unused} unused. This page draws the stages with \
+         <header><h1>condt: {title}</h1><span id=\"status\" role=\"status\"></span></header>\
+         <main><div id=\"view\"><noscript><p id=\"noscript\">This page draws the stages with \
          JavaScript, which is off: turn it on to explore them, or draw them without it with \
          <code>condt reconstruct INPUT -o stages.svg --stages</code>.</p></noscript>\
-         <canvas id=\"canvas\" tabindex=\"0\" role=\"img\" aria-label=\"The points, their \
+         <canvas id=\"canvas\" tabindex=\"0\" role=\"application\" \
+         aria-roledescription=\"drawing\" aria-label=\"The points, their \
          Delaunay triangulation and the graph after each stage, as the layers switch them; a \
-         click on a point or an edge tells its story in Details\"></canvas></div>\
-         <aside><section id=\"info\"><h2>Details</h2><p id=\"details\" aria-live=\"polite\">\
-         Click a point or an edge.</p></section><section id=\"layers\"><h2>Layers</h2></section>\
-         <p class=\"hint\">Drag or arrow keys to pan, wheel or + and - to zoom, double-click or 0 \
-         to see everything; n and p step through the points, e and E through a point's edges.\
-         </p></aside></main>\n<script id=\"data\" type=\"application/json\">",
-        if points == 1 { "" } else { "s" },
+         click on a point or an edge, or the keys below, tell its story in Details\" \
+         aria-describedby=\"summary keys\"></canvas></div>\
+         <aside><p id=\"summary\">The result: {points} point{}, {edges} edge{} in {} curve{} \
+         ({closed} closed, {} open), {unused} unused.</p>\
+         <section id=\"info\"><h2>Details</h2><p id=\"details\" aria-live=\"polite\">\
+         Click a point or an edge.</p></section><section id=\"layers\" role=\"group\" \
+         aria-labelledby=\"layers-heading\"><h2 id=\"layers-heading\">Layers</h2></section>\
+         <p class=\"hint\" id=\"keys\">Drag or arrow keys to pan, wheel or + and - to zoom, \
+         double-click or 0 to see everything. Keys work where the drawing has the focus (Tab to \
+         it): Enter selects the point nearest the middle of the view, n and p step through the \
+         points, e and E through the selected point's edges; Tab goes on to the layers' \
+         switches, which Space turns on and off. The number beside a layer is its count of \
+         edges.</p></aside></main>\n\
+         <script id=\"data\" type=\"application/json\">",
+        plural(points),
+        plural(edges),
         curves.len(),
-        if curves.len() == 1 { "" } else { "s" },
+        plural(curves.len()),
         curves.len() - closed,
     )?;
     write_data(&mut out, result, &stories)?;
@@ -861,17 +878,21 @@ mod tests {
         let page = String::from_utf8(page).unwrap();
         let at = page.find("<noscript><p").expect("a noscript paragraph");
         let text = &page[at..at + page[at..].find("</noscript>").unwrap()];
-        assert!(
-            text.contains("41 points, 1 curve (1 closed, 0 open), 1 unused."),
-            "{text}"
-        );
         assert!(text.contains("--stages"), "{text}");
+        // The counts, shown with JavaScript or without, are the drawing's text alternative.
+        let summary = "<p id=\"summary\">The result: 41 points, 40 edges in 1 curve \
+                       (1 closed, 0 open), 1 unused.</p>";
+        assert!(page.contains(summary), "{page}");
         // A screen reader is told what the canvas shows and hears the details a click gives (a
-        // teacher's review: neither was said).
+        // teacher's review: neither was said), and the keys that work there.
         assert!(page.contains(
-            "<canvas id=\"canvas\" tabindex=\"0\" role=\"img\" aria-label=\"The points,"
+            "<canvas id=\"canvas\" tabindex=\"0\" role=\"application\" \
+             aria-roledescription=\"drawing\" aria-label=\"The points,"
         ));
+        assert!(page.contains("aria-describedby=\"summary keys\"></canvas>"));
+        assert!(page.contains("<p class=\"hint\" id=\"keys\">"));
         assert!(page.contains("<p id=\"details\" aria-live=\"polite\">Click a point or an edge."));
+        assert!(page.contains("<span id=\"status\" role=\"status\">"));
         let head = &page[..page.find("</head>").unwrap()];
         assert!(
             head.contains("<noscript><style>#info, #layers, .hint { display: none; }"),

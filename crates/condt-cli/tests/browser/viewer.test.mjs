@@ -39,6 +39,19 @@ for (const line of readFileSync(edges_file, "utf8").split("\n")) {
   degree.set(b, (degree.get(b) || 0) + 1);
 }
 assert.ok(result.size > 0, "the shipped data reconstructs to some edges");
+// What the page's summary and layer switches count, from the same binary's other outputs: the
+// curves (txt), the unused points, and the Delaunay edges (the sides of `triangulate`'s
+// triangles).
+const lines = (args) => execFileSync(condt, args, { cwd: root, encoding: "utf8" })
+  .split("\n").filter((l) => l.trim() && !l.startsWith("#"));
+const curves = lines(["reconstruct", data, "-q"]).map((l) => l.split(/\s+/)[0]);
+const unusedCount = lines(["reconstruct", data, "--format", "unused", "-q"]).length;
+const delaunay = new Set();
+for (const l of lines(["triangulate", data, "-q"])) {
+  const [a, b, c] = l.trim().split(/\s+/).map(Number);
+  for (const [p, q] of [[a, b], [b, c], [a, c]]) delaunay.add(`${Math.min(p, q)}-${Math.max(p, q)}`);
+}
+const inputPoints = readFileSync(join(root, data), "utf8").split("\n").filter((l) => l.trim() && !l.startsWith("#")).length;
 
 const browser = await chromium.launch({
   executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
@@ -71,9 +84,23 @@ try {
       `fitted to the canvas as it is (${size}): ${shown} against ${fitted}`);
   };
   await fittedAsIs("on loading");
-  for (const [width, height] of [[640, 500], [1400, 850]]) {
+  for (const [width, height] of [[640, 500], [320, 640], [1400, 850]]) {
     await page.setViewportSize({ width, height });
     await fittedAsIs(`${width} x ${height}`);
+    // Reflow (WCAG 1.4.10: 320 pixels wide, as 1280 at 400 %): nothing scrolls sideways and
+    // the drawing keeps the width with the panel under it (the panel took the whole width and
+    // the drawing none).
+    const laid = await page.evaluate(() => {
+      const c = document.getElementById("canvas").getBoundingClientRect();
+      const a = document.querySelector("aside").getBoundingClientRect();
+      return { wide: document.documentElement.scrollWidth - document.documentElement.clientWidth,
+        canvas: [c.width, c.height], under: a.top >= c.bottom - 1 };
+    });
+    assert.equal(laid.wide, 0, `no sideways scrolling at ${width} pixels`);
+    if (width <= 640) {
+      assert.ok(laid.under && laid.canvas[0] >= width - 1 && laid.canvas[1] >= 150,
+        `the drawing across the window and the panel under it at ${width} pixels: ${JSON.stringify(laid)}`);
+    }
   }
 
   // Every edge layer has a colour swatch beside its switch, each stage its own (the page draws a
@@ -90,6 +117,136 @@ try {
   const changes = await page.$$eval("#layers .swatch.change", (marks) => marks.map((m) => m.parentElement.textContent));
   assert.deepEqual(changes, [" edges a shown stage added", " edges a shown stage removed"]);
   assert.equal(new Set(stageColors).size, stageColors.length, `stage colours differ: ${swatches}`);
+
+  // For a screen reader: a title and a language; the drawing described by the result's counts,
+  // which agree with the other outputs; each layer's switch named by its layer and its count of
+  // edges; the status line and the details announced as they change.
+  assert.equal(await page.title(), `condt: ${data}`);
+  assert.equal(await page.getAttribute("html", "lang"), "en");
+  const closedCount = curves.filter((c) => c === "closed").length;
+  const summary = `The result: ${inputPoints} points, ${result.size} edges in ${curves.length} curves ` +
+    `(${closedCount} closed, ${curves.length - closedCount} open), ${unusedCount} unused.`;
+  const described = await page.$eval("#canvas", (c) => c.getAttribute("aria-describedby").split(" ")
+    .map((id) => document.getElementById(id).textContent));
+  assert.equal(described[0], summary, "the drawing's text alternative");
+  assert.match(described[1], /Enter selects the point nearest the middle of the view/);
+  // An application, whose keys a screen reader passes on (an image's stay in its browse mode).
+  assert.match(await page.locator("main").ariaSnapshot(), /- application "The points, their Delaunay/);
+  const tree = await page.locator("#layers").ariaSnapshot();
+  const named = [...tree.matchAll(/checkbox "([^"]*)"/g)].map((m) => m[1]);
+  const switches = await page.$$eval("#layers input", (boxes) => boxes.map((b) => b.dataset.layer));
+  assert.equal(named.length, switches.length, `every switch has a name: ${tree}`);
+  named.forEach((name, k) => assert.ok(name.startsWith(switches[k]), `${switches[k]} is named "${name}"`));
+  assert.match(tree, /^- group "Layers"/, tree);
+  const edgesOf = (layer) => {
+    const count = named.find((s) => s.startsWith(layer)).match(/ edges?: ([\d,]+)$/);
+    assert.ok(count, `the switch of ${layer} says its count of edges: ${named}`);
+    return Number(count[1].replace(/,/g, ""));
+  };
+  assert.equal(edgesOf("Delaunay triangulation"), delaunay.size, "the triangulation's count of edges");
+  assert.equal(edgesOf(switches[layerCount - 1]), result.size, "the result's count of edges");
+  assert.ok(switches[layerCount - 1].endsWith("(the result)"), switches[layerCount - 1]);
+  assert.equal(await page.getAttribute("#status", "role"), "status");
+  assert.equal(await page.getAttribute("#details", "aria-live"), "polite");
+  // Keyboard: Tab from the top of the page reaches the drawing, with a ring of 2 pixels or
+  // more, then every layer's switch in order, and then leaves the page (no trap); Space
+  // switches a layer.
+  await page.click("h1"); // Tab goes on from there
+  const order = [];
+  for (let k = 0; k <= switches.length + 1; k++) {
+    await page.keyboard.press("Tab");
+    order.push(await page.evaluate(() => {
+      const e = document.activeElement;
+      if (!e || e === document.body) return null;
+      const s = getComputedStyle(e);
+      return { id: e.id || e.dataset.layer, ring: s.outlineStyle !== "none" && parseFloat(s.outlineWidth) >= 2 };
+    }));
+  }
+  assert.deepEqual(order.map((f) => f && f.id), ["canvas", ...switches, null], "the Tab order");
+  assert.ok(order[0].ring, "a visible focus ring on the drawing");
+  await page.focus(`input[data-layer="${switches[1]}"]`);
+  await page.keyboard.press("Space");
+  assert.ok(await page.isChecked(`input[data-layer="${switches[1]}"]`), "Space switched a layer on");
+  await page.keyboard.press("Space");
+  // Enter on the drawing selects the point nearest the middle of the view (a point among
+  // thousands was out of a keyboard's reach, by index alone), after a pan too.
+  const nearestMiddle = () => page.evaluate(() => {
+    const v = window.condtViewer, r = document.getElementById("canvas").getBoundingClientRect();
+    const d = JSON.parse(document.getElementById("data").textContent), later = new Set();
+    for (let k = 0; k < d.merged.length; k += 2) later.add(d.merged[k]);
+    let best = -1, bestD = Infinity;
+    for (let i = 0; i < v.points; i++) {
+      const [x, y] = v.screenOf(i), dist = (x - r.left - r.width / 2) ** 2 + (y - r.top - r.height / 2) ** 2;
+      if (!later.has(i) && dist < bestD) { bestD = dist; best = i; }
+    }
+    return best;
+  });
+  await page.focus("#canvas");
+  for (const keys of [[], ["ArrowLeft", "ArrowLeft", "ArrowUp", "+", "+"]]) {
+    for (const key of keys) await page.keyboard.press(key);
+    await page.keyboard.press("Enter");
+    assert.match(await details(), new RegExp(`^Point ${await nearestMiddle()} \\(`), `Enter after ${keys}`);
+  }
+  // Zoomed in, n brings the point it selects into view (it stepped to points out of sight).
+  for (let k = 0; k < 12; k++) await page.keyboard.press("+");
+  for (let k = 0; k < 3; k++) {
+    await page.keyboard.press("n");
+    const i = Number((await details()).match(/^Point (\d+) \(/)[1]);
+    const [px, py] = await page.evaluate((i) => window.condtViewer.screenOf(i), i);
+    const r = await page.$eval("#canvas", (c) => c.getBoundingClientRect().toJSON());
+    assert.ok(px >= r.left && px <= r.right && py >= r.top && py <= r.bottom, `point ${i} in view: ${px}, ${py}`);
+  }
+  await page.keyboard.press("0");
+  await page.evaluate(() => document.activeElement.blur());
+  await frames();
+  // Colour is not all that tells the halos apart (green and red read alike to a red-green
+  // colour-blind eye): along the middle of an edge a stage removed, its halo has gaps (dashes),
+  // where the layer before, which has the edge, draws it without. Measured on the canvas's
+  // pixels, that stage's layer and the halo alone on.
+  const halo = await page.evaluate(() => {
+    const v = window.condtViewer, d = JSON.parse(document.getElementById("data").textContent);
+    const canvas = document.getElementById("canvas"), r = canvas.getBoundingClientRect();
+    const longest = () => {
+      let best = null;
+      for (let k = 0; k < v.edges; k++) for (let s = 2; s < v.edgeLayers; s++) {
+        const now = (d.member[k] >> s) & 1, before = (d.member[k] >> (s - 1)) & 1;
+        if (!before || now) continue;
+        const [a, b] = v.edgeEnds(k).map((i) => v.screenOf(i)), length = Math.hypot(a[0] - b[0], a[1] - b[1]);
+        if (!best || length > best.length) best = { k, s, a, b, length };
+      }
+      return best;
+    };
+    const gaps = (edge, s, name) => {
+      v.only(s === d.layers.length - 1 ? d.layers[s] + " (the result)" : d.layers[s]);
+      for (const box of document.querySelectorAll("#layers input")) {
+        if (box.dataset.layer === name) { box.checked = true; box.dispatchEvent(new Event("change")); }
+      }
+      return new Promise((done) => requestAnimationFrame(() => {
+        const ctx = canvas.getContext("2d"), ratio = canvas.width / r.width;
+        let empty = 0;
+        for (let t = 0.2; t <= 0.8; t += 0.6 / 120) {
+          const x = (edge.a[0] + t * (edge.b[0] - edge.a[0]) - r.left) * ratio, y = (edge.a[1] + t * (edge.b[1] - edge.a[1]) - r.top) * ratio;
+          if (ctx.getImageData(Math.round(x), Math.round(y), 1, 1).data[3] === 0) empty++;
+        }
+        done(empty);
+      }));
+    };
+    const removed = longest();
+    return (async () => removed && {
+      length: removed.length, stage: d.layers[removed.s],
+      halo: await gaps(removed, removed.s, "edges a shown stage removed"),
+      before: await gaps(removed, removed.s - 1, null),
+    })();
+  });
+  assert.ok(halo && halo.length > 60, `an edge a stage removed, long on screen: ${JSON.stringify(halo)}`);
+  assert.ok(halo.halo >= 10, `the removed edge's halo is dashed: ${JSON.stringify(halo)}`);
+  assert.equal(halo.before, 0, `the layer before draws it whole: ${JSON.stringify(halo)}`);
+  await page.evaluate(() => window.condtViewer.only(null));
+  // In a high-contrast mode the legend keeps its colours (every swatch was painted over).
+  await page.emulateMedia({ forcedColors: "active" });
+  const forced = await page.$$eval("#layers .swatch:not(.change)", (marks) => marks.map((m) => getComputedStyle(m).backgroundColor));
+  assert.deepEqual(forced, swatches.map(([, color]) => color), "swatches in forced colours");
+  await page.emulateMedia({ forcedColors: "none" });
 
   // A point of the result: the panel shows its ring, the test and the degree the edge list has.
   const chosen = [...degree.keys()].sort((a, b) => a - b)[0];
@@ -351,7 +508,7 @@ try {
   const still = await noScript.newPage();
   await still.goto("file://" + gon_page);
   const shown = await still.innerText("body");
-  assert.match(shown, /The result: 201 points, \d+ curves? \(\d+ closed, \d+ open\), \d+ unused\./, shown);
+  assert.match(shown, /The result: 201 points, \d+ edges? in \d+ curves? \(\d+ closed, \d+ open\), \d+ unused\./, shown);
   assert.match(shown, /JavaScript, which is off/, shown);
   assert.doesNotMatch(shown, /Click a point|Layers|Drag or arrow keys/, shown);
   await noScript.close();

@@ -28,10 +28,12 @@
   ];
   // What each stage layer shown changed against the stage before it (from the second stage on:
   // the proximity graph is a choice among the Delaunay edges), as the SVG's stage panels draw it.
-  // Wide and translucent, under the layers: a halo, told apart from any stage's own line.
+  // Wide and translucent, under the layers: a halo, told apart from any stage's own line. The
+  // removed edges' halo is dashed: green and red alone read alike to a red-green colour-blind
+  // eye (an accessibility review; simulated deuteranopia left them 6 CIEDE2000 units apart).
   const changeLayers = [
-    { name: "edges a shown stage added", color: "rgba(44,160,44,0.45)", width: 8, on: true, kind: "added" },
-    { name: "edges a shown stage removed", color: "rgba(214,39,40,0.3)", width: 8, on: true, kind: "removed" },
+    { name: "edges a shown stage added", color: "rgba(44,160,44,0.45)", width: 8, on: true, kind: "added", dash: [] },
+    { name: "edges a shown stage removed", color: "rgba(214,39,40,0.3)", width: 8, on: true, kind: "removed", dash: [12, 6] },
   ];
   const unused = new Uint8Array(n);
   for (const i of data.unused) unused[i] = 1;
@@ -166,6 +168,7 @@
       if (!change.on) continue;
       ctx.strokeStyle = change.color;
       ctx.lineWidth = change.width;
+      ctx.setLineDash(change.dash);
       ctx.beginPath();
       for (let k = 2; k < layers.length; k++) {
         if (!layers[k].on) continue;
@@ -180,6 +183,7 @@
       }
       ctx.stroke();
     }
+    ctx.setLineDash([]);
     for (const layer of layers) {
       if (!layer.on) continue;
       ctx.strokeStyle = layer.color;
@@ -222,7 +226,10 @@
     if (selected) drawSelection();
     const [passes, moved] = data.smoothing;
     if (passes > 0) notes.push(`points where the stages saw them, after ${passes} smoothing pass${passes > 1 ? "es" : ""} (the last moved ${moved.toLocaleString("en")}); each stands for its input point`);
-    status.textContent = notes.join("; ");
+    // Written only when it changes: the line is a live region, which a screen reader would
+    // read out again at every frame of a drag.
+    const said = notes.join("; ");
+    if (status.textContent !== said) status.textContent = said;
   }
 
   function drawSelection() {
@@ -461,7 +468,9 @@
   // about the centre, 0 shows everything, n and p select the next and the previous point by its
   // index (without a pointer no point could be picked: a teacher's review), e and E the next and
   // the previous edge of the point last selected so, by rank (no edge could be picked either),
-  // their details then announced.
+  // their details then announced. Enter selects the point nearest the middle of the view: pan
+  // and zoom to a place, then pick there (by index alone, a point among thousands was out of a
+  // keyboard's reach: an accessibility review).
   let edgesOf = null;
   // The edge shown was reached by e or E (not clicked since).
   const steppedEdge = () => edgesOf && selected && selected.edge !== undefined &&
@@ -487,6 +496,26 @@
     showEdge(r.k);
     details.innerHTML += `<p>Edge ${edgesOf.at + 1} of ${ring.length} at point ${edgesOf.point}, rank ${r.rank} there (e and E for the others, n and p for the points).</p>`;
   };
+  // A point selected by a key, or the edge's ends, brought on screen if the view has left it
+  // (zoomed in, n stepped to a point out of sight).
+  const inView = (ends) => {
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    if (ends.every((i) => sx(i) >= 0 && sx(i) <= w && sy(i) >= 0 && sy(i) <= h)) return;
+    const x = ends.reduce((t, i) => t + sx(i), 0) / ends.length, y = ends.reduce((t, i) => t + sy(i), 0) / ends.length;
+    view.ox += w / 2 - x; view.oy += h / 2 - y;
+  };
+  const pickMiddle = () => {
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    let best = -1, bestD = Infinity;
+    for (let i = 0; i < n; i++) {
+      if (mergedInto.has(i)) continue;
+      const d = (sx(i) - w / 2) ** 2 + (sy(i) - h / 2) ** 2;
+      if (d < bestD) { bestD = d; best = i; }
+    }
+    if (best < 0) return;
+    selected = { point: best };
+    showPoint(best);
+  };
   canvas.addEventListener("keydown", (ev) => {
     const w = canvas.clientWidth, h = canvas.clientHeight, step = 40;
     const zoom = (g) => {
@@ -498,10 +527,12 @@
       ArrowUp: () => { view.oy += step; }, ArrowDown: () => { view.oy -= step; },
       "+": () => zoom(1.25), "=": () => zoom(1.25), "-": () => zoom(0.8), "0": () => fit(),
       n: () => stepPoint(1), p: () => stepPoint(-1), e: () => stepEdge(1), E: () => stepEdge(-1),
+      Enter: pickMiddle,
     };
     if (!(ev.key in moves) || ev.ctrlKey || ev.metaKey || ev.altKey) return;
     ev.preventDefault();
     moves[ev.key]();
+    if ("npeE".includes(ev.key) && selected) inView(selected.point !== undefined ? [selected.point] : [E[2 * selected.edge], E[2 * selected.edge + 1]]);
     request();
   });
   // The canvas changes size with the window, and with the status line above it, which each
@@ -526,9 +557,20 @@
     const isPoint = layer.kind === "points" || layer.kind === "unused";
     mark.className = isPoint ? "dot" : changeLayers.includes(layer) ? "swatch change" : "swatch";
     if (layer.kind === "unused") mark.style.border = `2px solid ${layer.color}`;
+    else if (layer.dash && layer.dash.length) mark.style.background = `repeating-linear-gradient(90deg, ${layer.color} 0 ${layer.dash[0]}px, transparent 0 ${layer.dash[0] + layer.dash[1]}px)`;
     else mark.style.background = layer.color;
     if (!isPoint) mark.style.height = `${Math.max(2, layer.width * 2)}px`;
     label.append(box, " ", mark, layer.name);
+    // Each edge layer's count of edges at its right, which its switch's name says in words:
+    // what a screen reader has of the drawing, stage by stage.
+    if (layer.edges) {
+      const count = document.createElement("span"), words = document.createElement("span");
+      count.className = "count";
+      words.className = "unseen";
+      words.textContent = `${layer.edges.length === 1 ? "edge" : "edges"}: `;
+      count.append(words, layer.edges.length.toLocaleString("en"));
+      label.append(count);
+    }
     layerBox.append(label);
   }
 
