@@ -49,6 +49,7 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
         result.edges().len(),
     );
     let plural = |count: usize| if count == 1 { "" } else { "s" };
+    let (points_text, edges_text, unused_text) = (grouped(points), grouped(edges), grouped(unused));
     write!(
         out,
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
@@ -65,8 +66,8 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
          Delaunay triangulation and the graph after each stage, as the layers switch them; a \
          click on a point or an edge, or the keys below, tell its story in Details\" \
          aria-describedby=\"summary keys\"></canvas></div>\
-         <aside><p id=\"summary\">The result: {points} point{}, {edges} edge{} in {} curve{} \
-         ({closed} closed, {} open), {unused} unused.</p>\
+         <aside><p id=\"summary\">The result: {points_text} point{}, {edges_text} edge{} in {} \
+         curve{} ({closed} closed, {} open), {unused_text} unused.</p>\
          <section id=\"info\"><h2>Details</h2><p id=\"details\" aria-live=\"polite\">\
          Click a point or an edge.</p></section><section id=\"layers\" role=\"group\" \
          aria-labelledby=\"layers-heading\"><h2 id=\"layers-heading\">Layers</h2></section>\
@@ -86,6 +87,20 @@ pub fn write_html(out: &mut dyn Write, result: &Reconstruction, title: &str) -> 
     write_data(&mut out, result, &stories)?;
     write!(out, "</script>\n<script>{SCRIPT}</script></body></html>\n")?;
     out.flush()
+}
+
+/// `n` with its thousands grouped by commas, as the script writes its counts
+/// (`toLocaleString("en")`): the summary and the layers' counts read alike.
+fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut text = String::with_capacity(digits.len() + digits.len() / 3);
+    for (k, digit) in digits.chars().enumerate() {
+        if k > 0 && (digits.len() - k) % 3 == 0 {
+            text.push(',');
+        }
+        text.push(digit);
+    }
+    text
 }
 
 /// The data block: one JSON object, numbers only (no text the script would have to trust).
@@ -555,6 +570,19 @@ const SCRIPT: &str = include_str!("html/viewer.js");
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn counts_group_their_thousands_as_the_script_does() {
+        for (n, text) in [
+            (0, "0"),
+            (999, "999"),
+            (1_000, "1,000"),
+            (12_345, "12,345"),
+            (1_234_567, "1,234,567"),
+        ] {
+            assert_eq!(grouped(n), text);
+        }
+    }
 
     #[test]
     fn numbers_keep_their_significant_digits_in_the_shorter_spelling() {

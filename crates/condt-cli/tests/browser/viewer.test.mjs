@@ -124,8 +124,10 @@ try {
   assert.equal(await page.title(), `condt: ${data}`);
   assert.equal(await page.getAttribute("html", "lang"), "en");
   const closedCount = curves.filter((c) => c === "closed").length;
-  const summary = `The result: ${inputPoints} points, ${result.size} edges in ${curves.length} curves ` +
-    `(${closedCount} closed, ${curves.length - closedCount} open), ${unusedCount} unused.`;
+  const grouped = (count) => count.toLocaleString("en"); // the page groups thousands so
+  const summary = `The result: ${grouped(inputPoints)} points, ${grouped(result.size)} edges in ` +
+    `${curves.length} curves (${closedCount} closed, ${curves.length - closedCount} open), ` +
+    `${grouped(unusedCount)} unused.`;
   const described = await page.$eval("#canvas", (c) => c.getAttribute("aria-describedby").split(" ")
     .map((id) => document.getElementById(id).textContent));
   assert.equal(described[0], summary, "the drawing's text alternative");
