@@ -81,6 +81,14 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
             .call1((&element_type,))
             .and_then(|d| d.getattr("kind")?.extract::<String>())
             .unwrap_or_else(|_| "O".into());
+        // Shapely geometries (a GeoSeries, a GeoDataFrame, `.geometry.values`) are objects to
+        // numpy, and `float()` of one said only "not 'Point'" (a GIS user's review).
+        if is_shapely(&element_type)? {
+            return Err(PyTypeError::new_err(format!(
+                "points holds shapely geometries ({}), not numbers: {GEOMETRY_FIX}",
+                element_type.name()?
+            )));
+        }
         if element.is_none() || (!is_number_kind(&kind) && kind != "O") {
             return Err(PyTypeError::new_err(format!(
                 "points must hold numbers (integers or floats), not {} (in an array of dtype \
@@ -92,6 +100,19 @@ fn check_numbers(numpy: &Bound<'_, PyModule>, array: &Bound<'_, PyAny>) -> PyRes
     }
     Ok(())
 }
+
+/// Whether `t` is one of shapely's geometry types (`shapely.Point`, `shapely.MultiPoint`, ...).
+fn is_shapely(t: &Bound<'_, PyType>) -> PyResult<bool> {
+    let module: String = t.getattr("__module__")?.extract().unwrap_or_default();
+    Ok(module == "shapely" || module.starts_with("shapely."))
+}
+
+/// What to pass instead of shapely geometries: their coordinates, with the GeoDataFrame's own
+/// index kept beside them (python/README.md, *GeoPandas*, has the way back to a GeoDataFrame).
+const GEOMETRY_FIX: &str = "pass their coordinates, gdf.get_coordinates() for a GeoDataFrame or \
+                            GeoSeries (one row per point, the index kept: a MultiPoint's points \
+                            share its label, None and empty geometries give none) or \
+                            shapely.get_coordinates(geometries); python/README.md, *GeoPandas*";
 
 /// What to pass instead of an image or a mask: the places of its edge pixels, of a filled
 /// mask's boundary for a segmentation (its every pixel would be read as a point).
@@ -334,11 +355,36 @@ pub(crate) fn points_array<'py>(
             err
         }
     };
+    // A GeoDataFrame's attribute columns would be met before its geometries, and refused as
+    // "not str" (a GIS user's review): a GeoPandas object is told its fix whatever it holds.
+    let module: String = obj
+        .get_type()
+        .getattr("__module__")?
+        .extract()
+        .unwrap_or_default();
+    if module.starts_with("geopandas.") || module.starts_with("dask_geopandas.") {
+        // dask-geopandas has no `get_coordinates`: its points are computed on the driver.
+        let computed = if module.starts_with("dask_") {
+            " (of a dask-geopandas one: ddf.compute().get_coordinates())"
+        } else {
+            ""
+        };
+        return Err(PyTypeError::new_err(format!(
+            "points is a {} of geometries, not numbers: {GEOMETRY_FIX}{computed}",
+            obj.get_type().name()?
+        )));
+    }
     // None and scalars are the wrong type, not a wrong shape: numpy would make them one point.
     let ndim = numpy.getattr("ndim")?.call1((obj,)).map_err(ragged)?;
     if obj.is_none() || ndim.extract::<usize>()? == 0 {
+        // One geometry (a MultiPoint, a LineString's vertices): numpy sees a scalar object.
+        let hint = if is_shapely(&obj.get_type())? {
+            " (a shapely geometry: pass shapely.get_coordinates(geometry))".to_string()
+        } else {
+            String::new()
+        };
         return Err(PyTypeError::new_err(format!(
-            "points must be an array-like of shape (n, 2), not {}",
+            "points must be an array-like of shape (n, 2), not {}{hint}",
             obj.get_type().name()?
         )));
     }

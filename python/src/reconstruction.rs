@@ -356,7 +356,11 @@ impl Reconstruction {
     /// the default, writes none; the text ``"null"`` writes ``"crs": null`` (GeoJSON 2008: no
     /// crs can be assumed). ``TypeError`` for any other type; ``ValueError`` for text that starts
     /// as JSON (``{``) and is not one JSON object, or other JSON than an object, a string or
-    /// ``null`` (``[1, 2]``, ``4326``). Without a ``crs``, coordinates that cannot be a longitude
+    /// ``null`` (``[1, 2]``, ``4326``). A pyproj ``CRS`` (a GeoDataFrame's ``.crs``) is written by
+    /// its authority's name (``EPSG:32632``; ``ValueError`` for one without); PROJJSON
+    /// (``CRS.to_json()``) is refused, as GDAL reads a file carrying it as EPSG:4326. For
+    /// longitudes and latitudes (EPSG:4326, OGC:CRS84) RFC 7946 wants no ``crs``: leave it
+    /// ``None``. Without a ``crs``, coordinates that cannot be a longitude
     /// and latitude (beyond 180 and 90: pixels, metres) get a ``UserWarning``, as the command line
     /// notes them; ``crs="null"`` says the frame is none and silences it.
     ///
@@ -377,6 +381,23 @@ impl Reconstruction {
             Some(text) if text.is_instance_of::<pyo3::types::PyString>() => {
                 // As the command line's --crs takes it: a JSON object, or a name.
                 let text: String = text.extract()?;
+                refuse_projjson(py, &text)?;
+                Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
+            }
+            // A pyproj CRS (a GeoDataFrame's `.crs`): written by its authority's name, the
+            // one form of it GeoJSON readers take (a GIS user's review: it was a TypeError).
+            Some(value) if value.hasattr("to_authority")? => {
+                let name = value.call_method0("to_authority")?;
+                if name.is_none() {
+                    return Err(PyValueError::new_err(format!(
+                        "crs {} has no authority code, which GeoJSON's crs member names: pass \
+                         a name such as \"EPSG:32632\", or reproject the points to one \
+                         (GeoDataFrame.to_crs) before reconstructing",
+                        value.str()?
+                    )));
+                }
+                let (authority, code): (String, String) = name.extract()?;
+                let text = format!("{authority}:{code}");
                 Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
             }
             // GeoJSON's crs member is an object: a number or a list written there is a mistake.
@@ -384,7 +405,8 @@ impl Reconstruction {
                 if !value.is_instance(&py.import("collections.abc")?.getattr("Mapping")?)? =>
             {
                 return Err(pyo3::exceptions::PyTypeError::new_err(format!(
-                    "crs must be JSON text, a name, a dict or None, not {}",
+                    "crs must be JSON text, a name (\"EPSG:4326\" for an EPSG code), a dict, \
+                     a pyproj CRS or None, not {}",
                     value.get_type().name()?
                 )));
             }
@@ -411,6 +433,7 @@ impl Reconstruction {
                         }
                     })?
                     .extract()?;
+                refuse_projjson(py, &text)?;
                 Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
             }
         };
@@ -798,4 +821,36 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
     };
     dict.set_item("reason", reason)?;
     Ok(dict)
+}
+
+/// Refuses PROJJSON (pyproj's `CRS.to_json()`, a `"$schema"` naming it or a `"type"` such as
+/// `"ProjectedCRS"`) as a GeoJSON crs member: GDAL reads neither GeoJSON 2008's crs forms nor
+/// anything else in it, and a file carrying it read back as EPSG:4326, UTM metres taken for
+/// degrees without a word (a GIS user's review).
+fn refuse_projjson(py: Python<'_>, text: &str) -> PyResult<()> {
+    if !text.trim_start().starts_with('{') {
+        return Ok(());
+    }
+    // Malformed JSON is left to `crs_member`, whose message names it.
+    let Ok(object) = py.import("json")?.getattr("loads")?.call1((text,)) else {
+        return Ok(());
+    };
+    let Ok(object) = object.cast_into::<PyDict>() else {
+        return Ok(());
+    };
+    let text_of = |key: &str| -> PyResult<Option<String>> {
+        Ok(object
+            .get_item(key)?
+            .and_then(|value| value.extract::<String>().ok()))
+    };
+    let schema = text_of("$schema")?.is_some_and(|s| s.contains("projjson"));
+    let crs_type = text_of("type")?.is_some_and(|t| t.ends_with("CRS"));
+    if schema || crs_type {
+        return Err(PyValueError::new_err(
+            "crs is PROJJSON (pyproj's CRS.to_json()), which GeoJSON readers do not read in a \
+             crs member (GDAL reads the file as EPSG:4326): pass the pyproj CRS itself \
+             (gdf.crs) or its name (\"EPSG:32632\")",
+        ));
+    }
+    Ok(())
 }

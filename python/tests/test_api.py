@@ -1410,7 +1410,8 @@ def test_read_points_with_crs_carries_the_crs_to_geojson(tmp_path):
     assert json.loads(r.to_geojson(crs=proxy))["crs"] == json.loads(crs_text)
     # GeoJSON's crs is an object: a number or a list is a mistake, not written.
     for wrong in (5, [1], 1.5):
-        with pytest.raises(TypeError, match=f"^crs must be JSON text, a name, a dict or None, not {type(wrong).__name__}$"):
+        said = 'crs must be JSON text, a name ("EPSG:4326" for an EPSG code), a dict, a pyproj CRS'
+        with pytest.raises(TypeError, match=f"^{re.escape(said)} or None, not {type(wrong).__name__}$"):
             r.to_geojson(crs=wrong)
     # Other formats, and GeoJSON without one, have no crs.
     (tmp_path / "pts.txt").write_text("0 0\n1 0\n")

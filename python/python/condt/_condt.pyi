@@ -7,6 +7,7 @@ from typing import (
     Literal,
     Mapping,
     Optional,
+    Protocol,
     Sequence,
     SupportsFloat,
     SupportsIndex,
@@ -69,6 +70,10 @@ _Bool = Union[bool, np.bool_]
 _Number = SupportsFloat
 _InputFormat = Literal["txt", "text", "node", "csv", "tsv", "npy", "geojson", "json", "geojsonl", "geojsons"]
 
+class _AuthorityCRS(Protocol):
+    """What ``to_geojson`` takes of a pyproj ``CRS`` (a GeoDataFrame's ``.crs``)."""
+    def to_authority(self) -> Optional[Tuple[str, str]]: ...
+
 @final
 class Curve:
     @property
@@ -121,7 +126,8 @@ class Reconstruction:
     def stage_points(self) -> _Coords: ...
     # A duplicate point is its first point: explain(4, 1) tells of 0-1 when 4 repeats 0.
     def explain(self, i: SupportsIndex, j: SupportsIndex) -> EdgeStory: ...
-    def to_geojson(self, *, crs: Union[str, Mapping[str, Any], None] = None) -> str: ...
+    # A pyproj CRS is written by its authority's name; PROJJSON is refused.
+    def to_geojson(self, *, crs: Union[str, Mapping[str, Any], _AuthorityCRS, None] = None) -> str: ...
     def to_shapely(self) -> Any: ...
     def __len__(self) -> int: ...
     def __copy__(self) -> Reconstruction: ...
