@@ -1,6 +1,6 @@
 """GIS layers (a GIS analyst's review with GeoPandas): shapely geometries refused with the fix
 named, a pyproj CRS written as GeoJSON's crs member and PROJJSON refused, a file in longitudes
-and latitudes warned of."""
+and latitudes warned of, and python/README.md's *GeoPandas* recipe run as written."""
 
 import io
 import json
@@ -122,3 +122,19 @@ def test_read_points_is_silent_near_the_equator_and_on_projected_metres(tmp_path
         # x and y columns say nothing of degrees, whatever the values.
         condt.read_points(lon_lat_file(tmp_path, 60.0, name="xy.csv", header="x,y"))
 
+
+def test_the_readmes_geopandas_recipe_runs_as_written():
+    """python/README.md's *GeoPandas* block: its asserts check the three borders against the
+    lines the points were sampled from, and the two fields' areas."""
+    pytest.importorskip("geopandas")
+    from test_api import run_the_readmes_first_block_under
+
+    names = run_the_readmes_first_block_under("## GeoPandas")
+    lines, points = names["lines"], names["points"]
+    # Every id names a point of the layer, none of the geometries without a point.
+    ids = {i for row in lines.point_ids for i in row}
+    assert ids <= set(points.index)
+    none, empty, junctions = points.index[-3:]
+    assert none not in ids and empty not in ids
+    # The MultiPoint holds both junctions: every border starts and ends at one of them.
+    assert all(row[0] == junctions and row[-1] == junctions for row in lines.point_ids)
