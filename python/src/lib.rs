@@ -594,8 +594,13 @@ fn read_point_file<'py>(
             1,
         )?;
     }
-    if let Some(message) = degrees.then(|| stretched_degrees(&points)).flatten() {
-        let message = format!("{shown}: {message}");
+    let degrees = degrees.then(|| condt_io::Degrees::of(&points)).flatten();
+    let see = "GeoPandas: gdf.to_crs(gdf.estimate_utm_crs()); python/README.md, *GeoPandas*";
+    for said in degrees
+        .map(|degrees| degrees.notes(see))
+        .unwrap_or_default()
+    {
+        let message = format!("{shown}: {said}");
         PyErr::warn(
             py,
             &py.get_type::<PyUserWarning>(),
@@ -614,36 +619,6 @@ fn read_point_file<'py>(
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
     Ok((PyArray2::from_owned_array(py, array), crs, shown))
-}
-
-/// What `condt reconstruct` notes of a file in longitudes and latitudes (a CSV's `lon` and
-/// `lat`, GeoJSON without a projected crs) whose farthest latitude stretches an east-west gap
-/// by more than 5 % against a north-south one (beyond 18.2 degrees): `read_points` said
-/// nothing, and a GIS user's survey at 60 degrees north lost an edge in a curve. `None` where
-/// a point is no longitude and latitude (projected metres under such names), as there.
-fn stretched_degrees(points: &[condt::Point]) -> Option<String> {
-    let degrees = |p: &condt::Point| (-180.0..=360.0).contains(&p.x) && p.y.abs() <= 90.0;
-    if points.is_empty() || !points.iter().all(degrees) {
-        return None;
-    }
-    let farthest = points.iter().fold(0.0f64, |far, p| far.max(p.y.abs()));
-    let shrink = farthest.to_radians().cos();
-    if shrink >= 0.95 {
-        return None;
-    }
-    // Within 0.6 degrees of a pole the ratio is no measure (at 90 itself it is infinite).
-    let stretch = if shrink < 0.01 {
-        "over 100".to_string()
-    } else {
-        format!("{:.1}", 1.0 / shrink)
-    };
-    Some(format!(
-        "longitudes and latitudes are read as plane coordinates: at latitude {farthest:.0}, the \
-         points' farthest from the equator, an east-west gap counts {stretch} times as long as \
-         a north-south one of the same metres, and curves may break or join otherwise than on \
-         the ground; project the points first where that matters (GeoPandas: \
-         gdf.to_crs(gdf.estimate_utm_crs()); python/README.md, *GeoPandas*)"
-    ))
 }
 
 /// A reader's message with its advice in this function's keywords: the readers advise the

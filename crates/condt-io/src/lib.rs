@@ -18,6 +18,7 @@
 
 mod csv;
 mod decimal;
+mod degrees;
 mod geojson;
 mod geojson_points;
 mod html;
@@ -43,6 +44,7 @@ mod geometry {
 }
 
 pub use csv::parse_csv;
+pub use degrees::Degrees;
 pub use geojson::{crs_member, not_longitude_latitude, write_geojson, write_geojson_with_crs};
 pub use geojson_points::{parse_geojson, parse_geojson_with_crs};
 pub use html::write_html;
