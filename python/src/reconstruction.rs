@@ -381,8 +381,7 @@ impl Reconstruction {
             Some(text) if text.is_instance_of::<pyo3::types::PyString>() => {
                 // As the command line's --crs takes it: a JSON object, or a name.
                 let text: String = text.extract()?;
-                refuse_projjson(py, &text)?;
-                Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
+                Some(condt_io::crs_member(&text).map_err(crs_refused)?)
             }
             // A pyproj CRS (a GeoDataFrame's `.crs`): written by its authority's name, the
             // one form of it GeoJSON readers take (a GIS user's review: it was a TypeError).
@@ -433,8 +432,7 @@ impl Reconstruction {
                         }
                     })?
                     .extract()?;
-                refuse_projjson(py, &text)?;
-                Some(condt_io::crs_member(&text).map_err(PyValueError::new_err)?)
+                Some(condt_io::crs_member(&text).map_err(crs_refused)?)
             }
         };
         // As the command line notes it: without a crs member, readers take the coordinates for
@@ -823,34 +821,12 @@ fn change_dict<'py>(py: Python<'py>, change: &Change) -> PyResult<Bound<'py, PyD
     Ok(dict)
 }
 
-/// Refuses PROJJSON (pyproj's `CRS.to_json()`, a `"$schema"` naming it or a `"type"` such as
-/// `"ProjectedCRS"`) as a GeoJSON crs member: GDAL reads neither GeoJSON 2008's crs forms nor
-/// anything else in it, and a file carrying it read back as EPSG:4326, UTM metres taken for
-/// degrees without a word (a GIS user's review).
-fn refuse_projjson(py: Python<'_>, text: &str) -> PyResult<()> {
-    if !text.trim_start().starts_with('{') {
-        return Ok(());
+/// `crs_member`'s refusal as Python's `ValueError`; PROJJSON's with the form Python has beside
+/// a name: the pyproj CRS itself.
+fn crs_refused(why: String) -> PyErr {
+    if why.starts_with("PROJJSON") {
+        PyValueError::new_err(format!("{why}, or the pyproj CRS itself (gdf.crs)"))
+    } else {
+        PyValueError::new_err(why)
     }
-    // Malformed JSON is left to `crs_member`, whose message names it.
-    let Ok(object) = py.import("json")?.getattr("loads")?.call1((text,)) else {
-        return Ok(());
-    };
-    let Ok(object) = object.cast_into::<PyDict>() else {
-        return Ok(());
-    };
-    let text_of = |key: &str| -> PyResult<Option<String>> {
-        Ok(object
-            .get_item(key)?
-            .and_then(|value| value.extract::<String>().ok()))
-    };
-    let schema = text_of("$schema")?.is_some_and(|s| s.contains("projjson"));
-    let crs_type = text_of("type")?.is_some_and(|t| t.ends_with("CRS"));
-    if schema || crs_type {
-        return Err(PyValueError::new_err(
-            "crs is PROJJSON (pyproj's CRS.to_json()), which GeoJSON readers do not read in a \
-             crs member (GDAL reads the file as EPSG:4326): pass the pyproj CRS itself \
-             (gdf.crs) or its name (\"EPSG:32632\")",
-        ));
-    }
-    Ok(())
 }

@@ -1042,6 +1042,11 @@ fn crs_names_the_reference_system_of_a_geojson_output() {
         (&["--crs", "{\"type\":"][..], "is not one JSON object"),
         (&["--crs", "[1,2]"][..], "is JSON but neither"),
         (&["--crs", "4326"][..], "is JSON but neither"),
+        // PROJJSON, which GDAL reads back as longitude and latitude (a GIS analyst's review).
+        (
+            &["--crs", r#"{"type":"ProjectedCRS","name":"WGS 84 / UTM zone 32N"}"#][..],
+            "PROJJSON",
+        ),
         (
             &["--crs", "EPSG:32632", "--format", "txt"][..],
             "GeoJSON output",

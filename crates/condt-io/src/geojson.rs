@@ -120,8 +120,9 @@ pub fn not_longitude_latitude(points: &[Point]) -> Option<Point> {
 /// `EPSG:n` in the OGC URN form GDAL writes itself; a JSON string is the name it holds.
 ///
 /// # Errors
-/// Why `given` is none of these: JSON text (a leading `{`) that is not one object, other JSON
-/// (`[1, 2]`, `4326`, `true`), an empty name, or one with a control character.
+/// Why `given` is none of these: JSON text (a leading `{`) that is not one object, PROJJSON
+/// (which GDAL would read as longitude and latitude; the message starts with "PROJJSON"), other
+/// JSON (`[1, 2]`, `4326`, `true`), an empty name, or one with a control character.
 ///
 /// ```
 /// use condt_io::crs_member;
@@ -139,6 +140,8 @@ pub fn not_longitude_latitude(points: &[Point]) -> Option<Point> {
 /// assert_eq!(crs_member(" null ")?, "null");
 /// assert!(crs_member("{\"type\": ").is_err() && crs_member(" ").is_err());
 /// assert!(crs_member("[1, 2]").is_err() && crs_member("4326").is_err());
+/// let projjson = r#"{"type": "ProjectedCRS", "name": "WGS 84 / UTM zone 32N"}"#;
+/// assert!(crs_member(projjson).unwrap_err().starts_with("PROJJSON"));
 /// # Ok::<(), String>(())
 /// ```
 pub fn crs_member(given: &str) -> Result<String, String> {
@@ -146,6 +149,7 @@ pub fn crs_member(given: &str) -> Result<String, String> {
     let trimmed = given.trim();
     if trimmed.starts_with('{') {
         return match serde_json::from_str::<Value>(trimmed) {
+            Ok(Value::Object(object)) if is_projjson(&object) => Err(PROJJSON_REFUSED.to_string()),
             Ok(Value::Object(_)) => Ok(trimmed.to_string()),
             _ => Err(format!("{given:?} is not one JSON object")),
         };
@@ -189,6 +193,22 @@ pub fn crs_member(given: &str) -> Result<String, String> {
     Ok(format!(
         r#"{{"type":"name","properties":{{"name":{quoted}}}}}"#
     ))
+}
+
+/// Why PROJJSON (pyproj's `CRS.to_json()`, PROJ's `projinfo -o PROJJSON`) is no crs member:
+/// GDAL reads GeoJSON 2008's named and linked forms alone, and a file carrying PROJJSON read back
+/// as EPSG:4326, UTM metres taken for degrees without a word (a GIS analyst's review, through
+/// GeoPandas). It starts with "PROJJSON" for callers that add their own advice.
+pub(crate) const PROJJSON_REFUSED: &str = "PROJJSON (as pyproj's CRS.to_json() writes it) is \
+    no crs member GeoJSON readers read: GDAL reads such a file as EPSG:4326, longitude and \
+    latitude; give the system's name instead, such as EPSG:32632";
+
+/// Whether a crs object is PROJJSON: a `$schema` naming it, or a `type` such as `ProjectedCRS`
+/// or `GeographicCRS` (GeoJSON 2008's members are of `type` `name` or `link`).
+fn is_projjson(object: &serde_json::Map<String, serde_json::Value>) -> bool {
+    let text = |key: &str| object.get(key).and_then(serde_json::Value::as_str);
+    text("$schema").is_some_and(|schema| schema.contains("projjson"))
+        || text("type").is_some_and(|kind| kind.ends_with("CRS"))
 }
 
 /// A coordinate as a JSON number that reads back as the same double: in positional notation,
