@@ -330,8 +330,9 @@ and Eppstein); a baseline takes none of the ConDT options",
         help: "the coordinate reference system a GeoJSON output names (GeoJSON
 output only): EPSG:32632 (written as a named crs,
 urn:ogc:def:crs:EPSG::32632), another name, a crs member's JSON
-object, or null; instead of a GeoJSON input's own. Without it, a
-GIS reads an output from other inputs as longitude and latitude",
+object (not PROJJSON, which GDAL reads as EPSG:4326), or null;
+instead of a GeoJSON input's own. Without it, a GIS reads an
+output from other inputs as longitude and latitude",
     },
     Opt {
         id: ReconstructId::Sequential,
