@@ -194,16 +194,18 @@ fn reconstruct(
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    // The work runs on a copy of the points, made first (without the GIL, within the call's
-    // allocator scope), which the result then keeps (GeoJSON, shapely and `Curve.coords` read
-    // it later). Reading the caller's array during the work instead let another thread's write
-    // meanwhile change the points under the triangulation: a NaN written and put back made the
-    // point location walk forever, where Ctrl-C is not checked (a Python user's review: a call on
-    // 300,000 points still running after a SIGINT at 40 s). The result kept a copy anyway,
-    // made after the work: copied first, the call copies no more than it did.
+    // The work runs on a copy of the points, made first, which the result then keeps (GeoJSON,
+    // shapely and `Curve.coords` read it later). Reading the caller's array during the work
+    // instead let another thread's write meanwhile change the points under the triangulation: a
+    // NaN written and put back made the point location walk forever, where Ctrl-C is not checked
+    // (a Python user's review: a call on 300,000 points still running after a SIGINT at 40 s).
+    // The result kept a copy anyway, made after the work: copied first, the call copies no more
+    // than it did. The copy is made holding the GIL, so that no Python thread writes the array
+    // while it is read: made without it, such a write was a data race on `points` (undefined
+    // behaviour, not only a torn point; a memory-safety review's find).
+    let owned = points.to_vec();
     let (result, owned) = crate::detached(py, || {
         within_call(|| {
-            let owned = points.to_vec();
             let result = interruptible(&owned, &params)?;
             Ok::<_, PyErr>((result, owned))
         })
@@ -280,14 +282,11 @@ fn triangulate(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Triangulat
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
     let points = as_points(borrowed.as_slice()?);
-    // On a copy, as `reconstruct` runs: a write to the caller's array from another thread during
-    // the work could make the point location walk forever (16 bytes a point while it runs).
-    let (tri, owned) = crate::detached(py, || {
-        within_call(|| {
-            let owned = points.to_vec();
-            (condt::triangulate(&owned), owned)
-        })
-    })?;
+    // On a copy, made holding the GIL, as `reconstruct` runs: a write to the caller's array from
+    // another thread during the work could make the point location walk forever (16 bytes a
+    // point while it runs), and one during the copy would race with it.
+    let owned = points.to_vec();
+    let (tri, owned) = crate::detached(py, || within_call(|| (condt::triangulate(&owned), owned)))?;
     let tri = tri.map_err(|err| library_error(err, &owned))?;
     Ok(Triangulation::new(tri))
 }
