@@ -570,6 +570,12 @@ pub(crate) fn shape_text(shape: &[usize]) -> String {
 }
 
 /// The rows of a C-contiguous `(n, 2)` float64 array's data as points.
+///
+/// The view is as sound as the slice it comes from: NumPy's read-only borrow keeps Rust code
+/// from writing the array, not Python code, so another Python thread may write it whenever the
+/// GIL is released. Read it holding the GIL, or copy it first (as `reconstruct` and
+/// `triangulate` do) and read the copy without. Not yet so: `score` and the tile functions of
+/// `tiles.rs`, which read the caller's arrays without the GIL (a copy each, not yet weighed).
 pub(crate) fn as_points(flat: &[f64]) -> &[Point] {
     const _: () = assert!(
         core::mem::size_of::<Point>() == 2 * core::mem::size_of::<f64>()
