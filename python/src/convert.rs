@@ -573,9 +573,12 @@ pub(crate) fn shape_text(shape: &[usize]) -> String {
 ///
 /// The view is as sound as the slice it comes from: NumPy's read-only borrow keeps Rust code
 /// from writing the array, not Python code, so another Python thread may write it whenever the
-/// GIL is released. Read it holding the GIL, or copy it first (as `reconstruct` and
-/// `triangulate` do) and read the copy without. Not yet so: `score` and the tile functions of
-/// `tiles.rs`, which read the caller's arrays without the GIL (a copy each, not yet weighed).
+/// GIL is released. Read it holding the GIL, or copy it first, holding the GIL (as
+/// `reconstruct`, `triangulate` and `score` do), and read the copy without. NumPy itself
+/// releases the GIL inside its own loops (a ufunc with `out=`, a large copy), so such a write in
+/// another thread can still overlap the copy, as it can any extension's read of a buffer: the
+/// copy narrows the window to its own length. Not yet so: the tile functions of `tiles.rs`,
+/// private to `condt.dask`, which read the arrays it passes without the GIL.
 pub(crate) fn as_points(flat: &[f64]) -> &[Point] {
     const _: () = assert!(
         core::mem::size_of::<Point>() == 2 * core::mem::size_of::<f64>()

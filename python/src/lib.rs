@@ -200,9 +200,10 @@ fn reconstruct(
     // NaN written and put back made the point location walk forever, where Ctrl-C is not checked
     // (a Python user's review: a call on 300,000 points still running after a SIGINT at 40 s).
     // The result kept a copy anyway, made after the work: copied first, the call copies no more
-    // than it did. The copy is made holding the GIL, so that no Python thread writes the array
-    // while it is read: made without it, such a write was a data race on `points` (undefined
-    // behaviour, not only a torn point; a memory-safety review's find).
+    // than it did. The copy is made holding the GIL, so that no write from Python code (which
+    // needs the GIL) overlaps it: made without it, such a write was a data race on `points`
+    // (undefined behaviour, not only a torn point; a memory-safety review's find). NumPy's own
+    // loops release the GIL, so `as_points` says what is left.
     let owned = points.to_vec();
     let (result, owned) = crate::detached(py, || {
         within_call(|| {
@@ -875,7 +876,8 @@ fn score<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let array = points_array(py, points)?;
     let borrowed = array.try_readonly()?;
-    let points = as_points(borrowed.as_slice()?);
+    // A copy, made holding the GIL, which the score then reads without it (as `reconstruct`'s).
+    let points = &as_points(borrowed.as_slice()?).to_vec()[..];
     let output = edge_rows(py, "output", output)?;
     let truth = edge_rows(py, "truth", truth)?;
     let (output_positions, truth_positions) = (as_positions(&output), as_positions(&truth));

@@ -1044,7 +1044,10 @@ fn crs_names_the_reference_system_of_a_geojson_output() {
         (&["--crs", "4326"][..], "is JSON but neither"),
         // PROJJSON, which GDAL reads back as longitude and latitude (a GIS analyst's review).
         (
-            &["--crs", r#"{"type":"ProjectedCRS","name":"WGS 84 / UTM zone 32N"}"#][..],
+            &[
+                "--crs",
+                r#"{"type":"ProjectedCRS","name":"WGS 84 / UTM zone 32N"}"#,
+            ][..],
             "PROJJSON",
         ),
         (
