@@ -374,6 +374,12 @@ pub(crate) fn points_array<'py>(
             obj.get_type().name()?
         )));
     }
+    // A pandas table of more than its two coordinates (a name, a z column): the hints below
+    // would advise NumPy's `points[:, :2]`, which a DataFrame does not take (a GIS user's
+    // review: a name column said only "not str").
+    let table_fix = ((module == "pandas" || module.starts_with("pandas."))
+        && obj.get_type().name()?.to_str()? == "DataFrame")
+        .then_some("; a DataFrame? pass its two coordinate columns, such as df[[\"x\", \"y\"]]");
     // None and scalars are the wrong type, not a wrong shape: numpy would make them one point.
     let ndim = numpy.getattr("ndim")?.call1((obj,)).map_err(ragged)?;
     if obj.is_none() || ndim.extract::<usize>()? == 0 {
@@ -395,7 +401,10 @@ pub(crate) fn points_array<'py>(
     } else {
         numpy.getattr("asarray")?.call1((obj,)).map_err(ragged)?
     };
-    check_numbers(&numpy, &given)?;
+    check_numbers(&numpy, &given).map_err(|err| match table_fix {
+        Some(fix) => PyTypeError::new_err(format!("{}{fix}", err.value(py))),
+        None => err,
+    })?;
     check_no_bools_in_rows(&numpy, obj)?;
     check_long_doubles(&numpy, &given)?;
     let converted = match ascontiguousarray(py)?.call1((given.clone(), "float64")) {
@@ -446,6 +455,7 @@ pub(crate) fn points_array<'py>(
             // `np.nonzero`, OpenCV's contours, a point per column; and lists of contours of one
             // length, which numpy stacks (`findContours` of a single blob gives a tuple of one).
             let hint = match shape.as_slice() {
+                _ if table_fix.is_some() => table_fix.unwrap_or_default(),
                 [2, _] => "; points by column? pass points.T",
                 [_, 1, 2] => "; OpenCV's contour layout? pass points.reshape(-1, 2)",
                 [_, _, 1, 2] => {

@@ -1683,3 +1683,16 @@ def test_score_warns_of_a_truth_at_a_later_copy_of_a_point():
         warnings.simplefilter("error")
         condt.score(ring, output, output)
 
+
+
+def test_a_dataframe_of_more_than_two_columns_is_told_to_pass_its_coordinates():
+    # A name or a z column beside x and y said only "not str" or pointed at NumPy's
+    # points[:, :2], which a DataFrame does not take.
+    pd = pytest.importorskip("pandas")
+    xy = {"x": [0.0, 1.0, 0.5], "y": [0.0, 0.0, 1.0]}
+    for extra in ({"name": ["a", "b", "c"]}, {"z": [1.0, 2.0, 3.0]}):
+        table = pd.DataFrame({**extra, **xy})
+        with pytest.raises((TypeError, ValueError), match=re.escape('df[["x", "y"]]')):
+            condt.reconstruct(table)
+        # What the message advises works.
+        assert condt.reconstruct(table[["x", "y"]]).edges.shape == (3, 2)
