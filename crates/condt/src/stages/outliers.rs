@@ -252,6 +252,14 @@ mod tests {
             let (lone, kept) = by_sorting(&tri, &edges, rule);
             let filtered = remove_outliers(&tri, &edges, rule);
             assert_eq!(filtered.edges.is_some(), lone, "{edges:?}, {rule:?}");
+            // The same rule on edges given as index pairs with their squared lengths, as tiles
+            // gather them.
+            let length2 = |&[a, b]: &Edge| tri.vertex_point(a).dist2(tri.vertex_point(b));
+            let lengths: Vec<f64> = edges.iter().map(length2).collect();
+            let pairs: Vec<[usize; 2]> = edges.iter().map(|e| e.map(VertexId::index)).collect();
+            let gathered = iqr_cut(&pairs, |e| e, &lengths, tri.num_points(), rule);
+            let kept_pairs: Vec<[usize; 2]> = kept.iter().map(|e| e.map(VertexId::index)).collect();
+            assert_eq!(gathered, lone.then_some(kept_pairs), "{edges:?}, {rule:?}");
             assert_eq!(filtered.edges.unwrap_or(edges), kept);
             applied += usize::from(lone);
             not_applied += usize::from(!lone);
@@ -310,5 +318,71 @@ mod tests {
         let (paper, floored) = (cut(false), cut(true));
         assert_eq!(paper.iter().filter(|e| wide(e)).count(), 3, "{paper:?}");
         assert_eq!(floored, [ordered(v(7), v(21)), ordered(v(6), v(21))]);
+    }
+
+    /// The thresholds by the module comment's definition, computed by sorting, for every count
+    /// from a single edge up: the stage's counting shortcut returns before the quartiles under
+    /// five edges, but repairing again, the explanations and the tiles take them of any list.
+    #[test]
+    fn thresholds_agree_with_sorting_for_every_count() {
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let rules = [0.0, 1.7].map(|factor| [false, true].map(|floor| IqrRule { factor, floor }));
+        for n in 1..=24 {
+            for round in 0..20 {
+                // Ties in some rounds (four values), all distinct in the others.
+                let lengths2: Vec<f64> = (0..n)
+                    .map(|_| match round % 2 {
+                        0 => rng.below(4) as f64,
+                        _ => 10.0 * rng.unit(),
+                    })
+                    .collect();
+                let mut sorted = lengths2.clone();
+                sorted.sort_by(f64::total_cmp);
+                let (q1, median, q3) = (sorted[n / 4], sorted[n / 2], sorted[3 * n / 4]);
+                for rule in rules.into_iter().flatten() {
+                    let fire = q3 + rule.factor * (q3 - q1);
+                    let cut = match rule.floor {
+                        true => fire.max(1.5 * 1.5 * median),
+                        false => fire,
+                    };
+                    let got = iqr_thresholds_of(lengths2.clone(), rule);
+                    assert_eq!(got, Thresholds { fire, cut }, "{lengths2:?}, {rule:?}");
+                }
+            }
+        }
+    }
+
+    /// The selection keys order as `f64::total_cmp` does and give the same bits back, for
+    /// negative values, zeros of both signs, infinities and NaNs too: squared lengths are never
+    /// negative, so the stage alone cannot tell a key that is wrong on the sign bit.
+    #[test]
+    fn order_keys_order_as_total_cmp_and_give_the_value_back() {
+        let values = [
+            f64::NEG_INFINITY,
+            -f64::MAX,
+            -1.0 - f64::EPSILON,
+            -1.0,
+            -f64::MIN_POSITIVE,
+            -1e-310,
+            -0.0,
+            0.0,
+            1e-310,
+            f64::MIN_POSITIVE,
+            1.0 / 3.0,
+            1.0 + f64::EPSILON,
+            3.0,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for x in values {
+            let back = total_order_key_value(total_order_key(x));
+            assert_eq!(back.to_bits(), x.to_bits(), "{x}");
+            for y in values {
+                let keys = total_order_key(x).cmp(&total_order_key(y));
+                assert_eq!(keys, x.total_cmp(&y), "{x} {y}");
+            }
+        }
     }
 }
