@@ -324,6 +324,22 @@ mod tests {
     /// from a single edge up: the stage's counting shortcut returns before the quartiles under
     /// five edges, but repairing again, the explanations and the tiles take them of any list.
     #[test]
+    fn the_rule_on_gathered_edges_does_not_depend_on_the_scale() {
+        // A chain of nine equal edges and a tenth, ten times as long, to a point it alone ties
+        // in: every other length is Q1 = Q3, so the IQR is 0, the long edge alone exceeds the
+        // threshold and its far end has no edge within the bound: the rule fires and cuts it.
+        // The same at every scale (its quick count of short edges once compared with a constant
+        // where it means a ratio: mutation testing's survivors `4.0 + l` and `4.0 / l`).
+        let edges: Vec<[usize; 2]> = (0..10).map(|i| [i, i + 1]).collect();
+        for scale in [1e-6, 1e-2, 1.0, 1e2, 1e6] {
+            let mut lengths2 = vec![0.01 * scale; 9];
+            lengths2.push(scale);
+            let kept = iqr_cut(&edges, |e| e, &lengths2, 11, PAPER);
+            assert_eq!(kept.as_deref(), Some(&edges[..9]), "scale {scale}");
+        }
+    }
+
+    #[test]
     fn thresholds_agree_with_sorting_for_every_count() {
         let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
         let rules = [0.0, 1.7].map(|factor| [false, true].map(|floor| IqrRule { factor, floor }));
