@@ -223,12 +223,7 @@ fn reconstruct(
              points within d",
             twins.len()
         );
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &CString::new(message)?,
-            1,
-        )?;
+        user_warning(py, message)?;
     }
     Ok(Reconstruction::new(result, owned))
 }
@@ -500,12 +495,7 @@ fn read_points_with_crs<'py>(
     };
     if let Err(why) = condt_io::crs_member(&raw) {
         let message = format!("{shown}: its crs member {why}; None is returned for it");
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &CString::new(message)?,
-            1,
-        )?;
+        user_warning(py, message)?;
         return Ok((points, None));
     }
     Ok((points, Some(raw)))
@@ -575,24 +565,14 @@ fn read_point_file<'py>(
         let message = format!(
             "{shown}: skipped {skipped}: they hold no point, so row i is not the i-th feature"
         );
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &CString::new(message)?,
-            1,
-        )?;
+        user_warning(py, message)?;
     }
     if let Some(line) = crs_dropped_at {
         let message = format!(
             "{shown}:{line}: this crs differs from the one kept (the document's own, else \
              the first one read), and every point is read as given, without conversion"
         );
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &CString::new(message)?,
-            1,
-        )?;
+        user_warning(py, message)?;
     }
     let degrees = degrees.then(|| condt_io::Degrees::of(&points)).flatten();
     let see = "GeoPandas: gdf.to_crs(gdf.estimate_utm_crs()); python/README.md, *GeoPandas*";
@@ -601,12 +581,7 @@ fn read_point_file<'py>(
         .unwrap_or_default()
     {
         let message = format!("{shown}: {said}");
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &CString::new(message)?,
-            1,
-        )?;
+        user_warning(py, message)?;
     }
     let n = points.len();
     // Into the points' own memory (same size and alignment: the collect reuses it), not a
@@ -619,6 +594,16 @@ fn read_point_file<'py>(
     let array = Array2::from_shape_vec((n, 2), flat)
         .map_err(|err| PyRuntimeError::new_err(err.to_string()))?;
     Ok((PyArray2::from_owned_array(py, array), crs, shown))
+}
+
+/// A `UserWarning` saying `message`, shown at the caller's line (stack level 1).
+pub(crate) fn user_warning(py: Python<'_>, message: String) -> PyResult<()> {
+    PyErr::warn(
+        py,
+        &py.get_type::<PyUserWarning>(),
+        &CString::new(message)?,
+        1,
+    )
 }
 
 /// A reader's message with its advice in this function's keywords: the readers advise the
@@ -888,12 +873,7 @@ fn score<'py>(
             "the truth names {words}; edges are compared by point number, and \
              condt.reconstruct gives a duplicate's edges to its first copy"
         );
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &CString::new(message)?,
-            1,
-        )?;
+        user_warning(py, message)?;
     }
     let result = crate::detached(py, || {
         condt_eval::score::score(points, &output_positions, &truth_positions)

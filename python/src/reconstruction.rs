@@ -445,12 +445,7 @@ impl Reconstruction {
                      (\"EPSG:32632\", for instance)",
                     p.x, p.y
                 );
-                PyErr::warn(
-                    py,
-                    &py.get_type::<pyo3::exceptions::PyUserWarning>(),
-                    &std::ffi::CString::new(message)?,
-                    1,
-                )?;
+                crate::user_warning(py, message)?;
             }
         }
         // Without the GIL, as the other calls that take time on large results (0.22 s for the
