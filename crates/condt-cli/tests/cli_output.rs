@@ -46,6 +46,11 @@ fn condt<S: AsRef<OsStr>>(args: &[S], stdin: &str) -> Output {
     child.wait_with_output().unwrap()
 }
 
+/// Writes `input` to a spawned run's standard input and closes it.
+fn feed(child: &mut Child, input: &[u8]) {
+    child.stdin.take().unwrap().write_all(input).unwrap();
+}
+
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
@@ -352,12 +357,7 @@ fn failing_standard_streams_are_errors_or_ignored_never_panics() {
         .stderr(open())
         .spawn()
         .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(format!("{SQUARE}0 0\n").as_bytes())
-        .unwrap();
+    feed(&mut child, format!("{SQUARE}0 0\n").as_bytes());
     let status = child.wait().unwrap();
     assert_eq!(status.code(), Some(0));
     assert_eq!(fs::read_to_string(&target).unwrap(), square_triangles());
@@ -406,12 +406,7 @@ fn the_temporary_file_is_random_exclusive_and_cannot_be_hijacked() {
         None,
         "no temporary file while the run reads its input"
     );
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(SQUARE.as_bytes())
-        .unwrap();
+    feed(&mut child, SQUARE.as_bytes());
     let out = child.wait_with_output().unwrap();
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(
@@ -564,12 +559,7 @@ fn a_name_of_an_open_descriptor_writes_through_that_descriptor() {
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        child
-            .stdin
-            .take()
-            .unwrap()
-            .write_all(SQUARE.as_bytes())
-            .unwrap();
+        feed(&mut child, SQUARE.as_bytes());
         let out = child.wait_with_output().unwrap();
         assert!(out.status.success(), "{name}: {}", stderr(&out));
         // The same open file, its offset moved by the run's writes.
@@ -892,12 +882,7 @@ fn a_reader_that_goes_away_ends_the_run_silently() {
         .collect();
     let mut child = spawn(&["triangulate", "-"], Stdio::piped());
     drop(child.stdout.take());
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(points.as_bytes())
-        .unwrap();
+    feed(&mut child, points.as_bytes());
     let out = child.wait_with_output().unwrap();
     assert_eq!(stderr(&out), "", "nothing is said");
     assert_eq!(
@@ -1450,12 +1435,7 @@ fn an_in_place_rewrite_waits_for_a_lock_on_the_file() {
             ],
             Stdio::null(),
         );
-        child
-            .stdin
-            .take()
-            .unwrap()
-            .write_all(SQUARE.as_bytes())
-            .unwrap();
+        feed(&mut child, SQUARE.as_bytes());
         child
     };
     // A `flock` lock, as `flock(1)` takes: not waited for (it would be the run's own caller's).
@@ -1542,12 +1522,7 @@ fn score_scores_when_its_standard_error_refuses_writes() {
     );
     let mut child = spawn(&args, Stdio::piped());
     drop(child.stderr.take());
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(ring.as_bytes())
-        .unwrap();
+    feed(&mut child, ring.as_bytes());
     let out = child.wait_with_output().unwrap();
     assert_eq!(out.status.code(), Some(0), "{:?}", out.status);
     assert_eq!(out.stdout, said.stdout, "the same score");
